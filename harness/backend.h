@@ -1,0 +1,198 @@
+// The seam between the harness and a graphics API: one small interface, one class per API.
+//
+// Conventions every implementation keeps, so that lanes agree (see docs/architecture.md):
+// - Direct3D orientation: clip-space +y is up, clip z in [0, w], framebuffer row 0 is the top row,
+//   and texture coordinate (0,0) addresses the first row of uploaded data (the top of an image
+//   file). OpenGL gets there with glClipControl(GL_UPPER_LEFT, GL_ZERO_TO_ONE), Vulkan with a
+//   negative viewport height.
+// - Targets are RGBA32F colour and D32F depth; both can be sampled by later passes. Nothing is
+//   clamped: NaN, Inf, negatives and values above 1 reach read-back unchanged.
+// - Resources are bound by name through the program's layout, never by hard-coded numbers.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "harness/image.h"
+#include "hlsl_like/diagnostic.h"
+
+namespace xshade::harness {
+
+// A typed index into a backend's own tables; 0 is never a valid handle.
+template <class Tag>
+struct Handle {
+  uint32_t id = 0;
+  explicit operator bool() const { return id != 0; }
+  friend bool operator==(Handle, Handle) = default;
+};
+using TargetHandle = Handle<struct TargetTag>;
+using MeshHandle = Handle<struct MeshTag>;
+using TextureHandle = Handle<struct TextureTag>;
+using ProgramHandle = Handle<struct ProgramTag>;
+
+// The one vertex format: locations 0..3 are POSITION, NORMAL, TANGENT, TEXCOORD0.
+struct Vertex {
+  glm::vec3 position{0.0f};
+  glm::vec3 normal{0.0f, 0.0f, 1.0f};
+  glm::vec4 tangent{1.0f, 0.0f, 0.0f, 1.0f};
+  glm::vec2 uv{0.0f};
+};
+static_assert(sizeof(Vertex) == 48, "the vertex layout is shared with the shaders");
+
+struct MeshData {
+  std::vector<Vertex> vertices;
+  std::vector<uint32_t> indices;  // triangle list
+};
+
+enum class TextureFormat {
+  Rgba8Unorm,   // 4 bytes per texel, linear
+  Rgba8Srgb,    // 4 bytes per texel, sRGB-encoded (decoded by the sampler)
+  Rgba32Float,  // 16 bytes per texel
+};
+size_t bytes_per_texel(TextureFormat format);
+
+struct TextureData {
+  TextureFormat format = TextureFormat::Rgba8Unorm;
+  uint32_t width = 0;
+  uint32_t height = 0;
+  // Mip levels, level 0 first, each tightly packed with row 0 = v 0 = the top of the image.
+  // Level i is max(1, width >> i) by max(1, height >> i).
+  std::vector<std::vector<std::byte>> levels;
+};
+
+enum class Filter { Nearest, Linear };
+enum class AddressMode { Repeat, ClampToEdge };
+
+struct SamplerDesc {
+  // Mip levels are sampled with the same filter as texels (trilinear when Linear).
+  Filter filter = Filter::Linear;
+  AddressMode address = AddressMode::Repeat;
+};
+
+// What a pass samples: an uploaded texture, or the colour or depth of an earlier target.
+struct TextureSource {
+  enum class Kind { Texture, TargetColor, TargetDepth };
+  Kind kind = Kind::Texture;
+  uint32_t id = 0;  // a TextureHandle's or TargetHandle's id
+  SamplerDesc sampler;
+
+  static TextureSource texture(TextureHandle handle, SamplerDesc sampler = {}) {
+    return {Kind::Texture, handle.id, sampler};
+  }
+  static TextureSource color_of(TargetHandle handle, SamplerDesc sampler = {}) {
+    return {Kind::TargetColor, handle.id, sampler};
+  }
+  static TextureSource depth_of(TargetHandle handle, SamplerDesc sampler = {}) {
+    return {Kind::TargetDepth, handle.id, sampler};
+  }
+};
+
+// The resources a program reads, with the bindings its compiler assigned (from reflection).
+// All live in descriptor set 0 on Vulkan; on OpenGL a binding is a uniform-block binding point
+// or a texture unit.
+struct UniformBlockSlot {
+  std::string name;
+  uint32_t binding = 0;
+  uint32_t size = 0;  // bytes; a bound block must supply exactly this many
+};
+struct TextureSlot {
+  std::string name;
+  uint32_t binding = 0;
+  // Vulkan only: the binding of the separate sampler paired with this texture. Absent means a
+  // combined image sampler at `binding`. OpenGL always combines, at texture unit `binding`.
+  std::optional<uint32_t> sampler_binding;
+};
+struct ProgramLayout {
+  std::vector<UniformBlockSlot> uniform_blocks;
+  std::vector<TextureSlot> textures;
+};
+
+struct ShaderStageSource {
+  std::string glsl;              // read by OpenGL backends
+  std::vector<uint32_t> spirv;   // read by Vulkan backends
+  std::string entry_point = "main";
+  std::string name;              // shown in diagnostics, e.g. the source file
+};
+
+struct ProgramDesc {
+  std::string name;
+  ShaderStageSource vertex;
+  ShaderStageSource fragment;
+  ProgramLayout layout;
+  // A mesh program reads the Vertex format; a full-screen program reads no vertex input and is
+  // drawn as one triangle of three vertices (see glsl::fullscreen_vertex_shader).
+  bool fullscreen = false;
+};
+
+struct UniformBinding {
+  std::string name;  // a UniformBlockSlot's name
+  std::vector<std::byte> bytes;
+};
+struct TextureBinding {
+  std::string name;  // a TextureSlot's name
+  TextureSource source;
+};
+
+struct DrawItem {
+  ProgramHandle program;
+  MeshHandle mesh;  // ignored (and may be empty) for a full-screen program
+  std::vector<UniformBinding> uniforms;
+  std::vector<TextureBinding> textures;
+};
+
+struct TargetDesc {
+  uint32_t width = 0;
+  uint32_t height = 0;
+  bool depth = true;  // a D32F depth attachment beside the RGBA32F colour
+};
+
+// One pass into one target: clear, then the draws in order, depth-tested (less) when the target
+// has depth. No blending and no culling. A pass may sample any target but its own.
+struct RenderPass {
+  TargetHandle target;
+  glm::vec4 clear_color{0.0f};
+  float clear_depth = 1.0f;
+  std::vector<DrawItem> draws;
+};
+
+// What a lane reports about its driver, carried by every report.
+struct DriverInfo {
+  std::string api;             // "OpenGL 4.5 core (OSMesa)" or "Vulkan 1.3 (lavapipe)"
+  std::string renderer;        // e.g. "llvmpipe (LLVM 15.0.6, 256 bits)"
+  std::string api_version;     // what the driver reports, e.g. "4.5 (Core Profile) Mesa 22.3.6"
+  std::string driver_version;  // e.g. "Mesa 22.3.6"
+  std::string llvm_version;    // e.g. "15.0.6", empty if the renderer does not say
+};
+
+class Backend {
+ public:
+  virtual ~Backend() = default;
+  Backend() = default;
+  Backend(const Backend&) = delete;
+  Backend& operator=(const Backend&) = delete;
+
+  virtual const DriverInfo& driver_info() const = 0;
+
+  virtual Result<TargetHandle> create_target(const TargetDesc& desc) = 0;
+  virtual Result<MeshHandle> upload_mesh(const MeshData& mesh) = 0;
+  virtual Result<TextureHandle> upload_texture(const TextureData& texture) = 0;
+  // Fails with the driver's compile or link log when the program is rejected.
+  virtual Result<ProgramHandle> create_program(const ProgramDesc& desc) = 0;
+
+  // Runs the pass to completion.
+  virtual Result<void> render(const RenderPass& pass) = 0;
+  // RGBA32F, row 0 at the top.
+  virtual Result<FloatImage> read_color(TargetHandle target) = 0;
+
+  // Messages the driver's debug or validation layer reported since the last call, oldest first.
+  // An empty list is the only acceptable state for a correct program.
+  virtual std::vector<std::string> take_driver_messages() = 0;
+};
+
+}  // namespace xshade::harness

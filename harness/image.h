@@ -1,0 +1,29 @@
+// Images in memory: float RGBA, row 0 at the top.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include <glm/vec4.hpp>
+
+namespace xshade::harness {
+
+struct FloatImage {
+  uint32_t width = 0;
+  uint32_t height = 0;
+  std::vector<float> rgba;  // width * height * 4 floats, row-major, row 0 at the top
+
+  FloatImage() = default;
+  FloatImage(uint32_t w, uint32_t h) : width(w), height(h), rgba(size_t(w) * h * 4, 0.0f) {}
+
+  glm::vec4 at(uint32_t x, uint32_t y) const {
+    const float* p = &rgba[(size_t(y) * width + x) * 4];
+    return {p[0], p[1], p[2], p[3]};
+  }
+  void set(uint32_t x, uint32_t y, glm::vec4 value) {
+    float* p = &rgba[(size_t(y) * width + x) * 4];
+    p[0] = value.r, p[1] = value.g, p[2] = value.b, p[3] = value.a;
+  }
+};
+
+}  // namespace xshade::harness

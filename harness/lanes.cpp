@@ -1,0 +1,35 @@
+#include "harness/lanes.h"
+
+#include "harness/lavapipe_backend.h"
+#include "harness/osmesa_backend.h"
+
+namespace xshade::harness {
+
+std::string_view lane_name(Lane lane) {
+  switch (lane) {
+    case Lane::Gl: return "gl";
+    case Lane::Vk: return "vk";
+  }
+  return "?";
+}
+
+std::optional<Lane> parse_lane(std::string_view name) {
+  for (Lane lane : all_lanes())
+    if (lane_name(lane) == name) return lane;
+  return std::nullopt;
+}
+
+const std::vector<Lane>& all_lanes() {
+  static const std::vector<Lane> lanes{Lane::Gl, Lane::Vk};
+  return lanes;
+}
+
+Result<std::unique_ptr<Backend>> create_backend(Lane lane, const BackendOptions& options) {
+  switch (lane) {
+    case Lane::Gl: return create_osmesa_backend();
+    case Lane::Vk: return create_lavapipe_backend({.validation = options.validation});
+  }
+  return fail("unknown lane");
+}
+
+}  // namespace xshade::harness

@@ -1,0 +1,1 @@
+// smoke tests land with the backend
