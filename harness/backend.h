@@ -15,6 +15,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 #include <glm/glm.hpp>
@@ -129,6 +130,14 @@ struct ProgramDesc {
   // drawn as one triangle of three vertices (see glsl::fullscreen_vertex_shader).
   bool fullscreen = false;
 };
+
+// The bytes of a host-side uniform block (a struct laid out to match the shader's block).
+template <class Block>
+std::vector<std::byte> uniform_bytes(const Block& block) {
+  static_assert(std::is_trivially_copyable_v<Block>);
+  const auto* first = reinterpret_cast<const std::byte*>(&block);
+  return {first, first + sizeof(Block)};
+}
 
 struct UniformBinding {
   std::string name;  // a UniformBlockSlot's name

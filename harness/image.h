@@ -27,3 +27,20 @@ struct FloatImage {
 };
 
 }  // namespace xshade::harness
+
+namespace xshade::harness {
+
+// Bit-for-bit equality of two images of the same size (NaN equals NaN with the same bits).
+bool bitwise_equal(const FloatImage& a, const FloatImage& b);
+
+// The largest per-channel absolute difference and where it is. A channel where one image is NaN
+// or infinite and the other is not the same value counts as an infinite difference.
+struct ImageDifference {
+  double max = 0.0;
+  uint32_t x = 0;
+  uint32_t y = 0;
+  uint32_t channel = 0;
+};
+ImageDifference max_difference(const FloatImage& a, const FloatImage& b);
+
+}  // namespace xshade::harness

@@ -32,4 +32,17 @@ Result<std::unique_ptr<Backend>> create_backend(Lane lane, const BackendOptions&
   return fail("unknown lane");
 }
 
+Result<ShaderStageSource> stage_for_lane(Lane lane, spirv::Stage stage, const GlslStagePair& source) {
+  ShaderStageSource result;
+  result.name = source.name;
+  if (lane == Lane::Gl) {
+    result.glsl = source.gl;
+    return result;
+  }
+  auto module = spirv::compile_vulkan_glsl(source.vk, stage, source.name);
+  if (!module) return fail(module.error());
+  result.spirv = std::move(module->words);
+  return result;
+}
+
 }  // namespace xshade::harness

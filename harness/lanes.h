@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "harness/backend.h"
+#include "spirv/spirv_compiler.h"
 
 namespace xshade::harness {
 
@@ -24,5 +25,15 @@ struct BackendOptions {
 };
 
 Result<std::unique_ptr<Backend>> create_backend(Lane lane, const BackendOptions& options = {});
+
+// One shader stage written twice by hand, once per GLSL flavour (until the compiler writes both).
+struct GlslStagePair {
+  std::string gl;  // #version 450 core
+  std::string vk;  // Vulkan GLSL
+  std::string name;
+};
+
+// The stage in the form the lane's backend reads: GLSL text for gl, validated SPIR-V for vk.
+Result<ShaderStageSource> stage_for_lane(Lane lane, spirv::Stage stage, const GlslStagePair& source);
 
 }  // namespace xshade::harness

@@ -1,0 +1,32 @@
+// The verbs of the xshade command line, one file each.
+#pragma once
+
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace xshade::cli {
+
+// The exit codes every verb shares (docs/cli.md).
+enum ExitCode : int {
+  kPass = 0,          // everything checked passed
+  kTestFailed = 1,    // a check failed: images differ, a lane disagrees
+  kBadInput = 2,      // bad usage, a bad shader or scene file
+  kBackendError = 3,  // a driver or lane could not run, or an internal error
+};
+
+struct LaneSelection {
+  std::vector<std::string> lanes;  // empty = every lane
+  bool validation = false;
+};
+
+int run_info(const LaneSelection& selection);
+
+struct RunOptions {
+  LaneSelection selection;
+  std::filesystem::path report_dir = "report";
+};
+int run_run(const RunOptions& options);
+
+}  // namespace xshade::cli

@@ -1,0 +1,43 @@
+// xshade: compile shaders once, render them on every lane, and compare the images.
+#include <CLI/CLI.hpp>
+
+#include "harness/cli/commands.h"
+
+namespace {
+
+void add_lane_options(CLI::App& command, xshade::cli::LaneSelection& selection) {
+  command.add_option("--lane", selection.lanes, "Only these lanes (gl, vk); default: all")
+      ->type_name("LANE");
+  command.add_flag("--vk-validation", selection.validation,
+                   "Enable the Vulkan validation layer (when installed); any message fails the run");
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  using namespace xshade::cli;
+  CLI::App app{"xshade: author a shader once, render it on OpenGL and Vulkan, diff the images.\n"
+               "Exit codes: 0 pass, 1 a check failed, 2 bad input or usage, 3 backend or internal error."};
+  app.require_subcommand(1);
+
+  LaneSelection info_selection;
+  CLI::App* info = app.add_subcommand("info", "Print each lane's driver: renderer, API, Mesa and LLVM versions");
+  add_lane_options(*info, info_selection);
+
+  RunOptions run_options;
+  CLI::App* run = app.add_subcommand("run", "Render on every lane, write PNG and EXR images, compare the lanes");
+  add_lane_options(*run, run_options.selection);
+  run->add_option("--report", run_options.report_dir, "Folder for images and the report")
+      ->type_name("DIR")
+      ->capture_default_str();
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& error) {
+    const int code = app.exit(error);
+    return code == 0 ? kPass : kBadInput;
+  }
+  if (*info) return run_info(info_selection);
+  if (*run) return run_run(run_options);
+  return kBadInput;
+}

@@ -1,0 +1,64 @@
+// With one lane's driver missing, that lane says which Debian package to install, and the other
+// lane still runs. Runs the real `xshade` binary with its environment changed.
+#include <sys/wait.h>
+
+#include <array>
+#include <cstdio>
+#include <filesystem>
+#include <string>
+
+#include <gtest/gtest.h>
+
+namespace xshade::tests {
+namespace {
+
+struct Outcome {
+  int exit_code = -1;
+  std::string output;
+};
+
+Outcome run_xshade(const std::string& environment, const std::string& arguments) {
+  const std::string command = environment + " '" XSHADE_BINARY "' " + arguments + " 2>&1";
+  Outcome outcome;
+  FILE* pipe = popen(command.c_str(), "r");
+  if (!pipe) return outcome;
+  std::array<char, 4096> buffer;
+  while (size_t n = fread(buffer.data(), 1, buffer.size(), pipe)) outcome.output.append(buffer.data(), n);
+  const int status = pclose(pipe);
+  outcome.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  return outcome;
+}
+
+constexpr const char* kNoOsmesa = "XSHADE_OSMESA_LIBRARY=/nonexistent/libOSMesa.so.8";
+// Both spellings: the loader reads VK_DRIVER_FILES, older loaders VK_ICD_FILENAMES.
+constexpr const char* kNoLavapipe =
+    "VK_DRIVER_FILES=/nonexistent/lvp_icd.json VK_ICD_FILENAMES=/nonexistent/lvp_icd.json";
+
+TEST(MissingDriver, InfoNamesThePackageForGlAndStillShowsVk) {
+  Outcome outcome = run_xshade(kNoOsmesa, "info");
+  EXPECT_EQ(outcome.exit_code, 3) << outcome.output;
+  EXPECT_NE(outcome.output.find("gl: unavailable"), std::string::npos) << outcome.output;
+  EXPECT_NE(outcome.output.find("libosmesa6"), std::string::npos) << outcome.output;
+  EXPECT_NE(outcome.output.find("vk: Vulkan 1.3 (lavapipe)"), std::string::npos) << outcome.output;
+}
+
+TEST(MissingDriver, InfoNamesThePackageForVkAndStillShowsGl) {
+  Outcome outcome = run_xshade(kNoLavapipe, "info");
+  EXPECT_EQ(outcome.exit_code, 3) << outcome.output;
+  EXPECT_NE(outcome.output.find("vk: unavailable"), std::string::npos) << outcome.output;
+  EXPECT_NE(outcome.output.find("mesa-vulkan-drivers"), std::string::npos) << outcome.output;
+  EXPECT_NE(outcome.output.find("gl: OpenGL 4.5 core (OSMesa)"), std::string::npos) << outcome.output;
+}
+
+TEST(MissingDriver, RunStillRendersTheOtherLane) {
+  const auto report = std::filesystem::temp_directory_path() / "xshade_missing_driver_report";
+  std::filesystem::remove_all(report);
+  Outcome outcome = run_xshade(kNoOsmesa, "run --report '" + report.string() + "'");
+  EXPECT_EQ(outcome.exit_code, 3) << outcome.output;
+  EXPECT_NE(outcome.output.find("libosmesa6"), std::string::npos) << outcome.output;
+  EXPECT_TRUE(std::filesystem::exists(report / "vk" / "test_pattern.png")) << outcome.output;
+  EXPECT_FALSE(std::filesystem::exists(report / "gl" / "test_pattern.png"));
+}
+
+}  // namespace
+}  // namespace xshade::tests

@@ -1,0 +1,5 @@
+#version 450
+layout(location = 0) out vec4 target;
+void main() {
+  target = vec4(not_declared_anywhere, 1.0);
+}
