@@ -1,0 +1,43 @@
+// Where every phase of the front end reports problems: collected with locations, counted, and
+// printed the way compilers print them, with the source line and a caret.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "hlsl_like/diagnostic.h"
+#include "hlsl_like/source_manager.h"
+
+namespace xshade::hlsl {
+
+class DiagnosticEngine {
+ public:
+  explicit DiagnosticEngine(const SourceManager& sources) : sources_(sources) {}
+
+  void error(Loc loc, std::string message) { report(Severity::Error, loc, std::move(message)); }
+  void warning(Loc loc, std::string message) { report(Severity::Warning, loc, std::move(message)); }
+  void note(Loc loc, std::string message) { report(Severity::Note, loc, std::move(message)); }
+  void report(Severity severity, Loc loc, std::string message);
+
+  size_t error_count() const { return errors_; }
+  size_t warning_count() const { return warnings_; }
+  bool has_errors() const { return errors_ > 0; }
+  // After this many errors further ones are dropped and one note says so: a run of cascading
+  // errors helps nobody, and bad input must not make the output grow without bound.
+  static constexpr size_t kErrorLimit = 50;
+
+  const std::vector<Diagnostic>& diagnostics() const { return diagnostics_; }
+
+  // "file:line:col: error: message", the source line, and a caret under the column.
+  std::string render(size_t index) const;
+  std::string render_all() const;
+
+ private:
+  const SourceManager& sources_;
+  std::vector<Diagnostic> diagnostics_;
+  std::vector<Loc> locs_;  // beside diagnostics_, for the source line of each
+  size_t errors_ = 0;
+  size_t warnings_ = 0;
+};
+
+}  // namespace xshade::hlsl

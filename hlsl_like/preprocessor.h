@@ -1,0 +1,64 @@
+// The C-style preprocessor of hlsl_like: #include, macros, conditionals and pragmas.
+//
+// Works on tokens, as C's does: keywords are plain identifiers here, so a macro may be named like
+// one. The output is the whole translation unit's token stream, ending in EndOfFile, with each
+// token at the location the user wrote it (a token from a macro body is placed at the macro's
+// invocation, where the user can see it).
+#pragma once
+
+#include <deque>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "hlsl_like/diagnostic_engine.h"
+#include "hlsl_like/token.h"
+
+namespace xshade::hlsl {
+
+struct MacroDefinition {
+  std::string name;
+  std::string value;  // "1" when given as -D NAME alone
+};
+
+struct PreprocessorOptions {
+  std::vector<std::filesystem::path> include_dirs;  // searched after the including file's folder
+  std::vector<MacroDefinition> defines;             // -D on the command line, keywords of a variant
+};
+
+// A `#pragma` line other than `#pragma once`, kept for the front end to interpret
+// (vertex, fragment, multi_compile, shader_feature, ...).
+struct Pragma {
+  std::string_view name;    // the first word after #pragma
+  std::vector<Token> args;  // the rest of the line, not macro-expanded
+  Loc loc;                  // of the name
+};
+
+class Preprocessor {
+ public:
+  Preprocessor(SourceManager& sources, DiagnosticEngine& diagnostics, PreprocessorOptions options);
+
+  // Preprocesses `main_file` (an index in `sources`). Errors go to the diagnostics engine; the
+  // stream is still complete enough for the parser to report more.
+  std::vector<Token> run(uint32_t main_file);
+
+  const std::vector<Pragma>& pragmas() const { return pragmas_; }
+  // Every file read, the main file first: what a compile depends on.
+  const std::vector<uint32_t>& files() const { return files_; }
+
+  // Limits that keep hostile input finite; each is an error when reached.
+  static constexpr size_t kMaxIncludeDepth = 64;
+  static constexpr size_t kMaxExpansionDepth = 256;
+  static constexpr size_t kMaxConditionalDepth = 256;
+
+ private:
+  struct Impl;
+  SourceManager& sources_;
+  DiagnosticEngine& diagnostics_;
+  PreprocessorOptions options_;
+  std::vector<Pragma> pragmas_;
+  std::vector<uint32_t> files_;
+  std::deque<std::string> text_store_;  // text of tokens made by # and ##; stable addresses
+};
+
+}  // namespace xshade::hlsl

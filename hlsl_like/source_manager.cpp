@@ -1,0 +1,56 @@
+#include "hlsl_like/source_manager.h"
+
+#include <fstream>
+#include <sstream>
+#include <system_error>
+
+namespace xshade::hlsl {
+
+SourceManager::SourceManager() { files_.push_back(std::make_unique<File>()); }  // index 0: none
+
+uint32_t SourceManager::add(std::string name, std::string text) {
+  auto file = std::make_unique<File>();
+  file->name = std::move(name);
+  file->text = std::move(text);
+  files_.push_back(std::move(file));
+  return uint32_t(files_.size() - 1);
+}
+
+Result<uint32_t> SourceManager::load(const std::filesystem::path& path) {
+  std::error_code error;
+  std::filesystem::path canonical = std::filesystem::weakly_canonical(path, error);
+  if (error) canonical = path;
+  for (uint32_t i = 1; i < files_.size(); ++i)
+    if (!files_[i]->path.empty() && files_[i]->path == canonical) return i;
+  if (std::filesystem::is_directory(canonical, error)) return fail("'" + path.string() + "' is a directory");
+  std::ifstream stream(canonical, std::ios::binary);
+  if (!stream) return fail("cannot open '" + path.string() + "'");
+  std::ostringstream text;
+  text << stream.rdbuf();
+  if (stream.bad()) return fail("cannot read '" + path.string() + "'");
+  uint32_t index = add(path.string(), std::move(text).str());
+  files_[index]->path = canonical;
+  return index;
+}
+
+std::string_view SourceManager::line_text(uint32_t file, uint32_t line) const {
+  if (file == 0 || file >= files_.size() || line == 0) return {};
+  const File& f = *files_[file];
+  if (f.line_starts.empty()) {
+    f.line_starts.push_back(0);
+    for (uint32_t i = 0; i < f.text.size(); ++i)
+      if (f.text[i] == '\n') f.line_starts.push_back(i + 1);
+  }
+  if (line > f.line_starts.size()) return {};
+  const uint32_t start = f.line_starts[line - 1];
+  uint32_t end = line < f.line_starts.size() ? f.line_starts[line] - 1 : uint32_t(f.text.size());
+  if (end > start && f.text[end - 1] == '\r') --end;
+  return std::string_view(f.text).substr(start, end - start);
+}
+
+SourceLocation SourceManager::resolve(Loc loc) const {
+  if (loc.file == 0 || loc.file >= files_.size()) return {};
+  return {files_[loc.file]->name, loc.line, loc.column};
+}
+
+}  // namespace xshade::hlsl

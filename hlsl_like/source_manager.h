@@ -1,0 +1,52 @@
+// The source files of one compilation, and compact locations into them.
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <memory>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "hlsl_like/diagnostic.h"
+
+namespace xshade::hlsl {
+
+// A location as the front end carries it: a file index and a 1-based line and column. Turned
+// into a printable SourceLocation only when a diagnostic is reported.
+struct Loc {
+  uint32_t file = 0;  // index in the SourceManager; 0 = no file
+  uint32_t line = 0;
+  uint32_t column = 0;
+};
+
+class SourceManager {
+ public:
+  SourceManager();
+
+  // Registers a file given as text (tests, the command line's stdin); returns its index.
+  uint32_t add(std::string name, std::string text);
+  // Reads a file from disk once; the same canonical path yields the same index.
+  Result<uint32_t> load(const std::filesystem::path& path);
+
+  std::string_view text(uint32_t file) const { return files_[file]->text; }
+  const std::string& name(uint32_t file) const { return files_[file]->name; }
+  // The canonical path of a file read from disk; empty for text given to add().
+  const std::filesystem::path& path(uint32_t file) const { return files_[file]->path; }
+  size_t file_count() const { return files_.size(); }
+
+  // The text of one line, without its line ending; empty when out of range.
+  std::string_view line_text(uint32_t file, uint32_t line) const;
+  SourceLocation resolve(Loc loc) const;
+
+ private:
+  struct File {
+    std::string name;  // as the user spelled it, for messages
+    std::filesystem::path path;
+    std::string text;
+    mutable std::vector<uint32_t> line_starts;  // computed on first use
+  };
+  std::vector<std::unique_ptr<File>> files_;  // stable addresses: tokens point into text
+};
+
+}  // namespace xshade::hlsl
