@@ -1,0 +1,341 @@
+// The syntax tree of hlsl_like. The parser builds it; semantic analysis fills in the fields
+// marked "sema" (types, resolved names and calls, implicit conversions); the GLSL emitter and
+// reflection read it.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "hlsl_like/source_manager.h"
+#include "hlsl_like/types.h"
+
+namespace xshade::hlsl {
+
+struct Decl;
+struct FunctionDecl;
+struct Expr;
+struct Stmt;
+using ExprPtr = std::unique_ptr<Expr>;
+using StmtPtr = std::unique_ptr<Stmt>;
+
+// [unroll], [loop(4)], [branch], [flatten], [numthreads(...)]: kept, not interpreted.
+struct Attribute {
+  std::string name;
+  std::vector<ExprPtr> args;
+  Loc loc;
+};
+
+// ---------------------------------------------------------------------------------------------
+// Expressions
+
+enum class ExprKind : uint8_t {
+  IntLiteral, FloatLiteral, BoolLiteral, Name, Unary, Binary, Assign, Conditional, Call, Member,
+  Index, Cast, InitList, Conversion,
+};
+
+struct Expr {
+  ExprKind kind;
+  Loc loc;
+  Type type;  // sema
+
+  explicit Expr(ExprKind k, Loc l) : kind(k), loc(l) {}
+  virtual ~Expr() = default;
+};
+
+struct IntLiteralExpr : Expr {
+  uint64_t value = 0;
+  bool is_unsigned = false;  // a u suffix
+  IntLiteralExpr(Loc l) : Expr(ExprKind::IntLiteral, l) {}
+};
+
+struct FloatLiteralExpr : Expr {
+  double value = 0.0;
+  std::string spelling;  // as written, without suffix: the emitter prints it back unchanged
+  bool half_suffix = false;  // 1.5h
+  FloatLiteralExpr(Loc l) : Expr(ExprKind::FloatLiteral, l) {}
+};
+
+struct BoolLiteralExpr : Expr {
+  bool value = false;
+  BoolLiteralExpr(Loc l) : Expr(ExprKind::BoolLiteral, l) {}
+};
+
+struct NameExpr : Expr {
+  std::string name;
+  const Decl* decl = nullptr;  // sema: a VarDecl or ParamDecl
+  NameExpr(Loc l) : Expr(ExprKind::Name, l) {}
+};
+
+enum class UnaryOp : uint8_t { Plus, Minus, Not, BitNot, PreIncrement, PreDecrement, PostIncrement, PostDecrement };
+
+struct UnaryExpr : Expr {
+  UnaryOp op;
+  ExprPtr operand;
+  UnaryExpr(Loc l, UnaryOp o) : Expr(ExprKind::Unary, l), op(o) {}
+};
+
+enum class BinaryOp : uint8_t {
+  Add, Sub, Mul, Div, Mod, Shl, Shr, BitAnd, BitOr, BitXor, LogicalAnd, LogicalOr,
+  Less, Greater, LessEqual, GreaterEqual, Equal, NotEqual, Comma,
+};
+
+struct BinaryExpr : Expr {
+  BinaryOp op;
+  ExprPtr lhs;
+  ExprPtr rhs;
+  BinaryExpr(Loc l, BinaryOp o) : Expr(ExprKind::Binary, l), op(o) {}
+};
+
+// `=` has op = std::nullopt-like Assign; compound forms carry their arithmetic operator.
+enum class AssignOp : uint8_t { Assign, Add, Sub, Mul, Div, Mod, Shl, Shr, BitAnd, BitOr, BitXor };
+
+struct AssignExpr : Expr {
+  AssignOp op;
+  ExprPtr target;
+  ExprPtr value;
+  AssignExpr(Loc l, AssignOp o) : Expr(ExprKind::Assign, l), op(o) {}
+};
+
+// c ? a : b. HLSL evaluates it component-wise when c is a vector (both sides are evaluated).
+struct ConditionalExpr : Expr {
+  ExprPtr condition;
+  ExprPtr then_value;
+  ExprPtr else_value;
+  ConditionalExpr(Loc l) : Expr(ExprKind::Conditional, l) {}
+};
+
+enum class CallKind : uint8_t {
+  Unresolved,    // before sema
+  Function,      // a user function: `function`
+  Intrinsic,     // a built-in function: `intrinsic`
+  Constructor,   // float3(...), float2x2(...): `type` is the constructed type
+  Method,        // object.Sample(...): `object` and `intrinsic`
+};
+
+struct CallExpr : Expr {
+  std::string callee;           // the name as written (for a method, the method's name)
+  ExprPtr object;               // a method's object, else null
+  std::vector<ExprPtr> args;
+  Type constructed;             // parser: the type of a constructor call
+  CallKind call_kind = CallKind::Unresolved;  // parser sets Constructor; sema the rest
+  const FunctionDecl* function = nullptr;     // sema
+  uint16_t intrinsic = 0;                     // sema: an IntrinsicId (intrinsics.h)
+  CallExpr(Loc l) : Expr(ExprKind::Call, l) {}
+};
+
+// a.b: a struct field or a swizzle (xyzw / rgba, and _m00 / _11 on matrices).
+struct MemberExpr : Expr {
+  ExprPtr object;
+  std::string member;
+  int field_index = -1;             // sema: the field of a struct
+  std::vector<uint8_t> swizzle;     // sema: component indices (for matrices: row * 4 + col)
+  MemberExpr(Loc l) : Expr(ExprKind::Member, l) {}
+};
+
+struct IndexExpr : Expr {
+  ExprPtr object;
+  ExprPtr index;
+  IndexExpr(Loc l) : Expr(ExprKind::Index, l) {}
+};
+
+// (float3)x: an explicit conversion.
+struct CastExpr : Expr {
+  Type target;
+  ExprPtr operand;
+  CastExpr(Loc l) : Expr(ExprKind::Cast, l) {}
+};
+
+// { a, b, c } in an initializer; sema gives it the declared type.
+struct InitListExpr : Expr {
+  std::vector<ExprPtr> elements;
+  InitListExpr(Loc l) : Expr(ExprKind::InitList, l) {}
+};
+
+// An implicit conversion inserted by sema: `operand` converted to `type` (splat, truncation,
+// scalar type change). The emitter writes it out explicitly, since GLSL converts far less.
+struct ConversionExpr : Expr {
+  ExprPtr operand;
+  ConversionExpr(Loc l) : Expr(ExprKind::Conversion, l) {}
+};
+
+// ---------------------------------------------------------------------------------------------
+// Statements
+
+enum class StmtKind : uint8_t {
+  Block, Expr, Decl, If, For, While, DoWhile, Break, Continue, Return, Discard, Empty,
+};
+
+struct Stmt {
+  StmtKind kind;
+  Loc loc;
+  std::vector<Attribute> attributes;
+  explicit Stmt(StmtKind k, Loc l) : kind(k), loc(l) {}
+  virtual ~Stmt() = default;
+};
+
+struct BlockStmt : Stmt {
+  std::vector<StmtPtr> statements;
+  BlockStmt(Loc l) : Stmt(StmtKind::Block, l) {}
+};
+
+struct ExprStmt : Stmt {
+  ExprPtr expr;
+  ExprStmt(Loc l) : Stmt(StmtKind::Expr, l) {}
+};
+
+struct VarDecl;
+// float a = 1, b[2];
+struct DeclStmt : Stmt {
+  std::vector<std::unique_ptr<VarDecl>> vars;
+  DeclStmt(Loc l) : Stmt(StmtKind::Decl, l) {}
+};
+
+struct IfStmt : Stmt {
+  ExprPtr condition;
+  StmtPtr then_branch;
+  StmtPtr else_branch;  // may be null
+  IfStmt(Loc l) : Stmt(StmtKind::If, l) {}
+};
+
+struct ForStmt : Stmt {
+  StmtPtr init;        // a DeclStmt, an ExprStmt or null
+  ExprPtr condition;   // may be null
+  ExprPtr step;        // may be null
+  StmtPtr body;
+  ForStmt(Loc l) : Stmt(StmtKind::For, l) {}
+};
+
+struct WhileStmt : Stmt {
+  ExprPtr condition;
+  StmtPtr body;
+  WhileStmt(Loc l) : Stmt(StmtKind::While, l) {}
+};
+
+struct DoWhileStmt : Stmt {
+  StmtPtr body;
+  ExprPtr condition;
+  DoWhileStmt(Loc l) : Stmt(StmtKind::DoWhile, l) {}
+};
+
+struct ReturnStmt : Stmt {
+  ExprPtr value;  // may be null
+  ReturnStmt(Loc l) : Stmt(StmtKind::Return, l) {}
+};
+
+struct SimpleStmt : Stmt {  // break, continue, discard, ;
+  using Stmt::Stmt;
+};
+
+// ---------------------------------------------------------------------------------------------
+// Declarations
+
+enum class DeclKind : uint8_t { Var, Param, Struct, Function, CBuffer, Typedef };
+
+struct Decl {
+  DeclKind kind;
+  Loc loc;  // of the name
+  std::string name;
+  explicit Decl(DeclKind k, Loc l) : kind(k), loc(l) {}
+  virtual ~Decl() = default;
+};
+
+// A register binding as written: register(t3), register(s0, space1), register(b0).
+struct RegisterBinding {
+  char register_class = 0;  // 't', 's', 'b', 'u', or 0 when absent
+  uint32_t index = 0;
+  uint32_t space = 0;
+  Loc loc;
+};
+
+// <string UIName = "Smoothness"; float UIMin = 0.0; float UIMax = 1.0;>
+struct Annotation {
+  Type type;
+  std::string name;
+  ExprPtr value;  // a literal, a string is kept as text in `text`
+  std::string text;
+  Loc loc;
+};
+
+enum class Interpolation : uint8_t { Default, Linear, Centroid, NoInterpolation, NoPerspective, Sample };
+
+enum class StorageClass : uint8_t {
+  Default,  // a local, or a global that is an implicit uniform ($Globals)
+  Static,   // `static`: a private global, not a uniform
+  Uniform,  // `uniform` written out
+  GroupShared,
+};
+
+enum class MatrixPacking : uint8_t { Default, RowMajor, ColumnMajor };
+
+struct VarDecl : Decl {
+  Type type;
+  StorageClass storage = StorageClass::Default;
+  bool is_const = false;
+  MatrixPacking packing = MatrixPacking::Default;
+  Interpolation interpolation = Interpolation::Default;
+  std::string semantic;                 // : TEXCOORD0 (as written; empty if none)
+  Loc semantic_loc;
+  RegisterBinding binding;              // : register(t0)
+  std::vector<Annotation> annotations;  // <...>
+  ExprPtr initializer;
+  bool is_global = false;               // parser: declared at file or cbuffer scope
+  VarDecl(Loc l) : Decl(DeclKind::Var, l) {}
+};
+
+enum class ParamDirection : uint8_t { In, Out, InOut };
+
+struct ParamDecl : Decl {
+  Type type;
+  ParamDirection direction = ParamDirection::In;
+  bool explicit_in = false;  // `in` written out
+  bool is_uniform = false;   // `uniform` parameter of an entry point
+  Interpolation interpolation = Interpolation::Default;
+  std::string semantic;
+  Loc semantic_loc;
+  ExprPtr default_value;
+  ParamDecl(Loc l) : Decl(DeclKind::Param, l) {}
+};
+
+struct FieldDecl {
+  Type type;
+  std::string name;
+  Interpolation interpolation = Interpolation::Default;
+  std::string semantic;
+  Loc loc;
+  Loc semantic_loc;
+};
+
+struct StructDecl : Decl {
+  std::vector<FieldDecl> fields;
+  StructDecl(Loc l) : Decl(DeclKind::Struct, l) {}
+};
+
+struct FunctionDecl : Decl {
+  Type return_type;
+  std::vector<std::unique_ptr<ParamDecl>> params;
+  std::string semantic;  // of the return value: float4 frag(...) : SV_Target
+  Loc semantic_loc;
+  std::vector<Attribute> attributes;
+  std::unique_ptr<BlockStmt> body;  // null for a prototype
+  const FunctionDecl* definition = nullptr;  // sema: for a prototype, the function it declares
+  FunctionDecl(Loc l) : Decl(DeclKind::Function, l) {}
+};
+
+struct CBufferDecl : Decl {
+  RegisterBinding binding;
+  std::vector<std::unique_ptr<VarDecl>> members;
+  CBufferDecl(Loc l) : Decl(DeclKind::CBuffer, l) {}
+};
+
+struct TypedefDecl : Decl {
+  Type type;
+  TypedefDecl(Loc l) : Decl(DeclKind::Typedef, l) {}
+};
+
+struct TranslationUnit {
+  std::vector<std::unique_ptr<Decl>> decls;  // in source order
+};
+
+}  // namespace xshade::hlsl
