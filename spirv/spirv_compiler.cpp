@@ -8,15 +8,10 @@
 #include <spirv-tools/libspirv.hpp>
 
 #include "spirv/glslang_log.h"
+#include "spirv/glslang_process.h"
 
 namespace xshade::spirv {
 namespace {
-
-// glslang keeps process-wide tables that must be set up once before any shader is parsed.
-void ensure_glslang_initialized() {
-  static std::once_flag once;
-  std::call_once(once, [] { glslang::InitializeProcess(); });
-}
 
 EShLanguage to_glslang(Stage stage) {
   return stage == Stage::Vertex ? EShLangVertex : EShLangFragment;
@@ -86,6 +81,11 @@ std::string compiler_version() {
   const glslang::Version version = glslang::GetVersion();
   return "glslang " + std::to_string(version.major) + "." + std::to_string(version.minor) + "." +
          std::to_string(version.patch);
+}
+
+void ensure_glslang_initialized() {
+  static std::once_flag once;
+  std::call_once(once, [] { glslang::InitializeProcess(); });
 }
 
 }  // namespace xshade::spirv

@@ -1,0 +1,64 @@
+// The vk-hlsl lane: the same hlsl_like source through glslang's own HLSL front end to SPIR-V.
+//
+// It shares nothing with xshade's front end but the source text, so where the two disagree one
+// of them mistranslates HLSL (known glslang divergences: docs/divergences.md).
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <functional>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "spirv/spirv_compiler.h"
+
+namespace xshade::spirv {
+
+// Where each HLSL register class lands in Vulkan's descriptor set 0. xshade's reflection assigns
+// bindings by the same rule, so both lanes bind the same names at the same numbers.
+struct BindingShifts {
+  uint32_t constant_buffer = 0;  // register(bN)  -> binding N + constant_buffer
+  uint32_t texture = 16;         // register(tN)  -> binding N + texture
+  uint32_t sampler = 32;         // register(sN)  -> binding N + sampler
+};
+
+// Finds the text of an #include: the name as written, the including file's name, and whether it
+// was <angled>. Returns the resolved file's name and text, or nothing when not found.
+struct IncludedFile {
+  std::string name;
+  std::string text;
+};
+using IncludeResolver =
+    std::function<std::optional<IncludedFile>(std::string_view name, std::string_view includer, bool angled)>;
+
+struct HlslStage {
+  std::string_view source;
+  std::string source_name;
+  Stage stage = Stage::Fragment;
+  std::string entry_point;  // the HLSL function; the SPIR-V entry point keeps its name
+  std::vector<std::pair<std::string, std::string>> defines;
+  IncludeResolver resolve_include;  // may be empty: then any #include fails
+  BindingShifts shifts;
+};
+
+// A resource of the compiled module as glslang reflects it.
+struct HlslResource {
+  enum class Kind { ConstantBuffer, Texture, Sampler, CombinedSampler };
+  Kind kind = Kind::ConstantBuffer;
+  std::string name;
+  uint32_t binding = 0;
+  uint32_t size = 0;  // bytes, for constant buffers
+};
+
+struct HlslModule {
+  SpirvModule module;
+  std::vector<HlslResource> resources;
+};
+
+// Compiles with EShSourceHlsl, EShMsgReadHlsl, EShMsgHlslDX9Compatible (sampler2D and tex2D) and
+// EShMsgHlslOffsets (HLSL constant-buffer packing), then validates the SPIR-V.
+Result<HlslModule> compile_hlsl(const HlslStage& stage);
+
+}  // namespace xshade::spirv

@@ -1,0 +1,73 @@
+#include "spirv/hlsl_compiler.h"
+
+#include <gtest/gtest.h>
+
+namespace xshade::spirv {
+namespace {
+
+constexpr std::string_view kShader = R"(
+cbuffer Material : register(b1) { float4 _Color; float _Gloss; };
+Texture2D _MainTex : register(t2);
+SamplerState sampler_MainTex : register(s3);
+sampler2D _Ramp : register(s4);
+
+float4 frag(float2 uv : TEXCOORD0) : SV_Target {
+  return _MainTex.Sample(sampler_MainTex, uv) * _Color + tex2D(_Ramp, uv) * _Gloss;
+}
+)";
+
+const HlslResource* find(const HlslModule& module, std::string_view name) {
+  for (const HlslResource& resource : module.resources)
+    if (resource.name == name) return &resource;
+  return nullptr;
+}
+
+TEST(HlslCompiler, BindingsFollowRegistersAndShifts) {
+  HlslStage stage{kShader, "material.hlsl", Stage::Fragment, "frag", {}, {}, {}};
+  auto module = compile_hlsl(stage);
+  ASSERT_TRUE(module) << module.error().to_string();
+  EXPECT_EQ(module->module.words[0], 0x07230203u);
+  const HlslResource* material = find(*module, "Material");
+  ASSERT_NE(material, nullptr);
+  EXPECT_EQ(material->kind, HlslResource::Kind::ConstantBuffer);
+  EXPECT_EQ(material->binding, 1u);
+  EXPECT_EQ(material->size, 20u);  // HLSL packing: float4 then a float at 16
+  const HlslResource* texture = find(*module, "_MainTex");
+  ASSERT_NE(texture, nullptr);
+  EXPECT_EQ(texture->kind, HlslResource::Kind::Texture);
+  EXPECT_EQ(texture->binding, 16u + 2u);
+  const HlslResource* sampler = find(*module, "sampler_MainTex");
+  ASSERT_NE(sampler, nullptr);
+  EXPECT_EQ(sampler->kind, HlslResource::Kind::Sampler);
+  EXPECT_EQ(sampler->binding, 32u + 3u);
+}
+
+TEST(HlslCompiler, DefinesAndIncludesReachGlslang) {
+  HlslStage stage;
+  stage.source = "#include \"colour.hlsl\"\nfloat4 frag() : SV_Target { return float4(TINT, 1); }\n";
+  stage.source_name = "main.hlsl";
+  stage.entry_point = "frag";
+  stage.defines = {{"USE_TINT", "1"}};
+  stage.resolve_include = [](std::string_view name, std::string_view, bool) -> std::optional<IncludedFile> {
+    if (name != "colour.hlsl") return std::nullopt;
+    return IncludedFile{"colour.hlsl", "#if USE_TINT\n#define TINT float3(1, 0.5, 0)\n#endif\n"};
+  };
+  auto module = compile_hlsl(stage);
+  ASSERT_TRUE(module) << module.error().to_string();
+
+  stage.defines.clear();  // TINT is now undefined: a compile error in main.hlsl
+  auto failed = compile_hlsl(stage);
+  ASSERT_FALSE(failed);
+  ASSERT_FALSE(failed.error().diagnostics.empty());
+  EXPECT_EQ(failed.error().diagnostics[0].where.line, 2u);
+}
+
+TEST(HlslCompiler, MissingIncludeAndEntryPointAreErrors) {
+  HlslStage stage{"#include \"nowhere.hlsl\"\n", "main.hlsl", Stage::Fragment, "frag", {}, {}, {}};
+  EXPECT_FALSE(compile_hlsl(stage));
+  HlslStage no_entry{"float4 other() : SV_Target { return 0; }\n", "main.hlsl", Stage::Fragment, "frag", {}, {}, {}};
+  EXPECT_FALSE(compile_hlsl(no_entry));
+}
+
+}  // namespace
+}  // namespace xshade::spirv
