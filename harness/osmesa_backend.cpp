@@ -405,10 +405,15 @@ OsmesaBackend::~OsmesaBackend() {
     empty_vertex_array_.reset();
     gl_.Finish();
   } else {
-    // Without the context the names cannot be deleted; destroying the context frees them.
-    for (auto& program : programs_) {
-      for (auto& buffer : program->uniform_buffers) (void)std::exchange(buffer, GlBuffer{});
-    }
+    // Another context (or none) is current, so a glDelete* would hit the wrong objects. The
+    // names are dropped instead; destroying the context frees them.
+    gl_.DeleteTextures = [](GLsizei, const GLuint*) {};
+    gl_.DeleteBuffers = [](GLsizei, const GLuint*) {};
+    gl_.DeleteFramebuffers = [](GLsizei, const GLuint*) {};
+    gl_.DeleteVertexArrays = [](GLsizei, const GLuint*) {};
+    gl_.DeleteSamplers = [](GLsizei, const GLuint*) {};
+    gl_.DeleteShader = [](GLuint) {};
+    gl_.DeleteProgram = [](GLuint) {};
   }
   osmesa_.DestroyContext(context_);
   context_ = nullptr;
