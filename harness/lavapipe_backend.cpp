@@ -25,6 +25,14 @@
 namespace xshade::harness {
 namespace {
 
+bool layout_has_binding(const ProgramLayout& layout, uint32_t binding) {
+  for (const UniformBlockSlot& block : layout.uniform_blocks)
+    if (block.binding == binding) return true;
+  for (const TextureSlot& texture : layout.textures)
+    if (texture.binding == binding || texture.sampler_binding == binding) return true;
+  return false;
+}
+
 using vk_support::Buffer;
 using vk_support::Image;
 using vk_support::Recording;
@@ -460,6 +468,12 @@ Result<ProgramHandle> LavapipeBackend::create_program(const ProgramDesc& desc) {
         return fail(fmt::format("{} has no {} entry point named '{}'", shader, in.stage,
                                 in.source.entry_point));
       if (in.model == ExecutionModel::Vertex) program->vertex_inputs = entry.input_locations;
+      // A resource the layout does not list would reach the driver without a descriptor.
+      for (const auto& [set, binding] : entry.descriptor_bindings)
+        if (set != 0 || !layout_has_binding(desc.layout, binding))
+          return fail(fmt::format("{} reads the resource at set {} binding {}, which the program's "
+                                  "layout does not list",
+                                  shader, set, binding));
       in.module = vk::raii::ShaderModule(
           device_, vk::ShaderModuleCreateInfo({}, in.source.spirv.size() * sizeof(uint32_t),
                                               in.source.spirv.data()));

@@ -253,6 +253,26 @@ TEST_F(LavapipeBackendTest, InvalidSpirvFails) {
       << program.error().message;
 }
 
+TEST_F(LavapipeBackendTest, ResourceMissingFromTheLayoutFails) {
+  // The shader samples a separate texture (binding 1) and sampler (binding 2); a layout that
+  // calls binding 1 a combined sampler leaves binding 2 without a descriptor.
+  ProgramDesc desc = fullscreen_program(R"(#version 450
+layout(set = 0, binding = 1) uniform texture2D values;
+layout(set = 0, binding = 2) uniform sampler values_sampler;
+layout(location = 0) in vec2 uv;
+layout(location = 0) out vec4 frag;
+void main() { frag = texture(sampler2D(values, values_sampler), uv); }
+)");
+  desc.layout.textures = {{"values", 1, std::nullopt}};
+  auto program = backend_->create_program(desc);
+  ASSERT_FALSE(program);
+  EXPECT_NE(program.error().message.find("set 0 binding 2, which the program's layout does not list"),
+            std::string::npos)
+      << program.error().message;
+  desc.layout.textures = {{"values", 1, 2u}};
+  EXPECT_TRUE(backend_->create_program(desc));
+}
+
 TEST_F(LavapipeBackendTest, LinearFilteringOfFloatTargetsAndSrgbDecoding) {
   // Target A holds uv per texel: (0.25 | 0.75, 0.25 | 0.75), depth 0 (the triangle's z).
   auto uv_program = backend_->create_program(fullscreen_program(R"(#version 450

@@ -12,11 +12,15 @@ namespace xshade::harness::vk_support {
 EntryPointInfo reflect_entry_point(const std::vector<uint32_t>& words, ExecutionModel model,
                                    const std::string& name) {
   constexpr uint32_t kOpEntryPoint = 15, kOpVariable = 59, kOpDecorate = 71;
-  constexpr uint32_t kDecorationLocation = 30, kStorageClassInput = 1;
+  constexpr uint32_t kDecorationLocation = 30, kDecorationBinding = 33, kDecorationDescriptorSet = 34;
+  constexpr uint32_t kStorageClassUniformConstant = 0, kStorageClassInput = 1, kStorageClassUniform = 2;
   EntryPointInfo info;
   std::vector<uint32_t> interface_ids;
   std::map<uint32_t, uint32_t> locations;    // id -> Location
   std::set<uint32_t> inputs;                 // ids of Input-storage variables
+  std::map<uint32_t, uint32_t> bindings;     // id -> Binding
+  std::map<uint32_t, uint32_t> sets;         // id -> DescriptorSet
+  std::set<uint32_t> resources;              // ids of UniformConstant and Uniform variables
   for (size_t at = 5; at < words.size();) {  // after the 5-word header
     const uint32_t count = words[at] >> 16;
     const uint32_t opcode = words[at] & 0xffffu;
@@ -32,8 +36,15 @@ EntryPointInfo reflect_entry_point(const std::vector<uint32_t>& words, Execution
       }
     } else if (opcode == kOpDecorate && count >= 4 && op[2] == kDecorationLocation) {
       locations[op[1]] = op[3];
+    } else if (opcode == kOpDecorate && count >= 4 && op[2] == kDecorationBinding) {
+      bindings[op[1]] = op[3];
+    } else if (opcode == kOpDecorate && count >= 4 && op[2] == kDecorationDescriptorSet) {
+      sets[op[1]] = op[3];
     } else if (opcode == kOpVariable && count >= 4 && op[3] == kStorageClassInput) {
       inputs.insert(op[2]);
+    } else if (opcode == kOpVariable && count >= 4 &&
+               (op[3] == kStorageClassUniformConstant || op[3] == kStorageClassUniform)) {
+      resources.insert(op[2]);
     }
     at += count;
   }
@@ -42,6 +53,8 @@ EntryPointInfo reflect_entry_point(const std::vector<uint32_t>& words, Execution
     if (inputs.count(id) && location != locations.end())
       info.input_locations.insert(location->second);
   }
+  for (const auto& [id, binding] : bindings)
+    if (resources.count(id)) info.descriptor_bindings.insert({sets.count(id) ? sets[id] : 0, binding});
   return info;
 }
 

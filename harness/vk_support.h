@@ -22,11 +22,14 @@ namespace xshade::harness::vk_support {
 struct EntryPointInfo {
   bool found = false;
   std::set<uint32_t> input_locations;  // Location decorations of the entry point's Input variables
+  // (set, binding) of every resource variable the module declares.
+  std::set<std::pair<uint32_t, uint32_t>> descriptor_bindings;
 };
 
 enum class ExecutionModel : uint32_t { Vertex = 0, Fragment = 4 };
 
-// Finds the entry point `name` of `model` and the locations of its inputs. The module must already
+// Finds the entry point `name` of `model`, the locations of its inputs, and the module's
+// descriptor bindings. The module must already
 // have passed spirv-val.
 EntryPointInfo reflect_entry_point(const std::vector<uint32_t>& words, ExecutionModel model,
                                    const std::string& name);

@@ -1,4 +1,6 @@
 // A uniform block and a sampled texture give the same result on every lane, and the right one.
+#include <algorithm>
+#include <cmath>
 #include <cstring>
 #include <random>
 
@@ -49,7 +51,7 @@ class UniformsAndTextures : public LaneTest {
                              glm::vec4 tiling, harness::SamplerDesc sampler) {
     harness::Backend& lane_backend = backend(lane);
     const bool reads_params = shader == "uniforms_texture";
-    harness::ProgramLayout layout{{}, {{"values", 1, shader == "filtered_sample" ? std::nullopt : std::optional<uint32_t>(2)}}};
+    harness::ProgramLayout layout{{}, {{"values", 1, 2}}};
     if (reads_params) layout.uniform_blocks = {{"Params", 0, sizeof(Params)}};
     auto shade = program(lane, "fullscreen", shader, layout);
     auto texture = lane_backend.upload_texture(texture_);
@@ -90,18 +92,59 @@ TEST_F(UniformsAndTextures, TexelCentresGiveTheHostsExpression) {
   }
 }
 
-TEST_F(UniformsAndTextures, FilteredSamplingIsBitIdentical) {
+// Bilinear filtering of the test texture at uv, in double precision: the reference each lane's
+// sampler is measured against. Texel centres sit at (i + 0.5) / size.
+glm::dvec4 bilinear_reference(const std::vector<glm::vec4>& texels, glm::dvec2 uv, harness::AddressMode address) {
+  const int size = int(kTextureSize);
+  auto fetch = [&](int x, int y) {
+    if (address == harness::AddressMode::Repeat) {
+      x = ((x % size) + size) % size;
+      y = ((y % size) + size) % size;
+    } else {
+      x = std::clamp(x, 0, size - 1);
+      y = std::clamp(y, 0, size - 1);
+    }
+    return glm::dvec4(texels[size_t(y) * kTextureSize + size_t(x)]);
+  };
+  const glm::dvec2 position = uv * double(size) - 0.5;
+  const glm::dvec2 base = glm::floor(position);
+  const glm::dvec2 f = position - base;
+  const int x = int(base.x), y = int(base.y);
+  return glm::mix(glm::mix(fetch(x, y), fetch(x + 1, y), f.x), glm::mix(fetch(x, y + 1), fetch(x + 1, y + 1), f.x), f.y);
+}
+
+TEST_F(UniformsAndTextures, FilteredSamplingMatchesAnExactBilinearReference) {
   // Off-centre coordinates, wrapping and bilinear filtering, with no arithmetic of the shader's
-  // own: both lanes end in llvmpipe's one sampler, so they must agree bit for bit.
+  // own: the interpolated uv is bit-identical on both lanes, and nearest sampling is too. Not so
+  // the filtered values. Measured on Mesa 22.3.6 over this image: gl lands up to 3.4e-6 from an
+  // fp64 bilinear reference and vk up to 4.2e-6, at different pixels, so the lanes differ by up
+  // to 4.1e-6 with texels in [-2, 2]. Neither is wrong: both APIs only promise a few bits of
+  // sub-texel precision (Vulkan's minimum subTexelPrecisionBits is 4), and the sampling code
+  // llvmpipe generates for each API rounds the filter weights differently. The bound, 1e-5 for
+  // each lane against the reference and for the lanes against each other, is ~2.5x the worst
+  // seen: tight enough that a wrong texel, a wrong wrap or a half-texel shift (errors of 1e-2
+  // and more here) fails.
   for (harness::AddressMode address : {harness::AddressMode::Repeat, harness::AddressMode::ClampToEdge}) {
+    SCOPED_TRACE(address == harness::AddressMode::Repeat ? "repeat" : "clamp");
     const harness::SamplerDesc sampler{harness::Filter::Linear, address};
-    harness::FloatImage gl = render(Lane::Gl, "filtered_sample", 37, 23, {}, sampler);
-    harness::FloatImage vk = render(Lane::Vk, "filtered_sample", 37, 23, {}, sampler);
-    ASSERT_EQ(gl.width, 37u);
-    ASSERT_EQ(vk.width, 37u);
-    const harness::ImageDifference difference = harness::max_difference(gl, vk);
-    EXPECT_TRUE(harness::bitwise_equal(gl, vk))
-        << "max difference " << difference.max << " at " << difference.x << "," << difference.y;
+    const uint32_t width = 37, height = 23;
+    std::map<Lane, double> worst;
+    std::map<Lane, harness::FloatImage> images;
+    for (Lane lane : harness::all_lanes()) {
+      harness::FloatImage image = render(lane, "filtered_sample", width, height, {}, sampler);
+      ASSERT_EQ(image.width, width);
+      for (uint32_t y = 0; y < height; ++y)
+        for (uint32_t x = 0; x < width; ++x) {
+          const glm::dvec2 uv{(x + 0.5) / width, (y + 0.5) / height};
+          const glm::dvec4 expected = bilinear_reference(texels_, uv, address);
+          for (int c = 0; c < 4; ++c)
+            worst[lane] = std::max(worst[lane], std::fabs(double(image.at(x, y)[c]) - expected[c]));
+        }
+      images.emplace(lane, std::move(image));
+    }
+    EXPECT_LE(worst[Lane::Gl], 1e-5);
+    EXPECT_LE(worst[Lane::Vk], 1e-5);
+    EXPECT_LE(harness::max_difference(images[Lane::Gl], images[Lane::Vk]).max, 1e-5);
   }
 }
 
