@@ -4,7 +4,10 @@
 
 #include <cstdint>
 #include <optional>
+#include <span>
 #include <string_view>
+
+#include "hlsl_like/types.h"
 
 namespace xshade::hlsl {
 
@@ -41,5 +44,66 @@ std::string_view intrinsic_name(IntrinsicId id);
 std::optional<IntrinsicId> find_intrinsic(std::string_view name);
 // A Texture2D method by name.
 std::optional<IntrinsicId> find_texture_method(std::string_view name);
+
+// ---------------------------------------------------------------------------------------------
+// Signatures: the rules semantic analysis resolves calls with. Each intrinsic has one or more
+// signatures; each parameter and the result is a pattern over a template type T, whose element
+// type and shape are deduced from the arguments the way HLSL does (the highest element type, the
+// smallest vector or matrix; scalars splat), and over dimension variables N, R, C, bound across
+// the signature (a matrix fixes a dimension; longer vectors are truncated to it).
+
+// The element type of a pattern: T's (deduced, limited to the signature's `elements`) or fixed.
+enum class PatternElement : uint8_t { T, Bool, Int, Uint, Float };
+
+enum class PatternShape : uint8_t {
+  T,       // T's shape: scalar, vector or matrix as deduced (limited to the signature's `shapes`)
+  Scalar,
+  Vector,  // dims[0] components
+  Matrix,  // dims[0] rows, dims[1] columns
+  Void,
+  Texture2D,
+  SamplerState,
+  Sampler2D,
+};
+
+// A dimension of a Vector or Matrix pattern: 1..4, or one of these variables.
+inline constexpr uint8_t kDimN = 0x10;
+inline constexpr uint8_t kDimR = 0x11;
+inline constexpr uint8_t kDimC = 0x12;
+inline constexpr bool is_dim_variable(uint8_t dim) { return dim >= kDimN; }
+
+struct TypePattern {
+  PatternElement element = PatternElement::T;
+  PatternShape shape = PatternShape::T;
+  uint8_t dims[2] = {0, 0};
+};
+
+struct ParamPattern {
+  TypePattern type;
+  bool out = false;  // an `out` parameter: the argument must be assignable
+};
+
+// Bit sets over ScalarType and over the shapes T may take.
+inline constexpr uint8_t element_bit(ScalarType scalar) { return uint8_t(1u << unsigned(scalar)); }
+inline constexpr uint8_t kShapeScalar = 1, kShapeVector = 2, kShapeMatrix = 4;
+
+struct IntrinsicSignature {
+  uint8_t elements = 0;  // element types T may take (element_bit)
+  uint8_t shapes = 0;    // shapes T may take (kShape*)
+  TypePattern result;
+  uint8_t param_count = 0;
+  ParamPattern params[4] = {};
+};
+
+struct IntrinsicInfo {
+  IntrinsicId id = IntrinsicId::None;
+  std::string_view name;
+  bool is_method = false;      // a Texture2D method
+  bool fragment_only = false;  // derivatives, implicit-LOD sampling, clip
+  std::span<const IntrinsicSignature> signatures;  // in order of preference on a tie
+};
+
+// Every intrinsic's entry; IntrinsicId::None gives an empty entry.
+const IntrinsicInfo& intrinsic_info(IntrinsicId id);
 
 }  // namespace xshade::hlsl

@@ -1,0 +1,233 @@
+#include "hlsl_like/intrinsics.h"
+
+#include <array>
+#include <initializer_list>
+#include <vector>
+
+namespace xshade::hlsl {
+namespace {
+
+// ---------------------------------------------------------------------------------------------
+// Patterns, named the way HLSL's documentation writes signatures.
+
+using E = PatternElement;
+using Sh = PatternShape;
+
+constexpr TypePattern kT{E::T, Sh::T, {0, 0}};                     // T
+constexpr TypePattern kS{E::T, Sh::Scalar, {0, 0}};                // scalar of T's element
+constexpr TypePattern kVN{E::T, Sh::Vector, {kDimN, 0}};           // vector<T, N>
+constexpr TypePattern kVR{E::T, Sh::Vector, {kDimR, 0}};
+constexpr TypePattern kVC{E::T, Sh::Vector, {kDimC, 0}};
+constexpr TypePattern kV3{E::T, Sh::Vector, {3, 0}};
+constexpr TypePattern kMRC{E::T, Sh::Matrix, {kDimR, kDimC}};      // matrix<T, R, C>
+constexpr TypePattern kMCR{E::T, Sh::Matrix, {kDimC, kDimR}};
+constexpr TypePattern kMRN{E::T, Sh::Matrix, {kDimR, kDimN}};
+constexpr TypePattern kMNC{E::T, Sh::Matrix, {kDimN, kDimC}};
+constexpr TypePattern kMNN{E::T, Sh::Matrix, {kDimN, kDimN}};
+constexpr TypePattern kBoolT{E::Bool, Sh::T, {0, 0}};              // T's shape, other elements
+constexpr TypePattern kIntT{E::Int, Sh::T, {0, 0}};
+constexpr TypePattern kUintT{E::Uint, Sh::T, {0, 0}};
+constexpr TypePattern kFloatT{E::Float, Sh::T, {0, 0}};
+constexpr TypePattern kBool{E::Bool, Sh::Scalar, {0, 0}};
+constexpr TypePattern kUint{E::Uint, Sh::Scalar, {0, 0}};
+constexpr TypePattern kFloat{E::Float, Sh::Scalar, {0, 0}};
+constexpr TypePattern kFloat2{E::Float, Sh::Vector, {2, 0}};
+constexpr TypePattern kFloat4{E::Float, Sh::Vector, {4, 0}};
+constexpr TypePattern kInt3{E::Int, Sh::Vector, {3, 0}};
+constexpr TypePattern kVoid{E::Float, Sh::Void, {0, 0}};
+constexpr TypePattern kSampler2D{E::Float, Sh::Sampler2D, {0, 0}};
+constexpr TypePattern kSamplerState{E::Float, Sh::SamplerState, {0, 0}};
+
+constexpr ParamPattern in(TypePattern type) { return {type, false}; }
+constexpr ParamPattern out(TypePattern type) { return {type, true}; }
+
+// Element sets.
+constexpr uint8_t kFloatLike = element_bit(ScalarType::Half) | element_bit(ScalarType::Float);
+constexpr uint8_t kNumeric = kFloatLike | element_bit(ScalarType::Int) | element_bit(ScalarType::Uint);
+constexpr uint8_t kAny = kNumeric | element_bit(ScalarType::Bool);
+constexpr uint8_t kBitCastable = element_bit(ScalarType::Int) | element_bit(ScalarType::Uint) | element_bit(ScalarType::Float);
+constexpr uint8_t kUintOnly = element_bit(ScalarType::Uint);
+constexpr uint8_t kFloatOnly = element_bit(ScalarType::Float);
+// Shape sets.
+constexpr uint8_t kAllShapes = kShapeScalar | kShapeVector | kShapeMatrix;
+
+IntrinsicSignature sig(uint8_t elements, TypePattern result, std::initializer_list<ParamPattern> params,
+                       uint8_t shapes = kAllShapes) {
+  IntrinsicSignature signature;
+  signature.elements = elements;
+  signature.shapes = shapes;
+  signature.result = result;
+  for (const ParamPattern& param : params) signature.params[signature.param_count++] = param;
+  return signature;
+}
+
+struct Entry {
+  IntrinsicId id;
+  bool is_method;
+  bool fragment_only;
+  std::vector<IntrinsicSignature> signatures;
+};
+
+// Component-wise math on float-like T: T f(T).
+Entry unary_float(IntrinsicId id, bool fragment_only = false) {
+  return {id, false, fragment_only, {sig(kFloatLike, kT, {in(kT)})}};
+}
+
+// The table. Sema tries every signature of an intrinsic and takes the best match; ties go to
+// the earlier one. The GLSL emitter maps IntrinsicId (and the argument types sema chose) to GLSL.
+std::vector<Entry> make_entries() {
+  using I = IntrinsicId;
+  std::vector<Entry> entries = {
+      {I::Abs, false, false, {sig(kNumeric, kT, {in(kT)})}},
+      unary_float(I::Acos),
+      {I::All, false, false, {sig(kAny, kBool, {in(kT)})}},
+      {I::Any, false, false, {sig(kAny, kBool, {in(kT)})}},
+      {I::Asfloat, false, false, {sig(kBitCastable, kFloatT, {in(kT)})}},
+      unary_float(I::Asin),
+      {I::Asint, false, false, {sig(kBitCastable, kIntT, {in(kT)})}},
+      {I::Asuint, false, false, {sig(kBitCastable, kUintT, {in(kT)})}},
+      unary_float(I::Atan),
+      {I::Atan2, false, false, {sig(kFloatLike, kT, {in(kT), in(kT)})}},
+      unary_float(I::Ceil),
+      {I::Clamp, false, false, {sig(kNumeric, kT, {in(kT), in(kT), in(kT)})}},
+      {I::Clip, false, true, {sig(kFloatLike, kVoid, {in(kT)})}},
+      unary_float(I::Cos),
+      unary_float(I::Cosh),
+      {I::Countbits, false, false, {sig(kUintOnly, kT, {in(kT)})}},
+      {I::Cross, false, false, {sig(kFloatLike, kV3, {in(kV3), in(kV3)})}},
+      unary_float(I::Ddx, true),
+      unary_float(I::Ddy, true),
+      unary_float(I::Degrees),
+      {I::Determinant, false, false, {sig(kFloatLike, kS, {in(kMNN)})}},
+      {I::Distance, false, false, {sig(kFloatLike, kS, {in(kVN), in(kVN)})}},
+      {I::Dot, false, false, {sig(kNumeric, kS, {in(kVN), in(kVN)})}},
+      unary_float(I::Exp),
+      unary_float(I::Exp2),
+      {I::F16tof32, false, false, {sig(kUintOnly, kFloatT, {in(kT)})}},
+      {I::F32tof16, false, false, {sig(kFloatOnly, kUintT, {in(kT)})}},
+      {I::Faceforward, false, false, {sig(kFloatLike, kVN, {in(kVN), in(kVN), in(kVN)})}},
+      unary_float(I::Floor),
+      {I::Fma, false, false, {sig(kFloatLike, kT, {in(kT), in(kT), in(kT)})}},
+      {I::Fmod, false, false, {sig(kFloatLike, kT, {in(kT), in(kT)})}},
+      unary_float(I::Frac),
+      unary_float(I::Fwidth, true),
+      {I::Isfinite, false, false, {sig(kFloatLike, kBoolT, {in(kT)})}},
+      {I::Isinf, false, false, {sig(kFloatLike, kBoolT, {in(kT)})}},
+      {I::Isnan, false, false, {sig(kFloatLike, kBoolT, {in(kT)})}},
+      {I::Ldexp, false, false, {sig(kFloatLike, kT, {in(kT), in(kT)})}},
+      {I::Length, false, false, {sig(kFloatLike, kS, {in(kVN)})}},
+      {I::Lerp, false, false, {sig(kFloatLike, kT, {in(kT), in(kT), in(kT)})}},
+      unary_float(I::Log),
+      unary_float(I::Log10),
+      unary_float(I::Log2),
+      {I::Mad, false, false, {sig(kNumeric, kT, {in(kT), in(kT), in(kT)})}},
+      {I::Max, false, false, {sig(kNumeric, kT, {in(kT), in(kT)})}},
+      {I::Min, false, false, {sig(kNumeric, kT, {in(kT), in(kT)})}},
+      {I::Modf, false, false, {sig(kFloatLike, kT, {in(kT), out(kT)})}},
+      // mul: every HLSL overload; vectors are rows on the left of a matrix, columns on its right.
+      {I::Mul, false, false,
+       {sig(kNumeric, kS, {in(kS), in(kS)}), sig(kNumeric, kVN, {in(kS), in(kVN)}),
+        sig(kNumeric, kMRC, {in(kS), in(kMRC)}), sig(kNumeric, kVN, {in(kVN), in(kS)}),
+        sig(kNumeric, kS, {in(kVN), in(kVN)}), sig(kNumeric, kVC, {in(kVN), in(kMNC)}),
+        sig(kNumeric, kMRC, {in(kMRC), in(kS)}), sig(kNumeric, kVR, {in(kMRN), in(kVN)}),
+        sig(kNumeric, kMRC, {in(kMRN), in(kMNC)})}},
+      {I::Normalize, false, false, {sig(kFloatLike, kVN, {in(kVN)})}},
+      {I::Pow, false, false, {sig(kFloatLike, kT, {in(kT), in(kT)})}},
+      unary_float(I::Radians),
+      unary_float(I::Rcp),
+      {I::Reflect, false, false, {sig(kFloatLike, kVN, {in(kVN), in(kVN)})}},
+      {I::Refract, false, false, {sig(kFloatLike, kVN, {in(kVN), in(kVN), in(kS)})}},
+      {I::Reversebits, false, false, {sig(kUintOnly, kT, {in(kT)})}},
+      unary_float(I::Round),
+      unary_float(I::Rsqrt),
+      unary_float(I::Saturate),
+      {I::Sign, false, false, {sig(kNumeric, kIntT, {in(kT)})}},
+      unary_float(I::Sin),
+      {I::Sincos, false, false, {sig(kFloatLike, kVoid, {in(kT), out(kT), out(kT)})}},
+      unary_float(I::Sinh),
+      {I::Smoothstep, false, false, {sig(kFloatLike, kT, {in(kT), in(kT), in(kT)})}},
+      unary_float(I::Sqrt),
+      {I::Step, false, false, {sig(kFloatLike, kT, {in(kT), in(kT)})}},
+      unary_float(I::Tan),
+      unary_float(I::Tanh),
+      // DX9 sampler2D.
+      {I::Tex2D, false, true, {sig(kFloatOnly, kFloat4, {in(kSampler2D), in(kFloat2)})}},
+      {I::Tex2Dbias, false, true, {sig(kFloatOnly, kFloat4, {in(kSampler2D), in(kFloat4)})}},
+      {I::Tex2Dgrad, false, false,
+       {sig(kFloatOnly, kFloat4, {in(kSampler2D), in(kFloat2), in(kFloat2), in(kFloat2)})}},
+      {I::Tex2Dlod, false, false, {sig(kFloatOnly, kFloat4, {in(kSampler2D), in(kFloat4)})}},
+      {I::Transpose, false, false, {sig(kAny, kMCR, {in(kMRC)})}},
+      unary_float(I::Trunc),
+      // Texture2D methods (the texture is the call's object, not a parameter).
+      {I::Sample, true, true, {sig(kFloatOnly, kFloat4, {in(kSamplerState), in(kFloat2)})}},
+      {I::SampleBias, true, true,
+       {sig(kFloatOnly, kFloat4, {in(kSamplerState), in(kFloat2), in(kFloat)})}},
+      {I::SampleGrad, true, false,
+       {sig(kFloatOnly, kFloat4, {in(kSamplerState), in(kFloat2), in(kFloat2), in(kFloat2)})}},
+      {I::SampleLevel, true, false,
+       {sig(kFloatOnly, kFloat4, {in(kSamplerState), in(kFloat2), in(kFloat)})}},
+      {I::Load, true, false, {sig(kFloatOnly, kFloat4, {in(kInt3)})}},
+      {I::GetDimensions, true, false,
+       {sig(kFloatOnly, kVoid, {out(kUint), out(kUint)}), sig(kFloatOnly, kVoid, {out(kFloat), out(kFloat)}),
+        sig(kFloatOnly, kVoid, {in(kUint), out(kUint), out(kUint), out(kUint)}),
+        sig(kFloatOnly, kVoid, {in(kUint), out(kFloat), out(kFloat), out(kFloat)})}},
+  };
+  return entries;
+}
+
+#define XSHADE_INTRINSIC_COUNT(id, name) +1
+constexpr size_t kIntrinsicCount = 1 XSHADE_INTRINSICS(XSHADE_INTRINSIC_COUNT);  // with None
+#undef XSHADE_INTRINSIC_COUNT
+
+constexpr std::array<std::string_view, kIntrinsicCount> kNames = {
+    "",
+#define XSHADE_INTRINSIC_NAME(id, name) name,
+    XSHADE_INTRINSICS(XSHADE_INTRINSIC_NAME)
+#undef XSHADE_INTRINSIC_NAME
+};
+
+struct Table {
+  std::vector<Entry> entries;  // indexed by IntrinsicId
+  std::array<IntrinsicInfo, kIntrinsicCount> infos{};
+
+  Table() {
+    entries.resize(kIntrinsicCount);
+    for (Entry& entry : make_entries()) entries[size_t(entry.id)] = std::move(entry);
+    for (size_t i = 0; i < kIntrinsicCount; ++i) {
+      const Entry& entry = entries[i];
+      infos[i] = IntrinsicInfo{IntrinsicId(i), kNames[i], entry.is_method, entry.fragment_only,
+                               std::span<const IntrinsicSignature>(entry.signatures)};
+    }
+  }
+};
+
+const Table& table() {
+  static const Table instance;
+  return instance;
+}
+
+}  // namespace
+
+std::string_view intrinsic_name(IntrinsicId id) {
+  const size_t index = size_t(id);
+  return index < kIntrinsicCount ? kNames[index] : std::string_view();
+}
+
+const IntrinsicInfo& intrinsic_info(IntrinsicId id) {
+  const size_t index = size_t(id) < kIntrinsicCount ? size_t(id) : 0;
+  return table().infos[index];
+}
+
+static std::optional<IntrinsicId> find(std::string_view name, bool method) {
+  for (size_t i = 1; i < kIntrinsicCount; ++i) {
+    const IntrinsicInfo& info = table().infos[i];
+    if (info.is_method == method && info.name == name) return info.id;
+  }
+  return std::nullopt;
+}
+
+std::optional<IntrinsicId> find_intrinsic(std::string_view name) { return find(name, false); }
+
+std::optional<IntrinsicId> find_texture_method(std::string_view name) { return find(name, true); }
+
+}  // namespace xshade::hlsl

@@ -1,0 +1,699 @@
+// Semantic analysis: declarations, scopes, statements, entry points and the call graph.
+// Expressions are in sema_expressions.cpp, calls in sema_calls.cpp, conversion rules in
+// sema_conversions.cpp.
+#include "hlsl_like/sema.h"
+
+#include <algorithm>
+
+#include "hlsl_like/sema_internal.h"
+
+namespace xshade::hlsl {
+
+namespace sema_detail {
+
+namespace {
+
+std::string quoted(const Type& type) { return "'" + type.name() + "'"; }
+
+bool is_unsized_array(const Type& type) { return type.kind() == TypeKind::Array && type.array_length() == 0; }
+
+size_t edit_distance(const std::string& a, const std::string& b) {
+  std::vector<size_t> row(b.size() + 1);
+  for (size_t j = 0; j <= b.size(); ++j) row[j] = j;
+  for (size_t i = 1; i <= a.size(); ++i) {
+    size_t diagonal = row[0];
+    row[0] = i;
+    for (size_t j = 1; j <= b.size(); ++j) {
+      const size_t above = row[j];
+      row[j] = std::min({row[j] + 1, row[j - 1] + 1, diagonal + (a[i - 1] == b[j - 1] ? 0 : 1)});
+      diagonal = above;
+    }
+  }
+  return row[b.size()];
+}
+
+// Whether control cannot fall off the end of `stmt` (returns, discards, or loops forever).
+bool contains_break(const Stmt* stmt, int depth);
+
+bool constant_true(const Sema& sema, const Expr* condition) {
+  if (!condition) return true;  // for (;;)
+  const Expr* expr = condition;
+  if (expr->kind == ExprKind::Conversion) expr = static_cast<const ConversionExpr*>(expr)->operand.get();
+  if (expr && expr->kind == ExprKind::BoolLiteral) return static_cast<const BoolLiteralExpr*>(expr)->value;
+  const std::optional<int64_t> value = sema.fold_int(expr);
+  return value && *value != 0;
+}
+
+bool always_returns(const Sema& sema, const Stmt* stmt, int depth) {
+  if (!stmt || depth > kMaxNesting) return false;
+  switch (stmt->kind) {
+    case StmtKind::Return:
+    case StmtKind::Discard:
+      return true;
+    case StmtKind::Block:
+      for (const StmtPtr& child : static_cast<const BlockStmt*>(stmt)->statements) {
+        if (always_returns(sema, child.get(), depth + 1)) return true;
+      }
+      return false;
+    case StmtKind::If: {
+      const auto* branch = static_cast<const IfStmt*>(stmt);
+      return branch->else_branch && always_returns(sema, branch->then_branch.get(), depth + 1) &&
+             always_returns(sema, branch->else_branch.get(), depth + 1);
+    }
+    case StmtKind::While: {
+      const auto* loop = static_cast<const WhileStmt*>(stmt);
+      return loop->condition && constant_true(sema, loop->condition.get()) && !contains_break(loop->body.get(), 0);
+    }
+    case StmtKind::For: {
+      const auto* loop = static_cast<const ForStmt*>(stmt);
+      return constant_true(sema, loop->condition.get()) && !contains_break(loop->body.get(), 0);
+    }
+    case StmtKind::DoWhile: {
+      const auto* loop = static_cast<const DoWhileStmt*>(stmt);
+      if (always_returns(sema, loop->body.get(), depth + 1)) return true;
+      return loop->condition && constant_true(sema, loop->condition.get()) && !contains_break(loop->body.get(), 0);
+    }
+    default:
+      return false;
+  }
+}
+
+// A `break` that leaves the loop whose body is `stmt` (not one of an inner loop).
+bool contains_break(const Stmt* stmt, int depth) {
+  if (!stmt || depth > kMaxNesting) return false;
+  switch (stmt->kind) {
+    case StmtKind::Break: return true;
+    case StmtKind::Block:
+      for (const StmtPtr& child : static_cast<const BlockStmt*>(stmt)->statements) {
+        if (contains_break(child.get(), depth + 1)) return true;
+      }
+      return false;
+    case StmtKind::If: {
+      const auto* branch = static_cast<const IfStmt*>(stmt);
+      return contains_break(branch->then_branch.get(), depth + 1) || contains_break(branch->else_branch.get(), depth + 1);
+    }
+    default:
+      return false;  // loops own their breaks
+  }
+}
+
+enum class Stage { Vertex, Fragment };
+
+bool semantic_allowed(SemanticKind kind, Stage stage, bool input) {
+  switch (kind) {
+    case SemanticKind::Unknown: return false;
+    case SemanticKind::Position: return true;  // an attribute in, the clip position out (DX9)
+    case SemanticKind::Normal:
+    case SemanticKind::Tangent:
+    case SemanticKind::Binormal:
+    case SemanticKind::Texcoord:
+      return !(stage == Stage::Fragment && !input);
+    case SemanticKind::Color: return true;  // a fragment output COLORn is SV_Targetn (DX9)
+    case SemanticKind::SvPosition: return !(stage == Stage::Vertex && input) && !(stage == Stage::Fragment && !input);
+    case SemanticKind::SvTarget:
+    case SemanticKind::SvDepth: return stage == Stage::Fragment && !input;
+    case SemanticKind::SvIsFrontFace: return stage == Stage::Fragment && input;
+    case SemanticKind::SvVertexId: return stage == Stage::Vertex && input;
+  }
+  return false;
+}
+
+// The type a system value needs, or nothing when any numeric type will do.
+std::optional<std::string> required_type(SemanticKind kind, Stage stage, bool input, const Type& type) {
+  const bool clip_position =
+      kind == SemanticKind::SvPosition || (kind == SemanticKind::Position && !(stage == Stage::Vertex && input));
+  if (clip_position) {
+    if (!(type.is_vector() && type.cols() == 4 && type.is_floating())) return "float4";
+    return std::nullopt;
+  }
+  switch (kind) {
+    case SemanticKind::SvDepth:
+      if (!(type.is_scalar() && type.is_floating())) return "float";
+      break;
+    case SemanticKind::SvIsFrontFace:
+      if (!(type.is_scalar() && type.is_bool())) return "bool";
+      break;
+    case SemanticKind::SvVertexId:
+      if (!(type.is_scalar() && type.is_integer())) return "uint";
+      break;
+    default:
+      if (!type.is_numeric() || type.is_matrix()) {
+        if (type.kind() == TypeKind::Array && type.element().is_numeric()) break;
+        return "a scalar or vector";
+      }
+      break;
+  }
+  return std::nullopt;
+}
+
+}  // namespace
+
+// ---------------------------------------------------------------------------------------------
+// Scopes
+
+bool Sema::declare(const std::string& name, Symbol symbol, Loc loc) {
+  if (name.empty() || scopes_.empty()) return true;
+  auto [it, inserted] = scopes_.back().emplace(name, symbol);
+  if (inserted) return true;
+  diag_.error(loc, "redefinition of '" + name + "'");
+  if (it->second.decl) diag_.note(it->second.decl->loc, "previous definition of '" + name + "' is here");
+  return false;
+}
+
+const Symbol* Sema::lookup(const std::string& name) const {
+  for (auto scope = scopes_.rbegin(); scope != scopes_.rend(); ++scope) {
+    auto it = scope->find(name);
+    if (it != scope->end()) return &it->second;
+  }
+  return nullptr;
+}
+
+std::string Sema::suggestion(const std::string& name, bool functions) const {
+  if (name.size() > 64) return "";
+  const size_t limit = std::max<size_t>(1, name.size() / 3);
+  std::string best;
+  size_t best_distance = limit + 1;
+  auto consider = [&](const std::string& candidate) {
+    if (candidate.size() > 64 || candidate == name) return;
+    const size_t distance = edit_distance(name, candidate);
+    if (distance < best_distance && distance < candidate.size()) {
+      best = candidate;
+      best_distance = distance;
+    }
+  };
+  if (functions) {
+    for (const auto& [candidate, overloads] : functions_) consider(candidate);
+    for (uint16_t id = 1;; ++id) {
+      const IntrinsicInfo& info = intrinsic_info(IntrinsicId(id));
+      if (info.id == IntrinsicId::None) break;
+      if (!info.is_method) consider(std::string(info.name));
+    }
+  } else {
+    for (const auto& scope : scopes_) {
+      for (const auto& [candidate, symbol] : scope) {
+        if (symbol.kind == Symbol::Kind::Variable) consider(candidate);
+      }
+    }
+  }
+  return best;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Declarations
+
+bool Sema::check_type_usable(const Type& type, const std::string& what, Loc loc, bool allow_resource) {
+  if (type.is_void()) {
+    diag_.error(loc, what + " cannot have type 'void'");
+    return false;
+  }
+  if (!allow_resource && type_contains_resource(type)) {
+    diag_.error(loc, what + " cannot have type " + quoted(type) +
+                         "; resources are only allowed at global scope or as parameters");
+    return false;
+  }
+  return true;
+}
+
+void Sema::declare_struct(StructDecl& decl) {
+  std::unordered_map<std::string, const FieldDecl*> names;
+  for (const FieldDecl& field : decl.fields) {
+    if (!field.name.empty()) {
+      auto [it, inserted] = names.emplace(field.name, &field);
+      if (!inserted) {
+        diag_.error(field.loc, "redefinition of '" + field.name + "'");
+        diag_.note(it->second->loc, "previous definition of '" + field.name + "' is here");
+      }
+    }
+    if (field.type.kind() == TypeKind::Struct && field.type.struct_decl() == &decl) {
+      diag_.error(field.loc, "field '" + field.name + "' cannot have the type of its own struct");
+      continue;
+    }
+    if (!check_type_usable(field.type, "field '" + field.name + "'", field.loc, false)) continue;
+    if (is_unsized_array(field.type)) diag_.error(field.loc, "field '" + field.name + "' needs an array size");
+  }
+  declare(decl.name, {Symbol::Kind::Struct, &decl}, decl.loc);
+}
+
+void Sema::declare_typedef(TypedefDecl& decl) { declare(decl.name, {Symbol::Kind::Typedef, &decl}, decl.loc); }
+
+void Sema::analyze_var_initializer(VarDecl& var) {
+  for (Annotation& annotation : var.annotations) analyze(annotation.value.get());
+  if (var.initializer) {
+    analyze_initializer(var.initializer, var.type, var.name);
+  } else if (is_unsized_array(var.type)) {
+    diag_.error(var.loc, "unsized array '" + var.name + "' needs an initializer list");
+  }
+}
+
+void Sema::declare_global_var(VarDecl& var, bool in_cbuffer) {
+  const std::string what = (in_cbuffer ? "cbuffer member '" : "variable '") + var.name + "'";
+  if (check_type_usable(var.type, what, var.loc, !in_cbuffer)) {
+    if (var.type.is_resource() && var.initializer) {
+      diag_.error(var.initializer->loc, quoted(var.type) + " variables cannot have an initializer");
+    } else {
+      analyze_var_initializer(var);
+    }
+  }
+  if (var.is_const && var.storage == StorageClass::Static && !var.initializer) {
+    diag_.error(var.loc, "static const '" + var.name + "' needs an initializer");
+  }
+  declare(var.name, {Symbol::Kind::Variable, &var}, var.loc);
+}
+
+void Sema::declare_cbuffer(CBufferDecl& decl) {
+  for (auto& member : decl.members) {
+    if (member) declare_global_var(*member, true);
+  }
+}
+
+void Sema::analyze_local_var(VarDecl& var) {
+  if (check_type_usable(var.type, "variable '" + var.name + "'", var.loc, false)) {
+    analyze_var_initializer(var);
+  } else if (var.initializer) {
+    analyze(var.initializer.get());
+  }
+  if (var.is_const && !var.initializer) diag_.error(var.loc, "const '" + var.name + "' needs an initializer");
+  declare(var.name, {Symbol::Kind::Variable, &var}, var.loc);
+}
+
+void Sema::declare_function(FunctionDecl& function) {
+  all_functions_.push_back(&function);
+  analyze_attributes(function.attributes);
+  if (function.return_type.is_resource() || function.return_type.kind() == TypeKind::Array) {
+    diag_.error(function.loc, "function '" + function.name + "' cannot return " + quoted(function.return_type));
+  }
+  std::vector<Type> param_types;
+  for (const auto& param : function.params) param_types.push_back(param ? param->type : Type::error());
+
+  // One signature, several declarations: the first is canonical.
+  const FunctionDecl* canonical = nullptr;
+  std::vector<const FunctionDecl*>& overloads = functions_[function.name];
+  for (const FunctionDecl* other : overloads) {
+    const FunctionInfo& info = function_info_[other];
+    if (info.param_types == param_types) {
+      canonical = other;
+      break;
+    }
+  }
+  if (canonical) {
+    FunctionInfo& info = function_info_[canonical];
+    if (!(canonical->return_type == function.return_type)) {
+      diag_.error(function.loc, "'" + function.name + "' differs from a previous declaration only in its return type");
+      diag_.note(canonical->loc, "previous declaration of '" + function.name + "' is here");
+    } else if (function.body && info.definition) {
+      diag_.error(function.loc, "redefinition of '" + function.name + "'");
+      diag_.note(info.definition->loc, "previous definition of '" + function.name + "' is here");
+    } else if (function.body) {
+      info.definition = &function;
+    }
+  } else if (!overloads.empty() || declare(function.name, {Symbol::Kind::Function, &function}, function.loc)) {
+    canonical = &function;
+    overloads.push_back(&function);
+  } else {
+    // Its name clashes with a variable, struct or typedef (reported): it is analyzed for its own
+    // errors but cannot be called.
+    canonical = &function;
+    functions_.erase(function.name);
+  }
+  if (canonical == &function) {
+    FunctionInfo& info = function_info_[&function];
+    info.canonical = &function;
+    info.param_types = param_types;
+    if (function.body) info.definition = &function;
+  }
+  canonical_of_[&function] = canonical;
+
+  const FunctionDecl* const canonical_decl = canonical_of_[&function];
+  push_scope();
+  for (auto& param : function.params) {
+    if (!param) continue;
+    const std::string what = "parameter '" + param->name + "'";
+    check_type_usable(param->type, what, param->loc, true);
+    if (is_unsized_array(param->type)) diag_.error(param->loc, what + " needs an array size");
+    if (param->default_value) {
+      analyze(param->default_value.get());
+      coerce(param->default_value, param->type);
+    }
+    declare(param->name, {Symbol::Kind::Variable, param.get()}, param->loc);
+  }
+  if (function.body) {
+    current_function_ = &function;
+    current_info_ = &function_info_[canonical_decl];
+    loop_depth_ = 0;
+    analyze_block(*function.body, false);  // parameters and the body's locals share a scope
+    if (!function.return_type.is_void() && !function.return_type.is_error() &&
+        !always_returns(*this, function.body.get(), 0)) {
+      diag_.warning(function.loc, "not all paths return a value");
+    }
+    current_function_ = nullptr;
+    current_info_ = nullptr;
+  }
+  pop_scope();
+}
+
+// ---------------------------------------------------------------------------------------------
+// Statements
+
+void Sema::analyze_attributes(std::vector<Attribute>& attributes) {
+  for (Attribute& attribute : attributes) {
+    for (ExprPtr& arg : attribute.args) analyze(arg.get());
+  }
+}
+
+void Sema::analyze_condition(ExprPtr& condition) {
+  const Type type = analyze(condition.get());
+  if (!condition || type.is_error()) return;
+  if (type.is_numeric() && type.component_count() > 1) {
+    diag_.error(condition->loc, "condition must be a scalar, not " + quoted(type) + "; use any() or all()");
+    return;
+  }
+  coerce(condition, Type::scalar(ScalarType::Bool));
+}
+
+void Sema::analyze_block(BlockStmt& block, bool new_scope) {
+  if (new_scope) push_scope();
+  for (StmtPtr& stmt : block.statements) analyze_stmt(stmt.get());
+  if (new_scope) pop_scope();
+}
+
+void Sema::analyze_stmt(Stmt* stmt) {
+  if (!stmt) return;
+  DepthGuard guard(*this);
+  if (nesting_exceeded(stmt->loc)) return;
+  analyze_attributes(stmt->attributes);
+  // A statement that is a branch or a loop body gets a scope of its own (`if (c) float x = 1;`).
+  auto scoped = [&](Stmt* child) {
+    push_scope();
+    analyze_stmt(child);
+    pop_scope();
+  };
+  switch (stmt->kind) {
+    case StmtKind::Block:
+      analyze_block(static_cast<BlockStmt&>(*stmt), true);
+      break;
+    case StmtKind::Expr:
+      analyze(static_cast<ExprStmt&>(*stmt).expr.get());
+      break;
+    case StmtKind::Decl:
+      for (auto& var : static_cast<DeclStmt&>(*stmt).vars) {
+        if (var) analyze_local_var(*var);
+      }
+      break;
+    case StmtKind::If: {
+      auto& branch = static_cast<IfStmt&>(*stmt);
+      analyze_condition(branch.condition);
+      scoped(branch.then_branch.get());
+      scoped(branch.else_branch.get());
+      break;
+    }
+    case StmtKind::For: {
+      auto& loop = static_cast<ForStmt&>(*stmt);
+      push_scope();  // the init's variables live in the loop
+      analyze_stmt(loop.init.get());
+      if (loop.condition) analyze_condition(loop.condition);
+      analyze(loop.step.get());
+      ++loop_depth_;
+      scoped(loop.body.get());
+      --loop_depth_;
+      pop_scope();
+      break;
+    }
+    case StmtKind::While: {
+      auto& loop = static_cast<WhileStmt&>(*stmt);
+      analyze_condition(loop.condition);
+      ++loop_depth_;
+      scoped(loop.body.get());
+      --loop_depth_;
+      break;
+    }
+    case StmtKind::DoWhile: {
+      auto& loop = static_cast<DoWhileStmt&>(*stmt);
+      ++loop_depth_;
+      scoped(loop.body.get());
+      --loop_depth_;
+      analyze_condition(loop.condition);
+      break;
+    }
+    case StmtKind::Break:
+    case StmtKind::Continue:
+      if (loop_depth_ == 0) {
+        diag_.error(stmt->loc, std::string(stmt->kind == StmtKind::Break ? "'break'" : "'continue'") +
+                                   " is only allowed inside a loop");
+      }
+      break;
+    case StmtKind::Return: {
+      auto& ret = static_cast<ReturnStmt&>(*stmt);
+      const Type value = analyze(ret.value.get());
+      if (!current_function_) break;
+      const Type& expected = current_function_->return_type;
+      if (expected.is_error()) break;
+      if (expected.is_void()) {
+        if (ret.value && !value.is_error()) {
+          diag_.error(ret.value->loc, "void function '" + current_function_->name + "' cannot return a value");
+        }
+      } else if (!ret.value) {
+        diag_.error(stmt->loc, "'" + current_function_->name + "' must return a value of type " + quoted(expected));
+      } else {
+        coerce(ret.value, expected);
+      }
+      break;
+    }
+    case StmtKind::Discard:
+      note_fragment_only("'discard'", stmt->loc);
+      break;
+    case StmtKind::Empty:
+      break;
+  }
+}
+
+// ---------------------------------------------------------------------------------------------
+// The call graph
+
+void Sema::check_recursion() {
+  // Depth-first search over canonical functions; a call to a function still on the path closes
+  // a cycle. Iterative, so that a long chain of calls cannot overflow the stack.
+  enum class Color : uint8_t { White, Gray, Black };
+  std::unordered_map<const FunctionDecl*, Color> color;
+  struct Frame {
+    const FunctionDecl* function;
+    size_t next_call;
+  };
+  for (const FunctionDecl* root : all_functions_) {
+    const FunctionDecl* canonical = canonical_of_[root];
+    if (!canonical || color[canonical] != Color::White) continue;
+    std::vector<Frame> stack{{canonical, 0}};
+    color[canonical] = Color::Gray;
+    while (!stack.empty()) {
+      Frame& frame = stack.back();
+      const FunctionInfo& info = function_info_[frame.function];
+      if (frame.next_call >= info.calls.size()) {
+        color[frame.function] = Color::Black;
+        stack.pop_back();
+        continue;
+      }
+      const FunctionInfo::Call& call = info.calls[frame.next_call++];
+      Color& callee = color[call.callee];
+      if (callee == Color::Gray) {
+        diag_.error(call.loc, "recursive call to '" + call.callee->name + "' is not supported");
+      } else if (callee == Color::White) {
+        callee = Color::Gray;
+        stack.push_back({call.callee, 0});
+      }
+    }
+  }
+}
+
+void Sema::fix_up_calls() {
+  for (FunctionDecl* function : all_functions_) {
+    const FunctionDecl* canonical = canonical_of_[function];
+    const FunctionInfo& info = function_info_[canonical];
+    if (!function->body && info.definition) function->definition = info.definition;
+  }
+  for (CallExpr* call : user_calls_) {
+    const FunctionInfo& info = function_info_[call->function];
+    if (info.definition) call->function = info.definition;
+  }
+  for (const FunctionDecl* function : all_functions_) {
+    if (canonical_of_[function] != function) continue;
+    const FunctionInfo& info = function_info_[function];
+    if (info.called && !info.definition) {
+      diag_.error(info.first_call, "function '" + function->name + "' is called but never defined");
+    }
+  }
+}
+
+// ---------------------------------------------------------------------------------------------
+// Entry points
+
+const FunctionDecl* Sema::find_entry_point(const std::string& name, Loc pragma_loc, const char* stage) {
+  if (name.empty()) return nullptr;
+  auto it = functions_.find(name);
+  std::vector<const FunctionDecl*> defined;
+  if (it != functions_.end()) {
+    for (const FunctionDecl* canonical : it->second) {
+      if (const FunctionDecl* definition = function_info_[canonical].definition) defined.push_back(definition);
+    }
+  }
+  if (defined.empty()) {
+    diag_.error(pragma_loc, std::string(stage) + " entry point '" + name + "' is not defined");
+    return nullptr;
+  }
+  if (defined.size() > 1) {
+    diag_.error(pragma_loc, std::string(stage) + " entry point '" + name + "' is overloaded");
+    return nullptr;
+  }
+  return defined[0];
+}
+
+void Sema::check_entry_point(const FunctionDecl& function, bool vertex) {
+  const Stage stage = vertex ? Stage::Vertex : Stage::Fragment;
+  const char* stage_name = vertex ? "vertex" : "fragment";
+  bool outputs_position = false, outputs_target = false, return_failed = false;
+  std::unordered_map<std::string, Loc> seen[2];  // inputs, outputs
+  auto report = [&](Loc loc, const std::string& message) {
+    const std::string key = std::to_string(loc.file) + ":" + std::to_string(loc.line) + ":" +
+                            std::to_string(loc.column) + ":" + message;
+    if (reported_.insert(key).second) diag_.error(loc, message);
+  };
+  // One value crossing the stage boundary: a parameter, a field of a struct, the return value.
+  struct Item {
+    const Type* type;
+    const std::string* semantic;
+    Loc semantic_loc;
+    std::string name;  // "input 'uv'" etc.
+    Loc loc;
+    int depth;
+  };
+  auto check = [&](const Type& root_type, const std::string& root_semantic, Loc root_semantic_loc, std::string root_name,
+                   Loc root_loc, bool input) {
+    std::vector<Item> items{{&root_type, &root_semantic, root_semantic_loc, std::move(root_name), root_loc, 0}};
+    while (!items.empty()) {
+      Item item = std::move(items.back());
+      items.pop_back();
+      const Type& type = *item.type;
+      if (type.is_error()) {
+        if (!input) return_failed = true;
+        continue;
+      }
+      if (type.kind() == TypeKind::Struct && type.struct_decl() && item.depth < kMaxNesting) {
+        const auto& fields = type.struct_decl()->fields;
+        for (auto field = fields.rbegin(); field != fields.rend(); ++field) {
+          items.push_back({&field->type, &field->semantic, field->semantic_loc,
+                           std::string(input ? "input '" : "output '") + field->name + "'", field->loc, item.depth + 1});
+        }
+        continue;
+      }
+      if (item.semantic->empty()) {
+        report(item.loc, item.name + " of entry point '" + function.name + "' needs a semantic");
+        continue;
+      }
+      const ParsedSemantic semantic = parse_semantic(*item.semantic);
+      if (semantic.kind == SemanticKind::Unknown) {
+        report(item.semantic_loc, "unknown semantic '" + *item.semantic + "'");
+        continue;
+      }
+      if (!semantic_allowed(semantic.kind, stage, input)) {
+        report(item.semantic_loc, "semantic '" + *item.semantic + "' is not allowed on a " + stage_name + " shader " +
+                                      (input ? "input" : "output"));
+        continue;
+      }
+      if (auto needed = required_type(semantic.kind, stage, input, type)) {
+        report(item.loc, "semantic '" + *item.semantic + "' needs " + (needed->front() == 'a' ? "" : "type '") + *needed +
+                             (needed->front() == 'a' ? "" : "'") + ", not " + quoted(type));
+        continue;
+      }
+      const std::string canonical = canonical_semantic(semantic);
+      if (!seen[input ? 0 : 1].emplace(canonical, item.semantic_loc).second) {
+        report(item.semantic_loc, "semantic '" + *item.semantic + "' is used twice in the " +
+                                      (input ? "inputs" : "outputs") + " of entry point '" + function.name + "'");
+        continue;
+      }
+      if (!input && vertex && (semantic.kind == SemanticKind::SvPosition || semantic.kind == SemanticKind::Position)) {
+        outputs_position = true;
+      }
+      if (!input && !vertex &&
+          (semantic.kind == SemanticKind::SvTarget || semantic.kind == SemanticKind::SvDepth ||
+           semantic.kind == SemanticKind::Color)) {
+        outputs_target = true;
+      }
+    }
+  };
+  for (const auto& param : function.params) {
+    if (!param || param->is_uniform || param->type.is_resource()) continue;
+    if (param->direction != ParamDirection::Out) {
+      check(param->type, param->semantic, param->semantic_loc, "input '" + param->name + "'", param->loc, true);
+    }
+    if (param->direction != ParamDirection::In) {
+      check(param->type, param->semantic, param->semantic_loc, "output '" + param->name + "'", param->loc, false);
+    }
+  }
+  if (!function.return_type.is_void()) {
+    check(function.return_type, function.semantic, function.semantic_loc, "return value", function.loc, false);
+  }
+  if (vertex && !outputs_position && !return_failed) {
+    report(function.loc, "vertex entry point '" + function.name + "' does not output SV_Position");
+  }
+  if (!vertex && !outputs_target && !return_failed) {
+    report(function.loc, "fragment entry point '" + function.name + "' does not output SV_Target or SV_Depth");
+  }
+}
+
+void Sema::check_fragment_only_reachable(const FunctionDecl& vertex_entry) {
+  const FunctionDecl* root = canonical_of_[&vertex_entry];
+  if (!root) return;
+  std::unordered_set<const FunctionDecl*> visited{root};
+  std::vector<const FunctionDecl*> stack{root};
+  while (!stack.empty()) {
+    const FunctionDecl* function = stack.back();
+    stack.pop_back();
+    const FunctionInfo& info = function_info_[function];
+    for (const FunctionInfo::Use& use : info.fragment_only_uses) {
+      diag_.error(use.loc, use.what + " is only available in fragment shaders");
+    }
+    for (const FunctionInfo::Call& call : info.calls) {
+      if (visited.insert(call.callee).second) stack.push_back(call.callee);
+    }
+  }
+}
+
+// ---------------------------------------------------------------------------------------------
+// The driver
+
+EntryPoints Sema::run(TranslationUnit& unit, const EntryPointNames& names) {
+  for (const auto& decl : unit.decls) {
+    if (decl && decl->kind == DeclKind::Function) all_function_names_.insert(decl->name);
+  }
+  push_scope();
+  for (auto& decl : unit.decls) {
+    if (!decl) continue;
+    switch (decl->kind) {
+      case DeclKind::Struct: declare_struct(static_cast<StructDecl&>(*decl)); break;
+      case DeclKind::Typedef: declare_typedef(static_cast<TypedefDecl&>(*decl)); break;
+      case DeclKind::Var: declare_global_var(static_cast<VarDecl&>(*decl), false); break;
+      case DeclKind::CBuffer: declare_cbuffer(static_cast<CBufferDecl&>(*decl)); break;
+      case DeclKind::Function: declare_function(static_cast<FunctionDecl&>(*decl)); break;
+      case DeclKind::Param: break;
+    }
+  }
+  check_recursion();
+  EntryPoints entry_points;
+  entry_points.vertex = find_entry_point(names.vertex, names.vertex_loc, "vertex");
+  entry_points.fragment = find_entry_point(names.fragment, names.fragment_loc, "fragment");
+  if (entry_points.vertex) {
+    check_entry_point(*entry_points.vertex, true);
+    check_fragment_only_reachable(*entry_points.vertex);
+  }
+  if (entry_points.fragment) check_entry_point(*entry_points.fragment, false);
+  fix_up_calls();
+  pop_scope();
+  return entry_points;
+}
+
+}  // namespace sema_detail
+
+EntryPoints analyze(TranslationUnit& unit, const EntryPointNames& entry_points, DiagnosticEngine& diagnostics) {
+  sema_detail::Sema sema(diagnostics);
+  return sema.run(unit, entry_points);
+}
+
+}  // namespace xshade::hlsl

@@ -1,0 +1,496 @@
+// Semantic analysis of calls: constructors, user functions (overload resolution under HLSL's
+// conversion ranks), intrinsics (generic signatures from intrinsics.cpp) and texture methods.
+#include <algorithm>
+#include <numeric>
+
+#include "hlsl_like/sema_internal.h"
+
+namespace xshade::hlsl::sema_detail {
+
+namespace {
+
+std::string quoted(const Type& type) { return "'" + type.name() + "'"; }
+
+std::string arguments_word(size_t count) { return count == 1 ? " argument" : " arguments"; }
+
+// a dominates b: no argument converts worse, and one converts better.
+bool dominates(const std::vector<int>& a, const std::vector<int>& b) {
+  bool better = false;
+  for (size_t i = 0; i < a.size() && i < b.size(); ++i) {
+    if (a[i] > b[i]) return false;
+    if (a[i] < b[i]) better = true;
+  }
+  return better;
+}
+
+// The candidate better than every other one, or -1.
+int unique_best(const std::vector<std::vector<int>>& ranks) {
+  for (size_t i = 0; i < ranks.size(); ++i) {
+    bool best = true;
+    for (size_t j = 0; j < ranks.size() && best; ++j) {
+      if (i != j && !dominates(ranks[i], ranks[j])) best = false;
+    }
+    if (best) return int(i);
+  }
+  return ranks.size() == 1 ? 0 : -1;
+}
+
+// The element type T takes when the arguments' highest is `deduced` but the signature allows
+// only `set`: integers become the other integer type or float; half becomes float.
+std::optional<ScalarType> fit_element(ScalarType deduced, uint8_t set) {
+  auto allowed = [&](ScalarType s) { return (set & element_bit(s)) != 0; };
+  if (allowed(deduced)) return deduced;
+  std::vector<ScalarType> order;
+  switch (deduced) {
+    case ScalarType::Bool: order = {ScalarType::Int, ScalarType::Uint, ScalarType::Float}; break;
+    case ScalarType::Int: order = {ScalarType::Uint, ScalarType::Float}; break;
+    case ScalarType::Uint: order = {ScalarType::Int, ScalarType::Float}; break;
+    case ScalarType::Half: order = {ScalarType::Float}; break;
+    case ScalarType::Float: break;  // never silently to an integer or half
+  }
+  for (ScalarType s : order) {
+    if (allowed(s)) return s;
+  }
+  return std::nullopt;
+}
+
+ScalarType fixed_element(PatternElement element, ScalarType t) {
+  switch (element) {
+    case PatternElement::T: return t;
+    case PatternElement::Bool: return ScalarType::Bool;
+    case PatternElement::Int: return ScalarType::Int;
+    case PatternElement::Uint: return ScalarType::Uint;
+    case PatternElement::Float: return ScalarType::Float;
+  }
+  return t;
+}
+
+uint8_t shape_bit(const Type& type) {
+  if (type.is_matrix()) return kShapeMatrix;
+  if (type.is_vector()) return kShapeVector;
+  return kShapeScalar;
+}
+
+struct Candidate {
+  std::vector<Type> params;
+  std::vector<bool> out;
+  Type result;
+  std::vector<int> ranks;
+};
+
+// Deduces T, N, R and C of `signature` from the arguments and ranks every argument's conversion.
+std::optional<Candidate> bind_signature(const Sema& sema, const IntrinsicSignature& signature,
+                              const std::vector<ExprPtr>& args) {
+  if (args.size() != signature.param_count) return std::nullopt;
+  const size_t count = args.size();
+  // T's element: the highest of the (in) arguments at T-element positions.
+  std::vector<const Expr*> element_args;
+  for (size_t i = 0; i < count; ++i) {
+    const ParamPattern& param = signature.params[i];
+    const bool generic = param.type.element == PatternElement::T || param.type.shape == PatternShape::T;
+    if (param.out || !generic) continue;
+    if (!args[i]->type.is_numeric()) return std::nullopt;
+    if (param.type.element == PatternElement::T) element_args.push_back(args[i].get());
+  }
+  ScalarType element = ScalarType::Float;
+  if (!element_args.empty()) {
+    const std::optional<ScalarType> fitted = fit_element(sema.common_scalar(element_args), signature.elements);
+    if (!fitted) return std::nullopt;
+    element = *fitted;
+  } else if ((signature.elements & element_bit(ScalarType::Float)) == 0) {
+    for (ScalarType s : {ScalarType::Uint, ScalarType::Int, ScalarType::Half, ScalarType::Bool}) {
+      if (signature.elements & element_bit(s)) {
+        element = s;
+        break;
+      }
+    }
+  }
+  // T's shape: scalars splat, vectors take the shortest length, matrices the smallest dimensions.
+  std::optional<Type> shape;
+  for (size_t i = 0; i < count; ++i) {
+    const ParamPattern& param = signature.params[i];
+    if (param.out || param.type.shape != PatternShape::T) continue;
+    shape = shape ? combine_shapes(*shape, args[i]->type, element) : Type::with_scalar(args[i]->type, element);
+    if (!shape) return std::nullopt;
+  }
+  if (!shape) shape = Type::scalar(element);
+  if ((signature.shapes & shape_bit(*shape)) == 0) return std::nullopt;
+  // Dimension variables: a matrix fixes one; vectors bind the shortest (longer ones truncate).
+  struct Dim {
+    int matrix = 0;
+    int vector = 0;
+  };
+  Dim dims[3];
+  auto dim_slot = [](uint8_t dim) { return size_t(dim - kDimN); };
+  for (size_t i = 0; i < count; ++i) {
+    const ParamPattern& param = signature.params[i];
+    if (param.out || param.type.element != PatternElement::T) continue;
+    const Type& arg = args[i]->type;
+    switch (param.type.shape) {
+      case PatternShape::Scalar:
+        if (arg.component_count() != 1) return std::nullopt;
+        break;
+      case PatternShape::Vector:
+        if (arg.is_matrix()) return std::nullopt;
+        if (arg.is_vector() && arg.cols() > 1 && is_dim_variable(param.type.dims[0])) {
+          Dim& dim = dims[dim_slot(param.type.dims[0])];
+          dim.vector = dim.vector == 0 ? int(arg.cols()) : std::min(dim.vector, int(arg.cols()));
+        }
+        break;
+      case PatternShape::Matrix:
+        if (!arg.is_matrix()) return std::nullopt;
+        for (int k = 0; k < 2; ++k) {
+          const uint8_t pattern_dim = param.type.dims[k];
+          const int actual = int(k == 0 ? arg.rows() : arg.cols());
+          if (!is_dim_variable(pattern_dim)) {
+            if (actual != pattern_dim) return std::nullopt;
+            continue;
+          }
+          Dim& dim = dims[dim_slot(pattern_dim)];
+          if (dim.matrix != 0 && dim.matrix != actual) return std::nullopt;
+          dim.matrix = actual;
+        }
+        break;
+      default:
+        break;
+    }
+  }
+  int bound[3];
+  for (size_t k = 0; k < 3; ++k) {
+    if (dims[k].matrix != 0) {
+      if (dims[k].vector != 0 && dims[k].vector < dims[k].matrix) return std::nullopt;
+      bound[k] = dims[k].matrix;
+    } else {
+      bound[k] = dims[k].vector != 0 ? dims[k].vector : 1;
+    }
+  }
+  auto dim_value = [&](uint8_t dim) -> uint32_t {
+    return is_dim_variable(dim) ? uint32_t(bound[dim_slot(dim)]) : uint32_t(dim);
+  };
+  auto make = [&](const TypePattern& pattern) -> Type {
+    const ScalarType scalar = fixed_element(pattern.element, element);
+    switch (pattern.shape) {
+      case PatternShape::T: return Type::with_scalar(*shape, scalar);
+      case PatternShape::Scalar: return Type::scalar(scalar);
+      case PatternShape::Vector: return Type::vector(scalar, dim_value(pattern.dims[0]));
+      case PatternShape::Matrix: return Type::matrix(scalar, dim_value(pattern.dims[0]), dim_value(pattern.dims[1]));
+      case PatternShape::Void: return Type::void_type();
+      case PatternShape::Texture2D: return Type::texture2d();
+      case PatternShape::SamplerState: return Type::sampler_state();
+      case PatternShape::Sampler2D: return Type::sampler2d();
+    }
+    return Type::error();
+  };
+  Candidate candidate;
+  candidate.result = make(signature.result);
+  for (size_t i = 0; i < count; ++i) {
+    const ParamPattern& param = signature.params[i];
+    const Type type = make(param.type);
+    const Conversion conversion =
+        param.out ? classify_implicit(type, args[i]->type) : classify_implicit(args[i]->type, type);
+    if (!conversion.valid) return std::nullopt;
+    candidate.params.push_back(type);
+    candidate.out.push_back(param.out);
+    candidate.ranks.push_back(conversion.rank);
+  }
+  return candidate;
+}
+
+// How well each argument converts to `function`'s parameters; nothing when it cannot be called.
+std::optional<std::vector<int>> rank_user_function(const FunctionDecl& function, const std::vector<ExprPtr>& args) {
+  if (args.size() > function.params.size()) return std::nullopt;
+  for (size_t i = args.size(); i < function.params.size(); ++i) {
+    if (!function.params[i] || !function.params[i]->default_value) return std::nullopt;
+  }
+  std::vector<int> ranks;
+  for (size_t i = 0; i < args.size(); ++i) {
+    const ParamDecl* param = function.params[i].get();
+    if (!param) return std::nullopt;
+    const Type& arg = args[i]->type;
+    Conversion conversion;
+    switch (param->direction) {
+      case ParamDirection::In: conversion = classify_implicit(arg, param->type); break;
+      case ParamDirection::Out: conversion = classify_implicit(param->type, arg); break;
+      case ParamDirection::InOut: {
+        conversion = classify_implicit(arg, param->type);
+        const Conversion back = classify_implicit(param->type, arg);
+        if (!back.valid) conversion.valid = false;
+        conversion.rank = std::max(conversion.rank, back.rank);
+        break;
+      }
+    }
+    if (!conversion.valid) return std::nullopt;
+    ranks.push_back(conversion.rank);
+  }
+  return ranks;
+}
+
+size_t required_params(const FunctionDecl& function) {
+  size_t required = 0;
+  for (size_t i = 0; i < function.params.size(); ++i) {
+    if (!function.params[i] || !function.params[i]->default_value) required = i + 1;
+  }
+  return required;
+}
+
+}  // namespace
+
+std::string join_types(const std::vector<ExprPtr>& args) {
+  std::string text;
+  for (const ExprPtr& arg : args) {
+    if (!text.empty()) text += ", ";
+    text += arg ? arg->type.name() : "<error>";
+  }
+  return text;
+}
+
+std::string function_signature(const FunctionDecl& function) {
+  std::string text = function.return_type.name() + " " + function.name + "(";
+  for (size_t i = 0; i < function.params.size(); ++i) {
+    if (i > 0) text += ", ";
+    const ParamDecl* param = function.params[i].get();
+    if (!param) continue;
+    if (param->direction == ParamDirection::Out) text += "out ";
+    if (param->direction == ParamDirection::InOut) text += "inout ";
+    text += param->type.name();
+  }
+  return text + ")";
+}
+
+void Sema::note_fragment_only(std::string what, Loc loc) {
+  if (current_info_) current_info_->fragment_only_uses.push_back({std::move(what), loc});
+}
+
+// Passes argument `i` to a parameter of type `type`: in parameters convert, out and inout
+// parameters need an assignable argument; a ConversionExpr around an out argument means the
+// value is converted back to the argument's type after the call.
+static void pass_argument(Sema& sema, ExprPtr& arg, const Type& type, ParamDirection direction, size_t index,
+                          const std::string& callee) {
+  if (direction == ParamDirection::In) {
+    sema.coerce(arg, type);
+    return;
+  }
+  if (sema.not_assignable(arg.get())) {
+    sema.diag_.error(arg->loc, "argument " + std::to_string(index + 1) + " of '" + callee + "' is an " +
+                                   (direction == ParamDirection::Out ? "out" : "inout") +
+                                   " parameter and needs an assignable expression");
+    return;
+  }
+  const Type& arg_type = arg->type;
+  if (arg_type.is_error() || type.is_error() || arg_type == type) return;
+  if (direction == ParamDirection::InOut) {
+    const Conversion in = classify_implicit(arg_type, type);
+    if (!in.valid) {
+      sema.diag_.error(arg->loc, "cannot convert from " + quoted(arg_type) + " to " + quoted(type));
+      return;
+    }
+    if (in.truncation) sema.diag_.warning(arg->loc, truncation_message(arg_type, type));
+  }
+  const Conversion back = classify_implicit(type, arg_type);
+  if (!back.valid) {
+    sema.diag_.error(arg->loc, "cannot convert from " + quoted(type) + " to " + quoted(arg_type));
+    return;
+  }
+  if (back.truncation) sema.diag_.warning(arg->loc, truncation_message(type, arg_type));
+  sema.wrap_conversion(arg, type);
+}
+
+Type Sema::analyze_call(CallExpr& expr) {
+  if (expr.call_kind == CallKind::Constructor) return analyze_constructor(expr);
+  Type object;
+  if (expr.object) object = analyze(expr.object.get());
+  bool args_ok = true;
+  for (ExprPtr& arg : expr.args) {
+    if (!arg) {
+      args_ok = false;
+      continue;
+    }
+    if (analyze(arg.get()).is_error()) args_ok = false;
+  }
+  if (expr.object) {
+    if (object.is_error()) return Type::error();
+    if (object.kind() != TypeKind::Texture2D) {
+      diag_.error(expr.loc, quoted(object) + " has no method '" + expr.callee + "'");
+      return Type::error();
+    }
+    const std::optional<IntrinsicId> method = find_texture_method(expr.callee);
+    if (!method) {
+      diag_.error(expr.loc, "'Texture2D' has no method '" + expr.callee + "'");
+      return Type::error();
+    }
+    expr.call_kind = CallKind::Method;
+    expr.intrinsic = uint16_t(*method);
+    if (!args_ok) return Type::error();
+    return analyze_intrinsic_call(expr, *method);
+  }
+  const auto overloads = functions_.find(expr.callee);
+  const std::optional<IntrinsicId> intrinsic = find_intrinsic(expr.callee);
+  if (overloads == functions_.end() && !intrinsic) {
+    if (all_function_names_.count(expr.callee)) {
+      diag_.error(expr.loc, "function '" + expr.callee + "' is used before its declaration");
+    } else {
+      std::string message = "unknown function '" + expr.callee + "'";
+      const std::string close = suggestion(expr.callee, true);
+      if (!close.empty()) message += "; did you mean '" + close + "'?";
+      diag_.error(expr.loc, message);
+    }
+    return Type::error();
+  }
+  if (!args_ok) return Type::error();
+  if (overloads != functions_.end()) {
+    // A user function named like an intrinsic is called when it fits; else the intrinsic is.
+    bool viable = !intrinsic;
+    for (const FunctionDecl* function : overloads->second) {
+      if (!viable && rank_user_function(*function, expr.args)) viable = true;
+    }
+    if (viable) return analyze_function_call(expr, overloads->second);
+  }
+  return analyze_intrinsic_call(expr, *intrinsic);
+}
+
+Type Sema::analyze_constructor(CallExpr& expr) {
+  const Type& type = expr.constructed;
+  bool args_ok = true;
+  for (ExprPtr& arg : expr.args) {
+    if (!arg || analyze(arg.get()).is_error()) args_ok = false;
+  }
+  if (type.is_error()) return Type::error();
+  if (!type.is_numeric()) {
+    diag_.error(expr.loc, "cannot construct a value of type " + quoted(type));
+    return Type::error();
+  }
+  if (!args_ok) return type;
+  uint64_t given = 0;
+  for (ExprPtr& arg : expr.args) {
+    if (!arg->type.is_numeric()) {
+      diag_.error(arg->loc, "cannot use a value of type " + quoted(arg->type) + " in a " + quoted(type) + " constructor");
+      return type;
+    }
+    given += arg->type.component_count();
+  }
+  if (expr.args.size() == 1 && given == 1) {  // float3(1): a splat
+    coerce(expr.args[0], type);
+    return type;
+  }
+  if (given != type.component_count()) {
+    diag_.error(expr.loc, quoted(type) + " constructor needs " + std::to_string(type.component_count()) +
+                              " components, " + std::to_string(given) + " given");
+    return type;
+  }
+  for (ExprPtr& arg : expr.args) wrap_conversion(arg, Type::with_scalar(arg->type, type.scalar_type()));
+  return type;
+}
+
+Type Sema::analyze_function_call(CallExpr& expr, const std::vector<const FunctionDecl*>& overloads) {
+  const FunctionDecl* chosen = nullptr;
+  if (overloads.size() == 1) {
+    chosen = overloads[0];
+    const size_t required = required_params(*chosen);
+    const size_t total = chosen->params.size();
+    if (expr.args.size() < required || expr.args.size() > total) {
+      const std::string takes = required == total ? std::to_string(total) + arguments_word(total)
+                                                  : std::to_string(required) + " to " + std::to_string(total) +
+                                                        arguments_word(total);
+      diag_.error(expr.loc, "'" + expr.callee + "' takes " + takes + ", " + std::to_string(expr.args.size()) + " given");
+      return Type::error();
+    }
+  } else {
+    std::vector<const FunctionDecl*> viable;
+    std::vector<std::vector<int>> ranks;
+    for (const FunctionDecl* function : overloads) {
+      if (auto rank = rank_user_function(*function, expr.args)) {
+        viable.push_back(function);
+        ranks.push_back(std::move(*rank));
+      }
+    }
+    if (viable.empty()) {
+      diag_.error(expr.loc, "no overload of '" + expr.callee + "' takes (" + join_types(expr.args) + ")");
+      for (const FunctionDecl* function : overloads) {
+        diag_.note(function->loc, "candidate '" + function_signature(*function) + "'");
+      }
+      return Type::error();
+    }
+    const int best = unique_best(ranks);
+    if (best < 0) {
+      diag_.error(expr.loc, "ambiguous call to '" + expr.callee + "'");
+      // The candidates no other beats.
+      for (size_t i = 0; i < viable.size(); ++i) {
+        bool beaten = false;
+        for (size_t j = 0; j < viable.size() && !beaten; ++j) beaten = j != i && dominates(ranks[j], ranks[i]);
+        if (!beaten) diag_.note(viable[i]->loc, "candidate '" + function_signature(*viable[i]) + "'");
+      }
+      return Type::error();
+    }
+    chosen = viable[size_t(best)];
+  }
+  for (size_t i = 0; i < expr.args.size() && i < chosen->params.size(); ++i) {
+    const ParamDecl* param = chosen->params[i].get();
+    if (param) pass_argument(*this, expr.args[i], param->type, param->direction, i, expr.callee);
+  }
+  expr.call_kind = CallKind::Function;
+  expr.function = chosen;
+  user_calls_.push_back(&expr);
+  if (current_info_) current_info_->calls.push_back({chosen, expr.loc});
+  FunctionInfo& callee = function_info_[chosen];
+  if (!callee.called) {
+    callee.called = true;
+    callee.first_call = expr.loc;
+  }
+  return chosen->return_type;
+}
+
+Type Sema::analyze_intrinsic_call(CallExpr& expr, IntrinsicId id) {
+  const IntrinsicInfo& info = intrinsic_info(id);
+  if (!expr.object) expr.call_kind = CallKind::Intrinsic;
+  expr.intrinsic = uint16_t(id);
+  const std::string name(info.name);
+  // Argument count first: the most helpful message when it is wrong.
+  std::vector<size_t> arities;
+  for (const IntrinsicSignature& signature : info.signatures) {
+    if (std::find(arities.begin(), arities.end(), signature.param_count) == arities.end()) {
+      arities.push_back(signature.param_count);
+    }
+  }
+  std::sort(arities.begin(), arities.end());
+  if (std::find(arities.begin(), arities.end(), expr.args.size()) == arities.end()) {
+    std::string takes;
+    for (size_t i = 0; i < arities.size(); ++i) {
+      if (i > 0) takes += i + 1 == arities.size() ? " or " : ", ";
+      takes += std::to_string(arities[i]);
+    }
+    takes += arguments_word(arities.empty() ? 0 : arities.back());
+    diag_.error(expr.loc, "'" + name + "' takes " + takes + ", " + std::to_string(expr.args.size()) + " given");
+    return Type::error();
+  }
+  std::vector<Candidate> candidates;
+  for (const IntrinsicSignature& signature : info.signatures) {
+    if (auto candidate = bind_signature(*this, signature, expr.args)) candidates.push_back(std::move(*candidate));
+  }
+  if (candidates.empty()) {
+    diag_.error(expr.loc, "no overload of '" + name + "' takes (" + join_types(expr.args) + ")");
+    return Type::error();
+  }
+  std::vector<std::vector<int>> ranks;
+  for (const Candidate& candidate : candidates) ranks.push_back(candidate.ranks);
+  int best = unique_best(ranks);
+  if (best < 0) {
+    // No candidate beats every other: the smallest total, the table's order on a tie.
+    int best_sum = 0;
+    for (size_t i = 0; i < ranks.size(); ++i) {
+      const int sum = std::accumulate(ranks[i].begin(), ranks[i].end(), 0);
+      if (best < 0 || sum < best_sum) {
+        best = int(i);
+        best_sum = sum;
+      }
+    }
+  }
+  const Candidate& chosen = candidates[size_t(best)];
+  for (size_t i = 0; i < expr.args.size(); ++i) {
+    pass_argument(*this, expr.args[i], chosen.params[i], chosen.out[i] ? ParamDirection::Out : ParamDirection::In, i,
+                  name);
+  }
+  if (info.fragment_only) note_fragment_only("'" + name + "'", expr.loc);
+  return chosen.result;
+}
+
+}  // namespace xshade::hlsl::sema_detail

@@ -1,0 +1,234 @@
+// HLSL's conversion rules, the shapes of component-wise operations, and semantics.
+#include <algorithm>
+#include <cctype>
+
+#include "hlsl_like/sema_internal.h"
+
+namespace xshade::hlsl::sema_detail {
+
+namespace {
+
+Conversion invalid() { return {}; }
+
+Conversion valid(int shape_rank, bool type_change, bool truncation = false) {
+  Conversion conversion;
+  conversion.valid = true;
+  conversion.truncation = truncation;
+  conversion.rank = shape_rank + (type_change ? kRankTypeChange : 0);
+  return conversion;
+}
+
+bool same_kind_of_resource(const Type& a, const Type& b) { return a.is_resource() && a.kind() == b.kind(); }
+
+}  // namespace
+
+Conversion classify_implicit(const Type& from, const Type& to) {
+  if (from.is_error() || to.is_error()) return valid(kRankExact, false);
+  if (from == to) return valid(kRankExact, false);
+  if (!from.is_numeric() || !to.is_numeric()) {
+    if (same_kind_of_resource(from, to)) return valid(kRankExact, false);
+    return invalid();
+  }
+  const bool type_change = from.scalar_type() != to.scalar_type();
+  const uint32_t from_count = from.component_count();
+  switch (from.kind()) {
+    case TypeKind::Scalar:
+      return valid(to.is_scalar() ? kRankExact : kRankSplat, type_change);
+    case TypeKind::Vector:
+      if (to.is_scalar()) {
+        if (from.cols() == 1) return valid(kRankSplat, type_change);  // float1 -> float
+        return valid(kRankTruncation, type_change, true);
+      }
+      if (to.is_vector()) {
+        if (to.cols() == from.cols()) return valid(kRankExact, type_change);
+        if (to.cols() < from.cols()) return valid(kRankTruncation, type_change, true);
+        if (from.cols() == 1) return valid(kRankSplat, type_change);
+        return invalid();
+      }
+      // to a matrix: only a one-component vector splats
+      if (from_count == 1) return valid(kRankSplat, type_change);
+      return invalid();
+    case TypeKind::Matrix:
+      if (to.is_scalar()) {
+        if (from_count == 1) return valid(kRankSplat, type_change);
+        return valid(kRankTruncation, type_change, true);
+      }
+      if (to.is_matrix()) {
+        if (to.rows() == from.rows() && to.cols() == from.cols()) return valid(kRankExact, type_change);
+        if (to.rows() <= from.rows() && to.cols() <= from.cols()) return valid(kRankTruncation, type_change, true);
+        if (from_count == 1) return valid(kRankSplat, type_change);
+        return invalid();
+      }
+      if (from_count == 1) return valid(kRankSplat, type_change);  // float1x1 -> float3
+      return invalid();
+    default:
+      return invalid();
+  }
+}
+
+bool explicit_cast_allowed(const Type& from, const Type& to, bool literal_scalar) {
+  if (from.is_error() || to.is_error()) return true;
+  if (to.is_void()) return true;
+  if (from == to) return true;
+  if (from.is_numeric() && to.is_numeric()) {
+    const uint32_t from_count = from.component_count();
+    const uint32_t to_count = to.component_count();
+    if (from_count == 1) return true;  // splat
+    if (from.is_vector() && to.is_vector()) return to.cols() <= from.cols();
+    if (from.is_matrix() && to.is_matrix()) return to.rows() <= from.rows() && to.cols() <= from.cols();
+    // vector <-> matrix and to scalar: reshape within the components available
+    return to_count <= from_count;
+  }
+  if (to.kind() == TypeKind::Struct && from.is_scalar() && literal_scalar) {
+    // (S)0: every field of S must be numeric (possibly in nested structs and arrays)
+    return flat_component_count(to).has_value();
+  }
+  return false;
+}
+
+std::string truncation_message(const Type& from, const Type& to) {
+  return std::string("implicit truncation of ") + (from.is_matrix() ? "matrix" : "vector") + " type from '" +
+         from.name() + "' to '" + to.name() + "'";
+}
+
+std::optional<Type> combine_shapes(const Type& a, const Type& b, ScalarType scalar) {
+  if (!a.is_numeric() || !b.is_numeric()) return std::nullopt;
+  // A scalar, or a one-component vector, takes the other operand's shape.
+  auto scalar_like = [](const Type& t) { return t.is_scalar() || (t.is_vector() && t.cols() == 1); };
+  if (a.is_scalar() || (scalar_like(a) && !b.is_scalar())) return Type::with_scalar(b, scalar);
+  if (scalar_like(b)) return Type::with_scalar(a, scalar);
+  if (a.is_vector() && b.is_vector()) return Type::vector(scalar, std::min(a.cols(), b.cols()));
+  if (a.is_matrix() && b.is_matrix()) {
+    return Type::matrix(scalar, std::min(a.rows(), b.rows()), std::min(a.cols(), b.cols()));
+  }
+  // A 1x1 matrix behaves like a scalar too.
+  if (a.is_matrix() && a.component_count() == 1) return Type::with_scalar(b, scalar);
+  if (b.is_matrix() && b.component_count() == 1) return Type::with_scalar(a, scalar);
+  return std::nullopt;
+}
+
+bool is_literal(const Expr* expr) {
+  for (int i = 0; expr && i < 64; ++i) {
+    switch (expr->kind) {
+      case ExprKind::IntLiteral:
+      case ExprKind::FloatLiteral:
+      case ExprKind::BoolLiteral:
+        return true;
+      case ExprKind::Unary: {
+        const auto* unary = static_cast<const UnaryExpr*>(expr);
+        if (unary->op != UnaryOp::Minus && unary->op != UnaryOp::Plus) return false;
+        expr = unary->operand.get();
+        break;
+      }
+      default:
+        return false;
+    }
+  }
+  return false;
+}
+
+bool is_weak_float_literal(const Expr* expr) {
+  for (int i = 0; expr && i < 64; ++i) {
+    if (expr->kind == ExprKind::FloatLiteral) return !static_cast<const FloatLiteralExpr*>(expr)->half_suffix;
+    if (expr->kind != ExprKind::Unary) return false;
+    const auto* unary = static_cast<const UnaryExpr*>(expr);
+    if (unary->op != UnaryOp::Minus && unary->op != UnaryOp::Plus) return false;
+    expr = unary->operand.get();
+  }
+  return false;
+}
+
+std::optional<uint64_t> flat_component_count(const Type& type, int depth) {
+  if (depth > kMaxNesting) return std::nullopt;
+  switch (type.kind()) {
+    case TypeKind::Scalar:
+    case TypeKind::Vector:
+    case TypeKind::Matrix:
+      return type.component_count();
+    case TypeKind::Array: {
+      std::optional<uint64_t> element = flat_component_count(type.element(), depth + 1);
+      if (!element) return std::nullopt;
+      const uint64_t total = *element * type.array_length();
+      if (total > (uint64_t(1) << 32)) return std::nullopt;
+      return total;
+    }
+    case TypeKind::Struct: {
+      if (!type.struct_decl()) return std::nullopt;
+      uint64_t total = 0;
+      for (const FieldDecl& field : type.struct_decl()->fields) {
+        std::optional<uint64_t> count = flat_component_count(field.type, depth + 1);
+        if (!count) return std::nullopt;
+        total += *count;
+        if (total > (uint64_t(1) << 32)) return std::nullopt;
+      }
+      return total;
+    }
+    default:
+      return std::nullopt;
+  }
+}
+
+bool type_contains_resource(const Type& type, int depth) {
+  if (depth > kMaxNesting) return false;
+  if (type.is_resource()) return true;
+  if (type.kind() == TypeKind::Array) return type_contains_resource(type.element(), depth + 1);
+  if (type.kind() == TypeKind::Struct && type.struct_decl()) {
+    for (const FieldDecl& field : type.struct_decl()->fields) {
+      if (type_contains_resource(field.type, depth + 1)) return true;
+    }
+  }
+  return false;
+}
+
+ParsedSemantic parse_semantic(const std::string& text) {
+  std::string upper;
+  for (char c : text) upper += char(std::toupper(static_cast<unsigned char>(c)));
+  // Split a trailing decimal index.
+  size_t digits = upper.size();
+  while (digits > 0 && std::isdigit(static_cast<unsigned char>(upper[digits - 1]))) --digits;
+  const std::string base = upper.substr(0, digits);
+  const std::string number = upper.substr(digits);
+  if (number.size() > 2) return {};
+  const uint32_t index = number.empty() ? 0 : uint32_t(std::stoul(number));
+  struct Known {
+    const char* name;
+    SemanticKind kind;
+    uint32_t max_index;  // 0: no index allowed
+  };
+  static constexpr Known kKnown[] = {
+      {"POSITION", SemanticKind::Position, 15},   {"NORMAL", SemanticKind::Normal, 15},
+      {"TANGENT", SemanticKind::Tangent, 15},     {"BINORMAL", SemanticKind::Binormal, 15},
+      {"TEXCOORD", SemanticKind::Texcoord, 31},   {"COLOR", SemanticKind::Color, 15},
+      {"SV_POSITION", SemanticKind::SvPosition, 0}, {"SV_TARGET", SemanticKind::SvTarget, 7},
+      {"SV_DEPTH", SemanticKind::SvDepth, 0},     {"SV_ISFRONTFACE", SemanticKind::SvIsFrontFace, 0},
+      {"SV_VERTEXID", SemanticKind::SvVertexId, 0},
+  };
+  for (const Known& known : kKnown) {
+    if (base != known.name) continue;
+    if (!number.empty() && index > known.max_index) return {};
+    if (!number.empty() && known.max_index == 0 && index != 0) return {};
+    return {known.kind, index};
+  }
+  return {};
+}
+
+std::string canonical_semantic(const ParsedSemantic& semantic) {
+  const char* base = "?";
+  switch (semantic.kind) {
+    case SemanticKind::Unknown: base = "?"; break;
+    case SemanticKind::Position: base = "POSITION"; break;
+    case SemanticKind::Normal: base = "NORMAL"; break;
+    case SemanticKind::Tangent: base = "TANGENT"; break;
+    case SemanticKind::Binormal: base = "BINORMAL"; break;
+    case SemanticKind::Texcoord: base = "TEXCOORD"; break;
+    case SemanticKind::Color: base = "COLOR"; break;
+    case SemanticKind::SvPosition: return "SV_Position";
+    case SemanticKind::SvTarget: base = "SV_Target"; break;
+    case SemanticKind::SvDepth: return "SV_Depth";
+    case SemanticKind::SvIsFrontFace: return "SV_IsFrontFace";
+    case SemanticKind::SvVertexId: return "SV_VertexID";
+  }
+  return base + std::to_string(semantic.index);
+}
+
+}  // namespace xshade::hlsl::sema_detail

@@ -1,0 +1,208 @@
+// Semantic analysis, private: the Sema class shared by sema*.cpp, and HLSL's conversion rules.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <unordered_map>
+#include <unordered_set>
+#include <utility>
+#include <vector>
+
+#include "hlsl_like/ast.h"
+#include "hlsl_like/diagnostic_engine.h"
+#include "hlsl_like/intrinsics.h"
+#include "hlsl_like/sema.h"
+
+namespace xshade::hlsl::sema_detail {
+
+// ---------------------------------------------------------------------------------------------
+// Conversions (sema_conversions.cpp)
+
+// How good an implicit conversion is, for overload resolution: lower is better. HLSL's order:
+// exact, then a change of scalar type, then a splat, then a truncation; a change of scalar type
+// on top of a splat or truncation ranks just below the same shape change without it.
+inline constexpr int kRankExact = 0;
+inline constexpr int kRankTypeChange = 1;
+inline constexpr int kRankSplat = 2;
+inline constexpr int kRankTruncation = 4;
+
+struct Conversion {
+  bool valid = false;
+  bool truncation = false;  // implicit: reported as a warning
+  int rank = 0;
+};
+
+// HLSL's implicit conversion from `from` to `to`. Error types convert to anything silently.
+Conversion classify_implicit(const Type& from, const Type& to);
+// An explicit cast `(to)x`; `literal_scalar` allows `(S)0` for structs of numeric fields.
+bool explicit_cast_allowed(const Type& from, const Type& to, bool literal_scalar);
+// "implicit truncation of vector type from 'float4' to 'float3'"
+std::string truncation_message(const Type& from, const Type& to);
+
+// The shape both operands of a component-wise operation take: a scalar takes the other's shape,
+// vectors the shorter length, matrices the smaller dimensions. Empty when they cannot combine
+// (a vector with a matrix). The element type of the result is `scalar`.
+std::optional<Type> combine_shapes(const Type& a, const Type& b, ScalarType scalar);
+
+// HLSL's order of scalar types: bool < int < uint < half < float.
+inline int scalar_rank(ScalarType scalar) { return int(scalar); }
+inline ScalarType higher_scalar(ScalarType a, ScalarType b) { return scalar_rank(a) >= scalar_rank(b) ? a : b; }
+
+// A Float literal without the h suffix (possibly negated): it takes a half operand's type, so
+// that `h * 0.5` stays half, as DXC's literal types do.
+bool is_weak_float_literal(const Expr* expr);
+// A numeric literal, possibly negated.
+bool is_literal(const Expr* expr);
+
+// Whether values of the type can be counted in components (numeric, structs and arrays of them).
+// Returns the count, or nothing for resources, void and errors.
+std::optional<uint64_t> flat_component_count(const Type& type, int depth = 0);
+
+bool type_contains_resource(const Type& type, int depth = 0);
+
+// Semantics of entry point signatures.
+enum class SemanticKind : uint8_t {
+  Unknown, Position, Normal, Tangent, Binormal, Texcoord, Color, SvPosition, SvTarget, SvDepth,
+  SvIsFrontFace, SvVertexId,
+};
+struct ParsedSemantic {
+  SemanticKind kind = SemanticKind::Unknown;
+  uint32_t index = 0;
+};
+ParsedSemantic parse_semantic(const std::string& text);
+std::string canonical_semantic(const ParsedSemantic& semantic);  // "TEXCOORD0", "SV_Target0"
+
+// ---------------------------------------------------------------------------------------------
+// The analyzer
+
+struct BinaryTyping {
+  Type operand;  // both operands are converted to this
+  Type result;
+};
+
+struct Symbol {
+  enum class Kind : uint8_t { Variable, Struct, Typedef, Function };
+  Kind kind = Kind::Variable;
+  const Decl* decl = nullptr;  // a VarDecl or ParamDecl; the struct, typedef or first function
+};
+
+// One function signature: its first declaration stands for all its declarations.
+struct FunctionInfo {
+  const FunctionDecl* canonical = nullptr;
+  const FunctionDecl* definition = nullptr;
+  std::vector<Type> param_types;
+  struct Call {
+    const FunctionDecl* callee;  // canonical
+    Loc loc;
+  };
+  std::vector<Call> calls;
+  struct Use {
+    std::string what;  // "'ddx'", "'discard'"
+    Loc loc;
+  };
+  std::vector<Use> fragment_only_uses;
+  bool called = false;
+  Loc first_call;
+};
+
+// Nesting deeper than this in expressions, statements or types is reported, not recursed into.
+inline constexpr int kMaxNesting = 512;
+
+class Sema {
+ public:
+  explicit Sema(DiagnosticEngine& diagnostics) : diag_(diagnostics) {}
+  EntryPoints run(TranslationUnit& unit, const EntryPointNames& names);
+
+  // --- sema.cpp: declarations, statements, entry points
+  void declare_struct(StructDecl& decl);
+  void declare_typedef(TypedefDecl& decl);
+  void declare_global_var(VarDecl& decl, bool in_cbuffer);
+  void declare_cbuffer(CBufferDecl& decl);
+  void declare_function(FunctionDecl& decl);
+  void analyze_local_var(VarDecl& decl);
+  void analyze_var_initializer(VarDecl& decl);
+  void analyze_stmt(Stmt* stmt);
+  void analyze_block(BlockStmt& block, bool new_scope);
+  void analyze_attributes(std::vector<Attribute>& attributes);
+  void analyze_condition(ExprPtr& condition);
+  bool check_type_usable(const Type& type, const std::string& what, Loc loc, bool allow_resource);
+  void check_recursion();
+  void fix_up_calls();
+  const FunctionDecl* find_entry_point(const std::string& name, Loc pragma_loc, const char* stage);
+  void check_entry_point(const FunctionDecl& function, bool vertex);
+  void check_fragment_only_reachable(const FunctionDecl& vertex_entry);
+
+  // Scopes
+  void push_scope() { scopes_.emplace_back(); }
+  void pop_scope() { scopes_.pop_back(); }
+  // Adds a name to the innermost scope; reports a redefinition (and returns false) if present.
+  bool declare(const std::string& name, Symbol symbol, Loc loc);
+  const Symbol* lookup(const std::string& name) const;
+  std::string suggestion(const std::string& name, bool functions) const;
+
+  // --- sema_expressions.cpp
+  // Analyzes `expr` (may be null) and sets its type; returns it.
+  Type analyze(Expr* expr);
+  // Converts `slot` implicitly to `to`, wrapping it in a ConversionExpr when the type changes.
+  // Reports truncation warnings and conversion errors; returns false on an error.
+  bool coerce(ExprPtr& slot, const Type& to);
+  // Wraps without checks (the caller has checked); nothing when the type is already `to`.
+  void wrap_conversion(ExprPtr& slot, const Type& to);
+  // The reason `expr` cannot be assigned to, or nothing (also for expressions that already failed).
+  std::optional<std::pair<Loc, std::string>> not_assignable(const Expr* expr) const;
+  void require_assignable(const Expr* expr);
+  void analyze_initializer(ExprPtr& init, Type& declared_type, const std::string& var_name);
+  std::optional<int64_t> fold_int(const Expr* expr, int depth = 0) const;
+  ScalarType common_scalar(const std::vector<const Expr*>& operands) const;
+
+  Type analyze_unary(UnaryExpr& expr);
+  Type analyze_binary(BinaryExpr& expr);
+  // The operand type both sides convert to and the result type of `lhs op rhs` (analyzed);
+  // reports and returns nothing when the operator does not apply.
+  std::optional<BinaryTyping> binary_typing(BinaryOp op, Loc loc, const Expr* lhs, const Expr* rhs);
+  Type analyze_assign(AssignExpr& expr);
+  Type analyze_conditional(ConditionalExpr& expr);
+  Type analyze_member(MemberExpr& expr);
+  Type analyze_index(IndexExpr& expr);
+  Type analyze_cast(CastExpr& expr);
+  Type analyze_name(NameExpr& expr);
+
+  // --- sema_calls.cpp
+  Type analyze_call(CallExpr& expr);
+  Type analyze_constructor(CallExpr& expr);
+  Type analyze_function_call(CallExpr& expr, const std::vector<const FunctionDecl*>& overloads);
+  Type analyze_intrinsic_call(CallExpr& expr, IntrinsicId id);
+  void note_fragment_only(std::string what, Loc loc);
+
+  DiagnosticEngine& diag_;
+  std::vector<std::unordered_map<std::string, Symbol>> scopes_;
+  // Overload sets by name: canonical declarations, in order of declaration.
+  std::unordered_map<std::string, std::vector<const FunctionDecl*>> functions_;
+  std::unordered_map<const FunctionDecl*, FunctionInfo> function_info_;  // by canonical
+  std::unordered_map<const FunctionDecl*, const FunctionDecl*> canonical_of_;
+  std::vector<CallExpr*> user_calls_;
+  std::vector<FunctionDecl*> all_functions_;         // every function declaration, in order
+  std::unordered_set<std::string> all_function_names_;  // declared anywhere in the unit
+  FunctionInfo* current_info_ = nullptr;
+  const FunctionDecl* current_function_ = nullptr;
+  int loop_depth_ = 0;
+  int depth_ = 0;
+  bool reported_depth_ = false;
+  // Entry point diagnostics already given (a struct shared by two stages is checked twice).
+  std::unordered_set<std::string> reported_;
+
+  struct DepthGuard {
+    Sema& sema;
+    explicit DepthGuard(Sema& s) : sema(s) { ++sema.depth_; }
+    ~DepthGuard() { --sema.depth_; }
+    DepthGuard(const DepthGuard&) = delete;
+    DepthGuard& operator=(const DepthGuard&) = delete;
+  };
+  // True (and reported once) when the current nesting is deeper than kMaxNesting.
+  bool nesting_exceeded(Loc loc);
+};
+
+std::string join_types(const std::vector<ExprPtr>& args);
+std::string function_signature(const FunctionDecl& function);
+
+}  // namespace xshade::hlsl::sema_detail
