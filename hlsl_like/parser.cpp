@@ -299,6 +299,7 @@ class Parser {
   };
 
   void report_too_deep() {
+    unwinding_too_deep_ = true;
     if (too_deep_reported_) return;
     too_deep_reported_ = true;
     error_here("nesting is too deep (more than " + std::to_string(kMaxParseDepth) + " levels)");
@@ -385,6 +386,12 @@ class Parser {
   // Inside a block: to just after the next ';' or to the '}' that closes the block, skipping
   // bracketed groups whole; stray ')' and ']' belong to the failed statement and are skipped.
   void recover_statement() {
+    if (unwinding_too_deep_) {
+      // Nesting too deep to read says nothing about where the failed statement ends (an
+      // else-if chain goes on past any ';'): the rest of the block goes.
+      skip_to_block_end();
+      return;
+    }
     size_t balance = 0;
     while (!at_end()) {
       const Token& token = cur();
@@ -402,9 +409,26 @@ class Parser {
     }
   }
 
+  // To the '}' that closes the current block, not consuming it.
+  void skip_to_block_end() {
+    unwinding_too_deep_ = false;
+    size_t balance = 0;
+    while (!at_end()) {
+      const Token& token = cur();
+      if (balance == 0 && token.is_punct("}")) return;
+      if (is_opener(token)) {
+        ++balance;
+      } else if (is_closer(token) && balance > 0) {
+        --balance;
+      }
+      advance();
+    }
+  }
+
   // At file scope: to just after the next ';', or after the end of a {...} block (and a ';'
   // right after it).
   void recover_top_level() {
+    unwinding_too_deep_ = false;
     size_t balance = 0;
     while (!at_end()) {
       const Token& token = cur();
@@ -430,6 +454,7 @@ class Parser {
   // Stops early (false) at the end of the input, at a ';' unless `semicolons_inside`, and, for
   // a parenthesised group, at a brace: those cannot be inside, so the closer is missing.
   bool skip_group(size_t open, bool semicolons_inside) {
+    unwinding_too_deep_ = false;
     pos_ = open;
     const bool parens = tok(open).is_punct("(") || tok(open).is_punct("[");
     advance();
@@ -1442,7 +1467,10 @@ class Parser {
   // already recovered (a bad if condition, a switch) comes back as an empty statement.
   StmtPtr parse_statement() {
     DepthGuard guard(*this);
-    if (!guard.ok()) return nullptr;
+    if (!guard.ok()) {
+      skip_to_block_end();
+      return make_simple(StmtKind::Empty, cur().loc);
+    }
     std::vector<Attribute> attributes;
     if (is("[") && !parse_attributes(attributes)) return nullptr;
     StmtPtr statement = parse_statement_body();
@@ -2037,6 +2065,7 @@ class Parser {
   size_t pos_ = 0;
   int depth_ = 0;
   bool too_deep_reported_ = false;
+  bool unwinding_too_deep_ = false;  // the depth limit failed the construct being unwound
   bool split_angle_ = false;  // the first '>' of the current '>>' closed a template
   size_t init_list_nesting_ = 0;
   size_t last_error_index_ = kNoIndex;
