@@ -385,7 +385,7 @@ Token Lexer::next() {
 Token Lexer::next_header_name() {
   skip_space();
   const size_t n = text_.size();
-  if (!at_line_start_ && pos_ < n && text_[pos_] == '<') {
+  if (pos_ < n && text_[pos_] == '<') {
     size_t end = pos_ + 1;
     while (end < n && text_[end] != '>' && text_[end] != '\n') ++end;
     if (end < n && text_[end] == '>') {

@@ -68,6 +68,8 @@ struct Context {
   bool has_pushback = false;
   bool carry_space = false;  // an expansion that vanished leaves its spacing to the next token
   bool carry_line_start = false;
+  bool in_if = false;          // a #if line: the operand of a `defined` from a macro is kept
+  uint8_t defined_state = 0;   // 1 after `defined`, 2 after `defined (`
 };
 
 struct Args {
@@ -124,7 +126,12 @@ Token make_token(TokenKind kind, std::string_view text, Loc loc) {
 }  // namespace
 
 struct Preprocessor::Impl {
-  explicit Impl(Preprocessor& pp) : pp_(pp), sources_(pp.sources_), diagnostics_(pp.diagnostics_) {}
+  explicit Impl(Preprocessor& pp) : pp_(pp), sources_(pp.sources_), diagnostics_(pp.diagnostics_) {
+    for (std::string_view builtin : {"__FILE__", "__LINE__"}) {
+      const size_t bit = filter_bit(builtin);
+      filter_[bit >> 6] |= uint64_t(1) << (bit & 63);
+    }
+  }
 
   std::vector<Token> run(uint32_t main_file);
 
@@ -159,7 +166,9 @@ struct Preprocessor::Impl {
   bool try_expand(Context& ctx, PPTok& token);
   bool collect_args(Context& ctx, const Macro& macro, const Token& name, Args& args);
   void substitute(const Macro& macro, const Token& name, const Args* args, std::vector<PPTok>& out);
-  void expand_list(const std::vector<PPTok>& list, size_t begin, size_t end, std::vector<PPTok>& out);
+  void expand_list(const std::vector<PPTok>& list, size_t begin, size_t end, std::vector<PPTok>& out,
+                   bool in_if = false);
+  static bool defined_operand(Context& ctx, const Token& token);
   PPTok stringize(const Args& args, int param, Loc loc);
   void paste(std::vector<PPTok>& out, const PPTok& rhs, Loc loc);
   void pop_frame(Context& ctx);
@@ -530,11 +539,13 @@ std::vector<Token> Preprocessor::Impl::run(uint32_t main_file) {
       diagnostics_.error({}, "invalid macro name '" + clip(name) + "' in the options");
       continue;
     }
-    std::string text = name + " " + definition.value;
+    std::string text = "#define " + name + " " + definition.value;
     for (char& c : text)
       if (c == '\n' || c == '\r') c = ' ';
     const std::string_view stored = store(std::move(text));
     Lexer lexer(stored, 0, diagnostics_, &pp_.text_store_);
+    lexer.next();  // #
+    lexer.next();  // define
     do_define(lexer, Loc{});
   }
 
@@ -568,10 +579,9 @@ void Preprocessor::Impl::add_macro(Macro macro) {
       const Token& b = macro.body[i].tok;
       same = a.kind == b.kind && a.text == b.text && (i == 0 || a.space_before == b.space_before);
     }
-    if (!same) {
-      diagnostics_.warning(macro.loc, "macro '" + clip(macro.name) + "' redefined");
-      if (old->loc.file != 0) diagnostics_.note(old->loc, "previous definition is here");
-    }
+    if (same) return;  // the first definition stays, for the location of later notes
+    diagnostics_.warning(macro.loc, "macro '" + clip(macro.name) + "' redefined");
+    if (old->loc.file != 0) diagnostics_.note(old->loc, "previous definition is here");
   }
   const size_t bit = filter_bit(macro.name);
   filter_[bit >> 6] |= uint64_t(1) << (bit & 63);
@@ -636,7 +646,9 @@ bool Preprocessor::Impl::raw_next(Context& ctx, PPTok& out, bool stop_at_file_en
 bool Preprocessor::Impl::expand_next(Context& ctx, PPTok& out, bool stop_at_file_end) {
   for (;;) {
     if (!raw_next(ctx, out, stop_at_file_end)) return false;
-    if (out.tok.kind == TokenKind::Identifier && !out.no_expand && maybe_macro(out.tok.text) && try_expand(ctx, out))
+    const bool keep = ctx.in_if && defined_operand(ctx, out.tok);
+    if (!keep && out.tok.kind == TokenKind::Identifier && !out.no_expand && maybe_macro(out.tok.text) &&
+        try_expand(ctx, out))
       continue;
     if (ctx.carry_space || ctx.carry_line_start) {
       out.tok.space_before = out.tok.space_before || ctx.carry_space;
@@ -645,6 +657,24 @@ bool Preprocessor::Impl::expand_next(Context& ctx, PPTok& out, bool stop_at_file
     }
     return true;
   }
+}
+
+// In a #if line, `defined X` and `defined(X)` that came out of a macro: neither `defined` nor X
+// is expanded, as GCC and Clang do.
+bool Preprocessor::Impl::defined_operand(Context& ctx, const Token& token) {
+  if (token.kind == TokenKind::Identifier) {
+    if (ctx.defined_state != 0) {
+      ctx.defined_state = 0;
+      return true;
+    }
+    if (token.text == "defined") {
+      ctx.defined_state = 1;
+      return true;
+    }
+    return false;
+  }
+  ctx.defined_state = ctx.defined_state == 1 && is_punct1(token, '(') ? 2 : 0;
+  return false;
 }
 
 // `token` names a macro (or a builtin) perhaps. Returns true when it was consumed: its expansion
@@ -756,6 +786,9 @@ bool Preprocessor::Impl::collect_args(Context& ctx, const Macro& macro, const To
     args.tokens.push_back(token);
   }
   args.starts.push_back(args.tokens.size());
+  // Arguments read from a list are copies of tokens already made: nested calls would otherwise
+  // copy their tokens once per level.
+  if (ctx.list && !charge(args.tokens.size(), name.loc)) return false;
   size_t given = args.starts.size() - 1;
   if (params == 0 && given == 1 && args.tokens.empty()) given = 0;
   if (macro.variadic && given + 1 == params) {
@@ -773,7 +806,7 @@ bool Preprocessor::Impl::collect_args(Context& ctx, const Macro& macro, const To
 }
 
 void Preprocessor::Impl::expand_list(const std::vector<PPTok>& list, size_t begin, size_t end,
-                                     std::vector<PPTok>& out) {
+                                     std::vector<PPTok>& out, bool in_if) {
   bool any = false;
   for (size_t i = begin; i < end && !any; ++i) {
     const PPTok& t = list[i];
@@ -792,6 +825,7 @@ void Preprocessor::Impl::expand_list(const std::vector<PPTok>& list, size_t begi
   sub.list = &list;
   sub.list_pos = begin;
   sub.list_end = end;
+  sub.in_if = in_if;
   ++expansion_depth_;
   PPTok token;
   while (expand_next(sub, token, true)) out.push_back(token);
@@ -802,6 +836,7 @@ void Preprocessor::Impl::expand_list(const std::vector<PPTok>& list, size_t begi
 PPTok Preprocessor::Impl::stringize(const Args& args, int param, Loc loc) {
   const size_t begin = args.starts[size_t(param)];
   const size_t end = args.starts[size_t(param) + 1];
+  charge(end - begin, loc);
   std::string text = "\"";
   for (size_t i = begin; i < end; ++i) {
     const Token& t = args.tokens[i].tok;
@@ -1250,6 +1285,11 @@ void Preprocessor::Impl::do_include(IncludeFrame& frame, const Token& name) {
 void Preprocessor::Impl::include_file(IncludeFrame& frame, const Token& name, std::string_view spelled, bool angled,
                                       Loc where) {
   namespace fs = std::filesystem;
+  if (includes_.size() >= Preprocessor::kMaxIncludeDepth) {
+    diagnostics_.error(name.loc, "#include nested too deeply (more than " +
+                                     std::to_string(Preprocessor::kMaxIncludeDepth) + " levels)");
+    return;
+  }
   const fs::path relative{std::string(spelled)};
   std::vector<fs::path> searched;
   std::optional<fs::path> found;
@@ -1316,11 +1356,6 @@ void Preprocessor::Impl::include_file(IncludeFrame& frame, const Token& name, st
     for (size_t i = last; i < includes_.size(); ++i) chain += short_name(includes_[i]->file) + " -> ";
     chain += short_name(index) + " -> ...";
     diagnostics_.error(name.loc, "#include cycle: " + chain);
-    return;
-  }
-  if (includes_.size() >= Preprocessor::kMaxIncludeDepth) {
-    diagnostics_.error(name.loc, "#include nested too deeply (more than " +
-                                     std::to_string(Preprocessor::kMaxIncludeDepth) + " levels)");
     return;
   }
   enter_file(index);
@@ -1451,7 +1486,7 @@ bool Preprocessor::Impl::eval_line(Lexer& lex, const Token& name) {
     expr_in_.push_back(token);
   }
   std::vector<PPTok> expanded;
-  expand_list(expr_in_, 0, expr_in_.size(), expanded);
+  expand_list(expr_in_, 0, expr_in_.size(), expanded, true);
   ExprParser parser(*this, diagnostics_, expanded, line_.back().loc);
   return parser.evaluate();
 }
