@@ -1,5 +1,8 @@
 #include "harness/backend.h"
 
+#include <algorithm>
+#include <type_traits>
+
 namespace xshade::harness {
 
 size_t bytes_per_texel(TextureFormat format) {
@@ -9,6 +12,44 @@ size_t bytes_per_texel(TextureFormat format) {
     case TextureFormat::Rgba32Float: return 16;
   }
   return 0;
+}
+
+namespace {
+
+// Fills `matched` (one entry per slot) from `bindings`, by name.
+template <class Slot, class Binding>
+Result<void> match_by_name(const std::vector<Slot>& slots, const std::vector<Binding>& bindings,
+                           std::vector<const Binding*>& matched, const char* kind,
+                           const std::string& where) {
+  matched.assign(slots.size(), nullptr);
+  for (const Binding& binding : bindings) {
+    auto slot = std::find_if(slots.begin(), slots.end(), [&](const Slot& s) { return s.name == binding.name; });
+    if (slot == slots.end())
+      return fail(where + ": the program has no " + kind + " named '" + binding.name + "'");
+    if constexpr (std::is_same_v<Binding, UniformBinding>) {
+      if (binding.bytes.size() != slot->size)
+        return fail(where + ": " + kind + " '" + binding.name + "' needs " + std::to_string(slot->size) +
+                    " bytes but " + std::to_string(binding.bytes.size()) + " were bound");
+    }
+    const auto index = size_t(slot - slots.begin());
+    if (matched[index]) return fail(where + ": " + kind + " '" + binding.name + "' is bound twice");
+    matched[index] = &binding;
+  }
+  for (size_t i = 0; i < slots.size(); ++i)
+    if (!matched[i]) return fail(where + ": " + kind + " '" + slots[i].name + "' is not bound");
+  return {};
+}
+
+}  // namespace
+
+Result<MatchedBindings> match_bindings(const ProgramLayout& layout, const DrawItem& draw,
+                                       const std::string& where) {
+  MatchedBindings matched;
+  if (auto ok = match_by_name(layout.uniform_blocks, draw.uniforms, matched.uniforms, "uniform block", where); !ok)
+    return fail(ok.error());
+  if (auto ok = match_by_name(layout.textures, draw.textures, matched.textures, "texture", where); !ok)
+    return fail(ok.error());
+  return matched;
 }
 
 }  // namespace xshade::harness

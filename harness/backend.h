@@ -155,6 +155,16 @@ struct DrawItem {
   std::vector<TextureBinding> textures;
 };
 
+// A draw's bindings matched to its program's layout by name: per layout slot, the binding that
+// fills it. Fails, naming `where` and the slot, when a name matches no slot, a uniform block has
+// the wrong size, or a slot is bound twice or not at all. Every backend checks draws with this.
+struct MatchedBindings {
+  std::vector<const UniformBinding*> uniforms;  // per ProgramLayout::uniform_blocks entry
+  std::vector<const TextureBinding*> textures;  // per ProgramLayout::textures entry
+};
+Result<MatchedBindings> match_bindings(const ProgramLayout& layout, const DrawItem& draw,
+                                       const std::string& where);
+
 struct TargetDesc {
   uint32_t width = 0;
   uint32_t height = 0;

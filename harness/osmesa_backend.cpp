@@ -1004,37 +1004,14 @@ Result<void> OsmesaBackend::render(const RenderPass& pass) {
         draw.mesh = meshes_[item.mesh.id - 1].get();
       }
 
-      const auto& blocks = program.layout.uniform_blocks;
-      draw.uniforms.assign(blocks.size(), nullptr);
-      for (const UniformBinding& binding : item.uniforms) {
-        auto slot = std::find_if(blocks.begin(), blocks.end(),
-                                 [&](const auto& s) { return s.name == binding.name; });
-        if (slot == blocks.end())
-          return fail(
-              fmt::format("{}: the program has no uniform block named '{}'", where, binding.name));
-        if (binding.bytes.size() != slot->size)
-          return fail(fmt::format("{}: uniform block '{}' needs {} bytes but {} were bound", where,
-                                  binding.name, slot->size, binding.bytes.size()));
-        const size_t index = static_cast<size_t>(slot - blocks.begin());
-        if (draw.uniforms[index])
-          return fail(fmt::format("{}: uniform block '{}' is bound twice", where, binding.name));
-        draw.uniforms[index] = &binding;
-      }
-      for (size_t s = 0; s < blocks.size(); ++s)
-        if (!draw.uniforms[s])
-          return fail(fmt::format("{}: uniform block '{}' is not bound", where, blocks[s].name));
+      auto matched = match_bindings(program.layout, item, where);
+      if (!matched) return fail(matched.error());
+      draw.uniforms = std::move(matched->uniforms);
 
       const auto& slots = program.layout.textures;
       draw.textures.assign(slots.size(), BoundTexture{});
-      for (const TextureBinding& binding : item.textures) {
-        auto slot = std::find_if(slots.begin(), slots.end(),
-                                 [&](const auto& s) { return s.name == binding.name; });
-        if (slot == slots.end())
-          return fail(
-              fmt::format("{}: the program has no texture named '{}'", where, binding.name));
-        const size_t index = static_cast<size_t>(slot - slots.begin());
-        if (draw.textures[index].texture)
-          return fail(fmt::format("{}: texture '{}' is bound twice", where, binding.name));
+      for (size_t index = 0; index < slots.size(); ++index) {
+        const TextureBinding& binding = *matched->textures[index];
         const TextureSource& source = binding.source;
         const Texture* texture = nullptr;
         if (source.kind == TextureSource::Kind::Texture) {
@@ -1060,9 +1037,6 @@ Result<void> OsmesaBackend::render(const RenderPass& pass) {
         }
         draw.textures[index] = BoundTexture{texture, source.sampler};
       }
-      for (size_t s = 0; s < slots.size(); ++s)
-        if (!draw.textures[s].texture)
-          return fail(fmt::format("{}: texture '{}' is not bound", where, slots[s].name));
       draws.push_back(std::move(draw));
     }
 
