@@ -535,11 +535,11 @@ const FunctionDecl* Sema::find_entry_point(const std::string& name, Loc pragma_l
     }
   }
   if (defined.empty()) {
-    diag_.error(pragma_loc, std::string(stage) + " entry point '" + name + "' is not defined");
+    diag_.error(pragma_loc, "entry point '" + name + "' is not defined");
     return nullptr;
   }
   if (defined.size() > 1) {
-    diag_.error(pragma_loc, std::string(stage) + " entry point '" + name + "' is overloaded");
+    diag_.error(pragma_loc, std::string(stage) + " entry point '" + name + "' is overloaded; it must have one definition");
     return nullptr;
   }
   return defined[0];

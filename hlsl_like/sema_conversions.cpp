@@ -10,11 +10,20 @@ namespace {
 
 Conversion invalid() { return {}; }
 
-Conversion valid(int shape_rank, bool type_change, bool truncation = false) {
+// The rank of a change of scalar type alone.
+int scalar_change_rank(ScalarType from, ScalarType to) {
+  if (from == to) return kRankExact;
+  if ((from == ScalarType::Half && to == ScalarType::Float) || (from == ScalarType::Bool && to == ScalarType::Int)) {
+    return kRankPromotion;
+  }
+  return kRankTypeChange;
+}
+
+Conversion valid(int shape_rank, int scalar_rank, bool truncation = false) {
   Conversion conversion;
   conversion.valid = true;
   conversion.truncation = truncation;
-  conversion.rank = shape_rank + (type_change ? kRankTypeChange : 0);
+  conversion.rank = shape_rank + scalar_rank;
   return conversion;
 }
 
@@ -23,13 +32,13 @@ bool same_kind_of_resource(const Type& a, const Type& b) { return a.is_resource(
 }  // namespace
 
 Conversion classify_implicit(const Type& from, const Type& to) {
-  if (from.is_error() || to.is_error()) return valid(kRankExact, false);
-  if (from == to) return valid(kRankExact, false);
+  if (from.is_error() || to.is_error()) return valid(kRankExact, kRankExact);
+  if (from == to) return valid(kRankExact, kRankExact);
   if (!from.is_numeric() || !to.is_numeric()) {
-    if (same_kind_of_resource(from, to)) return valid(kRankExact, false);
+    if (same_kind_of_resource(from, to)) return valid(kRankExact, kRankExact);
     return invalid();
   }
-  const bool type_change = from.scalar_type() != to.scalar_type();
+  const int type_change = scalar_change_rank(from.scalar_type(), to.scalar_type());
   const uint32_t from_count = from.component_count();
   switch (from.kind()) {
     case TypeKind::Scalar:

@@ -19,12 +19,14 @@ namespace xshade::hlsl::sema_detail {
 // Conversions (sema_conversions.cpp)
 
 // How good an implicit conversion is, for overload resolution: lower is better. HLSL's order:
-// exact, then a change of scalar type, then a splat, then a truncation; a change of scalar type
-// on top of a splat or truncation ranks just below the same shape change without it.
+// exact, then a change of scalar type (a promotion, half -> float or bool -> int, before any
+// other), then a splat, then a truncation; a change of scalar type on top of a splat or a
+// truncation ranks just below the same shape change without it.
 inline constexpr int kRankExact = 0;
-inline constexpr int kRankTypeChange = 1;
-inline constexpr int kRankSplat = 2;
-inline constexpr int kRankTruncation = 4;
+inline constexpr int kRankPromotion = 1;
+inline constexpr int kRankTypeChange = 2;
+inline constexpr int kRankSplat = 3;
+inline constexpr int kRankTruncation = 6;
 
 struct Conversion {
   bool valid = false;
