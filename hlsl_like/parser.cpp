@@ -19,7 +19,6 @@
 #include <string>
 #include <string_view>
 #include <unordered_map>
-#include <unordered_set>
 #include <utility>
 
 namespace xshade::hlsl {
@@ -124,50 +123,49 @@ const BuiltinTable& builtin_types() {
   return table;
 }
 
-const BuiltinType* find_builtin_type(std::string_view name) {
-  const BuiltinTable& table = builtin_types();
-  auto it = table.find(name);
-  return it == table.end() ? nullptr : &it->second;
+// Everything the parser needs to know about a word, from one lookup.
+struct WordInfo {
+  const BuiltinType* builtin = nullptr;      // a built-in type name
+  bool reserved = false;                     // never a variable, function or field name
+  bool hard_specifier = false;               // always a qualifier
+  bool unsupported = false;                  // a reserved word of HLSL (or C) not supported
+  std::optional<Interpolation> interpolation;  // a qualifier only in front of a type
+};
+
+using WordTable = std::unordered_map<std::string_view, WordInfo>;
+
+WordTable make_word_table() {
+  WordTable table;
+  for (const auto& [name, builtin] : builtin_types()) table[name].builtin = &builtin;
+  for (std::string_view word :
+       {"struct", "typedef", "cbuffer", "tbuffer", "if", "else", "for", "while", "do", "break", "continue",
+        "return", "discard", "switch", "case", "default", "goto", "true", "false", "register", "packoffset",
+        "class", "interface", "namespace", "template", "typename", "enum", "technique", "technique10",
+        "technique11", "sizeof", "this"})
+    table[word].reserved = true;
+  for (std::string_view word : {"class", "interface", "namespace", "template", "typename", "tbuffer", "enum",
+                                "technique", "technique10", "technique11", "sizeof", "this"})
+    table[word].unsupported = true;
+  for (std::string_view word : {"static", "const", "uniform", "extern", "groupshared", "volatile", "precise",
+                                "inline", "row_major", "column_major", "in", "out", "inout", "shared", "snorm",
+                                "unorm"}) {
+    table[word].reserved = true;
+    table[word].hard_specifier = true;
+  }
+  // Interpolation modifiers stay usable as names: `float linear;`, `sample = tex.Sample(...)`.
+  table["linear"].interpolation = Interpolation::Linear;
+  table["centroid"].interpolation = Interpolation::Centroid;
+  table["nointerpolation"].interpolation = Interpolation::NoInterpolation;
+  table["noperspective"].interpolation = Interpolation::NoPerspective;
+  table["sample"].interpolation = Interpolation::Sample;
+  return table;
 }
 
-using WordSet = std::unordered_set<std::string_view>;
-
-// Words that can never name a variable, function or field.
-bool is_reserved_word(std::string_view word) {
-  static const WordSet kWords = {
-      "struct", "typedef", "cbuffer", "tbuffer", "if", "else", "for", "while", "do", "break",
-      "continue", "return", "discard", "switch", "case", "default", "goto", "true", "false",
-      "static", "const", "uniform", "extern", "groupshared", "volatile", "precise", "inline",
-      "row_major", "column_major", "in", "out", "inout", "register", "packoffset", "class",
-      "interface", "namespace", "template", "typename", "shared", "snorm", "unorm", "enum",
-      "technique", "technique10", "technique11", "sizeof", "this"};
-  return kWords.contains(word);
-}
-
-// Reserved words of HLSL (or C) that the language does not support.
-bool is_unsupported_word(std::string_view word) {
-  static const WordSet kWords = {"class", "interface", "namespace", "template", "typename", "tbuffer",
-                                 "enum", "technique", "technique10", "technique11", "sizeof", "this"};
-  return kWords.contains(word);
-}
-
-// Qualifiers that are always qualifiers.
-bool is_hard_specifier(std::string_view word) {
-  static const WordSet kWords = {"static", "const", "uniform", "extern", "groupshared", "volatile",
-                                 "precise", "inline", "row_major", "column_major", "in", "out",
-                                 "inout", "shared", "snorm", "unorm"};
-  return kWords.contains(word);
-}
-
-// Interpolation modifiers: qualifiers only in front of a type, so that `float linear;` and
-// `sample = tex.Sample(...)` still read as names.
-std::optional<Interpolation> interpolation_word(std::string_view word) {
-  if (word == "linear") return Interpolation::Linear;
-  if (word == "centroid") return Interpolation::Centroid;
-  if (word == "nointerpolation") return Interpolation::NoInterpolation;
-  if (word == "noperspective") return Interpolation::NoPerspective;
-  if (word == "sample") return Interpolation::Sample;
-  return std::nullopt;
+const WordInfo& lookup_word(std::string_view text) {
+  static const WordTable table = make_word_table();
+  static const WordInfo kPlain;
+  const auto it = table.find(text);
+  return it == table.end() ? kPlain : it->second;
 }
 
 // Where qualifiers are read: each place accepts a different set.
@@ -311,7 +309,12 @@ class Parser {
   const Token& tok(size_t index) const { return index < tokens_.size() ? tokens_[index] : eof_; }
   const Token& cur() const { return tok(pos_); }
   bool at_end() const { return cur().kind == TokenKind::EndOfFile; }
-  bool is(std::string_view punct) const { return cur().is_punct(punct); }
+  // `punct` is never empty; the first-character test keeps memcmp out of the common miss.
+  bool is(std::string_view punct) const {
+    const Token& token = cur();
+    return token.kind == TokenKind::Punct && token.text.size() == punct.size() && token.text[0] == punct[0] &&
+           (punct.size() == 1 || token.text == punct);
+  }
   bool is_word(std::string_view word) const { return cur().is_identifier(word); }
 
   void advance() {
@@ -480,12 +483,32 @@ class Parser {
   // -------------------------------------------------------------------------------------------
   // Types
 
-  bool is_user_type(std::string_view name) const { return user_types_.contains(name); }
+  // A word's classification and, once declared, its struct or typedef type: one hash lookup
+  // per question, however many questions the look-ahead asks about the same word.
+  struct Word {
+    const WordInfo* info;
+    std::optional<Type> user_type;
+  };
+
+  Word& word(std::string_view text) const {
+    auto it = words_.find(text);
+    if (it == words_.end()) it = words_.emplace(text, Word{&lookup_word(text), std::nullopt}).first;
+    return it->second;
+  }
+  // The classification of the token at `index`; a plain word for anything but an identifier.
+  const WordInfo& info(size_t index) const {
+    const Token& token = tok(index);
+    static const WordInfo kNone;
+    return token.kind == TokenKind::Identifier ? *word(token.text).info : kNone;
+  }
+  const BuiltinType* find_builtin_type(size_t index) const { return info(index).builtin; }
+  bool is_reserved(size_t index) const { return info(index).reserved; }
 
   bool is_type_start(size_t index) const {
     const Token& token = tok(index);
     if (token.kind != TokenKind::Identifier) return false;
-    return find_builtin_type(token.text) != nullptr || is_user_type(token.text);
+    const Word& w = word(token.text);
+    return w.info->builtin != nullptr || w.user_type.has_value();
   }
 
   // The index just past the type spelled at `index` (which is_type_start): the word and, for
@@ -493,7 +516,7 @@ class Parser {
   size_t type_end(size_t index) const {
     const size_t next = index + 1;
     if (!tok(next).is_punct("<")) return next;
-    const BuiltinType* builtin = find_builtin_type(tok(index).text);
+    const BuiltinType* builtin = find_builtin_type(index);
     if (!builtin || builtin->word == TypeWord::Plain || builtin->word == TypeWord::Void ||
         builtin->word == TypeWord::Double)
       return next;
@@ -552,7 +575,7 @@ class Parser {
 
   // The scalar argument of vector<...> and matrix<...>.
   std::optional<ScalarType> parse_template_scalar() {
-    const BuiltinType* builtin = cur().kind == TokenKind::Identifier ? find_builtin_type(cur().text) : nullptr;
+    const BuiltinType* builtin = find_builtin_type(pos_);
     if (!builtin || !builtin->type.is_scalar() ||
         (builtin->word != TypeWord::Plain && builtin->word != TypeWord::Double)) {
       error_here("expected a scalar type");
@@ -593,15 +616,16 @@ class Parser {
   // type (reported) when a type was written but cannot be used, so the declaration goes on.
   std::optional<Type> parse_type(bool allow_void) {
     const Token& token = cur();
-    if (token.kind != TokenKind::Identifier || is_reserved_word(token.text)) {
+    if (token.kind != TokenKind::Identifier || is_reserved(pos_)) {
       error_here("expected a type");
       return std::nullopt;
     }
-    if (const auto it = user_types_.find(token.text); it != user_types_.end()) {
+    const Word& w = word(token.text);
+    if (w.user_type) {
       advance();
-      return it->second;
+      return *w.user_type;
     }
-    const BuiltinType* builtin = find_builtin_type(token.text);
+    const BuiltinType* builtin = w.info->builtin;
     if (!builtin) {
       error_here(in_quotes(token.text) + " is not a type");
       advance();
@@ -663,13 +687,11 @@ class Parser {
   // Qualifiers
 
   bool is_specifier_at(size_t index) const {
-    const Token& token = tok(index);
-    if (token.kind != TokenKind::Identifier) return false;
-    if (is_hard_specifier(token.text)) return true;
-    if (!interpolation_word(token.text)) return false;
-    const Token& next = tok(index + 1);
-    return is_type_start(index + 1) ||
-           (next.kind == TokenKind::Identifier && (is_hard_specifier(next.text) || interpolation_word(next.text)));
+    const WordInfo& here = info(index);
+    if (here.hard_specifier) return true;
+    if (!here.interpolation) return false;
+    const WordInfo& next = info(index + 1);
+    return next.hard_specifier || next.interpolation || is_type_start(index + 1);
   }
 
   void parse_specifiers(DeclContext context, Specifiers& spec) {
@@ -677,7 +699,7 @@ class Parser {
       const std::string_view word = cur().text;
       spec.any = true;
       const bool param = context == DeclContext::Param;
-      if (const auto interpolation = interpolation_word(word)) {
+      if (const auto interpolation = info(pos_).interpolation) {
         spec.interpolation = *interpolation;
       } else if (word == "in" || word == "out" || word == "inout") {
         if (!param) {
@@ -722,14 +744,16 @@ class Parser {
   // -------------------------------------------------------------------------------------------
   // Names
 
-  bool is_name(const Token& token) const {
-    return token.kind == TokenKind::Identifier && !is_reserved_word(token.text) &&
-           !find_builtin_type(token.text) && !is_user_type(token.text);
+  bool is_name(size_t index) const {
+    const Token& token = tok(index);
+    if (token.kind != TokenKind::Identifier) return false;
+    const Word& w = word(token.text);
+    return !w.info->reserved && !w.info->builtin && !w.user_type;
   }
 
   // Consumes a declared name; reports "expected a name" when there is none.
   std::optional<size_t> expect_name() {
-    if (!is_name(cur())) {
+    if (!is_name(pos_)) {
       error_here("expected a name");
       return std::nullopt;
     }
@@ -741,11 +765,12 @@ class Parser {
   // A struct or typedef name joins the type table (the first definition wins).
   void declare_type(size_t name_index, const Type& type) {
     const std::string_view name = tok(name_index).text;
-    if (is_user_type(name)) {
+    Word& w = word(name);
+    if (w.user_type) {
       error_at(name_index, "redefinition of type " + in_quotes(name));
       return;
     }
-    user_types_.emplace(name, type);
+    w.user_type = type;
   }
 
   // -------------------------------------------------------------------------------------------
@@ -878,7 +903,7 @@ class Parser {
         error_here("packoffset is not supported");
         advance();
         if (is("(") && !skip_group(pos_, false)) return false;
-      } else if (cur().kind == TokenKind::Identifier && !is_reserved_word(cur().text)) {
+      } else if (cur().kind == TokenKind::Identifier && !is_reserved(pos_)) {
         if (semantic) {
           *semantic = std::string(cur().text);
           *semantic_loc = cur().loc;
@@ -1173,13 +1198,13 @@ class Parser {
         if (token.text == "typedef") return parse_typedef();
         return parse_cbuffer();
       }
-      if (is_unsupported_word(token.text)) {
+      if (info(pos_).unsupported) {
         error_here(in_quotes(token.text) + " is not supported");
         return false;
       }
       // An unknown word followed by a name is a declaration with a misspelt type; anything else
       // that is neither a qualifier nor a type cannot start a declaration.
-      if (is_specifier_at(pos_) || is_type_start(pos_) || (!is_reserved_word(token.text) && is_name(tok(pos_ + 1))))
+      if (is_specifier_at(pos_) || is_type_start(pos_) || (!is_reserved(pos_) && is_name(pos_ + 1)))
         return parse_global(std::move(attributes));
     }
     error_here("expected a declaration");
@@ -1245,7 +1270,7 @@ class Parser {
     if (!type) return nullptr;
     Loc loc = tok(type_index).loc;
     std::string name;
-    if (is_name(cur())) {
+    if (is_name(pos_)) {
       loc = cur().loc;
       name = std::string(cur().text);
       advance();
@@ -1518,7 +1543,7 @@ class Parser {
         error_here("local " + std::string(word) + " declarations are not supported");
         return nullptr;
       }
-      if (is_unsupported_word(word)) {
+      if (info(pos_).unsupported) {
         error_here(in_quotes(word) + " is not supported");
         return nullptr;
       }
@@ -1537,7 +1562,7 @@ class Parser {
     if (token.kind != TokenKind::Identifier) return false;
     if (is_specifier_at(pos_)) return true;
     if (is_type_start(pos_)) return !tok(type_end(pos_)).is_punct("(");
-    return !is_reserved_word(token.text) && is_name(tok(pos_ + 1));
+    return !is_reserved(pos_) && is_name(pos_ + 1);
   }
 
   // float a = 1, b[2]; — in a block or a for header. Consumes the ';'.
@@ -2043,7 +2068,7 @@ class Parser {
       if (!parse_call_args(*call)) return nullptr;
       return call;
     }
-    if (is_reserved_word(token.text)) {
+    if (is_reserved(pos_)) {
       error_here("expected an expression");
       return nullptr;
     }
@@ -2071,7 +2096,7 @@ class Parser {
   size_t last_error_index_ = kNoIndex;
   size_t unknown_reported_until_ = 0;
   size_t attribute_index_ = 0;
-  std::unordered_map<std::string_view, Type> user_types_;
+  mutable std::unordered_map<std::string_view, Word> words_;
   std::unordered_map<std::string, int64_t, StringHash, std::equal_to<>> int_constants_;
   TranslationUnit unit_;
 };
