@@ -19,6 +19,13 @@ class DiagnosticEngine {
   void note(Loc loc, std::string message) { report(Severity::Note, loc, std::move(message)); }
   void report(Severity severity, Loc loc, std::string message);
 
+  // Forgets everything reported so far (a front end that runs a phase again reports anew).
+  void clear() {
+    diagnostics_.clear();
+    locs_.clear();
+    errors_ = warnings_ = 0;
+  }
+
   size_t error_count() const { return errors_; }
   size_t warning_count() const { return warnings_; }
   bool has_errors() const { return errors_ > 0; }

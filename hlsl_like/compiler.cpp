@@ -1,0 +1,139 @@
+#include "hlsl_like/compiler.h"
+
+#include <algorithm>
+
+#include "hlsl_like/parser.h"
+#include "hlsl_like/prelude.h"
+
+namespace xshade::hlsl {
+namespace {
+
+// Pragmas the front end reads; others are reported as unknown, since a misspelt `#pragma
+// fragmnet` would otherwise silently drop a stage.
+struct PragmaReading {
+  EntryPointNames entry_points;
+  std::vector<KeywordSet> keyword_sets;
+};
+
+PragmaReading read_pragmas(const std::vector<Pragma>& pragmas, DiagnosticEngine& diagnostics) {
+  PragmaReading reading;
+  for (const Pragma& pragma : pragmas) {
+    if (pragma.name == "vertex" || pragma.name == "fragment") {
+      const bool vertex = pragma.name == "vertex";
+      std::string& name = vertex ? reading.entry_points.vertex : reading.entry_points.fragment;
+      if (pragma.args.size() != 1 || pragma.args[0].kind != TokenKind::Identifier) {
+        diagnostics.error(pragma.loc, "#pragma " + std::string(pragma.name) + " takes one function name");
+        continue;
+      }
+      if (!name.empty()) {
+        diagnostics.error(pragma.loc, "the " + std::string(pragma.name) + " entry point is already '" + name + "'");
+        continue;
+      }
+      name = std::string(pragma.args[0].text);
+      (vertex ? reading.entry_points.vertex_loc : reading.entry_points.fragment_loc) = pragma.args[0].loc;
+    } else if (pragma.name == "multi_compile" || pragma.name == "shader_feature") {
+      KeywordSet set;
+      set.shader_feature = pragma.name == "shader_feature";
+      for (const Token& token : pragma.args) {
+        if (token.kind != TokenKind::Identifier) {
+          diagnostics.error(token.loc, "#pragma " + std::string(pragma.name) + " takes keyword names, not '" +
+                                           std::string(token.text) + "'");
+          continue;
+        }
+        set.keywords.emplace_back(token.text);
+      }
+      // shader_feature A alone means "A or nothing", as in Unity.
+      if (set.shader_feature && set.keywords.size() == 1) set.keywords.insert(set.keywords.begin(), "_");
+      if (!set.keywords.empty()) reading.keyword_sets.push_back(std::move(set));
+    } else if (pragma.name == "target" || pragma.name == "pack_matrix") {
+      diagnostics.warning(pragma.loc, "#pragma " + std::string(pragma.name) + " is ignored");
+    } else {
+      diagnostics.warning(pragma.loc, "unknown pragma '" + std::string(pragma.name) + "'");
+    }
+  }
+  return reading;
+}
+
+bool is_no_keyword(const std::string& keyword) { return !keyword.empty() && keyword.find_first_not_of('_') == std::string::npos; }
+
+// The keywords of the variant: those asked for, plus the first keyword of each set none of them is in.
+std::vector<std::string> active_keywords(const std::vector<KeywordSet>& sets, const std::vector<std::string>& asked) {
+  std::vector<std::string> active = asked;
+  for (const KeywordSet& set : sets) {
+    const bool named = std::any_of(set.keywords.begin(), set.keywords.end(), [&](const std::string& k) {
+      return std::find(asked.begin(), asked.end(), k) != asked.end();
+    });
+    if (!named && !is_no_keyword(set.keywords.front())) active.push_back(set.keywords.front());
+  }
+  return active;
+}
+
+std::unique_ptr<Module> compile(std::unique_ptr<Module> module, const CompileOptions& options) {
+  auto preprocess = [&](const std::vector<std::string>& keywords) {
+    PreprocessorOptions pp_options;
+    pp_options.include_dirs = options.include_dirs;
+    pp_options.defines = prelude_macros();
+    for (const std::string& keyword : keywords) pp_options.defines.push_back({keyword, "1"});
+    pp_options.defines.insert(pp_options.defines.end(), options.defines.begin(), options.defines.end());
+    module->macros = pp_options.defines;
+    Preprocessor preprocessor(module->sources, module->diagnostics, std::move(pp_options));
+    std::vector<Token> tokens = preprocessor.run(module->main_file);
+    module->pragmas = preprocessor.pragmas();
+    return tokens;
+  };
+
+  std::vector<Token> tokens = preprocess(options.keywords);
+  // Pragmas are read before the variant is known; a keyword set's default, if it was not asked
+  // for, needs a second pass with it defined.
+  PragmaReading reading = read_pragmas(module->pragmas, module->diagnostics);
+  const std::vector<std::string> keywords = active_keywords(reading.keyword_sets, options.keywords);
+  if (keywords.size() != options.keywords.size()) {
+    module->diagnostics.clear();  // the second pass reports everything again
+    tokens = preprocess(keywords);
+    reading = read_pragmas(module->pragmas, module->diagnostics);
+  }
+  for (const std::string& keyword : options.keywords) {
+    const bool declared = std::any_of(reading.keyword_sets.begin(), reading.keyword_sets.end(), [&](const KeywordSet& set) {
+      return std::find(set.keywords.begin(), set.keywords.end(), keyword) != set.keywords.end();
+    });
+    if (!declared)
+      module->diagnostics.warning({module->main_file, 1, 1}, "keyword '" + keyword +
+                                                                  "' is not declared by #pragma multi_compile or shader_feature");
+  }
+
+  module->unit = parse(tokens, module->diagnostics);
+  module->entry_points = analyze(module->unit, reading.entry_points, module->diagnostics);
+  if (!module->diagnostics.has_errors())
+    module->reflection = reflect(module->unit, module->entry_points, module->diagnostics);
+  module->reflection.keyword_sets = std::move(reading.keyword_sets);
+  module->reflection.active_keywords = keywords;
+  return module;
+}
+
+}  // namespace
+
+std::vector<std::filesystem::path> Module::dependencies() const {
+  std::vector<std::filesystem::path> files;
+  for (uint32_t i = 1; i < sources.file_count(); ++i)
+    files.push_back(sources.path(i).empty() ? std::filesystem::path(sources.name(i)) : sources.path(i));
+  return files;
+}
+
+std::unique_ptr<Module> compile_file(const std::filesystem::path& path, const CompileOptions& options) {
+  auto module = std::make_unique<Module>();
+  auto file = module->sources.load(path);
+  if (!file) {
+    module->diagnostics.error({}, file.error().message);
+    return module;
+  }
+  module->main_file = *file;
+  return compile(std::move(module), options);
+}
+
+std::unique_ptr<Module> compile_text(std::string name, std::string text, const CompileOptions& options) {
+  auto module = std::make_unique<Module>();
+  module->main_file = module->sources.add(std::move(name), std::move(text));
+  return compile(std::move(module), options);
+}
+
+}  // namespace xshade::hlsl

@@ -1,0 +1,49 @@
+// The front end as one call: preprocess, parse, analyse and reflect one variant of a shader.
+#pragma once
+
+#include <filesystem>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "hlsl_like/ast.h"
+#include "hlsl_like/diagnostic_engine.h"
+#include "hlsl_like/preprocessor.h"
+#include "hlsl_like/reflection.h"
+#include "hlsl_like/sema.h"
+#include "hlsl_like/source_manager.h"
+
+namespace xshade::hlsl {
+
+struct CompileOptions {
+  std::vector<std::filesystem::path> include_dirs;
+  // Keywords of the variant, each defined as 1. A keyword set of `#pragma multi_compile` or
+  // `shader_feature` that none of these names gets its first keyword (unless that is `_`), as
+  // Unity does.
+  std::vector<std::string> keywords;
+  std::vector<MacroDefinition> defines;  // -D KEY=VALUE
+};
+
+// Everything the front end made of one variant. The tree, the reflection and the diagnostics
+// refer to the sources held here, so the module is passed around whole.
+struct Module {
+  SourceManager sources;
+  DiagnosticEngine diagnostics{sources};
+  uint32_t main_file = 0;
+  TranslationUnit unit;
+  EntryPoints entry_points;
+  Reflection reflection;
+  std::vector<Pragma> pragmas;
+  // The macros the variant was compiled with (prelude, keywords, defines), for other compilers
+  // of the same source (glslang's HLSL front end on the vk-hlsl lane).
+  std::vector<MacroDefinition> macros;
+
+  bool ok() const { return !diagnostics.has_errors(); }
+  // Every file the variant read: the main file and its includes.
+  std::vector<std::filesystem::path> dependencies() const;
+};
+
+std::unique_ptr<Module> compile_file(const std::filesystem::path& path, const CompileOptions& options);
+std::unique_ptr<Module> compile_text(std::string name, std::string text, const CompileOptions& options);
+
+}  // namespace xshade::hlsl

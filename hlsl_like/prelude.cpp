@@ -1,0 +1,26 @@
+#include "hlsl_like/prelude.h"
+
+namespace xshade::hlsl {
+
+const std::vector<MacroDefinition>& prelude_macros() {
+  static const std::vector<MacroDefinition> macros = [] {
+    std::vector<MacroDefinition> list;
+    list.push_back({"fixed", "half"});
+    for (const char* n : {"1", "2", "3", "4"}) {
+      list.push_back({std::string("fixed") + n, std::string("half") + n});
+      for (const char* m : {"1", "2", "3", "4"})
+        list.push_back({std::string("fixed") + n + "x" + m, std::string("half") + n + "x" + m});
+    }
+    list.push_back({"UNITY_PI", "3.14159265359f"});
+    list.push_back({"UNITY_TWO_PI", "6.28318530718f"});
+    list.push_back({"UNITY_FOUR_PI", "12.56637061436f"});
+    list.push_back({"UNITY_INV_PI", "0.31830988618f"});
+    list.push_back({"UNITY_INV_TWO_PI", "0.15915494309f"});
+    list.push_back({"UNITY_HALF_PI", "1.57079632679f"});
+    list.push_back({"XSHADE", "1"});
+    return list;
+  }();
+  return macros;
+}
+
+}  // namespace xshade::hlsl

@@ -1,0 +1,16 @@
+// The prelude: the Unity-isms every hlsl_like source may use, as macros defined before it.
+//
+// Being macros, the same list feeds xshade's preprocessor and glslang's (the vk-hlsl lane), so
+// both compilers see one language. `fixed` is half: on these drivers both compute in fp32, and
+// half-precision emulation treats them alike.
+#pragma once
+
+#include <vector>
+
+#include "hlsl_like/preprocessor.h"
+
+namespace xshade::hlsl {
+
+const std::vector<MacroDefinition>& prelude_macros();
+
+}  // namespace xshade::hlsl

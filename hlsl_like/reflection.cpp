@@ -1,0 +1,568 @@
+#include "hlsl_like/reflection.h"
+
+#include <algorithm>
+#include <map>
+#include <set>
+#include <unordered_set>
+
+#include <nlohmann/json.hpp>
+
+#include "hlsl_like/ast_walk.h"
+#include "hlsl_like/sema_internal.h"
+
+namespace xshade::hlsl {
+namespace {
+
+constexpr uint32_t kRegister = 16;  // bytes in one HLSL constant register
+
+uint32_t align_up(uint32_t value, uint32_t alignment) { return (value + alignment - 1) / alignment * alignment; }
+
+// ---------------------------------------------------------------------------------------------
+// HLSL constant-buffer packing (the fxc/dxc rules for cbuffers):
+// - a scalar or vector packs after the previous member unless it would cross a 16-byte register;
+// - arrays, matrices and structs start a new register; array elements are 16-byte aligned and the
+//   last one is not padded; a matrix is an array of its columns (column_major) or rows;
+// - the member after a struct starts a new register.
+
+uint32_t packed_size(const Type& type, bool row_major);
+
+uint32_t struct_packed_size(const StructDecl* decl) {
+  uint32_t offset = 0;
+  bool new_register = false;
+  for (const FieldDecl& field : decl->fields) {
+    const uint32_t size = packed_size(field.type, false);
+    const bool starts_register = new_register || (!field.type.is_scalar() && !field.type.is_vector());
+    if (starts_register || (offset % kRegister) + size > kRegister) offset = align_up(offset, kRegister);
+    offset += size;
+    new_register = field.type.kind() == TypeKind::Struct;
+  }
+  return offset;
+}
+
+uint32_t packed_size(const Type& type, bool row_major) {
+  switch (type.kind()) {
+    case TypeKind::Scalar:
+    case TypeKind::Vector: return 4 * type.cols();
+    case TypeKind::Matrix:
+      return row_major ? kRegister * (type.rows() - 1) + 4 * type.cols()
+                       : kRegister * (type.cols() - 1) + 4 * type.rows();
+    case TypeKind::Array: {
+      const uint32_t element = packed_size(type.element(), row_major);
+      return align_up(element, kRegister) * (type.array_length() - 1) + element;
+    }
+    case TypeKind::Struct: return type.struct_decl() ? struct_packed_size(type.struct_decl()) : 0;
+    default: return 0;
+  }
+}
+
+// The bytes std140 gives a member (what a following explicit offset must not fall inside).
+uint32_t std140_size(const Type& type, bool row_major) {
+  switch (type.kind()) {
+    case TypeKind::Scalar:
+    case TypeKind::Vector: return 4 * type.cols();
+    // A matrix is an array of vectors, each rounded up to a register. HLSL column_major floatRxC
+    // is GLSL row_major with C rows (the emitter stores HLSL's M as GLSL's transpose).
+    case TypeKind::Matrix: return kRegister * (row_major ? type.rows() : type.cols());
+    case TypeKind::Array: return align_up(std140_size(type.element(), row_major), kRegister) * type.array_length();
+    case TypeKind::Struct: return align_up(packed_size(type, row_major), kRegister);
+    default: return 0;
+  }
+}
+
+// Offsets std140 gives the fields of a struct; HLSL's must be the same, since GLSL allows no
+// explicit offsets inside a struct.
+std::optional<std::string> struct_layout_mismatch(const StructDecl* decl) {
+  uint32_t hlsl = 0, std140 = 0;
+  bool new_register = false;
+  for (const FieldDecl& field : decl->fields) {
+    const Type& type = field.type;
+    const uint32_t size = packed_size(type, false);
+    if (new_register || (!type.is_scalar() && !type.is_vector()) || (hlsl % kRegister) + size > kRegister)
+      hlsl = align_up(hlsl, kRegister);
+    const uint32_t alignment = type.is_scalar() ? 4 : type.is_vector() ? (type.cols() == 2 ? 8 : 16) : 16;
+    std140 = align_up(std140, alignment);
+    if (hlsl != std140)
+      return "field '" + field.name + "' is at offset " + std::to_string(hlsl) + " in HLSL but " +
+             std::to_string(std140) + " in std140";
+    if (type.kind() == TypeKind::Struct && type.struct_decl())
+      if (auto inner = struct_layout_mismatch(type.struct_decl())) return inner;
+    hlsl += size;
+    std140 += std140_size(type, false);
+    new_register = type.kind() == TypeKind::Struct;
+  }
+  return std::nullopt;
+}
+
+// Lays out `members` (in order) by HLSL rules and checks that the std140 block can hold them.
+void pack_members(ConstantBuffer& buffer, const std::vector<const VarDecl*>& members,
+                  DiagnosticEngine& diagnostics) {
+  uint32_t offset = 0;
+  bool new_register = false;
+  uint32_t previous_end_std140 = 0;
+  std::string previous_name;
+  for (const VarDecl* var : members) {
+    const Type& type = var->type;
+    ConstantBufferMember member;
+    member.name = var->name;
+    member.type = type;
+    member.row_major = var->packing == MatrixPacking::RowMajor;
+    member.size = packed_size(type, member.row_major);
+    if (new_register || (!type.is_scalar() && !type.is_vector()) || (offset % kRegister) + member.size > kRegister)
+      offset = align_up(offset, kRegister);
+    member.offset = offset;
+
+    if (type.is_vector()) {
+      const uint32_t alignment = type.cols() == 2 ? 8 : type.cols() >= 3 ? 16 : 4;
+      member.split_into_scalars = offset % alignment != 0;
+    }
+    if (type.kind() == TypeKind::Struct && type.struct_decl()) {
+      if (auto mismatch = struct_layout_mismatch(type.struct_decl()))
+        diagnostics.error(var->loc, "'" + var->name + "' in constant buffer '" + buffer.name + "': struct '" +
+                                        type.struct_decl()->name + "' cannot keep its HLSL layout in GLSL: " +
+                                        *mismatch + "; reorder its fields or pad them to 16-byte registers");
+    }
+    if (!previous_name.empty() && offset < previous_end_std140)
+      diagnostics.error(var->loc, "'" + var->name + "' is at offset " + std::to_string(offset) + " of constant buffer '" +
+                                      buffer.name + "', inside the padding GLSL gives '" + previous_name + "' (up to " +
+                                      std::to_string(previous_end_std140) + "); start '" + var->name +
+                                      "' on a new 16-byte register (pad before it) or declare it before '" +
+                                      previous_name + "'");
+    previous_end_std140 = offset + (member.split_into_scalars ? member.size : std140_size(type, member.row_major));
+    previous_name = var->name;
+    offset += member.size;
+    new_register = type.kind() == TypeKind::Struct;
+    buffer.members.push_back(std::move(member));
+  }
+  buffer.size = align_up(offset, kRegister);
+}
+
+bool is_uniform_global(const VarDecl& var) {
+  return var.is_global && var.storage != StorageClass::Static && var.storage != StorageClass::GroupShared &&
+         !var.type.is_resource() && !var.type.is_error();
+}
+
+std::string canonical(const std::string& semantic) {
+  return sema_detail::canonical_semantic(sema_detail::parse_semantic(semantic));
+}
+
+// Every global declaration and user function reachable from the entry points, by what reads it.
+struct Usage {
+  std::unordered_set<const Decl*> globals;
+  std::map<const Decl*, const Decl*> texture_sampler;  // Texture2D -> first SamplerState it is sampled with
+};
+
+Usage collect_usage(const EntryPoints& entry_points) {
+  Usage usage;
+  for (const FunctionDecl* entry : {entry_points.vertex, entry_points.fragment}) {
+    for (const FunctionDecl* function : reachable_functions(entry)) {
+      walk_expressions(function->body.get(), [&](const Expr& expr) {
+        if (expr.kind == ExprKind::Name) {
+          if (const Decl* decl = static_cast<const NameExpr&>(expr).decl) usage.globals.insert(decl);
+        } else if (expr.kind == ExprKind::Call) {
+          const auto& call = static_cast<const CallExpr&>(expr);
+          if (call.call_kind != CallKind::Method || !call.object || call.args.empty()) return;
+          if (call.object->kind != ExprKind::Name || call.args[0]->kind != ExprKind::Name) return;
+          const Decl* texture = static_cast<const NameExpr&>(*call.object).decl;
+          const Decl* sampler = static_cast<const NameExpr&>(*call.args[0]).decl;
+          if (texture && sampler) usage.texture_sampler.emplace(texture, sampler);
+        }
+      });
+    }
+  }
+  return usage;
+}
+
+// Assigns bindings within one register class: explicit registers first, then the lowest free
+// register to each remaining used resource in declaration order, as glslang's auto-mapping does.
+class RegisterClass {
+ public:
+  RegisterClass(char letter, uint32_t base, DiagnosticEngine& diagnostics)
+      : letter_(letter), base_(base), diagnostics_(diagnostics) {}
+
+  void claim(const RegisterBinding& binding, const std::string& name) {
+    if (binding.index >= kRegistersPerClass) {
+      diagnostics_.error(binding.loc, std::string("register ") + binding.register_class + std::to_string(binding.index) +
+                                          " of '" + name + "' is out of range (0 to " +
+                                          std::to_string(kRegistersPerClass - 1) + ")");
+      return;
+    }
+    if (binding.space != 0) diagnostics_.warning(binding.loc, "register space of '" + name + "' is ignored: every resource is in set 0");
+    auto [it, inserted] = used_.emplace(binding.index, name);
+    if (!inserted)
+      diagnostics_.error(binding.loc, std::string("register ") + binding.register_class + std::to_string(binding.index) +
+                                          " of '" + name + "' is already taken by '" + it->second + "'");
+  }
+  uint32_t binding_of(const RegisterBinding& binding) const { return base_ + binding.index; }
+  std::optional<uint32_t> next_free(const std::string& name, Loc loc) {
+    for (uint32_t index = 0; index < kRegistersPerClass; ++index)
+      if (used_.emplace(index, name).second) return base_ + index;
+    diagnostics_.error(loc, std::string("no free ") + letter_ + " register for '" + name + "'");
+    return std::nullopt;
+  }
+
+ private:
+  char letter_;
+  uint32_t base_;
+  DiagnosticEngine& diagnostics_;
+  std::map<uint32_t, std::string> used_;
+};
+
+double literal_value(const Expr* expr) {
+  if (!expr) return 0.0;
+  switch (expr->kind) {
+    case ExprKind::IntLiteral: return double(static_cast<const IntLiteralExpr*>(expr)->value);
+    case ExprKind::FloatLiteral: return static_cast<const FloatLiteralExpr*>(expr)->value;
+    case ExprKind::BoolLiteral: return static_cast<const BoolLiteralExpr*>(expr)->value ? 1.0 : 0.0;
+    case ExprKind::Conversion: return literal_value(static_cast<const ConversionExpr*>(expr)->operand.get());
+    case ExprKind::Unary: {
+      auto* unary = static_cast<const UnaryExpr*>(expr);
+      double value = literal_value(unary->operand.get());
+      return unary->op == UnaryOp::Minus ? -value : value;
+    }
+    default: return 0.0;
+  }
+}
+
+// The components of a constant initializer: literals, constructors and lists of them.
+bool constant_components(const Expr* expr, std::vector<double>& out) {
+  if (!expr) return false;
+  switch (expr->kind) {
+    case ExprKind::IntLiteral:
+    case ExprKind::FloatLiteral:
+    case ExprKind::BoolLiteral:
+      out.push_back(literal_value(expr));
+      return true;
+    case ExprKind::Unary: {
+      auto* unary = static_cast<const UnaryExpr*>(expr);
+      if (unary->op != UnaryOp::Minus && unary->op != UnaryOp::Plus) return false;
+      const size_t first = out.size();
+      if (!constant_components(unary->operand.get(), out)) return false;
+      if (unary->op == UnaryOp::Minus)
+        for (size_t i = first; i < out.size(); ++i) out[i] = -out[i];
+      return true;
+    }
+    case ExprKind::Conversion: {
+      auto* conversion = static_cast<const ConversionExpr*>(expr);
+      std::vector<double> inner;
+      if (!constant_components(conversion->operand.get(), inner)) return false;
+      const uint32_t count = expr->type.component_count();
+      if (inner.size() == 1 && count > 1) inner.assign(count, inner[0]);  // a splat
+      if (count != 0 && inner.size() > count) inner.resize(count);        // a truncation
+      out.insert(out.end(), inner.begin(), inner.end());
+      return true;
+    }
+    case ExprKind::Call: {
+      auto* call = static_cast<const CallExpr*>(expr);
+      if (call->call_kind != CallKind::Constructor) return false;
+      for (const ExprPtr& arg : call->args)
+        if (!constant_components(arg.get(), out)) return false;
+      return true;
+    }
+    case ExprKind::InitList:
+      for (const ExprPtr& element : static_cast<const InitListExpr*>(expr)->elements)
+        if (!constant_components(element.get(), out)) return false;
+      return true;
+    default: return false;
+  }
+}
+
+Property property_of(const VarDecl& var) {
+  Property property;
+  property.name = var.name;
+  property.display_name = var.name;
+  property.type = var.type;
+  property.is_texture = var.type.kind() == TypeKind::Texture2D || var.type.kind() == TypeKind::Sampler2D;
+  for (const Annotation& annotation : var.annotations) {
+    if (annotation.name == "UIName" && !annotation.text.empty()) property.display_name = annotation.text;
+    if (annotation.name == "UIMin") property.min = literal_value(annotation.value.get());
+    if (annotation.name == "UIMax") property.max = literal_value(annotation.value.get());
+  }
+  std::vector<double> components;
+  if (var.initializer && constant_components(var.initializer.get(), components)) property.default_value = components;
+  return property;
+}
+
+// Inputs (`inputs` true) or outputs of an entry point, flattened over struct parameters and
+// return values, with canonical semantics.
+std::vector<StageVariable> stage_variables(const FunctionDecl& entry, bool inputs) {
+  std::vector<StageVariable> variables;
+  auto add = [&](const Type& type, const std::string& semantic, Interpolation interpolation) {
+    if (type.kind() == TypeKind::Struct && type.struct_decl()) {
+      for (const FieldDecl& field : type.struct_decl()->fields)
+        if (!field.semantic.empty()) variables.push_back({canonical(field.semantic), field.type, 0, field.interpolation});
+      return;
+    }
+    if (!semantic.empty()) variables.push_back({canonical(semantic), type, 0, interpolation});
+  };
+  for (const auto& param : entry.params) {
+    if (!param || param->is_uniform) continue;
+    const bool is_input = param->direction != ParamDirection::Out;
+    const bool is_output = param->direction != ParamDirection::In;
+    if (inputs ? is_input : is_output) add(param->type, param->semantic, param->interpolation);
+  }
+  if (!inputs && !entry.return_type.is_void()) add(entry.return_type, entry.semantic, Interpolation::Default);
+  return variables;
+}
+
+bool is_system_value(const std::string& semantic) { return semantic.rfind("SV_", 0) == 0; }
+
+}  // namespace
+
+std::optional<uint32_t> vertex_input_location(const std::string& semantic) {
+  static const std::map<std::string, uint32_t> locations{
+      {"POSITION0", 0}, {"NORMAL0", 1}, {"TANGENT0", 2}, {"TEXCOORD0", 3}, {"TEXCOORD1", 4}, {"COLOR0", 5}};
+  auto it = locations.find(semantic);
+  if (it != locations.end()) return it->second;
+  return std::nullopt;
+}
+
+std::optional<uint32_t> varying_location(const std::string& semantic) {
+  const sema_detail::ParsedSemantic parsed = sema_detail::parse_semantic(semantic);
+  using sema_detail::SemanticKind;
+  switch (parsed.kind) {
+    case SemanticKind::Texcoord: return parsed.index < 8 ? std::optional<uint32_t>(parsed.index) : std::nullopt;
+    case SemanticKind::Color: return parsed.index < 2 ? std::optional<uint32_t>(8 + parsed.index) : std::nullopt;
+    case SemanticKind::Normal: return parsed.index == 0 ? std::optional<uint32_t>(10) : std::nullopt;
+    case SemanticKind::Tangent: return parsed.index == 0 ? std::optional<uint32_t>(11) : std::nullopt;
+    case SemanticKind::Binormal: return parsed.index == 0 ? std::optional<uint32_t>(12) : std::nullopt;
+    case SemanticKind::Position: return parsed.index == 0 ? std::optional<uint32_t>(13) : std::nullopt;
+    default: return std::nullopt;
+  }
+}
+
+const ConstantBuffer* Reflection::find_constant_buffer(std::string_view name) const {
+  for (const ConstantBuffer& buffer : constant_buffers)
+    if (buffer.name == name) return &buffer;
+  return nullptr;
+}
+
+Reflection reflect(const TranslationUnit& unit, const EntryPoints& entry_points, DiagnosticEngine& diagnostics) {
+  Reflection reflection;
+  if (entry_points.vertex) reflection.vertex_entry = entry_points.vertex->name;
+  if (entry_points.fragment) reflection.fragment_entry = entry_points.fragment->name;
+  const Usage usage = collect_usage(entry_points);
+
+  // Constant buffers, textures and samplers in declaration order; $Globals takes its place at
+  // its first member.
+  RegisterClass buffers('b', kConstantBufferBindingBase, diagnostics);
+  RegisterClass textures('t', kTextureBindingBase, diagnostics);
+  RegisterClass samplers('s', kSamplerBindingBase, diagnostics);
+  struct PendingBuffer {
+    size_t index;
+    const RegisterBinding* binding;
+    Loc loc;
+  };
+  std::vector<PendingBuffer> pending_buffers;
+  std::vector<const VarDecl*> globals;
+  std::optional<size_t> globals_index;
+  std::vector<std::pair<size_t, const VarDecl*>> pending_textures, pending_samplers;
+
+  for (const auto& decl : unit.decls) {
+    if (!decl) continue;
+    if (decl->kind == DeclKind::CBuffer) {
+      const auto& cbuffer = static_cast<const CBufferDecl&>(*decl);
+      ConstantBuffer buffer;
+      buffer.name = cbuffer.name;
+      buffer.decl = &cbuffer;
+      std::vector<const VarDecl*> members;
+      for (const auto& member : cbuffer.members)
+        if (member && !member->type.is_error()) members.push_back(member.get());
+      pack_members(buffer, members, diagnostics);
+      for (const VarDecl* member : members) reflection.properties.push_back(property_of(*member));
+      if (cbuffer.binding.register_class == 'b') buffers.claim(cbuffer.binding, cbuffer.name);
+      else if (cbuffer.binding.register_class != 0)
+        diagnostics.error(cbuffer.binding.loc, "constant buffer '" + cbuffer.name + "' needs a b register, not " +
+                                                   cbuffer.binding.register_class);
+      pending_buffers.push_back({reflection.constant_buffers.size(), &cbuffer.binding, cbuffer.loc});
+      reflection.constant_buffers.push_back(std::move(buffer));
+    } else if (decl->kind == DeclKind::Var) {
+      const auto& var = static_cast<const VarDecl&>(*decl);
+      const TypeKind kind = var.type.kind();
+      if (kind == TypeKind::Texture2D || kind == TypeKind::Sampler2D) {
+        TextureResource texture;
+        texture.name = var.name;
+        texture.kind = kind == TypeKind::Texture2D ? TextureKind::Texture2D : TextureKind::Sampler2D;
+        texture.decl = &var;
+        // glslang puts a sampler2D in the texture range whatever its register letter says.
+        if (var.binding.register_class != 0) textures.claim(var.binding, var.name);
+        pending_textures.push_back({reflection.textures.size(), &var});
+        reflection.textures.push_back(std::move(texture));
+        reflection.properties.push_back(property_of(var));
+      } else if (kind == TypeKind::SamplerState) {
+        SamplerResource sampler{var.name, 0, &var};
+        if (var.binding.register_class != 0) samplers.claim(var.binding, var.name);
+        pending_samplers.push_back({reflection.samplers.size(), &var});
+        reflection.samplers.push_back(std::move(sampler));
+      } else if (is_uniform_global(var)) {
+        if (var.binding.register_class != 0)
+          diagnostics.warning(var.binding.loc, "register of '" + var.name + "' is ignored: it lives in $Globals");
+        if (!globals_index) {
+          globals_index = reflection.constant_buffers.size();
+          reflection.constant_buffers.push_back({kGlobalsBufferName, 0, 0, {}, nullptr});
+          pending_buffers.push_back({*globals_index, nullptr, var.loc});
+        }
+        globals.push_back(&var);
+        reflection.properties.push_back(property_of(var));
+      }
+    }
+  }
+  if (globals_index) pack_members(reflection.constant_buffers[*globals_index], globals, diagnostics);
+
+  // Bindings: explicit ones were claimed above; the rest take the lowest free register.
+  for (const PendingBuffer& pending : pending_buffers) {
+    ConstantBuffer& buffer = reflection.constant_buffers[pending.index];
+    if (pending.binding && pending.binding->register_class == 'b') {
+      buffer.binding = buffers.binding_of(*pending.binding);
+    } else if (auto binding = buffers.next_free(buffer.name, pending.loc)) {
+      buffer.binding = *binding;
+    }
+  }
+  // glslang maps only the resources a stage reads, so those come first; a resource nobody reads
+  // then takes what is left, so that every declared one has a number.
+  const bool has_entry = entry_points.vertex || entry_points.fragment;
+  auto used = [&](const VarDecl* var) { return !has_entry || usage.globals.count(var) > 0; };
+  for (bool used_pass : {true, false}) {
+    for (auto [index, var] : pending_textures) {
+      if (used(var) != used_pass) continue;
+      TextureResource& texture = reflection.textures[index];
+      if (var->binding.register_class != 0) texture.binding = textures.binding_of(var->binding);
+      else texture.binding = textures.next_free(var->name, var->loc).value_or(0);
+    }
+    for (auto [index, var] : pending_samplers) {
+      if (used(var) != used_pass) continue;
+      SamplerResource& sampler = reflection.samplers[index];
+      if (var->binding.register_class != 0) sampler.binding = samplers.binding_of(var->binding);
+      else sampler.binding = samplers.next_free(var->name, var->loc).value_or(0);
+    }
+  }
+
+  for (TextureResource& texture : reflection.textures) {
+    auto it = usage.texture_sampler.find(texture.decl);
+    if (it == usage.texture_sampler.end()) continue;
+    texture.sampler = it->second->name;
+    for (const SamplerResource& sampler : reflection.samplers)
+      if (sampler.decl == it->second) texture.sampler_binding = sampler.binding;
+  }
+
+  // Stage interfaces.
+  if (entry_points.vertex) {
+    for (StageVariable input : stage_variables(*entry_points.vertex, true)) {
+      if (is_system_value(input.semantic)) continue;
+      auto location = vertex_input_location(input.semantic);
+      if (!location) {
+        diagnostics.error(entry_points.vertex->loc, "vertex input '" + input.semantic +
+                                                        "' has no place in the vertex format; use POSITION, "
+                                                        "NORMAL, TANGENT, TEXCOORD0, TEXCOORD1 or COLOR0");
+        continue;
+      }
+      input.location = *location;
+      reflection.vertex_inputs.push_back(std::move(input));
+    }
+    for (StageVariable output : stage_variables(*entry_points.vertex, false)) {
+      if (is_system_value(output.semantic)) continue;
+      auto location = varying_location(output.semantic);
+      if (!location) {
+        diagnostics.error(entry_points.vertex->loc, "vertex output '" + output.semantic +
+                                                        "' cannot be passed to the fragment stage; use TEXCOORD0-7, "
+                                                        "COLOR0-1, NORMAL, TANGENT, BINORMAL or POSITION");
+        continue;
+      }
+      output.location = *location;
+      reflection.varyings.push_back(std::move(output));
+    }
+  }
+  if (entry_points.fragment) {
+    for (const StageVariable& input : stage_variables(*entry_points.fragment, true)) {
+      if (is_system_value(input.semantic)) continue;
+      const bool written = std::any_of(reflection.varyings.begin(), reflection.varyings.end(),
+                                       [&](const StageVariable& v) { return v.semantic == input.semantic; });
+      if (entry_points.vertex && !written)
+        diagnostics.error(entry_points.fragment->loc, "fragment input '" + input.semantic +
+                                                          "' is not written by the vertex entry point '" +
+                                                          entry_points.vertex->name + "'");
+      if (!entry_points.vertex) {  // a full-screen pass: only TEXCOORD0 (uv) arrives
+        auto location = varying_location(input.semantic);
+        if (input.semantic != "TEXCOORD0")
+          diagnostics.error(entry_points.fragment->loc, "a fragment shader without a vertex stage receives only "
+                                                            "TEXCOORD0 (uv) and SV_Position, not '" + input.semantic + "'");
+        else
+          reflection.varyings.push_back({input.semantic, input.type, location.value_or(0), input.interpolation});
+      }
+    }
+    for (StageVariable output : stage_variables(*entry_points.fragment, false)) {
+      const sema_detail::ParsedSemantic parsed = sema_detail::parse_semantic(output.semantic);
+      if (parsed.kind == sema_detail::SemanticKind::SvTarget) output.location = parsed.index;
+      reflection.fragment_outputs.push_back(std::move(output));
+    }
+  }
+  return reflection;
+}
+
+namespace {
+
+nlohmann::json type_json(const Type& type) { return type.name(); }
+
+const char* interpolation_name(Interpolation interpolation) {
+  switch (interpolation) {
+    case Interpolation::Default: return "linear";
+    case Interpolation::Linear: return "linear";
+    case Interpolation::Centroid: return "centroid";
+    case Interpolation::NoInterpolation: return "nointerpolation";
+    case Interpolation::NoPerspective: return "noperspective";
+    case Interpolation::Sample: return "sample";
+  }
+  return "linear";
+}
+
+nlohmann::json stage_json(const std::vector<StageVariable>& variables) {
+  nlohmann::json list = nlohmann::json::array();
+  for (const StageVariable& v : variables)
+    list.push_back({{"semantic", v.semantic}, {"type", type_json(v.type)}, {"location", v.location},
+                    {"interpolation", interpolation_name(v.interpolation)}});
+  return list;
+}
+
+}  // namespace
+
+std::string reflection_json(const Reflection& reflection) {
+  nlohmann::json json;
+  json["entry_points"] = {{"vertex", reflection.vertex_entry}, {"fragment", reflection.fragment_entry}};
+  json["vertex_inputs"] = stage_json(reflection.vertex_inputs);
+  json["varyings"] = stage_json(reflection.varyings);
+  json["fragment_outputs"] = stage_json(reflection.fragment_outputs);
+  json["constant_buffers"] = nlohmann::json::array();
+  for (const ConstantBuffer& buffer : reflection.constant_buffers) {
+    nlohmann::json members = nlohmann::json::array();
+    for (const ConstantBufferMember& m : buffer.members)
+      members.push_back({{"name", m.name}, {"type", type_json(m.type)}, {"offset", m.offset}, {"size", m.size},
+                         {"row_major", m.row_major}});
+    json["constant_buffers"].push_back(
+        {{"name", buffer.name}, {"binding", buffer.binding}, {"size", buffer.size}, {"members", members}});
+  }
+  json["textures"] = nlohmann::json::array();
+  for (const TextureResource& t : reflection.textures) {
+    nlohmann::json texture = {{"name", t.name},
+                              {"kind", t.kind == TextureKind::Texture2D ? "Texture2D" : "sampler2D"},
+                              {"binding", t.binding}};
+    if (!t.sampler.empty()) texture["sampler"] = t.sampler;
+    if (t.sampler_binding) texture["sampler_binding"] = *t.sampler_binding;
+    json["textures"].push_back(texture);
+  }
+  json["samplers"] = nlohmann::json::array();
+  for (const SamplerResource& s : reflection.samplers) json["samplers"].push_back({{"name", s.name}, {"binding", s.binding}});
+  json["properties"] = nlohmann::json::array();
+  for (const Property& p : reflection.properties) {
+    nlohmann::json property = {{"name", p.name}, {"display_name", p.display_name}, {"type", type_json(p.type)}};
+    if (p.min) property["min"] = *p.min;
+    if (p.max) property["max"] = *p.max;
+    if (!p.default_value.empty()) property["default"] = p.default_value;
+    json["properties"].push_back(property);
+  }
+  json["keywords"] = nlohmann::json::array();
+  for (const KeywordSet& set : reflection.keyword_sets)
+    json["keywords"].push_back({{"keywords", set.keywords}, {"pragma", set.shader_feature ? "shader_feature" : "multi_compile"}});
+  json["active_keywords"] = reflection.active_keywords;
+  return json.dump(2);
+}
+
+}  // namespace xshade::hlsl

@@ -1,0 +1,127 @@
+// What a compiled shader reads and writes, with the bindings and locations the compiler assigned:
+// the contract between the compiler, the GLSL emitter and the harness (which binds by name).
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "hlsl_like/ast.h"
+#include "hlsl_like/diagnostic_engine.h"
+#include "hlsl_like/sema.h"
+
+namespace xshade::hlsl {
+
+// Vulkan descriptor set 0 holds every class of resource, so each HLSL register class has its own
+// range of bindings. glslang's HLSL front end is given the same shifts (the vk-hlsl lane), and
+// OpenGL uses the same numbers as uniform-block binding points and texture units.
+inline constexpr uint32_t kConstantBufferBindingBase = 0;  // register(bN)
+inline constexpr uint32_t kTextureBindingBase = 16;        // register(tN); sampler2D too
+inline constexpr uint32_t kSamplerBindingBase = 32;        // register(sN) of a SamplerState
+inline constexpr uint32_t kRegistersPerClass = 16;
+
+// The name of the constant buffer that holds the globals declared outside any cbuffer.
+inline constexpr const char* kGlobalsBufferName = "$Globals";
+
+// How one constant-buffer member is laid out by HLSL's packing rules, and how the GLSL block
+// (std140 with explicit offsets) reproduces exactly those bytes.
+struct ConstantBufferMember {
+  std::string name;
+  Type type;
+  uint32_t offset = 0;  // bytes from the start of the buffer, HLSL packing
+  uint32_t size = 0;    // bytes HLSL gives it (an array's last element is not padded)
+  bool row_major = false;  // a matrix stored by rows (HLSL's default is by columns)
+  // A vector whose HLSL offset std140 cannot hold (a float2 at 4, a float3 at 4): the emitter
+  // declares it as scalars at these offsets and rebuilds the vector where it is read.
+  bool split_into_scalars = false;
+};
+
+struct ConstantBuffer {
+  std::string name;  // as declared, or kGlobalsBufferName
+  uint32_t binding = 0;
+  uint32_t size = 0;  // bytes, rounded up to 16 as Direct3D does
+  std::vector<ConstantBufferMember> members;
+  const Decl* decl = nullptr;  // the CBufferDecl; null for $Globals
+};
+
+enum class TextureKind : uint8_t {
+  Texture2D,  // with SamplerState objects, separate
+  Sampler2D,  // DX9 sampler2D: texture and sampler in one
+};
+
+struct TextureResource {
+  std::string name;
+  TextureKind kind = TextureKind::Texture2D;
+  uint32_t binding = 0;
+  // For a Texture2D: the SamplerState it is sampled with (the first one, when several are),
+  // and that sampler's binding. Empty when the shader never samples it through a SamplerState.
+  std::string sampler;
+  std::optional<uint32_t> sampler_binding;
+  const VarDecl* decl = nullptr;
+};
+
+struct SamplerResource {
+  std::string name;
+  uint32_t binding = 0;
+  const VarDecl* decl = nullptr;
+};
+
+// A stage input or output with the location the compiler gave it.
+struct StageVariable {
+  std::string semantic;  // canonical: "TEXCOORD0", "SV_Target0", "POSITION"
+  Type type;
+  uint32_t location = 0;
+  Interpolation interpolation = Interpolation::Default;
+};
+
+// A material property: a uniform with its annotations (`<string UIName = ...; float UIMin...>`).
+struct Property {
+  std::string name;
+  std::string display_name;    // UIName, or the name
+  Type type;
+  std::optional<double> min;   // UIMin
+  std::optional<double> max;   // UIMax
+  std::vector<double> default_value;  // the initializer's components, when constant
+  bool is_texture = false;
+};
+
+// Keywords from `#pragma multi_compile A B C` (every combination is a variant) and
+// `#pragma shader_feature A B` (only the combinations a scene asks for). `_` means "none".
+struct KeywordSet {
+  std::vector<std::string> keywords;
+  bool shader_feature = false;
+};
+
+struct Reflection {
+  std::string vertex_entry;
+  std::string fragment_entry;
+  std::vector<StageVariable> vertex_inputs;
+  std::vector<StageVariable> varyings;  // vertex outputs = fragment inputs, SV_Position excluded
+  std::vector<StageVariable> fragment_outputs;
+  std::vector<ConstantBuffer> constant_buffers;
+  std::vector<TextureResource> textures;
+  std::vector<SamplerResource> samplers;
+  std::vector<Property> properties;
+  std::vector<KeywordSet> keyword_sets;
+  std::vector<std::string> active_keywords;  // of this variant
+
+  const ConstantBuffer* find_constant_buffer(std::string_view name) const;
+};
+
+// Vertex inputs have fixed locations so that every mesh serves every shader:
+// POSITION 0, NORMAL 1, TANGENT 2, TEXCOORD0 3, TEXCOORD1 4, COLOR0 5. Empty for others.
+std::optional<uint32_t> vertex_input_location(const std::string& canonical_semantic);
+// Varyings are placed by semantic, so that the two stages agree whatever their structs look like:
+// TEXCOORD0-7 at 0-7, COLOR0-1 at 8-9, NORMAL 10, TANGENT 11, BINORMAL 12, POSITION 13.
+std::optional<uint32_t> varying_location(const std::string& canonical_semantic);
+
+// Builds the reflection of an analysed translation unit. Reports what the bindings or the GLSL
+// block layout cannot express (a register used twice, a member std140 cannot place).
+Reflection reflect(const TranslationUnit& unit, const EntryPoints& entry_points,
+                   DiagnosticEngine& diagnostics);
+
+// The reflection as JSON (an object; see docs/hlsl_like.md, "Reflection").
+std::string reflection_json(const Reflection& reflection);
+
+}  // namespace xshade::hlsl

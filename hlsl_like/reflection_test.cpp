@@ -1,0 +1,188 @@
+#include "hlsl_like/reflection.h"
+
+#include <gtest/gtest.h>
+
+#include "hlsl_like/compiler.h"
+
+namespace xshade::hlsl {
+namespace {
+
+std::unique_ptr<Module> compile(const std::string& source, std::vector<std::string> keywords = {}) {
+  CompileOptions options;
+  options.keywords = std::move(keywords);
+  return compile_text("test.hlsl", source, options);
+}
+
+const ConstantBufferMember& member(const ConstantBuffer& buffer, const std::string& name) {
+  for (const ConstantBufferMember& m : buffer.members)
+    if (m.name == name) return m;
+  throw std::runtime_error("no member " + name);
+}
+
+constexpr const char* kMaterial = R"(
+#pragma vertex vert
+#pragma fragment frag
+#pragma multi_compile _ USE_RAMP
+#pragma shader_feature SHADOW_TEX
+
+struct appdata { float4 vertex : POSITION; float3 normal : NORMAL; float2 uv : TEXCOORD0; };
+struct v2f { float4 pos : SV_Position; float2 uv : TEXCOORD0; float3 normal : TEXCOORD1; };
+
+cbuffer PerObject : register(b2) {
+  float4x4 _ObjectToClip;
+  float _Scale;
+  float3 _Offset;    // packs after _Scale: offset 68, which std140 cannot hold
+};
+float4 _Color <string UIName = "Base colour";> = float4(1, 0.5, 0.25, 1);
+float _Metallic <string UIName = "Metallic"; float UIMin = 0.0; float UIMax = 1.0;> = 0.5;
+Texture2D _MainTex;
+SamplerState sampler_MainTex;
+Texture2D _Unused;
+sampler2D _Ramp : register(s3);
+
+v2f vert(appdata v) {
+  v2f o;
+  o.pos = mul(_ObjectToClip, v.vertex * _Scale + float4(_Offset, 0));
+  o.uv = v.uv;
+  o.normal = v.normal;
+  return o;
+}
+
+float4 frag(v2f i) : SV_Target {
+  float4 albedo = _MainTex.Sample(sampler_MainTex, i.uv) * _Color;
+  return albedo * tex2D(_Ramp, i.uv) * _Metallic;
+}
+)";
+
+TEST(Reflection, ConstantBuffersFollowHlslPacking) {
+  auto module = compile(kMaterial);
+  ASSERT_TRUE(module->ok()) << module->diagnostics.render_all();
+  const Reflection& r = module->reflection;
+  const ConstantBuffer* per_object = r.find_constant_buffer("PerObject");
+  ASSERT_NE(per_object, nullptr);
+  EXPECT_EQ(per_object->binding, 2u);
+  EXPECT_EQ(member(*per_object, "_ObjectToClip").offset, 0u);
+  EXPECT_EQ(member(*per_object, "_ObjectToClip").size, 64u);
+  EXPECT_EQ(member(*per_object, "_Scale").offset, 64u);
+  const ConstantBufferMember& offset = member(*per_object, "_Offset");
+  EXPECT_EQ(offset.offset, 68u);  // fits the rest of _Scale's register
+  EXPECT_TRUE(offset.split_into_scalars);
+  EXPECT_EQ(per_object->size, 80u);
+
+  const ConstantBuffer* globals = r.find_constant_buffer(kGlobalsBufferName);
+  ASSERT_NE(globals, nullptr);
+  EXPECT_EQ(globals->binding, 0u);  // the lowest free b register
+  EXPECT_EQ(member(*globals, "_Color").offset, 0u);
+  EXPECT_EQ(member(*globals, "_Metallic").offset, 16u);
+  EXPECT_EQ(globals->size, 32u);
+}
+
+TEST(Reflection, BindingsUseRegistersThenTheLowestFreeSlotForUsedResources) {
+  auto module = compile(kMaterial);
+  ASSERT_TRUE(module->ok()) << module->diagnostics.render_all();
+  const Reflection& r = module->reflection;
+  ASSERT_EQ(r.textures.size(), 3u);
+  // sampler2D _Ramp : register(s3) lands in the texture range, as glslang puts it.
+  EXPECT_EQ(r.textures[2].name, "_Ramp");
+  EXPECT_EQ(r.textures[2].kind, TextureKind::Sampler2D);
+  EXPECT_EQ(r.textures[2].binding, kTextureBindingBase + 3);
+  EXPECT_EQ(r.textures[0].name, "_MainTex");
+  EXPECT_EQ(r.textures[0].binding, kTextureBindingBase + 0);
+  EXPECT_EQ(r.textures[0].sampler, "sampler_MainTex");
+  ASSERT_TRUE(r.textures[0].sampler_binding.has_value());
+  EXPECT_EQ(*r.textures[0].sampler_binding, kSamplerBindingBase + 0);
+  // Unused: numbered after the used ones.
+  EXPECT_EQ(r.textures[1].name, "_Unused");
+  EXPECT_EQ(r.textures[1].binding, kTextureBindingBase + 1);
+  EXPECT_FALSE(r.textures[1].sampler_binding.has_value());
+}
+
+TEST(Reflection, StageInterfacesHaveFixedLocations) {
+  auto module = compile(kMaterial);
+  ASSERT_TRUE(module->ok()) << module->diagnostics.render_all();
+  const Reflection& r = module->reflection;
+  ASSERT_EQ(r.vertex_inputs.size(), 3u);
+  EXPECT_EQ(r.vertex_inputs[0].semantic, "POSITION0");
+  EXPECT_EQ(r.vertex_inputs[0].location, 0u);
+  EXPECT_EQ(r.vertex_inputs[1].semantic, "NORMAL0");
+  EXPECT_EQ(r.vertex_inputs[1].location, 1u);
+  EXPECT_EQ(r.vertex_inputs[2].semantic, "TEXCOORD0");
+  EXPECT_EQ(r.vertex_inputs[2].location, 3u);
+  ASSERT_EQ(r.varyings.size(), 2u);  // SV_Position is not a varying
+  EXPECT_EQ(r.varyings[0].semantic, "TEXCOORD0");
+  EXPECT_EQ(r.varyings[0].location, 0u);
+  EXPECT_EQ(r.varyings[1].location, 1u);
+  ASSERT_EQ(r.fragment_outputs.size(), 1u);
+  EXPECT_EQ(r.fragment_outputs[0].semantic, "SV_Target0");
+}
+
+TEST(Reflection, PropertiesCarryTheirAnnotations) {
+  auto module = compile(kMaterial);
+  ASSERT_TRUE(module->ok()) << module->diagnostics.render_all();
+  const Property* metallic = nullptr;
+  const Property* color = nullptr;
+  for (const Property& p : module->reflection.properties) {
+    if (p.name == "_Metallic") metallic = &p;
+    if (p.name == "_Color") color = &p;
+  }
+  ASSERT_NE(metallic, nullptr);
+  EXPECT_EQ(metallic->display_name, "Metallic");
+  EXPECT_EQ(metallic->min, 0.0);
+  EXPECT_EQ(metallic->max, 1.0);
+  EXPECT_EQ(metallic->default_value, std::vector<double>{0.5});
+  ASSERT_NE(color, nullptr);
+  EXPECT_EQ(color->display_name, "Base colour");
+  EXPECT_EQ(color->default_value, (std::vector<double>{1, 0.5, 0.25, 1}));
+}
+
+TEST(Reflection, KeywordSetsAndTheirDefaults) {
+  auto plain = compile(kMaterial);
+  ASSERT_TRUE(plain->ok()) << plain->diagnostics.render_all();
+  ASSERT_EQ(plain->reflection.keyword_sets.size(), 2u);
+  EXPECT_EQ(plain->reflection.keyword_sets[1].keywords, (std::vector<std::string>{"_", "SHADOW_TEX"}));
+  EXPECT_TRUE(plain->reflection.keyword_sets[1].shader_feature);
+  EXPECT_TRUE(plain->reflection.active_keywords.empty());  // both sets default to "_"
+
+  auto ramp = compile(kMaterial, {"USE_RAMP"});
+  EXPECT_EQ(ramp->reflection.active_keywords, std::vector<std::string>{"USE_RAMP"});
+  auto unknown = compile(kMaterial, {"NOT_DECLARED"});
+  EXPECT_NE(unknown->diagnostics.render_all().find("keyword 'NOT_DECLARED' is not declared"), std::string::npos);
+}
+
+TEST(Reflection, LayoutsGlslCannotHoldAreErrorsWithAFix) {
+  auto module = compile(R"(
+#pragma fragment frag
+cbuffer Weights { float w[2]; float after; };
+float4 frag() : SV_Target { return w[0] + after; }
+)");
+  EXPECT_FALSE(module->ok());
+  EXPECT_NE(module->diagnostics.render_all().find(
+                "test.hlsl:3:37: error: 'after' is at offset 20 of constant buffer 'Weights', inside the padding "
+                "GLSL gives 'w' (up to 32)"),
+            std::string::npos)
+      << module->diagnostics.render_all();
+}
+
+TEST(Reflection, RegisterConflictsAreErrors) {
+  auto module = compile(R"(
+#pragma fragment frag
+Texture2D a : register(t1);
+Texture2D b : register(t1);
+SamplerState s;
+float4 frag(float2 uv : TEXCOORD0) : SV_Target { return a.Sample(s, uv) + b.Sample(s, uv); }
+)");
+  EXPECT_NE(module->diagnostics.render_all().find("register t1 of 'b' is already taken by 'a'"), std::string::npos)
+      << module->diagnostics.render_all();
+}
+
+TEST(Reflection, JsonHasEverySection) {
+  auto module = compile(kMaterial);
+  ASSERT_TRUE(module->ok());
+  const std::string json = reflection_json(module->reflection);
+  for (const char* key : {"\"entry_points\"", "\"vertex_inputs\"", "\"varyings\"", "\"constant_buffers\"",
+                          "\"textures\"", "\"samplers\"", "\"properties\"", "\"keywords\"", "\"sampler_binding\": 32"})
+    EXPECT_NE(json.find(key), std::string::npos) << key;
+}
+
+}  // namespace
+}  // namespace xshade::hlsl
