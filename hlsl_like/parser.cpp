@@ -762,6 +762,19 @@ class Parser {
     return index;
   }
 
+  // The name of a new struct or typedef: a type name already declared is let through, for
+  // declare_type to report as a redefinition.
+  std::optional<size_t> expect_type_name() {
+    const Token& token = cur();
+    if (token.kind != TokenKind::Identifier || is_reserved(pos_) || find_builtin_type(pos_)) {
+      error_here("expected a name");
+      return std::nullopt;
+    }
+    const size_t index = pos_;
+    advance();
+    return index;
+  }
+
   // A struct or typedef name joins the type table (the first definition wins).
   void declare_type(size_t name_index, const Type& type) {
     const std::string_view name = tok(name_index).text;
@@ -1142,6 +1155,9 @@ class Parser {
       if (!var->initializer || var->initializer->kind != ExprKind::InitList) {
         error_at(name_index, "an unsized array needs an initializer list");
         var->type = Type::array(var->type.element(), 1);
+      } else if (static_cast<const InitListExpr&>(*var->initializer).elements.empty()) {
+        error_at(name_index, "an unsized array needs a non-empty initializer list");
+        var->type = Type::array(var->type.element(), 1);
       } else {
         const uint32_t length =
             unsized_length(static_cast<const InitListExpr&>(*var->initializer), var->type.element());
@@ -1297,7 +1313,7 @@ class Parser {
 
   bool parse_struct() {
     advance();
-    const std::optional<size_t> name = expect_name();
+    const std::optional<size_t> name = expect_type_name();
     if (!name) return false;
     auto decl = make<StructDecl>(tok(*name).loc);
     decl->name = std::string(tok(*name).text);
@@ -1364,7 +1380,7 @@ class Parser {
     const size_t type_index = pos_;
     const std::optional<Type> type = parse_type(false);
     if (!type) return false;
-    const std::optional<size_t> name = expect_name();
+    const std::optional<size_t> name = expect_type_name();
     if (!name) return false;
     const std::optional<Type> full = parse_array_dims(*type, false, nullptr);
     if (!full) return false;

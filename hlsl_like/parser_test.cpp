@@ -635,6 +635,51 @@ TEST(Parser, ErrorMessagesArePinned) {
   }
 }
 
+TEST(Parser, RegistersAttributesAndQualifierDiagnostics) {
+  auto p = parse_text(
+      "Texture2D a : register(T3);\n"
+      "SamplerState b : register(ps_5_0, s1);\n"
+      "RWTexture2D<float4> c : register(u2, space4);\n"
+      "void f(float x) { [unroll(4)] for (int i = 0; i < 4; i++) {} [loop] while (x > 0) x -= 1; [flatten] if (x) {} }\n");
+  EXPECT_EQ(p->errors(), std::vector<std::string>{"3:1: 'RWTexture2D' is not supported"});
+  EXPECT_EQ(p->var("a").binding.register_class, 't');
+  EXPECT_EQ(p->var("a").binding.index, 3u);
+  EXPECT_EQ(p->var("b").binding.register_class, 's');
+  EXPECT_EQ(p->var("b").binding.index, 1u);
+  EXPECT_EQ(p->var("c").binding.register_class, 'u');
+  EXPECT_EQ(p->var("c").binding.space, 4u);
+  EXPECT_TRUE(p->var("c").type.is_error());
+  const auto& body = p->function("f").body->statements;
+  ASSERT_EQ(body.size(), 3u);
+  ASSERT_EQ(body[0]->attributes.size(), 1u);
+  EXPECT_EQ(sexpr_list(body[0]->attributes[0].args), " 4");
+  EXPECT_EQ(body[1]->attributes[0].name, "loop");
+  EXPECT_EQ(body[2]->attributes[0].name, "flatten");
+
+  auto bad = parse_text(
+      "Texture2D t : register(t0, zone1);\n"
+      "out float g;\n"
+      "void f(static float x) {}\n"
+      "struct S { float a; };\n"
+      "struct S { float b; };\n"
+      "float h[] = {};\n"
+      "struct P { float p : register(t0); };\n"
+      "float k <float UIMin = ;> = 1.0;\n"
+      "float after;\n");
+  EXPECT_EQ(bad->errors(), (std::vector<std::string>{
+                               "1:28: invalid register space 'zone1'",
+                               "2:1: 'out' is only allowed on parameters",
+                               "3:8: 'static' is not allowed here",
+                               "5:8: redefinition of type 'S'",
+                               "6:7: an unsized array needs a non-empty initializer list",
+                               "7:22: register bindings are only allowed on global variables and cbuffers",
+                               "8:24: expected a literal in annotation",
+                           }));
+  EXPECT_NO_THROW(bad->var("k"));
+  EXPECT_EQ(sexpr(*bad->var("k").initializer), "1.0");
+  EXPECT_NO_THROW(bad->var("after"));
+}
+
 TEST(Parser, UnmatchedParenthesisHasANoteAtTheOpening) {
   auto p = parse_text("void f() {\n  x = foo(1,\n 2;\n}\n");
   const auto& d = p->diagnostics.diagnostics();
