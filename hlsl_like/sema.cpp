@@ -169,12 +169,15 @@ const Symbol* Sema::lookup(const std::string& name) const {
 }
 
 std::string Sema::suggestion(const std::string& name, bool functions) const {
-  if (name.size() > 64) return "";
+  // Suggestions cost a comparison with every name; not worth it once errors are being dropped.
+  if (name.size() > 64 || diag_.error_count() >= DiagnosticEngine::kErrorLimit) return "";
   const size_t limit = std::max<size_t>(1, name.size() / 3);
   std::string best;
   size_t best_distance = limit + 1;
   auto consider = [&](const std::string& candidate) {
     if (candidate.size() > 64 || candidate == name) return;
+    const size_t difference = candidate.size() > name.size() ? candidate.size() - name.size() : name.size() - candidate.size();
+    if (difference >= best_distance) return;
     const size_t distance = edit_distance(name, candidate);
     if (distance < best_distance && distance < candidate.size()) {
       best = candidate;
@@ -206,7 +209,7 @@ bool Sema::check_type_usable(const Type& type, const std::string& what, Loc loc,
     diag_.error(loc, what + " cannot have type 'void'");
     return false;
   }
-  if (!allow_resource && type_contains_resource(type)) {
+  if (!allow_resource && facts_.contains_resource(type)) {
     diag_.error(loc, what + " cannot have type " + quoted(type) +
                          "; resources are only allowed at global scope or as parameters");
     return false;
@@ -231,6 +234,10 @@ void Sema::declare_struct(StructDecl& decl) {
     if (!check_type_usable(field.type, "field '" + field.name + "'", field.loc, false)) continue;
     if (is_unsized_array(field.type)) diag_.error(field.loc, "field '" + field.name + "' needs an array size");
   }
+  // Learn the struct's facts now, while its fields' structs are already known: later queries
+  // then never walk a chain of nested structs.
+  facts_.component_count(Type::structure(&decl));
+  facts_.contains_resource(Type::structure(&decl));
   declare(decl.name, {Symbol::Kind::Struct, &decl}, decl.loc);
 }
 
@@ -567,7 +574,12 @@ void Sema::check_entry_point(const FunctionDecl& function, bool vertex) {
   auto check = [&](const Type& root_type, const std::string& root_semantic, Loc root_semantic_loc, std::string root_name,
                    Loc root_loc, bool input) {
     std::vector<Item> items{{&root_type, &root_semantic, root_semantic_loc, std::move(root_name), root_loc, 0}};
+    size_t budget = 4096;  // far beyond a real signature; a hostile one stops here
     while (!items.empty()) {
+      if (--budget == 0) {
+        report(function.loc, "entry point '" + function.name + "' has too many inputs or outputs");
+        return;
+      }
       Item item = std::move(items.back());
       items.pop_back();
       const Type& type = *item.type;

@@ -75,7 +75,7 @@ Conversion classify_implicit(const Type& from, const Type& to) {
   }
 }
 
-bool explicit_cast_allowed(const Type& from, const Type& to, bool literal_scalar) {
+bool explicit_cast_allowed(const Type& from, const Type& to, bool literal_scalar, TypeFacts& facts) {
   if (from.is_error() || to.is_error()) return true;
   if (to.is_void()) return true;
   if (from == to) return true;
@@ -90,7 +90,7 @@ bool explicit_cast_allowed(const Type& from, const Type& to, bool literal_scalar
   }
   if (to.kind() == TypeKind::Struct && from.is_scalar() && literal_scalar) {
     // (S)0: every field of S must be numeric (possibly in nested structs and arrays)
-    return flat_component_count(to).has_value();
+    return facts.component_count(to).has_value();
   }
   return false;
 }
@@ -147,29 +147,33 @@ bool is_weak_float_literal(const Expr* expr) {
   return false;
 }
 
-std::optional<uint64_t> flat_component_count(const Type& type, int depth) {
+std::optional<uint64_t> TypeFacts::component_count(const Type& type, int depth) {
   if (depth > kMaxNesting) return std::nullopt;
+  constexpr uint64_t kLimit = uint64_t(1) << 32;  // beyond any real shader; keeps sums exact
   switch (type.kind()) {
     case TypeKind::Scalar:
     case TypeKind::Vector:
     case TypeKind::Matrix:
       return type.component_count();
     case TypeKind::Array: {
-      std::optional<uint64_t> element = flat_component_count(type.element(), depth + 1);
-      if (!element) return std::nullopt;
-      const uint64_t total = *element * type.array_length();
-      if (total > (uint64_t(1) << 32)) return std::nullopt;
-      return total;
+      const std::optional<uint64_t> element = component_count(type.element(), depth + 1);
+      if (!element || *element * type.array_length() > kLimit) return std::nullopt;
+      return *element * type.array_length();
     }
     case TypeKind::Struct: {
-      if (!type.struct_decl()) return std::nullopt;
-      uint64_t total = 0;
-      for (const FieldDecl& field : type.struct_decl()->fields) {
-        std::optional<uint64_t> count = flat_component_count(field.type, depth + 1);
-        if (!count) return std::nullopt;
-        total += *count;
-        if (total > (uint64_t(1) << 32)) return std::nullopt;
+      const StructDecl* decl = type.struct_decl();
+      if (!decl) return std::nullopt;
+      if (auto it = counts_.find(decl); it != counts_.end()) return it->second;
+      std::optional<uint64_t> total = 0;
+      for (const FieldDecl& field : decl->fields) {
+        const std::optional<uint64_t> count = component_count(field.type, depth + 1);
+        if (!count || *total + *count > kLimit) {
+          total = std::nullopt;
+          break;
+        }
+        *total += *count;
       }
+      counts_[decl] = total;
       return total;
     }
     default:
@@ -177,16 +181,22 @@ std::optional<uint64_t> flat_component_count(const Type& type, int depth) {
   }
 }
 
-bool type_contains_resource(const Type& type, int depth) {
+bool TypeFacts::contains_resource(const Type& type, int depth) {
   if (depth > kMaxNesting) return false;
   if (type.is_resource()) return true;
-  if (type.kind() == TypeKind::Array) return type_contains_resource(type.element(), depth + 1);
-  if (type.kind() == TypeKind::Struct && type.struct_decl()) {
-    for (const FieldDecl& field : type.struct_decl()->fields) {
-      if (type_contains_resource(field.type, depth + 1)) return true;
+  if (type.kind() == TypeKind::Array) return contains_resource(type.element(), depth + 1);
+  if (type.kind() != TypeKind::Struct || !type.struct_decl()) return false;
+  const StructDecl* decl = type.struct_decl();
+  if (auto it = resources_.find(decl); it != resources_.end()) return it->second;
+  bool found = false;
+  for (const FieldDecl& field : decl->fields) {
+    if (contains_resource(field.type, depth + 1)) {
+      found = true;
+      break;
     }
   }
-  return false;
+  resources_[decl] = found;
+  return found;
 }
 
 ParsedSemantic parse_semantic(const std::string& text) {

@@ -557,7 +557,7 @@ Type Sema::analyze_cast(CastExpr& expr) {
   const Type& target = expr.target;
   if (target.is_error() || !expr.operand) return Type::error();
   if (operand.is_error()) return target;
-  if (!explicit_cast_allowed(operand, target, is_literal(expr.operand.get()))) {
+  if (!explicit_cast_allowed(operand, target, is_literal(expr.operand.get()), facts_)) {
     diag_.error(expr.loc, "cannot convert from " + quoted(operand) + " to " + quoted(target));
     return Type::error();
   }
@@ -639,7 +639,12 @@ std::optional<int64_t> Sema::fold_int(const Expr* expr, int depth) const {
       if (!decl || decl->kind != DeclKind::Var) return std::nullopt;
       const auto* var = static_cast<const VarDecl*>(decl);
       if (!var->is_const || is_uniform(*var) || !var->type.is_scalar() || !var->type.is_integer()) return std::nullopt;
-      return fold_int(var->initializer.get(), depth + 1);
+      // Memoized: constants defined from constants would otherwise be folded over and over.
+      if (auto it = folded_.find(var); it != folded_.end()) return it->second;
+      folded_[var] = std::nullopt;
+      const std::optional<int64_t> value = fold_int(var->initializer.get(), depth + 1);
+      folded_[var] = value;
+      return value;
     }
     case ExprKind::Conversion: {
       const auto* conversion = static_cast<const ConversionExpr*>(expr);
@@ -728,6 +733,7 @@ class InitLayout {
   bool check() {
     dry_ = true;
     next_ = 0;
+    visits_ = 0;
     ExprPtr unused;
     build(declared_, 0, unused);
     return !failed_;
@@ -736,6 +742,7 @@ class InitLayout {
   ExprPtr layout() {
     dry_ = false;
     next_ = 0;
+    visits_ = 0;
     ExprPtr result;
     build(declared_, 0, result);
     return result;
@@ -765,7 +772,14 @@ class InitLayout {
   }
 
   void build(const Type& type, int depth, ExprPtr& out) {
-    if (failed_ || next_ >= leaves_.size() || depth > kMaxNesting) {
+    if (failed_) return;
+    if (++visits_ > kMaxVisits) {
+      // Members without components (empty structs) cost visits but no leaves.
+      sema_.diag_.error(loc_, "initializer list of '" + declared_.name() + "' is too large");
+      failed_ = true;
+      return;
+    }
+    if (next_ >= leaves_.size() || depth > kMaxNesting) {
       failed_ = true;
       return;
     }
@@ -831,7 +845,9 @@ class InitLayout {
   std::vector<ExprPtr>& leaves_;
   const Type& declared_;
   Loc loc_;
+  static constexpr size_t kMaxVisits = size_t(1) << 20;
   size_t next_ = 0;
+  size_t visits_ = 0;
   bool dry_ = true;
   bool failed_ = false;
 };
@@ -895,7 +911,7 @@ void Sema::analyze_initializer(ExprPtr& init, Type& declared, const std::string&
       failed = true;
       continue;
     }
-    const std::optional<uint64_t> count = flat_component_count(leaf->type);
+    const std::optional<uint64_t> count = facts_.component_count(leaf->type);
     if (!count) {
       diag_.error(leaf->loc, "cannot use a value of type '" + leaf->type.name() + "' in an initializer list");
       failed = true;
@@ -908,7 +924,7 @@ void Sema::analyze_initializer(ExprPtr& init, Type& declared, const std::string&
     return;
   }
   if (unsized) {
-    const std::optional<uint64_t> element = flat_component_count(declared.element());
+    const std::optional<uint64_t> element = facts_.component_count(declared.element());
     if (!element || *element == 0) {
       diag_.error(list.loc, "'" + type_name_for_count(declared) + "' cannot be initialized with a list");
       keep_leaves();
@@ -922,7 +938,7 @@ void Sema::analyze_initializer(ExprPtr& init, Type& declared, const std::string&
     }
     declared = Type::array(declared.element(), uint32_t(total / *element));
   }
-  const std::optional<uint64_t> needed = flat_component_count(declared);
+  const std::optional<uint64_t> needed = facts_.component_count(declared);
   if (!needed) {
     diag_.error(list.loc, "'" + declared.name() + "' cannot be initialized with a list");
     keep_leaves();

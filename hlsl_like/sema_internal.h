@@ -28,6 +28,8 @@ inline constexpr int kRankTypeChange = 2;
 inline constexpr int kRankSplat = 3;
 inline constexpr int kRankTruncation = 6;
 
+class TypeFacts;
+
 struct Conversion {
   bool valid = false;
   bool truncation = false;  // implicit: reported as a warning
@@ -37,7 +39,7 @@ struct Conversion {
 // HLSL's implicit conversion from `from` to `to`. Error types convert to anything silently.
 Conversion classify_implicit(const Type& from, const Type& to);
 // An explicit cast `(to)x`; `literal_scalar` allows `(S)0` for structs of numeric fields.
-bool explicit_cast_allowed(const Type& from, const Type& to, bool literal_scalar);
+bool explicit_cast_allowed(const Type& from, const Type& to, bool literal_scalar, TypeFacts& facts);
 // "implicit truncation of vector type from 'float4' to 'float3'"
 std::string truncation_message(const Type& from, const Type& to);
 
@@ -56,11 +58,19 @@ bool is_weak_float_literal(const Expr* expr);
 // A numeric literal, possibly negated.
 bool is_literal(const Expr* expr);
 
-// Whether values of the type can be counted in components (numeric, structs and arrays of them).
-// Returns the count, or nothing for resources, void and errors.
-std::optional<uint64_t> flat_component_count(const Type& type, int depth = 0);
+// Facts about types that walk their structs, memoized per struct: a struct may hold another
+// many times over (and that one another), and walking them afresh would take exponential time.
+class TypeFacts {
+ public:
+  // The number of numeric components of a value (numeric types, structs and arrays of them), or
+  // nothing for resources, void and errors.
+  std::optional<uint64_t> component_count(const Type& type, int depth = 0);
+  bool contains_resource(const Type& type, int depth = 0);
 
-bool type_contains_resource(const Type& type, int depth = 0);
+ private:
+  std::unordered_map<const StructDecl*, std::optional<uint64_t>> counts_;
+  std::unordered_map<const StructDecl*, bool> resources_;
+};
 
 // Semantics of entry point signatures.
 enum class SemanticKind : uint8_t {
@@ -177,6 +187,8 @@ class Sema {
   void note_fragment_only(std::string what, Loc loc);
 
   DiagnosticEngine& diag_;
+  TypeFacts facts_;
+  mutable std::unordered_map<const VarDecl*, std::optional<int64_t>> folded_;  // fold_int of constants
   std::vector<std::unordered_map<std::string, Symbol>> scopes_;
   // Overload sets by name: canonical declarations, in order of declaration.
   std::unordered_map<std::string, std::vector<const FunctionDecl*>> functions_;

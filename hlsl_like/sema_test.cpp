@@ -1158,6 +1158,24 @@ TEST(SemaRobustness, DeepExpressionsAreBounded) {
   EXPECT_EQ(diagnostics.diagnostics()[0].message, "expression or statement is nested too deeply");
 }
 
+TEST(SemaRobustness, NestedStructsAndConstantsStayLinear) {
+  // Each struct holds two of the previous one and each constant uses the previous one twice:
+  // walking them naively would take 2^30 steps.
+  std::string source = "struct S0 { float a; };\nstatic const int c0 = 1;\n";
+  for (int i = 1; i <= 30; ++i) {
+    const std::string n = std::to_string(i), p = std::to_string(i - 1);
+    source += "struct S" + n + " { S" + p + " a; S" + p + " b; };\n";
+    source += "static const int c" + n + " = c" + p + " + c" + p + " - c" + p + ";\n";
+  }
+  source += "float4 arr[2];\n#pragma vertex vert\n"
+            "float4 vert(S30 s) : SV_Position { S30 x = (S30)0; S30 y = {1, 2}; return arr[c30] + arr[c30 + 1]; }\n";
+  auto a = analyze_source(source);
+  EXPECT_EQ(a->messages(), (Strings{"65:60: error: initializer has 2 components, 'S30' needs 1073741824",
+                                    "65:94: error: index 2 is out of range for 'float4[2]'",
+                                    "1:19: error: input 'a' of entry point 'vert' needs a semantic",
+                                    "65:8: error: entry point 'vert' has too many inputs or outputs"}));
+}
+
 TEST(SemaRobustness, HandBuiltTreesWithNullChildren) {
   SourceManager sources;
   DiagnosticEngine diagnostics(sources);
