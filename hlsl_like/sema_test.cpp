@@ -954,6 +954,17 @@ TEST(SemaEntryPoints, FragmentOnlyOperationsAreErrorsInTheVertexStage) {
                                           "3:32: error: 'ddx' is only available in fragment shaders"}));
 }
 
+TEST(SemaEntryPoints, ImplicitLodSamplingIsFragmentOnly) {
+  const std::string source =
+      "#pragma vertex vert\n"
+      "Texture2D tex; SamplerState ss; sampler2D s2;\n"
+      "float4 vert(float4 p : POSITION) : SV_Position {\n"
+      "  return p + tex.SampleLevel(ss, p.xy, 0) + tex2Dlod(s2, p) + tex.Sample(ss, p.xy) + tex2D(s2, p.xy);\n"
+      "}\n";
+  EXPECT_EQ(messages_of(source), (Strings{"4:67: error: 'Sample' is only available in fragment shaders",
+                                          "4:86: error: 'tex2D' is only available in fragment shaders"}));
+}
+
 TEST(SemaEntryPoints, EntryPointsAreReturned) {
   auto a = analyze_source("#pragma vertex vert\n#pragma fragment frag\n"
                           "float4 vert(float4 p : POSITION, uniform float4x4 mvp) : SV_Position { return mul(mvp, p); }\n"
