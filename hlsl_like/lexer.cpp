@@ -41,7 +41,7 @@ size_t Lexer::splice_at(size_t p) const {
   return 0;
 }
 
-size_t Lexer::past_splices(size_t p) const {
+size_t Lexer::past_splices_slow(size_t p) const {
   while (size_t length = splice_at(p)) p += length;
   return p;
 }
@@ -373,11 +373,12 @@ Token Lexer::next() {
         break;
     }
   }
-  token.text = token_text(start, end);
-  if (first_splice_ != npos && first_splice_ < end) {
-    move_to(end);
-  } else {
+  if (first_splice_ == npos) {
+    token.text = text_.substr(start, end - start);
     pos_ = end;
+  } else {
+    token.text = token_text(start, end);
+    move_to(end);
   }
   return token;
 }

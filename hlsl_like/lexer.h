@@ -47,7 +47,10 @@ class Lexer {
   void skip_line_comment(size_t second_slash);
   void skip_line();  // the rest of the line and its newline, lexing nothing
   size_t splice_at(size_t p) const;
-  size_t past_splices(size_t p) const;
+  size_t past_splices(size_t p) const {  // the common case, no backslash, inline
+    return p < text_.size() && text_[p] == '\\' ? past_splices_slow(p) : p;
+  }
+  size_t past_splices_slow(size_t p) const;
   int char_at(size_t p) const { return p < text_.size() ? static_cast<unsigned char>(text_[p]) : -1; }
   void move_to(size_t p);  // pos_ = p, counting the lines in between
   void new_line(size_t next_line_start) {

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <chrono>
+#include <deque>
 #include <random>
 #include <string>
 #include <vector>
@@ -30,7 +31,7 @@ const char* kind_name(TokenKind kind) {
 struct Lexed {
   explicit Lexed(std::string text) {
     file = sources.add("t.hlsl", std::move(text));
-    Lexer lexer(sources.text(file), file, diagnostics);
+    Lexer lexer(sources.text(file), file, diagnostics, &store);  // spliced tokens outlive the lexer
     for (;;) {
       tokens.push_back(lexer.next());
       if (tokens.back().kind == TokenKind::EndOfFile) break;
@@ -60,6 +61,7 @@ struct Lexed {
 
   SourceManager sources;
   DiagnosticEngine diagnostics{sources};
+  std::deque<std::string> store;
   uint32_t file = 0;
   std::vector<Token> tokens;
 };

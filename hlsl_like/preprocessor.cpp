@@ -27,7 +27,11 @@ namespace {
 // doubling macros must not hang the compiler or fill memory.
 constexpr size_t kMaxExpandedTokens = size_t(1) << 21;
 // Parentheses and ?: nesting in a #if expression.
-constexpr size_t kMaxExpressionDepth = 256;
+constexpr size_t kMaxExpressionDepth = 128;
+// Macro calls nested in the arguments of macro calls: each level is one recursion of argument
+// pre-expansion (about 1 KiB of stack, several under AddressSanitizer), so this stays well below
+// kMaxExpansionDepth.
+constexpr size_t kMaxArgumentNesting = 64;
 
 struct PPTok {
   Token tok;
@@ -187,6 +191,10 @@ struct Preprocessor::Impl {
 
   // Files and directives.
   bool next_file_token(PPTok& out, bool stop_at_file_end);
+  bool special_file_token(IncludeFrame& frame, const Token& token, bool stop_at_file_end, bool& ended);
+  static void note_token(IncludeFrame& frame) {
+    if (frame.guard == Guard::Start || frame.guard == Guard::Closed) frame.guard = Guard::None;
+  }
   void enter_file(uint32_t file);
   void finish_file(IncludeFrame& frame);
   void directive(IncludeFrame& frame);
@@ -242,6 +250,7 @@ struct Preprocessor::Impl {
   size_t budget_ = kMaxExpandedTokens;
   bool budget_spent_ = false;
   bool depth_reported_ = false;
+  size_t argument_nesting_ = 0;
   std::vector<std::vector<PPTok>> spare_;
   std::vector<Token> line_;
   std::vector<PPTok> expr_in_;
@@ -557,10 +566,32 @@ std::vector<Token> Preprocessor::Impl::run(uint32_t main_file) {
   }
   enter_file(main_file);
   std::vector<Token> out;
-  out.reserve(sources_.text(main_file).size() / 5 + 16);
+  out.reserve(sources_.text(main_file).size() / 3 + 16);
   Context ctx;
   PPTok token;
-  while (expand_next(ctx, token, false)) out.push_back(token.tok);
+  for (;;) {
+    // The common case first: a token straight from a file that names no macro.
+    if (ctx.frames.empty() && !ctx.has_pushback && !ctx.carry_space && !ctx.carry_line_start) {
+      IncludeFrame& frame = *includes_.back();
+      const Token next = frame.lexer.next();
+      if (next.kind == TokenKind::Hash || next.kind == TokenKind::EndOfFile) {
+        bool ended;
+        if (special_file_token(frame, next, false, ended)) {
+          if (ended) break;
+          continue;
+        }
+      }
+      note_token(frame);
+      if (next.kind != TokenKind::Identifier || !maybe_macro(next.text)) {
+        out.push_back(next);
+        continue;
+      }
+      ctx.pushback = PPTok{next, false, false};
+      ctx.has_pushback = true;
+    }
+    if (!expand_next(ctx, token, false)) break;
+    out.push_back(token.tok);
+  }
   unwind(ctx);
   end.loc = end_loc_;
   out.push_back(end);
@@ -812,11 +843,15 @@ void Preprocessor::Impl::expand_list(const std::vector<PPTok>& list, size_t begi
     const PPTok& t = list[i];
     any = t.tok.kind == TokenKind::Identifier && !t.no_expand && maybe_macro(t.tok.text);
   }
-  if (!any || budget_spent_ || expansion_depth_ >= Preprocessor::kMaxExpansionDepth) {
+  const bool too_deep = expansion_depth_ >= Preprocessor::kMaxExpansionDepth;
+  if (!any || budget_spent_ || too_deep || argument_nesting_ >= kMaxArgumentNesting) {
     if (any && !budget_spent_ && !depth_reported_) {
       depth_reported_ = true;
-      diagnostics_.error(list[begin].tok.loc, "macro expansion nested too deeply (more than " +
-                                                  std::to_string(Preprocessor::kMaxExpansionDepth) + " levels)");
+      diagnostics_.error(list[begin].tok.loc,
+                         too_deep ? "macro expansion nested too deeply (more than " +
+                                        std::to_string(Preprocessor::kMaxExpansionDepth) + " levels)"
+                                  : "macro calls nested too deeply in arguments (more than " +
+                                        std::to_string(kMaxArgumentNesting) + " levels)");
     }
     out.insert(out.end(), list.begin() + std::ptrdiff_t(begin), list.begin() + std::ptrdiff_t(end));
     return;
@@ -827,9 +862,11 @@ void Preprocessor::Impl::expand_list(const std::vector<PPTok>& list, size_t begi
   sub.list_end = end;
   sub.in_if = in_if;
   ++expansion_depth_;
+  ++argument_nesting_;
   PPTok token;
   while (expand_next(sub, token, true)) out.push_back(token);
   unwind(sub);
+  --argument_nesting_;
   --expansion_depth_;
 }
 
@@ -1010,25 +1047,40 @@ void Preprocessor::Impl::finish_file(IncludeFrame& frame) {
   if (frame.guard == Guard::Closed && !frame.guard_macro.empty()) guard_of_[frame.file] = frame.guard_macro;
 }
 
+// A '#' or the end of a file: handles a directive or the end and returns true, or returns false
+// for a '#' that is an ordinary token. `ended` says that reading must stop here.
+bool Preprocessor::Impl::special_file_token(IncludeFrame& frame, const Token& token, bool stop_at_file_end,
+                                            bool& ended) {
+  ended = false;
+  if (token.kind == TokenKind::Hash) {
+    if (!token.at_line_start) return false;
+    directive(frame);
+    return true;
+  }
+  if (!frame.finished) finish_file(frame);
+  if (includes_.size() == 1) {
+    end_loc_ = token.loc;
+    ended = true;
+  } else if (stop_at_file_end) {
+    ended = true;
+  } else {
+    includes_.pop_back();
+  }
+  return true;
+}
+
 bool Preprocessor::Impl::next_file_token(PPTok& out, bool stop_at_file_end) {
   for (;;) {
     IncludeFrame& frame = *includes_.back();
     Token token = frame.lexer.next();
-    if (token.kind == TokenKind::Hash && token.at_line_start) {
-      directive(frame);
-      continue;
-    }
-    if (token.kind == TokenKind::EndOfFile) {
-      if (!frame.finished) finish_file(frame);
-      if (includes_.size() == 1) {
-        end_loc_ = token.loc;
-        return false;
+    if (token.kind == TokenKind::Hash || token.kind == TokenKind::EndOfFile) {
+      bool ended;
+      if (special_file_token(frame, token, stop_at_file_end, ended)) {
+        if (ended) return false;
+        continue;
       }
-      if (stop_at_file_end) return false;
-      includes_.pop_back();
-      continue;
     }
-    if (frame.guard == Guard::Start || frame.guard == Guard::Closed) frame.guard = Guard::None;
+    note_token(frame);
     out.tok = token;
     out.no_expand = false;
     out.placemarker = false;
