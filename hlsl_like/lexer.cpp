@@ -31,7 +31,10 @@ bool is_digit(int c) { return has(c, kDigit); }
 
 Lexer::Lexer(std::string_view text, uint32_t file, DiagnosticEngine& diagnostics,
              std::deque<std::string>* text_store)
-    : text_(text), file_(file), diagnostics_(diagnostics), store_(text_store) {}
+    : text_(text), file_(file), diagnostics_(diagnostics), store_(text_store) {
+  // A UTF-8 byte order mark (editors on Windows write one) is no token; columns count from after it.
+  if (text_.substr(0, 3) == "\xEF\xBB\xBF") pos_ = line_start_ = 3;
+}
 
 size_t Lexer::splice_at(size_t p) const {
   const size_t n = text_.size();

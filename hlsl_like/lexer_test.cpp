@@ -251,6 +251,14 @@ TEST(Lexer, UnusedBytesComeBackAsUnknownOneByteEach) {
   EXPECT_EQ(lone_backslash.kinds(), (Strings{"id a", "unknown \\", "id b"}));
 }
 
+TEST(Lexer, ByteOrderMarkAtTheStartIsSkipped) {
+  Lexed l("\xEF\xBB\xBF" "float x;\n" "\xEF\xBB\xBF");
+  EXPECT_EQ(l.kinds()[0], "id float");
+  EXPECT_EQ(l.where(0), "1:1");
+  EXPECT_TRUE(l.tokens[0].at_line_start);
+  EXPECT_EQ(l.tokens[3].kind, TokenKind::Unknown);  // only at the very start
+}
+
 TEST(Lexer, RestOfLineForErrorDirectives) {
   SourceManager sources;
   DiagnosticEngine diagnostics(sources);

@@ -1342,7 +1342,11 @@ void Preprocessor::Impl::include_file(IncludeFrame& frame, const Token& name, st
                                      std::to_string(Preprocessor::kMaxIncludeDepth) + " levels)");
     return;
   }
-  const fs::path relative{std::string(spelled)};
+  // Shaders written on Windows may spell "sub\\file.hlsl".
+  std::string portable(spelled);
+  for (char& c : portable)
+    if (c == '\\') c = '/';
+  const fs::path relative{portable};
   std::vector<fs::path> searched;
   std::optional<fs::path> found;
   auto probe = [&](const fs::path& candidate) {

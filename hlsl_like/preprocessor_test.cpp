@@ -452,6 +452,13 @@ TEST_F(PreprocessorTest, IncludeQuotedIsRelativeToTheIncludingFile) {
   EXPECT_EQ(sources_.resolve(tokens_[0].loc).file, (temp_dir() / "shaders/sub/common.hlsl").string());
 }
 
+TEST_F(PreprocessorTest, IncludeWithWindowsSeparators) {
+  write("sub/lib.hlsl", "lib");
+  const fs::path main = write("main.hlsl", "#include \"sub\\lib.hlsl\"");
+  EXPECT_EQ(run_file(load(main)), "lib");
+  EXPECT_EQ(messages(), Strings{});
+}
+
 TEST_F(PreprocessorTest, IncludeSearchOrder) {
   write("local/a.hlsl", "local_a");
   write("dir1/a.hlsl", "dir1_a");
