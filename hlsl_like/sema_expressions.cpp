@@ -69,15 +69,18 @@ bool is_uniform(const VarDecl& var) {
   return var.is_global && var.storage != StorageClass::Static && var.storage != StorageClass::GroupShared;
 }
 
-bool fits_int32(int64_t value) {
-  return value >= std::numeric_limits<int32_t>::min() && value <= std::numeric_limits<int32_t>::max();
+// Folded values stay within what int and uint can hold, so that no operation on two of them
+// overflows 64 bits unnoticed.
+std::optional<int64_t> in_fold_range(int64_t value) {
+  if (value < int64_t(std::numeric_limits<int32_t>::min()) || value > int64_t(std::numeric_limits<uint32_t>::max())) {
+    return std::nullopt;
+  }
+  return value;
 }
 
 std::string quoted(const Type& type) { return "'" + type.name() + "'"; }
 
 }  // namespace
-
-std::string operator_spelling(BinaryOp op) { return binary_spelling(op); }
 
 bool Sema::nesting_exceeded(Loc loc) {
   if (depth_ <= kMaxNesting) return false;
@@ -175,13 +178,9 @@ Type Sema::analyze(Expr* expr) {
       diag_.error(list.loc, "an initializer list is only allowed in a declaration");
       break;
     }
-    case ExprKind::Conversion: {
-      // Made by sema, already analyzed; analyze the operand only if it was not.
-      auto& conversion = static_cast<ConversionExpr&>(*expr);
-      if (conversion.operand && conversion.operand->type.is_error()) analyze(conversion.operand.get());
-      type = conversion.type;
+    case ExprKind::Conversion:  // made by sema around an analyzed operand
+      type = expr->type;
       break;
-    }
   }
   expr->type = type;
   return type;
@@ -662,8 +661,8 @@ std::optional<int64_t> Sema::fold_int(const Expr* expr, int depth) const {
       if (!value) return std::nullopt;
       switch (unary->op) {
         case UnaryOp::Plus: return value;
-        case UnaryOp::Minus: return -*value;
-        case UnaryOp::BitNot: return ~*value;
+        case UnaryOp::Minus: return in_fold_range(-*value);
+        case UnaryOp::BitNot: return in_fold_range(~*value);
         case UnaryOp::Not: return *value == 0 ? 1 : 0;
         default: return std::nullopt;
       }
@@ -674,10 +673,11 @@ std::optional<int64_t> Sema::fold_int(const Expr* expr, int depth) const {
       const std::optional<int64_t> b = fold_int(binary->rhs.get(), depth + 1);
       if (!a || !b) return std::nullopt;
       int64_t result = 0;
+      bool overflow = false;
       switch (binary->op) {
-        case BinaryOp::Add: result = *a + *b; break;
-        case BinaryOp::Sub: result = *a - *b; break;
-        case BinaryOp::Mul: result = *a * *b; break;
+        case BinaryOp::Add: overflow = __builtin_add_overflow(*a, *b, &result); break;
+        case BinaryOp::Sub: overflow = __builtin_sub_overflow(*a, *b, &result); break;
+        case BinaryOp::Mul: overflow = __builtin_mul_overflow(*a, *b, &result); break;
         case BinaryOp::Div:
           if (*b == 0) return std::nullopt;
           result = *a / *b;
@@ -688,7 +688,7 @@ std::optional<int64_t> Sema::fold_int(const Expr* expr, int depth) const {
           break;
         case BinaryOp::Shl:
           if (*b < 0 || *b > 31 || *a < 0) return std::nullopt;
-          result = *a << *b;
+          result = int64_t(uint64_t(*a) << *b);  // below 2^63: a < 2^32
           break;
         case BinaryOp::Shr:
           if (*b < 0 || *b > 31) return std::nullopt;
@@ -707,8 +707,8 @@ std::optional<int64_t> Sema::fold_int(const Expr* expr, int depth) const {
         case BinaryOp::LogicalOr: result = *a || *b; break;
         case BinaryOp::Comma: result = *b; break;
       }
-      if (!fits_int32(result) && result > 0xFFFFFFFFll) return std::nullopt;
-      return result;
+      if (overflow) return std::nullopt;
+      return in_fold_range(result);
     }
     default:
       return std::nullopt;

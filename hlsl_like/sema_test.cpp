@@ -1187,6 +1187,14 @@ TEST(SemaRobustness, NestedStructsAndConstantsStayLinear) {
                                     "65:8: error: entry point 'vert' has too many inputs or outputs"}));
 }
 
+TEST(SemaRobustness, ConstantFoldingDoesNotOverflow) {
+  auto a = analyze_source(
+      "static const int big = 2147483647;\n"
+      "float t(float4 v) { return v[4294967295u * 4294967295u * 4294967295u] + v[-big - big - big] + v[(big << 31) << 31]"
+      " + v[~big * big] + v[1 << 40] + v[5 % 0]; }\n");
+  for (const std::string& message : a->messages()) EXPECT_EQ(message.find("out of range"), std::string::npos) << message;
+}
+
 TEST(SemaRobustness, HandBuiltTreesWithNullChildren) {
   SourceManager sources;
   DiagnosticEngine diagnostics(sources);
