@@ -1,0 +1,217 @@
+// Functions and statements. Every branch and loop body is braced; `#line` directives keep the
+// driver's messages on the author's lines.
+#include "glsl/stage_emitter.h"
+
+namespace xshade::glsl::detail {
+
+using namespace hlsl;
+
+namespace {
+
+// [unroll], [loop(4)]: GLSL has no attributes; kept as a comment.
+std::string attributes_comment(StageEmitter& emitter, const std::vector<Attribute>& attributes) {
+  std::string text;
+  for (const Attribute& attribute : attributes) {
+    text += "/* [" + attribute.name;
+    if (!attribute.args.empty()) {
+      text += "(";
+      for (size_t i = 0; i < attribute.args.size(); ++i) text += (i ? ", " : "") + emitter.expr(attribute.args[i].get()).text;
+      text += ")";
+    }
+    text += "] */ ";
+  }
+  return text;
+}
+
+}  // namespace
+
+void StageEmitter::function(const FunctionDecl& f) {
+  out_.mark(f.loc);
+  std::string signature = type_name(f.return_type, f.loc) + " " + names_.function(&f) + "(";
+  bool first = true;
+  for (const auto& param : f.params) {
+    if (!param) continue;
+    if (flavour_ == Flavour::Gl && param->type.kind() == TypeKind::SamplerState) continue;  // GL: per texture unit
+    if (!first) signature += ", ";
+    first = false;
+    if (param->direction == ParamDirection::Out) signature += "out ";
+    if (param->direction == ParamDirection::InOut) signature += "inout ";
+    signature += declarator(param->type, names_.of(param->name), param->loc);
+  }
+  out_.line(signature + ") {");
+  body(f.body.get());
+  out_.line("}");
+}
+
+void StageEmitter::body(const Stmt* stmt) {
+  ++out_.indent;
+  if (stmt && stmt->kind == StmtKind::Block) {
+    for (const StmtPtr& child : static_cast<const BlockStmt*>(stmt)->statements) statement(child.get());
+  } else {
+    statement(stmt);
+  }
+  --out_.indent;
+}
+
+std::string StageEmitter::initializer(const VarDecl& var) { return operand(expr(var.initializer.get()), kAssign); }
+
+namespace {
+
+// `[const] T name[N] = init`, without the semicolon.
+std::string variable_text(StageEmitter& emitter, const VarDecl& var, const Names& names) {
+  std::string text;
+  std::string init;
+  if (var.initializer) {
+    init = emitter.initializer(var);
+    // GLSL's const needs a constant expression; HLSL's only forbids writes.
+    if (var.is_const && emitter.is_constant(var.initializer.get())) {
+      emitter.const_decls_.insert(&var);
+      text = "const ";
+    }
+  }
+  text += emitter.declarator(var.type, names.of(var.name), var.loc);
+  if (!init.empty()) text += " = " + init;
+  return text;
+}
+
+}  // namespace
+
+void StageEmitter::local_variable(const VarDecl& var) {
+  if (var.storage == StorageClass::GroupShared) {
+    fail(var.loc, "groupshared variables are not supported on this target");
+    return;
+  }
+  if (var.storage == StorageClass::Static && !var.is_const) {
+    fail(var.loc, "static local variable '" + var.name +
+                      "' keeps its value between calls, which this target does not support; declare it at global scope");
+    return;
+  }
+  out_.mark(var.loc);
+  out_.line(variable_text(*this, var, names_) + ";");
+}
+
+void StageEmitter::statement(const Stmt* stmt) {
+  if (!stmt) return;
+  const std::string prefix = attributes_comment(*this, stmt->attributes);
+  switch (stmt->kind) {
+    case StmtKind::Block: {
+      out_.mark(stmt->loc);
+      out_.line(prefix + "{");
+      body(stmt);
+      out_.line("}");
+      break;
+    }
+    case StmtKind::Expr: {
+      const Expr* e = static_cast<const ExprStmt*>(stmt)->expr.get();
+      if (!e) break;
+      out_.mark(stmt->loc);
+      if (clip_statement(e)) break;
+      out_.line(prefix + expr(e).text + ";");
+      break;
+    }
+    case StmtKind::Decl:
+      for (const auto& var : static_cast<const DeclStmt*>(stmt)->vars)
+        if (var) local_variable(*var);
+      break;
+    case StmtKind::If: {
+      const auto* branch = static_cast<const IfStmt*>(stmt);
+      out_.mark(stmt->loc);
+      out_.line(prefix + "if (" + expr(branch->condition.get()).text + ") {");
+      body(branch->then_branch.get());
+      const Stmt* rest = branch->else_branch.get();
+      while (rest && rest->kind == StmtKind::If && rest->attributes.empty()) {
+        const auto* next = static_cast<const IfStmt*>(rest);
+        out_.mark(rest->loc);
+        out_.line("} else if (" + expr(next->condition.get()).text + ") {");
+        body(next->then_branch.get());
+        rest = next->else_branch.get();
+      }
+      if (rest) {
+        out_.line("} else {");
+        body(rest);
+      }
+      out_.line("}");
+      break;
+    }
+    case StmtKind::For: {
+      const auto* loop = static_cast<const ForStmt*>(stmt);
+      out_.mark(stmt->loc);
+      // `for (int i = 0, j = 0; ...)` needs one GLSL type; anything else moves before the loop,
+      // in a block of its own since the variables belong to the loop.
+      std::string init;
+      bool hoisted = false;
+      if (loop->init && loop->init->kind == StmtKind::Decl) {
+        const auto& vars = static_cast<const DeclStmt&>(*loop->init).vars;
+        bool one_type = !vars.empty();
+        for (const auto& var : vars) {
+          if (!var || var->type.kind() == TypeKind::Array || !(var->type == vars[0]->type) ||
+              var->storage != StorageClass::Default || var->is_const)
+            one_type = false;
+        }
+        if (one_type) {
+          for (size_t i = 0; i < vars.size(); ++i) {
+            const VarDecl& var = *vars[i];
+            if (i == 0) init = type_name(var.type, var.loc) + " ";
+            else init += ", ";
+            init += names_.of(var.name);
+            if (var.initializer) init += " = " + initializer(var);
+          }
+        } else {
+          hoisted = true;
+          out_.line(prefix + "{");
+          ++out_.indent;
+          statement(loop->init.get());
+        }
+      } else if (loop->init && loop->init->kind == StmtKind::Expr) {
+        if (const Expr* e = static_cast<const ExprStmt&>(*loop->init).expr.get()) init = expr(e).text;
+      }
+      const std::string condition = loop->condition ? expr(loop->condition.get()).text : "";
+      const std::string step = loop->step ? expr(loop->step.get()).text : "";
+      out_.line((hoisted ? "" : prefix) + "for (" + init + "; " + condition + "; " + step + ") {");
+      body(loop->body.get());
+      out_.line("}");
+      if (hoisted) {
+        --out_.indent;
+        out_.line("}");
+      }
+      break;
+    }
+    case StmtKind::While: {
+      const auto* loop = static_cast<const WhileStmt*>(stmt);
+      out_.mark(stmt->loc);
+      out_.line(prefix + "while (" + expr(loop->condition.get()).text + ") {");
+      body(loop->body.get());
+      out_.line("}");
+      break;
+    }
+    case StmtKind::DoWhile: {
+      const auto* loop = static_cast<const DoWhileStmt*>(stmt);
+      out_.mark(stmt->loc);
+      out_.line(prefix + "do {");
+      body(loop->body.get());
+      out_.line("} while (" + expr(loop->condition.get()).text + ");");
+      break;
+    }
+    case StmtKind::Return: {
+      const Expr* value = static_cast<const ReturnStmt*>(stmt)->value.get();
+      out_.mark(stmt->loc);
+      out_.line(value ? "return " + expr(value).text + ";" : "return;");
+      break;
+    }
+    case StmtKind::Break:
+      out_.mark(stmt->loc);
+      out_.line("break;");
+      break;
+    case StmtKind::Continue:
+      out_.mark(stmt->loc);
+      out_.line("continue;");
+      break;
+    case StmtKind::Discard:
+      out_.mark(stmt->loc);
+      out_.line("discard;");
+      break;
+    case StmtKind::Empty: break;
+  }
+}
+
+}  // namespace xshade::glsl::detail

@@ -1,0 +1,644 @@
+// The GLSL emitter's driver: names, the parts of one stage's text and their order, the
+// declarations (structs, uniform blocks, textures, static globals), the stage interface and main().
+#include "glsl/glsl_emitter.h"
+
+#include <algorithm>
+#include <functional>
+#include <map>
+
+#include "glsl/glsl_names.h"
+#include "glsl/stage_emitter.h"
+#include "hlsl_like/ast_walk.h"
+#include "hlsl_like/sema_internal.h"
+
+namespace xshade::glsl {
+
+std::string block_name(std::string_view constant_buffer_name) {
+  if (constant_buffer_name == hlsl::kGlobalsBufferName) return "xs_Globals";
+  if (needs_renaming(constant_buffer_name)) return renamed(constant_buffer_name);
+  return std::string(constant_buffer_name);
+}
+
+namespace detail {
+
+using namespace hlsl;
+
+std::string operand(const Code& code, int prec) {
+  if (code.prec >= prec) return code.text;
+  return "(" + code.text + ")";
+}
+
+// ---------------------------------------------------------------------------------------------
+// Names
+
+namespace {
+
+// Every name a statement tree declares (locals, for-loop variables).
+void collect_local_names(const Stmt* stmt, std::unordered_set<std::string>& names) {
+  if (!stmt) return;
+  switch (stmt->kind) {
+    case StmtKind::Block:
+      for (const StmtPtr& child : static_cast<const BlockStmt*>(stmt)->statements) collect_local_names(child.get(), names);
+      break;
+    case StmtKind::Decl:
+      for (const auto& var : static_cast<const DeclStmt*>(stmt)->vars)
+        if (var) names.insert(var->name);
+      break;
+    case StmtKind::If: {
+      const auto* s = static_cast<const IfStmt*>(stmt);
+      collect_local_names(s->then_branch.get(), names);
+      collect_local_names(s->else_branch.get(), names);
+      break;
+    }
+    case StmtKind::For: {
+      const auto* s = static_cast<const ForStmt*>(stmt);
+      collect_local_names(s->init.get(), names);
+      collect_local_names(s->body.get(), names);
+      break;
+    }
+    case StmtKind::While: collect_local_names(static_cast<const WhileStmt*>(stmt)->body.get(), names); break;
+    case StmtKind::DoWhile: collect_local_names(static_cast<const DoWhileStmt*>(stmt)->body.get(), names); break;
+    default: break;
+  }
+}
+
+// "half3" -> "half3", "float[4]" -> "float4": a suffix that tells overloads apart.
+std::string type_suffix(const Type& type) {
+  std::string suffix;
+  for (char c : type.name())
+    if (std::isalnum(static_cast<unsigned char>(c))) suffix += c;
+  return suffix;
+}
+
+}  // namespace
+
+Names::Names(const TranslationUnit& unit, Flavour flavour) {
+  std::vector<const FunctionDecl*> functions;
+  for (const auto& decl : unit.decls) {
+    if (!decl) continue;
+    user_.insert(decl->name);
+    switch (decl->kind) {
+      case DeclKind::Struct:
+        for (const FieldDecl& field : static_cast<const StructDecl&>(*decl).fields) user_.insert(field.name);
+        break;
+      case DeclKind::CBuffer:
+        for (const auto& member : static_cast<const CBufferDecl&>(*decl).members)
+          if (member) user_.insert(member->name);
+        break;
+      case DeclKind::Function: {
+        const auto& function = static_cast<const FunctionDecl&>(*decl);
+        for (const auto& param : function.params)
+          if (param) user_.insert(param->name);
+        collect_local_names(function.body.get(), user_);
+        if (function.body) functions.push_back(&function);
+        break;
+      }
+      default: break;
+    }
+  }
+
+  // Overloads whose GLSL signatures coincide get a suffix of their HLSL parameter types.
+  std::map<std::string, std::vector<const FunctionDecl*>> by_signature;  // ordered: deterministic
+  for (const FunctionDecl* function : functions) {
+    std::string signature = of(function->name) + "(";
+    for (const auto& param : function->params) {
+      if (!param) continue;
+      if (flavour == Flavour::Gl && param->type.kind() == TypeKind::SamplerState) continue;
+      signature += type_key(param->type, flavour) + ",";
+    }
+    by_signature[signature].push_back(function);
+  }
+  std::unordered_set<std::string> taken = user_;
+  for (const auto& [signature, group] : by_signature) {
+    for (const FunctionDecl* function : group) {
+      if (group.size() == 1) {
+        functions_[function] = of(function->name);
+        continue;
+      }
+      std::string name = of(function->name);
+      for (const auto& param : function->params)
+        if (param) name += "_" + type_suffix(param->type);
+      std::string candidate = name;
+      for (int k = 1; taken.count(candidate) > 0; ++k) candidate = name + std::to_string(k);
+      taken.insert(candidate);
+      functions_[function] = candidate;
+    }
+  }
+}
+
+std::string Names::of(const std::string& name) const {
+  if (!needs_renaming(name)) return name;
+  if (auto it = cache_.find(name); it != cache_.end()) return it->second;
+  const std::string base = renamed(name);
+  std::string candidate = base;
+  for (int k = 1; user_.count(candidate) > 0; ++k) candidate = base + std::to_string(k);
+  cache_.emplace(name, candidate);
+  return candidate;
+}
+
+std::string Names::function(const FunctionDecl* function) const {
+  const FunctionDecl* definition = function->definition ? function->definition : function;
+  if (auto it = functions_.find(definition); it != functions_.end()) return it->second;
+  return of(function->name);
+}
+
+// ---------------------------------------------------------------------------------------------
+// Writer and helpers
+
+void Writer::line(const std::string& text) {
+  text_.append(size_t(indent) * 2, ' ');
+  text_ += text;
+  text_ += '\n';
+  if (mapped_) ++next_line_;
+}
+
+void Writer::mark(Loc loc) {
+  if (loc.file == 0 || loc.line == 0) return;
+  if (mapped_ && file_ == loc.file && next_line_ == loc.line) return;
+  text_ += "#line " + std::to_string(loc.line) + " " + std::to_string(loc.file) + "\n";
+  mapped_ = true;
+  file_ = loc.file;
+  next_line_ = loc.line;
+}
+
+void Helpers::add(const std::string& signature, const std::string& definition) {
+  if (definitions_.emplace(signature, definition).second) order_.push_back(signature);
+}
+
+std::string Helpers::text() const {
+  std::string text;
+  for (const std::string& signature : order_) text += definitions_.at(signature);
+  return text;
+}
+
+// ---------------------------------------------------------------------------------------------
+// The stage
+
+namespace {
+
+bool contains_matrix(const Type& type, int depth = 0) {
+  if (depth > 64) return false;
+  if (type.is_matrix()) return true;
+  if (type.kind() == TypeKind::Array) return contains_matrix(type.element(), depth + 1);
+  if (type.kind() == TypeKind::Struct && type.struct_decl()) {
+    for (const FieldDecl& field : type.struct_decl()->fields)
+      if (contains_matrix(field.type, depth + 1)) return true;
+  }
+  return false;
+}
+
+std::string canonical(const std::string& semantic) {
+  return sema_detail::canonical_semantic(sema_detail::parse_semantic(semantic));
+}
+
+const char* interpolation_qualifier(Interpolation interpolation, const Type& type) {
+  const Type& element = type.kind() == TypeKind::Array ? type.element() : type;
+  if (element.is_integer() || element.is_bool()) return "flat ";
+  switch (interpolation) {
+    case Interpolation::NoInterpolation: return "flat ";
+    case Interpolation::NoPerspective: return "noperspective ";
+    case Interpolation::Centroid: return "centroid ";
+    case Interpolation::Sample: return "sample ";
+    case Interpolation::Default:
+    case Interpolation::Linear: return "";
+  }
+  return "";
+}
+
+// One value crossing the stage boundary, after struct parameters and results are taken apart.
+struct StageItem {
+  std::string path;      // where the entry point's argument or result holds it: xs_arg0.uv
+  Type type;
+  std::string semantic;  // canonical
+  Interpolation interpolation = Interpolation::Default;
+  Loc loc;
+};
+
+void flatten(const Type& type, const std::string& path, const std::string& semantic, Interpolation interpolation,
+             Loc loc, const Names& names, std::vector<StageItem>& items, int depth = 0) {
+  if (type.kind() == TypeKind::Struct && type.struct_decl() && depth < 64) {
+    for (const FieldDecl& field : type.struct_decl()->fields)
+      flatten(field.type, path + "." + names.of(field.name), field.semantic, field.interpolation, field.loc, names,
+              items, depth + 1);
+    return;
+  }
+  if (!semantic.empty()) items.push_back({path, type, canonical(semantic), interpolation, loc});
+}
+
+// The inputs (or outputs) of an entry point, with `xs_arg<i>` / `xs_result` paths.
+std::vector<StageItem> stage_items(const FunctionDecl& entry, bool inputs, const Names& names) {
+  std::vector<StageItem> items;
+  for (size_t i = 0; i < entry.params.size(); ++i) {
+    const ParamDecl* param = entry.params[i].get();
+    if (!param || param->is_uniform || param->type.is_resource()) continue;
+    const bool is_input = param->direction != ParamDirection::Out;
+    const bool is_output = param->direction != ParamDirection::In;
+    if (inputs ? is_input : is_output)
+      flatten(param->type, "xs_arg" + std::to_string(i), param->semantic, param->interpolation, param->loc, names,
+              items);
+  }
+  if (!inputs && !entry.return_type.is_void())
+    flatten(entry.return_type, "xs_result", entry.semantic, Interpolation::Default, entry.loc, names, items);
+  return items;
+}
+
+const StageVariable* find_variable(const std::vector<StageVariable>& variables, const std::string& semantic) {
+  for (const StageVariable& variable : variables)
+    if (variable.semantic == semantic) return &variable;
+  return nullptr;
+}
+
+}  // namespace
+
+StageEmitter::StageEmitter(const Module& module, Flavour flavour, const Names& names, bool vertex)
+    : module_(module), reflection_(module.reflection), flavour_(flavour), names_(names), vertex_(vertex) {
+  entry_ = vertex ? module.entry_points.vertex : module.entry_points.fragment;
+}
+
+void StageEmitter::fail(Loc loc, const std::string& message) {
+  if (error_) return;
+  error_ = Error{message, module_.sources.resolve(loc), {}};
+}
+
+void StageEmitter::collect_used_declarations() {
+  // Functions the entry point reaches, then those that static initializers call.
+  std::unordered_set<const FunctionDecl*> seen;
+  std::vector<const FunctionDecl*> to_scan;
+  auto add_tree = [&](const FunctionDecl* root) {
+    for (const FunctionDecl* function : reachable_functions(root)) {
+      if (seen.insert(function).second) {
+        functions_.push_back(function);
+        to_scan.push_back(function);
+      }
+    }
+  };
+  std::unordered_set<const Decl*> used_statics;
+  std::vector<const VarDecl*> statics_to_scan;
+  auto visit = [&](const Expr& expr) {
+    if (expr.kind == ExprKind::Name) {
+      const Decl* decl = static_cast<const NameExpr&>(expr).decl;
+      if (decl && decl->kind == DeclKind::Var) {
+        const auto* var = static_cast<const VarDecl*>(decl);
+        if (var->is_global && var->storage == StorageClass::Static && used_statics.insert(var).second)
+          statics_to_scan.push_back(var);
+      }
+    } else if (expr.kind == ExprKind::Call) {
+      const auto& call = static_cast<const CallExpr&>(expr);
+      if (call.call_kind == CallKind::Function && call.function) add_tree(call.function);
+    }
+  };
+  if (entry_) add_tree(entry_);
+  while (!to_scan.empty() || !statics_to_scan.empty()) {
+    if (!to_scan.empty()) {
+      const FunctionDecl* function = to_scan.back();
+      to_scan.pop_back();
+      walk_expressions(function->body.get(), visit);
+    } else {
+      const VarDecl* var = statics_to_scan.back();
+      statics_to_scan.pop_back();
+      walk_expressions(var->initializer.get(), visit);
+    }
+  }
+  for (const auto& decl : module_.unit.decls)
+    if (decl && used_statics.count(decl.get())) statics_.push_back(static_cast<const VarDecl*>(decl.get()));
+
+  // Constant-buffer members that std140 cannot place as vectors are read as scalars.
+  std::unordered_map<std::string, const VarDecl*> globals;
+  for (const auto& decl : module_.unit.decls) {
+    if (!decl) continue;
+    if (decl->kind == DeclKind::Var) globals.emplace(decl->name, static_cast<const VarDecl*>(decl.get()));
+    if (decl->kind == DeclKind::CBuffer)
+      for (const auto& member : static_cast<const CBufferDecl&>(*decl).members)
+        if (member) globals.emplace(member->name, member.get());
+  }
+  for (const ConstantBuffer& buffer : reflection_.constant_buffers) {
+    for (const ConstantBufferMember& member : buffer.members) {
+      if (!member.split_into_scalars) continue;
+      if (auto it = globals.find(member.name); it != globals.end())
+        split_members_[it->second] = {member.type.scalar_type(), member.type.cols()};
+    }
+  }
+}
+
+namespace {
+
+// What a static global starts as in HLSL when it has no initializer: zero.
+std::string zero_value(StageEmitter& emitter, const Type& type, Loc loc) {
+  switch (type.kind()) {
+    case TypeKind::Scalar:
+    case TypeKind::Vector:
+    case TypeKind::Matrix: {
+      const char* zero = "0.0";
+      switch (type.scalar_type()) {
+        case ScalarType::Bool: zero = "false"; break;
+        case ScalarType::Int: zero = "0"; break;
+        case ScalarType::Uint: zero = "0u"; break;
+        case ScalarType::Half:
+        case ScalarType::Float: break;
+      }
+      if (type.component_count() == 1) return zero;
+      return emitter.type_name(type, loc) + "(" + zero + ")";  // mat3(0.0) is all zeros
+    }
+    case TypeKind::Struct: {
+      std::string text = emitter.type_name(type, loc) + "(";
+      if (type.struct_decl()) {
+        bool first = true;
+        for (const FieldDecl& field : type.struct_decl()->fields) {
+          if (!first) text += ", ";
+          first = false;
+          text += zero_value(emitter, field.type, loc);
+        }
+      }
+      return text + ")";
+    }
+    case TypeKind::Array: {
+      std::string text = emitter.type_name(type, loc) + "(";
+      const std::string element = zero_value(emitter, type.element(), loc);
+      for (uint32_t i = 0; i < type.array_length(); ++i) text += (i ? ", " : "") + element;
+      return text + ")";
+    }
+    default:
+      emitter.fail(loc, "cannot give a value of type '" + type.name() + "' a zero value");
+      return "0";
+  }
+}
+
+}  // namespace
+
+std::string StageEmitter::run() {
+  if (!entry_) return {};
+  collect_used_declarations();
+
+  // Static globals first, so that functions see which of them are GLSL constants.
+  Writer statics;
+  std::vector<std::string> prologue;  // main() initializes the statics GLSL cannot
+  for (const VarDecl* var : statics_) {
+    if (var->storage == StorageClass::GroupShared) {
+      fail(var->loc, "groupshared variables are not supported on this target");
+      continue;
+    }
+    const std::string name = names_.of(var->name);
+    const std::string declaration = declarator(var->type, name, var->loc);
+    if (!var->initializer) {
+      statics.line(declaration + " = " + zero_value(*this, var->type, var->loc) + ";");
+    } else if (is_constant(var->initializer.get())) {
+      if (var->is_const) const_decls_.insert(var);
+      statics.line(std::string(var->is_const ? "const " : "") + declaration + " = " + initializer(*var) + ";");
+    } else {
+      statics.line(declaration + ";");
+      prologue.push_back(name + " = " + initializer(*var) + ";");
+    }
+  }
+
+  for (const FunctionDecl* f : functions_) function(*f);
+
+  // Declarations, the stage interface and main().
+  std::string declared = declarations();
+  declared += statics.text();
+  main_prologue_ = std::move(prologue);
+  const std::string main_text = interface_and_main();  // also sets interface_text_
+
+  std::string text = flavour_ == Flavour::Gl ? "#version 450 core\n" : "#version 450\n";
+  if (needs_samplerless_) text += "#extension GL_EXT_samplerless_texture_functions : require\n";
+  text += "// Generated by xshade from hlsl_like: the ";
+  text += vertex_ ? "vertex" : "fragment";
+  text += " stage of entry point '" + entry_->name + "', " + std::string(flavour_name(flavour_)) + " flavour.\n";
+  for (uint32_t file = 1; file < module_.sources.file_count(); ++file)
+    text += "// file " + std::to_string(file) + ": " + module_.sources.name(file) + "\n";
+  text += declared;
+  text += interface_text_;
+  text += helpers_.text();
+  text += out_.text();
+  const size_t lines = size_t(std::count(text.begin(), text.end(), '\n'));
+  text += "#line " + std::to_string(lines + 2) + " 0\n";  // main() is generated text
+  text += main_text;
+  return text;
+}
+
+std::string StageEmitter::declarations() {
+  Writer w;
+  for (const auto& decl : module_.unit.decls) {
+    if (!decl || decl->kind != DeclKind::Struct) continue;
+    const auto& s = static_cast<const StructDecl&>(*decl);
+    if (s.fields.empty()) {
+      fail(s.loc, "struct '" + s.name + "' has no fields; GLSL does not allow empty structs");
+      continue;
+    }
+    w.line("struct " + names_.of(s.name) + " {");
+    w.indent = 1;
+    for (const FieldDecl& field : s.fields) w.line(declarator(field.type, names_.of(field.name), field.loc) + ";");
+    w.indent = 0;
+    w.line("};");
+  }
+
+  const std::string set = flavour_ == Flavour::Vk ? "set = 0, " : "";
+  for (const ConstantBuffer& buffer : reflection_.constant_buffers) {
+    w.line("layout(std140, " + set + "binding = " + std::to_string(buffer.binding) + ") uniform " +
+           block_name(buffer.name) + " {");
+    w.indent = 1;
+    for (const ConstantBufferMember& member : buffer.members) {
+      const std::string name = names_.of(member.name);
+      const Loc loc = buffer.decl ? buffer.decl->loc : Loc{};
+      if (member.split_into_scalars) {
+        const std::string scalar = type_name(Type::scalar(member.type.scalar_type()), loc);
+        for (uint32_t i = 0; i < member.type.cols(); ++i)
+          w.line("layout(offset = " + std::to_string(member.offset + 4 * i) + ") " + scalar + " " + name + "_" +
+                 std::to_string(i) + ";");
+        continue;
+      }
+      std::string qualifiers = "offset = " + std::to_string(member.offset);
+      // HLSL's column_major M is GLSL's row_major G = M^T, byte for byte.
+      if (contains_matrix(member.type)) qualifiers += member.row_major ? ", column_major" : ", row_major";
+      w.line("layout(" + qualifiers + ") " + declarator(member.type, name, loc) + ";");
+    }
+    w.indent = 0;
+    w.line("};");
+  }
+
+  for (const TextureResource& texture : reflection_.textures) {
+    const std::string binding = "layout(" + set + "binding = " + std::to_string(texture.binding) + ") uniform ";
+    const bool separate = flavour_ == Flavour::Vk && texture.kind == TextureKind::Texture2D;
+    w.line(binding + (separate ? "texture2D " : "sampler2D ") + names_.of(texture.name) + ";");
+  }
+  if (flavour_ == Flavour::Vk) {
+    for (const SamplerResource& sampler : reflection_.samplers)
+      w.line("layout(set = 0, binding = " + std::to_string(sampler.binding) + ") uniform sampler " +
+             names_.of(sampler.name) + ";");
+  }
+  return w.text();
+}
+
+std::string StageEmitter::interface_and_main() {
+  const FunctionDecl& entry = *entry_;
+  Writer interface;
+  Writer main;
+  main.line("void main() {");
+  main.indent = 1;
+  for (const std::string& line : main_prologue_) main.line(line);
+
+  // Arguments.
+  for (size_t i = 0; i < entry.params.size(); ++i) {
+    const ParamDecl* param = entry.params[i].get();
+    if (!param) continue;
+    if (param->is_uniform) {
+      fail(param->loc, "uniform parameter '" + param->name +
+                           "' of an entry point is not supported on this target; declare it as a global");
+      continue;
+    }
+    if (param->type.is_resource()) {
+      fail(param->loc, "entry point parameter '" + param->name + "' cannot be a resource; declare it as a global");
+      continue;
+    }
+    main.line(declarator(param->type, "xs_arg" + std::to_string(i), param->loc) + ";");
+  }
+
+  // Inputs.
+  std::vector<std::string> declared;
+  auto declare = [&](const std::string& line) {
+    if (std::find(declared.begin(), declared.end(), line) != declared.end()) return;
+    declared.push_back(line);
+    interface.line(line);
+  };
+  auto check_storable = [&](const StageItem& item) {
+    const Type& element = item.type.kind() == TypeKind::Array ? item.type.element() : item.type;
+    if (element.is_bool()) {
+      fail(item.loc, "'" + item.semantic + "' has type '" + item.type.name() +
+                         "'; stage inputs and outputs cannot be bool in GLSL; use int or uint");
+      return false;
+    }
+    return true;
+  };
+  using sema_detail::SemanticKind;
+  for (const StageItem& item : stage_items(entry, true, names_)) {
+    const SemanticKind kind = sema_detail::parse_semantic(item.semantic).kind;
+    Code source;
+    Type source_type = item.type;
+    if (vertex_) {
+      if (kind == SemanticKind::SvVertexId) {
+        source = {flavour_ == Flavour::Gl ? "gl_VertexID" : "gl_VertexIndex"};
+        source_type = Type::scalar(ScalarType::Int);
+      } else {
+        if (!check_storable(item)) continue;
+        std::optional<uint32_t> location;
+        if (const StageVariable* variable = find_variable(reflection_.vertex_inputs, item.semantic))
+          location = variable->location;
+        else
+          location = vertex_input_location(item.semantic);
+        if (!location) {
+          fail(item.loc, "vertex input '" + item.semantic + "' has no location in the vertex format");
+          continue;
+        }
+        const std::string name = "xs_in_" + item.semantic;
+        declare("layout(location = " + std::to_string(*location) + ") in " + declarator(item.type, name, item.loc) + ";");
+        source = {name};
+      }
+    } else if (kind == SemanticKind::SvPosition || kind == SemanticKind::Position) {
+      // Direct3D's position w is the clip-space w; GL's gl_FragCoord.w is its reciprocal.
+      source = {"vec4(gl_FragCoord.xyz, 1.0 / gl_FragCoord.w)"};
+      source_type = Type::vector(ScalarType::Float, 4);
+    } else if (kind == SemanticKind::SvIsFrontFace) {
+      source = {"gl_FrontFacing"};
+      source_type = Type::scalar(ScalarType::Bool);
+    } else {
+      if (!check_storable(item)) continue;
+      // Declared as the vertex stage writes it, so that both stages agree on the type.
+      std::optional<uint32_t> location;
+      if (const StageVariable* variable = find_variable(reflection_.varyings, item.semantic)) {
+        location = variable->location;
+        source_type = variable->type;
+      } else {
+        location = varying_location(item.semantic);
+      }
+      if (!location) {
+        fail(item.loc, "fragment input '" + item.semantic + "' has no varying location");
+        continue;
+      }
+      const std::string name = "xs_v_" + item.semantic;
+      declare("layout(location = " + std::to_string(*location) + ") " +
+              interpolation_qualifier(item.interpolation, source_type) + "in " +
+              declarator(source_type, name, item.loc) + ";");
+      source = {name};
+    }
+    main.line(item.path + " = " + convert(source, source_type, item.type, item.loc).text + ";");
+  }
+
+  // The call.
+  std::string call = names_.function(&entry) + "(";
+  for (size_t i = 0; i < entry.params.size(); ++i) call += (i ? ", xs_arg" : "xs_arg") + std::to_string(i);
+  call += ")";
+  if (entry.return_type.is_void())
+    main.line(call + ";");
+  else
+    main.line(declarator(entry.return_type, "xs_result", entry.loc) + " = " + call + ";");
+
+  // Outputs.
+  std::unordered_map<std::string, Interpolation> fragment_interpolation;
+  if (vertex_ && module_.entry_points.fragment) {
+    for (const StageItem& item : stage_items(*module_.entry_points.fragment, true, names_))
+      fragment_interpolation.emplace(item.semantic, item.interpolation);
+  }
+  for (const StageItem& item : stage_items(entry, false, names_)) {
+    const sema_detail::ParsedSemantic parsed = sema_detail::parse_semantic(item.semantic);
+    const Code value{item.path, kPostfix};
+    if (vertex_ && (parsed.kind == SemanticKind::SvPosition || parsed.kind == SemanticKind::Position)) {
+      main.line("gl_Position = " + convert(value, item.type, Type::vector(ScalarType::Float, 4), item.loc).text + ";");
+      continue;
+    }
+    if (!vertex_ && parsed.kind == SemanticKind::SvDepth) {
+      main.line("gl_FragDepth = " + convert(value, item.type, Type::scalar(ScalarType::Float), item.loc).text + ";");
+      continue;
+    }
+    if (!check_storable(item)) continue;
+    if (vertex_) {
+      std::optional<uint32_t> location;
+      if (const StageVariable* variable = find_variable(reflection_.varyings, item.semantic))
+        location = variable->location;
+      else
+        location = varying_location(item.semantic);
+      if (!location) {
+        fail(item.loc, "vertex output '" + item.semantic + "' has no varying location");
+        continue;
+      }
+      // The fragment stage's interpolation, so that both sides declare the same.
+      Interpolation interpolation = item.interpolation;
+      if (auto it = fragment_interpolation.find(item.semantic); it != fragment_interpolation.end())
+        interpolation = it->second;
+      const std::string name = "xs_v_" + item.semantic;
+      declare("layout(location = " + std::to_string(*location) + ") " + interpolation_qualifier(interpolation, item.type) +
+              "out " + declarator(item.type, name, item.loc) + ";");
+      main.line(name + " = " + item.path + ";");
+    } else {
+      // SV_TargetN, and DX9's COLORn, are render target N.
+      const std::string name = "xs_target" + std::to_string(parsed.index);
+      declare("layout(location = " + std::to_string(parsed.index) + ") out " + declarator(item.type, name, item.loc) +
+              ";");
+      main.line(name + " = " + item.path + ";");
+    }
+  }
+  main.indent = 0;
+  main.line("}");
+  interface_text_ = interface.text();
+  return main.text();
+}
+
+}  // namespace detail
+
+Result<EmittedProgram> emit(const hlsl::Module& module, const EmitOptions& options) {
+  if (!module.ok()) return fail("cannot emit GLSL for a module with errors");
+  EmittedProgram program;
+  program.source_files.emplace_back();
+  for (uint32_t file = 1; file < module.sources.file_count(); ++file)
+    program.source_files.push_back(module.sources.name(file));
+  const detail::Names names(module.unit, options.flavour);
+  for (const bool vertex : {true, false}) {
+    const hlsl::FunctionDecl* entry = vertex ? module.entry_points.vertex : module.entry_points.fragment;
+    if (!entry) continue;
+    detail::StageEmitter emitter(module, options.flavour, names, vertex);
+    std::string text = emitter.run();
+    if (emitter.error()) return fail(*emitter.error());
+    (vertex ? program.vertex : program.fragment) = EmittedStage{std::move(text)};
+  }
+  return program;
+}
+
+}  // namespace xshade::glsl

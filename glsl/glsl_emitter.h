@@ -1,0 +1,50 @@
+// The GLSL emitter: an analysed hlsl_like module as GLSL 4.50, in the `gl` flavour (OpenGL
+// through OSMesa) or the `vk` flavour (Vulkan GLSL for glslang), computing what HLSL computes.
+//
+// The conventions every emitted shader follows (see docs/architecture.md):
+// - HLSL's floatRxC matrix M is held as its transpose G = M^T, a GLSL matR x C: M[i] is G[i],
+//   constructors keep their argument order, mul(v, M) is G * v and mul(M, v) is v * G;
+// - constant buffers are std140 blocks with HLSL's offsets (reflection.h), and column_major HLSL
+//   matrices are row_major GLSL ones;
+// - stage variables are xs_in_<SEMANTIC> (vertex inputs), xs_v_<SEMANTIC> (varyings) and
+//   xs_target<N> (fragment outputs), at the locations reflection assigned;
+// - the author's names are kept unless GLSL reserves them (glsl_names.h);
+// - `#line L N` directives point the driver's messages at the author's file N, line L.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "glsl/flavour.h"
+#include "hlsl_like/compiler.h"
+#include "hlsl_like/diagnostic.h"
+
+namespace xshade::glsl {
+
+struct EmitOptions {
+  Flavour flavour = Flavour::Gl;
+};
+
+struct EmittedStage {
+  std::string text;  // a complete GLSL shader
+};
+
+struct EmittedProgram {
+  std::optional<EmittedStage> vertex;    // absent when the module has no vertex entry point
+  std::optional<EmittedStage> fragment;  // absent when the module has no fragment entry point
+  // Index i is the source-string number N that `#line L N` uses (the front end's file indices,
+  // N >= 1); index 0 is the generated text itself.
+  std::vector<std::string> source_files;
+};
+
+// The module must have compiled without errors. Fails, with the location of the construct, on
+// what the flavour cannot express.
+Result<EmittedProgram> emit(const hlsl::Module& module, const EmitOptions& options);
+
+// The GLSL name of a constant buffer's block, by which the harness binds uniform blocks on
+// OpenGL: "$Globals" -> "xs_Globals"; other names unchanged unless GLSL reserves them.
+std::string block_name(std::string_view constant_buffer_name);
+
+}  // namespace xshade::glsl

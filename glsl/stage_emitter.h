@@ -1,0 +1,192 @@
+// The GLSL emitter's inside: one StageEmitter writes one stage of one module. Its parts live in
+// glsl_emitter.cpp (declarations, stage interface, main), emit_statements.cpp (functions and
+// statements), emit_expressions.cpp (expressions and conversions) and intrinsic_mapping.cpp (the
+// HLSL intrinsic -> GLSL table and the xs_* helper functions).
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <unordered_map>
+#include <unordered_set>
+#include <vector>
+
+#include "glsl/flavour.h"
+#include "hlsl_like/compiler.h"
+#include "hlsl_like/diagnostic.h"
+#include "hlsl_like/intrinsics.h"
+
+namespace xshade::glsl::detail {
+
+using hlsl::Expr;
+using hlsl::FunctionDecl;
+using hlsl::Loc;
+using hlsl::Stmt;
+using hlsl::Type;
+
+// C's (and GLSL's) operator precedence, lowest first: an operand is parenthesized when its
+// precedence is too low for the place it goes.
+enum Prec : int {
+  kComma = 1,
+  kAssign,
+  kConditional,
+  kLogicalOr,
+  kLogicalXor,
+  kLogicalAnd,
+  kBitOr,
+  kBitXor,
+  kBitAnd,
+  kEquality,
+  kRelational,
+  kShift,
+  kAdditive,
+  kMultiplicative,
+  kUnary,
+  kPostfix,
+  kPrimary,
+};
+
+// A piece of GLSL expression text and the precedence of its outermost operator.
+struct Code {
+  std::string text;
+  int prec = kPrimary;
+};
+
+// `code` as an operand that needs at least precedence `prec`.
+std::string operand(const Code& code, int prec);
+
+// The GLSL names of the author's declarations, the same in both stages of a program.
+class Names {
+ public:
+  Names(const hlsl::TranslationUnit& unit, Flavour flavour);
+
+  // The GLSL spelling of an author's name: unchanged unless GLSL reserves it (glsl_names.h);
+  // a renamed name never collides with another name of the author's.
+  std::string of(const std::string& name) const;
+  // A function's name: of(name), or with a type suffix when two overloads have the same GLSL
+  // signature (half and float parameters are both float in GLSL).
+  std::string function(const FunctionDecl* function) const;
+
+ private:
+  std::unordered_set<std::string> user_;  // every name the author declared
+  std::unordered_map<const FunctionDecl*, std::string> functions_;
+  mutable std::unordered_map<std::string, std::string> cache_;
+};
+
+// The GLSL spelling of a type for overload comparison; no diagnostics (see StageEmitter::type_name).
+std::string type_key(const Type& type, Flavour flavour);
+
+// Text with its line count, and `#line` directives that map the lines that follow back to the
+// author's source.
+class Writer {
+ public:
+  void line(const std::string& text);  // one indented line
+  // Before a construct at `loc`: a `#line` directive unless the next line already maps there.
+  void mark(Loc loc);
+  const std::string& text() const { return text_; }
+  int indent = 0;
+
+ private:
+  std::string text_;
+  bool mapped_ = false;
+  uint32_t file_ = 0;
+  uint32_t next_line_ = 0;
+};
+
+// The xs_* helper functions a stage uses, each defined once, in the order of first use.
+class Helpers {
+ public:
+  // Adds `definition` unless one with the same `signature` is there.
+  void add(const std::string& signature, const std::string& definition);
+  std::string text() const;
+  bool empty() const { return order_.empty(); }
+
+ private:
+  std::vector<std::string> order_;
+  std::unordered_map<std::string, std::string> definitions_;
+};
+
+class StageEmitter {
+ public:
+  StageEmitter(const hlsl::Module& module, Flavour flavour, const Names& names, bool vertex);
+  // The stage's complete GLSL text; check error() afterwards.
+  std::string run();
+  const std::optional<Error>& error() const { return error_; }
+
+  // --- diagnostics: the first error wins; emission goes on so that it ends cleanly.
+  void fail(Loc loc, const std::string& message);
+
+  // --- types (emit_expressions.cpp)
+  // GLSL's name for `type`; reports what GLSL cannot hold. Resources: the flavour's opaque types.
+  std::string type_name(const Type& type, Loc loc);
+  // `vec2 name[4]`.
+  std::string declarator(const Type& type, const std::string& name, Loc loc);
+  // Both types are the same GLSL type (half is float, float1 is float).
+  bool same_glsl(const Type& a, const Type& b);
+  // The GLSL type of a vector of `count` booleans (`bool` for 1).
+  static std::string bool_type(uint32_t count);
+
+  // --- expressions (emit_expressions.cpp)
+  Code expr(const Expr* e);
+  // `value` of type `from` as type `to`, GLSL converting explicitly.
+  Code convert(Code value, const Type& from, const Type& to, Loc loc);
+  // An expression converted to `to`; literals are folded (`1` as a float is `1.0`).
+  Code convert_expr(const Expr* e, const Type& to);
+  // Every half-typed value passes through here: the place for a later fp16-rounding mode.
+  Code half_value(Code value, const Type& type);
+  // The value of a static const or other constant initializer could be a GLSL constant expression.
+  bool is_constant(const Expr* e);
+  // A name, literal, field, swizzle or constant index of those: cheap and free of side effects,
+  // so that it may be written twice.
+  static bool is_simple(const Expr* e);
+  // Assignments, increments and calls (other than constructors) inside `e`.
+  static bool has_side_effects(const Expr* e);
+  // An argument passed to an out or inout parameter: the assignable expression itself.
+  Code out_argument(const Expr* arg);
+  // A struct or array with every component set from the scalar literal `scalar` (`(S)0`).
+  Code splat_aggregate(const Expr* scalar, const Type& to, Loc loc);
+
+  // --- intrinsics (intrinsic_mapping.cpp)
+  Code intrinsic_call(const hlsl::CallExpr& call);
+  // `clip(x);` as a statement: `if (x < 0.0) discard;`. False if `expr` is not a clip call.
+  bool clip_statement(const Expr* expr);
+  // A helper from the library (xs_fmod, xs_idiv, ...) for these operand types; returns its name.
+  std::string require_helper(const std::string& name, const std::vector<Type>& operands, Loc loc);
+
+  // --- functions and statements (emit_statements.cpp)
+  void function(const FunctionDecl& function);
+  void statement(const Stmt* stmt);
+  void body(const Stmt* stmt);  // the statements of a braced body
+  void local_variable(const hlsl::VarDecl& var);
+  std::string initializer(const hlsl::VarDecl& var);
+
+  // --- the stage (glsl_emitter.cpp)
+  void collect_used_declarations();
+  std::string declarations();
+  // main(); the stage's in and out variables go to interface_text_.
+  std::string interface_and_main();
+
+  const hlsl::Module& module_;
+  const hlsl::Reflection& reflection_;
+  const Flavour flavour_;
+  const Names& names_;
+  const bool vertex_;
+  const FunctionDecl* entry_ = nullptr;
+
+  Writer out_;  // functions
+  Helpers helpers_;
+  std::optional<Error> error_;
+  bool needs_samplerless_ = false;  // vk: texelFetch/textureSize on a texture2D
+  std::vector<const FunctionDecl*> functions_;
+  std::vector<const hlsl::VarDecl*> statics_;  // used static globals, in source order
+  std::vector<std::string> main_prologue_;     // statements that initialize statics in main()
+  std::string interface_text_;
+  std::unordered_set<const hlsl::Decl*> const_decls_;  // emitted as GLSL `const`
+  struct SplitMember {
+    hlsl::ScalarType scalar;
+    uint32_t count;
+  };
+  std::unordered_map<const hlsl::Decl*, SplitMember> split_members_;
+};
+
+}  // namespace xshade::glsl::detail

@@ -1,0 +1,422 @@
+// The GLSL emitter's output, compiled: every realistic shader must come out of both flavours as
+// GLSL that glslang accepts, the vk flavour as valid SPIR-V (compile_vulkan_glsl runs spirv-val)
+// and the gl flavour as OpenGL 4.50 core GLSL.
+#include <glslang/Public/ResourceLimits.h>
+#include <glslang/Public/ShaderLang.h>
+#include <gtest/gtest.h>
+
+#include <memory>
+#include <sstream>
+#include <string>
+
+#include "glsl/glsl_emitter.h"
+#include "hlsl_like/compiler.h"
+#include "spirv/glslang_process.h"
+#include "spirv/spirv_compiler.h"
+
+namespace xshade::spirv {
+namespace {
+
+// The text with line numbers, for failure messages.
+std::string numbered(const std::string& text) {
+  std::istringstream in(text);
+  std::ostringstream out;
+  std::string line;
+  for (int number = 1; std::getline(in, line); ++number) out << number << ": " << line << "\n";
+  return out.str();
+}
+
+// Compiles (and links, both stages in one program when there are two) OpenGL GLSL with glslang.
+// Returns glslang's log; empty on success.
+std::string compile_opengl(const std::string* vertex, const std::string* fragment) {
+  ensure_glslang_initialized();
+  glslang::TProgram program;
+  std::vector<std::unique_ptr<glslang::TShader>> shaders;
+  std::string log;
+  for (const std::string* text : {vertex, fragment}) {
+    if (!text) continue;
+    const EShLanguage stage = text == vertex ? EShLangVertex : EShLangFragment;
+    auto shader = std::make_unique<glslang::TShader>(stage);
+    const char* source = text->c_str();
+    shader->setStrings(&source, 1);
+    shader->setEnvInput(glslang::EShSourceGlsl, stage, glslang::EShClientOpenGL, 100);
+    shader->setEnvClient(glslang::EShClientOpenGL, glslang::EShTargetOpenGL_450);
+    if (!shader->parse(GetDefaultResources(), 450, ECoreProfile, false, false, EShMsgDefault)) {
+      log += shader->getInfoLog();
+      continue;
+    }
+    program.addShader(shader.get());
+    shaders.push_back(std::move(shader));
+  }
+  if (log.empty() && !program.link(EShMsgDefault)) log += program.getInfoLog();
+  return log;
+}
+
+struct Compiled {
+  glsl::EmittedProgram gl;
+  glsl::EmittedProgram vk;
+};
+
+// Emits both flavours of `source` and compiles every stage; reports failures with the GLSL.
+Compiled emit_and_compile(const std::string& name, const std::string& source, hlsl::CompileOptions options = {}) {
+  Compiled compiled;
+  auto module = hlsl::compile_text(name, source, options);
+  std::string diagnostics;
+  for (const Diagnostic& d : module->diagnostics.diagnostics()) diagnostics += d.to_string() + "\n";
+  EXPECT_TRUE(module->ok()) << diagnostics;
+  if (!module->ok()) return compiled;
+  for (const glsl::Flavour flavour : {glsl::Flavour::Gl, glsl::Flavour::Vk}) {
+    auto program = glsl::emit(*module, {flavour});
+    EXPECT_TRUE(program) << name << " (" << glsl::flavour_name(flavour) << "): " << program.error().to_string();
+    if (!program) continue;
+    const std::string* vertex = program->vertex ? &program->vertex->text : nullptr;
+    const std::string* fragment = program->fragment ? &program->fragment->text : nullptr;
+    if (flavour == glsl::Flavour::Gl) {
+      const std::string log = compile_opengl(vertex, fragment);
+      EXPECT_EQ(log, "") << name << " (gl)\n"
+                         << (vertex ? numbered(*vertex) : "") << "\n"
+                         << (fragment ? numbered(*fragment) : "");
+      compiled.gl = *program;
+    } else {
+      for (const std::string* text : {vertex, fragment}) {
+        if (!text) continue;
+        const Stage stage = text == vertex ? Stage::Vertex : Stage::Fragment;
+        auto spirv = compile_vulkan_glsl(*text, stage, name);
+        EXPECT_TRUE(spirv) << name << " (vk)\n"
+                           << (spirv ? "" : spirv.error().to_string()) << "\n"
+                           << numbered(*text);
+        if (spirv && !spirv->warnings.empty()) ADD_FAILURE() << name << ": " << spirv->warnings.front().to_string();
+      }
+      compiled.vk = *program;
+    }
+  }
+  return compiled;
+}
+
+// ---------------------------------------------------------------------------------------------
+// A Unity-style PBR material: appdata/v2f structs, constant buffers with matrices (both
+// packings), $Globals, Texture2D + SamplerState, sampler2D, helpers with out and inout
+// parameters, overloads, loops, ternaries (scalar and vector conditions), matrices.
+
+constexpr const char* kPbrMaterial = R"(#pragma vertex vert
+#pragma fragment frag
+#pragma multi_compile _ _NORMALMAP
+
+#define PI 3.14159265359
+
+struct appdata {
+  float4 vertex : POSITION;
+  float3 normal : NORMAL;
+  float4 tangent : TANGENT;
+  float2 uv : TEXCOORD0;
+  float4 color : COLOR0;
+};
+
+struct v2f {
+  float4 pos : SV_Position;
+  float2 uv : TEXCOORD0;
+  float3 worldNormal : TEXCOORD1;
+  float3 worldPos : TEXCOORD2;
+  float4 worldTangent : TEXCOORD3;
+  nointerpolation int id : TEXCOORD4;
+  noperspective float2 screen : TEXCOORD5;
+  float4 color : COLOR0;
+};
+
+cbuffer UnityPerDraw : register(b0) {
+  float4x4 unity_ObjectToWorld;
+  float4x4 unity_WorldToObject;
+};
+
+cbuffer UnityPerFrame : register(b1) {
+  row_major float4x4 unity_MatrixVP;
+  float3 _WorldSpaceCameraPos;
+  float _Time;
+  float4 _Weights[4];
+};
+
+struct Light {
+  float4 direction;
+  float4 color;
+};
+
+cbuffer Lighting {
+  Light _MainLight;
+  float _Exposure;
+  float3x3 _Rotation;
+};
+
+float4 _Color;
+float _Metallic;
+float _Glossiness;
+float2 _Tiling;
+half4 _Tint;
+float _BumpScale;
+float2 _Offset;
+bool _UseRamp;
+
+Texture2D _MainTex;
+SamplerState sampler_MainTex;
+Texture2D _BumpMap;
+sampler2D _Ramp;
+
+static const float3 kLuminance = float3(0.2126, 0.7152, 0.0722);
+static float3 s_ambient = float3(0.03, 0.03, 0.03) * _Exposure;
+static int s_counter;
+
+float3 ObjectToWorldNormal(float3 n) {
+  return normalize(mul(n, (float3x3)unity_WorldToObject));
+}
+
+half3 tint(half3 c) { return c * _Tint.rgb; }
+float3 tint(float3 c, float k) { return c * k; }
+
+void DiffuseAndSpecularFromMetallic(float3 albedo, float metallic, out float3 specColor,
+                                    out float oneMinusReflectivity, inout float3 diffuse) {
+  specColor = lerp(float3(0.04, 0.04, 0.04), albedo, metallic);
+  oneMinusReflectivity = 0.96 * (1 - metallic);
+  diffuse *= albedo * oneMinusReflectivity;
+}
+
+float D_GGX(float NoH, float a) {
+  float a2 = a * a;
+  float d = NoH * NoH * (a2 - 1) + 1;
+  return a2 / (PI * d * d + 1e-7f);
+}
+
+float3 F_Schlick(float3 f0, float LoH) {
+  return f0 + (1 - f0) * pow(1 - LoH, 5);
+}
+
+float G_CookTorrance(float NoH, float NoV, float NoL, float VoH) {
+  return min(1, min(2 * NoH * NoV / VoH, 2 * NoH * NoL / VoH));
+}
+
+int bucket(int i, int n) {
+  int q = i / n;
+  int r = i % n;
+  q += r;
+  q /= 2;
+  return q;
+}
+
+float3 SampleNormal(Texture2D map, SamplerState s, float2 uv, float scale) {
+  float3 n = map.Sample(s, uv).xyz * 2 - 1;
+  n.xy *= scale;
+  return normalize(n);
+}
+
+v2f vert(appdata v, uint vid : SV_VertexID) {
+  v2f o = (v2f)0;
+  float4 world = mul(unity_ObjectToWorld, v.vertex);
+  o.pos = mul(unity_MatrixVP, world);
+  o.uv = v.uv * _Tiling + _Offset;
+  o.worldNormal = ObjectToWorldNormal(v.normal);
+  o.worldPos = world.xyz;
+  o.worldTangent = float4(mul((float3x3)unity_ObjectToWorld, v.tangent.xyz), v.tangent.w);
+  o.id = bucket(int(vid), 3);
+  o.screen = o.pos.xy / o.pos.w;
+  float3x3 tbn = float3x3(v.tangent.xyz, cross(v.normal, v.tangent.xyz) * v.tangent.w, v.normal);
+  float3 axis = mul(tbn, float3(0, 0, 1));
+  o.color = v.color * (axis.z > 0 ? 1.0 : 0.5);
+  o.color.rgb = v.tangent.w > 0 ? o.color.rgb : o.color.bgr;
+  return o;
+}
+
+float4 frag(v2f i, bool facing : SV_IsFrontFace) : SV_Target {
+  float3 n = normalize(i.worldNormal) * (facing ? 1 : -1);
+#ifdef _NORMALMAP
+  float3 tn = SampleNormal(_BumpMap, sampler_MainTex, i.uv, _BumpScale);
+  float3 b = cross(n, i.worldTangent.xyz) * i.worldTangent.w;
+  float3x3 tangentToWorld = float3x3(i.worldTangent.xyz, b, n);
+  n = normalize(mul(tn, tangentToWorld));
+#endif
+  float3 v = normalize(_WorldSpaceCameraPos - i.worldPos);
+  float3 l = normalize(mul(_Rotation, -_MainLight.direction.xyz));
+  float3 h = normalize(l + v);
+  float NoL = saturate(dot(n, l));
+  float NoV = max(abs(dot(n, v)), 1e-4);
+  float NoH = saturate(dot(n, h));
+  float VoH = saturate(dot(v, h));
+  float LoH = saturate(dot(l, h));
+
+  float4 texel = _MainTex.Sample(sampler_MainTex, i.uv);
+  float3 albedo = tint(_Color.rgb * texel.rgb);
+  float3 specColor;
+  float oneMinusReflectivity;
+  float3 diffuse = 1;
+  DiffuseAndSpecularFromMetallic(albedo, _Metallic, specColor, oneMinusReflectivity, diffuse);
+
+  float a = max(1 - _Glossiness, 0.002);
+  float D = D_GGX(NoH, a);
+  float3 F = F_Schlick(specColor, LoH);
+  float G = G_CookTorrance(NoH, NoV, NoL, VoH);
+  float3 specular = D * F * G * PI / (4 * NoL * NoV + 1e-5);
+  float3 color = (diffuse + specular) * _MainLight.color.rgb * NoL + s_ambient * albedo;
+
+  float weight = 0;
+  [unroll] for (int k = 0; k < 4; ++k) {
+    weight += dot(_Weights[k], float4(1, 1, 1, 1)) * 0.25;
+  }
+  int steps = 0;
+  while (steps < 3 && weight > 0.5) { weight *= 0.5; steps++; }
+  do { weight += 0.001; } while (weight < 0);
+
+  if (_UseRamp) {
+    color *= tex2D(_Ramp, float2(NoL * 0.5 + 0.5, 0.5)).rgb;
+  } else if (i.id == 2) {
+    color = lerp(color, dot(color, kLuminance), 0.5);
+  } else {
+    color = tint(color, 1.0);
+  }
+  float3 mask = color > 1 ? 1 : color;
+  color = (color < 0.0) ? 0.0 : mask;
+  bool3 bright = color > 0.8;
+  if (any(bright && color < 0.9) || all(!bright)) color *= 0.99;
+  float4x4 m = unity_ObjectToWorld * 2;
+  m *= unity_WorldToObject;
+  color += m[0].xyz * 0.001 + m._m10_m11_m12 * 0.001 + unity_MatrixVP._11 * 0.0;
+  s_counter += steps;
+  float4 result = float4(color * (1 + weight), texel.a * _Color.a);
+  result.rgb *= float3(i.screen * 0.5 + 0.5, 1) * i.color.rgb;
+  return result;
+}
+)";
+
+TEST(EmittedGlsl, PbrMaterialCompilesInBothFlavours) {
+  emit_and_compile("pbr.hlsl", kPbrMaterial);
+  hlsl::CompileOptions options;
+  options.keywords = {"_NORMALMAP"};
+  emit_and_compile("pbr_normalmap.hlsl", kPbrMaterial, options);
+}
+
+// ---------------------------------------------------------------------------------------------
+// A full-screen post effect without a vertex stage: a disk kernel of float2 in a static const
+// array, read in a loop.
+
+constexpr const char* kBokehPost = R"(#pragma fragment frag
+
+Texture2D _MainTex;
+SamplerState sampler_MainTex;
+float4 _MainTex_TexelSize;
+float _BokehRadius;
+
+static const int kSampleCount = 16;
+static const float2 kDiskKernel[kSampleCount] = {
+  float2(0, 0),
+  float2(0.54545456, 0), float2(0.16855472, 0.5187581), float2(-0.44128203, 0.3206101),
+  float2(-0.44128197, -0.3206102), float2(0.1685548, -0.5187581),
+  float2(1, 0), float2(0.809017, 0.58778524), float2(0.30901697, 0.95105654),
+  float2(-0.30901703, 0.9510565), float2(-0.80901706, 0.5877852), float2(-1, 0),
+  float2(-0.80901694, -0.58778536), float2(-0.30901664, -0.9510566), float2(0.30901712, -0.9510565),
+  float2(0.80901694, -0.5877853),
+};
+
+float Weigh(float coc, float radius) {
+  return saturate((coc - radius + 2) / 2);
+}
+
+float4 frag(float2 uv : TEXCOORD0) : SV_Target {
+  float3 color = 0;
+  float weight = 0;
+  [loop] for (int k = 0; k < kSampleCount; k++) {
+    float2 o = kDiskKernel[k] * _BokehRadius;
+    float radius = length(o);
+    o *= _MainTex_TexelSize.xy;
+    float4 s = _MainTex.SampleLevel(sampler_MainTex, uv + o, 0);
+    float w = Weigh(s.a, radius);
+    color += s.rgb * w;
+    weight += w;
+  }
+  color *= 1.0 / max(weight, 1e-5);
+  return float4(color, 1);
+}
+)";
+
+TEST(EmittedGlsl, FragmentOnlyPostEffectCompilesInBothFlavours) {
+  Compiled compiled = emit_and_compile("bokeh.hlsl", kBokehPost);
+  EXPECT_FALSE(compiled.gl.vertex);
+  ASSERT_TRUE(compiled.gl.fragment);
+  // The harness's full-screen vertex shader writes uv at location 0.
+  EXPECT_NE(compiled.gl.fragment->text.find("layout(location = 0) in vec2 xs_v_TEXCOORD0;"), std::string::npos);
+  const std::string vertex = glsl::fullscreen_vertex_shader(glsl::Flavour::Gl);
+  EXPECT_EQ(compile_opengl(&vertex, &compiled.gl.fragment->text), "");
+}
+
+// ---------------------------------------------------------------------------------------------
+// Every intrinsic and texture method at least once.
+
+constexpr const char* kEveryIntrinsic = R"(#pragma fragment frag
+
+float4 _A;
+float4 _B;
+int4 _I;
+uint4 _U;
+float4x4 _M;
+float3x3 _N;
+float2x3 _R;
+sampler2D _S;
+Texture2D _T;
+SamplerState _SS;
+
+float4 frag(float2 uv : TEXCOORD0, float4 pos : SV_Position) : SV_Target {
+  float4 a = _A, b = _B;
+  float3 x = a.xyz, y = b.xyz;
+  float3 r = 0;
+  r += abs(x) + acos(saturate(x)) + asin(saturate(y)) + atan(x) + atan2(x, y);
+  r += ceil(x) + clamp(x, 0, 1) + cos(x) + cosh(x) + cross(x, y);
+  r += ddx(x) + ddy(x) + degrees(x) + radians(x);
+  r += distance(x, y) + dot(a, b) + exp(x) + exp2(x);
+  r += faceforward(x, y, x.zyx) + floor(x) + fmod(x, y) + fmod(a.w, b.w) + frac(x) + fwidth(x);
+  r += isinf(x) ? 1 : 0;
+  r += isnan(x) ? 1 : 0;
+  r += isfinite(x) ? 1 : 0;
+  r += isfinite(a.w) ? 1 : 0;
+  r += ldexp(x, y) + length(x) + lerp(x, y, 0.5) + log(abs(x) + 1) + log10(abs(x) + 1) + log2(abs(x) + 1);
+  r += mad(x, y, 1) + max(x, y) + min(x, y);
+  float3 ip;
+  r += modf(x, ip) + ip;
+  r += mul(_M, a).xyz + mul(a, _M).xyz + mul(_N, x) + mul(x, _N) + mul(2.0, x) + mul(x, y) + mul(_M, _M)[0].xyz;
+  r += mul(_R, x).xyy + mul(float2(1, 2), _R) + mul(_N, _N)._m01_m12_m20;
+  r += normalize(x) + pow(abs(x), y) + rcp(x + 2) + reflect(x, y) + refract(normalize(x), normalize(y), 0.66);
+  r += round(x) + rsqrt(abs(x) + 1) + saturate(x) + sign(x) + sign(_I.xyz) + sign(_U.xyz) + sin(x) + sinh(x);
+  float3 s, c;
+  sincos(x, s, c);
+  r += s + c;
+  sincos(x * 2, s, c);
+  r += s + c;
+  r += smoothstep(0, 1, x) + sqrt(abs(x)) + step(0.5, x) + tan(x) + tanh(x) + trunc(x);
+  r += transpose(_N)[1] + determinant(_N) + fma(x, y, x.zyx);
+  r += all(x) ? 1 : 0;
+  r += any(_I.xyz) ? 1 : 0;
+  r += all(x > 0) && any(y < 0) ? 1 : 0;
+  r += asfloat(_U.xyz) + asfloat(asint(x)) + asfloat(asuint(x)) + float3(asint(_U.xyz)) + float3(asuint(_I.xyz));
+  r += asfloat(_I.x) + asint(a.w) + asuint(b.w) + asfloat(a.w);
+  r += f16tof32(_U.xyz) + f16tof32(_U.x) + float3(f32tof16(x)) + f32tof16(a.w);
+  r += float3(countbits(_U.xyz)) + float3(reversebits(_U.xyz)) + countbits(_U.w);
+  r += dot(_I.xyz, _I.zyx) + mul(_I.xy, _I.yx) + abs(_I.x) + abs(_U.y);
+  clip(a.w);
+  clip(x);
+  float4 t = tex2D(_S, uv) + tex2Dlod(_S, float4(uv, 0, 1)) + tex2Dbias(_S, float4(uv, 0, -1)) +
+             tex2Dgrad(_S, uv, ddx(uv), ddy(uv));
+  float4 t4 = float4(uv, 0, 2);
+  t += tex2Dlod(_S, t4) + tex2Dbias(_S, t4);
+  t += _T.Sample(_SS, uv) + _T.SampleLevel(_SS, uv, 0) + _T.SampleBias(_SS, uv, 0.5) +
+       _T.SampleGrad(_SS, uv, ddx(uv), ddy(uv)) + _T.Load(int3(pos.xy, 0));
+  int3 texel = int3(pos.xy, 0);
+  t += _T.Load(texel);
+  uint w, h;
+  _T.GetDimensions(w, h);
+  float fw, fh;
+  _T.GetDimensions(fw, fh);
+  uint mw, mh, levels;
+  _T.GetDimensions(1, mw, mh, levels);
+  r += float3(w, h, fw + fh) + float3(mw, mh, levels);
+  return float4(r, 1) + t;
+}
+)";
+
+TEST(EmittedGlsl, EveryIntrinsicCompilesInBothFlavours) { emit_and_compile("intrinsics.hlsl", kEveryIntrinsic); }
+
+}  // namespace
+}  // namespace xshade::spirv
