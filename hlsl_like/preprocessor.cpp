@@ -873,7 +873,15 @@ void Preprocessor::Impl::expand_list(const std::vector<PPTok>& list, size_t begi
 PPTok Preprocessor::Impl::stringize(const Args& args, int param, Loc loc) {
   const size_t begin = args.starts[size_t(param)];
   const size_t end = args.starts[size_t(param) + 1];
-  charge(end - begin, loc);
+  // Texts can double at each level of nesting (a stringized string escapes its quotes again),
+  // so their length is charged too.
+  size_t estimate = 2;
+  for (size_t i = begin; i < end; ++i) estimate += args.tokens[i].tok.text.size() * 2 + 1;
+  PPTok result;
+  if (!charge(end - begin + estimate / 8, loc)) {
+    result.tok = make_token(TokenKind::StringLiteral, "\"\"", loc);
+    return result;
+  }
   std::string text = "\"";
   for (size_t i = begin; i < end; ++i) {
     const Token& t = args.tokens[i].tok;
@@ -888,7 +896,6 @@ PPTok Preprocessor::Impl::stringize(const Args& args, int param, Loc loc) {
     }
   }
   text += '"';
-  PPTok result;
   result.tok = make_token(TokenKind::StringLiteral, store(std::move(text)), loc);
   return result;
 }
@@ -902,6 +909,7 @@ void Preprocessor::Impl::paste(std::vector<PPTok>& out, const PPTok& rhs, Loc lo
     lhs.tok.space_before = space;
     return;
   }
+  if (!charge((lhs.tok.text.size() + rhs.tok.text.size()) / 8, loc)) return;
   std::string text;
   text.reserve(lhs.tok.text.size() + rhs.tok.text.size());
   text += lhs.tok.text;

@@ -584,6 +584,20 @@ TEST_F(PreprocessorTest, ExponentialExpansionIsCutOff) {
   EXPECT_EQ(count_eof(), 1u);
 }
 
+TEST_F(PreprocessorTest, DoublingTextsArePaidForToo) {
+  // Each level doubles a pasted token, or a stringized string with its escapes.
+  std::string text = "#define D(x) x ## x\n#define E(x) D(x)\n#define S(x) #x #x\n#define T(x) S(x)\n";
+  for (const char* macro : {"E", "T"}) {
+    for (int i = 0; i < 60; ++i) text += std::string(macro) + "(";
+    text += "ab" + std::string(60, ')') + "\n";
+  }
+  const auto start = std::chrono::steady_clock::now();
+  run(text);
+  EXPECT_LT(seconds_since(start), 1.5);
+  ASSERT_FALSE(messages().empty());
+  EXPECT_NE(messages()[0].find("error: macro expansion is too large"), std::string::npos) << messages()[0];
+}
+
 TEST_F(PreprocessorTest, LongMacroChainHitsTheExpansionDepthLimit) {
   std::string text;
   for (int i = 0; i < 400; ++i) text += "#define M" + std::to_string(i) + " M" + std::to_string(i + 1) + "\n";
