@@ -69,6 +69,7 @@ std::vector<std::string> active_keywords(const std::vector<KeywordSet>& sets, co
 }
 
 std::unique_ptr<Module> compile(std::unique_ptr<Module> module, const CompileOptions& options) {
+  module->include_dirs = options.include_dirs;
   auto preprocess = [&](const std::vector<std::string>& keywords) {
     PreprocessorOptions pp_options;
     pp_options.include_dirs = options.include_dirs;

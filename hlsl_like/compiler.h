@@ -37,6 +37,7 @@ struct Module {
   // The macros the variant was compiled with (prelude, keywords, defines), for other compilers
   // of the same source (glslang's HLSL front end on the vk-hlsl lane).
   std::vector<MacroDefinition> macros;
+  std::vector<std::filesystem::path> include_dirs;  // as given to the compile
 
   bool ok() const { return !diagnostics.has_errors(); }
   // Every file the variant read: the main file and its includes.

@@ -1107,25 +1107,6 @@ class Parser {
     return nullptr;
   }
 
-  // The length of `T a[] = {...}`: the number of elements, except that a list of plain scalar
-  // literals for a vector or matrix element (HLSL flattens initializers) counts components.
-  static uint32_t unsized_length(const InitListExpr& list, const Type& element) {
-    const size_t count = list.elements.size();
-    const uint32_t components = element.component_count();
-    bool all_scalar_literals = components > 1;
-    for (const ExprPtr& e : list.elements) {
-      const Expr* inner = e.get();
-      if (inner->kind == ExprKind::Unary) inner = static_cast<const UnaryExpr*>(inner)->operand.get();
-      if (inner->kind != ExprKind::IntLiteral && inner->kind != ExprKind::FloatLiteral &&
-          inner->kind != ExprKind::BoolLiteral) {
-        all_scalar_literals = false;
-        break;
-      }
-    }
-    size_t length = all_scalar_literals ? (count + components - 1) / components : count;
-    return uint32_t(std::min<size_t>(length, size_t(kMaxArrayLength)));
-  }
-
   // One variable declarator after its name: dimensions, annotations, semantics and registers,
   // and an initializer.
   std::unique_ptr<VarDecl> parse_var_declarator(const Specifiers& spec, const Type& base, size_t name_index,
@@ -1158,11 +1139,9 @@ class Parser {
       } else if (static_cast<const InitListExpr&>(*var->initializer).elements.empty()) {
         error_at(name_index, "an unsized array needs a non-empty initializer list");
         var->type = Type::array(var->type.element(), 1);
-      } else {
-        const uint32_t length =
-            unsized_length(static_cast<const InitListExpr&>(*var->initializer), var->type.element());
-        var->type = Type::array(var->type.element(), std::max<uint32_t>(length, 1));
       }
+      // Otherwise the length stays 0: semantic analysis counts the list's components the way
+      // HLSL flattens initializers, which needs the elements' types.
     }
     if (var->is_const && var->type.is_scalar() && var->type.is_integer() && var->initializer) {
       if (const std::optional<int64_t> value = evaluate_int(*var->initializer))

@@ -569,6 +569,12 @@ TEST(SemaInit, UnsizedArraysTakeTheirLengthFromTheList) {
   EXPECT_EQ(a->global("kDisk").initializer->type.name(), "float2[3]");
 }
 
+TEST(SemaInit, UnsizedArraysCountComponentsOfAnyScalars) {
+  // Not only literals: four scalar variables fill two float2 elements.
+  auto a = analyze_source("void t(float a, float b, float c, float d) { float2 k[] = { a, b, c, d }; }\n");
+  EXPECT_EQ(a->messages(), Strings{});
+}
+
 TEST(SemaInit, AnElementMayNotStraddleTwoMembers) {
   EXPECT_EQ(messages_of("void t() { float2 k[2] = { float3(0, 0, 0), 1 }; }\n"),
             (Strings{"1:28: error: initializer element of type 'float3' spans several elements of 'float2[2]'"}));
