@@ -534,9 +534,8 @@ Code StageEmitter::expr(const Expr* e) {
     case ExprKind::Name: {
       const auto* name = static_cast<const NameExpr*>(e);
       if (auto it = split_members_.find(name->decl); it != split_members_.end()) {
-        const std::string base = names_.of(name->name);
         std::string text = type_name(Type::vector(it->second.scalar, it->second.count), e->loc) + "(";
-        for (uint32_t i = 0; i < it->second.count; ++i) text += (i ? ", " : "") + base + "_" + std::to_string(i);
+        for (uint32_t i = 0; i < it->second.count; ++i) text += (i ? ", " : "") + names_.split_member(name->name, i);
         return {text + ")"};
       }
       if (flavour_ == Flavour::Gl && e->type.kind() == TypeKind::SamplerState)
@@ -760,9 +759,9 @@ Code StageEmitter::expr(const Expr* e) {
         return convert(value, Type::scalar(type.scalar_type()), e->type, e->loc);
       }
       if (is_split_name(object, split_members_)) {
-        const std::string base = names_.of(static_cast<const NameExpr*>(object)->name);
+        const std::string& base = static_cast<const NameExpr*>(object)->name;
         std::string parts;
-        for (uint32_t i = 0; i < count; ++i) parts += (i ? ", " : "") + base + "_" + std::to_string(swizzle[i]);
+        for (uint32_t i = 0; i < count; ++i) parts += (i ? ", " : "") + names_.split_member(base, swizzle[i]);
         if (count == 1) return {parts};
         return {type_name(e->type, e->loc) + "(" + parts + ")", kPostfix};
       }

@@ -136,6 +136,14 @@ std::string Names::of(const std::string& name) const {
   return candidate;
 }
 
+std::string Names::split_member(const std::string& name, uint32_t index) const {
+  const std::string base = of(name);
+  const std::string stem = base.back() == '_' ? base : base + "_";  // never `__`
+  std::string candidate = stem + std::to_string(index);
+  while (user_.count(candidate) > 0) candidate += "x";
+  return candidate;
+}
+
 std::string Names::function(const FunctionDecl* function) const {
   const FunctionDecl* definition = function->definition ? function->definition : function;
   if (auto it = functions_.find(definition); it != functions_.end()) return it->second;
@@ -442,8 +450,8 @@ std::string StageEmitter::declarations() {
       if (member.split_into_scalars) {
         const std::string scalar = type_name(Type::scalar(member.type.scalar_type()), loc);
         for (uint32_t i = 0; i < member.type.cols(); ++i)
-          w.line("layout(offset = " + std::to_string(member.offset + 4 * i) + ") " + scalar + " " + name + "_" +
-                 std::to_string(i) + ";");
+          w.line("layout(offset = " + std::to_string(member.offset + 4 * i) + ") " + scalar + " " +
+                 names_.split_member(member.name, i) + ";");
         continue;
       }
       std::string qualifiers = "offset = " + std::to_string(member.offset);

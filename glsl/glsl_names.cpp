@@ -95,7 +95,7 @@ bool needs_renaming(std::string_view name) {
 // Rules, in order, chosen so that the result never needs renaming again:
 // 1. each `__` becomes `_0` (`a__b` -> `a_0b`; GLSL reserves names with `__`);
 // 2. a reserved word gets a trailing `_` (`input` -> `input_`);
-// 3. a `gl_` prefix gets `xs_` in front (`gl_x` -> `xs_gl_x`);
+// 3. a `gl_` prefix gets `xs_` in front (`gl_x` -> `xs_gl_x`, then `xs_gl_x_` by rule 4);
 // 4. an `xs_` prefix gets a trailing `_` unless it has one: the emitter's own names never end in `_`.
 std::string renamed(std::string_view name) {
   std::string result;

@@ -16,7 +16,7 @@ bool is_glsl_reserved_word(std::string_view name);
 bool needs_renaming(std::string_view name);
 
 // The GLSL spelling of an author's name, ignoring collisions: reserved words get a trailing `_`;
-// `gl_x` becomes `xs_gl_x_`... see the definition for the exact rules.
+// `gl_x` becomes `xs_gl_x_`, `a__b` becomes `a_0b`, `xs_x` becomes `xs_x_` (see the definition).
 std::string renamed(std::string_view name);
 
 }  // namespace xshade::glsl

@@ -66,6 +66,8 @@ class Names {
   // A function's name: of(name), or with a type suffix when two overloads have the same GLSL
   // signature (half and float parameters are both float in GLSL).
   std::string function(const FunctionDecl* function) const;
+  // The scalar `index` of a constant-buffer vector declared as scalars: `_Offset_0`.
+  std::string split_member(const std::string& name, uint32_t index) const;
 
  private:
   std::unordered_set<std::string> user_;  // every name the author declared
