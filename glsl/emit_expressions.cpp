@@ -540,7 +540,7 @@ Code StageEmitter::expr(const Expr* e) {
       }
       if (flavour_ == Flavour::Gl && e->type.kind() == TypeKind::SamplerState)
         fail(e->loc, "SamplerState '" + name->name + "' can only be passed to Sample methods and functions on OpenGL");
-      return {names_.of(name->name)};
+      return {name->decl ? names_.variable(name->decl) : names_.of(name->name)};
     }
 
     case ExprKind::Unary: {

@@ -36,7 +36,7 @@ void StageEmitter::function(const FunctionDecl& f) {
     first = false;
     if (param->direction == ParamDirection::Out) signature += "out ";
     if (param->direction == ParamDirection::InOut) signature += "inout ";
-    signature += declarator(param->type, names_.of(param->name), param->loc);
+    signature += declarator(param->type, names_.variable(param.get()), param->loc);
   }
   out_.line(signature + ") {");
   body(f.body.get());
@@ -69,7 +69,7 @@ std::string variable_text(StageEmitter& emitter, const VarDecl& var, const Names
       text = "const ";
     }
   }
-  text += emitter.declarator(var.type, names.of(var.name), var.loc);
+  text += emitter.declarator(var.type, names.variable(&var), var.loc);
   if (!init.empty()) text += " = " + init;
   return text;
 }
@@ -153,7 +153,7 @@ void StageEmitter::statement(const Stmt* stmt) {
             const VarDecl& var = *vars[i];
             if (i == 0) init = type_name(var.type, var.loc) + " ";
             else init += ", ";
-            init += names_.of(var.name);
+            init += names_.variable(&var);
             if (var.initializer) init += " = " + initializer(var);
           }
         } else {

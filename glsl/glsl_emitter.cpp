@@ -90,6 +90,7 @@ Names::Names(const TranslationUnit& unit, Flavour flavour) {
         for (const auto& param : function.params)
           if (param) user_.insert(param->name);
         collect_local_names(function.body.get(), user_);
+        function_names_.insert(function.name);
         if (function.body) functions.push_back(&function);
         break;
       }
@@ -133,6 +134,17 @@ std::string Names::of(const std::string& name) const {
   std::string candidate = base;
   for (int k = 1; user_.count(candidate) > 0; ++k) candidate = base + std::to_string(k);
   cache_.emplace(name, candidate);
+  return candidate;
+}
+
+std::string Names::variable(const Decl* decl) const {
+  const bool global = decl->kind == DeclKind::Var && static_cast<const VarDecl*>(decl)->is_global;
+  if (global || function_names_.count(decl->name) == 0) return of(decl->name);
+  const std::string base = of(decl->name);
+  const std::string stem = (base.back() == '_' ? base : base + "_") + "v";
+  std::string candidate = stem;
+  for (int k = 1; user_.count(candidate) > 0 || function_names_.count(candidate) > 0; ++k)
+    candidate = stem + std::to_string(k);
   return candidate;
 }
 
@@ -385,7 +397,7 @@ std::string StageEmitter::run() {
       fail(var->loc, "groupshared variables are not supported on this target");
       continue;
     }
-    const std::string name = names_.of(var->name);
+    const std::string name = names_.variable(var);
     const std::string declaration = declarator(var->type, name, var->loc);
     if (!var->initializer) {
       statics.line(declaration + " = " + zero_value(*this, var->type, var->loc) + ";");
@@ -540,7 +552,7 @@ std::string StageEmitter::interface_and_main() {
         declare("layout(location = " + std::to_string(*location) + ") in " + declarator(item.type, name, item.loc) + ";");
         source = {name};
       }
-    } else if (kind == SemanticKind::SvPosition || kind == SemanticKind::Position) {
+    } else if (kind == SemanticKind::SvPosition || item.semantic == "POSITION0") {
       // Direct3D's position w is the clip-space w; GL's gl_FragCoord.w is its reciprocal.
       source = {"vec4(gl_FragCoord.xyz, 1.0 / gl_FragCoord.w)"};
       source_type = Type::vector(ScalarType::Float, 4);
@@ -588,7 +600,7 @@ std::string StageEmitter::interface_and_main() {
   for (const StageItem& item : stage_items(entry, false, names_)) {
     const sema_detail::ParsedSemantic parsed = sema_detail::parse_semantic(item.semantic);
     const Code value{item.path, kPostfix};
-    if (vertex_ && (parsed.kind == SemanticKind::SvPosition || parsed.kind == SemanticKind::Position)) {
+    if (vertex_ && (parsed.kind == SemanticKind::SvPosition || item.semantic == "POSITION0")) {  // DX9's name
       main.line("gl_Position = " + convert(value, item.type, Type::vector(ScalarType::Float, 4), item.loc).text + ";");
       continue;
     }

@@ -3,6 +3,8 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <filesystem>
+#include <fstream>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -700,6 +702,40 @@ TEST(GlslEmitterLines, LineDirectivesPointAtTheAuthorsFile) {
     }
   }
   EXPECT_TRUE(found);
+}
+
+TEST(GlslEmitterNames, VariablesNamedLikeFunctionsDoNotHideThem) {
+  const std::string text = without_line_directives(
+      fragment("float3 fresnel(float3 f0) { return f0 * 0.5; }\n"
+               "float shade(float fresnel) { return fresnel * 2; }\n",
+               "float3 fresnel = fresnel(uv.xyx);\n"
+               "return float4(fresnel(fresnel), shade(fresnel.x));"));
+  EXPECT_THAT(text, HasSubstr("float shade(float fresnel_v) {\n  return fresnel_v * 2.0;\n}"));
+  EXPECT_THAT(text, HasSubstr("vec3 fresnel_v = fresnel(uv.xyx);"));
+  EXPECT_THAT(text, HasSubstr("return vec4(fresnel(fresnel_v), shade(fresnel_v.x));"));
+}
+
+TEST(GlslEmitterLines, IncludedFilesHaveTheirOwnNumber) {
+  const std::filesystem::path dir = std::filesystem::temp_directory_path() / "xshade_glsl_emitter_test";
+  std::filesystem::create_directories(dir);
+  {
+    std::ofstream(dir / "lighting.hlsl") << "float lambert(float3 n, float3 l) {\n  return saturate(dot(n, l));\n}\n";
+    std::ofstream(dir / "main.hlsl") << "#pragma fragment frag\n#include \"lighting.hlsl\"\n"
+                                        "float4 frag(float2 uv : TEXCOORD0) : SV_Target {\n"
+                                        "  return lambert(uv.xyx, 1);\n}\n";
+  }
+  auto module = hlsl::compile_file(dir / "main.hlsl", {});
+  ASSERT_TRUE(module->ok()) << diagnostics_of(*module);
+  auto program = emit(*module, {Flavour::Gl});
+  ASSERT_TRUE(program) << program.error().to_string();
+  ASSERT_EQ(program->source_files.size(), 3u);
+  EXPECT_THAT(program->source_files[1], HasSubstr("main.hlsl"));
+  EXPECT_THAT(program->source_files[2], HasSubstr("lighting.hlsl"));
+  const std::string& text = program->fragment->text;
+  EXPECT_THAT(text, HasSubstr("// file 2: " + program->source_files[2] + "\n"));
+  EXPECT_THAT(text, HasSubstr("#line 1 2\nfloat lambert(vec3 n, vec3 l) {\n"));
+  EXPECT_THAT(text, HasSubstr("#line 3 1\nvec4 frag(vec2 uv) {\n"));
+  std::filesystem::remove_all(dir);
 }
 
 TEST(GlslEmitterDeterminism, TheSameInputGivesTheSameBytes) {

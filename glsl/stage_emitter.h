@@ -66,11 +66,15 @@ class Names {
   // A function's name: of(name), or with a type suffix when two overloads have the same GLSL
   // signature (half and float parameters are both float in GLSL).
   std::string function(const FunctionDecl* function) const;
+  // A variable's or parameter's name. A local or parameter named like one of the author's
+  // functions is renamed too: in GLSL it would hide the function for the rest of its scope.
+  std::string variable(const hlsl::Decl* decl) const;
   // The scalar `index` of a constant-buffer vector declared as scalars: `_Offset_0`.
   std::string split_member(const std::string& name, uint32_t index) const;
 
  private:
   std::unordered_set<std::string> user_;  // every name the author declared
+  std::unordered_set<std::string> function_names_;
   std::unordered_map<const FunctionDecl*, std::string> functions_;
   mutable std::unordered_map<std::string, std::string> cache_;
 };
