@@ -25,7 +25,7 @@ namespace {
 
 // Work done by expansion (tokens made) before the preprocessor stops expanding: a few lines of
 // doubling macros must not hang the compiler or fill memory.
-constexpr size_t kMaxExpandedTokens = size_t(1) << 21;
+constexpr size_t kMaxExpandedTokens = size_t(1) << 20;
 // Parentheses and ?: nesting in a #if expression.
 constexpr size_t kMaxExpressionDepth = 128;
 // Macro calls nested in the arguments of macro calls: each level is one recursion of argument
@@ -543,7 +543,8 @@ std::vector<Token> Preprocessor::Impl::run(uint32_t main_file) {
     bool valid = !name.empty() && (std::isalpha(static_cast<unsigned char>(name[0])) || name[0] == '_');
     size_t k = 0;
     while (k < name.size() && (std::isalnum(static_cast<unsigned char>(name[k])) || name[k] == '_')) ++k;
-    if (k < name.size() && !(name[k] == '(' && name.back() == ')' && name.find('\n') == std::string::npos)) valid = false;
+    if (k < name.size() && !(name[k] == '(' && name.back() == ')' && name.find('\n') == std::string::npos))
+      valid = false;
     if (!valid) {
       diagnostics_.error({}, "invalid macro name '" + clip(name) + "' in the options");
       continue;
@@ -960,7 +961,8 @@ void Preprocessor::Impl::substitute(const Macro& macro, const Token& name, const
   };
   for (size_t i = 0; i < n; ++i) {
     const BodyToken& b = body[i];
-    const bool stringizing = macro.function_like && b.tok.kind == TokenKind::Hash && i + 1 < n && body[i + 1].param >= 0;
+    const bool stringizing =
+        macro.function_like && b.tok.kind == TokenKind::Hash && i + 1 < n && body[i + 1].param >= 0;
     if (stringizing) {
       PPTok s = stringize(*args, body[i + 1].param, name.loc);
       s.tok.space_before = b.tok.space_before;
