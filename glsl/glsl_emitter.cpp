@@ -323,18 +323,17 @@ void StageEmitter::collect_used_declarations() {
     if (decl && used_statics.count(decl.get())) statics_.push_back(static_cast<const VarDecl*>(decl.get()));
 
   // Constant-buffer members that std140 cannot place as vectors are read as scalars.
-  std::unordered_map<std::string, const VarDecl*> globals;
   for (const auto& decl : module_.unit.decls) {
     if (!decl) continue;
-    if (decl->kind == DeclKind::Var) globals.emplace(decl->name, static_cast<const VarDecl*>(decl.get()));
+    if (decl->kind == DeclKind::Var) uniform_decls_.emplace(decl->name, static_cast<const VarDecl*>(decl.get()));
     if (decl->kind == DeclKind::CBuffer)
       for (const auto& member : static_cast<const CBufferDecl&>(*decl).members)
-        if (member) globals.emplace(member->name, member.get());
+        if (member) uniform_decls_.emplace(member->name, member.get());
   }
   for (const ConstantBuffer& buffer : reflection_.constant_buffers) {
     for (const ConstantBufferMember& member : buffer.members) {
       if (!member.split_into_scalars) continue;
-      if (auto it = globals.find(member.name); it != globals.end())
+      if (auto it = uniform_decls_.find(member.name); it != uniform_decls_.end())
         split_members_[it->second] = {member.type.scalar_type(), member.type.cols()};
     }
   }
@@ -458,7 +457,8 @@ std::string StageEmitter::declarations() {
     w.indent = 1;
     for (const ConstantBufferMember& member : buffer.members) {
       const std::string name = names_.of(member.name);
-      const Loc loc = buffer.decl ? buffer.decl->loc : Loc{};
+      const auto decl = uniform_decls_.find(member.name);
+      const Loc loc = decl != uniform_decls_.end() ? decl->second->loc : buffer.decl ? buffer.decl->loc : Loc{};
       if (member.split_into_scalars) {
         const std::string scalar = type_name(Type::scalar(member.type.scalar_type()), loc);
         for (uint32_t i = 0; i < member.type.cols(); ++i)

@@ -193,6 +193,7 @@ class StageEmitter {
     uint32_t count;
   };
   std::unordered_map<const hlsl::Decl*, SplitMember> split_members_;
+  std::unordered_map<std::string, const hlsl::VarDecl*> uniform_decls_;  // constant-buffer members by name
 };
 
 }  // namespace xshade::glsl::detail
