@@ -523,5 +523,31 @@ void main(output i, bool front : SV_IsFrontFace, out Targets o) {
 
 TEST(EmittedGlsl, CornersCompileInBothFlavours) { emit_and_compile("corners.hlsl", kCorners); }
 
+
+// The fragment stage may read fewer components than the vertex stage writes, as in Direct3D:
+// both stages declare the vertex stage's type, and the fragment stage truncates where it reads.
+constexpr const char* kNarrowerVaryings = R"(#pragma vertex vert
+#pragma fragment frag
+struct VOut { float4 pos : SV_Position; float4 uv : TEXCOORD0; int4 id : TEXCOORD1; };
+VOut vert(float4 p : POSITION, float2 uv : TEXCOORD0) {
+  VOut o;
+  o.pos = p;
+  o.uv = float4(uv, 0, 1);
+  o.id = int4(1, 2, 3, 4);
+  return o;
+}
+float4 frag(float2 uv : TEXCOORD0, nointerpolation int id : TEXCOORD1) : SV_Target {
+  return float4(uv, id, 1);
+}
+)";
+
+TEST(EmittedGlsl, NarrowerFragmentInputsLink) {
+  Compiled compiled = emit_and_compile("narrow.hlsl", kNarrowerVaryings);
+  ASSERT_TRUE(compiled.gl.fragment);
+  EXPECT_NE(compiled.gl.fragment->text.find("layout(location = 0) in vec4 xs_v_TEXCOORD0;"), std::string::npos);
+  EXPECT_NE(compiled.gl.fragment->text.find("xs_arg0 = xs_v_TEXCOORD0.xy;"), std::string::npos);
+  EXPECT_NE(compiled.gl.fragment->text.find("xs_arg1 = xs_v_TEXCOORD1.x;"), std::string::npos);
+}
+
 }  // namespace
 }  // namespace xshade::spirv
