@@ -119,6 +119,9 @@ struct ShaderStageSource {
   std::vector<uint32_t> spirv;   // read by Vulkan backends
   std::string entry_point = "main";
   std::string name;              // shown in diagnostics, e.g. the source file
+  // Generated GLSL says `#line L N` to point at the author's files: entry N names source
+  // string N, so that the driver's messages name the author's file and line.
+  std::vector<std::string> source_files;
 };
 
 struct ProgramDesc {

@@ -9,6 +9,7 @@ std::string_view lane_name(Lane lane) {
   switch (lane) {
     case Lane::Gl: return "gl";
     case Lane::Vk: return "vk";
+    case Lane::VkHlsl: return "vk-hlsl";
   }
   return "?";
 }
@@ -20,6 +21,11 @@ std::optional<Lane> parse_lane(std::string_view name) {
 }
 
 const std::vector<Lane>& all_lanes() {
+  static const std::vector<Lane> lanes{Lane::Gl, Lane::Vk, Lane::VkHlsl};
+  return lanes;
+}
+
+const std::vector<Lane>& glsl_pair_lanes() {
   static const std::vector<Lane> lanes{Lane::Gl, Lane::Vk};
   return lanes;
 }
@@ -27,7 +33,8 @@ const std::vector<Lane>& all_lanes() {
 Result<std::unique_ptr<Backend>> create_backend(Lane lane, const BackendOptions& options) {
   switch (lane) {
     case Lane::Gl: return create_osmesa_backend();
-    case Lane::Vk: return create_lavapipe_backend({.validation = options.validation});
+    case Lane::Vk:
+    case Lane::VkHlsl: return create_lavapipe_backend({.validation = options.validation});
   }
   return fail("unknown lane");
 }
@@ -39,6 +46,7 @@ Result<ShaderStageSource> stage_for_lane(Lane lane, spirv::Stage stage, const Gl
     result.glsl = source.gl;
     return result;
   }
+  if (lane == Lane::VkHlsl) return fail("hand-written GLSL cannot run on the vk-hlsl lane", {source.name});
   auto module = spirv::compile_vulkan_glsl(source.vk, stage, source.name);
   if (!module) return fail(module.error());
   result.spirv = std::move(module->words);

@@ -14,11 +14,14 @@ namespace xshade::harness {
 enum class Lane {
   Gl,  // GLSL 4.50 core on OpenGL through OSMesa (llvmpipe)
   Vk,  // Vulkan GLSL -> glslang -> SPIR-V on lavapipe
+  VkHlsl,  // the hlsl_like source through glslang's own HLSL front end -> SPIR-V on lavapipe
 };
 
 std::string_view lane_name(Lane lane);
 std::optional<Lane> parse_lane(std::string_view name);
 const std::vector<Lane>& all_lanes();
+// The lanes that run hand-written GLSL pairs: one per backend, gl and vk.
+const std::vector<Lane>& glsl_pair_lanes();
 
 struct BackendOptions {
   bool validation = false;  // Vulkan validation layer, when installed
@@ -34,6 +37,7 @@ struct GlslStagePair {
 };
 
 // The stage in the form the lane's backend reads: GLSL text for gl, validated SPIR-V for vk.
+// Hand-written GLSL has no vk-hlsl form: that lane fails.
 Result<ShaderStageSource> stage_for_lane(Lane lane, spirv::Stage stage, const GlslStagePair& source);
 
 }  // namespace xshade::harness

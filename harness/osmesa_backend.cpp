@@ -235,7 +235,10 @@ bool consume(std::string_view& text, std::string_view prefix) {
 
 // Mesa: "0:4(28): error: `undeclared_thing' undeclared" (string:line(column)), or "error: ..."
 // in link logs. Anything else becomes a message-only diagnostic.
-std::vector<Diagnostic> parse_log(const std::string& log, const std::string& file) {
+// `files[n]` names source string n (what `#line L n` selects); string 0, or one the table does
+// not name, is `file`.
+std::vector<Diagnostic> parse_log(const std::string& log, const std::string& file,
+                                  const std::vector<std::string>& files = {}) {
   std::vector<Diagnostic> diagnostics;
   size_t start = 0;
   while (start < log.size()) {
@@ -252,7 +255,8 @@ std::vector<Diagnostic> parse_log(const std::string& log, const std::string& fil
     uint32_t string_index = 0, line_number = 0, column = 0;
     if (parse_number(rest, string_index) && consume(rest, ":") && parse_number(rest, line_number) &&
         consume(rest, "(") && parse_number(rest, column) && consume(rest, "):")) {
-      diagnostic.where = SourceLocation{file, line_number, column};
+      const bool named = string_index > 0 && string_index < files.size();
+      diagnostic.where = SourceLocation{named ? files[string_index] : file, line_number, column};
       while (consume(rest, " ")) {
       }
     } else {
@@ -770,7 +774,7 @@ Result<GlShader> OsmesaBackend::compile(const ShaderStageSource& source, GLenum 
   gl_.GetShaderInfoLog(object.get(), static_cast<GLsizei>(log.size()), &written, log.data());
   log.resize(static_cast<size_t>(std::max(written, 0)));
   Error error;
-  error.diagnostics = parse_log(log, source.name);
+  error.diagnostics = parse_log(log, source.name, source.source_files);
   error.message = shader + " does not compile";
   auto first = std::find_if(error.diagnostics.begin(), error.diagnostics.end(),
                             [](const Diagnostic& d) { return d.severity == Severity::Error; });

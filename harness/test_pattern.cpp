@@ -1,54 +1,46 @@
 #include "harness/test_pattern.h"
 
 #include "harness/meshes.h"
+#include "harness/shader_program.h"
 
 #include <array>
 
 namespace xshade::harness::test_pattern {
 namespace {
 
-const GlslStagePair kVertex{
-    R"(#version 450 core
-layout(location = 0) in vec3 position;
-layout(location = 3) in vec2 texcoord;
-layout(location = 0) out vec2 uv;
-void main() {
-  uv = texcoord;
-  gl_Position = vec4(position, 1.0);
-}
-)",
-    R"(#version 450
-layout(location = 0) in vec3 position;
-layout(location = 3) in vec2 texcoord;
-layout(location = 0) out vec2 uv;
-void main() {
-  uv = texcoord;
-  gl_Position = vec4(position, 1.0);
-}
-)",
-    "test_pattern.vert"};
+// The pattern's shader, in hlsl_like: every lane compiles it the way it compiles any shader.
+constexpr const char* kShader = R"(
+#pragma vertex vert
+#pragma fragment frag
 
-const GlslStagePair kFragment{
-    R"(#version 450 core
-layout(std140, binding = 0) uniform Quad { vec4 color; vec4 use_texture; };
-layout(binding = 1) uniform sampler2D pattern;
-layout(location = 0) in vec2 uv;
-layout(location = 0) out vec4 target;
-void main() {
-  target = use_texture.x > 0.5 ? texture(pattern, uv) : color;
+cbuffer Quad : register(b0) {
+  float4 color;
+  float4 use_texture;  // x > 0.5: show the texture instead of the colour
+};
+Texture2D pattern : register(t0);
+SamplerState pattern_sampler : register(s0);
+
+struct VertexIn {
+  float3 position : POSITION;  // already in clip space
+  float2 uv : TEXCOORD0;
+};
+struct VertexOut {
+  float4 position : SV_Position;
+  float2 uv : TEXCOORD0;
+};
+
+VertexOut vert(VertexIn v) {
+  VertexOut o;
+  o.position = float4(v.position, 1.0);
+  o.uv = v.uv;
+  return o;
 }
-)",
-    R"(#version 450
-layout(std140, set = 0, binding = 0) uniform Quad { vec4 color; vec4 use_texture; };
-layout(set = 0, binding = 1) uniform texture2D pattern;
-layout(set = 0, binding = 2) uniform sampler pattern_sampler;
-layout(location = 0) in vec2 uv;
-layout(location = 0) out vec4 target;
-void main() {
-  target = use_texture.x > 0.5 ? texture(sampler2D(pattern, pattern_sampler), uv) : color;
+
+float4 frag(VertexOut i) : SV_Target {
+  if (use_texture.x > 0.5) return pattern.Sample(pattern_sampler, i.uv);
+  return color;
 }
-)",
-    "test_pattern.frag"};
+)";
 
 std::vector<std::byte> quad_uniforms(glm::vec4 color, bool use_texture) {
   return uniform_bytes(std::array<glm::vec4, 2>{color, glm::vec4(use_texture ? 1.0f : 0.0f)});
@@ -63,18 +55,11 @@ glm::vec4 texel(uint32_t column, uint32_t row) {
 }
 
 Result<FloatImage> render(Backend& backend, Lane lane, uint32_t size) {
-  auto vertex = stage_for_lane(lane, spirv::Stage::Vertex, kVertex);
-  if (!vertex) return fail(vertex.error());
-  auto fragment = stage_for_lane(lane, spirv::Stage::Fragment, kFragment);
-  if (!fragment) return fail(fragment.error());
-
-  ProgramDesc desc;
-  desc.name = "test_pattern";
-  desc.vertex = std::move(*vertex);
-  desc.fragment = std::move(*fragment);
-  desc.layout.uniform_blocks = {{"Quad", 0, 32}};
-  desc.layout.textures = {{"pattern", 1, 2}};
-  auto program = backend.create_program(desc);
+  auto module = hlsl::compile_text("test_pattern.hlsl", kShader, {});
+  if (!module->ok()) return fail("the test pattern does not compile:\n" + module->diagnostics.render_all());
+  auto desc = program_for_lane(*module, lane);
+  if (!desc) return fail(desc.error());
+  auto program = backend.create_program(*desc);
   if (!program) return fail(program.error());
 
   TextureData texture;

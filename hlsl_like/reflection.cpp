@@ -308,6 +308,8 @@ bool is_system_value(const std::string& semantic) { return semantic.rfind("SV_",
 
 }  // namespace
 
+std::string canonical_semantic_name(const std::string& semantic) { return canonical(semantic); }
+
 std::optional<uint32_t> vertex_input_location(const std::string& semantic) {
   static const std::map<std::string, uint32_t> locations{
       {"POSITION0", 0}, {"NORMAL0", 1}, {"TANGENT0", 2}, {"TEXCOORD0", 3}, {"TEXCOORD1", 4}, {"COLOR0", 5}};

@@ -109,6 +109,9 @@ struct Reflection {
   const ConstantBuffer* find_constant_buffer(std::string_view name) const;
 };
 
+// The canonical spelling of a semantic: "texcoord" -> "TEXCOORD0", "sv_target" -> "SV_Target0".
+std::string canonical_semantic_name(const std::string& semantic);
+
 // Vertex inputs have fixed locations so that every mesh serves every shader:
 // POSITION 0, NORMAL 1, TANGENT 2, TEXCOORD0 3, TEXCOORD1 4, COLOR0 5. Empty for others.
 std::optional<uint32_t> vertex_input_location(const std::string& canonical_semantic);

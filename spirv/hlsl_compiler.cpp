@@ -1,9 +1,11 @@
 #include "spirv/hlsl_compiler.h"
 
+#include <glslang/MachineIndependent/iomapper.h>
 #include <glslang/Public/ResourceLimits.h>
 #include <glslang/Public/ShaderLang.h>
 #include <glslang/SPIRV/GlslangToSpv.h>
 
+#include "hlsl_like/reflection.h"
 #include "spirv/glslang_log.h"
 #include "spirv/glslang_process.h"
 
@@ -40,6 +42,52 @@ class Includer final : public glslang::TShader::Includer {
 };
 
 EShLanguage to_glslang(Stage stage) { return stage == Stage::Vertex ? EShLangVertex : EShLangFragment; }
+
+// Bindings exactly as glslang's own HLSL resolver gives them (register plus the class's shift, or
+// the lowest free slot for a live resource without one), but stage variables placed by their
+// semantics under xshade's interface contract (reflection.h): vertex inputs where the one vertex
+// format has them, varyings where the other lanes put them. glslang alone would number both in
+// declaration order, and a mesh would feed the wrong attributes.
+class SemanticIoResolver final : public glslang::TDefaultIoResolverBase {
+ public:
+  explicit SemanticIoResolver(const glslang::TIntermediate& intermediate) : TDefaultIoResolverBase(intermediate) {}
+
+  bool validateBinding(EShLanguage, glslang::TVarEntryInfo&) override { return true; }
+
+  glslang::TResourceType getResourceType(const glslang::TType& type) override {
+    if (isUavType(type)) return glslang::EResUav;
+    if (isSrvType(type)) return glslang::EResTexture;
+    if (isSamplerType(type)) return glslang::EResSampler;
+    if (isUboType(type)) return glslang::EResUbo;
+    return glslang::EResCount;
+  }
+
+  int resolveBinding(EShLanguage stage, glslang::TVarEntryInfo& entry) override {
+    const glslang::TType& type = entry.symbol->getType();
+    const int set = getLayoutSet(type);
+    const glslang::TResourceType resource = getResourceType(type);
+    if (resource < glslang::EResCount) {
+      const int base = getBaseBinding(stage, resource, static_cast<unsigned>(set));
+      if (type.getQualifier().hasBinding())
+        return entry.newBinding = reserveSlot(set, base + int(type.getQualifier().layoutBinding));
+      if (entry.live && doAutoBindingMapping()) return entry.newBinding = getFreeSlot(set, base);
+    }
+    return entry.newBinding = -1;
+  }
+
+  int resolveInOutLocation(EShLanguage stage, glslang::TVarEntryInfo& entry) override {
+    const glslang::TQualifier& qualifier = entry.symbol->getType().getQualifier();
+    if (qualifier.semanticName != nullptr) {  // glslang numbered them while parsing; the contract wins
+      const std::string semantic = hlsl::canonical_semantic_name(qualifier.semanticName);
+      std::optional<uint32_t> location;
+      const bool input = qualifier.storage == glslang::EvqVaryingIn;
+      if (stage == EShLangVertex && input) location = hlsl::vertex_input_location(semantic);
+      else if (stage == EShLangVertex || input) location = hlsl::varying_location(semantic);
+      if (location) return entry.newLocation = int(*location);
+    }
+    return TDefaultIoResolverBase::resolveInOutLocation(stage, entry);
+  }
+};
 
 std::vector<HlslResource> reflect(glslang::TProgram& program) {
   std::vector<HlslResource> resources;
@@ -98,7 +146,8 @@ Result<HlslModule> compile_hlsl(const HlslStage& request) {
   }
   glslang::TProgram program;
   program.addShader(&shader);
-  if (!program.link(messages) || !program.mapIO()) {
+  SemanticIoResolver resolver(*shader.getIntermediate());
+  if (!program.link(messages) || !program.mapIO(&resolver)) {
     return fail(Error{"HLSL link failed (glslang)", {request.source_name, 0, 0},
                       parse_glslang_log(program.getInfoLog())});
   }

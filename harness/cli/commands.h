@@ -29,4 +29,14 @@ struct RunOptions {
 };
 int run_run(const RunOptions& options);
 
+struct CompileOptions {
+  std::filesystem::path file;
+  std::vector<std::filesystem::path> include_dirs;
+  std::vector<std::string> defines;  // KEYWORD, or KEY=VALUE
+  std::string target = "vk";         // gl, vk, spirv, vk-hlsl
+  bool reflect = false;
+  std::filesystem::path output;      // a path prefix; empty = standard output
+};
+int run_compile(const CompileOptions& options);
+
 }  // namespace xshade::cli

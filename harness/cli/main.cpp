@@ -6,7 +6,7 @@
 namespace {
 
 void add_lane_options(CLI::App& command, xshade::cli::LaneSelection& selection) {
-  command.add_option("--lane", selection.lanes, "Only these lanes (gl, vk); default: all")
+  command.add_option("--lane", selection.lanes, "Only these lanes (gl, vk, vk-hlsl); default: all")
       ->type_name("LANE");
   command.add_flag("--vk-validation", selection.validation,
                    "Enable the Vulkan validation layer (when installed); any message fails the run");
@@ -31,6 +31,20 @@ int main(int argc, char** argv) {
       ->type_name("DIR")
       ->capture_default_str();
 
+  CompileOptions compile_options;
+  CLI::App* compile = app.add_subcommand("compile", "Compile one shader to GLSL (gl, vk), SPIR-V (spirv, vk-hlsl) or reflection");
+  compile->add_option("file", compile_options.file, "The hlsl_like source")->required()->type_name("FILE");
+  compile->add_option("-I", compile_options.include_dirs, "Search DIR for #include files")->type_name("DIR");
+  compile->add_option("-D", compile_options.defines, "Enable KEYWORD (a variant), or define KEY=VALUE")
+      ->type_name("KEYWORD");
+  compile->add_option("--target", compile_options.target, "gl, vk (GLSL text), spirv or vk-hlsl (SPIR-V)")
+      ->check(CLI::IsMember({"gl", "vk", "spirv", "vk-hlsl"}))
+      ->capture_default_str();
+  compile->add_flag("--reflect", compile_options.reflect, "Print the reflection (JSON) instead of code");
+  compile->add_option("-o", compile_options.output,
+                      "Write OUT.vert.glsl / OUT.frag.glsl (or .spv, or OUT.json) instead of standard output")
+      ->type_name("OUT");
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& error) {
@@ -39,5 +53,6 @@ int main(int argc, char** argv) {
   }
   if (*info) return run_info(info_selection);
   if (*run) return run_run(run_options);
+  if (*compile) return run_compile(compile_options);
   return kBadInput;
 }

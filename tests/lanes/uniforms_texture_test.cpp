@@ -77,7 +77,7 @@ class UniformsAndTextures : public LaneTest {
 TEST_F(UniformsAndTextures, TexelCentresGiveTheHostsExpression) {
   // A target the size of the texture samples every texel at its centre, where linear filtering
   // returns the texel itself, so the host can compute each pixel.
-  for (Lane lane : harness::all_lanes()) {
+  for (Lane lane : harness::glsl_pair_lanes()) {
     SCOPED_TRACE(harness::lane_name(lane));
     harness::FloatImage image = render(lane, "uniforms_texture", kTextureSize, kTextureSize, {1, 1, 0, 0}, {});
     ASSERT_EQ(image.width, kTextureSize);
@@ -130,7 +130,7 @@ TEST_F(UniformsAndTextures, FilteredSamplingMatchesAnExactBilinearReference) {
     const uint32_t width = 37, height = 23;
     std::map<Lane, double> worst;
     std::map<Lane, harness::FloatImage> images;
-    for (Lane lane : harness::all_lanes()) {
+    for (Lane lane : harness::glsl_pair_lanes()) {
       harness::FloatImage image = render(lane, "filtered_sample", width, height, {}, sampler);
       ASSERT_EQ(image.width, width);
       for (uint32_t y = 0; y < height; ++y)

@@ -1,0 +1,153 @@
+#include "harness/shader_program.h"
+
+#include <fstream>
+#include <sstream>
+
+#include "glsl/flavour.h"
+#include "glsl/glsl_emitter.h"
+#include "spirv/hlsl_compiler.h"
+
+namespace xshade::harness {
+namespace {
+
+// Driver logs name sources by the number `#line` gave them; these become the author's files.
+Error with_source_names(Error error, const std::vector<std::string>& source_files) {
+  for (Diagnostic& diagnostic : error.diagnostics) {
+    uint32_t index = 0;
+    const std::string& file = diagnostic.where.file;
+    if (!file.empty() && file.find_first_not_of("0123456789") == std::string::npos) index = uint32_t(std::stoul(file));
+    if (index > 0 && index < source_files.size()) diagnostic.where.file = source_files[index];
+  }
+  return error;
+}
+
+std::optional<spirv::IncludedFile> read_include(const std::vector<std::filesystem::path>& dirs,
+                                                std::string_view name, std::string_view includer, bool angled) {
+  std::vector<std::filesystem::path> candidates;
+  if (!angled) candidates.push_back(std::filesystem::path(includer).parent_path() / name);
+  for (const auto& dir : dirs) candidates.push_back(dir / name);
+  for (const auto& candidate : candidates) {
+    std::ifstream file(candidate, std::ios::binary);
+    if (!file) continue;
+    std::stringstream text;
+    text << file.rdbuf();
+    return spirv::IncludedFile{candidate.string(), text.str()};
+  }
+  return std::nullopt;
+}
+
+Result<ShaderStageSource> vk_hlsl_stage(const hlsl::Module& module, spirv::Stage stage, const std::string& entry,
+                                        const std::vector<std::filesystem::path>& include_dirs) {
+  const std::string& name = module.sources.name(module.main_file);
+  spirv::HlslStage request;
+  request.source = module.sources.text(module.main_file);
+  request.source_name = name;
+  request.stage = stage;
+  request.entry_point = entry;
+  for (const hlsl::MacroDefinition& macro : module.macros) request.defines.emplace_back(macro.name, macro.value);
+  request.resolve_include = [&include_dirs](std::string_view file, std::string_view includer, bool angled) {
+    return read_include(include_dirs, file, includer, angled);
+  };
+  auto compiled = spirv::compile_hlsl(request);
+  if (!compiled) return fail(compiled.error());
+
+  // glslang numbers the resources itself; they must be where xshade's reflection says.
+  const hlsl::Reflection& reflection = module.reflection;
+  for (const spirv::HlslResource& resource : compiled->resources) {
+    std::optional<uint32_t> ours;
+    const std::string resource_name = resource.name == "$Global" ? hlsl::kGlobalsBufferName : resource.name;
+    if (resource.kind == spirv::HlslResource::Kind::ConstantBuffer) {
+      if (const auto* buffer = reflection.find_constant_buffer(resource_name)) ours = buffer->binding;
+    } else if (resource.kind == spirv::HlslResource::Kind::Sampler) {
+      for (const auto& sampler : reflection.samplers)
+        if (sampler.name == resource_name) ours = sampler.binding;
+    } else {
+      for (const auto& texture : reflection.textures)
+        if (texture.name == resource_name) ours = texture.binding;
+    }
+    if (ours != resource.binding)
+      return fail("vk-hlsl lane: glslang binds '" + resource.name + "' at " + std::to_string(resource.binding) +
+                      ", xshade's reflection " + (ours ? "at " + std::to_string(*ours) : std::string("not at all")),
+                  {name, 0, 0});
+  }
+  ShaderStageSource source;
+  source.spirv = std::move(compiled->module.words);
+  source.entry_point = entry;
+  source.name = name;
+  return source;
+}
+
+}  // namespace
+
+ProgramLayout layout_for_lane(const hlsl::Reflection& reflection, Lane lane) {
+  ProgramLayout layout;
+  for (const hlsl::ConstantBuffer& buffer : reflection.constant_buffers)
+    layout.uniform_blocks.push_back({glsl::block_name(buffer.name), buffer.binding, buffer.size});
+  for (const hlsl::TextureResource& texture : reflection.textures) {
+    TextureSlot slot{texture.name, texture.binding, std::nullopt};
+    if (lane != Lane::Gl && texture.kind == hlsl::TextureKind::Texture2D) slot.sampler_binding = texture.sampler_binding;
+    layout.textures.push_back(std::move(slot));
+  }
+  return layout;
+}
+
+Result<ProgramDesc> program_for_lane(const hlsl::Module& module, Lane lane) {
+  if (!module.ok()) return fail("the shader did not compile", module.sources.resolve({module.main_file, 0, 0}));
+  ProgramDesc desc;
+  desc.name = module.sources.name(module.main_file);
+  desc.layout = layout_for_lane(module.reflection, lane);
+  desc.fullscreen = module.entry_points.vertex == nullptr;
+  if (!module.entry_points.fragment) return fail("the shader has no fragment entry point (#pragma fragment)", module.sources.resolve({module.main_file, 0, 0}));
+
+  const glsl::Flavour flavour = lane == Lane::Gl ? glsl::Flavour::Gl : glsl::Flavour::Vk;
+  auto fullscreen_vertex = [&]() -> Result<ShaderStageSource> {
+    const std::string text = glsl::fullscreen_vertex_shader(flavour);
+    ShaderStageSource source;
+    source.name = "fullscreen.vert";
+    if (lane == Lane::Gl) {
+      source.glsl = text;
+      return source;
+    }
+    auto module_words = spirv::compile_vulkan_glsl(text, spirv::Stage::Vertex, source.name);
+    if (!module_words) return fail(module_words.error());
+    source.spirv = std::move(module_words->words);
+    return source;
+  };
+
+  if (lane == Lane::VkHlsl) {
+    const std::vector<std::filesystem::path>& include_dirs = module.include_dirs;
+    auto fragment = vk_hlsl_stage(module, spirv::Stage::Fragment, module.reflection.fragment_entry, include_dirs);
+    if (!fragment) return fail(fragment.error());
+    desc.fragment = std::move(*fragment);
+    auto vertex = desc.fullscreen ? fullscreen_vertex()
+                                  : vk_hlsl_stage(module, spirv::Stage::Vertex, module.reflection.vertex_entry, include_dirs);
+    if (!vertex) return fail(vertex.error());
+    desc.vertex = std::move(*vertex);
+    return desc;
+  }
+
+  auto emitted = glsl::emit(module, {flavour});
+  if (!emitted) return fail(emitted.error());
+  auto stage = [&](const glsl::EmittedStage& emitted_stage, spirv::Stage kind, const char* suffix) -> Result<ShaderStageSource> {
+    ShaderStageSource source;
+    source.name = desc.name + suffix;
+    source.source_files = emitted->source_files;
+    if (lane == Lane::Gl) {
+      source.glsl = emitted_stage.text;
+      return source;
+    }
+    auto words = spirv::compile_vulkan_glsl(emitted_stage.text, kind, source.name);
+    if (!words) return fail(with_source_names(words.error(), emitted->source_files));
+    source.spirv = std::move(words->words);
+    return source;
+  };
+  auto fragment = stage(*emitted->fragment, spirv::Stage::Fragment, ".frag");
+  if (!fragment) return fail(fragment.error());
+  desc.fragment = std::move(*fragment);
+  auto vertex = desc.fullscreen ? fullscreen_vertex() : stage(*emitted->vertex, spirv::Stage::Vertex, ".vert");
+  if (!vertex) return fail(vertex.error());
+  desc.vertex = std::move(*vertex);
+  return desc;
+}
+
+}  // namespace xshade::harness

@@ -1,0 +1,21 @@
+// A shader compiled by xshade's front end, made into a program for one lane's backend.
+#pragma once
+
+#include "harness/backend.h"
+#include "harness/lanes.h"
+#include "hlsl_like/compiler.h"
+
+namespace xshade::harness {
+
+// gl: the gl-flavoured GLSL; vk: the vk-flavoured GLSL through glslang to SPIR-V; vk-hlsl: the
+// source itself through glslang's HLSL front end, with the variant's macros. The layout comes
+// from xshade's reflection on every lane; on vk-hlsl, glslang's own reflection must agree with
+// it binding for binding, or this fails naming the resource. A module without a vertex entry
+// point is a full-screen pass: the shared full-screen vertex shader feeds its TEXCOORD0.
+Result<ProgramDesc> program_for_lane(const hlsl::Module& module, Lane lane);
+
+// The layout the harness binds by: uniform blocks by their GLSL block name, textures by name
+// with their samplers' bindings (Vulkan only; OpenGL combines them).
+ProgramLayout layout_for_lane(const hlsl::Reflection& reflection, Lane lane);
+
+}  // namespace xshade::harness
