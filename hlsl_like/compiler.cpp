@@ -77,9 +77,9 @@ std::unique_ptr<Module> compile(std::unique_ptr<Module> module, const CompileOpt
     for (const std::string& keyword : keywords) pp_options.defines.push_back({keyword, "1"});
     pp_options.defines.insert(pp_options.defines.end(), options.defines.begin(), options.defines.end());
     module->macros = pp_options.defines;
-    Preprocessor preprocessor(module->sources, module->diagnostics, std::move(pp_options));
-    std::vector<Token> tokens = preprocessor.run(module->main_file);
-    module->pragmas = preprocessor.pragmas();
+    module->preprocessor = std::make_unique<Preprocessor>(module->sources, module->diagnostics, std::move(pp_options));
+    std::vector<Token> tokens = module->preprocessor->run(module->main_file);
+    module->pragmas = module->preprocessor->pragmas();
     return tokens;
   };
 
@@ -102,6 +102,11 @@ std::unique_ptr<Module> compile(std::unique_ptr<Module> module, const CompileOpt
                                                                   "' is not declared by #pragma multi_compile or shader_feature");
   }
 
+  if (!options.fragment_only_entry.empty()) {
+    reading.entry_points.vertex.clear();
+    reading.entry_points.fragment = options.fragment_only_entry;
+    reading.entry_points.fragment_loc = {module->main_file, 1, 1};
+  }
   module->unit = parse(tokens, module->diagnostics);
   module->entry_points = analyze(module->unit, reading.entry_points, module->diagnostics);
   if (!module->diagnostics.has_errors())

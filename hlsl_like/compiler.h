@@ -22,6 +22,9 @@ struct CompileOptions {
   // Unity does.
   std::vector<std::string> keywords;
   std::vector<MacroDefinition> defines;  // -D KEY=VALUE
+  // Compile only this fragment function, whatever the pragmas say, and no vertex stage: the
+  // shader then runs as a full-screen pass (xshade eval).
+  std::string fragment_only_entry;
 };
 
 // Everything the front end made of one variant. The tree, the reflection and the diagnostics
@@ -38,6 +41,8 @@ struct Module {
   // of the same source (glslang's HLSL front end on the vk-hlsl lane).
   std::vector<MacroDefinition> macros;
   std::vector<std::filesystem::path> include_dirs;  // as given to the compile
+  // Tokens made by macros keep their text in the preprocessor, so it lives as long as the tree.
+  std::unique_ptr<Preprocessor> preprocessor;
 
   bool ok() const { return !diagnostics.has_errors(); }
   // Every file the variant read: the main file and its includes.

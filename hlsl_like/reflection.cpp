@@ -304,7 +304,12 @@ std::vector<StageVariable> stage_variables(const FunctionDecl& entry, bool input
   return variables;
 }
 
-bool is_system_value(const std::string& semantic) { return semantic.rfind("SV_", 0) == 0; }
+// System values, and the DX9 spellings sema reads as system values: POSITION out of a vertex
+// shader or into a fragment shader is SV_Position.
+bool is_system_value(const std::string& semantic, bool vertex_input) {
+  if (semantic.rfind("SV_", 0) == 0) return true;
+  return !vertex_input && semantic == "POSITION0";
+}
 
 }  // namespace
 
@@ -449,7 +454,7 @@ Reflection reflect(const TranslationUnit& unit, const EntryPoints& entry_points,
   // Stage interfaces.
   if (entry_points.vertex) {
     for (StageVariable input : stage_variables(*entry_points.vertex, true)) {
-      if (is_system_value(input.semantic)) continue;
+      if (is_system_value(input.semantic, true)) continue;
       auto location = vertex_input_location(input.semantic);
       if (!location) {
         diagnostics.error(entry_points.vertex->loc, "vertex input '" + input.semantic +
@@ -461,7 +466,7 @@ Reflection reflect(const TranslationUnit& unit, const EntryPoints& entry_points,
       reflection.vertex_inputs.push_back(std::move(input));
     }
     for (StageVariable output : stage_variables(*entry_points.vertex, false)) {
-      if (is_system_value(output.semantic)) continue;
+      if (is_system_value(output.semantic, false)) continue;
       auto location = varying_location(output.semantic);
       if (!location) {
         diagnostics.error(entry_points.vertex->loc, "vertex output '" + output.semantic +
@@ -475,7 +480,7 @@ Reflection reflect(const TranslationUnit& unit, const EntryPoints& entry_points,
   }
   if (entry_points.fragment) {
     for (const StageVariable& input : stage_variables(*entry_points.fragment, true)) {
-      if (is_system_value(input.semantic)) continue;
+      if (is_system_value(input.semantic, false)) continue;
       const bool written = std::any_of(reflection.varyings.begin(), reflection.varyings.end(),
                                        [&](const StageVariable& v) { return v.semantic == input.semantic; });
       if (entry_points.vertex && !written)
@@ -493,7 +498,11 @@ Reflection reflect(const TranslationUnit& unit, const EntryPoints& entry_points,
     }
     for (StageVariable output : stage_variables(*entry_points.fragment, false)) {
       const sema_detail::ParsedSemantic parsed = sema_detail::parse_semantic(output.semantic);
-      if (parsed.kind == sema_detail::SemanticKind::SvTarget) output.location = parsed.index;
+      // DX9's COLORn out of a fragment shader is SV_Targetn.
+      if (parsed.kind == sema_detail::SemanticKind::SvTarget || parsed.kind == sema_detail::SemanticKind::Color) {
+        output.location = parsed.index;
+        output.semantic = "SV_Target" + std::to_string(parsed.index);
+      }
       reflection.fragment_outputs.push_back(std::move(output));
     }
   }

@@ -175,6 +175,28 @@ float4 frag(float2 uv : TEXCOORD0) : SV_Target { return a.Sample(s, uv) + b.Samp
       << module->diagnostics.render_all();
 }
 
+TEST(Reflection, Dx9SemanticsAreSystemValuesWhereSemaSaysSo) {
+  auto module = compile(R"(
+#pragma vertex vert
+#pragma fragment frag
+struct V { float4 pos : POSITION; float2 uv : TEXCOORD0; };
+V vert(float4 p : POSITION, float2 uv : TEXCOORD0) { V o; o.pos = p; o.uv = uv; return o; }
+float4 frag(V i) : COLOR1 { return float4(i.uv, 0, 1); }
+)");
+  ASSERT_TRUE(module->ok()) << module->diagnostics.render_all();
+  ASSERT_EQ(module->reflection.varyings.size(), 1u);  // POSITION out of the vertex shader is the clip position
+  EXPECT_EQ(module->reflection.varyings[0].semantic, "TEXCOORD0");
+  ASSERT_EQ(module->reflection.fragment_outputs.size(), 1u);
+  EXPECT_EQ(module->reflection.fragment_outputs[0].semantic, "SV_Target1");
+  EXPECT_EQ(module->reflection.fragment_outputs[0].location, 1u);
+}
+
+TEST(Reflection, PreludeMacrosOutliveThePreprocessor) {
+  // Tokens from the prelude's macros (fixed4, UNITY_PI) keep their text in the preprocessor.
+  auto module = compile("#pragma fragment frag\nfloat4 frag() : SV_Target { fixed4 c = UNITY_PI; return c; }\n");
+  EXPECT_TRUE(module->ok()) << module->diagnostics.render_all();
+}
+
 TEST(Reflection, JsonHasEverySection) {
   auto module = compile(kMaterial);
   ASSERT_TRUE(module->ok());
