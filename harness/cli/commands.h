@@ -39,4 +39,15 @@ struct CompileOptions {
 };
 int run_compile(const CompileOptions& options);
 
+struct EvalOptions {
+  std::filesystem::path file;
+  std::vector<std::filesystem::path> include_dirs;
+  std::vector<std::string> keywords;
+  std::string entry;  // the fragment function; empty = #pragma fragment
+  std::string size = "64x64";
+  LaneSelection selection;  // "all" or a list
+  std::filesystem::path output_dir = ".";
+};
+int run_eval(const EvalOptions& options);
+
 }  // namespace xshade::cli

@@ -45,6 +45,19 @@ int main(int argc, char** argv) {
                       "Write OUT.vert.glsl / OUT.frag.glsl (or .spv, or OUT.json) instead of standard output")
       ->type_name("OUT");
 
+  EvalOptions eval_options;
+  CLI::App* eval = app.add_subcommand(
+      "eval", "Run one fragment shader as a full-screen pass on each lane, write EXR images, compare the lanes");
+  eval->add_option("file", eval_options.file, "The hlsl_like source")->required()->type_name("FILE");
+  eval->add_option("--entry", eval_options.entry, "The fragment function (default: #pragma fragment)")
+      ->type_name("NAME");
+  eval->add_option("--size", eval_options.size, "Image size")->type_name("WxH")->capture_default_str();
+  eval->add_option("--lane", eval_options.selection.lanes, "gl, vk, vk-hlsl or all (default: all)")
+      ->type_name("LANE");
+  eval->add_option("-I", eval_options.include_dirs, "Search DIR for #include files")->type_name("DIR");
+  eval->add_option("-D", eval_options.keywords, "Enable KEYWORD")->type_name("KEYWORD");
+  eval->add_option("-o", eval_options.output_dir, "Folder for the EXR images")->type_name("DIR")->capture_default_str();
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& error) {
@@ -54,5 +67,6 @@ int main(int argc, char** argv) {
   if (*info) return run_info(info_selection);
   if (*run) return run_run(run_options);
   if (*compile) return run_compile(compile_options);
+  if (*eval) return run_eval(eval_options);
   return kBadInput;
 }
