@@ -54,7 +54,7 @@ std::vector<std::byte> default_constant_buffer(const hlsl::ConstantBuffer& buffe
 }
 
 Result<FloatImage> evaluate(const hlsl::Module& module, Lane lane, Backend& backend, uint32_t width,
-                            uint32_t height) {
+                            uint32_t height, const std::map<std::string, std::vector<std::byte>>& constant_buffers) {
   auto desc = program_for_lane(module, lane);
   if (!desc) return fail(desc.error());
   if (!desc->fullscreen) return fail("the shader must be a fragment shader without a vertex stage");
@@ -64,9 +64,16 @@ Result<FloatImage> evaluate(const hlsl::Module& module, Lane lane, Backend& back
   if (!target) return fail(target.error());
 
   DrawItem draw{*program, {}, {}, {}};
-  for (const hlsl::ConstantBuffer& buffer : module.reflection.constant_buffers)
-    draw.uniforms.push_back({desc->layout.uniform_blocks[size_t(&buffer - module.reflection.constant_buffers.data())].name,
-                             default_constant_buffer(buffer, module.reflection.properties)});
+  const auto& buffers = module.reflection.constant_buffers;
+  for (size_t i = 0; i < buffers.size(); ++i) {
+    auto given = constant_buffers.find(buffers[i].name);
+    std::vector<std::byte> bytes = given != constant_buffers.end() ? given->second
+                                                                   : default_constant_buffer(buffers[i], module.reflection.properties);
+    if (bytes.size() != buffers[i].size)
+      return fail("constant buffer '" + buffers[i].name + "' needs " + std::to_string(buffers[i].size) + " bytes, not " +
+                  std::to_string(bytes.size()));
+    draw.uniforms.push_back({desc->layout.uniform_blocks[i].name, std::move(bytes)});
+  }
   if (!desc->layout.textures.empty()) {
     TextureData white{TextureFormat::Rgba8Unorm, 1, 1, {std::vector<std::byte>(4, std::byte{255})}};
     auto texture = backend.upload_texture(white);

@@ -3,6 +3,8 @@
 #pragma once
 
 #include <cstdint>
+#include <map>
+#include <string>
 #include <vector>
 
 #include "harness/backend.h"
@@ -19,7 +21,9 @@ std::vector<std::byte> default_constant_buffer(const hlsl::ConstantBuffer& buffe
 // Renders the module's fragment entry over a width x height RGBA32F target on `backend`, which
 // must run `lane`. The shader reads uv (TEXCOORD0, (0,0) at the top-left) and the pixel position
 // (SV_Position); constant buffers hold their defaults and every texture is one white texel.
+// `constant_buffers` replaces the defaults of the buffers it names (by their HLSL name).
 Result<FloatImage> evaluate(const hlsl::Module& module, Lane lane, Backend& backend, uint32_t width,
-                            uint32_t height);
+                            uint32_t height,
+                            const std::map<std::string, std::vector<std::byte>>& constant_buffers = {});
 
 }  // namespace xshade::harness
