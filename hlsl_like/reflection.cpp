@@ -153,17 +153,42 @@ struct Usage {
 
 Usage collect_usage(const EntryPoints& entry_points) {
   Usage usage;
+  // A Texture2D or SamplerState may reach a Sample call through function parameters; each
+  // parameter is traced back to the global its call passes (the first call that passes one).
+  std::map<const Decl*, const Decl*> passed;  // parameter -> the declaration given for it
+  auto origin = [&](const Decl* decl) {
+    for (int hops = 0; decl && hops < 64; ++hops) {
+      auto it = passed.find(decl);
+      if (it == passed.end()) break;
+      decl = it->second;
+    }
+    return decl;
+  };
   for (const FunctionDecl* entry : {entry_points.vertex, entry_points.fragment}) {
-    for (const FunctionDecl* function : reachable_functions(entry)) {
+    std::vector<const FunctionDecl*> functions = reachable_functions(entry);
+    // Callers come last in that order; tracing parameters needs callers first.
+    for (auto function = functions.rbegin(); function != functions.rend(); ++function) {
+      walk_expressions((*function)->body.get(), [&](const Expr& expr) {
+        if (expr.kind != ExprKind::Call) return;
+        const auto& call = static_cast<const CallExpr&>(expr);
+        if (call.call_kind != CallKind::Function || !call.function) return;
+        for (size_t i = 0; i < call.args.size() && i < call.function->params.size(); ++i) {
+          const Expr* arg = call.args[i].get();
+          if (arg && arg->kind == ExprKind::Name && arg->type.is_resource())
+            passed.emplace(call.function->params[i].get(), static_cast<const NameExpr*>(arg)->decl);
+        }
+      });
+    }
+    for (const FunctionDecl* function : functions) {
       walk_expressions(function->body.get(), [&](const Expr& expr) {
         if (expr.kind == ExprKind::Name) {
-          if (const Decl* decl = static_cast<const NameExpr&>(expr).decl) usage.globals.insert(decl);
+          if (const Decl* decl = static_cast<const NameExpr&>(expr).decl) usage.globals.insert(origin(decl));
         } else if (expr.kind == ExprKind::Call) {
           const auto& call = static_cast<const CallExpr&>(expr);
           if (call.call_kind != CallKind::Method || !call.object || call.args.empty()) return;
           if (call.object->kind != ExprKind::Name || call.args[0]->kind != ExprKind::Name) return;
-          const Decl* texture = static_cast<const NameExpr&>(*call.object).decl;
-          const Decl* sampler = static_cast<const NameExpr&>(*call.args[0]).decl;
+          const Decl* texture = origin(static_cast<const NameExpr&>(*call.object).decl);
+          const Decl* sampler = origin(static_cast<const NameExpr&>(*call.args[0]).decl);
           if (texture && sampler) usage.texture_sampler.emplace(texture, sampler);
         }
       });

@@ -197,6 +197,21 @@ TEST(Reflection, PreludeMacrosOutliveThePreprocessor) {
   EXPECT_TRUE(module->ok()) << module->diagnostics.render_all();
 }
 
+TEST(Reflection, SamplersArePairedThroughFunctionParameters) {
+  auto module = compile(R"(
+#pragma fragment frag
+Texture2D tex;
+SamplerState ss;
+float4 sample_it(Texture2D t, SamplerState s, float2 uv) { return t.Sample(s, uv); }
+float4 frag(float2 uv : TEXCOORD0) : SV_Target { return sample_it(tex, ss, uv); }
+)");
+  ASSERT_TRUE(module->ok()) << module->diagnostics.render_all();
+  ASSERT_EQ(module->reflection.textures.size(), 1u);
+  EXPECT_EQ(module->reflection.textures[0].sampler, "ss");
+  ASSERT_TRUE(module->reflection.textures[0].sampler_binding.has_value());
+  EXPECT_EQ(*module->reflection.textures[0].sampler_binding, kSamplerBindingBase);
+}
+
 TEST(Reflection, JsonHasEverySection) {
   auto module = compile(kMaterial);
   ASSERT_TRUE(module->ok());
