@@ -454,22 +454,6 @@ const char* comparison_function(BinaryOp op) {
   }
 }
 
-std::optional<BinaryOp> compound_operator(AssignOp op) {
-  switch (op) {
-    case AssignOp::Assign: return std::nullopt;
-    case AssignOp::Add: return BinaryOp::Add;
-    case AssignOp::Sub: return BinaryOp::Sub;
-    case AssignOp::Mul: return BinaryOp::Mul;
-    case AssignOp::Div: return BinaryOp::Div;
-    case AssignOp::Mod: return BinaryOp::Mod;
-    case AssignOp::Shl: return BinaryOp::Shl;
-    case AssignOp::Shr: return BinaryOp::Shr;
-    case AssignOp::BitAnd: return BinaryOp::BitAnd;
-    case AssignOp::BitOr: return BinaryOp::BitOr;
-    case AssignOp::BitXor: return BinaryOp::BitXor;
-  }
-  return std::nullopt;
-}
 
 // HLSL operators that GLSL's operator of the same spelling computes differently on `type`.
 bool needs_lowering(BinaryOp op, const Type& type) {

@@ -42,6 +42,19 @@ Result<void> match_by_name(const std::vector<Slot>& slots, const std::vector<Bin
 
 }  // namespace
 
+Result<void> validate_mesh(const MeshData& mesh) {
+  if (mesh.vertices.empty() || mesh.indices.empty())
+    return fail("upload_mesh: the mesh is empty (" + std::to_string(mesh.vertices.size()) + " vertices, " +
+                std::to_string(mesh.indices.size()) + " indices)");
+  if (mesh.indices.size() % 3 != 0)
+    return fail("upload_mesh: " + std::to_string(mesh.indices.size()) + " indices is not a whole number of triangles");
+  for (size_t i = 0; i < mesh.indices.size(); ++i)
+    if (mesh.indices[i] >= mesh.vertices.size())
+      return fail("upload_mesh: index " + std::to_string(mesh.indices[i]) + " (at position " + std::to_string(i) +
+                  ") is out of range for " + std::to_string(mesh.vertices.size()) + " vertices");
+  return {};
+}
+
 Result<MatchedBindings> match_bindings(const ProgramLayout& layout, const DrawItem& draw,
                                        const std::string& where) {
   MatchedBindings matched;

@@ -168,6 +168,9 @@ struct MatchedBindings {
 Result<MatchedBindings> match_bindings(const ProgramLayout& layout, const DrawItem& draw,
                                        const std::string& where);
 
+// A mesh every backend can draw: not empty, whole triangles, every index within the vertices.
+Result<void> validate_mesh(const MeshData& mesh);
+
 struct TargetDesc {
   uint32_t width = 0;
   uint32_t height = 0;

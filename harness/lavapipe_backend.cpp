@@ -355,17 +355,7 @@ Result<TargetHandle> LavapipeBackend::create_target(const TargetDesc& desc) {
 
 Result<MeshHandle> LavapipeBackend::upload_mesh(const MeshData& data) {
   return guarded<MeshHandle>("upload_mesh", [&]() -> Result<MeshHandle> {
-    if (data.vertices.empty() || data.indices.empty())
-      return fail(fmt::format("upload_mesh: the mesh is empty ({} vertices, {} indices)",
-                              data.vertices.size(), data.indices.size()));
-    if (data.indices.size() % 3 != 0)
-      return fail(fmt::format("upload_mesh: {} indices is not a whole number of triangles",
-                              data.indices.size()));
-    for (size_t i = 0; i < data.indices.size(); ++i)
-      if (data.indices[i] >= data.vertices.size())
-        return fail(
-            fmt::format("upload_mesh: index {} (at position {}) is out of range for {} vertices",
-                        data.indices[i], i, data.vertices.size()));
+    if (auto valid = validate_mesh(data); !valid) return fail(valid.error());
     auto mesh = std::make_unique<Mesh>();
     const size_t vertex_bytes = data.vertices.size() * sizeof(Vertex);
     const size_t index_bytes = data.indices.size() * sizeof(uint32_t);

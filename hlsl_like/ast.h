@@ -5,6 +5,7 @@
 
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -88,8 +89,26 @@ struct BinaryExpr : Expr {
   BinaryExpr(Loc l, BinaryOp o) : Expr(ExprKind::Binary, l), op(o) {}
 };
 
-// `=` has op = std::nullopt-like Assign; compound forms carry their arithmetic operator.
+// `=` is AssignOp::Assign; compound forms carry their arithmetic operator.
 enum class AssignOp : uint8_t { Assign, Add, Sub, Mul, Div, Mod, Shl, Shr, BitAnd, BitOr, BitXor };
+
+// The arithmetic of a compound assignment: AssignOp::Add -> BinaryOp::Add; nothing for `=`.
+inline std::optional<BinaryOp> compound_operator(AssignOp op) {
+  switch (op) {
+    case AssignOp::Assign: return std::nullopt;
+    case AssignOp::Add: return BinaryOp::Add;
+    case AssignOp::Sub: return BinaryOp::Sub;
+    case AssignOp::Mul: return BinaryOp::Mul;
+    case AssignOp::Div: return BinaryOp::Div;
+    case AssignOp::Mod: return BinaryOp::Mod;
+    case AssignOp::Shl: return BinaryOp::Shl;
+    case AssignOp::Shr: return BinaryOp::Shr;
+    case AssignOp::BitAnd: return BinaryOp::BitAnd;
+    case AssignOp::BitOr: return BinaryOp::BitOr;
+    case AssignOp::BitXor: return BinaryOp::BitXor;
+  }
+  return std::nullopt;
+}
 
 struct AssignExpr : Expr {
   AssignOp op;

@@ -48,22 +48,6 @@ const char* binary_spelling(BinaryOp op) {
   return "?";
 }
 
-std::optional<BinaryOp> compound_operator(AssignOp op) {
-  switch (op) {
-    case AssignOp::Assign: return std::nullopt;
-    case AssignOp::Add: return BinaryOp::Add;
-    case AssignOp::Sub: return BinaryOp::Sub;
-    case AssignOp::Mul: return BinaryOp::Mul;
-    case AssignOp::Div: return BinaryOp::Div;
-    case AssignOp::Mod: return BinaryOp::Mod;
-    case AssignOp::Shl: return BinaryOp::Shl;
-    case AssignOp::Shr: return BinaryOp::Shr;
-    case AssignOp::BitAnd: return BinaryOp::BitAnd;
-    case AssignOp::BitOr: return BinaryOp::BitOr;
-    case AssignOp::BitXor: return BinaryOp::BitXor;
-  }
-  return std::nullopt;
-}
 
 bool is_uniform(const VarDecl& var) {
   return var.is_global && var.storage != StorageClass::Static && var.storage != StorageClass::GroupShared;
