@@ -673,11 +673,9 @@ TEST(BadInput, UnterminatedString) {
             "                ^");
 }
 
-// KNOWN DEFECT: the unterminated string is reported twice at the same token: the lexer's
-// "string.hlsl:3:13: error: unterminated string literal", then the parser's
-// "string.hlsl:3:13: error: string literals are only allowed in annotations". One error per
-// token, as the parser does for malformed numbers.
-TEST(BadInput, DISABLED_UnterminatedStringIsReportedOnce) {
+// One error per token: the lexer reports the unterminated string, and the parser does not add
+// "string literals are only allowed in annotations" at the same place.
+TEST(BadInput, UnterminatedStringIsReportedOnce) {
   auto m = compile("string.hlsl",
                    "#pragma fragment frag\n"
                    "float4 frag(float4 pos : SV_Position) : SV_Target {\n"
@@ -1030,13 +1028,9 @@ TEST(BadInput, SwitchIsUnsupported) {
   EXPECT_EQ(m->diagnostics.error_count(), 1u);
 }
 
-// KNOWN DEFECT: a function whose body lost statements to a syntax error is then warned about as
-// if the author forgot a return: here "switch.hlsl:3:8: warning: not all paths return a value"
-// follows the switch error, and "many.hlsl:3:7: warning: not all paths return a value" follows
-// `return a * ;` (the same after an unbalanced call, a stray NUL, 10,000 nested parentheses).
-// The function is broken already; the warning is noise (clang skips such checks in a function
-// with errors).
-TEST(BadInput, DISABLED_NoMissingReturnWarningAfterASyntaxError) {
+// A function whose body lost statements to a syntax error is not also warned about as if the
+// author forgot a return: the warning would only be noise.
+TEST(BadInput, NoMissingReturnWarningAfterASyntaxError) {
   auto m = compile("switch.hlsl",
                    "#pragma fragment frag\n"
                    "int _Mode;\n"

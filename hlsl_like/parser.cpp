@@ -352,8 +352,8 @@ class Parser {
   }
   bool error_here(std::string message) { return error_at(pos_, std::move(message)); }
 
-  // A malformed literal from the lexer was reported by the lexer at the token's start; the
-  // parser reports one only for a token stream that did not come from there.
+  // A malformed literal (a bad number, an unterminated string) was reported by the lexer at the
+  // token's start; the parser reports one only for a token stream that did not come from there.
   void literal_error(std::string message) {
     const Loc loc = cur().loc;
     for (const Diagnostic& d : diagnostics_.diagnostics())
@@ -2010,8 +2010,8 @@ class Parser {
     switch (token.kind) {
       case TokenKind::IntLiteral: return parse_int_literal();
       case TokenKind::FloatLiteral: return parse_float_literal();
-      case TokenKind::StringLiteral:
-        error_here("string literals are only allowed in annotations");
+      case TokenKind::StringLiteral:  // an unterminated one was reported by the lexer already
+        literal_error("string literals are only allowed in annotations");
         return nullptr;
       case TokenKind::Identifier: return parse_name_or_call();
       case TokenKind::Punct:

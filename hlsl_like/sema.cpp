@@ -348,7 +348,9 @@ void Sema::declare_function(FunctionDecl& function) {
     current_info_ = &function_info_[canonical_decl];
     loop_depth_ = 0;
     analyze_block(*function.body, false);  // parameters and the body's locals share a scope
-    if (!function.return_type.is_void() && !function.return_type.is_error() &&
+    // After an error the tree may have lost statements (the parser drops what it cannot read),
+    // so the warning would only add noise.
+    if (!function.return_type.is_void() && !function.return_type.is_error() && !diag_.has_errors() &&
         !always_returns(*this, function.body.get(), 0)) {
       diag_.warning(function.loc, "not all paths return a value");
     }
