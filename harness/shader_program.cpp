@@ -21,19 +21,16 @@ Error with_source_names(Error error, const std::vector<std::string>& source_file
   return error;
 }
 
+// The same search xshade's preprocessor makes, so that both lanes read the same files.
 std::optional<spirv::IncludedFile> read_include(const std::vector<std::filesystem::path>& dirs,
                                                 std::string_view name, std::string_view includer, bool angled) {
-  std::vector<std::filesystem::path> candidates;
-  if (!angled) candidates.push_back(std::filesystem::path(includer).parent_path() / name);
-  for (const auto& dir : dirs) candidates.push_back(dir / name);
-  for (const auto& candidate : candidates) {
-    std::ifstream file(candidate, std::ios::binary);
-    if (!file) continue;
-    std::stringstream text;
-    text << file.rdbuf();
-    return spirv::IncludedFile{candidate.string(), text.str()};
-  }
-  return std::nullopt;
+  const std::optional<std::filesystem::path> found = hlsl::find_include(name, std::filesystem::path(includer), angled, dirs);
+  if (!found) return std::nullopt;
+  std::ifstream file(*found, std::ios::binary);
+  if (!file) return std::nullopt;
+  std::stringstream text;
+  text << file.rdbuf();
+  return spirv::IncludedFile{found->string(), text.str()};
 }
 
 Result<ShaderStageSource> vk_hlsl_stage(const hlsl::Module& module, spirv::Stage stage, const std::string& entry,

@@ -529,6 +529,30 @@ class Preprocessor::Impl::ExprParser {
 Preprocessor::Preprocessor(SourceManager& sources, DiagnosticEngine& diagnostics, PreprocessorOptions options)
     : sources_(sources), diagnostics_(diagnostics), options_(std::move(options)) {}
 
+std::optional<std::filesystem::path> find_include(std::string_view name, const std::filesystem::path& including_file,
+                                                  bool angled, const std::vector<std::filesystem::path>& include_dirs,
+                                                  std::vector<std::filesystem::path>* searched) {
+  namespace fs = std::filesystem;
+  // Shaders written on Windows may spell "sub\\file.hlsl".
+  std::string portable(name);
+  for (char& c : portable)
+    if (c == '\\') c = '/';
+  const fs::path relative{portable};
+  auto exists = [](const fs::path& candidate) {
+    std::error_code error;
+    return fs::is_regular_file(candidate, error);
+  };
+  if (relative.is_absolute()) return exists(relative) ? std::optional<fs::path>(relative) : std::nullopt;
+  std::vector<fs::path> folders;
+  if (!angled && !including_file.empty()) folders.push_back(including_file.parent_path());
+  folders.insert(folders.end(), include_dirs.begin(), include_dirs.end());
+  for (const fs::path& folder : folders) {
+    if (searched) searched->push_back(folder);
+    if (exists(folder / relative)) return folder / relative;
+  }
+  return std::nullopt;
+}
+
 std::vector<Token> Preprocessor::run(uint32_t main_file) {
   pragmas_.clear();
   files_.clear();
@@ -1352,34 +1376,10 @@ void Preprocessor::Impl::include_file(IncludeFrame& frame, const Token& name, st
                                      std::to_string(Preprocessor::kMaxIncludeDepth) + " levels)");
     return;
   }
-  // Shaders written on Windows may spell "sub\\file.hlsl".
-  std::string portable(spelled);
-  for (char& c : portable)
-    if (c == '\\') c = '/';
-  const fs::path relative{portable};
+  const fs::path relative{std::string(spelled)};
   std::vector<fs::path> searched;
-  std::optional<fs::path> found;
-  auto probe = [&](const fs::path& candidate) {
-    std::error_code error;
-    if (fs::is_regular_file(candidate, error)) found = candidate;
-    return found.has_value();
-  };
-  if (relative.is_absolute()) {
-    probe(relative);
-  } else {
-    if (!angled) {
-      const fs::path& including = sources_.path(frame.file);
-      if (!including.empty()) {
-        searched.push_back(including.parent_path());
-        probe(including.parent_path() / relative);
-      }
-    }
-    for (const fs::path& dir : pp_.options_.include_dirs) {
-      if (found) break;
-      searched.push_back(dir);
-      probe(dir / relative);
-    }
-  }
+  const std::optional<fs::path> found =
+      find_include(spelled, sources_.path(frame.file), angled, pp_.options_.include_dirs, &searched);
   if (!found) {
     std::string message = "cannot find include file '" + clip(spelled) + "'";
     if (relative.is_absolute()) {

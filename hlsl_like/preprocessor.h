@@ -8,6 +8,8 @@
 
 #include <deque>
 #include <filesystem>
+#include <optional>
+#include <string_view>
 #include <string>
 #include <vector>
 
@@ -33,6 +35,13 @@ struct Pragma {
   std::vector<Token> args;  // the rest of the line, not macro-expanded
   Loc loc;                  // of the name
 };
+
+// Where `#include "name"` (or `<name>` when `angled`) from `including_file` resolves: an absolute
+// name as it is; otherwise the including file's folder (quoted form only, and only for a file
+// on disk), then `include_dirs` in order. Every folder looked in is added to `searched`.
+std::optional<std::filesystem::path> find_include(std::string_view name, const std::filesystem::path& including_file,
+                                                  bool angled, const std::vector<std::filesystem::path>& include_dirs,
+                                                  std::vector<std::filesystem::path>* searched = nullptr);
 
 class Preprocessor {
  public:
