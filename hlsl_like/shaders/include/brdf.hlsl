@@ -1,0 +1,189 @@
+// The terms of the Cook-Torrance BRDF, each form written once (SHADERS.md sections 1, 4 and 6).
+// The seed's forms are kept exactly as the seed writes them, hazards included: they are a test
+// subject. Every form is an ordinary function, so that the stability suite can call each one
+// whatever keywords a material was compiled with; cook_torrance_specular() picks the forms the
+// variant's keywords name.
+#ifndef XSHADE_BRDF_HLSL
+#define XSHADE_BRDF_HLSL
+
+#include "common.hlsl"
+
+// ---- Normal distribution D ----------------------------------------------------------------
+
+// The seed's GGX (Walter et al.), alpha = roughness. 0/0 at a = 0 and NoH = 1 (hazard 2); in
+// fp16, a*a - 1 rounds to -1 below a ~ 0.0156 and the result overflows (hazard 8).
+float D_GGX_seed(float NoH, float a) {
+  float a2 = a * a;
+  float d = NoH * NoH * (a2 - 1.0) + 1.0;
+  return a2 / (kPi * d * d);
+}
+
+// The same distribution written with 1 - NoH^2 = |n x h|^2, which keeps its precision where
+// NoH is close to 1 (Filament's form): k = a / (|n x h|^2 + (NoH a)^2), D = k^2 / pi. Clamped to
+// the largest fp16 value so that a half-precision result stays finite.
+float D_GGX_lagrange(float3 n, float3 h, float NoH, float a) {
+  float3 nxh = cross(n, h);
+  float k = a / (dot(nxh, nxh) + (NoH * a) * (NoH * a));
+  return min(k * k / kPi, 65504.0);
+}
+
+// ---- Geometry G, as the visibility term V = G / (4 NoL NoV) --------------------------------
+
+// The seed's Cook-Torrance V-cavity G, as the seed writes it.
+float G_cook_torrance(float NoL, float NoV, float VoH, float NoH) {
+  float p2 = 2.0 * NoH * NoV / VoH;
+  float p3 = 2.0 * NoH * NoL / VoH;
+  return min(min(1.0, p2), p3);
+}
+
+// The seed's division: 0/0 at a silhouette (NoV = 0) or terminator (NoL = 0), hazard 1.
+float V_cook_torrance(float NoL, float NoV, float VoH, float NoH) {
+  return G_cook_torrance(NoL, NoV, VoH, NoH) / (4.0 * (NoL * NoV));
+}
+
+// Height-correlated Smith for GGX (Heitz 2014), already divided by 4 NoL NoV.
+float V_smith_correlated(float NoL, float NoV, float a) {
+  float a2 = a * a;
+  float lambda_v = NoL * sqrt(NoV * NoV * (1.0 - a2) + a2);
+  float lambda_l = NoV * sqrt(NoL * NoL * (1.0 - a2) + a2);
+  return 0.5 / (lambda_v + lambda_l);
+}
+
+// Its linear approximation (Hammon 2017), cheaper by two square roots.
+float V_smith_correlated_fast(float NoL, float NoV, float a) {
+  return 0.5 / lerp(2.0 * NoL * NoV, NoL + NoV, a);
+}
+
+// ---- Fresnel F ----------------------------------------------------------------------------
+
+// The seed's Schlick with Unity's specColor as R0, with the seed's half parameters. pow of a
+// negative base is undefined in GLSL, and LoH can round to just above 1 (hazard 4).
+float3 F_schlick(half3 R, half cosA) {
+  return R + (1 - R) * pow((1 - cosA), 5);
+}
+
+// Schlick with the base saturated and the fifth power multiplied out: defined for every LoH.
+float3 F_schlick_guarded(float3 f0, float LoH) {
+  return f0 + (1.0 - f0) * pow5(saturate(1.0 - LoH));
+}
+
+// Schlick's factor through a spherical-Gaussian fit (Unreal 4): one exp2 instead of a power.
+float3 F_spherical_gaussian(float3 f0, float LoH) {
+  return f0 + (1.0 - f0) * exp2((-5.55473 * LoH - 6.98316) * LoH);
+}
+
+// The exact Fresnel reflectance of unpolarised light at a dielectric, per channel, with the
+// index of refraction that gives R0 at normal incidence: eta = (1 + sqrt(R0)) / (1 - sqrt(R0)).
+// R0 is capped below 1, where eta would be infinite (a metal's tinted R0 is not a dielectric's,
+// so for metals this is a reference of the shape only).
+float F_dielectric_exact_channel(float r0, float c) {
+  float s = sqrt(clamp(r0, 0.0, 0.999));
+  float eta = (1.0 + s) / (1.0 - s);
+  float g = sqrt(eta * eta - 1.0 + c * c);
+  float a = (g - c) / (g + c);
+  float b = (c * (g + c) - 1.0) / (c * (g - c) + 1.0);
+  return 0.5 * a * a * (1.0 + b * b);
+}
+
+float3 F_dielectric_exact(float3 f0, float LoH) {
+  float c = saturate(LoH);
+  return float3(F_dielectric_exact_channel(f0.r, c), F_dielectric_exact_channel(f0.g, c),
+                F_dielectric_exact_channel(f0.b, c));
+}
+
+// ---- The specular lobe --------------------------------------------------------------------
+
+// The dot products the terms read. The seed form clamps them to [0, 1] as Unity's DotClamped
+// does (the seed does not show its own) and nothing else; the guarded form keeps every
+// denominator away from zero (hazards 1, 2, 3).
+struct BrdfInputs {
+  float3 n;
+  float3 h;
+  float NoL;
+  float NoV;
+  float NoH;
+  float VoH;
+  float LoH;
+  float a;  // GGX alpha
+};
+
+BrdfInputs brdf_inputs_seed(float3 n, float3 v, float3 l, float a) {
+  BrdfInputs s;
+  s.n = n;
+  s.h = normalize(l + v);
+  s.NoL = saturate(dot(n, l));
+  s.NoV = saturate(dot(n, v));
+  s.NoH = saturate(dot(n, s.h));
+  s.VoH = saturate(dot(v, s.h));
+  s.LoH = saturate(dot(l, s.h));
+  s.a = a;
+  return s;
+}
+
+// Smallest alpha the guarded form lets through: D stays finite in fp32 (SHADERS.md hazard 2).
+static const float kMinAlpha = 0.002;
+// Smallest NoV, NoL and VoH a denominator sees: 1e-4 keeps D*F*G/(4 NoL NoV) finite at a
+// silhouette while changing no visible pixel (hazard 1).
+static const float kMinCosine = 1e-4;
+
+BrdfInputs brdf_inputs_guarded(float3 n, float3 v, float3 l, float a) {
+  BrdfInputs s;
+  s.n = n;
+  s.h = safe_normalize(l + v);
+  s.NoL = max(dot(n, l), kMinCosine);
+  s.NoV = max(dot(n, v), kMinCosine);
+  s.NoH = saturate(dot(n, s.h));
+  s.VoH = max(dot(v, s.h), kMinCosine);
+  s.LoH = saturate(dot(l, s.h));
+  s.a = max(a, kMinAlpha);
+  return s;
+}
+
+BrdfInputs brdf_inputs(float3 n, float3 v, float3 l, float a) {
+#if defined(_GUARDED)
+  return brdf_inputs_guarded(n, v, l, a);
+#else
+  return brdf_inputs_seed(n, v, l, a);
+#endif
+}
+
+// D * F * G * pi / (4 NoL NoV), the seed's direct specular with Unity's extra pi, in the forms
+// the variant's keywords select (SHADERS.md section 6).
+float3 cook_torrance_specular(BrdfInputs s, float3 spec_color) {
+#if defined(_D_GGX_LAGRANGE)
+  float D = D_GGX_lagrange(s.n, s.h, s.NoH, s.a);
+#else
+  float D = D_GGX_seed(s.NoH, s.a);
+#endif
+
+#if defined(_G_SMITH_CORRELATED)
+  float V = V_smith_correlated(s.NoL, s.NoV, s.a);
+#elif defined(_G_SMITH_FAST)
+  float V = V_smith_correlated_fast(s.NoL, s.NoV, s.a);
+#else
+  float V = V_cook_torrance(s.NoL, s.NoV, s.VoH, s.NoH);
+#endif
+
+#if defined(_F_SPHERICAL_GAUSSIAN)
+  float3 F = F_spherical_gaussian(spec_color, s.LoH);
+#elif defined(_F_EXACT)
+  float3 F = F_dielectric_exact(spec_color, s.LoH);
+#elif defined(_GUARDED)
+  float3 F = F_schlick_guarded(spec_color, s.LoH);
+#else
+  float3 F = F_schlick(spec_color, s.LoH);
+#endif
+  return D * F * V * kPi;
+}
+
+// ---- Metallic workflow --------------------------------------------------------------------
+
+// Unity's DiffuseAndSpecularFromMetallic in linear space: dielectrics reflect 4 %.
+void diffuse_and_specular_from_metallic(float3 albedo, float metallic, out float3 diff_color,
+                                        out float3 spec_color, out float one_minus_reflectivity) {
+  spec_color = lerp(float3(0.04, 0.04, 0.04), albedo, metallic);
+  one_minus_reflectivity = 0.96 * (1.0 - metallic);
+  diff_color = albedo * one_minus_reflectivity;
+}
+
+#endif
