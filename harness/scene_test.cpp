@@ -440,6 +440,45 @@ TEST(SceneLoad, ReadsAFileAndReportsAMissingOne) {
   EXPECT_EQ(missing.error().to_string(), (folder / "absent.toml").string() + ": cannot open the scene file");
 }
 
+TEST(SceneErrors, EnvironmentKeysBelongToTheirKind) {
+  EXPECT_EQ(errors_of(minimal_head + "[environment]\nkind = \"constant\"\ncolor = [1, 1, 1]\nsky = [0, 0, 1]\n"),
+            (std::vector<std::string>{"scenes/bad.toml:12:1: error: environment.sky: unknown key for kind "
+                                      "\"constant\"; expected one of kind, color, intensity"}));
+  EXPECT_EQ(errors_of(minimal_head + "[environment]\nkind = \"gradient\"\nsky = [0, 0, 1]\n"),
+            (std::vector<std::string>{
+                "scenes/bad.toml:9:1: error: environment.horizon: missing; expected an array of 3 numbers >= 0",
+                "scenes/bad.toml:9:1: error: environment.ground: missing; expected an array of 3 numbers >= 0",
+            }));
+}
+
+TEST(SceneErrors, ALightWrittenAsASingleTableIsRefused) {
+  EXPECT_EQ(errors_of(minimal_head + "[light]\ntype = \"directional\"\ndirection = [0, 1, 0]\n"),
+            (std::vector<std::string>{
+                "scenes/bad.toml:9:1: error: light: expected an array of tables ([[light]]), got a table"}));
+}
+
+// The format reference's complete example is a scene that reads without error.
+TEST(SceneDocs, TheCompleteExampleParses) {
+  std::ifstream stream(std::filesystem::path(XSHADE_SOURCE_DIR) / "docs/scenes.md");
+  ASSERT_TRUE(stream);
+  std::string line, example;
+  bool inside = false;
+  while (std::getline(stream, line)) {
+    if (!inside && line == "```toml") {
+      inside = true;
+    } else if (inside && line == "```") {
+      break;
+    } else if (inside) {
+      example += line + "\n";
+    }
+  }
+  ASSERT_FALSE(example.empty());
+  Scene scene = parse_ok(example, "ball_grid");
+  EXPECT_EQ(scene.objects.size(), 2u);
+  EXPECT_EQ(expand_instances(scene).size(), 26u);
+  EXPECT_TRUE(scene.compare.tolerances_given);
+}
+
 // ---- instances
 
 const std::string grid_scene = minimal_head + R"([[object]]
