@@ -44,11 +44,11 @@ std::string glsl_type(const Type& type, Flavour flavour, std::string* why) {
     case TypeKind::Matrix: {
       // HLSL floatRxC (R rows) is held transposed: GLSL matRxC has R columns of C components.
       if (!type.is_floating()) {
-        if (why) *why = "matrices of " + scalar_name(type.scalar_type()) + " ('" + type.name() + "') are not supported on this target";
+        if (why) *why = "matrices of " + scalar_name(type.scalar_type()) + " (" + in_quotes(type.name()) + ") are not supported on this target";
         return type.name();
       }
       if (type.rows() == 1 || type.cols() == 1) {
-        if (why) *why = "matrices with one row or column ('" + type.name() + "') are not supported on this target";
+        if (why) *why = "matrices with one row or column (" + in_quotes(type.name()) + ") are not supported on this target";
         return type.name();
       }
       if (type.rows() == type.cols()) return "mat" + std::to_string(type.rows());
@@ -141,7 +141,7 @@ Code StageEmitter::half_value(Code value, const Type& type) {
 Code StageEmitter::convert(Code value, const Type& from, const Type& to, Loc loc) {
   if (from.is_error() || to.is_error() || to.is_void() || same_glsl(from, to)) return value;
   if (!from.is_numeric() || !to.is_numeric()) {
-    fail(loc, "cannot convert '" + from.name() + "' to '" + to.name() + "' on this target");
+    fail(loc, "cannot convert " + in_quotes(from.name()) + " to " + in_quotes(to.name()) + " on this target");
     return value;
   }
   const uint32_t from_count = from.component_count();
@@ -282,7 +282,7 @@ Code StageEmitter::splat_aggregate(const Expr* scalar, const Type& to, Loc loc) 
     const std::string element = splat_aggregate(scalar, to.element(), loc).text;
     for (uint32_t i = 0; i < to.array_length(); ++i) text += (i ? ", " : "") + element;
   } else {
-    fail(loc, "cannot convert to '" + to.name() + "' on this target");
+    fail(loc, "cannot convert to " + in_quotes(to.name()) + " on this target");
   }
   return {text + ")"};
 }
@@ -398,9 +398,9 @@ Code StageEmitter::out_argument(const Expr* arg) {
     const auto* conversion = static_cast<const ConversionExpr*>(arg);
     const Expr* inner = conversion->operand.get();
     if (inner && !same_glsl(inner->type, conversion->type)) {
-      fail(arg->loc, "passing a '" + inner->type.name() + "' to an out parameter of type '" + conversion->type.name() +
-                         "' needs a conversion, which this target does not support; pass a variable of type '" +
-                         conversion->type.name() + "'");
+      fail(arg->loc, "passing a " + in_quotes(inner->type.name()) + " to an out parameter of type " + in_quotes(conversion->type.name()) +
+                         " needs a conversion, which this target does not support; pass a variable of type " +
+                         in_quotes(conversion->type.name()));
     }
     return expr(inner);
   }
@@ -523,7 +523,7 @@ Code StageEmitter::expr(const Expr* e) {
         return {text + ")"};
       }
       if (flavour_ == Flavour::Gl && e->type.kind() == TypeKind::SamplerState)
-        fail(e->loc, "SamplerState '" + name->name + "' can only be passed to Sample methods and functions on OpenGL");
+        fail(e->loc, "SamplerState " + in_quotes(name->name) + " can only be passed to Sample methods and functions on OpenGL");
       return {name->decl ? names_.variable(name->decl) : names_.of(name->name)};
     }
 
@@ -683,7 +683,7 @@ Code StageEmitter::expr(const Expr* e) {
         case CallKind::Function: {
           const FunctionDecl* function = call->function;
           if (!function) {
-            fail(e->loc, "internal error: unresolved call to '" + call->callee + "'");
+            fail(e->loc, "internal error: unresolved call to " + in_quotes(call->callee));
             return {"0"};
           }
           std::string text = names_.function(function) + "(";
@@ -698,7 +698,7 @@ Code StageEmitter::expr(const Expr* e) {
             } else if (param->default_value) {
               arg = expr(param->default_value.get());
             } else {
-              fail(e->loc, "internal error: argument " + std::to_string(i + 1) + " of '" + call->callee + "' is missing");
+              fail(e->loc, "internal error: argument " + std::to_string(i + 1) + " of " + in_quotes(call->callee) + " is missing");
             }
             text += (first ? "" : ", ") + operand(arg, kAssign);
             first = false;
@@ -708,7 +708,7 @@ Code StageEmitter::expr(const Expr* e) {
         case CallKind::Intrinsic:
         case CallKind::Method: return half_value(intrinsic_call(*call), e->type);
         case CallKind::Unresolved:
-          fail(e->loc, "internal error: unresolved call to '" + call->callee + "'");
+          fail(e->loc, "internal error: unresolved call to " + in_quotes(call->callee));
           return {"0"};
       }
       return {"0"};

@@ -82,8 +82,8 @@ void StageEmitter::local_variable(const VarDecl& var) {
     return;
   }
   if (var.storage == StorageClass::Static && !var.is_const) {
-    fail(var.loc, "static local variable '" + var.name +
-                      "' keeps its value between calls, which this target does not support; declare it at global scope");
+    fail(var.loc, "static local variable " + in_quotes(var.name) +
+                      " keeps its value between calls, which this target does not support; declare it at global scope");
     return;
   }
   out_.mark(var.loc);

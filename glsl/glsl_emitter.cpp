@@ -377,7 +377,7 @@ std::string zero_value(StageEmitter& emitter, const Type& type, Loc loc) {
       return text + ")";
     }
     default:
-      emitter.fail(loc, "cannot give a value of type '" + type.name() + "' a zero value");
+      emitter.fail(loc, "cannot give a value of type " + in_quotes(type.name()) + " a zero value");
       return "0";
   }
 }
@@ -440,7 +440,7 @@ std::string StageEmitter::declarations() {
     if (!decl || decl->kind != DeclKind::Struct) continue;
     const auto& s = static_cast<const StructDecl&>(*decl);
     if (s.fields.empty()) {
-      fail(s.loc, "struct '" + s.name + "' has no fields; GLSL does not allow empty structs");
+      fail(s.loc, "struct " + in_quotes(s.name) + " has no fields; GLSL does not allow empty structs");
       continue;
     }
     w.line("struct " + names_.of(s.name) + " {");
@@ -501,12 +501,12 @@ std::string StageEmitter::interface_and_main() {
     const ParamDecl* param = entry.params[i].get();
     if (!param) continue;
     if (param->is_uniform) {
-      fail(param->loc, "uniform parameter '" + param->name +
-                           "' of an entry point is not supported on this target; declare it as a global");
+      fail(param->loc, "uniform parameter " + in_quotes(param->name) +
+                           " of an entry point is not supported on this target; declare it as a global");
       continue;
     }
     if (param->type.is_resource()) {
-      fail(param->loc, "entry point parameter '" + param->name + "' cannot be a resource; declare it as a global");
+      fail(param->loc, "entry point parameter " + in_quotes(param->name) + " cannot be a resource; declare it as a global");
       continue;
     }
     main.line(declarator(param->type, "xs_arg" + std::to_string(i), param->loc) + ";");
@@ -522,8 +522,8 @@ std::string StageEmitter::interface_and_main() {
   auto check_storable = [&](const StageItem& item) {
     const Type& element = item.type.kind() == TypeKind::Array ? item.type.element() : item.type;
     if (element.is_bool()) {
-      fail(item.loc, "'" + item.semantic + "' has type '" + item.type.name() +
-                         "'; stage inputs and outputs cannot be bool in GLSL; use int or uint");
+      fail(item.loc, in_quotes(item.semantic) + " has type " + in_quotes(item.type.name()) +
+                         "; stage inputs and outputs cannot be bool in GLSL; use int or uint");
       return false;
     }
     return true;
@@ -545,7 +545,7 @@ std::string StageEmitter::interface_and_main() {
         else
           location = vertex_input_location(item.semantic);
         if (!location) {
-          fail(item.loc, "vertex input '" + item.semantic + "' has no location in the vertex format");
+          fail(item.loc, "vertex input " + in_quotes(item.semantic) + " has no location in the vertex format");
           continue;
         }
         const std::string name = "xs_in_" + item.semantic;
@@ -570,7 +570,7 @@ std::string StageEmitter::interface_and_main() {
         location = varying_location(item.semantic);
       }
       if (!location) {
-        fail(item.loc, "fragment input '" + item.semantic + "' has no varying location");
+        fail(item.loc, "fragment input " + in_quotes(item.semantic) + " has no varying location");
         continue;
       }
       const std::string name = "xs_v_" + item.semantic;
@@ -616,7 +616,7 @@ std::string StageEmitter::interface_and_main() {
       else
         location = varying_location(item.semantic);
       if (!location) {
-        fail(item.loc, "vertex output '" + item.semantic + "' has no varying location");
+        fail(item.loc, "vertex output " + in_quotes(item.semantic) + " has no varying location");
         continue;
       }
       // The fragment stage's interpolation, so that both sides declare the same.

@@ -267,7 +267,7 @@ std::string replace_all(std::string text, std::string_view from, const std::stri
 
 std::string StageEmitter::require_helper(const std::string& name, const std::vector<Type>& operands, Loc loc) {
   if (operands.empty()) {
-    fail(loc, "internal error: helper '" + name + "' without operands");
+    fail(loc, "internal error: helper " + in_quotes(name) + " without operands");
     return name;
   }
   const Type& type = operands[0];
@@ -321,7 +321,7 @@ std::string StageEmitter::require_helper(const std::string& name, const std::vec
     else
       definition = "void xs_clip(" + t + " a) {\n  if (any(lessThan(a, " + t + "(0.0)))) discard;\n}\n";
   } else {
-    fail(loc, "internal error: no helper '" + name + "'");
+    fail(loc, "internal error: no helper " + in_quotes(name));
     return name;
   }
   helpers_.add(signature, definition);
@@ -359,7 +359,7 @@ Code StageEmitter::intrinsic_call(const CallExpr& call) {
   for (const ExprPtr& arg : call.args) operands.push_back(arg.get());
   for (const Expr* e : operands) {
     if (!e) {
-      fail(call.loc, "internal error: an argument of '" + std::string(info.name) + "' is missing");
+      fail(call.loc, "internal error: an argument of " + in_quotes(info.name) + " is missing");
       return {"0"};
     }
   }
@@ -372,13 +372,13 @@ Code StageEmitter::intrinsic_call(const CallExpr& call) {
   }
   const Mapping* mapping = find_mapping(id, first_numeric);
   if (!mapping) {
-    fail(call.loc, "'" + std::string(info.name) + "' is not supported on this target");
+    fail(call.loc, in_quotes(info.name) + " is not supported on this target");
     return {"0"};
   }
   if (!mapping->matrices) {
     for (const Expr* e : operands) {
       if (e->type.is_matrix()) {
-        fail(call.loc, "'" + std::string(info.name) + "' of a matrix is not supported on this target");
+        fail(call.loc, in_quotes(info.name) + " of a matrix is not supported on this target");
         return {"0"};
       }
     }
@@ -471,7 +471,7 @@ Code StageEmitter::intrinsic_call(const CallExpr& call) {
   for (const Piece& piece : pieces) {
     if (piece.operand < 0) continue;
     if (size_t(piece.operand) >= operands.size()) {
-      fail(call.loc, "internal error: the template of '" + std::string(info.name) + "' names a missing operand");
+      fail(call.loc, "internal error: the template of " + in_quotes(info.name) + " names a missing operand");
       return {"0"};
     }
     ++uses[size_t(piece.operand)];

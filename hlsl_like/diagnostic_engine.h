@@ -3,6 +3,7 @@
 #pragma once
 
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "hlsl_like/diagnostic.h"
@@ -34,9 +35,14 @@ class DiagnosticEngine {
   static constexpr size_t kErrorLimit = 50;
 
   const std::vector<Diagnostic>& diagnostics() const { return diagnostics_; }
+  const SourceManager& sources() const { return sources_; }
 
-  // "file:line:col: error: message", the source line, and a caret under the column.
+  // "file:line:col: error: message", the source line, and a caret under the column. The line
+  // is shown as a terminal can print it: a tab becomes spaces to the next multiple of
+  // kTabWidth columns and any other byte outside printable ASCII becomes \xNN, with the caret
+  // still under the character it points at.
   std::string render(size_t index) const;
+  static constexpr size_t kTabWidth = 8;
   std::string render_all() const;
 
  private:
@@ -46,5 +52,13 @@ class DiagnosticEngine {
   size_t errors_ = 0;
   size_t warnings_ = 0;
 };
+
+// How every message quotes what the author wrote (a name, a semantic, a type): in single quotes,
+// cut to kMaxQuotedLength characters and "...", with bytes outside printable ASCII as \xNN.
+// A fuzzed 1 MiB identifier must not become a 1 MiB message, nor a NUL byte cut it short.
+inline constexpr size_t kMaxQuotedLength = 64;
+std::string in_quotes(std::string_view text);
+// The same without the quotes, for the parts of a longer quoted text (a function signature).
+std::string clipped(std::string_view text);
 
 }  // namespace xshade::hlsl

@@ -30,29 +30,6 @@ constexpr size_t kNoIndex = static_cast<size_t>(-1);
 constexpr int64_t kMaxArrayLength = 65536;
 constexpr size_t kMaxTemplateLookahead = 64;
 
-// A name as shown in a message, in single quotes; cut short and with unprintable bytes escaped,
-// so that a fuzzed 1 MiB identifier does not become a 1 MiB message.
-std::string in_quotes(std::string_view text) {
-  std::string out = "'";
-  size_t shown = 0;
-  for (char c : text) {
-    if (shown++ == 64) {
-      out += "...";
-      break;
-    }
-    const auto byte = static_cast<unsigned char>(c);
-    if (byte >= 0x20 && byte < 0x7f) {
-      out += c;
-    } else {
-      char buffer[8];
-      std::snprintf(buffer, sizeof buffer, "\\x%02X", byte);
-      out += buffer;
-    }
-  }
-  out += "'";
-  return out;
-}
-
 struct StringHash {
   using is_transparent = void;
   size_t operator()(std::string_view text) const { return std::hash<std::string_view>{}(text); }
@@ -372,8 +349,30 @@ class Parser {
   // if the ';' were there, which is what the author most likely meant.
   bool expect_semicolon(std::string_view after) {
     if (accept(";")) return true;
-    error_here("expected ';' after " + std::string(after));
+    error_after_previous("expected ';' after " + std::string(after));
     return cur().at_line_start && cur().kind != TokenKind::Unknown && !is("}") && !at_end();
+  }
+
+  // Something missing between the previous token and this one is reported just past the end of
+  // the previous token, where clang and DXC point: the next token may be lines further on.
+  bool error_after_previous(std::string message) {
+    if (pos_ == 0 || cur().kind == TokenKind::Unknown || pos_ == last_error_index_) return error_here(std::move(message));
+    const std::optional<Loc> end = end_of(tok(pos_ - 1));
+    if (!end) return error_here(std::move(message));
+    last_error_index_ = pos_;
+    diagnostics_.error(*end, std::move(message));
+    return true;
+  }
+
+  // Where `token` ends in its file; nothing when its text is not the source at its location (a
+  // token from a macro expansion is located at the macro's name, a spliced one was rebuilt).
+  std::optional<Loc> end_of(const Token& token) const {
+    if (token.loc.file == 0 || token.loc.column == 0) return std::nullopt;
+    const std::string_view line = diagnostics_.sources().line_text(token.loc.file, token.loc.line);
+    const size_t start = token.loc.column - 1;
+    if (start > line.size() || line.data() + start != token.text.data()) return std::nullopt;
+    if (token.text.size() > line.size() - start) return std::nullopt;
+    return Loc{token.loc.file, token.loc.line, static_cast<uint32_t>(token.loc.column + token.text.size())};
   }
 
   // -------------------------------------------------------------------------------------------
@@ -1041,7 +1040,7 @@ class Parser {
       if (!annotation.value) return false;
     }
     if (!accept(";")) {
-      error_here("expected ';' after annotation");
+      error_after_previous("expected ';' after annotation");
       return false;
     }
     if (out) out->push_back(std::move(annotation));

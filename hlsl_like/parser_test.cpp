@@ -597,8 +597,8 @@ TEST(Parser, ErrorMessagesArePinned) {
     std::vector<std::string> errors;
   };
   const Case cases[] = {
-      {"void f() { float x = 1 }", {"1:24: expected ';' after declaration"}},
-      {"void f() { x = 1 }", {"1:18: expected ';' after expression"}},
+      {"void f() { float x = 1 }", {"1:23: expected ';' after declaration"}},
+      {"void f() { x = 1 }", {"1:17: expected ';' after expression"}},
       {"void f() { x = (1 + 2; }", {"1:22: expected ')' to match '('"}},
       {"void f() { x = 1 + ; }", {"1:20: expected an expression"}},
       {"void f() { else x = 1; }", {"1:12: unexpected 'else'"}},
@@ -615,11 +615,11 @@ TEST(Parser, ErrorMessagesArePinned) {
       {"void f() { int a[2] = { 1, 2 ; }", {"1:30: expected '}' to match '{'"}},
       {"float4 f() : { return 0; }", {"1:14: expected a semantic or register after ':'"}},
       {"Texture2D t : register(x0);", {"1:24: invalid register 'x0'"}},
-      {"struct S { float a; }\nfloat b;", {"2:1: expected ';' after struct declaration"}},
+      {"struct S { float a; }\nfloat b;", {"1:22: expected ';' after struct declaration"}},
       {"vector<float, 5> v;", {"1:15: vector size must be between 1 and 4"}},
       {"float a[0];", {"1:9: array size must be positive"}},
       {"void f() { float a[] ; }", {"1:18: an unsized array needs an initializer list"}},
-      {"float f() { return 1 }", {"1:22: expected ';' after return statement"}},
+      {"float f() { return 1 }", {"1:21: expected ';' after return statement"}},
       {"void f() { x = a ? b; }", {"1:21: expected ':' in conditional expression"}},
       {"void f() { x = {1, 2}; }", {"1:16: initializer lists are only allowed in initializers"}},
       {"void v;", {"1:1: 'void' is only valid as a function return type"}},
@@ -700,7 +700,7 @@ TEST(Parser, RecoveryReportsEachMistakeOnce) {
       "  return c;\n"
       "}\n"
       "float after;\n");
-  EXPECT_EQ(p->errors(), (std::vector<std::string>{"1:60: expected ';' after declaration",
+  EXPECT_EQ(p->errors(), (std::vector<std::string>{"1:59: expected ';' after declaration",
                                                    "4:21: expected an expression",
                                                    "5:25: expected ')' to match '('"}));
   ASSERT_EQ(p->unit.decls.size(), 4u);

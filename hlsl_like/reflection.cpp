@@ -82,7 +82,7 @@ std::optional<std::string> struct_layout_mismatch(const StructDecl* decl) {
     const uint32_t alignment = type.is_scalar() ? 4 : type.is_vector() ? (type.cols() == 2 ? 8 : 16) : 16;
     std140 = align_up(std140, alignment);
     if (hlsl != std140)
-      return "field '" + field.name + "' is at offset " + std::to_string(hlsl) + " in HLSL but " +
+      return "field " + in_quotes(field.name) + " is at offset " + std::to_string(hlsl) + " in HLSL but " +
              std::to_string(std140) + " in std140";
     if (type.kind() == TypeKind::Struct && type.struct_decl())
       if (auto inner = struct_layout_mismatch(type.struct_decl())) return inner;
@@ -117,16 +117,16 @@ void pack_members(ConstantBuffer& buffer, const std::vector<const VarDecl*>& mem
     }
     if (type.kind() == TypeKind::Struct && type.struct_decl()) {
       if (auto mismatch = struct_layout_mismatch(type.struct_decl()))
-        diagnostics.error(var->loc, "'" + var->name + "' in constant buffer '" + buffer.name + "': struct '" +
-                                        type.struct_decl()->name + "' cannot keep its HLSL layout in GLSL: " +
+        diagnostics.error(var->loc, in_quotes(var->name) + " in constant buffer " + in_quotes(buffer.name) + ": struct " +
+                                        in_quotes(type.struct_decl()->name) + " cannot keep its HLSL layout in GLSL: " +
                                         *mismatch + "; reorder its fields or pad them to 16-byte registers");
     }
     if (!previous_name.empty() && offset < previous_end_std140)
-      diagnostics.error(var->loc, "'" + var->name + "' is at offset " + std::to_string(offset) + " of constant buffer '" +
-                                      buffer.name + "', inside the padding GLSL gives '" + previous_name + "' (up to " +
-                                      std::to_string(previous_end_std140) + "); start '" + var->name +
-                                      "' on a new 16-byte register (pad before it) or declare it before '" +
-                                      previous_name + "'");
+      diagnostics.error(var->loc, in_quotes(var->name) + " is at offset " + std::to_string(offset) + " of constant buffer " +
+                                      in_quotes(buffer.name) + ", inside the padding GLSL gives " + in_quotes(previous_name) +
+                                      " (up to " + std::to_string(previous_end_std140) + "); start " + in_quotes(var->name) +
+                                      " on a new 16-byte register (pad before it) or declare it before " +
+                                      in_quotes(previous_name));
     previous_end_std140 = offset + (member.split_into_scalars ? member.size : std140_size(type, member.row_major));
     previous_name = var->name;
     offset += member.size;
@@ -207,21 +207,21 @@ class RegisterClass {
   void claim(const RegisterBinding& binding, const std::string& name) {
     if (binding.index >= kRegistersPerClass) {
       diagnostics_.error(binding.loc, std::string("register ") + binding.register_class + std::to_string(binding.index) +
-                                          " of '" + name + "' is out of range (0 to " +
+                                          " of " + in_quotes(name) + " is out of range (0 to " +
                                           std::to_string(kRegistersPerClass - 1) + ")");
       return;
     }
-    if (binding.space != 0) diagnostics_.warning(binding.loc, "register space of '" + name + "' is ignored: every resource is in set 0");
+    if (binding.space != 0) diagnostics_.warning(binding.loc, "register space of " + in_quotes(name) + " is ignored: every resource is in set 0");
     auto [it, inserted] = used_.emplace(binding.index, name);
     if (!inserted)
       diagnostics_.error(binding.loc, std::string("register ") + binding.register_class + std::to_string(binding.index) +
-                                          " of '" + name + "' is already taken by '" + it->second + "'");
+                                          " of " + in_quotes(name) + " is already taken by " + in_quotes(it->second));
   }
   uint32_t binding_of(const RegisterBinding& binding) const { return base_ + binding.index; }
   std::optional<uint32_t> next_free(const std::string& name, Loc loc) {
     for (uint32_t index = 0; index < kRegistersPerClass; ++index)
       if (used_.emplace(index, name).second) return base_ + index;
-    diagnostics_.error(loc, std::string("no free ") + letter_ + " register for '" + name + "'");
+    diagnostics_.error(loc, std::string("no free ") + letter_ + " register for " + in_quotes(name));
     return std::nullopt;
   }
 
@@ -403,7 +403,7 @@ Reflection reflect(const TranslationUnit& unit, const EntryPoints& entry_points,
       for (const VarDecl* member : members) reflection.properties.push_back(property_of(*member));
       if (cbuffer.binding.register_class == 'b') buffers.claim(cbuffer.binding, cbuffer.name);
       else if (cbuffer.binding.register_class != 0)
-        diagnostics.error(cbuffer.binding.loc, "constant buffer '" + cbuffer.name + "' needs a b register, not " +
+        diagnostics.error(cbuffer.binding.loc, "constant buffer " + in_quotes(cbuffer.name) + " needs a b register, not " +
                                                    cbuffer.binding.register_class);
       pending_buffers.push_back({reflection.constant_buffers.size(), &cbuffer.binding, cbuffer.loc});
       reflection.constant_buffers.push_back(std::move(buffer));
@@ -427,7 +427,7 @@ Reflection reflect(const TranslationUnit& unit, const EntryPoints& entry_points,
         reflection.samplers.push_back(std::move(sampler));
       } else if (is_uniform_global(var)) {
         if (var.binding.register_class != 0)
-          diagnostics.warning(var.binding.loc, "register of '" + var.name + "' is ignored: it lives in $Globals");
+          diagnostics.warning(var.binding.loc, "register of " + in_quotes(var.name) + " is ignored: it lives in $Globals");
         if (!globals_index) {
           globals_index = reflection.constant_buffers.size();
           reflection.constant_buffers.push_back({kGlobalsBufferName, 0, 0, {}, nullptr});
@@ -482,8 +482,8 @@ Reflection reflect(const TranslationUnit& unit, const EntryPoints& entry_points,
       if (is_system_value(input.semantic, true)) continue;
       auto location = vertex_input_location(input.semantic);
       if (!location) {
-        diagnostics.error(entry_points.vertex->loc, "vertex input '" + input.semantic +
-                                                        "' has no place in the vertex format; use POSITION, "
+        diagnostics.error(entry_points.vertex->loc, "vertex input " + in_quotes(input.semantic) +
+                                                        " has no place in the vertex format; use POSITION, "
                                                         "NORMAL, TANGENT, TEXCOORD0, TEXCOORD1 or COLOR0");
         continue;
       }
@@ -494,8 +494,8 @@ Reflection reflect(const TranslationUnit& unit, const EntryPoints& entry_points,
       if (is_system_value(output.semantic, false)) continue;
       auto location = varying_location(output.semantic);
       if (!location) {
-        diagnostics.error(entry_points.vertex->loc, "vertex output '" + output.semantic +
-                                                        "' cannot be passed to the fragment stage; use TEXCOORD0-7, "
+        diagnostics.error(entry_points.vertex->loc, "vertex output " + in_quotes(output.semantic) +
+                                                        " cannot be passed to the fragment stage; use TEXCOORD0-7, "
                                                         "COLOR0-1, NORMAL, TANGENT, BINORMAL or POSITION");
         continue;
       }
@@ -509,14 +509,14 @@ Reflection reflect(const TranslationUnit& unit, const EntryPoints& entry_points,
       const bool written = std::any_of(reflection.varyings.begin(), reflection.varyings.end(),
                                        [&](const StageVariable& v) { return v.semantic == input.semantic; });
       if (entry_points.vertex && !written)
-        diagnostics.error(entry_points.fragment->loc, "fragment input '" + input.semantic +
-                                                          "' is not written by the vertex entry point '" +
-                                                          entry_points.vertex->name + "'");
+        diagnostics.error(entry_points.fragment->loc, "fragment input " + in_quotes(input.semantic) +
+                                                          " is not written by the vertex entry point " +
+                                                          in_quotes(entry_points.vertex->name));
       if (!entry_points.vertex) {  // a full-screen pass: only TEXCOORD0 (uv) arrives
         auto location = varying_location(input.semantic);
         if (input.semantic != "TEXCOORD0")
           diagnostics.error(entry_points.fragment->loc, "a fragment shader without a vertex stage receives only "
-                                                            "TEXCOORD0 (uv) and SV_Position, not '" + input.semantic + "'");
+                                                            "TEXCOORD0 (uv) and SV_Position, not " + in_quotes(input.semantic));
         else
           reflection.varyings.push_back({input.semantic, input.type, location.value_or(0), input.interpolation});
       }

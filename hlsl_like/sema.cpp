@@ -13,8 +13,6 @@ namespace sema_detail {
 
 namespace {
 
-std::string quoted(const Type& type) { return "'" + type.name() + "'"; }
-
 bool is_unsized_array(const Type& type) { return type.kind() == TypeKind::Array && type.array_length() == 0; }
 
 size_t edit_distance(const std::string& a, const std::string& b) {
@@ -155,8 +153,8 @@ bool Sema::declare(const std::string& name, Symbol symbol, Loc loc) {
   if (name.empty() || scopes_.empty()) return true;
   auto [it, inserted] = scopes_.back().emplace(name, symbol);
   if (inserted) return true;
-  diag_.error(loc, "redefinition of '" + name + "'");
-  if (it->second.decl) diag_.note(it->second.decl->loc, "previous definition of '" + name + "' is here");
+  diag_.error(loc, "redefinition of " + in_quotes(name));
+  if (it->second.decl) diag_.note(it->second.decl->loc, "previous definition of " + in_quotes(name) + " is here");
   return false;
 }
 
@@ -210,7 +208,7 @@ bool Sema::check_type_usable(const Type& type, const std::string& what, Loc loc,
     return false;
   }
   if (!allow_resource && facts_.contains_resource(type)) {
-    diag_.error(loc, what + " cannot have type " + quoted(type) +
+    diag_.error(loc, what + " cannot have type " + in_quotes(type.name()) +
                          "; resources are only allowed at global scope or as parameters");
     return false;
   }
@@ -223,16 +221,16 @@ void Sema::declare_struct(StructDecl& decl) {
     if (!field.name.empty()) {
       auto [it, inserted] = names.emplace(field.name, &field);
       if (!inserted) {
-        diag_.error(field.loc, "redefinition of '" + field.name + "'");
-        diag_.note(it->second->loc, "previous definition of '" + field.name + "' is here");
+        diag_.error(field.loc, "redefinition of " + in_quotes(field.name));
+        diag_.note(it->second->loc, "previous definition of " + in_quotes(field.name) + " is here");
       }
     }
     if (field.type.kind() == TypeKind::Struct && field.type.struct_decl() == &decl) {
-      diag_.error(field.loc, "field '" + field.name + "' cannot have the type of its own struct");
+      diag_.error(field.loc, "field " + in_quotes(field.name) + " cannot have the type of its own struct");
       continue;
     }
-    if (!check_type_usable(field.type, "field '" + field.name + "'", field.loc, false)) continue;
-    if (is_unsized_array(field.type)) diag_.error(field.loc, "field '" + field.name + "' needs an array size");
+    if (!check_type_usable(field.type, "field " + in_quotes(field.name), field.loc, false)) continue;
+    if (is_unsized_array(field.type)) diag_.error(field.loc, "field " + in_quotes(field.name) + " needs an array size");
   }
   // Learn the struct's facts now, while its fields' structs are already known: later queries
   // then never walk a chain of nested structs.
@@ -248,21 +246,21 @@ void Sema::analyze_var_initializer(VarDecl& var) {
   if (var.initializer) {
     analyze_initializer(var.initializer, var.type, var.name);
   } else if (is_unsized_array(var.type)) {
-    diag_.error(var.loc, "unsized array '" + var.name + "' needs an initializer list");
+    diag_.error(var.loc, "unsized array " + in_quotes(var.name) + " needs an initializer list");
   }
 }
 
 void Sema::declare_global_var(VarDecl& var, bool in_cbuffer) {
-  const std::string what = (in_cbuffer ? "cbuffer member '" : "variable '") + var.name + "'";
+  const std::string what = (in_cbuffer ? "cbuffer member " : "variable ") + in_quotes(var.name);
   if (check_type_usable(var.type, what, var.loc, !in_cbuffer)) {
     if (var.type.is_resource() && var.initializer) {
-      diag_.error(var.initializer->loc, quoted(var.type) + " variables cannot have an initializer");
+      diag_.error(var.initializer->loc, in_quotes(var.type.name()) + " variables cannot have an initializer");
     } else {
       analyze_var_initializer(var);
     }
   }
   if (var.is_const && var.storage == StorageClass::Static && !var.initializer) {
-    diag_.error(var.loc, "static const '" + var.name + "' needs an initializer");
+    diag_.error(var.loc, "static const " + in_quotes(var.name) + " needs an initializer");
   }
   declare(var.name, {Symbol::Kind::Variable, &var}, var.loc);
 }
@@ -274,12 +272,12 @@ void Sema::declare_cbuffer(CBufferDecl& decl) {
 }
 
 void Sema::analyze_local_var(VarDecl& var) {
-  if (check_type_usable(var.type, "variable '" + var.name + "'", var.loc, false)) {
+  if (check_type_usable(var.type, "variable " + in_quotes(var.name), var.loc, false)) {
     analyze_var_initializer(var);
   } else if (var.initializer) {
     analyze(var.initializer.get());
   }
-  if (var.is_const && !var.initializer) diag_.error(var.loc, "const '" + var.name + "' needs an initializer");
+  if (var.is_const && !var.initializer) diag_.error(var.loc, "const " + in_quotes(var.name) + " needs an initializer");
   declare(var.name, {Symbol::Kind::Variable, &var}, var.loc);
 }
 
@@ -287,7 +285,7 @@ void Sema::declare_function(FunctionDecl& function) {
   all_functions_.push_back(&function);
   analyze_attributes(function.attributes);
   if (function.return_type.is_resource() || function.return_type.kind() == TypeKind::Array) {
-    diag_.error(function.loc, "function '" + function.name + "' cannot return " + quoted(function.return_type));
+    diag_.error(function.loc, "function " + in_quotes(function.name) + " cannot return " + in_quotes(function.return_type.name()));
   }
   std::vector<Type> param_types;
   for (const auto& param : function.params) param_types.push_back(param ? param->type : Type::error());
@@ -305,11 +303,11 @@ void Sema::declare_function(FunctionDecl& function) {
   if (canonical) {
     FunctionInfo& info = function_info_[canonical];
     if (!(canonical->return_type == function.return_type)) {
-      diag_.error(function.loc, "'" + function.name + "' differs from a previous declaration only in its return type");
-      diag_.note(canonical->loc, "previous declaration of '" + function.name + "' is here");
+      diag_.error(function.loc, in_quotes(function.name) + " differs from a previous declaration only in its return type");
+      diag_.note(canonical->loc, "previous declaration of " + in_quotes(function.name) + " is here");
     } else if (function.body && info.definition) {
-      diag_.error(function.loc, "redefinition of '" + function.name + "'");
-      diag_.note(info.definition->loc, "previous definition of '" + function.name + "' is here");
+      diag_.error(function.loc, "redefinition of " + in_quotes(function.name));
+      diag_.note(info.definition->loc, "previous definition of " + in_quotes(function.name) + " is here");
     } else if (function.body) {
       info.definition = &function;
     }
@@ -334,7 +332,7 @@ void Sema::declare_function(FunctionDecl& function) {
   push_scope();
   for (auto& param : function.params) {
     if (!param) continue;
-    const std::string what = "parameter '" + param->name + "'";
+    const std::string what = "parameter " + in_quotes(param->name);
     check_type_usable(param->type, what, param->loc, true);
     if (is_unsized_array(param->type)) diag_.error(param->loc, what + " needs an array size");
     if (param->default_value) {
@@ -373,7 +371,7 @@ void Sema::analyze_condition(ExprPtr& condition) {
   const Type type = analyze(condition.get());
   if (!condition || type.is_error()) return;
   if (type.is_numeric() && type.component_count() > 1) {
-    diag_.error(condition->loc, "condition must be a scalar, not " + quoted(type) + "; use any() or all()");
+    diag_.error(condition->loc, "condition must be a scalar, not " + in_quotes(type.name()) + "; use any() or all()");
     return;
   }
   coerce(condition, Type::scalar(ScalarType::Bool));
@@ -458,10 +456,10 @@ void Sema::analyze_stmt(Stmt* stmt) {
       if (expected.is_error()) break;
       if (expected.is_void()) {
         if (ret.value && !value.is_error()) {
-          diag_.error(ret.value->loc, "void function '" + current_function_->name + "' cannot return a value");
+          diag_.error(ret.value->loc, "void function " + in_quotes(current_function_->name) + " cannot return a value");
         }
       } else if (!ret.value) {
-        diag_.error(stmt->loc, "'" + current_function_->name + "' must return a value of type " + quoted(expected));
+        diag_.error(stmt->loc, in_quotes(current_function_->name) + " must return a value of type " + in_quotes(expected.name()));
       } else {
         coerce(ret.value, expected);
       }
@@ -503,7 +501,7 @@ void Sema::check_recursion() {
       const FunctionInfo::Call& call = info.calls[frame.next_call++];
       Color& callee = color[call.callee];
       if (callee == Color::Gray) {
-        diag_.error(call.loc, "recursive call to '" + call.callee->name + "' is not supported");
+        diag_.error(call.loc, "recursive call to " + in_quotes(call.callee->name) + " is not supported");
       } else if (callee == Color::White) {
         callee = Color::Gray;
         stack.push_back({call.callee, 0});
@@ -526,7 +524,7 @@ void Sema::fix_up_calls() {
     if (canonical_of_[function] != function) continue;
     const FunctionInfo& info = function_info_[function];
     if (info.called && !info.definition) {
-      diag_.error(info.first_call, "function '" + function->name + "' is called but never defined");
+      diag_.error(info.first_call, "function " + in_quotes(function->name) + " is called but never defined");
     }
   }
 }
@@ -544,11 +542,11 @@ const FunctionDecl* Sema::find_entry_point(const std::string& name, Loc pragma_l
     }
   }
   if (defined.empty()) {
-    diag_.error(pragma_loc, "entry point '" + name + "' is not defined");
+    diag_.error(pragma_loc, "entry point " + in_quotes(name) + " is not defined");
     return nullptr;
   }
   if (defined.size() > 1) {
-    diag_.error(pragma_loc, std::string(stage) + " entry point '" + name + "' is overloaded; it must have one definition");
+    diag_.error(pragma_loc, std::string(stage) + " entry point " + in_quotes(name) + " is overloaded; it must have one definition");
     return nullptr;
   }
   return defined[0];
@@ -579,7 +577,7 @@ void Sema::check_entry_point(const FunctionDecl& function, bool vertex) {
     size_t budget = 4096;  // far beyond a real signature; a hostile one stops here
     while (!items.empty()) {
       if (--budget == 0) {
-        report(function.loc, "entry point '" + function.name + "' has too many inputs or outputs");
+        report(function.loc, "entry point " + in_quotes(function.name) + " has too many inputs or outputs");
         return;
       }
       Item item = std::move(items.back());
@@ -593,33 +591,33 @@ void Sema::check_entry_point(const FunctionDecl& function, bool vertex) {
         const auto& fields = type.struct_decl()->fields;
         for (auto field = fields.rbegin(); field != fields.rend(); ++field) {
           items.push_back({&field->type, &field->semantic, field->semantic_loc,
-                           std::string(input ? "input '" : "output '") + field->name + "'", field->loc, item.depth + 1});
+                           (input ? "input " : "output ") + in_quotes(field->name), field->loc, item.depth + 1});
         }
         continue;
       }
       if (item.semantic->empty()) {
-        report(item.loc, item.name + " of entry point '" + function.name + "' needs a semantic");
+        report(item.loc, item.name + " of entry point " + in_quotes(function.name) + " needs a semantic");
         continue;
       }
       const ParsedSemantic semantic = parse_semantic(*item.semantic);
       if (semantic.kind == SemanticKind::Unknown) {
-        report(item.semantic_loc, "unknown semantic '" + *item.semantic + "'");
+        report(item.semantic_loc, "unknown semantic " + in_quotes(*item.semantic));
         continue;
       }
       if (!semantic_allowed(semantic.kind, stage, input)) {
-        report(item.semantic_loc, "semantic '" + *item.semantic + "' is not allowed on a " + stage_name + " shader " +
+        report(item.semantic_loc, "semantic " + in_quotes(*item.semantic) + " is not allowed on a " + stage_name + " shader " +
                                       (input ? "input" : "output"));
         continue;
       }
       if (auto needed = required_type(semantic.kind, stage, input, type)) {
-        report(item.loc, "semantic '" + *item.semantic + "' needs " + (needed->front() == 'a' ? "" : "type '") + *needed +
-                             (needed->front() == 'a' ? "" : "'") + ", not " + quoted(type));
+        report(item.loc, "semantic " + in_quotes(*item.semantic) + " needs " + (needed->front() == 'a' ? "" : "type '") + *needed +
+                             (needed->front() == 'a' ? "" : "'") + ", not " + in_quotes(type.name()));
         continue;
       }
       const std::string canonical = canonical_semantic(semantic);
       if (!seen[input ? 0 : 1].emplace(canonical, item.semantic_loc).second) {
-        report(item.semantic_loc, "semantic '" + *item.semantic + "' is used twice in the " +
-                                      (input ? "inputs" : "outputs") + " of entry point '" + function.name + "'");
+        report(item.semantic_loc, "semantic " + in_quotes(*item.semantic) + " is used twice in the " +
+                                      (input ? "inputs" : "outputs") + " of entry point " + in_quotes(function.name));
         continue;
       }
       if (!input && vertex && (semantic.kind == SemanticKind::SvPosition || semantic.kind == SemanticKind::Position)) {
@@ -635,20 +633,20 @@ void Sema::check_entry_point(const FunctionDecl& function, bool vertex) {
   for (const auto& param : function.params) {
     if (!param || param->is_uniform || param->type.is_resource()) continue;
     if (param->direction != ParamDirection::Out) {
-      check(param->type, param->semantic, param->semantic_loc, "input '" + param->name + "'", param->loc, true);
+      check(param->type, param->semantic, param->semantic_loc, "input " + in_quotes(param->name), param->loc, true);
     }
     if (param->direction != ParamDirection::In) {
-      check(param->type, param->semantic, param->semantic_loc, "output '" + param->name + "'", param->loc, false);
+      check(param->type, param->semantic, param->semantic_loc, "output " + in_quotes(param->name), param->loc, false);
     }
   }
   if (!function.return_type.is_void()) {
     check(function.return_type, function.semantic, function.semantic_loc, "return value", function.loc, false);
   }
   if (vertex && !outputs_position && !return_failed) {
-    report(function.loc, "vertex entry point '" + function.name + "' does not output SV_Position");
+    report(function.loc, "vertex entry point " + in_quotes(function.name) + " does not output SV_Position");
   }
   if (!vertex && !outputs_target && !return_failed) {
-    report(function.loc, "fragment entry point '" + function.name + "' does not output SV_Target or SV_Depth");
+    report(function.loc, "fragment entry point " + in_quotes(function.name) + " does not output SV_Target or SV_Depth");
   }
 }
 

@@ -9,8 +9,6 @@ namespace xshade::hlsl::sema_detail {
 
 namespace {
 
-std::string quoted(const Type& type) { return "'" + type.name() + "'"; }
-
 std::string arguments_word(size_t count) { return count == 1 ? " argument" : " arguments"; }
 
 // a dominates b: no argument converts worse, and one converts better.
@@ -239,20 +237,20 @@ std::string join_types(const std::vector<ExprPtr>& args) {
   std::string text;
   for (const ExprPtr& arg : args) {
     if (!text.empty()) text += ", ";
-    text += arg ? arg->type.name() : "<error>";
+    text += arg ? clipped(arg->type.name()) : "<error>";
   }
   return text;
 }
 
 std::string function_signature(const FunctionDecl& function) {
-  std::string text = function.return_type.name() + " " + function.name + "(";
+  std::string text = clipped(function.return_type.name()) + " " + clipped(function.name) + "(";
   for (size_t i = 0; i < function.params.size(); ++i) {
     if (i > 0) text += ", ";
     const ParamDecl* param = function.params[i].get();
     if (!param) continue;
     if (param->direction == ParamDirection::Out) text += "out ";
     if (param->direction == ParamDirection::InOut) text += "inout ";
-    text += param->type.name();
+    text += clipped(param->type.name());
   }
   return text + ")";
 }
@@ -271,7 +269,7 @@ static void pass_argument(Sema& sema, ExprPtr& arg, const Type& type, ParamDirec
     return;
   }
   if (sema.not_assignable(arg.get())) {
-    sema.diag_.error(arg->loc, "argument " + std::to_string(index + 1) + " of '" + callee + "' is an " +
+    sema.diag_.error(arg->loc, "argument " + std::to_string(index + 1) + " of " + in_quotes(callee) + " is an " +
                                    (direction == ParamDirection::Out ? "out" : "inout") +
                                    " parameter and needs an assignable expression");
     return;
@@ -281,14 +279,14 @@ static void pass_argument(Sema& sema, ExprPtr& arg, const Type& type, ParamDirec
   if (direction == ParamDirection::InOut) {
     const Conversion in = classify_implicit(arg_type, type);
     if (!in.valid) {
-      sema.diag_.error(arg->loc, "cannot convert from " + quoted(arg_type) + " to " + quoted(type));
+      sema.diag_.error(arg->loc, "cannot convert from " + in_quotes(arg_type.name()) + " to " + in_quotes(type.name()));
       return;
     }
     if (in.truncation) sema.diag_.warning(arg->loc, truncation_message(arg_type, type));
   }
   const Conversion back = classify_implicit(type, arg_type);
   if (!back.valid) {
-    sema.diag_.error(arg->loc, "cannot convert from " + quoted(type) + " to " + quoted(arg_type));
+    sema.diag_.error(arg->loc, "cannot convert from " + in_quotes(type.name()) + " to " + in_quotes(arg_type.name()));
     return;
   }
   if (back.truncation) sema.diag_.warning(arg->loc, truncation_message(type, arg_type));
@@ -310,12 +308,12 @@ Type Sema::analyze_call(CallExpr& expr) {
   if (expr.object) {
     if (object.is_error()) return Type::error();
     if (object.kind() != TypeKind::Texture2D) {
-      diag_.error(expr.loc, quoted(object) + " has no method '" + expr.callee + "'");
+      diag_.error(expr.loc, in_quotes(object.name()) + " has no method " + in_quotes(expr.callee));
       return Type::error();
     }
     const std::optional<IntrinsicId> method = find_texture_method(expr.callee);
     if (!method) {
-      diag_.error(expr.loc, "'Texture2D' has no method '" + expr.callee + "'");
+      diag_.error(expr.loc, "'Texture2D' has no method " + in_quotes(expr.callee));
       return Type::error();
     }
     expr.call_kind = CallKind::Method;
@@ -327,11 +325,11 @@ Type Sema::analyze_call(CallExpr& expr) {
   const std::optional<IntrinsicId> intrinsic = find_intrinsic(expr.callee);
   if (overloads == functions_.end() && !intrinsic) {
     if (all_function_names_.count(expr.callee)) {
-      diag_.error(expr.loc, "function '" + expr.callee + "' is used before its declaration");
+      diag_.error(expr.loc, "function " + in_quotes(expr.callee) + " is used before its declaration");
     } else {
-      std::string message = "unknown function '" + expr.callee + "'";
+      std::string message = "unknown function " + in_quotes(expr.callee);
       const std::string close = suggestion(expr.callee, true);
-      if (!close.empty()) message += "; did you mean '" + close + "'?";
+      if (!close.empty()) message += "; did you mean " + in_quotes(close) + "?";
       diag_.error(expr.loc, message);
     }
     return Type::error();
@@ -356,14 +354,14 @@ Type Sema::analyze_constructor(CallExpr& expr) {
   }
   if (type.is_error()) return Type::error();
   if (!type.is_numeric()) {
-    diag_.error(expr.loc, "cannot construct a value of type " + quoted(type));
+    diag_.error(expr.loc, "cannot construct a value of type " + in_quotes(type.name()));
     return Type::error();
   }
   if (!args_ok) return type;
   uint64_t given = 0;
   for (ExprPtr& arg : expr.args) {
     if (!arg->type.is_numeric()) {
-      diag_.error(arg->loc, "cannot use a value of type " + quoted(arg->type) + " in a " + quoted(type) + " constructor");
+      diag_.error(arg->loc, "cannot use a value of type " + in_quotes(arg->type.name()) + " in a " + in_quotes(type.name()) + " constructor");
       return type;
     }
     given += arg->type.component_count();
@@ -373,7 +371,7 @@ Type Sema::analyze_constructor(CallExpr& expr) {
     return type;
   }
   if (given != type.component_count()) {
-    diag_.error(expr.loc, quoted(type) + " constructor needs " + std::to_string(type.component_count()) +
+    diag_.error(expr.loc, in_quotes(type.name()) + " constructor needs " + std::to_string(type.component_count()) +
                               " components, " + std::to_string(given) + " given");
     return type;
   }
@@ -391,7 +389,7 @@ Type Sema::analyze_function_call(CallExpr& expr, const std::vector<const Functio
       const std::string takes = required == total ? std::to_string(total) + arguments_word(total)
                                                   : std::to_string(required) + " to " + std::to_string(total) +
                                                         arguments_word(total);
-      diag_.error(expr.loc, "'" + expr.callee + "' takes " + takes + ", " + std::to_string(expr.args.size()) + " given");
+      diag_.error(expr.loc, in_quotes(expr.callee) + " takes " + takes + ", " + std::to_string(expr.args.size()) + " given");
       return Type::error();
     }
   } else {
@@ -404,7 +402,7 @@ Type Sema::analyze_function_call(CallExpr& expr, const std::vector<const Functio
       }
     }
     if (viable.empty()) {
-      diag_.error(expr.loc, "no overload of '" + expr.callee + "' takes (" + join_types(expr.args) + ")");
+      diag_.error(expr.loc, "no overload of " + in_quotes(expr.callee) + " takes (" + join_types(expr.args) + ")");
       for (const FunctionDecl* function : overloads) {
         diag_.note(function->loc, "candidate '" + function_signature(*function) + "'");
       }
@@ -412,7 +410,7 @@ Type Sema::analyze_function_call(CallExpr& expr, const std::vector<const Functio
     }
     const int best = unique_best(ranks);
     if (best < 0) {
-      diag_.error(expr.loc, "ambiguous call to '" + expr.callee + "'");
+      diag_.error(expr.loc, "ambiguous call to " + in_quotes(expr.callee));
       // The candidates no other beats.
       for (size_t i = 0; i < viable.size(); ++i) {
         bool beaten = false;
@@ -459,7 +457,7 @@ Type Sema::analyze_intrinsic_call(CallExpr& expr, IntrinsicId id) {
       takes += std::to_string(arities[i]);
     }
     takes += arguments_word(arities.empty() ? 0 : arities.back());
-    diag_.error(expr.loc, "'" + name + "' takes " + takes + ", " + std::to_string(expr.args.size()) + " given");
+    diag_.error(expr.loc, in_quotes(name) + " takes " + takes + ", " + std::to_string(expr.args.size()) + " given");
     return Type::error();
   }
   std::vector<Candidate> candidates;
@@ -467,7 +465,7 @@ Type Sema::analyze_intrinsic_call(CallExpr& expr, IntrinsicId id) {
     if (auto candidate = bind_signature(*this, signature, expr.args)) candidates.push_back(std::move(*candidate));
   }
   if (candidates.empty()) {
-    diag_.error(expr.loc, "no overload of '" + name + "' takes (" + join_types(expr.args) + ")");
+    diag_.error(expr.loc, "no overload of " + in_quotes(name) + " takes (" + join_types(expr.args) + ")");
     return Type::error();
   }
   std::vector<std::vector<int>> ranks;
@@ -489,7 +487,7 @@ Type Sema::analyze_intrinsic_call(CallExpr& expr, IntrinsicId id) {
     pass_argument(*this, expr.args[i], chosen.params[i], chosen.out[i] ? ParamDirection::Out : ParamDirection::In, i,
                   name);
   }
-  if (info.fragment_only) note_fragment_only("'" + name + "'", expr.loc);
+  if (info.fragment_only) note_fragment_only(in_quotes(name), expr.loc);
   return chosen.result;
 }
 

@@ -96,8 +96,8 @@ bool explicit_cast_allowed(const Type& from, const Type& to, bool literal_scalar
 }
 
 std::string truncation_message(const Type& from, const Type& to) {
-  return std::string("implicit truncation of ") + (from.is_matrix() ? "matrix" : "vector") + " type from '" +
-         from.name() + "' to '" + to.name() + "'";
+  return std::string("implicit truncation of ") + (from.is_matrix() ? "matrix" : "vector") + " type from " +
+         in_quotes(from.name()) + " to " + in_quotes(to.name());
 }
 
 std::optional<Type> combine_shapes(const Type& a, const Type& b, ScalarType scalar) {

@@ -62,8 +62,6 @@ std::optional<int64_t> in_fold_range(int64_t value) {
   return value;
 }
 
-std::string quoted(const Type& type) { return "'" + type.name() + "'"; }
-
 }  // namespace
 
 bool Sema::nesting_exceeded(Loc loc) {
@@ -92,7 +90,7 @@ bool Sema::coerce(ExprPtr& slot, const Type& to) {
   if (from.is_error() || to.is_error()) return true;
   const Conversion conversion = classify_implicit(from, to);
   if (!conversion.valid) {
-    diag_.error(slot->loc, "cannot convert from " + quoted(from) + " to " + quoted(to));
+    diag_.error(slot->loc, "cannot convert from " + in_quotes(from.name()) + " to " + in_quotes(to.name()));
     return false;
   }
   if (conversion.truncation) diag_.warning(slot->loc, truncation_message(from, to));
@@ -173,9 +171,9 @@ Type Sema::analyze(Expr* expr) {
 Type Sema::analyze_name(NameExpr& expr) {
   const Symbol* symbol = lookup(expr.name);
   if (!symbol) {
-    std::string message = "unknown name '" + expr.name + "'";
+    std::string message = "unknown name " + in_quotes(expr.name);
     const std::string close = suggestion(expr.name, false);
-    if (!close.empty()) message += "; did you mean '" + close + "'?";
+    if (!close.empty()) message += "; did you mean " + in_quotes(close) + "?";
     diag_.error(expr.loc, message);
     return Type::error();
   }
@@ -185,11 +183,11 @@ Type Sema::analyze_name(NameExpr& expr) {
       if (symbol->decl->kind == DeclKind::Var) return static_cast<const VarDecl*>(symbol->decl)->type;
       return static_cast<const ParamDecl*>(symbol->decl)->type;
     case Symbol::Kind::Function:
-      diag_.error(expr.loc, "'" + expr.name + "' is a function, not a value");
+      diag_.error(expr.loc, in_quotes(expr.name) + " is a function, not a value");
       return Type::error();
     case Symbol::Kind::Struct:
     case Symbol::Kind::Typedef:
-      diag_.error(expr.loc, "'" + expr.name + "' is a type, not a value");
+      diag_.error(expr.loc, in_quotes(expr.name) + " is a type, not a value");
       return Type::error();
   }
   return Type::error();
@@ -203,7 +201,7 @@ Type Sema::analyze_unary(UnaryExpr& expr) {
   if (operand.is_error()) return Type::error();
   const std::string op = unary_spelling(expr.op);
   if (!operand.is_numeric()) {
-    diag_.error(expr.loc, "cannot apply '" + op + "' to " + quoted(operand));
+    diag_.error(expr.loc, "cannot apply " + in_quotes(op) + " to " + in_quotes(operand.name()));
     return Type::error();
   }
   switch (expr.op) {
@@ -215,7 +213,7 @@ Type Sema::analyze_unary(UnaryExpr& expr) {
     }
     case UnaryOp::BitNot: {
       if (operand.is_floating()) {
-        diag_.error(expr.loc, "'~' needs integer operands, not " + quoted(operand));
+        diag_.error(expr.loc, "'~' needs integer operands, not " + in_quotes(operand.name()));
         return Type::error();
       }
       const Type result = operand.is_bool() ? Type::with_scalar(operand, ScalarType::Int) : operand;
@@ -232,7 +230,7 @@ Type Sema::analyze_unary(UnaryExpr& expr) {
     case UnaryOp::PostIncrement:
     case UnaryOp::PostDecrement:
       if (operand.is_bool()) {
-        diag_.error(expr.loc, "cannot apply '" + op + "' to " + quoted(operand));
+        diag_.error(expr.loc, "cannot apply " + in_quotes(op) + " to " + in_quotes(operand.name()));
         return Type::error();
       }
       require_assignable(expr.operand.get());
@@ -248,11 +246,11 @@ std::optional<BinaryTyping> Sema::binary_typing(BinaryOp op, Loc loc, const Expr
   if (a.is_error() || b.is_error()) return std::nullopt;
   const std::string spelling = binary_spelling(op);
   if (!a.is_numeric() || !b.is_numeric()) {
-    diag_.error(loc, "cannot apply '" + spelling + "' to " + quoted(a) + " and " + quoted(b));
+    diag_.error(loc, "cannot apply " + in_quotes(spelling) + " to " + in_quotes(a.name()) + " and " + in_quotes(b.name()));
     return std::nullopt;
   }
   auto shape_error = [&] {
-    std::string message = "cannot apply '" + spelling + "' to " + quoted(a) + " and " + quoted(b);
+    std::string message = "cannot apply " + in_quotes(spelling) + " to " + in_quotes(a.name()) + " and " + in_quotes(b.name());
     if (op == BinaryOp::Mul) message += "; use mul()";
     diag_.error(loc, message);
   };
@@ -263,7 +261,7 @@ std::optional<BinaryTyping> Sema::binary_typing(BinaryOp op, Loc loc, const Expr
     case BinaryOp::BitOr:
     case BinaryOp::BitXor:
       if (a.is_floating() || b.is_floating()) {
-        diag_.error(loc, "'" + spelling + "' needs integer operands, not " + quoted(a.is_floating() ? a : b));
+        diag_.error(loc, in_quotes(spelling) + " needs integer operands, not " + in_quotes((a.is_floating() ? a : b).name()));
         return std::nullopt;
       }
       [[fallthrough]];
@@ -342,7 +340,7 @@ Type Sema::analyze_assign(AssignExpr& expr) {
   coerce(expr.value, typing->operand);
   const Conversion back = classify_implicit(typing->result, target);
   if (!back.valid) {
-    diag_.error(expr.loc, "cannot convert from " + quoted(typing->result) + " to " + quoted(target));
+    diag_.error(expr.loc, "cannot convert from " + in_quotes(typing->result.name()) + " to " + in_quotes(target.name()));
   } else if (back.truncation) {
     diag_.warning(expr.loc, truncation_message(typing->result, target));
   }
@@ -360,14 +358,14 @@ Type Sema::analyze_conditional(ConditionalExpr& expr) {
     const ScalarType scalar = common_scalar({expr.then_value.get(), expr.else_value.get()});
     std::optional<Type> shape = combine_shapes(a, b, scalar);
     if (!shape) {
-      diag_.error(expr.loc, "cannot combine " + quoted(a) + " and " + quoted(b) + " in '?:'");
+      diag_.error(expr.loc, "cannot combine " + in_quotes(a.name()) + " and " + in_quotes(b.name()) + " in '?:'");
       return Type::error();
     }
     if (condition.is_numeric() && condition.component_count() > 1) {
       // Component-wise selection: the condition's shape joins the values' shape.
       shape = combine_shapes(condition, *shape, scalar);
       if (!shape) {
-        diag_.error(expr.loc, "cannot combine condition " + quoted(condition) + " with " + quoted(a) + " in '?:'");
+        diag_.error(expr.loc, "cannot combine condition " + in_quotes(condition.name()) + " with " + in_quotes(a.name()) + " in '?:'");
         return Type::error();
       }
       coerce(expr.condition, Type::with_scalar(*shape, ScalarType::Bool));
@@ -378,14 +376,14 @@ Type Sema::analyze_conditional(ConditionalExpr& expr) {
   } else if (a == b && !a.is_void()) {
     result = a;
     if (condition.is_numeric() && condition.component_count() > 1) {
-      diag_.error(expr.condition->loc, "condition must be a scalar, not " + quoted(condition) +
+      diag_.error(expr.condition->loc, "condition must be a scalar, not " + in_quotes(condition.name()) +
                                            "; use any() or all()");
     } else {
       coerce(expr.condition, Type::scalar(ScalarType::Bool));
     }
     return result;
   } else {
-    diag_.error(expr.loc, "cannot combine " + quoted(a) + " and " + quoted(b) + " in '?:'");
+    diag_.error(expr.loc, "cannot combine " + in_quotes(a.name()) + " and " + in_quotes(b.name()) + " in '?:'");
     return Type::error();
   }
   coerce(expr.then_value, result);
@@ -409,16 +407,16 @@ std::string parse_vector_swizzle(const std::string& member, const Type& object, 
     } else if (kRgba.find(c) != std::string_view::npos) {
       rgba = true;
     } else {
-      return quoted(object) + " has no member '" + member + "'";
+      return in_quotes(object.name()) + " has no member " + in_quotes(member);
     }
   }
-  if (member.empty()) return quoted(object) + " has no member ''";
-  if (member.size() > 4) return "swizzle '" + member + "' has more than 4 components";
-  if (xyzw && rgba) return "swizzle '" + member + "' mixes xyzw and rgba components";
+  if (member.empty()) return in_quotes(object.name()) + " has no member ''";
+  if (member.size() > 4) return "swizzle " + in_quotes(member) + " has more than 4 components";
+  if (xyzw && rgba) return "swizzle " + in_quotes(member) + " mixes xyzw and rgba components";
   const uint32_t length = object.is_vector() ? object.cols() : 1;
   for (char c : member) {
     const size_t index = xyzw ? kXyzw.find(c) : kRgba.find(c);
-    if (index >= length) return "swizzle '" + member + "' is out of range for " + quoted(object);
+    if (index >= length) return "swizzle " + in_quotes(member) + " is out of range for " + in_quotes(object.name());
     out.push_back(uint8_t(index));
   }
   return "";
@@ -426,7 +424,7 @@ std::string parse_vector_swizzle(const std::string& member, const Type& object, 
 
 // _m00 (zero-based) and _11 (one-based) matrix swizzles, possibly concatenated.
 std::string parse_matrix_swizzle(const std::string& member, const Type& object, std::vector<uint8_t>& out) {
-  const std::string no_member = quoted(object) + " has no member '" + member + "'";
+  const std::string no_member = in_quotes(object.name()) + " has no member " + in_quotes(member);
   size_t pos = 0;
   int based = -1;  // 0 or 1 once known
   bool out_of_range = false;
@@ -439,7 +437,7 @@ std::string parse_matrix_swizzle(const std::string& member, const Type& object, 
       ++pos;
     }
     if (based != -1 && based != form) {
-      return "matrix swizzle '" + member + "' mixes zero-based and one-based components";
+      return "matrix swizzle " + in_quotes(member) + " mixes zero-based and one-based components";
     }
     based = form;
     if (pos + 2 > member.size()) return no_member;
@@ -448,11 +446,11 @@ std::string parse_matrix_swizzle(const std::string& member, const Type& object, 
     pos += 2;
     if (row < 0 || row > 3 || col < 0 || col > 3) return no_member;
     if (uint32_t(row) >= object.rows() || uint32_t(col) >= object.cols()) out_of_range = true;
-    if (out.size() == 4) return "swizzle '" + member + "' has more than 4 components";
+    if (out.size() == 4) return "swizzle " + in_quotes(member) + " has more than 4 components";
     out.push_back(uint8_t(row * 4 + col));
   }
   if (out.empty()) return no_member;
-  if (out_of_range) return "swizzle '" + member + "' is out of range for " + quoted(object);
+  if (out_of_range) return "swizzle " + in_quotes(member) + " is out of range for " + in_quotes(object.name());
   return "";
 }
 
@@ -472,7 +470,7 @@ Type Sema::analyze_member(MemberExpr& expr) {
         }
       }
     }
-    diag_.error(expr.loc, quoted(object) + " has no member '" + expr.member + "'");
+    diag_.error(expr.loc, in_quotes(object.name()) + " has no member " + in_quotes(expr.member));
     return Type::error();
   }
   std::string error;
@@ -481,7 +479,7 @@ Type Sema::analyze_member(MemberExpr& expr) {
   } else if (object.is_matrix()) {
     error = parse_matrix_swizzle(expr.member, object, expr.swizzle);
   } else {
-    error = quoted(object) + " has no member '" + expr.member + "'";
+    error = in_quotes(object.name()) + " has no member " + in_quotes(expr.member);
   }
   if (!error.empty()) {
     expr.swizzle.clear();
@@ -512,12 +510,12 @@ Type Sema::analyze_index(IndexExpr& expr) {
       length = object.rows();
       break;
     default:
-      diag_.error(expr.loc, "cannot index a value of type " + quoted(object));
+      diag_.error(expr.loc, "cannot index a value of type " + in_quotes(object.name()));
       return Type::error();
   }
   if (expr.index && !index.is_error()) {
     if (!index.is_numeric() || index.component_count() != 1) {
-      diag_.error(expr.index->loc, "index must be an integer scalar, not " + quoted(index));
+      diag_.error(expr.index->loc, "index must be an integer scalar, not " + in_quotes(index.name()));
       return Type::error();
     }
     if (!index.is_scalar() || !index.is_integer()) {
@@ -527,7 +525,7 @@ Type Sema::analyze_index(IndexExpr& expr) {
     if (length > 0) {
       const std::optional<int64_t> value = fold_int(expr.index.get());
       if (value && (*value < 0 || *value >= int64_t(length))) {
-        diag_.error(expr.index->loc, "index " + std::to_string(*value) + " is out of range for " + quoted(object));
+        diag_.error(expr.index->loc, "index " + std::to_string(*value) + " is out of range for " + in_quotes(object.name()));
         return Type::error();
       }
     }
@@ -541,7 +539,7 @@ Type Sema::analyze_cast(CastExpr& expr) {
   if (target.is_error() || !expr.operand) return Type::error();
   if (operand.is_error()) return target;
   if (!explicit_cast_allowed(operand, target, is_literal(expr.operand.get()), facts_)) {
-    diag_.error(expr.loc, "cannot convert from " + quoted(operand) + " to " + quoted(target));
+    diag_.error(expr.loc, "cannot convert from " + in_quotes(operand.name()) + " to " + in_quotes(target.name()));
     return Type::error();
   }
   return target;
@@ -553,7 +551,7 @@ Type Sema::analyze_cast(CastExpr& expr) {
 std::optional<std::pair<Loc, std::string>> Sema::not_assignable(const Expr* expr) const {
   if (!expr || expr->type.is_error()) return std::nullopt;
   if (expr->type.is_resource()) {
-    return std::make_pair(expr->loc, quoted(expr->type) + " objects are not assignable");
+    return std::make_pair(expr->loc, in_quotes(expr->type.name()) + " objects are not assignable");
   }
   // Walk down fields, swizzles and indices to the variable at the root.
   for (int step = 0; expr; ++step) {
@@ -564,16 +562,16 @@ std::optional<std::pair<Loc, std::string>> Sema::not_assignable(const Expr* expr
         if (!name.decl) return std::nullopt;
         if (name.decl->kind == DeclKind::Var) {
           const auto& var = static_cast<const VarDecl&>(*name.decl);
-          if (var.is_const) return std::make_pair(expr->loc, "cannot assign to '" + var.name + "': it is const");
+          if (var.is_const) return std::make_pair(expr->loc, "cannot assign to " + in_quotes(var.name) + ": it is const");
           if (is_uniform(var)) {
-            return std::make_pair(expr->loc, "cannot assign to '" + var.name + "': uniforms are read-only");
+            return std::make_pair(expr->loc, "cannot assign to " + in_quotes(var.name) + ": uniforms are read-only");
           }
           return std::nullopt;
         }
         if (name.decl->kind == DeclKind::Param) {
           const auto& param = static_cast<const ParamDecl&>(*name.decl);
           if (param.is_uniform) {
-            return std::make_pair(expr->loc, "cannot assign to '" + param.name + "': uniforms are read-only");
+            return std::make_pair(expr->loc, "cannot assign to " + in_quotes(param.name) + ": uniforms are read-only");
           }
           return std::nullopt;
         }
@@ -749,8 +747,8 @@ class InitLayout {
 
   void straddle() {
     if (!failed_) {
-      sema_.diag_.error(leaves_[next_]->loc, "initializer element of type '" + leaf_type().name() +
-                                                  "' spans several elements of '" + declared_.name() + "'");
+      sema_.diag_.error(leaves_[next_]->loc, "initializer element of type " + in_quotes(leaf_type().name()) +
+                                                  " spans several elements of " + in_quotes(declared_.name()));
     }
     failed_ = true;
   }
@@ -759,7 +757,7 @@ class InitLayout {
     if (failed_) return;
     if (++visits_ > kMaxVisits) {
       // Members without components (empty structs) cost visits but no leaves.
-      sema_.diag_.error(loc_, "initializer list of '" + declared_.name() + "' is too large");
+      sema_.diag_.error(loc_, "initializer list of " + in_quotes(declared_.name()) + " is too large");
       failed_ = true;
       return;
     }
@@ -849,7 +847,7 @@ void Sema::analyze_initializer(ExprPtr& init, Type& declared, const std::string&
   if (init->kind != ExprKind::InitList) {
     const Type type = analyze(init.get());
     if (unsized) {
-      if (!type.is_error()) diag_.error(init->loc, "unsized array '" + var_name + "' needs an initializer list");
+      if (!type.is_error()) diag_.error(init->loc, "unsized array " + in_quotes(var_name) + " needs an initializer list");
       return;
     }
     coerce(init, declared);
@@ -897,7 +895,7 @@ void Sema::analyze_initializer(ExprPtr& init, Type& declared, const std::string&
     }
     const std::optional<uint64_t> count = facts_.component_count(leaf->type);
     if (!count) {
-      diag_.error(leaf->loc, "cannot use a value of type '" + leaf->type.name() + "' in an initializer list");
+      diag_.error(leaf->loc, "cannot use a value of type " + in_quotes(leaf->type.name()) + " in an initializer list");
       failed = true;
       continue;
     }
@@ -910,13 +908,13 @@ void Sema::analyze_initializer(ExprPtr& init, Type& declared, const std::string&
   if (unsized) {
     const std::optional<uint64_t> element = facts_.component_count(declared.element());
     if (!element || *element == 0) {
-      diag_.error(list.loc, "'" + type_name_for_count(declared) + "' cannot be initialized with a list");
+      diag_.error(list.loc, in_quotes(type_name_for_count(declared)) + " cannot be initialized with a list");
       keep_leaves();
       return;
     }
     if (total == 0 || total % *element != 0) {
-      diag_.error(list.loc, "initializer has " + std::to_string(total) + " components, '" +
-                                type_name_for_count(declared) + "' needs a multiple of " + std::to_string(*element));
+      diag_.error(list.loc, "initializer has " + std::to_string(total) + " components, " +
+                                in_quotes(type_name_for_count(declared)) + " needs a multiple of " + std::to_string(*element));
       keep_leaves();
       return;
     }
@@ -924,12 +922,12 @@ void Sema::analyze_initializer(ExprPtr& init, Type& declared, const std::string&
   }
   const std::optional<uint64_t> needed = facts_.component_count(declared);
   if (!needed) {
-    diag_.error(list.loc, "'" + declared.name() + "' cannot be initialized with a list");
+    diag_.error(list.loc, in_quotes(declared.name()) + " cannot be initialized with a list");
     keep_leaves();
     return;
   }
   if (total != *needed) {
-    diag_.error(list.loc, "initializer has " + std::to_string(total) + " components, '" + declared.name() + "' needs " +
+    diag_.error(list.loc, "initializer has " + std::to_string(total) + " components, " + in_quotes(declared.name()) + " needs " +
                               std::to_string(*needed));
     keep_leaves();
     return;
