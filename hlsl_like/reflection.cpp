@@ -308,16 +308,32 @@ Property property_of(const VarDecl& var) {
 }
 
 // Inputs (`inputs` true) or outputs of an entry point, flattened over struct parameters and
-// return values, with canonical semantics.
+// return values, with canonical semantics. A struct field that is itself a struct is flattened
+// too, as HLSL does: its fields' semantics are the stage variables (a semantic on the struct
+// field itself is not one). Sema has checked every leaf, to the same depth limit.
 std::vector<StageVariable> stage_variables(const FunctionDecl& entry, bool inputs) {
   std::vector<StageVariable> variables;
-  auto add = [&](const Type& type, const std::string& semantic, Interpolation interpolation) {
-    if (type.kind() == TypeKind::Struct && type.struct_decl()) {
-      for (const FieldDecl& field : type.struct_decl()->fields)
-        if (!field.semantic.empty()) variables.push_back({canonical(field.semantic), field.type, 0, field.interpolation});
-      return;
+  struct Pending {
+    const Type* type;
+    const std::string* semantic;
+    Interpolation interpolation;
+    int depth;
+  };
+  auto add = [&](const Type& root_type, const std::string& root_semantic, Interpolation root_interpolation) {
+    std::vector<Pending> pending{{&root_type, &root_semantic, root_interpolation, 0}};
+    while (!pending.empty()) {
+      const Pending item = pending.back();
+      pending.pop_back();
+      const Type& type = *item.type;
+      if (type.kind() == TypeKind::Struct && type.struct_decl()) {
+        if (item.depth >= sema_detail::kMaxNesting) continue;
+        const auto& fields = type.struct_decl()->fields;
+        for (auto field = fields.rbegin(); field != fields.rend(); ++field)  // in declaration order
+          pending.push_back({&field->type, &field->semantic, field->interpolation, item.depth + 1});
+        continue;
+      }
+      if (!item.semantic->empty()) variables.push_back({canonical(*item.semantic), type, 0, item.interpolation});
     }
-    if (!semantic.empty()) variables.push_back({canonical(semantic), type, 0, interpolation});
   };
   for (const auto& param : entry.params) {
     if (!param || param->is_uniform) continue;

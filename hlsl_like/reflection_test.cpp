@@ -116,6 +116,53 @@ TEST(Reflection, StageInterfacesHaveFixedLocations) {
   EXPECT_EQ(r.fragment_outputs[0].semantic, "SV_Target0");
 }
 
+TEST(Reflection, StructsNestedInStageStructsAreFlattened) {
+  // HLSL flattens a struct field of a stage struct into its fields; their semantics are the
+  // stage variables, at the fixed locations of reflection.h (NORMAL 1, TEXCOORD0 3 in the vertex
+  // format; TEXCOORDn at n among the varyings).
+  auto module = compile(R"(
+#pragma vertex vert
+#pragma fragment frag
+struct Surface { float3 normal : NORMAL; float2 uv : TEXCOORD0; };
+struct appdata { float4 vertex : POSITION; Surface surface; };
+struct Interp { float2 uv : TEXCOORD0; nointerpolation float3 normal : TEXCOORD1; };
+struct v2f { float4 pos : SV_Position; Interp data; };
+v2f vert(appdata v) { v2f o; o.pos = v.vertex; o.data.uv = v.surface.uv; o.data.normal = v.surface.normal; return o; }
+float4 frag(v2f i) : SV_Target { return float4(i.data.normal * i.data.uv.x, 1); }
+)");
+  ASSERT_TRUE(module->ok()) << module->diagnostics.render_all();
+  const Reflection& r = module->reflection;
+  ASSERT_EQ(r.vertex_inputs.size(), 3u);
+  EXPECT_EQ(r.vertex_inputs[0].semantic, "POSITION0");
+  EXPECT_EQ(r.vertex_inputs[0].location, 0u);
+  EXPECT_EQ(r.vertex_inputs[1].semantic, "NORMAL0");
+  EXPECT_EQ(r.vertex_inputs[1].location, 1u);
+  EXPECT_EQ(r.vertex_inputs[1].type, Type::vector(ScalarType::Float, 3));
+  EXPECT_EQ(r.vertex_inputs[2].semantic, "TEXCOORD0");
+  EXPECT_EQ(r.vertex_inputs[2].location, 3u);
+  ASSERT_EQ(r.varyings.size(), 2u);
+  EXPECT_EQ(r.varyings[0].semantic, "TEXCOORD0");
+  EXPECT_EQ(r.varyings[0].location, 0u);
+  EXPECT_EQ(r.varyings[1].semantic, "TEXCOORD1");
+  EXPECT_EQ(r.varyings[1].location, 1u);
+  EXPECT_EQ(r.varyings[1].interpolation, Interpolation::NoInterpolation);
+}
+
+TEST(Reflection, AFragmentInputNestedInAStructMustBeWritten) {
+  // Before nested fields were seen, the unwritten TEXCOORD2 here passed unnoticed.
+  auto module = compile(R"(
+#pragma vertex vert
+#pragma fragment frag
+struct Extra { float2 more : TEXCOORD2; };
+struct v2f { float4 pos : SV_Position; Extra extra; };
+float4 vert(float4 p : POSITION) : SV_Position { return p; }
+float4 frag(v2f i) : SV_Target { return i.extra.more.xyxy; }
+)");
+  ASSERT_EQ(module->diagnostics.diagnostics().size(), 1u) << module->diagnostics.render_all();
+  EXPECT_EQ(module->diagnostics.diagnostics()[0].to_string(),
+            "test.hlsl:7:8: error: fragment input 'TEXCOORD2' is not written by the vertex entry point 'vert'");
+}
+
 TEST(Reflection, PropertiesCarryTheirAnnotations) {
   auto module = compile(kMaterial);
   ASSERT_TRUE(module->ok()) << module->diagnostics.render_all();

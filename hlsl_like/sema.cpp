@@ -212,6 +212,13 @@ bool Sema::check_type_usable(const Type& type, const std::string& what, Loc loc,
                          "; resources are only allowed at global scope or as parameters");
     return false;
   }
+  // Neither GLSL target can hold them: a GLSL array of samplers needs indices the driver can
+  // prove uniform, and reflection gives each texture one binding.
+  if (type.kind() == TypeKind::Array && facts_.contains_resource(type)) {
+    diag_.error(loc, what + " cannot have type " + in_quotes(type.name()) +
+                         "; arrays of resources are not supported: declare each one separately");
+    return false;
+  }
   return true;
 }
 
@@ -252,6 +259,10 @@ void Sema::analyze_var_initializer(VarDecl& var) {
 
 void Sema::declare_global_var(VarDecl& var, bool in_cbuffer) {
   const std::string what = (in_cbuffer ? "cbuffer member " : "variable ") + in_quotes(var.name);
+  if (var.storage == StorageClass::GroupShared) {
+    // Only compute shaders have thread groups to share memory between.
+    diag_.error(var.loc, "groupshared " + what + " is not supported: vertex and fragment shaders have no thread groups");
+  }
   if (check_type_usable(var.type, what, var.loc, !in_cbuffer)) {
     if (var.type.is_resource() && var.initializer) {
       diag_.error(var.initializer->loc, in_quotes(var.type.name()) + " variables cannot have an initializer");
