@@ -1041,6 +1041,29 @@ TEST(BadInput, ArraysOfResourcesAreErrorsNamingTheDeclaration) {
                                   "layers.hlsl:5:23: error: parameter 'layers' cannot have type 'Texture2D[2]'" + why}));
 }
 
+TEST(BadInput, AFileScopeConstWithoutStaticIsNoArraySize) {
+  // As in DXC, `const int N = 4;` at file scope is a uniform in $Globals whose value the host
+  // may change, so it cannot size an array; `static const` can.
+  auto m = compile("consts.hlsl",
+                   "#pragma fragment frag\n"
+                   "const int N = 4;\n"
+                   "static const int M = 2;\n"
+                   "float weights[N];\n"
+                   "float4 frag(float2 uv : TEXCOORD0) : SV_Target {\n"
+                   "  float w[M * 2];\n"
+                   "  float v[1 + N];\n"
+                   "  return 0;\n"
+                   "}\n");
+  const std::string why = "array size must be an integer constant; 'N' is a uniform (a file-scope const without "
+                          "static); declare it 'static const'";
+  EXPECT_EQ(all_rendered(*m), (Strings{"consts.hlsl:4:15: error: " + why + "\n"
+                                       "    float weights[N];\n"
+                                       "                  ^",
+                                       "consts.hlsl:7:11: error: " + why + "\n"
+                                       "      float v[1 + N];\n"
+                                       "              ^"}));
+}
+
 TEST(BadInput, SwitchIsUnsupported) {
   auto m = compile("switch.hlsl",
                    "#pragma fragment frag\n"

@@ -19,6 +19,7 @@
 #include <string>
 #include <string_view>
 #include <unordered_map>
+#include <unordered_set>
 #include <utility>
 
 namespace xshade::hlsl {
@@ -821,7 +822,11 @@ class Parser {
       const std::optional<int64_t> value = evaluate_int(*size);
       uint32_t length = 1;
       if (!value) {
-        error_at(size_index, "array size must be an integer constant");
+        if (const NameExpr* uniform = find_uniform_constant(*size))
+          error_at(size_index, "array size must be an integer constant; " + in_quotes(uniform->name) +
+                                   " is a uniform (a file-scope const without static); declare it 'static const'");
+        else
+          error_at(size_index, "array size must be an integer constant");
       } else if (*value <= 0) {
         error_at(size_index, "array size must be positive");
       } else if (*value > kMaxArrayLength) {
@@ -834,6 +839,23 @@ class Parser {
     Type type = base;
     for (size_t i = lengths.size(); i-- > 0;) type = Type::array(type, lengths[i]);
     return type;
+  }
+
+  // The first name in `expr` that is a uniform const, which its author may have meant as a constant.
+  const NameExpr* find_uniform_constant(const Expr& expr) const {
+    switch (expr.kind) {
+      case ExprKind::Name: {
+        const auto& name = static_cast<const NameExpr&>(expr);
+        return uniform_constants_.count(name.name) ? &name : nullptr;
+      }
+      case ExprKind::Unary: return find_uniform_constant(*static_cast<const UnaryExpr&>(expr).operand);
+      case ExprKind::Binary: {
+        const auto& binary = static_cast<const BinaryExpr&>(expr);
+        if (const NameExpr* found = find_uniform_constant(*binary.lhs)) return found;
+        return find_uniform_constant(*binary.rhs);
+      }
+      default: return nullptr;
+    }
   }
 
   // Integer constant expressions for array sizes: literals, arithmetic, and names of constant
@@ -1143,8 +1165,16 @@ class Parser {
       // HLSL flattens initializers, which needs the elements' types.
     }
     if (var->is_const && var->type.is_scalar() && var->type.is_integer() && var->initializer) {
-      if (const std::optional<int64_t> value = evaluate_int(*var->initializer))
+      // A file-scope const without static is a uniform in $Globals, as in DXC: the host may
+      // upload another value, so it is no compile-time constant (glslang's HLSL front end folds
+      // it, DXC does not; xshade takes DXC's side and says how to write a constant).
+      if (var->is_global && var->storage != StorageClass::Static) {
+        int_constants_.erase(var->name);
+        uniform_constants_.insert(var->name);
+      } else if (const std::optional<int64_t> value = evaluate_int(*var->initializer)) {
         int_constants_[var->name] = *value;
+        uniform_constants_.erase(var->name);
+      }
     }
     return var;
   }
@@ -2092,6 +2122,7 @@ class Parser {
   size_t attribute_index_ = 0;
   mutable std::unordered_map<std::string_view, Word> words_;
   std::unordered_map<std::string, int64_t, StringHash, std::equal_to<>> int_constants_;
+  std::unordered_set<std::string> uniform_constants_;  // file-scope `const int` without static
   TranslationUnit unit_;
 };
 

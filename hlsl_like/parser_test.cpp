@@ -366,7 +366,7 @@ TEST(Parser, GlobalQualifiersArraysAndDeclarators) {
       "static const float2 kFlat[] = { 0, 0, 1, 1 };\n"
       "float a, b = 1, c[2];\n"
       "column_major float3x4 cm;\n"
-      "const int N = 2 * 2;\n"
+      "static const int N = 2 * 2;\n"
       "float sized[N + 1];\n"
       "sampler s;\n"
       "float m2[2][3];\n"
@@ -386,7 +386,7 @@ TEST(Parser, GlobalQualifiersArraysAndDeclarators) {
   EXPECT_EQ(p->var("cm").type.rows(), 3u);
   EXPECT_EQ(p->var("cm").type.cols(), 4u);
   EXPECT_TRUE(p->var("N").is_const);
-  EXPECT_EQ(p->var("N").storage, StorageClass::Default);
+  EXPECT_EQ(p->var("N").storage, StorageClass::Static);
   EXPECT_EQ(p->var("sized").type.array_length(), 5u);
   EXPECT_EQ(p->var("s").type.kind(), TypeKind::Sampler2D);
   const Type& m2 = p->var("m2").type;
