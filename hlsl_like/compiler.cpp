@@ -13,6 +13,7 @@ namespace {
 struct PragmaReading {
   EntryPointNames entry_points;
   std::vector<KeywordSet> keyword_sets;
+  std::vector<Loc> keyword_set_locs;  // of each set's pragma name
 };
 
 PragmaReading read_pragmas(const std::vector<Pragma>& pragmas, DiagnosticEngine& diagnostics) {
@@ -44,7 +45,10 @@ PragmaReading read_pragmas(const std::vector<Pragma>& pragmas, DiagnosticEngine&
       }
       // shader_feature A alone means "A or nothing", as in Unity.
       if (set.shader_feature && set.keywords.size() == 1) set.keywords.insert(set.keywords.begin(), "_");
-      if (!set.keywords.empty()) reading.keyword_sets.push_back(std::move(set));
+      if (!set.keywords.empty()) {
+        reading.keyword_sets.push_back(std::move(set));
+        reading.keyword_set_locs.push_back(pragma.loc);
+      }
     } else if (pragma.name == "target" || pragma.name == "pack_matrix") {
       diagnostics.warning(pragma.loc, "#pragma " + std::string(pragma.name) + " is ignored");
     } else {
@@ -55,6 +59,25 @@ PragmaReading read_pragmas(const std::vector<Pragma>& pragmas, DiagnosticEngine&
 }
 
 bool is_no_keyword(const std::string& keyword) { return !keyword.empty() && keyword.find_first_not_of('_') == std::string::npos; }
+
+// A variant has one keyword of each set: asking for two of one set is an error at the set's
+// pragma, since either keyword alone would make a valid variant and the front end cannot choose.
+void check_one_keyword_per_set(const PragmaReading& reading, const std::vector<std::string>& asked,
+                               DiagnosticEngine& diagnostics) {
+  for (size_t i = 0; i < reading.keyword_sets.size(); ++i) {
+    const KeywordSet& set = reading.keyword_sets[i];
+    std::vector<std::string> named;
+    for (const std::string& keyword : asked)
+      if (std::find(set.keywords.begin(), set.keywords.end(), keyword) != set.keywords.end() &&
+          std::find(named.begin(), named.end(), keyword) == named.end())
+        named.push_back(keyword);
+    for (size_t k = 1; k < named.size(); ++k)
+      diagnostics.error(reading.keyword_set_locs[i],
+                        "keywords '" + named[0] + "' and '" + named[k] + "' are both of this #pragma " +
+                            (set.shader_feature ? "shader_feature" : "multi_compile") +
+                            " set; a variant can have only one keyword of each set");
+  }
+}
 
 // The keywords of the variant: those asked for, plus the first keyword of each set none of them is in.
 std::vector<std::string> active_keywords(const std::vector<KeywordSet>& sets, const std::vector<std::string>& asked) {
@@ -73,10 +96,16 @@ std::unique_ptr<Module> compile(std::unique_ptr<Module> module, const CompileOpt
   auto preprocess = [&](const std::vector<std::string>& keywords) {
     PreprocessorOptions pp_options;
     pp_options.include_dirs = options.include_dirs;
-    pp_options.defines = prelude_macros();
+    if (const auto& prelude = prelude_table(); prelude) {
+      pp_options.predefined = *prelude;
+    } else {
+      module->diagnostics.error({}, prelude.error().message);
+    }
+    pp_options.defines.reserve(keywords.size() + options.defines.size());
     for (const std::string& keyword : keywords) pp_options.defines.push_back({keyword, "1"});
     pp_options.defines.insert(pp_options.defines.end(), options.defines.begin(), options.defines.end());
-    module->macros = pp_options.defines;
+    module->macros = prelude_macros();
+    module->macros.insert(module->macros.end(), pp_options.defines.begin(), pp_options.defines.end());
     module->preprocessor = std::make_unique<Preprocessor>(module->sources, module->diagnostics, std::move(pp_options));
     std::vector<Token> tokens = module->preprocessor->run(module->main_file);
     module->pragmas = module->preprocessor->pragmas();
@@ -101,6 +130,8 @@ std::unique_ptr<Module> compile(std::unique_ptr<Module> module, const CompileOpt
       module->diagnostics.warning({module->main_file, 1, 1}, "keyword '" + keyword +
                                                                   "' is not declared by #pragma multi_compile or shader_feature");
   }
+
+  check_one_keyword_per_set(reading, options.keywords, module->diagnostics);
 
   if (!options.fragment_only_entry.empty()) {
     reading.entry_points.vertex.clear();

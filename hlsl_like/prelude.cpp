@@ -23,4 +23,9 @@ const std::vector<MacroDefinition>& prelude_macros() {
   return macros;
 }
 
+const Result<std::shared_ptr<const PredefinedMacros>>& prelude_table() {
+  static const Result<std::shared_ptr<const PredefinedMacros>> table = PredefinedMacros::read(prelude_macros());
+  return table;
+}
+
 }  // namespace xshade::hlsl

@@ -5,6 +5,7 @@
 // half-precision emulation treats them alike.
 #pragma once
 
+#include <memory>
 #include <vector>
 
 #include "hlsl_like/preprocessor.h"
@@ -12,5 +13,7 @@
 namespace xshade::hlsl {
 
 const std::vector<MacroDefinition>& prelude_macros();
+// The same macros read once, for every compile's preprocessor to share.
+const Result<std::shared_ptr<const PredefinedMacros>>& prelude_table();
 
 }  // namespace xshade::hlsl

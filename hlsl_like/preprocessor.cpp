@@ -1,5 +1,6 @@
 #include "hlsl_like/preprocessor.h"
 
+#include <algorithm>
 #include <array>
 #include <cctype>
 #include <cstring>
@@ -94,11 +95,14 @@ enum class Guard : uint8_t { Start, Inside, Closed, None };
 
 struct IncludeFrame {
   IncludeFrame(std::string_view text, uint32_t index, DiagnosticEngine& diagnostics,
-               std::deque<std::string>* store, size_t conds)
-      : lexer(text, index, diagnostics, store), file(index), cond_base(conds) {}
+               std::deque<std::string>* store, size_t conds, size_t output, size_t pragmas)
+      : lexer(text, index, diagnostics, store), file(index), cond_base(conds), output_mark(output),
+        pragma_mark(pragmas) {}
   Lexer lexer;
   uint32_t file;
-  size_t cond_base;  // conditionals open when the file was entered
+  size_t cond_base;    // conditionals open when the file was entered
+  size_t output_mark;  // output tokens and pragmas made before the file was entered
+  size_t pragma_mark;
   bool finished = false;
   Guard guard = Guard::Start;
   size_t guard_cond = 0;
@@ -129,15 +133,30 @@ Token make_token(TokenKind kind, std::string_view text, Loc loc) {
 
 }  // namespace
 
+struct PredefinedMacros::Table {
+  std::deque<std::string> text;  // what the macros' names and tokens point into
+  std::deque<Macro> macros;
+  std::unordered_map<std::string_view, const Macro*> by_name;
+  std::array<uint64_t, 16> filter{};  // as Preprocessor::Impl::filter_
+};
+
 struct Preprocessor::Impl {
   explicit Impl(Preprocessor& pp) : pp_(pp), sources_(pp.sources_), diagnostics_(pp.diagnostics_) {
     for (std::string_view builtin : {"__FILE__", "__LINE__"}) {
       const size_t bit = filter_bit(builtin);
       filter_[bit >> 6] |= uint64_t(1) << (bit & 63);
     }
+    if (pp.options_.predefined) {
+      predefined_ = &pp.options_.predefined->table();
+      for (size_t i = 0; i < filter_.size(); ++i) filter_[i] |= predefined_->filter[i];
+    }
   }
 
   std::vector<Token> run(uint32_t main_file);
+  // Reads each definition as a #define line (the options' -D and keywords).
+  void define(const std::vector<MacroDefinition>& definitions);
+  // Hands every macro defined so far to a table of predefined macros.
+  void export_macros(PredefinedMacros::Table& table);
 
  private:
   // Macros.
@@ -149,12 +168,23 @@ struct Preprocessor::Impl {
     const size_t bit = filter_bit(name);
     return (filter_[bit >> 6] >> (bit & 63)) & 1;
   }
-  Macro* find(std::string_view name) const {
+  Macro* find(std::string_view name) {
     if (name.empty() || !maybe_macro(name)) return nullptr;
     auto it = macros_.find(name);
-    return it == macros_.end() ? nullptr : it->second;
+    if (it != macros_.end()) return it->second;  // null after #undef of a predefined macro
+    return predefined_ ? adopt_predefined(name) : nullptr;
   }
-  bool is_defined(std::string_view name) const {
+  // A predefined macro is copied on first use: expansion marks the macro it is expanding, and
+  // the shared table must stay untouched.
+  Macro* adopt_predefined(std::string_view name) {
+    auto it = predefined_->by_name.find(name);
+    if (it == predefined_->by_name.end()) return nullptr;
+    macro_pool_.push_back(*it->second);
+    Macro* adopted = &macro_pool_.back();
+    macros_.emplace(adopted->name, adopted);
+    return adopted;
+  }
+  bool is_defined(std::string_view name) {
     return find(name) != nullptr || name == "__FILE__" || name == "__LINE__";
   }
   void add_macro(Macro macro);
@@ -202,6 +232,7 @@ struct Preprocessor::Impl {
   void do_undef(Lexer& lex, const Token& name);
   void do_include(IncludeFrame& frame, const Token& name);
   void include_file(IncludeFrame& frame, const Token& name, std::string_view spelled, bool angled, Loc where);
+  void abandon_files_from(size_t first);
   void do_if(IncludeFrame& frame, const Token& name, bool guard_start);
   void do_pragma(IncludeFrame& frame, const Token& name);
   void skip_group(IncludeFrame& frame, bool to_endif_only);
@@ -235,11 +266,14 @@ struct Preprocessor::Impl {
   SourceManager& sources_;
   DiagnosticEngine& diagnostics_;
 
+  const PredefinedMacros::Table* predefined_ = nullptr;
   std::unordered_map<std::string_view, Macro*> macros_;
   std::deque<Macro> macro_pool_;  // stable: a macro stays alive while an expansion uses it
   std::array<uint64_t, 16> filter_{};
 
   std::vector<std::unique_ptr<IncludeFrame>> includes_;
+  std::vector<std::unique_ptr<IncludeFrame>> abandoned_;
+  std::vector<Token> out_;
   std::vector<Cond> conds_;
   std::vector<char> seen_;
   std::vector<char> once_;
@@ -560,8 +594,35 @@ std::vector<Token> Preprocessor::run(uint32_t main_file) {
   return impl.run(main_file);
 }
 
-std::vector<Token> Preprocessor::Impl::run(uint32_t main_file) {
-  for (const MacroDefinition& definition : pp_.options_.defines) {
+PredefinedMacros::PredefinedMacros(std::unique_ptr<Table> table) : table_(std::move(table)) {}
+PredefinedMacros::~PredefinedMacros() = default;
+
+Result<std::shared_ptr<const PredefinedMacros>> PredefinedMacros::read(const std::vector<MacroDefinition>& definitions) {
+  SourceManager sources;
+  DiagnosticEngine diagnostics(sources);
+  Preprocessor reader(sources, diagnostics, {});
+  auto table = std::make_unique<Table>();
+  {
+    Preprocessor::Impl impl(reader);
+    impl.define(definitions);
+    for (const Diagnostic& diagnostic : diagnostics.diagnostics())
+      if (diagnostic.severity == Severity::Error) return fail("predefined macros: " + diagnostic.message);
+    impl.export_macros(*table);
+  }
+  table->text = std::move(reader.text_store_);  // a deque moves without moving its strings
+  return std::shared_ptr<const PredefinedMacros>(new PredefinedMacros(std::move(table)));
+}
+
+void Preprocessor::Impl::export_macros(PredefinedMacros::Table& table) {
+  for (const auto& [name, macro] : macros_)
+    if (macro) table.by_name.emplace(name, macro);
+  table.macros = std::move(macro_pool_);  // the macros keep their addresses
+  table.filter = filter_;
+  macros_.clear();
+}
+
+void Preprocessor::Impl::define(const std::vector<MacroDefinition>& definitions) {
+  for (const MacroDefinition& definition : definitions) {
     // The name may carry a parameter list ("F(x)"); either way it is read as a #define line.
     const std::string& name = definition.name;
     bool valid = !name.empty() && (std::isalpha(static_cast<unsigned char>(name[0])) || name[0] == '_');
@@ -582,16 +643,19 @@ std::vector<Token> Preprocessor::Impl::run(uint32_t main_file) {
     lexer.next();  // define
     do_define(lexer, Loc{});
   }
+}
 
+std::vector<Token> Preprocessor::Impl::run(uint32_t main_file) {
+  define(pp_.options_.defines);
   Token end = make_token(TokenKind::EndOfFile, {}, {});
   end.at_line_start = true;
   if (main_file == 0 || main_file >= sources_.file_count()) {
     diagnostics_.error({}, "no such source file");
     return {end};
   }
+  out_.clear();
   enter_file(main_file);
-  std::vector<Token> out;
-  out.reserve(sources_.text(main_file).size() / 3 + 16);
+  out_.reserve(sources_.text(main_file).size() / 3 + 16);
   Context ctx;
   PPTok token;
   for (;;) {
@@ -608,19 +672,19 @@ std::vector<Token> Preprocessor::Impl::run(uint32_t main_file) {
       }
       note_token(frame);
       if (next.kind != TokenKind::Identifier || !maybe_macro(next.text)) {
-        out.push_back(next);
+        out_.push_back(next);
         continue;
       }
       ctx.pushback = PPTok{next, false, false};
       ctx.has_pushback = true;
     }
     if (!expand_next(ctx, token, false)) break;
-    out.push_back(token.tok);
+    out_.push_back(token.tok);
   }
   unwind(ctx);
   end.loc = end_loc_;
-  out.push_back(end);
-  return out;
+  out_.push_back(end);
+  return std::move(out_);
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -1069,8 +1133,8 @@ void Preprocessor::Impl::enter_file(uint32_t file) {
     seen_[file] = 1;
     pp_.files_.push_back(file);
   }
-  includes_.push_back(
-      std::make_unique<IncludeFrame>(sources_.text(file), file, diagnostics_, &pp_.text_store_, conds_.size()));
+  includes_.push_back(std::make_unique<IncludeFrame>(sources_.text(file), file, diagnostics_, &pp_.text_store_,
+                                                     conds_.size(), out_.size(), pp_.pragmas_.size()));
 }
 
 void Preprocessor::Impl::finish_file(IncludeFrame& frame) {
@@ -1302,7 +1366,11 @@ void Preprocessor::Impl::do_undef(Lexer& lex, const Token& directive_name) {
     skip_line(lex);
     return;
   }
-  macros_.erase(name.text);
+  if (predefined_ && predefined_->by_name.count(name.text)) {
+    macros_[name.text] = nullptr;  // hides the predefined macro from find()
+  } else {
+    macros_.erase(name.text);
+  }
   extra_tokens(lex, "undef");
 }
 
@@ -1422,9 +1490,24 @@ void Preprocessor::Impl::include_file(IncludeFrame& frame, const Token& name, st
     for (size_t i = last; i < includes_.size(); ++i) chain += short_name(includes_[i]->file) + " -> ";
     chain += short_name(index) + " -> ...";
     diagnostics_.error(name.loc, "#include cycle: " + chain);
+    abandon_files_from(last);
     return;
   }
   enter_file(index);
+}
+
+// The files from includes_[first] up were read a second time only to reach a cycle: what they
+// made is dropped, or each declaration in them would come twice and be reported as a
+// redefinition of itself. Reading goes on in the file that included includes_[first].
+void Preprocessor::Impl::abandon_files_from(size_t first) {
+  const IncludeFrame& repeated = *includes_[first];
+  out_.resize(std::min(out_.size(), repeated.output_mark));
+  pp_.pragmas_.resize(std::min(pp_.pragmas_.size(), repeated.pragma_mark));
+  conds_.resize(std::min(conds_.size(), repeated.cond_base));
+  // The directive being handled still refers to the innermost frame, so frames are kept alive
+  // until the run ends.
+  for (size_t i = first; i < includes_.size(); ++i) abandoned_.push_back(std::move(includes_[i]));
+  includes_.resize(first);
 }
 
 void Preprocessor::Impl::do_if(IncludeFrame& frame, const Token& name, bool guard_start) {

@@ -8,6 +8,7 @@
 
 #include <deque>
 #include <filesystem>
+#include <memory>
 #include <optional>
 #include <string_view>
 #include <string>
@@ -23,9 +24,27 @@ struct MacroDefinition {
   std::string value;  // "1" when given as -D NAME alone
 };
 
+// Macros read once and then shared, read-only, by every preprocessor given them (the prelude):
+// a compile starts from the table instead of lexing and parsing the same #define lines again.
+// A preprocessor copies a macro of the table into its own state only when the source uses it.
+class PredefinedMacros {
+ public:
+  // Each definition is read as a `#define NAME VALUE` line; the first invalid one is the error.
+  static Result<std::shared_ptr<const PredefinedMacros>> read(const std::vector<MacroDefinition>& definitions);
+  ~PredefinedMacros();
+
+  struct Table;  // the macros, their text and their lookup: preprocessor.cpp
+  const Table& table() const { return *table_; }
+
+ private:
+  explicit PredefinedMacros(std::unique_ptr<Table> table);
+  std::unique_ptr<Table> table_;
+};
+
 struct PreprocessorOptions {
-  std::vector<std::filesystem::path> include_dirs;  // searched after the including file's folder
-  std::vector<MacroDefinition> defines;             // -D on the command line, keywords of a variant
+  std::vector<std::filesystem::path> include_dirs;     // searched after the including file's folder
+  std::shared_ptr<const PredefinedMacros> predefined;  // defined first; may be empty
+  std::vector<MacroDefinition> defines;                // -D on the command line, keywords of a variant
 };
 
 // A `#pragma` line other than `#pragma once`, kept for the front end to interpret
@@ -62,6 +81,7 @@ class Preprocessor {
 
  private:
   struct Impl;
+  friend class PredefinedMacros;  // reads its definitions with the same Impl
   SourceManager& sources_;
   DiagnosticEngine& diagnostics_;
   PreprocessorOptions options_;

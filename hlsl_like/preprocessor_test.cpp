@@ -287,6 +287,44 @@ TEST_F(PreprocessorTest, DefinesFromTheOptions) {
   EXPECT_EQ(messages(), (Strings{"error: invalid macro name '1bad' in the options"}));
 }
 
+TEST_F(PreprocessorTest, PredefinedMacrosExpandLikeDefinesFromTheOptions) {
+  auto table = PredefinedMacros::read({{"PI", "3.14f"}, {"TWICE(x)", "((x) + (x))"}, {"fixed4", "half4"}});
+  ASSERT_TRUE(table) << table.error().message;
+  PreprocessorOptions options;
+  options.predefined = *table;
+  options.defines = {{"EXTRA", "TWICE(PI)"}};
+  EXPECT_EQ(run("fixed4 c = EXTRA;\n#if defined(PI) && !defined(NOPE)\nyes\n#endif", options),
+            "half4 c = ( ( 3.14f ) + ( 3.14f ) ) ; yes");
+  EXPECT_TRUE(messages().empty());
+}
+
+TEST_F(PreprocessorTest, PredefinedMacrosCanBeUndefinedAndRedefinedWithoutChangingTheTable) {
+  auto table = PredefinedMacros::read({{"A", "1"}, {"B", "2"}});
+  ASSERT_TRUE(table);
+  PreprocessorOptions options;
+  options.predefined = *table;
+  EXPECT_EQ(run("#undef A\nA\n#ifndef A\nundefined\n#endif\n#define B 3\nB", options), "A undefined 3");
+  EXPECT_EQ(messages(), (Strings{"main.hlsl:6:9: warning: macro 'B' redefined"}));
+  // A later preprocessor sharing the table sees it as it was read.
+  EXPECT_EQ(run("A B", options), "1 2");
+  EXPECT_TRUE(messages().empty());
+}
+
+TEST_F(PreprocessorTest, APredefinedMacroNamingItselfIsExpandedOnceInEachRun) {
+  auto table = PredefinedMacros::read({{"SELF", "SELF + 1"}});
+  ASSERT_TRUE(table);
+  PreprocessorOptions options;
+  options.predefined = *table;
+  EXPECT_EQ(run("SELF", options), "SELF + 1");
+  EXPECT_EQ(run("SELF SELF", options), "SELF + 1 SELF + 1");
+}
+
+TEST_F(PreprocessorTest, AnInvalidPredefinedMacroIsAnError) {
+  auto table = PredefinedMacros::read({{"GOOD", "1"}, {"2bad", "1"}});
+  ASSERT_FALSE(table);
+  EXPECT_EQ(table.error().message, "predefined macros: invalid macro name '2bad' in the options");
+}
+
 // --- conditionals ----------------------------------------------------------------------------------
 
 TEST_F(PreprocessorTest, IfArithmetic) {
@@ -541,9 +579,22 @@ TEST_F(PreprocessorTest, ThreeFileIncludeCycle) {
   write("b.hlsl", "b\n#include \"c.hlsl\"\n");
   write("c.hlsl", "c\n#include \"a.hlsl\"\n");
   const fs::path a = temp_dir() / "a.hlsl";
-  EXPECT_EQ(run_file(load(a)), "a b c a b c");
+  // The second round (a b c, read only to reach the cycle) is dropped: the chain's tokens come once.
+  EXPECT_EQ(run_file(load(a)), "a b c");
   EXPECT_EQ(messages(), (Strings{(temp_dir() / "c.hlsl").string() +
                                  ":2:2: error: #include cycle: a.hlsl -> b.hlsl -> c.hlsl -> a.hlsl -> ..."}));
+}
+
+TEST_F(PreprocessorTest, IncludeCycleDropsThePragmasAndConditionalsOfTheRepeatedRound) {
+  write("a.hlsl", "#pragma vertex a\n#if 1\na1\n#include \"b.hlsl\"\na2\n#endif\n");
+  write("b.hlsl", "#ifdef NEVER\n#else\nb1\n#include \"a.hlsl\"\nb2\n#endif\n");
+  const fs::path main = write("main.hlsl", "m1\n#include \"a.hlsl\"\nm2\n");
+  // main a b a b [a: cycle]; the second a and b are dropped and b's first reading goes on.
+  EXPECT_EQ(run_file(load(main)), "m1 a1 b1 b2 a2 m2");
+  EXPECT_EQ(messages(), (Strings{(temp_dir() / "b.hlsl").string() +
+                                 ":4:2: error: #include cycle: a.hlsl -> b.hlsl -> a.hlsl -> ..."}));
+  ASSERT_EQ(pp_->pragmas().size(), 1u);
+  EXPECT_EQ(pp_->pragmas()[0].name, "vertex");
 }
 
 TEST_F(PreprocessorTest, GuardedSelfIncludeIsFine) {

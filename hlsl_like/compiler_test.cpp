@@ -1,0 +1,96 @@
+#include "hlsl_like/compiler.h"
+
+#include <gtest/gtest.h>
+
+#include <string>
+#include <vector>
+
+namespace xshade::hlsl {
+namespace {
+
+using Strings = std::vector<std::string>;
+
+constexpr const char* kVariants =
+    "#pragma fragment frag\n"
+    "#pragma multi_compile FOG_LINEAR FOG_EXP FOG_EXP2\n"
+    "#pragma shader_feature _ USE_RAMP USE_TINT\n"
+    "float4 frag(float4 pos : SV_Position) : SV_Target { return 1; }\n";
+
+std::unique_ptr<Module> compile(std::vector<std::string> keywords) {
+  CompileOptions options;
+  options.keywords = std::move(keywords);
+  return compile_text("variants.hlsl", kVariants, options);
+}
+
+Strings rendered(const Module& module) {
+  Strings out;
+  for (size_t i = 0; i < module.diagnostics.diagnostics().size(); ++i) out.push_back(module.diagnostics.render(i));
+  return out;
+}
+
+TEST(Compiler, OneKeywordOfEachSetIsAVariant) {
+  auto module = compile({"FOG_EXP", "USE_TINT"});
+  EXPECT_TRUE(rendered(*module).empty());
+  EXPECT_EQ(module->reflection.active_keywords, (Strings{"FOG_EXP", "USE_TINT"}));
+}
+
+TEST(Compiler, TwoKeywordsOfOneSetAreAnErrorAtThatSetsPragma) {
+  auto module = compile({"FOG_EXP2", "USE_RAMP", "FOG_LINEAR"});
+  EXPECT_FALSE(module->ok());
+  EXPECT_EQ(rendered(*module),
+            (Strings{"variants.hlsl:2:9: error: keywords 'FOG_EXP2' and 'FOG_LINEAR' are both of this #pragma "
+                     "multi_compile set; a variant can have only one keyword of each set\n"
+                     "    #pragma multi_compile FOG_LINEAR FOG_EXP FOG_EXP2\n"
+                     "            ^"}));
+}
+
+TEST(Compiler, EachExtraKeywordOfASetIsNamedWithTheFirst) {
+  auto module = compile({"USE_TINT", "USE_RAMP", "USE_TINT", "FOG_EXP"});
+  // USE_TINT twice is one keyword; USE_RAMP is the conflict.
+  EXPECT_EQ(rendered(*module),
+            (Strings{"variants.hlsl:3:9: error: keywords 'USE_TINT' and 'USE_RAMP' are both of this #pragma "
+                     "shader_feature set; a variant can have only one keyword of each set\n"
+                     "    #pragma shader_feature _ USE_RAMP USE_TINT\n"
+                     "            ^"}));
+  module = compile({"FOG_LINEAR", "FOG_EXP", "FOG_EXP2"});
+  EXPECT_EQ(module->diagnostics.error_count(), 2u);
+  ASSERT_EQ(module->diagnostics.diagnostics().size(), 2u);
+  EXPECT_NE(module->diagnostics.diagnostics()[0].message.find("'FOG_LINEAR' and 'FOG_EXP'"), std::string::npos);
+  EXPECT_NE(module->diagnostics.diagnostics()[1].message.find("'FOG_LINEAR' and 'FOG_EXP2'"), std::string::npos);
+}
+
+TEST(Compiler, TheVariantKeepsThePreludeMacrosForOtherCompilers) {
+  CompileOptions options;
+  options.keywords = {"FOG_EXP"};
+  options.defines = {{"EXTRA", "2"}};
+  auto module = compile_text("variants.hlsl", kVariants, options);
+  ASSERT_TRUE(module->ok());
+  // The prelude first (fixed is half), then the keywords, then -D defines.
+  ASSERT_GE(module->macros.size(), 3u);
+  EXPECT_EQ(module->macros.front().name, "fixed");
+  EXPECT_EQ(module->macros.front().value, "half");
+  EXPECT_EQ(module->macros[module->macros.size() - 2].name, "FOG_EXP");
+  EXPECT_EQ(module->macros.back().name, "EXTRA");
+}
+
+TEST(Compiler, PreludeMacrosExpandInEveryCompile) {
+  const char* source =
+      "#pragma fragment frag\n"
+      "fixed4 frag(float4 pos : SV_Position) : SV_Target { return fixed4(UNITY_PI, 0, 0, 1); }\n";
+  for (int i = 0; i < 2; ++i) {
+    auto module = compile_text("prelude.hlsl", source, {});
+    EXPECT_TRUE(rendered(*module).empty()) << i;
+    EXPECT_TRUE(module->ok());
+  }
+  // A source may redefine a prelude macro; the next compile still has the prelude's.
+  auto redefined = compile_text("redefine.hlsl",
+                                "#pragma fragment frag\n#undef UNITY_PI\n#define UNITY_PI pi\n"
+                                "float4 frag(float4 pos : SV_Position) : SV_Target { return UNITY_PI; }\n",
+                                {});
+  EXPECT_EQ(redefined->diagnostics.diagnostics().at(0).message, "unknown name 'pi'");
+  auto again = compile_text("prelude.hlsl", source, {});
+  EXPECT_TRUE(again->ok());
+}
+
+}  // namespace
+}  // namespace xshade::hlsl
