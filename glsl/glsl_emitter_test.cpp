@@ -434,6 +434,59 @@ TEST(GlslEmitterIntrinsics, TheTableMapsToGlslWithHlslSemantics) {
   EXPECT_THAT(text, HasSubstr("bool all3 = all(bvec3(i));"));
 }
 
+TEST(GlslEmitterIntrinsics, ComponentWiseIntrinsicsOfMatricesGoColumnByColumn) {
+  // GLSL's abs, pow, mix ... take no matrices; HLSL's are component-wise on them. float2x3 is a
+  // GLSL mat2x3 (two columns of vec3), so each helper applies the vector form to a0[0] and a0[1].
+  const std::string text = fragment("float2x3 m; float2x3 n;",
+                                    "float2x3 a = abs(m) + pow(m, n) + fmod(m, n);\n"
+                                    "float2x3 whole;\n"
+                                    "float2x3 f = modf(m, whole);\n"
+                                    "float2x3 s, c;\n"
+                                    "sincos(m, s, c);\n"
+                                    "clip(m);\n"
+                                    "bool b = all(m) || any(n);\n"
+                                    "return float4(a[0] + f[1] + s[0] + c[1] + whole[0], b);");
+  EXPECT_THAT(text, HasSubstr("mat2x3 xs_abs(mat2x3 a0) {\n  return mat2x3(abs(a0[0]), abs(a0[1]));\n}"));
+  EXPECT_THAT(text, HasSubstr("mat2x3 xs_pow(mat2x3 a0, mat2x3 a1) {\n"
+                              "  return mat2x3(pow(a0[0], a1[0]), pow(a0[1], a1[1]));\n}"));
+  // fmod's own helper, for the column type, comes first.
+  EXPECT_THAT(text, HasSubstr("vec3 xs_fmod(vec3 a, vec3 b) {"));
+  EXPECT_THAT(text, HasSubstr("mat2x3 xs_fmod(mat2x3 a0, mat2x3 a1) {\n"
+                              "  return mat2x3(xs_fmod(a0[0], a1[0]), xs_fmod(a0[1], a1[1]));\n}"));
+  EXPECT_THAT(text, HasSubstr("mat2x3 xs_modf(mat2x3 a0, out mat2x3 a1) {\n"
+                              "  return mat2x3(modf(a0[0], a1[0]), modf(a0[1], a1[1]));\n}"));
+  EXPECT_THAT(text, HasSubstr("void xs_sincos(mat2x3 a0, out mat2x3 a1, out mat2x3 a2) {\n"
+                              "  a1[0] = sin(a0[0]);\n  a2[0] = cos(a0[0]);\n"
+                              "  a1[1] = sin(a0[1]);\n  a2[1] = cos(a0[1]);\n}"));
+  EXPECT_THAT(text, HasSubstr("void xs_clip(mat2x3 a0) {\n"
+                              "  if (any(lessThan(a0[0], vec3(0.0))) || any(lessThan(a0[1], vec3(0.0)))) discard;\n}"));
+  EXPECT_THAT(text, HasSubstr("bool xs_all(mat2x3 a0) {\n  return all(bvec3(a0[0])) && all(bvec3(a0[1]));\n}"));
+  EXPECT_THAT(text, HasSubstr("bool xs_any(mat2x3 a0) {\n  return any(bvec3(a0[0])) || any(bvec3(a0[1]));\n}"));
+  EXPECT_THAT(text, HasSubstr("mat2x3 a = xs_abs(m) + xs_pow(m, n) + xs_fmod(m, n);"));
+  EXPECT_THAT(text, HasSubstr("mat2x3 f = xs_modf(m, whole);"));
+  EXPECT_THAT(text, HasSubstr("xs_sincos(m, s, c);"));
+  EXPECT_THAT(text, HasSubstr("xs_clip(m);"));
+  EXPECT_THAT(text, HasSubstr("bool b = xs_all(m) || xs_any(n);"));
+}
+
+TEST(GlslEmitterIntrinsics, EveryComponentWiseIntrinsicTakesAFloatMatrix) {
+  // Whatever sema lets through with a float matrix the emitter must write; the only refusals
+  // are results that are matrices of int or bool, which no GLSL type holds (§3 of the docs).
+  for (const char* call : {"abs(m)", "acos(m)", "asin(m)", "atan(m)", "atan2(m, m)", "ceil(m)", "clamp(m, 0, 1)",
+                           "cos(m)", "cosh(m)", "ddx(m)", "ddy(m)", "degrees(m)", "exp(m)", "exp2(m)", "floor(m)",
+                           "fma(m, m, m)", "fmod(m, m)", "frac(m)", "fwidth(m)", "ldexp(m, m)", "lerp(m, m, 0.5)",
+                           "log(m)", "log10(m)", "log2(m)", "mad(m, m, m)", "max(m, m)", "min(m, m)", "pow(m, m)",
+                           "radians(m)", "rcp(m)", "round(m)", "rsqrt(m)", "saturate(m)", "sin(m)", "sinh(m)",
+                           "smoothstep(m, m, m)", "sqrt(m)", "step(m, m)", "tan(m)", "tanh(m)", "trunc(m)",
+                           "asfloat(m)"}) {
+    SCOPED_TRACE(call);
+    const std::string text = fragment("float3x3 m;", std::string("float3x3 r = ") + call + ";\nreturn r[0].xyzx;");
+    EXPECT_THAT(text, HasSubstr("mat3 r = xs_"));
+  }
+  const std::string error = emit_error(fragment_source("float2x2 m;", "return sign(m)[0].xyxy;"));
+  EXPECT_THAT(error, HasSubstr("matrices of int ('int2x2') are not supported on this target"));
+}
+
 TEST(GlslEmitterIntrinsics, BitCasts) {
   const std::string text = fragment("float3 f; int3 i; uint3 u;",
                                     "uint3 a = asuint(f);\n"

@@ -339,7 +339,7 @@ bool StageEmitter::clip_statement(const Expr* e) {
   const Expr* x = call->args[0].get();
   const Type& type = x->type;
   if (type.is_matrix()) {
-    fail(e->loc, "clip() of a matrix is not supported on this target");
+    out_.line(matrix_intrinsic_call(*call, {x}).text + ";");
     return true;
   }
   const Code value = expr(x);
@@ -371,17 +371,13 @@ Code StageEmitter::intrinsic_call(const CallExpr& call) {
     }
   }
   const Mapping* mapping = find_mapping(id, first_numeric);
+  if (!mapping || !mapping->matrices) {
+    for (const Expr* e : operands)
+      if (e->type.is_matrix()) return matrix_intrinsic_call(call, operands);
+  }
   if (!mapping) {
     fail(call.loc, in_quotes(info.name) + " is not supported on this target");
     return {"0"};
-  }
-  if (!mapping->matrices) {
-    for (const Expr* e : operands) {
-      if (e->type.is_matrix()) {
-        fail(call.loc, in_quotes(info.name) + " of a matrix is not supported on this target");
-        return {"0"};
-      }
-    }
   }
   if (flavour_ == Flavour::Vk && (id == I::Load || id == I::GetDimensions)) needs_samplerless_ = true;
 
@@ -516,6 +512,100 @@ Code StageEmitter::intrinsic_call(const CallExpr& call) {
     if (piece.operand >= 0) result += operand(code_of(size_t(piece.operand)), piece.needed);
   }
   return {result, template_prec(expanded)};
+}
+
+Code StageEmitter::matrix_intrinsic_call(const CallExpr& call, const std::vector<const Expr*>& operands) {
+  const auto id = IntrinsicId(call.intrinsic);
+  const IntrinsicInfo& info = intrinsic_info(id);
+  const Type* matrix = nullptr;
+  for (const Expr* e : operands) {
+    if (e->type.is_matrix()) {
+      matrix = &e->type;
+      break;
+    }
+  }
+  if (!matrix) {
+    fail(call.loc, "internal error: " + in_quotes(info.name) + " has no matrix operand");
+    return {"0"};
+  }
+  // GLSL holds HLSL's floatRxC as a matRxC: R columns of C components, each one HLSL row. A
+  // component-wise operation does not care which way round it goes.
+  const uint32_t columns = matrix->rows();
+  const Type column = Type::vector(matrix->scalar_type(), matrix->cols());
+  auto column_of = [](const Type& type) {
+    return type.is_matrix() ? Type::vector(type.scalar_type(), type.cols()) : type;
+  };
+  // Operand k inside the helper, and its column i.
+  auto operand_at = [&](size_t k, uint32_t i) {
+    return "a" + std::to_string(k) + (operands[k]->type.is_matrix() ? "[" + std::to_string(i) + "]" : "");
+  };
+
+  std::vector<std::string> parts;  // one per column
+  std::string result_type = type_name(call.type, call.loc);
+  std::string body;
+  if (id == I::Clip) {
+    const std::string zero = type_name(column, call.loc) + "(0.0)";
+    for (uint32_t i = 0; i < columns; ++i) parts.push_back("any(lessThan(" + operand_at(0, i) + ", " + zero + "))");
+  } else if (id == I::Sincos) {
+    for (uint32_t i = 0; i < columns; ++i)
+      parts.push_back(operand_at(1, i) + " = sin(" + operand_at(0, i) + ");\n  " + operand_at(2, i) + " = cos(" +
+                      operand_at(0, i) + ");");
+  } else {
+    const Mapping* mapping = find_mapping(id, &column);
+    if (!mapping || mapping->text[0] == '@' || !(call.type.is_matrix() || id == I::All || id == I::Any)) {
+      fail(call.loc, in_quotes(info.name) + " of a matrix is not supported on this target");
+      return {"0"};
+    }
+    std::string expanded = replace_all(mapping->text, "$R", type_name(column_of(call.type), call.loc));
+    expanded = replace_all(expanded, "$B0", bool_type(column.component_count()));
+    std::vector<Type> column_types;
+    for (const Expr* e : operands)
+      if (e->type.is_numeric()) column_types.push_back(column_of(e->type));
+    for (size_t at = expanded.find("xs_"); at != std::string::npos; at = expanded.find("xs_", at + 3)) {
+      const size_t open = expanded.find('(', at);
+      if (open != std::string::npos) require_helper(expanded.substr(at, open - at), column_types, call.loc);
+    }
+    const std::vector<Piece> pieces = split_template(expanded);
+    for (uint32_t i = 0; i < columns; ++i) {
+      std::string part;
+      for (const Piece& piece : pieces) {
+        part += piece.text;
+        if (piece.operand < 0) continue;
+        if (size_t(piece.operand) >= operands.size()) {
+          fail(call.loc, "internal error: the template of " + in_quotes(info.name) + " names a missing operand");
+          return {"0"};
+        }
+        part += operand_at(size_t(piece.operand), i);
+      }
+      parts.push_back(std::move(part));
+    }
+  }
+  auto joined = [&](const char* separator) {
+    std::string text;
+    for (size_t i = 0; i < parts.size(); ++i) text += (i ? separator : "") + parts[i];
+    return text;
+  };
+  if (id == I::Clip)
+    body = "if (" + joined(" || ") + ") discard;";
+  else if (id == I::Sincos)
+    body = joined("\n  ");
+  else if (id == I::All)
+    body = "return " + joined(" && ") + ";";
+  else if (id == I::Any)
+    body = "return " + joined(" || ") + ";";
+  else
+    body = "return " + result_type + "(" + joined(", ") + ");";
+
+  const std::string name = "xs_" + std::string(info.name);
+  std::string params, args;
+  for (size_t k = 0; k < operands.size(); ++k) {
+    const bool out = is_out_operand(info, k, false, call.args.size());
+    params += (k ? ", " : "") + std::string(out ? "out " : "") + type_name(operands[k]->type, call.loc) + " a" +
+              std::to_string(k);
+    args += (k ? ", " : "") + operand(out ? out_argument(operands[k]) : expr(operands[k]), kAssign);
+  }
+  helpers_.add(name + "(" + params + ")", result_type + " " + name + "(" + params + ") {\n  " + body + "\n}\n");
+  return {name + "(" + args + ")", kPostfix};
 }
 
 }  // namespace xshade::glsl::detail

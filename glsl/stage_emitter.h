@@ -154,6 +154,9 @@ class StageEmitter {
 
   // --- intrinsics (intrinsic_mapping.cpp)
   Code intrinsic_call(const hlsl::CallExpr& call);
+  // A component-wise intrinsic with matrix operands, which GLSL's built-ins do not take: a helper
+  // that applies the vector form to each column (all/any and clip combine the columns' results).
+  Code matrix_intrinsic_call(const hlsl::CallExpr& call, const std::vector<const Expr*>& operands);
   // `clip(x);` as a statement: `if (x < 0.0) discard;`. False if `expr` is not a clip call.
   bool clip_statement(const Expr* expr);
   // A helper from the library (xs_fmod, xs_idiv, ...) for these operand types; returns its name.
