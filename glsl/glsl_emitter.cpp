@@ -277,7 +277,14 @@ StageEmitter::StageEmitter(const Module& module, Flavour flavour, const Names& n
 
 void StageEmitter::fail(Loc loc, const std::string& message) {
   if (error_) return;
-  error_ = Error{message, module_.sources.resolve(loc), {}};
+  // Rendered by the front end's own engine, so that what a target cannot express reads like every
+  // other error: to_string() puts the location before "error: message" and the caret excerpt.
+  hlsl::DiagnosticEngine diagnostics(module_.sources);
+  diagnostics.error(loc, message);
+  const SourceLocation where = module_.sources.resolve(loc);
+  std::string rendered = diagnostics.render(0);
+  if (where.known()) rendered.erase(0, where.to_string().size() + 2);  // "file:line:col: "
+  error_ = Error{std::move(rendered), where, {}};
 }
 
 void StageEmitter::collect_used_declarations() {

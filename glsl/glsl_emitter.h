@@ -40,7 +40,9 @@ struct EmittedProgram {
 };
 
 // The module must have compiled without errors. Fails, with the location of the construct, on
-// what the flavour cannot express.
+// what the flavour cannot express; the error's to_string() is that diagnostic as the front end
+// renders it ("file:line:col: error: message", the source line and a caret), its message the
+// same without the location.
 Result<EmittedProgram> emit(const hlsl::Module& module, const EmitOptions& options);
 
 // The GLSL name of a constant buffer's block, by which the harness binds uniform blocks on

@@ -808,6 +808,20 @@ TEST(GlslEmitterDeterminism, TheSameInputGivesTheSameBytes) {
   }
 }
 
+TEST(GlslEmitterErrors, ErrorsReadLikeTheFrontEndsDiagnostics) {
+  const std::string line = "float4 frag(float2 uv : TEXCOORD0, uniform float4 tint) : SV_Target { return tint; }";
+  auto program = try_emit("#pragma fragment frag\n" + line + "\n");
+  ASSERT_FALSE(program);
+  // 'tint' starts at column 51: after "float4 frag(" (12), "float2 uv : TEXCOORD0, " (23) and
+  // "uniform float4 " (15).
+  EXPECT_EQ(program.error().to_string(),
+            "test.hlsl:2:51: error: uniform parameter 'tint' of an entry point is not supported on this target; "
+            "declare it as a global\n"
+            "    " + line + "\n"
+            "    " + std::string(50, ' ') + "^");
+  EXPECT_EQ(program.error().where.to_string(), "test.hlsl:2:51");
+}
+
 TEST(GlslEmitterErrors, ModulesWithErrorsAreRefused) {
   auto module = hlsl::compile_text("bad.hlsl", "#pragma fragment frag\nfloat4 frag() : SV_Target { return x; }\n", {});
   ASSERT_FALSE(module->ok());
