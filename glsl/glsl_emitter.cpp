@@ -483,13 +483,15 @@ std::string StageEmitter::declarations() {
   }
 
   for (const TextureResource& texture : reflection_.textures) {
+    if (!texture.used) continue;
     const std::string binding = "layout(" + set + "binding = " + std::to_string(texture.binding) + ") uniform ";
     const bool separate = flavour_ == Flavour::Vk && texture.kind == TextureKind::Texture2D;
     w.line(binding + (separate ? "texture2D " : "sampler2D ") + names_.of(texture.name) + ";");
   }
   if (flavour_ == Flavour::Vk) {
     for (const SamplerResource& sampler : reflection_.samplers)
-      w.line("layout(set = 0, binding = " + std::to_string(sampler.binding) + ") uniform sampler " +
+      if (sampler.used)
+        w.line("layout(set = 0, binding = " + std::to_string(sampler.binding) + ") uniform sampler " +
              names_.of(sampler.name) + ";");
   }
   return w.text();

@@ -672,15 +672,15 @@ class SceneReader {
       return std::nullopt;
     }
     const std::string& name = text->get();
-    if (name == "white") return TextureRef{TextureSource::White, {}};
-    if (name == "black") return TextureRef{TextureSource::Black, {}};
-    if (name == "checker") return TextureRef{TextureSource::Checker, {}};
-    if (name == "normal") return TextureRef{TextureSource::Normal, {}};
+    if (name == "white") return TextureRef{TextureOrigin::White, {}};
+    if (name == "black") return TextureRef{TextureOrigin::Black, {}};
+    if (name == "checker") return TextureRef{TextureOrigin::Checker, {}};
+    if (name == "normal") return TextureRef{TextureOrigin::Normal, {}};
     // A file is told from a misspelt built-in by its extension.
     if (std::filesystem::path(name).has_extension()) {
       auto file = scene_file_path(node, path, name);
       if (!file) return std::nullopt;
-      return TextureRef{TextureSource::File, *file};
+      return TextureRef{TextureOrigin::File, *file};
     }
     std::string message = fmt::format("{}: expected {}, got {}", path, expectation, quote_text(name));
     if (auto suggestion = nearest(name, {"white", "black", "checker", "normal"}))

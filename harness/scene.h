@@ -72,7 +72,7 @@ struct MeshRef {
   bool operator==(const MeshRef&) const = default;
 };
 
-enum class TextureSource {
+enum class TextureOrigin {
   White,    // (1, 1, 1, 1)
   Black,    // (0, 0, 0, 1)
   Checker,  // a black-and-white checkerboard
@@ -81,7 +81,7 @@ enum class TextureSource {
 };
 
 struct TextureRef {
-  TextureSource source = TextureSource::White;
+  TextureOrigin source = TextureOrigin::White;
   std::filesystem::path file;  // File: absolute and normalised, inside the scene's folder
   bool operator==(const TextureRef&) const = default;
 };

@@ -166,10 +166,10 @@ reason = "edges of the spheres alias differently on the two rasterisers"
   EXPECT_EQ(balls.properties.at("_Smoothness"), PropertyValue::scalar(0.5f));
   EXPECT_EQ(balls.properties.at("_Offset"), (PropertyValue{{1, 2, 0, 0}, 2}));
   ASSERT_EQ(balls.textures.size(), 3u);
-  EXPECT_EQ(balls.textures.at("_MainTex"), (TextureRef{TextureSource::White, {}}));
-  EXPECT_EQ(balls.textures.at("_BumpMap"), (TextureRef{TextureSource::Normal, {}}));
+  EXPECT_EQ(balls.textures.at("_MainTex"), (TextureRef{TextureOrigin::White, {}}));
+  EXPECT_EQ(balls.textures.at("_BumpMap"), (TextureRef{TextureOrigin::Normal, {}}));
   EXPECT_EQ(balls.textures.at("_DetailTex"),
-            (TextureRef{TextureSource::File, "/project/harness/scenes/textures/detail.png"}));
+            (TextureRef{TextureOrigin::File, "/project/harness/scenes/textures/detail.png"}));
   ASSERT_TRUE(balls.grid);
   EXPECT_EQ(balls.grid->rows, 5u);
   EXPECT_EQ(balls.grid->cols, 4u);
@@ -536,7 +536,7 @@ TEST(SceneInstances, GridRowZeroIsOnTopAndVaryRulesInterpolate) {
     EXPECT_EQ(instance.mesh.kind, MeshKind::Sphere);
     EXPECT_EQ(instance.material, "materials/standard_pbr.hlsl");
     EXPECT_EQ(instance.keywords, (std::vector<std::string>{"_GUARDED"}));
-    EXPECT_EQ(instance.textures.at("_MainTex").source, TextureSource::Checker);
+    EXPECT_EQ(instance.textures.at("_MainTex").source, TextureOrigin::Checker);
     EXPECT_EQ(instance.properties.at("_Color"), vec4_value(1, 0, 0, 1));
   }
 }

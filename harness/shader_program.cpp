@@ -81,6 +81,7 @@ ProgramLayout layout_for_lane(const hlsl::Reflection& reflection, Lane lane) {
   for (const hlsl::ConstantBuffer& buffer : reflection.constant_buffers)
     layout.uniform_blocks.push_back({glsl::block_name(buffer.name), buffer.binding, buffer.size});
   for (const hlsl::TextureResource& texture : reflection.textures) {
+    if (!texture.used) continue;
     TextureSlot slot{texture.name, texture.binding, std::nullopt};
     if (lane != Lane::Gl && texture.kind == hlsl::TextureKind::Texture2D) slot.sampler_binding = texture.sampler_binding;
     layout.textures.push_back(std::move(slot));

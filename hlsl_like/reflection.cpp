@@ -437,7 +437,7 @@ Reflection reflect(const TranslationUnit& unit, const EntryPoints& entry_points,
         reflection.textures.push_back(std::move(texture));
         reflection.properties.push_back(property_of(var));
       } else if (kind == TypeKind::SamplerState) {
-        SamplerResource sampler{var.name, 0, &var};
+        SamplerResource sampler{var.name, 0, true, &var};
         if (var.binding.register_class != 0) samplers.claim(var.binding, var.name);
         pending_samplers.push_back({reflection.samplers.size(), &var});
         reflection.samplers.push_back(std::move(sampler));
@@ -473,12 +473,14 @@ Reflection reflect(const TranslationUnit& unit, const EntryPoints& entry_points,
     for (auto [index, var] : pending_textures) {
       if (used(var) != used_pass) continue;
       TextureResource& texture = reflection.textures[index];
+      texture.used = used_pass;
       if (var->binding.register_class != 0) texture.binding = textures.binding_of(var->binding);
       else texture.binding = textures.next_free(var->name, var->loc).value_or(0);
     }
     for (auto [index, var] : pending_samplers) {
       if (used(var) != used_pass) continue;
       SamplerResource& sampler = reflection.samplers[index];
+      sampler.used = used_pass;
       if (var->binding.register_class != 0) sampler.binding = samplers.binding_of(var->binding);
       else sampler.binding = samplers.next_free(var->name, var->loc).value_or(0);
     }
@@ -595,13 +597,14 @@ std::string reflection_json(const Reflection& reflection) {
   for (const TextureResource& t : reflection.textures) {
     nlohmann::json texture = {{"name", t.name},
                               {"kind", t.kind == TextureKind::Texture2D ? "Texture2D" : "sampler2D"},
-                              {"binding", t.binding}};
+                              {"binding", t.binding},
+                              {"used", t.used}};
     if (!t.sampler.empty()) texture["sampler"] = t.sampler;
     if (t.sampler_binding) texture["sampler_binding"] = *t.sampler_binding;
     json["textures"].push_back(texture);
   }
   json["samplers"] = nlohmann::json::array();
-  for (const SamplerResource& s : reflection.samplers) json["samplers"].push_back({{"name", s.name}, {"binding", s.binding}});
+  for (const SamplerResource& s : reflection.samplers) json["samplers"].push_back({{"name", s.name}, {"binding", s.binding}, {"used", s.used}});
   json["properties"] = nlohmann::json::array();
   for (const Property& p : reflection.properties) {
     nlohmann::json property = {{"name", p.name}, {"display_name", p.display_name}, {"type", type_json(p.type)}};

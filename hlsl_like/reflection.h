@@ -58,12 +58,16 @@ struct TextureResource {
   // and that sampler's binding. Empty when the shader never samples it through a SamplerState.
   std::string sampler;
   std::optional<uint32_t> sampler_binding;
+  // Read by the compiled entry points. An unread resource keeps its binding (the numbers do not
+  // move when a shader stops reading one) but is neither declared in GLSL nor bound.
+  bool used = true;
   const VarDecl* decl = nullptr;
 };
 
 struct SamplerResource {
   std::string name;
   uint32_t binding = 0;
+  bool used = true;  // as TextureResource::used
   const VarDecl* decl = nullptr;
 };
 

@@ -25,7 +25,13 @@ int run_info(const LaneSelection& selection);
 
 struct RunOptions {
   LaneSelection selection;
+  std::vector<std::string> scenes;  // names in scenes_dir, or .toml paths; empty = all
   std::filesystem::path report_dir = "report";
+  std::filesystem::path scenes_dir = XSHADE_SOURCE_DIR "/harness/scenes";
+  std::filesystem::path shaders_dir = XSHADE_SOURCE_DIR "/hlsl_like/shaders";
+  std::filesystem::path cache_dir;  // empty: $XSHADE_CACHE_DIR, else the user's cache folder
+  bool no_cache = false;
+  bool plan_only = false;
 };
 int run_run(const RunOptions& options);
 

@@ -25,11 +25,25 @@ int main(int argc, char** argv) {
   add_lane_options(*info, info_selection);
 
   RunOptions run_options;
-  CLI::App* run = app.add_subcommand("run", "Render on every lane, write PNG and EXR images, compare the lanes");
+  CLI::App* run = app.add_subcommand(
+      "run", "Render scenes on each of their lanes, write PNG and EXR images, compare the lanes");
+  run->add_option("scene", run_options.scenes, "Scene names (in --scenes) or .toml files; default: every scene")
+      ->type_name("SCENE");
   add_lane_options(*run, run_options.selection);
   run->add_option("--report", run_options.report_dir, "Folder for images and the report")
       ->type_name("DIR")
       ->capture_default_str();
+  run->add_option("--scenes", run_options.scenes_dir, "Folder of scene files")->type_name("DIR")->capture_default_str();
+  run->add_option("--shaders", run_options.shaders_dir, "The shader library (materials/, post/, include/)")
+      ->type_name("DIR")
+      ->capture_default_str();
+  run->add_option("--cache", run_options.cache_dir,
+                  "Compiled-shader cache (default: $XSHADE_CACHE_DIR, else $XDG_CACHE_HOME/xshade or ~/.cache/xshade)")
+      ->type_name("DIR");
+  run->add_flag("--no-cache", run_options.no_cache, "Compile every shader, read and write no cache");
+  run->add_flag("--plan", run_options.plan_only,
+                "Print each scene's plan (variants to compile or found in the cache, passes, what is left out) "
+                "and render nothing");
 
   CompileOptions compile_options;
   CLI::App* compile = app.add_subcommand("compile", "Compile one shader to GLSL (gl, vk), SPIR-V (spirv, vk-hlsl) or reflection");

@@ -93,9 +93,12 @@ float3 F_dielectric_exact(float3 f0, float LoH) {
 
 // ---- The specular lobe --------------------------------------------------------------------
 
-// The dot products the terms read. The seed form clamps them to [0, 1] as Unity's DotClamped
-// does (the seed does not show its own) and nothing else; the guarded form keeps every
-// denominator away from zero (hazards 1, 2, 3).
+// The dot products the terms read. The seed does not show how it computes them; the seed form
+// takes them as they come (our choice), so that it breaks exactly where SHADERS.md section 4
+// says: 0/0 where NoL or NoV is exactly 0, pow of a negative base when LoH rounds above 1.
+// (Clamping them to [0, 1] first, as Unity's DotClamped does, would turn the whole unlit half
+// of every surface into 0/0.) The guarded form keeps every denominator away from zero
+// (hazards 1, 2, 3).
 struct BrdfInputs {
   float3 n;
   float3 h;
@@ -111,11 +114,11 @@ BrdfInputs brdf_inputs_seed(float3 n, float3 v, float3 l, float a) {
   BrdfInputs s;
   s.n = n;
   s.h = normalize(l + v);
-  s.NoL = saturate(dot(n, l));
-  s.NoV = saturate(dot(n, v));
-  s.NoH = saturate(dot(n, s.h));
-  s.VoH = saturate(dot(v, s.h));
-  s.LoH = saturate(dot(l, s.h));
+  s.NoL = dot(n, l);
+  s.NoV = dot(n, v);
+  s.NoH = dot(n, s.h);
+  s.VoH = dot(v, s.h);
+  s.LoH = dot(l, s.h);
   s.a = a;
   return s;
 }

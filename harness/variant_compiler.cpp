@@ -1,0 +1,54 @@
+#include "harness/variant_compiler.h"
+
+#include "harness/shader_program.h"
+
+namespace xshade::harness {
+
+VariantCompiler::VariantCompiler(std::filesystem::path shader_root, const ShaderCache* cache)
+    : shader_root_(std::move(shader_root)), cache_(cache) {}
+
+bool VariantCompiler::in_cache(const VariantRequest& request, Lane lane) const {
+  return cache_ && cache_->find(request, lane).has_value();
+}
+
+Result<const hlsl::Module*> VariantCompiler::front_end(const VariantRequest& request) {
+  const std::string key = request.source.string() + "\n" + request.label();
+  auto known = modules_.find(key);
+  if (known == modules_.end()) {
+    hlsl::CompileOptions options;
+    options.include_dirs = {shader_root_};
+    options.keywords = request.keywords;
+    options.fragment_only_entry = request.fragment_entry;
+    known = modules_.emplace(key, hlsl::compile_file(request.source, options)).first;
+  }
+  const hlsl::Module& module = *known->second;
+  if (!module.ok()) {
+    Error error{request.label() + " does not compile", {request.source.string(), 0, 0}, {}};
+    for (const Diagnostic& d : module.diagnostics.diagnostics())
+      if (d.severity == Severity::Error) error.diagnostics.push_back(d);
+    return fail(std::move(error));
+  }
+  return &module;
+}
+
+Result<CompiledVariant> VariantCompiler::compile(const VariantRequest& request, Lane lane) {
+  if (cache_) {
+    if (std::optional<CompiledVariant> found = cache_->find(request, lane)) {
+      ++cached_;
+      return std::move(*found);
+    }
+  }
+  auto module = front_end(request);
+  if (!module) return fail(module.error());
+  auto program = program_for_lane(**module, lane);
+  if (!program) return fail(program.error());
+  CompiledVariant variant{std::move(*program), shader_interface((*module)->reflection)};
+  ++compiled_;
+  if (cache_) {
+    if (auto stored = cache_->store(request, lane, variant, (*module)->dependencies()); !stored && !cache_write_error_)
+      cache_write_error_ = stored.error();
+  }
+  return variant;
+}
+
+}  // namespace xshade::harness
