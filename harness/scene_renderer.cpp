@@ -38,7 +38,12 @@ class UniformValues {
     if (auto it = engine_.find(name); it != engine_.end()) return &it->second;
     if (auto it = scene_.find(name); it != scene_.end()) return &it->second;
     const PropertyDefault* property = interface_.find_property(name);
-    return property && !property->value.empty() ? &property->value : nullptr;
+    if (property && !property->value.empty()) return &property->value;
+    // X_TexelSize of a texture this pass does not read: it has no size, and the shader does not
+    // use it (several passes of one effect share the buffer that declares it).
+    static const std::vector<float> kNoTexture(4, 0.0f);
+    if (name.ends_with("_TexelSize")) return &kNoTexture;
+    return nullptr;
   }
 
  private:
@@ -72,8 +77,8 @@ Result<MeshData> mesh_data(const MeshRef& mesh) {
 class SceneRenderer {
  public:
   SceneRenderer(Backend& backend, const Scene& scene, const Plan& plan, const std::vector<CompiledVariant>& variants,
-                const Environment& environment)
-      : backend_(backend), scene_(scene), plan_(plan), variants_(variants), environment_(environment) {}
+                const Environment& environment, const RenderOptions& options)
+      : backend_(backend), scene_(scene), plan_(plan), variants_(variants), environment_(environment), options_(options) {}
 
   Result<RenderedScene> render() {
     auto target = backend_.create_target({scene_.width, scene_.height, true});
@@ -85,10 +90,15 @@ class SceneRenderer {
       const PlannedPass& pass = plan_.passes[p];
       auto rendered = pass.kind == PlannedPass::Kind::Scene ? scene_pass() : post_pass(p);
       if (!rendered) return fail(rendered.error());
+      if (options_.keep_pass_images) {
+        auto image = backend_.read_color(color_);
+        if (!image) return fail(image.error());
+        pass_images_.emplace_back(pass.name, std::move(*image));
+      }
     }
     auto image = backend_.read_color(color_);
     if (!image) return fail(image.error());
-    return RenderedScene{std::move(*image), std::move(timings_)};
+    return RenderedScene{std::move(*image), std::move(timings_), std::move(pass_images_)};
   }
 
  private:
@@ -254,6 +264,7 @@ class SceneRenderer {
   const Plan& plan_;
   const std::vector<CompiledVariant>& variants_;
   const Environment& environment_;
+  const RenderOptions& options_;
 
   TargetHandle scene_target_;
   TargetHandle color_;  // the image so far
@@ -266,6 +277,7 @@ class SceneRenderer {
   std::vector<std::pair<TextureRef, TextureHandle>> textures_;
   TextureHandle environment_handle_;
   std::vector<PassTiming> timings_;
+  std::vector<std::pair<std::string, FloatImage>> pass_images_;
 };
 
 }  // namespace
@@ -287,8 +299,9 @@ EnvironmentDesc environment_desc(const EnvironmentSpec& spec) {
 }
 
 Result<RenderedScene> render_scene(Backend& backend, const Scene& scene, const Plan& plan,
-                                   const std::vector<CompiledVariant>& variants, const Environment& environment) {
-  return SceneRenderer(backend, scene, plan, variants, environment).render();
+                                   const std::vector<CompiledVariant>& variants, const Environment& environment,
+                                   const RenderOptions& options) {
+  return SceneRenderer(backend, scene, plan, variants, environment, options).render();
 }
 
 }  // namespace xshade::harness

@@ -21,11 +21,19 @@ struct PassTiming {
 struct RenderedScene {
   FloatImage image;
   std::vector<PassTiming> timings;
+  // With RenderOptions::keep_pass_images: each pass's own output, in order (name, image), to
+  // find the pass where lanes part.
+  std::vector<std::pair<std::string, FloatImage>> pass_images;
+};
+
+struct RenderOptions {
+  bool keep_pass_images = false;
 };
 
 // `variants` holds the compiled form of each of the plan's variants for this backend's lane.
 Result<RenderedScene> render_scene(Backend& backend, const Scene& scene, const Plan& plan,
-                                   const std::vector<CompiledVariant>& variants, const Environment& environment);
+                                   const std::vector<CompiledVariant>& variants, const Environment& environment,
+                                   const RenderOptions& options = {});
 
 // The environment description of a scene's [environment] table.
 EnvironmentDesc environment_desc(const EnvironmentSpec& spec);

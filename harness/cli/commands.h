@@ -32,6 +32,7 @@ struct RunOptions {
   std::filesystem::path cache_dir;  // empty: $XSHADE_CACHE_DIR, else the user's cache folder
   bool no_cache = false;
   bool plan_only = false;
+  bool pass_images = false;  // also write each pass's output (REPORT/SCENE/passes/PASS.LANE.exr)
 };
 int run_run(const RunOptions& options);
 

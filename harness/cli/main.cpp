@@ -41,6 +41,8 @@ int main(int argc, char** argv) {
                   "Compiled-shader cache (default: $XSHADE_CACHE_DIR, else $XDG_CACHE_HOME/xshade or ~/.cache/xshade)")
       ->type_name("DIR");
   run->add_flag("--no-cache", run_options.no_cache, "Compile every shader, read and write no cache");
+  run->add_flag("--pass-images", run_options.pass_images,
+                "Also write every pass's own output as REPORT/SCENE/passes/PASS.LANE.exr, to find where lanes part");
   run->add_flag("--plan", run_options.plan_only,
                 "Print each scene's plan (variants to compile or found in the cache, passes, what is left out) "
                 "and render nothing");

@@ -178,7 +178,8 @@ class SceneRun {
       exit_code = worse(exit_code, kBackendError);
       return std::nullopt;
     }
-    auto rendered = harness::render_scene(**backend, scene, plan, variants, environment);
+    auto rendered = harness::render_scene(**backend, scene, plan, variants, environment,
+                                          {.keep_pass_images = options_.pass_images});
     std::vector<std::string> messages = (*backend)->take_driver_messages();
     if (!rendered) {
       fmt::print("render failed\n");
@@ -189,6 +190,12 @@ class SceneRun {
     for (const std::string& message : messages) {
       fmt::print("\n  driver message: {}", message);
       exit_code = worse(exit_code, kTestFailed);
+    }
+    for (const auto& [pass, image] : rendered->pass_images) {
+      const fs::path file = options_.report_dir / scene.name / "passes" / (pass + "." + std::string(harness::lane_name(lane)) + ".exr");
+      std::error_code ignored;
+      fs::create_directories(file.parent_path(), ignored);
+      if (auto written = harness::write_exr(image, file); !written) print_error(scene.name, written.error());
     }
     return std::move(rendered->image);
   }

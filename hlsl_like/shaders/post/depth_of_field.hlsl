@@ -67,22 +67,25 @@ half4 frag_coc(float2 uv : TEXCOORD0) : SV_Target {
 }
 
 // 2. Down to half resolution: colour weighted by CoC (and by brightness, against flicker), and
-// the CoC of largest magnitude among the four taps so that near blur is not lost.
-half4 frag_prefilter(float2 uv : TEXCOORD0) : SV_Target {
-  float4 o = _MainTex_TexelSize.xyxy * float2(-0.5, 0.5).xxyy;
-  half3 c0 = _MainTex.SampleLevel(sampler_MainTex, uv + o.xy, 0.0).rgb;
-  half3 c1 = _MainTex.SampleLevel(sampler_MainTex, uv + o.zy, 0.0).rgb;
-  half3 c2 = _MainTex.SampleLevel(sampler_MainTex, uv + o.xw, 0.0).rgb;
-  half3 c3 = _MainTex.SampleLevel(sampler_MainTex, uv + o.zw, 0.0).rgb;
-  half coc0 = _CoCTex.SampleLevel(sampler_CoCTex, uv + o.xy, 0.0).r;
-  half coc1 = _CoCTex.SampleLevel(sampler_CoCTex, uv + o.zy, 0.0).r;
-  half coc2 = _CoCTex.SampleLevel(sampler_CoCTex, uv + o.xw, 0.0).r;
-  half coc3 = _CoCTex.SampleLevel(sampler_CoCTex, uv + o.zw, 0.0).r;
+// the CoC of largest magnitude among the four taps so that near blur is not lost. The four taps
+// are the four full-resolution texels under this pixel, read exactly: bilinear taps aimed at
+// their centres pick up a trace of the neighbours from rounding in the interpolated uv, and
+// where a near and a far CoC tie in magnitude that trace decides which one wins.
+half4 frag_prefilter(float2 uv : TEXCOORD0, float4 position : SV_Position) : SV_Target {
+  int2 texel = int2(position.xy) * 2;
+  half3 c0 = _MainTex.Load(int3(texel, 0)).rgb;
+  half3 c1 = _MainTex.Load(int3(texel + int2(1, 0), 0)).rgb;
+  half3 c2 = _MainTex.Load(int3(texel + int2(0, 1), 0)).rgb;
+  half3 c3 = _MainTex.Load(int3(texel + int2(1, 1), 0)).rgb;
+  half coc0 = _CoCTex.Load(int3(texel, 0)).r;
+  half coc1 = _CoCTex.Load(int3(texel + int2(1, 0), 0)).r;
+  half coc2 = _CoCTex.Load(int3(texel + int2(0, 1), 0)).r;
+  half coc3 = _CoCTex.Load(int3(texel + int2(1, 1), 0)).r;
 
-  half w0 = abs(coc0) / (max(c0.r, max(c0.g, c0.b)) + 1.0);
-  half w1 = abs(coc1) / (max(c1.r, max(c1.g, c1.b)) + 1.0);
-  half w2 = abs(coc2) / (max(c2.r, max(c2.g, c2.b)) + 1.0);
-  half w3 = abs(coc3) / (max(c3.r, max(c3.g, c3.b)) + 1.0);
+  half w0 = abs(coc0) / (max3(c0) + 1.0);
+  half w1 = abs(coc1) / (max3(c1) + 1.0);
+  half w2 = abs(coc2) / (max3(c2) + 1.0);
+  half w3 = abs(coc3) / (max3(c3) + 1.0);
   half3 color = c0 * w0 + c1 * w1 + c2 * w2 + c3 * w3;
 #if defined(_GUARDED)
   color /= max(w0 + w1 + w2 + w3, kMinWeightSum);
