@@ -1,0 +1,146 @@
+#include "harness/planner.h"
+
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
+
+#include <gtest/gtest.h>
+
+namespace xshade::harness {
+namespace {
+
+namespace fs = std::filesystem;
+
+const fs::path kLibrary = fs::path(XSHADE_SOURCE_DIR) / "hlsl_like" / "shaders";
+
+constexpr const char* kCameraAndSize = R"(
+description = "planner test"
+size = [64, 64]
+[camera]
+position = [0, 0, 5]
+target = [0, 0, 0]
+fov_y = 40
+near = 0.3
+far = 100
+)";
+
+Scene scene(const std::string& body) {
+  auto parsed = parse_scene(std::string(kCameraAndSize) + body, "/tmp/planner_test.toml");
+  EXPECT_TRUE(parsed) << parsed.error().to_string();
+  return *parsed;
+}
+
+bool has_line(const std::vector<std::string>& lines, const std::string& line) {
+  return std::find(lines.begin(), lines.end(), line) != lines.end();
+}
+
+TEST(Planner, AGridOfOneMaterialIsOneVariantAndOnePass) {
+  auto plan = plan_scene(scene(R"(
+[[object]]
+mesh = "sphere"
+material = "materials/standard_pbr.hlsl"
+[object.grid]
+rows = 5
+cols = 5
+spacing = 2.2
+[object.grid.vary]
+_Metallic = { along = "cols", from = 0.0, to = 1.0 }
+)"), kLibrary);
+  ASSERT_TRUE(plan) << plan.error().to_string();
+  ASSERT_EQ(plan->variants.size(), 1u);
+  // No keyword asked for: each multi_compile set's first keyword, as the front end defines them.
+  EXPECT_EQ(plan->variants[0].keywords, (std::vector<std::string>{"_D_GGX_SEED", "_F_SCHLICK", "_G_COOK_TORRANCE"}));
+  EXPECT_EQ(plan->instances.size(), 25u);
+  EXPECT_EQ(plan->instance_variant, std::vector<size_t>(25, 0));
+  ASSERT_EQ(plan->passes.size(), 1u);
+  EXPECT_EQ(plan->passes[0].kind, PlannedPass::Kind::Scene);
+  // 2 D forms x 3 G forms x 3 F forms x guards on/off.
+  EXPECT_TRUE(has_line(plan->left_out,
+                       "materials/standard_pbr.hlsl: 35 of its 36 keyword combinations (the scene asks for no other)"));
+  EXPECT_TRUE(has_line(plan->left_out, "materials/toon.hlsl: no object uses it"));
+  EXPECT_TRUE(has_line(plan->left_out,
+                       "post/depth_of_field.hlsl: not in the post chain, so none of its passes is compiled or run"));
+}
+
+TEST(Planner, NamingADefaultKeywordGivesTheSameVariant) {
+  auto plan = plan_scene(scene(R"(
+[[object]]
+name = "a"
+mesh = "sphere"
+material = "materials/toon.hlsl"
+[[object]]
+name = "b"
+mesh = "cube"
+material = "materials/toon.hlsl"
+keywords = ["_GUARDED"]
+[[object]]
+name = "c"
+mesh = "torus"
+material = "materials/toon.hlsl"
+keywords = ["_GUARDED", "_GUARDED"]
+)"), kLibrary);
+  ASSERT_TRUE(plan) << plan.error().to_string();
+  ASSERT_EQ(plan->variants.size(), 2u);
+  EXPECT_EQ(plan->instance_variant, (std::vector<size_t>{0, 1, 1}));
+  EXPECT_TRUE(plan->variants[0].keywords.empty());
+  EXPECT_EQ(plan->variants[1].keywords, std::vector<std::string>{"_GUARDED"});
+}
+
+TEST(Planner, APostEffectAddsItsPassesInOrderWithTheirSources) {
+  auto plan = plan_scene(scene(R"(
+[[object]]
+mesh = "sphere"
+material = "materials/toon.hlsl"
+[[post]]
+effect = "post/depth_of_field.hlsl"
+keywords = ["_KERNEL_MEDIUM"]
+)"), kLibrary);
+  ASSERT_TRUE(plan) << plan.error().to_string();
+  std::vector<std::string> names;
+  for (const PlannedPass& pass : plan->passes) names.push_back(pass.name);
+  EXPECT_EQ(names, (std::vector<std::string>{"scene", "depth_of_field.coc", "depth_of_field.prefilter",
+                                             "depth_of_field.bokeh", "depth_of_field.postfilter",
+                                             "depth_of_field.combine"}));
+  ASSERT_EQ(plan->variants.size(), 6u);
+  EXPECT_EQ(plan->variants[plan->passes[3].variant].fragment_entry, "frag_bokeh");
+  EXPECT_EQ(plan->variants[plan->passes[3].variant].keywords, std::vector<std::string>{"_KERNEL_MEDIUM"});
+  const hlsl::PassDeclaration& combine = plan->passes[5].declaration;
+  EXPECT_EQ(combine.scale, hlsl::PassDeclaration::Scale::Full);
+  ASSERT_EQ(combine.inputs.size(), 3u);
+  EXPECT_EQ(combine.inputs[2].texture, "_DoFTex");
+  EXPECT_EQ(combine.inputs[2].pass, "postfilter");
+  EXPECT_EQ(plan->passes[2].declaration.scale, hlsl::PassDeclaration::Scale::Half);
+  // 4 kernels x guards on/off.
+  EXPECT_TRUE(has_line(plan->left_out,
+                       "post/depth_of_field.hlsl: 7 of its 8 keyword combinations (the scene asks for no other)"));
+  const std::string described = describe_plan(scene(""), *plan, std::vector<bool>(6, false));
+  EXPECT_NE(described.find("depth_of_field.bokeh: frag_bokeh, half resolution, _MainTex <- prefilter"), std::string::npos)
+      << described;
+}
+
+TEST(Planner, ASourceOutsideTheLibraryOrBrokenIsAnError) {
+  auto missing = plan_scene(scene(R"(
+[[object]]
+mesh = "sphere"
+material = "materials/velvet.hlsl"
+)"), kLibrary);
+  ASSERT_FALSE(missing);
+  EXPECT_EQ(missing.error().message, "'materials/velvet.hlsl' is not in the shader library (" + kLibrary.string() + ")");
+
+  const fs::path root = fs::temp_directory_path() / "xshade_planner_test";
+  fs::create_directories(root / "materials");
+  std::ofstream(root / "materials" / "broken.hlsl") << "#pragma fragment frag\nfloat4 frag() : SV_Target { return x; }\n";
+  auto broken = plan_scene(scene(R"(
+[[object]]
+mesh = "sphere"
+material = "materials/broken.hlsl"
+)"), root);
+  ASSERT_FALSE(broken);
+  EXPECT_EQ(broken.error().message, "'materials/broken.hlsl' does not compile");
+  ASSERT_FALSE(broken.error().diagnostics.empty());
+  EXPECT_EQ(broken.error().diagnostics[0].where.line, 2u);
+  fs::remove_all(root);
+}
+
+}  // namespace
+}  // namespace xshade::harness
