@@ -2,6 +2,7 @@
 
 #include <array>
 #include <string_view>
+#include <unordered_set>
 
 namespace xshade::glsl {
 namespace {
@@ -82,9 +83,9 @@ bool starts_with(std::string_view text, std::string_view prefix) { return text.s
 }  // namespace
 
 bool is_glsl_reserved_word(std::string_view name) {
-  for (std::string_view word : kReservedWords)
-    if (word == name) return true;
-  return false;
+  // Every name the emitter writes is looked up here: a hash set, not a walk over ~480 words.
+  static const std::unordered_set<std::string_view> kReserved(std::begin(kReservedWords), std::end(kReservedWords));
+  return kReserved.count(name) > 0;
 }
 
 bool needs_renaming(std::string_view name) {

@@ -38,7 +38,7 @@ class SourceReader {
     auto module = hlsl::compile_file(path, options);
     SourceFacts facts;
     facts.path = path;
-    if (post) facts.passes = hlsl::read_pass_declarations(module->pragmas, module->diagnostics);
+    if (post) facts.passes = module->passes;
     if (!module->ok()) {
       Error error{"'" + library_path + "' does not compile", {path.string(), 0, 0}, {}};
       for (const Diagnostic& d : module->diagnostics.diagnostics())

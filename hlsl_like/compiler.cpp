@@ -49,6 +49,8 @@ PragmaReading read_pragmas(const std::vector<Pragma>& pragmas, DiagnosticEngine&
         reading.keyword_sets.push_back(std::move(set));
         reading.keyword_set_locs.push_back(pragma.loc);
       }
+    } else if (pragma.name == "pass") {
+      // A post effect's pass (pass_declarations.h), read once the variant's pragmas are final.
     } else if (pragma.name == "target" || pragma.name == "pack_matrix") {
       diagnostics.warning(pragma.loc, "#pragma " + std::string(pragma.name) + " is ignored");
     } else {
@@ -132,6 +134,7 @@ std::unique_ptr<Module> compile(std::unique_ptr<Module> module, const CompileOpt
   }
 
   check_one_keyword_per_set(reading, options.keywords, module->diagnostics);
+  module->passes = read_pass_declarations(module->pragmas, module->diagnostics);
 
   if (!options.fragment_only_entry.empty()) {
     reading.entry_points.vertex.clear();

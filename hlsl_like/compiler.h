@@ -8,6 +8,7 @@
 
 #include "hlsl_like/ast.h"
 #include "hlsl_like/diagnostic_engine.h"
+#include "hlsl_like/pass_declarations.h"
 #include "hlsl_like/preprocessor.h"
 #include "hlsl_like/reflection.h"
 #include "hlsl_like/sema.h"
@@ -37,6 +38,7 @@ struct Module {
   EntryPoints entry_points;
   Reflection reflection;
   std::vector<Pragma> pragmas;
+  std::vector<PassDeclaration> passes;  // a post effect's `#pragma pass` lines
   // The macros the variant was compiled with (prelude, keywords, defines), for other compilers
   // of the same source (glslang's HLSL front end on the vk-hlsl lane).
   std::vector<MacroDefinition> macros;
