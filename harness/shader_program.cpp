@@ -1,8 +1,5 @@
 #include "harness/shader_program.h"
 
-#include <fstream>
-#include <sstream>
-
 #include "glsl/flavour.h"
 #include "glsl/glsl_emitter.h"
 #include "spirv/hlsl_compiler.h"
@@ -21,18 +18,6 @@ Error with_source_names(Error error, const std::vector<std::string>& source_file
   return error;
 }
 
-// The same search xshade's preprocessor makes, so that both lanes read the same files.
-std::optional<spirv::IncludedFile> read_include(const std::vector<std::filesystem::path>& dirs,
-                                                std::string_view name, std::string_view includer, bool angled) {
-  const std::optional<std::filesystem::path> found = hlsl::find_include(name, std::filesystem::path(includer), angled, dirs);
-  if (!found) return std::nullopt;
-  std::ifstream file(*found, std::ios::binary);
-  if (!file) return std::nullopt;
-  std::stringstream text;
-  text << file.rdbuf();
-  return spirv::IncludedFile{found->string(), text.str()};
-}
-
 Result<ShaderStageSource> vk_hlsl_stage(const hlsl::Module& module, spirv::Stage stage, const std::string& entry,
                                         const std::vector<std::filesystem::path>& include_dirs) {
   const std::string& name = module.sources.name(module.main_file);
@@ -42,9 +27,7 @@ Result<ShaderStageSource> vk_hlsl_stage(const hlsl::Module& module, spirv::Stage
   request.stage = stage;
   request.entry_point = entry;
   for (const hlsl::MacroDefinition& macro : module.macros) request.defines.emplace_back(macro.name, macro.value);
-  request.resolve_include = [&include_dirs](std::string_view file, std::string_view includer, bool angled) {
-    return read_include(include_dirs, file, includer, angled);
-  };
+  request.resolve_include = spirv::include_resolver(include_dirs);
   auto compiled = spirv::compile_hlsl(request);
   if (!compiled) return fail(compiled.error());
 

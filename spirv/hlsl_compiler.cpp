@@ -5,6 +5,10 @@
 #include <glslang/Public/ShaderLang.h>
 #include <glslang/SPIRV/GlslangToSpv.h>
 
+#include <fstream>
+#include <sstream>
+
+#include "hlsl_like/preprocessor.h"
 #include "hlsl_like/reflection.h"
 #include "spirv/glslang_log.h"
 #include "spirv/glslang_process.h"
@@ -160,6 +164,19 @@ Result<HlslModule> compile_hlsl(const HlslStage& request) {
   glslang::GlslangToSpv(*program.getIntermediate(language), result.module.words, &logger, &options);
   if (auto valid = validate(result.module.words, request.source_name); !valid) return fail(valid.error());
   return result;
+}
+
+IncludeResolver include_resolver(std::vector<std::filesystem::path> include_dirs) {
+  return [dirs = std::move(include_dirs)](std::string_view name, std::string_view includer,
+                                          bool angled) -> std::optional<IncludedFile> {
+    const std::optional<std::filesystem::path> found = hlsl::find_include(name, std::filesystem::path(includer), angled, dirs);
+    if (!found) return std::nullopt;
+    std::ifstream file(*found, std::ios::binary);
+    if (!file) return std::nullopt;
+    std::stringstream text;
+    text << file.rdbuf();
+    return IncludedFile{found->string(), text.str()};
+  };
 }
 
 }  // namespace xshade::spirv

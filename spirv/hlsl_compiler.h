@@ -33,6 +33,10 @@ struct IncludedFile {
 using IncludeResolver =
     std::function<std::optional<IncludedFile>(std::string_view name, std::string_view includer, bool angled)>;
 
+// The resolver that searches as xshade's preprocessor does (hlsl::find_include: the including
+// file's folder, then `include_dirs` in order), so that both front ends read the same files.
+IncludeResolver include_resolver(std::vector<std::filesystem::path> include_dirs);
+
 struct HlslStage {
   std::string_view source;
   std::string source_name;

@@ -1,5 +1,6 @@
-// Compile throughput: xshade's front end and GLSL emission, the full path to SPIR-V, and glslang
-// compiling the same sources through its own HLSL front end, in one process.
+// Compile throughput over the shader library: xshade's front end and GLSL emission, the full
+// path to SPIR-V, and glslang compiling the same sources through its own HLSL front end, in one
+// process.
 //
 //   build/tests/bench/compile_benchmark [--benchmark_repetitions=5]
 //
@@ -20,23 +21,38 @@
 
 namespace {
 
+// One variant of one shader of the library: what `xshade run` compiles for a scene.
 struct Source {
-  std::string name;
+  std::string name;  // the file's path, so that its includes resolve as they do in a run
   std::string text;
+  xshade::hlsl::CompileOptions options;
 };
 
-// Every .hlsl file of the benchmark's inputs: the conformance shaders and a lit material.
+const std::filesystem::path kLibrary = XSHADE_SHADER_LIBRARY;
+
+// The shader library's variants: each material with its seed forms and with the alternatives
+// and guards on, and each pass of the depth of field.
 const std::vector<Source>& sources() {
   static const std::vector<Source> list = [] {
-    std::vector<Source> found;
-    for (const char* dir : {XSHADE_BENCH_DIR, XSHADE_CONFORMANCE_DIR})
-      for (const auto& entry : std::filesystem::directory_iterator(dir))
-        if (entry.path().extension() == ".hlsl") {
-          std::ifstream file(entry.path());
-          std::stringstream text;
-          text << file.rdbuf();
-          found.push_back({entry.path().filename().string(), text.str()});
-        }
+    auto read = [](const std::string& library_path, std::vector<std::string> keywords, std::string entry = {}) {
+      const std::filesystem::path path = kLibrary / library_path;
+      std::ifstream file(path);
+      std::stringstream text;
+      text << file.rdbuf();
+      xshade::hlsl::CompileOptions options;
+      options.include_dirs = {kLibrary};
+      options.keywords = std::move(keywords);
+      options.fragment_only_entry = std::move(entry);
+      return Source{path.string(), text.str(), std::move(options)};
+    };
+    std::vector<Source> found{
+        read("materials/standard_pbr.hlsl", {}),
+        read("materials/standard_pbr.hlsl", {"_D_GGX_LAGRANGE", "_G_SMITH_CORRELATED", "_F_EXACT", "_GUARDED"}),
+        read("materials/toon.hlsl", {}),
+        read("materials/toon.hlsl", {"_SHADOW_TEX", "_GUARDED"}),
+    };
+    for (const char* entry : {"frag_coc", "frag_prefilter", "frag_bokeh", "frag_postfilter", "frag_combine"})
+      found.push_back(read("post/depth_of_field.hlsl", {"_KERNEL_LARGE"}, entry));
     return found;
   }();
   return list;
@@ -57,7 +73,7 @@ void run_warm(benchmark::State& state, const Pass& pass) {
 void FrontEndAndEmission(benchmark::State& state) {
   run_warm(state, [] {
     for (const Source& source : sources()) {
-      auto module = xshade::hlsl::compile_text(source.name, source.text, {});
+      auto module = xshade::hlsl::compile_text(source.name, source.text, source.options);
       auto vk = xshade::glsl::emit(*module, {xshade::glsl::Flavour::Vk});
       benchmark::DoNotOptimize(vk);
     }
@@ -67,7 +83,7 @@ void FrontEndAndEmission(benchmark::State& state) {
 void FullPathToSpirv(benchmark::State& state) {
   run_warm(state, [] {
     for (const Source& source : sources()) {
-      auto module = xshade::hlsl::compile_text(source.name, source.text, {});
+      auto module = xshade::hlsl::compile_text(source.name, source.text, source.options);
       auto vk = xshade::glsl::emit(*module, {xshade::glsl::Flavour::Vk});
       if (!vk) continue;
       if (vk->vertex) benchmark::DoNotOptimize(xshade::spirv::compile_vulkan_glsl(vk->vertex->text, xshade::spirv::Stage::Vertex, source.name));
@@ -85,7 +101,7 @@ void GlslangGlslToSpirv(benchmark::State& state) {
   };
   std::vector<EmittedStage> stages;
   for (const Source& source : sources()) {
-    auto module = xshade::hlsl::compile_text(source.name, source.text, {});
+    auto module = xshade::hlsl::compile_text(source.name, source.text, source.options);
     auto vk = xshade::glsl::emit(*module, {xshade::glsl::Flavour::Vk});
     if (!vk) continue;
     if (vk->vertex) stages.push_back({vk->vertex->text, xshade::spirv::Stage::Vertex, &source.name});
@@ -106,17 +122,18 @@ void GlslangHlslToSpirv(benchmark::State& state) {
   };
   std::vector<Job> jobs;
   for (const Source& source : sources()) {
-    auto module = xshade::hlsl::compile_text(source.name, source.text, {});
+    auto module = xshade::hlsl::compile_text(source.name, source.text, source.options);
     Job job{&source, module->reflection.vertex_entry, module->reflection.fragment_entry, {}};
     for (const auto& macro : module->macros) job.defines.emplace_back(macro.name, macro.value);
     jobs.push_back(std::move(job));
   }
+  const xshade::spirv::IncludeResolver resolve = xshade::spirv::include_resolver({kLibrary});
   run_warm(state, [&] {
     for (const Job& job : jobs) {
       for (const auto& [entry, stage] : {std::pair{job.vertex, xshade::spirv::Stage::Vertex},
                                          std::pair{job.fragment, xshade::spirv::Stage::Fragment}}) {
         if (entry.empty()) continue;
-        xshade::spirv::HlslStage request{job.source->text, job.source->name, stage, entry, job.defines, {}, {}};
+        xshade::spirv::HlslStage request{job.source->text, job.source->name, stage, entry, job.defines, resolve, {}};
         benchmark::DoNotOptimize(xshade::spirv::compile_hlsl(request));
       }
     }
