@@ -28,6 +28,13 @@ Result<ShaderStageSource> vk_hlsl_stage(const hlsl::Module& module, spirv::Stage
   request.entry_point = entry;
   for (const hlsl::MacroDefinition& macro : module.macros) request.defines.emplace_back(macro.name, macro.value);
   request.resolve_include = spirv::include_resolver(include_dirs);
+  // Resources without a register are numbered once for the whole program, by xshade's reflection
+  // (glslang alone would number each stage on its own; see HlslStage::bindings).
+  const hlsl::Reflection& declared = module.reflection;
+  for (const hlsl::ConstantBuffer& buffer : declared.constant_buffers)
+    request.bindings[buffer.name == hlsl::kGlobalsBufferName ? "$Global" : buffer.name] = buffer.binding;
+  for (const hlsl::TextureResource& texture : declared.textures) request.bindings[texture.name] = texture.binding;
+  for (const hlsl::SamplerResource& sampler : declared.samplers) request.bindings[sampler.name] = sampler.binding;
   auto compiled = spirv::compile_hlsl(request);
   if (!compiled) return fail(compiled.error());
 

@@ -54,7 +54,8 @@ EShLanguage to_glslang(Stage stage) { return stage == Stage::Vertex ? EShLangVer
 // declaration order, and a mesh would feed the wrong attributes.
 class SemanticIoResolver final : public glslang::TDefaultIoResolverBase {
  public:
-  explicit SemanticIoResolver(const glslang::TIntermediate& intermediate) : TDefaultIoResolverBase(intermediate) {}
+  SemanticIoResolver(const glslang::TIntermediate& intermediate, const std::map<std::string, uint32_t>& bindings)
+      : TDefaultIoResolverBase(intermediate), bindings_(bindings) {}
 
   bool validateBinding(EShLanguage, glslang::TVarEntryInfo&) override { return true; }
 
@@ -74,6 +75,12 @@ class SemanticIoResolver final : public glslang::TDefaultIoResolverBase {
       const int base = getBaseBinding(stage, resource, static_cast<unsigned>(set));
       if (type.getQualifier().hasBinding())
         return entry.newBinding = reserveSlot(set, base + int(type.getQualifier().layoutBinding));
+      // A constant buffer is known by its block's name, any other resource by its variable's.
+      const std::string name = type.getBasicType() == glslang::EbtBlock ? type.getTypeName().c_str()
+                                                                        : entry.symbol->getName().c_str();
+      // Only live ones: glslang leaves a resource the stage never reads out of its module.
+      if (auto given = bindings_.find(name); entry.live && given != bindings_.end())
+        return entry.newBinding = reserveSlot(set, int(given->second));
       if (entry.live && doAutoBindingMapping()) return entry.newBinding = getFreeSlot(set, base);
     }
     return entry.newBinding = -1;
@@ -91,6 +98,9 @@ class SemanticIoResolver final : public glslang::TDefaultIoResolverBase {
     }
     return TDefaultIoResolverBase::resolveInOutLocation(stage, entry);
   }
+
+ private:
+  const std::map<std::string, uint32_t>& bindings_;
 };
 
 std::vector<HlslResource> reflect(glslang::TProgram& program) {
@@ -150,7 +160,7 @@ Result<HlslModule> compile_hlsl(const HlslStage& request) {
   }
   glslang::TProgram program;
   program.addShader(&shader);
-  SemanticIoResolver resolver(*shader.getIntermediate());
+  SemanticIoResolver resolver(*shader.getIntermediate(), request.bindings);
   if (!program.link(messages) || !program.mapIO(&resolver)) {
     return fail(Error{"HLSL link failed (glslang)", {request.source_name, 0, 0},
                       parse_glslang_log(program.getInfoLog())});

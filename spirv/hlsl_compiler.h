@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <functional>
+#include <map>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -45,6 +46,12 @@ struct HlslStage {
   std::vector<std::pair<std::string, std::string>> defines;
   IncludeResolver resolve_include;  // may be empty: then any #include fails
   BindingShifts shifts;
+  // Bindings for resources declared without a register, by name ("$Global" for the globals'
+  // buffer): the numbers the program's other stage and the other lanes use. glslang would
+  // number each stage on its own, so a buffer only the vertex stage reads could take, in the
+  // fragment stage, the number another buffer has there, and one program would bind one number
+  // twice. Resources not named here get glslang's lowest free slot.
+  std::map<std::string, uint32_t> bindings;
 };
 
 // A resource of the compiled module as glslang reflects it.

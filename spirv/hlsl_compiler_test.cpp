@@ -23,7 +23,7 @@ const HlslResource* find(const HlslModule& module, std::string_view name) {
 }
 
 TEST(HlslCompiler, BindingsFollowRegistersAndShifts) {
-  HlslStage stage{kShader, "material.hlsl", Stage::Fragment, "frag", {}, {}, {}};
+  HlslStage stage{kShader, "material.hlsl", Stage::Fragment, "frag", {}, {}, {}, {}};
   auto module = compile_hlsl(stage);
   ASSERT_TRUE(module) << module.error().to_string();
   EXPECT_EQ(module->module.words[0], 0x07230203u);
@@ -63,10 +63,35 @@ TEST(HlslCompiler, DefinesAndIncludesReachGlslang) {
 }
 
 TEST(HlslCompiler, MissingIncludeAndEntryPointAreErrors) {
-  HlslStage stage{"#include \"nowhere.hlsl\"\n", "main.hlsl", Stage::Fragment, "frag", {}, {}, {}};
+  HlslStage stage{"#include \"nowhere.hlsl\"\n", "main.hlsl", Stage::Fragment, "frag", {}, {}, {}, {}};
   EXPECT_FALSE(compile_hlsl(stage));
-  HlslStage no_entry{"float4 other() : SV_Target { return 0; }\n", "main.hlsl", Stage::Fragment, "frag", {}, {}, {}};
+  HlslStage no_entry{"float4 other() : SV_Target { return 0; }\n", "main.hlsl", Stage::Fragment, "frag", {}, {}, {}, {}};
   EXPECT_FALSE(compile_hlsl(no_entry));
+}
+
+
+// glslang numbers resources without a register per stage: the fragment stage below does not read
+// VertexOnly, so alone it would give $Global the first free number, which VertexOnly has in the
+// vertex stage. The program-wide numbers in HlslStage::bindings keep the two stages apart.
+TEST(HlslCompiler, ProgramWideBindingsOverrideGlslangsPerStageNumbering) {
+  constexpr const char* kTwoStages = R"(
+cbuffer VertexOnly { float4x4 _Transform; };
+float4 _Tint;
+float4 vert(float3 p : POSITION) : SV_Position { return mul(_Transform, float4(p, 1)); }
+float4 frag() : SV_Target { return _Tint; }
+)";
+  HlslStage alone{kTwoStages, "two.hlsl", Stage::Fragment, "frag", {}, {}, {}, {}};
+  auto per_stage = compile_hlsl(alone);
+  ASSERT_TRUE(per_stage) << per_stage.error().to_string();
+  ASSERT_NE(find(*per_stage, "$Global"), nullptr);
+  EXPECT_EQ(find(*per_stage, "$Global")->binding, 0u);
+
+  HlslStage program_wide = alone;
+  program_wide.bindings = {{"VertexOnly", 0}, {"$Global", 1}};
+  auto numbered = compile_hlsl(program_wide);
+  ASSERT_TRUE(numbered) << numbered.error().to_string();
+  ASSERT_NE(find(*numbered, "$Global"), nullptr);
+  EXPECT_EQ(find(*numbered, "$Global")->binding, 1u);
 }
 
 }  // namespace

@@ -48,7 +48,7 @@ TEST(ReflectionAgreement, XshadeAndGlslangBindEveryResourceAlike) {
     ASSERT_TRUE(module->ok()) << module->diagnostics.render_all();
     const hlsl::Reflection& ours = module->reflection;
 
-    HlslStage stage{test.source, std::string(test.name) + ".hlsl", Stage::Fragment, "frag", {}, {}, {}};
+    HlslStage stage{test.source, std::string(test.name) + ".hlsl", Stage::Fragment, "frag", {}, {}, {}, {}};
     for (const auto& macro : module->macros) stage.defines.emplace_back(macro.name, macro.value);
     auto theirs = compile_hlsl(stage);
     ASSERT_TRUE(theirs) << theirs.error().to_string();

@@ -133,7 +133,7 @@ void GlslangHlslToSpirv(benchmark::State& state) {
       for (const auto& [entry, stage] : {std::pair{job.vertex, xshade::spirv::Stage::Vertex},
                                          std::pair{job.fragment, xshade::spirv::Stage::Fragment}}) {
         if (entry.empty()) continue;
-        xshade::spirv::HlslStage request{job.source->text, job.source->name, stage, entry, job.defines, resolve, {}};
+        xshade::spirv::HlslStage request{job.source->text, job.source->name, stage, entry, job.defines, resolve, {}, {}};
         benchmark::DoNotOptimize(xshade::spirv::compile_hlsl(request));
       }
     }

@@ -4,7 +4,7 @@
 #ifndef XSHADE_SCENE_INPUTS_HLSL
 #define XSHADE_SCENE_INPUTS_HLSL
 
-cbuffer PerFrame : register(b0) {
+cbuffer PerFrame {
   float4x4 _WorldToClip;
   float4 _CameraPosition;   // xyz: the camera in world space
   float4 _LightDirection;   // xyz: unit vector from the surface toward the (directional) light
@@ -14,7 +14,7 @@ cbuffer PerFrame : register(b0) {
   float4 _EnvironmentSH[9];
 };
 
-cbuffer PerObject : register(b1) {
+cbuffer PerObject {
   float4x4 _ObjectToWorld;
   float4x4 _NormalToWorld;  // inverse transpose of _ObjectToWorld, so that scaled normals stay normal
 };
