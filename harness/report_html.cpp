@@ -37,11 +37,11 @@ dl.facts { display: grid; grid-template-columns: max-content auto; gap: 2px 12px
 dl.facts dt { color: var(--muted); } dl.facts dd { margin: 0; }
 .badge { display: inline-block; padding: 1px 8px; border-radius: 10px; font-size: 12px; font-weight: 700;
          vertical-align: middle; border: 1px solid currentColor; }
-.v-pass .verdict, .badge.v-pass { color: var(--pass); background: var(--pass-bg); }
-.v-fail .verdict, .badge.v-fail { color: var(--fail); background: var(--fail-bg); }
-.v-error .verdict, .badge.v-error { color: var(--error); background: var(--error-bg); }
-.v-crash .verdict, .badge.v-crash { color: var(--crash); background: var(--crash-bg); }
-.v-skipped .verdict, .badge.v-skipped { color: var(--skipped); background: var(--skipped-bg); }
+.verdict.v-pass, .badge.v-pass { color: var(--pass); background: var(--pass-bg); }
+.verdict.v-fail, .badge.v-fail { color: var(--fail); background: var(--fail-bg); }
+.verdict.v-error, .badge.v-error { color: var(--error); background: var(--error-bg); }
+.verdict.v-crash, .badge.v-crash { color: var(--crash); background: var(--crash-bg); }
+.verdict.v-skipped, .badge.v-skipped { color: var(--skipped); background: var(--skipped-bg); }
 .verdict { font-weight: 700; }
 .counts .badge { margin-right: 4px; }
 table { border-collapse: collapse; margin: 0 0 12px; }
@@ -56,8 +56,8 @@ td.cell.v-pass { background: var(--pass-bg); } td.cell.v-fail { background: var(
 td.cell.v-error { background: var(--error-bg); } td.cell.v-crash { background: var(--crash-bg); }
 td.cell.v-skipped, td.cell.absent { background: var(--skipped-bg); color: var(--muted); }
 tr.problem td.scene { border-left: 6px solid var(--fail); }
-tr.problem.v-error td.scene { border-left-color: var(--error); }
-tr.problem.v-crash td.scene { border-left-color: var(--crash); }
+tr.problem.row-error td.scene { border-left-color: var(--error); }
+tr.problem.row-crash td.scene { border-left-color: var(--crash); }
 td.scene a { font-weight: 600; }
 tr.separator td { background: #fff; border-left: none; border-right: none; padding: 14px 0 4px;
                   color: var(--muted); font-weight: 600; }
@@ -88,6 +88,10 @@ std::string verdict_word(Verdict verdict) {
   std::string word(verdict_name(verdict));
   for (char& c : word) c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
   return word;
+}
+
+std::string verdict_span(Verdict verdict) {
+  return fmt::format(R"(<span class="verdict {}">{}</span>)", verdict_class(verdict), verdict_word(verdict));
 }
 
 std::string badge(Verdict verdict) {
@@ -149,12 +153,12 @@ void index_row(std::string& out, const SceneResult& scene, const std::string& pa
                const std::vector<std::string>& lanes) {
   auto to = std::back_inserter(out);
   const std::string href = escape_attribute(url_path(page));
-  fmt::format_to(to, "<tr class=\"{}{}\">\n", is_problem(scene.verdict) ? "problem " : "", verdict_class(scene.verdict));
+  fmt::format_to(to, "<tr class=\"{}row-{}\">\n", is_problem(scene.verdict) ? "problem " : "", verdict_name(scene.verdict));
   fmt::format_to(to, "<td class=\"scene\"><a href=\"{}\">{}</a>", href, escape_text(scene.scene));
   if (!scene.description.empty())
     fmt::format_to(to, "<span class=\"description detail\">{}</span>", escape_text(scene.description));
-  fmt::format_to(to, "</td>\n<td class=\"cell {0}\"><a href=\"{1}\"><span class=\"verdict\">{2}</span></a></td>\n",
-                 verdict_class(scene.verdict), href, verdict_word(scene.verdict));
+  fmt::format_to(to, "</td>\n<td class=\"cell {0}\"><a href=\"{1}\">{2}</a></td>\n",
+                 verdict_class(scene.verdict), href, verdict_span(scene.verdict));
   if (scene.lanes.empty() && !scene.message.empty()) {
     // The scene stopped before any lane ran: one cell across the lanes says why.
     fmt::format_to(to, "<td class=\"cell {}\" colspan=\"{}\"><a href=\"{}\"><span class=\"detail\">{}</span></a></td>\n",
@@ -168,8 +172,8 @@ void index_row(std::string& out, const SceneResult& scene, const std::string& pa
         out += "<td class=\"cell absent\"><span>—</span></td>\n";
         continue;
       }
-      fmt::format_to(to, "<td class=\"cell {}\"><a href=\"{}#{}\"><span class=\"verdict\">{}</span>",
-                     verdict_class(lane->verdict), href, lane_anchor(lane->lane), verdict_word(lane->verdict));
+      fmt::format_to(to, "<td class=\"cell {}\"><a href=\"{}#{}\">{}",
+                     verdict_class(lane->verdict), href, lane_anchor(lane->lane), verdict_span(lane->verdict));
       if (is_problem(lane->verdict))
         fmt::format_to(to, "<span class=\"detail\">{}</span>", escape_text(first_line(first_failure(*lane))));
       out += "</a></td>\n";
@@ -178,8 +182,8 @@ void index_row(std::string& out, const SceneResult& scene, const std::string& pa
   }
   out += "<td class=\"cross\">";
   for (const CrossLaneResult& pair : scene.cross_lane) {
-    fmt::format_to(to, "<div class=\"pair {}\"><a href=\"{}#cross-lane\">{}</a> <span class=\"verdict\">{}</span>",
-                   verdict_class(pair.verdict), href, escape_text(pair_name(pair)), verdict_word(pair.verdict));
+    fmt::format_to(to, "<div class=\"pair\"><a href=\"{}#cross-lane\">{}</a> {}",
+                   href, escape_text(pair_name(pair)), verdict_span(pair.verdict));
     if (is_problem(pair.verdict))
       fmt::format_to(to, "<span class=\"detail\">{}</span>", escape_text(describe_metrics(pair.metrics)));
     out += "</div>";
@@ -243,9 +247,9 @@ void lane_section(std::string& out, const LaneResult& lane) {
   } else {
     out += "<table class=\"layers\">\n<tr><th>layer</th><th>verdict</th><th>detail</th></tr>\n";
     for (const LayerResult& layer : lane.layers)
-      fmt::format_to(to, "<tr class=\"{}\"><td>{}</td><td class=\"{}\"><span class=\"verdict\">{}</span></td><td>{}</td></tr>\n",
-                     verdict_class(layer.verdict), escape_text(layer.layer), verdict_class(layer.verdict),
-                     verdict_word(layer.verdict), escape_text(layer.detail));
+      fmt::format_to(to, "<tr><td>{}</td><td class=\"cell {}\">{}</td><td>{}</td></tr>\n",
+                     escape_text(layer.layer), verdict_class(layer.verdict), verdict_span(layer.verdict),
+                     escape_text(layer.detail));
     out += "</table>\n";
   }
   out += "</div>\n<div><h3>Against the golden</h3>\n";
@@ -284,10 +288,10 @@ void cross_lane_section(std::string& out, const SceneResult& scene) {
   for (const CrossLaneResult& pair : scene.cross_lane) {
     const ImageMetrics& m = pair.metrics;
     fmt::format_to(to,
-                   "<tr><td>{}</td><td class=\"{}\"><span class=\"verdict\">{}</span></td>"
+                   "<tr><td>{}</td><td class=\"cell {}\">{}</td>"
                    "<td class=\"num\">{:.6g} at ({}, {})</td><td class=\"num\">{:.6g}</td><td class=\"num\">{:.6g}</td>"
                    "<td class=\"num\">{}</td><td class=\"num\">{} ({:.4g}%)</td></tr>\n",
-                   escape_text(pair_name(pair)), verdict_class(pair.verdict), verdict_word(pair.verdict),
+                   escape_text(pair_name(pair)), verdict_class(pair.verdict), verdict_span(pair.verdict),
                    m.max_difference, m.max_x, m.max_y, m.mean, m.rmse, escape_text(describe_psnr(m.psnr)),
                    m.failing_pixels, m.failing_fraction * 100.0);
   }
@@ -380,10 +384,10 @@ std::string scene_html(const SceneResult& scene) {
     out += "<section>\n<table>\n<tr><th>lane</th><th>verdict</th><th>first failure</th><th>time</th></tr>\n";
     for (const LaneResult& lane : scene.lanes)
       fmt::format_to(to,
-                     "<tr><td><a href=\"#{}\">{}</a></td><td class=\"{}\"><span class=\"verdict\">{}</span></td>"
+                     "<tr><td><a href=\"#{}\">{}</a></td><td class=\"cell {}\">{}</td>"
                      "<td>{}</td><td class=\"num\">{:.3f} s</td></tr>\n",
                      lane_anchor(lane.lane), escape_text(lane.lane), verdict_class(lane.verdict),
-                     verdict_word(lane.verdict), escape_text(first_line(first_failure(lane))), lane.seconds);
+                     verdict_span(lane.verdict), escape_text(first_line(first_failure(lane))), lane.seconds);
     out += "</table>\n</section>\n";
   }
   for (const LaneResult& lane : scene.lanes) lane_section(out, lane);
