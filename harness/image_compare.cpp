@@ -73,7 +73,7 @@ float srgb_to_linear(float encoded) {
 }
 
 // The heat map's colour for each difference 0..255: OpenImageIO maps a 256-pixel ramp once, so
-// the image itself is a table look-up per pixel.
+// the image itself is a table look-up per pixel. Its maps are matplotlib's, in sRGB.
 std::array<glm::vec4, 256> heat_palette(uint32_t tolerance) {
   OIIO::ImageBuf ramp(OIIO::ImageSpec(256, 1, 1, OIIO::TypeDesc::FLOAT));
   for (int steps = 0; steps < 256; ++steps) {
@@ -84,7 +84,7 @@ std::array<glm::vec4, 256> heat_palette(uint32_t tolerance) {
   std::array<glm::vec4, 256> palette{};
   for (int steps = 1; steps < 256; ++steps) {
     float rgb[3] = {0.0f, 0.0f, 0.0f};
-    colours.getpixel(steps, 0, rgb, 3);  // stays black should the map be missing
+    colours.getpixel(steps, 0, rgb, 3);  // "inferno" is built in; the heat-map tests see it
     palette[size_t(steps)] = {srgb_to_linear(rgb[0]), srgb_to_linear(rgb[1]), srgb_to_linear(rgb[2]), 1.0f};
   }
   palette[0] = {0.0f, 0.0f, 0.0f, 1.0f};  // inferno's first colour is nearly, not quite, black
