@@ -31,10 +31,25 @@ struct RunOptions {
   std::filesystem::path shaders_dir = XSHADE_SOURCE_DIR "/hlsl_like/shaders";
   std::filesystem::path cache_dir;  // empty: $XSHADE_CACHE_DIR, else the user's cache folder
   bool no_cache = false;
+  std::filesystem::path golden_dir = XSHADE_SOURCE_DIR "/golden";
+  std::string shard;         // "i/N": every N-th scene from the i-th, in name order
   bool plan_only = false;
   bool pass_images = false;  // also write each pass's output (REPORT/SCENE/passes/PASS.LANE.exr)
+  std::string command_line;  // for the reports
 };
 int run_run(const RunOptions& options);
+
+struct BlessOptions {
+  std::string scene;
+  std::string lane;  // empty: the common golden, from lanes that agree
+  std::string reason;
+  std::filesystem::path scenes_dir = XSHADE_SOURCE_DIR "/harness/scenes";
+  std::filesystem::path shaders_dir = XSHADE_SOURCE_DIR "/hlsl_like/shaders";
+  std::filesystem::path golden_dir = XSHADE_SOURCE_DIR "/golden";
+  std::filesystem::path cache_dir;
+  std::filesystem::path report_dir = "bless-report";  // where the rendered images go
+};
+int run_bless(const BlessOptions& options);
 
 struct CompileOptions {
   std::filesystem::path file;

@@ -41,11 +41,36 @@ int main(int argc, char** argv) {
                   "Compiled-shader cache (default: $XSHADE_CACHE_DIR, else $XDG_CACHE_HOME/xshade or ~/.cache/xshade)")
       ->type_name("DIR");
   run->add_flag("--no-cache", run_options.no_cache, "Compile every shader, read and write no cache");
+  run->add_option("--golden", run_options.golden_dir, "Folder of golden images and MANIFEST.toml")
+      ->type_name("DIR")
+      ->capture_default_str();
+  run->add_option("--shard", run_options.shard, "Run every N-th scene from the i-th (name order), for CI matrices")
+      ->type_name("i/N");
   run->add_flag("--pass-images", run_options.pass_images,
                 "Also write every pass's own output as REPORT/SCENE/passes/PASS.LANE.exr, to find where lanes part");
   run->add_flag("--plan", run_options.plan_only,
                 "Print each scene's plan (variants to compile or found in the cache, passes, what is left out) "
                 "and render nothing");
+
+  BlessOptions bless_options;
+  CLI::App* bless = app.add_subcommand(
+      "bless", "Render a scene and accept it as its golden (the common one from lanes that agree, or one lane's)");
+  bless->add_option("scene", bless_options.scene, "Scene name (in --scenes) or .toml file")->required()->type_name("SCENE");
+  bless->add_option("--lane", bless_options.lane, "Bless this lane's own golden (needs a reason it differs)")
+      ->check(CLI::IsMember({"gl", "vk", "vk-hlsl"}))
+      ->type_name("LANE");
+  bless->add_option("--reason", bless_options.reason, "Why this image is right (recorded in golden/MANIFEST.toml)")
+      ->required()
+      ->type_name("TEXT");
+  bless->add_option("--scenes", bless_options.scenes_dir, "Folder of scene files")->type_name("DIR")->capture_default_str();
+  bless->add_option("--shaders", bless_options.shaders_dir, "The shader library")->type_name("DIR")->capture_default_str();
+  bless->add_option("--golden", bless_options.golden_dir, "Folder of golden images and MANIFEST.toml")
+      ->type_name("DIR")
+      ->capture_default_str();
+  bless->add_option("--cache", bless_options.cache_dir, "Compiled-shader cache (as for run)")->type_name("DIR");
+  bless->add_option("--report", bless_options.report_dir, "Folder for the rendered images")
+      ->type_name("DIR")
+      ->capture_default_str();
 
   CompileOptions compile_options;
   CLI::App* compile = app.add_subcommand("compile", "Compile one shader to GLSL (gl, vk), SPIR-V (spirv, vk-hlsl) or reflection");
@@ -81,7 +106,11 @@ int main(int argc, char** argv) {
     return code == 0 ? kPass : kBadInput;
   }
   if (*info) return run_info(info_selection);
-  if (*run) return run_run(run_options);
+  if (*run) {
+    for (int i = 0; i < argc; ++i) run_options.command_line += (i ? " " : "") + std::string(argv[i]);
+    return run_run(run_options);
+  }
+  if (*bless) return run_bless(bless_options);
   if (*compile) return run_compile(compile_options);
   if (*eval) return run_eval(eval_options);
   return kBadInput;
