@@ -1,33 +1,14 @@
 // With one lane's driver missing, that lane says which Debian package to install, and the other
 // lane still runs. Runs the real `xshade` binary with its environment changed.
-#include <sys/wait.h>
-
-#include <array>
-#include <cstdio>
 #include <filesystem>
 #include <string>
 
 #include <gtest/gtest.h>
 
+#include "tests/support/xshade_process.h"
+
 namespace xshade::tests {
 namespace {
-
-struct Outcome {
-  int exit_code = -1;
-  std::string output;
-};
-
-Outcome run_xshade(const std::string& environment, const std::string& arguments) {
-  const std::string command = environment + " '" XSHADE_BINARY "' " + arguments + " 2>&1";
-  Outcome outcome;
-  FILE* pipe = popen(command.c_str(), "r");
-  if (!pipe) return outcome;
-  std::array<char, 4096> buffer;
-  while (size_t n = fread(buffer.data(), 1, buffer.size(), pipe)) outcome.output.append(buffer.data(), n);
-  const int status = pclose(pipe);
-  outcome.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return outcome;
-}
 
 constexpr const char* kNoOsmesa = "XSHADE_OSMESA_LIBRARY=/nonexistent/libOSMesa.so.8";
 // Both spellings: the loader reads VK_DRIVER_FILES, older loaders VK_ICD_FILENAMES.

@@ -1,0 +1,110 @@
+// The gate end to end, through the real `xshade run` on copies of a fixed scene, its golden and
+// the shader library in a temporary folder: what a user sees when a shader changes, a golden is
+// missing or corrupt, or a scene file is broken.
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+#include <gtest/gtest.h>
+
+#include "tests/support/xshade_process.h"
+
+namespace xshade::tests {
+namespace {
+
+namespace fs = std::filesystem;
+
+const fs::path kSource = XSHADE_SOURCE_DIR;
+// The smallest fixed scene (256 x 256), on the gl lane alone: enough to exercise the gate.
+constexpr const char* kScene = "toon_shadow_texture";
+
+std::string read(const fs::path& path) {
+  std::ifstream file(path, std::ios::binary);
+  std::stringstream text;
+  text << file.rdbuf();
+  return text.str();
+}
+
+class Gating : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    root_ = fs::temp_directory_path() /
+            ("xshade_gating_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
+    fs::remove_all(root_);
+    fs::create_directories(root_ / "scenes");
+    fs::create_directories(root_ / "golden");
+    fs::copy_file(kSource / "harness/scenes" / (std::string(kScene) + ".toml"), root_ / "scenes" / (std::string(kScene) + ".toml"));
+    fs::copy_file(kSource / "golden" / (std::string(kScene) + ".png"), root_ / "golden" / (std::string(kScene) + ".png"));
+    fs::copy(kSource / "hlsl_like/shaders", root_ / "shaders", fs::copy_options::recursive);
+  }
+  void TearDown() override { fs::remove_all(root_); }
+
+  Outcome run() {
+    return run_xshade("", "run --lane gl --no-cache --scenes '" + (root_ / "scenes").string() + "' --golden '" +
+                              (root_ / "golden").string() + "' --shaders '" + (root_ / "shaders").string() +
+                              "' --report '" + (root_ / "report").string() + "'");
+  }
+
+  fs::path root_;
+};
+
+TEST_F(Gating, AnUnchangedSceneMatchesItsGolden) {
+  Outcome outcome = run();
+  EXPECT_EQ(outcome.exit_code, 0) << outcome.output;
+  EXPECT_TRUE(fs::exists(root_ / "report/index.html"));
+  EXPECT_TRUE(fs::exists(root_ / "report/junit.xml"));
+  EXPECT_TRUE(fs::exists(root_ / "report/results.json"));
+}
+
+TEST_F(Gating, AVisiblyChangedShaderFailsWithItsDiffInTheReport) {
+  const fs::path toon = root_ / "shaders/materials/toon.hlsl";
+  std::string text = read(toon);
+  const std::string output = "return fixed4(diffuse + specular + rim, albedo.a);";
+  ASSERT_NE(text.find(output), std::string::npos);
+  text.replace(text.find(output), output.size(), "return fixed4((diffuse + specular + rim) * 0.9, albedo.a);");
+  std::ofstream(toon, std::ios::binary | std::ios::trunc) << text;
+
+  Outcome outcome = run();
+  EXPECT_EQ(outcome.exit_code, 1) << outcome.output;
+  EXPECT_NE(outcome.output.find("per_pixel"), std::string::npos) << outcome.output;
+  EXPECT_TRUE(fs::exists(root_ / "report" / kScene / "gl.diff.png"));
+  const std::string page = read(root_ / "report" / (std::string(kScene) + ".html"));
+  EXPECT_NE(page.find("gl.diff.png"), std::string::npos);
+}
+
+TEST_F(Gating, AMissingGoldenFailsWithTheBlessCommand) {
+  fs::remove(root_ / "golden" / (std::string(kScene) + ".png"));
+  Outcome outcome = run();
+  EXPECT_EQ(outcome.exit_code, 1) << outcome.output;
+  EXPECT_NE(outcome.output.find("xshade bless toon_shadow_texture --reason \"...\""), std::string::npos) << outcome.output;
+}
+
+TEST_F(Gating, ACorruptGoldenIsBadInputNamingTheFile) {
+  std::ofstream(root_ / "golden" / (std::string(kScene) + ".png"), std::ios::trunc) << "not a png";
+  Outcome outcome = run();
+  EXPECT_EQ(outcome.exit_code, 2) << outcome.output;
+  EXPECT_NE(outcome.output.find((root_ / "golden" / (std::string(kScene) + ".png")).string()), std::string::npos)
+      << outcome.output;
+}
+
+TEST_F(Gating, AMalformedSceneIsBadInputWhileTheOtherScenesRun) {
+  std::ofstream(root_ / "scenes/broken.toml") << "description = \"broken\"\nsize = [64, 64\n";
+  Outcome outcome = run();
+  EXPECT_EQ(outcome.exit_code, 2) << outcome.output;
+  EXPECT_NE(outcome.output.find("broken.toml:2:"), std::string::npos) << outcome.output;
+  EXPECT_NE(outcome.output.find("toon_shadow_texture on gl: pass"), std::string::npos) << outcome.output;
+  EXPECT_TRUE(fs::exists(root_ / "report" / kScene / "gl.png"));
+}
+
+TEST_F(Gating, BlessRefusesWithoutAReasonAndWritesNothing) {
+  fs::remove(root_ / "golden" / (std::string(kScene) + ".png"));
+  Outcome outcome = run_xshade("", std::string("bless ") + kScene + " --reason ' ' --scenes '" +
+                                       (root_ / "scenes").string() + "' --golden '" + (root_ / "golden").string() + "'");
+  EXPECT_EQ(outcome.exit_code, 2) << outcome.output;
+  EXPECT_NE(outcome.output.find("say why with --reason"), std::string::npos) << outcome.output;
+  EXPECT_TRUE(fs::is_empty(root_ / "golden"));
+}
+
+}  // namespace
+}  // namespace xshade::tests

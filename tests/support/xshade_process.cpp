@@ -1,0 +1,22 @@
+#include "tests/support/xshade_process.h"
+
+#include <sys/wait.h>
+
+#include <array>
+#include <cstdio>
+
+namespace xshade::tests {
+
+Outcome run_xshade(const std::string& environment, const std::string& arguments) {
+  const std::string command = environment + " '" XSHADE_BINARY "' " + arguments + " 2>&1";
+  Outcome outcome;
+  FILE* pipe = popen(command.c_str(), "r");
+  if (!pipe) return outcome;
+  std::array<char, 4096> buffer;
+  while (size_t n = fread(buffer.data(), 1, buffer.size(), pipe)) outcome.output.append(buffer.data(), n);
+  const int status = pclose(pipe);
+  outcome.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  return outcome;
+}
+
+}  // namespace xshade::tests

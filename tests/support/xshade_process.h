@@ -1,0 +1,17 @@
+// Running the real `xshade` binary from a test, as a user or CI would, and reading what it said.
+#pragma once
+
+#include <string>
+
+namespace xshade::tests {
+
+struct Outcome {
+  int exit_code = -1;
+  std::string output;  // standard output and standard error together
+};
+
+// Runs `environment xshade arguments` through the shell: `environment` is VAR=value pairs (or
+// empty), `arguments` is quoted as the shell needs.
+Outcome run_xshade(const std::string& environment, const std::string& arguments);
+
+}  // namespace xshade::tests
