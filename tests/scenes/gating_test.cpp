@@ -3,8 +3,10 @@
 // missing or corrupt, or a scene file is broken.
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <sstream>
 #include <string>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -104,6 +106,23 @@ TEST_F(Gating, BlessRefusesWithoutAReasonAndWritesNothing) {
   EXPECT_EQ(outcome.exit_code, 2) << outcome.output;
   EXPECT_NE(outcome.output.find("say why with --reason"), std::string::npos) << outcome.output;
   EXPECT_TRUE(fs::is_empty(root_ / "golden"));
+}
+
+
+// Shards split the fixed scenes between CI jobs: together they cover each scene exactly once.
+TEST(Sharding, ShardsCoverEverySceneOnce) {
+  std::vector<std::string> scenes;
+  for (const auto& entry : fs::directory_iterator(kSource / "harness/scenes"))
+    if (entry.path().extension() == ".toml") scenes.push_back(entry.path().stem().string());
+  std::map<std::string, int> seen;
+  for (int shard = 1; shard <= 3; ++shard) {
+    Outcome outcome = run_xshade("", "run --plan --no-cache --shard " + std::to_string(shard) + "/3");
+    ASSERT_EQ(outcome.exit_code, 0) << outcome.output;
+    for (const std::string& scene : scenes)
+      if (outcome.output.find("plan for scene '" + scene + "'") != std::string::npos) ++seen[scene];
+  }
+  for (const std::string& scene : scenes) EXPECT_EQ(seen[scene], 1) << scene;
+  EXPECT_EQ(run_xshade("", "run --plan --shard 4/3").exit_code, 2);
 }
 
 }  // namespace
