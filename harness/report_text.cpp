@@ -53,11 +53,14 @@ Verdict run_verdict(const RunResults& results) {
 }
 
 std::string first_failure(const LaneResult& lane) {
+  if (lane.verdict == Verdict::Pass) return {};
+  // The message names the layer that decided; a failing layer that did not decide (a per-pixel
+  // failure the position layer forgave) is not the reason.
+  if (!lane.message.empty()) return std::string(first_line(lane.message));
   for (const LayerResult& layer : lane.layers) {
     if (is_problem(layer.verdict)) return layer.detail.empty() ? layer.layer : layer.layer + ": " + layer.detail;
   }
-  if (lane.verdict == Verdict::Pass) return {};
-  return lane.message;
+  return {};
 }
 
 std::string pair_name(const CrossLaneResult& pair) { return pair.first_lane + " vs " + pair.second_lane; }

@@ -20,8 +20,8 @@ double seconds_since(std::chrono::steady_clock::time_point start) {
 std::string first_line(const std::string& text) { return text.substr(0, text.find('\n')); }
 
 // Records a layer; a deciding one sets the lane's verdict (the first failing one its message).
-// A layer that does not decide is shown but judges nothing: the exact layer of a comparison that
-// passes within tolerance says "not bit-identical" and fails, and the lane still passes.
+// A comparison layer that does not decide is shown but judges nothing: a per-pixel failure that
+// the position layer forgives leaves the lane passing.
 void add_layer(LaneResult& lane, LayerResult layer, bool decides = true) {
   if (decides && layer.verdict != Verdict::Pass && layer.verdict != Verdict::Skipped) {
     lane.verdict = worst(lane.verdict, layer.verdict);
