@@ -118,6 +118,18 @@ keywords = ["_KERNEL_MEDIUM"]
       << described;
 }
 
+TEST(Planner, AToonOnlySceneCompilesNoPbrVariant) {
+  auto plan = plan_scene(scene(R"(
+[[object]]
+mesh = "torus"
+material = "materials/toon.hlsl"
+)"), kLibrary);
+  ASSERT_TRUE(plan) << plan.error().to_string();
+  ASSERT_EQ(plan->variants.size(), 1u);
+  for (const VariantRequest& variant : plan->variants) EXPECT_EQ(variant.library_path, "materials/toon.hlsl");
+  EXPECT_TRUE(has_line(plan->left_out, "materials/standard_pbr.hlsl: no object uses it"));
+}
+
 TEST(Planner, ASourceOutsideTheLibraryOrBrokenIsAnError) {
   auto missing = plan_scene(scene(R"(
 [[object]]

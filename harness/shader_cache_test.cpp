@@ -75,6 +75,21 @@ TEST_F(ShaderCacheTest, ChangingAnIncludeKeywordsLaneOrCompilerMisses) {
   EXPECT_FALSE(other_compiler.find(request(), Lane::Gl).has_value());
 }
 
+// Two materials, one of which reads the include: editing the include recompiles that one only.
+TEST_F(ShaderCacheTest, ChangingAnIncludeRecompilesExactlyTheVariantsThatReadIt) {
+  write("materials/plain.hlsl", "#pragma fragment frag\nfloat4 frag(float2 uv : TEXCOORD0) : SV_Target { return 1; }\n");
+  const VariantRequest plain{root_ / "materials" / "plain.hlsl", "materials/plain.hlsl", {}, {}};
+  ShaderCache cache(root_ / "cache", "identity");
+  EXPECT_FALSE(from_cache(cache, request()));
+  EXPECT_FALSE(from_cache(cache, request({"BRIGHT"})));
+  EXPECT_FALSE(from_cache(cache, plain));
+
+  write("include/tint.hlsl", "float4 tint() { return float4(0, 0, 1, 1); }\n");
+  EXPECT_FALSE(from_cache(cache, request()));
+  EXPECT_FALSE(from_cache(cache, request({"BRIGHT"})));
+  EXPECT_TRUE(from_cache(cache, plain));
+}
+
 TEST_F(ShaderCacheTest, ADamagedEntryIsCompiledAgain) {
   ShaderCache cache(root_ / "cache", "identity");
   EXPECT_FALSE(from_cache(cache, request()));

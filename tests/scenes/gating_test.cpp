@@ -99,6 +99,24 @@ TEST_F(Gating, AMalformedSceneIsBadInputWhileTheOtherScenesRun) {
   EXPECT_TRUE(fs::exists(root_ / "report" / kScene / "gl.png"));
 }
 
+// A second run with the cache the first one filled compiles nothing.
+TEST_F(Gating, ASecondRunWithAWarmCacheCompilesNothing) {
+  const std::string arguments = "run --plan --lane gl --cache '" + (root_ / "cache").string() + "' --scenes '" +
+                                (root_ / "scenes").string() + "' --shaders '" + (root_ / "shaders").string() + "'";
+  const std::string render = "run --lane gl --cache '" + (root_ / "cache").string() + "' --scenes '" +
+                             (root_ / "scenes").string() + "' --golden '" + (root_ / "golden").string() +
+                             "' --shaders '" + (root_ / "shaders").string() + "' --report '" + (root_ / "report").string() + "'";
+  Outcome cold = run_xshade("", render);
+  ASSERT_EQ(cold.exit_code, 0) << cold.output;
+  EXPECT_EQ(cold.output.find("shaders: 0 compiled"), std::string::npos) << cold.output;
+  Outcome warm = run_xshade("", render);
+  ASSERT_EQ(warm.exit_code, 0) << warm.output;
+  EXPECT_NE(warm.output.find("shaders: 0 compiled"), std::string::npos) << warm.output;
+  Outcome plan = run_xshade("", arguments);
+  EXPECT_NE(plan.output.find("(in the cache)"), std::string::npos) << plan.output;
+  EXPECT_EQ(plan.output.find("(to compile)"), std::string::npos) << plan.output;
+}
+
 TEST_F(Gating, BlessRefusesWithoutAReasonAndWritesNothing) {
   fs::remove(root_ / "golden" / (std::string(kScene) + ".png"));
   Outcome outcome = run_xshade("", std::string("bless ") + kScene + " --reason ' ' --scenes '" +
