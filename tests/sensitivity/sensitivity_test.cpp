@@ -384,6 +384,7 @@ TEST_P(SensitivityRerender, PassesAgainstTheGolden) {
   const Scene scene = load_fixed_scene(GetParam());
   auto comparison = render_against_golden(scene, kShaderLibrary);
   ASSERT_TRUE(comparison) << comparison.error().to_string();
+  std::cout << scene.name << " / re-render: " << describe(*comparison) << "\n";
   EXPECT_EQ(comparison->verdict, Verdict::Pass) << scene.name << " re-rendered: " << describe(*comparison);
 }
 
