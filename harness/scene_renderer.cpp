@@ -85,20 +85,30 @@ class SceneRenderer {
     if (!target) return fail(target.error());
     scene_target_ = *target;
     target_sizes_[target->id] = {scene_.width, scene_.height};
-    color_ = *target;
-    for (size_t p = 0; p < plan_.passes.size(); ++p) {
-      const PlannedPass& pass = plan_.passes[p];
-      auto rendered = pass.kind == PlannedPass::Kind::Scene ? scene_pass() : post_pass(p);
-      if (!rendered) return fail(rendered.error());
-      if (options_.keep_pass_images) {
-        auto image = backend_.read_color(color_);
-        if (!image) return fail(image.error());
-        pass_images_.emplace_back(pass.name, std::move(*image));
+    // Every frame runs every pass; programs, meshes, textures and targets are made in the first.
+    std::vector<double> frame_milliseconds;
+    for (uint32_t frame = 0; frame < std::max(1u, options_.frames); ++frame) {
+      timings_.clear();
+      pass_images_.clear();
+      color_ = scene_target_;
+      current_effect_ = SIZE_MAX;
+      for (size_t p = 0; p < plan_.passes.size(); ++p) {
+        const PlannedPass& pass = plan_.passes[p];
+        auto rendered = pass.kind == PlannedPass::Kind::Scene ? scene_pass() : post_pass(p);
+        if (!rendered) return fail(rendered.error());
+        if (options_.keep_pass_images) {
+          auto image = backend_.read_color(color_);
+          if (!image) return fail(image.error());
+          pass_images_.emplace_back(pass.name, std::move(*image));
+        }
       }
+      double total = 0.0;
+      for (const PassTiming& timing : timings_) total += timing.milliseconds;
+      frame_milliseconds.push_back(total);
     }
     auto image = backend_.read_color(color_);
     if (!image) return fail(image.error());
-    return RenderedScene{std::move(*image), std::move(timings_), std::move(pass_images_)};
+    return RenderedScene{std::move(*image), std::move(timings_), std::move(pass_images_), std::move(frame_milliseconds)};
   }
 
  private:
@@ -206,8 +216,12 @@ class SceneRenderer {
     const bool half = declaration.scale == hlsl::PassDeclaration::Scale::Half;
     const uint32_t width = half ? std::max(1u, scene_.width / 2) : scene_.width;
     const uint32_t height = half ? std::max(1u, scene_.height / 2) : scene_.height;
-    auto target = backend_.create_target({width, height, false});
-    if (!target) return fail(target.error());
+    auto& target = pass_target_[index];
+    if (!target) {
+      auto created = backend_.create_target({width, height, false});
+      if (!created) return fail(created.error());
+      target = *created;
+    }
 
     // An effect's first pass reads the image so far; scene.depth is always the scene pass's.
     if (planned.effect != current_effect_) {
@@ -243,11 +257,11 @@ class SceneRenderer {
     if (!uniforms) return fail(uniforms.error());
     draw.uniforms = std::move(*uniforms);
 
-    target_sizes_[target->id] = {width, height};
-    RenderPass pass{*target, glm::vec4(0.0f), 1.0f, {std::move(draw)}};
+    target_sizes_[target.id] = {width, height};
+    RenderPass pass{target, glm::vec4(0.0f), 1.0f, {std::move(draw)}};
     if (auto rendered = timed(planned.name, pass); !rendered) return rendered;
-    pass_targets_[declaration.name] = *target;
-    color_ = *target;
+    pass_targets_[declaration.name] = target;
+    color_ = target;
     return {};
   }
 
@@ -272,6 +286,7 @@ class SceneRenderer {
   TargetHandle effect_input_;
   std::map<std::string, TargetHandle> pass_targets_;  // of the current effect, by pass name
   std::map<uint32_t, glm::uvec2> target_sizes_;
+  std::map<size_t, TargetHandle> pass_target_;  // by index into the plan's passes
   std::map<size_t, ProgramHandle> programs_;
   std::vector<std::pair<MeshRef, MeshHandle>> meshes_;
   std::vector<std::pair<TextureRef, TextureHandle>> textures_;

@@ -24,10 +24,14 @@ struct RenderedScene {
   // With RenderOptions::keep_pass_images: each pass's own output, in order (name, image), to
   // find the pass where lanes part.
   std::vector<std::pair<std::string, FloatImage>> pass_images;
+  // The sum of the pass times of each frame, in order. The first frame also creates the
+  // programs, meshes, textures and targets (and drivers compile their pipelines then).
+  std::vector<double> frame_milliseconds;
 };
 
 struct RenderOptions {
   bool keep_pass_images = false;
+  uint32_t frames = 1;  // rendered one after another with the same resources; the last one is returned
 };
 
 // `variants` holds the compiled form of each of the plan's variants for this backend's lane.
