@@ -1,56 +1,27 @@
 #include "harness/evaluate.h"
 
-#include <cstring>
+#include <map>
 
+#include "harness/shader_interface.h"
 #include "harness/shader_program.h"
 
 namespace xshade::harness {
-namespace {
-
-// Writes `values` as the member's scalars at its offset: 4 bytes each, vectors packed, matrix
-// columns (HLSL column_major) or rows 16 bytes apart.
-void write_member(std::vector<std::byte>& bytes, const hlsl::ConstantBufferMember& member,
-                  const std::vector<double>& values) {
-  const hlsl::Type& type = member.type;
-  if (!type.is_numeric()) return;
-  for (uint32_t row = 0; row < type.rows(); ++row) {
-    for (uint32_t col = 0; col < type.cols(); ++col) {
-      const size_t index = size_t(row) * type.cols() + col;
-      const double value = index < values.size() ? values[index] : 0.0;
-      uint32_t offset = member.offset;
-      if (type.is_matrix()) offset += member.row_major ? row * 16 + col * 4 : col * 16 + row * 4;
-      else offset += col * 4;
-      if (offset + 4 > bytes.size()) continue;
-      uint32_t bits = 0;
-      switch (type.scalar_type()) {
-        case hlsl::ScalarType::Int: {
-          const auto i = int32_t(value);
-          std::memcpy(&bits, &i, 4);
-          break;
-        }
-        case hlsl::ScalarType::Uint:
-        case hlsl::ScalarType::Bool: bits = uint32_t(value); break;
-        case hlsl::ScalarType::Half:
-        case hlsl::ScalarType::Float: {
-          const auto f = float(value);
-          std::memcpy(&bits, &f, 4);
-          break;
-        }
-      }
-      std::memcpy(bytes.data() + offset, &bits, 4);
-    }
-  }
-}
-
-}  // namespace
-
 std::vector<std::byte> default_constant_buffer(const hlsl::ConstantBuffer& buffer,
                                                const std::vector<hlsl::Property>& properties) {
-  std::vector<std::byte> bytes(buffer.size);
-  for (const hlsl::ConstantBufferMember& member : buffer.members)
-    for (const hlsl::Property& property : properties)
-      if (property.name == member.name) write_member(bytes, member, property.default_value);
-  return bytes;
+  hlsl::Reflection only_this;
+  only_this.constant_buffers = {buffer};
+  only_this.properties = properties;
+  const ShaderInterface interface = shader_interface(only_this);
+  const UniformBlock& block = interface.uniform_blocks.front();
+  std::map<std::string, std::vector<float>> values;
+  for (const UniformMember& member : block.members) {
+    const PropertyDefault* property = interface.find_property(member.name);
+    values[member.name] = property && property->value.size() == member.components()
+                              ? property->value
+                              : std::vector<float>(member.components(), 0.0f);
+  }
+  auto bytes = build_uniform_block(block, [&values](const std::string& name) { return &values.at(name); });
+  return bytes ? std::move(*bytes) : std::vector<std::byte>(buffer.size);
 }
 
 Result<FloatImage> evaluate(const hlsl::Module& module, Lane lane, Backend& backend, uint32_t width,

@@ -3,12 +3,12 @@
 #include <chrono>
 #include <ctime>
 #include <fstream>
-#include <sstream>
 
 #include <unistd.h>
 
 #include <fmt/format.h>
 
+#include "harness/file_io.h"
 #include "harness/golden_manifest.h"
 #include "harness/image_io.h"
 #include "harness/lanes.h"
@@ -38,14 +38,6 @@ Result<void> check_lane_name(const std::string& lane) {
   return {};
 }
 
-std::optional<std::string> read_bytes(const fs::path& path) {
-  std::ifstream file(path, std::ios::binary);
-  if (!file) return std::nullopt;
-  std::stringstream bytes;
-  bytes << file.rdbuf();
-  return bytes.str();
-}
-
 Result<void> write_bytes(const fs::path& path, std::string_view bytes) {
   std::ofstream file(path, std::ios::binary | std::ios::trunc);
   if (file) file.write(bytes.data(), std::streamsize(bytes.size()));
@@ -66,7 +58,7 @@ std::string utc_now_iso8601() {
 // A golden whose bytes differ from what bless recorded was written by something else.
 Result<void> check_hash(const fs::path& path, const GoldenEntry& entry) {
   if (entry.hash.empty()) return {};
-  std::optional<std::string> bytes = read_bytes(path);
+  std::optional<std::string> bytes = read_file(path);
   if (!bytes) return fail("cannot read image " + path.string());
   if (content_hash(*bytes) != entry.hash)
     return fail(fmt::format("{} is not the image blessed on {} (its hash differs from the manifest's): only "
@@ -155,7 +147,7 @@ Result<BlessOutcome> GoldenStore::bless(const std::string& scene, const std::opt
     remove_temporaries({image_temporary});
     return fail(written.error());
   }
-  std::optional<std::string> bytes = read_bytes(image_temporary);
+  std::optional<std::string> bytes = read_file(image_temporary);
   if (!bytes) {
     remove_temporaries({image_temporary});
     return fail("cannot read back " + image_temporary.string());

@@ -1,13 +1,9 @@
 #include "harness/shader_cache.h"
 
-#include <fstream>
-#include <sstream>
-
-#include <unistd.h>
-
 #include <nlohmann/json.hpp>
 #include <xxhash.h>
 
+#include "harness/file_io.h"
 #include "spirv/spirv_compiler.h"
 
 namespace xshade::harness {
@@ -15,28 +11,6 @@ namespace {
 
 namespace fs = std::filesystem;
 using nlohmann::json;
-
-std::optional<std::string> read_file(const fs::path& path) {
-  std::ifstream file(path, std::ios::binary);
-  if (!file) return std::nullopt;
-  std::stringstream text;
-  text << file.rdbuf();
-  return text.str();
-}
-
-Result<void> write_atomically(const fs::path& path, std::string_view bytes) {
-  const fs::path temporary = path.string() + ".tmp" + std::to_string(::getpid());
-  {
-    std::ofstream file(temporary, std::ios::binary | std::ios::trunc);
-    if (!file) return fail("cannot write the shader cache entry " + temporary.string());
-    file.write(bytes.data(), std::streamsize(bytes.size()));
-    if (!file) return fail("cannot write the shader cache entry " + temporary.string());
-  }
-  std::error_code error;
-  fs::rename(temporary, path, error);
-  if (error) return fail("cannot write the shader cache entry " + path.string() + ": " + error.message());
-  return {};
-}
 
 json stage_json(const ShaderStageSource& stage) {
   return {{"glsl", stage.glsl},
@@ -163,9 +137,9 @@ Result<void> ShaderCache::store(const VariantRequest& request, Lane lane, const 
     result_key += hash;
   }
   result_key = content_hash(result_key);
-  if (auto written = write_atomically(directory_ / (result_key + ".variant"), variant_json(variant)); !written)
+  if (auto written = write_file_atomically(directory_ / (result_key + ".variant"), variant_json(variant)); !written)
     return written;
-  return write_atomically(directory_ / (key + ".manifest"),
+  return write_file_atomically(directory_ / (key + ".manifest"),
                           json{{"dependencies", listed}, {"result", result_key}, {"request", request.label()}}.dump(1));
 }
 
