@@ -10,11 +10,11 @@
 namespace xshade::harness {
 namespace {
 
-FloatImage radiance_image(const EnvironmentDesc& desc) {
+FloatImage radiance_image(const EnvironmentSpec& desc) {
   FloatImage image(kPrefilteredWidth, kPrefilteredHeight);
   for (uint32_t y = 0; y < image.height; ++y)
     for (uint32_t x = 0; x < image.width; ++x) {
-      glm::vec3 value = desc.kind == EnvironmentDesc::Kind::Gradient
+      glm::vec3 value = desc.kind == EnvironmentKind::Gradient
                             ? gradient_radiance(desc, equirect_texel_direction(x, y, image.width, image.height))
                             : desc.color;
       image.set(x, y, glm::vec4(value, 1.0f));
@@ -24,7 +24,7 @@ FloatImage radiance_image(const EnvironmentDesc& desc) {
 
 }  // namespace
 
-glm::vec3 gradient_radiance(const EnvironmentDesc& desc, glm::vec3 direction) {
+glm::vec3 gradient_radiance(const EnvironmentSpec& desc, glm::vec3 direction) {
   const float y = std::clamp(direction.y, -1.0f, 1.0f);
   if (y >= 0.0f) {
     float t = 1.0f - std::pow(1.0f - y, 3.0f);
@@ -34,9 +34,9 @@ glm::vec3 gradient_radiance(const EnvironmentDesc& desc, glm::vec3 direction) {
   return glm::mix(desc.horizon, desc.ground, s * s * (3.0f - 2.0f * s));
 }
 
-Result<Environment> build_environment(const EnvironmentDesc& desc) {
+Result<Environment> build_environment(const EnvironmentSpec& desc) {
   Environment environment;
-  if (desc.kind == EnvironmentDesc::Kind::Equirect) {
+  if (desc.kind == EnvironmentKind::Equirect) {
     Result<FloatImage> file = read_image(desc.file);
     if (!file) return fail("environment " + desc.file.string() + ": " + file.error().message);
     environment.radiance = file->width == kPrefilteredWidth && file->height == kPrefilteredHeight

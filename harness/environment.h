@@ -11,25 +11,11 @@
 
 #include "harness/backend.h"
 #include "harness/image.h"
+#include "harness/scene.h"
 #include "harness/spherical_harmonics.h"
 #include "hlsl_like/diagnostic.h"
 
 namespace xshade::harness {
-
-struct EnvironmentDesc {
-  enum class Kind {
-    Constant,  // `color` in every direction
-    Gradient,  // a sky: `sky`, `horizon` and `ground` blended by gradient_radiance
-    Equirect,  // an HDR or EXR image at `file` (see equirect.h for its orientation)
-  };
-  Kind kind = Kind::Constant;
-  glm::vec3 color{1.0f};  // linear RGB, as are the three below
-  glm::vec3 sky{0.0f};
-  glm::vec3 horizon{0.0f};
-  glm::vec3 ground{0.0f};
-  std::filesystem::path file;
-  float intensity = 1.0f;  // multiplies the radiance of every kind
-};
 
 struct Environment {
   FloatImage radiance;         // equirect, kPrefilteredWidth x kPrefilteredHeight, alpha 1
@@ -41,10 +27,10 @@ struct Environment {
 //   above the horizon  mix(horizon, sky, 1 - (1 - y)^3)        (steep at the horizon, flat at the zenith)
 //   below the horizon  mix(horizon, ground, smoothstep(0, 0.15, -y))  (ground from about 8.6 degrees down)
 // Continuous everywhere, equal to `horizon` at y = 0, `sky` straight up, `ground` below.
-glm::vec3 gradient_radiance(const EnvironmentDesc& desc, glm::vec3 direction);
+glm::vec3 gradient_radiance(const EnvironmentSpec& desc, glm::vec3 direction);
 
-// Builds everything a scene needs. Fails, naming the file, when an Equirect image cannot be read.
+// Builds everything a scene's [environment] (scene.h) needs. Fails, naming the file, when an Equirect image cannot be read.
 // An equirect image of another size is resampled (see resample_equirect); its alpha is ignored.
-Result<Environment> build_environment(const EnvironmentDesc& desc);
+Result<Environment> build_environment(const EnvironmentSpec& desc);
 
 }  // namespace xshade::harness

@@ -20,8 +20,8 @@ std::filesystem::path scratch_directory() {
 }
 
 TEST(BuildEnvironment, ConstantEnvironmentLightsEveryNormalWithItsRadiance) {
-  EnvironmentDesc desc;
-  desc.kind = EnvironmentDesc::Kind::Constant;
+  EnvironmentSpec desc;
+  desc.kind = EnvironmentKind::Constant;
   desc.color = {0.2f, 0.4f, 0.8f};
   desc.intensity = 2.0f;
   Result<Environment> environment = build_environment(desc);
@@ -39,8 +39,8 @@ TEST(BuildEnvironment, ConstantEnvironmentLightsEveryNormalWithItsRadiance) {
 }
 
 TEST(GradientRadiance, BlendsSkyHorizonAndGroundByHeight) {
-  EnvironmentDesc desc;
-  desc.kind = EnvironmentDesc::Kind::Gradient;
+  EnvironmentSpec desc;
+  desc.kind = EnvironmentKind::Gradient;
   desc.sky = {0.2f, 0.4f, 1.0f};
   desc.horizon = {1.0f, 1.0f, 1.0f};
   desc.ground = {0.1f, 0.1f, 0.1f};
@@ -56,8 +56,8 @@ TEST(GradientRadiance, BlendsSkyHorizonAndGroundByHeight) {
 }
 
 TEST(BuildEnvironment, GradientSkyIsBrighterFromAboveAndKeepsItsColoursInTheImage) {
-  EnvironmentDesc desc;
-  desc.kind = EnvironmentDesc::Kind::Gradient;
+  EnvironmentSpec desc;
+  desc.kind = EnvironmentKind::Gradient;
   desc.sky = {0.5f, 0.7f, 1.0f};
   desc.horizon = {1.0f, 1.0f, 1.0f};
   desc.ground = {0.1f, 0.1f, 0.1f};
@@ -80,8 +80,8 @@ TEST(BuildEnvironment, ReadsAnEquirectFileScaledByItsIntensityAndOrientedByTheCo
   const auto path = scratch_directory() / "half.exr";
   ASSERT_TRUE(write_exr(file, path));
 
-  EnvironmentDesc desc;
-  desc.kind = EnvironmentDesc::Kind::Equirect;
+  EnvironmentSpec desc;
+  desc.kind = EnvironmentKind::Equirect;
   desc.file = path;
   desc.intensity = 0.5f;
   Result<Environment> environment = build_environment(desc);
@@ -100,8 +100,8 @@ TEST(BuildEnvironment, ReadsAnEquirectFileScaledByItsIntensityAndOrientedByTheCo
 }
 
 TEST(BuildEnvironment, MissingOrCorruptFilesAreErrorsNamingTheFile) {
-  EnvironmentDesc desc;
-  desc.kind = EnvironmentDesc::Kind::Equirect;
+  EnvironmentSpec desc;
+  desc.kind = EnvironmentKind::Equirect;
   desc.file = scratch_directory() / "absent.hdr";
   Result<Environment> missing = build_environment(desc);
   ASSERT_FALSE(missing);

@@ -78,7 +78,7 @@ CheckedScene SceneChecker::check(const fs::path& scene_file, const std::vector<L
   result.plan = describe_plan(*scene, *plan, cached);
   if (options_.plan_only) return checked;
 
-  auto environment = build_environment(environment_desc(scene->environment));
+  auto environment = build_environment(scene->environment);
   if (!environment) {
     result.verdict = Verdict::Error;
     result.message = environment.error().to_string();

@@ -297,22 +297,6 @@ class SceneRenderer {
 
 }  // namespace
 
-EnvironmentDesc environment_desc(const EnvironmentSpec& spec) {
-  EnvironmentDesc desc;
-  switch (spec.kind) {
-    case EnvironmentKind::Constant: desc.kind = EnvironmentDesc::Kind::Constant; break;
-    case EnvironmentKind::Gradient: desc.kind = EnvironmentDesc::Kind::Gradient; break;
-    case EnvironmentKind::Equirect: desc.kind = EnvironmentDesc::Kind::Equirect; break;
-  }
-  desc.color = spec.color;
-  desc.sky = spec.sky;
-  desc.horizon = spec.horizon;
-  desc.ground = spec.ground;
-  desc.file = spec.file;
-  desc.intensity = spec.intensity;
-  return desc;
-}
-
 Result<RenderedScene> render_scene(Backend& backend, const Scene& scene, const Plan& plan,
                                    const std::vector<CompiledVariant>& variants, const Environment& environment,
                                    const RenderOptions& options) {

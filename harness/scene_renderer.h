@@ -39,7 +39,4 @@ Result<RenderedScene> render_scene(Backend& backend, const Scene& scene, const P
                                    const std::vector<CompiledVariant>& variants, const Environment& environment,
                                    const RenderOptions& options = {});
 
-// The environment description of a scene's [environment] table.
-EnvironmentDesc environment_desc(const EnvironmentSpec& spec);
-
 }  // namespace xshade::harness

@@ -59,7 +59,7 @@ int main(int argc, char** argv) {
     if (!scene) return std::fprintf(stderr, "%s\n", scene.error().to_string().c_str()), 2;
     auto plan = plan_scene(*scene, kLibrary);
     if (!plan) return std::fprintf(stderr, "%s\n", plan.error().to_string().c_str()), 2;
-    auto environment = build_environment(environment_desc(scene->environment));
+    auto environment = build_environment(scene->environment);
     if (!environment) return std::fprintf(stderr, "%s\n", environment.error().to_string().c_str()), 2;
     for (Lane lane : all_lanes()) {
       VariantCompiler cold(kLibrary, nullptr);

@@ -261,7 +261,7 @@ const Environment& environment_of(const Scene& scene) {
   static std::map<std::string, Environment> built;
   auto found = built.find(scene.name);
   if (found != built.end()) return found->second;
-  auto environment = build_environment(environment_desc(scene.environment));
+  auto environment = build_environment(scene.environment);
   if (!environment) throw std::runtime_error(environment.error().to_string());
   return built.emplace(scene.name, std::move(*environment)).first->second;
 }
