@@ -1,10 +1,7 @@
 // The front end on bad input, end to end: each case compiles a whole source through
 // compile_text or compile_file and pins what a user sees, the rendered diagnostic
 // ("file:line:col: severity: message", the source line and a caret).
-//
-// Tests named DISABLED_* describe the behaviour the front end should have and does not have yet
-// (each is marked KNOWN DEFECT with what it says today); run them with
-// --gtest_also_run_disabled_tests.
+
 #include "hlsl_like/compiler.h"
 
 #include <gtest/gtest.h>
