@@ -11,6 +11,20 @@ using namespace hlsl;
 
 namespace {
 
+// `text` is one call of `function`, whose closing parenthesis ends the text.
+bool is_whole_call(const std::string& text, std::string_view function) {
+  if (text.size() < function.size() + 2 || text.compare(0, function.size(), function) != 0 ||
+      text[function.size()] != '(' || text.back() != ')')
+    return false;
+  int depth = 0;
+  for (size_t i = function.size(); i < text.size(); ++i) {
+    if (text[i] == '(') ++depth;
+    if (text[i] == ')' && --depth == 0) return i == text.size() - 1;
+  }
+  return false;
+}
+
+
 const char* scalar_glsl(ScalarType scalar) {
   switch (scalar) {
     case ScalarType::Bool: return "bool";
@@ -129,16 +143,42 @@ bool StageEmitter::same_glsl(const Type& a, const Type& b) {
 std::string StageEmitter::bool_type(uint32_t count) { return count <= 1 ? "bool" : "bvec" + std::to_string(count); }
 
 Code StageEmitter::half_value(Code value, const Type& type) {
-  // half, min16float and fixed compute in fp32 here. A half-emulation mode will round `value`
-  // to fp16 when `type` is half-based, in this one place.
-  (void)type;
-  return value;
+  // half, min16float and fixed compute in fp32 on these drivers; with half emulation every such
+  // result goes through fp16 here, in this one place. On llvmpipe and lavapipe packHalf2x16
+  // rounds to nearest and gives infinity past fp16's range, as fp16 arithmetic would
+  // (tests/lanes/half_emulation_test.cpp pins it; GLSL leaves out-of-range packing undefined).
+  if (!half_emulation_ || !type.is_floating() || type.scalar_type() != ScalarType::Half || type.is_matrix())
+    return value;
+  if (is_whole_call(value.text, "xs_half")) return value;  // rounded already
+  helpers_.add("xs_half(float)",
+               "float xs_half(float x) { return unpackHalf2x16(packHalf2x16(vec2(x, 0.0))).x; }\n");
+  switch (type.component_count()) {
+    case 2: helpers_.add("xs_half(vec2)", "vec2 xs_half(vec2 x) { return unpackHalf2x16(packHalf2x16(x)); }\n"); break;
+    case 3:
+      helpers_.add("xs_half(vec2)", "vec2 xs_half(vec2 x) { return unpackHalf2x16(packHalf2x16(x)); }\n");
+      helpers_.add("xs_half(vec3)", "vec3 xs_half(vec3 x) { return vec3(xs_half(x.xy), xs_half(x.z)); }\n");
+      break;
+    case 4:
+      helpers_.add("xs_half(vec2)", "vec2 xs_half(vec2 x) { return unpackHalf2x16(packHalf2x16(x)); }\n");
+      helpers_.add("xs_half(vec4)", "vec4 xs_half(vec4 x) { return vec4(xs_half(x.xy), xs_half(x.zw)); }\n");
+      break;
+    default: break;
+  }
+  return {"xs_half(" + value.text + ")", kPostfix};
 }
 
 // ---------------------------------------------------------------------------------------------
 // Conversions
 
 Code StageEmitter::convert(Code value, const Type& from, const Type& to, Loc loc) {
+  const Code converted = convert_components(value, from, to, loc);
+  // float -> half is where a value first becomes half: the rounding the conversion means.
+  const bool becomes_half = to.is_floating() && to.scalar_type() == ScalarType::Half &&
+                            !(from.is_floating() && from.scalar_type() == ScalarType::Half);
+  return becomes_half ? half_value(converted, to) : converted;
+}
+
+Code StageEmitter::convert_components(Code value, const Type& from, const Type& to, Loc loc) {
   if (from.is_error() || to.is_error() || to.is_void() || same_glsl(from, to)) return value;
   if (!from.is_numeric() || !to.is_numeric()) {
     fail(loc, "cannot convert " + in_quotes(from.name()) + " to " + in_quotes(to.name()) + " on this target");
@@ -261,7 +301,7 @@ Code StageEmitter::convert_expr(const Expr* e, const Type& to) {
   bool negative = false;
   if (const Expr* literal = literal_of(e, negative); literal && to.is_numeric()) {
     if (auto folded = fold_literal(literal, negative, to.scalar_type())) {
-      const Code scalar{*folded, (*folded)[0] == '-' ? kUnary : kPrimary};
+      const Code scalar = half_value({*folded, (*folded)[0] == '-' ? kUnary : kPrimary}, Type::scalar(to.scalar_type()));
       if (to.component_count() == 1) return scalar;
       return convert(scalar, Type::scalar(to.scalar_type()), to, e->loc);
     }

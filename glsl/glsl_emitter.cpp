@@ -270,8 +270,9 @@ const StageVariable* find_variable(const std::vector<StageVariable>& variables, 
 
 }  // namespace
 
-StageEmitter::StageEmitter(const Module& module, Flavour flavour, const Names& names, bool vertex)
-    : module_(module), reflection_(module.reflection), flavour_(flavour), names_(names), vertex_(vertex) {
+StageEmitter::StageEmitter(const Module& module, Flavour flavour, const Names& names, bool vertex, bool half_emulation)
+    : module_(module), reflection_(module.reflection), flavour_(flavour), half_emulation_(half_emulation), names_(names),
+      vertex_(vertex) {
   entry_ = vertex ? module.entry_points.vertex : module.entry_points.fragment;
 }
 
@@ -662,7 +663,7 @@ Result<EmittedProgram> emit(const hlsl::Module& module, const EmitOptions& optio
   for (const bool vertex : {true, false}) {
     const hlsl::FunctionDecl* entry = vertex ? module.entry_points.vertex : module.entry_points.fragment;
     if (!entry) continue;
-    detail::StageEmitter emitter(module, options.flavour, names, vertex);
+    detail::StageEmitter emitter(module, options.flavour, names, vertex, options.half_emulation);
     std::string text = emitter.run();
     if (emitter.error()) return fail(*emitter.error());
     (vertex ? program.vertex : program.fragment) = EmittedStage{std::move(text)};

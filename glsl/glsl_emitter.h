@@ -25,6 +25,11 @@ namespace xshade::glsl {
 
 struct EmitOptions {
   Flavour flavour = Flavour::Gl;
+  // Half-precision emulation: every half-, min16float- or fixed-typed result (arithmetic,
+  // literals, calls, conversions from float) is rounded to fp16 and back, so that fp16 hazards
+  // (overflow to infinity past 65504, 11-bit significands) show on drivers that compute half in
+  // fp32. Values read from constant buffers stay as stored; half matrices are not rounded.
+  bool half_emulation = false;
 };
 
 struct EmittedStage {

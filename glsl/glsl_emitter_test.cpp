@@ -104,6 +104,27 @@ float4 frag(v2f i) : SV_Target {
 // ---------------------------------------------------------------------------------------------
 // Matrices
 
+// Half emulation rounds each half result once, where it is made, and leaves float alone.
+TEST(GlslEmitterHalfEmulation, RoundsHalfResultsOnceAndFloatNever) {
+  auto module = hlsl::compile_text(
+      "test.hlsl",
+      fragment_source("float _F = 1.0;", "half3 c = half3(_F, 0.5, 2.0);\nhalf h = (half)_F * 3.0;\n"
+                                         "float f = _F * 3.0;\nreturn float4(c * h, f);"),
+      {});
+  ASSERT_TRUE(module->ok()) << diagnostics_of(*module);
+  auto plain = emit(*module, {Flavour::Gl, false});
+  auto emulated = emit(*module, {Flavour::Gl, true});
+  ASSERT_TRUE(plain && emulated);
+  EXPECT_EQ(plain->fragment->text.find("xs_half"), std::string::npos);
+  const std::string& text = emulated->fragment->text;
+  EXPECT_NE(text.find("float xs_half(float x) { return unpackHalf2x16(packHalf2x16(vec2(x, 0.0))).x; }"), std::string::npos)
+      << text;
+  EXPECT_NE(text.find("vec3 xs_half(vec3 x)"), std::string::npos) << text;
+  EXPECT_NE(text.find("float f = _F * 3.0;"), std::string::npos) << text;
+  // The conversion, the literal and the product each round once.
+  EXPECT_NE(text.find("float h = xs_half(xs_half(_F) * xs_half(3.0));"), std::string::npos) << text;
+}
+
 TEST(GlslEmitterMatrices, MulOperandOrderFollowsTheTranspose) {
   const std::string text = fragment("float4x4 M; float4x4 N; float4 v; float s;",
                                     "float4 a = mul(M, v);\n"

@@ -114,7 +114,7 @@ class Helpers {
 
 class StageEmitter {
  public:
-  StageEmitter(const hlsl::Module& module, Flavour flavour, const Names& names, bool vertex);
+  StageEmitter(const hlsl::Module& module, Flavour flavour, const Names& names, bool vertex, bool half_emulation);
   // The stage's complete GLSL text; check error() afterwards.
   std::string run();
   const std::optional<Error>& error() const { return error_; }
@@ -136,6 +136,7 @@ class StageEmitter {
   Code expr(const Expr* e);
   // `value` of type `from` as type `to`, GLSL converting explicitly.
   Code convert(Code value, const Type& from, const Type& to, Loc loc);
+  Code convert_components(Code value, const Type& from, const Type& to, Loc loc);
   // An expression converted to `to`; literals are folded (`1` as a float is `1.0`).
   Code convert_expr(const Expr* e, const Type& to);
   // Every half-typed value passes through here: the place for a later fp16-rounding mode.
@@ -178,6 +179,7 @@ class StageEmitter {
   const hlsl::Module& module_;
   const hlsl::Reflection& reflection_;
   const Flavour flavour_;
+  const bool half_emulation_;
   const Names& names_;
   const bool vertex_;
   const FunctionDecl* entry_ = nullptr;

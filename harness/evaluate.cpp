@@ -25,8 +25,9 @@ std::vector<std::byte> default_constant_buffer(const hlsl::ConstantBuffer& buffe
 }
 
 Result<FloatImage> evaluate(const hlsl::Module& module, Lane lane, Backend& backend, uint32_t width,
-                            uint32_t height, const std::map<std::string, std::vector<std::byte>>& constant_buffers) {
-  auto desc = program_for_lane(module, lane);
+                            uint32_t height, const std::map<std::string, std::vector<std::byte>>& constant_buffers,
+                            const ProgramOptions& options) {
+  auto desc = program_for_lane(module, lane, options);
   if (!desc) return fail(desc.error());
   if (!desc->fullscreen) return fail("the shader must be a fragment shader without a vertex stage");
   auto program = backend.create_program(*desc);

@@ -9,6 +9,7 @@
 
 #include "harness/backend.h"
 #include "harness/lanes.h"
+#include "harness/shader_program.h"
 #include "hlsl_like/compiler.h"
 
 namespace xshade::harness {
@@ -24,6 +25,7 @@ std::vector<std::byte> default_constant_buffer(const hlsl::ConstantBuffer& buffe
 // `constant_buffers` replaces the defaults of the buffers it names (by their HLSL name).
 Result<FloatImage> evaluate(const hlsl::Module& module, Lane lane, Backend& backend, uint32_t width,
                             uint32_t height,
-                            const std::map<std::string, std::vector<std::byte>>& constant_buffers = {});
+                            const std::map<std::string, std::vector<std::byte>>& constant_buffers = {},
+                            const ProgramOptions& options = {});
 
 }  // namespace xshade::harness

@@ -79,7 +79,7 @@ ProgramLayout layout_for_lane(const hlsl::Reflection& reflection, Lane lane) {
   return layout;
 }
 
-Result<ProgramDesc> program_for_lane(const hlsl::Module& module, Lane lane) {
+Result<ProgramDesc> program_for_lane(const hlsl::Module& module, Lane lane, const ProgramOptions& options) {
   if (!module.ok()) return fail("the shader did not compile", module.sources.resolve({module.main_file, 0, 0}));
   ProgramDesc desc;
   desc.name = module.sources.name(module.main_file);
@@ -103,6 +103,10 @@ Result<ProgramDesc> program_for_lane(const hlsl::Module& module, Lane lane) {
   };
 
   if (lane == Lane::VkHlsl) {
+    if (options.half_emulation)
+      return fail("half emulation rewrites the GLSL xshade emits; the vk-hlsl lane compiles the source with glslang and "
+                  "cannot emulate half",
+                  module.sources.resolve({module.main_file, 0, 0}));
     const std::vector<std::filesystem::path>& include_dirs = module.include_dirs;
     auto fragment = vk_hlsl_stage(module, spirv::Stage::Fragment, module.reflection.fragment_entry, include_dirs);
     if (!fragment) return fail(fragment.error());
@@ -114,7 +118,7 @@ Result<ProgramDesc> program_for_lane(const hlsl::Module& module, Lane lane) {
     return desc;
   }
 
-  auto emitted = glsl::emit(module, {flavour});
+  auto emitted = glsl::emit(module, {flavour, options.half_emulation});
   if (!emitted) return fail(emitted.error());
   auto stage = [&](const glsl::EmittedStage& emitted_stage, spirv::Stage kind, const char* suffix) -> Result<ShaderStageSource> {
     ShaderStageSource source;

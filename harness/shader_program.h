@@ -12,7 +12,13 @@ namespace xshade::harness {
 // from xshade's reflection on every lane; on vk-hlsl, glslang's own reflection must agree with
 // it binding for binding, or this fails naming the resource. A module without a vertex entry
 // point is a full-screen pass: the shared full-screen vertex shader feeds its TEXCOORD0.
-Result<ProgramDesc> program_for_lane(const hlsl::Module& module, Lane lane);
+//
+// With `half_emulation` the GLSL lanes round every half-typed result to fp16 (glsl::EmitOptions);
+// the vk-hlsl lane compiles the source with glslang, which cannot, and fails saying so.
+struct ProgramOptions {
+  bool half_emulation = false;
+};
+Result<ProgramDesc> program_for_lane(const hlsl::Module& module, Lane lane, const ProgramOptions& options = {});
 
 // The layout the harness binds by: uniform blocks by their GLSL block name, textures by name
 // with their samplers' bindings (Vulkan only; OpenGL combines them).

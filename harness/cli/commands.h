@@ -56,6 +56,7 @@ struct CompileOptions {
   std::vector<std::filesystem::path> include_dirs;
   std::vector<std::string> defines;  // KEYWORD, or KEY=VALUE
   std::string target = "vk";         // gl, vk, spirv, vk-hlsl
+  std::string precision = "float";  // or "half": half emulation (gl, vk, spirv)
   bool reflect = false;
   std::filesystem::path output;      // a path prefix; empty = standard output
 };
@@ -67,6 +68,7 @@ struct EvalOptions {
   std::vector<std::string> keywords;
   std::string entry;  // the fragment function; empty = #pragma fragment
   std::string size = "64x64";
+  std::string precision = "float";  // or "half": half emulation on the GLSL lanes
   LaneSelection selection;  // "all" or a list
   std::filesystem::path output_dir = ".";
 };

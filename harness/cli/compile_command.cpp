@@ -64,7 +64,8 @@ int run_compile(const CompileOptions& options) {
   }
 
   if (options.target == "gl" || options.target == "vk") {
-    auto emitted = glsl::emit(*module, {options.target == "gl" ? glsl::Flavour::Gl : glsl::Flavour::Vk});
+    auto emitted = glsl::emit(*module, {options.target == "gl" ? glsl::Flavour::Gl : glsl::Flavour::Vk,
+                                        options.precision == "half"});
     if (!emitted) {
       fmt::print(stderr, "{}\n", emitted.error().to_string());
       return kBadInput;
@@ -76,7 +77,7 @@ int run_compile(const CompileOptions& options) {
 
   // spirv and vk-hlsl: the program as the vk or vk-hlsl lane would run it.
   const harness::Lane lane = options.target == "spirv" ? harness::Lane::Vk : harness::Lane::VkHlsl;
-  auto program = harness::program_for_lane(*module, lane);
+  auto program = harness::program_for_lane(*module, lane, {.half_emulation = options.precision == "half"});
   if (!program) {
     fmt::print(stderr, "{}\n", program.error().to_string());
     return kBadInput;

@@ -51,7 +51,8 @@ int run_eval(const EvalOptions& options) {
       exit_code = kBackendError;
       continue;
     }
-    auto image = harness::evaluate(*module, lane, **backend, width, height);
+    auto image = harness::evaluate(*module, lane, **backend, width, height, {},
+                                   {.half_emulation = options.precision == "half"});
     if (!image) {
       fmt::print("{}: failed: {}\n", name, image.error().to_string());
       exit_code = kBackendError;

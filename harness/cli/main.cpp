@@ -81,6 +81,10 @@ int main(int argc, char** argv) {
   compile->add_option("--target", compile_options.target, "gl, vk (GLSL text), spirv or vk-hlsl (SPIR-V)")
       ->check(CLI::IsMember({"gl", "vk", "spirv", "vk-hlsl"}))
       ->capture_default_str();
+  compile->add_option("--precision", compile_options.precision,
+                      "half: round every half/min16float/fixed result to fp16 (gl, vk, spirv; vk-hlsl cannot)")
+      ->check(CLI::IsMember({"float", "half"}))
+      ->capture_default_str();
   compile->add_flag("--reflect", compile_options.reflect, "Print the reflection (JSON) instead of code");
   compile->add_option("-o", compile_options.output,
                       "Write OUT.vert.glsl / OUT.frag.glsl (or .spv, or OUT.json) instead of standard output")
@@ -93,6 +97,10 @@ int main(int argc, char** argv) {
   eval->add_option("--entry", eval_options.entry, "The fragment function (default: #pragma fragment)")
       ->type_name("NAME");
   eval->add_option("--size", eval_options.size, "Image size")->type_name("WxH")->capture_default_str();
+  eval->add_option("--precision", eval_options.precision,
+                   "half: round every half/min16float/fixed result to fp16 (gl and vk lanes; vk-hlsl cannot)")
+      ->check(CLI::IsMember({"float", "half"}))
+      ->capture_default_str();
   eval->add_option("--lane", eval_options.selection.lanes, "gl, vk, vk-hlsl or all (default: all)")
       ->type_name("LANE");
   eval->add_option("-I", eval_options.include_dirs, "Search DIR for #include files")->type_name("DIR");
