@@ -104,7 +104,7 @@ std::string VariantRequest::label() const {
   if (!fragment_entry.empty()) text += ":" + fragment_entry;
   text += " [";
   for (size_t i = 0; i < keywords.size(); ++i) text += (i ? " " : "") + keywords[i];
-  return text + "]";
+  return text + "]" + (half_emulation ? " half" : "");
 }
 
 Result<Plan> plan_scene(const Scene& scene, const fs::path& shader_root) {

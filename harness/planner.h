@@ -17,6 +17,7 @@ struct VariantRequest {
   std::string library_path;           // as the scene names it, e.g. "materials/toon.hlsl"
   std::vector<std::string> keywords;  // sorted, no repeats
   std::string fragment_entry;         // a post pass's entry; empty for a material
+  bool half_emulation = false;        // every half result rounded to fp16 (GLSL lanes only)
 
   // "materials/toon.hlsl [_GUARDED]" or "post/depth_of_field.hlsl:frag_coc [_KERNEL_SMALL]".
   std::string label() const;

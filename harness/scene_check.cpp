@@ -97,7 +97,7 @@ void SceneChecker::check_lane(const Scene& scene, const Plan& plan, const Enviro
   LaneResult result;
   result.lane = std::string(lane_name(lane));
   auto finish = [&](Verdict verdict, std::string message) {
-    result.verdict = worst(result.verdict, verdict);
+    result.verdict = verdict == Verdict::Skipped ? verdict : worst(result.verdict, verdict);
     if (!message.empty()) result.message = std::move(message);
     result.seconds = seconds_since(start);
     progress_(scene.name + " on " + result.lane + ": " + std::string(verdict_name(result.verdict)) +
@@ -105,8 +105,11 @@ void SceneChecker::check_lane(const Scene& scene, const Plan& plan, const Enviro
     checked.result.lanes.push_back(std::move(result));
   };
 
+  if (options_.half_emulation && lane == Lane::VkHlsl)
+    return finish(Verdict::Skipped, "half emulation rewrites the GLSL xshade emits; this lane compiles the source with glslang");
   std::vector<CompiledVariant> variants;
-  for (const VariantRequest& request : plan.variants) {
+  for (VariantRequest request : plan.variants) {
+    request.half_emulation = options_.half_emulation;
     auto compiled = compiler_.compile(request, lane);
     if (!compiled) return finish(Verdict::Error, compiled.error().to_string());
     variants.push_back(std::move(*compiled));
@@ -141,7 +144,7 @@ void SceneChecker::check_lane(const Scene& scene, const Plan& plan, const Enviro
                                    : "two renders differ: max " + std::to_string(drift.max) + " at (" +
                                          std::to_string(drift.x) + ", " + std::to_string(drift.y) + ")"});
 
-  if (options_.goldens) {
+  if (options_.goldens && !options_.half_emulation) {
     auto golden = options_.goldens->find(scene.name, result.lane);
     if (!golden) {
       add_layer(result, {"golden", Verdict::Error, golden.error().to_string()});
@@ -158,9 +161,15 @@ void SceneChecker::check_lane(const Scene& scene, const Plan& plan, const Enviro
       result.against_golden = comparison.metrics;
       result.diff = write_image(comparison.heat_map, scene.name, result.lane + ".diff.png");
     }
-  } else if (result.non_finite.total()) {
-    add_layer(result, {"finite", Verdict::Fail,
-                       std::to_string(result.non_finite.total()) + " NaN, infinite or negative values"});
+  } else {
+    if (options_.half_emulation)
+      add_layer(result, {"golden", Verdict::Skipped, "goldens are fp32 renders; half emulation is not compared with them"});
+    const NonFiniteCount& bad = result.non_finite;
+    add_layer(result, {"finite", bad.total() ? Verdict::Fail : Verdict::Pass,
+                       bad.total() ? std::to_string(bad.nan) + " NaN, " + std::to_string(bad.inf) + " Inf, " +
+                                         std::to_string(bad.negative) + " negative values, first at (" +
+                                         std::to_string(bad.first->first) + ", " + std::to_string(bad.first->second) + ")"
+                                   : "no NaN, Inf or negative values"});
   }
   checked.images.emplace(lane, image);
   finish(Verdict::Pass, {});

@@ -25,6 +25,10 @@ struct SceneCheckOptions {
   bool validation = false;               // the Vulkan validation layer
   bool pass_images = false;              // also write each pass's output
   bool plan_only = false;                // plan, render nothing
+  // Every half result rounded to fp16 on the GLSL lanes (vk-hlsl cannot, and is skipped). The
+  // goldens are fp32 renders, so the golden layer is skipped; finiteness, determinism and the
+  // lanes against each other still gate.
+  bool half_emulation = false;
 };
 
 // A checked scene: the verdicts, and the images each lane rendered (for blessing).

@@ -98,7 +98,8 @@ ShaderCache::ShaderCache(fs::path directory, std::string compiler_identity)
     : directory_(std::move(directory)), compiler_identity_(std::move(compiler_identity)) {}
 
 std::string ShaderCache::request_key(const VariantRequest& request, Lane lane) const {
-  std::string key = compiler_identity_ + "\n" + std::string(lane_name(lane)) + "\n" + request.source.string() + "\n" +
+  std::string key = compiler_identity_ + "\n" + std::string(lane_name(lane)) + (request.half_emulation ? " half" : "") +
+                    "\n" + request.source.string() + "\n" +
                     request.fragment_entry + "\n";
   for (const std::string& keyword : request.keywords) key += keyword + " ";
   return content_hash(key);

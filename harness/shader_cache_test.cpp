@@ -71,6 +71,10 @@ TEST_F(ShaderCacheTest, ChangingAnIncludeKeywordsLaneOrCompilerMisses) {
   EXPECT_TRUE(from_cache(cache, request()));
 
   EXPECT_FALSE(cache.find(request(), Lane::Vk).has_value());
+  VariantRequest half = request();
+  half.half_emulation = true;
+  EXPECT_FALSE(from_cache(cache, half));
+  EXPECT_TRUE(from_cache(cache, half));
   ShaderCache other_compiler(root_ / "cache", "another identity");
   EXPECT_FALSE(other_compiler.find(request(), Lane::Gl).has_value());
 }

@@ -40,7 +40,7 @@ Result<CompiledVariant> VariantCompiler::compile(const VariantRequest& request, 
   }
   auto module = front_end(request);
   if (!module) return fail(module.error());
-  auto program = program_for_lane(**module, lane);
+  auto program = program_for_lane(**module, lane, {.half_emulation = request.half_emulation});
   if (!program) return fail(program.error());
   CompiledVariant variant{std::move(*program), shader_interface((*module)->reflection)};
   ++compiled_;

@@ -33,6 +33,7 @@ struct RunOptions {
   bool no_cache = false;
   std::filesystem::path golden_dir = XSHADE_SOURCE_DIR "/golden";
   std::string shard;         // "i/N": every N-th scene from the i-th, in name order
+  std::string precision = "float";  // or "half": half emulation (gl and vk; goldens not compared)
   bool plan_only = false;
   bool pass_images = false;  // also write each pass's output (REPORT/SCENE/passes/PASS.LANE.exr)
   std::string command_line;  // for the reports

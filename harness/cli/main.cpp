@@ -44,6 +44,11 @@ int main(int argc, char** argv) {
   run->add_option("--golden", run_options.golden_dir, "Folder of golden images and MANIFEST.toml")
       ->type_name("DIR")
       ->capture_default_str();
+  run->add_option("--precision", run_options.precision,
+                  "half: round every half/min16float/fixed result to fp16 on gl and vk (vk-hlsl is skipped); "
+                  "goldens are fp32 renders and are not compared")
+      ->check(CLI::IsMember({"float", "half"}))
+      ->capture_default_str();
   run->add_option("--shard", run_options.shard, "Run every N-th scene from the i-th (name order), for CI matrices")
       ->type_name("i/N");
   run->add_flag("--pass-images", run_options.pass_images,

@@ -76,7 +76,7 @@ int run_run(const RunOptions& options) {
   harness::SceneChecker checker(
       compiler,
       {options.report_dir, options.shaders_dir, &goldens, options.selection.validation, options.pass_images,
-       options.plan_only},
+       options.plan_only, options.precision == "half"},
       [&](const std::string& line) {
         fmt::print("[{}/{}] {}\n", done + 1, files->size(), line);
         std::fflush(stdout);

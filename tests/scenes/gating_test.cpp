@@ -117,6 +117,17 @@ TEST_F(Gating, ASecondRunWithAWarmCacheCompilesNothing) {
   EXPECT_EQ(plan.output.find("(to compile)"), std::string::npos) << plan.output;
 }
 
+// Half emulation runs on the GLSL lanes; vk-hlsl is skipped, and the fp32 golden is not compared.
+TEST_F(Gating, HalfEmulationRunsTheGlslLanesAndSkipsVkHlsl) {
+  Outcome outcome = run_xshade("", "run --precision half --lane gl --lane vk-hlsl --no-cache --scenes '" +
+                                       (root_ / "scenes").string() + "' --golden '" + (root_ / "golden").string() +
+                                       "' --shaders '" + (root_ / "shaders").string() + "' --report '" +
+                                       (root_ / "report").string() + "'");
+  EXPECT_EQ(outcome.exit_code, 0) << outcome.output;
+  EXPECT_NE(outcome.output.find("toon_shadow_texture on gl: pass"), std::string::npos) << outcome.output;
+  EXPECT_NE(outcome.output.find("toon_shadow_texture on vk-hlsl: skipped"), std::string::npos) << outcome.output;
+}
+
 TEST_F(Gating, BlessRefusesWithoutAReasonAndWritesNothing) {
   fs::remove(root_ / "golden" / (std::string(kScene) + ".png"));
   Outcome outcome = run_xshade("", std::string("bless ") + kScene + " --reason ' ' --scenes '" +
