@@ -14,6 +14,8 @@
 #include <string>
 #include <vector>
 
+#include "hlsl_like/hang_guard.h"
+
 namespace xshade::hlsl {
 namespace {
 
@@ -21,15 +23,6 @@ namespace fs = std::filesystem;
 using Strings = std::vector<std::string>;
 using namespace std::string_literals;
 
-// Time limits are for optimised builds; sanitizers and unoptimised builds are several times slower.
-#ifndef __has_feature
-#define __has_feature(x) 0
-#endif
-#if defined(__SANITIZE_ADDRESS__) || __has_feature(address_sanitizer) || !defined(NDEBUG)
-constexpr double kTimeScale = 10;
-#else
-constexpr double kTimeScale = 1;
-#endif
 // No single hostile input may take longer than this (optimised build).
 constexpr double kFastSeconds = 0.25;
 // The whole rendered output of a hostile input stays readable.

@@ -9,18 +9,10 @@
 #include <string>
 #include <vector>
 
+#include "hlsl_like/hang_guard.h"
+
 namespace xshade::hlsl {
 namespace {
-
-// Time limits are for optimised builds; sanitizers and unoptimised builds are several times slower.
-#ifndef __has_feature
-#define __has_feature(x) 0
-#endif
-#if defined(__SANITIZE_ADDRESS__) || __has_feature(address_sanitizer) || !defined(NDEBUG)
-constexpr double kTimeScale = 10;
-#else
-constexpr double kTimeScale = 1;
-#endif
 
 namespace fs = std::filesystem;
 using Strings = std::vector<std::string>;

@@ -1,0 +1,18 @@
+// For the front end's tests that hostile input cannot make it hang: the bound such a test holds a
+// compile to is generous for an optimised build, and scaled for builds that are several times
+// slower (sanitizers, no optimisation). A test file includes this; nothing else does.
+#pragma once
+
+#ifndef __has_feature
+#define __has_feature(x) 0
+#endif
+
+namespace xshade::hlsl {
+
+#if defined(__SANITIZE_ADDRESS__) || __has_feature(address_sanitizer) || !defined(NDEBUG)
+inline constexpr double kTimeScale = 10;
+#else
+inline constexpr double kTimeScale = 1;
+#endif
+
+}  // namespace xshade::hlsl
