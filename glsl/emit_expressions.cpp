@@ -150,20 +150,13 @@ Code StageEmitter::half_value(Code value, const Type& type) {
   if (!half_emulation_ || !type.is_floating() || type.scalar_type() != ScalarType::Half || type.is_matrix())
     return value;
   if (is_whole_call(value.text, "xs_half")) return value;  // rounded already
-  helpers_.add("xs_half(float)",
-               "float xs_half(float x) { return unpackHalf2x16(packHalf2x16(vec2(x, 0.0))).x; }\n");
-  switch (type.component_count()) {
-    case 2: helpers_.add("xs_half(vec2)", "vec2 xs_half(vec2 x) { return unpackHalf2x16(packHalf2x16(x)); }\n"); break;
-    case 3:
-      helpers_.add("xs_half(vec2)", "vec2 xs_half(vec2 x) { return unpackHalf2x16(packHalf2x16(x)); }\n");
-      helpers_.add("xs_half(vec3)", "vec3 xs_half(vec3 x) { return vec3(xs_half(x.xy), xs_half(x.z)); }\n");
-      break;
-    case 4:
-      helpers_.add("xs_half(vec2)", "vec2 xs_half(vec2 x) { return unpackHalf2x16(packHalf2x16(x)); }\n");
-      helpers_.add("xs_half(vec4)", "vec4 xs_half(vec4 x) { return vec4(xs_half(x.xy), xs_half(x.zw)); }\n");
-      break;
-    default: break;
-  }
+  // fp16 pairs pack two at a time: vec3 and vec4 are rounded through the vec2 form.
+  const uint32_t count = type.component_count();
+  if (count == 1 || count == 3)
+    helpers_.add("xs_half(float)", "float xs_half(float x) { return unpackHalf2x16(packHalf2x16(vec2(x, 0.0))).x; }\n");
+  if (count >= 2) helpers_.add("xs_half(vec2)", "vec2 xs_half(vec2 x) { return unpackHalf2x16(packHalf2x16(x)); }\n");
+  if (count == 3) helpers_.add("xs_half(vec3)", "vec3 xs_half(vec3 x) { return vec3(xs_half(x.xy), xs_half(x.z)); }\n");
+  if (count == 4) helpers_.add("xs_half(vec4)", "vec4 xs_half(vec4 x) { return vec4(xs_half(x.xy), xs_half(x.zw)); }\n");
   return {"xs_half(" + value.text + ")", kPostfix};
 }
 
