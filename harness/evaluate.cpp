@@ -24,37 +24,59 @@ std::vector<std::byte> default_constant_buffer(const hlsl::ConstantBuffer& buffe
   return bytes ? std::move(*bytes) : std::vector<std::byte>(buffer.size);
 }
 
-Result<FloatImage> evaluate(const hlsl::Module& module, Lane lane, Backend& backend, uint32_t width,
-                            uint32_t height, const std::map<std::string, std::vector<std::byte>>& constant_buffers,
-                            const ProgramOptions& options) {
+Result<FullscreenProgram> FullscreenProgram::create(const hlsl::Module& module, Lane lane, Backend& backend,
+                                                    const ProgramOptions& options) {
   auto desc = program_for_lane(module, lane, options);
   if (!desc) return fail(desc.error());
   if (!desc->fullscreen) return fail("the shader must be a fragment shader without a vertex stage");
   auto program = backend.create_program(*desc);
   if (!program) return fail(program.error());
+  FullscreenProgram made;
+  made.program_ = *program;
+  const auto& buffers = module.reflection.constant_buffers;
+  for (size_t i = 0; i < buffers.size(); ++i)
+    made.buffers_.push_back({buffers[i].name, desc->layout.uniform_blocks[i].name,
+                             default_constant_buffer(buffers[i], module.reflection.properties)});
+  for (const TextureSlot& slot : desc->layout.textures) made.texture_slots_.push_back(slot.name);
+  return made;
+}
+
+std::optional<uint32_t> FullscreenProgram::constant_buffer_size(const std::string& name) const {
+  for (const Buffer& buffer : buffers_)
+    if (buffer.name == name) return uint32_t(buffer.defaults.size());
+  return std::nullopt;
+}
+
+Result<FloatImage> FullscreenProgram::run(Backend& backend, uint32_t width, uint32_t height,
+                                          const std::map<std::string, std::vector<std::byte>>& constant_buffers) const {
   auto target = backend.create_target({width, height, false});
   if (!target) return fail(target.error());
-
-  DrawItem draw{*program, {}, {}, {}};
-  const auto& buffers = module.reflection.constant_buffers;
-  for (size_t i = 0; i < buffers.size(); ++i) {
-    auto given = constant_buffers.find(buffers[i].name);
-    std::vector<std::byte> bytes = given != constant_buffers.end() ? given->second
-                                                                   : default_constant_buffer(buffers[i], module.reflection.properties);
-    if (bytes.size() != buffers[i].size)
-      return fail("constant buffer '" + buffers[i].name + "' needs " + std::to_string(buffers[i].size) + " bytes, not " +
+  DrawItem draw{program_, {}, {}, {}};
+  for (const Buffer& buffer : buffers_) {
+    auto given = constant_buffers.find(buffer.name);
+    const std::vector<std::byte>& bytes = given != constant_buffers.end() ? given->second : buffer.defaults;
+    if (bytes.size() != buffer.defaults.size())
+      return fail("constant buffer '" + buffer.name + "' needs " + std::to_string(buffer.defaults.size()) + " bytes, not " +
                   std::to_string(bytes.size()));
-    draw.uniforms.push_back({desc->layout.uniform_blocks[i].name, std::move(bytes)});
+    draw.uniforms.push_back({buffer.slot_name, bytes});
   }
-  if (!desc->layout.textures.empty()) {
+  if (!texture_slots_.empty()) {
     TextureData white{TextureFormat::Rgba8Unorm, 1, 1, {std::vector<std::byte>(4, std::byte{255})}};
     auto texture = backend.upload_texture(white);
     if (!texture) return fail(texture.error());
-    for (const TextureSlot& slot : desc->layout.textures)
-      draw.textures.push_back({slot.name, TextureSource::texture(*texture, {Filter::Nearest, AddressMode::ClampToEdge})});
+    for (const std::string& slot : texture_slots_)
+      draw.textures.push_back({slot, TextureSource::texture(*texture, {Filter::Nearest, AddressMode::ClampToEdge})});
   }
   if (auto rendered = backend.render({*target, glm::vec4(0.0f), 1.0f, {draw}}); !rendered) return fail(rendered.error());
   return backend.read_color(*target);
+}
+
+Result<FloatImage> evaluate(const hlsl::Module& module, Lane lane, Backend& backend, uint32_t width, uint32_t height,
+                            const std::map<std::string, std::vector<std::byte>>& constant_buffers,
+                            const ProgramOptions& options) {
+  auto program = FullscreenProgram::create(module, lane, backend, options);
+  if (!program) return fail(program.error());
+  return program->run(backend, width, height, constant_buffers);
 }
 
 }  // namespace xshade::harness

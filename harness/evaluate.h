@@ -4,6 +4,7 @@
 
 #include <cstdint>
 #include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -19,12 +20,36 @@ namespace xshade::harness {
 std::vector<std::byte> default_constant_buffer(const hlsl::ConstantBuffer& buffer,
                                                const std::vector<hlsl::Property>& properties);
 
-// Renders the module's fragment entry over a width x height RGBA32F target on `backend`, which
-// must run `lane`. The shader reads uv (TEXCOORD0, (0,0) at the top-left) and the pixel position
-// (SV_Position); constant buffers hold their defaults and every texture is one white texel.
-// `constant_buffers` replaces the defaults of the buffers it names (by their HLSL name).
-Result<FloatImage> evaluate(const hlsl::Module& module, Lane lane, Backend& backend, uint32_t width,
-                            uint32_t height,
+// A module's fragment entry made into a full-screen program on one backend, to run as often as
+// needed: the driver compiles it once. The shader reads uv (TEXCOORD0, (0,0) at the top-left)
+// and the pixel position (SV_Position); constant buffers hold their defaults unless given, and
+// every texture is one white texel.
+class FullscreenProgram {
+ public:
+  static Result<FullscreenProgram> create(const hlsl::Module& module, Lane lane, Backend& backend,
+                                          const ProgramOptions& options = {});
+
+  // Renders a width x height RGBA32F target. `constant_buffers` replaces the defaults of the
+  // buffers it names (by their HLSL name); each must have the buffer's size.
+  Result<FloatImage> run(Backend& backend, uint32_t width, uint32_t height,
+                         const std::map<std::string, std::vector<std::byte>>& constant_buffers = {}) const;
+
+  // The size in bytes of the constant buffer `name`, if the program has one.
+  std::optional<uint32_t> constant_buffer_size(const std::string& name) const;
+
+ private:
+  struct Buffer {
+    std::string name;       // HLSL
+    std::string slot_name;  // the layout's
+    std::vector<std::byte> defaults;
+  };
+  ProgramHandle program_;
+  std::vector<Buffer> buffers_;
+  std::vector<std::string> texture_slots_;
+};
+
+// FullscreenProgram::create then run, once: what `xshade eval` and the conformance tests do.
+Result<FloatImage> evaluate(const hlsl::Module& module, Lane lane, Backend& backend, uint32_t width, uint32_t height,
                             const std::map<std::string, std::vector<std::byte>>& constant_buffers = {},
                             const ProgramOptions& options = {});
 

@@ -18,6 +18,10 @@ namespace xshade::harness {
 struct ProgramOptions {
   bool half_emulation = false;
 };
+
+// Half emulation also defines this macro for the front end, so that a shader can choose to
+// compute in half where a GPU that prefers half would (the library's `real`, include/common.hlsl).
+inline constexpr const char* kHalfEmulationMacro = "XSHADE_PRECISION_HALF";
 Result<ProgramDesc> program_for_lane(const hlsl::Module& module, Lane lane, const ProgramOptions& options = {});
 
 // The layout the harness binds by: uniform blocks by their GLSL block name, textures by name

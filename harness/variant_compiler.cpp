@@ -19,6 +19,7 @@ Result<const hlsl::Module*> VariantCompiler::front_end(const VariantRequest& req
     options.include_dirs = {shader_root_};
     options.keywords = request.keywords;
     options.fragment_only_entry = request.fragment_entry;
+    if (request.half_emulation) options.defines.push_back({kHalfEmulationMacro, "1"});
     known = modules_.emplace(key, hlsl::compile_file(request.source, options)).first;
   }
   const hlsl::Module& module = *known->second;

@@ -75,4 +75,17 @@ struct EvalOptions {
 };
 int run_eval(const EvalOptions& options);
 
+struct StabilityOptions {
+  LaneSelection selection;
+  std::string precision = "all";     // float, half or all
+  std::vector<std::string> cases;    // ids; empty = every case
+  bool list = false;                 // print the cases and run nothing
+  std::filesystem::path markdown;    // write docs/stability.md's text here
+  std::filesystem::path shaders_dir = XSHADE_SOURCE_DIR "/hlsl_like/shaders";
+  std::filesystem::path probes_dir = XSHADE_SOURCE_DIR "/stability/probes";
+  std::filesystem::path scenes_dir = XSHADE_SOURCE_DIR "/harness/scenes";
+  std::string command_line;
+};
+int run_stability(const StabilityOptions& options);
+
 }  // namespace xshade::cli

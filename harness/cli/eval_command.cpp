@@ -30,6 +30,7 @@ int run_eval(const EvalOptions& options) {
   front_end.include_dirs = options.include_dirs;
   front_end.keywords = options.keywords;
   front_end.fragment_only_entry = options.entry;
+  if (options.precision == "half") front_end.defines.push_back({harness::kHalfEmulationMacro, "1"});
   auto module = hlsl::compile_file(options.file, front_end);
   if (!module->diagnostics.diagnostics().empty()) fmt::print(stderr, "{}", module->diagnostics.render_all());
   if (!module->ok()) return kBadInput;

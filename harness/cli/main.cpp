@@ -112,6 +112,26 @@ int main(int argc, char** argv) {
   eval->add_option("-D", eval_options.keywords, "Enable KEYWORD")->type_name("KEYWORD");
   eval->add_option("-o", eval_options.output_dir, "Folder for the EXR images")->type_name("DIR")->capture_default_str();
 
+  StabilityOptions stability_options;
+  CLI::App* stability = app.add_subcommand(
+      "stability", "Run the library's shader code on the hard numeric cases of SHADERS.md section 5 and check each "
+                   "case's property on every lane, in fp32 and in fp16 emulation");
+  stability->add_option("case", stability_options.cases, "Case ids (see --list); default: every case")->type_name("CASE");
+  add_lane_options(*stability, stability_options.selection);
+  stability->add_option("--precision", stability_options.precision,
+                        "float, half (fp16 emulation on gl and vk; vk-hlsl cannot) or all")
+      ->check(CLI::IsMember({"float", "half", "all"}))
+      ->capture_default_str();
+  stability->add_flag("--list", stability_options.list, "Print the cases with their forms and run nothing");
+  stability->add_option("--markdown", stability_options.markdown,
+                        "Write the results as Markdown (docs/stability.md is this output)")
+      ->type_name("FILE");
+  stability->add_option("--shaders", stability_options.shaders_dir, "The shader library")->type_name("DIR")->capture_default_str();
+  stability->add_option("--probes", stability_options.probes_dir, "The suite's probe shaders")
+      ->type_name("DIR")
+      ->capture_default_str();
+  stability->add_option("--scenes", stability_options.scenes_dir, "Folder of scene files")->type_name("DIR")->capture_default_str();
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& error) {
@@ -126,5 +146,9 @@ int main(int argc, char** argv) {
   if (*bless) return run_bless(bless_options);
   if (*compile) return run_compile(compile_options);
   if (*eval) return run_eval(eval_options);
+  if (*stability) {
+    for (int i = 0; i < argc; ++i) stability_options.command_line += (i ? " " : "") + std::string(argv[i]);
+    return run_stability(stability_options);
+  }
   return kBadInput;
 }

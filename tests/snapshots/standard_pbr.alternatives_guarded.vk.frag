@@ -48,6 +48,7 @@ layout(set = 0, binding = 17) uniform texture2D _MainTex;
 layout(set = 0, binding = 32) uniform sampler sampler_EnvironmentSpecular;
 layout(set = 0, binding = 33) uniform sampler sampler_MainTex;
 const float kPi = 3.14159265359;
+const float kRealMax = 3.402823e38;
 const float kMinAlpha = 0.002;
 const float kMinCosine = 1e-4;
 const float kEnvironmentMipSteps = 6.0;
@@ -55,19 +56,19 @@ layout(location = 0) in vec3 xs_v_TEXCOORD0;
 layout(location = 1) in vec3 xs_v_TEXCOORD1;
 layout(location = 2) in vec2 xs_v_TEXCOORD2;
 layout(location = 0) out vec4 xs_target0;
-#line 185 2
+#line 213 2
 void diffuse_and_specular_from_metallic(vec3 albedo, float metallic, out vec3 diff_color, out vec3 spec_color, out float one_minus_reflectivity) {
-#line 187 2
+#line 215 2
   spec_color = mix(vec3(0.04, 0.04, 0.04), albedo, vec3(metallic));
   one_minus_reflectivity = 0.96 * (1.0 - metallic);
   diff_color = albedo * one_minus_reflectivity;
 }
-#line 23 3
+#line 37 3
 vec3 safe_normalize(vec3 v) {
-#line 23 3
+#line 37 3
   return v * inversesqrt(max(dot(v, v), 1e-3));
 }
-#line 132 2
+#line 143 2
 BrdfInputs brdf_inputs_guarded(vec3 n, vec3 v, vec3 l, float a) {
   BrdfInputs s;
   s.n = n;
@@ -80,38 +81,54 @@ BrdfInputs brdf_inputs_guarded(vec3 n, vec3 v, vec3 l, float a) {
   s.a = max(a, kMinAlpha);
   return s;
 }
-#line 145 2
+#line 156 2
 BrdfInputs brdf_inputs(vec3 n, vec3 v, vec3 l, float a) {
-#line 147 2
+#line 158 2
   return brdf_inputs_guarded(n, v, l, a);
 }
-#line 24 2
+#line 27 2
 float D_GGX_lagrange(vec3 n, vec3 h, float NoH, float a) {
   vec3 nxh = cross(n, h);
-  float k = a / (dot(nxh, nxh) + NoH * a * (NoH * a));
-  return min(k * k / kPi, 65504.0);
+  float k = a / max(dot(nxh, nxh) + NoH * a * (NoH * a), a * a);
+  return min(k * k / kPi, kRealMax);
 }
-#line 45 2
+#line 165 2
+float distribution(BrdfInputs s) {
+#line 167 2
+  return D_GGX_lagrange(s.n, s.h, s.NoH, s.a);
+}
+#line 48 2
 float V_smith_correlated(float NoL, float NoV, float a) {
   float a2 = a * a;
   float lambda_v = NoL * sqrt(NoV * NoV * (1.0 - a2) + a2);
   float lambda_l = NoV * sqrt(NoL * NoL * (1.0 - a2) + a2);
   return 0.5 / (lambda_v + lambda_l);
 }
-#line 71 2
+#line 173 2
+float visibility(BrdfInputs s) {
+#line 175 2
+  return V_smith_correlated(s.NoL, s.NoV, s.a);
+}
+#line 74 2
 vec3 F_spherical_gaussian(vec3 f0, float LoH) {
   return f0 + (1.0 - f0) * exp2((-5.55473 * LoH - 6.98316) * LoH);
 }
-#line 155 2
+#line 183 2
+vec3 fresnel(vec3 spec_color, float LoH) {
+#line 185 2
+  return F_spherical_gaussian(spec_color, LoH);
+}
+#line 196 2
 vec3 cook_torrance_specular(BrdfInputs s, vec3 spec_color) {
-#line 157 2
-  float D = D_GGX_lagrange(s.n, s.h, s.NoH, s.a);
-#line 163 2
-  float V = V_smith_correlated(s.NoL, s.NoV, s.a);
-#line 171 2
-  vec3 F = F_spherical_gaussian(spec_color, s.LoH);
-#line 179 2
+  float D = distribution(s);
+  float V = visibility(s);
+  vec3 F = fresnel(spec_color, s.LoH);
   return D * F * V * kPi;
+}
+#line 205 2
+vec3 direct_light(vec3 n, vec3 v, vec3 l, float a, vec3 diff_color, vec3 spec_color, vec3 light_color) {
+  BrdfInputs s = brdf_inputs(n, v, l, a);
+  return (diff_color + cook_torrance_specular(s, spec_color)) * light_color * clamp(dot(n, l), 0.0, 1.0);
 }
 #line 18 4
 vec3 sh_irradiance(vec3 n) {
@@ -138,7 +155,7 @@ vec3 prefiltered_environment(vec3 direction, float r) {
   float mip = r * (1.7 - 0.7 * r) * kEnvironmentMipSteps;
   return textureLod(sampler2D(_EnvironmentSpecular, sampler_EnvironmentSpecular), equirect_uv(direction), mip).xyz;
 }
-#line 14 3
+#line 28 3
 float pow4(float x) {
   float x2 = x * x;
   return x2 * x2;
@@ -157,18 +174,17 @@ vec4 frag(SurfaceVaryings input_) {
   diffuse_and_specular_from_metallic(base.xyz, _Metallic, diff_color, spec_color, one_minus_reflectivity);
 #line 34 1
   float roughness = 1.0 - _Smoothness;
-  BrdfInputs s = brdf_inputs(n, v, l, roughness);
-  vec3 direct = (diff_color + cook_torrance_specular(s, spec_color)) * _LightColor.xyz * clamp(dot(n, l), 0.0, 1.0);
-#line 40 1
+  vec3 direct = direct_light(n, v, l, roughness, diff_color, spec_color, _LightColor.xyz);
+#line 39 1
   float NoV = clamp(dot(n, v), 0.0, 1.0);
   float surface_reduction = 1.0 / (roughness * roughness + 1.0);
   float grazing = clamp(_Smoothness + 1.0 - one_minus_reflectivity, 0.0, 1.0);
   vec3 indirect_diffuse = diff_color * sh_irradiance(n);
   vec3 indirect_specular = surface_reduction * prefiltered_environment(reflect(-v, n), roughness) * mix(spec_color, vec3(grazing, grazing, grazing), vec3(pow4(1.0 - NoV)));
-#line 46 1
+#line 45 1
   return vec4(direct + indirect_diffuse + indirect_specular, base.w);
 }
-#line 172 0
+#line 188 0
 void main() {
   SurfaceVaryings xs_arg0;
   xs_arg0.clip_position = vec4(gl_FragCoord.xyz, 1.0 / gl_FragCoord.w);

@@ -53,14 +53,14 @@ layout(location = 0) in vec3 xs_v_TEXCOORD0;
 layout(location = 1) in vec3 xs_v_TEXCOORD1;
 layout(location = 2) in vec2 xs_v_TEXCOORD2;
 layout(location = 0) out vec4 xs_target0;
-#line 185 2
+#line 213 2
 void diffuse_and_specular_from_metallic(vec3 albedo, float metallic, out vec3 diff_color, out vec3 spec_color, out float one_minus_reflectivity) {
-#line 187 2
+#line 215 2
   spec_color = mix(vec3(0.04, 0.04, 0.04), albedo, vec3(metallic));
   one_minus_reflectivity = 0.96 * (1.0 - metallic);
   diff_color = albedo * one_minus_reflectivity;
 }
-#line 113 2
+#line 116 2
 BrdfInputs brdf_inputs_seed(vec3 n, vec3 v, vec3 l, float a) {
   BrdfInputs s;
   s.n = n;
@@ -73,41 +73,57 @@ BrdfInputs brdf_inputs_seed(vec3 n, vec3 v, vec3 l, float a) {
   s.a = a;
   return s;
 }
-#line 145 2
+#line 156 2
 BrdfInputs brdf_inputs(vec3 n, vec3 v, vec3 l, float a) {
-#line 149 2
+#line 160 2
   return brdf_inputs_seed(n, v, l, a);
 }
-#line 15 2
+#line 16 2
 float D_GGX_seed(float NoH, float a) {
   float a2 = a * a;
   float d = NoH * NoH * (a2 - 1.0) + 1.0;
   return a2 / (kPi * d * d);
 }
-#line 33 2
+#line 165 2
+float distribution(BrdfInputs s) {
+#line 169 2
+  return D_GGX_seed(s.NoH, s.a);
+}
+#line 36 2
 float G_cook_torrance(float NoL, float NoV, float VoH, float NoH) {
   float p2 = 2.0 * NoH * NoV / VoH;
   float p3 = 2.0 * NoH * NoL / VoH;
   return min(min(1.0, p2), p3);
 }
-#line 40 2
+#line 43 2
 float V_cook_torrance(float NoL, float NoV, float VoH, float NoH) {
   return G_cook_torrance(NoL, NoV, VoH, NoH) / (4.0 * (NoL * NoV));
 }
-#line 61 2
+#line 173 2
+float visibility(BrdfInputs s) {
+#line 179 2
+  return V_cook_torrance(s.NoL, s.NoV, s.VoH, s.NoH);
+}
+#line 64 2
 vec3 F_schlick(vec3 R, float cosA) {
   return R + (1.0 - R) * pow(1.0 - cosA, 5.0);
 }
-#line 155 2
+#line 183 2
+vec3 fresnel(vec3 spec_color, float LoH) {
+#line 191 2
+  return F_schlick(spec_color, LoH);
+}
+#line 196 2
 vec3 cook_torrance_specular(BrdfInputs s, vec3 spec_color) {
-#line 159 2
-  float D = D_GGX_seed(s.NoH, s.a);
-#line 167 2
-  float V = V_cook_torrance(s.NoL, s.NoV, s.VoH, s.NoH);
-#line 177 2
-  vec3 F = F_schlick(spec_color, s.LoH);
-#line 179 2
+  float D = distribution(s);
+  float V = visibility(s);
+  vec3 F = fresnel(spec_color, s.LoH);
   return D * F * V * kPi;
+}
+#line 205 2
+vec3 direct_light(vec3 n, vec3 v, vec3 l, float a, vec3 diff_color, vec3 spec_color, vec3 light_color) {
+  BrdfInputs s = brdf_inputs(n, v, l, a);
+  return (diff_color + cook_torrance_specular(s, spec_color)) * light_color * clamp(dot(n, l), 0.0, 1.0);
 }
 #line 18 4
 vec3 sh_irradiance(vec3 n) {
@@ -134,7 +150,7 @@ vec3 prefiltered_environment(vec3 direction, float r) {
   float mip = r * (1.7 - 0.7 * r) * kEnvironmentMipSteps;
   return textureLod(sampler2D(_EnvironmentSpecular, sampler_EnvironmentSpecular), equirect_uv(direction), mip).xyz;
 }
-#line 14 3
+#line 28 3
 float pow4(float x) {
   float x2 = x * x;
   return x2 * x2;
@@ -153,18 +169,17 @@ vec4 frag(SurfaceVaryings input_) {
   diffuse_and_specular_from_metallic(base.xyz, _Metallic, diff_color, spec_color, one_minus_reflectivity);
 #line 34 1
   float roughness = 1.0 - _Smoothness;
-  BrdfInputs s = brdf_inputs(n, v, l, roughness);
-  vec3 direct = (diff_color + cook_torrance_specular(s, spec_color)) * _LightColor.xyz * clamp(dot(n, l), 0.0, 1.0);
-#line 40 1
+  vec3 direct = direct_light(n, v, l, roughness, diff_color, spec_color, _LightColor.xyz);
+#line 39 1
   float NoV = clamp(dot(n, v), 0.0, 1.0);
   float surface_reduction = 1.0 / (roughness * roughness + 1.0);
   float grazing = clamp(_Smoothness + 1.0 - one_minus_reflectivity, 0.0, 1.0);
   vec3 indirect_diffuse = diff_color * sh_irradiance(n);
   vec3 indirect_specular = surface_reduction * prefiltered_environment(reflect(-v, n), roughness) * mix(spec_color, vec3(grazing, grazing, grazing), vec3(pow4(1.0 - NoV)));
-#line 46 1
+#line 45 1
   return vec4(direct + indirect_diffuse + indirect_specular, base.w);
 }
-#line 168 0
+#line 183 0
 void main() {
   SurfaceVaryings xs_arg0;
   xs_arg0.clip_position = vec4(gl_FragCoord.xyz, 1.0 / gl_FragCoord.w);

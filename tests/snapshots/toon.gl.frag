@@ -44,32 +44,32 @@ layout(location = 0) in vec3 xs_v_TEXCOORD0;
 layout(location = 1) in vec3 xs_v_TEXCOORD1;
 layout(location = 2) in vec2 xs_v_TEXCOORD2;
 layout(location = 0) out vec4 xs_target0;
-#line 12 3
+#line 18 3
 float toon_step_seed(float threshold, float band, float x) {
   return smoothstep(threshold - band * 0.5, threshold + band * 0.5, x);
 }
-#line 21 3
+#line 27 3
 float toon_step(float threshold, float band, float x) {
-#line 25 3
+#line 31 3
   return toon_step_seed(threshold, band, x);
 }
-#line 30 3
+#line 36 3
 float toon_ramp(float NoL, float atten, float threshold, float band) {
   float nd = NoL * 0.5 + 0.5;
   return toon_step(threshold, band, nd) * atten;
 }
-#line 37 3
-float toon_specular(float NoH, float shininess, float gloss, float band) {
-#line 41 3
-  float s = pow(NoH, shininess * 128.0) * gloss;
 #line 43 3
+float toon_specular(float NoH, float shininess, float gloss, float band) {
+#line 47 3
+  float s = pow(NoH, shininess * 128.0) * gloss;
+#line 49 3
   return toon_step(0.5, band, s);
 }
-#line 48 3
-float toon_rim(float NoV, float NoL, float atten, float threshold, float band) {
-#line 52 3
-  float rim = (1.0 - NoV) * NoL * atten;
 #line 54 3
+float toon_rim(float NoV, float NoL, float atten, float threshold, float band) {
+#line 58 3
+  float rim = (1.0 - NoV) * NoL * atten;
+#line 60 3
   return toon_step(threshold, band, rim);
 }
 #line 32 1

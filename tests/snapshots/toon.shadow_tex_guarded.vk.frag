@@ -48,33 +48,33 @@ layout(location = 0) in vec3 xs_v_TEXCOORD0;
 layout(location = 1) in vec3 xs_v_TEXCOORD1;
 layout(location = 2) in vec2 xs_v_TEXCOORD2;
 layout(location = 0) out vec4 xs_target0;
-#line 16 3
+#line 22 3
 float toon_step_guarded(float threshold, float band, float x) {
   float half_band = max(band, kMinSmooth) * 0.5;
   return smoothstep(threshold - half_band, threshold + half_band, x);
 }
-#line 21 3
+#line 27 3
 float toon_step(float threshold, float band, float x) {
-#line 23 3
+#line 29 3
   return toon_step_guarded(threshold, band, x);
 }
-#line 30 3
+#line 36 3
 float toon_ramp(float NoL, float atten, float threshold, float band) {
   float nd = NoL * 0.5 + 0.5;
   return toon_step(threshold, band, nd) * atten;
 }
-#line 37 3
-float toon_specular(float NoH, float shininess, float gloss, float band) {
-#line 39 3
-  float s = pow(clamp(NoH, 0.0, 1.0), max(shininess * 128.0, kMinSmooth)) * gloss;
 #line 43 3
+float toon_specular(float NoH, float shininess, float gloss, float band) {
+#line 45 3
+  float s = pow(clamp(NoH, 0.0, 1.0), max(shininess * 128.0, kMinSmooth)) * gloss;
+#line 49 3
   return toon_step(0.5, band, s);
 }
-#line 48 3
-float toon_rim(float NoV, float NoL, float atten, float threshold, float band) {
-#line 50 3
-  float rim = (1.0 - clamp(NoV, 0.0, 1.0)) * clamp(NoL, 0.0, 1.0) * atten;
 #line 54 3
+float toon_rim(float NoV, float NoL, float atten, float threshold, float band) {
+#line 56 3
+  float rim = (1.0 - clamp(NoV, 0.0, 1.0)) * clamp(NoL, 0.0, 1.0) * atten;
+#line 60 3
   return toon_step(threshold, band, rim);
 }
 #line 32 1

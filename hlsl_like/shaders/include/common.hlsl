@@ -4,6 +4,20 @@
 
 static const float kPi = 3.14159265359;
 
+// The precision the lighting terms compute in, as Unity's `real`: float, or half when the
+// harness runs with half emulation (--precision half defines XSHADE_PRECISION_HALF), so that a
+// term's own arithmetic is rounded to fp16 as on a GPU that prefers half. kRealMax is its
+// largest finite value.
+#if defined(XSHADE_PRECISION_HALF)
+#define real half
+#define real3 half3
+static const float kRealMax = 65504.0;
+#else
+#define real float
+#define real3 float3
+static const float kRealMax = 3.402823e38;
+#endif
+
 // x^5 by multiplication: pow(x, 5) is undefined for x < 0 in GLSL (SHADERS.md hazard 4), and a
 // product is defined everywhere and cheaper.
 float pow5(float x) {

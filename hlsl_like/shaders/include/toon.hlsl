@@ -5,8 +5,14 @@
 
 // The smallest smoothing width the guarded form passes to smoothstep: smoothstep with
 // edge0 >= edge1 is undefined in GLSL (SHADERS.md hazard 5). 1e-4 is far below one 8-bit step
-// of any ramp, so a guarded hard edge looks like the seed's.
+// of any ramp, so a guarded hard edge looks like the seed's. In fp16 both edges must stay
+// distinct numbers wherever the threshold lies in [0, 1]: 2e-3 is 4 fp16 ulps just below 1
+// (1e-4 vanishes there, and the edges meet again).
+#if defined(XSHADE_PRECISION_HALF)
+static const float kMinSmooth = 2e-3;
+#else
 static const float kMinSmooth = 1e-4;
+#endif
 
 // smoothstep over a band of width `band` centred on `threshold`, as the seed writes it.
 fixed toon_step_seed(fixed threshold, fixed band, fixed x) {

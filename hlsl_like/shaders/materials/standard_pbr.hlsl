@@ -32,8 +32,7 @@ float4 frag(SurfaceVaryings input) : SV_Target {
 
   // The seed uses roughness itself as GGX's alpha.
   float roughness = 1.0 - _Smoothness;
-  BrdfInputs s = brdf_inputs(n, v, l, roughness);
-  float3 direct = (diff_color + cook_torrance_specular(s, spec_color)) * _LightColor.rgb * saturate(dot(n, l));
+  float3 direct = direct_light(n, v, l, roughness, diff_color, spec_color, _LightColor.rgb);
 
   // Unity's indirect terms: SH irradiance for diffuse; the prefiltered environment, reduced
   // for rough surfaces and brightened toward grazing, for specular.

@@ -1,0 +1,69 @@
+#include "stability/probe.h"
+
+#include <fmt/core.h>
+
+#include <cstring>
+
+#include "harness/environment.h"
+#include "harness/evaluate.h"
+#include "harness/planner.h"
+#include "harness/scene.h"
+#include "harness/scene_renderer.h"
+
+namespace xshade::stability {
+
+Result<const harness::FullscreenProgram*> ProbePrograms::get(const CaseContext& context, const std::string& file) {
+  std::string key = file + (context.precision == Precision::Half ? " half" : "");
+  for (const std::string& keyword : context.form.keywords) key += " " + keyword;
+  if (auto known = programs_.find(key); known != programs_.end()) return &known->second;
+
+  hlsl::CompileOptions options;
+  options.include_dirs = {context.shaders_dir};
+  options.keywords = context.form.keywords;
+  if (context.precision == Precision::Half) options.defines.push_back({harness::kHalfEmulationMacro, "1"});
+  const auto path = context.probes_dir / file;
+  auto module = hlsl::compile_file(path, options);
+  if (!module->ok()) return fail(path.string() + " does not compile:\n" + module->diagnostics.render_all());
+  auto program = harness::FullscreenProgram::create(*module, context.lane, context.backend,
+                                                    {.half_emulation = context.precision == Precision::Half});
+  if (!program) return fail(program.error());
+  return &programs_.emplace(key, std::move(*program)).first->second;
+}
+
+Result<harness::FloatImage> run_probe(const CaseContext& context, const std::string& file, uint32_t vectors_per_input,
+                                      const std::vector<glm::vec4>& inputs, uint32_t rows) {
+  auto program = context.probes.get(context, file);
+  if (!program) return fail(program.error());
+  const std::optional<uint32_t> size = (*program)->constant_buffer_size("ProbeInputs");
+  if (!size) return fail(file + " has no constant buffer ProbeInputs");
+  std::vector<std::byte> bytes(*size);
+  if (inputs.size() * sizeof(glm::vec4) > bytes.size())
+    return fail(fmt::format("{} inputs do not fit {}'s ProbeInputs", inputs.size() / vectors_per_input, file));
+  std::memcpy(bytes.data(), inputs.data(), inputs.size() * sizeof(glm::vec4));
+  const auto columns = uint32_t(inputs.size() / vectors_per_input);
+  return (*program)->run(context.backend, columns, rows, {{"ProbeInputs", std::move(bytes)}});
+}
+
+Result<harness::FloatImage> render_scene_with_form(const CaseContext& context, const std::string& scene_name) {
+  auto scene = harness::load_scene(context.scenes_dir / (scene_name + ".toml"));
+  if (!scene) return fail(scene.error());
+  for (harness::SceneObject& object : scene->objects) object.keywords = context.form.keywords;
+  auto plan = harness::plan_scene(*scene, context.shaders_dir);
+  if (!plan) return fail(plan.error());
+  std::vector<harness::CompiledVariant> variants;
+  for (harness::VariantRequest request : plan->variants) {
+    request.half_emulation = context.precision == Precision::Half;
+    auto compiled = context.compiler.compile(request, context.lane);
+    if (!compiled) return fail(compiled.error());
+    variants.push_back(std::move(*compiled));
+  }
+  auto environment = harness::build_environment(scene->environment);
+  if (!environment) return fail(environment.error());
+  auto rendered = harness::render_scene(context.backend, *scene, *plan, variants, *environment);
+  if (!rendered) return fail(rendered.error());
+  return std::move(rendered->image);
+}
+
+std::string number(double value) { return fmt::format("{:.6g}", value); }
+
+}  // namespace xshade::stability
