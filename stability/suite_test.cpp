@@ -31,6 +31,9 @@ struct CaseOnLane {
   harness::Lane lane;
 };
 
+// How CTest's test names show the parameter.
+void PrintTo(const CaseOnLane& param, std::ostream* out) { *out << param.case_id << " on " << harness::lane_name(param.lane); }
+
 class StabilityCase : public testing::TestWithParam<CaseOnLane> {};
 
 TEST_P(StabilityCase, ComesOutAsPredicted) {
