@@ -6,6 +6,7 @@
 #include <numbers>
 
 #include "harness/image_compare.h"
+#include "stability/brdf_forms.h"
 #include "stability/cases.h"
 #include "stability/probe.h"
 
@@ -59,17 +60,6 @@ Result<std::vector<BrdfOutput>> run_brdf(const CaseContext& context, const std::
 }
 
 bool finite(double value) { return std::isfinite(value); }
-
-// The forms of the Cook-Torrance lobe. "guarded" is SHADERS.md's guarded form: the guards of
-// hazards 1-4 and the Lagrange D of hazard 8. The material_grid_guarded scene's form keeps the
-// seed's D with the guards: it is stable in fp32, and SHADERS.md predicts its D overflows fp16.
-const Form kSeed{"seed", {}, true};
-const Form kGuardsSeedD{"guards, seed D", {"_GUARDED"}, true};
-const Form kGuarded{"guarded", {"_GUARDED", "_D_GGX_LAGRANGE"}, false};
-const Form kGuardedSmith{"guarded, Smith", {"_GUARDED", "_D_GGX_LAGRANGE", "_G_SMITH_CORRELATED"}, false};
-const Form kGuardedSmithFast{"guarded, fast Smith", {"_GUARDED", "_D_GGX_LAGRANGE", "_G_SMITH_FAST"}, false};
-const Form kGuardedSG{"guarded, SG Fresnel", {"_GUARDED", "_D_GGX_LAGRANGE", "_F_SPHERICAL_GAUSSIAN"}, false};
-const Form kGuardedExactF{"guarded, exact Fresnel", {"_GUARDED", "_D_GGX_LAGRANGE", "_F_EXACT"}, false};
 
 std::string alpha_label(float a) { return "a = " + number(a); }
 
@@ -379,15 +369,12 @@ Case fresnel_endpoints() {
                               finite(at_one) && std::abs(at_one - r0) <= kTolerance});
       measurements.push_back({inputs[first].label, "F", at_zero, "= 1 +- 1e-3", finite(at_zero) && std::abs(at_zero - 1.0) <= kTolerance});
       // Monotone: the largest rise from one step to the next, which must not exceed rounding.
-      double worst_rise = -INFINITY;
-      size_t worst = first;
-      for (int k = 0; k < kSteps; ++k) {
-        const double rise = (*outputs)[first + k + 1].F - (*outputs)[first + k].F;
-        if (!(rise <= worst_rise)) worst_rise = rise, worst = first + k + 1;
-      }
+      std::vector<double> sweep;
+      for (int k = 0; k <= kSteps; ++k) sweep.push_back((*outputs)[first + k].F);
+      const Rise rise = largest_rise(sweep);
       measurements.push_back({fmt::format("LoH from 0 to 1 in {} steps, R0 = {}", kSteps, number(r0)),
-                              fmt::format("largest rise of F (at LoH = {})", number(inputs[worst].LoH)), worst_rise,
-                              "<= 1e-3 (non-increasing up to rounding)", finite(worst_rise) && worst_rise <= kTolerance});
+                              fmt::format("largest rise of F (at LoH = {})", number(inputs[first + rise.at].LoH)), rise.value,
+                              "<= 1e-3 (non-increasing up to rounding)", finite(rise.value) && rise.value <= kTolerance});
     }
     return measurements;
   };
@@ -428,10 +415,11 @@ Case material_grid() {
     }
     auto outputs = run_brdf(context, inputs);
     if (!outputs) return fail(outputs.error());
-    double worst_rise = -INFINITY;
-    for (int k = 0; k < kSteps; ++k) worst_rise = std::max(worst_rise, (*outputs)[k + 1].diffuse - (*outputs)[k].diffuse);
+    std::vector<double> diffuse;
+    for (const BrdfOutput& out : *outputs) diffuse.push_back(out.diffuse);
+    const double rise = largest_rise(diffuse).value;
     measurements.push_back({fmt::format("white albedo, metallic from 0 to 1 in {} steps", kSteps), "largest rise of the diffuse colour",
-                            worst_rise, "<= 0", worst_rise <= 0.0});
+                            rise, "<= 0", rise <= 0.0});
     return measurements;
   };
   c.predict = [](const Form& form, Precision precision) -> Prediction {

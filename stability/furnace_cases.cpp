@@ -7,17 +7,12 @@
 #include <cmath>
 #include <map>
 
+#include "stability/brdf_forms.h"
 #include "stability/cases.h"
 #include "stability/probe.h"
 
 namespace xshade::stability {
 namespace {
-
-const Form kSeed{"seed", {}, true};
-const Form kGuardsSeedD{"guards, seed D", {"_GUARDED"}, true};
-const Form kGuarded{"guarded", {"_GUARDED", "_D_GGX_LAGRANGE"}, false};
-const Form kGuardedSmith{"guarded, Smith", {"_GUARDED", "_D_GGX_LAGRANGE", "_G_SMITH_CORRELATED"}, false};
-const Form kGuardedSmithFast{"guarded, fast Smith", {"_GUARDED", "_D_GGX_LAGRANGE", "_G_SMITH_FAST"}, false};
 
 struct Integral {
   float NoV = 1.0f;
@@ -115,10 +110,9 @@ Case directional_albedo() {
                               "change of E(v)", fine - coarse, "within +-5e-4 (the rule has converged)",
                               std::isfinite(fine) && std::abs(fine - coarse) <= 5e-4});
     }
-    double worst_rise = -INFINITY;
-    for (size_t k = 0; k + 1 < n; ++k) worst_rise = std::max(worst_rise, (*values)[k + 1] - (*values)[k]);
-    measurements.push_back({"NoV = 1, a = 0.05 .. 1", "largest rise of E(v) from one a to the next", worst_rise,
-                            "< 0 (E falls as a rises)", std::isfinite(worst_rise) && worst_rise < 0.0});
+    const double rise = largest_rise({values->begin(), values->begin() + long(n)}).value;
+    measurements.push_back({"NoV = 1, a = 0.05 .. 1", "largest rise of E(v) from one a to the next", rise,
+                            "< 0 (E falls as a rises)", std::isfinite(rise) && rise < 0.0});
     return measurements;
   };
   c.predict = [](const Form& form, Precision precision) -> Prediction {

@@ -64,6 +64,15 @@ Result<harness::FloatImage> render_scene_with_form(const CaseContext& context, c
   return std::move(rendered->image);
 }
 
+Rise largest_rise(const std::vector<double>& values) {
+  Rise rise;
+  for (size_t k = 1; k < values.size(); ++k) {
+    const double step = values[k] - values[k - 1];
+    if (!(step <= rise.value)) rise = {step, k};
+  }
+  return rise;
+}
+
 std::string number(double value) { return fmt::format("{:.6g}", value); }
 
 }  // namespace xshade::stability

@@ -2,6 +2,7 @@
 // file of the project with the case's form.
 #pragma once
 
+#include <cmath>
 #include <map>
 #include <string>
 #include <vector>
@@ -33,6 +34,14 @@ Result<harness::FloatImage> run_probe(const CaseContext& context, const std::str
 // Renders a scene of the project (harness/scenes/NAME.toml) with every object's keywords
 // replaced by the form's.
 Result<harness::FloatImage> render_scene_with_form(const CaseContext& context, const std::string& scene_name);
+
+// The largest rise from one value to the next, and the index of the later value; NaN if a
+// difference is NaN.
+struct Rise {
+  double value = -INFINITY;
+  size_t at = 0;
+};
+Rise largest_rise(const std::vector<double>& values);
 
 // "0.002", "1e-07", "-inf": a number as the case tables show it.
 std::string number(double value);
