@@ -12,6 +12,8 @@
 #include <numbers>
 #include <string_view>
 
+#include "harness/markup.h"
+
 namespace xshade::accuracy {
 namespace {
 
@@ -30,71 +32,11 @@ constexpr size_t kMaxNotes = 12;
 
 // ---- text ----
 
-// The length of the well-formed UTF-8 sequence at text[i] and its code point; 0 when the bytes
-// there are not one (overlong forms and surrogates included).
-size_t utf8_sequence(std::string_view text, size_t i, uint32_t& code_point) {
-  const auto byte = [&](size_t k) { return static_cast<uint8_t>(text[k]); };
-  const uint8_t lead = byte(i);
-  if (lead < 0x80) {
-    code_point = lead;
-    return 1;
-  }
-  size_t length = 0;
-  uint8_t low = 0x80, high = 0xBF;
-  if (lead >= 0xC2 && lead <= 0xDF) {
-    length = 2;
-  } else if (lead >= 0xE0 && lead <= 0xEF) {
-    length = 3;
-    if (lead == 0xE0) low = 0xA0;
-    if (lead == 0xED) high = 0x9F;
-  } else if (lead >= 0xF0 && lead <= 0xF4) {
-    length = 4;
-    if (lead == 0xF0) low = 0x90;
-    if (lead == 0xF4) high = 0x8F;
-  } else {
-    return 0;
-  }
-  if (i + length > text.size() || byte(i + 1) < low || byte(i + 1) > high) return 0;
-  for (size_t k = 2; k < length; ++k)
-    if (byte(i + k) < 0x80 || byte(i + k) > 0xBF) return 0;
-  code_point = lead & (0x7Fu >> length);
-  for (size_t k = 1; k < length; ++k) code_point = (code_point << 6) | (byte(i + k) & 0x3Fu);
-  return length;
-}
-
-// Labels come from configuration names and may hold anything: the five XML specials become
-// references, whitespace becomes a space (a chart label is one line), and bytes that are not
-// UTF-8 or characters XML 1.0 forbids become U+FFFD, so the document is always well-formed.
+// Labels come from configuration names and may hold anything: escape_text makes them
+// well-formed XML; a chart label is one line, so line breaks and tabs become spaces.
 std::string escape_xml(std::string_view text) {
-  std::string out;
-  out.reserve(text.size());
-  for (size_t i = 0; i < text.size();) {
-    uint32_t code_point = 0;
-    const size_t length = utf8_sequence(text, i, code_point);
-    const bool allowed = length != 0 && code_point != 0x7F && (code_point < 0xD800 || code_point > 0xDFFF) &&
-                         code_point != 0xFFFE && code_point != 0xFFFF;
-    if (!allowed) {
-      out += "\xEF\xBF\xBD";
-      i += length == 0 ? 1 : length;
-      continue;
-    }
-    switch (code_point) {
-      case '&': out += "&amp;"; break;
-      case '<': out += "&lt;"; break;
-      case '>': out += "&gt;"; break;
-      case '"': out += "&quot;"; break;
-      case '\'': out += "&apos;"; break;
-      case '\t':
-      case '\n':
-      case '\r': out += ' '; break;
-      default:
-        if (code_point < 0x20)
-          out += "\xEF\xBF\xBD";
-        else
-          out.append(text.substr(i, length));
-    }
-    i += length;
-  }
+  std::string out = harness::escape_text(text);
+  std::replace_if(out.begin(), out.end(), [](char c) { return c == '\n' || c == '\r' || c == '\t'; }, ' ');
   return out;
 }
 

@@ -62,7 +62,27 @@ bool decode(std::string_view raw, std::string& out) {
     if (auto it = named.find(entity); it != named.end()) {
       out += it->second;
     } else if (entity.size() > 1 && entity[0] == '#') {
-      out += '?';  // numeric references are valid; their character does not matter here
+      // A character reference, decimal or hexadecimal, written back as UTF-8.
+      const bool hex = entity[1] == 'x';
+      const std::string digits(entity.substr(hex ? 2 : 1));
+      if (digits.empty() || digits.find_first_not_of(hex ? "0123456789abcdefABCDEF" : "0123456789") != std::string::npos)
+        return false;
+      const unsigned long code = std::stoul(digits, nullptr, hex ? 16 : 10);
+      if (code < 0x80) {
+        out += char(code);
+      } else if (code < 0x800) {
+        out += char(0xC0 | (code >> 6));
+        out += char(0x80 | (code & 0x3F));
+      } else if (code < 0x10000) {
+        out += char(0xE0 | (code >> 12));
+        out += char(0x80 | ((code >> 6) & 0x3F));
+        out += char(0x80 | (code & 0x3F));
+      } else {
+        out += char(0xF0 | (code >> 18));
+        out += char(0x80 | ((code >> 12) & 0x3F));
+        out += char(0x80 | ((code >> 6) & 0x3F));
+        out += char(0x80 | (code & 0x3F));
+      }
     } else {
       return false;
     }
@@ -313,7 +333,7 @@ TEST(ParetoChartTest, EscapesLabelsNamesAndTitle) {
   const Xml xml = parse_xml(svg);
   ASSERT_EQ(xml.error, "") << svg;
   EXPECT_THAT(svg, Not(HasSubstr("<script>")));
-  EXPECT_THAT(svg, HasSubstr("&lt;script&gt;alert(&quot;x&quot;)&lt;/script&gt; &apos;q&apos;"));
+  EXPECT_THAT(svg, HasSubstr("&lt;script&gt;alert(&quot;x&quot;)&lt;/script&gt; &#39;q&#39;"));
   EXPECT_THAT(svg, HasSubstr("fp32 &amp; fp16"));
   EXPECT_THAT(svg, HasSubstr("RMSE &lt;linear&gt;"));
   EXPECT_THAT(svg, HasSubstr("bad \xEF\xBF\xBD byte\xEF\xBF\xBD"));  // U+FFFD for the bad byte and the control
