@@ -1,6 +1,8 @@
 #include "harness/scene_renderer.h"
 
+#include <algorithm>
 #include <chrono>
+#include <cstring>
 #include <map>
 
 #include <glm/gtc/matrix_transform.hpp>
@@ -74,30 +76,82 @@ Result<MeshData> mesh_data(const MeshRef& mesh) {
   return fail("unknown mesh kind");
 }
 
+// Post passes sample colour bilinear and depth exactly, both clamped at the edges
+// (docs/shader_library.md).
+constexpr SamplerDesc kColorSampler{Filter::Linear, AddressMode::ClampToEdge};
+constexpr SamplerDesc kDepthSampler{Filter::Nearest, AddressMode::ClampToEdge};
+
+// An image a post pass can read: its binding (a target's colour or depth, or an uploaded
+// texture, with its sampler) and its size, for X_TexelSize.
+struct PassSource {
+  TextureSource binding;
+  glm::uvec2 size{0};
+};
+
+// One RGBA32F level, as given: a post pass reads level 0 only.
+TextureData float_texture(const FloatImage& image) {
+  std::vector<std::byte> bytes(image.rgba.size() * sizeof(float));
+  std::memcpy(bytes.data(), image.rgba.data(), bytes.size());
+  return {TextureFormat::Rgba32Float, image.width, image.height, {std::move(bytes)}};
+}
+
 class SceneRenderer {
  public:
   SceneRenderer(Backend& backend, const Scene& scene, const Plan& plan, const std::vector<CompiledVariant>& variants,
                 const Environment& environment, const RenderOptions& options)
       : backend_(backend), scene_(scene), plan_(plan), variants_(variants), environment_(environment), options_(options) {}
 
+  // The scene pass, then the post passes on its colour and depth.
   Result<RenderedScene> render() {
     auto target = backend_.create_target({scene_.width, scene_.height, true});
     if (!target) return fail(target.error());
     scene_target_ = *target;
-    target_sizes_[target->id] = {scene_.width, scene_.height};
-    // Every frame runs every pass; programs, meshes, textures and targets are made in the first.
+    const glm::uvec2 size{scene_.width, scene_.height};
+    scene_color_ = {TextureSource::color_of(*target, kColorSampler), size};
+    scene_depth_ = {TextureSource::depth_of(*target, kDepthSampler), size};
+    return render_passes();
+  }
+
+  // The post passes alone, on the given colour and depth.
+  Result<RenderedScene> render_post(const FloatImage& color, const FloatImage& depth) {
+    for (const auto& [name, image] : {std::pair{"colour", &color}, std::pair{"depth", &depth}}) {
+      const bool fits = image->width == scene_.width && image->height == scene_.height &&
+                        image->rgba.size() == size_t(image->width) * image->height * 4;
+      if (!fits)
+        return fail(std::string("the ") + name + " image is " + std::to_string(image->width) + "x" +
+                    std::to_string(image->height) + ", the scene " + std::to_string(scene_.width) + "x" +
+                    std::to_string(scene_.height));
+    }
+    if (std::none_of(plan_.passes.begin(), plan_.passes.end(),
+                     [](const PlannedPass& pass) { return pass.kind == PlannedPass::Kind::Post; }))
+      return fail("scene '" + scene_.name + "' has no post pass to run on the given images");
+    auto color_texture = backend_.upload_texture(float_texture(color));
+    if (!color_texture) return fail(color_texture.error());
+    auto depth_texture = backend_.upload_texture(float_texture(depth));
+    if (!depth_texture) return fail(depth_texture.error());
+    const glm::uvec2 size{scene_.width, scene_.height};
+    scene_color_ = {TextureSource::texture(*color_texture, kColorSampler), size};
+    scene_depth_ = {TextureSource::texture(*depth_texture, kDepthSampler), size};
+    return render_passes();
+  }
+
+ private:
+  // Every frame runs every pass; programs, meshes, textures and targets are made in the first.
+  // Without a scene target (render_post) the scene pass is not run.
+  Result<RenderedScene> render_passes() {
     std::vector<double> frame_milliseconds;
     for (uint32_t frame = 0; frame < std::max(1u, options_.frames); ++frame) {
       timings_.clear();
       pass_images_.clear();
-      color_ = scene_target_;
+      current_ = scene_color_;
       current_effect_ = SIZE_MAX;
       for (size_t p = 0; p < plan_.passes.size(); ++p) {
         const PlannedPass& pass = plan_.passes[p];
+        if (pass.kind == PlannedPass::Kind::Scene && !scene_target_) continue;
         auto rendered = pass.kind == PlannedPass::Kind::Scene ? scene_pass() : post_pass(p);
         if (!rendered) return fail(rendered.error());
         if (options_.keep_pass_images) {
-          auto image = backend_.read_color(color_);
+          auto image = read_current();
           if (!image) return fail(image.error());
           pass_images_.emplace_back(pass.name, std::move(*image));
         }
@@ -106,15 +160,22 @@ class SceneRenderer {
       for (const PassTiming& timing : timings_) total += timing.milliseconds;
       frame_milliseconds.push_back(total);
     }
-    auto image = backend_.read_color(color_);
+    auto image = read_current();
     if (!image) return fail(image.error());
     return RenderedScene{std::move(*image), std::move(timings_), std::move(pass_images_), std::move(frame_milliseconds)};
   }
 
- private:
+  // The image so far is always a target's colour once a pass has run: the scene pass's or a
+  // post pass's.
+  Result<FloatImage> read_current() {
+    if (current_.binding.kind != TextureSource::Kind::TargetColor) return fail("no pass has rendered an image to read");
+    return backend_.read_color(TargetHandle{current_.binding.id});
+  }
+
   Result<ProgramHandle> program(size_t variant) {
     if (auto it = programs_.find(variant); it != programs_.end()) return it->second;
-    auto created = backend_.create_program(variants_[variant].program);
+    auto created = options_.programs ? options_.programs->program(backend_, variants_[variant].program)
+                                     : backend_.create_program(variants_[variant].program);
     if (!created) return fail(created.error());
     programs_[variant] = *created;
     return *created;
@@ -223,11 +284,12 @@ class SceneRenderer {
       target = *created;
     }
 
-    // An effect's first pass reads the image so far; scene.depth is always the scene pass's.
+    // An effect's first pass reads the image so far; scene.depth is always the scene's (the scene
+    // pass's depth, or the given depth image).
     if (planned.effect != current_effect_) {
       current_effect_ = planned.effect;
-      effect_input_ = color_;
-      pass_targets_.clear();
+      effect_input_ = current_;
+      pass_outputs_.clear();
     }
     Values values = frame_values();
     const CompiledVariant& variant = variants_[planned.variant];
@@ -237,18 +299,12 @@ class SceneRenderer {
                                 [&](const hlsl::PassInput& i) { return i.texture == name; });
       if (input == declaration.inputs.end())
         return fail("pass '" + planned.name + "' samples '" + name + "', which its #pragma pass gives no source");
-      TargetHandle source = effect_input_;
-      TextureSource binding;
-      if (input->kind == hlsl::PassInput::Kind::SceneDepth) {
-        source = scene_target_;
-        binding = TextureSource::depth_of(source, {Filter::Nearest, AddressMode::ClampToEdge});
-      } else {
-        if (input->kind == hlsl::PassInput::Kind::Pass) source = pass_targets_.at(input->pass);
-        binding = TextureSource::color_of(source, {Filter::Linear, AddressMode::ClampToEdge});
-      }
-      const glm::uvec2 size = target_sizes_.at(source.id);
+      const PassSource& source = input->kind == hlsl::PassInput::Kind::SceneDepth ? scene_depth_
+                                 : input->kind == hlsl::PassInput::Kind::Pass     ? pass_outputs_.at(input->pass)
+                                                                                  : effect_input_;
+      const glm::uvec2 size = source.size;
       values[name + "_TexelSize"] = {1.0f / float(size.x), 1.0f / float(size.y), float(size.x), float(size.y)};
-      draw.textures.push_back({name, binding});
+      draw.textures.push_back({name, source.binding});
     }
     auto handle = program(planned.variant);
     if (!handle) return fail(handle.error());
@@ -257,11 +313,10 @@ class SceneRenderer {
     if (!uniforms) return fail(uniforms.error());
     draw.uniforms = std::move(*uniforms);
 
-    target_sizes_[target.id] = {width, height};
     RenderPass pass{target, glm::vec4(0.0f), 1.0f, {std::move(draw)}};
     if (auto rendered = timed(planned.name, pass); !rendered) return rendered;
-    pass_targets_[declaration.name] = target;
-    color_ = target;
+    current_ = {TextureSource::color_of(target, kColorSampler), {width, height}};
+    pass_outputs_[declaration.name] = current_;
     return {};
   }
 
@@ -280,12 +335,13 @@ class SceneRenderer {
   const Environment& environment_;
   const RenderOptions& options_;
 
-  TargetHandle scene_target_;
-  TargetHandle color_;  // the image so far
+  TargetHandle scene_target_;  // none when the post passes run on given images
+  PassSource scene_color_;      // what scene.color and scene.depth name
+  PassSource scene_depth_;
+  PassSource current_;          // the image so far
   size_t current_effect_ = SIZE_MAX;
-  TargetHandle effect_input_;
-  std::map<std::string, TargetHandle> pass_targets_;  // of the current effect, by pass name
-  std::map<uint32_t, glm::uvec2> target_sizes_;
+  PassSource effect_input_;     // the image the current effect received
+  std::map<std::string, PassSource> pass_outputs_;  // of the current effect, by pass name
   std::map<size_t, TargetHandle> pass_target_;  // by index into the plan's passes
   std::map<size_t, ProgramHandle> programs_;
   std::vector<std::pair<MeshRef, MeshHandle>> meshes_;
@@ -295,12 +351,48 @@ class SceneRenderer {
   std::vector<std::pair<std::string, FloatImage>> pass_images_;
 };
 
+// What makes two programs the same: their stages' code and the layout they are bound by, not
+// their names.
+std::string program_key(const ProgramDesc& desc) {
+  std::string key = desc.fullscreen ? "fullscreen\n" : "mesh\n";
+  for (const ShaderStageSource* stage : {&desc.vertex, &desc.fragment}) {
+    key += stage->entry_point + "\n" + stage->glsl + "\n";
+    key.append(reinterpret_cast<const char*>(stage->spirv.data()), stage->spirv.size() * sizeof(uint32_t));
+    key += "\n";
+  }
+  for (const UniformBlockSlot& block : desc.layout.uniform_blocks)
+    key += "b " + block.name + " " + std::to_string(block.binding) + " " + std::to_string(block.size) + "\n";
+  for (const TextureSlot& texture : desc.layout.textures)
+    key += "t " + texture.name + " " + std::to_string(texture.binding) + " " +
+           (texture.sampler_binding ? std::to_string(*texture.sampler_binding) : "-") + "\n";
+  return key;
+}
+
 }  // namespace
+
+Result<ProgramHandle> ProgramCache::program(Backend& backend, const ProgramDesc& desc) {
+  if (backend_ && backend_ != &backend) return fail("a program cache serves one backend only");
+  backend_ = &backend;
+  std::string key = program_key(desc);
+  if (auto it = programs_.find(key); it != programs_.end()) return it->second;
+  auto created = backend.create_program(desc);
+  if (!created) return fail(created.error());
+  programs_.emplace(std::move(key), *created);
+  return *created;
+}
 
 Result<RenderedScene> render_scene(Backend& backend, const Scene& scene, const Plan& plan,
                                    const std::vector<CompiledVariant>& variants, const Environment& environment,
                                    const RenderOptions& options) {
   return SceneRenderer(backend, scene, plan, variants, environment, options).render();
+}
+
+Result<RenderedScene> render_post_effects(Backend& backend, const Scene& scene, const Plan& plan,
+                                          const std::vector<CompiledVariant>& variants, const FloatImage& color,
+                                          const FloatImage& depth, const RenderOptions& options) {
+  // No scene pass, so no environment: the post passes read none of its values.
+  const Environment none;
+  return SceneRenderer(backend, scene, plan, variants, none, options).render_post(color, depth);
 }
 
 }  // namespace xshade::harness
