@@ -23,12 +23,12 @@ float linear_eye_depth(float depth) {
   float f = _CameraNearFar.y;
   return n * f / (f - depth * (f - n));
 }
-#line 56 1
+#line 58 1
 vec4 frag_coc(vec2 uv) {
   float depth = textureLod(sampler2D(_CameraDepthTexture, sampler_CameraDepthTexture), uv, 0.0).x;
-#line 63 1
-  float coc = clamp((linear_eye_depth(depth) - _FocusDistance) / _FocusRange, -1.0, 1.0);
 #line 65 1
+  float coc = clamp((linear_eye_depth(depth) - _FocusDistance) / _FocusRange, -1.0, 1.0);
+#line 67 1
   coc *= _BokehRadius;
   return vec4(coc, coc, coc, 1.0);
 }

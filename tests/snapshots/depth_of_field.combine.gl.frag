@@ -18,7 +18,7 @@ layout(binding = 17) uniform sampler2D _CoCTex;
 layout(binding = 18) uniform sampler2D _DoFTex;
 layout(location = 0) in vec2 xs_v_TEXCOORD0;
 layout(location = 0) out vec4 xs_target0;
-#line 143 1
+#line 178 1
 vec4 frag_combine(vec2 uv) {
   vec4 source = textureLod(_MainTex, uv, 0.0);
   float coc = textureLod(_CoCTex, uv, 0.0).x;

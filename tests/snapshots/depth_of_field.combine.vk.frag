@@ -21,7 +21,7 @@ layout(set = 0, binding = 33) uniform sampler sampler_CoCTex;
 layout(set = 0, binding = 34) uniform sampler sampler_DoFTex;
 layout(location = 0) in vec2 xs_v_TEXCOORD0;
 layout(location = 0) out vec4 xs_target0;
-#line 143 1
+#line 178 1
 vec4 frag_combine(vec2 uv) {
   vec4 source = textureLod(sampler2D(_MainTex, sampler_MainTex), uv, 0.0);
   float coc = textureLod(sampler2D(_CoCTex, sampler_CoCTex), uv, 0.0).x;

@@ -16,11 +16,11 @@ layout(std140, binding = 1) uniform xs_Globals {
 layout(binding = 16) uniform sampler2D _MainTex;
 layout(location = 0) in vec2 xs_v_TEXCOORD0;
 layout(location = 0) out vec4 xs_target0;
-#line 134 1
+#line 169 1
 vec4 frag_postfilter(vec2 uv) {
   vec4 o = _MainTex_TexelSize.xyxy * vec2(-0.5, 0.5).xxyy;
   vec4 s = textureLod(_MainTex, uv + o.xy, 0.0) + textureLod(_MainTex, uv + o.zy, 0.0) + textureLod(_MainTex, uv + o.xw, 0.0) + textureLod(_MainTex, uv + o.zw, 0.0);
-#line 138 1
+#line 173 1
   return s * 0.25;
 }
 #line 27 0

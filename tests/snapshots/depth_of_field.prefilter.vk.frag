@@ -21,37 +21,43 @@ layout(location = 0) out vec4 xs_target0;
 vec4 xs_Load(texture2D a0, ivec3 a1) {
   return texelFetch(a0, a1.xy, a1.z);
 }
-#line 19 2
+#line 33 2
 float max3(vec3 v) {
-#line 19 2
+#line 33 2
   return max(v.x, max(v.y, v.z));
 }
-#line 74 1
+#line 79 1
 vec4 frag_prefilter(vec2 uv, vec4 position) {
   ivec2 texel = ivec2(position.xy) * 2;
-  vec3 c0 = xs_Load(_MainTex, ivec3(texel, 0)).xyz;
-  vec3 c1 = xs_Load(_MainTex, ivec3(texel + ivec2(1, 0), 0)).xyz;
-  vec3 c2 = xs_Load(_MainTex, ivec3(texel + ivec2(0, 1), 0)).xyz;
-  vec3 c3 = xs_Load(_MainTex, ivec3(texel + ivec2(1, 1), 0)).xyz;
-  float coc0 = xs_Load(_CoCTex, ivec3(texel, 0)).x;
-  float coc1 = xs_Load(_CoCTex, ivec3(texel + ivec2(1, 0), 0)).x;
-  float coc2 = xs_Load(_CoCTex, ivec3(texel + ivec2(0, 1), 0)).x;
-  float coc3 = xs_Load(_CoCTex, ivec3(texel + ivec2(1, 1), 0)).x;
-#line 85 1
+  ivec2 color_last = ivec2(_MainTex_TexelSize.zw) - 1;
+  ivec2 c_lo = min(texel, color_last);
+  ivec2 c_hi = min(texel + 1, color_last);
+  ivec2 coc_last = ivec2(_CoCTex_TexelSize.zw) - 1;
+  ivec2 k_lo = min(texel, coc_last);
+  ivec2 k_hi = min(texel + 1, coc_last);
+  vec3 c0 = xs_Load(_MainTex, ivec3(c_lo.x, c_lo.y, 0)).xyz;
+  vec3 c1 = xs_Load(_MainTex, ivec3(c_hi.x, c_lo.y, 0)).xyz;
+  vec3 c2 = xs_Load(_MainTex, ivec3(c_lo.x, c_hi.y, 0)).xyz;
+  vec3 c3 = xs_Load(_MainTex, ivec3(c_hi.x, c_hi.y, 0)).xyz;
+  float coc0 = xs_Load(_CoCTex, ivec3(k_lo.x, k_lo.y, 0)).x;
+  float coc1 = xs_Load(_CoCTex, ivec3(k_hi.x, k_lo.y, 0)).x;
+  float coc2 = xs_Load(_CoCTex, ivec3(k_lo.x, k_hi.y, 0)).x;
+  float coc3 = xs_Load(_CoCTex, ivec3(k_hi.x, k_hi.y, 0)).x;
+#line 96 1
   float w0 = abs(coc0) / (max3(c0) + 1.0);
   float w1 = abs(coc1) / (max3(c1) + 1.0);
   float w2 = abs(coc2) / (max3(c2) + 1.0);
   float w3 = abs(coc3) / (max3(c3) + 1.0);
   vec3 color = c0 * w0 + c1 * w1 + c2 * w2 + c3 * w3;
-#line 93 1
+#line 104 1
   color /= w0 + w1 + w2 + w3;
-#line 96 1
+#line 107 1
   float coc_min = min(min(coc0, coc1), min(coc2, coc3));
   float coc_max = max(max(coc0, coc1), max(coc2, coc3));
   float coc = coc_max >= -coc_min ? coc_max : coc_min;
   return vec4(color, coc);
 }
-#line 55 0
+#line 61 0
 void main() {
   vec2 xs_arg0;
   vec4 xs_arg1;

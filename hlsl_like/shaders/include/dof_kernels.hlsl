@@ -2,6 +2,7 @@
 // unit disk (radius 1 = bokehRadius). Ring k of n points has the points at angles 2 pi j / n,
 // j = 0 .. n-1, at the radius SHADERS.md gives; the values below are that formula evaluated to
 // 7 digits. _KERNEL_SMALL 16, _KERNEL_MEDIUM 22, _KERNEL_LARGE 43, _KERNEL_VERY_LARGE 71 samples.
+// _KERNEL_DENSE has no fixed kernel: the bokeh pass gathers every texel within the radius.
 #ifndef XSHADE_DOF_KERNELS_HLSL
 #define XSHADE_DOF_KERNELS_HLSL
 
@@ -173,8 +174,8 @@ static const float2 kBokehKernel[71] = {
   float2(0.9009689, -0.4338837),
   float2(0.9749279, -0.2225209)
 };
-#else
-#error "depth_of_field needs one of _KERNEL_SMALL, _KERNEL_MEDIUM, _KERNEL_LARGE, _KERNEL_VERY_LARGE"
+#elif !defined(_KERNEL_DENSE)
+#error "depth_of_field needs one of _KERNEL_SMALL, _KERNEL_MEDIUM, _KERNEL_LARGE, _KERNEL_VERY_LARGE, _KERNEL_DENSE"
 #endif
 
 #endif

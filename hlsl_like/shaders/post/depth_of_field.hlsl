@@ -11,7 +11,7 @@
 #pragma pass bokeh      frag_bokeh      scale=half _MainTex=prefilter
 #pragma pass postfilter frag_postfilter scale=half _MainTex=bokeh
 #pragma pass combine    frag_combine    scale=full _MainTex=scene.color _CoCTex=coc _DoFTex=postfilter
-#pragma multi_compile _KERNEL_SMALL _KERNEL_MEDIUM _KERNEL_LARGE _KERNEL_VERY_LARGE
+#pragma multi_compile _KERNEL_SMALL _KERNEL_MEDIUM _KERNEL_LARGE _KERNEL_VERY_LARGE _KERNEL_DENSE
 #pragma multi_compile _ _GUARDED
 
 #include "include/common.hlsl"
@@ -47,10 +47,12 @@ float linear_eye_depth(float depth) {
 }
 
 // The smallest focus range the guarded form divides by (hazard 10): 1e-4 scene units is
-// sharper than any pixel at the fixed scenes' distances.
-static const half kMinFocusRange = 1e-4;
+// sharper than any pixel at the fixed scenes' distances. (Both constants are float rather than
+// half because the GLSL emitter's half emulation cannot round a file-scope constant yet: it
+// calls its rounding function in the constant's initialiser, which GLSL refuses.)
+static const float kMinFocusRange = 1e-4;
 // The smallest weight sum the guarded form divides by (hazard 10).
-static const half kMinWeightSum = 1e-5;
+static const float kMinWeightSum = 1e-5;
 
 // 1. Circle of confusion in pixels, signed: negative in front of the focus, positive behind.
 half4 frag_coc(float2 uv : TEXCOORD0) : SV_Target {
@@ -70,17 +72,26 @@ half4 frag_coc(float2 uv : TEXCOORD0) : SV_Target {
 // the CoC of largest magnitude among the four taps so that near blur is not lost. The four taps
 // are the four full-resolution texels under this pixel, read exactly: bilinear taps aimed at
 // their centres pick up a trace of the neighbours from rounding in the interpolated uv, and
-// where a near and a far CoC tie in magnitude that trace decides which one wins.
+// where a near and a far CoC tie in magnitude that trace decides which one wins. The reads are
+// clamped to the source's last texel, since a Load outside a texture is undefined: a source 1
+// texel wide (or high) still gets a half-resolution target of 1, whose pixel has no second texel
+// under it. For every other size the clamp changes nothing (half rounds down).
 half4 frag_prefilter(float2 uv : TEXCOORD0, float4 position : SV_Position) : SV_Target {
   int2 texel = int2(position.xy) * 2;
-  half3 c0 = _MainTex.Load(int3(texel, 0)).rgb;
-  half3 c1 = _MainTex.Load(int3(texel + int2(1, 0), 0)).rgb;
-  half3 c2 = _MainTex.Load(int3(texel + int2(0, 1), 0)).rgb;
-  half3 c3 = _MainTex.Load(int3(texel + int2(1, 1), 0)).rgb;
-  half coc0 = _CoCTex.Load(int3(texel, 0)).r;
-  half coc1 = _CoCTex.Load(int3(texel + int2(1, 0), 0)).r;
-  half coc2 = _CoCTex.Load(int3(texel + int2(0, 1), 0)).r;
-  half coc3 = _CoCTex.Load(int3(texel + int2(1, 1), 0)).r;
+  int2 color_last = int2(_MainTex_TexelSize.zw) - 1;
+  int2 c_lo = min(texel, color_last);
+  int2 c_hi = min(texel + 1, color_last);
+  int2 coc_last = int2(_CoCTex_TexelSize.zw) - 1;
+  int2 k_lo = min(texel, coc_last);
+  int2 k_hi = min(texel + 1, coc_last);
+  half3 c0 = _MainTex.Load(int3(c_lo.x, c_lo.y, 0)).rgb;
+  half3 c1 = _MainTex.Load(int3(c_hi.x, c_lo.y, 0)).rgb;
+  half3 c2 = _MainTex.Load(int3(c_lo.x, c_hi.y, 0)).rgb;
+  half3 c3 = _MainTex.Load(int3(c_hi.x, c_hi.y, 0)).rgb;
+  half coc0 = _CoCTex.Load(int3(k_lo.x, k_lo.y, 0)).r;
+  half coc1 = _CoCTex.Load(int3(k_hi.x, k_lo.y, 0)).r;
+  half coc2 = _CoCTex.Load(int3(k_lo.x, k_hi.y, 0)).r;
+  half coc3 = _CoCTex.Load(int3(k_hi.x, k_hi.y, 0)).r;
 
   half w0 = abs(coc0) / (max3(c0) + 1.0);
   half w1 = abs(coc1) / (max3(c1) + 1.0);
@@ -102,30 +113,54 @@ half4 frag_prefilter(float2 uv : TEXCOORD0, float4 position : SV_Position) : SV_
 // How much a sample at `radius` pixels with circle of confusion `coc` covers this pixel.
 half bokeh_weight(half coc, half radius) { return saturate((coc - radius + 2.0) / 2.0); }
 
+// Adds to the bokeh's sums (background and foreground apart) the sample `o` texels of its source
+// away from uv, for a pixel of CoC `coc`.
+void gather_bokeh_sample(inout half3 bg_color, inout half bg_weight, inout half3 fg_color, inout half fg_weight,
+                         float2 uv, half coc, float2 o) {
+  half radius = length(o);
+  o *= _MainTex_TexelSize.xy;
+  half4 s = _MainTex.SampleLevel(sampler_MainTex, uv + o, 0.0);
+  half bgw = bokeh_weight(max(0.0, min(s.a, coc)), radius);
+  bg_color += s.rgb * bgw;
+  bg_weight += bgw;
+  half fgw = bokeh_weight(-s.a, radius);
+  fg_color += s.rgb * fgw;
+  fg_weight += fgw;
+}
+
 // 3. The bokeh: gather over the disk kernel, background and foreground apart; the foreground's
-// coverage decides how much of it lies over the background.
+// coverage decides how much of it lies over the background. Each sample stands for an equal
+// share of the unit disk (pi / samples), so the coverage is the foreground's weight times that.
+// _KERNEL_DENSE, the reference the ring kernels are judged against, gathers every texel within
+// _BokehRadius instead of the rings.
 half4 frag_bokeh(float2 uv : TEXCOORD0) : SV_Target {
   half coc = _MainTex.SampleLevel(sampler_MainTex, uv, 0.0).a;
   half3 bg_color = 0.0;
   half3 fg_color = 0.0;
   half bg_weight = 0.0;
   half fg_weight = 0.0;
-  for (int k = 0; k < kBokehSampleCount; k++) {
-    float2 o = kBokehKernel[k] * _BokehRadius;
-    half radius = length(o);
-    o *= _MainTex_TexelSize.xy;
-    half4 s = _MainTex.SampleLevel(sampler_MainTex, uv + o, 0.0);
-    half bgw = bokeh_weight(max(0.0, min(s.a, coc)), radius);
-    bg_color += s.rgb * bgw;
-    bg_weight += bgw;
-    half fgw = bokeh_weight(-s.a, radius);
-    fg_color += s.rgb * fgw;
-    fg_weight += fgw;
+#if defined(_KERNEL_DENSE)
+  int reach = int(ceil(_BokehRadius));
+  float radius_squared = _BokehRadius * _BokehRadius;
+  int sample_count = 0;
+  for (int y = -reach; y <= reach; y++) {
+    for (int x = -reach; x <= reach; x++) {
+      float2 o = float2(x, y);
+      if (dot(o, o) <= radius_squared) {
+        gather_bokeh_sample(bg_color, bg_weight, fg_color, fg_weight, uv, coc, o);
+        sample_count++;
+      }
+    }
   }
+#else
+  int sample_count = kBokehSampleCount;
+  for (int k = 0; k < kBokehSampleCount; k++)
+    gather_bokeh_sample(bg_color, bg_weight, fg_color, fg_weight, uv, coc, kBokehKernel[k] * _BokehRadius);
+#endif
   // A zero sum leaves its colour at zero instead of dividing 0 by 0.
   bg_color *= 1.0 / (bg_weight + (bg_weight == 0.0 ? 1.0 : 0.0));
   fg_color *= 1.0 / (fg_weight + (fg_weight == 0.0 ? 1.0 : 0.0));
-  half bgfg = min(1.0, fg_weight * kPi / kBokehSampleCount);
+  half bgfg = min(1.0, fg_weight * kPi / sample_count);
   half3 color = lerp(bg_color, fg_color, bgfg);
   return half4(color, bgfg);
 }
