@@ -43,10 +43,15 @@ const std::vector<Kernel> kSampledKernels = {{"_KERNEL_SMALL", "16 samples"},
                                              {"_KERNEL_VERY_LARGE", "71 samples"}};
 // Every texel offset within the radius 4: the 49 integer points of x^2 + y^2 <= 16.
 const Kernel kDenseKernel{"_KERNEL_DENSE", "dense (49 samples)"};
+// For the tests whose result no kernel decides (the CoC, zero weights, image sizes): 43 samples,
+// because llvmpipe compiles the 16- and 22-sample bokeh loops unrolled, which under fp16
+// emulation takes it 2 to 3 s per program against 0.2 s for 43.
+const Kernel kAnyKernel{"_KERNEL_LARGE", "43 samples"};
 
 // How far a lit half-resolution texel h reaches in the output, per axis, in full-resolution
 // pixels. The bokeh's samples lie within the radius R (texels of the half-resolution source)
-// and a bilinear sample at offset o reads only the texels less than one texel from it, so texel
+// and a bilinear sample at offset o reads only the texels less than one texel from it (up to the
+// rounding of its uv: see kLit), so texel
 // h reaches bokeh texels h - R .. h + R; the tent adds one texel (h - R - 1 .. h + R + 1); the
 // combine's bilinear upsample reads half-resolution texel q at full-resolution pixels 2q - 1 ..
 // 2q + 2. Together: pixels 2h - 2R - 3 .. 2h + 2R + 4. A bright pixel at 2h or 2h + 1 therefore
@@ -60,12 +65,13 @@ constexpr int kBlockSpread = 2 * int(kBokehRadius) + 3;
 // (6e-8 each) away; 1e-5 relative covers 71 such roundings. fp16 emulation rounds each half
 // result to 11 bits (2^-11 = 4.9e-4 relative) in every pass; five passes: 5 x 4.9e-4 = 2.5e-3.
 double constant_tolerance(Precision precision) { return precision == Precision::Float ? 1e-5 : 2.5e-3; }
+const std::string kConstantBound = "<= 1e-5 relative in fp32, 2.5e-3 in fp16 (rounding of means of equal values)";
 
 // 1/255: one 8-bit step, SHADERS.md's bound for "output = source".
 constexpr double kOneStep = 1.0 / 255.0;
 
 struct DofSettings {
-  std::string kernel = "_KERNEL_SMALL";
+  std::string kernel = kAnyKernel.keyword;
   float focus_range = kFocusRange;
   bool keep_coc = false;  // read back the coc pass's image too
 };
@@ -76,9 +82,10 @@ struct DofImages {
 };
 
 // The depth of field in the context's form, lane and precision over `color` and `depth` (the
-// depth-buffer value in red). The scene has no objects: the effect is its whole plan.
-Result<DofImages> run_depth_of_field(const CaseContext& context, const DofSettings& settings, const FloatImage& color,
-                                     const FloatImage& depth) {
+// depth-buffer value in red). The scene has no objects: the effect is its whole plan. `programs`
+// keeps the passes' programs for the case's next renders on the same backend.
+Result<DofImages> run_depth_of_field(const CaseContext& context, harness::ProgramCache& programs,
+                                     const DofSettings& settings, const FloatImage& color, const FloatImage& depth) {
   harness::Scene scene;
   scene.name = "stability_depth_of_field";
   scene.width = color.width;
@@ -105,7 +112,7 @@ Result<DofImages> run_depth_of_field(const CaseContext& context, const DofSettin
     variants.push_back(std::move(*compiled));
   }
   auto rendered = harness::render_post_effects(context.backend, scene, *plan, variants, color, depth,
-                                               {.keep_pass_images = settings.keep_coc});
+                                               {.keep_pass_images = settings.keep_coc, .programs = &programs});
   if (!rendered) return fail(rendered.error());
   DofImages images{std::move(rendered->image), {}};
   if (settings.keep_coc) {
@@ -145,10 +152,14 @@ float noise(uint32_t x, uint32_t y, uint32_t channel) {
   return float(h >> 8) / float(1u << 24);
 }
 FloatImage noise_image(uint32_t width, uint32_t height) {
-  return image_of(width, height, [](uint32_t x, uint32_t y) { return glm::vec4(noise(x, y, 0), noise(x, y, 1), noise(x, y, 2), 1.0f); });
+  return image_of(width, height, [](uint32_t x, uint32_t y) {
+    return glm::vec4(noise(x, y, 0), noise(x, y, 1), noise(x, y, 2), 1.0f);
+  });
 }
 
-bool finite(glm::vec4 v) { return std::isfinite(v.r) && std::isfinite(v.g) && std::isfinite(v.b) && std::isfinite(v.a); }
+bool finite(glm::vec4 v) {
+  return std::isfinite(v.r) && std::isfinite(v.g) && std::isfinite(v.b) && std::isfinite(v.a);
+}
 
 double non_finite_pixels(const FloatImage& image) {
   size_t count = 0;
@@ -159,7 +170,8 @@ double non_finite_pixels(const FloatImage& image) {
 
 // The largest |a - b| over the colour channels of the pixels `where` selects; NaN as soon as one
 // of them is not finite (so that the bound fails).
-double largest_difference(const FloatImage& a, const FloatImage& b, const std::function<bool(uint32_t, uint32_t)>& where) {
+double largest_difference(const FloatImage& a, const FloatImage& b,
+                          const std::function<bool(uint32_t, uint32_t)>& where) {
   double worst = 0.0;
   for (uint32_t y = 0; y < a.height; ++y)
     for (uint32_t x = 0; x < a.width; ++x) {
@@ -175,7 +187,8 @@ double largest_difference(const FloatImage& a, const FloatImage& b, const std::f
 
 // The largest relative difference of the colour channels from `constant` over the pixels `where`
 // selects; NaN as soon as one is not finite.
-double largest_relative_difference(const FloatImage& image, glm::vec4 constant, const std::function<bool(uint32_t, uint32_t)>& where) {
+double largest_relative_difference(const FloatImage& image, glm::vec4 constant,
+                                   const std::function<bool(uint32_t, uint32_t)>& where) {
   double worst = 0.0;
   for (uint32_t y = 0; y < image.height; ++y)
     for (uint32_t x = 0; x < image.width; ++x) {
@@ -201,8 +214,6 @@ double rmse(const FloatImage& a, const FloatImage& b, uint32_t row_begin, uint32
     }
   return std::sqrt(sum / double(count));
 }
-
-std::string kernel_list() { return "16, 22, 43 and 71 samples"; }
 
 // ---- 5.13 -------------------------------------------------------------------------------------
 
@@ -231,32 +242,37 @@ double column_value(const FloatImage& coc, uint32_t x, double expected) {
   return worst;
 }
 
-const std::string kRampInput = "depth min(x, 80) / 80 across 82x8 (0 to 1 in steps of 1/80), 0.2/0.8 checkerboard";
+const std::string kRampInput =
+    "depth min(x, 80) / 80 across 82x8 (0 to 1 in steps of 1/80), 0.2/0.8 checkerboard, " + kAnyKernel.label;
 const std::string kFocusCocInput = "depth 0.75 (column 60 of the ramp)";
-const std::string kFocusInput = "depth 0.75 (column 60 of the ramp), 0.2/0.8 checkerboard";
+const std::string kFocusInput = "depth 0.75 (column 60 of the ramp), 0.2/0.8 checkerboard, " + kAnyKernel.label;
 const std::string kRangeZeroFocusInput = "focus range 0, depth 0.75 (column 60 of the ramp)";
 const std::string kRangeZeroRampInput = "focus range 0, " + kRampInput;
-const std::string kAllInFocusInput = "every pixel at depth 0.75 (coc = 0), 16x16, colour 0.5";
+const std::string kAllInFocusInput = "every pixel at depth 0.75 (coc = 0), 82x8, colour 0.5, " + kAnyKernel.label;
 
 Case coc_case() {
   Case c;
   c.id = "coc";
-  c.title = "CoC: in focus at depth = focus distance, monotone in depth, +-bokeh radius at depth 0 and 1, finite "
-            "at focus range 0 (near 1, far 3, focus 2, range 0.5, radius 4)";
+  c.title =
+      "CoC: in focus at depth = focus distance, monotone in depth, +-bokeh radius at depth 0 and 1, finite "
+      "at focus range 0 (near 1, far 3, focus 2, range 0.5, radius 4)";
   c.section = "5.13";
   c.forms = {kSeed, kGuarded};
   c.run = [](const CaseContext& context) -> Result<std::vector<Measurement>> {
+    harness::ProgramCache programs;
     std::vector<Measurement> m;
     const FloatImage color = checkerboard(kRampWidth, kRampHeight);
     const FloatImage depth = depth_of(kRampWidth, kRampHeight, [](uint32_t x, uint32_t) { return ramp_depth(x); });
 
-    auto ramp = run_depth_of_field(context, {.keep_coc = true}, color, depth);
+    auto ramp = run_depth_of_field(context, programs, {.keep_coc = true}, color, depth);
     if (!ramp) return fail(ramp.error());
     const double focus_coc = column_value(ramp->coc, kFocusColumn, 0.0);
     m.push_back({kFocusCocInput, "coc (pixels)", focus_coc,
                  "= 0: linear depth 3 / (3 - 2 x 0.75) = 2 = the focus distance, exact in float", focus_coc == 0.0});
-    const double focus_error = largest_difference(ramp->output, color, [](uint32_t x, uint32_t) { return x == kFocusColumn; });
-    m.push_back({kFocusInput, "largest |output - source|", focus_error, "<= 1/255 (one 8-bit step)", focus_error <= kOneStep});
+    const double focus_error =
+        largest_difference(ramp->output, color, [](uint32_t x, uint32_t) { return x == kFocusColumn; });
+    m.push_back(
+        {kFocusInput, "largest |output - source|", focus_error, "<= 1/255 (one 8-bit step)", focus_error <= kOneStep});
     // The largest drop of the coc from one column (depth) to the next, over every row.
     double drop = 0.0;
     for (uint32_t y = 0; y < kRampHeight; ++y)
@@ -264,15 +280,17 @@ Case coc_case() {
         const double step = double(ramp->coc.at(x, y).r) - ramp->coc.at(x + 1, y).r;
         if (!(step <= drop)) drop = step;  // NaN included
       }
-    m.push_back({kRampInput, "largest decrease of coc from one depth to the next", drop, "<= 0 (non-decreasing in depth)",
-                 drop <= 0.0});
+    m.push_back({kRampInput, "largest decrease of coc from one depth to the next", drop,
+                 "<= 0 (non-decreasing in depth)", drop <= 0.0});
     const double near_coc = column_value(ramp->coc, 0, -kBokehRadius);
-    m.push_back({"depth 0 (column 0 of the ramp)", "coc (pixels)", near_coc, "= -4 (-bokeh radius)", near_coc == -kBokehRadius});
+    m.push_back({"depth 0 (column 0 of the ramp)", "coc (pixels)", near_coc, "= -4 (-bokeh radius)",
+                 near_coc == -kBokehRadius});
     const double far_coc = column_value(ramp->coc, 80, kBokehRadius);
-    m.push_back({"depth 1 (column 80 of the ramp)", "coc (pixels)", far_coc, "= +4 (+bokeh radius)", far_coc == kBokehRadius});
+    m.push_back(
+        {"depth 1 (column 80 of the ramp)", "coc (pixels)", far_coc, "= +4 (+bokeh radius)", far_coc == kBokehRadius});
 
     // Focus range 0 (hazard 10): coc = (d - focus) / 0, +-inf off the focus and 0/0 on it.
-    auto sharp = run_depth_of_field(context, {.focus_range = 0.0f, .keep_coc = true}, color, depth);
+    auto sharp = run_depth_of_field(context, programs, {.focus_range = 0.0f, .keep_coc = true}, color, depth);
     if (!sharp) return fail(sharp.error());
     const double sharp_focus_coc = column_value(sharp->coc, kFocusColumn, 0.0);
     m.push_back({kRangeZeroFocusInput, "coc (pixels)", sharp_focus_coc,
@@ -290,8 +308,9 @@ Case coc_case() {
 
     // Everything in focus: coc = 0 at every pixel.
     const glm::vec4 grey(0.5f, 0.5f, 0.5f, 1.0f);
-    const FloatImage flat = filled(16, 16, grey);
-    auto focused = run_depth_of_field(context, {}, flat, filled(16, 16, glm::vec4(kInFocusDepth, 0.0f, 0.0f, 1.0f)));
+    const FloatImage flat = filled(kRampWidth, kRampHeight, grey);
+    auto focused = run_depth_of_field(context, programs, {}, flat,
+                                      filled(kRampWidth, kRampHeight, glm::vec4(kInFocusDepth, 0.0f, 0.0f, 1.0f)));
     if (!focused) return fail(focused.error());
     const double focused_error = largest_difference(focused->output, flat, [](uint32_t, uint32_t) { return true; });
     m.push_back({kAllInFocusInput, "largest |output - source|", focused_error, "<= 1/255 (one 8-bit step)",
@@ -303,22 +322,26 @@ Case coc_case() {
     p.failing_inputs = {kFocusInput, kAllInFocusInput};
     const std::string shared =
         "In focus the output is not the source, on every form: the combine blends the bokeh over the source by its "
-        "foreground coverage dof.a even where coc = 0, and the bokeh counts the pixel's own sample as foreground "
-        "(bokeh_weight(-coc, 0) = saturate(2 / 2) = 1 for coc = 0), so dof.a >= pi / 16 = 0.196 everywhere; an in-focus "
-        "pixel gets about a fifth (more near foreground) of its blurred neighbourhood, 0.08 on the checkerboard "
-        "(the catlikecoding tutorial's combine does the same). ";
+        "foreground coverage dof.a even where coc = 0, and the bokeh counts in-focus samples near the pixel as "
+        "foreground (bokeh_weight(-0, r) = saturate((2 - r) / 2): 1 for the pixel's own sample, 0.27 for the 43-sample "
+        "kernel's inner ring at 1.45 px), so dof.a = (1 + 7 x 0.27) pi / 43 = 0.21 where everything is in focus, more "
+        "next to foreground. An in-focus pixel gets a fifth or more of its blurred neighbourhood: 0.12 off on the "
+        "checkerboard (the catlikecoding tutorial's combine does the same). ";
     if (form.seed) {
       p.failing_inputs.insert(kRangeZeroFocusInput);
-      p.note = shared +
-               "Everything in focus: every prefilter weight is |coc| / (1 + brightness) = 0 and the seed divides 0 by 0 "
-               "(hazard 10): NaN everywhere. Focus range 0: SHADERS.md predicts coc = 0/0 = NaN at the focus distance; "
-               "on llvmpipe and lavapipe the clamp (max, then min, each returning the other operand for a NaN, as x86's "
-               "maxps and LLVM's maxnum do) turns that NaN into the lower bound, so the in-focus pixel gets coc = -4, the "
-               "largest foreground blur: finite, but wrong. Off the focus, +-inf is clamped to +-4 as predicted.";
+      p.note =
+          shared +
+          "Everything in focus: every prefilter weight is |coc| / (1 + brightness) = 0 and the seed divides 0 by 0 "
+          "(hazard 10): NaN everywhere. Focus range 0: SHADERS.md predicts coc = 0/0 = NaN at the focus distance; "
+          "0/0 is NaN there, but on llvmpipe and lavapipe max and min return the operand that is not NaN "
+          "(max(NaN, -1) = -1, min(NaN, 1) = 1 on every lane), so the clamp, max then min, turns it into the lower "
+          "bound: the in-focus pixel gets coc = -4, the largest foreground blur, finite but wrong. Off the focus, "
+          "+-inf is clamped to +-4 as predicted.";
     } else {
-      p.note = shared +
-               "Everything in focus: the guard max(sum, 1e-5) keeps the prefilter finite but makes its colour 0 (0 / 1e-5), "
-               "and that black reaches the output through dof.a = pi / 16: 0.5 comes out as 0.402.";
+      p.note =
+          shared +
+          "Everything in focus: the guard max(sum, 1e-5) keeps the prefilter finite but makes its colour 0 (0 / 1e-5), "
+          "and that black reaches the output through dof.a = 0.21: 0.5 comes out as 0.394.";
     }
     return p;
   };
@@ -350,13 +373,20 @@ FloatImage energy_image() {
   });
 }
 
+// A pixel counts as lit above 1e-6 (the spot is 1). A sample aimed exactly R texels along an axis
+// lands on a texel centre only up to the fp32 rounding of its interpolated uv, and gives the next
+// texel a weight of that order (1e-10 measured, 14 pixels out); 1e-6 is far above such ghosts
+// and far below one 8-bit step (3.9e-3).
+constexpr float kLit = 1e-6f;
+
 struct Spot {
   double energy_ratio;  // output energy / input energy (the sum of r, g and b)
   double spread;        // the farthest lit output pixel from the spot, Chebyshev distance in pixels
 };
 
 // The spot [x0, x1) x [y0, y1) of value 1 within the window [kWindowX, width) x [wy0, wy1).
-Spot measure_spot(const FloatImage& output, uint32_t x0, uint32_t x1, uint32_t y0, uint32_t y1, uint32_t wy0, uint32_t wy1) {
+Spot measure_spot(const FloatImage& output, uint32_t x0, uint32_t x1, uint32_t y0, uint32_t y1, uint32_t wy0,
+                  uint32_t wy1) {
   double energy = 0.0;
   int spread = 0;
   for (uint32_t y = wy0; y < wy1; ++y)
@@ -365,7 +395,7 @@ Spot measure_spot(const FloatImage& output, uint32_t x0, uint32_t x1, uint32_t y
       const double sum = double(v.r) + v.g + v.b;
       if (!std::isfinite(sum)) return {std::nan(""), std::nan("")};
       energy += sum;
-      if (v.r > 0.0f || v.g > 0.0f || v.b > 0.0f) {
+      if (std::max({v.r, v.g, v.b}) > kLit) {
         const int dx = x < x0 ? int(x0 - x) : x >= x1 ? int(x - x1 + 1) : 0;
         const int dy = y < y0 ? int(y0 - y) : y >= y1 ? int(y - y1 + 1) : 0;
         spread = std::max({spread, dx, dy});
@@ -389,44 +419,51 @@ std::string block_input(const Kernel& kernel) {
 std::string constant_input(const Kernel& kernel) {
   return fmt::format("constant (0.75, 0.5, 0.25) over x < 40 of 96x80, depth 1, {}", kernel.label);
 }
-const std::string kZeroWeightsInput = "every pixel at depth 0.75 (coc = 0: every prefilter weight 0), 16x16, colour 0.5";
+const std::string kZeroWeightsInput =
+    "every pixel at depth 0.75 (coc = 0: every prefilter weight 0), 96x80, colour 0.5, " + kAnyKernel.label;
 
 Case constant_and_energy_case() {
   Case c;
   c.id = "dof_constant_and_energy";
-  c.title = "DoF, " + kernel_list() + ": a constant image is unchanged; a bright pixel keeps its energy within 2% and "
-            "spreads no further than the bokeh radius; all-zero prefilter weights give no NaN";
+  c.title =
+      "DoF, 16, 22, 43 and 71 samples: a constant image is unchanged; a bright pixel keeps its energy within 2% and "
+      "spreads no further than the bokeh radius; all-zero prefilter weights give no NaN";
   c.section = "5.14";
   c.forms = {kSeed, kGuarded};
   c.run = [](const CaseContext& context) -> Result<std::vector<Measurement>> {
+    harness::ProgramCache programs;
     std::vector<Measurement> m;
     const FloatImage color = energy_image();
     const FloatImage far = filled(kEnergyWidth, kEnergyHeight, glm::vec4(1.0f, 0.0f, 0.0f, 1.0f));
     const double tolerance = constant_tolerance(context.precision);
     for (const Kernel& kernel : kSampledKernels) {
-      auto dof = run_depth_of_field(context, {.kernel = kernel.keyword}, color, far);
+      auto dof = run_depth_of_field(context, programs, {.kernel = kernel.keyword}, color, far);
       if (!dof) return fail(dof.error());
       // The constant part's pixels that nothing else reaches: 12 pixels or more from x = 40.
       const double constant_error = largest_relative_difference(
           dof->output, kConstant, [](uint32_t x, uint32_t) { return x + kPixelSpread < kConstantEnd; });
       m.push_back({constant_input(kernel), "largest relative |output - constant| at x < 28", constant_error,
-                   fmt::format("<= {} (rounding of means of equal values)", number(tolerance)), constant_error <= tolerance});
+                   kConstantBound, constant_error <= tolerance});
       const Spot pixel = measure_spot(dof->output, kPixelX, kPixelX + 1, kPixelY, kPixelY + 1, 0, kWindowSplitY);
       m.push_back({pixel_input(kernel), "output energy / input energy", pixel.energy_ratio, "= 1 within 2%",
                    std::abs(pixel.energy_ratio - 1.0) <= kEnergyTolerance});
-      m.push_back({pixel_input(kernel), "farthest lit pixel (Chebyshev distance, pixels)", pixel.spread,
-                   fmt::format("<= {}: 2 x radius 4 at half resolution, + 2 for the tent, + 2 for the upsample", kPixelSpread),
-                   pixel.spread <= kPixelSpread});
-      const Spot block = measure_spot(dof->output, kBlockX, kBlockX + 2, kBlockY, kBlockY + 2, kWindowSplitY, kEnergyHeight);
+      m.push_back(
+          {pixel_input(kernel), "farthest pixel above 1e-6 (Chebyshev distance, pixels)", pixel.spread,
+           fmt::format("<= {}: 2 x radius 4 at half resolution, + 2 for the tent, + 2 for the upsample", kPixelSpread),
+           pixel.spread <= kPixelSpread});
+      const Spot block =
+          measure_spot(dof->output, kBlockX, kBlockX + 2, kBlockY, kBlockY + 2, kWindowSplitY, kEnergyHeight);
       m.push_back({block_input(kernel), "output energy / input energy", block.energy_ratio, "= 1 within 2%",
                    std::abs(block.energy_ratio - 1.0) <= kEnergyTolerance});
-      m.push_back({block_input(kernel), "farthest lit pixel from the block (Chebyshev distance, pixels)", block.spread,
-                   fmt::format("<= {}: 2 x radius 4 at half resolution, + 2 for the tent, + 1 for the upsample", kBlockSpread),
-                   block.spread <= kBlockSpread});
+      m.push_back(
+          {block_input(kernel), "farthest pixel above 1e-6 from the block (Chebyshev distance, pixels)", block.spread,
+           fmt::format("<= {}: 2 x radius 4 at half resolution, + 2 for the tent, + 1 for the upsample", kBlockSpread),
+           block.spread <= kBlockSpread});
     }
     // Everything in focus: every prefilter weight |coc| / (1 + brightness) is 0.
-    auto focused = run_depth_of_field(context, {}, filled(16, 16, glm::vec4(0.5f, 0.5f, 0.5f, 1.0f)),
-                                      filled(16, 16, glm::vec4(kInFocusDepth, 0.0f, 0.0f, 1.0f)));
+    auto focused = run_depth_of_field(context, programs, {},
+                                      filled(kEnergyWidth, kEnergyHeight, glm::vec4(0.5f, 0.5f, 0.5f, 1.0f)),
+                                      filled(kEnergyWidth, kEnergyHeight, glm::vec4(kInFocusDepth, 0.0f, 0.0f, 1.0f)));
     if (!focused) return fail(focused.error());
     const double bad = non_finite_pixels(focused->output);
     m.push_back({kZeroWeightsInput, "non-finite output pixels", bad, "= 0", bad == 0.0});
@@ -435,11 +472,12 @@ Case constant_and_energy_case() {
   c.predict = [](const Form& form, Precision) {
     Prediction p;
     for (const Kernel& kernel : kSampledKernels) p.failing_inputs.insert(pixel_input(kernel));
-    p.note = "One bright pixel on black does not keep its energy, on every form and kernel: the prefilter weights each "
-             "of its four texels by 1 / (1 + brightness) against flicker (as Unity PPv2 does), so the pixel of 1 gets "
-             "weight 1/2 against 1 for each black texel and its half-resolution texel holds (1/2) / (1/2 + 3) = 1/7 "
-             "instead of 1/4: 4/7 = 0.571 of the energy is left. A 2x2 block of one half-resolution texel has equal "
-             "weights and keeps its energy.";
+    p.note =
+        "One bright pixel on black does not keep its energy, on every form and kernel: the prefilter weights each "
+        "of its four texels by 1 / (1 + brightness) against flicker (as Unity PPv2 does), so the pixel of 1 gets "
+        "weight 1/2 against 1 for each black texel and its half-resolution texel holds (1/2) / (1/2 + 3) = 1/7 "
+        "instead of 1/4: 4/7 = 0.571 of the energy is left. A 2x2 block of one half-resolution texel has equal "
+        "weights and keeps its energy.";
     if (form.seed) {
       p.failing_inputs.insert(kZeroWeightsInput);
       p.note += " Everything in focus: the seed divides the prefilter's colour by its weight sum 0 (hazard 10): NaN.";
@@ -460,39 +498,45 @@ constexpr uint32_t kEdgeColumn = 48;
 constexpr uint32_t kFarRowsEnd = 24;
 constexpr uint32_t kEdgeRowsBegin = 56;
 
-std::string far_input(const Kernel& kernel) { return "noise, depth 1 everywhere (coc = +4), 96x96 rows 0-23, " + kernel.label; }
+std::string far_input(const Kernel& kernel) {
+  return "hash noise, depth 1 everywhere (coc = +4), 96x96 rows 0-23, " + kernel.label;
+}
 std::string edge_input(const Kernel& kernel) {
-  return "noise, depth 1 left of x = 48 and 0 right of it (coc +4 / -4), 96x96 rows 56-95, " + kernel.label;
+  return "hash noise, depth 1 left of x = 48 and 0 right of it (coc +4 / -4), 96x96 rows 56-95, " + kernel.label;
 }
 
 Case kernels_case() {
   Case c;
   c.id = "dof_kernels";
-  c.title = "DoF kernels: the error against the dense gather (every texel within the radius) does not grow from 16 to 22, "
-            "43 and 71 samples";
+  c.title =
+      "DoF kernels: the error against the dense gather (every texel within the radius) does not grow from 16 to 22, "
+      "43 and 71 samples";
   c.section = "5.15";
   c.forms = {kSeed, kGuarded};
   c.run = [](const CaseContext& context) -> Result<std::vector<Measurement>> {
+    harness::ProgramCache programs;
     const FloatImage color = noise_image(kKernelImageSize, kKernelImageSize);
     const FloatImage depth = depth_of(kKernelImageSize, kKernelImageSize, [](uint32_t x, uint32_t y) {
       return y >= kEdgeStartRow && x >= kEdgeColumn ? 0.0f : 1.0f;
     });
-    auto reference = run_depth_of_field(context, {.kernel = kDenseKernel.keyword}, color, depth);
+    auto reference = run_depth_of_field(context, programs, {.kernel = kDenseKernel.keyword}, color, depth);
     if (!reference) return fail(reference.error());
     std::vector<Measurement> m;
     double previous_far = 0.0, previous_edge = 0.0;
     const Kernel* previous = nullptr;
     for (const Kernel& kernel : kSampledKernels) {
-      auto dof = run_depth_of_field(context, {.kernel = kernel.keyword}, color, depth);
+      auto dof = run_depth_of_field(context, programs, {.kernel = kernel.keyword}, color, depth);
       if (!dof) return fail(dof.error());
       const double far = rmse(dof->output, reference->output, 0, kFarRowsEnd);
       const double edge = rmse(dof->output, reference->output, kEdgeRowsBegin, kKernelImageSize);
-      for (auto [input, value, last] : {std::tuple{far_input(kernel), far, previous_far}, std::tuple{edge_input(kernel), edge, previous_edge}}) {
+      for (auto [input, value, last] :
+           {std::tuple{far_input(kernel), far, previous_far}, std::tuple{edge_input(kernel), edge, previous_edge}}) {
         if (!previous)
-          m.push_back({input, "RMSE against the dense gather", value, "finite (the first kernel)", std::isfinite(value)});
+          m.push_back(
+              {input, "RMSE against the dense gather", value, "finite (the first kernel)", std::isfinite(value)});
         else
-          m.push_back({input, "RMSE against the dense gather", value,
-                       fmt::format("<= {} (the {} kernel's)", number(last), previous->label), value <= last});
+          m.push_back({input, "RMSE against the dense gather", value, "<= the " + previous->label + " kernel's",
+                       value <= last});
       }
       previous_far = far;
       previous_edge = edge;
@@ -500,36 +544,54 @@ Case kernels_case() {
     }
     return m;
   };
+  c.predict = [](const Form&, Precision) {
+    Prediction p;
+    p.failing_inputs = {far_input(kSampledKernels[1]), edge_input(kSampledKernels[1])};
+    p.note =
+        "The 22-sample kernel's error is about 1% above the 16-sample kernel's, on every form: after the tent and "
+        "the bilinear upsample, both low-pass filters, what is left of a kernel's error against the dense disk is its "
+        "difference in shape, not the angular sampling that more samples improve, and SHADERS.md's 22-sample rings are "
+        "farther from a uniform disk than the 16-sample ones: 14 of 22 samples (64%) on the outer ring against 10 of "
+        "16 (62.5%), 1/22 at the centre against 1/16, a mean squared radius of 11.90 texels^2 against 11.77 (the "
+        "dense disk's: 7.84). From the kernels' bilinear texel weights, the expected error of the filtered output on "
+        "white noise is 0.0456 (22) against 0.0448 (16), 0.0351 (43) and 0.0280 (71) times the noise's deviation: "
+        "the measured ratios to 16 samples are 1.011, 0.78 and 0.62.";
+    return p;
+  };
   return c;
 }
 
 const glm::vec4 kSizeConstant(0.75f, 0.5f, 0.25f, 1.0f);
 std::string constant_size_input(uint32_t size) {
-  return fmt::format("{}x{}, constant (0.75, 0.5, 0.25), depth 1 (coc = +4), 16 samples", size, size);
+  return fmt::format("{}x{}, constant (0.75, 0.5, 0.25), depth 1 (coc = +4), {}", size, size, kAnyKernel.label);
 }
-const std::string kLargeInput = "1921x1081, noise, depth x / 1920 across the columns, 16 samples";
+const std::string kLargeInput = "1921x1081, hash noise, depth x / 1920 across the columns, " + kAnyKernel.label;
 
 Case image_sizes_case() {
   Case c;
   c.id = "dof_image_sizes";
-  c.title = "DoF at image sizes 1x1, 3x3 and 1921x1081: no NaN, and a constant image at 1x1 and 3x3 comes out as the "
-            "constant (reads clamped to the image)";
+  c.title =
+      "DoF at image sizes 1x1, 3x3 and 1921x1081: no NaN, and a constant image at 1x1 and 3x3 comes out as the "
+      "constant (reads clamped to the image)";
   c.section = "5.15";
   c.forms = {kSeed, kGuarded};
   c.run = [](const CaseContext& context) -> Result<std::vector<Measurement>> {
+    harness::ProgramCache programs;
     std::vector<Measurement> m;
     const double tolerance = constant_tolerance(context.precision);
     for (uint32_t size : {1u, 3u}) {
-      auto dof = run_depth_of_field(context, {}, filled(size, size, kSizeConstant), filled(size, size, glm::vec4(1.0f, 0.0f, 0.0f, 1.0f)));
+      auto dof = run_depth_of_field(context, programs, {}, filled(size, size, kSizeConstant),
+                                    filled(size, size, glm::vec4(1.0f, 0.0f, 0.0f, 1.0f)));
       if (!dof) return fail(dof.error());
-      const double error = largest_relative_difference(dof->output, kSizeConstant, [](uint32_t, uint32_t) { return true; });
-      m.push_back({constant_size_input(size), "largest relative |output - constant|", error,
-                   fmt::format("<= {} (rounding of means of equal values)", number(tolerance)), error <= tolerance});
+      const double error =
+          largest_relative_difference(dof->output, kSizeConstant, [](uint32_t, uint32_t) { return true; });
+      m.push_back({constant_size_input(size), "largest relative |output - constant|", error, kConstantBound,
+                   error <= tolerance});
     }
     // Odd in both directions: the half-resolution passes are 960x540 and leave the last column
     // and row of the full-resolution images unread; the ramp puts every CoC from -4 to +4 in it.
     const uint32_t width = 1921, height = 1081;
-    auto dof = run_depth_of_field(context, {}, noise_image(width, height),
+    auto dof = run_depth_of_field(context, programs, {}, noise_image(width, height),
                                   depth_of(width, height, [](uint32_t x, uint32_t) { return float(x) / 1920.0f; }));
     if (!dof) return fail(dof.error());
     const double bad = non_finite_pixels(dof->output);
