@@ -112,7 +112,7 @@ keywords = ["_KERNEL_MEDIUM"]
   EXPECT_EQ(plan->passes[2].declaration.scale, hlsl::PassDeclaration::Scale::Half);
   // 4 kernels x guards on/off.
   EXPECT_TRUE(has_line(plan->left_out,
-                       "post/depth_of_field.hlsl: 7 of its 8 keyword combinations (the scene asks for no other)"));
+                       "post/depth_of_field.hlsl: 9 of its 10 keyword combinations (the scene asks for no other)"));
   const std::string described = describe_plan(scene(""), *plan, std::vector<bool>(6, false));
   EXPECT_NE(described.find("depth_of_field.bokeh: frag_bokeh, half resolution, _MainTex <- prefilter"), std::string::npos)
       << described;
