@@ -1,5 +1,7 @@
 // Types, expressions and conversions. Sema made every implicit HLSL conversion an explicit
 // ConversionExpr; here each becomes the GLSL constructor or swizzle that computes the same value.
+#include <charconv>
+#include <cmath>
 #include <cstdlib>
 
 #include "glsl/stage_emitter.h"
@@ -89,6 +91,21 @@ std::string float_text(const std::string& spelling) {
   return spelling;
 }
 
+// A scalar literal rounded to fp16 here, so that it stays a GLSL constant expression (a static
+// const may only be initialised with one): "0.333251953" for "0.33333". None when the text is
+// not a plain number, or when fp16 has no finite value for it (then xs_half gives infinity).
+std::optional<std::string> half_literal(const std::string& text) {
+  if (text.empty() || text.find_first_not_of("0123456789.eE+-") != std::string::npos) return std::nullopt;
+  char* end = nullptr;
+  const double value = std::strtod(text.c_str(), &end);
+  if (end != text.c_str() + text.size()) return std::nullopt;
+  const auto rounded = static_cast<float>(static_cast<_Float16>(value));
+  if (!std::isfinite(rounded)) return std::nullopt;
+  char buffer[32];
+  const auto written = std::to_chars(buffer, buffer + sizeof buffer, rounded);  // the shortest exact spelling
+  return float_text(std::string(buffer, written.ptr));
+}
+
 bool is_split_name(const Expr* e, const std::unordered_map<const Decl*, StageEmitter::SplitMember>& split) {
   return e && e->kind == ExprKind::Name && split.count(static_cast<const NameExpr*>(e)->decl) > 0;
 }
@@ -142,14 +159,19 @@ bool StageEmitter::same_glsl(const Type& a, const Type& b) {
 
 std::string StageEmitter::bool_type(uint32_t count) { return count <= 1 ? "bool" : "bvec" + std::to_string(count); }
 
+bool StageEmitter::rounds_to_half(const Type& type) const {
+  return half_emulation_ && type.is_floating() && type.scalar_type() == ScalarType::Half && !type.is_matrix();
+}
+
 Code StageEmitter::half_value(Code value, const Type& type) {
   // half, min16float and fixed compute in fp32 on these drivers; with half emulation every such
   // result goes through fp16 here, in this one place. On llvmpipe and lavapipe packHalf2x16
   // rounds to nearest and gives infinity past fp16's range, as fp16 arithmetic would
   // (tests/lanes/half_emulation_test.cpp pins it; GLSL leaves out-of-range packing undefined).
-  if (!half_emulation_ || !type.is_floating() || type.scalar_type() != ScalarType::Half || type.is_matrix())
-    return value;
+  if (!rounds_to_half(type)) return value;
   if (is_whole_call(value.text, "xs_half")) return value;  // rounded already
+  if (type.component_count() == 1)
+    if (std::optional<std::string> literal = half_literal(value.text)) return {*literal, value.prec};
   // fp16 pairs pack two at a time: vec3 and vec4 are rounded through the vec2 form.
   const uint32_t count = type.component_count();
   if (count == 1 || count == 3)
@@ -657,7 +679,8 @@ Code StageEmitter::expr(const Expr* e) {
       const Type& operation = assign->value->type;  // the operator's operand type (sema)
       const Type& target_type = target->type;
       const Expr* scalar = splatted_scalar(assign->value.get());
-      if (same_glsl(operation, target_type) &&
+      // With half emulation a half result is rounded, so `h += x` is written out as h = xs_half(h + x).
+      if (same_glsl(operation, target_type) && !rounds_to_half(operation) &&
           (!needs_lowering(*op, operation) || (scalar && scalar_operand_allowed(*op, operation)))) {
         const BinaryInfo info = binary_info(*op);
         const Code v = scalar ? convert_expr(scalar, Type::scalar(operation.scalar_type())) : expr(assign->value.get());

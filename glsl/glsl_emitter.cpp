@@ -408,12 +408,16 @@ std::string StageEmitter::run() {
     const std::string declaration = declarator(var->type, name, var->loc);
     if (!var->initializer) {
       statics.line(declaration + " = " + zero_value(*this, var->type, var->loc) + ";");
-    } else if (is_constant(var->initializer.get())) {
+      continue;
+    }
+    // A constant rounded by half emulation calls xs_half, which no GLSL constant expression may.
+    const std::string value = initializer(*var);
+    if (is_constant(var->initializer.get()) && value.find("xs_half(") == std::string::npos) {
       if (var->is_const) const_decls_.insert(var);
-      statics.line(std::string(var->is_const ? "const " : "") + declaration + " = " + initializer(*var) + ";");
+      statics.line(std::string(var->is_const ? "const " : "") + declaration + " = " + value + ";");
     } else {
       statics.line(declaration + ";");
-      prologue.push_back(name + " = " + initializer(*var) + ";");
+      prologue.push_back(name + " = " + value + ";");
     }
   }
 

@@ -109,7 +109,7 @@ TEST(GlslEmitterHalfEmulation, RoundsHalfResultsOnceAndFloatNever) {
   auto module = hlsl::compile_text(
       "test.hlsl",
       fragment_source("float _F = 1.0;", "half3 c = half3(_F, 0.5, 2.0);\nhalf h = (half)_F * 3.0;\n"
-                                         "float f = _F * 3.0;\nreturn float4(c * h, f);"),
+                                         "float f = _F * 3.0;\nhalf t = (half)_F * 0.1;\nreturn float4(c * h * t, f);"),
       {});
   ASSERT_TRUE(module->ok()) << diagnostics_of(*module);
   auto plain = emit(*module, {Flavour::Gl, false});
@@ -121,8 +121,10 @@ TEST(GlslEmitterHalfEmulation, RoundsHalfResultsOnceAndFloatNever) {
       << text;
   EXPECT_NE(text.find("vec3 xs_half(vec3 x)"), std::string::npos) << text;
   EXPECT_NE(text.find("float f = _F * 3.0;"), std::string::npos) << text;
-  // The conversion, the literal and the product each round once.
-  EXPECT_NE(text.find("float h = xs_half(xs_half(_F) * xs_half(3.0));"), std::string::npos) << text;
+  // The conversion and the product each round once; a literal is rounded by the emitter, so that
+  // it stays a constant expression (3.0 is an fp16 number, 0.1 is not).
+  EXPECT_NE(text.find("float h = xs_half(xs_half(_F) * 3.0);"), std::string::npos) << text;
+  EXPECT_NE(text.find("xs_half(_F) * 0.099975586"), std::string::npos) << text;
 }
 
 TEST(GlslEmitterMatrices, MulOperandOrderFollowsTheTranspose) {

@@ -139,8 +139,10 @@ class StageEmitter {
   Code convert_components(Code value, const Type& from, const Type& to, Loc loc);
   // An expression converted to `to`; literals are folded (`1` as a float is `1.0`).
   Code convert_expr(const Expr* e, const Type& to);
-  // Every half-typed value passes through here: the place for a later fp16-rounding mode.
+  // Every half-typed value passes through here; with half emulation it is rounded to fp16.
   Code half_value(Code value, const Type& type);
+  // Whether half emulation rounds a result of this type.
+  bool rounds_to_half(const Type& type) const;
   // The value of a static const or other constant initializer could be a GLSL constant expression.
   bool is_constant(const Expr* e);
   // A name, literal, field, swizzle or constant index of those: cheap and free of side effects,

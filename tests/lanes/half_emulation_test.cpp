@@ -1,6 +1,7 @@
 // Half-precision emulation on the lanes that can do it: a half result past 65504 overflows to
-// infinity and 1/3 keeps fp16's 11 significant bits, as fp16 hardware would compute them, while
-// the same shader without emulation computes in fp32 (what CPU drivers do with half).
+// infinity, 1/3 (a file-scope constant) keeps fp16's 11 significant bits and 2048 + 1 in a
+// compound assignment stays 2048, as fp16 hardware would compute them, while the same shader
+// without emulation computes in fp32 (what CPU drivers do with half).
 #include <cmath>
 
 #include <gtest/gtest.h>
@@ -14,12 +15,15 @@ namespace {
 constexpr const char* kShader = R"(
 #pragma fragment frag
 float _One = 1.0;
+static const half kThird = 0.33333333;
 float4 frag(float2 uv : TEXCOORD0) : SV_Target {
   half big = 65504.0;
   half over = big * (half)_One * 2.0;  // past fp16's largest finite value
-  half third = (half)_One / 3.0;
+  half third = (half)_One * kThird;
   float exact = _One / 3.0;            // float stays float
-  return float4(over, third, exact, 1.0);
+  half sum = 2048.0 * (half)_One;
+  sum += (half)_One;                   // fp16 numbers are 2 apart at 2048: the tie rounds to even
+  return float4(over, third, exact, sum);
 }
 )";
 
@@ -46,6 +50,7 @@ TEST_P(HalfEmulation, RoundsHalfResultsToFp16) {
   EXPECT_TRUE(std::isinf(p.r) && p.r > 0) << p.r;
   EXPECT_EQ(p.g, kThirdInHalf);
   EXPECT_EQ(p.b, 1.0f / 3.0f);
+  EXPECT_EQ(p.a, 2048.0f);
 }
 
 TEST_P(HalfEmulation, WithoutItHalfIsFp32) {
@@ -54,6 +59,7 @@ TEST_P(HalfEmulation, WithoutItHalfIsFp32) {
   const glm::vec4 p = image.at(0, 0);
   EXPECT_EQ(p.r, 131008.0f);
   EXPECT_EQ(p.g, 1.0f / 3.0f);
+  EXPECT_EQ(p.a, 2049.0f);
 }
 
 INSTANTIATE_TEST_SUITE_P(GlslLanes, HalfEmulation, ::testing::Values(harness::Lane::Gl, harness::Lane::Vk),
