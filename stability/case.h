@@ -14,6 +14,7 @@
 
 #include "harness/backend.h"
 #include "harness/lanes.h"
+#include "harness/scene_renderer.h"
 #include "harness/variant_compiler.h"
 
 namespace xshade::stability {
@@ -53,6 +54,7 @@ struct CaseContext {
   const std::filesystem::path& scenes_dir;   // the project's scenes (harness/scenes)
   harness::VariantCompiler& compiler;        // for cases that run the library's post effects
   ProbePrograms& probes;                     // the probes compiled so far on this backend
+  harness::ProgramCache& programs;           // the effects' programs made so far on this backend
 };
 
 // What SHADERS.md says a form does on a case at a precision: the inputs (Measurement::input)

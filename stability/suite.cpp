@@ -83,6 +83,7 @@ Result<SuiteRun> run_suite(const std::vector<Case>& cases, const SuiteOptions& o
     if (!backend) return fail(std::string(harness::lane_name(lane)) + ": " + backend.error().to_string());
     run.drivers.emplace_back(lane, (*backend)->driver_info());
     ProbePrograms probes;
+    harness::ProgramCache programs;
     if (lane == harness::Lane::VkHlsl &&
         std::find(precisions.begin(), precisions.end(), Precision::Half) != precisions.end())
       run.skipped.push_back("vk-hlsl in fp16 emulation: that lane compiles the source with glslang, which cannot round to fp16");
@@ -97,7 +98,7 @@ Result<SuiteRun> run_suite(const std::vector<Case>& cases, const SuiteOptions& o
           Outcome outcome{c->id, c->section, form.name, form.seed, lane, precision, {}, {}, {}};
           if (c->predict) outcome.prediction = c->predict(form, precision);
           const CaseContext context{**backend, lane, precision, form, options.shaders_dir, options.probes_dir,
-                                    options.scenes_dir, compiler, probes};
+                                    options.scenes_dir, compiler, probes, programs};
           auto measured = c->run(context);
           if (measured) outcome.measurements = std::move(*measured);
           else outcome.error = measured.error().to_string();

@@ -12,6 +12,7 @@ layout(std140, set = 0, binding = 1) uniform xs_Globals {
   layout(offset = 0) float _FocusDistance;
   layout(offset = 4) float _FocusRange;
   layout(offset = 8) float _BokehRadius;
+  layout(offset = 12) float _DenseStep;
 };
 layout(set = 0, binding = 16) uniform texture2D _MainTex;
 layout(set = 0, binding = 32) uniform sampler sampler_MainTex;
@@ -20,14 +21,14 @@ const int kBokehSampleCount = 43;
 const vec2 kBokehKernel[43] = vec2[43](vec2(0.0000000, 0.0000000), vec2(0.3636000, 0.0000000), vec2(0.2267009, 0.2842739), vec2(-0.0809086, 0.3544838), vec2(-0.3275923, 0.1577601), vec2(-0.3275923, -0.1577601), vec2(-0.0809086, -0.3544838), vec2(0.2267009, -0.2842739), vec2(0.6818000, 0.0000000), vec2(0.6142806, 0.2958219), vec2(0.4250953, 0.5330527), vec2(0.1517148, 0.6647059), vec2(-0.1517148, 0.6647059), vec2(-0.4250953, 0.5330527), vec2(-0.6142806, 0.2958219), vec2(-0.6818000, 0.0000000), vec2(-0.6142806, -0.2958219), vec2(-0.4250953, -0.5330527), vec2(-0.1517148, -0.6647059), vec2(0.1517148, -0.6647059), vec2(0.4250953, -0.5330527), vec2(0.6142806, -0.2958219), vec2(1.0000000, 0.0000000), vec2(0.9555728, 0.2947552), vec2(0.8262388, 0.5633201), vec2(0.6234898, 0.7818315), vec2(0.3653410, 0.9308737), vec2(0.0747301, 0.9972038), vec2(-0.2225209, 0.9749279), vec2(-0.5000000, 0.8660254), vec2(-0.7330519, 0.6801727), vec2(-0.9009689, 0.4338837), vec2(-0.9888308, 0.1490423), vec2(-0.9888308, -0.1490423), vec2(-0.9009689, -0.4338837), vec2(-0.7330519, -0.6801727), vec2(-0.5000000, -0.8660254), vec2(-0.2225209, -0.9749279), vec2(0.0747301, -0.9972038), vec2(0.3653410, -0.9308737), vec2(0.6234898, -0.7818315), vec2(0.8262388, -0.5633201), vec2(0.9555728, -0.2947552));
 layout(location = 0) in vec2 xs_v_TEXCOORD0;
 layout(location = 0) out vec4 xs_target0;
-#line 114 1
+#line 117 1
 float bokeh_weight(float coc, float radius) {
-#line 114 1
+#line 117 1
   return clamp((coc - radius + 2.0) / 2.0, 0.0, 1.0);
 }
-#line 118 1
+#line 121 1
 void gather_bokeh_sample(inout vec3 bg_color, inout float bg_weight, inout vec3 fg_color, inout float fg_weight, vec2 uv, float coc, vec2 o) {
-#line 120 1
+#line 123 1
   float radius = length(o);
   o *= _MainTex_TexelSize.xy;
   vec4 s = textureLod(sampler2D(_MainTex, sampler_MainTex), uv + o, 0.0);
@@ -35,29 +36,30 @@ void gather_bokeh_sample(inout vec3 bg_color, inout float bg_weight, inout vec3 
   bg_color += s.xyz * bgw;
   bg_weight += bgw;
   float fgw = bokeh_weight(-s.w, radius);
+#line 136 1
   fg_color += s.xyz * fgw;
   fg_weight += fgw;
 }
-#line 136 1
+#line 145 1
 vec4 frag_bokeh(vec2 uv) {
   float coc = textureLod(sampler2D(_MainTex, sampler_MainTex), uv, 0.0).w;
   vec3 bg_color = vec3(0.0);
   vec3 fg_color = vec3(0.0);
   float bg_weight = 0.0;
   float fg_weight = 0.0;
-#line 156 1
+#line 165 1
   int sample_count = kBokehSampleCount;
   for (int k = 0; k < kBokehSampleCount; k++) {
     gather_bokeh_sample(bg_color, bg_weight, fg_color, fg_weight, uv, coc, kBokehKernel[k] * _BokehRadius);
   }
-#line 161 1
+#line 170 1
   bg_color *= 1.0 / (bg_weight + (bg_weight == 0.0 ? 1.0 : 0.0));
   fg_color *= 1.0 / (fg_weight + (fg_weight == 0.0 ? 1.0 : 0.0));
   float bgfg = min(1.0, fg_weight * kPi / float(sample_count));
   vec3 color = mix(bg_color, fg_color, vec3(bgfg));
   return vec4(color, bgfg);
 }
-#line 61 0
+#line 63 0
 void main() {
   vec2 xs_arg0;
   xs_arg0 = xs_v_TEXCOORD0;

@@ -12,26 +12,27 @@ layout(std140, binding = 1) uniform xs_Globals {
   layout(offset = 0) float _FocusDistance;
   layout(offset = 4) float _FocusRange;
   layout(offset = 8) float _BokehRadius;
+  layout(offset = 12) float _DenseStep;
 };
 layout(binding = 16) uniform sampler2D _CameraDepthTexture;
 layout(location = 0) in vec2 xs_v_TEXCOORD0;
 layout(location = 0) out vec4 xs_target0;
-#line 43 1
+#line 46 1
 float linear_eye_depth(float depth) {
   float n = _CameraNearFar.x;
   float f = _CameraNearFar.y;
   return n * f / (f - depth * (f - n));
 }
-#line 58 1
+#line 61 1
 vec4 frag_coc(vec2 uv) {
   float depth = textureLod(_CameraDepthTexture, uv, 0.0).x;
-#line 65 1
+#line 68 1
   float coc = clamp((linear_eye_depth(depth) - _FocusDistance) / _FocusRange, -1.0, 1.0);
-#line 67 1
+#line 70 1
   coc *= _BokehRadius;
   return vec4(coc, coc, coc, 1.0);
 }
-#line 35 0
+#line 36 0
 void main() {
   vec2 xs_arg0;
   xs_arg0 = xs_v_TEXCOORD0;

@@ -12,22 +12,24 @@ layout(std140, binding = 1) uniform xs_Globals {
   layout(offset = 0) float _FocusDistance;
   layout(offset = 4) float _FocusRange;
   layout(offset = 8) float _BokehRadius;
+  layout(offset = 12) float _DenseStep;
 };
 layout(binding = 16) uniform sampler2D _MainTex;
 layout(binding = 17) uniform sampler2D _CoCTex;
 layout(binding = 18) uniform sampler2D _DoFTex;
+const float kInFocusCoC = 0.1;
 layout(location = 0) in vec2 xs_v_TEXCOORD0;
 layout(location = 0) out vec4 xs_target0;
-#line 178 1
+#line 187 1
 vec4 frag_combine(vec2 uv) {
   vec4 source = textureLod(_MainTex, uv, 0.0);
   float coc = textureLod(_CoCTex, uv, 0.0).x;
   vec4 dof = textureLod(_DoFTex, uv, 0.0);
-  float strength = smoothstep(0.1, 1.0, abs(coc));
+  float strength = smoothstep(kInFocusCoC, 1.0, abs(coc));
   vec3 color = mix(source.xyz, dof.xyz, vec3(strength + dof.w - strength * dof.w));
   return vec4(color, source.w);
 }
-#line 31 0
+#line 33 0
 void main() {
   vec2 xs_arg0;
   xs_arg0 = xs_v_TEXCOORD0;

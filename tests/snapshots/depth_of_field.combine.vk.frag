@@ -12,6 +12,7 @@ layout(std140, set = 0, binding = 1) uniform xs_Globals {
   layout(offset = 0) float _FocusDistance;
   layout(offset = 4) float _FocusRange;
   layout(offset = 8) float _BokehRadius;
+  layout(offset = 12) float _DenseStep;
 };
 layout(set = 0, binding = 16) uniform texture2D _MainTex;
 layout(set = 0, binding = 17) uniform texture2D _CoCTex;
@@ -19,18 +20,19 @@ layout(set = 0, binding = 18) uniform texture2D _DoFTex;
 layout(set = 0, binding = 32) uniform sampler sampler_MainTex;
 layout(set = 0, binding = 33) uniform sampler sampler_CoCTex;
 layout(set = 0, binding = 34) uniform sampler sampler_DoFTex;
+const float kInFocusCoC = 0.1;
 layout(location = 0) in vec2 xs_v_TEXCOORD0;
 layout(location = 0) out vec4 xs_target0;
-#line 178 1
+#line 187 1
 vec4 frag_combine(vec2 uv) {
   vec4 source = textureLod(sampler2D(_MainTex, sampler_MainTex), uv, 0.0);
   float coc = textureLod(sampler2D(_CoCTex, sampler_CoCTex), uv, 0.0).x;
   vec4 dof = textureLod(sampler2D(_DoFTex, sampler_DoFTex), uv, 0.0);
-  float strength = smoothstep(0.1, 1.0, abs(coc));
+  float strength = smoothstep(kInFocusCoC, 1.0, abs(coc));
   vec3 color = mix(source.xyz, dof.xyz, vec3(strength + dof.w - strength * dof.w));
   return vec4(color, source.w);
 }
-#line 34 0
+#line 36 0
 void main() {
   vec2 xs_arg0;
   xs_arg0 = xs_v_TEXCOORD0;

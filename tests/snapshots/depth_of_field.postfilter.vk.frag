@@ -12,19 +12,20 @@ layout(std140, set = 0, binding = 1) uniform xs_Globals {
   layout(offset = 0) float _FocusDistance;
   layout(offset = 4) float _FocusRange;
   layout(offset = 8) float _BokehRadius;
+  layout(offset = 12) float _DenseStep;
 };
 layout(set = 0, binding = 16) uniform texture2D _MainTex;
 layout(set = 0, binding = 32) uniform sampler sampler_MainTex;
 layout(location = 0) in vec2 xs_v_TEXCOORD0;
 layout(location = 0) out vec4 xs_target0;
-#line 169 1
+#line 178 1
 vec4 frag_postfilter(vec2 uv) {
   vec4 o = _MainTex_TexelSize.xyxy * vec2(-0.5, 0.5).xxyy;
   vec4 s = textureLod(sampler2D(_MainTex, sampler_MainTex), uv + o.xy, 0.0) + textureLod(sampler2D(_MainTex, sampler_MainTex), uv + o.zy, 0.0) + textureLod(sampler2D(_MainTex, sampler_MainTex), uv + o.xw, 0.0) + textureLod(sampler2D(_MainTex, sampler_MainTex), uv + o.zw, 0.0);
-#line 173 1
+#line 182 1
   return s * 0.25;
 }
-#line 28 0
+#line 29 0
 void main() {
   vec2 xs_arg0;
   xs_arg0 = xs_v_TEXCOORD0;

@@ -13,6 +13,7 @@ layout(std140, set = 0, binding = 1) uniform xs_Globals {
   layout(offset = 0) float _FocusDistance;
   layout(offset = 4) float _FocusRange;
   layout(offset = 8) float _BokehRadius;
+  layout(offset = 12) float _DenseStep;
 };
 layout(set = 0, binding = 16) uniform texture2D _MainTex;
 layout(set = 0, binding = 17) uniform texture2D _CoCTex;
@@ -26,7 +27,7 @@ float max3(vec3 v) {
 #line 33 2
   return max(v.x, max(v.y, v.z));
 }
-#line 79 1
+#line 82 1
 vec4 frag_prefilter(vec2 uv, vec4 position) {
   ivec2 texel = ivec2(position.xy) * 2;
   ivec2 color_last = ivec2(_MainTex_TexelSize.zw) - 1;
@@ -43,21 +44,21 @@ vec4 frag_prefilter(vec2 uv, vec4 position) {
   float coc1 = xs_Load(_CoCTex, ivec3(k_hi.x, k_lo.y, 0)).x;
   float coc2 = xs_Load(_CoCTex, ivec3(k_lo.x, k_hi.y, 0)).x;
   float coc3 = xs_Load(_CoCTex, ivec3(k_hi.x, k_hi.y, 0)).x;
-#line 96 1
+#line 99 1
   float w0 = abs(coc0) / (max3(c0) + 1.0);
   float w1 = abs(coc1) / (max3(c1) + 1.0);
   float w2 = abs(coc2) / (max3(c2) + 1.0);
   float w3 = abs(coc3) / (max3(c3) + 1.0);
   vec3 color = c0 * w0 + c1 * w1 + c2 * w2 + c3 * w3;
-#line 104 1
-  color /= w0 + w1 + w2 + w3;
 #line 107 1
+  color /= w0 + w1 + w2 + w3;
+#line 110 1
   float coc_min = min(min(coc0, coc1), min(coc2, coc3));
   float coc_max = max(max(coc0, coc1), max(coc2, coc3));
   float coc = coc_max >= -coc_min ? coc_max : coc_min;
   return vec4(color, coc);
 }
-#line 61 0
+#line 62 0
 void main() {
   vec2 xs_arg0;
   vec4 xs_arg1;

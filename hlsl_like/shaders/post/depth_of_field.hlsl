@@ -28,6 +28,9 @@ cbuffer PostInputs : register(b0) {
 half _FocusDistance <string UIName = "Focus distance"; float UIMin = 0.1; float UIMax = 100.0;> = 10.0;
 half _FocusRange <string UIName = "Focus range"; float UIMin = 0.1; float UIMax = 10.0;> = 3.0;
 half _BokehRadius <string UIName = "Bokeh radius (pixels)"; float UIMin = 1.0; float UIMax = 10.0;> = 4.0;
+// _KERNEL_DENSE only: the spacing of its samples in texels. 0.5 gathers four times as many,
+// between the texels (bilinear): the check that the reference has converged.
+half _DenseStep <string UIName = "Dense reference: sample spacing (texels)"; float UIMin = 0.25; float UIMax = 1.0;> = 1.0;
 
 Texture2D _CameraDepthTexture;
 SamplerState sampler_CameraDepthTexture;
@@ -47,12 +50,12 @@ float linear_eye_depth(float depth) {
 }
 
 // The smallest focus range the guarded form divides by (hazard 10): 1e-4 scene units is
-// sharper than any pixel at the fixed scenes' distances. (Both constants are float rather than
-// half because the GLSL emitter's half emulation cannot round a file-scope constant yet: it
-// calls its rounding function in the constant's initialiser, which GLSL refuses.)
-static const float kMinFocusRange = 1e-4;
+// sharper than any pixel at the fixed scenes' distances.
+static const half kMinFocusRange = 1e-4;
 // The smallest weight sum the guarded form divides by (hazard 10).
-static const float kMinWeightSum = 1e-5;
+static const half kMinWeightSum = 1e-5;
+// A CoC below this (in pixels) is in focus: the combine pass shows the source there.
+static const half kInFocusCoC = 0.1;
 
 // 1. Circle of confusion in pixels, signed: negative in front of the focus, positive behind.
 half4 frag_coc(float2 uv : TEXCOORD0) : SV_Target {
@@ -124,6 +127,12 @@ void gather_bokeh_sample(inout half3 bg_color, inout half bg_weight, inout half3
   bg_color += s.rgb * bgw;
   bg_weight += bgw;
   half fgw = bokeh_weight(-s.a, radius);
+#if defined(_GUARDED)
+  // An in-focus sample is no foreground (as Unity PPv2 cuts it): counted as one, it gave an
+  // in-focus pixel a foreground coverage of about 0.2, and the combine blended that much blur
+  // over the sharp source (SHADERS.md case 13 wants the source there).
+  fgw *= step(kInFocusCoC, -s.a);
+#endif
   fg_color += s.rgb * fgw;
   fg_weight += fgw;
 }
@@ -140,12 +149,12 @@ half4 frag_bokeh(float2 uv : TEXCOORD0) : SV_Target {
   half bg_weight = 0.0;
   half fg_weight = 0.0;
 #if defined(_KERNEL_DENSE)
-  int reach = int(ceil(_BokehRadius));
+  int reach = int(ceil(_BokehRadius / _DenseStep));
   float radius_squared = _BokehRadius * _BokehRadius;
   int sample_count = 0;
   for (int y = -reach; y <= reach; y++) {
     for (int x = -reach; x <= reach; x++) {
-      float2 o = float2(x, y);
+      float2 o = float2(x, y) * _DenseStep;
       if (dot(o, o) <= radius_squared) {
         gather_bokeh_sample(bg_color, bg_weight, fg_color, fg_weight, uv, coc, o);
         sample_count++;
@@ -179,7 +188,7 @@ half4 frag_combine(float2 uv : TEXCOORD0) : SV_Target {
   half4 source = _MainTex.SampleLevel(sampler_MainTex, uv, 0.0);
   half coc = _CoCTex.SampleLevel(sampler_CoCTex, uv, 0.0).r;
   half4 dof = _DoFTex.SampleLevel(sampler_DoFTex, uv, 0.0);
-  half strength = smoothstep(0.1, 1.0, abs(coc));
+  half strength = smoothstep(kInFocusCoC, 1.0, abs(coc));
   half3 color = lerp(source.rgb, dof.rgb, strength + dof.a - strength * dof.a);
   return half4(color, source.a);
 }
