@@ -139,7 +139,7 @@ class SceneRenderer {
   // Every frame runs every pass; programs, meshes, textures and targets are made in the first.
   // Without a scene target (render_post) the scene pass is not run.
   Result<RenderedScene> render_passes() {
-    std::vector<double> frame_milliseconds;
+    std::vector<std::vector<PassTiming>> frame_timings;
     for (uint32_t frame = 0; frame < std::max(1u, options_.frames); ++frame) {
       timings_.clear();
       pass_images_.clear();
@@ -156,13 +156,11 @@ class SceneRenderer {
           pass_images_.emplace_back(pass.name, std::move(*image));
         }
       }
-      double total = 0.0;
-      for (const PassTiming& timing : timings_) total += timing.milliseconds;
-      frame_milliseconds.push_back(total);
+      frame_timings.push_back(timings_);
     }
     auto image = read_current();
     if (!image) return fail(image.error());
-    return RenderedScene{std::move(*image), std::move(timings_), std::move(pass_images_), std::move(frame_milliseconds)};
+    return RenderedScene{std::move(*image), std::move(timings_), std::move(pass_images_), std::move(frame_timings)};
   }
 
   // The image so far is always a target's colour once a pass has run: the scene pass's or a
@@ -393,6 +391,13 @@ Result<RenderedScene> render_post_effects(Backend& backend, const Scene& scene, 
   // No scene pass, so no environment: the post passes read none of its values.
   const Environment none;
   return SceneRenderer(backend, scene, plan, variants, none, options).render_post(color, depth);
+}
+
+double milliseconds_of(const std::vector<PassTiming>& frame, std::string_view prefix) {
+  double total = 0.0;
+  for (const PassTiming& timing : frame)
+    if (timing.pass.starts_with(prefix)) total += timing.milliseconds;
+  return total;
 }
 
 }  // namespace xshade::harness

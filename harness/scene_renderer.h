@@ -6,6 +6,7 @@
 
 #include <map>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "harness/backend.h"
@@ -22,14 +23,17 @@ struct PassTiming {
 
 struct RenderedScene {
   FloatImage image;
-  std::vector<PassTiming> timings;
+  std::vector<PassTiming> timings;  // of the last frame
   // With RenderOptions::keep_pass_images: each pass's own output, in order (name, image), to
   // find the pass where lanes part.
   std::vector<std::pair<std::string, FloatImage>> pass_images;
-  // The sum of the pass times of each frame, in order. The first frame also creates the
-  // programs, meshes, textures and targets (and drivers compile their pipelines then).
-  std::vector<double> frame_milliseconds;
+  // The pass times of each frame, in order. The first frame also creates the programs, meshes,
+  // textures and targets (and drivers compile their pipelines then).
+  std::vector<std::vector<PassTiming>> frame_timings;
 };
+
+// The time of the passes of one frame whose name starts with `prefix` ("" for all of them).
+double milliseconds_of(const std::vector<PassTiming>& frame, std::string_view prefix = {});
 
 // Programs kept across renders on one backend, by their code: a later render of the same code (on
 // other images, at another size, with other parameters, or from another keyword set that compiles

@@ -47,7 +47,11 @@ TEST_P(StabilityCase, ComesOutAsPredicted) {
 std::vector<CaseOnLane> every_case_on_every_lane() {
   std::vector<CaseOnLane> params;
   for (const Case& c : all_cases())
-    for (harness::Lane lane : harness::all_lanes()) params.push_back({c.id, lane});
+    for (harness::Lane lane : harness::all_lanes()) {
+      // vk-hlsl runs fp32 only (glslang compiles the source and cannot emulate fp16).
+      const bool has_fp32 = std::find(c.precisions.begin(), c.precisions.end(), Precision::Float) != c.precisions.end();
+      if (lane != harness::Lane::VkHlsl || has_fp32) params.push_back({c.id, lane});
+    }
   return params;
 }
 

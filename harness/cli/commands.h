@@ -88,4 +88,17 @@ struct StabilityOptions {
 };
 int run_stability(const StabilityOptions& options);
 
+struct AccuracyOptions {
+  LaneSelection selection;
+  std::vector<std::string> studies;  // ids; empty = every study (or the quick ones)
+  bool quick = false;                // fewer repetitions, no reference check, the quick studies
+  uint32_t repetitions = 15;
+  std::filesystem::path report_dir = "accuracy-report";
+  std::filesystem::path markdown;    // also write docs/accuracy.md's text here, charts beside it
+  std::filesystem::path scenes_dir = XSHADE_SOURCE_DIR "/harness/scenes";
+  std::filesystem::path shaders_dir = XSHADE_SOURCE_DIR "/hlsl_like/shaders";
+  std::string command_line;
+};
+int run_accuracy(const AccuracyOptions& options);
+
 }  // namespace xshade::cli

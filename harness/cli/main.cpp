@@ -132,6 +132,29 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   stability->add_option("--scenes", stability_options.scenes_dir, "Folder of scene files")->type_name("DIR")->capture_default_str();
 
+  AccuracyOptions accuracy_options;
+  CLI::App* accuracy = app.add_subcommand(
+      "accuracy", "For each accuracy knob (DoF kernel, BRDF forms, precision, supersampling), render its scene in every "
+                  "configuration on each lane and measure error against a reference and time; tables and Pareto charts");
+  accuracy->add_option("study", accuracy_options.studies, "Study ids (dof_kernel, brdf_forms, precision, supersampling); "
+                                                          "default: all")
+      ->type_name("STUDY");
+  add_lane_options(*accuracy, accuracy_options.selection);
+  accuracy->add_flag("--quick", accuracy_options.quick,
+                     "5 timed frames instead of --repetitions, no reference check, and only the quick studies");
+  accuracy->add_option("--repetitions", accuracy_options.repetitions, "Timed frames per configuration, after 2 warm-up frames")
+      ->check(CLI::Range(3, 1000))
+      ->capture_default_str();
+  accuracy->add_option("--report", accuracy_options.report_dir, "Folder for index.html, accuracy.csv and charts/")
+      ->type_name("DIR")
+      ->capture_default_str();
+  accuracy->add_option("--markdown", accuracy_options.markdown,
+                       "Also write the tables as Markdown, with the charts in a folder beside it named after it "
+                       "(docs/accuracy.md is this output)")
+      ->type_name("FILE");
+  accuracy->add_option("--scenes", accuracy_options.scenes_dir, "Folder of scene files")->type_name("DIR")->capture_default_str();
+  accuracy->add_option("--shaders", accuracy_options.shaders_dir, "The shader library")->type_name("DIR")->capture_default_str();
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& error) {
@@ -146,6 +169,10 @@ int main(int argc, char** argv) {
   if (*bless) return run_bless(bless_options);
   if (*compile) return run_compile(compile_options);
   if (*eval) return run_eval(eval_options);
+  if (*accuracy) {
+    for (int i = 0; i < argc; ++i) accuracy_options.command_line += (i ? " " : "") + std::string(argv[i]);
+    return run_accuracy(accuracy_options);
+  }
   if (*stability) {
     for (int i = 0; i < argc; ++i) stability_options.command_line += (i ? " " : "") + std::string(argv[i]);
     return run_stability(stability_options);

@@ -79,12 +79,14 @@ int main(int argc, char** argv) {
       // The first frame uploads meshes and textures and lets the driver compile its pipelines.
       auto rendered = render_scene(**backend, *scene, *plan, variants, *environment, {.frames = uint32_t(frames) + 1});
       if (!rendered) continue;
-      std::vector<double> times(rendered->frame_milliseconds.begin() + 1, rendered->frame_milliseconds.end());
+      std::vector<double> times;
+      for (size_t frame = 1; frame < rendered->frame_timings.size(); ++frame)
+        times.push_back(milliseconds_of(rendered->frame_timings[frame]));
       std::sort(times.begin(), times.end());
       if (times.empty()) continue;
       std::printf("| %s | %s | %zu | %.1f | %.2f | %.1f | %.1f | %.1f - %.1f |\n", scene->name.c_str(),
                   std::string(lane_name(lane)).c_str(), plan->variants.size(), cold_ms, warm_ms,
-                  rendered->frame_milliseconds.front(), times[times.size() / 2], times.front(), times.back());
+                  milliseconds_of(rendered->frame_timings.front()), times[times.size() / 2], times.front(), times.back());
       std::fflush(stdout);
     }
   }

@@ -1,0 +1,95 @@
+// The accuracy measurement: its statistics and image helpers on hand-made data, and one study
+// measured for real on the gl lane.
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include "accuracy/accuracy_report.h"
+#include "accuracy/measure.h"
+
+namespace xshade::accuracy {
+namespace {
+
+TEST(Summarize, GivesTheMedianAndQuartilesOfTheRepetitions) {
+  const Timing t = summarize({5.0, 1.0, 4.0, 2.0, 3.0});
+  EXPECT_EQ(t.repetitions, 5u);
+  EXPECT_DOUBLE_EQ(t.median_ms, 3.0);
+  EXPECT_DOUBLE_EQ(t.q1_ms, 2.0);
+  EXPECT_DOUBLE_EQ(t.q3_ms, 4.0);
+  // Between order statistics: linear interpolation.
+  EXPECT_DOUBLE_EQ(summarize({1.0, 2.0}).median_ms, 1.5);
+  EXPECT_EQ(summarize({}).repetitions, 0u);
+}
+
+TEST(BoxDownsample, AveragesEachBlock) {
+  harness::FloatImage image(4, 2);
+  for (uint32_t x = 0; x < 4; ++x)
+    for (uint32_t y = 0; y < 2; ++y) image.set(x, y, glm::vec4(float(x + 4 * y)));
+  const harness::FloatImage small = box_downsample(image, 2);
+  ASSERT_EQ(small.width, 2u);
+  ASSERT_EQ(small.height, 1u);
+  EXPECT_FLOAT_EQ(small.at(0, 0).r, (0 + 1 + 4 + 5) / 4.0f);
+  EXPECT_FLOAT_EQ(small.at(1, 0).r, (2 + 3 + 6 + 7) / 4.0f);
+}
+
+ConfigurationResult with_rmse(double rmse) {
+  ConfigurationResult result;
+  result.error.rmse = rmse;
+  return result;
+}
+
+TEST(Convergence, TheCheckMustDifferLessThanTheSmallestErrorJudged) {
+  StudyResult result;
+  result.configurations = {with_rmse(0.0), with_rmse(0.02), with_rmse(0.01)};
+  EXPECT_FALSE(convergence(result).has_value());  // no check, nothing to say
+  result.reference_check = with_rmse(0.004);
+  auto c = convergence(result);
+  ASSERT_TRUE(c.has_value());
+  EXPECT_TRUE(c->converged);
+  EXPECT_DOUBLE_EQ(c->smallest_error, 0.01);  // the reference itself (0) judges nothing
+  result.reference_check = with_rmse(0.011);
+  EXPECT_FALSE(convergence(result)->converged);
+}
+
+// The depth-of-field study on gl, end to end: each ring kernel is measurably off the dense
+// reference, the reference converges, and the tables and chart name every configuration.
+TEST(MeasureStudy, DepthOfFieldKernelsOnGl) {
+  const std::filesystem::path source = XSHADE_SOURCE_DIR;
+  Study study;
+  for (const Study& s : all_studies())
+    if (s.id == "dof_kernel") study = s;
+  ASSERT_EQ(study.id, "dof_kernel");
+  auto backend = harness::create_backend(harness::Lane::Gl);
+  ASSERT_TRUE(backend) << backend.error().to_string();
+  MeasureOptions options;
+  options.scenes_dir = source / "harness" / "scenes";
+  options.shaders_dir = source / "hlsl_like" / "shaders";
+  options.repetitions = 3;
+  auto result = measure_study(study, harness::Lane::Gl, **backend, options);
+  ASSERT_TRUE(result) << result.error().to_string();
+  ASSERT_EQ(result->configurations.size(), 4u);
+  for (const ConfigurationResult& c : result->configurations) {
+    EXPECT_GT(c.error.rmse, 0.0) << c.label;
+    EXPECT_EQ(c.time.repetitions, 3u) << c.label;
+    EXPECT_EQ(c.image.width, 320u) << c.label;
+  }
+  const auto converged = convergence(*result);
+  ASSERT_TRUE(converged.has_value());
+  EXPECT_TRUE(converged->converged) << converged->check_error << " vs " << converged->smallest_error;
+
+  AccuracyRun run;
+  run.studies = {study};
+  run.results = {*result};
+  run.drivers = {{harness::Lane::Gl, (*backend)->driver_info()}};
+  run.command_line = "xshade accuracy dof_kernel --lane gl";
+  const std::string md = accuracy_markdown(run, "accuracy");
+  EXPECT_THAT(md, testing::HasSubstr("![dof_kernel](accuracy/dof_kernel.svg)"));
+  EXPECT_THAT(md, testing::HasSubstr("| 71 samples | gl | "));
+  EXPECT_THAT(md, testing::HasSubstr("dense gather, half-texel spacing against the reference"));
+  const std::string svg = study_chart_svg(study, run);
+  for (const char* label : {"16 samples", "22 samples", "43 samples", "71 samples"}) EXPECT_THAT(svg, testing::HasSubstr(label));
+  const std::string csv = accuracy_csv(run);
+  EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 5);  // header and four rows
+}
+
+}  // namespace
+}  // namespace xshade::accuracy

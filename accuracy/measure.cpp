@@ -1,0 +1,138 @@
+#include "accuracy/measure.h"
+
+#include <algorithm>
+#include <chrono>
+
+#include "harness/environment.h"
+#include "harness/image_compare.h"
+#include "harness/planner.h"
+#include "harness/scene.h"
+#include "harness/scene_renderer.h"
+#include "harness/variant_compiler.h"
+
+namespace xshade::accuracy {
+namespace {
+
+double milliseconds_since(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+}
+
+harness::Scene configured(const harness::Scene& base, const Configuration& configuration) {
+  harness::Scene scene = base;
+  if (configuration.material_keywords)
+    for (harness::SceneObject& object : scene.objects) object.keywords = *configuration.material_keywords;
+  for (harness::PostEffect& effect : scene.post) {
+    if (configuration.post_keywords) effect.keywords = *configuration.post_keywords;
+    for (const auto& [name, value] : configuration.post_parameters)
+      effect.parameters[name] = harness::PropertyValue::scalar(value);
+  }
+  scene.width *= configuration.supersample;
+  scene.height *= configuration.supersample;
+  return scene;
+}
+
+Result<ConfigurationResult> render(const Study& study, const Configuration& configuration, const harness::Scene& base,
+                                   harness::Lane lane, harness::Backend& backend, const harness::Environment& environment,
+                                   const MeasureOptions& options, uint32_t repetitions) {
+  const harness::Scene scene = configured(base, configuration);
+  auto plan = harness::plan_scene(scene, options.shaders_dir);
+  if (!plan) return fail(plan.error());
+
+  // No cache: the compile time is what a cold build of this configuration costs.
+  harness::VariantCompiler compiler(options.shaders_dir, nullptr);
+  const auto compile_start = std::chrono::steady_clock::now();
+  std::vector<harness::CompiledVariant> variants;
+  for (harness::VariantRequest request : plan->variants) {
+    request.half_emulation = configuration.half_emulation;
+    auto compiled = compiler.compile(request, lane);
+    if (!compiled) return fail(configuration.label + ": " + compiled.error().to_string());
+    variants.push_back(std::move(*compiled));
+  }
+  ConfigurationResult result;
+  result.label = configuration.label;
+  result.compile_ms = milliseconds_since(compile_start);
+
+  auto rendered = harness::render_scene(backend, scene, *plan, variants, environment,
+                                        {.frames = options.warmup_frames + repetitions});
+  if (!rendered) return fail(configuration.label + ": " + rendered.error().to_string());
+  std::vector<double> times;
+  for (size_t frame = options.warmup_frames; frame < rendered->frame_timings.size(); ++frame)
+    times.push_back(harness::milliseconds_of(rendered->frame_timings[frame], study.timed_passes));
+  result.time = summarize(std::move(times));
+  result.image = configuration.supersample > 1 ? box_downsample(rendered->image, configuration.supersample)
+                                               : std::move(rendered->image);
+  return result;
+}
+
+void judge(ConfigurationResult& result, const ConfigurationResult& reference, const harness::CompareSettings& settings) {
+  const harness::Comparison comparison = harness::compare_images(result.image, reference.image, settings);
+  result.error = comparison.metrics;
+  result.failing_fraction = comparison.metrics.failing_fraction;
+}
+
+}  // namespace
+
+Timing summarize(std::vector<double> samples) {
+  Timing timing;
+  timing.repetitions = samples.size();
+  if (samples.empty()) return timing;
+  std::sort(samples.begin(), samples.end());
+  auto quantile = [&](double q) {
+    const double position = q * double(samples.size() - 1);
+    const auto below = size_t(position);
+    const size_t above = std::min(below + 1, samples.size() - 1);
+    return samples[below] + (position - double(below)) * (samples[above] - samples[below]);
+  };
+  timing.q1_ms = quantile(0.25);
+  timing.median_ms = quantile(0.5);
+  timing.q3_ms = quantile(0.75);
+  return timing;
+}
+
+harness::FloatImage box_downsample(const harness::FloatImage& image, uint32_t k) {
+  harness::FloatImage out(image.width / k, image.height / k);
+  const float weight = 1.0f / float(k * k);
+  for (uint32_t y = 0; y < out.height; ++y)
+    for (uint32_t x = 0; x < out.width; ++x) {
+      glm::vec4 sum(0.0f);
+      for (uint32_t j = 0; j < k; ++j)
+        for (uint32_t i = 0; i < k; ++i) sum += image.at(x * k + i, y * k + j);
+      out.set(x, y, sum * weight);
+    }
+  return out;
+}
+
+Result<StudyResult> measure_study(const Study& study, harness::Lane lane, harness::Backend& backend,
+                                  const MeasureOptions& options) {
+  auto scene = harness::load_scene(options.scenes_dir / (study.scene + ".toml"));
+  if (!scene) return fail(scene.error());
+  auto environment = harness::build_environment(scene->environment);
+  if (!environment) return fail(environment.error());
+
+  StudyResult result{study.id, lane, {}, std::nullopt, {}, {}};
+  auto can_run = [&](const Configuration& configuration) {
+    if (!configuration.half_emulation || lane != harness::Lane::VkHlsl) return true;
+    result.skipped.push_back(configuration.label + ": vk-hlsl compiles the source with glslang, which cannot emulate fp16");
+    return false;
+  };
+  // The reference is rendered once, untimed beyond the frames it needs.
+  auto reference = render(study, study.reference, *scene, lane, backend, *environment, options, 1);
+  if (!reference) return fail(reference.error());
+  result.reference = std::move(*reference);
+  if (study.reference_check && options.reference_check) {
+    auto check = render(study, *study.reference_check, *scene, lane, backend, *environment, options, 1);
+    if (!check) return fail(check.error());
+    judge(*check, result.reference, scene->compare);
+    result.reference_check = std::move(*check);
+  }
+  for (const Configuration& configuration : study.configurations) {
+    if (!can_run(configuration)) continue;
+    auto measured = render(study, configuration, *scene, lane, backend, *environment, options, options.repetitions);
+    if (!measured) return fail(measured.error());
+    judge(*measured, result.reference, scene->compare);
+    result.configurations.push_back(std::move(*measured));
+  }
+  return result;
+}
+
+}  // namespace xshade::accuracy
