@@ -24,7 +24,7 @@ std::vector<const StudyResult*> results_of(const AccuracyRun& run, const std::st
 }
 
 struct Row {
-  std::string configuration, lane, max, mean, rmse, psnr, beyond, time, compile;
+  std::string configuration, lane, max, mean, rmse, rmse8, psnr, beyond, time, compile;
 };
 
 std::vector<Row> rows_of(const Study& study, const AccuracyRun& run) {
@@ -35,7 +35,8 @@ std::vector<Row> rows_of(const Study& study, const AccuracyRun& run) {
         if (measured.label == study.configurations[c].label) {
           const auto& e = measured.error;
           rows.push_back({measured.label, std::string(harness::lane_name(result->lane)), fmt::format("{:.4g}", e.max_difference),
-                          fmt::format("{:.3g}", e.mean), fmt::format("{:.3g}", e.rmse), psnr(e.psnr),
+                          fmt::format("{:.3g}", e.mean), fmt::format("{:.3g}", e.rmse),
+                          fmt::format("{:.3g}", chart_error(measured)), psnr(e.psnr),
                           fmt::format("{:.2f}%", 100.0 * measured.failing_fraction),
                           fmt::format("{} ({}-{})", ms(measured.time.median_ms), ms(measured.time.q1_ms), ms(measured.time.q3_ms)),
                           ms(measured.compile_ms)});
@@ -46,14 +47,18 @@ std::vector<Row> rows_of(const Study& study, const AccuracyRun& run) {
 std::string convergence_line(const StudyResult& result, const Study& study) {
   const std::optional<Convergence> c = convergence(result);
   if (!c || !study.reference_check) return {};
-  return fmt::format("{}: {} against the reference: RMSE {:.3g}; the smallest error it judges: {:.3g}: {}",
+  return fmt::format("{}: {} against the reference: RMSE {:.3g} sRGB steps; the smallest error it judges: {:.3g}: {}",
                      harness::lane_name(result.lane), study.reference_check->label, c->check_error, c->smallest_error,
                      c->converged ? "converged" : "NOT converged");
 }
 
 }  // namespace
 
-double chart_error(const ConfigurationResult& result) { return result.error.rmse; }
+// In 8-bit sRGB steps, as a viewer sees the image: linear errors are dominated by a few
+// highlights far above 1, which the display clips. PSNR = 20 log10(255 / RMSE) on those images.
+double chart_error(const ConfigurationResult& result) {
+  return std::isinf(result.error.psnr) ? 0.0 : 255.0 * std::pow(10.0, -result.error.psnr / 20.0);
+}
 
 std::optional<Convergence> convergence(const StudyResult& result) {
   if (!result.reference_check) return std::nullopt;
@@ -80,7 +85,7 @@ std::string study_chart_svg(const Study& study, const AccuracyRun& run) {
   options.x_label = study.timed_passes == "scene" ? "scene pass time, median over frames (ms)"
                                                   : "time of the " + study.timed_passes.substr(0, study.timed_passes.size() - 1) +
                                                         " passes, median over frames (ms)";
-  options.y_label = "RMSE against " + study.reference.label + " (linear)";
+  options.y_label = "RMSE against " + study.reference.label + " (8-bit sRGB steps)";
   return pareto_chart_svg(series, options);
 }
 
@@ -106,29 +111,33 @@ std::string accuracy_markdown(const AccuracyRun& run, const std::string& chart_d
   md += fmt::format(
       "\nFor each knob of SHADERS.md section 6, a scene is rendered on each lane in every configuration and in a "
       "reference configuration. Error: against the reference on the same lane, in linear values (max, mean "
-      "absolute, RMSE), PSNR on the 8-bit sRGB images, and the share of pixels beyond the scene's tolerance. "
+      "absolute, RMSE: dominated by the few highlights far above 1), and on the 8-bit sRGB images a viewer sees "
+      "(RMSE in steps, which the charts plot, and PSNR), and the share of pixels beyond the scene's tolerance. "
       "Time: of the passes the knob changes, wall time of each pass run to completion (glFinish or a fence), "
-      "median and interquartile range over {} frames after {} warm-up frames (the first creates programs and "
-      "pipelines); every configuration is measured in the same run on the same machine. Compile: every variant "
+      "median and interquartile range over {} rounds x {} frames: the configurations take turns, round after "
+      "round, each turn after {} untimed warm-up frame, so that a slow spell of the machine falls on all of them; "
+      "every configuration is measured in the same run on the same machine. Compile: every variant "
       "of the configuration, from source, no cache. These are CPU drivers: time is llvmpipe's, on a shared "
-      "machine; read differences smaller than the interquartile ranges as noise.\n",
-      run.options.repetitions, run.options.warmup_frames);
+      "machine; read differences smaller than the interquartile ranges as noise. fp16 emulation rounds in extra "
+      "instructions, so on these drivers half costs time; on a GPU with fp16 arithmetic it saves time.\n",
+      run.options.rounds, run.options.frames_per_round, run.options.warmup_frames);
   for (const Study& study : run.studies) {
     const std::vector<const StudyResult*> results = results_of(run, study.id);
     if (results.empty()) continue;
     md += fmt::format("\n## {}: {}\n\nScene `{}`. Reference: {}; {}\n\n", study.id, study.knob, study.scene, study.reference.label,
                       study.why_reference);
     md += fmt::format("![{}]({}/{}.svg)\n\n", study.id, chart_dir, study.id);
+    if (!study.findings.empty()) md += study.findings + "\n\n";
     for (const StudyResult* result : results) {
       if (std::string line = convergence_line(*result, study); !line.empty()) md += "- " + line + "\n";
       for (const std::string& skipped : result->skipped)
         md += fmt::format("- {}: not run: {}\n", harness::lane_name(result->lane), skipped);
     }
-    md += "\n| configuration | lane | max | mean | RMSE | PSNR | beyond tolerance | time ms, median (IQR) | compile ms |\n"
-          "|---|---|---|---|---|---|---|---|---|\n";
+    md += "\n| configuration | lane | max | mean | RMSE | RMSE, sRGB steps | PSNR | beyond tolerance | time ms, median (IQR) | "
+          "compile ms |\n|---|---|---|---|---|---|---|---|---|---|\n";
     for (const Row& r : rows_of(study, run))
-      md += fmt::format("| {} | {} | {} | {} | {} | {} | {} | {} | {} |\n", r.configuration, r.lane, r.max, r.mean, r.rmse, r.psnr,
-                        r.beyond, r.time, r.compile);
+      md += fmt::format("| {} | {} | {} | {} | {} | {} | {} | {} | {} | {} |\n", r.configuration, r.lane, r.max, r.mean, r.rmse,
+                        r.rmse8, r.psnr, r.beyond, r.time, r.compile);
   }
   return md;
 }
@@ -148,15 +157,16 @@ std::string accuracy_html(const AccuracyRun& run, const std::string& chart_dir) 
     if (results_of(run, study.id).empty()) continue;
     html += fmt::format("<h2>{}: {}</h2>\n<p>Scene {}. Reference: {}; {}</p>\n", escape_text(study.id), escape_text(study.knob),
                         escape_text(study.scene), escape_text(study.reference.label), escape_text(study.why_reference));
-    html += fmt::format("<img src=\"{}/{}.svg\" alt=\"{}\">\n<ul>\n", harness::url_path(chart_dir), harness::url_path(study.id),
-                        harness::escape_attribute(study.id));
+    html += fmt::format("<img src=\"{}/{}.svg\" alt=\"{}\">\n<p>{}</p>\n<ul>\n", harness::url_path(chart_dir),
+                        harness::url_path(study.id), harness::escape_attribute(study.id), escape_text(study.findings));
     for (const StudyResult* result : results_of(run, study.id))
       if (std::string line = convergence_line(*result, study); !line.empty()) html += "<li>" + escape_text(line) + "</li>\n";
-    html += "</ul>\n<table>\n<tr><th>configuration</th><th>lane</th><th>max</th><th>mean</th><th>RMSE</th><th>PSNR</th>"
-            "<th>beyond tolerance</th><th>time ms, median (IQR)</th><th>compile ms</th></tr>\n";
+    html += "</ul>\n<table>\n<tr><th>configuration</th><th>lane</th><th>max</th><th>mean</th><th>RMSE</th>"
+            "<th>RMSE, sRGB steps</th><th>PSNR</th><th>beyond tolerance</th><th>time ms, median (IQR)</th><th>compile ms</th></tr>\n";
     for (const Row& r : rows_of(study, run))
-      html += fmt::format("<tr><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td></tr>\n",
-                          escape_text(r.configuration), escape_text(r.lane), r.max, r.mean, r.rmse, r.psnr, r.beyond, r.time, r.compile);
+      html += fmt::format("<tr><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td></tr>\n",
+                          escape_text(r.configuration), escape_text(r.lane), r.max, r.mean, r.rmse, r.rmse8, r.psnr, r.beyond,
+                          r.time, r.compile);
     html += "</table>\n";
   }
   return html + "</body>\n</html>\n";

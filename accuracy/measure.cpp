@@ -31,37 +31,55 @@ harness::Scene configured(const harness::Scene& base, const Configuration& confi
   return scene;
 }
 
-Result<ConfigurationResult> render(const Study& study, const Configuration& configuration, const harness::Scene& base,
-                                   harness::Lane lane, harness::Backend& backend, const harness::Environment& environment,
-                                   const MeasureOptions& options, uint32_t repetitions) {
-  const harness::Scene scene = configured(base, configuration);
-  auto plan = harness::plan_scene(scene, options.shaders_dir);
+// A configuration compiled and rendered once: its image, and what timing it again needs.
+struct Prepared {
+  harness::Scene scene;
+  harness::Plan plan;
+  std::vector<harness::CompiledVariant> variants;
+  ConfigurationResult result;
+  std::vector<double> times;
+};
+
+Result<Prepared> prepare(const Configuration& configuration, const harness::Scene& base, harness::Lane lane,
+                         harness::Backend& backend, const harness::Environment& environment, const MeasureOptions& options,
+                         harness::ProgramCache& programs) {
+  Prepared prepared;
+  prepared.scene = configured(base, configuration);
+  auto plan = harness::plan_scene(prepared.scene, options.shaders_dir);
   if (!plan) return fail(plan.error());
+  prepared.plan = std::move(*plan);
 
   // No cache: the compile time is what a cold build of this configuration costs.
   harness::VariantCompiler compiler(options.shaders_dir, nullptr);
   const auto compile_start = std::chrono::steady_clock::now();
-  std::vector<harness::CompiledVariant> variants;
-  for (harness::VariantRequest request : plan->variants) {
+  for (harness::VariantRequest request : prepared.plan.variants) {
     request.half_emulation = configuration.half_emulation;
     auto compiled = compiler.compile(request, lane);
     if (!compiled) return fail(configuration.label + ": " + compiled.error().to_string());
-    variants.push_back(std::move(*compiled));
+    prepared.variants.push_back(std::move(*compiled));
   }
-  ConfigurationResult result;
-  result.label = configuration.label;
-  result.compile_ms = milliseconds_since(compile_start);
+  prepared.result.label = configuration.label;
+  prepared.result.compile_ms = milliseconds_since(compile_start);
 
-  auto rendered = harness::render_scene(backend, scene, *plan, variants, environment,
-                                        {.frames = options.warmup_frames + repetitions});
+  auto rendered =
+      harness::render_scene(backend, prepared.scene, prepared.plan, prepared.variants, environment, {.programs = &programs});
   if (!rendered) return fail(configuration.label + ": " + rendered.error().to_string());
-  std::vector<double> times;
+  prepared.result.image = configuration.supersample > 1 ? box_downsample(rendered->image, configuration.supersample)
+                                                        : std::move(rendered->image);
+  return prepared;
+}
+
+// One round of timing: a warm-up frame (resources are made again; programs come from the
+// cache), then the timed frames.
+Result<void> time_round(const Study& study, Prepared& prepared, harness::Backend& backend,
+                        const harness::Environment& environment, const MeasureOptions& options,
+                        harness::ProgramCache& programs) {
+  auto rendered = harness::render_scene(backend, prepared.scene, prepared.plan, prepared.variants, environment,
+                                        {.frames = options.warmup_frames + options.frames_per_round, .programs = &programs});
+  if (!rendered) return fail(prepared.result.label + ": " + rendered.error().to_string());
   for (size_t frame = options.warmup_frames; frame < rendered->frame_timings.size(); ++frame)
-    times.push_back(harness::milliseconds_of(rendered->frame_timings[frame], study.timed_passes));
-  result.time = summarize(std::move(times));
-  result.image = configuration.supersample > 1 ? box_downsample(rendered->image, configuration.supersample)
-                                               : std::move(rendered->image);
-  return result;
+    prepared.times.push_back(harness::milliseconds_of(rendered->frame_timings[frame], study.timed_passes));
+  return {};
 }
 
 void judge(ConfigurationResult& result, const ConfigurationResult& reference, const harness::CompareSettings& settings) {
@@ -108,29 +126,37 @@ Result<StudyResult> measure_study(const Study& study, harness::Lane lane, harnes
   if (!scene) return fail(scene.error());
   auto environment = harness::build_environment(scene->environment);
   if (!environment) return fail(environment.error());
+  harness::ProgramCache programs;
 
   StudyResult result{study.id, lane, {}, std::nullopt, {}, {}};
-  auto can_run = [&](const Configuration& configuration) {
-    if (!configuration.half_emulation || lane != harness::Lane::VkHlsl) return true;
-    result.skipped.push_back(configuration.label + ": vk-hlsl compiles the source with glslang, which cannot emulate fp16");
-    return false;
-  };
-  // The reference is rendered once, untimed beyond the frames it needs.
-  auto reference = render(study, study.reference, *scene, lane, backend, *environment, options, 1);
+  auto reference = prepare(study.reference, *scene, lane, backend, *environment, options, programs);
   if (!reference) return fail(reference.error());
-  result.reference = std::move(*reference);
+  result.reference = std::move(reference->result);
   if (study.reference_check && options.reference_check) {
-    auto check = render(study, *study.reference_check, *scene, lane, backend, *environment, options, 1);
+    auto check = prepare(*study.reference_check, *scene, lane, backend, *environment, options, programs);
     if (!check) return fail(check.error());
-    judge(*check, result.reference, scene->compare);
-    result.reference_check = std::move(*check);
+    judge(check->result, result.reference, scene->compare);
+    result.reference_check = std::move(check->result);
   }
+  std::vector<Prepared> measured;
   for (const Configuration& configuration : study.configurations) {
-    if (!can_run(configuration)) continue;
-    auto measured = render(study, configuration, *scene, lane, backend, *environment, options, options.repetitions);
-    if (!measured) return fail(measured.error());
-    judge(*measured, result.reference, scene->compare);
-    result.configurations.push_back(std::move(*measured));
+    if (configuration.half_emulation && lane == harness::Lane::VkHlsl) {
+      result.skipped.push_back(configuration.label + ": vk-hlsl compiles the source with glslang, which cannot emulate fp16");
+      continue;
+    }
+    auto prepared = prepare(configuration, *scene, lane, backend, *environment, options, programs);
+    if (!prepared) return fail(prepared.error());
+    judge(prepared->result, result.reference, scene->compare);
+    measured.push_back(std::move(*prepared));
+  }
+  // The configurations take turns, round after round, so that a slow spell of a shared machine
+  // falls on all of them rather than on whichever was being timed.
+  for (uint32_t round = 0; round < options.rounds; ++round)
+    for (Prepared& prepared : measured)
+      if (auto timed = time_round(study, prepared, backend, *environment, options, programs); !timed) return fail(timed.error());
+  for (Prepared& prepared : measured) {
+    prepared.result.time = summarize(std::move(prepared.times));
+    result.configurations.push_back(std::move(prepared.result));
   }
   return result;
 }

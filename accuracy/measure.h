@@ -43,8 +43,11 @@ struct StudyResult {
 struct MeasureOptions {
   std::filesystem::path scenes_dir;
   std::filesystem::path shaders_dir;
-  uint32_t warmup_frames = 2;  // rendered, not timed: the first creates programs and pipelines
-  uint32_t repetitions = 15;
+  // Timing: `rounds` turns through the configurations; each turn renders `warmup_frames` untimed
+  // (the first makes the scene's resources again) and then `frames_per_round` timed frames.
+  uint32_t rounds = 5;
+  uint32_t warmup_frames = 1;
+  uint32_t frames_per_round = 3;
   bool reference_check = true;
 };
 

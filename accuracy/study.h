@@ -35,6 +35,8 @@ struct Study {
   // ("scene", or "depth_of_field." for the effect's passes).
   std::string timed_passes;
   bool quick = true;  // part of `xshade accuracy --quick`
+  // What the measurements showed when this study was written, and why: shown under its table.
+  std::string findings = {};
 };
 
 std::vector<Study> all_studies();
