@@ -47,7 +47,7 @@ int run_accuracy(const AccuracyOptions& options) {
   run.command_line = options.command_line;
   run.options.scenes_dir = options.scenes_dir;
   run.options.shaders_dir = options.shaders_dir;
-  run.options.repetitions = options.quick ? 5 : options.repetitions;
+  run.options.rounds = options.quick ? 1 : options.rounds;
   run.options.reference_check = !options.quick;
   for (harness::Lane lane : *lanes) {
     auto backend = harness::create_backend(lane, {.validation = options.selection.validation});

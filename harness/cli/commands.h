@@ -91,8 +91,8 @@ int run_stability(const StabilityOptions& options);
 struct AccuracyOptions {
   LaneSelection selection;
   std::vector<std::string> studies;  // ids; empty = every study (or the quick ones)
-  bool quick = false;                // fewer repetitions, no reference check, the quick studies
-  uint32_t repetitions = 15;
+  bool quick = false;                // one round, no reference check, the quick studies
+  uint32_t rounds = 5;
   std::filesystem::path report_dir = "accuracy-report";
   std::filesystem::path markdown;    // also write docs/accuracy.md's text here, charts beside it
   std::filesystem::path scenes_dir = XSHADE_SOURCE_DIR "/harness/scenes";

@@ -141,9 +141,10 @@ int main(int argc, char** argv) {
       ->type_name("STUDY");
   add_lane_options(*accuracy, accuracy_options.selection);
   accuracy->add_flag("--quick", accuracy_options.quick,
-                     "5 timed frames instead of --repetitions, no reference check, and only the quick studies");
-  accuracy->add_option("--repetitions", accuracy_options.repetitions, "Timed frames per configuration, after 2 warm-up frames")
-      ->check(CLI::Range(3, 1000))
+                     "One round of timing, no reference check, and only the quick studies");
+  accuracy->add_option("--rounds", accuracy_options.rounds,
+                       "Rounds of timing: the configurations take turns, each turn 1 warm-up frame and 3 timed frames")
+      ->check(CLI::Range(1, 100))
       ->capture_default_str();
   accuracy->add_option("--report", accuracy_options.report_dir, "Folder for index.html, accuracy.csv and charts/")
       ->type_name("DIR")
