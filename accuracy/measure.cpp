@@ -21,6 +21,9 @@ harness::Scene configured(const harness::Scene& base, const Configuration& confi
   harness::Scene scene = base;
   if (configuration.material_keywords)
     for (harness::SceneObject& object : scene.objects) object.keywords = *configuration.material_keywords;
+  for (harness::SceneObject& object : scene.objects)
+    for (const auto& [name, value] : configuration.object_parameters)
+      object.properties[name] = harness::PropertyValue::scalar(value);
   for (harness::PostEffect& effect : scene.post) {
     if (configuration.post_keywords) effect.keywords = *configuration.post_keywords;
     for (const auto& [name, value] : configuration.post_parameters)

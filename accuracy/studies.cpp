@@ -81,6 +81,35 @@ Study precision() {
   return s;
 }
 
+Study indirect_specular() {
+  Study s;
+  s.id = "indirect_specular";
+  s.knob = "indirect specular: prefiltered lookup or importance sampling";
+  s.scene = "material_grid";
+  s.why_reference =
+      "_INDIRECT_SAMPLED with 1024 GGX samples per pixel: the integral of the environment times the exact forms' "
+      "BRDF itself. Its check, 2048 samples.";
+  auto sampled = [](uint32_t count) {
+    std::vector<std::string> keywords = kExactForms;
+    keywords.push_back("_INDIRECT_SAMPLED");
+    return Configuration{.label = std::to_string(count) + " samples",
+                         .material_keywords = keywords,
+                         .object_parameters = {{"_IndirectSamples", float(count)}}};
+  };
+  s.reference = sampled(1024);
+  s.reference_check = sampled(2048);
+  s.configurations = {{.label = "prefiltered (Unity)", .material_keywords = kExactForms}, sampled(16), sampled(64),
+                      sampled(256)};
+  s.timed_passes = "scene";
+  s.quick = false;
+  s.findings =
+      "Unity's prefiltered lookup is the fastest by far and the least accurate: a few sRGB steps off the sampled "
+      "integral, mostly at grazing angles and on rough metals, where its surface-reduction and Fresnel fits part "
+      "from the BRDF. Sampling converges as 1/sqrt(N) would have it, more than halving the error from 16 to 64 "
+      "and again to 256 samples, at a time proportional to N: tens of times the lookup's already at 16.";
+  return s;
+}
+
 Study supersampling() {
   Study s;
   s.id = "supersampling";
@@ -105,6 +134,8 @@ Study supersampling() {
 
 }  // namespace
 
-std::vector<Study> all_studies() { return {dof_kernel(), brdf_forms(), precision(), supersampling()}; }
+std::vector<Study> all_studies() {
+  return {dof_kernel(), brdf_forms(), precision(), indirect_specular(), supersampling()};
+}
 
 }  // namespace xshade::accuracy

@@ -16,7 +16,8 @@ struct Configuration {
   // Replace the keywords of every object's material, or of every post effect, when set.
   std::optional<std::vector<std::string>> material_keywords = std::nullopt;
   std::optional<std::vector<std::string>> post_keywords = std::nullopt;
-  std::map<std::string, float> post_parameters = {};  // set on every post effect
+  std::map<std::string, float> post_parameters = {};    // set on every post effect
+  std::map<std::string, float> object_parameters = {};  // set on every object
   bool half_emulation = false;  // gl and vk only
   uint32_t supersample = 1;     // rendered at k times the size, then averaged over k x k pixels
 };

@@ -42,6 +42,7 @@ layout(std140, binding = 2) uniform xs_Globals {
   layout(offset = 0) vec4 _Color;
   layout(offset = 16) float _Metallic;
   layout(offset = 20) float _Smoothness;
+  layout(offset = 24) float _IndirectSamples;
 };
 layout(binding = 16) uniform sampler2D _EnvironmentSpecular;
 layout(binding = 17) uniform sampler2D _MainTex;
@@ -62,12 +63,12 @@ SurfaceVaryings surface_vertex(MeshVertex input_) {
   output_.uv = input_.uv;
   return output_;
 }
-#line 21 1
+#line 24 1
 SurfaceVaryings vert(MeshVertex input_) {
-#line 21 1
+#line 24 1
   return surface_vertex(input_);
 }
-#line 71 0
+#line 72 0
 void main() {
   MeshVertex xs_arg0;
   xs_arg0.position = xs_in_POSITION0;

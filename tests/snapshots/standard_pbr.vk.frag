@@ -42,6 +42,7 @@ layout(std140, set = 0, binding = 2) uniform xs_Globals {
   layout(offset = 0) vec4 _Color;
   layout(offset = 16) float _Metallic;
   layout(offset = 20) float _Smoothness;
+  layout(offset = 24) float _IndirectSamples;
 };
 layout(set = 0, binding = 16) uniform texture2D _EnvironmentSpecular;
 layout(set = 0, binding = 17) uniform texture2D _MainTex;
@@ -125,7 +126,7 @@ vec3 direct_light(vec3 n, vec3 v, vec3 l, float a, vec3 diff_color, vec3 spec_co
   BrdfInputs s = brdf_inputs(n, v, l, a);
   return (diff_color + cook_torrance_specular(s, spec_color)) * light_color * clamp(dot(n, l), 0.0, 1.0);
 }
-#line 18 4
+#line 19 4
 vec3 sh_irradiance(vec3 n) {
   vec3 result = _EnvironmentSH[0].xyz * 0.282095;
   result += _EnvironmentSH[1].xyz * (0.488603 * n.y);
@@ -136,16 +137,16 @@ vec3 sh_irradiance(vec3 n) {
   result += _EnvironmentSH[6].xyz * (0.315392 * (3.0 * n.z * n.z - 1.0));
   result += _EnvironmentSH[7].xyz * (1.092548 * n.x * n.z);
   result += _EnvironmentSH[8].xyz * (0.546274 * (n.x * n.x - n.y * n.y));
-#line 29 4
+#line 30 4
   return max(result, vec3(0.0));
 }
-#line 34 4
+#line 35 4
 vec2 equirect_uv(vec3 direction) {
   float u = 0.5 + atan(direction.x, direction.z) * (0.5 / kPi);
   float v = acos(clamp(direction.y, -1.0, 1.0)) / kPi;
   return vec2(u, v);
 }
-#line 42 4
+#line 43 4
 vec3 prefiltered_environment(vec3 direction, float r) {
   float mip = r * (1.7 - 0.7 * r) * kEnvironmentMipSteps;
   return textureLod(sampler2D(_EnvironmentSpecular, sampler_EnvironmentSpecular), equirect_uv(direction), mip).xyz;
@@ -155,31 +156,32 @@ float pow4(float x) {
   float x2 = x * x;
   return x2 * x2;
 }
-#line 23 1
+#line 26 1
 vec4 frag(SurfaceVaryings input_) {
   vec3 n = normalize(input_.world_normal);
   vec3 v = normalize(_CameraPosition.xyz - input_.world_position);
   vec3 l = _LightDirection.xyz;
-#line 28 1
+#line 31 1
   vec4 base = texture(sampler2D(_MainTex, sampler_MainTex), input_.uv) * _Color;
   vec3 diff_color;
-#line 29 1
+#line 32 1
   vec3 spec_color;
   float one_minus_reflectivity;
   diffuse_and_specular_from_metallic(base.xyz, _Metallic, diff_color, spec_color, one_minus_reflectivity);
-#line 34 1
+#line 37 1
   float roughness = 1.0 - _Smoothness;
   vec3 direct = direct_light(n, v, l, roughness, diff_color, spec_color, _LightColor.xyz);
-#line 39 1
+#line 42 1
   float NoV = clamp(dot(n, v), 0.0, 1.0);
   float surface_reduction = 1.0 / (roughness * roughness + 1.0);
   float grazing = clamp(_Smoothness + 1.0 - one_minus_reflectivity, 0.0, 1.0);
   vec3 indirect_diffuse = diff_color * sh_irradiance(n);
+#line 50 1
   vec3 indirect_specular = surface_reduction * prefiltered_environment(reflect(-v, n), roughness) * mix(spec_color, vec3(grazing, grazing, grazing), vec3(pow4(1.0 - NoV)));
-#line 45 1
+#line 53 1
   return vec4(direct + indirect_diffuse + indirect_specular, base.w);
 }
-#line 183 0
+#line 185 0
 void main() {
   SurfaceVaryings xs_arg0;
   xs_arg0.clip_position = vec4(gl_FragCoord.xyz, 1.0 / gl_FragCoord.w);

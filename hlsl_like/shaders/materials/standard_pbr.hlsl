@@ -7,6 +7,7 @@
 #pragma multi_compile _G_COOK_TORRANCE _G_SMITH_CORRELATED _G_SMITH_FAST
 #pragma multi_compile _F_SCHLICK _F_SPHERICAL_GAUSSIAN _F_EXACT
 #pragma multi_compile _ _GUARDED
+#pragma multi_compile _ _INDIRECT_SAMPLED
 
 #include "include/brdf.hlsl"
 #include "include/environment.hlsl"
@@ -17,6 +18,8 @@ Texture2D _MainTex <string UIName = "Albedo";>;
 SamplerState sampler_MainTex;
 float _Metallic <string UIName = "Metallic"; float UIMin = 0.0; float UIMax = 1.0;> = 0.0;
 float _Smoothness <string UIName = "Smoothness"; float UIMin = 0.0; float UIMax = 1.0;> = 0.5;
+// _INDIRECT_SAMPLED only: how many GGX samples estimate the environment's specular light.
+float _IndirectSamples <string UIName = "Indirect specular samples"; float UIMin = 1.0; float UIMax = 4096.0;> = 64.0;
 
 SurfaceVaryings vert(MeshVertex input) { return surface_vertex(input); }
 
@@ -40,7 +43,12 @@ float4 frag(SurfaceVaryings input) : SV_Target {
   float surface_reduction = 1.0 / (roughness * roughness + 1.0);
   float grazing = saturate(_Smoothness + 1.0 - one_minus_reflectivity);
   float3 indirect_diffuse = diff_color * sh_irradiance(n);
+#if defined(_INDIRECT_SAMPLED)
+  // The integral itself, sampled: the reference for Unity's approximation below.
+  float3 indirect_specular = sampled_environment_specular(n, v, roughness, spec_color, int(_IndirectSamples));
+#else
   float3 indirect_specular = surface_reduction * prefiltered_environment(reflect(-v, n), roughness) *
                              lerp(spec_color, float3(grazing, grazing, grazing), pow4(1.0 - NoV));
+#endif
   return float4(direct + indirect_diffuse + indirect_specular, base.a);
 }
