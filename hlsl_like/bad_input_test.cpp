@@ -521,6 +521,35 @@ TEST(BadInput, IncludeNotFoundListsTheSearchedFolders) {
             "             ^");
 }
 
+// An include may not leave the folders the compile was given (the main file's and the include
+// directories), by `..`, an absolute path or a symbolic link: the file outside is not read.
+TEST(BadInput, IncludeOutsideTheGivenFoldersIsRefused) {
+  TempDir dir;
+  dir.write("secret.txt", "float secret_value;\n");
+  dir.write("shaders/include/common.hlsl", "#include \"../../secret.txt\"\n");
+  const fs::path main = dir.write("shaders/materials/main.hlsl",
+                                   "#include \"include/common.hlsl\"\n"
+                                   "#include \"" + (dir.path() / "secret.txt").string() + "\"\n"
+                                   "#include \"../include/link.hlsl\"\n"
+                                   "float4 frag(float4 pos : SV_Position) : SV_Target { return 1; }\n");
+  fs::create_symlink(dir.path() / "secret.txt", dir.path() / "shaders" / "include" / "link.hlsl");
+  CompileOptions options;
+  options.include_dirs = {dir.path() / "shaders"};
+  auto m = compile_file(main, options);
+  const std::string folders = (dir.path() / "shaders").string() + ", " + (dir.path() / "shaders" / "materials").string();
+  const Strings rendered = all_rendered(*m);
+  ASSERT_EQ(rendered.size(), 3u) << m->diagnostics.render_all();
+  EXPECT_EQ(rendered[0], (dir.path() / "shaders" / "include" / "common.hlsl").string() +
+                             ":1:10: error: include file '../../secret.txt' is outside the folders this shader was "
+                             "given (" + folders + "); an include may not leave them\n"
+                             "    #include \"../../secret.txt\"\n"
+                             "             ^");
+  EXPECT_NE(rendered[1].find("error: include file '" + (dir.path() / "secret.txt").string() + "' is outside"),
+            std::string::npos) << rendered[1];
+  EXPECT_NE(rendered[2].find("error: include file '../include/link.hlsl' is outside"), std::string::npos) << rendered[2];
+  EXPECT_EQ(m->diagnostics.render_all().find("secret_value"), std::string::npos);
+}
+
 // The chain is read a second time before the cycle shows; that second reading is dropped, so
 // its declarations are not reported as redefinitions of themselves. The cycle is the one error.
 TEST(BadInput, IncludeCycleIsTheOnlyError) {

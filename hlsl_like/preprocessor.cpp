@@ -232,6 +232,10 @@ struct Preprocessor::Impl {
   void do_undef(Lexer& lex, const Token& name);
   void do_include(IncludeFrame& frame, const Token& name);
   void include_file(IncludeFrame& frame, const Token& name, std::string_view spelled, bool angled, Loc where);
+  // The folders a compile was given: the include directories and the main file's folder. An
+  // include may not resolve outside them (`#include "../../etc/passwd"` is an error, not a read).
+  std::vector<std::filesystem::path> given_folders_;
+  bool inside_given_folders(const std::filesystem::path& file) const;
   void abandon_files_from(size_t first);
   void do_if(IncludeFrame& frame, const Token& name, bool guard_start);
   void do_pragma(IncludeFrame& frame, const Token& name);
@@ -645,6 +649,19 @@ void Preprocessor::Impl::define(const std::vector<MacroDefinition>& definitions)
   }
 }
 
+bool Preprocessor::Impl::inside_given_folders(const std::filesystem::path& file) const {
+  namespace fs = std::filesystem;
+  std::error_code error;
+  // Symbolic links and `..` resolved: a link inside a folder that points out of it is outside.
+  const fs::path real = fs::weakly_canonical(fs::absolute(file, error), error);
+  for (const fs::path& folder : given_folders_) {
+    const fs::path root = fs::weakly_canonical(fs::absolute(folder, error), error);
+    const fs::path relative = real.lexically_relative(root);
+    if (!relative.empty() && *relative.begin() != "..") return true;
+  }
+  return false;
+}
+
 std::vector<Token> Preprocessor::Impl::run(uint32_t main_file) {
   define(pp_.options_.defines);
   Token end = make_token(TokenKind::EndOfFile, {}, {});
@@ -654,6 +671,8 @@ std::vector<Token> Preprocessor::Impl::run(uint32_t main_file) {
     return {end};
   }
   out_.clear();
+  given_folders_ = pp_.options_.include_dirs;
+  if (const auto folder = sources_.path(main_file).parent_path(); !folder.empty()) given_folders_.push_back(folder);
   enter_file(main_file);
   out_.reserve(sources_.text(main_file).size() / 3 + 16);
   Context ctx;
@@ -1463,6 +1482,13 @@ void Preprocessor::Impl::include_file(IncludeFrame& frame, const Token& name, st
       message += ")";
     }
     diagnostics_.error(where, std::move(message));
+    return;
+  }
+  if (!inside_given_folders(*found)) {
+    std::string folders;
+    for (const fs::path& folder : given_folders_) folders += (folders.empty() ? "" : ", ") + folder.string();
+    diagnostics_.error(where, "include file '" + clip(spelled) + "' is outside the folders this shader was given (" +
+                                  folders + "); an include may not leave them");
     return;
   }
   Result<uint32_t> loaded = sources_.load(*found);
