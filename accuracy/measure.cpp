@@ -55,12 +55,9 @@ Result<Prepared> prepare(const Configuration& configuration, const harness::Scen
   // No cache: the compile time is what a cold build of this configuration costs.
   harness::VariantCompiler compiler(options.shaders_dir, nullptr);
   const auto compile_start = std::chrono::steady_clock::now();
-  for (harness::VariantRequest request : prepared.plan.variants) {
-    request.half_emulation = configuration.half_emulation;
-    auto compiled = compiler.compile(request, lane);
-    if (!compiled) return fail(configuration.label + ": " + compiled.error().to_string());
-    prepared.variants.push_back(std::move(*compiled));
-  }
+  auto variants = compiler.compile_plan(prepared.plan, lane, configuration.half_emulation);
+  if (!variants) return fail(configuration.label + ": " + variants.error().to_string());
+  prepared.variants = std::move(*variants);
   prepared.result.label = configuration.label;
   prepared.result.compile_ms = milliseconds_since(compile_start);
 

@@ -5,7 +5,11 @@
 #include <cstddef>
 #include <string>
 #include <string_view>
+#include <utility>
+#include <vector>
 
+#include "harness/backend.h"
+#include "harness/lanes.h"
 #include "harness/run_results.h"
 
 namespace xshade::harness {
@@ -45,5 +49,10 @@ std::string describe_psnr(double psnr);
 std::string describe_duration(double seconds);
 
 std::string_view first_line(std::string_view text);
+
+// The head of a generated Markdown document (docs/stability.md, docs/accuracy.md): its title,
+// the command that made it and the date, and each lane's driver.
+std::string generated_markdown_head(std::string_view title, std::string_view command_line,
+                                    const std::vector<std::pair<Lane, DriverInfo>>& drivers);
 
 }  // namespace xshade::harness

@@ -107,13 +107,9 @@ void SceneChecker::check_lane(const Scene& scene, const Plan& plan, const Enviro
 
   if (options_.half_emulation && lane == Lane::VkHlsl)
     return finish(Verdict::Skipped, "half emulation rewrites the GLSL xshade emits; this lane compiles the source with glslang");
-  std::vector<CompiledVariant> variants;
-  for (VariantRequest request : plan.variants) {
-    request.half_emulation = options_.half_emulation;
-    auto compiled = compiler_.compile(request, lane);
-    if (!compiled) return finish(Verdict::Error, compiled.error().to_string());
-    variants.push_back(std::move(*compiled));
-  }
+  auto compiled = compiler_.compile_plan(plan, lane, options_.half_emulation);
+  if (!compiled) return finish(Verdict::Error, compiled.error().to_string());
+  const std::vector<CompiledVariant>& variants = *compiled;
   auto backend = create_backend(lane, {.validation = options_.validation});
   if (!backend) return finish(Verdict::Crash, backend.error().to_string());
   result.driver = (*backend)->driver_info();

@@ -52,4 +52,15 @@ Result<CompiledVariant> VariantCompiler::compile(const VariantRequest& request, 
   return variant;
 }
 
+Result<std::vector<CompiledVariant>> VariantCompiler::compile_plan(const Plan& plan, Lane lane, bool half_emulation) {
+  std::vector<CompiledVariant> variants;
+  for (VariantRequest request : plan.variants) {
+    request.half_emulation = half_emulation;
+    auto compiled = compile(request, lane);
+    if (!compiled) return fail(compiled.error());
+    variants.push_back(std::move(*compiled));
+  }
+  return variants;
+}
+
 }  // namespace xshade::harness

@@ -7,6 +7,7 @@
 #include <memory>
 #include <optional>
 
+#include "harness/planner.h"
 #include "harness/shader_cache.h"
 #include "hlsl_like/compiler.h"
 
@@ -18,6 +19,8 @@ class VariantCompiler {
   VariantCompiler(std::filesystem::path shader_root, const ShaderCache* cache);
 
   Result<CompiledVariant> compile(const VariantRequest& request, Lane lane);
+  // Every variant of a plan, in the plan's order, each with `half_emulation` as given.
+  Result<std::vector<CompiledVariant>> compile_plan(const Plan& plan, Lane lane, bool half_emulation);
   bool in_cache(const VariantRequest& request, Lane lane) const;
 
   // What happened so far: variants compiled, and found in the cache.

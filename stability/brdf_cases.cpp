@@ -6,7 +6,7 @@
 #include <numbers>
 
 #include "harness/image_compare.h"
-#include "stability/brdf_forms.h"
+#include "stability/forms.h"
 #include "stability/cases.h"
 #include "stability/probe.h"
 

@@ -16,6 +16,7 @@
 #include "harness/planner.h"
 #include "harness/scene_renderer.h"
 #include "stability/cases.h"
+#include "stability/forms.h"
 #include "stability/probe.h"
 
 namespace xshade::stability {
@@ -23,8 +24,6 @@ namespace {
 
 using harness::FloatImage;
 
-const Form kSeed{"seed", {}, true};
-const Form kGuarded{"guarded", {"_GUARDED"}, false};
 
 constexpr float kNear = 1.0f;
 constexpr float kFar = 3.0f;
@@ -104,14 +103,9 @@ Result<DofImages> run_depth_of_field(const CaseContext& context, harness::Progra
                   {"_BokehRadius", harness::PropertyValue::scalar(kBokehRadius)}}}};
   auto plan = harness::plan_scene(scene, context.shaders_dir);
   if (!plan) return fail(plan.error());
-  std::vector<harness::CompiledVariant> variants;
-  for (harness::VariantRequest& request : plan->variants) {
-    request.half_emulation = context.precision == Precision::Half;
-    auto compiled = context.compiler.compile(request, context.lane);
-    if (!compiled) return fail(compiled.error());
-    variants.push_back(std::move(*compiled));
-  }
-  auto rendered = harness::render_post_effects(context.backend, scene, *plan, variants, color, depth,
+  auto variants = context.compiler.compile_plan(*plan, context.lane, context.precision == Precision::Half);
+  if (!variants) return fail(variants.error());
+  auto rendered = harness::render_post_effects(context.backend, scene, *plan, *variants, color, depth,
                                                {.keep_pass_images = settings.keep_coc, .programs = &programs});
   if (!rendered) return fail(rendered.error());
   DofImages images{std::move(rendered->image), {}};
@@ -260,7 +254,7 @@ Case coc_case() {
       "CoC: in focus at depth = focus distance, monotone in depth, +-bokeh radius at depth 0 and 1, finite "
       "at focus range 0 (near 1, far 3, focus 2, range 0.5, radius 4)";
   c.section = "5.13";
-  c.forms = {kSeed, kGuarded};
+  c.forms = {kSeed, kGuardedOnly};
   c.run = [](const CaseContext& context) -> Result<std::vector<Measurement>> {
     harness::ProgramCache& programs = context.programs;
     std::vector<Measurement> m;
@@ -429,7 +423,7 @@ Case constant_and_energy_case() {
       "DoF, 16, 22, 43 and 71 samples: a constant image is unchanged; a bright pixel keeps its energy within 2% and "
       "spreads no further than the bokeh radius; all-zero prefilter weights give no NaN";
   c.section = "5.14";
-  c.forms = {kSeed, kGuarded};
+  c.forms = {kSeed, kGuardedOnly};
   c.run = [](const CaseContext& context) -> Result<std::vector<Measurement>> {
     harness::ProgramCache& programs = context.programs;
     std::vector<Measurement> m;
@@ -512,7 +506,7 @@ Case kernels_case() {
       "DoF kernels: the error against the dense gather (every texel within the radius) does not grow from 16 to 22, "
       "43 and 71 samples";
   c.section = "5.15";
-  c.forms = {kSeed, kGuarded};
+  c.forms = {kSeed, kGuardedOnly};
   c.run = [](const CaseContext& context) -> Result<std::vector<Measurement>> {
     harness::ProgramCache& programs = context.programs;
     const FloatImage color = noise_image(kKernelImageSize, kKernelImageSize);
@@ -574,7 +568,7 @@ Case image_sizes_case() {
       "DoF at image sizes 1x1, 3x3 and 1921x1081: no NaN, and a constant image at 1x1 and 3x3 comes out as the "
       "constant (reads clamped to the image)";
   c.section = "5.15";
-  c.forms = {kSeed, kGuarded};
+  c.forms = {kSeed, kGuardedOnly};
   c.run = [](const CaseContext& context) -> Result<std::vector<Measurement>> {
     harness::ProgramCache& programs = context.programs;
     std::vector<Measurement> m;

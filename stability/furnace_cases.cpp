@@ -7,7 +7,7 @@
 #include <cmath>
 #include <map>
 
-#include "stability/brdf_forms.h"
+#include "stability/forms.h"
 #include "stability/cases.h"
 #include "stability/probe.h"
 

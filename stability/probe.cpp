@@ -50,16 +50,11 @@ Result<harness::FloatImage> render_scene_with_form(const CaseContext& context, c
   for (harness::SceneObject& object : scene->objects) object.keywords = context.form.keywords;
   auto plan = harness::plan_scene(*scene, context.shaders_dir);
   if (!plan) return fail(plan.error());
-  std::vector<harness::CompiledVariant> variants;
-  for (harness::VariantRequest request : plan->variants) {
-    request.half_emulation = context.precision == Precision::Half;
-    auto compiled = context.compiler.compile(request, context.lane);
-    if (!compiled) return fail(compiled.error());
-    variants.push_back(std::move(*compiled));
-  }
+  auto variants = context.compiler.compile_plan(*plan, context.lane, context.precision == Precision::Half);
+  if (!variants) return fail(variants.error());
   auto environment = harness::build_environment(scene->environment);
   if (!environment) return fail(environment.error());
-  auto rendered = harness::render_scene(context.backend, *scene, *plan, variants, *environment);
+  auto rendered = harness::render_scene(context.backend, *scene, *plan, *variants, *environment);
   if (!rendered) return fail(rendered.error());
   return std::move(rendered->image);
 }

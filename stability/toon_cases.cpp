@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "stability/cases.h"
+#include "stability/forms.h"
 #include "stability/probe.h"
 
 namespace xshade::stability {
@@ -39,8 +40,6 @@ Result<std::vector<ToonOutput>> run_toon(const CaseContext& context, const std::
   return outputs;
 }
 
-const Form kToonSeed{"seed", {}, true};
-const Form kToonGuarded{"guarded", {"_GUARDED"}, false};
 
 bool in_unit_range(double value) { return std::isfinite(value) && value >= 0.0 && value <= 1.0; }
 
@@ -49,7 +48,7 @@ Case toon_hard_inputs() {
   c.id = "toon_hard_inputs";
   c.title = "toon: smoothing 0 or -0.1, gloss 0, NoV = -0.2, NoL = -0.5: every term finite and in [0, 1]";
   c.section = "5.12";
-  c.forms = {kToonSeed, kToonGuarded};
+  c.forms = {kSeed, kGuardedOnly};
   c.run = [](const CaseContext& context) -> Result<std::vector<Measurement>> {
     struct Dots {
       float NoL, NoV, NoH;
@@ -97,7 +96,7 @@ Case toon_hard_edge() {
   c.id = "toon_hard_edge";
   c.title = "toon: smoothing 0 or -0.1 still gives a step: ramp 0 in shadow, 1 in light, 0.5 at the threshold";
   c.section = "5.12";
-  c.forms = {kToonSeed, kToonGuarded};
+  c.forms = {kSeed, kGuardedOnly};
   c.run = [](const CaseContext& context) -> Result<std::vector<Measurement>> {
     // The half-Lambert ramp's argument is NoL * 0.5 + 0.5: NoL = 0 is its threshold 0.5.
     const std::vector<std::pair<float, double>> expected = {{-0.5f, 0.0}, {0.0f, 0.5}, {0.5f, 1.0}};
@@ -137,7 +136,7 @@ Case toon_continuity() {
   c.id = "toon_continuity";
   c.title = "toon: the ramp and the rim are continuous in NoL when smoothing > 0";
   c.section = "5.12";
-  c.forms = {kToonSeed, kToonGuarded};
+  c.forms = {kSeed, kGuardedOnly};
   c.run = [](const CaseContext& context) -> Result<std::vector<Measurement>> {
     constexpr int kSteps = 256;
     const double step = 2.0 / kSteps;
