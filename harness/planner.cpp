@@ -24,35 +24,33 @@ struct SourceFacts {
 
 class SourceReader {
  public:
-  explicit SourceReader(fs::path root) : root_(std::move(root)) {}
+  explicit SourceReader(const ShaderSearchPath& shaders) : shaders_(shaders) {}
 
   // Reads `library_path` with `keywords` (pass declarations may depend on them).
   Result<SourceFacts> read(const std::string& library_path, const std::vector<std::string>& keywords, bool post) {
-    const fs::path path = (root_ / library_path).lexically_normal();
-    std::error_code ignored;
-    if (!fs::is_regular_file(path, ignored))
-      return fail("'" + library_path + "' is not in the shader library (" + root_.string() + ")");
+    auto path = shaders_.find(library_path);
+    if (!path) return fail(path.error());
     hlsl::CompileOptions options;
-    options.include_dirs = {root_};
+    options.include_dirs = shaders_.folders();
     options.keywords = keywords;
-    auto module = hlsl::compile_file(path, options);
+    auto module = hlsl::compile_file(*path, options);
     SourceFacts facts;
-    facts.path = path;
+    facts.path = *path;
     if (post) facts.passes = module->passes;
     if (!module->ok()) {
-      Error error{"'" + library_path + "' does not compile", {path.string(), 0, 0}, {}};
+      Error error{"'" + library_path + "' does not compile", {path->string(), 0, 0}, {}};
       for (const Diagnostic& d : module->diagnostics.diagnostics())
         if (d.severity == Severity::Error) error.diagnostics.push_back(d);
       return fail(std::move(error));
     }
     if (post && facts.passes.empty())
-      return fail("post effect '" + library_path + "' declares no passes (#pragma pass)", {path.string(), 0, 0});
+      return fail("post effect '" + library_path + "' declares no passes (#pragma pass)", {path->string(), 0, 0});
     facts.keyword_sets = module->reflection.keyword_sets;
     return facts;
   }
 
  private:
-  fs::path root_;
+  const ShaderSearchPath& shaders_;
 };
 
 // The keywords that make the variant: per set, the one asked for or the set's default, so that
@@ -87,16 +85,6 @@ size_t add_variant(Plan& plan, VariantRequest request) {
 
 std::string effect_name(const std::string& library_path) { return fs::path(library_path).stem().string(); }
 
-// Every .hlsl file in the library's folder `kind` ("materials" or "post"), as library paths.
-std::vector<std::string> library_files(const fs::path& root, const std::string& kind) {
-  std::vector<std::string> files;
-  std::error_code error;
-  for (fs::directory_iterator it(root / kind, error), end; !error && it != end; it.increment(error))
-    if (it->path().extension() == ".hlsl") files.push_back(kind + "/" + it->path().filename().string());
-  std::sort(files.begin(), files.end());
-  return files;
-}
-
 }  // namespace
 
 std::string VariantRequest::label() const {
@@ -107,9 +95,9 @@ std::string VariantRequest::label() const {
   return text + "]" + (half_emulation ? " half" : "");
 }
 
-Result<Plan> plan_scene(const Scene& scene, const fs::path& shader_root) {
+Result<Plan> plan_scene(const Scene& scene, const ShaderSearchPath& shaders) {
   Plan plan;
-  SourceReader reader(shader_root);
+  SourceReader reader(shaders);
   // Distinct combinations a source is used with, for the "left out" account.
   std::map<std::string, std::set<std::vector<std::string>>> used_combinations;
   std::map<std::string, size_t> possible_combinations;
@@ -154,9 +142,9 @@ Result<Plan> plan_scene(const Scene& scene, const fs::path& shader_root) {
       plan.left_out.push_back(source + ": " + std::to_string(possible - used.size()) + " of its " +
                               std::to_string(possible) + " keyword combinations (the scene asks for no other)");
   }
-  for (const std::string& material : library_files(shader_root, "materials"))
+  for (const std::string& material : shaders.files("materials"))
     if (!used_combinations.count(material)) plan.left_out.push_back(material + ": no object uses it");
-  for (const std::string& effect : library_files(shader_root, "post"))
+  for (const std::string& effect : shaders.files("post"))
     if (!used_combinations.count(effect))
       plan.left_out.push_back(effect + ": not in the post chain, so none of its passes is compiled or run");
   return plan;

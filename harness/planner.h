@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "harness/scene.h"
+#include "harness/shader_search_path.h"
 #include "hlsl_like/pass_declarations.h"
 
 namespace xshade::harness {
@@ -38,13 +39,13 @@ struct Plan {
   std::vector<ObjectInstance> instances;
   std::vector<size_t> instance_variant;  // per instance: index into variants
   std::vector<PlannedPass> passes;       // in the order they run: the scene, then each effect's
-  std::vector<std::string> left_out;     // what the library has that this scene does not run, and why
+  std::vector<std::string> left_out;     // what the shader folders have that this scene does not run, and why
 };
 
-// Plans `scene` against the shader library at `shader_root`. Reads each source the scene names
-// (the front end only: keyword sets and pass declarations); fails with the front end's
-// diagnostics when one does not compile, or when a source is not in the library.
-Result<Plan> plan_scene(const Scene& scene, const std::filesystem::path& shader_root);
+// Plans `scene` against the shader folders. Reads each source the scene names (the front end
+// only: keyword sets and pass declarations); fails with the front end's diagnostics when one
+// does not compile, or when a source is in none of the folders.
+Result<Plan> plan_scene(const Scene& scene, const ShaderSearchPath& shaders);
 
 // The plan as `xshade run --plan` prints it; `cached` says per variant whether its compiled form
 // is already in the cache (empty: unknown).

@@ -137,7 +137,7 @@ mesh = "sphere"
 material = "materials/velvet.hlsl"
 )"), kLibrary);
   ASSERT_FALSE(missing);
-  EXPECT_EQ(missing.error().message, "'materials/velvet.hlsl' is not in the shader library (" + kLibrary.string() + ")");
+  EXPECT_EQ(missing.error().message, "'materials/velvet.hlsl' is in none of the shader folders (" + kLibrary.string() + ")");
 
   const fs::path root = fs::temp_directory_path() / "xshade_planner_test";
   fs::create_directories(root / "materials");
@@ -152,6 +152,34 @@ material = "materials/broken.hlsl"
   ASSERT_FALSE(broken.error().diagnostics.empty());
   EXPECT_EQ(broken.error().diagnostics[0].where.line, 2u);
   fs::remove_all(root);
+}
+
+TEST(Planner, AUserFolderSuppliesItsOwnMaterialThatIncludesTheLibrary) {
+  const fs::path user = fs::temp_directory_path() / "xshade_planner_user_folder";
+  fs::remove_all(user);
+  fs::create_directories(user / "materials");
+  std::ofstream(user / "materials" / "flat_lit.hlsl") << R"(#pragma vertex vert
+#pragma fragment frag
+#pragma multi_compile _ _HALF_LAMBERT
+#include "include/scene_inputs.hlsl"
+float4 _Color = float4(1, 1, 1, 1);
+SurfaceVaryings vert(MeshVertex input) { return surface_vertex(input); }
+float4 frag(SurfaceVaryings input) : SV_Target {
+  return _Color * saturate(dot(normalize(input.world_normal), _LightDirection.xyz));
+}
+)";
+  auto plan = plan_scene(scene(R"(
+[[object]]
+mesh = "sphere"
+material = "materials/flat_lit.hlsl"
+)"), ShaderSearchPath({user, kLibrary}));
+  ASSERT_TRUE(plan) << plan.error().to_string();
+  ASSERT_EQ(plan->variants.size(), 1u);
+  EXPECT_EQ(plan->variants[0].source, user / "materials" / "flat_lit.hlsl");
+  EXPECT_TRUE(has_line(plan->left_out, "materials/flat_lit.hlsl: 1 of its 2 keyword combinations (the scene asks for no other)"));
+  // The library's own materials are still there to be used, and are left out here.
+  EXPECT_TRUE(has_line(plan->left_out, "materials/toon.hlsl: no object uses it"));
+  fs::remove_all(user);
 }
 
 }  // namespace

@@ -13,93 +13,17 @@
 #include <fmt/format.h>
 #include <glm/gtc/matrix_transform.hpp>
 
-#include <toml++/toml.h>
+#include "harness/toml_reader.h"
+#include "hlsl_like/source_manager.h"
 
 namespace xshade::harness {
 namespace {
 
+using namespace toml_text;
+
 constexpr uint32_t max_image_size = 4096;
 constexpr int64_t max_grid_cells_per_axis = 64;
 constexpr std::string_view lane_names[] = {"gl", "vk", "vk-hlsl"};
-
-// Optimal string alignment distance (Levenshtein plus adjacent transpositions), ignoring case:
-// the usual typos are one letter wrong, missing, doubled or swapped.
-size_t edit_distance(std::string_view a, std::string_view b) {
-  auto lower = [](char c) { return static_cast<char>(std::tolower(static_cast<unsigned char>(c))); };
-  std::vector<std::vector<size_t>> d(a.size() + 1, std::vector<size_t>(b.size() + 1));
-  for (size_t i = 0; i <= a.size(); ++i) d[i][0] = i;
-  for (size_t j = 0; j <= b.size(); ++j) d[0][j] = j;
-  for (size_t i = 1; i <= a.size(); ++i) {
-    for (size_t j = 1; j <= b.size(); ++j) {
-      size_t cost = lower(a[i - 1]) == lower(b[j - 1]) ? 0 : 1;
-      d[i][j] = std::min({d[i - 1][j] + 1, d[i][j - 1] + 1, d[i - 1][j - 1] + cost});
-      if (i > 1 && j > 1 && lower(a[i - 1]) == lower(b[j - 2]) && lower(a[i - 2]) == lower(b[j - 1]))
-        d[i][j] = std::min(d[i][j], d[i - 2][j - 2] + 1);
-    }
-  }
-  return d[a.size()][b.size()];
-}
-
-// The closest candidate when it is close enough to be a typo of `word`: one edit in short words,
-// two in words of six letters or more.
-std::optional<std::string_view> nearest(std::string_view word, std::initializer_list<std::string_view> candidates) {
-  std::optional<std::string_view> best;
-  size_t best_distance = word.size() >= 6 ? 3 : 2;
-  for (std::string_view candidate : candidates) {
-    size_t distance = edit_distance(word, candidate);
-    if (distance < best_distance) {
-      best = candidate;
-      best_distance = distance;
-    }
-  }
-  return best;
-}
-
-std::string join(std::initializer_list<std::string_view> words, std::string_view separator = ", ") {
-  std::string text;
-  for (std::string_view word : words) {
-    if (!text.empty()) text += separator;
-    text += word;
-  }
-  return text;
-}
-
-std::string quote_text(std::string_view text) {
-  constexpr size_t max_shown = 48;
-  if (text.size() > max_shown) return fmt::format("\"{}...\"", text.substr(0, max_shown));
-  return fmt::format("\"{}\"", text);
-}
-
-std::string number_text(double value) {
-  std::string text = fmt::format("{}", value);
-  // A float that happens to be whole is shown as one, so that "expected an integer, got 2.0"
-  // says what is wrong.
-  if (text.find_first_of(".eEn") == std::string::npos) text += ".0";
-  return text;
-}
-
-// The value as the message shows what was found: scalars and short arrays as written in TOML.
-std::string describe(const toml::node& node) {
-  if (auto* text = node.as_string()) return quote_text(text->get());
-  if (auto* integer = node.as_integer()) return std::to_string(integer->get());
-  if (auto* floating = node.as_floating_point()) return number_text(floating->get());
-  if (auto* boolean = node.as_boolean()) return boolean->get() ? "true" : "false";
-  if (node.is_table()) return "a table";
-  if (node.is_date()) return "a date";
-  if (node.is_time()) return "a time";
-  if (node.is_date_time()) return "a date-time";
-  if (auto* array = node.as_array()) {
-    if (array->empty()) return "an empty array";
-    constexpr size_t max_shown = 6;
-    std::string text = "[";
-    for (size_t i = 0; i < array->size() && i < max_shown; ++i) {
-      if (i != 0) text += ", ";
-      text += describe(*array->get(i));
-    }
-    return text + (array->size() > max_shown ? ", ...]" : "]");
-  }
-  return "a value";
-}
 
 // "a number" or "3 numbers": the shape of a property value.
 std::string numbers_text(uint32_t count) { return count == 1 ? "a number" : fmt::format("{} numbers", count); }
@@ -110,11 +34,6 @@ bool is_identifier(std::string_view text) {
                      [](char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_'; });
 }
 
-std::string index_path(std::string_view base, size_t index) { return fmt::format("{}[{}]", base, index); }
-std::string key_path(std::string_view base, std::string_view key) {
-  return base.empty() ? std::string(key) : fmt::format("{}.{}", base, key);
-}
-
 using NumberCheck = std::function<bool(double)>;
 
 bool any_number(double) { return true; }
@@ -122,73 +41,25 @@ bool non_negative(double value) { return value >= 0.0; }
 bool positive(double value) { return value > 0.0; }
 
 // Reads one scene file's table tree into a Scene, collecting every problem it can find.
-class SceneReader {
+class SceneReader : TomlReader {
  public:
-  explicit SceneReader(const std::filesystem::path& file) : file_(file), file_text_(file.string()) {
+  explicit SceneReader(const std::filesystem::path& file) : TomlReader(file.string()), file_(file) {
     std::error_code ignored;
     std::filesystem::path absolute = std::filesystem::absolute(file, ignored);
     scene_folder_ = (absolute.empty() ? file : absolute).parent_path().lexically_normal();
   }
 
   Result<Scene> read(std::string_view text) {
-    // Debian's toml++ is a shared library built with exceptions; the one it throws stops here.
-    toml::table root;
-    try {
-      root = toml::parse(text, std::string_view(file_text_));
-    } catch (const toml::parse_error& error) {
-      report(error.source(), fmt::format("syntax error: {}", error.description()));
-      return finish(Scene{});
-    }
+    std::optional<toml::table> root = parse(text);
+    if (!root) return finish(Scene{});
     Scene scene;
     scene.name = file_.stem().string();
     scene.path = file_;
-    read_root(root, scene);
+    read_root(*root, scene);
     return finish(std::move(scene));
   }
 
  private:
-  // ---- reporting
-
-  SourceLocation where(const toml::source_region& region) const {
-    return {file_text_, static_cast<uint32_t>(region.begin.line), static_cast<uint32_t>(region.begin.column)};
-  }
-
-  void report(const toml::source_region& region, std::string message) {
-    diagnostics_.push_back(Diagnostic{Severity::Error, where(region), std::move(message)});
-  }
-
-  void expected(const toml::node& node, std::string_view path, std::string_view expectation) {
-    report(node.source(), fmt::format("{}: expected {}, got {}", path, expectation, describe(node)));
-  }
-
-  void missing(const toml::node& parent, std::string_view path, std::string_view expectation) {
-    report(parent.source(), fmt::format("{}: missing; expected {}", path, expectation));
-  }
-
-  Result<Scene> finish(Scene scene) {
-    if (diagnostics_.empty()) return scene;
-    std::stable_sort(diagnostics_.begin(), diagnostics_.end(), [](const Diagnostic& a, const Diagnostic& b) {
-      return std::pair(a.where.line, a.where.column) < std::pair(b.where.line, b.where.column);
-    });
-    Error error{diagnostics_.front().message, diagnostics_.front().where, diagnostics_};
-    return fail(std::move(error));
-  }
-
-  // Every key of `table` must be one of `known`; each stranger is reported at its own position.
-  void check_keys(const toml::table& table, std::string_view path, std::initializer_list<std::string_view> known,
-                  std::string_view context = {}) {
-    for (auto&& [key, value] : table) {
-      std::string_view name = key.str();
-      if (std::find(known.begin(), known.end(), name) != known.end()) continue;
-      std::string message = fmt::format("{}: unknown key{}", key_path(path, name), context);
-      if (auto suggestion = nearest(name, known))
-        message += fmt::format("; did you mean {}?", *suggestion);
-      else
-        message += fmt::format("; expected one of {}", join(known));
-      report(key.source(), std::move(message));
-    }
-  }
-
   // ---- scalars
 
   std::optional<double> number(const toml::node& node, std::string_view path, std::string_view expectation,
@@ -214,15 +85,6 @@ class SceneReader {
     auto* value = node.as_integer();
     if (!value || value->get() < min || value->get() > max) {
       expected(node, path, fmt::format("an integer in {}..{}", min, max));
-      return std::nullopt;
-    }
-    return value->get();
-  }
-
-  std::optional<std::string> string(const toml::node& node, std::string_view path, std::string_view expectation) {
-    auto* value = node.as_string();
-    if (!value || value->get().empty()) {
-      expected(node, path, expectation);
       return std::nullopt;
     }
     return value->get();
@@ -309,18 +171,25 @@ class SceneReader {
       expected(node, path, "a file path");
       return std::nullopt;
     }
-    return (scene_folder_ / normal).lexically_normal();
+    std::filesystem::path full = (scene_folder_ / normal).lexically_normal();
+    if (!hlsl::path_is_inside(full, scene_folder_)) {
+      report(node.source(), fmt::format("{}: expected a path inside the scene file's folder, got {}, which leads "
+                                        "out of it through a symbolic link",
+                                        path, quote_text(text)));
+      return std::nullopt;
+    }
+    return full;
   }
 
-  // A path inside the shader library, kept as written: the caller knows where the library is.
+  // A path inside the shader folders, kept as written: the caller knows the folders (ShaderSearchPath).
   std::optional<std::string> library_path(const toml::node& node, std::string_view path) {
-    auto text = string(node, path, "a path in the shader library, e.g. \"materials/standard_pbr.hlsl\"");
+    auto text = string(node, path, "a path in the shader folders, e.g. \"materials/standard_pbr.hlsl\"");
     if (!text) return std::nullopt;
     std::filesystem::path relative(*text);
     std::filesystem::path normal = relative.lexically_normal();
     if (relative.is_absolute() || relative.has_root_directory() || normal.empty() || *normal.begin() == ".." ||
         !normal.has_filename()) {
-      report(node.source(), fmt::format("{}: expected a file path inside the shader library, got {}", path,
+      report(node.source(), fmt::format("{}: expected a file path inside the shader folders, got {}", path,
                                         quote_text(*text)));
       return std::nullopt;
     }
@@ -715,7 +584,7 @@ class SceneReader {
     if (const toml::node* node = table.get("material")) {
       if (auto value = library_path(*node, path + ".material")) object.material = *value;
     } else {
-      missing(table, path + ".material", "a path in the shader library, e.g. \"materials/standard_pbr.hlsl\"");
+      missing(table, path + ".material", "a path in the shader folders, e.g. \"materials/standard_pbr.hlsl\"");
     }
     if (const toml::node* node = table.get("keywords")) object.keywords = keywords(*node, path + ".keywords");
     if (const toml::node* node = table.get("position")) {
@@ -885,7 +754,7 @@ class SceneReader {
     if (const toml::node* node = table.get("effect")) {
       if (auto value = library_path(*node, path + ".effect")) effect.effect = *value;
     } else {
-      missing(table, path + ".effect", "a path in the shader library, e.g. \"post/depth_of_field.hlsl\"");
+      missing(table, path + ".effect", "a path in the shader folders, e.g. \"post/depth_of_field.hlsl\"");
     }
     if (const toml::node* node = table.get("keywords")) effect.keywords = keywords(*node, path + ".keywords");
     if (const toml::node* node = table.get("parameters")) effect.parameters = properties(*node, path + ".parameters");
@@ -929,9 +798,7 @@ class SceneReader {
   }
 
   std::filesystem::path file_;
-  std::string file_text_;
   std::filesystem::path scene_folder_;
-  std::vector<Diagnostic> diagnostics_;
 };
 
 PropertyValue interpolate(const VaryRule& rule, uint32_t index, uint32_t count) {

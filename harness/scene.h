@@ -4,7 +4,7 @@
 // The model knows nothing about rendering. Paths the scene file names (an equirect image, an .obj
 // mesh, texture images) are resolved against the scene file's folder and checked for form only;
 // nothing here opens them. Material and post-effect paths stay as written: they are relative to
-// the shader library, which the caller knows.
+// the shader folders (a user's, then the library; harness/shader_search_path.h), which the caller knows.
 #pragma once
 
 #include <array>
@@ -105,7 +105,7 @@ struct GridSpec {
 struct SceneObject {
   std::string name;  // unique in the scene; "object<N>" when not given
   MeshRef mesh;
-  std::string material;  // relative to the shader library root, as written
+  std::string material;  // relative to the shader folders, as written
   std::vector<std::string> keywords;
   glm::vec3 position{0.0f};
   glm::vec3 rotation_degrees{0.0f};  // Euler angles, applied X, then Y, then Z
@@ -116,7 +116,7 @@ struct SceneObject {
 };
 
 struct PostEffect {
-  std::string effect;  // relative to the shader library root, as written
+  std::string effect;  // relative to the shader folders, as written
   std::vector<std::string> keywords;
   std::map<std::string, PropertyValue> parameters;
 };

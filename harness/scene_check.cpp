@@ -60,7 +60,7 @@ CheckedScene SceneChecker::check(const fs::path& scene_file, const std::vector<L
   }
   checked.scene = *scene;
   result.description = scene->description;
-  auto plan = plan_scene(*scene, options_.shaders_dir);
+  auto plan = plan_scene(*scene, options_.shaders);
   if (!plan) {
     result.verdict = Verdict::Error;
     result.message = plan.error().to_string();
@@ -110,7 +110,7 @@ void SceneChecker::check_lane(const Scene& scene, const Plan& plan, const Enviro
   auto compiled = compiler_.compile_plan(plan, lane, options_.half_emulation);
   if (!compiled) return finish(Verdict::Error, compiled.error().to_string());
   const std::vector<CompiledVariant>& variants = *compiled;
-  auto backend = create_backend(lane, {.validation = options_.validation});
+  auto backend = create_backend(lane, options_.backend);
   if (!backend) return finish(Verdict::Crash, backend.error().to_string());
   result.driver = (*backend)->driver_info();
 

@@ -20,9 +20,9 @@ namespace xshade::harness {
 
 struct SceneCheckOptions {
   std::filesystem::path report_dir;
-  std::filesystem::path shaders_dir;
+  ShaderSearchPath shaders;
   const GoldenStore* goldens = nullptr;  // null: no golden layer (e.g. while blessing)
-  bool validation = false;               // the Vulkan validation layer
+  BackendOptions backend;                // how each lane's backend is made
   bool pass_images = false;              // also write each pass's output
   bool plan_only = false;                // plan, render nothing
   // Every half result rounded to fp16 on the GLSL lanes (vk-hlsl cannot, and is skipped). The

@@ -308,7 +308,7 @@ TEST(SceneErrors, MissingRequiredSectionsAndKeys) {
             (std::vector<std::string>{
                 "scenes/bad.toml:9:1: error: object[0].mesh: missing; expected sphere, torus, plane, cube or a path "
                 "ending in .obj",
-                "scenes/bad.toml:9:1: error: object[0].material: missing; expected a path in the shader library, e.g. "
+                "scenes/bad.toml:9:1: error: object[0].material: missing; expected a path in the shader folders, e.g. "
                 "\"materials/standard_pbr.hlsl\"",
             }));
 }
@@ -349,7 +349,7 @@ _Detail = "whte"
                 "absolute path \"/etc/sky.exr\"",
                 "scenes/bad.toml:13:8: error: object[0].mesh: expected a path inside the scene file's folder, got "
                 "\"meshes/../../../model.obj\", which leads out of it",
-                "scenes/bad.toml:14:12: error: object[0].material: expected a file path inside the shader library, got "
+                "scenes/bad.toml:14:12: error: object[0].material: expected a file path inside the shader folders, got "
                 "\"../outside.hlsl\"",
                 "scenes/bad.toml:16:12: error: object[0].textures._MainTex: expected a path inside the scene file's "
                 "folder, got \"../../etc/passwd.png\", which leads out of it",
@@ -438,6 +438,27 @@ TEST(SceneLoad, ReadsAFileAndReportsAMissingOne) {
   auto missing = load_scene(folder / "absent.toml");
   ASSERT_FALSE(missing);
   EXPECT_EQ(missing.error().to_string(), (folder / "absent.toml").string() + ": cannot open the scene file");
+}
+
+TEST(SceneLoad, ASymbolicLinkOutOfTheScenesFolderIsRefused) {
+  namespace fs = std::filesystem;
+  const fs::path root = fs::temp_directory_path() / "xshade_scene_link_test";
+  fs::remove_all(root);
+  fs::create_directories(root / "scenes");
+  fs::create_directories(root / "private");
+  std::ofstream(root / "private" / "secret.png") << "not an image";
+  fs::create_symlink(root / "private", root / "scenes" / "textures");
+  std::ofstream(root / "scenes" / "linked.toml") << minimal_head << "[[object]]\nmesh = \"sphere\"\n"
+                                                 << "material = \"materials/toon.hlsl\"\n[object.textures]\n"
+                                                 << "_MainTex = \"textures/secret.png\"\n";
+  auto scene = load_scene(root / "scenes" / "linked.toml");
+  ASSERT_FALSE(scene);
+  EXPECT_EQ(scene.error().message,
+            "object[0].textures._MainTex: expected a path inside the scene file's folder, got \"textures/secret.png\", "
+            "which leads out of it through a symbolic link");
+  EXPECT_EQ(scene.error().where.line, 13u);
+  EXPECT_EQ(scene.error().where.column, 12u);
+  fs::remove_all(root);
 }
 
 TEST(SceneErrors, EnvironmentKeysBelongToTheirKind) {

@@ -4,8 +4,8 @@
 
 namespace xshade::harness {
 
-VariantCompiler::VariantCompiler(std::filesystem::path shader_root, const ShaderCache* cache)
-    : shader_root_(std::move(shader_root)), cache_(cache) {}
+VariantCompiler::VariantCompiler(ShaderSearchPath shaders, const ShaderCache* cache)
+    : shaders_(std::move(shaders)), cache_(cache) {}
 
 bool VariantCompiler::in_cache(const VariantRequest& request, Lane lane) const {
   return cache_ && cache_->find(request, lane).has_value();
@@ -16,7 +16,7 @@ Result<const hlsl::Module*> VariantCompiler::front_end(const VariantRequest& req
   auto known = modules_.find(key);
   if (known == modules_.end()) {
     hlsl::CompileOptions options;
-    options.include_dirs = {shader_root_};
+    options.include_dirs = shaders_.folders();
     options.keywords = request.keywords;
     options.fragment_only_entry = request.fragment_entry;
     if (request.half_emulation) options.defines.push_back({kHalfEmulationMacro, "1"});

@@ -15,8 +15,8 @@ namespace xshade::harness {
 
 class VariantCompiler {
  public:
-  // `cache` may be null: everything is compiled.
-  VariantCompiler(std::filesystem::path shader_root, const ShaderCache* cache);
+  // `cache` may be null: everything is compiled. Every folder of `shaders` is an include folder.
+  VariantCompiler(ShaderSearchPath shaders, const ShaderCache* cache);
 
   Result<CompiledVariant> compile(const VariantRequest& request, Lane lane);
   // Every variant of a plan, in the plan's order, each with `half_emulation` as given.
@@ -32,7 +32,7 @@ class VariantCompiler {
  private:
   Result<const hlsl::Module*> front_end(const VariantRequest& request);
 
-  std::filesystem::path shader_root_;
+  ShaderSearchPath shaders_;
   const ShaderCache* cache_;
   std::map<std::string, std::unique_ptr<hlsl::Module>> modules_;  // by request label
   size_t compiled_ = 0;

@@ -650,16 +650,8 @@ void Preprocessor::Impl::define(const std::vector<MacroDefinition>& definitions)
 }
 
 bool Preprocessor::Impl::inside_given_folders(const std::filesystem::path& file) const {
-  namespace fs = std::filesystem;
-  std::error_code error;
-  // Symbolic links and `..` resolved: a link inside a folder that points out of it is outside.
-  const fs::path real = fs::weakly_canonical(fs::absolute(file, error), error);
-  for (const fs::path& folder : given_folders_) {
-    const fs::path root = fs::weakly_canonical(fs::absolute(folder, error), error);
-    const fs::path relative = real.lexically_relative(root);
-    if (!relative.empty() && *relative.begin() != "..") return true;
-  }
-  return false;
+  return std::any_of(given_folders_.begin(), given_folders_.end(),
+                     [&](const std::filesystem::path& folder) { return path_is_inside(file, folder); });
 }
 
 std::vector<Token> Preprocessor::Impl::run(uint32_t main_file) {

@@ -20,6 +20,11 @@ struct Loc {
   uint32_t column = 0;
 };
 
+// Whether `file` lies inside `folder` once `..` and symbolic links are resolved in both (a link
+// inside the folder that points out of it is outside). Every path a user's file names, an
+// #include or a scene's texture, is held to its folders with this before anything reads it.
+bool path_is_inside(const std::filesystem::path& file, const std::filesystem::path& folder);
+
 class SourceManager {
  public:
   SourceManager();

@@ -57,7 +57,7 @@ int run_bless(const BlessOptions& options) {
 
   harness::ShaderCache cache(shader_cache_dir(options.cache_dir), harness::compiler_identity());
   harness::VariantCompiler compiler(options.shaders_dir, &cache);
-  harness::SceneChecker checker(compiler, {options.report_dir, options.shaders_dir, nullptr, false, false, false},
+  harness::SceneChecker checker(compiler, {options.report_dir, options.shaders_dir, nullptr, {}, false, false},
                                 [](const std::string& line) { fmt::print("{}\n", line); });
   harness::CheckedScene checked = checker.check(files->front(), *lanes);
   const harness::SceneResult& result = checked.result;

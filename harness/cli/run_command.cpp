@@ -75,7 +75,7 @@ int run_run(const RunOptions& options) {
   size_t done = 0;
   harness::SceneChecker checker(
       compiler,
-      {options.report_dir, options.shaders_dir, &goldens, options.selection.validation, options.pass_images,
+      {options.report_dir, options.shaders_dir, &goldens, {.validation = options.selection.validation}, options.pass_images,
        options.plan_only, options.precision == "half"},
       [&](const std::string& line) {
         fmt::print("[{}/{}] {}\n", done + 1, files->size(), line);
