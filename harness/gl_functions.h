@@ -1,5 +1,5 @@
 // The OpenGL 4.5 core functions the harness calls, as one table of pointers loaded through a
-// proc-address function (OSMesaGetProcAddress today, eglGetProcAddress tomorrow). Private to the
+// proc-address function (OSMesaGetProcAddress or eglGetProcAddress: gl_context.h). Private to the
 // harness: nothing here knows how the context was made.
 #pragma once
 

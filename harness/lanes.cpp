@@ -1,7 +1,7 @@
 #include "harness/lanes.h"
 
+#include "harness/gl_backend.h"
 #include "harness/lavapipe_backend.h"
-#include "harness/osmesa_backend.h"
 
 namespace xshade::harness {
 
@@ -32,7 +32,7 @@ const std::vector<Lane>& glsl_pair_lanes() {
 
 Result<std::unique_ptr<Backend>> create_backend(Lane lane, const BackendOptions& options) {
   switch (lane) {
-    case Lane::Gl: return create_osmesa_backend();
+    case Lane::Gl: return create_gl_backend({.platform = options.gl_platform});
     case Lane::Vk:
     case Lane::VkHlsl: return create_lavapipe_backend({.validation = options.validation});
   }

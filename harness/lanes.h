@@ -7,12 +7,13 @@
 #include <vector>
 
 #include "harness/backend.h"
+#include "harness/gl_context.h"  // GlPlatform, gl_platform_name, parse_gl_platform
 #include "spirv/spirv_compiler.h"
 
 namespace xshade::harness {
 
 enum class Lane {
-  Gl,  // GLSL 4.50 core on OpenGL through OSMesa (llvmpipe)
+  Gl,  // GLSL 4.50 core on OpenGL (llvmpipe) through OSMesa or EGL surfaceless
   Vk,  // Vulkan GLSL -> glslang -> SPIR-V on lavapipe
   VkHlsl,  // the hlsl_like source through glslang's own HLSL front end -> SPIR-V on lavapipe
 };
@@ -25,6 +26,7 @@ const std::vector<Lane>& glsl_pair_lanes();
 
 struct BackendOptions {
   bool validation = false;  // Vulkan validation layer, when installed
+  GlPlatform gl_platform = GlPlatform::Auto;  // how the gl lane gets its context (gl_context.h)
 };
 
 Result<std::unique_ptr<Backend>> create_backend(Lane lane, const BackendOptions& options = {});

@@ -77,6 +77,15 @@ CheckedScene SceneChecker::check(const fs::path& scene_file, const std::vector<L
     }));
   result.plan = describe_plan(*scene, *plan, cached);
   if (options_.plan_only) return checked;
+  if (scene_lanes.empty()) {
+    // Not a pass: nothing was checked. A CI job that asks for a lane the scene does not list
+    // sees the scene skipped, and why.
+    std::string listed;
+    for (const std::string& lane : scene->lanes) listed += (listed.empty() ? "" : ", ") + lane;
+    result.verdict = Verdict::Skipped;
+    result.message = "skipped: the scene runs on " + listed + ", none of the lanes asked for";
+    return checked;
+  }
 
   auto environment = build_environment(scene->environment);
   if (!environment) {

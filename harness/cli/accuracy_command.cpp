@@ -50,7 +50,7 @@ int run_accuracy(const AccuracyOptions& options) {
   run.options.rounds = options.quick ? 1 : options.rounds;
   run.options.reference_check = !options.quick;
   for (harness::Lane lane : *lanes) {
-    auto backend = harness::create_backend(lane, {.validation = options.selection.validation});
+    auto backend = harness::create_backend(lane, backend_options(options.selection));
     if (!backend) {
       fmt::print(stderr, "xshade accuracy: {}: {}\n", harness::lane_name(lane), backend.error().to_string());
       return kBackendError;

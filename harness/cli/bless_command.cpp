@@ -8,7 +8,6 @@
 
 #include "harness/cli/commands.h"
 #include "harness/cli/lane_selection.h"
-#include "harness/cli/scene_files.h"
 #include "harness/image_compare.h"
 #include "harness/report_text.h"
 #include "harness/scene_check.h"
@@ -44,20 +43,26 @@ int run_bless(const BlessOptions& options) {
   }
   LaneSelection selection;
   if (!options.lane.empty()) selection.lanes = {options.lane};
+  selection.gl_platform = options.gl_platform;
   auto lanes = resolve_lanes(selection);
   if (!lanes) {
     fmt::print(stderr, "xshade bless: {}\n", lanes.error().to_string());
     return kBadInput;
   }
-  auto files = scene_files({options.scene}, options.scenes_dir);
+  auto folders = resolve_folders(options.folders, std::filesystem::current_path(), true);
+  if (!folders) {
+    fmt::print(stderr, "xshade bless: {}\n", folders.error().to_string());
+    return kBadInput;
+  }
+  auto files = scene_files({options.scene}, *folders);
   if (!files) {
     fmt::print(stderr, "xshade bless: {}\n", files.error().to_string());
     return kBadInput;
   }
 
   harness::ShaderCache cache(shader_cache_dir(options.cache_dir), harness::compiler_identity());
-  harness::VariantCompiler compiler(options.shaders_dir, &cache);
-  harness::SceneChecker checker(compiler, {options.report_dir, options.shaders_dir, nullptr, {}, false, false},
+  harness::VariantCompiler compiler(folders->shaders, &cache);
+  harness::SceneChecker checker(compiler, {options.report_dir, folders->shaders, nullptr, backend_options(selection), false, false},
                                 [](const std::string& line) { fmt::print("{}\n", line); });
   harness::CheckedScene checked = checker.check(files->front(), *lanes);
   const harness::SceneResult& result = checked.result;
@@ -84,7 +89,7 @@ int run_bless(const BlessOptions& options) {
       return kTestFailed;
     }
 
-  const harness::GoldenStore goldens(options.golden_dir);
+  const harness::GoldenStore goldens(folders->golden);
   const std::optional<std::string> lane = options.lane.empty() ? std::nullopt : std::optional(options.lane);
   const harness::FloatImage& image = checked.images.begin()->second;
   const std::string compared_lane = lane ? *lane : std::string(harness::lane_name(checked.images.begin()->first));

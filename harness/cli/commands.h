@@ -6,6 +6,8 @@
 #include <string>
 #include <vector>
 
+#include "harness/cli/folders.h"
+
 namespace xshade::cli {
 
 // The exit codes every verb shares (docs/cli.md).
@@ -19,19 +21,18 @@ enum ExitCode : int {
 struct LaneSelection {
   std::vector<std::string> lanes;  // empty = every lane
   bool validation = false;
+  std::string gl_platform = "auto";  // how the gl lane gets its context: auto, osmesa or egl
 };
 
 int run_info(const LaneSelection& selection);
 
 struct RunOptions {
   LaneSelection selection;
-  std::vector<std::string> scenes;  // names in scenes_dir, or .toml paths; empty = all
+  std::vector<std::string> scenes;  // names in the scenes folder, or .toml paths; empty = all
+  FolderOptions folders;
   std::filesystem::path report_dir = "report";
-  std::filesystem::path scenes_dir = XSHADE_SOURCE_DIR "/harness/scenes";
-  std::filesystem::path shaders_dir = XSHADE_SOURCE_DIR "/hlsl_like/shaders";
   std::filesystem::path cache_dir;  // empty: $XSHADE_CACHE_DIR, else the user's cache folder
   bool no_cache = false;
-  std::filesystem::path golden_dir = XSHADE_SOURCE_DIR "/golden";
   std::string shard;         // "i/N": every N-th scene from the i-th, in name order
   std::string precision = "float";  // or "half": half emulation (gl and vk; goldens not compared)
   bool plan_only = false;
@@ -44,11 +45,10 @@ struct BlessOptions {
   std::string scene;
   std::string lane;  // empty: the common golden, from lanes that agree
   std::string reason;
-  std::filesystem::path scenes_dir = XSHADE_SOURCE_DIR "/harness/scenes";
-  std::filesystem::path shaders_dir = XSHADE_SOURCE_DIR "/hlsl_like/shaders";
-  std::filesystem::path golden_dir = XSHADE_SOURCE_DIR "/golden";
+  FolderOptions folders;
   std::filesystem::path cache_dir;
   std::filesystem::path report_dir = "bless-report";  // where the rendered images go
+  std::string gl_platform = "auto";  // as LaneSelection::gl_platform
 };
 int run_bless(const BlessOptions& options);
 
@@ -81,9 +81,9 @@ struct StabilityOptions {
   std::vector<std::string> cases;    // ids; empty = every case
   bool list = false;                 // print the cases and run nothing
   std::filesystem::path markdown;    // write docs/stability.md's text here
-  std::filesystem::path shaders_dir = XSHADE_SOURCE_DIR "/hlsl_like/shaders";
-  std::filesystem::path probes_dir = XSHADE_SOURCE_DIR "/stability/probes";
-  std::filesystem::path scenes_dir = XSHADE_SOURCE_DIR "/harness/scenes";
+  std::filesystem::path shaders_dir = own_folders().shaders;
+  std::filesystem::path probes_dir = own_folders().probes;
+  std::filesystem::path scenes_dir = own_folders().scenes;
   std::string command_line;
 };
 int run_stability(const StabilityOptions& options);
@@ -95,8 +95,8 @@ struct AccuracyOptions {
   uint32_t rounds = 5;
   std::filesystem::path report_dir = "accuracy-report";
   std::filesystem::path markdown;    // also write docs/accuracy.md's text here, charts beside it
-  std::filesystem::path scenes_dir = XSHADE_SOURCE_DIR "/harness/scenes";
-  std::filesystem::path shaders_dir = XSHADE_SOURCE_DIR "/hlsl_like/shaders";
+  std::filesystem::path scenes_dir = own_folders().scenes;
+  std::filesystem::path shaders_dir = own_folders().shaders;
   std::string command_line;
 };
 int run_accuracy(const AccuracyOptions& options);

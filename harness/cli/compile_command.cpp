@@ -46,7 +46,7 @@ bool emit_stage(const CompileOptions& options, const char* stage, std::string_vi
 
 int run_compile(const CompileOptions& options) {
   hlsl::CompileOptions front_end;
-  front_end.include_dirs = options.include_dirs;
+  front_end.include_dirs = include_folders(options.include_dirs);
   if (options.precision == "half") front_end.defines.push_back({harness::kHalfEmulationMacro, "1"});
   for (const std::string& define : options.defines) {
     const size_t equals = define.find('=');

@@ -27,7 +27,7 @@ int run_eval(const EvalOptions& options) {
   }
 
   hlsl::CompileOptions front_end;
-  front_end.include_dirs = options.include_dirs;
+  front_end.include_dirs = include_folders(options.include_dirs);
   front_end.keywords = options.keywords;
   front_end.fragment_only_entry = options.entry;
   if (options.precision == "half") front_end.defines.push_back({harness::kHalfEmulationMacro, "1"});
@@ -46,7 +46,7 @@ int run_eval(const EvalOptions& options) {
   std::map<harness::Lane, harness::FloatImage> images;
   for (harness::Lane lane : *lanes) {
     const std::string name(harness::lane_name(lane));
-    auto backend = harness::create_backend(lane, {.validation = selection.validation});
+    auto backend = harness::create_backend(lane, backend_options(selection));
     if (!backend) {
       fmt::print("{}: unavailable: {}\n", name, backend.error().to_string());
       exit_code = kBackendError;

@@ -14,7 +14,7 @@ int run_info(const LaneSelection& selection) {
   }
   int exit_code = kPass;
   for (harness::Lane lane : *lanes) {
-    auto backend = harness::create_backend(lane, {.validation = selection.validation});
+    auto backend = harness::create_backend(lane, backend_options(selection));
     if (!backend) {
       fmt::print("{}: unavailable: {}\n", harness::lane_name(lane), backend.error().to_string());
       exit_code = kBackendError;

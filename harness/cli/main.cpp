@@ -5,11 +5,40 @@
 
 namespace {
 
+void add_gl_platform_option(CLI::App& command, std::string& platform) {
+  command.add_option("--gl-platform", platform,
+                     "How the gl lane gets its OpenGL context: osmesa, egl (surfaceless; the only route on Mesa "
+                     "25.1 and later), or auto (OSMesa when its library opens, else EGL)")
+      ->check(CLI::IsMember({"auto", "osmesa", "egl"}))
+      ->capture_default_str();
+}
+
 void add_lane_options(CLI::App& command, xshade::cli::LaneSelection& selection) {
   command.add_option("--lane", selection.lanes, "Only these lanes (gl, vk, vk-hlsl); default: all")
       ->type_name("LANE");
   command.add_flag("--vk-validation", selection.validation,
                    "Enable the Vulkan validation layer (when installed); any message fails the run");
+  add_gl_platform_option(command, selection.gl_platform);
+}
+
+// The folders of run and bless (harness/cli/folders.h).
+void add_folder_options(CLI::App& command, xshade::cli::FolderOptions& folders) {
+  command.add_option("--scenes", folders.scenes,
+                     "Folder of scene files (default: the project file's, else xshade's own fixed scenes)")
+      ->type_name("DIR");
+  command.add_option("--golden", folders.golden,
+                     "Folder of golden images and MANIFEST.toml (default: the project file's, else xshade's own "
+                     "goldens, which serve only xshade's own scenes)")
+      ->type_name("DIR");
+  command.add_option("--shaders", folders.shaders,
+                     "A folder of shaders (materials/, post/, include/), searched before xshade's shader library; "
+                     "repeat for more (default: the project file's)")
+      ->type_name("DIR");
+  command.add_option("--project", folders.project,
+                     "The project file (default: xshade.toml in the working folder or above it, up to the "
+                     "repository's root)")
+      ->type_name("FILE");
+  command.add_flag("--no-project", folders.no_project, "Read no project file");
 }
 
 }  // namespace
@@ -33,17 +62,11 @@ int main(int argc, char** argv) {
   run->add_option("--report", run_options.report_dir, "Folder for images and the report")
       ->type_name("DIR")
       ->capture_default_str();
-  run->add_option("--scenes", run_options.scenes_dir, "Folder of scene files")->type_name("DIR")->capture_default_str();
-  run->add_option("--shaders", run_options.shaders_dir, "The shader library (materials/, post/, include/)")
-      ->type_name("DIR")
-      ->capture_default_str();
+  add_folder_options(*run, run_options.folders);
   run->add_option("--cache", run_options.cache_dir,
                   "Compiled-shader cache (default: $XSHADE_CACHE_DIR, else $XDG_CACHE_HOME/xshade or ~/.cache/xshade)")
       ->type_name("DIR");
   run->add_flag("--no-cache", run_options.no_cache, "Compile every shader, read and write no cache");
-  run->add_option("--golden", run_options.golden_dir, "Folder of golden images and MANIFEST.toml")
-      ->type_name("DIR")
-      ->capture_default_str();
   run->add_option("--precision", run_options.precision,
                   "half: round every half/min16float/fixed result to fp16 on gl and vk (vk-hlsl is skipped); "
                   "goldens are fp32 renders and are not compared")
@@ -61,17 +84,14 @@ int main(int argc, char** argv) {
   CLI::App* bless = app.add_subcommand(
       "bless", "Render a scene and accept it as its golden (the common one from lanes that agree, or one lane's)");
   bless->add_option("scene", bless_options.scene, "Scene name (in --scenes) or .toml file")->required()->type_name("SCENE");
+  add_gl_platform_option(*bless, bless_options.gl_platform);
   bless->add_option("--lane", bless_options.lane, "Bless this lane's own golden (needs a reason it differs)")
       ->check(CLI::IsMember({"gl", "vk", "vk-hlsl"}))
       ->type_name("LANE");
   bless->add_option("--reason", bless_options.reason, "Why this image is right (recorded in golden/MANIFEST.toml)")
       ->required()
       ->type_name("TEXT");
-  bless->add_option("--scenes", bless_options.scenes_dir, "Folder of scene files")->type_name("DIR")->capture_default_str();
-  bless->add_option("--shaders", bless_options.shaders_dir, "The shader library")->type_name("DIR")->capture_default_str();
-  bless->add_option("--golden", bless_options.golden_dir, "Folder of golden images and MANIFEST.toml")
-      ->type_name("DIR")
-      ->capture_default_str();
+  add_folder_options(*bless, bless_options.folders);
   bless->add_option("--cache", bless_options.cache_dir, "Compiled-shader cache (as for run)")->type_name("DIR");
   bless->add_option("--report", bless_options.report_dir, "Folder for the rendered images")
       ->type_name("DIR")
@@ -106,6 +126,7 @@ int main(int argc, char** argv) {
                    "half: round every half/min16float/fixed result to fp16 (gl and vk lanes; vk-hlsl cannot)")
       ->check(CLI::IsMember({"float", "half"}))
       ->capture_default_str();
+  add_gl_platform_option(*eval, eval_options.selection.gl_platform);
   eval->add_option("--lane", eval_options.selection.lanes, "gl, vk, vk-hlsl or all (default: all)")
       ->type_name("LANE");
   eval->add_option("-I", eval_options.include_dirs, "Search DIR for #include files")->type_name("DIR");
@@ -126,11 +147,13 @@ int main(int argc, char** argv) {
   stability->add_option("--markdown", stability_options.markdown,
                         "Write the results as Markdown (docs/stability.md is this output)")
       ->type_name("FILE");
-  stability->add_option("--shaders", stability_options.shaders_dir, "The shader library")->type_name("DIR")->capture_default_str();
-  stability->add_option("--probes", stability_options.probes_dir, "The suite's probe shaders")
-      ->type_name("DIR")
-      ->capture_default_str();
-  stability->add_option("--scenes", stability_options.scenes_dir, "Folder of scene files")->type_name("DIR")->capture_default_str();
+  stability->add_option("--shaders", stability_options.shaders_dir, "The shader library (default: xshade's own)")
+      ->type_name("DIR");
+  stability->add_option("--probes", stability_options.probes_dir, "The suite's probe shaders (default: xshade's own)")
+      ->type_name("DIR");
+  stability->add_option("--scenes", stability_options.scenes_dir,
+                        "Folder of the scenes the suite renders (default: xshade's own fixed scenes)")
+      ->type_name("DIR");
 
   AccuracyOptions accuracy_options;
   CLI::App* accuracy = app.add_subcommand(
@@ -153,8 +176,11 @@ int main(int argc, char** argv) {
                        "Also write the tables as Markdown, with the charts in a folder beside it named after it "
                        "(docs/accuracy.md is this output)")
       ->type_name("FILE");
-  accuracy->add_option("--scenes", accuracy_options.scenes_dir, "Folder of scene files")->type_name("DIR")->capture_default_str();
-  accuracy->add_option("--shaders", accuracy_options.shaders_dir, "The shader library")->type_name("DIR")->capture_default_str();
+  accuracy->add_option("--scenes", accuracy_options.scenes_dir,
+                       "Folder of the studies' scenes (default: xshade's own fixed scenes)")
+      ->type_name("DIR");
+  accuracy->add_option("--shaders", accuracy_options.shaders_dir, "The shader library (default: xshade's own)")
+      ->type_name("DIR");
 
   try {
     app.parse(argc, argv);

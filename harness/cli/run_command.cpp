@@ -10,7 +10,6 @@
 
 #include "harness/cli/commands.h"
 #include "harness/cli/lane_selection.h"
-#include "harness/cli/scene_files.h"
 #include "harness/report.h"
 #include "harness/scene_check.h"
 
@@ -46,7 +45,12 @@ int run_run(const RunOptions& options) {
     fmt::print(stderr, "xshade run: {}\n", lanes.error().to_string());
     return kBadInput;
   }
-  auto files = scene_files(options.scenes, options.scenes_dir);
+  auto folders = resolve_folders(options.folders, fs::current_path(), !options.plan_only);
+  if (!folders) {
+    fmt::print(stderr, "xshade run: {}\n", folders.error().to_string());
+    return kBadInput;
+  }
+  auto files = scene_files(options.scenes, *folders);
   if (!files) {
     fmt::print(stderr, "xshade run: {}\n", files.error().to_string());
     return kBadInput;
@@ -66,8 +70,8 @@ int run_run(const RunOptions& options) {
 
   std::optional<harness::ShaderCache> cache;
   if (!options.no_cache) cache.emplace(shader_cache_dir(options.cache_dir), harness::compiler_identity());
-  harness::VariantCompiler compiler(options.shaders_dir, cache ? &*cache : nullptr);
-  const harness::GoldenStore goldens(options.golden_dir);
+  harness::VariantCompiler compiler(folders->shaders, cache ? &*cache : nullptr);
+  const harness::GoldenStore goldens(folders->golden);
 
   harness::RunResults results;
   results.started = utc_now();
@@ -75,7 +79,7 @@ int run_run(const RunOptions& options) {
   size_t done = 0;
   harness::SceneChecker checker(
       compiler,
-      {options.report_dir, options.shaders_dir, &goldens, {.validation = options.selection.validation}, options.pass_images,
+      {options.report_dir, folders->shaders, &goldens, backend_options(options.selection), options.pass_images,
        options.plan_only, options.precision == "half"},
       [&](const std::string& line) {
         fmt::print("[{}/{}] {}\n", done + 1, files->size(), line);

@@ -26,6 +26,7 @@ int run_stability(const StabilityOptions& options) {
   }
   stability::SuiteOptions suite;
   suite.lanes = *lanes;
+  suite.backend = backend_options(options.selection);
   if (options.precision == "float") suite.precisions = {stability::Precision::Float};
   if (options.precision == "half") suite.precisions = {stability::Precision::Half};
   suite.case_ids = options.cases;

@@ -10,13 +10,15 @@
 namespace xshade::tests {
 namespace {
 
-constexpr const char* kNoOsmesa = "XSHADE_OSMESA_LIBRARY=/nonexistent/libOSMesa.so.8";
+// Neither route to an OpenGL context: OSMesa missing alone makes the gl lane fall back to EGL.
+constexpr const char* kNoOpenGl =
+    "XSHADE_OSMESA_LIBRARY=/nonexistent/libOSMesa.so.8 XSHADE_EGL_LIBRARY=/nonexistent/libEGL.so.1";
 // Both spellings: the loader reads VK_DRIVER_FILES, older loaders VK_ICD_FILENAMES.
 constexpr const char* kNoLavapipe =
     "VK_DRIVER_FILES=/nonexistent/lvp_icd.json VK_ICD_FILENAMES=/nonexistent/lvp_icd.json";
 
 TEST(MissingDriver, InfoNamesThePackageForGlAndStillShowsVk) {
-  Outcome outcome = run_xshade(kNoOsmesa, "info");
+  Outcome outcome = run_xshade(kNoOpenGl, "info");
   EXPECT_EQ(outcome.exit_code, 3) << outcome.output;
   EXPECT_NE(outcome.output.find("gl: unavailable"), std::string::npos) << outcome.output;
   EXPECT_NE(outcome.output.find("libosmesa6"), std::string::npos) << outcome.output;
@@ -35,7 +37,7 @@ TEST(MissingDriver, RunStillRendersTheOtherLane) {
   const auto report = std::filesystem::temp_directory_path() / "xshade_missing_driver_report";
   std::filesystem::remove_all(report);
   // The smallest fixed scene, compiled afresh so that the cache plays no part.
-  Outcome outcome = run_xshade(kNoOsmesa, "run toon_shadow_texture --no-cache --report '" + report.string() + "'");
+  Outcome outcome = run_xshade(kNoOpenGl, "run toon_shadow_texture --no-cache --report '" + report.string() + "'");
   EXPECT_EQ(outcome.exit_code, 3) << outcome.output;
   EXPECT_NE(outcome.output.find("libosmesa6"), std::string::npos) << outcome.output;
   EXPECT_TRUE(std::filesystem::exists(report / "toon_shadow_texture" / "vk.png")) << outcome.output;

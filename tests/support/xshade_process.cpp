@@ -7,8 +7,9 @@
 
 namespace xshade::tests {
 
-Outcome run_xshade(const std::string& environment, const std::string& arguments) {
-  const std::string command = environment + " '" XSHADE_BINARY "' " + arguments + " 2>&1";
+namespace {
+
+Outcome run_command(const std::string& command) {
   Outcome outcome;
   FILE* pipe = popen(command.c_str(), "r");
   if (!pipe) return outcome;
@@ -17,6 +18,16 @@ Outcome run_xshade(const std::string& environment, const std::string& arguments)
   const int status = pclose(pipe);
   outcome.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
   return outcome;
+}
+
+}  // namespace
+
+Outcome run_xshade(const std::string& environment, const std::string& arguments) {
+  return run_command(environment + " '" XSHADE_BINARY "' " + arguments + " 2>&1");
+}
+
+Outcome run_xshade_in(const std::filesystem::path& folder, const std::string& arguments) {
+  return run_command("cd '" + folder.string() + "' && '" XSHADE_BINARY "' " + arguments + " 2>&1");
 }
 
 }  // namespace xshade::tests

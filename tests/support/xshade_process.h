@@ -1,6 +1,7 @@
 // Running the real `xshade` binary from a test, as a user or CI would, and reading what it said.
 #pragma once
 
+#include <filesystem>
 #include <string>
 
 namespace xshade::tests {
@@ -13,5 +14,8 @@ struct Outcome {
 // Runs `environment xshade arguments` through the shell: `environment` is VAR=value pairs (or
 // empty), `arguments` is quoted as the shell needs.
 Outcome run_xshade(const std::string& environment, const std::string& arguments);
+
+// The same, with `folder` as the working folder (where xshade looks for a project file).
+Outcome run_xshade_in(const std::filesystem::path& folder, const std::string& arguments);
 
 }  // namespace xshade::tests

@@ -1,13 +1,18 @@
-// Smoke tests of the OpenGL lane: creation, orientation, bindings, errors and diagnostics.
-#include "harness/osmesa_backend.h"
+// Smoke tests of the OpenGL lane on both routes to its context (OSMesa and EGL surfaceless):
+// creation, orientation, bindings, errors and diagnostics; choosing the route; and backends of
+// both routes taking turns in one process.
+#include "harness/gl_backend.h"
 
+#include <array>
 #include <cmath>
 #include <cstdlib>
 #include <cstring>
+#include <map>
 #include <optional>
 #include <string>
 #include <vector>
 
+#include <GL/glcorearb.h>
 #include <gtest/gtest.h>
 
 #include "glsl/flavour.h"
@@ -15,20 +20,31 @@
 namespace xshade::harness {
 namespace {
 
-// One backend for the suite: an llvmpipe context costs tens of milliseconds.
-class OsmesaBackendTest : public ::testing::Test {
+const char* api_of(GlPlatform platform) {
+  return platform == GlPlatform::Egl ? "OpenGL 4.5 core (EGL surfaceless)" : "OpenGL 4.5 core (OSMesa)";
+}
+
+std::string platform_test_name(const ::testing::TestParamInfo<GlPlatform>& info) {
+  return std::string(gl_platform_name(info.param));
+}
+
+// One backend per route for the suite: an llvmpipe context costs tens of milliseconds.
+class GlBackendTest : public ::testing::TestWithParam<GlPlatform> {
  protected:
-  static void SetUpTestSuite() {
-    auto created = create_osmesa_backend();
-    if (created)
-      backend_ = std::move(*created);
-    else
-      error_ = created.error().to_string();
-  }
-  static void TearDownTestSuite() { backend_.reset(); }
+  static void TearDownTestSuite() { backends_.clear(); }
 
   void SetUp() override {
-    ASSERT_NE(backend_, nullptr) << error_;
+    std::unique_ptr<Backend>& slot = backends_[GetParam()];
+    std::string error;
+    if (!slot) {
+      auto created = create_gl_backend({.platform = GetParam()});
+      if (created)
+        slot = std::move(*created);
+      else
+        error = created.error().to_string();
+    }
+    ASSERT_NE(slot, nullptr) << error;
+    backend_ = slot.get();
     backend_->take_driver_messages();
   }
   void TearDown() override {
@@ -37,7 +53,7 @@ class OsmesaBackendTest : public ::testing::Test {
     }
   }
 
-  static Backend& backend() { return *backend_; }
+  Backend& backend() { return *backend_; }
 
   static ShaderStageSource stage(std::string glsl, std::string name) {
     ShaderStageSource source;
@@ -46,7 +62,7 @@ class OsmesaBackendTest : public ::testing::Test {
     return source;
   }
 
-  static Result<ProgramHandle> fullscreen_program(const std::string& name,
+  Result<ProgramHandle> fullscreen_program(const std::string& name,
                                                   const std::string& fragment,
                                                   ProgramLayout layout = {}) {
     ProgramDesc desc;
@@ -58,7 +74,7 @@ class OsmesaBackendTest : public ::testing::Test {
     return backend().create_program(desc);
   }
 
-  static Result<ProgramHandle> mesh_program(const std::string& name, const std::string& fragment) {
+  Result<ProgramHandle> mesh_program(const std::string& name, const std::string& fragment) {
     ProgramDesc desc;
     desc.name = name;
     desc.vertex = stage(
@@ -72,8 +88,8 @@ class OsmesaBackendTest : public ::testing::Test {
     return backend().create_program(desc);
   }
 
-  static inline std::unique_ptr<Backend> backend_;
-  static inline std::string error_;
+  static inline std::map<GlPlatform, std::unique_ptr<Backend>> backends_;
+  Backend* backend_ = nullptr;
 };
 
 const char* const kUvFragment =
@@ -119,9 +135,9 @@ void expect_near(glm::vec4 actual, glm::vec4 expected, const std::string& what) 
     EXPECT_NEAR(actual[c], expected[c], 1e-5f) << what << ", channel " << c;
 }
 
-TEST_F(OsmesaBackendTest, ReportsLlvmpipeAndOpenGl45) {
+TEST_P(GlBackendTest, ReportsLlvmpipeAndOpenGl45) {
   const DriverInfo& info = backend().driver_info();
-  EXPECT_EQ(info.api, "OpenGL 4.5 core (OSMesa)");
+  EXPECT_EQ(info.api, api_of(GetParam()));
   EXPECT_NE(info.renderer.find("llvmpipe"), std::string::npos) << info.renderer;
   EXPECT_TRUE(info.api_version.starts_with("4.5")) << info.api_version;
   EXPECT_TRUE(info.driver_version.starts_with("Mesa ")) << info.driver_version;
@@ -130,7 +146,7 @@ TEST_F(OsmesaBackendTest, ReportsLlvmpipeAndOpenGl45) {
   EXPECT_NE(info.renderer.find("LLVM " + info.llvm_version), std::string::npos);
 }
 
-TEST_F(OsmesaBackendTest, ClearGivesTheClearColourUnclamped) {
+TEST_P(GlBackendTest, ClearGivesTheClearColourUnclamped) {
   auto target = backend().create_target({5, 3, true});
   ASSERT_TRUE(target) << target.error().to_string();
   RenderPass pass;
@@ -145,7 +161,7 @@ TEST_F(OsmesaBackendTest, ClearGivesTheClearColourUnclamped) {
     for (uint32_t x = 0; x < 5; ++x) expect_near(image->at(x, y), pass.clear_color, "clear");
 }
 
-TEST_F(OsmesaBackendTest, FullscreenUvIsZeroAtTheTopLeftPixel) {
+TEST_P(GlBackendTest, FullscreenUvIsZeroAtTheTopLeftPixel) {
   const uint32_t w = 8, h = 4;
   auto target = backend().create_target({w, h, false});
   ASSERT_TRUE(target) << target.error().to_string();
@@ -164,7 +180,7 @@ TEST_F(OsmesaBackendTest, FullscreenUvIsZeroAtTheTopLeftPixel) {
                   "pixel " + std::to_string(x) + "," + std::to_string(y));
 }
 
-TEST_F(OsmesaBackendTest, MeshTriangleInUpperClipHalfLandsInTheTopRows) {
+TEST_P(GlBackendTest, MeshTriangleInUpperClipHalfLandsInTheTopRows) {
   auto target = backend().create_target({4, 4, true});
   ASSERT_TRUE(target);
   // Covers clip y in [0, 1] across the whole width.
@@ -185,7 +201,7 @@ TEST_F(OsmesaBackendTest, MeshTriangleInUpperClipHalfLandsInTheTopRows) {
                   "pixel " + std::to_string(x) + "," + std::to_string(y));
 }
 
-TEST_F(OsmesaBackendTest, DepthIsZeroToOneLessTestedAndSampleable) {
+TEST_P(GlBackendTest, DepthIsZeroToOneLessTestedAndSampleable) {
   auto target = backend().create_target({4, 4, true});
   auto readback = backend().create_target({4, 4, false});
   ASSERT_TRUE(target && readback);
@@ -232,7 +248,7 @@ TEST_F(OsmesaBackendTest, DepthIsZeroToOneLessTestedAndSampleable) {
   EXPECT_NEAR(depth->at(2, 3).r, 0.75f, 1e-6f);
 }
 
-TEST_F(OsmesaBackendTest, TextureRowZeroIsTheTopAndUniformBlocksBindByName) {
+TEST_P(GlBackendTest, TextureRowZeroIsTheTopAndUniformBlocksBindByName) {
   // Row 0 red, row 1 green; a uniform block scales the result.
   std::vector<float> texels = {1, 0, 0, 1, 1, 0, 0, 1, 0, 1, 0, 1, 0, 1, 0, 1};
   TextureData data{TextureFormat::Rgba32Float, 2, 2, {}};
@@ -265,7 +281,7 @@ TEST_F(OsmesaBackendTest, TextureRowZeroIsTheTopAndUniformBlocksBindByName) {
   expect_near(image->at(3, 3), {0, 3, 0, 1}, "bottom row samples texture row 1");
 }
 
-TEST_F(OsmesaBackendTest, SpecialFloatValuesReachReadBack) {
+TEST_P(GlBackendTest, SpecialFloatValuesReachReadBack) {
   auto target = backend().create_target({1, 1, false});
   ASSERT_TRUE(target);
   auto program = fullscreen_program(
@@ -289,7 +305,7 @@ TEST_F(OsmesaBackendTest, SpecialFloatValuesReachReadBack) {
   EXPECT_TRUE(std::isnan(pixel.a)) << pixel.a;
 }
 
-TEST_F(OsmesaBackendTest, ADrawProducesNoDriverMessages) {
+TEST_P(GlBackendTest, ADrawProducesNoDriverMessages) {
   auto target = backend().create_target({16, 16, true});
   auto program = fullscreen_program("uv", kUvFragment);
   ASSERT_TRUE(target && program);
@@ -301,7 +317,7 @@ TEST_F(OsmesaBackendTest, ADrawProducesNoDriverMessages) {
   EXPECT_EQ(backend().take_driver_messages(), std::vector<std::string>{});
 }
 
-TEST_F(OsmesaBackendTest, BindingMistakesFailWithClearMessages) {
+TEST_P(GlBackendTest, BindingMistakesFailWithClearMessages) {
   auto target = backend().create_target({2, 2, false});
   auto other = backend().create_target({2, 2, false});
   auto program = fullscreen_program(
@@ -351,7 +367,7 @@ TEST_F(OsmesaBackendTest, BindingMistakesFailWithClearMessages) {
   EXPECT_TRUE(good) << good.error().to_string();
 }
 
-TEST_F(OsmesaBackendTest, BrokenGlslGivesDiagnosticsWithLineNumbers) {
+TEST_P(GlBackendTest, BrokenGlslGivesDiagnosticsWithLineNumbers) {
   auto program = fullscreen_program("broken",
                                     "#version 450 core\n"
                                     "layout(location = 0) in vec2 uv;\n"
@@ -372,7 +388,7 @@ TEST_F(OsmesaBackendTest, BrokenGlslGivesDiagnosticsWithLineNumbers) {
   EXPECT_EQ(error.where.line, 4u);
 }
 
-TEST_F(OsmesaBackendTest, LinkErrorsAreReported) {
+TEST_P(GlBackendTest, LinkErrorsAreReported) {
   ProgramDesc desc;
   desc.name = "mismatch";
   desc.vertex = stage(glsl::fullscreen_vertex_shader(glsl::Flavour::Gl), "fullscreen.vert");
@@ -389,7 +405,7 @@ TEST_F(OsmesaBackendTest, LinkErrorsAreReported) {
   EXPECT_FALSE(program.error().diagnostics.empty()) << program.error().to_string();
 }
 
-TEST_F(OsmesaBackendTest, ResourcesMissingFromTheLayoutAreRejected) {
+TEST_P(GlBackendTest, ResourcesMissingFromTheLayoutAreRejected) {
   auto program = fullscreen_program("unlisted",
                                     "#version 450 core\n"
                                     "layout(std140, binding = 0) uniform Hidden { vec4 value; };\n"
@@ -400,7 +416,7 @@ TEST_F(OsmesaBackendTest, ResourcesMissingFromTheLayoutAreRejected) {
       << program.error().message;
 }
 
-TEST_F(OsmesaBackendTest, CompileWarningsOfAGoodProgramAreDriverMessages) {
+TEST_P(GlBackendTest, CompileWarningsOfAGoodProgramAreDriverMessages) {
   // Mesa reports compiler warnings through KHR_debug (at high severity); they are the driver's
   // complaints about a program, so they stay in the list.
   auto program = fullscreen_program("warns",
@@ -414,7 +430,7 @@ TEST_F(OsmesaBackendTest, CompileWarningsOfAGoodProgramAreDriverMessages) {
   EXPECT_NE(messages[0].find("uninitialized"), std::string::npos) << messages[0];
 }
 
-TEST_F(OsmesaBackendTest, MipLevelsAndSrgbDecodeAreSampled) {
+TEST_P(GlBackendTest, MipLevelsAndSrgbDecodeAreSampled) {
   // Level 0 (2x2) is sRGB 188, level 1 (1x1) is sRGB 255; sRGB 188 decodes to about 0.5029.
   TextureData data{TextureFormat::Rgba8Srgb, 2, 2, {}};
   data.levels.emplace_back(16, std::byte{188});
@@ -444,36 +460,247 @@ TEST_F(OsmesaBackendTest, MipLevelsAndSrgbDecodeAreSampled) {
   EXPECT_NEAR(image->at(1, 0).g, 1.0f, 1e-6f);
 }
 
-TEST(OsmesaBackendCreation, AMissingLibraryNamesTheDebianPackage) {
-  std::optional<std::string> saved;
-  if (const char* value = std::getenv("XSHADE_OSMESA_LIBRARY")) saved = value;
-  unsetenv("XSHADE_OSMESA_LIBRARY");
-  auto backend = create_osmesa_backend(OsmesaOptions{"libdoesnotexist.so"});
-  if (saved) setenv("XSHADE_OSMESA_LIBRARY", saved->c_str(), 1);
-  ASSERT_FALSE(backend);
-  EXPECT_NE(backend.error().message.find("libosmesa6"), std::string::npos)
-      << backend.error().message;
-  EXPECT_NE(backend.error().message.find("libdoesnotexist.so"), std::string::npos);
+INSTANTIATE_TEST_SUITE_P(Routes, GlBackendTest, ::testing::Values(GlPlatform::Osmesa, GlPlatform::Egl),
+                         platform_test_name);
+
+// ---- Choosing the route -------------------------------------------------------------------------
+
+// Sets (or unsets, with null) an environment variable for one scope, then puts it back.
+class ScopedEnvironment {
+ public:
+  ScopedEnvironment(const char* name, const char* value) : name_(name) {
+    if (const char* old = std::getenv(name)) old_ = old;
+    if (value)
+      setenv(name, value, 1);
+    else
+      unsetenv(name);
+  }
+  ~ScopedEnvironment() {
+    if (old_)
+      setenv(name_, old_->c_str(), 1);
+    else
+      unsetenv(name_);
+  }
+  ScopedEnvironment(const ScopedEnvironment&) = delete;
+  ScopedEnvironment& operator=(const ScopedEnvironment&) = delete;
+
+ private:
+  const char* name_;
+  std::optional<std::string> old_;
+};
+
+void expect_mentions(const std::string& message, const std::vector<std::string>& words) {
+  for (const std::string& word : words) EXPECT_NE(message.find(word), std::string::npos) << word << " in: " << message;
 }
 
-TEST(OsmesaBackendCreation, TheEnvironmentOverridesTheLibrary) {
-  std::optional<std::string> saved;
-  if (const char* value = std::getenv("XSHADE_OSMESA_LIBRARY")) saved = value;
-  setenv("XSHADE_OSMESA_LIBRARY", "libalsodoesnotexist.so", 1);
-  auto backend = create_osmesa_backend();
-  if (saved)
-    setenv("XSHADE_OSMESA_LIBRARY", saved->c_str(), 1);
-  else
-    unsetenv("XSHADE_OSMESA_LIBRARY");
-  ASSERT_FALSE(backend);
-  EXPECT_NE(backend.error().message.find("libalsodoesnotexist.so"), std::string::npos)
-      << backend.error().message;
+TEST(GlRoute, PlatformNamesParseBack) {
+  for (GlPlatform platform : {GlPlatform::Auto, GlPlatform::Osmesa, GlPlatform::Egl})
+    EXPECT_EQ(parse_gl_platform(gl_platform_name(platform)), platform) << gl_platform_name(platform);
+  EXPECT_EQ(gl_platform_name(GlPlatform::Egl), "egl");
+  EXPECT_EQ(parse_gl_platform("glx"), std::nullopt);
+  EXPECT_EQ(parse_gl_platform("EGL"), std::nullopt);
 }
 
-TEST(OsmesaBackendCreation, TwoBackendsLiveSideBySide) {
-  auto first = create_osmesa_backend();
+TEST(GlRoute, AMissingOsmesaLibraryNamesTheDebianPackage) {
+  auto backend = create_gl_backend({.platform = GlPlatform::Osmesa, .osmesa_library = "libdoesnotexist.so"});
+  ASSERT_FALSE(backend);
+  expect_mentions(backend.error().message, {"libosmesa6", "libdoesnotexist.so"});
+}
+
+TEST(GlRoute, AMissingEglLibraryNamesTheDebianPackageAndDoesNotFallBack) {
+  auto backend = create_gl_backend({.platform = GlPlatform::Egl, .egl_library = "libdoesnotexist.so"});
+  ASSERT_FALSE(backend) << (*backend)->driver_info().api;
+  expect_mentions(backend.error().message, {"cannot open EGL library 'libdoesnotexist.so'", "libegl1"});
+}
+
+TEST(GlRoute, ALibraryWithoutTheRoutesEntryPointsNamesTheDebianPackage) {
+  // libm opens, but it is neither OSMesa nor EGL.
+  auto osmesa = create_gl_backend({.platform = GlPlatform::Osmesa, .osmesa_library = "libm.so.6"});
+  ASSERT_FALSE(osmesa);
+  expect_mentions(osmesa.error().message, {"libm.so.6", "OSMesaCreateContextAttribs", "libosmesa6"});
+  auto egl = create_gl_backend({.platform = GlPlatform::Egl, .egl_library = "libm.so.6"});
+  ASSERT_FALSE(egl);
+  expect_mentions(egl.error().message, {"libm.so.6", "eglGetProcAddress", "libegl1"});
+}
+
+TEST(GlRoute, TheEnvironmentNamesTheLibraryWhenTheOptionsDoNot) {
+  const ScopedEnvironment osmesa_library("XSHADE_OSMESA_LIBRARY", "libalsodoesnotexist.so");
+  const ScopedEnvironment egl_library("XSHADE_EGL_LIBRARY", "libnorthisone.so");
+  auto osmesa = create_gl_backend({.platform = GlPlatform::Osmesa});
+  ASSERT_FALSE(osmesa);
+  expect_mentions(osmesa.error().message, {"libalsodoesnotexist.so"});
+  auto egl = create_gl_backend({.platform = GlPlatform::Egl});
+  ASSERT_FALSE(egl);
+  expect_mentions(egl.error().message, {"libnorthisone.so"});
+}
+
+TEST(GlRoute, AutoTakesOsmesaWhenItOpens) {
+  const ScopedEnvironment osmesa_library("XSHADE_OSMESA_LIBRARY", nullptr);
+  auto backend = create_gl_backend({.platform = GlPlatform::Auto});
+  ASSERT_TRUE(backend) << backend.error().to_string();
+  EXPECT_EQ((*backend)->driver_info().api, "OpenGL 4.5 core (OSMesa)");
+}
+
+TEST(GlRoute, AutoFallsBackToEglWhenOsmesaDoesNotOpen) {
+  auto backend = create_gl_backend({.platform = GlPlatform::Auto, .osmesa_library = "libdoesnotexist.so"});
+  ASSERT_TRUE(backend) << backend.error().to_string();
+  const DriverInfo& info = (*backend)->driver_info();
+  EXPECT_EQ(info.api, "OpenGL 4.5 core (EGL surfaceless)");
+  EXPECT_NE(info.renderer.find("llvmpipe"), std::string::npos) << info.renderer;
+}
+
+TEST(GlRoute, AutoReportsAnOsmesaThatOpensButFailsInsteadOfFallingBack) {
+  auto backend = create_gl_backend({.platform = GlPlatform::Auto, .osmesa_library = "libm.so.6"});
+  ASSERT_FALSE(backend) << (*backend)->driver_info().api;
+  expect_mentions(backend.error().message, {"libm.so.6", "OSMesaCreateContextAttribs"});
+  EXPECT_EQ(backend.error().message.find("EGL"), std::string::npos) << backend.error().message;
+}
+
+TEST(GlRoute, AutoWithNeitherRouteSaysWhatWasTriedAndWhatToInstall) {
+  auto backend = create_gl_backend(
+      {.platform = GlPlatform::Auto, .osmesa_library = "libnoosmesa.so", .egl_library = "libnoegl.so"});
+  ASSERT_FALSE(backend);
+  expect_mentions(backend.error().message, {"OSMesa", "libnoosmesa.so", "EGL surfaceless", "libnoegl.so", "libosmesa6",
+                                            "libegl1", "libegl-mesa0", "libgl1-mesa-dri", "--gl-platform"});
+}
+
+TEST(GlRoute, BothRoutesReachTheSameDriver) {
+  auto osmesa = create_gl_backend({.platform = GlPlatform::Osmesa});
+  ASSERT_TRUE(osmesa) << osmesa.error().to_string();
+  auto egl = create_gl_backend({.platform = GlPlatform::Egl});
+  ASSERT_TRUE(egl) << egl.error().to_string();
+  const DriverInfo& a = (*osmesa)->driver_info();
+  const DriverInfo& b = (*egl)->driver_info();
+  EXPECT_NE(a.api, b.api);
+  EXPECT_EQ(a.renderer, b.renderer);
+  EXPECT_EQ(a.api_version, b.api_version);
+  EXPECT_EQ(a.driver_version, b.driver_version);
+  EXPECT_EQ(a.llvm_version, b.llvm_version);
+}
+
+// ---- Contexts of both routes in one process -----------------------------------------------------
+
+// Mesa's dispatch points at one context per thread, whichever route made it current: the clear
+// colour each context keeps tells which one GL calls reach.
+TEST(GlContexts, MakeCurrentMovesTheDispatchAcrossRoutes) {
+  auto osmesa = create_osmesa_context();
+  ASSERT_TRUE(osmesa) << osmesa.error().to_string();
+  auto egl = create_egl_context();
+  ASSERT_TRUE(egl) << egl.error().to_string();
+  GlContext& a = **osmesa;
+  GlContext& b = **egl;
+  EXPECT_TRUE(b.is_current());  // a new context is current
+  EXPECT_FALSE(a.is_current());
+  const auto clear_color = reinterpret_cast<PFNGLCLEARCOLORPROC>(a.proc_address("glClearColor"));
+  const auto get_floats = reinterpret_cast<PFNGLGETFLOATVPROC>(a.proc_address("glGetFloatv"));
+  ASSERT_TRUE(clear_color && get_floats);
+  clear_color(0.0f, 2.0f, 0.0f, 0.0f);  // into b, the current one
+  ASSERT_TRUE(a.make_current());
+  clear_color(1.0f, 0.0f, 0.0f, 0.0f);
+  const auto reached = [&]() {
+    std::array<float, 4> value{};
+    get_floats(GL_COLOR_CLEAR_VALUE, value.data());
+    return value[0] == 1.0f ? "osmesa" : value[1] == 2.0f ? "egl" : "neither";
+  };
+  for (int round = 0; round < 3; ++round) {
+    ASSERT_TRUE(b.make_current());
+    EXPECT_TRUE(b.is_current());
+    EXPECT_FALSE(a.is_current());
+    EXPECT_STREQ(reached(), "egl") << "round " << round;
+    ASSERT_TRUE(a.make_current());
+    EXPECT_TRUE(a.is_current());
+    EXPECT_FALSE(b.is_current());
+    EXPECT_STREQ(reached(), "osmesa") << "round " << round;
+  }
+}
+
+// A full-screen draw of a uniform colour into a backend's first target with its first program:
+// the same names on every backend, so that a draw reaching the wrong context lands in that
+// context's objects instead of failing.
+struct Tinted {
+  TargetHandle target;
+  ProgramHandle program;
+};
+
+Result<Tinted> prepare_tinted(Backend& backend) {
+  auto target = backend.create_target({3, 2, true});
+  if (!target) return fail(target.error());
+  ProgramDesc desc;
+  desc.name = "tint";
+  desc.vertex.glsl = glsl::fullscreen_vertex_shader(glsl::Flavour::Gl);
+  desc.vertex.name = "fullscreen.vert";
+  desc.fragment.glsl =
+      "#version 450 core\n"
+      "layout(std140, binding = 0) uniform Tint { vec4 tint; };\n"
+      "layout(location = 0) out vec4 color;\n"
+      "void main() { color = tint; }\n";
+  desc.fragment.name = "tint.frag";
+  desc.layout = layout({{"Tint", 0, 16}}, {});
+  desc.fullscreen = true;
+  auto program = backend.create_program(desc);
+  if (!program) return fail(program.error());
+  return Tinted{*target, *program};
+}
+
+Result<void> draw_tint(Backend& backend, const Tinted& tinted, glm::vec4 tint) {
+  RenderPass pass;
+  pass.target = tinted.target;
+  pass.clear_color = {0.5f, 0.5f, 0.5f, 0.5f};
+  pass.draws.push_back(draw(tinted.program, {}, {{"Tint", bytes_of(tint)}}));
+  return backend.render(pass);
+}
+
+void expect_filled(Backend& backend, const Tinted& tinted, glm::vec4 tint, const std::string& what) {
+  auto image = backend.read_color(tinted.target);
+  ASSERT_TRUE(image) << what << ": " << image.error().to_string();
+  for (uint32_t y = 0; y < image->height; ++y)
+    for (uint32_t x = 0; x < image->width; ++x)
+      expect_near(image->at(x, y), tint, what + ", pixel " + std::to_string(x) + "," + std::to_string(y));
+}
+
+TEST(GlContexts, DrawsOnAnOsmesaAndAnEglBackendTakingTurnsLandInTheirOwnTargets) {
+  // Each backend makes its objects while its context is new, and so surely current: a later
+  // switch that fails to move the dispatch sends one backend's calls to the other's objects.
+  auto osmesa = create_gl_backend({.platform = GlPlatform::Osmesa});
+  ASSERT_TRUE(osmesa) << osmesa.error().to_string();
+  Backend& a = **osmesa;
+  auto tinted_a = prepare_tinted(a);
+  ASSERT_TRUE(tinted_a) << tinted_a.error().to_string();
+  auto egl = create_gl_backend({.platform = GlPlatform::Egl});
+  ASSERT_TRUE(egl) << egl.error().to_string();
+  Backend& b = **egl;
+  auto tinted_b = prepare_tinted(b);
+  ASSERT_TRUE(tinted_b) << tinted_b.error().to_string();
+  for (int round = 0; round < 4; ++round) {
+    const std::string what = "round " + std::to_string(round);
+    const glm::vec4 tint_a(float(round), 1.0f, 2.0f, 3.0f);
+    const glm::vec4 tint_b(-float(round), 5.0f, 6.0f, 7.0f);
+    // Even rounds draw on OSMesa first, odd rounds on EGL first.
+    if (round % 2 == 0) {
+      ASSERT_TRUE(draw_tint(a, *tinted_a, tint_a));
+      ASSERT_TRUE(draw_tint(b, *tinted_b, tint_b));
+    } else {
+      ASSERT_TRUE(draw_tint(b, *tinted_b, tint_b));
+      ASSERT_TRUE(draw_tint(a, *tinted_a, tint_a));
+    }
+    expect_filled(a, *tinted_a, tint_a, "OSMesa, " + what);
+    expect_filled(b, *tinted_b, tint_b, "EGL, " + what);
+    expect_filled(a, *tinted_a, tint_a, "OSMesa after EGL, " + what);
+  }
+  EXPECT_EQ(a.take_driver_messages(), std::vector<std::string>{});
+  EXPECT_EQ(b.take_driver_messages(), std::vector<std::string>{});
+}
+
+class TwoGlBackends : public ::testing::TestWithParam<std::pair<GlPlatform, GlPlatform>> {};
+
+std::string pair_test_name(const ::testing::TestParamInfo<std::pair<GlPlatform, GlPlatform>>& info) {
+  return std::string(gl_platform_name(info.param.first)) + "_then_" + std::string(gl_platform_name(info.param.second));
+}
+
+TEST_P(TwoGlBackends, LiveSideBySide) {
+  auto first = create_gl_backend({.platform = GetParam().first});
   ASSERT_TRUE(first) << first.error().to_string();
-  auto second = create_osmesa_backend();
+  auto second = create_gl_backend({.platform = GetParam().second});
   ASSERT_TRUE(second) << second.error().to_string();
   auto target_a = (*first)->create_target({2, 2, true});
   auto target_b = (*second)->create_target({2, 2, true});
@@ -488,8 +715,27 @@ TEST(OsmesaBackendCreation, TwoBackendsLiveSideBySide) {
   ASSERT_TRUE(image_a && image_b);
   expect_near(image_a->at(1, 1), {1, 2, 3, 4}, "first backend");
   expect_near(image_b->at(1, 1), {1, 2, 3, 4}, "first backend after the second died");
+  // And a new backend after the death, of the second's route, works beside the first.
+  auto third = create_gl_backend({.platform = GetParam().second});
+  ASSERT_TRUE(third) << third.error().to_string();
+  auto target_c = (*third)->create_target({2, 2, false});
+  ASSERT_TRUE(target_c);
+  const RenderPass pass_c{*target_c, {9, 10, 11, 12}, 1.0f, {}};
+  ASSERT_TRUE((*third)->render(pass_c));
+  auto image_c = (*third)->read_color(*target_c);
+  auto image_d = (*first)->read_color(*target_a);
+  ASSERT_TRUE(image_c && image_d);
+  expect_near(image_c->at(0, 1), {9, 10, 11, 12}, "third backend");
+  expect_near(image_d->at(0, 1), {1, 2, 3, 4}, "first backend beside the third");
   EXPECT_EQ((*first)->take_driver_messages(), std::vector<std::string>{});
 }
+
+INSTANTIATE_TEST_SUITE_P(Routes, TwoGlBackends,
+                         ::testing::Values(std::pair(GlPlatform::Osmesa, GlPlatform::Osmesa),
+                                           std::pair(GlPlatform::Egl, GlPlatform::Egl),
+                                           std::pair(GlPlatform::Osmesa, GlPlatform::Egl),
+                                           std::pair(GlPlatform::Egl, GlPlatform::Osmesa)),
+                         pair_test_name);
 
 }  // namespace
 }  // namespace xshade::harness

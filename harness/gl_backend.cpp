@@ -1,13 +1,12 @@
-// The OpenGL lane: OpenGL 4.5 core on Mesa's llvmpipe through OSMesa, headless.
+// The OpenGL lane: OpenGL 4.5 core on Mesa's llvmpipe, headless, on a context from either route
+// of gl_context.h (OSMesa or EGL surfaceless); nothing here knows which.
 //
-// libOSMesa is opened at run time (dlopen), so that a machine without it still runs the Vulkan
-// lane; every GL entry point comes through OSMesaGetProcAddress into the table of
-// gl_functions.h. The context renders into a 1x1 dummy buffer that nothing reads: all drawing
-// goes into framebuffer objects. Every public call makes this backend's context current when it
-// is not, so that several backends can share one process, and ends by checking glGetError.
-#include "harness/osmesa_backend.h"
-
-#include <dlfcn.h>
+// Every GL entry point comes through the context's proc-address function into the table of
+// gl_functions.h. All drawing goes into framebuffer objects, never into a default framebuffer
+// (the OSMesa route has a 1x1 dummy one, the EGL route none). Every public call makes this
+// backend's context current when it is not, so that several backends (of either route) can
+// share one process, and ends by checking glGetError.
+#include "harness/gl_backend.h"
 
 #include <algorithm>
 #include <array>
@@ -25,58 +24,16 @@
 #include <fmt/format.h>
 
 #include "harness/gl_functions.h"
-// After glcorearb.h (from gl_functions.h); osmesa.h brings GL/gl.h, whose declarations agree.
-#include <GL/osmesa.h>
 
 namespace xshade::harness {
 namespace {
 
-constexpr const char* kDebianPackage = "libosmesa6";
+// ---- The context's entry points ----------------------------------------------------------------
 
-// ---- The library and its entry points -----------------------------------------------------------
-
-class Library {
- public:
-  Library() = default;
-  explicit Library(void* handle) : handle_(handle) {}
-  Library(Library&& other) noexcept : handle_(std::exchange(other.handle_, nullptr)) {}
-  Library& operator=(Library&& other) noexcept {
-    if (this != &other) {
-      close();
-      handle_ = std::exchange(other.handle_, nullptr);
-    }
-    return *this;
-  }
-  Library(const Library&) = delete;
-  Library& operator=(const Library&) = delete;
-  ~Library() { close(); }
-
-  void* get() const { return handle_; }
-  void* symbol(const char* name) const { return dlsym(handle_, name); }
-
- private:
-  void close() {
-    if (handle_) dlclose(handle_);
-    handle_ = nullptr;
-  }
-  void* handle_ = nullptr;
-};
-
-struct OsmesaFunctions {
-  decltype(&OSMesaCreateContextAttribs) CreateContextAttribs = nullptr;
-  decltype(&OSMesaMakeCurrent) MakeCurrent = nullptr;
-  decltype(&OSMesaDestroyContext) DestroyContext = nullptr;
-  decltype(&OSMesaGetProcAddress) GetProcAddress = nullptr;
-  decltype(&OSMesaGetCurrentContext) GetCurrentContext = nullptr;
-};
-
-// gl::load_functions takes a plain function; this one forwards to the OSMesa being loaded.
+// gl::load_functions takes a plain function; this one forwards to the context being loaded from.
 std::mutex proc_address_mutex;
-decltype(&OSMesaGetProcAddress) current_get_proc_address = nullptr;
-void* osmesa_proc_address(const char* name) {
-  // A function pointer travels through void* here, as with dlsym; POSIX guarantees this works.
-  return reinterpret_cast<void*>(current_get_proc_address(name));
-}
+const GlContext* loading_context = nullptr;
+void* context_proc_address(const char* name) { return loading_context->proc_address(name); }
 
 // ---- GL objects ---------------------------------------------------------------------------------
 
@@ -331,11 +288,11 @@ std::string base_name(std::string name) {
 
 // ---- The backend --------------------------------------------------------------------------------
 
-class OsmesaBackend final : public Backend {
+class GlBackend final : public Backend {
  public:
-  ~OsmesaBackend() override;
+  ~GlBackend() override;
 
-  Result<void> init(const OsmesaOptions& options);
+  Result<void> init(std::unique_ptr<GlContext> context);
 
   const DriverInfo& driver_info() const override { return info_; }
   Result<TargetHandle> create_target(const TargetDesc& desc) override;
@@ -351,7 +308,7 @@ class OsmesaBackend final : public Backend {
 
  private:
   // Makes the context current when another (or none) is.
-  bool make_current();
+  bool make_current() { return context_->make_current(); }
   // Drains glGetError; fails with the error names and the driver's last message.
   Result<void> check_errors(const std::string& what);
   // Makes the context current, runs `body`, then checks glGetError.
@@ -376,13 +333,10 @@ class OsmesaBackend final : public Backend {
     return id >= 1 && id <= targets_.size() ? targets_[id - 1].get() : nullptr;
   }
 
-  // Declaration order is teardown order reversed: GL objects go first, then the context, then
-  // the library; the log outlives the context that writes into it.
-  Library library_;
-  OsmesaFunctions osmesa_;
+  // Declaration order is teardown order reversed: GL objects go first, then the context (which
+  // closes its library); the log outlives the context that writes into it.
   std::unique_ptr<MessageLog> log_ = std::make_unique<MessageLog>();
-  OSMesaContext context_ = nullptr;
-  std::array<unsigned char, 4> dummy_buffer_{};  // the 1x1 RGBA buffer the context is bound to
+  std::unique_ptr<GlContext> context_;
   gl::Functions gl_;
   DriverInfo info_;
   GLint max_texture_size_ = 0;
@@ -398,7 +352,7 @@ class OsmesaBackend final : public Backend {
   std::vector<std::unique_ptr<Program>> programs_;
 };
 
-OsmesaBackend::~OsmesaBackend() {
+GlBackend::~GlBackend() {
   if (context_ == nullptr) return;
   if (make_current()) {
     programs_.clear();
@@ -407,7 +361,7 @@ OsmesaBackend::~OsmesaBackend() {
     targets_.clear();
     samplers_.clear();
     empty_vertex_array_.reset();
-    gl_.Finish();
+    if (gl_.Finish != nullptr) gl_.Finish();  // null when loading the entry points failed
   } else {
     // Another context (or none) is current, so a glDelete* would hit the wrong objects. The
     // names are dropped instead; destroying the context frees them.
@@ -419,16 +373,10 @@ OsmesaBackend::~OsmesaBackend() {
     gl_.DeleteShader = [](GLuint) {};
     gl_.DeleteProgram = [](GLuint) {};
   }
-  osmesa_.DestroyContext(context_);
-  context_ = nullptr;
+  context_.reset();
 }
 
-bool OsmesaBackend::make_current() {
-  if (osmesa_.GetCurrentContext() == context_) return true;
-  return osmesa_.MakeCurrent(context_, dummy_buffer_.data(), GL_UNSIGNED_BYTE, 1, 1) == GL_TRUE;
-}
-
-Result<void> OsmesaBackend::check_errors(const std::string& what) {
+Result<void> GlBackend::check_errors(const std::string& what) {
   std::vector<std::string> errors;
   for (int i = 0; i < 32; ++i) {
     const GLenum error = gl_.GetError();
@@ -444,10 +392,10 @@ Result<void> OsmesaBackend::check_errors(const std::string& what) {
 }
 
 template <class T, class F>
-Result<T> OsmesaBackend::guarded(const std::string& what, F&& body) {
+Result<T> GlBackend::guarded(const std::string& what, F&& body) {
   try {
     if (!make_current())
-      return fail(fmt::format("{}: OSMesaMakeCurrent failed for this backend's context", what));
+      return fail(fmt::format("{}: {} could not make this backend's context current", what, context_->route()));
     Result<T> result = body();
     Result<void> checked = check_errors(what);
     if (!result) return result;
@@ -460,79 +408,23 @@ Result<T> OsmesaBackend::guarded(const std::string& what, F&& body) {
   }
 }
 
-Result<void> OsmesaBackend::init(const OsmesaOptions& options) {
-  // Mesa's on-disk shader cache skips compiling shaders it has seen, and with the compile go its
-  // warnings: results would depend on earlier runs. A user's own setting is kept.
-  setenv("MESA_SHADER_CACHE_DISABLE", "true", 0);
-
-  std::string library = options.library;
-  if (const char* override_library = std::getenv("XSHADE_OSMESA_LIBRARY");
-      override_library != nullptr && *override_library != '\0')
-    library = override_library;
-
-  // RTLD_NODELETE: Mesa and LLVM stay loaded after the last dlclose; unloading and reloading
-  // them for every backend gains nothing and risks their global state.
-  dlerror();
-  void* handle = dlopen(library.c_str(), RTLD_NOW | RTLD_LOCAL | RTLD_NODELETE);
-  if (handle == nullptr) {
-    const char* reason = dlerror();
-    return fail(fmt::format("cannot open OSMesa library '{}' ({}); install the Debian package {}",
-                            library, reason ? reason : "unknown reason", kDebianPackage));
-  }
-  library_ = Library(handle);
-
-  const auto load = [&](auto& pointer, const char* name) -> bool {
-    pointer = reinterpret_cast<std::remove_reference_t<decltype(pointer)>>(library_.symbol(name));
-    return pointer != nullptr;
-  };
-  std::vector<std::string> missing;
-  if (!load(osmesa_.CreateContextAttribs, "OSMesaCreateContextAttribs"))
-    missing.emplace_back("OSMesaCreateContextAttribs");
-  if (!load(osmesa_.MakeCurrent, "OSMesaMakeCurrent")) missing.emplace_back("OSMesaMakeCurrent");
-  if (!load(osmesa_.DestroyContext, "OSMesaDestroyContext"))
-    missing.emplace_back("OSMesaDestroyContext");
-  if (!load(osmesa_.GetProcAddress, "OSMesaGetProcAddress"))
-    missing.emplace_back("OSMesaGetProcAddress");
-  if (!load(osmesa_.GetCurrentContext, "OSMesaGetCurrentContext"))
-    missing.emplace_back("OSMesaGetCurrentContext");
-  if (!missing.empty())
-    return fail(fmt::format("'{}' lacks {}; install the Debian package {}", library,
-                            fmt::join(missing, ", "), kDebianPackage));
-
-  const std::array<int, 15> attributes = {OSMESA_FORMAT,
-                                          OSMESA_RGBA,
-                                          OSMESA_DEPTH_BITS,
-                                          0,
-                                          OSMESA_STENCIL_BITS,
-                                          0,
-                                          OSMESA_ACCUM_BITS,
-                                          0,
-                                          OSMESA_PROFILE,
-                                          OSMESA_CORE_PROFILE,
-                                          OSMESA_CONTEXT_MAJOR_VERSION,
-                                          4,
-                                          OSMESA_CONTEXT_MINOR_VERSION,
-                                          5,
-                                          0};
-  context_ = osmesa_.CreateContextAttribs(attributes.data(), nullptr);
-  if (context_ == nullptr)
-    return fail(fmt::format(
-        "OSMesaCreateContextAttribs in '{}' cannot make an OpenGL 4.5 core context (Mesa's "
-        "llvmpipe is needed; install the Debian package {})",
-        library, kDebianPackage));
+Result<void> GlBackend::init(std::unique_ptr<GlContext> context) {
+  context_ = std::move(context);
   if (!make_current())
-    return fail(fmt::format("OSMesaMakeCurrent in '{}' failed for a new 4.5 core context", library));
+    return fail(fmt::format("{} could not make a new 4.5 core context current", context_->route()));
 
+  std::vector<std::string> missing;
   {
     std::lock_guard lock(proc_address_mutex);
-    current_get_proc_address = osmesa_.GetProcAddress;
-    missing = gl::load_functions(gl_, &osmesa_proc_address);
+    loading_context = context_.get();
+    missing = gl::load_functions(gl_, &context_proc_address);
+    loading_context = nullptr;
   }
   if (!missing.empty())
-    return fail(fmt::format("OSMesa in '{}' lacks OpenGL functions: {}", library,
-                            fmt::join(missing, ", ")));
+    return fail(fmt::format("the {} context lacks OpenGL functions: {}; install the Debian package {}",
+                            context_->route(), fmt::join(missing, ", "), context_->packages()));
 
-  info_.api = "OpenGL 4.5 core (OSMesa)";
+  info_.api = fmt::format("OpenGL 4.5 core ({})", context_->route());
   info_.renderer = get_string(GL_RENDERER);
   info_.api_version = get_string(GL_VERSION);
   if (size_t mesa = info_.api_version.find("Mesa "); mesa != std::string::npos) {
@@ -546,7 +438,7 @@ Result<void> OsmesaBackend::init(const OsmesaOptions& options) {
   if (major < 4 || (major == 4 && minor < 5))
     return fail(fmt::format("'{}' gives OpenGL {}.{} ({}), but 4.5 core is required; install a "
                             "newer Debian package {}",
-                            info_.renderer, major, minor, info_.api_version, kDebianPackage));
+                            info_.renderer, major, minor, info_.api_version, context_->packages()));
 
   gl_.Enable(GL_DEBUG_OUTPUT);
   gl_.Enable(GL_DEBUG_OUTPUT_SYNCHRONOUS);
@@ -575,10 +467,10 @@ Result<void> OsmesaBackend::init(const OsmesaOptions& options) {
   gl_.CreateVertexArrays(1, &vertex_array);
   empty_vertex_array_ = GlVertexArray(&gl_, vertex_array);
 
-  return check_errors("creating the OpenGL OSMesa backend");
+  return check_errors(fmt::format("creating the OpenGL {} backend", context_->route()));
 }
 
-GLuint OsmesaBackend::sampler(const SamplerDesc& desc, bool mipmapped) {
+GLuint GlBackend::sampler(const SamplerDesc& desc, bool mipmapped) {
   const auto key = std::make_tuple(desc.filter, desc.address, mipmapped);
   auto found = samplers_.find(key);
   if (found != samplers_.end()) return found->second.get();
@@ -599,7 +491,7 @@ GLuint OsmesaBackend::sampler(const SamplerDesc& desc, bool mipmapped) {
   return samplers_.emplace(key, std::move(sampler)).first->second.get();
 }
 
-Result<TargetHandle> OsmesaBackend::create_target(const TargetDesc& desc) {
+Result<TargetHandle> GlBackend::create_target(const TargetDesc& desc) {
   return guarded<TargetHandle>("create_target", [&]() -> Result<TargetHandle> {
     if (desc.width == 0 || desc.height == 0)
       return fail(fmt::format("create_target: size {}x{} is empty", desc.width, desc.height));
@@ -651,7 +543,7 @@ Result<TargetHandle> OsmesaBackend::create_target(const TargetDesc& desc) {
   });
 }
 
-Result<MeshHandle> OsmesaBackend::upload_mesh(const MeshData& data) {
+Result<MeshHandle> GlBackend::upload_mesh(const MeshData& data) {
   return guarded<MeshHandle>("upload_mesh", [&]() -> Result<MeshHandle> {
     if (auto valid = validate_mesh(data); !valid) return fail(valid.error());
     auto mesh = std::make_unique<Mesh>();
@@ -689,7 +581,7 @@ Result<MeshHandle> OsmesaBackend::upload_mesh(const MeshData& data) {
   });
 }
 
-Result<TextureHandle> OsmesaBackend::upload_texture(const TextureData& data) {
+Result<TextureHandle> GlBackend::upload_texture(const TextureData& data) {
   return guarded<TextureHandle>("upload_texture", [&]() -> Result<TextureHandle> {
     if (data.width == 0 || data.height == 0 || data.levels.empty())
       return fail(fmt::format("upload_texture: the texture is empty ({}x{}, {} levels)", data.width,
@@ -740,7 +632,7 @@ Result<TextureHandle> OsmesaBackend::upload_texture(const TextureData& data) {
   });
 }
 
-Result<GlShader> OsmesaBackend::compile(const ShaderStageSource& source, GLenum stage,
+Result<GlShader> GlBackend::compile(const ShaderStageSource& source, GLenum stage,
                                         const char* stage_name, const std::string& what) {
   const std::string shader = fmt::format("{}: the {} shader '{}'", what, stage_name, source.name);
   if (source.glsl.empty()) return fail(shader + " has no GLSL");
@@ -782,7 +674,7 @@ Result<GlShader> OsmesaBackend::compile(const ShaderStageSource& source, GLenum 
 }
 
 // The linked program's uniforms, blocks and inputs against the layout and GL's limits.
-Result<void> OsmesaBackend::check_interface(const Program& program, const std::string& what) {
+Result<void> GlBackend::check_interface(const Program& program, const std::string& what) {
   const GLuint id = program.program.get();
   const ProgramLayout& layout = program.layout;
   const auto resource_name = [&](GLenum interface, GLuint index) {
@@ -861,7 +753,7 @@ Result<void> OsmesaBackend::check_interface(const Program& program, const std::s
   return {};
 }
 
-Result<ProgramHandle> OsmesaBackend::create_program(const ProgramDesc& desc) {
+Result<ProgramHandle> GlBackend::create_program(const ProgramDesc& desc) {
   const std::string what = fmt::format("create_program '{}'", desc.name);
   // The compiler's messages wait until the outcome is known: a failure carries them in its
   // diagnostics, a success hands them on as driver messages naming the program.
@@ -965,7 +857,7 @@ Result<ProgramHandle> OsmesaBackend::create_program(const ProgramDesc& desc) {
   return result;
 }
 
-Result<void> OsmesaBackend::render(const RenderPass& pass) {
+Result<void> GlBackend::render(const RenderPass& pass) {
   const std::string what = fmt::format("render into target {}", pass.target.id);
   return guarded<void>(what, [&]() -> Result<void> {
     Target* target = find_target(pass.target.id);
@@ -1098,7 +990,7 @@ Result<void> OsmesaBackend::render(const RenderPass& pass) {
   });
 }
 
-Result<FloatImage> OsmesaBackend::read_color(TargetHandle handle) {
+Result<FloatImage> GlBackend::read_color(TargetHandle handle) {
   const std::string what = fmt::format("read_color of target {}", handle.id);
   return guarded<FloatImage>(what, [&]() -> Result<FloatImage> {
     Target* target = find_target(handle.id);
@@ -1114,16 +1006,24 @@ Result<FloatImage> OsmesaBackend::read_color(TargetHandle handle) {
 
 }  // namespace
 
-Result<std::unique_ptr<Backend>> create_osmesa_backend(const OsmesaOptions& options) {
+Result<std::unique_ptr<Backend>> create_gl_backend(std::unique_ptr<GlContext> context) {
+  if (context == nullptr) return fail("creating the OpenGL backend: no context");
+  const std::string route(context->route());
   try {
-    auto backend = std::make_unique<OsmesaBackend>();
-    if (auto ok = backend->init(options); !ok) return fail(ok.error());
+    auto backend = std::make_unique<GlBackend>();
+    if (auto ok = backend->init(std::move(context)); !ok) return fail(ok.error());
     return std::unique_ptr<Backend>(std::move(backend));
   } catch (const std::exception& e) {
-    return fail(fmt::format("creating the OpenGL OSMesa backend: {}", e.what()));
+    return fail(fmt::format("creating the OpenGL {} backend: {}", route, e.what()));
   } catch (...) {
-    return fail("creating the OpenGL OSMesa backend: unknown exception");
+    return fail(fmt::format("creating the OpenGL {} backend: unknown exception", route));
   }
+}
+
+Result<std::unique_ptr<Backend>> create_gl_backend(const GlContextOptions& options) {
+  auto context = create_gl_context(options);
+  if (!context) return fail(context.error());
+  return create_gl_backend(std::move(*context));
 }
 
 }  // namespace xshade::harness

@@ -1,0 +1,91 @@
+# xshade_add_scene_tests: a project's scenes as CTest tests, one per scene and lane, plus one per
+# scene that holds its lanes against each other.
+#
+#   xshade_add_scene_tests(SCENES dir GOLDEN dir
+#                          [SHADERS dir...]        # searched before xshade's shader library
+#                          [LANES gl vk vk-hlsl]   # default: all three
+#                          [PREFIX xshade]         # tests are PREFIX.SCENE.LANE and PREFIX.SCENE.all_lanes
+#                          [LABELS label...]       # CTest labels (default: xshade)
+#                          [REPORT dir]            # default: ${CMAKE_CURRENT_BINARY_DIR}/xshade-report
+#                          [CACHE dir])            # compiled shaders; default: ${CMAKE_BINARY_DIR}/xshade-cache
+#
+# Relative folders are relative to the calling CMakeLists.txt. Each test runs `xshade run SCENE`
+# with exactly these folders (no project file is read), writes its own report folder, and passes
+# only when xshade does: the scene matches its golden, renders finite and deterministic, and (for
+# all_lanes) its lanes agree. A lane a scene does not list is reported as skipped. The scene
+# files are found when CMake configures; adding one re-runs the configuration on the next build.
+function(xshade_add_scene_tests)
+  cmake_parse_arguments(PARSE_ARGV 0 ARG "" "SCENES;GOLDEN;PREFIX;REPORT;CACHE" "SHADERS;LANES;LABELS")
+  if(ARG_UNPARSED_ARGUMENTS)
+    message(FATAL_ERROR "xshade_add_scene_tests: unknown arguments: ${ARG_UNPARSED_ARGUMENTS}")
+  endif()
+  foreach(required SCENES GOLDEN)
+    if(NOT ARG_${required})
+      message(FATAL_ERROR "xshade_add_scene_tests: ${required} <dir> is required")
+    endif()
+  endforeach()
+  if(NOT TARGET xshade::xshade)
+    message(FATAL_ERROR "xshade_add_scene_tests: no xshade::xshade target; call find_package(xshade) first")
+  endif()
+  if(NOT ARG_LANES)
+    set(ARG_LANES gl vk vk-hlsl)
+  endif()
+  foreach(lane IN LISTS ARG_LANES)
+    if(NOT lane MATCHES "^(gl|vk|vk-hlsl)$")
+      message(FATAL_ERROR "xshade_add_scene_tests: unknown lane '${lane}' (lanes: gl, vk, vk-hlsl)")
+    endif()
+  endforeach()
+  if(NOT ARG_PREFIX)
+    set(ARG_PREFIX xshade)
+  endif()
+  if(NOT ARG_LABELS)
+    set(ARG_LABELS xshade)
+  endif()
+  if(NOT ARG_REPORT)
+    set(ARG_REPORT ${CMAKE_CURRENT_BINARY_DIR}/xshade-report)
+  endif()
+  if(NOT ARG_CACHE)
+    set(ARG_CACHE ${CMAKE_BINARY_DIR}/xshade-cache)
+  endif()
+
+  get_filename_component(scenes "${ARG_SCENES}" ABSOLUTE BASE_DIR "${CMAKE_CURRENT_SOURCE_DIR}")
+  get_filename_component(golden "${ARG_GOLDEN}" ABSOLUTE BASE_DIR "${CMAKE_CURRENT_SOURCE_DIR}")
+  set(folders --no-project --scenes "${scenes}" --golden "${golden}")
+  foreach(shaders IN LISTS ARG_SHADERS)
+    get_filename_component(shaders "${shaders}" ABSOLUTE BASE_DIR "${CMAKE_CURRENT_SOURCE_DIR}")
+    if(NOT IS_DIRECTORY "${shaders}")
+      message(FATAL_ERROR "xshade_add_scene_tests: SHADERS folder ${shaders} does not exist")
+    endif()
+    list(APPEND folders --shaders "${shaders}")
+  endforeach()
+
+  file(GLOB scene_files CONFIGURE_DEPENDS "${scenes}/*.toml")
+  if(NOT scene_files)
+    message(FATAL_ERROR "xshade_add_scene_tests: no scenes (*.toml) in ${scenes}")
+  endif()
+  list(SORT scene_files)
+  set(lane_arguments)
+  foreach(lane IN LISTS ARG_LANES)
+    list(APPEND lane_arguments --lane ${lane})
+  endforeach()
+  # Matches xshade's message for a lane the scene does not list (and nothing else it prints).
+  set(skipped "skipped: the scene runs on .*, none of the lanes asked for")
+  foreach(scene_file IN LISTS scene_files)
+    get_filename_component(scene "${scene_file}" NAME_WE)
+    foreach(lane IN LISTS ARG_LANES)
+      add_test(NAME ${ARG_PREFIX}.${scene}.${lane}
+               COMMAND xshade::xshade run ${scene} --lane ${lane} ${folders}
+                       --report "${ARG_REPORT}/${scene}.${lane}" --cache "${ARG_CACHE}")
+      set_tests_properties(${ARG_PREFIX}.${scene}.${lane} PROPERTIES LABELS "${ARG_LABELS}"
+                           SKIP_REGULAR_EXPRESSION "${skipped}")
+    endforeach()
+    list(LENGTH ARG_LANES lane_count)
+    if(lane_count GREATER 1)
+      add_test(NAME ${ARG_PREFIX}.${scene}.all_lanes
+               COMMAND xshade::xshade run ${scene} ${lane_arguments} ${folders}
+                       --report "${ARG_REPORT}/${scene}" --cache "${ARG_CACHE}")
+      set_tests_properties(${ARG_PREFIX}.${scene}.all_lanes PROPERTIES LABELS "${ARG_LABELS}"
+                           SKIP_REGULAR_EXPRESSION "${skipped}")
+    endif()
+  endforeach()
+endfunction()
