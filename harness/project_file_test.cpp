@@ -12,7 +12,9 @@ namespace fs = std::filesystem;
 class ProjectFileTest : public ::testing::Test {
  protected:
   void SetUp() override {
-    root_ = fs::temp_directory_path() / "xshade_project_file_test";
+    // A folder per test: CTest runs the cases of this fixture in parallel.
+    root_ = fs::temp_directory_path() /
+            ("xshade_project_file_test_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
     fs::remove_all(root_);
     for (const char* folder : {"repo/.git", "repo/xshade/scenes", "repo/shaders", "repo/more_shaders", "repo/src/deep",
                                "outside"})

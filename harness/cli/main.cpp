@@ -46,7 +46,8 @@ void add_folder_options(CLI::App& command, xshade::cli::FolderOptions& folders) 
 int main(int argc, char** argv) {
   using namespace xshade::cli;
   CLI::App app{"xshade: author a shader once, render it on OpenGL and Vulkan, diff the images.\n"
-               "Exit codes: 0 pass, 1 a check failed, 2 bad input or usage, 3 backend or internal error."};
+               "Exit codes: 0 pass, 1 a check failed, 2 bad input or usage, 3 backend or internal error.",
+               "xshade"};
   app.require_subcommand(1);
 
   LaneSelection info_selection;
@@ -84,10 +85,10 @@ int main(int argc, char** argv) {
   CLI::App* bless = app.add_subcommand(
       "bless", "Render a scene and accept it as its golden (the common one from lanes that agree, or one lane's)");
   bless->add_option("scene", bless_options.scene, "Scene name (in --scenes) or .toml file")->required()->type_name("SCENE");
-  add_gl_platform_option(*bless, bless_options.gl_platform);
   bless->add_option("--lane", bless_options.lane, "Bless this lane's own golden (needs a reason it differs)")
       ->check(CLI::IsMember({"gl", "vk", "vk-hlsl"}))
       ->type_name("LANE");
+  add_gl_platform_option(*bless, bless_options.gl_platform);
   bless->add_option("--reason", bless_options.reason, "Why this image is right (recorded in golden/MANIFEST.toml)")
       ->required()
       ->type_name("TEXT");

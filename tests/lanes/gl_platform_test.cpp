@@ -1,5 +1,7 @@
 // Choosing the gl lane's route from the command line, end to end: the real `xshade` binary with
 // --gl-platform and with the environment changed.
+#include <unistd.h>
+
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -60,7 +62,9 @@ TEST(GlPlatform, AnUnknownRouteIsAUsageError) {
 // Every verb that makes backends hands the route to them: with EGL pointing nowhere, each
 // verb's gl backend fails through the EGL route, naming the library it could not open.
 TEST(GlPlatform, EveryVerbThatMakesBackendsHandsTheRouteToThem) {
-  const auto scratch = std::filesystem::temp_directory_path() / "xshade_gl_platform_verbs";
+  // Per process: another build's tests may run at the same time.
+  const auto scratch =
+      std::filesystem::temp_directory_path() / ("xshade_gl_platform_verbs_" + std::to_string(getpid()));
   std::filesystem::remove_all(scratch);
   std::filesystem::create_directories(scratch / "golden");
   const std::string out = "'" + scratch.string() + "'";
