@@ -1,5 +1,8 @@
-// xshade info: what each lane runs on. Every report carries the same strings.
+// xshade info: what each lane runs on (every report carries the same strings), and which folders
+// a run here would use.
 #include <fmt/core.h>
+
+#include <filesystem>
 
 #include "harness/cli/commands.h"
 #include "harness/cli/lane_selection.h"
@@ -28,6 +31,20 @@ int run_info(const LaneSelection& selection) {
     fmt::print("  llvm:        {}\n", info.llvm_version.empty() ? "-" : info.llvm_version);
   }
   fmt::print("compiler: {}\n", spirv::compiler_version());
+
+  const OwnFolders& own = own_folders();
+  fmt::print("xshade {}: shader library {} ({})\n", XSHADE_VERSION, own.shaders.string(),
+             own.installed ? "installed" : "the source tree of this build");
+  auto folders = resolve_folders({}, std::filesystem::current_path(), false);
+  if (!folders) {
+    fmt::print(stderr, "xshade info: {}\n", folders.error().to_string());
+    return kBadInput;
+  }
+  fmt::print("project file: {}\n", folders->project_file.empty() ? "none (xshade's own scenes and goldens)"
+                                                                    : folders->project_file.string());
+  fmt::print("  scenes:  {}\n", folders->scenes.string());
+  fmt::print("  golden:  {}\n", folders->golden.empty() ? "not set" : folders->golden.string());
+  fmt::print("  shaders: {}\n", folders->shaders.describe());
   return exit_code;
 }
 

@@ -51,7 +51,8 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
 
   LaneSelection info_selection;
-  CLI::App* info = app.add_subcommand("info", "Print each lane's driver: renderer, API, Mesa and LLVM versions");
+  CLI::App* info = app.add_subcommand("info", "Print each lane's driver (route, renderer, API, Mesa and LLVM versions) and the folders a run here "
+                   "would use (the project file's, xshade's own)");
   add_lane_options(*info, info_selection);
 
   RunOptions run_options;
