@@ -1,6 +1,7 @@
 #include "harness/backend.h"
 
 #include <algorithm>
+#include <cctype>
 #include <type_traits>
 
 namespace xshade::harness {
@@ -63,6 +64,18 @@ Result<MatchedBindings> match_bindings(const ProgramLayout& layout, const DrawIt
   if (auto ok = match_by_name(layout.textures, draw.textures, matched.textures, "texture", where); !ok)
     return fail(ok.error());
   return matched;
+}
+
+std::string llvm_version_of(const std::string& renderer) {
+  const size_t at = renderer.find("LLVM ");
+  if (at == std::string::npos) return {};
+  size_t end = at + 5;
+  while (end < renderer.size() &&
+         (std::isdigit(static_cast<unsigned char>(renderer[end])) || renderer[end] == '.'))
+    ++end;
+  std::string version = renderer.substr(at + 5, end - at - 5);
+  while (!version.empty() && version.back() == '.') version.pop_back();
+  return version;
 }
 
 }  // namespace xshade::harness

@@ -194,6 +194,9 @@ struct DriverInfo {
   std::string driver_version;  // e.g. "Mesa 22.3.6"
   std::string llvm_version;    // e.g. "15.0.6", empty if the renderer does not say
 };
+// "llvmpipe (LLVM 15.0.6, 256 bits)" -> "15.0.6": DriverInfo::llvm_version from a renderer string
+// (both Mesa drivers name their LLVM this way); empty when there is no "LLVM x.y.z".
+std::string llvm_version_of(const std::string& renderer);
 
 class Backend {
  public:

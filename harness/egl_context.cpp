@@ -7,7 +7,6 @@
 #include <cstdlib>
 #include <cstring>
 #include <string>
-#include <type_traits>
 #include <vector>
 
 #include <fmt/format.h>
@@ -110,20 +109,16 @@ class EglContext final : public GlContext {
                               opened.error().message, kLoaderPackage));
     library_ = std::move(*opened);
 
-    const auto load = [&](auto& pointer, const char* name) -> bool {
-      pointer = reinterpret_cast<std::remove_reference_t<decltype(pointer)>>(library_.symbol(name));
-      return pointer != nullptr;
-    };
     std::vector<std::string> missing;
-    if (!load(egl_.GetProcAddress, "eglGetProcAddress")) missing.emplace_back("eglGetProcAddress");
-    if (!load(egl_.GetError, "eglGetError")) missing.emplace_back("eglGetError");
-    if (!load(egl_.QueryString, "eglQueryString")) missing.emplace_back("eglQueryString");
-    if (!load(egl_.Initialize, "eglInitialize")) missing.emplace_back("eglInitialize");
-    if (!load(egl_.BindAPI, "eglBindAPI")) missing.emplace_back("eglBindAPI");
-    if (!load(egl_.CreateContext, "eglCreateContext")) missing.emplace_back("eglCreateContext");
-    if (!load(egl_.DestroyContext, "eglDestroyContext")) missing.emplace_back("eglDestroyContext");
-    if (!load(egl_.MakeCurrent, "eglMakeCurrent")) missing.emplace_back("eglMakeCurrent");
-    if (!load(egl_.GetCurrentContext, "eglGetCurrentContext")) missing.emplace_back("eglGetCurrentContext");
+    library_.load(egl_.GetProcAddress, "eglGetProcAddress", missing);
+    library_.load(egl_.GetError, "eglGetError", missing);
+    library_.load(egl_.QueryString, "eglQueryString", missing);
+    library_.load(egl_.Initialize, "eglInitialize", missing);
+    library_.load(egl_.BindAPI, "eglBindAPI", missing);
+    library_.load(egl_.CreateContext, "eglCreateContext", missing);
+    library_.load(egl_.DestroyContext, "eglDestroyContext", missing);
+    library_.load(egl_.MakeCurrent, "eglMakeCurrent", missing);
+    library_.load(egl_.GetCurrentContext, "eglGetCurrentContext", missing);
     if (!missing.empty())
       return fail(fmt::format("'{}' lacks {}; install the Debian package {}", library, fmt::join(missing, ", "),
                               kLoaderPackage));

@@ -240,19 +240,6 @@ std::vector<Diagnostic> parse_log(const std::string& log, const std::string& fil
   return diagnostics;
 }
 
-// "llvmpipe (LLVM 15.0.6, 256 bits)" -> "15.0.6"; empty when there is no "LLVM x.y.z".
-std::string llvm_version_of(const std::string& renderer) {
-  const size_t at = renderer.find("LLVM ");
-  if (at == std::string::npos) return {};
-  size_t end = at + 5;
-  while (end < renderer.size() &&
-         (std::isdigit(static_cast<unsigned char>(renderer[end])) || renderer[end] == '.'))
-    ++end;
-  std::string version = renderer.substr(at + 5, end - at - 5);
-  while (!version.empty() && version.back() == '.') version.pop_back();
-  return version;
-}
-
 uint32_t round_up_16(uint32_t size) { return (size + 15u) & ~15u; }
 
 bool is_sampler_type(GLint type) {

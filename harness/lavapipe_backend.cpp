@@ -225,7 +225,7 @@ Result<void> LavapipeBackend::init(const LavapipeOptions& options) {
     info_.driver_version = driver.driverInfo.data();
     if (size_t paren = info_.driver_version.find(" ("); paren != std::string::npos)
       info_.driver_version.resize(paren);  // "Mesa 22.3.6 (LLVM 15.0.6)" -> "Mesa 22.3.6"
-    info_.llvm_version = vk_support::llvm_version_of(info_.renderer);
+    info_.llvm_version = llvm_version_of(info_.renderer);
     uniform_alignment_ = std::max<vk::DeviceSize>(props.limits.minUniformBufferOffsetAlignment, 16);
     max_image_size_ = props.limits.maxImageDimension2D;
     max_uniform_range_ = props.limits.maxUniformBufferRange;

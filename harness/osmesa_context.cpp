@@ -2,7 +2,6 @@
 // the context renders into a 1x1 dummy buffer that nothing reads (the backend draws into
 // framebuffer objects). Mesa removed OSMesa in 25.1; egl_context.cpp is the other route.
 #include <array>
-#include <type_traits>
 #include <vector>
 
 #include <fmt/format.h>
@@ -40,16 +39,11 @@ class OsmesaContext final : public GlContext {
                               opened.error().message, kDebianPackage));
     library_ = std::move(*opened);
 
-    const auto load = [&](auto& pointer, const char* name) -> bool {
-      pointer = reinterpret_cast<std::remove_reference_t<decltype(pointer)>>(library_.symbol(name));
-      return pointer != nullptr;
-    };
     std::vector<std::string> missing;
-    if (!load(osmesa_.CreateContextAttribs, "OSMesaCreateContextAttribs"))
-      missing.emplace_back("OSMesaCreateContextAttribs");
-    if (!load(osmesa_.MakeCurrent, "OSMesaMakeCurrent")) missing.emplace_back("OSMesaMakeCurrent");
-    if (!load(osmesa_.DestroyContext, "OSMesaDestroyContext")) missing.emplace_back("OSMesaDestroyContext");
-    if (!load(osmesa_.GetProcAddress, "OSMesaGetProcAddress")) missing.emplace_back("OSMesaGetProcAddress");
+    library_.load(osmesa_.CreateContextAttribs, "OSMesaCreateContextAttribs", missing);
+    library_.load(osmesa_.MakeCurrent, "OSMesaMakeCurrent", missing);
+    library_.load(osmesa_.DestroyContext, "OSMesaDestroyContext", missing);
+    library_.load(osmesa_.GetProcAddress, "OSMesaGetProcAddress", missing);
     if (!missing.empty())
       return fail(fmt::format("'{}' lacks {}; install the Debian package {}", library, fmt::join(missing, ", "),
                               kDebianPackage));

@@ -60,7 +60,7 @@ CheckedScene SceneChecker::check(const fs::path& scene_file, const std::vector<L
   }
   checked.scene = *scene;
   result.description = scene->description;
-  auto plan = plan_scene(*scene, options_.shaders);
+  auto plan = plan_scene(*scene, compiler_.shaders());
   if (!plan) {
     result.verdict = Verdict::Error;
     result.message = plan.error().to_string();

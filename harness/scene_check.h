@@ -20,7 +20,6 @@ namespace xshade::harness {
 
 struct SceneCheckOptions {
   std::filesystem::path report_dir;
-  ShaderSearchPath shaders;
   const GoldenStore* goldens = nullptr;  // null: no golden layer (e.g. while blessing)
   BackendOptions backend;                // how each lane's backend is made
   bool pass_images = false;              // also write each pass's output

@@ -4,6 +4,7 @@
 
 #include <string>
 #include <utility>
+#include <vector>
 
 #include "hlsl_like/diagnostic.h"
 
@@ -24,6 +25,13 @@ class SharedLibrary {
 
   // The address of an exported symbol, or null.
   void* symbol(const char* name) const;
+  // Points `function` at the symbol `name`, or adds `name` to `missing` when there is none.
+  template <class Function>
+  void load(Function& function, const char* name, std::vector<std::string>& missing) const {
+    // A function pointer travels through void* here, as with dlsym; POSIX guarantees this works.
+    function = reinterpret_cast<Function>(symbol(name));
+    if (function == nullptr) missing.emplace_back(name);
+  }
 
  private:
   explicit SharedLibrary(void* handle) : handle_(handle) {}

@@ -1,6 +1,8 @@
 #include "harness/toml_reader.h"
 
+#include <algorithm>
 #include <cctype>
+#include <utility>
 
 #include <fmt/format.h>
 

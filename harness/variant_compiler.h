@@ -22,6 +22,8 @@ class VariantCompiler {
   // Every variant of a plan, in the plan's order, each with `half_emulation` as given.
   Result<std::vector<CompiledVariant>> compile_plan(const Plan& plan, Lane lane, bool half_emulation);
   bool in_cache(const VariantRequest& request, Lane lane) const;
+  // The folders sources and includes come from; a plan for this compiler is made against them.
+  const ShaderSearchPath& shaders() const { return shaders_; }
 
   // What happened so far: variants compiled, and found in the cache.
   size_t compiled() const { return compiled_; }

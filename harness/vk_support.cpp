@@ -1,6 +1,5 @@
 #include "harness/vk_support.h"
 
-#include <cctype>
 #include <cstring>
 #include <map>
 #include <stdexcept>
@@ -211,17 +210,6 @@ vk::DebugUtilsMessengerCreateInfoEXT messenger_info(MessageLog* log) {
 std::string version_string(uint32_t version) {
   return fmt::format("{}.{}.{}", VK_API_VERSION_MAJOR(version), VK_API_VERSION_MINOR(version),
                      VK_API_VERSION_PATCH(version));
-}
-
-std::string llvm_version_of(const std::string& renderer) {
-  const size_t at = renderer.find("LLVM ");
-  if (at == std::string::npos) return {};
-  const size_t begin = at + 5;
-  size_t end = begin;
-  while (end < renderer.size() &&
-         (std::isdigit(static_cast<unsigned char>(renderer[end])) || renderer[end] == '.'))
-    ++end;
-  return renderer.substr(begin, end - begin);
 }
 
 vk::Format vk_format(TextureFormat format) {

@@ -116,8 +116,6 @@ vk::DebugUtilsMessengerCreateInfoEXT messenger_info(MessageLog* log);
 // ---- Conversions -------------------------------------------------------------------------------
 
 std::string version_string(uint32_t version);  // "1.3.230"
-// "llvmpipe (LLVM 15.0.6, 256 bits)" -> "15.0.6"; empty when there is no "LLVM x.y.z".
-std::string llvm_version_of(const std::string& renderer);
 vk::Format vk_format(TextureFormat format);
 
 }  // namespace xshade::harness::vk_support

@@ -62,7 +62,7 @@ int run_bless(const BlessOptions& options) {
 
   harness::ShaderCache cache(shader_cache_dir(options.cache_dir), harness::compiler_identity());
   harness::VariantCompiler compiler(folders->shaders, &cache);
-  harness::SceneChecker checker(compiler, {options.report_dir, folders->shaders, nullptr, backend_options(selection), false, false},
+  harness::SceneChecker checker(compiler, {options.report_dir, nullptr, backend_options(selection), false, false},
                                 [](const std::string& line) { fmt::print("{}\n", line); });
   harness::CheckedScene checked = checker.check(files->front(), *lanes);
   const harness::SceneResult& result = checked.result;

@@ -41,16 +41,14 @@ Result<SceneFolders> resolve_folders(const FolderOptions& given, const fs::path&
     }
   }
   const OwnFolders& own = own_folders();
-  SceneFolders folders{{}, {}, harness::ShaderSearchPath(std::vector<fs::path>{}), {}, false};
-  if (project) folders.project_file = project->path;
+  std::vector<fs::path> shaders = !given.shaders.empty() ? given.shaders
+                                  : project                ? project->shaders
+                                                           : std::vector<fs::path>{};
+  shaders.push_back(own.shaders);
+  SceneFolders folders{{}, {}, harness::ShaderSearchPath(std::move(shaders)), project ? project->path : fs::path(), false};
 
-  if (!given.scenes.empty())
-    folders.scenes = given.scenes;
-  else if (project && project->scenes)
-    folders.scenes = *project->scenes;
-  else
-    folders.scenes = own.scenes;
   const bool own_scenes = given.scenes.empty() && !(project && project->scenes);
+  folders.scenes = !given.scenes.empty() ? given.scenes : own_scenes ? own.scenes : *project->scenes;
 
   if (!given.golden.empty()) {
     folders.golden = given.golden;
@@ -64,12 +62,6 @@ Result<SceneFolders> resolve_folders(const FolderOptions& given, const fs::path&
                 " are not xshade's own, so their goldens cannot be either: give --golden DIR" +
                 (project ? " or golden = \"...\" in " + project->path.string() : std::string()));
   }
-
-  std::vector<fs::path> shaders = !given.shaders.empty() ? given.shaders
-                                  : project                ? project->shaders
-                                                           : std::vector<fs::path>{};
-  shaders.push_back(own.shaders);
-  folders.shaders = harness::ShaderSearchPath(std::move(shaders));
   return folders;
 }
 

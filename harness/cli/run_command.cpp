@@ -79,7 +79,7 @@ int run_run(const RunOptions& options) {
   size_t done = 0;
   harness::SceneChecker checker(
       compiler,
-      {options.report_dir, folders->shaders, &goldens, backend_options(options.selection), options.pass_images,
+      {options.report_dir, &goldens, backend_options(options.selection), options.pass_images,
        options.plan_only, options.precision == "half"},
       [&](const std::string& line) {
         fmt::print("[{}/{}] {}\n", done + 1, files->size(), line);

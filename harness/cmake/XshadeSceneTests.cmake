@@ -68,6 +68,7 @@ function(xshade_add_scene_tests)
   foreach(lane IN LISTS ARG_LANES)
     list(APPEND lane_arguments --lane ${lane})
   endforeach()
+  list(LENGTH ARG_LANES lane_count)
   # Matches xshade's message for a lane the scene does not list (and nothing else it prints).
   set(skipped "skipped: the scene runs on .*, none of the lanes asked for")
   foreach(scene_file IN LISTS scene_files)
@@ -79,7 +80,6 @@ function(xshade_add_scene_tests)
       set_tests_properties(${ARG_PREFIX}.${scene}.${lane} PROPERTIES LABELS "${ARG_LABELS}"
                            SKIP_REGULAR_EXPRESSION "${skipped}")
     endforeach()
-    list(LENGTH ARG_LANES lane_count)
     if(lane_count GREATER 1)
       add_test(NAME ${ARG_PREFIX}.${scene}.all_lanes
                COMMAND xshade::xshade run ${scene} ${lane_arguments} ${folders}
