@@ -73,11 +73,21 @@ std::string glsl_type(const Type& type, Flavour flavour, std::string* why) {
     case TypeKind::Struct: return type.struct_decl() ? type.struct_decl()->name : "?";
     case TypeKind::Array:
       return glsl_type(type.element(), flavour, why) + "[" + std::to_string(type.array_length()) + "]";
-    case TypeKind::Texture2D: return flavour == Flavour::Gl ? "sampler2D" : "texture2D";
+    case TypeKind::Texture:
+    case TypeKind::Sampler:
     case TypeKind::SamplerState:
-      if (flavour == Flavour::Gl && why) *why = "a SamplerState has no GLSL type on OpenGL";
-      return "sampler";
-    case TypeKind::Sampler2D: return "sampler2D";
+      // Their spelling depends on the declaration as well (StageEmitter::resource_type); this
+      // one serves to tell overloads apart.
+      if (flavour == Flavour::Gl && type.kind() == TypeKind::SamplerState && why)
+        *why = "a SamplerState has no GLSL type on OpenGL";
+      return type.name();
+    case TypeKind::Buffer:
+      if (why)
+        *why = in_quotes(type.name()) + " is not supported on this target: shaders here read textures and constant buffers";
+      return type.name();
+    case TypeKind::ConstantBuffer:
+      if (why) *why = in_quotes(type.name()) + " can only be a global variable";
+      return type.name();
     case TypeKind::Error:
       if (why) *why = "an expression without a type";
       return "?";
@@ -579,6 +589,7 @@ Code StageEmitter::expr(const Expr* e) {
       }
       if (flavour_ == Flavour::Gl && e->type.kind() == TypeKind::SamplerState)
         fail(e->loc, "SamplerState " + in_quotes(name->name) + " can only be passed to Sample methods and functions on OpenGL");
+      if (e->type.kind() == TypeKind::ConstantBuffer) return {constant_buffer_instance(name->name)};
       return {name->decl ? names_.variable(name->decl) : names_.of(name->name)};
     }
 
@@ -774,8 +785,9 @@ Code StageEmitter::expr(const Expr* e) {
       const auto* member = static_cast<const MemberExpr*>(e);
       const Expr* object = member->object.get();
       const Type& type = object->type;
-      if (type.kind() == TypeKind::Struct) {
-        const StructDecl* decl = type.struct_decl();
+      if (type.kind() == TypeKind::Struct || type.kind() == TypeKind::ConstantBuffer) {
+        // ConstantBuffer<S> cb: cb.field is a member of the block whose instance is cb.
+        const StructDecl* decl = type.kind() == TypeKind::Struct ? type.struct_decl() : type.element().struct_decl();
         const std::string field = decl && member->field_index >= 0 && size_t(member->field_index) < decl->fields.size()
                                       ? decl->fields[size_t(member->field_index)].name
                                       : member->member;
@@ -812,6 +824,7 @@ Code StageEmitter::expr(const Expr* e) {
 
     case ExprKind::Index: {
       const auto* index = static_cast<const IndexExpr*>(e);
+      if (index->object->type.is_texture()) return texture_index(*index);
       const Code object = expr(index->object.get());
       if (index->object->type.is_vector() && index->object->type.cols() == 1) return object;  // float1[0]
       return {operand(object, kPostfix) + "[" + expr(index->index.get()).text + "]", kPostfix};

@@ -36,7 +36,10 @@ void StageEmitter::function(const FunctionDecl& f) {
     first = false;
     if (param->direction == ParamDirection::Out) signature += "out ";
     if (param->direction == ParamDirection::InOut) signature += "inout ";
-    signature += declarator(param->type, names_.variable(param.get()), param->loc);
+    if (param->type.is_resource())
+      signature += resource_type(param->type, param.get(), param->loc) + " " + names_.variable(param.get());
+    else
+      signature += declarator(param->type, names_.variable(param.get()), param->loc);
   }
   out_.line(signature + ") {");
   body(f.body.get());

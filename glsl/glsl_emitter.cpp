@@ -13,6 +13,11 @@
 
 namespace xshade::glsl {
 
+std::string constant_buffer_instance(std::string_view variable_name) {
+  // Not the block's own name, which GLSL keeps apart; xs_ names are the emitter's.
+  return "xs_cb_" + block_name(variable_name);
+}
+
 std::string block_name(std::string_view constant_buffer_name) {
   if (constant_buffer_name == hlsl::kGlobalsBufferName) return "xs_Globals";
   if (needs_renaming(constant_buffer_name)) return renamed(constant_buffer_name);
@@ -395,6 +400,7 @@ std::string zero_value(StageEmitter& emitter, const Type& type, Loc loc) {
 std::string StageEmitter::run() {
   if (!entry_) return {};
   collect_used_declarations();
+  if (flavour_ == Flavour::Gl) collect_compared_textures();
 
   // Static globals first, so that functions see which of them are GLSL constants.
   Writer statics;
@@ -464,13 +470,21 @@ std::string StageEmitter::declarations() {
 
   const std::string set = flavour_ == Flavour::Vk ? "set = 0, " : "";
   for (const ConstantBuffer& buffer : reflection_.constant_buffers) {
+    // ConstantBuffer<S> cb is read as cb.field: a block with an instance name.
+    const bool view = buffer.decl && buffer.decl->kind == DeclKind::Var;
     w.line("layout(std140, " + set + "binding = " + std::to_string(buffer.binding) + ") uniform " +
            block_name(buffer.name) + " {");
     w.indent = 1;
     for (const ConstantBufferMember& member : buffer.members) {
       const std::string name = names_.of(member.name);
-      const auto decl = uniform_decls_.find(member.name);
+      const auto decl = view ? uniform_decls_.end() : uniform_decls_.find(member.name);
       const Loc loc = decl != uniform_decls_.end() ? decl->second->loc : buffer.decl ? buffer.decl->loc : Loc{};
+      if (member.split_into_scalars && view) {
+        fail(loc, "field " + in_quotes(member.name) + " of " + in_quotes(buffer.name) + " is at offset " +
+                      std::to_string(member.offset) + ", which std140 cannot give a " + in_quotes(member.type.name()) +
+                      "; reorder the struct's fields or pad them to 16-byte registers");
+        continue;
+      }
       if (member.split_into_scalars) {
         const std::string scalar = type_name(Type::scalar(member.type.scalar_type()), loc);
         for (uint32_t i = 0; i < member.type.cols(); ++i)
@@ -484,20 +498,19 @@ std::string StageEmitter::declarations() {
       w.line("layout(" + qualifiers + ") " + declarator(member.type, name, loc) + ";");
     }
     w.indent = 0;
-    w.line("};");
+    w.line(view ? "} " + constant_buffer_instance(buffer.name) + ";" : "};");
   }
 
   for (const TextureResource& texture : reflection_.textures) {
-    if (!texture.used) continue;
+    if (!texture.used || !texture.decl) continue;
     const std::string binding = "layout(" + set + "binding = " + std::to_string(texture.binding) + ") uniform ";
-    const bool separate = flavour_ == Flavour::Vk && texture.kind == TextureKind::Texture2D;
-    w.line(binding + (separate ? "texture2D " : "sampler2D ") + names_.of(texture.name) + ";");
+    w.line(binding + resource_type(texture.decl->type, texture.decl, texture.decl->loc) + " " + names_.of(texture.name) + ";");
   }
   if (flavour_ == Flavour::Vk) {
     for (const SamplerResource& sampler : reflection_.samplers)
-      if (sampler.used)
-        w.line("layout(set = 0, binding = " + std::to_string(sampler.binding) + ") uniform sampler " +
-             names_.of(sampler.name) + ";");
+      if (sampler.used && sampler.decl)
+        w.line("layout(set = 0, binding = " + std::to_string(sampler.binding) + ") uniform " +
+               resource_type(sampler.decl->type, sampler.decl, sampler.decl->loc) + " " + names_.of(sampler.name) + ";");
   }
   return w.text();
 }

@@ -53,5 +53,7 @@ Result<EmittedProgram> emit(const hlsl::Module& module, const EmitOptions& optio
 // The GLSL name of a constant buffer's block, by which the harness binds uniform blocks on
 // OpenGL: "$Globals" -> "xs_Globals"; other names unchanged unless GLSL reserves them.
 std::string block_name(std::string_view constant_buffer_name);
+// The GLSL instance name of a `ConstantBuffer<S> name` block, through which name.field is read.
+std::string constant_buffer_instance(std::string_view variable_name);
 
 }  // namespace xshade::glsl

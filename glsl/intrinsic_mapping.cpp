@@ -1,6 +1,7 @@
-// HLSL intrinsics and Texture2D methods in GLSL: one table (kMappings), a few constructs with
-// code of their own (mul, clip, sincos, GetDimensions), and the library of xs_* helper functions
-// for what GLSL has no built-in for with HLSL's exact meaning.
+// HLSL intrinsics in GLSL: one table (kMappings), a few constructs with code of their own (mul,
+// clip, sincos), the expansion of templates (which the texture functions of emit_textures.cpp
+// share), and the library of xs_* helper functions for what GLSL has no built-in for with HLSL's
+// exact meaning.
 #include <string_view>
 
 #include "glsl/stage_emitter.h"
@@ -22,8 +23,6 @@ enum class Shape : uint8_t { Any, Scalar, Vector };
 //            arguments follow ($1 = the SamplerState of Sample)
 //   $R       the GLSL type of the result
 //   $B0      the GLSL bool type with operand 0's shape
-//   $S       a method's sampler: the texture itself on gl (the sampler state belongs to the
-//            texture unit), sampler2D($0, $1) on vk
 //   xs_name( a helper function from the library below, defined for the operands' types
 //   @name    a construct with code of its own
 // An operand written twice is evaluated twice; when it is not a simple expression, the whole
@@ -127,19 +126,8 @@ constexpr Mapping kMappings[] = {
     m(I::Step, "step($0, $1)"),
     m(I::Tan, "tan($0)"),
     m(I::Tanh, "tanh($0)"),
-    m(I::Tex2D, "texture($0, $1)"),
-    m(I::Tex2Dbias, "texture($0, $1.xy, $1.w)"),
-    m(I::Tex2Dgrad, "textureGrad($0, $1, $2, $3)"),
-    m(I::Tex2Dlod, "textureLod($0, $1.xy, $1.w)"),
     matrix(I::Transpose, "transpose($0)"),
     m(I::Trunc, "trunc($0)"),
-    // Texture2D methods.
-    m(I::Sample, "texture($S, $2)"),
-    m(I::SampleBias, "texture($S, $2, $3)"),
-    m(I::SampleGrad, "textureGrad($S, $2, $3, $4)"),
-    m(I::SampleLevel, "textureLod($S, $2, $3)"),
-    m(I::Load, "texelFetch($0, $1.xy, $1.z)"),
-    m(I::GetDimensions, "@getdimensions"),
 };
 
 bool elem_matches(Elem elem, const Type& type) {
@@ -254,13 +242,13 @@ std::vector<Piece> split_template(const std::string& text) {
   return pieces;
 }
 
+}  // namespace
+
 std::string replace_all(std::string text, std::string_view from, const std::string& to) {
   for (size_t at = text.find(from); at != std::string::npos; at = text.find(from, at + to.size()))
     text.replace(at, from.size(), to);
   return text;
 }
-
-}  // namespace
 
 // ---------------------------------------------------------------------------------------------
 // The helper library
@@ -354,6 +342,7 @@ Code StageEmitter::intrinsic_call(const CallExpr& call) {
   const auto id = IntrinsicId(call.intrinsic);
   const IntrinsicInfo& info = intrinsic_info(id);
   const bool method = call.call_kind == CallKind::Method;
+  if (method || is_dx9_sampling(id)) return texture_call(call);
   std::vector<const Expr*> operands;
   if (method) operands.push_back(call.object.get());
   for (const ExprPtr& arg : call.args) operands.push_back(arg.get());
@@ -379,7 +368,6 @@ Code StageEmitter::intrinsic_call(const CallExpr& call) {
     fail(call.loc, in_quotes(info.name) + " is not supported on this target");
     return {"0"};
   }
-  if (flavour_ == Flavour::Vk && (id == I::Load || id == I::GetDimensions)) needs_samplerless_ = true;
 
   const std::string text = mapping->text;
   if (text == "@mul") {
@@ -423,36 +411,15 @@ Code StageEmitter::intrinsic_call(const CallExpr& call) {
     }
     return {"(" + parts + ")"};
   }
-  if (text == "@getdimensions") {
-    const Code texture = expr(operands[0]);
-    std::string lod = "0";
-    size_t first_out = 1;
-    if (operands.size() == 5) {  // (mip, out width, out height, out levels)
-      if (!is_simple(operands[1])) fail(operands[1]->loc, "GetDimensions' mip level must be a variable or a constant here");
-      lod = "int(" + expr(operands[1]).text + ")";
-      first_out = 2;
-    }
-    const std::string size = "textureSize(" + texture.text + ", " + lod + ")";
-    std::string parts;
-    for (size_t i = first_out; i < operands.size(); ++i) {
-      const Expr* target = operands[i];
-      const Type& param_type = target->type;
-      if (target->kind == ExprKind::Conversion) target = static_cast<const ConversionExpr*>(target)->operand.get();
-      Code value;
-      if (i - first_out < 2)
-        value = {size + (i == first_out ? ".x" : ".y"), kPostfix};
-      else
-        value = {"textureQueryLevels(" + texture.text + ")", kPostfix};
-      const Code as_param = convert(value, Type::scalar(ScalarType::Int), param_type, call.loc);
-      parts += (i == first_out ? "" : ", ") + operand(expr(target), kUnary) + " = " +
-               operand(convert(as_param, param_type, target->type, call.loc), kAssign);
-    }
-    return {"(" + parts + ")"};
-  }
+  std::vector<bool> out(operands.size(), false);
+  for (size_t i = 0; i < operands.size(); ++i) out[i] = is_out_operand(info, i, method, call.args.size());
+  return expand_template(text, call, operands, out);
+}
 
-  // A template.
-  std::string expanded = replace_all(text, "$S", flavour_ == Flavour::Gl ? "$0" : "sampler2D($0, $1)");
-  expanded = replace_all(expanded, "$R", type_name(call.type, call.loc));
+Code StageEmitter::expand_template(const std::string& text, const CallExpr& call, const std::vector<const Expr*>& operands,
+                                   const std::vector<bool>& out) {
+  const IntrinsicInfo& info = intrinsic_info(IntrinsicId(call.intrinsic));
+  std::string expanded = replace_all(text, "$R", type_name(call.type, call.loc));
   expanded = replace_all(expanded, "$B0", bool_type(operands[0]->type.component_count()));
   std::vector<Type> numeric_types;
   for (const Expr* e : operands)
@@ -472,9 +439,6 @@ Code StageEmitter::intrinsic_call(const CallExpr& call) {
     }
     ++uses[size_t(piece.operand)];
   }
-  std::vector<bool> out(operands.size(), false);
-  for (size_t i = 0; i < operands.size(); ++i) out[i] = is_out_operand(info, i, method, call.args.size());
-
   bool needs_helper = false;
   for (size_t i = 0; i < operands.size(); ++i)
     if (uses[i] > 1 && !is_simple(operands[i])) needs_helper = true;
@@ -491,7 +455,9 @@ Code StageEmitter::intrinsic_call(const CallExpr& call) {
     std::string params, args, body;
     for (size_t i = 0; i < operands.size(); ++i) {
       if (uses[i] == 0) continue;
-      const std::string type = type_name(operands[i]->type, call.loc);
+      const Type& operand_type = operands[i]->type;
+      const std::string type = operand_type.is_resource() ? resource_type(operand_type, named_decl(operands[i]), call.loc)
+                                                          : type_name(operand_type, call.loc);
       params += (params.empty() ? "" : ", ") + std::string(out[i] ? "out " : "") + type + " a" + std::to_string(i);
       args += (args.empty() ? "" : ", ") + operand(code_of(i), kAssign);
     }

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "glsl/flavour.h"
+#include "glsl/glsl_emitter.h"
 #include "hlsl_like/compiler.h"
 #include "hlsl_like/diagnostic.h"
 #include "hlsl_like/intrinsics.h"
@@ -54,6 +55,8 @@ struct Code {
 
 // `code` as an operand that needs at least precedence `prec`.
 std::string operand(const Code& code, int prec);
+
+std::string replace_all(std::string text, std::string_view from, const std::string& to);
 
 // The GLSL names of the author's declarations, the same in both stages of a program.
 class Names {
@@ -157,6 +160,11 @@ class StageEmitter {
 
   // --- intrinsics (intrinsic_mapping.cpp)
   Code intrinsic_call(const hlsl::CallExpr& call);
+  // A template of intrinsic_mapping.cpp's kind ($0.., $R, $B0, xs_ helpers) over `operands`;
+  // `out` marks the operands passed to out parameters. An operand used twice that is not a
+  // simple expression makes the template a helper function, so that it is evaluated once.
+  Code expand_template(const std::string& text, const hlsl::CallExpr& call, const std::vector<const Expr*>& operands,
+                       const std::vector<bool>& out);
   // A component-wise intrinsic with matrix operands, which GLSL's built-ins do not take: a helper
   // that applies the vector form to each column (all/any and clip combine the columns' results).
   Code matrix_intrinsic_call(const hlsl::CallExpr& call, const std::vector<const Expr*>& operands);
@@ -164,6 +172,20 @@ class StageEmitter {
   bool clip_statement(const Expr* expr);
   // A helper from the library (xs_fmod, xs_idiv, ...) for these operand types; returns its name.
   std::string require_helper(const std::string& name, const std::vector<Type>& operands, Loc loc);
+
+  // --- textures (emit_textures.cpp)
+  // A texture method (Sample, Load, Gather, GetDimensions, ...) or a DX9 tex* function.
+  Code texture_call(const hlsl::CallExpr& call);
+  // t[p] on a texture: a texel of mip 0.
+  Code texture_index(const hlsl::IndexExpr& index);
+  // The GLSL type of a texture, sampler or other resource; `decl` is the variable or parameter
+  // declared with it (a texture compared on OpenGL is a shadow sampler), or null.
+  std::string resource_type(const Type& type, const hlsl::Decl* decl, Loc loc);
+  // The variable or parameter `e` names (through implicit conversions), or null.
+  static const hlsl::Decl* named_decl(const Expr* e);
+  // Textures (globals and parameters) that OpenGL declares as shadow samplers: the objects of
+  // SampleCmp and GatherCmp, and what is passed for them.
+  void collect_compared_textures();
 
   // --- functions and statements (emit_statements.cpp)
   void function(const FunctionDecl& function);
@@ -190,6 +212,7 @@ class StageEmitter {
   Helpers helpers_;
   std::optional<Error> error_;
   bool needs_samplerless_ = false;  // vk: texelFetch/textureSize on a texture2D
+  std::unordered_set<const hlsl::Decl*> compared_;  // see collect_compared_textures
   std::vector<const FunctionDecl*> functions_;
   std::vector<const hlsl::VarDecl*> statics_;  // used static globals, in source order
   std::vector<std::string> main_prologue_;     // statements that initialize statics in main()

@@ -73,7 +73,7 @@ ProgramLayout layout_for_lane(const hlsl::Reflection& reflection, Lane lane) {
   for (const hlsl::TextureResource& texture : reflection.textures) {
     if (!texture.used) continue;
     TextureSlot slot{texture.name, texture.binding, std::nullopt};
-    if (lane != Lane::Gl && texture.kind == hlsl::TextureKind::Texture2D) slot.sampler_binding = texture.sampler_binding;
+    if (lane != Lane::Gl && texture.kind == hlsl::TextureKind::Texture) slot.sampler_binding = texture.sampler_binding;
     layout.textures.push_back(std::move(slot));
   }
   return layout;

@@ -32,11 +32,9 @@ constexpr TypePattern kBool{E::Bool, Sh::Scalar, {0, 0}};
 constexpr TypePattern kUint{E::Uint, Sh::Scalar, {0, 0}};
 constexpr TypePattern kFloat{E::Float, Sh::Scalar, {0, 0}};
 constexpr TypePattern kFloat2{E::Float, Sh::Vector, {2, 0}};
+constexpr TypePattern kFloat3{E::Float, Sh::Vector, {3, 0}};
 constexpr TypePattern kFloat4{E::Float, Sh::Vector, {4, 0}};
-constexpr TypePattern kInt3{E::Int, Sh::Vector, {3, 0}};
 constexpr TypePattern kVoid{E::Float, Sh::Void, {0, 0}};
-constexpr TypePattern kSampler2D{E::Float, Sh::Sampler2D, {0, 0}};
-constexpr TypePattern kSamplerState{E::Float, Sh::SamplerState, {0, 0}};
 
 constexpr ParamPattern in(TypePattern type) { return {type, false}; }
 constexpr ParamPattern out(TypePattern type) { return {type, true}; }
@@ -47,6 +45,7 @@ constexpr uint8_t kNumeric = kFloatLike | element_bit(ScalarType::Int) | element
 constexpr uint8_t kAny = kNumeric | element_bit(ScalarType::Bool);
 constexpr uint8_t kBitCastable = element_bit(ScalarType::Int) | element_bit(ScalarType::Uint) | element_bit(ScalarType::Float);
 constexpr uint8_t kUintOnly = element_bit(ScalarType::Uint);
+constexpr uint8_t kIntegers = element_bit(ScalarType::Int) | element_bit(ScalarType::Uint);
 constexpr uint8_t kFloatOnly = element_bit(ScalarType::Float);
 // Shape sets.
 constexpr uint8_t kAllShapes = kShapeScalar | kShapeVector | kShapeMatrix;
@@ -73,6 +72,22 @@ Entry unary_float(IntrinsicId id, bool fragment_only = false) {
   return {id, false, fragment_only, {sig(kFloatLike, kT, {in(kT)})}};
 }
 
+// The DX9 sampling functions of one sampler shape: tex2D(s, uv), tex2D(s, uv, ddx, ddy),
+// tex2Dbias(s, float4(uv, 0, bias)), tex2Dgrad(s, uv, ddx, ddy), tex2Dlod(s, float4(uv, 0, lod)),
+// tex2Dproj(s, float4(uv, 0, w)); a 1D coordinate is a float, a 3D or cube one a float3.
+void add_dx9_sampling(std::vector<Entry>& entries, Sh sampler, IntrinsicId plain, IntrinsicId bias, IntrinsicId grad,
+                      IntrinsicId lod, IntrinsicId proj) {
+  const TypePattern s{E::Float, sampler, {0, 0}};
+  const TypePattern coordinate = sampler == Sh::Sampler1D ? kFloat : sampler == Sh::Sampler2D ? kFloat2 : kFloat3;
+  entries.push_back({plain, false, true,
+                     {sig(kFloatOnly, kFloat4, {in(s), in(coordinate)}),
+                      sig(kFloatOnly, kFloat4, {in(s), in(coordinate), in(coordinate), in(coordinate)})}});
+  entries.push_back({bias, false, true, {sig(kFloatOnly, kFloat4, {in(s), in(kFloat4)})}});
+  entries.push_back({grad, false, false, {sig(kFloatOnly, kFloat4, {in(s), in(coordinate), in(coordinate), in(coordinate)})}});
+  entries.push_back({lod, false, false, {sig(kFloatOnly, kFloat4, {in(s), in(kFloat4)})}});
+  entries.push_back({proj, false, true, {sig(kFloatOnly, kFloat4, {in(s), in(kFloat4)})}});
+}
+
 // The table. Sema tries every signature of an intrinsic and takes the best match; ties go to
 // the earlier one. The GLSL emitter maps IntrinsicId (and the argument types sema chose) to GLSL.
 std::vector<Entry> make_entries() {
@@ -96,7 +111,11 @@ std::vector<Entry> make_entries() {
       {I::Countbits, false, false, {sig(kUintOnly, kT, {in(kT)})}},
       {I::Cross, false, false, {sig(kFloatLike, kV3, {in(kV3), in(kV3)})}},
       unary_float(I::Ddx, true),
+      unary_float(I::DdxCoarse, true),
+      unary_float(I::DdxFine, true),
       unary_float(I::Ddy, true),
+      unary_float(I::DdyCoarse, true),
+      unary_float(I::DdyFine, true),
       unary_float(I::Degrees),
       {I::Determinant, false, false, {sig(kFloatLike, kS, {in(kMNN)})}},
       {I::Distance, false, false, {sig(kFloatLike, kS, {in(kVN), in(kVN)})}},
@@ -106,10 +125,13 @@ std::vector<Entry> make_entries() {
       {I::F16tof32, false, false, {sig(kUintOnly, kFloatT, {in(kT)})}},
       {I::F32tof16, false, false, {sig(kFloatOnly, kUintT, {in(kT)})}},
       {I::Faceforward, false, false, {sig(kFloatLike, kVN, {in(kVN), in(kVN), in(kVN)})}},
+      {I::Firstbithigh, false, false, {sig(kIntegers, kT, {in(kT)})}},
+      {I::Firstbitlow, false, false, {sig(kIntegers, kT, {in(kT)})}},
       unary_float(I::Floor),
       {I::Fma, false, false, {sig(kFloatLike, kT, {in(kT), in(kT), in(kT)})}},
       {I::Fmod, false, false, {sig(kFloatLike, kT, {in(kT), in(kT)})}},
       unary_float(I::Frac),
+      {I::Frexp, false, false, {sig(kFloatLike, kT, {in(kT), out(kT)})}},
       unary_float(I::Fwidth, true),
       {I::Isfinite, false, false, {sig(kFloatLike, kBoolT, {in(kT)})}},
       {I::Isinf, false, false, {sig(kFloatLike, kBoolT, {in(kT)})}},
@@ -117,6 +139,7 @@ std::vector<Entry> make_entries() {
       {I::Ldexp, false, false, {sig(kFloatLike, kT, {in(kT), in(kT)})}},
       {I::Length, false, false, {sig(kFloatLike, kS, {in(kVN)})}},
       {I::Lerp, false, false, {sig(kFloatLike, kT, {in(kT), in(kT), in(kT)})}},
+      {I::Lit, false, false, {sig(kFloatOnly, kFloat4, {in(kFloat), in(kFloat), in(kFloat)})}},
       unary_float(I::Log),
       unary_float(I::Log10),
       unary_float(I::Log2),
@@ -150,28 +173,20 @@ std::vector<Entry> make_entries() {
       {I::Step, false, false, {sig(kFloatLike, kT, {in(kT), in(kT)})}},
       unary_float(I::Tan),
       unary_float(I::Tanh),
-      // DX9 sampler2D.
-      {I::Tex2D, false, true, {sig(kFloatOnly, kFloat4, {in(kSampler2D), in(kFloat2)})}},
-      {I::Tex2Dbias, false, true, {sig(kFloatOnly, kFloat4, {in(kSampler2D), in(kFloat4)})}},
-      {I::Tex2Dgrad, false, false,
-       {sig(kFloatOnly, kFloat4, {in(kSampler2D), in(kFloat2), in(kFloat2), in(kFloat2)})}},
-      {I::Tex2Dlod, false, false, {sig(kFloatOnly, kFloat4, {in(kSampler2D), in(kFloat4)})}},
       {I::Transpose, false, false, {sig(kAny, kMCR, {in(kMRC)})}},
       unary_float(I::Trunc),
-      // Texture2D methods (the texture is the call's object, not a parameter).
-      {I::Sample, true, true, {sig(kFloatOnly, kFloat4, {in(kSamplerState), in(kFloat2)})}},
-      {I::SampleBias, true, true,
-       {sig(kFloatOnly, kFloat4, {in(kSamplerState), in(kFloat2), in(kFloat)})}},
-      {I::SampleGrad, true, false,
-       {sig(kFloatOnly, kFloat4, {in(kSamplerState), in(kFloat2), in(kFloat2), in(kFloat2)})}},
-      {I::SampleLevel, true, false,
-       {sig(kFloatOnly, kFloat4, {in(kSamplerState), in(kFloat2), in(kFloat)})}},
-      {I::Load, true, false, {sig(kFloatOnly, kFloat4, {in(kInt3)})}},
-      {I::GetDimensions, true, false,
-       {sig(kFloatOnly, kVoid, {out(kUint), out(kUint)}), sig(kFloatOnly, kVoid, {out(kFloat), out(kFloat)}),
-        sig(kFloatOnly, kVoid, {in(kUint), out(kUint), out(kUint), out(kUint)}),
-        sig(kFloatOnly, kVoid, {in(kUint), out(kFloat), out(kFloat), out(kFloat)})}},
   };
+  add_dx9_sampling(entries, Sh::Sampler1D, I::Tex1D, I::Tex1Dbias, I::Tex1Dgrad, I::Tex1Dlod, I::Tex1Dproj);
+  add_dx9_sampling(entries, Sh::Sampler2D, I::Tex2D, I::Tex2Dbias, I::Tex2Dgrad, I::Tex2Dlod, I::Tex2Dproj);
+  add_dx9_sampling(entries, Sh::Sampler3D, I::Tex3D, I::Tex3Dbias, I::Tex3Dgrad, I::Tex3Dlod, I::Tex3Dproj);
+  add_dx9_sampling(entries, Sh::SamplerCube, I::TexCUBE, I::TexCUBEbias, I::TexCUBEgrad, I::TexCUBElod, I::TexCUBEproj);
+  // Texture methods: names and stages here, signatures in sema_methods.cpp.
+  for (I id : {I::Sample, I::SampleBias, I::SampleCmp, I::CalculateLevelOfDetail, I::CalculateLevelOfDetailUnclamped})
+    entries.push_back({id, true, true, {}});
+  for (I id : {I::SampleGrad, I::SampleLevel, I::SampleCmpLevelZero, I::Load, I::GetDimensions, I::Gather, I::GatherRed,
+               I::GatherGreen, I::GatherBlue, I::GatherAlpha, I::GatherCmp, I::GatherCmpRed, I::GatherCmpGreen,
+               I::GatherCmpBlue, I::GatherCmpAlpha})
+    entries.push_back({id, true, false, {}});
   return entries;
 }
 

@@ -37,7 +37,9 @@ struct StringHash {
 };
 
 // What a built-in type word needs beyond its Type.
-enum class TypeWord : uint8_t { Plain, Void, Double, Vector, Matrix, Texture, Unsupported };
+// Texture: an optional <texel type> (Texture2DMS: <texel type, samples>); Buffer: <element>
+// (none for the byte-address buffers); ConstantBuffer: <struct>.
+enum class TypeWord : uint8_t { Plain, Void, Double, Vector, Matrix, Texture, Buffer, ConstantBuffer, Unsupported };
 
 struct BuiltinType {
   Type type;
@@ -82,17 +84,23 @@ BuiltinTable make_builtin_types() {
   table["void"] = {Type::void_type(), TypeWord::Void};
   table["vector"] = {Type::vector(ScalarType::Float, 4), TypeWord::Vector};
   table["matrix"] = {Type::matrix(ScalarType::Float, 4, 4), TypeWord::Matrix};
-  table["Texture2D"] = {Type::texture2d(), TypeWord::Texture};
+  for (TextureShape shape : {TextureShape::Tex1D, TextureShape::Tex1DArray, TextureShape::Tex2D, TextureShape::Tex2DArray,
+                             TextureShape::Tex2DMS, TextureShape::Tex2DMSArray, TextureShape::Tex3D, TextureShape::Cube,
+                             TextureShape::CubeArray})
+    table[texture_shape_name(shape)] = {Type::texture(shape, Type::vector(ScalarType::Float, 4)), TypeWord::Texture};
   table["SamplerState"] = {Type::sampler_state(), TypeWord::Plain};
-  table["sampler2D"] = {Type::sampler2d(), TypeWord::Plain};
+  table["SamplerComparisonState"] = {Type::sampler_state(true), TypeWord::Plain};
+  for (TextureShape shape : {TextureShape::Tex1D, TextureShape::Tex2D, TextureShape::Tex3D, TextureShape::Cube})
+    table[texture_shape_name(shape, true)] = {Type::sampler(shape), TypeWord::Plain};
   table["sampler"] = {Type::sampler2d(), TypeWord::Plain};  // DX9: read as sampler2D
-  for (const char* name : {"Texture1D", "Texture1DArray", "Texture2DArray", "Texture2DMS", "Texture2DMSArray",
-                           "Texture3D", "TextureCube", "TextureCubeArray", "RWTexture1D", "RWTexture2D",
-                           "RWTexture3D", "Buffer", "RWBuffer", "StructuredBuffer", "RWStructuredBuffer",
-                           "ByteAddressBuffer", "RWByteAddressBuffer", "AppendStructuredBuffer",
-                           "ConsumeStructuredBuffer", "SamplerComparisonState", "sampler1D", "sampler3D",
-                           "samplerCUBE", "texture", "string"})
-    table[name] = {Type::error(), TypeWord::Unsupported};
+  for (BufferKind kind : {BufferKind::Buffer, BufferKind::RWBuffer, BufferKind::StructuredBuffer,
+                          BufferKind::RWStructuredBuffer, BufferKind::ByteAddressBuffer, BufferKind::RWByteAddressBuffer,
+                          BufferKind::AppendStructuredBuffer, BufferKind::ConsumeStructuredBuffer, BufferKind::RWTexture1D,
+                          BufferKind::RWTexture1DArray, BufferKind::RWTexture2D, BufferKind::RWTexture2DArray,
+                          BufferKind::RWTexture3D})
+    table[buffer_kind_name(kind)] = {Type::buffer(kind, Type::vector(ScalarType::Float, 4)), TypeWord::Buffer};
+  table["ConstantBuffer"] = {Type::error(), TypeWord::ConstantBuffer};
+  for (const char* name : {"texture", "string"}) table[name] = {Type::error(), TypeWord::Unsupported};
   return table;
 }
 
@@ -650,17 +658,78 @@ class Parser {
         advance();
         if (!is("<")) return builtin->type;
         return parse_shape_template(builtin->word == TypeWord::Matrix);
-      case TypeWord::Texture:
+      case TypeWord::Texture: {
         advance();
-        if (is("<")) {
-          // Texture2D<float4>: the element type is not kept, sampling always gives a float4.
-          const size_t open = pos_;
-          advance();
+        if (!is("<")) return builtin->type;
+        // Texture2D<float>, Texture2DMS<float4, 8>: the texel type, and a multisampled texture's
+        // sample count (which only the API side needs).
+        const size_t open = pos_;
+        advance();
+        const size_t texel_index = pos_;
+        std::optional<Type> texel;
+        {
           DepthGuard guard(*this);
-          if (!guard.ok() || !parse_type(false)) return std::nullopt;
-          if (!expect_closing_angle(open)) return std::nullopt;
+          if (!guard.ok()) return std::nullopt;
+          texel = parse_type(false);
         }
-        return builtin->type;
+        if (!texel) return std::nullopt;
+        if (is_multisampled(builtin->type.texture_shape()) && accept(",") && !parse_template_number()) return std::nullopt;
+        if (!expect_closing_angle(open)) return std::nullopt;
+        if (texel->is_error()) return Type::error();
+        if (!texel->is_scalar() && !texel->is_vector()) {
+          error_at(texel_index, "the texel type of " + in_quotes(tok(word_index).text) + " must be a scalar or vector, not " +
+                                    in_quotes(texel->name()));
+          return Type::error();
+        }
+        return Type::texture(builtin->type.texture_shape(), *texel);
+      }
+      case TypeWord::Buffer: {
+        advance();
+        const BufferKind kind = builtin->type.buffer_kind();
+        const bool byte_address = kind == BufferKind::ByteAddressBuffer || kind == BufferKind::RWByteAddressBuffer;
+        const bool structured = kind == BufferKind::StructuredBuffer || kind == BufferKind::RWStructuredBuffer ||
+                                kind == BufferKind::AppendStructuredBuffer || kind == BufferKind::ConsumeStructuredBuffer;
+        if (byte_address || !is("<")) {
+          if (structured) {
+            error_here("expected '<' after " + in_quotes(tok(word_index).text) + ": a structured buffer needs an element type");
+            return Type::error();
+          }
+          return builtin->type;
+        }
+        const size_t open = pos_;
+        advance();
+        std::optional<Type> element;
+        {
+          DepthGuard guard(*this);
+          if (!guard.ok()) return std::nullopt;
+          element = parse_type(false);
+        }
+        if (!element || !expect_closing_angle(open)) return std::nullopt;
+        return Type::buffer(kind, *element);
+      }
+      case TypeWord::ConstantBuffer: {
+        advance();
+        if (!is("<")) {
+          error_here("expected '<' after 'ConstantBuffer': it holds a struct, as in ConstantBuffer<PerFrame>");
+          return Type::error();
+        }
+        const size_t open = pos_;
+        advance();
+        const size_t struct_index = pos_;
+        std::optional<Type> structure;
+        {
+          DepthGuard guard(*this);
+          if (!guard.ok()) return std::nullopt;
+          structure = parse_type(false);
+        }
+        if (!structure || !expect_closing_angle(open)) return std::nullopt;
+        if (structure->is_error()) return Type::error();
+        if (structure->kind() != TypeKind::Struct) {
+          error_at(struct_index, "ConstantBuffer holds a struct, not " + in_quotes(structure->name()));
+          return Type::error();
+        }
+        return Type::constant_buffer(*structure);
+      }
       case TypeWord::Unsupported:
         error_here(in_quotes(token.text) + " is not supported");
         advance();
@@ -1466,11 +1535,18 @@ class Parser {
         advance();
         DepthGuard guard(*this);
         if (!guard.ok()) return false;
+        bool has_string = false;
         if (!is(")")) {
           for (;;) {
-            ExprPtr arg = parse_assignment();
-            if (!arg) return false;
-            attribute.args.push_back(std::move(arg));
+            // [RootSignature("..."), [domain("tri")]: strings only an API or another stage reads.
+            if (cur().kind == TokenKind::StringLiteral) {
+              has_string = true;
+              advance();
+            } else {
+              ExprPtr arg = parse_assignment();
+              if (!arg) return false;
+              attribute.args.push_back(std::move(arg));
+            }
             if (accept(",")) continue;
             if (is(")")) break;
             error_unmatched(")", paren);
@@ -1478,6 +1554,7 @@ class Parser {
           }
         }
         advance();
+        if (has_string) diagnostics_.note(attribute.loc, "attribute " + in_quotes(attribute.name) + " is ignored");
       }
       if (!is("]")) {
         error_unmatched("]", open);

@@ -245,7 +245,7 @@ TEST(Parser, UnityShaderEndToEnd) {
   EXPECT_EQ(sexpr(*bias.annotations[1].value), "(- 2)");
 
   const VarDecl& main_tex = p->var("_MainTex");
-  EXPECT_EQ(main_tex.type.kind(), TypeKind::Texture2D);
+  EXPECT_EQ(main_tex.type, Type::texture2d());
   EXPECT_EQ(main_tex.binding.register_class, 't');
   EXPECT_EQ(main_tex.binding.index, 0u);
   EXPECT_TRUE(main_tex.is_global);
@@ -253,9 +253,9 @@ TEST(Parser, UnityShaderEndToEnd) {
   EXPECT_EQ(sampler.type.kind(), TypeKind::SamplerState);
   EXPECT_EQ(sampler.binding.register_class, 's');
   EXPECT_EQ(sampler.binding.space, 1u);
-  EXPECT_EQ(p->var("_ShadowTex").type.kind(), TypeKind::Texture2D);
+  EXPECT_EQ(p->var("_ShadowTex").type, Type::texture2d());
   EXPECT_EQ(p->var("_ShadowTex").binding.register_class, 0);
-  EXPECT_EQ(p->var("_RampTex").type.kind(), TypeKind::Sampler2D);
+  EXPECT_EQ(p->var("_RampTex").type, Type::sampler2d());
   EXPECT_EQ(p->var("_Tint").storage, StorageClass::Uniform);
   const VarDecl& pi = p->var("PI");
   EXPECT_EQ(pi.storage, StorageClass::Static);
@@ -388,7 +388,7 @@ TEST(Parser, GlobalQualifiersArraysAndDeclarators) {
   EXPECT_TRUE(p->var("N").is_const);
   EXPECT_EQ(p->var("N").storage, StorageClass::Static);
   EXPECT_EQ(p->var("sized").type.array_length(), 5u);
-  EXPECT_EQ(p->var("s").type.kind(), TypeKind::Sampler2D);
+  EXPECT_EQ(p->var("s").type, Type::sampler2d());
   const Type& m2 = p->var("m2").type;
   EXPECT_EQ(m2.array_length(), 2u);
   EXPECT_EQ(m2.element().array_length(), 3u);
@@ -587,7 +587,7 @@ TEST(Parser, SemanticsKeepTheirSpelling) {
 TEST(Parser, NestedTemplateClosesWithShiftToken) {
   auto p = parse_text("Texture2D<vector<float, 4>> t;\nfloat x = 1 >> 2;\n");
   ASSERT_EQ(p->errors(), std::vector<std::string>{});
-  EXPECT_EQ(p->var("t").type.kind(), TypeKind::Texture2D);
+  EXPECT_EQ(p->var("t").type, Type::texture2d());
   EXPECT_EQ(sexpr(*p->var("x").initializer), "(>> 1 2)");
 }
 

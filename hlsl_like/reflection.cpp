@@ -93,19 +93,26 @@ std::optional<std::string> struct_layout_mismatch(const StructDecl* decl) {
   return std::nullopt;
 }
 
+// A constant-buffer member as packing sees it: a cbuffer's variable or a ConstantBuffer<S>'s field.
+struct PackedItem {
+  std::string name;
+  Type type;
+  bool row_major = false;
+  Loc loc;
+};
+
 // Lays out `members` (in order) by HLSL rules and checks that the std140 block can hold them.
-void pack_members(ConstantBuffer& buffer, const std::vector<const VarDecl*>& members,
-                  DiagnosticEngine& diagnostics) {
+void pack_members(ConstantBuffer& buffer, const std::vector<PackedItem>& members, DiagnosticEngine& diagnostics) {
   uint32_t offset = 0;
   bool new_register = false;
   uint32_t previous_end_std140 = 0;
   std::string previous_name;
-  for (const VarDecl* var : members) {
-    const Type& type = var->type;
+  for (const PackedItem& item : members) {
+    const Type& type = item.type;
     ConstantBufferMember member;
-    member.name = var->name;
+    member.name = item.name;
     member.type = type;
-    member.row_major = var->packing == MatrixPacking::RowMajor;
+    member.row_major = item.row_major;
     member.size = packed_size(type, member.row_major);
     if (new_register || (!type.is_scalar() && !type.is_vector()) || (offset % kRegister) + member.size > kRegister)
       offset = align_up(offset, kRegister);
@@ -117,23 +124,29 @@ void pack_members(ConstantBuffer& buffer, const std::vector<const VarDecl*>& mem
     }
     if (type.kind() == TypeKind::Struct && type.struct_decl()) {
       if (auto mismatch = struct_layout_mismatch(type.struct_decl()))
-        diagnostics.error(var->loc, in_quotes(var->name) + " in constant buffer " + in_quotes(buffer.name) + ": struct " +
+        diagnostics.error(item.loc, in_quotes(item.name) + " in constant buffer " + in_quotes(buffer.name) + ": struct " +
                                         in_quotes(type.struct_decl()->name) + " cannot keep its HLSL layout in GLSL: " +
                                         *mismatch + "; reorder its fields or pad them to 16-byte registers");
     }
     if (!previous_name.empty() && offset < previous_end_std140)
-      diagnostics.error(var->loc, in_quotes(var->name) + " is at offset " + std::to_string(offset) + " of constant buffer " +
+      diagnostics.error(item.loc, in_quotes(item.name) + " is at offset " + std::to_string(offset) + " of constant buffer " +
                                       in_quotes(buffer.name) + ", inside the padding GLSL gives " + in_quotes(previous_name) +
-                                      " (up to " + std::to_string(previous_end_std140) + "); start " + in_quotes(var->name) +
+                                      " (up to " + std::to_string(previous_end_std140) + "); start " + in_quotes(item.name) +
                                       " on a new 16-byte register (pad before it) or declare it before " +
                                       in_quotes(previous_name));
     previous_end_std140 = offset + (member.split_into_scalars ? member.size : std140_size(type, member.row_major));
-    previous_name = var->name;
+    previous_name = item.name;
     offset += member.size;
     new_register = type.kind() == TypeKind::Struct;
     buffer.members.push_back(std::move(member));
   }
   buffer.size = align_up(offset, kRegister);
+}
+
+std::vector<PackedItem> packed_items(const std::vector<const VarDecl*>& vars) {
+  std::vector<PackedItem> items;
+  for (const VarDecl* var : vars) items.push_back({var->name, var->type, var->packing == MatrixPacking::RowMajor, var->loc});
+  return items;
 }
 
 bool is_uniform_global(const VarDecl& var) {
@@ -148,7 +161,8 @@ std::string canonical(const std::string& semantic) {
 // Every global declaration and user function reachable from the entry points, by what reads it.
 struct Usage {
   std::unordered_set<const Decl*> globals;
-  std::map<const Decl*, const Decl*> texture_sampler;  // Texture2D -> first SamplerState it is sampled with
+  std::map<const Decl*, const Decl*> texture_sampler;  // texture -> first SamplerState it is sampled with
+  std::unordered_set<const Decl*> compared;            // textures sampled with a SamplerComparisonState
 };
 
 Usage collect_usage(const EntryPoints& entry_points) {
@@ -187,9 +201,11 @@ Usage collect_usage(const EntryPoints& entry_points) {
           const auto& call = static_cast<const CallExpr&>(expr);
           if (call.call_kind != CallKind::Method || !call.object || call.args.empty()) return;
           if (call.object->kind != ExprKind::Name || call.args[0]->kind != ExprKind::Name) return;
+          if (call.args[0]->type.kind() != TypeKind::SamplerState) return;
           const Decl* texture = origin(static_cast<const NameExpr&>(*call.object).decl);
           const Decl* sampler = origin(static_cast<const NameExpr&>(*call.args[0]).decl);
           if (texture && sampler) usage.texture_sampler.emplace(texture, sampler);
+          if (texture && call.args[0]->type.is_comparison()) usage.compared.insert(texture);
         }
       });
     }
@@ -296,7 +312,7 @@ Property property_of(const VarDecl& var) {
   property.name = var.name;
   property.display_name = var.name;
   property.type = var.type;
-  property.is_texture = var.type.kind() == TypeKind::Texture2D || var.type.kind() == TypeKind::Sampler2D;
+  property.is_texture = var.type.is_texture() || var.type.kind() == TypeKind::Sampler;
   for (const Annotation& annotation : var.annotations) {
     if (annotation.name == "UIName" && !annotation.text.empty()) property.display_name = annotation.text;
     if (annotation.name == "UIMin") property.min = literal_value(annotation.value.get());
@@ -415,7 +431,7 @@ Reflection reflect(const TranslationUnit& unit, const EntryPoints& entry_points,
       std::vector<const VarDecl*> members;
       for (const auto& member : cbuffer.members)
         if (member && !member->type.is_error()) members.push_back(member.get());
-      pack_members(buffer, members, diagnostics);
+      pack_members(buffer, packed_items(members), diagnostics);
       for (const VarDecl* member : members) reflection.properties.push_back(property_of(*member));
       if (cbuffer.binding.register_class == 'b') buffers.claim(cbuffer.binding, cbuffer.name);
       else if (cbuffer.binding.register_class != 0)
@@ -426,18 +442,33 @@ Reflection reflect(const TranslationUnit& unit, const EntryPoints& entry_points,
     } else if (decl->kind == DeclKind::Var) {
       const auto& var = static_cast<const VarDecl&>(*decl);
       const TypeKind kind = var.type.kind();
-      if (kind == TypeKind::Texture2D || kind == TypeKind::Sampler2D) {
+      if (kind == TypeKind::Texture || kind == TypeKind::Sampler) {
         TextureResource texture;
         texture.name = var.name;
-        texture.kind = kind == TypeKind::Texture2D ? TextureKind::Texture2D : TextureKind::Sampler2D;
+        texture.kind = kind == TypeKind::Texture ? TextureKind::Texture : TextureKind::Sampler;
+        texture.shape = var.type.texture_shape();
+        if (kind == TypeKind::Texture)
+          texture.texel = var.type.scalar_type() == ScalarType::Half ? ScalarType::Float : var.type.scalar_type();
         texture.decl = &var;
         // glslang puts a sampler2D in the texture range whatever its register letter says.
         if (var.binding.register_class != 0) textures.claim(var.binding, var.name);
         pending_textures.push_back({reflection.textures.size(), &var});
         reflection.textures.push_back(std::move(texture));
         reflection.properties.push_back(property_of(var));
+      } else if (kind == TypeKind::ConstantBuffer) {
+        // ConstantBuffer<S> name: a constant buffer named `name` holding S's fields.
+        ConstantBuffer buffer;
+        buffer.name = var.name;
+        buffer.decl = &var;
+        std::vector<PackedItem> members;
+        if (const StructDecl* structure = var.type.element().struct_decl())
+          for (const FieldDecl& field : structure->fields) members.push_back({field.name, field.type, false, field.loc});
+        pack_members(buffer, members, diagnostics);
+        if (var.binding.register_class == 'b') buffers.claim(var.binding, var.name);
+        pending_buffers.push_back({reflection.constant_buffers.size(), &var.binding, var.loc});
+        reflection.constant_buffers.push_back(std::move(buffer));
       } else if (kind == TypeKind::SamplerState) {
-        SamplerResource sampler{var.name, 0, true, &var};
+        SamplerResource sampler{var.name, 0, var.type.is_comparison(), true, &var};
         if (var.binding.register_class != 0) samplers.claim(var.binding, var.name);
         pending_samplers.push_back({reflection.samplers.size(), &var});
         reflection.samplers.push_back(std::move(sampler));
@@ -454,7 +485,7 @@ Reflection reflect(const TranslationUnit& unit, const EntryPoints& entry_points,
       }
     }
   }
-  if (globals_index) pack_members(reflection.constant_buffers[*globals_index], globals, diagnostics);
+  if (globals_index) pack_members(reflection.constant_buffers[*globals_index], packed_items(globals), diagnostics);
 
   // Bindings: explicit ones were claimed above; the rest take the lowest free register.
   for (const PendingBuffer& pending : pending_buffers) {
@@ -487,6 +518,7 @@ Reflection reflect(const TranslationUnit& unit, const EntryPoints& entry_points,
   }
 
   for (TextureResource& texture : reflection.textures) {
+    texture.comparison = usage.compared.count(texture.decl) > 0;
     auto it = usage.texture_sampler.find(texture.decl);
     if (it == usage.texture_sampler.end()) continue;
     texture.sampler = it->second->name;
@@ -596,15 +628,21 @@ std::string reflection_json(const Reflection& reflection) {
   json["textures"] = nlohmann::json::array();
   for (const TextureResource& t : reflection.textures) {
     nlohmann::json texture = {{"name", t.name},
-                              {"kind", t.kind == TextureKind::Texture2D ? "Texture2D" : "sampler2D"},
+                              {"kind", texture_shape_name(t.shape, t.kind == TextureKind::Sampler)},
                               {"binding", t.binding},
                               {"used", t.used}};
+    if (t.texel != ScalarType::Float) texture["texel"] = scalar_name(t.texel);
+    if (t.comparison) texture["comparison"] = true;
     if (!t.sampler.empty()) texture["sampler"] = t.sampler;
     if (t.sampler_binding) texture["sampler_binding"] = *t.sampler_binding;
     json["textures"].push_back(texture);
   }
   json["samplers"] = nlohmann::json::array();
-  for (const SamplerResource& s : reflection.samplers) json["samplers"].push_back({{"name", s.name}, {"binding", s.binding}, {"used", s.used}});
+  for (const SamplerResource& s : reflection.samplers) {
+    nlohmann::json sampler = {{"name", s.name}, {"binding", s.binding}, {"used", s.used}};
+    if (s.comparison) sampler["comparison"] = true;
+    json["samplers"].push_back(sampler);
+  }
   json["properties"] = nlohmann::json::array();
   for (const Property& p : reflection.properties) {
     nlohmann::json property = {{"name", p.name}, {"display_name", p.display_name}, {"type", type_json(p.type)}};

@@ -42,22 +42,30 @@ struct ConstantBuffer {
   uint32_t binding = 0;
   uint32_t size = 0;  // bytes, rounded up to 16 as Direct3D does
   std::vector<ConstantBufferMember> members;
-  const Decl* decl = nullptr;  // the CBufferDecl; null for $Globals
+  // The CBufferDecl, or the VarDecl of a `ConstantBuffer<S> name` (whose members are S's fields,
+  // read as name.field); null for $Globals.
+  const Decl* decl = nullptr;
 };
 
 enum class TextureKind : uint8_t {
-  Texture2D,  // with SamplerState objects, separate
-  Sampler2D,  // DX9 sampler2D: texture and sampler in one
+  Texture,  // Texture2D, TextureCube, ... read with SamplerState objects, separate
+  Sampler,  // DX9 sampler2D, samplerCUBE, ...: texture and sampler in one
 };
 
 struct TextureResource {
   std::string name;
-  TextureKind kind = TextureKind::Texture2D;
+  TextureKind kind = TextureKind::Texture;
+  TextureShape shape = TextureShape::Tex2D;
+  // What a texel reads as: float (float and half), int or uint; a DX9 sampler reads float.
+  ScalarType texel = ScalarType::Float;
   uint32_t binding = 0;
-  // For a Texture2D: the SamplerState it is sampled with (the first one, when several are),
+  // For a Texture: the SamplerState it is sampled with (the first one, when several are),
   // and that sampler's binding. Empty when the shader never samples it through a SamplerState.
   std::string sampler;
   std::optional<uint32_t> sampler_binding;
+  // Sampled with a SamplerComparisonState (SampleCmp, GatherCmp): a shadow map, whose sampler
+  // compares against a reference. OpenGL declares such a texture as a shadow sampler.
+  bool comparison = false;
   // Read by the compiled entry points. An unread resource keeps its binding (the numbers do not
   // move when a shader stops reading one) but is neither declared in GLSL nor bound.
   bool used = true;
@@ -67,6 +75,7 @@ struct TextureResource {
 struct SamplerResource {
   std::string name;
   uint32_t binding = 0;
+  bool comparison = false;  // a SamplerComparisonState
   bool used = true;  // as TextureResource::used
   const VarDecl* decl = nullptr;
 };

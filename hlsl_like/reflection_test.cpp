@@ -84,7 +84,7 @@ TEST(Reflection, BindingsUseRegistersThenTheLowestFreeSlotForUsedResources) {
   ASSERT_EQ(r.textures.size(), 3u);
   // sampler2D _Ramp : register(s3) lands in the texture range, as glslang puts it.
   EXPECT_EQ(r.textures[2].name, "_Ramp");
-  EXPECT_EQ(r.textures[2].kind, TextureKind::Sampler2D);
+  EXPECT_EQ(r.textures[2].kind, TextureKind::Sampler);
   EXPECT_EQ(r.textures[2].binding, kTextureBindingBase + 3);
   EXPECT_EQ(r.textures[0].name, "_MainTex");
   EXPECT_EQ(r.textures[0].binding, kTextureBindingBase + 0);

@@ -7,11 +7,19 @@
 
 namespace xshade::hlsl::sema_detail {
 
-namespace {
+static std::string arguments_word(size_t count) { return count == 1 ? " argument" : " arguments"; }
 
-std::string arguments_word(size_t count) { return count == 1 ? " argument" : " arguments"; }
+std::string arity_list(std::vector<size_t> arities) {
+  std::sort(arities.begin(), arities.end());
+  arities.erase(std::unique(arities.begin(), arities.end()), arities.end());
+  std::string takes;
+  for (size_t i = 0; i < arities.size(); ++i) {
+    if (i > 0) takes += i + 1 == arities.size() ? " or " : ", ";
+    takes += std::to_string(arities[i]);
+  }
+  return takes + arguments_word(arities.empty() ? 0 : arities.back());
+}
 
-// a dominates b: no argument converts worse, and one converts better.
 bool dominates(const std::vector<int>& a, const std::vector<int>& b) {
   bool better = false;
   for (size_t i = 0; i < a.size() && i < b.size(); ++i) {
@@ -32,6 +40,8 @@ int unique_best(const std::vector<std::vector<int>>& ranks) {
   }
   return ranks.size() == 1 ? 0 : -1;
 }
+
+namespace {
 
 // The element type T takes when the arguments' highest is `deduced` but the signature allows
 // only `set`: integers become the other integer type or float; half becomes float.
@@ -173,9 +183,11 @@ std::optional<Candidate> bind_signature(const Sema& sema, const IntrinsicSignatu
       case PatternShape::Vector: return Type::vector(scalar, dim_value(pattern.dims[0]));
       case PatternShape::Matrix: return Type::matrix(scalar, dim_value(pattern.dims[0]), dim_value(pattern.dims[1]));
       case PatternShape::Void: return Type::void_type();
-      case PatternShape::Texture2D: return Type::texture2d();
       case PatternShape::SamplerState: return Type::sampler_state();
+      case PatternShape::Sampler1D: return Type::sampler(TextureShape::Tex1D);
       case PatternShape::Sampler2D: return Type::sampler2d();
+      case PatternShape::Sampler3D: return Type::sampler(TextureShape::Tex3D);
+      case PatternShape::SamplerCube: return Type::sampler(TextureShape::Cube);
     }
     return Type::error();
   };
@@ -194,33 +206,26 @@ std::optional<Candidate> bind_signature(const Sema& sema, const IntrinsicSignatu
   return candidate;
 }
 
-// How well each argument converts to `function`'s parameters; nothing when it cannot be called.
-std::optional<std::vector<int>> rank_user_function(const FunctionDecl& function, const std::vector<ExprPtr>& args) {
+// What passing `args` to `function` costs (overload_cost summed, out and inout parameters
+// also for the copy back); nothing when it cannot be called with them.
+std::optional<uint64_t> call_cost(const FunctionDecl& function, const std::vector<ExprPtr>& args) {
   if (args.size() > function.params.size()) return std::nullopt;
   for (size_t i = args.size(); i < function.params.size(); ++i) {
     if (!function.params[i] || !function.params[i]->default_value) return std::nullopt;
   }
-  std::vector<int> ranks;
+  uint64_t total = 0;
   for (size_t i = 0; i < args.size(); ++i) {
     const ParamDecl* param = function.params[i].get();
     if (!param) return std::nullopt;
     const Type& arg = args[i]->type;
-    Conversion conversion;
-    switch (param->direction) {
-      case ParamDirection::In: conversion = classify_implicit(arg, param->type); break;
-      case ParamDirection::Out: conversion = classify_implicit(param->type, arg); break;
-      case ParamDirection::InOut: {
-        conversion = classify_implicit(arg, param->type);
-        const Conversion back = classify_implicit(param->type, arg);
-        if (!back.valid) conversion.valid = false;
-        conversion.rank = std::max(conversion.rank, back.rank);
-        break;
-      }
-    }
-    if (!conversion.valid) return std::nullopt;
-    ranks.push_back(conversion.rank);
+    const bool literal = is_literal(args[i].get());
+    std::optional<uint64_t> in = 0, back = 0;
+    if (param->direction != ParamDirection::Out) in = overload_cost(arg, literal, param->type);
+    if (param->direction != ParamDirection::In) back = overload_cost(param->type, false, arg);
+    if (!in || !back) return std::nullopt;
+    total += *in + *back;
   }
-  return ranks;
+  return total;
 }
 
 size_t required_params(const FunctionDecl& function) {
@@ -259,10 +264,7 @@ void Sema::note_fragment_only(std::string what, Loc loc) {
   if (current_info_) current_info_->fragment_only_uses.push_back({std::move(what), loc});
 }
 
-// Passes argument `i` to a parameter of type `type`: in parameters convert, out and inout
-// parameters need an assignable argument; a ConversionExpr around an out argument means the
-// value is converted back to the argument's type after the call.
-static void pass_argument(Sema& sema, ExprPtr& arg, const Type& type, ParamDirection direction, size_t index,
+void pass_argument(Sema& sema, ExprPtr& arg, const Type& type, ParamDirection direction, size_t index,
                           const std::string& callee) {
   if (direction == ParamDirection::In) {
     sema.coerce(arg, type);
@@ -307,19 +309,9 @@ Type Sema::analyze_call(CallExpr& expr) {
   }
   if (expr.object) {
     if (object.is_error()) return Type::error();
-    if (object.kind() != TypeKind::Texture2D) {
-      diag_.error(expr.loc, in_quotes(object.name()) + " has no method " + in_quotes(expr.callee));
-      return Type::error();
-    }
-    const std::optional<IntrinsicId> method = find_texture_method(expr.callee);
-    if (!method) {
-      diag_.error(expr.loc, "'Texture2D' has no method " + in_quotes(expr.callee));
-      return Type::error();
-    }
     expr.call_kind = CallKind::Method;
-    expr.intrinsic = uint16_t(*method);
     if (!args_ok) return Type::error();
-    return analyze_intrinsic_call(expr, *method);
+    return analyze_method_call(expr, object);
   }
   const auto overloads = functions_.find(expr.callee);
   const std::optional<IntrinsicId> intrinsic = find_intrinsic(expr.callee);
@@ -339,7 +331,7 @@ Type Sema::analyze_call(CallExpr& expr) {
     // A user function named like an intrinsic is called when it fits; else the intrinsic is.
     bool viable = !intrinsic;
     for (const FunctionDecl* function : overloads->second) {
-      if (!viable && rank_user_function(*function, expr.args)) viable = true;
+      if (!viable && call_cost(*function, expr.args)) viable = true;
     }
     if (viable) return analyze_function_call(expr, overloads->second);
   }
@@ -394,11 +386,11 @@ Type Sema::analyze_function_call(CallExpr& expr, const std::vector<const Functio
     }
   } else {
     std::vector<const FunctionDecl*> viable;
-    std::vector<std::vector<int>> ranks;
+    std::vector<uint64_t> costs;
     for (const FunctionDecl* function : overloads) {
-      if (auto rank = rank_user_function(*function, expr.args)) {
+      if (auto cost = call_cost(*function, expr.args)) {
         viable.push_back(function);
-        ranks.push_back(std::move(*rank));
+        costs.push_back(*cost);
       }
     }
     if (viable.empty()) {
@@ -408,15 +400,17 @@ Type Sema::analyze_function_call(CallExpr& expr, const std::vector<const Functio
       }
       return Type::error();
     }
-    const int best = unique_best(ranks);
+    // DXC's rule: the lowest cost wins; two or more at the lowest are ambiguous.
+    const uint64_t lowest = *std::min_element(costs.begin(), costs.end());
+    int best = -1;
+    for (size_t i = 0; i < costs.size(); ++i) {
+      if (costs[i] != lowest) continue;
+      best = best < 0 ? int(i) : -2;
+    }
     if (best < 0) {
-      diag_.error(expr.loc, "ambiguous call to " + in_quotes(expr.callee));
-      // The candidates no other beats.
-      for (size_t i = 0; i < viable.size(); ++i) {
-        bool beaten = false;
-        for (size_t j = 0; j < viable.size() && !beaten; ++j) beaten = j != i && dominates(ranks[j], ranks[i]);
-        if (!beaten) diag_.note(viable[i]->loc, "candidate '" + function_signature(*viable[i]) + "'");
-      }
+      diag_.error(expr.loc, "ambiguous call to " + in_quotes(expr.callee) + " with (" + join_types(expr.args) + ")");
+      for (size_t i = 0; i < viable.size(); ++i)
+        if (costs[i] == lowest) diag_.note(viable[i]->loc, "candidate '" + function_signature(*viable[i]) + "'");
       return Type::error();
     }
     chosen = viable[size_t(best)];
@@ -444,20 +438,9 @@ Type Sema::analyze_intrinsic_call(CallExpr& expr, IntrinsicId id) {
   const std::string name(info.name);
   // Argument count first: the most helpful message when it is wrong.
   std::vector<size_t> arities;
-  for (const IntrinsicSignature& signature : info.signatures) {
-    if (std::find(arities.begin(), arities.end(), signature.param_count) == arities.end()) {
-      arities.push_back(signature.param_count);
-    }
-  }
-  std::sort(arities.begin(), arities.end());
+  for (const IntrinsicSignature& signature : info.signatures) arities.push_back(signature.param_count);
   if (std::find(arities.begin(), arities.end(), expr.args.size()) == arities.end()) {
-    std::string takes;
-    for (size_t i = 0; i < arities.size(); ++i) {
-      if (i > 0) takes += i + 1 == arities.size() ? " or " : ", ";
-      takes += std::to_string(arities[i]);
-    }
-    takes += arguments_word(arities.empty() ? 0 : arities.back());
-    diag_.error(expr.loc, in_quotes(name) + " takes " + takes + ", " + std::to_string(expr.args.size()) + " given");
+    diag_.error(expr.loc, in_quotes(name) + " takes " + arity_list(arities) + ", " + std::to_string(expr.args.size()) + " given");
     return Type::error();
   }
   std::vector<Candidate> candidates;

@@ -27,7 +27,18 @@ Conversion valid(int shape_rank, int scalar_rank, bool truncation = false) {
   return conversion;
 }
 
-bool same_kind_of_resource(const Type& a, const Type& b) { return a.is_resource() && a.kind() == b.kind(); }
+// Texel types of one class (float and half; int; uint; bool) read the same kind of GLSL sampler,
+// so HLSL's lenient passing of Texture2D<float> as Texture2D is kept within a class.
+int texel_class(ScalarType scalar) {
+  switch (scalar) {
+    case ScalarType::Half:
+    case ScalarType::Float: return 0;
+    case ScalarType::Int: return 1;
+    case ScalarType::Uint: return 2;
+    case ScalarType::Bool: return 3;
+  }
+  return 0;
+}
 
 }  // namespace
 
@@ -35,7 +46,9 @@ Conversion classify_implicit(const Type& from, const Type& to) {
   if (from.is_error() || to.is_error()) return valid(kRankExact, kRankExact);
   if (from == to) return valid(kRankExact, kRankExact);
   if (!from.is_numeric() || !to.is_numeric()) {
-    if (same_kind_of_resource(from, to)) return valid(kRankExact, kRankExact);
+    if (from.is_texture() && to.is_texture() && from.texture_shape() == to.texture_shape() &&
+        texel_class(from.scalar_type()) == texel_class(to.scalar_type()))
+      return valid(kRankExact, kRankTypeChange);
     return invalid();
   }
   const int type_change = scalar_change_rank(from.scalar_type(), to.scalar_type());
@@ -73,6 +86,91 @@ Conversion classify_implicit(const Type& from, const Type& to) {
     default:
       return invalid();
   }
+}
+
+namespace {
+
+// The element kinds DXC scores with: literals are kinds of their own; `half` (and min16float) is
+// DXC's 32-bit float of partial precision.
+enum class Element : uint8_t { Bool, LiteralInt, Int, Uint, LiteralFloat, Half, Float };
+
+Element element_of(ScalarType scalar, bool literal) {
+  switch (scalar) {
+    case ScalarType::Bool: return Element::Bool;
+    case ScalarType::Int: return literal ? Element::LiteralInt : Element::Int;
+    case ScalarType::Uint: return literal ? Element::LiteralInt : Element::Uint;
+    case ScalarType::Half: return Element::Half;
+    case ScalarType::Float: return literal ? Element::LiteralFloat : Element::Float;
+  }
+  return Element::Float;
+}
+
+bool is_float_element(Element e) { return e == Element::LiteralFloat || e == Element::Half || e == Element::Float; }
+
+// The kind both sides meet in (DXC's CombineBasicTypes): a float if either is one, unsigned
+// over signed; partial precision stays only beside a literal or a bool; a literal or bool
+// result becomes a 32-bit type.
+Element combine(Element a, Element b) {
+  if (a == b) return a == Element::LiteralInt ? Element::Int : a == Element::LiteralFloat ? Element::Float : a;
+  const bool a_float = is_float_element(a), b_float = is_float_element(b);
+  if (a_float || b_float) {
+    if (a_float && b_float) {
+      if (a == Element::Float || b == Element::Float) return Element::Float;
+      return Element::Half;  // half with a literal float
+    }
+    const Element f = a_float ? a : b;
+    const Element other = a_float ? b : a;
+    if (f == Element::Half) return other == Element::Bool || other == Element::LiteralInt ? Element::Half : Element::Float;
+    return Element::Float;
+  }
+  if (a == Element::Uint || b == Element::Uint) return Element::Uint;
+  return Element::Int;  // int, literal int and bool
+}
+
+// `narrow` widens to `wide` without loss (DXC's IsPromotion): half to float.
+bool is_promotion(Element wide, Element narrow) { return wide == Element::Float && narrow == Element::Half; }
+
+// A change of kind that is no promotion (DXC's IsCast): everything but a literal into its
+// family and int <-> uint of one width, which is an int cast of its own.
+bool is_cast(Element a, Element b) {
+  if (a == b) return false;
+  auto int_like = [](Element e) { return e == Element::Int || e == Element::Uint || e == Element::LiteralInt; };
+  if (int_like(a) && int_like(b)) return false;
+  if ((a == Element::LiteralFloat && is_float_element(b)) || (b == Element::LiteralFloat && is_float_element(a))) return false;
+  return true;
+}
+
+bool is_int_cast(Element a, Element b) {
+  return a != b && (a == Element::Int || a == Element::Uint) && (b == Element::Int || b == Element::Uint);
+}
+
+}  // namespace
+
+// DXC scores a conversion (ScoreCast in its SemaHLSL.cpp) as a sum of flags, each in a field of
+// 7 bits so that the sums of a call compare field by field, the highest first: truncation, then
+// a cast on the argument's side (int -> float), a cast on the parameter's side (float -> int,
+// float -> half, anything -> bool), an int cast on either side (int <-> uint), a promotion
+// (half -> float), and last a splat. Literals fit their family exactly.
+std::optional<uint64_t> overload_cost(const Type& from, bool literal, const Type& to) {
+  const Conversion conversion = classify_implicit(from, to);
+  if (!conversion.valid) return std::nullopt;
+  if (from == to || !from.is_numeric() || !to.is_numeric()) return conversion.rank == 0 ? 0 : uint64_t(1) << 37;
+  enum Flag { kSplat, kParamPromotion, kArgPromotion, kParamIntCast, kArgIntCast, kParamCast, kArgCast, kTruncation };
+  auto flag = [](Flag f) { return uint64_t(1) << (2 + 7 * int(f)); };
+  uint64_t cost = 0;
+  const uint32_t from_count = from.component_count(), to_count = to.component_count();
+  if (from_count < to_count) cost += flag(kSplat);
+  if (to_count < from_count) cost += flag(kTruncation);
+  const Element param = element_of(to.scalar_type(), false);
+  const Element arg = element_of(from.scalar_type(), literal && from.is_scalar());
+  const Element met = combine(param, arg);
+  if (is_promotion(param, met)) cost += flag(kParamPromotion);
+  else if (is_cast(param, met)) cost += flag(kParamCast);
+  else if (is_int_cast(param, met)) cost += flag(kParamIntCast);
+  if (is_promotion(met, arg)) cost += flag(kArgPromotion);
+  else if (is_cast(met, arg)) cost += flag(kArgCast);
+  else if (is_int_cast(met, arg)) cost += flag(kArgIntCast);
+  return cost;
 }
 
 bool explicit_cast_allowed(const Type& from, const Type& to, bool literal_scalar, TypeFacts& facts) {

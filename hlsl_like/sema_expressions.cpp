@@ -460,8 +460,10 @@ Type Sema::analyze_member(MemberExpr& expr) {
   const Type object = analyze(expr.object.get());
   if (object.is_error()) return Type::error();
   expr.swizzle.clear();
-  if (object.kind() == TypeKind::Struct) {
-    const StructDecl* decl = object.struct_decl();
+  if (object.kind() == TypeKind::Struct || object.kind() == TypeKind::ConstantBuffer) {
+    // ConstantBuffer<S> cb: cb.field reads the buffer's member.
+    const Type& structure = object.kind() == TypeKind::Struct ? object : object.element();
+    const StructDecl* decl = structure.struct_decl();
     if (decl) {
       for (size_t i = 0; i < decl->fields.size(); ++i) {
         if (decl->fields[i].name == expr.member) {
@@ -509,6 +511,9 @@ Type Sema::analyze_index(IndexExpr& expr) {
       result = Type::vector(object.scalar_type(), object.cols());
       length = object.rows();
       break;
+    case TypeKind::Texture:
+    case TypeKind::Buffer:
+      return analyze_resource_index(expr, object);
     default:
       diag_.error(expr.loc, "cannot index a value of type " + in_quotes(object.name()));
       return Type::error();
@@ -589,9 +594,12 @@ std::optional<std::pair<Loc, std::string>> Sema::not_assignable(const Expr* expr
         expr = member.object.get();
         break;
       }
-      case ExprKind::Index:
-        expr = static_cast<const IndexExpr&>(*expr).object.get();
+      case ExprKind::Index: {
+        const Expr* object = static_cast<const IndexExpr&>(*expr).object.get();
+        if (object && is_writable_resource(object->type)) return std::nullopt;  // rw[p] = v
+        expr = object;
         break;
+      }
       default:
         return std::make_pair(expr->loc, std::string("expression is not assignable"));
     }

@@ -38,6 +38,13 @@ struct Conversion {
 
 // HLSL's implicit conversion from `from` to `to`. Error types convert to anything silently.
 Conversion classify_implicit(const Type& from, const Type& to);
+
+// The cost DXC gives passing an argument of type `from` to a parameter of type `to`, for
+// choosing between a user function's overloads: lower is better, and the candidate with the
+// lowest sum over its arguments wins (equal lowest sums are ambiguous). `literal` is a literal
+// argument (`1`, `1.0`), which DXC types apart: 1.0 fits any float exactly. See
+// sema_conversions.cpp for the weights. Nothing when the conversion is not allowed.
+std::optional<uint64_t> overload_cost(const Type& from, bool literal, const Type& to);
 // An explicit cast `(to)x`; `literal_scalar` allows `(S)0` for structs of numeric fields.
 bool explicit_cast_allowed(const Type& from, const Type& to, bool literal_scalar, TypeFacts& facts);
 // "implicit truncation of vector type from 'float4' to 'float3'"
@@ -184,6 +191,11 @@ class Sema {
   Type analyze_constructor(CallExpr& expr);
   Type analyze_function_call(CallExpr& expr, const std::vector<const FunctionDecl*>& overloads);
   Type analyze_intrinsic_call(CallExpr& expr, IntrinsicId id);
+
+  // --- sema_methods.cpp: texture and buffer methods, and indexing a texture or buffer
+  // `expr.object` and the arguments are analyzed (and not in error).
+  Type analyze_method_call(CallExpr& expr, const Type& object);
+  Type analyze_resource_index(IndexExpr& expr, const Type& object);
   void note_fragment_only(std::string what, Loc loc);
 
   DiagnosticEngine& diag_;
@@ -217,6 +229,19 @@ class Sema {
 };
 
 std::string join_types(const std::vector<ExprPtr>& args);
+// RWTexture2D, RWBuffer, RWStructuredBuffer...: their elements can be assigned (sema_methods.cpp).
+bool is_writable_resource(const Type& type);
+// "1 argument", "2 or 3 arguments": what a call with one of these arities takes.
+std::string arity_list(std::vector<size_t> arities);
+// a dominates b: no argument converts worse (a higher rank), and one converts better.
+bool dominates(const std::vector<int>& a, const std::vector<int>& b);
+// The candidate that dominates every other one, or -1 (ambiguous).
+int unique_best(const std::vector<std::vector<int>>& ranks);
+// Passes argument `index` to a parameter of type `type`: in parameters convert, out and inout
+// parameters need an assignable argument; a ConversionExpr around an out argument means the
+// value is converted back to the argument's type after the call.
+void pass_argument(Sema& sema, ExprPtr& arg, const Type& type, ParamDirection direction, size_t index,
+                   const std::string& callee);
 std::string function_signature(const FunctionDecl& function);
 
 }  // namespace xshade::hlsl::sema_detail

@@ -1,0 +1,316 @@
+// Semantic analysis of resource methods and indexing: what each texture shape's Sample, Load,
+// Gather, GetDimensions... take and give (HLSL's signatures, offsets and clamps included), and
+// the methods of the buffer resources, which are typed so that code reaching them can be
+// checked even though no target here binds them.
+#include <algorithm>
+
+#include "hlsl_like/sema_internal.h"
+
+namespace xshade::hlsl::sema_detail {
+
+namespace {
+
+using I = IntrinsicId;
+
+struct MethodSignature {
+  std::vector<Type> params;
+  std::vector<bool> out;
+  Type result;
+};
+
+Type vec(ScalarType scalar, uint32_t n) { return n == 1 ? Type::scalar(scalar) : Type::vector(scalar, n); }
+Type floats(uint32_t n) { return vec(ScalarType::Float, n); }
+Type ints(uint32_t n) { return vec(ScalarType::Int, n); }
+const Type kFloat = Type::scalar(ScalarType::Float);
+const Type kUint = Type::scalar(ScalarType::Uint);
+
+MethodSignature in_only(std::vector<Type> params, Type result) {
+  MethodSignature signature{std::move(params), {}, std::move(result)};
+  signature.out.assign(signature.params.size(), false);
+  return signature;
+}
+
+// `base`, then `base` + a texel offset, then + offset + a clamp for the level of detail.
+void with_offset(std::vector<MethodSignature>& out, const MethodSignature& base, TextureShape shape, bool clamp) {
+  out.push_back(base);
+  const uint32_t offset = offset_components(shape);
+  if (offset == 0) return;
+  MethodSignature with = base;
+  with.params.push_back(ints(offset));
+  with.out.push_back(false);
+  out.push_back(with);
+  if (!clamp) return;
+  with.params.push_back(kFloat);
+  with.out.push_back(false);
+  out.push_back(with);
+}
+
+// GetDimensions: the sizes a shape reports (width, height, depth or layers, samples), each as
+// uint or as float, with a mip-level form (mip in, then the sizes and the level count out).
+void get_dimensions(std::vector<MethodSignature>& out, TextureShape shape) {
+  uint32_t sizes = 0;
+  switch (shape) {
+    case TextureShape::Tex1D: sizes = 1; break;
+    case TextureShape::Tex1DArray:
+    case TextureShape::Tex2D:
+    case TextureShape::Cube: sizes = 2; break;
+    case TextureShape::Tex2DArray:
+    case TextureShape::CubeArray:
+    case TextureShape::Tex3D:
+    case TextureShape::Tex2DMS: sizes = 3; break;
+    case TextureShape::Tex2DMSArray: sizes = 4; break;
+  }
+  for (ScalarType scalar : {ScalarType::Uint, ScalarType::Float}) {
+    MethodSignature plain;
+    plain.result = Type::void_type();
+    for (uint32_t i = 0; i < sizes; ++i) {
+      plain.params.push_back(Type::scalar(scalar));
+      plain.out.push_back(true);
+    }
+    out.push_back(plain);
+    if (is_multisampled(shape)) continue;
+    MethodSignature mip = plain;
+    mip.params.insert(mip.params.begin(), kUint);
+    mip.out.insert(mip.out.begin(), false);
+    mip.params.push_back(Type::scalar(scalar));
+    mip.out.push_back(true);
+    out.push_back(mip);
+  }
+}
+
+bool gathers(TextureShape shape) {
+  return shape == TextureShape::Tex2D || shape == TextureShape::Tex2DArray || shape == TextureShape::Cube ||
+         shape == TextureShape::CubeArray;
+}
+
+bool compares(TextureShape shape) { return shape != TextureShape::Tex3D && !is_multisampled(shape); }
+
+// The signatures of `id` on a texture, as HLSL defines them; empty when the shape has no such
+// method (a cube map has no Load and no offsets, a multisampled texture samples nothing).
+std::vector<MethodSignature> texture_signatures(IntrinsicId id, const Type& texture) {
+  const TextureShape shape = texture.texture_shape();
+  const uint32_t n = coordinate_components(shape);
+  const uint32_t g = gradient_components(shape);
+  const Type texel = texture.texel_type();
+  const Type sampler = Type::sampler_state(false);
+  const Type comparison = Type::sampler_state(true);
+  const Type scalar_texel = Type::scalar(texel.is_numeric() ? texel.scalar_type() : ScalarType::Float);
+  const Type gathered = Type::vector(scalar_texel.scalar_type(), 4);
+  const bool ms = is_multisampled(shape);
+  std::vector<MethodSignature> out;
+  switch (id) {
+    case I::Sample:
+      if (!ms) with_offset(out, in_only({sampler, floats(n)}, texel), shape, true);
+      break;
+    case I::SampleBias:
+      if (!ms) with_offset(out, in_only({sampler, floats(n), kFloat}, texel), shape, true);
+      break;
+    case I::SampleLevel:
+      if (!ms) with_offset(out, in_only({sampler, floats(n), kFloat}, texel), shape, false);
+      break;
+    case I::SampleGrad:
+      if (!ms) with_offset(out, in_only({sampler, floats(n), floats(g), floats(g)}, texel), shape, true);
+      break;
+    case I::SampleCmp:
+      if (compares(shape)) with_offset(out, in_only({comparison, floats(n), kFloat}, scalar_texel), shape, true);
+      break;
+    case I::SampleCmpLevelZero:
+      if (compares(shape)) with_offset(out, in_only({comparison, floats(n), kFloat}, scalar_texel), shape, false);
+      break;
+    case I::Load:
+      if (ms) {
+        with_offset(out, in_only({ints(n), Type::scalar(ScalarType::Int)}, texel), shape, false);
+      } else if (shape != TextureShape::Cube && shape != TextureShape::CubeArray) {
+        with_offset(out, in_only({ints(n + 1)}, texel), shape, false);  // the mip level last
+      }
+      break;
+    case I::Gather:
+    case I::GatherRed:
+    case I::GatherGreen:
+    case I::GatherBlue:
+    case I::GatherAlpha:
+      if (gathers(shape)) with_offset(out, in_only({sampler, floats(n)}, gathered), shape, false);
+      break;
+    case I::GatherCmp:
+    case I::GatherCmpRed:
+    case I::GatherCmpGreen:
+    case I::GatherCmpBlue:
+    case I::GatherCmpAlpha:
+      if (gathers(shape)) with_offset(out, in_only({comparison, floats(n), kFloat}, gathered), shape, false);
+      break;
+    case I::GetDimensions: get_dimensions(out, shape); break;
+    case I::CalculateLevelOfDetail:
+    case I::CalculateLevelOfDetailUnclamped:
+      if (!ms) out.push_back(in_only({sampler, floats(g)}, kFloat));
+      break;
+    default: break;
+  }
+  return out;
+}
+
+bool is_read_write(BufferKind kind) {
+  switch (kind) {
+    case BufferKind::RWBuffer:
+    case BufferKind::RWStructuredBuffer:
+    case BufferKind::RWByteAddressBuffer:
+    case BufferKind::RWTexture1D:
+    case BufferKind::RWTexture1DArray:
+    case BufferKind::RWTexture2D:
+    case BufferKind::RWTexture2DArray:
+    case BufferKind::RWTexture3D:
+      return true;
+    default:
+      return false;
+  }
+}
+
+// The components of the index of a buffer or RWTexture: RWTexture2D<float4> t; t[uint2(x, y)].
+uint32_t buffer_index_components(BufferKind kind) {
+  switch (kind) {
+    case BufferKind::RWTexture1DArray:
+    case BufferKind::RWTexture2D: return 2;
+    case BufferKind::RWTexture2DArray:
+    case BufferKind::RWTexture3D: return 3;
+    default: return 1;
+  }
+}
+
+// The methods of the buffer resources by name.
+std::vector<MethodSignature> buffer_signatures(const std::string& method, const Type& buffer) {
+  const BufferKind kind = buffer.buffer_kind();
+  const Type& element = buffer.element();
+  const Type uint_type = kUint;
+  const bool byte_address = kind == BufferKind::ByteAddressBuffer || kind == BufferKind::RWByteAddressBuffer;
+  std::vector<MethodSignature> out;
+  auto outs = [&](uint32_t count) {
+    MethodSignature signature;
+    signature.result = Type::void_type();
+    signature.params.assign(count, uint_type);
+    signature.out.assign(count, true);
+    return signature;
+  };
+  if (method == "GetDimensions") {
+    switch (kind) {
+      case BufferKind::StructuredBuffer:
+      case BufferKind::RWStructuredBuffer:
+      case BufferKind::AppendStructuredBuffer:
+      case BufferKind::ConsumeStructuredBuffer: out.push_back(outs(2)); break;
+      case BufferKind::RWTexture1D:
+      case BufferKind::Buffer:
+      case BufferKind::RWBuffer:
+      case BufferKind::ByteAddressBuffer:
+      case BufferKind::RWByteAddressBuffer: out.push_back(outs(1)); break;
+      case BufferKind::RWTexture1DArray:
+      case BufferKind::RWTexture2D: out.push_back(outs(2)); break;
+      case BufferKind::RWTexture2DArray:
+      case BufferKind::RWTexture3D: out.push_back(outs(3)); break;
+    }
+  } else if (byte_address) {
+    for (uint32_t n = 1; n <= 4; ++n) {
+      const std::string suffix = n == 1 ? "" : std::to_string(n);
+      if (method == "Load" + suffix) out.push_back(in_only({uint_type}, vec(ScalarType::Uint, n)));
+      if (kind == BufferKind::RWByteAddressBuffer && method == "Store" + suffix)
+        out.push_back(in_only({uint_type, vec(ScalarType::Uint, n)}, Type::void_type()));
+    }
+  } else if (method == "Load" && kind != BufferKind::AppendStructuredBuffer && kind != BufferKind::ConsumeStructuredBuffer) {
+    out.push_back(in_only({ints(buffer_index_components(kind))}, element));
+  } else if (method == "Append" && kind == BufferKind::AppendStructuredBuffer) {
+    out.push_back(in_only({element}, Type::void_type()));
+  } else if (method == "Consume" && kind == BufferKind::ConsumeStructuredBuffer) {
+    out.push_back(in_only({}, element));
+  } else if ((method == "IncrementCounter" || method == "DecrementCounter") && kind == BufferKind::RWStructuredBuffer) {
+    out.push_back(in_only({}, uint_type));
+  }
+  return out;
+}
+
+}  // namespace
+
+Type Sema::analyze_method_call(CallExpr& expr, const Type& object) {
+  std::vector<MethodSignature> signatures;
+  std::string owner = object.name();
+  if (object.kind() == TypeKind::Texture) {
+    const std::optional<IntrinsicId> method = find_texture_method(expr.callee);
+    if (method) {
+      expr.intrinsic = uint16_t(*method);
+      signatures = texture_signatures(*method, object);
+    }
+  } else if (object.kind() == TypeKind::Buffer) {
+    expr.intrinsic = uint16_t(IntrinsicId::BufferMethod);
+    signatures = buffer_signatures(expr.callee, object);
+  }
+  if (signatures.empty()) {
+    diag_.error(expr.loc, in_quotes(owner) + " has no method " + in_quotes(expr.callee));
+    return Type::error();
+  }
+  std::vector<size_t> arities;
+  for (const MethodSignature& signature : signatures) arities.push_back(signature.params.size());
+  if (std::find(arities.begin(), arities.end(), expr.args.size()) == arities.end()) {
+    diag_.error(expr.loc, in_quotes(expr.callee) + " of " + in_quotes(owner) + " takes " + arity_list(arities) + ", " +
+                              std::to_string(expr.args.size()) + " given");
+    return Type::error();
+  }
+  std::vector<const MethodSignature*> viable;
+  std::vector<std::vector<int>> ranks;
+  for (const MethodSignature& signature : signatures) {
+    if (signature.params.size() != expr.args.size()) continue;
+    std::vector<int> rank;
+    bool ok = true;
+    for (size_t i = 0; i < expr.args.size() && ok; ++i) {
+      const Conversion conversion = signature.out[i] ? classify_implicit(signature.params[i], expr.args[i]->type)
+                                                     : classify_implicit(expr.args[i]->type, signature.params[i]);
+      ok = conversion.valid;
+      rank.push_back(conversion.rank);
+    }
+    if (!ok) continue;
+    viable.push_back(&signature);
+    ranks.push_back(std::move(rank));
+  }
+  if (viable.empty()) {
+    diag_.error(expr.loc, "no overload of " + in_quotes(expr.callee) + " of " + in_quotes(owner) + " takes (" +
+                              join_types(expr.args) + ")");
+    return Type::error();
+  }
+  int best = unique_best(ranks);
+  if (best < 0) best = 0;  // the signatures differ only in out types (GetDimensions): uint first
+  const MethodSignature& chosen = *viable[size_t(best)];
+  for (size_t i = 0; i < expr.args.size(); ++i)
+    pass_argument(*this, expr.args[i], chosen.params[i], chosen.out[i] ? ParamDirection::Out : ParamDirection::In, i,
+                  expr.callee);
+  if (object.kind() == TypeKind::Texture && intrinsic_info(IntrinsicId(expr.intrinsic)).fragment_only)
+    note_fragment_only(in_quotes(expr.callee), expr.loc);
+  return chosen.result;
+}
+
+Type Sema::analyze_resource_index(IndexExpr& expr, const Type& object) {
+  uint32_t components = 0;
+  Type result;
+  if (object.kind() == TypeKind::Texture && !is_multisampled(object.texture_shape()) &&
+      object.texture_shape() != TextureShape::Cube && object.texture_shape() != TextureShape::CubeArray) {
+    components = coordinate_components(object.texture_shape());  // t[p] reads mip 0: Load(int3(p, 0))
+    result = object.texel_type();
+  } else if (object.kind() == TypeKind::Buffer && object.buffer_kind() != BufferKind::ByteAddressBuffer &&
+             object.buffer_kind() != BufferKind::RWByteAddressBuffer &&
+             object.buffer_kind() != BufferKind::AppendStructuredBuffer &&
+             object.buffer_kind() != BufferKind::ConsumeStructuredBuffer) {
+    components = buffer_index_components(object.buffer_kind());
+    result = object.element();
+  } else {
+    diag_.error(expr.loc, "cannot index a value of type " + in_quotes(object.name()));
+    return Type::error();
+  }
+  if (!expr.index || expr.index->type.is_error()) return result;
+  const Type index_type = vec(ScalarType::Uint, components);
+  const Conversion conversion = classify_implicit(expr.index->type, index_type);
+  if (!conversion.valid) {
+    diag_.error(expr.index->loc, "the index of " + in_quotes(object.name()) + " must be " + in_quotes(index_type.name()) +
+                                     ", not " + in_quotes(expr.index->type.name()));
+    return Type::error();
+  }
+  coerce(expr.index, index_type);
+  return result;
+}
+
+bool is_writable_resource(const Type& type) { return type.kind() == TypeKind::Buffer && is_read_write(type.buffer_kind()); }
+
+}  // namespace xshade::hlsl::sema_detail
