@@ -195,6 +195,23 @@ void StageEmitter::statement(const Stmt* stmt) {
       out_.line("} while (" + expr(loop->condition.get()).text + ");");
       break;
     }
+    case StmtKind::Switch: {
+      const auto* sw = static_cast<const SwitchStmt*>(stmt);
+      out_.mark(stmt->loc);
+      out_.line(prefix + "switch (" + expr(sw->condition.get()).text + ") {");
+      for (size_t i = 0; i < sw->cases.size(); ++i) {
+        const SwitchCase& c = sw->cases[i];
+        // Labels take the condition's type: GLSL does not convert them.
+        out_.line(c.value ? "case " + convert_expr(c.value.get(), sw->condition->type).text + ":" : "default:");
+        ++out_.indent;
+        for (const StmtPtr& child : c.statements) statement(child.get());
+        // GLSL wants statements after the last label.
+        if (i + 1 == sw->cases.size() && c.statements.empty()) out_.line("break;");
+        --out_.indent;
+      }
+      out_.line("}");
+      break;
+    }
     case StmtKind::Return: {
       const Expr* value = static_cast<const ReturnStmt*>(stmt)->value.get();
       out_.mark(stmt->loc);

@@ -63,6 +63,10 @@ void collect_local_names(const Stmt* stmt, std::unordered_set<std::string>& name
     }
     case StmtKind::While: collect_local_names(static_cast<const WhileStmt*>(stmt)->body.get(), names); break;
     case StmtKind::DoWhile: collect_local_names(static_cast<const DoWhileStmt*>(stmt)->body.get(), names); break;
+    case StmtKind::Switch:
+      for (const SwitchCase& c : static_cast<const SwitchStmt*>(stmt)->cases)
+        for (const StmtPtr& child : c.statements) collect_local_names(child.get(), names);
+      break;
     default: break;
   }
 }

@@ -79,66 +79,77 @@ ProgramLayout layout_for_lane(const hlsl::Reflection& reflection, Lane lane) {
   return layout;
 }
 
-Result<ProgramDesc> program_for_lane(const hlsl::Module& module, Lane lane, const ProgramOptions& options) {
+Result<LaneStages> stages_for_lane(const hlsl::Module& module, Lane lane, const ProgramOptions& options) {
   if (!module.ok()) return fail("the shader did not compile", module.sources.resolve({module.main_file, 0, 0}));
-  ProgramDesc desc;
-  desc.name = module.sources.name(module.main_file);
-  desc.layout = layout_for_lane(module.reflection, lane);
-  desc.fullscreen = module.entry_points.vertex == nullptr;
-  if (!module.entry_points.fragment) return fail("the shader has no fragment entry point (#pragma fragment)", module.sources.resolve({module.main_file, 0, 0}));
-
-  const glsl::Flavour flavour = lane == Lane::Gl ? glsl::Flavour::Gl : glsl::Flavour::Vk;
-  auto fullscreen_vertex = [&]() -> Result<ShaderStageSource> {
-    const std::string text = glsl::fullscreen_vertex_shader(flavour);
-    ShaderStageSource source;
-    source.name = "fullscreen.vert";
-    if (lane == Lane::Gl) {
-      source.glsl = text;
-      return source;
-    }
-    auto module_words = spirv::compile_vulkan_glsl(text, spirv::Stage::Vertex, source.name);
-    if (!module_words) return fail(module_words.error());
-    source.spirv = std::move(module_words->words);
-    return source;
-  };
-
+  if (!module.entry_points.vertex && !module.entry_points.fragment)
+    return fail("the shader has no entry point (#pragma vertex or #pragma fragment)",
+                module.sources.resolve({module.main_file, 0, 0}));
+  LaneStages stages;
   if (lane == Lane::VkHlsl) {
     if (options.half_emulation)
       return fail("half emulation rewrites the GLSL xshade emits; the vk-hlsl lane compiles the source with glslang and "
                   "cannot emulate half",
                   module.sources.resolve({module.main_file, 0, 0}));
-    const std::vector<std::filesystem::path>& include_dirs = module.include_dirs;
-    auto fragment = vk_hlsl_stage(module, spirv::Stage::Fragment, module.reflection.fragment_entry, include_dirs);
-    if (!fragment) return fail(fragment.error());
-    desc.fragment = std::move(*fragment);
-    auto vertex = desc.fullscreen ? fullscreen_vertex()
-                                  : vk_hlsl_stage(module, spirv::Stage::Vertex, module.reflection.vertex_entry, include_dirs);
-    if (!vertex) return fail(vertex.error());
-    desc.vertex = std::move(*vertex);
-    return desc;
+    for (const bool vertex : {true, false}) {
+      if (!(vertex ? module.entry_points.vertex : module.entry_points.fragment)) continue;
+      auto stage = vk_hlsl_stage(module, vertex ? spirv::Stage::Vertex : spirv::Stage::Fragment,
+                                 vertex ? module.reflection.vertex_entry : module.reflection.fragment_entry,
+                                 module.include_dirs);
+      if (!stage) return fail(stage.error());
+      (vertex ? stages.vertex : stages.fragment) = std::move(*stage);
+    }
+    return stages;
   }
-
+  const glsl::Flavour flavour = lane == Lane::Gl ? glsl::Flavour::Gl : glsl::Flavour::Vk;
   auto emitted = glsl::emit(module, {flavour, options.half_emulation});
   if (!emitted) return fail(emitted.error());
-  auto stage = [&](const glsl::EmittedStage& emitted_stage, spirv::Stage kind, const char* suffix) -> Result<ShaderStageSource> {
+  const std::string name = module.sources.name(module.main_file);
+  for (const bool vertex : {true, false}) {
+    const std::optional<glsl::EmittedStage>& emitted_stage = vertex ? emitted->vertex : emitted->fragment;
+    if (!emitted_stage) continue;
     ShaderStageSource source;
-    source.name = desc.name + suffix;
+    source.name = name + (vertex ? ".vert" : ".frag");
     source.source_files = emitted->source_files;
     if (lane == Lane::Gl) {
-      source.glsl = emitted_stage.text;
-      return source;
+      source.glsl = emitted_stage->text;
+    } else {
+      auto words = spirv::compile_vulkan_glsl(emitted_stage->text, vertex ? spirv::Stage::Vertex : spirv::Stage::Fragment,
+                                              source.name);
+      if (!words) return fail(with_source_names(words.error(), emitted->source_files));
+      source.spirv = std::move(words->words);
     }
-    auto words = spirv::compile_vulkan_glsl(emitted_stage.text, kind, source.name);
-    if (!words) return fail(with_source_names(words.error(), emitted->source_files));
-    source.spirv = std::move(words->words);
-    return source;
-  };
-  auto fragment = stage(*emitted->fragment, spirv::Stage::Fragment, ".frag");
-  if (!fragment) return fail(fragment.error());
-  desc.fragment = std::move(*fragment);
-  auto vertex = desc.fullscreen ? fullscreen_vertex() : stage(*emitted->vertex, spirv::Stage::Vertex, ".vert");
-  if (!vertex) return fail(vertex.error());
-  desc.vertex = std::move(*vertex);
+    (vertex ? stages.vertex : stages.fragment) = std::move(source);
+  }
+  return stages;
+}
+
+Result<ProgramDesc> program_for_lane(const hlsl::Module& module, Lane lane, const ProgramOptions& options) {
+  if (!module.ok()) return fail("the shader did not compile", module.sources.resolve({module.main_file, 0, 0}));
+  if (!module.entry_points.fragment)
+    return fail("the shader has no fragment entry point (#pragma fragment): a program needs one to draw",
+                module.sources.resolve({module.main_file, 0, 0}));
+  auto stages = stages_for_lane(module, lane, options);
+  if (!stages) return fail(stages.error());
+  ProgramDesc desc;
+  desc.name = module.sources.name(module.main_file);
+  desc.layout = layout_for_lane(module.reflection, lane);
+  desc.fullscreen = module.entry_points.vertex == nullptr;
+  desc.fragment = std::move(*stages->fragment);
+  if (stages->vertex) {
+    desc.vertex = std::move(*stages->vertex);
+    return desc;
+  }
+  // A full-screen pass: the shared vertex shader feeds its TEXCOORD0.
+  const glsl::Flavour flavour = lane == Lane::Gl ? glsl::Flavour::Gl : glsl::Flavour::Vk;
+  const std::string text = glsl::fullscreen_vertex_shader(flavour);
+  desc.vertex.name = "fullscreen.vert";
+  if (lane == Lane::Gl) {
+    desc.vertex.glsl = text;
+  } else {
+    auto words = spirv::compile_vulkan_glsl(text, spirv::Stage::Vertex, desc.vertex.name);
+    if (!words) return fail(words.error());
+    desc.vertex.spirv = std::move(words->words);
+  }
   return desc;
 }
 

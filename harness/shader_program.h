@@ -24,6 +24,15 @@ struct ProgramOptions {
 inline constexpr const char* kHalfEmulationMacro = "XSHADE_PRECISION_HALF";
 Result<ProgramDesc> program_for_lane(const hlsl::Module& module, Lane lane, const ProgramOptions& options = {});
 
+// The stages the module has (a vertex shader alone, a fragment shader alone, or both), each
+// compiled for the lane as program_for_lane would, without the full-screen vertex shader: what
+// `xshade compile` prints.
+struct LaneStages {
+  std::optional<ShaderStageSource> vertex;
+  std::optional<ShaderStageSource> fragment;
+};
+Result<LaneStages> stages_for_lane(const hlsl::Module& module, Lane lane, const ProgramOptions& options = {});
+
 // The layout the harness binds by: uniform blocks by their GLSL block name, textures by name
 // with their samplers' bindings (Vulkan only; OpenGL combines them).
 ProgramLayout layout_for_lane(const hlsl::Reflection& reflection, Lane lane);

@@ -183,7 +183,7 @@ struct ConversionExpr : Expr {
 // Statements
 
 enum class StmtKind : uint8_t {
-  Block, Expr, Decl, If, For, While, DoWhile, Break, Continue, Return, Discard, Empty,
+  Block, Expr, Decl, If, For, While, DoWhile, Switch, Break, Continue, Return, Discard, Empty,
 };
 
 struct Stmt {
@@ -236,6 +236,20 @@ struct DoWhileStmt : Stmt {
   StmtPtr body;
   ExprPtr condition;
   DoWhileStmt(Loc l) : Stmt(StmtKind::DoWhile, l) {}
+};
+
+// switch (c) { case 1: ... default: ... }: each label with the statements up to the next one
+// (control falls through to them, as in C).
+struct SwitchCase {
+  ExprPtr value;  // null for `default`
+  Loc loc;
+  std::vector<StmtPtr> statements;
+};
+
+struct SwitchStmt : Stmt {
+  ExprPtr condition;
+  std::vector<SwitchCase> cases;
+  SwitchStmt(Loc l) : Stmt(StmtKind::Switch, l) {}
 };
 
 struct ReturnStmt : Stmt {

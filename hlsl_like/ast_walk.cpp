@@ -94,6 +94,15 @@ void walk_expressions(const Stmt* stmt, const std::function<void(const Expr&)>& 
       walk_expressions(s->condition.get(), visit);
       break;
     }
+    case StmtKind::Switch: {
+      auto* s = static_cast<const SwitchStmt*>(stmt);
+      walk_expressions(s->condition.get(), visit);
+      for (const SwitchCase& c : s->cases) {
+        walk_expressions(c.value.get(), visit);
+        for (const StmtPtr& child : c.statements) walk_expressions(child.get(), visit);
+      }
+      break;
+    }
     case StmtKind::Return: walk_expressions(static_cast<const ReturnStmt*>(stmt)->value.get(), visit); break;
     case StmtKind::Break:
     case StmtKind::Continue:

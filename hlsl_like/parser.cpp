@@ -1541,7 +1541,7 @@ class Parser {
             // [RootSignature("..."), [domain("tri")]: strings only an API or another stage reads.
             if (cur().kind == TokenKind::StringLiteral) {
               has_string = true;
-              advance();
+              while (cur().kind == TokenKind::StringLiteral) advance();  // "a" "b": one string, as in C
             } else {
               ExprPtr arg = parse_assignment();
               if (!arg) return false;
@@ -1625,18 +1625,12 @@ class Parser {
         const StmtKind kind = word == "break" ? StmtKind::Break : word == "continue" ? StmtKind::Continue : StmtKind::Discard;
         return make_simple(kind, loc);
       }
-      if (word == "switch") {
-        error_here("switch is not supported; use if/else");
-        advance();
-        if (is("(")) skip_group(pos_, false);
-        if (is("{")) skip_group(pos_, true);
-        return make_simple(StmtKind::Empty, loc);
-      }
+      if (word == "switch") return parse_switch();
       if (word == "goto") {
         error_here("goto is not supported");
         return nullptr;
       }
-      if (word == "else" || word == "case" || word == "default") {
+      if (word == "else" || word == "case" || word == "default") {  // a label outside a switch
         error_here("unexpected " + in_quotes(word));
         return nullptr;
       }
@@ -1653,6 +1647,74 @@ class Parser {
     auto statement = make<ExprStmt>(loc);
     statement->expr = parse_expression();
     if (!statement->expr || !expect_semicolon("expression")) return nullptr;
+    return statement;
+  }
+
+  // switch (c) { case 1: ... default: ... }, at the word. A label outside any case is an error;
+  // statements after a label belong to it until the next one.
+  StmtPtr parse_switch() {
+    auto statement = make<SwitchStmt>(cur().loc);
+    advance();
+    if (!is("(")) {
+      error_here("expected '(' after 'switch'");
+      return nullptr;
+    }
+    const size_t open = pos_;
+    advance();
+    {
+      DepthGuard guard(*this);
+      if (!guard.ok()) return nullptr;
+      statement->condition = parse_expression();
+    }
+    if (!statement->condition || !is(")")) {
+      if (statement->condition) error_unmatched(")", open);
+      skip_group(open, false);
+      if (is("{")) skip_group(pos_, true);
+      return make_simple(StmtKind::Empty, statement->loc);
+    }
+    advance();
+    if (!is("{")) {
+      error_here("expected '{' after the condition of 'switch'");
+      return nullptr;
+    }
+    const size_t brace = pos_;
+    advance();
+    while (!is("}") && !at_end()) {
+      const size_t before = pos_;
+      if (is_word("case") || is_word("default")) {
+        SwitchCase label;
+        label.loc = cur().loc;
+        const bool is_default = is_word("default");
+        advance();
+        if (!is_default) {
+          DepthGuard guard(*this);
+          if (!guard.ok()) return nullptr;
+          label.value = parse_conditional();
+          if (!label.value) {
+            recover_statement();
+            continue;
+          }
+        }
+        if (!accept(":")) {
+          error_after_previous(std::string("expected ':' after ") + (is_default ? "'default'" : "the case value"));
+          recover_statement();
+          continue;
+        }
+        statement->cases.push_back(std::move(label));
+        continue;
+      }
+      if (statement->cases.empty()) {
+        error_here("expected 'case' or 'default' in a switch");
+        recover_statement();
+        if (pos_ == before) advance();
+        continue;
+      }
+      StmtPtr child = parse_statement();
+      if (child) statement->cases.back().statements.push_back(std::move(child));
+      else recover_statement();
+      if (pos_ == before && !is("}") && !at_end()) advance();
+    }
+    if (!accept("}")) error_unmatched("}", brace);
     return statement;
   }
 

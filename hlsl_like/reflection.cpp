@@ -234,10 +234,13 @@ class RegisterClass {
                                           " of " + in_quotes(name) + " is already taken by " + in_quotes(it->second));
   }
   uint32_t binding_of(const RegisterBinding& binding) const { return base_ + binding.index; }
-  std::optional<uint32_t> next_free(const std::string& name, Loc loc) {
+  // The lowest free register; when none is left, an error if `required`.
+  std::optional<uint32_t> next_free(const std::string& name, Loc loc, bool required = true) {
     for (uint32_t index = 0; index < kRegistersPerClass; ++index)
       if (used_.emplace(index, name).second) return base_ + index;
-    diagnostics_.error(loc, std::string("no free ") + letter_ + " register for " + in_quotes(name));
+    if (required)
+      diagnostics_.error(loc, std::string("no free ") + letter_ + " register for " + in_quotes(name) + ": a shader reads at most " +
+                                  std::to_string(kRegistersPerClass) + " of this class here");
     return std::nullopt;
   }
 
@@ -500,20 +503,22 @@ Reflection reflect(const TranslationUnit& unit, const EntryPoints& entry_points,
   // then takes what is left, so that every declared one has a number.
   const bool has_entry = entry_points.vertex || entry_points.fragment;
   auto used = [&](const VarDecl* var) { return !has_entry || usage.globals.count(var) > 0; };
+  // An unread resource takes a register only while one is free: it is never bound, and a file
+  // of many shaders may declare more than a class holds.
   for (bool used_pass : {true, false}) {
     for (auto [index, var] : pending_textures) {
       if (used(var) != used_pass) continue;
       TextureResource& texture = reflection.textures[index];
       texture.used = used_pass;
       if (var->binding.register_class != 0) texture.binding = textures.binding_of(var->binding);
-      else texture.binding = textures.next_free(var->name, var->loc).value_or(0);
+      else texture.binding = textures.next_free(var->name, var->loc, used_pass).value_or(0);
     }
     for (auto [index, var] : pending_samplers) {
       if (used(var) != used_pass) continue;
       SamplerResource& sampler = reflection.samplers[index];
       sampler.used = used_pass;
       if (var->binding.register_class != 0) sampler.binding = samplers.binding_of(var->binding);
-      else sampler.binding = samplers.next_free(var->name, var->loc).value_or(0);
+      else sampler.binding = samplers.next_free(var->name, var->loc, used_pass).value_or(0);
     }
   }
 

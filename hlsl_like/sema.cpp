@@ -66,6 +66,25 @@ bool always_returns(const Sema& sema, const Stmt* stmt, int depth) {
       const auto* loop = static_cast<const ForStmt*>(stmt);
       return constant_true(sema, loop->condition.get()) && !contains_break(loop->body.get(), 0);
     }
+    case StmtKind::Switch: {
+      // Returns when there is a default and every label's statements return, or fall through
+      // to ones that do, without a break.
+      const auto* sw = static_cast<const SwitchStmt*>(stmt);
+      bool has_default = false;
+      for (const SwitchCase& c : sw->cases) has_default |= !c.value;
+      if (!has_default || sw->cases.empty()) return false;
+      bool returns = false;
+      for (auto c = sw->cases.rbegin(); c != sw->cases.rend(); ++c) {
+        bool this_returns = false;
+        for (const StmtPtr& child : c->statements) {
+          if (contains_break(child.get(), depth + 1)) return false;
+          if (always_returns(sema, child.get(), depth + 1)) this_returns = true;
+        }
+        if (c->statements.empty() ? !returns : !this_returns) return false;
+        returns = true;
+      }
+      return returns;
+    }
     case StmtKind::DoWhile: {
       const auto* loop = static_cast<const DoWhileStmt*>(stmt);
       if (always_returns(sema, loop->body.get(), depth + 1)) return true;
@@ -356,6 +375,7 @@ void Sema::declare_function(FunctionDecl& function) {
     current_function_ = &function;
     current_info_ = &function_info_[canonical_decl];
     loop_depth_ = 0;
+    switch_depth_ = 0;
     analyze_block(*function.body, false);  // parameters and the body's locals share a scope
     // After an error the tree may have lost statements (the parser drops what it cannot read),
     // so the warning would only add noise.
@@ -452,12 +472,46 @@ void Sema::analyze_stmt(Stmt* stmt) {
       analyze_condition(loop.condition);
       break;
     }
-    case StmtKind::Break:
-    case StmtKind::Continue:
-      if (loop_depth_ == 0) {
-        diag_.error(stmt->loc, std::string(stmt->kind == StmtKind::Break ? "'break'" : "'continue'") +
-                                   " is only allowed inside a loop");
+    case StmtKind::Switch: {
+      auto& sw = static_cast<SwitchStmt&>(*stmt);
+      const Type type = analyze(sw.condition.get());
+      if (sw.condition && !type.is_error()) {
+        if (!type.is_numeric() || type.component_count() != 1 || !(type.is_integer() || type.is_bool())) {
+          diag_.error(sw.condition->loc, "the condition of a switch must be an integer scalar, not " + in_quotes(type.name()));
+        } else if (!type.is_integer() || !type.is_scalar()) {
+          wrap_conversion(sw.condition, Type::scalar(type.is_integer() ? type.scalar_type() : ScalarType::Int));
+        }
       }
+      std::unordered_map<int64_t, Loc> seen;
+      bool has_default = false;
+      push_scope();  // the cases share one scope, as in C
+      ++switch_depth_;
+      for (SwitchCase& c : sw.cases) {
+        if (c.value) {
+          analyze(c.value.get());
+          const std::optional<int64_t> value = c.value->type.is_error() ? std::nullopt : fold_int(c.value.get());
+          if (!c.value->type.is_error() && (!value || !c.value->type.is_integer())) {
+            diag_.error(c.value->loc, "a case value must be an integer constant");
+          } else if (value && !seen.emplace(*value, c.loc).second) {
+            diag_.error(c.loc, "case value " + std::to_string(*value) + " appears twice");
+            diag_.note(seen[*value], "the first is here");
+          }
+        } else if (has_default) {
+          diag_.error(c.loc, "a switch has one 'default'");
+        } else {
+          has_default = true;
+        }
+        for (StmtPtr& child : c.statements) analyze_stmt(child.get());
+      }
+      --switch_depth_;
+      pop_scope();
+      break;
+    }
+    case StmtKind::Break:
+      if (loop_depth_ == 0 && switch_depth_ == 0) diag_.error(stmt->loc, "'break' is only allowed inside a loop or a switch");
+      break;
+    case StmtKind::Continue:
+      if (loop_depth_ == 0) diag_.error(stmt->loc, "'continue' is only allowed inside a loop");
       break;
     case StmtKind::Return: {
       auto& ret = static_cast<ReturnStmt&>(*stmt);

@@ -212,6 +212,7 @@ class Sema {
   FunctionInfo* current_info_ = nullptr;
   const FunctionDecl* current_function_ = nullptr;
   int loop_depth_ = 0;
+  int switch_depth_ = 0;  // a `break` leaves a switch too
   int depth_ = 0;
   bool reported_depth_ = false;
   // Entry point diagnostics already given (a struct shared by two stages is checked twice).

@@ -78,15 +78,16 @@ int run_compile(const CompileOptions& options) {
 
   // spirv and vk-hlsl: the program as the vk or vk-hlsl lane would run it.
   const harness::Lane lane = options.target == "spirv" ? harness::Lane::Vk : harness::Lane::VkHlsl;
-  auto program = harness::program_for_lane(*module, lane, {.half_emulation = options.precision == "half"});
-  if (!program) {
-    fmt::print(stderr, "{}\n", program.error().to_string());
+  auto stages = harness::stages_for_lane(*module, lane, {.half_emulation = options.precision == "half"});
+  if (!stages) {
+    fmt::print(stderr, "{}\n", stages.error().to_string());
     return kBadInput;
   }
-  for (const auto& [stage, source] : {std::pair{"vert", &program->vertex}, std::pair{"frag", &program->fragment}}) {
-    if (module->entry_points.vertex == nullptr && std::string_view(stage) == "vert") continue;
-    const std::string_view bytes(reinterpret_cast<const char*>(source->spirv.data()), source->spirv.size() * 4);
-    if (!emit_stage(options, stage, disassemble(source->spirv), !options.output.empty(), bytes)) return kBackendError;
+  for (const auto& [stage, source] : {std::pair{"vert", &stages->vertex}, std::pair{"frag", &stages->fragment}}) {
+    if (!*source) continue;
+    const std::vector<uint32_t>& words = (*source)->spirv;
+    const std::string_view bytes(reinterpret_cast<const char*>(words.data()), words.size() * 4);
+    if (!emit_stage(options, stage, disassemble(words), !options.output.empty(), bytes)) return kBackendError;
   }
   return kPass;
 }
