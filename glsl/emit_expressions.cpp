@@ -582,6 +582,11 @@ Code StageEmitter::expr(const Expr* e) {
 
     case ExprKind::Name: {
       const auto* name = static_cast<const NameExpr*>(e);
+      if (name->decl && e->type.is_resource() && e->type.kind() != TypeKind::ConstantBuffer) {
+        if (flavour_ == Flavour::Gl && e->type.kind() == TypeKind::SamplerState)
+          fail(e->loc, "SamplerState " + in_quotes(name->name) + " can only be passed to Sample methods and functions on OpenGL");
+        return resource_text(e, {});
+      }
       if (auto it = split_members_.find(name->decl); it != split_members_.end()) {
         std::string text = type_name(Type::vector(it->second.scalar, it->second.count), e->loc) + "(";
         for (uint32_t i = 0; i < it->second.count; ++i) text += (i ? ", " : "") + names_.split_member(name->name, i);
@@ -758,6 +763,16 @@ Code StageEmitter::expr(const Expr* e) {
           for (size_t i = 0; i < function->params.size(); ++i) {
             const ParamDecl* param = function->params[i].get();
             if (!param) continue;
+            const std::vector<std::vector<uint32_t>> paths = resource_paths(param->type);
+            if (!paths.empty() && i < call->args.size()) {
+              // One argument per resource, as the callee's parameters are flattened.
+              for (const std::vector<uint32_t>& path : paths) {
+                if (flavour_ == Flavour::Gl && leaf_type(param->type, path).kind() == TypeKind::SamplerState) continue;
+                text += (first ? "" : ", ") + resource_text(call->args[i].get(), path).text;
+                first = false;
+              }
+              continue;
+            }
             if (flavour_ == Flavour::Gl && param->type.kind() == TypeKind::SamplerState) continue;
             Code arg;
             if (i < call->args.size()) {
@@ -783,6 +798,7 @@ Code StageEmitter::expr(const Expr* e) {
 
     case ExprKind::Member: {
       const auto* member = static_cast<const MemberExpr*>(e);
+      if (e->type.is_resource()) return resource_text(e, {});  // tex.smpl of a struct of resources
       const Expr* object = member->object.get();
       const Type& type = object->type;
       if (type.kind() == TypeKind::Struct || type.kind() == TypeKind::ConstantBuffer) {

@@ -27,23 +27,42 @@ std::string attributes_comment(StageEmitter& emitter, const std::vector<Attribut
 
 void StageEmitter::function(const FunctionDecl& f) {
   out_.mark(f.loc);
+  if (!resource_paths(f.return_type).empty())
+    fail(f.loc, "function " + in_quotes(f.name) + " cannot return " + in_quotes(f.return_type.name()) +
+                    ", which holds resources; pass them as parameters");
   std::string signature = type_name(f.return_type, f.loc) + " " + names_.function(&f) + "(";
   bool first = true;
   for (const auto& param : f.params) {
     if (!param) continue;
-    if (flavour_ == Flavour::Gl && param->type.kind() == TypeKind::SamplerState) continue;  // GL: per texture unit
-    if (!first) signature += ", ";
-    first = false;
-    if (param->direction == ParamDirection::Out) signature += "out ";
-    if (param->direction == ParamDirection::InOut) signature += "inout ";
-    if (param->type.is_resource())
-      signature += resource_type(param->type, param.get(), param->loc) + " " + names_.variable(param.get());
-    else
-      signature += declarator(param->type, names_.variable(param.get()), param->loc);
+    for (const std::string& declaration : parameter_declarations(*param)) {
+      if (!first) signature += ", ";
+      first = false;
+      signature += declaration;
+    }
   }
   out_.line(signature + ") {");
   body(f.body.get());
   out_.line("}");
+}
+
+std::vector<std::string> StageEmitter::parameter_declarations(const ParamDecl& param) {
+  const std::vector<std::vector<uint32_t>> paths = resource_paths(param.type);
+  if (paths.empty()) {
+    std::string direction = param.direction == ParamDirection::Out     ? "out "
+                            : param.direction == ParamDirection::InOut ? "inout "
+                                                                       : "";
+    return {direction + declarator(param.type, names_.variable(&param), param.loc)};
+  }
+  if (param.type.kind() == TypeKind::Struct) check_struct_of_resources(param.type, param.loc);
+  // A resource, or a struct of resources: one GLSL parameter per resource (none for a
+  // SamplerState on gl, whose state belongs to the texture unit).
+  std::vector<std::string> out;
+  for (const std::vector<uint32_t>& path : paths) {
+    const Type& leaf = leaf_type(param.type, path);
+    if (flavour_ == Flavour::Gl && leaf.kind() == TypeKind::SamplerState) continue;
+    out.push_back(resource_type(leaf, &param, param.loc) + " " + flattened_name(param, path));
+  }
+  return out;
 }
 
 void StageEmitter::body(const Stmt* stmt) {
@@ -80,6 +99,12 @@ std::string variable_text(StageEmitter& emitter, const VarDecl& var, const Names
 }  // namespace
 
 void StageEmitter::local_variable(const VarDecl& var) {
+  // A local resource (or struct of them) is another name for a global or a parameter, which
+  // every read of it prints instead (resource_origins.h): GLSL has no opaque locals.
+  if (!resource_paths(var.type).empty()) {
+    if (var.type.kind() == TypeKind::Struct) check_struct_of_resources(var.type, var.loc);
+    return;
+  }
   if (var.storage == StorageClass::GroupShared) {
     fail(var.loc, "groupshared variables are not supported on this target");
     return;
@@ -107,6 +132,8 @@ void StageEmitter::statement(const Stmt* stmt) {
     case StmtKind::Expr: {
       const Expr* e = static_cast<const ExprStmt*>(stmt)->expr.get();
       if (!e) break;
+      // Giving a local its resource happens when compiling (resource_origins.h).
+      if (e->kind == ExprKind::Assign && !resource_paths(static_cast<const AssignExpr*>(e)->target->type).empty()) break;
       out_.mark(stmt->loc);
       if (clip_statement(e)) break;
       out_.line(prefix + expr(e).text + ";");

@@ -339,6 +339,59 @@ void StageEmitter::collect_used_declarations() {
   for (const auto& decl : module_.unit.decls)
     if (decl && used_statics.count(decl.get())) statics_.push_back(static_cast<const VarDecl*>(decl.get()));
 
+  // The structs those use, with the structs inside them: only these are declared, so that an
+  // unreached struct of what this target cannot hold does not matter.
+  std::vector<const StructDecl*> struct_queue;
+  auto use_type = [&](const Type& type) {
+    const Type* base = &type;
+    for (int depth = 0; base->kind() == TypeKind::Array && depth < 64; ++depth) base = &base->element();
+    if (base->kind() == TypeKind::ConstantBuffer) base = &base->element();
+    if (base->kind() == TypeKind::Struct && base->struct_decl() && used_structs_.insert(base->struct_decl()).second)
+      struct_queue.push_back(base->struct_decl());
+  };
+  std::function<void(const Stmt*)> use_locals = [&](const Stmt* stmt) {
+    if (!stmt) return;
+    switch (stmt->kind) {
+      case StmtKind::Block:
+        for (const StmtPtr& child : static_cast<const BlockStmt*>(stmt)->statements) use_locals(child.get());
+        break;
+      case StmtKind::Decl:
+        for (const auto& var : static_cast<const DeclStmt*>(stmt)->vars)
+          if (var) use_type(var->type);
+        break;
+      case StmtKind::If:
+        use_locals(static_cast<const IfStmt*>(stmt)->then_branch.get());
+        use_locals(static_cast<const IfStmt*>(stmt)->else_branch.get());
+        break;
+      case StmtKind::For:
+        use_locals(static_cast<const ForStmt*>(stmt)->init.get());
+        use_locals(static_cast<const ForStmt*>(stmt)->body.get());
+        break;
+      case StmtKind::While: use_locals(static_cast<const WhileStmt*>(stmt)->body.get()); break;
+      case StmtKind::DoWhile: use_locals(static_cast<const DoWhileStmt*>(stmt)->body.get()); break;
+      case StmtKind::Switch:
+        for (const SwitchCase& c : static_cast<const SwitchStmt*>(stmt)->cases)
+          for (const StmtPtr& child : c.statements) use_locals(child.get());
+        break;
+      default: break;
+    }
+  };
+  for (const FunctionDecl* function : functions_) {
+    use_type(function->return_type);
+    for (const auto& param : function->params)
+      if (param) use_type(param->type);
+    use_locals(function->body.get());
+    walk_expressions(function->body.get(), [&](const Expr& e) { use_type(e.type); });
+  }
+  for (const VarDecl* var : statics_) use_type(var->type);
+  for (const ConstantBuffer& buffer : reflection_.constant_buffers)
+    for (const ConstantBufferMember& member : buffer.members) use_type(member.type);
+  while (!struct_queue.empty()) {
+    const StructDecl* decl = struct_queue.back();
+    struct_queue.pop_back();
+    for (const FieldDecl& field : decl->fields) use_type(field.type);
+  }
+
   // Constant-buffer members that std140 cannot place as vectors are read as scalars.
   for (const auto& decl : module_.unit.decls) {
     if (!decl) continue;
@@ -461,6 +514,8 @@ std::string StageEmitter::declarations() {
   for (const auto& decl : module_.unit.decls) {
     if (!decl || decl->kind != DeclKind::Struct) continue;
     const auto& s = static_cast<const StructDecl&>(*decl);
+    // A struct of resources has no GLSL form: its locals and parameters are flattened.
+    if (!used_structs_.count(&s) || !resource_paths(Type::structure(&s)).empty()) continue;
     if (s.fields.empty()) {
       fail(s.loc, "struct " + in_quotes(s.name) + " has no fields; GLSL does not allow empty structs");
       continue;

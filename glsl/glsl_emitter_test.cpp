@@ -855,3 +855,4 @@ TEST(GlslEmitterErrors, ModulesWithErrorsAreRefused) {
 
 }  // namespace
 }  // namespace xshade::glsl
+

@@ -115,6 +115,8 @@ constexpr Mapping kMappings[] = {
     m(I::Round, "roundEven($0)"),  // HLSL rounds halves to even
     m(I::Rsqrt, "inversesqrt($0)"),
     m(I::Saturate, "clamp($0, 0.0, 1.0)"),
+    m(I::Select, "($0 ? $1 : $2)", Elem::Any, Shape::Scalar),
+    m(I::Select, "mix($2, $1, $0)"),
     m(I::Sign, "$R(min($0, 1u))", Elem::Uint),
     m(I::Sign, "sign($0)", Elem::Int),
     m(I::Sign, "$R(sign($0))"),  // HLSL's sign is an int

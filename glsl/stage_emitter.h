@@ -187,8 +187,21 @@ class StageEmitter {
   // SampleCmp and GatherCmp, and what is passed for them.
   void collect_compared_textures();
 
+  // --- resources held in locals and struct fields (emit_textures.cpp)
+  // The GLSL text of the resource `leaf` (a field path) of the value `e`: the global or the
+  // (flattened) parameter resource_origins.h found for it.
+  Code resource_text(const Expr* e, const std::vector<uint32_t>& leaf);
+  // The resource parameter GLSL gets for `path` inside the parameter: tex_smpl for tex.smpl.
+  std::string flattened_name(const hlsl::ParamDecl& param, const std::vector<uint32_t>& path);
+  static const Type& leaf_type(const Type& type, const std::vector<uint32_t>& path);
+  // A struct holding resources must hold nothing else (its values would need a GLSL struct of
+  // their own beside the flattened resources); fails at `loc` otherwise.
+  void check_struct_of_resources(const Type& type, Loc loc);
+
   // --- functions and statements (emit_statements.cpp)
   void function(const FunctionDecl& function);
+  // What one HLSL parameter declares in GLSL: itself, or one parameter per resource it holds.
+  std::vector<std::string> parameter_declarations(const hlsl::ParamDecl& param);
   void statement(const Stmt* stmt);
   void body(const Stmt* stmt);  // the statements of a braced body
   void local_variable(const hlsl::VarDecl& var);
@@ -215,6 +228,7 @@ class StageEmitter {
   std::unordered_set<const hlsl::Decl*> compared_;  // see collect_compared_textures
   std::vector<const FunctionDecl*> functions_;
   std::vector<const hlsl::VarDecl*> statics_;  // used static globals, in source order
+  std::unordered_set<const hlsl::StructDecl*> used_structs_;  // structs the stage's code uses
   std::vector<std::string> main_prologue_;     // statements that initialize statics in main()
   std::string interface_text_;
   std::unordered_set<const hlsl::Decl*> const_decls_;  // emitted as GLSL `const`

@@ -144,7 +144,9 @@ std::unique_ptr<Module> compile(std::unique_ptr<Module> module, const CompileOpt
   module->unit = parse(tokens, module->diagnostics);
   module->entry_points = analyze(module->unit, reading.entry_points, module->diagnostics);
   if (!module->diagnostics.has_errors())
-    module->reflection = reflect(module->unit, module->entry_points, module->diagnostics);
+    module->resource_origins = resolve_resource_origins(module->entry_points, module->diagnostics);
+  if (!module->diagnostics.has_errors())
+    module->reflection = reflect(module->unit, module->entry_points, module->resource_origins, module->diagnostics);
   module->reflection.keyword_sets = std::move(reading.keyword_sets);
   module->reflection.active_keywords = keywords;
   return module;

@@ -37,6 +37,7 @@ struct Module {
   TranslationUnit unit;
   EntryPoints entry_points;
   Reflection reflection;
+  ResourceOrigins resource_origins;  // which global or parameter each resource read is
   std::vector<Pragma> pragmas;
   std::vector<PassDeclaration> passes;  // a post effect's `#pragma pass` lines
   // The macros the variant was compiled with (prelude, keywords, defines), for other compilers

@@ -164,6 +164,8 @@ std::vector<Entry> make_entries() {
       unary_float(I::Round),
       unary_float(I::Rsqrt),
       unary_float(I::Saturate),
+      // HLSL 2021 (DXC's default language): ?: component by component, both sides evaluated.
+      {I::Select, false, false, {sig(kAny, kT, {in(kBoolT), in(kT), in(kT)})}},
       {I::Sign, false, false, {sig(kNumeric, kIntT, {in(kT)})}},
       unary_float(I::Sin),
       {I::Sincos, false, false, {sig(kFloatLike, kVoid, {in(kT), out(kT), out(kT)})}},

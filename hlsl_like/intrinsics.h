@@ -26,7 +26,7 @@ namespace xshade::hlsl {
   X(Log10, "log10") X(Log2, "log2") X(Mad, "mad") X(Max, "max") X(Min, "min") X(Modf, "modf")    \
   X(Mul, "mul") X(Normalize, "normalize") X(Pow, "pow") X(Radians, "radians") X(Rcp, "rcp")      \
   X(Reflect, "reflect") X(Refract, "refract") X(Reversebits, "reversebits") X(Round, "round")    \
-  X(Rsqrt, "rsqrt") X(Saturate, "saturate") X(Sign, "sign") X(Sin, "sin") X(Sincos, "sincos")    \
+  X(Rsqrt, "rsqrt") X(Saturate, "saturate") X(Select, "select") X(Sign, "sign") X(Sin, "sin") X(Sincos, "sincos")    \
   X(Sinh, "sinh") X(Smoothstep, "smoothstep") X(Sqrt, "sqrt") X(Step, "step") X(Tan, "tan")      \
   X(Tanh, "tanh") X(Transpose, "transpose") X(Trunc, "trunc")                                     \
   /* DX9 sampling: tex<shape>[bias|grad|lod|proj] on sampler1D/2D/3D/CUBE */                     \

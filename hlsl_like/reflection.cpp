@@ -165,18 +165,26 @@ struct Usage {
   std::unordered_set<const Decl*> compared;            // textures sampled with a SamplerComparisonState
 };
 
-Usage collect_usage(const EntryPoints& entry_points) {
+Usage collect_usage(const EntryPoints& entry_points, const ResourceOrigins& origins) {
   Usage usage;
-  // A Texture2D or SamplerState may reach a Sample call through function parameters; each
-  // parameter is traced back to the global its call passes (the first call that passes one).
-  std::map<const Decl*, const Decl*> passed;  // parameter -> the declaration given for it
-  auto origin = [&](const Decl* decl) {
-    for (int hops = 0; decl && hops < 64; ++hops) {
-      auto it = passed.find(decl);
+  // A texture or sampler may reach a Sample call through function parameters (and locals and
+  // struct fields, which resource_origins.h follows back to a global or a parameter); each
+  // parameter's resource is traced back to what its call passes (the first call that passes one).
+  using Key = std::pair<const Decl*, std::vector<uint32_t>>;
+  std::map<Key, ResourceOrigin> passed;
+  auto global_of = [&](ResourceOrigin origin) -> const Decl* {
+    for (int hops = 0; origin.root && hops < 64; ++hops) {
+      auto it = passed.find({origin.root, origin.fields});
       if (it == passed.end()) break;
-      decl = it->second;
+      origin = it->second;
     }
-    return decl;
+    return origin.root && origin.root->kind == DeclKind::Var ? origin.root : nullptr;
+  };
+  // The global behind a resource-typed expression, if it is known.
+  auto global_behind = [&](const Expr* e) -> const Decl* {
+    auto it = e ? origins.find(e) : origins.end();
+    if (it == origins.end() || it->second.size() != 1) return nullptr;
+    return global_of(it->second[0].origin);
   };
   for (const FunctionDecl* entry : {entry_points.vertex, entry_points.fragment}) {
     std::vector<const FunctionDecl*> functions = reachable_functions(entry);
@@ -187,23 +195,26 @@ Usage collect_usage(const EntryPoints& entry_points) {
         const auto& call = static_cast<const CallExpr&>(expr);
         if (call.call_kind != CallKind::Function || !call.function) return;
         for (size_t i = 0; i < call.args.size() && i < call.function->params.size(); ++i) {
-          const Expr* arg = call.args[i].get();
-          if (arg && arg->kind == ExprKind::Name && arg->type.is_resource())
-            passed.emplace(call.function->params[i].get(), static_cast<const NameExpr*>(arg)->decl);
+          auto it = origins.find(call.args[i].get());
+          if (it == origins.end()) continue;
+          for (const ResourceLeaf& leaf : it->second) passed.emplace(Key{call.function->params[i].get(), leaf.path}, leaf.origin);
         }
       });
     }
     for (const FunctionDecl* function : functions) {
       walk_expressions(function->body.get(), [&](const Expr& expr) {
+        if (auto it = origins.find(&expr); it != origins.end()) {
+          for (const ResourceLeaf& leaf : it->second)
+            if (const Decl* global = global_of(leaf.origin)) usage.globals.insert(global);
+        }
         if (expr.kind == ExprKind::Name) {
-          if (const Decl* decl = static_cast<const NameExpr&>(expr).decl) usage.globals.insert(origin(decl));
+          if (const Decl* decl = static_cast<const NameExpr&>(expr).decl) usage.globals.insert(decl);
         } else if (expr.kind == ExprKind::Call) {
           const auto& call = static_cast<const CallExpr&>(expr);
           if (call.call_kind != CallKind::Method || !call.object || call.args.empty()) return;
-          if (call.object->kind != ExprKind::Name || call.args[0]->kind != ExprKind::Name) return;
           if (call.args[0]->type.kind() != TypeKind::SamplerState) return;
-          const Decl* texture = origin(static_cast<const NameExpr&>(*call.object).decl);
-          const Decl* sampler = origin(static_cast<const NameExpr&>(*call.args[0]).decl);
+          const Decl* texture = global_behind(call.object.get());
+          const Decl* sampler = global_behind(call.args[0].get());
           if (texture && sampler) usage.texture_sampler.emplace(texture, sampler);
           if (texture && call.args[0]->type.is_comparison()) usage.compared.insert(texture);
         }
@@ -403,11 +414,12 @@ const ConstantBuffer* Reflection::find_constant_buffer(std::string_view name) co
   return nullptr;
 }
 
-Reflection reflect(const TranslationUnit& unit, const EntryPoints& entry_points, DiagnosticEngine& diagnostics) {
+Reflection reflect(const TranslationUnit& unit, const EntryPoints& entry_points, const ResourceOrigins& origins,
+                   DiagnosticEngine& diagnostics) {
   Reflection reflection;
   if (entry_points.vertex) reflection.vertex_entry = entry_points.vertex->name;
   if (entry_points.fragment) reflection.fragment_entry = entry_points.fragment->name;
-  const Usage usage = collect_usage(entry_points);
+  const Usage usage = collect_usage(entry_points, origins);
 
   // Constant buffers, textures and samplers in declaration order; $Globals takes its place at
   // its first member.

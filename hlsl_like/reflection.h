@@ -9,6 +9,7 @@
 
 #include "hlsl_like/ast.h"
 #include "hlsl_like/diagnostic_engine.h"
+#include "hlsl_like/resource_origins.h"
 #include "hlsl_like/sema.h"
 
 namespace xshade::hlsl {
@@ -134,7 +135,7 @@ std::optional<uint32_t> varying_location(const std::string& canonical_semantic);
 
 // Builds the reflection of an analysed translation unit. Reports what the bindings or the GLSL
 // block layout cannot express (a register used twice, a member std140 cannot place).
-Reflection reflect(const TranslationUnit& unit, const EntryPoints& entry_points,
+Reflection reflect(const TranslationUnit& unit, const EntryPoints& entry_points, const ResourceOrigins& origins,
                    DiagnosticEngine& diagnostics);
 
 // The reflection as JSON (an object; see docs/hlsl_like.md, "Reflection").

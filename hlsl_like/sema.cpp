@@ -255,7 +255,9 @@ void Sema::declare_struct(StructDecl& decl) {
       diag_.error(field.loc, "field " + in_quotes(field.name) + " cannot have the type of its own struct");
       continue;
     }
-    if (!check_type_usable(field.type, "field " + in_quotes(field.name), field.loc, false)) continue;
+    // A struct may hold resources (FXAA's `struct FxaaTex { SamplerState smpl; Texture2D tex; }`):
+    // a local or parameter of it names globals, resolved when compiling (resource_origins.h).
+    if (!check_type_usable(field.type, "field " + in_quotes(field.name), field.loc, true)) continue;
     if (is_unsized_array(field.type)) diag_.error(field.loc, "field " + in_quotes(field.name) + " needs an array size");
   }
   // Learn the struct's facts now, while its fields' structs are already known: later queries
@@ -302,7 +304,8 @@ void Sema::declare_cbuffer(CBufferDecl& decl) {
 }
 
 void Sema::analyze_local_var(VarDecl& var) {
-  if (check_type_usable(var.type, "variable " + in_quotes(var.name), var.loc, false)) {
+  // A local resource (or struct of them) is another name for a global one: `Texture2D t = _MainTex;`.
+  if (check_type_usable(var.type, "variable " + in_quotes(var.name), var.loc, var.storage != StorageClass::Static)) {
     analyze_var_initializer(var);
   } else if (var.initializer) {
     analyze(var.initializer.get());

@@ -555,8 +555,9 @@ Type Sema::analyze_cast(CastExpr& expr) {
 
 std::optional<std::pair<Loc, std::string>> Sema::not_assignable(const Expr* expr) const {
   if (!expr || expr->type.is_error()) return std::nullopt;
-  if (expr->type.is_resource()) {
-    return std::make_pair(expr->loc, in_quotes(expr->type.name()) + " objects are not assignable");
+  if (facts_contain_resource(expr->type) && !rooted_in_local(expr)) {
+    return std::make_pair(expr->loc, in_quotes(expr->type.name()) +
+                                         " objects are only assignable to local variables, which then name them");
   }
   // Walk down fields, swizzles and indices to the variable at the root.
   for (int step = 0; expr; ++step) {
@@ -605,6 +606,22 @@ std::optional<std::pair<Loc, std::string>> Sema::not_assignable(const Expr* expr
     }
   }
   return std::nullopt;
+}
+
+bool Sema::facts_contain_resource(const Type& type) const { return facts_.contains_resource(type); }
+
+bool Sema::rooted_in_local(const Expr* expr) const {
+  for (int step = 0; expr && step <= kMaxNesting; ++step) {
+    switch (expr->kind) {
+      case ExprKind::Name: {
+        const Decl* decl = static_cast<const NameExpr*>(expr)->decl;
+        return decl && decl->kind == DeclKind::Var && !static_cast<const VarDecl*>(decl)->is_global;
+      }
+      case ExprKind::Member: expr = static_cast<const MemberExpr*>(expr)->object.get(); break;
+      default: return false;
+    }
+  }
+  return false;
 }
 
 void Sema::require_assignable(const Expr* expr) {

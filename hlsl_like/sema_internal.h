@@ -170,6 +170,9 @@ class Sema {
   // The reason `expr` cannot be assigned to, or nothing (also for expressions that already failed).
   std::optional<std::pair<Loc, std::string>> not_assignable(const Expr* expr) const;
   void require_assignable(const Expr* expr);
+  bool facts_contain_resource(const Type& type) const;
+  // A local variable or one of its fields (not an index): where a resource may be assigned.
+  bool rooted_in_local(const Expr* expr) const;
   void analyze_initializer(ExprPtr& init, Type& declared_type, const std::string& var_name);
   std::optional<int64_t> fold_int(const Expr* expr, int depth = 0) const;
   ScalarType common_scalar(const std::vector<const Expr*>& operands) const;
@@ -199,7 +202,7 @@ class Sema {
   void note_fragment_only(std::string what, Loc loc);
 
   DiagnosticEngine& diag_;
-  TypeFacts facts_;
+  mutable TypeFacts facts_;  // memoizes; queried from const members too
   mutable std::unordered_map<const VarDecl*, std::optional<int64_t>> folded_;  // fold_int of constants
   std::vector<std::unordered_map<std::string, Symbol>> scopes_;
   // Overload sets by name: canonical declarations, in order of declaration.

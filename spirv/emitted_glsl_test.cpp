@@ -549,5 +549,125 @@ TEST(EmittedGlsl, NarrowerFragmentInputsLink) {
   EXPECT_NE(compiled.gl.fragment->text.find("xs_arg1 = xs_v_TEXCOORD1.x;"), std::string::npos);
 }
 
+// Every texture shape with every method it has, offsets and DX9 samplers included, in a vertex
+// stage (explicit levels only) and a fragment stage: the text real shaders reach (Unity's
+// colour-grading LUTs are Texture3D, its reflection probes TextureCube, shadow maps compare).
+const char* kEveryTextureMethod = R"(
+#pragma vertex vert
+#pragma fragment frag
+Texture1D t1; Texture1DArray t1a; Texture2D t2; Texture2DArray t2a; Texture3D t3;
+TextureCube tc; TextureCubeArray tca; Texture2DMS<float4, 4> tms; Texture2DMSArray<float4> tmsa;
+Texture2D<float> depth; TextureCube<float> depth_cube; Texture2DArray<float> depth_array;
+Texture2D<uint4> ids; Texture2D<int2> offsets; Texture3D<half3> lut;
+SamplerState s; SamplerComparisonState cmp;
+static const int2 kOffset = int2(1, -1);
+
+float4 explicit_levels(float3 p) {
+  float4 r = t1.SampleLevel(s, p.x, 0) + t1a.SampleLevel(s, p.xy, 1) + t2.SampleLevel(s, p.xy, 0, int2(1, 0));
+  r += t2a.SampleLevel(s, p, 0, kOffset) + t3.SampleLevel(s, p, 0, int3(0, 1, 0)) + tc.SampleLevel(s, p, 2);
+  r += tca.SampleLevel(s, float4(p, 1), 0) + t2.SampleGrad(s, p.xy, p.xy, p.yx, int2(-1, 0));
+  r += tc.SampleGrad(s, p, p, p) + lut.SampleLevel(s, p, 0).rgbb;
+  r += t1.Load(int2(3, 0)) + t1a.Load(int3(1, 2, 0), 1) + t2.Load(int3(1, 2, 0)) + t2.Load(int3(1, 2, 0), int2(1, 1));
+  r += t2a.Load(int4(1, 2, 3, 0)) + t3.Load(int4(1, 2, 3, 0), int3(1, 0, 0));
+  r += tms.Load(int2(1, 2), 3) + tms.Load(int2(1, 2), 0, int2(1, 0)) + tmsa.Load(int3(1, 2, 1), 2);
+  r += float4(ids.Load(int3(0, 0, 0))) + float4(offsets.Load(int3(0, 0, 0)), 0, 0) + t2[uint2(4, 5)];
+  r += t2.Gather(s, p.xy) + t2.GatherRed(s, p.xy, int2(1, 1)) + t2.GatherGreen(s, p.xy) + t2.GatherBlue(s, p.xy);
+  r += t2.GatherAlpha(s, p.xy) + t2a.Gather(s, p) + tc.GatherRed(s, p) + tca.GatherAlpha(s, float4(p, 0));
+  r += float4(ids.GatherRed(s, p.xy)) + depth.GatherCmp(cmp, p.xy, 0.5) + depth.GatherCmpRed(cmp, p.xy, 0.5, int2(0, 1));
+  r += depth.SampleCmpLevelZero(cmp, p.xy, 0.5) + depth.SampleCmpLevelZero(cmp, p.xy, 0.5, int2(1, 0));
+  r += depth_cube.SampleCmpLevelZero(cmp, p, 0.5) + depth_array.SampleCmpLevelZero(cmp, p, 0.5);
+  uint w, h, e, l, n;
+  float fw, fh, fe, fl;
+  t1.GetDimensions(w); t1.GetDimensions(1, w, l); t1a.GetDimensions(w, e); t2.GetDimensions(w, h);
+  t2.GetDimensions(0, fw, fh, fl); t2a.GetDimensions(w, h, e); t2a.GetDimensions(1, w, h, e, l);
+  t3.GetDimensions(w, h, e); t3.GetDimensions(0, fw, fh, fe, fl); tc.GetDimensions(w, h); tca.GetDimensions(w, h, e);
+  tms.GetDimensions(w, h, n); tmsa.GetDimensions(w, h, e, n);
+  return r + float4(w + h + e + l + n, fw + fh + fe + fl, 0, 0);
+}
+
+float4 vert(float3 p : POSITION) : SV_Position { return explicit_levels(p); }
+
+float4 frag(float4 position : SV_Position) : SV_Target {
+  const float3 p = position.xyz;
+  float4 r = explicit_levels(p) + t1.Sample(s, p.x) + t2.Sample(s, p.xy, int2(0, 1)) + t2a.Sample(s, p);
+  r += t3.Sample(s, p) + tc.Sample(s, p) + tca.Sample(s, float4(p, 2)) + t2.SampleBias(s, p.xy, -1, int2(1, 1));
+  r += tc.SampleBias(s, p, 0.5) + depth.SampleCmp(cmp, p.xy, 0.5) + depth.SampleCmp(cmp, p.xy, 0.5, int2(1, 0));
+  r += depth_cube.SampleCmp(cmp, p, 0.5) + depth_array.SampleCmp(cmp, p, 0.5);
+  r += t2.CalculateLevelOfDetail(s, p.xy) + t3.CalculateLevelOfDetailUnclamped(s, p) + tc.CalculateLevelOfDetail(s, p);
+  return r;
+}
+)";
+
+// The DX9 samplers and their tex* functions, in both stages.
+const char* kEveryDx9Sampling = R"(
+#pragma vertex vert
+#pragma fragment frag
+sampler1D d1; sampler2D d2; sampler3D d3; samplerCUBE dc;
+float4 explicit_levels(float3 p) {
+  float4 r = tex1Dlod(d1, float4(p, 1)) + tex2Dlod(d2, float4(p, 1)) + tex3Dlod(d3, float4(p, 1)) + texCUBElod(dc, float4(p, 1));
+  return r + tex1Dgrad(d1, p.x, p.y, p.z) + tex2Dgrad(d2, p.xy, p.xy, p.xy) + tex3Dgrad(d3, p, p, p) + texCUBEgrad(dc, p, p, p);
+}
+float4 vert(float3 p : POSITION) : SV_Position { return explicit_levels(p); }
+float4 frag(float4 position : SV_Position) : SV_Target {
+  const float3 p = position.xyz;
+  float4 r = explicit_levels(p) + tex1D(d1, p.x) + tex2D(d2, p.xy) + tex2D(d2, p.xy, p.xy, p.xy) + tex3D(d3, p) + texCUBE(dc, p);
+  r += tex1Dbias(d1, float4(p, 1)) + tex2Dbias(d2, float4(p, 1)) + tex3Dbias(d3, float4(p, 1)) + texCUBEbias(dc, float4(p, 1));
+  return r + tex1Dproj(d1, float4(p, 2)) + tex2Dproj(d2, float4(p, 2)) + tex3Dproj(d3, float4(p, 2)) + texCUBEproj(dc, float4(p, 2));
+}
+)";
+
+TEST(EmittedGlsl, EveryDx9SamplingFunctionCompilesInBothFlavours) {
+  Compiled compiled = emit_and_compile("dx9.hlsl", kEveryDx9Sampling);
+  ASSERT_TRUE(compiled.vk.fragment);
+  EXPECT_NE(compiled.vk.fragment->text.find("uniform samplerCube dc;"), std::string::npos);
+}
+
+TEST(EmittedGlsl, EveryTextureShapeAndMethodCompilesInBothFlavours) {
+  Compiled compiled = emit_and_compile("textures.hlsl", kEveryTextureMethod);
+  ASSERT_TRUE(compiled.gl.fragment && compiled.vk.fragment);
+  // OpenGL declares the compared textures as shadow samplers; Vulkan compares through the sampler.
+  EXPECT_NE(compiled.gl.fragment->text.find("uniform sampler2DShadow depth;"), std::string::npos);
+  EXPECT_NE(compiled.gl.fragment->text.find("uniform samplerCubeShadow depth_cube;"), std::string::npos);
+  EXPECT_NE(compiled.vk.fragment->text.find("uniform texture2D depth;"), std::string::npos);
+  EXPECT_NE(compiled.vk.fragment->text.find("uniform samplerShadow cmp;"), std::string::npos);
+  EXPECT_NE(compiled.vk.fragment->text.find("uniform utexture2D ids;"), std::string::npos);
+  EXPECT_NE(compiled.gl.fragment->text.find("uniform sampler2DMS tms;"), std::string::npos);
+}
+
+// FXAA keeps a texture and its sampler in a struct; a local of it names the globals.
+const char* kStructOfResources = R"(
+#pragma fragment frag
+struct FxaaTex { SamplerState smpl; Texture2D tex; };
+struct Pair { FxaaTex a; FxaaTex b; };
+Texture2D _MainTex; SamplerState sampler_MainTex; Texture2D _Other; SamplerState sampler_Other;
+float4 fetch(FxaaTex t, float2 uv) { return t.tex.SampleLevel(t.smpl, uv, 0.0) + t.tex.GatherGreen(t.smpl, uv, int2(1, 0)); }
+float4 both(Pair p, float2 uv) { return fetch(p.a, uv) + fetch(p.b, uv); }
+float4 frag(float2 uv : TEXCOORD0) : SV_Target {
+  FxaaTex main_tex;
+  main_tex.tex = _MainTex;
+  main_tex.smpl = sampler_MainTex;
+  Texture2D alias = main_tex.tex;
+  Pair pair;
+  pair.a = main_tex;
+  pair.b.tex = _Other;
+  pair.b.smpl = sampler_Other;
+  return both(pair, uv) + alias.Sample(main_tex.smpl, uv);
+}
+)";
+
+TEST(EmittedGlsl, StructsOfResourcesAreFlattenedToTheGlobalsTheyName) {
+  Compiled compiled = emit_and_compile("fxaa.hlsl", kStructOfResources);
+  ASSERT_TRUE(compiled.gl.fragment && compiled.vk.fragment);
+  const std::string& vk = compiled.vk.fragment->text;
+  EXPECT_EQ(vk.find("struct FxaaTex"), std::string::npos);
+  EXPECT_NE(vk.find("vec4 fetch(sampler t_smpl, texture2D t_tex, vec2 uv)"), std::string::npos) << vk;
+  EXPECT_NE(vk.find("vec4 both(sampler p_a_smpl, texture2D p_a_tex, sampler p_b_smpl, texture2D p_b_tex, vec2 uv)"),
+            std::string::npos) << vk;
+  EXPECT_NE(vk.find("both(sampler_MainTex, _MainTex, sampler_Other, _Other, uv) + texture(sampler2D(_MainTex, sampler_MainTex), uv)"),
+            std::string::npos) << vk;
+  const std::string& gl = compiled.gl.fragment->text;
+  EXPECT_NE(gl.find("vec4 fetch(sampler2D t_tex, vec2 uv)"), std::string::npos) << gl;
+}
+
 }  // namespace
 }  // namespace xshade::spirv
