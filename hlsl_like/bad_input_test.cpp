@@ -1067,20 +1067,21 @@ TEST(BadInput, AFileScopeConstWithoutStaticIsNoArraySize) {
                                        "              ^"}));
 }
 
-TEST(BadInput, SwitchIsUnsupported) {
+TEST(BadInput, AStatementBeforeTheFirstCaseOfASwitch) {
   auto m = compile("switch.hlsl",
                    "#pragma fragment frag\n"
                    "int _Mode;\n"
                    "float4 frag(float2 uv : TEXCOORD0) : SV_Target {\n"
                    "  switch (_Mode) {\n"
+                   "    uv.x = 1;\n"
                    "    case 0: return 1;\n"
                    "    default: return 0;\n"
                    "  }\n"
                    "}\n");
   EXPECT_EQ(first(*m),
-            "switch.hlsl:4:3: error: switch is not supported; use if/else\n"
-            "      switch (_Mode) {\n"
-            "      ^");
+            "switch.hlsl:5:5: error: expected 'case' or 'default' in a switch\n"
+            "        uv.x = 1;\n"
+            "        ^");
   EXPECT_EQ(m->diagnostics.error_count(), 1u);
 }
 
@@ -1093,10 +1094,10 @@ TEST(BadInput, NoMissingReturnWarningAfterASyntaxError) {
                    "float4 frag(float2 uv : TEXCOORD0) : SV_Target {\n"
                    "  switch (_Mode) {\n"
                    "    case 0: return 1;\n"
-                   "    default: return 0;\n"
+                   "    default: return 0 +;\n"
                    "  }\n"
                    "}\n");
-  EXPECT_EQ(headers(*m), (Strings{"switch.hlsl:4:3: error: switch is not supported; use if/else"}));
+  EXPECT_EQ(headers(*m), (Strings{"switch.hlsl:6:24: error: expected an expression"}));
   auto many = compile("many.hlsl",
                       "#pragma fragment frag\n"
                       "float helper(float a) { return a * ; }\n"

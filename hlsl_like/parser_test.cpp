@@ -584,6 +584,64 @@ TEST(Parser, SemanticsKeepTheirSpelling) {
   EXPECT_EQ(f.params[1]->semantic_loc.column, 45u);
 }
 
+TEST(Parser, ResourceTypesOfEveryKind) {
+  auto p = parse_text(
+      "Texture3D<half4> lut; TextureCubeArray cubes; Texture2DMS<float, 8> depth; Texture1DArray<uint2> ids;\n"
+      "SamplerComparisonState cmp; samplerCUBE env; sampler3D vol;\n"
+      "struct Light { float3 color; };\nStructuredBuffer<Light> lights; RWByteAddressBuffer raw; RWTexture3D<uint> grid;\n"
+      "struct Scene { float4x4 view; };\nConstantBuffer<Scene> scene : register(b2);\n");
+  ASSERT_EQ(p->errors(), std::vector<std::string>{});
+  EXPECT_EQ(p->var("lut").type.name(), "Texture3D<half4>");
+  EXPECT_EQ(p->var("cubes").type, Type::texture(TextureShape::CubeArray, Type::vector(ScalarType::Float, 4)));
+  EXPECT_EQ(p->var("depth").type.name(), "Texture2DMS<float>");
+  EXPECT_EQ(p->var("ids").type.texel_type().name(), "uint2");
+  EXPECT_TRUE(p->var("cmp").type.is_comparison());
+  EXPECT_EQ(p->var("env").type, Type::sampler(TextureShape::Cube));
+  EXPECT_EQ(p->var("vol").type.name(), "sampler3D");
+  EXPECT_EQ(p->var("lights").type.name(), "StructuredBuffer<Light>");
+  EXPECT_EQ(p->var("raw").type.name(), "RWByteAddressBuffer");
+  EXPECT_EQ(p->var("grid").type.name(), "RWTexture3D<uint>");
+  EXPECT_EQ(p->var("scene").type.name(), "ConstantBuffer<Scene>");
+  EXPECT_EQ(p->var("scene").binding.index, 2u);
+}
+
+TEST(Parser, ResourceTypeArgumentsAreChecked) {
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {"struct L { float a; };\nTexture2D<L> t;", "2:11: the texel type of 'Texture2D' must be a scalar or vector, not 'L'"},
+      {"Texture2D<float4x4> t;", "1:11: the texel type of 'Texture2D' must be a scalar or vector, not 'float4x4'"},
+      {"StructuredBuffer b;", "1:18: expected '<' after 'StructuredBuffer': a structured buffer needs an element type"},
+      {"ConstantBuffer<float4> c;", "1:16: ConstantBuffer holds a struct, not 'float4'"},
+      {"ConstantBuffer c;", "1:16: expected '<' after 'ConstantBuffer': it holds a struct, as in ConstantBuffer<PerFrame>"},
+  };
+  for (const auto& [source, error] : cases) EXPECT_EQ(parse_text(source)->errors(), std::vector<std::string>{error}) << source;
+}
+
+TEST(Parser, AttributesWithStringsAreIgnoredWithANote) {
+  auto p = parse_text("[RootSignature(\"RootFlags(0), \" \"CBV(b0)\")]\nfloat4 f() : SV_Target { return 0; }\n"
+                      "[domain(\"tri\")] [partitioning(\"integer\")] void g() {}\n");
+  EXPECT_EQ(p->errors(), std::vector<std::string>{});
+  std::vector<std::string> notes;
+  for (const Diagnostic& d : p->diagnostics.diagnostics())
+    if (d.severity == Severity::Note) notes.push_back(std::to_string(d.where.line) + ":" + std::to_string(d.where.column) + ": " + d.message);
+  EXPECT_EQ(notes, (std::vector<std::string>{"1:2: attribute 'RootSignature' is ignored", "3:2: attribute 'domain' is ignored",
+                                             "3:18: attribute 'partitioning' is ignored"}));
+  EXPECT_EQ(p->function("f").attributes.at(0).name, "RootSignature");
+}
+
+TEST(Parser, SwitchCasesHoldTheStatementsUpToTheNextLabel) {
+  auto p = parse_text("int f(int m) { switch (m) { case 0: case 1: m += 1; break; default: { m = 3; } } return m; }\n");
+  ASSERT_EQ(p->errors(), std::vector<std::string>{});
+  const Stmt& statement = *p->function("f").body->statements.at(0);
+  ASSERT_EQ(statement.kind, StmtKind::Switch);
+  const auto& sw = static_cast<const SwitchStmt&>(statement);
+  ASSERT_EQ(sw.cases.size(), 3u);
+  EXPECT_EQ(sexpr(*sw.cases[0].value), "0");
+  EXPECT_TRUE(sw.cases[0].statements.empty());  // falls through to case 1
+  EXPECT_EQ(sw.cases[1].statements.size(), 2u);
+  EXPECT_EQ(sw.cases[2].value, nullptr);
+  EXPECT_EQ(sw.cases[2].statements.size(), 1u);
+}
+
 TEST(Parser, NestedTemplateClosesWithShiftToken) {
   auto p = parse_text("Texture2D<vector<float, 4>> t;\nfloat x = 1 >> 2;\n");
   ASSERT_EQ(p->errors(), std::vector<std::string>{});
@@ -608,7 +666,8 @@ TEST(Parser, ErrorMessagesArePinned) {
       {"float x = 99999999999;", {"1:11: integer literal is too large"}},
       {"double d;", {"1:1: double is not supported"}},
       {"cbuffer C { float4 c : packoffset(c0); };", {"1:24: packoffset is not supported"}},
-      {"void f(int i) { switch (i) { case 0: break; } i = 1; }", {"1:17: switch is not supported; use if/else"}},
+      {"void f(int i) { switch (i) { i = 2; case 0: break; } i = 1; }", {"1:30: expected 'case' or 'default' in a switch"}},
+      {"void f(int i) { switch (i) { case 0 break; } }", {"1:36: expected ':' after the case value"}},
       {"void f() { goto end; }", {"1:12: goto is not supported"}},
       {"class C {};", {"1:1: 'class' is not supported"}},
       {"void f() { if x) {} }", {"1:15: expected '(' after 'if'"}},

@@ -44,6 +44,7 @@ class Resolver {
 
   void function(const FunctionDecl& function) {
     slots_.clear();
+    unknown_.clear();
     conditional_ = 0;
     statement(function.body.get());
   }
@@ -73,6 +74,7 @@ class Resolver {
           const bool local = decl->kind == DeclKind::Var && !static_cast<const VarDecl*>(decl)->is_global;
           if (!local) return ResourceOrigin{decl, below};
           auto it = slots_.find({decl, below});
+          if (it == slots_.end() && unknown_.count(decl)) return std::nullopt;  // its giving failed, reported
           if (it == slots_.end()) {
             error(loc, "resource " + in_quotes(describe_slot(decl, below)) +
                            " is read before it is given one: a local resource names a global or a parameter, "
@@ -116,13 +118,17 @@ class Resolver {
   // `target = value` (or an initializer) for a local holding resources.
   void assign(const Decl* local, std::vector<uint32_t> target_path, const Expr* value, Loc loc) {
     if (conditional_ > 0) {
+      unknown_.insert(local);
       error(loc, "resource " + in_quotes(describe_slot(local, target_path)) +
                      " is given inside a branch or a loop; its resource must be known when compiling: give it once, "
                      "before any branch");
       return;
     }
     auto it = out_.find(value);
-    if (it == out_.end()) return;  // reported
+    if (it == out_.end()) {  // reported; reads of the local would only repeat it
+      unknown_.insert(local);
+      return;
+    }
     for (const ResourceLeaf& leaf : it->second) {
       std::vector<uint32_t> path = target_path;
       path.insert(path.end(), leaf.path.begin(), leaf.path.end());
@@ -152,7 +158,7 @@ class Resolver {
             target = member->object.get();
           }
           if (target && target->kind == ExprKind::Name && static_cast<const NameExpr*>(target)->decl)
-            assign(static_cast<const NameExpr*>(target)->decl, path, assignment->value.get(), e->loc);
+            assign(static_cast<const NameExpr*>(target)->decl, path, assignment->value.get(), assignment->target->loc);
           return;
         }
         case ExprKind::Conditional:
@@ -266,6 +272,7 @@ class Resolver {
   DiagnosticEngine& diag_;
   ResourceOrigins& out_;
   std::map<Slot, ResourceOrigin> slots_;
+  std::unordered_set<const Decl*> unknown_;  // locals whose resource could not be followed
   std::set<std::tuple<uint32_t, uint32_t, uint32_t>> reported_;
   int conditional_ = 0;
 };

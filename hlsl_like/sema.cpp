@@ -284,7 +284,11 @@ void Sema::declare_global_var(VarDecl& var, bool in_cbuffer) {
     // Only compute shaders have thread groups to share memory between.
     diag_.error(var.loc, "groupshared " + what + " is not supported: vertex and fragment shaders have no thread groups");
   }
-  if (check_type_usable(var.type, what, var.loc, !in_cbuffer)) {
+  if (var.type.kind() == TypeKind::Struct && facts_.contains_resource(var.type)) {
+    // A struct's resources would need registers of their own; HLSL 5.1 gives none to a field.
+    diag_.error(var.loc, what + " of struct " + in_quotes(var.type.name()) +
+                             " holds resources: declare each resource as a global of its own");
+  } else if (check_type_usable(var.type, what, var.loc, !in_cbuffer)) {
     if (var.type.is_resource() && var.initializer) {
       diag_.error(var.initializer->loc, in_quotes(var.type.name()) + " variables cannot have an initializer");
     } else {

@@ -494,7 +494,7 @@ TEST(SemaAssign, FieldsElementsAndSwizzlesOfLocalsAreAssignable) {
 
 TEST(SemaAssign, ResourcesAreNotAssignable) {
   EXPECT_EQ(messages_of("Texture2D a;\nvoid t(Texture2D b) { b = a; }\n"),
-            (Strings{"2:23: error: 'Texture2D' objects are not assignable"}));
+            (Strings{"2:23: error: 'Texture2D' objects are only assignable to local variables, which then name them"}));
 }
 
 TEST(SemaAssign, CompoundAssignmentFollowsTheOperator) {
@@ -919,6 +919,96 @@ TEST(SemaIntrinsics, Texture2DMethods) {
   EXPECT_EQ(call.intrinsic, uint16_t(IntrinsicId::Sample));
 }
 
+TEST(SemaTextures, EachShapeTakesItsCoordinatesOffsetsAndGivesItsTexels) {
+  const std::string g =
+      "Texture1D t1; Texture2DArray t2a; Texture3D t3; TextureCube tc; TextureCubeArray tca; Texture2DMS<float4> tms;"
+      "Texture2D<float> depth; Texture2D<uint2> ids; SamplerState s; SamplerComparisonState c; float2 uv; float3 p;";
+  EXPECT_EQ(type_of(g, "t1.Sample(s, 0.5)"), "float4");
+  EXPECT_EQ(type_of(g, "t2a.SampleLevel(s, p, 0, int2(1, 0))"), "float4");
+  EXPECT_EQ(type_of(g, "t3.SampleGrad(s, p, p, p, int3(0, 0, 1))"), "float4");
+  EXPECT_EQ(type_of(g, "tc.SampleBias(s, p, 1)"), "float4");
+  EXPECT_EQ(type_of(g, "tca.SampleLevel(s, float4(p, 2), 0)"), "float4");
+  EXPECT_EQ(type_of(g, "depth.Sample(s, uv)"), "float");  // the texel type
+  EXPECT_EQ(type_of(g, "ids.Load(int3(0, 0, 0))"), "uint2");
+  EXPECT_EQ(type_of(g, "ids[uint2(1, 2)]"), "uint2");
+  EXPECT_EQ(type_of(g, "tms.Load(int2(1, 2), 3)"), "float4");
+  EXPECT_EQ(type_of(g, "t3.Load(int4(1, 2, 3, 0), int3(1, 1, 1))"), "float4");
+  EXPECT_EQ(type_of(g, "depth.SampleCmp(c, uv, 0.5)"), "float");
+  EXPECT_EQ(type_of(g, "depth.SampleCmpLevelZero(c, uv, 0.5, int2(1, 1))"), "float");
+  EXPECT_EQ(type_of(g, "depth.GatherRed(s, uv)"), "float4");
+  EXPECT_EQ(type_of(g, "ids.GatherGreen(s, uv, int2(1, 0))"), "uint4");
+  EXPECT_EQ(type_of(g, "tc.CalculateLevelOfDetail(s, p)"), "float");
+  EXPECT_EQ(type_of(g, "uint w, h, l, n; tms.GetDimensions(w, h, n); t2a.GetDimensions(0, w, h, n, l)"), "void");
+  // What a shape does not have.
+  EXPECT_EQ(probe(g, "tc.Load(int4(0, 0, 0, 0))").messages, (Strings{"2:15: error: 'TextureCube' has no method 'Load'"}));
+  EXPECT_EQ(probe(g, "tc.SampleLevel(s, p, 0, int3(1, 0, 0))").messages,
+            (Strings{"2:15: error: 'SampleLevel' of 'TextureCube' takes 3 arguments, 4 given"}));
+  EXPECT_EQ(probe(g, "tms.Sample(s, uv)").messages, (Strings{"2:16: error: 'Texture2DMS' has no method 'Sample'"}));
+  EXPECT_EQ(probe(g, "t3.Gather(s, p)").messages, (Strings{"2:15: error: 'Texture3D' has no method 'Gather'"}));
+  EXPECT_EQ(probe(g, "depth.SampleCmp(s, uv, 0.5)").messages,
+            (Strings{"2:18: error: no overload of 'SampleCmp' of 'Texture2D<float>' takes (SamplerState, float2, float)"}));
+  EXPECT_EQ(probe(g, "t2a.Sample(s, uv)").messages,
+            (Strings{"2:16: error: no overload of 'Sample' of 'Texture2DArray' takes (SamplerState, float2)"}));
+}
+
+TEST(SemaTextures, Dx9SamplersOfEveryShape) {
+  const std::string g = "sampler1D d1; sampler3D d3; samplerCUBE dc; float3 p;";
+  EXPECT_EQ(type_of(g, "tex1D(d1, p.x)"), "float4");
+  EXPECT_EQ(type_of(g, "tex3Dlod(d3, float4(p, 2))"), "float4");
+  EXPECT_EQ(type_of(g, "texCUBE(dc, p)"), "float4");
+  EXPECT_EQ(type_of(g, "texCUBEbias(dc, float4(p, -1))"), "float4");
+  EXPECT_EQ(probe(g, "texCUBE(d3, p)").messages, (Strings{"2:12: error: no overload of 'texCUBE' takes (sampler3D, float3)"}));
+}
+
+TEST(SemaTextures, ResourcesNoTargetHereBindsAreTypedAsHlslDefinesThem) {
+  // Checked as HLSL, so that a file that declares them compiles where its entry points do not
+  // read them (the emitter refuses them where they are reached).
+  auto a = analyze_source(
+      "struct Light { float3 color; };\n"
+      "StructuredBuffer<Light> lights; RWTexture2D<float4> output; ByteAddressBuffer raw; Buffer<float2> coords;\n"
+      "float3 shade(uint i) { uint n, stride; lights.GetDimensions(n, stride);\n"
+      "  output[uint2(i, 0)] = float4(lights[i].color, 1);\n"
+      "  return lights.Load(i).color + float3(raw.Load2(4 * i), 0) + coords[i].xyy; }\n");
+  EXPECT_EQ(a->messages(), Strings{});
+  EXPECT_EQ(messages_of("StructuredBuffer<float> b;\nvoid f() { b[0] = 1; }\n"),
+            (Strings{"2:12: error: cannot assign to 'b': uniforms are read-only"}));
+  EXPECT_EQ(messages_of("ByteAddressBuffer b;\nvoid f() { b.Store(0, 1); }\n"),
+            (Strings{"2:14: error: 'ByteAddressBuffer' has no method 'Store'"}));
+}
+
+TEST(SemaConstantBuffers, AConstantBufferOfAStructIsReadByItsFields) {
+  auto a = analyze_source("struct Scene { float4x4 view; float3 light; };\nConstantBuffer<Scene> scene : register(b1);\n"
+                          "float3 f() { return scene.light + scene.view[0].xyz; }\n");
+  EXPECT_EQ(a->messages(), Strings{});
+  EXPECT_EQ(messages_of("struct Scene { float3 light; };\nConstantBuffer<Scene> scene;\nvoid f() { scene.light = 1; }\n"),
+            (Strings{"3:12: error: cannot assign to 'scene': uniforms are read-only"}));
+  EXPECT_EQ(messages_of("struct Scene { float3 light; };\nConstantBuffer<Scene> scene;\nfloat f() { return scene.dark; }\n"),
+            (Strings{"3:26: error: 'ConstantBuffer<Scene>' has no member 'dark'"}));
+}
+
+TEST(SemaStatements, SwitchTakesIntegerConstantsAndBreaks) {
+  EXPECT_EQ(messages_of("int f(int m) { switch (m) { case 0: return 1; case 1 + 1: m = 2; break; default: break; }\n"
+                        "  return m; }\n"),
+            Strings{});
+  EXPECT_EQ(messages_of("float f(uint m) { switch (m) { case 0: case 1: return 1; default: return 2; } }\n"), Strings{});
+  EXPECT_EQ(messages_of("void f(float x) { switch (x) { default: break; } }\n"),
+            (Strings{"1:27: error: the condition of a switch must be an integer scalar, not 'float'"}));
+  EXPECT_EQ(messages_of("void f(int m, int n) { switch (m) { case 1: break; case n: break; case 1: break; } }\n"),
+            (Strings{"1:57: error: a case value must be an integer constant", "1:67: error: case value 1 appears twice",
+                     "1:37: note: the first is here"}));
+  EXPECT_EQ(messages_of("void f(int m) { switch (m) { default: break; default: break; } }\n"),
+            (Strings{"1:46: error: a switch has one 'default'"}));
+  EXPECT_EQ(messages_of("void f() { continue; }\nvoid g() { break; }\n"),
+            (Strings{"1:12: error: 'continue' is only allowed inside a loop",
+                     "2:12: error: 'break' is only allowed inside a loop or a switch"}));
+}
+
+TEST(SemaIntrinsics, SelectIsAComponentWiseChoice) {
+  EXPECT_EQ(type_of("float3 a; float3 b;", "select(a > b, a, b)"), "float3");
+  EXPECT_EQ(type_of("float a; int b;", "select(a > 0, a, b)"), "float");
+  EXPECT_EQ(probe("float3 a; float3 b;", "select(a > b, a, b)").tree, "(select (> a b) a b)");
+}
+
 TEST(SemaIntrinsics, UserFunctionsNamedLikeIntrinsicsAreCalledWhenTheyFit) {
   auto a = analyze_source("struct S { float a; };\nfloat saturate(S s) { return s.a; }\n"
                           "void t(S s, float3 v) { saturate(s); saturate(v); }\n");
@@ -932,16 +1022,20 @@ TEST(SemaIntrinsics, UserFunctionsNamedLikeIntrinsicsAreCalledWhenTheyFit) {
 
 TEST(SemaStatements, BreakAndContinueNeedALoop) {
   EXPECT_EQ(messages_of("void t() {\n  break;\n  for (;;) { if (true) continue; break; }\n  continue;\n}\n"),
-            (Strings{"2:3: error: 'break' is only allowed inside a loop",
+            (Strings{"2:3: error: 'break' is only allowed inside a loop or a switch",
                      "4:3: error: 'continue' is only allowed inside a loop"}));
 }
 
-TEST(SemaStatements, ResourcesOnlyAtGlobalScopeOrAsParameters) {
-  EXPECT_EQ(messages_of("struct S { Texture2D t; };\nvoid f(Texture2D t, SamplerState s) { Texture2D u; }\n"),
-            (Strings{"1:22: error: field 't' cannot have type 'Texture2D'; resources are only allowed at global "
-                     "scope or as parameters",
-                     "2:49: error: variable 'u' cannot have type 'Texture2D'; resources are only allowed at global "
-                     "scope or as parameters"}));
+TEST(SemaStatements, ResourcesInStructsAndLocalsButNotInArraysOrGlobalStructs) {
+  EXPECT_EQ(messages_of("struct S { Texture2D t; SamplerState s; };\nTexture2D g;\n"
+                        "void f(Texture2D t, S p) { Texture2D u = g; S v = p; v.t = u; }\n"),
+            Strings{});
+  EXPECT_EQ(messages_of("void f() { Texture2D t[2]; }\n"),
+            (Strings{"1:22: error: variable 't' cannot have type 'Texture2D[2]'; arrays of resources are not supported: "
+                     "declare each one separately"}));
+  EXPECT_EQ(messages_of("struct S { Texture2D t; };\nS g;\n"),
+            (Strings{"2:3: error: variable 'g' of struct 'S' holds resources: declare each resource as a global of "
+                     "its own"}));
 }
 
 // ---------------------------------------------------------------------------------------------
