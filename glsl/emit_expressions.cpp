@@ -582,6 +582,10 @@ Code StageEmitter::expr(const Expr* e) {
 
     case ExprKind::Name: {
       const auto* name = static_cast<const NameExpr*>(e);
+      if (e->type.kind() == TypeKind::Buffer) {
+        type_name(e->type, e->loc);  // reports that this target has none
+        return {"0"};
+      }
       if (name->decl && e->type.is_resource() && e->type.kind() != TypeKind::ConstantBuffer) {
         if (flavour_ == Flavour::Gl && e->type.kind() == TypeKind::SamplerState)
           fail(e->loc, "SamplerState " + in_quotes(name->name) + " can only be passed to Sample methods and functions on OpenGL");
@@ -595,6 +599,10 @@ Code StageEmitter::expr(const Expr* e) {
       if (flavour_ == Flavour::Gl && e->type.kind() == TypeKind::SamplerState)
         fail(e->loc, "SamplerState " + in_quotes(name->name) + " can only be passed to Sample methods and functions on OpenGL");
       if (e->type.kind() == TypeKind::ConstantBuffer) return {constant_buffer_instance(name->name)};
+      if (e->type.kind() == TypeKind::Buffer) {
+        type_name(e->type, e->loc);  // reports that this target has none
+        return {"0"};
+      }
       return {name->decl ? names_.variable(name->decl) : names_.of(name->name)};
     }
 

@@ -316,7 +316,9 @@ void StageEmitter::collect_used_declarations() {
       const Decl* decl = static_cast<const NameExpr&>(expr).decl;
       if (decl && decl->kind == DeclKind::Var) {
         const auto* var = static_cast<const VarDecl*>(decl);
-        if (var->is_global && var->storage == StorageClass::Static && used_statics.insert(var).second)
+        // groupshared goes with them, to be refused where it is reached.
+        if (var->is_global && (var->storage == StorageClass::Static || var->storage == StorageClass::GroupShared) &&
+            used_statics.insert(var).second)
           statics_to_scan.push_back(var);
       }
     } else if (expr.kind == ExprKind::Call) {
@@ -345,7 +347,6 @@ void StageEmitter::collect_used_declarations() {
   auto use_type = [&](const Type& type) {
     const Type* base = &type;
     for (int depth = 0; base->kind() == TypeKind::Array && depth < 64; ++depth) base = &base->element();
-    if (base->kind() == TypeKind::ConstantBuffer) base = &base->element();
     if (base->kind() == TypeKind::Struct && base->struct_decl() && used_structs_.insert(base->struct_decl()).second)
       struct_queue.push_back(base->struct_decl());
   };
@@ -464,7 +465,8 @@ std::string StageEmitter::run() {
   std::vector<std::string> prologue;  // main() initializes the statics GLSL cannot
   for (const VarDecl* var : statics_) {
     if (var->storage == StorageClass::GroupShared) {
-      fail(var->loc, "groupshared variables are not supported on this target");
+      fail(var->loc, "groupshared variable " + in_quotes(var->name) +
+                         " is not supported: vertex and fragment shaders have no thread groups to share it");
       continue;
     }
     const std::string name = names_.variable(var);

@@ -853,6 +853,82 @@ TEST(GlslEmitterErrors, ModulesWithErrorsAreRefused) {
   EXPECT_THAT(program.error().message, HasSubstr("errors"));
 }
 
+
+// ---------------------------------------------------------------------------------------------
+// What the entry points reach
+
+// A file of many shaders declares what one of its passes cannot use: that is no error until an
+// entry point reaches it.
+constexpr const char* kUnreachedResources = R"(
+#pragma fragment frag
+struct Particle { float3 position; };
+struct Holder { StructuredBuffer<Particle> unused_field_type; };
+StructuredBuffer<Particle> particles;
+RWTexture2D<float4> output;
+groupshared float shared_sum[64];
+float3 simulate(uint i) {
+  shared_sum[i % 64] = 1;
+  output[uint2(i, 0)] = float4(particles[i].position, shared_sum[0]);
+  return particles.Load(i).position;
+}
+float4 frag(float2 uv : TEXCOORD0) : SV_Target { return float4(uv, 0, 1); }
+)";
+
+TEST(GlslEmitterReach, UnreachedCodeMayUseWhatTheTargetCannotExpress) {
+  for (const Flavour flavour : {Flavour::Gl, Flavour::Vk}) {
+    const std::string text = emit_ok(kUnreachedResources, flavour).fragment->text;
+    EXPECT_THAT(text, Not(HasSubstr("simulate")));
+    EXPECT_THAT(text, Not(HasSubstr("Particle")));
+    EXPECT_THAT(text, Not(HasSubstr("shared_sum")));
+  }
+}
+
+TEST(GlslEmitterReach, WhatTheTargetCannotExpressIsAnErrorWhereItIsReached) {
+  const std::string reached = std::string(kUnreachedResources) +
+                              "float4 frag2(float4 p : SV_Position) : SV_Target { return float4(simulate(uint(p.x)), 1); }\n";
+  std::string source = reached;
+  source.replace(source.find("#pragma fragment frag\n"), 22, "#pragma fragment frag2\n");
+  // A reached groupshared variable is named at its declaration; a resource at its first use.
+  EXPECT_THAT(emit_error(source), HasSubstr("test.hlsl:7:19: error: groupshared variable 'shared_sum' is not supported"));
+  std::string without_shared = source;
+  without_shared.replace(without_shared.find("  shared_sum[i % 64] = 1;\n"), 26, "");
+  without_shared.replace(without_shared.find(", shared_sum[0]"), 15, ", 0");
+  EXPECT_THAT(emit_error(without_shared),
+              HasSubstr("test.hlsl:9:3: error: 'RWTexture2D<float4>' is not supported on this target: shaders here read "
+                        "textures and constant buffers"));
+}
+
+TEST(GlslEmitterStatements, SwitchKeepsItsLabelsAndFallThrough) {
+  std::string text = fragment("int _Mode; uint _Index;",
+                                    "float4 c = 0;\n"
+                                    "switch (_Mode) { case 0: case 1: c.r = 1; break; case -2: c.g = 1; default: c.b = 1; }\n"
+                                    "switch (_Index) { case 3: c.a = 1; }\n"
+                                    "return c;");
+  for (size_t at = text.find("#line"); at != std::string::npos; at = text.find("#line")) text.erase(at, text.find('\n', at) + 1 - at);
+  EXPECT_THAT(text, HasSubstr("switch (_Mode) {\n  case 0:\n  case 1:\n    c.x = 1.0;\n    break;\n  case -2:\n"));
+  EXPECT_THAT(text, HasSubstr("  default:\n    c.z = 1.0;\n  }\n"));
+  // A uint condition takes uint labels; GLSL converts neither.
+  EXPECT_THAT(text, HasSubstr("switch (_Index) {\n  case 3u:\n    c.w = 1.0;\n  }\n"));
+}
+
+TEST(GlslEmitterConstantBuffers, AConstantBufferOfAStructIsABlockWithAnInstanceName) {
+  const std::string globals = "struct Scene { float4x4 view; float3 light; float strength; };\n"
+                              "ConstantBuffer<Scene> scene : register(b3);";
+  const std::string body = "return float4(scene.light * scene.strength, scene.view._m00);";
+  for (const Flavour flavour : {Flavour::Gl, Flavour::Vk}) {
+    const std::string text = fragment(globals, body, flavour);
+    EXPECT_THAT(text, HasSubstr("binding = 3) uniform scene {\n  layout(offset = 0, row_major) mat4 view;\n"
+                                "  layout(offset = 64) vec3 light;\n  layout(offset = 76) float strength;\n} xs_cb_scene;"));
+    EXPECT_THAT(text, HasSubstr("xs_cb_scene.light * xs_cb_scene.strength"));
+    EXPECT_THAT(text, Not(HasSubstr("struct Scene")));  // read through the block only
+  }
+}
+
+TEST(GlslEmitterIntrinsics, SelectChoosesComponentByComponent) {
+  const std::string text = fragment("float4 _A; float4 _B; float _S;", "return select(_A > _B, _A, _B) + select(_S > 0, _S, 1.0);");
+  EXPECT_THAT(text, HasSubstr("mix(_B, _A, greaterThan(_A, _B))"));
+  EXPECT_THAT(text, HasSubstr("((_S > 0.0) ? _S : 1.0)"));
+}
+
 }  // namespace
 }  // namespace xshade::glsl
-

@@ -1017,18 +1017,6 @@ TEST(BadInput, AssignmentToAUniform) {
                                        "      ^"}));
 }
 
-TEST(BadInput, GroupsharedIsAnErrorNamingTheVariable) {
-  auto m = compile("shared.hlsl",
-                   "#pragma fragment frag\n"
-                   "groupshared float g_Shared[4];\n"
-                   "float4 frag(float2 uv : TEXCOORD0) : SV_Target { return g_Shared[0]; }\n");
-  EXPECT_EQ(all_rendered(*m),
-            (Strings{"shared.hlsl:2:19: error: groupshared variable 'g_Shared' is not supported: vertex and fragment "
-                     "shaders have no thread groups\n"
-                     "    groupshared float g_Shared[4];\n"
-                     "                      ^"}));
-}
-
 TEST(BadInput, ArraysOfResourcesAreErrorsNamingTheDeclaration) {
   auto m = compile("layers.hlsl",
                    "#pragma fragment frag\n"

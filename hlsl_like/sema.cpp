@@ -280,10 +280,6 @@ void Sema::analyze_var_initializer(VarDecl& var) {
 
 void Sema::declare_global_var(VarDecl& var, bool in_cbuffer) {
   const std::string what = (in_cbuffer ? "cbuffer member " : "variable ") + in_quotes(var.name);
-  if (var.storage == StorageClass::GroupShared) {
-    // Only compute shaders have thread groups to share memory between.
-    diag_.error(var.loc, "groupshared " + what + " is not supported: vertex and fragment shaders have no thread groups");
-  }
   if (var.type.kind() == TypeKind::Struct && facts_.contains_resource(var.type)) {
     // A struct's resources would need registers of their own; HLSL 5.1 gives none to a field.
     diag_.error(var.loc, what + " of struct " + in_quotes(var.type.name()) +
