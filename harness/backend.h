@@ -37,7 +37,9 @@ using MeshHandle = Handle<struct MeshTag>;
 using TextureHandle = Handle<struct TextureTag>;
 using ProgramHandle = Handle<struct ProgramTag>;
 
-// The one vertex format: locations 0..3 are POSITION, NORMAL, TANGENT, TEXCOORD0.
+// The one vertex format: locations 0..3 are POSITION, NORMAL, TANGENT, TEXCOORD0. A vertex
+// shader may read other locations too (TEXCOORD1..7, COLOR0..1: hlsl::vertex_input_location);
+// no mesh supplies them, so every backend feeds them zeros of the input's type.
 struct Vertex {
   glm::vec3 position{0.0f};
   glm::vec3 normal{0.0f, 0.0f, 1.0f};
@@ -52,28 +54,79 @@ struct MeshData {
 };
 
 enum class TextureFormat {
-  Rgba8Unorm,   // 4 bytes per texel, linear
-  Rgba8Srgb,    // 4 bytes per texel, sRGB-encoded (decoded by the sampler)
-  Rgba32Float,  // 16 bytes per texel
+  Rgba8Unorm,    // 4 bytes per texel, linear
+  Rgba8Srgb,     // 4 bytes per texel, sRGB-encoded (decoded by the sampler)
+  Rgba32Float,   // 16 bytes per texel
+  R32Float,      // 4 bytes per texel: one float channel (reads as (r, 0, 0, 1))
+  Depth32Float,  // 4 bytes per texel: a depth texture, the one a comparison sampler reads (a
+                 // comparison of a colour format is undefined on both APIs)
+  Rgba32Uint,    // 16 bytes per texel: four uint32 (Texture2D<uint4>)
+  Rgba32Sint,    // 16 bytes per texel: four int32 (Texture2D<int4>)
 };
 size_t bytes_per_texel(TextureFormat format);
+const char* format_name(TextureFormat format);
+
+// What a shader's texel reads as: float (float, half, unorm, depth), int or uint. A texture of
+// one kind cannot be read through a sampler of another on either API.
+enum class TexelKind { Float, Int, Uint };
+TexelKind texel_kind(TextureFormat format);
+const char* texel_kind_name(TexelKind kind);
+
+// How a texture's texels are arranged. A cube has 6 layers, its faces in the order +X, -X, +Y,
+// -Y, +Z, -Z (the same on both APIs: the face a direction selects and the face's (s, t) come
+// from one table shared by Direct3D, OpenGL and Vulkan); a cube array 6 per cube.
+enum class TextureDimension { Tex1D, Tex1DArray, Tex2D, Tex2DArray, Tex3D, Cube, CubeArray };
+
+// A texture's shape as a shader declares it: a dimension, multisampled or not (2D and 2D array
+// only). Named as HLSL names the type: "Texture2DMS", "TextureCubeArray".
+struct TextureShape {
+  TextureDimension dimension = TextureDimension::Tex2D;
+  bool multisampled = false;
+  friend bool operator==(TextureShape, TextureShape) = default;
+};
+std::string shape_name(TextureShape shape);
+bool is_array(TextureDimension dimension);  // 1D array, 2D array, cube array
 
 struct TextureData {
   TextureFormat format = TextureFormat::Rgba8Unorm;
   uint32_t width = 0;
-  uint32_t height = 0;
-  // Mip levels, level 0 first, each tightly packed with row 0 = v 0 = the top of the image.
-  // Level i is max(1, width >> i) by max(1, height >> i).
+  uint32_t height = 0;  // 1 for a 1D texture or 1D array
+  // Mip levels, level 0 first. Each holds all its layers (or slices) one after the other, each
+  // tightly packed with row 0 = v 0 = the top of the image. Level i is max(1, width >> i) by
+  // max(1, height >> i), with `layers` layers (arrays and cubes) or max(1, layers >> i) slices
+  // (3D).
   std::vector<std::vector<std::byte>> levels;
+  TextureDimension dimension = TextureDimension::Tex2D;
+  // Array layers (1 for a plain 1D or 2D texture; 6 for a cube, 6 * N for a cube array), or the
+  // depth of a 3D texture.
+  uint32_t layers = 1;
+  // Samples per texel: above 1 a multisampled texture (2D or 2D array, one level, a colour
+  // format), each sample of a texel holding its level-0 value.
+  uint32_t samples = 1;
+
+  TextureShape shape() const { return {dimension, samples > 1}; }
 };
+// The bytes level `level` of `texture` must hold.
+size_t level_bytes(const TextureData& texture, uint32_t level);
+// A texture every backend can upload within `max_size` texels a side: not empty, the size its
+// dimension allows (1D: height 1; cube: square, 6 layers a cube), whole levels, each with the
+// bytes its size needs, multisampling only where both APIs have it. Fails naming the problem.
+Result<void> validate_texture(const TextureData& texture, uint32_t max_size);
 
 enum class Filter { Nearest, Linear };
 enum class AddressMode { Repeat, ClampToEdge };
+
+// The comparison a comparison sampler makes: the result is 1 where `reference <op> texel` holds,
+// else 0 (Direct3D's order of the operands, which OpenGL and Vulkan share).
+enum class CompareOp { Never, Less, Equal, LessEqual, Greater, NotEqual, GreaterEqual, Always };
 
 struct SamplerDesc {
   // Mip levels are sampled with the same filter as texels (trilinear when Linear).
   Filter filter = Filter::Linear;
   AddressMode address = AddressMode::Repeat;
+  // Used only where the program's slot is a comparison slot (TextureSlot::comparison).
+  CompareOp compare = CompareOp::LessEqual;
+  friend bool operator==(const SamplerDesc&, const SamplerDesc&) = default;
 };
 
 // What a pass samples: an uploaded texture, or the colour or depth of an earlier target.
@@ -106,8 +159,19 @@ struct TextureSlot {
   std::string name;
   uint32_t binding = 0;
   // Vulkan only: the binding of the separate sampler paired with this texture. Absent means a
-  // combined image sampler at `binding`. OpenGL always combines, at texture unit `binding`.
+  // combined image sampler at `binding` (or a sampled image alone, with `image_only`). OpenGL
+  // always combines, at texture unit `binding`.
   std::optional<uint32_t> sampler_binding;
+  // What the shader declared: the texture's shape, whether it reads the texture with a
+  // comparison sampler (a shadow map: the bound texture must be a depth texture, and its
+  // sampler compares with SamplerDesc::compare), and what its texels read as. A draw fails
+  // when the bound texture has another shape or texel kind.
+  TextureShape shape = {};
+  bool comparison = false;
+  TexelKind texel = TexelKind::Float;
+  // Vulkan only: a sampled image without a sampler (a texture the shader only Loads from or
+  // asks the size of).
+  bool image_only = false;
 };
 struct ProgramLayout {
   std::vector<UniformBlockSlot> uniform_blocks;
@@ -167,6 +231,19 @@ struct MatchedBindings {
 };
 Result<MatchedBindings> match_bindings(const ProgramLayout& layout, const DrawItem& draw,
                                        const std::string& where);
+
+// What a draw binds to a texture slot, as far as the slot's checks need it.
+struct BoundTextureFacts {
+  TextureShape shape = {};
+  TextureFormat format = TextureFormat::Rgba8Unorm;
+  std::string label;  // "texture 3", "the depth of target 2"
+};
+// Fails, naming `where`, the slot and both shapes (or formats), when the bound texture is not
+// what the slot declares: another shape, another texel kind, a comparison slot without a depth
+// texture, or linear filtering of integer texels (undefined on OpenGL, invalid on Vulkan).
+// Every backend checks each texture binding with this before the driver sees it.
+Result<void> check_bound_texture(const TextureSlot& slot, const BoundTextureFacts& bound, const SamplerDesc& sampler,
+                                 const std::string& where);
 
 // A mesh every backend can draw: not empty, whole triangles, every index within the vertices.
 Result<void> validate_mesh(const MeshData& mesh);

@@ -23,16 +23,20 @@ std::vector<std::byte> default_constant_buffer(const hlsl::ConstantBuffer& buffe
 // A module's fragment entry made into a full-screen program on one backend, to run as often as
 // needed: the driver compiles it once. The shader reads uv (TEXCOORD0, (0,0) at the top-left)
 // and the pixel position (SV_Position); constant buffers hold their defaults unless given, and
-// every texture is one white texel.
+// every texture not given is one white texel of the shape and texel kind the shader declared
+// (a depth texel of 1 for a texture read with a comparison sampler).
 class FullscreenProgram {
  public:
   static Result<FullscreenProgram> create(const hlsl::Module& module, Lane lane, Backend& backend,
                                           const ProgramOptions& options = {});
 
   // Renders a width x height RGBA32F target. `constant_buffers` replaces the defaults of the
-  // buffers it names (by their HLSL name); each must have the buffer's size.
+  // buffers it names (by their HLSL name); each must have the buffer's size. `textures` binds
+  // the textures it names (by their HLSL name, uploaded to `backend` by the caller) in place of
+  // the white texel; a name the program does not read is an error.
   Result<FloatImage> run(Backend& backend, uint32_t width, uint32_t height,
-                         const std::map<std::string, std::vector<std::byte>>& constant_buffers = {}) const;
+                         const std::map<std::string, std::vector<std::byte>>& constant_buffers = {},
+                         const std::map<std::string, TextureSource>& textures = {}) const;
 
   // The size in bytes of the constant buffer `name`, if the program has one.
   std::optional<uint32_t> constant_buffer_size(const std::string& name) const;
@@ -45,12 +49,17 @@ class FullscreenProgram {
   };
   ProgramHandle program_;
   std::vector<Buffer> buffers_;
-  std::vector<std::string> texture_slots_;
+  std::vector<TextureSlot> texture_slots_;
 };
 
 // FullscreenProgram::create then run, once: what `xshade eval` and the conformance tests do.
 Result<FloatImage> evaluate(const hlsl::Module& module, Lane lane, Backend& backend, uint32_t width, uint32_t height,
                             const std::map<std::string, std::vector<std::byte>>& constant_buffers = {},
-                            const ProgramOptions& options = {});
+                            const ProgramOptions& options = {},
+                            const std::map<std::string, TextureSource>& textures = {});
+
+// One texel of value 1 in every channel (a depth of 1 for a comparison slot) in the shape and
+// texel kind `slot` declares: what a texture the caller does not give reads.
+TextureData default_texture(const TextureSlot& slot);
 
 }  // namespace xshade::harness

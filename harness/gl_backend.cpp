@@ -95,7 +95,83 @@ struct Texture {
   uint32_t width = 0;
   uint32_t height = 0;
   uint32_t levels = 1;
+  TextureShape shape;
+  TextureFormat format = TextureFormat::Rgba32Float;
 };
+
+// How OpenGL stores and uploads each format.
+struct GlFormat {
+  GLenum internal_format;
+  GLenum format;
+  GLenum type;
+};
+GlFormat gl_format(TextureFormat format) {
+  switch (format) {
+    case TextureFormat::Rgba8Unorm: return {GL_RGBA8, GL_RGBA, GL_UNSIGNED_BYTE};
+    case TextureFormat::Rgba8Srgb: return {GL_SRGB8_ALPHA8, GL_RGBA, GL_UNSIGNED_BYTE};
+    case TextureFormat::Rgba32Float: return {GL_RGBA32F, GL_RGBA, GL_FLOAT};
+    case TextureFormat::R32Float: return {GL_R32F, GL_RED, GL_FLOAT};
+    case TextureFormat::Depth32Float: return {GL_DEPTH_COMPONENT32F, GL_DEPTH_COMPONENT, GL_FLOAT};
+    case TextureFormat::Rgba32Uint: return {GL_RGBA32UI, GL_RGBA_INTEGER, GL_UNSIGNED_INT};
+    case TextureFormat::Rgba32Sint: return {GL_RGBA32I, GL_RGBA_INTEGER, GL_INT};
+  }
+  return {GL_RGBA8, GL_RGBA, GL_UNSIGNED_BYTE};
+}
+
+GLenum gl_target(TextureShape shape) {
+  switch (shape.dimension) {
+    case TextureDimension::Tex1D: return GL_TEXTURE_1D;
+    case TextureDimension::Tex1DArray: return GL_TEXTURE_1D_ARRAY;
+    case TextureDimension::Tex2D: return shape.multisampled ? GL_TEXTURE_2D_MULTISAMPLE : GL_TEXTURE_2D;
+    case TextureDimension::Tex2DArray: return shape.multisampled ? GL_TEXTURE_2D_MULTISAMPLE_ARRAY : GL_TEXTURE_2D_ARRAY;
+    case TextureDimension::Tex3D: return GL_TEXTURE_3D;
+    case TextureDimension::Cube: return GL_TEXTURE_CUBE_MAP;
+    case TextureDimension::CubeArray: return GL_TEXTURE_CUBE_MAP_ARRAY;
+  }
+  return GL_TEXTURE_2D;
+}
+
+GLint gl_compare_function(CompareOp op) {
+  switch (op) {
+    case CompareOp::Never: return GL_NEVER;
+    case CompareOp::Less: return GL_LESS;
+    case CompareOp::Equal: return GL_EQUAL;
+    case CompareOp::LessEqual: return GL_LEQUAL;
+    case CompareOp::Greater: return GL_GREATER;
+    case CompareOp::NotEqual: return GL_NOTEQUAL;
+    case CompareOp::GreaterEqual: return GL_GEQUAL;
+    case CompareOp::Always: return GL_ALWAYS;
+  }
+  return GL_LEQUAL;
+}
+
+// What a vertex input of GL type `type` reads as; empty for a type no mesh or zero fills (a
+// matrix, a double).
+std::optional<TexelKind> attribute_kind(GLint type) {
+  switch (static_cast<GLenum>(type)) {
+    case GL_FLOAT: case GL_FLOAT_VEC2: case GL_FLOAT_VEC3: case GL_FLOAT_VEC4: return TexelKind::Float;
+    case GL_INT: case GL_INT_VEC2: case GL_INT_VEC3: case GL_INT_VEC4: return TexelKind::Int;
+    case GL_UNSIGNED_INT: case GL_UNSIGNED_INT_VEC2: case GL_UNSIGNED_INT_VEC3: case GL_UNSIGNED_INT_VEC4:
+      return TexelKind::Uint;
+    default: return std::nullopt;
+  }
+}
+
+// The internal draw that fills a multisampled texture: every sample of each texel of one layer
+// gets the texel of a single-sampled copy. Without sample shading a fragment's one output goes
+// to every sample it covers, and the triangle covers the whole layer.
+constexpr const char* kFillVertexShader = R"(#version 450 core
+void main() {
+  vec2 corner = vec2((gl_VertexID << 1) & 2, gl_VertexID & 2);
+  gl_Position = vec4(corner * 2.0 - 1.0, 0.0, 1.0);
+}
+)";
+std::string fill_fragment_shader(TexelKind kind) {
+  const std::string prefix = kind == TexelKind::Int ? "i" : kind == TexelKind::Uint ? "u" : "";
+  return "#version 450 core\nlayout(binding = 0) uniform " + prefix + "sampler2DArray source;\n"
+         "uniform int layer;\nlayout(location = 0) out " + prefix + "vec4 color;\n"
+         "void main() { color = texelFetch(source, ivec3(ivec2(gl_FragCoord.xy), layer), 0); }\n";
+}
 
 struct Target {
   GlFramebuffer framebuffer;
@@ -116,6 +192,9 @@ struct Program {
   bool fullscreen = false;
   GlProgram program;
   std::vector<GlBuffer> uniform_buffers;  // per layout uniform block
+  // Vertex inputs no mesh supplies (locations above 3), with what they read as: each draw sets
+  // their generic current value to zeros of that type (GL's own default is (0, 0, 0, 1)).
+  std::vector<std::pair<GLuint, TexelKind>> zero_inputs;
 };
 
 // ---- KHR_debug ----------------------------------------------------------------------------------
@@ -311,10 +390,14 @@ class GlBackend final : public Backend {
     const GLubyte* text = gl_.GetString(name);
     return text ? reinterpret_cast<const char*>(text) : "";
   }
-  GLuint sampler(const SamplerDesc& desc, bool mipmapped);
+  // `compare`: a comparison sampler (of a shadow sampler's unit), with desc.compare.
+  GLuint sampler(const SamplerDesc& desc, bool mipmapped, bool compare);
+  // Every sample of each texel of `texture` (multisampled, just allocated) from level 0 of `data`.
+  Result<void> fill_multisampled(const Texture& texture, const TextureData& data, const std::string& what);
+  Result<GLuint> fill_program(TexelKind kind, const std::string& what);
   Result<GlShader> compile(const ShaderStageSource& source, GLenum stage, const char* stage_name,
                            const std::string& what);
-  Result<void> check_interface(const Program& program, const std::string& what);
+  Result<void> check_interface(Program& program, const std::string& what);
 
   Target* find_target(uint32_t id) {
     return id >= 1 && id <= targets_.size() ? targets_[id - 1].get() : nullptr;
@@ -330,9 +413,14 @@ class GlBackend final : public Backend {
   GLint max_uniform_buffer_bindings_ = 0;
   GLint max_texture_units_ = 0;
   GLint max_uniform_block_size_ = 0;
+  GLint max_3d_texture_size_ = 0;
+  GLint max_array_layers_ = 0;
+  GLint max_color_samples_ = 0;
+  GLint max_integer_samples_ = 0;
 
   GlVertexArray empty_vertex_array_;  // for full-screen programs
-  std::map<std::tuple<Filter, AddressMode, bool>, GlSampler> samplers_;
+  std::map<std::tuple<Filter, AddressMode, bool, std::optional<CompareOp>>, GlSampler> samplers_;
+  std::map<TexelKind, GlProgram> fill_programs_;  // by the texel kind they copy
   std::vector<std::unique_ptr<Target>> targets_;
   std::vector<std::unique_ptr<Mesh>> meshes_;
   std::vector<std::unique_ptr<Texture>> textures_;
@@ -343,6 +431,7 @@ GlBackend::~GlBackend() {
   if (context_ == nullptr) return;
   if (make_current()) {
     programs_.clear();
+    fill_programs_.clear();
     textures_.clear();
     meshes_.clear();
     targets_.clear();
@@ -449,6 +538,12 @@ Result<void> GlBackend::init(std::unique_ptr<GlContext> context) {
   max_uniform_buffer_bindings_ = get_integer(GL_MAX_UNIFORM_BUFFER_BINDINGS);
   max_texture_units_ = get_integer(GL_MAX_COMBINED_TEXTURE_IMAGE_UNITS);
   max_uniform_block_size_ = get_integer(GL_MAX_UNIFORM_BLOCK_SIZE);
+  max_3d_texture_size_ = get_integer(GL_MAX_3D_TEXTURE_SIZE);
+  max_array_layers_ = get_integer(GL_MAX_ARRAY_TEXTURE_LAYERS);
+  max_color_samples_ = get_integer(GL_MAX_COLOR_TEXTURE_SAMPLES);
+  max_integer_samples_ = get_integer(GL_MAX_INTEGER_SAMPLES);
+  // Vulkan (and Direct3D 10 on) filter across cube faces; OpenGL does only when asked.
+  gl_.Enable(GL_TEXTURE_CUBE_MAP_SEAMLESS);
 
   GLuint vertex_array = 0;
   gl_.CreateVertexArrays(1, &vertex_array);
@@ -457,8 +552,9 @@ Result<void> GlBackend::init(std::unique_ptr<GlContext> context) {
   return check_errors(fmt::format("creating the OpenGL {} backend", context_->route()));
 }
 
-GLuint GlBackend::sampler(const SamplerDesc& desc, bool mipmapped) {
-  const auto key = std::make_tuple(desc.filter, desc.address, mipmapped);
+GLuint GlBackend::sampler(const SamplerDesc& desc, bool mipmapped, bool compare) {
+  const auto key = std::make_tuple(desc.filter, desc.address, mipmapped,
+                                   compare ? std::optional<CompareOp>(desc.compare) : std::nullopt);
   auto found = samplers_.find(key);
   if (found != samplers_.end()) return found->second.get();
   GLuint id = 0;
@@ -474,7 +570,9 @@ GLuint GlBackend::sampler(const SamplerDesc& desc, bool mipmapped) {
   gl_.SamplerParameteri(id, GL_TEXTURE_WRAP_S, wrap);
   gl_.SamplerParameteri(id, GL_TEXTURE_WRAP_T, wrap);
   gl_.SamplerParameteri(id, GL_TEXTURE_WRAP_R, wrap);
-  gl_.SamplerParameteri(id, GL_TEXTURE_COMPARE_MODE, GL_NONE);
+  // A shadow sampler with compare mode NONE is undefined; any other sampler must not compare.
+  gl_.SamplerParameteri(id, GL_TEXTURE_COMPARE_MODE, compare ? GL_COMPARE_REF_TO_TEXTURE : GL_NONE);
+  if (compare) gl_.SamplerParameteri(id, GL_TEXTURE_COMPARE_FUNC, gl_compare_function(desc.compare));
   return samplers_.emplace(key, std::move(sampler)).first->second.get();
 }
 
@@ -489,16 +587,16 @@ Result<TargetHandle> GlBackend::create_target(const TargetDesc& desc) {
     const GLsizei width = static_cast<GLsizei>(desc.width);
     const GLsizei height = static_cast<GLsizei>(desc.height);
     auto target = std::make_unique<Target>();
-    const auto make_texture = [&](GLenum format) {
+    const auto make_texture = [&](TextureFormat format) {
       GLuint texture = 0;
       gl_.CreateTextures(GL_TEXTURE_2D, 1, &texture);
-      Texture result{GlTexture(&gl_, texture), desc.width, desc.height, 1};
-      gl_.TextureStorage2D(texture, 1, format, width, height);
+      Texture result{GlTexture(&gl_, texture), desc.width, desc.height, 1, {}, format};
+      gl_.TextureStorage2D(texture, 1, gl_format(format).internal_format, width, height);
       return result;
     };
-    target->color = make_texture(GL_RGBA32F);
+    target->color = make_texture(TextureFormat::Rgba32Float);
     if (desc.depth) {
-      target->depth = make_texture(GL_DEPTH_COMPONENT32F);
+      target->depth = make_texture(TextureFormat::Depth32Float);
       gl_.TextureParameteri(target->depth->texture.get(), GL_TEXTURE_COMPARE_MODE, GL_NONE);
     }
     GLuint framebuffer = 0;
@@ -570,53 +668,153 @@ Result<MeshHandle> GlBackend::upload_mesh(const MeshData& data) {
 
 Result<TextureHandle> GlBackend::upload_texture(const TextureData& data) {
   return guarded<TextureHandle>("upload_texture", [&]() -> Result<TextureHandle> {
-    if (data.width == 0 || data.height == 0 || data.levels.empty())
-      return fail(fmt::format("upload_texture: the texture is empty ({}x{}, {} levels)", data.width,
-                              data.height, data.levels.size()));
-    if (std::max(data.width, data.height) > static_cast<uint32_t>(max_texture_size_))
-      return fail(fmt::format("upload_texture: size {}x{} exceeds the driver limit of {}",
-                              data.width, data.height, max_texture_size_));
-    const uint32_t full_chain =
-        static_cast<uint32_t>(std::bit_width(std::max(data.width, data.height)));
-    if (data.levels.size() > full_chain)
-      return fail(
-          fmt::format("upload_texture: {} mip levels given but a {}x{} texture has at most {}",
-                      data.levels.size(), data.width, data.height, full_chain));
-    const size_t texel = bytes_per_texel(data.format);
-    for (size_t level = 0; level < data.levels.size(); ++level) {
-      const size_t w = std::max<uint32_t>(1, data.width >> level);
-      const size_t h = std::max<uint32_t>(1, data.height >> level);
-      if (data.levels[level].size() != w * h * texel)
-        return fail(
-            fmt::format("upload_texture: mip level {} has {} bytes, expected {} ({}x{} x {})",
-                        level, data.levels[level].size(), w * h * texel, w, h, texel));
-    }
-    GLenum internal_format = GL_RGBA8;
-    GLenum type = GL_UNSIGNED_BYTE;
-    switch (data.format) {
-      case TextureFormat::Rgba8Unorm: internal_format = GL_RGBA8; break;
-      case TextureFormat::Rgba8Srgb: internal_format = GL_SRGB8_ALPHA8; break;
-      case TextureFormat::Rgba32Float:
-        internal_format = GL_RGBA32F;
-        type = GL_FLOAT;
-        break;
-    }
+    if (auto valid = validate_texture(data, static_cast<uint32_t>(max_texture_size_)); !valid) return fail(valid.error());
+    const TextureShape shape = data.shape();
+    const std::string what = "upload_texture: " + shape_name(shape);
+    if (data.dimension == TextureDimension::Tex3D &&
+        std::max({data.width, data.height, data.layers}) > static_cast<uint32_t>(max_3d_texture_size_))
+      return fail(fmt::format("{}: size {}x{}x{} exceeds the driver limit of {}", what, data.width, data.height,
+                              data.layers, max_3d_texture_size_));
+    if (is_array(data.dimension) && data.layers > static_cast<uint32_t>(max_array_layers_))
+      return fail(fmt::format("{}: {} layers exceed the driver limit of {}", what, data.layers, max_array_layers_));
+    const GLint max_samples = texel_kind(data.format) == TexelKind::Float ? max_color_samples_ : max_integer_samples_;
+    if (shape.multisampled && (data.samples > static_cast<uint32_t>(max_samples) || !std::has_single_bit(data.samples)))
+      return fail(fmt::format("{}: {} samples of {}; the driver has powers of two up to {}", what, data.samples,
+                              format_name(data.format), max_samples));
+    const GlFormat format = gl_format(data.format);
     const uint32_t levels = static_cast<uint32_t>(data.levels.size());
     GLuint id = 0;
-    gl_.CreateTextures(GL_TEXTURE_2D, 1, &id);
-    auto texture = std::make_unique<Texture>(Texture{GlTexture(&gl_, id), data.width, data.height,
-                                                     levels});
-    gl_.TextureStorage2D(id, static_cast<GLsizei>(levels), internal_format,
-                         static_cast<GLsizei>(data.width), static_cast<GLsizei>(data.height));
-    // Row 0 of the data goes to t = 0; with the clip control above that is the top.
-    for (uint32_t level = 0; level < levels; ++level)
-      gl_.TextureSubImage2D(id, static_cast<GLint>(level), 0, 0,
-                            static_cast<GLsizei>(std::max<uint32_t>(1, data.width >> level)),
-                            static_cast<GLsizei>(std::max<uint32_t>(1, data.height >> level)),
-                            GL_RGBA, type, data.levels[level].data());
+    gl_.CreateTextures(gl_target(shape), 1, &id);
+    auto texture = std::make_unique<Texture>(
+        Texture{GlTexture(&gl_, id), data.width, data.height, levels, shape, data.format});
+    const auto size = [](uint32_t extent, uint32_t level) {
+      return static_cast<GLsizei>(std::max<uint32_t>(1, extent >> level));
+    };
+    const GLsizei width = static_cast<GLsizei>(data.width), height = static_cast<GLsizei>(data.height);
+    const GLsizei layers = static_cast<GLsizei>(data.layers);
+    // Row 0 of the data goes to t = 0, which the clip control made the top; each layer (cube
+    // face, 3D slice) the same, so the faces take Direct3D's and Vulkan's data unchanged.
+    if (shape.multisampled) {
+      if (data.dimension == TextureDimension::Tex2D)
+        gl_.TextureStorage2DMultisample(id, static_cast<GLsizei>(data.samples), format.internal_format, width, height,
+                                        GL_TRUE);
+      else
+        gl_.TextureStorage3DMultisample(id, static_cast<GLsizei>(data.samples), format.internal_format, width, height,
+                                        layers, GL_TRUE);
+      if (auto filled = fill_multisampled(*texture, data, what); !filled) return fail(filled.error());
+    } else {
+      switch (data.dimension) {
+        case TextureDimension::Tex1D:
+          gl_.TextureStorage1D(id, static_cast<GLsizei>(levels), format.internal_format, width);
+          for (uint32_t level = 0; level < levels; ++level)
+            gl_.TextureSubImage1D(id, static_cast<GLint>(level), 0, size(data.width, level), format.format,
+                                  format.type, data.levels[level].data());
+          break;
+        case TextureDimension::Tex1DArray:  // a 2D storage whose rows are the layers
+        case TextureDimension::Tex2D: {
+          const bool layered = data.dimension == TextureDimension::Tex1DArray;
+          gl_.TextureStorage2D(id, static_cast<GLsizei>(levels), format.internal_format, width,
+                               layered ? layers : height);
+          for (uint32_t level = 0; level < levels; ++level)
+            gl_.TextureSubImage2D(id, static_cast<GLint>(level), 0, 0, size(data.width, level),
+                                  layered ? layers : size(data.height, level), format.format, format.type,
+                                  data.levels[level].data());
+          break;
+        }
+        case TextureDimension::Cube:  // 2D storage; the faces are addressed as the layers of TextureSubImage3D
+        case TextureDimension::Tex2DArray:
+        case TextureDimension::Tex3D:
+        case TextureDimension::CubeArray: {
+          const bool volume = data.dimension == TextureDimension::Tex3D;
+          if (data.dimension == TextureDimension::Cube)
+            gl_.TextureStorage2D(id, static_cast<GLsizei>(levels), format.internal_format, width, height);
+          else
+            gl_.TextureStorage3D(id, static_cast<GLsizei>(levels), format.internal_format, width, height, layers);
+          for (uint32_t level = 0; level < levels; ++level)
+            gl_.TextureSubImage3D(id, static_cast<GLint>(level), 0, 0, 0, size(data.width, level),
+                                  size(data.height, level), volume ? size(data.layers, level) : layers, format.format,
+                                  format.type, data.levels[level].data());
+          break;
+        }
+      }
+    }
     textures_.push_back(std::move(texture));
     return TextureHandle{static_cast<uint32_t>(textures_.size())};
   });
+}
+
+Result<GLuint> GlBackend::fill_program(TexelKind kind, const std::string& what) {
+  if (auto found = fill_programs_.find(kind); found != fill_programs_.end()) return found->second.get();
+  ShaderStageSource vertex_source{kFillVertexShader, {}, "main", "multisample_fill.vert", {}};
+  ShaderStageSource fragment_source{fill_fragment_shader(kind), {}, "main", "multisample_fill.frag", {}};
+  auto vertex = compile(vertex_source, GL_VERTEX_SHADER, "vertex", what);
+  if (!vertex) return fail(vertex.error());
+  auto fragment = compile(fragment_source, GL_FRAGMENT_SHADER, "fragment", what);
+  if (!fragment) return fail(fragment.error());
+  GlProgram program(&gl_, gl_.CreateProgram());
+  gl_.AttachShader(program.get(), vertex->get());
+  gl_.AttachShader(program.get(), fragment->get());
+  gl_.LinkProgram(program.get());
+  gl_.DetachShader(program.get(), vertex->get());
+  gl_.DetachShader(program.get(), fragment->get());
+  GLint linked = GL_FALSE;
+  gl_.GetProgramiv(program.get(), GL_LINK_STATUS, &linked);
+  if (linked != GL_TRUE) return fail(what + ": the multisample fill program does not link");
+  return fill_programs_.emplace(kind, std::move(program)).first->second.get();
+}
+
+Result<void> GlBackend::fill_multisampled(const Texture& texture, const TextureData& data, const std::string& what) {
+  // Multisampled storage takes no pixel uploads: the data goes into a single-sampled 2D array
+  // first, and a draw per layer copies it into every sample.
+  const GlFormat format = gl_format(data.format);
+  const GLsizei width = static_cast<GLsizei>(data.width), height = static_cast<GLsizei>(data.height);
+  const GLsizei layers = static_cast<GLsizei>(data.layers);
+  GLuint source_id = 0;
+  gl_.CreateTextures(GL_TEXTURE_2D_ARRAY, 1, &source_id);
+  GlTexture source(&gl_, source_id);
+  gl_.TextureStorage3D(source_id, 1, format.internal_format, width, height, layers);
+  gl_.TextureSubImage3D(source_id, 0, 0, 0, 0, width, height, layers, format.format, format.type,
+                        data.levels[0].data());
+  // An integer texture filtered linearly is incomplete, and texelFetch of one reads nothing.
+  gl_.TextureParameteri(source_id, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+  gl_.TextureParameteri(source_id, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+  auto program = fill_program(texel_kind(data.format), what);
+  if (!program) return fail(program.error());
+  const GLint layer_location = gl_.GetUniformLocation(*program, "layer");
+  GLuint framebuffer_id = 0;
+  gl_.CreateFramebuffers(1, &framebuffer_id);
+  GlFramebuffer framebuffer(&gl_, framebuffer_id);
+  gl_.NamedFramebufferDrawBuffer(framebuffer_id, GL_COLOR_ATTACHMENT0);
+  gl_.UseProgram(*program);
+  gl_.BindTextureUnit(0, source_id);
+  gl_.BindSampler(0, 0);
+  gl_.BindVertexArray(empty_vertex_array_.get());
+  gl_.Disable(GL_DEPTH_TEST);
+  gl_.ColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+  gl_.Viewport(0, 0, width, height);
+  Result<void> result;
+  for (GLsizei layer = 0; layer < layers && result; ++layer) {
+    if (data.dimension == TextureDimension::Tex2D)
+      gl_.NamedFramebufferTexture(framebuffer_id, GL_COLOR_ATTACHMENT0, texture.texture.get(), 0);
+    else
+      gl_.NamedFramebufferTextureLayer(framebuffer_id, GL_COLOR_ATTACHMENT0, texture.texture.get(), 0, layer);
+    const GLenum status = gl_.CheckNamedFramebufferStatus(framebuffer_id, GL_FRAMEBUFFER);
+    if (status != GL_FRAMEBUFFER_COMPLETE) {
+      result = fail(fmt::format("{}: the framebuffer that fills layer {} ({} samples of {}) is incomplete "
+                                "(status 0x{:04X})",
+                                what, layer, data.samples, format_name(data.format), status));
+      break;
+    }
+    gl_.BindFramebuffer(GL_FRAMEBUFFER, framebuffer_id);
+    gl_.ProgramUniform1i(*program, layer_location, layer);
+    gl_.DrawArrays(GL_TRIANGLES, 0, 3);
+  }
+  gl_.Finish();
+  gl_.BindTextureUnit(0, 0);
+  gl_.BindVertexArray(0);
+  gl_.UseProgram(0);
+  gl_.BindFramebuffer(GL_FRAMEBUFFER, 0);
+  return result;
 }
 
 Result<GlShader> GlBackend::compile(const ShaderStageSource& source, GLenum stage,
@@ -661,7 +859,7 @@ Result<GlShader> GlBackend::compile(const ShaderStageSource& source, GLenum stag
 }
 
 // The linked program's uniforms, blocks and inputs against the layout and GL's limits.
-Result<void> GlBackend::check_interface(const Program& program, const std::string& what) {
+Result<void> GlBackend::check_interface(Program& program, const std::string& what) {
   const GLuint id = program.program.get();
   const ProgramLayout& layout = program.layout;
   const auto resource_name = [&](GLenum interface, GLuint index) {
@@ -721,21 +919,29 @@ Result<void> GlBackend::check_interface(const Program& program, const std::strin
                               what, name));
   }
 
-  // Vertex inputs: none for a full-screen program, locations 0..3 for a mesh program.
+  // Vertex inputs: none for a full-screen program; for a mesh program the mesh's locations 0..3,
+  // and zeros for any other (what glGetActiveAttrib reports, here through the program interface
+  // query that gives the location with the type).
   const GLuint inputs = count(GL_PROGRAM_INPUT);
+  program.zero_inputs.clear();
   for (GLuint index = 0; index < inputs; ++index) {
-    const GLenum property = GL_LOCATION;
-    GLint location = -1;
-    gl_.GetProgramResourceiv(id, GL_PROGRAM_INPUT, index, 1, &property, 1, nullptr, &location);
+    const std::array<GLenum, 2> properties = {GL_LOCATION, GL_TYPE};
+    std::array<GLint, 2> values = {-1, 0};
+    gl_.GetProgramResourceiv(id, GL_PROGRAM_INPUT, index, static_cast<GLsizei>(properties.size()),
+                             properties.data(), static_cast<GLsizei>(values.size()), nullptr, values.data());
+    const GLint location = values[0];
     if (location < 0) continue;  // a built-in such as gl_VertexID
     if (program.fullscreen)
       return fail(fmt::format("{}: a full-screen program's vertex shader must read no vertex "
                               "input, but it reads location {}",
                               what, location));
-    if (location > 3)
-      return fail(fmt::format("{}: the vertex shader reads input location {}, but the vertex "
-                              "format has locations 0..3 only",
-                              what, location));
+    if (location <= 3) continue;
+    const std::optional<TexelKind> kind = attribute_kind(values[1]);
+    if (!kind)
+      return fail(fmt::format("{}: the vertex shader reads input '{}' at location {} of GL type 0x{:04X}, which "
+                              "no mesh supplies and which is not a float, int or uint scalar or vector",
+                              what, resource_name(GL_PROGRAM_INPUT, index), location, values[1]));
+    program.zero_inputs.emplace_back(static_cast<GLuint>(location), *kind);
   }
   return {};
 }
@@ -908,6 +1114,14 @@ Result<void> GlBackend::render(const RenderPass& pass) {
           texture =
               source.kind == TextureSource::Kind::TargetColor ? &sampled->color : &*sampled->depth;
         }
+        const std::string label = source.kind == TextureSource::Kind::Texture
+                                      ? fmt::format("texture {}", source.id)
+                                      : fmt::format("the {} of target {}",
+                                                    source.kind == TextureSource::Kind::TargetColor ? "colour" : "depth",
+                                                    source.id);
+        if (auto fits = check_bound_texture(slots[index], {texture->shape, texture->format, label}, source.sampler, where);
+            !fits)
+          return fail(fits.error());
         draw.textures[index] = BoundTexture{texture, source.sampler};
       }
       draws.push_back(std::move(draw));
@@ -951,13 +1165,19 @@ Result<void> GlBackend::render(const RenderPass& pass) {
       for (size_t s = 0; s < slots.size(); ++s) {
         const BoundTexture& bound = draw.textures[s];
         gl_.BindTextureUnit(slots[s].binding, bound.texture->texture.get());
-        gl_.BindSampler(slots[s].binding, sampler(bound.sampler, bound.texture->levels > 1));
+        gl_.BindSampler(slots[s].binding, sampler(bound.sampler, bound.texture->levels > 1, slots[s].comparison));
         used_units.insert(slots[s].binding);
       }
       if (program.fullscreen) {
         gl_.BindVertexArray(empty_vertex_array_.get());
         gl_.DrawArrays(GL_TRIANGLES, 0, 3);
       } else {
+        // Attributes outside the vertex array read the generic current value.
+        for (const auto& [location, kind] : program.zero_inputs) {
+          if (kind == TexelKind::Float) gl_.VertexAttrib4f(location, 0.0f, 0.0f, 0.0f, 0.0f);
+          if (kind == TexelKind::Int) gl_.VertexAttribI4i(location, 0, 0, 0, 0);
+          if (kind == TexelKind::Uint) gl_.VertexAttribI4ui(location, 0, 0, 0, 0);
+        }
         gl_.BindVertexArray(draw.mesh->vertex_array.get());
         gl_.DrawElements(GL_TRIANGLES, static_cast<GLsizei>(draw.mesh->index_count),
                          GL_UNSIGNED_INT, nullptr);

@@ -32,8 +32,14 @@ namespace xshade::harness::gl {
   /* textures and samplers */                                                \
   X(PFNGLCREATETEXTURESPROC, CreateTextures)                                 \
   X(PFNGLDELETETEXTURESPROC, DeleteTextures)                                 \
+  X(PFNGLTEXTURESTORAGE1DPROC, TextureStorage1D)                             \
   X(PFNGLTEXTURESTORAGE2DPROC, TextureStorage2D)                             \
+  X(PFNGLTEXTURESTORAGE3DPROC, TextureStorage3D)                             \
+  X(PFNGLTEXTURESTORAGE2DMULTISAMPLEPROC, TextureStorage2DMultisample)       \
+  X(PFNGLTEXTURESTORAGE3DMULTISAMPLEPROC, TextureStorage3DMultisample)       \
+  X(PFNGLTEXTURESUBIMAGE1DPROC, TextureSubImage1D)                           \
   X(PFNGLTEXTURESUBIMAGE2DPROC, TextureSubImage2D)                           \
+  X(PFNGLTEXTURESUBIMAGE3DPROC, TextureSubImage3D)                           \
   X(PFNGLTEXTUREPARAMETERIPROC, TextureParameteri)                           \
   X(PFNGLGETTEXTUREIMAGEPROC, GetTextureImage)                               \
   X(PFNGLBINDTEXTUREUNITPROC, BindTextureUnit)                               \
@@ -45,6 +51,7 @@ namespace xshade::harness::gl {
   X(PFNGLCREATEFRAMEBUFFERSPROC, CreateFramebuffers)                         \
   X(PFNGLDELETEFRAMEBUFFERSPROC, DeleteFramebuffers)                         \
   X(PFNGLNAMEDFRAMEBUFFERTEXTUREPROC, NamedFramebufferTexture)               \
+  X(PFNGLNAMEDFRAMEBUFFERTEXTURELAYERPROC, NamedFramebufferTextureLayer)     \
   X(PFNGLNAMEDFRAMEBUFFERDRAWBUFFERPROC, NamedFramebufferDrawBuffer)         \
   X(PFNGLNAMEDFRAMEBUFFERREADBUFFERPROC, NamedFramebufferReadBuffer)         \
   X(PFNGLCHECKNAMEDFRAMEBUFFERSTATUSPROC, CheckNamedFramebufferStatus)       \
@@ -65,6 +72,9 @@ namespace xshade::harness::gl {
   X(PFNGLVERTEXARRAYATTRIBFORMATPROC, VertexArrayAttribFormat)               \
   X(PFNGLVERTEXARRAYATTRIBBINDINGPROC, VertexArrayAttribBinding)             \
   X(PFNGLBINDVERTEXARRAYPROC, BindVertexArray)                               \
+  X(PFNGLVERTEXATTRIB4FPROC, VertexAttrib4f)                                 \
+  X(PFNGLVERTEXATTRIBI4IPROC, VertexAttribI4i)                               \
+  X(PFNGLVERTEXATTRIBI4UIPROC, VertexAttribI4ui)                             \
   /* shaders and programs */                                                 \
   X(PFNGLCREATESHADERPROC, CreateShader)                                     \
   X(PFNGLSHADERSOURCEPROC, ShaderSource)                                     \

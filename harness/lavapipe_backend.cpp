@@ -61,6 +61,9 @@ struct Program {
   std::string vertex_entry;
   std::string fragment_entry;
   std::set<uint32_t> vertex_inputs;
+  // The inputs above location 3 (no mesh has them) and what they read: fed zeros from the
+  // backend's zero buffer at binding 1.
+  std::map<uint32_t, TexelKind> zero_inputs;
   vk::raii::ShaderModule vertex{nullptr};
   vk::raii::ShaderModule fragment{nullptr};
   vk::raii::DescriptorSetLayout set_layout{nullptr};
@@ -99,7 +102,12 @@ class LavapipeBackend final : public Backend {
   Buffer create_buffer(vk::DeviceSize size, vk::BufferUsageFlags usage) const {
     return vk_support::create_host_buffer(device_ref(), size, usage);
   }
-  const vk::raii::Sampler& sampler(const SamplerDesc& desc);
+  // `compare`: a comparison sampler (of a slot the shader compares), with desc.compare.
+  const vk::raii::Sampler& sampler(const SamplerDesc& desc, bool compare);
+  // Every sample of each texel of `image` (multisampled, just created) from level 0 of `data`.
+  void fill_multisampled(Image& image, const TextureData& data);
+  // 16 zero bytes, the vertex buffer of every input no mesh supplies (stride 0).
+  const Buffer& zero_vertex_buffer();
   // Records with `record`, submits, waits. Layouts roll back if anything throws.
   void submit(const std::function<void(Recording&)>& record);
   Result<vk::Pipeline> pipeline(Program& program, bool depth);
@@ -124,7 +132,8 @@ class LavapipeBackend final : public Backend {
   uint32_t max_uniform_range_ = 16384;
   DriverInfo info_;
 
-  std::map<std::pair<Filter, AddressMode>, vk::raii::Sampler> samplers_;
+  std::map<std::tuple<Filter, AddressMode, std::optional<CompareOp>>, vk::raii::Sampler> samplers_;
+  Buffer zero_vertices_;
   std::vector<std::unique_ptr<Target>> targets_;
   std::vector<std::unique_ptr<Mesh>> meshes_;
   std::vector<std::unique_ptr<Image>> textures_;
@@ -275,8 +284,49 @@ Result<void> LavapipeBackend::init(const LavapipeOptions& options) {
   });
 }
 
-const vk::raii::Sampler& LavapipeBackend::sampler(const SamplerDesc& desc) {
-  const auto key = std::make_pair(desc.filter, desc.address);
+vk::CompareOp vk_compare_op(CompareOp op) {
+  switch (op) {
+    case CompareOp::Never: return vk::CompareOp::eNever;
+    case CompareOp::Less: return vk::CompareOp::eLess;
+    case CompareOp::Equal: return vk::CompareOp::eEqual;
+    case CompareOp::LessEqual: return vk::CompareOp::eLessOrEqual;
+    case CompareOp::Greater: return vk::CompareOp::eGreater;
+    case CompareOp::NotEqual: return vk::CompareOp::eNotEqual;
+    case CompareOp::GreaterEqual: return vk::CompareOp::eGreaterOrEqual;
+    case CompareOp::Always: return vk::CompareOp::eAlways;
+  }
+  return vk::CompareOp::eLessOrEqual;
+}
+
+vk::Format zero_input_format(TexelKind kind) {
+  switch (kind) {
+    case TexelKind::Float: return vk::Format::eR32G32B32A32Sfloat;
+    case TexelKind::Int: return vk::Format::eR32G32B32A32Sint;
+    case TexelKind::Uint: return vk::Format::eR32G32B32A32Uint;
+  }
+  return vk::Format::eR32G32B32A32Sfloat;
+}
+
+// The internal draw that fills a multisampled image: each sample of every texel of one layer
+// gets the texel of a single-sampled copy. Without sample shading a fragment's one output goes to
+// every sample it covers, and the triangle covers the whole layer.
+constexpr const char* kFillVertexShader = R"(#version 450
+void main() {
+  vec2 corner = vec2((gl_VertexIndex << 1) & 2, gl_VertexIndex & 2);
+  gl_Position = vec4(corner * 2.0 - 1.0, 0.0, 1.0);
+}
+)";
+std::string fill_fragment_shader(TexelKind kind) {
+  const std::string prefix = kind == TexelKind::Int ? "i" : kind == TexelKind::Uint ? "u" : "";
+  return "#version 450\nlayout(set = 0, binding = 0) uniform " + prefix + "sampler2DArray source;\n"
+         "layout(push_constant) uniform Fill { int layer; } fill;\n"
+         "layout(location = 0) out " + prefix + "vec4 color;\n"
+         "void main() { color = texelFetch(source, ivec3(ivec2(gl_FragCoord.xy), fill.layer), 0); }\n";
+}
+
+const vk::raii::Sampler& LavapipeBackend::sampler(const SamplerDesc& desc, bool compare) {
+  const auto key = std::make_tuple(desc.filter, desc.address,
+                                   compare ? std::optional<CompareOp>(desc.compare) : std::nullopt);
   auto found = samplers_.find(key);
   if (found != samplers_.end()) return found->second;
   const vk::Filter filter =
@@ -287,7 +337,9 @@ const vk::raii::Sampler& LavapipeBackend::sampler(const SamplerDesc& desc) {
                                              ? vk::SamplerAddressMode::eRepeat
                                              : vk::SamplerAddressMode::eClampToEdge;
   vk::SamplerCreateInfo info({}, filter, filter, mip, address, address, address, 0.0f, VK_FALSE,
-                             1.0f, VK_FALSE, vk::CompareOp::eNever, 0.0f, VK_LOD_CLAMP_NONE);
+                             1.0f, compare ? VK_TRUE : VK_FALSE,
+                             compare ? vk_compare_op(desc.compare) : vk::CompareOp::eNever, 0.0f,
+                             VK_LOD_CLAMP_NONE);
   return samplers_.emplace(key, vk::raii::Sampler(device_, info)).first->second;
 }
 
@@ -325,13 +377,13 @@ Result<TargetHandle> LavapipeBackend::create_target(const TargetDesc& desc) {
     target->color = vk_support::create_image(
         device_ref(), {kColorFormat, vk::ImageAspectFlagBits::eColor, desc.width, desc.height, 1,
                        U::eColorAttachment | U::eSampled | U::eTransferSrc | U::eTransferDst,
-                       fmt::format("colour of target {}", id)});
+                       fmt::format("the colour of target {}", id), TextureFormat::Rgba32Float});
     if (desc.depth)
       target->depth = vk_support::create_image(
           device_ref(),
           {kDepthFormat, vk::ImageAspectFlagBits::eDepth, desc.width, desc.height, 1,
            U::eDepthStencilAttachment | U::eSampled | U::eTransferSrc | U::eTransferDst,
-           fmt::format("depth of target {}", id)});
+           fmt::format("the depth of target {}", id), TextureFormat::Depth32Float});
     // Start from defined contents (zero colour, far depth) so that reads before a render are
     // stable.
     submit([&](Recording& rec) {
@@ -371,58 +423,152 @@ Result<MeshHandle> LavapipeBackend::upload_mesh(const MeshData& data) {
 
 Result<TextureHandle> LavapipeBackend::upload_texture(const TextureData& data) {
   return guarded<TextureHandle>("upload_texture", [&]() -> Result<TextureHandle> {
-    if (data.width == 0 || data.height == 0 || data.levels.empty())
-      return fail(fmt::format("upload_texture: the texture is empty ({}x{}, {} levels)", data.width,
-                              data.height, data.levels.size()));
-    if (std::max(data.width, data.height) > max_image_size_)
-      return fail(fmt::format("upload_texture: size {}x{} exceeds the device limit of {}",
-                              data.width, data.height, max_image_size_));
-    const uint32_t full_chain =
-        static_cast<uint32_t>(std::bit_width(std::max(data.width, data.height)));
-    if (data.levels.size() > full_chain)
-      return fail(
-          fmt::format("upload_texture: {} mip levels given but a {}x{} texture has at most {}",
-                      data.levels.size(), data.width, data.height, full_chain));
-    const size_t texel = bytes_per_texel(data.format);
+    if (auto valid = validate_texture(data, max_image_size_); !valid) return fail(valid.error());
+    const TextureShape shape = data.shape();
+    const bool depth = data.format == TextureFormat::Depth32Float;
+    const vk::ImageAspectFlags aspect = depth ? vk::ImageAspectFlagBits::eDepth : vk::ImageAspectFlagBits::eColor;
+    const uint32_t id = static_cast<uint32_t>(textures_.size() + 1);
+    using U = vk::ImageUsageFlagBits;
+    vk_support::ImageSpec spec{vk_support::vk_format(data.format),
+                               aspect,
+                               data.width,
+                               data.height,
+                               static_cast<uint32_t>(data.levels.size()),
+                               shape.multisampled ? U::eSampled | U::eColorAttachment : U::eSampled | U::eTransferDst,
+                               fmt::format("texture {}", id),
+                               data.format,
+                               data.dimension,
+                               data.layers,
+                               data.samples};
+    if (auto why = vk_support::unsupported_image(device_ref(), spec))
+      return fail(fmt::format("upload_texture: {} of {}: {}", shape_name(shape), format_name(data.format), *why));
+    auto image = std::make_unique<Image>(vk_support::create_image(device_ref(), spec));
+    if (shape.multisampled) {
+      fill_multisampled(*image, data);
+      textures_.push_back(std::move(image));
+      return TextureHandle{id};
+    }
     std::vector<size_t> offsets;
     size_t total = 0;
-    for (size_t level = 0; level < data.levels.size(); ++level) {
-      const size_t w = std::max<uint32_t>(1, data.width >> level);
-      const size_t h = std::max<uint32_t>(1, data.height >> level);
-      if (data.levels[level].size() != w * h * texel)
-        return fail(
-            fmt::format("upload_texture: mip level {} has {} bytes, expected {} ({}x{} x {})",
-                        level, data.levels[level].size(), w * h * texel, w, h, texel));
+    for (const std::vector<std::byte>& level : data.levels) {
       offsets.push_back(total);
-      total += (data.levels[level].size() + 15) & ~size_t(15);
+      total += (level.size() + 15) & ~size_t(15);
     }
-    const uint32_t id = static_cast<uint32_t>(textures_.size() + 1);
-    auto image = std::make_unique<Image>(vk_support::create_image(
-        device_ref(), {vk_support::vk_format(data.format), vk::ImageAspectFlagBits::eColor,
-                       data.width, data.height, static_cast<uint32_t>(data.levels.size()),
-                       vk::ImageUsageFlagBits::eSampled | vk::ImageUsageFlagBits::eTransferDst,
-                       fmt::format("texture {}", id)}));
     Buffer staging = create_buffer(total, vk::BufferUsageFlagBits::eTransferSrc);
     for (size_t level = 0; level < data.levels.size(); ++level)
-      vk_support::write_buffer(staging, data.levels[level].data(), data.levels[level].size(),
-                               offsets[level]);
+      vk_support::write_buffer(staging, data.levels[level].data(), data.levels[level].size(), offsets[level]);
+    const bool volume = data.dimension == TextureDimension::Tex3D;
     submit([&](Recording& rec) {
       rec.transition(*image, vk::ImageLayout::eTransferDstOptimal);
+      // Each level's layers (cube faces, 1D rows) follow one another in the buffer, as they are
+      // numbered in the image; row 0 of each is v = 0.
       std::vector<vk::BufferImageCopy> regions;
       for (uint32_t level = 0; level < image->levels; ++level)
-        regions.emplace_back(
-            offsets[level], 0, 0,
-            vk::ImageSubresourceLayers(vk::ImageAspectFlagBits::eColor, level, 0, 1),
-            vk::Offset3D(0, 0, 0),
-            vk::Extent3D(std::max<uint32_t>(1, data.width >> level),
-                         std::max<uint32_t>(1, data.height >> level), 1));
-      rec.cmd.copyBufferToImage(*staging.buffer, *image->image,
-                                vk::ImageLayout::eTransferDstOptimal, regions);
+        regions.emplace_back(offsets[level], 0, 0, vk::ImageSubresourceLayers(aspect, level, 0, image->layers),
+                             vk::Offset3D(0, 0, 0),
+                             vk::Extent3D(std::max<uint32_t>(1, data.width >> level),
+                                          std::max<uint32_t>(1, data.height >> level),
+                                          volume ? std::max<uint32_t>(1, data.layers >> level) : 1));
+      rec.cmd.copyBufferToImage(*staging.buffer, *image->image, vk::ImageLayout::eTransferDstOptimal, regions);
       rec.transition(*image, vk::ImageLayout::eShaderReadOnlyOptimal);
     });
     textures_.push_back(std::move(image));
     return TextureHandle{id};
   });
+}
+
+void LavapipeBackend::fill_multisampled(Image& image, const TextureData& data) {
+  // A multisampled image takes no copies from a buffer: the data goes into a single-sampled 2D
+  // array first, and a draw per layer writes it into every sample.
+  using U = vk::ImageUsageFlagBits;
+  Image source = vk_support::create_image(
+      device_ref(), {image.format, vk::ImageAspectFlagBits::eColor, data.width, data.height, 1,
+                     U::eSampled | U::eTransferDst, "the single-sampled copy of " + image.label, data.format,
+                     TextureDimension::Tex2DArray, data.layers, 1});
+  Buffer staging = create_buffer(data.levels[0].size(), vk::BufferUsageFlagBits::eTransferSrc);
+  vk_support::write_buffer(staging, data.levels[0].data(), data.levels[0].size());
+
+  const TexelKind kind = texel_kind(data.format);
+  auto vertex_code = spirv::compile_vulkan_glsl(kFillVertexShader, spirv::Stage::Vertex, "multisample_fill.vert");
+  auto fragment_code =
+      spirv::compile_vulkan_glsl(fill_fragment_shader(kind), spirv::Stage::Fragment, "multisample_fill.frag");
+  if (!vertex_code || !fragment_code)
+    throw std::runtime_error("the multisample fill shaders do not compile: " +
+                             (vertex_code ? fragment_code.error() : vertex_code.error()).to_string());
+  const auto module = [&](const std::vector<uint32_t>& words) {
+    return vk::raii::ShaderModule(device_, vk::ShaderModuleCreateInfo({}, words.size() * sizeof(uint32_t), words.data()));
+  };
+  const vk::raii::ShaderModule vertex = module(vertex_code->words);
+  const vk::raii::ShaderModule fragment = module(fragment_code->words);
+  const vk::DescriptorSetLayoutBinding binding(0, vk::DescriptorType::eCombinedImageSampler, 1,
+                                               vk::ShaderStageFlagBits::eFragment);
+  const vk::raii::DescriptorSetLayout set_layout(device_, vk::DescriptorSetLayoutCreateInfo({}, binding));
+  const vk::PushConstantRange push(vk::ShaderStageFlagBits::eFragment, 0, sizeof(int32_t));
+  const vk::DescriptorSetLayout set_layout_handle = *set_layout;
+  const vk::raii::PipelineLayout pipeline_layout(device_, vk::PipelineLayoutCreateInfo({}, set_layout_handle, push));
+  const std::array<vk::PipelineShaderStageCreateInfo, 2> stages = {
+      vk::PipelineShaderStageCreateInfo({}, vk::ShaderStageFlagBits::eVertex, *vertex, "main"),
+      vk::PipelineShaderStageCreateInfo({}, vk::ShaderStageFlagBits::eFragment, *fragment, "main")};
+  const vk::PipelineVertexInputStateCreateInfo vertex_input;
+  const vk::PipelineInputAssemblyStateCreateInfo assembly({}, vk::PrimitiveTopology::eTriangleList);
+  const vk::Viewport viewport(0.0f, 0.0f, float(data.width), float(data.height), 0.0f, 1.0f);
+  const vk::Rect2D area({0, 0}, {data.width, data.height});
+  const vk::PipelineViewportStateCreateInfo viewport_state({}, viewport, area);
+  vk::PipelineRasterizationStateCreateInfo raster({}, VK_FALSE, VK_FALSE, vk::PolygonMode::eFill,
+                                                  vk::CullModeFlagBits::eNone, vk::FrontFace::eCounterClockwise);
+  raster.lineWidth = 1.0f;
+  const vk::PipelineMultisampleStateCreateInfo multisample({}, vk::SampleCountFlagBits(data.samples));
+  vk::PipelineColorBlendAttachmentState blend_attachment;
+  blend_attachment.colorWriteMask = vk::ColorComponentFlagBits::eR | vk::ColorComponentFlagBits::eG |
+                                    vk::ColorComponentFlagBits::eB | vk::ColorComponentFlagBits::eA;
+  const vk::PipelineColorBlendStateCreateInfo blend({}, VK_FALSE, vk::LogicOp::eCopy, blend_attachment);
+  vk::PipelineRenderingCreateInfo rendering({}, image.format);
+  vk::GraphicsPipelineCreateInfo info({}, stages, &vertex_input, &assembly, nullptr, &viewport_state, &raster,
+                                      &multisample, nullptr, &blend, nullptr, *pipeline_layout);
+  info.pNext = &rendering;
+  const vk::raii::Pipeline pipeline(device_, nullptr, info);
+
+  const vk::DescriptorPoolSize pool_size(vk::DescriptorType::eCombinedImageSampler, 1);
+  const vk::raii::DescriptorPool pool(
+      device_, vk::DescriptorPoolCreateInfo(vk::DescriptorPoolCreateFlagBits::eFreeDescriptorSet, 1, pool_size));
+  vk::raii::DescriptorSets sets(device_, vk::DescriptorSetAllocateInfo(*pool, set_layout_handle));
+  const vk::DescriptorImageInfo source_info(*sampler({Filter::Nearest, AddressMode::ClampToEdge}, false), *source.view,
+                                            vk::ImageLayout::eShaderReadOnlyOptimal);
+  device_.updateDescriptorSets(
+      vk::WriteDescriptorSet(*sets.front(), 0, 0, vk::DescriptorType::eCombinedImageSampler, source_info), nullptr);
+  std::vector<vk::raii::ImageView> layer_views;
+  for (uint32_t layer = 0; layer < data.layers; ++layer)
+    layer_views.emplace_back(device_, vk::ImageViewCreateInfo({}, *image.image, vk::ImageViewType::e2D, image.format, {},
+                                                              {vk::ImageAspectFlagBits::eColor, 0, 1, layer, 1}));
+  submit([&](Recording& rec) {
+    rec.transition(source, vk::ImageLayout::eTransferDstOptimal);
+    const vk::BufferImageCopy region(0, 0, 0, vk::ImageSubresourceLayers(vk::ImageAspectFlagBits::eColor, 0, 0, data.layers),
+                                     vk::Offset3D(0, 0, 0), vk::Extent3D(data.width, data.height, 1));
+    rec.cmd.copyBufferToImage(*staging.buffer, *source.image, vk::ImageLayout::eTransferDstOptimal, region);
+    rec.transition(source, vk::ImageLayout::eShaderReadOnlyOptimal);
+    rec.transition(image, vk::ImageLayout::eColorAttachmentOptimal);
+    rec.cmd.bindPipeline(vk::PipelineBindPoint::eGraphics, *pipeline);
+    rec.cmd.bindDescriptorSets(vk::PipelineBindPoint::eGraphics, *pipeline_layout, 0, *sets.front(), nullptr);
+    for (uint32_t layer = 0; layer < data.layers; ++layer) {
+      const vk::RenderingAttachmentInfo color(*layer_views[layer], vk::ImageLayout::eColorAttachmentOptimal, {}, nullptr,
+                                              {}, vk::AttachmentLoadOp::eDontCare, vk::AttachmentStoreOp::eStore);
+      rec.cmd.beginRendering(vk::RenderingInfo({}, area, 1, 0, color));
+      const int32_t layer_index = static_cast<int32_t>(layer);
+      rec.cmd.pushConstants<int32_t>(*pipeline_layout, vk::ShaderStageFlagBits::eFragment, 0, layer_index);
+      rec.cmd.draw(3, 1, 0, 0);
+      rec.cmd.endRendering();
+    }
+    rec.transition(image, vk::ImageLayout::eShaderReadOnlyOptimal);
+  });
+}
+
+const Buffer& LavapipeBackend::zero_vertex_buffer() {
+  if (!*zero_vertices_.buffer) {
+    zero_vertices_ = create_buffer(16, vk::BufferUsageFlagBits::eVertexBuffer);
+    const std::array<uint32_t, 4> zeros{};
+    vk_support::write_buffer(zero_vertices_, zeros.data(), sizeof zeros);
+  }
+  return zero_vertices_;
 }
 
 Result<ProgramHandle> LavapipeBackend::create_program(const ProgramDesc& desc) {
@@ -457,7 +603,17 @@ Result<ProgramHandle> LavapipeBackend::create_program(const ProgramDesc& desc) {
       if (!entry.found)
         return fail(fmt::format("{} has no {} entry point named '{}'", shader, in.stage,
                                 in.source.entry_point));
-      if (in.model == ExecutionModel::Vertex) program->vertex_inputs = entry.input_locations;
+      if (in.model == ExecutionModel::Vertex) {
+        program->vertex_inputs = entry.input_locations;
+        for (const auto& [location, kind] : entry.input_types) {
+          if (location <= 3) continue;
+          if (!kind)
+            return fail(fmt::format("{} reads vertex input location {}, which no mesh supplies and whose type is "
+                                    "not a 32-bit float, int or uint scalar or vector",
+                                    shader, location));
+          program->zero_inputs.emplace(location, *kind);
+        }
+      }
       // A resource the layout does not list would reach the driver without a descriptor.
       for (const auto& [set, binding] : entry.descriptor_bindings)
         if (set != 0 || !layout_has_binding(desc.layout, binding))
@@ -473,11 +629,6 @@ Result<ProgramHandle> LavapipeBackend::create_program(const ProgramDesc& desc) {
           fmt::format("{}: a full-screen program's vertex shader must read no vertex "
                       "input, but it reads location {}",
                       what, *program->vertex_inputs.begin()));
-    if (!program->vertex_inputs.empty() && *program->vertex_inputs.rbegin() > 3)
-      return fail(
-          fmt::format("{}: the vertex shader reads input location {}, but the vertex format "
-                      "has locations 0..3 only",
-                      what, *program->vertex_inputs.rbegin()));
 
     std::vector<vk::DescriptorSetLayoutBinding> bindings;
     std::map<uint32_t, std::string> used;  // binding -> what uses it
@@ -506,7 +657,7 @@ Result<ProgramHandle> LavapipeBackend::create_program(const ProgramDesc& desc) {
       if (!names.insert(slot.name).second)
         return fail(fmt::format("{}: the layout names '{}' twice", what, slot.name));
       const std::string user = fmt::format("texture '{}'", slot.name);
-      Result<void> ok = slot.sampler_binding
+      Result<void> ok = slot.sampler_binding || slot.image_only
                             ? add(slot.binding, vk::DescriptorType::eSampledImage, user)
                             : add(slot.binding, vk::DescriptorType::eCombinedImageSampler, user);
       if (ok && slot.sampler_binding)
@@ -534,8 +685,9 @@ Result<vk::Pipeline> LavapipeBackend::pipeline(Program& program, bool depth) {
                                               program.vertex_entry.c_str()),
             vk::PipelineShaderStageCreateInfo({}, vk::ShaderStageFlagBits::eFragment,
                                               *program.fragment, program.fragment_entry.c_str())};
-        const vk::VertexInputBindingDescription binding(0, sizeof(Vertex),
-                                                        vk::VertexInputRate::eVertex);
+        // Binding 0 is the mesh; binding 1 the zero buffer, read at stride 0 by every input no
+        // mesh supplies.
+        std::vector<vk::VertexInputBindingDescription> bindings;
         const std::array<vk::VertexInputAttributeDescription, 4> all_attributes = {
             vk::VertexInputAttributeDescription(0, 0, vk::Format::eR32G32B32Sfloat,
                                                 offsetof(Vertex, position)),
@@ -548,10 +700,14 @@ Result<vk::Pipeline> LavapipeBackend::pipeline(Program& program, bool depth) {
         // Only the locations the shader reads: the validation layer warns about unread attributes.
         std::vector<vk::VertexInputAttributeDescription> attributes;
         for (uint32_t location : program.vertex_inputs)
-          attributes.push_back(all_attributes[location]);
+          if (location < all_attributes.size()) attributes.push_back(all_attributes[location]);
+        if (!attributes.empty()) bindings.emplace_back(0, sizeof(Vertex), vk::VertexInputRate::eVertex);
+        for (const auto& [location, kind] : program.zero_inputs)
+          attributes.emplace_back(location, 1, zero_input_format(kind), 0);
+        if (!program.zero_inputs.empty()) bindings.emplace_back(1, 0, vk::VertexInputRate::eVertex);
         vk::PipelineVertexInputStateCreateInfo vertex_input;
         if (!attributes.empty())
-          vertex_input = vk::PipelineVertexInputStateCreateInfo({}, binding, attributes);
+          vertex_input = vk::PipelineVertexInputStateCreateInfo({}, bindings, attributes);
         const vk::PipelineInputAssemblyStateCreateInfo assembly(
             {}, vk::PrimitiveTopology::eTriangleList);
         const vk::PipelineViewportStateCreateInfo viewport({}, 1, nullptr, 1, nullptr);
@@ -603,7 +759,7 @@ Result<void> LavapipeBackend::render(const RenderPass& pass) {
     std::vector<Resolved> draws;
     std::vector<Image*> sampled_targets;
     vk::DeviceSize uniform_bytes = 0;
-    size_t uniform_count = 0, combined_count = 0, separate_count = 0;
+    size_t uniform_count = 0, combined_count = 0, separate_count = 0, image_only_count = 0;
     for (size_t i = 0; i < pass.draws.size(); ++i) {
       const DrawItem& item = pass.draws[i];
       Resolved draw;
@@ -655,13 +811,21 @@ Result<void> LavapipeBackend::render(const RenderPass& pass) {
               source.kind == TextureSource::Kind::TargetColor ? &sampled->color : &*sampled->depth;
           sampled_targets.push_back(image);
         }
+        if (auto fits = check_bound_texture(slots[index], {image->shape, image->texture_format, image->label},
+                                            source.sampler, where);
+            !fits)
+          return fail(fits.error());
         if (source.sampler.filter == Filter::Linear && !image->linear_filter)
           return fail(
               fmt::format("{}: texture '{}': {} cannot be filtered linearly on this device; "
                           "use a nearest sampler",
                           where, binding.name, image->label));
         draw.textures[index] = BoundTexture{image, source.sampler};
-        (slots[index].sampler_binding ? separate_count : combined_count) += 1;
+        if (slots[index].image_only) {
+          image_only_count += 1;
+        } else {
+          (slots[index].sampler_binding ? separate_count : combined_count) += 1;
+        }
       }
       draws.push_back(std::move(draw));
     }
@@ -693,7 +857,7 @@ Result<void> LavapipeBackend::render(const RenderPass& pass) {
     };
     add_size(vk::DescriptorType::eUniformBuffer, uniform_count);
     add_size(vk::DescriptorType::eCombinedImageSampler, combined_count);
-    add_size(vk::DescriptorType::eSampledImage, separate_count);
+    add_size(vk::DescriptorType::eSampledImage, separate_count + image_only_count);
     add_size(vk::DescriptorType::eSampler, separate_count);
     vk::raii::DescriptorPool pool{nullptr};
     std::vector<vk::raii::DescriptorSet> sets;  // declared after the pool: freed before it
@@ -728,8 +892,12 @@ Result<void> LavapipeBackend::render(const RenderPass& pass) {
         for (size_t s = 0; s < layout.textures.size(); ++s) {
           const TextureSlot& slot = layout.textures[s];
           const BoundTexture& bound = draw.textures[s];
-          const vk::Sampler smp = *sampler(bound.sampler);
-          if (slot.sampler_binding) {
+          const vk::Sampler smp = *sampler(bound.sampler, slot.comparison);
+          if (slot.image_only) {
+            image_infos.emplace_back(nullptr, *bound.image->view, vk::ImageLayout::eShaderReadOnlyOptimal);
+            writes.emplace_back(draw_sets[i], slot.binding, 0, vk::DescriptorType::eSampledImage,
+                                image_infos.back());
+          } else if (slot.sampler_binding) {
             image_infos.emplace_back(nullptr, *bound.image->view,
                                      vk::ImageLayout::eShaderReadOnlyOptimal);
             writes.emplace_back(draw_sets[i], slot.binding, 0, vk::DescriptorType::eSampledImage,
@@ -748,6 +916,9 @@ Result<void> LavapipeBackend::render(const RenderPass& pass) {
       }
     }
 
+    vk::Buffer zero_buffer;
+    if (std::any_of(draws.begin(), draws.end(), [](const Resolved& d) { return !d.program->zero_inputs.empty(); }))
+      zero_buffer = *zero_vertex_buffer().buffer;
     submit([&](Recording& rec) {
       for (Image* image : sampled_targets)
         rec.transition(*image, vk::ImageLayout::eShaderReadOnlyOptimal);
@@ -782,8 +953,11 @@ Result<void> LavapipeBackend::render(const RenderPass& pass) {
         if (draw.program->fullscreen) {
           rec.cmd.draw(3, 1, 0, 0);
         } else {
-          if (!draw.program->vertex_inputs.empty())
+          if (std::any_of(draw.program->vertex_inputs.begin(), draw.program->vertex_inputs.end(),
+                          [](uint32_t location) { return location <= 3; }))
             rec.cmd.bindVertexBuffers(0, *draw.mesh->vertices.buffer, vk::DeviceSize(0));
+          if (!draw.program->zero_inputs.empty())
+            rec.cmd.bindVertexBuffers(1, zero_buffer, vk::DeviceSize(0));
           rec.cmd.bindIndexBuffer(*draw.mesh->indices.buffer, 0, vk::IndexType::eUint32);
           rec.cmd.drawIndexed(draw.mesh->index_count, 1, 0, 0, 0);
         }

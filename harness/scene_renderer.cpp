@@ -362,7 +362,9 @@ std::string program_key(const ProgramDesc& desc) {
     key += "b " + block.name + " " + std::to_string(block.binding) + " " + std::to_string(block.size) + "\n";
   for (const TextureSlot& texture : desc.layout.textures)
     key += "t " + texture.name + " " + std::to_string(texture.binding) + " " +
-           (texture.sampler_binding ? std::to_string(*texture.sampler_binding) : "-") + "\n";
+           (texture.sampler_binding ? std::to_string(*texture.sampler_binding) : "-") + " " + shape_name(texture.shape) +
+           " " + texel_kind_name(texture.texel) + (texture.comparison ? " compare" : "") +
+           (texture.image_only ? " image" : "") + "\n";
   return key;
 }
 

@@ -37,7 +37,13 @@ std::string variant_json(const CompiledVariant& variant) {
     blocks.push_back({{"name", b.name}, {"binding", b.binding}, {"size", b.size}});
   json textures = json::array();
   for (const TextureSlot& t : p.layout.textures) {
-    json slot{{"name", t.name}, {"binding", t.binding}};
+    json slot{{"name", t.name},
+              {"binding", t.binding},
+              {"dimension", int(t.shape.dimension)},
+              {"multisampled", t.shape.multisampled},
+              {"comparison", t.comparison},
+              {"texel", int(t.texel)},
+              {"image_only", t.image_only}};
     if (t.sampler_binding) slot["sampler_binding"] = *t.sampler_binding;
     textures.push_back(std::move(slot));
   }
@@ -64,6 +70,10 @@ std::optional<CompiledVariant> variant_from_json(const std::string& text) {
     for (const json& t : j.at("textures")) {
       TextureSlot slot{t.at("name"), t.at("binding"), std::nullopt};
       if (t.contains("sampler_binding")) slot.sampler_binding = t.at("sampler_binding").get<uint32_t>();
+      slot.shape = {TextureDimension(t.at("dimension").get<int>()), t.at("multisampled").get<bool>()};
+      slot.comparison = t.at("comparison");
+      slot.texel = TexelKind(t.at("texel").get<int>());
+      slot.image_only = t.at("image_only");
       p.layout.textures.push_back(std::move(slot));
     }
     auto interface = parse_shader_interface_json(j.at("interface"));

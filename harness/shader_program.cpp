@@ -66,6 +66,29 @@ Result<ShaderStageSource> vk_hlsl_stage(const hlsl::Module& module, spirv::Stage
 
 }  // namespace
 
+TextureShape harness_shape(hlsl::TextureShape shape) {
+  using S = hlsl::TextureShape;
+  using D = TextureDimension;
+  switch (shape) {
+    case S::Tex1D: return {D::Tex1D, false};
+    case S::Tex1DArray: return {D::Tex1DArray, false};
+    case S::Tex2D: return {D::Tex2D, false};
+    case S::Tex2DArray: return {D::Tex2DArray, false};
+    case S::Tex2DMS: return {D::Tex2D, true};
+    case S::Tex2DMSArray: return {D::Tex2DArray, true};
+    case S::Tex3D: return {D::Tex3D, false};
+    case S::Cube: return {D::Cube, false};
+    case S::CubeArray: return {D::CubeArray, false};
+  }
+  return {};
+}
+
+TexelKind harness_texel(hlsl::ScalarType texel) {
+  if (texel == hlsl::ScalarType::Int) return TexelKind::Int;
+  if (texel == hlsl::ScalarType::Uint || texel == hlsl::ScalarType::Bool) return TexelKind::Uint;
+  return TexelKind::Float;
+}
+
 ProgramLayout layout_for_lane(const hlsl::Reflection& reflection, Lane lane) {
   ProgramLayout layout;
   for (const hlsl::ConstantBuffer& buffer : reflection.constant_buffers)
@@ -73,7 +96,14 @@ ProgramLayout layout_for_lane(const hlsl::Reflection& reflection, Lane lane) {
   for (const hlsl::TextureResource& texture : reflection.textures) {
     if (!texture.used) continue;
     TextureSlot slot{texture.name, texture.binding, std::nullopt};
-    if (lane != Lane::Gl && texture.kind == hlsl::TextureKind::Texture) slot.sampler_binding = texture.sampler_binding;
+    slot.shape = harness_shape(texture.shape);
+    slot.comparison = texture.comparison;
+    slot.texel = harness_texel(texture.texel);
+    if (lane != Lane::Gl && texture.kind == hlsl::TextureKind::Texture) {
+      // A Texture object is a sampled image on Vulkan; its sampler, if any, is a binding of its own.
+      slot.sampler_binding = texture.sampler_binding;
+      slot.image_only = !texture.sampler_binding;
+    }
     layout.textures.push_back(std::move(slot));
   }
   return layout;

@@ -35,6 +35,10 @@ Result<LaneStages> stages_for_lane(const hlsl::Module& module, Lane lane, const 
 
 // The layout the harness binds by: uniform blocks by their GLSL block name, textures by name
 // with their samplers' bindings (Vulkan only; OpenGL combines them).
+// Each texture slot carries the shape, texel kind and comparison the shader declared.
 ProgramLayout layout_for_lane(const hlsl::Reflection& reflection, Lane lane);
+// A texture shape and texel type of the front end as the backends name them.
+TextureShape harness_shape(hlsl::TextureShape shape);
+TexelKind harness_texel(hlsl::ScalarType texel);
 
 }  // namespace xshade::harness

@@ -1,5 +1,6 @@
 #include "harness/vk_support.h"
 
+#include <bit>
 #include <cstring>
 #include <map>
 #include <stdexcept>
@@ -11,12 +12,16 @@ namespace xshade::harness::vk_support {
 EntryPointInfo reflect_entry_point(const std::vector<uint32_t>& words, ExecutionModel model,
                                    const std::string& name) {
   constexpr uint32_t kOpEntryPoint = 15, kOpVariable = 59, kOpDecorate = 71;
+  constexpr uint32_t kOpTypeInt = 21, kOpTypeFloat = 22, kOpTypeVector = 23, kOpTypePointer = 32;
   constexpr uint32_t kDecorationLocation = 30, kDecorationBinding = 33, kDecorationDescriptorSet = 34;
   constexpr uint32_t kStorageClassUniformConstant = 0, kStorageClassInput = 1, kStorageClassUniform = 2;
   EntryPointInfo info;
   std::vector<uint32_t> interface_ids;
   std::map<uint32_t, uint32_t> locations;    // id -> Location
-  std::set<uint32_t> inputs;                 // ids of Input-storage variables
+  std::map<uint32_t, uint32_t> inputs;       // ids of Input-storage variables -> their pointer type
+  std::map<uint32_t, TexelKind> scalars;     // 32-bit scalar type ids
+  std::map<uint32_t, uint32_t> vectors;      // vector type id -> component type id
+  std::map<uint32_t, uint32_t> pointers;     // pointer type id -> pointee type id
   std::map<uint32_t, uint32_t> bindings;     // id -> Binding
   std::map<uint32_t, uint32_t> sets;         // id -> DescriptorSet
   std::set<uint32_t> resources;              // ids of UniformConstant and Uniform variables
@@ -39,8 +44,16 @@ EntryPointInfo reflect_entry_point(const std::vector<uint32_t>& words, Execution
       bindings[op[1]] = op[3];
     } else if (opcode == kOpDecorate && count >= 4 && op[2] == kDecorationDescriptorSet) {
       sets[op[1]] = op[3];
+    } else if (opcode == kOpTypeInt && count >= 4 && op[2] == 32) {
+      scalars[op[1]] = op[3] ? TexelKind::Int : TexelKind::Uint;
+    } else if (opcode == kOpTypeFloat && count >= 3 && op[2] == 32) {
+      scalars[op[1]] = TexelKind::Float;
+    } else if (opcode == kOpTypeVector && count >= 4) {
+      vectors[op[1]] = op[2];
+    } else if (opcode == kOpTypePointer && count >= 4) {
+      pointers[op[1]] = op[3];
     } else if (opcode == kOpVariable && count >= 4 && op[3] == kStorageClassInput) {
-      inputs.insert(op[2]);
+      inputs[op[2]] = op[1];
     } else if (opcode == kOpVariable && count >= 4 &&
                (op[3] == kStorageClassUniformConstant || op[3] == kStorageClassUniform)) {
       resources.insert(op[2]);
@@ -49,8 +62,16 @@ EntryPointInfo reflect_entry_point(const std::vector<uint32_t>& words, Execution
   }
   for (uint32_t id : interface_ids) {
     auto location = locations.find(id);
-    if (inputs.count(id) && location != locations.end())
-      info.input_locations.insert(location->second);
+    auto input = inputs.find(id);
+    if (input == inputs.end() || location == locations.end()) continue;
+    info.input_locations.insert(location->second);
+    std::optional<TexelKind> kind;
+    if (auto pointee = pointers.find(input->second); pointee != pointers.end()) {
+      uint32_t type = pointee->second;
+      if (auto vector = vectors.find(type); vector != vectors.end()) type = vector->second;
+      if (auto scalar = scalars.find(type); scalar != scalars.end()) kind = scalar->second;
+    }
+    info.input_types[location->second] = kind;
   }
   for (const auto& [id, binding] : bindings)
     if (resources.count(id)) info.descriptor_bindings.insert({sets.count(id) ? sets[id] : 0, binding});
@@ -102,29 +123,73 @@ void write_buffer(Buffer& buffer, const void* data, size_t size, size_t offset) 
   buffer.memory.unmapMemory();
 }
 
+ImageGeometry image_geometry(const ImageSpec& spec) {
+  using D = TextureDimension;
+  switch (spec.dimension) {
+    case D::Tex1D: return {vk::ImageType::e1D, vk::ImageViewType::e1D, {spec.width, 1, 1}, 1, {}};
+    case D::Tex1DArray: return {vk::ImageType::e1D, vk::ImageViewType::e1DArray, {spec.width, 1, 1}, spec.layers, {}};
+    case D::Tex2D: return {vk::ImageType::e2D, vk::ImageViewType::e2D, {spec.width, spec.height, 1}, 1, {}};
+    case D::Tex2DArray:
+      return {vk::ImageType::e2D, vk::ImageViewType::e2DArray, {spec.width, spec.height, 1}, spec.layers, {}};
+    case D::Tex3D: return {vk::ImageType::e3D, vk::ImageViewType::e3D, {spec.width, spec.height, spec.layers}, 1, {}};
+    case D::Cube:
+    case D::CubeArray:
+      return {vk::ImageType::e2D, spec.dimension == D::Cube ? vk::ImageViewType::eCube : vk::ImageViewType::eCubeArray,
+              {spec.width, spec.height, 1}, spec.layers, vk::ImageCreateFlagBits::eCubeCompatible};
+  }
+  return {vk::ImageType::e2D, vk::ImageViewType::e2D, {spec.width, spec.height, 1}, 1, {}};
+}
+
+std::optional<std::string> unsupported_image(const DeviceRef& device, const ImageSpec& spec) {
+  const ImageGeometry geometry = image_geometry(spec);
+  try {
+    const vk::ImageFormatProperties properties = device.physical.getImageFormatProperties(
+        spec.format, geometry.type, vk::ImageTiling::eOptimal, spec.usage, geometry.flags);
+    if (geometry.extent.width > properties.maxExtent.width || geometry.extent.height > properties.maxExtent.height ||
+        geometry.extent.depth > properties.maxExtent.depth)
+      return fmt::format("its size exceeds the device's {}x{}x{} for this format", properties.maxExtent.width,
+                         properties.maxExtent.height, properties.maxExtent.depth);
+    if (geometry.array_layers > properties.maxArrayLayers)
+      return fmt::format("{} layers exceed the device's {} for this format", geometry.array_layers,
+                         properties.maxArrayLayers);
+    if (spec.levels > properties.maxMipLevels)
+      return fmt::format("{} levels exceed the device's {} for this format", spec.levels, properties.maxMipLevels);
+    if (!(uint32_t(properties.sampleCounts) & spec.samples) || !std::has_single_bit(spec.samples))
+      return fmt::format("the device has no {}-sample images of this format (it has {})", spec.samples,
+                         vk::to_string(properties.sampleCounts));
+  } catch (const vk::FormatNotSupportedError&) {
+    return fmt::format("the device has no {} images of format {} with usage {}", vk::to_string(geometry.type),
+                       vk::to_string(spec.format), vk::to_string(spec.usage));
+  }
+  return std::nullopt;
+}
+
 Image create_image(const DeviceRef& device, ImageSpec spec) {
+  const ImageGeometry geometry = image_geometry(spec);
   Image result;
   result.format = spec.format;
   result.aspect = spec.aspect;
   result.width = spec.width;
   result.height = spec.height;
   result.levels = spec.levels;
+  result.layers = geometry.array_layers;
+  result.shape = {spec.dimension, spec.samples > 1};
+  result.texture_format = spec.texture_format;
   result.label = std::move(spec.label);
   result.linear_filter =
       bool(device.physical.getFormatProperties(spec.format).optimalTilingFeatures &
            vk::FormatFeatureFlagBits::eSampledImageFilterLinear);
   result.image = vk::raii::Image(
       device.device,
-      vk::ImageCreateInfo({}, vk::ImageType::e2D, spec.format,
-                          vk::Extent3D(spec.width, spec.height, 1), spec.levels, 1,
-                          vk::SampleCountFlagBits::e1, vk::ImageTiling::eOptimal, spec.usage,
-                          vk::SharingMode::eExclusive, {}, vk::ImageLayout::eUndefined));
+      vk::ImageCreateInfo(geometry.flags, geometry.type, spec.format, geometry.extent, spec.levels,
+                          geometry.array_layers, vk::SampleCountFlagBits(spec.samples), vk::ImageTiling::eOptimal,
+                          spec.usage, vk::SharingMode::eExclusive, {}, vk::ImageLayout::eUndefined));
   result.memory = allocate(device, result.image.getMemoryRequirements(), {},
                            vk::MemoryPropertyFlagBits::eDeviceLocal);
   result.image.bindMemory(*result.memory, 0);
   result.view = vk::raii::ImageView(
-      device.device, vk::ImageViewCreateInfo({}, *result.image, vk::ImageViewType::e2D, spec.format,
-                                             {}, {spec.aspect, 0, spec.levels, 0, 1}));
+      device.device, vk::ImageViewCreateInfo({}, *result.image, geometry.view_type, spec.format, {},
+                                             {spec.aspect, 0, spec.levels, 0, geometry.array_layers}));
   return result;
 }
 
@@ -167,7 +232,7 @@ void Recording::transition(Image& image, vk::ImageLayout to) {
   const StageAccess dst = stage_access(to);
   const vk::ImageMemoryBarrier2 barrier(src.stage, src.access, dst.stage, dst.access, image.layout,
                                         to, VK_QUEUE_FAMILY_IGNORED, VK_QUEUE_FAMILY_IGNORED,
-                                        *image.image, {image.aspect, 0, image.levels, 0, 1});
+                                        *image.image, {image.aspect, 0, image.levels, 0, image.layers});
   cmd.pipelineBarrier2(vk::DependencyInfo({}, {}, {}, barrier));
   saved_.emplace_back(&image, image.layout);
   image.layout = to;
@@ -220,6 +285,14 @@ vk::Format vk_format(TextureFormat format) {
       return vk::Format::eR8G8B8A8Srgb;
     case TextureFormat::Rgba32Float:
       return vk::Format::eR32G32B32A32Sfloat;
+    case TextureFormat::R32Float:
+      return vk::Format::eR32Sfloat;
+    case TextureFormat::Depth32Float:
+      return vk::Format::eD32Sfloat;
+    case TextureFormat::Rgba32Uint:
+      return vk::Format::eR32G32B32A32Uint;
+    case TextureFormat::Rgba32Sint:
+      return vk::Format::eR32G32B32A32Sint;
   }
   return vk::Format::eUndefined;
 }
