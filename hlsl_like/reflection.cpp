@@ -388,7 +388,9 @@ std::string canonical_semantic_name(const std::string& semantic) { return canoni
 
 std::optional<uint32_t> vertex_input_location(const std::string& semantic) {
   static const std::map<std::string, uint32_t> locations{
-      {"POSITION0", 0}, {"NORMAL0", 1}, {"TANGENT0", 2}, {"TEXCOORD0", 3}, {"TEXCOORD1", 4}, {"COLOR0", 5}};
+      {"POSITION0", 0},  {"NORMAL0", 1},    {"TANGENT0", 2},   {"TEXCOORD0", 3},  {"TEXCOORD1", 4},
+      {"COLOR0", 5},     {"TEXCOORD2", 6},  {"TEXCOORD3", 7},  {"TEXCOORD4", 8},  {"TEXCOORD5", 9},
+      {"TEXCOORD6", 10}, {"TEXCOORD7", 11}, {"COLOR1", 12}};
   auto it = locations.find(semantic);
   if (it != locations.end()) return it->second;
   return std::nullopt;
@@ -551,7 +553,7 @@ Reflection reflect(const TranslationUnit& unit, const EntryPoints& entry_points,
       if (!location) {
         diagnostics.error(entry_points.vertex->loc, "vertex input " + in_quotes(input.semantic) +
                                                         " has no place in the vertex format; use POSITION, "
-                                                        "NORMAL, TANGENT, TEXCOORD0, TEXCOORD1 or COLOR0");
+                                                        "NORMAL, TANGENT, TEXCOORD0-7 or COLOR0-1");
         continue;
       }
       input.location = *location;
