@@ -28,6 +28,17 @@ Result<ShaderStageSource> vk_hlsl_stage(const hlsl::Module& module, spirv::Stage
   request.entry_point = entry;
   for (const hlsl::MacroDefinition& macro : module.macros) request.defines.emplace_back(macro.name, macro.value);
   request.resolve_include = spirv::include_resolver(include_dirs);
+  // A resource read through a local or a struct field (resource_origins.h) needs glslang's
+  // legalization; a global or a parameter does not.
+  for (const auto& [expr, leaves] : module.resource_origins) {
+    if (expr->kind == hlsl::ExprKind::Name) {
+      const hlsl::Decl* decl = static_cast<const hlsl::NameExpr*>(expr)->decl;
+      if (decl && decl->kind == hlsl::DeclKind::Var && !static_cast<const hlsl::VarDecl*>(decl)->is_global)
+        request.legalize = true;
+    } else if (expr->kind == hlsl::ExprKind::Member) {
+      request.legalize = true;
+    }
+  }
   // Resources without a register are numbered once for the whole program, by xshade's reflection
   // (glslang alone would number each stage on its own; see HlslStage::bindings).
   const hlsl::Reflection& declared = module.reflection;

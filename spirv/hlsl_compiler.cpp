@@ -171,6 +171,7 @@ Result<HlslModule> compile_hlsl(const HlslStage& request) {
   spv::SpvBuildLogger logger;
   glslang::SpvOptions options;
   options.validate = false;  // validated below with the project's environment and messages
+  options.disableOptimizer = !request.legalize;  // glslang legalizes HLSL when its optimizer runs
   glslang::GlslangToSpv(*program.getIntermediate(language), result.module.words, &logger, &options);
   if (auto valid = validate(result.module.words, request.source_name); !valid) return fail(valid.error());
   return result;

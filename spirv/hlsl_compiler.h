@@ -52,6 +52,10 @@ struct HlslStage {
   // fragment stage, the number another buffer has there, and one program would bind one number
   // twice. Resources not named here get glslang's lowest free slot.
   std::map<std::string, uint32_t> bindings;
+  // Run glslang's legalization (SPIRV-Tools passes that forward opaque values to their uses):
+  // HLSL that keeps a texture in a local or a struct field needs it, or the SPIR-V is invalid
+  // for Vulkan. Off otherwise, so that the lane's code is glslang's translation as it is.
+  bool legalize = false;
 };
 
 // A resource of the compiled module as glslang reflects it.

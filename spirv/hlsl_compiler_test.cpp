@@ -73,6 +73,20 @@ TEST(HlslCompiler, MissingIncludeAndEntryPointAreErrors) {
 // glslang numbers resources without a register per stage: the fragment stage below does not read
 // VertexOnly, so alone it would give $Global the first free number, which VertexOnly has in the
 // vertex stage. The program-wide numbers in HlslStage::bindings keep the two stages apart.
+TEST(HlslCompiler, ATextureInAStructNeedsGlslangsLegalization) {
+  const char* source = "struct Pair { SamplerState s; Texture2D t; };\nTexture2D _T; SamplerState _S;\n"
+                       "float4 read(Pair p, float2 uv) { return p.t.Sample(p.s, uv); }\n"
+                       "float4 frag(float2 uv : TEXCOORD0) : SV_Target { Pair p; p.t = _T; p.s = _S; return read(p, uv); }\n";
+  HlslStage stage{source, "pair.hlsl", Stage::Fragment, "frag", {}, {}, {}, {}};
+  // As glslang translates it, the struct holds opaque values, which Vulkan's SPIR-V forbids.
+  auto plain = compile_hlsl(stage);
+  ASSERT_FALSE(plain);
+  EXPECT_NE(plain.error().to_string().find("must not contain an opaque type"), std::string::npos) << plain.error().to_string();
+  stage.legalize = true;
+  auto legalized = compile_hlsl(stage);
+  EXPECT_TRUE(legalized) << legalized.error().to_string();
+}
+
 TEST(HlslCompiler, ProgramWideBindingsOverrideGlslangsPerStageNumbering) {
   constexpr const char* kTwoStages = R"(
 cbuffer VertexOnly { float4x4 _Transform; };
