@@ -15,12 +15,6 @@ struct BrdfInputs {
   float LoH;
   float a;
 };
-struct MeshVertex {
-  vec3 position;
-  vec3 normal;
-  vec4 tangent;
-  vec2 uv;
-};
 struct SurfaceVaryings {
   vec4 clip_position;
   vec3 world_position;
@@ -179,7 +173,7 @@ vec4 frag(SurfaceVaryings input_) {
 #line 53 1
   return vec4(direct + indirect_diffuse + indirect_specular, base.w);
 }
-#line 183 0
+#line 177 0
 void main() {
   SurfaceVaryings xs_arg0;
   xs_arg0.clip_position = vec4(gl_FragCoord.xyz, 1.0 / gl_FragCoord.w);

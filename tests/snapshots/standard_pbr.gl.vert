@@ -5,16 +5,6 @@
 // file 3: include/common.hlsl
 // file 4: include/environment.hlsl
 // file 5: include/scene_inputs.hlsl
-struct BrdfInputs {
-  vec3 n;
-  vec3 h;
-  float NoL;
-  float NoV;
-  float NoH;
-  float VoH;
-  float LoH;
-  float a;
-};
 struct MeshVertex {
   vec3 position;
   vec3 normal;
@@ -68,7 +58,7 @@ SurfaceVaryings vert(MeshVertex input_) {
 #line 24 1
   return surface_vertex(input_);
 }
-#line 72 0
+#line 62 0
 void main() {
   MeshVertex xs_arg0;
   xs_arg0.position = xs_in_POSITION0;

@@ -3,12 +3,6 @@
 // file 1: materials/toon.hlsl
 // file 2: include/scene_inputs.hlsl
 // file 3: include/toon.hlsl
-struct MeshVertex {
-  vec3 position;
-  vec3 normal;
-  vec4 tangent;
-  vec2 uv;
-};
 struct SurfaceVaryings {
   vec4 clip_position;
   vec3 world_position;
@@ -104,7 +98,7 @@ vec4 frag(SurfaceVaryings input_) {
   vec3 rim = _RimColor.xyz * light_color * _RimColor.w * toon_rim(NoV, NoL, atten, _RimThreshold, _RimSmooth);
   return vec4(diffuse + specular + rim, albedo.w);
 }
-#line 108 0
+#line 102 0
 void main() {
   SurfaceVaryings xs_arg0;
   xs_arg0.clip_position = vec4(gl_FragCoord.xyz, 1.0 / gl_FragCoord.w);
