@@ -1,0 +1,83 @@
+// Vertex inputs no mesh supplies (TEXCOORD1..7, COLOR0..1: every location but 0..3) read zeros
+// of their type on every lane: OpenGL through the generic current attribute value, set per draw
+// (its own default would be (0, 0, 0, 1)), Vulkan from a zero buffer read at stride 0.
+#include <gtest/gtest.h>
+
+#include "harness/shader_program.h"
+#include "hlsl_like/compiler.h"
+#include "tests/lanes/lane_fixture.h"
+
+namespace xshade::tests {
+namespace {
+
+using harness::Lane;
+
+constexpr const char* kSource = R"(
+#pragma vertex vert
+#pragma fragment frag
+struct appdata {
+  float3 position : POSITION;
+  float4 extra : TEXCOORD5;
+  float4 tint : COLOR1;
+  int index : TEXCOORD7;
+  uint2 flags : TEXCOORD2;
+};
+struct v2f {
+  float4 position : SV_Position;
+  float4 extra : TEXCOORD0;
+  float4 tint : TEXCOORD1;
+  nointerpolation int index : TEXCOORD2;
+  nointerpolation uint2 flags : TEXCOORD3;
+};
+v2f vert(appdata v) {
+  v2f o;
+  o.position = float4(v.position, 1);
+  o.extra = v.extra;
+  o.tint = v.tint;
+  o.index = v.index;
+  o.flags = v.flags;
+  return o;
+}
+float4 frag(v2f i) : SV_Target {
+  // Each input at its own scale, so that any non-zero component shows which input it came from.
+  return i.extra + i.tint * 10 + float(i.index) * 100 + float(i.flags.x + i.flags.y) * 1000 +
+         float4(0.25, 0.5, 0.75, 1.0);
+}
+)";
+
+class VertexInputs : public LaneTest {};
+
+TEST_F(VertexInputs, InputsNoMeshSuppliesReadZerosOfTheirType) {
+  auto module = hlsl::compile_text("vertex_inputs.hlsl", kSource, {});
+  ASSERT_TRUE(module->ok());
+  // The reflection places them where the backends feed zeros: above location 3.
+  for (const hlsl::StageVariable& input : module->reflection.vertex_inputs)
+    if (input.semantic != "POSITION0") {
+      EXPECT_GT(input.location, 3u) << input.semantic;
+    }
+  harness::MeshData quad;
+  for (glm::vec2 corner : {glm::vec2(-1, -1), glm::vec2(1, -1), glm::vec2(1, 1), glm::vec2(-1, 1)})
+    quad.vertices.push_back({glm::vec3(corner, 0.5f)});
+  quad.indices = {0, 1, 2, 0, 2, 3};
+  for (Lane lane : harness::all_lanes()) {
+    SCOPED_TRACE(harness::lane_name(lane));
+    harness::Backend& lane_backend = backend(lane);
+    auto desc = harness::program_for_lane(*module, lane);
+    ASSERT_TRUE(desc) << desc.error().to_string();
+    auto program = lane_backend.create_program(*desc);
+    ASSERT_TRUE(program) << program.error().to_string();
+    auto mesh = lane_backend.upload_mesh(quad);
+    auto target = lane_backend.create_target({4, 4, false});
+    ASSERT_TRUE(mesh && target);
+    // Cleared to -1 so that a pixel the quad missed cannot pass.
+    auto rendered = lane_backend.render({*target, glm::vec4(-1.0f), 1.0f, {{*program, *mesh, {}, {}}}});
+    ASSERT_TRUE(rendered) << rendered.error().to_string();
+    auto image = lane_backend.read_color(*target);
+    ASSERT_TRUE(image);
+    for (uint32_t y = 0; y < 4; ++y)
+      for (uint32_t x = 0; x < 4; ++x) EXPECT_EQ(image->at(x, y), glm::vec4(0.25f, 0.5f, 0.75f, 1.0f)) << x << "," << y;
+  }
+}
+
+}  // namespace
+}  // namespace xshade::tests
