@@ -101,6 +101,20 @@ std::string float_text(const std::string& spelling) {
   return spelling;
 }
 
+// The fp16 value nearest `value` (ties to even), infinite past fp16's range: what a cast to
+// _Float16 gives, written out because not every compiler has that type (clang 14 on x86 lacks it).
+double nearest_half(double value) {
+  if (!std::isfinite(value) || value == 0.0) return value;
+  const double magnitude = std::fabs(value);
+  // 65504 is the largest half; halfway to the next step (65536) rounds to even, which is infinity.
+  if (magnitude >= 65520.0) return std::copysign(HUGE_VAL, value);
+  int exponent = 0;
+  std::frexp(magnitude, &exponent);  // magnitude in [2^(exponent-1), 2^exponent)
+  // 11 significant bits for normal halves; below 2^-14 the subnormals' fixed step of 2^-24.
+  const double step = exponent - 1 < -14 ? std::ldexp(1.0, -24) : std::ldexp(1.0, exponent - 1 - 10);
+  return std::copysign(std::nearbyint(magnitude / step) * step, value);
+}
+
 // A scalar literal rounded to fp16 here, so that it stays a GLSL constant expression (a static
 // const may only be initialised with one): "0.333251953" for "0.33333". None when the text is
 // not a plain number, or when fp16 has no finite value for it (then xs_half gives infinity).
@@ -109,7 +123,7 @@ std::optional<std::string> half_literal(const std::string& text) {
   char* end = nullptr;
   const double value = std::strtod(text.c_str(), &end);
   if (end != text.c_str() + text.size()) return std::nullopt;
-  const auto rounded = static_cast<float>(static_cast<_Float16>(value));
+  const auto rounded = static_cast<float>(nearest_half(value));
   if (!std::isfinite(rounded)) return std::nullopt;
   char buffer[32];
   const auto written = std::to_chars(buffer, buffer + sizeof buffer, rounded);  // the shortest exact spelling

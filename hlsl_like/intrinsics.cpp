@@ -29,7 +29,6 @@ constexpr TypePattern kIntT{E::Int, Sh::T, {0, 0}};
 constexpr TypePattern kUintT{E::Uint, Sh::T, {0, 0}};
 constexpr TypePattern kFloatT{E::Float, Sh::T, {0, 0}};
 constexpr TypePattern kBool{E::Bool, Sh::Scalar, {0, 0}};
-constexpr TypePattern kUint{E::Uint, Sh::Scalar, {0, 0}};
 constexpr TypePattern kFloat{E::Float, Sh::Scalar, {0, 0}};
 constexpr TypePattern kFloat2{E::Float, Sh::Vector, {2, 0}};
 constexpr TypePattern kFloat3{E::Float, Sh::Vector, {3, 0}};

@@ -25,19 +25,6 @@ void collect_paths(const Type& type, std::vector<uint32_t>& prefix, std::vector<
   }
 }
 
-std::string describe(const Expr* e) {
-  if (!e) return "?";
-  switch (e->kind) {
-    case ExprKind::Name: return static_cast<const NameExpr*>(e)->name;
-    case ExprKind::Member: {
-      const auto* member = static_cast<const MemberExpr*>(e);
-      return describe(member->object.get()) + "." + member->member;
-    }
-    case ExprKind::Conversion: return describe(static_cast<const ConversionExpr*>(e)->operand.get());
-    default: return "expression";
-  }
-}
-
 class Resolver {
  public:
   Resolver(DiagnosticEngine& diagnostics, ResourceOrigins& out) : diag_(diagnostics), out_(out) {}
