@@ -20,6 +20,7 @@ struct SourceFacts {
   fs::path path;
   std::vector<hlsl::KeywordSet> keyword_sets;
   std::vector<hlsl::PassDeclaration> passes;  // of a post effect
+  std::vector<std::string> vertex_inputs;     // the semantics the vertex entry reads, canonical
 };
 
 class SourceReader {
@@ -46,6 +47,7 @@ class SourceReader {
     if (post && facts.passes.empty())
       return fail("post effect '" + library_path + "' declares no passes (#pragma pass)", {path->string(), 0, 0});
     facts.keyword_sets = module->reflection.keyword_sets;
+    for (const hlsl::StageVariable& input : module->reflection.vertex_inputs) facts.vertex_inputs.push_back(input.semantic);
     return facts;
   }
 
@@ -80,7 +82,13 @@ size_t add_variant(Plan& plan, VariantRequest request) {
   auto found = std::find(plan.variants.begin(), plan.variants.end(), request);
   if (found != plan.variants.end()) return size_t(found - plan.variants.begin());
   plan.variants.push_back(std::move(request));
+  plan.variant_notes.emplace_back();
   return plan.variants.size() - 1;
+}
+
+// What every mesh supplies (Vertex: locations 0..3); any other input reads zeros.
+bool meshes_supply(const std::string& semantic) {
+  return semantic == "POSITION0" || semantic == "NORMAL0" || semantic == "TANGENT0" || semantic == "TEXCOORD0";
 }
 
 std::string effect_name(const std::string& library_path) { return fs::path(library_path).stem().string(); }
@@ -114,7 +122,17 @@ Result<Plan> plan_scene(const Scene& scene, const ShaderSearchPath& shaders) {
     VariantRequest request{known->second.path, instance.material, variant_keywords(known->second.keyword_sets, instance.keywords), {}};
     used_combinations[instance.material].insert(request.keywords);
     possible_combinations[instance.material] = combinations(known->second.keyword_sets);
-    plan.instance_variant.push_back(add_variant(plan, std::move(request)));
+    const std::vector<std::string> keywords = request.keywords;
+    const size_t variants_before = plan.variants.size();
+    const size_t variant = add_variant(plan, std::move(request));
+    plan.instance_variant.push_back(variant);
+    if (plan.variants.size() == variants_before) continue;
+    // The vertex inputs depend on the keywords: the variant's own are read once more.
+    auto facts = reader.read(instance.material, keywords, false);
+    if (!facts) return fail(facts.error());
+    for (const std::string& semantic : facts->vertex_inputs)
+      if (!meshes_supply(semantic))
+        plan.variant_notes[variant].push_back("vertex input " + semantic + " is not in the meshes; the shader reads zeros");
   }
   if (!plan.instances.empty()) plan.passes.push_back({PlannedPass::Kind::Scene, "scene", 0, {}, 0});
 
@@ -157,6 +175,8 @@ std::string describe_plan(const Scene& scene, const Plan& plan, const std::vecto
   for (size_t i = 0; i < plan.variants.size(); ++i) {
     std::string state = i < cached.size() ? (cached[i] ? "  (in the cache)" : "  (to compile)") : "";
     text += "    " + plan.variants[i].label() + state + "\n";
+    if (i < plan.variant_notes.size())
+      for (const std::string& note : plan.variant_notes[i]) text += "      " + note + "\n";
   }
   text += "  passes to run (" + std::to_string(plan.passes.size()) + "):\n";
   for (const PlannedPass& pass : plan.passes) {

@@ -40,6 +40,9 @@ struct Plan {
   std::vector<size_t> instance_variant;  // per instance: index into variants
   std::vector<PlannedPass> passes;       // in the order they run: the scene, then each effect's
   std::vector<std::string> left_out;     // what the shader folders have that this scene does not run, and why
+  // Per variant, what it should know before it runs: each vertex input its shader reads that the
+  // meshes do not supply (anything but POSITION, NORMAL, TANGENT, TEXCOORD0), which reads zeros.
+  std::vector<std::vector<std::string>> variant_notes;
 };
 
 // Plans `scene` against the shader folders. Reads each source the scene names (the front end

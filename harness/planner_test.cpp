@@ -182,5 +182,61 @@ material = "materials/flat_lit.hlsl"
   fs::remove_all(user);
 }
 
+TEST(Planner, AVariantThatReadsVertexInputsTheMeshesLackIsToldItReadsZeros) {
+  // TEXCOORD2 and COLOR1 only with the _EXTRA keyword: one variant reads them, the other not.
+  const fs::path user = fs::temp_directory_path() / "xshade_planner_vertex_inputs";
+  fs::remove_all(user);
+  fs::create_directories(user / "materials");
+  std::ofstream(user / "materials" / "extra_inputs.hlsl") << R"(#pragma vertex vert
+#pragma fragment frag
+#pragma multi_compile _ _EXTRA
+struct appdata {
+  float3 position : POSITION;
+  float2 uv : TEXCOORD0;
+#ifdef _EXTRA
+  float4 tint : COLOR1;
+  float2 uv2 : TEXCOORD2;
+#endif
+};
+struct v2f { float4 position : SV_Position; float4 color : COLOR0; };
+v2f vert(appdata v) {
+  v2f o;
+  o.position = float4(v.position, 1);
+  o.color = float4(v.uv, 0, 1);
+#ifdef _EXTRA
+  o.color += v.tint + float4(v.uv2, 0, 0);
+#endif
+  return o;
+}
+float4 frag(v2f i) : SV_Target { return i.color; }
+)";
+  auto plan = plan_scene(scene(R"(
+[[object]]
+name = "plain"
+mesh = "sphere"
+material = "materials/extra_inputs.hlsl"
+[[object]]
+name = "extra"
+mesh = "cube"
+material = "materials/extra_inputs.hlsl"
+keywords = ["_EXTRA"]
+)"), ShaderSearchPath({user, kLibrary}));
+  ASSERT_TRUE(plan) << plan.error().to_string();
+  ASSERT_EQ(plan->variants.size(), 2u);
+  ASSERT_EQ(plan->variant_notes.size(), 2u);
+  EXPECT_TRUE(plan->variant_notes[plan->instance_variant[0]].empty());
+  EXPECT_EQ(plan->variant_notes[plan->instance_variant[1]],
+            (std::vector<std::string>{"vertex input COLOR1 is not in the meshes; the shader reads zeros",
+                                      "vertex input TEXCOORD2 is not in the meshes; the shader reads zeros"}));
+  const std::string described = describe_plan(scene(""), *plan);
+  EXPECT_NE(described.find("    materials/extra_inputs.hlsl [_EXTRA]\n"
+                           "      vertex input COLOR1 is not in the meshes; the shader reads zeros\n"
+                           "      vertex input TEXCOORD2 is not in the meshes; the shader reads zeros\n"),
+            std::string::npos)
+      << described;
+  EXPECT_EQ(described.find("vertex input TEXCOORD0"), std::string::npos) << described;
+  fs::remove_all(user);
+}
+
 }  // namespace
 }  // namespace xshade::harness
