@@ -625,6 +625,10 @@ std::string StageEmitter::interface_and_main() {
       if (kind == SemanticKind::SvVertexId) {
         source = {flavour_ == Flavour::Gl ? "gl_VertexID" : "gl_VertexIndex"};
         source_type = Type::scalar(ScalarType::Int);
+      } else if (kind == SemanticKind::SvInstanceId) {
+        // Draws start at instance 0 on both APIs, where the two builtins agree.
+        source = {flavour_ == Flavour::Gl ? "gl_InstanceID" : "gl_InstanceIndex"};
+        source_type = Type::scalar(ScalarType::Int);
       } else {
         if (!check_storable(item)) continue;
         std::optional<uint32_t> location;
@@ -647,6 +651,9 @@ std::string StageEmitter::interface_and_main() {
     } else if (kind == SemanticKind::SvIsFrontFace) {
       source = {"gl_FrontFacing"};
       source_type = Type::scalar(ScalarType::Bool);
+    } else if (kind == SemanticKind::Vface) {
+      source = {"(gl_FrontFacing ? 1.0 : -1.0)"};
+      source_type = Type::scalar(ScalarType::Float);
     } else {
       if (!check_storable(item)) continue;
       // Declared as the vertex stage writes it, so that both stages agree on the type.

@@ -613,6 +613,25 @@ TEST(GlslEmitterEntryPoints, FragmentStageMain) {
   EXPECT_THAT(text, HasSubstr("vec4 xs_result = frag(xs_arg0);\n  xs_target0 = xs_result;\n"));
 }
 
+TEST(GlslEmitterEntryPoints, Dx9AndInstanceSystemValues) {
+  // DEPTH is SV_Depth (Unity's HLSLSupport.cginc defines SV_Depth so), VPOS SV_Position, and
+  // DX9's VFACE a float that is positive for a front face.
+  const std::string source = R"(#pragma vertex vert
+#pragma fragment frag
+struct V { float4 pos : SV_Position; float id : TEXCOORD0; };
+V vert(float3 p : POSITION, uint instance : SV_InstanceID) { V o; o.pos = float4(p, 1); o.id = instance; return o; }
+float4 frag(V v, float4 screen : VPOS, float face : VFACE, out float depth : DEPTH) : SV_Target {
+  depth = 0.5; return float4(screen.xy, face, v.id);
+}
+)";
+  const EmittedProgram gl = emit_ok(source, Flavour::Gl);
+  EXPECT_THAT(gl.vertex->text, HasSubstr("xs_arg1 = uint(gl_InstanceID);"));
+  EXPECT_THAT(emit_ok(source, Flavour::Vk).vertex->text, HasSubstr("xs_arg1 = uint(gl_InstanceIndex);"));
+  EXPECT_THAT(gl.fragment->text, HasSubstr("xs_arg1 = vec4(gl_FragCoord.xyz, 1.0 / gl_FragCoord.w);"));
+  EXPECT_THAT(gl.fragment->text, HasSubstr("xs_arg2 = (gl_FrontFacing ? 1.0 : -1.0);"));
+  EXPECT_THAT(gl.fragment->text, HasSubstr("gl_FragDepth = xs_arg3;"));
+}
+
 TEST(GlslEmitterEntryPoints, OutputsDepthFaceAndSeveralTargets) {
   const std::string source = R"(#pragma fragment frag
 struct Out { float4 a : SV_Target0; float4 b : COLOR1; float depth : SV_Depth; };

@@ -311,6 +311,8 @@ struct VarDecl : Decl {
   std::string semantic;                 // : TEXCOORD0 (as written; empty if none)
   Loc semantic_loc;
   RegisterBinding binding;              // : register(t0)
+  std::optional<uint32_t> packoffset;   // : packoffset(c1.y) of a cbuffer member, in bytes (20)
+  Loc packoffset_loc;
   std::vector<Annotation> annotations;  // <...>
   ExprPtr initializer;
   bool is_global = false;               // parser: declared at file or cbuffer scope

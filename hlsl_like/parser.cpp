@@ -112,6 +112,9 @@ const BuiltinTable& builtin_types() {
 // Everything the parser needs to know about a word, from one lookup.
 struct WordInfo {
   const BuiltinType* builtin = nullptr;      // a built-in type name
+  // A type only with template arguments: `ConstantBuffer<S>`; alone it is a name, as the D3D11
+  // samples' `cbuffer ConstantBuffer : register(b0)` has it.
+  bool template_only = false;
   bool reserved = false;                     // never a variable, function or field name
   bool hard_specifier = false;               // always a qualifier
   bool unsupported = false;                  // a reserved word of HLSL (or C) not supported
@@ -123,6 +126,7 @@ using WordTable = std::unordered_map<std::string_view, WordInfo>;
 WordTable make_word_table() {
   WordTable table;
   for (const auto& [name, builtin] : builtin_types()) table[name].builtin = &builtin;
+  table["ConstantBuffer"].template_only = true;
   for (std::string_view word :
        {"struct", "typedef", "cbuffer", "tbuffer", "if", "else", "for", "while", "do", "break", "continue",
         "return", "discard", "switch", "case", "default", "goto", "true", "false", "register", "packoffset",
@@ -516,6 +520,7 @@ class Parser {
     const Token& token = tok(index);
     if (token.kind != TokenKind::Identifier) return false;
     const Word& w = word(token.text);
+    if (w.info->template_only && !tok(index + 1).is_punct("<")) return false;
     return w.info->builtin != nullptr || w.user_type.has_value();
   }
 
@@ -817,6 +822,7 @@ class Parser {
     const Token& token = tok(index);
     if (token.kind != TokenKind::Identifier) return false;
     const Word& w = word(token.text);
+    if (w.info->template_only && !tok(index + 1).is_punct("<")) return !w.user_type;
     return !w.info->reserved && !w.info->builtin && !w.user_type;
   }
 
@@ -989,8 +995,9 @@ class Parser {
   }
 
   // : SEMANTIC, : register(...), : packoffset(...), any number of them. A null `binding` means
-  // a register is not allowed here.
-  bool parse_colon_clauses(std::string* semantic, Loc* semantic_loc, RegisterBinding* binding) {
+  // a register is not allowed here, a null `packoffset` a packoffset.
+  bool parse_colon_clauses(std::string* semantic, Loc* semantic_loc, RegisterBinding* binding,
+                           VarDecl* packoffset = nullptr) {
     while (is(":")) {
       advance();
       if (is_word("register")) {
@@ -1003,9 +1010,15 @@ class Parser {
           error_at(at, "register bindings are only allowed on global variables and cbuffers");
         }
       } else if (is_word("packoffset")) {
-        error_here("packoffset is not supported");
+        if (!packoffset) error_here("packoffset is only allowed on the members of a cbuffer");
+        const Loc loc = cur().loc;
         advance();
-        if (is("(") && !skip_group(pos_, false)) return false;
+        std::optional<uint32_t> offset = parse_packoffset();
+        if (!offset) return false;
+        if (packoffset) {
+          packoffset->packoffset = offset;
+          packoffset->packoffset_loc = loc;
+        }
       } else if (cur().kind == TokenKind::Identifier && !is_reserved(pos_)) {
         if (semantic) {
           *semantic = std::string(cur().text);
@@ -1020,6 +1033,43 @@ class Parser {
       }
     }
     return true;
+  }
+
+  // (c3), (c3.z): register 3, component z, as a byte offset (16 * 3 + 4 * 2). After the word.
+  std::optional<uint32_t> parse_packoffset() {
+    if (!is("(")) {
+      error_here("expected '(' after 'packoffset'");
+      return std::nullopt;
+    }
+    const size_t open = pos_;
+    advance();
+    const Token& name = cur();
+    const std::optional<uint32_t> index =
+        name.kind == TokenKind::Identifier && name.text.size() > 1 && (name.text[0] | 0x20) == 'c'
+            ? register_number(name.text.substr(1))
+            : std::nullopt;
+    if (!index || *index >= 4096) {
+      error_here("invalid packoffset " + in_quotes(name.text) + "; write packoffset(cN) or packoffset(cN.y)");
+      return std::nullopt;
+    }
+    uint32_t offset = *index * 16;
+    advance();
+    if (accept(".")) {
+      const std::string_view component = cur().kind == TokenKind::Identifier ? cur().text : std::string_view();
+      const size_t at = std::string_view("xyzw").find(component);
+      if (component.size() != 1 || at == std::string_view::npos) {
+        error_here("invalid packoffset component " + in_quotes(cur().text) + "; use x, y, z or w");
+        return std::nullopt;
+      }
+      offset += uint32_t(at) * 4;
+      advance();
+    }
+    if (!is(")")) {
+      error_unmatched(")", open);
+      return std::nullopt;
+    }
+    advance();
+    return offset;
   }
 
   // register(t0), register(s1, space2), register(b0). At the word `register`.
@@ -1214,7 +1264,8 @@ class Parser {
     var->type = *type;
     if (is("<")) parse_annotations(&var->annotations);
     const bool allow_register = context == DeclContext::Global;
-    if (!parse_colon_clauses(&var->semantic, &var->semantic_loc, allow_register ? &var->binding : nullptr))
+    if (!parse_colon_clauses(&var->semantic, &var->semantic_loc, allow_register ? &var->binding : nullptr,
+                             context == DeclContext::CBufferMember ? var.get() : nullptr))
       return nullptr;
     if (is("<")) parse_annotations(&var->annotations);
     if (is("=")) {

@@ -605,13 +605,19 @@ TEST(Parser, ResourceTypesOfEveryKind) {
   EXPECT_EQ(p->var("scene").binding.index, 2u);
 }
 
+TEST(Parser, ConstantBufferAloneIsAName) {
+  // The D3D11 tutorials name a cbuffer so; only ConstantBuffer<S> is the type.
+  auto p = parse_text("cbuffer ConstantBuffer : register(b0) { float4x4 World; };\nfloat4 ConstantBuffer2;\n");
+  EXPECT_EQ(p->errors(), std::vector<std::string>{});
+  EXPECT_EQ(p->decl<CBufferDecl>(0).name, "ConstantBuffer");
+}
+
 TEST(Parser, ResourceTypeArgumentsAreChecked) {
   const std::vector<std::pair<std::string, std::string>> cases = {
       {"struct L { float a; };\nTexture2D<L> t;", "2:11: the texel type of 'Texture2D' must be a scalar or vector, not 'L'"},
       {"Texture2D<float4x4> t;", "1:11: the texel type of 'Texture2D' must be a scalar or vector, not 'float4x4'"},
       {"StructuredBuffer b;", "1:18: expected '<' after 'StructuredBuffer': a structured buffer needs an element type"},
       {"ConstantBuffer<float4> c;", "1:16: ConstantBuffer holds a struct, not 'float4'"},
-      {"ConstantBuffer c;", "1:16: expected '<' after 'ConstantBuffer': it holds a struct, as in ConstantBuffer<PerFrame>"},
   };
   for (const auto& [source, error] : cases) EXPECT_EQ(parse_text(source)->errors(), std::vector<std::string>{error}) << source;
 }
@@ -665,7 +671,9 @@ TEST(Parser, ErrorMessagesArePinned) {
       {"void f(1) {}", {"1:8: expected a type"}},
       {"float x = 99999999999;", {"1:11: integer literal is too large"}},
       {"double d;", {"1:1: double is not supported"}},
-      {"cbuffer C { float4 c : packoffset(c0); };", {"1:24: packoffset is not supported"}},
+      {"cbuffer C { float4 c : packoffset(r0); };", {"1:35: invalid packoffset 'r0'; write packoffset(cN) or packoffset(cN.y)"}},
+      {"cbuffer C { float c : packoffset(c0.q); };", {"1:37: invalid packoffset component 'q'; use x, y, z or w"}},
+      {"float4 c : packoffset(c0);", {"1:12: packoffset is only allowed on the members of a cbuffer"}},
       {"void f(int i) { switch (i) { i = 2; case 0: break; } i = 1; }", {"1:30: expected 'case' or 'default' in a switch"}},
       {"void f(int i) { switch (i) { case 0 break; } }", {"1:36: expected ':' after the case value"}},
       {"void f() { goto end; }", {"1:12: goto is not supported"}},

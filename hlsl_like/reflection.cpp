@@ -99,14 +99,16 @@ struct PackedItem {
   Type type;
   bool row_major = false;
   Loc loc;
+  std::optional<uint32_t> packoffset;  // bytes, when the member has : packoffset(cN.y)
 };
 
-// Lays out `members` (in order) by HLSL rules and checks that the std140 block can hold them.
+// Lays out `members` by HLSL rules (packoffset where given; after the previous member otherwise)
+// and checks that the std140 block, which lists them by offset, can hold them.
 void pack_members(ConstantBuffer& buffer, const std::vector<PackedItem>& members, DiagnosticEngine& diagnostics) {
   uint32_t offset = 0;
   bool new_register = false;
-  uint32_t previous_end_std140 = 0;
-  std::string previous_name;
+  uint32_t end = 0;
+  std::vector<const PackedItem*> items;
   for (const PackedItem& item : members) {
     const Type& type = item.type;
     ConstantBufferMember member;
@@ -114,38 +116,79 @@ void pack_members(ConstantBuffer& buffer, const std::vector<PackedItem>& members
     member.type = type;
     member.row_major = item.row_major;
     member.size = packed_size(type, member.row_major);
-    if (new_register || (!type.is_scalar() && !type.is_vector()) || (offset % kRegister) + member.size > kRegister)
-      offset = align_up(offset, kRegister);
-    member.offset = offset;
-
+    const bool starts_register = !type.is_scalar() && !type.is_vector();
+    if (item.packoffset) {
+      member.offset = *item.packoffset;
+      const std::string where = "c" + std::to_string(member.offset / kRegister) +
+                                (member.offset % kRegister ? std::string(".") + "xyzw"[member.offset % kRegister / 4] : "");
+      if (starts_register && member.offset % kRegister != 0)
+        diagnostics.error(item.loc, "packoffset(" + where + ") of " + in_quotes(item.name) +
+                                        ": arrays, matrices and structs start a register; write packoffset(c" +
+                                        std::to_string(member.offset / kRegister) + ")");
+      else if (!starts_register && member.offset % kRegister + member.size > kRegister)
+        diagnostics.error(item.loc, "packoffset(" + where + ") of " + in_quotes(item.name) + " puts its " +
+                                        std::to_string(member.size) + " bytes across a 16-byte register");
+    } else {
+      if (new_register || starts_register || (offset % kRegister) + member.size > kRegister)
+        offset = align_up(offset, kRegister);
+      member.offset = offset;
+    }
+    offset = std::max(offset, member.offset + member.size);
+    end = std::max(end, member.offset + member.size);
+    new_register = type.kind() == TypeKind::Struct;
     if (type.is_vector()) {
       const uint32_t alignment = type.cols() == 2 ? 8 : type.cols() >= 3 ? 16 : 4;
-      member.split_into_scalars = offset % alignment != 0;
+      member.split_into_scalars = member.offset % alignment != 0;
     }
+    buffer.members.push_back(std::move(member));
+    items.push_back(&item);
+  }
+  buffer.size = align_up(end, kRegister);
+
+  // GLSL lists a block's members in increasing offset: check them in that order.
+  std::vector<size_t> order(buffer.members.size());
+  for (size_t i = 0; i < order.size(); ++i) order[i] = i;
+  std::stable_sort(order.begin(), order.end(),
+                   [&](size_t a, size_t b) { return buffer.members[a].offset < buffer.members[b].offset; });
+  uint32_t previous_end_hlsl = 0, previous_end_std140 = 0;
+  std::string previous_name;
+  for (size_t index : order) {
+    const ConstantBufferMember& member = buffer.members[index];
+    const PackedItem& item = *items[index];
+    const Type& type = member.type;
     if (type.kind() == TypeKind::Struct && type.struct_decl()) {
       if (auto mismatch = struct_layout_mismatch(type.struct_decl()))
         diagnostics.error(item.loc, in_quotes(item.name) + " in constant buffer " + in_quotes(buffer.name) + ": struct " +
                                         in_quotes(type.struct_decl()->name) + " cannot keep its HLSL layout in GLSL: " +
                                         *mismatch + "; reorder its fields or pad them to 16-byte registers");
     }
-    if (!previous_name.empty() && offset < previous_end_std140)
-      diagnostics.error(item.loc, in_quotes(item.name) + " is at offset " + std::to_string(offset) + " of constant buffer " +
-                                      in_quotes(buffer.name) + ", inside the padding GLSL gives " + in_quotes(previous_name) +
-                                      " (up to " + std::to_string(previous_end_std140) + "); start " + in_quotes(item.name) +
+    if (!previous_name.empty() && member.offset < previous_end_hlsl) {
+      diagnostics.error(item.loc, in_quotes(item.name) + " at offset " + std::to_string(member.offset) +
+                                      " of constant buffer " + in_quotes(buffer.name) + " overlaps " +
+                                      in_quotes(previous_name) + " (up to " + std::to_string(previous_end_hlsl) + ")");
+    } else if (!previous_name.empty() && member.offset < previous_end_std140) {
+      diagnostics.error(item.loc, in_quotes(item.name) + " is at offset " + std::to_string(member.offset) +
+                                      " of constant buffer " + in_quotes(buffer.name) + ", inside the padding GLSL gives " +
+                                      in_quotes(previous_name) + " (up to " + std::to_string(previous_end_std140) +
+                                      "); start " + in_quotes(item.name) +
                                       " on a new 16-byte register (pad before it) or declare it before " +
                                       in_quotes(previous_name));
-    previous_end_std140 = offset + (member.split_into_scalars ? member.size : std140_size(type, member.row_major));
+    }
+    previous_end_hlsl = member.offset + member.size;
+    previous_end_std140 =
+        member.offset + (member.split_into_scalars ? member.size : std140_size(type, member.row_major));
     previous_name = item.name;
-    offset += member.size;
-    new_register = type.kind() == TypeKind::Struct;
-    buffer.members.push_back(std::move(member));
   }
-  buffer.size = align_up(offset, kRegister);
+  std::vector<ConstantBufferMember> sorted;
+  for (size_t index : order) sorted.push_back(std::move(buffer.members[index]));
+  buffer.members = std::move(sorted);
 }
 
 std::vector<PackedItem> packed_items(const std::vector<const VarDecl*>& vars) {
   std::vector<PackedItem> items;
-  for (const VarDecl* var : vars) items.push_back({var->name, var->type, var->packing == MatrixPacking::RowMajor, var->loc});
+  for (const VarDecl* var : vars)
+    items.push_back({var->name, var->type, var->packing == MatrixPacking::RowMajor,
+                     var->packoffset ? var->packoffset_loc : var->loc, var->packoffset});
   return items;
 }
 
@@ -378,7 +421,7 @@ std::vector<StageVariable> stage_variables(const FunctionDecl& entry, bool input
 // System values, and the DX9 spellings sema reads as system values: POSITION out of a vertex
 // shader or into a fragment shader is SV_Position.
 bool is_system_value(const std::string& semantic, bool vertex_input) {
-  if (semantic.rfind("SV_", 0) == 0) return true;
+  if (semantic.rfind("SV_", 0) == 0 || semantic == "VFACE") return true;
   return !vertex_input && semantic == "POSITION0";
 }
 
@@ -479,7 +522,7 @@ Reflection reflect(const TranslationUnit& unit, const EntryPoints& entry_points,
         buffer.decl = &var;
         std::vector<PackedItem> members;
         if (const StructDecl* structure = var.type.element().struct_decl())
-          for (const FieldDecl& field : structure->fields) members.push_back({field.name, field.type, false, field.loc});
+          for (const FieldDecl& field : structure->fields) members.push_back({field.name, field.type, false, field.loc, {}});
         pack_members(buffer, members, diagnostics);
         if (var.binding.register_class == 'b') buffers.claim(var.binding, var.name);
         pending_buffers.push_back({reflection.constant_buffers.size(), &var.binding, var.loc});

@@ -13,6 +13,15 @@ std::unique_ptr<Module> compile(const std::string& source, std::vector<std::stri
   return compile_text("test.hlsl", source, options);
 }
 
+using Strings = std::vector<std::string>;
+
+Strings errors(const Module& module) {
+  Strings out;
+  for (const Diagnostic& d : module.diagnostics.diagnostics())
+    if (d.severity == Severity::Error) out.push_back(d.to_string());
+  return out;
+}
+
 const ConstantBufferMember& member(const ConstantBuffer& buffer, const std::string& name) {
   for (const ConstantBufferMember& m : buffer.members)
     if (m.name == name) return m;
@@ -208,6 +217,31 @@ float4 frag() : SV_Target { return w[0] + after; }
                 "GLSL gives 'w' (up to 32)"),
             std::string::npos)
       << module->diagnostics.render_all();
+}
+
+TEST(Reflection, PackoffsetPlacesMembersAndGlslListsThemByOffset) {
+  auto module = compile("#pragma fragment frag\ncbuffer Light : register(b0) {\n"
+                        "  float3 color : packoffset(c1);\n  float intensity : packoffset(c1.w);\n"
+                        "  float2 uv_scale : packoffset(c0.z);\n  float after;\n};\n"
+                        "float4 frag() : SV_Target { return float4(color * intensity, uv_scale.x + after); }\n");
+  ASSERT_TRUE(module->ok()) << module->diagnostics.render_all();
+  const ConstantBuffer& buffer = module->reflection.constant_buffers.at(0);
+  std::vector<std::pair<std::string, uint32_t>> offsets;
+  for (const ConstantBufferMember& member : buffer.members) offsets.push_back({member.name, member.offset});
+  // `after` follows the member before it (uv_scale ends at 16: the next register starts at 16,
+  // but c1 is taken up to 32, so it goes after what is placed: 32).
+  EXPECT_EQ(offsets, (std::vector<std::pair<std::string, uint32_t>>{{"uv_scale", 8}, {"color", 16}, {"intensity", 28},
+                                                                       {"after", 32}}));
+  EXPECT_EQ(buffer.size, 48u);
+  auto overlap = compile("#pragma fragment frag\ncbuffer C { float4 a : packoffset(c0); float b : packoffset(c0.y); };\n"
+                         "float4 frag() : SV_Target { return a + b; }\n");
+  EXPECT_EQ(errors(*overlap), (Strings{"test.hlsl:2:50: error: 'b' at offset 4 of constant buffer 'C' overlaps 'a' (up to 16)"}));
+  auto straddle = compile("#pragma fragment frag\ncbuffer C { float3 a : packoffset(c0.z); float4x4 m : packoffset(c1.y); };\n"
+                          "float4 frag() : SV_Target { return a.x + m[0]; }\n");
+  EXPECT_EQ(errors(*straddle),
+            (Strings{"test.hlsl:2:24: error: packoffset(c0.z) of 'a' puts its 12 bytes across a 16-byte register",
+                     "test.hlsl:2:55: error: packoffset(c1.y) of 'm': arrays, matrices and structs start a register; "
+                     "write packoffset(c1)"}));
 }
 
 TEST(Reflection, RegisterConflictsAreErrors) {

@@ -130,7 +130,9 @@ bool semantic_allowed(SemanticKind kind, Stage stage, bool input) {
     case SemanticKind::SvTarget:
     case SemanticKind::SvDepth: return stage == Stage::Fragment && !input;
     case SemanticKind::SvIsFrontFace: return stage == Stage::Fragment && input;
-    case SemanticKind::SvVertexId: return stage == Stage::Vertex && input;
+    case SemanticKind::SvVertexId:
+    case SemanticKind::SvInstanceId: return stage == Stage::Vertex && input;
+    case SemanticKind::Vface: return stage == Stage::Fragment && input;
   }
   return false;
 }
@@ -151,7 +153,11 @@ std::optional<std::string> required_type(SemanticKind kind, Stage stage, bool in
       if (!(type.is_scalar() && type.is_bool())) return "bool";
       break;
     case SemanticKind::SvVertexId:
+    case SemanticKind::SvInstanceId:
       if (!(type.is_scalar() && type.is_integer())) return "uint";
+      break;
+    case SemanticKind::Vface:
+      if (!(type.is_scalar() && type.is_floating())) return "float";
       break;
     default:
       if (!type.is_numeric() || type.is_matrix()) {

@@ -318,7 +318,10 @@ ParsedSemantic parse_semantic(const std::string& text) {
       {"TEXCOORD", SemanticKind::Texcoord, 31},   {"COLOR", SemanticKind::Color, 15},
       {"SV_POSITION", SemanticKind::SvPosition, 0}, {"SV_TARGET", SemanticKind::SvTarget, 7},
       {"SV_DEPTH", SemanticKind::SvDepth, 0},     {"SV_ISFRONTFACE", SemanticKind::SvIsFrontFace, 0},
-      {"SV_VERTEXID", SemanticKind::SvVertexId, 0},
+      {"SV_VERTEXID", SemanticKind::SvVertexId, 0}, {"SV_INSTANCEID", SemanticKind::SvInstanceId, 0},
+      // DX9's names, which Unity's HLSLSupport.cginc defines SV_Depth as on some APIs.
+      {"DEPTH", SemanticKind::SvDepth, 0},        {"VPOS", SemanticKind::SvPosition, 0},
+      {"VFACE", SemanticKind::Vface, 0},
   };
   for (const Known& known : kKnown) {
     if (base != known.name) continue;
@@ -344,6 +347,8 @@ std::string canonical_semantic(const ParsedSemantic& semantic) {
     case SemanticKind::SvDepth: return "SV_Depth";
     case SemanticKind::SvIsFrontFace: return "SV_IsFrontFace";
     case SemanticKind::SvVertexId: return "SV_VertexID";
+    case SemanticKind::SvInstanceId: return "SV_InstanceID";
+    case SemanticKind::Vface: return "VFACE";
   }
   return base + std::to_string(semantic.index);
 }

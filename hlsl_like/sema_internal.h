@@ -82,7 +82,8 @@ class TypeFacts {
 // Semantics of entry point signatures.
 enum class SemanticKind : uint8_t {
   Unknown, Position, Normal, Tangent, Binormal, Texcoord, Color, SvPosition, SvTarget, SvDepth,
-  SvIsFrontFace, SvVertexId,
+  SvIsFrontFace, SvVertexId, SvInstanceId,
+  Vface,  // DX9's VFACE: a float, positive for a front face
 };
 struct ParsedSemantic {
   SemanticKind kind = SemanticKind::Unknown;
