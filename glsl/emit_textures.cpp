@@ -283,13 +283,20 @@ Code StageEmitter::texture_call(const CallExpr& call) {
       // texelFetch takes no sampler, so on vk it needs GL_EXT_samplerless_texture_functions. An
       // offset is added to the coordinate: texelFetch neither filters nor wraps, so that is what
       // HLSL's offset means, and it need not be a constant.
+      // An array's layer takes no offset: only the texel coordinates before it move.
       if (flavour_ == Flavour::Vk) needs_samplerless_ = true;
-      if (is_multisampled(shape)) {
-        text = "texelFetch($0, " + std::string(args >= 3 ? "$1 + $3" : "$1") + ", $2)";
-      } else {
+      const auto offset_coordinate = [&](const std::string& offset) {
         const std::string coordinate = "$1" + first_components(n);
+        if (!is_array_shape(shape)) return coordinate + " + " + offset;
+        const uint32_t moved = offset_components(shape);
+        return "ivec" + std::to_string(n) + "($1" + first_components(moved) + " + " + offset + ", $1." + kComponents[moved] +
+               ")";
+      };
+      if (is_multisampled(shape)) {
+        text = "texelFetch($0, " + (args >= 3 ? offset_coordinate("$3") : std::string("$1")) + ", $2)";
+      } else {
         const std::string level = std::string("$1.") + kComponents[n];
-        text = "texelFetch($0, " + coordinate + (args >= 2 ? " + $2" : "") + ", " + level + ")";
+        text = "texelFetch($0, " + (args >= 2 ? offset_coordinate("$2") : "$1" + first_components(n)) + ", " + level + ")";
       }
       text += texel_part;
       break;

@@ -172,6 +172,10 @@ struct TextureSlot {
   // Vulkan only: a sampled image without a sampler (a texture the shader only Loads from or
   // asks the size of).
   bool image_only = false;
+  // OpenGL only: the sampler uniform's name in the GLSL when it is not `name` (GLSL reserves the
+  // HLSL name, e.g. `sample` or `flat`, and the emitter renames it). Draws still bind by `name`.
+  std::string glsl_name = {};
+  const std::string& uniform_name() const { return glsl_name.empty() ? name : glsl_name; }
 };
 struct ProgramLayout {
   std::vector<UniformBlockSlot> uniform_blocks;

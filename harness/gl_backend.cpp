@@ -910,7 +910,7 @@ Result<void> GlBackend::check_interface(Program& program, const std::string& wha
     const std::string name = base_name(resource_name(GL_UNIFORM, index));
     if (name.starts_with("gl_")) continue;
     auto slot = std::find_if(layout.textures.begin(), layout.textures.end(),
-                             [&](const TextureSlot& s) { return s.name == name; });
+                             [&](const TextureSlot& s) { return s.uniform_name() == name; });
     if (slot == layout.textures.end())
       return fail(fmt::format("{}: the program uses uniform '{}', which the layout does not list",
                               what, name));
@@ -1034,7 +1034,7 @@ Result<ProgramHandle> GlBackend::create_program(const ProgramDesc& desc) {
       program->uniform_buffers.emplace_back(&gl_, buffer);
     }
     for (const TextureSlot& slot : desc.layout.textures) {
-      const GLint location = gl_.GetUniformLocation(id, slot.name.c_str());
+      const GLint location = gl_.GetUniformLocation(id, slot.uniform_name().c_str());
       if (location >= 0) gl_.ProgramUniform1i(id, location, static_cast<GLint>(slot.binding));
     }
     programs_.push_back(std::move(program));

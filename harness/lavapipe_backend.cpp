@@ -632,6 +632,7 @@ Result<ProgramHandle> LavapipeBackend::create_program(const ProgramDesc& desc) {
 
     std::vector<vk::DescriptorSetLayoutBinding> bindings;
     std::map<uint32_t, std::string> used;  // binding -> what uses it
+    std::set<uint32_t> shared_samplers;    // sampler bindings already listed
     std::set<std::string> names;
     const auto stages = vk::ShaderStageFlagBits::eVertex | vk::ShaderStageFlagBits::eFragment;
     auto add = [&](uint32_t binding, vk::DescriptorType type,
@@ -660,8 +661,12 @@ Result<ProgramHandle> LavapipeBackend::create_program(const ProgramDesc& desc) {
       Result<void> ok = slot.sampler_binding || slot.image_only
                             ? add(slot.binding, vk::DescriptorType::eSampledImage, user)
                             : add(slot.binding, vk::DescriptorType::eCombinedImageSampler, user);
-      if (ok && slot.sampler_binding)
+      // Textures sampled through one SamplerState share its binding (render checks that their
+      // samplers agree).
+      if (ok && slot.sampler_binding && !shared_samplers.count(*slot.sampler_binding)) {
         ok = add(*slot.sampler_binding, vk::DescriptorType::eSampler, "the sampler of " + user);
+        shared_samplers.insert(*slot.sampler_binding);
+      }
       if (!ok) return fail(ok.error());
     }
     program->set_layout =
@@ -821,6 +826,20 @@ Result<void> LavapipeBackend::render(const RenderPass& pass) {
                           "use a nearest sampler",
                           where, binding.name, image->label));
         draw.textures[index] = BoundTexture{image, source.sampler};
+        if (const auto& sampler_binding = slots[index].sampler_binding) {
+          // One SamplerState, one sampler: every texture read through it must be bound with the same.
+          for (size_t other = 0; other < index; ++other) {
+            if (slots[other].sampler_binding != sampler_binding) continue;
+            const SamplerDesc& first = draw.textures[other].sampler;
+            const bool compared = slots[index].comparison;
+            if (first.filter == source.sampler.filter && first.address == source.sampler.address &&
+                slots[other].comparison == compared && (!compared || first.compare == source.sampler.compare))
+              continue;
+            return fail(fmt::format("{}: textures '{}' and '{}' are sampled through one sampler (binding {}) but are "
+                                    "bound with different samplers",
+                                    where, slots[other].name, slots[index].name, *sampler_binding));
+          }
+        }
         if (slots[index].image_only) {
           image_only_count += 1;
         } else {
@@ -902,9 +921,15 @@ Result<void> LavapipeBackend::render(const RenderPass& pass) {
                                      vk::ImageLayout::eShaderReadOnlyOptimal);
             writes.emplace_back(draw_sets[i], slot.binding, 0, vk::DescriptorType::eSampledImage,
                                 image_infos.back());
-            image_infos.emplace_back(smp, nullptr, vk::ImageLayout::eUndefined);
-            writes.emplace_back(draw_sets[i], *slot.sampler_binding, 0,
-                                vk::DescriptorType::eSampler, image_infos.back());
+            const bool first_reader = std::none_of(layout.textures.begin(), layout.textures.begin() + long(s),
+                                                   [&](const TextureSlot& other) {
+                                                     return other.sampler_binding == slot.sampler_binding;
+                                                   });
+            if (first_reader) {
+              image_infos.emplace_back(smp, nullptr, vk::ImageLayout::eUndefined);
+              writes.emplace_back(draw_sets[i], *slot.sampler_binding, 0, vk::DescriptorType::eSampler,
+                                  image_infos.back());
+            }
           } else {
             image_infos.emplace_back(smp, *bound.image->view,
                                      vk::ImageLayout::eShaderReadOnlyOptimal);

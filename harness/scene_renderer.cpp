@@ -364,7 +364,7 @@ std::string program_key(const ProgramDesc& desc) {
     key += "t " + texture.name + " " + std::to_string(texture.binding) + " " +
            (texture.sampler_binding ? std::to_string(*texture.sampler_binding) : "-") + " " + shape_name(texture.shape) +
            " " + texel_kind_name(texture.texel) + (texture.comparison ? " compare" : "") +
-           (texture.image_only ? " image" : "") + "\n";
+           (texture.image_only ? " image" : "") + " " + texture.glsl_name + "\n";
   return key;
 }
 

@@ -43,7 +43,8 @@ std::string variant_json(const CompiledVariant& variant) {
               {"multisampled", t.shape.multisampled},
               {"comparison", t.comparison},
               {"texel", int(t.texel)},
-              {"image_only", t.image_only}};
+              {"image_only", t.image_only},
+              {"glsl_name", t.glsl_name}};
     if (t.sampler_binding) slot["sampler_binding"] = *t.sampler_binding;
     textures.push_back(std::move(slot));
   }
@@ -74,6 +75,7 @@ std::optional<CompiledVariant> variant_from_json(const std::string& text) {
       slot.comparison = t.at("comparison");
       slot.texel = TexelKind(t.at("texel").get<int>());
       slot.image_only = t.at("image_only");
+      slot.glsl_name = t.at("glsl_name");
       p.layout.textures.push_back(std::move(slot));
     }
     auto interface = parse_shader_interface_json(j.at("interface"));

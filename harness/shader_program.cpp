@@ -2,6 +2,7 @@
 
 #include "glsl/flavour.h"
 #include "glsl/glsl_emitter.h"
+#include "glsl/glsl_names.h"
 #include "spirv/hlsl_compiler.h"
 
 namespace xshade::harness {
@@ -110,6 +111,7 @@ ProgramLayout layout_for_lane(const hlsl::Reflection& reflection, Lane lane) {
     slot.shape = harness_shape(texture.shape);
     slot.comparison = texture.comparison;
     slot.texel = harness_texel(texture.texel);
+    if (lane == Lane::Gl && glsl::needs_renaming(texture.name)) slot.glsl_name = glsl::renamed(texture.name);
     if (lane != Lane::Gl && texture.kind == hlsl::TextureKind::Texture) {
       // A Texture object is a sampled image on Vulkan; its sampler, if any, is a binding of its own.
       slot.sampler_binding = texture.sampler_binding;
