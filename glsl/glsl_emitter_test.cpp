@@ -620,8 +620,8 @@ TEST(GlslEmitterEntryPoints, Dx9AndInstanceSystemValues) {
 #pragma fragment frag
 struct V { float4 pos : SV_Position; float id : TEXCOORD0; };
 V vert(float3 p : POSITION, uint instance : SV_InstanceID) { V o; o.pos = float4(p, 1); o.id = instance; return o; }
-float4 frag(V v, float4 screen : VPOS, float face : VFACE, out float depth : DEPTH) : SV_Target {
-  depth = 0.5; return float4(screen.xy, face, v.id);
+float4 frag(float id : TEXCOORD0, float4 screen : VPOS, float face : VFACE, out float depth : DEPTH) : SV_Target {
+  depth = 0.5; return float4(screen.xy, face, id);
 }
 )";
   const EmittedProgram gl = emit_ok(source, Flavour::Gl);

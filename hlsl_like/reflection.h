@@ -127,7 +127,8 @@ struct Reflection {
 std::string canonical_semantic_name(const std::string& semantic);
 
 // Vertex inputs have fixed locations so that every mesh serves every shader:
-// POSITION 0, NORMAL 1, TANGENT 2, TEXCOORD0 3, TEXCOORD1 4, COLOR0 5. Empty for others.
+// POSITION 0, NORMAL 1, TANGENT 2, TEXCOORD0 3, TEXCOORD1 4, COLOR0 5, TEXCOORD2-7 6-11, COLOR1 12.
+// Empty for others. A mesh supplies 0..3; the backends feed zeros to the rest.
 std::optional<uint32_t> vertex_input_location(const std::string& canonical_semantic);
 // Varyings are placed by semantic, so that the two stages agree whatever their structs look like:
 // TEXCOORD0-7 at 0-7, COLOR0-1 at 8-9, NORMAL 10, TANGENT 11, BINORMAL 12, POSITION 13.

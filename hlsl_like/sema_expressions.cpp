@@ -498,7 +498,7 @@ Type Sema::analyze_index(IndexExpr& expr) {
   Type result;
   uint32_t length = 0;
   switch (object.kind()) {
-    case TypeKind::Error: break;
+    case TypeKind::Error: return Type::error();  // reported; its index would only add noise
     case TypeKind::Array:
       result = object.element();
       length = object.array_length();
