@@ -930,6 +930,28 @@ TEST(GlslEmitterStatements, SwitchKeepsItsLabelsAndFallThrough) {
   EXPECT_THAT(text, HasSubstr("switch (_Index) {\n  case 3u:\n    c.w = 1.0;\n  }\n"));
 }
 
+TEST(GlslEmitterStatements, ALoopWhoseVariableIsATexelOffsetIsUnrolled) {
+  // A blur's taps: fxc unrolls the loop so that each offset is a constant, as GLSL needs.
+  const std::string globals = "Texture2D _MainTex; SamplerState s; static const int kBegin = -1;";
+  std::string text = fragment(globals,
+                              "float4 c = 0;\n"
+                              "[unroll] for (int x = kBegin; x <= 1; ++x) c += _MainTex.Sample(s, uv, int2(x, 0));\n"
+                              "for (int i = 0; i < 2; i++) { c *= 0.5; }\n"
+                              "return c;");
+  for (size_t at = text.find("#line"); at != std::string::npos; at = text.find("#line")) text.erase(at, text.find('\n', at) + 1 - at);
+  EXPECT_THAT(text, HasSubstr("/* [unroll] */ {  // unrolled: x = -1\n    const int x = -1;\n"
+                              "    c += textureOffset(_MainTex, uv, ivec2(x, 0));\n  }\n"));
+  EXPECT_THAT(text, HasSubstr("const int x = 1;\n"));
+  EXPECT_THAT(text, Not(HasSubstr("const int x = 2;")));
+  // A loop that needs no constant stays a loop.
+  EXPECT_THAT(text, HasSubstr("for (int i = 0; i < 2; i++) {"));
+  // A loop that breaks cannot be unrolled; its offset is then not constant.
+  EXPECT_THAT(emit_error(fragment_source(globals, "float4 c = 0;\n"
+                                                  "for (int j = 0; j < 4; j++) { if (c.x > 1) break; c += _MainTex.Sample(s, uv, int2(j, 0)); }\n"
+                                                  "return c;")),
+              HasSubstr("test.hlsl:5:79: error: the texel offset of 'Sample' must be a constant expression on this target"));
+}
+
 TEST(GlslEmitterConstantBuffers, AConstantBufferOfAStructIsABlockWithAnInstanceName) {
   const std::string globals = "struct Scene { float4x4 view; float3 light; float strength; };\n"
                               "ConstantBuffer<Scene> scene : register(b3);";

@@ -200,6 +200,11 @@ class StageEmitter {
 
   // --- functions and statements (emit_statements.cpp)
   void function(const FunctionDecl& function);
+  // The values of a for loop's int variable, when the loop is to be unrolled: its variable is a
+  // texel offset in the body, its trip is known when compiling (at most kMaxUnrolledIterations),
+  // and the body neither writes the variable nor breaks or continues the loop.
+  std::optional<std::vector<int64_t>> unrolled_values(const hlsl::ForStmt& loop);
+  static constexpr size_t kMaxUnrolledIterations = 256;
   // What one HLSL parameter declares in GLSL: itself, or one parameter per resource it holds.
   std::vector<std::string> parameter_declarations(const hlsl::ParamDecl& param);
   void statement(const Stmt* stmt);
