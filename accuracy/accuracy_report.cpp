@@ -5,8 +5,8 @@
 #include <cmath>
 
 #include "accuracy/pareto_chart.h"
-#include "harness/markup.h"
-#include "harness/report_text.h"
+#include "base/markup.h"
+#include "harness/report/report_text.h"
 
 namespace xshade::accuracy {
 namespace {
@@ -135,7 +135,6 @@ std::string accuracy_markdown(const AccuracyRun& run, const std::string& chart_d
 }
 
 std::string accuracy_html(const AccuracyRun& run, const std::string& chart_dir) {
-  using harness::escape_text;
   std::string html =
       "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n<title>xshade accuracy</title>\n"
       "<style>body{font-family:sans-serif;margin:2em}table{border-collapse:collapse}td,th{border:1px solid #ccc;"
@@ -149,8 +148,8 @@ std::string accuracy_html(const AccuracyRun& run, const std::string& chart_dir) 
     if (results_of(run, study.id).empty()) continue;
     html += fmt::format("<h2>{}: {}</h2>\n<p>Scene {}. Reference: {}; {}</p>\n", escape_text(study.id), escape_text(study.knob),
                         escape_text(study.scene), escape_text(study.reference.label), escape_text(study.why_reference));
-    html += fmt::format("<img src=\"{}/{}.svg\" alt=\"{}\">\n<p>{}</p>\n<ul>\n", harness::url_path(chart_dir),
-                        harness::url_path(study.id), harness::escape_attribute(study.id), escape_text(study.findings));
+    html += fmt::format("<img src=\"{}/{}.svg\" alt=\"{}\">\n<p>{}</p>\n<ul>\n", url_path(chart_dir),
+                        url_path(study.id), escape_attribute(study.id), escape_text(study.findings));
     for (const StudyResult* result : results_of(run, study.id))
       if (std::string line = convergence_line(*result, study); !line.empty()) html += "<li>" + escape_text(line) + "</li>\n";
     html += "</ul>\n<table>\n<tr><th>configuration</th><th>lane</th><th>max</th><th>mean</th><th>RMSE</th>"

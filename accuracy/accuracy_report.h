@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "accuracy/measure.h"
-#include "harness/backend.h"
+#include "harness/backend/backend.h"
 
 namespace xshade::accuracy {
 

@@ -62,8 +62,8 @@ TEST(MeasureStudy, DepthOfFieldKernelsOnGl) {
   auto backend = harness::create_backend(harness::Lane::Gl);
   ASSERT_TRUE(backend) << backend.error().to_string();
   MeasureOptions options;
-  options.scenes_dir = source / "harness" / "scenes";
-  options.shaders_dir = source / "hlsl_like" / "shaders";
+  options.scenes_dir = source / "scenes";
+  options.shaders_dir = source / "shaders";
   options.rounds = 1;
   auto result = measure_study(study, harness::Lane::Gl, **backend, options);
   ASSERT_TRUE(result) << result.error().to_string();

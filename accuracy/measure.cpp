@@ -3,12 +3,12 @@
 #include <algorithm>
 #include <chrono>
 
-#include "harness/environment.h"
-#include "harness/image_compare.h"
-#include "harness/planner.h"
-#include "harness/scene.h"
-#include "harness/scene_renderer.h"
-#include "harness/variant_compiler.h"
+#include "harness/assets/environment.h"
+#include "harness/image/image_compare.h"
+#include "harness/render/planner.h"
+#include "harness/scene/scene.h"
+#include "harness/render/scene_renderer.h"
+#include "harness/render/variant_compiler.h"
 
 namespace xshade::accuracy {
 namespace {

@@ -8,10 +8,10 @@
 #include <vector>
 
 #include "accuracy/study.h"
-#include "harness/backend.h"
-#include "harness/image.h"
-#include "harness/lanes.h"
-#include "harness/run_results.h"
+#include "harness/backend/backend.h"
+#include "harness/image/image.h"
+#include "harness/render/lanes.h"
+#include "harness/gate/run_results.h"
 
 namespace xshade::accuracy {
 

@@ -12,7 +12,7 @@
 #include <numbers>
 #include <string_view>
 
-#include "harness/markup.h"
+#include "base/markup.h"
 
 namespace xshade::accuracy {
 namespace {
@@ -35,7 +35,7 @@ constexpr size_t kMaxNotes = 12;
 // Labels come from configuration names and may hold anything: escape_text makes them
 // well-formed XML; a chart label is one line, so line breaks and tabs become spaces.
 std::string escape_xml(std::string_view text) {
-  std::string out = harness::escape_text(text);
+  std::string out = escape_text(text);
   std::replace_if(out.begin(), out.end(), [](char c) { return c == '\n' || c == '\r' || c == '\t'; }, ' ');
   return out;
 }

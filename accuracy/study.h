@@ -25,7 +25,7 @@ struct Configuration {
 struct Study {
   std::string id;     // "dof_kernel": names files and table rows
   std::string knob;   // "depth-of-field kernel"
-  std::string scene;  // a scene of harness/scenes
+  std::string scene;  // a scene of scenes
   std::string why_reference;  // what makes the reference the most accurate configuration
   Configuration reference;
   // The reference with its own accuracy doubled (twice the samples): it must differ from the

@@ -1,5 +1,8 @@
 // Types, expressions and conversions. Sema made every implicit HLSL conversion an explicit
 // ConversionExpr; here each becomes the GLSL constructor or swizzle that computes the same value.
+// Why this file is long: an expression's GLSL depends on its operands' types and on the
+// conversions sema made explicit; keeping every expression form beside the one set of type and
+// conversion helpers it uses is easier to follow than splitting one table-like switch.
 #include <charconv>
 #include <cmath>
 #include <cstdlib>

@@ -9,7 +9,7 @@
 #include "glsl/glsl_names.h"
 #include "glsl/stage_emitter.h"
 #include "hlsl_like/ast_walk.h"
-#include "hlsl_like/sema_internal.h"
+#include "hlsl_like/semantics.h"
 
 namespace xshade::glsl {
 
@@ -217,7 +217,7 @@ bool contains_matrix(const Type& type, int depth = 0) {
 }
 
 std::string canonical(const std::string& semantic) {
-  return sema_detail::canonical_semantic(sema_detail::parse_semantic(semantic));
+  return canonical_semantic(parse_semantic(semantic));
 }
 
 const char* interpolation_qualifier(Interpolation interpolation, const Type& type) {
@@ -616,9 +616,8 @@ std::string StageEmitter::interface_and_main() {
     }
     return true;
   };
-  using sema_detail::SemanticKind;
-  for (const StageItem& item : stage_items(entry, true, names_)) {
-    const SemanticKind kind = sema_detail::parse_semantic(item.semantic).kind;
+    for (const StageItem& item : stage_items(entry, true, names_)) {
+    const SemanticKind kind = parse_semantic(item.semantic).kind;
     Code source;
     Type source_type = item.type;
     if (vertex_) {
@@ -693,7 +692,7 @@ std::string StageEmitter::interface_and_main() {
       fragment_interpolation.emplace(item.semantic, item.interpolation);
   }
   for (const StageItem& item : stage_items(entry, false, names_)) {
-    const sema_detail::ParsedSemantic parsed = sema_detail::parse_semantic(item.semantic);
+    const ParsedSemantic parsed = parse_semantic(item.semantic);
     const Code value{item.path, kPostfix};
     if (vertex_ && (parsed.kind == SemanticKind::SvPosition || item.semantic == "POSITION0")) {  // DX9's name
       main.line("gl_Position = " + convert(value, item.type, Type::vector(ScalarType::Float, 4), item.loc).text + ";");

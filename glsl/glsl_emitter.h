@@ -19,7 +19,7 @@
 
 #include "glsl/flavour.h"
 #include "hlsl_like/compiler.h"
-#include "hlsl_like/diagnostic.h"
+#include "base/result.h"
 
 namespace xshade::glsl {
 

@@ -1,3 +1,5 @@
+// The GLSL emitter, one test per mapping rule (docs/hlsl_like.md) in both flavours.
+// Why this file is long: it is one short case per rule of the mapping, read as the list of them.
 #include "glsl/glsl_emitter.h"
 
 #include <gmock/gmock.h>

@@ -14,7 +14,7 @@
 #include "glsl/flavour.h"
 #include "glsl/glsl_emitter.h"
 #include "hlsl_like/compiler.h"
-#include "hlsl_like/diagnostic.h"
+#include "base/result.h"
 #include "hlsl_like/intrinsics.h"
 
 namespace xshade::glsl::detail {

@@ -1,6 +1,8 @@
 // The front end on bad input, end to end: each case compiles a whole source through
 // compile_text or compile_file and pins what a user sees, the rendered diagnostic
 // ("file:line:col: severity: message", the source line and a caret).
+// Why this file is long: it is a catalogue, one short case per kind of bad input, read as a
+// list of what a user sees; splitting it would only scatter the list.
 
 #include "hlsl_like/compiler.h"
 

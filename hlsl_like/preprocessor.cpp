@@ -11,6 +11,7 @@
 #include <unordered_map>
 #include <utility>
 
+#include "base/paths.h"
 #include "hlsl_like/lexer.h"
 
 // How expansion works: the clang scheme of a stack of token buffers ("frames"), one per macro

@@ -9,6 +9,7 @@
 
 #include "hlsl_like/ast_walk.h"
 #include "hlsl_like/sema_internal.h"
+#include "hlsl_like/semantics.h"
 
 namespace xshade::hlsl {
 namespace {
@@ -198,7 +199,7 @@ bool is_uniform_global(const VarDecl& var) {
 }
 
 std::string canonical(const std::string& semantic) {
-  return sema_detail::canonical_semantic(sema_detail::parse_semantic(semantic));
+  return canonical_semantic(parse_semantic(semantic));
 }
 
 // Every global declaration and user function reachable from the entry points, by what reads it.
@@ -440,9 +441,8 @@ std::optional<uint32_t> vertex_input_location(const std::string& semantic) {
 }
 
 std::optional<uint32_t> varying_location(const std::string& semantic) {
-  const sema_detail::ParsedSemantic parsed = sema_detail::parse_semantic(semantic);
-  using sema_detail::SemanticKind;
-  switch (parsed.kind) {
+  const ParsedSemantic parsed = parse_semantic(semantic);
+    switch (parsed.kind) {
     case SemanticKind::Texcoord: return parsed.index < 8 ? std::optional<uint32_t>(parsed.index) : std::nullopt;
     case SemanticKind::Color: return parsed.index < 2 ? std::optional<uint32_t>(8 + parsed.index) : std::nullopt;
     case SemanticKind::Normal: return parsed.index == 0 ? std::optional<uint32_t>(10) : std::nullopt;
@@ -634,9 +634,9 @@ Reflection reflect(const TranslationUnit& unit, const EntryPoints& entry_points,
       }
     }
     for (StageVariable output : stage_variables(*entry_points.fragment, false)) {
-      const sema_detail::ParsedSemantic parsed = sema_detail::parse_semantic(output.semantic);
+      const ParsedSemantic parsed = parse_semantic(output.semantic);
       // DX9's COLORn out of a fragment shader is SV_Targetn.
-      if (parsed.kind == sema_detail::SemanticKind::SvTarget || parsed.kind == sema_detail::SemanticKind::Color) {
+      if (parsed.kind == SemanticKind::SvTarget || parsed.kind == SemanticKind::Color) {
         output.location = parsed.index;
         output.semantic = "SV_Target" + std::to_string(parsed.index);
       }

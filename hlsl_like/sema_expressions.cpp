@@ -1,5 +1,7 @@
 // Semantic analysis of expressions: names, operators, members, indexing, casts, initializer
 // lists, l-values and implicit conversions. Calls are in sema_calls.cpp.
+// Why this file is long: each expression form is one typing rule, and they share the operator
+// and conversion helpers above them; calls, the part that grew on its own, are already apart.
 #include <algorithm>
 #include <limits>
 

@@ -12,6 +12,7 @@
 #include "hlsl_like/diagnostic_engine.h"
 #include "hlsl_like/intrinsics.h"
 #include "hlsl_like/sema.h"
+#include "hlsl_like/semantics.h"
 
 namespace xshade::hlsl::sema_detail {
 
@@ -79,18 +80,6 @@ class TypeFacts {
   std::unordered_map<const StructDecl*, bool> resources_;
 };
 
-// Semantics of entry point signatures.
-enum class SemanticKind : uint8_t {
-  Unknown, Position, Normal, Tangent, Binormal, Texcoord, Color, SvPosition, SvTarget, SvDepth,
-  SvIsFrontFace, SvVertexId, SvInstanceId,
-  Vface,  // DX9's VFACE: a float, positive for a front face
-};
-struct ParsedSemantic {
-  SemanticKind kind = SemanticKind::Unknown;
-  uint32_t index = 0;
-};
-ParsedSemantic parse_semantic(const std::string& text);
-std::string canonical_semantic(const ParsedSemantic& semantic);  // "TEXCOORD0", "SV_Target0"
 
 // ---------------------------------------------------------------------------------------------
 // The analyzer

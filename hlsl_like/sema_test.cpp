@@ -1,3 +1,6 @@
+// Semantic analysis, one test per rule: types, conversions, overloads (DXC's costs as a table),
+// l-values, entry points, reach.
+// Why this file is long: it is one short case per rule, read as the list of the rules.
 #include "hlsl_like/sema.h"
 
 #include <gtest/gtest.h>

@@ -6,17 +6,6 @@
 
 namespace xshade::hlsl {
 
-bool path_is_inside(const std::filesystem::path& file, const std::filesystem::path& folder) {
-  namespace fs = std::filesystem;
-  std::error_code error;
-  const fs::path real = fs::weakly_canonical(fs::absolute(file, error), error);
-  if (error) return false;
-  const fs::path root = fs::weakly_canonical(fs::absolute(folder, error), error);
-  if (error) return false;
-  const fs::path relative = real.lexically_relative(root);
-  return !relative.empty() && relative != "." && *relative.begin() != "..";
-}
-
 SourceManager::SourceManager() { files_.push_back(std::make_unique<File>()); }  // index 0: none
 
 uint32_t SourceManager::add(std::string name, std::string text) {

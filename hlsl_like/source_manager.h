@@ -8,7 +8,7 @@
 #include <string_view>
 #include <vector>
 
-#include "hlsl_like/diagnostic.h"
+#include "base/result.h"
 
 namespace xshade::hlsl {
 
@@ -19,11 +19,6 @@ struct Loc {
   uint32_t line = 0;
   uint32_t column = 0;
 };
-
-// Whether `file` lies inside `folder` once `..` and symbolic links are resolved in both (a link
-// inside the folder that points out of it is outside). Every path a user's file names, an
-// #include or a scene's texture, is held to its folders with this before anything reads it.
-bool path_is_inside(const std::filesystem::path& file, const std::filesystem::path& folder);
 
 class SourceManager {
  public:

@@ -6,7 +6,7 @@
 #include <string_view>
 #include <vector>
 
-#include "hlsl_like/diagnostic.h"
+#include "base/result.h"
 
 namespace xshade::spirv {
 

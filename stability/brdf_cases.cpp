@@ -5,7 +5,7 @@
 #include <cmath>
 #include <numbers>
 
-#include "harness/image_compare.h"
+#include "harness/image/image_compare.h"
 #include "stability/forms.h"
 #include "stability/cases.h"
 #include "stability/probe.h"

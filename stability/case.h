@@ -12,10 +12,10 @@
 #include <string>
 #include <vector>
 
-#include "harness/backend.h"
-#include "harness/lanes.h"
-#include "harness/scene_renderer.h"
-#include "harness/variant_compiler.h"
+#include "harness/backend/backend.h"
+#include "harness/render/lanes.h"
+#include "harness/render/scene_renderer.h"
+#include "harness/render/variant_compiler.h"
 
 namespace xshade::stability {
 
@@ -49,9 +49,9 @@ struct CaseContext {
   harness::Lane lane;
   Precision precision;
   const Form& form;
-  const std::filesystem::path& shaders_dir;  // the shader library (hlsl_like/shaders)
+  const std::filesystem::path& shaders_dir;  // the shader library (shaders)
   const std::filesystem::path& probes_dir;   // the suite's probe shaders (stability/probes)
-  const std::filesystem::path& scenes_dir;   // the project's scenes (harness/scenes)
+  const std::filesystem::path& scenes_dir;   // the project's scenes (scenes)
   harness::VariantCompiler& compiler;        // for cases that run the library's post effects
   ProbePrograms& probes;                     // the probes compiled so far on this backend
   harness::ProgramCache& programs;           // the effects' programs made so far on this backend

@@ -13,8 +13,8 @@
 #include <cmath>
 #include <functional>
 
-#include "harness/planner.h"
-#include "harness/scene_renderer.h"
+#include "harness/render/planner.h"
+#include "harness/render/scene_renderer.h"
 #include "stability/cases.h"
 #include "stability/forms.h"
 #include "stability/probe.h"

@@ -4,11 +4,11 @@
 
 #include <cstring>
 
-#include "harness/environment.h"
-#include "harness/evaluate.h"
-#include "harness/planner.h"
-#include "harness/scene.h"
-#include "harness/scene_renderer.h"
+#include "harness/assets/environment.h"
+#include "harness/render/evaluate.h"
+#include "harness/render/planner.h"
+#include "harness/scene/scene.h"
+#include "harness/render/scene_renderer.h"
 
 namespace xshade::stability {
 

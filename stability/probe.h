@@ -9,8 +9,8 @@
 
 #include <glm/glm.hpp>
 
-#include "harness/evaluate.h"
-#include "harness/image.h"
+#include "harness/render/evaluate.h"
+#include "harness/image/image.h"
 #include "stability/case.h"
 
 namespace xshade::stability {
@@ -31,7 +31,7 @@ class ProbePrograms {
 Result<harness::FloatImage> run_probe(const CaseContext& context, const std::string& file, uint32_t vectors_per_input,
                                       const std::vector<glm::vec4>& inputs, uint32_t rows);
 
-// Renders a scene of the project (harness/scenes/NAME.toml) with every object's keywords
+// Renders a scene of the project (scenes/NAME.toml) with every object's keywords
 // replaced by the form's.
 Result<harness::FloatImage> render_scene_with_form(const CaseContext& context, const std::string& scene_name);
 

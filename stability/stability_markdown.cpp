@@ -4,7 +4,7 @@
 
 #include <map>
 
-#include "harness/report_text.h"
+#include "harness/report/report_text.h"
 #include "stability/probe.h"
 #include "stability/suite.h"
 

@@ -63,7 +63,7 @@ Result<SuiteRun> run_suite(const std::vector<Case>& cases, const SuiteOptions& o
     if (found == cases.end()) {
       std::string known;
       for (const Case& c : cases) known += (known.empty() ? "" : ", ") + c.id;
-      return fail("no stability case '" + id + "'; the cases are: " + known);
+      return fail(ErrorKind::Usage, "no stability case '" + id + "'; the cases are: " + known);
     }
     chosen.push_back(&*found);
   }

@@ -16,9 +16,9 @@ SuiteOptions options_for(harness::Lane lane, std::vector<Precision> precisions =
   SuiteOptions options;
   options.lanes = {lane};
   options.precisions = std::move(precisions);
-  options.shaders_dir = kSource / "hlsl_like" / "shaders";
+  options.shaders_dir = kSource / "shaders";
   options.probes_dir = kSource / "stability" / "probes";
-  options.scenes_dir = kSource / "harness" / "scenes";
+  options.scenes_dir = kSource / "scenes";
   return options;
 }
 
@@ -98,6 +98,7 @@ TEST(StabilitySuite, AnUnknownCaseIsRefusedWithTheKnownOnes) {
   auto run = run_suite(all_cases(), options);
   ASSERT_FALSE(run);
   EXPECT_THAT(run.error().message, testing::HasSubstr("no stability case 'no_such_case'; the cases are: ggx_peak, "));
+  EXPECT_EQ(run.error().kind, ErrorKind::Usage);  // the command line gives exit 2 for it
 }
 
 TEST(StabilitySuite, MarkdownHasTheSummaryAndEveryMeasuredValue) {

@@ -5,7 +5,7 @@
 //   build/tests/bench/compare_benchmark
 #include <benchmark/benchmark.h>
 
-#include "harness/image_compare.h"
+#include "harness/image/image_compare.h"
 
 namespace {
 

@@ -11,10 +11,10 @@
 #include <string>
 #include <vector>
 
-#include "harness/environment.h"
-#include "harness/planner.h"
-#include "harness/scene_renderer.h"
-#include "harness/variant_compiler.h"
+#include "harness/assets/environment.h"
+#include "harness/render/planner.h"
+#include "harness/render/scene_renderer.h"
+#include "harness/render/variant_compiler.h"
 
 namespace {
 
@@ -22,7 +22,7 @@ namespace fs = std::filesystem;
 using namespace xshade::harness;
 
 const fs::path kSource = XSHADE_SOURCE_DIR;
-const fs::path kLibrary = kSource / "hlsl_like" / "shaders";
+const fs::path kLibrary = kSource / "shaders";
 
 double milliseconds_since(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
@@ -45,7 +45,7 @@ double compile_all(VariantCompiler& compiler, const Plan& plan, Lane lane, std::
 int main(int argc, char** argv) {
   const int frames = argc > 1 ? std::max(1, std::atoi(argv[1])) : 5;
   std::vector<fs::path> scenes;
-  for (const auto& entry : fs::directory_iterator(kSource / "harness" / "scenes"))
+  for (const auto& entry : fs::directory_iterator(kSource / "scenes"))
     if (entry.path().extension() == ".toml") scenes.push_back(entry.path());
   std::sort(scenes.begin(), scenes.end());
   const fs::path cache_dir = fs::temp_directory_path() / "xshade_scene_benchmark_cache";

@@ -13,8 +13,8 @@
 #include <glm/glm.hpp>
 #include <gtest/gtest.h>
 
-#include "harness/evaluate.h"
-#include "harness/lanes.h"
+#include "harness/render/evaluate.h"
+#include "harness/render/lanes.h"
 #include "hlsl_like/compiler.h"
 
 namespace xshade::tests {

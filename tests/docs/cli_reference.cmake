@@ -31,7 +31,7 @@ endif()
 set(markdown "# xshade command line\n\n")
 string(APPEND markdown
   "<!-- Generated from xshade's own --help by tests/docs/cli_reference.cmake: edit the help texts in\n"
-  "harness/cli/main.cpp, then `cmake --build build --target cli_reference`. The test\n"
+  "cli/main.cpp, then `cmake --build build --target cli_reference`. The test\n"
   "docs.cli_reference_is_current fails when this file differs from what the binary prints. -->\n\n"
   "Every verb as `xshade VERB --help` prints it. Folders: [getting_started.md](getting_started.md);\n"
   "scene files: [scenes.md](scenes.md); the language: [hlsl_like.md](hlsl_like.md).\n\n"

@@ -1,7 +1,7 @@
 // Depth testing, and depth sampled by a later pass, on every lane.
 #include <gtest/gtest.h>
 
-#include "harness/meshes.h"
+#include "harness/assets/meshes.h"
 #include "tests/lanes/lane_fixture.h"
 
 namespace xshade::tests {

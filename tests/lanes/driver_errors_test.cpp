@@ -1,7 +1,7 @@
 // What goes wrong must be reported, never crash: bad GLSL, validation messages.
 #include <gtest/gtest.h>
 
-#include "harness/lavapipe_backend.h"
+#include "harness/vulkan/vulkan_backend.h"
 #include "tests/lanes/lane_fixture.h"
 
 namespace xshade::tests {

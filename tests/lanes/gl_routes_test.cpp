@@ -1,6 +1,6 @@
 // Both routes to the gl lane's context, OSMesa and EGL surfaceless, drive the same Mesa llvmpipe,
 // so every fixed scene must come out of them bit for bit the same: the final image and each
-// pass's own image. One test per scene file of harness/scenes/ (found when the test runs); each
+// pass's own image. One test per scene file of scenes/ (found when the test runs); each
 // compiles the scene for the gl lane once and renders it through a backend of each route, the
 // two living side by side in one process as they do in a user's run.
 #include <algorithm>
@@ -12,13 +12,13 @@
 #include <fmt/format.h>
 #include <gtest/gtest.h>
 
-#include "harness/environment.h"
-#include "harness/gl_backend.h"
-#include "harness/image.h"
-#include "harness/planner.h"
-#include "harness/scene.h"
-#include "harness/scene_renderer.h"
-#include "harness/variant_compiler.h"
+#include "harness/assets/environment.h"
+#include "harness/gl/gl_backend.h"
+#include "harness/image/image.h"
+#include "harness/render/planner.h"
+#include "harness/scene/scene.h"
+#include "harness/render/scene_renderer.h"
+#include "harness/render/variant_compiler.h"
 
 namespace xshade::tests {
 namespace {

@@ -6,7 +6,7 @@
 
 #include <gtest/gtest.h>
 
-#include "harness/evaluate.h"
+#include "harness/render/evaluate.h"
 #include "hlsl_like/compiler.h"
 
 namespace xshade::tests {

@@ -4,7 +4,7 @@
 #include <sstream>
 
 #include "glsl/flavour.h"
-#include "harness/lavapipe_backend.h"
+#include "harness/vulkan/vulkan_backend.h"
 
 namespace xshade::tests {
 

@@ -7,8 +7,8 @@
 
 #include <gtest/gtest.h>
 
-#include "harness/backend.h"
-#include "harness/lanes.h"
+#include "harness/backend/backend.h"
+#include "harness/render/lanes.h"
 
 namespace xshade::tests {
 

@@ -1,7 +1,7 @@
 // The orientation pattern lands in the same, expected place on every lane.
 #include <gtest/gtest.h>
 
-#include "harness/test_pattern.h"
+#include "harness/render/test_pattern.h"
 #include "tests/lanes/lane_fixture.h"
 
 namespace xshade::tests {

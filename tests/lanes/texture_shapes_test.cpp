@@ -15,9 +15,9 @@
 #include <glm/glm.hpp>
 #include <gtest/gtest.h>
 
-#include "harness/evaluate.h"
-#include "harness/lavapipe_backend.h"
-#include "harness/shader_program.h"
+#include "harness/render/evaluate.h"
+#include "harness/vulkan/vulkan_backend.h"
+#include "harness/render/shader_program.h"
 #include "hlsl_like/compiler.h"
 #include "tests/lanes/lane_fixture.h"
 

@@ -3,7 +3,7 @@
 // (its own default would be (0, 0, 0, 1)), Vulkan from a zero buffer read at stride 0.
 #include <gtest/gtest.h>
 
-#include "harness/shader_program.h"
+#include "harness/render/shader_program.h"
 #include "hlsl_like/compiler.h"
 #include "tests/lanes/lane_fixture.h"
 

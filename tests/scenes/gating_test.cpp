@@ -36,9 +36,9 @@ class Gating : public ::testing::Test {
     fs::remove_all(root_);
     fs::create_directories(root_ / "scenes");
     fs::create_directories(root_ / "golden");
-    fs::copy_file(kSource / "harness/scenes" / (std::string(kScene) + ".toml"), root_ / "scenes" / (std::string(kScene) + ".toml"));
+    fs::copy_file(kSource / "scenes" / (std::string(kScene) + ".toml"), root_ / "scenes" / (std::string(kScene) + ".toml"));
     fs::copy_file(kSource / "golden" / (std::string(kScene) + ".png"), root_ / "golden" / (std::string(kScene) + ".png"));
-    fs::copy(kSource / "hlsl_like/shaders", root_ / "shaders", fs::copy_options::recursive);
+    fs::copy(kSource / "shaders", root_ / "shaders", fs::copy_options::recursive);
   }
   void TearDown() override { fs::remove_all(root_); }
 
@@ -141,7 +141,7 @@ TEST_F(Gating, BlessRefusesWithoutAReasonAndWritesNothing) {
 // Shards split the fixed scenes between CI jobs: together they cover each scene exactly once.
 TEST(Sharding, ShardsCoverEverySceneOnce) {
   std::vector<std::string> scenes;
-  for (const auto& entry : fs::directory_iterator(kSource / "harness/scenes"))
+  for (const auto& entry : fs::directory_iterator(kSource / "scenes"))
     if (entry.path().extension() == ".toml") scenes.push_back(entry.path().stem().string());
   std::map<std::string, int> seen;
   for (int shard = 1; shard <= 3; ++shard) {

@@ -38,14 +38,14 @@
 #include <glm/glm.hpp>
 #include <gtest/gtest.h>
 
-#include "harness/environment.h"
-#include "harness/golden_store.h"
-#include "harness/image_compare.h"
-#include "harness/lanes.h"
-#include "harness/planner.h"
-#include "harness/scene.h"
-#include "harness/scene_renderer.h"
-#include "harness/variant_compiler.h"
+#include "harness/assets/environment.h"
+#include "harness/gate/golden_store.h"
+#include "harness/image/image_compare.h"
+#include "harness/render/lanes.h"
+#include "harness/render/planner.h"
+#include "harness/scene/scene.h"
+#include "harness/render/scene_renderer.h"
+#include "harness/render/variant_compiler.h"
 
 namespace xshade::harness {
 namespace {
@@ -53,8 +53,8 @@ namespace {
 namespace fs = std::filesystem;
 
 const fs::path kSourceDir = XSHADE_SOURCE_DIR;
-const fs::path kShaderLibrary = kSourceDir / "hlsl_like" / "shaders";
-const fs::path kScenesDir = kSourceDir / "harness" / "scenes";
+const fs::path kShaderLibrary = kSourceDir / "shaders";
+const fs::path kScenesDir = kSourceDir / "scenes";
 const fs::path kGoldenDir = kSourceDir / "golden";
 
 constexpr Lane kLane = Lane::Gl;

@@ -1,0 +1,35 @@
+#include "base/file_io.h"
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+
+namespace xshade {
+namespace {
+
+namespace fs = std::filesystem;
+
+TEST(FileIo, WritesAtomicallyAndReadsBackEveryByte) {
+  const fs::path folder = fs::temp_directory_path() / "xshade_file_io_test";
+  fs::remove_all(folder);
+  fs::create_directories(folder);
+  const std::string bytes("a\0b\r\n\xff", 6);  // NUL, CR LF and a byte that is not UTF-8 survive
+  ASSERT_TRUE(write_file_atomically(folder / "f.bin", bytes).has_value());
+  ASSERT_TRUE(write_file_atomically(folder / "f.bin", bytes + "z").has_value());  // replaces
+  EXPECT_EQ(read_file(folder / "f.bin"), bytes + "z");
+  size_t entries = 0;
+  for ([[maybe_unused]] const fs::directory_entry& entry : fs::directory_iterator(folder)) ++entries;
+  EXPECT_EQ(entries, 1u);  // no temporary file left beside it
+  fs::remove_all(folder);
+}
+
+TEST(FileIo, SaysWhatItCouldNotDo) {
+  const fs::path missing = fs::temp_directory_path() / "xshade_file_io_test_missing" / "no" / "f.txt";
+  EXPECT_FALSE(read_file(missing).has_value());
+  auto written = write_file_atomically(missing, "x");
+  ASSERT_FALSE(written.has_value());
+  EXPECT_NE(written.error().message.find("f.txt"), std::string::npos) << written.error().message;
+}
+
+}  // namespace
+}  // namespace xshade

@@ -1,0 +1,33 @@
+#include "base/paths.h"
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+
+namespace xshade {
+namespace {
+
+namespace fs = std::filesystem;
+
+TEST(PathIsInside, HoldsAPathToItsFolderWithDotDotAndLinksResolved) {
+  const fs::path root = fs::temp_directory_path() / "xshade_path_is_inside";
+  fs::remove_all(root);
+  fs::create_directories(root / "folder/sub");
+  fs::create_directories(root / "outside");
+  fs::create_symlink(root / "outside", root / "folder/link_out");
+  fs::create_symlink(root / "folder/sub", root / "folder/link_in");
+
+  EXPECT_TRUE(path_is_inside(root / "folder/a.hlsl", root / "folder"));
+  EXPECT_TRUE(path_is_inside(root / "folder/sub/../b.hlsl", root / "folder"));
+  EXPECT_TRUE(path_is_inside(root / "folder/link_in/c.hlsl", root / "folder"));
+  EXPECT_TRUE(path_is_inside(root / "folder/not/yet/there.hlsl", root / "folder"));
+  EXPECT_FALSE(path_is_inside(root / "folder/../outside/d.hlsl", root / "folder"));
+  EXPECT_FALSE(path_is_inside(root / "folder/link_out/e.hlsl", root / "folder"));
+  EXPECT_FALSE(path_is_inside(root / "folder", root / "folder"));  // the folder itself names no file in it
+  EXPECT_FALSE(path_is_inside(root / "folder_sibling/f.hlsl", root / "folder"));
+  EXPECT_FALSE(path_is_inside("/etc/passwd", root / "folder"));
+  fs::remove_all(root);
+}
+
+}  // namespace
+}  // namespace xshade

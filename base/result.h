@@ -1,0 +1,57 @@
+// The Result type every xshade library returns, and the Error it carries.
+//
+// Errors travel as values: a function that can fail returns Result<T>, whose error carries a
+// message, an optional source location, any further diagnostics (a compiler's full list) and a
+// kind, which says whose fault it is and so which exit code the command line gives.
+#pragma once
+
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include <tl/expected.hpp>
+
+#include "base/diagnostic.h"
+
+namespace xshade {
+
+enum class ErrorKind {
+  UserInput,    // a shader, scene, project file, image or mesh that is wrong: the user fixes it
+  Usage,        // the command line asks for something that does not exist or cannot be
+  CheckFailed,  // the input was fine and ran, and a check on what it made failed
+  Backend,      // a driver, a lane or the machine could not do what was asked
+  Internal,     // xshade broke its own rule
+};
+std::string_view error_kind_name(ErrorKind kind);  // "user input", "usage", ...
+
+struct Error {
+  std::string message;
+  SourceLocation where;
+  std::vector<Diagnostic> diagnostics;  // details, e.g. every error of a failed compile
+  ErrorKind kind = ErrorKind::UserInput;
+
+  // The message with its location, then one line per diagnostic.
+  std::string to_string() const;
+};
+
+template <class T>
+using Result = tl::expected<T, Error>;
+
+// Most failures are of the input being read (the shader, the scene), so that is the default kind.
+inline tl::unexpected<Error> fail(std::string message, SourceLocation where = {}) {
+  return tl::unexpected<Error>(Error{std::move(message), std::move(where), {}});
+}
+
+inline tl::unexpected<Error> fail(ErrorKind kind, std::string message, SourceLocation where = {}) {
+  return tl::unexpected<Error>(Error{std::move(message), std::move(where), {}, kind});
+}
+
+inline tl::unexpected<Error> fail(Error error) { return tl::unexpected<Error>(std::move(error)); }
+
+// The same error as another kind: a lower layer's error that the caller knows the cause of.
+inline Error with_kind(Error error, ErrorKind kind) {
+  error.kind = kind;
+  return error;
+}
+
+}  // namespace xshade

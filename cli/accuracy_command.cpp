@@ -1,0 +1,102 @@
+// xshade accuracy: for each knob of SHADERS.md section 6, error against a reference and time, per
+// lane, as tables and Pareto charts.
+#include <fmt/core.h>
+
+#include <algorithm>
+
+#include "accuracy/accuracy_report.h"
+#include "cli/commands.h"
+#include "cli/lane_selection.h"
+#include "base/file_io.h"
+
+namespace xshade::cli {
+namespace {
+
+bool write(const std::filesystem::path& path, const std::string& text) {
+  std::error_code ignored;
+  std::filesystem::create_directories(path.parent_path(), ignored);
+  if (auto written = write_file_atomically(path, text); !written) {
+    fmt::print(stderr, "xshade accuracy: {}\n", written.error().to_string());
+    return false;
+  }
+  return true;
+}
+
+}  // namespace
+
+int run_accuracy(const AccuracyOptions& options) {
+  std::vector<accuracy::Study> studies;
+  for (accuracy::Study& study : accuracy::all_studies()) {
+    const bool named = std::find(options.studies.begin(), options.studies.end(), study.id) != options.studies.end();
+    if (options.studies.empty() ? (!options.quick || study.quick) : named) studies.push_back(std::move(study));
+  }
+  for (const std::string& id : options.studies)
+    if (std::none_of(studies.begin(), studies.end(), [&](const accuracy::Study& s) { return s.id == id; })) {
+      std::string known;
+      for (const accuracy::Study& s : accuracy::all_studies()) known += (known.empty() ? "" : ", ") + s.id;
+      fmt::print(stderr, "xshade accuracy: no study '{}'; the studies are: {}\n", id, known);
+      return kBadInput;
+    }
+  auto lanes = resolve_lanes(options.selection);
+  if (!lanes) {
+    fmt::print(stderr, "xshade accuracy: {}\n", lanes.error().to_string());
+    return kBadInput;
+  }
+
+  accuracy::AccuracyRun run;
+  run.command_line = options.command_line;
+  run.options.scenes_dir = options.scenes_dir;
+  run.options.shaders_dir = options.shaders_dir;
+  run.options.rounds = options.quick ? 1 : options.rounds;
+  run.options.reference_check = !options.quick;
+  for (harness::Lane lane : *lanes) {
+    auto backend = harness::create_backend(lane, backend_options(options.selection));
+    if (!backend) {
+      fmt::print(stderr, "xshade accuracy: {}: {}\n", harness::lane_name(lane), backend.error().to_string());
+      return kBackendError;
+    }
+    run.drivers.emplace_back(lane, (*backend)->driver_info());
+    for (const accuracy::Study& study : studies) {
+      auto result = accuracy::measure_study(study, lane, **backend, run.options);
+      if (!result) {
+        fmt::print(stderr, "xshade accuracy: {} on {}: {}\n", study.id, harness::lane_name(lane), result.error().to_string());
+        return kBackendError;
+      }
+      std::string line = fmt::format("{} on {}:", study.id, harness::lane_name(lane));
+      for (const accuracy::ConfigurationResult& c : result->configurations)
+        line += fmt::format(" {} {:.3g} in {:.2f} ms;", c.label, accuracy::chart_error(c), c.time.median_ms);
+      fmt::print("{}\n", line);
+      std::fflush(stdout);
+      for (const std::string& message : (*backend)->take_driver_messages())
+        fmt::print("{}: driver message: {}\n", harness::lane_name(lane), message);
+      run.results.push_back(std::move(*result));
+    }
+  }
+  run.studies = std::move(studies);
+
+  bool written = write(options.report_dir / "accuracy.csv", accuracy::accuracy_csv(run)) &&
+                 write(options.report_dir / "index.html", accuracy::accuracy_html(run, "charts"));
+  for (const accuracy::Study& study : run.studies)
+    written = written && write(options.report_dir / "charts" / (study.id + ".svg"), accuracy::study_chart_svg(study, run));
+  if (!options.markdown.empty()) {
+    // The charts go beside the Markdown file, in a folder named after it.
+    const std::string chart_dir = options.markdown.stem().string();
+    written = written && write(options.markdown, accuracy::accuracy_markdown(run, chart_dir));
+    for (const accuracy::Study& study : run.studies)
+      written = written && write(options.markdown.parent_path() / chart_dir / (study.id + ".svg"), accuracy::study_chart_svg(study, run));
+  }
+  if (!written) return kBackendError;
+  fmt::print("report: {}\n", (options.report_dir / "index.html").string());
+
+  bool converged = true;
+  for (const accuracy::StudyResult& result : run.results)
+    if (auto c = accuracy::convergence(result); c && !c->converged) {
+      fmt::print("{} on {}: the reference does not converge: its check differs by {:.3g}, more than the smallest error it "
+                 "judges ({:.3g})\n",
+                 result.study, harness::lane_name(result.lane), c->check_error, c->smallest_error);
+      converged = false;
+    }
+  return converged ? kPass : kTestFailed;
+}
+
+}  // namespace xshade::cli

@@ -1,0 +1,120 @@
+// xshade bless: render a scene and accept the image as its golden. The only way a golden is
+// ever written: it needs a reason, the lanes must agree (for the common golden) and render
+// deterministically, and it shows what it is about to replace before writing atomically.
+#include <fmt/core.h>
+
+#include <cstdio>
+#include <cstdlib>
+
+#include "cli/commands.h"
+#include "cli/lane_selection.h"
+#include "harness/image/image_compare.h"
+#include "harness/report/report_text.h"
+#include "harness/gate/scene_check.h"
+
+namespace xshade::cli {
+namespace {
+
+bool blank(const std::string& text) { return text.find_first_not_of(" \t\r\n") == std::string::npos; }
+
+// Who blesses: $XSHADE_BLESSED_BY, else git's user.name (what the commit will say), else the
+// login name.
+std::string who() {
+  if (const char* value = std::getenv("XSHADE_BLESSED_BY"); value && *value) return value;
+  if (FILE* pipe = popen("git config user.name 2>/dev/null", "r")) {
+    char line[256] = {};
+    const bool read = std::fgets(line, sizeof line, pipe) != nullptr;
+    pclose(pipe);
+    std::string name = read ? line : "";
+    while (!name.empty() && (name.back() == '\n' || name.back() == '\r')) name.pop_back();
+    if (!name.empty()) return name;
+  }
+  for (const char* name : {"USER", "LOGNAME"})
+    if (const char* value = std::getenv(name); value && *value) return value;
+  return "unknown";
+}
+
+}  // namespace
+
+int run_bless(const BlessOptions& options) {
+  if (blank(options.reason)) {
+    fmt::print(stderr, "xshade bless: a golden is evidence: say why with --reason \"...\"\n");
+    return kBadInput;
+  }
+  LaneSelection selection;
+  if (!options.lane.empty()) selection.lanes = {options.lane};
+  selection.gl_platform = options.gl_platform;
+  auto lanes = resolve_lanes(selection);
+  if (!lanes) {
+    fmt::print(stderr, "xshade bless: {}\n", lanes.error().to_string());
+    return kBadInput;
+  }
+  auto folders = resolve_folders(options.folders, std::filesystem::current_path(), true);
+  if (!folders) {
+    fmt::print(stderr, "xshade bless: {}\n", folders.error().to_string());
+    return kBadInput;
+  }
+  auto files = scene_files({options.scene}, *folders);
+  if (!files) {
+    fmt::print(stderr, "xshade bless: {}\n", files.error().to_string());
+    return kBadInput;
+  }
+
+  harness::ShaderCache cache(shader_cache_dir(options.cache_dir), harness::compiler_identity());
+  harness::VariantCompiler compiler(folders->shaders, &cache);
+  harness::SceneChecker checker(compiler, {options.report_dir, nullptr, backend_options(selection), false, false},
+                                [](const std::string& line) { fmt::print("{}\n", line); });
+  harness::CheckedScene checked = checker.check(files->front(), *lanes);
+  const harness::SceneResult& result = checked.result;
+  if (!result.message.empty()) {
+    fmt::print(stderr, "xshade bless: {}: {}\n", result.scene, result.message);
+    return kBadInput;
+  }
+  if (checked.images.empty()) {
+    fmt::print(stderr, "xshade bless: {} did not render on {}\n", result.scene,
+               options.lane.empty() ? std::string("any of its lanes") : options.lane);
+    return kBackendError;
+  }
+  for (const harness::LaneResult& lane : result.lanes)
+    if (lane.verdict != harness::Verdict::Pass) {
+      fmt::print(stderr, "xshade bless: refused: {} on {}: {}\n", result.scene, lane.lane, lane.message);
+      return harness::exit_code(lane.verdict);
+    }
+  for (const harness::CrossLaneResult& pair : result.cross_lane)
+    if (pair.verdict != harness::Verdict::Pass) {
+      fmt::print(stderr,
+                 "xshade bless: refused: {} and {} disagree ({}); a common golden is blessed only from lanes "
+                 "that agree. Find the lane that is wrong, or bless one lane with --lane and its reason.\n",
+                 pair.first_lane, pair.second_lane, harness::describe_metrics(pair.metrics));
+      return kTestFailed;
+    }
+
+  const harness::GoldenStore goldens(folders->golden);
+  const std::optional<std::string> lane = options.lane.empty() ? std::nullopt : std::optional(options.lane);
+  const harness::FloatImage& image = checked.images.begin()->second;
+  const std::string compared_lane = lane ? *lane : std::string(harness::lane_name(checked.images.begin()->first));
+  auto old = goldens.find(result.scene, compared_lane);
+  if (!old) {
+    fmt::print(stderr, "xshade bless: {}\n", old.error().to_string());
+    return kBadInput;
+  }
+  if (*old) {
+    const harness::Comparison comparison = harness::compare_images(image, (*old)->image, checked.scene->compare);
+    fmt::print("against the golden it replaces ({}): {}\n", (*old)->path.string(),
+               harness::describe_metrics(comparison.metrics));
+    for (const harness::LayerResult& layer : comparison.layers)
+      fmt::print("  {}: {}: {}\n", layer.layer, harness::verdict_name(layer.verdict), layer.detail);
+  } else {
+    fmt::print("no golden yet for {}{}\n", result.scene, lane ? " on " + *lane : std::string());
+  }
+  auto blessed = goldens.bless(result.scene, lane, image, options.reason, who());
+  if (!blessed) {
+    fmt::print(stderr, "xshade bless: {}\n", blessed.error().to_string());
+    return kBadInput;
+  }
+  fmt::print("blessed {} ({}), reason: {}\n", blessed->path.string(), blessed->replaced ? "replaced" : "new",
+             options.reason);
+  return kPass;
+}
+
+}  // namespace xshade::cli

@@ -1,0 +1,104 @@
+// The verbs of the xshade command line, one file each.
+#pragma once
+
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "cli/folders.h"
+
+namespace xshade::cli {
+
+// The exit codes every verb shares (docs/cli.md).
+enum ExitCode : int {
+  kPass = 0,          // everything checked passed
+  kTestFailed = 1,    // a check failed: images differ, a lane disagrees
+  kBadInput = 2,      // bad usage, a bad shader or scene file
+  kBackendError = 3,  // a driver or lane could not run, or an internal error
+};
+
+struct LaneSelection {
+  std::vector<std::string> lanes;  // empty = every lane
+  bool validation = false;
+  std::string gl_platform = "auto";  // how the gl lane gets its context: auto, osmesa or egl
+};
+
+int run_info(const LaneSelection& selection);
+
+struct RunOptions {
+  LaneSelection selection;
+  std::vector<std::string> scenes;  // names in the scenes folder, or .toml paths; empty = all
+  FolderOptions folders;
+  std::filesystem::path report_dir = "report";
+  std::filesystem::path cache_dir;  // empty: $XSHADE_CACHE_DIR, else the user's cache folder
+  bool no_cache = false;
+  std::string shard;         // "i/N": every N-th scene from the i-th, in name order
+  std::string precision = "float";  // or "half": half emulation (gl and vk; goldens not compared)
+  bool plan_only = false;
+  bool pass_images = false;  // also write each pass's output (REPORT/SCENE/passes/PASS.LANE.exr)
+  std::string command_line;  // for the reports
+};
+int run_run(const RunOptions& options);
+
+struct BlessOptions {
+  std::string scene;
+  std::string lane;  // empty: the common golden, from lanes that agree
+  std::string reason;
+  FolderOptions folders;
+  std::filesystem::path cache_dir;
+  std::filesystem::path report_dir = "bless-report";  // where the rendered images go
+  std::string gl_platform = "auto";  // as LaneSelection::gl_platform
+};
+int run_bless(const BlessOptions& options);
+
+struct CompileOptions {
+  std::filesystem::path file;
+  std::vector<std::filesystem::path> include_dirs;
+  std::vector<std::string> defines;  // KEYWORD, or KEY=VALUE
+  std::string target = "vk";         // gl, vk, spirv, vk-hlsl
+  std::string precision = "float";  // or "half": half emulation (gl, vk, spirv)
+  bool reflect = false;
+  std::filesystem::path output;      // a path prefix; empty = standard output
+};
+int run_compile(const CompileOptions& options);
+
+struct EvalOptions {
+  std::filesystem::path file;
+  std::vector<std::filesystem::path> include_dirs;
+  std::vector<std::string> keywords;
+  std::string entry;  // the fragment function; empty = #pragma fragment
+  std::string size = "64x64";
+  std::string precision = "float";  // or "half": half emulation on the GLSL lanes
+  LaneSelection selection;  // "all" or a list
+  std::filesystem::path output_dir = ".";
+};
+int run_eval(const EvalOptions& options);
+
+struct StabilityOptions {
+  LaneSelection selection;
+  std::string precision = "all";     // float, half or all
+  std::vector<std::string> cases;    // ids; empty = every case
+  bool list = false;                 // print the cases and run nothing
+  std::filesystem::path markdown;    // write docs/stability.md's text here
+  std::filesystem::path shaders_dir = own_folders().shaders;
+  std::filesystem::path probes_dir = own_folders().probes;
+  std::filesystem::path scenes_dir = own_folders().scenes;
+  std::string command_line;
+};
+int run_stability(const StabilityOptions& options);
+
+struct AccuracyOptions {
+  LaneSelection selection;
+  std::vector<std::string> studies;  // ids; empty = every study (or the quick ones)
+  bool quick = false;                // one round, no reference check, the quick studies
+  uint32_t rounds = 5;
+  std::filesystem::path report_dir = "accuracy-report";
+  std::filesystem::path markdown;    // also write docs/accuracy.md's text here, charts beside it
+  std::filesystem::path scenes_dir = own_folders().scenes;
+  std::filesystem::path shaders_dir = own_folders().shaders;
+  std::string command_line;
+};
+int run_accuracy(const AccuracyOptions& options);
+
+}  // namespace xshade::cli

@@ -1,0 +1,110 @@
+#include "cli/folders.h"
+
+#include <algorithm>
+#include <cstdlib>
+#include <optional>
+#include <system_error>
+
+#include "harness/scene/project_file.h"
+#include "base/paths.h"
+
+namespace xshade::cli {
+
+namespace fs = std::filesystem;
+
+const OwnFolders& own_folders() {
+  static const OwnFolders folders = [] {
+    std::error_code error;
+    const fs::path binary = fs::read_symlink("/proc/self/exe", error);
+    if (!error) {
+      // XSHADE_DATA_FROM_BINARY is the install's share/xshade relative to its bin folder.
+      const fs::path data = (binary.parent_path() / XSHADE_DATA_FROM_BINARY).lexically_normal();
+      if (fs::is_directory(data / "shaders", error))
+        return OwnFolders{data / "shaders", data / "scenes", data / "golden", data / "probes", true};
+    }
+    const fs::path source = XSHADE_SOURCE_DIR;
+    return OwnFolders{source / "shaders", source / "scenes", source / "golden",
+                      source / "stability/probes", false};
+  }();
+  return folders;
+}
+
+Result<SceneFolders> resolve_folders(const FolderOptions& given, const fs::path& working_folder, bool need_golden) {
+  std::optional<harness::ProjectFile> project;
+  if (!given.no_project) {
+    std::optional<fs::path> file = given.project;
+    if (file->empty()) file = harness::find_project_file(working_folder);
+    if (file) {
+      auto loaded = harness::load_project_file(*file);
+      if (!loaded) return fail(loaded.error());
+      project = std::move(*loaded);
+    }
+  }
+  const OwnFolders& own = own_folders();
+  std::vector<fs::path> shaders = !given.shaders.empty() ? given.shaders
+                                  : project                ? project->shaders
+                                                           : std::vector<fs::path>{};
+  shaders.push_back(own.shaders);
+  SceneFolders folders{{}, {}, harness::ShaderSearchPath(std::move(shaders)), project ? project->path : fs::path(), false};
+
+  const bool own_scenes = given.scenes.empty() && !(project && project->scenes);
+  folders.scenes = !given.scenes.empty() ? given.scenes : own_scenes ? own.scenes : *project->scenes;
+
+  if (!given.golden.empty()) {
+    folders.golden = given.golden;
+  } else if (project && project->golden) {
+    folders.golden = *project->golden;
+  } else if (own_scenes) {
+    folders.golden = own.golden;
+    folders.own_golden = true;
+  } else if (need_golden) {
+    return fail("the scenes in " + folders.scenes.string() +
+                " are not xshade's own, so their goldens cannot be either: give --golden DIR" +
+                (project ? " or golden = \"...\" in " + project->path.string() : std::string()));
+  }
+  return folders;
+}
+
+Result<std::vector<fs::path>> scene_files(const std::vector<std::string>& scenes, const SceneFolders& folders) {
+  std::vector<fs::path> files;
+  if (scenes.empty()) {
+    std::error_code error;
+    for (fs::directory_iterator it(folders.scenes, error), end; !error && it != end; it.increment(error))
+      if (it->path().extension() == ".toml") files.push_back(it->path());
+    if (error) return fail("cannot read the scenes folder " + folders.scenes.string() + ": " + error.message());
+    std::sort(files.begin(), files.end());
+    if (files.empty()) return fail("no scenes (*.toml) in " + folders.scenes.string());
+    return files;
+  }
+  for (const std::string& scene : scenes) {
+    const fs::path as_given(scene);
+    if (as_given.extension() == ".toml") {
+      if (folders.own_golden && !path_is_inside(as_given, folders.scenes))
+        return fail("'" + scene + "' is not one of xshade's own scenes (" + folders.scenes.string() +
+                    "), so its golden cannot be xshade's either: give --golden DIR");
+      files.push_back(as_given);
+      continue;
+    }
+    if (scene.empty() || as_given.has_parent_path() || scene == "." || scene == "..")
+      return fail("'" + scene + "' is not a scene name: a name is a file name in " + folders.scenes.string() +
+                  " without .toml; give a path ending in .toml for a file elsewhere");
+    files.push_back(folders.scenes / (scene + ".toml"));
+  }
+  return files;
+}
+
+std::vector<fs::path> include_folders(const std::vector<fs::path>& given) {
+  std::vector<fs::path> folders = given;
+  folders.push_back(own_folders().shaders);
+  return folders;
+}
+
+fs::path shader_cache_dir(const fs::path& given) {
+  if (!given.empty()) return given;
+  if (const char* dir = std::getenv("XSHADE_CACHE_DIR"); dir && *dir) return dir;
+  if (const char* dir = std::getenv("XDG_CACHE_HOME"); dir && *dir) return fs::path(dir) / "xshade";
+  if (const char* home = std::getenv("HOME"); home && *home) return fs::path(home) / ".cache" / "xshade";
+  return fs::temp_directory_path() / "xshade-cache";
+}
+
+}  // namespace xshade::cli

@@ -1,0 +1,65 @@
+// Where the verbs find scenes, their goldens, shaders and the shader cache: the folders given on
+// the command line, else those of the project file (harness/project_file.h), else xshade's own.
+#pragma once
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "harness/render/shader_search_path.h"
+#include "base/result.h"
+
+namespace xshade::cli {
+
+// xshade's own data: its shader library, its fixed scenes and their goldens, the stability
+// suite's probe shaders. In <prefix>/share/xshade beside an installed binary, else (a build) in
+// the source tree the binary was built from.
+struct OwnFolders {
+  std::filesystem::path shaders;
+  std::filesystem::path scenes;
+  std::filesystem::path golden;
+  std::filesystem::path probes;
+  bool installed = false;
+};
+const OwnFolders& own_folders();
+
+// The folder options of `run` and `bless`; empty means not given.
+struct FolderOptions {
+  std::filesystem::path scenes;
+  std::filesystem::path golden;
+  std::vector<std::filesystem::path> shaders;  // searched in order, before xshade's library
+  std::filesystem::path project;  // the project file; empty: xshade.toml found from the working folder
+  bool no_project = false;        // use no project file
+};
+
+struct SceneFolders {
+  std::filesystem::path scenes;
+  std::filesystem::path golden;        // empty only when it was not needed and not given
+  harness::ShaderSearchPath shaders;   // the user's folders, then xshade's library
+  std::filesystem::path project_file;  // empty when none was used
+  bool own_golden = false;             // the goldens are xshade's own (so the scenes must be too)
+};
+
+// Resolves each folder: the command line's, else the project file's, else xshade's own; a
+// broken project file is an error. The goldens of a user's scenes must be the user's too: when
+// the scenes are not xshade's own and no golden folder is given, that is an error if
+// `need_golden` (blessing would otherwise write into xshade's own goldens), else `golden` stays
+// empty.
+Result<SceneFolders> resolve_folders(const FolderOptions& given, const std::filesystem::path& working_folder,
+                                     bool need_golden);
+
+// The scene files named: each a scene name in `folders.scenes` (a file name without .toml) or a
+// path to a .toml file; none means every scene in the folder, by name. A name that is not a plain
+// file name is an error (`../../etc/passwd` names no scene). A .toml path outside xshade's own
+// scenes cannot use xshade's own goldens.
+Result<std::vector<std::filesystem::path>> scene_files(const std::vector<std::string>& scenes,
+                                                       const SceneFolders& folders);
+
+// The include folders of a compile: those given, then xshade's shader library, so that a user's
+// shader can include "include/brdf.hlsl" wherever xshade is installed.
+std::vector<std::filesystem::path> include_folders(const std::vector<std::filesystem::path>& given);
+
+// `given`, else $XSHADE_CACHE_DIR, else $XDG_CACHE_HOME/xshade, else ~/.cache/xshade.
+std::filesystem::path shader_cache_dir(const std::filesystem::path& given);
+
+}  // namespace xshade::cli

@@ -1,0 +1,210 @@
+// xshade: compile shaders once, render them on every lane, and compare the images.
+#include <CLI/CLI.hpp>
+
+#include "cli/commands.h"
+
+namespace {
+
+void add_gl_platform_option(CLI::App& command, std::string& platform) {
+  command.add_option("--gl-platform", platform,
+                     "How the gl lane gets its OpenGL context: osmesa, egl (surfaceless; the only route on Mesa "
+                     "25.1 and later), or auto (OSMesa when its library opens, else EGL)")
+      ->check(CLI::IsMember({"auto", "osmesa", "egl"}))
+      ->capture_default_str();
+}
+
+void add_lane_options(CLI::App& command, xshade::cli::LaneSelection& selection) {
+  command.add_option("--lane", selection.lanes, "Only these lanes (gl, vk, vk-hlsl); default: all")
+      ->type_name("LANE");
+  command.add_flag("--vk-validation", selection.validation,
+                   "Enable the Vulkan validation layer (when installed); any message fails the run");
+  add_gl_platform_option(command, selection.gl_platform);
+}
+
+// The folders of run and bless (cli/folders.h).
+void add_folder_options(CLI::App& command, xshade::cli::FolderOptions& folders) {
+  command.add_option("--scenes", folders.scenes,
+                     "Folder of scene files (default: the project file's, else xshade's own fixed scenes)")
+      ->type_name("DIR");
+  command.add_option("--golden", folders.golden,
+                     "Folder of golden images and MANIFEST.toml (default: the project file's, else xshade's own "
+                     "goldens, which serve only xshade's own scenes)")
+      ->type_name("DIR");
+  command.add_option("--shaders", folders.shaders,
+                     "A folder of shaders (materials/, post/, include/), searched before xshade's shader library; "
+                     "repeat for more (default: the project file's)")
+      ->type_name("DIR");
+  command.add_option("--project", folders.project,
+                     "The project file (default: xshade.toml in the working folder or above it, up to the "
+                     "repository's root)")
+      ->type_name("FILE");
+  command.add_flag("--no-project", folders.no_project, "Read no project file");
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  using namespace xshade::cli;
+  CLI::App app{"xshade: author a shader once, render it on OpenGL and Vulkan, diff the images.\n"
+               "Exit codes: 0 pass, 1 a check failed, 2 bad input or usage, 3 backend or internal error.",
+               "xshade"};
+  app.require_subcommand(1);
+
+  LaneSelection info_selection;
+  CLI::App* info = app.add_subcommand("info", "Print each lane's driver (route, renderer, API, Mesa and LLVM versions) and the folders a run here "
+                   "would use (the project file's, xshade's own)");
+  add_lane_options(*info, info_selection);
+
+  RunOptions run_options;
+  CLI::App* run = app.add_subcommand(
+      "run", "Render scenes on each of their lanes, write PNG and EXR images, compare the lanes");
+  run->add_option("scene", run_options.scenes, "Scene names (in --scenes) or .toml files; default: every scene")
+      ->type_name("SCENE");
+  add_lane_options(*run, run_options.selection);
+  run->add_option("--report", run_options.report_dir, "Folder for images and the report")
+      ->type_name("DIR")
+      ->capture_default_str();
+  add_folder_options(*run, run_options.folders);
+  run->add_option("--cache", run_options.cache_dir,
+                  "Compiled-shader cache (default: $XSHADE_CACHE_DIR, else $XDG_CACHE_HOME/xshade or ~/.cache/xshade)")
+      ->type_name("DIR");
+  run->add_flag("--no-cache", run_options.no_cache, "Compile every shader, read and write no cache");
+  run->add_option("--precision", run_options.precision,
+                  "half: round every half/min16float/fixed result to fp16 on gl and vk (vk-hlsl is skipped); "
+                  "goldens are fp32 renders and are not compared")
+      ->check(CLI::IsMember({"float", "half"}))
+      ->capture_default_str();
+  run->add_option("--shard", run_options.shard, "Run every N-th scene from the i-th (name order), for CI matrices")
+      ->type_name("i/N");
+  run->add_flag("--pass-images", run_options.pass_images,
+                "Also write every pass's own output as REPORT/SCENE/passes/PASS.LANE.exr, to find where lanes part");
+  run->add_flag("--plan", run_options.plan_only,
+                "Print each scene's plan (variants to compile or found in the cache, passes, what is left out) "
+                "and render nothing");
+
+  BlessOptions bless_options;
+  CLI::App* bless = app.add_subcommand(
+      "bless", "Render a scene and accept it as its golden (the common one from lanes that agree, or one lane's)");
+  bless->add_option("scene", bless_options.scene, "Scene name (in --scenes) or .toml file")->required()->type_name("SCENE");
+  bless->add_option("--lane", bless_options.lane, "Bless this lane's own golden (needs a reason it differs)")
+      ->check(CLI::IsMember({"gl", "vk", "vk-hlsl"}))
+      ->type_name("LANE");
+  add_gl_platform_option(*bless, bless_options.gl_platform);
+  bless->add_option("--reason", bless_options.reason, "Why this image is right (recorded in golden/MANIFEST.toml)")
+      ->required()
+      ->type_name("TEXT");
+  add_folder_options(*bless, bless_options.folders);
+  bless->add_option("--cache", bless_options.cache_dir, "Compiled-shader cache (as for run)")->type_name("DIR");
+  bless->add_option("--report", bless_options.report_dir, "Folder for the rendered images")
+      ->type_name("DIR")
+      ->capture_default_str();
+
+  CompileOptions compile_options;
+  CLI::App* compile = app.add_subcommand("compile", "Compile one shader to GLSL (gl, vk), SPIR-V (spirv, vk-hlsl) or reflection");
+  compile->add_option("file", compile_options.file, "The hlsl_like source")->required()->type_name("FILE");
+  compile->add_option("-I", compile_options.include_dirs, "Search DIR for #include files")->type_name("DIR");
+  compile->add_option("-D", compile_options.defines, "Enable KEYWORD (a variant), or define KEY=VALUE")
+      ->type_name("KEYWORD");
+  compile->add_option("--target", compile_options.target, "gl, vk (GLSL text), spirv or vk-hlsl (SPIR-V)")
+      ->check(CLI::IsMember({"gl", "vk", "spirv", "vk-hlsl"}))
+      ->capture_default_str();
+  compile->add_option("--precision", compile_options.precision,
+                      "half: round every half/min16float/fixed result to fp16 (gl, vk, spirv; vk-hlsl cannot)")
+      ->check(CLI::IsMember({"float", "half"}))
+      ->capture_default_str();
+  compile->add_flag("--reflect", compile_options.reflect, "Print the reflection (JSON) instead of code");
+  compile->add_option("-o", compile_options.output,
+                      "Write OUT.vert.glsl / OUT.frag.glsl (or .spv, or OUT.json) instead of standard output")
+      ->type_name("OUT");
+
+  EvalOptions eval_options;
+  CLI::App* eval = app.add_subcommand(
+      "eval", "Run one fragment shader as a full-screen pass on each lane, write EXR images, compare the lanes");
+  eval->add_option("file", eval_options.file, "The hlsl_like source")->required()->type_name("FILE");
+  eval->add_option("--entry", eval_options.entry, "The fragment function (default: #pragma fragment)")
+      ->type_name("NAME");
+  eval->add_option("--size", eval_options.size, "Image size")->type_name("WxH")->capture_default_str();
+  eval->add_option("--precision", eval_options.precision,
+                   "half: round every half/min16float/fixed result to fp16 (gl and vk lanes; vk-hlsl cannot)")
+      ->check(CLI::IsMember({"float", "half"}))
+      ->capture_default_str();
+  add_gl_platform_option(*eval, eval_options.selection.gl_platform);
+  eval->add_option("--lane", eval_options.selection.lanes, "gl, vk, vk-hlsl or all (default: all)")
+      ->type_name("LANE");
+  eval->add_option("-I", eval_options.include_dirs, "Search DIR for #include files")->type_name("DIR");
+  eval->add_option("-D", eval_options.keywords, "Enable KEYWORD")->type_name("KEYWORD");
+  eval->add_option("-o", eval_options.output_dir, "Folder for the EXR images")->type_name("DIR")->capture_default_str();
+
+  StabilityOptions stability_options;
+  CLI::App* stability = app.add_subcommand(
+      "stability", "Run the library's shader code on the hard numeric cases of SHADERS.md section 5 and check each "
+                   "case's property on every lane, in fp32 and in fp16 emulation");
+  stability->add_option("case", stability_options.cases, "Case ids (see --list); default: every case")->type_name("CASE");
+  add_lane_options(*stability, stability_options.selection);
+  stability->add_option("--precision", stability_options.precision,
+                        "float, half (fp16 emulation on gl and vk; vk-hlsl cannot) or all")
+      ->check(CLI::IsMember({"float", "half", "all"}))
+      ->capture_default_str();
+  stability->add_flag("--list", stability_options.list, "Print the cases with their forms and run nothing");
+  stability->add_option("--markdown", stability_options.markdown,
+                        "Write the results as Markdown (docs/stability.md is this output)")
+      ->type_name("FILE");
+  stability->add_option("--shaders", stability_options.shaders_dir, "The shader library (default: xshade's own)")
+      ->type_name("DIR");
+  stability->add_option("--probes", stability_options.probes_dir, "The suite's probe shaders (default: xshade's own)")
+      ->type_name("DIR");
+  stability->add_option("--scenes", stability_options.scenes_dir,
+                        "Folder of the scenes the suite renders (default: xshade's own fixed scenes)")
+      ->type_name("DIR");
+
+  AccuracyOptions accuracy_options;
+  CLI::App* accuracy = app.add_subcommand(
+      "accuracy", "For each accuracy knob (DoF kernel, BRDF forms, precision, supersampling), render its scene in every "
+                  "configuration on each lane and measure error against a reference and time; tables and Pareto charts");
+  accuracy->add_option("study", accuracy_options.studies, "Study ids (dof_kernel, brdf_forms, precision, supersampling); "
+                                                          "default: all")
+      ->type_name("STUDY");
+  add_lane_options(*accuracy, accuracy_options.selection);
+  accuracy->add_flag("--quick", accuracy_options.quick,
+                     "One round of timing, no reference check, and only the quick studies");
+  accuracy->add_option("--rounds", accuracy_options.rounds,
+                       "Rounds of timing: the configurations take turns, each turn 1 warm-up frame and 3 timed frames")
+      ->check(CLI::Range(1, 100))
+      ->capture_default_str();
+  accuracy->add_option("--report", accuracy_options.report_dir, "Folder for index.html, accuracy.csv and charts/")
+      ->type_name("DIR")
+      ->capture_default_str();
+  accuracy->add_option("--markdown", accuracy_options.markdown,
+                       "Also write the tables as Markdown, with the charts in a folder beside it named after it "
+                       "(docs/accuracy.md is this output)")
+      ->type_name("FILE");
+  accuracy->add_option("--scenes", accuracy_options.scenes_dir,
+                       "Folder of the studies' scenes (default: xshade's own fixed scenes)")
+      ->type_name("DIR");
+  accuracy->add_option("--shaders", accuracy_options.shaders_dir, "The shader library (default: xshade's own)")
+      ->type_name("DIR");
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& error) {
+    const int code = app.exit(error);
+    return code == 0 ? kPass : kBadInput;
+  }
+  if (*info) return run_info(info_selection);
+  if (*run) {
+    for (int i = 0; i < argc; ++i) run_options.command_line += (i ? " " : "") + std::string(argv[i]);
+    return run_run(run_options);
+  }
+  if (*bless) return run_bless(bless_options);
+  if (*compile) return run_compile(compile_options);
+  if (*eval) return run_eval(eval_options);
+  if (*accuracy) {
+    for (int i = 0; i < argc; ++i) accuracy_options.command_line += (i ? " " : "") + std::string(argv[i]);
+    return run_accuracy(accuracy_options);
+  }
+  if (*stability) {
+    for (int i = 0; i < argc; ++i) stability_options.command_line += (i ? " " : "") + std::string(argv[i]);
+    return run_stability(stability_options);
+  }
+  return kBadInput;
+}

@@ -1,0 +1,117 @@
+// xshade run: check each scene on each of its lanes (against its golden, against the other
+// lanes, against itself rendered twice), write the images and the reports, and exit with the
+// worst verdict.
+#include <fmt/core.h>
+
+#include <chrono>
+#include <cstdlib>
+#include <ctime>
+#include <system_error>
+
+#include "cli/commands.h"
+#include "cli/lane_selection.h"
+#include "harness/report/report.h"
+#include "harness/gate/scene_check.h"
+
+namespace xshade::cli {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string utc_now() {
+  const std::time_t now = std::time(nullptr);
+  char text[32];
+  std::strftime(text, sizeof text, "%Y-%m-%dT%H:%M:%SZ", std::gmtime(&now));
+  return text;
+}
+
+// "i/N" with 1 <= i <= N.
+Result<std::pair<size_t, size_t>> parse_shard(const std::string& shard) {
+  size_t index = 0, count = 0;
+  char slash = 0;
+  int consumed = 0;
+  if (std::sscanf(shard.c_str(), "%zu%c%zu%n", &index, &slash, &count, &consumed) != 3 || slash != '/' ||
+      size_t(consumed) != shard.size() || count == 0 || index == 0 || index > count)
+    return fail("--shard takes i/N with 1 <= i <= N, not '" + shard + "'");
+  return std::pair{index, count};
+}
+
+}  // namespace
+
+int run_run(const RunOptions& options) {
+  const auto start = std::chrono::steady_clock::now();
+  auto lanes = resolve_lanes(options.selection);
+  if (!lanes) {
+    fmt::print(stderr, "xshade run: {}\n", lanes.error().to_string());
+    return kBadInput;
+  }
+  auto folders = resolve_folders(options.folders, fs::current_path(), !options.plan_only);
+  if (!folders) {
+    fmt::print(stderr, "xshade run: {}\n", folders.error().to_string());
+    return kBadInput;
+  }
+  auto files = scene_files(options.scenes, *folders);
+  if (!files) {
+    fmt::print(stderr, "xshade run: {}\n", files.error().to_string());
+    return kBadInput;
+  }
+  if (!options.shard.empty()) {
+    auto shard = parse_shard(options.shard);
+    if (!shard) {
+      fmt::print(stderr, "xshade run: {}\n", shard.error().to_string());
+      return kBadInput;
+    }
+    // Every N-th scene in name order: a scene always lands in the same shard.
+    std::vector<fs::path> mine;
+    for (size_t i = 0; i < files->size(); ++i)
+      if (i % shard->second == shard->first - 1) mine.push_back((*files)[i]);
+    *files = std::move(mine);
+  }
+
+  std::optional<harness::ShaderCache> cache;
+  if (!options.no_cache) cache.emplace(shader_cache_dir(options.cache_dir), harness::compiler_identity());
+  harness::VariantCompiler compiler(folders->shaders, cache ? &*cache : nullptr);
+  const harness::GoldenStore goldens(folders->golden);
+
+  harness::RunResults results;
+  results.started = utc_now();
+  results.command = options.command_line;
+  size_t done = 0;
+  harness::SceneChecker checker(
+      compiler,
+      {options.report_dir, &goldens, backend_options(options.selection), options.pass_images,
+       options.plan_only, options.precision == "half"},
+      [&](const std::string& line) {
+        fmt::print("[{}/{}] {}\n", done + 1, files->size(), line);
+        std::fflush(stdout);
+      });
+  for (; done < files->size(); ++done) {
+    harness::CheckedScene checked = checker.check((*files)[done], *lanes);
+    if (options.plan_only) {
+      if (checked.result.message.empty()) fmt::print("{}", checked.result.plan);
+    }
+    if (!checked.result.message.empty())
+      fmt::print(stderr, "xshade run: {}: {}\n", checked.result.scene, checked.result.message);
+    results.scenes.push_back(std::move(checked.result));
+  }
+  results.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+
+  harness::Verdict verdict = harness::Verdict::Pass;
+  for (const harness::SceneResult& scene : results.scenes) verdict = harness::worst(verdict, scene.verdict);
+  if (options.plan_only) return harness::exit_code(verdict);
+
+  if (auto written = harness::write_reports(results, options.report_dir); !written) {
+    fmt::print(stderr, "xshade run: {}\n", written.error().to_string());
+    verdict = harness::worst(verdict, harness::Verdict::Crash);
+  }
+  size_t passed = 0;
+  for (const harness::SceneResult& scene : results.scenes) passed += scene.verdict == harness::Verdict::Pass;
+  fmt::print("{} of {} scenes passed in {:.1f} s; shaders: {} compiled, {} from the cache{}\n", passed,
+             results.scenes.size(), results.seconds, compiler.compiled(), compiler.cached(),
+             cache ? " (" + cache->directory().string() + ")" : std::string(" (cache off)"));
+  if (compiler.cache_write_error()) fmt::print("warning: {}\n", compiler.cache_write_error()->to_string());
+  fmt::print("report: {}\n", (options.report_dir / "index.html").string());
+  return harness::exit_code(verdict);
+}
+
+}  // namespace xshade::cli

@@ -1,0 +1,164 @@
+#include "harness/gate/golden_manifest.h"
+
+#include <algorithm>
+#include <fstream>
+#include <sstream>
+#include <tuple>
+
+#include <fmt/format.h>
+#include <toml++/toml.h>
+
+#include "harness/render/lanes.h"
+
+namespace xshade::harness {
+namespace {
+
+constexpr std::string_view kHeader =
+    R"(# Why each golden image is what it is. Written by `xshade bless`; edit a reason by hand if you
+# must, but never add an image without blessing it.
+#
+# golden/<scene>.png serves every lane; golden/<lane>/<scene>.png exists only where that lane
+# legitimately differs, and is not trusted without an entry here. One [[golden]] entry per image:
+#   scene       the scene's name (its file name without .toml)
+#   lane        "gl", "vk" or "vk-hlsl" for a lane's own image; absent for the common image
+#   reason      why the image was blessed: what changed, or why the lane differs
+#   blessed_by  who blessed it
+#   date        when, UTC, ISO 8601
+#   hash        XXH3-128 of the PNG file
+# Entries are sorted by scene, then lane.
+)";
+
+bool scene_then_lane(const GoldenEntry& a, const GoldenEntry& b) {
+  return std::tie(a.scene, a.lane) < std::tie(b.scene, b.lane);
+}
+
+// A TOML basic string: quotes, backslashes and control characters escaped, UTF-8 kept as is.
+std::string toml_string(std::string_view text) {
+  std::string out = "\"";
+  for (char c : text) {
+    switch (c) {
+      case '"': out += "\\\""; break;
+      case '\\': out += "\\\\"; break;
+      case '\n': out += "\\n"; break;
+      case '\t': out += "\\t"; break;
+      case '\r': out += "\\r"; break;
+      default:
+        if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f)
+          out += fmt::format("\\u{:04X}", static_cast<unsigned char>(c));
+        else
+          out += c;
+    }
+  }
+  return out + '"';
+}
+
+SourceLocation where(const std::string& file, const toml::source_region& region) {
+  return {file, static_cast<uint32_t>(region.begin.line), static_cast<uint32_t>(region.begin.column)};
+}
+
+Result<GoldenEntry> read_entry(const toml::table& table, const std::string& file) {
+  GoldenEntry entry;
+  entry.where = where(file, table.source());
+  for (const auto& [key, node] : table) {
+    const std::string name(key.str());
+    std::string* field = name == "scene"        ? &entry.scene
+                         : name == "lane"       ? &entry.lane
+                         : name == "reason"     ? &entry.reason
+                         : name == "blessed_by" ? &entry.blessed_by
+                         : name == "date"       ? &entry.date
+                         : name == "hash"       ? &entry.hash
+                                                : nullptr;
+    if (!field)
+      return fail(fmt::format("unknown key '{}' in a [[golden]] entry (known: scene, lane, reason, blessed_by, "
+                              "date, hash)",
+                              name),
+                  where(file, node.source()));
+    const auto* text = node.as_string();
+    if (!text) return fail(fmt::format("'{}' must be a string", name), where(file, node.source()));
+    *field = text->get();
+  }
+  if (entry.scene.empty()) return fail("a [[golden]] entry needs a scene", entry.where);
+  if (!entry.lane.empty() && !parse_lane(entry.lane))
+    return fail(fmt::format("unknown lane '{}' (lanes: gl, vk, vk-hlsl)", entry.lane),
+                where(file, table.get("lane")->source()));
+  if (entry.reason.find_first_not_of(" \t\r\n") == std::string::npos)
+    return fail(fmt::format("the golden of {} has no reason", entry.lane.empty() ? entry.scene
+                                                                                 : entry.lane + "/" + entry.scene),
+                entry.where);
+  return entry;
+}
+
+}  // namespace
+
+const GoldenEntry* GoldenManifest::find(const std::string& scene, const std::string& lane) const {
+  for (const GoldenEntry& entry : entries)
+    if (entry.scene == scene && entry.lane == lane) return &entry;
+  return nullptr;
+}
+
+void GoldenManifest::record(GoldenEntry entry) {
+  auto position = std::lower_bound(entries.begin(), entries.end(), entry, scene_then_lane);
+  if (position != entries.end() && position->scene == entry.scene && position->lane == entry.lane)
+    *position = std::move(entry);
+  else
+    entries.insert(position, std::move(entry));
+}
+
+Result<GoldenManifest> parse_golden_manifest(std::string_view text, const std::string& file_name) {
+  // Debian's toml++ is a shared library built with exceptions; the one it throws stops here.
+  toml::table root;
+  try {
+    root = toml::parse(text, std::string_view(file_name));
+  } catch (const toml::parse_error& error) {
+    return fail(fmt::format("syntax error: {}", error.description()), where(file_name, error.source()));
+  }
+
+  GoldenManifest manifest;
+  for (const auto& [key, node] : root) {
+    if (key.str() != "golden")
+      return fail(fmt::format("unknown key '{}' (the manifest holds only [[golden]] entries)", key.str()),
+                  where(file_name, node.source()));
+    const toml::array* array = node.as_array();
+    if (!array || !array->is_array_of_tables())
+      return fail("'golden' must be an array of tables: [[golden]]", where(file_name, node.source()));
+    for (const toml::node& element : *array) {
+      Result<GoldenEntry> entry = read_entry(*element.as_table(), file_name);
+      if (!entry) return fail(entry.error());
+      if (const GoldenEntry* earlier = manifest.find(entry->scene, entry->lane))
+        return fail(fmt::format("a second entry for the golden of {} (the first is at {})",
+                                entry->lane.empty() ? entry->scene : entry->lane + "/" + entry->scene,
+                                earlier->where.to_string()),
+                    entry->where);
+      manifest.record(std::move(*entry));
+    }
+  }
+  return manifest;
+}
+
+Result<GoldenManifest> read_golden_manifest(const std::filesystem::path& path) {
+  std::error_code error;
+  if (!std::filesystem::exists(path, error)) return GoldenManifest{};
+  std::ifstream file(path, std::ios::binary);
+  if (!file) return fail("cannot read the golden manifest " + path.string());
+  std::stringstream text;
+  text << file.rdbuf();
+  return parse_golden_manifest(text.str(), path.string());
+}
+
+std::string format_golden_manifest(const GoldenManifest& manifest) {
+  std::string text(kHeader);
+  std::vector<GoldenEntry> entries = manifest.entries;
+  std::stable_sort(entries.begin(), entries.end(), scene_then_lane);
+  for (const GoldenEntry& entry : entries) {
+    text += "\n[[golden]]\n";
+    text += "scene = " + toml_string(entry.scene) + "\n";
+    if (!entry.lane.empty()) text += "lane = " + toml_string(entry.lane) + "\n";
+    text += "reason = " + toml_string(entry.reason) + "\n";
+    text += "blessed_by = " + toml_string(entry.blessed_by) + "\n";
+    text += "date = " + toml_string(entry.date) + "\n";
+    if (!entry.hash.empty()) text += "hash = " + toml_string(entry.hash) + "\n";
+  }
+  return text;
+}
+
+}  // namespace xshade::harness

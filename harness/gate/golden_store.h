@@ -1,0 +1,65 @@
+// The folder of golden images a scene's renders are compared against, and its manifest.
+//
+// `<scene>.png` serves every lane; `<lane>/<scene>.png` exists only where a lane legitimately
+// differs, and MANIFEST.toml says why. Lookup falls back from the lane's own image to the common
+// one. Only bless() writes here: a golden is evidence, so blessing demands a reason, records who
+// and when, and writes every file through a temporary in the same folder renamed into place, so
+// an interrupted bless never leaves a torn image or manifest.
+#pragma once
+
+#include <filesystem>
+#include <optional>
+#include <string>
+
+#include "harness/image/image.h"
+#include "base/result.h"
+
+namespace xshade::harness {
+
+struct GoldenImage {
+  std::filesystem::path path;
+  FloatImage image;
+  bool lane_specific = false;
+  std::string reason;  // from the manifest; empty for a common image the manifest does not list
+};
+
+struct BlessOutcome {
+  std::filesystem::path path;  // the image written
+  bool replaced = false;  // an image was already at `path`
+  // The image that was replaced, for the caller to report how much the golden moved; nullopt
+  // when there was none or it could not be read (blessing is how a damaged golden is repaired).
+  std::optional<FloatImage> previous;
+};
+
+class GoldenStore {
+ public:
+  explicit GoldenStore(std::filesystem::path folder);
+
+  // The golden `lane` is compared against: its own image when the manifest explains one, else
+  // the common image; nullopt when neither exists. Errors: a lane image the manifest does not
+  // list (an unexplained lane golden is not trusted), a manifest entry without its file, an
+  // unreadable image or manifest.
+  Result<std::optional<GoldenImage>> find(const std::string& scene, const std::string& lane) const;
+
+  // Writes `image` as the golden of `scene` (for every lane when `lane` is nullopt) and records
+  // the reason, `who`, the UTC date and the file's hash in the manifest, replacing any earlier
+  // entry for the same image. Refuses a blank reason without touching the folder.
+  Result<BlessOutcome> bless(const std::string& scene, const std::optional<std::string>& lane,
+                             const FloatImage& image, const std::string& reason, const std::string& who) const;
+
+  // The command that creates the golden, e.g. `xshade bless material_grid --lane vk --reason "..."`.
+  static std::string bless_command(const std::string& scene, const std::optional<std::string>& lane);
+
+  // The failure to report when find() returns nullopt: where it looked and how to create one.
+  std::string missing_message(const std::string& scene, const std::string& lane) const;
+
+  const std::filesystem::path& folder() const { return folder_; }
+  std::filesystem::path manifest_path() const { return folder_ / "MANIFEST.toml"; }
+
+ private:
+  std::filesystem::path image_path(const std::string& scene, const std::optional<std::string>& lane) const;
+
+  std::filesystem::path folder_;
+};
+
+}  // namespace xshade::harness

@@ -1,0 +1,291 @@
+#include "harness/gate/golden_store.h"
+
+#include <filesystem>
+#include <fstream>
+#include <set>
+#include <sstream>
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include "harness/gate/golden_manifest.h"
+#include "harness/image/image_io.h"
+
+namespace xshade::harness {
+namespace {
+
+namespace fs = std::filesystem;
+using ::testing::HasSubstr;
+using ::testing::MatchesRegex;
+using ::testing::StartsWith;
+
+// A 3x2 image of one colour whose channels are exact 8-bit sRGB codes, so that it survives the
+// PNG round trip bit for bit.
+FloatImage solid(uint8_t red, uint8_t green, uint8_t blue) {
+  FloatImage image(3, 2);
+  for (uint32_t y = 0; y < image.height; ++y)
+    for (uint32_t x = 0; x < image.width; ++x)
+      image.set(x, y, {srgb8_to_linear(red), srgb8_to_linear(green), srgb8_to_linear(blue), 1.0f});
+  return image;
+}
+
+// A fresh golden folder per test.
+class GoldenStoreTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    folder_ = fs::temp_directory_path() /
+              ("xshade_golden_test_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
+    fs::remove_all(folder_);
+    fs::create_directories(folder_);
+  }
+  void TearDown() override { fs::remove_all(folder_); }
+
+  void write(const std::string& name, const std::string& text) const {
+    fs::create_directories((folder_ / name).parent_path());
+    std::ofstream(folder_ / name, std::ios::binary) << text;
+  }
+  std::string read(const std::string& name) const {
+    std::ifstream file(folder_ / name, std::ios::binary);
+    std::stringstream text;
+    text << file.rdbuf();
+    return text.str();
+  }
+  // Every file under the folder with its contents: what "unchanged" means.
+  std::set<std::pair<std::string, std::string>> snapshot() const {
+    std::set<std::pair<std::string, std::string>> files;
+    for (const auto& item : fs::recursive_directory_iterator(folder_))
+      if (item.is_regular_file()) {
+        const std::string name = fs::relative(item.path(), folder_).string();
+        files.emplace(name, read(name));
+      }
+    return files;
+  }
+  GoldenManifest manifest() const {
+    auto manifest = read_golden_manifest(folder_ / "MANIFEST.toml");
+    EXPECT_TRUE(manifest) << manifest.error().to_string();
+    return manifest ? *manifest : GoldenManifest{};
+  }
+  void bless(const std::string& scene, std::optional<std::string> lane, const FloatImage& image,
+             const std::string& reason) const {
+    auto blessed = GoldenStore(folder_).bless(scene, lane, image, reason, "ada");
+    ASSERT_TRUE(blessed) << blessed.error().to_string();
+  }
+
+  fs::path folder_;
+};
+
+TEST_F(GoldenStoreTest, AMissingGoldenIsNoneAndTheMessageNamesTheCommandThatCreatesIt) {
+  GoldenStore store(folder_);
+  auto found = store.find("material_grid", "vk");
+  ASSERT_TRUE(found) << found.error().to_string();
+  EXPECT_FALSE(found->has_value());
+  EXPECT_EQ(store.missing_message("material_grid", "vk"),
+            "no golden image for material_grid on vk (looked for " + (folder_ / "vk" / "material_grid.png").string() +
+                " and " + (folder_ / "material_grid.png").string() +
+                "); create it with xshade bless material_grid --reason \"...\"");
+  EXPECT_EQ(GoldenStore::bless_command("material_grid", std::nullopt), "xshade bless material_grid --reason \"...\"");
+  EXPECT_EQ(GoldenStore::bless_command("material_grid", "vk-hlsl"),
+            "xshade bless material_grid --lane vk-hlsl --reason \"...\"");
+}
+
+TEST_F(GoldenStoreTest, ACommonGoldenServesEveryLane) {
+  const FloatImage grey = solid(128, 128, 128);
+  auto blessed = GoldenStore(folder_).bless("material_grid", std::nullopt, grey, "first render", "ada");
+  ASSERT_TRUE(blessed) << blessed.error().to_string();
+  EXPECT_EQ(blessed->path, folder_ / "material_grid.png");
+  EXPECT_FALSE(blessed->replaced);
+  EXPECT_FALSE(blessed->previous);
+
+  for (const std::string lane : {"gl", "vk", "vk-hlsl"}) {
+    auto found = GoldenStore(folder_).find("material_grid", lane);
+    ASSERT_TRUE(found) << found.error().to_string();
+    ASSERT_TRUE(found->has_value()) << lane;
+    EXPECT_EQ((*found)->path, folder_ / "material_grid.png");
+    EXPECT_FALSE((*found)->lane_specific);
+    EXPECT_EQ((*found)->reason, "first render");
+    EXPECT_TRUE(bitwise_equal((*found)->image, grey));
+  }
+
+  const GoldenManifest recorded = manifest();
+  ASSERT_EQ(recorded.entries.size(), 1u);
+  const GoldenEntry& entry = recorded.entries[0];
+  EXPECT_EQ(entry.scene, "material_grid");
+  EXPECT_EQ(entry.lane, "");
+  EXPECT_EQ(entry.reason, "first render");
+  EXPECT_EQ(entry.blessed_by, "ada");
+  EXPECT_THAT(entry.date, MatchesRegex("[0-9]{4}-[0-9]{2}-[0-9]{2}T[0-9]{2}:[0-9]{2}:[0-9]{2}Z"));
+  EXPECT_THAT(entry.hash, MatchesRegex("[0-9a-f]{32}"));
+}
+
+TEST_F(GoldenStoreTest, ALaneGoldenServesItsLaneAndTheOthersKeepTheCommonOne) {
+  const FloatImage grey = solid(128, 128, 128);
+  const FloatImage darker = solid(120, 128, 128);
+  bless("dof_off", std::nullopt, grey, "first render");
+  bless("dof_off", "vk-hlsl", darker, "glslang's HLSL front end rounds the CoC differently");
+
+  auto own = GoldenStore(folder_).find("dof_off", "vk-hlsl");
+  ASSERT_TRUE(own) << own.error().to_string();
+  ASSERT_TRUE(own->has_value());
+  EXPECT_EQ((*own)->path, folder_ / "vk-hlsl" / "dof_off.png");
+  EXPECT_TRUE((*own)->lane_specific);
+  EXPECT_EQ((*own)->reason, "glslang's HLSL front end rounds the CoC differently");
+  EXPECT_TRUE(bitwise_equal((*own)->image, darker));
+
+  for (const std::string lane : {"gl", "vk"}) {
+    auto common = GoldenStore(folder_).find("dof_off", lane);
+    ASSERT_TRUE(common) << common.error().to_string();
+    ASSERT_TRUE(common->has_value());
+    EXPECT_EQ((*common)->path, folder_ / "dof_off.png");
+    EXPECT_FALSE((*common)->lane_specific);
+    EXPECT_TRUE(bitwise_equal((*common)->image, grey));
+  }
+}
+
+TEST_F(GoldenStoreTest, ALaneGoldenWithoutAManifestEntryIsNotTrusted) {
+  bless("dof_off", std::nullopt, solid(128, 128, 128), "first render");
+  fs::create_directories(folder_ / "vk");
+  ASSERT_TRUE(write_png(solid(1, 2, 3), folder_ / "vk" / "dof_off.png"));
+
+  auto found = GoldenStore(folder_).find("dof_off", "vk");
+  ASSERT_FALSE(found);
+  EXPECT_EQ(found.error().to_string(),
+            (folder_ / "vk" / "dof_off.png").string() + " has no entry in " + (folder_ / "MANIFEST.toml").string() +
+                ": a lane's own golden must say why the lane differs; bless it with xshade bless dof_off --lane vk "
+                "--reason \"...\" or remove it");
+  // The other lanes do not look at vk's folder.
+  auto gl = GoldenStore(folder_).find("dof_off", "gl");
+  ASSERT_TRUE(gl) << gl.error().to_string();
+  EXPECT_TRUE(gl->has_value());
+}
+
+TEST_F(GoldenStoreTest, AManifestEntryWhoseImageIsMissingIsAnError) {
+  bless("dof_off", "gl", solid(128, 128, 128), "llvmpipe filters the far plane in linear space");
+  fs::remove(folder_ / "gl" / "dof_off.png");
+
+  auto found = GoldenStore(folder_).find("dof_off", "gl");
+  ASSERT_FALSE(found);
+  // The header comment is 12 lines and a blank one; the entry starts on line 14.
+  EXPECT_EQ(found.error().to_string(), (folder_ / "MANIFEST.toml").string() +
+                                           ":14:1: the manifest records the golden gl/dof_off, but " +
+                                           (folder_ / "gl" / "dof_off.png").string() + " does not exist");
+}
+
+TEST_F(GoldenStoreTest, ABlankReasonIsRefusedAndNothingIsWritten) {
+  bless("material_grid", std::nullopt, solid(128, 128, 128), "first render");
+  const auto before = snapshot();
+
+  for (const std::string reason : {"", "  \t\n"}) {
+    for (const std::optional<std::string>& lane : {std::optional<std::string>(), std::optional<std::string>("vk")}) {
+      auto blessed = GoldenStore(folder_).bless("material_grid", lane, solid(9, 9, 9), reason, "ada");
+      ASSERT_FALSE(blessed);
+      EXPECT_EQ(blessed.error().to_string(), "a golden is evidence: say why with --reason");
+      EXPECT_EQ(snapshot(), before);
+    }
+  }
+  auto nameless = GoldenStore(folder_).bless("material_grid", std::nullopt, solid(9, 9, 9), "why", " ");
+  ASSERT_FALSE(nameless);
+  EXPECT_EQ(nameless.error().to_string(), "a golden records who blessed it: the name is empty");
+  EXPECT_EQ(snapshot(), before);
+}
+
+TEST_F(GoldenStoreTest, BlessingReplacesAnOldGoldenAndLeavesNoTemporaryFiles) {
+  const FloatImage old_image = solid(128, 128, 128);
+  const FloatImage new_image = solid(200, 10, 30);
+  bless("material_grid", std::nullopt, old_image, "first render");
+  bless("material_grid", "vk", old_image, "lavapipe's derivatives differ at triangle edges");
+
+  for (const std::optional<std::string>& lane : {std::optional<std::string>(), std::optional<std::string>("vk")}) {
+    auto blessed = GoldenStore(folder_).bless("material_grid", lane, new_image, "brighter light", "grace");
+    ASSERT_TRUE(blessed) << blessed.error().to_string();
+    EXPECT_TRUE(blessed->replaced);
+    ASSERT_TRUE(blessed->previous);
+    EXPECT_TRUE(bitwise_equal(*blessed->previous, old_image));
+    auto reread = read_image(blessed->path);
+    ASSERT_TRUE(reread) << reread.error().to_string();
+    EXPECT_TRUE(bitwise_equal(*reread, new_image));
+  }
+
+  for (const auto& [name, contents] : snapshot()) EXPECT_THAT(name, ::testing::Not(HasSubstr(".tmp"))) << name;
+  EXPECT_EQ(snapshot().size(), 3u);  // MANIFEST.toml, material_grid.png, vk/material_grid.png
+}
+
+TEST_F(GoldenStoreTest, BlessingAgainReplacesTheManifestEntry) {
+  bless("material_grid", std::nullopt, solid(128, 128, 128), "first render");
+  bless("material_grid", "vk", solid(128, 128, 128), "lavapipe rounds differently");
+  bless("material_grid", std::nullopt, solid(130, 128, 128), "warmer light");
+  bless("material_grid", "vk", solid(130, 128, 128), "lavapipe still rounds differently");
+
+  const GoldenManifest recorded = manifest();
+  ASSERT_EQ(recorded.entries.size(), 2u);
+  EXPECT_EQ(recorded.entries[0].lane, "");
+  EXPECT_EQ(recorded.entries[0].reason, "warmer light");
+  EXPECT_EQ(recorded.entries[1].lane, "vk");
+  EXPECT_EQ(recorded.entries[1].reason, "lavapipe still rounds differently");
+  const std::string text = read("MANIFEST.toml");
+  size_t entries = 0;
+  for (size_t at = text.find("\n[[golden]]\n"); at != std::string::npos; at = text.find("\n[[golden]]\n", at + 1))
+    ++entries;
+  EXPECT_EQ(entries, 2u);
+}
+
+TEST_F(GoldenStoreTest, TheManifestIsSortedBySceneThenLane) {
+  bless("toon", std::nullopt, solid(1, 1, 1), "a");
+  bless("dof_off", "vk", solid(1, 1, 1), "b");
+  bless("dof_off", "gl", solid(1, 1, 1), "c");
+  bless("dof_off", std::nullopt, solid(1, 1, 1), "d");
+
+  std::vector<std::string> order;
+  for (const GoldenEntry& entry : manifest().entries) order.push_back(entry.scene + "/" + entry.lane);
+  EXPECT_EQ(order, (std::vector<std::string>{"dof_off/", "dof_off/gl", "dof_off/vk", "toon/"}));
+}
+
+TEST_F(GoldenStoreTest, ACorruptImageIsAnErrorNamingTheFile) {
+  write("material_grid.png", "\x89PNG\r\n\x1a\n this is not the rest of a PNG");
+  auto found = GoldenStore(folder_).find("material_grid", "gl");
+  ASSERT_FALSE(found);
+  EXPECT_THAT(found.error().to_string(), StartsWith("cannot read image " + (folder_ / "material_grid.png").string()));
+}
+
+TEST_F(GoldenStoreTest, AGoldenChangedWithoutBlessingIsAnError) {
+  bless("material_grid", std::nullopt, solid(128, 128, 128), "first render");
+  const std::string date = manifest().entries.at(0).date;
+  ASSERT_TRUE(write_png(solid(129, 128, 128), folder_ / "material_grid.png"));
+
+  auto found = GoldenStore(folder_).find("material_grid", "gl");
+  ASSERT_FALSE(found);
+  EXPECT_EQ(found.error().to_string(), (folder_ / "MANIFEST.toml").string() + ":14:1: " +
+                                           (folder_ / "material_grid.png").string() + " is not the image blessed on " +
+                                           date + " (its hash differs from the manifest's): only `xshade bless` may "
+                                                  "change a golden");
+}
+
+TEST_F(GoldenStoreTest, AMalformedManifestIsAnErrorWithItsLineAndColumnAndIsNotOverwritten) {
+  write("MANIFEST.toml", "# goldens\n[[golden]]\nscene = \"material_grid\"\nreason = why\n");
+  const auto before = snapshot();
+
+  auto found = GoldenStore(folder_).find("material_grid", "gl");
+  ASSERT_FALSE(found);
+  EXPECT_THAT(found.error().to_string(), StartsWith((folder_ / "MANIFEST.toml").string() + ":4:10: syntax error: "));
+
+  auto blessed = GoldenStore(folder_).bless("material_grid", std::nullopt, solid(1, 1, 1), "why", "ada");
+  ASSERT_FALSE(blessed);
+  EXPECT_THAT(blessed.error().to_string(), StartsWith((folder_ / "MANIFEST.toml").string() + ":4:10: syntax error: "));
+  EXPECT_EQ(snapshot(), before);
+}
+
+TEST_F(GoldenStoreTest, NamesThatAreNotScenesOrLanesAreRefused) {
+  GoldenStore store(folder_);
+  auto outside = store.bless("../escape", std::nullopt, solid(1, 1, 1), "why", "ada");
+  ASSERT_FALSE(outside);
+  EXPECT_EQ(outside.error().to_string(), "'../escape' is not a scene name");
+  auto lane = store.bless("material_grid", "dx12", solid(1, 1, 1), "why", "ada");
+  ASSERT_FALSE(lane);
+  EXPECT_EQ(lane.error().to_string(), "unknown lane 'dx12' (lanes: gl, vk, vk-hlsl)");
+  auto found = store.find("material_grid", "metal");
+  ASSERT_FALSE(found);
+  EXPECT_EQ(found.error().to_string(), "unknown lane 'metal' (lanes: gl, vk, vk-hlsl)");
+  EXPECT_TRUE(fs::is_empty(folder_));
+}
+
+}  // namespace
+}  // namespace xshade::harness

@@ -1,0 +1,68 @@
+// What a run found, scene by scene and lane by lane: the model every report (HTML, JUnit XML,
+// JSON) is written from, and the exit code decided by.
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "harness/backend/backend.h"
+#include "harness/image/image_compare.h"  // Verdict, LayerResult, ImageMetrics
+
+namespace xshade::harness {
+
+struct PassTime {
+  std::string pass;
+  double milliseconds = 0.0;
+};
+
+struct LaneResult {
+  std::string lane;
+  Verdict verdict = Verdict::Pass;
+  std::vector<LayerResult> layers;      // in the order they ran
+  std::optional<ImageMetrics> against_golden;
+  NonFiniteCount non_finite;
+  // Files, relative to the report folder; empty when there is none.
+  std::string image;          // the lane's PNG
+  std::string image_exr;      // the lane's float image
+  std::string golden;         // the golden it was compared with (a copy in the report)
+  std::string diff;           // heat map of the difference against the golden
+  std::string non_finite_mask;  // white where NaN/Inf/negative values are
+  std::vector<PassTime> timings;
+  double seconds = 0.0;       // compile + render + checks
+  DriverInfo driver;
+  std::string message;        // an error's text, or what failed, for a reviewer
+};
+
+struct CrossLaneResult {
+  std::string first_lane;
+  std::string second_lane;
+  Verdict verdict = Verdict::Pass;
+  ImageMetrics metrics;
+  std::string diff;  // heat map, relative to the report folder
+};
+
+struct SceneResult {
+  std::string scene;
+  std::string description;
+  Verdict verdict = Verdict::Pass;  // the worst of its lanes and cross-lane checks
+  std::vector<LaneResult> lanes;
+  std::vector<CrossLaneResult> cross_lane;
+  std::string plan;     // describe_plan's text
+  std::string message;  // when the scene failed before any lane ran (bad scene file, bad shader)
+};
+
+struct RunResults {
+  std::vector<SceneResult> scenes;
+  std::string started;     // ISO 8601, UTC
+  double seconds = 0.0;
+  std::string command;     // how the run was invoked
+};
+
+// The exit code of DESIGN.md for a verdict (0 pass, 1 fail, 2 error, 3 crash).
+int exit_code(Verdict verdict);
+Verdict worst(Verdict a, Verdict b);
+
+}  // namespace xshade::harness

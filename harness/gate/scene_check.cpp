@@ -1,0 +1,204 @@
+#include "harness/gate/scene_check.h"
+
+#include <chrono>
+
+#include "harness/assets/environment.h"
+#include "harness/image/image_compare.h"
+#include "harness/image/image_io.h"
+#include "harness/render/planner.h"
+#include "harness/render/scene_renderer.h"
+
+namespace xshade::harness {
+namespace {
+
+namespace fs = std::filesystem;
+
+double seconds_since(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+std::string first_line(const std::string& text) { return text.substr(0, text.find('\n')); }
+
+// Records a layer; a deciding one sets the lane's verdict (the first failing one its message).
+// A comparison layer that does not decide is shown but judges nothing: a per-pixel failure that
+// the position layer forgives leaves the lane passing.
+void add_layer(LaneResult& lane, LayerResult layer, bool decides = true) {
+  if (decides && layer.verdict != Verdict::Pass && layer.verdict != Verdict::Skipped) {
+    lane.verdict = worst(lane.verdict, layer.verdict);
+    if (lane.message.empty()) lane.message = layer.layer + ": " + layer.detail;
+  }
+  lane.layers.push_back(std::move(layer));
+}
+
+}  // namespace
+
+SceneChecker::SceneChecker(VariantCompiler& compiler, SceneCheckOptions options, Progress progress)
+    : compiler_(compiler), options_(std::move(options)), progress_(std::move(progress)) {}
+
+std::string SceneChecker::write_image(const FloatImage& image, const std::string& scene, const std::string& file, bool exr) {
+  const std::string relative = scene + "/" + file;
+  const fs::path path = options_.report_dir / relative;
+  std::error_code ignored;
+  fs::create_directories(path.parent_path(), ignored);
+  auto written = exr ? write_exr(image, path) : write_png(image, path);
+  if (!written) {
+    progress_("  cannot write " + path.string() + ": " + written.error().message);
+    return {};
+  }
+  return relative;
+}
+
+CheckedScene SceneChecker::check(const fs::path& scene_file, const std::vector<Lane>& lanes) {
+  CheckedScene checked;
+  SceneResult& result = checked.result;
+  result.scene = scene_file.stem().string();
+  auto scene = load_scene(scene_file);
+  if (!scene) {
+    result.verdict = Verdict::Error;
+    result.message = scene.error().to_string();
+    return checked;
+  }
+  checked.scene = *scene;
+  result.description = scene->description;
+  auto plan = plan_scene(*scene, compiler_.shaders());
+  if (!plan) {
+    result.verdict = Verdict::Error;
+    result.message = plan.error().to_string();
+    return checked;
+  }
+  std::vector<Lane> scene_lanes;
+  for (Lane lane : lanes)
+    if (std::find(scene->lanes.begin(), scene->lanes.end(), lane_name(lane)) != scene->lanes.end())
+      scene_lanes.push_back(lane);
+  std::vector<bool> cached;
+  for (const VariantRequest& variant : plan->variants)
+    cached.push_back(!scene_lanes.empty() && std::all_of(scene_lanes.begin(), scene_lanes.end(), [&](Lane lane) {
+      return compiler_.in_cache(variant, lane);
+    }));
+  result.plan = describe_plan(*scene, *plan, cached);
+  if (options_.plan_only) return checked;
+  if (scene_lanes.empty()) {
+    // Not a pass: nothing was checked. A CI job that asks for a lane the scene does not list
+    // sees the scene skipped, and why.
+    std::string listed;
+    for (const std::string& lane : scene->lanes) listed += (listed.empty() ? "" : ", ") + lane;
+    result.verdict = Verdict::Skipped;
+    result.message = "skipped: the scene runs on " + listed + ", none of the lanes asked for";
+    return checked;
+  }
+
+  auto environment = build_environment(scene->environment);
+  if (!environment) {
+    result.verdict = Verdict::Error;
+    result.message = environment.error().to_string();
+    return checked;
+  }
+  for (Lane lane : scene_lanes) check_lane(*scene, *plan, *environment, lane, checked);
+  compare_lanes(*scene, checked);
+  for (const LaneResult& lane : result.lanes) result.verdict = worst(result.verdict, lane.verdict);
+  for (const CrossLaneResult& pair : result.cross_lane) result.verdict = worst(result.verdict, pair.verdict);
+  return checked;
+}
+
+void SceneChecker::check_lane(const Scene& scene, const Plan& plan, const Environment& environment, Lane lane,
+                              CheckedScene& checked) {
+  const auto start = std::chrono::steady_clock::now();
+  LaneResult result;
+  result.lane = std::string(lane_name(lane));
+  auto finish = [&](Verdict verdict, std::string message) {
+    result.verdict = verdict == Verdict::Skipped ? verdict : worst(result.verdict, verdict);
+    if (!message.empty()) result.message = std::move(message);
+    result.seconds = seconds_since(start);
+    progress_(scene.name + " on " + result.lane + ": " + std::string(verdict_name(result.verdict)) +
+              (result.message.empty() ? "" : " - " + first_line(result.message)));
+    checked.result.lanes.push_back(std::move(result));
+  };
+
+  if (options_.half_emulation && lane == Lane::VkHlsl)
+    return finish(Verdict::Skipped, "half emulation rewrites the GLSL xshade emits; this lane compiles the source with glslang");
+  auto compiled = compiler_.compile_plan(plan, lane, options_.half_emulation);
+  if (!compiled) return finish(Verdict::Error, compiled.error().to_string());
+  const std::vector<CompiledVariant>& variants = *compiled;
+  auto backend = create_backend(lane, options_.backend);
+  if (!backend) return finish(Verdict::Crash, backend.error().to_string());
+  result.driver = (*backend)->driver_info();
+
+  auto rendered = render_scene(**backend, scene, plan, variants, environment, {.keep_pass_images = options_.pass_images});
+  if (!rendered) return finish(Verdict::Crash, rendered.error().to_string());
+  for (const PassTiming& timing : rendered->timings) result.timings.push_back({timing.pass, timing.milliseconds});
+  for (const auto& [pass, image] : rendered->pass_images)
+    write_image(image, scene.name, "passes/" + pass + "." + result.lane + ".exr", true);
+
+  // The same scene again on the same driver must give the same bits.
+  auto again = render_scene(**backend, scene, plan, variants, environment);
+  if (!again) return finish(Verdict::Crash, again.error().to_string());
+  const bool deterministic = bitwise_equal(rendered->image, again->image);
+  const ImageDifference drift = max_difference(rendered->image, again->image);
+
+  for (const std::string& message : (*backend)->take_driver_messages())
+    add_layer(result, {"driver", Verdict::Fail, message});
+
+  const FloatImage& image = rendered->image;
+  result.image = write_image(image, scene.name, result.lane + ".png");
+  result.image_exr = write_image(image, scene.name, result.lane + ".exr", true);
+  result.non_finite = count_non_finite(image);
+  if (result.non_finite.total()) result.non_finite_mask = write_image(non_finite_mask(image), scene.name, result.lane + ".nonfinite.png");
+
+  add_layer(result, {"determinism", deterministic ? Verdict::Pass : Verdict::Fail,
+                     deterministic ? "two renders are bit-identical"
+                                   : "two renders differ: max " + std::to_string(drift.max) + " at (" +
+                                         std::to_string(drift.x) + ", " + std::to_string(drift.y) + ")"});
+
+  if (options_.goldens && !options_.half_emulation) {
+    auto golden = options_.goldens->find(scene.name, result.lane);
+    if (!golden) {
+      add_layer(result, {"golden", Verdict::Error, golden.error().to_string()});
+    } else if (!*golden) {
+      add_layer(result, {"golden", Verdict::Fail, options_.goldens->missing_message(scene.name, result.lane)});
+    } else {
+      const GoldenImage& reference = **golden;
+      result.golden = write_image(reference.image, scene.name, result.lane + ".golden.png");
+      Comparison comparison = compare_images(image, reference.image, scene.compare);
+      for (LayerResult& layer : comparison.layers) {
+        const bool decides = layer.layer == comparison.decided_by;
+        add_layer(result, std::move(layer), decides);
+      }
+      result.against_golden = comparison.metrics;
+      result.diff = write_image(comparison.heat_map, scene.name, result.lane + ".diff.png");
+    }
+  } else {
+    if (options_.half_emulation)
+      add_layer(result, {"golden", Verdict::Skipped, "goldens are fp32 renders; half emulation is not compared with them"});
+    const NonFiniteCount& bad = result.non_finite;
+    add_layer(result, {"finite", bad.total() ? Verdict::Fail : Verdict::Pass,
+                       bad.total() ? std::to_string(bad.nan) + " NaN, " + std::to_string(bad.inf) + " Inf, " +
+                                         std::to_string(bad.negative) + " negative values, first at (" +
+                                         std::to_string(bad.first->first) + ", " + std::to_string(bad.first->second) + ")"
+                                   : "no NaN, Inf or negative values"});
+  }
+  checked.images.emplace(lane, image);
+  finish(Verdict::Pass, {});
+}
+
+void SceneChecker::compare_lanes(const Scene& scene, CheckedScene& checked) {
+  if (checked.images.size() < 2) return;
+  const auto& [first_lane, first] = *checked.images.begin();
+  for (const auto& [lane, image] : checked.images) {
+    if (lane == first_lane) continue;
+    Comparison comparison = compare_images(image, first, scene.compare);
+    CrossLaneResult pair;
+    pair.first_lane = std::string(lane_name(first_lane));
+    pair.second_lane = std::string(lane_name(lane));
+    pair.verdict = comparison.verdict;
+    pair.metrics = comparison.metrics;
+    pair.diff = write_image(comparison.heat_map, scene.name, pair.first_lane + "_vs_" + pair.second_lane + ".diff.png");
+    std::string detail;
+    for (const LayerResult& layer : comparison.layers)
+      if (layer.layer == comparison.decided_by) detail = layer.detail;
+    progress_(scene.name + ": " + pair.first_lane + " vs " + pair.second_lane + ": " +
+              std::string(verdict_name(pair.verdict)) + " - " + detail);
+    checked.result.cross_lane.push_back(std::move(pair));
+  }
+}
+
+}  // namespace xshade::harness

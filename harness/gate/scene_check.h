@@ -1,0 +1,60 @@
+// Checking one scene: plan it, compile what it needs, render it on each lane (twice, to prove the
+// lane deterministic), and hold each lane's image against its golden and against the other
+// lanes. Writes the images a report shows into the report folder and returns the verdicts.
+#pragma once
+
+#include <filesystem>
+#include <functional>
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "harness/gate/golden_store.h"
+#include "harness/render/lanes.h"
+#include "harness/gate/run_results.h"
+#include "harness/scene/scene.h"
+#include "harness/render/variant_compiler.h"
+
+namespace xshade::harness {
+
+struct SceneCheckOptions {
+  std::filesystem::path report_dir;
+  const GoldenStore* goldens = nullptr;  // null: no golden layer (e.g. while blessing)
+  BackendOptions backend;                // how each lane's backend is made
+  bool pass_images = false;              // also write each pass's output
+  bool plan_only = false;                // plan, render nothing
+  // Every half result rounded to fp16 on the GLSL lanes (vk-hlsl cannot, and is skipped). The
+  // goldens are fp32 renders, so the golden layer is skipped; finiteness, determinism and the
+  // lanes against each other still gate.
+  bool half_emulation = false;
+};
+
+// A checked scene: the verdicts, and the images each lane rendered (for blessing).
+struct CheckedScene {
+  SceneResult result;
+  std::optional<Scene> scene;
+  std::map<Lane, FloatImage> images;
+};
+
+class SceneChecker {
+ public:
+  using Progress = std::function<void(const std::string& line)>;
+
+  SceneChecker(VariantCompiler& compiler, SceneCheckOptions options, Progress progress);
+
+  // `lanes`: the lanes asked for; a scene runs those of them it lists.
+  CheckedScene check(const std::filesystem::path& scene_file, const std::vector<Lane>& lanes);
+
+ private:
+  void check_lane(const Scene& scene, const struct Plan& plan, const struct Environment& environment, Lane lane,
+                  CheckedScene& checked);
+  void compare_lanes(const Scene& scene, CheckedScene& checked);
+  std::string write_image(const FloatImage& image, const std::string& scene, const std::string& file, bool exr = false);
+
+  VariantCompiler& compiler_;
+  SceneCheckOptions options_;
+  Progress progress_;
+};
+
+}  // namespace xshade::harness

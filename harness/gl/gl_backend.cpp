@@ -1,0 +1,1236 @@
+// The OpenGL lane: OpenGL 4.5 core on Mesa's llvmpipe, headless, on a context from either route
+// of gl_context.h (OSMesa or EGL surfaceless); nothing here knows which.
+//
+// Every GL entry point comes through the context's proc-address function into the table of
+// gl_functions.h. All drawing goes into framebuffer objects, never into a default framebuffer
+// (the OSMesa route has a 1x1 dummy one, the EGL route none). Every public call makes this
+// backend's context current when it is not, so that several backends (of either route) can
+// share one process, and ends by checking glGetError.
+#include "harness/gl/gl_backend.h"
+
+#include <algorithm>
+#include <array>
+#include <bit>
+#include <cctype>
+#include <cstdlib>
+#include <cstring>
+#include <map>
+#include <mutex>
+#include <set>
+#include <string_view>
+#include <tuple>
+#include <utility>
+
+#include <fmt/format.h>
+
+#include "harness/gl/gl_functions.h"
+
+namespace xshade::harness {
+namespace {
+
+// ---- The context's entry points ----------------------------------------------------------------
+
+// gl::load_functions takes a plain function; this one forwards to the context being loaded from.
+std::mutex proc_address_mutex;
+const GlContext* loading_context = nullptr;
+void* context_proc_address(const char* name) { return loading_context->proc_address(name); }
+
+// ---- GL objects ---------------------------------------------------------------------------------
+
+enum class Kind { Texture, Buffer, Framebuffer, VertexArray, Sampler, Shader, Program };
+
+// One GL object name, deleted with the right glDelete* when dropped. The backend makes its
+// context current before any is dropped.
+template <Kind K>
+class GlObject {
+ public:
+  GlObject() = default;
+  GlObject(const gl::Functions* gl, GLuint id) : gl_(gl), id_(id) {}
+  GlObject(GlObject&& other) noexcept
+      : gl_(other.gl_), id_(std::exchange(other.id_, 0)) {}
+  GlObject& operator=(GlObject&& other) noexcept {
+    if (this != &other) {
+      reset();
+      gl_ = other.gl_;
+      id_ = std::exchange(other.id_, 0);
+    }
+    return *this;
+  }
+  GlObject(const GlObject&) = delete;
+  GlObject& operator=(const GlObject&) = delete;
+  ~GlObject() { reset(); }
+
+  GLuint get() const { return id_; }
+  explicit operator bool() const { return id_ != 0; }
+
+  void reset() {
+    if (id_ == 0 || gl_ == nullptr) return;
+    if constexpr (K == Kind::Texture) gl_->DeleteTextures(1, &id_);
+    if constexpr (K == Kind::Buffer) gl_->DeleteBuffers(1, &id_);
+    if constexpr (K == Kind::Framebuffer) gl_->DeleteFramebuffers(1, &id_);
+    if constexpr (K == Kind::VertexArray) gl_->DeleteVertexArrays(1, &id_);
+    if constexpr (K == Kind::Sampler) gl_->DeleteSamplers(1, &id_);
+    if constexpr (K == Kind::Shader) gl_->DeleteShader(id_);
+    if constexpr (K == Kind::Program) gl_->DeleteProgram(id_);
+    id_ = 0;
+  }
+
+ private:
+  const gl::Functions* gl_ = nullptr;
+  GLuint id_ = 0;
+};
+
+using GlTexture = GlObject<Kind::Texture>;
+using GlBuffer = GlObject<Kind::Buffer>;
+using GlFramebuffer = GlObject<Kind::Framebuffer>;
+using GlVertexArray = GlObject<Kind::VertexArray>;
+using GlSampler = GlObject<Kind::Sampler>;
+using GlShader = GlObject<Kind::Shader>;
+using GlProgram = GlObject<Kind::Program>;
+
+// ---- Resources ----------------------------------------------------------------------------------
+
+struct Texture {
+  GlTexture texture;
+  uint32_t width = 0;
+  uint32_t height = 0;
+  uint32_t levels = 1;
+  TextureShape shape;
+  TextureFormat format = TextureFormat::Rgba32Float;
+};
+
+// How OpenGL stores and uploads each format.
+struct GlFormat {
+  GLenum internal_format;
+  GLenum format;
+  GLenum type;
+};
+GlFormat gl_format(TextureFormat format) {
+  switch (format) {
+    case TextureFormat::Rgba8Unorm: return {GL_RGBA8, GL_RGBA, GL_UNSIGNED_BYTE};
+    case TextureFormat::Rgba8Srgb: return {GL_SRGB8_ALPHA8, GL_RGBA, GL_UNSIGNED_BYTE};
+    case TextureFormat::Rgba32Float: return {GL_RGBA32F, GL_RGBA, GL_FLOAT};
+    case TextureFormat::R32Float: return {GL_R32F, GL_RED, GL_FLOAT};
+    case TextureFormat::Depth32Float: return {GL_DEPTH_COMPONENT32F, GL_DEPTH_COMPONENT, GL_FLOAT};
+    case TextureFormat::Rgba32Uint: return {GL_RGBA32UI, GL_RGBA_INTEGER, GL_UNSIGNED_INT};
+    case TextureFormat::Rgba32Sint: return {GL_RGBA32I, GL_RGBA_INTEGER, GL_INT};
+  }
+  return {GL_RGBA8, GL_RGBA, GL_UNSIGNED_BYTE};
+}
+
+GLenum gl_target(TextureShape shape) {
+  switch (shape.dimension) {
+    case TextureDimension::Tex1D: return GL_TEXTURE_1D;
+    case TextureDimension::Tex1DArray: return GL_TEXTURE_1D_ARRAY;
+    case TextureDimension::Tex2D: return shape.multisampled ? GL_TEXTURE_2D_MULTISAMPLE : GL_TEXTURE_2D;
+    case TextureDimension::Tex2DArray: return shape.multisampled ? GL_TEXTURE_2D_MULTISAMPLE_ARRAY : GL_TEXTURE_2D_ARRAY;
+    case TextureDimension::Tex3D: return GL_TEXTURE_3D;
+    case TextureDimension::Cube: return GL_TEXTURE_CUBE_MAP;
+    case TextureDimension::CubeArray: return GL_TEXTURE_CUBE_MAP_ARRAY;
+  }
+  return GL_TEXTURE_2D;
+}
+
+GLint gl_compare_function(CompareOp op) {
+  switch (op) {
+    case CompareOp::Never: return GL_NEVER;
+    case CompareOp::Less: return GL_LESS;
+    case CompareOp::Equal: return GL_EQUAL;
+    case CompareOp::LessEqual: return GL_LEQUAL;
+    case CompareOp::Greater: return GL_GREATER;
+    case CompareOp::NotEqual: return GL_NOTEQUAL;
+    case CompareOp::GreaterEqual: return GL_GEQUAL;
+    case CompareOp::Always: return GL_ALWAYS;
+  }
+  return GL_LEQUAL;
+}
+
+// What a vertex input of GL type `type` reads as; empty for a type no mesh or zero fills (a
+// matrix, a double).
+std::optional<TexelKind> attribute_kind(GLint type) {
+  switch (static_cast<GLenum>(type)) {
+    case GL_FLOAT: case GL_FLOAT_VEC2: case GL_FLOAT_VEC3: case GL_FLOAT_VEC4: return TexelKind::Float;
+    case GL_INT: case GL_INT_VEC2: case GL_INT_VEC3: case GL_INT_VEC4: return TexelKind::Int;
+    case GL_UNSIGNED_INT: case GL_UNSIGNED_INT_VEC2: case GL_UNSIGNED_INT_VEC3: case GL_UNSIGNED_INT_VEC4:
+      return TexelKind::Uint;
+    default: return std::nullopt;
+  }
+}
+
+// The internal draw that fills a multisampled texture: every sample of each texel of one layer
+// gets the texel of a single-sampled copy. Without sample shading a fragment's one output goes
+// to every sample it covers, and the triangle covers the whole layer.
+constexpr const char* kFillVertexShader = R"(#version 450 core
+void main() {
+  vec2 corner = vec2((gl_VertexID << 1) & 2, gl_VertexID & 2);
+  gl_Position = vec4(corner * 2.0 - 1.0, 0.0, 1.0);
+}
+)";
+std::string fill_fragment_shader(TexelKind kind) {
+  const std::string prefix = kind == TexelKind::Int ? "i" : kind == TexelKind::Uint ? "u" : "";
+  return "#version 450 core\nlayout(binding = 0) uniform " + prefix + "sampler2DArray source;\n"
+         "uniform int layer;\nlayout(location = 0) out " + prefix + "vec4 color;\n"
+         "void main() { color = texelFetch(source, ivec3(ivec2(gl_FragCoord.xy), layer), 0); }\n";
+}
+
+struct Target {
+  GlFramebuffer framebuffer;
+  Texture color;
+  std::optional<Texture> depth;
+};
+
+struct Mesh {
+  GlVertexArray vertex_array;
+  GlBuffer vertices;
+  GlBuffer indices;
+  uint32_t index_count = 0;
+};
+
+struct Program {
+  std::string name;
+  ProgramLayout layout;
+  bool fullscreen = false;
+  GlProgram program;
+  std::vector<GlBuffer> uniform_buffers;  // per layout uniform block
+  // Vertex inputs no mesh supplies (locations above 3), with what they read as: each draw sets
+  // their generic current value to zeros of that type (GL's own default is (0, 0, 0, 1)).
+  std::vector<std::pair<GLuint, TexelKind>> zero_inputs;
+};
+
+// ---- KHR_debug ----------------------------------------------------------------------------------
+
+struct MessageLog {
+  std::mutex mutex;
+  std::vector<std::string> messages;
+  // While a program is made, its compiler's messages wait here (see create_program).
+  std::optional<std::vector<std::string>> held;
+};
+
+const char* severity_name(GLenum severity) {
+  switch (severity) {
+    case GL_DEBUG_SEVERITY_HIGH: return "high";
+    case GL_DEBUG_SEVERITY_MEDIUM: return "medium";
+    case GL_DEBUG_SEVERITY_LOW: return "low";
+    default: return "notification";
+  }
+}
+
+const char* source_name(GLenum source) {
+  switch (source) {
+    case GL_DEBUG_SOURCE_API: return "API";
+    case GL_DEBUG_SOURCE_WINDOW_SYSTEM: return "window system";
+    case GL_DEBUG_SOURCE_SHADER_COMPILER: return "shader compiler";
+    case GL_DEBUG_SOURCE_THIRD_PARTY: return "third party";
+    case GL_DEBUG_SOURCE_APPLICATION: return "application";
+    default: return "other";
+  }
+}
+
+const char* type_name(GLenum type) {
+  switch (type) {
+    case GL_DEBUG_TYPE_ERROR: return "error";
+    case GL_DEBUG_TYPE_DEPRECATED_BEHAVIOR: return "deprecated behaviour";
+    case GL_DEBUG_TYPE_UNDEFINED_BEHAVIOR: return "undefined behaviour";
+    case GL_DEBUG_TYPE_PORTABILITY: return "portability";
+    case GL_DEBUG_TYPE_PERFORMANCE: return "performance";
+    default: return "other";
+  }
+}
+
+void APIENTRY debug_callback(GLenum source, GLenum type, GLuint id, GLenum severity,
+                             GLsizei length, const GLchar* message, const void* user) {
+  if (severity == GL_DEBUG_SEVERITY_NOTIFICATION) return;
+  auto* log = static_cast<MessageLog*>(const_cast<void*>(user));
+  std::string text = length >= 0 ? std::string(message, static_cast<size_t>(length))
+                                  : std::string(message);
+  while (!text.empty() && std::isspace(static_cast<unsigned char>(text.back()))) text.pop_back();
+  std::string line = fmt::format("OpenGL {} {} (severity {}, id {}): {}", source_name(source),
+                                 type_name(type), severity_name(severity), id, text);
+  std::lock_guard lock(log->mutex);
+  (log->held ? *log->held : log->messages).push_back(std::move(line));
+}
+
+// ---- Compiler logs ------------------------------------------------------------------------------
+
+bool parse_number(std::string_view& text, uint32_t& value) {
+  size_t digits = 0;
+  value = 0;
+  while (digits < text.size() && std::isdigit(static_cast<unsigned char>(text[digits]))) {
+    value = value * 10 + static_cast<uint32_t>(text[digits] - '0');
+    ++digits;
+  }
+  text.remove_prefix(digits);
+  return digits > 0;
+}
+
+bool consume(std::string_view& text, std::string_view prefix) {
+  if (!text.starts_with(prefix)) return false;
+  text.remove_prefix(prefix.size());
+  return true;
+}
+
+// Mesa: "0:4(28): error: `undeclared_thing' undeclared" (string:line(column)), or "error: ..."
+// in link logs. Anything else becomes a message-only diagnostic.
+// `files[n]` names source string n (what `#line L n` selects); string 0, or one the table does
+// not name, is `file`.
+std::vector<Diagnostic> parse_log(const std::string& log, const std::string& file,
+                                  const std::vector<std::string>& files = {}) {
+  std::vector<Diagnostic> diagnostics;
+  size_t start = 0;
+  while (start < log.size()) {
+    size_t end = log.find('\n', start);
+    if (end == std::string::npos) end = log.size();
+    std::string_view line(log.data() + start, end - start);
+    start = end + 1;
+    while (!line.empty() && std::isspace(static_cast<unsigned char>(line.back())))
+      line.remove_suffix(1);
+    if (line.empty()) continue;
+
+    Diagnostic diagnostic;
+    std::string_view rest = line;
+    uint32_t string_index = 0, line_number = 0, column = 0;
+    if (parse_number(rest, string_index) && consume(rest, ":") && parse_number(rest, line_number) &&
+        consume(rest, "(") && parse_number(rest, column) && consume(rest, "):")) {
+      const bool named = string_index > 0 && string_index < files.size();
+      diagnostic.where = SourceLocation{named ? files[string_index] : file, line_number, column};
+      while (consume(rest, " ")) {
+      }
+    } else {
+      rest = line;
+    }
+    const size_t colon = rest.find(": ");
+    std::string_view kind = colon == std::string_view::npos ? std::string_view{} : rest.substr(0, colon);
+    if (kind.find("error") != std::string_view::npos) {
+      diagnostic.severity = Severity::Error;
+      rest.remove_prefix(colon + 2);
+    } else if (kind.find("warning") != std::string_view::npos) {
+      diagnostic.severity = Severity::Warning;
+      rest.remove_prefix(colon + 2);
+    } else if (diagnostic.where.known()) {
+      diagnostic.severity = Severity::Note;
+    } else {
+      // Unparsed: keep the whole line as the message.
+      diagnostic.severity = Severity::Note;
+      rest = line;
+    }
+    diagnostic.message = std::string(rest);
+    diagnostics.push_back(std::move(diagnostic));
+  }
+  return diagnostics;
+}
+
+uint32_t round_up_16(uint32_t size) { return (size + 15u) & ~15u; }
+
+bool is_sampler_type(GLint type) {
+  switch (static_cast<GLenum>(type)) {
+    case GL_SAMPLER_1D: case GL_SAMPLER_2D: case GL_SAMPLER_3D: case GL_SAMPLER_CUBE:
+    case GL_SAMPLER_1D_SHADOW: case GL_SAMPLER_2D_SHADOW: case GL_SAMPLER_1D_ARRAY:
+    case GL_SAMPLER_2D_ARRAY: case GL_SAMPLER_1D_ARRAY_SHADOW: case GL_SAMPLER_2D_ARRAY_SHADOW:
+    case GL_SAMPLER_2D_MULTISAMPLE: case GL_SAMPLER_2D_MULTISAMPLE_ARRAY:
+    case GL_SAMPLER_CUBE_SHADOW: case GL_SAMPLER_BUFFER: case GL_SAMPLER_2D_RECT:
+    case GL_SAMPLER_2D_RECT_SHADOW: case GL_SAMPLER_CUBE_MAP_ARRAY:
+    case GL_SAMPLER_CUBE_MAP_ARRAY_SHADOW:
+    case GL_INT_SAMPLER_1D: case GL_INT_SAMPLER_2D: case GL_INT_SAMPLER_3D:
+    case GL_INT_SAMPLER_CUBE: case GL_INT_SAMPLER_1D_ARRAY: case GL_INT_SAMPLER_2D_ARRAY:
+    case GL_INT_SAMPLER_2D_MULTISAMPLE: case GL_INT_SAMPLER_2D_MULTISAMPLE_ARRAY:
+    case GL_INT_SAMPLER_BUFFER: case GL_INT_SAMPLER_2D_RECT: case GL_INT_SAMPLER_CUBE_MAP_ARRAY:
+    case GL_UNSIGNED_INT_SAMPLER_1D: case GL_UNSIGNED_INT_SAMPLER_2D:
+    case GL_UNSIGNED_INT_SAMPLER_3D: case GL_UNSIGNED_INT_SAMPLER_CUBE:
+    case GL_UNSIGNED_INT_SAMPLER_1D_ARRAY: case GL_UNSIGNED_INT_SAMPLER_2D_ARRAY:
+    case GL_UNSIGNED_INT_SAMPLER_2D_MULTISAMPLE:
+    case GL_UNSIGNED_INT_SAMPLER_2D_MULTISAMPLE_ARRAY: case GL_UNSIGNED_INT_SAMPLER_BUFFER:
+    case GL_UNSIGNED_INT_SAMPLER_2D_RECT: case GL_UNSIGNED_INT_SAMPLER_CUBE_MAP_ARRAY:
+      return true;
+    default:
+      return false;
+  }
+}
+
+// "values[0]" -> "values": GL names an array by its first element.
+std::string base_name(std::string name) {
+  if (name.ends_with("[0]")) name.resize(name.size() - 3);
+  return name;
+}
+
+// ---- The backend --------------------------------------------------------------------------------
+
+class GlBackend final : public Backend {
+ public:
+  ~GlBackend() override;
+
+  Result<void> init(std::unique_ptr<GlContext> context);
+
+  const DriverInfo& driver_info() const override { return info_; }
+  Result<TargetHandle> create_target(const TargetDesc& desc) override;
+  Result<MeshHandle> upload_mesh(const MeshData& mesh) override;
+  Result<TextureHandle> upload_texture(const TextureData& texture) override;
+  Result<ProgramHandle> create_program(const ProgramDesc& desc) override;
+  Result<void> render(const RenderPass& pass) override;
+  Result<FloatImage> read_color(TargetHandle target) override;
+  std::vector<std::string> take_driver_messages() override {
+    std::lock_guard lock(log_->mutex);
+    return std::exchange(log_->messages, {});
+  }
+
+ private:
+  // Makes the context current when another (or none) is.
+  bool make_current() { return context_->make_current(); }
+  // Drains glGetError; fails with the error names and the driver's last message.
+  Result<void> check_errors(const std::string& what);
+  // Makes the context current, runs `body`, then checks glGetError.
+  template <class T, class F>
+  Result<T> guarded(const std::string& what, F&& body);
+
+  GLint get_integer(GLenum name) const {
+    GLint value = 0;
+    gl_.GetIntegerv(name, &value);
+    return value;
+  }
+  std::string get_string(GLenum name) const {
+    const GLubyte* text = gl_.GetString(name);
+    return text ? reinterpret_cast<const char*>(text) : "";
+  }
+  // `compare`: a comparison sampler (of a shadow sampler's unit), with desc.compare.
+  GLuint sampler(const SamplerDesc& desc, bool mipmapped, bool compare);
+  // Every sample of each texel of `texture` (multisampled, just allocated) from level 0 of `data`.
+  Result<void> fill_multisampled(const Texture& texture, const TextureData& data, const std::string& what);
+  Result<GLuint> fill_program(TexelKind kind, const std::string& what);
+  Result<GlShader> compile(const ShaderStageSource& source, GLenum stage, const char* stage_name,
+                           const std::string& what);
+  Result<void> check_interface(Program& program, const std::string& what);
+
+  Target* find_target(uint32_t id) {
+    return id >= 1 && id <= targets_.size() ? targets_[id - 1].get() : nullptr;
+  }
+
+  // Declaration order is teardown order reversed: GL objects go first, then the context (which
+  // closes its library); the log outlives the context that writes into it.
+  std::unique_ptr<MessageLog> log_ = std::make_unique<MessageLog>();
+  std::unique_ptr<GlContext> context_;
+  gl::Functions gl_;
+  DriverInfo info_;
+  GLint max_texture_size_ = 0;
+  GLint max_uniform_buffer_bindings_ = 0;
+  GLint max_texture_units_ = 0;
+  GLint max_uniform_block_size_ = 0;
+  GLint max_3d_texture_size_ = 0;
+  GLint max_array_layers_ = 0;
+  GLint max_color_samples_ = 0;
+  GLint max_integer_samples_ = 0;
+
+  GlVertexArray empty_vertex_array_;  // for full-screen programs
+  std::map<std::tuple<Filter, AddressMode, bool, std::optional<CompareOp>>, GlSampler> samplers_;
+  std::map<TexelKind, GlProgram> fill_programs_;  // by the texel kind they copy
+  std::vector<std::unique_ptr<Target>> targets_;
+  std::vector<std::unique_ptr<Mesh>> meshes_;
+  std::vector<std::unique_ptr<Texture>> textures_;
+  std::vector<std::unique_ptr<Program>> programs_;
+};
+
+GlBackend::~GlBackend() {
+  if (context_ == nullptr) return;
+  if (make_current()) {
+    programs_.clear();
+    fill_programs_.clear();
+    textures_.clear();
+    meshes_.clear();
+    targets_.clear();
+    samplers_.clear();
+    empty_vertex_array_.reset();
+    if (gl_.Finish != nullptr) gl_.Finish();  // null when loading the entry points failed
+  } else {
+    // Another context (or none) is current, so a glDelete* would hit the wrong objects. The
+    // names are dropped instead; destroying the context frees them.
+    gl_.DeleteTextures = [](GLsizei, const GLuint*) {};
+    gl_.DeleteBuffers = [](GLsizei, const GLuint*) {};
+    gl_.DeleteFramebuffers = [](GLsizei, const GLuint*) {};
+    gl_.DeleteVertexArrays = [](GLsizei, const GLuint*) {};
+    gl_.DeleteSamplers = [](GLsizei, const GLuint*) {};
+    gl_.DeleteShader = [](GLuint) {};
+    gl_.DeleteProgram = [](GLuint) {};
+  }
+  context_.reset();
+}
+
+Result<void> GlBackend::check_errors(const std::string& what) {
+  std::vector<std::string> errors;
+  for (int i = 0; i < 32; ++i) {
+    const GLenum error = gl_.GetError();
+    if (error == GL_NO_ERROR) break;
+    errors.push_back(gl::error_name(error));
+  }
+  if (errors.empty()) return {};
+  std::string message = fmt::format("{}: OpenGL reported {}", what, fmt::join(errors, ", "));
+  std::lock_guard lock(log_->mutex);
+  const std::vector<std::string>& messages = log_->held ? *log_->held : log_->messages;
+  if (!messages.empty()) message += fmt::format(" (the driver's last message: {})", messages.back());
+  return fail(std::move(message));
+}
+
+template <class T, class F>
+Result<T> GlBackend::guarded(const std::string& what, F&& body) {
+  try {
+    if (!make_current())
+      return fail(fmt::format("{}: {} could not make this backend's context current", what, context_->route()));
+    Result<T> result = body();
+    Result<void> checked = check_errors(what);
+    if (!result) return result;
+    if (!checked) return fail(checked.error());
+    return result;
+  } catch (const std::exception& e) {
+    return fail(fmt::format("{}: {}", what, e.what()));
+  } catch (...) {
+    return fail(fmt::format("{}: unknown exception", what));
+  }
+}
+
+Result<void> GlBackend::init(std::unique_ptr<GlContext> context) {
+  context_ = std::move(context);
+  if (!make_current())
+    return fail(fmt::format("{} could not make a new 4.5 core context current", context_->route()));
+
+  std::vector<std::string> missing;
+  {
+    std::lock_guard lock(proc_address_mutex);
+    loading_context = context_.get();
+    missing = gl::load_functions(gl_, &context_proc_address);
+    loading_context = nullptr;
+  }
+  if (!missing.empty())
+    return fail(fmt::format("the {} context lacks OpenGL functions: {}; install the Debian package {}",
+                            context_->route(), fmt::join(missing, ", "), context_->packages()));
+
+  info_.api = fmt::format("OpenGL 4.5 core ({})", context_->route());
+  info_.renderer = get_string(GL_RENDERER);
+  info_.api_version = get_string(GL_VERSION);
+  if (size_t mesa = info_.api_version.find("Mesa "); mesa != std::string::npos) {
+    info_.driver_version = info_.api_version.substr(mesa);
+    if (size_t paren = info_.driver_version.find(" ("); paren != std::string::npos)
+      info_.driver_version.resize(paren);
+  }
+  info_.llvm_version = llvm_version_of(info_.renderer);
+  const GLint major = get_integer(GL_MAJOR_VERSION);
+  const GLint minor = get_integer(GL_MINOR_VERSION);
+  if (major < 4 || (major == 4 && minor < 5))
+    return fail(fmt::format("'{}' gives OpenGL {}.{} ({}), but 4.5 core is required; install a "
+                            "newer Debian package {}",
+                            info_.renderer, major, minor, info_.api_version, context_->packages()));
+
+  gl_.Enable(GL_DEBUG_OUTPUT);
+  gl_.Enable(GL_DEBUG_OUTPUT_SYNCHRONOUS);
+  gl_.DebugMessageCallback(&debug_callback, log_.get());
+  gl_.DebugMessageControl(GL_DONT_CARE, GL_DONT_CARE, GL_DEBUG_SEVERITY_NOTIFICATION, 0, nullptr,
+                          GL_FALSE);
+
+  // Direct3D orientation: clip +y maps to window row 0 (the first row read back), z in [0, 1].
+  gl_.ClipControl(GL_UPPER_LEFT, GL_ZERO_TO_ONE);
+  gl_.Disable(GL_CULL_FACE);
+  gl_.Disable(GL_BLEND);
+  gl_.Disable(GL_DITHER);
+  gl_.Disable(GL_FRAMEBUFFER_SRGB);
+  gl_.Disable(GL_SCISSOR_TEST);
+  gl_.ClampColor(GL_CLAMP_READ_COLOR, GL_FALSE);
+  gl_.PixelStorei(GL_UNPACK_ALIGNMENT, 1);
+  gl_.PixelStorei(GL_PACK_ALIGNMENT, 1);
+  gl_.DepthFunc(GL_LESS);
+
+  max_texture_size_ = get_integer(GL_MAX_TEXTURE_SIZE);
+  max_uniform_buffer_bindings_ = get_integer(GL_MAX_UNIFORM_BUFFER_BINDINGS);
+  max_texture_units_ = get_integer(GL_MAX_COMBINED_TEXTURE_IMAGE_UNITS);
+  max_uniform_block_size_ = get_integer(GL_MAX_UNIFORM_BLOCK_SIZE);
+  max_3d_texture_size_ = get_integer(GL_MAX_3D_TEXTURE_SIZE);
+  max_array_layers_ = get_integer(GL_MAX_ARRAY_TEXTURE_LAYERS);
+  max_color_samples_ = get_integer(GL_MAX_COLOR_TEXTURE_SAMPLES);
+  max_integer_samples_ = get_integer(GL_MAX_INTEGER_SAMPLES);
+  // Vulkan (and Direct3D 10 on) filter across cube faces; OpenGL does only when asked.
+  gl_.Enable(GL_TEXTURE_CUBE_MAP_SEAMLESS);
+
+  GLuint vertex_array = 0;
+  gl_.CreateVertexArrays(1, &vertex_array);
+  empty_vertex_array_ = GlVertexArray(&gl_, vertex_array);
+
+  return check_errors(fmt::format("creating the OpenGL {} backend", context_->route()));
+}
+
+GLuint GlBackend::sampler(const SamplerDesc& desc, bool mipmapped, bool compare) {
+  const auto key = std::make_tuple(desc.filter, desc.address, mipmapped,
+                                   compare ? std::optional<CompareOp>(desc.compare) : std::nullopt);
+  auto found = samplers_.find(key);
+  if (found != samplers_.end()) return found->second.get();
+  GLuint id = 0;
+  gl_.CreateSamplers(1, &id);
+  GlSampler sampler(&gl_, id);
+  const bool linear = desc.filter == Filter::Linear;
+  const GLint min_filter = mipmapped ? (linear ? GL_LINEAR_MIPMAP_LINEAR : GL_NEAREST_MIPMAP_NEAREST)
+                                     : (linear ? GL_LINEAR : GL_NEAREST);
+  const GLint mag_filter = linear ? GL_LINEAR : GL_NEAREST;
+  const GLint wrap = desc.address == AddressMode::Repeat ? GL_REPEAT : GL_CLAMP_TO_EDGE;
+  gl_.SamplerParameteri(id, GL_TEXTURE_MIN_FILTER, min_filter);
+  gl_.SamplerParameteri(id, GL_TEXTURE_MAG_FILTER, mag_filter);
+  gl_.SamplerParameteri(id, GL_TEXTURE_WRAP_S, wrap);
+  gl_.SamplerParameteri(id, GL_TEXTURE_WRAP_T, wrap);
+  gl_.SamplerParameteri(id, GL_TEXTURE_WRAP_R, wrap);
+  // A shadow sampler with compare mode NONE is undefined; any other sampler must not compare.
+  gl_.SamplerParameteri(id, GL_TEXTURE_COMPARE_MODE, compare ? GL_COMPARE_REF_TO_TEXTURE : GL_NONE);
+  if (compare) gl_.SamplerParameteri(id, GL_TEXTURE_COMPARE_FUNC, gl_compare_function(desc.compare));
+  return samplers_.emplace(key, std::move(sampler)).first->second.get();
+}
+
+Result<TargetHandle> GlBackend::create_target(const TargetDesc& desc) {
+  return guarded<TargetHandle>("create_target", [&]() -> Result<TargetHandle> {
+    if (desc.width == 0 || desc.height == 0)
+      return fail(fmt::format("create_target: size {}x{} is empty", desc.width, desc.height));
+    if (std::max(desc.width, desc.height) > static_cast<uint32_t>(max_texture_size_))
+      return fail(fmt::format("create_target: size {}x{} exceeds the driver limit of {}",
+                              desc.width, desc.height, max_texture_size_));
+    const uint32_t id = static_cast<uint32_t>(targets_.size() + 1);
+    const GLsizei width = static_cast<GLsizei>(desc.width);
+    const GLsizei height = static_cast<GLsizei>(desc.height);
+    auto target = std::make_unique<Target>();
+    const auto make_texture = [&](TextureFormat format) {
+      GLuint texture = 0;
+      gl_.CreateTextures(GL_TEXTURE_2D, 1, &texture);
+      Texture result{GlTexture(&gl_, texture), desc.width, desc.height, 1, {}, format};
+      gl_.TextureStorage2D(texture, 1, gl_format(format).internal_format, width, height);
+      return result;
+    };
+    target->color = make_texture(TextureFormat::Rgba32Float);
+    if (desc.depth) {
+      target->depth = make_texture(TextureFormat::Depth32Float);
+      gl_.TextureParameteri(target->depth->texture.get(), GL_TEXTURE_COMPARE_MODE, GL_NONE);
+    }
+    GLuint framebuffer = 0;
+    gl_.CreateFramebuffers(1, &framebuffer);
+    target->framebuffer = GlFramebuffer(&gl_, framebuffer);
+    gl_.NamedFramebufferTexture(framebuffer, GL_COLOR_ATTACHMENT0, target->color.texture.get(), 0);
+    if (target->depth)
+      gl_.NamedFramebufferTexture(framebuffer, GL_DEPTH_ATTACHMENT, target->depth->texture.get(),
+                                  0);
+    gl_.NamedFramebufferDrawBuffer(framebuffer, GL_COLOR_ATTACHMENT0);
+    gl_.NamedFramebufferReadBuffer(framebuffer, GL_COLOR_ATTACHMENT0);
+    const GLenum status = gl_.CheckNamedFramebufferStatus(framebuffer, GL_FRAMEBUFFER);
+    if (status != GL_FRAMEBUFFER_COMPLETE)
+      return fail(fmt::format("create_target: the framebuffer of target {} ({}x{}, RGBA32F{}) is "
+                              "incomplete (status 0x{:04X})",
+                              id, desc.width, desc.height, desc.depth ? " + D32F" : "", status));
+    // Start from defined contents (zero colour, far depth) so that reads before a render are
+    // stable.
+    const std::array<float, 4> zero = {0.0f, 0.0f, 0.0f, 0.0f};
+    const float far_depth = 1.0f;
+    gl_.ColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+    gl_.ClearNamedFramebufferfv(framebuffer, GL_COLOR, 0, zero.data());
+    if (target->depth) {
+      gl_.DepthMask(GL_TRUE);
+      gl_.ClearNamedFramebufferfv(framebuffer, GL_DEPTH, 0, &far_depth);
+    }
+    targets_.push_back(std::move(target));
+    return TargetHandle{id};
+  });
+}
+
+Result<MeshHandle> GlBackend::upload_mesh(const MeshData& data) {
+  return guarded<MeshHandle>("upload_mesh", [&]() -> Result<MeshHandle> {
+    if (auto valid = validate_mesh(data); !valid) return fail(valid.error());
+    auto mesh = std::make_unique<Mesh>();
+    GLuint buffers[2] = {0, 0};
+    gl_.CreateBuffers(2, buffers);
+    mesh->vertices = GlBuffer(&gl_, buffers[0]);
+    mesh->indices = GlBuffer(&gl_, buffers[1]);
+    gl_.NamedBufferStorage(buffers[0],
+                           static_cast<GLsizeiptr>(data.vertices.size() * sizeof(Vertex)),
+                           data.vertices.data(), 0);
+    gl_.NamedBufferStorage(buffers[1],
+                           static_cast<GLsizeiptr>(data.indices.size() * sizeof(uint32_t)),
+                           data.indices.data(), 0);
+    GLuint vertex_array = 0;
+    gl_.CreateVertexArrays(1, &vertex_array);
+    mesh->vertex_array = GlVertexArray(&gl_, vertex_array);
+    gl_.VertexArrayVertexBuffer(vertex_array, 0, buffers[0], 0, sizeof(Vertex));
+    gl_.VertexArrayElementBuffer(vertex_array, buffers[1]);
+    struct Attribute {
+      GLuint location;
+      GLint components;
+      GLuint offset;
+    };
+    for (const Attribute& attribute :
+         {Attribute{0, 3, offsetof(Vertex, position)}, Attribute{1, 3, offsetof(Vertex, normal)},
+          Attribute{2, 4, offsetof(Vertex, tangent)}, Attribute{3, 2, offsetof(Vertex, uv)}}) {
+      gl_.EnableVertexArrayAttrib(vertex_array, attribute.location);
+      gl_.VertexArrayAttribFormat(vertex_array, attribute.location, attribute.components, GL_FLOAT,
+                                  GL_FALSE, attribute.offset);
+      gl_.VertexArrayAttribBinding(vertex_array, attribute.location, 0);
+    }
+    mesh->index_count = static_cast<uint32_t>(data.indices.size());
+    meshes_.push_back(std::move(mesh));
+    return MeshHandle{static_cast<uint32_t>(meshes_.size())};
+  });
+}
+
+Result<TextureHandle> GlBackend::upload_texture(const TextureData& data) {
+  return guarded<TextureHandle>("upload_texture", [&]() -> Result<TextureHandle> {
+    if (auto valid = validate_texture(data, static_cast<uint32_t>(max_texture_size_)); !valid) return fail(valid.error());
+    const TextureShape shape = data.shape();
+    const std::string what = "upload_texture: " + shape_name(shape);
+    if (data.dimension == TextureDimension::Tex3D &&
+        std::max({data.width, data.height, data.layers}) > static_cast<uint32_t>(max_3d_texture_size_))
+      return fail(fmt::format("{}: size {}x{}x{} exceeds the driver limit of {}", what, data.width, data.height,
+                              data.layers, max_3d_texture_size_));
+    if (is_array(data.dimension) && data.layers > static_cast<uint32_t>(max_array_layers_))
+      return fail(fmt::format("{}: {} layers exceed the driver limit of {}", what, data.layers, max_array_layers_));
+    const GLint max_samples = texel_kind(data.format) == TexelKind::Float ? max_color_samples_ : max_integer_samples_;
+    if (shape.multisampled && (data.samples > static_cast<uint32_t>(max_samples) || !std::has_single_bit(data.samples)))
+      return fail(fmt::format("{}: {} samples of {}; the driver has powers of two up to {}", what, data.samples,
+                              format_name(data.format), max_samples));
+    const GlFormat format = gl_format(data.format);
+    const uint32_t levels = static_cast<uint32_t>(data.levels.size());
+    GLuint id = 0;
+    gl_.CreateTextures(gl_target(shape), 1, &id);
+    auto texture = std::make_unique<Texture>(
+        Texture{GlTexture(&gl_, id), data.width, data.height, levels, shape, data.format});
+    const auto size = [](uint32_t extent, uint32_t level) {
+      return static_cast<GLsizei>(std::max<uint32_t>(1, extent >> level));
+    };
+    const GLsizei width = static_cast<GLsizei>(data.width), height = static_cast<GLsizei>(data.height);
+    const GLsizei layers = static_cast<GLsizei>(data.layers);
+    // Row 0 of the data goes to t = 0, which the clip control made the top; each layer (cube
+    // face, 3D slice) the same, so the faces take Direct3D's and Vulkan's data unchanged.
+    if (shape.multisampled) {
+      if (data.dimension == TextureDimension::Tex2D)
+        gl_.TextureStorage2DMultisample(id, static_cast<GLsizei>(data.samples), format.internal_format, width, height,
+                                        GL_TRUE);
+      else
+        gl_.TextureStorage3DMultisample(id, static_cast<GLsizei>(data.samples), format.internal_format, width, height,
+                                        layers, GL_TRUE);
+      if (auto filled = fill_multisampled(*texture, data, what); !filled) return fail(filled.error());
+    } else {
+      switch (data.dimension) {
+        case TextureDimension::Tex1D:
+          gl_.TextureStorage1D(id, static_cast<GLsizei>(levels), format.internal_format, width);
+          for (uint32_t level = 0; level < levels; ++level)
+            gl_.TextureSubImage1D(id, static_cast<GLint>(level), 0, size(data.width, level), format.format,
+                                  format.type, data.levels[level].data());
+          break;
+        case TextureDimension::Tex1DArray:  // a 2D storage whose rows are the layers
+        case TextureDimension::Tex2D: {
+          const bool layered = data.dimension == TextureDimension::Tex1DArray;
+          gl_.TextureStorage2D(id, static_cast<GLsizei>(levels), format.internal_format, width,
+                               layered ? layers : height);
+          for (uint32_t level = 0; level < levels; ++level)
+            gl_.TextureSubImage2D(id, static_cast<GLint>(level), 0, 0, size(data.width, level),
+                                  layered ? layers : size(data.height, level), format.format, format.type,
+                                  data.levels[level].data());
+          break;
+        }
+        case TextureDimension::Cube:  // 2D storage; the faces are addressed as the layers of TextureSubImage3D
+        case TextureDimension::Tex2DArray:
+        case TextureDimension::Tex3D:
+        case TextureDimension::CubeArray: {
+          const bool volume = data.dimension == TextureDimension::Tex3D;
+          if (data.dimension == TextureDimension::Cube)
+            gl_.TextureStorage2D(id, static_cast<GLsizei>(levels), format.internal_format, width, height);
+          else
+            gl_.TextureStorage3D(id, static_cast<GLsizei>(levels), format.internal_format, width, height, layers);
+          for (uint32_t level = 0; level < levels; ++level)
+            gl_.TextureSubImage3D(id, static_cast<GLint>(level), 0, 0, 0, size(data.width, level),
+                                  size(data.height, level), volume ? size(data.layers, level) : layers, format.format,
+                                  format.type, data.levels[level].data());
+          break;
+        }
+      }
+    }
+    textures_.push_back(std::move(texture));
+    return TextureHandle{static_cast<uint32_t>(textures_.size())};
+  });
+}
+
+Result<GLuint> GlBackend::fill_program(TexelKind kind, const std::string& what) {
+  if (auto found = fill_programs_.find(kind); found != fill_programs_.end()) return found->second.get();
+  ShaderStageSource vertex_source{kFillVertexShader, {}, "main", "multisample_fill.vert", {}};
+  ShaderStageSource fragment_source{fill_fragment_shader(kind), {}, "main", "multisample_fill.frag", {}};
+  auto vertex = compile(vertex_source, GL_VERTEX_SHADER, "vertex", what);
+  if (!vertex) return fail(vertex.error());
+  auto fragment = compile(fragment_source, GL_FRAGMENT_SHADER, "fragment", what);
+  if (!fragment) return fail(fragment.error());
+  GlProgram program(&gl_, gl_.CreateProgram());
+  gl_.AttachShader(program.get(), vertex->get());
+  gl_.AttachShader(program.get(), fragment->get());
+  gl_.LinkProgram(program.get());
+  gl_.DetachShader(program.get(), vertex->get());
+  gl_.DetachShader(program.get(), fragment->get());
+  GLint linked = GL_FALSE;
+  gl_.GetProgramiv(program.get(), GL_LINK_STATUS, &linked);
+  if (linked != GL_TRUE) return fail(what + ": the multisample fill program does not link");
+  return fill_programs_.emplace(kind, std::move(program)).first->second.get();
+}
+
+Result<void> GlBackend::fill_multisampled(const Texture& texture, const TextureData& data, const std::string& what) {
+  // Multisampled storage takes no pixel uploads: the data goes into a single-sampled 2D array
+  // first, and a draw per layer copies it into every sample.
+  const GlFormat format = gl_format(data.format);
+  const GLsizei width = static_cast<GLsizei>(data.width), height = static_cast<GLsizei>(data.height);
+  const GLsizei layers = static_cast<GLsizei>(data.layers);
+  GLuint source_id = 0;
+  gl_.CreateTextures(GL_TEXTURE_2D_ARRAY, 1, &source_id);
+  GlTexture source(&gl_, source_id);
+  gl_.TextureStorage3D(source_id, 1, format.internal_format, width, height, layers);
+  gl_.TextureSubImage3D(source_id, 0, 0, 0, 0, width, height, layers, format.format, format.type,
+                        data.levels[0].data());
+  // An integer texture filtered linearly is incomplete, and texelFetch of one reads nothing.
+  gl_.TextureParameteri(source_id, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+  gl_.TextureParameteri(source_id, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+  auto program = fill_program(texel_kind(data.format), what);
+  if (!program) return fail(program.error());
+  const GLint layer_location = gl_.GetUniformLocation(*program, "layer");
+  GLuint framebuffer_id = 0;
+  gl_.CreateFramebuffers(1, &framebuffer_id);
+  GlFramebuffer framebuffer(&gl_, framebuffer_id);
+  gl_.NamedFramebufferDrawBuffer(framebuffer_id, GL_COLOR_ATTACHMENT0);
+  gl_.UseProgram(*program);
+  gl_.BindTextureUnit(0, source_id);
+  gl_.BindSampler(0, 0);
+  gl_.BindVertexArray(empty_vertex_array_.get());
+  gl_.Disable(GL_DEPTH_TEST);
+  gl_.ColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+  gl_.Viewport(0, 0, width, height);
+  Result<void> result;
+  for (GLsizei layer = 0; layer < layers && result; ++layer) {
+    if (data.dimension == TextureDimension::Tex2D)
+      gl_.NamedFramebufferTexture(framebuffer_id, GL_COLOR_ATTACHMENT0, texture.texture.get(), 0);
+    else
+      gl_.NamedFramebufferTextureLayer(framebuffer_id, GL_COLOR_ATTACHMENT0, texture.texture.get(), 0, layer);
+    const GLenum status = gl_.CheckNamedFramebufferStatus(framebuffer_id, GL_FRAMEBUFFER);
+    if (status != GL_FRAMEBUFFER_COMPLETE) {
+      result = fail(fmt::format("{}: the framebuffer that fills layer {} ({} samples of {}) is incomplete "
+                                "(status 0x{:04X})",
+                                what, layer, data.samples, format_name(data.format), status));
+      break;
+    }
+    gl_.BindFramebuffer(GL_FRAMEBUFFER, framebuffer_id);
+    gl_.ProgramUniform1i(*program, layer_location, layer);
+    gl_.DrawArrays(GL_TRIANGLES, 0, 3);
+  }
+  gl_.Finish();
+  gl_.BindTextureUnit(0, 0);
+  gl_.BindVertexArray(0);
+  gl_.UseProgram(0);
+  gl_.BindFramebuffer(GL_FRAMEBUFFER, 0);
+  return result;
+}
+
+Result<GlShader> GlBackend::compile(const ShaderStageSource& source, GLenum stage,
+                                        const char* stage_name, const std::string& what) {
+  const std::string shader = fmt::format("{}: the {} shader '{}'", what, stage_name, source.name);
+  if (source.glsl.empty()) return fail(shader + " has no GLSL");
+  if (source.entry_point != "main")
+    return fail(fmt::format("{} has entry point '{}', but OpenGL calls 'main' only", shader,
+                            source.entry_point));
+  GlShader object(&gl_, gl_.CreateShader(stage));
+  if (!object) return fail(shader + ": glCreateShader failed");
+  const GLchar* text = source.glsl.c_str();
+  const GLint length = static_cast<GLint>(source.glsl.size());
+  gl_.ShaderSource(object.get(), 1, &text, &length);
+  gl_.CompileShader(object.get());
+  GLint status = GL_FALSE;
+  gl_.GetShaderiv(object.get(), GL_COMPILE_STATUS, &status);
+  if (status == GL_TRUE) return object;
+
+  GLint log_length = 0;
+  gl_.GetShaderiv(object.get(), GL_INFO_LOG_LENGTH, &log_length);
+  std::string log(static_cast<size_t>(std::max(log_length, 1)), '\0');
+  GLsizei written = 0;
+  gl_.GetShaderInfoLog(object.get(), static_cast<GLsizei>(log.size()), &written, log.data());
+  log.resize(static_cast<size_t>(std::max(written, 0)));
+  Error error;
+  error.diagnostics = parse_log(log, source.name, source.source_files);
+  error.message = shader + " does not compile";
+  auto first = std::find_if(error.diagnostics.begin(), error.diagnostics.end(),
+                            [](const Diagnostic& d) { return d.severity == Severity::Error; });
+  if (first == error.diagnostics.end() && !error.diagnostics.empty())
+    first = error.diagnostics.begin();
+  if (first != error.diagnostics.end()) {
+    error.message += ": " + first->message;
+    error.where = first->where;
+  }
+  if (error.where.file.empty()) error.where.file = source.name;
+  if (error.diagnostics.empty())
+    error.diagnostics.push_back(
+        Diagnostic{Severity::Error, {source.name, 0, 0}, "the compiler gave no log"});
+  return fail(std::move(error));
+}
+
+// The linked program's uniforms, blocks and inputs against the layout and GL's limits.
+Result<void> GlBackend::check_interface(Program& program, const std::string& what) {
+  const GLuint id = program.program.get();
+  const ProgramLayout& layout = program.layout;
+  const auto resource_name = [&](GLenum interface, GLuint index) {
+    GLint length = 0;
+    const GLenum property = GL_NAME_LENGTH;
+    gl_.GetProgramResourceiv(id, interface, index, 1, &property, 1, nullptr, &length);
+    std::string name(static_cast<size_t>(std::max(length, 1)), '\0');
+    GLsizei written = 0;
+    gl_.GetProgramResourceName(id, interface, index, static_cast<GLsizei>(name.size()), &written,
+                               name.data());
+    name.resize(static_cast<size_t>(std::max(written, 0)));
+    return name;
+  };
+  const auto count = [&](GLenum interface) {
+    GLint value = 0;
+    gl_.GetProgramInterfaceiv(id, interface, GL_ACTIVE_RESOURCES, &value);
+    return static_cast<GLuint>(std::max(value, 0));
+  };
+
+  // Uniform blocks: listed, and no bigger than the layout says.
+  const GLuint blocks = count(GL_UNIFORM_BLOCK);
+  for (GLuint index = 0; index < blocks; ++index) {
+    const std::string name = base_name(resource_name(GL_UNIFORM_BLOCK, index));
+    const GLenum property = GL_BUFFER_DATA_SIZE;
+    GLint size = 0;
+    gl_.GetProgramResourceiv(id, GL_UNIFORM_BLOCK, index, 1, &property, 1, nullptr, &size);
+    auto slot = std::find_if(layout.uniform_blocks.begin(), layout.uniform_blocks.end(),
+                             [&](const UniformBlockSlot& s) { return s.name == name; });
+    if (slot == layout.uniform_blocks.end())
+      return fail(fmt::format("{}: the program uses uniform block '{}', which the layout does not "
+                              "list",
+                              what, name));
+    if (static_cast<uint32_t>(size) > round_up_16(slot->size))
+      return fail(fmt::format("{}: uniform block '{}' is {} bytes in the GLSL, but the layout "
+                              "gives it {}",
+                              what, name, size, slot->size));
+  }
+
+  // Uniforms outside blocks: only samplers, each listed as a texture.
+  const GLuint uniforms = count(GL_UNIFORM);
+  for (GLuint index = 0; index < uniforms; ++index) {
+    const std::array<GLenum, 3> properties = {GL_BLOCK_INDEX, GL_TYPE, GL_LOCATION};
+    std::array<GLint, 3> values = {-1, 0, -1};
+    gl_.GetProgramResourceiv(id, GL_UNIFORM, index, static_cast<GLsizei>(properties.size()),
+                             properties.data(), static_cast<GLsizei>(values.size()), nullptr,
+                             values.data());
+    if (values[0] != -1) continue;  // a member of a block
+    const std::string name = base_name(resource_name(GL_UNIFORM, index));
+    if (name.starts_with("gl_")) continue;
+    auto slot = std::find_if(layout.textures.begin(), layout.textures.end(),
+                             [&](const TextureSlot& s) { return s.uniform_name() == name; });
+    if (slot == layout.textures.end())
+      return fail(fmt::format("{}: the program uses uniform '{}', which the layout does not list",
+                              what, name));
+    if (!is_sampler_type(values[1]))
+      return fail(fmt::format("{}: the layout lists '{}' as a texture, but it is not a sampler",
+                              what, name));
+  }
+
+  // Vertex inputs: none for a full-screen program; for a mesh program the mesh's locations 0..3,
+  // and zeros for any other (what glGetActiveAttrib reports, here through the program interface
+  // query that gives the location with the type).
+  const GLuint inputs = count(GL_PROGRAM_INPUT);
+  program.zero_inputs.clear();
+  for (GLuint index = 0; index < inputs; ++index) {
+    const std::array<GLenum, 2> properties = {GL_LOCATION, GL_TYPE};
+    std::array<GLint, 2> values = {-1, 0};
+    gl_.GetProgramResourceiv(id, GL_PROGRAM_INPUT, index, static_cast<GLsizei>(properties.size()),
+                             properties.data(), static_cast<GLsizei>(values.size()), nullptr, values.data());
+    const GLint location = values[0];
+    if (location < 0) continue;  // a built-in such as gl_VertexID
+    if (program.fullscreen)
+      return fail(fmt::format("{}: a full-screen program's vertex shader must read no vertex "
+                              "input, but it reads location {}",
+                              what, location));
+    if (location <= 3) continue;
+    const std::optional<TexelKind> kind = attribute_kind(values[1]);
+    if (!kind)
+      return fail(fmt::format("{}: the vertex shader reads input '{}' at location {} of GL type 0x{:04X}, which "
+                              "no mesh supplies and which is not a float, int or uint scalar or vector",
+                              what, resource_name(GL_PROGRAM_INPUT, index), location, values[1]));
+    program.zero_inputs.emplace_back(static_cast<GLuint>(location), *kind);
+  }
+  return {};
+}
+
+Result<ProgramHandle> GlBackend::create_program(const ProgramDesc& desc) {
+  const std::string what = fmt::format("create_program '{}'", desc.name);
+  // The compiler's messages wait until the outcome is known: a failure carries them in its
+  // diagnostics, a success hands them on as driver messages naming the program.
+  {
+    std::lock_guard lock(log_->mutex);
+    log_->held.emplace();
+  }
+  Result<ProgramHandle> result = guarded<ProgramHandle>(what, [&]() -> Result<ProgramHandle> {
+    // The layout first: GL's limits, names and bindings used once.
+    std::set<std::string> names;
+    std::map<uint32_t, std::string> block_bindings, texture_units;
+    for (const UniformBlockSlot& slot : desc.layout.uniform_blocks) {
+      if (!names.insert(slot.name).second)
+        return fail(fmt::format("{}: the layout names '{}' twice", what, slot.name));
+      if (slot.size == 0 || slot.size > static_cast<uint32_t>(max_uniform_block_size_))
+        return fail(fmt::format("{}: uniform block '{}' has size {}; the driver allows 1..{} bytes",
+                                what, slot.name, slot.size, max_uniform_block_size_));
+      if (slot.binding >= static_cast<uint32_t>(max_uniform_buffer_bindings_))
+        return fail(fmt::format("{}: uniform block '{}' has binding {}, but OpenGL allows "
+                                "0..{} (GL_MAX_UNIFORM_BUFFER_BINDINGS)",
+                                what, slot.name, slot.binding, max_uniform_buffer_bindings_ - 1));
+      if (auto [it, fresh] = block_bindings.emplace(slot.binding, slot.name); !fresh)
+        return fail(fmt::format("{}: binding {} is used by both uniform block '{}' and uniform "
+                                "block '{}'",
+                                what, slot.binding, it->second, slot.name));
+    }
+    for (const TextureSlot& slot : desc.layout.textures) {
+      if (!names.insert(slot.name).second)
+        return fail(fmt::format("{}: the layout names '{}' twice", what, slot.name));
+      if (slot.binding >= static_cast<uint32_t>(max_texture_units_))
+        return fail(fmt::format("{}: texture '{}' has binding {}, but OpenGL allows 0..{} "
+                                "(GL_MAX_COMBINED_TEXTURE_IMAGE_UNITS)",
+                                what, slot.name, slot.binding, max_texture_units_ - 1));
+      if (auto [it, fresh] = texture_units.emplace(slot.binding, slot.name); !fresh)
+        return fail(fmt::format("{}: binding {} is used by both texture '{}' and texture '{}'",
+                                what, slot.binding, it->second, slot.name));
+    }
+
+    auto vertex = compile(desc.vertex, GL_VERTEX_SHADER, "vertex", what);
+    if (!vertex) return fail(vertex.error());
+    auto fragment = compile(desc.fragment, GL_FRAGMENT_SHADER, "fragment", what);
+    if (!fragment) return fail(fragment.error());
+
+    auto program = std::make_unique<Program>();
+    program->name = desc.name;
+    program->layout = desc.layout;
+    program->fullscreen = desc.fullscreen;
+    program->program = GlProgram(&gl_, gl_.CreateProgram());
+    const GLuint id = program->program.get();
+    gl_.AttachShader(id, vertex->get());
+    gl_.AttachShader(id, fragment->get());
+    gl_.LinkProgram(id);
+    gl_.DetachShader(id, vertex->get());
+    gl_.DetachShader(id, fragment->get());
+    GLint linked = GL_FALSE;
+    gl_.GetProgramiv(id, GL_LINK_STATUS, &linked);
+    if (linked != GL_TRUE) {
+      GLint log_length = 0;
+      gl_.GetProgramiv(id, GL_INFO_LOG_LENGTH, &log_length);
+      std::string log(static_cast<size_t>(std::max(log_length, 1)), '\0');
+      GLsizei written = 0;
+      gl_.GetProgramInfoLog(id, static_cast<GLsizei>(log.size()), &written, log.data());
+      log.resize(static_cast<size_t>(std::max(written, 0)));
+      Error error;
+      error.diagnostics = parse_log(log, {});
+      error.message = fmt::format("{}: the vertex shader '{}' and the fragment shader '{}' do not "
+                                  "link",
+                                  what, desc.vertex.name, desc.fragment.name);
+      auto first = std::find_if(error.diagnostics.begin(), error.diagnostics.end(),
+                                [](const Diagnostic& d) { return d.severity == Severity::Error; });
+      if (first != error.diagnostics.end()) error.message += ": " + first->message;
+      if (error.diagnostics.empty())
+        error.diagnostics.push_back(Diagnostic{Severity::Error, {}, "the linker gave no log"});
+      return fail(std::move(error));
+    }
+
+    if (auto checked = check_interface(*program, what); !checked) return fail(checked.error());
+
+    // Bindings by name, from the layout.
+    for (const UniformBlockSlot& slot : desc.layout.uniform_blocks) {
+      const GLuint index = gl_.GetUniformBlockIndex(id, slot.name.c_str());
+      if (index != GL_INVALID_INDEX) gl_.UniformBlockBinding(id, index, slot.binding);
+      GLuint buffer = 0;
+      gl_.CreateBuffers(1, &buffer);
+      program->uniform_buffers.emplace_back(&gl_, buffer);
+    }
+    for (const TextureSlot& slot : desc.layout.textures) {
+      const GLint location = gl_.GetUniformLocation(id, slot.uniform_name().c_str());
+      if (location >= 0) gl_.ProgramUniform1i(id, location, static_cast<GLint>(slot.binding));
+    }
+    programs_.push_back(std::move(program));
+    return ProgramHandle{static_cast<uint32_t>(programs_.size())};
+  });
+
+  std::lock_guard lock(log_->mutex);
+  std::vector<std::string> held = std::move(*log_->held);
+  log_->held.reset();
+  if (result)
+    for (std::string& message : held)
+      log_->messages.push_back(fmt::format("program '{}': {}", desc.name, message));
+  return result;
+}
+
+Result<void> GlBackend::render(const RenderPass& pass) {
+  const std::string what = fmt::format("render into target {}", pass.target.id);
+  return guarded<void>(what, [&]() -> Result<void> {
+    Target* target = find_target(pass.target.id);
+    if (!target) return fail(fmt::format("{}: no such target", what));
+
+    // Resolve every draw before drawing anything.
+    struct BoundTexture {
+      const Texture* texture = nullptr;
+      SamplerDesc sampler;
+    };
+    struct Resolved {
+      Program* program = nullptr;
+      Mesh* mesh = nullptr;
+      std::vector<const UniformBinding*> uniforms;  // per layout slot
+      std::vector<BoundTexture> textures;           // per layout slot
+    };
+    std::vector<Resolved> draws;
+    for (size_t i = 0; i < pass.draws.size(); ++i) {
+      const DrawItem& item = pass.draws[i];
+      Resolved draw;
+      if (item.program.id == 0 || item.program.id > programs_.size())
+        return fail(
+            fmt::format("{}: draw {}: no such program (handle {})", what, i, item.program.id));
+      draw.program = programs_[item.program.id - 1].get();
+      const Program& program = *draw.program;
+      const std::string where = fmt::format("{}: draw {} (program '{}')", what, i, program.name);
+      if (!program.fullscreen) {
+        if (item.mesh.id == 0 || item.mesh.id > meshes_.size())
+          return fail(fmt::format("{}: no such mesh (handle {})", where, item.mesh.id));
+        draw.mesh = meshes_[item.mesh.id - 1].get();
+      }
+
+      auto matched = match_bindings(program.layout, item, where);
+      if (!matched) return fail(matched.error());
+      draw.uniforms = std::move(matched->uniforms);
+
+      const auto& slots = program.layout.textures;
+      draw.textures.assign(slots.size(), BoundTexture{});
+      for (size_t index = 0; index < slots.size(); ++index) {
+        const TextureBinding& binding = *matched->textures[index];
+        const TextureSource& source = binding.source;
+        const Texture* texture = nullptr;
+        if (source.kind == TextureSource::Kind::Texture) {
+          if (source.id == 0 || source.id > textures_.size())
+            return fail(fmt::format("{}: texture '{}' is bound to a missing texture (handle {})",
+                                    where, binding.name, source.id));
+          texture = textures_[source.id - 1].get();
+        } else {
+          Target* sampled = find_target(source.id);
+          if (!sampled)
+            return fail(fmt::format("{}: texture '{}' is bound to a missing target (handle {})",
+                                    where, binding.name, source.id));
+          if (sampled == target)
+            return fail(fmt::format("{}: texture '{}' samples target {}, which the pass renders "
+                                    "into: a pass cannot sample its own target",
+                                    where, binding.name, source.id));
+          if (source.kind == TextureSource::Kind::TargetDepth && !sampled->depth)
+            return fail(
+                fmt::format("{}: texture '{}' samples the depth of target {}, which has no depth",
+                            where, binding.name, source.id));
+          texture =
+              source.kind == TextureSource::Kind::TargetColor ? &sampled->color : &*sampled->depth;
+        }
+        const std::string label = source.kind == TextureSource::Kind::Texture
+                                      ? fmt::format("texture {}", source.id)
+                                      : fmt::format("the {} of target {}",
+                                                    source.kind == TextureSource::Kind::TargetColor ? "colour" : "depth",
+                                                    source.id);
+        if (auto fits = check_bound_texture(slots[index], {texture->shape, texture->format, label}, source.sampler, where);
+            !fits)
+          return fail(fits.error());
+        draw.textures[index] = BoundTexture{texture, source.sampler};
+      }
+      draws.push_back(std::move(draw));
+    }
+
+    // The pass: clear, then each draw.
+    const GLuint framebuffer = target->framebuffer.get();
+    gl_.BindFramebuffer(GL_FRAMEBUFFER, framebuffer);
+    gl_.Viewport(0, 0, static_cast<GLsizei>(target->color.width),
+                 static_cast<GLsizei>(target->color.height));
+    gl_.ColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+    const std::array<float, 4> clear = {pass.clear_color.r, pass.clear_color.g, pass.clear_color.b,
+                                        pass.clear_color.a};
+    gl_.ClearNamedFramebufferfv(framebuffer, GL_COLOR, 0, clear.data());
+    if (target->depth) {
+      gl_.Enable(GL_DEPTH_TEST);
+      gl_.DepthFunc(GL_LESS);
+      gl_.DepthMask(GL_TRUE);
+      gl_.ClearNamedFramebufferfv(framebuffer, GL_DEPTH, 0, &pass.clear_depth);
+    } else {
+      gl_.Disable(GL_DEPTH_TEST);
+    }
+
+    std::set<GLuint> used_units;
+    std::vector<std::byte> padded;
+    for (const Resolved& draw : draws) {
+      const Program& program = *draw.program;
+      gl_.UseProgram(program.program.get());
+      const auto& blocks = program.layout.uniform_blocks;
+      for (size_t s = 0; s < blocks.size(); ++s) {
+        const std::vector<std::byte>& bytes = draw.uniforms[s]->bytes;
+        // Padded to 16 bytes: std140 rounds a block's size up to a vec4.
+        padded.assign(round_up_16(blocks[s].size), std::byte{0});
+        std::copy(bytes.begin(), bytes.end(), padded.begin());
+        const GLuint buffer = program.uniform_buffers[s].get();
+        gl_.NamedBufferData(buffer, static_cast<GLsizeiptr>(padded.size()), padded.data(),
+                            GL_STREAM_DRAW);
+        gl_.BindBufferBase(GL_UNIFORM_BUFFER, blocks[s].binding, buffer);
+      }
+      const auto& slots = program.layout.textures;
+      for (size_t s = 0; s < slots.size(); ++s) {
+        const BoundTexture& bound = draw.textures[s];
+        gl_.BindTextureUnit(slots[s].binding, bound.texture->texture.get());
+        gl_.BindSampler(slots[s].binding, sampler(bound.sampler, bound.texture->levels > 1, slots[s].comparison));
+        used_units.insert(slots[s].binding);
+      }
+      if (program.fullscreen) {
+        gl_.BindVertexArray(empty_vertex_array_.get());
+        gl_.DrawArrays(GL_TRIANGLES, 0, 3);
+      } else {
+        // Attributes outside the vertex array read the generic current value.
+        for (const auto& [location, kind] : program.zero_inputs) {
+          if (kind == TexelKind::Float) gl_.VertexAttrib4f(location, 0.0f, 0.0f, 0.0f, 0.0f);
+          if (kind == TexelKind::Int) gl_.VertexAttribI4i(location, 0, 0, 0, 0);
+          if (kind == TexelKind::Uint) gl_.VertexAttribI4ui(location, 0, 0, 0, 0);
+        }
+        gl_.BindVertexArray(draw.mesh->vertex_array.get());
+        gl_.DrawElements(GL_TRIANGLES, static_cast<GLsizei>(draw.mesh->index_count),
+                         GL_UNSIGNED_INT, nullptr);
+      }
+    }
+    gl_.Finish();
+
+    // Nothing stays bound that a later pass might render into.
+    for (GLuint unit : used_units) {
+      gl_.BindTextureUnit(unit, 0);
+      gl_.BindSampler(unit, 0);
+    }
+    gl_.BindVertexArray(0);
+    gl_.UseProgram(0);
+    gl_.BindFramebuffer(GL_FRAMEBUFFER, 0);
+    return {};
+  });
+}
+
+Result<FloatImage> GlBackend::read_color(TargetHandle handle) {
+  const std::string what = fmt::format("read_color of target {}", handle.id);
+  return guarded<FloatImage>(what, [&]() -> Result<FloatImage> {
+    Target* target = find_target(handle.id);
+    if (!target) return fail(fmt::format("{}: no such target", what));
+    FloatImage result(target->color.width, target->color.height);
+    // Texture row 0 is window row 0, which the clip control made the top: no flip.
+    gl_.GetTextureImage(target->color.texture.get(), 0, GL_RGBA, GL_FLOAT,
+                        static_cast<GLsizei>(result.rgba.size() * sizeof(float)),
+                        result.rgba.data());
+    return result;
+  });
+}
+
+}  // namespace
+
+Result<std::unique_ptr<Backend>> create_gl_backend(std::unique_ptr<GlContext> context) {
+  if (context == nullptr) return fail("creating the OpenGL backend: no context");
+  const std::string route(context->route());
+  try {
+    auto backend = std::make_unique<GlBackend>();
+    if (auto ok = backend->init(std::move(context)); !ok) return fail(ok.error());
+    return std::unique_ptr<Backend>(std::move(backend));
+  } catch (const std::exception& e) {
+    return fail(fmt::format("creating the OpenGL {} backend: {}", route, e.what()));
+  } catch (...) {
+    return fail(fmt::format("creating the OpenGL {} backend: unknown exception", route));
+  }
+}
+
+Result<std::unique_ptr<Backend>> create_gl_backend(const GlContextOptions& options) {
+  auto context = create_gl_context(options);
+  if (!context) return fail(context.error());
+  return create_gl_backend(std::move(*context));
+}
+
+}  // namespace xshade::harness

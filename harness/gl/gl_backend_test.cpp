@@ -1,0 +1,741 @@
+// Smoke tests of the OpenGL lane on both routes to its context (OSMesa and EGL surfaceless):
+// creation, orientation, bindings, errors and diagnostics; choosing the route; and backends of
+// both routes taking turns in one process.
+#include "harness/gl/gl_backend.h"
+
+#include <array>
+#include <cmath>
+#include <cstdlib>
+#include <cstring>
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <GL/glcorearb.h>
+#include <gtest/gtest.h>
+
+#include "glsl/flavour.h"
+
+namespace xshade::harness {
+namespace {
+
+const char* api_of(GlPlatform platform) {
+  return platform == GlPlatform::Egl ? "OpenGL 4.5 core (EGL surfaceless)" : "OpenGL 4.5 core (OSMesa)";
+}
+
+std::string platform_test_name(const ::testing::TestParamInfo<GlPlatform>& info) {
+  return std::string(gl_platform_name(info.param));
+}
+
+// One backend per route for the suite: an llvmpipe context costs tens of milliseconds.
+class GlBackendTest : public ::testing::TestWithParam<GlPlatform> {
+ protected:
+  static void TearDownTestSuite() { backends_.clear(); }
+
+  void SetUp() override {
+    std::unique_ptr<Backend>& slot = backends_[GetParam()];
+    std::string error;
+    if (!slot) {
+      auto created = create_gl_backend({.platform = GetParam()});
+      if (created)
+        slot = std::move(*created);
+      else
+        error = created.error().to_string();
+    }
+    ASSERT_NE(slot, nullptr) << error;
+    backend_ = slot.get();
+    backend_->take_driver_messages();
+  }
+  void TearDown() override {
+    if (backend_) {
+      EXPECT_EQ(backend_->take_driver_messages(), std::vector<std::string>{});
+    }
+  }
+
+  Backend& backend() { return *backend_; }
+
+  static ShaderStageSource stage(std::string glsl, std::string name) {
+    ShaderStageSource source;
+    source.glsl = std::move(glsl);
+    source.name = std::move(name);
+    return source;
+  }
+
+  Result<ProgramHandle> fullscreen_program(const std::string& name,
+                                                  const std::string& fragment,
+                                                  ProgramLayout layout = {}) {
+    ProgramDesc desc;
+    desc.name = name;
+    desc.vertex = stage(glsl::fullscreen_vertex_shader(glsl::Flavour::Gl), "fullscreen.vert");
+    desc.fragment = stage(fragment, name + ".frag");
+    desc.layout = std::move(layout);
+    desc.fullscreen = true;
+    return backend().create_program(desc);
+  }
+
+  Result<ProgramHandle> mesh_program(const std::string& name, const std::string& fragment) {
+    ProgramDesc desc;
+    desc.name = name;
+    desc.vertex = stage(
+        "#version 450 core\n"
+        "layout(location = 0) in vec3 position;\n"
+        "layout(location = 3) in vec2 uv;\n"
+        "layout(location = 0) out vec2 v_uv;\n"
+        "void main() { v_uv = uv; gl_Position = vec4(position, 1.0); }\n",
+        name + ".vert");
+    desc.fragment = stage(fragment, name + ".frag");
+    return backend().create_program(desc);
+  }
+
+  static inline std::map<GlPlatform, std::unique_ptr<Backend>> backends_;
+  Backend* backend_ = nullptr;
+};
+
+const char* const kUvFragment =
+    "#version 450 core\n"
+    "layout(location = 0) in vec2 uv;\n"
+    "layout(location = 0) out vec4 color;\n"
+    "void main() { color = vec4(uv, 0.0, 1.0); }\n";
+
+const char* const kRedFragment =
+    "#version 450 core\n"
+    "layout(location = 0) out vec4 color;\n"
+    "void main() { color = vec4(1.0, 0.0, 0.0, 1.0); }\n";
+
+template <class T>
+std::vector<std::byte> bytes_of(const T& value) {
+  std::vector<std::byte> bytes(sizeof(T));
+  std::memcpy(bytes.data(), &value, sizeof(T));
+  return bytes;
+}
+
+DrawItem draw(ProgramHandle program, MeshHandle mesh = {},
+              std::vector<UniformBinding> uniforms = {},
+              std::vector<TextureBinding> textures = {}) {
+  return DrawItem{program, mesh, std::move(uniforms), std::move(textures)};
+}
+
+TextureSlot texture_slot(std::string name, uint32_t binding) {
+  return TextureSlot{std::move(name), binding, std::nullopt};
+}
+
+ProgramLayout layout(std::vector<UniformBlockSlot> blocks, std::vector<TextureSlot> textures) {
+  return ProgramLayout{std::move(blocks), std::move(textures)};
+}
+
+Vertex vertex_at(float x, float y, float z) {
+  Vertex vertex;
+  vertex.position = {x, y, z};
+  return vertex;
+}
+
+void expect_near(glm::vec4 actual, glm::vec4 expected, const std::string& what) {
+  for (int c = 0; c < 4; ++c)
+    EXPECT_NEAR(actual[c], expected[c], 1e-5f) << what << ", channel " << c;
+}
+
+TEST_P(GlBackendTest, ReportsLlvmpipeAndOpenGl45) {
+  const DriverInfo& info = backend().driver_info();
+  EXPECT_EQ(info.api, api_of(GetParam()));
+  EXPECT_NE(info.renderer.find("llvmpipe"), std::string::npos) << info.renderer;
+  EXPECT_TRUE(info.api_version.starts_with("4.5")) << info.api_version;
+  EXPECT_TRUE(info.driver_version.starts_with("Mesa ")) << info.driver_version;
+  EXPECT_NE(info.api_version.find(info.driver_version), std::string::npos);
+  EXPECT_FALSE(info.llvm_version.empty()) << info.renderer;
+  EXPECT_NE(info.renderer.find("LLVM " + info.llvm_version), std::string::npos);
+}
+
+TEST_P(GlBackendTest, ClearGivesTheClearColourUnclamped) {
+  auto target = backend().create_target({5, 3, true});
+  ASSERT_TRUE(target) << target.error().to_string();
+  RenderPass pass;
+  pass.target = *target;
+  pass.clear_color = {-0.5f, 2.5f, 0.25f, 1.0f};
+  ASSERT_TRUE(backend().render(pass));
+  auto image = backend().read_color(*target);
+  ASSERT_TRUE(image) << image.error().to_string();
+  ASSERT_EQ(image->width, 5u);
+  ASSERT_EQ(image->height, 3u);
+  for (uint32_t y = 0; y < 3; ++y)
+    for (uint32_t x = 0; x < 5; ++x) expect_near(image->at(x, y), pass.clear_color, "clear");
+}
+
+TEST_P(GlBackendTest, FullscreenUvIsZeroAtTheTopLeftPixel) {
+  const uint32_t w = 8, h = 4;
+  auto target = backend().create_target({w, h, false});
+  ASSERT_TRUE(target) << target.error().to_string();
+  auto program = fullscreen_program("uv", kUvFragment);
+  ASSERT_TRUE(program) << program.error().to_string();
+  RenderPass pass;
+  pass.target = *target;
+  pass.draws.push_back(draw(*program));
+  ASSERT_TRUE(backend().render(pass));
+  auto image = backend().read_color(*target);
+  ASSERT_TRUE(image) << image.error().to_string();
+  for (uint32_t y = 0; y < h; ++y)
+    for (uint32_t x = 0; x < w; ++x)
+      expect_near(image->at(x, y),
+                  {(float(x) + 0.5f) / float(w), (float(y) + 0.5f) / float(h), 0.0f, 1.0f},
+                  "pixel " + std::to_string(x) + "," + std::to_string(y));
+}
+
+TEST_P(GlBackendTest, MeshTriangleInUpperClipHalfLandsInTheTopRows) {
+  auto target = backend().create_target({4, 4, true});
+  ASSERT_TRUE(target);
+  // Covers clip y in [0, 1] across the whole width.
+  auto mesh = backend().upload_mesh(
+      {{vertex_at(-1, 0, 0.5f), vertex_at(3, 0, 0.5f), vertex_at(-1, 4, 0.5f)}, {0, 1, 2}});
+  ASSERT_TRUE(mesh) << mesh.error().to_string();
+  auto program = mesh_program("red", kRedFragment);
+  ASSERT_TRUE(program) << program.error().to_string();
+  RenderPass pass;
+  pass.target = *target;
+  pass.draws.push_back(draw(*program, *mesh));
+  ASSERT_TRUE(backend().render(pass));
+  auto image = backend().read_color(*target);
+  ASSERT_TRUE(image);
+  for (uint32_t y = 0; y < 4; ++y)
+    for (uint32_t x = 0; x < 4; ++x)
+      expect_near(image->at(x, y), y < 2 ? glm::vec4(1, 0, 0, 1) : glm::vec4(0),
+                  "pixel " + std::to_string(x) + "," + std::to_string(y));
+}
+
+TEST_P(GlBackendTest, DepthIsZeroToOneLessTestedAndSampleable) {
+  auto target = backend().create_target({4, 4, true});
+  auto readback = backend().create_target({4, 4, false});
+  ASSERT_TRUE(target && readback);
+  // Near: the top half at z = 0.25. Far: the whole target at z = 0.75, drawn second.
+  auto near = backend().upload_mesh(
+      {{vertex_at(-1, 0, 0.25f), vertex_at(3, 0, 0.25f), vertex_at(-1, 4, 0.25f)}, {0, 1, 2}});
+  auto far = backend().upload_mesh(
+      {{vertex_at(-1, -1, 0.75f), vertex_at(3, -1, 0.75f), vertex_at(-1, 3, 0.75f)}, {0, 1, 2}});
+  ASSERT_TRUE(near && far);
+  auto red = mesh_program("red", kRedFragment);
+  auto green = mesh_program("green",
+                            "#version 450 core\n"
+                            "layout(location = 0) out vec4 color;\n"
+                            "void main() { color = vec4(0.0, 1.0, 0.0, 1.0); }\n");
+  ASSERT_TRUE(red && green);
+  RenderPass pass;
+  pass.target = *target;
+  pass.draws.push_back(draw(*red, *near));
+  pass.draws.push_back(draw(*green, *far));
+  ASSERT_TRUE(backend().render(pass));
+  auto image = backend().read_color(*target);
+  ASSERT_TRUE(image);
+  expect_near(image->at(1, 0), {1, 0, 0, 1}, "near wins at the top");
+  expect_near(image->at(1, 3), {0, 1, 0, 1}, "far fills the bottom");
+
+  // The depth of clip z = 0.25 (w = 1) is 0.25 with GL_ZERO_TO_ONE, and reads as .r.
+  auto copy = fullscreen_program("depth_copy",
+                                 "#version 450 core\n"
+                                 "layout(binding = 1) uniform sampler2D depth_map;\n"
+                                 "layout(location = 0) in vec2 uv;\n"
+                                 "layout(location = 0) out vec4 color;\n"
+                                 "void main() { color = texture(depth_map, uv); }\n",
+                                 layout({}, {texture_slot("depth_map", 1)}));
+  ASSERT_TRUE(copy) << copy.error().to_string();
+  RenderPass second;
+  second.target = *readback;
+  second.draws.push_back(draw(
+      *copy, {}, {}, {{"depth_map", TextureSource::depth_of(*target, {Filter::Nearest, {}})}}));
+  auto rendered = backend().render(second);
+  ASSERT_TRUE(rendered) << rendered.error().to_string();
+  auto depth = backend().read_color(*readback);
+  ASSERT_TRUE(depth);
+  EXPECT_NEAR(depth->at(2, 0).r, 0.25f, 1e-6f);
+  EXPECT_NEAR(depth->at(2, 3).r, 0.75f, 1e-6f);
+}
+
+TEST_P(GlBackendTest, TextureRowZeroIsTheTopAndUniformBlocksBindByName) {
+  // Row 0 red, row 1 green; a uniform block scales the result.
+  std::vector<float> texels = {1, 0, 0, 1, 1, 0, 0, 1, 0, 1, 0, 1, 0, 1, 0, 1};
+  TextureData data{TextureFormat::Rgba32Float, 2, 2, {}};
+  data.levels.emplace_back(texels.size() * sizeof(float));
+  std::memcpy(data.levels[0].data(), texels.data(), data.levels[0].size());
+  auto texture = backend().upload_texture(data);
+  ASSERT_TRUE(texture) << texture.error().to_string();
+  auto target = backend().create_target({4, 4, false});
+  ASSERT_TRUE(target);
+  auto program = fullscreen_program(
+      "textured",
+      "#version 450 core\n"
+      "layout(std140, binding = 2) uniform Params { vec4 scale; };\n"
+      "layout(binding = 3) uniform sampler2D image;\n"
+      "layout(location = 0) in vec2 uv;\n"
+      "layout(location = 0) out vec4 color;\n"
+      "void main() { color = texture(image, uv) * scale; }\n",
+      layout({{"Params", 2, 16}}, {texture_slot("image", 3)}));
+  ASSERT_TRUE(program) << program.error().to_string();
+  RenderPass pass;
+  pass.target = *target;
+  pass.draws.push_back(
+      draw(*program, {}, {{"Params", bytes_of(glm::vec4(2.0f, 3.0f, 1.0f, 1.0f))}},
+           {{"image", TextureSource::texture(*texture, {Filter::Nearest, {}})}}));
+  auto rendered = backend().render(pass);
+  ASSERT_TRUE(rendered) << rendered.error().to_string();
+  auto image = backend().read_color(*target);
+  ASSERT_TRUE(image);
+  expect_near(image->at(0, 0), {2, 0, 0, 1}, "top row samples texture row 0");
+  expect_near(image->at(3, 3), {0, 3, 0, 1}, "bottom row samples texture row 1");
+}
+
+TEST_P(GlBackendTest, SpecialFloatValuesReachReadBack) {
+  auto target = backend().create_target({1, 1, false});
+  ASSERT_TRUE(target);
+  auto program = fullscreen_program(
+      "special",
+      "#version 450 core\n"
+      "layout(location = 0) out vec4 color;\n"
+      "void main() {\n"
+      "  color = vec4(-3.5, 1e30, uintBitsToFloat(0x7f800000u), uintBitsToFloat(0x7fc00000u));\n"
+      "}\n");
+  ASSERT_TRUE(program) << program.error().to_string();
+  RenderPass pass;
+  pass.target = *target;
+  pass.draws.push_back(draw(*program));
+  ASSERT_TRUE(backend().render(pass));
+  auto image = backend().read_color(*target);
+  ASSERT_TRUE(image);
+  glm::vec4 pixel = image->at(0, 0);
+  EXPECT_EQ(pixel.r, -3.5f);
+  EXPECT_EQ(pixel.g, 1e30f);
+  EXPECT_TRUE(std::isinf(pixel.b) && pixel.b > 0) << pixel.b;
+  EXPECT_TRUE(std::isnan(pixel.a)) << pixel.a;
+}
+
+TEST_P(GlBackendTest, ADrawProducesNoDriverMessages) {
+  auto target = backend().create_target({16, 16, true});
+  auto program = fullscreen_program("uv", kUvFragment);
+  ASSERT_TRUE(target && program);
+  RenderPass pass;
+  pass.target = *target;
+  pass.draws.push_back(draw(*program));
+  ASSERT_TRUE(backend().render(pass));
+  ASSERT_TRUE(backend().read_color(*target));
+  EXPECT_EQ(backend().take_driver_messages(), std::vector<std::string>{});
+}
+
+TEST_P(GlBackendTest, BindingMistakesFailWithClearMessages) {
+  auto target = backend().create_target({2, 2, false});
+  auto other = backend().create_target({2, 2, false});
+  auto program = fullscreen_program(
+      "tinted",
+      "#version 450 core\n"
+      "layout(std140, binding = 0) uniform Tint { vec4 tint; };\n"
+      "layout(binding = 0) uniform sampler2D source;\n"
+      "layout(location = 0) in vec2 uv;\n"
+      "layout(location = 0) out vec4 color;\n"
+      "void main() { color = texture(source, uv) * tint; }\n",
+      layout({{"Tint", 0, 16}}, {texture_slot("source", 0)}));
+  ASSERT_TRUE(target && other && program) << program.error().to_string();
+  const auto tint = bytes_of(glm::vec4(1.0f));
+  const TextureBinding source{"source", TextureSource::color_of(*other)};
+
+  auto render_with = [&](DrawItem item) {
+    RenderPass pass;
+    pass.target = *target;
+    pass.draws.push_back(std::move(item));
+    return backend().render(pass);
+  };
+  auto missing_name = render_with(draw(*program, {}, {{"Nope", tint}, {"Tint", tint}}, {source}));
+  ASSERT_FALSE(missing_name);
+  EXPECT_NE(missing_name.error().message.find("'Nope'"), std::string::npos)
+      << missing_name.error().message;
+
+  auto unbound = render_with(draw(*program, {}, {}, {source}));
+  ASSERT_FALSE(unbound);
+  EXPECT_NE(unbound.error().message.find("'Tint'"), std::string::npos) << unbound.error().message;
+  EXPECT_NE(unbound.error().message.find("not bound"), std::string::npos);
+
+  auto wrong_size = render_with(draw(*program, {}, {{"Tint", bytes_of(1.0f)}}, {source}));
+  ASSERT_FALSE(wrong_size);
+  EXPECT_NE(wrong_size.error().message.find("16 bytes"), std::string::npos)
+      << wrong_size.error().message;
+
+  auto no_texture = render_with(draw(*program, {}, {{"Tint", tint}}, {}));
+  ASSERT_FALSE(no_texture);
+  EXPECT_NE(no_texture.error().message.find("'source'"), std::string::npos);
+
+  auto own = render_with(
+      draw(*program, {}, {{"Tint", tint}}, {{"source", TextureSource::color_of(*target)}}));
+  ASSERT_FALSE(own);
+  EXPECT_NE(own.error().message.find("own target"), std::string::npos) << own.error().message;
+
+  auto good = render_with(draw(*program, {}, {{"Tint", tint}}, {source}));
+  EXPECT_TRUE(good) << good.error().to_string();
+}
+
+TEST_P(GlBackendTest, BrokenGlslGivesDiagnosticsWithLineNumbers) {
+  auto program = fullscreen_program("broken",
+                                    "#version 450 core\n"
+                                    "layout(location = 0) in vec2 uv;\n"
+                                    "layout(location = 0) out vec4 color;\n"
+                                    "void main() { color = vec4(undeclared_thing, 1.0); }\n");
+  ASSERT_FALSE(program);
+  const Error& error = program.error();
+  EXPECT_NE(error.message.find("'broken'"), std::string::npos) << error.message;
+  EXPECT_NE(error.message.find("fragment"), std::string::npos) << error.message;
+  ASSERT_FALSE(error.diagnostics.empty());
+  bool found = false;
+  for (const Diagnostic& diagnostic : error.diagnostics)
+    if (diagnostic.severity == Severity::Error && diagnostic.where.file == "broken.frag" &&
+        diagnostic.where.line == 4 &&
+        diagnostic.message.find("undeclared_thing") != std::string::npos)
+      found = true;
+  EXPECT_TRUE(found) << error.to_string();
+  EXPECT_EQ(error.where.line, 4u);
+}
+
+TEST_P(GlBackendTest, LinkErrorsAreReported) {
+  ProgramDesc desc;
+  desc.name = "mismatch";
+  desc.vertex = stage(glsl::fullscreen_vertex_shader(glsl::Flavour::Gl), "fullscreen.vert");
+  desc.fragment = stage(
+      "#version 450 core\n"
+      "in vec3 not_written;\n"
+      "layout(location = 0) out vec4 color;\n"
+      "void main() { color = vec4(not_written, 1.0); }\n",
+      "mismatch.frag");
+  desc.fullscreen = true;
+  auto program = backend().create_program(desc);
+  ASSERT_FALSE(program);
+  EXPECT_NE(program.error().message.find("'mismatch'"), std::string::npos);
+  EXPECT_FALSE(program.error().diagnostics.empty()) << program.error().to_string();
+}
+
+TEST_P(GlBackendTest, ResourcesMissingFromTheLayoutAreRejected) {
+  auto program = fullscreen_program("unlisted",
+                                    "#version 450 core\n"
+                                    "layout(std140, binding = 0) uniform Hidden { vec4 value; };\n"
+                                    "layout(location = 0) out vec4 color;\n"
+                                    "void main() { color = value; }\n");
+  ASSERT_FALSE(program);
+  EXPECT_NE(program.error().message.find("'Hidden'"), std::string::npos)
+      << program.error().message;
+}
+
+TEST_P(GlBackendTest, CompileWarningsOfAGoodProgramAreDriverMessages) {
+  // Mesa reports compiler warnings through KHR_debug (at high severity); they are the driver's
+  // complaints about a program, so they stay in the list.
+  auto program = fullscreen_program("warns",
+                                    "#version 450 core\n"
+                                    "layout(location = 0) out vec4 color;\n"
+                                    "void main() { float x; color = vec4(x); }\n");
+  ASSERT_TRUE(program) << program.error().to_string();
+  auto messages = backend().take_driver_messages();
+  ASSERT_EQ(messages.size(), 1u);
+  EXPECT_NE(messages[0].find("'warns'"), std::string::npos) << messages[0];
+  EXPECT_NE(messages[0].find("uninitialized"), std::string::npos) << messages[0];
+}
+
+TEST_P(GlBackendTest, MipLevelsAndSrgbDecodeAreSampled) {
+  // Level 0 (2x2) is sRGB 188, level 1 (1x1) is sRGB 255; sRGB 188 decodes to about 0.5029.
+  TextureData data{TextureFormat::Rgba8Srgb, 2, 2, {}};
+  data.levels.emplace_back(16, std::byte{188});
+  data.levels.emplace_back(4, std::byte{255});
+  auto texture = backend().upload_texture(data);
+  ASSERT_TRUE(texture) << texture.error().to_string();
+  auto target = backend().create_target({2, 1, false});
+  ASSERT_TRUE(target);
+  auto program = fullscreen_program(
+      "lod",
+      "#version 450 core\n"
+      "uniform sampler2D image;\n"  // no layout(binding): the unit comes from the layout
+      "layout(location = 0) in vec2 uv;\n"
+      "layout(location = 0) out vec4 color;\n"
+      "void main() { color = textureLod(image, uv, uv.x < 0.5 ? 0.0 : 1.0); }\n",
+      layout({}, {texture_slot("image", 5)}));
+  ASSERT_TRUE(program) << program.error().to_string();
+  RenderPass pass;
+  pass.target = *target;
+  pass.draws.push_back(draw(*program, {}, {}, {{"image", TextureSource::texture(*texture)}}));
+  auto rendered = backend().render(pass);
+  ASSERT_TRUE(rendered) << rendered.error().to_string();
+  auto image = backend().read_color(*target);
+  ASSERT_TRUE(image);
+  EXPECT_NEAR(image->at(0, 0).r, 0.5029f, 2e-3f);
+  EXPECT_NEAR(image->at(0, 0).a, 188.0f / 255.0f, 1e-6f);  // alpha is stored linear
+  EXPECT_NEAR(image->at(1, 0).g, 1.0f, 1e-6f);
+}
+
+INSTANTIATE_TEST_SUITE_P(Routes, GlBackendTest, ::testing::Values(GlPlatform::Osmesa, GlPlatform::Egl),
+                         platform_test_name);
+
+// ---- Choosing the route -------------------------------------------------------------------------
+
+// Sets (or unsets, with null) an environment variable for one scope, then puts it back.
+class ScopedEnvironment {
+ public:
+  ScopedEnvironment(const char* name, const char* value) : name_(name) {
+    if (const char* old = std::getenv(name)) old_ = old;
+    if (value)
+      setenv(name, value, 1);
+    else
+      unsetenv(name);
+  }
+  ~ScopedEnvironment() {
+    if (old_)
+      setenv(name_, old_->c_str(), 1);
+    else
+      unsetenv(name_);
+  }
+  ScopedEnvironment(const ScopedEnvironment&) = delete;
+  ScopedEnvironment& operator=(const ScopedEnvironment&) = delete;
+
+ private:
+  const char* name_;
+  std::optional<std::string> old_;
+};
+
+void expect_mentions(const std::string& message, const std::vector<std::string>& words) {
+  for (const std::string& word : words) EXPECT_NE(message.find(word), std::string::npos) << word << " in: " << message;
+}
+
+TEST(GlRoute, PlatformNamesParseBack) {
+  for (GlPlatform platform : {GlPlatform::Auto, GlPlatform::Osmesa, GlPlatform::Egl})
+    EXPECT_EQ(parse_gl_platform(gl_platform_name(platform)), platform) << gl_platform_name(platform);
+  EXPECT_EQ(gl_platform_name(GlPlatform::Egl), "egl");
+  EXPECT_EQ(parse_gl_platform("glx"), std::nullopt);
+  EXPECT_EQ(parse_gl_platform("EGL"), std::nullopt);
+}
+
+TEST(GlRoute, AMissingOsmesaLibraryNamesTheDebianPackage) {
+  auto backend = create_gl_backend({.platform = GlPlatform::Osmesa, .osmesa_library = "libdoesnotexist.so"});
+  ASSERT_FALSE(backend);
+  expect_mentions(backend.error().message, {"libosmesa6", "libdoesnotexist.so"});
+}
+
+TEST(GlRoute, AMissingEglLibraryNamesTheDebianPackageAndDoesNotFallBack) {
+  auto backend = create_gl_backend({.platform = GlPlatform::Egl, .egl_library = "libdoesnotexist.so"});
+  ASSERT_FALSE(backend) << (*backend)->driver_info().api;
+  expect_mentions(backend.error().message, {"cannot open EGL library 'libdoesnotexist.so'", "libegl1"});
+}
+
+TEST(GlRoute, ALibraryWithoutTheRoutesEntryPointsNamesTheDebianPackage) {
+  // libm opens, but it is neither OSMesa nor EGL.
+  auto osmesa = create_gl_backend({.platform = GlPlatform::Osmesa, .osmesa_library = "libm.so.6"});
+  ASSERT_FALSE(osmesa);
+  expect_mentions(osmesa.error().message, {"libm.so.6", "OSMesaCreateContextAttribs", "libosmesa6"});
+  auto egl = create_gl_backend({.platform = GlPlatform::Egl, .egl_library = "libm.so.6"});
+  ASSERT_FALSE(egl);
+  expect_mentions(egl.error().message, {"libm.so.6", "eglGetProcAddress", "libegl1"});
+}
+
+TEST(GlRoute, TheEnvironmentNamesTheLibraryWhenTheOptionsDoNot) {
+  const ScopedEnvironment osmesa_library("XSHADE_OSMESA_LIBRARY", "libalsodoesnotexist.so");
+  const ScopedEnvironment egl_library("XSHADE_EGL_LIBRARY", "libnorthisone.so");
+  auto osmesa = create_gl_backend({.platform = GlPlatform::Osmesa});
+  ASSERT_FALSE(osmesa);
+  expect_mentions(osmesa.error().message, {"libalsodoesnotexist.so"});
+  auto egl = create_gl_backend({.platform = GlPlatform::Egl});
+  ASSERT_FALSE(egl);
+  expect_mentions(egl.error().message, {"libnorthisone.so"});
+}
+
+TEST(GlRoute, AutoTakesOsmesaWhenItOpens) {
+  const ScopedEnvironment osmesa_library("XSHADE_OSMESA_LIBRARY", nullptr);
+  auto backend = create_gl_backend({.platform = GlPlatform::Auto});
+  ASSERT_TRUE(backend) << backend.error().to_string();
+  EXPECT_EQ((*backend)->driver_info().api, "OpenGL 4.5 core (OSMesa)");
+}
+
+TEST(GlRoute, AutoFallsBackToEglWhenOsmesaDoesNotOpen) {
+  auto backend = create_gl_backend({.platform = GlPlatform::Auto, .osmesa_library = "libdoesnotexist.so"});
+  ASSERT_TRUE(backend) << backend.error().to_string();
+  const DriverInfo& info = (*backend)->driver_info();
+  EXPECT_EQ(info.api, "OpenGL 4.5 core (EGL surfaceless)");
+  EXPECT_NE(info.renderer.find("llvmpipe"), std::string::npos) << info.renderer;
+}
+
+TEST(GlRoute, AutoReportsAnOsmesaThatOpensButFailsInsteadOfFallingBack) {
+  auto backend = create_gl_backend({.platform = GlPlatform::Auto, .osmesa_library = "libm.so.6"});
+  ASSERT_FALSE(backend) << (*backend)->driver_info().api;
+  expect_mentions(backend.error().message, {"libm.so.6", "OSMesaCreateContextAttribs"});
+  EXPECT_EQ(backend.error().message.find("EGL"), std::string::npos) << backend.error().message;
+}
+
+TEST(GlRoute, AutoWithNeitherRouteSaysWhatWasTriedAndWhatToInstall) {
+  auto backend = create_gl_backend(
+      {.platform = GlPlatform::Auto, .osmesa_library = "libnoosmesa.so", .egl_library = "libnoegl.so"});
+  ASSERT_FALSE(backend);
+  expect_mentions(backend.error().message, {"OSMesa", "libnoosmesa.so", "EGL surfaceless", "libnoegl.so", "libosmesa6",
+                                            "libegl1", "libegl-mesa0", "libgl1-mesa-dri", "--gl-platform"});
+}
+
+TEST(GlRoute, BothRoutesReachTheSameDriver) {
+  auto osmesa = create_gl_backend({.platform = GlPlatform::Osmesa});
+  ASSERT_TRUE(osmesa) << osmesa.error().to_string();
+  auto egl = create_gl_backend({.platform = GlPlatform::Egl});
+  ASSERT_TRUE(egl) << egl.error().to_string();
+  const DriverInfo& a = (*osmesa)->driver_info();
+  const DriverInfo& b = (*egl)->driver_info();
+  EXPECT_NE(a.api, b.api);
+  EXPECT_EQ(a.renderer, b.renderer);
+  EXPECT_EQ(a.api_version, b.api_version);
+  EXPECT_EQ(a.driver_version, b.driver_version);
+  EXPECT_EQ(a.llvm_version, b.llvm_version);
+}
+
+// ---- Contexts of both routes in one process -----------------------------------------------------
+
+// Mesa's dispatch points at one context per thread, whichever route made it current: the clear
+// colour each context keeps tells which one GL calls reach.
+TEST(GlContexts, MakeCurrentMovesTheDispatchAcrossRoutes) {
+  auto osmesa = create_osmesa_context();
+  ASSERT_TRUE(osmesa) << osmesa.error().to_string();
+  auto egl = create_egl_context();
+  ASSERT_TRUE(egl) << egl.error().to_string();
+  GlContext& a = **osmesa;
+  GlContext& b = **egl;
+  EXPECT_TRUE(b.is_current());  // a new context is current
+  EXPECT_FALSE(a.is_current());
+  const auto clear_color = reinterpret_cast<PFNGLCLEARCOLORPROC>(a.proc_address("glClearColor"));
+  const auto get_floats = reinterpret_cast<PFNGLGETFLOATVPROC>(a.proc_address("glGetFloatv"));
+  ASSERT_TRUE(clear_color && get_floats);
+  clear_color(0.0f, 2.0f, 0.0f, 0.0f);  // into b, the current one
+  ASSERT_TRUE(a.make_current());
+  clear_color(1.0f, 0.0f, 0.0f, 0.0f);
+  const auto reached = [&]() {
+    std::array<float, 4> value{};
+    get_floats(GL_COLOR_CLEAR_VALUE, value.data());
+    return value[0] == 1.0f ? "osmesa" : value[1] == 2.0f ? "egl" : "neither";
+  };
+  for (int round = 0; round < 3; ++round) {
+    ASSERT_TRUE(b.make_current());
+    EXPECT_TRUE(b.is_current());
+    EXPECT_FALSE(a.is_current());
+    EXPECT_STREQ(reached(), "egl") << "round " << round;
+    ASSERT_TRUE(a.make_current());
+    EXPECT_TRUE(a.is_current());
+    EXPECT_FALSE(b.is_current());
+    EXPECT_STREQ(reached(), "osmesa") << "round " << round;
+  }
+}
+
+// A full-screen draw of a uniform colour into a backend's first target with its first program:
+// the same names on every backend, so that a draw reaching the wrong context lands in that
+// context's objects instead of failing.
+struct Tinted {
+  TargetHandle target;
+  ProgramHandle program;
+};
+
+Result<Tinted> prepare_tinted(Backend& backend) {
+  auto target = backend.create_target({3, 2, true});
+  if (!target) return fail(target.error());
+  ProgramDesc desc;
+  desc.name = "tint";
+  desc.vertex.glsl = glsl::fullscreen_vertex_shader(glsl::Flavour::Gl);
+  desc.vertex.name = "fullscreen.vert";
+  desc.fragment.glsl =
+      "#version 450 core\n"
+      "layout(std140, binding = 0) uniform Tint { vec4 tint; };\n"
+      "layout(location = 0) out vec4 color;\n"
+      "void main() { color = tint; }\n";
+  desc.fragment.name = "tint.frag";
+  desc.layout = layout({{"Tint", 0, 16}}, {});
+  desc.fullscreen = true;
+  auto program = backend.create_program(desc);
+  if (!program) return fail(program.error());
+  return Tinted{*target, *program};
+}
+
+Result<void> draw_tint(Backend& backend, const Tinted& tinted, glm::vec4 tint) {
+  RenderPass pass;
+  pass.target = tinted.target;
+  pass.clear_color = {0.5f, 0.5f, 0.5f, 0.5f};
+  pass.draws.push_back(draw(tinted.program, {}, {{"Tint", bytes_of(tint)}}));
+  return backend.render(pass);
+}
+
+void expect_filled(Backend& backend, const Tinted& tinted, glm::vec4 tint, const std::string& what) {
+  auto image = backend.read_color(tinted.target);
+  ASSERT_TRUE(image) << what << ": " << image.error().to_string();
+  for (uint32_t y = 0; y < image->height; ++y)
+    for (uint32_t x = 0; x < image->width; ++x)
+      expect_near(image->at(x, y), tint, what + ", pixel " + std::to_string(x) + "," + std::to_string(y));
+}
+
+TEST(GlContexts, DrawsOnAnOsmesaAndAnEglBackendTakingTurnsLandInTheirOwnTargets) {
+  // Each backend makes its objects while its context is new, and so surely current: a later
+  // switch that fails to move the dispatch sends one backend's calls to the other's objects.
+  auto osmesa = create_gl_backend({.platform = GlPlatform::Osmesa});
+  ASSERT_TRUE(osmesa) << osmesa.error().to_string();
+  Backend& a = **osmesa;
+  auto tinted_a = prepare_tinted(a);
+  ASSERT_TRUE(tinted_a) << tinted_a.error().to_string();
+  auto egl = create_gl_backend({.platform = GlPlatform::Egl});
+  ASSERT_TRUE(egl) << egl.error().to_string();
+  Backend& b = **egl;
+  auto tinted_b = prepare_tinted(b);
+  ASSERT_TRUE(tinted_b) << tinted_b.error().to_string();
+  for (int round = 0; round < 4; ++round) {
+    const std::string what = "round " + std::to_string(round);
+    const glm::vec4 tint_a(float(round), 1.0f, 2.0f, 3.0f);
+    const glm::vec4 tint_b(-float(round), 5.0f, 6.0f, 7.0f);
+    // Even rounds draw on OSMesa first, odd rounds on EGL first.
+    if (round % 2 == 0) {
+      ASSERT_TRUE(draw_tint(a, *tinted_a, tint_a));
+      ASSERT_TRUE(draw_tint(b, *tinted_b, tint_b));
+    } else {
+      ASSERT_TRUE(draw_tint(b, *tinted_b, tint_b));
+      ASSERT_TRUE(draw_tint(a, *tinted_a, tint_a));
+    }
+    expect_filled(a, *tinted_a, tint_a, "OSMesa, " + what);
+    expect_filled(b, *tinted_b, tint_b, "EGL, " + what);
+    expect_filled(a, *tinted_a, tint_a, "OSMesa after EGL, " + what);
+  }
+  EXPECT_EQ(a.take_driver_messages(), std::vector<std::string>{});
+  EXPECT_EQ(b.take_driver_messages(), std::vector<std::string>{});
+}
+
+class TwoGlBackends : public ::testing::TestWithParam<std::pair<GlPlatform, GlPlatform>> {};
+
+std::string pair_test_name(const ::testing::TestParamInfo<std::pair<GlPlatform, GlPlatform>>& info) {
+  return std::string(gl_platform_name(info.param.first)) + "_then_" + std::string(gl_platform_name(info.param.second));
+}
+
+TEST_P(TwoGlBackends, LiveSideBySide) {
+  auto first = create_gl_backend({.platform = GetParam().first});
+  ASSERT_TRUE(first) << first.error().to_string();
+  auto second = create_gl_backend({.platform = GetParam().second});
+  ASSERT_TRUE(second) << second.error().to_string();
+  auto target_a = (*first)->create_target({2, 2, true});
+  auto target_b = (*second)->create_target({2, 2, true});
+  ASSERT_TRUE(target_a && target_b);
+  RenderPass pass_a{*target_a, {1, 2, 3, 4}, 1.0f, {}};
+  RenderPass pass_b{*target_b, {5, 6, 7, 8}, 1.0f, {}};
+  ASSERT_TRUE((*first)->render(pass_a));
+  ASSERT_TRUE((*second)->render(pass_b));
+  auto image_a = (*first)->read_color(*target_a);
+  second->reset();  // destroying the current context must leave the first one usable
+  auto image_b = (*first)->read_color(*target_a);
+  ASSERT_TRUE(image_a && image_b);
+  expect_near(image_a->at(1, 1), {1, 2, 3, 4}, "first backend");
+  expect_near(image_b->at(1, 1), {1, 2, 3, 4}, "first backend after the second died");
+  // And a new backend after the death, of the second's route, works beside the first.
+  auto third = create_gl_backend({.platform = GetParam().second});
+  ASSERT_TRUE(third) << third.error().to_string();
+  auto target_c = (*third)->create_target({2, 2, false});
+  ASSERT_TRUE(target_c);
+  const RenderPass pass_c{*target_c, {9, 10, 11, 12}, 1.0f, {}};
+  ASSERT_TRUE((*third)->render(pass_c));
+  auto image_c = (*third)->read_color(*target_c);
+  auto image_d = (*first)->read_color(*target_a);
+  ASSERT_TRUE(image_c && image_d);
+  expect_near(image_c->at(0, 1), {9, 10, 11, 12}, "third backend");
+  expect_near(image_d->at(0, 1), {1, 2, 3, 4}, "first backend beside the third");
+  EXPECT_EQ((*first)->take_driver_messages(), std::vector<std::string>{});
+}
+
+INSTANTIATE_TEST_SUITE_P(Routes, TwoGlBackends,
+                         ::testing::Values(std::pair(GlPlatform::Osmesa, GlPlatform::Osmesa),
+                                           std::pair(GlPlatform::Egl, GlPlatform::Egl),
+                                           std::pair(GlPlatform::Osmesa, GlPlatform::Egl),
+                                           std::pair(GlPlatform::Egl, GlPlatform::Osmesa)),
+                         pair_test_name);
+
+}  // namespace
+}  // namespace xshade::harness

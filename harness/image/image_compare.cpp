@@ -1,0 +1,326 @@
+#include "harness/image/image_compare.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdlib>
+#include <limits>
+
+#include <fmt/format.h>
+#include <OpenImageIO/imagebuf.h>
+#include <OpenImageIO/imagebufalgo.h>
+
+#include "harness/image/srgb8_encoder.h"
+
+namespace xshade::harness {
+
+std::string_view verdict_name(Verdict verdict) {
+  switch (verdict) {
+    case Verdict::Pass: return "pass";
+    case Verdict::Fail: return "fail";
+    case Verdict::Error: return "error";
+    case Verdict::Crash: return "crash";
+    case Verdict::Skipped: return "skipped";
+  }
+  return "crash";
+}
+
+namespace {
+
+// ImageBufAlgo does part of this work but not in the form the model needs, so the layers below
+// read the pixels themselves and use OpenImageIO only for the heat map's colour map:
+// computePixelStats counts NaN and Inf but neither negatives nor where the first one is;
+// compare's mean and RMSE become NaN at the first NaN, and its PSNR is relative to the
+// brightest value in the images rather than to 255.
+
+// An image as write_png would store it: RGB through linear_to_srgb8, alpha times 255 rounded.
+std::vector<uint8_t> encode_8bit(const FloatImage& image) {
+  std::vector<uint8_t> bytes(image.rgba.size());
+  for (size_t i = 0; i < image.rgba.size(); i += 4) {
+    for (size_t c = 0; c < 3; ++c) bytes[i + c] = linear_to_srgb8_by_table(image.rgba[i + c]);
+    const float alpha = image.rgba[i + 3];
+    bytes[i + 3] = alpha > 0.0f ? uint8_t(std::lround(std::min(alpha, 1.0f) * 255.0f)) : 0;
+  }
+  return bytes;
+}
+
+// Whether every channel of two encoded pixels is within `tolerance` steps.
+bool matches(const uint8_t* a, const uint8_t* b, uint32_t tolerance) {
+  for (int c = 0; c < 4; ++c)
+    if (uint32_t(std::abs(int(a[c]) - int(b[c]))) > tolerance) return false;
+  return true;
+}
+
+std::string plural(size_t count, std::string_view one, std::string_view many) {
+  return fmt::format("{} {}", count, count == 1 ? one : many);
+}
+
+std::string describe_non_finite(const NonFiniteCount& count) {
+  return fmt::format("{} NaN, {} Inf, {} negative channel values, first at ({}, {})", count.nan,
+                     count.inf, count.negative, count.first->first, count.first->second);
+}
+
+// The most failing pixels the budget allows. The fraction is a decimal a person wrote, so a
+// product that should be a whole number may land a hair below it; 1e-9 keeps it whole.
+size_t failing_budget(double max_failing_fraction, size_t pixels) {
+  return size_t(std::floor(max_failing_fraction * double(pixels) + 1e-9));
+}
+
+std::string describe_budget(const CompareSettings& settings, size_t budget) {
+  return fmt::format("budget {:g}% = {}", settings.max_failing_fraction * 100.0, plural(budget, "pixel", "pixels"));
+}
+
+// Where a difference of `steps` sits on the colour map; see Comparison::heat_map.
+float heat_position(uint32_t steps, uint32_t tolerance) {
+  if (steps == 0) return 0.0f;
+  if (steps <= tolerance) return 0.05f + 0.25f * float(steps) / float(tolerance);
+  const uint32_t span = 255 - tolerance;
+  if (span < 2) return 0.5f;
+  return 0.5f + 0.5f * float(std::log(double(steps - tolerance)) / std::log(double(span)));
+}
+
+float srgb_to_linear(float encoded) {
+  encoded = std::clamp(encoded, 0.0f, 1.0f);
+  return encoded <= 0.04045f ? encoded / 12.92f : float(std::pow((encoded + 0.055) / 1.055, 2.4));
+}
+
+// The heat map's colour for each difference 0..255: OpenImageIO maps a 256-pixel ramp once, so
+// the image itself is a table look-up per pixel. Its maps are matplotlib's, in sRGB.
+std::array<glm::vec4, 256> heat_palette(uint32_t tolerance) {
+  OIIO::ImageBuf ramp(OIIO::ImageSpec(256, 1, 1, OIIO::TypeDesc::FLOAT));
+  for (int steps = 0; steps < 256; ++steps) {
+    const float position = heat_position(uint32_t(steps), tolerance);
+    ramp.setpixel(steps, 0, &position, 1);
+  }
+  const OIIO::ImageBuf colours = OIIO::ImageBufAlgo::color_map(ramp, 0, "inferno");
+  std::array<glm::vec4, 256> palette{};
+  for (int steps = 1; steps < 256; ++steps) {
+    float rgb[3] = {0.0f, 0.0f, 0.0f};
+    colours.getpixel(steps, 0, rgb, 3);  // "inferno" is built in; the heat-map tests see it
+    palette[size_t(steps)] = {srgb_to_linear(rgb[0]), srgb_to_linear(rgb[1]), srgb_to_linear(rgb[2]), 1.0f};
+  }
+  palette[0] = {0.0f, 0.0f, 0.0f, 1.0f};  // inferno's first colour is nearly, not quite, black
+  return palette;
+}
+
+LayerResult finite_layer(const NonFiniteCount& test, const NonFiniteCount& reference) {
+  if (test.total() == 0 && reference.total() == 0)
+    return {"finite", Verdict::Pass, "no NaN, Inf or negative values"};
+  std::string detail;
+  if (test.total() > 0) detail = "test has " + describe_non_finite(test);
+  if (reference.total() > 0)
+    detail += (detail.empty() ? "" : "; ") + std::string("reference has ") + describe_non_finite(reference);
+  return {"finite", Verdict::Fail, detail};
+}
+
+// What one pass over both images finds: everything but the position layer and the maximum.
+struct PixelPass {
+  std::vector<uint32_t> failing;  // pixel indices, row-major
+  uint32_t worst_steps = 0;
+  size_t worst_pixel = 0;
+  double sum_absolute = 0.0;  // linear, over channel pairs where both values are finite
+  double sum_squared = 0.0;
+  size_t finite_pairs = 0;
+  double sum_squared_steps = 0.0;  // 8-bit, every channel
+};
+
+PixelPass compare_pixels(const FloatImage& test, const FloatImage& reference, const std::vector<uint8_t>& test8,
+                         const std::vector<uint8_t>& reference8, const CompareSettings& settings,
+                         const std::array<glm::vec4, 256>& palette, FloatImage& heat_map) {
+  PixelPass pass;
+  // Sums in locals rather than in `pass`: the heat map's stores could alias its members, which
+  // would keep the compiler from holding them in registers.
+  double sum_absolute = 0.0, sum_squared = 0.0, sum_squared_steps = 0.0;
+  size_t finite_pairs = 0;
+  const size_t pixels = size_t(test.width) * test.height;
+  for (size_t p = 0; p < pixels; ++p) {
+    const size_t i = p * 4;
+    uint32_t steps = 0;
+    for (size_t c = 0; c < 4; ++c) {
+      const int step = std::abs(int(test8[i + c]) - int(reference8[i + c]));
+      steps = std::max(steps, uint32_t(step));
+      sum_squared_steps += double(step * step);
+      const float va = test.rgba[i + c];
+      const float vb = reference.rgba[i + c];
+      if (std::isfinite(va) && std::isfinite(vb)) {
+        const double difference = std::fabs(double(va) - double(vb));
+        sum_absolute += difference;
+        sum_squared += difference * difference;
+        ++finite_pairs;
+      }
+    }
+    if (steps > settings.channel_tolerance) pass.failing.push_back(uint32_t(p));
+    if (steps > pass.worst_steps) {
+      pass.worst_steps = steps;
+      pass.worst_pixel = p;
+    }
+    const glm::vec4& colour = palette[steps];
+    std::copy(&colour.r, &colour.r + 4, &heat_map.rgba[i]);
+  }
+  pass.sum_absolute = sum_absolute;
+  pass.sum_squared = sum_squared;
+  pass.sum_squared_steps = sum_squared_steps;
+  pass.finite_pairs = finite_pairs;
+  return pass;
+}
+
+// A failing pixel is forgiven when a reference pixel within the radius (Chebyshev distance)
+// matches it within the tolerance: an edge that moved by a pixel, not a wrong colour.
+size_t forgiven_pixels(const std::vector<uint32_t>& failing, const std::vector<uint8_t>& test8,
+                       const std::vector<uint8_t>& reference8, uint32_t width, uint32_t height,
+                       const CompareSettings& settings) {
+  const int64_t radius = settings.position_radius;
+  size_t forgiven = 0;
+  for (uint32_t p : failing) {
+    const int64_t x = p % width;
+    const int64_t y = p / width;
+    const uint8_t* pixel = &test8[size_t(p) * 4];
+    bool matched = false;
+    for (int64_t ny = std::max<int64_t>(0, y - radius); ny <= std::min<int64_t>(height - 1, y + radius) && !matched; ++ny)
+      for (int64_t nx = std::max<int64_t>(0, x - radius); nx <= std::min<int64_t>(width - 1, x + radius) && !matched; ++nx)
+        matched = matches(pixel, &reference8[(size_t(ny) * width + size_t(nx)) * 4], settings.channel_tolerance);
+    if (matched) ++forgiven;
+  }
+  return forgiven;
+}
+
+}  // namespace
+
+NonFiniteCount count_non_finite(const FloatImage& image) {
+  NonFiniteCount count;
+  const size_t pixels = size_t(image.width) * image.height;
+  for (size_t p = 0; p < pixels; ++p) {
+    const float* value = &image.rgba[p * 4];
+    // One test per channel for the usual pixel: NaN fails both comparisons.
+    auto usual = [](float v) { return v >= 0.0f && v <= std::numeric_limits<float>::max(); };
+    if (usual(value[0]) && usual(value[1]) && usual(value[2]) && usual(value[3])) continue;
+    for (size_t c = 0; c < 4; ++c) {
+      if (std::isnan(value[c]))
+        ++count.nan;
+      else if (std::isinf(value[c]))
+        ++count.inf;
+      else if (value[c] < 0.0f)
+        ++count.negative;
+    }
+    if (!count.first) count.first = {uint32_t(p % image.width), uint32_t(p / image.width)};
+  }
+  return count;
+}
+
+FloatImage non_finite_mask(const FloatImage& image) {
+  FloatImage mask(image.width, image.height);
+  const size_t pixels = size_t(image.width) * image.height;
+  for (size_t p = 0; p < pixels; ++p) {
+    const float* value = &image.rgba[p * 4];
+    const bool bad = std::any_of(value, value + 4, [](float v) { return !std::isfinite(v) || v < 0.0f; });
+    const float shade = bad ? 1.0f : 0.0f;
+    float* out = &mask.rgba[p * 4];
+    out[0] = out[1] = out[2] = shade;
+    out[3] = 1.0f;
+  }
+  return mask;
+}
+
+Comparison compare_images(const FloatImage& test, const FloatImage& reference, const CompareSettings& settings) {
+  Comparison result;
+  if (test.width != reference.width || test.height != reference.height) {
+    result.verdict = Verdict::Fail;
+    result.decided_by = "size";
+    result.layers.push_back({"size", Verdict::Fail,
+                             fmt::format("test is {}x{} but the reference is {}x{}", test.width, test.height,
+                                         reference.width, reference.height)});
+    return result;
+  }
+  const size_t pixels = size_t(test.width) * test.height;
+  const uint32_t tolerance = settings.channel_tolerance;
+  const std::string tolerance_steps = plural(tolerance, "sRGB step", "sRGB steps");
+  const size_t budget = failing_budget(settings.max_failing_fraction, pixels);
+
+  // 1. finite
+  result.test_non_finite = count_non_finite(test);
+  result.reference_non_finite = count_non_finite(reference);
+  result.layers.push_back(finite_layer(result.test_non_finite, result.reference_non_finite));
+  const bool finite = result.layers.back().verdict == Verdict::Pass;
+
+  // 2. exact
+  const bool identical = bitwise_equal(test, reference);
+  // Not identical is no failure: the exact layer is the fast path, and the next layer decides.
+  result.layers.push_back(identical ? LayerResult{"exact", Verdict::Pass, "bit-identical"}
+                                    : LayerResult{"exact", Verdict::Skipped, "not bit-identical; the per-pixel layer decides"});
+
+  // 3. per_pixel, with the summary's sums and the heat map from the same pass
+  const std::vector<uint8_t> test8 = encode_8bit(test);
+  const std::vector<uint8_t> reference8 = encode_8bit(reference);
+  result.heat_map = FloatImage(test.width, test.height);
+  const PixelPass pass =
+      compare_pixels(test, reference, test8, reference8, settings, heat_palette(tolerance), result.heat_map);
+  const size_t failing = pass.failing.size();
+  const bool per_pixel_passed = failing <= budget;
+  if (identical) {
+    result.layers.push_back({"per_pixel", Verdict::Skipped, "bit-identical"});
+  } else {
+    result.layers.push_back(
+        {"per_pixel", per_pixel_passed ? Verdict::Pass : Verdict::Fail,
+         fmt::format("{} of {} differ by more than {} ({}); worst {} at ({}, {})", failing,
+                     plural(pixels, "pixel", "pixels"), tolerance_steps, describe_budget(settings, budget),
+                     plural(pass.worst_steps, "step", "steps"), pass.worst_pixel % test.width,
+                     pass.worst_pixel / test.width)});
+  }
+
+  // 4. position
+  bool position_passed = per_pixel_passed;
+  if (identical) {
+    result.layers.push_back({"position", Verdict::Skipped, "bit-identical"});
+  } else if (settings.position_radius == 0) {
+    result.layers.push_back({"position", Verdict::Skipped, "position_radius is 0"});
+  } else {
+    const size_t forgiven = forgiven_pixels(pass.failing, test8, reference8, test.width, test.height, settings);
+    const size_t remaining = failing - forgiven;
+    position_passed = remaining <= budget;
+    result.layers.push_back(
+        {"position", position_passed ? Verdict::Pass : Verdict::Fail,
+         fmt::format("{} of {} failing pixels match a reference pixel within {} and {}; {} remain ({})", forgiven,
+                     failing, plural(settings.position_radius, "pixel", "pixels"), tolerance_steps, remaining,
+                     describe_budget(settings, budget))});
+  }
+
+  // The first layer that settles the question decides: a non-finite value fails whatever the
+  // differences are, and the position layer only matters when the per-pixel layer failed.
+  auto decide = [&](bool passed, std::string layer) {
+    result.verdict = passed ? Verdict::Pass : Verdict::Fail;
+    result.decided_by = std::move(layer);
+  };
+  if (!finite)
+    decide(false, "finite");
+  else if (identical)
+    decide(true, "exact");
+  else if (per_pixel_passed || settings.position_radius == 0)
+    decide(per_pixel_passed, "per_pixel");
+  else
+    decide(position_passed, "position");
+
+  // 5. summary
+  ImageMetrics& metrics = result.metrics;
+  const ImageDifference largest = max_difference(test, reference);
+  metrics.max_difference = largest.max;
+  metrics.max_x = largest.x;
+  metrics.max_y = largest.y;
+  if (pass.finite_pairs > 0) {
+    metrics.mean = pass.sum_absolute / double(pass.finite_pairs);
+    metrics.rmse = std::sqrt(pass.sum_squared / double(pass.finite_pairs));
+  }
+  const double mean_squared_steps = pixels > 0 ? pass.sum_squared_steps / double(pixels * 4) : 0.0;
+  metrics.psnr = mean_squared_steps > 0.0 ? 10.0 * std::log10(255.0 * 255.0 / mean_squared_steps)
+                                          : std::numeric_limits<double>::infinity();
+  metrics.failing_pixels = failing;
+  metrics.failing_fraction = pixels > 0 ? double(failing) / double(pixels) : 0.0;
+  result.layers.push_back(
+      {"summary", Verdict::Pass,
+       fmt::format("max difference {:.6g} at ({}, {}); mean {:.6g}; RMSE {:.6g}; PSNR {:.2f} dB; {} ({:.4g}%) differ "
+                   "by more than {}",
+                   metrics.max_difference, metrics.max_x, metrics.max_y, metrics.mean, metrics.rmse, metrics.psnr,
+                   plural(failing, "pixel", "pixels"), metrics.failing_fraction * 100.0, tolerance_steps)});
+  return result;
+}
+
+}  // namespace xshade::harness

@@ -1,0 +1,105 @@
+// Comparing a rendered image with a reference (a golden, or another lane's image of the same
+// scene): the layers of DESIGN.md's comparison model, run in order, each with a verdict and one
+// line for the report, and the layer whose verdict decided the comparison.
+//
+// Layers 3 and 4 compare the images as write_png stores them (colour through linear_to_srgb8,
+// alpha times 255 rounded), not as floats: a golden is an 8-bit PNG, so an exact re-render of
+// it must compare equal with a tolerance of 0 steps.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <utility>
+#include <vector>
+
+#include "harness/image/image.h"
+
+namespace xshade::harness {
+
+// How closely a lane must match the golden image and the other lanes (DESIGN.md, comparison
+// model). The defaults allow one 8-bit step per channel and nothing else: llvmpipe's GL and
+// Vulkan paths may round a value that lies exactly on an sRGB step boundary to different sides.
+struct CompareSettings {
+  static constexpr uint32_t default_channel_tolerance = 1;
+  static constexpr double default_max_failing_fraction = 0.0;
+  static constexpr uint32_t default_position_radius = 0;
+
+  uint32_t channel_tolerance = default_channel_tolerance;  // 8-bit sRGB steps, 0..255
+  double max_failing_fraction = default_max_failing_fraction;  // of the pixels, 0..1
+  uint32_t position_radius = default_position_radius;  // pixels, 0..8
+  std::string reason;  // why; required whenever a tolerance is given
+  bool tolerances_given = false;  // any of the three numbers was written in the scene
+};
+
+enum class Verdict {
+  Pass,
+  Fail,     // a check failed (exit 1)
+  Error,    // bad input: a scene or shader that does not load or compile (exit 2)
+  Crash,    // a backend or internal error (exit 3)
+  Skipped,  // not run (e.g. the lane is not selected)
+};
+std::string_view verdict_name(Verdict verdict);  // "pass", "fail", "error", "crash", "skipped"
+
+// One layer of the comparison model (DESIGN.md), or one of the other gate layers:
+// "finite", "exact", "per_pixel", "position", "summary", "cross_lane", "determinism".
+struct LayerResult {
+  std::string layer;
+  Verdict verdict = Verdict::Pass;
+  std::string detail;  // one line a reviewer reads: what was measured against what bound
+};
+
+struct ImageMetrics {
+  double max_difference = 0.0;  // linear, largest over channels
+  uint32_t max_x = 0;
+  uint32_t max_y = 0;
+  double mean = 0.0;            // mean absolute difference, linear
+  double rmse = 0.0;
+  double psnr = 0.0;            // dB, on the 8-bit sRGB images; infinite when identical
+  size_t failing_pixels = 0;    // beyond the channel tolerance
+  double failing_fraction = 0.0;
+};
+
+struct NonFiniteCount {
+  size_t nan = 0;
+  size_t inf = 0;
+  size_t negative = 0;
+  std::optional<std::pair<uint32_t, uint32_t>> first;  // (x, y) of the first such pixel
+  size_t total() const { return nan + inf + negative; }
+};
+
+struct Comparison {
+  Verdict verdict = Verdict::Pass;  // Pass or Fail
+  // The layer whose verdict is the comparison's: "size", "finite", "exact", "per_pixel" or
+  // "position".
+  std::string decided_by;
+  // "size" alone when the sizes differ; otherwise "finite", "exact", "per_pixel", "position",
+  // "summary" in that order. Layers after a failed "finite" still run, for the report; after a
+  // passed "exact" the per-pixel and position layers are skipped.
+  std::vector<LayerResult> layers;
+  ImageMetrics metrics;  // all zero when the sizes differ
+  NonFiniteCount test_non_finite;
+  NonFiniteCount reference_non_finite;
+  // The test image's size (empty when the sizes differ), alpha 1. Each pixel shows its largest
+  // 8-bit channel difference d (alpha included) through OpenImageIO's "inferno" colour map, at a
+  // position that depends on the channel tolerance t:
+  //   d = 0            black;
+  //   1 <= d <= t      0.05 + 0.25 * d / t: dark purple, within the tolerance;
+  //   d > t            0.5 + 0.5 * ln(d - t) / ln(255 - t): from red-purple at t + 1 (already
+  //                    plain to see, even one step beyond) through orange to pale yellow at 255.
+  // The map's colours are sRGB; they are stored linear, so that write_png shows them as they are.
+  FloatImage heat_map;
+};
+
+// Runs every layer on `test` against `reference` with the scene's tolerances.
+Comparison compare_images(const FloatImage& test, const FloatImage& reference, const CompareSettings& settings);
+
+// NaN, infinite and negative channel values (alpha included; -0 is not negative), and the first
+// pixel in row-major order that has any.
+NonFiniteCount count_non_finite(const FloatImage& image);
+
+// White (alpha 1) where any channel of the pixel is NaN, infinite or negative, black elsewhere.
+FloatImage non_finite_mask(const FloatImage& image);
+
+}  // namespace xshade::harness

@@ -1,0 +1,107 @@
+#include "harness/image/image_io.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+
+#include <OpenImageIO/imageio.h>
+
+namespace xshade::harness {
+namespace {
+
+std::string oiio_error(const std::string& what, const std::filesystem::path& path,
+                       const std::string& detail) {
+  std::string message = what + " " + path.string();
+  if (!detail.empty()) message += ": " + detail;
+  return message;
+}
+
+Result<void> write(const std::filesystem::path& path, const OIIO::ImageSpec& spec,
+                   OIIO::TypeDesc pixel_type, const void* pixels) {
+  auto output = OIIO::ImageOutput::create(path.string());
+  if (!output) return fail(oiio_error("cannot write", path, OIIO::geterror()));
+  if (!output->open(path.string(), spec)) return fail(oiio_error("cannot write", path, output->geterror()));
+  bool written = output->write_image(pixel_type, pixels);
+  bool closed = output->close();
+  if (!written || !closed) return fail(oiio_error("cannot write", path, output->geterror()));
+  return {};
+}
+
+// 8-bit sRGB decoding, exact per code, computed once.
+const std::array<float, 256>& srgb_decode_table() {
+  static const std::array<float, 256> table = [] {
+    std::array<float, 256> values{};
+    for (int i = 0; i < 256; ++i) {
+      double c = i / 255.0;
+      values[i] = float(c <= 0.04045 ? c / 12.92 : std::pow((c + 0.055) / 1.055, 2.4));
+    }
+    return values;
+  }();
+  return table;
+}
+
+}  // namespace
+
+uint8_t linear_to_srgb8(float linear) {
+  if (!(linear > 0.0f)) return 0;  // also NaN
+  if (linear >= 1.0f) return 255;
+  double c = linear <= 0.0031308 ? 12.92 * linear : 1.055 * std::pow(double(linear), 1.0 / 2.4) - 0.055;
+  return static_cast<uint8_t>(std::lround(c * 255.0));
+}
+
+float srgb8_to_linear(uint8_t encoded) { return srgb_decode_table()[encoded]; }
+
+Result<void> write_png(const FloatImage& image, const std::filesystem::path& path) {
+  std::vector<uint8_t> bytes(image.rgba.size());
+  for (size_t i = 0; i < image.rgba.size(); i += 4) {
+    for (size_t c = 0; c < 3; ++c) bytes[i + c] = linear_to_srgb8(image.rgba[i + c]);
+    float alpha = image.rgba[i + 3];
+    bytes[i + 3] = alpha > 0.0f ? uint8_t(std::lround(std::min(alpha, 1.0f) * 255.0f)) : 0;
+  }
+  OIIO::ImageSpec spec(int(image.width), int(image.height), 4, OIIO::TypeDesc::UINT8);
+  spec.attribute("oiio:ColorSpace", "sRGB");
+  spec.attribute("oiio:UnassociatedAlpha", 1);  // our colour is not premultiplied by alpha
+  return write(path, spec, OIIO::TypeDesc::UINT8, bytes.data());
+}
+
+Result<void> write_exr(const FloatImage& image, const std::filesystem::path& path) {
+  OIIO::ImageSpec spec(int(image.width), int(image.height), 4, OIIO::TypeDesc::FLOAT);
+  spec.attribute("compression", "zip");
+  return write(path, spec, OIIO::TypeDesc::FLOAT, image.rgba.data());
+}
+
+Result<FloatImage> read_image(const std::filesystem::path& path) {
+  // Without this OpenImageIO premultiplies colour by alpha when it reads a PNG.
+  OIIO::ImageSpec config;
+  config.attribute("oiio:UnassociatedAlpha", 1);
+  auto input = OIIO::ImageInput::open(path.string(), &config);
+  if (!input) return fail(oiio_error("cannot read image", path, OIIO::geterror()));
+  const OIIO::ImageSpec& spec = input->spec();
+  if (spec.width <= 0 || spec.height <= 0 || spec.nchannels <= 0)
+    return fail(oiio_error("cannot read image", path, "it has no pixels"));
+  const int channels = spec.nchannels;
+  const bool encoded = spec.format == OIIO::TypeDesc::UINT8;
+
+  FloatImage image(uint32_t(spec.width), uint32_t(spec.height));
+  std::vector<float> pixels(size_t(spec.width) * spec.height * channels);
+  std::vector<uint8_t> bytes(encoded ? pixels.size() : 0);
+  bool read = encoded ? input->read_image(0, 0, 0, channels, OIIO::TypeDesc::UINT8, bytes.data())
+                      : input->read_image(0, 0, 0, channels, OIIO::TypeDesc::FLOAT, pixels.data());
+  if (!read) return fail(oiio_error("cannot read image", path, input->geterror()));
+
+  // Grey and grey+alpha files spread their first channel over RGB; missing alpha is 1.
+  const int alpha_channel = spec.alpha_channel >= 0 ? spec.alpha_channel : (channels == 2 ? 1 : channels == 4 ? 3 : -1);
+  for (size_t p = 0; p < size_t(spec.width) * spec.height; ++p) {
+    auto value = [&](int c, bool colour) {
+      size_t i = p * channels + c;
+      if (!encoded) return pixels[i];
+      return colour ? srgb8_to_linear(bytes[i]) : bytes[i] / 255.0f;
+    };
+    float* out = &image.rgba[p * 4];
+    for (int c = 0; c < 3; ++c) out[c] = value(channels >= 3 ? c : 0, true);
+    out[3] = alpha_channel >= 0 ? value(alpha_channel, false) : 1.0f;
+  }
+  return image;
+}
+
+}  // namespace xshade::harness

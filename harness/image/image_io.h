@@ -1,0 +1,24 @@
+// Image files through OpenImageIO: PNG (clamped, sRGB-encoded, 8-bit) and EXR (float).
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+
+#include "harness/image/image.h"
+#include "base/result.h"
+
+namespace xshade::harness {
+
+// The sRGB transfer function of IEC 61966-2-1 on a value clamped to [0, 1]; NaN encodes as 0.
+uint8_t linear_to_srgb8(float linear);
+float srgb8_to_linear(uint8_t encoded);
+
+// Colour is clamped to [0, 1] and sRGB-encoded; alpha is stored linearly.
+Result<void> write_png(const FloatImage& image, const std::filesystem::path& path);
+// Every float as it is, NaN and Inf included.
+Result<void> write_exr(const FloatImage& image, const std::filesystem::path& path);
+// Reads any format OpenImageIO knows into RGBA float. 8-bit files are taken as sRGB-encoded
+// and decoded to linear, so that read_image(write_png(x)) is x up to 8-bit quantisation.
+Result<FloatImage> read_image(const std::filesystem::path& path);
+
+}  // namespace xshade::harness

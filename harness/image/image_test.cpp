@@ -1,0 +1,37 @@
+#include "harness/image/image.h"
+
+#include <cmath>
+#include <limits>
+
+#include <gtest/gtest.h>
+
+namespace xshade::harness {
+namespace {
+
+TEST(ImageDifference, FindsTheLargestChannelDifferenceAndWhere) {
+  FloatImage a(4, 3), b(4, 3);
+  b.set(1, 0, {0.0f, 0.25f, 0.0f, 0.0f});
+  b.set(3, 2, {0.0f, 0.0f, -0.5f, 0.0f});
+  ImageDifference difference = max_difference(a, b);
+  EXPECT_EQ(difference.max, 0.5);
+  EXPECT_EQ(difference.x, 3u);
+  EXPECT_EQ(difference.y, 2u);
+  EXPECT_EQ(difference.channel, 2u);
+  EXPECT_FALSE(bitwise_equal(a, b));
+  EXPECT_TRUE(bitwise_equal(a, a));
+}
+
+TEST(ImageDifference, NanAndInfinityMatchOnlyThemselves) {
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  const float inf = std::numeric_limits<float>::infinity();
+  FloatImage a(2, 1), b(2, 1);
+  a.set(0, 0, {nan, inf, 0.0f, 0.0f});
+  b.set(0, 0, {nan, inf, 0.0f, 0.0f});
+  EXPECT_EQ(max_difference(a, b).max, 0.0);
+  b.set(1, 0, {nan, 0.0f, 0.0f, 0.0f});
+  EXPECT_TRUE(std::isinf(max_difference(a, b).max));
+  EXPECT_EQ(max_difference(a, b).x, 1u);
+}
+
+}  // namespace
+}  // namespace xshade::harness

@@ -1,0 +1,127 @@
+#include "harness/render/evaluate.h"
+
+#include <algorithm>
+#include <map>
+
+#include "harness/render/shader_interface.h"
+#include "harness/render/shader_program.h"
+
+namespace xshade::harness {
+std::vector<std::byte> default_constant_buffer(const hlsl::ConstantBuffer& buffer,
+                                               const std::vector<hlsl::Property>& properties) {
+  hlsl::Reflection only_this;
+  only_this.constant_buffers = {buffer};
+  only_this.properties = properties;
+  const ShaderInterface interface = shader_interface(only_this);
+  const UniformBlock& block = interface.uniform_blocks.front();
+  std::map<std::string, std::vector<float>> values;
+  for (const UniformMember& member : block.members) {
+    const PropertyDefault* property = interface.find_property(member.name);
+    values[member.name] = property && property->value.size() == member.components()
+                              ? property->value
+                              : std::vector<float>(member.components(), 0.0f);
+  }
+  auto bytes = build_uniform_block(block, [&values](const std::string& name) { return &values.at(name); });
+  return bytes ? std::move(*bytes) : std::vector<std::byte>(buffer.size);
+}
+
+Result<FullscreenProgram> FullscreenProgram::create(const hlsl::Module& module, Lane lane, Backend& backend,
+                                                    const ProgramOptions& options) {
+  auto desc = program_for_lane(module, lane, options);
+  if (!desc) return fail(desc.error());
+  if (!desc->fullscreen) return fail("the shader must be a fragment shader without a vertex stage");
+  auto program = backend.create_program(*desc);
+  if (!program) return fail(program.error());
+  FullscreenProgram made;
+  made.program_ = *program;
+  const auto& buffers = module.reflection.constant_buffers;
+  for (size_t i = 0; i < buffers.size(); ++i)
+    made.buffers_.push_back({buffers[i].name, desc->layout.uniform_blocks[i].name,
+                             default_constant_buffer(buffers[i], module.reflection.properties)});
+  made.texture_slots_ = desc->layout.textures;
+  return made;
+}
+
+std::optional<uint32_t> FullscreenProgram::constant_buffer_size(const std::string& name) const {
+  for (const Buffer& buffer : buffers_)
+    if (buffer.name == name) return uint32_t(buffer.defaults.size());
+  return std::nullopt;
+}
+
+TextureData default_texture(const TextureSlot& slot) {
+  TextureData texture;
+  texture.width = texture.height = 1;
+  texture.dimension = slot.shape.dimension;
+  texture.layers = slot.shape.dimension == TextureDimension::Cube || slot.shape.dimension == TextureDimension::CubeArray ? 6 : 1;
+  // Four samples: the count both backends' drivers offer for every colour format.
+  texture.samples = slot.shape.multisampled ? 4 : 1;
+  std::vector<std::byte> texel;
+  const auto append = [&texel](auto value) {
+    const auto* bytes = reinterpret_cast<const std::byte*>(&value);
+    texel.insert(texel.end(), bytes, bytes + sizeof value);
+  };
+  if (slot.comparison) {
+    texture.format = TextureFormat::Depth32Float;
+    append(1.0f);
+  } else if (slot.texel == TexelKind::Int) {
+    texture.format = TextureFormat::Rgba32Sint;
+    for (int i = 0; i < 4; ++i) append(int32_t{1});
+  } else if (slot.texel == TexelKind::Uint) {
+    texture.format = TextureFormat::Rgba32Uint;
+    for (int i = 0; i < 4; ++i) append(uint32_t{1});
+  } else {
+    texture.format = TextureFormat::Rgba8Unorm;
+    texel.assign(4, std::byte{255});
+  }
+  std::vector<std::byte> level;
+  for (uint32_t layer = 0; layer < texture.layers; ++layer) level.insert(level.end(), texel.begin(), texel.end());
+  texture.levels = {std::move(level)};
+  return texture;
+}
+
+Result<FloatImage> FullscreenProgram::run(Backend& backend, uint32_t width, uint32_t height,
+                                          const std::map<std::string, std::vector<std::byte>>& constant_buffers,
+                                          const std::map<std::string, TextureSource>& textures) const {
+  auto target = backend.create_target({width, height, false});
+  if (!target) return fail(target.error());
+  DrawItem draw{program_, {}, {}, {}};
+  for (const Buffer& buffer : buffers_) {
+    auto given = constant_buffers.find(buffer.name);
+    const std::vector<std::byte>& bytes = given != constant_buffers.end() ? given->second : buffer.defaults;
+    if (bytes.size() != buffer.defaults.size())
+      return fail("constant buffer '" + buffer.name + "' needs " + std::to_string(buffer.defaults.size()) + " bytes, not " +
+                  std::to_string(bytes.size()));
+    draw.uniforms.push_back({buffer.slot_name, bytes});
+  }
+  for (const auto& [name, source] : textures)
+    if (std::none_of(texture_slots_.begin(), texture_slots_.end(), [&](const TextureSlot& slot) { return slot.name == name; }))
+      return fail("the program reads no texture named '" + name + "'");
+  // One default per distinct declaration, uploaded once per run.
+  std::map<std::string, TextureHandle> defaults;
+  for (const TextureSlot& slot : texture_slots_) {
+    if (auto given = textures.find(slot.name); given != textures.end()) {
+      draw.textures.push_back({slot.name, given->second});
+      continue;
+    }
+    const std::string key = shape_name(slot.shape) + texel_kind_name(slot.texel) + (slot.comparison ? " compare" : "");
+    auto known = defaults.find(key);
+    if (known == defaults.end()) {
+      auto texture = backend.upload_texture(default_texture(slot));
+      if (!texture) return fail(texture.error());
+      known = defaults.emplace(key, *texture).first;
+    }
+    draw.textures.push_back({slot.name, TextureSource::texture(known->second, {Filter::Nearest, AddressMode::ClampToEdge})});
+  }
+  if (auto rendered = backend.render({*target, glm::vec4(0.0f), 1.0f, {draw}}); !rendered) return fail(rendered.error());
+  return backend.read_color(*target);
+}
+
+Result<FloatImage> evaluate(const hlsl::Module& module, Lane lane, Backend& backend, uint32_t width, uint32_t height,
+                            const std::map<std::string, std::vector<std::byte>>& constant_buffers,
+                            const ProgramOptions& options, const std::map<std::string, TextureSource>& textures) {
+  auto program = FullscreenProgram::create(module, lane, backend, options);
+  if (!program) return fail(program.error());
+  return program->run(backend, width, height, constant_buffers, textures);
+}
+
+}  // namespace xshade::harness

@@ -1,0 +1,65 @@
+// Running one fragment shader as a full-screen pass on a lane: what `xshade eval` and the
+// semantics conformance tests do.
+#pragma once
+
+#include <cstdint>
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "harness/backend/backend.h"
+#include "harness/render/lanes.h"
+#include "harness/render/shader_program.h"
+#include "hlsl_like/compiler.h"
+
+namespace xshade::harness {
+
+// The bytes of a constant buffer with every member at its property's default value (zero when
+// it has none), laid out at the HLSL offsets reflection gives.
+std::vector<std::byte> default_constant_buffer(const hlsl::ConstantBuffer& buffer,
+                                               const std::vector<hlsl::Property>& properties);
+
+// A module's fragment entry made into a full-screen program on one backend, to run as often as
+// needed: the driver compiles it once. The shader reads uv (TEXCOORD0, (0,0) at the top-left)
+// and the pixel position (SV_Position); constant buffers hold their defaults unless given, and
+// every texture not given is one white texel of the shape and texel kind the shader declared
+// (a depth texel of 1 for a texture read with a comparison sampler).
+class FullscreenProgram {
+ public:
+  static Result<FullscreenProgram> create(const hlsl::Module& module, Lane lane, Backend& backend,
+                                          const ProgramOptions& options = {});
+
+  // Renders a width x height RGBA32F target. `constant_buffers` replaces the defaults of the
+  // buffers it names (by their HLSL name); each must have the buffer's size. `textures` binds
+  // the textures it names (by their HLSL name, uploaded to `backend` by the caller) in place of
+  // the white texel; a name the program does not read is an error.
+  Result<FloatImage> run(Backend& backend, uint32_t width, uint32_t height,
+                         const std::map<std::string, std::vector<std::byte>>& constant_buffers = {},
+                         const std::map<std::string, TextureSource>& textures = {}) const;
+
+  // The size in bytes of the constant buffer `name`, if the program has one.
+  std::optional<uint32_t> constant_buffer_size(const std::string& name) const;
+
+ private:
+  struct Buffer {
+    std::string name;       // HLSL
+    std::string slot_name;  // the layout's
+    std::vector<std::byte> defaults;
+  };
+  ProgramHandle program_;
+  std::vector<Buffer> buffers_;
+  std::vector<TextureSlot> texture_slots_;
+};
+
+// FullscreenProgram::create then run, once: what `xshade eval` and the conformance tests do.
+Result<FloatImage> evaluate(const hlsl::Module& module, Lane lane, Backend& backend, uint32_t width, uint32_t height,
+                            const std::map<std::string, std::vector<std::byte>>& constant_buffers = {},
+                            const ProgramOptions& options = {},
+                            const std::map<std::string, TextureSource>& textures = {});
+
+// One texel of value 1 in every channel (a depth of 1 for a comparison slot) in the shape and
+// texel kind `slot` declares: what a texture the caller does not give reads.
+TextureData default_texture(const TextureSlot& slot);
+
+}  // namespace xshade::harness

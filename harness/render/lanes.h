@@ -1,0 +1,35 @@
+// Lanes: the independent ways xshade runs one shader, each on its own backend.
+#pragma once
+
+#include <memory>
+#include <optional>
+#include <string_view>
+#include <vector>
+
+#include "harness/backend/backend.h"
+#include "harness/scene/lane.h"
+#include "harness/gl/gl_context.h"  // GlPlatform, gl_platform_name, parse_gl_platform
+#include "spirv/spirv_compiler.h"
+
+namespace xshade::harness {
+
+
+struct BackendOptions {
+  bool validation = false;  // Vulkan validation layer, when installed
+  GlPlatform gl_platform = GlPlatform::Auto;  // how the gl lane gets its context (gl_context.h)
+};
+
+Result<std::unique_ptr<Backend>> create_backend(Lane lane, const BackendOptions& options = {});
+
+// One shader stage written twice by hand, once per GLSL flavour (until the compiler writes both).
+struct GlslStagePair {
+  std::string gl;  // #version 450 core
+  std::string vk;  // Vulkan GLSL
+  std::string name;
+};
+
+// The stage in the form the lane's backend reads: GLSL text for gl, validated SPIR-V for vk.
+// Hand-written GLSL has no vk-hlsl form: that lane fails.
+Result<ShaderStageSource> stage_for_lane(Lane lane, spirv::Stage stage, const GlslStagePair& source);
+
+}  // namespace xshade::harness

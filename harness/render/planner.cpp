@@ -1,0 +1,203 @@
+#include "harness/render/planner.h"
+
+#include <algorithm>
+#include <map>
+#include <set>
+
+#include "hlsl_like/compiler.h"
+
+namespace xshade::harness {
+namespace {
+
+namespace fs = std::filesystem;
+
+bool is_no_keyword(const std::string& keyword) {
+  return !keyword.empty() && keyword.find_first_not_of('_') == std::string::npos;
+}
+
+// What the planner learns from reading a source once (front end only).
+struct SourceFacts {
+  fs::path path;
+  std::vector<hlsl::KeywordSet> keyword_sets;
+  std::vector<hlsl::PassDeclaration> passes;  // of a post effect
+  std::vector<std::string> vertex_inputs;     // the semantics the vertex entry reads, canonical
+};
+
+class SourceReader {
+ public:
+  explicit SourceReader(const ShaderSearchPath& shaders) : shaders_(shaders) {}
+
+  // Reads `library_path` with `keywords` (pass declarations may depend on them).
+  Result<SourceFacts> read(const std::string& library_path, const std::vector<std::string>& keywords, bool post) {
+    auto path = shaders_.find(library_path);
+    if (!path) return fail(path.error());
+    hlsl::CompileOptions options;
+    options.include_dirs = shaders_.folders();
+    options.keywords = keywords;
+    auto module = hlsl::compile_file(*path, options);
+    SourceFacts facts;
+    facts.path = *path;
+    if (post) facts.passes = module->passes;
+    if (!module->ok()) {
+      Error error{"'" + library_path + "' does not compile", {path->string(), 0, 0}, {}};
+      for (const Diagnostic& d : module->diagnostics.diagnostics())
+        if (d.severity == Severity::Error) error.diagnostics.push_back(d);
+      return fail(std::move(error));
+    }
+    if (post && facts.passes.empty())
+      return fail("post effect '" + library_path + "' declares no passes (#pragma pass)", {path->string(), 0, 0});
+    facts.keyword_sets = module->reflection.keyword_sets;
+    for (const hlsl::StageVariable& input : module->reflection.vertex_inputs) facts.vertex_inputs.push_back(input.semantic);
+    return facts;
+  }
+
+ private:
+  const ShaderSearchPath& shaders_;
+};
+
+// The keywords that make the variant: per set, the one asked for or the set's default, so that
+// naming a default explicitly or not gives the same variant. Keywords no set declares are kept
+// (the front end warns about them).
+std::vector<std::string> variant_keywords(const std::vector<hlsl::KeywordSet>& sets, const std::vector<std::string>& asked) {
+  std::set<std::string> keywords;
+  std::set<std::string> declared;
+  for (const hlsl::KeywordSet& set : sets) {
+    declared.insert(set.keywords.begin(), set.keywords.end());
+    auto named = std::find_first_of(set.keywords.begin(), set.keywords.end(), asked.begin(), asked.end());
+    const std::string& chosen = named != set.keywords.end() ? *named : set.keywords.front();
+    if (!is_no_keyword(chosen)) keywords.insert(chosen);
+  }
+  for (const std::string& keyword : asked)
+    if (!declared.count(keyword)) keywords.insert(keyword);
+  return {keywords.begin(), keywords.end()};
+}
+
+size_t combinations(const std::vector<hlsl::KeywordSet>& sets) {
+  size_t count = 1;
+  for (const hlsl::KeywordSet& set : sets) count *= set.keywords.size();
+  return count;
+}
+
+size_t add_variant(Plan& plan, VariantRequest request) {
+  auto found = std::find(plan.variants.begin(), plan.variants.end(), request);
+  if (found != plan.variants.end()) return size_t(found - plan.variants.begin());
+  plan.variants.push_back(std::move(request));
+  plan.variant_notes.emplace_back();
+  return plan.variants.size() - 1;
+}
+
+// What every mesh supplies (Vertex: locations 0..3); any other input reads zeros.
+bool meshes_supply(const std::string& semantic) {
+  return semantic == "POSITION0" || semantic == "NORMAL0" || semantic == "TANGENT0" || semantic == "TEXCOORD0";
+}
+
+std::string effect_name(const std::string& library_path) { return fs::path(library_path).stem().string(); }
+
+}  // namespace
+
+std::string VariantRequest::label() const {
+  std::string text = library_path;
+  if (!fragment_entry.empty()) text += ":" + fragment_entry;
+  text += " [";
+  for (size_t i = 0; i < keywords.size(); ++i) text += (i ? " " : "") + keywords[i];
+  return text + "]" + (half_emulation ? " half" : "");
+}
+
+Result<Plan> plan_scene(const Scene& scene, const ShaderSearchPath& shaders) {
+  Plan plan;
+  SourceReader reader(shaders);
+  // Distinct combinations a source is used with, for the "left out" account.
+  std::map<std::string, std::set<std::vector<std::string>>> used_combinations;
+  std::map<std::string, size_t> possible_combinations;
+
+  plan.instances = expand_instances(scene);
+  std::map<std::string, SourceFacts> materials;
+  for (const ObjectInstance& instance : plan.instances) {
+    auto known = materials.find(instance.material);
+    if (known == materials.end()) {
+      auto facts = reader.read(instance.material, {}, false);
+      if (!facts) return fail(facts.error());
+      known = materials.emplace(instance.material, std::move(*facts)).first;
+    }
+    VariantRequest request{known->second.path, instance.material, variant_keywords(known->second.keyword_sets, instance.keywords), {}};
+    used_combinations[instance.material].insert(request.keywords);
+    possible_combinations[instance.material] = combinations(known->second.keyword_sets);
+    const std::vector<std::string> keywords = request.keywords;
+    const size_t variants_before = plan.variants.size();
+    const size_t variant = add_variant(plan, std::move(request));
+    plan.instance_variant.push_back(variant);
+    if (plan.variants.size() == variants_before) continue;
+    // The vertex inputs depend on the keywords: the variant's own are read once more.
+    auto facts = reader.read(instance.material, keywords, false);
+    if (!facts) return fail(facts.error());
+    for (const std::string& semantic : facts->vertex_inputs)
+      if (!meshes_supply(semantic))
+        plan.variant_notes[variant].push_back("vertex input " + semantic + " is not in the meshes; the shader reads zeros");
+  }
+  if (!plan.instances.empty()) plan.passes.push_back({PlannedPass::Kind::Scene, "scene", 0, {}, 0});
+
+  for (size_t e = 0; e < scene.post.size(); ++e) {
+    const PostEffect& effect = scene.post[e];
+    auto facts = reader.read(effect.effect, effect.keywords, true);
+    if (!facts) return fail(facts.error());
+    const std::vector<std::string> keywords = variant_keywords(facts->keyword_sets, effect.keywords);
+    used_combinations[effect.effect].insert(keywords);
+    possible_combinations[effect.effect] = combinations(facts->keyword_sets);
+    for (const hlsl::PassDeclaration& declaration : facts->passes) {
+      PlannedPass pass;
+      pass.kind = PlannedPass::Kind::Post;
+      pass.name = effect_name(effect.effect) + "." + declaration.name;
+      pass.effect = e;
+      pass.declaration = declaration;
+      pass.variant = add_variant(plan, {facts->path, effect.effect, keywords, declaration.entry});
+      plan.passes.push_back(std::move(pass));
+    }
+  }
+
+  for (const auto& [source, used] : used_combinations) {
+    const size_t possible = possible_combinations[source];
+    if (possible > used.size())
+      plan.left_out.push_back(source + ": " + std::to_string(possible - used.size()) + " of its " +
+                              std::to_string(possible) + " keyword combinations (the scene asks for no other)");
+  }
+  for (const std::string& material : shaders.files("materials"))
+    if (!used_combinations.count(material)) plan.left_out.push_back(material + ": no object uses it");
+  for (const std::string& effect : shaders.files("post"))
+    if (!used_combinations.count(effect))
+      plan.left_out.push_back(effect + ": not in the post chain, so none of its passes is compiled or run");
+  return plan;
+}
+
+std::string describe_plan(const Scene& scene, const Plan& plan, const std::vector<bool>& cached) {
+  std::string text = "plan for scene '" + scene.name + "' (" + std::to_string(scene.width) + "x" +
+                     std::to_string(scene.height) + ")\n";
+  text += "  variants to compile (" + std::to_string(plan.variants.size()) + "):\n";
+  for (size_t i = 0; i < plan.variants.size(); ++i) {
+    std::string state = i < cached.size() ? (cached[i] ? "  (in the cache)" : "  (to compile)") : "";
+    text += "    " + plan.variants[i].label() + state + "\n";
+    if (i < plan.variant_notes.size())
+      for (const std::string& note : plan.variant_notes[i]) text += "      " + note + "\n";
+  }
+  text += "  passes to run (" + std::to_string(plan.passes.size()) + "):\n";
+  for (const PlannedPass& pass : plan.passes) {
+    if (pass.kind == PlannedPass::Kind::Scene) {
+      text += "    scene: " + std::to_string(plan.instances.size()) + " draws\n";
+      continue;
+    }
+    const hlsl::PassDeclaration& d = pass.declaration;
+    text += "    " + pass.name + ": " + d.entry + ", " + (d.scale == hlsl::PassDeclaration::Scale::Half ? "half" : "full") +
+            " resolution";
+    for (const hlsl::PassInput& input : d.inputs) {
+      const std::string from = input.kind == hlsl::PassInput::Kind::SceneColor   ? "scene.color"
+                               : input.kind == hlsl::PassInput::Kind::SceneDepth ? "scene.depth"
+                                                                                 : input.pass;
+      text += ", " + input.texture + " <- " + from;
+    }
+    text += "\n";
+  }
+  text += "  left out (" + std::to_string(plan.left_out.size()) + "):\n";
+  for (const std::string& line : plan.left_out) text += "    " + line + "\n";
+  return text;
+}
+
+}  // namespace xshade::harness

@@ -1,0 +1,57 @@
+// The planner: from a scene, exactly the shader variants and passes it needs, and what it leaves
+// out and why. Nothing is compiled or run that the plan does not list.
+#pragma once
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "harness/scene/scene.h"
+#include "harness/render/shader_search_path.h"
+#include "hlsl_like/pass_declarations.h"
+
+namespace xshade::harness {
+
+// One compile of one source: a keyword set, and for a post pass the fragment entry it runs.
+struct VariantRequest {
+  std::filesystem::path source;       // absolute
+  std::string library_path;           // as the scene names it, e.g. "materials/toon.hlsl"
+  std::vector<std::string> keywords;  // sorted, no repeats
+  std::string fragment_entry;         // a post pass's entry; empty for a material
+  bool half_emulation = false;        // every half result rounded to fp16 (GLSL lanes only)
+
+  // "materials/toon.hlsl [_GUARDED]" or "post/depth_of_field.hlsl:frag_coc [_KERNEL_SMALL]".
+  std::string label() const;
+  friend bool operator==(const VariantRequest&, const VariantRequest&) = default;
+};
+
+struct PlannedPass {
+  enum class Kind { Scene, Post };
+  Kind kind = Kind::Scene;
+  std::string name;   // "scene", or "depth_of_field.coc"
+  size_t effect = 0;  // Post: index into Scene::post
+  hlsl::PassDeclaration declaration;  // Post
+  size_t variant = 0;  // Post: index into Plan::variants
+};
+
+struct Plan {
+  std::vector<VariantRequest> variants;
+  std::vector<ObjectInstance> instances;
+  std::vector<size_t> instance_variant;  // per instance: index into variants
+  std::vector<PlannedPass> passes;       // in the order they run: the scene, then each effect's
+  std::vector<std::string> left_out;     // what the shader folders have that this scene does not run, and why
+  // Per variant, what it should know before it runs: each vertex input its shader reads that the
+  // meshes do not supply (anything but POSITION, NORMAL, TANGENT, TEXCOORD0), which reads zeros.
+  std::vector<std::vector<std::string>> variant_notes;
+};
+
+// Plans `scene` against the shader folders. Reads each source the scene names (the front end
+// only: keyword sets and pass declarations); fails with the front end's diagnostics when one
+// does not compile, or when a source is in none of the folders.
+Result<Plan> plan_scene(const Scene& scene, const ShaderSearchPath& shaders);
+
+// The plan as `xshade run --plan` prints it; `cached` says per variant whether its compiled form
+// is already in the cache (empty: unknown).
+std::string describe_plan(const Scene& scene, const Plan& plan, const std::vector<bool>& cached = {});
+
+}  // namespace xshade::harness

@@ -1,0 +1,242 @@
+#include "harness/render/planner.h"
+
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
+
+#include <gtest/gtest.h>
+
+namespace xshade::harness {
+namespace {
+
+namespace fs = std::filesystem;
+
+const fs::path kLibrary = fs::path(XSHADE_SOURCE_DIR) / "shaders";
+
+constexpr const char* kCameraAndSize = R"(
+description = "planner test"
+size = [64, 64]
+[camera]
+position = [0, 0, 5]
+target = [0, 0, 0]
+fov_y = 40
+near = 0.3
+far = 100
+)";
+
+Scene scene(const std::string& body) {
+  auto parsed = parse_scene(std::string(kCameraAndSize) + body, "/tmp/planner_test.toml");
+  EXPECT_TRUE(parsed) << parsed.error().to_string();
+  return *parsed;
+}
+
+bool has_line(const std::vector<std::string>& lines, const std::string& line) {
+  return std::find(lines.begin(), lines.end(), line) != lines.end();
+}
+
+TEST(Planner, AGridOfOneMaterialIsOneVariantAndOnePass) {
+  auto plan = plan_scene(scene(R"(
+[[object]]
+mesh = "sphere"
+material = "materials/standard_pbr.hlsl"
+[object.grid]
+rows = 5
+cols = 5
+spacing = 2.2
+[object.grid.vary]
+_Metallic = { along = "cols", from = 0.0, to = 1.0 }
+)"), kLibrary);
+  ASSERT_TRUE(plan) << plan.error().to_string();
+  ASSERT_EQ(plan->variants.size(), 1u);
+  // No keyword asked for: each multi_compile set's first keyword, as the front end defines them.
+  EXPECT_EQ(plan->variants[0].keywords, (std::vector<std::string>{"_D_GGX_SEED", "_F_SCHLICK", "_G_COOK_TORRANCE"}));
+  EXPECT_EQ(plan->instances.size(), 25u);
+  EXPECT_EQ(plan->instance_variant, std::vector<size_t>(25, 0));
+  ASSERT_EQ(plan->passes.size(), 1u);
+  EXPECT_EQ(plan->passes[0].kind, PlannedPass::Kind::Scene);
+  // 2 D forms x 3 G forms x 3 F forms x guards on/off.
+  EXPECT_TRUE(has_line(plan->left_out,
+                       "materials/standard_pbr.hlsl: 71 of its 72 keyword combinations (the scene asks for no other)"));
+  EXPECT_TRUE(has_line(plan->left_out, "materials/toon.hlsl: no object uses it"));
+  EXPECT_TRUE(has_line(plan->left_out,
+                       "post/depth_of_field.hlsl: not in the post chain, so none of its passes is compiled or run"));
+}
+
+TEST(Planner, NamingADefaultKeywordGivesTheSameVariant) {
+  auto plan = plan_scene(scene(R"(
+[[object]]
+name = "a"
+mesh = "sphere"
+material = "materials/toon.hlsl"
+[[object]]
+name = "b"
+mesh = "cube"
+material = "materials/toon.hlsl"
+keywords = ["_GUARDED"]
+[[object]]
+name = "c"
+mesh = "torus"
+material = "materials/toon.hlsl"
+keywords = ["_GUARDED", "_GUARDED"]
+)"), kLibrary);
+  ASSERT_TRUE(plan) << plan.error().to_string();
+  ASSERT_EQ(plan->variants.size(), 2u);
+  EXPECT_EQ(plan->instance_variant, (std::vector<size_t>{0, 1, 1}));
+  EXPECT_TRUE(plan->variants[0].keywords.empty());
+  EXPECT_EQ(plan->variants[1].keywords, std::vector<std::string>{"_GUARDED"});
+}
+
+TEST(Planner, APostEffectAddsItsPassesInOrderWithTheirSources) {
+  auto plan = plan_scene(scene(R"(
+[[object]]
+mesh = "sphere"
+material = "materials/toon.hlsl"
+[[post]]
+effect = "post/depth_of_field.hlsl"
+keywords = ["_KERNEL_MEDIUM"]
+)"), kLibrary);
+  ASSERT_TRUE(plan) << plan.error().to_string();
+  std::vector<std::string> names;
+  for (const PlannedPass& pass : plan->passes) names.push_back(pass.name);
+  EXPECT_EQ(names, (std::vector<std::string>{"scene", "depth_of_field.coc", "depth_of_field.prefilter",
+                                             "depth_of_field.bokeh", "depth_of_field.postfilter",
+                                             "depth_of_field.combine"}));
+  ASSERT_EQ(plan->variants.size(), 6u);
+  EXPECT_EQ(plan->variants[plan->passes[3].variant].fragment_entry, "frag_bokeh");
+  EXPECT_EQ(plan->variants[plan->passes[3].variant].keywords, std::vector<std::string>{"_KERNEL_MEDIUM"});
+  const hlsl::PassDeclaration& combine = plan->passes[5].declaration;
+  EXPECT_EQ(combine.scale, hlsl::PassDeclaration::Scale::Full);
+  ASSERT_EQ(combine.inputs.size(), 3u);
+  EXPECT_EQ(combine.inputs[2].texture, "_DoFTex");
+  EXPECT_EQ(combine.inputs[2].pass, "postfilter");
+  EXPECT_EQ(plan->passes[2].declaration.scale, hlsl::PassDeclaration::Scale::Half);
+  // 4 kernels x guards on/off.
+  EXPECT_TRUE(has_line(plan->left_out,
+                       "post/depth_of_field.hlsl: 9 of its 10 keyword combinations (the scene asks for no other)"));
+  const std::string described = describe_plan(scene(""), *plan, std::vector<bool>(6, false));
+  EXPECT_NE(described.find("depth_of_field.bokeh: frag_bokeh, half resolution, _MainTex <- prefilter"), std::string::npos)
+      << described;
+}
+
+TEST(Planner, AToonOnlySceneCompilesNoPbrVariant) {
+  auto plan = plan_scene(scene(R"(
+[[object]]
+mesh = "torus"
+material = "materials/toon.hlsl"
+)"), kLibrary);
+  ASSERT_TRUE(plan) << plan.error().to_string();
+  ASSERT_EQ(plan->variants.size(), 1u);
+  for (const VariantRequest& variant : plan->variants) EXPECT_EQ(variant.library_path, "materials/toon.hlsl");
+  EXPECT_TRUE(has_line(plan->left_out, "materials/standard_pbr.hlsl: no object uses it"));
+}
+
+TEST(Planner, ASourceOutsideTheLibraryOrBrokenIsAnError) {
+  auto missing = plan_scene(scene(R"(
+[[object]]
+mesh = "sphere"
+material = "materials/velvet.hlsl"
+)"), kLibrary);
+  ASSERT_FALSE(missing);
+  EXPECT_EQ(missing.error().message, "'materials/velvet.hlsl' is in none of the shader folders (" + kLibrary.string() + ")");
+
+  const fs::path root = fs::temp_directory_path() / "xshade_planner_test";
+  fs::create_directories(root / "materials");
+  std::ofstream(root / "materials" / "broken.hlsl") << "#pragma fragment frag\nfloat4 frag() : SV_Target { return x; }\n";
+  auto broken = plan_scene(scene(R"(
+[[object]]
+mesh = "sphere"
+material = "materials/broken.hlsl"
+)"), root);
+  ASSERT_FALSE(broken);
+  EXPECT_EQ(broken.error().message, "'materials/broken.hlsl' does not compile");
+  ASSERT_FALSE(broken.error().diagnostics.empty());
+  EXPECT_EQ(broken.error().diagnostics[0].where.line, 2u);
+  fs::remove_all(root);
+}
+
+TEST(Planner, AUserFolderSuppliesItsOwnMaterialThatIncludesTheLibrary) {
+  const fs::path user = fs::temp_directory_path() / "xshade_planner_user_folder";
+  fs::remove_all(user);
+  fs::create_directories(user / "materials");
+  std::ofstream(user / "materials" / "flat_lit.hlsl") << R"(#pragma vertex vert
+#pragma fragment frag
+#pragma multi_compile _ _HALF_LAMBERT
+#include "include/scene_inputs.hlsl"
+float4 _Color = float4(1, 1, 1, 1);
+SurfaceVaryings vert(MeshVertex input) { return surface_vertex(input); }
+float4 frag(SurfaceVaryings input) : SV_Target {
+  return _Color * saturate(dot(normalize(input.world_normal), _LightDirection.xyz));
+}
+)";
+  auto plan = plan_scene(scene(R"(
+[[object]]
+mesh = "sphere"
+material = "materials/flat_lit.hlsl"
+)"), ShaderSearchPath({user, kLibrary}));
+  ASSERT_TRUE(plan) << plan.error().to_string();
+  ASSERT_EQ(plan->variants.size(), 1u);
+  EXPECT_EQ(plan->variants[0].source, user / "materials" / "flat_lit.hlsl");
+  EXPECT_TRUE(has_line(plan->left_out, "materials/flat_lit.hlsl: 1 of its 2 keyword combinations (the scene asks for no other)"));
+  // The library's own materials are still there to be used, and are left out here.
+  EXPECT_TRUE(has_line(plan->left_out, "materials/toon.hlsl: no object uses it"));
+  fs::remove_all(user);
+}
+
+TEST(Planner, AVariantThatReadsVertexInputsTheMeshesLackIsToldItReadsZeros) {
+  // TEXCOORD2 and COLOR1 only with the _EXTRA keyword: one variant reads them, the other not.
+  const fs::path user = fs::temp_directory_path() / "xshade_planner_vertex_inputs";
+  fs::remove_all(user);
+  fs::create_directories(user / "materials");
+  std::ofstream(user / "materials" / "extra_inputs.hlsl") << R"(#pragma vertex vert
+#pragma fragment frag
+#pragma multi_compile _ _EXTRA
+struct appdata {
+  float3 position : POSITION;
+  float2 uv : TEXCOORD0;
+#ifdef _EXTRA
+  float4 tint : COLOR1;
+  float2 uv2 : TEXCOORD2;
+#endif
+};
+struct v2f { float4 position : SV_Position; float4 color : COLOR0; };
+v2f vert(appdata v) {
+  v2f o;
+  o.position = float4(v.position, 1);
+  o.color = float4(v.uv, 0, 1);
+#ifdef _EXTRA
+  o.color += v.tint + float4(v.uv2, 0, 0);
+#endif
+  return o;
+}
+float4 frag(v2f i) : SV_Target { return i.color; }
+)";
+  auto plan = plan_scene(scene(R"(
+[[object]]
+name = "plain"
+mesh = "sphere"
+material = "materials/extra_inputs.hlsl"
+[[object]]
+name = "extra"
+mesh = "cube"
+material = "materials/extra_inputs.hlsl"
+keywords = ["_EXTRA"]
+)"), ShaderSearchPath({user, kLibrary}));
+  ASSERT_TRUE(plan) << plan.error().to_string();
+  ASSERT_EQ(plan->variants.size(), 2u);
+  ASSERT_EQ(plan->variant_notes.size(), 2u);
+  EXPECT_TRUE(plan->variant_notes[plan->instance_variant[0]].empty());
+  EXPECT_EQ(plan->variant_notes[plan->instance_variant[1]],
+            (std::vector<std::string>{"vertex input COLOR1 is not in the meshes; the shader reads zeros",
+                                      "vertex input TEXCOORD2 is not in the meshes; the shader reads zeros"}));
+  const std::string described = describe_plan(scene(""), *plan);
+  EXPECT_NE(described.find("    materials/extra_inputs.hlsl [_EXTRA]\n"
+                           "      vertex input COLOR1 is not in the meshes; the shader reads zeros\n"
+                           "      vertex input TEXCOORD2 is not in the meshes; the shader reads zeros\n"),
+            std::string::npos)
+      << described;
+  EXPECT_EQ(described.find("vertex input TEXCOORD0"), std::string::npos) << described;
+  fs::remove_all(user);
+}
+
+}  // namespace
+}  // namespace xshade::harness

@@ -1,0 +1,405 @@
+#include "harness/render/scene_renderer.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cstring>
+#include <map>
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include "harness/assets/meshes.h"
+#include "harness/assets/obj_mesh.h"
+#include "harness/assets/scene_textures.h"
+
+namespace xshade::harness {
+namespace {
+
+using Values = std::map<std::string, std::vector<float>>;
+
+// HLSL component order (row by row) of a GLM matrix: HLSL M[r][c] is GLM m[c][r], so that
+// mul(M, v) in a shader is m * v on the host.
+std::vector<float> hlsl_components(const glm::mat4& m) {
+  std::vector<float> out;
+  for (int r = 0; r < 4; ++r)
+    for (int c = 0; c < 4; ++c) out.push_back(m[c][r]);
+  return out;
+}
+
+std::vector<float> components(glm::vec4 v) { return {v.x, v.y, v.z, v.w}; }
+
+// The renderer's own values, looked up first, then the scene's, then the shader's defaults.
+class UniformValues {
+ public:
+  UniformValues(const Values& engine, const std::map<std::string, PropertyValue>& scene, const ShaderInterface& interface)
+      : engine_(engine), interface_(interface) {
+    for (const auto& [name, value] : scene)
+      scene_[name] = std::vector<float>(value.components.begin(), value.components.begin() + value.count);
+  }
+
+  const std::vector<float>* operator()(const std::string& name) const {
+    if (auto it = engine_.find(name); it != engine_.end()) return &it->second;
+    if (auto it = scene_.find(name); it != scene_.end()) return &it->second;
+    const PropertyDefault* property = interface_.find_property(name);
+    if (property && !property->value.empty()) return &property->value;
+    // X_TexelSize of a texture this pass does not read: it has no size, and the shader does not
+    // use it (several passes of one effect share the buffer that declares it).
+    static const std::vector<float> kNoTexture(4, 0.0f);
+    if (name.ends_with("_TexelSize")) return &kNoTexture;
+    return nullptr;
+  }
+
+ private:
+  const Values& engine_;
+  Values scene_;
+  const ShaderInterface& interface_;
+};
+
+Result<std::vector<UniformBinding>> uniform_bindings(const CompiledVariant& variant, const UniformValues& values,
+                                                     const std::string& where) {
+  std::vector<UniformBinding> bindings;
+  for (const UniformBlock& block : variant.interface.uniform_blocks) {
+    auto bytes = build_uniform_block(block, [&values](const std::string& name) { return values(name); });
+    if (!bytes) return fail(where + ": " + bytes.error().message);
+    bindings.push_back({block.slot_name, std::move(*bytes)});
+  }
+  return bindings;
+}
+
+Result<MeshData> mesh_data(const MeshRef& mesh) {
+  switch (mesh.kind) {
+    case MeshKind::Sphere: return sphere_mesh();
+    case MeshKind::Torus: return torus_mesh();
+    case MeshKind::Plane: return plane_mesh();
+    case MeshKind::Cube: return cube_mesh();
+    case MeshKind::ObjFile: return load_obj(mesh.file);
+  }
+  return fail("unknown mesh kind");
+}
+
+// Post passes sample colour bilinear and depth exactly, both clamped at the edges
+// (docs/shader_library.md).
+constexpr SamplerDesc kColorSampler{Filter::Linear, AddressMode::ClampToEdge};
+constexpr SamplerDesc kDepthSampler{Filter::Nearest, AddressMode::ClampToEdge};
+
+// An image a post pass can read: its binding (a target's colour or depth, or an uploaded
+// texture, with its sampler) and its size, for X_TexelSize.
+struct PassSource {
+  TextureSource binding;
+  glm::uvec2 size{0};
+};
+
+// One RGBA32F level, as given: a post pass reads level 0 only.
+TextureData float_texture(const FloatImage& image) {
+  std::vector<std::byte> bytes(image.rgba.size() * sizeof(float));
+  std::memcpy(bytes.data(), image.rgba.data(), bytes.size());
+  return {TextureFormat::Rgba32Float, image.width, image.height, {std::move(bytes)}};
+}
+
+class SceneRenderer {
+ public:
+  SceneRenderer(Backend& backend, const Scene& scene, const Plan& plan, const std::vector<CompiledVariant>& variants,
+                const Environment& environment, const RenderOptions& options)
+      : backend_(backend), scene_(scene), plan_(plan), variants_(variants), environment_(environment), options_(options) {}
+
+  // The scene pass, then the post passes on its colour and depth.
+  Result<RenderedScene> render() {
+    auto target = backend_.create_target({scene_.width, scene_.height, true});
+    if (!target) return fail(target.error());
+    scene_target_ = *target;
+    const glm::uvec2 size{scene_.width, scene_.height};
+    scene_color_ = {TextureSource::color_of(*target, kColorSampler), size};
+    scene_depth_ = {TextureSource::depth_of(*target, kDepthSampler), size};
+    return render_passes();
+  }
+
+  // The post passes alone, on the given colour and depth.
+  Result<RenderedScene> render_post(const FloatImage& color, const FloatImage& depth) {
+    for (const auto& [name, image] : {std::pair{"colour", &color}, std::pair{"depth", &depth}}) {
+      const bool fits = image->width == scene_.width && image->height == scene_.height &&
+                        image->rgba.size() == size_t(image->width) * image->height * 4;
+      if (!fits)
+        return fail(std::string("the ") + name + " image is " + std::to_string(image->width) + "x" +
+                    std::to_string(image->height) + ", the scene " + std::to_string(scene_.width) + "x" +
+                    std::to_string(scene_.height));
+    }
+    if (std::none_of(plan_.passes.begin(), plan_.passes.end(),
+                     [](const PlannedPass& pass) { return pass.kind == PlannedPass::Kind::Post; }))
+      return fail("scene '" + scene_.name + "' has no post pass to run on the given images");
+    auto color_texture = backend_.upload_texture(float_texture(color));
+    if (!color_texture) return fail(color_texture.error());
+    auto depth_texture = backend_.upload_texture(float_texture(depth));
+    if (!depth_texture) return fail(depth_texture.error());
+    const glm::uvec2 size{scene_.width, scene_.height};
+    scene_color_ = {TextureSource::texture(*color_texture, kColorSampler), size};
+    scene_depth_ = {TextureSource::texture(*depth_texture, kDepthSampler), size};
+    return render_passes();
+  }
+
+ private:
+  // Every frame runs every pass; programs, meshes, textures and targets are made in the first.
+  // Without a scene target (render_post) the scene pass is not run.
+  Result<RenderedScene> render_passes() {
+    std::vector<std::vector<PassTiming>> frame_timings;
+    for (uint32_t frame = 0; frame < std::max(1u, options_.frames); ++frame) {
+      timings_.clear();
+      pass_images_.clear();
+      current_ = scene_color_;
+      current_effect_ = SIZE_MAX;
+      for (size_t p = 0; p < plan_.passes.size(); ++p) {
+        const PlannedPass& pass = plan_.passes[p];
+        if (pass.kind == PlannedPass::Kind::Scene && !scene_target_) continue;
+        auto rendered = pass.kind == PlannedPass::Kind::Scene ? scene_pass() : post_pass(p);
+        if (!rendered) return fail(rendered.error());
+        if (options_.keep_pass_images) {
+          auto image = read_current();
+          if (!image) return fail(image.error());
+          pass_images_.emplace_back(pass.name, std::move(*image));
+        }
+      }
+      frame_timings.push_back(timings_);
+    }
+    auto image = read_current();
+    if (!image) return fail(image.error());
+    return RenderedScene{std::move(*image), std::move(timings_), std::move(pass_images_), std::move(frame_timings)};
+  }
+
+  // The image so far is always a target's colour once a pass has run: the scene pass's or a
+  // post pass's.
+  Result<FloatImage> read_current() {
+    if (current_.binding.kind != TextureSource::Kind::TargetColor) return fail("no pass has rendered an image to read");
+    return backend_.read_color(TargetHandle{current_.binding.id});
+  }
+
+  Result<ProgramHandle> program(size_t variant) {
+    if (auto it = programs_.find(variant); it != programs_.end()) return it->second;
+    auto created = options_.programs ? options_.programs->program(backend_, variants_[variant].program)
+                                     : backend_.create_program(variants_[variant].program);
+    if (!created) return fail(created.error());
+    programs_[variant] = *created;
+    return *created;
+  }
+
+  Result<MeshHandle> mesh(const MeshRef& ref) {
+    for (const auto& [known, handle] : meshes_)
+      if (known == ref) return handle;
+    auto data = mesh_data(ref);
+    if (!data) return fail(data.error());
+    auto handle = backend_.upload_mesh(*data);
+    if (!handle) return fail(handle.error());
+    meshes_.emplace_back(ref, *handle);
+    return *handle;
+  }
+
+  Result<TextureHandle> texture(const TextureRef& ref) {
+    for (const auto& [known, handle] : textures_)
+      if (known == ref) return handle;
+    auto image = texture_image(ref);
+    if (!image) return fail(image.error());
+    auto handle = backend_.upload_texture(texture_with_mips(*image));
+    if (!handle) return fail(handle.error());
+    textures_.emplace_back(ref, *handle);
+    return *handle;
+  }
+
+  Result<TextureHandle> environment_texture() {
+    if (!environment_handle_) {
+      auto handle = backend_.upload_texture(environment_.prefiltered);
+      if (!handle) return fail(handle.error());
+      environment_handle_ = *handle;
+    }
+    return environment_handle_;
+  }
+
+  Values frame_values() const {
+    const Camera& camera = scene_.camera;
+    const float aspect = float(scene_.width) / float(scene_.height);
+    // Direct3D's depth range [0, 1] in a right-handed world: what the backends' conventions expect.
+    const glm::mat4 projection =
+        glm::perspectiveRH_ZO(glm::radians(camera.fov_y_degrees), aspect, camera.near_plane, camera.far_plane);
+    const glm::mat4 view = glm::lookAtRH(camera.position, camera.target, camera.up);
+    Values values;
+    values["_WorldToClip"] = hlsl_components(projection * view);
+    values["_CameraPosition"] = components(glm::vec4(camera.position, 1.0f));
+    // One directional light: the shaders take the first; a scene without one is lit by its environment alone.
+    const DirectionalLight light = scene_.lights.empty() ? DirectionalLight{{0, 1, 0}, glm::vec3(0.0f), 0.0f}
+                                                         : scene_.lights.front();
+    values["_LightDirection"] = components(glm::vec4(light.direction, 0.0f));
+    values["_LightColor"] = components(glm::vec4(light.color * light.intensity, 0.0f));
+    std::vector<float>& sh = values["_EnvironmentSH"];
+    for (const glm::vec3& c : environment_.sh) sh.insert(sh.end(), {c.r, c.g, c.b, 0.0f});
+    values["_CameraNearFar"] = {camera.near_plane, camera.far_plane, 0.0f, 0.0f};
+    return values;
+  }
+
+  Result<void> scene_pass() {
+    RenderPass pass{scene_target_, scene_.clear_color, 1.0f, {}};
+    Values values = frame_values();
+    for (size_t i = 0; i < plan_.instances.size(); ++i) {
+      const ObjectInstance& instance = plan_.instances[i];
+      const size_t variant = plan_.instance_variant[i];
+      const std::string where = "object '" + instance.object_name + "'" +
+                                (instance.in_grid ? " cell " + std::to_string(instance.row) + "," + std::to_string(instance.col) : "");
+      values["_ObjectToWorld"] = hlsl_components(instance.model);
+      values["_NormalToWorld"] = hlsl_components(glm::transpose(glm::inverse(instance.model)));
+      auto handle = program(variant);
+      if (!handle) return fail(handle.error());
+      auto mesh_handle = mesh(instance.mesh);
+      if (!mesh_handle) return fail(where + ": " + mesh_handle.error().message);
+      DrawItem draw{*handle, *mesh_handle, {}, {}};
+      auto uniforms = uniform_bindings(variants_[variant], UniformValues(values, instance.properties, variants_[variant].interface), where);
+      if (!uniforms) return fail(uniforms.error());
+      draw.uniforms = std::move(*uniforms);
+      for (const std::string& name : variants_[variant].interface.textures) {
+        if (name == "_EnvironmentSpecular") {
+          auto env = environment_texture();
+          if (!env) return fail(env.error());
+          // Clamped: the equirect's top and bottom rows are the poles, not neighbours.
+          draw.textures.push_back({name, TextureSource::texture(*env, {Filter::Linear, AddressMode::ClampToEdge})});
+          continue;
+        }
+        // An unset texture is white, as Unity's default for _MainTex.
+        auto given = instance.textures.find(name);
+        auto handle_of = texture(given != instance.textures.end() ? given->second : TextureRef{});
+        if (!handle_of) return fail(where + ": texture '" + name + "': " + handle_of.error().message);
+        draw.textures.push_back({name, TextureSource::texture(*handle_of, {Filter::Linear, AddressMode::Repeat})});
+      }
+      pass.draws.push_back(std::move(draw));
+    }
+    return timed("scene", pass);
+  }
+
+  Result<void> post_pass(size_t index) {
+    const PlannedPass& planned = plan_.passes[index];
+    const hlsl::PassDeclaration& declaration = planned.declaration;
+    const PostEffect& effect = scene_.post[planned.effect];
+    const bool half = declaration.scale == hlsl::PassDeclaration::Scale::Half;
+    const uint32_t width = half ? std::max(1u, scene_.width / 2) : scene_.width;
+    const uint32_t height = half ? std::max(1u, scene_.height / 2) : scene_.height;
+    auto& target = pass_target_[index];
+    if (!target) {
+      auto created = backend_.create_target({width, height, false});
+      if (!created) return fail(created.error());
+      target = *created;
+    }
+
+    // An effect's first pass reads the image so far; scene.depth is always the scene's (the scene
+    // pass's depth, or the given depth image).
+    if (planned.effect != current_effect_) {
+      current_effect_ = planned.effect;
+      effect_input_ = current_;
+      pass_outputs_.clear();
+    }
+    Values values = frame_values();
+    const CompiledVariant& variant = variants_[planned.variant];
+    DrawItem draw{{}, {}, {}, {}};
+    for (const std::string& name : variant.interface.textures) {
+      auto input = std::find_if(declaration.inputs.begin(), declaration.inputs.end(),
+                                [&](const hlsl::PassInput& i) { return i.texture == name; });
+      if (input == declaration.inputs.end())
+        return fail("pass '" + planned.name + "' samples '" + name + "', which its #pragma pass gives no source");
+      const PassSource& source = input->kind == hlsl::PassInput::Kind::SceneDepth ? scene_depth_
+                                 : input->kind == hlsl::PassInput::Kind::Pass     ? pass_outputs_.at(input->pass)
+                                                                                  : effect_input_;
+      const glm::uvec2 size = source.size;
+      values[name + "_TexelSize"] = {1.0f / float(size.x), 1.0f / float(size.y), float(size.x), float(size.y)};
+      draw.textures.push_back({name, source.binding});
+    }
+    auto handle = program(planned.variant);
+    if (!handle) return fail(handle.error());
+    draw.program = *handle;
+    auto uniforms = uniform_bindings(variant, UniformValues(values, effect.parameters, variant.interface), "pass '" + planned.name + "'");
+    if (!uniforms) return fail(uniforms.error());
+    draw.uniforms = std::move(*uniforms);
+
+    RenderPass pass{target, glm::vec4(0.0f), 1.0f, {std::move(draw)}};
+    if (auto rendered = timed(planned.name, pass); !rendered) return rendered;
+    current_ = {TextureSource::color_of(target, kColorSampler), {width, height}};
+    pass_outputs_[declaration.name] = current_;
+    return {};
+  }
+
+  Result<void> timed(const std::string& name, const RenderPass& pass) {
+    const auto start = std::chrono::steady_clock::now();
+    if (auto rendered = backend_.render(pass); !rendered) return fail(name + ": " + rendered.error().message, rendered.error().where);
+    const std::chrono::duration<double, std::milli> elapsed = std::chrono::steady_clock::now() - start;
+    timings_.push_back({name, elapsed.count()});
+    return {};
+  }
+
+  Backend& backend_;
+  const Scene& scene_;
+  const Plan& plan_;
+  const std::vector<CompiledVariant>& variants_;
+  const Environment& environment_;
+  const RenderOptions& options_;
+
+  TargetHandle scene_target_;  // none when the post passes run on given images
+  PassSource scene_color_;      // what scene.color and scene.depth name
+  PassSource scene_depth_;
+  PassSource current_;          // the image so far
+  size_t current_effect_ = SIZE_MAX;
+  PassSource effect_input_;     // the image the current effect received
+  std::map<std::string, PassSource> pass_outputs_;  // of the current effect, by pass name
+  std::map<size_t, TargetHandle> pass_target_;  // by index into the plan's passes
+  std::map<size_t, ProgramHandle> programs_;
+  std::vector<std::pair<MeshRef, MeshHandle>> meshes_;
+  std::vector<std::pair<TextureRef, TextureHandle>> textures_;
+  TextureHandle environment_handle_;
+  std::vector<PassTiming> timings_;
+  std::vector<std::pair<std::string, FloatImage>> pass_images_;
+};
+
+// What makes two programs the same: their stages' code and the layout they are bound by, not
+// their names.
+std::string program_key(const ProgramDesc& desc) {
+  std::string key = desc.fullscreen ? "fullscreen\n" : "mesh\n";
+  for (const ShaderStageSource* stage : {&desc.vertex, &desc.fragment}) {
+    key += stage->entry_point + "\n" + stage->glsl + "\n";
+    key.append(reinterpret_cast<const char*>(stage->spirv.data()), stage->spirv.size() * sizeof(uint32_t));
+    key += "\n";
+  }
+  for (const UniformBlockSlot& block : desc.layout.uniform_blocks)
+    key += "b " + block.name + " " + std::to_string(block.binding) + " " + std::to_string(block.size) + "\n";
+  for (const TextureSlot& texture : desc.layout.textures)
+    key += "t " + texture.name + " " + std::to_string(texture.binding) + " " +
+           (texture.sampler_binding ? std::to_string(*texture.sampler_binding) : "-") + " " + shape_name(texture.shape) +
+           " " + texel_kind_name(texture.texel) + (texture.comparison ? " compare" : "") +
+           (texture.image_only ? " image" : "") + " " + texture.glsl_name + "\n";
+  return key;
+}
+
+}  // namespace
+
+Result<ProgramHandle> ProgramCache::program(Backend& backend, const ProgramDesc& desc) {
+  if (backend_ && backend_ != &backend) return fail("a program cache serves one backend only");
+  backend_ = &backend;
+  std::string key = program_key(desc);
+  if (auto it = programs_.find(key); it != programs_.end()) return it->second;
+  auto created = backend.create_program(desc);
+  if (!created) return fail(created.error());
+  programs_.emplace(std::move(key), *created);
+  return *created;
+}
+
+Result<RenderedScene> render_scene(Backend& backend, const Scene& scene, const Plan& plan,
+                                   const std::vector<CompiledVariant>& variants, const Environment& environment,
+                                   const RenderOptions& options) {
+  return SceneRenderer(backend, scene, plan, variants, environment, options).render();
+}
+
+Result<RenderedScene> render_post_effects(Backend& backend, const Scene& scene, const Plan& plan,
+                                          const std::vector<CompiledVariant>& variants, const FloatImage& color,
+                                          const FloatImage& depth, const RenderOptions& options) {
+  // No scene pass, so no environment: the post passes read none of its values.
+  const Environment none;
+  return SceneRenderer(backend, scene, plan, variants, none, options).render_post(color, depth);
+}
+
+double milliseconds_of(const std::vector<PassTiming>& frame, std::string_view prefix) {
+  double total = 0.0;
+  for (const PassTiming& timing : frame)
+    if (timing.pass.starts_with(prefix)) total += timing.milliseconds;
+  return total;
+}
+
+}  // namespace xshade::harness

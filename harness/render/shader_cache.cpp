@@ -1,0 +1,159 @@
+#include "harness/render/shader_cache.h"
+
+#include <nlohmann/json.hpp>
+#include <xxhash.h>
+
+#include "base/file_io.h"
+#include "spirv/spirv_compiler.h"
+
+namespace xshade::harness {
+namespace {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+json stage_json(const ShaderStageSource& stage) {
+  return {{"glsl", stage.glsl},
+          {"spirv", stage.spirv},
+          {"entry_point", stage.entry_point},
+          {"name", stage.name},
+          {"source_files", stage.source_files}};
+}
+
+ShaderStageSource stage_from_json(const json& j) {
+  ShaderStageSource stage;
+  stage.glsl = j.at("glsl");
+  stage.spirv = j.at("spirv").get<std::vector<uint32_t>>();
+  stage.entry_point = j.at("entry_point");
+  stage.name = j.at("name");
+  stage.source_files = j.at("source_files").get<std::vector<std::string>>();
+  return stage;
+}
+
+std::string variant_json(const CompiledVariant& variant) {
+  const ProgramDesc& p = variant.program;
+  json blocks = json::array();
+  for (const UniformBlockSlot& b : p.layout.uniform_blocks)
+    blocks.push_back({{"name", b.name}, {"binding", b.binding}, {"size", b.size}});
+  json textures = json::array();
+  for (const TextureSlot& t : p.layout.textures) {
+    json slot{{"name", t.name},
+              {"binding", t.binding},
+              {"dimension", int(t.shape.dimension)},
+              {"multisampled", t.shape.multisampled},
+              {"comparison", t.comparison},
+              {"texel", int(t.texel)},
+              {"image_only", t.image_only},
+              {"glsl_name", t.glsl_name}};
+    if (t.sampler_binding) slot["sampler_binding"] = *t.sampler_binding;
+    textures.push_back(std::move(slot));
+  }
+  return json{{"name", p.name},
+              {"fullscreen", p.fullscreen},
+              {"vertex", stage_json(p.vertex)},
+              {"fragment", stage_json(p.fragment)},
+              {"uniform_blocks", blocks},
+              {"textures", textures},
+              {"interface", shader_interface_json(variant.interface)}}
+      .dump();
+}
+
+std::optional<CompiledVariant> variant_from_json(const std::string& text) {
+  try {
+    const json j = json::parse(text);
+    CompiledVariant variant;
+    ProgramDesc& p = variant.program;
+    p.name = j.at("name");
+    p.fullscreen = j.at("fullscreen");
+    p.vertex = stage_from_json(j.at("vertex"));
+    p.fragment = stage_from_json(j.at("fragment"));
+    for (const json& b : j.at("uniform_blocks")) p.layout.uniform_blocks.push_back({b.at("name"), b.at("binding"), b.at("size")});
+    for (const json& t : j.at("textures")) {
+      TextureSlot slot{t.at("name"), t.at("binding"), std::nullopt};
+      if (t.contains("sampler_binding")) slot.sampler_binding = t.at("sampler_binding").get<uint32_t>();
+      slot.shape = {TextureDimension(t.at("dimension").get<int>()), t.at("multisampled").get<bool>()};
+      slot.comparison = t.at("comparison");
+      slot.texel = TexelKind(t.at("texel").get<int>());
+      slot.image_only = t.at("image_only");
+      slot.glsl_name = t.at("glsl_name");
+      p.layout.textures.push_back(std::move(slot));
+    }
+    auto interface = parse_shader_interface_json(j.at("interface"));
+    if (!interface) return std::nullopt;
+    variant.interface = std::move(*interface);
+    return variant;
+  } catch (const json::exception&) {
+    return std::nullopt;  // a damaged entry is a miss: the variant is compiled again
+  }
+}
+
+}  // namespace
+
+std::string content_hash(std::string_view bytes) {
+  const XXH128_hash_t hash = XXH3_128bits(bytes.data(), bytes.size());
+  char text[33];
+  std::snprintf(text, sizeof text, "%016llx%016llx", static_cast<unsigned long long>(hash.high64),
+                static_cast<unsigned long long>(hash.low64));
+  return text;
+}
+
+std::string compiler_identity() {
+  static const std::string identity = [] {
+    const std::optional<std::string> executable = read_file("/proc/self/exe");
+    return content_hash((executable ? *executable : std::string("unknown executable")) + "\n" +
+                        spirv::compiler_version());
+  }();
+  return identity;
+}
+
+ShaderCache::ShaderCache(fs::path directory, std::string compiler_identity)
+    : directory_(std::move(directory)), compiler_identity_(std::move(compiler_identity)) {}
+
+std::string ShaderCache::request_key(const VariantRequest& request, Lane lane) const {
+  std::string key = compiler_identity_ + "\n" + std::string(lane_name(lane)) + (request.half_emulation ? " half" : "") +
+                    "\n" + request.source.string() + "\n" +
+                    request.fragment_entry + "\n";
+  for (const std::string& keyword : request.keywords) key += keyword + " ";
+  return content_hash(key);
+}
+
+std::optional<CompiledVariant> ShaderCache::find(const VariantRequest& request, Lane lane) const {
+  const std::optional<std::string> manifest_text = read_file(directory_ / (request_key(request, lane) + ".manifest"));
+  if (!manifest_text) return std::nullopt;
+  try {
+    const json manifest = json::parse(*manifest_text);
+    for (const json& dependency : manifest.at("dependencies")) {
+      const std::optional<std::string> contents = read_file(dependency.at("path").get<std::string>());
+      if (!contents || content_hash(*contents) != dependency.at("hash").get<std::string>()) return std::nullopt;
+    }
+    const std::optional<std::string> stored = read_file(directory_ / (manifest.at("result").get<std::string>() + ".variant"));
+    if (!stored) return std::nullopt;
+    return variant_from_json(*stored);
+  } catch (const json::exception&) {
+    return std::nullopt;
+  }
+}
+
+Result<void> ShaderCache::store(const VariantRequest& request, Lane lane, const CompiledVariant& variant,
+                                const std::vector<fs::path>& dependencies) const {
+  std::error_code error;
+  fs::create_directories(directory_, error);
+  if (error) return fail("cannot create the shader cache " + directory_.string() + ": " + error.message());
+  const std::string key = request_key(request, lane);
+  json listed = json::array();
+  std::string result_key = key;
+  for (const fs::path& path : dependencies) {
+    const std::optional<std::string> contents = read_file(path);
+    if (!contents) return fail("cannot read " + path.string() + " to record it in the shader cache");
+    const std::string hash = content_hash(*contents);
+    listed.push_back({{"path", fs::absolute(path).lexically_normal().string()}, {"hash", hash}});
+    result_key += hash;
+  }
+  result_key = content_hash(result_key);
+  if (auto written = write_file_atomically(directory_ / (result_key + ".variant"), variant_json(variant)); !written)
+    return written;
+  return write_file_atomically(directory_ / (key + ".manifest"),
+                          json{{"dependencies", listed}, {"result", result_key}, {"request", request.label()}}.dump(1));
+}
+
+}  // namespace xshade::harness

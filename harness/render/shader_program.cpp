@@ -1,0 +1,199 @@
+#include "harness/render/shader_program.h"
+
+#include "glsl/flavour.h"
+#include "glsl/glsl_emitter.h"
+#include "glsl/glsl_names.h"
+#include "spirv/hlsl_compiler.h"
+
+namespace xshade::harness {
+namespace {
+
+// Driver logs name sources by the number `#line` gave them; these become the author's files.
+Error with_source_names(Error error, const std::vector<std::string>& source_files) {
+  for (Diagnostic& diagnostic : error.diagnostics) {
+    uint32_t index = 0;
+    const std::string& file = diagnostic.where.file;
+    if (!file.empty() && file.find_first_not_of("0123456789") == std::string::npos) index = uint32_t(std::stoul(file));
+    if (index > 0 && index < source_files.size()) diagnostic.where.file = source_files[index];
+  }
+  return error;
+}
+
+Result<ShaderStageSource> vk_hlsl_stage(const hlsl::Module& module, spirv::Stage stage, const std::string& entry,
+                                        const std::vector<std::filesystem::path>& include_dirs) {
+  const std::string& name = module.sources.name(module.main_file);
+  spirv::HlslStage request;
+  request.source = module.sources.text(module.main_file);
+  request.source_name = name;
+  request.stage = stage;
+  request.entry_point = entry;
+  for (const hlsl::MacroDefinition& macro : module.macros) request.defines.emplace_back(macro.name, macro.value);
+  request.resolve_include = spirv::include_resolver(include_dirs);
+  // A resource read through a local or a struct field (resource_origins.h) needs glslang's
+  // legalization; a global or a parameter does not.
+  for (const auto& [expr, leaves] : module.resource_origins) {
+    if (expr->kind == hlsl::ExprKind::Name) {
+      const hlsl::Decl* decl = static_cast<const hlsl::NameExpr*>(expr)->decl;
+      if (decl && decl->kind == hlsl::DeclKind::Var && !static_cast<const hlsl::VarDecl*>(decl)->is_global)
+        request.legalize = true;
+    } else if (expr->kind == hlsl::ExprKind::Member) {
+      request.legalize = true;
+    }
+  }
+  // Resources without a register are numbered once for the whole program, by xshade's reflection
+  // (glslang alone would number each stage on its own; see HlslStage::bindings).
+  const hlsl::Reflection& declared = module.reflection;
+  for (const hlsl::ConstantBuffer& buffer : declared.constant_buffers)
+    request.bindings[buffer.name == hlsl::kGlobalsBufferName ? "$Global" : buffer.name] = buffer.binding;
+  for (const hlsl::TextureResource& texture : declared.textures) request.bindings[texture.name] = texture.binding;
+  for (const hlsl::SamplerResource& sampler : declared.samplers) request.bindings[sampler.name] = sampler.binding;
+  auto compiled = spirv::compile_hlsl(request);
+  if (!compiled) return fail(compiled.error());
+
+  // glslang numbers the resources itself; they must be where xshade's reflection says.
+  const hlsl::Reflection& reflection = module.reflection;
+  for (const spirv::HlslResource& resource : compiled->resources) {
+    std::optional<uint32_t> ours;
+    const std::string resource_name = resource.name == "$Global" ? hlsl::kGlobalsBufferName : resource.name;
+    if (resource.kind == spirv::HlslResource::Kind::ConstantBuffer) {
+      if (const auto* buffer = reflection.find_constant_buffer(resource_name)) ours = buffer->binding;
+    } else if (resource.kind == spirv::HlslResource::Kind::Sampler) {
+      for (const auto& sampler : reflection.samplers)
+        if (sampler.name == resource_name) ours = sampler.binding;
+    } else {
+      for (const auto& texture : reflection.textures)
+        if (texture.name == resource_name) ours = texture.binding;
+    }
+    if (ours != resource.binding)
+      return fail("vk-hlsl lane: glslang binds '" + resource.name + "' at " + std::to_string(resource.binding) +
+                      ", xshade's reflection " + (ours ? "at " + std::to_string(*ours) : std::string("not at all")),
+                  {name, 0, 0});
+  }
+  ShaderStageSource source;
+  source.spirv = std::move(compiled->module.words);
+  source.entry_point = entry;
+  source.name = name;
+  return source;
+}
+
+}  // namespace
+
+TextureShape harness_shape(hlsl::TextureShape shape) {
+  using S = hlsl::TextureShape;
+  using D = TextureDimension;
+  switch (shape) {
+    case S::Tex1D: return {D::Tex1D, false};
+    case S::Tex1DArray: return {D::Tex1DArray, false};
+    case S::Tex2D: return {D::Tex2D, false};
+    case S::Tex2DArray: return {D::Tex2DArray, false};
+    case S::Tex2DMS: return {D::Tex2D, true};
+    case S::Tex2DMSArray: return {D::Tex2DArray, true};
+    case S::Tex3D: return {D::Tex3D, false};
+    case S::Cube: return {D::Cube, false};
+    case S::CubeArray: return {D::CubeArray, false};
+  }
+  return {};
+}
+
+TexelKind harness_texel(hlsl::ScalarType texel) {
+  if (texel == hlsl::ScalarType::Int) return TexelKind::Int;
+  if (texel == hlsl::ScalarType::Uint || texel == hlsl::ScalarType::Bool) return TexelKind::Uint;
+  return TexelKind::Float;
+}
+
+ProgramLayout layout_for_lane(const hlsl::Reflection& reflection, Lane lane) {
+  ProgramLayout layout;
+  for (const hlsl::ConstantBuffer& buffer : reflection.constant_buffers)
+    layout.uniform_blocks.push_back({glsl::block_name(buffer.name), buffer.binding, buffer.size});
+  for (const hlsl::TextureResource& texture : reflection.textures) {
+    if (!texture.used) continue;
+    TextureSlot slot{texture.name, texture.binding, std::nullopt};
+    slot.shape = harness_shape(texture.shape);
+    slot.comparison = texture.comparison;
+    slot.texel = harness_texel(texture.texel);
+    if (lane == Lane::Gl && glsl::needs_renaming(texture.name)) slot.glsl_name = glsl::renamed(texture.name);
+    if (lane != Lane::Gl && texture.kind == hlsl::TextureKind::Texture) {
+      // A Texture object is a sampled image on Vulkan; its sampler, if any, is a binding of its own.
+      slot.sampler_binding = texture.sampler_binding;
+      slot.image_only = !texture.sampler_binding;
+    }
+    layout.textures.push_back(std::move(slot));
+  }
+  return layout;
+}
+
+Result<LaneStages> stages_for_lane(const hlsl::Module& module, Lane lane, const ProgramOptions& options) {
+  if (!module.ok()) return fail("the shader did not compile", module.sources.resolve({module.main_file, 0, 0}));
+  if (!module.entry_points.vertex && !module.entry_points.fragment)
+    return fail("the shader has no entry point (#pragma vertex or #pragma fragment)",
+                module.sources.resolve({module.main_file, 0, 0}));
+  LaneStages stages;
+  if (lane == Lane::VkHlsl) {
+    if (options.half_emulation)
+      return fail("half emulation rewrites the GLSL xshade emits; the vk-hlsl lane compiles the source with glslang and "
+                  "cannot emulate half",
+                  module.sources.resolve({module.main_file, 0, 0}));
+    for (const bool vertex : {true, false}) {
+      if (!(vertex ? module.entry_points.vertex : module.entry_points.fragment)) continue;
+      auto stage = vk_hlsl_stage(module, vertex ? spirv::Stage::Vertex : spirv::Stage::Fragment,
+                                 vertex ? module.reflection.vertex_entry : module.reflection.fragment_entry,
+                                 module.include_dirs);
+      if (!stage) return fail(stage.error());
+      (vertex ? stages.vertex : stages.fragment) = std::move(*stage);
+    }
+    return stages;
+  }
+  const glsl::Flavour flavour = lane == Lane::Gl ? glsl::Flavour::Gl : glsl::Flavour::Vk;
+  auto emitted = glsl::emit(module, {flavour, options.half_emulation});
+  if (!emitted) return fail(emitted.error());
+  const std::string name = module.sources.name(module.main_file);
+  for (const bool vertex : {true, false}) {
+    const std::optional<glsl::EmittedStage>& emitted_stage = vertex ? emitted->vertex : emitted->fragment;
+    if (!emitted_stage) continue;
+    ShaderStageSource source;
+    source.name = name + (vertex ? ".vert" : ".frag");
+    source.source_files = emitted->source_files;
+    if (lane == Lane::Gl) {
+      source.glsl = emitted_stage->text;
+    } else {
+      auto words = spirv::compile_vulkan_glsl(emitted_stage->text, vertex ? spirv::Stage::Vertex : spirv::Stage::Fragment,
+                                              source.name);
+      if (!words) return fail(with_source_names(words.error(), emitted->source_files));
+      source.spirv = std::move(words->words);
+    }
+    (vertex ? stages.vertex : stages.fragment) = std::move(source);
+  }
+  return stages;
+}
+
+Result<ProgramDesc> program_for_lane(const hlsl::Module& module, Lane lane, const ProgramOptions& options) {
+  if (!module.ok()) return fail("the shader did not compile", module.sources.resolve({module.main_file, 0, 0}));
+  if (!module.entry_points.fragment)
+    return fail("the shader has no fragment entry point (#pragma fragment): a program needs one to draw",
+                module.sources.resolve({module.main_file, 0, 0}));
+  auto stages = stages_for_lane(module, lane, options);
+  if (!stages) return fail(stages.error());
+  ProgramDesc desc;
+  desc.name = module.sources.name(module.main_file);
+  desc.layout = layout_for_lane(module.reflection, lane);
+  desc.fullscreen = module.entry_points.vertex == nullptr;
+  desc.fragment = std::move(*stages->fragment);
+  if (stages->vertex) {
+    desc.vertex = std::move(*stages->vertex);
+    return desc;
+  }
+  // A full-screen pass: the shared vertex shader feeds its TEXCOORD0.
+  const glsl::Flavour flavour = lane == Lane::Gl ? glsl::Flavour::Gl : glsl::Flavour::Vk;
+  const std::string text = glsl::fullscreen_vertex_shader(flavour);
+  desc.vertex.name = "fullscreen.vert";
+  if (lane == Lane::Gl) {
+    desc.vertex.glsl = text;
+  } else {
+    auto words = spirv::compile_vulkan_glsl(text, spirv::Stage::Vertex, desc.vertex.name);
+    if (!words) return fail(words.error());
+    desc.vertex.spirv = std::move(words->words);
+  }
+  return desc;
+}
+
+}  // namespace xshade::harness

@@ -1,0 +1,44 @@
+// A shader compiled by xshade's front end, made into a program for one lane's backend.
+#pragma once
+
+#include "harness/backend/backend.h"
+#include "harness/render/lanes.h"
+#include "hlsl_like/compiler.h"
+
+namespace xshade::harness {
+
+// gl: the gl-flavoured GLSL; vk: the vk-flavoured GLSL through glslang to SPIR-V; vk-hlsl: the
+// source itself through glslang's HLSL front end, with the variant's macros. The layout comes
+// from xshade's reflection on every lane; on vk-hlsl, glslang's own reflection must agree with
+// it binding for binding, or this fails naming the resource. A module without a vertex entry
+// point is a full-screen pass: the shared full-screen vertex shader feeds its TEXCOORD0.
+//
+// With `half_emulation` the GLSL lanes round every half-typed result to fp16 (glsl::EmitOptions);
+// the vk-hlsl lane compiles the source with glslang, which cannot, and fails saying so.
+struct ProgramOptions {
+  bool half_emulation = false;
+};
+
+// Half emulation also defines this macro for the front end, so that a shader can choose to
+// compute in half where a GPU that prefers half would (the library's `real`, include/common.hlsl).
+inline constexpr const char* kHalfEmulationMacro = "XSHADE_PRECISION_HALF";
+Result<ProgramDesc> program_for_lane(const hlsl::Module& module, Lane lane, const ProgramOptions& options = {});
+
+// The stages the module has (a vertex shader alone, a fragment shader alone, or both), each
+// compiled for the lane as program_for_lane would, without the full-screen vertex shader: what
+// `xshade compile` prints.
+struct LaneStages {
+  std::optional<ShaderStageSource> vertex;
+  std::optional<ShaderStageSource> fragment;
+};
+Result<LaneStages> stages_for_lane(const hlsl::Module& module, Lane lane, const ProgramOptions& options = {});
+
+// The layout the harness binds by: uniform blocks by their GLSL block name, textures by name
+// with their samplers' bindings (Vulkan only; OpenGL combines them).
+// Each texture slot carries the shape, texel kind and comparison the shader declared.
+ProgramLayout layout_for_lane(const hlsl::Reflection& reflection, Lane lane);
+// A texture shape and texel type of the front end as the backends name them.
+TextureShape harness_shape(hlsl::TextureShape shape);
+TexelKind harness_texel(hlsl::ScalarType texel);
+
+}  // namespace xshade::harness

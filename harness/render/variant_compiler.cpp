@@ -1,0 +1,66 @@
+#include "harness/render/variant_compiler.h"
+
+#include "harness/render/shader_program.h"
+
+namespace xshade::harness {
+
+VariantCompiler::VariantCompiler(ShaderSearchPath shaders, const ShaderCache* cache)
+    : shaders_(std::move(shaders)), cache_(cache) {}
+
+bool VariantCompiler::in_cache(const VariantRequest& request, Lane lane) const {
+  return cache_ && cache_->find(request, lane).has_value();
+}
+
+Result<const hlsl::Module*> VariantCompiler::front_end(const VariantRequest& request) {
+  const std::string key = request.source.string() + "\n" + request.label();
+  auto known = modules_.find(key);
+  if (known == modules_.end()) {
+    hlsl::CompileOptions options;
+    options.include_dirs = shaders_.folders();
+    options.keywords = request.keywords;
+    options.fragment_only_entry = request.fragment_entry;
+    if (request.half_emulation) options.defines.push_back({kHalfEmulationMacro, "1"});
+    known = modules_.emplace(key, hlsl::compile_file(request.source, options)).first;
+  }
+  const hlsl::Module& module = *known->second;
+  if (!module.ok()) {
+    Error error{request.label() + " does not compile", {request.source.string(), 0, 0}, {}};
+    for (const Diagnostic& d : module.diagnostics.diagnostics())
+      if (d.severity == Severity::Error) error.diagnostics.push_back(d);
+    return fail(std::move(error));
+  }
+  return &module;
+}
+
+Result<CompiledVariant> VariantCompiler::compile(const VariantRequest& request, Lane lane) {
+  if (cache_) {
+    if (std::optional<CompiledVariant> found = cache_->find(request, lane)) {
+      ++cached_;
+      return std::move(*found);
+    }
+  }
+  auto module = front_end(request);
+  if (!module) return fail(module.error());
+  auto program = program_for_lane(**module, lane, {.half_emulation = request.half_emulation});
+  if (!program) return fail(program.error());
+  CompiledVariant variant{std::move(*program), shader_interface((*module)->reflection)};
+  ++compiled_;
+  if (cache_) {
+    if (auto stored = cache_->store(request, lane, variant, (*module)->dependencies()); !stored && !cache_write_error_)
+      cache_write_error_ = stored.error();
+  }
+  return variant;
+}
+
+Result<std::vector<CompiledVariant>> VariantCompiler::compile_plan(const Plan& plan, Lane lane, bool half_emulation) {
+  std::vector<CompiledVariant> variants;
+  for (VariantRequest request : plan.variants) {
+    request.half_emulation = half_emulation;
+    auto compiled = compile(request, lane);
+    if (!compiled) return fail(compiled.error());
+    variants.push_back(std::move(*compiled));
+  }
+  return variants;
+}
+
+}  // namespace xshade::harness

@@ -1,0 +1,45 @@
+// Compiles the variants a plan lists for a lane, through the shader cache when there is one.
+// The front end runs at most once per variant in a process, whatever the number of lanes.
+#pragma once
+
+#include <filesystem>
+#include <map>
+#include <memory>
+#include <optional>
+
+#include "harness/render/planner.h"
+#include "harness/render/shader_cache.h"
+#include "hlsl_like/compiler.h"
+
+namespace xshade::harness {
+
+class VariantCompiler {
+ public:
+  // `cache` may be null: everything is compiled. Every folder of `shaders` is an include folder.
+  VariantCompiler(ShaderSearchPath shaders, const ShaderCache* cache);
+
+  Result<CompiledVariant> compile(const VariantRequest& request, Lane lane);
+  // Every variant of a plan, in the plan's order, each with `half_emulation` as given.
+  Result<std::vector<CompiledVariant>> compile_plan(const Plan& plan, Lane lane, bool half_emulation);
+  bool in_cache(const VariantRequest& request, Lane lane) const;
+  // The folders sources and includes come from; a plan for this compiler is made against them.
+  const ShaderSearchPath& shaders() const { return shaders_; }
+
+  // What happened so far: variants compiled, and found in the cache.
+  size_t compiled() const { return compiled_; }
+  size_t cached() const { return cached_; }
+  // The first failure to write the cache, if any: it costs time, not correctness, so the run goes on.
+  const std::optional<Error>& cache_write_error() const { return cache_write_error_; }
+
+ private:
+  Result<const hlsl::Module*> front_end(const VariantRequest& request);
+
+  ShaderSearchPath shaders_;
+  const ShaderCache* cache_;
+  std::map<std::string, std::unique_ptr<hlsl::Module>> modules_;  // by request label
+  size_t compiled_ = 0;
+  size_t cached_ = 0;
+  std::optional<Error> cache_write_error_;
+};
+
+}  // namespace xshade::harness

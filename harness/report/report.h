@@ -1,0 +1,18 @@
+// The run's reports, written into the report folder beside the images the run put there:
+// index.html and one <scene>.html per scene (report_html.h), junit.xml (junit_report.h) and
+// results.json (results_json.h).
+#pragma once
+
+#include <filesystem>
+
+#include "harness/gate/run_results.h"
+#include "base/result.h"
+
+namespace xshade::harness {
+
+// Creates `report_dir` if needed. Each file is written to a temporary file beside it and renamed
+// into place, so an interrupted run leaves either the previous report or the new one, never half
+// of a file. index.html is written last: when it is there, the pages it links to are too.
+Result<void> write_reports(const RunResults& results, const std::filesystem::path& report_dir);
+
+}  // namespace xshade::harness

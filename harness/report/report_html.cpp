@@ -1,0 +1,399 @@
+#include "harness/report/report_html.h"
+
+#include <algorithm>
+#include <cctype>
+#include <iterator>
+#include <numeric>
+#include <set>
+
+#include <fmt/format.h>
+
+#include "base/markup.h"
+#include "harness/report/report_text.h"
+
+namespace xshade::harness {
+namespace {
+
+// Colour says the verdict at a glance, and the verdict is always also written out, for readers
+// who cannot tell the colours apart.
+constexpr std::string_view kStyle = R"css(
+:root { --pass: #1a7f37; --pass-bg: #dafbe1; --fail: #cf222e; --fail-bg: #ffebe9;
+        --error: #9a6700; --error-bg: #fff8c5; --crash: #82071e; --crash-bg: #ffcecb;
+        --skipped: #57606a; --skipped-bg: #eaeef2; --line: #d0d7de; --muted: #57606a; }
+body { font: 14px/1.45 system-ui, -apple-system, "Segoe UI", Helvetica, Arial, sans-serif;
+       color: #1f2328; margin: 0 24px 48px; }
+h1 { font-size: 22px; margin: 0 0 8px; } h2 { font-size: 18px; margin: 0 0 8px; }
+h3 { font-size: 13px; margin: 0 0 4px; text-transform: uppercase; letter-spacing: .04em; color: var(--muted); }
+a { color: #0969da; }
+code, pre, .mono { font-family: ui-monospace, SFMono-Regular, Menlo, Consolas, monospace; font-size: 12px; }
+pre { background: #f6f8fa; border: 1px solid var(--line); padding: 8px 12px; overflow: auto;
+      white-space: pre-wrap; word-break: break-word; }
+header { padding: 16px 20px; margin: 16px -24px 20px; border-bottom: 1px solid var(--line);
+         border-left: 8px solid var(--skipped); background: #f6f8fa; }
+header.v-pass { border-left-color: var(--pass); } header.v-fail { border-left-color: var(--fail); }
+header.v-error { border-left-color: var(--error); } header.v-crash { border-left-color: var(--crash); }
+nav { margin-top: 12px; }
+dl.facts { display: grid; grid-template-columns: max-content auto; gap: 2px 12px; margin: 8px 0; }
+dl.facts dt { color: var(--muted); } dl.facts dd { margin: 0; }
+.badge { display: inline-block; padding: 1px 8px; border-radius: 10px; font-size: 12px; font-weight: 700;
+         vertical-align: middle; border: 1px solid currentColor; }
+.verdict.v-pass, .badge.v-pass { color: var(--pass); background: var(--pass-bg); }
+.verdict.v-fail, .badge.v-fail { color: var(--fail); background: var(--fail-bg); }
+.verdict.v-error, .badge.v-error { color: var(--error); background: var(--error-bg); }
+.verdict.v-crash, .badge.v-crash { color: var(--crash); background: var(--crash-bg); }
+.verdict.v-skipped, .badge.v-skipped { color: var(--skipped); background: var(--skipped-bg); }
+.verdict { font-weight: 700; }
+.counts .badge { margin-right: 4px; }
+table { border-collapse: collapse; margin: 0 0 12px; }
+th, td { border: 1px solid var(--line); padding: 4px 8px; text-align: left; vertical-align: top; }
+th { background: #f6f8fa; font-weight: 600; }
+td.num { text-align: right; font-variant-numeric: tabular-nums; }
+table.index td.cell { padding: 0; min-width: 90px; max-width: 360px; }
+table.index td.cell > a, table.index td.cell > span { display: block; padding: 4px 8px; color: inherit;
+                                                      text-decoration: none; }
+table.index td.cell > a:hover { text-decoration: underline; }
+td.cell.v-pass { background: var(--pass-bg); } td.cell.v-fail { background: var(--fail-bg); }
+td.cell.v-error { background: var(--error-bg); } td.cell.v-crash { background: var(--crash-bg); }
+td.cell.v-skipped, td.cell.absent { background: var(--skipped-bg); color: var(--muted); }
+tr.problem td.scene { border-left: 6px solid var(--fail); }
+tr.problem.row-error td.scene { border-left-color: var(--error); }
+tr.problem.row-crash td.scene { border-left-color: var(--crash); }
+td.scene a { font-weight: 600; }
+tr.separator td { background: #fff; border-left: none; border-right: none; padding: 14px 0 4px;
+                  color: var(--muted); font-weight: 600; }
+.detail { display: block; font-size: 12px; color: #1f2328; font-weight: normal; white-space: pre-wrap;
+          word-break: break-word; }
+.description { color: var(--muted); font-size: 12px; }
+.pair { padding: 2px 0; }
+section { margin: 0 0 28px; }
+section.lane { border: 1px solid var(--line); border-left: 6px solid var(--skipped); padding: 12px 16px; }
+section.lane.v-pass { border-left-color: var(--pass); } section.lane.v-fail { border-left-color: var(--fail); }
+section.lane.v-error { border-left-color: var(--error); } section.lane.v-crash { border-left-color: var(--crash); }
+p.why { font-weight: 600; margin: 0 0 10px; }
+.images { display: flex; flex-wrap: wrap; gap: 16px; align-items: flex-start; margin: 0 0 12px; }
+figure { margin: 0; }
+figure img { display: block; image-rendering: pixelated; border: 1px solid var(--line);
+             background: repeating-conic-gradient(#eee 0 25%, #fff 0 50%) 0 0 / 16px 16px; }
+figcaption { font-size: 12px; color: var(--muted); margin-top: 2px; max-width: 320px; word-break: break-all; }
+figcaption b { color: #1f2328; }
+.placeholder { box-sizing: border-box; width: 192px; min-height: 128px; padding: 12px; border: 2px dashed var(--line);
+               color: var(--muted); font-size: 12px; word-break: break-word; white-space: pre-wrap; }
+.tables { display: flex; flex-wrap: wrap; gap: 16px; align-items: flex-start; }
+.message { border-left: 4px solid var(--error); }
+)css";
+
+std::string verdict_class(Verdict verdict) { return "v-" + std::string(verdict_name(verdict)); }
+
+std::string verdict_word(Verdict verdict) {
+  std::string word(verdict_name(verdict));
+  for (char& c : word) c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
+  return word;
+}
+
+std::string verdict_span(Verdict verdict) {
+  return fmt::format(R"(<span class="verdict {}">{}</span>)", verdict_class(verdict), verdict_word(verdict));
+}
+
+std::string badge(Verdict verdict) {
+  return fmt::format(R"(<span class="badge {}">{}</span>)", verdict_class(verdict), verdict_word(verdict));
+}
+
+std::string page_start(std::string_view title) {
+  return fmt::format(
+      "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n"
+      "<meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">\n<title>{}</title>\n"
+      "<style>{}</style>\n</head>\n<body>\n",
+      escape_text(title), kStyle);
+}
+
+constexpr std::string_view kPageEnd = "</body>\n</html>\n";
+
+// Letters, digits, '.', '_' and '-' as they are, anything else '_': safe as a file name and as a
+// fragment identifier.
+std::string safe_name(std::string_view name) {
+  std::string out;
+  for (const char c : name) {
+    const bool keep = std::isalnum(static_cast<unsigned char>(c)) || c == '.' || c == '_' || c == '-';
+    out += keep ? c : '_';
+  }
+  return out.empty() ? "scene" : out;
+}
+
+std::string lane_anchor(std::string_view lane) { return "lane-" + safe_name(lane); }
+
+std::string lower(std::string text) {
+  for (char& c : text) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return text;
+}
+
+std::string counts_html(const VerdictCounts& counts) {
+  std::string out = fmt::format("{} — ", counts.total());
+  const auto add = [&](Verdict verdict, size_t count, bool always) {
+    if (count == 0 && !always) return;
+    out += fmt::format(R"(<span class="badge {}">{} {}</span>)", verdict_class(verdict), count, verdict_name(verdict));
+  };
+  add(Verdict::Pass, counts.pass, true);
+  add(Verdict::Fail, counts.fail, true);
+  add(Verdict::Error, counts.error, true);
+  add(Verdict::Crash, counts.crash, false);
+  add(Verdict::Skipped, counts.skipped, false);
+  return out;
+}
+
+// Every lane name of the run, in the order the scenes first name them: the index's columns.
+std::vector<std::string> lane_columns(const RunResults& results) {
+  std::vector<std::string> lanes;
+  for (const SceneResult& scene : results.scenes)
+    for (const LaneResult& lane : scene.lanes)
+      if (std::find(lanes.begin(), lanes.end(), lane.lane) == lanes.end()) lanes.push_back(lane.lane);
+  return lanes;
+}
+
+void index_row(std::string& out, const SceneResult& scene, const std::string& page,
+               const std::vector<std::string>& lanes) {
+  auto to = std::back_inserter(out);
+  const std::string href = escape_attribute(url_path(page));
+  fmt::format_to(to, "<tr class=\"{}row-{}\">\n", is_problem(scene.verdict) ? "problem " : "", verdict_name(scene.verdict));
+  fmt::format_to(to, "<td class=\"scene\"><a href=\"{}\">{}</a>", href, escape_text(scene.scene));
+  if (!scene.description.empty())
+    fmt::format_to(to, "<span class=\"description detail\">{}</span>", escape_text(scene.description));
+  fmt::format_to(to, "</td>\n<td class=\"cell {0}\"><a href=\"{1}\">{2}</a></td>\n",
+                 verdict_class(scene.verdict), href, verdict_span(scene.verdict));
+  if (scene.lanes.empty() && !scene.message.empty()) {
+    // The scene stopped before any lane ran: one cell across the lanes says why.
+    fmt::format_to(to, "<td class=\"cell {}\" colspan=\"{}\"><a href=\"{}\"><span class=\"detail\">{}</span></a></td>\n",
+                   verdict_class(scene.verdict), std::max<size_t>(lanes.size(), 1), href,
+                   escape_text(first_line(scene.message)));
+  } else {
+    for (const std::string& name : lanes) {
+      const auto lane = std::find_if(scene.lanes.begin(), scene.lanes.end(),
+                                     [&](const LaneResult& l) { return l.lane == name; });
+      if (lane == scene.lanes.end()) {
+        out += "<td class=\"cell absent\"><span>—</span></td>\n";
+        continue;
+      }
+      fmt::format_to(to, "<td class=\"cell {}\"><a href=\"{}#{}\">{}",
+                     verdict_class(lane->verdict), href, lane_anchor(lane->lane), verdict_span(lane->verdict));
+      if (is_problem(lane->verdict))
+        fmt::format_to(to, "<span class=\"detail\">{}</span>", escape_text(first_line(first_failure(*lane))));
+      out += "</a></td>\n";
+    }
+    if (lanes.empty()) out += "<td class=\"cell absent\"><span>—</span></td>\n";
+  }
+  out += "<td class=\"cross\">";
+  for (const CrossLaneResult& pair : scene.cross_lane) {
+    fmt::format_to(to, "<div class=\"pair\"><a href=\"{}#cross-lane\">{}</a> {}",
+                   href, escape_text(pair_name(pair)), verdict_span(pair.verdict));
+    if (is_problem(pair.verdict))
+      fmt::format_to(to, "<span class=\"detail\">{}</span>", escape_text(describe_metrics(pair.metrics)));
+    out += "</div>";
+  }
+  if (scene.cross_lane.empty()) out += "<span class=\"description\">—</span>";
+  out += "</td>\n</tr>\n";
+}
+
+// One image with a link to its full file, or a placeholder saying why there is none.
+std::string figure(std::string_view caption, const std::string& path, std::string_view missing) {
+  if (path.empty()) {
+    return fmt::format("<figure><div class=\"placeholder\">{}</div><figcaption><b>{}</b></figcaption></figure>\n",
+                       escape_text(missing), escape_text(caption));
+  }
+  const std::string url = escape_attribute(url_path(path));
+  return fmt::format(
+      "<figure><a href=\"{0}\"><img src=\"{0}\" alt=\"{1}\"></a><figcaption><b>{2}</b><br>{3}</figcaption></figure>\n",
+      url, escape_attribute(caption), escape_text(caption), escape_text(path));
+}
+
+std::string fact_row(std::string_view name, std::string_view value) {
+  return fmt::format("<tr><th>{}</th><td>{}</td></tr>\n", escape_text(name), escape_text(value));
+}
+
+std::string metrics_table(const ImageMetrics& metrics) {
+  std::string out = "<table class=\"metrics\">\n";
+  out += fact_row("max difference",
+                  fmt::format("{:.6g} at ({}, {})", metrics.max_difference, metrics.max_x, metrics.max_y));
+  out += fact_row("mean", fmt::format("{:.6g}", metrics.mean));
+  out += fact_row("RMSE", fmt::format("{:.6g}", metrics.rmse));
+  out += fact_row("PSNR", describe_psnr(metrics.psnr));
+  out += fact_row("failing pixels",
+                  fmt::format("{} ({:.4g}%)", metrics.failing_pixels, metrics.failing_fraction * 100.0));
+  return out + "</table>\n";
+}
+
+void lane_section(std::string& out, const LaneResult& lane) {
+  auto to = std::back_inserter(out);
+  fmt::format_to(to, "<section class=\"lane {}\" id=\"{}\">\n<h2>{} {}</h2>\n", verdict_class(lane.verdict),
+                 lane_anchor(lane.lane), escape_text(lane.lane), badge(lane.verdict));
+  if (const std::string why = first_failure(lane); !why.empty())
+    fmt::format_to(to, "<p class=\"why\">{}</p>\n", escape_text(first_line(why)));
+
+  out += "<div class=\"images\">\n";
+  const bool rendered = !lane.image.empty();
+  std::string no_golden = "no golden yet";
+  if (!lane.message.empty()) no_golden += " — " + lane.message;
+  out += figure("golden", lane.golden, rendered ? no_golden : "no golden: nothing to compare");
+  out += figure(lane.lane, lane.image, "not rendered");
+  out += figure("difference", lane.diff, lane.golden.empty() ? "no difference: no golden" : "no difference image");
+  if (lane.non_finite.total() > 0 || !lane.non_finite_mask.empty())
+    out += figure("NaN / Inf / negative", lane.non_finite_mask, "no mask written");
+  out += "</div>\n";
+  if (!lane.image_exr.empty())
+    fmt::format_to(to, "<p>Float image: <a href=\"{}\">{}</a></p>\n", escape_attribute(url_path(lane.image_exr)),
+                   escape_text(lane.image_exr));
+
+  out += "<div class=\"tables\">\n<div><h3>Layers</h3>\n";
+  if (lane.layers.empty()) {
+    out += "<p class=\"description\">no layer ran</p>\n";
+  } else {
+    out += "<table class=\"layers\">\n<tr><th>layer</th><th>verdict</th><th>detail</th></tr>\n";
+    for (const LayerResult& layer : lane.layers)
+      fmt::format_to(to, "<tr><td>{}</td><td class=\"cell {}\">{}</td><td>{}</td></tr>\n",
+                     escape_text(layer.layer), verdict_class(layer.verdict), verdict_span(layer.verdict),
+                     escape_text(layer.detail));
+    out += "</table>\n";
+  }
+  out += "</div>\n<div><h3>Against the golden</h3>\n";
+  out += lane.against_golden ? metrics_table(*lane.against_golden)
+                             : std::string("<p class=\"description\">not compared</p>\n");
+  out += "</div>\n<div><h3>Non-finite values</h3>\n<table>\n";
+  out += fact_row("NaN", std::to_string(lane.non_finite.nan));
+  out += fact_row("Inf", std::to_string(lane.non_finite.inf));
+  out += fact_row("negative", std::to_string(lane.non_finite.negative));
+  if (lane.non_finite.first)
+    out += fact_row("first at", fmt::format("({}, {})", lane.non_finite.first->first, lane.non_finite.first->second));
+  out += "</table>\n</div>\n<div><h3>Time</h3>\n<table>\n<tr><th>pass</th><th>ms</th></tr>\n";
+  for (const PassTime& time : lane.timings)
+    fmt::format_to(to, "<tr><td>{}</td><td class=\"num\">{:.2f}</td></tr>\n", escape_text(time.pass), time.milliseconds);
+  fmt::format_to(to, "<tr><th>total</th><td class=\"num\">{:.3f} s</td></tr>\n</table>\n</div>\n", lane.seconds);
+  out += "<div><h3>Driver</h3>\n<table>\n";
+  out += fact_row("api", lane.driver.api);
+  out += fact_row("renderer", lane.driver.renderer);
+  out += fact_row("api_version", lane.driver.api_version);
+  out += fact_row("driver_version", lane.driver.driver_version);
+  out += fact_row("llvm_version", lane.driver.llvm_version);
+  out += "</table>\n</div>\n</div>\n";
+  if (!lane.message.empty()) fmt::format_to(to, "<h3>Message</h3>\n<pre class=\"message\">{}</pre>\n", escape_text(lane.message));
+  out += "</section>\n";
+}
+
+void cross_lane_section(std::string& out, const SceneResult& scene) {
+  auto to = std::back_inserter(out);
+  out += "<section id=\"cross-lane\">\n<h2>Cross-lane agreement</h2>\n";
+  if (scene.cross_lane.empty()) {
+    out += "<p class=\"description\">no pair of lanes compared</p>\n</section>\n";
+    return;
+  }
+  out += "<table>\n<tr><th>pair</th><th>verdict</th><th>max difference</th><th>mean</th><th>RMSE</th>"
+         "<th>PSNR</th><th>failing pixels</th></tr>\n";
+  for (const CrossLaneResult& pair : scene.cross_lane) {
+    const ImageMetrics& m = pair.metrics;
+    fmt::format_to(to,
+                   "<tr><td>{}</td><td class=\"cell {}\">{}</td>"
+                   "<td class=\"num\">{:.6g} at ({}, {})</td><td class=\"num\">{:.6g}</td><td class=\"num\">{:.6g}</td>"
+                   "<td class=\"num\">{}</td><td class=\"num\">{} ({:.4g}%)</td></tr>\n",
+                   escape_text(pair_name(pair)), verdict_class(pair.verdict), verdict_span(pair.verdict),
+                   m.max_difference, m.max_x, m.max_y, m.mean, m.rmse, escape_text(describe_psnr(m.psnr)),
+                   m.failing_pixels, m.failing_fraction * 100.0);
+  }
+  out += "</table>\n<div class=\"images\">\n";
+  for (const CrossLaneResult& pair : scene.cross_lane)
+    out += figure(pair_name(pair) + ": difference", pair.diff, "no difference image");
+  out += "</div>\n</section>\n";
+}
+
+}  // namespace
+
+std::vector<std::string> scene_page_names(const RunResults& results) {
+  std::vector<std::string> names;
+  std::set<std::string> taken = {"index"};  // compared in lower case
+  for (const SceneResult& scene : results.scenes) {
+    const std::string base = safe_name(scene.scene);
+    std::string name = base;
+    for (int suffix = 2; taken.count(lower(name)) != 0; ++suffix) name = fmt::format("{}-{}", base, suffix);
+    taken.insert(lower(name));
+    names.push_back(name + ".html");
+  }
+  return names;
+}
+
+std::string index_html(const RunResults& results) {
+  const Verdict verdict = run_verdict(results);
+  const std::vector<std::string> pages = scene_page_names(results);
+  const std::vector<std::string> lanes = lane_columns(results);
+
+  std::string out = page_start(fmt::format("xshade: {}", verdict_word(verdict)));
+  auto to = std::back_inserter(out);
+  fmt::format_to(to, "<header class=\"{}\">\n<h1>xshade run {}</h1>\n<dl class=\"facts\">\n", verdict_class(verdict),
+                 badge(verdict));
+  fmt::format_to(to, "<dt>started</dt><dd>{}</dd>\n", escape_text(results.started));
+  fmt::format_to(to, "<dt>took</dt><dd>{}</dd>\n", escape_text(describe_duration(results.seconds)));
+  fmt::format_to(to, "<dt>command</dt><dd><code>{}</code></dd>\n", escape_text(results.command));
+  fmt::format_to(to, "<dt>scenes</dt><dd class=\"counts\">{}</dd>\n", counts_html(count_scenes(results)));
+  fmt::format_to(to, "<dt>checks</dt><dd class=\"counts\">{} <span class=\"description\">(lanes and cross-lane pairs)</span></dd>\n",
+                 counts_html(count_checks(results)));
+  out += "</dl>\n<p class=\"description\">Machine-readable: <a href=\"junit.xml\">junit.xml</a>, "
+         "<a href=\"results.json\">results.json</a></p>\n</header>\n";
+
+  if (results.scenes.empty()) {
+    out += "<p>No scene ran.</p>\n";
+    return out + std::string(kPageEnd);
+  }
+  // The scenes that need a look first, the most urgent at the top; otherwise in run order.
+  std::vector<size_t> order(results.scenes.size());
+  std::iota(order.begin(), order.end(), size_t{0});
+  std::stable_sort(order.begin(), order.end(), [&](size_t a, size_t b) {
+    return urgency(results.scenes[a].verdict) > urgency(results.scenes[b].verdict);
+  });
+  const size_t columns = 3 + std::max<size_t>(lanes.size(), 1);
+
+  out += "<table class=\"index\">\n<thead><tr><th>scene</th><th>verdict</th>";
+  for (const std::string& lane : lanes) fmt::format_to(to, "<th>{}</th>", escape_text(lane));
+  if (lanes.empty()) out += "<th>lanes</th>";
+  out += "<th>cross-lane</th></tr></thead>\n<tbody>\n";
+  bool in_problems = false, in_rest = false;
+  for (const size_t i : order) {
+    const bool problem = is_problem(results.scenes[i].verdict);
+    if (problem && !in_problems) {
+      const size_t count = static_cast<size_t>(std::count_if(results.scenes.begin(), results.scenes.end(),
+                                                             [](const SceneResult& s) { return is_problem(s.verdict); }));
+      fmt::format_to(to, "<tr class=\"separator\"><td colspan=\"{}\">Did not pass ({})</td></tr>\n", columns, count);
+      in_problems = true;
+    }
+    if (!problem && in_problems && !in_rest) {
+      fmt::format_to(to, "<tr class=\"separator\"><td colspan=\"{}\">Passed or skipped</td></tr>\n", columns);
+      in_rest = true;
+    }
+    index_row(out, results.scenes[i], pages[i], lanes);
+  }
+  out += "</tbody>\n</table>\n";
+  return out + std::string(kPageEnd);
+}
+
+std::string scene_html(const SceneResult& scene) {
+  std::string out = page_start(fmt::format("{}: {}", scene.scene, verdict_word(scene.verdict)));
+  auto to = std::back_inserter(out);
+  fmt::format_to(to, "<nav><a href=\"index.html\">← all scenes</a></nav>\n<header class=\"{}\">\n<h1>{} {}</h1>\n",
+                 verdict_class(scene.verdict), escape_text(scene.scene), badge(scene.verdict));
+  if (!scene.description.empty()) fmt::format_to(to, "<p>{}</p>\n", escape_text(scene.description));
+  out += "</header>\n";
+  if (!scene.message.empty())
+    fmt::format_to(to, "<section>\n<h2>The scene did not render</h2>\n<pre class=\"message\">{}</pre>\n</section>\n",
+                   escape_text(scene.message));
+
+  if (!scene.lanes.empty()) {
+    out += "<section>\n<table>\n<tr><th>lane</th><th>verdict</th><th>first failure</th><th>time</th></tr>\n";
+    for (const LaneResult& lane : scene.lanes)
+      fmt::format_to(to,
+                     "<tr><td><a href=\"#{}\">{}</a></td><td class=\"cell {}\">{}</td>"
+                     "<td>{}</td><td class=\"num\">{:.3f} s</td></tr>\n",
+                     lane_anchor(lane.lane), escape_text(lane.lane), verdict_class(lane.verdict),
+                     verdict_span(lane.verdict), escape_text(first_line(first_failure(lane))), lane.seconds);
+    out += "</table>\n</section>\n";
+  }
+  for (const LaneResult& lane : scene.lanes) lane_section(out, lane);
+  if (!scene.lanes.empty() || !scene.cross_lane.empty()) cross_lane_section(out, scene);
+  if (!scene.plan.empty()) fmt::format_to(to, "<section>\n<h2>Plan</h2>\n<pre>{}</pre>\n</section>\n", escape_text(scene.plan));
+  return out + std::string(kPageEnd);
+}
+
+}  // namespace xshade::harness

@@ -1,0 +1,27 @@
+// The run as static HTML: an index of every scene and lane, and one page per scene with its
+// images side by side. Self-contained (inline CSS, no script, nothing fetched), so that the report
+// folder can be opened from disk or served as it is by any CI artifact viewer.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "harness/gate/run_results.h"
+
+namespace xshade::harness {
+
+// The file name of each scene's page, in the order of results.scenes: the scene name with
+// anything but letters, digits, '.', '_' and '-' made '_', then ".html"; made unique (also
+// ignoring case, for case-insensitive file systems) and never "index.html".
+std::vector<std::string> scene_page_names(const RunResults& results);
+
+// index.html: when, how long, the command and the counts; a table of scene x lane with the
+// cross-lane verdicts, the scenes that did not pass first, each failing cell saying why.
+std::string index_html(const RunResults& results);
+
+// A scene's page: its lanes side by side with the golden, the diff heat map and the non-finite
+// mask, each lane's layers, metrics, timings and driver, the cross-lane comparisons and the plan.
+// Image paths are the model's, relative to the report folder the page is written to.
+std::string scene_html(const SceneResult& scene);
+
+}  // namespace xshade::harness

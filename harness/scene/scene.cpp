@@ -1,0 +1,890 @@
+#include "harness/scene/scene.h"
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <fstream>
+#include <functional>
+#include <initializer_list>
+#include <sstream>
+#include <system_error>
+#include <utility>
+
+#include <fmt/format.h>
+#include <fmt/ranges.h>
+#include <glm/gtc/matrix_transform.hpp>
+
+#include "harness/scene/lane.h"
+#include "harness/scene/toml_reader.h"
+#include "base/paths.h"
+
+namespace xshade::harness {
+namespace {
+
+using namespace toml_text;
+
+constexpr uint32_t max_image_size = 4096;
+constexpr int64_t max_grid_cells_per_axis = 64;
+// Every lane's name, in lane order (scene/lane.h).
+const std::vector<std::string_view>& lane_names() {
+  static const std::vector<std::string_view> names = [] {
+    std::vector<std::string_view> all;
+    for (Lane lane : all_lanes()) all.push_back(lane_name(lane));
+    return all;
+  }();
+  return names;
+}
+
+// "a number" or "3 numbers": the shape of a property value.
+std::string numbers_text(uint32_t count) { return count == 1 ? "a number" : fmt::format("{} numbers", count); }
+
+bool is_identifier(std::string_view text) {
+  if (text.empty() || std::isdigit(static_cast<unsigned char>(text[0]))) return false;
+  return std::all_of(text.begin(), text.end(),
+                     [](char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_'; });
+}
+
+using NumberCheck = std::function<bool(double)>;
+
+bool any_number(double) { return true; }
+bool non_negative(double value) { return value >= 0.0; }
+bool positive(double value) { return value > 0.0; }
+
+// Reads one scene file's table tree into a Scene, collecting every problem it can find.
+class SceneReader : TomlReader {
+ public:
+  explicit SceneReader(const std::filesystem::path& file) : TomlReader(file.string()), file_(file) {
+    std::error_code ignored;
+    std::filesystem::path absolute = std::filesystem::absolute(file, ignored);
+    scene_folder_ = (absolute.empty() ? file : absolute).parent_path().lexically_normal();
+  }
+
+  Result<Scene> read(std::string_view text) {
+    std::optional<toml::table> root = parse(text);
+    if (!root) return finish(Scene{});
+    Scene scene;
+    scene.name = file_.stem().string();
+    scene.path = file_;
+    read_root(*root, scene);
+    return finish(std::move(scene));
+  }
+
+ private:
+  // ---- scalars
+
+  std::optional<double> number(const toml::node& node, std::string_view path, std::string_view expectation,
+                               const NumberCheck& check) {
+    std::optional<double> value;
+    if (auto* integer = node.as_integer()) value = static_cast<double>(integer->get());
+    if (auto* floating = node.as_floating_point()) value = floating->get();
+    if (!value || !std::isfinite(*value) || !check(*value)) {
+      expected(node, path, expectation);
+      return std::nullopt;
+    }
+    return value;
+  }
+
+  std::optional<float> float_value(const toml::node& node, std::string_view path, std::string_view expectation,
+                                   const NumberCheck& check) {
+    auto value = number(node, path, expectation, check);
+    if (!value) return std::nullopt;
+    return static_cast<float>(*value);
+  }
+
+  std::optional<int64_t> integer(const toml::node& node, std::string_view path, int64_t min, int64_t max) {
+    auto* value = node.as_integer();
+    if (!value || value->get() < min || value->get() > max) {
+      expected(node, path, fmt::format("an integer in {}..{}", min, max));
+      return std::nullopt;
+    }
+    return value->get();
+  }
+
+  // An array of exactly N numbers, each passing `check`.
+  template <int N>
+  std::optional<glm::vec<N, float>> vector(const toml::node& node, std::string_view path,
+                                           std::string_view element_expectation, const NumberCheck& check) {
+    auto* array = node.as_array();
+    if (!array || array->size() != N) {
+      expected(node, path, fmt::format("an array of {} numbers", N));
+      return std::nullopt;
+    }
+    glm::vec<N, float> result(0.0f);
+    bool ok = true;
+    for (int i = 0; i < N; ++i) {
+      auto value = float_value(*array->get(static_cast<size_t>(i)), index_path(path, static_cast<size_t>(i)),
+                               element_expectation, check);
+      if (value)
+        result[i] = *value;
+      else
+        ok = false;
+    }
+    if (!ok) return std::nullopt;
+    return result;
+  }
+
+  std::optional<glm::vec3> point(const toml::node& node, std::string_view path) {
+    return vector<3>(node, path, "a number", any_number);
+  }
+
+  std::optional<glm::vec3> colour(const toml::node& node, std::string_view path) {
+    return vector<3>(node, path, "a number >= 0", non_negative);
+  }
+
+  // A number, or an array of 2..4 numbers: a float .. float4 property.
+  std::optional<PropertyValue> property_value(const toml::node& node, std::string_view path) {
+    constexpr std::string_view expectation = "a number or an array of 2 to 4 numbers";
+    if (!node.is_array()) {
+      auto value = float_value(node, path, expectation, any_number);
+      if (!value) return std::nullopt;
+      return PropertyValue::scalar(*value);
+    }
+    const toml::array& array = *node.as_array();
+    if (array.size() < 2 || array.size() > 4) {
+      expected(node, path, expectation);
+      return std::nullopt;
+    }
+    PropertyValue result;
+    result.count = static_cast<uint32_t>(array.size());
+    bool ok = true;
+    for (size_t i = 0; i < array.size(); ++i) {
+      auto value = float_value(*array.get(i), index_path(path, i), "a number", any_number);
+      if (value)
+        result.components[i] = *value;
+      else
+        ok = false;
+    }
+    if (!ok) return std::nullopt;
+    return result;
+  }
+
+  // ---- paths
+
+  // A path relative to the scene file's folder, made absolute; one that leads out of the folder
+  // is refused before anything could read it.
+  std::optional<std::filesystem::path> scene_file_path(const toml::node& node, std::string_view path,
+                                                       std::string_view text) {
+    std::filesystem::path relative(text);
+    if (relative.is_absolute() || relative.has_root_name() || relative.has_root_directory()) {
+      report(node.source(), fmt::format("{}: expected a path relative to the scene file, got the absolute path {}",
+                                        path, quote_text(text)));
+      return std::nullopt;
+    }
+    std::filesystem::path normal = relative.lexically_normal();
+    if (normal.empty() || *normal.begin() == "..") {
+      report(node.source(), fmt::format("{}: expected a path inside the scene file's folder, got {}, which leads "
+                                        "out of it",
+                                        path, quote_text(text)));
+      return std::nullopt;
+    }
+    if (!normal.has_filename() || normal == ".") {
+      expected(node, path, "a file path");
+      return std::nullopt;
+    }
+    std::filesystem::path full = (scene_folder_ / normal).lexically_normal();
+    if (!path_is_inside(full, scene_folder_)) {
+      report(node.source(), fmt::format("{}: expected a path inside the scene file's folder, got {}, which leads "
+                                        "out of it through a symbolic link",
+                                        path, quote_text(text)));
+      return std::nullopt;
+    }
+    return full;
+  }
+
+  // A path inside the shader folders, kept as written: the caller knows the folders (ShaderSearchPath).
+  std::optional<std::string> library_path(const toml::node& node, std::string_view path) {
+    auto text = string(node, path, "a path in the shader folders, e.g. \"materials/standard_pbr.hlsl\"");
+    if (!text) return std::nullopt;
+    std::filesystem::path relative(*text);
+    std::filesystem::path normal = relative.lexically_normal();
+    if (relative.is_absolute() || relative.has_root_directory() || normal.empty() || *normal.begin() == ".." ||
+        !normal.has_filename()) {
+      report(node.source(), fmt::format("{}: expected a file path inside the shader folders, got {}", path,
+                                        quote_text(*text)));
+      return std::nullopt;
+    }
+    return text;
+  }
+
+  // ---- composite values
+
+  std::vector<std::string> keywords(const toml::node& node, std::string_view path) {
+    std::vector<std::string> result;
+    auto* array = node.as_array();
+    if (!array) {
+      expected(node, path, "an array of keyword names");
+      return result;
+    }
+    for (size_t i = 0; i < array->size(); ++i) {
+      const toml::node& element = *array->get(i);
+      auto* name = element.as_string();
+      if (!name || !is_identifier(name->get())) {
+        expected(element, index_path(path, i), "a keyword name (letters, digits and _)");
+        continue;
+      }
+      result.push_back(name->get());
+    }
+    return result;
+  }
+
+  std::map<std::string, PropertyValue> properties(const toml::node& node, std::string_view path) {
+    std::map<std::string, PropertyValue> result;
+    auto* table = node.as_table();
+    if (!table) {
+      expected(node, path, "a table of property values");
+      return result;
+    }
+    for (auto&& [key, value] : *table) {
+      std::string name(key.str());
+      std::string name_path = key_path(path, name);
+      if (!is_identifier(name)) {
+        report(key.source(), fmt::format("{}: expected a property name (letters, digits and _)", name_path));
+        continue;
+      }
+      if (auto property = property_value(value, name_path)) result.emplace(name, *property);
+    }
+    return result;
+  }
+
+  // A table `name` of `parent`: nullptr when absent (reported when required) or not a table.
+  const toml::table* table(const toml::table& parent, std::string_view parent_path, std::string_view name,
+                           bool required) {
+    const toml::node* node = parent.get(name);
+    std::string path = key_path(parent_path, name);
+    if (!node) {
+      if (required) missing(parent, path, "a table");
+      return nullptr;
+    }
+    if (!node->is_table()) {
+      expected(*node, path, "a table");
+      return nullptr;
+    }
+    return node->as_table();
+  }
+
+  // The tables of an array of tables ([[name]]); an empty list when absent.
+  std::vector<const toml::table*> table_array(const toml::table& parent, std::string_view name) {
+    std::vector<const toml::table*> tables;
+    const toml::node* node = parent.get(name);
+    if (!node) return tables;
+    auto* array = node->as_array();
+    if (!array) {
+      expected(*node, name, fmt::format("an array of tables ([[{}]])", name));
+      return tables;
+    }
+    for (size_t i = 0; i < array->size(); ++i) {
+      const toml::node& element = *array->get(i);
+      if (auto* element_table = element.as_table())
+        tables.push_back(element_table);
+      else
+        expected(element, index_path(name, i), "a table");
+    }
+    return tables;
+  }
+
+  // ---- the sections
+
+  void read_root(const toml::table& root, Scene& scene) {
+    check_keys(root, "",
+               {"description", "size", "lanes", "clear_color", "camera", "light", "environment", "object", "post",
+                "compare"});
+
+    if (const toml::node* node = root.get("description")) {
+      if (auto text = string(*node, "description", "a non-empty string")) scene.description = *text;
+    } else {
+      missing(root, "description", "a string saying what the scene shows");
+    }
+
+    if (const toml::node* node = root.get("size"))
+      read_size(*node, scene);
+    else
+      missing(root, "size", "[width, height] in pixels");
+
+    if (const toml::node* node = root.get("lanes"))
+      read_lanes(*node, scene);
+    else
+      scene.lanes.assign(lane_names().begin(), lane_names().end());
+
+    if (const toml::node* node = root.get("clear_color")) {
+      if (auto value = vector<4>(*node, "clear_color", "a number >= 0", non_negative)) scene.clear_color = *value;
+    }
+
+    if (const toml::table* camera = table(root, "", "camera", true)) read_camera(*camera, scene.camera);
+
+    std::vector<const toml::table*> lights = table_array(root, "light");
+    for (size_t i = 0; i < lights.size(); ++i) read_light(*lights[i], index_path("light", i), scene);
+
+    if (const toml::table* environment = table(root, "", "environment", false))
+      read_environment(*environment, scene.environment);
+
+    std::vector<const toml::table*> objects = table_array(root, "object");
+    for (size_t i = 0; i < objects.size(); ++i) read_object(*objects[i], i, scene);
+
+    std::vector<const toml::table*> effects = table_array(root, "post");
+    for (size_t i = 0; i < effects.size(); ++i) read_post(*effects[i], index_path("post", i), scene);
+
+    if (const toml::table* compare = table(root, "", "compare", false)) read_compare(*compare, scene.compare);
+  }
+
+  void read_size(const toml::node& node, Scene& scene) {
+    auto* array = node.as_array();
+    if (!array || array->size() != 2) {
+      expected(node, "size", "[width, height]");
+      return;
+    }
+    auto width = integer(*array->get(0), "size[0]", 1, max_image_size);
+    auto height = integer(*array->get(1), "size[1]", 1, max_image_size);
+    if (width) scene.width = static_cast<uint32_t>(*width);
+    if (height) scene.height = static_cast<uint32_t>(*height);
+  }
+
+  void read_lanes(const toml::node& node, Scene& scene) {
+    auto* array = node.as_array();
+    if (!array || array->empty()) {
+      expected(node, "lanes", "a non-empty array of lane names (gl, vk, vk-hlsl)");
+      return;
+    }
+    for (size_t i = 0; i < array->size(); ++i) {
+      const toml::node& element = *array->get(i);
+      std::string path = index_path("lanes", i);
+      auto* name = element.as_string();
+      if (!name || std::find(lane_names().begin(), lane_names().end(), name->get()) == lane_names().end()) {
+        std::string message = fmt::format("{}: expected one of {}, got {}", path, fmt::join(lane_names(), ", "), describe(element));
+        if (name) {
+          if (auto suggestion = nearest(name->get(), lane_names()))
+            message += fmt::format("; did you mean \"{}\"?", *suggestion);
+        }
+        report(element.source(), std::move(message));
+        continue;
+      }
+      if (std::find(scene.lanes.begin(), scene.lanes.end(), name->get()) != scene.lanes.end()) {
+        report(element.source(), fmt::format("{}: lane \"{}\" is listed twice", path, name->get()));
+        continue;
+      }
+      scene.lanes.push_back(name->get());
+    }
+  }
+
+  void read_camera(const toml::table& table, Camera& camera) {
+    check_keys(table, "camera", {"position", "target", "up", "fov_y", "near", "far"});
+    bool placed = true;  // position, target and up read well enough to check them against each other
+    auto required_point = [&](std::string_view key, glm::vec3& out) {
+      std::string path = key_path("camera", key);
+      if (const toml::node* node = table.get(key)) {
+        if (auto value = point(*node, path))
+          out = *value;
+        else
+          placed = false;
+      } else {
+        missing(table, path, "an array of 3 numbers");
+        placed = false;
+      }
+    };
+    required_point("position", camera.position);
+    required_point("target", camera.target);
+    const toml::node* up = table.get("up");
+    if (up) {
+      if (auto value = point(*up, "camera.up"))
+        camera.up = *value;
+      else
+        placed = false;
+    }
+    if (placed) {
+      glm::vec3 view = camera.target - camera.position;
+      if (glm::length(view) == 0.0f) {
+        report(table.get("target")->source(),
+               "camera.target: expected a point other than camera.position, got the same point");
+      } else if (glm::length(glm::cross(view, camera.up)) <= 1e-6f * glm::length(view) * glm::length(camera.up)) {
+        report(up ? up->source() : table.source(),
+               fmt::format("camera.up: expected a direction not parallel to the view direction, got [{}, {}, {}]",
+                           camera.up.x, camera.up.y, camera.up.z));
+      }
+    }
+
+    if (const toml::node* node = table.get("fov_y")) {
+      if (auto value = float_value(*node, "camera.fov_y", "a number in (0, 180)",
+                                   [](double v) { return v > 0.0 && v < 180.0; }))
+        camera.fov_y_degrees = *value;
+    } else {
+      missing(table, "camera.fov_y", "a number in (0, 180)");
+    }
+
+    std::optional<double> near;
+    if (const toml::node* node = table.get("near")) {
+      near = number(*node, "camera.near", "a number > 0", positive);
+      if (near) camera.near_plane = static_cast<float>(*near);
+    } else {
+      missing(table, "camera.near", "a number > 0");
+    }
+    if (const toml::node* node = table.get("far")) {
+      double near_value = near.value_or(0.0);
+      std::string expectation =
+          near ? fmt::format("a number greater than camera.near ({})", *near) : std::string("a number > 0");
+      if (auto far = float_value(*node, "camera.far", expectation, [&](double v) { return v > near_value; }))
+        camera.far_plane = *far;
+    } else {
+      missing(table, "camera.far", "a number greater than camera.near");
+    }
+  }
+
+  void read_light(const toml::table& table, const std::string& path, Scene& scene) {
+    check_keys(table, path, {"type", "direction", "color", "intensity"});
+    DirectionalLight light;
+    bool ok = true;
+    if (const toml::node* node = table.get("type")) {
+      auto* type = node->as_string();
+      if (!type || type->get() != "directional") {
+        expected(*node, path + ".type", "\"directional\"");
+        ok = false;
+      }
+    } else {
+      missing(table, path + ".type", "\"directional\"");
+      ok = false;
+    }
+    if (const toml::node* node = table.get("direction")) {
+      auto direction = point(*node, path + ".direction");
+      if (direction && glm::length(*direction) == 0.0f) {
+        expected(*node, path + ".direction", "a non-zero vector");
+        direction.reset();
+      }
+      if (direction)
+        light.direction = glm::normalize(*direction);
+      else
+        ok = false;
+    } else {
+      missing(table, path + ".direction", "an array of 3 numbers pointing toward the light");
+      ok = false;
+    }
+    if (const toml::node* node = table.get("color")) {
+      if (auto value = colour(*node, path + ".color")) light.color = *value;
+    }
+    if (const toml::node* node = table.get("intensity")) {
+      if (auto value = float_value(*node, path + ".intensity", "a number >= 0", non_negative)) light.intensity = *value;
+    }
+    if (ok) scene.lights.push_back(light);
+  }
+
+  void read_environment(const toml::table& table, EnvironmentSpec& environment) {
+    const toml::node* kind_node = table.get("kind");
+    std::optional<EnvironmentKind> kind;
+    if (!kind_node) {
+      missing(table, "environment.kind", "\"constant\", \"gradient\" or \"equirect\"");
+    } else if (auto* name = kind_node->as_string(); name && name->get() == "constant") {
+      kind = EnvironmentKind::Constant;
+    } else if (name && name->get() == "gradient") {
+      kind = EnvironmentKind::Gradient;
+    } else if (name && name->get() == "equirect") {
+      kind = EnvironmentKind::Equirect;
+    } else {
+      expected(*kind_node, "environment.kind", "\"constant\", \"gradient\" or \"equirect\"");
+    }
+
+    if (!kind) {
+      check_keys(table, "environment", {"kind", "color", "sky", "horizon", "ground", "file", "intensity"});
+    } else if (*kind == EnvironmentKind::Constant) {
+      check_keys(table, "environment", {"kind", "color", "intensity"}, " for kind \"constant\"");
+    } else if (*kind == EnvironmentKind::Gradient) {
+      check_keys(table, "environment", {"kind", "sky", "horizon", "ground", "intensity"}, " for kind \"gradient\"");
+    } else {
+      check_keys(table, "environment", {"kind", "file", "intensity"}, " for kind \"equirect\"");
+    }
+    if (kind) environment.kind = *kind;
+
+    auto required_colour = [&](std::string_view key, glm::vec3& out) {
+      std::string path = key_path("environment", key);
+      if (const toml::node* node = table.get(key)) {
+        if (auto value = colour(*node, path)) out = *value;
+      } else {
+        missing(table, path, "an array of 3 numbers >= 0");
+      }
+    };
+    if (kind == EnvironmentKind::Constant) required_colour("color", environment.color);
+    if (kind == EnvironmentKind::Gradient) {
+      required_colour("sky", environment.sky);
+      required_colour("horizon", environment.horizon);
+      required_colour("ground", environment.ground);
+    }
+    if (kind == EnvironmentKind::Equirect) {
+      if (const toml::node* node = table.get("file")) {
+        if (auto text = string(*node, "environment.file", "an image path relative to the scene file")) {
+          if (auto file = scene_file_path(*node, "environment.file", *text)) environment.file = *file;
+        }
+      } else {
+        missing(table, "environment.file", "an image path relative to the scene file");
+      }
+    }
+    if (const toml::node* node = table.get("intensity")) {
+      if (auto value = float_value(*node, "environment.intensity", "a number >= 0", non_negative))
+        environment.intensity = *value;
+    }
+  }
+
+  std::optional<MeshRef> mesh(const toml::node& node, std::string_view path) {
+    constexpr std::string_view expectation = "sphere, torus, plane, cube or a path ending in .obj";
+    auto* text = node.as_string();
+    if (!text) {
+      expected(node, path, expectation);
+      return std::nullopt;
+    }
+    const std::string& name = text->get();
+    if (name == "sphere") return MeshRef{MeshKind::Sphere, {}};
+    if (name == "torus") return MeshRef{MeshKind::Torus, {}};
+    if (name == "plane") return MeshRef{MeshKind::Plane, {}};
+    if (name == "cube") return MeshRef{MeshKind::Cube, {}};
+    if (name.size() > 4 && name.ends_with(".obj")) {
+      auto file = scene_file_path(node, path, name);
+      if (!file) return std::nullopt;
+      return MeshRef{MeshKind::ObjFile, *file};
+    }
+    std::string message = fmt::format("{}: expected {}, got {}", path, expectation, quote_text(name));
+    if (auto suggestion = nearest(name, {"sphere", "torus", "plane", "cube"}))
+      message += fmt::format("; did you mean \"{}\"?", *suggestion);
+    report(node.source(), std::move(message));
+    return std::nullopt;
+  }
+
+  std::optional<TextureRef> texture(const toml::node& node, std::string_view path) {
+    constexpr std::string_view expectation = "white, black, checker, normal or an image path";
+    auto* text = node.as_string();
+    if (!text) {
+      expected(node, path, expectation);
+      return std::nullopt;
+    }
+    const std::string& name = text->get();
+    if (name == "white") return TextureRef{TextureOrigin::White, {}};
+    if (name == "black") return TextureRef{TextureOrigin::Black, {}};
+    if (name == "checker") return TextureRef{TextureOrigin::Checker, {}};
+    if (name == "normal") return TextureRef{TextureOrigin::Normal, {}};
+    // A file is told from a misspelt built-in by its extension.
+    if (std::filesystem::path(name).has_extension()) {
+      auto file = scene_file_path(node, path, name);
+      if (!file) return std::nullopt;
+      return TextureRef{TextureOrigin::File, *file};
+    }
+    std::string message = fmt::format("{}: expected {}, got {}", path, expectation, quote_text(name));
+    if (auto suggestion = nearest(name, {"white", "black", "checker", "normal"}))
+      message += fmt::format("; did you mean \"{}\"?", *suggestion);
+    report(node.source(), std::move(message));
+    return std::nullopt;
+  }
+
+  void read_object(const toml::table& table, size_t index, Scene& scene) {
+    std::string path = index_path("object", index);
+    check_keys(table, path,
+               {"name", "mesh", "material", "keywords", "position", "rotation", "scale", "properties", "textures",
+                "grid"});
+    SceneObject object;
+    object.name = fmt::format("object{}", index);
+    const toml::node* name_node = table.get("name");
+    if (name_node) {
+      if (auto name = string(*name_node, path + ".name", "a non-empty string")) object.name = *name;
+    }
+    for (size_t other = 0; other < scene.objects.size(); ++other) {
+      if (scene.objects[other].name == object.name) {
+        report(name_node ? name_node->source() : table.source(),
+               fmt::format("{}.name: {} is already the name of object[{}]", path, quote_text(object.name), other));
+      }
+    }
+
+    if (const toml::node* node = table.get("mesh")) {
+      if (auto value = mesh(*node, path + ".mesh")) object.mesh = *value;
+    } else {
+      missing(table, path + ".mesh", "sphere, torus, plane, cube or a path ending in .obj");
+    }
+    if (const toml::node* node = table.get("material")) {
+      if (auto value = library_path(*node, path + ".material")) object.material = *value;
+    } else {
+      missing(table, path + ".material", "a path in the shader folders, e.g. \"materials/standard_pbr.hlsl\"");
+    }
+    if (const toml::node* node = table.get("keywords")) object.keywords = keywords(*node, path + ".keywords");
+    if (const toml::node* node = table.get("position")) {
+      if (auto value = point(*node, path + ".position")) object.position = *value;
+    }
+    if (const toml::node* node = table.get("rotation")) {
+      if (auto value = point(*node, path + ".rotation")) object.rotation_degrees = *value;
+    }
+    if (const toml::node* node = table.get("scale")) read_scale(*node, path + ".scale", object.scale);
+    if (const toml::node* node = table.get("properties")) object.properties = properties(*node, path + ".properties");
+    if (const toml::node* node = table.get("textures")) read_textures(*node, path + ".textures", object.textures);
+    if (const toml::node* node = table.get("grid")) {
+      if (!node->is_table())
+        expected(*node, path + ".grid", "a table");
+      else
+        object.grid = read_grid(*node->as_table(), path + ".grid", object.properties);
+    }
+    scene.objects.push_back(std::move(object));
+  }
+
+  // Positive only: a negative scale mirrors the mesh and turns its triangles' winding around,
+  // which back-face culling would then remove.
+  void read_scale(const toml::node& node, const std::string& path, glm::vec3& scale) {
+    if (node.is_array()) {
+      if (auto value = vector<3>(node, path, "a number > 0", positive)) scale = *value;
+      return;
+    }
+    if (auto value = float_value(node, path, "a number > 0 or an array of 3 numbers > 0", positive))
+      scale = glm::vec3(*value);
+  }
+
+  void read_textures(const toml::node& node, const std::string& path, std::map<std::string, TextureRef>& textures) {
+    auto* table = node.as_table();
+    if (!table) {
+      expected(node, path, "a table of texture names");
+      return;
+    }
+    for (auto&& [key, value] : *table) {
+      std::string name(key.str());
+      std::string name_path = key_path(path, name);
+      if (!is_identifier(name)) {
+        report(key.source(), fmt::format("{}: expected a texture property name (letters, digits and _)", name_path));
+        continue;
+      }
+      if (auto reference = texture(value, name_path)) textures.emplace(name, *reference);
+    }
+  }
+
+  std::optional<GridSpec> read_grid(const toml::table& table, const std::string& path,
+                                    const std::map<std::string, PropertyValue>& base_properties) {
+    check_keys(table, path, {"rows", "cols", "spacing", "vary"});
+    GridSpec grid;
+    bool ok = true;
+    auto count = [&](std::string_view key, uint32_t& out) {
+      std::string key_text = key_path(path, key);
+      if (const toml::node* node = table.get(key)) {
+        if (auto value = integer(*node, key_text, 1, max_grid_cells_per_axis))
+          out = static_cast<uint32_t>(*value);
+        else
+          ok = false;
+      } else {
+        missing(table, key_text, fmt::format("an integer in 1..{}", max_grid_cells_per_axis));
+        ok = false;
+      }
+    };
+    count("rows", grid.rows);
+    count("cols", grid.cols);
+    if (const toml::node* node = table.get("spacing")) {
+      std::string spacing_path = path + ".spacing";
+      if (node->is_array()) {
+        if (auto value = vector<2>(*node, spacing_path, "a number > 0", positive))
+          grid.spacing = *value;
+        else
+          ok = false;
+      } else if (auto value = float_value(*node, spacing_path, "a number > 0 or [dx, dy]", positive)) {
+        grid.spacing = glm::vec2(*value);
+      } else {
+        ok = false;
+      }
+    } else {
+      missing(table, path + ".spacing", "a number > 0 or [dx, dy]");
+      ok = false;
+    }
+    if (const toml::node* node = table.get("vary")) {
+      auto* vary = node->as_table();
+      if (!vary) {
+        expected(*node, path + ".vary", "a table of property = { along, from, to }");
+        ok = false;
+      } else {
+        for (auto&& [key, value] : *vary) {
+          std::string name(key.str());
+          std::string rule_path = key_path(path + ".vary", name);
+          if (!is_identifier(name)) {
+            report(key.source(), fmt::format("{}: expected a property name (letters, digits and _)", rule_path));
+            ok = false;
+            continue;
+          }
+          auto rule = read_vary_rule(value, rule_path);
+          if (!rule) {
+            ok = false;
+            continue;
+          }
+          auto base = base_properties.find(name);
+          if (base != base_properties.end() && base->second.count != rule->from.count) {
+            report(value.source(), fmt::format("{}: expected {} like the object's property, got {}", rule_path,
+                                               numbers_text(base->second.count), numbers_text(rule->from.count)));
+            ok = false;
+            continue;
+          }
+          grid.vary.emplace(name, *rule);
+        }
+      }
+    }
+    if (!ok) return std::nullopt;
+    return grid;
+  }
+
+  std::optional<VaryRule> read_vary_rule(const toml::node& node, const std::string& path) {
+    auto* table = node.as_table();
+    if (!table) {
+      expected(node, path, "a table { along = \"rows\" or \"cols\", from = ..., to = ... }");
+      return std::nullopt;
+    }
+    check_keys(*table, path, {"along", "from", "to"});
+    VaryRule rule;
+    bool ok = true;
+    if (const toml::node* along = table->get("along")) {
+      auto* text = along->as_string();
+      if (text && text->get() == "rows") {
+        rule.along = GridAxis::Rows;
+      } else if (text && text->get() == "cols") {
+        rule.along = GridAxis::Cols;
+      } else {
+        expected(*along, path + ".along", "\"rows\" or \"cols\"");
+        ok = false;
+      }
+    } else {
+      missing(*table, path + ".along", "\"rows\" or \"cols\"");
+      ok = false;
+    }
+    auto end_value = [&](std::string_view key, PropertyValue& out) {
+      std::string end_path = key_path(path, key);
+      if (const toml::node* end = table->get(key)) {
+        if (auto value = property_value(*end, end_path))
+          out = *value;
+        else
+          ok = false;
+      } else {
+        missing(*table, end_path, "a number or an array of 2 to 4 numbers");
+        ok = false;
+      }
+    };
+    end_value("from", rule.from);
+    end_value("to", rule.to);
+    if (ok && rule.from.count != rule.to.count) {
+      const toml::node& to = *table->get("to");
+      expected(to, path + ".to", fmt::format("{} like from", numbers_text(rule.from.count)));
+      ok = false;
+    }
+    if (!ok) return std::nullopt;
+    return rule;
+  }
+
+  void read_post(const toml::table& table, const std::string& path, Scene& scene) {
+    check_keys(table, path, {"effect", "keywords", "parameters"});
+    PostEffect effect;
+    if (const toml::node* node = table.get("effect")) {
+      if (auto value = library_path(*node, path + ".effect")) effect.effect = *value;
+    } else {
+      missing(table, path + ".effect", "a path in the shader folders, e.g. \"post/depth_of_field.hlsl\"");
+    }
+    if (const toml::node* node = table.get("keywords")) effect.keywords = keywords(*node, path + ".keywords");
+    if (const toml::node* node = table.get("parameters")) effect.parameters = properties(*node, path + ".parameters");
+    scene.post.push_back(std::move(effect));
+  }
+
+  void read_compare(const toml::table& table, CompareSettings& compare) {
+    check_keys(table, "compare", {"channel_tolerance", "max_failing_fraction", "position_radius", "reason"});
+    std::vector<std::string_view> given;
+    if (const toml::node* node = table.get("channel_tolerance")) {
+      given.push_back("channel_tolerance");
+      if (auto value = integer(*node, "compare.channel_tolerance", 0, 255))
+        compare.channel_tolerance = static_cast<uint32_t>(*value);
+    }
+    if (const toml::node* node = table.get("max_failing_fraction")) {
+      given.push_back("max_failing_fraction");
+      if (auto value = number(*node, "compare.max_failing_fraction", "a number in [0, 1]",
+                              [](double v) { return v >= 0.0 && v <= 1.0; }))
+        compare.max_failing_fraction = *value;
+    }
+    if (const toml::node* node = table.get("position_radius")) {
+      given.push_back("position_radius");
+      if (auto value = integer(*node, "compare.position_radius", 0, 8))
+        compare.position_radius = static_cast<uint32_t>(*value);
+    }
+    compare.tolerances_given = !given.empty();
+    if (const toml::node* node = table.get("reason")) {
+      auto* text = node->as_string();
+      bool blank = !text || std::all_of(text->get().begin(), text->get().end(),
+                                        [](char c) { return std::isspace(static_cast<unsigned char>(c)); });
+      if (blank)
+        expected(*node, "compare.reason", "a string saying why these tolerances");
+      else
+        compare.reason = text->get();
+    } else if (!given.empty()) {
+      std::string keys;
+      for (std::string_view key : given) keys += (keys.empty() ? "" : ", ") + std::string(key);
+      report(table.source(),
+             fmt::format("compare.reason: missing; a tolerance ({}) needs a reason saying why these numbers", keys));
+    }
+  }
+
+  std::filesystem::path file_;
+  std::filesystem::path scene_folder_;
+};
+
+PropertyValue interpolate(const VaryRule& rule, uint32_t index, uint32_t count) {
+  PropertyValue value = rule.from;
+  if (count <= 1) return value;
+  float t = static_cast<float>(index) / static_cast<float>(count - 1);
+  for (uint32_t i = 0; i < value.count; ++i)
+    value.components[i] = rule.from.components[i] + (rule.to.components[i] - rule.from.components[i]) * t;
+  return value;
+}
+
+ObjectInstance instance_of(const SceneObject& object, size_t index, const glm::vec3& position) {
+  ObjectInstance instance;
+  instance.object_name = object.name;
+  instance.object_index = index;
+  instance.model = model_matrix(position, object.rotation_degrees, object.scale);
+  instance.mesh = object.mesh;
+  instance.material = object.material;
+  instance.keywords = object.keywords;
+  instance.textures = object.textures;
+  instance.properties = object.properties;
+  return instance;
+}
+
+}  // namespace
+
+Result<Scene> parse_scene(std::string_view text, const std::filesystem::path& file) {
+  return SceneReader(file).read(text);
+}
+
+Result<Scene> load_scene(const std::filesystem::path& file) {
+  std::ifstream stream(file, std::ios::binary);
+  if (!stream) return fail("cannot open the scene file", SourceLocation{file.string(), 0, 0});
+  std::ostringstream text;
+  text << stream.rdbuf();
+  if (stream.bad()) return fail("cannot read the scene file", SourceLocation{file.string(), 0, 0});
+  return parse_scene(text.str(), file);
+}
+
+glm::mat4 model_matrix(const glm::vec3& position, const glm::vec3& rotation_degrees, const glm::vec3& scale) {
+  glm::mat4 model = glm::translate(glm::mat4(1.0f), position);
+  // Matrices apply right to left: the vertex turns about X first, then Y, then Z.
+  model = glm::rotate(model, glm::radians(rotation_degrees.z), glm::vec3(0.0f, 0.0f, 1.0f));
+  model = glm::rotate(model, glm::radians(rotation_degrees.y), glm::vec3(0.0f, 1.0f, 0.0f));
+  model = glm::rotate(model, glm::radians(rotation_degrees.x), glm::vec3(1.0f, 0.0f, 0.0f));
+  return glm::scale(model, scale);
+}
+
+std::vector<ObjectInstance> expand_instances(const Scene& scene) {
+  std::vector<ObjectInstance> instances;
+  for (size_t index = 0; index < scene.objects.size(); ++index) {
+    const SceneObject& object = scene.objects[index];
+    if (!object.grid) {
+      instances.push_back(instance_of(object, index, object.position));
+      continue;
+    }
+    const GridSpec& grid = *object.grid;
+    for (uint32_t row = 0; row < grid.rows; ++row) {
+      for (uint32_t col = 0; col < grid.cols; ++col) {
+        // Centred on the object's position, row 0 on top: y falls as the row index grows.
+        glm::vec3 offset((static_cast<float>(col) - static_cast<float>(grid.cols - 1) / 2.0f) * grid.spacing.x,
+                         (static_cast<float>(grid.rows - 1) / 2.0f - static_cast<float>(row)) * grid.spacing.y, 0.0f);
+        ObjectInstance instance = instance_of(object, index, object.position + offset);
+        instance.in_grid = true;
+        instance.row = row;
+        instance.col = col;
+        for (const auto& [name, rule] : grid.vary) {
+          bool along_rows = rule.along == GridAxis::Rows;
+          instance.properties[name] =
+              interpolate(rule, along_rows ? row : col, along_rows ? grid.rows : grid.cols);
+        }
+        instances.push_back(std::move(instance));
+      }
+    }
+  }
+  return instances;
+}
+
+}  // namespace xshade::harness

@@ -1,0 +1,169 @@
+// Scenes: the TOML file format (docs/scenes.md) read into plain data, and objects expanded into
+// the instances a renderer draws.
+//
+// The model knows nothing about rendering. Paths the scene file names (an equirect image, an .obj
+// mesh, texture images) are resolved against the scene file's folder and checked for form only;
+// nothing here opens them. Material and post-effect paths stay as written: they are relative to
+// the shader folders (a user's, then the library; harness/shader_search_path.h), which the caller knows.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <filesystem>
+#include <map>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "base/result.h"
+#include "harness/image/image_compare.h"  // CompareSettings
+
+namespace xshade::harness {
+
+// A material property or post-effect parameter: a float, float2, float3 or float4.
+struct PropertyValue {
+  std::array<float, 4> components{};
+  uint32_t count = 1;  // 1..4
+
+  static PropertyValue scalar(float value) { return {{value, 0.0f, 0.0f, 0.0f}, 1}; }
+  // The components padded with zeros, for uploads that always write a float4.
+  glm::vec4 as_vec4() const { return {components[0], components[1], components[2], components[3]}; }
+  bool operator==(const PropertyValue&) const = default;
+};
+
+struct Camera {
+  glm::vec3 position{0.0f};
+  glm::vec3 target{0.0f};
+  glm::vec3 up{0.0f, 1.0f, 0.0f};
+  float fov_y_degrees = 0.0f;  // vertical, in (0, 180)
+  float near_plane = 0.0f;     // > 0
+  float far_plane = 0.0f;      // > near_plane
+};
+
+struct DirectionalLight {
+  glm::vec3 direction{0.0f, 1.0f, 0.0f};  // unit length, pointing toward the light (the shaders' l)
+  glm::vec3 color{1.0f};
+  float intensity = 1.0f;
+};
+
+enum class EnvironmentKind {
+  Constant,  // one colour in every direction
+  Gradient,  // sky above, horizon at y = 0, ground below
+  Equirect,  // an equirectangular image
+};
+
+struct EnvironmentSpec {
+  EnvironmentKind kind = EnvironmentKind::Constant;
+  glm::vec3 color{0.0f};  // Constant; the default environment is constant black
+  glm::vec3 sky{0.0f};    // Gradient
+  glm::vec3 horizon{0.0f};
+  glm::vec3 ground{0.0f};
+  std::filesystem::path file;  // Equirect: absolute and normalised, inside the scene's folder
+  float intensity = 1.0f;
+};
+
+enum class MeshKind { Sphere, Torus, Plane, Cube, ObjFile };
+
+struct MeshRef {
+  MeshKind kind = MeshKind::Sphere;
+  std::filesystem::path file;  // ObjFile: absolute and normalised, inside the scene's folder
+  bool operator==(const MeshRef&) const = default;
+};
+
+enum class TextureOrigin {
+  White,    // (1, 1, 1, 1)
+  Black,    // (0, 0, 0, 1)
+  Checker,  // a black-and-white checkerboard
+  Normal,   // a flat tangent-space normal map, (0.5, 0.5, 1, 1)
+  File,     // an image file
+};
+
+struct TextureRef {
+  TextureOrigin source = TextureOrigin::White;
+  std::filesystem::path file;  // File: absolute and normalised, inside the scene's folder
+  bool operator==(const TextureRef&) const = default;
+};
+
+enum class GridAxis { Rows, Cols };
+
+// A property that changes linearly over a grid: from at index 0, to at the last index.
+struct VaryRule {
+  GridAxis along = GridAxis::Cols;
+  PropertyValue from;
+  PropertyValue to;  // has as many components as from
+};
+
+struct GridSpec {
+  uint32_t rows = 1;  // 1..64; row 0 is the top row
+  uint32_t cols = 1;  // 1..64; column 0 is the leftmost
+  glm::vec2 spacing{1.0f};  // distance between neighbouring centres along x (cols) and y (rows)
+  std::map<std::string, VaryRule> vary;
+};
+
+struct SceneObject {
+  std::string name;  // unique in the scene; "object<N>" when not given
+  MeshRef mesh;
+  std::string material;  // relative to the shader folders, as written
+  std::vector<std::string> keywords;
+  glm::vec3 position{0.0f};
+  glm::vec3 rotation_degrees{0.0f};  // Euler angles, applied X, then Y, then Z
+  glm::vec3 scale{1.0f};             // each component > 0
+  std::map<std::string, PropertyValue> properties;
+  std::map<std::string, TextureRef> textures;
+  std::optional<GridSpec> grid;
+};
+
+struct PostEffect {
+  std::string effect;  // relative to the shader folders, as written
+  std::vector<std::string> keywords;
+  std::map<std::string, PropertyValue> parameters;
+};
+
+struct Scene {
+  std::string name;             // the file's stem
+  std::filesystem::path path;   // the file as it was named to the loader
+  std::string description;
+  uint32_t width = 0;           // 1..4096
+  uint32_t height = 0;          // 1..4096
+  std::vector<std::string> lanes;  // a subset of "gl", "vk", "vk-hlsl" in the order written
+  glm::vec4 clear_color{0.0f, 0.0f, 0.0f, 1.0f};
+  Camera camera;
+  std::vector<DirectionalLight> lights;
+  EnvironmentSpec environment;
+  std::vector<SceneObject> objects;
+  std::vector<PostEffect> post;
+  CompareSettings compare;
+};
+
+// Reads and validates a scene file. On failure the error's message and location are those of
+// the first problem (in file order); its diagnostics hold every problem found, the first
+// included, each as "file:line:col: error: key.path: what was expected, got what was found".
+Result<Scene> load_scene(const std::filesystem::path& file);
+// The same for text already in memory; `file` names it in messages and anchors relative paths.
+Result<Scene> parse_scene(std::string_view text, const std::filesystem::path& file);
+
+// One drawable copy of an object: an object without a grid gives one, a grid rows x cols.
+struct ObjectInstance {
+  std::string object_name;
+  size_t object_index = 0;  // into Scene::objects
+  bool in_grid = false;
+  uint32_t row = 0;  // the grid cell, for labels; 0, 0 outside a grid
+  uint32_t col = 0;
+  glm::mat4 model{1.0f};  // translate * rotate (X, then Y, then Z) * scale
+  MeshRef mesh;
+  std::string material;
+  std::vector<std::string> keywords;
+  std::map<std::string, TextureRef> textures;
+  std::map<std::string, PropertyValue> properties;  // the object's, then the grid's vary rules
+};
+
+// Every object's instances in scene order; within a grid, row by row from the top.
+std::vector<ObjectInstance> expand_instances(const Scene& scene);
+
+// The model matrix of an object placed at `position` (the grid offset already added).
+glm::mat4 model_matrix(const glm::vec3& position, const glm::vec3& rotation_degrees, const glm::vec3& scale);
+
+}  // namespace xshade::harness

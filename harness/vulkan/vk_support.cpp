@@ -1,0 +1,300 @@
+#include "harness/vulkan/vk_support.h"
+
+#include <bit>
+#include <cstring>
+#include <map>
+#include <stdexcept>
+
+#include <fmt/format.h>
+
+namespace xshade::harness::vk_support {
+
+EntryPointInfo reflect_entry_point(const std::vector<uint32_t>& words, ExecutionModel model,
+                                   const std::string& name) {
+  constexpr uint32_t kOpEntryPoint = 15, kOpVariable = 59, kOpDecorate = 71;
+  constexpr uint32_t kOpTypeInt = 21, kOpTypeFloat = 22, kOpTypeVector = 23, kOpTypePointer = 32;
+  constexpr uint32_t kDecorationLocation = 30, kDecorationBinding = 33, kDecorationDescriptorSet = 34;
+  constexpr uint32_t kStorageClassUniformConstant = 0, kStorageClassInput = 1, kStorageClassUniform = 2;
+  EntryPointInfo info;
+  std::vector<uint32_t> interface_ids;
+  std::map<uint32_t, uint32_t> locations;    // id -> Location
+  std::map<uint32_t, uint32_t> inputs;       // ids of Input-storage variables -> their pointer type
+  std::map<uint32_t, TexelKind> scalars;     // 32-bit scalar type ids
+  std::map<uint32_t, uint32_t> vectors;      // vector type id -> component type id
+  std::map<uint32_t, uint32_t> pointers;     // pointer type id -> pointee type id
+  std::map<uint32_t, uint32_t> bindings;     // id -> Binding
+  std::map<uint32_t, uint32_t> sets;         // id -> DescriptorSet
+  std::set<uint32_t> resources;              // ids of UniformConstant and Uniform variables
+  for (size_t at = 5; at < words.size();) {  // after the 5-word header
+    const uint32_t count = words[at] >> 16;
+    const uint32_t opcode = words[at] & 0xffffu;
+    if (count == 0 || at + count > words.size()) break;
+    const uint32_t* op = &words[at];
+    if (opcode == kOpEntryPoint && count >= 4 && op[1] == static_cast<uint32_t>(model)) {
+      // OpEntryPoint model id "name" interface-ids...
+      const char* text = reinterpret_cast<const char*>(&op[3]);
+      const size_t length = strnlen(text, (count - 3) * sizeof(uint32_t));
+      if (std::string(text, length) == name) {
+        info.found = true;
+        for (size_t i = 3 + length / 4 + 1; i < count; ++i) interface_ids.push_back(op[i]);
+      }
+    } else if (opcode == kOpDecorate && count >= 4 && op[2] == kDecorationLocation) {
+      locations[op[1]] = op[3];
+    } else if (opcode == kOpDecorate && count >= 4 && op[2] == kDecorationBinding) {
+      bindings[op[1]] = op[3];
+    } else if (opcode == kOpDecorate && count >= 4 && op[2] == kDecorationDescriptorSet) {
+      sets[op[1]] = op[3];
+    } else if (opcode == kOpTypeInt && count >= 4 && op[2] == 32) {
+      scalars[op[1]] = op[3] ? TexelKind::Int : TexelKind::Uint;
+    } else if (opcode == kOpTypeFloat && count >= 3 && op[2] == 32) {
+      scalars[op[1]] = TexelKind::Float;
+    } else if (opcode == kOpTypeVector && count >= 4) {
+      vectors[op[1]] = op[2];
+    } else if (opcode == kOpTypePointer && count >= 4) {
+      pointers[op[1]] = op[3];
+    } else if (opcode == kOpVariable && count >= 4 && op[3] == kStorageClassInput) {
+      inputs[op[2]] = op[1];
+    } else if (opcode == kOpVariable && count >= 4 &&
+               (op[3] == kStorageClassUniformConstant || op[3] == kStorageClassUniform)) {
+      resources.insert(op[2]);
+    }
+    at += count;
+  }
+  for (uint32_t id : interface_ids) {
+    auto location = locations.find(id);
+    auto input = inputs.find(id);
+    if (input == inputs.end() || location == locations.end()) continue;
+    info.input_locations.insert(location->second);
+    std::optional<TexelKind> kind;
+    if (auto pointee = pointers.find(input->second); pointee != pointers.end()) {
+      uint32_t type = pointee->second;
+      if (auto vector = vectors.find(type); vector != vectors.end()) type = vector->second;
+      if (auto scalar = scalars.find(type); scalar != scalars.end()) kind = scalar->second;
+    }
+    info.input_types[location->second] = kind;
+  }
+  for (const auto& [id, binding] : bindings)
+    if (resources.count(id)) info.descriptor_bindings.insert({sets.count(id) ? sets[id] : 0, binding});
+  return info;
+}
+
+uint32_t memory_type(const vk::PhysicalDeviceMemoryProperties& memory, uint32_t type_bits,
+                     vk::MemoryPropertyFlags required, vk::MemoryPropertyFlags preferred) {
+  for (vk::MemoryPropertyFlags wanted : {required | preferred, required}) {
+    for (uint32_t i = 0; i < memory.memoryTypeCount; ++i) {
+      if ((type_bits & (1u << i)) && (memory.memoryTypes[i].propertyFlags & wanted) == wanted)
+        return i;
+    }
+  }
+  throw std::runtime_error(
+      fmt::format("no memory type with properties {}", vk::to_string(required)));
+}
+
+namespace {
+
+vk::raii::DeviceMemory allocate(const DeviceRef& device, const vk::MemoryRequirements& needs,
+                                vk::MemoryPropertyFlags required,
+                                vk::MemoryPropertyFlags preferred) {
+  return vk::raii::DeviceMemory(
+      device.device,
+      vk::MemoryAllocateInfo(
+          needs.size, memory_type(device.memory, needs.memoryTypeBits, required, preferred)));
+}
+
+}  // namespace
+
+Buffer create_host_buffer(const DeviceRef& device, vk::DeviceSize size,
+                          vk::BufferUsageFlags usage) {
+  Buffer result;
+  result.size = size;
+  result.buffer = vk::raii::Buffer(device.device, vk::BufferCreateInfo({}, size, usage));
+  result.memory =
+      allocate(device, result.buffer.getMemoryRequirements(),
+               vk::MemoryPropertyFlagBits::eHostVisible | vk::MemoryPropertyFlagBits::eHostCoherent,
+               vk::MemoryPropertyFlagBits::eDeviceLocal);
+  result.buffer.bindMemory(*result.memory, 0);
+  return result;
+}
+
+void write_buffer(Buffer& buffer, const void* data, size_t size, size_t offset) {
+  if (size == 0) return;
+  void* mapped = buffer.memory.mapMemory(offset, size);
+  std::memcpy(mapped, data, size);
+  buffer.memory.unmapMemory();
+}
+
+ImageGeometry image_geometry(const ImageSpec& spec) {
+  using D = TextureDimension;
+  switch (spec.dimension) {
+    case D::Tex1D: return {vk::ImageType::e1D, vk::ImageViewType::e1D, {spec.width, 1, 1}, 1, {}};
+    case D::Tex1DArray: return {vk::ImageType::e1D, vk::ImageViewType::e1DArray, {spec.width, 1, 1}, spec.layers, {}};
+    case D::Tex2D: return {vk::ImageType::e2D, vk::ImageViewType::e2D, {spec.width, spec.height, 1}, 1, {}};
+    case D::Tex2DArray:
+      return {vk::ImageType::e2D, vk::ImageViewType::e2DArray, {spec.width, spec.height, 1}, spec.layers, {}};
+    case D::Tex3D: return {vk::ImageType::e3D, vk::ImageViewType::e3D, {spec.width, spec.height, spec.layers}, 1, {}};
+    case D::Cube:
+    case D::CubeArray:
+      return {vk::ImageType::e2D, spec.dimension == D::Cube ? vk::ImageViewType::eCube : vk::ImageViewType::eCubeArray,
+              {spec.width, spec.height, 1}, spec.layers, vk::ImageCreateFlagBits::eCubeCompatible};
+  }
+  return {vk::ImageType::e2D, vk::ImageViewType::e2D, {spec.width, spec.height, 1}, 1, {}};
+}
+
+std::optional<std::string> unsupported_image(const DeviceRef& device, const ImageSpec& spec) {
+  const ImageGeometry geometry = image_geometry(spec);
+  try {
+    const vk::ImageFormatProperties properties = device.physical.getImageFormatProperties(
+        spec.format, geometry.type, vk::ImageTiling::eOptimal, spec.usage, geometry.flags);
+    if (geometry.extent.width > properties.maxExtent.width || geometry.extent.height > properties.maxExtent.height ||
+        geometry.extent.depth > properties.maxExtent.depth)
+      return fmt::format("its size exceeds the device's {}x{}x{} for this format", properties.maxExtent.width,
+                         properties.maxExtent.height, properties.maxExtent.depth);
+    if (geometry.array_layers > properties.maxArrayLayers)
+      return fmt::format("{} layers exceed the device's {} for this format", geometry.array_layers,
+                         properties.maxArrayLayers);
+    if (spec.levels > properties.maxMipLevels)
+      return fmt::format("{} levels exceed the device's {} for this format", spec.levels, properties.maxMipLevels);
+    if (!(uint32_t(properties.sampleCounts) & spec.samples) || !std::has_single_bit(spec.samples))
+      return fmt::format("the device has no {}-sample images of this format (it has {})", spec.samples,
+                         vk::to_string(properties.sampleCounts));
+  } catch (const vk::FormatNotSupportedError&) {
+    return fmt::format("the device has no {} images of format {} with usage {}", vk::to_string(geometry.type),
+                       vk::to_string(spec.format), vk::to_string(spec.usage));
+  }
+  return std::nullopt;
+}
+
+Image create_image(const DeviceRef& device, ImageSpec spec) {
+  const ImageGeometry geometry = image_geometry(spec);
+  Image result;
+  result.format = spec.format;
+  result.aspect = spec.aspect;
+  result.width = spec.width;
+  result.height = spec.height;
+  result.levels = spec.levels;
+  result.layers = geometry.array_layers;
+  result.shape = {spec.dimension, spec.samples > 1};
+  result.texture_format = spec.texture_format;
+  result.label = std::move(spec.label);
+  result.linear_filter =
+      bool(device.physical.getFormatProperties(spec.format).optimalTilingFeatures &
+           vk::FormatFeatureFlagBits::eSampledImageFilterLinear);
+  result.image = vk::raii::Image(
+      device.device,
+      vk::ImageCreateInfo(geometry.flags, geometry.type, spec.format, geometry.extent, spec.levels,
+                          geometry.array_layers, vk::SampleCountFlagBits(spec.samples), vk::ImageTiling::eOptimal,
+                          spec.usage, vk::SharingMode::eExclusive, {}, vk::ImageLayout::eUndefined));
+  result.memory = allocate(device, result.image.getMemoryRequirements(), {},
+                           vk::MemoryPropertyFlagBits::eDeviceLocal);
+  result.image.bindMemory(*result.memory, 0);
+  result.view = vk::raii::ImageView(
+      device.device, vk::ImageViewCreateInfo({}, *result.image, geometry.view_type, spec.format, {},
+                                             {spec.aspect, 0, spec.levels, 0, geometry.array_layers}));
+  return result;
+}
+
+namespace {
+
+struct StageAccess {
+  vk::PipelineStageFlags2 stage;
+  vk::AccessFlags2 access;
+};
+
+// What touches an image while it is in `layout`: the scopes of a barrier out of or into it.
+StageAccess stage_access(vk::ImageLayout layout) {
+  using S = vk::PipelineStageFlagBits2;
+  using A = vk::AccessFlagBits2;
+  switch (layout) {
+    case vk::ImageLayout::eUndefined:
+      return {S::eNone, A::eNone};
+    case vk::ImageLayout::eTransferDstOptimal:
+      return {S::eAllTransfer, A::eTransferWrite};
+    case vk::ImageLayout::eTransferSrcOptimal:
+      return {S::eAllTransfer, A::eTransferRead};
+    case vk::ImageLayout::eColorAttachmentOptimal:
+      return {S::eColorAttachmentOutput, A::eColorAttachmentRead | A::eColorAttachmentWrite};
+    case vk::ImageLayout::eDepthStencilAttachmentOptimal:
+      return {S::eEarlyFragmentTests | S::eLateFragmentTests,
+              A::eDepthStencilAttachmentRead | A::eDepthStencilAttachmentWrite};
+    case vk::ImageLayout::eShaderReadOnlyOptimal:
+      // eShaderRead rather than eShaderSampledRead: the best-practices layer of 1.3.239 expects it.
+      return {S::eVertexShader | S::eFragmentShader, A::eShaderRead};
+    default:
+      return {S::eAllCommands, A::eMemoryRead | A::eMemoryWrite};
+  }
+}
+
+}  // namespace
+
+void Recording::transition(Image& image, vk::ImageLayout to) {
+  if (image.layout == to && to == vk::ImageLayout::eShaderReadOnlyOptimal) return;
+  const StageAccess src = stage_access(image.layout);
+  const StageAccess dst = stage_access(to);
+  const vk::ImageMemoryBarrier2 barrier(src.stage, src.access, dst.stage, dst.access, image.layout,
+                                        to, VK_QUEUE_FAMILY_IGNORED, VK_QUEUE_FAMILY_IGNORED,
+                                        *image.image, {image.aspect, 0, image.levels, 0, image.layers});
+  cmd.pipelineBarrier2(vk::DependencyInfo({}, {}, {}, barrier));
+  saved_.emplace_back(&image, image.layout);
+  image.layout = to;
+}
+
+void Recording::rollback() {
+  for (auto it = saved_.rbegin(); it != saved_.rend(); ++it) it->first->layout = it->second;
+  saved_.clear();
+}
+
+namespace {
+
+VKAPI_ATTR VkBool32 VKAPI_CALL debug_callback(VkDebugUtilsMessageSeverityFlagBitsEXT severity,
+                                              VkDebugUtilsMessageTypeFlagsEXT types,
+                                              const VkDebugUtilsMessengerCallbackDataEXT* data,
+                                              void* user) {
+  auto* log = static_cast<MessageLog*>(user);
+  const char* level =
+      (severity & VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT) ? "error" : "warning";
+  const char* kind = (types & VK_DEBUG_UTILS_MESSAGE_TYPE_VALIDATION_BIT_EXT)    ? "validation"
+                     : (types & VK_DEBUG_UTILS_MESSAGE_TYPE_PERFORMANCE_BIT_EXT) ? "performance"
+                                                                                 : "general";
+  std::string text = fmt::format("vulkan {} {}: {}", kind, level,
+                                 data && data->pMessage ? data->pMessage : "(no message)");
+  std::lock_guard lock(log->mutex);
+  log->messages.push_back(std::move(text));
+  return VK_FALSE;  // never abort the call that triggered the message
+}
+
+}  // namespace
+
+vk::DebugUtilsMessengerCreateInfoEXT messenger_info(MessageLog* log) {
+  using Severity = vk::DebugUtilsMessageSeverityFlagBitsEXT;
+  using Type = vk::DebugUtilsMessageTypeFlagBitsEXT;
+  return vk::DebugUtilsMessengerCreateInfoEXT(
+      {}, Severity::eWarning | Severity::eError,
+      Type::eGeneral | Type::eValidation | Type::ePerformance, &debug_callback, log);
+}
+
+std::string version_string(uint32_t version) {
+  return fmt::format("{}.{}.{}", VK_API_VERSION_MAJOR(version), VK_API_VERSION_MINOR(version),
+                     VK_API_VERSION_PATCH(version));
+}
+
+vk::Format vk_format(TextureFormat format) {
+  switch (format) {
+    case TextureFormat::Rgba8Unorm:
+      return vk::Format::eR8G8B8A8Unorm;
+    case TextureFormat::Rgba8Srgb:
+      return vk::Format::eR8G8B8A8Srgb;
+    case TextureFormat::Rgba32Float:
+      return vk::Format::eR32G32B32A32Sfloat;
+    case TextureFormat::R32Float:
+      return vk::Format::eR32Sfloat;
+    case TextureFormat::Depth32Float:
+      return vk::Format::eD32Sfloat;
+    case TextureFormat::Rgba32Uint:
+      return vk::Format::eR32G32B32A32Uint;
+    case TextureFormat::Rgba32Sint:
+      return vk::Format::eR32G32B32A32Sint;
+  }
+  return vk::Format::eUndefined;
+}
+
+}  // namespace xshade::harness::vk_support

@@ -1,0 +1,145 @@
+// Private helpers of the lavapipe backend: resources owned by vk::raii, layout tracking with
+// synchronization2 barriers, the debug-utils message log, and the bits of SPIR-V reflection the
+// backend needs for clear errors. Not part of the harness interface.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <map>
+#include <mutex>
+#include <optional>
+#include <set>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include <vulkan/vulkan_raii.hpp>
+
+#include "harness/backend/backend.h"
+
+namespace xshade::harness::vk_support {
+
+// ---- SPIR-V ------------------------------------------------------------------------------------
+
+struct EntryPointInfo {
+  bool found = false;
+  std::set<uint32_t> input_locations;  // Location decorations of the entry point's Input variables
+  // Per input location, what its components are: 32-bit float, int or uint (a scalar or a
+  // vector). Empty for anything else (a 64-bit or 16-bit type, a matrix, a struct).
+  std::map<uint32_t, std::optional<TexelKind>> input_types;
+  // (set, binding) of every resource variable the module declares.
+  std::set<std::pair<uint32_t, uint32_t>> descriptor_bindings;
+};
+
+enum class ExecutionModel : uint32_t { Vertex = 0, Fragment = 4 };
+
+// Finds the entry point `name` of `model`, the locations and component types of its inputs, and the module's
+// descriptor bindings. The module must already
+// have passed spirv-val.
+EntryPointInfo reflect_entry_point(const std::vector<uint32_t>& words, ExecutionModel model,
+                                   const std::string& name);
+
+// ---- Resources ---------------------------------------------------------------------------------
+
+// Memory is declared first so that it is freed after the object bound to it.
+struct Buffer {
+  vk::raii::DeviceMemory memory{nullptr};
+  vk::raii::Buffer buffer{nullptr};
+  vk::DeviceSize size = 0;
+};
+
+struct Image {
+  vk::raii::DeviceMemory memory{nullptr};
+  vk::raii::Image image{nullptr};
+  vk::raii::ImageView view{nullptr};  // all levels and layers, the one aspect, of the shape's view type
+  vk::Format format = vk::Format::eUndefined;
+  vk::ImageAspectFlags aspect;
+  uint32_t width = 0;
+  uint32_t height = 0;
+  uint32_t levels = 1;
+  uint32_t layers = 1;  // array layers (a 3D image has 1)
+  TextureShape shape;   // as a shader sees it, for the draw-time check against the slot
+  TextureFormat texture_format = TextureFormat::Rgba32Float;
+  vk::ImageLayout layout = vk::ImageLayout::eUndefined;  // of every subresource
+  bool linear_filter = false;                            // the format supports linear filtering
+  std::string label;  // for messages: "texture 3", "colour of target 1"
+};
+
+struct ImageSpec {
+  vk::Format format = vk::Format::eUndefined;
+  vk::ImageAspectFlags aspect;
+  uint32_t width = 0;
+  uint32_t height = 0;
+  uint32_t levels = 1;
+  vk::ImageUsageFlags usage;
+  std::string label;
+  TextureFormat texture_format = TextureFormat::Rgba32Float;
+  TextureDimension dimension = TextureDimension::Tex2D;
+  uint32_t layers = 1;  // array layers, or the depth of a 3D image
+  uint32_t samples = 1;
+};
+
+// The image type, view type, extent, layer count and flags of a spec's dimension.
+struct ImageGeometry {
+  vk::ImageType type;
+  vk::ImageViewType view_type;
+  vk::Extent3D extent;
+  uint32_t array_layers;
+  vk::ImageCreateFlags flags;
+};
+ImageGeometry image_geometry(const ImageSpec& spec);
+
+// A device and what allocations need to know about it.
+struct DeviceRef {
+  const vk::raii::PhysicalDevice& physical;
+  const vk::raii::Device& device;
+  const vk::PhysicalDeviceMemoryProperties& memory;
+};
+
+// The first memory type allowed by `type_bits` with `required | preferred`, else with `required`;
+// throws when there is none.
+uint32_t memory_type(const vk::PhysicalDeviceMemoryProperties& memory, uint32_t type_bits,
+                     vk::MemoryPropertyFlags required, vk::MemoryPropertyFlags preferred);
+// A host-visible, coherent buffer (device-local too where the device offers it).
+Buffer create_host_buffer(const DeviceRef& device, vk::DeviceSize size, vk::BufferUsageFlags usage);
+void write_buffer(Buffer& buffer, const void* data, size_t size, size_t offset = 0);
+// Empty when the device can make the image `spec` describes, else why not.
+std::optional<std::string> unsupported_image(const DeviceRef& device, const ImageSpec& spec);
+// An optimally tiled image of the spec's dimension with its memory and a view, in layout Undefined.
+Image create_image(const DeviceRef& device, ImageSpec spec);
+
+// ---- Layouts and submission --------------------------------------------------------------------
+
+// One command buffer being recorded. Layout changes are applied to the images at once and rolled
+// back if the recording is never submitted successfully.
+class Recording {
+ public:
+  explicit Recording(vk::raii::CommandBuffer command_buffer) : cmd(std::move(command_buffer)) {}
+
+  // A barrier from the image's current layout to `to` (a read-only layout it is already in needs
+  // none).
+  void transition(Image& image, vk::ImageLayout to);
+  void rollback();
+
+  vk::raii::CommandBuffer cmd;
+
+ private:
+  std::vector<std::pair<Image*, vk::ImageLayout>> saved_;
+};
+
+// ---- Debug messages ----------------------------------------------------------------------------
+
+struct MessageLog {
+  std::mutex mutex;
+  std::vector<std::string> messages;
+};
+
+// Warnings and errors of every type go into `log`, which must outlive the messenger.
+vk::DebugUtilsMessengerCreateInfoEXT messenger_info(MessageLog* log);
+
+// ---- Conversions -------------------------------------------------------------------------------
+
+std::string version_string(uint32_t version);  // "1.3.230"
+vk::Format vk_format(TextureFormat format);
+
+}  // namespace xshade::harness::vk_support

@@ -1,0 +1,1049 @@
+// The Vulkan lane: Vulkan 1.3 on Mesa's lavapipe, headless, every driver object owned by vk::raii.
+//
+// Each public operation records one command buffer, submits it and waits on a fence, so nothing is
+// in flight between calls. Image layouts are tracked per image (all subresources share one
+// layout) and changed with synchronization2 barriers; drawing uses dynamic rendering.
+#include "harness/vulkan/vulkan_backend.h"
+
+#include <algorithm>
+#include <array>
+#include <bit>
+#include <cstring>
+#include <functional>
+#include <map>
+#include <optional>
+#include <set>
+#include <stdexcept>
+#include <utility>
+
+#include <fmt/format.h>
+#include <vulkan/vulkan_raii.hpp>
+
+#include "harness/vulkan/vk_support.h"
+#include "spirv/spirv_compiler.h"
+
+namespace xshade::harness {
+namespace {
+
+bool layout_has_binding(const ProgramLayout& layout, uint32_t binding) {
+  for (const UniformBlockSlot& block : layout.uniform_blocks)
+    if (block.binding == binding) return true;
+  for (const TextureSlot& texture : layout.textures)
+    if (texture.binding == binding || texture.sampler_binding == binding) return true;
+  return false;
+}
+
+using vk_support::Buffer;
+using vk_support::Image;
+using vk_support::Recording;
+
+constexpr const char* kValidationLayer = "VK_LAYER_KHRONOS_validation";
+constexpr vk::Format kColorFormat = vk::Format::eR32G32B32A32Sfloat;
+constexpr vk::Format kDepthFormat = vk::Format::eD32Sfloat;
+
+// ---- Resources ---------------------------------------------------------------------------------
+
+struct Target {
+  Image color;
+  std::optional<Image> depth;
+};
+
+struct Mesh {
+  Buffer vertices;
+  Buffer indices;
+  uint32_t index_count = 0;
+};
+
+struct Program {
+  std::string name;
+  ProgramLayout layout;
+  bool fullscreen = false;
+  std::string vertex_entry;
+  std::string fragment_entry;
+  std::set<uint32_t> vertex_inputs;
+  // The inputs above location 3 (no mesh has them) and what they read: fed zeros from the
+  // backend's zero buffer at binding 1.
+  std::map<uint32_t, TexelKind> zero_inputs;
+  vk::raii::ShaderModule vertex{nullptr};
+  vk::raii::ShaderModule fragment{nullptr};
+  vk::raii::DescriptorSetLayout set_layout{nullptr};
+  vk::raii::PipelineLayout pipeline_layout{nullptr};
+  std::array<std::optional<vk::raii::Pipeline>, 2> pipelines;  // [target has depth]
+};
+
+// ---- The backend -------------------------------------------------------------------------------
+
+class VulkanBackend final : public Backend {
+ public:
+  ~VulkanBackend() override {
+    try {
+      if (*device_) device_.waitIdle();
+    } catch (...) {
+      // Nothing useful can be done while tearing down.
+    }
+  }
+
+  Result<void> init(const VulkanOptions& options);
+
+  const DriverInfo& driver_info() const override { return info_; }
+  Result<TargetHandle> create_target(const TargetDesc& desc) override;
+  Result<MeshHandle> upload_mesh(const MeshData& mesh) override;
+  Result<TextureHandle> upload_texture(const TextureData& texture) override;
+  Result<ProgramHandle> create_program(const ProgramDesc& desc) override;
+  Result<void> render(const RenderPass& pass) override;
+  Result<FloatImage> read_color(TargetHandle target) override;
+  std::vector<std::string> take_driver_messages() override {
+    std::lock_guard lock(log_->mutex);
+    return std::exchange(log_->messages, {});
+  }
+
+ private:
+  vk_support::DeviceRef device_ref() const { return {physical_, device_, memory_properties_}; }
+  Buffer create_buffer(vk::DeviceSize size, vk::BufferUsageFlags usage) const {
+    return vk_support::create_host_buffer(device_ref(), size, usage);
+  }
+  // `compare`: a comparison sampler (of a slot the shader compares), with desc.compare.
+  const vk::raii::Sampler& sampler(const SamplerDesc& desc, bool compare);
+  // Every sample of each texel of `image` (multisampled, just created) from level 0 of `data`.
+  void fill_multisampled(Image& image, const TextureData& data);
+  // 16 zero bytes, the vertex buffer of every input no mesh supplies (stride 0).
+  const Buffer& zero_vertex_buffer();
+  // Records with `record`, submits, waits. Layouts roll back if anything throws.
+  void submit(const std::function<void(Recording&)>& record);
+  Result<vk::Pipeline> pipeline(Program& program, bool depth);
+
+  Target* find_target(uint32_t id) {
+    return id >= 1 && id <= targets_.size() ? targets_[id - 1].get() : nullptr;
+  }
+
+  // Declared first so that it outlives the messenger that writes into it.
+  std::unique_ptr<vk_support::MessageLog> log_ = std::make_unique<vk_support::MessageLog>();
+  std::unique_ptr<vk::raii::Context> context_;
+  vk::raii::Instance instance_{nullptr};
+  vk::raii::DebugUtilsMessengerEXT messenger_{nullptr};
+  vk::raii::PhysicalDevice physical_{nullptr};
+  vk::raii::Device device_{nullptr};
+  vk::raii::Queue queue_{nullptr};
+  vk::raii::CommandPool command_pool_{nullptr};
+  uint32_t queue_family_ = 0;
+  vk::PhysicalDeviceMemoryProperties memory_properties_;
+  vk::DeviceSize uniform_alignment_ = 256;
+  uint32_t max_image_size_ = 4096;
+  uint32_t max_uniform_range_ = 16384;
+  DriverInfo info_;
+
+  std::map<std::tuple<Filter, AddressMode, std::optional<CompareOp>>, vk::raii::Sampler> samplers_;
+  Buffer zero_vertices_;
+  std::vector<std::unique_ptr<Target>> targets_;
+  std::vector<std::unique_ptr<Mesh>> meshes_;
+  std::vector<std::unique_ptr<Image>> textures_;
+  std::vector<std::unique_ptr<Program>> programs_;
+};
+
+// Runs `body`, turning any exception into an error that names the operation.
+template <class T, class F>
+Result<T> guarded(const std::string& what, F&& body) {
+  try {
+    return body();
+  } catch (const vk::SystemError& e) {
+    return fail(fmt::format("{}: Vulkan call failed: {}", what, e.what()));
+  } catch (const std::exception& e) {
+    return fail(fmt::format("{}: {}", what, e.what()));
+  } catch (...) {
+    return fail(fmt::format("{}: unknown exception", what));
+  }
+}
+
+Result<void> VulkanBackend::init(const VulkanOptions& options) {
+  try {
+    context_ = std::make_unique<vk::raii::Context>();
+  } catch (const std::exception& e) {
+    return fail(fmt::format(
+        "cannot load the Vulkan loader libvulkan.so.1 ({}); install the Debian package libvulkan1",
+        e.what()));
+  }
+  return guarded<void>("creating the Vulkan lavapipe backend", [&]() -> Result<void> {
+    const uint32_t loader_version = context_->enumerateInstanceVersion();
+    if (loader_version < VK_API_VERSION_1_3)
+      return fail(
+          fmt::format("the Vulkan loader supports Vulkan {} but 1.3 is required; install "
+                      "a newer Debian package libvulkan1",
+                      vk_support::version_string(loader_version)));
+
+    const bool validation = options.validation && vulkan_validation_available();
+    std::vector<const char*> layers;
+    std::vector<const char*> extensions;
+    if (validation) {
+      layers.push_back(kValidationLayer);
+      extensions.push_back(VK_EXT_DEBUG_UTILS_EXTENSION_NAME);
+    }
+    vk::ApplicationInfo app("xshade", 1, "xshade", 1, VK_API_VERSION_1_3);
+    vk::InstanceCreateInfo instance_info({}, &app, layers, extensions);
+    const vk::DebugUtilsMessengerCreateInfoEXT debug_info = vk_support::messenger_info(log_.get());
+    if (validation) instance_info.pNext = &debug_info;  // also report instance creation
+    try {
+      instance_ = vk::raii::Instance(*context_, instance_info);
+    } catch (const vk::SystemError& e) {
+      return fail(
+          fmt::format("cannot create a Vulkan instance ({}): no usable Vulkan driver; "
+                      "install the Debian package mesa-vulkan-drivers (lavapipe) and "
+                      "check VK_DRIVER_FILES / VK_ICD_FILENAMES",
+                      e.what()));
+    }
+    if (validation) messenger_ = vk::raii::DebugUtilsMessengerEXT(instance_, debug_info);
+
+    // The CPU device, i.e. lavapipe; GPUs are ignored so that results never depend on hardware.
+    std::vector<vk::raii::PhysicalDevice> devices;
+    try {
+      devices = instance_.enumeratePhysicalDevices();
+    } catch (const vk::SystemError& e) {
+      return fail(
+          fmt::format("no Vulkan CPU device (lavapipe) found: cannot enumerate Vulkan "
+                      "devices ({}); install the Debian package mesa-vulkan-drivers and "
+                      "check VK_DRIVER_FILES / VK_ICD_FILENAMES",
+                      e.what()));
+    }
+    std::string seen;
+    for (auto& candidate : devices) {
+      const vk::PhysicalDeviceProperties properties = candidate.getProperties();
+      seen += fmt::format("{}'{}'", seen.empty() ? "" : ", ", properties.deviceName.data());
+      if (properties.deviceType == vk::PhysicalDeviceType::eCpu && !*physical_)
+        physical_ = std::move(candidate);
+    }
+    if (!*physical_)
+      return fail(
+          fmt::format("no Vulkan CPU device (lavapipe) found (devices: {}); install the "
+                      "Debian package mesa-vulkan-drivers and check VK_DRIVER_FILES / "
+                      "VK_ICD_FILENAMES",
+                      seen.empty() ? "none" : seen));
+
+    const auto properties =
+        physical_
+            .getProperties2<vk::PhysicalDeviceProperties2, vk::PhysicalDeviceDriverProperties>();
+    const vk::PhysicalDeviceProperties& props =
+        properties.get<vk::PhysicalDeviceProperties2>().properties;
+    const auto& driver = properties.get<vk::PhysicalDeviceDriverProperties>();
+    if (props.apiVersion < VK_API_VERSION_1_3)
+      return fail(
+          fmt::format("the Vulkan CPU device '{}' supports Vulkan {} but 1.3 is required; "
+                      "install a newer Debian package mesa-vulkan-drivers",
+                      props.deviceName.data(), vk_support::version_string(props.apiVersion)));
+    info_.api = "Vulkan 1.3 (lavapipe)";
+    info_.renderer = props.deviceName.data();
+    info_.api_version = vk_support::version_string(props.apiVersion);
+    info_.driver_version = driver.driverInfo.data();
+    if (size_t paren = info_.driver_version.find(" ("); paren != std::string::npos)
+      info_.driver_version.resize(paren);  // "Mesa 22.3.6 (LLVM 15.0.6)" -> "Mesa 22.3.6"
+    info_.llvm_version = llvm_version_of(info_.renderer);
+    uniform_alignment_ = std::max<vk::DeviceSize>(props.limits.minUniformBufferOffsetAlignment, 16);
+    max_image_size_ = props.limits.maxImageDimension2D;
+    max_uniform_range_ = props.limits.maxUniformBufferRange;
+    memory_properties_ = physical_.getMemoryProperties();
+
+    const auto format_features = [&](vk::Format format) {
+      return physical_.getFormatProperties(format).optimalTilingFeatures;
+    };
+    using F = vk::FormatFeatureFlagBits;
+    if ((format_features(kColorFormat) &
+         (F::eColorAttachment | F::eSampledImage | F::eTransferSrc)) !=
+            (F::eColorAttachment | F::eSampledImage | F::eTransferSrc) ||
+        (format_features(kDepthFormat) & (F::eDepthStencilAttachment | F::eSampledImage)) !=
+            (F::eDepthStencilAttachment | F::eSampledImage))
+      return fail(fmt::format("'{}' cannot render to and sample R32G32B32A32_SFLOAT and D32_SFLOAT",
+                              info_.renderer));
+
+    const auto families = physical_.getQueueFamilyProperties();
+    auto graphics = std::find_if(families.begin(), families.end(), [](const auto& family) {
+      return bool(family.queueFlags & vk::QueueFlagBits::eGraphics);
+    });
+    if (graphics == families.end())
+      return fail(fmt::format("'{}' has no graphics queue", info_.renderer));
+    queue_family_ = static_cast<uint32_t>(graphics - families.begin());
+
+    // Enable what the device supports, so that any valid shader runs, except robustness (which
+    // would hide out-of-bounds bugs behind defined results).
+    auto features =
+        physical_
+            .getFeatures2<vk::PhysicalDeviceFeatures2, vk::PhysicalDeviceVulkan11Features,
+                          vk::PhysicalDeviceVulkan12Features, vk::PhysicalDeviceVulkan13Features>();
+    features.get<vk::PhysicalDeviceFeatures2>().features.robustBufferAccess = VK_FALSE;
+    auto& features13 = features.get<vk::PhysicalDeviceVulkan13Features>();
+    features13.robustImageAccess = VK_FALSE;
+    if (!features13.dynamicRendering || !features13.synchronization2)
+      return fail(fmt::format("'{}' lacks dynamic rendering or synchronization2", info_.renderer));
+    const float priority = 1.0f;
+    vk::DeviceQueueCreateInfo queue_info({}, queue_family_, 1, &priority);
+    vk::DeviceCreateInfo device_info({}, queue_info, {}, {}, nullptr);
+    device_info.pNext = &features.get<vk::PhysicalDeviceFeatures2>();
+    device_ = vk::raii::Device(physical_, device_info);
+    queue_ = vk::raii::Queue(device_, queue_family_, 0);
+    command_pool_ = vk::raii::CommandPool(
+        device_,
+        vk::CommandPoolCreateInfo(vk::CommandPoolCreateFlagBits::eTransient, queue_family_));
+    return {};
+  });
+}
+
+vk::CompareOp vk_compare_op(CompareOp op) {
+  switch (op) {
+    case CompareOp::Never: return vk::CompareOp::eNever;
+    case CompareOp::Less: return vk::CompareOp::eLess;
+    case CompareOp::Equal: return vk::CompareOp::eEqual;
+    case CompareOp::LessEqual: return vk::CompareOp::eLessOrEqual;
+    case CompareOp::Greater: return vk::CompareOp::eGreater;
+    case CompareOp::NotEqual: return vk::CompareOp::eNotEqual;
+    case CompareOp::GreaterEqual: return vk::CompareOp::eGreaterOrEqual;
+    case CompareOp::Always: return vk::CompareOp::eAlways;
+  }
+  return vk::CompareOp::eLessOrEqual;
+}
+
+vk::Format zero_input_format(TexelKind kind) {
+  switch (kind) {
+    case TexelKind::Float: return vk::Format::eR32G32B32A32Sfloat;
+    case TexelKind::Int: return vk::Format::eR32G32B32A32Sint;
+    case TexelKind::Uint: return vk::Format::eR32G32B32A32Uint;
+  }
+  return vk::Format::eR32G32B32A32Sfloat;
+}
+
+// The internal draw that fills a multisampled image: each sample of every texel of one layer
+// gets the texel of a single-sampled copy. Without sample shading a fragment's one output goes to
+// every sample it covers, and the triangle covers the whole layer.
+constexpr const char* kFillVertexShader = R"(#version 450
+void main() {
+  vec2 corner = vec2((gl_VertexIndex << 1) & 2, gl_VertexIndex & 2);
+  gl_Position = vec4(corner * 2.0 - 1.0, 0.0, 1.0);
+}
+)";
+std::string fill_fragment_shader(TexelKind kind) {
+  const std::string prefix = kind == TexelKind::Int ? "i" : kind == TexelKind::Uint ? "u" : "";
+  return "#version 450\nlayout(set = 0, binding = 0) uniform " + prefix + "sampler2DArray source;\n"
+         "layout(push_constant) uniform Fill { int layer; } fill;\n"
+         "layout(location = 0) out " + prefix + "vec4 color;\n"
+         "void main() { color = texelFetch(source, ivec3(ivec2(gl_FragCoord.xy), fill.layer), 0); }\n";
+}
+
+const vk::raii::Sampler& VulkanBackend::sampler(const SamplerDesc& desc, bool compare) {
+  const auto key = std::make_tuple(desc.filter, desc.address,
+                                   compare ? std::optional<CompareOp>(desc.compare) : std::nullopt);
+  auto found = samplers_.find(key);
+  if (found != samplers_.end()) return found->second;
+  const vk::Filter filter =
+      desc.filter == Filter::Linear ? vk::Filter::eLinear : vk::Filter::eNearest;
+  const vk::SamplerMipmapMode mip = desc.filter == Filter::Linear ? vk::SamplerMipmapMode::eLinear
+                                                                  : vk::SamplerMipmapMode::eNearest;
+  const vk::SamplerAddressMode address = desc.address == AddressMode::Repeat
+                                             ? vk::SamplerAddressMode::eRepeat
+                                             : vk::SamplerAddressMode::eClampToEdge;
+  vk::SamplerCreateInfo info({}, filter, filter, mip, address, address, address, 0.0f, VK_FALSE,
+                             1.0f, compare ? VK_TRUE : VK_FALSE,
+                             compare ? vk_compare_op(desc.compare) : vk::CompareOp::eNever, 0.0f,
+                             VK_LOD_CLAMP_NONE);
+  return samplers_.emplace(key, vk::raii::Sampler(device_, info)).first->second;
+}
+
+void VulkanBackend::submit(const std::function<void(Recording&)>& record) {
+  vk::raii::CommandBuffers buffers(
+      device_, vk::CommandBufferAllocateInfo(*command_pool_, vk::CommandBufferLevel::ePrimary, 1));
+  Recording recording(std::move(buffers.front()));
+  try {
+    recording.cmd.begin(vk::CommandBufferBeginInfo(vk::CommandBufferUsageFlagBits::eOneTimeSubmit));
+    record(recording);
+    recording.cmd.end();
+    vk::raii::Fence fence(device_, vk::FenceCreateInfo());
+    vk::CommandBufferSubmitInfo command_info(*recording.cmd);
+    queue_.submit2(vk::SubmitInfo2({}, {}, command_info, {}), *fence);
+    const vk::Result waited = device_.waitForFences({*fence}, VK_TRUE, UINT64_MAX);
+    if (waited != vk::Result::eSuccess)
+      throw std::runtime_error("waiting for the GPU work failed: " + vk::to_string(waited));
+  } catch (...) {
+    recording.rollback();
+    throw;
+  }
+}
+
+Result<TargetHandle> VulkanBackend::create_target(const TargetDesc& desc) {
+  return guarded<TargetHandle>("create_target", [&]() -> Result<TargetHandle> {
+    if (desc.width == 0 || desc.height == 0)
+      return fail(fmt::format("create_target: size {}x{} is empty", desc.width, desc.height));
+    if (std::max(desc.width, desc.height) > max_image_size_)
+      return fail(fmt::format("create_target: size {}x{} exceeds the device limit of {}",
+                              desc.width, desc.height, max_image_size_));
+    const uint32_t id = static_cast<uint32_t>(targets_.size() + 1);
+    using U = vk::ImageUsageFlagBits;
+    auto target = std::make_unique<Target>();
+    // Transfer-dst only for the initial clear below.
+    target->color = vk_support::create_image(
+        device_ref(), {kColorFormat, vk::ImageAspectFlagBits::eColor, desc.width, desc.height, 1,
+                       U::eColorAttachment | U::eSampled | U::eTransferSrc | U::eTransferDst,
+                       fmt::format("the colour of target {}", id), TextureFormat::Rgba32Float});
+    if (desc.depth)
+      target->depth = vk_support::create_image(
+          device_ref(),
+          {kDepthFormat, vk::ImageAspectFlagBits::eDepth, desc.width, desc.height, 1,
+           U::eDepthStencilAttachment | U::eSampled | U::eTransferSrc | U::eTransferDst,
+           fmt::format("the depth of target {}", id), TextureFormat::Depth32Float});
+    // Start from defined contents (zero colour, far depth) so that reads before a render are
+    // stable.
+    submit([&](Recording& rec) {
+      rec.transition(target->color, vk::ImageLayout::eTransferDstOptimal);
+      rec.cmd.clearColorImage(
+          *target->color.image, vk::ImageLayout::eTransferDstOptimal,
+          vk::ClearColorValue(std::array<float, 4>{0.0f, 0.0f, 0.0f, 0.0f}),
+          vk::ImageSubresourceRange(vk::ImageAspectFlagBits::eColor, 0, 1, 0, 1));
+      if (target->depth) {
+        rec.transition(*target->depth, vk::ImageLayout::eTransferDstOptimal);
+        rec.cmd.clearDepthStencilImage(
+            *target->depth->image, vk::ImageLayout::eTransferDstOptimal,
+            vk::ClearDepthStencilValue(1.0f, 0),
+            vk::ImageSubresourceRange(vk::ImageAspectFlagBits::eDepth, 0, 1, 0, 1));
+      }
+    });
+    targets_.push_back(std::move(target));
+    return TargetHandle{id};
+  });
+}
+
+Result<MeshHandle> VulkanBackend::upload_mesh(const MeshData& data) {
+  return guarded<MeshHandle>("upload_mesh", [&]() -> Result<MeshHandle> {
+    if (auto valid = validate_mesh(data); !valid) return fail(valid.error());
+    auto mesh = std::make_unique<Mesh>();
+    const size_t vertex_bytes = data.vertices.size() * sizeof(Vertex);
+    const size_t index_bytes = data.indices.size() * sizeof(uint32_t);
+    mesh->vertices = create_buffer(vertex_bytes, vk::BufferUsageFlagBits::eVertexBuffer);
+    vk_support::write_buffer(mesh->vertices, data.vertices.data(), vertex_bytes);
+    mesh->indices = create_buffer(index_bytes, vk::BufferUsageFlagBits::eIndexBuffer);
+    vk_support::write_buffer(mesh->indices, data.indices.data(), index_bytes);
+    mesh->index_count = static_cast<uint32_t>(data.indices.size());
+    meshes_.push_back(std::move(mesh));
+    return MeshHandle{static_cast<uint32_t>(meshes_.size())};
+  });
+}
+
+Result<TextureHandle> VulkanBackend::upload_texture(const TextureData& data) {
+  return guarded<TextureHandle>("upload_texture", [&]() -> Result<TextureHandle> {
+    if (auto valid = validate_texture(data, max_image_size_); !valid) return fail(valid.error());
+    const TextureShape shape = data.shape();
+    const bool depth = data.format == TextureFormat::Depth32Float;
+    const vk::ImageAspectFlags aspect = depth ? vk::ImageAspectFlagBits::eDepth : vk::ImageAspectFlagBits::eColor;
+    const uint32_t id = static_cast<uint32_t>(textures_.size() + 1);
+    using U = vk::ImageUsageFlagBits;
+    vk_support::ImageSpec spec{vk_support::vk_format(data.format),
+                               aspect,
+                               data.width,
+                               data.height,
+                               static_cast<uint32_t>(data.levels.size()),
+                               shape.multisampled ? U::eSampled | U::eColorAttachment : U::eSampled | U::eTransferDst,
+                               fmt::format("texture {}", id),
+                               data.format,
+                               data.dimension,
+                               data.layers,
+                               data.samples};
+    if (auto why = vk_support::unsupported_image(device_ref(), spec))
+      return fail(fmt::format("upload_texture: {} of {}: {}", shape_name(shape), format_name(data.format), *why));
+    auto image = std::make_unique<Image>(vk_support::create_image(device_ref(), spec));
+    if (shape.multisampled) {
+      fill_multisampled(*image, data);
+      textures_.push_back(std::move(image));
+      return TextureHandle{id};
+    }
+    std::vector<size_t> offsets;
+    size_t total = 0;
+    for (const std::vector<std::byte>& level : data.levels) {
+      offsets.push_back(total);
+      total += (level.size() + 15) & ~size_t(15);
+    }
+    Buffer staging = create_buffer(total, vk::BufferUsageFlagBits::eTransferSrc);
+    for (size_t level = 0; level < data.levels.size(); ++level)
+      vk_support::write_buffer(staging, data.levels[level].data(), data.levels[level].size(), offsets[level]);
+    const bool volume = data.dimension == TextureDimension::Tex3D;
+    submit([&](Recording& rec) {
+      rec.transition(*image, vk::ImageLayout::eTransferDstOptimal);
+      // Each level's layers (cube faces, 1D rows) follow one another in the buffer, as they are
+      // numbered in the image; row 0 of each is v = 0.
+      std::vector<vk::BufferImageCopy> regions;
+      for (uint32_t level = 0; level < image->levels; ++level)
+        regions.emplace_back(offsets[level], 0, 0, vk::ImageSubresourceLayers(aspect, level, 0, image->layers),
+                             vk::Offset3D(0, 0, 0),
+                             vk::Extent3D(std::max<uint32_t>(1, data.width >> level),
+                                          std::max<uint32_t>(1, data.height >> level),
+                                          volume ? std::max<uint32_t>(1, data.layers >> level) : 1));
+      rec.cmd.copyBufferToImage(*staging.buffer, *image->image, vk::ImageLayout::eTransferDstOptimal, regions);
+      rec.transition(*image, vk::ImageLayout::eShaderReadOnlyOptimal);
+    });
+    textures_.push_back(std::move(image));
+    return TextureHandle{id};
+  });
+}
+
+void VulkanBackend::fill_multisampled(Image& image, const TextureData& data) {
+  // A multisampled image takes no copies from a buffer: the data goes into a single-sampled 2D
+  // array first, and a draw per layer writes it into every sample.
+  using U = vk::ImageUsageFlagBits;
+  Image source = vk_support::create_image(
+      device_ref(), {image.format, vk::ImageAspectFlagBits::eColor, data.width, data.height, 1,
+                     U::eSampled | U::eTransferDst, "the single-sampled copy of " + image.label, data.format,
+                     TextureDimension::Tex2DArray, data.layers, 1});
+  Buffer staging = create_buffer(data.levels[0].size(), vk::BufferUsageFlagBits::eTransferSrc);
+  vk_support::write_buffer(staging, data.levels[0].data(), data.levels[0].size());
+
+  const TexelKind kind = texel_kind(data.format);
+  auto vertex_code = spirv::compile_vulkan_glsl(kFillVertexShader, spirv::Stage::Vertex, "multisample_fill.vert");
+  auto fragment_code =
+      spirv::compile_vulkan_glsl(fill_fragment_shader(kind), spirv::Stage::Fragment, "multisample_fill.frag");
+  if (!vertex_code || !fragment_code)
+    throw std::runtime_error("the multisample fill shaders do not compile: " +
+                             (vertex_code ? fragment_code.error() : vertex_code.error()).to_string());
+  const auto module = [&](const std::vector<uint32_t>& words) {
+    return vk::raii::ShaderModule(device_, vk::ShaderModuleCreateInfo({}, words.size() * sizeof(uint32_t), words.data()));
+  };
+  const vk::raii::ShaderModule vertex = module(vertex_code->words);
+  const vk::raii::ShaderModule fragment = module(fragment_code->words);
+  const vk::DescriptorSetLayoutBinding binding(0, vk::DescriptorType::eCombinedImageSampler, 1,
+                                               vk::ShaderStageFlagBits::eFragment);
+  const vk::raii::DescriptorSetLayout set_layout(device_, vk::DescriptorSetLayoutCreateInfo({}, binding));
+  const vk::PushConstantRange push(vk::ShaderStageFlagBits::eFragment, 0, sizeof(int32_t));
+  const vk::DescriptorSetLayout set_layout_handle = *set_layout;
+  const vk::raii::PipelineLayout pipeline_layout(device_, vk::PipelineLayoutCreateInfo({}, set_layout_handle, push));
+  const std::array<vk::PipelineShaderStageCreateInfo, 2> stages = {
+      vk::PipelineShaderStageCreateInfo({}, vk::ShaderStageFlagBits::eVertex, *vertex, "main"),
+      vk::PipelineShaderStageCreateInfo({}, vk::ShaderStageFlagBits::eFragment, *fragment, "main")};
+  const vk::PipelineVertexInputStateCreateInfo vertex_input;
+  const vk::PipelineInputAssemblyStateCreateInfo assembly({}, vk::PrimitiveTopology::eTriangleList);
+  const vk::Viewport viewport(0.0f, 0.0f, float(data.width), float(data.height), 0.0f, 1.0f);
+  const vk::Rect2D area({0, 0}, {data.width, data.height});
+  const vk::PipelineViewportStateCreateInfo viewport_state({}, viewport, area);
+  vk::PipelineRasterizationStateCreateInfo raster({}, VK_FALSE, VK_FALSE, vk::PolygonMode::eFill,
+                                                  vk::CullModeFlagBits::eNone, vk::FrontFace::eCounterClockwise);
+  raster.lineWidth = 1.0f;
+  const vk::PipelineMultisampleStateCreateInfo multisample({}, vk::SampleCountFlagBits(data.samples));
+  vk::PipelineColorBlendAttachmentState blend_attachment;
+  blend_attachment.colorWriteMask = vk::ColorComponentFlagBits::eR | vk::ColorComponentFlagBits::eG |
+                                    vk::ColorComponentFlagBits::eB | vk::ColorComponentFlagBits::eA;
+  const vk::PipelineColorBlendStateCreateInfo blend({}, VK_FALSE, vk::LogicOp::eCopy, blend_attachment);
+  vk::PipelineRenderingCreateInfo rendering({}, image.format);
+  vk::GraphicsPipelineCreateInfo info({}, stages, &vertex_input, &assembly, nullptr, &viewport_state, &raster,
+                                      &multisample, nullptr, &blend, nullptr, *pipeline_layout);
+  info.pNext = &rendering;
+  const vk::raii::Pipeline pipeline(device_, nullptr, info);
+
+  const vk::DescriptorPoolSize pool_size(vk::DescriptorType::eCombinedImageSampler, 1);
+  const vk::raii::DescriptorPool pool(
+      device_, vk::DescriptorPoolCreateInfo(vk::DescriptorPoolCreateFlagBits::eFreeDescriptorSet, 1, pool_size));
+  vk::raii::DescriptorSets sets(device_, vk::DescriptorSetAllocateInfo(*pool, set_layout_handle));
+  const vk::DescriptorImageInfo source_info(*sampler({Filter::Nearest, AddressMode::ClampToEdge}, false), *source.view,
+                                            vk::ImageLayout::eShaderReadOnlyOptimal);
+  device_.updateDescriptorSets(
+      vk::WriteDescriptorSet(*sets.front(), 0, 0, vk::DescriptorType::eCombinedImageSampler, source_info), nullptr);
+  std::vector<vk::raii::ImageView> layer_views;
+  for (uint32_t layer = 0; layer < data.layers; ++layer)
+    layer_views.emplace_back(device_, vk::ImageViewCreateInfo({}, *image.image, vk::ImageViewType::e2D, image.format, {},
+                                                              {vk::ImageAspectFlagBits::eColor, 0, 1, layer, 1}));
+  submit([&](Recording& rec) {
+    rec.transition(source, vk::ImageLayout::eTransferDstOptimal);
+    const vk::BufferImageCopy region(0, 0, 0, vk::ImageSubresourceLayers(vk::ImageAspectFlagBits::eColor, 0, 0, data.layers),
+                                     vk::Offset3D(0, 0, 0), vk::Extent3D(data.width, data.height, 1));
+    rec.cmd.copyBufferToImage(*staging.buffer, *source.image, vk::ImageLayout::eTransferDstOptimal, region);
+    rec.transition(source, vk::ImageLayout::eShaderReadOnlyOptimal);
+    rec.transition(image, vk::ImageLayout::eColorAttachmentOptimal);
+    rec.cmd.bindPipeline(vk::PipelineBindPoint::eGraphics, *pipeline);
+    rec.cmd.bindDescriptorSets(vk::PipelineBindPoint::eGraphics, *pipeline_layout, 0, *sets.front(), nullptr);
+    for (uint32_t layer = 0; layer < data.layers; ++layer) {
+      const vk::RenderingAttachmentInfo color(*layer_views[layer], vk::ImageLayout::eColorAttachmentOptimal, {}, nullptr,
+                                              {}, vk::AttachmentLoadOp::eDontCare, vk::AttachmentStoreOp::eStore);
+      rec.cmd.beginRendering(vk::RenderingInfo({}, area, 1, 0, color));
+      const int32_t layer_index = static_cast<int32_t>(layer);
+      rec.cmd.pushConstants<int32_t>(*pipeline_layout, vk::ShaderStageFlagBits::eFragment, 0, layer_index);
+      rec.cmd.draw(3, 1, 0, 0);
+      rec.cmd.endRendering();
+    }
+    rec.transition(image, vk::ImageLayout::eShaderReadOnlyOptimal);
+  });
+}
+
+const Buffer& VulkanBackend::zero_vertex_buffer() {
+  if (!*zero_vertices_.buffer) {
+    zero_vertices_ = create_buffer(16, vk::BufferUsageFlagBits::eVertexBuffer);
+    const std::array<uint32_t, 4> zeros{};
+    vk_support::write_buffer(zero_vertices_, zeros.data(), sizeof zeros);
+  }
+  return zero_vertices_;
+}
+
+Result<ProgramHandle> VulkanBackend::create_program(const ProgramDesc& desc) {
+  const std::string what = fmt::format("create_program '{}'", desc.name);
+  return guarded<ProgramHandle>(what, [&]() -> Result<ProgramHandle> {
+    auto program = std::make_unique<Program>();
+    program->name = desc.name;
+    program->layout = desc.layout;
+    program->fullscreen = desc.fullscreen;
+    program->vertex_entry = desc.vertex.entry_point;
+    program->fragment_entry = desc.fragment.entry_point;
+
+    struct StageIn {
+      const ShaderStageSource& source;
+      const char* stage;
+      vk_support::ExecutionModel model;
+      vk::raii::ShaderModule& module;
+    };
+    using vk_support::ExecutionModel;
+    for (const StageIn& in :
+         {StageIn{desc.vertex, "vertex", ExecutionModel::Vertex, program->vertex},
+          StageIn{desc.fragment, "fragment", ExecutionModel::Fragment, program->fragment}}) {
+      const std::string shader = fmt::format("{}: {} shader '{}'", what, in.stage, in.source.name);
+      if (in.source.spirv.empty()) return fail(shader + " has no SPIR-V");
+      if (auto valid = spirv::validate(in.source.spirv, in.source.name); !valid) {
+        Error error = valid.error();
+        error.message = fmt::format("{} is not valid SPIR-V: {}", shader, error.message);
+        return fail(std::move(error));
+      }
+      const vk_support::EntryPointInfo entry =
+          vk_support::reflect_entry_point(in.source.spirv, in.model, in.source.entry_point);
+      if (!entry.found)
+        return fail(fmt::format("{} has no {} entry point named '{}'", shader, in.stage,
+                                in.source.entry_point));
+      if (in.model == ExecutionModel::Vertex) {
+        program->vertex_inputs = entry.input_locations;
+        for (const auto& [location, kind] : entry.input_types) {
+          if (location <= 3) continue;
+          if (!kind)
+            return fail(fmt::format("{} reads vertex input location {}, which no mesh supplies and whose type is "
+                                    "not a 32-bit float, int or uint scalar or vector",
+                                    shader, location));
+          program->zero_inputs.emplace(location, *kind);
+        }
+      }
+      // A resource the layout does not list would reach the driver without a descriptor.
+      for (const auto& [set, binding] : entry.descriptor_bindings)
+        if (set != 0 || !layout_has_binding(desc.layout, binding))
+          return fail(fmt::format("{} reads the resource at set {} binding {}, which the program's "
+                                  "layout does not list",
+                                  shader, set, binding));
+      in.module = vk::raii::ShaderModule(
+          device_, vk::ShaderModuleCreateInfo({}, in.source.spirv.size() * sizeof(uint32_t),
+                                              in.source.spirv.data()));
+    }
+    if (desc.fullscreen && !program->vertex_inputs.empty())
+      return fail(
+          fmt::format("{}: a full-screen program's vertex shader must read no vertex "
+                      "input, but it reads location {}",
+                      what, *program->vertex_inputs.begin()));
+
+    std::vector<vk::DescriptorSetLayoutBinding> bindings;
+    std::map<uint32_t, std::string> used;  // binding -> what uses it
+    std::set<uint32_t> shared_samplers;    // sampler bindings already listed
+    std::set<std::string> names;
+    const auto stages = vk::ShaderStageFlagBits::eVertex | vk::ShaderStageFlagBits::eFragment;
+    auto add = [&](uint32_t binding, vk::DescriptorType type,
+                   const std::string& user) -> Result<void> {
+      if (auto [it, fresh] = used.emplace(binding, user); !fresh)
+        return fail(fmt::format("{}: binding {} is used by both {} and {}", what, binding,
+                                it->second, user));
+      bindings.emplace_back(binding, type, 1, stages);
+      return {};
+    };
+    for (const UniformBlockSlot& slot : desc.layout.uniform_blocks) {
+      if (!names.insert(slot.name).second)
+        return fail(fmt::format("{}: the layout names '{}' twice", what, slot.name));
+      if (slot.size == 0 || slot.size > max_uniform_range_)
+        return fail(fmt::format("{}: uniform block '{}' has size {}; the device allows 1..{} bytes",
+                                what, slot.name, slot.size, max_uniform_range_));
+      if (auto ok = add(slot.binding, vk::DescriptorType::eUniformBuffer,
+                        fmt::format("uniform block '{}'", slot.name));
+          !ok)
+        return fail(ok.error());
+    }
+    for (const TextureSlot& slot : desc.layout.textures) {
+      if (!names.insert(slot.name).second)
+        return fail(fmt::format("{}: the layout names '{}' twice", what, slot.name));
+      const std::string user = fmt::format("texture '{}'", slot.name);
+      Result<void> ok = slot.sampler_binding || slot.image_only
+                            ? add(slot.binding, vk::DescriptorType::eSampledImage, user)
+                            : add(slot.binding, vk::DescriptorType::eCombinedImageSampler, user);
+      // Textures sampled through one SamplerState share its binding (render checks that their
+      // samplers agree).
+      if (ok && slot.sampler_binding && !shared_samplers.count(*slot.sampler_binding)) {
+        ok = add(*slot.sampler_binding, vk::DescriptorType::eSampler, "the sampler of " + user);
+        shared_samplers.insert(*slot.sampler_binding);
+      }
+      if (!ok) return fail(ok.error());
+    }
+    program->set_layout =
+        vk::raii::DescriptorSetLayout(device_, vk::DescriptorSetLayoutCreateInfo({}, bindings));
+    const vk::DescriptorSetLayout set_layout = *program->set_layout;
+    program->pipeline_layout =
+        vk::raii::PipelineLayout(device_, vk::PipelineLayoutCreateInfo({}, set_layout));
+    programs_.push_back(std::move(program));
+    return ProgramHandle{static_cast<uint32_t>(programs_.size())};
+  });
+}
+
+Result<vk::Pipeline> VulkanBackend::pipeline(Program& program, bool depth) {
+  std::optional<vk::raii::Pipeline>& slot = program.pipelines[depth ? 1 : 0];
+  if (slot) return **slot;
+  return guarded<vk::Pipeline>(
+      fmt::format("creating the pipeline of program '{}'", program.name),
+      [&]() -> Result<vk::Pipeline> {
+        const std::array<vk::PipelineShaderStageCreateInfo, 2> stages = {
+            vk::PipelineShaderStageCreateInfo({}, vk::ShaderStageFlagBits::eVertex, *program.vertex,
+                                              program.vertex_entry.c_str()),
+            vk::PipelineShaderStageCreateInfo({}, vk::ShaderStageFlagBits::eFragment,
+                                              *program.fragment, program.fragment_entry.c_str())};
+        // Binding 0 is the mesh; binding 1 the zero buffer, read at stride 0 by every input no
+        // mesh supplies.
+        std::vector<vk::VertexInputBindingDescription> bindings;
+        const std::array<vk::VertexInputAttributeDescription, 4> all_attributes = {
+            vk::VertexInputAttributeDescription(0, 0, vk::Format::eR32G32B32Sfloat,
+                                                offsetof(Vertex, position)),
+            vk::VertexInputAttributeDescription(1, 0, vk::Format::eR32G32B32Sfloat,
+                                                offsetof(Vertex, normal)),
+            vk::VertexInputAttributeDescription(2, 0, vk::Format::eR32G32B32A32Sfloat,
+                                                offsetof(Vertex, tangent)),
+            vk::VertexInputAttributeDescription(3, 0, vk::Format::eR32G32Sfloat,
+                                                offsetof(Vertex, uv))};
+        // Only the locations the shader reads: the validation layer warns about unread attributes.
+        std::vector<vk::VertexInputAttributeDescription> attributes;
+        for (uint32_t location : program.vertex_inputs)
+          if (location < all_attributes.size()) attributes.push_back(all_attributes[location]);
+        if (!attributes.empty()) bindings.emplace_back(0, sizeof(Vertex), vk::VertexInputRate::eVertex);
+        for (const auto& [location, kind] : program.zero_inputs)
+          attributes.emplace_back(location, 1, zero_input_format(kind), 0);
+        if (!program.zero_inputs.empty()) bindings.emplace_back(1, 0, vk::VertexInputRate::eVertex);
+        vk::PipelineVertexInputStateCreateInfo vertex_input;
+        if (!attributes.empty())
+          vertex_input = vk::PipelineVertexInputStateCreateInfo({}, bindings, attributes);
+        const vk::PipelineInputAssemblyStateCreateInfo assembly(
+            {}, vk::PrimitiveTopology::eTriangleList);
+        const vk::PipelineViewportStateCreateInfo viewport({}, 1, nullptr, 1, nullptr);
+        vk::PipelineRasterizationStateCreateInfo raster(
+            {}, VK_FALSE, VK_FALSE, vk::PolygonMode::eFill, vk::CullModeFlagBits::eNone,
+            vk::FrontFace::eCounterClockwise);
+        raster.lineWidth = 1.0f;
+        const vk::PipelineMultisampleStateCreateInfo multisample({}, vk::SampleCountFlagBits::e1);
+        const vk::PipelineDepthStencilStateCreateInfo depth_state({}, depth, depth,
+                                                                  vk::CompareOp::eLess);
+        vk::PipelineColorBlendAttachmentState blend_attachment;
+        blend_attachment.colorWriteMask =
+            vk::ColorComponentFlagBits::eR | vk::ColorComponentFlagBits::eG |
+            vk::ColorComponentFlagBits::eB | vk::ColorComponentFlagBits::eA;
+        const vk::PipelineColorBlendStateCreateInfo blend({}, VK_FALSE, vk::LogicOp::eCopy,
+                                                          blend_attachment);
+        const std::array<vk::DynamicState, 2> dynamic_states = {vk::DynamicState::eViewport,
+                                                                vk::DynamicState::eScissor};
+        const vk::PipelineDynamicStateCreateInfo dynamic({}, dynamic_states);
+        vk::PipelineRenderingCreateInfo rendering({}, kColorFormat,
+                                                  depth ? kDepthFormat : vk::Format::eUndefined);
+        vk::GraphicsPipelineCreateInfo info({}, stages, &vertex_input, &assembly, nullptr,
+                                            &viewport, &raster, &multisample, &depth_state, &blend,
+                                            &dynamic, *program.pipeline_layout);
+        info.pNext = &rendering;
+        slot.emplace(device_, nullptr, info);
+        return **slot;
+      });
+}
+
+Result<void> VulkanBackend::render(const RenderPass& pass) {
+  const std::string what = fmt::format("render into target {}", pass.target.id);
+  return guarded<void>(what, [&]() -> Result<void> {
+    Target* target = find_target(pass.target.id);
+    if (!target) return fail(fmt::format("{}: no such target", what));
+
+    // Resolve every binding before recording anything.
+    struct BoundTexture {
+      Image* image;
+      SamplerDesc sampler;
+    };
+    struct Resolved {
+      Program* program = nullptr;
+      Mesh* mesh = nullptr;
+      vk::Pipeline pipeline;
+      std::vector<const UniformBinding*> uniforms;  // per layout slot
+      std::vector<BoundTexture> textures;           // per layout slot
+    };
+    std::vector<Resolved> draws;
+    std::vector<Image*> sampled_targets;
+    vk::DeviceSize uniform_bytes = 0;
+    size_t uniform_count = 0, combined_count = 0, separate_count = 0, image_only_count = 0;
+    for (size_t i = 0; i < pass.draws.size(); ++i) {
+      const DrawItem& item = pass.draws[i];
+      Resolved draw;
+      if (item.program.id == 0 || item.program.id > programs_.size())
+        return fail(
+            fmt::format("{}: draw {}: no such program (handle {})", what, i, item.program.id));
+      draw.program = programs_[item.program.id - 1].get();
+      const Program& program = *draw.program;
+      const std::string where = fmt::format("{}: draw {} (program '{}')", what, i, program.name);
+      if (!program.fullscreen) {
+        if (item.mesh.id == 0 || item.mesh.id > meshes_.size())
+          return fail(fmt::format("{}: no such mesh (handle {})", where, item.mesh.id));
+        draw.mesh = meshes_[item.mesh.id - 1].get();
+      }
+
+      auto matched = match_bindings(program.layout, item, where);
+      if (!matched) return fail(matched.error());
+      draw.uniforms = std::move(matched->uniforms);
+      const auto& blocks = program.layout.uniform_blocks;
+      for (const UniformBlockSlot& block : blocks)
+        uniform_bytes += (block.size + uniform_alignment_ - 1) / uniform_alignment_ * uniform_alignment_;
+      uniform_count += blocks.size();
+
+      const auto& slots = program.layout.textures;
+      draw.textures.assign(slots.size(), BoundTexture{nullptr, {}});
+      for (size_t index = 0; index < slots.size(); ++index) {
+        const TextureBinding& binding = *matched->textures[index];
+        const TextureSource& source = binding.source;
+        Image* image = nullptr;
+        if (source.kind == TextureSource::Kind::Texture) {
+          if (source.id == 0 || source.id > textures_.size())
+            return fail(fmt::format("{}: texture '{}' is bound to a missing texture (handle {})",
+                                    where, binding.name, source.id));
+          image = textures_[source.id - 1].get();
+        } else {
+          Target* sampled = find_target(source.id);
+          if (!sampled)
+            return fail(fmt::format("{}: texture '{}' is bound to a missing target (handle {})",
+                                    where, binding.name, source.id));
+          if (sampled == target)
+            return fail(
+                fmt::format("{}: texture '{}' samples target {}, which the pass renders into",
+                            where, binding.name, source.id));
+          if (source.kind == TextureSource::Kind::TargetDepth && !sampled->depth)
+            return fail(
+                fmt::format("{}: texture '{}' samples the depth of target {}, which has no depth",
+                            where, binding.name, source.id));
+          image =
+              source.kind == TextureSource::Kind::TargetColor ? &sampled->color : &*sampled->depth;
+          sampled_targets.push_back(image);
+        }
+        if (auto fits = check_bound_texture(slots[index], {image->shape, image->texture_format, image->label},
+                                            source.sampler, where);
+            !fits)
+          return fail(fits.error());
+        if (source.sampler.filter == Filter::Linear && !image->linear_filter)
+          return fail(
+              fmt::format("{}: texture '{}': {} cannot be filtered linearly on this device; "
+                          "use a nearest sampler",
+                          where, binding.name, image->label));
+        draw.textures[index] = BoundTexture{image, source.sampler};
+        if (const auto& sampler_binding = slots[index].sampler_binding) {
+          // One SamplerState, one sampler: every texture read through it must be bound with the same.
+          for (size_t other = 0; other < index; ++other) {
+            if (slots[other].sampler_binding != sampler_binding) continue;
+            const SamplerDesc& first = draw.textures[other].sampler;
+            const bool compared = slots[index].comparison;
+            if (first.filter == source.sampler.filter && first.address == source.sampler.address &&
+                slots[other].comparison == compared && (!compared || first.compare == source.sampler.compare))
+              continue;
+            return fail(fmt::format("{}: textures '{}' and '{}' are sampled through one sampler (binding {}) but are "
+                                    "bound with different samplers",
+                                    where, slots[other].name, slots[index].name, *sampler_binding));
+          }
+        }
+        if (slots[index].image_only) {
+          image_only_count += 1;
+        } else {
+          (slots[index].sampler_binding ? separate_count : combined_count) += 1;
+        }
+      }
+      draws.push_back(std::move(draw));
+    }
+    for (Resolved& draw : draws) {
+      auto made = pipeline(*draw.program, target->depth.has_value());
+      if (!made) return fail(made.error());
+      draw.pipeline = *made;
+    }
+
+    // Uniform data for every draw in one host-visible buffer; one descriptor set per draw.
+    Buffer uniforms;
+    if (uniform_bytes > 0) {
+      uniforms = create_buffer(uniform_bytes, vk::BufferUsageFlagBits::eUniformBuffer);
+      void* mapped = uniforms.memory.mapMemory(0, uniform_bytes);
+      vk::DeviceSize offset = 0;
+      for (const Resolved& draw : draws) {
+        for (const UniformBinding* binding : draw.uniforms) {
+          std::memcpy(static_cast<std::byte*>(mapped) + offset, binding->bytes.data(),
+                      binding->bytes.size());
+          offset += (binding->bytes.size() + uniform_alignment_ - 1) / uniform_alignment_ *
+                    uniform_alignment_;
+        }
+      }
+      uniforms.memory.unmapMemory();
+    }
+    std::vector<vk::DescriptorPoolSize> pool_sizes;
+    auto add_size = [&](vk::DescriptorType type, size_t count) {
+      if (count) pool_sizes.emplace_back(type, static_cast<uint32_t>(count));
+    };
+    add_size(vk::DescriptorType::eUniformBuffer, uniform_count);
+    add_size(vk::DescriptorType::eCombinedImageSampler, combined_count);
+    add_size(vk::DescriptorType::eSampledImage, separate_count + image_only_count);
+    add_size(vk::DescriptorType::eSampler, separate_count);
+    vk::raii::DescriptorPool pool{nullptr};
+    std::vector<vk::raii::DescriptorSet> sets;  // declared after the pool: freed before it
+    std::vector<vk::DescriptorSet> draw_sets(draws.size());
+    if (!pool_sizes.empty()) {
+      pool = vk::raii::DescriptorPool(
+          device_,
+          vk::DescriptorPoolCreateInfo(vk::DescriptorPoolCreateFlagBits::eFreeDescriptorSet,
+                                       static_cast<uint32_t>(draws.size()), pool_sizes));
+      vk::DeviceSize offset = 0;
+      for (size_t i = 0; i < draws.size(); ++i) {
+        const Resolved& draw = draws[i];
+        const ProgramLayout& layout = draw.program->layout;
+        if (layout.uniform_blocks.empty() && layout.textures.empty()) continue;
+        const vk::DescriptorSetLayout set_layout = *draw.program->set_layout;
+        vk::raii::DescriptorSets allocated(device_,
+                                           vk::DescriptorSetAllocateInfo(*pool, set_layout));
+        sets.push_back(std::move(allocated.front()));
+        draw_sets[i] = *sets.back();
+        // Reserved up front: the writes point into these vectors.
+        std::vector<vk::DescriptorBufferInfo> buffer_infos;
+        std::vector<vk::DescriptorImageInfo> image_infos;
+        buffer_infos.reserve(layout.uniform_blocks.size());
+        image_infos.reserve(layout.textures.size() * 2);
+        std::vector<vk::WriteDescriptorSet> writes;
+        for (const UniformBlockSlot& slot : layout.uniform_blocks) {
+          buffer_infos.emplace_back(*uniforms.buffer, offset, slot.size);
+          writes.emplace_back(draw_sets[i], slot.binding, 0, vk::DescriptorType::eUniformBuffer,
+                              nullptr, buffer_infos.back());
+          offset += (slot.size + uniform_alignment_ - 1) / uniform_alignment_ * uniform_alignment_;
+        }
+        for (size_t s = 0; s < layout.textures.size(); ++s) {
+          const TextureSlot& slot = layout.textures[s];
+          const BoundTexture& bound = draw.textures[s];
+          const vk::Sampler smp = *sampler(bound.sampler, slot.comparison);
+          if (slot.image_only) {
+            image_infos.emplace_back(nullptr, *bound.image->view, vk::ImageLayout::eShaderReadOnlyOptimal);
+            writes.emplace_back(draw_sets[i], slot.binding, 0, vk::DescriptorType::eSampledImage,
+                                image_infos.back());
+          } else if (slot.sampler_binding) {
+            image_infos.emplace_back(nullptr, *bound.image->view,
+                                     vk::ImageLayout::eShaderReadOnlyOptimal);
+            writes.emplace_back(draw_sets[i], slot.binding, 0, vk::DescriptorType::eSampledImage,
+                                image_infos.back());
+            const bool first_reader = std::none_of(layout.textures.begin(), layout.textures.begin() + long(s),
+                                                   [&](const TextureSlot& other) {
+                                                     return other.sampler_binding == slot.sampler_binding;
+                                                   });
+            if (first_reader) {
+              image_infos.emplace_back(smp, nullptr, vk::ImageLayout::eUndefined);
+              writes.emplace_back(draw_sets[i], *slot.sampler_binding, 0, vk::DescriptorType::eSampler,
+                                  image_infos.back());
+            }
+          } else {
+            image_infos.emplace_back(smp, *bound.image->view,
+                                     vk::ImageLayout::eShaderReadOnlyOptimal);
+            writes.emplace_back(draw_sets[i], slot.binding, 0,
+                                vk::DescriptorType::eCombinedImageSampler, image_infos.back());
+          }
+        }
+        device_.updateDescriptorSets(writes, nullptr);
+      }
+    }
+
+    vk::Buffer zero_buffer;
+    if (std::any_of(draws.begin(), draws.end(), [](const Resolved& d) { return !d.program->zero_inputs.empty(); }))
+      zero_buffer = *zero_vertex_buffer().buffer;
+    submit([&](Recording& rec) {
+      for (Image* image : sampled_targets)
+        rec.transition(*image, vk::ImageLayout::eShaderReadOnlyOptimal);
+      rec.transition(target->color, vk::ImageLayout::eColorAttachmentOptimal);
+      if (target->depth)
+        rec.transition(*target->depth, vk::ImageLayout::eDepthStencilAttachmentOptimal);
+      const vk::Rect2D area({0, 0}, {target->color.width, target->color.height});
+      const vk::RenderingAttachmentInfo color(
+          *target->color.view, vk::ImageLayout::eColorAttachmentOptimal, {}, nullptr, {},
+          vk::AttachmentLoadOp::eClear, vk::AttachmentStoreOp::eStore,
+          vk::ClearColorValue(std::array<float, 4>{pass.clear_color.r, pass.clear_color.g,
+                                                   pass.clear_color.b, pass.clear_color.a}));
+      vk::RenderingAttachmentInfo depth;
+      if (target->depth)
+        depth = vk::RenderingAttachmentInfo(
+            *target->depth->view, vk::ImageLayout::eDepthStencilAttachmentOptimal, {}, nullptr, {},
+            vk::AttachmentLoadOp::eClear, vk::AttachmentStoreOp::eStore,
+            vk::ClearDepthStencilValue(pass.clear_depth, 0));
+      rec.cmd.beginRendering(
+          vk::RenderingInfo({}, area, 1, 0, color, target->depth ? &depth : nullptr));
+      // Negative height: clip +y is up and row 0 is the top, as in Direct3D.
+      const float width = static_cast<float>(target->color.width);
+      const float height = static_cast<float>(target->color.height);
+      rec.cmd.setViewport(0, vk::Viewport(0.0f, height, width, -height, 0.0f, 1.0f));
+      rec.cmd.setScissor(0, area);
+      for (size_t i = 0; i < draws.size(); ++i) {
+        const Resolved& draw = draws[i];
+        rec.cmd.bindPipeline(vk::PipelineBindPoint::eGraphics, draw.pipeline);
+        if (draw_sets[i])
+          rec.cmd.bindDescriptorSets(vk::PipelineBindPoint::eGraphics,
+                                     *draw.program->pipeline_layout, 0, draw_sets[i], nullptr);
+        if (draw.program->fullscreen) {
+          rec.cmd.draw(3, 1, 0, 0);
+        } else {
+          if (std::any_of(draw.program->vertex_inputs.begin(), draw.program->vertex_inputs.end(),
+                          [](uint32_t location) { return location <= 3; }))
+            rec.cmd.bindVertexBuffers(0, *draw.mesh->vertices.buffer, vk::DeviceSize(0));
+          if (!draw.program->zero_inputs.empty())
+            rec.cmd.bindVertexBuffers(1, zero_buffer, vk::DeviceSize(0));
+          rec.cmd.bindIndexBuffer(*draw.mesh->indices.buffer, 0, vk::IndexType::eUint32);
+          rec.cmd.drawIndexed(draw.mesh->index_count, 1, 0, 0, 0);
+        }
+      }
+      rec.cmd.endRendering();
+    });
+    return {};
+  });
+}
+
+Result<FloatImage> VulkanBackend::read_color(TargetHandle handle) {
+  const std::string what = fmt::format("read_color of target {}", handle.id);
+  return guarded<FloatImage>(what, [&]() -> Result<FloatImage> {
+    Target* target = find_target(handle.id);
+    if (!target) return fail(fmt::format("{}: no such target", what));
+    Image& color = target->color;
+    FloatImage result(color.width, color.height);
+    const vk::DeviceSize bytes = result.rgba.size() * sizeof(float);
+    Buffer readback = create_buffer(bytes, vk::BufferUsageFlagBits::eTransferDst);
+    submit([&](Recording& rec) {
+      rec.transition(color, vk::ImageLayout::eTransferSrcOptimal);
+      const vk::BufferImageCopy region(
+          0, 0, 0, vk::ImageSubresourceLayers(vk::ImageAspectFlagBits::eColor, 0, 0, 1),
+          vk::Offset3D(0, 0, 0), vk::Extent3D(color.width, color.height, 1));
+      rec.cmd.copyImageToBuffer(*color.image, vk::ImageLayout::eTransferSrcOptimal,
+                                *readback.buffer, region);
+      const vk::MemoryBarrier2 to_host(
+          vk::PipelineStageFlagBits2::eAllTransfer, vk::AccessFlagBits2::eTransferWrite,
+          vk::PipelineStageFlagBits2::eHost, vk::AccessFlagBits2::eHostRead);
+      rec.cmd.pipelineBarrier2(vk::DependencyInfo({}, to_host, {}, {}));
+    });
+    const void* mapped = readback.memory.mapMemory(0, bytes);
+    std::memcpy(result.rgba.data(), mapped, bytes);
+    readback.memory.unmapMemory();
+    return result;
+  });
+}
+
+}  // namespace
+
+bool vulkan_validation_available() {
+  try {
+    vk::raii::Context context;
+    for (const vk::LayerProperties& layer : context.enumerateInstanceLayerProperties())
+      if (std::string_view(layer.layerName.data()) == kValidationLayer) return true;
+  } catch (...) {
+    // No loader, or enumeration failed: no validation either.
+  }
+  return false;
+}
+
+Result<std::unique_ptr<Backend>> create_vulkan_backend(const VulkanOptions& options) {
+  try {
+    auto backend = std::make_unique<VulkanBackend>();
+    if (auto ok = backend->init(options); !ok) return fail(ok.error());
+    return std::unique_ptr<Backend>(std::move(backend));
+  } catch (const std::exception& e) {
+    return fail(fmt::format("creating the Vulkan lavapipe backend: {}", e.what()));
+  } catch (...) {
+    return fail("creating the Vulkan lavapipe backend: unknown exception");
+  }
+}
+
+}  // namespace xshade::harness

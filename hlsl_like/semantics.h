@@ -1,0 +1,23 @@
+// The semantics of entry point signatures (POSITION, TEXCOORD3, SV_Target1, DX9's VFACE ...):
+// what each names, read case-insensitively as HLSL does. Sema checks them against the stage,
+// reflection places them, and the GLSL emitter maps them to built-ins and locations.
+#pragma once
+
+#include <cstdint>
+#include <string>
+
+namespace xshade::hlsl {
+
+enum class SemanticKind : uint8_t {
+  Unknown, Position, Normal, Tangent, Binormal, Texcoord, Color, SvPosition, SvTarget, SvDepth,
+  SvIsFrontFace, SvVertexId, SvInstanceId,
+  Vface,  // DX9's VFACE: a float, positive for a front face
+};
+struct ParsedSemantic {
+  SemanticKind kind = SemanticKind::Unknown;
+  uint32_t index = 0;
+};
+ParsedSemantic parse_semantic(const std::string& text);
+std::string canonical_semantic(const ParsedSemantic& semantic);  // "TEXCOORD0", "SV_Target0"
+
+}  // namespace xshade::hlsl
