@@ -33,7 +33,7 @@ class PredefinedMacros {
   static Result<std::shared_ptr<const PredefinedMacros>> read(const std::vector<MacroDefinition>& definitions);
   ~PredefinedMacros();
 
-  struct Table;  // the macros, their text and their lookup: preprocessor.cpp
+  struct Table;  // the macros, their text and their lookup: preprocessor_internal.h
   const Table& table() const { return *table_; }
 
  private:

@@ -2,14 +2,19 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <chrono>
 #include <fstream>
 #include <memory>
+#include <optional>
 #include <random>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "hlsl_like/hang_guard.h"
+#include "hlsl_like/lexer.h"
+#include "hlsl_like/preprocessor_internal.h"
 
 namespace xshade::hlsl {
 namespace {
@@ -54,6 +59,23 @@ class PreprocessorTest : public ::testing::Test {
   }
   std::string where(const Token& t) const {
     return sources_.resolve(t.loc).to_string();
+  }
+  // Evaluates `text` as the #if expression evaluator alone sees a line: no macro expansion, and
+  // a `defined` left in it asks whether the name is one of `defined_names`.
+  std::optional<pp_detail::ExpressionValue> evaluate(std::string text, const Strings& defined_names = {}) {
+    const uint32_t file = sources_.add("expr.hlsl", std::move(text));
+    diagnostics_ = std::make_unique<DiagnosticEngine>(sources_);
+    std::vector<pp_detail::PPTok> tokens;
+    Lexer lexer(sources_.text(file), file, *diagnostics_);
+    for (Token t = lexer.next(); t.kind != TokenKind::EndOfFile; t = lexer.next()) {
+      pp_detail::PPTok token;
+      token.tok = t;
+      tokens.push_back(token);
+    }
+    const Loc end = tokens.empty() ? Loc{} : tokens.back().tok.loc;
+    return pp_detail::evaluate_expression(tokens, end, *diagnostics_, [&](std::string_view name) {
+      return std::find(defined_names.begin(), defined_names.end(), name) != defined_names.end();
+    });
   }
   size_t count_eof() const {
     size_t n = 0;
@@ -321,6 +343,30 @@ TEST_F(PreprocessorTest, AnInvalidPredefinedMacroIsAnError) {
   EXPECT_EQ(table.error().message, "predefined macros: invalid macro name '2bad' in the options");
 }
 
+TEST_F(PreprocessorTest, ADefinitionIsReadIntoParametersAndABodyThatNamesThem) {
+  auto table = PredefinedMacros::read({{"F(a, ...)", "#a a ## __VA_ARGS__ b"}, {"G", "(x)"}});
+  ASSERT_TRUE(table) << table.error().message;
+  const auto& by_name = (*table)->table().by_name;
+  auto body_of = [](const pp_detail::Macro& macro) {
+    std::string body;
+    for (const pp_detail::BodyToken& b : macro.body)
+      body += std::string(b.tok.text) + (b.param >= 0 ? "=" + std::to_string(b.param) : "") + " ";
+    return body;
+  };
+  ASSERT_EQ(by_name.count("F"), 1u);
+  const pp_detail::Macro& f = *by_name.at("F");
+  EXPECT_TRUE(f.function_like);
+  EXPECT_TRUE(f.variadic);
+  EXPECT_EQ(f.params, (std::vector<std::string_view>{"a", "__VA_ARGS__"}));
+  EXPECT_EQ(body_of(f), "# a=0 a=0 ## __VA_ARGS__=1 b ");
+  // A space before the parenthesis makes it the body of an object-like macro.
+  ASSERT_EQ(by_name.count("G"), 1u);
+  const pp_detail::Macro& g = *by_name.at("G");
+  EXPECT_FALSE(g.function_like);
+  EXPECT_TRUE(g.params.empty());
+  EXPECT_EQ(body_of(g), "( x ) ");
+}
+
 // --- conditionals ----------------------------------------------------------------------------------
 
 TEST_F(PreprocessorTest, IfArithmetic) {
@@ -443,6 +489,58 @@ TEST_F(PreprocessorTest, DeepExpressionsAreBounded) {
   for (int i = 0; i < 100000; ++i) minuses += "- ";
   EXPECT_EQ(run("#if " + parens + "1\n#endif\n#if " + minuses + "1\nok\n#endif"), "ok");
   EXPECT_EQ(messages(), (Strings{"main.hlsl:1:133: error: expression nested too deeply"}));
+}
+
+TEST_F(PreprocessorTest, TheExpressionEvaluatorGivesCsValuesAndSignedness) {
+  struct Case {
+    const char* text;
+    uint64_t value;
+    bool is_unsigned;
+  };
+  const Case cases[] = {
+      {"1 + 2 * 3", 7, false},
+      {"18446744073709551615", ~uint64_t(0), true},          // too large for a signed value
+      {"0x7fffffffffffffff + 1", uint64_t(1) << 63, false},  // wraps and stays signed
+      {"-1 >> 70", ~uint64_t(0), false},                     // a signed shift too far keeps the sign
+      {"1u << 63 >> 63", 1, true},
+      {"-1 / 2u", ~uint64_t(0) >> 1, true},  // an unsigned operand makes the division unsigned
+      {"0 ? 1u : -1", ~uint64_t(0), true},   // so does the branch of ?: not taken
+      {"2 > 1u", 1, false},                  // a comparison gives a signed 0 or 1
+      {"UNDEFINED + 2", 2, false},
+      {"(1, 2)", 2, false},
+  };
+  for (const Case& c : cases) {
+    const std::optional<pp_detail::ExpressionValue> value = evaluate(c.text);
+    ASSERT_TRUE(value) << c.text;
+    EXPECT_EQ(value->v, c.value) << c.text;
+    EXPECT_EQ(value->is_unsigned, c.is_unsigned) << c.text;
+    EXPECT_TRUE(messages().empty()) << c.text;
+  }
+}
+
+TEST_F(PreprocessorTest, TheExpressionEvaluatorAsksAboutADefinedLeftInTheLine) {
+  const Strings defined{"X", "Y"};
+  const std::optional<pp_detail::ExpressionValue> all = evaluate("defined X && defined(Y) && !defined Z", defined);
+  ASSERT_TRUE(all);
+  EXPECT_EQ(all->v, 1u);
+  const std::optional<pp_detail::ExpressionValue> sum = evaluate("defined(X) + defined Q + defined Y", defined);
+  ASSERT_TRUE(sum);
+  EXPECT_EQ(sum->v, 2u);
+  EXPECT_TRUE(messages().empty());
+  EXPECT_FALSE(evaluate("defined(X", defined));
+  EXPECT_EQ(messages(), (Strings{"expr.hlsl:1:1: error: missing ')' after 'defined'"}));
+}
+
+TEST_F(PreprocessorTest, TheExpressionEvaluatorReportsItsFirstErrorAndGivesNothing) {
+  EXPECT_FALSE(evaluate("1 / 0 + (2"));
+  EXPECT_EQ(messages(), (Strings{"expr.hlsl:1:3: error: division by zero in preprocessor expression"}));
+  EXPECT_FALSE(evaluate("1 +"));
+  EXPECT_EQ(messages(), (Strings{"expr.hlsl:1:3: error: expected value in expression"}));
+  // A division in an operand that is not evaluated is no error.
+  const std::optional<pp_detail::ExpressionValue> value = evaluate("1 || 1 / 0");
+  ASSERT_TRUE(value);
+  EXPECT_EQ(value->v, 1u);
+  EXPECT_TRUE(messages().empty());
 }
 
 // --- directives --------------------------------------------------------------------------------------

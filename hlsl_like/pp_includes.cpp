@@ -1,0 +1,212 @@
+// #include: where a name resolves (the including file's folder, then the include directories),
+// the folders an include may not leave, the stack of files being read with its limits (depth and
+// cycles), #pragma once and include guards remembered per file.
+#include <algorithm>
+#include <filesystem>
+#include <memory>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <system_error>
+#include <utility>
+#include <vector>
+
+#include "base/paths.h"
+#include "hlsl_like/preprocessor_internal.h"
+
+namespace xshade::hlsl {
+
+using pp_detail::clip;
+using pp_detail::is_punct1;
+
+std::optional<std::filesystem::path> find_include(std::string_view name, const std::filesystem::path& including_file,
+                                                  bool angled, const std::vector<std::filesystem::path>& include_dirs,
+                                                  std::vector<std::filesystem::path>* searched) {
+  namespace fs = std::filesystem;
+  // Shaders written on Windows may spell "sub\\file.hlsl".
+  std::string portable(name);
+  for (char& c : portable)
+    if (c == '\\') c = '/';
+  const fs::path relative{portable};
+  auto exists = [](const fs::path& candidate) {
+    std::error_code error;
+    return fs::is_regular_file(candidate, error);
+  };
+  if (relative.is_absolute()) return exists(relative) ? std::optional<fs::path>(relative) : std::nullopt;
+  std::vector<fs::path> folders;
+  if (!angled && !including_file.empty()) folders.push_back(including_file.parent_path());
+  folders.insert(folders.end(), include_dirs.begin(), include_dirs.end());
+  for (const fs::path& folder : folders) {
+    if (searched) searched->push_back(folder);
+    if (exists(folder / relative)) return folder / relative;
+  }
+  return std::nullopt;
+}
+
+bool Preprocessor::Impl::inside_given_folders(const std::filesystem::path& file) const {
+  return std::any_of(given_folders_.begin(), given_folders_.end(),
+                     [&](const std::filesystem::path& folder) { return path_is_inside(file, folder); });
+}
+
+void Preprocessor::Impl::enter_file(uint32_t file) {
+  ensure_file_tables();
+  if (!seen_[file]) {
+    seen_[file] = 1;
+    pp_.files_.push_back(file);
+  }
+  includes_.push_back(std::make_unique<IncludeFrame>(sources_.text(file), file, diagnostics_, &pp_.text_store_,
+                                                     conds_.size(), out_.size(), pp_.pragmas_.size()));
+}
+
+void Preprocessor::Impl::finish_file(IncludeFrame& frame) {
+  frame.finished = true;
+  for (size_t i = frame.cond_base; i < conds_.size(); ++i)
+    diagnostics_.error(conds_[i].loc, "unterminated #" + std::string(conds_[i].directive));
+  conds_.resize(frame.cond_base);
+  if (frame.guard == Guard::Closed && !frame.guard_macro.empty()) guard_of_[frame.file] = frame.guard_macro;
+}
+
+void Preprocessor::Impl::do_include(IncludeFrame& frame, const Token& name) {
+  Lexer& lex = frame.lexer;
+  if (lex.line_ended()) {
+    diagnostics_.error(name.loc, "expected \"file\" or <file> after #include");
+    return;
+  }
+  const Token file = lex.next_header_name();
+  std::string_view spelled;
+  bool angled = false;
+  if (file.kind == TokenKind::StringLiteral || file.kind == TokenKind::AngledHeader) {
+    const char close = file.kind == TokenKind::StringLiteral ? '"' : '>';
+    if (file.text.size() < 2 || file.text.back() != close) {  // unterminated: already reported
+      skip_line(lex);
+      return;
+    }
+    spelled = file.text.substr(1, file.text.size() - 2);
+    angled = file.kind == TokenKind::AngledHeader;
+    extra_tokens(lex, "include");
+  } else {
+    // #include MACRO: the line is expanded and must give "file" or <file>.
+    expr_in_.clear();
+    PPTok first;
+    first.tok = file;
+    expr_in_.push_back(first);
+    while (!lex.line_ended()) {
+      PPTok t;
+      t.tok = lex.next();
+      expr_in_.push_back(t);
+    }
+    std::vector<PPTok> expanded;
+    expand_list(expr_in_, 0, expr_in_.size(), expanded);
+    bool ok = false;
+    if (!expanded.empty() && expanded[0].tok.kind == TokenKind::StringLiteral && expanded[0].tok.text.size() >= 2 &&
+        expanded[0].tok.text.back() == '"') {
+      spelled = expanded[0].tok.text.substr(1, expanded[0].tok.text.size() - 2);
+      ok = true;
+    } else if (!expanded.empty() && is_punct1(expanded[0].tok, '<')) {
+      std::string text;
+      for (size_t i = 1; i < expanded.size(); ++i) {
+        const Token& t = expanded[i].tok;
+        if (is_punct1(t, '>')) {
+          spelled = store(std::move(text));
+          angled = true;
+          ok = true;
+          break;
+        }
+        if (i > 1 && t.space_before) text += ' ';
+        text += t.text;
+      }
+    }
+    if (!ok) {
+      diagnostics_.error(file.loc, "expected \"file\" or <file> after #include");
+      return;
+    }
+  }
+  if (spelled.empty()) {
+    diagnostics_.error(file.loc, "empty file name in #include");
+    return;
+  }
+  include_file(frame, name, spelled, angled, file.loc);
+}
+
+void Preprocessor::Impl::include_file(IncludeFrame& frame, const Token& name, std::string_view spelled, bool angled,
+                                      Loc where) {
+  namespace fs = std::filesystem;
+  if (includes_.size() >= Preprocessor::kMaxIncludeDepth) {
+    diagnostics_.error(name.loc, "#include nested too deeply (more than " +
+                                     std::to_string(Preprocessor::kMaxIncludeDepth) + " levels)");
+    return;
+  }
+  const fs::path relative{std::string(spelled)};
+  std::vector<fs::path> searched;
+  const std::optional<fs::path> found =
+      find_include(spelled, sources_.path(frame.file), angled, pp_.options_.include_dirs, &searched);
+  if (!found) {
+    std::string message = "cannot find include file '" + clip(spelled) + "'";
+    if (relative.is_absolute()) {
+      // Nothing was searched: the path was taken as it is.
+    } else if (searched.empty()) {
+      message += " (no directories to search)";
+    } else {
+      message += " (searched: ";
+      for (size_t i = 0; i < searched.size(); ++i) {
+        if (i) message += ", ";
+        message += searched[i].string();
+      }
+      message += ")";
+    }
+    diagnostics_.error(where, std::move(message));
+    return;
+  }
+  if (!inside_given_folders(*found)) {
+    std::string folders;
+    for (const fs::path& folder : given_folders_) folders += (folders.empty() ? "" : ", ") + folder.string();
+    diagnostics_.error(where, "include file '" + clip(spelled) + "' is outside the folders this shader was given (" +
+                                  folders + "); an include may not leave them");
+    return;
+  }
+  Result<uint32_t> loaded = sources_.load(*found);
+  if (!loaded) {
+    diagnostics_.error(where, loaded.error().message);
+    return;
+  }
+  const uint32_t index = *loaded;
+  ensure_file_tables();
+  if (!seen_[index]) {
+    seen_[index] = 1;
+    pp_.files_.push_back(index);
+  }
+  if (once_[index]) return;
+  if (!guard_of_[index].empty() && is_defined(guard_of_[index])) return;
+  size_t last = includes_.size();
+  size_t occurrences = 0;
+  for (size_t i = 0; i < includes_.size(); ++i)
+    if (includes_[i]->file == index) {
+      ++occurrences;
+      last = i;
+    }
+  if (occurrences >= 2) {
+    std::string chain;
+    for (size_t i = last; i < includes_.size(); ++i) chain += short_name(includes_[i]->file) + " -> ";
+    chain += short_name(index) + " -> ...";
+    diagnostics_.error(name.loc, "#include cycle: " + chain);
+    abandon_files_from(last);
+    return;
+  }
+  enter_file(index);
+}
+
+// The files from includes_[first] up were read a second time only to reach a cycle: what they
+// made is dropped, or each declaration in them would come twice and be reported as a
+// redefinition of itself. Reading goes on in the file that included includes_[first].
+void Preprocessor::Impl::abandon_files_from(size_t first) {
+  const IncludeFrame& repeated = *includes_[first];
+  out_.resize(std::min(out_.size(), repeated.output_mark));
+  pp_.pragmas_.resize(std::min(pp_.pragmas_.size(), repeated.pragma_mark));
+  conds_.resize(std::min(conds_.size(), repeated.cond_base));
+  // The directive being handled still refers to the innermost frame, so frames are kept alive
+  // until the run ends.
+  for (size_t i = first; i < includes_.size(); ++i) abandoned_.push_back(std::move(includes_[i]));
+  includes_.resize(first);
+}
+
+}  // namespace xshade::hlsl
