@@ -469,7 +469,11 @@ void Parser::parse_annotations(std::vector<Annotation>* out) {
   advance();
   while (!is(">") && !is(">>")) {
     if (at_end() || !parse_annotation(out)) {
-      skip_annotations(open);
+      // Token by token: no bracket belongs in an annotation, so one in a broken entry is not
+      // taken to hide the block's '>'.
+      if (skip_until({.stops = kSkipCloseAngle, .barriers = kSkipOpenBrace | kSkipCloseBrace, .flat = true}) ==
+          SkipEnd::Stop)
+        expect_closing_angle(open);
       return;
     }
   }
@@ -543,11 +547,6 @@ ExprPtr Parser::parse_annotation_literal() {
     return parse_primary();
   error_here("expected a literal in annotation");
   return nullptr;
-}
-
-void Parser::skip_annotations(size_t open) {
-  while (!at_end() && !is(">") && !is(">>") && !is("{") && !is("}")) advance();
-  if (is(">") || is(">>")) expect_closing_angle(open);
 }
 
 // One variable declarator after its name: dimensions, annotations, semantics and registers,

@@ -7,7 +7,7 @@
 //   a statement in a block, a declaration at file scope, a struct field or cbuffer member, the
 //   parenthesised header of if/while/for, and the outermost initializer list.
 // - Every recursion that input can nest goes through a DepthGuard, so hostile nesting is an
-//   error at kMaxParseDepth, never a stack overflow; all skipping is iterative.
+//   error at kMaxParseDepth, never a stack overflow; all skipping is iterative, in skip_until.
 #include "hlsl_like/parser.h"
 
 #include <cstdint>
@@ -130,6 +130,19 @@ bool is_closer(const Token& token) {
   return token.kind == TokenKind::Punct && (token.text == ")" || token.text == "]" || token.text == "}");
 }
 
+// The SkipToken bit of `token`; 0 for any token recovery does not look for.
+unsigned skip_token(const Token& token) {
+  if (token.kind != TokenKind::Punct) return 0;
+  const std::string_view t = token.text;
+  if (t == ";") return kSkipSemicolon;
+  if (t == "{") return kSkipOpenBrace;
+  if (t == "}") return kSkipCloseBrace;
+  if (t == ")") return kSkipCloseParen;
+  if (t == "]") return kSkipCloseBracket;
+  if (t == ">" || t == ">>") return kSkipCloseAngle;
+  return 0;
+}
+
 }  // namespace
 
 Parser::Parser(const std::vector<Token>& tokens, DiagnosticEngine& diagnostics)
@@ -221,10 +234,39 @@ std::optional<Loc> Parser::end_of(const Token& token) const {
 }
 
 // -------------------------------------------------------------------------------------------
-// Recovery (all iterative)
+// Recovery: one iterative skip, skip_until, and the recovery points that call it
 
-// Inside a block: to just after the next ';' or to the '}' that closes the block, skipping
-// bracketed groups whole; stray ')' and ']' belong to the failed statement and are skipped.
+// The recovery points, not this, end the unwinding of a construct the depth limit failed
+// (unwinding_too_deep_): a skip inside an annotation leaves it to the declaration's recovery.
+SkipEnd Parser::skip_until(const SkipUntil& until) {
+  size_t balance = 0;
+  while (!at_end()) {
+    const Token& token = cur();
+    const unsigned bit = skip_token(token);
+    if (bit & until.barriers) return SkipEnd::Barrier;
+    if (balance == 0 && (bit & until.stops)) {
+      if (until.consume) advance();
+      return SkipEnd::Stop;
+    }
+    if (!until.flat) {
+      if (is_opener(token)) {
+        ++balance;
+      } else if (is_closer(token) && balance > 0) {
+        --balance;
+        if (balance == 0 && until.after_braces && token.is_punct("}")) {
+          advance();
+          return SkipEnd::AfterBraces;
+        }
+      }
+    }
+    advance();
+  }
+  return SkipEnd::EndOfFile;
+}
+
+// Inside a block, and a struct or cbuffer body: to just after the next ';' or to the '}' that
+// closes the block, skipping bracketed groups whole; stray ')' and ']' belong to the failed
+// statement and are skipped.
 void Parser::recover_statement() {
   if (unwinding_too_deep_) {
     // Nesting too deep to read says nothing about where the failed statement ends (an
@@ -232,62 +274,22 @@ void Parser::recover_statement() {
     skip_to_block_end();
     return;
   }
-  size_t balance = 0;
-  while (!at_end()) {
-    const Token& token = cur();
-    if (balance == 0 && token.is_punct(";")) {
-      advance();
-      return;
-    }
-    if (balance == 0 && token.is_punct("}")) return;
-    if (is_opener(token)) {
-      ++balance;
-    } else if (is_closer(token) && balance > 0) {
-      --balance;
-    }
-    advance();
-  }
+  skip_until({.stops = kSkipSemicolon | kSkipCloseBrace});
+  accept(";");
 }
 
 // To the '}' that closes the current block, not consuming it.
 void Parser::skip_to_block_end() {
   unwinding_too_deep_ = false;
-  size_t balance = 0;
-  while (!at_end()) {
-    const Token& token = cur();
-    if (balance == 0 && token.is_punct("}")) return;
-    if (is_opener(token)) {
-      ++balance;
-    } else if (is_closer(token) && balance > 0) {
-      --balance;
-    }
-    advance();
-  }
+  skip_until({.stops = kSkipCloseBrace});
 }
 
 // At file scope: to just after the next ';', or after the end of a {...} block (and a ';'
 // right after it).
 void Parser::recover_top_level() {
   unwinding_too_deep_ = false;
-  size_t balance = 0;
-  while (!at_end()) {
-    const Token& token = cur();
-    if (balance == 0 && token.is_punct(";")) {
-      advance();
-      return;
-    }
-    if (is_opener(token)) {
-      ++balance;
-    } else if (is_closer(token) && balance > 0) {
-      --balance;
-      if (balance == 0 && token.is_punct("}")) {
-        advance();
-        accept(";");
-        return;
-      }
-    }
-    advance();
-  }
+  skip_until({.stops = kSkipSemicolon, .after_braces = true});
+  accept(";");
 }
 
 // From the opening bracket at `open`, moves to just past the bracket that closes it (true).
@@ -298,23 +300,11 @@ bool Parser::skip_group(size_t open, bool semicolons_inside) {
   pos_ = open;
   const bool parens = tok(open).is_punct("(") || tok(open).is_punct("[");
   advance();
-  size_t balance = 0;
-  while (!at_end()) {
-    const Token& token = cur();
-    if (token.is_punct(";") && !semicolons_inside) return false;
-    if (parens && (token.is_punct("{") || token.is_punct("}"))) return false;
-    if (is_opener(token)) {
-      ++balance;
-    } else if (is_closer(token)) {
-      if (balance == 0) {
-        advance();
-        return true;
-      }
-      --balance;
-    }
-    advance();
-  }
-  return false;
+  const unsigned barriers =
+      (semicolons_inside ? 0u : kSkipSemicolon) | (parens ? kSkipOpenBrace | kSkipCloseBrace : 0u);
+  return skip_until({.stops = kSkipCloseParen | kSkipCloseBracket | kSkipCloseBrace,
+                     .barriers = barriers,
+                     .consume = true}) == SkipEnd::Stop;
 }
 
 // -------------------------------------------------------------------------------------------

@@ -2,8 +2,9 @@
 // parser_test.cpp so that a test can start at any production. Nothing else includes it; the
 // front end's interface is parser.h.
 //
-// parser.cpp: tokens, diagnostics, the word table and recovery; parse_declarations.cpp: file
-// scope, declarations, types and qualifiers; parse_statements.cpp; parse_expressions.cpp.
+// parser.cpp: tokens, diagnostics, the word table and recovery (skip_until);
+// parse_declarations.cpp: file scope, declarations, types and qualifiers; parse_statements.cpp;
+// parse_expressions.cpp.
 #pragma once
 
 #include <cstdint>
@@ -81,6 +82,29 @@ struct IntValue {
 
 IntValue parse_int_spelling(std::string_view text);  // parse_expressions.cpp
 
+// The punctuation recovery looks for, as bits of a set.
+enum SkipToken : unsigned {
+  kSkipSemicolon = 1u << 0,
+  kSkipOpenBrace = 1u << 1,
+  kSkipCloseBrace = 1u << 2,
+  kSkipCloseParen = 1u << 3,
+  kSkipCloseBracket = 1u << 4,
+  kSkipCloseAngle = 1u << 5,  // '>' and '>>'
+};
+
+// Where Parser::skip_until stops. A bracketed group met on the way is skipped whole, so a stop
+// token inside it does not count; a barrier counts wherever it is: it cannot be inside what is
+// being skipped, so meeting it means the skip went too far.
+struct SkipUntil {
+  unsigned stops = 0;          // SkipToken bits that end the skip outside any group met on the way
+  unsigned barriers = 0;       // SkipToken bits that end the skip anywhere, before the token
+  bool consume = false;        // move past the stop token (never past a barrier)
+  bool after_braces = false;   // a {...} group met on the way also ends the skip, past its '}'
+  bool flat = false;           // brackets are tokens like any other: no group is skipped whole
+};
+
+enum class SkipEnd : uint8_t { Stop, Barrier, AfterBraces, EndOfFile };
+
 template <class T, class... Args>
 std::unique_ptr<T> make(Args&&... args) {
   return std::make_unique<T>(std::forward<Args>(args)...);
@@ -152,6 +176,10 @@ class Parser {
   ExprPtr parse_int_literal();
   ExprPtr parse_float_literal();
   ExprPtr parse_init_list();
+
+  // The one way recovery moves forward: token by token, never recursing, however deep the
+  // brackets skipped nest. The recovery points below say what each skips to.
+  SkipEnd skip_until(const SkipUntil& until);
 
   const Token& cur() const { return tok(pos_); }
   bool at_end() const { return cur().kind == TokenKind::EndOfFile; }
@@ -232,12 +260,11 @@ class Parser {
   bool error_after_previous(std::string message);
   std::optional<Loc> end_of(const Token& token) const;
 
-  // Recovery (parser.cpp)
+  // Recovery points (parser.cpp), each a skip_until
   void recover_statement();
   void skip_to_block_end();
   void recover_top_level();
   bool skip_group(size_t open, bool semicolons_inside);
-  void skip_annotations(size_t open);
 
   // Words and names (parser.cpp)
 
