@@ -1,3 +1,5 @@
+// The parser, one test per production and per recovery rule (skip_until through parser_internal.h).
+// Why this file is long: it is one short case per rule of the grammar, read as the list of them.
 #include "hlsl_like/parser.h"
 
 #include <gtest/gtest.h>
@@ -11,6 +13,7 @@
 #include <vector>
 
 #include "hlsl_like/lexer.h"
+#include "hlsl_like/parser_internal.h"
 
 namespace xshade::hlsl {
 namespace {
@@ -50,7 +53,8 @@ struct Parsed {
   }
 };
 
-std::unique_ptr<Parsed> parse_text(const std::string& text) {
+// The tokens only, for a test that starts a Parser at one production.
+std::unique_ptr<Parsed> lex_text(const std::string& text) {
   auto parsed = std::make_unique<Parsed>();
   const uint32_t file = parsed->sources.add("test.hlsl", text);
   Lexer lexer(parsed->sources.text(file), file, parsed->diagnostics, &parsed->text_store);
@@ -58,6 +62,11 @@ std::unique_ptr<Parsed> parse_text(const std::string& text) {
     parsed->tokens.push_back(lexer.next());
     if (parsed->tokens.back().kind == TokenKind::EndOfFile) break;
   }
+  return parsed;
+}
+
+std::unique_ptr<Parsed> parse_text(const std::string& text) {
+  auto parsed = lex_text(text);
   parsed->unit = parse(parsed->tokens, parsed->diagnostics);
   return parsed;
 }
@@ -890,6 +899,131 @@ TEST(Parser, RandomTokenStreamsTerminate) {
   }
   DiagnosticEngine empty_diagnostics(pool->sources);
   EXPECT_TRUE(parse({}, empty_diagnostics).decls.empty());
+}
+
+
+// ---------------------------------------------------------------------------------------------
+// Productions and recovery alone, through parser_internal.h
+
+using parser_detail::kSkipCloseAngle;
+using parser_detail::kSkipCloseBrace;
+using parser_detail::kSkipOpenBrace;
+using parser_detail::kSkipSemicolon;
+using parser_detail::Parser;
+using parser_detail::SkipEnd;
+
+// "line:col text" of the token the parser is at.
+std::string at(const Parser& parser) {
+  const Token& token = parser.cur();
+  return std::to_string(token.loc.line) + ":" + std::to_string(token.loc.column) + " " + std::string(token.text);
+}
+
+TEST(ParserProductions, AnExpressionAloneEndsBeforeTheFirstTokenNotInIt) {
+  auto lexed = lex_text("a + b * -c[i].x, d = e ? f : g) h");
+  Parser parser(lexed->tokens, lexed->diagnostics);
+  const ExprPtr expr = parser.parse_expression();
+  ASSERT_NE(expr, nullptr);
+  EXPECT_EQ(sexpr(*expr), "(, (+ a (* b (- (. ([] c i) x)))) (= d (? e f g)))");
+  EXPECT_EQ(at(parser), "1:31 )");
+  EXPECT_EQ(lexed->errors(), std::vector<std::string>{});
+}
+
+TEST(ParserProductions, AFailedExpressionStopsWhereItFailedWithoutSkipping) {
+  auto lexed = lex_text("a * (b + ) ; c");
+  Parser parser(lexed->tokens, lexed->diagnostics);
+  EXPECT_EQ(parser.parse_expression(), nullptr);
+  EXPECT_EQ(lexed->errors(), std::vector<std::string>{"1:10: expected an expression"});
+  EXPECT_EQ(at(parser), "1:10 )");  // skipping is the caller's recovery point's
+}
+
+TEST(ParserProductions, AStatementAlone) {
+  auto lexed = lex_text("if (x) return 1; else { y = 2; } z;");
+  Parser parser(lexed->tokens, lexed->diagnostics);
+  const StmtPtr statement = parser.parse_statement();
+  ASSERT_NE(statement, nullptr);
+  ASSERT_EQ(statement->kind, StmtKind::If);
+  const auto& branch = static_cast<const IfStmt&>(*statement);
+  EXPECT_EQ(sexpr(*branch.condition), "x");
+  ASSERT_EQ(branch.then_branch->kind, StmtKind::Return);
+  EXPECT_EQ(sexpr(*static_cast<const ReturnStmt&>(*branch.then_branch).value), "1");
+  ASSERT_EQ(branch.else_branch->kind, StmtKind::Block);
+  EXPECT_EQ(static_cast<const BlockStmt&>(*branch.else_branch).statements.size(), 1u);
+  EXPECT_EQ(at(parser), "1:34 z");
+  EXPECT_EQ(lexed->errors(), std::vector<std::string>{});
+}
+
+TEST(ParserProductions, ABadIfConditionIsSkippedAsAGroupAndTheBodyStillRead) {
+  auto lexed = lex_text("if (a b) c = 1; d;");
+  Parser parser(lexed->tokens, lexed->diagnostics);
+  const StmtPtr statement = parser.parse_statement();
+  ASSERT_NE(statement, nullptr);  // recovered already: an empty statement, not a failure
+  EXPECT_EQ(statement->kind, StmtKind::Empty);
+  EXPECT_EQ(lexed->errors(), std::vector<std::string>{"1:7: expected ')' to match '('"});
+  EXPECT_EQ(at(parser), "1:17 d");
+}
+
+TEST(ParserProductions, AStructFromOneProductionIsATypeInTheNext) {
+  auto lexed = lex_text("struct S { float a; }; (S)x");
+  Parser parser(lexed->tokens, lexed->diagnostics);
+  EXPECT_TRUE(parser.parse_top_level());
+  const ExprPtr expr = parser.parse_expression();
+  ASSERT_NE(expr, nullptr);
+  EXPECT_EQ(sexpr(*expr), "(cast S x)");
+  EXPECT_TRUE(parser.at_end());
+}
+
+TEST(ParserSkipUntil, AStopTokenInsideABracketedGroupDoesNotCount) {
+  auto lexed = lex_text("f(a; b) ; c }");
+  Parser parser(lexed->tokens, lexed->diagnostics);
+  EXPECT_EQ(parser.skip_until({.stops = kSkipSemicolon | kSkipCloseBrace}), SkipEnd::Stop);
+  EXPECT_EQ(at(parser), "1:9 ;");
+  EXPECT_EQ(parser.skip_until({.stops = kSkipSemicolon, .consume = true}), SkipEnd::Stop);
+  EXPECT_EQ(at(parser), "1:11 c");
+}
+
+TEST(ParserSkipUntil, ABarrierCountsAtAnyDepth) {
+  auto lexed = lex_text("a (b [c ; d] e) f ;");
+  Parser parser(lexed->tokens, lexed->diagnostics);
+  EXPECT_EQ(parser.skip_until({.barriers = kSkipSemicolon}), SkipEnd::Barrier);
+  EXPECT_EQ(at(parser), "1:9 ;");
+  auto again = lex_text("a (b [c ; d] e) f ;");
+  Parser whole(again->tokens, again->diagnostics);
+  EXPECT_EQ(whole.skip_until({.stops = kSkipSemicolon}), SkipEnd::Stop);
+  EXPECT_EQ(at(whole), "1:19 ;");
+}
+
+TEST(ParserSkipUntil, AtFileScopeABraceGroupEndsTheSkipButAParenthesisGroupDoesNot) {
+  auto lexed = lex_text("int f(int a) { return a; } ; float g;");
+  Parser parser(lexed->tokens, lexed->diagnostics);
+  EXPECT_EQ(parser.skip_until({.stops = kSkipSemicolon, .after_braces = true}), SkipEnd::AfterBraces);
+  EXPECT_EQ(at(parser), "1:28 ;");
+}
+
+TEST(ParserSkipUntil, AFlatSkipDoesNotGroupBrackets) {
+  const std::string text = "float a = (1 > b ; }";
+  auto lexed = lex_text(text);
+  Parser flat(lexed->tokens, lexed->diagnostics);
+  EXPECT_EQ(flat.skip_until({.stops = kSkipCloseAngle, .barriers = kSkipOpenBrace | kSkipCloseBrace, .flat = true}),
+            SkipEnd::Stop);
+  EXPECT_EQ(at(flat), "1:14 >");
+  Parser grouped(lexed->tokens, lexed->diagnostics);
+  EXPECT_EQ(grouped.skip_until({.stops = kSkipCloseAngle, .barriers = kSkipOpenBrace | kSkipCloseBrace}),
+            SkipEnd::Barrier);
+  EXPECT_EQ(at(grouped), "1:20 }");
+}
+
+TEST(ParserSkipUntil, EndsAtTheEndOfInputAndNeverRecursesIntoBrackets) {
+  auto unclosed = lex_text("a ( ; b");
+  Parser parser(unclosed->tokens, unclosed->diagnostics);
+  EXPECT_EQ(parser.skip_until({.stops = kSkipSemicolon}), SkipEnd::EndOfFile);
+  EXPECT_TRUE(parser.at_end());
+
+  // Far deeper than kMaxParseDepth, or than any stack would take one call per bracket.
+  const std::string deep = std::string(100000, '(') + ";" + std::string(100000, ')') + " x ;";
+  auto lexed = lex_text(deep);
+  Parser skipper(lexed->tokens, lexed->diagnostics);
+  EXPECT_EQ(skipper.skip_until({.stops = kSkipSemicolon}), SkipEnd::Stop);
+  EXPECT_EQ(at(skipper), "1:" + std::to_string(deep.size()) + " ;");
 }
 
 }  // namespace
