@@ -294,6 +294,16 @@ class Backend {
   // Fails with the driver's compile or link log when the program is rejected.
   virtual Result<ProgramHandle> create_program(const ProgramDesc& desc) = 0;
 
+  // Frees the object and its driver memory now (a backend finishes any work that uses it
+  // first). Its handle is then refused by every call, destroy included: destroying twice, or
+  // destroying a handle never given out, is an error and changes nothing. Handles are never
+  // reused. A target a later pass samples, or a texture a draw binds, must outlive that pass
+  // only; programs usually stay for the backend's life (render/ProgramCache).
+  virtual Result<void> destroy(TargetHandle target) = 0;
+  virtual Result<void> destroy(MeshHandle mesh) = 0;
+  virtual Result<void> destroy(TextureHandle texture) = 0;
+  virtual Result<void> destroy(ProgramHandle program) = 0;
+
   // Runs the pass to completion.
   virtual Result<void> render(const RenderPass& pass) = 0;
   // RGBA32F, row 0 at the top.

@@ -23,7 +23,11 @@
 
 #include <fmt/format.h>
 
+#include "harness/backend/guarded.h"
+#include "harness/backend/handle_table.h"
+#include "harness/backend/pass_resolution.h"
 #include "harness/gl/gl_functions.h"
+#include "harness/gl/gl_support.h"
 
 namespace xshade::harness {
 namespace {
@@ -35,58 +39,24 @@ std::mutex proc_address_mutex;
 const GlContext* loading_context = nullptr;
 void* context_proc_address(const char* name) { return loading_context->proc_address(name); }
 
-// ---- GL objects ---------------------------------------------------------------------------------
-
-enum class Kind { Texture, Buffer, Framebuffer, VertexArray, Sampler, Shader, Program };
-
-// One GL object name, deleted with the right glDelete* when dropped. The backend makes its
-// context current before any is dropped.
-template <Kind K>
-class GlObject {
- public:
-  GlObject() = default;
-  GlObject(const gl::Functions* gl, GLuint id) : gl_(gl), id_(id) {}
-  GlObject(GlObject&& other) noexcept
-      : gl_(other.gl_), id_(std::exchange(other.id_, 0)) {}
-  GlObject& operator=(GlObject&& other) noexcept {
-    if (this != &other) {
-      reset();
-      gl_ = other.gl_;
-      id_ = std::exchange(other.id_, 0);
-    }
-    return *this;
-  }
-  GlObject(const GlObject&) = delete;
-  GlObject& operator=(const GlObject&) = delete;
-  ~GlObject() { reset(); }
-
-  GLuint get() const { return id_; }
-  explicit operator bool() const { return id_ != 0; }
-
-  void reset() {
-    if (id_ == 0 || gl_ == nullptr) return;
-    if constexpr (K == Kind::Texture) gl_->DeleteTextures(1, &id_);
-    if constexpr (K == Kind::Buffer) gl_->DeleteBuffers(1, &id_);
-    if constexpr (K == Kind::Framebuffer) gl_->DeleteFramebuffers(1, &id_);
-    if constexpr (K == Kind::VertexArray) gl_->DeleteVertexArrays(1, &id_);
-    if constexpr (K == Kind::Sampler) gl_->DeleteSamplers(1, &id_);
-    if constexpr (K == Kind::Shader) gl_->DeleteShader(id_);
-    if constexpr (K == Kind::Program) gl_->DeleteProgram(id_);
-    id_ = 0;
-  }
-
- private:
-  const gl::Functions* gl_ = nullptr;
-  GLuint id_ = 0;
-};
-
-using GlTexture = GlObject<Kind::Texture>;
-using GlBuffer = GlObject<Kind::Buffer>;
-using GlFramebuffer = GlObject<Kind::Framebuffer>;
-using GlVertexArray = GlObject<Kind::VertexArray>;
-using GlSampler = GlObject<Kind::Sampler>;
-using GlShader = GlObject<Kind::Shader>;
-using GlProgram = GlObject<Kind::Program>;
+using gl_support::attribute_kind;
+using gl_support::base_name;
+using gl_support::debug_callback;
+using gl_support::gl_compare_function;
+using gl_support::gl_format;
+using gl_support::gl_target;
+using gl_support::GlBuffer;
+using gl_support::GlFormat;
+using gl_support::GlFramebuffer;
+using gl_support::GlProgram;
+using gl_support::GlSampler;
+using gl_support::GlShader;
+using gl_support::GlTexture;
+using gl_support::GlVertexArray;
+using gl_support::is_sampler_type;
+using gl_support::MessageLog;
+using gl_support::parse_log;
+using gl_support::round_up_16;
 
 // ---- Resources ----------------------------------------------------------------------------------
 
@@ -98,64 +68,6 @@ struct Texture {
   TextureShape shape;
   TextureFormat format = TextureFormat::Rgba32Float;
 };
-
-// How OpenGL stores and uploads each format.
-struct GlFormat {
-  GLenum internal_format;
-  GLenum format;
-  GLenum type;
-};
-GlFormat gl_format(TextureFormat format) {
-  switch (format) {
-    case TextureFormat::Rgba8Unorm: return {GL_RGBA8, GL_RGBA, GL_UNSIGNED_BYTE};
-    case TextureFormat::Rgba8Srgb: return {GL_SRGB8_ALPHA8, GL_RGBA, GL_UNSIGNED_BYTE};
-    case TextureFormat::Rgba32Float: return {GL_RGBA32F, GL_RGBA, GL_FLOAT};
-    case TextureFormat::R32Float: return {GL_R32F, GL_RED, GL_FLOAT};
-    case TextureFormat::Depth32Float: return {GL_DEPTH_COMPONENT32F, GL_DEPTH_COMPONENT, GL_FLOAT};
-    case TextureFormat::Rgba32Uint: return {GL_RGBA32UI, GL_RGBA_INTEGER, GL_UNSIGNED_INT};
-    case TextureFormat::Rgba32Sint: return {GL_RGBA32I, GL_RGBA_INTEGER, GL_INT};
-  }
-  return {GL_RGBA8, GL_RGBA, GL_UNSIGNED_BYTE};
-}
-
-GLenum gl_target(TextureShape shape) {
-  switch (shape.dimension) {
-    case TextureDimension::Tex1D: return GL_TEXTURE_1D;
-    case TextureDimension::Tex1DArray: return GL_TEXTURE_1D_ARRAY;
-    case TextureDimension::Tex2D: return shape.multisampled ? GL_TEXTURE_2D_MULTISAMPLE : GL_TEXTURE_2D;
-    case TextureDimension::Tex2DArray: return shape.multisampled ? GL_TEXTURE_2D_MULTISAMPLE_ARRAY : GL_TEXTURE_2D_ARRAY;
-    case TextureDimension::Tex3D: return GL_TEXTURE_3D;
-    case TextureDimension::Cube: return GL_TEXTURE_CUBE_MAP;
-    case TextureDimension::CubeArray: return GL_TEXTURE_CUBE_MAP_ARRAY;
-  }
-  return GL_TEXTURE_2D;
-}
-
-GLint gl_compare_function(CompareOp op) {
-  switch (op) {
-    case CompareOp::Never: return GL_NEVER;
-    case CompareOp::Less: return GL_LESS;
-    case CompareOp::Equal: return GL_EQUAL;
-    case CompareOp::LessEqual: return GL_LEQUAL;
-    case CompareOp::Greater: return GL_GREATER;
-    case CompareOp::NotEqual: return GL_NOTEQUAL;
-    case CompareOp::GreaterEqual: return GL_GEQUAL;
-    case CompareOp::Always: return GL_ALWAYS;
-  }
-  return GL_LEQUAL;
-}
-
-// What a vertex input of GL type `type` reads as; empty for a type no mesh or zero fills (a
-// matrix, a double).
-std::optional<TexelKind> attribute_kind(GLint type) {
-  switch (static_cast<GLenum>(type)) {
-    case GL_FLOAT: case GL_FLOAT_VEC2: case GL_FLOAT_VEC3: case GL_FLOAT_VEC4: return TexelKind::Float;
-    case GL_INT: case GL_INT_VEC2: case GL_INT_VEC3: case GL_INT_VEC4: return TexelKind::Int;
-    case GL_UNSIGNED_INT: case GL_UNSIGNED_INT_VEC2: case GL_UNSIGNED_INT_VEC3: case GL_UNSIGNED_INT_VEC4:
-      return TexelKind::Uint;
-    default: return std::nullopt;
-  }
-}
 
 // The internal draw that fills a multisampled texture: every sample of each texel of one layer
 // gets the texel of a single-sampled copy. Without sample shading a fragment's one output goes
@@ -197,161 +109,6 @@ struct Program {
   std::vector<std::pair<GLuint, TexelKind>> zero_inputs;
 };
 
-// ---- KHR_debug ----------------------------------------------------------------------------------
-
-struct MessageLog {
-  std::mutex mutex;
-  std::vector<std::string> messages;
-  // While a program is made, its compiler's messages wait here (see create_program).
-  std::optional<std::vector<std::string>> held;
-};
-
-const char* severity_name(GLenum severity) {
-  switch (severity) {
-    case GL_DEBUG_SEVERITY_HIGH: return "high";
-    case GL_DEBUG_SEVERITY_MEDIUM: return "medium";
-    case GL_DEBUG_SEVERITY_LOW: return "low";
-    default: return "notification";
-  }
-}
-
-const char* source_name(GLenum source) {
-  switch (source) {
-    case GL_DEBUG_SOURCE_API: return "API";
-    case GL_DEBUG_SOURCE_WINDOW_SYSTEM: return "window system";
-    case GL_DEBUG_SOURCE_SHADER_COMPILER: return "shader compiler";
-    case GL_DEBUG_SOURCE_THIRD_PARTY: return "third party";
-    case GL_DEBUG_SOURCE_APPLICATION: return "application";
-    default: return "other";
-  }
-}
-
-const char* type_name(GLenum type) {
-  switch (type) {
-    case GL_DEBUG_TYPE_ERROR: return "error";
-    case GL_DEBUG_TYPE_DEPRECATED_BEHAVIOR: return "deprecated behaviour";
-    case GL_DEBUG_TYPE_UNDEFINED_BEHAVIOR: return "undefined behaviour";
-    case GL_DEBUG_TYPE_PORTABILITY: return "portability";
-    case GL_DEBUG_TYPE_PERFORMANCE: return "performance";
-    default: return "other";
-  }
-}
-
-void APIENTRY debug_callback(GLenum source, GLenum type, GLuint id, GLenum severity,
-                             GLsizei length, const GLchar* message, const void* user) {
-  if (severity == GL_DEBUG_SEVERITY_NOTIFICATION) return;
-  auto* log = static_cast<MessageLog*>(const_cast<void*>(user));
-  std::string text = length >= 0 ? std::string(message, static_cast<size_t>(length))
-                                  : std::string(message);
-  while (!text.empty() && std::isspace(static_cast<unsigned char>(text.back()))) text.pop_back();
-  std::string line = fmt::format("OpenGL {} {} (severity {}, id {}): {}", source_name(source),
-                                 type_name(type), severity_name(severity), id, text);
-  std::lock_guard lock(log->mutex);
-  (log->held ? *log->held : log->messages).push_back(std::move(line));
-}
-
-// ---- Compiler logs ------------------------------------------------------------------------------
-
-bool parse_number(std::string_view& text, uint32_t& value) {
-  size_t digits = 0;
-  value = 0;
-  while (digits < text.size() && std::isdigit(static_cast<unsigned char>(text[digits]))) {
-    value = value * 10 + static_cast<uint32_t>(text[digits] - '0');
-    ++digits;
-  }
-  text.remove_prefix(digits);
-  return digits > 0;
-}
-
-bool consume(std::string_view& text, std::string_view prefix) {
-  if (!text.starts_with(prefix)) return false;
-  text.remove_prefix(prefix.size());
-  return true;
-}
-
-// Mesa: "0:4(28): error: `undeclared_thing' undeclared" (string:line(column)), or "error: ..."
-// in link logs. Anything else becomes a message-only diagnostic.
-// `files[n]` names source string n (what `#line L n` selects); string 0, or one the table does
-// not name, is `file`.
-std::vector<Diagnostic> parse_log(const std::string& log, const std::string& file,
-                                  const std::vector<std::string>& files = {}) {
-  std::vector<Diagnostic> diagnostics;
-  size_t start = 0;
-  while (start < log.size()) {
-    size_t end = log.find('\n', start);
-    if (end == std::string::npos) end = log.size();
-    std::string_view line(log.data() + start, end - start);
-    start = end + 1;
-    while (!line.empty() && std::isspace(static_cast<unsigned char>(line.back())))
-      line.remove_suffix(1);
-    if (line.empty()) continue;
-
-    Diagnostic diagnostic;
-    std::string_view rest = line;
-    uint32_t string_index = 0, line_number = 0, column = 0;
-    if (parse_number(rest, string_index) && consume(rest, ":") && parse_number(rest, line_number) &&
-        consume(rest, "(") && parse_number(rest, column) && consume(rest, "):")) {
-      const bool named = string_index > 0 && string_index < files.size();
-      diagnostic.where = SourceLocation{named ? files[string_index] : file, line_number, column};
-      while (consume(rest, " ")) {
-      }
-    } else {
-      rest = line;
-    }
-    const size_t colon = rest.find(": ");
-    std::string_view kind = colon == std::string_view::npos ? std::string_view{} : rest.substr(0, colon);
-    if (kind.find("error") != std::string_view::npos) {
-      diagnostic.severity = Severity::Error;
-      rest.remove_prefix(colon + 2);
-    } else if (kind.find("warning") != std::string_view::npos) {
-      diagnostic.severity = Severity::Warning;
-      rest.remove_prefix(colon + 2);
-    } else if (diagnostic.where.known()) {
-      diagnostic.severity = Severity::Note;
-    } else {
-      // Unparsed: keep the whole line as the message.
-      diagnostic.severity = Severity::Note;
-      rest = line;
-    }
-    diagnostic.message = std::string(rest);
-    diagnostics.push_back(std::move(diagnostic));
-  }
-  return diagnostics;
-}
-
-uint32_t round_up_16(uint32_t size) { return (size + 15u) & ~15u; }
-
-bool is_sampler_type(GLint type) {
-  switch (static_cast<GLenum>(type)) {
-    case GL_SAMPLER_1D: case GL_SAMPLER_2D: case GL_SAMPLER_3D: case GL_SAMPLER_CUBE:
-    case GL_SAMPLER_1D_SHADOW: case GL_SAMPLER_2D_SHADOW: case GL_SAMPLER_1D_ARRAY:
-    case GL_SAMPLER_2D_ARRAY: case GL_SAMPLER_1D_ARRAY_SHADOW: case GL_SAMPLER_2D_ARRAY_SHADOW:
-    case GL_SAMPLER_2D_MULTISAMPLE: case GL_SAMPLER_2D_MULTISAMPLE_ARRAY:
-    case GL_SAMPLER_CUBE_SHADOW: case GL_SAMPLER_BUFFER: case GL_SAMPLER_2D_RECT:
-    case GL_SAMPLER_2D_RECT_SHADOW: case GL_SAMPLER_CUBE_MAP_ARRAY:
-    case GL_SAMPLER_CUBE_MAP_ARRAY_SHADOW:
-    case GL_INT_SAMPLER_1D: case GL_INT_SAMPLER_2D: case GL_INT_SAMPLER_3D:
-    case GL_INT_SAMPLER_CUBE: case GL_INT_SAMPLER_1D_ARRAY: case GL_INT_SAMPLER_2D_ARRAY:
-    case GL_INT_SAMPLER_2D_MULTISAMPLE: case GL_INT_SAMPLER_2D_MULTISAMPLE_ARRAY:
-    case GL_INT_SAMPLER_BUFFER: case GL_INT_SAMPLER_2D_RECT: case GL_INT_SAMPLER_CUBE_MAP_ARRAY:
-    case GL_UNSIGNED_INT_SAMPLER_1D: case GL_UNSIGNED_INT_SAMPLER_2D:
-    case GL_UNSIGNED_INT_SAMPLER_3D: case GL_UNSIGNED_INT_SAMPLER_CUBE:
-    case GL_UNSIGNED_INT_SAMPLER_1D_ARRAY: case GL_UNSIGNED_INT_SAMPLER_2D_ARRAY:
-    case GL_UNSIGNED_INT_SAMPLER_2D_MULTISAMPLE:
-    case GL_UNSIGNED_INT_SAMPLER_2D_MULTISAMPLE_ARRAY: case GL_UNSIGNED_INT_SAMPLER_BUFFER:
-    case GL_UNSIGNED_INT_SAMPLER_2D_RECT: case GL_UNSIGNED_INT_SAMPLER_CUBE_MAP_ARRAY:
-      return true;
-    default:
-      return false;
-  }
-}
-
-// "values[0]" -> "values": GL names an array by its first element.
-std::string base_name(std::string name) {
-  if (name.ends_with("[0]")) name.resize(name.size() - 3);
-  return name;
-}
-
 // ---- The backend --------------------------------------------------------------------------------
 
 class GlBackend final : public Backend {
@@ -365,6 +122,10 @@ class GlBackend final : public Backend {
   Result<MeshHandle> upload_mesh(const MeshData& mesh) override;
   Result<TextureHandle> upload_texture(const TextureData& texture) override;
   Result<ProgramHandle> create_program(const ProgramDesc& desc) override;
+  Result<void> destroy(TargetHandle target) override { return destroy_in(objects_.targets, target); }
+  Result<void> destroy(MeshHandle mesh) override { return destroy_in(objects_.meshes, mesh); }
+  Result<void> destroy(TextureHandle texture) override { return destroy_in(objects_.textures, texture); }
+  Result<void> destroy(ProgramHandle program) override { return destroy_in(objects_.programs, program); }
   Result<void> render(const RenderPass& pass) override;
   Result<FloatImage> read_color(TargetHandle target) override;
   std::vector<std::string> take_driver_messages() override {
@@ -377,9 +138,15 @@ class GlBackend final : public Backend {
   bool make_current() { return context_->make_current(); }
   // Drains glGetError; fails with the error names and the driver's last message.
   Result<void> check_errors(const std::string& what);
-  // Makes the context current, runs `body`, then checks glGetError.
+  // Makes the context current, runs `body` (guarded), then checks glGetError.
   template <class T, class F>
-  Result<T> guarded(const std::string& what, F&& body);
+  Result<T> on_context(const std::string& what, F&& body);
+  // GL deletes the names at once: a later command that used them has already been given the
+  // objects, and glDelete* of a texture still attached or bound only detaches it.
+  template <class Table, class HandleType>
+  Result<void> destroy_in(Table& table, HandleType handle) {
+    return on_context<void>("destroy", [&]() -> Result<void> { return table.erase(handle, "destroy"); });
+  }
 
   GLint get_integer(GLenum name) const {
     GLint value = 0;
@@ -397,11 +164,6 @@ class GlBackend final : public Backend {
   Result<GLuint> fill_program(TexelKind kind, const std::string& what);
   Result<GlShader> compile(const ShaderStageSource& source, GLenum stage, const char* stage_name,
                            const std::string& what);
-  Result<void> check_interface(Program& program, const std::string& what);
-
-  Target* find_target(uint32_t id) {
-    return id >= 1 && id <= targets_.size() ? targets_[id - 1].get() : nullptr;
-  }
 
   // Declaration order is teardown order reversed: GL objects go first, then the context (which
   // closes its library); the log outlives the context that writes into it.
@@ -421,20 +183,14 @@ class GlBackend final : public Backend {
   GlVertexArray empty_vertex_array_;  // for full-screen programs
   std::map<std::tuple<Filter, AddressMode, bool, std::optional<CompareOp>>, GlSampler> samplers_;
   std::map<TexelKind, GlProgram> fill_programs_;  // by the texel kind they copy
-  std::vector<std::unique_ptr<Target>> targets_;
-  std::vector<std::unique_ptr<Mesh>> meshes_;
-  std::vector<std::unique_ptr<Texture>> textures_;
-  std::vector<std::unique_ptr<Program>> programs_;
+  BackendObjects<Target, Mesh, Texture, Program> objects_;
 };
 
 GlBackend::~GlBackend() {
   if (context_ == nullptr) return;
   if (make_current()) {
-    programs_.clear();
+    objects_.clear();
     fill_programs_.clear();
-    textures_.clear();
-    meshes_.clear();
-    targets_.clear();
     samplers_.clear();
     empty_vertex_array_.reset();
     if (gl_.Finish != nullptr) gl_.Finish();  // null when loading the entry points failed
@@ -468,8 +224,8 @@ Result<void> GlBackend::check_errors(const std::string& what) {
 }
 
 template <class T, class F>
-Result<T> GlBackend::guarded(const std::string& what, F&& body) {
-  try {
+Result<T> GlBackend::on_context(const std::string& what, F&& body) {
+  return harness::guarded<T>(what, [&]() -> Result<T> {
     if (!make_current())
       return fail(fmt::format("{}: {} could not make this backend's context current", what, context_->route()));
     Result<T> result = body();
@@ -477,11 +233,7 @@ Result<T> GlBackend::guarded(const std::string& what, F&& body) {
     if (!result) return result;
     if (!checked) return fail(checked.error());
     return result;
-  } catch (const std::exception& e) {
-    return fail(fmt::format("{}: {}", what, e.what()));
-  } catch (...) {
-    return fail(fmt::format("{}: unknown exception", what));
-  }
+  });
 }
 
 Result<void> GlBackend::init(std::unique_ptr<GlContext> context) {
@@ -577,13 +329,13 @@ GLuint GlBackend::sampler(const SamplerDesc& desc, bool mipmapped, bool compare)
 }
 
 Result<TargetHandle> GlBackend::create_target(const TargetDesc& desc) {
-  return guarded<TargetHandle>("create_target", [&]() -> Result<TargetHandle> {
+  return on_context<TargetHandle>("create_target", [&]() -> Result<TargetHandle> {
     if (desc.width == 0 || desc.height == 0)
       return fail(fmt::format("create_target: size {}x{} is empty", desc.width, desc.height));
     if (std::max(desc.width, desc.height) > static_cast<uint32_t>(max_texture_size_))
       return fail(fmt::format("create_target: size {}x{} exceeds the driver limit of {}",
                               desc.width, desc.height, max_texture_size_));
-    const uint32_t id = static_cast<uint32_t>(targets_.size() + 1);
+    const uint32_t id = objects_.targets.next_handle().id;
     const GLsizei width = static_cast<GLsizei>(desc.width);
     const GLsizei height = static_cast<GLsizei>(desc.height);
     auto target = std::make_unique<Target>();
@@ -623,13 +375,12 @@ Result<TargetHandle> GlBackend::create_target(const TargetDesc& desc) {
       gl_.DepthMask(GL_TRUE);
       gl_.ClearNamedFramebufferfv(framebuffer, GL_DEPTH, 0, &far_depth);
     }
-    targets_.push_back(std::move(target));
-    return TargetHandle{id};
+    return objects_.targets.insert(std::move(target));
   });
 }
 
 Result<MeshHandle> GlBackend::upload_mesh(const MeshData& data) {
-  return guarded<MeshHandle>("upload_mesh", [&]() -> Result<MeshHandle> {
+  return on_context<MeshHandle>("upload_mesh", [&]() -> Result<MeshHandle> {
     if (auto valid = validate_mesh(data); !valid) return fail(valid.error());
     auto mesh = std::make_unique<Mesh>();
     GLuint buffers[2] = {0, 0};
@@ -661,13 +412,12 @@ Result<MeshHandle> GlBackend::upload_mesh(const MeshData& data) {
       gl_.VertexArrayAttribBinding(vertex_array, attribute.location, 0);
     }
     mesh->index_count = static_cast<uint32_t>(data.indices.size());
-    meshes_.push_back(std::move(mesh));
-    return MeshHandle{static_cast<uint32_t>(meshes_.size())};
+    return objects_.meshes.insert(std::move(mesh));
   });
 }
 
 Result<TextureHandle> GlBackend::upload_texture(const TextureData& data) {
-  return guarded<TextureHandle>("upload_texture", [&]() -> Result<TextureHandle> {
+  return on_context<TextureHandle>("upload_texture", [&]() -> Result<TextureHandle> {
     if (auto valid = validate_texture(data, static_cast<uint32_t>(max_texture_size_)); !valid) return fail(valid.error());
     const TextureShape shape = data.shape();
     const std::string what = "upload_texture: " + shape_name(shape);
@@ -738,8 +488,7 @@ Result<TextureHandle> GlBackend::upload_texture(const TextureData& data) {
         }
       }
     }
-    textures_.push_back(std::move(texture));
-    return TextureHandle{static_cast<uint32_t>(textures_.size())};
+    return objects_.textures.insert(std::move(texture));
   });
 }
 
@@ -858,94 +607,6 @@ Result<GlShader> GlBackend::compile(const ShaderStageSource& source, GLenum stag
   return fail(std::move(error));
 }
 
-// The linked program's uniforms, blocks and inputs against the layout and GL's limits.
-Result<void> GlBackend::check_interface(Program& program, const std::string& what) {
-  const GLuint id = program.program.get();
-  const ProgramLayout& layout = program.layout;
-  const auto resource_name = [&](GLenum interface, GLuint index) {
-    GLint length = 0;
-    const GLenum property = GL_NAME_LENGTH;
-    gl_.GetProgramResourceiv(id, interface, index, 1, &property, 1, nullptr, &length);
-    std::string name(static_cast<size_t>(std::max(length, 1)), '\0');
-    GLsizei written = 0;
-    gl_.GetProgramResourceName(id, interface, index, static_cast<GLsizei>(name.size()), &written,
-                               name.data());
-    name.resize(static_cast<size_t>(std::max(written, 0)));
-    return name;
-  };
-  const auto count = [&](GLenum interface) {
-    GLint value = 0;
-    gl_.GetProgramInterfaceiv(id, interface, GL_ACTIVE_RESOURCES, &value);
-    return static_cast<GLuint>(std::max(value, 0));
-  };
-
-  // Uniform blocks: listed, and no bigger than the layout says.
-  const GLuint blocks = count(GL_UNIFORM_BLOCK);
-  for (GLuint index = 0; index < blocks; ++index) {
-    const std::string name = base_name(resource_name(GL_UNIFORM_BLOCK, index));
-    const GLenum property = GL_BUFFER_DATA_SIZE;
-    GLint size = 0;
-    gl_.GetProgramResourceiv(id, GL_UNIFORM_BLOCK, index, 1, &property, 1, nullptr, &size);
-    auto slot = std::find_if(layout.uniform_blocks.begin(), layout.uniform_blocks.end(),
-                             [&](const UniformBlockSlot& s) { return s.name == name; });
-    if (slot == layout.uniform_blocks.end())
-      return fail(fmt::format("{}: the program uses uniform block '{}', which the layout does not "
-                              "list",
-                              what, name));
-    if (static_cast<uint32_t>(size) > round_up_16(slot->size))
-      return fail(fmt::format("{}: uniform block '{}' is {} bytes in the GLSL, but the layout "
-                              "gives it {}",
-                              what, name, size, slot->size));
-  }
-
-  // Uniforms outside blocks: only samplers, each listed as a texture.
-  const GLuint uniforms = count(GL_UNIFORM);
-  for (GLuint index = 0; index < uniforms; ++index) {
-    const std::array<GLenum, 3> properties = {GL_BLOCK_INDEX, GL_TYPE, GL_LOCATION};
-    std::array<GLint, 3> values = {-1, 0, -1};
-    gl_.GetProgramResourceiv(id, GL_UNIFORM, index, static_cast<GLsizei>(properties.size()),
-                             properties.data(), static_cast<GLsizei>(values.size()), nullptr,
-                             values.data());
-    if (values[0] != -1) continue;  // a member of a block
-    const std::string name = base_name(resource_name(GL_UNIFORM, index));
-    if (name.starts_with("gl_")) continue;
-    auto slot = std::find_if(layout.textures.begin(), layout.textures.end(),
-                             [&](const TextureSlot& s) { return s.uniform_name() == name; });
-    if (slot == layout.textures.end())
-      return fail(fmt::format("{}: the program uses uniform '{}', which the layout does not list",
-                              what, name));
-    if (!is_sampler_type(values[1]))
-      return fail(fmt::format("{}: the layout lists '{}' as a texture, but it is not a sampler",
-                              what, name));
-  }
-
-  // Vertex inputs: none for a full-screen program; for a mesh program the mesh's locations 0..3,
-  // and zeros for any other (what glGetActiveAttrib reports, here through the program interface
-  // query that gives the location with the type).
-  const GLuint inputs = count(GL_PROGRAM_INPUT);
-  program.zero_inputs.clear();
-  for (GLuint index = 0; index < inputs; ++index) {
-    const std::array<GLenum, 2> properties = {GL_LOCATION, GL_TYPE};
-    std::array<GLint, 2> values = {-1, 0};
-    gl_.GetProgramResourceiv(id, GL_PROGRAM_INPUT, index, static_cast<GLsizei>(properties.size()),
-                             properties.data(), static_cast<GLsizei>(values.size()), nullptr, values.data());
-    const GLint location = values[0];
-    if (location < 0) continue;  // a built-in such as gl_VertexID
-    if (program.fullscreen)
-      return fail(fmt::format("{}: a full-screen program's vertex shader must read no vertex "
-                              "input, but it reads location {}",
-                              what, location));
-    if (location <= 3) continue;
-    const std::optional<TexelKind> kind = attribute_kind(values[1]);
-    if (!kind)
-      return fail(fmt::format("{}: the vertex shader reads input '{}' at location {} of GL type 0x{:04X}, which "
-                              "no mesh supplies and which is not a float, int or uint scalar or vector",
-                              what, resource_name(GL_PROGRAM_INPUT, index), location, values[1]));
-    program.zero_inputs.emplace_back(static_cast<GLuint>(location), *kind);
-  }
-  return {};
-}
-
 Result<ProgramHandle> GlBackend::create_program(const ProgramDesc& desc) {
   const std::string what = fmt::format("create_program '{}'", desc.name);
   // The compiler's messages wait until the outcome is known: a failure carries them in its
@@ -954,7 +615,7 @@ Result<ProgramHandle> GlBackend::create_program(const ProgramDesc& desc) {
     std::lock_guard lock(log_->mutex);
     log_->held.emplace();
   }
-  Result<ProgramHandle> result = guarded<ProgramHandle>(what, [&]() -> Result<ProgramHandle> {
+  Result<ProgramHandle> result = on_context<ProgramHandle>(what, [&]() -> Result<ProgramHandle> {
     // The layout first: GL's limits, names and bindings used once.
     std::set<std::string> names;
     std::map<uint32_t, std::string> block_bindings, texture_units;
@@ -1023,7 +684,9 @@ Result<ProgramHandle> GlBackend::create_program(const ProgramDesc& desc) {
       return fail(std::move(error));
     }
 
-    if (auto checked = check_interface(*program, what); !checked) return fail(checked.error());
+    if (auto checked = gl_support::check_interface(gl_, id, program->layout, program->fullscreen, program->zero_inputs, what);
+        !checked)
+      return fail(checked.error());
 
     // Bindings by name, from the layout.
     for (const UniformBlockSlot& slot : desc.layout.uniform_blocks) {
@@ -1037,8 +700,7 @@ Result<ProgramHandle> GlBackend::create_program(const ProgramDesc& desc) {
       const GLint location = gl_.GetUniformLocation(id, slot.uniform_name().c_str());
       if (location >= 0) gl_.ProgramUniform1i(id, location, static_cast<GLint>(slot.binding));
     }
-    programs_.push_back(std::move(program));
-    return ProgramHandle{static_cast<uint32_t>(programs_.size())};
+    return objects_.programs.insert(std::move(program));
   });
 
   std::lock_guard lock(log_->mutex);
@@ -1052,80 +714,13 @@ Result<ProgramHandle> GlBackend::create_program(const ProgramDesc& desc) {
 
 Result<void> GlBackend::render(const RenderPass& pass) {
   const std::string what = fmt::format("render into target {}", pass.target.id);
-  return guarded<void>(what, [&]() -> Result<void> {
-    Target* target = find_target(pass.target.id);
-    if (!target) return fail(fmt::format("{}: no such target", what));
-
+  return on_context<void>(what, [&]() -> Result<void> {
     // Resolve every draw before drawing anything.
-    struct BoundTexture {
-      const Texture* texture = nullptr;
-      SamplerDesc sampler;
-    };
-    struct Resolved {
-      Program* program = nullptr;
-      Mesh* mesh = nullptr;
-      std::vector<const UniformBinding*> uniforms;  // per layout slot
-      std::vector<BoundTexture> textures;           // per layout slot
-    };
-    std::vector<Resolved> draws;
-    for (size_t i = 0; i < pass.draws.size(); ++i) {
-      const DrawItem& item = pass.draws[i];
-      Resolved draw;
-      if (item.program.id == 0 || item.program.id > programs_.size())
-        return fail(
-            fmt::format("{}: draw {}: no such program (handle {})", what, i, item.program.id));
-      draw.program = programs_[item.program.id - 1].get();
-      const Program& program = *draw.program;
-      const std::string where = fmt::format("{}: draw {} (program '{}')", what, i, program.name);
-      if (!program.fullscreen) {
-        if (item.mesh.id == 0 || item.mesh.id > meshes_.size())
-          return fail(fmt::format("{}: no such mesh (handle {})", where, item.mesh.id));
-        draw.mesh = meshes_[item.mesh.id - 1].get();
-      }
-
-      auto matched = match_bindings(program.layout, item, where);
-      if (!matched) return fail(matched.error());
-      draw.uniforms = std::move(matched->uniforms);
-
-      const auto& slots = program.layout.textures;
-      draw.textures.assign(slots.size(), BoundTexture{});
-      for (size_t index = 0; index < slots.size(); ++index) {
-        const TextureBinding& binding = *matched->textures[index];
-        const TextureSource& source = binding.source;
-        const Texture* texture = nullptr;
-        if (source.kind == TextureSource::Kind::Texture) {
-          if (source.id == 0 || source.id > textures_.size())
-            return fail(fmt::format("{}: texture '{}' is bound to a missing texture (handle {})",
-                                    where, binding.name, source.id));
-          texture = textures_[source.id - 1].get();
-        } else {
-          Target* sampled = find_target(source.id);
-          if (!sampled)
-            return fail(fmt::format("{}: texture '{}' is bound to a missing target (handle {})",
-                                    where, binding.name, source.id));
-          if (sampled == target)
-            return fail(fmt::format("{}: texture '{}' samples target {}, which the pass renders "
-                                    "into: a pass cannot sample its own target",
-                                    where, binding.name, source.id));
-          if (source.kind == TextureSource::Kind::TargetDepth && !sampled->depth)
-            return fail(
-                fmt::format("{}: texture '{}' samples the depth of target {}, which has no depth",
-                            where, binding.name, source.id));
-          texture =
-              source.kind == TextureSource::Kind::TargetColor ? &sampled->color : &*sampled->depth;
-        }
-        const std::string label = source.kind == TextureSource::Kind::Texture
-                                      ? fmt::format("texture {}", source.id)
-                                      : fmt::format("the {} of target {}",
-                                                    source.kind == TextureSource::Kind::TargetColor ? "colour" : "depth",
-                                                    source.id);
-        if (auto fits = check_bound_texture(slots[index], {texture->shape, texture->format, label}, source.sampler, where);
-            !fits)
-          return fail(fits.error());
-        draw.textures[index] = BoundTexture{texture, source.sampler};
-      }
-      draws.push_back(std::move(draw));
-    }
+    auto resolved = resolve_pass(objects_, pass, what, [](const Texture& texture) {
+      return std::pair{texture.shape, texture.format};
+    });
+    if (!resolved) return fail(resolved.error());
+    const Target* target = resolved->target;
 
     // The pass: clear, then each draw.
     const GLuint framebuffer = target->framebuffer.get();
@@ -1147,7 +742,7 @@ Result<void> GlBackend::render(const RenderPass& pass) {
 
     std::set<GLuint> used_units;
     std::vector<std::byte> padded;
-    for (const Resolved& draw : draws) {
+    for (const auto& draw : resolved->draws) {
       const Program& program = *draw.program;
       gl_.UseProgram(program.program.get());
       const auto& blocks = program.layout.uniform_blocks;
@@ -1163,7 +758,7 @@ Result<void> GlBackend::render(const RenderPass& pass) {
       }
       const auto& slots = program.layout.textures;
       for (size_t s = 0; s < slots.size(); ++s) {
-        const BoundTexture& bound = draw.textures[s];
+        const auto& bound = draw.textures[s];
         gl_.BindTextureUnit(slots[s].binding, bound.texture->texture.get());
         gl_.BindSampler(slots[s].binding, sampler(bound.sampler, bound.texture->levels > 1, slots[s].comparison));
         used_units.insert(slots[s].binding);
@@ -1199,9 +794,10 @@ Result<void> GlBackend::render(const RenderPass& pass) {
 
 Result<FloatImage> GlBackend::read_color(TargetHandle handle) {
   const std::string what = fmt::format("read_color of target {}", handle.id);
-  return guarded<FloatImage>(what, [&]() -> Result<FloatImage> {
-    Target* target = find_target(handle.id);
-    if (!target) return fail(fmt::format("{}: no such target", what));
+  return on_context<FloatImage>(what, [&]() -> Result<FloatImage> {
+    auto found = objects_.targets.find(handle, what);
+    if (!found) return fail(found.error());
+    const Target* target = *found;
     FloatImage result(target->color.width, target->color.height);
     // Texture row 0 is window row 0, which the clip control made the top: no flip.
     gl_.GetTextureImage(target->color.texture.get(), 0, GL_RGBA, GL_FLOAT,

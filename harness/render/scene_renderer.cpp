@@ -10,6 +10,7 @@
 #include "harness/assets/meshes.h"
 #include "harness/assets/obj_mesh.h"
 #include "harness/assets/scene_textures.h"
+#include "harness/backend/resource_set.h"
 
 namespace xshade::harness {
 namespace {
@@ -103,7 +104,7 @@ class SceneRenderer {
 
   // The scene pass, then the post passes on its colour and depth.
   Result<RenderedScene> render() {
-    auto target = backend_.create_target({scene_.width, scene_.height, true});
+    auto target = resources_.create_target({scene_.width, scene_.height, true});
     if (!target) return fail(target.error());
     scene_target_ = *target;
     const glm::uvec2 size{scene_.width, scene_.height};
@@ -125,9 +126,9 @@ class SceneRenderer {
     if (std::none_of(plan_.passes.begin(), plan_.passes.end(),
                      [](const PlannedPass& pass) { return pass.kind == PlannedPass::Kind::Post; }))
       return fail("scene '" + scene_.name + "' has no post pass to run on the given images");
-    auto color_texture = backend_.upload_texture(float_texture(color));
+    auto color_texture = resources_.upload_texture(float_texture(color));
     if (!color_texture) return fail(color_texture.error());
-    auto depth_texture = backend_.upload_texture(float_texture(depth));
+    auto depth_texture = resources_.upload_texture(float_texture(depth));
     if (!depth_texture) return fail(depth_texture.error());
     const glm::uvec2 size{scene_.width, scene_.height};
     scene_color_ = {TextureSource::texture(*color_texture, kColorSampler), size};
@@ -173,7 +174,7 @@ class SceneRenderer {
   Result<ProgramHandle> program(size_t variant) {
     if (auto it = programs_.find(variant); it != programs_.end()) return it->second;
     auto created = options_.programs ? options_.programs->program(backend_, variants_[variant].program)
-                                     : backend_.create_program(variants_[variant].program);
+                                     : resources_.create_program(variants_[variant].program);
     if (!created) return fail(created.error());
     programs_[variant] = *created;
     return *created;
@@ -184,7 +185,7 @@ class SceneRenderer {
       if (known == ref) return handle;
     auto data = mesh_data(ref);
     if (!data) return fail(data.error());
-    auto handle = backend_.upload_mesh(*data);
+    auto handle = resources_.upload_mesh(*data);
     if (!handle) return fail(handle.error());
     meshes_.emplace_back(ref, *handle);
     return *handle;
@@ -195,7 +196,7 @@ class SceneRenderer {
       if (known == ref) return handle;
     auto image = texture_image(ref);
     if (!image) return fail(image.error());
-    auto handle = backend_.upload_texture(texture_with_mips(*image));
+    auto handle = resources_.upload_texture(texture_with_mips(*image));
     if (!handle) return fail(handle.error());
     textures_.emplace_back(ref, *handle);
     return *handle;
@@ -203,7 +204,7 @@ class SceneRenderer {
 
   Result<TextureHandle> environment_texture() {
     if (!environment_handle_) {
-      auto handle = backend_.upload_texture(environment_.prefiltered);
+      auto handle = resources_.upload_texture(environment_.prefiltered);
       if (!handle) return fail(handle.error());
       environment_handle_ = *handle;
     }
@@ -277,7 +278,7 @@ class SceneRenderer {
     const uint32_t height = half ? std::max(1u, scene_.height / 2) : scene_.height;
     auto& target = pass_target_[index];
     if (!target) {
-      auto created = backend_.create_target({width, height, false});
+      auto created = resources_.create_target({width, height, false});
       if (!created) return fail(created.error());
       target = *created;
     }
@@ -332,6 +333,9 @@ class SceneRenderer {
   const std::vector<CompiledVariant>& variants_;
   const Environment& environment_;
   const RenderOptions& options_;
+  // Every target, mesh and texture this render made, and its programs unless a ProgramCache
+  // keeps them: destroyed when the render ends, however it ends.
+  ResourceSet resources_{backend_};
 
   TargetHandle scene_target_;  // none when the post passes run on given images
   PassSource scene_color_;      // what scene.color and scene.depth name

@@ -297,4 +297,125 @@ vk::Format vk_format(TextureFormat format) {
   return vk::Format::eUndefined;
 }
 
+vk::Format zero_input_format(TexelKind kind) {
+  switch (kind) {
+    case TexelKind::Float: return vk::Format::eR32G32B32A32Sfloat;
+    case TexelKind::Int: return vk::Format::eR32G32B32A32Sint;
+    case TexelKind::Uint: return vk::Format::eR32G32B32A32Uint;
+  }
+  return vk::Format::eR32G32B32A32Sfloat;
+}
+
+vk::raii::Pipeline create_draw_pipeline(const vk::raii::Device& device, const DrawPipelineSpec& spec) {
+  const bool depth = spec.depth_format != vk::Format::eUndefined;
+  const std::array<vk::PipelineShaderStageCreateInfo, 2> stages = {
+      vk::PipelineShaderStageCreateInfo({}, vk::ShaderStageFlagBits::eVertex, spec.vertex,
+                                        spec.vertex_entry),
+      vk::PipelineShaderStageCreateInfo({}, vk::ShaderStageFlagBits::eFragment,
+                                        spec.fragment, spec.fragment_entry)};
+  // Binding 0 is the mesh; binding 1 the zero buffer, read at stride 0 by every input no
+  // mesh supplies.
+  std::vector<vk::VertexInputBindingDescription> bindings;
+  const std::array<vk::VertexInputAttributeDescription, 4> all_attributes = {
+      vk::VertexInputAttributeDescription(0, 0, vk::Format::eR32G32B32Sfloat,
+                                          offsetof(Vertex, position)),
+      vk::VertexInputAttributeDescription(1, 0, vk::Format::eR32G32B32Sfloat,
+                                          offsetof(Vertex, normal)),
+      vk::VertexInputAttributeDescription(2, 0, vk::Format::eR32G32B32A32Sfloat,
+                                          offsetof(Vertex, tangent)),
+      vk::VertexInputAttributeDescription(3, 0, vk::Format::eR32G32Sfloat,
+                                          offsetof(Vertex, uv))};
+  // Only the locations the shader reads: the validation layer warns about unread attributes.
+  std::vector<vk::VertexInputAttributeDescription> attributes;
+  for (uint32_t location : spec.vertex_inputs)
+    if (location < all_attributes.size()) attributes.push_back(all_attributes[location]);
+  if (!attributes.empty()) bindings.emplace_back(0, sizeof(Vertex), vk::VertexInputRate::eVertex);
+  for (const auto& [location, kind] : spec.zero_inputs)
+    attributes.emplace_back(location, 1, zero_input_format(kind), 0);
+  if (!spec.zero_inputs.empty()) bindings.emplace_back(1, 0, vk::VertexInputRate::eVertex);
+  vk::PipelineVertexInputStateCreateInfo vertex_input;
+  if (!attributes.empty())
+    vertex_input = vk::PipelineVertexInputStateCreateInfo({}, bindings, attributes);
+  const vk::PipelineInputAssemblyStateCreateInfo assembly(
+      {}, vk::PrimitiveTopology::eTriangleList);
+  const vk::PipelineViewportStateCreateInfo viewport({}, 1, nullptr, 1, nullptr);
+  vk::PipelineRasterizationStateCreateInfo raster(
+      {}, VK_FALSE, VK_FALSE, vk::PolygonMode::eFill, vk::CullModeFlagBits::eNone,
+      vk::FrontFace::eCounterClockwise);
+  raster.lineWidth = 1.0f;
+  const vk::PipelineMultisampleStateCreateInfo multisample({}, vk::SampleCountFlagBits::e1);
+  const vk::PipelineDepthStencilStateCreateInfo depth_state({}, depth, depth,
+                                                            vk::CompareOp::eLess);
+  vk::PipelineColorBlendAttachmentState blend_attachment;
+  blend_attachment.colorWriteMask =
+      vk::ColorComponentFlagBits::eR | vk::ColorComponentFlagBits::eG |
+      vk::ColorComponentFlagBits::eB | vk::ColorComponentFlagBits::eA;
+  const vk::PipelineColorBlendStateCreateInfo blend({}, VK_FALSE, vk::LogicOp::eCopy,
+                                                    blend_attachment);
+  const std::array<vk::DynamicState, 2> dynamic_states = {vk::DynamicState::eViewport,
+                                                          vk::DynamicState::eScissor};
+  const vk::PipelineDynamicStateCreateInfo dynamic({}, dynamic_states);
+  vk::PipelineRenderingCreateInfo rendering({}, spec.color_format, spec.depth_format);
+  vk::GraphicsPipelineCreateInfo info({}, stages, &vertex_input, &assembly, nullptr,
+                                      &viewport, &raster, &multisample, &depth_state, &blend,
+                                      &dynamic, spec.layout);
+  info.pNext = &rendering;
+  return vk::raii::Pipeline(device, nullptr, info);
+}
+
+std::string fill_fragment_shader(TexelKind kind) {
+  const std::string prefix = kind == TexelKind::Int ? "i" : kind == TexelKind::Uint ? "u" : "";
+  return "#version 450\nlayout(set = 0, binding = 0) uniform " + prefix + "sampler2DArray source;\n"
+         "layout(push_constant) uniform Fill { int layer; } fill;\n"
+         "layout(location = 0) out " + prefix + "vec4 color;\n"
+         "void main() { color = texelFetch(source, ivec3(ivec2(gl_FragCoord.xy), fill.layer), 0); }\n";
+}
+
+vk::raii::Pipeline create_fill_pipeline(const vk::raii::Device& device, vk::ShaderModule vertex,
+                                        vk::ShaderModule fragment, vk::PipelineLayout layout, vk::Format format,
+                                        uint32_t samples, vk::Rect2D area) {
+  const std::array<vk::PipelineShaderStageCreateInfo, 2> stages = {
+      vk::PipelineShaderStageCreateInfo({}, vk::ShaderStageFlagBits::eVertex, vertex, "main"),
+      vk::PipelineShaderStageCreateInfo({}, vk::ShaderStageFlagBits::eFragment, fragment, "main")};
+  const vk::PipelineVertexInputStateCreateInfo vertex_input;
+  const vk::PipelineInputAssemblyStateCreateInfo assembly({}, vk::PrimitiveTopology::eTriangleList);
+  const vk::Viewport viewport(0.0f, 0.0f, float(area.extent.width), float(area.extent.height), 0.0f, 1.0f);
+  const vk::PipelineViewportStateCreateInfo viewport_state({}, viewport, area);
+  vk::PipelineRasterizationStateCreateInfo raster({}, VK_FALSE, VK_FALSE, vk::PolygonMode::eFill,
+                                                  vk::CullModeFlagBits::eNone, vk::FrontFace::eCounterClockwise);
+  raster.lineWidth = 1.0f;
+  const vk::PipelineMultisampleStateCreateInfo multisample({}, vk::SampleCountFlagBits(samples));
+  vk::PipelineColorBlendAttachmentState blend_attachment;
+  blend_attachment.colorWriteMask = vk::ColorComponentFlagBits::eR | vk::ColorComponentFlagBits::eG |
+                                    vk::ColorComponentFlagBits::eB | vk::ColorComponentFlagBits::eA;
+  const vk::PipelineColorBlendStateCreateInfo blend({}, VK_FALSE, vk::LogicOp::eCopy, blend_attachment);
+  vk::PipelineRenderingCreateInfo rendering({}, format);
+  vk::GraphicsPipelineCreateInfo info({}, stages, &vertex_input, &assembly, nullptr, &viewport_state, &raster,
+                                      &multisample, nullptr, &blend, nullptr, layout);
+  info.pNext = &rendering;
+  return vk::raii::Pipeline(device, nullptr, info);
+}
+
+bool layout_has_binding(const ProgramLayout& layout, uint32_t binding) {
+  for (const UniformBlockSlot& block : layout.uniform_blocks)
+    if (block.binding == binding) return true;
+  for (const TextureSlot& texture : layout.textures)
+    if (texture.binding == binding || texture.sampler_binding == binding) return true;
+  return false;
+}
+
+vk::CompareOp vk_compare_op(CompareOp op) {
+  switch (op) {
+    case CompareOp::Never: return vk::CompareOp::eNever;
+    case CompareOp::Less: return vk::CompareOp::eLess;
+    case CompareOp::Equal: return vk::CompareOp::eEqual;
+    case CompareOp::LessEqual: return vk::CompareOp::eLessOrEqual;
+    case CompareOp::Greater: return vk::CompareOp::eGreater;
+    case CompareOp::NotEqual: return vk::CompareOp::eNotEqual;
+    case CompareOp::GreaterEqual: return vk::CompareOp::eGreaterOrEqual;
+    case CompareOp::Always: return vk::CompareOp::eAlways;
+  }
+  return vk::CompareOp::eLessOrEqual;
+}
+
 }  // namespace xshade::harness::vk_support

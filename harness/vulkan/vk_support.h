@@ -141,5 +141,42 @@ vk::DebugUtilsMessengerCreateInfoEXT messenger_info(MessageLog* log);
 
 std::string version_string(uint32_t version);  // "1.3.230"
 vk::Format vk_format(TextureFormat format);
+vk::CompareOp vk_compare_op(CompareOp op);
+// Whether a uniform block, texture or separate sampler of `layout` sits at `binding` (of set 0).
+bool layout_has_binding(const ProgramLayout& layout, uint32_t binding);
+
+// ---- Pipelines ---------------------------------------------------------------------------------
+
+// What a draw's pipeline is made of. The mesh is vertex binding 0 (only the locations 0..3 the
+// shader reads); binding 1 the zero buffer, read at stride 0 by every input no mesh supplies.
+struct DrawPipelineSpec {
+  vk::ShaderModule vertex;
+  vk::ShaderModule fragment;
+  const char* vertex_entry;
+  const char* fragment_entry;
+  const std::set<uint32_t>& vertex_inputs;
+  const std::map<uint32_t, TexelKind>& zero_inputs;
+  vk::PipelineLayout layout;
+  vk::Format color_format;
+  vk::Format depth_format;  // eUndefined: no depth attachment, no depth test
+};
+// Triangles, no culling, no blending, depth-tested (less) with depth; viewport and scissor dynamic.
+vk::raii::Pipeline create_draw_pipeline(const vk::raii::Device& device, const DrawPipelineSpec& spec);
+
+// The internal draw that fills a multisampled image: each sample of every texel of one layer
+// gets the texel of a single-sampled copy. Without sample shading a fragment's one output goes to
+// every sample it covers, and the triangle covers the whole layer.
+constexpr const char* kFillVertexShader = R"(#version 450
+void main() {
+  vec2 corner = vec2((gl_VertexIndex << 1) & 2, gl_VertexIndex & 2);
+  gl_Position = vec4(corner * 2.0 - 1.0, 0.0, 1.0);
+}
+)";
+// Reads the layer a push constant names from a 2D array of texels of `kind`.
+std::string fill_fragment_shader(TexelKind kind);
+// The fill's pipeline: `samples` samples of `format` over `area`, the layer as a push constant.
+vk::raii::Pipeline create_fill_pipeline(const vk::raii::Device& device, vk::ShaderModule vertex,
+                                        vk::ShaderModule fragment, vk::PipelineLayout layout, vk::Format format,
+                                        uint32_t samples, vk::Rect2D area);
 
 }  // namespace xshade::harness::vk_support

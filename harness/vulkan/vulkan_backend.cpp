@@ -19,19 +19,14 @@
 #include <fmt/format.h>
 #include <vulkan/vulkan_raii.hpp>
 
+#include "harness/backend/guarded.h"
+#include "harness/backend/handle_table.h"
+#include "harness/backend/pass_resolution.h"
 #include "harness/vulkan/vk_support.h"
 #include "spirv/spirv_compiler.h"
 
 namespace xshade::harness {
 namespace {
-
-bool layout_has_binding(const ProgramLayout& layout, uint32_t binding) {
-  for (const UniformBlockSlot& block : layout.uniform_blocks)
-    if (block.binding == binding) return true;
-  for (const TextureSlot& texture : layout.textures)
-    if (texture.binding == binding || texture.sampler_binding == binding) return true;
-  return false;
-}
 
 using vk_support::Buffer;
 using vk_support::Image;
@@ -71,6 +66,17 @@ struct Program {
   std::array<std::optional<vk::raii::Pipeline>, 2> pipelines;  // [target has depth]
 };
 
+// A failed vk::raii call says so; any other exception speaks for itself.
+std::string describe_exception(const std::exception& e) {
+  if (dynamic_cast<const vk::SystemError*>(&e) != nullptr) return std::string("Vulkan call failed: ") + e.what();
+  return e.what();
+}
+
+template <class T, class F>
+Result<T> guarded(const std::string& what, F&& body) {
+  return harness::guarded<T>(what, std::forward<F>(body), &describe_exception);
+}
+
 // ---- The backend -------------------------------------------------------------------------------
 
 class VulkanBackend final : public Backend {
@@ -90,6 +96,10 @@ class VulkanBackend final : public Backend {
   Result<MeshHandle> upload_mesh(const MeshData& mesh) override;
   Result<TextureHandle> upload_texture(const TextureData& texture) override;
   Result<ProgramHandle> create_program(const ProgramDesc& desc) override;
+  Result<void> destroy(TargetHandle target) override { return destroy_in(objects_.targets, target); }
+  Result<void> destroy(MeshHandle mesh) override { return destroy_in(objects_.meshes, mesh); }
+  Result<void> destroy(TextureHandle texture) override { return destroy_in(objects_.textures, texture); }
+  Result<void> destroy(ProgramHandle program) override { return destroy_in(objects_.programs, program); }
   Result<void> render(const RenderPass& pass) override;
   Result<FloatImage> read_color(TargetHandle target) override;
   std::vector<std::string> take_driver_messages() override {
@@ -112,8 +122,11 @@ class VulkanBackend final : public Backend {
   void submit(const std::function<void(Recording&)>& record);
   Result<vk::Pipeline> pipeline(Program& program, bool depth);
 
-  Target* find_target(uint32_t id) {
-    return id >= 1 && id <= targets_.size() ? targets_[id - 1].get() : nullptr;
+  // Every submit waits for its fence, so no work is in flight between calls and nothing a
+  // command buffer used can be pending: the object goes at once.
+  template <class Table, class HandleType>
+  Result<void> destroy_in(Table& table, HandleType handle) {
+    return guarded<void>("destroy", [&]() -> Result<void> { return table.erase(handle, "destroy"); });
   }
 
   // Declared first so that it outlives the messenger that writes into it.
@@ -134,25 +147,8 @@ class VulkanBackend final : public Backend {
 
   std::map<std::tuple<Filter, AddressMode, std::optional<CompareOp>>, vk::raii::Sampler> samplers_;
   Buffer zero_vertices_;
-  std::vector<std::unique_ptr<Target>> targets_;
-  std::vector<std::unique_ptr<Mesh>> meshes_;
-  std::vector<std::unique_ptr<Image>> textures_;
-  std::vector<std::unique_ptr<Program>> programs_;
+  BackendObjects<Target, Mesh, Image, Program> objects_;
 };
-
-// Runs `body`, turning any exception into an error that names the operation.
-template <class T, class F>
-Result<T> guarded(const std::string& what, F&& body) {
-  try {
-    return body();
-  } catch (const vk::SystemError& e) {
-    return fail(fmt::format("{}: Vulkan call failed: {}", what, e.what()));
-  } catch (const std::exception& e) {
-    return fail(fmt::format("{}: {}", what, e.what()));
-  } catch (...) {
-    return fail(fmt::format("{}: unknown exception", what));
-  }
-}
 
 Result<void> VulkanBackend::init(const VulkanOptions& options) {
   try {
@@ -284,46 +280,6 @@ Result<void> VulkanBackend::init(const VulkanOptions& options) {
   });
 }
 
-vk::CompareOp vk_compare_op(CompareOp op) {
-  switch (op) {
-    case CompareOp::Never: return vk::CompareOp::eNever;
-    case CompareOp::Less: return vk::CompareOp::eLess;
-    case CompareOp::Equal: return vk::CompareOp::eEqual;
-    case CompareOp::LessEqual: return vk::CompareOp::eLessOrEqual;
-    case CompareOp::Greater: return vk::CompareOp::eGreater;
-    case CompareOp::NotEqual: return vk::CompareOp::eNotEqual;
-    case CompareOp::GreaterEqual: return vk::CompareOp::eGreaterOrEqual;
-    case CompareOp::Always: return vk::CompareOp::eAlways;
-  }
-  return vk::CompareOp::eLessOrEqual;
-}
-
-vk::Format zero_input_format(TexelKind kind) {
-  switch (kind) {
-    case TexelKind::Float: return vk::Format::eR32G32B32A32Sfloat;
-    case TexelKind::Int: return vk::Format::eR32G32B32A32Sint;
-    case TexelKind::Uint: return vk::Format::eR32G32B32A32Uint;
-  }
-  return vk::Format::eR32G32B32A32Sfloat;
-}
-
-// The internal draw that fills a multisampled image: each sample of every texel of one layer
-// gets the texel of a single-sampled copy. Without sample shading a fragment's one output goes to
-// every sample it covers, and the triangle covers the whole layer.
-constexpr const char* kFillVertexShader = R"(#version 450
-void main() {
-  vec2 corner = vec2((gl_VertexIndex << 1) & 2, gl_VertexIndex & 2);
-  gl_Position = vec4(corner * 2.0 - 1.0, 0.0, 1.0);
-}
-)";
-std::string fill_fragment_shader(TexelKind kind) {
-  const std::string prefix = kind == TexelKind::Int ? "i" : kind == TexelKind::Uint ? "u" : "";
-  return "#version 450\nlayout(set = 0, binding = 0) uniform " + prefix + "sampler2DArray source;\n"
-         "layout(push_constant) uniform Fill { int layer; } fill;\n"
-         "layout(location = 0) out " + prefix + "vec4 color;\n"
-         "void main() { color = texelFetch(source, ivec3(ivec2(gl_FragCoord.xy), fill.layer), 0); }\n";
-}
-
 const vk::raii::Sampler& VulkanBackend::sampler(const SamplerDesc& desc, bool compare) {
   const auto key = std::make_tuple(desc.filter, desc.address,
                                    compare ? std::optional<CompareOp>(desc.compare) : std::nullopt);
@@ -338,7 +294,7 @@ const vk::raii::Sampler& VulkanBackend::sampler(const SamplerDesc& desc, bool co
                                              : vk::SamplerAddressMode::eClampToEdge;
   vk::SamplerCreateInfo info({}, filter, filter, mip, address, address, address, 0.0f, VK_FALSE,
                              1.0f, compare ? VK_TRUE : VK_FALSE,
-                             compare ? vk_compare_op(desc.compare) : vk::CompareOp::eNever, 0.0f,
+                             compare ? vk_support::vk_compare_op(desc.compare) : vk::CompareOp::eNever, 0.0f,
                              VK_LOD_CLAMP_NONE);
   return samplers_.emplace(key, vk::raii::Sampler(device_, info)).first->second;
 }
@@ -370,7 +326,7 @@ Result<TargetHandle> VulkanBackend::create_target(const TargetDesc& desc) {
     if (std::max(desc.width, desc.height) > max_image_size_)
       return fail(fmt::format("create_target: size {}x{} exceeds the device limit of {}",
                               desc.width, desc.height, max_image_size_));
-    const uint32_t id = static_cast<uint32_t>(targets_.size() + 1);
+    const uint32_t id = objects_.targets.next_handle().id;
     using U = vk::ImageUsageFlagBits;
     auto target = std::make_unique<Target>();
     // Transfer-dst only for the initial clear below.
@@ -400,8 +356,7 @@ Result<TargetHandle> VulkanBackend::create_target(const TargetDesc& desc) {
             vk::ImageSubresourceRange(vk::ImageAspectFlagBits::eDepth, 0, 1, 0, 1));
       }
     });
-    targets_.push_back(std::move(target));
-    return TargetHandle{id};
+    return objects_.targets.insert(std::move(target));
   });
 }
 
@@ -416,8 +371,7 @@ Result<MeshHandle> VulkanBackend::upload_mesh(const MeshData& data) {
     mesh->indices = create_buffer(index_bytes, vk::BufferUsageFlagBits::eIndexBuffer);
     vk_support::write_buffer(mesh->indices, data.indices.data(), index_bytes);
     mesh->index_count = static_cast<uint32_t>(data.indices.size());
-    meshes_.push_back(std::move(mesh));
-    return MeshHandle{static_cast<uint32_t>(meshes_.size())};
+    return objects_.meshes.insert(std::move(mesh));
   });
 }
 
@@ -427,7 +381,7 @@ Result<TextureHandle> VulkanBackend::upload_texture(const TextureData& data) {
     const TextureShape shape = data.shape();
     const bool depth = data.format == TextureFormat::Depth32Float;
     const vk::ImageAspectFlags aspect = depth ? vk::ImageAspectFlagBits::eDepth : vk::ImageAspectFlagBits::eColor;
-    const uint32_t id = static_cast<uint32_t>(textures_.size() + 1);
+    const uint32_t id = objects_.textures.next_handle().id;
     using U = vk::ImageUsageFlagBits;
     vk_support::ImageSpec spec{vk_support::vk_format(data.format),
                                aspect,
@@ -445,8 +399,7 @@ Result<TextureHandle> VulkanBackend::upload_texture(const TextureData& data) {
     auto image = std::make_unique<Image>(vk_support::create_image(device_ref(), spec));
     if (shape.multisampled) {
       fill_multisampled(*image, data);
-      textures_.push_back(std::move(image));
-      return TextureHandle{id};
+      return objects_.textures.insert(std::move(image));
     }
     std::vector<size_t> offsets;
     size_t total = 0;
@@ -472,8 +425,7 @@ Result<TextureHandle> VulkanBackend::upload_texture(const TextureData& data) {
       rec.cmd.copyBufferToImage(*staging.buffer, *image->image, vk::ImageLayout::eTransferDstOptimal, regions);
       rec.transition(*image, vk::ImageLayout::eShaderReadOnlyOptimal);
     });
-    textures_.push_back(std::move(image));
-    return TextureHandle{id};
+    return objects_.textures.insert(std::move(image));
   });
 }
 
@@ -489,9 +441,9 @@ void VulkanBackend::fill_multisampled(Image& image, const TextureData& data) {
   vk_support::write_buffer(staging, data.levels[0].data(), data.levels[0].size());
 
   const TexelKind kind = texel_kind(data.format);
-  auto vertex_code = spirv::compile_vulkan_glsl(kFillVertexShader, spirv::Stage::Vertex, "multisample_fill.vert");
+  auto vertex_code = spirv::compile_vulkan_glsl(vk_support::kFillVertexShader, spirv::Stage::Vertex, "multisample_fill.vert");
   auto fragment_code =
-      spirv::compile_vulkan_glsl(fill_fragment_shader(kind), spirv::Stage::Fragment, "multisample_fill.frag");
+      spirv::compile_vulkan_glsl(vk_support::fill_fragment_shader(kind), spirv::Stage::Fragment, "multisample_fill.frag");
   if (!vertex_code || !fragment_code)
     throw std::runtime_error("the multisample fill shaders do not compile: " +
                              (vertex_code ? fragment_code.error() : vertex_code.error()).to_string());
@@ -506,27 +458,9 @@ void VulkanBackend::fill_multisampled(Image& image, const TextureData& data) {
   const vk::PushConstantRange push(vk::ShaderStageFlagBits::eFragment, 0, sizeof(int32_t));
   const vk::DescriptorSetLayout set_layout_handle = *set_layout;
   const vk::raii::PipelineLayout pipeline_layout(device_, vk::PipelineLayoutCreateInfo({}, set_layout_handle, push));
-  const std::array<vk::PipelineShaderStageCreateInfo, 2> stages = {
-      vk::PipelineShaderStageCreateInfo({}, vk::ShaderStageFlagBits::eVertex, *vertex, "main"),
-      vk::PipelineShaderStageCreateInfo({}, vk::ShaderStageFlagBits::eFragment, *fragment, "main")};
-  const vk::PipelineVertexInputStateCreateInfo vertex_input;
-  const vk::PipelineInputAssemblyStateCreateInfo assembly({}, vk::PrimitiveTopology::eTriangleList);
-  const vk::Viewport viewport(0.0f, 0.0f, float(data.width), float(data.height), 0.0f, 1.0f);
   const vk::Rect2D area({0, 0}, {data.width, data.height});
-  const vk::PipelineViewportStateCreateInfo viewport_state({}, viewport, area);
-  vk::PipelineRasterizationStateCreateInfo raster({}, VK_FALSE, VK_FALSE, vk::PolygonMode::eFill,
-                                                  vk::CullModeFlagBits::eNone, vk::FrontFace::eCounterClockwise);
-  raster.lineWidth = 1.0f;
-  const vk::PipelineMultisampleStateCreateInfo multisample({}, vk::SampleCountFlagBits(data.samples));
-  vk::PipelineColorBlendAttachmentState blend_attachment;
-  blend_attachment.colorWriteMask = vk::ColorComponentFlagBits::eR | vk::ColorComponentFlagBits::eG |
-                                    vk::ColorComponentFlagBits::eB | vk::ColorComponentFlagBits::eA;
-  const vk::PipelineColorBlendStateCreateInfo blend({}, VK_FALSE, vk::LogicOp::eCopy, blend_attachment);
-  vk::PipelineRenderingCreateInfo rendering({}, image.format);
-  vk::GraphicsPipelineCreateInfo info({}, stages, &vertex_input, &assembly, nullptr, &viewport_state, &raster,
-                                      &multisample, nullptr, &blend, nullptr, *pipeline_layout);
-  info.pNext = &rendering;
-  const vk::raii::Pipeline pipeline(device_, nullptr, info);
+  const vk::raii::Pipeline pipeline =
+      vk_support::create_fill_pipeline(device_, *vertex, *fragment, *pipeline_layout, image.format, data.samples, area);
 
   const vk::DescriptorPoolSize pool_size(vk::DescriptorType::eCombinedImageSampler, 1);
   const vk::raii::DescriptorPool pool(
@@ -616,7 +550,7 @@ Result<ProgramHandle> VulkanBackend::create_program(const ProgramDesc& desc) {
       }
       // A resource the layout does not list would reach the driver without a descriptor.
       for (const auto& [set, binding] : entry.descriptor_bindings)
-        if (set != 0 || !layout_has_binding(desc.layout, binding))
+        if (set != 0 || !vk_support::layout_has_binding(desc.layout, binding))
           return fail(fmt::format("{} reads the resource at set {} binding {}, which the program's "
                                   "layout does not list",
                                   shader, set, binding));
@@ -674,8 +608,7 @@ Result<ProgramHandle> VulkanBackend::create_program(const ProgramDesc& desc) {
     const vk::DescriptorSetLayout set_layout = *program->set_layout;
     program->pipeline_layout =
         vk::raii::PipelineLayout(device_, vk::PipelineLayoutCreateInfo({}, set_layout));
-    programs_.push_back(std::move(program));
-    return ProgramHandle{static_cast<uint32_t>(programs_.size())};
+    return objects_.programs.insert(std::move(program));
   });
 }
 
@@ -683,62 +616,11 @@ Result<vk::Pipeline> VulkanBackend::pipeline(Program& program, bool depth) {
   std::optional<vk::raii::Pipeline>& slot = program.pipelines[depth ? 1 : 0];
   if (slot) return **slot;
   return guarded<vk::Pipeline>(
-      fmt::format("creating the pipeline of program '{}'", program.name),
-      [&]() -> Result<vk::Pipeline> {
-        const std::array<vk::PipelineShaderStageCreateInfo, 2> stages = {
-            vk::PipelineShaderStageCreateInfo({}, vk::ShaderStageFlagBits::eVertex, *program.vertex,
-                                              program.vertex_entry.c_str()),
-            vk::PipelineShaderStageCreateInfo({}, vk::ShaderStageFlagBits::eFragment,
-                                              *program.fragment, program.fragment_entry.c_str())};
-        // Binding 0 is the mesh; binding 1 the zero buffer, read at stride 0 by every input no
-        // mesh supplies.
-        std::vector<vk::VertexInputBindingDescription> bindings;
-        const std::array<vk::VertexInputAttributeDescription, 4> all_attributes = {
-            vk::VertexInputAttributeDescription(0, 0, vk::Format::eR32G32B32Sfloat,
-                                                offsetof(Vertex, position)),
-            vk::VertexInputAttributeDescription(1, 0, vk::Format::eR32G32B32Sfloat,
-                                                offsetof(Vertex, normal)),
-            vk::VertexInputAttributeDescription(2, 0, vk::Format::eR32G32B32A32Sfloat,
-                                                offsetof(Vertex, tangent)),
-            vk::VertexInputAttributeDescription(3, 0, vk::Format::eR32G32Sfloat,
-                                                offsetof(Vertex, uv))};
-        // Only the locations the shader reads: the validation layer warns about unread attributes.
-        std::vector<vk::VertexInputAttributeDescription> attributes;
-        for (uint32_t location : program.vertex_inputs)
-          if (location < all_attributes.size()) attributes.push_back(all_attributes[location]);
-        if (!attributes.empty()) bindings.emplace_back(0, sizeof(Vertex), vk::VertexInputRate::eVertex);
-        for (const auto& [location, kind] : program.zero_inputs)
-          attributes.emplace_back(location, 1, zero_input_format(kind), 0);
-        if (!program.zero_inputs.empty()) bindings.emplace_back(1, 0, vk::VertexInputRate::eVertex);
-        vk::PipelineVertexInputStateCreateInfo vertex_input;
-        if (!attributes.empty())
-          vertex_input = vk::PipelineVertexInputStateCreateInfo({}, bindings, attributes);
-        const vk::PipelineInputAssemblyStateCreateInfo assembly(
-            {}, vk::PrimitiveTopology::eTriangleList);
-        const vk::PipelineViewportStateCreateInfo viewport({}, 1, nullptr, 1, nullptr);
-        vk::PipelineRasterizationStateCreateInfo raster(
-            {}, VK_FALSE, VK_FALSE, vk::PolygonMode::eFill, vk::CullModeFlagBits::eNone,
-            vk::FrontFace::eCounterClockwise);
-        raster.lineWidth = 1.0f;
-        const vk::PipelineMultisampleStateCreateInfo multisample({}, vk::SampleCountFlagBits::e1);
-        const vk::PipelineDepthStencilStateCreateInfo depth_state({}, depth, depth,
-                                                                  vk::CompareOp::eLess);
-        vk::PipelineColorBlendAttachmentState blend_attachment;
-        blend_attachment.colorWriteMask =
-            vk::ColorComponentFlagBits::eR | vk::ColorComponentFlagBits::eG |
-            vk::ColorComponentFlagBits::eB | vk::ColorComponentFlagBits::eA;
-        const vk::PipelineColorBlendStateCreateInfo blend({}, VK_FALSE, vk::LogicOp::eCopy,
-                                                          blend_attachment);
-        const std::array<vk::DynamicState, 2> dynamic_states = {vk::DynamicState::eViewport,
-                                                                vk::DynamicState::eScissor};
-        const vk::PipelineDynamicStateCreateInfo dynamic({}, dynamic_states);
-        vk::PipelineRenderingCreateInfo rendering({}, kColorFormat,
-                                                  depth ? kDepthFormat : vk::Format::eUndefined);
-        vk::GraphicsPipelineCreateInfo info({}, stages, &vertex_input, &assembly, nullptr,
-                                            &viewport, &raster, &multisample, &depth_state, &blend,
-                                            &dynamic, *program.pipeline_layout);
-        info.pNext = &rendering;
-        slot.emplace(device_, nullptr, info);
+      fmt::format("creating the pipeline of program '{}'", program.name), [&]() -> Result<vk::Pipeline> {
+        slot.emplace(vk_support::create_draw_pipeline(
+            device_, {*program.vertex, *program.fragment, program.vertex_entry.c_str(), program.fragment_entry.c_str(),
+                      program.vertex_inputs, program.zero_inputs, *program.pipeline_layout, kColorFormat,
+                      depth ? kDepthFormat : vk::Format::eUndefined}));
         return **slot;
       });
 }
@@ -746,112 +628,66 @@ Result<vk::Pipeline> VulkanBackend::pipeline(Program& program, bool depth) {
 Result<void> VulkanBackend::render(const RenderPass& pass) {
   const std::string what = fmt::format("render into target {}", pass.target.id);
   return guarded<void>(what, [&]() -> Result<void> {
-    Target* target = find_target(pass.target.id);
-    if (!target) return fail(fmt::format("{}: no such target", what));
-
-    // Resolve every binding before recording anything.
-    struct BoundTexture {
-      Image* image;
-      SamplerDesc sampler;
+    // Resolve every binding before recording anything; what only Vulkan refuses is checked per
+    // texture beside the shared checks.
+    const auto facts = [](const Image& image) { return std::pair{image.shape, image.texture_format}; };
+    const auto vulkan_checks = [](const ProgramLayout& layout, size_t index, const TextureBinding& binding,
+                                  const BoundTexture<Image>& bound, const std::vector<BoundTexture<Image>>& earlier,
+                                  const std::string& where) -> Result<void> {
+      if (bound.sampler.filter == Filter::Linear && !bound.texture->linear_filter)
+        return fail(fmt::format("{}: texture '{}': {} cannot be filtered linearly on this device; "
+                                "use a nearest sampler",
+                                where, binding.name, bound.texture->label));
+      const auto& slots = layout.textures;
+      const auto& sampler_binding = slots[index].sampler_binding;
+      if (!sampler_binding) return {};
+      // One SamplerState, one sampler: every texture read through it must be bound with the same.
+      for (size_t other = 0; other < index; ++other) {
+        if (slots[other].sampler_binding != sampler_binding) continue;
+        const SamplerDesc& first = earlier[other].sampler;
+        const bool compared = slots[index].comparison;
+        if (first.filter == bound.sampler.filter && first.address == bound.sampler.address &&
+            slots[other].comparison == compared && (!compared || first.compare == bound.sampler.compare))
+          continue;
+        return fail(fmt::format("{}: textures '{}' and '{}' are sampled through one sampler (binding {}) but are "
+                                "bound with different samplers",
+                                where, slots[other].name, slots[index].name, *sampler_binding));
+      }
+      return {};
     };
+    auto resolved = resolve_pass(objects_, pass, what, facts, vulkan_checks);
+    if (!resolved) return fail(resolved.error());
+    Target* target = resolved->target;
+
+    // What the pass needs from the driver: a pipeline per draw, descriptors by type, uniform bytes.
     struct Resolved {
-      Program* program = nullptr;
-      Mesh* mesh = nullptr;
+      Program* program;
+      Mesh* mesh;
+      const std::vector<const UniformBinding*>& uniforms;
+      const std::vector<BoundTexture<Image>>& textures;
       vk::Pipeline pipeline;
-      std::vector<const UniformBinding*> uniforms;  // per layout slot
-      std::vector<BoundTexture> textures;           // per layout slot
     };
     std::vector<Resolved> draws;
     std::vector<Image*> sampled_targets;
     vk::DeviceSize uniform_bytes = 0;
     size_t uniform_count = 0, combined_count = 0, separate_count = 0, image_only_count = 0;
-    for (size_t i = 0; i < pass.draws.size(); ++i) {
-      const DrawItem& item = pass.draws[i];
-      Resolved draw;
-      if (item.program.id == 0 || item.program.id > programs_.size())
-        return fail(
-            fmt::format("{}: draw {}: no such program (handle {})", what, i, item.program.id));
-      draw.program = programs_[item.program.id - 1].get();
-      const Program& program = *draw.program;
-      const std::string where = fmt::format("{}: draw {} (program '{}')", what, i, program.name);
-      if (!program.fullscreen) {
-        if (item.mesh.id == 0 || item.mesh.id > meshes_.size())
-          return fail(fmt::format("{}: no such mesh (handle {})", where, item.mesh.id));
-        draw.mesh = meshes_[item.mesh.id - 1].get();
-      }
-
-      auto matched = match_bindings(program.layout, item, where);
-      if (!matched) return fail(matched.error());
-      draw.uniforms = std::move(matched->uniforms);
-      const auto& blocks = program.layout.uniform_blocks;
-      for (const UniformBlockSlot& block : blocks)
-        uniform_bytes += (block.size + uniform_alignment_ - 1) / uniform_alignment_ * uniform_alignment_;
-      uniform_count += blocks.size();
-
-      const auto& slots = program.layout.textures;
-      draw.textures.assign(slots.size(), BoundTexture{nullptr, {}});
-      for (size_t index = 0; index < slots.size(); ++index) {
-        const TextureBinding& binding = *matched->textures[index];
-        const TextureSource& source = binding.source;
-        Image* image = nullptr;
-        if (source.kind == TextureSource::Kind::Texture) {
-          if (source.id == 0 || source.id > textures_.size())
-            return fail(fmt::format("{}: texture '{}' is bound to a missing texture (handle {})",
-                                    where, binding.name, source.id));
-          image = textures_[source.id - 1].get();
-        } else {
-          Target* sampled = find_target(source.id);
-          if (!sampled)
-            return fail(fmt::format("{}: texture '{}' is bound to a missing target (handle {})",
-                                    where, binding.name, source.id));
-          if (sampled == target)
-            return fail(
-                fmt::format("{}: texture '{}' samples target {}, which the pass renders into",
-                            where, binding.name, source.id));
-          if (source.kind == TextureSource::Kind::TargetDepth && !sampled->depth)
-            return fail(
-                fmt::format("{}: texture '{}' samples the depth of target {}, which has no depth",
-                            where, binding.name, source.id));
-          image =
-              source.kind == TextureSource::Kind::TargetColor ? &sampled->color : &*sampled->depth;
-          sampled_targets.push_back(image);
-        }
-        if (auto fits = check_bound_texture(slots[index], {image->shape, image->texture_format, image->label},
-                                            source.sampler, where);
-            !fits)
-          return fail(fits.error());
-        if (source.sampler.filter == Filter::Linear && !image->linear_filter)
-          return fail(
-              fmt::format("{}: texture '{}': {} cannot be filtered linearly on this device; "
-                          "use a nearest sampler",
-                          where, binding.name, image->label));
-        draw.textures[index] = BoundTexture{image, source.sampler};
-        if (const auto& sampler_binding = slots[index].sampler_binding) {
-          // One SamplerState, one sampler: every texture read through it must be bound with the same.
-          for (size_t other = 0; other < index; ++other) {
-            if (slots[other].sampler_binding != sampler_binding) continue;
-            const SamplerDesc& first = draw.textures[other].sampler;
-            const bool compared = slots[index].comparison;
-            if (first.filter == source.sampler.filter && first.address == source.sampler.address &&
-                slots[other].comparison == compared && (!compared || first.compare == source.sampler.compare))
-              continue;
-            return fail(fmt::format("{}: textures '{}' and '{}' are sampled through one sampler (binding {}) but are "
-                                    "bound with different samplers",
-                                    where, slots[other].name, slots[index].name, *sampler_binding));
-          }
-        }
-        if (slots[index].image_only) {
-          image_only_count += 1;
-        } else {
-          (slots[index].sampler_binding ? separate_count : combined_count) += 1;
-        }
-      }
-      draws.push_back(std::move(draw));
-    }
-    for (Resolved& draw : draws) {
+    for (const auto& draw : resolved->draws) {
       auto made = pipeline(*draw.program, target->depth.has_value());
       if (!made) return fail(made.error());
-      draw.pipeline = *made;
+      draws.push_back(Resolved{draw.program, draw.mesh, draw.uniforms, draw.textures, *made});
+      const ProgramLayout& layout = draw.program->layout;
+      for (const UniformBlockSlot& block : layout.uniform_blocks)
+        uniform_bytes += (block.size + uniform_alignment_ - 1) / uniform_alignment_ * uniform_alignment_;
+      uniform_count += layout.uniform_blocks.size();
+      for (size_t s = 0; s < layout.textures.size(); ++s) {
+        if (draw.textures[s].of_target) sampled_targets.push_back(draw.textures[s].texture);
+        const TextureSlot& slot = layout.textures[s];
+        if (slot.image_only) {
+          image_only_count += 1;
+        } else {
+          (slot.sampler_binding ? separate_count : combined_count) += 1;
+        }
+      }
     }
 
     // Uniform data for every draw in one host-visible buffer; one descriptor set per draw.
@@ -910,14 +746,14 @@ Result<void> VulkanBackend::render(const RenderPass& pass) {
         }
         for (size_t s = 0; s < layout.textures.size(); ++s) {
           const TextureSlot& slot = layout.textures[s];
-          const BoundTexture& bound = draw.textures[s];
+          const BoundTexture<Image>& bound = draw.textures[s];
           const vk::Sampler smp = *sampler(bound.sampler, slot.comparison);
           if (slot.image_only) {
-            image_infos.emplace_back(nullptr, *bound.image->view, vk::ImageLayout::eShaderReadOnlyOptimal);
+            image_infos.emplace_back(nullptr, *bound.texture->view, vk::ImageLayout::eShaderReadOnlyOptimal);
             writes.emplace_back(draw_sets[i], slot.binding, 0, vk::DescriptorType::eSampledImage,
                                 image_infos.back());
           } else if (slot.sampler_binding) {
-            image_infos.emplace_back(nullptr, *bound.image->view,
+            image_infos.emplace_back(nullptr, *bound.texture->view,
                                      vk::ImageLayout::eShaderReadOnlyOptimal);
             writes.emplace_back(draw_sets[i], slot.binding, 0, vk::DescriptorType::eSampledImage,
                                 image_infos.back());
@@ -931,7 +767,7 @@ Result<void> VulkanBackend::render(const RenderPass& pass) {
                                   image_infos.back());
             }
           } else {
-            image_infos.emplace_back(smp, *bound.image->view,
+            image_infos.emplace_back(smp, *bound.texture->view,
                                      vk::ImageLayout::eShaderReadOnlyOptimal);
             writes.emplace_back(draw_sets[i], slot.binding, 0,
                                 vk::DescriptorType::eCombinedImageSampler, image_infos.back());
@@ -996,8 +832,9 @@ Result<void> VulkanBackend::render(const RenderPass& pass) {
 Result<FloatImage> VulkanBackend::read_color(TargetHandle handle) {
   const std::string what = fmt::format("read_color of target {}", handle.id);
   return guarded<FloatImage>(what, [&]() -> Result<FloatImage> {
-    Target* target = find_target(handle.id);
-    if (!target) return fail(fmt::format("{}: no such target", what));
+    auto found = objects_.targets.find(handle, what);
+    if (!found) return fail(found.error());
+    Target* target = *found;
     Image& color = target->color;
     FloatImage result(color.width, color.height);
     const vk::DeviceSize bytes = result.rgba.size() * sizeof(float);

@@ -1,0 +1,304 @@
+#include "harness/gl/gl_support.h"
+
+#include <algorithm>
+#include <array>
+#include <cctype>
+#include <string_view>
+
+#include <fmt/format.h>
+
+namespace xshade::harness::gl_support {
+
+GlFormat gl_format(TextureFormat format) {
+  switch (format) {
+    case TextureFormat::Rgba8Unorm: return {GL_RGBA8, GL_RGBA, GL_UNSIGNED_BYTE};
+    case TextureFormat::Rgba8Srgb: return {GL_SRGB8_ALPHA8, GL_RGBA, GL_UNSIGNED_BYTE};
+    case TextureFormat::Rgba32Float: return {GL_RGBA32F, GL_RGBA, GL_FLOAT};
+    case TextureFormat::R32Float: return {GL_R32F, GL_RED, GL_FLOAT};
+    case TextureFormat::Depth32Float: return {GL_DEPTH_COMPONENT32F, GL_DEPTH_COMPONENT, GL_FLOAT};
+    case TextureFormat::Rgba32Uint: return {GL_RGBA32UI, GL_RGBA_INTEGER, GL_UNSIGNED_INT};
+    case TextureFormat::Rgba32Sint: return {GL_RGBA32I, GL_RGBA_INTEGER, GL_INT};
+  }
+  return {GL_RGBA8, GL_RGBA, GL_UNSIGNED_BYTE};
+}
+
+GLenum gl_target(TextureShape shape) {
+  switch (shape.dimension) {
+    case TextureDimension::Tex1D: return GL_TEXTURE_1D;
+    case TextureDimension::Tex1DArray: return GL_TEXTURE_1D_ARRAY;
+    case TextureDimension::Tex2D: return shape.multisampled ? GL_TEXTURE_2D_MULTISAMPLE : GL_TEXTURE_2D;
+    case TextureDimension::Tex2DArray: return shape.multisampled ? GL_TEXTURE_2D_MULTISAMPLE_ARRAY : GL_TEXTURE_2D_ARRAY;
+    case TextureDimension::Tex3D: return GL_TEXTURE_3D;
+    case TextureDimension::Cube: return GL_TEXTURE_CUBE_MAP;
+    case TextureDimension::CubeArray: return GL_TEXTURE_CUBE_MAP_ARRAY;
+  }
+  return GL_TEXTURE_2D;
+}
+
+GLint gl_compare_function(CompareOp op) {
+  switch (op) {
+    case CompareOp::Never: return GL_NEVER;
+    case CompareOp::Less: return GL_LESS;
+    case CompareOp::Equal: return GL_EQUAL;
+    case CompareOp::LessEqual: return GL_LEQUAL;
+    case CompareOp::Greater: return GL_GREATER;
+    case CompareOp::NotEqual: return GL_NOTEQUAL;
+    case CompareOp::GreaterEqual: return GL_GEQUAL;
+    case CompareOp::Always: return GL_ALWAYS;
+  }
+  return GL_LEQUAL;
+}
+
+// What a vertex input of GL type `type` reads as; empty for a type no mesh or zero fills (a
+// matrix, a double).
+std::optional<TexelKind> attribute_kind(GLint type) {
+  switch (static_cast<GLenum>(type)) {
+    case GL_FLOAT: case GL_FLOAT_VEC2: case GL_FLOAT_VEC3: case GL_FLOAT_VEC4: return TexelKind::Float;
+    case GL_INT: case GL_INT_VEC2: case GL_INT_VEC3: case GL_INT_VEC4: return TexelKind::Int;
+    case GL_UNSIGNED_INT: case GL_UNSIGNED_INT_VEC2: case GL_UNSIGNED_INT_VEC3: case GL_UNSIGNED_INT_VEC4:
+      return TexelKind::Uint;
+    default: return std::nullopt;
+  }
+}
+
+namespace {
+
+const char* severity_name(GLenum severity) {
+  switch (severity) {
+    case GL_DEBUG_SEVERITY_HIGH: return "high";
+    case GL_DEBUG_SEVERITY_MEDIUM: return "medium";
+    case GL_DEBUG_SEVERITY_LOW: return "low";
+    default: return "notification";
+  }
+}
+
+const char* source_name(GLenum source) {
+  switch (source) {
+    case GL_DEBUG_SOURCE_API: return "API";
+    case GL_DEBUG_SOURCE_WINDOW_SYSTEM: return "window system";
+    case GL_DEBUG_SOURCE_SHADER_COMPILER: return "shader compiler";
+    case GL_DEBUG_SOURCE_THIRD_PARTY: return "third party";
+    case GL_DEBUG_SOURCE_APPLICATION: return "application";
+    default: return "other";
+  }
+}
+
+const char* type_name(GLenum type) {
+  switch (type) {
+    case GL_DEBUG_TYPE_ERROR: return "error";
+    case GL_DEBUG_TYPE_DEPRECATED_BEHAVIOR: return "deprecated behaviour";
+    case GL_DEBUG_TYPE_UNDEFINED_BEHAVIOR: return "undefined behaviour";
+    case GL_DEBUG_TYPE_PORTABILITY: return "portability";
+    case GL_DEBUG_TYPE_PERFORMANCE: return "performance";
+    default: return "other";
+  }
+}
+
+}  // namespace
+
+void APIENTRY debug_callback(GLenum source, GLenum type, GLuint id, GLenum severity,
+                             GLsizei length, const GLchar* message, const void* user) {
+  if (severity == GL_DEBUG_SEVERITY_NOTIFICATION) return;
+  auto* log = static_cast<MessageLog*>(const_cast<void*>(user));
+  std::string text = length >= 0 ? std::string(message, static_cast<size_t>(length))
+                                  : std::string(message);
+  while (!text.empty() && std::isspace(static_cast<unsigned char>(text.back()))) text.pop_back();
+  std::string line = fmt::format("OpenGL {} {} (severity {}, id {}): {}", source_name(source),
+                                 type_name(type), severity_name(severity), id, text);
+  std::lock_guard lock(log->mutex);
+  (log->held ? *log->held : log->messages).push_back(std::move(line));
+}
+
+// ---- Compiler logs ------------------------------------------------------------------------------
+
+namespace {
+
+bool parse_number(std::string_view& text, uint32_t& value) {
+  size_t digits = 0;
+  value = 0;
+  while (digits < text.size() && std::isdigit(static_cast<unsigned char>(text[digits]))) {
+    value = value * 10 + static_cast<uint32_t>(text[digits] - '0');
+    ++digits;
+  }
+  text.remove_prefix(digits);
+  return digits > 0;
+}
+
+bool consume(std::string_view& text, std::string_view prefix) {
+  if (!text.starts_with(prefix)) return false;
+  text.remove_prefix(prefix.size());
+  return true;
+}
+
+}  // namespace
+
+// Mesa: "0:4(28): error: `undeclared_thing' undeclared" (string:line(column)), or "error: ..."
+// in link logs. Anything else becomes a message-only diagnostic.
+// `files[n]` names source string n (what `#line L n` selects); string 0, or one the table does
+// not name, is `file`.
+std::vector<Diagnostic> parse_log(const std::string& log, const std::string& file,
+                                  const std::vector<std::string>& files) {
+  std::vector<Diagnostic> diagnostics;
+  size_t start = 0;
+  while (start < log.size()) {
+    size_t end = log.find('\n', start);
+    if (end == std::string::npos) end = log.size();
+    std::string_view line(log.data() + start, end - start);
+    start = end + 1;
+    while (!line.empty() && std::isspace(static_cast<unsigned char>(line.back())))
+      line.remove_suffix(1);
+    if (line.empty()) continue;
+
+    Diagnostic diagnostic;
+    std::string_view rest = line;
+    uint32_t string_index = 0, line_number = 0, column = 0;
+    if (parse_number(rest, string_index) && consume(rest, ":") && parse_number(rest, line_number) &&
+        consume(rest, "(") && parse_number(rest, column) && consume(rest, "):")) {
+      const bool named = string_index > 0 && string_index < files.size();
+      diagnostic.where = SourceLocation{named ? files[string_index] : file, line_number, column};
+      while (consume(rest, " ")) {
+      }
+    } else {
+      rest = line;
+    }
+    const size_t colon = rest.find(": ");
+    std::string_view kind = colon == std::string_view::npos ? std::string_view{} : rest.substr(0, colon);
+    if (kind.find("error") != std::string_view::npos) {
+      diagnostic.severity = Severity::Error;
+      rest.remove_prefix(colon + 2);
+    } else if (kind.find("warning") != std::string_view::npos) {
+      diagnostic.severity = Severity::Warning;
+      rest.remove_prefix(colon + 2);
+    } else if (diagnostic.where.known()) {
+      diagnostic.severity = Severity::Note;
+    } else {
+      // Unparsed: keep the whole line as the message.
+      diagnostic.severity = Severity::Note;
+      rest = line;
+    }
+    diagnostic.message = std::string(rest);
+    diagnostics.push_back(std::move(diagnostic));
+  }
+  return diagnostics;
+}
+
+
+bool is_sampler_type(GLint type) {
+  switch (static_cast<GLenum>(type)) {
+    case GL_SAMPLER_1D: case GL_SAMPLER_2D: case GL_SAMPLER_3D: case GL_SAMPLER_CUBE:
+    case GL_SAMPLER_1D_SHADOW: case GL_SAMPLER_2D_SHADOW: case GL_SAMPLER_1D_ARRAY:
+    case GL_SAMPLER_2D_ARRAY: case GL_SAMPLER_1D_ARRAY_SHADOW: case GL_SAMPLER_2D_ARRAY_SHADOW:
+    case GL_SAMPLER_2D_MULTISAMPLE: case GL_SAMPLER_2D_MULTISAMPLE_ARRAY:
+    case GL_SAMPLER_CUBE_SHADOW: case GL_SAMPLER_BUFFER: case GL_SAMPLER_2D_RECT:
+    case GL_SAMPLER_2D_RECT_SHADOW: case GL_SAMPLER_CUBE_MAP_ARRAY:
+    case GL_SAMPLER_CUBE_MAP_ARRAY_SHADOW:
+    case GL_INT_SAMPLER_1D: case GL_INT_SAMPLER_2D: case GL_INT_SAMPLER_3D:
+    case GL_INT_SAMPLER_CUBE: case GL_INT_SAMPLER_1D_ARRAY: case GL_INT_SAMPLER_2D_ARRAY:
+    case GL_INT_SAMPLER_2D_MULTISAMPLE: case GL_INT_SAMPLER_2D_MULTISAMPLE_ARRAY:
+    case GL_INT_SAMPLER_BUFFER: case GL_INT_SAMPLER_2D_RECT: case GL_INT_SAMPLER_CUBE_MAP_ARRAY:
+    case GL_UNSIGNED_INT_SAMPLER_1D: case GL_UNSIGNED_INT_SAMPLER_2D:
+    case GL_UNSIGNED_INT_SAMPLER_3D: case GL_UNSIGNED_INT_SAMPLER_CUBE:
+    case GL_UNSIGNED_INT_SAMPLER_1D_ARRAY: case GL_UNSIGNED_INT_SAMPLER_2D_ARRAY:
+    case GL_UNSIGNED_INT_SAMPLER_2D_MULTISAMPLE:
+    case GL_UNSIGNED_INT_SAMPLER_2D_MULTISAMPLE_ARRAY: case GL_UNSIGNED_INT_SAMPLER_BUFFER:
+    case GL_UNSIGNED_INT_SAMPLER_2D_RECT: case GL_UNSIGNED_INT_SAMPLER_CUBE_MAP_ARRAY:
+      return true;
+    default:
+      return false;
+  }
+}
+
+// "values[0]" -> "values": GL names an array by its first element.
+std::string base_name(std::string name) {
+  if (name.ends_with("[0]")) name.resize(name.size() - 3);
+  return name;
+}
+
+// The linked program's uniforms, blocks and inputs against the layout and GL's limits.
+Result<void> check_interface(const gl::Functions& gl, GLuint id, const ProgramLayout& layout, bool fullscreen,
+                             std::vector<std::pair<GLuint, TexelKind>>& zero_inputs, const std::string& what) {
+  const auto resource_name = [&](GLenum interface, GLuint index) {
+    GLint length = 0;
+    const GLenum property = GL_NAME_LENGTH;
+    gl.GetProgramResourceiv(id, interface, index, 1, &property, 1, nullptr, &length);
+    std::string name(static_cast<size_t>(std::max(length, 1)), '\0');
+    GLsizei written = 0;
+    gl.GetProgramResourceName(id, interface, index, static_cast<GLsizei>(name.size()), &written,
+                               name.data());
+    name.resize(static_cast<size_t>(std::max(written, 0)));
+    return name;
+  };
+  const auto count = [&](GLenum interface) {
+    GLint value = 0;
+    gl.GetProgramInterfaceiv(id, interface, GL_ACTIVE_RESOURCES, &value);
+    return static_cast<GLuint>(std::max(value, 0));
+  };
+
+  // Uniform blocks: listed, and no bigger than the layout says.
+  const GLuint blocks = count(GL_UNIFORM_BLOCK);
+  for (GLuint index = 0; index < blocks; ++index) {
+    const std::string name = base_name(resource_name(GL_UNIFORM_BLOCK, index));
+    const GLenum property = GL_BUFFER_DATA_SIZE;
+    GLint size = 0;
+    gl.GetProgramResourceiv(id, GL_UNIFORM_BLOCK, index, 1, &property, 1, nullptr, &size);
+    auto slot = std::find_if(layout.uniform_blocks.begin(), layout.uniform_blocks.end(),
+                             [&](const UniformBlockSlot& s) { return s.name == name; });
+    if (slot == layout.uniform_blocks.end())
+      return fail(fmt::format("{}: the program uses uniform block '{}', which the layout does not "
+                              "list",
+                              what, name));
+    if (static_cast<uint32_t>(size) > round_up_16(slot->size))
+      return fail(fmt::format("{}: uniform block '{}' is {} bytes in the GLSL, but the layout "
+                              "gives it {}",
+                              what, name, size, slot->size));
+  }
+
+  // Uniforms outside blocks: only samplers, each listed as a texture.
+  const GLuint uniforms = count(GL_UNIFORM);
+  for (GLuint index = 0; index < uniforms; ++index) {
+    const std::array<GLenum, 3> properties = {GL_BLOCK_INDEX, GL_TYPE, GL_LOCATION};
+    std::array<GLint, 3> values = {-1, 0, -1};
+    gl.GetProgramResourceiv(id, GL_UNIFORM, index, static_cast<GLsizei>(properties.size()),
+                             properties.data(), static_cast<GLsizei>(values.size()), nullptr,
+                             values.data());
+    if (values[0] != -1) continue;  // a member of a block
+    const std::string name = base_name(resource_name(GL_UNIFORM, index));
+    if (name.starts_with("gl_")) continue;
+    auto slot = std::find_if(layout.textures.begin(), layout.textures.end(),
+                             [&](const TextureSlot& s) { return s.uniform_name() == name; });
+    if (slot == layout.textures.end())
+      return fail(fmt::format("{}: the program uses uniform '{}', which the layout does not list",
+                              what, name));
+    if (!is_sampler_type(values[1]))
+      return fail(fmt::format("{}: the layout lists '{}' as a texture, but it is not a sampler",
+                              what, name));
+  }
+
+  // Vertex inputs: none for a full-screen program; for a mesh program the mesh's locations 0..3,
+  // and zeros for any other (what glGetActiveAttrib reports, here through the program interface
+  // query that gives the location with the type).
+  const GLuint inputs = count(GL_PROGRAM_INPUT);
+  zero_inputs.clear();
+  for (GLuint index = 0; index < inputs; ++index) {
+    const std::array<GLenum, 2> properties = {GL_LOCATION, GL_TYPE};
+    std::array<GLint, 2> values = {-1, 0};
+    gl.GetProgramResourceiv(id, GL_PROGRAM_INPUT, index, static_cast<GLsizei>(properties.size()),
+                             properties.data(), static_cast<GLsizei>(values.size()), nullptr, values.data());
+    const GLint location = values[0];
+    if (location < 0) continue;  // a built-in such as gl_VertexID
+    if (fullscreen)
+      return fail(fmt::format("{}: a full-screen program's vertex shader must read no vertex "
+                              "input, but it reads location {}",
+                              what, location));
+    if (location <= 3) continue;
+    const std::optional<TexelKind> kind = attribute_kind(values[1]);
+    if (!kind)
+      return fail(fmt::format("{}: the vertex shader reads input '{}' at location {} of GL type 0x{:04X}, which "
+                              "no mesh supplies and which is not a float, int or uint scalar or vector",
+                              what, resource_name(GL_PROGRAM_INPUT, index), location, values[1]));
+    zero_inputs.emplace_back(static_cast<GLuint>(location), *kind);
+  }
+  return {};
+}
+
+}  // namespace xshade::harness::gl_support

@@ -1,0 +1,121 @@
+// Private helpers of the OpenGL backend: a move-only owner per GL object kind, how each format
+// and shape is named to GL, the KHR_debug message log, and the compiler's log read into
+// diagnostics. Not part of the harness interface.
+#pragma once
+
+#include <cstdint>
+#include <mutex>
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "base/diagnostic.h"
+#include "harness/backend/backend.h"
+#include "harness/gl/gl_functions.h"
+
+namespace xshade::harness::gl_support {
+
+// ---- GL objects ---------------------------------------------------------------------------------
+
+enum class Kind { Texture, Buffer, Framebuffer, VertexArray, Sampler, Shader, Program };
+
+// One GL object name, deleted with the right glDelete* when dropped. The backend makes its
+// context current before any is dropped.
+template <Kind K>
+class GlObject {
+ public:
+  GlObject() = default;
+  GlObject(const gl::Functions* gl, GLuint id) : gl_(gl), id_(id) {}
+  GlObject(GlObject&& other) noexcept
+      : gl_(other.gl_), id_(std::exchange(other.id_, 0)) {}
+  GlObject& operator=(GlObject&& other) noexcept {
+    if (this != &other) {
+      reset();
+      gl_ = other.gl_;
+      id_ = std::exchange(other.id_, 0);
+    }
+    return *this;
+  }
+  GlObject(const GlObject&) = delete;
+  GlObject& operator=(const GlObject&) = delete;
+  ~GlObject() { reset(); }
+
+  GLuint get() const { return id_; }
+  explicit operator bool() const { return id_ != 0; }
+
+  void reset() {
+    if (id_ == 0 || gl_ == nullptr) return;
+    if constexpr (K == Kind::Texture) gl_->DeleteTextures(1, &id_);
+    if constexpr (K == Kind::Buffer) gl_->DeleteBuffers(1, &id_);
+    if constexpr (K == Kind::Framebuffer) gl_->DeleteFramebuffers(1, &id_);
+    if constexpr (K == Kind::VertexArray) gl_->DeleteVertexArrays(1, &id_);
+    if constexpr (K == Kind::Sampler) gl_->DeleteSamplers(1, &id_);
+    if constexpr (K == Kind::Shader) gl_->DeleteShader(id_);
+    if constexpr (K == Kind::Program) gl_->DeleteProgram(id_);
+    id_ = 0;
+  }
+
+ private:
+  const gl::Functions* gl_ = nullptr;
+  GLuint id_ = 0;
+};
+
+using GlTexture = GlObject<Kind::Texture>;
+using GlBuffer = GlObject<Kind::Buffer>;
+using GlFramebuffer = GlObject<Kind::Framebuffer>;
+using GlVertexArray = GlObject<Kind::VertexArray>;
+using GlSampler = GlObject<Kind::Sampler>;
+using GlShader = GlObject<Kind::Shader>;
+using GlProgram = GlObject<Kind::Program>;
+
+// ---- Formats and shapes -------------------------------------------------------------------------
+
+// How OpenGL stores and uploads each format.
+struct GlFormat {
+  GLenum internal_format;
+  GLenum format;
+  GLenum type;
+};
+GlFormat gl_format(TextureFormat format);
+GLenum gl_target(TextureShape shape);
+GLint gl_compare_function(CompareOp op);
+// What a vertex input of GL type `type` reads as; empty for a type no mesh or zero fills (a
+// matrix, a double).
+std::optional<TexelKind> attribute_kind(GLint type);
+bool is_sampler_type(GLint type);
+// "values[0]" -> "values": GL names an array by its first element.
+std::string base_name(std::string name);
+inline uint32_t round_up_16(uint32_t size) { return (size + 15u) & ~15u; }
+
+// ---- KHR_debug ----------------------------------------------------------------------------------
+
+struct MessageLog {
+  std::mutex mutex;
+  std::vector<std::string> messages;
+  // While a program is made, its compiler's messages wait here (see create_program).
+  std::optional<std::vector<std::string>> held;
+};
+
+// Every message above notification severity goes into the MessageLog `user` points at.
+void APIENTRY debug_callback(GLenum source, GLenum type, GLuint id, GLenum severity, GLsizei length,
+                             const GLchar* message, const void* user);
+
+// ---- Compiler logs ------------------------------------------------------------------------------
+
+// Mesa: "0:4(28): error: `undeclared_thing' undeclared" (string:line(column)), or "error: ..."
+// in link logs. Anything else becomes a message-only diagnostic.
+// `files[n]` names source string n (what `#line L n` selects); string 0, or one the table does
+// not name, is `file`.
+std::vector<Diagnostic> parse_log(const std::string& log, const std::string& file,
+                                  const std::vector<std::string>& files = {});
+
+// ---- The linked program -------------------------------------------------------------------------
+
+// The linked program `id`'s uniforms, blocks and inputs against `layout`: every block and sampler
+// listed and no bigger than listed, no vertex input for a full-screen program. Fills
+// `zero_inputs` with the inputs above location 3 (no mesh has them) and what they read as.
+Result<void> check_interface(const gl::Functions& gl, GLuint id, const ProgramLayout& layout, bool fullscreen,
+                             std::vector<std::pair<GLuint, TexelKind>>& zero_inputs, const std::string& what);
+
+}  // namespace xshade::harness::gl_support
