@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <map>
 
+#include "harness/backend/resource_set.h"
 #include "harness/render/shader_interface.h"
 #include "harness/render/shader_program.h"
 
@@ -82,7 +83,10 @@ TextureData default_texture(const TextureSlot& slot) {
 Result<FloatImage> FullscreenProgram::run(Backend& backend, uint32_t width, uint32_t height,
                                           const std::map<std::string, std::vector<std::byte>>& constant_buffers,
                                           const std::map<std::string, TextureSource>& textures) const {
-  auto target = backend.create_target({width, height, false});
+  // The target and the default textures are this run's own, freed when it returns; a program is
+  // run many times (the stability suite, the lane tests), and would otherwise keep every one.
+  ResourceSet resources(backend);
+  auto target = resources.create_target({width, height, false});
   if (!target) return fail(target.error());
   DrawItem draw{program_, {}, {}, {}};
   for (const Buffer& buffer : buffers_) {
@@ -106,7 +110,7 @@ Result<FloatImage> FullscreenProgram::run(Backend& backend, uint32_t width, uint
     const std::string key = shape_name(slot.shape) + texel_kind_name(slot.texel) + (slot.comparison ? " compare" : "");
     auto known = defaults.find(key);
     if (known == defaults.end()) {
-      auto texture = backend.upload_texture(default_texture(slot));
+      auto texture = resources.upload_texture(default_texture(slot));
       if (!texture) return fail(texture.error());
       known = defaults.emplace(key, *texture).first;
     }
@@ -121,7 +125,9 @@ Result<FloatImage> evaluate(const hlsl::Module& module, Lane lane, Backend& back
                             const ProgramOptions& options, const std::map<std::string, TextureSource>& textures) {
   auto program = FullscreenProgram::create(module, lane, backend, options);
   if (!program) return fail(program.error());
-  return program->run(backend, width, height, constant_buffers, textures);
+  Result<FloatImage> image = program->run(backend, width, height, constant_buffers, textures);
+  (void)backend.destroy(program->handle());  // made here, destroyed once: the backend refuses nothing
+  return image;
 }
 
 }  // namespace xshade::harness

@@ -41,6 +41,9 @@ class FullscreenProgram {
   // The size in bytes of the constant buffer `name`, if the program has one.
   std::optional<uint32_t> constant_buffer_size(const std::string& name) const;
 
+  // The backend's program: the caller destroys it when it is done with the program.
+  ProgramHandle handle() const { return program_; }
+
  private:
   struct Buffer {
     std::string name;       // HLSL
@@ -52,7 +55,8 @@ class FullscreenProgram {
   std::vector<TextureSlot> texture_slots_;
 };
 
-// FullscreenProgram::create then run, once: what `xshade eval` and the conformance tests do.
+// FullscreenProgram::create then run, once, then the program destroyed: what `xshade eval` and the
+// conformance tests do.
 Result<FloatImage> evaluate(const hlsl::Module& module, Lane lane, Backend& backend, uint32_t width, uint32_t height,
                             const std::map<std::string, std::vector<std::byte>>& constant_buffers = {},
                             const ProgramOptions& options = {},

@@ -1,6 +1,7 @@
 #include "harness/render/test_pattern.h"
 
 #include "harness/assets/meshes.h"
+#include "harness/backend/resource_set.h"
 #include "harness/render/shader_program.h"
 
 #include <array>
@@ -59,7 +60,9 @@ Result<FloatImage> render(Backend& backend, Lane lane, uint32_t size) {
   if (!module->ok()) return fail("the test pattern does not compile:\n" + module->diagnostics.render_all());
   auto desc = program_for_lane(*module, lane);
   if (!desc) return fail(desc.error());
-  auto program = backend.create_program(*desc);
+  // Everything here is this render's own: freed when it returns, however it returns.
+  ResourceSet resources(backend);
+  auto program = resources.create_program(*desc);
   if (!program) return fail(program.error());
 
   TextureData texture;
@@ -71,10 +74,10 @@ Result<FloatImage> render(Backend& backend, Lane lane, uint32_t size) {
       for (int c = 0; c < 4; ++c)
         level[(row * kTextureSize + column) * 4 + c] =
             std::byte(uint8_t(texel(column, row)[c] * 255.0f + 0.5f));
-  auto pattern = backend.upload_texture(texture);
+  auto pattern = resources.upload_texture(texture);
   if (!pattern) return fail(pattern.error());
 
-  auto target = backend.create_target({size, size, true});
+  auto target = resources.create_target({size, size, true});
   if (!target) return fail(target.error());
 
   RenderPass pass;
@@ -91,7 +94,7 @@ Result<FloatImage> render(Backend& backend, Lane lane, uint32_t size) {
                                        {clip_rectangle(-1, -1, 0, 0, 0.5f), kBottomLeft, false},
                                        {clip_rectangle(0, -1, 1, 0, 0.5f), glm::vec4(0.0f), true}}};
   for (const QuadSpec& spec : quads) {
-    auto mesh = backend.upload_mesh(spec.mesh);
+    auto mesh = resources.upload_mesh(spec.mesh);
     if (!mesh) return fail(mesh.error());
     pass.draws.push_back({*program, *mesh, {{"Quad", quad_uniforms(spec.color, spec.textured)}},
                           {texture_binding}});
