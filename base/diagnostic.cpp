@@ -26,17 +26,6 @@ std::string Diagnostic::to_string() const {
   return text + severity_name(severity) + ": " + message;
 }
 
-std::string_view error_kind_name(ErrorKind kind) {
-  switch (kind) {
-    case ErrorKind::UserInput: return "user input";
-    case ErrorKind::Usage: return "usage";
-    case ErrorKind::CheckFailed: return "check failed";
-    case ErrorKind::Backend: return "backend";
-    case ErrorKind::Internal: return "internal";
-  }
-  return "internal";
-}
-
 std::string Error::to_string() const {
   std::string text;
   if (where.known()) text = where.to_string() + ": ";

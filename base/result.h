@@ -6,7 +6,6 @@
 #pragma once
 
 #include <string>
-#include <string_view>
 #include <vector>
 
 #include <tl/expected.hpp>
@@ -22,7 +21,6 @@ enum class ErrorKind {
   Backend,      // a driver, a lane or the machine could not do what was asked
   Internal,     // xshade broke its own rule
 };
-std::string_view error_kind_name(ErrorKind kind);  // "user input", "usage", ...
 
 struct Error {
   std::string message;
@@ -47,11 +45,5 @@ inline tl::unexpected<Error> fail(ErrorKind kind, std::string message, SourceLoc
 }
 
 inline tl::unexpected<Error> fail(Error error) { return tl::unexpected<Error>(std::move(error)); }
-
-// The same error as another kind: a lower layer's error that the caller knows the cause of.
-inline Error with_kind(Error error, ErrorKind kind) {
-  error.kind = kind;
-  return error;
-}
 
 }  // namespace xshade

@@ -2,29 +2,13 @@
 
 namespace xshade::harness {
 
-Result<TargetHandle> ResourceSet::create_target(const TargetDesc& desc) {
-  auto created = backend_.create_target(desc);
-  if (created) handles_.emplace_back(*created);
-  return created;
-}
+Result<TargetHandle> ResourceSet::create_target(const TargetDesc& desc) { return keep(backend_.create_target(desc)); }
 
-Result<MeshHandle> ResourceSet::upload_mesh(const MeshData& mesh) {
-  auto created = backend_.upload_mesh(mesh);
-  if (created) handles_.emplace_back(*created);
-  return created;
-}
+Result<MeshHandle> ResourceSet::upload_mesh(const MeshData& mesh) { return keep(backend_.upload_mesh(mesh)); }
 
-Result<TextureHandle> ResourceSet::upload_texture(const TextureData& texture) {
-  auto created = backend_.upload_texture(texture);
-  if (created) handles_.emplace_back(*created);
-  return created;
-}
+Result<TextureHandle> ResourceSet::upload_texture(const TextureData& texture) { return keep(backend_.upload_texture(texture)); }
 
-Result<ProgramHandle> ResourceSet::create_program(const ProgramDesc& desc) {
-  auto created = backend_.create_program(desc);
-  if (created) handles_.emplace_back(*created);
-  return created;
-}
+Result<ProgramHandle> ResourceSet::create_program(const ProgramDesc& desc) { return keep(backend_.create_program(desc)); }
 
 void ResourceSet::release() {
   while (!handles_.empty()) {

@@ -26,9 +26,14 @@ class ResourceSet {
   // here and is destroyed once, so the backend refuses none of them.
   void release();
 
-  size_t size() const { return handles_.size(); }
-
  private:
+  // Keeps what was made, for release.
+  template <class Handle>
+  Result<Handle> keep(Result<Handle> created) {
+    if (created) handles_.emplace_back(*created);
+    return created;
+  }
+
   Backend& backend_;
   std::vector<std::variant<TargetHandle, MeshHandle, TextureHandle, ProgramHandle>> handles_;
 };

@@ -2,6 +2,7 @@
 // the driver it reports, GLSL compile and link logs, the layout against the linked program,
 // KHR_debug messages, texture units from the layout; choosing the route; and backends of both
 // routes taking turns in one process. The Backend contract itself is tests/backend_contract/.
+#include "harness/backend/shared_backend_test.h"
 #include "harness/gl/gl_backend.h"
 
 #include <array>
@@ -29,32 +30,11 @@ std::string platform_test_name(const ::testing::TestParamInfo<GlPlatform>& info)
   return std::string(gl_platform_name(info.param));
 }
 
-// One backend per route for the suite: an llvmpipe context costs tens of milliseconds.
-class GlBackendTest : public ::testing::TestWithParam<GlPlatform> {
+// One backend per route for the suite (SharedBackendTest).
+Result<std::unique_ptr<Backend>> gl_backend_on(GlPlatform platform) { return create_gl_backend({.platform = platform}); }
+
+class GlBackendTest : public SharedBackendTest<GlPlatform, &gl_backend_on> {
  protected:
-  static void TearDownTestSuite() { backends_.clear(); }
-
-  void SetUp() override {
-    std::unique_ptr<Backend>& slot = backends_[GetParam()];
-    std::string error;
-    if (!slot) {
-      auto created = create_gl_backend({.platform = GetParam()});
-      if (created)
-        slot = std::move(*created);
-      else
-        error = created.error().to_string();
-    }
-    ASSERT_NE(slot, nullptr) << error;
-    backend_ = slot.get();
-    backend_->take_driver_messages();
-  }
-  void TearDown() override {
-    if (backend_) {
-      EXPECT_EQ(backend_->take_driver_messages(), std::vector<std::string>{});
-    }
-  }
-
-  Backend& backend() { return *backend_; }
 
   static ShaderStageSource stage(std::string glsl, std::string name) {
     ShaderStageSource source;
@@ -75,8 +55,6 @@ class GlBackendTest : public ::testing::TestWithParam<GlPlatform> {
     return backend().create_program(desc);
   }
 
-  static inline std::map<GlPlatform, std::unique_ptr<Backend>> backends_;
-  Backend* backend_ = nullptr;
 };
 
 template <class T>

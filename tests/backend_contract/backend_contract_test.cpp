@@ -14,6 +14,7 @@
 #include <gtest/gtest.h>
 
 #include "glsl/flavour.h"
+#include "harness/backend/shared_backend_test.h"
 #include "harness/gl/gl_backend.h"
 #include "harness/vulkan/vulkan_backend.h"
 #include "spirv/spirv_compiler.h"
@@ -41,32 +42,9 @@ Result<std::unique_ptr<Backend>> create_backend(Api api) {
   return fail("unknown API");
 }
 
-// One backend per API for the suite: a context or a device costs tens of milliseconds.
-class BackendContractTest : public ::testing::TestWithParam<Api> {
+// The contract on every API, one backend each for the suite (SharedBackendTest).
+class BackendContractTest : public SharedBackendTest<Api, &create_backend> {
  protected:
-  static void TearDownTestSuite() { backends_.clear(); }
-
-  void SetUp() override {
-    std::unique_ptr<Backend>& slot = backends_[GetParam()];
-    std::string error;
-    if (!slot) {
-      auto created = create_backend(GetParam());
-      if (created)
-        slot = std::move(*created);
-      else
-        error = created.error().to_string();
-    }
-    ASSERT_NE(slot, nullptr) << error;
-    backend_ = slot.get();
-    backend_->take_driver_messages();
-  }
-  void TearDown() override {
-    if (backend_) {
-      EXPECT_EQ(backend_->take_driver_messages(), std::vector<std::string>{});
-    }
-  }
-
-  Backend& backend() { return *backend_; }
 
   // The GLSL for OpenGL, its SPIR-V for Vulkan.
   ShaderStageSource stage(const std::string& glsl, spirv::Stage kind, std::string name) const {
@@ -109,8 +87,6 @@ class BackendContractTest : public ::testing::TestWithParam<Api> {
     return backend().create_program(desc);
   }
 
-  static inline std::map<Api, std::unique_ptr<Backend>> backends_;
-  Backend* backend_ = nullptr;
 };
 
 const char* const kUvFragment =
