@@ -421,6 +421,19 @@ bool StageEmitter::has_side_effects(const Expr* e) {
   return effects;
 }
 
+bool StageEmitter::branches(const Expr* e) {
+  bool found = false;
+  walk_expressions(e, [&](const Expr& x) {
+    if (x.kind == ExprKind::Conditional)
+      found = found || static_cast<const ConditionalExpr&>(x).condition->type.component_count() == 1;
+    if (x.kind == ExprKind::Binary) {
+      const BinaryOp op = static_cast<const BinaryExpr&>(x).op;
+      found = found || op == BinaryOp::LogicalAnd || op == BinaryOp::LogicalOr;
+    }
+  });
+  return found;
+}
+
 bool StageEmitter::is_constant(const Expr* e) {
   if (!e) return false;
   switch (e->kind) {

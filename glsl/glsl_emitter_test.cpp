@@ -565,6 +565,24 @@ TEST(GlslEmitterTextures, VulkanKeepsThemSeparate) {
   EXPECT_THAT(text, HasSubstr("vec4 xs_Load(texture2D a0, ivec3 a1) {\n  return texelFetch(a0, a1.xy, a1.z);\n}"));
 }
 
+// glslang builds sampler2D(t, s) before the coordinate; a coordinate that branches would leave
+// the OpSampledImage in another block than its use (invalid SPIR-V). A helper evaluates the
+// arguments first, in the caller, and builds the sampler in its one block.
+TEST(GlslEmitterTextures, VulkanSamplesThroughAHelperWhereAnArgumentBranches) {
+  const std::string text = fragment("Texture2D t; SamplerState s; Texture2D<float> r; float k;",
+                                    "return t.Sample(s, k > 0 ? uv : uv.yx) + r.Sample(s, k > 1 && k < 2 ? uv : 0) + "
+                                    "t.Sample(s, uv);",
+                                    Flavour::Vk);
+  EXPECT_THAT(text, HasSubstr("vec4 xs_Sample(texture2D a0, sampler a1, vec2 a2) {\n"
+                              "  return texture(sampler2D(a0, a1), a2);\n}"));
+  EXPECT_THAT(text, HasSubstr("float xs_Sample_2(texture2D a0, sampler a1, vec2 a2) {\n"
+                              "  return texture(sampler2D(a0, a1), a2).x;\n}"));
+  EXPECT_THAT(text, HasSubstr("xs_Sample(t, s, k > 0.0 ? uv : uv.yx)"));
+  EXPECT_THAT(text, HasSubstr("+ texture(sampler2D(t, s), uv)"));
+  EXPECT_THAT(fragment("Texture2D t; SamplerState s; float k;", "return t.Sample(s, k > 0 ? uv : uv.yx);"),
+              HasSubstr("texture(t, k > 0.0 ? uv : uv.yx)"));  // gl combines nothing: no helper
+}
+
 TEST(GlslEmitterTextures, SimpleArgumentsStayInline) {
   const std::string text = fragment("sampler2D s; Texture2D t; float4 c; int3 p;",
                                     "return tex2Dlod(s, c) + tex2Dbias(s, c) + t.Load(p) + tex2Dgrad(s, uv, uv, uv);");

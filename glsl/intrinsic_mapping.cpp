@@ -444,6 +444,12 @@ Code StageEmitter::expand_template(const std::string& text, const CallExpr& call
   bool needs_helper = false;
   for (size_t i = 0; i < operands.size(); ++i)
     if (uses[i] > 1 && !is_simple(operands[i])) needs_helper = true;
+  // vk: glslang makes a combined sampler ($0, $1) before it evaluates the later arguments, and
+  // one that branches would leave the OpSampledImage in another block than the call consuming
+  // it, which SPIR-V forbids. In a helper the arguments are evaluated first, in the caller.
+  if (flavour_ == Flavour::Vk && expanded.find("($0, $1)") != std::string::npos)
+    for (size_t i = 2; i < operands.size(); ++i)
+      if (uses[i] > 0 && branches(operands[i])) needs_helper = true;
 
   std::vector<std::optional<Code>> codes(operands.size());
   auto code_of = [&](size_t i) -> const Code& {
@@ -452,8 +458,8 @@ Code StageEmitter::expand_template(const std::string& text, const CallExpr& call
   };
 
   if (needs_helper) {
-    // xs_<intrinsic>(operands...) { return <template>; }
-    const std::string name = "xs_" + std::string(info.name);
+    // xs_<intrinsic>(operands...) { return <template>; }, numbered when one intrinsic needs
+    // helpers of different bodies or result types for the same parameter types.
     std::string params, args, body;
     for (size_t i = 0; i < operands.size(); ++i) {
       if (uses[i] == 0) continue;
@@ -468,8 +474,14 @@ Code StageEmitter::expand_template(const std::string& text, const CallExpr& call
       if (piece.operand >= 0) body += "a" + std::to_string(piece.operand);
     }
     const std::string result = type_name(call.type, call.loc);
-    helpers_.add(name + "(" + params + ")", result + " " + name + "(" + params + ") {\n  " +
-                                                (call.type.is_void() ? "" : "return ") + body + ";\n}\n");
+    const std::string unnamed = result + " (" + params + ") {\n  " + (call.type.is_void() ? "" : "return ") + body + ";\n}\n";
+    std::string& name = template_helpers_[unnamed];
+    if (name.empty()) {
+      const std::string base = "xs_" + std::string(info.name);
+      const int count = ++template_helper_count_[base];
+      name = count == 1 ? base : base + "_" + std::to_string(count);
+      helpers_.add(name + "(" + params + ")", result + " " + name + unnamed.substr(result.size() + 1));
+    }
     return {name + "(" + args + ")", kPostfix};
   }
 

@@ -153,6 +153,8 @@ class StageEmitter {
   static bool is_simple(const Expr* e);
   // Assignments, increments and calls (other than constructors) inside `e`.
   static bool has_side_effects(const Expr* e);
+  // A ?: with a scalar condition, && or || inside `e`: what glslang compiles to branches.
+  static bool branches(const Expr* e);
   // An argument passed to an out or inout parameter: the assignable expression itself.
   Code out_argument(const Expr* arg);
   // A struct or array with every component set from the scalar literal `scalar` (`(S)0`).
@@ -228,6 +230,10 @@ class StageEmitter {
 
   Writer out_;  // functions
   Helpers helpers_;
+  // The helper function expand_template made of each distinct template body, by its definition
+  // without a name, and how many each intrinsic's name has: xs_Sample, xs_Sample_2, ...
+  std::unordered_map<std::string, std::string> template_helpers_;
+  std::unordered_map<std::string, int> template_helper_count_;
   std::optional<Error> error_;
   bool needs_samplerless_ = false;  // vk: texelFetch/textureSize on a texture2D
   std::unordered_set<const hlsl::Decl*> compared_;  // see collect_compared_textures

@@ -17,6 +17,19 @@ const std::vector<MacroDefinition>& prelude_macros() {
     list.push_back({"UNITY_INV_PI", "0.31830988618f"});
     list.push_back({"UNITY_INV_TWO_PI", "0.15915494309f"});
     list.push_back({"UNITY_HALF_PI", "1.57079632679f"});
+    // Unity's matrix macros (UnityShaderVariables.cginc), over the built-in variables the renderer
+    // fills by name; a source that declares those variables can use them without Unity's files,
+    // and Unity's files redefine them as they like.
+    list.push_back({"UNITY_MATRIX_M", "unity_ObjectToWorld"});
+    list.push_back({"UNITY_MATRIX_I_M", "unity_WorldToObject"});
+    list.push_back({"UNITY_MATRIX_V", "unity_MatrixV"});
+    list.push_back({"UNITY_MATRIX_I_V", "unity_MatrixInvV"});
+    list.push_back({"UNITY_MATRIX_P", "glstate_matrix_projection"});
+    list.push_back({"UNITY_MATRIX_VP", "unity_MatrixVP"});
+    list.push_back({"UNITY_MATRIX_MV", "mul(unity_MatrixV, unity_ObjectToWorld)"});
+    list.push_back({"UNITY_MATRIX_MVP", "mul(unity_MatrixVP, unity_ObjectToWorld)"});
+    list.push_back({"UNITY_MATRIX_T_MV", "transpose(mul(unity_MatrixV, unity_ObjectToWorld))"});
+    list.push_back({"UNITY_MATRIX_IT_MV", "transpose(mul(unity_WorldToObject, unity_MatrixInvV))"});
     list.push_back({"XSHADE", "1"});
     return list;
   }();

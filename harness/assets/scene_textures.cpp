@@ -28,6 +28,8 @@ FloatImage checker() {
   return image;
 }
 
+}  // namespace
+
 FloatImage half_size(const FloatImage& image) {
   FloatImage out(std::max(1u, image.width / 2), std::max(1u, image.height / 2));
   for (uint32_t y = 0; y < out.height; ++y)
@@ -40,21 +42,19 @@ FloatImage half_size(const FloatImage& image) {
   return out;
 }
 
-std::vector<std::byte> bytes_of(const FloatImage& image) {
+std::vector<std::byte> float_bytes(const FloatImage& image) {
   std::vector<std::byte> bytes(image.rgba.size() * sizeof(float));
   std::memcpy(bytes.data(), image.rgba.data(), bytes.size());
   return bytes;
 }
 
-}  // namespace
-
 TextureData texture_with_mips(const FloatImage& image) {
   TextureData texture{TextureFormat::Rgba32Float, image.width, image.height, {}};
   FloatImage level = image;
-  texture.levels.push_back(bytes_of(level));
+  texture.levels.push_back(float_bytes(level));
   while (level.width > 1 || level.height > 1) {
     level = half_size(level);
-    texture.levels.push_back(bytes_of(level));
+    texture.levels.push_back(float_bytes(level));
   }
   return texture;
 }

@@ -2,31 +2,20 @@
 
 #include <algorithm>
 #include <chrono>
-#include <cstring>
 #include <map>
 
-#include <glm/gtc/matrix_transform.hpp>
 
 #include "harness/assets/meshes.h"
 #include "harness/assets/obj_mesh.h"
 #include "harness/assets/scene_textures.h"
+#include "harness/assets/cube_map.h"
 #include "harness/backend/resource_set.h"
+#include "harness/render/renderer_inputs.h"
 
 namespace xshade::harness {
 namespace {
 
-using Values = std::map<std::string, std::vector<float>>;
-
-// HLSL component order (row by row) of a GLM matrix: HLSL M[r][c] is GLM m[c][r], so that
-// mul(M, v) in a shader is m * v on the host.
-std::vector<float> hlsl_components(const glm::mat4& m) {
-  std::vector<float> out;
-  for (int r = 0; r < 4; ++r)
-    for (int c = 0; c < 4; ++c) out.push_back(m[c][r]);
-  return out;
-}
-
-std::vector<float> components(glm::vec4 v) { return {v.x, v.y, v.z, v.w}; }
+using Values = UniformValueMap;
 
 // The renderer's own values, looked up first, then the scene's, then the shader's defaults.
 class UniformValues {
@@ -46,6 +35,10 @@ class UniformValues {
     // use it (several passes of one effect share the buffer that declares it).
     static const std::vector<float> kNoTexture(4, 0.0f);
     if (name.ends_with("_TexelSize")) return &kNoTexture;
+    // X_ST, a texture's tiling and offset that neither the scene nor the shader gives: Unity's
+    // default, no tiling and no offset.
+    static const std::vector<float> kNoTiling{1.0f, 1.0f, 0.0f, 0.0f};
+    if (name.ends_with("_ST")) return &kNoTiling;
     return nullptr;
   }
 
@@ -91,9 +84,12 @@ struct PassSource {
 
 // One RGBA32F level, as given: a post pass reads level 0 only.
 TextureData float_texture(const FloatImage& image) {
-  std::vector<std::byte> bytes(image.rgba.size() * sizeof(float));
-  std::memcpy(bytes.data(), image.rgba.data(), bytes.size());
-  return {TextureFormat::Rgba32Float, image.width, image.height, {std::move(bytes)}};
+  return {TextureFormat::Rgba32Float, image.width, image.height, {float_bytes(image)}};
+}
+
+// Unity's reflection probes: both are the scene's environment (one probe, weight 1).
+bool is_reflection_probe(const std::string& texture) {
+  return texture == "unity_SpecCube0" || texture == "unity_SpecCube1";
 }
 
 class SceneRenderer {
@@ -191,15 +187,19 @@ class SceneRenderer {
     return *handle;
   }
 
-  Result<TextureHandle> texture(const TextureRef& ref) {
-    for (const auto& [known, handle] : textures_)
-      if (known == ref) return handle;
+  struct SceneTexture {
+    TextureRef ref;
+    TextureHandle handle;
+    glm::uvec2 size{0};
+  };
+  Result<SceneTexture> texture(const TextureRef& ref) {
+    for (const SceneTexture& known : textures_)
+      if (known.ref == ref) return known;
     auto image = texture_image(ref);
     if (!image) return fail(image.error());
     auto handle = resources_.upload_texture(texture_with_mips(*image));
     if (!handle) return fail(handle.error());
-    textures_.emplace_back(ref, *handle);
-    return *handle;
+    return textures_.emplace_back(SceneTexture{ref, *handle, {image->width, image->height}});
   }
 
   Result<TextureHandle> environment_texture() {
@@ -211,26 +211,37 @@ class SceneRenderer {
     return environment_handle_;
   }
 
-  Values frame_values() const {
-    const Camera& camera = scene_.camera;
-    const float aspect = float(scene_.width) / float(scene_.height);
-    // Direct3D's depth range [0, 1] in a right-handed world: what the backends' conventions expect.
-    const glm::mat4 projection =
-        glm::perspectiveRH_ZO(glm::radians(camera.fov_y_degrees), aspect, camera.near_plane, camera.far_plane);
-    const glm::mat4 view = glm::lookAtRH(camera.position, camera.target, camera.up);
-    Values values;
-    values["_WorldToClip"] = hlsl_components(projection * view);
-    values["_CameraPosition"] = components(glm::vec4(camera.position, 1.0f));
-    // One directional light: the shaders take the first; a scene without one is lit by its environment alone.
-    const DirectionalLight light = scene_.lights.empty() ? DirectionalLight{{0, 1, 0}, glm::vec3(0.0f), 0.0f}
-                                                         : scene_.lights.front();
-    values["_LightDirection"] = components(glm::vec4(light.direction, 0.0f));
-    values["_LightColor"] = components(glm::vec4(light.color * light.intensity, 0.0f));
-    std::vector<float>& sh = values["_EnvironmentSH"];
-    for (const glm::vec3& c : environment_.sh) sh.insert(sh.end(), {c.r, c.g, c.b, 0.0f});
-    values["_CameraNearFar"] = {camera.near_plane, camera.far_plane, 0.0f, 0.0f};
-    return values;
+  // The environment as a cube map of the same prefiltered levels, made the first time a shader
+  // samples a reflection probe.
+  Result<TextureHandle> environment_cube() {
+    if (!environment_cube_) {
+      auto handle = resources_.upload_texture(cube_from_prefiltered(environment_.prefiltered));
+      if (!handle) return fail(handle.error());
+      environment_cube_ = *handle;
+    }
+    return environment_cube_;
   }
+
+  // A texture the renderer itself gives a shader, by its name: the environment (xshade's
+  // equirect, Unity's reflection probes). Nothing for any other name.
+  Result<std::optional<TextureSource>> engine_texture(const std::string& name) {
+    // Clamped: the equirect's top and bottom rows are the poles, not neighbours; a cube's
+    // faces meet without wrapping either way.
+    const SamplerDesc clamped{Filter::Linear, AddressMode::ClampToEdge};
+    if (name == "_EnvironmentSpecular") {
+      auto env = environment_texture();
+      if (!env) return fail(env.error());
+      return TextureSource::texture(*env, clamped);
+    }
+    if (is_reflection_probe(name)) {
+      auto cube = environment_cube();
+      if (!cube) return fail(cube.error());
+      return TextureSource::texture(*cube, clamped);
+    }
+    return std::optional<TextureSource>{};
+  }
+
+  Values frame_values() const { return frame_inputs(scene_, environment_.sh); }
 
   Result<void> scene_pass() {
     RenderPass pass{scene_target_, scene_.clear_color, 1.0f, {}};
@@ -240,30 +251,29 @@ class SceneRenderer {
       const size_t variant = plan_.instance_variant[i];
       const std::string where = "object '" + instance.object_name + "'" +
                                 (instance.in_grid ? " cell " + std::to_string(instance.row) + "," + std::to_string(instance.col) : "");
-      values["_ObjectToWorld"] = hlsl_components(instance.model);
-      values["_NormalToWorld"] = hlsl_components(glm::transpose(glm::inverse(instance.model)));
+      add_object_inputs(instance.model, values);
       auto handle = program(variant);
       if (!handle) return fail(handle.error());
       auto mesh_handle = mesh(instance.mesh);
       if (!mesh_handle) return fail(where + ": " + mesh_handle.error().message);
       DrawItem draw{*handle, *mesh_handle, {}, {}};
-      auto uniforms = uniform_bindings(variants_[variant], UniformValues(values, instance.properties, variants_[variant].interface), where);
-      if (!uniforms) return fail(uniforms.error());
-      draw.uniforms = std::move(*uniforms);
       for (const std::string& name : variants_[variant].interface.textures) {
-        if (name == "_EnvironmentSpecular") {
-          auto env = environment_texture();
-          if (!env) return fail(env.error());
-          // Clamped: the equirect's top and bottom rows are the poles, not neighbours.
-          draw.textures.push_back({name, TextureSource::texture(*env, {Filter::Linear, AddressMode::ClampToEdge})});
+        auto engine = engine_texture(name);
+        if (!engine) return fail(where + ": texture '" + name + "': " + engine.error().message);
+        if (*engine) {
+          draw.textures.push_back({name, **engine});
           continue;
         }
         // An unset texture is white, as Unity's default for _MainTex.
         auto given = instance.textures.find(name);
-        auto handle_of = texture(given != instance.textures.end() ? given->second : TextureRef{});
-        if (!handle_of) return fail(where + ": texture '" + name + "': " + handle_of.error().message);
-        draw.textures.push_back({name, TextureSource::texture(*handle_of, {Filter::Linear, AddressMode::Repeat})});
+        auto made = texture(given != instance.textures.end() ? given->second : TextureRef{});
+        if (!made) return fail(where + ": texture '" + name + "': " + made.error().message);
+        values[name + "_TexelSize"] = texel_size(made->size);
+        draw.textures.push_back({name, TextureSource::texture(made->handle, {Filter::Linear, AddressMode::Repeat})});
       }
+      auto uniforms = uniform_bindings(variants_[variant], UniformValues(values, instance.properties, variants_[variant].interface), where);
+      if (!uniforms) return fail(uniforms.error());
+      draw.uniforms = std::move(*uniforms);
       pass.draws.push_back(std::move(draw));
     }
     return timed("scene", pass);
@@ -296,13 +306,22 @@ class SceneRenderer {
     for (const std::string& name : variant.interface.textures) {
       auto input = std::find_if(declaration.inputs.begin(), declaration.inputs.end(),
                                 [&](const hlsl::PassInput& i) { return i.texture == name; });
-      if (input == declaration.inputs.end())
+      if (input == declaration.inputs.end()) {
+        auto engine = engine_texture(name);
+        if (!engine) return fail("pass '" + planned.name + "': texture '" + name + "': " + engine.error().message);
+        if (*engine) {
+          draw.textures.push_back({name, **engine});
+          continue;
+        }
+      }
+      // Unity's depth texture is the scene's depth where the pass names no other source.
+      const bool camera_depth = input == declaration.inputs.end() && name == "_CameraDepthTexture";
+      if (input == declaration.inputs.end() && !camera_depth)
         return fail("pass '" + planned.name + "' samples '" + name + "', which its #pragma pass gives no source");
-      const PassSource& source = input->kind == hlsl::PassInput::Kind::SceneDepth ? scene_depth_
-                                 : input->kind == hlsl::PassInput::Kind::Pass     ? pass_outputs_.at(input->pass)
-                                                                                  : effect_input_;
-      const glm::uvec2 size = source.size;
-      values[name + "_TexelSize"] = {1.0f / float(size.x), 1.0f / float(size.y), float(size.x), float(size.y)};
+      const PassSource& source = camera_depth || input->kind == hlsl::PassInput::Kind::SceneDepth ? scene_depth_
+                                 : input->kind == hlsl::PassInput::Kind::Pass ? pass_outputs_.at(input->pass)
+                                                                              : effect_input_;
+      values[name + "_TexelSize"] = texel_size(source.size);
       draw.textures.push_back({name, source.binding});
     }
     auto handle = program(planned.variant);
@@ -347,8 +366,9 @@ class SceneRenderer {
   std::map<size_t, TargetHandle> pass_target_;  // by index into the plan's passes
   std::map<size_t, ProgramHandle> programs_;
   std::vector<std::pair<MeshRef, MeshHandle>> meshes_;
-  std::vector<std::pair<TextureRef, TextureHandle>> textures_;
+  std::vector<SceneTexture> textures_;
   TextureHandle environment_handle_;
+  TextureHandle environment_cube_;
   std::vector<PassTiming> timings_;
   std::vector<std::pair<std::string, FloatImage>> pass_images_;
 };

@@ -286,8 +286,8 @@ class SceneReader : TomlReader {
 
   void read_root(const toml::table& root, Scene& scene) {
     check_keys(root, "",
-               {"description", "size", "lanes", "clear_color", "camera", "light", "environment", "object", "post",
-                "compare"});
+               {"description", "size", "lanes", "clear_color", "time", "camera", "light", "environment", "object",
+                "post", "compare"});
 
     if (const toml::node* node = root.get("description")) {
       if (auto text = string(*node, "description", "a non-empty string")) scene.description = *text;
@@ -307,6 +307,9 @@ class SceneReader : TomlReader {
 
     if (const toml::node* node = root.get("clear_color")) {
       if (auto value = vector<4>(*node, "clear_color", "a number >= 0", non_negative)) scene.clear_color = *value;
+    }
+    if (const toml::node* node = root.get("time")) {
+      if (auto value = float_value(*node, "time", "a number of seconds >= 0", non_negative)) scene.time_seconds = *value;
     }
 
     if (const toml::table* camera = table(root, "", "camera", true)) read_camera(*camera, scene.camera);

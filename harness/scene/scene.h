@@ -130,6 +130,8 @@ struct Scene {
   uint32_t height = 0;          // 1..4096
   std::vector<std::string> lanes;  // a subset of "gl", "vk", "vk-hlsl" in the order written
   glm::vec4 clear_color{0.0f, 0.0f, 0.0f, 1.0f};
+  // The time since the level loaded that the frame shows, in seconds (Unity's _Time.y).
+  float time_seconds = 0.0f;
   Camera camera;
   std::vector<DirectionalLight> lights;
   EnvironmentSpec environment;

@@ -60,6 +60,7 @@ TEST(SceneParse, ReadsEveryValueOfACompleteScene) {
 size = [320, 240]
 lanes = ["vk", "gl"]
 clear_color = [0.1, 0.2, 0.3, 1]
+time = 2.5
 [camera]
 position = [0, 1, 8]
 target = [0, 0, 0]
@@ -129,6 +130,7 @@ reason = "edges of the spheres alias differently on the two rasterisers"
   EXPECT_EQ(scene.height, 240u);
   EXPECT_EQ(scene.lanes, (std::vector<std::string>{"vk", "gl"}));
   expect_near(scene.clear_color, {0.1f, 0.2f, 0.3f, 1.0f});
+  EXPECT_FLOAT_EQ(scene.time_seconds, 2.5f);
 
   expect_vec(scene.camera.position, {0, 1, 8});
   expect_vec(scene.camera.target, {0, 0, 0});
@@ -213,6 +215,7 @@ material = "materials/unlit.hlsl"
 )");
   EXPECT_EQ(scene.lanes, (std::vector<std::string>{"gl", "vk", "vk-hlsl"}));
   expect_near(scene.clear_color, {0, 0, 0, 1});
+  EXPECT_EQ(scene.time_seconds, 0.0f);
   expect_vec(scene.camera.up, {0, 1, 0});
   EXPECT_TRUE(scene.lights.empty());
   EXPECT_EQ(scene.environment.kind, EnvironmentKind::Constant);
@@ -280,6 +283,11 @@ TEST(SceneErrors, OutOfRangeValues) {
                 "scenes/bad.toml:11:24: error: compare.max_failing_fraction: expected a number in [0, 1], got 1.5",
                 "scenes/bad.toml:12:19: error: compare.position_radius: expected an integer in 0..8, got 9",
             }));
+}
+
+TEST(SceneErrors, TimeIsSecondsFromZeroOn) {
+  EXPECT_EQ(errors_of("time = -1\n" + minimal_head),
+            (std::vector<std::string>{"scenes/bad.toml:1:8: error: time: expected a number of seconds >= 0, got -1"}));
 }
 
 TEST(SceneErrors, UnknownKeysAreAllReportedWithTheNearestKnownKey) {

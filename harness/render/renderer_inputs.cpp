@@ -1,0 +1,130 @@
+#include "harness/render/renderer_inputs.h"
+
+#include <cmath>
+
+#include <glm/gtc/matrix_transform.hpp>
+
+namespace xshade::harness {
+namespace {
+
+std::vector<float> components(glm::vec4 v) { return {v.x, v.y, v.z, v.w}; }
+std::vector<float> components(glm::vec3 v) { return {v.x, v.y, v.z}; }
+
+// Unity's camera space: its camera transform's local axes, +x right, +y up, +z forward (the view
+// matrix's -z).
+const glm::mat4 kViewToCamera = glm::scale(glm::mat4(1.0f), glm::vec3(1.0f, 1.0f, -1.0f));
+
+// A probe's box that nothing leaves: box projection is off (ProbePosition.w = 0), and the
+// w of BoxMin, Unity's blend weight of the first probe, is 1.
+constexpr float kUnboundedProbe = 1e30f;
+
+}  // namespace
+
+std::vector<float> hlsl_components(const glm::mat4& m) {
+  std::vector<float> out;
+  for (int r = 0; r < 4; ++r)
+    for (int c = 0; c < 4; ++c) out.push_back(m[c][r]);
+  return out;
+}
+
+glm::mat4 view_matrix(const Camera& camera) { return glm::lookAtRH(camera.position, camera.target, camera.up); }
+
+glm::mat4 gpu_projection(const Camera& camera, float aspect) {
+  return glm::perspectiveRH_ZO(glm::radians(camera.fov_y_degrees), aspect, camera.near_plane, camera.far_plane);
+}
+
+std::vector<float> texel_size(glm::uvec2 size) {
+  return {1.0f / float(size.x), 1.0f / float(size.y), float(size.x), float(size.y)};
+}
+
+std::array<glm::vec4, 7> unity_sh_constants(const ShCoefficients& sh) {
+  // The basis constants of spherical_harmonics.h, folded into Unity's polynomial in n:
+  // band 0 and the constant part of Y6 = 0.315392 (3 z^2 - 1) go to SHA.w, z^2 to SHB.z.
+  constexpr float k0 = 0.282095f, k1 = 0.488603f, kxy = 1.092548f, k6 = 0.315392f, k8 = 0.546274f;
+  std::array<glm::vec4, 7> out{};
+  for (int channel = 0; channel < 3; ++channel) {
+    const auto c = [&](int i) { return sh[i][channel]; };
+    out[channel] = {k1 * c(3), k1 * c(1), k1 * c(2), k0 * c(0) - k6 * c(6)};
+    out[3 + channel] = {kxy * c(4), kxy * c(5), 3.0f * k6 * c(6), kxy * c(7)};
+    out[6][channel] = k8 * c(8);
+  }
+  out[6].w = 1.0f;  // as Unity sets it; ShadeSH9 reads SHC.rgb only
+  return out;
+}
+
+UniformValueMap frame_inputs(const Scene& scene, const ShCoefficients& sh) {
+  const Camera& camera = scene.camera;
+  const float width = float(scene.width), height = float(scene.height);
+  const glm::mat4 projection = gpu_projection(camera, width / height);
+  const glm::mat4 view = view_matrix(camera);
+  // One directional light: the shaders take the first; a scene without one is lit by its
+  // environment alone.
+  const DirectionalLight light =
+      scene.lights.empty() ? DirectionalLight{{0, 1, 0}, glm::vec3(0.0f), 0.0f} : scene.lights.front();
+  const float near = camera.near_plane, far = camera.far_plane;
+
+  UniformValueMap values;
+  // xshade's own.
+  values["_WorldToClip"] = hlsl_components(projection * view);
+  values["_CameraPosition"] = components(glm::vec4(camera.position, 1.0f));
+  values["_LightDirection"] = components(glm::vec4(light.direction, 0.0f));
+  values["_LightColor"] = components(glm::vec4(light.color * light.intensity, 0.0f));
+  std::vector<float>& environment_sh = values["_EnvironmentSH"];
+  for (const glm::vec3& c : sh) environment_sh.insert(environment_sh.end(), {c.r, c.g, c.b, 0.0f});
+  values["_CameraNearFar"] = {near, far, 0.0f, 0.0f};
+
+  // Unity's: time.
+  const float t = scene.time_seconds;
+  values["_Time"] = {t / 20.0f, t, 2.0f * t, 3.0f * t};
+  values["_SinTime"] = {std::sin(t / 8.0f), std::sin(t / 4.0f), std::sin(t / 2.0f), std::sin(t)};
+  values["_CosTime"] = {std::cos(t / 8.0f), std::cos(t / 4.0f), std::cos(t / 2.0f), std::cos(t)};
+  values["unity_DeltaTime"] = {kFrameSeconds, 1.0f / kFrameSeconds, kFrameSeconds, 1.0f / kFrameSeconds};
+
+  // The camera and the screen. Depth is Direct3D's without reversal: 0 at the near plane.
+  values["_WorldSpaceCameraPos"] = components(camera.position);
+  values["_ProjectionParams"] = {1.0f, near, far, 1.0f / far};  // x = 1: the projection is not flipped
+  values["_ScreenParams"] = {width, height, 1.0f + 1.0f / width, 1.0f + 1.0f / height};
+  values["_ZBufferParams"] = {1.0f - far / near, far / near, (1.0f - far / near) / far, (far / near) / far};
+  values["unity_OrthoParams"] = {0.0f, 0.0f, 0.0f, 0.0f};  // w = 0: a perspective camera
+  const glm::mat4 camera_projection =  // Camera.projectionMatrix: OpenGL's clip space, z in [-w, w]
+      glm::perspectiveRH_NO(glm::radians(camera.fov_y_degrees), width / height, near, far);
+  values["unity_CameraProjection"] = hlsl_components(camera_projection);
+  values["unity_CameraInvProjection"] = hlsl_components(glm::inverse(camera_projection));
+  values["unity_WorldToCamera"] = hlsl_components(kViewToCamera * view);
+  values["unity_CameraToWorld"] = hlsl_components(glm::inverse(kViewToCamera * view));
+  values["unity_MatrixV"] = hlsl_components(view);
+  values["unity_MatrixInvV"] = hlsl_components(glm::inverse(view));
+  values["glstate_matrix_projection"] = hlsl_components(projection);
+  values["unity_MatrixVP"] = hlsl_components(projection * view);
+  // Linear colour space: Unity's luminance weights for linear RGB, w = 1.
+  values["unity_ColorSpaceLuminance"] = {0.0396819152f, 0.458021790f, 0.00609653955f, 1.0f};
+
+  // The light: a directional one is its direction toward the light with w = 0; its colour is
+  // Unity's Color (alpha 1) times the intensity, alpha included.
+  values["_WorldSpaceLightPos0"] = components(glm::vec4(light.direction, 0.0f));
+  values["_LightColor0"] = components(glm::vec4(light.color, 1.0f) * light.intensity);
+
+  // The environment: ambient light as SH, and the reflection probe (unity_SpecCube0, the
+  // environment as a cube map of linear HDR texels, decoded by DecodeHDR with (1, 1, 0, 0)).
+  const std::array<glm::vec4, 7> unity_sh = unity_sh_constants(sh);
+  const char* sh_names[] = {"unity_SHAr", "unity_SHAg", "unity_SHAb", "unity_SHBr", "unity_SHBg", "unity_SHBb", "unity_SHC"};
+  for (size_t i = 0; i < unity_sh.size(); ++i) values[sh_names[i]] = components(unity_sh[i]);
+  for (const std::string probe : {"unity_SpecCube0", "unity_SpecCube1"}) {
+    values[probe + "_HDR"] = {1.0f, 1.0f, 0.0f, 0.0f};
+    values[probe + "_BoxMin"] = {-kUnboundedProbe, -kUnboundedProbe, -kUnboundedProbe, 1.0f};
+    values[probe + "_BoxMax"] = {kUnboundedProbe, kUnboundedProbe, kUnboundedProbe, 1.0f};
+    values[probe + "_ProbePosition"] = {0.0f, 0.0f, 0.0f, 0.0f};
+  }
+  return values;
+}
+
+void add_object_inputs(const glm::mat4& model, UniformValueMap& values) {
+  values["_ObjectToWorld"] = hlsl_components(model);
+  values["_NormalToWorld"] = hlsl_components(glm::transpose(glm::inverse(model)));
+  values["unity_ObjectToWorld"] = hlsl_components(model);
+  values["unity_WorldToObject"] = hlsl_components(glm::inverse(model));
+  // w = -1 where the transform mirrors (odd negative scale), which turns the bitangent around.
+  values["unity_WorldTransformParams"] = {0.0f, 0.0f, 0.0f, glm::determinant(glm::mat3(model)) < 0.0f ? -1.0f : 1.0f};
+}
+
+}  // namespace xshade::harness

@@ -1,0 +1,53 @@
+// The values the renderer gives a shader's constant-buffer members by name: xshade's own inputs
+// (_WorldToClip, _CameraPosition, ...) and Unity's built-in shader variables (_Time,
+// _ScreenParams, unity_ObjectToWorld, unity_SHAr, ...) as Unity's built-in render pipeline sets
+// them on a Direct3D-like platform, without reversed Z. docs/shader_library.md tables every name
+// with its convention.
+//
+// The world is right-handed with +y up (the scene's), the view matrix looks down -z, clip space is
+// Direct3D's (z in [0, w], 0 at the near plane, +y up). Matrices are in HLSL component order (row
+// by row), so that mul(M, v) in a shader is the host's M * v.
+#pragma once
+
+#include <array>
+#include <map>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "harness/assets/spherical_harmonics.h"
+#include "harness/scene/scene.h"
+
+namespace xshade::harness {
+
+using UniformValueMap = std::map<std::string, std::vector<float>>;
+
+// Unity's frame time, in seconds, for unity_DeltaTime: the scene is a still of a 60 Hz frame.
+inline constexpr float kFrameSeconds = 1.0f / 60.0f;
+
+// The camera's matrices: the view (world to view space, looking down -z) and the projection the
+// shaders use (Direct3D clip space: glm::perspectiveRH_ZO), for a target of `aspect` = width / height.
+glm::mat4 view_matrix(const Camera& camera);
+glm::mat4 gpu_projection(const Camera& camera, float aspect);
+
+// Every per-frame value: xshade's and Unity's. `screen` is the scene's target size (what
+// _ScreenParams describes in every pass, post passes at half size included, as Unity's camera
+// target does), `sh` the environment's irradiance / pi (spherical_harmonics.h).
+UniformValueMap frame_inputs(const Scene& scene, const ShCoefficients& sh);
+
+// The per-object values of an instance with model matrix `model`, added to (or replaced in) `values`.
+void add_object_inputs(const glm::mat4& model, UniformValueMap& values);
+
+// X_TexelSize of a texture of `size` texels: (1 / width, 1 / height, width, height).
+std::vector<float> texel_size(glm::uvec2 size);
+
+// Unity's seven SH constants (unity_SHAr, SHAg, SHAb, SHBr, SHBg, SHBb, SHC) for the same
+// irradiance / pi as `sh`: ShadeSH9(n) = (dot(SHA, (n, 1)), ...) + (dot(SHB, n.xyzz * n.yzzx), ...)
+// + SHC.rgb * (n.x^2 - n.y^2) equals sh_evaluate(sh, n) for every unit n.
+std::array<glm::vec4, 7> unity_sh_constants(const ShCoefficients& sh);
+
+// The HLSL components of a matrix (row by row).
+std::vector<float> hlsl_components(const glm::mat4& m);
+
+}  // namespace xshade::harness

@@ -1,0 +1,104 @@
+#include "harness/render/renderer_inputs.h"
+
+#include <cmath>
+#include <random>
+
+#include <gtest/gtest.h>
+
+namespace xshade::harness {
+namespace {
+
+glm::vec4 vec4_of(const std::vector<float>& v) { return {v.at(0), v.at(1), v.at(2), v.at(3)}; }
+
+glm::mat4 matrix_of(const std::vector<float>& hlsl) {  // row by row, as hlsl_components wrote it
+  glm::mat4 m;
+  for (int r = 0; r < 4; ++r)
+    for (int c = 0; c < 4; ++c) m[c][r] = hlsl.at(size_t(r) * 4 + c);
+  return m;
+}
+
+Scene test_scene() {
+  Scene scene;
+  scene.width = 320;
+  scene.height = 200;
+  scene.camera = {{1.0f, 2.0f, 6.0f}, {0.0f, 0.5f, 0.0f}, {0.0f, 1.0f, 0.0f}, 40.0f, 0.3f, 50.0f};
+  scene.time_seconds = 2.0f;
+  return scene;
+}
+
+// Unity's ShadeSH9 as UnityCG.cginc writes it (SHEvalLinearL0L1 + SHEvalLinearL2).
+glm::vec3 shade_sh9(const std::array<glm::vec4, 7>& k, glm::vec3 n) {
+  const glm::vec4 n1(n, 1.0f);
+  const glm::vec4 b(n.x * n.y, n.y * n.z, n.z * n.z, n.z * n.x);
+  const float c = n.x * n.x - n.y * n.y;
+  return glm::vec3(glm::dot(k[0], n1), glm::dot(k[1], n1), glm::dot(k[2], n1)) +
+         glm::vec3(glm::dot(k[3], b), glm::dot(k[4], b), glm::dot(k[5], b)) + glm::vec3(k[6]) * c;
+}
+
+TEST(RendererInputs, UnityShConstantsEvaluateToTheSameIrradiance) {
+  std::mt19937 random(7);
+  std::uniform_real_distribution<float> any(-1.0f, 1.0f);
+  ShCoefficients sh;
+  for (glm::vec3& c : sh) c = {any(random), any(random), any(random)};
+  const auto constants = unity_sh_constants(sh);
+  for (int i = 0; i < 100; ++i) {
+    const glm::vec3 n = glm::normalize(glm::vec3(any(random), any(random), any(random)) + glm::vec3(1e-3f));
+    const glm::vec3 expected = sh_evaluate(sh, n), got = shade_sh9(constants, n);
+    for (int channel = 0; channel < 3; ++channel) EXPECT_NEAR(got[channel], expected[channel], 1e-5f) << "normal " << i;
+  }
+}
+
+// Linear01Depth and LinearEyeDepth (UnityCG.cginc) of the depth a point leaves in the depth
+// buffer give back the point's distance along the view axis.
+TEST(RendererInputs, ZBufferParamsLineariseTheDepthTheProjectionWrites) {
+  const Scene scene = test_scene();
+  const UniformValueMap values = frame_inputs(scene, {});
+  const glm::vec4 z = vec4_of(values.at("_ZBufferParams"));
+  const glm::mat4 projection = gpu_projection(scene.camera, 320.0f / 200.0f);
+  for (float eye : {0.3f, 1.0f, 7.5f, 50.0f}) {
+    const glm::vec4 clip = projection * glm::vec4(0.2f, -0.1f, -eye, 1.0f);
+    const float depth = clip.z / clip.w;
+    EXPECT_NEAR(1.0f / (z.z * depth + z.w), eye, eye * 1e-4f) << "LinearEyeDepth at " << eye;
+    EXPECT_NEAR(1.0f / (z.x * depth + z.y), eye / 50.0f, 1e-4f) << "Linear01Depth at " << eye;
+  }
+}
+
+TEST(RendererInputs, CameraSpaceLooksAlongPlusZAndCameraProjectionIsOpenGLs) {
+  const Scene scene = test_scene();
+  const UniformValueMap values = frame_inputs(scene, {});
+  const glm::vec4 target = matrix_of(values.at("unity_WorldToCamera")) * glm::vec4(scene.camera.target, 1.0f);
+  EXPECT_GT(target.z, 0.0f);
+  EXPECT_NEAR(target.x, 0.0f, 1e-5f);
+  const glm::vec4 origin = matrix_of(values.at("unity_CameraToWorld")) * glm::vec4(0, 0, 0, 1);
+  EXPECT_NEAR(glm::distance(glm::vec3(origin), scene.camera.position), 0.0f, 1e-5f);
+  const glm::mat4 camera_projection = matrix_of(values.at("unity_CameraProjection"));
+  const glm::vec4 near = camera_projection * glm::vec4(0, 0, -0.3f, 1), far = camera_projection * glm::vec4(0, 0, -50.0f, 1);
+  EXPECT_NEAR(near.z / near.w, -1.0f, 1e-5f);
+  EXPECT_NEAR(far.z / far.w, 1.0f, 1e-4f);
+  const glm::mat4 round_trip = matrix_of(values.at("unity_CameraInvProjection")) * camera_projection;
+  for (int i = 0; i < 4; ++i) EXPECT_NEAR(round_trip[i][i], 1.0f, 1e-5f);
+}
+
+TEST(RendererInputs, TimeAndScreenAreUnitysLayout) {
+  const UniformValueMap values = frame_inputs(test_scene(), {});
+  EXPECT_EQ(vec4_of(values.at("_Time")), glm::vec4(0.1f, 2.0f, 4.0f, 6.0f));
+  EXPECT_FLOAT_EQ(values.at("_SinTime")[3], std::sin(2.0f));
+  EXPECT_FLOAT_EQ(values.at("_CosTime")[0], std::cos(0.25f));
+  EXPECT_EQ(vec4_of(values.at("_ScreenParams")), glm::vec4(320.0f, 200.0f, 1.0f + 1.0f / 320.0f, 1.005f));
+  EXPECT_EQ(vec4_of(values.at("_ProjectionParams")), glm::vec4(1.0f, 0.3f, 50.0f, 0.02f));
+}
+
+TEST(RendererInputs, ObjectInputsInvertAndFlagAMirroringTransform) {
+  UniformValueMap values;
+  const glm::mat4 mirrored = model_matrix({1, 2, 3}, {10, 20, 30}, {-1, 2, 1});
+  add_object_inputs(mirrored, values);
+  const glm::mat4 product = matrix_of(values.at("unity_WorldToObject")) * matrix_of(values.at("unity_ObjectToWorld"));
+  for (int c = 0; c < 4; ++c)
+    for (int r = 0; r < 4; ++r) EXPECT_NEAR(product[c][r], c == r ? 1.0f : 0.0f, 1e-5f);
+  EXPECT_EQ(values.at("unity_WorldTransformParams")[3], -1.0f);
+  add_object_inputs(model_matrix({0, 0, 0}, {0, 0, 0}, {1, 1, 1}), values);
+  EXPECT_EQ(values.at("unity_WorldTransformParams")[3], 1.0f);
+}
+
+}  // namespace
+}  // namespace xshade::harness
