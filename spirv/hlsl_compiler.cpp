@@ -78,8 +78,10 @@ class SemanticIoResolver final : public glslang::TDefaultIoResolverBase {
       // A constant buffer is known by its block's name, any other resource by its variable's.
       const std::string name = type.getBasicType() == glslang::EbtBlock ? type.getTypeName().c_str()
                                                                         : entry.symbol->getName().c_str();
-      // Only live ones: glslang leaves a resource the stage never reads out of its module.
-      if (auto given = bindings_.find(name); entry.live && given != bindings_.end())
+      // Dead ones too: glslang keeps a global texture or sampler the stage never reads in the
+      // module (a vertex stage declares the fragment stage's textures), and the backend checks
+      // every binding a module declares against the program's layout.
+      if (auto given = bindings_.find(name); given != bindings_.end())
         return entry.newBinding = reserveSlot(set, int(given->second));
       if (entry.live && doAutoBindingMapping()) return entry.newBinding = getFreeSlot(set, base);
     }

@@ -1,6 +1,7 @@
 #include "spirv/hlsl_compiler.h"
 
 #include <gtest/gtest.h>
+#include <spirv-tools/libspirv.hpp>
 
 namespace xshade::spirv {
 namespace {
@@ -106,6 +107,25 @@ float4 frag() : SV_Target { return _Tint; }
   ASSERT_TRUE(numbered) << numbered.error().to_string();
   ASSERT_NE(find(*numbered, "$Global"), nullptr);
   EXPECT_EQ(find(*numbered, "$Global")->binding, 1u);
+}
+
+// A stage that does not read a global texture still declares it; it must be at the program-wide
+// number, not at glslang's default 0, where another resource of the program may be.
+TEST(HlslCompiler, AResourceAStageDoesNotReadTakesItsProgramWideBinding) {
+  constexpr const char* kSource = R"(
+Texture2D _MainTex; SamplerState sampler_MainTex;
+float4 vert(float3 p : POSITION) : SV_Position { return float4(p, 1); }
+)";
+  HlslStage stage{kSource, "vertex.hlsl", Stage::Vertex, "vert", {}, {}, {}, {}};
+  stage.bindings = {{"_MainTex", 16}, {"sampler_MainTex", 32}};
+  auto compiled = compile_hlsl(stage);
+  ASSERT_TRUE(compiled) << compiled.error().to_string();
+  std::string text;
+  spvtools::SpirvTools tools(SPV_ENV_VULKAN_1_3);
+  ASSERT_TRUE(tools.Disassemble(compiled->module.words, &text, SPV_BINARY_TO_TEXT_OPTION_FRIENDLY_NAMES));
+  ASSERT_NE(text.find("%_MainTex = OpVariable"), std::string::npos) << "glslang keeps the texture: " << text;
+  EXPECT_NE(text.find("OpDecorate %_MainTex Binding 16"), std::string::npos) << text;
+  EXPECT_NE(text.find("OpDecorate %sampler_MainTex Binding 32"), std::string::npos) << text;
 }
 
 }  // namespace

@@ -100,7 +100,8 @@ Result<DofImages> run_depth_of_field(const CaseContext& context, harness::Progra
                  keywords,
                  {{"_FocusDistance", harness::PropertyValue::scalar(kFocusDistance)},
                   {"_FocusRange", harness::PropertyValue::scalar(settings.focus_range)},
-                  {"_BokehRadius", harness::PropertyValue::scalar(kBokehRadius)}}}};
+                  {"_BokehRadius", harness::PropertyValue::scalar(kBokehRadius)}},
+                 {}}};
   auto plan = harness::plan_scene(scene, context.shaders_dir);
   if (!plan) return fail(plan.error());
   auto variants = context.compiler.compile_plan(*plan, context.lane, context.precision == Precision::Half);

@@ -2,6 +2,8 @@
 
 #include <cstring>
 
+#include "harness/assets/cube_map.h"
+#include "harness/assets/lut.h"
 #include "harness/image/image_io.h"
 
 namespace xshade::harness {
@@ -65,9 +67,75 @@ Result<FloatImage> texture_image(const TextureRef& texture) {
     case TextureOrigin::Black: return filled(1, {0.0f, 0.0f, 0.0f, 1.0f});
     case TextureOrigin::Normal: return filled(1, {0.5f, 0.5f, 1.0f, 1.0f});
     case TextureOrigin::Checker: return checker();
-    case TextureOrigin::File: return read_image(texture.file);
+    case TextureOrigin::File: return read_image(texture.file, texture.srgb);
+    case TextureOrigin::Faces: return fail("six faces make a cube map, not an image: the shader must declare a TextureCube");
+    case TextureOrigin::Environment:
+      return fail("the environment is a cube map, not an image: the shader must declare a TextureCube");
   }
   return fail("unknown texture source");
+}
+
+namespace {
+// A built-in as one texel: its mean (the checker's is mid grey).
+FloatImage one_texel(FloatImage image) {
+  while (image.width > 1 || image.height > 1) image = half_size(image);
+  return image;
+}
+}  // namespace
+
+Result<TextureData> texture_data(const TextureRef& texture, TextureShape shape) {
+  const bool lut_file = texture.source == TextureOrigin::File && texture.file.extension() == ".cube";
+  const bool built_in = texture.source != TextureOrigin::File && texture.source != TextureOrigin::Faces &&
+                        texture.source != TextureOrigin::Environment;
+  if (shape.multisampled || (shape.dimension != TextureDimension::Tex2D && shape.dimension != TextureDimension::Cube &&
+                             shape.dimension != TextureDimension::Tex3D))
+    return fail("the shader declares a " + shape_name(shape) +
+                ", and a scene gives 2D textures, cube maps and 3D textures only");
+  if (texture.source == TextureOrigin::Environment)
+    return fail("the environment is given by the renderer, not made here");  // scene_renderer.cpp
+  if (shape.dimension == TextureDimension::Tex2D) {
+    if (lut_file) return fail("a .cube file is a 3D LUT: the shader must declare a Texture3D");
+    auto image = texture_image(texture);
+    if (!image) return fail(image.error());
+    return texture_with_mips(*image);
+  }
+  if (built_in) {  // one texel of the shape
+    auto image = texture_image(texture);
+    if (!image) return fail(image.error());
+    TextureData data{TextureFormat::Rgba32Float, 1, 1, {}};
+    data.dimension = shape.dimension;
+    data.layers = shape.dimension == TextureDimension::Cube ? kCubeFaces : 1;
+    std::vector<std::byte> level;
+    const std::vector<std::byte> texel = float_bytes(one_texel(*image));
+    for (uint32_t layer = 0; layer < data.layers; ++layer) level.insert(level.end(), texel.begin(), texel.end());
+    data.levels.push_back(std::move(level));
+    return data;
+  }
+  if (shape.dimension == TextureDimension::Cube) {
+    if (lut_file) return fail("a .cube file is a 3D LUT, not a cube map: the shader must declare a Texture3D");
+    if (texture.source == TextureOrigin::Faces) {
+      std::array<FloatImage, kCubeFaces> faces;
+      for (uint32_t f = 0; f < kCubeFaces; ++f) {
+        auto face = read_image(texture.faces[f], texture.srgb);
+        if (!face) return fail(face.error());
+        faces[f] = std::move(*face);
+      }
+      return cube_from_faces(faces);
+    }
+    auto equirect = read_image(texture.file, texture.srgb);
+    if (!equirect) return fail(equirect.error());
+    if (equirect->width != 2 * equirect->height || equirect->width < 4)
+      return fail("a cube map from one image takes an equirect image, twice as wide as high; this one is " +
+                  std::to_string(equirect->width) + "x" + std::to_string(equirect->height) +
+                  " (or give faces = [6 images])");
+    return cube_from_equirect(*equirect, equirect->width / 4);
+  }
+  // Texture3D.
+  if (texture.source == TextureOrigin::Faces) return fail("six faces make a cube map: the shader declares a Texture3D");
+  if (lut_file) return read_cube_lut(texture.file);
+  auto strip = read_image(texture.file, texture.srgb);
+  if (!strip) return fail(strip.error());
+  return lut_from_strip(*strip);
 }
 
 }  // namespace xshade::harness

@@ -21,4 +21,12 @@ std::vector<std::byte> float_bytes(const FloatImage& image);
 // The image of a texture reference: a built-in is generated, a file read (linear RGBA).
 Result<FloatImage> texture_image(const TextureRef& texture);
 
+// What a scene's texture becomes for a shader's texture of `shape` (docs/scenes.md): a 2D texture
+// with mips of the image; a cube with mips from an equirect image (faces of width / 4) or from six
+// faces; a 3D texture from a LUT strip or a .cube file, one level. A built-in colour fills one
+// texel of any of these shapes. Fails, saying what the shape needs, for a reference that cannot
+// be one (six faces for a Texture2D, a .cube for a cube), for another shape (arrays, 1D,
+// multisampled) and for the environment, which the renderer gives itself.
+Result<TextureData> texture_data(const TextureRef& texture, TextureShape shape);
+
 }  // namespace xshade::harness

@@ -70,7 +70,7 @@ Result<void> write_exr(const FloatImage& image, const std::filesystem::path& pat
   return write(path, spec, OIIO::TypeDesc::FLOAT, image.rgba.data());
 }
 
-Result<FloatImage> read_image(const std::filesystem::path& path) {
+Result<FloatImage> read_image(const std::filesystem::path& path, bool srgb) {
   // Without this OpenImageIO premultiplies colour by alpha when it reads a PNG.
   OIIO::ImageSpec config;
   config.attribute("oiio:UnassociatedAlpha", 1);
@@ -95,7 +95,7 @@ Result<FloatImage> read_image(const std::filesystem::path& path) {
     auto value = [&](int c, bool colour) {
       size_t i = p * channels + c;
       if (!encoded) return pixels[i];
-      return colour ? srgb8_to_linear(bytes[i]) : bytes[i] / 255.0f;
+      return colour && srgb ? srgb8_to_linear(bytes[i]) : bytes[i] / 255.0f;
     };
     float* out = &image.rgba[p * 4];
     for (int c = 0; c < 3; ++c) out[c] = value(channels >= 3 ? c : 0, true);

@@ -18,7 +18,8 @@ Result<void> write_png(const FloatImage& image, const std::filesystem::path& pat
 // Every float as it is, NaN and Inf included.
 Result<void> write_exr(const FloatImage& image, const std::filesystem::path& path);
 // Reads any format OpenImageIO knows into RGBA float. 8-bit files are taken as sRGB-encoded
-// and decoded to linear, so that read_image(write_png(x)) is x up to 8-bit quantisation.
-Result<FloatImage> read_image(const std::filesystem::path& path);
+// and decoded to linear, so that read_image(write_png(x)) is x up to 8-bit quantisation; with
+// `srgb` false their colour is linear data (a LUT, a mask, noise) and reads as byte / 255.
+Result<FloatImage> read_image(const std::filesystem::path& path, bool srgb = true);
 
 }  // namespace xshade::harness

@@ -189,17 +189,45 @@ class SceneRenderer {
 
   struct SceneTexture {
     TextureRef ref;
+    TextureShape shape;
     TextureHandle handle;
     glm::uvec2 size{0};
   };
-  Result<SceneTexture> texture(const TextureRef& ref) {
+  // A texture the scene names, made for the shape the shader declares (scene_textures.h); the
+  // environment is the renderer's own cube.
+  Result<SceneTexture> texture(const TextureRef& ref, TextureShape shape) {
     for (const SceneTexture& known : textures_)
-      if (known.ref == ref) return known;
-    auto image = texture_image(ref);
-    if (!image) return fail(image.error());
-    auto handle = resources_.upload_texture(texture_with_mips(*image));
+      if (known.ref == ref && known.shape == shape) return known;
+    if (ref.source == TextureOrigin::Environment) {
+      if (shape != TextureShape{TextureDimension::Cube, false})
+        return fail("the environment is a cube map; the shader declares a " + shape_name(shape), ref.where);
+      auto cube = environment_cube();
+      if (!cube) return fail(cube.error());
+      return textures_.emplace_back(SceneTexture{ref, shape, *cube, {environment_.prefiltered.width / 4, environment_.prefiltered.width / 4}});
+    }
+    auto data = texture_data(ref, shape);
+    if (!data) {
+      // The file's own location where it has one (a .cube file's line), else the scene's value.
+      Error error = data.error();
+      if (!error.where.known()) error.where = ref.where;
+      return fail(std::move(error));
+    }
+    auto handle = resources_.upload_texture(*data);
     if (!handle) return fail(handle.error());
-    return textures_.emplace_back(SceneTexture{ref, *handle, {image->width, image->height}});
+    return textures_.emplace_back(SceneTexture{ref, shape, *handle, {data->width, data->height}});
+  }
+
+  // The sampler of a texture the scene gives: a material's 2D texture repeats; a cube map's faces
+  // meet without wrapping either way; a 3D LUT and anything a post pass reads clamp at the edges.
+  static SamplerDesc scene_sampler(TextureShape shape, bool post) {
+    const bool repeat = !post && shape.dimension == TextureDimension::Tex2D;
+    return {Filter::Linear, repeat ? AddressMode::Repeat : AddressMode::ClampToEdge};
+  }
+
+  static TextureShape declared_shape(const CompiledVariant& variant, const std::string& name) {
+    for (const TextureSlot& slot : variant.program.layout.textures)
+      if (slot.name == name) return slot.shape;
+    return {};
   }
 
   Result<TextureHandle> environment_texture() {
@@ -266,10 +294,11 @@ class SceneRenderer {
         }
         // An unset texture is white, as Unity's default for _MainTex.
         auto given = instance.textures.find(name);
-        auto made = texture(given != instance.textures.end() ? given->second : TextureRef{});
-        if (!made) return fail(where + ": texture '" + name + "': " + made.error().message);
+        const TextureShape shape = declared_shape(variants_[variant], name);
+        auto made = texture(given != instance.textures.end() ? given->second : TextureRef{}, shape);
+        if (!made) return fail(where + ": texture '" + name + "': " + made.error().message, made.error().where);
         values[name + "_TexelSize"] = texel_size(made->size);
-        draw.textures.push_back({name, TextureSource::texture(made->handle, {Filter::Linear, AddressMode::Repeat})});
+        draw.textures.push_back({name, TextureSource::texture(made->handle, scene_sampler(shape, false))});
       }
       auto uniforms = uniform_bindings(variants_[variant], UniformValues(values, instance.properties, variants_[variant].interface), where);
       if (!uniforms) return fail(uniforms.error());
@@ -307,6 +336,15 @@ class SceneRenderer {
       auto input = std::find_if(declaration.inputs.begin(), declaration.inputs.end(),
                                 [&](const hlsl::PassInput& i) { return i.texture == name; });
       if (input == declaration.inputs.end()) {
+        if (auto given = effect.textures.find(name); given != effect.textures.end()) {
+          const TextureShape shape = declared_shape(variant, name);
+          auto made = texture(given->second, shape);
+          if (!made)
+            return fail("pass '" + planned.name + "': texture '" + name + "': " + made.error().message, made.error().where);
+          values[name + "_TexelSize"] = texel_size(made->size);
+          draw.textures.push_back({name, TextureSource::texture(made->handle, scene_sampler(shape, true))});
+          continue;
+        }
         auto engine = engine_texture(name);
         if (!engine) return fail("pass '" + planned.name + "': texture '" + name + "': " + engine.error().message);
         if (*engine) {
@@ -317,7 +355,8 @@ class SceneRenderer {
       // Unity's depth texture is the scene's depth where the pass names no other source.
       const bool camera_depth = input == declaration.inputs.end() && name == "_CameraDepthTexture";
       if (input == declaration.inputs.end() && !camera_depth)
-        return fail("pass '" + planned.name + "' samples '" + name + "', which its #pragma pass gives no source");
+        return fail("pass '" + planned.name + "' samples '" + name +
+                    "', which neither its #pragma pass nor the scene's [post.textures] gives a source");
       const PassSource& source = camera_depth || input->kind == hlsl::PassInput::Kind::SceneDepth ? scene_depth_
                                  : input->kind == hlsl::PassInput::Kind::Pass ? pass_outputs_.at(input->pass)
                                                                               : effect_input_;

@@ -546,29 +546,99 @@ class SceneReader : TomlReader {
     return std::nullopt;
   }
 
+  static constexpr std::string_view texture_expectation =
+      "white, black, checker, normal, environment, an image path or a table (file or faces)";
+
   std::optional<TextureRef> texture(const toml::node& node, std::string_view path) {
-    constexpr std::string_view expectation = "white, black, checker, normal or an image path";
+    if (const toml::table* table = node.as_table()) return texture_table(*table, std::string(path));
     auto* text = node.as_string();
     if (!text) {
-      expected(node, path, expectation);
+      expected(node, path, texture_expectation);
       return std::nullopt;
     }
+    TextureRef reference;
+    reference.where = where(node.source());
     const std::string& name = text->get();
-    if (name == "white") return TextureRef{TextureOrigin::White, {}};
-    if (name == "black") return TextureRef{TextureOrigin::Black, {}};
-    if (name == "checker") return TextureRef{TextureOrigin::Checker, {}};
-    if (name == "normal") return TextureRef{TextureOrigin::Normal, {}};
+    const std::pair<std::string_view, TextureOrigin> built_ins[] = {
+        {"white", TextureOrigin::White},   {"black", TextureOrigin::Black},
+        {"checker", TextureOrigin::Checker}, {"normal", TextureOrigin::Normal},
+        {"environment", TextureOrigin::Environment}};
+    for (const auto& [built_in, origin] : built_ins)
+      if (name == built_in) {
+        reference.source = origin;
+        return reference;
+      }
     // A file is told from a misspelt built-in by its extension.
     if (std::filesystem::path(name).has_extension()) {
       auto file = scene_file_path(node, path, name);
       if (!file) return std::nullopt;
-      return TextureRef{TextureOrigin::File, *file};
+      reference.source = TextureOrigin::File;
+      reference.file = *file;
+      return reference;
     }
-    std::string message = fmt::format("{}: expected {}, got {}", path, expectation, quote_text(name));
-    if (auto suggestion = nearest(name, {"white", "black", "checker", "normal"}))
+    std::string message = fmt::format("{}: expected {}, got {}", path, texture_expectation, quote_text(name));
+    if (auto suggestion = nearest(name, {"white", "black", "checker", "normal", "environment"}))
       message += fmt::format("; did you mean \"{}\"?", *suggestion);
     report(node.source(), std::move(message));
     return std::nullopt;
+  }
+
+  // { file = "lut.png", srgb = false } or { faces = ["px.png", ...] }.
+  std::optional<TextureRef> texture_table(const toml::table& table, const std::string& path) {
+    check_keys(table, path, {"file", "faces", "srgb"});
+    TextureRef reference;
+    reference.where = where(table.source());
+    bool ok = true;
+    if (const toml::node* node = table.get("srgb")) {
+      if (auto* flag = node->as_boolean()) {
+        reference.srgb = flag->get();
+      } else {
+        expected(*node, path + ".srgb", "true (8-bit colour is sRGB-encoded) or false (linear data)");
+        ok = false;
+      }
+    }
+    const toml::node* file = table.get("file");
+    const toml::node* faces = table.get("faces");
+    if (file && faces) {
+      report(faces->source(), fmt::format("{}: give either file or faces, not both", path));
+      return std::nullopt;
+    }
+    if (file) {
+      auto* text = file->as_string();
+      auto resolved = text ? scene_file_path(*file, path + ".file", text->get()) : std::nullopt;
+      if (!text) expected(*file, path + ".file", "an image path");
+      if (!resolved) return std::nullopt;
+      reference.source = TextureOrigin::File;
+      reference.file = *resolved;
+    } else if (faces) {
+      auto* array = faces->as_array();
+      if (!array || array->size() != 6) {
+        expected(*faces, path + ".faces", "an array of 6 image paths: +x, -x, +y, -y, +z, -z");
+        return std::nullopt;
+      }
+      reference.source = TextureOrigin::Faces;
+      for (size_t i = 0; i < 6; ++i) {
+        const toml::node& element = *array->get(i);
+        const std::string element_path = index_path(path + ".faces", i);
+        auto* text = element.as_string();
+        if (!text) {
+          expected(element, element_path, "an image path");
+          ok = false;
+          continue;
+        }
+        auto resolved = scene_file_path(element, element_path, text->get());
+        if (!resolved) {
+          ok = false;
+          continue;
+        }
+        reference.faces.push_back(*resolved);
+      }
+    } else {
+      missing(table, path + ".file", "an image path (or faces = [6 image paths])");
+      return std::nullopt;
+    }
+    if (!ok) return std::nullopt;
+    return reference;
   }
 
   void read_object(const toml::table& table, size_t index, Scene& scene) {
@@ -762,7 +832,7 @@ class SceneReader : TomlReader {
   }
 
   void read_post(const toml::table& table, const std::string& path, Scene& scene) {
-    check_keys(table, path, {"effect", "keywords", "parameters"});
+    check_keys(table, path, {"effect", "keywords", "parameters", "textures"});
     PostEffect effect;
     if (const toml::node* node = table.get("effect")) {
       if (auto value = library_path(*node, path + ".effect")) effect.effect = *value;
@@ -771,6 +841,7 @@ class SceneReader : TomlReader {
     }
     if (const toml::node* node = table.get("keywords")) effect.keywords = keywords(*node, path + ".keywords");
     if (const toml::node* node = table.get("parameters")) effect.parameters = properties(*node, path + ".parameters");
+    if (const toml::node* node = table.get("textures")) read_textures(*node, path + ".textures", effect.textures);
     scene.post.push_back(std::move(effect));
   }
 

@@ -74,17 +74,29 @@ struct MeshRef {
 };
 
 enum class TextureOrigin {
-  White,    // (1, 1, 1, 1)
-  Black,    // (0, 0, 0, 1)
-  Checker,  // a black-and-white checkerboard
-  Normal,   // a flat tangent-space normal map, (0.5, 0.5, 1, 1)
-  File,     // an image file
+  White,        // (1, 1, 1, 1)
+  Black,        // (0, 0, 0, 1)
+  Checker,      // a black-and-white checkerboard
+  Normal,       // a flat tangent-space normal map, (0.5, 0.5, 1, 1)
+  File,         // an image file (or a .cube LUT), read as the shader's texture shape asks
+  Faces,        // six image files, a cube map's faces
+  Environment,  // the scene's environment as a cube map
 };
 
+// What a scene gives a shader's texture. What the data becomes depends on the shape the shader
+// declares (docs/scenes.md): a 2D image; for a cube, an equirect image, six faces or the
+// environment; for a 3D texture, a LUT strip or a .cube file.
 struct TextureRef {
   TextureOrigin source = TextureOrigin::White;
-  std::filesystem::path file;  // File: absolute and normalised, inside the scene's folder
-  bool operator==(const TextureRef&) const = default;
+  std::filesystem::path file;                // File: absolute and normalised, inside the scene's folder
+  std::vector<std::filesystem::path> faces;  // Faces: +x, -x, +y, -y, +z, -z, each like `file`
+  bool srgb = true;  // an 8-bit file's colour is sRGB-encoded (Unity's default); false: linear data
+  SourceLocation where;  // the value in the scene file, for errors found when the texture is made
+
+  // The same texture, wherever the scene names it.
+  bool operator==(const TextureRef& other) const {
+    return source == other.source && file == other.file && faces == other.faces && srgb == other.srgb;
+  }
 };
 
 enum class GridAxis { Rows, Cols };
@@ -120,6 +132,8 @@ struct PostEffect {
   std::string effect;  // relative to the shader folders, as written
   std::vector<std::string> keywords;
   std::map<std::string, PropertyValue> parameters;
+  // Textures its passes sample that their #pragma pass lines give no source (a LUT, a noise).
+  std::map<std::string, TextureRef> textures;
 };
 
 struct Scene {

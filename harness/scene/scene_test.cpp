@@ -55,6 +55,13 @@ void expect_near(const glm::vec4& actual, const glm::vec4& expected) {
 
 PropertyValue vec4_value(float x, float y, float z, float w) { return {{x, y, z, w}, 4}; }
 
+TextureRef texture_ref(TextureOrigin source, std::filesystem::path file = {}) {
+  TextureRef reference;
+  reference.source = source;
+  reference.file = std::move(file);
+  return reference;
+}
+
 TEST(SceneParse, ReadsEveryValueOfACompleteScene) {
   Scene scene = parse_ok(R"(description = "metallic x smoothness ball grid"
 size = [320, 240]
@@ -168,10 +175,10 @@ reason = "edges of the spheres alias differently on the two rasterisers"
   EXPECT_EQ(balls.properties.at("_Smoothness"), PropertyValue::scalar(0.5f));
   EXPECT_EQ(balls.properties.at("_Offset"), (PropertyValue{{1, 2, 0, 0}, 2}));
   ASSERT_EQ(balls.textures.size(), 3u);
-  EXPECT_EQ(balls.textures.at("_MainTex"), (TextureRef{TextureOrigin::White, {}}));
-  EXPECT_EQ(balls.textures.at("_BumpMap"), (TextureRef{TextureOrigin::Normal, {}}));
+  EXPECT_EQ(balls.textures.at("_MainTex"), texture_ref(TextureOrigin::White));
+  EXPECT_EQ(balls.textures.at("_BumpMap"), texture_ref(TextureOrigin::Normal));
   EXPECT_EQ(balls.textures.at("_DetailTex"),
-            (TextureRef{TextureOrigin::File, "/project/scenes/textures/detail.png"}));
+            texture_ref(TextureOrigin::File, "/project/scenes/textures/detail.png"));
   ASSERT_TRUE(balls.grid);
   EXPECT_EQ(balls.grid->rows, 5u);
   EXPECT_EQ(balls.grid->cols, 4u);
@@ -285,6 +292,71 @@ TEST(SceneErrors, OutOfRangeValues) {
             }));
 }
 
+TEST(SceneParse, TexturesAsTablesFacesAndTheEnvironment) {
+  Scene scene = parse_ok(minimal_head + R"(
+[[object]]
+mesh = "cube"
+material = "materials/unlit.hlsl"
+[object.textures]
+_Sky = "environment"
+_Faces = { faces = ["px.png", "nx.png", "py.png", "ny.png", "pz.png", "nz.png"] }
+_Mask = { file = "mask.png", srgb = false }
+[[post]]
+effect = "post/grade.hlsl"
+[post.textures]
+_Lut = "luts/film.cube"
+)");
+  const auto& textures = scene.objects.at(0).textures;
+  EXPECT_EQ(textures.at("_Sky").source, TextureOrigin::Environment);
+  const TextureRef& faces = textures.at("_Faces");
+  EXPECT_EQ(faces.source, TextureOrigin::Faces);
+  ASSERT_EQ(faces.faces.size(), 6u);
+  EXPECT_EQ(faces.faces[3], scene_root / "scenes/ny.png");
+  EXPECT_EQ(faces.where.to_string(), "/project/scenes/test.toml:15:10");
+  const TextureRef& mask = textures.at("_Mask");
+  EXPECT_EQ(mask.source, TextureOrigin::File);
+  EXPECT_FALSE(mask.srgb);
+  EXPECT_TRUE(textures.at("_Sky").srgb);
+  ASSERT_EQ(scene.post.size(), 1u);
+  EXPECT_EQ(scene.post[0].textures.at("_Lut").file, scene_root / "scenes/luts/film.cube");
+}
+
+TEST(SceneErrors, TextureTablesAreChecked) {
+  EXPECT_EQ(errors_of(minimal_head + R"(
+[[object]]
+mesh = "cube"
+material = "materials/unlit.hlsl"
+[object.textures]
+_A = { faces = ["a.png", "b.png"] }
+_B = { file = "a.png", faces = [] }
+_C = { file = "a.png", srgb = "no" }
+_D = { fil = "a.png" }
+_E = { srgb = false }
+_F = "enviroment"
+[[post]]
+effect = "post/grade.hlsl"
+[post.textures]
+_G = { faces = ["a.png", "b.png", "c.png", "d.png", "e.png", "../f.png"] }
+)"),
+            (std::vector<std::string>{
+                "scenes/bad.toml:14:16: error: object[0].textures._A.faces: expected an array of 6 image paths: +x, -x, "
+                "+y, -y, +z, -z, got [\"a.png\", \"b.png\"]",
+                "scenes/bad.toml:15:32: error: object[0].textures._B: give either file or faces, not both",
+                "scenes/bad.toml:16:31: error: object[0].textures._C.srgb: expected true (8-bit colour is sRGB-encoded) "
+                "or false (linear data), got \"no\"",
+                "scenes/bad.toml:17:6: error: object[0].textures._D.file: missing; expected an image path (or faces = "
+                "[6 image paths])",
+                "scenes/bad.toml:17:8: error: object[0].textures._D.fil: unknown key; did you mean file?",
+                "scenes/bad.toml:18:6: error: object[0].textures._E.file: missing; expected an image path (or faces = "
+                "[6 image paths])",
+                "scenes/bad.toml:19:6: error: object[0].textures._F: expected white, black, checker, normal, "
+                "environment, an image path or a table (file or faces), got \"enviroment\"; did you mean "
+                "\"environment\"?",
+                "scenes/bad.toml:23:62: error: post[0].textures._G.faces[5]: expected a path inside the scene file's "
+                "folder, got \"../f.png\", which leads out of it",
+            }));
+}
+
 TEST(SceneErrors, TimeIsSecondsFromZeroOn) {
   EXPECT_EQ(errors_of("time = -1\n" + minimal_head),
             (std::vector<std::string>{"scenes/bad.toml:1:8: error: time: expected a number of seconds >= 0, got -1"}));
@@ -361,8 +433,8 @@ _Detail = "whte"
                 "\"../outside.hlsl\"",
                 "scenes/bad.toml:16:12: error: object[0].textures._MainTex: expected a path inside the scene file's "
                 "folder, got \"../../etc/passwd.png\", which leads out of it",
-                "scenes/bad.toml:17:11: error: object[0].textures._Detail: expected white, black, checker, normal or an "
-                "image path, got \"whte\"; did you mean \"white\"?",
+                "scenes/bad.toml:17:11: error: object[0].textures._Detail: expected white, black, checker, normal, "
+                "environment, an image path or a table (file or faces), got \"whte\"; did you mean \"white\"?",
             }));
 }
 

@@ -11,7 +11,8 @@ namespace xshade::harness::vk_support {
 
 EntryPointInfo reflect_entry_point(const std::vector<uint32_t>& words, ExecutionModel model,
                                    const std::string& name) {
-  constexpr uint32_t kOpEntryPoint = 15, kOpVariable = 59, kOpDecorate = 71;
+  constexpr uint32_t kOpName = 5, kOpMemberName = 6, kOpEntryPoint = 15, kOpVariable = 59, kOpDecorate = 71,
+                     kOpMemberDecorate = 72;
   constexpr uint32_t kOpTypeInt = 21, kOpTypeFloat = 22, kOpTypeVector = 23, kOpTypePointer = 32;
   constexpr uint32_t kDecorationLocation = 30, kDecorationBinding = 33, kDecorationDescriptorSet = 34;
   constexpr uint32_t kStorageClassUniformConstant = 0, kStorageClassInput = 1, kStorageClassUniform = 2;
@@ -25,6 +26,7 @@ EntryPointInfo reflect_entry_point(const std::vector<uint32_t>& words, Execution
   std::map<uint32_t, uint32_t> bindings;     // id -> Binding
   std::map<uint32_t, uint32_t> sets;         // id -> DescriptorSet
   std::set<uint32_t> resources;              // ids of UniformConstant and Uniform variables
+  std::set<uint32_t> operands;               // every id an instruction of the code reads
   for (size_t at = 5; at < words.size();) {  // after the 5-word header
     const uint32_t count = words[at] >> 16;
     const uint32_t opcode = words[at] & 0xffffu;
@@ -57,6 +59,11 @@ EntryPointInfo reflect_entry_point(const std::vector<uint32_t>& words, Execution
     } else if (opcode == kOpVariable && count >= 4 &&
                (op[3] == kStorageClassUniformConstant || op[3] == kStorageClassUniform)) {
       resources.insert(op[2]);
+    } else if (opcode != kOpName && opcode != kOpMemberName && opcode != kOpDecorate && opcode != kOpMemberDecorate &&
+               opcode != kOpVariable && opcode != kOpEntryPoint) {
+      // A word that merely equals a resource's id (a literal) counts too: that errs on the side
+      // of the check.
+      for (uint32_t i = 1; i < count; ++i) operands.insert(op[i]);
     }
     at += count;
   }
@@ -73,8 +80,11 @@ EntryPointInfo reflect_entry_point(const std::vector<uint32_t>& words, Execution
     }
     info.input_types[location->second] = kind;
   }
+  // Only the resources the code reads: glslang's HLSL front end keeps a global texture a stage
+  // never reads (a vertex stage declares the fragment stage's textures), which needs no
+  // descriptor.
   for (const auto& [id, binding] : bindings)
-    if (resources.count(id)) info.descriptor_bindings.insert({sets.count(id) ? sets[id] : 0, binding});
+    if (resources.count(id) && operands.count(id)) info.descriptor_bindings.insert({sets.count(id) ? sets[id] : 0, binding});
   return info;
 }
 

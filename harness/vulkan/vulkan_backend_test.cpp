@@ -142,6 +142,23 @@ void main() { frag = texture(sampler2D(values, values_sampler), uv); }
   EXPECT_TRUE(backend_->create_program(desc));
 }
 
+// glslang keeps a declared resource the code never reads in the module (its HLSL front end does so
+// for a vertex stage that declares the fragment stage's textures); it needs no descriptor.
+TEST_F(VulkanBackendTest, AResourceDeclaredButNeverReadNeedsNoLayoutEntry) {
+  ProgramDesc desc = fullscreen_program(R"(#version 450
+layout(set = 0, binding = 5) uniform texture2D never_read;
+layout(location = 0) in vec2 uv;
+layout(location = 0) out vec4 frag;
+void main() { frag = vec4(uv, 0.0, 1.0); }
+)");
+  const std::vector<uint32_t>& words = desc.fragment.spirv;
+  bool declared = false;  // OpDecorate %never_read Binding 5
+  for (size_t i = 5; i + 3 < words.size(); ++i)
+    declared = declared || (words[i] == ((4u << 16) | 71u) && words[i + 2] == 33u && words[i + 3] == 5u);
+  ASSERT_TRUE(declared) << "the module must declare the resource for this test to mean anything";
+  EXPECT_TRUE(backend_->create_program(desc));
+}
+
 TEST_F(VulkanBackendTest, LinearFilteringOfFloatTargetsAndSrgbDecoding) {
   // Target A holds uv per texel: (0.25 | 0.75, 0.25 | 0.75), depth 0 (the triangle's z).
   auto uv_program = backend_->create_program(fullscreen_program(R"(#version 450

@@ -5,34 +5,19 @@
 // The expected values are worked out here from the scene's numbers and Unity's definitions, not
 // taken from the renderer.
 #include <cmath>
-#include <filesystem>
-#include <fstream>
-#include <functional>
-#include <map>
-#include <memory>
 #include <string>
 #include <vector>
-
-#include <unistd.h>
 
 #include <fmt/format.h>
 #include <glm/gtc/matrix_transform.hpp>
 #include <gtest/gtest.h>
 
-#include "harness/assets/environment.h"
 #include "harness/assets/equirect.h"
-#include "harness/image/image_io.h"
-#include "harness/render/lanes.h"
-#include "harness/render/planner.h"
-#include "harness/render/scene_renderer.h"
-#include "harness/render/variant_compiler.h"
-#include "harness/scene/scene.h"
-#include "harness/vulkan/vulkan_backend.h"
+#include "tests/lanes/probe_scene.h"
 
 namespace xshade::tests {
 namespace {
 
-namespace fs = std::filesystem;
 using harness::Lane;
 
 // The scene every probe renders in: its numbers are the ones the expected values use.
@@ -143,6 +128,8 @@ struct Row {
   std::string pass_inputs = {};
 };
 
+void PrintTo(const Row& row, std::ostream* out) { *out << row.name; }
+
 Row vector_row(const std::string& name, const std::string& type, std::vector<float> expected, bool post = true) {
   std::string expression = type == "float4" ? name : type == "float3" ? "float4(" + name + ", 0)" : "float4(" + name + ", 0, 0, 0)";
   expected.resize(4, 0.0f);
@@ -231,60 +218,28 @@ std::vector<Row> rows() {
 
 class BuiltinInputs : public ::testing::TestWithParam<Row> {
  protected:
-  static void SetUpTestSuite() {
-    for (Lane lane : harness::all_lanes()) {
-      auto created = harness::create_backend(lane, {.validation = harness::vulkan_validation_available()});
-      ASSERT_TRUE(created) << harness::lane_name(lane) << ": " << created.error().to_string();
-      backends_[lane] = std::move(*created);
-    }
-  }
-  static void TearDownTestSuite() { backends_.clear(); }
-
-  void SetUp() override {
-    folder_ = fs::temp_directory_path() / fmt::format("xshade_builtin_{}_{}", GetParam().name, ::getpid());
-    fs::create_directories(folder_);
-    ASSERT_TRUE(harness::write_exr(direction_environment(), folder_ / "environment.exr"));
-  }
-  void TearDown() override {
-    fs::remove_all(folder_);
-    for (auto& [lane, backend] : backends_)
-      for (const std::string& message : backend->take_driver_messages())
-        ADD_FAILURE() << harness::lane_name(lane) << " driver message: " << message;
-  }
-
-  void write(const std::string& name, const std::string& text) { std::ofstream(folder_ / name) << text; }
-
-  fs::path folder_;
-  static std::map<Lane, std::unique_ptr<harness::Backend>> backends_;
+  static void TearDownTestSuite() { release_suite_backends(); }
+  void TearDown() override { expect_no_driver_messages(); }
 };
-std::map<Lane, std::unique_ptr<harness::Backend>> BuiltinInputs::backends_;
 
 TEST_P(BuiltinInputs, ShadersReadTheHostsValueOnEveryLane) {
   const Row& row = GetParam();
+  const ProbeScene probe("builtin_" + row.name);
+  probe.write_image("environment.exr", direction_environment());
   std::string scene_text = kSceneText;
   if (row.post) {
-    write("probe_material.hlsl", material_probe("", "float4(0, 0, 0, 1)"));
-    write("probe_post.hlsl", post_probe(row.pass_inputs, row.declarations, row.expression));
+    probe.write("probe_material.hlsl", material_probe("", "float4(0, 0, 0, 1)"));
+    probe.write("probe_post.hlsl", post_probe(row.pass_inputs, row.declarations, row.expression));
     scene_text += "[[post]]\neffect = \"probe_post.hlsl\"\n";
   } else {
-    write("probe_material.hlsl", material_probe(row.declarations, row.expression));
+    probe.write("probe_material.hlsl", material_probe(row.declarations, row.expression));
   }
-  auto scene = harness::parse_scene(scene_text, folder_ / "probe.toml");
-  ASSERT_TRUE(scene) << scene.error().to_string();
-  const harness::ShaderSearchPath shaders(std::vector<fs::path>{folder_, XSHADE_SHADERS_DIR});
-  auto plan = harness::plan_scene(*scene, shaders);
-  ASSERT_TRUE(plan) << plan.error().to_string();
-  auto environment = harness::build_environment(scene->environment);
-  ASSERT_TRUE(environment) << environment.error().to_string();
-  harness::VariantCompiler compiler(shaders, nullptr);
   for (Lane lane : harness::all_lanes()) {
     SCOPED_TRACE(harness::lane_name(lane));
-    auto variants = compiler.compile_plan(*plan, lane, false);
-    ASSERT_TRUE(variants) << variants.error().to_string();
-    auto rendered = harness::render_scene(*backends_.at(lane), *scene, *plan, *variants, *environment);
-    ASSERT_TRUE(rendered) << rendered.error().to_string();
+    auto image = probe.render(scene_text, lane, suite_backend(lane));
+    ASSERT_TRUE(image) << image.error().to_string();
     for (size_t k = 0; k < row.expected.size(); ++k) {
-      const glm::vec4 pixel = rendered->image.at(uint32_t(k / 4), 0);
+      const glm::vec4 pixel = image->at(uint32_t(k / 4), 0);
       EXPECT_NEAR(pixel[int(k % 4)], row.expected[k], row.tolerance * std::max(1.0f, std::abs(row.expected[k])))
           << "pixel " << k / 4 << " component " << k % 4;
     }

@@ -1,0 +1,85 @@
+#include "tests/lanes/probe_scene.h"
+
+#include <fstream>
+
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include "harness/assets/environment.h"
+#include "harness/image/image_io.h"
+#include "harness/render/lanes.h"
+#include "harness/render/planner.h"
+#include "harness/render/scene_renderer.h"
+#include "harness/render/variant_compiler.h"
+#include "harness/scene/scene.h"
+#include "harness/vulkan/vulkan_backend.h"
+
+namespace xshade::tests {
+
+namespace fs = std::filesystem;
+
+ProbeScene::ProbeScene(const std::string& name)
+    : folder_(fs::temp_directory_path() / ("xshade_probe_" + name + "_" + std::to_string(::getpid()))) {
+  fs::remove_all(folder_);
+  fs::create_directories(folder_);
+}
+
+ProbeScene::~ProbeScene() {
+  std::error_code ignored;
+  fs::remove_all(folder_, ignored);
+}
+
+void ProbeScene::write(const std::string& file, const std::string& text) const {
+  fs::create_directories((folder_ / file).parent_path());
+  std::ofstream(folder_ / file, std::ios::binary) << text;
+}
+
+void ProbeScene::write_image(const std::string& file, const harness::FloatImage& image) const {
+  const fs::path path = folder_ / file;
+  auto written = path.extension() == ".exr" ? harness::write_exr(image, path) : harness::write_png(image, path);
+  if (!written) ADD_FAILURE() << written.error().to_string();
+}
+
+Result<harness::FloatImage> ProbeScene::render(const std::string& scene_text, harness::Lane lane,
+                                               harness::Backend& backend) const {
+  auto scene = harness::parse_scene(scene_text, folder_ / "probe.toml");
+  if (!scene) return fail(scene.error());
+  const harness::ShaderSearchPath shaders(std::vector<fs::path>{folder_, XSHADE_SHADERS_DIR});
+  auto plan = harness::plan_scene(*scene, shaders);
+  if (!plan) return fail(plan.error());
+  auto environment = harness::build_environment(scene->environment);
+  if (!environment) return fail(environment.error());
+  harness::VariantCompiler compiler(shaders, nullptr);
+  auto variants = compiler.compile_plan(*plan, lane, false);
+  if (!variants) return fail(variants.error());
+  auto rendered = harness::render_scene(backend, *scene, *plan, *variants, *environment);
+  if (!rendered) return fail(rendered.error());
+  return std::move(rendered->image);
+}
+
+namespace {
+std::map<harness::Lane, std::unique_ptr<harness::Backend>>& backends() {
+  static std::map<harness::Lane, std::unique_ptr<harness::Backend>> made;
+  return made;
+}
+}  // namespace
+
+harness::Backend& suite_backend(harness::Lane lane) {
+  auto& made = backends();
+  if (!made.count(lane)) {
+    auto created = harness::create_backend(lane, {.validation = harness::vulkan_validation_available()});
+    if (!created) throw std::runtime_error(std::string(harness::lane_name(lane)) + ": " + created.error().to_string());
+    made[lane] = std::move(*created);
+  }
+  return *made.at(lane);
+}
+
+void release_suite_backends() { backends().clear(); }
+
+void expect_no_driver_messages() {
+  for (auto& [lane, backend] : backends())
+    for (const std::string& message : backend->take_driver_messages())
+      ADD_FAILURE() << harness::lane_name(lane) << " driver message: " << message;
+}
+
+}  // namespace xshade::tests
