@@ -26,6 +26,10 @@ struct CompileOptions {
   // Compile only this fragment function, whatever the pragmas say, and no vertex stage: the
   // shader then runs as a full-screen pass (xshade eval).
   std::string fragment_only_entry;
+  // Compile this fragment function in place of #pragma fragment's, with the vertex function of
+  // #pragma vertex if the file names one: a post pass (#pragma pass), which draws through its
+  // effect's own vertex shader where it has one (Unity's VertDefault) and else full-screen.
+  std::string pass_fragment_entry;
 };
 
 // Everything the front end made of one variant. The tree, the reflection and the diagnostics

@@ -92,5 +92,40 @@ TEST(Compiler, PreludeMacrosExpandInEveryCompile) {
   EXPECT_TRUE(again->ok());
 }
 
+// Unity's UnityShaderVariables.cginc defines the matrix macros the prelude has, its own way.
+TEST(Compiler, ASourceRedefinesAPreludeMacroWithoutAWarning) {
+  auto module = compile_text("unity.hlsl",
+                             "#pragma fragment frag\nfloat4x4 unity_MatrixMVP;\n#define UNITY_MATRIX_MVP unity_MatrixMVP\n"
+                             "float4 frag() : SV_Target { return UNITY_MATRIX_MVP[0]; }\n#define UNITY_MATRIX_MVP 0\n",
+                             {});
+  ASSERT_TRUE(module->ok());
+  const auto& diagnostics = module->diagnostics.diagnostics();
+  // The second definition replaces the source's own: that one warns, with a note.
+  ASSERT_EQ(diagnostics.size(), 2u) << module->diagnostics.render_all();
+  EXPECT_EQ(diagnostics[0].message, "macro 'UNITY_MATRIX_MVP' redefined");
+  EXPECT_EQ(diagnostics[0].where.line, 5u);
+  EXPECT_EQ(diagnostics[1].where.line, 3u);
+}
+
+// A post pass compiles its own fragment entry with the file's vertex entry (Unity's VertDefault);
+// eval's fragment-only compile has none.
+TEST(Compiler, APassEntryKeepsTheVertexEntry) {
+  const char* source = "#pragma vertex vert\n#pragma fragment frag\n"
+                       "float4 vert(float3 p : POSITION) : SV_Position { return float4(p, 1); }\n"
+                       "float4 frag() : SV_Target { return 0; }\nfloat4 other() : SV_Target { return 1; }\n";
+  CompileOptions pass;
+  pass.pass_fragment_entry = "other";
+  auto module = compile_text("pass.hlsl", source, pass);
+  ASSERT_TRUE(module->ok());
+  ASSERT_NE(module->entry_points.vertex, nullptr);
+  EXPECT_EQ(module->reflection.vertex_entry, "vert");
+  EXPECT_EQ(module->reflection.fragment_entry, "other");
+  CompileOptions alone;
+  alone.fragment_only_entry = "other";
+  auto fragment_only = compile_text("pass.hlsl", source, alone);
+  ASSERT_TRUE(fragment_only->ok());
+  EXPECT_EQ(fragment_only->entry_points.vertex, nullptr);
+}
+
 }  // namespace
 }  // namespace xshade::hlsl

@@ -226,8 +226,12 @@ void Preprocessor::Impl::add_macro(Macro macro) {
       same = a.kind == b.kind && a.text == b.text && (i == 0 || a.space_before == b.space_before);
     }
     if (same) return;  // the first definition stays, for the location of later notes
-    diagnostics_.warning(macro.loc, "macro '" + clip(macro.name) + "' redefined");
-    if (old->loc.file != 0) diagnostics_.note(old->loc, "previous definition is here");
+    // The predefined table (the prelude) stands in for what Unity's include files define; a
+    // source that includes those files redefines its macros as they please, silently.
+    if (!old->predefined) {
+      diagnostics_.warning(macro.loc, "macro '" + clip(macro.name) + "' redefined");
+      if (old->loc.file != 0) diagnostics_.note(old->loc, "previous definition is here");
+    }
   }
   const size_t bit = filter_bit(macro.name);
   filter_[bit >> 6] |= uint64_t(1) << (bit & 63);

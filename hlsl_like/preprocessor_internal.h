@@ -51,6 +51,7 @@ struct Macro {
   bool variadic = false;
   bool disabled = false;  // being expanded: its frame is on a stack
   bool warned_self = false;
+  bool predefined = false;  // a copy of the predefined table's (the prelude's)
   std::vector<std::string_view> params;
   std::vector<BodyToken> body;
 };
@@ -198,6 +199,7 @@ struct Preprocessor::Impl {
     if (it == predefined_->by_name.end()) return nullptr;
     macro_pool_.push_back(*it->second);
     Macro* adopted = &macro_pool_.back();
+    adopted->predefined = true;
     macros_.emplace(adopted->name, adopted);
     return adopted;
   }

@@ -318,7 +318,8 @@ TEST_F(PreprocessorTest, PredefinedMacrosCanBeUndefinedAndRedefinedWithoutChangi
   PreprocessorOptions options;
   options.predefined = *table;
   EXPECT_EQ(run("#undef A\nA\n#ifndef A\nundefined\n#endif\n#define B 3\nB", options), "A undefined 3");
-  EXPECT_EQ(messages(), (Strings{"main.hlsl:6:9: warning: macro 'B' redefined"}));
+  // Silently: the table stands in for include files (Unity's) that define the same names.
+  EXPECT_TRUE(messages().empty());
   // A later preprocessor sharing the table sees it as it was read.
   EXPECT_EQ(run("A B", options), "1 2");
   EXPECT_TRUE(messages().empty());

@@ -230,6 +230,20 @@ class SceneRenderer {
     return {};
   }
 
+  // Positions (-1, -1), (-1, 3), (3, -1) at z = 0: one triangle over the whole target.
+  Result<MeshHandle> fullscreen_triangle() {
+    if (!triangle_) {
+      MeshData mesh;
+      for (glm::vec2 p : {glm::vec2(-1.0f, -1.0f), glm::vec2(-1.0f, 3.0f), glm::vec2(3.0f, -1.0f)})
+        mesh.vertices.push_back(Vertex{glm::vec3(p, 0.0f)});
+      mesh.indices = {0, 1, 2};
+      auto handle = resources_.upload_mesh(mesh);
+      if (!handle) return fail(handle.error());
+      triangle_ = *handle;
+    }
+    return triangle_;
+  }
+
   Result<TextureHandle> environment_texture() {
     if (!environment_handle_) {
       auto handle = resources_.upload_texture(environment_.prefiltered);
@@ -330,8 +344,17 @@ class SceneRenderer {
       pass_outputs_.clear();
     }
     Values values = frame_values();
+    // Unity draws a post pass as a blit: the identity model matrix.
+    add_object_inputs(glm::mat4(1.0f), values);
     const CompiledVariant& variant = variants_[planned.variant];
     DrawItem draw{{}, {}, {}, {}};
+    if (!variant.program.fullscreen) {
+      // The effect's own vertex shader (#pragma vertex, Unity's VertDefault) reads the triangle
+      // Unity's post-processing stack draws.
+      auto triangle = fullscreen_triangle();
+      if (!triangle) return fail(triangle.error());
+      draw.mesh = *triangle;
+    }
     for (const std::string& name : variant.interface.textures) {
       auto input = std::find_if(declaration.inputs.begin(), declaration.inputs.end(),
                                 [&](const hlsl::PassInput& i) { return i.texture == name; });
@@ -408,6 +431,7 @@ class SceneRenderer {
   std::vector<SceneTexture> textures_;
   TextureHandle environment_handle_;
   TextureHandle environment_cube_;
+  MeshHandle triangle_;
   std::vector<PassTiming> timings_;
   std::vector<std::pair<std::string, FloatImage>> pass_images_;
 };

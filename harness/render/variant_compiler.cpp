@@ -18,7 +18,7 @@ Result<const hlsl::Module*> VariantCompiler::front_end(const VariantRequest& req
     hlsl::CompileOptions options;
     options.include_dirs = shaders_.folders();
     options.keywords = request.keywords;
-    options.fragment_only_entry = request.fragment_entry;
+    options.pass_fragment_entry = request.fragment_entry;
     if (request.half_emulation) options.defines.push_back({kHalfEmulationMacro, "1"});
     known = modules_.emplace(key, hlsl::compile_file(request.source, options)).first;
   }
