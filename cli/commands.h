@@ -72,6 +72,7 @@ struct EvalOptions {
   std::string precision = "float";  // or "half": half emulation on the GLSL lanes
   LaneSelection selection;  // "all" or a list
   std::filesystem::path output_dir = ".";
+  std::optional<uint32_t> seed;  // inputs from this seed instead of the defaults and white
 };
 int run_eval(const EvalOptions& options);
 

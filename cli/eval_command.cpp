@@ -52,8 +52,13 @@ int run_eval(const EvalOptions& options) {
       exit_code = kBackendError;
       continue;
     }
-    auto image = harness::evaluate(*module, lane, **backend, width, height, {},
-                                   {.half_emulation = options.precision == "half"});
+    const harness::ProgramOptions program_options{.half_emulation = options.precision == "half"};
+    auto image = options.seed ? [&]() -> Result<harness::FloatImage> {
+      auto program = harness::FullscreenProgram::create(*module, lane, **backend, program_options);
+      if (!program) return fail(program.error());
+      return program->run_seeded(**backend, width, height, *options.seed);
+    }()
+                              : harness::evaluate(*module, lane, **backend, width, height, {}, program_options);
     if (!image) {
       fmt::print("{}: failed: {}\n", name, image.error().to_string());
       exit_code = kBackendError;

@@ -134,6 +134,10 @@ int main(int argc, char** argv) {
   eval->add_option("-I", eval_options.include_dirs, "Search DIR for #include files")->type_name("DIR");
   eval->add_option("-D", eval_options.keywords, "Enable KEYWORD")->type_name("KEYWORD");
   eval->add_option("-o", eval_options.output_dir, "Folder for the EXR images")->type_name("DIR")->capture_default_str();
+  eval->add_option("--seed", eval_options.seed,
+                   "Fill every constant buffer and texture from seed N (values in ranges shaders mean, noise of each "
+                   "texture's declared shape) instead of the defaults and a white texel")
+      ->type_name("N");
 
   StabilityOptions stability_options;
   CLI::App* stability = app.add_subcommand(

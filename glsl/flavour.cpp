@@ -7,18 +7,49 @@ std::string_view flavour_name(Flavour flavour) {
 }
 
 std::string fullscreen_vertex_shader(Flavour flavour) {
+  hlsl::StageVariable uv;
+  uv.semantic = "TEXCOORD0";
+  uv.type = hlsl::Type::vector(hlsl::ScalarType::Float, 2);
+  return fullscreen_vertex_shader(flavour, {uv});
+}
+
+std::string fullscreen_vertex_shader(Flavour flavour, const std::vector<hlsl::StageVariable>& varyings) {
   // Vertices (-1,-1), (3,-1), (-1,3) cover the whole clip square with one triangle.
   const char* vertex_index = flavour == Flavour::Gl ? "gl_VertexID" : "gl_VertexIndex";
   std::string text = flavour == Flavour::Gl ? "#version 450 core\n" : "#version 450\n";
-  text += "layout(location = 0) out vec2 uv;\n"
-          "void main() {\n"
+  std::string writes;
+  for (const hlsl::StageVariable& varying : varyings) {
+    const hlsl::Type& type = varying.type;
+    if (!(type.is_scalar() || type.is_vector())) continue;
+    const uint32_t n = type.component_count();
+    const hlsl::ScalarType scalar = type.scalar_type();
+    const bool is_float = scalar == hlsl::ScalarType::Float || scalar == hlsl::ScalarType::Half;
+    const char* prefix = is_float ? "" : scalar == hlsl::ScalarType::Int ? "i" : "u";
+    if (!is_float && scalar != hlsl::ScalarType::Int && scalar != hlsl::ScalarType::Uint) continue;
+    const std::string glsl_type = n == 1 ? (is_float ? "float" : scalar == hlsl::ScalarType::Int ? "int" : "uint")
+                                         : std::string(prefix) + "vec" + std::to_string(n);
+    const std::string name = "xs_fed" + std::to_string(varying.location);
+    // The fragment's interpolation, so that both stages say the same.
+    const bool flat = !is_float || varying.interpolation == hlsl::Interpolation::NoInterpolation;
+    const char* qualifier = flat ? "flat "
+                            : varying.interpolation == hlsl::Interpolation::NoPerspective ? "noperspective "
+                            : varying.interpolation == hlsl::Interpolation::Centroid      ? "centroid "
+                            : varying.interpolation == hlsl::Interpolation::Sample        ? "sample "
+                                                                                           : "";
+    text += "layout(location = " + std::to_string(varying.location) + ") " + qualifier + "out " + glsl_type + " " +
+            name + ";\n";
+    static const char* const kComponents[] = {"", ".x", ".xy", ".xyz", ""};
+    writes += "  " + name + " = " + (is_float ? "vec4(uv, 0.0, 1.0)" + std::string(kComponents[n]) : glsl_type + "(0)") + ";\n";
+  }
+  text += "void main() {\n"
           "  vec2 position = vec2(float((";
   text += vertex_index;
   text += " & 1) << 2) - 1.0, float((";
   text += vertex_index;
   text += " & 2) << 1) - 1.0);\n"
-          "  uv = vec2(position.x * 0.5 + 0.5, 0.5 - position.y * 0.5);\n"
-          "  gl_Position = vec4(position, 0.0, 1.0);\n"
+          "  vec2 uv = vec2(position.x * 0.5 + 0.5, 0.5 - position.y * 0.5);\n";
+  text += writes;
+  text += "  gl_Position = vec4(position, 0.0, 1.0);\n"
           "}\n";
   return text;
 }

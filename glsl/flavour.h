@@ -3,6 +3,9 @@
 
 #include <string>
 #include <string_view>
+#include <vector>
+
+#include "hlsl_like/reflection.h"
 
 namespace xshade::glsl {
 
@@ -17,5 +20,11 @@ std::string_view flavour_name(Flavour flavour);
 // varying `uv` at location 0 is (0,0) at the top-left of the target, so that uv addresses a
 // sampled target the way it addresses an image file.
 std::string fullscreen_vertex_shader(Flavour flavour);
+
+// The same triangle feeding every varying a fragment shader reads (hlsl::Reflection::varyings):
+// a float scalar or vector gets the first components of (u, v, 0, 1), so TEXCOORD0 is uv as
+// above and every other texture coordinate (Unity's texcoordStereo) is uv too; an integer one
+// gets 0. Matrices and other types are left unwritten.
+std::string fullscreen_vertex_shader(Flavour flavour, const std::vector<hlsl::StageVariable>& varyings);
 
 }  // namespace xshade::glsl

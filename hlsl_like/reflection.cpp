@@ -624,13 +624,21 @@ Reflection reflect(const TranslationUnit& unit, const EntryPoints& entry_points,
         diagnostics.error(entry_points.fragment->loc, "fragment input " + in_quotes(input.semantic) +
                                                           " is not written by the vertex entry point " +
                                                           in_quotes(entry_points.vertex->name));
-      if (!entry_points.vertex) {  // a full-screen pass: only TEXCOORD0 (uv) arrives
+      if (!entry_points.vertex) {
+        // A full-screen pass: the shared vertex shader feeds every scalar or vector varying
+        // (glsl::fullscreen_vertex_shader: uv for floats, 0 for integers).
         auto location = varying_location(input.semantic);
-        if (input.semantic != "TEXCOORD0")
-          diagnostics.error(entry_points.fragment->loc, "a fragment shader without a vertex stage receives only "
-                                                            "TEXCOORD0 (uv) and SV_Position, not " + in_quotes(input.semantic));
+        const ScalarType scalar = input.type.scalar_type();
+        const bool fed = (input.type.is_scalar() || input.type.is_vector()) &&
+                         (scalar == ScalarType::Float || scalar == ScalarType::Half || scalar == ScalarType::Int ||
+                          scalar == ScalarType::Uint);
+        if (!location || !fed)
+          diagnostics.error(entry_points.fragment->loc,
+                            "a fragment shader without a vertex stage receives uv in its float scalar and vector inputs "
+                            "(TEXCOORD0 and the like) and 0 in its integer ones, not " + input.type.name() + " " +
+                                in_quotes(input.semantic));
         else
-          reflection.varyings.push_back({input.semantic, input.type, location.value_or(0), input.interpolation});
+          reflection.varyings.push_back({input.semantic, input.type, *location, input.interpolation});
       }
     }
     for (StageVariable output : stage_variables(*entry_points.fragment, false)) {

@@ -6,6 +6,7 @@
 #include "harness/backend/resource_set.h"
 #include "harness/render/shader_interface.h"
 #include "harness/render/shader_program.h"
+#include "harness/render/synthetic_inputs.h"
 
 namespace xshade::harness {
 std::vector<std::byte> default_constant_buffer(const hlsl::ConstantBuffer& buffer,
@@ -36,9 +37,12 @@ Result<FullscreenProgram> FullscreenProgram::create(const hlsl::Module& module, 
   FullscreenProgram made;
   made.program_ = *program;
   const auto& buffers = module.reflection.constant_buffers;
-  for (size_t i = 0; i < buffers.size(); ++i)
+  for (size_t i = 0; i < buffers.size(); ++i) {
+    hlsl::ConstantBuffer declared = buffers[i];
+    declared.decl = nullptr;
     made.buffers_.push_back({buffers[i].name, desc->layout.uniform_blocks[i].name,
-                             default_constant_buffer(buffers[i], module.reflection.properties)});
+                             default_constant_buffer(buffers[i], module.reflection.properties), std::move(declared)});
+  }
   made.texture_slots_ = desc->layout.textures;
   return made;
 }
@@ -118,6 +122,19 @@ Result<FloatImage> FullscreenProgram::run(Backend& backend, uint32_t width, uint
   }
   if (auto rendered = backend.render({*target, glm::vec4(0.0f), 1.0f, {draw}}); !rendered) return fail(rendered.error());
   return backend.read_color(*target);
+}
+
+Result<FloatImage> FullscreenProgram::run_seeded(Backend& backend, uint32_t width, uint32_t height, uint32_t seed) const {
+  std::map<std::string, std::vector<std::byte>> constant_buffers;
+  for (const Buffer& buffer : buffers_) constant_buffers[buffer.name] = seeded_constant_buffer(buffer.declared, seed);
+  ResourceSet resources(backend);  // the textures are this run's own
+  std::map<std::string, TextureSource> textures;
+  for (const TextureSlot& slot : texture_slots_) {
+    auto texture = resources.upload_texture(seeded_texture(slot, seed));
+    if (!texture) return fail(texture.error());
+    textures[slot.name] = TextureSource::texture(*texture, seeded_sampler(slot));
+  }
+  return run(backend, width, height, constant_buffers, textures);
 }
 
 Result<FloatImage> evaluate(const hlsl::Module& module, Lane lane, Backend& backend, uint32_t width, uint32_t height,

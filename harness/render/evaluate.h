@@ -38,6 +38,10 @@ class FullscreenProgram {
                          const std::map<std::string, std::vector<std::byte>>& constant_buffers = {},
                          const std::map<std::string, TextureSource>& textures = {}) const;
 
+  // The same with every constant buffer and texture made from `seed` (synthetic_inputs.h) in
+  // place of the defaults and the white texel: what corpus execution feeds a real shader.
+  Result<FloatImage> run_seeded(Backend& backend, uint32_t width, uint32_t height, uint32_t seed) const;
+
   // The size in bytes of the constant buffer `name`, if the program has one.
   std::optional<uint32_t> constant_buffer_size(const std::string& name) const;
 
@@ -49,6 +53,7 @@ class FullscreenProgram {
     std::string name;       // HLSL
     std::string slot_name;  // the layout's
     std::vector<std::byte> defaults;
+    hlsl::ConstantBuffer declared;  // its members, for seeded bytes (decl cleared: the module may go)
   };
   ProgramHandle program_;
   std::vector<Buffer> buffers_;

@@ -184,7 +184,7 @@ Result<ProgramDesc> program_for_lane(const hlsl::Module& module, Lane lane, cons
   }
   // A full-screen pass: the shared vertex shader feeds its TEXCOORD0.
   const glsl::Flavour flavour = lane == Lane::Gl ? glsl::Flavour::Gl : glsl::Flavour::Vk;
-  const std::string text = glsl::fullscreen_vertex_shader(flavour);
+  const std::string text = glsl::fullscreen_vertex_shader(flavour, module.reflection.varyings);
   desc.vertex.name = "fullscreen.vert";
   if (lane == Lane::Gl) {
     desc.vertex.glsl = text;
