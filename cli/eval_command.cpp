@@ -2,6 +2,7 @@
 // EXR, and how far the lanes agree.
 #include <fmt/core.h>
 
+#include <algorithm>
 #include <map>
 
 #include "cli/commands.h"
@@ -36,6 +37,16 @@ int run_eval(const EvalOptions& options) {
   if (!module->ok()) return kBadInput;
   if (!module->entry_points.fragment) {
     fmt::print(stderr, "xshade eval: {} has no fragment entry point; name one with --entry or #pragma fragment\n",
+               options.file.string());
+    return kBadInput;
+  }
+
+  // A shader that writes only SV_Depth leaves the colour undefined: nothing to compare.
+  const auto& outputs = module->reflection.fragment_outputs;
+  if (std::none_of(outputs.begin(), outputs.end(), [](const hlsl::StageVariable& output) {
+        return output.semantic.starts_with("SV_Target");
+      })) {
+    fmt::print(stderr, "xshade eval: {} writes no colour (SV_Target); eval renders and compares colour only\n",
                options.file.string());
     return kBadInput;
   }

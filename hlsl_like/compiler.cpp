@@ -1,6 +1,7 @@
 #include "hlsl_like/compiler.h"
 
 #include <algorithm>
+#include <set>
 
 #include "hlsl_like/parser.h"
 #include "hlsl_like/prelude.h"
@@ -111,6 +112,8 @@ std::unique_ptr<Module> compile(std::unique_ptr<Module> module, const CompileOpt
     module->preprocessor = std::make_unique<Preprocessor>(module->sources, module->diagnostics, std::move(pp_options));
     std::vector<Token> tokens = module->preprocessor->run(module->main_file);
     module->pragmas = module->preprocessor->pragmas();
+    const std::set<std::string>& redefined = module->preprocessor->redefined_predefined();
+    std::erase_if(module->macros, [&](const MacroDefinition& m) { return redefined.count(m.name) > 0; });
     return tokens;
   };
 

@@ -45,7 +45,8 @@ struct Module {
   std::vector<Pragma> pragmas;
   std::vector<PassDeclaration> passes;  // a post effect's `#pragma pass` lines
   // The macros the variant was compiled with (prelude, keywords, defines), for other compilers
-  // of the same source (glslang's HLSL front end on the vk-hlsl lane).
+  // of the same source (glslang's HLSL front end on the vk-hlsl lane); a prelude macro the source
+  // defines or undefines itself is left out, so that the other compiler sees the source's alone.
   std::vector<MacroDefinition> macros;
   std::vector<std::filesystem::path> include_dirs;  // as given to the compile
   // Tokens made by macros keep their text in the preprocessor, so it lives as long as the tree.

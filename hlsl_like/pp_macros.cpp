@@ -209,6 +209,7 @@ void Preprocessor::Impl::do_undef(Lexer& lex, const Token& directive_name) {
     return;
   }
   if (predefined_ && predefined_->by_name.count(name.text)) {
+    pp_.redefined_predefined_.emplace(name.text);
     macros_[name.text] = nullptr;  // hides the predefined macro from find()
   } else {
     macros_.erase(name.text);
@@ -228,6 +229,7 @@ void Preprocessor::Impl::add_macro(Macro macro) {
     if (same) return;  // the first definition stays, for the location of later notes
     // The predefined table (the prelude) stands in for what Unity's include files define; a
     // source that includes those files redefines its macros as they please, silently.
+    if (old->predefined) pp_.redefined_predefined_.emplace(macro.name);
     if (!old->predefined) {
       diagnostics_.warning(macro.loc, "macro '" + clip(macro.name) + "' redefined");
       if (old->loc.file != 0) diagnostics_.note(old->loc, "previous definition is here");

@@ -20,6 +20,7 @@ Preprocessor::Preprocessor(SourceManager& sources, DiagnosticEngine& diagnostics
 std::vector<Token> Preprocessor::run(uint32_t main_file) {
   pragmas_.clear();
   files_.clear();
+  redefined_predefined_.clear();
   Impl impl(*this);
   return impl.run(main_file);
 }

@@ -11,6 +11,7 @@
 #include <memory>
 #include <optional>
 #include <string_view>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -73,6 +74,10 @@ class Preprocessor {
   const std::vector<Pragma>& pragmas() const { return pragmas_; }
   // Every file read, the main file first: what a compile depends on.
   const std::vector<uint32_t>& files() const { return files_; }
+  // The predefined macros (the prelude's) the source #defines or #undefs itself, as Unity's
+  // include files do: another compiler handed the prelude must not have these, or it sees two
+  // definitions.
+  const std::set<std::string>& redefined_predefined() const { return redefined_predefined_; }
 
   // Limits that keep hostile input finite; each is an error when reached.
   static constexpr size_t kMaxIncludeDepth = 64;
@@ -87,6 +92,7 @@ class Preprocessor {
   PreprocessorOptions options_;
   std::vector<Pragma> pragmas_;
   std::vector<uint32_t> files_;
+  std::set<std::string> redefined_predefined_;
   std::deque<std::string> text_store_;  // text of tokens made by # and ##; stable addresses
 };
 

@@ -5,7 +5,10 @@
 #include <glslang/Public/ShaderLang.h>
 #include <glslang/SPIRV/GlslangToSpv.h>
 
+#include <cstring>
 #include <fstream>
+#include <map>
+#include <set>
 #include <sstream>
 
 #include "hlsl_like/preprocessor.h"
@@ -105,13 +108,56 @@ class SemanticIoResolver final : public glslang::TDefaultIoResolverBase {
   const std::map<std::string, uint32_t>& bindings_;
 };
 
+// The byte offset the module gives each member of each constant buffer that its code reads
+// through an access chain, by the buffer's (block type's) name: read from the SPIR-V itself, the
+// layout the driver uses (glslang's reflection computes std140 offsets of its own).
+std::map<std::string, std::vector<std::pair<std::string, uint32_t>>> read_member_offsets(
+    const std::vector<uint32_t>& words) {
+  constexpr uint32_t kOpName = 5, kOpMemberName = 6, kOpTypePointer = 32, kOpConstant = 43, kOpVariable = 59,
+                     kOpMemberDecorate = 72, kOpAccessChain = 65, kOpInBoundsAccessChain = 66;
+  constexpr uint32_t kDecorationOffset = 35, kStorageClassUniform = 2;
+  std::map<uint32_t, std::string> names;
+  std::map<std::pair<uint32_t, uint32_t>, std::string> member_names;
+  std::map<std::pair<uint32_t, uint32_t>, uint32_t> member_offsets;
+  std::map<uint32_t, uint32_t> pointee;    // pointer type -> pointed-to type
+  std::map<uint32_t, uint32_t> variables;  // Uniform variable -> its pointer type
+  std::map<uint32_t, uint32_t> constants;  // id -> first word of its value
+  std::set<std::pair<uint32_t, uint32_t>> read;  // (struct type, member) an access chain reaches
+  const auto text = [](const uint32_t* first, uint32_t count) {
+    const char* chars = reinterpret_cast<const char*>(first);
+    return std::string(chars, strnlen(chars, size_t(count) * 4));
+  };
+  for (size_t at = 5; at < words.size();) {
+    const uint32_t count = words[at] >> 16, opcode = words[at] & 0xffffu;
+    if (count == 0 || at + count > words.size()) break;
+    const uint32_t* op = &words[at];
+    if (opcode == kOpName && count >= 3) names[op[1]] = text(&op[2], count - 2);
+    else if (opcode == kOpMemberName && count >= 4) member_names[{op[1], op[2]}] = text(&op[3], count - 3);
+    else if (opcode == kOpMemberDecorate && count >= 5 && op[3] == kDecorationOffset) member_offsets[{op[1], op[2]}] = op[4];
+    else if (opcode == kOpTypePointer && count >= 4) pointee[op[1]] = op[3];
+    else if (opcode == kOpConstant && count >= 4) constants[op[2]] = op[3];
+    else if (opcode == kOpVariable && count >= 4 && op[3] == kStorageClassUniform) variables[op[2]] = op[1];
+    else if ((opcode == kOpAccessChain || opcode == kOpInBoundsAccessChain) && count >= 5) {
+      if (auto variable = variables.find(op[3]); variable != variables.end())
+        if (auto index = constants.find(op[4]); index != constants.end())
+          read.insert({pointee[variable->second], index->second});
+    }
+    at += count;
+  }
+  std::map<std::string, std::vector<std::pair<std::string, uint32_t>>> result;
+  for (const auto& [member, offset] : member_offsets)
+    if (read.count(member) && names.count(member.first) && member_names.count(member))
+      result[names[member.first]].emplace_back(member_names[member], offset);
+  return result;
+}
+
 std::vector<HlslResource> reflect(glslang::TProgram& program) {
   std::vector<HlslResource> resources;
   program.buildReflection(EShReflectionSeparateBuffers | EShReflectionAllBlockVariables);
   for (int i = 0; i < program.getNumUniformBlocks(); ++i) {
     const glslang::TObjectReflection& block = program.getUniformBlock(i);
     resources.push_back({HlslResource::Kind::ConstantBuffer, block.name, uint32_t(block.getBinding()),
-                         uint32_t(block.size)});
+                         uint32_t(block.size), {}});
   }
   for (int i = 0; i < program.getNumUniformVariables(); ++i) {
     const glslang::TObjectReflection& uniform = program.getUniform(i);
@@ -121,7 +167,7 @@ std::vector<HlslResource> reflect(glslang::TProgram& program) {
     HlslResource::Kind kind = sampler.isPureSampler() ? HlslResource::Kind::Sampler
                               : sampler.isCombined() ? HlslResource::Kind::CombinedSampler
                                                      : HlslResource::Kind::Texture;
-    resources.push_back({kind, uniform.name, uint32_t(uniform.getBinding()), 0});
+    resources.push_back({kind, uniform.name, uint32_t(uniform.getBinding()), 0, {}});
   }
   return resources;
 }
@@ -176,6 +222,10 @@ Result<HlslModule> compile_hlsl(const HlslStage& request) {
   options.disableOptimizer = !request.legalize;  // glslang legalizes HLSL when its optimizer runs
   glslang::GlslangToSpv(*program.getIntermediate(language), result.module.words, &logger, &options);
   if (auto valid = validate(result.module.words, request.source_name); !valid) return fail(valid.error());
+  const auto offsets = read_member_offsets(result.module.words);
+  for (HlslResource& resource : result.resources)
+    if (resource.kind == HlslResource::Kind::ConstantBuffer)
+      if (auto found = offsets.find(resource.name); found != offsets.end()) resource.member_offsets = found->second;
   return result;
 }
 

@@ -65,6 +65,9 @@ struct HlslResource {
   std::string name;
   uint32_t binding = 0;
   uint32_t size = 0;  // bytes, for constant buffers
+  // The members of a constant buffer the stage reads, with the byte offset the module gives each
+  // (from its SPIR-V: glslang's own reflection computes std140 offsets instead).
+  std::vector<std::pair<std::string, uint32_t>> member_offsets;
 };
 
 struct HlslModule {

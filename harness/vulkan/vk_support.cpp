@@ -11,8 +11,8 @@ namespace xshade::harness::vk_support {
 
 EntryPointInfo reflect_entry_point(const std::vector<uint32_t>& words, ExecutionModel model,
                                    const std::string& name) {
-  constexpr uint32_t kOpName = 5, kOpMemberName = 6, kOpEntryPoint = 15, kOpVariable = 59, kOpDecorate = 71,
-                     kOpMemberDecorate = 72;
+  constexpr uint32_t kOpName = 5, kOpMemberName = 6, kOpEntryPoint = 15, kOpFunction = 54, kOpFunctionEnd = 56,
+                     kOpFunctionCall = 57, kOpVariable = 59, kOpDecorate = 71, kOpMemberDecorate = 72;
   constexpr uint32_t kOpTypeInt = 21, kOpTypeFloat = 22, kOpTypeVector = 23, kOpTypePointer = 32;
   constexpr uint32_t kDecorationLocation = 30, kDecorationBinding = 33, kDecorationDescriptorSet = 34;
   constexpr uint32_t kStorageClassUniformConstant = 0, kStorageClassInput = 1, kStorageClassUniform = 2;
@@ -26,7 +26,13 @@ EntryPointInfo reflect_entry_point(const std::vector<uint32_t>& words, Execution
   std::map<uint32_t, uint32_t> bindings;     // id -> Binding
   std::map<uint32_t, uint32_t> sets;         // id -> DescriptorSet
   std::set<uint32_t> resources;              // ids of UniformConstant and Uniform variables
-  std::set<uint32_t> operands;               // every id an instruction of the code reads
+  // The ids each function's instructions read, and the functions it calls: a resource counts
+  // where the entry point's call tree reads it (Vulkan's static use), not in a function nothing
+  // calls (glslang's HLSL front end emits those too).
+  std::map<uint32_t, std::set<uint32_t>> function_operands;
+  std::map<uint32_t, std::set<uint32_t>> function_calls;
+  uint32_t entry_function = 0;
+  uint32_t current_function = 0;
   for (size_t at = 5; at < words.size();) {  // after the 5-word header
     const uint32_t count = words[at] >> 16;
     const uint32_t opcode = words[at] & 0xffffu;
@@ -38,6 +44,7 @@ EntryPointInfo reflect_entry_point(const std::vector<uint32_t>& words, Execution
       const size_t length = strnlen(text, (count - 3) * sizeof(uint32_t));
       if (std::string(text, length) == name) {
         info.found = true;
+        entry_function = op[2];
         for (size_t i = 3 + length / 4 + 1; i < count; ++i) interface_ids.push_back(op[i]);
       }
     } else if (opcode == kOpDecorate && count >= 4 && op[2] == kDecorationLocation) {
@@ -59,11 +66,19 @@ EntryPointInfo reflect_entry_point(const std::vector<uint32_t>& words, Execution
     } else if (opcode == kOpVariable && count >= 4 &&
                (op[3] == kStorageClassUniformConstant || op[3] == kStorageClassUniform)) {
       resources.insert(op[2]);
+    } else if (opcode == kOpFunction && count >= 3) {
+      current_function = op[2];
+    } else if (opcode == kOpFunctionEnd) {
+      current_function = 0;
     } else if (opcode != kOpName && opcode != kOpMemberName && opcode != kOpDecorate && opcode != kOpMemberDecorate &&
                opcode != kOpVariable && opcode != kOpEntryPoint) {
-      // A word that merely equals a resource's id (a literal) counts too: that errs on the side
-      // of the check.
-      for (uint32_t i = 1; i < count; ++i) operands.insert(op[i]);
+      // Code only: outside functions, literals (constants, array sizes) would pass for ids. In
+      // code, a literal that equals a resource's id (a swizzle index, an image-operand mask)
+      // counts too: that errs on the side of the check.
+      if (current_function) {
+        if (opcode == kOpFunctionCall && count >= 4) function_calls[current_function].insert(op[3]);
+        for (uint32_t i = 1; i < count; ++i) function_operands[current_function].insert(op[i]);
+      }
     }
     at += count;
   }
@@ -80,9 +95,19 @@ EntryPointInfo reflect_entry_point(const std::vector<uint32_t>& words, Execution
     }
     info.input_types[location->second] = kind;
   }
-  // Only the resources the code reads: glslang's HLSL front end keeps a global texture a stage
-  // never reads (a vertex stage declares the fragment stage's textures), which needs no
-  // descriptor.
+  // Only the resources the entry point's call tree reads: glslang's HLSL front end keeps a global
+  // texture a stage never reads (a vertex stage declares the fragment stage's textures), and the
+  // functions of other entry points, which need no descriptor.
+  std::set<uint32_t> operands;
+  std::set<uint32_t> reached;
+  std::vector<uint32_t> pending{entry_function};
+  while (!pending.empty()) {
+    const uint32_t function = pending.back();
+    pending.pop_back();
+    if (!reached.insert(function).second) continue;
+    operands.insert(function_operands[function].begin(), function_operands[function].end());
+    for (uint32_t callee : function_calls[function]) pending.push_back(callee);
+  }
   for (const auto& [id, binding] : bindings)
     if (resources.count(id) && operands.count(id)) info.descriptor_bindings.insert({sets.count(id) ? sets[id] : 0, binding});
   return info;

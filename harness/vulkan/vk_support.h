@@ -27,8 +27,8 @@ struct EntryPointInfo {
   // Per input location, what its components are: 32-bit float, int or uint (a scalar or a
   // vector). Empty for anything else (a 64-bit or 16-bit type, a matrix, a struct).
   std::map<uint32_t, std::optional<TexelKind>> input_types;
-  // (set, binding) of every resource variable the module's code reads (one it only declares
-  // needs no descriptor).
+  // (set, binding) of every resource variable the entry point's call tree reads (one the module
+  // only declares, or reads in a function the entry point never calls, needs no descriptor).
   std::set<std::pair<uint32_t, uint32_t>> descriptor_bindings;
 };
 

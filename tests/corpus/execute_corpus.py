@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 """Corpus execution: every fragment entry of the real-world corpus (../shared/realworld) that
-xshade compiles is run by `xshade eval --seed` on gl, vk and vk-hlsl, with the same deterministic
+xshade and glslang's HLSL front end compile is run by `xshade eval --seed` on gl, vk and vk-hlsl, with the same deterministic
 inputs on each lane (constant buffers from the seed in ranges shaders mean, seeded noise of each
 texture's declared shape and texel kind, depth textures in (0, 1), every varying fed uv), and the
 three images are compared.
@@ -63,13 +63,29 @@ def run_entry(xshade, corpus, entry, out, seed, size):
         return dict(rc=None, out='timed out after %d s' % TIMEOUT, secs=time.time() - started, cmd=cmd)
 
 
+def glslang_accepts(corpus, entry, out):
+    """glslang's own HLSL front end compiles the entry (glslangValidator -D -V): without that the
+    vk-hlsl lane cannot run it, and run_corpus.py leaves it out of its denominator too."""
+    cmd = ['glslangValidator', '-D', '-V', '-S', 'frag', '-e', entry['entry']]
+    cmd += ['-I' + os.path.join(corpus, d) for d in entry['include_dirs']]
+    cmd += ['-D' + k for k in entry.get('keywords', [])]
+    cmd += [os.path.join(corpus, entry['wrapper']), '-o', os.path.join(out, 'glslang.spv')]
+    try:
+        p = subprocess.run(cmd, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, timeout=TIMEOUT)
+    except subprocess.TimeoutExpired:
+        return False
+    return p.returncode == 0 and b'Entry point not found' not in p.stdout
+
+
 def judge(result, absolute, relative):
-    """(verdict, detail): verdict is 'agree', 'differ', 'compile' (xshade refuses it: not counted)
-    or 'fail' (compiles, but a lane cannot run it)."""
+    """(verdict, detail): verdict is 'agree', 'differ', 'compile' (xshade refuses it: not counted),
+    'no-colour' (writes SV_Depth alone: not counted) or 'fail' (compiles, but a lane cannot run it)."""
     if result['rc'] is None:
         return 'fail', result['out']
     failures = [m for m in (FAIL_RE.match(l) for l in result['out'].splitlines()) if m]
     comparisons = [m for m in (COMPARE_RE.match(l) for l in result['out'].splitlines()) if m]
+    if result['rc'] == 2 and 'writes no colour' in result['out']:
+        return 'no-colour', 'writes SV_Depth alone: no colour to compare'
     if result['rc'] == 2 and not comparisons and not failures:
         first = next((l for l in result['out'].splitlines() if ': error: ' in l), result['out'].strip()[:200])
         return 'compile', first
@@ -116,6 +132,10 @@ def main():
     os.makedirs(a.out, exist_ok=True)
     rows = []
     for i, entry in enumerate(entries):
+        if not glslang_accepts(a.corpus, entry, a.out):
+            rows.append(dict(id=entry['id'], verdict='glslang', detail='glslang rejects it', secs=0))
+            print('[%d/%d] %s: not counted: glslang\'s HLSL front end rejects it' % (i + 1, len(entries), entry['id']))
+            continue
         result = run_entry(a.xshade, a.corpus, entry, a.out, a.seed, a.size)
         verdict, detail = judge(result, a.absolute, a.relative)
         rows.append(dict(id=entry['id'], verdict=verdict, detail=detail, secs=round(result['secs'], 2)))
@@ -127,14 +147,20 @@ def main():
         for row in rows:
             f.write('%s\t%s\t%s\n' % (row['id'], row['verdict'], row['detail']))
 
-    run = [r for r in rows if r['verdict'] != 'compile']
+    run = [r for r in rows if r['verdict'] not in ('compile', 'glslang', 'no-colour')]
     agreeing = [r for r in run if r['verdict'] == 'agree']
     not_agreeing = [r for r in run if r['verdict'] != 'agree']
     listed = listed_divergences(a.divergences)
     unexplained = [r for r in not_agreeing if r['id'] not in listed]
-    skipped = len(rows) - len(run)
-    if skipped:
-        print('not counted: %d entries xshade does not compile (the compile corpus, run_corpus.py, tracks them)' % skipped)
+    rejected = sum(1 for r in rows if r['verdict'] == 'glslang')
+    uncompiled = sum(1 for r in rows if r['verdict'] == 'compile')
+    if rejected:
+        print('not counted: %d entries glslang\'s HLSL front end rejects (no vk-hlsl lane to compare)' % rejected)
+    no_colour = sum(1 for r in rows if r['verdict'] == 'no-colour')
+    if no_colour:
+        print('not counted: %d entries that write no colour (SV_Depth alone), which eval compares' % no_colour)
+    if uncompiled:
+        print('not counted: %d entries xshade does not compile (the compile corpus, run_corpus.py, tracks them)' % uncompiled)
     for r in unexplained:
         print('not in %s: %s (%s): %s' % (a.divergences or 'the divergences file', r['id'], r['verdict'], r['detail']))
     print('corpus execution: %d of %d entries agree on gl, vk and vk-hlsl' % (len(agreeing), len(run)))

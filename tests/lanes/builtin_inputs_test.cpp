@@ -12,7 +12,6 @@
 #include <glm/gtc/matrix_transform.hpp>
 #include <gtest/gtest.h>
 
-#include "harness/assets/equirect.h"
 #include "tests/lanes/probe_scene.h"
 
 namespace xshade::tests {
@@ -86,16 +85,8 @@ float4 frag(float4 p : SV_Position) : SV_Target {{
                      inputs, declarations, expression);
 }
 
-// The environment: radiance 0.5 + 0.5 d in direction d, so that every direction and every cube
-// face reads differently, and its irradiance / pi is exactly 0.5 + d / 3 (a linear radiance's
-// cosine convolution is 2/3 of its linear part, over pi).
-harness::FloatImage direction_environment() {
-  harness::FloatImage image(256, 128);
-  for (uint32_t y = 0; y < image.height; ++y)
-    for (uint32_t x = 0; x < image.width; ++x)
-      image.set(x, y, glm::vec4(0.5f + 0.5f * harness::equirect_texel_direction(x, y, 256, 128), 1.0f));
-  return image;
-}
+// The environment is direction_equirect(): radiance 0.5 + 0.5 d, whose irradiance / pi is exactly
+// 0.5 + d / 3 (a linear radiance's cosine convolution is 2/3 of its linear part, over pi).
 
 std::vector<float> rows_of(const glm::mat4& m) {  // HLSL component order: row by row
   std::vector<float> out;
@@ -225,7 +216,7 @@ class BuiltinInputs : public ::testing::TestWithParam<Row> {
 TEST_P(BuiltinInputs, ShadersReadTheHostsValueOnEveryLane) {
   const Row& row = GetParam();
   const ProbeScene probe("builtin_" + row.name);
-  probe.write_image("environment.exr", direction_environment());
+  probe.write_image("environment.exr", direction_equirect());
   std::string scene_text = kSceneText;
   if (row.post) {
     probe.write("probe_material.hlsl", material_probe("", "float4(0, 0, 0, 1)"));

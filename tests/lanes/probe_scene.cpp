@@ -6,6 +6,7 @@
 #include <unistd.h>
 
 #include "harness/assets/environment.h"
+#include "harness/assets/equirect.h"
 #include "harness/image/image_io.h"
 #include "harness/render/lanes.h"
 #include "harness/render/planner.h"
@@ -55,6 +56,14 @@ Result<harness::FloatImage> ProbeScene::render(const std::string& scene_text, ha
   auto rendered = harness::render_scene(backend, *scene, *plan, *variants, *environment);
   if (!rendered) return fail(rendered.error());
   return std::move(rendered->image);
+}
+
+harness::FloatImage direction_equirect() {
+  harness::FloatImage image(256, 128);
+  for (uint32_t y = 0; y < image.height; ++y)
+    for (uint32_t x = 0; x < image.width; ++x)
+      image.set(x, y, glm::vec4(0.5f + 0.5f * harness::equirect_texel_direction(x, y, 256, 128), 1.0f));
+  return image;
 }
 
 namespace {

@@ -34,6 +34,10 @@ class ProbeScene {
   std::filesystem::path folder_;
 };
 
+// An equirect environment of radiance 0.5 + 0.5 d in direction d (256 x 128): every direction,
+// and so every cube face and axis, reads differently.
+harness::FloatImage direction_equirect();
+
 // One backend per lane for a whole test suite (creating a Vulkan instance per test costs more
 // than the test), the Vulkan one with its validation layer when installed.
 harness::Backend& suite_backend(harness::Lane lane);

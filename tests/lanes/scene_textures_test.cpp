@@ -9,7 +9,6 @@
 #include <fmt/format.h>
 #include <gtest/gtest.h>
 
-#include "harness/assets/equirect.h"
 #include "harness/image/image_io.h"
 #include "tests/lanes/probe_scene.h"
 
@@ -69,15 +68,6 @@ float3 face_direction(uint f, float2 st) {
 // The colour of texel (x, y) of face f in the asymmetric test cube.
 glm::vec4 face_texel(uint32_t f, uint32_t x, uint32_t y) {
   return {0.1f + 0.15f * float(f), 0.25f + 0.5f * float(x), 0.25f + 0.5f * float(y), 1.0f};
-}
-
-// 0.5 + 0.5 d in direction d: every axis reads differently.
-FloatImage direction_equirect() {
-  FloatImage image(256, 128);
-  for (uint32_t y = 0; y < image.height; ++y)
-    for (uint32_t x = 0; x < image.width; ++x)
-      image.set(x, y, glm::vec4(0.5f + 0.5f * harness::equirect_texel_direction(x, y, 256, 128), 1.0f));
-  return image;
 }
 
 class SceneTextures : public ::testing::Test {
