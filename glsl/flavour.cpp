@@ -19,7 +19,9 @@ std::string fullscreen_vertex_shader(Flavour flavour, const std::vector<hlsl::St
   std::string text = flavour == Flavour::Gl ? "#version 450 core\n" : "#version 450\n";
   std::string writes;
   for (const hlsl::StageVariable& varying : varyings) {
-    const hlsl::Type& type = varying.type;
+    // An array takes consecutive locations, each element fed alike.
+    const bool array = varying.type.kind() == hlsl::TypeKind::Array;
+    const hlsl::Type& type = array ? varying.type.element() : varying.type;
     if (!(type.is_scalar() || type.is_vector())) continue;
     const uint32_t n = type.component_count();
     const hlsl::ScalarType scalar = type.scalar_type();
@@ -36,10 +38,13 @@ std::string fullscreen_vertex_shader(Flavour flavour, const std::vector<hlsl::St
                             : varying.interpolation == hlsl::Interpolation::Centroid      ? "centroid "
                             : varying.interpolation == hlsl::Interpolation::Sample        ? "sample "
                                                                                            : "";
+    const uint32_t elements = array ? varying.type.array_length() : 0;
     text += "layout(location = " + std::to_string(varying.location) + ") " + qualifier + "out " + glsl_type + " " +
-            name + ";\n";
+            name + (array ? "[" + std::to_string(elements) + "]" : std::string()) + ";\n";
     static const char* const kComponents[] = {"", ".x", ".xy", ".xyz", ""};
-    writes += "  " + name + " = " + (is_float ? "vec4(uv, 0.0, 1.0)" + std::string(kComponents[n]) : glsl_type + "(0)") + ";\n";
+    const std::string value = is_float ? "vec4(uv, 0.0, 1.0)" + std::string(kComponents[n]) : glsl_type + "(0)";
+    if (!array) writes += "  " + name + " = " + value + ";\n";
+    for (uint32_t e = 0; e < elements; ++e) writes += "  " + name + "[" + std::to_string(e) + "] = " + value + ";\n";
   }
   text += "void main() {\n"
           "  vec2 position = vec2(float((";

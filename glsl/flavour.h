@@ -24,7 +24,8 @@ std::string fullscreen_vertex_shader(Flavour flavour);
 // The same triangle feeding every varying a fragment shader reads (hlsl::Reflection::varyings):
 // a float scalar or vector gets the first components of (u, v, 0, 1), so TEXCOORD0 is uv as
 // above and every other texture coordinate (Unity's texcoordStereo) is uv too; an integer one
-// gets 0. Matrices and other types are left unwritten.
+// gets 0; each element of an array of those gets the same. Matrices and other types are left
+// unwritten.
 std::string fullscreen_vertex_shader(Flavour flavour, const std::vector<hlsl::StageVariable>& varyings);
 
 }  // namespace xshade::glsl

@@ -628,14 +628,16 @@ Reflection reflect(const TranslationUnit& unit, const EntryPoints& entry_points,
         // A full-screen pass: the shared vertex shader feeds every scalar or vector varying
         // (glsl::fullscreen_vertex_shader: uv for floats, 0 for integers).
         auto location = varying_location(input.semantic);
-        const ScalarType scalar = input.type.scalar_type();
-        const bool fed = (input.type.is_scalar() || input.type.is_vector()) &&
+        const Type& element = input.type.kind() == TypeKind::Array ? input.type.element() : input.type;
+        const ScalarType scalar = element.scalar_type();
+        const bool fed = (element.is_scalar() || element.is_vector()) &&
                          (scalar == ScalarType::Float || scalar == ScalarType::Half || scalar == ScalarType::Int ||
                           scalar == ScalarType::Uint);
         if (!location || !fed)
           diagnostics.error(entry_points.fragment->loc,
                             "a fragment shader without a vertex stage receives uv in its float scalar and vector inputs "
-                            "(TEXCOORD0 and the like) and 0 in its integer ones, not " + input.type.name() + " " +
+                            "(TEXCOORD0 and the like, arrays of them too) and 0 in its integer ones, not " +
+                                input.type.name() + " " +
                                 in_quotes(input.semantic));
         else
           reflection.varyings.push_back({input.semantic, input.type, *location, input.interpolation});

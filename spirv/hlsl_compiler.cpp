@@ -13,6 +13,7 @@
 
 #include "hlsl_like/preprocessor.h"
 #include "hlsl_like/reflection.h"
+#include "hlsl_like/semantics.h"
 #include "spirv/glslang_log.h"
 #include "spirv/glslang_process.h"
 
@@ -94,7 +95,20 @@ class SemanticIoResolver final : public glslang::TDefaultIoResolverBase {
   int resolveInOutLocation(EShLanguage stage, glslang::TVarEntryInfo& entry) override {
     const glslang::TQualifier& qualifier = entry.symbol->getType().getQualifier();
     if (qualifier.semanticName != nullptr) {  // glslang numbered them while parsing; the contract wins
-      const std::string semantic = hlsl::canonical_semantic_name(qualifier.semanticName);
+      std::string semantic = hlsl::canonical_semantic_name(qualifier.semanticName);
+      // glslang splits an array varying (float4 offsets[3] : TEXCOORD1) into one variable per
+      // element, named <name>[k], each with the array's semantic; HLSL gives element k the
+      // semantic's index + k.
+      if (const std::string name = entry.symbol->getName().c_str(); name.size() > 3 && name.back() == ']') {
+        const size_t open = name.rfind('[');
+        const std::string digits = open == std::string::npos ? "" : name.substr(open + 1, name.size() - open - 2);
+        hlsl::ParsedSemantic parsed = hlsl::parse_semantic(semantic);
+        if (!digits.empty() && digits.find_first_not_of("0123456789") == std::string::npos &&
+            parsed.kind != hlsl::SemanticKind::Unknown) {
+          parsed.index += uint32_t(std::stoul(digits));
+          semantic = hlsl::canonical_semantic(parsed);
+        }
+      }
       std::optional<uint32_t> location;
       const bool input = qualifier.storage == glslang::EvqVaryingIn;
       if (stage == EShLangVertex && input) location = hlsl::vertex_input_location(semantic);
@@ -108,47 +122,38 @@ class SemanticIoResolver final : public glslang::TDefaultIoResolverBase {
   const std::map<std::string, uint32_t>& bindings_;
 };
 
-// The byte offset the module gives each member of each constant buffer that its code reads
-// through an access chain, by the buffer's (block type's) name: read from the SPIR-V itself, the
-// layout the driver uses (glslang's reflection computes std140 offsets of its own).
-std::map<std::string, std::vector<std::pair<std::string, uint32_t>>> read_member_offsets(
-    const std::vector<uint32_t>& words) {
-  constexpr uint32_t kOpName = 5, kOpMemberName = 6, kOpTypePointer = 32, kOpConstant = 43, kOpVariable = 59,
-                     kOpMemberDecorate = 72, kOpAccessChain = 65, kOpInBoundsAccessChain = 66;
-  constexpr uint32_t kDecorationOffset = 35, kStorageClassUniform = 2;
+// Sets the Offset decoration of each member of the named structs (blocks) that `offsets` gives
+// another offset; glslang names a block's struct type after the buffer ("$Global" for the globals).
+void set_member_offsets(std::vector<uint32_t>& words,
+                        const std::map<std::string, std::map<std::string, uint32_t>>& offsets) {
+  constexpr uint32_t kOpName = 5, kOpMemberName = 6, kOpMemberDecorate = 72, kDecorationOffset = 35;
   std::map<uint32_t, std::string> names;
   std::map<std::pair<uint32_t, uint32_t>, std::string> member_names;
-  std::map<std::pair<uint32_t, uint32_t>, uint32_t> member_offsets;
-  std::map<uint32_t, uint32_t> pointee;    // pointer type -> pointed-to type
-  std::map<uint32_t, uint32_t> variables;  // Uniform variable -> its pointer type
-  std::map<uint32_t, uint32_t> constants;  // id -> first word of its value
-  std::set<std::pair<uint32_t, uint32_t>> read;  // (struct type, member) an access chain reaches
   const auto text = [](const uint32_t* first, uint32_t count) {
     const char* chars = reinterpret_cast<const char*>(first);
     return std::string(chars, strnlen(chars, size_t(count) * 4));
   };
-  for (size_t at = 5; at < words.size();) {
-    const uint32_t count = words[at] >> 16, opcode = words[at] & 0xffffu;
-    if (count == 0 || at + count > words.size()) break;
-    const uint32_t* op = &words[at];
-    if (opcode == kOpName && count >= 3) names[op[1]] = text(&op[2], count - 2);
-    else if (opcode == kOpMemberName && count >= 4) member_names[{op[1], op[2]}] = text(&op[3], count - 3);
-    else if (opcode == kOpMemberDecorate && count >= 5 && op[3] == kDecorationOffset) member_offsets[{op[1], op[2]}] = op[4];
-    else if (opcode == kOpTypePointer && count >= 4) pointee[op[1]] = op[3];
-    else if (opcode == kOpConstant && count >= 4) constants[op[2]] = op[3];
-    else if (opcode == kOpVariable && count >= 4 && op[3] == kStorageClassUniform) variables[op[2]] = op[1];
-    else if ((opcode == kOpAccessChain || opcode == kOpInBoundsAccessChain) && count >= 5) {
-      if (auto variable = variables.find(op[3]); variable != variables.end())
-        if (auto index = constants.find(op[4]); index != constants.end())
-          read.insert({pointee[variable->second], index->second});
+  const auto each_instruction = [&words](const auto& visit) {
+    for (size_t at = 5; at < words.size();) {
+      const uint32_t count = words[at] >> 16;
+      if (count == 0 || at + count > words.size()) break;
+      visit(words[at] & 0xffffu, count, &words[at]);
+      at += count;
     }
-    at += count;
-  }
-  std::map<std::string, std::vector<std::pair<std::string, uint32_t>>> result;
-  for (const auto& [member, offset] : member_offsets)
-    if (read.count(member) && names.count(member.first) && member_names.count(member))
-      result[names[member.first]].emplace_back(member_names[member], offset);
-  return result;
+  };
+  each_instruction([&](uint32_t opcode, uint32_t count, uint32_t* op) {
+    if (opcode == kOpName && count >= 3) names[op[1]] = text(&op[2], count - 2);
+    if (opcode == kOpMemberName && count >= 4) member_names[{op[1], op[2]}] = text(&op[3], count - 3);
+  });
+  each_instruction([&](uint32_t opcode, uint32_t count, uint32_t* op) {
+    if (opcode != kOpMemberDecorate || count < 5 || op[3] != kDecorationOffset) return;
+    auto block = names.find(op[1]);
+    auto member = member_names.find({op[1], op[2]});
+    if (block == names.end() || member == member_names.end()) return;
+    auto buffer = offsets.find(block->second);
+    if (buffer == offsets.end()) return;
+    if (auto offset = buffer->second.find(member->second); offset != buffer->second.end()) op[4] = offset->second;
+  });
 }
 
 std::vector<HlslResource> reflect(glslang::TProgram& program) {
@@ -157,7 +162,7 @@ std::vector<HlslResource> reflect(glslang::TProgram& program) {
   for (int i = 0; i < program.getNumUniformBlocks(); ++i) {
     const glslang::TObjectReflection& block = program.getUniformBlock(i);
     resources.push_back({HlslResource::Kind::ConstantBuffer, block.name, uint32_t(block.getBinding()),
-                         uint32_t(block.size), {}});
+                         uint32_t(block.size)});
   }
   for (int i = 0; i < program.getNumUniformVariables(); ++i) {
     const glslang::TObjectReflection& uniform = program.getUniform(i);
@@ -167,7 +172,7 @@ std::vector<HlslResource> reflect(glslang::TProgram& program) {
     HlslResource::Kind kind = sampler.isPureSampler() ? HlslResource::Kind::Sampler
                               : sampler.isCombined() ? HlslResource::Kind::CombinedSampler
                                                      : HlslResource::Kind::Texture;
-    resources.push_back({kind, uniform.name, uint32_t(uniform.getBinding()), 0, {}});
+    resources.push_back({kind, uniform.name, uint32_t(uniform.getBinding()), 0});
   }
   return resources;
 }
@@ -221,11 +226,8 @@ Result<HlslModule> compile_hlsl(const HlslStage& request) {
   options.validate = false;  // validated below with the project's environment and messages
   options.disableOptimizer = !request.legalize;  // glslang legalizes HLSL when its optimizer runs
   glslang::GlslangToSpv(*program.getIntermediate(language), result.module.words, &logger, &options);
+  set_member_offsets(result.module.words, request.member_offsets);
   if (auto valid = validate(result.module.words, request.source_name); !valid) return fail(valid.error());
-  const auto offsets = read_member_offsets(result.module.words);
-  for (HlslResource& resource : result.resources)
-    if (resource.kind == HlslResource::Kind::ConstantBuffer)
-      if (auto found = offsets.find(resource.name); found != offsets.end()) resource.member_offsets = found->second;
   return result;
 }
 

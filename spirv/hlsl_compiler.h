@@ -56,6 +56,12 @@ struct HlslStage {
   // HLSL that keeps a texture in a local or a struct field needs it, or the SPIR-V is invalid
   // for Vulkan. Off otherwise, so that the lane's code is glslang's translation as it is.
   bool legalize = false;
+  // The byte offset of each member of each constant buffer, by buffer ("$Global" for the globals)
+  // and member name: HLSL's packing, which the host writes. glslang packs a declared cbuffer so,
+  // but lays the globals' block out by std140 rules (a float3 after a float at 16, not 4); a member
+  // the module places elsewhere than given here gets its Offset decoration set to the given one
+  // (what DXC emits; Vulkan's relaxed block layout allows it). Buffers not named are left alone.
+  std::map<std::string, std::map<std::string, uint32_t>> member_offsets = {};
 };
 
 // A resource of the compiled module as glslang reflects it.
@@ -65,9 +71,6 @@ struct HlslResource {
   std::string name;
   uint32_t binding = 0;
   uint32_t size = 0;  // bytes, for constant buffers
-  // The members of a constant buffer the stage reads, with the byte offset the module gives each
-  // (from its SPIR-V: glslang's own reflection computes std140 offsets instead).
-  std::vector<std::pair<std::string, uint32_t>> member_offsets;
 };
 
 struct HlslModule {

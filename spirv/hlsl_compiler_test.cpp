@@ -128,5 +128,38 @@ float4 vert(float3 p : POSITION) : SV_Position { return float4(p, 1); }
   EXPECT_NE(text.find("OpDecorate %sampler_MainTex Binding 32"), std::string::npos) << text;
 }
 
+// glslang packs a declared cbuffer by HLSL's rules but the globals' block by std140's: `b` lands
+// at 16 where fxc and DXC put it at 4. Given the host's offsets, the module reads HLSL's layout.
+TEST(HlslCompiler, TheGlobalsTakeTheOffsetsTheHostWrites) {
+  constexpr const char* kSource = "float a; float3 b;\nfloat4 frag() : SV_Target { return float4(b, a); }\n";
+  HlslStage stage{kSource, "globals.hlsl", Stage::Fragment, "frag", {}, {}, {}, {}};
+  spvtools::SpirvTools tools(SPV_ENV_VULKAN_1_3);
+  const auto disassembly = [&](const HlslStage& request) {
+    auto compiled = compile_hlsl(request);
+    EXPECT_TRUE(compiled) << compiled.error().to_string();
+    std::string text;
+    if (compiled) tools.Disassemble(compiled->module.words, &text, SPV_BINARY_TO_TEXT_OPTION_FRIENDLY_NAMES);
+    return text;
+  };
+  EXPECT_NE(disassembly(stage).find("OpMemberDecorate %_Global 1 Offset 16"), std::string::npos);
+  stage.member_offsets = {{"$Global", {{"a", 0}, {"b", 4}}}};
+  EXPECT_NE(disassembly(stage).find("OpMemberDecorate %_Global 1 Offset 4"), std::string::npos);
+}
+
+// glslang splits an array varying into a variable per element, each with the array's semantic;
+// element k takes the semantic's index + k, as HLSL has it, so the locations do not collide.
+TEST(HlslCompiler, AnArrayVaryingsElementsTakeConsecutiveSemantics) {
+  constexpr const char* kSource = "struct V { float4 p : SV_Position; float4 offsets[3] : TEXCOORD1; };\n"
+                                  "float4 frag(V v) : SV_Target { return v.offsets[0] + v.offsets[2]; }\n";
+  HlslStage stage{kSource, "array.hlsl", Stage::Fragment, "frag", {}, {}, {}, {}};
+  auto compiled = compile_hlsl(stage);
+  ASSERT_TRUE(compiled) << compiled.error().to_string();
+  std::string text;
+  spvtools::SpirvTools tools(SPV_ENV_VULKAN_1_3);
+  ASSERT_TRUE(tools.Disassemble(compiled->module.words, &text, SPV_BINARY_TO_TEXT_OPTION_FRIENDLY_NAMES));
+  for (int k = 0; k < 3; ++k)  // TEXCOORD1..3 are locations 1..3 (hlsl::varying_location)
+    EXPECT_NE(text.find("Location " + std::to_string(1 + k)), std::string::npos) << text;
+}
+
 }  // namespace
 }  // namespace xshade::spirv

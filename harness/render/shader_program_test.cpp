@@ -28,27 +28,5 @@ TEST(ShaderProgram, AFileWithOneStageCompilesToThatStageOnEveryLane) {
   EXPECT_NE(program.error().message.find("no fragment entry point"), std::string::npos) << program.error().message;
 }
 
-// HLSL packs a float3 after a float into the same 16-byte register (byte 4); glslang's HLSL front
-// end (12.0) does so in a declared cbuffer (the conformance rule constant_buffer) but starts it at
-// the next register in $Globals. The harness writes HLSL's layout, so the vk-hlsl lane refuses
-// such a buffer rather than read the wrong bytes; gl and vk keep HLSL's offsets.
-TEST(ShaderProgram, TheVkHlslLaneRefusesABufferGlslangLaysOutOtherwise) {
-  auto module = hlsl::compile_text("packing.hlsl", R"(#pragma fragment frag
-float _Phase;
-float3 _NoiseParameters;
-float4 frag() : SV_Target { return float4(_NoiseParameters, _Phase); }
-)",
-                                   {});
-  ASSERT_TRUE(module->ok()) << module->diagnostics.render_all();
-  ASSERT_EQ(module->reflection.constant_buffers.at(0).members.at(1).offset, 4u);
-  EXPECT_TRUE(program_for_lane(*module, Lane::Gl));
-  EXPECT_TRUE(program_for_lane(*module, Lane::Vk));
-  auto hlsl_lane = program_for_lane(*module, Lane::VkHlsl);
-  ASSERT_FALSE(hlsl_lane);
-  EXPECT_EQ(hlsl_lane.error().message,
-            "vk-hlsl lane: glslang's HLSL front end puts '_NoiseParameters' of '$Globals' at byte 16, HLSL's packing "
-            "(fxc, DXC and xshade) at byte 4: the lane would read another member's bytes");
-}
-
 }  // namespace
 }  // namespace xshade::harness

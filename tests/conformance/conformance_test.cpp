@@ -54,6 +54,15 @@ const double kLerpS[8] = {-1.0, 0.0, 0.25, 0.5, 1.0, 2.0, -0.5, 0.75};
 
 // The Params buffer of constant_buffer.hlsl, packed by HLSL's rules: a float3 at 4, a float2 at
 // 20, the matrix at 32 stored by columns.
+std::vector<std::byte> params_bytes();
+
+// globals_packing.hlsl's $Globals: the first 32 bytes of Params, the same members at the same offsets.
+std::vector<std::byte> globals_bytes() {
+  std::vector<std::byte> bytes = params_bytes();
+  bytes.resize(32);
+  return bytes;
+}
+
 std::vector<std::byte> params_bytes() {
   std::vector<float> floats(32 / 4 + 16, 0.0f);
   floats[0] = 1.0f;                                  // first
@@ -133,6 +142,9 @@ std::vector<Rule> rules() {
          return results[x];
        },
        0.0, "small integers are exact", {{"Params", params_bytes()}}},
+      {"globals_packing", 2,
+       [](uint32_t x) { return x == 0 ? glm::dvec4(1, 2, 3, 4) : glm::dvec4(5, 6, 7, 0); },
+       0.0, "small integers are exact", {{std::string(hlsl::kGlobalsBufferName), globals_bytes()}}},
   };
 }
 
