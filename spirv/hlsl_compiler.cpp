@@ -16,6 +16,7 @@
 #include "hlsl_like/semantics.h"
 #include "spirv/glslang_log.h"
 #include "spirv/glslang_process.h"
+#include "spirv/spirv_words.h"
 
 namespace xshade::spirv {
 namespace {
@@ -129,23 +130,11 @@ void set_member_offsets(std::vector<uint32_t>& words,
   constexpr uint32_t kOpName = 5, kOpMemberName = 6, kOpMemberDecorate = 72, kDecorationOffset = 35;
   std::map<uint32_t, std::string> names;
   std::map<std::pair<uint32_t, uint32_t>, std::string> member_names;
-  const auto text = [](const uint32_t* first, uint32_t count) {
-    const char* chars = reinterpret_cast<const char*>(first);
-    return std::string(chars, strnlen(chars, size_t(count) * 4));
-  };
-  const auto each_instruction = [&words](const auto& visit) {
-    for (size_t at = 5; at < words.size();) {
-      const uint32_t count = words[at] >> 16;
-      if (count == 0 || at + count > words.size()) break;
-      visit(words[at] & 0xffffu, count, &words[at]);
-      at += count;
-    }
-  };
-  each_instruction([&](uint32_t opcode, uint32_t count, uint32_t* op) {
-    if (opcode == kOpName && count >= 3) names[op[1]] = text(&op[2], count - 2);
-    if (opcode == kOpMemberName && count >= 4) member_names[{op[1], op[2]}] = text(&op[3], count - 3);
+  for_each_instruction(words, [&](uint32_t opcode, uint32_t count, uint32_t* op) {
+    if (opcode == kOpName && count >= 3) names[op[1]] = literal_string(&op[2], count - 2);
+    if (opcode == kOpMemberName && count >= 4) member_names[{op[1], op[2]}] = literal_string(&op[3], count - 3);
   });
-  each_instruction([&](uint32_t opcode, uint32_t count, uint32_t* op) {
+  for_each_instruction(words, [&](uint32_t opcode, uint32_t count, uint32_t* op) {
     if (opcode != kOpMemberDecorate || count < 5 || op[3] != kDecorationOffset) return;
     auto block = names.find(op[1]);
     auto member = member_names.find({op[1], op[2]});

@@ -11,20 +11,11 @@
 namespace xshade::harness {
 std::vector<std::byte> default_constant_buffer(const hlsl::ConstantBuffer& buffer,
                                                const std::vector<hlsl::Property>& properties) {
-  hlsl::Reflection only_this;
-  only_this.constant_buffers = {buffer};
-  only_this.properties = properties;
-  const ShaderInterface interface = shader_interface(only_this);
-  const UniformBlock& block = interface.uniform_blocks.front();
-  std::map<std::string, std::vector<float>> values;
-  for (const UniformMember& member : block.members) {
+  return constant_buffer_from(buffer, properties, [](const UniformMember& member, const ShaderInterface& interface) {
     const PropertyDefault* property = interface.find_property(member.name);
-    values[member.name] = property && property->value.size() == member.components()
-                              ? property->value
-                              : std::vector<float>(member.components(), 0.0f);
-  }
-  auto bytes = build_uniform_block(block, [&values](const std::string& name) { return &values.at(name); });
-  return bytes ? std::move(*bytes) : std::vector<std::byte>(buffer.size);
+    return property && property->value.size() == member.components() ? property->value
+                                                                      : std::vector<float>(member.components(), 0.0f);
+  });
 }
 
 Result<FullscreenProgram> FullscreenProgram::create(const hlsl::Module& module, Lane lane, Backend& backend,

@@ -1,6 +1,7 @@
 #include "harness/render/shader_interface.h"
 
 #include <cstring>
+#include <map>
 
 #include <nlohmann/json.hpp>
 
@@ -164,6 +165,19 @@ Result<std::vector<std::byte>> build_uniform_block(const UniformBlock& block, co
     }
   }
   return bytes;
+}
+
+std::vector<std::byte> constant_buffer_from(const hlsl::ConstantBuffer& buffer,
+                                            const std::vector<hlsl::Property>& properties, const MemberValue& value_of) {
+  hlsl::Reflection only_this;
+  only_this.constant_buffers = {buffer};
+  only_this.properties = properties;
+  const ShaderInterface interface = shader_interface(only_this);
+  const UniformBlock& block = interface.uniform_blocks.front();
+  std::map<std::string, std::vector<float>> values;
+  for (const UniformMember& member : block.members) values[member.name] = value_of(member, interface);
+  auto bytes = build_uniform_block(block, [&values](const std::string& name) { return &values.at(name); });
+  return bytes ? std::move(*bytes) : std::vector<std::byte>(buffer.size);
 }
 
 }  // namespace xshade::harness

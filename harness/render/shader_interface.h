@@ -58,4 +58,11 @@ using UniformLookup = std::function<const std::vector<float>*(const std::string&
 // one has no value or a value of the wrong size: an unset uniform is a bug, never a silent zero.
 Result<std::vector<std::byte>> build_uniform_block(const UniformBlock& block, const UniformLookup& lookup);
 
+// One reflected constant buffer's bytes with each member's value from `value_of` (which sees the
+// member and the buffer's interface, properties' defaults included), for running a shader without
+// a scene: eval's defaults and its seeded inputs. A value of the wrong size leaves zeros.
+using MemberValue = std::function<std::vector<float>(const UniformMember& member, const ShaderInterface& interface)>;
+std::vector<std::byte> constant_buffer_from(const hlsl::ConstantBuffer& buffer,
+                                            const std::vector<hlsl::Property>& properties, const MemberValue& value_of);
+
 }  // namespace xshade::harness

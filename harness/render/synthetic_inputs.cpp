@@ -31,14 +31,9 @@ class Noise {
 }  // namespace
 
 std::vector<std::byte> seeded_constant_buffer(const hlsl::ConstantBuffer& buffer, uint32_t seed) {
-  hlsl::Reflection only_this;
-  only_this.constant_buffers = {buffer};
-  const ShaderInterface interface = shader_interface(only_this);
-  const UniformBlock& block = interface.uniform_blocks.front();
-  std::map<std::string, std::vector<float>> values;
-  for (const UniformMember& member : block.members) {
+  return constant_buffer_from(buffer, {}, [seed](const UniformMember& member, const ShaderInterface&) {
     Noise noise(seed, member.name);
-    std::vector<float>& value = values[member.name];
+    std::vector<float> value;
     const uint32_t elements = member.array_length ? member.array_length : 1;
     for (uint32_t e = 0; e < elements; ++e)
       for (uint32_t r = 0; r < member.rows; ++r)
@@ -52,9 +47,8 @@ std::vector<std::byte> seeded_constant_buffer(const hlsl::ConstantBuffer& buffer
                                               : 0.1f + 0.9f * noise.unit());
           }
         }
-  }
-  auto bytes = build_uniform_block(block, [&values](const std::string& name) { return &values.at(name); });
-  return bytes ? std::move(*bytes) : std::vector<std::byte>(buffer.size);
+    return value;
+  });
 }
 
 TextureData seeded_texture(const TextureSlot& slot, uint32_t seed) {

@@ -7,6 +7,8 @@
 
 #include <fmt/format.h>
 
+#include "spirv/spirv_words.h"
+
 namespace xshade::harness::vk_support {
 
 EntryPointInfo reflect_entry_point(const std::vector<uint32_t>& words, ExecutionModel model,
@@ -33,19 +35,14 @@ EntryPointInfo reflect_entry_point(const std::vector<uint32_t>& words, Execution
   std::map<uint32_t, std::set<uint32_t>> function_calls;
   uint32_t entry_function = 0;
   uint32_t current_function = 0;
-  for (size_t at = 5; at < words.size();) {  // after the 5-word header
-    const uint32_t count = words[at] >> 16;
-    const uint32_t opcode = words[at] & 0xffffu;
-    if (count == 0 || at + count > words.size()) break;
-    const uint32_t* op = &words[at];
+  spirv::for_each_instruction(words, [&](uint32_t opcode, uint32_t count, const uint32_t* op) {
     if (opcode == kOpEntryPoint && count >= 4 && op[1] == static_cast<uint32_t>(model)) {
       // OpEntryPoint model id "name" interface-ids...
-      const char* text = reinterpret_cast<const char*>(&op[3]);
-      const size_t length = strnlen(text, (count - 3) * sizeof(uint32_t));
-      if (std::string(text, length) == name) {
+      const std::string entry_name = spirv::literal_string(&op[3], count - 3);
+      if (entry_name == name) {
         info.found = true;
         entry_function = op[2];
-        for (size_t i = 3 + length / 4 + 1; i < count; ++i) interface_ids.push_back(op[i]);
+        for (size_t i = 3 + spirv::literal_string_words(entry_name.size()); i < count; ++i) interface_ids.push_back(op[i]);
       }
     } else if (opcode == kOpDecorate && count >= 4 && op[2] == kDecorationLocation) {
       locations[op[1]] = op[3];
@@ -80,8 +77,7 @@ EntryPointInfo reflect_entry_point(const std::vector<uint32_t>& words, Execution
         for (uint32_t i = 1; i < count; ++i) function_operands[current_function].insert(op[i]);
       }
     }
-    at += count;
-  }
+  });
   for (uint32_t id : interface_ids) {
     auto location = locations.find(id);
     auto input = inputs.find(id);
