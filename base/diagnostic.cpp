@@ -30,7 +30,10 @@ std::string Error::to_string() const {
   std::string text;
   if (where.known()) text = where.to_string() + ": ";
   text += message;
-  for (const Diagnostic& diagnostic : diagnostics) text += "\n  " + diagnostic.to_string();
+  for (const Diagnostic& diagnostic : diagnostics) {
+    text += "\n  " + diagnostic.to_string();
+    if (!diagnostic.excerpt.empty()) text += "\n" + diagnostic.excerpt;
+  }
   return text;
 }
 

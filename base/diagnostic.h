@@ -22,6 +22,9 @@ struct Diagnostic {
   Severity severity = Severity::Error;
   SourceLocation where;
   std::string message;
+  // The source line and a caret under the column, each line indented, as a compiler prints them
+  // below the message; empty where the source is not at hand.
+  std::string excerpt = {};
 
   // "file:line:col: error: message", the form compilers print and editors jump to.
   std::string to_string() const;

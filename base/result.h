@@ -28,7 +28,7 @@ struct Error {
   std::vector<Diagnostic> diagnostics;  // details, e.g. every error of a failed compile
   ErrorKind kind = ErrorKind::UserInput;
 
-  // The message with its location, then one line per diagnostic.
+  // The message with its location, then each diagnostic on its own line, with its excerpt.
   std::string to_string() const;
 };
 

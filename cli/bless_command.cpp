@@ -49,7 +49,7 @@ int run_bless(const BlessOptions& options) {
     fmt::print(stderr, "xshade bless: {}\n", lanes.error().to_string());
     return kBadInput;
   }
-  auto folders = resolve_folders(options.folders, std::filesystem::current_path(), true);
+  auto folders = resolve_folders(options.folders, std::filesystem::current_path(), GoldenUse::Write);
   if (!folders) {
     fmt::print(stderr, "xshade bless: {}\n", folders.error().to_string());
     return kBadInput;
@@ -93,6 +93,20 @@ int run_bless(const BlessOptions& options) {
   const std::optional<std::string> lane = options.lane.empty() ? std::nullopt : std::optional(options.lane);
   const harness::FloatImage& image = checked.images.begin()->second;
   const std::string compared_lane = lane ? *lane : std::string(harness::lane_name(checked.images.begin()->first));
+  if (lane) {
+    // A lane's own golden is for a lane that differs from the common one, with the reason why.
+    auto common = goldens.find(result.scene, "");
+    if (common && *common) {
+      const harness::Comparison comparison = harness::compare_images(image, (*common)->image, checked.scene->compare);
+      if (comparison.verdict == harness::Verdict::Pass) {
+        fmt::print(stderr,
+                   "xshade bless: refused: {} on {} matches the common golden {} ({}); a lane's own golden is for a "
+                   "lane that differs from it, so nothing was written\n",
+                   result.scene, *lane, (*common)->path.string(), harness::describe_metrics(comparison.metrics));
+        return kBadInput;
+      }
+    }
+  }
   auto old = goldens.find(result.scene, compared_lane);
   if (!old) {
     fmt::print(stderr, "xshade bless: {}\n", old.error().to_string());

@@ -73,6 +73,7 @@ struct EvalOptions {
   LaneSelection selection;  // "all" or a list
   std::filesystem::path output_dir = ".";
   std::optional<uint32_t> seed;  // inputs from this seed instead of the defaults and white
+  bool allow_non_finite = false;  // NaN, Inf and negative output is reported, not a failure
 };
 int run_eval(const EvalOptions& options);
 

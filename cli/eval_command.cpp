@@ -8,6 +8,7 @@
 #include "cli/commands.h"
 #include "cli/lane_selection.h"
 #include "harness/render/evaluate.h"
+#include "harness/image/image_compare.h"
 #include "harness/image/image_io.h"
 
 namespace xshade::cli {
@@ -82,6 +83,12 @@ int run_eval(const EvalOptions& options) {
       exit_code = kBackendError;
     } else {
       fmt::print("{}: {}\n", name, path.string());
+    }
+    // A NaN, an Inf or a negative colour is a failure unless the shader is a test of such a hazard.
+    if (const harness::NonFiniteCount bad = harness::count_non_finite(*image); bad.total()) {
+      fmt::print("{}: {} NaN, {} Inf, {} negative values, first at ({}, {}){}\n", name, bad.nan, bad.inf, bad.negative,
+                 bad.first->first, bad.first->second, options.allow_non_finite ? " (allowed by --allow-nonfinite)" : "");
+      if (!options.allow_non_finite) exit_code = std::max<int>(exit_code, kTestFailed);
     }
     images.emplace(lane, std::move(*image));
   }

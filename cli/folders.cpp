@@ -1,5 +1,8 @@
 #include "cli/folders.h"
 
+#include "base/spelling.h"
+#include "harness/render/lanes.h"
+
 #include <algorithm>
 #include <cstdlib>
 #include <optional>
@@ -29,7 +32,7 @@ const OwnFolders& own_folders() {
   return folders;
 }
 
-Result<SceneFolders> resolve_folders(const FolderOptions& given, const fs::path& working_folder, bool need_golden) {
+Result<SceneFolders> resolve_folders(const FolderOptions& given, const fs::path& working_folder, GoldenUse golden) {
   std::optional<harness::ProjectFile> project;
   if (!given.no_project) {
     std::optional<fs::path> file = given.project;
@@ -44,6 +47,13 @@ Result<SceneFolders> resolve_folders(const FolderOptions& given, const fs::path&
   std::vector<fs::path> shaders = !given.shaders.empty() ? given.shaders
                                   : project                ? project->shaders
                                                            : std::vector<fs::path>{};
+  for (const fs::path& folder : shaders) {
+    std::error_code error;
+    if (!fs::is_directory(folder, error))
+      return fail(ErrorKind::Usage, "the shader folder " + folder.string() + " (" +
+                                        (given.shaders.empty() ? "the project file's shaders" : std::string("--shaders")) +
+                                        ") is not a folder");
+  }
   shaders.push_back(own.shaders);
   SceneFolders folders{{}, {}, harness::ShaderSearchPath(std::move(shaders)), project ? project->path : fs::path(), false};
 
@@ -57,11 +67,17 @@ Result<SceneFolders> resolve_folders(const FolderOptions& given, const fs::path&
   } else if (own_scenes) {
     folders.golden = own.golden;
     folders.own_golden = true;
-  } else if (need_golden) {
+  } else if (golden != GoldenUse::None) {
     return fail("the scenes in " + folders.scenes.string() +
                 " are not xshade's own, so their goldens cannot be either: give --golden DIR" +
                 (project ? " or golden = \"...\" in " + project->path.string() : std::string()));
   }
+  std::error_code error;
+  if (golden == GoldenUse::Read && !fs::is_directory(folders.golden, error))
+    return fail(ErrorKind::Usage, "the golden folder " + folders.golden.string() + " (" +
+                                      (!given.golden.empty() ? std::string("--golden") : "the project file's golden") +
+                                      ") does not exist: name the folder that holds MANIFEST.toml, or create the "
+                                      "goldens with xshade bless");
   return folders;
 }
 
@@ -88,7 +104,18 @@ Result<std::vector<fs::path>> scene_files(const std::vector<std::string>& scenes
     if (scene.empty() || as_given.has_parent_path() || scene == "." || scene == "..")
       return fail("'" + scene + "' is not a scene name: a name is a file name in " + folders.scenes.string() +
                   " without .toml; give a path ending in .toml for a file elsewhere");
-    files.push_back(folders.scenes / (scene + ".toml"));
+    const fs::path file = folders.scenes / (scene + ".toml");
+    std::error_code error;
+    if (!fs::exists(file, error)) {
+      std::vector<std::string> known;
+      for (fs::directory_iterator it(folders.scenes, error), end; !error && it != end; it.increment(error))
+        if (it->path().extension() == ".toml") known.push_back(it->path().stem().string());
+      std::string message = "no scene '" + scene + "' in " + folders.scenes.string();
+      if (auto near = nearest(scene, known)) message += "; did you mean '" + *near + "'?";
+      if (harness::parse_lane(scene)) message += " (lanes are chosen with --lane " + scene + ", or --lane gl,vk)";
+      return fail(ErrorKind::Usage, message);
+    }
+    files.push_back(file);
   }
   return files;
 }

@@ -40,13 +40,18 @@ struct SceneFolders {
   bool own_golden = false;             // the goldens are xshade's own (so the scenes must be too)
 };
 
+// What a verb does with the golden folder: nothing (info, run --plan), read it (run), or write
+// it (bless, which creates it).
+enum class GoldenUse { None, Read, Write };
+
 // Resolves each folder: the command line's, else the project file's, else xshade's own; a
-// broken project file is an error. The goldens of a user's scenes must be the user's too: when
-// the scenes are not xshade's own and no golden folder is given, that is an error if
-// `need_golden` (blessing would otherwise write into xshade's own goldens), else `golden` stays
-// empty.
+// broken project file is an error, and so is a shader folder that does not exist. The goldens
+// of a user's scenes must be the user's too: when the scenes are not xshade's own and no golden
+// folder is given, that is an error unless `golden` is None (blessing would otherwise write into
+// xshade's own goldens), and then `golden` stays empty. A golden folder to read must exist: a
+// misspelt one must not pass every scene as "no golden".
 Result<SceneFolders> resolve_folders(const FolderOptions& given, const std::filesystem::path& working_folder,
-                                     bool need_golden);
+                                     GoldenUse golden);
 
 // The scene files named: each a scene name in `folders.scenes` (a file name without .toml) or a
 // path to a .toml file; none means every scene in the folder, by name. A name that is not a plain

@@ -35,7 +35,7 @@ int run_info(const LaneSelection& selection) {
   const OwnFolders& own = own_folders();
   fmt::print("xshade {}: shader library {} ({})\n", XSHADE_VERSION, own.shaders.string(),
              own.installed ? "installed" : "the source tree of this build");
-  auto folders = resolve_folders({}, std::filesystem::current_path(), false);
+  auto folders = resolve_folders({}, std::filesystem::current_path(), GoldenUse::None);
   if (!folders) {
     fmt::print(stderr, "xshade info: {}\n", folders.error().to_string());
     return kBadInput;

@@ -1,6 +1,12 @@
 // xshade: compile shaders once, render them on every lane, and compare the images.
 #include <CLI/CLI.hpp>
 
+#include <algorithm>
+#include <cstdio>
+#include <optional>
+
+#include "base/spelling.h"
+
 #include "cli/commands.h"
 
 namespace {
@@ -14,8 +20,11 @@ void add_gl_platform_option(CLI::App& command, std::string& platform) {
 }
 
 void add_lane_options(CLI::App& command, xshade::cli::LaneSelection& selection) {
-  command.add_option("--lane", selection.lanes, "Only these lanes (gl, vk, vk-hlsl); default: all")
-      ->type_name("LANE");
+  // One lane per --lane (repeat it, or list them with commas): a bare word after it is a scene name.
+  command.add_option("--lane", selection.lanes, "Only these lanes (gl, vk, vk-hlsl): --lane gl,vk or --lane gl --lane vk; default: all")
+      ->type_name("LANE")
+      ->allow_extra_args(false)
+      ->delimiter(',');
   command.add_flag("--vk-validation", selection.validation,
                    "Enable the Vulkan validation layer (when installed); any message fails the run");
   add_gl_platform_option(command, selection.gl_platform);
@@ -33,12 +42,49 @@ void add_folder_options(CLI::App& command, xshade::cli::FolderOptions& folders) 
   command.add_option("--shaders", folders.shaders,
                      "A folder of shaders (materials/, post/, include/), searched before xshade's shader library; "
                      "repeat for more (default: the project file's)")
-      ->type_name("DIR");
+      ->type_name("DIR")
+      ->allow_extra_args(false);
   command.add_option("--project", folders.project,
                      "The project file (default: xshade.toml in the working folder or above it, up to the "
                      "repository's root)")
       ->type_name("FILE");
   command.add_flag("--no-project", folders.no_project, "Read no project file");
+}
+
+// "; did you mean 'bless'?" for a word that is a typo of one of `names`, else empty.
+std::string did_you_mean(const std::string& word, const std::vector<std::string>& names) {
+  auto near = xshade::nearest(word, names);
+  return near ? "; did you mean '" + *near + "'?" : std::string();
+}
+
+// A misspelt verb or option, named with the nearest one the command has; nullopt when the
+// error is another kind, which CLI11 reports itself.
+std::optional<std::string> misspelling(const CLI::App& app, const CLI::ParseError& error, int argc, char** argv) {
+  if (argc > 1 && argv[1][0] != '-') {
+    std::vector<std::string> verbs;
+    for (const CLI::App* verb : app.get_subcommands([](const CLI::App*) { return true; })) verbs.push_back(verb->get_name());
+    if (std::find(verbs.begin(), verbs.end(), argv[1]) == verbs.end()) {
+      std::string list;
+      for (const std::string& verb : verbs) list += (list.empty() ? "" : ", ") + verb;
+      return "xshade: unknown command '" + std::string(argv[1]) + "'" + did_you_mean(argv[1], verbs) +
+             " (commands: " + list + "; xshade --help)";
+    }
+  }
+  if (dynamic_cast<const CLI::ExtrasError*>(&error) == nullptr) return std::nullopt;
+  const CLI::App* command = &app;
+  for (const CLI::App* verb : app.get_subcommands()) command = verb;
+  std::vector<std::string> options;
+  for (const CLI::Option* option : command->get_options())
+    for (const std::string& name : option->get_lnames()) options.push_back("--" + name);
+  for (int i = 2; i < argc; ++i) {
+    const std::string word = argv[i];
+    if (!word.starts_with("--")) continue;
+    const std::string name = word.substr(0, word.find('='));
+    if (std::find(options.begin(), options.end(), name) != options.end()) continue;
+    return "xshade " + command->get_name() + ": unknown option '" + name + "'" + did_you_mean(name, options) + " (xshade " +
+           command->get_name() + " --help)";
+  }
+  return std::nullopt;
 }
 
 }  // namespace
@@ -49,6 +95,7 @@ int main(int argc, char** argv) {
                "Exit codes: 0 pass, 1 a check failed, 2 bad input or usage, 3 backend or internal error.",
                "xshade"};
   app.require_subcommand(1);
+  app.set_version_flag("--version", std::string("xshade ") + XSHADE_VERSION);
 
   LaneSelection info_selection;
   CLI::App* info = app.add_subcommand("info", "Print each lane's driver (route, renderer, API, Mesa and LLVM versions) and the folders a run here "
@@ -102,9 +149,10 @@ int main(int argc, char** argv) {
   CompileOptions compile_options;
   CLI::App* compile = app.add_subcommand("compile", "Compile one shader to GLSL (gl, vk), SPIR-V (spirv, vk-hlsl) or reflection");
   compile->add_option("file", compile_options.file, "The hlsl_like source")->required()->type_name("FILE");
-  compile->add_option("-I", compile_options.include_dirs, "Search DIR for #include files")->type_name("DIR");
+  compile->add_option("-I", compile_options.include_dirs, "Search DIR for #include files")->type_name("DIR")->allow_extra_args(false);
   compile->add_option("-D", compile_options.defines, "Enable KEYWORD (a variant), or define KEY=VALUE")
-      ->type_name("KEYWORD");
+      ->type_name("KEYWORD")
+      ->allow_extra_args(false);
   compile->add_option("--target", compile_options.target, "gl, vk (GLSL text), spirv or vk-hlsl (SPIR-V)")
       ->check(CLI::IsMember({"gl", "vk", "spirv", "vk-hlsl"}))
       ->capture_default_str();
@@ -131,13 +179,15 @@ int main(int argc, char** argv) {
   add_gl_platform_option(*eval, eval_options.selection.gl_platform);
   eval->add_option("--lane", eval_options.selection.lanes, "gl, vk, vk-hlsl or all (default: all)")
       ->type_name("LANE");
-  eval->add_option("-I", eval_options.include_dirs, "Search DIR for #include files")->type_name("DIR");
-  eval->add_option("-D", eval_options.keywords, "Enable KEYWORD")->type_name("KEYWORD");
+  eval->add_option("-I", eval_options.include_dirs, "Search DIR for #include files")->type_name("DIR")->allow_extra_args(false);
+  eval->add_option("-D", eval_options.keywords, "Enable KEYWORD")->type_name("KEYWORD")->allow_extra_args(false);
   eval->add_option("-o", eval_options.output_dir, "Folder for the EXR images")->type_name("DIR")->capture_default_str();
   eval->add_option("--seed", eval_options.seed,
                    "Fill every constant buffer and texture from seed N (values in ranges shaders mean, noise of each "
                    "texture's declared shape) instead of the defaults and a white texel")
       ->type_name("N");
+  eval->add_flag("--allow-nonfinite", eval_options.allow_non_finite,
+                 "NaN, Inf and negative output values are expected (a test of a hazard): print their counts, do not fail");
 
   StabilityOptions stability_options;
   CLI::App* stability = app.add_subcommand(
@@ -191,6 +241,10 @@ int main(int argc, char** argv) {
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& error) {
+    if (auto message = misspelling(app, error, argc, argv)) {
+      std::fprintf(stderr, "%s\n", message->c_str());
+      return kBadInput;
+    }
     const int code = app.exit(error);
     return code == 0 ? kPass : kBadInput;
   }

@@ -6,6 +6,7 @@
 #include <chrono>
 #include <cstdlib>
 #include <ctime>
+#include <map>
 #include <system_error>
 
 #include "cli/commands.h"
@@ -36,6 +37,21 @@ Result<std::pair<size_t, size_t>> parse_shard(const std::string& shard) {
   return std::pair{index, count};
 }
 
+// The progress line shows a lane's first line; a compile's diagnostics with their carets (or any
+// longer message) follow in full on stderr, where CI and ctest's output show them. Lanes that
+// failed alike say so instead of repeating it.
+void print_lane_details(const harness::SceneResult& scene) {
+  std::map<std::string, std::string> first_lane_with;
+  for (const harness::LaneResult& lane : scene.lanes) {
+    if (lane.message.find('\n') == std::string::npos) continue;
+    auto [seen, first] = first_lane_with.emplace(lane.message, lane.lane);
+    if (first)
+      fmt::print(stderr, "xshade run: {} on {}: {}\n", scene.scene, lane.lane, lane.message);
+    else
+      fmt::print(stderr, "xshade run: {} on {}: as on {}\n", scene.scene, lane.lane, seen->second);
+  }
+}
+
 }  // namespace
 
 int run_run(const RunOptions& options) {
@@ -45,7 +61,7 @@ int run_run(const RunOptions& options) {
     fmt::print(stderr, "xshade run: {}\n", lanes.error().to_string());
     return kBadInput;
   }
-  auto folders = resolve_folders(options.folders, fs::current_path(), !options.plan_only);
+  auto folders = resolve_folders(options.folders, fs::current_path(), options.plan_only ? GoldenUse::None : GoldenUse::Read);
   if (!folders) {
     fmt::print(stderr, "xshade run: {}\n", folders.error().to_string());
     return kBadInput;
@@ -65,6 +81,11 @@ int run_run(const RunOptions& options) {
     std::vector<fs::path> mine;
     for (size_t i = 0; i < files->size(); ++i)
       if (i % shard->second == shard->first - 1) mine.push_back((*files)[i]);
+    if (mine.empty()) {
+      fmt::print(stderr, "xshade run: shard {} holds no scene: there are {} scenes, so N must be at most {}\n",
+                 options.shard, files->size(), files->size());
+      return kBadInput;
+    }
     *files = std::move(mine);
   }
 
@@ -92,6 +113,7 @@ int run_run(const RunOptions& options) {
     }
     if (!checked.result.message.empty())
       fmt::print(stderr, "xshade run: {}: {}\n", checked.result.scene, checked.result.message);
+    print_lane_details(checked.result);
     results.scenes.push_back(std::move(checked.result));
   }
   results.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

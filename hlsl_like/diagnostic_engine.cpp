@@ -49,7 +49,23 @@ std::string in_quotes(std::string_view text) { return "'" + clipped(text) + "'";
 
 std::string DiagnosticEngine::render(size_t index) const {
   std::string text = diagnostics_.at(index).to_string();
-  const Loc loc = locs_[index];
+  const std::string shown = excerpt(index);
+  return shown.empty() ? text : text + "\n" + shown;
+}
+
+std::vector<Diagnostic> DiagnosticEngine::errors_with_excerpts() const {
+  std::vector<Diagnostic> errors;
+  for (size_t i = 0; i < diagnostics_.size(); ++i) {
+    if (diagnostics_[i].severity != Severity::Error) continue;
+    errors.push_back(diagnostics_[i]);
+    errors.back().excerpt = excerpt(i);
+  }
+  return errors;
+}
+
+std::string DiagnosticEngine::excerpt(size_t index) const {
+  std::string text;
+  const Loc loc = locs_.at(index);
   std::string_view line = sources_.line_text(loc.file, loc.line);
   if (line.empty() || loc.column == 0) return text;
   // A very long line is shown around the column, so that a 1 MiB line prints a readable excerpt.
@@ -70,7 +86,7 @@ std::string DiagnosticEngine::render(size_t index) const {
       append_printable(shown, line[i]);
   }
   if (caret == std::string::npos) caret = shown.size() + (caret_byte >= end && caret_byte <= line.size() ? caret_byte - end : 0);
-  text += "\n    ";
+  text += "    ";
   if (start > 0) text += "...";
   text += shown;
   text += "\n    ";

@@ -44,8 +44,13 @@ class DiagnosticEngine {
   std::string render(size_t index) const;
   static constexpr size_t kTabWidth = 8;
   std::string render_all() const;
+  // The errors, each with its excerpt (Diagnostic::excerpt): what a failed compile reports.
+  std::vector<Diagnostic> errors_with_excerpts() const;
 
  private:
+  // The source line and caret of diagnostic `index`, as render shows them below its message.
+  std::string excerpt(size_t index) const;
+
   const SourceManager& sources_;
   std::vector<Diagnostic> diagnostics_;
   std::vector<Loc> locs_;  // beside diagnostics_, for the source line of each

@@ -365,6 +365,18 @@ bool constant_components(const Expr* expr, std::vector<double>& out) {
   }
 }
 
+// A texture's Default annotation must name one of the scene format's built-ins, which is what
+// the renderer can make of it.
+void check_texture_default(const VarDecl& var, DiagnosticEngine& diagnostics) {
+  for (const Annotation& annotation : var.annotations) {
+    if (annotation.name != "Default") continue;
+    const auto& known = kTextureDefaults;
+    if (std::find(std::begin(known), std::end(known), annotation.text) == std::end(known))
+      diagnostics.error(annotation.loc, "Default of texture " + in_quotes(var.name) +
+                                            " must be \"white\", \"black\", \"checker\" or \"normal\" (a string)");
+  }
+}
+
 Property property_of(const VarDecl& var) {
   Property property;
   property.name = var.name;
@@ -375,6 +387,7 @@ Property property_of(const VarDecl& var) {
     if (annotation.name == "UIName" && !annotation.text.empty()) property.display_name = annotation.text;
     if (annotation.name == "UIMin") property.min = literal_value(annotation.value.get());
     if (annotation.name == "UIMax") property.max = literal_value(annotation.value.get());
+    if (annotation.name == "Default" && property.is_texture) property.default_texture = annotation.text;
   }
   std::vector<double> components;
   if (var.initializer && constant_components(var.initializer.get(), components)) property.default_value = components;
@@ -515,6 +528,7 @@ Reflection reflect(const TranslationUnit& unit, const EntryPoints& entry_points,
         pending_textures.push_back({reflection.textures.size(), &var});
         reflection.textures.push_back(std::move(texture));
         reflection.properties.push_back(property_of(var));
+        check_texture_default(var, diagnostics);
       } else if (kind == TypeKind::ConstantBuffer) {
         // ConstantBuffer<S> name: a constant buffer named `name` holding S's fields.
         ConstantBuffer buffer;
@@ -721,6 +735,7 @@ std::string reflection_json(const Reflection& reflection) {
     if (p.min) property["min"] = *p.min;
     if (p.max) property["max"] = *p.max;
     if (!p.default_value.empty()) property["default"] = p.default_value;
+    if (!p.default_texture.empty()) property["default"] = p.default_texture;
     json["properties"].push_back(property);
   }
   json["keywords"] = nlohmann::json::array();

@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "hlsl_like/ast.h"
@@ -98,7 +99,13 @@ struct Property {
   std::optional<double> max;   // UIMax
   std::vector<double> default_value;  // the initializer's components, when constant
   bool is_texture = false;
+  // A texture's `<string Default = "white";>`: what it samples where a scene gives it nothing
+  // (Unity's `= "white" {}`). One of kTextureDefaults; empty when it declares none.
+  std::string default_texture;
 };
+
+// The defaults a texture may declare: the scene format's built-in textures (docs/scenes.md).
+inline constexpr std::string_view kTextureDefaults[] = {"white", "black", "checker", "normal"};
 
 // Keywords from `#pragma multi_compile A B C` (every combination is a variant) and
 // `#pragma shader_feature A B` (only the combinations a scene asks for). `_` means "none".

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 
+#include "base/spelling.h"
 #include "hlsl_like/sema_internal.h"
 
 namespace xshade::hlsl {
@@ -14,21 +15,6 @@ namespace sema_detail {
 namespace {
 
 bool is_unsized_array(const Type& type) { return type.kind() == TypeKind::Array && type.array_length() == 0; }
-
-size_t edit_distance(const std::string& a, const std::string& b) {
-  std::vector<size_t> row(b.size() + 1);
-  for (size_t j = 0; j <= b.size(); ++j) row[j] = j;
-  for (size_t i = 1; i <= a.size(); ++i) {
-    size_t diagonal = row[0];
-    row[0] = i;
-    for (size_t j = 1; j <= b.size(); ++j) {
-      const size_t above = row[j];
-      row[j] = std::min({row[j] + 1, row[j - 1] + 1, diagonal + (a[i - 1] == b[j - 1] ? 0 : 1)});
-      diagonal = above;
-    }
-  }
-  return row[b.size()];
-}
 
 // Whether control cannot fall off the end of `stmt` (returns, discards, or loops forever).
 bool contains_break(const Stmt* stmt, int depth);

@@ -84,7 +84,8 @@ std::filesystem::path GoldenStore::image_path(const std::string& scene, const st
 
 Result<std::optional<GoldenImage>> GoldenStore::find(const std::string& scene, const std::string& lane) const {
   if (Result<void> valid = check_scene_name(scene); !valid) return fail(valid.error());
-  if (Result<void> valid = check_lane_name(lane); !valid) return fail(valid.error());
+  if (!lane.empty())
+    if (Result<void> valid = check_lane_name(lane); !valid) return fail(valid.error());
   Result<GoldenManifest> manifest = read_golden_manifest(manifest_path());
   if (!manifest) return fail(manifest.error());
 

@@ -38,7 +38,7 @@ class GoldenStore {
   // The golden `lane` is compared against: its own image when the manifest explains one, else
   // the common image; nullopt when neither exists. Errors: a lane image the manifest does not
   // list (an unexplained lane golden is not trusted), a manifest entry without its file, an
-  // unreadable image or manifest.
+  // unreadable image or manifest. With `lane` empty, the common image alone.
   Result<std::optional<GoldenImage>> find(const std::string& scene, const std::string& lane) const;
 
   // Writes `image` as the golden of `scene` (for every lane when `lane` is nullopt) and records

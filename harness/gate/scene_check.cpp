@@ -2,6 +2,8 @@
 
 #include <chrono>
 
+#include <fmt/format.h>
+
 #include "harness/assets/environment.h"
 #include "harness/image/image_compare.h"
 #include "harness/image/image_io.h"
@@ -18,6 +20,12 @@ double seconds_since(std::chrono::steady_clock::time_point start) {
 }
 
 std::string first_line(const std::string& text) { return text.substr(0, text.find('\n')); }
+
+// Whose fault a failed render is: a scene's or a shader's mistake is the user's (exit 2), a
+// driver's or xshade's is a crash (exit 3).
+Verdict verdict_of(const Error& error) {
+  return error.kind == ErrorKind::UserInput ? Verdict::Error : Verdict::Crash;
+}
 
 // Records a layer; a deciding one sets the lane's verdict (the first failing one its message).
 // A comparison layer that does not decide is shown but judges nothing: a per-pixel failure that
@@ -124,14 +132,14 @@ void SceneChecker::check_lane(const Scene& scene, const Plan& plan, const Enviro
   result.driver = (*backend)->driver_info();
 
   auto rendered = render_scene(**backend, scene, plan, variants, environment, {.keep_pass_images = options_.pass_images});
-  if (!rendered) return finish(Verdict::Crash, rendered.error().to_string());
+  if (!rendered) return finish(verdict_of(rendered.error()), rendered.error().to_string());
   for (const PassTiming& timing : rendered->timings) result.timings.push_back({timing.pass, timing.milliseconds});
   for (const auto& [pass, image] : rendered->pass_images)
     write_image(image, scene.name, "passes/" + pass + "." + result.lane + ".exr", true);
 
   // The same scene again on the same driver must give the same bits.
   auto again = render_scene(**backend, scene, plan, variants, environment);
-  if (!again) return finish(Verdict::Crash, again.error().to_string());
+  if (!again) return finish(verdict_of(again.error()), again.error().to_string());
   const bool deterministic = bitwise_equal(rendered->image, again->image);
   const ImageDifference drift = max_difference(rendered->image, again->image);
 
@@ -155,6 +163,16 @@ void SceneChecker::check_lane(const Scene& scene, const Plan& plan, const Enviro
       add_layer(result, {"golden", Verdict::Error, golden.error().to_string()});
     } else if (!*golden) {
       add_layer(result, {"golden", Verdict::Fail, options_.goldens->missing_message(scene.name, result.lane)});
+    } else if ((*golden)->image.width != image.width || (*golden)->image.height != image.height) {
+      // The scene's size changed since the golden was blessed: nothing to compare pixel by pixel.
+      const FloatImage& old = (*golden)->image;
+      add_layer(result, {"golden", Verdict::Error,
+                         fmt::format("{} is {}x{} and the scene renders {}x{}: its size changed since it was blessed; "
+                                     "review the new image and bless it with {}",
+                                     (*golden)->path.string(), old.width, old.height, image.width, image.height,
+                                     GoldenStore::bless_command(scene.name, (*golden)->lane_specific
+                                                                                ? std::optional(result.lane)
+                                                                                : std::nullopt))});
     } else {
       const GoldenImage& reference = **golden;
       result.golden = write_image(reference.image, scene.name, result.lane + ".golden.png");

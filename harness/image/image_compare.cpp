@@ -10,6 +10,7 @@
 #include <OpenImageIO/imagebuf.h>
 #include <OpenImageIO/imagebufalgo.h>
 
+#include "harness/image/image_io.h"
 #include "harness/image/srgb8_encoder.h"
 
 namespace xshade::harness {
@@ -77,11 +78,6 @@ float heat_position(uint32_t steps, uint32_t tolerance) {
   const uint32_t span = 255 - tolerance;
   if (span < 2) return 0.5f;
   return 0.5f + 0.5f * float(std::log(double(steps - tolerance)) / std::log(double(span)));
-}
-
-float srgb_to_linear(float encoded) {
-  encoded = std::clamp(encoded, 0.0f, 1.0f);
-  return encoded <= 0.04045f ? encoded / 12.92f : float(std::pow((encoded + 0.055) / 1.055, 2.4));
 }
 
 // The heat map's colour for each difference 0..255: OpenImageIO maps a 256-pixel ramp once, so

@@ -27,20 +27,21 @@ Result<void> write(const std::filesystem::path& path, const OIIO::ImageSpec& spe
   return {};
 }
 
+double srgb_decode(double c) { return c <= 0.04045 ? c / 12.92 : std::pow((c + 0.055) / 1.055, 2.4); }
+
 // 8-bit sRGB decoding, exact per code, computed once.
 const std::array<float, 256>& srgb_decode_table() {
   static const std::array<float, 256> table = [] {
     std::array<float, 256> values{};
-    for (int i = 0; i < 256; ++i) {
-      double c = i / 255.0;
-      values[i] = float(c <= 0.04045 ? c / 12.92 : std::pow((c + 0.055) / 1.055, 2.4));
-    }
+    for (int i = 0; i < 256; ++i) values[i] = float(srgb_decode(i / 255.0));
     return values;
   }();
   return table;
 }
 
 }  // namespace
+
+float srgb_to_linear(float encoded) { return float(srgb_decode(std::clamp(double(encoded), 0.0, 1.0))); }
 
 uint8_t linear_to_srgb8(float linear) {
   if (!(linear > 0.0f)) return 0;  // also NaN
@@ -80,7 +81,10 @@ Result<FloatImage> read_image(const std::filesystem::path& path, bool srgb) {
   if (spec.width <= 0 || spec.height <= 0 || spec.nchannels <= 0)
     return fail(oiio_error("cannot read image", path, "it has no pixels"));
   const int channels = spec.nchannels;
+  // An integer file's colour is sRGB-encoded whatever its depth (a 16-bit PNG too); 8 bits
+  // decode through the exact table.
   const bool encoded = spec.format == OIIO::TypeDesc::UINT8;
+  const bool integer = !spec.format.is_floating_point();
 
   FloatImage image(uint32_t(spec.width), uint32_t(spec.height));
   std::vector<float> pixels(size_t(spec.width) * spec.height * channels);
@@ -94,7 +98,7 @@ Result<FloatImage> read_image(const std::filesystem::path& path, bool srgb) {
   for (size_t p = 0; p < size_t(spec.width) * spec.height; ++p) {
     auto value = [&](int c, bool colour) {
       size_t i = p * channels + c;
-      if (!encoded) return pixels[i];
+      if (!encoded) return integer && colour && srgb ? srgb_to_linear(pixels[i]) : pixels[i];
       return colour && srgb ? srgb8_to_linear(bytes[i]) : bytes[i] / 255.0f;
     };
     float* out = &image.rgba[p * 4];

@@ -17,9 +17,12 @@ float srgb8_to_linear(uint8_t encoded);
 Result<void> write_png(const FloatImage& image, const std::filesystem::path& path);
 // Every float as it is, NaN and Inf included.
 Result<void> write_exr(const FloatImage& image, const std::filesystem::path& path);
-// Reads any format OpenImageIO knows into RGBA float. 8-bit files are taken as sRGB-encoded
-// and decoded to linear, so that read_image(write_png(x)) is x up to 8-bit quantisation; with
-// `srgb` false their colour is linear data (a LUT, a mask, noise) and reads as byte / 255.
+// sRGB's decoding of an encoded value in [0, 1] (clamped), to linear.
+float srgb_to_linear(float encoded);
+// Reads any format OpenImageIO knows into RGBA float. Integer files (8-bit, 16-bit) are taken as
+// sRGB-encoded and decoded to linear, so that read_image(write_png(x)) is x up to 8-bit
+// quantisation; with `srgb` false their colour is linear data (a LUT, a mask, noise) and reads as
+// code / max code. Float files (EXR, HDR) are linear.
 Result<FloatImage> read_image(const std::filesystem::path& path, bool srgb = true);
 
 }  // namespace xshade::harness

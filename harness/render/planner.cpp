@@ -4,6 +4,7 @@
 #include <map>
 #include <set>
 
+#include "harness/render/scene_contract.h"
 #include "hlsl_like/compiler.h"
 
 namespace xshade::harness {
@@ -21,32 +22,35 @@ struct SourceFacts {
   std::vector<hlsl::KeywordSet> keyword_sets;
   std::vector<hlsl::PassDeclaration> passes;  // of a post effect
   std::vector<std::string> vertex_inputs;     // the semantics the vertex entry reads, canonical
+  ShaderNames names;                          // what the variant offers a scene by name
 };
 
 class SourceReader {
  public:
   explicit SourceReader(const ShaderSearchPath& shaders) : shaders_(shaders) {}
 
-  // Reads `library_path` with `keywords` (pass declarations may depend on them).
-  Result<SourceFacts> read(const std::string& library_path, const std::vector<std::string>& keywords, bool post) {
+  // Reads `library_path` with `keywords` (pass declarations may depend on them); with
+  // `pass_entry`, as that post pass's variant.
+  Result<SourceFacts> read(const std::string& library_path, const std::vector<std::string>& keywords, bool post,
+                           const std::string& pass_entry = {}) {
     auto path = shaders_.find(library_path);
     if (!path) return fail(path.error());
     hlsl::CompileOptions options;
     options.include_dirs = shaders_.folders();
     options.keywords = keywords;
+    options.pass_fragment_entry = pass_entry;
     auto module = hlsl::compile_file(*path, options);
     SourceFacts facts;
     facts.path = *path;
     if (post) facts.passes = module->passes;
     if (!module->ok()) {
-      Error error{"'" + library_path + "' does not compile", {path->string(), 0, 0}, {}};
-      for (const Diagnostic& d : module->diagnostics.diagnostics())
-        if (d.severity == Severity::Error) error.diagnostics.push_back(d);
-      return fail(std::move(error));
+      return fail(Error{"'" + library_path + "' does not compile", {path->string(), 0, 0},
+                        module->diagnostics.errors_with_excerpts()});
     }
     if (post && facts.passes.empty())
       return fail("post effect '" + library_path + "' declares no passes (#pragma pass)", {path->string(), 0, 0});
     facts.keyword_sets = module->reflection.keyword_sets;
+    facts.names = shader_names(library_path, module->reflection);
     for (const hlsl::StageVariable& input : module->reflection.vertex_inputs) facts.vertex_inputs.push_back(input.semantic);
     return facts;
   }
@@ -112,6 +116,9 @@ Result<Plan> plan_scene(const Scene& scene, const ShaderSearchPath& shaders) {
 
   plan.instances = expand_instances(scene);
   std::map<std::string, SourceFacts> materials;
+  std::vector<ShaderNames> variant_names;  // per variant of the scene pass
+  ContractProblems contract;
+  std::map<size_t, std::map<std::string, TextureRef>> object_defaults;  // by object index
   for (const ObjectInstance& instance : plan.instances) {
     auto known = materials.find(instance.material);
     if (known == materials.end()) {
@@ -126,15 +133,28 @@ Result<Plan> plan_scene(const Scene& scene, const ShaderSearchPath& shaders) {
     const size_t variants_before = plan.variants.size();
     const size_t variant = add_variant(plan, std::move(request));
     plan.instance_variant.push_back(variant);
-    if (plan.variants.size() == variants_before) continue;
-    // The vertex inputs depend on the keywords: the variant's own are read once more.
-    auto facts = reader.read(instance.material, keywords, false);
-    if (!facts) return fail(facts.error());
-    for (const std::string& semantic : facts->vertex_inputs)
-      if (!meshes_supply(semantic))
-        plan.variant_notes[variant].push_back("vertex input " + semantic + " is not in the meshes; the shader reads zeros");
+    if (plan.variants.size() != variants_before) {
+      // The vertex inputs and the names depend on the keywords: the variant's own are read once more.
+      auto facts = reader.read(instance.material, keywords, false);
+      if (!facts) return fail(facts.error());
+      for (const std::string& semantic : facts->vertex_inputs)
+        if (!meshes_supply(semantic))
+          plan.variant_notes[variant].push_back("vertex input " + semantic + " is not in the meshes; the shader reads zeros");
+      variant_names.resize(plan.variants.size());
+      variant_names[variant] = std::move(facts->names);
+    }
+    // Each object once: its instances share its material, keywords and names.
+    if (!object_defaults.count(instance.object_index)) {
+      const SceneObject& object = scene.objects[instance.object_index];
+      const size_t before = contract.notes.size();
+      check_keywords(object.keywords, object.where, known->second.names, "material '" + instance.material + "'", contract);
+      object_defaults[instance.object_index] = check_object(object, variant_names[variant], contract);
+      for (size_t n = before; n < contract.notes.size(); ++n) plan.variant_notes[variant].push_back(contract.notes[n]);
+    }
   }
-  if (!plan.instances.empty()) plan.passes.push_back({PlannedPass::Kind::Scene, "scene", 0, {}, 0});
+  for (ObjectInstance& instance : plan.instances)
+    for (const auto& [name, ref] : object_defaults[instance.object_index]) instance.textures.emplace(name, ref);
+  if (!plan.instances.empty()) plan.passes.push_back({PlannedPass::Kind::Scene, "scene", 0, {}, 0, {}});
 
   for (size_t e = 0; e < scene.post.size(); ++e) {
     const PostEffect& effect = scene.post[e];
@@ -143,15 +163,37 @@ Result<Plan> plan_scene(const Scene& scene, const ShaderSearchPath& shaders) {
     const std::vector<std::string> keywords = variant_keywords(facts->keyword_sets, effect.keywords);
     used_combinations[effect.effect].insert(keywords);
     possible_combinations[effect.effect] = combinations(facts->keyword_sets);
+    check_keywords(effect.keywords, effect.where, facts->names, "post effect '" + effect.effect + "'", contract);
+    std::vector<PassNames> pass_names;
     for (const hlsl::PassDeclaration& declaration : facts->passes) {
+      auto pass_facts = reader.read(effect.effect, effect.keywords, true, declaration.entry);
+      if (!pass_facts) return fail(pass_facts.error());
+      pass_names.push_back({declaration, std::move(pass_facts->names)});
+    }
+    const size_t notes_before = contract.notes.size();
+    const std::vector<std::map<std::string, TextureRef>> pass_defaults = check_effect(effect, pass_names, contract);
+    for (size_t d = 0; d < facts->passes.size(); ++d) {
+      const hlsl::PassDeclaration& declaration = facts->passes[d];
       PlannedPass pass;
       pass.kind = PlannedPass::Kind::Post;
       pass.name = effect_name(effect.effect) + "." + declaration.name;
       pass.effect = e;
       pass.declaration = declaration;
       pass.variant = add_variant(plan, {facts->path, effect.effect, keywords, declaration.entry});
+      pass.default_textures = pass_defaults[d];
       plan.passes.push_back(std::move(pass));
     }
+    for (size_t n = notes_before; n < contract.notes.size(); ++n)
+      plan.variant_notes[plan.passes.back().variant].push_back(contract.notes[n]);
+  }
+  if (!contract.errors.empty()) {
+    std::stable_sort(contract.errors.begin(), contract.errors.end(), [](const Diagnostic& a, const Diagnostic& b) {
+      return std::pair(a.where.line, a.where.column) < std::pair(b.where.line, b.where.column);
+    });
+    const Diagnostic& first = contract.errors.front();
+    Error error{first.message, first.where, {}};
+    if (contract.errors.size() > 1) error.diagnostics = contract.errors;
+    return fail(std::move(error));
   }
 
   for (const auto& [source, used] : used_combinations) {

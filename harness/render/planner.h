@@ -3,6 +3,7 @@
 #pragma once
 
 #include <filesystem>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -32,6 +33,8 @@ struct PlannedPass {
   size_t effect = 0;  // Post: index into Scene::post
   hlsl::PassDeclaration declaration;  // Post
   size_t variant = 0;  // Post: index into Plan::variants
+  // Post: textures the pass samples that nothing gives, from the shader's declared defaults.
+  std::map<std::string, TextureRef> default_textures;
 };
 
 struct Plan {
@@ -46,8 +49,10 @@ struct Plan {
 };
 
 // Plans `scene` against the shader folders. Reads each source the scene names (the front end
-// only: keyword sets and pass declarations); fails with the front end's diagnostics when one
-// does not compile, or when a source is in none of the folders.
+// only: keyword sets, pass declarations and the names each variant has); fails with the front
+// end's diagnostics when one does not compile, or when a source is in none of the folders, and
+// with every breach of the scene-shader contract (scene_contract.h) at its scene line. An
+// instance's textures include those its material samples from their declared defaults.
 Result<Plan> plan_scene(const Scene& scene, const ShaderSearchPath& shaders);
 
 // The plan as `xshade run --plan` prints it; `cached` says per variant whether its compiled form

@@ -1,6 +1,7 @@
 #include "harness/render/renderer_inputs.h"
 
 #include <cmath>
+#include <set>
 
 #include <glm/gtc/matrix_transform.hpp>
 
@@ -125,6 +126,25 @@ void add_object_inputs(const glm::mat4& model, UniformValueMap& values) {
   values["unity_WorldToObject"] = hlsl_components(glm::inverse(model));
   // w = -1 where the transform mirrors (odd negative scale), which turns the bitangent around.
   values["unity_WorldTransformParams"] = {0.0f, 0.0f, 0.0f, glm::determinant(glm::mat3(model)) < 0.0f ? -1.0f : 1.0f};
+}
+
+bool renderer_uniform(const std::string& name) {
+  static const std::set<std::string> names = [] {
+    // Any sane scene: only the names are kept.
+    Scene scene;
+    scene.width = scene.height = 1;
+    scene.camera = {glm::vec3(0.0f, 0.0f, 1.0f), glm::vec3(0.0f), glm::vec3(0.0f, 1.0f, 0.0f), 60.0f, 0.1f, 10.0f};
+    UniformValueMap values = frame_inputs(scene, ShCoefficients{});
+    add_object_inputs(glm::mat4(1.0f), values);
+    std::set<std::string> keys;
+    for (const auto& [key, value] : values) keys.insert(key);
+    return keys;
+  }();
+  return names.count(name) || name.ends_with("_TexelSize");
+}
+
+bool renderer_texture(const std::string& name) {
+  return name == "_EnvironmentSpecular" || name == "unity_SpecCube0" || name == "unity_SpecCube1";
 }
 
 }  // namespace xshade::harness

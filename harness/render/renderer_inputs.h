@@ -39,6 +39,14 @@ UniformValueMap frame_inputs(const Scene& scene, const ShCoefficients& sh);
 // The per-object values of an instance with model matrix `model`, added to (or replaced in) `values`.
 void add_object_inputs(const glm::mat4& model, UniformValueMap& values);
 
+// Whether the renderer gives the uniform `name` itself (frame_inputs, add_object_inputs, and
+// X_TexelSize of every texture): a scene cannot set such a name, and it needs no default.
+bool renderer_uniform(const std::string& name);
+
+// Whether the renderer binds the texture `name` itself: the environment (_EnvironmentSpecular)
+// and Unity's reflection probes (unity_SpecCube0, unity_SpecCube1).
+bool renderer_texture(const std::string& name);
+
 // X_TexelSize of a texture of `size` texels: (1 / width, 1 / height, width, height).
 std::vector<float> texel_size(glm::uvec2 size);
 

@@ -17,6 +17,26 @@ namespace {
 
 using Values = UniformValueMap;
 
+// A backend's failure is the driver's or xshade's, never the scene's: what the backends are given
+// has been checked (the plan's contract, the assets read before they are uploaded).
+Error from_backend(Error error) {
+  if (error.kind == ErrorKind::UserInput) error.kind = ErrorKind::Backend;
+  return error;
+}
+
+// The error with what was being done in front of its message; its kind and location kept.
+Error in_context(const std::string& context, Error error) {
+  error.message = context + ": " + error.message;
+  return error;
+}
+
+// An asset's error at the scene value that named it, where the asset has no line of its own (a
+// missing or unreadable file: the message names the file, the location is the line to fix).
+Error at_scene_value(Error error, const SourceLocation& where) {
+  if (error.where.line == 0 && where.known()) error.where = where;
+  return error;
+}
+
 // The renderer's own values, looked up first, then the scene's, then the shader's defaults.
 class UniformValues {
  public:
@@ -87,11 +107,6 @@ TextureData float_texture(const FloatImage& image) {
   return {TextureFormat::Rgba32Float, image.width, image.height, {float_bytes(image)}};
 }
 
-// Unity's reflection probes: both are the scene's environment (one probe, weight 1).
-bool is_reflection_probe(const std::string& texture) {
-  return texture == "unity_SpecCube0" || texture == "unity_SpecCube1";
-}
-
 class SceneRenderer {
  public:
   SceneRenderer(Backend& backend, const Scene& scene, const Plan& plan, const std::vector<CompiledVariant>& variants,
@@ -101,7 +116,7 @@ class SceneRenderer {
   // The scene pass, then the post passes on its colour and depth.
   Result<RenderedScene> render() {
     auto target = resources_.create_target({scene_.width, scene_.height, true});
-    if (!target) return fail(target.error());
+    if (!target) return fail(from_backend(target.error()));
     scene_target_ = *target;
     const glm::uvec2 size{scene_.width, scene_.height};
     scene_color_ = {TextureSource::color_of(*target, kColorSampler), size};
@@ -123,9 +138,9 @@ class SceneRenderer {
                      [](const PlannedPass& pass) { return pass.kind == PlannedPass::Kind::Post; }))
       return fail("scene '" + scene_.name + "' has no post pass to run on the given images");
     auto color_texture = resources_.upload_texture(float_texture(color));
-    if (!color_texture) return fail(color_texture.error());
+    if (!color_texture) return fail(from_backend(color_texture.error()));
     auto depth_texture = resources_.upload_texture(float_texture(depth));
-    if (!depth_texture) return fail(depth_texture.error());
+    if (!depth_texture) return fail(from_backend(depth_texture.error()));
     const glm::uvec2 size{scene_.width, scene_.height};
     scene_color_ = {TextureSource::texture(*color_texture, kColorSampler), size};
     scene_depth_ = {TextureSource::texture(*depth_texture, kDepthSampler), size};
@@ -164,14 +179,16 @@ class SceneRenderer {
   // post pass's.
   Result<FloatImage> read_current() {
     if (current_.binding.kind != TextureSource::Kind::TargetColor) return fail("no pass has rendered an image to read");
-    return backend_.read_color(TargetHandle{current_.binding.id});
+    auto image = backend_.read_color(TargetHandle{current_.binding.id});
+    if (!image) return fail(from_backend(image.error()));
+    return image;
   }
 
   Result<ProgramHandle> program(size_t variant) {
     if (auto it = programs_.find(variant); it != programs_.end()) return it->second;
     auto created = options_.programs ? options_.programs->program(backend_, variants_[variant].program)
                                      : resources_.create_program(variants_[variant].program);
-    if (!created) return fail(created.error());
+    if (!created) return fail(from_backend(created.error()));
     programs_[variant] = *created;
     return *created;
   }
@@ -180,9 +197,9 @@ class SceneRenderer {
     for (const auto& [known, handle] : meshes_)
       if (known == ref) return handle;
     auto data = mesh_data(ref);
-    if (!data) return fail(data.error());
+    if (!data) return fail(at_scene_value(data.error(), ref.where));
     auto handle = resources_.upload_mesh(*data);
-    if (!handle) return fail(handle.error());
+    if (!handle) return fail(from_backend(handle.error()));
     meshes_.emplace_back(ref, *handle);
     return *handle;
   }
@@ -208,12 +225,10 @@ class SceneRenderer {
     auto data = texture_data(ref, shape);
     if (!data) {
       // The file's own location where it has one (a .cube file's line), else the scene's value.
-      Error error = data.error();
-      if (!error.where.known()) error.where = ref.where;
-      return fail(std::move(error));
+      return fail(at_scene_value(data.error(), ref.where));
     }
     auto handle = resources_.upload_texture(*data);
-    if (!handle) return fail(handle.error());
+    if (!handle) return fail(from_backend(handle.error()));
     return textures_.emplace_back(SceneTexture{ref, shape, *handle, {data->width, data->height}});
   }
 
@@ -238,7 +253,7 @@ class SceneRenderer {
         mesh.vertices.push_back(Vertex{glm::vec3(p, 0.0f)});
       mesh.indices = {0, 1, 2};
       auto handle = resources_.upload_mesh(mesh);
-      if (!handle) return fail(handle.error());
+      if (!handle) return fail(from_backend(handle.error()));
       triangle_ = *handle;
     }
     return triangle_;
@@ -247,7 +262,7 @@ class SceneRenderer {
   Result<TextureHandle> environment_texture() {
     if (!environment_handle_) {
       auto handle = resources_.upload_texture(environment_.prefiltered);
-      if (!handle) return fail(handle.error());
+      if (!handle) return fail(from_backend(handle.error()));
       environment_handle_ = *handle;
     }
     return environment_handle_;
@@ -258,7 +273,7 @@ class SceneRenderer {
   Result<TextureHandle> environment_cube() {
     if (!environment_cube_) {
       auto handle = resources_.upload_texture(cube_from_prefiltered(environment_.prefiltered));
-      if (!handle) return fail(handle.error());
+      if (!handle) return fail(from_backend(handle.error()));
       environment_cube_ = *handle;
     }
     return environment_cube_;
@@ -275,7 +290,8 @@ class SceneRenderer {
       if (!env) return fail(env.error());
       return TextureSource::texture(*env, clamped);
     }
-    if (is_reflection_probe(name)) {
+    // Unity's reflection probes: both are the scene's environment (one probe, weight 1).
+    if (renderer_texture(name)) {
       auto cube = environment_cube();
       if (!cube) return fail(cube.error());
       return TextureSource::texture(*cube, clamped);
@@ -297,20 +313,23 @@ class SceneRenderer {
       auto handle = program(variant);
       if (!handle) return fail(handle.error());
       auto mesh_handle = mesh(instance.mesh);
-      if (!mesh_handle) return fail(where + ": " + mesh_handle.error().message);
+      if (!mesh_handle) return fail(in_context(where, mesh_handle.error()));
       DrawItem draw{*handle, *mesh_handle, {}, {}};
       for (const std::string& name : variants_[variant].interface.textures) {
         auto engine = engine_texture(name);
-        if (!engine) return fail(where + ": texture '" + name + "': " + engine.error().message);
+        if (!engine) return fail(in_context(where + ": texture '" + name + "'", engine.error()));
         if (*engine) {
           draw.textures.push_back({name, **engine});
           continue;
         }
-        // An unset texture is white, as Unity's default for _MainTex.
+        // The planner gave the instance every texture its material samples (the scene's or the
+        // shader's declared default), or refused the scene.
         auto given = instance.textures.find(name);
+        if (given == instance.textures.end())
+          return fail(ErrorKind::Internal, where + ": texture '" + name + "' has no source; the plan should have refused the scene");
         const TextureShape shape = declared_shape(variants_[variant], name);
-        auto made = texture(given != instance.textures.end() ? given->second : TextureRef{}, shape);
-        if (!made) return fail(where + ": texture '" + name + "': " + made.error().message, made.error().where);
+        auto made = texture(given->second, shape);
+        if (!made) return fail(in_context(where + ": texture '" + name + "'", made.error()));
         values[name + "_TexelSize"] = texel_size(made->size);
         draw.textures.push_back({name, TextureSource::texture(made->handle, scene_sampler(shape, false))});
       }
@@ -332,7 +351,7 @@ class SceneRenderer {
     auto& target = pass_target_[index];
     if (!target) {
       auto created = resources_.create_target({width, height, false});
-      if (!created) return fail(created.error());
+      if (!created) return fail(from_backend(created.error()));
       target = *created;
     }
 
@@ -359,17 +378,22 @@ class SceneRenderer {
       auto input = std::find_if(declaration.inputs.begin(), declaration.inputs.end(),
                                 [&](const hlsl::PassInput& i) { return i.texture == name; });
       if (input == declaration.inputs.end()) {
-        if (auto given = effect.textures.find(name); given != effect.textures.end()) {
+        const TextureRef* given = nullptr;
+        if (auto scene_given = effect.textures.find(name); scene_given != effect.textures.end())
+          given = &scene_given->second;
+        else if (auto defaulted = planned.default_textures.find(name); defaulted != planned.default_textures.end())
+          given = &defaulted->second;
+        if (given) {
           const TextureShape shape = declared_shape(variant, name);
-          auto made = texture(given->second, shape);
+          auto made = texture(*given, shape);
           if (!made)
-            return fail("pass '" + planned.name + "': texture '" + name + "': " + made.error().message, made.error().where);
+            return fail(in_context("pass '" + planned.name + "': texture '" + name + "'", made.error()));
           values[name + "_TexelSize"] = texel_size(made->size);
           draw.textures.push_back({name, TextureSource::texture(made->handle, scene_sampler(shape, true))});
           continue;
         }
         auto engine = engine_texture(name);
-        if (!engine) return fail("pass '" + planned.name + "': texture '" + name + "': " + engine.error().message);
+        if (!engine) return fail(in_context("pass '" + planned.name + "': texture '" + name + "'", engine.error()));
         if (*engine) {
           draw.textures.push_back({name, **engine});
           continue;
@@ -402,7 +426,7 @@ class SceneRenderer {
 
   Result<void> timed(const std::string& name, const RenderPass& pass) {
     const auto start = std::chrono::steady_clock::now();
-    if (auto rendered = backend_.render(pass); !rendered) return fail(name + ": " + rendered.error().message, rendered.error().where);
+    if (auto rendered = backend_.render(pass); !rendered) return fail(from_backend(in_context(name, rendered.error())));
     const std::chrono::duration<double, std::milli> elapsed = std::chrono::steady_clock::now() - start;
     timings_.push_back({name, elapsed.count()});
     return {};
@@ -458,7 +482,7 @@ std::string program_key(const ProgramDesc& desc) {
 }  // namespace
 
 Result<ProgramHandle> ProgramCache::program(Backend& backend, const ProgramDesc& desc) {
-  if (backend_ && backend_ != &backend) return fail("a program cache serves one backend only");
+  if (backend_ && backend_ != &backend) return fail(ErrorKind::Internal, "a program cache serves one backend only");
   backend_ = &backend;
   std::string key = program_key(desc);
   if (auto it = programs_.find(key); it != programs_.end()) return it->second;

@@ -24,10 +24,8 @@ Result<const hlsl::Module*> VariantCompiler::front_end(const VariantRequest& req
   }
   const hlsl::Module& module = *known->second;
   if (!module.ok()) {
-    Error error{request.label() + " does not compile", {request.source.string(), 0, 0}, {}};
-    for (const Diagnostic& d : module.diagnostics.diagnostics())
-      if (d.severity == Severity::Error) error.diagnostics.push_back(d);
-    return fail(std::move(error));
+    return fail(Error{request.label() + " does not compile", {request.source.string(), 0, 0},
+                      module.diagnostics.errors_with_excerpts()});
   }
   return &module;
 }

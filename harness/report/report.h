@@ -12,7 +12,9 @@ namespace xshade::harness {
 
 // Creates `report_dir` if needed. Each file is written to a temporary file beside it and renamed
 // into place, so an interrupted run leaves either the previous report or the new one, never half
-// of a file. index.html is written last: when it is there, the pages it links to are too.
+// of a file. index.html is written after the pages: when it is there, the pages it links to are
+// too. Then the pages and images an earlier run into the same folder wrote and this one did not
+// are removed (the folder's .xshade-report-files lists what each run wrote; nothing else is).
 Result<void> write_reports(const RunResults& results, const std::filesystem::path& report_dir);
 
 }  // namespace xshade::harness

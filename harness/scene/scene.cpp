@@ -300,14 +300,14 @@ class SceneReader : SceneValueReader {
       return std::nullopt;
     }
     const std::string& name = text->get();
-    if (name == "sphere") return MeshRef{MeshKind::Sphere, {}};
-    if (name == "torus") return MeshRef{MeshKind::Torus, {}};
-    if (name == "plane") return MeshRef{MeshKind::Plane, {}};
-    if (name == "cube") return MeshRef{MeshKind::Cube, {}};
+    if (name == "sphere") return MeshRef{MeshKind::Sphere, {}, where(node.source())};
+    if (name == "torus") return MeshRef{MeshKind::Torus, {}, where(node.source())};
+    if (name == "plane") return MeshRef{MeshKind::Plane, {}, where(node.source())};
+    if (name == "cube") return MeshRef{MeshKind::Cube, {}, where(node.source())};
     if (name.size() > 4 && name.ends_with(".obj")) {
       auto file = scene_file_path(node, path, name);
       if (!file) return std::nullopt;
-      return MeshRef{MeshKind::ObjFile, *file};
+      return MeshRef{MeshKind::ObjFile, *file, where(node.source())};
     }
     std::string message = fmt::format("{}: expected {}, got {}", path, expectation, quote_text(name));
     if (auto suggestion = nearest(name, {"sphere", "torus", "plane", "cube"}))
@@ -329,15 +329,10 @@ class SceneReader : SceneValueReader {
     TextureRef reference;
     reference.where = where(node.source());
     const std::string& name = text->get();
-    const std::pair<std::string_view, TextureOrigin> built_ins[] = {
-        {"white", TextureOrigin::White},   {"black", TextureOrigin::Black},
-        {"checker", TextureOrigin::Checker}, {"normal", TextureOrigin::Normal},
-        {"environment", TextureOrigin::Environment}};
-    for (const auto& [built_in, origin] : built_ins)
-      if (name == built_in) {
-        reference.source = origin;
-        return reference;
-      }
+    if (auto origin = built_in_texture(name)) {
+      reference.source = *origin;
+      return reference;
+    }
     // A file is told from a misspelt built-in by its extension.
     if (std::filesystem::path(name).has_extension()) {
       auto file = scene_file_path(node, path, name);
@@ -418,6 +413,7 @@ class SceneReader : SceneValueReader {
                 "grid"});
     SceneObject object;
     object.name = fmt::format("object{}", index);
+    object.where.fallback = where(table.source());
     const toml::node* name_node = table.get("name");
     if (name_node) {
       if (auto name = string(*name_node, path + ".name", "a non-empty string")) object.name = *name;
@@ -436,10 +432,12 @@ class SceneReader : SceneValueReader {
     }
     if (const toml::node* node = table.get("material")) {
       if (auto value = library_path(*node, path + ".material")) object.material = *value;
+      object.where.at["material"] = where(node->source());
     } else {
       missing(table, path + ".material", "a path in the shader folders, e.g. \"materials/standard_pbr.hlsl\"");
     }
     if (const toml::node* node = table.get("keywords")) object.keywords = keywords(*node, path + ".keywords");
+    record_locations(table, object.where);
     if (const toml::node* node = table.get("position")) {
       if (auto value = point(*node, path + ".position")) object.position = *value;
     }
@@ -601,17 +599,34 @@ class SceneReader : SceneValueReader {
     return rule;
   }
 
+  // Where each name the table gives a shader is written: the keys of its properties, parameters,
+  // textures and grid.vary tables, and each keyword.
+  void record_locations(const toml::table& table, SceneLocations& locations) {
+    for (std::string_view group : {"properties", "parameters", "textures"})
+      if (const toml::table* names = table.get_as<toml::table>(group))
+        for (auto&& [key, value] : *names) locations.at[std::string(group) + "." + std::string(key.str())] = where(key.source());
+    if (const toml::table* grid = table.get_as<toml::table>("grid"))
+      if (const toml::table* vary = grid->get_as<toml::table>("vary"))
+        for (auto&& [key, value] : *vary) locations.at["grid.vary." + std::string(key.str())] = where(key.source());
+    if (const toml::array* keywords = table.get_as<toml::array>("keywords"))
+      for (const toml::node& keyword : *keywords)
+        if (const auto* text = keyword.as_string()) locations.at["keywords." + text->get()] = where(keyword.source());
+  }
+
   void read_post(const toml::table& table, const std::string& path, Scene& scene) {
     check_keys(table, path, {"effect", "keywords", "parameters", "textures"});
     PostEffect effect;
+    effect.where.fallback = where(table.source());
     if (const toml::node* node = table.get("effect")) {
       if (auto value = library_path(*node, path + ".effect")) effect.effect = *value;
+      effect.where.at["effect"] = where(node->source());
     } else {
       missing(table, path + ".effect", "a path in the shader folders, e.g. \"post/depth_of_field.hlsl\"");
     }
     if (const toml::node* node = table.get("keywords")) effect.keywords = keywords(*node, path + ".keywords");
     if (const toml::node* node = table.get("parameters")) effect.parameters = properties(*node, path + ".parameters");
     if (const toml::node* node = table.get("textures")) read_textures(*node, path + ".textures", effect.textures);
+    record_locations(table, effect.where);
     scene.post.push_back(std::move(effect));
   }
 
@@ -698,6 +713,16 @@ glm::mat4 model_matrix(const glm::vec3& position, const glm::vec3& rotation_degr
   model = glm::rotate(model, glm::radians(rotation_degrees.y), glm::vec3(0.0f, 1.0f, 0.0f));
   model = glm::rotate(model, glm::radians(rotation_degrees.x), glm::vec3(1.0f, 0.0f, 0.0f));
   return glm::scale(model, scale);
+}
+
+std::optional<TextureOrigin> built_in_texture(std::string_view name) {
+  const std::pair<std::string_view, TextureOrigin> built_ins[] = {
+      {"white", TextureOrigin::White},     {"black", TextureOrigin::Black},
+      {"checker", TextureOrigin::Checker}, {"normal", TextureOrigin::Normal},
+      {"environment", TextureOrigin::Environment}};
+  for (const auto& [built_in, origin] : built_ins)
+    if (name == built_in) return origin;
+  return std::nullopt;
 }
 
 std::vector<ObjectInstance> expand_instances(const Scene& scene) {

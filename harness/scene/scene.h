@@ -70,7 +70,10 @@ enum class MeshKind { Sphere, Torus, Plane, Cube, ObjFile };
 struct MeshRef {
   MeshKind kind = MeshKind::Sphere;
   std::filesystem::path file;  // ObjFile: absolute and normalised, inside the scene's folder
-  bool operator==(const MeshRef&) const = default;
+  SourceLocation where;        // the value in the scene file, for errors found when the mesh is read
+
+  // The same mesh, wherever the scene names it.
+  bool operator==(const MeshRef& other) const { return kind == other.kind && file == other.file; }
 };
 
 enum class TextureOrigin {
@@ -99,6 +102,22 @@ struct TextureRef {
   }
 };
 
+// Where a scene file names each thing it gives a shader, so that a name the shader does not have
+// is reported at the name: "material", "effect", "properties.NAME", "parameters.NAME",
+// "keywords.NAME", "textures.NAME", "grid.vary.NAME". A key it lacks answers `fallback`.
+struct SceneLocations {
+  std::map<std::string, SourceLocation> at;
+  SourceLocation fallback;  // the object's or the effect's table
+
+  const SourceLocation& of(const std::string& key) const {
+    auto found = at.find(key);
+    return found != at.end() ? found->second : fallback;
+  }
+};
+
+// The built-in texture a scene value names ("white", "black", "checker", "normal", "environment").
+std::optional<TextureOrigin> built_in_texture(std::string_view name);
+
 enum class GridAxis { Rows, Cols };
 
 // A property that changes linearly over a grid: from at index 0, to at the last index.
@@ -126,6 +145,7 @@ struct SceneObject {
   std::map<std::string, PropertyValue> properties;
   std::map<std::string, TextureRef> textures;
   std::optional<GridSpec> grid;
+  SceneLocations where;
 };
 
 struct PostEffect {
@@ -134,6 +154,7 @@ struct PostEffect {
   std::map<std::string, PropertyValue> parameters;
   // Textures its passes sample that their #pragma pass lines give no source (a LUT, a noise).
   std::map<std::string, TextureRef> textures;
+  SceneLocations where;
 };
 
 struct Scene {

@@ -164,7 +164,7 @@ reason = "edges of the spheres alias differently on the two rasterisers"
   ASSERT_EQ(scene.objects.size(), 2u);
   const SceneObject& balls = scene.objects[0];
   EXPECT_EQ(balls.name, "balls");
-  EXPECT_EQ(balls.mesh, (MeshRef{MeshKind::Sphere, {}}));
+  EXPECT_EQ(balls.mesh, (MeshRef{MeshKind::Sphere, {}, {}}));
   EXPECT_EQ(balls.material, "materials/standard_pbr.hlsl");
   EXPECT_EQ(balls.keywords, (std::vector<std::string>{"_GUARDED", "_NORMALMAP"}));
   expect_vec(balls.position, {1, 2, 3});
@@ -196,7 +196,7 @@ reason = "edges of the spheres alias differently on the two rasterisers"
 
   const SceneObject& bunny = scene.objects[1];
   EXPECT_EQ(bunny.name, "object1");
-  EXPECT_EQ(bunny.mesh, (MeshRef{MeshKind::ObjFile, "/project/scenes/models/bunny.obj"}));
+  EXPECT_EQ(bunny.mesh, (MeshRef{MeshKind::ObjFile, "/project/scenes/models/bunny.obj", {}}));
   EXPECT_EQ(bunny.material, "materials/toon.hlsl");
   expect_vec(bunny.scale, {1, 2, 3});
   EXPECT_FALSE(bunny.grid);

@@ -14,15 +14,11 @@
 #include <toml++/toml.h>
 
 #include "base/result.h"
+#include "base/spelling.h"
 
 namespace xshade::harness::toml_text {
 
-// The closest candidate when it is close enough to be a typo of `word`: one edit in short words,
-// two in words of six letters or more.
-std::optional<std::string_view> nearest(std::string_view word, std::span<const std::string_view> candidates);
-inline std::optional<std::string_view> nearest(std::string_view word, std::initializer_list<std::string_view> candidates) {
-  return nearest(word, std::span<const std::string_view>(candidates.begin(), candidates.size()));
-}
+using xshade::nearest;  // base/spelling.h
 std::string join(std::initializer_list<std::string_view> words, std::string_view separator = ", ");
 // `text` in double quotes, cut after 48 characters.
 std::string quote_text(std::string_view text);

@@ -14,7 +14,7 @@
 #include "include/scene_inputs.hlsl"
 
 float4 _Color <string UIName = "Color";> = float4(1.0, 1.0, 1.0, 1.0);
-Texture2D _MainTex <string UIName = "Albedo";>;
+Texture2D _MainTex <string UIName = "Albedo"; string Default = "white";>;
 SamplerState sampler_MainTex;
 float _Metallic <string UIName = "Metallic"; float UIMin = 0.0; float UIMax = 1.0;> = 0.0;
 float _Smoothness <string UIName = "Smoothness"; float UIMin = 0.0; float UIMax = 1.0;> = 0.5;

@@ -10,10 +10,10 @@
 #include "include/toon.hlsl"
 
 fixed4 _Color <string UIName = "Color";> = fixed4(1.0, 1.0, 1.0, 1.0);
-Texture2D _MainTex <string UIName = "Albedo (alpha = gloss)";>;
+Texture2D _MainTex <string UIName = "Albedo (alpha = gloss)"; string Default = "white";>;
 SamplerState sampler_MainTex;
 #if defined(_SHADOW_TEX)
-Texture2D _ShadowTex <string UIName = "Shadow texture";>;
+Texture2D _ShadowTex <string UIName = "Shadow texture"; string Default = "white";>;
 SamplerState sampler_ShadowTex;
 #endif
 fixed4 _HColor <string UIName = "Highlight color";> = fixed4(0.785, 0.785, 0.785, 1.0);

@@ -52,11 +52,11 @@ material = "probe_material.hlsl"
 position = [0.5, -1, 2]
 rotation = [0, 90, 0]
 scale = 2
-[object.textures]
-_MainTex = "checker"
-[object.properties]
-_DetailTex_ST = [2, 3, 0.5, 0.25]
 )";
+
+// A probe's object gives only what its material declares: the scene-shader contract refuses
+// any other name.
+constexpr const char* kCheckerMainTex = "[object.textures]\n_MainTex = \"checker\"\n";
 
 // A material that covers the whole target at depth 0.5 whatever the camera (its plane's uv is
 // its clip position) and writes `expression` of pixel column i (0..3).
@@ -117,6 +117,7 @@ struct Row {
   // Why the comparison allows what it does: float32 through different drivers' arithmetic.
   float tolerance = 1e-5f;
   std::string pass_inputs = {};
+  std::string object_tables = {};  // TOML the object adds: the textures and properties the row reads
 };
 
 void PrintTo(const Row& row, std::ostream* out) { *out << row.name; }
@@ -188,11 +189,13 @@ std::vector<Row> rows() {
   const std::string main_tex = "Texture2D _MainTex; SamplerState sampler_MainTex; ";
   const std::string touch_main_tex = " + 0.0 * _MainTex.Load(int3(0, 0, 0))";  // the texture must be read to be bound
   all.push_back({"material_TexelSize", false, main_tex + "float4 _MainTex_TexelSize;", "_MainTex_TexelSize" + touch_main_tex,
-                 {1.0f / 64, 1.0f / 64, 64, 64}});
+                 {1.0f / 64, 1.0f / 64, 64, 64}, 1e-5f, "", kCheckerMainTex});
   all.push_back({"post_TexelSize", true, main_tex + "float4 _MainTex_TexelSize;", "_MainTex_TexelSize" + touch_main_tex,
                  {1.0f / 8, 1.0f / 2, 8, 2}, 1e-5f, "_MainTex=scene.color"});
-  all.push_back({"ST_default", false, main_tex + "float4 _MainTex_ST;", "_MainTex_ST" + touch_main_tex, {1, 1, 0, 0}});
-  all.push_back({"ST_from_the_scene", false, "float4 _DetailTex_ST;", "_DetailTex_ST", {2, 3, 0.5f, 0.25f}});
+  all.push_back({"ST_default", false, main_tex + "float4 _MainTex_ST;", "_MainTex_ST" + touch_main_tex, {1, 1, 0, 0},
+                 1e-5f, "", kCheckerMainTex});
+  all.push_back({"ST_from_the_scene", false, "float4 _DetailTex_ST;", "_DetailTex_ST", {2, 3, 0.5f, 0.25f}, 1e-5f, "",
+                 "[object.properties]\n_DetailTex_ST = [2, 3, 0.5, 0.25]\n"});
   // The material wrote depth 0.5 everywhere; the pass names no source for the depth texture.
   all.push_back({"_CameraDepthTexture", true, "Texture2D _CameraDepthTexture;",
                  "_CameraDepthTexture.Load(int3(i, 0, 0)).rrrr", {0.5f, 0.5f, 0.5f, 0.5f, 0.5f, 0.5f, 0.5f, 0.5f,
@@ -217,7 +220,7 @@ TEST_P(BuiltinInputs, ShadersReadTheHostsValueOnEveryLane) {
   const Row& row = GetParam();
   const ProbeScene probe("builtin_" + row.name);
   probe.write_image("environment.exr", direction_equirect());
-  std::string scene_text = kSceneText;
+  std::string scene_text = kSceneText + row.object_tables;
   if (row.post) {
     probe.write("probe_material.hlsl", material_probe("", "float4(0, 0, 0, 1)"));
     probe.write("probe_post.hlsl", post_probe(row.pass_inputs, row.declarations, row.expression));

@@ -115,6 +115,7 @@ TEST_F(UserProject, AProjectFolderThatLeavesTheProjectIsRefusedWithItsLocation) 
 }
 
 TEST_F(UserProject, ASceneNameThatLeavesTheScenesFolderIsRefused) {
+  fs::create_directories(root_ / "xshade/golden");  // else the missing golden folder is the first error
   Outcome run = xshade_in("", "run", "../../etc/passwd");
   EXPECT_EQ(run.exit_code, 2) << run.output;
   EXPECT_NE(run.output.find("'../../etc/passwd' is not a scene name"), std::string::npos) << run.output;

@@ -1,0 +1,267 @@
+// A user's mistakes through the real `xshade`, as CI sees them: each is reported at the file and
+// line to fix with exit 2 (never passed, never blamed on the driver with exit 3), and a run that
+// would check nothing fails. The scene is a copy of a fixed one in a temporary folder, changed
+// one mistake at a time.
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+#include <OpenImageIO/imageio.h>
+#include <gtest/gtest.h>
+
+#include "tests/support/xshade_process.h"
+
+namespace xshade::tests {
+namespace {
+
+namespace fs = std::filesystem;
+
+const fs::path kSource = XSHADE_SOURCE_DIR;
+constexpr const char* kScene = "toon_shadow_texture";
+
+std::string read(const fs::path& path) {
+  std::ifstream file(path, std::ios::binary);
+  std::stringstream text;
+  text << file.rdbuf();
+  return text.str();
+}
+
+void replace(const fs::path& file, const std::string& from, const std::string& to) {
+  std::string text = read(file);
+  const size_t at = text.find(from);
+  ASSERT_NE(at, std::string::npos) << from << " is not in " << file;
+  text.replace(at, from.size(), to);
+  std::ofstream(file, std::ios::binary | std::ios::trunc) << text;
+}
+
+// The 1-based line of `text`'s first occurrence in `file`.
+size_t line_of(const fs::path& file, const std::string& text) {
+  const std::string content = read(file);
+  const size_t at = content.find(text);
+  EXPECT_NE(at, std::string::npos) << text;
+  return size_t(std::count(content.begin(), content.begin() + std::ptrdiff_t(at), '\n')) + 1;
+}
+
+class UserMistakes : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    root_ = fs::temp_directory_path() /
+            ("xshade_mistakes_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
+    fs::remove_all(root_);
+    fs::create_directories(root_ / "scenes");
+    fs::create_directories(root_ / "golden");
+    fs::copy_file(kSource / "scenes" / (std::string(kScene) + ".toml"), scene());
+    fs::copy_file(kSource / "golden" / (std::string(kScene) + ".png"), root_ / "golden" / (std::string(kScene) + ".png"));
+    fs::copy(kSource / "shaders", root_ / "shaders", fs::copy_options::recursive);
+  }
+  void TearDown() override { fs::remove_all(root_); }
+
+  fs::path scene() const { return root_ / "scenes" / (std::string(kScene) + ".toml"); }
+
+  Outcome xshade(const std::string& verb, const std::string& extra = "") {
+    return run_xshade("", verb + " --cache '" + (root_ / "cache").string() + "' --scenes '" + (root_ / "scenes").string() +
+                              "' --golden '" + (root_ / "golden").string() + "' --shaders '" +
+                              (root_ / "shaders").string() + "' --report '" + (root_ / "report").string() + "' " + extra);
+  }
+  Outcome run(const std::string& extra = "--lane gl") { return xshade("run", extra); }
+
+  // "<scene file>:<line>:" of the line that holds `text`.
+  std::string at_line_of(const std::string& text) {
+    return scene().string() + ":" + std::to_string(line_of(scene(), text)) + ":";
+  }
+
+  fs::path root_;
+};
+
+TEST_F(UserMistakes, AMisspeltPropertyIsAnErrorAtItsLineWithTheNameTheShaderHas) {
+  replace(scene(), "_Color = [0.3", "_Colr = [0.3");
+  Outcome outcome = run();
+  EXPECT_EQ(outcome.exit_code, 2) << outcome.output;
+  EXPECT_NE(outcome.output.find(at_line_of("_Colr") + "1: material 'materials/toon.hlsl' has no property '_Colr'; "
+                                                      "did you mean '_Color'?"),
+            std::string::npos)
+      << outcome.output;
+}
+
+TEST_F(UserMistakes, AnUndeclaredKeywordIsAnErrorAndThePlanDoesNotListItsVariant) {
+  replace(scene(), "keywords = [\"_SHADOW_TEX\"]", "keywords = [\"_SHADOW_TEXTURE\"]");
+  for (const std::string& extra : {std::string("--lane gl"), std::string("--plan")}) {
+    Outcome outcome = run(extra);
+    EXPECT_EQ(outcome.exit_code, 2) << outcome.output;
+    EXPECT_NE(outcome.output.find("declares no keyword '_SHADOW_TEXTURE'"), std::string::npos) << outcome.output;
+    EXPECT_NE(outcome.output.find("did you mean '_SHADOW_TEX'?"), std::string::npos) << outcome.output;
+    EXPECT_EQ(outcome.output.find("[_SHADOW_TEXTURE]"), std::string::npos) << outcome.output;
+  }
+}
+
+TEST_F(UserMistakes, AMisspeltTextureIsAnErrorNotAWhiteTexture) {
+  replace(scene(), "_ShadowTex = \"checker\"", "_ShadowTexture = \"checker\"");
+  Outcome outcome = run();
+  EXPECT_EQ(outcome.exit_code, 2) << outcome.output;
+  EXPECT_NE(outcome.output.find(at_line_of("_ShadowTexture") + "1: material 'materials/toon.hlsl' has no texture "
+                                                               "'_ShadowTexture'; did you mean '_ShadowTex'?"),
+            std::string::npos)
+      << outcome.output;
+}
+
+TEST_F(UserMistakes, APostParameterTheEffectLacksIsAnError) {
+  std::ofstream(scene(), std::ios::app) << "\n[[post]]\neffect = \"post/depth_of_field.hlsl\"\n[post.parameters]\n"
+                                           "_BlurAmount = 2.0\n";
+  Outcome outcome = run();
+  EXPECT_EQ(outcome.exit_code, 2) << outcome.output;
+  EXPECT_NE(outcome.output.find(at_line_of("_BlurAmount") + "1: post effect 'post/depth_of_field.hlsl' has no "
+                                                            "parameter '_BlurAmount'"),
+            std::string::npos)
+      << outcome.output;
+}
+
+TEST_F(UserMistakes, AValueOfTheWrongSizeIsAnErrorNotACrash) {
+  replace(scene(), "_Color = [0.3, 0.6, 0.9, 1]", "_Color = [0.3, 0.6, 0.9]");
+  Outcome outcome = run();
+  EXPECT_EQ(outcome.exit_code, 2) << outcome.output;
+  EXPECT_NE(outcome.output.find(at_line_of("_Color") + "1: '_Color' is a half4 in material 'materials/toon.hlsl': "
+                                                       "give it 4 numbers, not 3 numbers"),
+            std::string::npos)
+      << outcome.output;
+}
+
+TEST_F(UserMistakes, AMissingTextureFileIsTheScenesFaultAtItsLine) {
+  replace(scene(), "_ShadowTex = \"checker\"", "_ShadowTex = \"checks.png\"");
+  Outcome outcome = run();
+  EXPECT_EQ(outcome.exit_code, 2) << outcome.output;
+  EXPECT_NE(outcome.output.find(at_line_of("checks.png") + "14:"), std::string::npos) << outcome.output;
+  EXPECT_NE(outcome.output.find("checks.png"), std::string::npos) << outcome.output;
+}
+
+TEST_F(UserMistakes, AMissingMeshFileIsTheScenesFaultAtItsLine) {
+  replace(scene(), "mesh = \"torus\"", "mesh = \"models/knot.obj\"");
+  Outcome outcome = run();
+  EXPECT_EQ(outcome.exit_code, 2) << outcome.output;
+  EXPECT_NE(outcome.output.find(at_line_of("knot.obj") + "8:"), std::string::npos) << outcome.output;
+}
+
+TEST_F(UserMistakes, AVariantThatDoesNotCompileShowsItsDiagnosticAndCaretOnTheConsole) {
+  replace(root_ / "shaders/materials/toon.hlsl", "return fixed4(diffuse + specular + rim, albedo.a);",
+          "return fixed4(diffuse + specular + rimm, albedo.a);");
+  Outcome outcome = run();
+  EXPECT_EQ(outcome.exit_code, 2) << outcome.output;
+  EXPECT_NE(outcome.output.find("error: unknown name 'rimm'"), std::string::npos) << outcome.output;
+  EXPECT_NE(outcome.output.find("specular + rimm, albedo.a);\n"), std::string::npos) << outcome.output;
+  EXPECT_NE(outcome.output.find("^"), std::string::npos) << outcome.output;
+}
+
+TEST_F(UserMistakes, AGoldenOfAnotherSizeSaysSoAndNamesTheBlessCommand) {
+  replace(scene(), "size = [256, 256]", "size = [256, 200]");
+  Outcome outcome = run();
+  EXPECT_EQ(outcome.exit_code, 2) << outcome.output;
+  EXPECT_NE(outcome.output.find("is 256x256 and the scene renders 256x200"), std::string::npos) << outcome.output;
+  EXPECT_NE(outcome.output.find("xshade bless toon_shadow_texture --reason"), std::string::npos) << outcome.output;
+  EXPECT_FALSE(fs::exists(root_ / "report" / kScene / "gl.diff.png"));
+}
+
+TEST_F(UserMistakes, AShardWithNoSceneChecksNothingAndFails) {
+  Outcome outcome = run("--lane gl --shard 2/2");
+  EXPECT_EQ(outcome.exit_code, 2) << outcome.output;
+  EXPECT_NE(outcome.output.find("shard 2/2 holds no scene"), std::string::npos) << outcome.output;
+}
+
+TEST_F(UserMistakes, AFolderThatDoesNotExistIsRefused) {
+  Outcome golden = run_xshade("", "run --lane gl --scenes '" + (root_ / "scenes").string() + "' --golden '" +
+                                      (root_ / "nothere").string() + "' --report '" + (root_ / "report").string() + "'");
+  EXPECT_EQ(golden.exit_code, 2) << golden.output;
+  EXPECT_NE(golden.output.find("the golden folder " + (root_ / "nothere").string() + " (--golden) does not exist"),
+            std::string::npos)
+      << golden.output;
+  Outcome shaders = run("--lane gl --shaders '" + (root_ / "nothere").string() + "'");
+  EXPECT_EQ(shaders.exit_code, 2) << shaders.output;
+  EXPECT_NE(shaders.output.find("(--shaders) is not a folder"), std::string::npos) << shaders.output;
+}
+
+TEST_F(UserMistakes, LanesAreGivenWithCommasOrRepeatedAndNeverSwallowASceneName) {
+  Outcome commas = run(std::string("--lane gl,vk ") + kScene);
+  EXPECT_EQ(commas.exit_code, 0) << commas.output;
+  EXPECT_NE(commas.output.find(std::string(kScene) + " on vk: pass"), std::string::npos) << commas.output;
+  EXPECT_EQ(commas.output.find(" on vk-hlsl:"), std::string::npos) << commas.output;
+  Outcome repeated = run(std::string("--lane gl --lane vk ") + kScene);
+  EXPECT_EQ(repeated.exit_code, 0) << repeated.output;
+  EXPECT_NE(repeated.output.find(std::string(kScene) + " on vk: pass"), std::string::npos) << repeated.output;
+  // Before, `--lane gl vk SCENE` took the scene as a lane; now the bare words are scene names.
+  Outcome bare = run(std::string("--lane gl vk ") + kScene);
+  EXPECT_EQ(bare.exit_code, 2) << bare.output;
+  EXPECT_NE(bare.output.find("no scene 'vk' in"), std::string::npos) << bare.output;
+  EXPECT_NE(bare.output.find("(lanes are chosen with --lane vk, or --lane gl,vk)"), std::string::npos) << bare.output;
+}
+
+TEST_F(UserMistakes, ALaneGoldenThatMatchesTheCommonOneIsRefused) {
+  Outcome outcome = xshade("bless", std::string(kScene) + " --lane gl --reason \"try\"");
+  EXPECT_EQ(outcome.exit_code, 2) << outcome.output;
+  EXPECT_NE(outcome.output.find("matches the common golden"), std::string::npos) << outcome.output;
+  EXPECT_FALSE(fs::exists(root_ / "golden" / (std::string(kScene) + ".gl.png")));
+}
+
+TEST_F(UserMistakes, ASixteenBitGoldenIsSrgbLikeAnEightBitOne) {
+  const fs::path golden = root_ / "golden" / (std::string(kScene) + ".png");
+  auto input = OIIO::ImageInput::open(golden.string());
+  ASSERT_TRUE(input);
+  const OIIO::ImageSpec spec = input->spec();
+  std::vector<uint8_t> bytes(size_t(spec.width) * spec.height * spec.nchannels);
+  ASSERT_TRUE(input->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::UINT8, bytes.data()));
+  input->close();
+  // The same codes times 257: the 16-bit code of each 8-bit one.
+  std::vector<uint16_t> wide(bytes.begin(), bytes.end());
+  for (uint16_t& code : wide) code = uint16_t(code * 257);
+  OIIO::ImageSpec spec16(spec.width, spec.height, spec.nchannels, OIIO::TypeDesc::UINT16);
+  auto output = OIIO::ImageOutput::create(golden.string());
+  ASSERT_TRUE(output && output->open(golden.string(), spec16));
+  ASSERT_TRUE(output->write_image(OIIO::TypeDesc::UINT16, wide.data()));
+  output->close();
+  // A golden not written by bless fails its hash check unless the manifest has none for it: this
+  // copy has no manifest, as a user's first hand-made golden would not.
+  Outcome outcome = run();
+  EXPECT_EQ(outcome.exit_code, 0) << outcome.output;
+}
+
+TEST_F(UserMistakes, ARunReplacesTheEarlierRunsPagesAndKeepsWhatItDidNotWrite) {
+  ASSERT_EQ(run().exit_code, 0);
+  ASSERT_TRUE(fs::exists(root_ / "report" / (std::string(kScene) + ".html")));
+  std::ofstream(root_ / "report" / "notes.txt") << "mine";
+  fs::rename(scene(), root_ / "scenes" / "renamed.toml");
+  fs::rename(root_ / "golden" / (std::string(kScene) + ".png"), root_ / "golden" / "renamed.png");
+  Outcome second = run();
+  ASSERT_EQ(second.exit_code, 0) << second.output;
+  EXPECT_TRUE(fs::exists(root_ / "report" / "renamed.html"));
+  EXPECT_FALSE(fs::exists(root_ / "report" / (std::string(kScene) + ".html")));
+  EXPECT_FALSE(fs::exists(root_ / "report" / kScene));
+  EXPECT_TRUE(fs::exists(root_ / "report" / "notes.txt"));
+}
+
+TEST(CommandLine, VersionAndMisspeltVerbsAndOptionsAreAnswered) {
+  Outcome version = run_xshade("", "--version");
+  EXPECT_EQ(version.exit_code, 0) << version.output;
+  EXPECT_EQ(version.output.rfind("xshade ", 0), 0u) << version.output;
+  Outcome verb = run_xshade("", "blss");
+  EXPECT_EQ(verb.exit_code, 2) << verb.output;
+  EXPECT_NE(verb.output.find("unknown command 'blss'; did you mean 'bless'?"), std::string::npos) << verb.output;
+  Outcome option = run_xshade("", "run --lan gl");
+  EXPECT_EQ(option.exit_code, 2) << option.output;
+  EXPECT_NE(option.output.find("unknown option '--lan'; did you mean '--lane'?"), std::string::npos) << option.output;
+}
+
+TEST(CommandLine, EvalFailsOnNonFiniteOutputUnlessTheyAreExpected) {
+  const fs::path shader = fs::temp_directory_path() / "xshade_eval_nan.hlsl";
+  std::ofstream(shader) << "#pragma fragment frag\n"
+                           "float4 frag(float4 p : SV_Position) : SV_Target { float z = p.x - p.x; return 0.0 / z; }\n";
+  const std::string common = "eval '" + shader.string() + "' --lane gl --size 8x8 -o '" +
+                             (fs::temp_directory_path() / "xshade_eval_nan").string() + "'";
+  Outcome failing = run_xshade("", common);
+  EXPECT_EQ(failing.exit_code, 1) << failing.output;
+  EXPECT_NE(failing.output.find("gl: 256 NaN, 0 Inf, 0 negative values, first at (0, 0)"), std::string::npos)
+      << failing.output;
+  Outcome allowed = run_xshade("", common + " --allow-nonfinite");
+  EXPECT_EQ(allowed.exit_code, 0) << allowed.output;
+  fs::remove(shader);
+}
+
+}  // namespace
+}  // namespace xshade::tests
