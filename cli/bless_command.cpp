@@ -75,19 +75,10 @@ int run_bless(const BlessOptions& options) {
                options.lane.empty() ? std::string("any of its lanes") : options.lane);
     return kBackendError;
   }
-  for (const harness::LaneResult& lane : result.lanes)
-    if (lane.verdict != harness::Verdict::Pass) {
-      fmt::print(stderr, "xshade bless: refused: {} on {}: {}\n", result.scene, lane.lane, lane.message);
-      return harness::exit_code(lane.verdict);
-    }
-  for (const harness::CrossLaneResult& pair : result.cross_lane)
-    if (pair.verdict != harness::Verdict::Pass) {
-      fmt::print(stderr,
-                 "xshade bless: refused: {} and {} disagree ({}); a common golden is blessed only from lanes "
-                 "that agree. Find the lane that is wrong, or bless one lane with --lane and its reason.\n",
-                 pair.first_lane, pair.second_lane, harness::describe_metrics(pair.metrics));
-      return kTestFailed;
-    }
+  if (const auto refusal = harness::bless_refusal(result)) {
+    fmt::print(stderr, "xshade bless: refused: {}\n", refusal->message);
+    return harness::exit_code(refusal->verdict);
+  }
 
   const harness::GoldenStore goldens(folders->golden);
   const std::optional<std::string> lane = options.lane.empty() ? std::nullopt : std::optional(options.lane);

@@ -60,6 +60,10 @@ struct CompileOptions {
   std::string precision = "float";  // or "half": half emulation (gl, vk, spirv)
   bool reflect = false;
   std::filesystem::path output;      // a path prefix; empty = standard output
+  std::string entry;                 // a fragment function, compiled as a full-screen pass
+  std::string pass;                  // a post pass by its #pragma pass name
+  bool all_variants = false;         // every keyword combination the file declares, each reported
+  FolderOptions folders;             // the project file's shader folders (only shaders, project, no_project)
 };
 int run_compile(const CompileOptions& options);
 

@@ -1,11 +1,13 @@
 // xshade compile: one shader through the front end to GLSL, SPIR-V or reflection.
 #include <fmt/core.h>
 
+#include <algorithm>
 #include <fstream>
 
 #include <spirv-tools/libspirv.hpp>
 
 #include "glsl/glsl_emitter.h"
+#include "base/spelling.h"
 #include "cli/commands.h"
 #include "harness/render/shader_program.h"
 #include "hlsl_like/compiler.h"
@@ -42,20 +44,127 @@ bool emit_stage(const CompileOptions& options, const char* stage, std::string_vi
   return true;
 }
 
+// A file with nothing to compile as it is (a post effect: #pragma pass, no #pragma fragment).
+int no_stage(const hlsl::Module& module, const std::filesystem::path& file) {
+  std::string passes;
+  for (const hlsl::PassDeclaration& pass : module.passes) passes += (passes.empty() ? "" : ", ") + pass.name;
+  if (!passes.empty())
+    fmt::print(stderr, "xshade compile: {} is a post effect with no #pragma fragment: choose one of its passes ({}) "
+                       "with --pass NAME\n", file.string(), passes);
+  else
+    fmt::print(stderr, "xshade compile: {} has no entry point: give #pragma vertex/fragment, or --entry FUNCTION\n",
+               file.string());
+  return kBadInput;
+}
+
+// Every combination of the keyword sets' keywords, `_` (none) left out of the names.
+std::vector<std::vector<std::string>> keyword_combinations(const std::vector<hlsl::KeywordSet>& sets) {
+  std::vector<std::vector<std::string>> combinations{{}};
+  for (const hlsl::KeywordSet& set : sets) {
+    std::vector<std::vector<std::string>> longer;
+    for (const std::vector<std::string>& start : combinations)
+      for (const std::string& keyword : set.keywords) {
+        std::vector<std::string> next = start;
+        if (keyword.find_first_not_of('_') != std::string::npos) next.push_back(keyword);
+        longer.push_back(std::move(next));
+      }
+    combinations = std::move(longer);
+  }
+  return combinations;
+}
+
+std::string bracketed(const std::vector<std::string>& keywords) {
+  std::string text = "[";
+  for (size_t i = 0; i < keywords.size(); ++i) text += (i ? " " : "") + keywords[i];
+  return text + "]";
+}
+
 }  // namespace
 
 int run_compile(const CompileOptions& options) {
+  // The include folders of a run here: -I, the project file's shader folders, xshade's library.
+  auto folders = resolve_folders(options.folders, std::filesystem::current_path(), GoldenUse::None);
+  if (!folders) {
+    fmt::print(stderr, "xshade compile: {}\n", folders.error().to_string());
+    return kBadInput;
+  }
   hlsl::CompileOptions front_end;
-  front_end.include_dirs = include_folders(options.include_dirs);
+  front_end.include_dirs = options.include_dirs;
+  for (const std::filesystem::path& folder : folders->shaders.folders()) front_end.include_dirs.push_back(folder);
+  // A file named as a scene names it ("materials/toon.hlsl") is found in the shader folders.
+  std::filesystem::path file = options.file;
+  std::error_code missing;
+  if (!std::filesystem::exists(file, missing) && file.is_relative())
+    if (auto found = folders->shaders.find(file.string())) file = *found;
   if (options.precision == "half") front_end.defines.push_back({harness::kHalfEmulationMacro, "1"});
   for (const std::string& define : options.defines) {
     const size_t equals = define.find('=');
     if (equals == std::string::npos) front_end.keywords.push_back(define);
     else front_end.defines.push_back({define.substr(0, equals), define.substr(equals + 1)});
   }
-  auto module = hlsl::compile_file(options.file, front_end);
+  front_end.fragment_only_entry = options.entry;
+  if (!options.entry.empty() && !options.pass.empty()) {
+    fmt::print(stderr, "xshade compile: --entry and --pass each choose the fragment function; give one\n");
+    return kBadInput;
+  }
+
+  auto module = hlsl::compile_file(file, front_end);
+  if (!options.pass.empty() && module->ok()) {
+    const auto& passes = module->passes;
+    auto pass = std::find_if(passes.begin(), passes.end(), [&](const hlsl::PassDeclaration& p) { return p.name == options.pass; });
+    if (pass == passes.end()) {
+      std::vector<std::string> names;
+      for (const hlsl::PassDeclaration& p : passes) names.push_back(p.name);
+      std::string list;
+      for (const std::string& name : names) list += (list.empty() ? "" : ", ") + name;
+      const auto near = nearest(options.pass, names);
+      fmt::print(stderr, "xshade compile: {} declares no pass '{}'{} (its passes: {})\n", file.string(), options.pass,
+                 near ? "; did you mean '" + *near + "'?" : std::string(), list.empty() ? "none" : list);
+      return kBadInput;
+    }
+    front_end.pass_fragment_entry = pass->entry;
+    module = hlsl::compile_file(file, front_end);
+  }
   if (!module->diagnostics.diagnostics().empty()) fmt::print(stderr, "{}", module->diagnostics.render_all());
   if (!module->ok()) return kBadInput;
+
+  if (options.all_variants) {
+    // Each combination compiled to the target as a lane would; a status line each, the errors in full.
+    int worst = kPass;
+    // A post effect without a pass chosen: every pass of every combination.
+    std::vector<std::pair<std::string, std::string>> entries{{"", front_end.pass_fragment_entry}};
+    if (module->reflection.fragment_entry.empty() && options.pass.empty() && options.entry.empty()) {
+      entries.clear();
+      for (const hlsl::PassDeclaration& pass : module->passes) entries.push_back({" pass " + pass.name, pass.entry});
+    }
+    const auto combinations = keyword_combinations(module->reflection.keyword_sets);
+    for (const std::vector<std::string>& keywords : combinations)
+    for (const auto& [pass_label, pass_entry] : entries) {
+      hlsl::CompileOptions variant = front_end;
+      variant.keywords = keywords;
+      variant.pass_fragment_entry = pass_entry;
+      auto compiled = hlsl::compile_file(file, variant);
+      std::string failure;
+      if (!compiled->ok()) {
+        failure = compiled->diagnostics.render_all();
+      } else {
+        const harness::Lane lane = options.target == "gl" ? harness::Lane::Gl
+                                   : options.target == "vk-hlsl" ? harness::Lane::VkHlsl
+                                                                 : harness::Lane::Vk;
+        auto stages = harness::stages_for_lane(*compiled, lane, {.half_emulation = options.precision == "half"});
+        if (!stages) failure = stages.error().to_string() + "\n";
+      }
+      fmt::print("{} {}{}: {}\n", file.string(), bracketed(keywords), pass_label,
+                 failure.empty() ? "compiles" : "does not compile");
+      if (!failure.empty()) {
+        fmt::print(stderr, "{}", failure);
+        worst = kBadInput;
+      }
+    }
+    fmt::print("{} keyword combinations{} for {}\n", combinations.size(),
+               entries.size() > 1 ? " x " + std::to_string(entries.size()) + " passes" : std::string(), options.target);
+    return worst;
+  }
 
   if (options.reflect) {
     const std::string json = hlsl::reflection_json(module->reflection) + "\n";
@@ -71,6 +180,7 @@ int run_compile(const CompileOptions& options) {
       fmt::print(stderr, "{}\n", emitted.error().to_string());
       return kBadInput;
     }
+    if (!emitted->vertex && !emitted->fragment) return no_stage(*module, file);
     if (emitted->vertex && !emit_stage(options, "vert", emitted->vertex->text, false)) return kBackendError;
     if (emitted->fragment && !emit_stage(options, "frag", emitted->fragment->text, false)) return kBackendError;
     return kPass;
@@ -83,6 +193,7 @@ int run_compile(const CompileOptions& options) {
     fmt::print(stderr, "{}\n", stages.error().to_string());
     return kBadInput;
   }
+  if (!stages->vertex && !stages->fragment) return no_stage(*module, file);
   for (const auto& [stage, source] : {std::pair{"vert", &stages->vertex}, std::pair{"frag", &stages->fragment}}) {
     if (!*source) continue;
     const std::vector<uint32_t>& words = (*source)->spirv;

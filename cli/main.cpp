@@ -161,6 +161,21 @@ int main(int argc, char** argv) {
       ->check(CLI::IsMember({"float", "half"}))
       ->capture_default_str();
   compile->add_flag("--reflect", compile_options.reflect, "Print the reflection (JSON) instead of code");
+  compile->add_option("--entry", compile_options.entry,
+                      "Compile this fragment function as a full-screen pass (as eval runs it), whatever #pragma fragment says")
+      ->type_name("FUNCTION");
+  compile->add_option("--pass", compile_options.pass, "Compile this post pass of the effect (its #pragma pass name)")
+      ->type_name("NAME");
+  compile->add_flag("--all-variants", compile_options.all_variants,
+                    "Compile every keyword combination the file declares for --target and report each; exit 2 if any fails");
+  compile->add_option("--shaders", compile_options.folders.shaders,
+                      "A shader folder to include from and find FILE in, before xshade's library; repeat for more "
+                      "(default: the project file's)")
+      ->type_name("DIR")
+      ->allow_extra_args(false);
+  compile->add_option("--project", compile_options.folders.project, "The project file (default: xshade.toml here or above)")
+      ->type_name("FILE");
+  compile->add_flag("--no-project", compile_options.folders.no_project, "Read no project file");
   compile->add_option("-o", compile_options.output,
                       "Write OUT.vert.glsl / OUT.frag.glsl (or .spv, or OUT.json) instead of standard output")
       ->type_name("OUT");

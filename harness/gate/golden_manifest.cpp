@@ -25,6 +25,8 @@ constexpr std::string_view kHeader =
 #   blessed_by  who blessed it
 #   date        when, UTC, ISO 8601
 #   hash        XXH3-128 of the PNG file
+#   float_hash  XXH3-128 of the float image beside it (<name>.exr), written where the render has
+#               values above 1: the gate compares it, so those values are gated too
 # Entries are sorted by scene, then lane.
 )";
 
@@ -67,10 +69,11 @@ Result<GoldenEntry> read_entry(const toml::table& table, const std::string& file
                          : name == "blessed_by" ? &entry.blessed_by
                          : name == "date"       ? &entry.date
                          : name == "hash"       ? &entry.hash
+                         : name == "float_hash" ? &entry.float_hash
                                                 : nullptr;
     if (!field)
       return fail(fmt::format("unknown key '{}' in a [[golden]] entry (known: scene, lane, reason, blessed_by, "
-                              "date, hash)",
+                              "date, hash, float_hash)",
                               name),
                   where(file, node.source()));
     const auto* text = node.as_string();
@@ -157,6 +160,7 @@ std::string format_golden_manifest(const GoldenManifest& manifest) {
     text += "blessed_by = " + toml_string(entry.blessed_by) + "\n";
     text += "date = " + toml_string(entry.date) + "\n";
     if (!entry.hash.empty()) text += "hash = " + toml_string(entry.hash) + "\n";
+    if (!entry.float_hash.empty()) text += "float_hash = " + toml_string(entry.float_hash) + "\n";
   }
   return text;
 }

@@ -19,6 +19,9 @@ struct GoldenEntry {
   std::string blessed_by;
   std::string date;  // UTC, ISO 8601: 2024-05-01T12:34:56Z
   std::string hash;  // XXH3-128 of the PNG file's bytes, 32 hex digits
+  // The same of the float image beside it (<name>.exr), which bless writes when the render has a
+  // value above 1: what the gate compares, the PNG being what people review. Empty: no such file.
+  std::string float_hash;
   SourceLocation where;  // the entry in the manifest it was read from; unknown for a new one
 };
 

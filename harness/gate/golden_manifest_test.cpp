@@ -13,7 +13,7 @@ using ::testing::StartsWith;
 
 GoldenEntry entry(std::string scene, std::string lane, std::string reason) {
   return {std::move(scene), std::move(lane), std::move(reason), "ada", "2024-05-01T12:34:56Z",
-          "0123456789abcdef0123456789abcdef", {}};
+          "0123456789abcdef0123456789abcdef", {}, {}};
 }
 
 TEST(GoldenManifestTest, FormatsEntriesSortedAfterTheHeaderAndReadsThemBack) {
@@ -52,7 +52,7 @@ TEST(GoldenManifestTest, FormatsEntriesSortedAfterTheHeaderAndReadsThemBack) {
   ASSERT_EQ(read->entries.size(), 3u);
   EXPECT_EQ(read->entries[1].reason, "a \"quoted\" reason\\with a backslash\nand a second line");
   EXPECT_EQ(read->entries[1].lane, "vk-hlsl");
-  EXPECT_EQ(read->entries[1].where.to_string(), "MANIFEST.toml:21:1");
+  EXPECT_EQ(read->entries[1].where.to_string(), "MANIFEST.toml:23:1");
   EXPECT_EQ(format_golden_manifest(*read), text);
 }
 
@@ -105,7 +105,7 @@ INSTANTIATE_TEST_SUITE_P(
     ::testing::Values(
         BadManifest{"[[golden]]\nscene = \"a\"\nreason = \"why\"\ncolour = \"red\"\n",
                     "MANIFEST.toml:4:10: unknown key 'colour' in a [[golden]] entry (known: scene, lane, reason, "
-                    "blessed_by, date, hash)"},
+                    "blessed_by, date, hash, float_hash)"},
         BadManifest{"[[golden]]\nscene = \"a\"\nreason = 3\n", "MANIFEST.toml:3:10: 'reason' must be a string"},
         BadManifest{"[[golden]]\nscene = \"a\"\nlane = \"dx12\"\nreason = \"why\"\n",
                     "MANIFEST.toml:3:8: unknown lane 'dx12' (lanes: gl, vk, vk-hlsl)"},

@@ -1,8 +1,10 @@
 #include "harness/gate/golden_store.h"
 
 #include <chrono>
+#include <cmath>
 #include <ctime>
 #include <fstream>
+#include <vector>
 
 #include <unistd.h>
 
@@ -56,11 +58,11 @@ std::string utc_now_iso8601() {
 }
 
 // A golden whose bytes differ from what bless recorded was written by something else.
-Result<void> check_hash(const fs::path& path, const GoldenEntry& entry) {
-  if (entry.hash.empty()) return {};
+Result<void> check_hash(const fs::path& path, const GoldenEntry& entry, const std::string& hash) {
+  if (hash.empty()) return {};
   std::optional<std::string> bytes = read_file(path);
   if (!bytes) return fail("cannot read image " + path.string());
-  if (content_hash(*bytes) != entry.hash)
+  if (content_hash(*bytes) != hash)
     return fail(fmt::format("{} is not the image blessed on {} (its hash differs from the manifest's): only "
                             "`xshade bless` may change a golden",
                             path.string(), entry.date),
@@ -68,8 +70,18 @@ Result<void> check_hash(const fs::path& path, const GoldenEntry& entry) {
   return {};
 }
 
+// golden/<name>.exr beside golden/<name>.png.
+fs::path float_image_path(const fs::path& png) { return fs::path(png).replace_extension(".exr"); }
+
+// Whether the 8-bit PNG loses a value of the image: a finite colour channel above 1.
+bool has_values_above_one(const FloatImage& image) {
+  for (size_t i = 0; i < image.rgba.size(); ++i)
+    if (i % 4 != 3 && std::isfinite(image.rgba[i]) && image.rgba[i] > 1.0f) return true;
+  return false;
+}
+
 // Removes what a failed bless left behind; the originals are untouched until the renames.
-void remove_temporaries(std::initializer_list<fs::path> paths) {
+void remove_temporaries(const std::vector<fs::path>& paths) {
   std::error_code ignored;
   for (const fs::path& path : paths) fs::remove(path, ignored);
 }
@@ -105,10 +117,25 @@ Result<std::optional<GoldenImage>> GoldenStore::find(const std::string& scene, c
                               "with {} or remove it",
                               path.string(), manifest_path().string(), bless_command(scene, candidate)));
     if (entry)
-      if (Result<void> same = check_hash(path, *entry); !same) return fail(same.error());
-    Result<FloatImage> image = read_image(path);
+      if (Result<void> same = check_hash(path, *entry, entry->hash); !same) return fail(same.error());
+    // The float image where bless wrote one: the values above 1 that the PNG clamps.
+    const fs::path float_path = float_image_path(path);
+    const bool has_float = fs::exists(float_path, error);
+    if (has_float && !(entry && !entry->float_hash.empty()))
+      return fail(fmt::format("{} has no float_hash in {}: a golden's float image is trusted only as bless wrote it; "
+                              "bless it with {} or remove it",
+                              float_path.string(), manifest_path().string(), bless_command(scene, candidate)));
+    if (entry && !entry->float_hash.empty()) {
+      if (!has_float)
+        return fail(fmt::format("the manifest records a float image for {}, but {} does not exist",
+                                golden_name(scene, candidate), float_path.string()),
+                    entry->where);
+      if (Result<void> same = check_hash(float_path, *entry, entry->float_hash); !same) return fail(same.error());
+    }
+    Result<FloatImage> image = read_image(has_float ? float_path : path);
     if (!image) return fail(image.error());
-    return GoldenImage{path, std::move(*image), !candidate.empty(), entry ? entry->reason : std::string()};
+    return GoldenImage{has_float ? float_path : path, std::move(*image), !candidate.empty(),
+                       entry ? entry->reason : std::string()};
   }
   return std::optional<GoldenImage>();
 }
@@ -138,30 +165,44 @@ Result<BlessOutcome> GoldenStore::bless(const std::string& scene, const std::opt
     if (Result<FloatImage> previous = read_image(outcome.path)) outcome.previous = std::move(*previous);
   }
 
-  // Both files are written in full beside their destinations before either is renamed into
-  // place, so a failure leaves the old golden and manifest as they were. The image's temporary
-  // keeps the .png extension because OpenImageIO chooses the format by it.
+  // Every file is written in full beside its destination before any is renamed into place, so a
+  // failure leaves the old golden and manifest as they were. The images' temporaries keep their
+  // extensions because OpenImageIO chooses the format by them. A render with a value above 1
+  // also gets its float image, which the gate compares.
   const std::string pid = std::to_string(::getpid());
   const fs::path image_temporary = folder / (scene + ".tmp." + pid + ".png");
+  const fs::path float_temporary = folder / (scene + ".tmp." + pid + ".exr");
   const fs::path manifest_temporary = manifest_path().string() + ".tmp." + pid;
-  if (Result<void> written = write_png(image, image_temporary); !written) {
-    remove_temporaries({image_temporary});
-    return fail(written.error());
+  const std::vector<fs::path> temporaries{image_temporary, float_temporary, manifest_temporary};
+  const bool high = has_values_above_one(image);
+  const auto written_hash = [&](const fs::path& temporary, bool exr) -> Result<std::string> {
+    if (Result<void> written = exr ? write_exr(image, temporary) : write_png(image, temporary); !written)
+      return fail(written.error());
+    std::optional<std::string> bytes = read_file(temporary);
+    if (!bytes) return fail("cannot read back " + temporary.string());
+    return content_hash(*bytes);
+  };
+  Result<std::string> png_hash = written_hash(image_temporary, false);
+  Result<std::string> float_hash = high ? written_hash(float_temporary, true) : Result<std::string>(std::string());
+  if (!png_hash || !float_hash) {
+    remove_temporaries(temporaries);
+    return fail(!png_hash ? png_hash.error() : float_hash.error());
   }
-  std::optional<std::string> bytes = read_file(image_temporary);
-  if (!bytes) {
-    remove_temporaries({image_temporary});
-    return fail("cannot read back " + image_temporary.string());
-  }
-  manifest->record(GoldenEntry{scene, lane.value_or(""), reason, who, utc_now_iso8601(), content_hash(*bytes), {}});
+  manifest->record(
+      GoldenEntry{scene, lane.value_or(""), reason, who, utc_now_iso8601(), *png_hash, *float_hash, {}});
   if (Result<void> written = write_bytes(manifest_temporary, format_golden_manifest(*manifest)); !written) {
-    remove_temporaries({image_temporary, manifest_temporary});
+    remove_temporaries(temporaries);
     return fail(written.error());
   }
 
+  const fs::path float_path = float_image_path(outcome.path);
   fs::rename(image_temporary, outcome.path, error);
+  if (!error) {
+    if (high) fs::rename(float_temporary, float_path, error);
+    else fs::remove(float_path, error);  // an earlier bless's float image, which no longer applies
+  }
   if (error) {
-    remove_temporaries({image_temporary, manifest_temporary});
+    remove_temporaries(temporaries);
     return fail(fmt::format("cannot write {}: {}", outcome.path.string(), error.message()));
   }
   fs::rename(manifest_temporary, manifest_path(), error);

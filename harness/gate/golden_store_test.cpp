@@ -166,7 +166,7 @@ TEST_F(GoldenStoreTest, AManifestEntryWhoseImageIsMissingIsAnError) {
   ASSERT_FALSE(found);
   // The header comment is 12 lines and a blank one; the entry starts on line 14.
   EXPECT_EQ(found.error().to_string(), (folder_ / "MANIFEST.toml").string() +
-                                           ":14:1: the manifest records the golden gl/dof_off, but " +
+                                           ":16:1: the manifest records the golden gl/dof_off, but " +
                                            (folder_ / "gl" / "dof_off.png").string() + " does not exist");
 }
 
@@ -253,7 +253,7 @@ TEST_F(GoldenStoreTest, AGoldenChangedWithoutBlessingIsAnError) {
 
   auto found = GoldenStore(folder_).find("material_grid", "gl");
   ASSERT_FALSE(found);
-  EXPECT_EQ(found.error().to_string(), (folder_ / "MANIFEST.toml").string() + ":14:1: " +
+  EXPECT_EQ(found.error().to_string(), (folder_ / "MANIFEST.toml").string() + ":16:1: " +
                                            (folder_ / "material_grid.png").string() + " is not the image blessed on " +
                                            date + " (its hash differs from the manifest's): only `xshade bless` may "
                                                   "change a golden");

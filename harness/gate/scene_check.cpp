@@ -140,8 +140,6 @@ void SceneChecker::check_lane(const Scene& scene, const Plan& plan, const Enviro
   // The same scene again on the same driver must give the same bits.
   auto again = render_scene(**backend, scene, plan, variants, environment);
   if (!again) return finish(verdict_of(again.error()), again.error().to_string());
-  const bool deterministic = bitwise_equal(rendered->image, again->image);
-  const ImageDifference drift = max_difference(rendered->image, again->image);
 
   for (const std::string& message : (*backend)->take_driver_messages())
     add_layer(result, {"driver", Verdict::Fail, message});
@@ -152,10 +150,7 @@ void SceneChecker::check_lane(const Scene& scene, const Plan& plan, const Enviro
   result.non_finite = count_non_finite(image);
   if (result.non_finite.total()) result.non_finite_mask = write_image(non_finite_mask(image), scene.name, result.lane + ".nonfinite.png");
 
-  add_layer(result, {"determinism", deterministic ? Verdict::Pass : Verdict::Fail,
-                     deterministic ? "two renders are bit-identical"
-                                   : "two renders differ: max " + std::to_string(drift.max) + " at (" +
-                                         std::to_string(drift.x) + ", " + std::to_string(drift.y) + ")"});
+  add_layer(result, determinism_layer(rendered->image, again->image));
 
   if (options_.goldens && !options_.half_emulation) {
     auto golden = options_.goldens->find(scene.name, result.lane);
@@ -198,15 +193,42 @@ void SceneChecker::check_lane(const Scene& scene, const Plan& plan, const Enviro
   finish(Verdict::Pass, {});
 }
 
+LayerResult determinism_layer(const FloatImage& first, const FloatImage& second) {
+  if (bitwise_equal(first, second)) return {"determinism", Verdict::Pass, "two renders are bit-identical"};
+  const ImageDifference drift = max_difference(first, second);
+  return {"determinism", Verdict::Fail,
+          fmt::format("two renders differ: max {:g} at ({}, {})", drift.max, drift.x, drift.y)};
+}
+
+std::vector<LanePairComparison> compare_lane_images(const std::map<Lane, FloatImage>& images,
+                                                    const CompareSettings& settings) {
+  std::vector<LanePairComparison> pairs;
+  if (images.size() < 2) return pairs;
+  const auto& [first_lane, first] = *images.begin();
+  for (const auto& [lane, image] : images)
+    if (lane != first_lane) pairs.push_back({first_lane, lane, compare_images(image, first, settings)});
+  return pairs;
+}
+
+std::optional<BlessRefusal> bless_refusal(const SceneResult& result) {
+  for (const LaneResult& lane : result.lanes)
+    if (lane.verdict != Verdict::Pass)
+      return BlessRefusal{lane.verdict, fmt::format("{} on {}: {}", result.scene, lane.lane, lane.message)};
+  for (const CrossLaneResult& pair : result.cross_lane)
+    if (pair.verdict != Verdict::Pass)
+      return BlessRefusal{Verdict::Fail,
+                          fmt::format("{} and {} disagree ({}); a common golden is blessed only from lanes that agree. "
+                                      "Find the lane that is wrong, or bless one lane with --lane and its reason.",
+                                      pair.first_lane, pair.second_lane, describe_metrics(pair.metrics))};
+  return std::nullopt;
+}
+
 void SceneChecker::compare_lanes(const Scene& scene, CheckedScene& checked) {
-  if (checked.images.size() < 2) return;
-  const auto& [first_lane, first] = *checked.images.begin();
-  for (const auto& [lane, image] : checked.images) {
-    if (lane == first_lane) continue;
-    Comparison comparison = compare_images(image, first, scene.compare);
+  for (LanePairComparison& compared : compare_lane_images(checked.images, scene.compare)) {
+    Comparison& comparison = compared.comparison;
     CrossLaneResult pair;
-    pair.first_lane = std::string(lane_name(first_lane));
-    pair.second_lane = std::string(lane_name(lane));
+    pair.first_lane = std::string(lane_name(compared.first));
+    pair.second_lane = std::string(lane_name(compared.second));
     pair.verdict = comparison.verdict;
     pair.metrics = comparison.metrics;
     pair.diff = write_image(comparison.heat_map, scene.name, pair.first_lane + "_vs_" + pair.second_lane + ".diff.png");

@@ -37,6 +37,28 @@ struct CheckedScene {
   std::map<Lane, FloatImage> images;
 };
 
+// The gate's decisions, apart from rendering so that each can be fed what must fail it.
+
+// Two renders of one scene on one driver must be bit-identical.
+LayerResult determinism_layer(const FloatImage& first, const FloatImage& second);
+
+// Every lane after the first (in lane order) against the first lane's image.
+struct LanePairComparison {
+  Lane first;
+  Lane second;
+  Comparison comparison;
+};
+std::vector<LanePairComparison> compare_lane_images(const std::map<Lane, FloatImage>& images,
+                                                    const CompareSettings& settings);
+
+// Why a checked scene must not become a golden: a lane that did not pass (with its verdict) or
+// two lanes that disagree (Fail); nullopt when it may.
+struct BlessRefusal {
+  Verdict verdict = Verdict::Fail;
+  std::string message;
+};
+std::optional<BlessRefusal> bless_refusal(const SceneResult& result);
+
 class SceneChecker {
  public:
   using Progress = std::function<void(const std::string& line)>;

@@ -118,7 +118,39 @@ struct PixelPass {
   double sum_squared = 0.0;
   size_t finite_pairs = 0;
   double sum_squared_steps = 0.0;  // 8-bit, every channel
+  double sum_steps = 0.0;
 };
+
+// The float layer's pass: each channel pair with a value above 1 (colour; alpha is not HDR),
+// its relative error against the larger magnitude.
+struct FloatPass {
+  size_t values = 0;
+  std::vector<uint32_t> failing;  // pixel indices
+  double max_relative = 0.0;
+  size_t max_pixel = 0;
+};
+
+FloatPass compare_hdr(const FloatImage& test, const FloatImage& reference, double tolerance) {
+  FloatPass pass;
+  const size_t pixels = size_t(test.width) * test.height;
+  for (size_t p = 0; p < pixels; ++p) {
+    bool failed = false;
+    for (size_t c = 0; c < 3; ++c) {
+      const double a = test.rgba[p * 4 + c], b = reference.rgba[p * 4 + c];
+      const double larger = std::max(std::fabs(a), std::fabs(b));
+      if (!(larger > 1.0) || !std::isfinite(larger)) continue;  // displayable, or the finite layer's
+      ++pass.values;
+      const double relative = std::fabs(a - b) / larger;
+      if (relative > pass.max_relative) {
+        pass.max_relative = relative;
+        pass.max_pixel = p;
+      }
+      failed = failed || relative > tolerance;
+    }
+    if (failed) pass.failing.push_back(uint32_t(p));
+  }
+  return pass;
+}
 
 PixelPass compare_pixels(const FloatImage& test, const FloatImage& reference, const std::vector<uint8_t>& test8,
                          const std::vector<uint8_t>& reference8, const CompareSettings& settings,
@@ -126,7 +158,7 @@ PixelPass compare_pixels(const FloatImage& test, const FloatImage& reference, co
   PixelPass pass;
   // Sums in locals rather than in `pass`: the heat map's stores could alias its members, which
   // would keep the compiler from holding them in registers.
-  double sum_absolute = 0.0, sum_squared = 0.0, sum_squared_steps = 0.0;
+  double sum_absolute = 0.0, sum_squared = 0.0, sum_squared_steps = 0.0, sum_steps = 0.0;
   size_t finite_pairs = 0;
   const size_t pixels = size_t(test.width) * test.height;
   for (size_t p = 0; p < pixels; ++p) {
@@ -136,6 +168,7 @@ PixelPass compare_pixels(const FloatImage& test, const FloatImage& reference, co
       const int step = std::abs(int(test8[i + c]) - int(reference8[i + c]));
       steps = std::max(steps, uint32_t(step));
       sum_squared_steps += double(step * step);
+      sum_steps += double(step);
       const float va = test.rgba[i + c];
       const float vb = reference.rgba[i + c];
       if (std::isfinite(va) && std::isfinite(vb)) {
@@ -156,6 +189,7 @@ PixelPass compare_pixels(const FloatImage& test, const FloatImage& reference, co
   pass.sum_absolute = sum_absolute;
   pass.sum_squared = sum_squared;
   pass.sum_squared_steps = sum_squared_steps;
+  pass.sum_steps = sum_steps;
   pass.finite_pairs = finite_pairs;
   return pass;
 }
@@ -280,20 +314,43 @@ Comparison compare_images(const FloatImage& test, const FloatImage& reference, c
                      describe_budget(settings, budget))});
   }
 
+  // 5. float: the values above 1, which the 8-bit layers see as 255 whatever they are.
+  FloatPass hdr;
+  bool float_passed = true;
+  if (identical) {
+    result.layers.push_back({"float", Verdict::Skipped, "bit-identical"});
+  } else {
+    hdr = compare_hdr(test, reference, settings.float_tolerance);
+    float_passed = hdr.failing.size() <= budget;
+    if (hdr.values == 0)
+      result.layers.push_back({"float", Verdict::Pass, "no value above 1 in either image"});
+    else
+      result.layers.push_back(
+          {"float", float_passed ? Verdict::Pass : Verdict::Fail,
+           fmt::format("{} of {} with values above 1 differ by more than {:g} relative ({}); worst {:.4g} at ({}, {})",
+                       hdr.failing.size(), plural(hdr.values, "value", "values"), settings.float_tolerance,
+                       describe_budget(settings, budget), hdr.max_relative, hdr.max_pixel % test.width,
+                       hdr.max_pixel / test.width)});
+  }
+
   // The first layer that settles the question decides: a non-finite value fails whatever the
-  // differences are, and the position layer only matters when the per-pixel layer failed.
+  // differences are, the position layer only matters when the per-pixel layer failed, and the
+  // float layer when the displayable range passed.
   auto decide = [&](bool passed, std::string layer) {
     result.verdict = passed ? Verdict::Pass : Verdict::Fail;
     result.decided_by = std::move(layer);
   };
+  const bool displayable_passed = per_pixel_passed || (settings.position_radius > 0 && position_passed);
   if (!finite)
     decide(false, "finite");
   else if (identical)
     decide(true, "exact");
-  else if (per_pixel_passed || settings.position_radius == 0)
-    decide(per_pixel_passed, "per_pixel");
+  else if (!displayable_passed)
+    decide(false, settings.position_radius == 0 ? "per_pixel" : "position");
+  else if (!float_passed)
+    decide(false, "float");
   else
-    decide(position_passed, "position");
+    decide(true, per_pixel_passed ? "per_pixel" : "position");
 
   // 5. summary
   ImageMetrics& metrics = result.metrics;
@@ -310,13 +367,40 @@ Comparison compare_images(const FloatImage& test, const FloatImage& reference, c
                                           : std::numeric_limits<double>::infinity();
   metrics.failing_pixels = failing;
   metrics.failing_fraction = pixels > 0 ? double(failing) / double(pixels) : 0.0;
-  result.layers.push_back(
-      {"summary", Verdict::Pass,
-       fmt::format("max difference {:.6g} at ({}, {}); mean {:.6g}; RMSE {:.6g}; PSNR {:.2f} dB; {} ({:.4g}%) differ "
-                   "by more than {}",
-                   metrics.max_difference, metrics.max_x, metrics.max_y, metrics.mean, metrics.rmse, metrics.psnr,
-                   plural(failing, "pixel", "pixels"), metrics.failing_fraction * 100.0, tolerance_steps)});
+  metrics.max_steps = pass.worst_steps;
+  metrics.worst_x = uint32_t(pass.worst_pixel % test.width);
+  metrics.worst_y = uint32_t(pass.worst_pixel / test.width);
+  metrics.mean_steps = pixels > 0 ? pass.sum_steps / double(pixels * 4) : 0.0;
+  metrics.rmse_steps = std::sqrt(mean_squared_steps);
+  if (!pass.failing.empty()) metrics.first_failing = {pass.failing.front() % test.width, pass.failing.front() / test.width};
+  metrics.hdr_values = hdr.values;
+  metrics.float_failing_pixels = hdr.failing.size();
+  metrics.float_max_relative = hdr.max_relative;
+  metrics.float_x = uint32_t(hdr.max_pixel % test.width);
+  metrics.float_y = uint32_t(hdr.max_pixel / test.width);
+  std::string summary = fmt::format(
+      "in 8-bit sRGB steps, the per-pixel layer's values: worst {} at ({}, {}); mean {:.4g}; RMSE {:.4g}; PSNR {:.2f} dB; "
+      "{} ({:.4g}%) differ by more than {}",
+      plural(metrics.max_steps, "step", "steps"), metrics.worst_x, metrics.worst_y, metrics.mean_steps,
+      metrics.rmse_steps, metrics.psnr, plural(failing, "pixel", "pixels"), metrics.failing_fraction * 100.0,
+      tolerance_steps);
+  if (metrics.first_failing)
+    summary += fmt::format(", the first at ({}, {})", metrics.first_failing->first, metrics.first_failing->second);
+  if (hdr.values > 0)
+    summary += fmt::format("; above 1, relative: worst {:.4g} at ({}, {}), {} beyond {:g}", hdr.max_relative,
+                           metrics.float_x, metrics.float_y, plural(hdr.failing.size(), "pixel", "pixels"),
+                           settings.float_tolerance);
+  result.layers.push_back({"summary", Verdict::Pass, std::move(summary)});
   return result;
+}
+
+std::string describe_metrics(const ImageMetrics& metrics) {
+  std::string text = fmt::format("worst {} sRGB steps at ({}, {}), {} failing pixels ({:.3g}%)", metrics.max_steps,
+                                 metrics.worst_x, metrics.worst_y, metrics.failing_pixels, metrics.failing_fraction * 100.0);
+  if (metrics.float_failing_pixels > 0)
+    text += fmt::format("; above 1: {} pixels beyond the float tolerance, worst {:.4g} relative at ({}, {})",
+                        metrics.float_failing_pixels, metrics.float_max_relative, metrics.float_x, metrics.float_y);
+  return text;
 }
 
 }  // namespace xshade::harness

@@ -3,8 +3,9 @@
 // line for the report, and the layer whose verdict decided the comparison.
 //
 // Layers 3 and 4 compare the images as write_png stores them (colour through linear_to_srgb8,
-// alpha times 255 rounded), not as floats: a golden is an 8-bit PNG, so an exact re-render of
-// it must compare equal with a tolerance of 0 steps.
+// alpha times 255 rounded), not as floats: the displayable range is judged as a viewer sees it,
+// and an 8-bit golden's re-render compares equal with a tolerance of 0 steps. Layer 5 compares
+// the values above 1 as floats, relative, which the 8-bit layers cannot see.
 #pragma once
 
 #include <cstdint>
@@ -25,10 +26,18 @@ struct CompareSettings {
   static constexpr uint32_t default_channel_tolerance = 1;
   static constexpr double default_max_failing_fraction = 0.0;
   static constexpr uint32_t default_position_radius = 0;
+  // Relative error allowed a value above 1 (a highlight, an HDR input a bloom or a tone mapper
+  // downstream reads). 0.5%: about half of what the default one 8-bit sRGB step is at 1 (254 vs
+  // 255 is 0.89% in linear), so an HDR value may move no more than a displayable one; and twice
+  // the most the lanes' own values above 1 differ on the fixed scenes, 0.26% in five highlight
+  // values of material_grid_guarded (gl against vk and vk-hlsl; at most 8.2e-5 in every other
+  // scene), measured by `xshade run` (results.json, cross_lane metrics.above_one.worst_relative).
+  static constexpr double default_float_tolerance = 0.005;
 
   uint32_t channel_tolerance = default_channel_tolerance;  // 8-bit sRGB steps, 0..255
   double max_failing_fraction = default_max_failing_fraction;  // of the pixels, 0..1
   uint32_t position_radius = default_position_radius;  // pixels, 0..8
+  double float_tolerance = default_float_tolerance;  // relative, for values above 1; 0..1
   std::string reason;  // why; required whenever a tolerance is given
   bool tolerances_given = false;  // any of the three numbers was written in the scene
 };
@@ -50,6 +59,10 @@ struct LayerResult {
   std::string detail;  // one line a reviewer reads: what was measured against what bound
 };
 
+// What a comparison measured. The gate's summary is in the per-pixel layer's domain, 8-bit sRGB
+// steps of the images as write_png stores them (steps, worst, first failing, mean and RMSE in
+// steps, PSNR); the float layer's in relative error of the values above 1. The linear fields are
+// the float values' own differences, for the accuracy studies, which report both domains.
 struct ImageMetrics {
   double max_difference = 0.0;  // linear, largest over channels
   uint32_t max_x = 0;
@@ -57,9 +70,25 @@ struct ImageMetrics {
   double mean = 0.0;            // mean absolute difference, linear
   double rmse = 0.0;
   double psnr = 0.0;            // dB, on the 8-bit sRGB images; infinite when identical
-  size_t failing_pixels = 0;    // beyond the channel tolerance
+  size_t failing_pixels = 0;    // beyond the channel tolerance (per-pixel layer)
   double failing_fraction = 0.0;
+
+  uint32_t max_steps = 0;       // the worst pixel's largest channel difference, sRGB steps
+  uint32_t worst_x = 0;         // the first pixel with max_steps
+  uint32_t worst_y = 0;
+  double mean_steps = 0.0;      // over every channel of every pixel
+  double rmse_steps = 0.0;
+  std::optional<std::pair<uint32_t, uint32_t>> first_failing = std::nullopt;  // the first pixel the per-pixel layer failed
+
+  size_t hdr_values = 0;             // channel pairs with a value above 1, which the float layer compares
+  size_t float_failing_pixels = 0;   // with a value beyond the float tolerance
+  double float_max_relative = 0.0;   // the largest relative error among them
+  uint32_t float_x = 0;              // where it is
+  uint32_t float_y = 0;
 };
+
+// "worst 3 sRGB steps at (3, 4), 12 failing pixels (0.29%)", and the float layer's failures.
+std::string describe_metrics(const ImageMetrics& metrics);
 
 struct NonFiniteCount {
   size_t nan = 0;
@@ -71,12 +100,13 @@ struct NonFiniteCount {
 
 struct Comparison {
   Verdict verdict = Verdict::Pass;  // Pass or Fail
-  // The layer whose verdict is the comparison's: "size", "finite", "exact", "per_pixel" or
-  // "position".
+  // The layer whose verdict is the comparison's: "size", "finite", "exact", "per_pixel",
+  // "position" or "float".
   std::string decided_by;
   // "size" alone when the sizes differ; otherwise "finite", "exact", "per_pixel", "position",
-  // "summary" in that order. Layers after a failed "finite" still run, for the report; after a
-  // passed "exact" the per-pixel and position layers are skipped.
+  // "float", "summary" in that order. Layers after a failed "finite" still run, for the report;
+  // after a passed "exact" the per-pixel, position and float layers are skipped. The float layer
+  // holds the values above 1 (which the 8-bit layers see as 255) to their relative tolerance.
   std::vector<LayerResult> layers;
   ImageMetrics metrics;  // all zero when the sizes differ
   NonFiniteCount test_non_finite;

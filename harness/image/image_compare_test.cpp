@@ -56,7 +56,7 @@ TEST(CompareImages, IdenticalImagesPassOnTheExactLayer) {
   EXPECT_EQ(comparison.verdict, Verdict::Pass);
   EXPECT_EQ(comparison.decided_by, "exact");
   EXPECT_EQ(layer_names(comparison),
-            (std::vector<std::string>{"finite", "exact", "per_pixel", "position", "summary"}));
+            (std::vector<std::string>{"finite", "exact", "per_pixel", "position", "float", "summary"}));
   EXPECT_EQ(layer(comparison, "finite").verdict, Verdict::Pass);
   EXPECT_EQ(layer(comparison, "exact").verdict, Verdict::Pass);
   EXPECT_EQ(layer(comparison, "exact").detail, "bit-identical");
@@ -247,9 +247,41 @@ TEST(CompareImages, MetricsOfAHandMadePair) {
   EXPECT_EQ(metrics.failing_pixels, 2u);
   EXPECT_EQ(metrics.failing_fraction, 1.0);
   EXPECT_EQ(layer(comparison, "summary").verdict, Verdict::Pass);
+  // The summary is in the per-pixel layer's domain, the steps: the worst pixel, its steps, the
+  // mean and RMSE of every channel's steps, the first failing pixel.
+  EXPECT_EQ(metrics.max_steps, 255u);
+  EXPECT_EQ(metrics.worst_x, 0u);
+  EXPECT_EQ(metrics.worst_y, 0u);
+  EXPECT_DOUBLE_EQ(metrics.mean_steps, (255.0 + 188.0) / 8.0);
+  EXPECT_DOUBLE_EQ(metrics.rmse_steps, std::sqrt(12546.125));
+  ASSERT_TRUE(metrics.first_failing);
+  EXPECT_EQ(*metrics.first_failing, (std::pair<uint32_t, uint32_t>{0, 0}));
   EXPECT_EQ(layer(comparison, "summary").detail,
-            "max difference 1 at (0, 0); mean 0.1875; RMSE 0.395285; PSNR 7.15 dB; 2 pixels (100%) differ by "
-            "more than 1 sRGB step");
+            "in 8-bit sRGB steps, the per-pixel layer's values: worst 255 steps at (0, 0); mean 55.38; RMSE 112; "
+            "PSNR 7.15 dB; 2 pixels (100%) differ by more than 1 sRGB step, the first at (0, 0)");
+}
+
+TEST(CompareImages, AValueAboveOneThatChangedFailsTheFloatLayer) {
+  // A highlight at 1.85 in the golden (a float golden keeps it) raised to 6.07: both are 255 in
+  // 8-bit sRGB, so only the float layer sees it.
+  FloatImage reference = filled(4, 4, {0.2f, 0.3f, 0.4f, 1.0f});
+  reference.set(2, 1, {1.85f, 0.9f, 0.5f, 1.0f});
+  FloatImage test = reference;
+  test.set(2, 1, {6.07f, 0.9f, 0.5f, 1.0f});
+  const Comparison changed = compare_images(test, reference, settings(1));
+  EXPECT_EQ(layer(changed, "per_pixel").verdict, Verdict::Pass);
+  EXPECT_EQ(changed.verdict, Verdict::Fail);
+  EXPECT_EQ(changed.decided_by, "float");
+  EXPECT_EQ(changed.metrics.float_failing_pixels, 1u);
+  EXPECT_EQ(changed.metrics.float_x, 2u);
+  EXPECT_EQ(changed.metrics.float_y, 1u);
+  EXPECT_NEAR(changed.metrics.float_max_relative, (6.07 - 1.85) / 6.07, 1e-6);
+
+  // Within the float tolerance (a rounding-sized change) it passes.
+  test.set(2, 1, {1.85f * (1.0f + 2e-7f), 0.9f, 0.5f, 1.0f});
+  const Comparison rounded = compare_images(test, reference, settings(1));
+  EXPECT_EQ(rounded.verdict, Verdict::Pass);
+  EXPECT_EQ(layer(rounded, "float").verdict, Verdict::Pass);
 }
 
 TEST(CompareImages, HeatMapIsBlackWhereEqualAndPlainWhereBeyondTheTolerance) {
@@ -285,14 +317,19 @@ TEST(CompareImages, DifferentSizesFailOnTheSizeLayer) {
   EXPECT_EQ(comparison.heat_map.width, 0u);
 }
 
-TEST(CompareImages, AnExactRenderAgainstItsPngGoldenPassesWithToleranceZero) {
-  // Smooth gradients of arbitrary floats, as a renderer makes them: almost none of them is the
-  // linear value of an 8-bit code, and some colour lies above 1.
+// Smooth gradients of arbitrary floats, as a renderer makes them: almost none of them is the
+// linear value of an 8-bit code. Red reaches `peak` at the right edge.
+FloatImage gradient_render(float peak) {
   FloatImage render(64, 48);
   for (uint32_t y = 0; y < 48; ++y)
     for (uint32_t x = 0; x < 64; ++x)
-      render.set(x, y, {float(x) / 50.0f, 0.5f + 0.5f * std::sin(float(x * y) * 0.01f), float(y) / 47.0f * 0.013f,
+      render.set(x, y, {peak * float(x) / 63.0f, 0.5f + 0.5f * std::sin(float(x * y) * 0.01f), float(y) / 47.0f * 0.013f,
                         0.25f + 0.75f * float(x) / 63.0f});
+  return render;
+}
+
+TEST(CompareImages, AnExactRenderAgainstItsPngGoldenPassesWithToleranceZero) {
+  const FloatImage render = gradient_render(0.98f);
   const auto path = std::filesystem::temp_directory_path() / "xshade_image_compare_test_golden.png";
   ASSERT_TRUE(write_png(render, path));
   const auto golden = read_image(path);
@@ -304,6 +341,26 @@ TEST(CompareImages, AnExactRenderAgainstItsPngGoldenPassesWithToleranceZero) {
   EXPECT_EQ(comparison.decided_by, "per_pixel");
   EXPECT_EQ(comparison.metrics.failing_pixels, 0u);
   EXPECT_EQ(comparison.metrics.psnr, std::numeric_limits<double>::infinity());
+}
+
+TEST(CompareImages, ValuesAboveOneNeedAFloatGolden) {
+  // A PNG clamps red at 1 where the render has up to 1.5: the float layer fails it. The EXR a
+  // bless writes beside it keeps every value, and the same render is bit-identical to it.
+  const FloatImage render = gradient_render(1.5f);
+  const auto png = std::filesystem::temp_directory_path() / "xshade_image_compare_test_hdr.png";
+  const auto exr = std::filesystem::temp_directory_path() / "xshade_image_compare_test_hdr.exr";
+  ASSERT_TRUE(write_png(render, png));
+  ASSERT_TRUE(write_exr(render, exr));
+  const auto clamped = read_image(png);
+  const auto kept = read_image(exr);
+  ASSERT_TRUE(clamped && kept);
+  const Comparison against_png = compare_images(render, *clamped, settings(0));
+  EXPECT_EQ(layer(against_png, "per_pixel").verdict, Verdict::Pass);
+  EXPECT_EQ(against_png.decided_by, "float");
+  EXPECT_EQ(against_png.verdict, Verdict::Fail);
+  const Comparison against_exr = compare_images(render, *kept, settings(0));
+  EXPECT_EQ(against_exr.decided_by, "exact");
+  EXPECT_EQ(against_exr.verdict, Verdict::Pass);
 }
 
 TEST(NonFinite, CountsEveryChannelAndMasksThePixels) {

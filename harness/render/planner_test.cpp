@@ -113,6 +113,8 @@ keywords = ["_KERNEL_MEDIUM"]
   // 4 kernels x guards on/off.
   EXPECT_TRUE(has_line(plan->left_out,
                        "post/depth_of_field.hlsl: 9 of its 10 keyword combinations (the scene asks for no other)"));
+  // The effect is in the chain, so it is not left out as one that is not.
+  for (const std::string& line : plan->left_out) EXPECT_EQ(line.find("not in the post chain"), std::string::npos) << line;
   const std::string described = describe_plan(scene(""), *plan, std::vector<bool>(6, false));
   EXPECT_NE(described.find("depth_of_field.bokeh: frag_bokeh, half resolution, _MainTex <- prefilter"), std::string::npos)
       << described;

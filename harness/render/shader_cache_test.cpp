@@ -79,6 +79,17 @@ TEST_F(ShaderCacheTest, ChangingAnIncludeKeywordsLaneOrCompilerMisses) {
   EXPECT_FALSE(other_compiler.find(request(), Lane::Gl).has_value());
 }
 
+TEST_F(ShaderCacheTest, EditingTheMaterialsOwnFileMisses) {
+  ShaderCache cache(root_ / "cache", "identity");
+  EXPECT_FALSE(from_cache(cache, request()));
+  EXPECT_TRUE(from_cache(cache, request()));
+  write("materials/flat.hlsl",
+        "#pragma fragment frag\n#pragma multi_compile _ BRIGHT\n#include \"include/tint.hlsl\"\n"
+        "float4 frag(float2 uv : TEXCOORD0) : SV_Target { return 0.5 * tint(); }\n");
+  EXPECT_FALSE(from_cache(cache, request()));
+  EXPECT_NE(last_.program.fragment.glsl.find("0.5"), std::string::npos) << last_.program.fragment.glsl;
+}
+
 // Two materials, one of which reads the include: editing the include recompiles that one only.
 TEST_F(ShaderCacheTest, ChangingAnIncludeRecompilesExactlyTheVariantsThatReadIt) {
   write("materials/plain.hlsl", "#pragma fragment frag\nfloat4 frag(float2 uv : TEXCOORD0) : SV_Target { return 1; }\n");

@@ -208,15 +208,22 @@ std::string fact_row(std::string_view name, std::string_view value) {
   return fmt::format("<tr><th>{}</th><td>{}</td></tr>\n", escape_text(name), escape_text(value));
 }
 
+// In the per-pixel layer's domain, 8-bit sRGB steps, as the table says; values above 1 in the
+// float layer's, relative error.
 std::string metrics_table(const ImageMetrics& metrics) {
   std::string out = "<table class=\"metrics\">\n";
-  out += fact_row("max difference",
-                  fmt::format("{:.6g} at ({}, {})", metrics.max_difference, metrics.max_x, metrics.max_y));
-  out += fact_row("mean", fmt::format("{:.6g}", metrics.mean));
-  out += fact_row("RMSE", fmt::format("{:.6g}", metrics.rmse));
+  out += fact_row("domain", "8-bit sRGB steps, as the per-pixel layer compares");
+  out += fact_row("worst", fmt::format("{} steps at ({}, {})", metrics.max_steps, metrics.worst_x, metrics.worst_y));
+  if (metrics.first_failing)
+    out += fact_row("first failing", fmt::format("({}, {})", metrics.first_failing->first, metrics.first_failing->second));
+  out += fact_row("mean", fmt::format("{:.4g} steps", metrics.mean_steps));
+  out += fact_row("RMSE", fmt::format("{:.4g} steps", metrics.rmse_steps));
   out += fact_row("PSNR", describe_psnr(metrics.psnr));
   out += fact_row("failing pixels",
                   fmt::format("{} ({:.4g}%)", metrics.failing_pixels, metrics.failing_fraction * 100.0));
+  if (metrics.hdr_values > 0)
+    out += fact_row("above 1 (relative)", fmt::format("worst {:.4g} at ({}, {}); {} failing pixels", metrics.float_max_relative,
+                                                      metrics.float_x, metrics.float_y, metrics.float_failing_pixels));
   return out + "</table>\n";
 }
 
@@ -283,16 +290,16 @@ void cross_lane_section(std::string& out, const SceneResult& scene) {
     out += "<p class=\"description\">no pair of lanes compared</p>\n</section>\n";
     return;
   }
-  out += "<table>\n<tr><th>pair</th><th>verdict</th><th>max difference</th><th>mean</th><th>RMSE</th>"
+  out += "<table>\n<tr><th>pair</th><th>verdict</th><th>worst, sRGB steps</th><th>mean, steps</th><th>RMSE, steps</th>"
          "<th>PSNR</th><th>failing pixels</th></tr>\n";
   for (const CrossLaneResult& pair : scene.cross_lane) {
     const ImageMetrics& m = pair.metrics;
     fmt::format_to(to,
                    "<tr><td>{}</td><td class=\"cell {}\">{}</td>"
-                   "<td class=\"num\">{:.6g} at ({}, {})</td><td class=\"num\">{:.6g}</td><td class=\"num\">{:.6g}</td>"
+                   "<td class=\"num\">{} at ({}, {})</td><td class=\"num\">{:.4g}</td><td class=\"num\">{:.4g}</td>"
                    "<td class=\"num\">{}</td><td class=\"num\">{} ({:.4g}%)</td></tr>\n",
                    escape_text(pair_name(pair)), verdict_class(pair.verdict), verdict_span(pair.verdict),
-                   m.max_difference, m.max_x, m.max_y, m.mean, m.rmse, escape_text(describe_psnr(m.psnr)),
+                   m.max_steps, m.worst_x, m.worst_y, m.mean_steps, m.rmse_steps, escape_text(describe_psnr(m.psnr)),
                    m.failing_pixels, m.failing_fraction * 100.0);
   }
   out += "</table>\n<div class=\"images\">\n";

@@ -26,6 +26,16 @@ DriverInfo gl_driver() {
           "Mesa 22.3.6", "15.0.6"};
 }
 
+// A failing comparison's metrics: 312 pixels beyond the tolerance, the worst 64 steps at (4, 7).
+ImageMetrics failing_metrics() {
+  ImageMetrics metrics{0.25, 4, 7, 0.01, 0.02, 33.5, 312, 0.076};
+  metrics.max_steps = 64;
+  metrics.worst_x = 4;
+  metrics.worst_y = 7;
+  metrics.first_failing = std::pair<uint32_t, uint32_t>{1, 2};
+  return metrics;
+}
+
 LaneResult passing_lane(const std::string& scene, const std::string& lane) {
   LaneResult result;
   result.lane = lane;
@@ -70,7 +80,7 @@ RunResults sample_results() {
   toon_vk.verdict = Verdict::Fail;
   toon_vk.layers = {{"finite", Verdict::Fail, "3 NaN at (4, 7) first"},
                     {"per_pixel", Verdict::Fail, "312 pixels beyond 2/255 (budget 0.1%)"}};
-  toon_vk.against_golden = ImageMetrics{0.25, 4, 7, 0.01, 0.02, 33.5, 312, 0.076};
+  toon_vk.against_golden = failing_metrics();
   toon_vk.non_finite = {3, 0, 0, std::make_pair(4u, 7u)};
   toon_vk.non_finite_mask = "toon/vk.nonfinite.png";
   LaneResult toon_hlsl = passing_lane("toon", "vk-hlsl");
@@ -81,7 +91,7 @@ RunResults sample_results() {
   toon_hlsl.layers = {{"golden", Verdict::Fail, "no golden for this scene"}};
   toon_hlsl.message = "run: xshade bless toon --lane vk-hlsl";
   toon.lanes = {toon_gl, toon_vk, toon_hlsl};
-  toon.cross_lane = {{"gl", "vk", Verdict::Fail, {0.25, 4, 7, 0.01, 0.02, 33.5, 312, 0.076}, "toon/gl_vs_vk.diff.png"}};
+  toon.cross_lane = {{"gl", "vk", Verdict::Fail, failing_metrics(), "toon/gl_vs_vk.diff.png"}};
   toon.plan = "pass main <with> & without";
 
   SceneResult broken;
@@ -179,7 +189,7 @@ TEST_F(ReportTest, IndexShowsTheFailingLaneWithItsFirstFailingLayer) {
   EXPECT_NE(rest.find("finite: 3 NaN at (4, 7) first"), std::string::npos) << rest;
   // The errored scene says why in its row, and the failing cross-lane pair shows its numbers.
   EXPECT_NE(index.find("materials/broken.hlsl:3:5: error: unknown identifier &#39;colr&#39;"), std::string::npos);
-  EXPECT_NE(index.find("max difference 0.25 at (4, 7), 312 failing pixels (7.6%)"), std::string::npos);
+  EXPECT_NE(index.find("worst 64 sRGB steps at (4, 7), 312 failing pixels (7.6%)"), std::string::npos);
 }
 
 TEST_F(ReportTest, SceneTextIsEscapedEverywhere) {
@@ -214,7 +224,9 @@ TEST_F(ReportTest, ScenePageShowsImagesMetricsTimingsAndDriver) {
 TEST_F(ReportTest, FailingScenePageShowsTheMaskMetricsAndTheMissingGolden) {
   const std::string page = read_text(dir_ / pages_[1]);
   EXPECT_NE(page.find("src=\"toon/vk.nonfinite.png\""), std::string::npos);
-  EXPECT_NE(page.find("<th>max difference</th><td>0.25 at (4, 7)</td>"), std::string::npos);
+  EXPECT_NE(page.find("<th>domain</th><td>8-bit sRGB steps, as the per-pixel layer compares</td>"), std::string::npos);
+  EXPECT_NE(page.find("<th>worst</th><td>64 steps at (4, 7)</td>"), std::string::npos);
+  EXPECT_NE(page.find("<th>first failing</th><td>(1, 2)</td>"), std::string::npos);
   EXPECT_NE(page.find("<th>failing pixels</th><td>312 (7.6%)</td>"), std::string::npos);
   EXPECT_NE(page.find("<th>PSNR</th><td>33.50 dB</td>"), std::string::npos);
   EXPECT_NE(page.find("<th>first at</th><td>(4, 7)</td>"), std::string::npos);
@@ -299,15 +311,16 @@ TEST_F(ReportTest, ResultsJsonParsesBackWithTheSameVerdicts) {
   const auto& vk = json["scenes"][1]["lanes"][1];
   EXPECT_EQ(vk["first_failure"], "finite: 3 NaN at (4, 7) first");
   EXPECT_EQ(vk["layers"][1]["layer"], "per_pixel");
-  EXPECT_EQ(vk["against_golden"]["failing_pixels"], 312);
-  EXPECT_DOUBLE_EQ(vk["against_golden"]["psnr"].get<double>(), 33.5);
+  EXPECT_EQ(vk["against_golden"]["steps"]["failing_pixels"], 312);
+  EXPECT_EQ(vk["against_golden"]["steps"]["worst"], 64);
+  EXPECT_DOUBLE_EQ(vk["against_golden"]["steps"]["psnr"].get<double>(), 33.5);
   EXPECT_EQ(vk["non_finite"]["nan"], 3);
   EXPECT_EQ(vk["non_finite"]["first"]["y"], 7);
   EXPECT_EQ(vk["non_finite_mask"], "toon/vk.nonfinite.png");
   EXPECT_EQ(vk["driver"]["llvm_version"], "15.0.6");
   EXPECT_EQ(vk["timings"][0]["pass"], "main");
   // Identical images: an infinite PSNR, which JSON cannot hold.
-  EXPECT_TRUE(json["scenes"][0]["lanes"][0]["against_golden"]["psnr"].is_null());
+  EXPECT_TRUE(json["scenes"][0]["lanes"][0]["against_golden"]["steps"]["psnr"].is_null());
   EXPECT_TRUE(json["scenes"][0]["lanes"][2]["against_golden"].is_null());
   EXPECT_EQ(json["scenes"][1]["cross_lane"][0]["verdict"], "fail");
 }

@@ -68,11 +68,6 @@ std::string first_failure(const LaneResult& lane) {
 
 std::string pair_name(const CrossLaneResult& pair) { return pair.first_lane + " vs " + pair.second_lane; }
 
-std::string describe_metrics(const ImageMetrics& metrics) {
-  return fmt::format("max difference {:.4g} at ({}, {}), {} failing pixels ({:.3g}%)", metrics.max_difference,
-                     metrics.max_x, metrics.max_y, metrics.failing_pixels, metrics.failing_fraction * 100.0);
-}
-
 std::string describe_psnr(double psnr) {
   // Identical images have an infinite PSNR; NaN would mean a broken measurement, shown as such.
   if (std::isinf(psnr) && psnr > 0) return "identical";

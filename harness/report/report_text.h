@@ -40,10 +40,7 @@ Verdict run_verdict(const RunResults& results);
 // message; empty for a lane that passed.
 std::string first_failure(const LaneResult& lane);
 // "gl vs vk"
-std::string pair_name(const CrossLaneResult& pair);
-// "max difference 0.125 at (3, 4), 12 failing pixels (0.29%)"
-std::string describe_metrics(const ImageMetrics& metrics);
-// "38.52 dB", or "identical" when the PSNR is infinite.
+std::string pair_name(const CrossLaneResult& pair);// "38.52 dB", or "identical" when the PSNR is infinite.
 std::string describe_psnr(double psnr);
 // "850 ms", "12.3 s" or "2 min 5.0 s".
 std::string describe_duration(double seconds);

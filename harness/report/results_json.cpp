@@ -21,15 +21,30 @@ json counts_json(const VerdictCounts& counts) {
           {"error", counts.error},   {"crash", counts.crash}, {"skipped", counts.skipped}};
 }
 
+// The per-pixel layer's domain (8-bit sRGB steps) for the summary, the float layer's for values
+// above 1, and the linear differences of the floats as they are.
 json metrics_json(const ImageMetrics& metrics) {
-  return {{"max_difference", number(metrics.max_difference)},
-          {"max_x", metrics.max_x},
-          {"max_y", metrics.max_y},
-          {"mean", number(metrics.mean)},
-          {"rmse", number(metrics.rmse)},
-          {"psnr", number(metrics.psnr)},
-          {"failing_pixels", metrics.failing_pixels},
-          {"failing_fraction", number(metrics.failing_fraction)}};
+  json first_failing = nullptr;
+  if (metrics.first_failing) first_failing = {{"x", metrics.first_failing->first}, {"y", metrics.first_failing->second}};
+  return {{"steps", {{"worst", metrics.max_steps},
+                     {"worst_x", metrics.worst_x},
+                     {"worst_y", metrics.worst_y},
+                     {"first_failing", first_failing},
+                     {"mean", number(metrics.mean_steps)},
+                     {"rmse", number(metrics.rmse_steps)},
+                     {"psnr", number(metrics.psnr)},
+                     {"failing_pixels", metrics.failing_pixels},
+                     {"failing_fraction", number(metrics.failing_fraction)}}},
+          {"above_one", {{"values", metrics.hdr_values},
+                         {"failing_pixels", metrics.float_failing_pixels},
+                         {"worst_relative", number(metrics.float_max_relative)},
+                         {"worst_x", metrics.float_x},
+                         {"worst_y", metrics.float_y}}},
+          {"linear", {{"max_difference", number(metrics.max_difference)},
+                      {"max_x", metrics.max_x},
+                      {"max_y", metrics.max_y},
+                      {"mean", number(metrics.mean)},
+                      {"rmse", number(metrics.rmse)}}}};
 }
 
 json non_finite_json(const NonFiniteCount& count) {

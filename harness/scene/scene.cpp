@@ -631,7 +631,8 @@ class SceneReader : SceneValueReader {
   }
 
   void read_compare(const toml::table& table, CompareSettings& compare) {
-    check_keys(table, "compare", {"channel_tolerance", "max_failing_fraction", "position_radius", "reason"});
+    check_keys(table, "compare",
+               {"channel_tolerance", "max_failing_fraction", "position_radius", "float_tolerance", "reason"});
     std::vector<std::string_view> given;
     if (const toml::node* node = table.get("channel_tolerance")) {
       given.push_back("channel_tolerance");
@@ -648,6 +649,12 @@ class SceneReader : SceneValueReader {
       given.push_back("position_radius");
       if (auto value = integer(*node, "compare.position_radius", 0, 8))
         compare.position_radius = static_cast<uint32_t>(*value);
+    }
+    if (const toml::node* node = table.get("float_tolerance")) {
+      given.push_back("float_tolerance");
+      if (auto value = number(*node, "compare.float_tolerance", "a relative error in [0, 1]",
+                              [](double v) { return v >= 0.0 && v <= 1.0; }))
+        compare.float_tolerance = *value;
     }
     compare.tolerances_given = !given.empty();
     if (const toml::node* node = table.get("reason")) {

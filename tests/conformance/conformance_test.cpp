@@ -92,6 +92,12 @@ std::vector<Rule> rules() {
          return glm::dvec4(a / b, a % b, ua / 3u, ua % 3u);  // C++ truncates, as HLSL does
        },
        0.0, "integers are exact"},
+      {"int_div_mod_vector", 8,
+       [](uint32_t x) {
+         const int a = kIntA[x], b = kIntB[x];
+         return glm::dvec4(a / b, a % b, -a / b, -a % b);
+       },
+       0.0, "integers are exact"},
       {"matrices", 7,
        [](uint32_t x) {
          const glm::dvec4 results[7] = {{321, 654, 0, 0},   {41, 52, 63, 0},  {4, 5, 6, 3},   {2, 4, 2, -2},

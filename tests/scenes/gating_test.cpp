@@ -37,7 +37,10 @@ class Gating : public ::testing::Test {
     fs::create_directories(root_ / "scenes");
     fs::create_directories(root_ / "golden");
     fs::copy_file(kSource / "scenes" / (std::string(kScene) + ".toml"), root_ / "scenes" / (std::string(kScene) + ".toml"));
-    fs::copy_file(kSource / "golden" / (std::string(kScene) + ".png"), root_ / "golden" / (std::string(kScene) + ".png"));
+    // The golden as bless wrote it: the PNG, the float image of its values above 1, the manifest.
+    for (const char* file : {".png", ".exr"})
+      fs::copy_file(kSource / "golden" / (std::string(kScene) + file), root_ / "golden" / (std::string(kScene) + file));
+    fs::copy_file(kSource / "golden" / "MANIFEST.toml", root_ / "golden" / "MANIFEST.toml");
     fs::copy(kSource / "shaders", root_ / "shaders", fs::copy_options::recursive);
   }
   void TearDown() override { fs::remove_all(root_); }
@@ -76,7 +79,8 @@ TEST_F(Gating, AVisiblyChangedShaderFailsWithItsDiffInTheReport) {
 }
 
 TEST_F(Gating, AMissingGoldenFailsWithTheBlessCommand) {
-  fs::remove(root_ / "golden" / (std::string(kScene) + ".png"));
+  fs::remove_all(root_ / "golden");  // no golden yet: no image, no float image, no manifest
+  fs::create_directories(root_ / "golden");
   Outcome outcome = run();
   EXPECT_EQ(outcome.exit_code, 1) << outcome.output;
   EXPECT_NE(outcome.output.find("xshade bless toon_shadow_texture --reason \"...\""), std::string::npos) << outcome.output;
@@ -129,11 +133,14 @@ TEST_F(Gating, HalfEmulationRunsTheGlslLanesAndSkipsVkHlsl) {
 }
 
 TEST_F(Gating, BlessRefusesWithoutAReasonAndWritesNothing) {
-  fs::remove(root_ / "golden" / (std::string(kScene) + ".png"));
+  fs::remove_all(root_ / "golden");  // no golden yet: no image, no float image, no manifest
+  fs::create_directories(root_ / "golden");
   Outcome outcome = run_xshade("", std::string("bless ") + kScene + " --reason ' ' --scenes '" +
                                        (root_ / "scenes").string() + "' --golden '" + (root_ / "golden").string() + "'");
   EXPECT_EQ(outcome.exit_code, 2) << outcome.output;
   EXPECT_NE(outcome.output.find("say why with --reason"), std::string::npos) << outcome.output;
+  // Refused before anything renders: the command line is checked first, not only the store.
+  EXPECT_EQ(outcome.output.find(std::string(kScene) + " on "), std::string::npos) << outcome.output;
   EXPECT_TRUE(fs::is_empty(root_ / "golden"));
 }
 

@@ -52,7 +52,10 @@ class UserMistakes : public ::testing::Test {
     fs::create_directories(root_ / "scenes");
     fs::create_directories(root_ / "golden");
     fs::copy_file(kSource / "scenes" / (std::string(kScene) + ".toml"), scene());
-    fs::copy_file(kSource / "golden" / (std::string(kScene) + ".png"), root_ / "golden" / (std::string(kScene) + ".png"));
+    // The golden as bless wrote it: the PNG, the float image of its values above 1, the manifest.
+    for (const char* file : {".png", ".exr"})
+      fs::copy_file(kSource / "golden" / (std::string(kScene) + file), root_ / "golden" / (std::string(kScene) + file));
+    fs::copy_file(kSource / "golden" / "MANIFEST.toml", root_ / "golden" / "MANIFEST.toml");
     fs::copy(kSource / "shaders", root_ / "shaders", fs::copy_options::recursive);
   }
   void TearDown() override { fs::remove_all(root_); }
@@ -200,8 +203,23 @@ TEST_F(UserMistakes, ALaneGoldenThatMatchesTheCommonOneIsRefused) {
   EXPECT_FALSE(fs::exists(root_ / "golden" / (std::string(kScene) + ".gl.png")));
 }
 
+TEST_F(UserMistakes, AValueAboveOneThatChangesFailsThoughThePngCannotShowIt) {
+  // Every colour above 1 raised further (1.85 becomes 6.07): the same 255 in 8 bits.
+  replace(root_ / "shaders/materials/toon.hlsl", "return fixed4(diffuse + specular + rim, albedo.a);",
+          "fixed3 colour = diffuse + specular + rim;\n  colour += max(colour - 1, 0) * 5;\n"
+          "  return fixed4(colour, albedo.a);");
+  Outcome outcome = run();
+  EXPECT_EQ(outcome.exit_code, 1) << outcome.output;
+  EXPECT_NE(outcome.output.find(std::string(kScene) + " on gl: fail - float: "), std::string::npos) << outcome.output;
+}
+
+// white_furnace has no value above 1, so its PNG is its whole golden.
 TEST_F(UserMistakes, ASixteenBitGoldenIsSrgbLikeAnEightBitOne) {
-  const fs::path golden = root_ / "golden" / (std::string(kScene) + ".png");
+  fs::remove(scene());
+  fs::remove(root_ / "golden" / "MANIFEST.toml");  // a user's hand-made golden, not blessed
+  fs::copy_file(kSource / "scenes" / "white_furnace.toml", root_ / "scenes" / "white_furnace.toml");
+  const fs::path golden = root_ / "golden" / "white_furnace.png";
+  fs::copy_file(kSource / "golden" / "white_furnace.png", golden);
   auto input = OIIO::ImageInput::open(golden.string());
   ASSERT_TRUE(input);
   const OIIO::ImageSpec spec = input->spec();
@@ -216,10 +234,9 @@ TEST_F(UserMistakes, ASixteenBitGoldenIsSrgbLikeAnEightBitOne) {
   ASSERT_TRUE(output && output->open(golden.string(), spec16));
   ASSERT_TRUE(output->write_image(OIIO::TypeDesc::UINT16, wide.data()));
   output->close();
-  // A golden not written by bless fails its hash check unless the manifest has none for it: this
-  // copy has no manifest, as a user's first hand-made golden would not.
   Outcome outcome = run();
   EXPECT_EQ(outcome.exit_code, 0) << outcome.output;
+  EXPECT_NE(outcome.output.find("white_furnace on gl: pass"), std::string::npos) << outcome.output;
 }
 
 TEST_F(UserMistakes, ARunReplacesTheEarlierRunsPagesAndKeepsWhatItDidNotWrite) {
@@ -228,12 +245,28 @@ TEST_F(UserMistakes, ARunReplacesTheEarlierRunsPagesAndKeepsWhatItDidNotWrite) {
   std::ofstream(root_ / "report" / "notes.txt") << "mine";
   fs::rename(scene(), root_ / "scenes" / "renamed.toml");
   fs::rename(root_ / "golden" / (std::string(kScene) + ".png"), root_ / "golden" / "renamed.png");
+  fs::rename(root_ / "golden" / (std::string(kScene) + ".exr"), root_ / "golden" / "renamed.exr");
+  replace(root_ / "golden" / "MANIFEST.toml", std::string("scene = \"") + kScene + "\"", "scene = \"renamed\"");
   Outcome second = run();
   ASSERT_EQ(second.exit_code, 0) << second.output;
   EXPECT_TRUE(fs::exists(root_ / "report" / "renamed.html"));
   EXPECT_FALSE(fs::exists(root_ / "report" / (std::string(kScene) + ".html")));
   EXPECT_FALSE(fs::exists(root_ / "report" / kScene));
   EXPECT_TRUE(fs::exists(root_ / "report" / "notes.txt"));
+}
+
+// A scene without a post chain compiles and runs no post pass: the plan lists its variants and
+// passes, and says why the effect is left out.
+TEST(CommandLine, ThePlanOfASceneWithoutPostEffectsHasNoPostVariantOrPass) {
+  Outcome plan = run_xshade("", "run dof_off --plan --no-cache");
+  ASSERT_EQ(plan.exit_code, 0) << plan.output;
+  const std::string variants = plan.output.substr(0, plan.output.find("  passes to run"));
+  EXPECT_NE(variants.find("materials/"), std::string::npos) << plan.output;
+  EXPECT_EQ(variants.find("post/"), std::string::npos) << plan.output;
+  EXPECT_NE(plan.output.find("  passes to run (1):\n    scene: "), std::string::npos) << plan.output;
+  EXPECT_NE(plan.output.find("post/depth_of_field.hlsl: not in the post chain, so none of its passes is compiled or run"),
+            std::string::npos)
+      << plan.output;
 }
 
 TEST(CommandLine, VersionAndMisspeltVerbsAndOptionsAreAnswered) {

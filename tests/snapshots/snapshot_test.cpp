@@ -4,10 +4,11 @@
 // "this changed".
 //
 // After a deliberate change, rewrite the snapshots and review the diff before committing:
-//   XSHADE_UPDATE_SNAPSHOTS=1 ctest --test-dir build -R Snapshot
+//   cmake --build build --target update_snapshots
+// That target builds this file as a separate program that writes (XSHADE_WRITE_SNAPSHOTS); the
+// test CTest runs only ever compares, whatever the environment says.
 #include <gtest/gtest.h>
 
-#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -82,23 +83,34 @@ TEST_P(Snapshot, EmittedGlslMatches) {
   options.fragment_only_entry = variant.entry;
   auto module = hlsl::compile_file(kLibrary / variant.source, options);
   ASSERT_TRUE(module->ok()) << module->diagnostics.render_all();
-  const bool update = std::getenv("XSHADE_UPDATE_SNAPSHOTS") != nullptr;
+#ifdef XSHADE_WRITE_SNAPSHOTS
+  constexpr bool update = true;
+#else
+  constexpr bool update = false;
+#endif
   for (glsl::Flavour flavour : {glsl::Flavour::Gl, glsl::Flavour::Vk}) {
     auto emitted = glsl::emit(*module, {flavour});
     ASSERT_TRUE(emitted) << emitted.error().to_string();
     const std::string flavour_name = flavour == glsl::Flavour::Gl ? "gl" : "vk";
     for (const auto& [stage, suffix] : {std::pair{&emitted->vertex, "vert"}, std::pair{&emitted->fragment, "frag"}}) {
-      if (!*stage) continue;
       const fs::path file = kSnapshots / (variant.name + "." + flavour_name + "." + suffix);
+      if (!*stage) {
+        // A stage the emitter stopped producing is a change too, not a snapshot to skip.
+        if (update) fs::remove(file);
+        EXPECT_TRUE(update || !fs::exists(file)) << file.filename().string() << " is a snapshot of a stage the emitter no "
+                                                 << "longer produces";
+        continue;
+      }
       const std::string text = without_library_root((*stage)->text);
       if (update) {
         std::ofstream(file, std::ios::binary) << text;
         continue;
       }
-      ASSERT_TRUE(fs::exists(file)) << file << " is missing; write it with XSHADE_UPDATE_SNAPSHOTS=1";
+      ASSERT_TRUE(fs::exists(file)) << file << " is missing; write it with cmake --build build --target update_snapshots";
       const std::string expected = read(file);
       EXPECT_TRUE(expected == text) << file.filename().string() << " differs at " << first_difference(expected, text)
-                                    << "\nIf the change is meant, rewrite with XSHADE_UPDATE_SNAPSHOTS=1 and review the diff.";
+                                    << "\nIf the change is meant, rewrite with cmake --build build --target update_snapshots and "
+                                       "review the diff.";
     }
   }
 }

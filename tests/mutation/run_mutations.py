@@ -1,0 +1,141 @@
+#!/usr/bin/env python3
+"""The gates proven to fail: apply each wrong change to a gate's code, one at a time, rebuild, run
+the tests that should catch it, and report each change that no test caught.
+
+A gate that a wrong change leaves green checks nothing. Each mutation below is the smallest edit
+that breaks one gate (a comparison made against itself, a check turned off, a message printed
+where it is false); its `tests` are the CTest regex expected to catch it. The source is restored
+after each mutation, also when the script is interrupted.
+
+usage: run_mutations.py [--build DIR] [--only NAME] [--full]
+  --build DIR  the configured build folder (default: build)
+  --only NAME  run only the mutations whose name contains NAME
+  --full       run the whole suite for each mutation instead of its tests (slow: minutes each)
+
+Not part of CI: it rebuilds once per mutation. Exit 0 when every mutation was caught, 1 otherwise.
+"""
+import argparse
+import os
+import subprocess
+import sys
+import time
+
+ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+
+# (name, file, text as it is, text as the mutation makes it, tests that must catch it)
+MUTATIONS = [
+    # The gates issue 17 lists as unguarded before.
+    ('cross-lane compares a lane with itself', 'harness/gate/scene_check.cpp',
+     'pairs.push_back({first_lane, lane, compare_images(image, first, settings)})',
+     'pairs.push_back({first_lane, lane, compare_images(image, image, settings)})', 'CrossLane'),
+    ('determinism always passes', 'harness/gate/scene_check.cpp',
+     'if (bitwise_equal(first, second)) return', 'if (true) return', 'Determinism'),
+    ('bless accepts lanes that disagree', 'harness/gate/scene_check.cpp',
+     '    if (pair.verdict != Verdict::Pass)\n      return BlessRefusal',
+     '    if (false)\n      return BlessRefusal', 'Bless\\.'),
+    ('bless takes a blank reason on the command line', 'cli/bless_command.cpp',
+     'if (blank(options.reason)) {', 'if (false) {', 'Gating.BlessRefuses'),
+    ("the cache key leaves out the shader's own file", 'harness/render/shader_cache.cpp',
+     '  for (const fs::path& path : dependencies) {\n    const std::optional<std::string> contents',
+     '  for (const fs::path& path : std::vector<fs::path>(dependencies.begin() + 1, dependencies.end())) {\n'
+     '    const std::optional<std::string> contents', 'ShaderCacheTest'),
+    ('vector integer quotients take the wrong sign', 'glsl/intrinsic_mapping.cpp',
+     'return mix(q, -q, notEqual(lessThan(a, ', 'return mix(q, -q, equal(lessThan(a, ', 'Conformance.*int_div_mod'),
+    ('an effect in the chain is said not to be', 'harness/render/planner.cpp',
+     '    if (!used_combinations.count(effect))\n      plan.left_out',
+     '    if (true)\n      plan.left_out', 'Planner'),
+    # One per check this issue added.
+    ('a property the material lacks is accepted', 'harness/render/scene_contract.cpp',
+     '    error(problems, where,\n          fmt::format("{} has no property',
+     '    if (false) error(problems, where,\n          fmt::format("{} has no property', 'SceneContract|UserMistakes'),
+    ('an undeclared keyword is accepted', 'harness/render/scene_contract.cpp',
+     'if (std::find(declared.begin(), declared.end(), keyword) != declared.end()) continue;', 'continue;',
+     'SceneContract|UserMistakes'),
+    ('a value of the wrong size is accepted', 'harness/render/scene_contract.cpp',
+     '  if (member.components() != count)', '  if (false)', 'SceneContract|UserMistakes'),
+    ('a texture with no source and no default is accepted', 'harness/render/scene_contract.cpp',
+     '  error(problems, where,\n        fmt::format("{} samples', '  if (false) error(problems, where,\n        fmt::format("{} samples',
+     'SceneContract'),
+    ("a user's mistake in a render is a crash", 'harness/gate/scene_check.cpp',
+     'return error.kind == ErrorKind::UserInput ? Verdict::Error : Verdict::Crash;', 'return Verdict::Crash;',
+     'UserMistakes'),
+    ('a golden of another size is compared', 'harness/gate/scene_check.cpp',
+     '} else if ((*golden)->image.width != image.width', '} else if (false && (*golden)->image.width != image.width',
+     'UserMistakes.AGoldenOfAnotherSize'),
+    ('an empty shard passes', 'cli/run_command.cpp', '    if (mine.empty()) {', '    if (false) {',
+     'UserMistakes.AShard'),
+    ('a missing golden folder is accepted', 'cli/folders.cpp', 'if (golden == GoldenUse::Read && !fs::is_directory',
+     'if (false && !fs::is_directory', 'UserMistakes.AFolder'),
+    ('eval passes NaN output', 'cli/eval_command.cpp',
+     'if (!options.allow_non_finite) exit_code = std::max<int>(exit_code, kTestFailed);', '',
+     'CommandLine.EvalFails'),
+    ('bless writes a lane golden equal to the common one', 'cli/bless_command.cpp',
+     'if (comparison.verdict == harness::Verdict::Pass) {', 'if (false) {', 'UserMistakes.ALaneGolden'),
+    ('a 16-bit PNG is read as linear', 'harness/image/image_io.cpp',
+     'return integer && colour && srgb ? srgb_to_linear(pixels[i]) : pixels[i];', 'return pixels[i];',
+     'UserMistakes.ASixteenBit'),
+    ("an earlier run's pages are kept", 'harness/report/report.cpp', '  remove_stale(report_dir, files);', '',
+     'UserMistakes.ARunReplaces'),
+    ('--lane takes no comma list', 'cli/main.cpp', '      ->allow_extra_args(false)\n      ->delimiter(\',\');',
+     '      ->allow_extra_args(false);', 'UserMistakes.LanesAre'),
+    ('a compile error shows no caret', 'base/diagnostic.cpp',
+     '    if (!diagnostic.excerpt.empty()) text += "\\n" + diagnostic.excerpt;', '',
+     'UserMistakes.AVariantThatDoesNotCompile'),
+]
+
+
+def run(cmd, cwd):
+    started = time.time()
+    p = subprocess.run(cmd, cwd=cwd, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
+    return p.returncode, p.stdout, time.time() - started
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.split('\n\n')[0])
+    ap.add_argument('--build', default=os.path.join(ROOT, 'build'))
+    ap.add_argument('--only', default='')
+    ap.add_argument('--full', action='store_true')
+    args = ap.parse_args()
+
+    chosen = [m for m in MUTATIONS if args.only in m[0]]
+    rows = []
+    for index, (name, path, before, after, tests) in enumerate(chosen, 1):
+        file = os.path.join(ROOT, path)
+        original = open(file, encoding='utf-8').read()
+        if original.count(before) != 1:
+            rows.append((name, path, 'not applied: the text is not in the file once', ''))
+            print('[%d/%d] %s: not applied' % (index, len(chosen), name), flush=True)
+            continue
+        try:
+            open(file, 'w', encoding='utf-8').write(original.replace(before, after))
+            code, out, _ = run(['cmake', '--build', args.build], ROOT)
+            if code != 0:
+                verdict, by = 'caught', 'the build'
+            else:
+                ctest = ['ctest', '--test-dir', args.build, '-j%d' % (os.cpu_count() or 2)]
+                if not args.full:
+                    ctest += ['-R', tests]
+                code, out, secs = run(ctest, ROOT)
+                failed = [l.split(' - ')[1].split(' (')[0] for l in out.splitlines() if ' - ' in l and '(Failed)' in l]
+                if 'No tests were found' in out:
+                    verdict, by = 'NOT CAUGHT', 'no test matches ' + tests
+                elif code != 0:
+                    verdict, by = 'caught', ', '.join(failed[:3]) + (' and %d more' % (len(failed) - 3) if len(failed) > 3 else '')
+                else:
+                    verdict, by = 'NOT CAUGHT', 'every test passed'
+        finally:
+            open(file, 'w', encoding='utf-8').write(original)
+        rows.append((name, path, verdict, by))
+        print('[%d/%d] %s: %s (%s)' % (index, len(chosen), name, verdict, by), flush=True)
+    run(['cmake', '--build', args.build], ROOT)  # the build as the source is again
+
+    print('\n| wrong change | file | caught | by |\n|---|---|---|---|')
+    for name, path, verdict, by in rows:
+        print('| %s | %s | %s | %s |' % (name, path, verdict, by))
+    missed = [r for r in rows if r[2] != 'caught']
+    print('\n%d of %d wrong changes caught' % (len(rows) - len(missed), len(rows)))
+    return 1 if missed else 0
+
+
+if __name__ == '__main__':
+    sys.exit(main())
