@@ -72,7 +72,7 @@ void check_uniforms_have_values(const ShaderNames& names, const std::set<std::st
     const std::string& name = uniform.member.name;
     if (uniform.has_default || given.count(name) || renderer_uniform(name) || name.ends_with("_ST")) continue;
     error(problems, where,
-          fmt::format("{}'s uniform '{}' ({}) has no value: the renderer does not give it, the scene does not set it "
+          fmt::format("{}: uniform '{}' ({}) has no value: the renderer does not give it, the scene does not set it "
                       "and the shader declares no default; set {}.{}, or give it an initializer in the shader",
                       owner, name, uniform.type, how_to_set, name));
   }

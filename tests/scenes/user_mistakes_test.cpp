@@ -129,6 +129,24 @@ TEST_F(UserMistakes, AValueOfTheWrongSizeIsAnErrorNotACrash) {
       << outcome.output;
 }
 
+TEST_F(UserMistakes, AUniformWithNoValueIsAnErrorAtTheObjectNotACrash) {
+  replace(root_ / "shaders/materials/toon.hlsl", "float UIMax = 1.0;> = 0.5;\nfixed _RampSmooth",
+          "float UIMax = 1.0;>;\nfixed _RampSmooth");
+  Outcome outcome = run();
+  EXPECT_EQ(outcome.exit_code, 2) << outcome.output;
+  EXPECT_NE(outcome.output.find(at_line_of("material = ") + "12: object 'toon': material 'materials/toon.hlsl': uniform "
+                                                            "'_RampThreshold' (half) has no value"),
+            std::string::npos)
+      << outcome.output;
+}
+
+TEST_F(UserMistakes, ABlessOfAnUnchangedSceneShowsNoDifferenceInAnyMetric) {
+  Outcome outcome = xshade("bless", std::string(kScene) + " --reason \"unchanged\"");
+  EXPECT_EQ(outcome.exit_code, 0) << outcome.output;
+  EXPECT_NE(outcome.output.find("exact: pass: bit-identical"), std::string::npos) << outcome.output;
+  EXPECT_NE(outcome.output.find("worst 0 sRGB steps at (0, 0), 0 failing pixels"), std::string::npos) << outcome.output;
+}
+
 TEST_F(UserMistakes, AMissingTextureFileIsTheScenesFaultAtItsLine) {
   replace(scene(), "_ShadowTex = \"checker\"", "_ShadowTex = \"checks.png\"");
   Outcome outcome = run();
@@ -279,6 +297,22 @@ TEST(CommandLine, VersionAndMisspeltVerbsAndOptionsAreAnswered) {
   Outcome option = run_xshade("", "run --lan gl");
   EXPECT_EQ(option.exit_code, 2) << option.output;
   EXPECT_NE(option.output.find("unknown option '--lan'; did you mean '--lane'?"), std::string::npos) << option.output;
+}
+
+TEST(CommandLine, CompileShowsAPostPassAndSaysHowToChooseOne) {
+  Outcome effect = run_xshade("", "compile post/depth_of_field.hlsl --target gl --no-project");
+  EXPECT_EQ(effect.exit_code, 2) << effect.output;
+  EXPECT_NE(effect.output.find("is a post effect with no #pragma fragment: choose one of its passes (coc, prefilter, "
+                               "bokeh, postfilter, combine) with --pass NAME"),
+            std::string::npos)
+      << effect.output;
+  Outcome pass = run_xshade("", "compile post/depth_of_field.hlsl --target gl --pass bokeh --no-project");
+  EXPECT_EQ(pass.exit_code, 0) << pass.output;
+  EXPECT_NE(pass.output.find("the fragment stage of entry point 'frag_bokeh'"), std::string::npos) << pass.output;
+  Outcome all = run_xshade("", "compile materials/toon.hlsl --target vk --all-variants --no-project");
+  EXPECT_EQ(all.exit_code, 0) << all.output;
+  EXPECT_NE(all.output.find("[_SHADOW_TEX _GUARDED]: compiles"), std::string::npos) << all.output;
+  EXPECT_NE(all.output.find("4 keyword combinations for vk"), std::string::npos) << all.output;
 }
 
 TEST(CommandLine, EvalFailsOnNonFiniteOutputUnlessTheyAreExpected) {
