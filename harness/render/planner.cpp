@@ -61,7 +61,7 @@ class SourceReader {
 
 // The keywords that make the variant: per set, the one asked for or the set's default, so that
 // naming a default explicitly or not gives the same variant. Keywords no set declares are kept
-// (the front end warns about them).
+// here; the contract then refuses the scene at the keyword's line (scene_contract.h).
 std::vector<std::string> variant_keywords(const std::vector<hlsl::KeywordSet>& sets, const std::vector<std::string>& asked) {
   std::set<std::string> keywords;
   std::set<std::string> declared;

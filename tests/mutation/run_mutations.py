@@ -34,7 +34,7 @@ MUTATIONS = [
      '    if (pair.verdict != Verdict::Pass)\n      return BlessRefusal',
      '    if (false)\n      return BlessRefusal', 'Bless\\.'),
     ('bless takes a blank reason on the command line', 'cli/bless_command.cpp',
-     'if (blank(options.reason)) {', 'if (false) {', 'Gating.BlessRefuses'),
+     'if (blank(options.reason)) {', 'if (blank(options.reason) && false) {', 'Gating.BlessRefuses'),
     ("the cache key leaves out the shader's own file", 'harness/render/shader_cache.cpp',
      '  for (const fs::path& path : dependencies) {\n    const std::optional<std::string> contents',
      '  for (const fs::path& path : std::vector<fs::path>(dependencies.begin() + 1, dependencies.end())) {\n'
@@ -57,10 +57,12 @@ MUTATIONS = [
      '  error(problems, where,\n        fmt::format("{} samples', '  if (false) error(problems, where,\n        fmt::format("{} samples',
      'SceneContract'),
     ("a user's mistake in a render is a crash", 'harness/gate/scene_check.cpp',
-     'return error.kind == ErrorKind::UserInput ? Verdict::Error : Verdict::Crash;', 'return Verdict::Crash;',
+     'return error.kind == ErrorKind::UserInput ? Verdict::Error : Verdict::Crash;',
+     'return error.kind == ErrorKind::UserInput ? Verdict::Crash : Verdict::Crash;',
      'UserMistakes'),
     ('a golden of another size is compared', 'harness/gate/scene_check.cpp',
-     '} else if ((*golden)->image.width != image.width', '} else if (false && (*golden)->image.width != image.width',
+     '} else if ((*golden)->image.width != image.width || (*golden)->image.height != image.height) {',
+     '} else if (false) {',
      'UserMistakes.AGoldenOfAnotherSize'),
     ('an empty shard passes', 'cli/run_command.cpp', '    if (mine.empty()) {', '    if (false) {',
      'UserMistakes.AShard'),
@@ -72,9 +74,11 @@ MUTATIONS = [
     ('bless writes a lane golden equal to the common one', 'cli/bless_command.cpp',
      'if (comparison.verdict == harness::Verdict::Pass) {', 'if (false) {', 'UserMistakes.ALaneGolden'),
     ('a 16-bit PNG is read as linear', 'harness/image/image_io.cpp',
-     'return integer && colour && srgb ? srgb_to_linear(pixels[i]) : pixels[i];', 'return pixels[i];',
+     'return integer && colour && srgb ? srgb_to_linear(pixels[i]) : pixels[i];',
+     'return integer && colour && srgb && false ? srgb_to_linear(pixels[i]) : pixels[i];',
      'UserMistakes.ASixteenBit'),
-    ("an earlier run's pages are kept", 'harness/report/report.cpp', '  remove_stale(report_dir, files);', '',
+    ("an earlier run's pages are kept", 'harness/report/report.cpp', '  remove_stale(report_dir, files);',
+     '  if (false) remove_stale(report_dir, files);',
      'UserMistakes.ARunReplaces'),
     ('--lane takes no comma list', 'cli/main.cpp', '      ->allow_extra_args(false)\n      ->delimiter(\',\');',
      '      ->allow_extra_args(false);', 'UserMistakes.LanesAre'),
@@ -110,7 +114,7 @@ def main():
             open(file, 'w', encoding='utf-8').write(original.replace(before, after))
             code, out, _ = run(['cmake', '--build', args.build], ROOT)
             if code != 0:
-                verdict, by = 'caught', 'the build'
+                verdict, by = 'NOT RUN', 'the mutated source does not build; make the mutation compile'
             else:
                 ctest = ['ctest', '--test-dir', args.build, '-j%d' % (os.cpu_count() or 2)]
                 if not args.full:
