@@ -4,12 +4,12 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
-#include <sstream>
 #include <string>
 #include <vector>
 
 #include <gtest/gtest.h>
 
+#include "tests/support/scene_copy.h"
 #include "tests/support/xshade_process.h"
 
 namespace xshade::tests {
@@ -21,27 +21,12 @@ const fs::path kSource = XSHADE_SOURCE_DIR;
 // The smallest fixed scene (256 x 256), on the gl lane alone: enough to exercise the gate.
 constexpr const char* kScene = "toon_shadow_texture";
 
-std::string read(const fs::path& path) {
-  std::ifstream file(path, std::ios::binary);
-  std::stringstream text;
-  text << file.rdbuf();
-  return text.str();
-}
-
 class Gating : public ::testing::Test {
  protected:
   void SetUp() override {
     root_ = fs::temp_directory_path() /
             ("xshade_gating_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
-    fs::remove_all(root_);
-    fs::create_directories(root_ / "scenes");
-    fs::create_directories(root_ / "golden");
-    fs::copy_file(kSource / "scenes" / (std::string(kScene) + ".toml"), root_ / "scenes" / (std::string(kScene) + ".toml"));
-    // The golden as bless wrote it: the PNG, the float image of its values above 1, the manifest.
-    for (const char* file : {".png", ".exr"})
-      fs::copy_file(kSource / "golden" / (std::string(kScene) + file), root_ / "golden" / (std::string(kScene) + file));
-    fs::copy_file(kSource / "golden" / "MANIFEST.toml", root_ / "golden" / "MANIFEST.toml");
-    fs::copy(kSource / "shaders", root_ / "shaders", fs::copy_options::recursive);
+    copy_fixed_scene(kSource, root_, kScene);
   }
   void TearDown() override { fs::remove_all(root_); }
 
@@ -64,7 +49,7 @@ TEST_F(Gating, AnUnchangedSceneMatchesItsGolden) {
 
 TEST_F(Gating, AVisiblyChangedShaderFailsWithItsDiffInTheReport) {
   const fs::path toon = root_ / "shaders/materials/toon.hlsl";
-  std::string text = read(toon);
+  std::string text = read_text(toon);
   const std::string output = "return fixed4(diffuse + specular + rim, albedo.a);";
   ASSERT_NE(text.find(output), std::string::npos);
   text.replace(text.find(output), output.size(), "return fixed4((diffuse + specular + rim) * 0.9, albedo.a);");
@@ -74,7 +59,7 @@ TEST_F(Gating, AVisiblyChangedShaderFailsWithItsDiffInTheReport) {
   EXPECT_EQ(outcome.exit_code, 1) << outcome.output;
   EXPECT_NE(outcome.output.find("per_pixel"), std::string::npos) << outcome.output;
   EXPECT_TRUE(fs::exists(root_ / "report" / kScene / "gl.diff.png"));
-  const std::string page = read(root_ / "report" / (std::string(kScene) + ".html"));
+  const std::string page = read_text(root_ / "report" / (std::string(kScene) + ".html"));
   EXPECT_NE(page.find("gl.diff.png"), std::string::npos);
 }
 

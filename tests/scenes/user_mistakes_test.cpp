@@ -4,12 +4,12 @@
 // one mistake at a time.
 #include <filesystem>
 #include <fstream>
-#include <sstream>
 #include <string>
 
 #include <OpenImageIO/imageio.h>
 #include <gtest/gtest.h>
 
+#include "tests/support/scene_copy.h"
 #include "tests/support/xshade_process.h"
 
 namespace xshade::tests {
@@ -20,15 +20,8 @@ namespace fs = std::filesystem;
 const fs::path kSource = XSHADE_SOURCE_DIR;
 constexpr const char* kScene = "toon_shadow_texture";
 
-std::string read(const fs::path& path) {
-  std::ifstream file(path, std::ios::binary);
-  std::stringstream text;
-  text << file.rdbuf();
-  return text.str();
-}
-
 void replace(const fs::path& file, const std::string& from, const std::string& to) {
-  std::string text = read(file);
+  std::string text = read_text(file);
   const size_t at = text.find(from);
   ASSERT_NE(at, std::string::npos) << from << " is not in " << file;
   text.replace(at, from.size(), to);
@@ -37,7 +30,7 @@ void replace(const fs::path& file, const std::string& from, const std::string& t
 
 // The 1-based line of `text`'s first occurrence in `file`.
 size_t line_of(const fs::path& file, const std::string& text) {
-  const std::string content = read(file);
+  const std::string content = read_text(file);
   const size_t at = content.find(text);
   EXPECT_NE(at, std::string::npos) << text;
   return size_t(std::count(content.begin(), content.begin() + std::ptrdiff_t(at), '\n')) + 1;
@@ -48,15 +41,7 @@ class UserMistakes : public ::testing::Test {
   void SetUp() override {
     root_ = fs::temp_directory_path() /
             ("xshade_mistakes_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
-    fs::remove_all(root_);
-    fs::create_directories(root_ / "scenes");
-    fs::create_directories(root_ / "golden");
-    fs::copy_file(kSource / "scenes" / (std::string(kScene) + ".toml"), scene());
-    // The golden as bless wrote it: the PNG, the float image of its values above 1, the manifest.
-    for (const char* file : {".png", ".exr"})
-      fs::copy_file(kSource / "golden" / (std::string(kScene) + file), root_ / "golden" / (std::string(kScene) + file));
-    fs::copy_file(kSource / "golden" / "MANIFEST.toml", root_ / "golden" / "MANIFEST.toml");
-    fs::copy(kSource / "shaders", root_ / "shaders", fs::copy_options::recursive);
+    copy_fixed_scene(kSource, root_, kScene);
   }
   void TearDown() override { fs::remove_all(root_); }
 
