@@ -141,6 +141,32 @@ TEST_F(GoldenStoreTest, ALaneGoldenServesItsLaneAndTheOthersKeepTheCommonOne) {
   }
 }
 
+TEST_F(GoldenStoreTest, AValueAboveOneIsKeptInAFloatImageThatIsWhatFindReturns) {
+  FloatImage image = solid(128, 128, 128);
+  image.set(1, 1, {1.85f, 0.5f, 0.25f, 1.0f});
+  bless("material_grid", std::nullopt, image, "a highlight above 1");
+  EXPECT_TRUE(fs::exists(folder_ / "material_grid.png"));
+  ASSERT_TRUE(fs::exists(folder_ / "material_grid.exr"));
+  const GoldenEntry* entry = manifest().find("material_grid", "");
+  ASSERT_TRUE(entry);
+  EXPECT_EQ(entry->float_hash.size(), 32u);
+  auto found = GoldenStore(folder_).find("material_grid", "gl");
+  ASSERT_TRUE(found && *found) << (found ? "none" : found.error().to_string());
+  EXPECT_EQ((*found)->path, folder_ / "material_grid.exr");
+  EXPECT_EQ((*found)->image.at(1, 1).r, 1.85f);  // the PNG would say 1
+
+  // Blessed again without a value above 1, the float image goes: the PNG holds everything.
+  bless("material_grid", std::nullopt, solid(128, 128, 128), "the highlight is gone");
+  EXPECT_FALSE(fs::exists(folder_ / "material_grid.exr"));
+  EXPECT_TRUE(manifest().find("material_grid", "")->float_hash.empty());
+
+  // A float image the manifest does not record is not trusted.
+  ASSERT_TRUE(write_exr(image, folder_ / "material_grid.exr"));
+  auto untrusted = GoldenStore(folder_).find("material_grid", "gl");
+  ASSERT_FALSE(untrusted);
+  EXPECT_NE(untrusted.error().message.find("has no float_hash"), std::string::npos) << untrusted.error().message;
+}
+
 TEST_F(GoldenStoreTest, ALaneGoldenWithoutAManifestEntryIsNotTrusted) {
   bless("dof_off", std::nullopt, solid(128, 128, 128), "first render");
   fs::create_directories(folder_ / "vk");

@@ -261,6 +261,22 @@ TEST(CompareImages, MetricsOfAHandMadePair) {
             "PSNR 7.15 dB; 2 pixels (100%) differ by more than 1 sRGB step, the first at (0, 0)");
 }
 
+TEST(CompareImages, TheSummaryPointsAtTheWorstPixelInStepsNotInLinearValues) {
+  // Near black a small linear change is many sRGB steps; near white a larger one is few. The
+  // linear maximum is at (1, 0), the per-pixel layer's worst at (0, 0).
+  const FloatImage reference = filled(2, 1, {0.0f, 0.0f, 0.0f, 1.0f});
+  FloatImage test = reference;
+  FloatImage bright = reference;
+  bright.set(1, 0, {0.9f, 0.9f, 0.9f, 1.0f});
+  test.set(0, 0, {0.01f, 0.0f, 0.0f, 1.0f});  // code 25
+  test.set(1, 0, {0.95f, 0.9f, 0.9f, 1.0f});  // 249 against 243
+  const ImageMetrics metrics = compare_images(test, bright, settings(1)).metrics;
+  EXPECT_EQ(metrics.max_x, 1u);  // linear: 0.05 beats 0.01
+  EXPECT_EQ(metrics.max_steps, 25u);
+  EXPECT_EQ(metrics.worst_x, 0u);
+  EXPECT_EQ(metrics.worst_y, 0u);
+}
+
 TEST(CompareImages, AValueAboveOneThatChangedFailsTheFloatLayer) {
   // A highlight at 1.85 in the golden (a float golden keeps it) raised to 6.07: both are 255 in
   // 8-bit sRGB, so only the float layer sees it.
