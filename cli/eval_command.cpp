@@ -86,8 +86,8 @@ int run_eval(const EvalOptions& options) {
     }
     // A NaN, an Inf or a negative colour is a failure unless the shader is a test of such a hazard.
     if (const harness::NonFiniteCount bad = harness::count_non_finite(*image); bad.total()) {
-      fmt::print("{}: {} NaN, {} Inf, {} negative values, first at ({}, {}){}\n", name, bad.nan, bad.inf, bad.negative,
-                 bad.first->first, bad.first->second, options.allow_non_finite ? " (allowed by --allow-nonfinite)" : "");
+      fmt::print("{}: {}{}\n", name, harness::describe_non_finite(bad),
+                 options.allow_non_finite ? " (allowed by --allow-nonfinite)" : "");
       if (!options.allow_non_finite) exit_code = std::max<int>(exit_code, kTestFailed);
     }
     images.emplace(lane, std::move(*image));

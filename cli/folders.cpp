@@ -81,14 +81,21 @@ Result<SceneFolders> resolve_folders(const FolderOptions& given, const fs::path&
   return folders;
 }
 
+// The .toml files in `folder`, sorted.
+static std::vector<fs::path> scenes_in(const fs::path& folder, std::error_code& error) {
+  std::vector<fs::path> files;
+  for (fs::directory_iterator it(folder, error), end; !error && it != end; it.increment(error))
+    if (it->path().extension() == ".toml") files.push_back(it->path());
+  std::sort(files.begin(), files.end());
+  return files;
+}
+
 Result<std::vector<fs::path>> scene_files(const std::vector<std::string>& scenes, const SceneFolders& folders) {
   std::vector<fs::path> files;
   if (scenes.empty()) {
     std::error_code error;
-    for (fs::directory_iterator it(folders.scenes, error), end; !error && it != end; it.increment(error))
-      if (it->path().extension() == ".toml") files.push_back(it->path());
+    files = scenes_in(folders.scenes, error);
     if (error) return fail("cannot read the scenes folder " + folders.scenes.string() + ": " + error.message());
-    std::sort(files.begin(), files.end());
     if (files.empty()) return fail("no scenes (*.toml) in " + folders.scenes.string());
     return files;
   }
@@ -108,8 +115,7 @@ Result<std::vector<fs::path>> scene_files(const std::vector<std::string>& scenes
     std::error_code error;
     if (!fs::exists(file, error)) {
       std::vector<std::string> known;
-      for (fs::directory_iterator it(folders.scenes, error), end; !error && it != end; it.increment(error))
-        if (it->path().extension() == ".toml") known.push_back(it->path().stem().string());
+      for (const fs::path& other : scenes_in(folders.scenes, error)) known.push_back(other.stem().string());
       std::string message = "no scene '" + scene + "' in " + folders.scenes.string();
       if (auto near = nearest(scene, known)) message += "; did you mean '" + *near + "'?";
       if (harness::parse_lane(scene)) message += " (lanes are chosen with --lane " + scene + ", or --lane gl,vk)";

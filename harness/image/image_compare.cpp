@@ -56,11 +56,6 @@ std::string plural(size_t count, std::string_view one, std::string_view many) {
   return fmt::format("{} {}", count, count == 1 ? one : many);
 }
 
-std::string describe_non_finite(const NonFiniteCount& count) {
-  return fmt::format("{} NaN, {} Inf, {} negative channel values, first at ({}, {})", count.nan,
-                     count.inf, count.negative, count.first->first, count.first->second);
-}
-
 // The most failing pixels the budget allows. The fraction is a decimal a person wrote, so a
 // product that should be a whole number may land a hair below it; 1e-9 keeps it whole.
 size_t failing_budget(double max_failing_fraction, size_t pixels) {
@@ -401,6 +396,11 @@ std::string describe_metrics(const ImageMetrics& metrics) {
     text += fmt::format("; above 1: {} pixels beyond the float tolerance, worst {:.4g} relative at ({}, {})",
                         metrics.float_failing_pixels, metrics.float_max_relative, metrics.float_x, metrics.float_y);
   return text;
+}
+
+std::string describe_non_finite(const NonFiniteCount& count) {
+  return fmt::format("{} NaN, {} Inf, {} negative channel values, first at ({}, {})", count.nan,
+                     count.inf, count.negative, count.first->first, count.first->second);
 }
 
 }  // namespace xshade::harness

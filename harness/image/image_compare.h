@@ -125,6 +125,9 @@ struct Comparison {
 // Runs every layer on `test` against `reference` with the scene's tolerances.
 Comparison compare_images(const FloatImage& test, const FloatImage& reference, const CompareSettings& settings);
 
+// "3 NaN, 0 Inf, 1 negative channel values, first at (4, 7)"; `count` has some.
+std::string describe_non_finite(const NonFiniteCount& count);
+
 // NaN, infinite and negative channel values (alpha included; -0 is not negative), and the first
 // pixel in row-major order that has any.
 NonFiniteCount count_non_finite(const FloatImage& image);

@@ -308,7 +308,7 @@ TEST(CommandLine, EvalFailsOnNonFiniteOutputUnlessTheyAreExpected) {
                              (fs::temp_directory_path() / "xshade_eval_nan").string() + "'";
   Outcome failing = run_xshade("", common);
   EXPECT_EQ(failing.exit_code, 1) << failing.output;
-  EXPECT_NE(failing.output.find("gl: 256 NaN, 0 Inf, 0 negative values, first at (0, 0)"), std::string::npos)
+  EXPECT_NE(failing.output.find("gl: 256 NaN, 0 Inf, 0 negative channel values, first at (0, 0)"), std::string::npos)
       << failing.output;
   Outcome allowed = run_xshade("", common + " --allow-nonfinite");
   EXPECT_EQ(allowed.exit_code, 0) << allowed.output;
