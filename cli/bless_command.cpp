@@ -8,6 +8,7 @@
 
 #include "cli/commands.h"
 #include "cli/lane_selection.h"
+#include "cli/workers.h"
 #include "harness/image/image_compare.h"
 #include "harness/report/report_text.h"
 #include "harness/gate/scene_check.h"
@@ -60,11 +61,22 @@ int run_bless(const BlessOptions& options) {
     return kBadInput;
   }
 
-  harness::ShaderCache cache(shader_cache_dir(options.cache_dir), harness::compiler_identity());
+  const std::filesystem::path cache_dir = shader_cache_dir(options.cache_dir);
+  harness::ShaderCache cache(cache_dir, harness::compiler_identity());
   harness::VariantCompiler compiler(folders->shaders, &cache);
   harness::SceneChecker checker(compiler, {options.report_dir, nullptr, backend_options(selection), false, false},
                                 [](const std::string& line) { fmt::print("{}\n", line); });
-  harness::CheckedScene checked = checker.check(files->front(), *lanes);
+  // Rendered as run renders, each lane in a worker: a shader that hangs or a driver that crashes
+  // is reported, not the end of bless.
+  const WorkerOptions shared{.shader_folders = folders->shaders.folders(),
+                             .report_dir = options.report_dir,
+                             .cache_dir = cache_dir,
+                             .gl_platform = options.gl_platform};
+  harness::CheckedScene checked;
+  harness::check_in_workers(
+      checker, scene_workers(shared, options.workers), *files, *lanes,
+      [&](harness::CheckedScene&& scene) { checked = std::move(scene); },
+      [](const std::string& text) { fmt::print(stderr, "{}", text); });
   const harness::SceneResult& result = checked.result;
   if (!result.message.empty()) {
     fmt::print(stderr, "xshade bless: {}: {}\n", result.scene, result.message);

@@ -26,6 +26,13 @@ struct LaneSelection {
 
 int run_info(const LaneSelection& selection);
 
+// How a verb's renders run: each scene-and-lane (each lane of eval) in a worker process of its
+// own, up to `jobs` at once, each stopped after `timeout_seconds`.
+struct WorkerLimits {
+  unsigned jobs = 0;             // 0: one per core
+  double timeout_seconds = 0.0;  // 0: harness::kDefaultTimeoutSeconds (a scene may set its own)
+};
+
 struct RunOptions {
   LaneSelection selection;
   std::vector<std::string> scenes;  // names in the scenes folder, or .toml paths; empty = all
@@ -37,6 +44,7 @@ struct RunOptions {
   std::string precision = "float";  // or "half": half emulation (gl and vk; goldens not compared)
   bool plan_only = false;
   bool pass_images = false;  // also write each pass's output (REPORT/SCENE/passes/PASS.LANE.exr)
+  WorkerLimits workers;
   std::string command_line;  // for the reports
 };
 int run_run(const RunOptions& options);
@@ -49,6 +57,7 @@ struct BlessOptions {
   std::filesystem::path cache_dir;
   std::filesystem::path report_dir = "bless-report";  // where the rendered images go
   std::string gl_platform = "auto";  // as LaneSelection::gl_platform
+  WorkerLimits workers;
 };
 int run_bless(const BlessOptions& options);
 
@@ -78,8 +87,27 @@ struct EvalOptions {
   std::filesystem::path output_dir = ".";
   std::optional<uint32_t> seed;  // inputs from this seed instead of the defaults and white
   bool allow_non_finite = false;  // NaN, Inf and negative output is reported, not a failure
+  WorkerLimits workers;
+  bool in_worker = false;  // this process is one lane's worker: render it here
 };
 int run_eval(const EvalOptions& options);
+
+// `xshade worker`: one lane of one scene, for the run or bless that started it
+// (harness/gate/lane_workers.h). Not for users; its options are the supervisor's resolved ones.
+struct WorkerOptions {
+  std::filesystem::path scene = {};
+  std::string lane = {};
+  std::filesystem::path result_dir = {};
+  std::vector<std::filesystem::path> shader_folders = {};  // the whole search path, in order
+  std::filesystem::path golden = {};                       // empty: no golden layer
+  std::filesystem::path report_dir = {};
+  std::filesystem::path cache_dir = {};                    // empty: no cache
+  std::string gl_platform = "auto";
+  bool validation = false;
+  bool pass_images = false;
+  bool half_emulation = false;
+};
+int run_worker(const WorkerOptions& options);
 
 struct StabilityOptions {
   LaneSelection selection;

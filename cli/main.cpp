@@ -30,6 +30,20 @@ void add_lane_options(CLI::App& command, xshade::cli::LaneSelection& selection) 
   add_gl_platform_option(command, selection.gl_platform);
 }
 
+// How many renders run at once, and how long each may take (cli/workers.h).
+void add_worker_options(CLI::App& command, xshade::cli::WorkerLimits& limits, const char* what) {
+  command.add_option("-j,--jobs", limits.jobs,
+                     std::string("Render up to N ") + what + " at once, each in a worker process (default: one per core); "
+                     "results do not depend on N")
+      ->type_name("N")
+      ->check(CLI::Range(1, 256));
+  command.add_option("--timeout", limits.timeout_seconds,
+                     std::string("Stop a ") + (what[0] == 'l' ? "lane's render" : "scene's render on a lane") +
+                     " after SECONDS and fail it (default: 120; a scene may set its own with a reason)")
+      ->type_name("SECONDS")
+      ->check(CLI::Range(0.1, 86400.0));
+}
+
 // The folders of run and bless (cli/folders.h).
 void add_folder_options(CLI::App& command, xshade::cli::FolderOptions& folders) {
   command.add_option("--scenes", folders.scenes,
@@ -125,6 +139,7 @@ int main(int argc, char** argv) {
       ->type_name("i/N");
   run->add_flag("--pass-images", run_options.pass_images,
                 "Also write every pass's own output as REPORT/SCENE/passes/PASS.LANE.exr, to find where lanes part");
+  add_worker_options(*run, run_options.workers, "scene-and-lane renders");
   run->add_flag("--plan", run_options.plan_only,
                 "Print each scene's plan (variants to compile or found in the cache, passes, what is left out) "
                 "and render nothing");
@@ -145,6 +160,7 @@ int main(int argc, char** argv) {
   bless->add_option("--report", bless_options.report_dir, "Folder for the rendered images")
       ->type_name("DIR")
       ->capture_default_str();
+  add_worker_options(*bless, bless_options.workers, "lanes");
 
   CompileOptions compile_options;
   CLI::App* compile = app.add_subcommand("compile", "Compile one shader to GLSL (gl, vk), SPIR-V (spirv, vk-hlsl) or reflection");
@@ -203,6 +219,24 @@ int main(int argc, char** argv) {
       ->type_name("N");
   eval->add_flag("--allow-nonfinite", eval_options.allow_non_finite,
                  "NaN, Inf and negative output values are expected (a test of a hazard): print their counts, do not fail");
+  add_worker_options(*eval, eval_options.workers, "lanes");
+  eval->add_flag("--in-worker", eval_options.in_worker)->group("");  // eval's own workers (cli/workers.h)
+
+  // Started by run, bless and eval for each render (cli/worker_command.cpp); not in --help.
+  WorkerOptions worker_options;
+  CLI::App* worker = app.add_subcommand("worker", "One lane of one scene, for the run that started it");
+  worker->group("");
+  worker->add_option("--scene", worker_options.scene)->required();
+  worker->add_option("--lane", worker_options.lane)->required();
+  worker->add_option("--result", worker_options.result_dir)->required();
+  worker->add_option("--shader-folder", worker_options.shader_folders)->allow_extra_args(false);
+  worker->add_option("--golden", worker_options.golden);
+  worker->add_option("--report", worker_options.report_dir)->required();
+  worker->add_option("--cache", worker_options.cache_dir);
+  worker->add_option("--gl-platform", worker_options.gl_platform);
+  worker->add_flag("--vk-validation", worker_options.validation);
+  worker->add_flag("--pass-images", worker_options.pass_images);
+  worker->add_flag("--half-emulation", worker_options.half_emulation);
 
   StabilityOptions stability_options;
   CLI::App* stability = app.add_subcommand(
@@ -271,6 +305,7 @@ int main(int argc, char** argv) {
   if (*bless) return run_bless(bless_options);
   if (*compile) return run_compile(compile_options);
   if (*eval) return run_eval(eval_options);
+  if (*worker) return run_worker(worker_options);
   if (*accuracy) {
     for (int i = 0; i < argc; ++i) accuracy_options.command_line += (i ? " " : "") + std::string(argv[i]);
     return run_accuracy(accuracy_options);

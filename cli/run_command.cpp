@@ -11,6 +11,7 @@
 
 #include "cli/commands.h"
 #include "cli/lane_selection.h"
+#include "cli/workers.h"
 #include "harness/report/report.h"
 #include "harness/gate/scene_check.h"
 
@@ -89,10 +90,12 @@ int run_run(const RunOptions& options) {
     *files = std::move(mine);
   }
 
+  const std::filesystem::path cache_dir = options.no_cache ? std::filesystem::path() : shader_cache_dir(options.cache_dir);
   std::optional<harness::ShaderCache> cache;
-  if (!options.no_cache) cache.emplace(shader_cache_dir(options.cache_dir), harness::compiler_identity());
+  if (!cache_dir.empty()) cache.emplace(cache_dir, harness::compiler_identity());
   harness::VariantCompiler compiler(folders->shaders, cache ? &*cache : nullptr);
   const harness::GoldenStore goldens(folders->golden);
+  const bool half = options.precision == "half";
 
   harness::RunResults results;
   results.started = utc_now();
@@ -100,21 +103,33 @@ int run_run(const RunOptions& options) {
   size_t done = 0;
   harness::SceneChecker checker(
       compiler,
-      {options.report_dir, &goldens, backend_options(options.selection), options.pass_images,
-       options.plan_only, options.precision == "half"},
+      {options.report_dir, &goldens, backend_options(options.selection), options.pass_images, options.plan_only, half},
       [&](const std::string& line) {
         fmt::print("[{}/{}] {}\n", done + 1, files->size(), line);
         std::fflush(stdout);
       });
-  for (; done < files->size(); ++done) {
-    harness::CheckedScene checked = checker.check((*files)[done], *lanes);
-    if (options.plan_only) {
-      if (checked.result.message.empty()) fmt::print("{}", checked.result.plan);
-    }
+  auto record = [&](harness::CheckedScene&& checked) {
+    if (options.plan_only && checked.result.message.empty()) fmt::print("{}", checked.result.plan);
     if (!checked.result.message.empty())
       fmt::print(stderr, "xshade run: {}: {}\n", checked.result.scene, checked.result.message);
     print_lane_details(checked.result);
     results.scenes.push_back(std::move(checked.result));
+    ++done;
+  };
+  harness::WorkerTotals totals;
+  if (options.plan_only) {
+    for (const fs::path& file : *files) record(checker.prepare(file, *lanes));
+  } else {
+    const WorkerOptions shared{.shader_folders = folders->shaders.folders(),
+                               .golden = folders->golden,
+                               .report_dir = options.report_dir,
+                               .cache_dir = cache_dir,
+                               .gl_platform = options.selection.gl_platform,
+                               .validation = options.selection.validation,
+                               .pass_images = options.pass_images,
+                               .half_emulation = half};
+    totals = harness::check_in_workers(checker, scene_workers(shared, options.workers), *files, *lanes, record,
+                                       [](const std::string& text) { fmt::print(stderr, "{}", text); });
   }
   results.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 
@@ -129,9 +144,9 @@ int run_run(const RunOptions& options) {
   size_t passed = 0;
   for (const harness::SceneResult& scene : results.scenes) passed += scene.verdict == harness::Verdict::Pass;
   fmt::print("{} of {} scenes passed in {:.1f} s; shaders: {} compiled, {} from the cache{}\n", passed,
-             results.scenes.size(), results.seconds, compiler.compiled(), compiler.cached(),
+             results.scenes.size(), results.seconds, totals.compiled, totals.cached,
              cache ? " (" + cache->directory().string() + ")" : std::string(" (cache off)"));
-  if (compiler.cache_write_error()) fmt::print("warning: {}\n", compiler.cache_write_error()->to_string());
+  if (!totals.cache_write_error.empty()) fmt::print("warning: {}\n", totals.cache_write_error);
   fmt::print("report: {}\n", (options.report_dir / "index.html").string());
   return harness::exit_code(verdict);
 }

@@ -56,7 +56,12 @@ std::string SceneChecker::write_image(const FloatImage& image, const std::string
   return relative;
 }
 
-CheckedScene SceneChecker::check(const fs::path& scene_file, const std::vector<Lane>& lanes) {
+std::string lane_progress_line(const std::string& scene, const LaneResult& lane) {
+  return scene + " on " + lane.lane + ": " + std::string(verdict_name(lane.verdict)) +
+         (lane.message.empty() ? "" : " - " + first_line(lane.message));
+}
+
+CheckedScene SceneChecker::prepare(const fs::path& scene_file, const std::vector<Lane>& lanes) {
   CheckedScene checked;
   SceneResult& result = checked.result;
   result.scene = scene_file.stem().string();
@@ -94,53 +99,68 @@ CheckedScene SceneChecker::check(const fs::path& scene_file, const std::vector<L
     result.message = "skipped: the scene runs on " + listed + ", none of the lanes asked for";
     return checked;
   }
-
-  auto environment = build_environment(scene->environment);
-  if (!environment) {
-    result.verdict = Verdict::Error;
-    result.message = environment.error().to_string();
-    return checked;
-  }
-  for (Lane lane : scene_lanes) check_lane(*scene, *plan, *environment, lane, checked);
-  compare_lanes(*scene, checked);
-  for (const LaneResult& lane : result.lanes) result.verdict = worst(result.verdict, lane.verdict);
-  for (const CrossLaneResult& pair : result.cross_lane) result.verdict = worst(result.verdict, pair.verdict);
+  checked.plan = std::make_shared<const Plan>(std::move(*plan));
+  checked.lanes = std::move(scene_lanes);
   return checked;
 }
 
-void SceneChecker::check_lane(const Scene& scene, const Plan& plan, const Environment& environment, Lane lane,
-                              CheckedScene& checked) {
+void SceneChecker::conclude(CheckedScene& checked) {
+  SceneResult& result = checked.result;
+  for (const LaneResult& lane : result.lanes) progress_(lane_progress_line(result.scene, lane));
+  if (checked.scene) compare_lanes(*checked.scene, checked);
+  for (const LaneResult& lane : result.lanes) result.verdict = worst(result.verdict, lane.verdict);
+  for (const CrossLaneResult& pair : result.cross_lane) result.verdict = worst(result.verdict, pair.verdict);
+}
+
+void SceneChecker::check_lane(Lane lane, CheckedScene& checked, const Status& status) {
   const auto start = std::chrono::steady_clock::now();
+  const Scene& scene = *checked.scene;
+  const Plan& plan = *checked.plan;
+  auto at = [&](const std::string& where) {
+    if (status) status(where);
+  };
   LaneResult result;
   result.lane = std::string(lane_name(lane));
   auto finish = [&](Verdict verdict, std::string message) {
     result.verdict = verdict == Verdict::Skipped ? verdict : worst(result.verdict, verdict);
     if (!message.empty()) result.message = std::move(message);
     result.seconds = seconds_since(start);
-    progress_(scene.name + " on " + result.lane + ": " + std::string(verdict_name(result.verdict)) +
-              (result.message.empty() ? "" : " - " + first_line(result.message)));
     checked.result.lanes.push_back(std::move(result));
   };
 
   if (options_.half_emulation && lane == Lane::VkHlsl)
     return finish(Verdict::Skipped, "half emulation rewrites the GLSL xshade emits; this lane compiles the source with glslang");
+  if (!checked.environment) {
+    at("while building the environment");
+    auto environment = build_environment(scene.environment);
+    if (!environment) return finish(Verdict::Error, environment.error().to_string());
+    checked.environment = std::make_shared<const Environment>(std::move(*environment));
+  }
+  at("while compiling");
   auto compiled = compiler_.compile_plan(plan, lane, options_.half_emulation);
   if (!compiled) return finish(Verdict::Error, compiled.error().to_string());
   const std::vector<CompiledVariant>& variants = *compiled;
+  at("while creating the " + result.lane + " backend");
   auto backend = create_backend(lane, options_.backend);
   if (!backend) return finish(Verdict::Crash, backend.error().to_string());
   result.driver = (*backend)->driver_info();
 
-  auto rendered = render_scene(**backend, scene, plan, variants, environment, {.keep_pass_images = options_.pass_images});
+  auto in_pass = [&](int render) {
+    return [&at, render](std::string_view pass) {
+      at("in pass " + std::string(pass) + " (render " + std::to_string(render) + " of 2)");
+    };
+  };
+  auto rendered = render_scene(**backend, scene, plan, variants, *checked.environment,
+                               {.keep_pass_images = options_.pass_images, .on_pass = in_pass(1)});
   if (!rendered) return finish(verdict_of(rendered.error()), rendered.error().to_string());
   for (const PassTiming& timing : rendered->timings) result.timings.push_back({timing.pass, timing.milliseconds});
   for (const auto& [pass, image] : rendered->pass_images)
     write_image(image, scene.name, "passes/" + pass + "." + result.lane + ".exr", true);
 
   // The same scene again on the same driver must give the same bits.
-  auto again = render_scene(**backend, scene, plan, variants, environment);
+  auto again = render_scene(**backend, scene, plan, variants, *checked.environment, {.on_pass = in_pass(2)});
   if (!again) return finish(verdict_of(again.error()), again.error().to_string());
-
+  at("while comparing");
   for (const std::string& message : (*backend)->take_driver_messages())
     add_layer(result, {"driver", Verdict::Fail, message});
 

@@ -1,11 +1,14 @@
 // Checking one scene: plan it, compile what it needs, render it on each lane (twice, to prove the
 // lane deterministic), and hold each lane's image against its golden and against the other
-// lanes. Writes the images a report shows into the report folder and returns the verdicts.
+// lanes. Writes the images a report shows into the report folder and returns the verdicts. The
+// three steps are apart so that each lane can be rendered in a process of its own
+// (harness/gate/lane_workers.h).
 #pragma once
 
 #include <filesystem>
 #include <functional>
 #include <map>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -30,11 +33,19 @@ struct SceneCheckOptions {
   bool half_emulation = false;
 };
 
+struct Plan;
+struct Environment;
+
 // A checked scene: the verdicts, and the images each lane rendered (for blessing).
 struct CheckedScene {
   SceneResult result;
   std::optional<Scene> scene;
   std::map<Lane, FloatImage> images;
+  // What SceneChecker::prepare found: the plan and the lanes to render (those asked for that the
+  // scene lists; none when the result is already decided).
+  std::shared_ptr<const Plan> plan;
+  std::vector<Lane> lanes;
+  std::shared_ptr<const Environment> environment;  // made by the first lane rendered here
 };
 
 // The gate's decisions, apart from rendering so that each can be fed what must fail it.
@@ -59,18 +70,31 @@ struct BlessRefusal {
 };
 std::optional<BlessRefusal> bless_refusal(const SceneResult& result);
 
+// "toon_ramp on gl: fail - per_pixel: ...": a lane's line in a run's progress.
+std::string lane_progress_line(const std::string& scene, const LaneResult& lane);
+
 class SceneChecker {
  public:
   using Progress = std::function<void(const std::string& line)>;
+  // Where a lane's check is: "while compiling", "in pass bokeh (render 1 of 2)".
+  using Status = std::function<void(const std::string& where)>;
 
   SceneChecker(VariantCompiler& compiler, SceneCheckOptions options, Progress progress);
 
-  // `lanes`: the lanes asked for; a scene runs those of them it lists.
-  CheckedScene check(const std::filesystem::path& scene_file, const std::vector<Lane>& lanes);
+  // Loads and plans the scene; `lanes` are the lanes asked for, of which the scene runs those it
+  // lists (checked.lanes). A scene that does not load or plan, lists none of them, or is only to
+  // be planned, is decided here and has no lanes.
+  CheckedScene prepare(const std::filesystem::path& scene_file, const std::vector<Lane>& lanes);
+  // Compiles, renders and checks one lane of a prepared scene in this process: its result is
+  // appended to checked.result.lanes and its image to checked.images.
+  void check_lane(Lane lane, CheckedScene& checked, const Status& status = {});
+  // Each lane's progress line, the lanes against each other, and the scene's verdict from its
+  // lanes and theirs.
+  void conclude(CheckedScene& checked);
+
+  const VariantCompiler& compiler() const { return compiler_; }
 
  private:
-  void check_lane(const Scene& scene, const struct Plan& plan, const struct Environment& environment, Lane lane,
-                  CheckedScene& checked);
   void compare_lanes(const Scene& scene, CheckedScene& checked);
   std::string write_image(const FloatImage& image, const std::string& scene, const std::string& file, bool exr = false);
 

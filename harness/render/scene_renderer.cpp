@@ -425,6 +425,7 @@ class SceneRenderer {
   }
 
   Result<void> timed(const std::string& name, const RenderPass& pass) {
+    if (options_.on_pass) options_.on_pass(name);
     const auto start = std::chrono::steady_clock::now();
     if (auto rendered = backend_.render(pass); !rendered) return fail(from_backend(in_context(name, rendered.error())));
     const std::chrono::duration<double, std::milli> elapsed = std::chrono::steady_clock::now() - start;

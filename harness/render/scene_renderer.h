@@ -4,6 +4,7 @@
 // run alone, on a colour and depth image given by the caller (the stability suite's inputs).
 #pragma once
 
+#include <functional>
 #include <map>
 #include <string>
 #include <string_view>
@@ -53,6 +54,8 @@ struct RenderOptions {
   bool keep_pass_images = false;
   uint32_t frames = 1;  // rendered one after another with the same resources; the last one is returned
   ProgramCache* programs = nullptr;  // when given, programs come from it (and go into it)
+  // Told each pass's name before it is drawn: where a render that hangs or crashes was.
+  std::function<void(std::string_view pass)> on_pass = {};
 };
 
 // `variants` holds the compiled form of each of the plan's variants for this backend's lane.

@@ -57,7 +57,7 @@ class SceneReader : SceneValueReader {
   void read_root(const toml::table& root, Scene& scene) {
     check_keys(root, "",
                {"description", "size", "lanes", "clear_color", "time", "camera", "light", "environment", "object",
-                "post", "compare"});
+                "post", "compare", "timeout", "timeout_reason"});
 
     if (const toml::node* node = root.get("description")) {
       if (auto text = string(*node, "description", "a non-empty string")) scene.description = *text;
@@ -82,6 +82,8 @@ class SceneReader : SceneValueReader {
       if (auto value = float_value(*node, "time", "a number of seconds >= 0", non_negative)) scene.time_seconds = *value;
     }
 
+    read_timeout(root, scene);
+
     if (const toml::table* camera = table(root, "", "camera", true)) read_camera(*camera, scene.camera);
 
     std::vector<const toml::table*> lights = table_array(root, "light");
@@ -97,6 +99,23 @@ class SceneReader : SceneValueReader {
     for (size_t i = 0; i < effects.size(); ++i) read_post(*effects[i], index_path("post", i), scene);
 
     if (const toml::table* compare = table(root, "", "compare", false)) read_compare(*compare, scene.compare);
+  }
+
+  // A scene's own time limit for each lane's render, in place of the run's, with why it needs it.
+  void read_timeout(const toml::table& root, Scene& scene) {
+    const toml::node* timeout = root.get("timeout");
+    const toml::node* reason = root.get("timeout_reason");
+    if (timeout) {
+      // An hour: a render slower than that is no gate anyone waits for.
+      if (auto seconds = number(*timeout, "timeout", "a number of seconds in (0, 3600]",
+                                [](double value) { return value > 0.0 && value <= 3600.0; }))
+        scene.timeout_seconds = *seconds;
+      if (!reason) missing(root, "timeout_reason", "a string saying why the scene needs longer than a run allows");
+    }
+    if (reason) {
+      if (auto text = string(*reason, "timeout_reason", "a non-empty string")) scene.timeout_reason = *text;
+      if (!timeout) report(reason->source(), "timeout_reason: there is no timeout for it to explain; set timeout = SECONDS or remove it");
+    }
   }
 
   void read_size(const toml::node& node, Scene& scene) {

@@ -164,6 +164,9 @@ struct Scene {
   uint32_t width = 0;           // 1..4096
   uint32_t height = 0;          // 1..4096
   std::vector<std::string> lanes;  // a subset of "gl", "vk", "vk-hlsl" in the order written
+  // Each lane's render stops after this long instead of the run's --timeout; set with a reason.
+  std::optional<double> timeout_seconds = std::nullopt;
+  std::string timeout_reason;
   glm::vec4 clear_color{0.0f, 0.0f, 0.0f, 1.0f};
   // The time since the level loaded that the frame shows, in seconds (Unity's _Time.y).
   float time_seconds = 0.0f;

@@ -1,0 +1,240 @@
+#include "base/subprocess.h"
+
+#include <fcntl.h>
+#include <poll.h>
+#include <sched.h>
+#include <signal.h>
+#include <spawn.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cerrno>
+#include <cstring>
+
+extern char** environ;
+
+namespace xshade {
+namespace {
+
+// A pipe whose ends are above the descriptors the child's file actions write (0 to 3), so that
+// dup2 onto 1, 2 or 3 never meets one of them, and close-on-exec, so that no other child inherits
+// them.
+bool make_pipe(int ends[2]) {
+  int raw[2];
+  if (pipe2(raw, O_CLOEXEC) != 0) return false;
+  for (int i = 0; i < 2; ++i) {
+    ends[i] = fcntl(raw[i], F_DUPFD_CLOEXEC, 10);
+    close(raw[i]);
+  }
+  if (ends[0] < 0 || ends[1] < 0) {
+    for (int i = 0; i < 2; ++i)
+      if (ends[i] >= 0) close(ends[i]);
+    return false;
+  }
+  fcntl(ends[0], F_SETFL, O_NONBLOCK);
+  return true;
+}
+
+// Our environment with each "NAME=value" of `overrides` in place of ours.
+std::vector<std::string> child_environment(const std::vector<std::string>& overrides) {
+  std::vector<std::string> entries;
+  auto name_of = [](const std::string& entry) { return entry.substr(0, entry.find('=')); };
+  for (char** entry = environ; *entry; ++entry) {
+    const std::string text = *entry;
+    if (std::none_of(overrides.begin(), overrides.end(),
+                     [&](const std::string& over) { return name_of(over) == name_of(text); }))
+      entries.push_back(text);
+  }
+  entries.insert(entries.end(), overrides.begin(), overrides.end());
+  return entries;
+}
+
+std::vector<char*> pointers(std::vector<std::string>& strings) {
+  std::vector<char*> result;
+  for (std::string& text : strings) result.push_back(text.data());
+  result.push_back(nullptr);
+  return result;
+}
+
+}  // namespace
+
+std::string describe_signal(int signal) {
+  const char* name = sigabbrev_np(signal);
+  const char* what = sigdescr_np(signal);
+  std::string text = name ? std::string("SIG") + name : "signal " + std::to_string(signal);
+  if (what) {
+    std::string lower = what;
+    if (!lower.empty()) lower[0] = char(std::tolower(static_cast<unsigned char>(lower[0])));
+    text += " (" + lower + ")";
+  }
+  return text;
+}
+
+Result<ChildProcess> ChildProcess::start(const std::vector<std::string>& argv, const std::vector<std::string>& environment,
+                                         Clock::duration time_limit) {
+  if (argv.empty()) return fail(ErrorKind::Internal, "a child process needs a program to run");
+  int output[2], status[2];
+  if (!make_pipe(output)) return fail(ErrorKind::Backend, std::string("cannot make a pipe: ") + std::strerror(errno));
+  if (!make_pipe(status)) {
+    close(output[0]);
+    close(output[1]);
+    return fail(ErrorKind::Backend, std::string("cannot make a pipe: ") + std::strerror(errno));
+  }
+  posix_spawn_file_actions_t actions;
+  posix_spawn_file_actions_init(&actions);
+  posix_spawn_file_actions_adddup2(&actions, output[1], 1);
+  posix_spawn_file_actions_adddup2(&actions, output[1], 2);
+  posix_spawn_file_actions_adddup2(&actions, status[1], kChildStatusFd);
+
+  std::vector<std::string> arguments = argv;
+  std::vector<std::string> variables = child_environment(environment);
+  std::vector<char*> argument_pointers = pointers(arguments);
+  std::vector<char*> variable_pointers = pointers(variables);
+  pid_t pid = -1;
+  const int spawned =
+      posix_spawn(&pid, argv[0].c_str(), &actions, nullptr, argument_pointers.data(), variable_pointers.data());
+  posix_spawn_file_actions_destroy(&actions);
+  close(output[1]);
+  close(status[1]);
+  if (spawned != 0) {
+    close(output[0]);
+    close(status[0]);
+    return fail(ErrorKind::Backend, "cannot start " + argv[0] + ": " + std::strerror(spawned));
+  }
+  ChildProcess child;
+  child.pid_ = pid;
+  child.output_fd_ = output[0];
+  child.status_fd_ = status[0];
+  child.started_ = Clock::now();
+  child.deadline_ = child.started_ + time_limit;
+  return child;
+}
+
+ChildProcess::ChildProcess(ChildProcess&& other) noexcept { *this = std::move(other); }
+
+ChildProcess& ChildProcess::operator=(ChildProcess&& other) noexcept {
+  if (this == &other) return *this;
+  release();
+  pid_ = std::exchange(other.pid_, -1);
+  output_fd_ = std::exchange(other.output_fd_, -1);
+  status_fd_ = std::exchange(other.status_fd_, -1);
+  finished_ = other.finished_;
+  exit_ = other.exit_;
+  output_ = std::move(other.output_);
+  output_cut_ = other.output_cut_;
+  status_partial_ = std::move(other.status_partial_);
+  last_status_ = std::move(other.last_status_);
+  started_ = other.started_;
+  deadline_ = other.deadline_;
+  ended_ = other.ended_;
+  return *this;
+}
+
+ChildProcess::~ChildProcess() { release(); }
+
+void ChildProcess::release() {
+  if (pid_ > 0 && !finished_) {
+    kill(pid_, SIGKILL);
+    waitpid(pid_, nullptr, 0);
+  }
+  pid_ = -1;
+  close_pipes();
+}
+
+void ChildProcess::close_pipes() {
+  for (int* fd : {&output_fd_, &status_fd_})
+    if (*fd >= 0) {
+      close(*fd);
+      *fd = -1;
+    }
+}
+
+std::vector<int> ChildProcess::open_fds() const {
+  std::vector<int> fds;
+  for (int fd : {output_fd_, status_fd_})
+    if (fd >= 0) fds.push_back(fd);
+  return fds;
+}
+
+void ChildProcess::read_pipes() {
+  char buffer[65536];
+  for (int* fd : {&output_fd_, &status_fd_}) {
+    while (*fd >= 0) {
+      const ssize_t got = read(*fd, buffer, sizeof buffer);
+      if (got < 0 && errno == EINTR) continue;
+      if (got < 0) break;  // EAGAIN: nothing more now
+      if (got == 0) {      // the child (and anything it started) closed its end
+        close(*fd);
+        *fd = -1;
+        break;
+      }
+      if (fd == &output_fd_) {
+        output_.append(buffer, size_t(got));
+        // Keep the start (how it began) and the end (how it ended) of a flood of output.
+        if (output_.size() > kOutputKept) {
+          const size_t half = kOutputKept / 2, cut = output_.size() - kOutputKept;
+          output_.erase(half, cut);
+          output_cut_ += cut;
+        }
+      } else {
+        status_partial_.append(buffer, size_t(got));
+        for (size_t end; (end = status_partial_.find('\n')) != std::string::npos;) {
+          last_status_ = status_partial_.substr(0, end);
+          status_partial_.erase(0, end + 1);
+        }
+        if (status_partial_.size() > 65536) status_partial_.clear();  // not a status line
+      }
+    }
+  }
+}
+
+bool ChildProcess::poll() {
+  if (finished_) return true;
+  read_pipes();
+  int status = 0;
+  pid_t reaped = waitpid(pid_, &status, WNOHANG);
+  if (reaped == 0 && Clock::now() >= deadline_) {
+    kill(pid_, SIGKILL);
+    reaped = waitpid(pid_, &status, 0);
+    exit_.timed_out = true;
+  }
+  if (reaped != pid_) return false;
+  finished_ = true;
+  ended_ = Clock::now();
+  if (WIFEXITED(status)) exit_.code = WEXITSTATUS(status);
+  if (WIFSIGNALED(status)) exit_.signal = WTERMSIG(status);
+  // What it wrote before it ended is still in the pipes: read it all (the descriptors are
+  // non-blocking, so a grandchild holding a pipe open cannot stall us).
+  read_pipes();
+  close_pipes();
+  if (output_cut_)
+    output_.insert(kOutputKept / 2, "\n[... " + std::to_string(output_cut_) + " bytes of output left out ...]\n");
+  return true;
+}
+
+void wait_for_any(const std::vector<ChildProcess*>& children, std::chrono::milliseconds longest) {
+  std::vector<pollfd> fds;
+  auto wait = longest;
+  const auto now = ChildProcess::Clock::now();
+  for (const ChildProcess* child : children) {
+    if (child->finished()) return;
+    for (int fd : child->open_fds()) fds.push_back({fd, POLLIN, 0});
+    const auto until_deadline =
+        std::chrono::duration_cast<std::chrono::milliseconds>(child->deadline() - now) + std::chrono::milliseconds(1);
+    wait = std::max(std::chrono::milliseconds(0), std::min(wait, until_deadline));
+  }
+  // A child that has closed both pipes is only seen ending by waitpid: wake up soon to look.
+  if (fds.size() < 2 * children.size()) wait = std::min(wait, std::chrono::milliseconds(10));
+  ::poll(fds.data(), fds.size(), int(wait.count()));
+}
+
+unsigned usable_cores() {
+  cpu_set_t set;
+  CPU_ZERO(&set);
+  if (sched_getaffinity(0, sizeof set, &set) == 0) return std::max(1, CPU_COUNT(&set));
+  const long online = sysconf(_SC_NPROCESSORS_ONLN);
+  return online > 0 ? unsigned(online) : 1u;
+}
+
+}  // namespace xshade

@@ -1,0 +1,90 @@
+// Child processes a parent supervises, as conformance runners run their tests: each started with
+// posix_spawn, its standard output and error collected together, a second pipe (file descriptor
+// 3 in the child) for the status lines it reports, and a deadline after which it is killed. A
+// child that crashes, hangs or is killed is then a result the parent reports, never the parent's
+// own end.
+#pragma once
+
+#include <sys/types.h>
+
+#include <chrono>
+#include <string>
+#include <vector>
+
+#include "base/result.h"
+
+namespace xshade {
+
+// The file descriptor a child writes its status lines to.
+inline constexpr int kChildStatusFd = 3;
+
+struct ChildExit {
+  int code = -1;           // the exit code, when it exited
+  int signal = 0;          // the signal that ended it; 0 when it exited
+  bool timed_out = false;  // killed by its parent at its deadline
+};
+
+// "SIGSEGV (segmentation fault)".
+std::string describe_signal(int signal);
+
+class ChildProcess {
+ public:
+  using Clock = std::chrono::steady_clock;
+
+  // Starts `argv[0]` (a path) with `argv`, its environment ours with each "NAME=value" of
+  // `environment` set over it. It is killed at `time_limit` from now.
+  static Result<ChildProcess> start(const std::vector<std::string>& argv, const std::vector<std::string>& environment,
+                                    Clock::duration time_limit);
+
+  ChildProcess(ChildProcess&& other) noexcept;
+  ChildProcess& operator=(ChildProcess&& other) noexcept;
+  ChildProcess(const ChildProcess&) = delete;
+  ChildProcess& operator=(const ChildProcess&) = delete;
+  // A child still running is killed and reaped: none outlives the object that started it.
+  ~ChildProcess();
+
+  // Reads what the child wrote, reaps it when it has ended and kills it at its deadline; true
+  // once it has ended (and then output() and last_status() are complete). Never blocks.
+  bool poll();
+  bool finished() const { return finished_; }
+  const ChildExit& exit_status() const { return exit_; }
+  // Standard output and error, interleaved as written; of a very talkative child only the first
+  // and last kOutputKept bytes.
+  const std::string& output() const { return output_; }
+  // The last complete line the child wrote to kChildStatusFd; empty before the first.
+  const std::string& last_status() const { return last_status_; }
+  double seconds() const { return std::chrono::duration<double>(ended_ - started_).count(); }
+
+  // The file descriptors still open, for waiting on.
+  std::vector<int> open_fds() const;
+  Clock::time_point deadline() const { return deadline_; }
+
+  static constexpr size_t kOutputKept = 1 << 20;
+
+ private:
+  ChildProcess() = default;
+  void read_pipes();
+  void close_pipes();
+  void release();
+
+  pid_t pid_ = -1;
+  int output_fd_ = -1;
+  int status_fd_ = -1;
+  bool finished_ = false;
+  ChildExit exit_;
+  std::string output_;
+  size_t output_cut_ = 0;  // bytes left out of output_'s middle
+  std::string status_partial_;
+  std::string last_status_;
+  Clock::time_point started_{};
+  Clock::time_point deadline_{};
+  Clock::time_point ended_{};
+};
+
+// Waits until one of `children` writes, ends or reaches its deadline, or `longest` has passed.
+void wait_for_any(const std::vector<ChildProcess*>& children, std::chrono::milliseconds longest);
+
+// The cores this process may run on (its affinity mask), at least 1.
+unsigned usable_cores();
+
+}  // namespace xshade

@@ -1,0 +1,47 @@
+#include "cli/workers.h"
+
+#include <unistd.h>
+
+#include <cstdlib>
+
+#include "base/subprocess.h"
+
+namespace xshade::cli {
+
+std::string this_program() {
+  std::error_code error;
+  const std::filesystem::path self = std::filesystem::read_symlink("/proc/self/exe", error);
+  return error ? std::string("xshade") : self.string();
+}
+
+unsigned worker_jobs(const WorkerLimits& limits) { return limits.jobs ? limits.jobs : usable_cores(); }
+
+double worker_timeout(const WorkerLimits& limits) {
+  return limits.timeout_seconds > 0.0 ? limits.timeout_seconds : harness::kDefaultTimeoutSeconds;
+}
+
+std::vector<std::string> worker_environment(unsigned jobs) {
+  if (std::getenv("LP_NUM_THREADS")) return {};
+  return {"LP_NUM_THREADS=" + std::to_string(harness::driver_threads_per_worker(usable_cores(), jobs))};
+}
+
+harness::SceneWorkers scene_workers(const WorkerOptions& shared, const WorkerLimits& limits) {
+  std::vector<std::string> command = {this_program(), "worker"};
+  for (const std::filesystem::path& folder : shared.shader_folders) {
+    command.push_back("--shader-folder");
+    command.push_back(folder.string());
+  }
+  if (!shared.golden.empty()) command.insert(command.end(), {"--golden", shared.golden.string()});
+  command.insert(command.end(), {"--report", shared.report_dir.string(), "--gl-platform", shared.gl_platform});
+  if (!shared.cache_dir.empty()) command.insert(command.end(), {"--cache", shared.cache_dir.string()});
+  if (shared.validation) command.push_back("--vk-validation");
+  if (shared.pass_images) command.push_back("--pass-images");
+  if (shared.half_emulation) command.push_back("--half-emulation");
+  const unsigned jobs = worker_jobs(limits);
+  return {.command = std::move(command),
+          .jobs = jobs,
+          .timeout_seconds = worker_timeout(limits),
+          .environment = worker_environment(jobs)};
+}
+
+}  // namespace xshade::cli

@@ -1,0 +1,288 @@
+#include "harness/gate/lane_workers.h"
+
+#include <signal.h>
+#include <unistd.h>
+
+#include <cstdlib>
+#include <cstring>
+#include <deque>
+#include <optional>
+
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+
+#include "base/file_io.h"
+#include "base/subprocess.h"
+#include "harness/gate/result_json.h"
+
+namespace xshade::harness {
+namespace {
+
+namespace fs = std::filesystem;
+using namespace std::chrono_literals;
+
+// The float image as its bytes: "xsfimg1\0", width and height (uint32, host order: the worker
+// and its supervisor are one program on one machine), then the RGBA floats. Exact, and quick to
+// write and read.
+constexpr char kImageMagic[8] = "xsfimg1";
+
+std::string float_image_bytes(const FloatImage& image) {
+  std::string bytes(kImageMagic, sizeof kImageMagic);
+  bytes.append(reinterpret_cast<const char*>(&image.width), sizeof image.width);
+  bytes.append(reinterpret_cast<const char*>(&image.height), sizeof image.height);
+  bytes.append(reinterpret_cast<const char*>(image.rgba.data()), image.rgba.size() * sizeof(float));
+  return bytes;
+}
+
+std::optional<FloatImage> float_image_from(const std::string& bytes) {
+  constexpr size_t header = sizeof kImageMagic + 2 * sizeof(uint32_t);
+  if (bytes.size() < header || std::memcmp(bytes.data(), kImageMagic, sizeof kImageMagic) != 0) return std::nullopt;
+  uint32_t width = 0, height = 0;
+  std::memcpy(&width, bytes.data() + sizeof kImageMagic, sizeof width);
+  std::memcpy(&height, bytes.data() + sizeof kImageMagic + sizeof width, sizeof height);
+  if (bytes.size() != header + size_t(width) * height * 4 * sizeof(float)) return std::nullopt;
+  FloatImage image(width, height);
+  std::memcpy(image.rgba.data(), bytes.data() + header, image.rgba.size() * sizeof(float));
+  return image;
+}
+
+// A private folder for the workers' results, removed with everything in it at the end.
+class ScratchFolder {
+ public:
+  static Result<ScratchFolder> make() {
+    std::error_code error;
+    std::string pattern = (fs::temp_directory_path(error) / "xshade-workers-XXXXXX").string();
+    if (!mkdtemp(pattern.data()))
+      return fail(ErrorKind::Backend, "cannot make a folder for the workers in " + pattern + ": " + std::strerror(errno));
+    return ScratchFolder(pattern);
+  }
+  ScratchFolder(ScratchFolder&& other) noexcept : path_(std::exchange(other.path_, {})) {}
+  ScratchFolder& operator=(ScratchFolder&&) = delete;
+  ~ScratchFolder() {
+    std::error_code ignored;
+    if (!path_.empty()) fs::remove_all(path_, ignored);
+  }
+  const fs::path& path() const { return path_; }
+
+ private:
+  explicit ScratchFolder(fs::path path) : path_(std::move(path)) {}
+  fs::path path_;
+};
+
+// The last `count` lines of a worker's output, for a message about how it ended.
+std::string last_lines(const std::string& output, size_t count) {
+  size_t begin = output.size();
+  if (begin && output[begin - 1] == '\n') --begin;
+  for (size_t lines = 0; begin > 0 && lines < count; ++lines) {
+    const size_t newline = output.rfind('\n', begin - 1);
+    begin = newline == std::string::npos ? 0 : newline + (lines + 1 < count ? 0 : 1);
+    if (newline == std::string::npos) break;
+  }
+  while (begin < output.size() && output[begin] == '\n') ++begin;
+  return output.substr(begin);
+}
+
+// A lane that could not be rendered for a reason of the machine's or xshade's own.
+LaneResult crashed(Lane lane, std::string message) {
+  LaneResult result;
+  result.lane = std::string(lane_name(lane));
+  result.verdict = Verdict::Crash;
+  result.message = std::move(message);
+  return result;
+}
+
+// The result of a worker that gave none: timed out, killed, crashed or exited early.
+LaneResult ended_without_result(Lane lane, const ChildProcess& worker, double timeout_seconds) {
+  LaneResult result;
+  result.lane = std::string(lane_name(lane));
+  result.seconds = worker.seconds();
+  const std::string where = worker.last_status().empty() ? "while starting" : worker.last_status();
+  const ChildExit& exit = worker.exit_status();
+  std::string layer = "worker";
+  if (exit.timed_out) {
+    // Too slow is a check the scene failed, not a broken driver: exit 1, like any other check.
+    result.verdict = Verdict::Fail;
+    layer = "timeout";
+    result.message = fmt::format("timeout after {:g} s {}", timeout_seconds, where);
+  } else if (exit.signal) {
+    result.verdict = Verdict::Crash;
+    result.message = fmt::format("worker died: {} {}", describe_signal(exit.signal), where);
+    if (exit.signal == SIGKILL) result.message += " (killed from outside: the out-of-memory killer, or a user)";
+  } else {
+    result.verdict = Verdict::Crash;
+    result.message = fmt::format("worker exited with code {} {} and gave no result", exit.code, where);
+  }
+  result.layers.push_back({layer, result.verdict, result.message});
+  if (exit.timed_out)
+    result.message += "; a scene that needs longer says so with `timeout = SECONDS` and `timeout_reason`, a run with --timeout";
+  if (const std::string tail = last_lines(worker.output(), 20); !tail.empty())
+    result.message += "\nits last output:\n" + tail;
+  return result;
+}
+
+struct SceneInWork {
+  CheckedScene checked;
+  std::map<Lane, LaneResult> results;
+  size_t waiting = 0;  // lanes started or queued and not yet finished
+  std::string output;  // what its workers wrote
+};
+
+struct Job {
+  size_t scene = 0;
+  Lane lane = Lane::Gl;
+};
+
+struct RunningJob {
+  Job job;
+  fs::path folder;
+  double timeout_seconds = 0.0;
+  ChildProcess worker;
+};
+
+}  // namespace
+
+unsigned driver_threads_per_worker(unsigned cores, unsigned jobs) {
+  return std::max(1u, cores / std::max(1u, jobs));
+}
+
+WorkerTotals check_in_workers(SceneChecker& checker, const SceneWorkers& workers, const std::vector<fs::path>& files,
+                      const std::vector<Lane>& lanes, const std::function<void(CheckedScene&&)>& done,
+                      const std::function<void(const std::string&)>& output) {
+  WorkerTotals totals;
+  std::vector<SceneInWork> scenes(files.size());
+  auto scratch = ScratchFolder::make();
+  std::deque<Job> queued;
+  std::vector<RunningJob> running;
+  size_t next_to_prepare = 0, next_to_report = 0;
+
+  auto finish_lane = [&](const Job& job, LaneResult result) {
+    SceneInWork& scene = scenes[job.scene];
+    scene.results[job.lane] = std::move(result);
+    --scene.waiting;
+  };
+  auto start = [&](const Job& job) {
+    SceneInWork& scene = scenes[job.scene];
+    const double timeout = scene.checked.scene && scene.checked.scene->timeout_seconds
+                               ? *scene.checked.scene->timeout_seconds
+                               : workers.timeout_seconds;
+    if (!scratch) {
+      return finish_lane(job, crashed(job.lane, scratch.error().to_string()));
+    }
+    const fs::path folder = scratch->path() / fmt::format("{}-{}", job.scene, lane_name(job.lane));
+    std::error_code error;
+    fs::create_directories(folder, error);
+    std::vector<std::string> command = workers.command;
+    for (const std::string& argument : {std::string("--scene"), files[job.scene].string(), std::string("--lane"),
+                                        std::string(lane_name(job.lane)), std::string("--result"), folder.string()})
+      command.push_back(argument);
+    auto worker = ChildProcess::start(command, workers.environment,
+                                      std::chrono::duration_cast<ChildProcess::Clock::duration>(
+                                          std::chrono::duration<double>(timeout)));
+    if (!worker) {
+      return finish_lane(job, crashed(job.lane, "cannot start a worker: " + worker.error().to_string()));
+    }
+    running.push_back({job, folder, timeout, std::move(*worker)});
+  };
+  auto collect = [&](RunningJob& finished) {
+    SceneInWork& scene = scenes[finished.job.scene];
+    const ChildProcess& worker = finished.worker;
+    scene.output += worker.output();
+    std::optional<LaneResult> result;
+    if (!worker.exit_status().timed_out && worker.exit_status().signal == 0 && worker.exit_status().code == 0) {
+      const auto text = read_file(finished.folder / "lane.json");
+      const nlohmann::json json = text ? nlohmann::json::parse(*text, nullptr, false) : nlohmann::json();
+      auto parsed = lane_from_json(json.is_object() ? json.value("result", nlohmann::json()) : json);
+      if (json.is_object()) {
+        totals.compiled += json.value("compiled", size_t(0));
+        totals.cached += json.value("cached", size_t(0));
+        if (totals.cache_write_error.empty()) totals.cache_write_error = json.value("cache_write_error", "");
+      }
+      if (parsed) {
+        result = std::move(*parsed);
+      } else {
+        result = crashed(finished.job.lane, "the worker's result cannot be read: " + parsed.error().to_string());
+      }
+      if (const auto bytes = read_file(finished.folder / "image.f32"))
+        if (auto image = float_image_from(*bytes)) scene.checked.images.emplace(finished.job.lane, std::move(*image));
+    } else {
+      result = ended_without_result(finished.job.lane, worker, finished.timeout_seconds);
+    }
+    std::error_code ignored;
+    fs::remove_all(finished.folder, ignored);
+    finish_lane(finished.job, std::move(*result));
+  };
+  // Concludes and reports, in the order of `files`, every scene whose lanes are all in.
+  auto report_ready = [&] {
+    while (next_to_report < next_to_prepare && scenes[next_to_report].waiting == 0) {
+      SceneInWork& scene = scenes[next_to_report++];
+      for (Lane lane : scene.checked.lanes) scene.checked.result.lanes.push_back(std::move(scene.results[lane]));
+      if (!scene.output.empty()) output(scene.output);
+      checker.conclude(scene.checked);
+      done(std::move(scene.checked));
+    }
+  };
+
+  const unsigned jobs = std::max(1u, workers.jobs);
+  while (next_to_report < files.size()) {
+    // Prepare scenes only as far as there is work to queue: the first workers start at once.
+    while (running.size() + queued.size() < jobs && next_to_prepare < files.size()) {
+      SceneInWork& scene = scenes[next_to_prepare];
+      scene.checked = checker.prepare(files[next_to_prepare], lanes);
+      scene.waiting = scene.checked.lanes.size();
+      for (Lane lane : scene.checked.lanes) queued.push_back({next_to_prepare, lane});
+      ++next_to_prepare;
+    }
+    while (running.size() < jobs && !queued.empty()) {
+      start(queued.front());
+      queued.pop_front();
+    }
+    report_ready();
+    if (running.empty()) continue;
+    std::vector<ChildProcess*> children;
+    for (RunningJob& job : running) children.push_back(&job.worker);
+    wait_for_any(children, 1000ms);
+    for (auto it = running.begin(); it != running.end();) {
+      if (it->worker.poll()) {
+        collect(*it);
+        it = running.erase(it);
+      } else {
+        ++it;
+      }
+    }
+    report_ready();
+  }
+  return totals;
+}
+
+int run_lane_worker(SceneChecker& checker, const fs::path& scene_file, Lane lane, const fs::path& result_dir) {
+  auto status = [](const std::string& where) {
+    const std::string line = where + "\n";
+    // Nobody listening (a worker started by hand) is no reason to stop.
+    [[maybe_unused]] const ssize_t written = ::write(kChildStatusFd, line.data(), line.size());
+  };
+  status("while loading the scene");
+  CheckedScene checked = checker.prepare(scene_file, {lane});
+  LaneResult result;
+  if (checked.lanes.empty()) {
+    // Its supervisor prepared this scene and found the lane in it: the file changed since.
+    result.lane = std::string(lane_name(lane));
+    result.verdict = checked.result.verdict == Verdict::Pass ? Verdict::Error : checked.result.verdict;
+    result.message = checked.result.message.empty() ? "the scene no longer runs on " + result.lane
+                                                    : checked.result.message;
+  } else {
+    checker.check_lane(lane, checked, status);
+    result = std::move(checked.result.lanes.back());
+  }
+  if (auto image = checked.images.find(lane); image != checked.images.end())
+    if (!write_file_atomically(result_dir / "image.f32", float_image_bytes(image->second))) return 3;
+  const VariantCompiler& compiler = checker.compiler();
+  const nlohmann::json handover = {
+      {"result", lane_to_json(result)},
+      {"compiled", compiler.compiled()},
+      {"cached", compiler.cached()},
+      {"cache_write_error", compiler.cache_write_error() ? compiler.cache_write_error()->to_string() : ""}};
+  if (!write_file_atomically(result_dir / "lane.json", handover.dump())) return 3;
+  return 0;
+}
+
+}  // namespace xshade::harness

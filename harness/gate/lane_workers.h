@@ -1,0 +1,64 @@
+// Each scene-and-lane render in a worker process of its own, as conformance runners run their
+// tests: a worker that crashes, is killed or passes its time limit is that scene and lane's
+// failure, named with where it was ("timeout after 120 s in pass bokeh (render 1 of 2)",
+// "worker died: SIGSEGV (segmentation fault) in pass scene (render 2 of 2)"), and the run goes on
+// with the others. Workers are also how a run uses every core: up to `jobs` run at once, and the
+// results, images and their order do not depend on how many.
+//
+// A worker is this program again (SceneWorkers::command names how to start it); it renders one
+// lane of one scene and hands its result over in a folder: lane.json (the lane's result as
+// harness/gate/result_json.h writes it, and what it compiled) and image.f32 (the lane's float image, exactly). Its status lines ("while compiling", "in pass
+// bokeh (render 1 of 2)") come on kChildStatusFd (base/subprocess.h).
+#pragma once
+
+#include <filesystem>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "harness/gate/scene_check.h"
+
+namespace xshade::harness {
+
+// A render that takes longer than this is stopped and fails. The slowest fixed scene-and-lane
+// takes under 3 s on a 2-core machine with both cores busy (compile, two renders and the checks);
+// 120 s leaves a slow CI machine forty times that, and still ends a shader stuck in a loop within
+// two minutes. A scene may set its own (`timeout`, with `timeout_reason`).
+inline constexpr double kDefaultTimeoutSeconds = 120.0;
+
+struct SceneWorkers {
+  // The program and arguments that start a worker; "--scene FILE --lane LANE --result DIR" are
+  // added for each render.
+  std::vector<std::string> command;
+  unsigned jobs = 1;
+  double timeout_seconds = kDefaultTimeoutSeconds;  // unless the scene sets its own
+  // Set in each worker's environment (e.g. LP_NUM_THREADS, so that llvmpipe's and lavapipe's
+  // own threads do not ask for more cores than there are).
+  std::vector<std::string> environment;
+};
+
+// What the workers compiled, over the whole run.
+struct WorkerTotals {
+  size_t compiled = 0;           // shader variants compiled
+  size_t cached = 0;             // found in the cache
+  std::string cache_write_error;  // the first one, when a worker could not write the cache
+};
+
+// Checks each scene of `files` on those of `lanes` it lists, each lane in a worker; `done` gets
+// each scene once it is concluded, in the order of `files`. Worker output (a driver's warnings)
+// goes to `output` with its scene.
+WorkerTotals check_in_workers(SceneChecker& checker, const SceneWorkers& workers, const std::vector<std::filesystem::path>& files,
+                      const std::vector<Lane>& lanes, const std::function<void(CheckedScene&&)>& done,
+                      const std::function<void(const std::string&)>& output);
+
+// The worker's side: one lane of one scene checked in this process, its result and image written
+// to `result_dir`, its status to kChildStatusFd. The exit code is 0 when the result was written
+// (whatever its verdict), 3 when it could not be.
+int run_lane_worker(SceneChecker& checker, const std::filesystem::path& scene_file, Lane lane,
+                    const std::filesystem::path& result_dir);
+
+// The number of llvmpipe/lavapipe threads each of `jobs` workers should use on `cores` cores:
+// together they use the cores once, each at least one.
+unsigned driver_threads_per_worker(unsigned cores, unsigned jobs);
+
+}  // namespace xshade::harness

@@ -1,0 +1,198 @@
+#include "harness/gate/result_json.h"
+
+#include <cmath>
+#include <limits>
+
+#include <nlohmann/json.hpp>
+
+namespace xshade::harness {
+namespace {
+
+using nlohmann::json;
+
+// nlohmann writes non-finite numbers as null anyway; saying so here keeps the rule visible.
+json number(double value) { return std::isfinite(value) ? json(value) : json(nullptr); }
+
+json pixel_json(const std::optional<std::pair<uint32_t, uint32_t>>& pixel) {
+  if (!pixel) return nullptr;
+  return {{"x", pixel->first}, {"y", pixel->second}};
+}
+
+json non_finite_json(const NonFiniteCount& count) {
+  return {{"nan", count.nan}, {"inf", count.inf}, {"negative", count.negative}, {"total", count.total()},
+          {"first", pixel_json(count.first)}};
+}
+
+json driver_json(const DriverInfo& driver) {
+  return {{"api", driver.api},
+          {"renderer", driver.renderer},
+          {"api_version", driver.api_version},
+          {"driver_version", driver.driver_version},
+          {"llvm_version", driver.llvm_version}};
+}
+
+// Reads a document xshade wrote: a field that is not there or of another type is xshade's fault.
+class Reader {
+ public:
+  template <class T>
+  T get(const json& object, const char* key, T fallback = T()) {
+    const auto found = object.find(key);
+    if (found == object.end()) {
+      note(key);
+      return fallback;
+    }
+    if constexpr (std::is_floating_point_v<T>) {
+      if (found->is_null()) return std::numeric_limits<T>::quiet_NaN();
+      if (!found->is_number()) return note(key), fallback;
+    } else if constexpr (std::is_integral_v<T>) {
+      if (!found->is_number_integer()) return note(key), fallback;
+    } else if constexpr (std::is_same_v<T, std::string>) {
+      if (!found->is_string()) return note(key), fallback;
+    }
+    return found->get<T>();
+  }
+  const json& object(const json& parent, const char* key) {
+    static const json empty = json::object();
+    const auto found = parent.find(key);
+    if (found == parent.end() || !found->is_object()) return note(key), empty;
+    return *found;
+  }
+  const json& array(const json& parent, const char* key) {
+    static const json empty = json::array();
+    const auto found = parent.find(key);
+    if (found == parent.end() || !found->is_array()) return note(key), empty;
+    return *found;
+  }
+  std::optional<std::pair<uint32_t, uint32_t>> pixel(const json& parent, const char* key) {
+    const auto found = parent.find(key);
+    if (found == parent.end()) return note(key), std::nullopt;
+    if (found->is_null()) return std::nullopt;
+    return std::pair{get<uint32_t>(*found, "x"), get<uint32_t>(*found, "y")};
+  }
+  Verdict verdict(const json& parent, const char* key) {
+    const std::string name = get<std::string>(parent, key);
+    for (Verdict verdict : {Verdict::Pass, Verdict::Fail, Verdict::Error, Verdict::Crash, Verdict::Skipped})
+      if (verdict_name(verdict) == name) return verdict;
+    note(key);
+    return Verdict::Crash;
+  }
+  ImageMetrics metrics(const json& object) {
+    ImageMetrics metrics;
+    const json& steps = this->object(object, "steps");
+    metrics.max_steps = get<uint32_t>(steps, "worst");
+    metrics.worst_x = get<uint32_t>(steps, "worst_x");
+    metrics.worst_y = get<uint32_t>(steps, "worst_y");
+    metrics.first_failing = pixel(steps, "first_failing");
+    metrics.mean_steps = get<double>(steps, "mean");
+    metrics.rmse_steps = get<double>(steps, "rmse");
+    // The only PSNR JSON cannot hold is that of identical images.
+    metrics.psnr = steps.contains("psnr") && steps["psnr"].is_null() ? std::numeric_limits<double>::infinity()
+                                                                    : get<double>(steps, "psnr");
+    metrics.failing_pixels = get<size_t>(steps, "failing_pixels");
+    metrics.failing_fraction = get<double>(steps, "failing_fraction");
+    const json& above_one = this->object(object, "above_one");
+    metrics.hdr_values = get<size_t>(above_one, "values");
+    metrics.float_failing_pixels = get<size_t>(above_one, "failing_pixels");
+    metrics.float_max_relative = get<double>(above_one, "worst_relative");
+    metrics.float_x = get<uint32_t>(above_one, "worst_x");
+    metrics.float_y = get<uint32_t>(above_one, "worst_y");
+    const json& linear = this->object(object, "linear");
+    metrics.max_difference = get<double>(linear, "max_difference");
+    metrics.max_x = get<uint32_t>(linear, "max_x");
+    metrics.max_y = get<uint32_t>(linear, "max_y");
+    metrics.mean = get<double>(linear, "mean");
+    metrics.rmse = get<double>(linear, "rmse");
+    return metrics;
+  }
+
+  const std::string& missing() const { return missing_; }
+
+ private:
+  void note(const char* key) {
+    if (missing_.empty()) missing_ = key;
+  }
+  std::string missing_;
+};
+
+}  // namespace
+
+json metrics_to_json(const ImageMetrics& metrics) {
+  return {{"steps", {{"worst", metrics.max_steps},
+                     {"worst_x", metrics.worst_x},
+                     {"worst_y", metrics.worst_y},
+                     {"first_failing", pixel_json(metrics.first_failing)},
+                     {"mean", number(metrics.mean_steps)},
+                     {"rmse", number(metrics.rmse_steps)},
+                     {"psnr", number(metrics.psnr)},
+                     {"failing_pixels", metrics.failing_pixels},
+                     {"failing_fraction", number(metrics.failing_fraction)}}},
+          {"above_one", {{"values", metrics.hdr_values},
+                         {"failing_pixels", metrics.float_failing_pixels},
+                         {"worst_relative", number(metrics.float_max_relative)},
+                         {"worst_x", metrics.float_x},
+                         {"worst_y", metrics.float_y}}},
+          {"linear", {{"max_difference", number(metrics.max_difference)},
+                      {"max_x", metrics.max_x},
+                      {"max_y", metrics.max_y},
+                      {"mean", number(metrics.mean)},
+                      {"rmse", number(metrics.rmse)}}}};
+}
+
+json lane_to_json(const LaneResult& lane) {
+  json layers = json::array();
+  for (const LayerResult& layer : lane.layers)
+    layers.push_back({{"layer", layer.layer}, {"verdict", std::string(verdict_name(layer.verdict))}, {"detail", layer.detail}});
+  json timings = json::array();
+  for (const PassTime& time : lane.timings)
+    timings.push_back({{"pass", time.pass}, {"milliseconds", number(time.milliseconds)}});
+  return {{"lane", lane.lane},
+          {"verdict", std::string(verdict_name(lane.verdict))},
+          {"layers", std::move(layers)},
+          {"against_golden", lane.against_golden ? metrics_to_json(*lane.against_golden) : json(nullptr)},
+          {"non_finite", non_finite_json(lane.non_finite)},
+          {"image", lane.image},
+          {"image_exr", lane.image_exr},
+          {"golden", lane.golden},
+          {"diff", lane.diff},
+          {"non_finite_mask", lane.non_finite_mask},
+          {"timings", std::move(timings)},
+          {"seconds", number(lane.seconds)},
+          {"driver", driver_json(lane.driver)},
+          {"message", lane.message}};
+}
+
+Result<LaneResult> lane_from_json(const json& object) {
+  if (!object.is_object()) return fail(ErrorKind::Internal, "a lane's result is not a JSON object");
+  Reader read;
+  LaneResult lane;
+  lane.lane = read.get<std::string>(object, "lane");
+  lane.verdict = read.verdict(object, "verdict");
+  for (const json& layer : read.array(object, "layers"))
+    lane.layers.push_back({read.get<std::string>(layer, "layer"), read.verdict(layer, "verdict"),
+                           read.get<std::string>(layer, "detail")});
+  if (const auto golden = object.find("against_golden"); golden != object.end() && golden->is_object())
+    lane.against_golden = read.metrics(*golden);
+  const json& non_finite = read.object(object, "non_finite");
+  lane.non_finite.nan = read.get<size_t>(non_finite, "nan");
+  lane.non_finite.inf = read.get<size_t>(non_finite, "inf");
+  lane.non_finite.negative = read.get<size_t>(non_finite, "negative");
+  lane.non_finite.first = read.pixel(non_finite, "first");
+  lane.image = read.get<std::string>(object, "image");
+  lane.image_exr = read.get<std::string>(object, "image_exr");
+  lane.golden = read.get<std::string>(object, "golden");
+  lane.diff = read.get<std::string>(object, "diff");
+  lane.non_finite_mask = read.get<std::string>(object, "non_finite_mask");
+  for (const json& time : read.array(object, "timings"))
+    lane.timings.push_back({read.get<std::string>(time, "pass"), read.get<double>(time, "milliseconds")});
+  lane.seconds = read.get<double>(object, "seconds");
+  const json& driver = read.object(object, "driver");
+  lane.driver = {read.get<std::string>(driver, "api"), read.get<std::string>(driver, "renderer"),
+                 read.get<std::string>(driver, "api_version"), read.get<std::string>(driver, "driver_version"),
+                 read.get<std::string>(driver, "llvm_version")};
+  lane.message = read.get<std::string>(object, "message");
+  if (!read.missing().empty())
+    return fail(ErrorKind::Internal, "a lane's result has no valid '" + read.missing() + "'");
+  return lane;
+}
+
+}  // namespace xshade::harness
