@@ -6,12 +6,109 @@
 #include <map>
 
 #include "cli/commands.h"
+#include "base/subprocess.h"
 #include "cli/lane_selection.h"
+#include "cli/workers.h"
 #include "harness/render/evaluate.h"
 #include "harness/image/image_compare.h"
 #include "harness/image/image_io.h"
 
 namespace xshade::cli {
+
+namespace {
+
+// How far each lane's image is from the first lane's.
+void print_lane_differences(const std::map<harness::Lane, harness::FloatImage>& images) {
+  if (images.size() < 2) return;
+  const auto& [first_lane, first] = *images.begin();
+    for (const auto& [lane, image] : images) {
+      if (lane == first_lane) continue;
+      const harness::ImageDifference difference = harness::max_difference(first, image);
+      const auto pixel = first.at(difference.x, difference.y);
+      const auto other = image.at(difference.x, difference.y);
+      if (harness::bitwise_equal(first, image))
+        fmt::print("{} vs {}: bit-identical\n", harness::lane_name(first_lane), harness::lane_name(lane));
+      else
+        fmt::print("{} vs {}: max difference {:g} at ({}, {}) channel {}: {:g} vs {:g}\n",
+                   harness::lane_name(first_lane), harness::lane_name(lane), difference.max, difference.x,
+                   difference.y, "rgba"[difference.channel], pixel[int(difference.channel)],
+                   other[int(difference.channel)]);
+    }
+}
+
+// The options of `options` for one lane's worker: the same eval, of that lane alone.
+std::vector<std::string> worker_command(const EvalOptions& options, harness::Lane lane) {
+  std::vector<std::string> command = {this_program(), "eval", options.file.string(), "--in-worker",
+                                      "--lane", std::string(harness::lane_name(lane)), "--size", options.size,
+                                      "--precision", options.precision, "--gl-platform", options.selection.gl_platform,
+                                      "-o", options.output_dir.string()};
+  if (!options.entry.empty()) command.insert(command.end(), {"--entry", options.entry});
+  for (const auto& folder : options.include_dirs) command.insert(command.end(), {"-I", folder.string()});
+  for (const std::string& keyword : options.keywords) command.insert(command.end(), {"-D", keyword});
+  if (options.seed) command.insert(command.end(), {"--seed", std::to_string(*options.seed)});
+  if (options.allow_non_finite) command.push_back("--allow-nonfinite");
+  return command;
+}
+
+// Each lane in a worker of its own (cli/workers.h): a lane whose driver crashes or whose shader
+// hangs is reported as that lane's and the others still run. Each worker writes its EXR and its
+// lines; this process prints them in lane order and compares the images.
+int run_eval_lanes_in_workers(const EvalOptions& options, const std::vector<harness::Lane>& lanes) {
+  const unsigned jobs = worker_jobs(options.workers);
+  const double timeout = worker_timeout(options.workers);
+  const std::vector<std::string> environment = worker_environment(jobs);
+  std::vector<std::optional<ChildProcess>> workers(lanes.size());
+  int exit_code = kPass;
+  std::map<harness::Lane, harness::FloatImage> images;
+  size_t next_to_start = 0, next_to_report = 0;
+  while (next_to_report < lanes.size()) {
+    size_t running = 0;
+    for (size_t i = next_to_report; i < next_to_start; ++i) running += workers[i] && !workers[i]->finished();
+    while (running < jobs && next_to_start < lanes.size()) {
+      auto worker = ChildProcess::start(worker_command(options, lanes[next_to_start]), environment,
+                                        std::chrono::duration_cast<ChildProcess::Clock::duration>(
+                                            std::chrono::duration<double>(timeout)));
+      if (worker) {
+        workers[next_to_start] = std::move(*worker);
+        ++running;
+      } else {
+        fmt::print("{}: cannot start a worker: {}\n", harness::lane_name(lanes[next_to_start]), worker.error().to_string());
+        exit_code = std::max<int>(exit_code, kBackendError);
+      }
+      ++next_to_start;
+    }
+    // Reported in lane order, each once its worker has ended.
+    while (next_to_report < next_to_start && (!workers[next_to_report] || workers[next_to_report]->poll())) {
+      const harness::Lane lane = lanes[next_to_report];
+      if (std::optional<ChildProcess>& worker = workers[next_to_report]) {
+        fmt::print("{}", worker->output());
+        const ChildExit& exit = worker->exit_status();
+        const std::string name(harness::lane_name(lane));
+        if (exit.timed_out) {
+          fmt::print("{}: timeout after {:g} s; a slower shader needs --timeout SECONDS\n", name, timeout);
+          exit_code = std::max<int>(exit_code, kTestFailed);
+        } else if (exit.signal) {
+          fmt::print("{}: worker died: {}\n", name, describe_signal(exit.signal));
+          exit_code = std::max<int>(exit_code, kBackendError);
+        } else {
+          exit_code = std::max(exit_code, exit.code);
+          auto image = harness::read_image(options.output_dir / (options.file.stem().string() + "." + name + ".exr"), false);
+          if (exit.code != kBackendError && image) images.emplace(lane, std::move(*image));
+        }
+      }
+      ++next_to_report;
+    }
+    std::vector<ChildProcess*> waiting;
+    for (size_t i = next_to_report; i < next_to_start; ++i)
+      if (workers[i] && !workers[i]->finished()) waiting.push_back(&*workers[i]);
+    if (!waiting.empty()) wait_for_any(waiting, std::chrono::milliseconds(1000));
+    for (ChildProcess* worker : waiting) worker->poll();
+  }
+  print_lane_differences(images);
+  return exit_code;
+}
+
+}  // namespace
 
 int run_eval(const EvalOptions& options) {
   uint32_t width = 0, height = 0;
@@ -54,6 +151,7 @@ int run_eval(const EvalOptions& options) {
 
   std::error_code error;
   std::filesystem::create_directories(options.output_dir, error);
+  if (!options.in_worker) return run_eval_lanes_in_workers(options, *lanes);
   int exit_code = kPass;
   std::map<harness::Lane, harness::FloatImage> images;
   for (harness::Lane lane : *lanes) {
@@ -92,22 +190,7 @@ int run_eval(const EvalOptions& options) {
     }
     images.emplace(lane, std::move(*image));
   }
-  if (images.size() > 1) {
-    const auto& [first_lane, first] = *images.begin();
-    for (const auto& [lane, image] : images) {
-      if (lane == first_lane) continue;
-      const harness::ImageDifference difference = harness::max_difference(first, image);
-      const auto pixel = first.at(difference.x, difference.y);
-      const auto other = image.at(difference.x, difference.y);
-      if (harness::bitwise_equal(first, image))
-        fmt::print("{} vs {}: bit-identical\n", harness::lane_name(first_lane), harness::lane_name(lane));
-      else
-        fmt::print("{} vs {}: max difference {:g} at ({}, {}) channel {}: {:g} vs {:g}\n",
-                   harness::lane_name(first_lane), harness::lane_name(lane), difference.max, difference.x,
-                   difference.y, "rgba"[difference.channel], pixel[int(difference.channel)],
-                   other[int(difference.channel)]);
-    }
-  }
+  print_lane_differences(images);
   return exit_code;
 }
 

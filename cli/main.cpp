@@ -208,8 +208,10 @@ int main(int argc, char** argv) {
       ->check(CLI::IsMember({"float", "half"}))
       ->capture_default_str();
   add_gl_platform_option(*eval, eval_options.selection.gl_platform);
-  eval->add_option("--lane", eval_options.selection.lanes, "gl, vk, vk-hlsl or all (default: all)")
-      ->type_name("LANE");
+  eval->add_option("--lane", eval_options.selection.lanes, "gl, vk, vk-hlsl or all (default: all); --lane gl,vk for two")
+      ->type_name("LANE")
+      ->allow_extra_args(false)
+      ->delimiter(',');
   eval->add_option("-I", eval_options.include_dirs, "Search DIR for #include files")->type_name("DIR")->allow_extra_args(false);
   eval->add_option("-D", eval_options.keywords, "Enable KEYWORD")->type_name("KEYWORD")->allow_extra_args(false);
   eval->add_option("-o", eval_options.output_dir, "Folder for the EXR images")->type_name("DIR")->capture_default_str();

@@ -22,6 +22,8 @@ Outcome run_command(const std::string& command) {
 
 }  // namespace
 
+const char* xshade_binary() { return XSHADE_BINARY; }
+
 Outcome run_xshade(const std::string& environment, const std::string& arguments) {
   return run_command(environment + " '" XSHADE_BINARY "' " + arguments + " 2>&1");
 }

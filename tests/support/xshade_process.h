@@ -11,6 +11,9 @@ struct Outcome {
   std::string output;  // standard output and standard error together
 };
 
+// The path of the xshade binary the tests run.
+const char* xshade_binary();
+
 // Runs `environment xshade arguments` through the shell: `environment` is VAR=value pairs (or
 // empty), `arguments` is quoted as the shell needs.
 Outcome run_xshade(const std::string& environment, const std::string& arguments);

@@ -1,0 +1,176 @@
+// Renders in worker processes, through the real `xshade`: a render that hangs is stopped at its
+// time limit and reported as that scene's failure while the other scenes pass; a worker that dies
+// by a signal is reported with the signal and where it was; and the images and verdicts do not
+// depend on how many workers run at once.
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <vector>
+
+#include <OpenImageIO/imageio.h>
+#include <gtest/gtest.h>
+
+#include "tests/support/scene_copy.h"
+#include "tests/support/xshade_process.h"
+
+namespace xshade::tests {
+namespace {
+
+namespace fs = std::filesystem;
+
+const fs::path kSource = XSHADE_SOURCE_DIR;
+constexpr const char* kScene = "toon_shadow_texture";
+
+class Workers : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    root_ = fs::temp_directory_path() /
+            ("xshade_workers_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
+    copy_fixed_scene(kSource, root_, kScene);
+  }
+  void TearDown() override { fs::remove_all(root_); }
+
+  // A second scene, `slow`, like the fixed one but with a material whose every pixel runs two
+  // nested loops of 50,000 steps (each under llvmpipe's own limit of 65,535 iterations a loop):
+  // hours of work, which only a time limit ends.
+  void add_slow_scene() {
+    std::string shader = read_text(root_ / "shaders/materials/toon.hlsl");
+    const std::string end = "  return fixed4(diffuse + specular + rim, albedo.a);";
+    const size_t at = shader.find(end);
+    ASSERT_NE(at, std::string::npos);
+    shader.replace(at, end.size(),
+                   "  float slow = 0.0;\n"
+                   "  for (int i = 0; i < 50000; ++i)\n"
+                   "    for (int j = 0; j < 50000; ++j) slow += sin(slow + float(i) * 0.001 + float(j));\n"
+                   "  return fixed4(diffuse + specular + rim + slow * 1e-30, albedo.a);");
+    std::ofstream(root_ / "shaders/materials/slow.hlsl") << shader;
+    std::string scene = read_text(root_ / "scenes" / (std::string(kScene) + ".toml"));
+    for (size_t pos; (pos = scene.find("materials/toon.hlsl")) != std::string::npos;)
+      scene.replace(pos, std::string("materials/toon.hlsl").size(), "materials/slow.hlsl");
+    std::ofstream(root_ / "scenes/slow.toml") << scene;
+  }
+
+  std::string folders() const {
+    return " --cache '" + (root_ / "cache").string() + "' --scenes '" + (root_ / "scenes").string() + "' --golden '" +
+           (root_ / "golden").string() + "' --shaders '" + (root_ / "shaders").string() + "'";
+  }
+  Outcome run(const std::string& extra) {
+    return run_xshade("", "run" + folders() + " --report '" + (root_ / "report").string() + "' " + extra);
+  }
+
+  fs::path root_;
+};
+
+TEST_F(Workers, ARenderThatHangsIsATimeoutInItsPassAndTheOtherScenesPass) {
+  add_slow_scene();
+  Outcome outcome = run("--lane gl --timeout 3");
+  EXPECT_EQ(outcome.exit_code, 1) << outcome.output;
+  EXPECT_NE(outcome.output.find("slow on gl: fail - timeout after 3 s in pass scene (render 1 of 2)"), std::string::npos)
+      << outcome.output;
+  EXPECT_NE(outcome.output.find(std::string(kScene) + " on gl: pass"), std::string::npos) << outcome.output;
+  EXPECT_NE(outcome.output.find("1 of 2 scenes passed"), std::string::npos) << outcome.output;
+  // Every report says so.
+  EXPECT_NE(read_text(root_ / "report/results.json").find("timeout after 3 s in pass scene"), std::string::npos);
+  EXPECT_NE(read_text(root_ / "report/junit.xml").find("timeout after 3 s in pass scene"), std::string::npos);
+  EXPECT_NE(read_text(root_ / "report/index.html").find("timeout after 3 s"), std::string::npos);
+}
+
+TEST_F(Workers, ASceneSetsItsOwnTimeLimitWithAReason) {
+  add_slow_scene();
+  std::string scene = read_text(root_ / "scenes/slow.toml");
+  const size_t size = scene.find("size = ");
+  ASSERT_NE(size, std::string::npos);
+  scene.insert(size, "timeout = 2\ntimeout_reason = \"a test of the scene's own limit\"\n");
+  std::ofstream(root_ / "scenes/slow.toml") << scene;
+  Outcome outcome = run("slow --lane gl --timeout 600");
+  EXPECT_EQ(outcome.exit_code, 1) << outcome.output;
+  EXPECT_NE(outcome.output.find("timeout after 2 s in pass scene"), std::string::npos) << outcome.output;
+
+  // A limit without its reason is the user's mistake, at its line.
+  scene.replace(scene.find("timeout_reason"), scene.find('\n', scene.find("timeout_reason")) - scene.find("timeout_reason"),
+                "");
+  std::ofstream(root_ / "scenes/slow.toml") << scene;
+  outcome = run("slow --lane gl");
+  EXPECT_EQ(outcome.exit_code, 2) << outcome.output;
+  EXPECT_NE(outcome.output.find("timeout_reason"), std::string::npos) << outcome.output;
+}
+
+TEST_F(Workers, AWorkerThatDiesIsACrashNamingTheSignalAndWhereItWas) {
+  add_slow_scene();
+  // The run in the background; once the slow scene's worker has been drawing for a while, it is
+  // sent SIGSEGV, as a driver's fault would end it ("worke[r]" matches the worker and not this
+  // shell, whose own command line holds the pattern).
+  const std::string out = (root_ / "out.txt").string();
+  const std::string command =
+      "'" + std::string(xshade_binary()) + "' run slow" + folders() + " --report '" + (root_ / "report").string() +
+      "' --lane gl --timeout 600 > '" + out + "' 2>&1 & run=$!; pid=; for i in $(seq 600); do pid=$(pgrep -f -- '" +
+      "worke[r] .*--scene " + (root_ / "scenes/slow.toml").string() + "'); [ -n \"$pid\" ] && break; sleep 0.1; done; " +
+      "sleep 2; kill -SEGV $pid; wait $run; echo \"exit $?\" >> '" + out + "'";
+  ASSERT_EQ(std::system(command.c_str()), 0);
+  const std::string output = read_text(out);
+  EXPECT_NE(output.find("exit 3"), std::string::npos) << output;
+  EXPECT_NE(output.find("slow on gl: crash - worker died: SIGSEGV (segmentation fault) in pass scene (render 1 of 2)"),
+            std::string::npos)
+      << output;
+}
+
+TEST_F(Workers, AnEvalLaneThatHangsIsATimeout) {
+  const fs::path shader = root_ / "hang.hlsl";
+  std::ofstream(shader) << "#pragma fragment frag\n"
+                           "float4 frag(float4 pos : SV_Position) : SV_Target {\n"
+                           "  float s = 0.0;\n"
+                           "  for (int i = 0; i < 50000; ++i)\n"
+                           "    for (int j = 0; j < 50000; ++j) s += sin(s + pos.x * 0.001 + float(i) * 0.001 + float(j));\n"
+                           "  return float4(s * 1e-30, 0, 0, 1);\n"
+                           "}\n";
+  Outcome outcome = run_xshade("", "eval '" + shader.string() + "' --size 256x256 --lane gl --timeout 2 -o '" +
+                                       (root_ / "eval").string() + "'");
+  EXPECT_EQ(outcome.exit_code, 1) << outcome.output;
+  EXPECT_NE(outcome.output.find("gl: timeout after 2 s"), std::string::npos) << outcome.output;
+}
+
+// An EXR's pixels (its header holds the time it was written, which differs from run to run).
+std::vector<float> float_pixels(const fs::path& file) {
+  auto input = OIIO::ImageInput::open(file.string());
+  if (!input) return {};
+  const OIIO::ImageSpec& spec = input->spec();
+  std::vector<float> pixels(size_t(spec.width) * spec.height * spec.nchannels);
+  if (!input->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, pixels.data())) return {};
+  return pixels;
+}
+
+// Every fixed scene on every lane, with one worker and with two: the float images bit for bit
+// and every verdict the same.
+TEST(WorkerCount, ImagesAndVerdictsOfEveryFixedSceneDoNotDependOnIt) {
+  const fs::path root = fs::temp_directory_path() / "xshade_workers_count";
+  fs::remove_all(root);
+  std::string verdicts[2];
+  for (int jobs : {1, 2}) {
+    const fs::path report = root / ("j" + std::to_string(jobs));
+    Outcome outcome = run_xshade("", "run --cache '" + (root / "cache").string() + "' --report '" + report.string() +
+                                         "' -j " + std::to_string(jobs));
+    EXPECT_EQ(outcome.exit_code, 0) << outcome.output;
+    const std::string json = read_text(report / "results.json");
+    // The verdicts, in order: every "verdict" field of results.json.
+    for (size_t at = 0; (at = json.find("\"verdict\": ", at)) != std::string::npos; ++at)
+      verdicts[jobs - 1] += json.substr(at, json.find(',', at) - at) + "\n";
+  }
+  EXPECT_FALSE(verdicts[0].empty());
+  EXPECT_EQ(verdicts[0], verdicts[1]);
+  size_t images = 0;
+  for (const fs::directory_entry& entry : fs::recursive_directory_iterator(root / "j1")) {
+    if (entry.path().extension() != ".exr") continue;
+    const fs::path other = root / "j2" / fs::relative(entry.path(), root / "j1");
+    const std::vector<float> pixels = float_pixels(entry.path());
+    EXPECT_FALSE(pixels.empty()) << entry.path();
+    EXPECT_TRUE(pixels == float_pixels(other)) << entry.path() << " differs from " << other;
+    ++images;
+  }
+  EXPECT_GE(images, 30u) << "every fixed scene on every lane writes its float image";
+  fs::remove_all(root);
+}
+
+}  // namespace
+}  // namespace xshade::tests
