@@ -132,6 +132,7 @@ int run_run(const RunOptions& options) {
              results.scenes.size(), results.seconds, compiler.compiled(), compiler.cached(),
              cache ? " (" + cache->directory().string() + ")" : std::string(" (cache off)"));
   if (compiler.cache_write_error()) fmt::print("warning: {}\n", compiler.cache_write_error()->to_string());
+  if (compiler.cache_damage()) fmt::print("warning: {}\n", compiler.cache_damage()->to_string());
   fmt::print("report: {}\n", (options.report_dir / "index.html").string());
   return harness::exit_code(verdict);
 }
