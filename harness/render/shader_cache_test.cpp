@@ -167,7 +167,7 @@ class DamagedCacheEntryTest : public ShaderCacheTest {
     EXPECT_FALSE(cached) << "a damaged entry was used";
     ASSERT_TRUE(warning.has_value());
     EXPECT_EQ(warning->message, "the shader cache entry " + damaged.string() +
-                                    " was damaged (its contents do not match their hash), so materials/flat.hlsl was "
+                                    " was damaged (its contents do not match their hash), so materials/flat.hlsl [] was "
                                     "compiled again and the entry rewritten");
     EXPECT_EQ(last_.program.fragment.glsl, original.program.fragment.glsl);
     auto [again, no_warning] = compile(cache, lane);
