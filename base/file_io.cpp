@@ -1,8 +1,12 @@
 #include "base/file_io.h"
 
+#include <atomic>
+#include <cerrno>
+#include <cstring>
 #include <fstream>
 #include <sstream>
 
+#include <fcntl.h>
 #include <unistd.h>
 
 namespace xshade {
@@ -18,25 +22,35 @@ std::optional<std::string> read_file(const fs::path& path) {
 }
 
 Result<void> write_file_atomically(const fs::path& path, std::string_view bytes) {
-  // Beside the target, so that the rename stays within one file system and is atomic; the pid
-  // keeps two processes writing the same file from sharing a temporary.
-  const fs::path temporary = path.string() + ".tmp" + std::to_string(::getpid());
-  {
-    std::ofstream file(temporary, std::ios::binary | std::ios::trunc);
-    if (file) file.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
-    if (file) file.close();
-    if (!file) {
-      std::error_code ignored;
-      fs::remove(temporary, ignored);
-      return fail("cannot write " + temporary.string());
-    }
+  // Beside the target, so that the rename stays within one file system and is atomic. The pid
+  // and a counter make the name unique among the processes and threads writing the same file at
+  // once (the last rename wins, and each is a whole file); O_EXCL steps over a temporary that a
+  // killed process with the same pid left.
+  static std::atomic<unsigned> counter = 0;
+  std::string temporary;
+  int fd = -1;
+  for (int attempt = 0; fd < 0 && attempt < 100; ++attempt) {
+    temporary = path.string() + ".tmp" + std::to_string(::getpid()) + "." + std::to_string(counter++);
+    fd = ::open(temporary.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
+    if (fd < 0 && errno != EEXIST) break;
   }
+  if (fd < 0) return fail("cannot write " + temporary + ": " + std::strerror(errno));
+  size_t written = 0;
+  while (written < bytes.size()) {
+    const ssize_t n = ::write(fd, bytes.data() + written, bytes.size() - written);
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) break;
+    written += size_t(n);
+  }
+  const int error_number = errno;
+  const bool ok = ::close(fd) == 0 && written == bytes.size();
   std::error_code error;
-  fs::rename(temporary, path, error);
-  if (error) {
+  if (ok) fs::rename(temporary, path, error);
+  if (!ok || error) {
     std::error_code ignored;
     fs::remove(temporary, ignored);
-    return fail("cannot write " + path.string() + ": " + error.message());
+    return fail("cannot write " + (ok ? path.string() + ": " + error.message()
+                                      : temporary + ": " + std::strerror(error_number)));
   }
   return {};
 }

@@ -13,8 +13,10 @@ namespace xshade {
 // The file's bytes, or nothing when it cannot be read.
 std::optional<std::string> read_file(const std::filesystem::path& path);
 
-// Writes to a temporary file beside `path`, then renames it into place: a reader sees the old
-// file or the new one, never half of one, and an interrupted write leaves no torn file.
+// Writes to a temporary file beside `path` with a unique name, then renames it into place: a
+// reader sees the old file or the new one, never half of one, an interrupted write leaves no
+// torn file, and several processes may write the same file at once. Not synced to disk: what
+// must survive a power cut syncs itself (the golden store), or checks what it reads (the cache).
 Result<void> write_file_atomically(const std::filesystem::path& path, std::string_view bytes);
 
 }  // namespace xshade

@@ -1,6 +1,7 @@
 // xshade bless: render a scene and accept the image as its golden. The only way a golden is
 // ever written: it needs a reason, the lanes must agree (for the common golden) and render
-// deterministically, and it shows what it is about to replace before writing atomically.
+// deterministically, and it shows what it is about to replace before committing it (GoldenStore:
+// under the folder's lock, the manifest renamed into place last).
 #include <fmt/core.h>
 
 #include <cstdio>
@@ -73,7 +74,7 @@ int run_bless(const BlessOptions& options) {
                              .cache_dir = cache_dir,
                              .gl_platform = options.gl_platform};
   harness::CheckedScene checked;
-  harness::check_in_workers(
+  const harness::WorkerTotals totals = harness::check_in_workers(
       checker, scene_workers(shared, options.workers), *files, *lanes,
       [&](harness::CheckedScene&& scene) { checked = std::move(scene); },
       [](const std::string& text) { fmt::print(stderr, "{}", text); });
@@ -92,7 +93,9 @@ int run_bless(const BlessOptions& options) {
     return harness::exit_code(refusal->verdict);
   }
 
-  const harness::GoldenStore goldens(folders->golden);
+  // A second bless into the folder waits for the first to commit; saying so explains the pause.
+  const harness::GoldenStore goldens(folders->golden,
+                                     [](const std::string& message) { fmt::print(stderr, "xshade bless: {}\n", message); });
   const std::optional<std::string> lane = options.lane.empty() ? std::nullopt : std::optional(options.lane);
   const harness::FloatImage& image = checked.images.begin()->second;
   const std::string compared_lane = lane ? *lane : std::string(harness::lane_name(checked.images.begin()->first));
@@ -127,8 +130,12 @@ int run_bless(const BlessOptions& options) {
   auto blessed = goldens.bless(result.scene, lane, image, options.reason, who());
   if (!blessed) {
     fmt::print(stderr, "xshade bless: {}\n", blessed.error().to_string());
-    return kBadInput;
+    // A folder that cannot be locked or written is the machine's, not the user's.
+    const ErrorKind kind = blessed.error().kind;
+    return kind == ErrorKind::Backend || kind == ErrorKind::Internal ? kBackendError : kBadInput;
   }
+  if (!totals.cache_write_error.empty()) fmt::print("warning: {}\n", totals.cache_write_error);
+  if (!totals.cache_damage.empty()) fmt::print("warning: {}\n", totals.cache_damage);
   fmt::print("blessed {} ({}), reason: {}\n", blessed->path.string(), blessed->replaced ? "replaced" : "new",
              options.reason);
   return kPass;

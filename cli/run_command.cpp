@@ -147,6 +147,7 @@ int run_run(const RunOptions& options) {
              results.scenes.size(), results.seconds, totals.compiled, totals.cached,
              cache ? " (" + cache->directory().string() + ")" : std::string(" (cache off)"));
   if (!totals.cache_write_error.empty()) fmt::print("warning: {}\n", totals.cache_write_error);
+  if (!totals.cache_damage.empty()) fmt::print("warning: {}\n", totals.cache_damage);
   fmt::print("report: {}\n", (options.report_dir / "index.html").string());
   return harness::exit_code(verdict);
 }

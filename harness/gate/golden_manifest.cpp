@@ -88,6 +88,8 @@ Result<GoldenEntry> read_entry(const toml::table& table, const std::string& file
     return fail(fmt::format("the golden of {} has no reason", entry.lane.empty() ? entry.scene
                                                                                  : entry.lane + "/" + entry.scene),
                 entry.where);
+  // An entry without its hash reads, so that bless can repair it; GoldenStore::find refuses to
+  // use its image, as it refuses one whose hash differs.
   return entry;
 }
 

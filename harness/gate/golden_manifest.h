@@ -18,7 +18,7 @@ struct GoldenEntry {
   std::string reason;
   std::string blessed_by;
   std::string date;  // UTC, ISO 8601: 2024-05-01T12:34:56Z
-  std::string hash;  // XXH3-128 of the PNG file's bytes, 32 hex digits
+  std::string hash;  // XXH3-128 of the PNG file's bytes, 32 hex digits; GoldenStore uses no image without it
   // The same of the float image beside it (<name>.exr), which bless writes when the render has a
   // value above 1: what the gate compares, the PNG being what people review. Empty: no such file.
   std::string float_hash;
@@ -33,7 +33,9 @@ struct GoldenManifest {
   void record(GoldenEntry entry);
 };
 
-// A missing file is an empty manifest. Errors carry the manifest's file:line:col.
+// A missing file is an empty manifest (GoldenStore refuses images without one). An entry without
+// a hash reads, so that bless can repair it; GoldenStore refuses to use its image. Errors carry
+// the manifest's file:line:col.
 Result<GoldenManifest> read_golden_manifest(const std::filesystem::path& path);
 Result<GoldenManifest> parse_golden_manifest(std::string_view text, const std::string& file_name);
 // The whole file: the header comment explaining the layout, then the entries.

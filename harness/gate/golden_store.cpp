@@ -1,17 +1,18 @@
 #include "harness/gate/golden_store.h"
 
 #include <chrono>
+#include <csignal>
 #include <cmath>
+#include <cstdlib>
 #include <ctime>
-#include <fstream>
 #include <vector>
-
-#include <unistd.h>
 
 #include <fmt/format.h>
 
 #include "base/file_io.h"
+#include "harness/gate/golden_lock.h"
 #include "harness/gate/golden_manifest.h"
+#include "harness/gate/golden_transaction.h"
 #include "harness/image/image_io.h"
 #include "harness/render/lanes.h"
 #include "harness/render/shader_cache.h"
@@ -40,14 +41,6 @@ Result<void> check_lane_name(const std::string& lane) {
   return {};
 }
 
-Result<void> write_bytes(const fs::path& path, std::string_view bytes) {
-  std::ofstream file(path, std::ios::binary | std::ios::trunc);
-  if (file) file.write(bytes.data(), std::streamsize(bytes.size()));
-  file.close();
-  if (!file) return fail("cannot write " + path.string());
-  return {};
-}
-
 std::string utc_now_iso8601() {
   const std::time_t now = std::chrono::system_clock::to_time_t(std::chrono::system_clock::now());
   std::tm utc{};
@@ -57,9 +50,14 @@ std::string utc_now_iso8601() {
   return text;
 }
 
-// A golden whose bytes differ from what bless recorded was written by something else.
-Result<void> check_hash(const fs::path& path, const GoldenEntry& entry, const std::string& hash) {
-  if (hash.empty()) return {};
+// A golden whose bytes differ from what bless recorded was written by something else. A hash
+// that is not there is not a check that passes.
+Result<void> check_hash(const fs::path& path, const GoldenEntry& entry, const std::string& hash,
+                        const std::string& command) {
+  if (hash.empty())
+    return fail(fmt::format("the manifest records no hash for {}, so it cannot be checked: bless it again with {}",
+                            path.string(), command),
+                entry.where);
   std::optional<std::string> bytes = read_file(path);
   if (!bytes) return fail("cannot read image " + path.string());
   if (content_hash(*bytes) != hash)
@@ -80,15 +78,21 @@ bool has_values_above_one(const FloatImage& image) {
   return false;
 }
 
-// Removes what a failed bless left behind; the originals are untouched until the renames.
-void remove_temporaries(const std::vector<fs::path>& paths) {
-  std::error_code ignored;
-  for (const fs::path& path : paths) fs::remove(path, ignored);
+// XSHADE_TEST_ABORT_AFTER_BLESS_STEP=k kills this process right after bless's step k, as a kill -9
+// or a power cut would, so that a test can prove every instant leaves a state the next run
+// recovers from. SIGKILL rather than abort(): nothing runs on the way out and no core is dumped.
+void bless_step_done(int step) {
+  static const int kill_after = [] {
+    const char* value = std::getenv("XSHADE_TEST_ABORT_AFTER_BLESS_STEP");
+    return value ? std::atoi(value) : 0;
+  }();
+  if (step == kill_after) ::raise(SIGKILL);
 }
 
 }  // namespace
 
-GoldenStore::GoldenStore(std::filesystem::path folder) : folder_(std::move(folder)) {}
+GoldenStore::GoldenStore(std::filesystem::path folder, LockWaitNotice on_wait)
+    : folder_(std::move(folder)), on_wait_(std::move(on_wait)) {}
 
 std::filesystem::path GoldenStore::image_path(const std::string& scene, const std::optional<std::string>& lane) const {
   return lane && !lane->empty() ? folder_ / *lane / (scene + ".png") : folder_ / (scene + ".png");
@@ -98,44 +102,68 @@ Result<std::optional<GoldenImage>> GoldenStore::find(const std::string& scene, c
   if (Result<void> valid = check_scene_name(scene); !valid) return fail(valid.error());
   if (!lane.empty())
     if (Result<void> valid = check_lane_name(lane); !valid) return fail(valid.error());
+  std::error_code error;
+  if (!fs::is_directory(folder_, error)) return std::optional<GoldenImage>();  // nothing was ever blessed here
+
+  // Shared, so that a bless never commits between this reading the manifest and the image. What an
+  // interrupted bless left is finished first, under the exclusive lock: the committed manifest
+  // decides every leftover, so whoever finishes it does the same. A folder this process cannot
+  // write is read as it is: the hash checks below still refuse any image the manifest did not commit.
+  Result<GoldenLock> lock = GoldenLock::acquire(folder_, GoldenLock::Mode::Shared, on_wait_);
+  if (!lock) return fail(lock.error());
+  if (lock->held() && !find_leftovers(folder_).empty()) {
+    if (Result<void> upgraded = lock->upgrade(on_wait_); !upgraded) return fail(upgraded.error());
+    if (auto recovered = recover_golden_folder(folder_); !recovered) return fail(recovered.error());
+  }
   Result<GoldenManifest> manifest = read_golden_manifest(manifest_path());
   if (!manifest) return fail(manifest.error());
+  const bool has_manifest = fs::exists(manifest_path(), error);
 
   // The lane's own image first, then the common one; each must agree with the manifest.
   for (const std::string& candidate : {lane, std::string()}) {
     const fs::path path = image_path(scene, candidate);
+    const fs::path float_path = float_image_path(path);
     const GoldenEntry* entry = manifest->find(scene, candidate);
-    std::error_code error;
     const bool present = fs::exists(path, error);
+    const bool has_float = fs::exists(float_path, error);
     if (entry && !present)
       return fail(fmt::format("the manifest records the golden {}, but {} does not exist",
                               golden_name(scene, candidate), path.string()),
                   entry->where);
-    if (!present) continue;
-    if (!candidate.empty() && !entry)
+    if (!present && !has_float) continue;
+    // Every golden is checked against what bless recorded; one without an entry is never used.
+    const fs::path& unlisted = present ? path : float_path;
+    const std::optional<std::string> own = candidate.empty() ? std::nullopt : std::optional(candidate);
+    if (!has_manifest)
+      return fail(fmt::format("{} is a golden, but {} does not exist, so no golden here can be checked: restore it "
+                              "(it is committed with the goldens) or bless again with {}",
+                              unlisted.string(), manifest_path().string(), bless_command(scene, own)));
+    if (!entry && !candidate.empty())
       return fail(fmt::format("{} has no entry in {}: a lane's own golden must say why the lane differs; bless it "
                               "with {} or remove it",
-                              path.string(), manifest_path().string(), bless_command(scene, candidate)));
-    if (entry)
-      if (Result<void> same = check_hash(path, *entry, entry->hash); !same) return fail(same.error());
+                              unlisted.string(), manifest_path().string(), bless_command(scene, candidate)));
+    if (!entry)
+      return fail(fmt::format("{} has no entry in {}: a golden is trusted only as bless wrote it; bless it with {} or "
+                              "remove it",
+                              unlisted.string(), manifest_path().string(), bless_command(scene, std::nullopt)));
+    if (Result<void> same = check_hash(path, *entry, entry->hash, bless_command(scene, own)); !same)
+      return fail(same.error());
     // The float image where bless wrote one: the values above 1 that the PNG clamps.
-    const fs::path float_path = float_image_path(path);
-    const bool has_float = fs::exists(float_path, error);
-    if (has_float && !(entry && !entry->float_hash.empty()))
+    if (has_float && entry->float_hash.empty())
       return fail(fmt::format("{} has no float_hash in {}: a golden's float image is trusted only as bless wrote it; "
                               "bless it with {} or remove it",
                               float_path.string(), manifest_path().string(), bless_command(scene, candidate)));
-    if (entry && !entry->float_hash.empty()) {
+    if (!entry->float_hash.empty()) {
       if (!has_float)
         return fail(fmt::format("the manifest records a float image for {}, but {} does not exist",
                                 golden_name(scene, candidate), float_path.string()),
                     entry->where);
-      if (Result<void> same = check_hash(float_path, *entry, entry->float_hash); !same) return fail(same.error());
+      if (Result<void> same = check_hash(float_path, *entry, entry->float_hash, bless_command(scene, own)); !same)
+        return fail(same.error());
     }
     Result<FloatImage> image = read_image(has_float ? float_path : path);
     if (!image) return fail(image.error());
-    return GoldenImage{has_float ? float_path : path, std::move(*image), !candidate.empty(),
-                       entry ? entry->reason : std::string()};
+    return GoldenImage{has_float ? float_path : path, std::move(*image), !candidate.empty(), entry->reason};
   }
   return std::optional<GoldenImage>();
 }
@@ -150,67 +178,93 @@ Result<BlessOutcome> GoldenStore::bless(const std::string& scene, const std::opt
     if (Result<void> valid = check_lane_name(*lane); !valid) return fail(valid.error());
   if (image.width == 0 || image.height == 0)
     return fail(fmt::format("cannot bless an empty image as the golden of {}", scene));
-  // A manifest that cannot be read is not overwritten: its entries would be lost.
-  Result<GoldenManifest> manifest = read_golden_manifest(manifest_path());
-  if (!manifest) return fail(manifest.error());
 
   BlessOutcome outcome;
   outcome.path = image_path(scene, lane);
   const fs::path folder = outcome.path.parent_path();
   std::error_code error;
   fs::create_directories(folder, error);
-  if (error) return fail(fmt::format("cannot create {}: {}", folder.string(), error.message()));
+  if (error) return fail(ErrorKind::Backend, fmt::format("cannot create {}: {}", folder.string(), error.message()));
+
+  // Held from reading the manifest to the last rename: another bless waits, so that its entry
+  // and this one both survive. Whatever an earlier bless left unfinished is finished first.
+  Result<GoldenLock> lock = GoldenLock::acquire(folder_, GoldenLock::Mode::Exclusive, on_wait_);
+  if (!lock) return fail(lock.error());
+  if (auto recovered = recover_golden_folder(folder_); !recovered) return fail(recovered.error());
+  // A manifest that cannot be read is not overwritten: its entries would be lost.
+  Result<GoldenManifest> manifest = read_golden_manifest(manifest_path());
+  if (!manifest) return fail(manifest.error());
   if (fs::exists(outcome.path, error)) {
     outcome.replaced = true;
     if (Result<FloatImage> previous = read_image(outcome.path)) outcome.previous = std::move(*previous);
   }
 
-  // Every file is written in full beside its destination before any is renamed into place, so a
-  // failure leaves the old golden and manifest as they were. The images' temporaries keep their
-  // extensions because OpenImageIO chooses the format by them. A render with a value above 1
-  // also gets its float image, which the gate compares.
-  const std::string pid = std::to_string(::getpid());
-  const fs::path image_temporary = folder / (scene + ".tmp." + pid + ".png");
-  const fs::path float_temporary = folder / (scene + ".tmp." + pid + ".exr");
-  const fs::path manifest_temporary = manifest_path().string() + ".tmp." + pid;
-  const std::vector<fs::path> temporaries{image_temporary, float_temporary, manifest_temporary};
+  // The commit protocol of golden_transaction.h. Until step 4 renames the manifest, every change
+  // is under a pending name that recovery deletes; after it, recovery renames what is left.
+  const fs::path float_path = float_image_path(outcome.path);
+  const fs::path image_pending = pending_path(outcome.path);
+  const fs::path float_pending = pending_path(float_path);
+  const fs::path manifest_pending = pending_manifest_path(folder_);
   const bool high = has_values_above_one(image);
-  const auto written_hash = [&](const fs::path& temporary, bool exr) -> Result<std::string> {
-    if (Result<void> written = exr ? write_exr(image, temporary) : write_png(image, temporary); !written)
+  const bool remove_float = !high && fs::exists(float_path, error);
+  const auto abandon = [&](const Error& why) {
+    std::error_code ignored;
+    for (const fs::path& path : {image_pending, float_pending, manifest_pending}) fs::remove(path, ignored);
+    return fail(why);
+  };
+  const auto written_hash = [&](const fs::path& pending, bool exr) -> Result<std::string> {
+    if (Result<void> written = exr ? write_exr(image, pending) : write_png(image, pending); !written)
       return fail(written.error());
-    std::optional<std::string> bytes = read_file(temporary);
-    if (!bytes) return fail("cannot read back " + temporary.string());
+    if (Result<void> synced = sync_file(pending); !synced) return fail(synced.error());
+    std::optional<std::string> bytes = read_file(pending);
+    if (!bytes) return fail(ErrorKind::Backend, "cannot read back " + pending.string());
     return content_hash(*bytes);
   };
-  Result<std::string> png_hash = written_hash(image_temporary, false);
-  Result<std::string> float_hash = high ? written_hash(float_temporary, true) : Result<std::string>(std::string());
-  if (!png_hash || !float_hash) {
-    remove_temporaries(temporaries);
-    return fail(!png_hash ? png_hash.error() : float_hash.error());
-  }
+
+  Result<std::string> png_hash = written_hash(image_pending, false);
+  if (!png_hash) return abandon(png_hash.error());
+  bless_step_done(1);
+  // The float image, or the empty marker that says the committed golden has none.
+  Result<std::string> float_hash = high ? written_hash(float_pending, true) : Result<std::string>(std::string());
+  if (!float_hash) return abandon(float_hash.error());
+  if (remove_float)
+    if (Result<void> marked = write_synced(float_pending, ""); !marked) return abandon(marked.error());
+  if (Result<void> synced = sync_folder(folder); !synced) return abandon(synced.error());
+  bless_step_done(2);
   manifest->record(
       GoldenEntry{scene, lane.value_or(""), reason, who, utc_now_iso8601(), *png_hash, *float_hash, {}});
-  if (Result<void> written = write_bytes(manifest_temporary, format_golden_manifest(*manifest)); !written) {
-    remove_temporaries(temporaries);
-    return fail(written.error());
-  }
+  if (Result<void> written = write_synced(manifest_pending, format_golden_manifest(*manifest)); !written)
+    return abandon(written.error());
+  bless_step_done(3);
 
-  const fs::path float_path = float_image_path(outcome.path);
-  fs::rename(image_temporary, outcome.path, error);
-  if (!error) {
-    if (high) fs::rename(float_temporary, float_path, error);
-    else fs::remove(float_path, error);  // an earlier bless's float image, which no longer applies
+  // The commit.
+  fs::rename(manifest_pending, manifest_path(), error);
+  if (error)
+    return abandon(Error{fmt::format("cannot update {}: {}; nothing was blessed", manifest_path().string(),
+                                     error.message()),
+                         {}, {}, ErrorKind::Backend});
+  if (Result<void> synced = sync_folder(folder_); !synced) return fail(synced.error());
+  bless_step_done(4);
+
+  // Committed: a failure from here on is finished by the next run or bless, not undone.
+  const auto unfinished = [&](const fs::path& path) {
+    return fail(ErrorKind::Backend, fmt::format("blessed {} in {}, but cannot put {} in place: {}; the next xshade run "
+                                                "or bless finishes it",
+                                                golden_name(scene, lane.value_or("")), manifest_path().string(),
+                                                path.string(), error.message()));
+  };
+  fs::rename(image_pending, outcome.path, error);
+  if (error) return unfinished(outcome.path);
+  bless_step_done(5);
+  if (high) fs::rename(float_pending, float_path, error);
+  if (remove_float) {
+    fs::remove(float_path, error);
+    if (!error) fs::remove(float_pending, error);
   }
-  if (error) {
-    remove_temporaries(temporaries);
-    return fail(fmt::format("cannot write {}: {}", outcome.path.string(), error.message()));
-  }
-  fs::rename(manifest_temporary, manifest_path(), error);
-  if (error) {
-    remove_temporaries({manifest_temporary});
-    return fail(fmt::format("wrote {} but cannot update {}: {}; bless it again", outcome.path.string(),
-                            manifest_path().string(), error.message()));
-  }
+  if (error) return unfinished(float_path);
+  bless_step_done(6);
+  if (Result<void> synced = sync_folder(folder); !synced) return fail(synced.error());
+  bless_step_done(7);
   return outcome;
 }
 

@@ -9,7 +9,9 @@
 #include <gtest/gtest.h>
 
 #include "harness/gate/golden_manifest.h"
+#include "harness/gate/golden_transaction.h"
 #include "harness/image/image_io.h"
+#include "harness/render/shader_cache.h"
 
 namespace xshade::harness {
 namespace {
@@ -231,8 +233,9 @@ TEST_F(GoldenStoreTest, BlessingReplacesAnOldGoldenAndLeavesNoTemporaryFiles) {
     EXPECT_TRUE(bitwise_equal(*reread, new_image));
   }
 
-  for (const auto& [name, contents] : snapshot()) EXPECT_THAT(name, ::testing::Not(HasSubstr(".tmp"))) << name;
-  EXPECT_EQ(snapshot().size(), 3u);  // MANIFEST.toml, material_grid.png, vk/material_grid.png
+  for (const auto& [name, contents] : snapshot()) EXPECT_THAT(name, ::testing::Not(HasSubstr(".pending"))) << name;
+  // MANIFEST.toml, material_grid.png, vk/material_grid.png and the folder's lock file.
+  EXPECT_EQ(snapshot().size(), 4u);
 }
 
 TEST_F(GoldenStoreTest, BlessingAgainReplacesTheManifestEntry) {
@@ -265,8 +268,14 @@ TEST_F(GoldenStoreTest, TheManifestIsSortedBySceneThenLane) {
   EXPECT_EQ(order, (std::vector<std::string>{"dof_off/", "dof_off/gl", "dof_off/vk", "toon/"}));
 }
 
+// Bytes the manifest vouches for that are still not an image (written by hand, hash and all).
 TEST_F(GoldenStoreTest, ACorruptImageIsAnErrorNamingTheFile) {
-  write("material_grid.png", "\x89PNG\r\n\x1a\n this is not the rest of a PNG");
+  bless("material_grid", std::nullopt, solid(128, 128, 128), "first render");
+  const std::string corrupt = "\x89PNG\r\n\x1a\n this is not the rest of a PNG";
+  write("material_grid.png", corrupt);
+  GoldenManifest edited = manifest();
+  edited.entries.at(0).hash = content_hash(corrupt);
+  write("MANIFEST.toml", format_golden_manifest(edited));
   auto found = GoldenStore(folder_).find("material_grid", "gl");
   ASSERT_FALSE(found);
   EXPECT_THAT(found.error().to_string(), StartsWith("cannot read image " + (folder_ / "material_grid.png").string()));
@@ -296,7 +305,9 @@ TEST_F(GoldenStoreTest, AMalformedManifestIsAnErrorWithItsLineAndColumnAndIsNotO
   auto blessed = GoldenStore(folder_).bless("material_grid", std::nullopt, solid(1, 1, 1), "why", "ada");
   ASSERT_FALSE(blessed);
   EXPECT_THAT(blessed.error().to_string(), StartsWith((folder_ / "MANIFEST.toml").string() + ":4:10: syntax error: "));
-  EXPECT_EQ(snapshot(), before);
+  auto after = snapshot();
+  after.erase({".golden.lock", ""});  // the lock bless took to read the manifest
+  EXPECT_EQ(after, before);
 }
 
 TEST_F(GoldenStoreTest, NamesThatAreNotScenesOrLanesAreRefused) {
@@ -311,6 +322,104 @@ TEST_F(GoldenStoreTest, NamesThatAreNotScenesOrLanesAreRefused) {
   ASSERT_FALSE(found);
   EXPECT_EQ(found.error().to_string(), "unknown lane 'metal' (lanes: gl, vk, vk-hlsl)");
   EXPECT_TRUE(fs::is_empty(folder_));
+}
+
+
+TEST_F(GoldenStoreTest, ACommonGoldenWithoutAnEntryIsAnErrorNamingTheBlessCommand) {
+  bless("material_grid", std::nullopt, solid(128, 128, 128), "first render");
+  ASSERT_TRUE(write_png(solid(1, 2, 3), folder_ / "toon.png"));
+  auto found = GoldenStore(folder_).find("toon", "gl");
+  ASSERT_FALSE(found);
+  EXPECT_EQ(found.error().to_string(),
+            (folder_ / "toon.png").string() + " has no entry in " + (folder_ / "MANIFEST.toml").string() +
+                ": a golden is trusted only as bless wrote it; bless it with xshade bless toon --reason \"...\" or "
+                "remove it");
+  // A float image alone is a golden too.
+  fs::remove(folder_ / "toon.png");
+  ASSERT_TRUE(write_exr(solid(1, 2, 3), folder_ / "toon.exr"));
+  auto alone = GoldenStore(folder_).find("toon", "gl");
+  ASSERT_FALSE(alone);
+  EXPECT_THAT(alone.error().to_string(), StartsWith((folder_ / "toon.exr").string() + " has no entry in "));
+}
+
+TEST_F(GoldenStoreTest, AMissingManifestBesideImagesIsAnErrorNotAnUncheckedGolden) {
+  bless("material_grid", "vk", solid(128, 128, 128), "lavapipe rounds differently");
+  fs::remove(folder_ / "MANIFEST.toml");
+  auto found = GoldenStore(folder_).find("material_grid", "vk");
+  ASSERT_FALSE(found);
+  EXPECT_EQ(found.error().to_string(),
+            (folder_ / "vk" / "material_grid.png").string() + " is a golden, but " +
+                (folder_ / "MANIFEST.toml").string() +
+                " does not exist, so no golden here can be checked: restore it (it is committed with the goldens) or "
+                "bless again with xshade bless material_grid --lane vk --reason \"...\"");
+}
+
+TEST_F(GoldenStoreTest, AnEntryWithoutItsHashIsAnErrorNotAnUncheckedGolden) {
+  bless("material_grid", std::nullopt, solid(128, 128, 128), "first render");
+  std::string text = read("MANIFEST.toml");
+  const size_t hash = text.find("\nhash = ");
+  ASSERT_NE(hash, std::string::npos);
+  text.erase(hash + 1, text.find('\n', hash + 1) - hash);
+  write("MANIFEST.toml", text);
+  auto found = GoldenStore(folder_).find("material_grid", "gl");
+  ASSERT_FALSE(found);
+  EXPECT_EQ(found.error().to_string(),
+            (folder_ / "MANIFEST.toml").string() + ":16:1: the manifest records no hash for " +
+                (folder_ / "material_grid.png").string() +
+                ", so it cannot be checked: bless it again with xshade bless material_grid --reason \"...\"");
+  // Blessing again, as the message says, repairs it.
+  bless("material_grid", std::nullopt, solid(128, 128, 128), "the hash was lost");
+  auto repaired = GoldenStore(folder_).find("material_grid", "gl");
+  ASSERT_TRUE(repaired && *repaired) << (repaired ? "none" : repaired.error().to_string());
+}
+
+// What a bless killed before its commit left is removed by the next reader, which sees the old golden.
+TEST_F(GoldenStoreTest, AReaderDiscardsWhatABlessLeftBeforeItsCommit) {
+  const FloatImage old_image = solid(128, 128, 128);
+  bless("material_grid", std::nullopt, old_image, "first render");
+  const auto before = snapshot();
+  ASSERT_TRUE(write_png(solid(9, 9, 9), pending_path(folder_ / "material_grid.png")));
+  write("MANIFEST.toml.pending", "the manifest that was never renamed");
+
+  auto found = GoldenStore(folder_).find("material_grid", "gl");
+  ASSERT_TRUE(found && *found) << (found ? "none" : found.error().to_string());
+  EXPECT_TRUE(bitwise_equal((*found)->image, old_image));
+  EXPECT_EQ(snapshot(), before);
+}
+
+// A bless killed after its commit: the manifest records the new image, still under its pending
+// name; the reader finishes the rename and uses it.
+TEST_F(GoldenStoreTest, AReaderFinishesWhatABlessLeftAfterItsCommit) {
+  FloatImage high = solid(128, 128, 128);
+  high.set(0, 0, {2.5f, 0.5f, 0.5f, 1.0f});
+  bless("material_grid", "gl", high, "a highlight");
+  const FloatImage new_image = solid(10, 20, 30);
+  const fs::path png = folder_ / "gl" / "material_grid.png";
+  ASSERT_TRUE(write_png(new_image, pending_path(png)));
+  write("gl/.material_grid.pending.exr", "");  // the new golden has no float image
+  GoldenManifest committed = manifest();
+  committed.entries.at(0).hash = content_hash(read("gl/.material_grid.pending.png"));
+  committed.entries.at(0).float_hash.clear();
+  write("MANIFEST.toml", format_golden_manifest(committed));
+
+  auto found = GoldenStore(folder_).find("material_grid", "gl");
+  ASSERT_TRUE(found && *found) << (found ? "none" : found.error().to_string());
+  EXPECT_EQ((*found)->path, png);
+  EXPECT_TRUE(bitwise_equal((*found)->image, new_image));
+  EXPECT_FALSE(fs::exists(folder_ / "gl" / "material_grid.exr"));
+  EXPECT_TRUE(find_leftovers(folder_).empty());
+}
+
+// The steps bless commits in are the ones recovery knows: after a bless nothing is pending,
+// including the float image of a golden that no longer has one.
+TEST_F(GoldenStoreTest, BlessingLeavesNothingPendingWithOrWithoutAFloatImage) {
+  FloatImage high = solid(128, 128, 128);
+  high.set(0, 0, {2.5f, 0.5f, 0.5f, 1.0f});
+  bless("material_grid", std::nullopt, high, "a highlight");
+  EXPECT_TRUE(find_leftovers(folder_).empty());
+  bless("material_grid", std::nullopt, solid(128, 128, 128), "no highlight");
+  EXPECT_TRUE(find_leftovers(folder_).empty());
+  EXPECT_FALSE(fs::exists(folder_ / "material_grid.exr"));
 }
 
 }  // namespace

@@ -196,6 +196,7 @@ WorkerTotals check_in_workers(SceneChecker& checker, const SceneWorkers& workers
         totals.compiled += json.value("compiled", size_t(0));
         totals.cached += json.value("cached", size_t(0));
         if (totals.cache_write_error.empty()) totals.cache_write_error = json.value("cache_write_error", "");
+        if (totals.cache_damage.empty()) totals.cache_damage = json.value("cache_damage", "");
       }
       if (parsed) {
         result = std::move(*parsed);
@@ -280,7 +281,8 @@ int run_lane_worker(SceneChecker& checker, const fs::path& scene_file, Lane lane
       {"result", lane_to_json(result)},
       {"compiled", compiler.compiled()},
       {"cached", compiler.cached()},
-      {"cache_write_error", compiler.cache_write_error() ? compiler.cache_write_error()->to_string() : ""}};
+      {"cache_write_error", compiler.cache_write_error() ? compiler.cache_write_error()->to_string() : ""},
+      {"cache_damage", compiler.cache_damage() ? compiler.cache_damage()->to_string() : ""}};
   if (!write_file_atomically(result_dir / "lane.json", handover.dump())) return 3;
   return 0;
 }

@@ -42,6 +42,7 @@ struct WorkerTotals {
   size_t compiled = 0;           // shader variants compiled
   size_t cached = 0;             // found in the cache
   std::string cache_write_error;  // the first one, when a worker could not write the cache
+  std::string cache_damage;       // the first damaged entry a worker found (and recompiled)
 };
 
 // Checks each scene of `files` on those of `lanes` it lists, each lane in a worker; `done` gets

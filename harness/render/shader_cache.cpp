@@ -1,5 +1,6 @@
 #include "harness/render/shader_cache.h"
 
+#include <fmt/format.h>
 #include <nlohmann/json.hpp>
 #include <xxhash.h>
 
@@ -87,6 +88,27 @@ std::optional<CompiledVariant> variant_from_json(const std::string& text) {
   }
 }
 
+// Every entry is its contents' hash on the first line, then the contents: a flipped bit, an
+// edited GLSL line or a torn write after a power cut makes the two disagree, and the entry is a
+// miss instead of a program that renders something else or crashes the driver.
+std::string sealed(const std::string& contents) { return content_hash(contents) + "\n" + contents; }
+
+// The contents of a sealed entry, or nullopt when they do not match their hash.
+std::optional<std::string> unsealed(const std::string& entry) {
+  const size_t newline = entry.find('\n');
+  if (newline != 32) return std::nullopt;
+  std::string contents = entry.substr(newline + 1);
+  if (content_hash(contents) != entry.substr(0, newline)) return std::nullopt;
+  return contents;
+}
+
+Error damaged(const fs::path& path, const VariantRequest& request) {
+  return Error{fmt::format("the shader cache entry {} was damaged (its contents do not match their hash), so {} was "
+                           "compiled again and the entry rewritten",
+                           path.string(), request.label()),
+               {}, {}, ErrorKind::Internal};
+}
+
 }  // namespace
 
 std::string content_hash(std::string_view bytes) {
@@ -117,21 +139,33 @@ std::string ShaderCache::request_key(const VariantRequest& request, Lane lane) c
   return content_hash(key);
 }
 
-std::optional<CompiledVariant> ShaderCache::find(const VariantRequest& request, Lane lane) const {
-  const std::optional<std::string> manifest_text = read_file(directory_ / (request_key(request, lane) + ".manifest"));
-  if (!manifest_text) return std::nullopt;
+CacheLookup ShaderCache::look_up(const VariantRequest& request, Lane lane) const {
+  const fs::path manifest_path = directory_ / (request_key(request, lane) + ".manifest");
+  const std::optional<std::string> manifest_entry = read_file(manifest_path);
+  if (!manifest_entry) return {};
+  const std::optional<std::string> manifest_text = unsealed(*manifest_entry);
+  if (!manifest_text) return {std::nullopt, damaged(manifest_path, request)};
+  fs::path variant_path;
   try {
     const json manifest = json::parse(*manifest_text);
     for (const json& dependency : manifest.at("dependencies")) {
       const std::optional<std::string> contents = read_file(dependency.at("path").get<std::string>());
-      if (!contents || content_hash(*contents) != dependency.at("hash").get<std::string>()) return std::nullopt;
+      if (!contents || content_hash(*contents) != dependency.at("hash").get<std::string>()) return {};
     }
-    const std::optional<std::string> stored = read_file(directory_ / (manifest.at("result").get<std::string>() + ".variant"));
-    if (!stored) return std::nullopt;
-    return variant_from_json(*stored);
+    variant_path = directory_ / (manifest.at("result").get<std::string>() + ".variant");
   } catch (const json::exception&) {
-    return std::nullopt;
+    return {std::nullopt, damaged(manifest_path, request)};  // sealed, yet not what store() writes
   }
+  const std::optional<std::string> stored = read_file(variant_path);
+  if (!stored) return {};
+  const std::optional<std::string> variant_text = unsealed(*stored);
+  std::optional<CompiledVariant> variant = variant_text ? variant_from_json(*variant_text) : std::nullopt;
+  if (!variant) return {std::nullopt, damaged(variant_path, request)};
+  return {std::move(variant), std::nullopt};
+}
+
+std::optional<CompiledVariant> ShaderCache::find(const VariantRequest& request, Lane lane) const {
+  return look_up(request, lane).variant;
 }
 
 Result<void> ShaderCache::store(const VariantRequest& request, Lane lane, const CompiledVariant& variant,
@@ -150,10 +184,15 @@ Result<void> ShaderCache::store(const VariantRequest& request, Lane lane, const 
     result_key += hash;
   }
   result_key = content_hash(result_key);
-  if (auto written = write_file_atomically(directory_ / (result_key + ".variant"), variant_json(variant)); !written)
+  // The program before the manifest that names it, so that a reader never finds a manifest
+  // without its program. Several processes may store the same entry at once: each writes its
+  // own temporary and renames it (write_file_atomically), and the entries they write are equal.
+  if (auto written = write_file_atomically(directory_ / (result_key + ".variant"), sealed(variant_json(variant)));
+      !written)
     return written;
-  return write_file_atomically(directory_ / (key + ".manifest"),
-                          json{{"dependencies", listed}, {"result", result_key}, {"request", request.label()}}.dump(1));
+  return write_file_atomically(
+      directory_ / (key + ".manifest"),
+      sealed(json{{"dependencies", listed}, {"result", result_key}, {"request", request.label()}}.dump(1)));
 }
 
 }  // namespace xshade::harness

@@ -4,8 +4,11 @@
 // Two levels, as ccache's direct mode: a request key (compiler identity, lane, source path,
 // keywords, entry) names a manifest listing every file the compile read with a hash of its
 // contents; when those hashes still match the files on disk, the manifest's result key names
-// the stored program. Writes go to a temporary file renamed into place, so an interrupted run
-// never leaves a torn entry, and two runs may share a cache.
+// the stored program. Each file carries the hash of its contents, checked on every read: a
+// damaged entry (a flipped bit, an edit, a torn write) is a miss, compiled again and rewritten,
+// never a program that renders something else. Writes go to a temporary file with a unique name
+// renamed into place, so an interrupted run never leaves a torn entry, and several runs (or
+// worker processes) may share a cache and write the same entry at once.
 #pragma once
 
 #include <filesystem>
@@ -26,12 +29,21 @@ struct CompiledVariant {
   ShaderInterface interface;
 };
 
+struct CacheLookup {
+  std::optional<CompiledVariant> variant;  // a hit
+  // Set when an entry was there but its contents did not match their hash (or did not parse):
+  // the lookup is a miss, and the caller says so once.
+  std::optional<Error> damage = std::nullopt;
+};
+
 class ShaderCache {
  public:
   // `compiler_identity` must change whenever the compiler could produce different output (see
   // compiler_identity()).
   ShaderCache(std::filesystem::path directory, std::string compiler_identity);
 
+  CacheLookup look_up(const VariantRequest& request, Lane lane) const;
+  // look_up's variant alone.
   std::optional<CompiledVariant> find(const VariantRequest& request, Lane lane) const;
   // `dependencies`: every file the compile read (the source and its includes).
   Result<void> store(const VariantRequest& request, Lane lane, const CompiledVariant& variant,

@@ -2,8 +2,13 @@
 
 #include <filesystem>
 #include <fstream>
+#include <functional>
+
+#include <sys/wait.h>
+#include <unistd.h>
 
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 
 #include "harness/render/variant_compiler.h"
 
@@ -121,6 +126,147 @@ TEST_F(ShaderCacheTest, AnUnwritableCacheCostsTimeNotTheCompile) {
   EXPECT_TRUE(compiler.compile(request(), Lane::Gl));
   ASSERT_TRUE(compiler.cache_write_error().has_value());
   EXPECT_NE(compiler.cache_write_error()->message.find("cannot create the shader cache"), std::string::npos);
+}
+
+// Editing one part of a stored entry by hand, as a flipped bit on disk or a curious user would.
+// The edit keeps the entry's first line (its hash), so only the hash check can tell.
+class DamagedCacheEntryTest : public ShaderCacheTest {
+ protected:
+  // The one file of `extension` in the cache.
+  fs::path entry(const std::string& extension) {
+    fs::path found;
+    for (const auto& item : fs::directory_iterator(root_ / "cache"))
+      if (item.path().extension() == extension) {
+        EXPECT_TRUE(found.empty()) << "two " << extension << " entries";
+        found = item.path();
+      }
+    return found;
+  }
+  void edit(const fs::path& path, const std::function<void(nlohmann::json&)>& change) {
+    std::ifstream file(path, std::ios::binary);
+    std::string text((std::istreambuf_iterator<char>(file)), std::istreambuf_iterator<char>());
+    const size_t newline = text.find('\n');
+    ASSERT_EQ(newline, 32u) << "an entry starts with the hash of its contents";
+    nlohmann::json contents = nlohmann::json::parse(text.substr(newline + 1));
+    change(contents);
+    std::ofstream(path, std::ios::binary | std::ios::trunc) << text.substr(0, newline + 1) << contents.dump();
+  }
+  // Compiles as a new run would; whether it came from the cache, and the warning it gives.
+  std::pair<bool, std::optional<Error>> compile(const ShaderCache& cache, Lane lane) {
+    VariantCompiler compiler(root_, &cache);
+    auto compiled = compiler.compile(request(), lane);
+    EXPECT_TRUE(compiled) << compiled.error().to_string();
+    last_ = compiled ? *compiled : CompiledVariant{};
+    return {compiler.cached() == 1, compiler.cache_damage()};
+  }
+  // The damaged entry is compiled again with a warning naming it, and rewritten: the next run
+  // reads it from the cache, with what the compiler makes.
+  void expect_recompiled_and_repaired(const ShaderCache& cache, Lane lane, const fs::path& damaged,
+                                      const CompiledVariant& original) {
+    auto [cached, warning] = compile(cache, lane);
+    EXPECT_FALSE(cached) << "a damaged entry was used";
+    ASSERT_TRUE(warning.has_value());
+    EXPECT_EQ(warning->message, "the shader cache entry " + damaged.string() +
+                                    " was damaged (its contents do not match their hash), so materials/flat.hlsl [] was "
+                                    "compiled again and the entry rewritten");
+    EXPECT_EQ(last_.program.fragment.glsl, original.program.fragment.glsl);
+    auto [again, no_warning] = compile(cache, lane);
+    EXPECT_TRUE(again) << "the rewritten entry is not a hit";
+    EXPECT_FALSE(no_warning.has_value());
+    EXPECT_EQ(last_.program.fragment.glsl, original.program.fragment.glsl);
+    EXPECT_EQ(last_.program.fragment.spirv, original.program.fragment.spirv);
+    EXPECT_EQ(last_.program.layout.uniform_blocks.size(), original.program.layout.uniform_blocks.size());
+  }
+};
+
+TEST_F(DamagedCacheEntryTest, EditedGlslIsCompiledAgainWithAWarning) {
+  ShaderCache cache(root_ / "cache", "identity");
+  ASSERT_FALSE(compile(cache, Lane::Gl).first);
+  const CompiledVariant original = last_;
+  edit(entry(".variant"), [](nlohmann::json& j) {
+    std::string glsl = j["fragment"]["glsl"];
+    glsl.replace(glsl.find("vec4(1.0, 0.0, 0.0, 1.0)"), 24, "vec4(0.0, 0.0, 1.0, 1.0)");
+    j["fragment"]["glsl"] = glsl;
+  });
+  expect_recompiled_and_repaired(cache, Lane::Gl, entry(".variant"), original);
+}
+
+TEST_F(DamagedCacheEntryTest, FlippedSpirvWordsAreCompiledAgainWithAWarning) {
+  ShaderCache cache(root_ / "cache", "identity");
+  ASSERT_FALSE(compile(cache, Lane::Vk).first);
+  const CompiledVariant original = last_;
+  ASSERT_GT(original.program.fragment.spirv.size(), 10u);
+  edit(entry(".variant"), [](nlohmann::json& j) {
+    j["fragment"]["spirv"][8] = j["fragment"]["spirv"][8].get<uint32_t>() ^ 0x00010000u;
+  });
+  expect_recompiled_and_repaired(cache, Lane::Vk, entry(".variant"), original);
+}
+
+TEST_F(DamagedCacheEntryTest, AnEditedLayoutIsCompiledAgainWithAWarning) {
+  ShaderCache cache(root_ / "cache", "identity");
+  ASSERT_FALSE(compile(cache, Lane::Gl).first);
+  const CompiledVariant original = last_;
+  edit(entry(".variant"), [](nlohmann::json& j) {
+    j["uniform_blocks"].push_back({{"name", "Globals"}, {"binding", 3}, {"size", 4096}});
+  });
+  expect_recompiled_and_repaired(cache, Lane::Gl, entry(".variant"), original);
+}
+
+TEST_F(DamagedCacheEntryTest, EditedReflectionIsCompiledAgainWithAWarning) {
+  ShaderCache cache(root_ / "cache", "identity");
+  ASSERT_FALSE(compile(cache, Lane::Gl).first);
+  const CompiledVariant original = last_;
+  edit(entry(".variant"), [](nlohmann::json& j) {
+    nlohmann::json interface = nlohmann::json::parse(j["interface"].get<std::string>());
+    interface["textures"].push_back("_NotInTheShader");
+    j["interface"] = interface.dump(1);
+  });
+  expect_recompiled_and_repaired(cache, Lane::Gl, entry(".variant"), original);
+  EXPECT_EQ(last_.interface.textures, original.interface.textures);
+}
+
+// The manifest names the program: pointed at another, it would hand out the wrong one.
+TEST_F(DamagedCacheEntryTest, AnEditedManifestIsCompiledAgainWithAWarning) {
+  ShaderCache cache(root_ / "cache", "identity");
+  ASSERT_FALSE(compile(cache, Lane::Gl).first);
+  const CompiledVariant original = last_;
+  edit(entry(".manifest"), [](nlohmann::json& j) { j["request"] = "materials/other.hlsl"; });
+  expect_recompiled_and_repaired(cache, Lane::Gl, entry(".manifest"), original);
+}
+
+// Worker processes sharing one cache store the same entry at once while another reads it: every
+// read is a whole entry (a hit) or none, never a damaged one.
+TEST_F(ShaderCacheTest, ProcessesStoringTheSameEntryAtOnceNeverTearIt) {
+  ShaderCache cache(root_ / "cache", "identity");
+  EXPECT_FALSE(from_cache(cache, request()));
+  const CompiledVariant variant = last_;
+  const std::vector<fs::path> dependencies{root_ / "materials" / "flat.hlsl", root_ / "include" / "tint.hlsl"};
+  std::vector<pid_t> writers;
+  for (int i = 0; i < 4; ++i) {
+    const pid_t pid = ::fork();
+    ASSERT_GE(pid, 0);
+    if (pid == 0) {
+      bool ok = true;
+      for (int round = 0; round < 200 && ok; ++round) ok = bool(cache.store(request(), Lane::Gl, variant, dependencies));
+      ::_exit(ok ? 0 : 1);
+    }
+    writers.push_back(pid);
+  }
+  size_t hits = 0, damaged = 0;
+  for (int round = 0; round < 400; ++round) {
+    CacheLookup found = cache.look_up(request(), Lane::Gl);
+    hits += found.variant.has_value();
+    damaged += found.damage.has_value();
+  }
+  for (pid_t pid : writers) {
+    int status = 0;
+    ASSERT_EQ(::waitpid(pid, &status, 0), pid);
+    EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0);
+  }
+  EXPECT_EQ(damaged, 0u);
+  EXPECT_EQ(hits, 400u);
+  for (const auto& item : fs::directory_iterator(root_ / "cache"))
+    EXPECT_EQ(item.path().string().find(".tmp"), std::string::npos) << item.path();
 }
 
 TEST(ContentHash, IsStableAndSensitive) {

@@ -32,10 +32,13 @@ Result<const hlsl::Module*> VariantCompiler::front_end(const VariantRequest& req
 
 Result<CompiledVariant> VariantCompiler::compile(const VariantRequest& request, Lane lane) {
   if (cache_) {
-    if (std::optional<CompiledVariant> found = cache_->find(request, lane)) {
+    CacheLookup found = cache_->look_up(request, lane);
+    if (found.variant) {
       ++cached_;
-      return std::move(*found);
+      return std::move(*found.variant);
     }
+    // Compiled and stored again below, which repairs the entry.
+    if (found.damage && !cache_damage_) cache_damage_ = std::move(found.damage);
   }
   auto module = front_end(request);
   if (!module) return fail(module.error());

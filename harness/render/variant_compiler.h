@@ -30,6 +30,9 @@ class VariantCompiler {
   size_t cached() const { return cached_; }
   // The first failure to write the cache, if any: it costs time, not correctness, so the run goes on.
   const std::optional<Error>& cache_write_error() const { return cache_write_error_; }
+  // The first damaged cache entry found, if any (ShaderCache::look_up): the variant was compiled
+  // again and the entry rewritten, so the run is right; the warning says the cache was not.
+  const std::optional<Error>& cache_damage() const { return cache_damage_; }
 
  private:
   Result<const hlsl::Module*> front_end(const VariantRequest& request);
@@ -40,6 +43,7 @@ class VariantCompiler {
   size_t compiled_ = 0;
   size_t cached_ = 0;
   std::optional<Error> cache_write_error_;
+  std::optional<Error> cache_damage_;
 };
 
 }  // namespace xshade::harness

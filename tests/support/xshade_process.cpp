@@ -24,8 +24,12 @@ Outcome run_command(const std::string& command) {
 
 const char* xshade_binary() { return XSHADE_BINARY; }
 
+std::string xshade_command(const std::string& environment, const std::string& arguments) {
+  return environment + " '" XSHADE_BINARY "' " + arguments + " 2>&1";
+}
+
 Outcome run_xshade(const std::string& environment, const std::string& arguments) {
-  return run_command(environment + " '" XSHADE_BINARY "' " + arguments + " 2>&1");
+  return run_command(xshade_command(environment, arguments));
 }
 
 Outcome run_xshade_in(const std::filesystem::path& folder, const std::string& arguments) {

@@ -18,6 +18,10 @@ const char* xshade_binary();
 // empty), `arguments` is quoted as the shell needs.
 Outcome run_xshade(const std::string& environment, const std::string& arguments);
 
+// The shell command run_xshade runs, for a test that starts xshade itself (several at once, or
+// reading its output while it runs).
+std::string xshade_command(const std::string& environment, const std::string& arguments);
+
 // The same, with `folder` as the working folder (where xshade looks for a project file).
 Outcome run_xshade_in(const std::filesystem::path& folder, const std::string& arguments);
 

@@ -1,0 +1,217 @@
+// bless's commit through the real binary: killed after each step of its commit it leaves the
+// old golden or the new one, which the next run finishes and passes against; two blesses into
+// one folder at once keep both entries; a bless that finds the folder locked waits and says so.
+// The scene is a fixed one shrunk to a few pixels and blessed on the gl lane alone, so that each
+// bless costs little more than starting xshade.
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <string>
+
+#include <fcntl.h>
+#include <poll.h>
+#include <sys/file.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <gtest/gtest.h>
+
+#include "tests/support/scene_copy.h"
+#include "tests/support/xshade_process.h"
+
+namespace xshade::tests {
+namespace {
+
+namespace fs = std::filesystem;
+
+const fs::path kSource = XSHADE_SOURCE_DIR;
+constexpr const char* kScene = "toon_shadow_texture";
+
+// Every file under `folder` with its contents: what "exactly this state" means. The date bless
+// records is left out, as two blesses of one image differ in it and nothing else.
+using Snapshot = std::map<std::string, std::string>;
+Snapshot snapshot(const fs::path& folder) {
+  Snapshot files;
+  for (const auto& item : fs::recursive_directory_iterator(folder)) {
+    if (!item.is_regular_file()) continue;
+    std::string text = read_text(item.path());
+    if (item.path().filename() == "MANIFEST.toml")
+      for (size_t at = text.find("\ndate = "); at != std::string::npos; at = text.find("\ndate = ", at + 1))
+        text.erase(at + 1, text.find('\n', at + 1) - at);
+    files[fs::relative(item.path(), folder).string()] = text;
+  }
+  return files;
+}
+
+void restore(const fs::path& folder, const std::map<std::string, std::string>& raw) {
+  fs::remove_all(folder);
+  for (const auto& [name, bytes] : raw) {
+    fs::create_directories((folder / name).parent_path());
+    std::ofstream(folder / name, std::ios::binary) << bytes;
+  }
+}
+
+std::map<std::string, std::string> raw_files(const fs::path& folder) {
+  std::map<std::string, std::string> files;
+  for (const auto& item : fs::recursive_directory_iterator(folder))
+    if (item.is_regular_file()) files[fs::relative(item.path(), folder).string()] = read_text(item.path());
+  return files;
+}
+
+class BlessCommit : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    root_ = fs::temp_directory_path() /
+            ("xshade_bless_commit_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
+    copy_fixed_scene(kSource, root_, kScene);
+    fs::remove_all(root_ / "golden");
+    fs::create_directories(root_ / "golden");
+    const std::string text = read_text(root_ / "scenes" / (std::string(kScene) + ".toml"));
+    const std::string size = "size = [256, 256]";
+    ASSERT_NE(text.find(size), std::string::npos);
+    tiny_ = text;
+    tiny_.replace(tiny_.find(size), size.size(), "size = [24, 24]");
+    fs::remove(root_ / "scenes" / (std::string(kScene) + ".toml"));
+  }
+  void TearDown() override { fs::remove_all(root_); }
+
+  // Writes the scene `name` as the tiny scene with `from` replaced by `to`.
+  void scene(const std::string& name, const std::string& from = "", const std::string& to = "") {
+    std::string text = tiny_;
+    if (!from.empty()) {
+      ASSERT_NE(text.find(from), std::string::npos) << from;
+      text.replace(text.find(from), from.size(), to);
+    }
+    std::ofstream(root_ / "scenes" / (name + ".toml"), std::ios::binary | std::ios::trunc) << text;
+  }
+  std::string folders(const std::string& report) const {
+    return " --lane gl --cache '" + (root_ / "cache").string() + "' --scenes '" + (root_ / "scenes").string() +
+           "' --golden '" + (root_ / "golden").string() + "' --shaders '" + (root_ / "shaders").string() +
+           "' --report '" + (root_ / report).string() + "'";
+  }
+  std::string bless_arguments(const std::string& scene_name, const std::string& reason) const {
+    return "bless " + scene_name + " --reason '" + reason + "'" + folders("bless_" + scene_name);
+  }
+  Outcome bless(const std::string& scene_name, const std::string& reason, const std::string& environment = "") {
+    return run_xshade("XSHADE_BLESSED_BY=test " + environment, bless_arguments(scene_name, reason));
+  }
+  Outcome run(const std::string& scenes) { return run_xshade("", "run " + scenes + folders("report")); }
+
+  fs::path root_;
+  std::string tiny_;
+};
+
+// The old golden has a float image (a highlight above 1), the new one has none and another
+// colour: every step changes something a kill could leave half done.
+TEST_F(BlessCommit, AKillAfterAnyStepLeavesTheOldGoldenOrTheNewOneAndTheNextRunFinishesIt) {
+  const fs::path golden = root_ / "golden";
+  const std::string intensity = "intensity = 1.5";
+  const auto old_scene = [&] { scene(kScene); };
+  const auto new_scene = [&] { scene(kScene, intensity, "intensity = 0.5"); };
+
+  old_scene();
+  Outcome first = bless(kScene, "old");
+  ASSERT_EQ(first.exit_code, 0) << first.output;
+  ASSERT_TRUE(fs::exists(golden / "gl" / (std::string(kScene) + ".exr"))) << "the old golden needs a float image";
+  const auto old_files = raw_files(golden);
+  const Snapshot old_state = snapshot(golden);
+  new_scene();
+  Outcome second = bless(kScene, "new");
+  ASSERT_EQ(second.exit_code, 0) << second.output;
+  ASSERT_FALSE(fs::exists(golden / "gl" / (std::string(kScene) + ".exr"))) << "the new golden has no float image";
+  const Snapshot new_state = snapshot(golden);
+  ASSERT_NE(old_state, new_state);
+
+  bool saw_old = false, saw_new = false;
+  int step = 1;
+  for (;; ++step) {
+    ASSERT_LT(step, 20) << "bless never finished";
+    restore(golden, old_files);
+    new_scene();
+    Outcome killed = bless(kScene, "new", "XSHADE_TEST_ABORT_AFTER_BLESS_STEP=" + std::to_string(step));
+    if (killed.exit_code == 0) break;  // past the last step
+    ASSERT_NE(killed.exit_code, 2) << "step " << step << ": " << killed.output;  // killed, not refused
+    ASSERT_NE(killed.exit_code, 1) << "step " << step << ": " << killed.output;
+
+    // The manifest alone decides which state it is; the next run makes the files agree with it.
+    const std::string manifest = snapshot(golden).at("MANIFEST.toml");
+    const bool is_new = manifest == new_state.at("MANIFEST.toml");
+    ASSERT_TRUE(is_new || manifest == old_state.at("MANIFEST.toml")) << "step " << step << ": " << manifest;
+    (is_new ? saw_new : saw_old) = true;
+    if (is_new) new_scene();
+    else old_scene();
+    Outcome next = run(kScene);
+    EXPECT_EQ(next.exit_code, 0) << "step " << step << " (" << (is_new ? "new" : "old") << "): " << next.output;
+    EXPECT_EQ(snapshot(golden), is_new ? new_state : old_state) << "step " << step;
+  }
+  EXPECT_GE(step, 7) << "bless has at least six steps to be killed after";
+  EXPECT_TRUE(saw_old);
+  EXPECT_TRUE(saw_new);
+  // The bless that finished left exactly the new state.
+  EXPECT_EQ(snapshot(golden), new_state);
+}
+
+// Two blesses of different scenes into one folder at once: each reads the manifest, adds its
+// entry and writes it back; without the lock one of the two entries is lost.
+TEST_F(BlessCommit, TwoBlessesAtOnceKeepBothEntries) {
+  scene("toon_a");
+  scene("toon_b", "_Color = [0.3, 0.6, 0.9, 1]", "_Color = [0.9, 0.3, 0.3, 1]");
+  const fs::path golden = root_ / "golden";
+  for (int round = 0; round < 20; ++round) {
+    fs::remove_all(golden);
+    fs::create_directories(golden);
+    // Both started before either is waited for.
+    const std::string a = xshade_command("XSHADE_BLESSED_BY=test", bless_arguments("toon_a", "a"));
+    const std::string b = xshade_command("XSHADE_BLESSED_BY=test", bless_arguments("toon_b", "b"));
+    FILE* first = popen(a.c_str(), "r");
+    FILE* second = popen(b.c_str(), "r");
+    ASSERT_TRUE(first && second);
+    std::string output;
+    char buffer[4096];
+    for (FILE* pipe : {first, second})
+      while (size_t n = fread(buffer, 1, sizeof buffer, pipe)) output.append(buffer, n);
+    const int status_a = pclose(first), status_b = pclose(second);
+    ASSERT_EQ(status_a, 0) << output;
+    ASSERT_EQ(status_b, 0) << output;
+    const std::string manifest = read_text(golden / "MANIFEST.toml");
+    EXPECT_NE(manifest.find("scene = \"toon_a\""), std::string::npos) << "round " << round << ":\n" << manifest;
+    EXPECT_NE(manifest.find("scene = \"toon_b\""), std::string::npos) << "round " << round << ":\n" << manifest;
+    if (HasFailure()) break;
+  }
+  // Both goldens pass with their hashes checked.
+  Outcome checked = run("toon_a toon_b");
+  EXPECT_EQ(checked.exit_code, 0) << checked.output;
+}
+
+// The folder's lock held by someone else: bless says it waits, and finishes once it is free.
+TEST_F(BlessCommit, ABlessThatFindsTheFolderLockedWaitsAndSaysSo) {
+  scene(kScene);
+  const int lock = ::open((root_ / "golden" / ".golden.lock").c_str(), O_RDWR | O_CREAT, 0666);
+  ASSERT_GE(lock, 0);
+  ASSERT_EQ(::flock(lock, LOCK_EX), 0);
+  const std::string command = xshade_command("XSHADE_BLESSED_BY=test", bless_arguments(kScene, "first"));
+  FILE* pipe = popen(command.c_str(), "r");
+  ASSERT_TRUE(pipe);
+  std::string output;
+  char buffer[4096];
+  // Read until bless says it waits (or gives up after a minute, or ends without waiting).
+  pollfd ready{fileno(pipe), POLLIN, 0};
+  while (output.find("waiting for another xshade") == std::string::npos && ::poll(&ready, 1, 60000) > 0) {
+    const ssize_t n = ::read(fileno(pipe), buffer, sizeof buffer);
+    if (n <= 0) break;
+    output.append(buffer, size_t(n));
+  }
+  EXPECT_NE(output.find("xshade bless: waiting for another xshade to finish writing " + (root_ / "golden").string() +
+                        " (it holds " + (root_ / "golden" / ".golden.lock").string() + ")"),
+            std::string::npos)
+      << output;
+  EXPECT_FALSE(fs::exists(root_ / "golden" / "MANIFEST.toml"));  // nothing written while it waits
+  ::close(lock);
+  ssize_t n = 0;
+  while ((n = ::read(fileno(pipe), buffer, sizeof buffer)) > 0) output.append(buffer, size_t(n));
+  EXPECT_EQ(pclose(pipe), 0) << output;
+  EXPECT_NE(read_text(root_ / "golden" / "MANIFEST.toml").find("reason = \"first\""), std::string::npos) << output;
+}
+
+}  // namespace
+}  // namespace xshade::tests
