@@ -47,6 +47,15 @@ TEST_F(ProjectFileTest, PathsResolveAgainstTheProjectFilesFolder) {
   EXPECT_EQ(project->shaders, (std::vector<fs::path>{root_ / "repo/shaders", root_ / "repo/more_shaders/"}));
 }
 
+// A project file is TOML too, read by the same toml++: the same limit holds it, at the key.
+TEST_F(ProjectFileTest, AKeyNestedTooDeepIsRefusedBeforeTheTomlParserRecurses) {
+  std::string key = "a";
+  for (int i = 1; i < 100000; ++i) key += ".a";
+  EXPECT_EQ(problems("scenes = \"xshade/scenes\"\n[" + key + "]\n"),
+            (std::vector<std::string>{"2:2: a dotted key or table header of 100000 parts; xshade reads at most 100 (a "
+                                      "longer one could overflow the TOML parser's stack)"}));
+}
+
 TEST_F(ProjectFileTest, EveryKeyIsOptionalAndOneShaderFolderMayBeAString) {
   auto empty = parse("# nothing set\n");
   ASSERT_TRUE(empty) << empty.error().to_string();
