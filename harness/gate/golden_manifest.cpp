@@ -8,7 +8,7 @@
 #include <fmt/format.h>
 #include <toml++/toml.h>
 
-#include "harness/render/lanes.h"
+#include "harness/scene/lane.h"  // parse_lane
 #include "harness/scene/toml_nesting.h"
 
 namespace xshade::harness {

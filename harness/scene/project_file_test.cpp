@@ -112,5 +112,26 @@ TEST_F(ProjectFileTest, LoadNamesTheFileItCannotRead) {
   EXPECT_EQ(missing.error().to_string(), (root_ / "repo/absent.toml").string() + ": cannot read the project file");
 }
 
+// A project file that is a symbolic link out of its folder is refused before it is read; one
+// that links to a file inside the folder is read.
+TEST_F(ProjectFileTest, ALinkOutOfItsFolderIsRefusedAndOneInsideIsRead) {
+  std::ofstream(root_ / "outside/elsewhere.toml") << "scenes = \"xshade/scenes\"\n";
+  fs::create_symlink(root_ / "outside/elsewhere.toml", root_ / "repo/xshade.toml");
+  auto linked = load_project_file(root_ / "repo/xshade.toml");
+  ASSERT_FALSE(linked);
+  EXPECT_EQ(linked.error().to_string(), (root_ / "repo/xshade.toml").string() +
+                                            ": the project file is a symbolic link that points outside its folder (to " +
+                                            (root_ / "outside/elsewhere.toml").string() +
+                                            "); a project file must be inside the folder it is for");
+  EXPECT_EQ(linked.error().kind, ErrorKind::UserInput);
+
+  fs::remove(root_ / "repo/xshade.toml");
+  std::ofstream(root_ / "repo/src/real.toml") << "scenes = \"xshade/scenes\"\n";
+  fs::create_symlink(root_ / "repo/src/real.toml", root_ / "repo/xshade.toml");
+  auto inside = load_project_file(root_ / "repo/xshade.toml");
+  ASSERT_TRUE(inside) << inside.error().to_string();
+  EXPECT_EQ(inside->scenes, root_ / "repo/xshade/scenes");
+}
+
 }  // namespace
 }  // namespace xshade::harness
