@@ -90,6 +90,19 @@ static std::vector<fs::path> scenes_in(const fs::path& folder, std::error_code& 
   return files;
 }
 
+// A scene file found in the scenes folder is held to it like every path a scene names: a
+// symbolic link there that points out of the folder would have xshade read (and render, and
+// report) a file the folder's owner never put in it.
+static Result<void> check_inside(const fs::path& file, const fs::path& folder) {
+  if (path_is_inside(file, folder)) return {};
+  std::error_code error;
+  const fs::path target = fs::weakly_canonical(file, error);
+  return fail("the scene file " + file.string() + " is a symbolic link that points outside the scenes folder " +
+                  folder.string() + (error ? std::string() : " (to " + target.string() + ")") +
+                  "; a scene file must be inside its folder",
+              SourceLocation{file.string(), 0, 0});
+}
+
 Result<std::vector<fs::path>> scene_files(const std::vector<std::string>& scenes, const SceneFolders& folders) {
   std::vector<fs::path> files;
   if (scenes.empty()) {
@@ -97,6 +110,8 @@ Result<std::vector<fs::path>> scene_files(const std::vector<std::string>& scenes
     files = scenes_in(folders.scenes, error);
     if (error) return fail("cannot read the scenes folder " + folders.scenes.string() + ": " + error.message());
     if (files.empty()) return fail("no scenes (*.toml) in " + folders.scenes.string());
+    for (const fs::path& file : files)
+      if (Result<void> inside = check_inside(file, folders.scenes); !inside) return fail(inside.error());
     return files;
   }
   for (const std::string& scene : scenes) {
@@ -121,6 +136,7 @@ Result<std::vector<fs::path>> scene_files(const std::vector<std::string>& scenes
       if (harness::parse_lane(scene)) message += " (lanes are chosen with --lane " + scene + ", or --lane gl,vk)";
       return fail(ErrorKind::Usage, message);
     }
+    if (Result<void> inside = check_inside(file, folders.scenes); !inside) return fail(inside.error());
     files.push_back(file);
   }
   return files;

@@ -3,6 +3,9 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <exception>
+#include <new>
+#include <string>
 #include <optional>
 
 #include "base/spelling.h"
@@ -103,7 +106,8 @@ std::optional<std::string> misspelling(const CLI::App& app, const CLI::ParseErro
 
 }  // namespace
 
-int main(int argc, char** argv) {
+// Everything the command line does; main() below stands guard over it.
+static int run_command_line(int argc, char** argv) {
   using namespace xshade::cli;
   CLI::App app{"xshade: author a shader once, render it on OpenGL and Vulkan, diff the images.\n"
                "Exit codes: 0 pass, 1 a check failed, 2 bad input or usage, 3 backend or internal error.",
@@ -317,4 +321,20 @@ int main(int argc, char** argv) {
     return run_stability(stability_options);
   }
   return kBadInput;
+}
+
+// Errors travel as values; an exception that still escapes a verb (an allocation that failed,
+// a library that throws) is reported as a crash of xshade's (exit 3), never an abort.
+int main(int argc, char** argv) {
+  const std::string verb = argc > 1 && argv[1][0] != '-' ? std::string(" ") + argv[1] : std::string();
+  try {
+    return run_command_line(argc, argv);
+  } catch (const std::bad_alloc&) {
+    std::fprintf(stderr, "xshade%s: out of memory (an allocation failed); nothing more was done\n", verb.c_str());
+  } catch (const std::exception& error) {
+    std::fprintf(stderr, "xshade%s: internal error: %s\n", verb.c_str(), error.what());
+  } catch (...) {
+    std::fprintf(stderr, "xshade%s: internal error: an unknown exception\n", verb.c_str());
+  }
+  return xshade::cli::kBackendError;
 }

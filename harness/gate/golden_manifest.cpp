@@ -8,7 +8,8 @@
 #include <fmt/format.h>
 #include <toml++/toml.h>
 
-#include "harness/render/lanes.h"
+#include "harness/scene/lane.h"  // parse_lane
+#include "harness/scene/toml_nesting.h"
 
 namespace xshade::harness {
 namespace {
@@ -110,6 +111,8 @@ void GoldenManifest::record(GoldenEntry entry) {
 }
 
 Result<GoldenManifest> parse_golden_manifest(std::string_view text, const std::string& file_name) {
+  // Before toml++ sees it: a key nested deep enough would overflow its stack (toml_nesting.h).
+  if (auto nesting = check_toml_nesting(text, file_name); !nesting) return fail(nesting.error());
   // Debian's toml++ is a shared library built with exceptions; the one it throws stops here.
   toml::table root;
   try {

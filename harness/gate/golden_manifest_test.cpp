@@ -87,6 +87,17 @@ TEST(GoldenManifestTest, TheProjectManifestReadsAndKeepsTheHeader) {
   EXPECT_EQ(format_golden_manifest(*read), text.str());
 }
 
+// The manifest is TOML too: a key deep enough to overflow toml++'s stack is refused before it
+// reads it, at the key.
+TEST(GoldenManifestTest, AKeyNestedTooDeepIsRefusedBeforeTheTomlParserRecurses) {
+  std::string key = "a";
+  for (int i = 1; i < 100000; ++i) key += ".a";
+  auto read = parse_golden_manifest("[[golden]]\nscene = \"a\"\n" + key + " = 1\n", "MANIFEST.toml");
+  ASSERT_FALSE(read);
+  EXPECT_EQ(read.error().to_string(), "MANIFEST.toml:3:1: a dotted key or table header of 100000 parts; xshade reads "
+                                      "at most 100 (a longer one could overflow the TOML parser's stack)");
+}
+
 struct BadManifest {
   std::string text;
   std::string error;

@@ -6,6 +6,8 @@
 
 #include <OpenImageIO/imageio.h>
 
+#include "harness/image/image_limits.h"
+
 namespace xshade::harness {
 namespace {
 
@@ -24,6 +26,37 @@ Result<void> write(const std::filesystem::path& path, const OIIO::ImageSpec& spe
   bool written = output->write_image(pixel_type, pixels);
   bool closed = output->close();
   if (!written || !closed) return fail(oiio_error("cannot write", path, output->geterror()));
+  return {};
+}
+
+// What the header claims, against image_limits.h. For an EXR, width and height are its data
+// window, which is what is read; a tiled file's tiles are buffers too.
+Result<void> check_header(const OIIO::ImageSpec& spec, const std::filesystem::path& path) {
+  const uint64_t pixels = uint64_t(spec.width) * uint64_t(spec.height);
+  std::string size = std::to_string(spec.width) + " x " + std::to_string(spec.height);
+  if (spec.depth > 1) size += " x " + std::to_string(spec.depth);
+  const bool too_large = spec.width > int64_t(kMaxImageFileSide) || spec.height > int64_t(kMaxImageFileSide) ||
+                         pixels > kMaxImageFilePixels;
+  if (too_large)
+    return fail(oiio_error("cannot read image", path,
+                           "it is " + size + " pixels; xshade reads images of at most " +
+                               std::to_string(kMaxImageFileSide) + " pixels a side and " +
+                               std::to_string(kMaxImageFilePixels) + " pixels in all"));
+  if (spec.depth > 1)
+    return fail(oiio_error("cannot read image", path,
+                           "it is a volume of " + size + " pixels; xshade reads flat images (depth 1)"));
+  if (spec.nchannels > kMaxImageFileChannels)
+    return fail(oiio_error("cannot read image", path,
+                           "it has " + std::to_string(spec.nchannels) + " channels; xshade reads images of at most " +
+                               std::to_string(kMaxImageFileChannels)));
+  const uint64_t tile_pixels = uint64_t(std::max(spec.tile_width, 0)) * uint64_t(std::max(spec.tile_height, 0));
+  if (spec.tile_width > int64_t(kMaxImageFileSide) || spec.tile_height > int64_t(kMaxImageFileSide) ||
+      tile_pixels > kMaxImageFilePixels || spec.tile_depth > 1)
+    return fail(oiio_error("cannot read image", path,
+                           "its tiles are " + std::to_string(spec.tile_width) + " x " +
+                               std::to_string(spec.tile_height) + " pixels; xshade reads tiles of at most " +
+                               std::to_string(kMaxImageFileSide) + " pixels a side and " +
+                               std::to_string(kMaxImageFilePixels) + " pixels in all"));
   return {};
 }
 
@@ -80,6 +113,8 @@ Result<FloatImage> read_image(const std::filesystem::path& path, bool srgb) {
   const OIIO::ImageSpec& spec = input->spec();
   if (spec.width <= 0 || spec.height <= 0 || spec.nchannels <= 0)
     return fail(oiio_error("cannot read image", path, "it has no pixels"));
+  // The header is all that has been read: its sizes are checked before they size any buffer.
+  if (Result<void> fits = check_header(spec, path); !fits) return fail(fits.error());
   const int channels = spec.nchannels;
   // An integer file's colour is sRGB-encoded whatever its depth (a 16-bit PNG too); 8 bits
   // decode through the exact table.

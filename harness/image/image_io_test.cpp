@@ -7,6 +7,9 @@
 
 #include <gtest/gtest.h>
 
+#include "harness/image/forged_image_headers.h"
+#include "harness/image/image_limits.h"
+
 namespace xshade::harness {
 namespace {
 
@@ -71,6 +74,48 @@ TEST(ImageIo, MissingAndCorruptFilesAreErrorsNamingTheFile) {
   auto corrupt = read_image(corrupt_path);
   ASSERT_FALSE(corrupt);
   EXPECT_NE(corrupt.error().message.find("corrupt.png"), std::string::npos);
+}
+
+// A header's size is checked before anything is allocated: these files made 65535 x 65535 (and
+// more) RGBA float buffers, which ended the process with std::bad_alloc.
+TEST(ImageIo, AHeaderClaimingMoreThanTheLimitIsRefusedNamingTheFileItsSizeAndTheLimit) {
+  const std::string limit = "xshade reads images of at most 16384 pixels a side and 33554432 pixels in all";
+  const std::pair<std::string, std::string> files[] = {
+      {"huge.png", forged::png(65535, 65535)},
+      {"huge.exr", forged::exr(1000000, 1000000)},
+      {"huge.hdr", forged::hdr(100000, 100000)},
+  };
+  const std::string sizes[] = {"65535 x 65535", "1000000 x 1000000", "100000 x 100000"};
+  for (size_t i = 0; i < std::size(files); ++i) {
+    const auto path = temp_path(files[i].first);
+    forged::write(path, files[i].second);
+    auto read = read_image(path);
+    ASSERT_FALSE(read) << files[i].first;
+    EXPECT_EQ(read.error().message, "cannot read image " + path.string() + ": it is " + sizes[i] + " pixels; " + limit);
+    EXPECT_EQ(read.error().kind, ErrorKind::UserInput);
+  }
+  EXPECT_EQ(forged::png(1, 1).size(), 68u);
+}
+
+TEST(ImageIo, TheLimitsAreOnEachSideAndOnThePixelsInAll) {
+  // One side too long, the other short: few pixels, still refused.
+  const auto wide = temp_path("wide.png");
+  forged::write(wide, forged::png(kMaxImageFileSide + 1, 1));
+  auto read = read_image(wide);
+  ASSERT_FALSE(read);
+  EXPECT_NE(read.error().message.find("it is 16385 x 1 pixels"), std::string::npos) << read.error().message;
+  // Both sides within the limit, too many pixels in all.
+  const auto square = temp_path("square.hdr");
+  forged::write(square, forged::hdr(8192, 4097));
+  read = read_image(square);
+  ASSERT_FALSE(read);
+  EXPECT_NE(read.error().message.find("it is 8192 x 4097 pixels"), std::string::npos) << read.error().message;
+  // At the limit the header passes, and the missing pixels are what is reported.
+  const auto small = temp_path("small_but_truncated.png");
+  forged::write(small, forged::png(64, 64));
+  read = read_image(small);
+  ASSERT_FALSE(read);
+  EXPECT_EQ(read.error().message.find("pixels a side"), std::string::npos) << read.error().message;
 }
 
 TEST(ImageIo, UnwritablePathIsAnError) {

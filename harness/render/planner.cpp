@@ -114,6 +114,9 @@ Result<Plan> plan_scene(const Scene& scene, const ShaderSearchPath& shaders) {
   std::map<std::string, std::set<std::vector<std::string>>> used_combinations;
   std::map<std::string, size_t> possible_combinations;
 
+  // load_scene has refused a scene over budget; one made in code is held to the same limits
+  // before anything is expanded.
+  if (Result<void> work = check_scene_work(scene); !work) return fail(work.error());
   plan.instances = expand_instances(scene);
   std::map<std::string, SourceFacts> materials;
   std::vector<ShaderNames> variant_names;  // per variant of the scene pass

@@ -88,6 +88,16 @@ Result<ProjectFile> parse_project_file(std::string_view text, const fs::path& fi
 }
 
 Result<ProjectFile> load_project_file(const fs::path& file) {
+  // The project file is held to its folder like the folders it names: a checkout's xshade.toml
+  // that is a symbolic link to a file elsewhere would point xshade at that file's contents.
+  std::error_code error;
+  if (fs::exists(file, error) && !path_is_inside(file, fs::absolute(file, error).parent_path())) {
+    const fs::path target = fs::weakly_canonical(file, error);
+    return fail("the project file is a symbolic link that points outside its folder" +
+                    (error ? std::string() : " (to " + target.string() + ")") +
+                    "; a project file must be inside the folder it is for",
+                SourceLocation{file.string(), 0, 0});
+  }
   std::ifstream stream(file, std::ios::binary);
   std::ostringstream text;
   text << stream.rdbuf();

@@ -47,6 +47,15 @@ TEST_F(ProjectFileTest, PathsResolveAgainstTheProjectFilesFolder) {
   EXPECT_EQ(project->shaders, (std::vector<fs::path>{root_ / "repo/shaders", root_ / "repo/more_shaders/"}));
 }
 
+// A project file is TOML too, read by the same toml++: the same limit holds it, at the key.
+TEST_F(ProjectFileTest, AKeyNestedTooDeepIsRefusedBeforeTheTomlParserRecurses) {
+  std::string key = "a";
+  for (int i = 1; i < 100000; ++i) key += ".a";
+  EXPECT_EQ(problems("scenes = \"xshade/scenes\"\n[" + key + "]\n"),
+            (std::vector<std::string>{"2:2: a dotted key or table header of 100000 parts; xshade reads at most 100 (a "
+                                      "longer one could overflow the TOML parser's stack)"}));
+}
+
 TEST_F(ProjectFileTest, EveryKeyIsOptionalAndOneShaderFolderMayBeAString) {
   auto empty = parse("# nothing set\n");
   ASSERT_TRUE(empty) << empty.error().to_string();
@@ -101,6 +110,27 @@ TEST_F(ProjectFileTest, LoadNamesTheFileItCannotRead) {
   auto missing = load_project_file(root_ / "repo/absent.toml");
   ASSERT_FALSE(missing);
   EXPECT_EQ(missing.error().to_string(), (root_ / "repo/absent.toml").string() + ": cannot read the project file");
+}
+
+// A project file that is a symbolic link out of its folder is refused before it is read; one
+// that links to a file inside the folder is read.
+TEST_F(ProjectFileTest, ALinkOutOfItsFolderIsRefusedAndOneInsideIsRead) {
+  std::ofstream(root_ / "outside/elsewhere.toml") << "scenes = \"xshade/scenes\"\n";
+  fs::create_symlink(root_ / "outside/elsewhere.toml", root_ / "repo/xshade.toml");
+  auto linked = load_project_file(root_ / "repo/xshade.toml");
+  ASSERT_FALSE(linked);
+  EXPECT_EQ(linked.error().to_string(), (root_ / "repo/xshade.toml").string() +
+                                            ": the project file is a symbolic link that points outside its folder (to " +
+                                            (root_ / "outside/elsewhere.toml").string() +
+                                            "); a project file must be inside the folder it is for");
+  EXPECT_EQ(linked.error().kind, ErrorKind::UserInput);
+
+  fs::remove(root_ / "repo/xshade.toml");
+  std::ofstream(root_ / "repo/src/real.toml") << "scenes = \"xshade/scenes\"\n";
+  fs::create_symlink(root_ / "repo/src/real.toml", root_ / "repo/xshade.toml");
+  auto inside = load_project_file(root_ / "repo/xshade.toml");
+  ASSERT_TRUE(inside) << inside.error().to_string();
+  EXPECT_EQ(inside->scenes, root_ / "repo/xshade/scenes");
 }
 
 }  // namespace

@@ -14,6 +14,7 @@
 #include <fmt/ranges.h>
 #include <glm/gtc/matrix_transform.hpp>
 
+#include "harness/image/image_limits.h"
 #include "harness/scene/lane.h"
 #include "harness/scene/scene_values.h"
 #include "harness/scene/toml_reader.h"
@@ -24,7 +25,6 @@ namespace {
 
 using namespace toml_text;
 
-constexpr uint32_t max_image_size = 4096;
 constexpr int64_t max_grid_cells_per_axis = 64;
 // Every lane's name, in lane order (scene/lane.h).
 const std::vector<std::string_view>& lane_names() {
@@ -48,6 +48,7 @@ class SceneReader : SceneValueReader {
     scene.name = file_.stem().string();
     scene.path = file_;
     read_root(*root, scene);
+    if (Result<void> work = check_scene_work(scene); !work) report(work.error().where, work.error().message);
     return finish(std::move(scene));
   }
 
@@ -124,8 +125,8 @@ class SceneReader : SceneValueReader {
       expected(node, "size", "[width, height]");
       return;
     }
-    auto width = integer(*array->get(0), "size[0]", 1, max_image_size);
-    auto height = integer(*array->get(1), "size[1]", 1, max_image_size);
+    auto width = integer(*array->get(0), "size[0]", 1, kMaxRenderSize);
+    auto height = integer(*array->get(1), "size[1]", 1, kMaxRenderSize);
     if (width) scene.width = static_cast<uint32_t>(*width);
     if (height) scene.height = static_cast<uint32_t>(*height);
   }
@@ -437,11 +438,12 @@ class SceneReader : SceneValueReader {
     if (name_node) {
       if (auto name = string(*name_node, path + ".name", "a non-empty string")) object.name = *name;
     }
-    for (size_t other = 0; other < scene.objects.size(); ++other) {
-      if (scene.objects[other].name == object.name) {
-        report(name_node ? name_node->source() : table.source(),
-               fmt::format("{}.name: {} is already the name of object[{}]", path, quote_text(object.name), other));
-      }
+    // A map, not a search of the objects before: a file of many thousand objects reads in
+    // linear time.
+    if (auto [earlier, added] = object_names_.emplace(object.name, index); !added) {
+      report(name_node ? name_node->source() : table.source(),
+             fmt::format("{}.name: {} is already the name of object[{}]", path, quote_text(object.name),
+                         earlier->second));
     }
 
     if (const toml::node* node = table.get("mesh")) {
@@ -693,6 +695,7 @@ class SceneReader : SceneValueReader {
   }
 
   std::filesystem::path file_;
+  std::map<std::string, size_t> object_names_;  // each object's name, the first object of that name
 };
 
 PropertyValue interpolate(const VaryRule& rule, uint32_t index, uint32_t count) {
@@ -730,6 +733,49 @@ Result<Scene> load_scene(const std::filesystem::path& file) {
   text << stream.rdbuf();
   if (stream.bad()) return fail("cannot read the scene file", SourceLocation{file.string(), 0, 0});
   return parse_scene(text.str(), file);
+}
+
+Result<void> check_scene_work(const Scene& scene) {
+  struct Step {
+    uint64_t draws = 0;  // up to and with this object or effect
+    std::string path;    // "object[3]", "post[0]"
+    SourceLocation where;
+  };
+  // The draws up to each object and post effect, so that the error points at where a budget is
+  // passed.
+  std::vector<Step> steps;
+  uint64_t draws = 0;
+  for (size_t i = 0; i < scene.objects.size(); ++i) {
+    const SceneObject& object = scene.objects[i];
+    draws += object.grid ? uint64_t(object.grid->rows) * object.grid->cols : 1;
+    steps.push_back({draws, index_path("object", i), object.where.fallback});
+  }
+  for (size_t i = 0; i < scene.post.size(); ++i)
+    steps.push_back({++draws, index_path("post", i), scene.post[i].where.fallback});
+  auto passing = [&](uint64_t limit, uint64_t per_draw) -> const Step& {
+    for (const Step& step : steps)
+      if (step.draws * per_draw > limit) return step;
+    return steps.back();
+  };
+  const uint64_t pixels = uint64_t(scene.width) * scene.height;
+  const std::string counted =
+      fmt::format("{} objects, a draw for each without a grid and for each cell of a grid, and {} post effects",
+                  scene.objects.size(), scene.post.size());
+  if (draws > kMaxSceneDraws) {
+    const Step& step = passing(kMaxSceneDraws, 1);
+    return fail(fmt::format("{}: here the scene passes {} draws, the most a scene may make; it makes {} in all ({})",
+                            step.path, kMaxSceneDraws, draws, counted),
+                step.where);
+  }
+  if (draws * pixels > kMaxScenePixelDraws) {
+    const Step& step = passing(kMaxScenePixelDraws, pixels);
+    return fail(fmt::format("{}: here the scene passes {} pixel-draws (draws times the {} x {} = {} pixels each may "
+                            "cover), the most a scene may make; it makes {} in all ({} draws: {})",
+                            step.path, kMaxScenePixelDraws, scene.width, scene.height, pixels, draws * pixels, draws,
+                            counted),
+                step.where);
+  }
+  return {};
 }
 
 glm::mat4 model_matrix(const glm::vec3& position, const glm::vec3& rotation_degrees, const glm::vec3& scale) {

@@ -185,6 +185,26 @@ Result<Scene> load_scene(const std::filesystem::path& file);
 // The same for text already in memory; `file` names it in messages and anchors relative paths.
 Result<Scene> parse_scene(std::string_view text, const std::filesystem::path& file);
 
+// What a scene may ask a renderer to do. A 60 KB file of 1000 objects, each a 64 x 64 grid, is
+// 4 million instances: expanding and drawing them took 5.5 GB and minutes before anything was
+// said. Both budgets are checked as the scene is read, before any object is expanded.
+//
+// Draws: each object without a grid is one, each cell of a grid one, each post effect at least
+// one. The fixed scenes draw at most 26; 16384 is four full 64 x 64 grids. Each draw carries its
+// instance (names, properties, textures: about a kilobyte) and its uniform block through the plan
+// and the render on every lane, so this keeps a scene's draws to tens of megabytes.
+inline constexpr uint64_t kMaxSceneDraws = 16384;
+// Draws times the frame's pixels: the fragments a scene could shade if every draw covered the
+// frame. The fixed scenes stay below 3 million; 2^32 is a 64 x 64 grid at 1024 x 1024, which at
+// llvmpipe's hundred million fragments a second on two cores is already about a minute a render,
+// and a run renders each lane twice.
+inline constexpr uint64_t kMaxScenePixelDraws = uint64_t(1) << 32;
+
+// Refuses a scene over either budget, at the object or post effect whose draws pass it, naming
+// the totals and the limit. load_scene and parse_scene apply it; the planner checks again, for
+// scenes made in code.
+Result<void> check_scene_work(const Scene& scene);
+
 // One drawable copy of an object: an object without a grid gives one, a grid rows x cols.
 struct ObjectInstance {
   std::string object_name;

@@ -505,6 +505,17 @@ TEST(SceneErrors, TheErrorCarriesTheFirstProblemAsItsMessage) {
   EXPECT_EQ(scene.error().diagnostics[0].message, scene.error().message);
 }
 
+// One key of 100,000 parts overflowed toml++'s stack (SIGSEGV); now it is refused before toml++
+// reads it, at the key.
+TEST(SceneErrors, AKeyNestedTooDeepIsRefusedBeforeTheTomlParserRecurses) {
+  std::string key = "a";
+  for (int i = 1; i < 100000; ++i) key += ".a";
+  const std::vector<std::string> errors = errors_of(minimal_head + key + " = 1\n");
+  ASSERT_EQ(errors.size(), 1u);
+  EXPECT_EQ(errors[0], "scenes/bad.toml:9:1: error: a dotted key or table header of 100000 parts; xshade reads at "
+                       "most 100 (a longer one could overflow the TOML parser's stack)");
+}
+
 TEST(SceneLoad, ReadsAFileAndReportsAMissingOne) {
   auto folder = std::filesystem::temp_directory_path() / "xshade_scene_test";
   std::filesystem::create_directories(folder);

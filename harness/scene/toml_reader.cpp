@@ -6,6 +6,8 @@
 
 #include <fmt/format.h>
 
+#include "harness/scene/toml_nesting.h"
+
 namespace xshade::harness {
 namespace toml_text {
 namespace {
@@ -67,6 +69,11 @@ std::string key_path(std::string_view base, std::string_view key) {
 using namespace toml_text;
 
 std::optional<toml::table> TomlReader::parse(std::string_view text) {
+  // Before toml++ sees it: a key nested deep enough would overflow its stack (toml_nesting.h).
+  if (auto nesting = check_toml_nesting(text, file_text_); !nesting) {
+    report(nesting.error().where, nesting.error().message);
+    return std::nullopt;
+  }
   // Debian's toml++ is a shared library built with exceptions; the one it throws stops here.
   try {
     return toml::parse(text, std::string_view(file_text_));
@@ -82,6 +89,10 @@ SourceLocation TomlReader::where(const toml::source_region& region) const {
 
 void TomlReader::report(const toml::source_region& region, std::string message) {
   diagnostics_.push_back(Diagnostic{Severity::Error, where(region), std::move(message)});
+}
+
+void TomlReader::report(const SourceLocation& location, std::string message) {
+  diagnostics_.push_back(Diagnostic{Severity::Error, location, std::move(message)});
 }
 
 void TomlReader::expected(const toml::node& node, std::string_view path, std::string_view expectation) {

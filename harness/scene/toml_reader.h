@@ -42,6 +42,7 @@ class TomlReader {
 
   SourceLocation where(const toml::source_region& region) const;
   void report(const toml::source_region& region, std::string message);
+  void report(const SourceLocation& where, std::string message);
   void expected(const toml::node& node, std::string_view path, std::string_view expectation);
   void missing(const toml::node& parent, std::string_view path, std::string_view expectation);
   // Every key of `table` must be one of `known`; each stranger is reported at its own position.

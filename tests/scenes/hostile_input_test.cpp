@@ -1,0 +1,235 @@
+// Hostile input through the real `xshade`: files made to crash or exhaust it (a TOML key nested
+// past the parser's stack, image headers claiming gigapixels, a scene that expands into millions
+// of draws, symbolic links out of the folders) are each refused with exit 2 and a message naming
+// the file, the position and the limit; none reaches a signal or an uncaught exception.
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <tuple>
+
+#include <gtest/gtest.h>
+
+#include "harness/image/forged_image_headers.h"
+#include "tests/support/scene_copy.h"
+#include "tests/support/xshade_process.h"
+
+namespace xshade::tests {
+namespace {
+
+namespace fs = std::filesystem;
+namespace forged = harness::forged;
+
+const fs::path kSource = XSHADE_SOURCE_DIR;
+constexpr const char* kScene = "toon_shadow_texture";
+
+// "a.a.a...": one dotted key of 100,000 parts, the 200 KB line that overflowed toml++'s stack.
+std::string deep_key() {
+  std::string key = "a";
+  for (int i = 1; i < 100000; ++i) key += ".a";
+  return key;
+}
+constexpr const char* kDeepKeyError =
+    "a dotted key or table header of 100000 parts; xshade reads at most 100 (a longer one could overflow the TOML "
+    "parser's stack)";
+
+size_t lines_in(const fs::path& file) {
+  const std::string text = read_text(file);
+  return size_t(std::count(text.begin(), text.end(), '\n'));
+}
+
+void append(const fs::path& file, const std::string& text) { std::ofstream(file, std::ios::app) << text; }
+
+void replace(const fs::path& file, const std::string& from, const std::string& to) {
+  std::string text = read_text(file);
+  const size_t at = text.find(from);
+  ASSERT_NE(at, std::string::npos) << from << " is not in " << file;
+  text.replace(at, from.size(), to);
+  std::ofstream(file, std::ios::binary | std::ios::trunc) << text;
+}
+
+class HostileInput : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    root_ = fs::temp_directory_path() /
+            ("xshade_hostile_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
+    copy_fixed_scene(kSource, root_, kScene);
+  }
+  void TearDown() override { fs::remove_all(root_); }
+
+  fs::path scene() const { return root_ / "scenes" / (std::string(kScene) + ".toml"); }
+
+  Outcome run(const std::string& extra = "--lane gl", const std::string& environment = "") {
+    return run_xshade(environment, "run --cache '" + (root_ / "cache").string() + "' --scenes '" +
+                                       (root_ / "scenes").string() + "' --golden '" + (root_ / "golden").string() +
+                                       "' --shaders '" + (root_ / "shaders").string() + "' --report '" +
+                                       (root_ / "report").string() + "' " + extra);
+  }
+
+  fs::path root_;
+};
+
+// ---- TOML nested past the parser's stack: refused before toml++ reads it, at the key.
+
+TEST_F(HostileInput, ASceneFileWithADeepKeyIsRefusedAtTheKey) {
+  const size_t line = lines_in(scene()) + 1;
+  append(scene(), deep_key() + " = 1\n");
+  Outcome outcome = run();
+  EXPECT_EQ(outcome.exit_code, 2) << outcome.output.substr(0, 2000);
+  EXPECT_NE(outcome.output.find(scene().string() + ":" + std::to_string(line) + ":1: " + kDeepKeyError),
+            std::string::npos)
+      << outcome.output.substr(0, 2000);
+}
+
+TEST_F(HostileInput, AGoldenManifestWithADeepKeyIsRefusedAtTheKey) {
+  const fs::path manifest = root_ / "golden" / "MANIFEST.toml";
+  const size_t line = lines_in(manifest) + 1;
+  append(manifest, deep_key() + " = 1\n");
+  Outcome outcome = run();
+  EXPECT_EQ(outcome.exit_code, 2) << outcome.output.substr(0, 2000);
+  EXPECT_NE(outcome.output.find(manifest.string() + ":" + std::to_string(line) + ":1: " + kDeepKeyError),
+            std::string::npos)
+      << outcome.output.substr(0, 2000);
+}
+
+TEST_F(HostileInput, AProjectFileWithADeepTableHeaderIsRefusedAtTheHeader) {
+  fs::create_directories(root_ / ".git");
+  std::ofstream(root_ / "xshade.toml") << "scenes = \"scenes\"\n[" << deep_key() << "]\n";
+  Outcome outcome = run_xshade_in(root_, "run --plan");
+  EXPECT_EQ(outcome.exit_code, 2) << outcome.output.substr(0, 2000);
+  EXPECT_NE(outcome.output.find((root_ / "xshade.toml").string() + ":2:2: " + kDeepKeyError), std::string::npos)
+      << outcome.output.substr(0, 2000);
+}
+
+// ---- Image headers that claim more pixels than the file holds: refused before allocating.
+
+TEST_F(HostileInput, ATextureWhoseHeaderClaimsTooManyPixelsIsTheScenesFault) {
+  forged::write(root_ / "scenes" / "huge.png", forged::png(65535, 65535));
+  replace(scene(), "_ShadowTex = \"checker\"", "_ShadowTex = \"huge.png\"");
+  Outcome outcome = run();
+  EXPECT_EQ(outcome.exit_code, 2) << outcome.output;
+  EXPECT_NE(outcome.output.find("cannot read image " + (root_ / "scenes" / "huge.png").string() +
+                                ": it is 65535 x 65535 pixels; xshade reads images of at most 16384 pixels a side "
+                                "and 33554432 pixels in all"),
+            std::string::npos)
+      << outcome.output;
+}
+
+TEST_F(HostileInput, AnEnvironmentWhoseHeaderClaimsTooManyPixelsIsTheScenesFault) {
+  const std::string original = read_text(scene());
+  for (const auto& [name, bytes, size] :
+       {std::tuple{"huge.hdr", forged::hdr(100000, 100000), "100000 x 100000"},
+        std::tuple{"huge.exr", forged::exr(1000000, 1000000), "1000000 x 1000000"}}) {
+    forged::write(root_ / "scenes" / name, bytes);
+    std::ofstream(scene(), std::ios::trunc) << original << "\n[environment]\nkind = \"equirect\"\nfile = \"" << name
+                                            << "\"\n";
+    Outcome outcome = run();
+    EXPECT_EQ(outcome.exit_code, 2) << outcome.output;
+    EXPECT_NE(outcome.output.find("cannot read image " + (root_ / "scenes" / name).string() + ": it is " + size +
+                                  " pixels; xshade reads images of at most 16384 pixels a side"),
+              std::string::npos)
+        << outcome.output;
+  }
+}
+
+// white_furnace has no value above 1, so its PNG alone is its golden (made by hand, no manifest).
+TEST_F(HostileInput, AGoldenWhoseHeaderClaimsTooManyPixelsIsRefused) {
+  fs::remove(scene());
+  fs::remove(root_ / "golden" / "MANIFEST.toml");
+  fs::copy_file(kSource / "scenes" / "white_furnace.toml", root_ / "scenes" / "white_furnace.toml");
+  const fs::path golden = root_ / "golden" / "white_furnace.png";
+  forged::write(golden, forged::png(65535, 65535));
+  Outcome outcome = run();
+  EXPECT_EQ(outcome.exit_code, 2) << outcome.output;
+  EXPECT_NE(outcome.output.find("cannot read image " + golden.string() + ": it is 65535 x 65535 pixels; xshade reads "
+                                "images of at most 16384 pixels a side"),
+            std::string::npos)
+      << outcome.output;
+}
+
+// ---- The work budget: a small scene of 1000 objects, each a 64 x 64 grid, is 4 million draws.
+
+TEST_F(HostileInput, ASceneOfMillionsOfDrawsIsRefusedAsItIsRead) {
+  std::string text = read_text(scene());
+  text = text.substr(0, text.find("[[object]]"));
+  size_t line = size_t(std::count(text.begin(), text.end(), '\n')) + 1;
+  size_t fifth = 0;  // the object whose grid takes the draws past 16384: 5 x 4096
+  for (int i = 0; i < 1000; ++i) {
+    if (i == 4) fifth = line;
+    text += "[[object]]\nmesh=\"cube\"\nmaterial=\"materials/toon.hlsl\"\ngrid={rows=64,cols=64,spacing=1}\n";
+    line += 4;
+  }
+  ASSERT_LT(text.size(), 90000u);  // some 88 KB
+  std::ofstream(scene(), std::ios::trunc) << text;
+  for (const std::string& extra : {std::string("--lane gl"), std::string("--plan")}) {
+    Outcome outcome = run(extra);
+    EXPECT_EQ(outcome.exit_code, 2) << outcome.output.substr(0, 2000);
+    EXPECT_NE(outcome.output.find(scene().string() + ":" + std::to_string(fifth) +
+                                  ":1: object[4]: here the scene passes 16384 draws, the most a scene may make; it "
+                                  "makes 4096000 in all (1000 objects, a draw for each without a grid and for each "
+                                  "cell of a grid, and 0 post effects)"),
+              std::string::npos)
+        << outcome.output.substr(0, 2000);
+  }
+}
+
+TEST_F(HostileInput, ALargeFrameTimesManyDrawsIsRefused) {
+  replace(scene(), "size = [256, 256]", "size = [4096, 4096]");
+  append(scene(), "[object.grid]\nrows = 64\ncols = 64\nspacing = 0.1\n");
+  Outcome outcome = run("--plan");
+  EXPECT_EQ(outcome.exit_code, 2) << outcome.output;
+  EXPECT_NE(outcome.output.find("object[0]: here the scene passes 4294967296 pixel-draws (draws times the 4096 x 4096 = "
+                                "16777216 pixels each may cover), the most a scene may make; it makes 68719476736 in "
+                                "all (4096 draws: 1 objects"),
+            std::string::npos)
+      << outcome.output;
+}
+
+// ---- Symbolic links out of the folders.
+
+TEST_F(HostileInput, ASceneFileLinkedFromOutsideTheScenesFolderIsRefused) {
+  fs::create_directories(root_ / "private");
+  fs::rename(scene(), root_ / "private" / "secret.toml");
+  fs::create_symlink(root_ / "private" / "secret.toml", root_ / "scenes" / "linked.toml");
+  for (const std::string& extra : {std::string("--lane gl"), std::string("linked --lane gl")}) {
+    Outcome outcome = run(extra);
+    EXPECT_EQ(outcome.exit_code, 2) << outcome.output;
+    EXPECT_NE(outcome.output.find("the scene file " + (root_ / "scenes" / "linked.toml").string() +
+                                  " is a symbolic link that points outside the scenes folder " +
+                                  (root_ / "scenes").string() + " (to " + (root_ / "private" / "secret.toml").string() +
+                                  "); a scene file must be inside its folder"),
+              std::string::npos)
+        << outcome.output;
+    EXPECT_EQ(outcome.output.find("on gl:"), std::string::npos) << outcome.output;  // nothing rendered
+  }
+}
+
+TEST_F(HostileInput, AProjectFileLinkedFromOutsideItsFolderIsRefused) {
+  fs::create_directories(root_ / "repo" / ".git");
+  fs::create_directories(root_ / "elsewhere");
+  std::ofstream(root_ / "elsewhere" / "xshade.toml") << "scenes = \"../scenes\"\n";
+  fs::create_symlink(root_ / "elsewhere" / "xshade.toml", root_ / "repo" / "xshade.toml");
+  Outcome outcome = run_xshade_in(root_ / "repo", "run --plan");
+  EXPECT_EQ(outcome.exit_code, 2) << outcome.output;
+  EXPECT_NE(outcome.output.find((root_ / "repo" / "xshade.toml").string() +
+                                ": the project file is a symbolic link that points outside its folder"),
+            std::string::npos)
+      << outcome.output;
+}
+
+// ---- An exception that escapes a verb is exit 3 with a message, not an abort (exit 134).
+
+TEST_F(HostileInput, AnAllocationThatFailsIsExitThreeWithAMessage) {
+  // An 8192 x 4096 environment is within the limits: reading it takes some 900 MB, more than the
+  // address space this run is given, so the allocation throws std::bad_alloc.
+  forged::write(root_ / "scenes" / "large.hdr", forged::hdr(8192, 4096));
+  append(scene(), "\n[environment]\nkind = \"equirect\"\nfile = \"large.hdr\"\n");
+  Outcome outcome = run("--lane gl", "ulimit -v 600000;");
+  EXPECT_EQ(outcome.exit_code, 3) << outcome.output;
+  EXPECT_NE(outcome.output.find("xshade run: out of memory (an allocation failed); nothing more was done"),
+            std::string::npos)
+      << outcome.output;
+}
+
+}  // namespace
+}  // namespace xshade::tests
