@@ -186,7 +186,8 @@ TEST_F(BlessCommit, TwoBlessesAtOnceKeepBothEntries) {
 // The folder's lock held by someone else: bless says it waits, and finishes once it is free.
 TEST_F(BlessCommit, ABlessThatFindsTheFolderLockedWaitsAndSaysSo) {
   scene(kScene);
-  const int lock = ::open((root_ / "golden" / ".golden.lock").c_str(), O_RDWR | O_CREAT, 0666);
+  // Close-on-exec: a copy inherited by bless would hold the lock for it after the test lets go.
+  const int lock = ::open((root_ / "golden" / ".golden.lock").c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0666);
   ASSERT_GE(lock, 0);
   ASSERT_EQ(::flock(lock, LOCK_EX), 0);
   const std::string command = xshade_command("XSHADE_BLESSED_BY=test", bless_arguments(kScene, "first"));
