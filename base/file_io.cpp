@@ -21,6 +21,17 @@ std::optional<std::string> read_file(const fs::path& path) {
   return bytes.str();
 }
 
+bool write_all(int fd, std::string_view bytes) {
+  size_t written = 0;
+  while (written < bytes.size()) {
+    const ssize_t n = ::write(fd, bytes.data() + written, bytes.size() - written);
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) return false;
+    written += size_t(n);
+  }
+  return true;
+}
+
 Result<void> write_file_atomically(const fs::path& path, std::string_view bytes) {
   // Beside the target, so that the rename stays within one file system and is atomic. The pid
   // and a counter make the name unique among the processes and threads writing the same file at
@@ -35,15 +46,9 @@ Result<void> write_file_atomically(const fs::path& path, std::string_view bytes)
     if (fd < 0 && errno != EEXIST) break;
   }
   if (fd < 0) return fail("cannot write " + temporary + ": " + std::strerror(errno));
-  size_t written = 0;
-  while (written < bytes.size()) {
-    const ssize_t n = ::write(fd, bytes.data() + written, bytes.size() - written);
-    if (n < 0 && errno == EINTR) continue;
-    if (n <= 0) break;
-    written += size_t(n);
-  }
+  const bool complete = write_all(fd, bytes);
   const int error_number = errno;
-  const bool ok = ::close(fd) == 0 && written == bytes.size();
+  const bool ok = ::close(fd) == 0 && complete;
   std::error_code error;
   if (ok) fs::rename(temporary, path, error);
   if (!ok || error) {

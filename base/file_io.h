@@ -13,6 +13,10 @@ namespace xshade {
 // The file's bytes, or nothing when it cannot be read.
 std::optional<std::string> read_file(const std::filesystem::path& path);
 
+// Writes all of `bytes` to the open descriptor, through short writes and interruptions; false
+// (with errno set) when the descriptor takes no more.
+bool write_all(int fd, std::string_view bytes);
+
 // Writes to a temporary file beside `path` with a unique name, then renames it into place: a
 // reader sees the old file or the new one, never half of one, an interrupted write leaves no
 // torn file, and several processes may write the same file at once. Not synced to disk: what

@@ -144,14 +144,7 @@ Result<std::vector<RecoveryAction>> recover_golden_folder(const fs::path& folder
 Result<void> write_synced(const fs::path& path, std::string_view bytes) {
   const int fd = ::open(path.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0666);
   if (fd < 0) return fail(ErrorKind::Backend, fmt::format("cannot write {}: {}", path.string(), std::strerror(errno)));
-  size_t written = 0;
-  while (written < bytes.size()) {
-    const ssize_t n = ::write(fd, bytes.data() + written, bytes.size() - written);
-    if (n < 0 && errno == EINTR) continue;
-    if (n <= 0) break;
-    written += size_t(n);
-  }
-  const bool ok = written == bytes.size() && ::fsync(fd) == 0;
+  const bool ok = write_all(fd, bytes) && ::fsync(fd) == 0;
   const int error = errno;
   ::close(fd);
   if (!ok) return fail(ErrorKind::Backend, fmt::format("cannot write {}: {}", path.string(), std::strerror(error)));

@@ -71,15 +71,13 @@ class ScratchFolder {
 
 // The last `count` lines of a worker's output, for a message about how it ended.
 std::string last_lines(const std::string& output, size_t count) {
-  size_t begin = output.size();
-  if (begin && output[begin - 1] == '\n') --begin;
-  for (size_t lines = 0; begin > 0 && lines < count; ++lines) {
-    const size_t newline = output.rfind('\n', begin - 1);
-    begin = newline == std::string::npos ? 0 : newline + (lines + 1 < count ? 0 : 1);
-    if (newline == std::string::npos) break;
+  size_t begin = output.size() - (output.ends_with('\n') ? 1 : 0);
+  for (size_t lines = 0; lines < count; ++lines) {
+    const size_t newline = begin ? output.rfind('\n', begin - 1) : std::string::npos;
+    if (newline == std::string::npos) return output;
+    begin = newline;
   }
-  while (begin < output.size() && output[begin] == '\n') ++begin;
-  return output.substr(begin);
+  return output.substr(begin + 1);
 }
 
 // A lane that could not be rendered for a reason of the machine's or xshade's own.

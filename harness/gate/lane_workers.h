@@ -21,9 +21,10 @@
 namespace xshade::harness {
 
 // A render that takes longer than this is stopped and fails. The slowest fixed scene-and-lane
-// takes under 3 s on a 2-core machine with both cores busy (compile, two renders and the checks);
-// 120 s leaves a slow CI machine forty times that, and still ends a shader stuck in a loop within
-// two minutes. A scene may set its own (`timeout`, with `timeout_reason`).
+// takes about 6 s as a whole `xshade run` (compile, two renders, the checks, the report) on a
+// 2-core machine busy with other work (ctest's scene.material_grid.gl); 120 s leaves a slower CI
+// machine twenty times that, and still ends a shader stuck in a loop within two minutes. A scene
+// may set its own (`timeout`, with `timeout_reason`).
 inline constexpr double kDefaultTimeoutSeconds = 120.0;
 
 struct SceneWorkers {

@@ -85,9 +85,7 @@ class BlessCommit : public ::testing::Test {
     std::ofstream(root_ / "scenes" / (name + ".toml"), std::ios::binary | std::ios::trunc) << text;
   }
   std::string folders(const std::string& report) const {
-    return " --lane gl --cache '" + (root_ / "cache").string() + "' --scenes '" + (root_ / "scenes").string() +
-           "' --golden '" + (root_ / "golden").string() + "' --shaders '" + (root_ / "shaders").string() +
-           "' --report '" + (root_ / report).string() + "'";
+    return " --lane gl" + copied_scene_options(root_) + " --report '" + (root_ / report).string() + "'";
   }
   std::string bless_arguments(const std::string& scene_name, const std::string& reason) const {
     return "bless " + scene_name + " --reason '" + reason + "'" + folders("bless_" + scene_name);

@@ -40,14 +40,6 @@ size_t lines_in(const fs::path& file) {
 
 void append(const fs::path& file, const std::string& text) { std::ofstream(file, std::ios::app) << text; }
 
-void replace(const fs::path& file, const std::string& from, const std::string& to) {
-  std::string text = read_text(file);
-  const size_t at = text.find(from);
-  ASSERT_NE(at, std::string::npos) << from << " is not in " << file;
-  text.replace(at, from.size(), to);
-  std::ofstream(file, std::ios::binary | std::ios::trunc) << text;
-}
-
 class HostileInput : public ::testing::Test {
  protected:
   void SetUp() override {
@@ -60,10 +52,8 @@ class HostileInput : public ::testing::Test {
   fs::path scene() const { return root_ / "scenes" / (std::string(kScene) + ".toml"); }
 
   Outcome run(const std::string& extra = "--lane gl", const std::string& environment = "") {
-    return run_xshade(environment, "run --cache '" + (root_ / "cache").string() + "' --scenes '" +
-                                       (root_ / "scenes").string() + "' --golden '" + (root_ / "golden").string() +
-                                       "' --shaders '" + (root_ / "shaders").string() + "' --report '" +
-                                       (root_ / "report").string() + "' " + extra);
+    return run_xshade(environment,
+                      "run" + copied_scene_options(root_) + " --report '" + (root_ / "report").string() + "' " + extra);
   }
 
   fs::path root_;
@@ -105,7 +95,7 @@ TEST_F(HostileInput, AProjectFileWithADeepTableHeaderIsRefusedAtTheHeader) {
 
 TEST_F(HostileInput, ATextureWhoseHeaderClaimsTooManyPixelsIsTheScenesFault) {
   forged::write(root_ / "scenes" / "huge.png", forged::png(65535, 65535));
-  replace(scene(), "_ShadowTex = \"checker\"", "_ShadowTex = \"huge.png\"");
+  replace_in_file(scene(), "_ShadowTex = \"checker\"", "_ShadowTex = \"huge.png\"");
   Outcome outcome = run();
   EXPECT_EQ(outcome.exit_code, 2) << outcome.output;
   EXPECT_NE(outcome.output.find("cannot read image " + (root_ / "scenes" / "huge.png").string() +
@@ -132,13 +122,14 @@ TEST_F(HostileInput, AnEnvironmentWhoseHeaderClaimsTooManyPixelsIsTheScenesFault
   }
 }
 
-// white_furnace has no value above 1, so its PNG alone is its golden (made by hand, no manifest).
+// white_furnace has no value above 1, so its PNG alone is its golden (made by hand, with the
+// manifest entry and hash every golden needs, so that the image's own header is what is refused).
 TEST_F(HostileInput, AGoldenWhoseHeaderClaimsTooManyPixelsIsRefused) {
   fs::remove(scene());
-  fs::remove(root_ / "golden" / "MANIFEST.toml");
   fs::copy_file(kSource / "scenes" / "white_furnace.toml", root_ / "scenes" / "white_furnace.toml");
   const fs::path golden = root_ / "golden" / "white_furnace.png";
   forged::write(golden, forged::png(65535, 65535));
+  write_manifest_for(root_ / "golden", "white_furnace");
   Outcome outcome = run();
   EXPECT_EQ(outcome.exit_code, 2) << outcome.output;
   EXPECT_NE(outcome.output.find("cannot read image " + golden.string() + ": it is 65535 x 65535 pixels; xshade reads "
@@ -174,7 +165,7 @@ TEST_F(HostileInput, ASceneOfMillionsOfDrawsIsRefusedAsItIsRead) {
 }
 
 TEST_F(HostileInput, ALargeFrameTimesManyDrawsIsRefused) {
-  replace(scene(), "size = [256, 256]", "size = [4096, 4096]");
+  replace_in_file(scene(), "size = [256, 256]", "size = [4096, 4096]");
   append(scene(), "[object.grid]\nrows = 64\ncols = 64\nspacing = 0.1\n");
   Outcome outcome = run("--plan");
   EXPECT_EQ(outcome.exit_code, 2) << outcome.output;

@@ -9,8 +9,6 @@
 
 #include <OpenImageIO/imageio.h>
 #include <gtest/gtest.h>
-#define XXH_INLINE_ALL
-#include <xxhash.h>
 
 #include "tests/support/scene_copy.h"
 #include "tests/support/xshade_process.h"
@@ -22,14 +20,6 @@ namespace fs = std::filesystem;
 
 const fs::path kSource = XSHADE_SOURCE_DIR;
 constexpr const char* kScene = "toon_shadow_texture";
-
-void replace(const fs::path& file, const std::string& from, const std::string& to) {
-  std::string text = read_text(file);
-  const size_t at = text.find(from);
-  ASSERT_NE(at, std::string::npos) << from << " is not in " << file;
-  text.replace(at, from.size(), to);
-  std::ofstream(file, std::ios::binary | std::ios::trunc) << text;
-}
 
 // The 1-based line of `text`'s first occurrence in `file`.
 size_t line_of(const fs::path& file, const std::string& text) {
@@ -51,9 +41,7 @@ class UserMistakes : public ::testing::Test {
   fs::path scene() const { return root_ / "scenes" / (std::string(kScene) + ".toml"); }
 
   Outcome xshade(const std::string& verb, const std::string& extra = "") {
-    return run_xshade("", verb + " --cache '" + (root_ / "cache").string() + "' --scenes '" + (root_ / "scenes").string() +
-                              "' --golden '" + (root_ / "golden").string() + "' --shaders '" +
-                              (root_ / "shaders").string() + "' --report '" + (root_ / "report").string() + "' " + extra);
+    return run_xshade("", verb + copied_scene_options(root_) + " --report '" + (root_ / "report").string() + "' " + extra);
   }
   Outcome run(const std::string& extra = "--lane gl") { return xshade("run", extra); }
 
@@ -66,7 +54,7 @@ class UserMistakes : public ::testing::Test {
 };
 
 TEST_F(UserMistakes, AMisspeltPropertyIsAnErrorAtItsLineWithTheNameTheShaderHas) {
-  replace(scene(), "_Color = [0.3", "_Colr = [0.3");
+  replace_in_file(scene(), "_Color = [0.3", "_Colr = [0.3");
   Outcome outcome = run();
   EXPECT_EQ(outcome.exit_code, 2) << outcome.output;
   EXPECT_NE(outcome.output.find(at_line_of("_Colr") + "1: material 'materials/toon.hlsl' has no property '_Colr'; "
@@ -76,7 +64,7 @@ TEST_F(UserMistakes, AMisspeltPropertyIsAnErrorAtItsLineWithTheNameTheShaderHas)
 }
 
 TEST_F(UserMistakes, AnUndeclaredKeywordIsAnErrorAndThePlanDoesNotListItsVariant) {
-  replace(scene(), "keywords = [\"_SHADOW_TEX\"]", "keywords = [\"_SHADOW_TEXTURE\"]");
+  replace_in_file(scene(), "keywords = [\"_SHADOW_TEX\"]", "keywords = [\"_SHADOW_TEXTURE\"]");
   for (const std::string& extra : {std::string("--lane gl"), std::string("--plan")}) {
     Outcome outcome = run(extra);
     EXPECT_EQ(outcome.exit_code, 2) << outcome.output;
@@ -87,7 +75,7 @@ TEST_F(UserMistakes, AnUndeclaredKeywordIsAnErrorAndThePlanDoesNotListItsVariant
 }
 
 TEST_F(UserMistakes, AMisspeltTextureIsAnErrorNotAWhiteTexture) {
-  replace(scene(), "_ShadowTex = \"checker\"", "_ShadowTexture = \"checker\"");
+  replace_in_file(scene(), "_ShadowTex = \"checker\"", "_ShadowTexture = \"checker\"");
   Outcome outcome = run();
   EXPECT_EQ(outcome.exit_code, 2) << outcome.output;
   EXPECT_NE(outcome.output.find(at_line_of("_ShadowTexture") + "1: material 'materials/toon.hlsl' has no texture "
@@ -108,7 +96,7 @@ TEST_F(UserMistakes, APostParameterTheEffectLacksIsAnError) {
 }
 
 TEST_F(UserMistakes, AValueOfTheWrongSizeIsAnErrorNotACrash) {
-  replace(scene(), "_Color = [0.3, 0.6, 0.9, 1]", "_Color = [0.3, 0.6, 0.9]");
+  replace_in_file(scene(), "_Color = [0.3, 0.6, 0.9, 1]", "_Color = [0.3, 0.6, 0.9]");
   Outcome outcome = run();
   EXPECT_EQ(outcome.exit_code, 2) << outcome.output;
   EXPECT_NE(outcome.output.find(at_line_of("_Color") + "1: '_Color' is a half4 in material 'materials/toon.hlsl': "
@@ -118,7 +106,7 @@ TEST_F(UserMistakes, AValueOfTheWrongSizeIsAnErrorNotACrash) {
 }
 
 TEST_F(UserMistakes, AUniformWithNoValueIsAnErrorAtTheObjectNotACrash) {
-  replace(root_ / "shaders/materials/toon.hlsl", "float UIMax = 1.0;> = 0.5;\nfixed _RampSmooth",
+  replace_in_file(root_ / "shaders/materials/toon.hlsl", "float UIMax = 1.0;> = 0.5;\nfixed _RampSmooth",
           "float UIMax = 1.0;>;\nfixed _RampSmooth");
   Outcome outcome = run();
   EXPECT_EQ(outcome.exit_code, 2) << outcome.output;
@@ -136,7 +124,7 @@ TEST_F(UserMistakes, ABlessOfAnUnchangedSceneShowsNoDifferenceInAnyMetric) {
 }
 
 TEST_F(UserMistakes, AMissingTextureFileIsTheScenesFaultAtItsLine) {
-  replace(scene(), "_ShadowTex = \"checker\"", "_ShadowTex = \"checks.png\"");
+  replace_in_file(scene(), "_ShadowTex = \"checker\"", "_ShadowTex = \"checks.png\"");
   Outcome outcome = run();
   EXPECT_EQ(outcome.exit_code, 2) << outcome.output;
   EXPECT_NE(outcome.output.find(at_line_of("checks.png") + "14:"), std::string::npos) << outcome.output;
@@ -144,14 +132,14 @@ TEST_F(UserMistakes, AMissingTextureFileIsTheScenesFaultAtItsLine) {
 }
 
 TEST_F(UserMistakes, AMissingMeshFileIsTheScenesFaultAtItsLine) {
-  replace(scene(), "mesh = \"torus\"", "mesh = \"models/knot.obj\"");
+  replace_in_file(scene(), "mesh = \"torus\"", "mesh = \"models/knot.obj\"");
   Outcome outcome = run();
   EXPECT_EQ(outcome.exit_code, 2) << outcome.output;
   EXPECT_NE(outcome.output.find(at_line_of("knot.obj") + "8:"), std::string::npos) << outcome.output;
 }
 
 TEST_F(UserMistakes, AVariantThatDoesNotCompileShowsItsDiagnosticAndCaretOnTheConsole) {
-  replace(root_ / "shaders/materials/toon.hlsl", "return fixed4(diffuse + specular + rim, albedo.a);",
+  replace_in_file(root_ / "shaders/materials/toon.hlsl", "return fixed4(diffuse + specular + rim, albedo.a);",
           "return fixed4(diffuse + specular + rimm, albedo.a);");
   Outcome outcome = run();
   EXPECT_EQ(outcome.exit_code, 2) << outcome.output;
@@ -161,7 +149,7 @@ TEST_F(UserMistakes, AVariantThatDoesNotCompileShowsItsDiagnosticAndCaretOnTheCo
 }
 
 TEST_F(UserMistakes, AGoldenOfAnotherSizeSaysSoAndNamesTheBlessCommand) {
-  replace(scene(), "size = [256, 256]", "size = [256, 200]");
+  replace_in_file(scene(), "size = [256, 256]", "size = [256, 200]");
   Outcome outcome = run();
   EXPECT_EQ(outcome.exit_code, 2) << outcome.output;
   EXPECT_NE(outcome.output.find("is 256x256 and the scene renders 256x200"), std::string::npos) << outcome.output;
@@ -211,7 +199,7 @@ TEST_F(UserMistakes, ALaneGoldenThatMatchesTheCommonOneIsRefused) {
 
 TEST_F(UserMistakes, AValueAboveOneThatChangesFailsThoughThePngCannotShowIt) {
   // Every colour above 1 raised further (1.85 becomes 6.07): the same 255 in 8 bits.
-  replace(root_ / "shaders/materials/toon.hlsl", "return fixed4(diffuse + specular + rim, albedo.a);",
+  replace_in_file(root_ / "shaders/materials/toon.hlsl", "return fixed4(diffuse + specular + rim, albedo.a);",
           "fixed3 colour = diffuse + specular + rim;\n  colour += max(colour - 1, 0) * 5;\n"
           "  return fixed4(colour, albedo.a);");
   Outcome outcome = run();
@@ -240,15 +228,8 @@ TEST_F(UserMistakes, ASixteenBitGoldenIsSrgbLikeAnEightBitOne) {
   ASSERT_TRUE(output->write_image(OIIO::TypeDesc::UINT16, wide.data()));
   output->close();
   // No golden is used without its entry and hash (bless writes only 8-bit PNGs, so this one is
-  // recorded by hand, with the hash as bless computes it).
-  const std::string png = read_text(golden);
-  const XXH128_hash_t hash = XXH3_128bits(png.data(), png.size());
-  char hex[33];
-  std::snprintf(hex, sizeof hex, "%016llx%016llx", static_cast<unsigned long long>(hash.high64),
-                static_cast<unsigned long long>(hash.low64));
-  std::ofstream(root_ / "golden" / "MANIFEST.toml", std::ios::trunc)
-      << "[[golden]]\nscene = \"white_furnace\"\nreason = \"saved as 16 bits\"\nblessed_by = \"test\"\n"
-         "date = \"2024-05-01T12:34:56Z\"\nhash = \"" << hex << "\"\n";
+  // recorded by hand).
+  write_manifest_for(root_ / "golden", "white_furnace");
   Outcome outcome = run();
   EXPECT_EQ(outcome.exit_code, 0) << outcome.output;
   EXPECT_NE(outcome.output.find("white_furnace on gl: pass"), std::string::npos) << outcome.output;
@@ -261,7 +242,7 @@ TEST_F(UserMistakes, ARunReplacesTheEarlierRunsPagesAndKeepsWhatItDidNotWrite) {
   fs::rename(scene(), root_ / "scenes" / "renamed.toml");
   fs::rename(root_ / "golden" / (std::string(kScene) + ".png"), root_ / "golden" / "renamed.png");
   fs::rename(root_ / "golden" / (std::string(kScene) + ".exr"), root_ / "golden" / "renamed.exr");
-  replace(root_ / "golden" / "MANIFEST.toml", std::string("scene = \"") + kScene + "\"", "scene = \"renamed\"");
+  replace_in_file(root_ / "golden" / "MANIFEST.toml", std::string("scene = \"") + kScene + "\"", "scene = \"renamed\"");
   Outcome second = run();
   ASSERT_EQ(second.exit_code, 0) << second.output;
   EXPECT_TRUE(fs::exists(root_ / "report" / "renamed.html"));

@@ -52,10 +52,7 @@ class Workers : public ::testing::Test {
     std::ofstream(root_ / "scenes/slow.toml") << scene;
   }
 
-  std::string folders() const {
-    return " --cache '" + (root_ / "cache").string() + "' --scenes '" + (root_ / "scenes").string() + "' --golden '" +
-           (root_ / "golden").string() + "' --shaders '" + (root_ / "shaders").string() + "'";
-  }
+  std::string folders() const { return copied_scene_options(root_); }
   Outcome run(const std::string& extra) {
     return run_xshade("", "run" + folders() + " --report '" + (root_ / "report").string() + "' " + extra);
   }

@@ -33,7 +33,7 @@ Outcome run_xshade(const std::string& environment, const std::string& arguments)
 }
 
 Outcome run_xshade_in(const std::filesystem::path& folder, const std::string& arguments) {
-  return run_command("cd '" + folder.string() + "' && '" XSHADE_BINARY "' " + arguments + " 2>&1");
+  return run_command("cd '" + folder.string() + "' && " + xshade_command("", arguments));
 }
 
 }  // namespace xshade::tests
