@@ -1,6 +1,7 @@
 #include "harness/render/evaluate.h"
 
 #include <algorithm>
+#include <cstring>
 #include <map>
 
 #include "harness/backend/resource_set.h"
@@ -53,8 +54,9 @@ TextureData default_texture(const TextureSlot& slot) {
   texture.samples = slot.shape.multisampled ? 4 : 1;
   std::vector<std::byte> texel;
   const auto append = [&texel](auto value) {
-    const auto* bytes = reinterpret_cast<const std::byte*>(&value);
-    texel.insert(texel.end(), bytes, bytes + sizeof value);
+    const size_t end = texel.size();
+    texel.resize(end + sizeof value);
+    std::memcpy(texel.data() + end, &value, sizeof value);
   };
   if (slot.comparison) {
     texture.format = TextureFormat::Depth32Float;
