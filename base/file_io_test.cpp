@@ -23,6 +23,19 @@ TEST(FileIo, WritesAtomicallyAndReadsBackEveryByte) {
   fs::remove_all(folder);
 }
 
+// /proc files say their size is 0; a large file is read whole in one go: both come back whole.
+TEST(FileIo, ReadsFilesThatDoNotSayTheirSizeAndLargeOnes) {
+  const std::optional<std::string> status = read_file("/proc/self/status");
+  ASSERT_TRUE(status.has_value());
+  EXPECT_NE(status->find("\nPid:"), std::string::npos) << *status;
+  const fs::path large = fs::temp_directory_path() / "xshade_file_io_large.bin";
+  std::string bytes(3 * 65536 + 7, '\0');
+  for (size_t i = 0; i < bytes.size(); ++i) bytes[i] = char(i * 31 % 251);
+  ASSERT_TRUE(write_file_atomically(large, bytes).has_value());
+  EXPECT_EQ(read_file(large), bytes);
+  fs::remove(large);
+}
+
 TEST(FileIo, SaysWhatItCouldNotDo) {
   const fs::path missing = fs::temp_directory_path() / "xshade_file_io_test_missing" / "no" / "f.txt";
   EXPECT_FALSE(read_file(missing).has_value());
