@@ -1,5 +1,6 @@
 #include "harness/gate/result_json.h"
 
+#include <array>
 #include <cmath>
 #include <limits>
 
@@ -16,6 +17,12 @@ json number(double value) { return std::isfinite(value) ? json(value) : json(nul
 json pixel_json(const std::optional<std::pair<uint32_t, uint32_t>>& pixel) {
   if (!pixel) return nullptr;
   return {{"x", pixel->first}, {"y", pixel->second}};
+}
+
+json rgba_json(const std::array<float, 4>& value) {
+  json channels = json::array();
+  for (float channel : value) channels.push_back(number(channel));
+  return channels;
 }
 
 json non_finite_json(const NonFiniteCount& count) {
@@ -69,10 +76,16 @@ class Reader {
     if (found->is_null()) return std::nullopt;
     return std::pair{get<uint32_t>(*found, "x"), get<uint32_t>(*found, "y")};
   }
+  std::array<float, 4> rgba(const json& parent, const char* key) {
+    std::array<float, 4> value{};
+    const json& channels = array(parent, key);
+    if (channels.size() != 4) return note(key), value;
+    for (size_t c = 0; c < 4; ++c)
+      value[c] = channels[c].is_number() ? channels[c].get<float>() : std::numeric_limits<float>::quiet_NaN();
+    return value;
+  }
   Verdict verdict(const json& parent, const char* key) {
-    const std::string name = get<std::string>(parent, key);
-    for (Verdict verdict : {Verdict::Pass, Verdict::Fail, Verdict::Error, Verdict::Crash, Verdict::Skipped})
-      if (verdict_name(verdict) == name) return verdict;
+    if (const std::optional<Verdict> verdict = verdict_from_name(get<std::string>(parent, key))) return *verdict;
     note(key);
     return Verdict::Crash;
   }
@@ -82,6 +95,8 @@ class Reader {
     metrics.max_steps = get<uint32_t>(steps, "worst");
     metrics.worst_x = get<uint32_t>(steps, "worst_x");
     metrics.worst_y = get<uint32_t>(steps, "worst_y");
+    metrics.worst_test = rgba(steps, "worst_test");
+    metrics.worst_reference = rgba(steps, "worst_reference");
     metrics.first_failing = pixel(steps, "first_failing");
     metrics.mean_steps = get<double>(steps, "mean");
     metrics.rmse_steps = get<double>(steps, "rmse");
@@ -120,6 +135,8 @@ json metrics_to_json(const ImageMetrics& metrics) {
   return {{"steps", {{"worst", metrics.max_steps},
                      {"worst_x", metrics.worst_x},
                      {"worst_y", metrics.worst_y},
+                     {"worst_test", rgba_json(metrics.worst_test)},
+                     {"worst_reference", rgba_json(metrics.worst_reference)},
                      {"first_failing", pixel_json(metrics.first_failing)},
                      {"mean", number(metrics.mean_steps)},
                      {"rmse", number(metrics.rmse_steps)},
@@ -153,12 +170,21 @@ json lane_to_json(const LaneResult& lane) {
           {"image", lane.image},
           {"image_exr", lane.image_exr},
           {"golden", lane.golden},
+          {"golden_exr", lane.golden_exr},
           {"diff", lane.diff},
           {"non_finite_mask", lane.non_finite_mask},
           {"timings", std::move(timings)},
           {"seconds", number(lane.seconds)},
           {"driver", driver_json(lane.driver)},
           {"message", lane.message}};
+}
+
+Result<ImageMetrics> metrics_from_json(const json& object) {
+  if (!object.is_object()) return fail(ErrorKind::Internal, "metrics are not a JSON object");
+  Reader read;
+  ImageMetrics metrics = read.metrics(object);
+  if (!read.missing().empty()) return fail(ErrorKind::Internal, "metrics have no valid '" + read.missing() + "'");
+  return metrics;
 }
 
 Result<LaneResult> lane_from_json(const json& object) {
@@ -180,6 +206,7 @@ Result<LaneResult> lane_from_json(const json& object) {
   lane.image = read.get<std::string>(object, "image");
   lane.image_exr = read.get<std::string>(object, "image_exr");
   lane.golden = read.get<std::string>(object, "golden");
+  lane.golden_exr = read.get<std::string>(object, "golden_exr");
   lane.diff = read.get<std::string>(object, "diff");
   lane.non_finite_mask = read.get<std::string>(object, "non_finite_mask");
   for (const json& time : read.array(object, "timings"))

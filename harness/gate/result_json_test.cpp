@@ -23,12 +23,16 @@ LaneResult full_lane() {
   metrics.psnr = std::numeric_limits<double>::infinity();
   metrics.failing_pixels = 12;
   metrics.max_steps = 7;
+  metrics.worst_test = {0.5f, std::numeric_limits<float>::quiet_NaN(), 2.0f, 1.0f};
+  metrics.worst_reference = {0.25f, 0.0f, 1.0f, 1.0f};
   metrics.first_failing = std::pair{5u, 6u};
   metrics.hdr_values = 9;
   metrics.float_max_relative = 0.01;
   lane.against_golden = metrics;
   lane.non_finite = {1, 2, 3, std::pair{7u, 8u}};
   lane.image = "scene/vk.png";
+  lane.golden = "scene/vk.golden.png";
+  lane.golden_exr = "scene/vk.golden.exr";
   lane.diff = "scene/vk.diff.png";
   lane.timings = {{"scene", 1.5}, {"bokeh", 2.25}};
   lane.seconds = 0.75;
@@ -53,6 +57,10 @@ TEST(LaneResultJson, ReadsBackWhatItWrote) {
   EXPECT_EQ(read->against_golden->first_failing, (std::pair{5u, 6u}));
   EXPECT_TRUE(std::isinf(read->against_golden->psnr)) << "identical images' PSNR is infinite, written as null";
   EXPECT_EQ(read->against_golden->hdr_values, 9u);
+  EXPECT_EQ(read->against_golden->worst_test[0], 0.5f);
+  EXPECT_TRUE(std::isnan(read->against_golden->worst_test[1])) << "a NaN value is written as null";
+  EXPECT_EQ(read->against_golden->worst_reference, (std::array<float, 4>{0.25f, 0.0f, 1.0f, 1.0f}));
+  EXPECT_EQ(read->golden_exr, "scene/vk.golden.exr");
   EXPECT_EQ(read->non_finite.negative, 3u);
   EXPECT_EQ(read->non_finite.first, (std::pair{7u, 8u}));
   EXPECT_EQ(read->diff, "scene/vk.diff.png");

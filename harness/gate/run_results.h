@@ -28,6 +28,7 @@ struct LaneResult {
   std::string image;          // the lane's PNG
   std::string image_exr;      // the lane's float image
   std::string golden;         // the golden it was compared with (a copy in the report)
+  std::string golden_exr;     // the same golden's float values, for the viewer's readout
   std::string diff;           // heat map of the difference against the golden
   std::string non_finite_mask;  // white where NaN/Inf/negative values are
   std::vector<PassTime> timings;
@@ -41,7 +42,8 @@ struct CrossLaneResult {
   std::string second_lane;
   Verdict verdict = Verdict::Pass;
   ImageMetrics metrics;
-  std::string diff;  // heat map, relative to the report folder
+  std::string diff;  // heat map, relative to the report folder; none for identical images
+  bool identical = false;  // bit-identical images (a heat map of them would be black)
 };
 
 struct SceneResult {
@@ -52,6 +54,15 @@ struct SceneResult {
   std::vector<CrossLaneResult> cross_lane;
   std::string plan;     // describe_plan's text
   std::string message;  // when the scene failed before any lane ran (bad scene file, bad shader)
+  CompareSettings compare;  // the tolerances its images were held to
+};
+
+// One of the runs a merged report was made from (xshade report merge).
+struct MergedRun {
+  std::string folder;   // as given to the merge
+  std::string started;
+  double seconds = 0.0;
+  std::string command;
 };
 
 struct RunResults {
@@ -59,6 +70,7 @@ struct RunResults {
   std::string started;     // ISO 8601, UTC
   double seconds = 0.0;
   std::string command;     // how the run was invoked
+  std::vector<MergedRun> merged_from;  // empty for a run; the runs a merged report holds
 };
 
 // The exit code of DESIGN.md for a verdict (0 pass, 1 fail, 2 error, 3 crash).

@@ -73,6 +73,7 @@ CheckedScene SceneChecker::prepare(const fs::path& scene_file, const std::vector
   }
   checked.scene = *scene;
   result.description = scene->description;
+  result.compare = scene->compare;
   auto plan = plan_scene(*scene, compiler_.shaders());
   if (!plan) {
     result.verdict = Verdict::Error;
@@ -191,6 +192,7 @@ void SceneChecker::check_lane(Lane lane, CheckedScene& checked, const Status& st
     } else {
       const GoldenImage& reference = **golden;
       result.golden = write_image(reference.image, scene.name, result.lane + ".golden.png");
+      result.golden_exr = write_image(reference.image, scene.name, result.lane + ".golden.exr", true);
       Comparison comparison = compare_images(image, reference.image, scene.compare);
       for (LayerResult& layer : comparison.layers) {
         const bool decides = layer.layer == comparison.decided_by;
@@ -251,7 +253,10 @@ void SceneChecker::compare_lanes(const Scene& scene, CheckedScene& checked) {
     pair.second_lane = std::string(lane_name(compared.second));
     pair.verdict = comparison.verdict;
     pair.metrics = comparison.metrics;
-    pair.diff = write_image(comparison.heat_map, scene.name, pair.first_lane + "_vs_" + pair.second_lane + ".diff.png");
+    // A heat map of bit-identical images is black: the report says "identical" instead.
+    pair.identical = comparison.decided_by == "exact";
+    if (!pair.identical)
+      pair.diff = write_image(comparison.heat_map, scene.name, pair.first_lane + "_vs_" + pair.second_lane + ".diff.png");
     std::string detail;
     for (const LayerResult& layer : comparison.layers)
       if (layer.layer == comparison.decided_by) detail = layer.detail;

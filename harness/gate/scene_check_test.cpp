@@ -49,7 +49,7 @@ TEST(Bless, RefusesLanesThatDisagreeOrDidNotPass) {
   agreeing.lanes = {LaneResult{}, LaneResult{}};
   agreeing.lanes[0].lane = "gl";
   agreeing.lanes[1].lane = "vk";
-  agreeing.cross_lane = {CrossLaneResult{"gl", "vk", Verdict::Pass, {}, {}}};
+  agreeing.cross_lane = {CrossLaneResult{"gl", "vk", Verdict::Pass, {}, {}, false}};
   EXPECT_FALSE(bless_refusal(agreeing));
 
   SceneResult disagreeing = agreeing;

@@ -35,15 +35,16 @@ std::string png_chunk(const std::string& type, const std::string& data) {
 }
 
 // name, type, size, value: one attribute of an OpenEXR header.
-std::string exr_attribute(const std::string& name, const std::string& type, const std::string& value) {
-  return name + '\0' + type + '\0' + little_endian(uint32_t(value.size())) + value;
-}
 
 std::string exr_box(int32_t width, int32_t height) {
   return little_endian(0) + little_endian(0) + little_endian(uint32_t(width - 1)) + little_endian(uint32_t(height - 1));
 }
 
 }  // namespace
+
+std::string exr_attribute(const std::string& name, const std::string& type, uint32_t claimed, const std::string& value) {
+  return name + '\0' + type + '\0' + little_endian(claimed) + value;
+}
 
 std::string png(uint32_t width, uint32_t height) {
   const std::string header = big_endian(width) + big_endian(height) + std::string("\x08\x06\x00\x00\x00", 5);
@@ -52,7 +53,10 @@ std::string png(uint32_t width, uint32_t height) {
   return "\x89PNG\r\n\x1a\n" + png_chunk("IHDR", header) + png_chunk("IDAT", data) + png_chunk("IEND", "");
 }
 
-std::string exr(int32_t width, int32_t height) {
+std::string exr(int32_t width, int32_t height, bool offset_table, const std::string& extra_attribute) {
+  const auto exr_attribute = [](const std::string& name, const std::string& type, const std::string& value) {
+    return forged::exr_attribute(name, type, uint32_t(value.size()), value);
+  };
   std::string channels;
   for (const char* name : {"B", "G", "R"})  // sorted, as OpenEXR writes them
     channels += std::string(name) + '\0' + little_endian(2) + std::string(4, '\0') + little_endian(1) + little_endian(1);
@@ -67,9 +71,10 @@ std::string exr(int32_t width, int32_t height) {
   file += exr_attribute("pixelAspectRatio", "float", one);
   file += exr_attribute("screenWindowCenter", "v2f", std::string(8, '\0'));
   file += exr_attribute("screenWindowWidth", "float", one);
+  file += extra_attribute;
   file += '\0';
   // OpenEXR reads the line offset table when it opens the file: it must be all there.
-  file += std::string(8 * ((size_t(height) + 15) / 16), '\0');
+  if (offset_table) file += std::string(8 * ((size_t(height) + 15) / 16), '\0');
   return file;
 }
 

@@ -26,6 +26,12 @@ std::string_view verdict_name(Verdict verdict) {
   return "crash";
 }
 
+std::optional<Verdict> verdict_from_name(std::string_view name) {
+  for (Verdict verdict : {Verdict::Pass, Verdict::Fail, Verdict::Error, Verdict::Crash, Verdict::Skipped})
+    if (verdict_name(verdict) == name) return verdict;
+  return std::nullopt;
+}
+
 namespace {
 
 // ImageBufAlgo does part of this work but not in the form the model needs, so the layers below
@@ -277,7 +283,7 @@ Comparison compare_images(const FloatImage& test, const FloatImage& reference, c
   const std::vector<uint8_t> test8 = encode_8bit(test);
   const std::vector<uint8_t> reference8 = encode_8bit(reference);
   result.heat_map = FloatImage(test.width, test.height);
-  const PixelPass pass =
+  PixelPass pass =
       compare_pixels(test, reference, test8, reference8, settings, heat_palette(tolerance), result.heat_map);
   const size_t failing = pass.failing.size();
   const bool per_pixel_passed = failing <= budget;
@@ -365,6 +371,10 @@ Comparison compare_images(const FloatImage& test, const FloatImage& reference, c
   metrics.max_steps = pass.worst_steps;
   metrics.worst_x = uint32_t(pass.worst_pixel % test.width);
   metrics.worst_y = uint32_t(pass.worst_pixel / test.width);
+  if (pixels > 0) {
+    std::copy_n(&test.rgba[pass.worst_pixel * 4], 4, metrics.worst_test.begin());
+    std::copy_n(&reference.rgba[pass.worst_pixel * 4], 4, metrics.worst_reference.begin());
+  }
   metrics.mean_steps = pixels > 0 ? pass.sum_steps / double(pixels * 4) : 0.0;
   metrics.rmse_steps = std::sqrt(mean_squared_steps);
   if (!pass.failing.empty()) metrics.first_failing = {pass.failing.front() % test.width, pass.failing.front() / test.width};
@@ -386,6 +396,7 @@ Comparison compare_images(const FloatImage& test, const FloatImage& reference, c
                            metrics.float_x, metrics.float_y, plural(hdr.failing.size(), "pixel", "pixels"),
                            settings.float_tolerance);
   result.layers.push_back({"summary", Verdict::Pass, std::move(summary)});
+  result.failing_pixels = std::move(pass.failing);
   return result;
 }
 

@@ -8,6 +8,7 @@
 // the values above 1 as floats, relative, which the 8-bit layers cannot see.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <optional>
 #include <string>
@@ -50,6 +51,7 @@ enum class Verdict {
   Skipped,  // not run (e.g. the lane is not selected)
 };
 std::string_view verdict_name(Verdict verdict);  // "pass", "fail", "error", "crash", "skipped"
+std::optional<Verdict> verdict_from_name(std::string_view name);  // verdict_name's inverse
 
 // One layer of the comparison model (DESIGN.md), or one of the other gate layers:
 // "finite", "exact", "per_pixel", "position", "summary", "cross_lane", "determinism".
@@ -76,6 +78,8 @@ struct ImageMetrics {
   uint32_t max_steps = 0;       // the worst pixel's largest channel difference, sRGB steps
   uint32_t worst_x = 0;         // the first pixel with max_steps
   uint32_t worst_y = 0;
+  std::array<float, 4> worst_test{};       // the worst pixel's values, RGBA as compared
+  std::array<float, 4> worst_reference{};
   double mean_steps = 0.0;      // over every channel of every pixel
   double rmse_steps = 0.0;
   std::optional<std::pair<uint32_t, uint32_t>> first_failing = std::nullopt;  // the first pixel the per-pixel layer failed
@@ -109,6 +113,9 @@ struct Comparison {
   // holds the values above 1 (which the 8-bit layers see as 255) to their relative tolerance.
   std::vector<LayerResult> layers;
   ImageMetrics metrics;  // all zero when the sizes differ
+  // The pixels the per-pixel layer found beyond the channel tolerance, as row-major indices
+  // (before the position layer forgives any): the failing-pixel mask.
+  std::vector<uint32_t> failing_pixels;
   NonFiniteCount test_non_finite;
   NonFiniteCount reference_non_finite;
   // The test image's size (empty when the sizes differ), alpha 1. Each pixel shows its largest

@@ -277,6 +277,24 @@ TEST(CompareImages, TheSummaryPointsAtTheWorstPixelInStepsNotInLinearValues) {
   EXPECT_EQ(metrics.worst_y, 0u);
 }
 
+// The worst pixel's own values, and every pixel beyond the tolerance in row-major order: what
+// a viewer shows under the cursor and as the failing-pixel mask.
+TEST(CompareImages, TheWorstPixelsValuesAndTheFailingPixelsAreKept) {
+  const FloatImage reference = filled(3, 2, code_colour(100, 100, 100));
+  FloatImage test = reference;
+  test.set(2, 0, code_colour(103, 100, 100));  // 3 steps
+  test.set(0, 1, code_colour(100, 109, 100, 250));  // 9 steps, the worst
+  test.set(1, 1, code_colour(101, 100, 100));  // 1 step: within the tolerance
+  const Comparison comparison = compare_images(test, reference, settings(1));
+  EXPECT_EQ(comparison.failing_pixels, (std::vector<uint32_t>{2, 3}));
+  EXPECT_EQ(comparison.metrics.worst_x, 0u);
+  EXPECT_EQ(comparison.metrics.worst_y, 1u);
+  const glm::vec4 worst = code_colour(100, 109, 100, 250), was = code_colour(100, 100, 100);
+  EXPECT_EQ(comparison.metrics.worst_test, (std::array<float, 4>{worst.r, worst.g, worst.b, worst.a}));
+  EXPECT_EQ(comparison.metrics.worst_reference, (std::array<float, 4>{was.r, was.g, was.b, was.a}));
+  EXPECT_TRUE(compare_images(reference, reference, settings(0)).failing_pixels.empty());
+}
+
 TEST(CompareImages, AValueAboveOneThatChangedFailsTheFloatLayer) {
   // A highlight at 1.85 in the golden (a float golden keeps it) raised to 6.07: both are 255 in
   // 8-bit sRGB, so only the float layer sees it.

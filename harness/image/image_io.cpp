@@ -6,6 +6,7 @@
 
 #include <OpenImageIO/imageio.h>
 
+#include "harness/image/exr_header.h"
 #include "harness/image/image_limits.h"
 
 namespace xshade::harness {
@@ -31,17 +32,20 @@ Result<void> write(const std::filesystem::path& path, const OIIO::ImageSpec& spe
 
 // What the header claims, against image_limits.h. For an EXR, width and height are its data
 // window, which is what is read; a tiled file's tiles are buffers too.
+// "it is W x H pixels; xshade reads ..." for a size image_limits.h does not allow, else empty.
+std::string size_refusal(int64_t width, int64_t height, const std::string& size) {
+  const bool too_large = width > int64_t(kMaxImageFileSide) || height > int64_t(kMaxImageFileSide) ||
+                         (width > 0 && height > 0 && uint64_t(width) * uint64_t(height) > kMaxImageFilePixels);
+  if (!too_large) return {};
+  return "it is " + size + " pixels; xshade reads images of at most " + std::to_string(kMaxImageFileSide) +
+         " pixels a side and " + std::to_string(kMaxImageFilePixels) + " pixels in all";
+}
+
 Result<void> check_header(const OIIO::ImageSpec& spec, const std::filesystem::path& path) {
-  const uint64_t pixels = uint64_t(spec.width) * uint64_t(spec.height);
   std::string size = std::to_string(spec.width) + " x " + std::to_string(spec.height);
   if (spec.depth > 1) size += " x " + std::to_string(spec.depth);
-  const bool too_large = spec.width > int64_t(kMaxImageFileSide) || spec.height > int64_t(kMaxImageFileSide) ||
-                         pixels > kMaxImageFilePixels;
-  if (too_large)
-    return fail(oiio_error("cannot read image", path,
-                           "it is " + size + " pixels; xshade reads images of at most " +
-                               std::to_string(kMaxImageFileSide) + " pixels a side and " +
-                               std::to_string(kMaxImageFilePixels) + " pixels in all"));
+  if (const std::string refused = size_refusal(spec.width, spec.height, size); !refused.empty())
+    return fail(oiio_error("cannot read image", path, refused));
   if (spec.depth > 1)
     return fail(oiio_error("cannot read image", path,
                            "it is a volume of " + size + " pixels; xshade reads flat images (depth 1)"));
@@ -108,6 +112,14 @@ Result<FloatImage> read_image(const std::filesystem::path& path, bool srgb) {
   // Without this OpenImageIO premultiplies colour by alpha when it reads a PNG.
   OIIO::ImageSpec config;
   config.attribute("oiio:UnassociatedAlpha", 1);
+  // OpenEXR allocates what its header claims as it opens the file: that is checked first.
+  auto window = exr_data_window(path);
+  if (!window) return fail(window.error());
+  if (*window) {
+    const std::string size = std::to_string((*window)->width) + " x " + std::to_string((*window)->height);
+    if (const std::string refused = size_refusal((*window)->width, (*window)->height, size); !refused.empty())
+      return fail(oiio_error("cannot read image", path, refused));
+  }
   auto input = OIIO::ImageInput::open(path.string(), &config);
   if (!input) return fail(oiio_error("cannot read image", path, OIIO::geterror()));
   const OIIO::ImageSpec& spec = input->spec();

@@ -118,6 +118,36 @@ TEST(ImageIo, TheLimitsAreOnEachSideAndOnThePixelsInAll) {
   EXPECT_EQ(read.error().message.find("pixels a side"), std::string::npos) << read.error().message;
 }
 
+// OpenEXR believes its header: an attribute claiming 2 GB in a file of a few hundred bytes was
+// allocated and zeroed (12 s, 2 GB), and a data window sizes the offset table it allocates on
+// open. Both are refused from the header's bytes, whatever the file is called.
+TEST(ImageIo, AnExrHeaderThatClaimsMoreThanTheFileHoldsIsRefusedBeforeOpenExrReadsIt) {
+  const std::string lying = forged::exr_attribute("comments", "string", 0x772f005b, "not two gigabytes");
+  for (const char* name : {"lying.exr", "lying_exr_named.png"}) {
+    const auto path = temp_path(name);
+    forged::write(path, forged::exr(16, 16, true, lying));
+    auto read = read_image(path);
+    ASSERT_FALSE(read) << name;
+    EXPECT_EQ(read.error().message,
+              "cannot read image " + path.string() + ": its header's attribute 'comments' claims 1999568987 bytes, more "
+              "than the file holds (" + std::to_string(std::filesystem::file_size(path)) + " bytes in all)");
+    EXPECT_EQ(read.error().kind, ErrorKind::UserInput);
+  }
+  // 2^30 lines and no offset table: refused by its data window alone, in a file of 300 bytes.
+  const auto tall = temp_path("tall.exr");
+  forged::write(tall, forged::exr(1, 1 << 30, false));
+  auto read = read_image(tall);
+  ASSERT_FALSE(read);
+  EXPECT_NE(read.error().message.find("it is 1 x 1073741824 pixels"), std::string::npos) << read.error().message;
+  // A truthful header of the same shape still reads as far as its missing pixels.
+  const auto honest = temp_path("honest.exr");
+  forged::write(honest, forged::exr(16, 16, true, forged::exr_attribute("comments", "string", 2, "ok")));
+  read = read_image(honest);
+  ASSERT_FALSE(read);
+  EXPECT_EQ(read.error().message.find("claims"), std::string::npos) << read.error().message;
+  EXPECT_EQ(read.error().message.find("pixels a side"), std::string::npos) << read.error().message;
+}
+
 TEST(ImageIo, UnwritablePathIsAnError) {
   EXPECT_FALSE(write_png(FloatImage(1, 1), "/nonexistent_dir/x.png"));
 }

@@ -26,7 +26,7 @@ std::vector<std::string> files_of(const RunResults& results, const std::vector<s
   for (const char* file : {"junit.xml", "results.json", "index.html", kWrittenList}) files.push_back(file);
   for (const SceneResult& scene : results.scenes) {
     for (const LaneResult& lane : scene.lanes)
-      for (const std::string* path : {&lane.image, &lane.image_exr, &lane.golden, &lane.diff, &lane.non_finite_mask})
+      for (const std::string* path : {&lane.image, &lane.image_exr, &lane.golden, &lane.golden_exr, &lane.diff, &lane.non_finite_mask})
         if (!path->empty()) files.push_back(*path);
     for (const CrossLaneResult& pair : scene.cross_lane)
       if (!pair.diff.empty()) files.push_back(pair.diff);

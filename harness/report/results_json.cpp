@@ -34,6 +34,7 @@ json pair_json(const CrossLaneResult& pair) {
           {"second_lane", pair.second_lane},
           {"verdict", verdict_json(pair.verdict)},
           {"metrics", metrics_to_json(pair.metrics)},
+          {"identical", pair.identical},
           {"diff", pair.diff}};
 }
 
@@ -48,7 +49,20 @@ json scene_json(const SceneResult& scene) {
           {"lanes", std::move(lanes)},
           {"cross_lane", std::move(pairs)},
           {"plan", scene.plan},
-          {"message", scene.message}};
+          {"message", scene.message},
+          {"compare", {{"channel_tolerance", scene.compare.channel_tolerance},
+                       {"max_failing_fraction", scene.compare.max_failing_fraction},
+                       {"position_radius", scene.compare.position_radius},
+                       {"float_tolerance", scene.compare.float_tolerance},
+                       {"reason", scene.compare.reason}}}};
+}
+
+json merged_json(const std::vector<MergedRun>& runs) {
+  json array = json::array();
+  for (const MergedRun& run : runs)
+    array.push_back({{"folder", run.folder}, {"started", run.started}, {"seconds", number(run.seconds)},
+                     {"command", run.command}});
+  return array;
 }
 
 }  // namespace
@@ -61,12 +75,85 @@ std::string results_json(const RunResults& results) {
                          {"started", results.started},
                          {"seconds", number(results.seconds)},
                          {"command", results.command},
+                         {"merged_from", merged_json(results.merged_from)},
                          {"verdict", verdict_json(verdict)},
                          {"exit_code", exit_code(verdict)},
                          {"scene_counts", counts_json(count_scenes(results))},
                          {"check_counts", counts_json(count_checks(results))},
                          {"scenes", std::move(scenes)}};
   return document.dump(2, ' ', false, json::error_handler_t::replace) + "\n";
+}
+
+namespace {
+
+// Reads what scene_json wrote. Fields are looked up with at(), whose exception names the key.
+Result<SceneResult> scene_from_json(const json& object) {
+  SceneResult scene;
+  scene.scene = object.at("scene").get<std::string>();
+  scene.description = object.at("description").get<std::string>();
+  scene.plan = object.at("plan").get<std::string>();
+  scene.message = object.at("message").get<std::string>();
+  const json& compare = object.at("compare");
+  scene.compare.channel_tolerance = compare.at("channel_tolerance").get<uint32_t>();
+  scene.compare.max_failing_fraction = compare.at("max_failing_fraction").get<double>();
+  scene.compare.position_radius = compare.at("position_radius").get<uint32_t>();
+  scene.compare.float_tolerance = compare.at("float_tolerance").get<double>();
+  scene.compare.reason = compare.at("reason").get<std::string>();
+  const std::string verdict = object.at("verdict").get<std::string>();
+  if (!verdict_from_name(verdict))
+    return fail("scene " + scene.scene + " has the verdict '" + verdict + "', which xshade does not give");
+  scene.verdict = *verdict_from_name(verdict);
+  for (const json& lane : object.at("lanes")) {
+    auto read = lane_from_json(lane);
+    if (!read) return fail("scene " + scene.scene + ": " + read.error().message);
+    scene.lanes.push_back(std::move(*read));
+  }
+  for (const json& pair : object.at("cross_lane")) {
+    CrossLaneResult cross;
+    cross.first_lane = pair.at("first_lane").get<std::string>();
+    cross.second_lane = pair.at("second_lane").get<std::string>();
+    cross.diff = pair.at("diff").get<std::string>();
+    cross.identical = pair.at("identical").get<bool>();
+    const std::string pair_verdict = pair.at("verdict").get<std::string>();
+    if (!verdict_from_name(pair_verdict))
+      return fail("scene " + scene.scene + " has a pair with the verdict '" + pair_verdict + "'");
+    cross.verdict = *verdict_from_name(pair_verdict);
+    auto metrics = metrics_from_json(pair.at("metrics"));
+    if (!metrics) return fail("scene " + scene.scene + ": " + metrics.error().message);
+    cross.metrics = *metrics;
+    scene.cross_lane.push_back(std::move(cross));
+  }
+  return scene;
+}
+
+}  // namespace
+
+Result<RunResults> results_from_json(std::string_view text, const std::string& file) {
+  const auto refuse = [&](const std::string& why) {
+    return fail(file + ": not a results.json xshade wrote (" + why + ")");
+  };
+  const json document = json::parse(text, nullptr, false);
+  if (document.is_discarded()) return refuse("it is not JSON");
+  if (!document.is_object() || document.value("format", "") != "xshade-results-1")
+    return refuse("its \"format\" is not \"xshade-results-1\"");
+  RunResults results;
+  try {
+    results.started = document.at("started").get<std::string>();
+    results.seconds = document.at("seconds").is_null() ? 0.0 : document.at("seconds").get<double>();
+    results.command = document.at("command").get<std::string>();
+    for (const json& run : document.at("merged_from"))
+      results.merged_from.push_back({run.at("folder").get<std::string>(), run.at("started").get<std::string>(),
+                                     run.at("seconds").is_null() ? 0.0 : run.at("seconds").get<double>(),
+                                     run.at("command").get<std::string>()});
+    for (const json& scene : document.at("scenes")) {
+      auto read = scene_from_json(scene);
+      if (!read) return refuse(read.error().message);
+      results.scenes.push_back(std::move(*read));
+    }
+  } catch (const json::exception& error) {
+    return refuse(error.what());
+  }
+  return results;
 }
 
 }  // namespace xshade::harness
