@@ -34,6 +34,38 @@ std::optional<Verdict> verdict_from_name(std::string_view name) {
 
 namespace {
 
+// Where a difference of `steps` sits on the colour map; see Comparison::heat_map.
+float heat_position(uint32_t steps, uint32_t tolerance) {
+  if (steps == 0) return 0.0f;
+  if (steps <= tolerance) return 0.05f + 0.25f * float(steps) / float(tolerance);
+  const uint32_t span = 255 - tolerance;
+  if (span < 2) return 0.5f;
+  return 0.5f + 0.5f * float(std::log(double(steps - tolerance)) / std::log(double(span)));
+}
+
+}  // namespace
+
+// The heat map's colour for each difference 0..255: OpenImageIO maps a 256-pixel ramp once, so
+// the image itself is a table look-up per pixel. Its maps are matplotlib's, in sRGB.
+std::array<glm::vec4, 256> heat_palette(uint32_t tolerance) {
+  OIIO::ImageBuf ramp(OIIO::ImageSpec(256, 1, 1, OIIO::TypeDesc::FLOAT));
+  for (int steps = 0; steps < 256; ++steps) {
+    const float position = heat_position(uint32_t(steps), tolerance);
+    ramp.setpixel(steps, 0, &position, 1);
+  }
+  const OIIO::ImageBuf colours = OIIO::ImageBufAlgo::color_map(ramp, 0, "inferno");
+  std::array<glm::vec4, 256> palette{};
+  for (int steps = 1; steps < 256; ++steps) {
+    float rgb[3] = {0.0f, 0.0f, 0.0f};
+    colours.getpixel(steps, 0, rgb, 3);  // "inferno" is built in; the heat-map tests see it
+    palette[size_t(steps)] = {srgb_to_linear(rgb[0]), srgb_to_linear(rgb[1]), srgb_to_linear(rgb[2]), 1.0f};
+  }
+  palette[0] = {0.0f, 0.0f, 0.0f, 1.0f};  // inferno's first colour is nearly, not quite, black
+  return palette;
+}
+
+namespace {
+
 // ImageBufAlgo does part of this work but not in the form the model needs, so the layers below
 // read the pixels themselves and use OpenImageIO only for the heat map's colour map:
 // computePixelStats counts NaN and Inf but neither negatives nor where the first one is;
@@ -70,34 +102,6 @@ size_t failing_budget(double max_failing_fraction, size_t pixels) {
 
 std::string describe_budget(const CompareSettings& settings, size_t budget) {
   return fmt::format("budget {:g}% = {}", settings.max_failing_fraction * 100.0, plural(budget, "pixel", "pixels"));
-}
-
-// Where a difference of `steps` sits on the colour map; see Comparison::heat_map.
-float heat_position(uint32_t steps, uint32_t tolerance) {
-  if (steps == 0) return 0.0f;
-  if (steps <= tolerance) return 0.05f + 0.25f * float(steps) / float(tolerance);
-  const uint32_t span = 255 - tolerance;
-  if (span < 2) return 0.5f;
-  return 0.5f + 0.5f * float(std::log(double(steps - tolerance)) / std::log(double(span)));
-}
-
-// The heat map's colour for each difference 0..255: OpenImageIO maps a 256-pixel ramp once, so
-// the image itself is a table look-up per pixel. Its maps are matplotlib's, in sRGB.
-std::array<glm::vec4, 256> heat_palette(uint32_t tolerance) {
-  OIIO::ImageBuf ramp(OIIO::ImageSpec(256, 1, 1, OIIO::TypeDesc::FLOAT));
-  for (int steps = 0; steps < 256; ++steps) {
-    const float position = heat_position(uint32_t(steps), tolerance);
-    ramp.setpixel(steps, 0, &position, 1);
-  }
-  const OIIO::ImageBuf colours = OIIO::ImageBufAlgo::color_map(ramp, 0, "inferno");
-  std::array<glm::vec4, 256> palette{};
-  for (int steps = 1; steps < 256; ++steps) {
-    float rgb[3] = {0.0f, 0.0f, 0.0f};
-    colours.getpixel(steps, 0, rgb, 3);  // "inferno" is built in; the heat-map tests see it
-    palette[size_t(steps)] = {srgb_to_linear(rgb[0]), srgb_to_linear(rgb[1]), srgb_to_linear(rgb[2]), 1.0f};
-  }
-  palette[0] = {0.0f, 0.0f, 0.0f, 1.0f};  // inferno's first colour is nearly, not quite, black
-  return palette;
 }
 
 LayerResult finite_layer(const NonFiniteCount& test, const NonFiniteCount& reference) {

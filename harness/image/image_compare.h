@@ -129,6 +129,10 @@ struct Comparison {
   FloatImage heat_map;
 };
 
+// The heat map's colour (linear RGB, alpha 1) for each largest channel difference of 0..255
+// 8-bit steps, for a channel tolerance: Comparison::heat_map's colours, and its legend's.
+std::array<glm::vec4, 256> heat_palette(uint32_t channel_tolerance);
+
 // Runs every layer on `test` against `reference` with the scene's tolerances.
 Comparison compare_images(const FloatImage& test, const FloatImage& reference, const CompareSettings& settings);
 

@@ -11,6 +11,7 @@
 #include "harness/report/junit_report.h"
 #include "harness/report/report_html.h"
 #include "harness/report/results_json.h"
+#include "harness/report/viewer_data.h"
 
 namespace xshade::harness {
 namespace {
@@ -62,13 +63,24 @@ Result<void> write_reports(const RunResults& results, const fs::path& report_dir
   if (error) return fail("cannot create the report folder " + report_dir.string() + ": " + error.message());
 
   const std::vector<std::string> pages = scene_page_names(results);
+  std::vector<std::string> pixel_scripts;
   for (size_t i = 0; i < results.scenes.size(); ++i) {
-    if (auto written = write_file_atomically(report_dir / pages[i], scene_html(results.scenes[i])); !written) return written;
+    const ViewerPage viewer = viewer_page(results.scenes[i], report_dir);
+    std::string script;
+    if (!viewer.pixels_script.empty()) {
+      script = "pixels/" + pages[i].substr(0, pages[i].size() - 5) + ".js";
+      fs::create_directories(report_dir / "pixels", error);
+      if (auto written = write_file_atomically(report_dir / script, viewer.pixels_script); !written) return written;
+      pixel_scripts.push_back(script);
+    }
+    if (auto written = write_file_atomically(report_dir / pages[i], scene_html(results.scenes[i], viewer, script)); !written)
+      return written;
   }
   if (auto written = write_file_atomically(report_dir / "junit.xml", junit_xml(results)); !written) return written;
   if (auto written = write_file_atomically(report_dir / "results.json", results_json(results)); !written) return written;
   if (auto written = write_file_atomically(report_dir / "index.html", index_html(results)); !written) return written;
-  const std::vector<std::string> files = files_of(results, pages);
+  std::vector<std::string> files = files_of(results, pages);
+  files.insert(files.end(), pixel_scripts.begin(), pixel_scripts.end());
   remove_stale(report_dir, files);
   std::string list;
   for (const std::string& file : files) list += file + "\n";

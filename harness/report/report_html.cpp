@@ -10,6 +10,7 @@
 
 #include "base/markup.h"
 #include "harness/report/report_text.h"
+#include "viewer_assets.h"
 
 namespace xshade::harness {
 namespace {
@@ -80,6 +81,18 @@ figcaption b { color: #1f2328; }
                color: var(--muted); font-size: 12px; word-break: break-word; white-space: pre-wrap; }
 .tables { display: flex; flex-wrap: wrap; gap: 16px; align-items: flex-start; }
 .message { border-left: 4px solid var(--error); }
+.thumbs { display: flex; gap: 4px; margin-bottom: 2px; }
+img.thumb { display: block; width: 64px; height: auto; max-height: 64px; object-fit: contain; image-rendering: auto;
+            border: 1px solid var(--line); background: #fff; }
+p.filter button { font: inherit; font-size: 12px; padding: 2px 10px; border: 1px solid var(--line); border-radius: 12px;
+                  background: #fff; cursor: pointer; }
+p.filter button[aria-pressed="true"] { background: #0969da; border-color: #0969da; color: #fff; }
+table.index:not([data-show="all"]) tr.separator { display: none; }
+table.index[data-show="problem"] tbody tr:not(.problem),
+table.index[data-show="fail"] tbody tr:not(.row-fail), table.index[data-show="error"] tbody tr:not(.row-error),
+table.index[data-show="crash"] tbody tr:not(.row-crash), table.index[data-show="pass"] tbody tr:not(.row-pass),
+table.index[data-show="skipped"] tbody tr:not(.row-skipped) { display: none; }
+p.files { font-size: 12px; color: var(--muted); margin: 0 0 8px; }
 )css";
 
 std::string verdict_class(Verdict verdict) { return "v-" + std::string(verdict_name(verdict)); }
@@ -172,8 +185,18 @@ void index_row(std::string& out, const SceneResult& scene, const std::string& pa
         out += "<td class=\"cell absent\"><span>—</span></td>\n";
         continue;
       }
-      fmt::format_to(to, "<td class=\"cell {}\"><a href=\"{}#{}\">{}",
-                     verdict_class(lane->verdict), href, lane_anchor(lane->lane), verdict_span(lane->verdict));
+      fmt::format_to(to, "<td class=\"cell {}\"><a href=\"{}#{}\">", verdict_class(lane->verdict), href,
+                     lane_anchor(lane->lane));
+      // The lane's image, and beside it the heat map where it did not pass, at a glance.
+      if (!lane->image.empty() || (is_problem(lane->verdict) && !lane->diff.empty())) {
+        out += "<span class=\"thumbs\">";
+        for (const std::string* image : {&lane->image, is_problem(lane->verdict) ? &lane->diff : nullptr})
+          if (image && !image->empty())
+            fmt::format_to(to, "<img class=\"thumb\" src=\"{}\" alt=\"\" loading=\"lazy\">",
+                           escape_attribute(url_path(*image)));
+        out += "</span>";
+      }
+      out += verdict_span(lane->verdict);
       if (is_problem(lane->verdict))
         fmt::format_to(to, "<span class=\"detail\">{}</span>", escape_text(first_line(first_failure(*lane))));
       out += "</a></td>\n";
@@ -234,19 +257,23 @@ void lane_section(std::string& out, const LaneResult& lane) {
   if (const std::string why = first_failure(lane); !why.empty())
     fmt::format_to(to, "<p class=\"why\">{}</p>\n", escape_text(first_line(why)));
 
-  out += "<div class=\"images\">\n";
-  const bool rendered = !lane.image.empty();
-  std::string no_golden = "no golden yet";
-  if (!lane.message.empty()) no_golden += " — " + lane.message;
-  out += figure("golden", lane.golden, rendered ? no_golden : "no golden: nothing to compare");
-  out += figure(lane.lane, lane.image, "not rendered");
-  out += figure("difference", lane.diff, lane.golden.empty() ? "no difference: no golden" : "no difference image");
+  // The images themselves are in the viewer above; here, the files, and the mask of non-finite
+  // values, which the viewer does not show.
+  std::string files;
+  const auto file_link = [&](std::string_view what, const std::string& path) {
+    if (path.empty()) return;
+    files += fmt::format("{}<a href=\"{}\">{}</a>", files.empty() ? "" : " · ", escape_attribute(url_path(path)),
+                         escape_text(what));
+  };
+  file_link("image (PNG)", lane.image);
+  file_link("float image (EXR)", lane.image_exr);
+  file_link("golden (PNG)", lane.golden);
+  file_link("golden (EXR)", lane.golden_exr);
+  file_link("heat map", lane.diff);
+  if (!files.empty()) fmt::format_to(to, "<p class=\"files\">Files: {}</p>\n", files);
+  if (lane.image.empty()) out += "<p class=\"description\">not rendered</p>\n";
   if (lane.non_finite.total() > 0 || !lane.non_finite_mask.empty())
-    out += figure("NaN / Inf / negative", lane.non_finite_mask, "no mask written");
-  out += "</div>\n";
-  if (!lane.image_exr.empty())
-    fmt::format_to(to, "<p>Float image: <a href=\"{}\">{}</a></p>\n", escape_attribute(url_path(lane.image_exr)),
-                   escape_text(lane.image_exr));
+    out += "<div class=\"images\">\n" + figure("NaN / Inf / negative", lane.non_finite_mask, "no mask written") + "</div>\n";
 
   out += "<div class=\"tables\">\n<div><h3>Layers</h3>\n";
   if (lane.layers.empty()) {
@@ -294,6 +321,11 @@ void cross_lane_section(std::string& out, const SceneResult& scene) {
          "<th>PSNR</th><th>failing pixels</th></tr>\n";
   for (const CrossLaneResult& pair : scene.cross_lane) {
     const ImageMetrics& m = pair.metrics;
+    if (pair.identical) {
+      fmt::format_to(to, "<tr><td>{}</td><td class=\"cell {}\">{}</td><td colspan=\"5\">bit-identical</td></tr>\n",
+                     escape_text(pair_name(pair)), verdict_class(pair.verdict), verdict_span(pair.verdict));
+      continue;
+    }
     fmt::format_to(to,
                    "<tr><td>{}</td><td class=\"cell {}\">{}</td>"
                    "<td class=\"num\">{} at ({}, {})</td><td class=\"num\">{:.4g}</td><td class=\"num\">{:.4g}</td>"
@@ -302,10 +334,30 @@ void cross_lane_section(std::string& out, const SceneResult& scene) {
                    m.max_steps, m.worst_x, m.worst_y, m.mean_steps, m.rmse_steps, escape_text(describe_psnr(m.psnr)),
                    m.failing_pixels, m.failing_fraction * 100.0);
   }
-  out += "</table>\n<div class=\"images\">\n";
+  out += "</table>\n";
+  std::string figures;
   for (const CrossLaneResult& pair : scene.cross_lane)
-    out += figure(pair_name(pair) + ": difference", pair.diff, "no difference image");
-  out += "</div>\n</section>\n";
+    if (!pair.identical) figures += figure(pair_name(pair) + ": difference", pair.diff, "no difference image");
+  if (!figures.empty()) out += "<div class=\"images\">\n" + figures + "</div>\n";
+  out += "</section>\n";
+}
+
+// The image-diff viewer (viewer/viewer.js) with its data; without JavaScript, links to the
+// images it would show.
+void images_section(std::string& out, const SceneResult& scene, const ViewerPage& viewer,
+                    std::string_view pixels_script) {
+  auto to = std::back_inserter(out);
+  out += "<section id=\"images\">\n<h2>Images</h2>\n<noscript><p>The image viewer needs JavaScript. The images: ";
+  for (const LaneResult& lane : scene.lanes)
+    for (const auto& [what, path] : {std::pair{"", &lane.image}, std::pair{" golden", &lane.golden},
+                                     std::pair{" heat map", &lane.diff}})
+      if (!path->empty())
+        fmt::format_to(to, "<a href=\"{}\">{}{}</a> ", escape_attribute(url_path(*path)), escape_text(lane.lane), what);
+  out += "</p></noscript>\n<div id=\"xshade-viewer\"></div>\n";
+  fmt::format_to(to, "<script id=\"xshade-viewer-data\" type=\"application/json\">{}</script>\n", viewer.data_json);
+  if (!pixels_script.empty())
+    fmt::format_to(to, "<script src=\"{}\"></script>\n", escape_attribute(url_path(pixels_script)));
+  fmt::format_to(to, "<style>{}</style>\n<script>{}</script>\n</section>\n", kViewerStyle, kViewerScript);
 }
 
 }  // namespace
@@ -353,7 +405,25 @@ std::string index_html(const RunResults& results) {
   });
   const size_t columns = 3 + std::max<size_t>(lanes.size(), 1);
 
-  out += "<table class=\"index\">\n<thead><tr><th>scene</th><th>verdict</th>";
+  // Filter by verdict: the buttons set the table's data-show, which the style sheet reads.
+  const VerdictCounts counts = count_scenes(results);
+  const size_t problems = counts.fail + counts.error + counts.crash;
+  out += "<p class=\"filter\" role=\"toolbar\" aria-label=\"show scenes\">Show: ";
+  const auto filter_button = [&](std::string_view show, std::string_view label, size_t count, bool always) {
+    if (count == 0 && !always) return;
+    fmt::format_to(to, "<button type=\"button\" data-show=\"{}\" aria-pressed=\"{}\">{} ({})</button> ", show,
+                   show == "all" ? "true" : "false", label, count);
+  };
+  filter_button("all", "all", counts.total(), true);
+  filter_button("problem", "did not pass", problems, true);
+  filter_button("fail", "fail", counts.fail, false);
+  filter_button("error", "error", counts.error, false);
+  filter_button("crash", "crash", counts.crash, false);
+  filter_button("pass", "pass", counts.pass, false);
+  filter_button("skipped", "skipped", counts.skipped, false);
+  out += "</p>\n";
+
+  out += "<table class=\"index\" data-show=\"all\">\n<thead><tr><th>scene</th><th>verdict</th>";
   for (const std::string& lane : lanes) fmt::format_to(to, "<th>{}</th>", escape_text(lane));
   if (lanes.empty()) out += "<th>lanes</th>";
   out += "<th>cross-lane</th></tr></thead>\n<tbody>\n";
@@ -373,10 +443,27 @@ std::string index_html(const RunResults& results) {
     index_row(out, results.scenes[i], pages[i], lanes);
   }
   out += "</tbody>\n</table>\n";
+  out += R"js(<script>
+// The verdict filter: one table attribute, read by the style sheet; the address keeps the choice.
+(function () {
+  const table = document.querySelector("table.index");
+  const buttons = document.querySelectorAll(".filter button");
+  function show(which) {
+    if (![...buttons].some((b) => b.dataset.show === which)) which = "all";
+    table.dataset.show = which;
+    for (const b of buttons) b.setAttribute("aria-pressed", String(b.dataset.show === which));
+    history.replaceState(null, "", which === "all" ? location.pathname : "#show=" + which);
+  }
+  for (const b of buttons) b.addEventListener("click", () => show(b.dataset.show));
+  const asked = /^#show=(\w+)$/.exec(location.hash);
+  if (asked) show(asked[1]);
+})();
+</script>
+)js";
   return out + std::string(kPageEnd);
 }
 
-std::string scene_html(const SceneResult& scene) {
+std::string scene_html(const SceneResult& scene, const ViewerPage& viewer, std::string_view pixels_script) {
   std::string out = page_start(fmt::format("{}: {}", scene.scene, verdict_word(scene.verdict)));
   auto to = std::back_inserter(out);
   fmt::format_to(to, "<nav><a href=\"index.html\">← all scenes</a></nav>\n<header class=\"{}\">\n<h1>{} {}</h1>\n",
@@ -397,6 +484,8 @@ std::string scene_html(const SceneResult& scene) {
                      verdict_span(lane.verdict), escape_text(first_line(first_failure(lane))), lane.seconds);
     out += "</table>\n</section>\n";
   }
+  if (std::any_of(scene.lanes.begin(), scene.lanes.end(), [](const LaneResult& lane) { return !lane.image.empty(); }))
+    images_section(out, scene, viewer, pixels_script);
   for (const LaneResult& lane : scene.lanes) lane_section(out, lane);
   if (!scene.lanes.empty() || !scene.cross_lane.empty()) cross_lane_section(out, scene);
   if (!scene.plan.empty()) fmt::format_to(to, "<section>\n<h2>Plan</h2>\n<pre>{}</pre>\n</section>\n", escape_text(scene.plan));

@@ -4,9 +4,11 @@
 #pragma once
 
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "harness/gate/run_results.h"
+#include "harness/report/viewer_data.h"
 
 namespace xshade::harness {
 
@@ -19,9 +21,11 @@ std::vector<std::string> scene_page_names(const RunResults& results);
 // cross-lane verdicts, the scenes that did not pass first, each failing cell saying why.
 std::string index_html(const RunResults& results);
 
-// A scene's page: its lanes side by side with the golden, the diff heat map and the non-finite
-// mask, each lane's layers, metrics, timings and driver, the cross-lane comparisons and the plan.
-// Image paths are the model's, relative to the report folder the page is written to.
-std::string scene_html(const SceneResult& scene);
+// A scene's page: the image-diff viewer (golden, output and heat map of each group of lanes that
+// rendered alike, viewer_data.h), each lane's layers, metrics, timings, driver, files and
+// non-finite mask, the cross-lane comparisons and the plan. Image paths are the model's,
+// relative to the report folder the page is written to; `pixels_script` is the viewer's float
+// data beside the page (empty: none).
+std::string scene_html(const SceneResult& scene, const ViewerPage& viewer, std::string_view pixels_script);
 
 }  // namespace xshade::harness

@@ -1,0 +1,193 @@
+#include "harness/report/viewer_data.h"
+
+#include <bit>
+#include <cstring>
+#include <map>
+#include <optional>
+
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+#include <zlib.h>
+
+#include "harness/image/image_compare.h"
+#include "harness/image/image_io.h"
+#include "harness/image/srgb8_encoder.h"
+
+namespace xshade::harness {
+namespace {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+std::string base64(const unsigned char* bytes, size_t size) {
+  static constexpr char kDigits[] = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+  std::string out;
+  out.reserve((size + 2) / 3 * 4);
+  for (size_t i = 0; i < size; i += 3) {
+    const uint32_t chunk = uint32_t(bytes[i]) << 16 | (i + 1 < size ? uint32_t(bytes[i + 1]) << 8 : 0) |
+                           (i + 2 < size ? uint32_t(bytes[i + 2]) : 0);
+    out += kDigits[chunk >> 18 & 63];
+    out += kDigits[chunk >> 12 & 63];
+    out += i + 1 < size ? kDigits[chunk >> 6 & 63] : '=';
+    out += i + 2 < size ? kDigits[chunk & 63] : '=';
+  }
+  return out;
+}
+
+// The image as little-endian float32 RGBA, deflated (zlib's format, which the browser's
+// DecompressionStream("deflate") reads) at the fastest level: a report's images are written once
+// and read once, and the fastest level already takes a render's flat areas to a few percent.
+std::string deflated_base64(const FloatImage& image) {
+  std::vector<unsigned char> raw(image.rgba.size() * sizeof(float));
+  std::memcpy(raw.data(), image.rgba.data(), raw.size());
+  if constexpr (std::endian::native == std::endian::big)
+    for (size_t i = 0; i < raw.size(); i += 4) std::swap(raw[i], raw[i + 3]), std::swap(raw[i + 1], raw[i + 2]);
+  uLongf size = compressBound(uLong(raw.size()));
+  std::vector<unsigned char> packed(size);
+  if (compress2(packed.data(), &size, raw.data(), uLong(raw.size()), Z_BEST_SPEED) != Z_OK) return {};
+  return base64(packed.data(), size);
+}
+
+// "#rrggbb" of a linear colour, through the encoding the PNGs use.
+std::string hex_colour(const glm::vec4& linear) {
+  return fmt::format("#{:02x}{:02x}{:02x}", linear_to_srgb8(linear.r), linear_to_srgb8(linear.g),
+                     linear_to_srgb8(linear.b));
+}
+
+json palette_json(uint32_t tolerance) {
+  json colours = json::array();
+  for (const glm::vec4& colour : heat_palette(tolerance)) colours.push_back(hex_colour(colour));
+  return colours;
+}
+
+json pixel_or_null(const std::optional<std::pair<uint32_t, uint32_t>>& pixel) {
+  return pixel ? json{{"x", pixel->first}, {"y", pixel->second}} : json(nullptr);
+}
+
+json worst_or_null(const ImageMetrics& metrics) {
+  if (metrics.max_steps == 0) return nullptr;
+  return {{"x", metrics.worst_x}, {"y", metrics.worst_y}, {"steps", metrics.max_steps}};
+}
+
+json or_null(const std::string& text) { return text.empty() ? json(nullptr) : json(text); }
+
+// The float images of a page, each read once, named by its path in the report.
+class FloatImages {
+ public:
+  explicit FloatImages(fs::path report_dir) : report_dir_(std::move(report_dir)) {}
+
+  const FloatImage* get(const std::string& path) {
+    if (path.empty()) return nullptr;
+    auto [entry, first] = images_.try_emplace(path);
+    if (first) {
+      auto read = read_image(report_dir_ / path);
+      if (read) entry->second = std::move(*read);
+    }
+    return entry->second ? &*entry->second : nullptr;
+  }
+  // A path whose image read, for the page's script; nothing for one that did not.
+  json key(const std::string& path) {
+    const FloatImage* image = get(path);
+    if (!image) return nullptr;
+    used_.emplace(path, image);
+    return path;
+  }
+  std::string script() const {
+    std::string out;
+    for (const auto& [path, image] : used_) {
+      const std::string data = deflated_base64(*image);
+      if (data.empty()) continue;
+      const json entry = {{"width", image->width}, {"height", image->height}, {"encoding", "deflate-f32le-rgba"},
+                          {"data", data}};
+      out += "(window.XSHADE_PIXELS = window.XSHADE_PIXELS || {})[" + json(path).dump() + "] = " + entry.dump() + ";\n";
+    }
+    return out;
+  }
+
+ private:
+  fs::path report_dir_;
+  std::map<std::string, std::optional<FloatImage>> images_;
+  std::map<std::string, const FloatImage*> used_;
+};
+
+bool same_pixels(const FloatImage* a, const FloatImage* b) {
+  if (!a || !b) return a == b;
+  return a->width == b->width && a->height == b->height &&
+         std::memcmp(a->rgba.data(), b->rgba.data(), a->rgba.size() * sizeof(float)) == 0;
+}
+
+}  // namespace
+
+ViewerPage viewer_page(const SceneResult& scene, const fs::path& report_dir) {
+  FloatImages images(report_dir);
+  const uint32_t tolerance = scene.compare.channel_tolerance;
+
+  // Lanes that rendered, grouped with the first lane whose image, golden and verdict they share.
+  std::vector<std::vector<const LaneResult*>> groups;
+  for (const LaneResult& lane : scene.lanes) {
+    if (lane.image.empty()) continue;
+    const FloatImage* output = images.get(lane.image_exr);
+    const FloatImage* golden = images.get(lane.golden_exr);
+    bool joined = false;
+    for (auto& group : groups) {
+      const LaneResult& first = *group.front();
+      // Without float images there is nothing to prove them identical with.
+      if (output && first.verdict == lane.verdict && first.golden.empty() == lane.golden.empty() &&
+          same_pixels(images.get(first.image_exr), output) && same_pixels(images.get(first.golden_exr), golden)) {
+        group.push_back(&lane);
+        joined = true;
+        break;
+      }
+    }
+    if (!joined) groups.push_back({&lane});
+  }
+
+  json page = {{"scene", scene.scene}, {"channel_tolerance", tolerance}, {"heat_palette", palette_json(tolerance)}};
+  uint32_t width = 0, height = 0;
+  json group_list = json::array();
+  for (const auto& group : groups) {
+    const LaneResult& lane = *group.front();
+    if (const FloatImage* output = images.get(lane.image_exr); output && width == 0)
+      width = output->width, height = output->height;
+    json names = json::array();
+    for (const LaneResult* each : group) names.push_back(each->lane);
+    const ImageMetrics metrics = lane.against_golden.value_or(ImageMetrics{});
+    group_list.push_back(
+        {{"lanes", names},
+         {"verdict", verdict_name(lane.verdict)},
+         {"output", {{"pixels", images.key(lane.image_exr)}, {"png", lane.image}}},
+         {"golden", lane.golden.empty() ? json(nullptr) : json{{"pixels", images.key(lane.golden_exr)}, {"png", lane.golden}}},
+         {"heat_map", or_null(lane.diff)},
+         {"heat_palette", page["heat_palette"]},
+         {"channel_tolerance", tolerance},
+         {"worst", lane.against_golden ? worst_or_null(metrics) : json(nullptr)},
+         {"first_failing", pixel_or_null(metrics.first_failing)},
+         {"failing_pixels", metrics.failing_pixels}});
+  }
+  json pairs = json::array();
+  for (const CrossLaneResult& pair : scene.cross_lane) {
+    if (pair.identical) continue;
+    pairs.push_back({{"first", pair.first_lane},
+                     {"second", pair.second_lane},
+                     {"verdict", verdict_name(pair.verdict)},
+                     {"heat_map", or_null(pair.diff)},
+                     {"worst", worst_or_null(pair.metrics)}});
+  }
+  json starts = json::array();
+  for (int code = 0; code < 256; ++code) starts.push_back(srgb8_code_start(uint8_t(code)));
+  page["width"] = width;
+  page["height"] = height;
+  page["srgb_code_starts"] = std::move(starts);
+  page["groups"] = std::move(group_list);
+  page["cross_lane"] = std::move(pairs);
+
+  ViewerPage out;
+  // '<' only occurs inside JSON strings, where \u003c means the same: no scene name can then
+  // end the <script> element the data sits in, or open a comment in it.
+  for (const char c : page.dump(-1, ' ', false, json::error_handler_t::replace))
+    out.data_json += c == '<' ? std::string("\\u003c") : std::string(1, c);
+  out.pixels_script = images.script();
+  return out;
+}
+
+}  // namespace xshade::harness

@@ -1,0 +1,29 @@
+// What a scene page's image-diff viewer (viewer/viewer.js) reads: the scene as JSON, and the
+// float values of its images as a script of their own. Pages are opened from file://, where a
+// script cannot fetch a file or read back the pixels of an <img>, so the float images travel as
+// deflated float32 in a classic script, pixels/PAGE.js, that the page loads beside itself.
+#pragma once
+
+#include <filesystem>
+#include <string>
+
+#include "harness/gate/run_results.h"
+
+namespace xshade::harness {
+
+struct ViewerPage {
+  // The scene JSON for <script id="xshade-viewer-data" type="application/json">, with every '<'
+  // written \u003c so that no text in it can end the element.
+  std::string data_json;
+  // pixels/PAGE.js: one line per float image, window.XSHADE_PIXELS[KEY] = {...}; empty when no
+  // lane has a float image in the report folder.
+  std::string pixels_script;
+};
+
+// Lanes whose rendered images are bit-identical, with the same golden and verdict, form one
+// group, shown once ("gl = vk = vk-hlsl"). The float images are read from `report_dir` (each
+// lane's image_exr and golden_exr); an image that does not read is shown from its PNG alone.
+// Cross-lane pairs are listed only where the images differ.
+ViewerPage viewer_page(const SceneResult& scene, const std::filesystem::path& report_dir);
+
+}  // namespace xshade::harness
