@@ -1,6 +1,7 @@
 // The verbs of the xshade command line, one file each.
 #pragma once
 
+#include <cstdint>
 #include <filesystem>
 #include <optional>
 #include <string>
@@ -108,6 +109,29 @@ struct WorkerOptions {
   bool half_emulation = false;
 };
 int run_worker(const WorkerOptions& options);
+
+// `xshade report merge`: several runs' reports (each a report folder, or a folder of them) as one.
+struct ReportMergeOptions {
+  std::vector<std::filesystem::path> folders;
+  std::filesystem::path out;
+  bool exit_code = false;  // exit with the merged verdict's code, as xshade run would
+  std::string command_line;
+};
+int run_report_merge(const ReportMergeOptions& options);
+
+// `xshade diff A B`: B held against A by the comparison model's layers.
+struct DiffOptions {
+  std::filesystem::path a;  // the reference (a golden)
+  std::filesystem::path b;  // the image under test
+  uint32_t tolerance = 1;   // channel tolerance, 8-bit sRGB steps
+  double budget = 0.0;      // fraction of the pixels that may fail
+  uint32_t radius = 0;      // position radius, pixels
+  double float_tolerance = 0.005;  // relative, for values above 1
+  std::filesystem::path heat_map;  // PNG of the difference, when asked
+  std::filesystem::path mask;      // PNG, white where the per-pixel layer failed, when asked
+  bool json = false;
+};
+int run_diff(const DiffOptions& options);
 
 struct StabilityOptions {
   LaneSelection selection;

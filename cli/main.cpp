@@ -244,6 +244,48 @@ static int run_command_line(int argc, char** argv) {
   worker->add_flag("--pass-images", worker_options.pass_images);
   worker->add_flag("--half-emulation", worker_options.half_emulation);
 
+  ReportMergeOptions merge_options;
+  CLI::App* report = app.add_subcommand("report", "Work on reports that runs wrote");
+  report->require_subcommand(1);
+  CLI::App* merge = report->add_subcommand(
+      "merge", "Merge the reports of several runs (the shards of a CI matrix, a CTest run's per-test folders) into "
+               "one index, junit.xml and results.json");
+  merge->add_option("report", merge_options.folders,
+                    "A report folder (it holds results.json), or a folder of them (each of its folders that holds one)")
+      ->required()
+      ->type_name("DIR");
+  merge->add_option("--out", merge_options.out, "Folder for the merged report")->required()->type_name("DIR");
+  merge->add_flag("--exit-code", merge_options.exit_code,
+                  "Exit with the merged results' code, as xshade run would (default: 0 once the report is written)");
+
+  DiffOptions diff_options;
+  CLI::App* diff = app.add_subcommand(
+      "diff", "Hold image B against image A (PNG, EXR, HDR) with the layers a run uses on a golden: exit 0 pass, 1 "
+              "fail, 2 an image that does not read");
+  diff->add_option("a", diff_options.a, "The reference image (a golden)")->required()->type_name("A");
+  diff->add_option("b", diff_options.b, "The image under test")->required()->type_name("B");
+  diff->add_option("--tolerance", diff_options.tolerance, "Steps of 8-bit sRGB a channel may differ")
+      ->type_name("STEPS")
+      ->check(CLI::Range(0, 255))
+      ->capture_default_str();
+  diff->add_option("--budget", diff_options.budget, "Fraction of the pixels that may fail, 0 to 1")
+      ->type_name("FRACTION")
+      ->check(CLI::Range(0.0, 1.0))
+      ->capture_default_str();
+  diff->add_option("--radius", diff_options.radius,
+                   "A failing pixel passes when A has a matching pixel this near (an edge that moved)")
+      ->type_name("PIXELS")
+      ->check(CLI::Range(0, 8))
+      ->capture_default_str();
+  diff->add_option("--float-tolerance", diff_options.float_tolerance, "Relative error allowed a value above 1")
+      ->type_name("RELATIVE")
+      ->check(CLI::Range(0.0, 1.0))
+      ->capture_default_str();
+  diff->add_option("--heat-map", diff_options.heat_map, "Write the difference's heat map (PNG) here")->type_name("FILE");
+  diff->add_option("--mask", diff_options.mask, "Write the failing pixels' mask (PNG, white where failing) here")
+      ->type_name("FILE");
+  diff->add_flag("--json", diff_options.json, "Print the verdict, layers and metrics as JSON");
+
   StabilityOptions stability_options;
   CLI::App* stability = app.add_subcommand(
       "stability", "Run the library's shader code on the hard numeric cases of SHADERS.md section 5 and check each "
@@ -312,6 +354,11 @@ static int run_command_line(int argc, char** argv) {
   if (*compile) return run_compile(compile_options);
   if (*eval) return run_eval(eval_options);
   if (*worker) return run_worker(worker_options);
+  if (*merge) {
+    for (int i = 0; i < argc; ++i) merge_options.command_line += (i ? " " : "") + std::string(argv[i]);
+    return run_report_merge(merge_options);
+  }
+  if (*diff) return run_diff(diff_options);
   if (*accuracy) {
     for (int i = 0; i < argc; ++i) accuracy_options.command_line += (i ? " " : "") + std::string(argv[i]);
     return run_accuracy(accuracy_options);

@@ -93,6 +93,7 @@ table.index[data-show="fail"] tbody tr:not(.row-fail), table.index[data-show="er
 table.index[data-show="crash"] tbody tr:not(.row-crash), table.index[data-show="pass"] tbody tr:not(.row-pass),
 table.index[data-show="skipped"] tbody tr:not(.row-skipped) { display: none; }
 p.files { font-size: 12px; color: var(--muted); margin: 0 0 8px; }
+ul.runs { margin: 2px 0; padding-left: 18px; font-size: 12px; }
 )css";
 
 std::string verdict_class(Verdict verdict) { return "v-" + std::string(verdict_name(verdict)); }
@@ -385,8 +386,16 @@ std::string index_html(const RunResults& results) {
   fmt::format_to(to, "<header class=\"{}\">\n<h1>xshade run {}</h1>\n<dl class=\"facts\">\n", verdict_class(verdict),
                  badge(verdict));
   fmt::format_to(to, "<dt>started</dt><dd>{}</dd>\n", escape_text(results.started));
-  fmt::format_to(to, "<dt>took</dt><dd>{}</dd>\n", escape_text(describe_duration(results.seconds)));
+  fmt::format_to(to, "<dt>took</dt><dd>{}{}</dd>\n", escape_text(describe_duration(results.seconds)),
+                 results.merged_from.empty() ? "" : " (the runs' times added)");
   fmt::format_to(to, "<dt>command</dt><dd><code>{}</code></dd>\n", escape_text(results.command));
+  if (!results.merged_from.empty()) {
+    fmt::format_to(to, "<dt>merged from</dt><dd>{} runs<ul class=\"runs\">\n", results.merged_from.size());
+    for (const MergedRun& run : results.merged_from)
+      fmt::format_to(to, "<li><span class=\"mono\">{}</span>: <code>{}</code>, {}, {}</li>\n", escape_text(run.folder),
+                     escape_text(run.command), escape_text(run.started), escape_text(describe_duration(run.seconds)));
+    out += "</ul></dd>\n";
+  }
   fmt::format_to(to, "<dt>scenes</dt><dd class=\"counts\">{}</dd>\n", counts_html(count_scenes(results)));
   fmt::format_to(to, "<dt>checks</dt><dd class=\"counts\">{} <span class=\"description\">(lanes and cross-lane pairs)</span></dd>\n",
                  counts_html(count_checks(results)));

@@ -1,0 +1,110 @@
+// xshade diff A B: the comparison model's layers on any two images a user already has (PNG, EXR,
+// HDR), as a run holds a render against its golden: B is held against A. Exit 0 when B passes,
+// 1 when it does not (or the sizes differ), 2 when an image cannot be read; idiff's pass, fail
+// and error.
+#include <fmt/core.h>
+#include <nlohmann/json.hpp>
+
+#include "cli/commands.h"
+#include "harness/gate/result_json.h"
+#include "harness/image/image_compare.h"
+#include "harness/image/image_io.h"
+
+namespace xshade::cli {
+namespace {
+
+using nlohmann::json;
+
+json non_finite_json(const harness::NonFiniteCount& count) {
+  return {{"nan", count.nan}, {"inf", count.inf}, {"negative", count.negative}};
+}
+
+json rgba_json(const std::array<float, 4>& value) {
+  json out = json::array();
+  for (float channel : value) out.push_back(std::isfinite(channel) ? json(channel) : json(nullptr));
+  return out;
+}
+
+// White where the per-pixel layer found the pixel beyond the tolerance, black elsewhere.
+harness::FloatImage failing_mask(const harness::FloatImage& like, const std::vector<uint32_t>& failing) {
+  harness::FloatImage mask(like.width, like.height);
+  for (size_t p = 0; p < size_t(like.width) * like.height; ++p) mask.rgba[p * 4 + 3] = 1.0f;
+  for (uint32_t p : failing) std::fill_n(&mask.rgba[size_t(p) * 4], 3, 1.0f);
+  return mask;
+}
+
+std::string rgba_text(const std::array<float, 4>& value) {
+  return fmt::format("({:g}, {:g}, {:g}, {:g})", value[0], value[1], value[2], value[3]);
+}
+
+}  // namespace
+
+int run_diff(const DiffOptions& options) {
+  auto a = harness::read_image(options.a);
+  if (!a) {
+    fmt::print(stderr, "xshade diff: {}\n", a.error().to_string());
+    return kBadInput;
+  }
+  auto b = harness::read_image(options.b);
+  if (!b) {
+    fmt::print(stderr, "xshade diff: {}\n", b.error().to_string());
+    return kBadInput;
+  }
+  harness::CompareSettings settings;
+  settings.channel_tolerance = options.tolerance;
+  settings.max_failing_fraction = options.budget;
+  settings.position_radius = options.radius;
+  settings.float_tolerance = options.float_tolerance;
+  const harness::Comparison comparison = harness::compare_images(*b, *a, settings);
+  const bool same_size = comparison.decided_by != "size";
+
+  // The images asked for; a heat map or mask of images of different sizes does not exist.
+  int written = kPass;
+  const auto write = [&](const std::filesystem::path& path, const harness::FloatImage& image) {
+    if (path.empty()) return;
+    if (!same_size) {
+      fmt::print(stderr, "xshade diff: {} not written: the images differ in size\n", path.string());
+      return;
+    }
+    if (auto result = harness::write_png(image, path); !result) {
+      fmt::print(stderr, "xshade diff: {}\n", result.error().to_string());
+      written = kBadInput;
+    }
+  };
+  write(options.heat_map, comparison.heat_map);
+  if (!options.mask.empty() && same_size) write(options.mask, failing_mask(*b, comparison.failing_pixels));
+
+  const harness::ImageMetrics& m = comparison.metrics;
+  if (options.json) {
+    json layers = json::array();
+    for (const harness::LayerResult& layer : comparison.layers)
+      layers.push_back({{"layer", layer.layer}, {"verdict", harness::verdict_name(layer.verdict)}, {"detail", layer.detail}});
+    json document = {{"a", options.a.string()},
+                     {"b", options.b.string()},
+                     {"verdict", harness::verdict_name(comparison.verdict)},
+                     {"decided_by", comparison.decided_by},
+                     {"layers", std::move(layers)},
+                     {"width", b->width},
+                     {"height", b->height},
+                     {"non_finite", {{"a", non_finite_json(comparison.reference_non_finite)},
+                                     {"b", non_finite_json(comparison.test_non_finite)}}}};
+    if (same_size) {
+      document["metrics"] = harness::metrics_to_json(m);
+      document["worst"] = {{"x", m.worst_x}, {"y", m.worst_y}, {"steps", m.max_steps},
+                           {"a", rgba_json(m.worst_reference)}, {"b", rgba_json(m.worst_test)}};
+    }
+    fmt::print("{}\n", document.dump(2, ' ', false, json::error_handler_t::replace));
+  } else {
+    fmt::print("{}: {} against {}: {} ({})\n", comparison.verdict == harness::Verdict::Pass ? "PASS" : "FAIL",
+               options.b.string(), options.a.string(), harness::verdict_name(comparison.verdict), comparison.decided_by);
+    for (const harness::LayerResult& layer : comparison.layers)
+      fmt::print("  {:<9} {:<7} {}\n", layer.layer, harness::verdict_name(layer.verdict), layer.detail);
+    if (same_size && m.max_steps > 0)
+      fmt::print("  worst pixel ({}, {}): A {} B {}\n", m.worst_x, m.worst_y, rgba_text(m.worst_reference),
+                 rgba_text(m.worst_test));
+  }
+  if (written != kPass) return written;
+  return comparison.verdict == harness::Verdict::Pass ? kPass : kTestFailed;
+}
+
+}  // namespace xshade::cli

@@ -1,0 +1,58 @@
+// xshade report merge: the reports of several runs (the shards of a CI matrix, the per-test
+// folders of a CTest run) as one report, with one index, one junit.xml and one results.json.
+#include <fmt/core.h>
+
+#include <system_error>
+
+#include "cli/commands.h"
+#include "harness/report/report.h"
+#include "harness/report/report_merge.h"
+#include "harness/report/report_text.h"
+
+namespace xshade::cli {
+
+namespace fs = std::filesystem;
+
+int run_report_merge(const ReportMergeOptions& options) {
+  auto found = harness::find_reports(options.folders);
+  if (!found) {
+    fmt::print(stderr, "xshade report merge: {}\n", found.error().to_string());
+    return kBadInput;
+  }
+  // Writing into a report being read would mix the merge with its own input.
+  std::error_code error;
+  for (const harness::FoundReport& report : *found)
+    if (fs::equivalent(report.folder, options.out, error)) {
+      fmt::print(stderr, "xshade report merge: --out {} is one of the reports being merged; merge into another folder\n",
+                 options.out.string());
+      return kBadInput;
+    }
+
+  harness::MergedReport merged = harness::merge_reports(*found);
+  merged.results.command = options.command_line;
+  for (const harness::MergedFile& file : merged.files) {
+    const fs::path to = options.out / file.to;
+    fs::create_directories(to.parent_path(), error);
+    if (error || !fs::copy_file(file.from, to, fs::copy_options::overwrite_existing, error)) {
+      fmt::print(stderr, "xshade report merge: cannot copy {} to {}: {}\n", file.from.string(), to.string(),
+                 error.message());
+      return kBackendError;
+    }
+  }
+  for (const std::string& warning : merged.warnings) fmt::print(stderr, "warning: {}\n", warning);
+  if (auto written = harness::write_reports(merged.results, options.out); !written) {
+    fmt::print(stderr, "xshade report merge: {}\n", written.error().to_string());
+    return kBackendError;
+  }
+
+  const harness::VerdictCounts scenes = harness::count_scenes(merged.results);
+  const harness::VerdictCounts checks = harness::count_checks(merged.results);
+  const harness::Verdict verdict = harness::run_verdict(merged.results);
+  fmt::print("merged {} reports: {} scenes ({} pass, {} fail, {} error, {} crash, {} skipped), {} checks ({} pass); {}\n",
+             found->size(), scenes.total(), scenes.pass, scenes.fail, scenes.error, scenes.crash, scenes.skipped,
+             checks.total(), checks.pass, harness::verdict_name(verdict));
+  fmt::print("report: {}\n", (options.out / "index.html").string());
+  return options.exit_code ? harness::exit_code(verdict) : kPass;
+}
+
+}  // namespace xshade::cli
