@@ -10,10 +10,14 @@
 #                          [CACHE dir])            # compiled shaders; default: ${CMAKE_BINARY_DIR}/xshade-cache
 #
 # Relative folders are relative to the calling CMakeLists.txt. Each test runs `xshade run SCENE`
-# with exactly these folders (no project file is read), writes its own report folder, and passes
-# only when xshade does: the scene matches its golden, renders finite and deterministic, and (for
-# all_lanes) its lanes agree. A lane a scene does not list is reported as skipped. The scene
-# files are found when CMake configures; adding one re-runs the configuration on the next build.
+# with exactly these folders (no project file is read), writes its own report folder
+# (REPORT/tests/TEST), and passes only when xshade does: the scene matches its golden, renders
+# finite and deterministic, and (for all_lanes) its lanes agree. A lane a scene does not list is
+# reported as skipped. After the tests, PREFIX.report merges what this CTest run wrote into one
+# report, REPORT/index.html with its junit.xml and results.json (xshade report merge); before
+# them, PREFIX.report_start clears the earlier run's folders, so the merge holds this run alone.
+# The scene files are found when CMake configures; adding one re-runs the configuration on the
+# next build.
 function(xshade_add_scene_tests)
   cmake_parse_arguments(PARSE_ARGV 0 ARG "" "SCENES;GOLDEN;PREFIX;REPORT;CACHE" "SHADERS;LANES;LABELS")
   if(ARG_UNPARSED_ARGUMENTS)
@@ -71,21 +75,29 @@ function(xshade_add_scene_tests)
   list(LENGTH ARG_LANES lane_count)
   # Matches xshade's message for a lane the scene does not list (and nothing else it prints).
   set(skipped "skipped: the scene runs on .*, none of the lanes asked for")
+  set(fixture ${ARG_PREFIX}_report)
   foreach(scene_file IN LISTS scene_files)
     get_filename_component(scene "${scene_file}" NAME_WE)
     foreach(lane IN LISTS ARG_LANES)
       add_test(NAME ${ARG_PREFIX}.${scene}.${lane}
                COMMAND xshade::xshade run ${scene} --lane ${lane} ${folders}
-                       --report "${ARG_REPORT}/${scene}.${lane}" --cache "${ARG_CACHE}")
+                       --report "${ARG_REPORT}/tests/${scene}.${lane}" --cache "${ARG_CACHE}")
       set_tests_properties(${ARG_PREFIX}.${scene}.${lane} PROPERTIES LABELS "${ARG_LABELS}"
-                           SKIP_REGULAR_EXPRESSION "${skipped}")
+                           SKIP_REGULAR_EXPRESSION "${skipped}" FIXTURES_REQUIRED ${fixture})
     endforeach()
     if(lane_count GREATER 1)
       add_test(NAME ${ARG_PREFIX}.${scene}.all_lanes
                COMMAND xshade::xshade run ${scene} ${lane_arguments} ${folders}
-                       --report "${ARG_REPORT}/${scene}" --cache "${ARG_CACHE}")
+                       --report "${ARG_REPORT}/tests/${scene}" --cache "${ARG_CACHE}")
       set_tests_properties(${ARG_PREFIX}.${scene}.all_lanes PROPERTIES LABELS "${ARG_LABELS}"
-                           SKIP_REGULAR_EXPRESSION "${skipped}")
+                           SKIP_REGULAR_EXPRESSION "${skipped}" FIXTURES_REQUIRED ${fixture})
     endif()
   endforeach()
+  # One report of the whole CTest run: the per-test folders cleared before, merged after (CTest
+  # runs a fixture's cleanup whether its tests passed or not, and with any -R that picks one).
+  add_test(NAME ${ARG_PREFIX}.report_start COMMAND ${CMAKE_COMMAND} -E rm -rf "${ARG_REPORT}/tests")
+  add_test(NAME ${ARG_PREFIX}.report
+           COMMAND xshade::xshade report merge "${ARG_REPORT}/tests" --out "${ARG_REPORT}")
+  set_tests_properties(${ARG_PREFIX}.report_start PROPERTIES LABELS "${ARG_LABELS}" FIXTURES_SETUP ${fixture})
+  set_tests_properties(${ARG_PREFIX}.report PROPERTIES LABELS "${ARG_LABELS}" FIXTURES_CLEANUP ${fixture})
 endfunction()
