@@ -342,7 +342,10 @@ def wide_scene(out):
 def main():
     if len(sys.argv) != 2:
         sys.exit("usage: make_viewer_fixture.py OUT_DIR")
-    out = Path(sys.argv[1])
+    write_fixture(Path(sys.argv[1]))
+
+
+def write_fixture(out):
     out.mkdir(parents=True, exist_ok=True)
     fail_scene(out)
     pass_scene(out)

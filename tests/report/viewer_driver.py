@@ -34,7 +34,7 @@ from selenium.webdriver.common.by import By
 
 CHROMIUM_ARGS = ["--headless=new", "--no-sandbox", "--disable-gpu", "--disable-dev-shm-usage",
                  "--disable-background-networking", "--disable-component-update", "--disable-sync",
-                 "--no-first-run", "--allow-file-access-from-files"]
+                 "--no-first-run"]
 READOUT_FIELDS = ["x", "y", "golden", "output", "difference", "golden-srgb", "output-srgb", "steps"]
 
 

@@ -18,6 +18,10 @@ import time
 from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
+from browser_available import skip_unless_browser  # noqa: E402
+
+if __name__ == "__main__":
+    skip_unless_browser()
 from viewer_driver import (Browser, By, expected_readout, failing_pixels, load_pixels,  # noqa: E402
                            readout_mismatches)
 
@@ -408,7 +412,11 @@ def main():
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("fixture", type=Path, help="folder written by make_viewer_fixture.py")
     parser.add_argument("--shots", type=Path, default=Path("/tmp/viewer_shots"), help="screenshot folder ('' for none)")
+    parser.add_argument("--make", action="store_true", help="write the fixture into FIXTURE first")
     args = parser.parse_args()
+    if args.make:
+        from make_viewer_fixture import write_fixture
+        write_fixture(args.fixture)
     shots = args.shots if str(args.shots) else None
     if shots:
         shots.mkdir(parents=True, exist_ok=True)
