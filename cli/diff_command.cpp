@@ -55,7 +55,7 @@ int run_diff(const DiffOptions& options) {
   settings.max_failing_fraction = options.budget;
   settings.position_radius = options.radius;
   settings.float_tolerance = options.float_tolerance;
-  const harness::Comparison comparison = harness::compare_images(*b, *a, settings);
+  const harness::Comparison comparison = harness::compare_images(*b, *a, settings, !options.heat_map.empty());
   const bool same_size = comparison.decided_by != "size";
 
   // The images asked for; a heat map or mask of images of different sizes does not exist.

@@ -133,8 +133,10 @@ struct Comparison {
 // 8-bit steps, for a channel tolerance: Comparison::heat_map's colours, and its legend's.
 std::array<glm::vec4, 256> heat_palette(uint32_t channel_tolerance);
 
-// Runs every layer on `test` against `reference` with the scene's tolerances.
-Comparison compare_images(const FloatImage& test, const FloatImage& reference, const CompareSettings& settings);
+// Runs every layer on `test` against `reference` with the scene's tolerances. Without
+// `heat_map`, Comparison::heat_map stays empty (a caller that writes none saves its memory).
+Comparison compare_images(const FloatImage& test, const FloatImage& reference, const CompareSettings& settings,
+                          bool heat_map = true);
 
 // "3 NaN, 0 Inf, 1 negative channel values, first at (4, 7)"; `count` has some.
 std::string describe_non_finite(const NonFiniteCount& count);
