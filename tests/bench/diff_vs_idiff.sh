@@ -25,7 +25,7 @@ for size in 512 2048; do
   oiiotool "$a" --addc 0.002 -d float -o "$b"
   # Both exit non-zero on these differing images; -i keeps hyperfine timing them.
   hyperfine --style none -i -w 2 -r "$runs" --export-json "$work/$size.json" \
-    "$xshade diff $a $b" "idiff $a $b" >/dev/null
+    "$xshade diff $a $b" "idiff $a $b" >/dev/null 2>&1
   python3 - "$work/$size.json" "$size" <<'PY'
 import json, sys
 results = json.load(open(sys.argv[1]))["results"]
