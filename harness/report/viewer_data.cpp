@@ -85,10 +85,13 @@ class FloatImages {
     }
     return entry->second ? &*entry->second : nullptr;
   }
-  // A path whose image read, for the page's script; nothing for one that did not.
+  // A path whose image read, for the page's script; nothing for one that did not, or one too
+  // large to carry: a 2048 x 2048 image is 64 MB of float32 before deflate, which a browser
+  // still decodes in a second; a 4096 x 4096 scene's page shows its PNGs without the values.
   json key(const std::string& path) {
+    constexpr size_t kMostPixels = size_t(2048) * 2048;
     const FloatImage* image = get(path);
-    if (!image) return nullptr;
+    if (!image || size_t(image->width) * image->height > kMostPixels) return nullptr;
     used_.emplace(path, image);
     return path;
   }

@@ -22,7 +22,8 @@ struct ViewerPage {
 
 // Lanes whose rendered images are bit-identical, with the same golden and verdict, form one
 // group, shown once ("gl = vk = vk-hlsl"). The float images are read from `report_dir` (each
-// lane's image_exr and golden_exr); an image that does not read is shown from its PNG alone.
+// lane's image_exr and golden_exr); an image that does not read, or of more than 2048 x 2048
+// pixels, is shown from its PNG alone.
 // Cross-lane pairs are listed only where the images differ.
 ViewerPage viewer_page(const SceneResult& scene, const std::filesystem::path& report_dir);
 
