@@ -212,14 +212,21 @@ TEST_F(HostileInput, AProjectFileLinkedFromOutsideItsFolderIsRefused) {
 
 TEST_F(HostileInput, AnAllocationThatFailsIsExitThreeWithAMessage) {
   // An 8192 x 4096 environment is within the limits: reading it takes some 900 MB, more than the
-  // address space this run is given, so the allocation throws std::bad_alloc.
+  // address space this run is given, so the allocation throws std::bad_alloc in the worker that
+  // builds the environment, which says so and exits 3; the run reports that lane's crash with
+  // the worker's words and exits 3 too. Neither aborts (exit 134).
   forged::write(root_ / "scenes" / "large.hdr", forged::hdr(8192, 4096));
   append(scene(), "\n[environment]\nkind = \"equirect\"\nfile = \"large.hdr\"\n");
   Outcome outcome = run("--lane gl", "ulimit -v 600000;");
   EXPECT_EQ(outcome.exit_code, 3) << outcome.output;
-  EXPECT_NE(outcome.output.find("xshade run: out of memory (an allocation failed); nothing more was done"),
+  EXPECT_NE(outcome.output.find("xshade worker: out of memory (an allocation failed); nothing more was done"),
             std::string::npos)
       << outcome.output;
+  EXPECT_NE(outcome.output.find("toon_shadow_texture on gl: crash - worker exited with code 3 while building the "
+                                "environment"),
+            std::string::npos)
+      << outcome.output;
+  EXPECT_EQ(outcome.output.find("terminate called"), std::string::npos) << outcome.output;
 }
 
 }  // namespace
