@@ -12,6 +12,8 @@
 #include <cerrno>
 #include <cstring>
 
+#include "base/file_io.h"
+
 extern char** environ;
 
 namespace xshade {
@@ -74,15 +76,23 @@ std::string describe_signal(int signal) {
 Result<ChildProcess> ChildProcess::start(const std::vector<std::string>& argv, const std::vector<std::string>& environment,
                                          Clock::duration time_limit) {
   if (argv.empty()) return fail(ErrorKind::Internal, "a child process needs a program to run");
-  int output[2], status[2];
+  int output[2], status[2], input[2];
   if (!make_pipe(output)) return fail(ErrorKind::Backend, std::string("cannot make a pipe: ") + std::strerror(errno));
   if (!make_pipe(status)) {
     close(output[0]);
     close(output[1]);
     return fail(ErrorKind::Backend, std::string("cannot make a pipe: ") + std::strerror(errno));
   }
+  if (!make_pipe(input)) {
+    for (int fd : {output[0], output[1], status[0], status[1]}) close(fd);
+    return fail(ErrorKind::Backend, std::string("cannot make a pipe: ") + std::strerror(errno));
+  }
+  // Our end of the child's input blocks (a request is a line, written whole); make_pipe left
+  // the reading end, which is the child's, non-blocking, and the child must block on it.
+  fcntl(input[0], F_SETFL, 0);
   posix_spawn_file_actions_t actions;
   posix_spawn_file_actions_init(&actions);
+  posix_spawn_file_actions_adddup2(&actions, input[0], 0);
   posix_spawn_file_actions_adddup2(&actions, output[1], 1);
   posix_spawn_file_actions_adddup2(&actions, output[1], 2);
   posix_spawn_file_actions_adddup2(&actions, status[1], kChildStatusFd);
@@ -97,13 +107,16 @@ Result<ChildProcess> ChildProcess::start(const std::vector<std::string>& argv, c
   posix_spawn_file_actions_destroy(&actions);
   close(output[1]);
   close(status[1]);
+  close(input[0]);
   if (spawned != 0) {
     close(output[0]);
     close(status[0]);
+    close(input[1]);
     return fail(ErrorKind::Backend, "cannot start " + argv[0] + ": " + std::strerror(spawned));
   }
   ChildProcess child;
   child.pid_ = pid;
+  child.input_fd_ = input[1];
   child.output_fd_ = output[0];
   child.status_fd_ = status[0];
   child.started_ = Clock::now();
@@ -117,6 +130,7 @@ ChildProcess& ChildProcess::operator=(ChildProcess&& other) noexcept {
   if (this == &other) return *this;
   release();
   pid_ = std::exchange(other.pid_, -1);
+  input_fd_ = std::exchange(other.input_fd_, -1);
   output_fd_ = std::exchange(other.output_fd_, -1);
   status_fd_ = std::exchange(other.status_fd_, -1);
   finished_ = other.finished_;
@@ -125,6 +139,7 @@ ChildProcess& ChildProcess::operator=(ChildProcess&& other) noexcept {
   output_cut_ = other.output_cut_;
   status_partial_ = std::move(other.status_partial_);
   last_status_ = std::move(other.last_status_);
+  status_lines_ = std::move(other.status_lines_);
   started_ = other.started_;
   deadline_ = other.deadline_;
   ended_ = other.ended_;
@@ -143,7 +158,7 @@ void ChildProcess::release() {
 }
 
 void ChildProcess::close_pipes() {
-  for (int* fd : {&output_fd_, &status_fd_})
+  for (int* fd : {&input_fd_, &output_fd_, &status_fd_})
     if (*fd >= 0) {
       close(*fd);
       *fd = -1;
@@ -181,6 +196,7 @@ void ChildProcess::read_pipes() {
         status_partial_.append(buffer, size_t(got));
         for (size_t end; (end = status_partial_.find('\n')) != std::string::npos;) {
           last_status_ = status_partial_.substr(0, end);
+          status_lines_.push_back(last_status_);
           status_partial_.erase(0, end + 1);
         }
         if (status_partial_.size() > 65536) status_partial_.clear();  // not a status line
@@ -211,6 +227,29 @@ bool ChildProcess::poll() {
   if (output_cut_)
     output_.insert(kOutputKept / 2, "\n[... " + std::to_string(output_cut_) + " bytes of output left out ...]\n");
   return true;
+}
+
+bool ChildProcess::send(const std::string& line) {
+  if (input_fd_ < 0 || finished_) return false;
+  const std::string text = line + "\n";
+  // A child that has ended makes the write fail with EPIPE rather than end us with SIGPIPE.
+  struct sigaction ignore{}, previous{};
+  ignore.sa_handler = SIG_IGN;
+  sigaction(SIGPIPE, &ignore, &previous);
+  const bool written = write_all(input_fd_, text);
+  sigaction(SIGPIPE, &previous, nullptr);
+  return written;
+}
+
+std::string ChildProcess::take_output() {
+  read_pipes();
+  output_cut_ = 0;
+  return std::exchange(output_, {});
+}
+
+std::vector<std::string> ChildProcess::take_status_lines() {
+  read_pipes();
+  return std::exchange(status_lines_, {});
 }
 
 void wait_for_any(const std::vector<ChildProcess*>& children, std::chrono::milliseconds longest) {

@@ -2,7 +2,8 @@
 // posix_spawn, its standard output and error collected together, a second pipe (file descriptor
 // 3 in the child) for the status lines it reports, and a deadline after which it is killed. A
 // child that crashes, hangs or is killed is then a result the parent reports, never the parent's
-// own end.
+// own end. A child may also serve many requests: the parent writes them to its standard input,
+// and takes its output and status lines request by request, with a deadline for each.
 #pragma once
 
 #include <sys/types.h>
@@ -58,6 +59,17 @@ class ChildProcess {
   // The file descriptors still open, for waiting on.
   std::vector<int> open_fds() const;
   Clock::time_point deadline() const { return deadline_; }
+  void set_deadline(Clock::time_point deadline) { deadline_ = deadline; }
+
+  // For a child that serves requests: writes `line` (and a newline) to its standard input; false
+  // when it cannot be written (the child has ended or closed it).
+  bool send(const std::string& line);
+  // The output written since the last take (all of it, for the first).
+  std::string take_output();
+  // The complete status lines written since the last take, in order; last_status() is not
+  // cleared by this, but by forget_status().
+  std::vector<std::string> take_status_lines();
+  void forget_status() { last_status_.clear(); }
 
   static constexpr size_t kOutputKept = 1 << 20;
 
@@ -68,6 +80,7 @@ class ChildProcess {
   void release();
 
   pid_t pid_ = -1;
+  int input_fd_ = -1;
   int output_fd_ = -1;
   int status_fd_ = -1;
   bool finished_ = false;
@@ -76,6 +89,7 @@ class ChildProcess {
   size_t output_cut_ = 0;  // bytes left out of output_'s middle
   std::string status_partial_;
   std::string last_status_;
+  std::vector<std::string> status_lines_;  // since the last take_status_lines()
   Clock::time_point started_{};
   Clock::time_point deadline_{};
   Clock::time_point ended_{};

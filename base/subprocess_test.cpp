@@ -54,6 +54,33 @@ TEST(ChildProcess, IsKilledAtItsDeadline) {
   EXPECT_EQ(child.last_status(), "in pass slow");
 }
 
+// A child that serves requests: each read from its input, answered on its output and with a
+// "done" status line; the parent takes output and status lines request by request, and each
+// request has a deadline of its own.
+TEST(ChildProcess, ServesRequestsEachWithItsOutputStatusAndDeadline) {
+  ChildProcess child = shell("while read request; do echo \"answer $request\"; echo \"done $request\" >&3; "
+                             "[ \"$request\" = slow ] && sleep 30; done",
+                             {}, 60s);
+  for (const std::string request : {"one", "two"}) {
+    ASSERT_TRUE(child.send(request));
+    std::vector<std::string> lines;
+    while (lines.empty()) {
+      wait_for_any({&child}, 100ms);
+      ASSERT_FALSE(child.poll()) << child.output();
+      lines = child.take_status_lines();
+    }
+    EXPECT_EQ(lines, std::vector<std::string>{"done " + request});
+    EXPECT_EQ(child.take_output(), "answer " + request + "\n");
+  }
+  // The third request's deadline, not the child's start, ends it.
+  child.set_deadline(ChildProcess::Clock::now() + 300ms);
+  ASSERT_TRUE(child.send("slow"));
+  finish(child);
+  EXPECT_TRUE(child.exit_status().timed_out);
+  EXPECT_EQ(child.take_output(), "answer slow\n");
+  EXPECT_FALSE(child.send("after")) << "an ended child takes no request";
+}
+
 TEST(ChildProcess, SetsTheGivenEnvironmentOverOurs) {
   setenv("XSHADE_SUBPROCESS_TEST", "ours", 1);
   ChildProcess child = shell("echo $XSHADE_SUBPROCESS_TEST $XSHADE_SUBPROCESS_OTHER",

@@ -107,6 +107,7 @@ struct WorkerOptions {
   bool validation = false;
   bool pass_images = false;
   bool half_emulation = false;
+  bool serve = false;  // renders read from standard input, one a line, instead of scene and lane
 };
 int run_worker(const WorkerOptions& options);
 

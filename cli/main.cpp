@@ -232,9 +232,10 @@ static int run_command_line(int argc, char** argv) {
   WorkerOptions worker_options;
   CLI::App* worker = app.add_subcommand("worker", "One lane of one scene, for the run that started it");
   worker->group("");
-  worker->add_option("--scene", worker_options.scene)->required();
-  worker->add_option("--lane", worker_options.lane)->required();
-  worker->add_option("--result", worker_options.result_dir)->required();
+  worker->add_option("--scene", worker_options.scene);
+  worker->add_option("--lane", worker_options.lane);
+  worker->add_option("--result", worker_options.result_dir);
+  worker->add_flag("--serve", worker_options.serve);
   worker->add_option("--shader-folder", worker_options.shader_folders)->allow_extra_args(false);
   worker->add_option("--golden", worker_options.golden);
   worker->add_option("--report", worker_options.report_dir)->required();

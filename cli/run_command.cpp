@@ -143,8 +143,9 @@ int run_run(const RunOptions& options) {
   }
   size_t passed = 0;
   for (const harness::SceneResult& scene : results.scenes) passed += scene.verdict == harness::Verdict::Pass;
-  fmt::print("{} of {} scenes passed in {:.1f} s; shaders: {} compiled, {} from the cache{}\n", passed,
-             results.scenes.size(), results.seconds, totals.compiled, totals.cached,
+  fmt::print("{} of {} scenes passed in {:.1f} s; {} renders in {} worker{}; shaders: {} compiled, {} from the cache{}\n",
+             passed, results.scenes.size(), results.seconds, totals.renders, totals.workers_started,
+             totals.workers_started == 1 ? "" : "s", totals.compiled, totals.cached,
              cache ? " (" + cache->directory().string() + ")" : std::string(" (cache off)"));
   if (!totals.cache_write_error.empty()) fmt::print("warning: {}\n", totals.cache_write_error);
   if (!totals.cache_damage.empty()) fmt::print("warning: {}\n", totals.cache_damage);

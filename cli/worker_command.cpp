@@ -1,10 +1,13 @@
-// xshade worker: one lane of one scene, rendered for the run or bless that started it and handed
-// back in a folder (harness/gate/lane_workers.h). Hidden from --help: only xshade starts it.
+// xshade worker: lanes of scenes rendered for the run or bless that started it, each handed back
+// in a folder (harness/gate/lane_workers.h): one given on the command line, or with --serve one
+// per line of standard input until it ends. Hidden from --help: only xshade starts it.
 #include <sys/prctl.h>
 
 #include <csignal>
+#include <iostream>
 
 #include <fmt/core.h>
+#include <nlohmann/json.hpp>
 
 #include "cli/commands.h"
 #include "harness/gate/lane_workers.h"
@@ -14,10 +17,9 @@ namespace xshade::cli {
 int run_worker(const WorkerOptions& options) {
   // A worker whose supervisor is gone (killed, or stopped with ^C) has nobody to report to.
   prctl(PR_SET_PDEATHSIG, SIGKILL);
-  auto lane = harness::parse_lane(options.lane);
   auto platform = harness::parse_gl_platform(options.gl_platform);
-  if (!lane || !platform) {
-    fmt::print(stderr, "xshade worker: unknown lane '{}' or gl platform '{}'\n", options.lane, options.gl_platform);
+  if (!platform) {
+    fmt::print(stderr, "xshade worker: unknown gl platform '{}'\n", options.gl_platform);
     return kBadInput;
   }
   std::optional<harness::ShaderCache> cache;
@@ -32,7 +34,30 @@ int run_worker(const WorkerOptions& options) {
                                  .pass_images = options.pass_images,
                                  .half_emulation = options.half_emulation},
                                 [](const std::string& line) { fmt::print("{}\n", line); });
-  return harness::run_lane_worker(checker, options.scene, *lane, options.result_dir);
+  const auto render = [&](const std::string& scene, const std::string& lane_name, const std::string& result) {
+    auto lane = harness::parse_lane(lane_name);
+    if (!lane) {
+      fmt::print(stderr, "xshade worker: unknown lane '{}'\n", lane_name);
+      return int(kBadInput);
+    }
+    return harness::run_lane_worker(checker, scene, *lane, result);
+  };
+  if (!options.serve) return render(options.scene.string(), options.lane, options.result_dir.string());
+
+  // One render a line, {"scene": FILE, "lane": LANE, "result": DIR}; each ends with the status
+  // line "done CODE" once its output is written, so that the supervisor knows what is whose.
+  for (std::string line; std::getline(std::cin, line);) {
+    const nlohmann::json request = nlohmann::json::parse(line, nullptr, false);
+    int code = kBadInput;
+    if (request.is_object() && request.value("scene", "").size() && request.value("result", "").size())
+      code = render(request.value("scene", ""), request.value("lane", ""), request.value("result", ""));
+    else
+      fmt::print(stderr, "xshade worker: a request it cannot read: {}\n", line);
+    std::fflush(stdout);
+    std::fflush(stderr);
+    harness::report_worker_status("done " + std::to_string(code));
+  }
+  return kPass;
 }
 
 }  // namespace xshade::cli

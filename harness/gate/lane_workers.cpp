@@ -3,6 +3,7 @@
 #include <signal.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cstdlib>
 #include <cstring>
 #include <deque>
@@ -89,11 +90,13 @@ LaneResult crashed(Lane lane, std::string message) {
   return result;
 }
 
-// The result of a worker that gave none: timed out, killed, crashed or exited early.
-LaneResult ended_without_result(Lane lane, const ChildProcess& worker, double timeout_seconds) {
+// The result of a render whose worker gave none: timed out, killed, crashed or exited early.
+// `output` is what the worker wrote during the render.
+LaneResult ended_without_result(Lane lane, const ChildProcess& worker, double timeout_seconds, double seconds,
+                                const std::string& output) {
   LaneResult result;
   result.lane = std::string(lane_name(lane));
-  result.seconds = worker.seconds();
+  result.seconds = seconds;
   const std::string where = worker.last_status().empty() ? "while starting" : worker.last_status();
   const ChildExit& exit = worker.exit_status();
   std::string layer = "worker";
@@ -113,7 +116,7 @@ LaneResult ended_without_result(Lane lane, const ChildProcess& worker, double ti
   result.layers.push_back({layer, result.verdict, result.message});
   if (exit.timed_out)
     result.message += "; a scene that needs longer says so with `timeout = SECONDS` and `timeout_reason`, a run with --timeout";
-  if (const std::string tail = last_lines(worker.output(), 20); !tail.empty())
+  if (const std::string tail = last_lines(output, 20); !tail.empty())
     result.message += "\nits last output:\n" + tail;
   return result;
 }
@@ -130,11 +133,15 @@ struct Job {
   Lane lane = Lane::Gl;
 };
 
-struct RunningJob {
-  Job job;
+// A worker process and the render it is doing. A worker serves renders one after another (its
+// start, loading some 260 shared libraries, costs a third of a second, as much as a render), and
+// is started again only after one it was doing ended it.
+struct WorkerSlot {
+  std::optional<ChildProcess> process;
+  std::optional<Job> job;
   fs::path folder;
   double timeout_seconds = 0.0;
-  ChildProcess worker;
+  ChildProcess::Clock::time_point job_started{};
 };
 
 }  // namespace
@@ -150,7 +157,8 @@ WorkerTotals check_in_workers(SceneChecker& checker, const SceneWorkers& workers
   std::vector<SceneInWork> scenes(files.size());
   auto scratch = ScratchFolder::make();
   std::deque<Job> queued;
-  std::vector<RunningJob> running;
+  std::vector<WorkerSlot> slots(std::max(1u, workers.jobs));
+  size_t busy = 0;
   size_t next_to_prepare = 0, next_to_report = 0;
 
   auto finish_lane = [&](const Job& job, LaneResult result) {
@@ -158,36 +166,46 @@ WorkerTotals check_in_workers(SceneChecker& checker, const SceneWorkers& workers
     scene.results[job.lane] = std::move(result);
     --scene.waiting;
   };
-  auto start = [&](const Job& job) {
+  auto start = [&](WorkerSlot& slot, const Job& job) {
     SceneInWork& scene = scenes[job.scene];
     const double timeout = scene.checked.scene && scene.checked.scene->timeout_seconds
                                ? *scene.checked.scene->timeout_seconds
                                : workers.timeout_seconds;
-    if (!scratch) {
-      return finish_lane(job, crashed(job.lane, scratch.error().to_string()));
+    if (!scratch) return finish_lane(job, crashed(job.lane, scratch.error().to_string()));
+    const auto limit = std::chrono::duration_cast<ChildProcess::Clock::duration>(std::chrono::duration<double>(timeout));
+    if (!slot.process || slot.process->finished()) {
+      std::vector<std::string> command = workers.command;
+      command.push_back("--serve");
+      auto process = ChildProcess::start(command, workers.environment, limit);
+      if (!process) return finish_lane(job, crashed(job.lane, "cannot start a worker: " + process.error().to_string()));
+      slot.process.emplace(std::move(*process));
+      ++totals.workers_started;
     }
-    const fs::path folder = scratch->path() / fmt::format("{}-{}", job.scene, lane_name(job.lane));
+    slot.folder = scratch->path() / fmt::format("{}-{}", job.scene, lane_name(job.lane));
     std::error_code error;
-    fs::create_directories(folder, error);
-    std::vector<std::string> command = workers.command;
-    for (const std::string& argument : {std::string("--scene"), files[job.scene].string(), std::string("--lane"),
-                                        std::string(lane_name(job.lane)), std::string("--result"), folder.string()})
-      command.push_back(argument);
-    auto worker = ChildProcess::start(command, workers.environment,
-                                      std::chrono::duration_cast<ChildProcess::Clock::duration>(
-                                          std::chrono::duration<double>(timeout)));
-    if (!worker) {
-      return finish_lane(job, crashed(job.lane, "cannot start a worker: " + worker.error().to_string()));
-    }
-    running.push_back({job, folder, timeout, std::move(*worker)});
+    fs::create_directories(slot.folder, error);
+    const nlohmann::json request = {
+        {"scene", files[job.scene].string()}, {"lane", lane_name(job.lane)}, {"result", slot.folder.string()}};
+    slot.process->forget_status();
+    slot.job_started = ChildProcess::Clock::now();
+    slot.process->set_deadline(slot.job_started + limit);
+    slot.timeout_seconds = timeout;
+    slot.job = job;
+    ++busy;
+    ++totals.renders;
+    // A worker that ended between renders has not read this one: its poll says so at once.
+    slot.process->send(request.dump());
   };
-  auto collect = [&](RunningJob& finished) {
-    SceneInWork& scene = scenes[finished.job.scene];
-    const ChildProcess& worker = finished.worker;
-    scene.output += worker.output();
+  // The render `slot` was doing has ended, done or not; its worker stays for the next when done.
+  auto collect = [&](WorkerSlot& slot, bool rendered) {
+    const Job job = *slot.job;
+    SceneInWork& scene = scenes[job.scene];
+    ChildProcess& worker = *slot.process;
+    const std::string written = worker.take_output();
+    scene.output += written;
     std::optional<LaneResult> result;
-    if (!worker.exit_status().timed_out && worker.exit_status().signal == 0 && worker.exit_status().code == 0) {
-      const auto text = read_file(finished.folder / "lane.json");
+    if (rendered) {
+      const auto text = read_file(slot.folder / "lane.json");
       const nlohmann::json json = text ? nlohmann::json::parse(*text, nullptr, false) : nlohmann::json();
       auto parsed = lane_from_json(json.is_object() ? json.value("result", nlohmann::json()) : json);
       if (json.is_object()) {
@@ -199,16 +217,20 @@ WorkerTotals check_in_workers(SceneChecker& checker, const SceneWorkers& workers
       if (parsed) {
         result = std::move(*parsed);
       } else {
-        result = crashed(finished.job.lane, "the worker's result cannot be read: " + parsed.error().to_string());
+        result = crashed(job.lane, "the worker's result cannot be read: " + parsed.error().to_string());
       }
-      if (const auto bytes = read_file(finished.folder / "image.f32"))
-        if (auto image = float_image_from(*bytes)) scene.checked.images.emplace(finished.job.lane, std::move(*image));
+      if (const auto bytes = read_file(slot.folder / "image.f32"))
+        if (auto image = float_image_from(*bytes)) scene.checked.images.emplace(job.lane, std::move(*image));
     } else {
-      result = ended_without_result(finished.job.lane, worker, finished.timeout_seconds);
+      const double seconds = std::chrono::duration<double>(ChildProcess::Clock::now() - slot.job_started).count();
+      result = ended_without_result(job.lane, worker, slot.timeout_seconds, seconds, written);
+      slot.process.reset();
     }
     std::error_code ignored;
-    fs::remove_all(finished.folder, ignored);
-    finish_lane(finished.job, std::move(*result));
+    fs::remove_all(slot.folder, ignored);
+    slot.job.reset();
+    --busy;
+    finish_lane(job, std::move(*result));
   };
   // Concludes and reports, in the order of `files`, every scene whose lanes are all in.
   auto report_ready = [&] {
@@ -221,45 +243,52 @@ WorkerTotals check_in_workers(SceneChecker& checker, const SceneWorkers& workers
     }
   };
 
-  const unsigned jobs = std::max(1u, workers.jobs);
   while (next_to_report < files.size()) {
     // Prepare scenes only as far as there is work to queue: the first workers start at once.
-    while (running.size() + queued.size() < jobs && next_to_prepare < files.size()) {
+    while (busy + queued.size() < slots.size() && next_to_prepare < files.size()) {
       SceneInWork& scene = scenes[next_to_prepare];
       scene.checked = checker.prepare(files[next_to_prepare], lanes);
       scene.waiting = scene.checked.lanes.size();
       for (Lane lane : scene.checked.lanes) queued.push_back({next_to_prepare, lane});
       ++next_to_prepare;
     }
-    while (running.size() < jobs && !queued.empty()) {
-      start(queued.front());
+    for (WorkerSlot& slot : slots) {
+      if (slot.job || queued.empty()) continue;
+      const Job job = queued.front();
       queued.pop_front();
+      start(slot, job);
     }
     report_ready();
-    if (running.empty()) continue;
+    if (busy == 0) continue;
     std::vector<ChildProcess*> children;
-    for (RunningJob& job : running) children.push_back(&job.worker);
+    for (WorkerSlot& slot : slots)
+      if (slot.job) children.push_back(&*slot.process);
     wait_for_any(children, 1000ms);
-    for (auto it = running.begin(); it != running.end();) {
-      if (it->worker.poll()) {
-        collect(*it);
-        it = running.erase(it);
-      } else {
-        ++it;
-      }
+    for (WorkerSlot& slot : slots) {
+      if (!slot.job) continue;
+      const bool ended = slot.process->poll();  // reads its pipes; kills it at its deadline
+      const std::vector<std::string> lines = slot.process->take_status_lines();
+      const bool rendered =
+          std::any_of(lines.begin(), lines.end(), [](const std::string& line) { return line.starts_with("done "); });
+      if (rendered || ended) collect(slot, rendered);
     }
     report_ready();
   }
   return totals;
 }
 
+void report_worker_status(const std::string& line) {
+  const std::string text = line + "\n";
+  // Nobody listening (a worker started by hand) is no reason to stop.
+  [[maybe_unused]] const ssize_t written = ::write(kChildStatusFd, text.data(), text.size());
+}
+
 int run_lane_worker(SceneChecker& checker, const fs::path& scene_file, Lane lane, const fs::path& result_dir) {
-  auto status = [](const std::string& where) {
-    const std::string line = where + "\n";
-    // Nobody listening (a worker started by hand) is no reason to stop.
-    [[maybe_unused]] const ssize_t written = ::write(kChildStatusFd, line.data(), line.size());
-  };
+  const auto status = report_worker_status;
   status("while loading the scene");
+  // A worker may serve many renders: what it compiled for this one is the counters' growth.
+  const VariantCompiler& compiler = checker.compiler();
+  const size_t compiled_before = compiler.compiled(), cached_before = compiler.cached();
   CheckedScene checked = checker.prepare(scene_file, {lane});
   LaneResult result;
   if (checked.lanes.empty()) {
@@ -274,11 +303,10 @@ int run_lane_worker(SceneChecker& checker, const fs::path& scene_file, Lane lane
   }
   if (auto image = checked.images.find(lane); image != checked.images.end())
     if (!write_file_atomically(result_dir / "image.f32", float_image_bytes(image->second))) return 3;
-  const VariantCompiler& compiler = checker.compiler();
   const nlohmann::json handover = {
       {"result", lane_to_json(result)},
-      {"compiled", compiler.compiled()},
-      {"cached", compiler.cached()},
+      {"compiled", compiler.compiled() - compiled_before},
+      {"cached", compiler.cached() - cached_before},
       {"cache_write_error", compiler.cache_write_error() ? compiler.cache_write_error()->to_string() : ""},
       {"cache_damage", compiler.cache_damage() ? compiler.cache_damage()->to_string() : ""}};
   if (!write_file_atomically(result_dir / "lane.json", handover.dump())) return 3;

@@ -5,10 +5,14 @@
 // with the others. Workers are also how a run uses every core: up to `jobs` run at once, and the
 // results, images and their order do not depend on how many.
 //
-// A worker is this program again (SceneWorkers::command names how to start it); it renders one
-// lane of one scene and hands its result over in a folder: lane.json (the lane's result as
-// harness/gate/result_json.h writes it, and what it compiled) and image.f32 (the lane's float image, exactly). Its status lines ("while compiling", "in pass
-// bokeh (render 1 of 2)") come on kChildStatusFd (base/subprocess.h).
+// A worker is this program again (SceneWorkers::command names how to start it, with --serve): it
+// renders one lane of one scene after another as its supervisor asks on its standard input, and
+// hands each result over in a folder: lane.json (the lane's result as harness/gate/result_json.h
+// writes it, and what it compiled) and image.f32 (the lane's float image, exactly). Its status
+// lines ("while compiling", "in pass bokeh (render 1 of 2)", then "done CODE") come on
+// kChildStatusFd (base/subprocess.h). A worker lives as long as its renders end well: starting
+// one costs as much as a render, and a long-lived one keeps its driver's compiled shaders; one
+// that crashed or was stopped at its time limit is replaced for the next render.
 #pragma once
 
 #include <filesystem>
@@ -40,6 +44,8 @@ struct SceneWorkers {
 
 // What the workers compiled, over the whole run.
 struct WorkerTotals {
+  size_t renders = 0;            // scene-and-lane renders handed to workers
+  size_t workers_started = 0;    // worker processes it took: one per job slot, and one after each that ended
   size_t compiled = 0;           // shader variants compiled
   size_t cached = 0;             // found in the cache
   std::string cache_write_error;  // the first one, when a worker could not write the cache
@@ -58,6 +64,9 @@ WorkerTotals check_in_workers(SceneChecker& checker, const SceneWorkers& workers
 // (whatever its verdict), 3 when it could not be.
 int run_lane_worker(SceneChecker& checker, const std::filesystem::path& scene_file, Lane lane,
                     const std::filesystem::path& result_dir);
+
+// A status line from a worker to its supervisor (on kChildStatusFd).
+void report_worker_status(const std::string& line);
 
 // The number of llvmpipe/lavapipe threads each of `jobs` workers should use on `cores` cores:
 // together they use the cores once, each at least one.

@@ -86,6 +86,20 @@ TEST_F(Workers, ARenderThatHangsIsATimeoutInItsPassAndTheOtherScenesPass) {
   EXPECT_NE(read_text(root_ / "report/index.html").find("timeout after 5 s"), std::string::npos);
 }
 
+// One job at a time: the first worker renders the slow scene (on gl alone) until it is stopped
+// at its limit, and a second one, started in its place, renders the toon on gl and then on vk.
+TEST_F(Workers, AWorkerServesRenderAfterRenderAndOneStoppedAtItsLimitIsReplaced) {
+  add_slow_scene();
+  set_scene_timeout(root_ / "scenes/slow.toml",
+                    "lanes = [\"gl\"]\ntimeout = 5\ntimeout_reason = \"a test of a render that hangs\"\n");
+  Outcome outcome = run("--lane gl,vk -j 1");
+  EXPECT_EQ(outcome.exit_code, 1) << outcome.output;
+  EXPECT_NE(outcome.output.find("slow on gl: fail - timeout after 5 s"), std::string::npos) << outcome.output;
+  EXPECT_NE(outcome.output.find(std::string(kScene) + " on vk: pass"), std::string::npos) << outcome.output;
+  EXPECT_NE(outcome.output.find("1 of 2 scenes passed"), std::string::npos) << outcome.output;
+  EXPECT_NE(outcome.output.find("; 3 renders in 2 workers;"), std::string::npos) << outcome.output;
+}
+
 TEST_F(Workers, TheRunsTimeoutStopsARenderAndAScenesOwnNeedsItsReason) {
   add_slow_scene();
   Outcome outcome = run("slow --lane gl --timeout 5");
@@ -102,13 +116,14 @@ TEST_F(Workers, TheRunsTimeoutStopsARenderAndAScenesOwnNeedsItsReason) {
 TEST_F(Workers, AWorkerThatDiesIsACrashNamingTheSignalAndWhereItWas) {
   add_slow_scene();
   // The run in the background; once the slow scene's worker has been drawing for a while, it is
-  // sent SIGSEGV, as a driver's fault would end it ("worke[r]" matches the worker and not this
-  // shell, whose own command line holds the pattern).
+  // sent SIGSEGV, as a driver's fault would end it. The worker is known by this test's report
+  // folder on its command line ("worke[r]" matches the worker and not this shell, whose own
+  // command line holds the pattern).
   const std::string out = (root_ / "out.txt").string();
   const std::string command =
       "'" + std::string(xshade_binary()) + "' run slow" + folders() + " --report '" + (root_ / "report").string() +
       "' --lane gl --timeout 600 > '" + out + "' 2>&1 & run=$!; pid=; for i in $(seq 600); do pid=$(pgrep -f -- '" +
-      "worke[r] .*--scene " + (root_ / "scenes/slow.toml").string() + "'); [ -n \"$pid\" ] && break; sleep 0.1; done; " +
+      "worke[r] .*--report " + (root_ / "report").string() + "'); [ -n \"$pid\" ] && break; sleep 0.1; done; " +
       "sleep 2; kill -SEGV $pid; wait $run; echo \"exit $?\" >> '" + out + "'";
   ASSERT_EQ(std::system(command.c_str()), 0);
   const std::string output = read_text(out);
