@@ -24,13 +24,20 @@ int run_worker(const WorkerOptions& options) {
   }
   std::optional<harness::ShaderCache> cache;
   if (!options.cache_dir.empty()) cache.emplace(options.cache_dir, harness::compiler_identity());
+  // The drivers' own shader cache lives in xshade's, in a folder of this build's: Mesa's keys
+  // already tell its builds and LLVM's apart, and this one tells xshade's.
+  const std::filesystem::path driver_cache =
+      options.cache_dir.empty() ? std::filesystem::path()
+                                : options.cache_dir / ("driver-" + harness::compiler_identity().substr(0, 16));
   harness::VariantCompiler compiler(harness::ShaderSearchPath(options.shader_folders), cache ? &*cache : nullptr);
   std::optional<harness::GoldenStore> goldens;
   if (!options.golden.empty()) goldens.emplace(options.golden);
   harness::SceneChecker checker(compiler,
                                 {.report_dir = options.report_dir,
                                  .goldens = goldens ? &*goldens : nullptr,
-                                 .backend = {.validation = options.validation, .gl_platform = *platform},
+                                 .backend = {.validation = options.validation,
+                                             .gl_platform = *platform,
+                                             .driver_cache = driver_cache},
                                  .pass_images = options.pass_images,
                                  .half_emulation = options.half_emulation},
                                 [](const std::string& line) { fmt::print("{}\n", line); });

@@ -26,6 +26,7 @@
 #include "harness/backend/guarded.h"
 #include "harness/backend/handle_table.h"
 #include "harness/backend/pass_resolution.h"
+#include "harness/gl/compile_messages.h"
 #include "harness/gl/gl_functions.h"
 #include "harness/gl/gl_support.h"
 
@@ -115,7 +116,7 @@ class GlBackend final : public Backend {
  public:
   ~GlBackend() override;
 
-  Result<void> init(std::unique_ptr<GlContext> context);
+  Result<void> init(std::unique_ptr<GlContext> context, std::filesystem::path compile_messages);
 
   const DriverInfo& driver_info() const override { return info_; }
   Result<TargetHandle> create_target(const TargetDesc& desc) override;
@@ -168,6 +169,7 @@ class GlBackend final : public Backend {
   // Declaration order is teardown order reversed: GL objects go first, then the context (which
   // closes its library); the log outlives the context that writes into it.
   std::unique_ptr<MessageLog> log_ = std::make_unique<MessageLog>();
+  CompileMessages compile_messages_{{}};
   std::unique_ptr<GlContext> context_;
   gl::Functions gl_;
   DriverInfo info_;
@@ -236,8 +238,9 @@ Result<T> GlBackend::on_context(const std::string& what, F&& body) {
   });
 }
 
-Result<void> GlBackend::init(std::unique_ptr<GlContext> context) {
+Result<void> GlBackend::init(std::unique_ptr<GlContext> context, std::filesystem::path compile_messages) {
   context_ = std::move(context);
+  compile_messages_ = CompileMessages(std::move(compile_messages));
   if (!make_current())
     return fail(fmt::format("{} could not make a new 4.5 core context current", context_->route()));
 
@@ -646,10 +649,29 @@ Result<ProgramHandle> GlBackend::create_program(const ProgramDesc& desc) {
                                 what, slot.binding, it->second, slot.name));
     }
 
+    // Each step's messages, or (when Mesa's shader cache skipped the step) those it gave before.
+    const std::string driver = info_.renderer + '\n' + info_.driver_version;
+    const auto held_count = [&] {
+      std::lock_guard lock(log_->mutex);
+      return log_->held->size();
+    };
+    const auto settle = [&](size_t from, const std::string& source) {
+      std::lock_guard lock(log_->mutex);
+      std::vector<std::string>& held = *log_->held;
+      std::vector<std::string> step(held.begin() + std::ptrdiff_t(from), held.end());
+      held.resize(from);
+      for (std::string& message : compile_messages_.settle(driver, source, std::move(step)))
+        held.push_back(std::move(message));
+    };
+    size_t before = held_count();
     auto vertex = compile(desc.vertex, GL_VERTEX_SHADER, "vertex", what);
     if (!vertex) return fail(vertex.error());
+    settle(before, desc.vertex.glsl);
+    before = held_count();
     auto fragment = compile(desc.fragment, GL_FRAGMENT_SHADER, "fragment", what);
     if (!fragment) return fail(fragment.error());
+    settle(before, desc.fragment.glsl);
+    before = held_count();
 
     auto program = std::make_unique<Program>();
     program->name = desc.name;
@@ -683,6 +705,7 @@ Result<ProgramHandle> GlBackend::create_program(const ProgramDesc& desc) {
         error.diagnostics.push_back(Diagnostic{Severity::Error, {}, "the linker gave no log"});
       return fail(std::move(error));
     }
+    settle(before, desc.vertex.glsl + '\0' + desc.fragment.glsl);  // the link's own
 
     if (auto checked = gl_support::check_interface(gl_, id, program->layout, program->fullscreen, program->zero_inputs, what);
         !checked)
@@ -809,12 +832,13 @@ Result<FloatImage> GlBackend::read_color(TargetHandle handle) {
 
 }  // namespace
 
-Result<std::unique_ptr<Backend>> create_gl_backend(std::unique_ptr<GlContext> context) {
+Result<std::unique_ptr<Backend>> create_gl_backend(std::unique_ptr<GlContext> context,
+                                                   const std::filesystem::path& compile_messages) {
   if (context == nullptr) return fail("creating the OpenGL backend: no context");
   const std::string route(context->route());
   try {
     auto backend = std::make_unique<GlBackend>();
-    if (auto ok = backend->init(std::move(context)); !ok) return fail(ok.error());
+    if (auto ok = backend->init(std::move(context), compile_messages); !ok) return fail(ok.error());
     return std::unique_ptr<Backend>(std::move(backend));
   } catch (const std::exception& e) {
     return fail(fmt::format("creating the OpenGL {} backend: {}", route, e.what()));
@@ -826,7 +850,7 @@ Result<std::unique_ptr<Backend>> create_gl_backend(std::unique_ptr<GlContext> co
 Result<std::unique_ptr<Backend>> create_gl_backend(const GlContextOptions& options) {
   auto context = create_gl_context(options);
   if (!context) return fail(context.error());
-  return create_gl_backend(std::move(*context));
+  return create_gl_backend(std::move(*context), options.compile_messages);
 }
 
 }  // namespace xshade::harness

@@ -14,7 +14,9 @@ namespace xshade::harness {
 // 4.5 core context can be made.
 Result<std::unique_ptr<Backend>> create_gl_backend(const GlContextOptions& options = {});
 
-// The backend on a context made elsewhere; it owns the context from now on.
-Result<std::unique_ptr<Backend>> create_gl_backend(std::unique_ptr<GlContext> context);
+// The backend on a context made elsewhere; it owns the context from now on. `compile_messages`
+// as in GlContextOptions.
+Result<std::unique_ptr<Backend>> create_gl_backend(std::unique_ptr<GlContext> context,
+                                                   const std::filesystem::path& compile_messages = {});
 
 }  // namespace xshade::harness

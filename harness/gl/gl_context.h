@@ -13,6 +13,7 @@
 #pragma once
 
 #include <cstdint>
+#include <filesystem>
 #include <memory>
 #include <optional>
 #include <string>
@@ -56,7 +57,8 @@ class GlContext {
   static void forget_current();
   // Mesa's on-disk shader cache skips compiling shaders it has seen, and with the compile go its
   // warnings: results would depend on earlier runs. Called before a route's first context; a
-  // user's own setting is kept.
+  // setting already made is kept (the user's, or create_backend's when it gives the cache a
+  // folder and keeps the warnings, harness/render/lanes.h).
   static void disable_shader_cache();
 
  private:
@@ -69,6 +71,9 @@ struct GlContextOptions {
   // set, else libOSMesa.so.8 / libEGL.so.1.
   std::string osmesa_library{};
   std::string egl_library{};
+  // Where the backend keeps the compile messages Mesa's shader cache would lose
+  // (compile_messages.h); empty when the cache is off.
+  std::filesystem::path compile_messages{};
 };
 
 // A context by the route asked for. Auto tries OSMesa, and EGL when OSMesa's library does not
