@@ -30,6 +30,8 @@ int run_worker(const WorkerOptions& options) {
       options.cache_dir.empty() ? std::filesystem::path()
                                 : options.cache_dir / ("driver-" + harness::compiler_identity().substr(0, 16));
   harness::VariantCompiler compiler(harness::ShaderSearchPath(options.shader_folders), cache ? &*cache : nullptr);
+  // Environments: built once in this worker, and with a cache once between runs.
+  harness::EnvironmentCache environments(options.cache_dir, harness::compiler_identity());
   std::optional<harness::GoldenStore> goldens;
   if (!options.golden.empty()) goldens.emplace(options.golden);
   harness::SceneChecker checker(compiler,
@@ -39,7 +41,8 @@ int run_worker(const WorkerOptions& options) {
                                              .gl_platform = *platform,
                                              .driver_cache = driver_cache},
                                  .pass_images = options.pass_images,
-                                 .half_emulation = options.half_emulation},
+                                 .half_emulation = options.half_emulation,
+                                 .environments = &environments},
                                 [](const std::string& line) { fmt::print("{}\n", line); });
   const auto render = [&](const std::string& scene, const std::string& lane_name, const std::string& result) {
     auto lane = harness::parse_lane(lane_name);

@@ -133,9 +133,15 @@ void SceneChecker::check_lane(Lane lane, CheckedScene& checked, const Status& st
     return finish(Verdict::Skipped, "half emulation rewrites the GLSL xshade emits; this lane compiles the source with glslang");
   if (!checked.environment) {
     at("while building the environment");
-    auto environment = build_environment(scene.environment);
-    if (!environment) return finish(Verdict::Error, environment.error().to_string());
-    checked.environment = std::make_shared<const Environment>(std::move(*environment));
+    if (options_.environments) {
+      auto environment = options_.environments->get(scene.environment);
+      if (!environment) return finish(Verdict::Error, environment.error().to_string());
+      checked.environment = *environment;
+    } else {
+      auto environment = build_environment(scene.environment);
+      if (!environment) return finish(Verdict::Error, environment.error().to_string());
+      checked.environment = std::make_shared<const Environment>(std::move(*environment));
+    }
   }
   at("while compiling");
   auto compiled = compiler_.compile_plan(plan, lane, options_.half_emulation);

@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "harness/gate/golden_store.h"
+#include "harness/render/environment_cache.h"
 #include "harness/render/lanes.h"
 #include "harness/gate/run_results.h"
 #include "harness/scene/scene.h"
@@ -31,6 +32,9 @@ struct SceneCheckOptions {
   // goldens are fp32 renders, so the golden layer is skipped; finiteness, determinism and the
   // lanes against each other still gate.
   bool half_emulation = false;
+  // Where environments come from, built once per process (and kept between runs with a folder);
+  // null: each scene builds its own.
+  EnvironmentCache* environments = nullptr;
 };
 
 struct Plan;

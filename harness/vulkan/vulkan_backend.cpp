@@ -5,9 +5,12 @@
 // layout) and changed with synchronization2 barriers; drawing uses dynamic rendering.
 #include "harness/vulkan/vulkan_backend.h"
 
+#include <dlfcn.h>
+
 #include <algorithm>
 #include <array>
 #include <bit>
+#include <cstdlib>
 #include <cstring>
 #include <functional>
 #include <map>
@@ -150,7 +153,24 @@ class VulkanBackend final : public Backend {
   BackendObjects<Target, Mesh, Image, Program> objects_;
 };
 
+// Once a process: the loader sees lavapipe alone (unless the user chose drivers: the lane would
+// ignore every GPU anyway, and loading each installed driver, two of them with their own LLVM,
+// cost some 25 ms an instance), and the loader and lavapipe stay loaded after a backend lets
+// them go: a worker makes a backend for every scene it renders, and the loader unloaded both at
+// each instance's end, to load and relocate them again for the next.
+void keep_lavapipe_loaded() {
+  static const bool kept = [] {
+    if (!std::getenv("VK_LOADER_DRIVERS_SELECT") && !std::getenv("VK_DRIVER_FILES") && !std::getenv("VK_ICD_FILENAMES"))
+      setenv("VK_LOADER_DRIVERS_SELECT", "*lvp*", 0);
+    for (const char* library : {"libvulkan.so.1", "libvulkan_lvp.so"})
+      dlopen(library, RTLD_NOW | RTLD_NODELETE);  // a missing one is reported where it is used
+    return true;
+  }();
+  (void)kept;
+}
+
 Result<void> VulkanBackend::init(const VulkanOptions& options) {
+  keep_lavapipe_loaded();
   try {
     context_ = std::make_unique<vk::raii::Context>();
   } catch (const std::exception& e) {
