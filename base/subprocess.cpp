@@ -10,7 +10,10 @@
 
 #include <algorithm>
 #include <cerrno>
+#include <cstdio>
 #include <cstring>
+#include <filesystem>
+#include <iterator>
 
 #include "base/file_io.h"
 
@@ -73,9 +76,8 @@ std::string describe_signal(int signal) {
   return text;
 }
 
-Result<ChildProcess> ChildProcess::start(const std::vector<std::string>& argv, const std::vector<std::string>& environment,
-                                         Clock::duration time_limit) {
-  if (argv.empty()) return fail(ErrorKind::Internal, "a child process needs a program to run");
+Result<ChildProcess> ChildProcess::start_with(const std::function<pid_t(const int fds[4], int& error)>& spawn,
+                                              const std::string& what, Clock::duration time_limit) {
   int output[2], status[2], input[2];
   if (!make_pipe(output)) return fail(ErrorKind::Backend, std::string("cannot make a pipe: ") + std::strerror(errno));
   if (!make_pipe(status)) {
@@ -90,29 +92,17 @@ Result<ChildProcess> ChildProcess::start(const std::vector<std::string>& argv, c
   // Our end of the child's input blocks (a request is a line, written whole); make_pipe left
   // the reading end, which is the child's, non-blocking, and the child must block on it.
   fcntl(input[0], F_SETFL, 0);
-  posix_spawn_file_actions_t actions;
-  posix_spawn_file_actions_init(&actions);
-  posix_spawn_file_actions_adddup2(&actions, input[0], 0);
-  posix_spawn_file_actions_adddup2(&actions, output[1], 1);
-  posix_spawn_file_actions_adddup2(&actions, output[1], 2);
-  posix_spawn_file_actions_adddup2(&actions, status[1], kChildStatusFd);
-
-  std::vector<std::string> arguments = argv;
-  std::vector<std::string> variables = child_environment(environment);
-  std::vector<char*> argument_pointers = pointers(arguments);
-  std::vector<char*> variable_pointers = pointers(variables);
-  pid_t pid = -1;
-  const int spawned =
-      posix_spawn(&pid, argv[0].c_str(), &actions, nullptr, argument_pointers.data(), variable_pointers.data());
-  posix_spawn_file_actions_destroy(&actions);
+  const int child_ends[4] = {input[0], output[1], output[1], status[1]};
+  int error = 0;
+  const pid_t pid = spawn(child_ends, error);
   close(output[1]);
   close(status[1]);
   close(input[0]);
-  if (spawned != 0) {
+  if (pid < 0) {
     close(output[0]);
     close(status[0]);
     close(input[1]);
-    return fail(ErrorKind::Backend, "cannot start " + argv[0] + ": " + std::strerror(spawned));
+    return fail(ErrorKind::Backend, "cannot start " + what + ": " + std::strerror(error));
   }
   ChildProcess child;
   child.pid_ = pid;
@@ -122,6 +112,76 @@ Result<ChildProcess> ChildProcess::start(const std::vector<std::string>& argv, c
   child.started_ = Clock::now();
   child.deadline_ = child.started_ + time_limit;
   return child;
+}
+
+Result<ChildProcess> ChildProcess::start(const std::vector<std::string>& argv, const std::vector<std::string>& environment,
+                                         Clock::duration time_limit) {
+  if (argv.empty()) return fail(ErrorKind::Internal, "a child process needs a program to run");
+  return start_with(
+      [&](const int fds[4], int& error) -> pid_t {
+        posix_spawn_file_actions_t actions;
+        posix_spawn_file_actions_init(&actions);
+        for (int target = 0; target < 4; ++target) posix_spawn_file_actions_adddup2(&actions, fds[target], target);
+        std::vector<std::string> arguments = argv;
+        std::vector<std::string> variables = child_environment(environment);
+        std::vector<char*> argument_pointers = pointers(arguments);
+        std::vector<char*> variable_pointers = pointers(variables);
+        pid_t pid = -1;
+        error = posix_spawn(&pid, argv[0].c_str(), &actions, nullptr, argument_pointers.data(), variable_pointers.data());
+        posix_spawn_file_actions_destroy(&actions);
+        return error == 0 ? pid : -1;
+      },
+      argv[0], time_limit);
+}
+
+namespace {
+
+long thread_count() {
+  std::error_code error;
+  const long count = std::distance(std::filesystem::directory_iterator("/proc/self/task", error),
+                                   std::filesystem::directory_iterator());
+  return error ? -1 : count;
+}
+
+long startup_threads = 1;
+
+}  // namespace
+
+void remember_startup_threads() { startup_threads = std::max(1L, thread_count()); }
+
+Result<ChildProcess> ChildProcess::fork(const std::function<int()>& body, const std::vector<std::string>& environment,
+                                        Clock::duration time_limit) {
+  const long threads = thread_count();
+  if (threads < 1 || threads > startup_threads)
+    return fail(ErrorKind::Internal, "cannot fork a child: this process runs " + std::to_string(threads) +
+                                         " threads, more than the " + std::to_string(startup_threads) +
+                                         " it started with");
+  // What the C library still holds for our own output would be written twice, by us and by it.
+  std::fflush(nullptr);
+  return start_with(
+      [&](const int fds[4], int& failure) -> pid_t {
+        const pid_t pid = ::fork();
+        if (pid < 0) failure = errno;
+        if (pid != 0) return pid;
+        // The child: its ends of the pipes as 0 to 3, nothing else of ours open.
+        for (int target = 0; target < 4; ++target)
+          if (dup2(fds[target], target) < 0) _exit(3);
+        close_range(4, ~0u, 0);
+        for (const std::string& entry : environment) {
+          const size_t equals = entry.find('=');
+          setenv(entry.substr(0, equals).c_str(), equals == std::string::npos ? "" : entry.c_str() + equals + 1, 1);
+        }
+        // Nothing may leave `body` but its exit: an exception unwinding into the parent's frames
+        // would go on as a second parent.
+        int code = 3;
+        try {
+          code = body();
+        } catch (...) {
+        }
+        std::fflush(nullptr);
+        _exit(code);  // our own exit handlers and destructors are the parent's to run
+      },
+      "a worker", time_limit);
 }
 
 ChildProcess::ChildProcess(ChildProcess&& other) noexcept { *this = std::move(other); }

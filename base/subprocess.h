@@ -9,6 +9,7 @@
 #include <sys/types.h>
 
 #include <chrono>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -36,6 +37,15 @@ class ChildProcess {
   // `environment` set over it. It is killed at `time_limit` from now.
   static Result<ChildProcess> start(const std::vector<std::string>& argv, const std::vector<std::string>& environment,
                                     Clock::duration time_limit);
+  // The same, but the child is a fork of this process that runs `body` and exits with what it
+  // returns: no program is loaded again (xshade's 260 shared libraries take a third of a second
+  // to load). fork copies the calling thread alone, and a lock another thread held stays held in
+  // the child, so this is only for a process running no thread of its own: it fails, and the
+  // caller starts a program instead, when the process has more threads than it had when main
+  // began (remember_startup_threads) -- those are the idle pools some libraries start as they
+  // load (log4cplus, which OpenImageIO's formats bring, starts four), which xshade gives no work.
+  static Result<ChildProcess> fork(const std::function<int()>& body, const std::vector<std::string>& environment,
+                                   Clock::duration time_limit);
 
   ChildProcess(ChildProcess&& other) noexcept;
   ChildProcess& operator=(ChildProcess&& other) noexcept;
@@ -75,6 +85,10 @@ class ChildProcess {
 
  private:
   ChildProcess() = default;
+  // Either way of starting: `spawn` makes the child from its ends of the pipes (0 input, 1 and 2
+  // output, kChildStatusFd status) and returns its pid, or -1 with errno's reason in `error`.
+  static Result<ChildProcess> start_with(const std::function<pid_t(const int fds[4], int& error)>& spawn,
+                                         const std::string& what, Clock::duration time_limit);
   void read_pipes();
   void close_pipes();
   void release();
@@ -94,6 +108,9 @@ class ChildProcess {
   Clock::time_point deadline_{};
   Clock::time_point ended_{};
 };
+
+// Called first thing in main: the threads the process has before any code of its own ran.
+void remember_startup_threads();
 
 // Waits until one of `children` writes, ends or reaches its deadline, or `longest` has passed.
 void wait_for_any(const std::vector<ChildProcess*>& children, std::chrono::milliseconds longest);

@@ -3,6 +3,11 @@
 #include <signal.h>
 
 #include <cerrno>
+#include <cstdio>
+#include <cstdlib>
+#include <future>
+#include <stdexcept>
+#include <thread>
 
 #include <gtest/gtest.h>
 
@@ -79,6 +84,33 @@ TEST(ChildProcess, ServesRequestsEachWithItsOutputStatusAndDeadline) {
   EXPECT_TRUE(child.exit_status().timed_out);
   EXPECT_EQ(child.take_output(), "answer slow\n");
   EXPECT_FALSE(child.send("after")) << "an ended child takes no request";
+}
+
+// A child forked to run a function: its output and code like a program's; an exception ends it
+// (exit 3) rather than unwinding into our frames; and it is refused while we run a thread.
+TEST(ChildProcess, AForkedChildRunsItsFunctionAndNothingElseOfOurs) {
+  remember_startup_threads();
+  auto child = ChildProcess::fork(
+      [] {
+        std::printf("forked %s\n", std::getenv("XSHADE_FORK_TEST"));
+        return 7;
+      },
+      {"XSHADE_FORK_TEST=yes"}, 60s);
+  ASSERT_TRUE(child) << child.error().to_string();
+  finish(*child);
+  EXPECT_EQ(child->exit_status().code, 7);
+  EXPECT_EQ(child->output(), "forked yes\n");
+
+  auto throwing = ChildProcess::fork([]() -> int { throw std::runtime_error("no"); }, {}, 60s);
+  ASSERT_TRUE(throwing);
+  finish(*throwing);
+  EXPECT_EQ(throwing->exit_status().code, 3);
+
+  std::promise<void> release;
+  std::thread busy([&] { release.get_future().wait(); });
+  EXPECT_FALSE(ChildProcess::fork([] { return 0; }, {}, 60s)) << "a thread of ours is running";
+  release.set_value();
+  busy.join();
 }
 
 TEST(ChildProcess, SetsTheGivenEnvironmentOverOurs) {

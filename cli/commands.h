@@ -3,6 +3,7 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
@@ -18,6 +19,11 @@ enum ExitCode : int {
   kBadInput = 2,      // bad usage, a bad shader or scene file
   kBackendError = 3,  // a driver or lane could not run, or an internal error
 };
+
+// Runs a verb: errors travel as values, and an exception that still escapes (an allocation that
+// failed, a library that throws) is reported as a crash of xshade's (exit 3) naming the verb,
+// never an abort. main runs every verb so, and a forked worker its renders.
+int guarded_verb(const std::string& verb, const std::function<int()>& body);
 
 struct LaneSelection {
   std::vector<std::string> lanes;  // empty = every lane

@@ -9,6 +9,7 @@
 #include <optional>
 
 #include "base/spelling.h"
+#include "base/subprocess.h"
 
 #include "cli/commands.h"
 
@@ -371,18 +372,8 @@ static int run_command_line(int argc, char** argv) {
   return kBadInput;
 }
 
-// Errors travel as values; an exception that still escapes a verb (an allocation that failed,
-// a library that throws) is reported as a crash of xshade's (exit 3), never an abort.
 int main(int argc, char** argv) {
-  const std::string verb = argc > 1 && argv[1][0] != '-' ? std::string(" ") + argv[1] : std::string();
-  try {
-    return run_command_line(argc, argv);
-  } catch (const std::bad_alloc&) {
-    std::fprintf(stderr, "xshade%s: out of memory (an allocation failed); nothing more was done\n", verb.c_str());
-  } catch (const std::exception& error) {
-    std::fprintf(stderr, "xshade%s: internal error: %s\n", verb.c_str(), error.what());
-  } catch (...) {
-    std::fprintf(stderr, "xshade%s: internal error: an unknown exception\n", verb.c_str());
-  }
-  return xshade::cli::kBackendError;
+  xshade::remember_startup_threads();  // workers are forked only while xshade runs no thread of its own
+  const std::string verb = argc > 1 && argv[1][0] != '-' ? std::string(argv[1]) : std::string();
+  return xshade::cli::guarded_verb(verb, [&] { return run_command_line(argc, argv); });
 }

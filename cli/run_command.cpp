@@ -108,11 +108,20 @@ int run_run(const RunOptions& options) {
         fmt::print("[{}/{}] {}\n", done + 1, files->size(), line);
         std::fflush(stdout);
       });
+  std::vector<harness::ViewerPage> viewers;
   auto record = [&](harness::CheckedScene&& checked) {
     if (options.plan_only && checked.result.message.empty()) fmt::print("{}", checked.result.plan);
     if (!checked.result.message.empty())
       fmt::print(stderr, "xshade run: {}: {}\n", checked.result.scene, checked.result.message);
     print_lane_details(checked.result);
+    // The page's viewer data now, from the renders in hand, while the workers go on.
+    if (!options.plan_only) {
+      std::map<std::string, const harness::FloatImage*> renders;
+      for (const harness::LaneResult& lane : checked.result.lanes)
+        if (auto id = harness::parse_lane(lane.lane); id && checked.images.count(*id))
+          renders[lane.image_exr] = &checked.images.at(*id);
+      viewers.push_back(harness::viewer_page(checked.result, options.report_dir, renders));
+    }
     results.scenes.push_back(std::move(checked.result));
     ++done;
   };
@@ -137,7 +146,7 @@ int run_run(const RunOptions& options) {
   for (const harness::SceneResult& scene : results.scenes) verdict = harness::worst(verdict, scene.verdict);
   if (options.plan_only) return harness::exit_code(verdict);
 
-  if (auto written = harness::write_reports(results, options.report_dir); !written) {
+  if (auto written = harness::write_reports(results, options.report_dir, &viewers); !written) {
     fmt::print(stderr, "xshade run: {}\n", written.error().to_string());
     verdict = harness::worst(verdict, harness::Verdict::Crash);
   }

@@ -2,7 +2,10 @@
 
 #include <unistd.h>
 
+#include <cstdio>
 #include <cstdlib>
+#include <exception>
+#include <new>
 
 #include "base/subprocess.h"
 
@@ -12,6 +15,20 @@ std::string this_program() {
   std::error_code error;
   const std::filesystem::path self = std::filesystem::read_symlink("/proc/self/exe", error);
   return error ? std::string("xshade") : self.string();
+}
+
+int guarded_verb(const std::string& verb, const std::function<int()>& body) {
+  const std::string name = verb.empty() ? std::string() : " " + verb;
+  try {
+    return body();
+  } catch (const std::bad_alloc&) {
+    std::fprintf(stderr, "xshade%s: out of memory (an allocation failed); nothing more was done\n", name.c_str());
+  } catch (const std::exception& error) {
+    std::fprintf(stderr, "xshade%s: internal error: %s\n", name.c_str(), error.what());
+  } catch (...) {
+    std::fprintf(stderr, "xshade%s: internal error: an unknown exception\n", name.c_str());
+  }
+  return kBackendError;
 }
 
 unsigned worker_jobs(const WorkerLimits& limits) { return limits.jobs ? limits.jobs : usable_cores(); }
@@ -38,7 +55,10 @@ harness::SceneWorkers scene_workers(const WorkerOptions& shared, const WorkerLim
   if (shared.pass_images) command.push_back("--pass-images");
   if (shared.half_emulation) command.push_back("--half-emulation");
   const unsigned jobs = worker_jobs(limits);
+  WorkerOptions serving = shared;
+  serving.serve = true;
   return {.command = std::move(command),
+          .serve = [serving] { return guarded_verb("worker", [&] { return run_worker(serving); }); },
           .jobs = jobs,
           .timeout_seconds = worker_timeout(limits),
           .environment = worker_environment(jobs)};

@@ -176,7 +176,9 @@ WorkerTotals check_in_workers(SceneChecker& checker, const SceneWorkers& workers
     if (!slot.process || slot.process->finished()) {
       std::vector<std::string> command = workers.command;
       command.push_back("--serve");
-      auto process = ChildProcess::start(command, workers.environment, limit);
+      auto process = workers.serve ? ChildProcess::fork(workers.serve, workers.environment, limit)
+                                   : ChildProcess::start(command, workers.environment, limit);
+      if (!process && workers.serve) process = ChildProcess::start(command, workers.environment, limit);
       if (!process) return finish_lane(job, crashed(job.lane, "cannot start a worker: " + process.error().to_string()));
       slot.process.emplace(std::move(*process));
       ++totals.workers_started;

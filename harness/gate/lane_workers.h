@@ -32,9 +32,11 @@ namespace xshade::harness {
 inline constexpr double kDefaultTimeoutSeconds = 120.0;
 
 struct SceneWorkers {
-  // The program and arguments that start a worker; "--scene FILE --lane LANE --result DIR" are
-  // added for each render.
+  // The program and arguments that start a worker; "--serve" is added.
   std::vector<std::string> command;
+  // What a worker forked from this process runs instead (the same as the command runs, without
+  // loading the program again); empty, or when this process has threads: the command.
+  std::function<int()> serve;
   unsigned jobs = 1;
   double timeout_seconds = kDefaultTimeoutSeconds;  // unless the scene sets its own
   // Set in each worker's environment (e.g. LP_NUM_THREADS, so that llvmpipe's and lavapipe's

@@ -28,7 +28,7 @@ struct LaneResult {
   std::string image;          // the lane's PNG
   std::string image_exr;      // the lane's float image
   std::string golden;         // the golden it was compared with (a copy in the report)
-  std::string golden_exr;     // the same golden's float values, for the viewer's readout
+  std::string golden_exr;     // the golden's float image, where it has one (values above 1)
   std::string diff;           // heat map of the difference against the golden
   std::string non_finite_mask;  // white where NaN/Inf/negative values are
   std::vector<PassTime> timings;

@@ -4,6 +4,7 @@
 
 #include <fmt/format.h>
 
+#include "base/file_io.h"
 #include "harness/assets/environment.h"
 #include "harness/image/image_compare.h"
 #include "harness/image/image_io.h"
@@ -43,12 +44,27 @@ void add_layer(LaneResult& lane, LayerResult layer, bool decides = true) {
 SceneChecker::SceneChecker(VariantCompiler& compiler, SceneCheckOptions options, Progress progress)
     : compiler_(compiler), options_(std::move(options)), progress_(std::move(progress)) {}
 
+std::string SceneChecker::copy_file(const fs::path& from, const std::string& scene, const std::string& file) {
+  const std::string relative = scene + "/" + file;
+  const fs::path path = options_.report_dir / relative;
+  std::error_code ignored;
+  fs::create_directories(path.parent_path(), ignored);
+  // Whole or not at all: the workers of a scene's lanes copy its common golden at once.
+  const std::optional<std::string> bytes = read_file(from);
+  auto written = bytes ? write_file_atomically(path, *bytes) : Result<void>(fail("cannot read " + from.string()));
+  if (!written) {
+    progress_("  cannot copy " + from.string() + " to " + path.string() + ": " + written.error().message);
+    return {};
+  }
+  return relative;
+}
+
 std::string SceneChecker::write_image(const FloatImage& image, const std::string& scene, const std::string& file, bool exr) {
   const std::string relative = scene + "/" + file;
   const fs::path path = options_.report_dir / relative;
   std::error_code ignored;
   fs::create_directories(path.parent_path(), ignored);
-  auto written = exr ? write_exr(image, path) : write_png(image, path);
+  auto written = exr ? write_exr(image, path) : write_png(image, path, PngCompression::Fast);
   if (!written) {
     progress_("  cannot write " + path.string() + ": " + written.error().message);
     return {};
@@ -197,8 +213,12 @@ void SceneChecker::check_lane(Lane lane, CheckedScene& checked, const Status& st
                                                                                 : std::nullopt))});
     } else {
       const GoldenImage& reference = **golden;
-      result.golden = write_image(reference.image, scene.name, result.lane + ".golden.png");
-      result.golden_exr = write_image(reference.image, scene.name, result.lane + ".golden.exr", true);
+      // The golden's own files, as bless wrote them: its PNG, and its float image where it has one;
+      // the common golden once for the scene, a lane's own golden as that lane's.
+      const bool has_float = reference.path.extension() == ".exr";
+      const std::string name = reference.lane_specific ? result.lane + ".golden" : std::string("golden");
+      result.golden = copy_file(fs::path(reference.path).replace_extension(".png"), scene.name, name + ".png");
+      if (has_float) result.golden_exr = copy_file(reference.path, scene.name, name + ".exr");
       Comparison comparison = compare_images(image, reference.image, scene.compare);
       for (LayerResult& layer : comparison.layers) {
         const bool decides = layer.layer == comparison.decided_by;

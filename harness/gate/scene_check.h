@@ -100,7 +100,10 @@ class SceneChecker {
 
  private:
   void compare_lanes(const Scene& scene, CheckedScene& checked);
+  // REPORT/SCENE/FILE, written or copied; its path relative to the report, or empty (said on
+  // the progress line) when it could not be.
   std::string write_image(const FloatImage& image, const std::string& scene, const std::string& file, bool exr = false);
+  std::string copy_file(const std::filesystem::path& from, const std::string& scene, const std::string& file);
 
   VariantCompiler& compiler_;
   SceneCheckOptions options_;

@@ -89,7 +89,7 @@ uint8_t linear_to_srgb8(float linear) {
 
 float srgb8_to_linear(uint8_t encoded) { return srgb_decode_table()[encoded]; }
 
-Result<void> write_png(const FloatImage& image, const std::filesystem::path& path) {
+Result<void> write_png(const FloatImage& image, const std::filesystem::path& path, PngCompression compression) {
   std::vector<uint8_t> bytes(image.rgba.size());
   for (size_t i = 0; i < image.rgba.size(); i += 4) {
     for (size_t c = 0; c < 3; ++c) bytes[i + c] = linear_to_srgb8(image.rgba[i + c]);
@@ -99,12 +99,13 @@ Result<void> write_png(const FloatImage& image, const std::filesystem::path& pat
   OIIO::ImageSpec spec(int(image.width), int(image.height), 4, OIIO::TypeDesc::UINT8);
   spec.attribute("oiio:ColorSpace", "sRGB");
   spec.attribute("oiio:UnassociatedAlpha", 1);  // our colour is not premultiplied by alpha
+  spec.attribute("png:compressionLevel", compression == PngCompression::Fast ? 1 : 6);
   return write(path, spec, OIIO::TypeDesc::UINT8, bytes.data());
 }
 
 Result<void> write_exr(const FloatImage& image, const std::filesystem::path& path) {
   OIIO::ImageSpec spec(int(image.width), int(image.height), 4, OIIO::TypeDesc::FLOAT);
-  spec.attribute("compression", "zip");
+  spec.attribute("compression", "zip:1");
   return write(path, spec, OIIO::TypeDesc::FLOAT, image.rgba.data());
 }
 

@@ -13,9 +13,15 @@ namespace xshade::harness {
 uint8_t linear_to_srgb8(float linear);
 float srgb8_to_linear(uint8_t encoded);
 
+// How hard a PNG is compressed: Small for files kept in a repository (goldens), Fast for a
+// report's, written every run (zlib level 1: about half the time, a quarter more bytes).
+enum class PngCompression { Small, Fast };
+
 // Colour is clamped to [0, 1] and sRGB-encoded; alpha is stored linearly.
-Result<void> write_png(const FloatImage& image, const std::filesystem::path& path);
-// Every float as it is, NaN and Inf included.
+Result<void> write_png(const FloatImage& image, const std::filesystem::path& path,
+                       PngCompression compression = PngCompression::Small);
+// Every float as it is, NaN and Inf included; zip at zlib's fastest level, which for renders
+// takes half the time of OpenEXR's default for under 1% more bytes.
 Result<void> write_exr(const FloatImage& image, const std::filesystem::path& path);
 // sRGB's decoding of an encoded value in [0, 1] (clamped), to linear.
 float srgb_to_linear(float encoded);

@@ -57,7 +57,7 @@ void remove_stale(const fs::path& report_dir, const std::vector<std::string>& no
 
 }  // namespace
 
-Result<void> write_reports(const RunResults& results, const fs::path& report_dir) {
+Result<void> write_reports(const RunResults& results, const fs::path& report_dir, const std::vector<ViewerPage>* viewers) {
   std::error_code error;
   fs::create_directories(report_dir, error);
   if (error) return fail("cannot create the report folder " + report_dir.string() + ": " + error.message());
@@ -65,7 +65,8 @@ Result<void> write_reports(const RunResults& results, const fs::path& report_dir
   const std::vector<std::string> pages = scene_page_names(results);
   std::vector<std::string> pixel_scripts;
   for (size_t i = 0; i < results.scenes.size(); ++i) {
-    const ViewerPage viewer = viewer_page(results.scenes[i], report_dir);
+    const ViewerPage viewer =
+        viewers && i < viewers->size() ? (*viewers)[i] : viewer_page(results.scenes[i], report_dir);
     std::string script;
     if (!viewer.pixels_script.empty()) {
       script = "pixels/" + pages[i].substr(0, pages[i].size() - 5) + ".js";

@@ -4,8 +4,10 @@
 #pragma once
 
 #include <filesystem>
+#include <vector>
 
 #include "harness/gate/run_results.h"
+#include "harness/report/viewer_data.h"
 #include "base/result.h"
 
 namespace xshade::harness {
@@ -15,6 +17,10 @@ namespace xshade::harness {
 // of a file. index.html is written after the pages: when it is there, the pages it links to are
 // too. Then the pages and images an earlier run into the same folder wrote and this one did not
 // are removed (the folder's .xshade-report-files lists what each run wrote; nothing else is).
-Result<void> write_reports(const RunResults& results, const std::filesystem::path& report_dir);
+//
+// `viewers`, when given, holds each scene's viewer data (viewer_data.h) in the order of
+// results.scenes, made as the run went; otherwise it is made here from the report folder.
+Result<void> write_reports(const RunResults& results, const std::filesystem::path& report_dir,
+                           const std::vector<ViewerPage>* viewers = nullptr);
 
 }  // namespace xshade::harness

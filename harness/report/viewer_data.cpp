@@ -74,10 +74,12 @@ json or_null(const std::string& text) { return text.empty() ? json(nullptr) : js
 // The float images of a page, each read once, named by its path in the report.
 class FloatImages {
  public:
-  explicit FloatImages(fs::path report_dir) : report_dir_(std::move(report_dir)) {}
+  FloatImages(fs::path report_dir, const std::map<std::string, const FloatImage*>& in_memory)
+      : report_dir_(std::move(report_dir)), in_memory_(in_memory) {}
 
   const FloatImage* get(const std::string& path) {
     if (path.empty()) return nullptr;
+    if (auto known = in_memory_.find(path); known != in_memory_.end()) return known->second;
     auto [entry, first] = images_.try_emplace(path);
     if (first) {
       auto read = read_image(report_dir_ / path);
@@ -109,9 +111,14 @@ class FloatImages {
 
  private:
   fs::path report_dir_;
+  const std::map<std::string, const FloatImage*>& in_memory_;
   std::map<std::string, std::optional<FloatImage>> images_;
   std::map<std::string, const FloatImage*> used_;
 };
+
+// The golden's values as the comparison held them: its float image where it has one, else its
+// PNG, decoded as every 8-bit golden is.
+const std::string& golden_floats(const LaneResult& lane) { return lane.golden_exr.empty() ? lane.golden : lane.golden_exr; }
 
 bool same_pixels(const FloatImage* a, const FloatImage* b) {
   if (!a || !b) return a == b;
@@ -121,8 +128,9 @@ bool same_pixels(const FloatImage* a, const FloatImage* b) {
 
 }  // namespace
 
-ViewerPage viewer_page(const SceneResult& scene, const fs::path& report_dir) {
-  FloatImages images(report_dir);
+ViewerPage viewer_page(const SceneResult& scene, const fs::path& report_dir,
+                       const std::map<std::string, const FloatImage*>& in_memory) {
+  FloatImages images(report_dir, in_memory);
   const uint32_t tolerance = scene.compare.channel_tolerance;
 
   // Lanes that rendered, grouped with the first lane whose image, golden and verdict they share.
@@ -130,13 +138,13 @@ ViewerPage viewer_page(const SceneResult& scene, const fs::path& report_dir) {
   for (const LaneResult& lane : scene.lanes) {
     if (lane.image.empty()) continue;
     const FloatImage* output = images.get(lane.image_exr);
-    const FloatImage* golden = images.get(lane.golden_exr);
+    const FloatImage* golden = images.get(golden_floats(lane));
     bool joined = false;
     for (auto& group : groups) {
       const LaneResult& first = *group.front();
       // Without float images there is nothing to prove them identical with.
       if (output && first.verdict == lane.verdict && first.golden.empty() == lane.golden.empty() &&
-          same_pixels(images.get(first.image_exr), output) && same_pixels(images.get(first.golden_exr), golden)) {
+          same_pixels(images.get(first.image_exr), output) && same_pixels(images.get(golden_floats(first)), golden)) {
         group.push_back(&lane);
         joined = true;
         break;
@@ -159,7 +167,8 @@ ViewerPage viewer_page(const SceneResult& scene, const fs::path& report_dir) {
         {{"lanes", names},
          {"verdict", verdict_name(lane.verdict)},
          {"output", {{"pixels", images.key(lane.image_exr)}, {"png", lane.image}}},
-         {"golden", lane.golden.empty() ? json(nullptr) : json{{"pixels", images.key(lane.golden_exr)}, {"png", lane.golden}}},
+         {"golden", lane.golden.empty() ? json(nullptr)
+                                        : json{{"pixels", images.key(golden_floats(lane))}, {"png", lane.golden}}},
          {"heat_map", or_null(lane.diff)},
          {"heat_palette", page["heat_palette"]},
          {"channel_tolerance", tolerance},

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <filesystem>
+#include <map>
 #include <string>
 
 #include "harness/gate/run_results.h"
@@ -22,9 +23,13 @@ struct ViewerPage {
 
 // Lanes whose rendered images are bit-identical, with the same golden and verdict, form one
 // group, shown once ("gl = vk = vk-hlsl"). The float images are read from `report_dir` (each
-// lane's image_exr and golden_exr); an image that does not read, or of more than 2048 x 2048
-// pixels, is shown from its PNG alone.
+// lane's image_exr, and its golden_exr, or its golden PNG decoded when the golden has no float
+// image); an image that does not read, or of more than 2048 x 2048 pixels, is shown from its PNG
+// alone.
 // Cross-lane pairs are listed only where the images differ.
-ViewerPage viewer_page(const SceneResult& scene, const std::filesystem::path& report_dir);
+// `in_memory` holds images the caller already has, by their path in the report (a run has each
+// lane's render): those are not read again.
+ViewerPage viewer_page(const SceneResult& scene, const std::filesystem::path& report_dir,
+                       const std::map<std::string, const FloatImage*>& in_memory = {});
 
 }  // namespace xshade::harness

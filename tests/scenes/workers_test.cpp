@@ -6,6 +6,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -115,15 +116,13 @@ TEST_F(Workers, TheRunsTimeoutStopsARenderAndAScenesOwnNeedsItsReason) {
 
 TEST_F(Workers, AWorkerThatDiesIsACrashNamingTheSignalAndWhereItWas) {
   add_slow_scene();
-  // The run in the background; once the slow scene's worker has been drawing for a while, it is
-  // sent SIGSEGV, as a driver's fault would end it. The worker is known by this test's report
-  // folder on its command line ("worke[r]" matches the worker and not this shell, whose own
-  // command line holds the pattern).
+  // The run in the background; once the slow scene's worker (the run's one child: one render)
+  // has been drawing for a while, it is sent SIGSEGV, as a driver's fault would end it.
   const std::string out = (root_ / "out.txt").string();
   const std::string command =
       "'" + std::string(xshade_binary()) + "' run slow" + folders() + " --report '" + (root_ / "report").string() +
-      "' --lane gl --timeout 600 > '" + out + "' 2>&1 & run=$!; pid=; for i in $(seq 600); do pid=$(pgrep -f -- '" +
-      "worke[r] .*--report " + (root_ / "report").string() + "'); [ -n \"$pid\" ] && break; sleep 0.1; done; " +
+      "' --lane gl --timeout 600 > '" + out + "' 2>&1 & run=$!; pid=; for i in $(seq 600); do pid=$(pgrep -P $run); " +
+      "[ -n \"$pid\" ] && break; sleep 0.1; done; " +
       "sleep 2; kill -SEGV $pid; wait $run; echo \"exit $?\" >> '" + out + "'";
   ASSERT_EQ(std::system(command.c_str()), 0);
   const std::string output = read_text(out);
@@ -158,31 +157,37 @@ std::vector<float> float_pixels(const fs::path& file) {
   return pixels;
 }
 
-// Every fixed scene on every lane, with one worker and with two: the float images bit for bit
-// and every verdict the same.
-TEST(WorkerCount, ImagesAndVerdictsOfEveryFixedSceneDoNotDependOnIt) {
+// Every fixed scene on every lane, with one worker and with two, with caches cold, warm and off
+// (the compiled shaders, the drivers' own shader cache, the environments): the float images bit
+// for bit and every verdict the same.
+TEST(WorkerCount, ImagesAndVerdictsOfEveryFixedSceneDoNotDependOnItNorOnTheCaches) {
   const fs::path root = fs::temp_directory_path() / "xshade_workers_count";
   fs::remove_all(root);
-  std::string verdicts[2];
-  for (int jobs : {1, 2}) {
-    const fs::path report = root / ("j" + std::to_string(jobs));
-    Outcome outcome = run_xshade("", "run --cache '" + (root / "cache").string() + "' --report '" + report.string() +
-                                         "' -j " + std::to_string(jobs));
+  const std::string cache = " --cache '" + (root / "cache").string() + "'";
+  const std::pair<std::string, std::string> runs[] = {
+      {"one_worker_cold_cache", "-j 1" + cache}, {"two_workers_warm_cache", "-j 2" + cache}, {"two_workers_no_cache", "-j 2 --no-cache"}};
+  std::map<std::string, std::string> verdicts;
+  for (const auto& [name, options] : runs) {
+    const fs::path report = root / name;
+    Outcome outcome = run_xshade("", "run --report '" + report.string() + "' " + options);
     EXPECT_EQ(outcome.exit_code, 0) << outcome.output;
     const std::string json = read_text(report / "results.json");
     // The verdicts, in order: every "verdict" field of results.json.
     for (size_t at = 0; (at = json.find("\"verdict\": ", at)) != std::string::npos; ++at)
-      verdicts[jobs - 1] += json.substr(at, json.find(',', at) - at) + "\n";
+      verdicts[name] += json.substr(at, json.find(',', at) - at) + "\n";
   }
-  EXPECT_FALSE(verdicts[0].empty());
-  EXPECT_EQ(verdicts[0], verdicts[1]);
+  const std::string& first = runs[0].first;
+  EXPECT_FALSE(verdicts[first].empty());
+  for (const auto& [name, options] : runs) EXPECT_EQ(verdicts[name], verdicts[first]) << name;
   size_t images = 0;
-  for (const fs::directory_entry& entry : fs::recursive_directory_iterator(root / "j1")) {
+  for (const fs::directory_entry& entry : fs::recursive_directory_iterator(root / first)) {
     if (entry.path().extension() != ".exr") continue;
-    const fs::path other = root / "j2" / fs::relative(entry.path(), root / "j1");
     const std::vector<float> pixels = float_pixels(entry.path());
     EXPECT_FALSE(pixels.empty()) << entry.path();
-    EXPECT_TRUE(pixels == float_pixels(other)) << entry.path() << " differs from " << other;
+    for (const auto& [name, options] : runs) {
+      const fs::path other = root / name / fs::relative(entry.path(), root / first);
+      EXPECT_TRUE(pixels == float_pixels(other)) << entry.path() << " differs from " << other;
+    }
     ++images;
   }
   EXPECT_GE(images, 30u) << "every fixed scene on every lane writes its float image";
