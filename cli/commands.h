@@ -122,6 +122,7 @@ struct ReportMergeOptions {
   std::vector<std::filesystem::path> folders;
   std::filesystem::path out;
   bool exit_code = false;  // exit with the merged verdict's code, as xshade run would
+  bool cross_lane = false;  // hold the lanes of scenes whose lanes came from separate runs against each other
   std::string command_line;
 };
 int run_report_merge(const ReportMergeOptions& options);

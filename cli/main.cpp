@@ -257,6 +257,9 @@ static int run_command_line(int argc, char** argv) {
       ->required()
       ->type_name("DIR");
   merge->add_option("--out", merge_options.out, "Folder for the merged report")->required()->type_name("DIR");
+  merge->add_flag("--cross-lane", merge_options.cross_lane,
+                  "Hold the lanes of each scene whose lanes came from separate runs (one per lane, as CTest's tests) "
+                  "against each other, as one run of all of them would");
   merge->add_flag("--exit-code", merge_options.exit_code,
                   "Exit with the merged results' code, as xshade run would (default: 0 once the report is written)");
 

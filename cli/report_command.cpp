@@ -39,6 +39,9 @@ int run_report_merge(const ReportMergeOptions& options) {
       return kBackendError;
     }
   }
+  if (options.cross_lane)
+    for (std::string& warning : harness::compare_lanes_across_reports(merged.results, options.out))
+      merged.warnings.push_back(std::move(warning));
   for (const std::string& warning : merged.warnings) fmt::print(stderr, "warning: {}\n", warning);
   if (auto written = harness::write_reports(merged.results, options.out); !written) {
     fmt::print(stderr, "xshade report merge: {}\n", written.error().to_string());

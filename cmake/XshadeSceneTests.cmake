@@ -9,10 +9,12 @@
 #                          [REPORT dir]            # default: ${CMAKE_CURRENT_BINARY_DIR}/xshade-report
 #                          [CACHE dir])            # compiled shaders; default: ${CMAKE_BINARY_DIR}/xshade-cache
 #
-# Relative folders are relative to the calling CMakeLists.txt. Each test runs `xshade run SCENE`
-# with exactly these folders (no project file is read), writes its own report folder
-# (REPORT/tests/TEST), and passes only when xshade does: the scene matches its golden, renders
-# finite and deterministic, and (for all_lanes) its lanes agree. A lane a scene does not list is
+# Relative folders are relative to the calling CMakeLists.txt. Each lane's test runs `xshade run
+# SCENE --lane LANE` with exactly these folders (no project file is read), writes its own report
+# folder (REPORT/tests/TEST), and passes only when xshade does: the scene matches its golden and
+# renders finite and deterministic. all_lanes holds what the lane tests rendered against each
+# other (xshade report merge --cross-lane), rendering nothing again; CTest runs the lane tests
+# first. A lane a scene does not list is
 # reported as skipped. After the tests, PREFIX.report merges what this CTest run wrote into one
 # report, REPORT/index.html with its junit.xml and results.json (xshade report merge); before
 # them, PREFIX.report_start clears the earlier run's folders, so the merge holds this run alone.
@@ -68,29 +70,31 @@ function(xshade_add_scene_tests)
     message(FATAL_ERROR "xshade_add_scene_tests: no scenes (*.toml) in ${scenes}")
   endif()
   list(SORT scene_files)
-  set(lane_arguments)
-  foreach(lane IN LISTS ARG_LANES)
-    list(APPEND lane_arguments --lane ${lane})
-  endforeach()
   list(LENGTH ARG_LANES lane_count)
   # Matches xshade's message for a lane the scene does not list (and nothing else it prints).
   set(skipped "skipped: the scene runs on .*, none of the lanes asked for")
   set(fixture ${ARG_PREFIX}_report)
   foreach(scene_file IN LISTS scene_files)
     get_filename_component(scene "${scene_file}" NAME_WE)
+    set(lane_reports)
     foreach(lane IN LISTS ARG_LANES)
       add_test(NAME ${ARG_PREFIX}.${scene}.${lane}
                COMMAND xshade::xshade run ${scene} --lane ${lane} ${folders}
                        --report "${ARG_REPORT}/tests/${scene}.${lane}" --cache "${ARG_CACHE}")
       set_tests_properties(${ARG_PREFIX}.${scene}.${lane} PROPERTIES LABELS "${ARG_LABELS}"
-                           SKIP_REGULAR_EXPRESSION "${skipped}" FIXTURES_REQUIRED ${fixture})
+                           SKIP_REGULAR_EXPRESSION "${skipped}" FIXTURES_REQUIRED ${fixture}
+                           FIXTURES_SETUP ${ARG_PREFIX}_${scene}_lanes)
+      list(APPEND lane_reports "${ARG_REPORT}/tests/${scene}.${lane}")
     endforeach()
+    # The lanes against each other from what the lane tests rendered, not rendered again: their
+    # reports merged, the lanes compared as one run of all of them would (CTest runs the lane
+    # tests first, also under -R).
     if(lane_count GREATER 1)
       add_test(NAME ${ARG_PREFIX}.${scene}.all_lanes
-               COMMAND xshade::xshade run ${scene} ${lane_arguments} ${folders}
-                       --report "${ARG_REPORT}/tests/${scene}" --cache "${ARG_CACHE}")
+               COMMAND xshade::xshade report merge ${lane_reports} --out "${ARG_REPORT}/tests/${scene}"
+                       --cross-lane --exit-code)
       set_tests_properties(${ARG_PREFIX}.${scene}.all_lanes PROPERTIES LABELS "${ARG_LABELS}"
-                           SKIP_REGULAR_EXPRESSION "${skipped}" FIXTURES_REQUIRED ${fixture})
+                           FIXTURES_REQUIRED "${fixture};${ARG_PREFIX}_${scene}_lanes")
     endif()
   endforeach()
   # One report of the whole CTest run: the per-test folders cleared before, merged after (CTest

@@ -271,8 +271,11 @@ std::optional<BlessRefusal> bless_refusal(const SceneResult& result) {
   return std::nullopt;
 }
 
-void SceneChecker::compare_lanes(const Scene& scene, CheckedScene& checked) {
-  for (LanePairComparison& compared : compare_lane_images(checked.images, scene.compare)) {
+std::vector<CrossLaneResult> cross_lane_results(const std::map<Lane, FloatImage>& images,
+                                                const CompareSettings& settings, const HeatMapWriter& write,
+                                                const std::function<void(const CrossLaneResult&, const std::string&)>& said) {
+  std::vector<CrossLaneResult> pairs;
+  for (LanePairComparison& compared : compare_lane_images(images, settings)) {
     Comparison& comparison = compared.comparison;
     CrossLaneResult pair;
     pair.first_lane = std::string(lane_name(compared.first));
@@ -281,15 +284,24 @@ void SceneChecker::compare_lanes(const Scene& scene, CheckedScene& checked) {
     pair.metrics = comparison.metrics;
     // A heat map of bit-identical images is black: the report says "identical" instead.
     pair.identical = comparison.decided_by == "exact";
-    if (!pair.identical)
-      pair.diff = write_image(comparison.heat_map, scene.name, pair.first_lane + "_vs_" + pair.second_lane + ".diff.png");
+    if (!pair.identical) pair.diff = write(comparison.heat_map, pair.first_lane + "_vs_" + pair.second_lane + ".diff.png");
     std::string detail;
     for (const LayerResult& layer : comparison.layers)
       if (layer.layer == comparison.decided_by) detail = layer.detail;
-    progress_(scene.name + ": " + pair.first_lane + " vs " + pair.second_lane + ": " +
-              std::string(verdict_name(pair.verdict)) + " - " + detail);
-    checked.result.cross_lane.push_back(std::move(pair));
+    if (said) said(pair, detail);
+    pairs.push_back(std::move(pair));
   }
+  return pairs;
+}
+
+void SceneChecker::compare_lanes(const Scene& scene, CheckedScene& checked) {
+  checked.result.cross_lane = cross_lane_results(
+      checked.images, scene.compare,
+      [&](const FloatImage& heat_map, const std::string& file) { return write_image(heat_map, scene.name, file); },
+      [&](const CrossLaneResult& pair, const std::string& detail) {
+        progress_(scene.name + ": " + pair.first_lane + " vs " + pair.second_lane + ": " +
+                  std::string(verdict_name(pair.verdict)) + " - " + detail);
+      });
 }
 
 }  // namespace xshade::harness

@@ -66,6 +66,14 @@ struct LanePairComparison {
 std::vector<LanePairComparison> compare_lane_images(const std::map<Lane, FloatImage>& images,
                                                     const CompareSettings& settings);
 
+// Writes a heat map as FILE of the scene's report folder; its path in the report, or empty.
+using HeatMapWriter = std::function<std::string(const FloatImage& heat_map, const std::string& file)>;
+// compare_lane_images as the report's pairs: each pair's verdict and metrics, its heat map
+// written (none for bit-identical images), and `said` told of each with its deciding detail.
+std::vector<CrossLaneResult> cross_lane_results(
+    const std::map<Lane, FloatImage>& images, const CompareSettings& settings, const HeatMapWriter& write,
+    const std::function<void(const CrossLaneResult&, const std::string&)>& said = {});
+
 // Why a checked scene must not become a golden: a lane that did not pass (with its verdict) or
 // two lanes that disagree (Fail); nullopt when it may.
 struct BlessRefusal {

@@ -5,6 +5,8 @@
 
 #include "base/file_io.h"
 #include "base/paths.h"
+#include "harness/gate/scene_check.h"
+#include "harness/image/image_io.h"
 #include "harness/report/results_json.h"
 
 namespace xshade::harness {
@@ -149,6 +151,32 @@ MergedReport merge_reports(const std::vector<FoundReport>& reports) {
     merged.results.scenes.push_back(std::move(scene.scene));
   }
   return merged;
+}
+
+std::vector<std::string> compare_lanes_across_reports(RunResults& results, const fs::path& folder) {
+  std::vector<std::string> warnings;
+  for (SceneResult& scene : results.scenes) {
+    if (!scene.cross_lane.empty()) continue;
+    std::map<Lane, FloatImage> images;
+    for (const LaneResult& lane : scene.lanes) {
+      const std::optional<Lane> id = parse_lane(lane.lane);
+      if (!id || lane.image_exr.empty()) continue;
+      auto image = read_image(folder / lane.image_exr);
+      if (image)
+        images.emplace(*id, std::move(*image));
+      else
+        warnings.push_back(image.error().message + "; " + scene.scene + " on " + lane.lane +
+                           " is not held against the other lanes");
+    }
+    scene.cross_lane = cross_lane_results(images, scene.compare, [&](const FloatImage& heat_map, const std::string& file) {
+      const std::string relative = scene.scene + "/" + file;
+      std::error_code ignored;
+      fs::create_directories((folder / relative).parent_path(), ignored);
+      return write_png(heat_map, folder / relative, PngCompression::Fast) ? relative : std::string();
+    });
+    for (const CrossLaneResult& pair : scene.cross_lane) scene.verdict = worst(scene.verdict, pair.verdict);
+  }
+  return warnings;
 }
 
 }  // namespace xshade::harness

@@ -46,4 +46,11 @@ struct MergedReport {
 // apart under "run-N/".
 MergedReport merge_reports(const std::vector<FoundReport>& reports);
 
+// For each scene of `results` whose lanes came from separate runs (no pair of lanes compared,
+// as when CTest checks each lane in a test of its own): its lanes held against each other from
+// their float images in `folder`, with the scene's tolerances, as one run of all of them would
+// (the first lane against each other), heat maps written there; the scene's verdict counts the
+// pairs. Returns a warning for each float image that does not read (its lane is left out).
+std::vector<std::string> compare_lanes_across_reports(RunResults& results, const std::filesystem::path& folder);
+
 }  // namespace xshade::harness

@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include "harness/image/image_io.h"
 #include "harness/report/report_text.h"
 #include "harness/report/results_json.h"
 
@@ -141,6 +142,40 @@ TEST_F(ReportMerge, PathsAreHeldToTheirReportAndNeverOverwriteEachOther) {
   EXPECT_EQ(merged.files[1].to, "run-2/x/gl.png");
   EXPECT_EQ(merged.results.scenes[1].lanes[0].image, "run-2/x/gl.png");
   EXPECT_TRUE(merged.results.scenes[2].lanes[0].image.empty());
+}
+
+// CTest's lane tests, one run a lane: merged with --cross-lane, the lanes are held against each
+// other as one run of them all would, from their float images, with the scene's tolerance.
+TEST_F(ReportMerge, LanesFromSeparateRunsAreHeldAgainstEachOther) {
+  FloatImage grey(4, 4), moved(4, 4);
+  for (size_t i = 0; i < grey.rgba.size(); ++i) grey.rgba[i] = moved.rgba[i] = 0.5f;
+  moved.rgba[5 * 4] = 0.9f;  // one pixel far off
+  fs::create_directories(root_ / "merged/s");
+  ASSERT_TRUE(write_exr(grey, root_ / "merged/s/gl.exr"));
+  ASSERT_TRUE(write_exr(grey, root_ / "merged/s/vk.exr"));
+  ASSERT_TRUE(write_exr(moved, root_ / "merged/s/vk-hlsl.exr"));
+  RunResults results;
+  results.scenes = {::xshade::harness::scene(
+      "s", {lane("s", "vk-hlsl", Verdict::Pass), lane("s", "gl", Verdict::Pass), lane("s", "vk", Verdict::Pass)})};
+  for (LaneResult& each : results.scenes[0].lanes) each.image_exr = "s/" + each.lane + ".exr";
+
+  const std::vector<std::string> warnings = compare_lanes_across_reports(results, root_ / "merged");
+  EXPECT_TRUE(warnings.empty());
+  const SceneResult& out = results.scenes[0];
+  ASSERT_EQ(out.cross_lane.size(), 2u);
+  EXPECT_EQ(out.cross_lane[0].first_lane, "gl");  // gl against each other, in lane order, as a run
+  EXPECT_EQ(out.cross_lane[0].second_lane, "vk");
+  EXPECT_TRUE(out.cross_lane[0].identical);
+  EXPECT_TRUE(out.cross_lane[0].diff.empty());
+  EXPECT_EQ(out.cross_lane[1].second_lane, "vk-hlsl");
+  EXPECT_EQ(out.cross_lane[1].verdict, Verdict::Fail);
+  EXPECT_TRUE(fs::exists(root_ / "merged" / out.cross_lane[1].diff));
+  EXPECT_EQ(out.verdict, Verdict::Fail);
+
+  // A scene that a run of all its lanes compared already is left as it was.
+  const std::vector<CrossLaneResult> before = results.scenes[0].cross_lane;
+  compare_lanes_across_reports(results, root_ / "merged");
+  EXPECT_EQ(results.scenes[0].cross_lane.size(), before.size());
 }
 
 TEST_F(ReportMerge, AFolderWithoutReportsOrABrokenResultsFileIsRefusedNamingIt) {
