@@ -5,14 +5,10 @@
 // layout) and changed with synchronization2 barriers; drawing uses dynamic rendering.
 #include "harness/vulkan/vulkan_backend.h"
 
-#include <dlfcn.h>
-
 #include <algorithm>
 #include <array>
 #include <bit>
-#include <cstdlib>
 #include <cstring>
-#include <filesystem>
 #include <functional>
 #include <map>
 #include <optional>
@@ -26,6 +22,7 @@
 #include "harness/backend/guarded.h"
 #include "harness/backend/handle_table.h"
 #include "harness/backend/pass_resolution.h"
+#include "harness/vulkan/lavapipe_loading.h"
 #include "harness/vulkan/vk_support.h"
 #include "spirv/spirv_compiler.h"
 
@@ -153,40 +150,6 @@ class VulkanBackend final : public Backend {
   Buffer zero_vertices_;
   BackendObjects<Target, Mesh, Image, Program> objects_;
 };
-
-// lavapipe's driver manifest where the loader looks for manifests (XDG_DATA_DIRS, then /etc),
-// or empty.
-std::string lavapipe_manifest() {
-  const char* data = std::getenv("XDG_DATA_DIRS");
-  std::string folders = std::string(data && *data ? data : "/usr/local/share:/usr/share") + ":/etc";
-  for (size_t start = 0; start <= folders.size();) {
-    const size_t end = std::min(folders.find(':', start), folders.size());
-    std::error_code error;
-    for (const auto& entry : std::filesystem::directory_iterator(folders.substr(start, end - start) + "/vulkan/icd.d", error))
-      if (entry.path().filename().string().starts_with("lvp_icd")) return entry.path().string();
-    start = end + 1;
-  }
-  return {};
-}
-
-// Once a process: the loader sees lavapipe alone (unless the user chose drivers: the lane would
-// ignore every GPU anyway, and loading each installed driver, two of them with their own LLVM,
-// cost some 25 ms an instance), and the loader and lavapipe stay loaded after a backend lets
-// them go: a worker makes a backend for every scene it renders, and the loader unloaded both at
-// each instance's end, to load and relocate them again for the next. The manifest is named
-// (VK_DRIVER_FILES) rather than selected by a pattern, which makes the loader warn, through the
-// validation layer's messenger, about each driver it leaves out.
-void keep_lavapipe_loaded() {
-  static const bool kept = [] {
-    if (!std::getenv("VK_LOADER_DRIVERS_SELECT") && !std::getenv("VK_DRIVER_FILES") && !std::getenv("VK_ICD_FILENAMES"))
-      if (const std::string manifest = lavapipe_manifest(); !manifest.empty())
-        setenv("VK_DRIVER_FILES", manifest.c_str(), 0);
-    for (const char* library : {"libvulkan.so.1", "libvulkan_lvp.so"})
-      dlopen(library, RTLD_NOW | RTLD_NODELETE);  // a missing one is reported where it is used
-    return true;
-  }();
-  (void)kept;
-}
 
 Result<void> VulkanBackend::init(const VulkanOptions& options) {
   keep_lavapipe_loaded();
