@@ -39,7 +39,7 @@ std::string operand(const Code& code, int prec) {
 namespace {
 
 // Every name a statement tree declares (locals, for-loop variables).
-void collect_local_names(const Stmt* stmt, std::unordered_set<std::string>& names) {
+void collect_local_names(const Stmt* stmt, std::unordered_set<std::string_view>& names) {
   if (!stmt) return;
   switch (stmt->kind) {
     case StmtKind::Block:
@@ -81,9 +81,57 @@ std::string type_suffix(const Type& type) {
 
 }  // namespace
 
-Names::Names(const TranslationUnit& unit, Flavour flavour) {
+Names::Names(const TranslationUnit& unit, Flavour flavour) : unit_(unit) {
   std::vector<const FunctionDecl*> functions;
   for (const auto& decl : unit.decls) {
+    if (!decl || decl->kind != DeclKind::Function) continue;
+    const auto& function = static_cast<const FunctionDecl&>(*decl);
+    function_names_.insert(function.name);
+    if (function.body) functions.push_back(&function);
+  }
+
+  // Overloads whose GLSL signatures coincide get a suffix of their HLSL parameter types. Only
+  // functions that share their GLSL name with another can coincide, so only those are compared:
+  // most shaders have none, and then neither the signatures nor the author's names are needed.
+  std::vector<std::pair<std::string, const FunctionDecl*>> by_name;
+  by_name.reserve(functions.size());
+  for (const FunctionDecl* function : functions) by_name.emplace_back(of(function->name), function);
+  // Stable: overloads keep their source order, in which their suffixes are chosen.
+  std::stable_sort(by_name.begin(), by_name.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+  std::map<std::string, std::vector<const FunctionDecl*>> by_signature;  // ordered: deterministic
+  for (size_t i = 0; i < by_name.size(); ++i) {
+    const bool shared = (i > 0 && by_name[i - 1].first == by_name[i].first) ||
+                        (i + 1 < by_name.size() && by_name[i + 1].first == by_name[i].first);
+    if (!shared) continue;
+    const FunctionDecl* function = by_name[i].second;
+    std::string signature = by_name[i].first + "(";
+    for (const auto& param : function->params) {
+      if (!param) continue;
+      if (flavour == Flavour::Gl && param->type.kind() == TypeKind::SamplerState) continue;
+      signature += type_key(param->type, flavour) + ",";
+    }
+    by_signature[signature].push_back(function);
+  }
+  std::unordered_set<std::string> suffixed;  // the names given so far, which later ones avoid
+  for (const auto& [signature, group] : by_signature) {
+    if (group.size() == 1) continue;  // of(name), which function() falls back to
+    for (const FunctionDecl* function : group) {
+      std::string name = of(function->name);
+      for (const auto& param : function->params)
+        if (param) name += "_" + type_suffix(param->type);
+      std::string candidate = name;
+      for (int k = 1; user().count(candidate) > 0 || suffixed.count(candidate) > 0; ++k)
+        candidate = name + std::to_string(k);
+      suffixed.insert(candidate);
+      functions_[function] = candidate;
+    }
+  }
+}
+
+const std::unordered_set<std::string_view>& Names::user() const {
+  if (user_built_) return user_;
+  user_built_ = true;
+  for (const auto& decl : unit_.decls) {
     if (!decl) continue;
     user_.insert(decl->name);
     switch (decl->kind) {
@@ -99,41 +147,12 @@ Names::Names(const TranslationUnit& unit, Flavour flavour) {
         for (const auto& param : function.params)
           if (param) user_.insert(param->name);
         collect_local_names(function.body.get(), user_);
-        function_names_.insert(function.name);
-        if (function.body) functions.push_back(&function);
         break;
       }
       default: break;
     }
   }
-
-  // Overloads whose GLSL signatures coincide get a suffix of their HLSL parameter types.
-  std::map<std::string, std::vector<const FunctionDecl*>> by_signature;  // ordered: deterministic
-  for (const FunctionDecl* function : functions) {
-    std::string signature = of(function->name) + "(";
-    for (const auto& param : function->params) {
-      if (!param) continue;
-      if (flavour == Flavour::Gl && param->type.kind() == TypeKind::SamplerState) continue;
-      signature += type_key(param->type, flavour) + ",";
-    }
-    by_signature[signature].push_back(function);
-  }
-  std::unordered_set<std::string> taken = user_;
-  for (const auto& [signature, group] : by_signature) {
-    for (const FunctionDecl* function : group) {
-      if (group.size() == 1) {
-        functions_[function] = of(function->name);
-        continue;
-      }
-      std::string name = of(function->name);
-      for (const auto& param : function->params)
-        if (param) name += "_" + type_suffix(param->type);
-      std::string candidate = name;
-      for (int k = 1; taken.count(candidate) > 0; ++k) candidate = name + std::to_string(k);
-      taken.insert(candidate);
-      functions_[function] = candidate;
-    }
-  }
+  return user_;
 }
 
 std::string Names::of(const std::string& name) const {
@@ -141,7 +160,7 @@ std::string Names::of(const std::string& name) const {
   if (auto it = cache_.find(name); it != cache_.end()) return it->second;
   const std::string base = renamed(name);
   std::string candidate = base;
-  for (int k = 1; user_.count(candidate) > 0; ++k) candidate = base + std::to_string(k);
+  for (int k = 1; user().count(candidate) > 0; ++k) candidate = base + std::to_string(k);
   cache_.emplace(name, candidate);
   return candidate;
 }
@@ -152,7 +171,7 @@ std::string Names::variable(const Decl* decl) const {
   const std::string base = of(decl->name);
   const std::string stem = (base.back() == '_' ? base : base + "_") + "v";
   std::string candidate = stem;
-  for (int k = 1; user_.count(candidate) > 0 || function_names_.count(candidate) > 0; ++k)
+  for (int k = 1; user().count(candidate) > 0 || function_names_.count(candidate) > 0; ++k)
     candidate = stem + std::to_string(k);
   return candidate;
 }
@@ -161,7 +180,7 @@ std::string Names::split_member(const std::string& name, uint32_t index) const {
   const std::string base = of(name);
   const std::string stem = base.back() == '_' ? base : base + "_";  // never `__`
   std::string candidate = stem + std::to_string(index);
-  while (user_.count(candidate) > 0) candidate += "x";
+  while (user().count(candidate) > 0) candidate += "x";
   return candidate;
 }
 

@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <unordered_map>
 #include <unordered_set>
 #include <vector>
@@ -76,8 +77,15 @@ class Names {
   std::string split_member(const std::string& name, uint32_t index) const;
 
  private:
-  std::unordered_set<std::string> user_;  // every name the author declared
-  std::unordered_set<std::string> function_names_;
+  // Every name the author declared, viewing the tree's strings. Only a renaming needs it, and
+  // most shaders rename nothing, so it is gathered on first use.
+  const std::unordered_set<std::string_view>& user() const;
+
+  const hlsl::TranslationUnit& unit_;
+  mutable std::unordered_set<std::string_view> user_;
+  mutable bool user_built_ = false;
+  std::unordered_set<std::string_view> function_names_;
+  // Overloads whose GLSL signatures coincide; every other function is of(name).
   std::unordered_map<const FunctionDecl*, std::string> functions_;
   mutable std::unordered_map<std::string, std::string> cache_;
 };
