@@ -342,7 +342,10 @@ void StageEmitter::collect_used_declarations() {
       }
     } else if (expr.kind == ExprKind::Call) {
       const auto& call = static_cast<const CallExpr&>(expr);
-      if (call.call_kind == CallKind::Function && call.function) add_tree(call.function);
+      // A function seen already came with everything it reaches: its tree adds nothing.
+      if (call.call_kind == CallKind::Function && call.function &&
+          !seen.count(call.function->definition ? call.function->definition : call.function))
+        add_tree(call.function);
     }
   };
   if (entry_) add_tree(entry_);
