@@ -1,8 +1,9 @@
 #include "glsl/glsl_names.h"
 
+#include <algorithm>
 #include <array>
+#include <cstdint>
 #include <string_view>
-#include <unordered_set>
 
 namespace xshade::glsl {
 namespace {
@@ -80,17 +81,51 @@ constexpr std::string_view kReservedWords[] = {
 
 bool starts_with(std::string_view text, std::string_view prefix) { return text.substr(0, prefix.size()) == prefix; }
 
+// The reserved words in an open-addressed table of their own. Every name the emitter writes is
+// looked up here, and in a std::unordered_set the string's hash and the bucket's division cost
+// more than the rest of the lookup: FNV-1a over a short name and a power-of-two mask are cheaper.
+class ReservedWords {
+ public:
+  ReservedWords() {
+    for (std::string_view word : kReservedWords) {
+      size_t slot = hash(word) & kMask;
+      while (!slots_[slot].empty() && slots_[slot] != word) slot = (slot + 1) & kMask;
+      slots_[slot] = word;
+      longest_ = std::max(longest_, word.size());
+    }
+  }
+
+  bool contains(std::string_view name) const {
+    if (name.empty() || name.size() > longest_) return false;
+    for (size_t slot = hash(name) & kMask; !slots_[slot].empty(); slot = (slot + 1) & kMask)
+      if (slots_[slot] == name) return true;
+    return false;
+  }
+
+ private:
+  static constexpr size_t kSlots = 2048;  // a power of two, about four times the words
+  static constexpr size_t kMask = kSlots - 1;
+
+  static size_t hash(std::string_view text) {
+    uint32_t h = 2166136261u;
+    for (char c : text) h = (h ^ static_cast<unsigned char>(c)) * 16777619u;
+    return h;
+  }
+
+  std::array<std::string_view, kSlots> slots_{};
+  size_t longest_ = 0;
+};
+
 }  // namespace
 
 bool is_glsl_reserved_word(std::string_view name) {
-  // Every name the emitter writes is looked up here: a hash set, not a walk over ~480 words.
-  static const std::unordered_set<std::string_view> kReserved(std::begin(kReservedWords), std::end(kReservedWords));
-  return kReserved.count(name) > 0;
+  static const ReservedWords kReserved;
+  return kReserved.contains(name);
 }
 
 bool needs_renaming(std::string_view name) {
-  return is_glsl_reserved_word(name) || starts_with(name, "gl_") || starts_with(name, "xs_") ||
-         name.find("__") != std::string_view::npos;
+  return starts_with(name, "gl_") || starts_with(name, "xs_") || name.find("__") != std::string_view::npos ||
+         is_glsl_reserved_word(name);
 }
 
 // Rules, in order, chosen so that the result never needs renaming again:
