@@ -165,15 +165,22 @@ std::string Names::of(const std::string& name) const {
   return candidate;
 }
 
-std::string Names::variable(const Decl* decl) const {
+const std::string& Names::variable(const Decl* decl) const {
+  auto [known, inserted] = variables_.try_emplace(decl);
+  if (!inserted) return known->second;
+  std::string& name = known->second;
   const bool global = decl->kind == DeclKind::Var && static_cast<const VarDecl*>(decl)->is_global;
-  if (global || function_names_.count(decl->name) == 0) return of(decl->name);
+  if (global || function_names_.count(decl->name) == 0) {
+    name = of(decl->name);
+    return name;
+  }
   const std::string base = of(decl->name);
   const std::string stem = (base.back() == '_' ? base : base + "_") + "v";
   std::string candidate = stem;
   for (int k = 1; user().count(candidate) > 0 || function_names_.count(candidate) > 0; ++k)
     candidate = stem + std::to_string(k);
-  return candidate;
+  name = std::move(candidate);
+  return name;
 }
 
 std::string Names::split_member(const std::string& name, uint32_t index) const {
@@ -328,9 +335,18 @@ void StageEmitter::collect_used_declarations() {
       }
     }
   };
+  std::vector<const StructDecl*> struct_queue;
+  auto use_type = [&](const Type& type) {
+    const Type* base = &type;
+    for (int depth = 0; base->kind() == TypeKind::Array && depth < 64; ++depth) base = &base->element();
+    if (base->kind() == TypeKind::Struct && base->struct_decl() && used_structs_.insert(base->struct_decl()).second)
+      struct_queue.push_back(base->struct_decl());
+  };
   std::unordered_set<const Decl*> used_statics;
   std::vector<const VarDecl*> statics_to_scan;
+  bool in_function = false;  // static initializers' expression types do not make structs used
   auto visit = [&](const Expr& expr) {
+    if (in_function) use_type(expr.type);
     if (expr.kind == ExprKind::Name) {
       const Decl* decl = static_cast<const NameExpr&>(expr).decl;
       if (decl && decl->kind == DeclKind::Var) {
@@ -353,10 +369,12 @@ void StageEmitter::collect_used_declarations() {
     if (!to_scan.empty()) {
       const FunctionDecl* function = to_scan.back();
       to_scan.pop_back();
+      in_function = true;
       walk_expressions(function->body.get(), visit);
     } else {
       const VarDecl* var = statics_to_scan.back();
       statics_to_scan.pop_back();
+      in_function = false;
       walk_expressions(var->initializer.get(), visit);
     }
   }
@@ -364,14 +382,8 @@ void StageEmitter::collect_used_declarations() {
     if (decl && used_statics.count(decl.get())) statics_.push_back(static_cast<const VarDecl*>(decl.get()));
 
   // The structs those use, with the structs inside them: only these are declared, so that an
-  // unreached struct of what this target cannot hold does not matter.
-  std::vector<const StructDecl*> struct_queue;
-  auto use_type = [&](const Type& type) {
-    const Type* base = &type;
-    for (int depth = 0; base->kind() == TypeKind::Array && depth < 64; ++depth) base = &base->element();
-    if (base->kind() == TypeKind::Struct && base->struct_decl() && used_structs_.insert(base->struct_decl()).second)
-      struct_queue.push_back(base->struct_decl());
-  };
+  // unreached struct of what this target cannot hold does not matter. (The types of the
+  // functions' expressions were taken as their bodies were walked above.)
   std::function<void(const Stmt*)> use_locals = [&](const Stmt* stmt) {
     if (!stmt) return;
     switch (stmt->kind) {
@@ -404,7 +416,6 @@ void StageEmitter::collect_used_declarations() {
     for (const auto& param : function->params)
       if (param) use_type(param->type);
     use_locals(function->body.get());
-    walk_expressions(function->body.get(), [&](const Expr& e) { use_type(e.type); });
   }
   for (const VarDecl* var : statics_) use_type(var->type);
   for (const ConstantBuffer& buffer : reflection_.constant_buffers)

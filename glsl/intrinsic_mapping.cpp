@@ -217,12 +217,11 @@ struct Piece {
 
 std::vector<Piece> split_template(const std::string& text) {
   std::vector<Piece> pieces;
-  std::string literal;
+  pieces.reserve(4);
+  size_t literal_start = 0;  // the literal text runs from here to the next operand
   for (size_t i = 0; i < text.size(); ++i) {
-    if (text[i] != '$' || i + 1 >= text.size() || !std::isdigit(static_cast<unsigned char>(text[i + 1]))) {
-      literal += text[i];
-      continue;
-    }
+    if (text[i] != '$' || i + 1 >= text.size() || !std::isdigit(static_cast<unsigned char>(text[i + 1]))) continue;
+    std::string literal = text.substr(literal_start, i - literal_start);
     const int index = text[i + 1] - '0';
     const size_t after = i + 2;
     size_t prev = i;
@@ -236,11 +235,11 @@ std::vector<Piece> split_template(const std::string& text) {
       needed = kPostfix;
     else if ((before_char == '(' || before_char == ',') && (after_char == ')' || after_char == ','))
       needed = kAssign;
-    pieces.push_back({literal, index, needed});
-    literal.clear();
+    pieces.push_back({std::move(literal), index, needed});
     ++i;
+    literal_start = i + 1;
   }
-  pieces.push_back({literal, -1, kAssign});
+  pieces.push_back({text.substr(literal_start), -1, kAssign});
   return pieces;
 }
 
@@ -423,10 +422,11 @@ Code StageEmitter::expand_template(const std::string& text, const CallExpr& call
   const IntrinsicInfo& info = intrinsic_info(IntrinsicId(call.intrinsic));
   std::string expanded = replace_all(text, "$R", type_name(call.type, call.loc));
   expanded = replace_all(expanded, "$B0", bool_type(operands[0]->type.component_count()));
-  std::vector<Type> numeric_types;
-  for (const Expr* e : operands)
-    if (e->type.is_numeric()) numeric_types.push_back(e->type);
+  std::vector<Type> numeric_types;  // made only for a template that calls a helper
   for (size_t at = expanded.find("xs_"); at != std::string::npos; at = expanded.find("xs_", at + 3)) {
+    if (numeric_types.empty())
+      for (const Expr* e : operands)
+        if (e->type.is_numeric()) numeric_types.push_back(e->type);
     const size_t open = expanded.find('(', at);
     if (open != std::string::npos) require_helper(expanded.substr(at, open - at), numeric_types, call.loc);
   }

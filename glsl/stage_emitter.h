@@ -72,7 +72,8 @@ class Names {
   std::string function(const FunctionDecl* function) const;
   // A variable's or parameter's name. A local or parameter named like one of the author's
   // functions is renamed too: in GLSL it would hide the function for the rest of its scope.
-  std::string variable(const hlsl::Decl* decl) const;
+  // Every use of a variable asks for its name, so each is worked out once.
+  const std::string& variable(const hlsl::Decl* decl) const;
   // The scalar `index` of a constant-buffer vector declared as scalars: `_Offset_0`.
   std::string split_member(const std::string& name, uint32_t index) const;
 
@@ -88,6 +89,7 @@ class Names {
   // Overloads whose GLSL signatures coincide; every other function is of(name).
   std::unordered_map<const FunctionDecl*, std::string> functions_;
   mutable std::unordered_map<std::string, std::string> cache_;
+  mutable std::unordered_map<const hlsl::Decl*, std::string> variables_;
 };
 
 // The GLSL spelling of a type for overload comparison; no diagnostics (see StageEmitter::type_name).
