@@ -39,7 +39,7 @@ std::string operand(const Code& code, int prec) {
 namespace {
 
 // Every name a statement tree declares (locals, for-loop variables).
-void collect_local_names(const Stmt* stmt, std::unordered_set<std::string_view>& names) {
+void collect_local_names(const Stmt* stmt, std::vector<std::string_view>& names) {
   if (!stmt) return;
   switch (stmt->kind) {
     case StmtKind::Block:
@@ -47,7 +47,7 @@ void collect_local_names(const Stmt* stmt, std::unordered_set<std::string_view>&
       break;
     case StmtKind::Decl:
       for (const auto& var : static_cast<const DeclStmt*>(stmt)->vars)
-        if (var) names.insert(var->name);
+        if (var) names.push_back(var->name);
       break;
     case StmtKind::If: {
       const auto* s = static_cast<const IfStmt*>(stmt);
@@ -120,7 +120,7 @@ Names::Names(const TranslationUnit& unit, Flavour flavour) : unit_(unit) {
       for (const auto& param : function->params)
         if (param) name += "_" + type_suffix(param->type);
       std::string candidate = name;
-      for (int k = 1; user().count(candidate) > 0 || suffixed.count(candidate) > 0; ++k)
+      for (int k = 1; is_user_name(candidate) || suffixed.count(candidate) > 0; ++k)
         candidate = name + std::to_string(k);
       suffixed.insert(candidate);
       functions_[function] = candidate;
@@ -128,31 +128,60 @@ Names::Names(const TranslationUnit& unit, Flavour flavour) : unit_(unit) {
   }
 }
 
-const std::unordered_set<std::string_view>& Names::user() const {
-  if (user_built_) return user_;
-  user_built_ = true;
-  for (const auto& decl : unit_.decls) {
-    if (!decl) continue;
-    user_.insert(decl->name);
-    switch (decl->kind) {
-      case DeclKind::Struct:
-        for (const FieldDecl& field : static_cast<const StructDecl&>(*decl).fields) user_.insert(field.name);
-        break;
-      case DeclKind::CBuffer:
-        for (const auto& member : static_cast<const CBufferDecl&>(*decl).members)
-          if (member) user_.insert(member->name);
-        break;
-      case DeclKind::Function: {
-        const auto& function = static_cast<const FunctionDecl&>(*decl);
-        for (const auto& param : function.params)
-          if (param) user_.insert(param->name);
-        collect_local_names(function.body.get(), user_);
-        break;
+namespace {
+
+uint32_t name_hash(std::string_view text) {
+  uint32_t h = 2166136261u;  // FNV-1a
+  for (char c : text) h = (h ^ static_cast<unsigned char>(c)) * 16777619u;
+  return h;
+}
+
+}  // namespace
+
+bool Names::is_user_name(std::string_view name) const {
+  if (user_slots_.empty()) {
+    std::vector<std::string_view> all;
+    for (const auto& decl : unit_.decls) {
+      if (!decl) continue;
+      all.push_back(decl->name);
+      switch (decl->kind) {
+        case DeclKind::Struct:
+          for (const FieldDecl& field : static_cast<const StructDecl&>(*decl).fields) all.push_back(field.name);
+          break;
+        case DeclKind::CBuffer:
+          for (const auto& member : static_cast<const CBufferDecl&>(*decl).members)
+            if (member) all.push_back(member->name);
+          break;
+        case DeclKind::Function: {
+          const auto& function = static_cast<const FunctionDecl&>(*decl);
+          for (const auto& param : function.params)
+            if (param) all.push_back(param->name);
+          collect_local_names(function.body.get(), all);
+          break;
+        }
+        default: break;
       }
-      default: break;
+    }
+    // At most half full, so that every probe ends at an empty slot; never empty once built.
+    size_t slots = 16;
+    while (slots < 2 * all.size()) slots *= 2;
+    user_slots_.assign(slots, std::string_view());
+    user_has_empty_name_ = false;
+    for (std::string_view user : all) {
+      if (user.empty()) {
+        user_has_empty_name_ = true;
+        continue;
+      }
+      size_t slot = name_hash(user) & (slots - 1);
+      while (!user_slots_[slot].empty() && user_slots_[slot] != user) slot = (slot + 1) & (slots - 1);
+      user_slots_[slot] = user;
     }
   }
-  return user_;
+  if (name.empty()) return user_has_empty_name_;
+  const size_t mask = user_slots_.size() - 1;
+  for (size_t slot = name_hash(name) & mask; !user_slots_[slot].empty(); slot = (slot + 1) & mask)
+    if (user_slots_[slot] == name) return true;
+  return false;
 }
 
 std::string Names::of(const std::string& name) const {
@@ -160,7 +189,7 @@ std::string Names::of(const std::string& name) const {
   if (auto it = cache_.find(name); it != cache_.end()) return it->second;
   const std::string base = renamed(name);
   std::string candidate = base;
-  for (int k = 1; user().count(candidate) > 0; ++k) candidate = base + std::to_string(k);
+  for (int k = 1; is_user_name(candidate); ++k) candidate = base + std::to_string(k);
   cache_.emplace(name, candidate);
   return candidate;
 }
@@ -177,7 +206,7 @@ const std::string& Names::variable(const Decl* decl) const {
   const std::string base = of(decl->name);
   const std::string stem = (base.back() == '_' ? base : base + "_") + "v";
   std::string candidate = stem;
-  for (int k = 1; user().count(candidate) > 0 || function_names_.count(candidate) > 0; ++k)
+  for (int k = 1; is_user_name(candidate) || function_names_.count(candidate) > 0; ++k)
     candidate = stem + std::to_string(k);
   name = std::move(candidate);
   return name;
@@ -187,7 +216,7 @@ std::string Names::split_member(const std::string& name, uint32_t index) const {
   const std::string base = of(name);
   const std::string stem = base.back() == '_' ? base : base + "_";  // never `__`
   std::string candidate = stem + std::to_string(index);
-  while (user().count(candidate) > 0) candidate += "x";
+  while (is_user_name(candidate)) candidate += "x";
   return candidate;
 }
 

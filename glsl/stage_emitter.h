@@ -78,13 +78,14 @@ class Names {
   std::string split_member(const std::string& name, uint32_t index) const;
 
  private:
-  // Every name the author declared, viewing the tree's strings. Only a renaming needs it, and
-  // most shaders rename nothing, so it is gathered on first use.
-  const std::unordered_set<std::string_view>& user() const;
+  // Whether the author declared `name` anywhere. Only a renaming asks, so the names are
+  // gathered on first use, into an open-addressed table viewing the tree's strings: one
+  // allocation where a std::unordered_set makes one per name.
+  bool is_user_name(std::string_view name) const;
 
   const hlsl::TranslationUnit& unit_;
-  mutable std::unordered_set<std::string_view> user_;
-  mutable bool user_built_ = false;
+  mutable std::vector<std::string_view> user_slots_;  // FNV-1a, linear probing; empty: not gathered yet
+  mutable bool user_has_empty_name_ = false;
   std::unordered_set<std::string_view> function_names_;
   // Overloads whose GLSL signatures coincide; every other function is of(name).
   std::unordered_map<const FunctionDecl*, std::string> functions_;
