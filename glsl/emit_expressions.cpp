@@ -576,12 +576,35 @@ const Expr* splatted_scalar(const Expr* e) {
   return operand;
 }
 
+// `l op r`, each side parenthesized as the operator's precedence needs. The left operand's
+// text becomes the result's, so that a chain of operators does not copy what it has built.
+Code infix(Code&& l, const BinaryInfo& info, const Code& r) {
+  std::string text = operand(std::move(l), info.prec);
+  text += ' ';
+  text += info.text;
+  text += ' ';
+  append_operand(text, r, info.prec + 1);
+  return {std::move(text), info.prec};
+}
+
+// `function(a, b)`.
+Code call2(std::string_view function, const Code& a, const Code& b) {
+  std::string text;
+  text.reserve(function.size() + a.text.size() + b.text.size() + 8);
+  text += function;
+  text += '(';
+  append_operand(text, a, kAssign);
+  text += ", ";
+  append_operand(text, b, kAssign);
+  text += ')';
+  return {std::move(text), kPostfix};
+}
+
 }  // namespace
 
 // `l op r` on operands of `type` (both already of that type), with HLSL's meaning.
-static Code arithmetic(StageEmitter& emitter, BinaryOp op, const Type& type, const Code& l, const Code& r, Loc loc) {
-  if (type.is_matrix() && op == BinaryOp::Mul)
-    return {"matrixCompMult(" + operand(l, kAssign) + ", " + operand(r, kAssign) + ")", kPostfix};
+static Code arithmetic(StageEmitter& emitter, BinaryOp op, const Type& type, Code l, const Code& r, Loc loc) {
+  if (type.is_matrix() && op == BinaryOp::Mul) return call2("matrixCompMult", l, r);
   if (type.is_matrix() && op == BinaryOp::Mod) {
     emitter.fail(loc, "'%' on matrices is not supported on this target");
     return l;
@@ -589,10 +612,9 @@ static Code arithmetic(StageEmitter& emitter, BinaryOp op, const Type& type, con
   if (needs_lowering(op, type)) {
     const char* helper = op == BinaryOp::Mod ? (type.is_floating() ? "xs_fmod" : "xs_imod") : "xs_idiv";
     const std::string name = emitter.require_helper(helper, {type, type}, loc);
-    return {name + "(" + operand(l, kAssign) + ", " + operand(r, kAssign) + ")", kPostfix};
+    return call2(name, l, r);
   }
-  const BinaryInfo info = binary_info(op);
-  return {operand(l, info.prec) + " " + info.text + " " + operand(r, info.prec + 1), info.prec};
+  return infix(std::move(l), binary_info(op), r);
 }
 
 Code StageEmitter::expr(const Expr* e) {
@@ -666,13 +688,16 @@ Code StageEmitter::expr(const Expr* e) {
       const auto* binary = static_cast<const BinaryExpr*>(e);
       const BinaryOp op = binary->op;
       if (op == BinaryOp::Comma) {
-        const Code l = expr(binary->lhs.get());
+        Code l = expr(binary->lhs.get());
         const Code r = expr(binary->rhs.get());
-        return {operand(l, kComma) + ", " + operand(r, kAssign), kComma};
+        std::string text = operand(std::move(l), kComma);
+        text += ", ";
+        append_operand(text, r, kAssign);
+        return {std::move(text), kComma};
       }
       const Type& type = binary->lhs->type;  // both operands have it after sema
       if (op == BinaryOp::LogicalAnd || op == BinaryOp::LogicalOr) {
-        const Code l = expr(binary->lhs.get());
+        Code l = expr(binary->lhs.get());
         const Code r = expr(binary->rhs.get());
         if (type.component_count() > 1) {
           if (type.is_matrix()) fail(e->loc, "logical operators on matrices are not supported on this target");
@@ -682,20 +707,17 @@ Code StageEmitter::expr(const Expr* e) {
                       n + "(" + r.text + "))",
                   kPostfix};
         }
-        const BinaryInfo info = binary_info(op);
-        return {operand(l, info.prec) + " " + info.text + " " + operand(r, info.prec + 1), info.prec};
+        return infix(std::move(l), binary_info(op), r);
       }
       if (const char* function = comparison_function(op)) {
-        const Code l = expr(binary->lhs.get());
+        Code l = expr(binary->lhs.get());
         const Code r = expr(binary->rhs.get());
         if (type.is_matrix()) {
           fail(e->loc, "comparing matrices is not supported on this target");
           return l;
         }
-        if (type.component_count() > 1)
-          return {std::string(function) + "(" + operand(l, kAssign) + ", " + operand(r, kAssign) + ")", kPostfix};
-        const BinaryInfo info = binary_info(op);
-        return {operand(l, info.prec) + " " + info.text + " " + operand(r, info.prec + 1), info.prec};
+        if (type.component_count() > 1) return call2(function, l, r);
+        return infix(std::move(l), binary_info(op), r);
       }
       // Arithmetic and bitwise: GLSL takes a scalar on either side of a vector or matrix.
       const Expr* lhs = binary->lhs.get();
@@ -704,18 +726,16 @@ Code StageEmitter::expr(const Expr* e) {
       if (scalar_operand_allowed(op, type) && splatted_scalar(lhs) && !splatted_scalar(rhs)) {
         l = convert_expr(splatted_scalar(lhs), Type::scalar(type.scalar_type()));
         r = expr(rhs);
-        const BinaryInfo info = binary_info(op);
-        return half_value({operand(l, info.prec) + " " + info.text + " " + operand(r, info.prec + 1), info.prec}, e->type);
+        return half_value(infix(std::move(l), binary_info(op), r), e->type);
       }
       if (scalar_operand_allowed(op, type) && splatted_scalar(rhs) && !splatted_scalar(lhs)) {
         l = expr(lhs);
         r = convert_expr(splatted_scalar(rhs), Type::scalar(type.scalar_type()));
-        const BinaryInfo info = binary_info(op);
-        return half_value({operand(l, info.prec) + " " + info.text + " " + operand(r, info.prec + 1), info.prec}, e->type);
+        return half_value(infix(std::move(l), binary_info(op), r), e->type);
       }
       l = expr(lhs);
       r = expr(rhs);
-      return half_value(arithmetic(*this, op, type, l, r, e->loc), e->type);
+      return half_value(arithmetic(*this, op, type, std::move(l), r, e->loc), e->type);
     }
 
     case ExprKind::Assign: {
@@ -727,9 +747,14 @@ Code StageEmitter::expr(const Expr* e) {
           fail(target->loc, "assigning to several matrix components at once is not supported on this target");
         }
       }
-      const Code t = expr(target);
+      Code t = expr(target);
       const std::optional<BinaryOp> op = compound_operator(assign->op);
-      if (!op) return {operand(t, kUnary) + " = " + operand(expr(assign->value.get()), kAssign), kAssign};
+      if (!op) {
+        std::string text = operand(std::move(t), kUnary);
+        text += " = ";
+        append_operand(text, expr(assign->value.get()), kAssign);
+        return {std::move(text), kAssign};
+      }
       const Type& operation = assign->value->type;  // the operator's operand type (sema)
       const Type& target_type = target->type;
       const Expr* scalar = splatted_scalar(assign->value.get());
@@ -738,7 +763,12 @@ Code StageEmitter::expr(const Expr* e) {
           (!needs_lowering(*op, operation) || (scalar && scalar_operand_allowed(*op, operation)))) {
         const BinaryInfo info = binary_info(*op);
         const Code v = scalar ? convert_expr(scalar, Type::scalar(operation.scalar_type())) : expr(assign->value.get());
-        return {operand(t, kUnary) + " " + info.text + "= " + operand(v, kAssign), kAssign};
+        std::string text = operand(std::move(t), kUnary);
+        text += ' ';
+        text += info.text;
+        text += "= ";
+        append_operand(text, v, kAssign);
+        return {std::move(text), kAssign};
       }
       // t = T(t' op v): the target is read and written, so it is written out twice.
       if (has_side_effects(target)) {
@@ -747,10 +777,13 @@ Code StageEmitter::expr(const Expr* e) {
                          "compute the target once into a variable");
         return t;
       }
-      const Code current = convert(t, target_type, operation, e->loc);
+      Code current = convert(t, target_type, operation, e->loc);
       const Code value = expr(assign->value.get());
-      const Code result = half_value(arithmetic(*this, *op, operation, current, value, e->loc), operation);
-      return {operand(t, kUnary) + " = " + operand(convert(result, operation, target_type, e->loc), kAssign), kAssign};
+      Code result = half_value(arithmetic(*this, *op, operation, std::move(current), value, e->loc), operation);
+      std::string text = operand(std::move(t), kUnary);
+      text += " = ";
+      append_operand(text, convert(std::move(result), operation, target_type, e->loc), kAssign);
+      return {std::move(text), kAssign};
     }
 
     case ExprKind::Conditional: {
@@ -765,13 +798,23 @@ Code StageEmitter::expr(const Expr* e) {
           return then_value;
         }
         // Component-wise selection; HLSL evaluates both sides too.
-        return {"mix(" + operand(else_value, kAssign) + ", " + operand(then_value, kAssign) + ", " +
-                    operand(condition, kAssign) + ")",
-                kPostfix};
+        std::string text = "mix(";
+        append_operand(text, else_value, kAssign);
+        text += ", ";
+        append_operand(text, then_value, kAssign);
+        text += ", ";
+        append_operand(text, condition, kAssign);
+        text += ')';
+        return {std::move(text), kPostfix};
       }
-      return {operand(condition, kLogicalOr) + " ? " + operand(then_value, kAssign) + " : " +
-                  operand(else_value, kAssign),
-              kConditional};
+      std::string text;
+      text.reserve(condition.text.size() + then_value.text.size() + else_value.text.size() + 10);
+      append_operand(text, condition, kLogicalOr);
+      text += " ? ";
+      append_operand(text, then_value, kAssign);
+      text += " : ";
+      append_operand(text, else_value, kAssign);
+      return {std::move(text), kConditional};
     }
 
     case ExprKind::Call: {
@@ -786,9 +829,11 @@ Code StageEmitter::expr(const Expr* e) {
             const Expr* arg = call->args[i].get();
             if (type.is_matrix() && arg && arg->type.is_matrix())
               fail(arg->loc, "a matrix constructor with matrix arguments is not supported on this target");
-            text += (i ? ", " : "") + operand(expr(arg), kAssign);
+            if (i) text += ", ";
+            append_operand(text, expr(arg), kAssign);
           }
-          return half_value({text + ")", kPostfix}, type);
+          text += ')';
+          return half_value({std::move(text), kPostfix}, type);
         }
         case CallKind::Function: {
           const FunctionDecl* function = call->function;
@@ -820,10 +865,12 @@ Code StageEmitter::expr(const Expr* e) {
             } else {
               fail(e->loc, "internal error: argument " + std::to_string(i + 1) + " of " + in_quotes(call->callee) + " is missing");
             }
-            text += (first ? "" : ", ") + operand(arg, kAssign);
+            if (!first) text += ", ";
+            append_operand(text, arg, kAssign);
             first = false;
           }
-          return half_value({text + ")", kPostfix}, e->type);
+          text += ')';
+          return half_value({std::move(text), kPostfix}, e->type);
         }
         case CallKind::Intrinsic:
         case CallKind::Method: return half_value(intrinsic_call(*call), e->type);
@@ -842,10 +889,13 @@ Code StageEmitter::expr(const Expr* e) {
       if (type.kind() == TypeKind::Struct || type.kind() == TypeKind::ConstantBuffer) {
         // ConstantBuffer<S> cb: cb.field is a member of the block whose instance is cb.
         const StructDecl* decl = type.kind() == TypeKind::Struct ? type.struct_decl() : type.element().struct_decl();
-        const std::string field = decl && member->field_index >= 0 && size_t(member->field_index) < decl->fields.size()
-                                      ? decl->fields[size_t(member->field_index)].name
-                                      : member->member;
-        return {operand(expr(object), kPostfix) + "." + names_.of(field), kPostfix};
+        const std::string& field = decl && member->field_index >= 0 && size_t(member->field_index) < decl->fields.size()
+                                       ? decl->fields[size_t(member->field_index)].name
+                                       : member->member;
+        std::string text = operand(expr(object), kPostfix);
+        text += '.';
+        text += names_.of(field);
+        return {std::move(text), kPostfix};
       }
       const std::vector<uint8_t>& swizzle = member->swizzle;
       const uint32_t count = uint32_t(swizzle.size());
@@ -871,17 +921,22 @@ Code StageEmitter::expr(const Expr* e) {
         if (count == 1) return {parts};
         return {type_name(e->type, e->loc) + "(" + parts + ")", kPostfix};
       }
-      std::string letters;
-      for (uint8_t component : swizzle) letters += kComponents[component & 3];
-      return {operand(expr(object), kPostfix) + "." + letters, kPostfix};
+      std::string text = operand(expr(object), kPostfix);
+      text += '.';
+      for (uint8_t component : swizzle) text += kComponents[component & 3];
+      return {std::move(text), kPostfix};
     }
 
     case ExprKind::Index: {
       const auto* index = static_cast<const IndexExpr*>(e);
       if (index->object->type.is_texture()) return texture_index(*index);
-      const Code object = expr(index->object.get());
+      Code object = expr(index->object.get());
       if (index->object->type.is_vector() && index->object->type.cols() == 1) return object;  // float1[0]
-      return {operand(object, kPostfix) + "[" + expr(index->index.get()).text + "]", kPostfix};
+      std::string text = operand(std::move(object), kPostfix);
+      text += '[';
+      text += expr(index->index.get()).text;
+      text += ']';
+      return {std::move(text), kPostfix};
     }
 
     case ExprKind::Cast: {

@@ -33,6 +33,24 @@ std::string operand(const Code& code, int prec) {
   return "(" + code.text + ")";
 }
 
+std::string operand(Code&& code, int prec) {
+  if (code.prec < prec) {
+    code.text.insert(code.text.begin(), '(');
+    code.text += ')';
+  }
+  return std::move(code.text);
+}
+
+void append_operand(std::string& out, const Code& code, int prec) {
+  if (code.prec >= prec) {
+    out += code.text;
+    return;
+  }
+  out += '(';
+  out += code.text;
+  out += ')';
+}
+
 // ---------------------------------------------------------------------------------------------
 // Names
 

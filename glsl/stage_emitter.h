@@ -56,6 +56,11 @@ struct Code {
 
 // `code` as an operand that needs at least precedence `prec`.
 std::string operand(const Code& code, int prec);
+// The same, taking the text over instead of copying it: expressions are built bottom-up, and
+// most operands are used once, by the expression around them.
+std::string operand(Code&& code, int prec);
+// Appends `code` as an operand to `out`, without a text of its own in between.
+void append_operand(std::string& out, const Code& code, int prec);
 
 std::string replace_all(std::string text, std::string_view from, const std::string& to);
 
