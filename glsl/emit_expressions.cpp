@@ -146,6 +146,17 @@ bool is_simple_text(const std::string& text) {
   return !text.empty();
 }
 
+// `type(value)`: a constructor or conversion of one argument.
+Code constructed(const std::string& type, const Code& value) {
+  std::string text;
+  text.reserve(type.size() + value.text.size() + 4);
+  text += type;
+  text += '(';
+  append_operand(text, value, kAssign);
+  text += ')';
+  return {std::move(text)};
+}
+
 }  // namespace
 
 std::string type_key(const Type& type, Flavour flavour) { return glsl_type(type, flavour, nullptr); }
@@ -181,6 +192,14 @@ std::string StageEmitter::declarator(const Type& type, const std::string& name, 
 bool StageEmitter::same_glsl(const Type& a, const Type& b) {
   if (a.is_error() || b.is_error()) return true;
   if (a.kind() == TypeKind::Struct || b.kind() == TypeKind::Struct) return a == b;
+  // Scalars and vectors, most of what is asked, without spelling them: GLSL's name is the
+  // scalar (half is float) and, past one component, the count.
+  const auto numeric = [](TypeKind kind) { return kind == TypeKind::Scalar || kind == TypeKind::Vector; };
+  if (numeric(a.kind()) && numeric(b.kind())) {
+    const auto glsl_scalar = [](ScalarType scalar) { return scalar == ScalarType::Half ? ScalarType::Float : scalar; };
+    const auto count = [](const Type& type) { return type.kind() == TypeKind::Vector ? type.cols() : 1u; };
+    return glsl_scalar(a.scalar_type()) == glsl_scalar(b.scalar_type()) && count(a) == count(b);
+  }
   return glsl_type(a, flavour_, nullptr) == glsl_type(b, flavour_, nullptr);
 }
 
@@ -213,11 +232,12 @@ Code StageEmitter::half_value(Code value, const Type& type) {
 // Conversions
 
 Code StageEmitter::convert(Code value, const Type& from, const Type& to, Loc loc) {
-  const Code converted = convert_components(value, from, to, loc);
+  Code converted = convert_components(std::move(value), from, to, loc);
   // float -> half is where a value first becomes half: the rounding the conversion means.
   const bool becomes_half = to.is_floating() && to.scalar_type() == ScalarType::Half &&
                             !(from.is_floating() && from.scalar_type() == ScalarType::Half);
-  return becomes_half ? half_value(converted, to) : converted;
+  if (becomes_half) return half_value(std::move(converted), to);
+  return converted;
 }
 
 Code StageEmitter::convert_components(Code value, const Type& from, const Type& to, Loc loc) {
@@ -242,18 +262,23 @@ Code StageEmitter::convert_components(Code value, const Type& from, const Type& 
       }
       return {"(" + target + "(0.0) + " + operand(scalar, kMultiplicative) + ")"};
     }
-    return {target + "(" + operand(value, kAssign) + ")"};  // float(i), vec3(x), bvec2(x)
+    return constructed(target, value);  // float(i), vec3(x), bvec2(x)
   }
   if (from.is_vector()) {
     if (to_count == 1) {
-      const std::string first = operand(value, kPostfix) + ".x";
-      if (same_scalar) return {first, kPostfix};
+      std::string first = operand(std::move(value), kPostfix);
+      first += ".x";
+      if (same_scalar) return {std::move(first), kPostfix};
       return {target + "(" + first + ")"};
     }
     if (to.is_vector()) {
-      if (to_count < from_count && same_scalar)
-        return {operand(value, kPostfix) + "." + std::string(kComponents, to_count), kPostfix};
-      return {target + "(" + operand(value, kAssign) + ")"};  // vec3(ivec3), vec3(ivec4)
+      if (to_count < from_count && same_scalar) {
+        std::string text = operand(std::move(value), kPostfix);
+        text += '.';
+        text.append(kComponents, to_count);
+        return {std::move(text), kPostfix};
+      }
+      return constructed(target, value);  // vec3(ivec3), vec3(ivec4)
     }
     // (float2x2)v: components in HLSL's row order fill GLSL's columns of the transpose.
     std::string source = operand(value, kAssign);
@@ -266,7 +291,7 @@ Code StageEmitter::convert_components(Code value, const Type& from, const Type& 
     if (same_scalar) return {first, kPostfix};
     return {target + "(" + first + ")"};
   }
-  return {target + "(" + operand(value, kAssign) + ")"};  // mat3(G): the upper-left corner
+  return constructed(target, value);  // mat3(G): the upper-left corner
 }
 
 namespace {
