@@ -181,12 +181,16 @@ std::string StageEmitter::type_name(const Type& type, Loc loc) {
 
 std::string StageEmitter::declarator(const Type& type, const std::string& name, Loc loc) {
   const Type* element = &type;
-  std::string lengths;
-  while (element->kind() == TypeKind::Array) {
-    lengths += "[" + std::to_string(element->array_length()) + "]";
-    element = &element->element();
+  while (element->kind() == TypeKind::Array) element = &element->element();
+  std::string text = type_name(*element, loc);
+  text += ' ';
+  text += name;
+  for (const Type* array = &type; array->kind() == TypeKind::Array; array = &array->element()) {
+    text += '[';
+    text += std::to_string(array->array_length());
+    text += ']';
   }
-  return type_name(*element, loc) + " " + name + lengths;
+  return text;
 }
 
 bool StageEmitter::same_glsl(const Type& a, const Type& b) {

@@ -252,7 +252,10 @@ std::string variable_text(StageEmitter& emitter, const VarDecl& var, const Names
     }
   }
   text += emitter.declarator(var.type, names.variable(&var), var.loc);
-  if (!init.empty()) text += " = " + init;
+  if (!init.empty()) {
+    text += " = ";
+    text += init;
+  }
   return text;
 }
 
@@ -275,7 +278,7 @@ void StageEmitter::local_variable(const VarDecl& var) {
     return;
   }
   out_.mark(var.loc);
-  out_.line(variable_text(*this, var, names_) + ";");
+  out_.line({variable_text(*this, var, names_), ";"});
 }
 
 void StageEmitter::statement(const Stmt* stmt) {
@@ -296,7 +299,7 @@ void StageEmitter::statement(const Stmt* stmt) {
       if (e->kind == ExprKind::Assign && !resource_paths(static_cast<const AssignExpr*>(e)->target->type).empty()) break;
       out_.mark(stmt->loc);
       if (clip_statement(e)) break;
-      out_.line(prefix + expr(e).text + ";");
+      out_.line({prefix, expr(e).text, ";"});
       break;
     }
     case StmtKind::Decl:
@@ -306,13 +309,13 @@ void StageEmitter::statement(const Stmt* stmt) {
     case StmtKind::If: {
       const auto* branch = static_cast<const IfStmt*>(stmt);
       out_.mark(stmt->loc);
-      out_.line(prefix + "if (" + expr(branch->condition.get()).text + ") {");
+      out_.line({prefix, "if (", expr(branch->condition.get()).text, ") {"});
       body(branch->then_branch.get());
       const Stmt* rest = branch->else_branch.get();
       while (rest && rest->kind == StmtKind::If && rest->attributes.empty()) {
         const auto* next = static_cast<const IfStmt*>(rest);
         out_.mark(rest->loc);
-        out_.line("} else if (" + expr(next->condition.get()).text + ") {");
+        out_.line({"} else if (", expr(next->condition.get()).text, ") {"});
         body(next->then_branch.get());
         rest = next->else_branch.get();
       }
@@ -385,7 +388,7 @@ void StageEmitter::statement(const Stmt* stmt) {
     case StmtKind::While: {
       const auto* loop = static_cast<const WhileStmt*>(stmt);
       out_.mark(stmt->loc);
-      out_.line(prefix + "while (" + expr(loop->condition.get()).text + ") {");
+      out_.line({prefix, "while (", expr(loop->condition.get()).text, ") {"});
       body(loop->body.get());
       out_.line("}");
       break;
@@ -418,7 +421,10 @@ void StageEmitter::statement(const Stmt* stmt) {
     case StmtKind::Return: {
       const Expr* value = static_cast<const ReturnStmt*>(stmt)->value.get();
       out_.mark(stmt->loc);
-      out_.line(value ? "return " + expr(value).text + ";" : "return;");
+      if (value)
+        out_.line({"return ", expr(value).text, ";"});
+      else
+        out_.line("return;");
       break;
     }
     case StmtKind::Break:

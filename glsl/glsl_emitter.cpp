@@ -254,6 +254,13 @@ void Writer::line(const std::string& text) {
   if (mapped_) ++next_line_;
 }
 
+void Writer::line(std::initializer_list<std::string_view> parts) {
+  text_.append(size_t(indent) * 2, ' ');
+  for (std::string_view part : parts) text_ += part;
+  text_ += '\n';
+  if (mapped_) ++next_line_;
+}
+
 void Writer::mark(Loc loc) {
   if (loc.file == 0 || loc.line == 0) return;
   if (mapped_ && file_ == loc.file && next_line_ == loc.line) return;

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <cstdint>
+#include <initializer_list>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -106,6 +107,8 @@ std::string type_key(const Type& type, Flavour flavour);
 class Writer {
  public:
   void line(const std::string& text);  // one indented line
+  // One indented line of these parts, so that a line is not put together in a string first.
+  void line(std::initializer_list<std::string_view> parts);
   // Before a construct at `loc`: a `#line` directive unless the next line already maps there.
   void mark(Loc loc);
   const std::string& text() const { return text_; }
