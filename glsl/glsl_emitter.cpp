@@ -111,18 +111,24 @@ Names::Names(const TranslationUnit& unit, Flavour flavour) : unit_(unit) {
   // Overloads whose GLSL signatures coincide get a suffix of their HLSL parameter types. Only
   // functions that share their GLSL name with another can coincide, so only those are compared:
   // most shaders have none, and then neither the signatures nor the author's names are needed.
-  std::vector<std::pair<std::string, const FunctionDecl*>> by_name;
-  by_name.reserve(functions.size());
-  for (const FunctionDecl* function : functions) by_name.emplace_back(of(function->name), function);
-  // Stable: overloads keep their source order, in which their suffixes are chosen.
-  std::stable_sort(by_name.begin(), by_name.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+  std::vector<std::string> glsl_names;
+  glsl_names.reserve(functions.size());
+  for (const FunctionDecl* function : functions) glsl_names.push_back(of(function->name));
+  // Overloads keep their source order, in which their suffixes are chosen.
+  std::vector<uint32_t> by_name(functions.size());
+  for (uint32_t i = 0; i < by_name.size(); ++i) by_name[i] = i;
+  std::sort(by_name.begin(), by_name.end(), [&](uint32_t a, uint32_t b) {
+    const int order = glsl_names[a].compare(glsl_names[b]);
+    return order < 0 || (order == 0 && a < b);
+  });
   std::map<std::string, std::vector<const FunctionDecl*>> by_signature;  // ordered: deterministic
   for (size_t i = 0; i < by_name.size(); ++i) {
-    const bool shared = (i > 0 && by_name[i - 1].first == by_name[i].first) ||
-                        (i + 1 < by_name.size() && by_name[i + 1].first == by_name[i].first);
+    const std::string& name = glsl_names[by_name[i]];
+    const bool shared = (i > 0 && glsl_names[by_name[i - 1]] == name) ||
+                        (i + 1 < by_name.size() && glsl_names[by_name[i + 1]] == name);
     if (!shared) continue;
-    const FunctionDecl* function = by_name[i].second;
-    std::string signature = by_name[i].first + "(";
+    const FunctionDecl* function = functions[by_name[i]];
+    std::string signature = name + "(";
     for (const auto& param : function->params) {
       if (!param) continue;
       if (flavour == Flavour::Gl && param->type.kind() == TypeKind::SamplerState) continue;
@@ -264,7 +270,11 @@ void Writer::line(std::initializer_list<std::string_view> parts) {
 void Writer::mark(Loc loc) {
   if (loc.file == 0 || loc.line == 0) return;
   if (mapped_ && file_ == loc.file && next_line_ == loc.line) return;
-  text_ += "#line " + std::to_string(loc.line) + " " + std::to_string(loc.file) + "\n";
+  text_ += "#line ";
+  text_ += std::to_string(loc.line);
+  text_ += ' ';
+  text_ += std::to_string(loc.file);
+  text_ += '\n';
   mapped_ = true;
   file_ = loc.file;
   next_line_ = loc.line;
