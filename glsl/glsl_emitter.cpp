@@ -621,7 +621,7 @@ std::string StageEmitter::declarations() {
     }
     w.line("struct " + names_.of(s.name) + " {");
     w.indent = 1;
-    for (const FieldDecl& field : s.fields) w.line(declarator(field.type, names_.of(field.name), field.loc) + ";");
+    for (const FieldDecl& field : s.fields) w.line({declarator(field.type, names_.of(field.name), field.loc), ";"});
     w.indent = 0;
     w.line("};");
   }
@@ -650,10 +650,9 @@ std::string StageEmitter::declarations() {
                  names_.split_member(member.name, i) + ";");
         continue;
       }
-      std::string qualifiers = "offset = " + std::to_string(member.offset);
       // HLSL's column_major M is GLSL's row_major G = M^T, byte for byte.
-      if (contains_matrix(member.type)) qualifiers += member.row_major ? ", column_major" : ", row_major";
-      w.line("layout(" + qualifiers + ") " + declarator(member.type, name, loc) + ";");
+      const char* major = !contains_matrix(member.type) ? "" : member.row_major ? ", column_major" : ", row_major";
+      w.line({"layout(offset = ", std::to_string(member.offset), major, ") ", declarator(member.type, name, loc), ";"});
     }
     w.indent = 0;
     w.line(view ? "} " + constant_buffer_instance(buffer.name) + ";" : "};");
