@@ -243,6 +243,20 @@ std::vector<Piece> split_template(const std::string& text) {
   return pieces;
 }
 
+struct SplitTemplate {
+  std::vector<Piece> pieces;
+  int prec = kComma;  // template_prec of the text
+};
+
+// A template split once per thread: templates come from a small fixed set (kMappings and the
+// texture forms, with GLSL type names for $R and $B0), and each is expanded again and again.
+const SplitTemplate& split_template_once(const std::string& text) {
+  thread_local std::unordered_map<std::string, SplitTemplate> split;
+  auto it = split.find(text);
+  if (it == split.end()) it = split.emplace(text, SplitTemplate{split_template(text), template_prec(text)}).first;
+  return it->second;
+}
+
 }  // namespace
 
 std::string replace_all(std::string text, std::string_view from, const std::string& to) {
@@ -420,8 +434,11 @@ Code StageEmitter::intrinsic_call(const CallExpr& call) {
 Code StageEmitter::expand_template(const std::string& text, const CallExpr& call, const std::vector<const Expr*>& operands,
                                    const std::vector<bool>& out) {
   const IntrinsicInfo& info = intrinsic_info(IntrinsicId(call.intrinsic));
-  std::string expanded = replace_all(text, "$R", type_name(call.type, call.loc));
-  expanded = replace_all(expanded, "$B0", bool_type(operands[0]->type.component_count()));
+  const std::string result_type = type_name(call.type, call.loc);  // also reports a type GLSL lacks
+  std::string expanded = text;
+  if (expanded.find("$R") != std::string::npos) expanded = replace_all(std::move(expanded), "$R", result_type);
+  if (expanded.find("$B0") != std::string::npos)
+    expanded = replace_all(std::move(expanded), "$B0", bool_type(operands[0]->type.component_count()));
   std::vector<Type> numeric_types;  // made only for a template that calls a helper
   for (size_t at = expanded.find("xs_"); at != std::string::npos; at = expanded.find("xs_", at + 3)) {
     if (numeric_types.empty())
@@ -431,7 +448,8 @@ Code StageEmitter::expand_template(const std::string& text, const CallExpr& call
     if (open != std::string::npos) require_helper(expanded.substr(at, open - at), numeric_types, call.loc);
   }
 
-  const std::vector<Piece> pieces = split_template(expanded);
+  const SplitTemplate& split = split_template_once(expanded);
+  const std::vector<Piece>& pieces = split.pieces;
   std::vector<int> uses(operands.size(), 0);
   for (const Piece& piece : pieces) {
     if (piece.operand < 0) continue;
@@ -489,9 +507,9 @@ Code StageEmitter::expand_template(const std::string& text, const CallExpr& call
   std::string result;
   for (const Piece& piece : pieces) {
     result += piece.text;
-    if (piece.operand >= 0) result += operand(code_of(size_t(piece.operand)), piece.needed);
+    if (piece.operand >= 0) append_operand(result, code_of(size_t(piece.operand)), piece.needed);
   }
-  return {result, template_prec(expanded)};
+  return {std::move(result), split.prec};
 }
 
 Code StageEmitter::matrix_intrinsic_call(const CallExpr& call, const std::vector<const Expr*>& operands) {
