@@ -8,7 +8,6 @@
 
 #include "glsl/glsl_names.h"
 #include "glsl/stage_emitter.h"
-#include "hlsl_like/ast_walk.h"
 #include "hlsl_like/semantics.h"
 
 namespace xshade::glsl {
@@ -387,18 +386,122 @@ void StageEmitter::fail(Loc loc, const std::string& message) {
   error_ = Error{std::move(rendered), where, {}};
 }
 
-void StageEmitter::collect_used_declarations() {
-  // Functions the entry point reaches, then those that static initializers call.
-  std::unordered_set<const FunctionDecl*> seen;
-  std::vector<const FunctionDecl*> to_scan;
-  auto add_tree = [&](const FunctionDecl* root) {
-    for (const FunctionDecl* function : reachable_functions(root)) {
-      if (seen.insert(function).second) {
-        functions_.push_back(function);
-        to_scan.push_back(function);
-      }
+namespace {
+
+// hlsl::walk_expressions's visit, in its order (parents before children, null children
+// skipped), with the visitor called directly: collect_used_declarations walks every function
+// of a stage, and a std::function call per expression cost as much as the rest of the walk.
+template <class Visit>
+void each_expression(const Expr* expr, Visit& visit) {
+  if (!expr) return;
+  visit(*expr);
+  switch (expr->kind) {
+    case ExprKind::Unary: each_expression(static_cast<const UnaryExpr*>(expr)->operand.get(), visit); break;
+    case ExprKind::Binary: {
+      const auto* e = static_cast<const BinaryExpr*>(expr);
+      each_expression(e->lhs.get(), visit);
+      each_expression(e->rhs.get(), visit);
+      break;
     }
-  };
+    case ExprKind::Assign: {
+      const auto* e = static_cast<const AssignExpr*>(expr);
+      each_expression(e->target.get(), visit);
+      each_expression(e->value.get(), visit);
+      break;
+    }
+    case ExprKind::Conditional: {
+      const auto* e = static_cast<const ConditionalExpr*>(expr);
+      each_expression(e->condition.get(), visit);
+      each_expression(e->then_value.get(), visit);
+      each_expression(e->else_value.get(), visit);
+      break;
+    }
+    case ExprKind::Call: {
+      const auto* e = static_cast<const CallExpr*>(expr);
+      each_expression(e->object.get(), visit);
+      for (const ExprPtr& arg : e->args) each_expression(arg.get(), visit);
+      break;
+    }
+    case ExprKind::Member: each_expression(static_cast<const MemberExpr*>(expr)->object.get(), visit); break;
+    case ExprKind::Index: {
+      const auto* e = static_cast<const IndexExpr*>(expr);
+      each_expression(e->object.get(), visit);
+      each_expression(e->index.get(), visit);
+      break;
+    }
+    case ExprKind::Cast: each_expression(static_cast<const CastExpr*>(expr)->operand.get(), visit); break;
+    case ExprKind::InitList:
+      for (const ExprPtr& element : static_cast<const InitListExpr*>(expr)->elements) each_expression(element.get(), visit);
+      break;
+    case ExprKind::Conversion: each_expression(static_cast<const ConversionExpr*>(expr)->operand.get(), visit); break;
+    case ExprKind::IntLiteral:
+    case ExprKind::FloatLiteral:
+    case ExprKind::BoolLiteral:
+    case ExprKind::Name: break;
+  }
+}
+
+template <class Visit>
+void each_expression(const Stmt* stmt, Visit& visit) {
+  if (!stmt) return;
+  switch (stmt->kind) {
+    case StmtKind::Block:
+      for (const StmtPtr& child : static_cast<const BlockStmt*>(stmt)->statements) each_expression(child.get(), visit);
+      break;
+    case StmtKind::Expr: each_expression(static_cast<const ExprStmt*>(stmt)->expr.get(), visit); break;
+    case StmtKind::Decl:
+      for (const auto& var : static_cast<const DeclStmt*>(stmt)->vars)
+        if (var) each_expression(var->initializer.get(), visit);
+      break;
+    case StmtKind::If: {
+      const auto* s = static_cast<const IfStmt*>(stmt);
+      each_expression(s->condition.get(), visit);
+      each_expression(s->then_branch.get(), visit);
+      each_expression(s->else_branch.get(), visit);
+      break;
+    }
+    case StmtKind::For: {
+      const auto* s = static_cast<const ForStmt*>(stmt);
+      each_expression(s->init.get(), visit);
+      each_expression(s->condition.get(), visit);
+      each_expression(s->step.get(), visit);
+      each_expression(s->body.get(), visit);
+      break;
+    }
+    case StmtKind::While: {
+      const auto* s = static_cast<const WhileStmt*>(stmt);
+      each_expression(s->condition.get(), visit);
+      each_expression(s->body.get(), visit);
+      break;
+    }
+    case StmtKind::DoWhile: {
+      const auto* s = static_cast<const DoWhileStmt*>(stmt);
+      each_expression(s->body.get(), visit);
+      each_expression(s->condition.get(), visit);
+      break;
+    }
+    case StmtKind::Switch: {
+      const auto* s = static_cast<const SwitchStmt*>(stmt);
+      each_expression(s->condition.get(), visit);
+      for (const SwitchCase& c : s->cases) {
+        each_expression(c.value.get(), visit);
+        for (const StmtPtr& child : c.statements) each_expression(child.get(), visit);
+      }
+      break;
+    }
+    case StmtKind::Return: each_expression(static_cast<const ReturnStmt*>(stmt)->value.get(), visit); break;
+    case StmtKind::Break:
+    case StmtKind::Continue:
+    case StmtKind::Discard:
+    case StmtKind::Empty: break;
+  }
+}
+
+const FunctionDecl* defined(const FunctionDecl* function) { return function->definition ? function->definition : function; }
+
+}  // namespace
+
+void StageEmitter::collect_used_declarations() {
   std::vector<const StructDecl*> struct_queue;
   auto use_type = [&](const Type& type) {
     const Type* base = &type;
@@ -406,40 +509,102 @@ void StageEmitter::collect_used_declarations() {
     if (base->kind() == TypeKind::Struct && base->struct_decl() && used_structs_.insert(base->struct_decl()).second)
       struct_queue.push_back(base->struct_decl());
   };
+  auto named_static = [](const Expr& expr) -> const VarDecl* {
+    if (expr.kind != ExprKind::Name) return nullptr;
+    const Decl* decl = static_cast<const NameExpr&>(expr).decl;
+    if (!decl || decl->kind != DeclKind::Var) return nullptr;
+    const auto* var = static_cast<const VarDecl*>(decl);
+    // groupshared goes with them, to be refused where it is reached.
+    const bool is_static = var->storage == StorageClass::Static || var->storage == StorageClass::GroupShared;
+    return var->is_global && is_static ? var : nullptr;
+  };
+
+  // One walk of each function's body finds what the rest asks of it: the functions it calls
+  // (as hlsl::reachable_functions counts them) and the statics it names, in order; the types
+  // of its expressions make their structs used as it goes.
+  struct FunctionUses {
+    std::vector<const FunctionDecl*> callees;
+    std::vector<const VarDecl*> statics;
+  };
+  std::unordered_map<const FunctionDecl*, FunctionUses> uses;
+  auto uses_of = [&](const FunctionDecl* function) -> const FunctionUses& {
+    auto [known, inserted] = uses.try_emplace(function);
+    if (inserted) {
+      FunctionUses& found = known->second;
+      auto visit = [&](const Expr& expr) {
+        use_type(expr.type);
+        if (const VarDecl* var = named_static(expr)) {
+          found.statics.push_back(var);
+        } else if (expr.kind == ExprKind::Call) {
+          const auto& call = static_cast<const CallExpr&>(expr);
+          if (call.call_kind == CallKind::Function && call.function) found.callees.push_back(defined(call.function));
+        }
+      };
+      each_expression(function->body.get(), visit);
+    }
+    return known->second;
+  };
+  // hlsl::reachable_functions, from the walks above: callees before callers, `root` last.
+  auto reachable = [&](const FunctionDecl* root_decl) {
+    std::vector<const FunctionDecl*> order;
+    const FunctionDecl* root = defined(root_decl);
+    struct Frame {
+      const FunctionDecl* function;
+      const std::vector<const FunctionDecl*>* callees;
+      size_t next = 0;
+    };
+    std::unordered_set<const FunctionDecl*> visited{root};
+    std::vector<Frame> stack{{root, &uses_of(root).callees}};
+    while (!stack.empty()) {
+      Frame& top = stack.back();
+      if (top.next < top.callees->size()) {
+        const FunctionDecl* callee = (*top.callees)[top.next++];
+        if (visited.insert(callee).second) stack.push_back({callee, &uses_of(callee).callees});
+        continue;
+      }
+      order.push_back(top.function);
+      stack.pop_back();
+    }
+    return order;
+  };
+
+  // Functions the entry point reaches, then those that static initializers call.
+  std::unordered_set<const FunctionDecl*> seen;
+  std::vector<const FunctionDecl*> to_scan;
+  auto add_tree = [&](const FunctionDecl* root) {
+    for (const FunctionDecl* function : reachable(root)) {
+      if (seen.insert(function).second) {
+        functions_.push_back(function);
+        to_scan.push_back(function);
+      }
+    }
+  };
   std::unordered_set<const Decl*> used_statics;
   std::vector<const VarDecl*> statics_to_scan;
-  bool in_function = false;  // static initializers' expression types do not make structs used
-  auto visit = [&](const Expr& expr) {
-    if (in_function) use_type(expr.type);
-    if (expr.kind == ExprKind::Name) {
-      const Decl* decl = static_cast<const NameExpr&>(expr).decl;
-      if (decl && decl->kind == DeclKind::Var) {
-        const auto* var = static_cast<const VarDecl*>(decl);
-        // groupshared goes with them, to be refused where it is reached.
-        if (var->is_global && (var->storage == StorageClass::Static || var->storage == StorageClass::GroupShared) &&
-            used_statics.insert(var).second)
-          statics_to_scan.push_back(var);
-      }
+  auto use_static = [&](const VarDecl* var) {
+    if (used_statics.insert(var).second) statics_to_scan.push_back(var);
+  };
+  auto visit_initializer = [&](const Expr& expr) {
+    if (const VarDecl* var = named_static(expr)) {
+      use_static(var);
     } else if (expr.kind == ExprKind::Call) {
       const auto& call = static_cast<const CallExpr&>(expr);
       // A function seen already came with everything it reaches: its tree adds nothing.
-      if (call.call_kind == CallKind::Function && call.function &&
-          !seen.count(call.function->definition ? call.function->definition : call.function))
+      if (call.call_kind == CallKind::Function && call.function && !seen.count(defined(call.function)))
         add_tree(call.function);
     }
   };
   if (entry_) add_tree(entry_);
   while (!to_scan.empty() || !statics_to_scan.empty()) {
     if (!to_scan.empty()) {
+      // Its calls add nothing: what it calls came in the same tree.
       const FunctionDecl* function = to_scan.back();
       to_scan.pop_back();
-      in_function = true;
-      walk_expressions(function->body.get(), visit);
+      for (const VarDecl* var : uses_of(function).statics) use_static(var);
     } else {
       const VarDecl* var = statics_to_scan.back();
       statics_to_scan.pop_back();
-      in_function = false;
-      walk_expressions(var->initializer.get(), visit);
+      each_expression(var->initializer.get(), visit_initializer);
     }
   }
   for (const auto& decl : module_.unit.decls)
