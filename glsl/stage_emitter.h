@@ -267,7 +267,8 @@ class StageEmitter {
     uint32_t count;
   };
   std::unordered_map<const hlsl::Decl*, SplitMember> split_members_;
-  std::unordered_map<std::string, const hlsl::VarDecl*> uniform_decls_;  // constant-buffer members by name
+  // Constant-buffer members by name, viewing the tree's strings.
+  std::unordered_map<std::string_view, const hlsl::VarDecl*> uniform_decls_;
 };
 
 }  // namespace xshade::glsl::detail
