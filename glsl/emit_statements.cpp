@@ -208,10 +208,12 @@ void StageEmitter::function(const FunctionDecl& f) {
 std::vector<std::string> StageEmitter::parameter_declarations(const ParamDecl& param) {
   const std::vector<std::vector<uint32_t>> paths = resource_paths(param.type);
   if (paths.empty()) {
-    std::string direction = param.direction == ParamDirection::Out     ? "out "
+    const char* direction = param.direction == ParamDirection::Out     ? "out "
                             : param.direction == ParamDirection::InOut ? "inout "
                                                                        : "";
-    return {direction + declarator(param.type, names_.variable(&param), param.loc)};
+    std::vector<std::string> declaration(1, direction);
+    declaration[0] += declarator(param.type, names_.variable(&param), param.loc);
+    return declaration;
   }
   if (param.type.kind() == TypeKind::Struct) check_struct_of_resources(param.type, param.loc);
   // A resource, or a struct of resources: one GLSL parameter per resource (none for a
