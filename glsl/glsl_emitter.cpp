@@ -306,10 +306,6 @@ bool contains_matrix(const Type& type, int depth = 0) {
   return false;
 }
 
-std::string canonical(const std::string& semantic) {
-  return canonical_semantic(parse_semantic(semantic));
-}
-
 const char* interpolation_qualifier(Interpolation interpolation, const Type& type) {
   const Type& element = type.kind() == TypeKind::Array ? type.element() : type;
   if (element.is_integer() || element.is_bool()) return "flat ";
@@ -329,6 +325,7 @@ struct StageItem {
   std::string path;      // where the entry point's argument or result holds it: xs_arg0.uv
   Type type;
   std::string semantic;  // canonical
+  ParsedSemantic parsed;  // parse_semantic of the author's spelling, which `semantic` parses to as well
   Interpolation interpolation = Interpolation::Default;
   Loc loc;
 };
@@ -341,7 +338,9 @@ void flatten(const Type& type, const std::string& path, const std::string& seman
               items, depth + 1);
     return;
   }
-  if (!semantic.empty()) items.push_back({path, type, canonical(semantic), interpolation, loc});
+  if (semantic.empty()) return;
+  const ParsedSemantic parsed = parse_semantic(semantic);
+  items.push_back({path, type, canonical_semantic(parsed), parsed, interpolation, loc});
 }
 
 // The inputs (or outputs) of an entry point, with `xs_arg<i>` / `xs_result` paths.
@@ -885,7 +884,7 @@ std::string StageEmitter::interface_and_main() {
     return true;
   };
     for (const StageItem& item : stage_items(entry, true, names_)) {
-    const SemanticKind kind = parse_semantic(item.semantic).kind;
+    const SemanticKind kind = item.parsed.kind;
     Code source;
     Type source_type = item.type;
     if (vertex_) {
@@ -960,7 +959,7 @@ std::string StageEmitter::interface_and_main() {
       fragment_interpolation.emplace(item.semantic, item.interpolation);
   }
   for (const StageItem& item : stage_items(entry, false, names_)) {
-    const ParsedSemantic parsed = parse_semantic(item.semantic);
+    const ParsedSemantic& parsed = item.parsed;
     const Code value{item.path, kPostfix};
     if (vertex_ && (parsed.kind == SemanticKind::SvPosition || item.semantic == "POSITION0")) {  // DX9's name
       main.line("gl_Position = " + convert(value, item.type, Type::vector(ScalarType::Float, 4), item.loc).text + ";");
