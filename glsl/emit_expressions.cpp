@@ -162,6 +162,19 @@ Code constructed(const std::string& type, const Code& value) {
 std::string type_key(const Type& type, Flavour flavour) { return glsl_type(type, flavour, nullptr); }
 
 std::string StageEmitter::type_name(const Type& type, Loc loc) {
+  // Scalars and vectors, most of what is asked, from a table: glsl_type spells them without a
+  // complaint, and building their names was much of its cost.
+  if ((type.kind() == TypeKind::Scalar || type.kind() == TypeKind::Vector) && type.cols() >= 1 && type.cols() <= 4) {
+    static constexpr const char* kNames[5][4] = {
+        {"bool", "bvec2", "bvec3", "bvec4"},  // Bool
+        {"int", "ivec2", "ivec3", "ivec4"},   // Int
+        {"uint", "uvec2", "uvec3", "uvec4"},  // Uint
+        {"float", "vec2", "vec3", "vec4"},    // Half, computed in fp32
+        {"float", "vec2", "vec3", "vec4"},    // Float
+    };
+    const uint32_t count = type.kind() == TypeKind::Vector ? type.cols() : 1;
+    return kNames[size_t(type.scalar_type())][count - 1];
+  }
   std::string why;
   std::string name = glsl_type(type, flavour_, &why);
   if (!why.empty()) fail(loc, why);
