@@ -163,35 +163,40 @@ uint32_t name_hash(std::string_view text) {
 }  // namespace
 
 bool Names::is_user_name(std::string_view name) const {
-  if (user_slots_.empty()) {
-    std::vector<std::string_view> all;
+  if (!user_gathered_) {
+    user_gathered_ = true;
     for (const auto& decl : unit_.decls) {
       if (!decl) continue;
-      all.push_back(decl->name);
+      user_names_.push_back(decl->name);
       switch (decl->kind) {
         case DeclKind::Struct:
-          for (const FieldDecl& field : static_cast<const StructDecl&>(*decl).fields) all.push_back(field.name);
+          for (const FieldDecl& field : static_cast<const StructDecl&>(*decl).fields) user_names_.push_back(field.name);
           break;
         case DeclKind::CBuffer:
           for (const auto& member : static_cast<const CBufferDecl&>(*decl).members)
-            if (member) all.push_back(member->name);
+            if (member) user_names_.push_back(member->name);
           break;
         case DeclKind::Function: {
           const auto& function = static_cast<const FunctionDecl&>(*decl);
           for (const auto& param : function.params)
-            if (param) all.push_back(param->name);
-          collect_local_names(function.body.get(), all);
+            if (param) user_names_.push_back(param->name);
+          collect_local_names(function.body.get(), user_names_);
           break;
         }
         default: break;
       }
     }
+  }
+  // A unit renames a name or two, each asked about once or twice: a scan answers those. One
+  // that asks more gets the table.
+  if (user_slots_.empty() && ++user_scans_ <= kUserScans)
+    return std::find(user_names_.begin(), user_names_.end(), name) != user_names_.end();
+  if (user_slots_.empty()) {
     // At most half full, so that every probe ends at an empty slot; never empty once built.
     size_t slots = 16;
-    while (slots < 2 * all.size()) slots *= 2;
+    while (slots < 2 * user_names_.size()) slots *= 2;
     user_slots_.assign(slots, std::string_view());
-    user_has_empty_name_ = false;
-    for (std::string_view user : all) {
+    for (std::string_view user : user_names_) {
       if (user.empty()) {
         user_has_empty_name_ = true;
         continue;

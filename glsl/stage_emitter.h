@@ -84,13 +84,18 @@ class Names {
   std::string split_member(const std::string& name, uint32_t index) const;
 
  private:
-  // Whether the author declared `name` anywhere. Only a renaming asks, so the names are
-  // gathered on first use, into an open-addressed table viewing the tree's strings: one
-  // allocation where a std::unordered_set makes one per name.
+  // Whether the author declared `name` anywhere. Only a renaming asks, so the names (views of
+  // the tree's strings) are gathered on first use; the first few questions scan them, and
+  // after that an open-addressed table answers: one allocation where a std::unordered_set
+  // makes one per name.
   bool is_user_name(std::string_view name) const;
+  static constexpr int kUserScans = 8;
 
   const hlsl::TranslationUnit& unit_;
-  mutable std::vector<std::string_view> user_slots_;  // FNV-1a, linear probing; empty: not gathered yet
+  mutable bool user_gathered_ = false;
+  mutable std::vector<std::string_view> user_names_;
+  mutable int user_scans_ = 0;
+  mutable std::vector<std::string_view> user_slots_;  // FNV-1a, linear probing; empty: not built yet
   mutable bool user_has_empty_name_ = false;
   std::unordered_set<std::string_view> function_names_;
   // Overloads whose GLSL signatures coincide; every other function is of(name).
