@@ -93,11 +93,13 @@ class ReservedWords {
       while (!slots_[slot].empty() && slots_[slot] != word) slot = (slot + 1) & kMask;
       slots_[slot] = word;
       longest_ = std::max(longest_, word.size());
+      first_chars_[static_cast<unsigned char>(word[0])] = true;
     }
   }
 
   bool contains(std::string_view name) const {
-    if (name.empty() || name.size() > longest_) return false;
+    // Most names are told apart by their first character alone (`_MainTex`, `Light`).
+    if (name.empty() || name.size() > longest_ || !first_chars_[static_cast<unsigned char>(name[0])]) return false;
     for (size_t slot = hash(name) & kMask; !slots_[slot].empty(); slot = (slot + 1) & kMask)
       if (slots_[slot] == name) return true;
     return false;
@@ -114,6 +116,7 @@ class ReservedWords {
 
   std::array<std::string_view, kSlots> slots_{};
   size_t longest_ = 0;
+  std::array<bool, 256> first_chars_{};  // the characters some word starts with
 };
 
 }  // namespace
@@ -124,8 +127,11 @@ bool is_glsl_reserved_word(std::string_view name) {
 }
 
 bool needs_renaming(std::string_view name) {
-  return starts_with(name, "gl_") || starts_with(name, "xs_") || name.find("__") != std::string_view::npos ||
-         is_glsl_reserved_word(name);
+  if (name.size() >= 3 && name[2] == '_' && ((name[0] == 'g' && name[1] == 'l') || (name[0] == 'x' && name[1] == 's')))
+    return true;  // gl_ or xs_
+  for (size_t i = 1; i < name.size(); ++i)
+    if (name[i] == '_' && name[i - 1] == '_') return true;
+  return is_glsl_reserved_word(name);
 }
 
 // Rules, in order, chosen so that the result never needs renaming again:
