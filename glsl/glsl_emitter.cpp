@@ -7,6 +7,7 @@
 #include <functional>
 #include <map>
 
+#include "glsl/each_expression.h"
 #include "glsl/glsl_names.h"
 #include "glsl/stage_emitter.h"
 #include "hlsl_like/semantics.h"
@@ -392,115 +393,6 @@ void StageEmitter::fail(Loc loc, const std::string& message) {
 }
 
 namespace {
-
-// hlsl::walk_expressions's visit, in its order (parents before children, null children
-// skipped), with the visitor called directly: collect_used_declarations walks every function
-// of a stage, and a std::function call per expression cost as much as the rest of the walk.
-template <class Visit>
-void each_expression(const Expr* expr, Visit& visit) {
-  if (!expr) return;
-  visit(*expr);
-  switch (expr->kind) {
-    case ExprKind::Unary: each_expression(static_cast<const UnaryExpr*>(expr)->operand.get(), visit); break;
-    case ExprKind::Binary: {
-      const auto* e = static_cast<const BinaryExpr*>(expr);
-      each_expression(e->lhs.get(), visit);
-      each_expression(e->rhs.get(), visit);
-      break;
-    }
-    case ExprKind::Assign: {
-      const auto* e = static_cast<const AssignExpr*>(expr);
-      each_expression(e->target.get(), visit);
-      each_expression(e->value.get(), visit);
-      break;
-    }
-    case ExprKind::Conditional: {
-      const auto* e = static_cast<const ConditionalExpr*>(expr);
-      each_expression(e->condition.get(), visit);
-      each_expression(e->then_value.get(), visit);
-      each_expression(e->else_value.get(), visit);
-      break;
-    }
-    case ExprKind::Call: {
-      const auto* e = static_cast<const CallExpr*>(expr);
-      each_expression(e->object.get(), visit);
-      for (const ExprPtr& arg : e->args) each_expression(arg.get(), visit);
-      break;
-    }
-    case ExprKind::Member: each_expression(static_cast<const MemberExpr*>(expr)->object.get(), visit); break;
-    case ExprKind::Index: {
-      const auto* e = static_cast<const IndexExpr*>(expr);
-      each_expression(e->object.get(), visit);
-      each_expression(e->index.get(), visit);
-      break;
-    }
-    case ExprKind::Cast: each_expression(static_cast<const CastExpr*>(expr)->operand.get(), visit); break;
-    case ExprKind::InitList:
-      for (const ExprPtr& element : static_cast<const InitListExpr*>(expr)->elements) each_expression(element.get(), visit);
-      break;
-    case ExprKind::Conversion: each_expression(static_cast<const ConversionExpr*>(expr)->operand.get(), visit); break;
-    case ExprKind::IntLiteral:
-    case ExprKind::FloatLiteral:
-    case ExprKind::BoolLiteral:
-    case ExprKind::Name: break;
-  }
-}
-
-template <class Visit>
-void each_expression(const Stmt* stmt, Visit& visit) {
-  if (!stmt) return;
-  switch (stmt->kind) {
-    case StmtKind::Block:
-      for (const StmtPtr& child : static_cast<const BlockStmt*>(stmt)->statements) each_expression(child.get(), visit);
-      break;
-    case StmtKind::Expr: each_expression(static_cast<const ExprStmt*>(stmt)->expr.get(), visit); break;
-    case StmtKind::Decl:
-      for (const auto& var : static_cast<const DeclStmt*>(stmt)->vars)
-        if (var) each_expression(var->initializer.get(), visit);
-      break;
-    case StmtKind::If: {
-      const auto* s = static_cast<const IfStmt*>(stmt);
-      each_expression(s->condition.get(), visit);
-      each_expression(s->then_branch.get(), visit);
-      each_expression(s->else_branch.get(), visit);
-      break;
-    }
-    case StmtKind::For: {
-      const auto* s = static_cast<const ForStmt*>(stmt);
-      each_expression(s->init.get(), visit);
-      each_expression(s->condition.get(), visit);
-      each_expression(s->step.get(), visit);
-      each_expression(s->body.get(), visit);
-      break;
-    }
-    case StmtKind::While: {
-      const auto* s = static_cast<const WhileStmt*>(stmt);
-      each_expression(s->condition.get(), visit);
-      each_expression(s->body.get(), visit);
-      break;
-    }
-    case StmtKind::DoWhile: {
-      const auto* s = static_cast<const DoWhileStmt*>(stmt);
-      each_expression(s->body.get(), visit);
-      each_expression(s->condition.get(), visit);
-      break;
-    }
-    case StmtKind::Switch: {
-      const auto* s = static_cast<const SwitchStmt*>(stmt);
-      each_expression(s->condition.get(), visit);
-      for (const SwitchCase& c : s->cases) {
-        each_expression(c.value.get(), visit);
-        for (const StmtPtr& child : c.statements) each_expression(child.get(), visit);
-      }
-      break;
-    }
-    case StmtKind::Return: each_expression(static_cast<const ReturnStmt*>(stmt)->value.get(), visit); break;
-    case StmtKind::Break:
-    case StmtKind::Continue:
-    case StmtKind::Discard:
-    case StmtKind::Empty: break;
-  }
-}
 
 const FunctionDecl* defined(const FunctionDecl* function) { return function->definition ? function->definition : function; }
 
