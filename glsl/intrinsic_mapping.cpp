@@ -2,6 +2,9 @@
 // clip, sincos), the expansion of templates (which the texture functions of emit_textures.cpp
 // share), and the library of xs_* helper functions for what GLSL has no built-in for with HLSL's
 // exact meaning.
+#include <algorithm>
+#include <array>
+#include <iterator>
 #include <string_view>
 
 #include "glsl/stage_emitter.h"
@@ -153,7 +156,22 @@ bool shape_matches(Shape shape, const Type& type) {
 }
 
 const Mapping* find_mapping(I id, const Type* first_numeric) {
-  for (const Mapping& mapping : kMappings) {
+  // Where each intrinsic's first row is, so that a lookup does not pass every row before it.
+  // (An id past every row's has none.)
+  constexpr size_t kIds = [] {
+    size_t count = 0;
+    for (const Mapping& mapping : kMappings) count = std::max(count, size_t(mapping.id) + 1);
+    return count;
+  }();
+  static const std::array<size_t, kIds> kFirstRow = [] {
+    std::array<size_t, kIds> first;
+    first.fill(std::size(kMappings));
+    for (size_t row = std::size(kMappings); row-- > 0;) first[size_t(kMappings[row].id)] = row;
+    return first;
+  }();
+  if (size_t(id) >= kIds) return nullptr;
+  for (size_t row = kFirstRow[size_t(id)]; row < std::size(kMappings); ++row) {
+    const Mapping& mapping = kMappings[row];
     if (mapping.id != id) continue;
     if (!first_numeric) return &mapping;
     if (elem_matches(mapping.elem, *first_numeric) && shape_matches(mapping.shape, *first_numeric)) return &mapping;
