@@ -43,9 +43,16 @@ std::optional<std::filesystem::path> find_include(std::string_view name, const s
   return std::nullopt;
 }
 
-bool Preprocessor::Impl::inside_given_folders(const std::filesystem::path& file) const {
-  return std::any_of(given_folders_.begin(), given_folders_.end(),
-                     [&](const std::filesystem::path& folder) { return path_is_inside(file, folder); });
+bool Preprocessor::Impl::inside_given_folders(const std::filesystem::path& resolved_file) {
+  if (!folders_resolved_) {
+    folders_resolved_ = true;
+    resolved_folders_.reserve(given_folders_.size());
+    for (const std::filesystem::path& folder : given_folders_) resolved_folders_.push_back(resolved_path(folder));
+  }
+  return std::any_of(resolved_folders_.begin(), resolved_folders_.end(),
+                     [&](const std::optional<std::filesystem::path>& folder) {
+                       return folder && resolved_path_is_inside(resolved_file, *folder);
+                     });
 }
 
 void Preprocessor::Impl::enter_file(uint32_t file) {
@@ -157,19 +164,29 @@ void Preprocessor::Impl::include_file(IncludeFrame& frame, const Token& name, st
     diagnostics_.error(where, std::move(message));
     return;
   }
-  if (!inside_given_folders(*found)) {
-    std::string folders;
-    for (const fs::path& folder : given_folders_) folders += (folders.empty() ? "" : ", ") + folder.string();
-    diagnostics_.error(where, "include file '" + clip(spelled) + "' is outside the folders this shader was given (" +
-                                  folders + "); an include may not leave them");
-    return;
+  uint32_t index = 0;
+  for (const auto& [path, file] : loaded_includes_)
+    if (path == found->native()) {
+      index = file;
+      break;
+    }
+  if (index == 0) {
+    const std::optional<fs::path> resolved = resolved_path(*found);
+    if (!resolved || !inside_given_folders(*resolved)) {
+      std::string folders;
+      for (const fs::path& folder : given_folders_) folders += (folders.empty() ? "" : ", ") + folder.string();
+      diagnostics_.error(where, "include file '" + clip(spelled) + "' is outside the folders this shader was given (" +
+                                    folders + "); an include may not leave them");
+      return;
+    }
+    Result<uint32_t> loaded = sources_.load_canonical(*resolved, found->string());
+    if (!loaded) {
+      diagnostics_.error(where, loaded.error().message);
+      return;
+    }
+    index = *loaded;
+    loaded_includes_.emplace_back(found->native(), index);
   }
-  Result<uint32_t> loaded = sources_.load(*found);
-  if (!loaded) {
-    diagnostics_.error(where, loaded.error().message);
-    return;
-  }
-  const uint32_t index = *loaded;
   ensure_file_tables();
   if (!seen_[index]) {
     seen_[index] = 1;

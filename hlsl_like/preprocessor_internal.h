@@ -19,6 +19,7 @@
 #include <string>
 #include <string_view>
 #include <unordered_map>
+#include <utility>
 #include <vector>
 
 #include "hlsl_like/diagnostic_engine.h"
@@ -265,7 +266,15 @@ struct Preprocessor::Impl {
   // The folders a compile was given: the include directories and the main file's folder. An
   // include may not resolve outside them (`#include "../../etc/passwd"` is an error, not a read).
   std::vector<std::filesystem::path> given_folders_;
-  bool inside_given_folders(const std::filesystem::path& file) const;
+  // The given folders resolved (base/paths.h), on the first #include of the run; nothing for a
+  // folder the file system cannot resolve, which holds no file.
+  std::vector<std::optional<std::filesystem::path>> resolved_folders_;
+  bool folders_resolved_ = false;
+  bool inside_given_folders(const std::filesystem::path& resolved_file);
+  // Each path an #include found, with the file it loaded: a file included from several places
+  // (and every #include of a guarded file again) is resolved, held to the folders and looked up
+  // once a run, since each of those asks the file system about every component of its path.
+  std::vector<std::pair<std::string, uint32_t>> loaded_includes_;
   void abandon_files_from(size_t first);
   void ensure_file_tables() {
     const size_t count = sources_.file_count();
