@@ -11,36 +11,69 @@
 #include <utility>
 #include <vector>
 
+#include <sys/stat.h>
+
 #include "base/paths.h"
 #include "hlsl_like/preprocessor_internal.h"
 
 namespace xshade::hlsl {
 
 using pp_detail::clip;
+using pp_detail::find_include_path;
 using pp_detail::is_punct1;
 
-std::optional<std::filesystem::path> find_include(std::string_view name, const std::filesystem::path& including_file,
-                                                  bool angled, const std::vector<std::filesystem::path>& include_dirs,
-                                                  std::vector<std::filesystem::path>* searched) {
-  namespace fs = std::filesystem;
+namespace {
+
+// Whether `path` names a regular file (through links), as std::filesystem::is_regular_file, from
+// a string: an #include looks in a folder or two for every name, and a path object parses itself
+// into components, each of them allocated.
+bool is_regular_file(const std::string& path) {
+  struct stat status {};
+  return ::stat(path.c_str(), &status) == 0 && S_ISREG(status.st_mode);
+}
+
+// `folder / name` as std::filesystem::path spells it on POSIX: a separator unless the folder is
+// empty or ends in one.
+void join(std::string_view folder, std::string_view name, std::string& out) {
+  out.assign(folder);
+  if (!folder.empty() && folder.back() != '/') out += '/';
+  out += name;
+}
+
+}  // namespace
+
+bool pp_detail::find_include_path(std::string_view name, const std::string* including_folder,
+                                  const std::vector<std::filesystem::path>& include_dirs, std::string& found,
+                                  std::vector<std::filesystem::path>* searched) {
   // Shaders written on Windows may spell "sub\\file.hlsl".
   std::string portable(name);
   for (char& c : portable)
     if (c == '\\') c = '/';
-  const fs::path relative{portable};
-  auto exists = [](const fs::path& candidate) {
-    std::error_code error;
-    return fs::is_regular_file(candidate, error);
-  };
-  if (relative.is_absolute()) return exists(relative) ? std::optional<fs::path>(relative) : std::nullopt;
-  std::vector<fs::path> folders;
-  if (!angled && !including_file.empty()) folders.push_back(including_file.parent_path());
-  folders.insert(folders.end(), include_dirs.begin(), include_dirs.end());
-  for (const fs::path& folder : folders) {
-    if (searched) searched->push_back(folder);
-    if (exists(folder / relative)) return folder / relative;
+  if (!portable.empty() && portable.front() == '/') {
+    found = std::move(portable);
+    return is_regular_file(found);
   }
-  return std::nullopt;
+  if (including_folder) {
+    if (searched) searched->emplace_back(*including_folder);
+    join(*including_folder, portable, found);
+    if (is_regular_file(found)) return true;
+  }
+  for (const std::filesystem::path& folder : include_dirs) {
+    if (searched) searched->push_back(folder);
+    join(folder.native(), portable, found);
+    if (is_regular_file(found)) return true;
+  }
+  return false;
+}
+
+std::optional<std::filesystem::path> find_include(std::string_view name, const std::filesystem::path& including_file,
+                                                  bool angled, const std::vector<std::filesystem::path>& include_dirs,
+                                                  std::vector<std::filesystem::path>* searched) {
+  const bool local = !angled && !including_file.empty();
+  const std::string folder = local ? including_file.parent_path().native() : std::string();
+  std::string found;
+  if (!find_include_path(name, local ? &folder : nullptr, include_dirs, found, searched)) return std::nullopt;
+  return std::filesystem::path(std::move(found));
 }
 
 bool Preprocessor::Impl::inside_given_folders(const std::filesystem::path& resolved_file) {
@@ -143,13 +176,17 @@ void Preprocessor::Impl::include_file(IncludeFrame& frame, const Token& name, st
                                      std::to_string(Preprocessor::kMaxIncludeDepth) + " levels)");
     return;
   }
-  const fs::path relative{std::string(spelled)};
-  std::vector<fs::path> searched;
-  const std::optional<fs::path> found =
-      find_include(spelled, sources_.path(frame.file), angled, pp_.options_.include_dirs, &searched);
-  if (!found) {
+  if (!frame.folder_known) {
+    frame.folder_known = true;
+    if (!sources_.path(frame.file).empty()) frame.folder = sources_.path(frame.file).parent_path().native();
+  }
+  const bool local = !angled && !sources_.path(frame.file).empty();
+  std::string& found = found_include_;
+  if (!find_include_path(spelled, local ? &frame.folder : nullptr, pp_.options_.include_dirs, found, nullptr)) {
+    std::vector<fs::path> searched;
+    find_include_path(spelled, local ? &frame.folder : nullptr, pp_.options_.include_dirs, found, &searched);
     std::string message = "cannot find include file '" + clip(spelled) + "'";
-    if (relative.is_absolute()) {
+    if (fs::path(std::string(spelled)).is_absolute()) {
       // Nothing was searched: the path was taken as it is.
     } else if (searched.empty()) {
       message += " (no directories to search)";
@@ -166,12 +203,12 @@ void Preprocessor::Impl::include_file(IncludeFrame& frame, const Token& name, st
   }
   uint32_t index = 0;
   for (const auto& [path, file] : loaded_includes_)
-    if (path == found->native()) {
+    if (path == found) {
       index = file;
       break;
     }
   if (index == 0) {
-    const std::optional<fs::path> resolved = resolved_path(*found);
+    const std::optional<fs::path> resolved = resolved_path(found);
     if (!resolved || !inside_given_folders(*resolved)) {
       std::string folders;
       for (const fs::path& folder : given_folders_) folders += (folders.empty() ? "" : ", ") + folder.string();
@@ -179,13 +216,13 @@ void Preprocessor::Impl::include_file(IncludeFrame& frame, const Token& name, st
                                     folders + "); an include may not leave them");
       return;
     }
-    Result<uint32_t> loaded = sources_.load_canonical(*resolved, found->string());
+    Result<uint32_t> loaded = sources_.load_canonical(*resolved, found);
     if (!loaded) {
       diagnostics_.error(where, loaded.error().message);
       return;
     }
     index = *loaded;
-    loaded_includes_.emplace_back(found->native(), index);
+    loaded_includes_.emplace_back(found, index);
   }
   ensure_file_tables();
   if (!seen_[index]) {

@@ -108,6 +108,9 @@ struct IncludeFrame {
   Guard guard = Guard::Start;
   size_t guard_cond = 0;
   std::string_view guard_macro;
+  // The folder a quoted #include in the file looks in first, made on its first #include.
+  bool folder_known = false;
+  std::string folder;
 };
 
 // The value of a #if expression or of one of its operands.
@@ -133,6 +136,13 @@ inline Token make_token(TokenKind kind, std::string_view text, Loc loc) {
   token.loc = loc;
   return token;
 }
+
+// find_include on strings: the including file's folder (null for an angled name or a file not on
+// disk) and the path found, in `found` (overwritten, kept for its buffer), are the strings
+// std::filesystem::path would hold.
+bool find_include_path(std::string_view name, const std::string* including_folder,
+                       const std::vector<std::filesystem::path>& include_dirs, std::string& found,
+                       std::vector<std::filesystem::path>* searched);
 
 // A #if or #elif line's tokens, macros already expanded, evaluated as C does: integer arithmetic
 // on 64 bits, signed unless a u suffix or a too large literal makes a value unsigned. A `defined`
@@ -275,6 +285,7 @@ struct Preprocessor::Impl {
   // (and every #include of a guarded file again) is resolved, held to the folders and looked up
   // once a run, since each of those asks the file system about every component of its path.
   std::vector<std::pair<std::string, uint32_t>> loaded_includes_;
+  std::string found_include_;  // the path of the #include being read; kept for its buffer
   void abandon_files_from(size_t first);
   void ensure_file_tables() {
     const size_t count = sources_.file_count();
