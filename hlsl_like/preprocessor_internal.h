@@ -189,9 +189,17 @@ struct Preprocessor::Impl {
 
  private:
   // Macros (pp_macros.cpp).
+  // From the length and the first and last two characters, mixed: names that differ only in the
+  // middle are rare, while float2 and fixed2, or float4x4 and fixed4x4, must not share a bit, or
+  // every vector type in a shader would be looked up in the macro tables.
   static size_t filter_bit(std::string_view name) {
-    return (name.size() * 131 + static_cast<unsigned char>(name.front()) * 7 +
-            static_cast<unsigned char>(name.back())) & 1023;
+    const size_t n = name.size();
+    const auto at = [&](size_t i) { return uint32_t(static_cast<unsigned char>(name[i])); };
+    const uint32_t second = n > 1 ? at(1) : 0;
+    const uint32_t before_last = n > 1 ? at(n - 2) : 0;
+    const uint32_t mixed = uint32_t(n) * 0x9E3779B1u + at(0) * 0x85EBCA77u + at(n - 1) * 0xC2B2AE3Du +
+                           second * 0x27D4EB2Fu + before_last * 0x165667B1u;
+    return mixed >> 22;  // the top 10 bits: the best mixed
   }
   bool maybe_macro(std::string_view name) const {
     const size_t bit = filter_bit(name);
