@@ -42,6 +42,7 @@ class Lexer {
  private:
   static constexpr size_t npos = static_cast<size_t>(-1);
 
+  void next_other(Token& token);  // next() for a token other than the common ones; pos_ at its start
   void skip_space();
   void skip_block_comment(size_t star);  // pos_ at the '/', `star` at the '*'
   void skip_line_comment(size_t second_slash);
