@@ -531,47 +531,52 @@ void Lexer::skip_line() {
   const char* s = text_.data();
   const size_t n = text_.size();
   bool in_string = false;
-  while (pos_ < n) {
-    const char c = s[pos_];
-    if (!has(static_cast<unsigned char>(c), kLineSpecial)) {
-      ++pos_;
-      continue;
-    }
+  size_t p = pos_;  // in a local, as in skip_space
+  while (p < n) {
+    while (p < n && !has(static_cast<unsigned char>(s[p]), kLineSpecial)) ++p;
+    if (p >= n) break;
+    const char c = s[p];
     if (c == '\n') {
-      ++pos_;
-      new_line(pos_);
+      ++p;
+      new_line(p);
       at_line_start_ = true;
       space_ = true;
+      pos_ = p;
       return;
     }
     if (c == '\\') {
-      if (size_t length = splice_at(pos_)) {
-        pos_ += length;
-        new_line(pos_);
+      if (size_t length = splice_at(p)) {
+        p += length;
+        new_line(p);
       } else {
-        pos_ += (in_string && pos_ + 1 < n && s[pos_ + 1] != '\n') ? 2 : 1;
+        p += (in_string && p + 1 < n && s[p + 1] != '\n') ? 2 : 1;
       }
       continue;
     }
     if (c == '"') {
       in_string = !in_string;
-      ++pos_;
+      ++p;
       continue;
     }
     // c == '/'
     if (!in_string) {
-      const size_t q = past_splices(pos_ + 1);
+      const size_t q = past_splices(p + 1);
       if (q < n && s[q] == '*') {
+        pos_ = p;
         skip_block_comment(q);
+        p = pos_;
         continue;
       }
       if (q < n && s[q] == '/') {
+        pos_ = p;
         skip_line_comment(q);
+        p = pos_;
         continue;
       }
     }
-    ++pos_;
+    ++p;
   }
+  pos_ = p;
 }
 
 Token Lexer::skip_to_directive() {

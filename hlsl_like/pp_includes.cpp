@@ -90,6 +90,11 @@ bool Preprocessor::Impl::inside_given_folders(const std::filesystem::path& resol
 
 void Preprocessor::Impl::enter_file(uint32_t file) {
   ensure_file_tables();
+  // Room for the file's tokens ahead, from its size (shaders as written have a token for every
+  // six to ten characters; three leaves room for dense code), so that the output is not moved
+  // again as each included file is read.
+  const size_t expected = out_.size() + sources_.text(file).size() / 3 + 16;
+  if (out_.capacity() < expected) out_.reserve(std::max(expected, out_.capacity() * 2));
   if (!seen_[file]) {
     seen_[file] = 1;
     pp_.files_.push_back(file);

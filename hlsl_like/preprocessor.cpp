@@ -37,7 +37,6 @@ std::vector<Token> Preprocessor::Impl::run(uint32_t main_file) {
   given_folders_ = pp_.options_.include_dirs;
   if (const auto folder = sources_.path(main_file).parent_path(); !folder.empty()) given_folders_.push_back(folder);
   enter_file(main_file);
-  out_.reserve(sources_.text(main_file).size() / 3 + 16);
   Context ctx;
   PPTok token;
   for (;;) {
