@@ -44,6 +44,7 @@ Lexer::Lexer(std::string_view text, uint32_t file, DiagnosticEngine& diagnostics
     : text_(text), file_(file), diagnostics_(diagnostics), store_(text_store) {
   // A UTF-8 byte order mark (editors on Windows write one) is no token; columns count from after it.
   if (text_.substr(0, 3) == "\xEF\xBB\xBF") pos_ = line_start_ = 3;
+  ends_outside_names_ = !text_.empty() && !is_ident(static_cast<unsigned char>(text_.back()));
 }
 
 size_t Lexer::splice_at(size_t p) const {
@@ -299,7 +300,11 @@ Token Lexer::next() {
   const unsigned char c = static_cast<unsigned char>(s[start]);
   if (has(c, kIdentStart)) {
     size_t end = start + 1;
-    while (end < n && is_ident(static_cast<unsigned char>(s[end]))) ++end;
+    if (ends_outside_names_) {
+      while (is_ident(static_cast<unsigned char>(s[end]))) ++end;
+    } else {
+      while (end < n && is_ident(static_cast<unsigned char>(s[end]))) ++end;
+    }
     if (end == n || s[end] != '\\') {
       token.kind = TokenKind::Identifier;
       token.text = std::string_view(s + start, end - start);
