@@ -44,7 +44,8 @@ void join(std::string_view folder, std::string_view name, std::string& out) {
 
 bool pp_detail::find_include_path(std::string_view name, const std::string* including_folder,
                                   const std::vector<std::filesystem::path>& include_dirs, std::string& found,
-                                  std::vector<std::filesystem::path>* searched) {
+                                  std::vector<std::filesystem::path>* searched, size_t* include_dir) {
+  if (include_dir) *include_dir = include_dirs.size();
   // Shaders written on Windows may spell "sub\\file.hlsl".
   std::string portable(name);
   for (char& c : portable)
@@ -58,10 +59,13 @@ bool pp_detail::find_include_path(std::string_view name, const std::string* incl
     join(*including_folder, portable, found);
     if (is_regular_file(found)) return true;
   }
-  for (const std::filesystem::path& folder : include_dirs) {
-    if (searched) searched->push_back(folder);
-    join(folder.native(), portable, found);
-    if (is_regular_file(found)) return true;
+  for (size_t i = 0; i < include_dirs.size(); ++i) {
+    if (searched) searched->push_back(include_dirs[i]);
+    join(include_dirs[i].native(), portable, found);
+    if (is_regular_file(found)) {
+      if (include_dir) *include_dir = i;
+      return true;
+    }
   }
   return false;
 }
@@ -72,16 +76,36 @@ std::optional<std::filesystem::path> find_include(std::string_view name, const s
   const bool local = !angled && !including_file.empty();
   const std::string folder = local ? including_file.parent_path().native() : std::string();
   std::string found;
-  if (!find_include_path(name, local ? &folder : nullptr, include_dirs, found, searched)) return std::nullopt;
+  if (!find_include_path(name, local ? &folder : nullptr, include_dirs, found, searched, nullptr)) return std::nullopt;
   return std::filesystem::path(std::move(found));
 }
 
-bool Preprocessor::Impl::inside_given_folders(const std::filesystem::path& resolved_file) {
-  if (!folders_resolved_) {
-    folders_resolved_ = true;
-    resolved_folders_.reserve(given_folders_.size());
-    for (const std::filesystem::path& folder : given_folders_) resolved_folders_.push_back(resolved_path(folder));
+void Preprocessor::Impl::resolve_given_folders() {
+  if (folders_resolved_) return;
+  folders_resolved_ = true;
+  resolved_folders_.reserve(given_folders_.size());
+  for (const std::filesystem::path& folder : given_folders_) resolved_folders_.push_back(resolved_path(folder));
+}
+
+std::optional<std::filesystem::path> Preprocessor::Impl::resolved_under(size_t folder, std::string_view relative) {
+  resolve_given_folders();
+  if (folder >= resolved_folders_.size() || !resolved_folders_[folder]) return std::nullopt;
+  std::string path = resolved_folders_[folder]->native();
+  while (!relative.empty()) {
+    const size_t slash = relative.find('/');
+    const std::string_view name = relative.substr(0, slash);
+    if (name.empty() || name == "." || name == "..") return std::nullopt;
+    if (path.empty() || path.back() != '/') path += '/';
+    path += name;
+    struct stat status {};
+    if (::lstat(path.c_str(), &status) != 0 || S_ISLNK(status.st_mode)) return std::nullopt;
+    relative = slash == std::string_view::npos ? std::string_view() : relative.substr(slash + 1);
   }
+  return std::filesystem::path(std::move(path));
+}
+
+bool Preprocessor::Impl::inside_given_folders(const std::filesystem::path& resolved_file) {
+  resolve_given_folders();
   return std::any_of(resolved_folders_.begin(), resolved_folders_.end(),
                      [&](const std::optional<std::filesystem::path>& folder) {
                        return folder && resolved_path_is_inside(resolved_file, *folder);
@@ -187,9 +211,11 @@ void Preprocessor::Impl::include_file(IncludeFrame& frame, const Token& name, st
   }
   const bool local = !angled && !sources_.path(frame.file).empty();
   std::string& found = found_include_;
-  if (!find_include_path(spelled, local ? &frame.folder : nullptr, pp_.options_.include_dirs, found, nullptr)) {
+  size_t include_dir = 0;
+  if (!find_include_path(spelled, local ? &frame.folder : nullptr, pp_.options_.include_dirs, found, nullptr,
+                         &include_dir)) {
     std::vector<fs::path> searched;
-    find_include_path(spelled, local ? &frame.folder : nullptr, pp_.options_.include_dirs, found, &searched);
+    find_include_path(spelled, local ? &frame.folder : nullptr, pp_.options_.include_dirs, found, &searched, nullptr);
     std::string message = "cannot find include file '" + clip(spelled) + "'";
     if (fs::path(std::string(spelled)).is_absolute()) {
       // Nothing was searched: the path was taken as it is.
@@ -213,7 +239,13 @@ void Preprocessor::Impl::include_file(IncludeFrame& frame, const Token& name, st
       break;
     }
   if (index == 0) {
-    const std::optional<fs::path> resolved = resolved_path(found);
+    // A file found in an include directory is resolved from the directory's resolved path when
+    // no name after it is a link (or . or ..): a check of each of those names, where resolving
+    // the whole path reads every component of it as a link. Anything else is resolved whole.
+    std::optional<fs::path> resolved;
+    if (include_dir < pp_.options_.include_dirs.size())
+      resolved = resolved_under(include_dir, std::string_view(found).substr(found.size() - spelled.size()));
+    if (!resolved) resolved = resolved_path(found);
     if (!resolved || !inside_given_folders(*resolved)) {
       std::string folders;
       for (const fs::path& folder : given_folders_) folders += (folders.empty() ? "" : ", ") + folder.string();

@@ -139,10 +139,11 @@ inline Token make_token(TokenKind kind, std::string_view text, Loc loc) {
 
 // find_include on strings: the including file's folder (null for an angled name or a file not on
 // disk) and the path found, in `found` (overwritten, kept for its buffer), are the strings
-// std::filesystem::path would hold.
+// std::filesystem::path would hold. `include_dir` (when given) is set to the index of the include
+// directory the file was found in, or to include_dirs.size() when it was found elsewhere.
 bool find_include_path(std::string_view name, const std::string* including_folder,
                        const std::vector<std::filesystem::path>& include_dirs, std::string& found,
-                       std::vector<std::filesystem::path>* searched);
+                       std::vector<std::filesystem::path>* searched, size_t* include_dir);
 
 // A #if or #elif line's tokens, macros already expanded, evaluated as C does: integer arithmetic
 // on 64 bits, signed unless a u suffix or a too large literal makes a value unsigned. A `defined`
@@ -288,7 +289,11 @@ struct Preprocessor::Impl {
   // folder the file system cannot resolve, which holds no file.
   std::vector<std::optional<std::filesystem::path>> resolved_folders_;
   bool folders_resolved_ = false;
+  void resolve_given_folders();
   bool inside_given_folders(const std::filesystem::path& resolved_file);
+  // `relative` (plain names, /-separated) under the resolved given folder `folder`, when no name
+  // is a link; nothing otherwise, or when the folder did not resolve.
+  std::optional<std::filesystem::path> resolved_under(size_t folder, std::string_view relative);
   // Each path an #include found, with the file it loaded: a file included from several places
   // (and every #include of a guarded file again) is resolved, held to the folders and looked up
   // once a run, since each of those asks the file system about every component of its path.
