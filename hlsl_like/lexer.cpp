@@ -282,7 +282,15 @@ size_t Lexer::lex_number(size_t start, Loc loc, TokenKind& kind) {
 Token Lexer::next() {
   const char* s = text_.data();
   const size_t n = text_.size();
-  if (pos_ < n && has(static_cast<unsigned char>(s[pos_]), kSpaceStart)) skip_space();
+  if (pos_ < n && has(static_cast<unsigned char>(s[pos_]), kSpaceStart)) {
+    // One space between tokens, the most common whitespace, without the call.
+    if (s[pos_] == ' ' && pos_ + 1 < n && !has(static_cast<unsigned char>(s[pos_ + 1]), kSpaceStart)) {
+      ++pos_;
+      space_ = true;
+    } else {
+      skip_space();
+    }
+  }
   Token token;
   token.at_line_start = at_line_start_;
   token.space_before = space_;
