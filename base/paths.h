@@ -2,6 +2,7 @@
 #pragma once
 
 #include <filesystem>
+#include <optional>
 
 namespace xshade {
 
@@ -9,5 +10,15 @@ namespace xshade {
 // inside the folder that points out of it is outside). Every path a user's file names, an
 // #include or a scene's texture, is held to its folders with this before anything reads it.
 bool path_is_inside(const std::filesystem::path& file, const std::filesystem::path& folder);
+
+// The two halves of path_is_inside, for a caller that holds many paths to the same folders:
+// each folder and each file is resolved once (resolving asks the file system about every
+// component of the path) and the containment itself is then lexical.
+//
+// `path` made absolute with `..` and symbolic links resolved (the part that does not exist yet
+// is kept as written); nothing when the file system cannot tell.
+std::optional<std::filesystem::path> resolved_path(const std::filesystem::path& path);
+// path_is_inside for a file and a folder resolved_path gave.
+bool resolved_path_is_inside(const std::filesystem::path& file, const std::filesystem::path& folder);
 
 }  // namespace xshade

@@ -29,5 +29,31 @@ TEST(PathIsInside, HoldsAPathToItsFolderWithDotDotAndLinksResolved) {
   fs::remove_all(root);
 }
 
+// The lexical half decides as lexically_relative does, on its short path (plain names under the
+// folder) and off it (dots, empty names, a folder written with a trailing separator).
+TEST(PathIsInside, ResolvedPathsAreComparedAsLexicallyRelativeWould) {
+  EXPECT_TRUE(resolved_path_is_inside("/a/b/c.hlsl", "/a/b"));
+  EXPECT_TRUE(resolved_path_is_inside("/a/b/sub/c.hlsl", "/a/b"));
+  EXPECT_TRUE(resolved_path_is_inside("/a/b/.hidden", "/a/b"));
+  EXPECT_TRUE(resolved_path_is_inside("/a/b/c.hlsl", "/a/b/"));
+  EXPECT_TRUE(resolved_path_is_inside("/a/b//c.hlsl", "/a/b"));
+  EXPECT_FALSE(resolved_path_is_inside("/a/b", "/a/b"));
+  EXPECT_FALSE(resolved_path_is_inside("/a/b/", "/a/b"));
+  EXPECT_FALSE(resolved_path_is_inside("/a/b/.", "/a/b"));
+  EXPECT_FALSE(resolved_path_is_inside("/a/b/..", "/a/b"));
+  EXPECT_FALSE(resolved_path_is_inside("/a/b/../c.hlsl", "/a/b"));
+  EXPECT_FALSE(resolved_path_is_inside("/a/bc/d.hlsl", "/a/b"));
+  EXPECT_FALSE(resolved_path_is_inside("/a/c.hlsl", "/a/b"));
+  EXPECT_FALSE(resolved_path_is_inside("a/b/c.hlsl", "/a/b"));
+  for (const char* file : {"/a/b/c.hlsl", "/a/b/sub/c.hlsl", "/a/b/.hidden", "/a/b//c.hlsl", "/a/b/", "/a/b/.",
+                           "/a/b/../c.hlsl", "/a/bc/d.hlsl", "/x"}) {
+    for (const char* folder : {"/a/b", "/a/b/", "/", "/a"}) {
+      const fs::path relative = fs::path(file).lexically_relative(folder);
+      const bool expected = !relative.empty() && relative != "." && *relative.begin() != "..";
+      EXPECT_EQ(resolved_path_is_inside(file, folder), expected) << file << " in " << folder;
+    }
+  }
+}
+
 }  // namespace
 }  // namespace xshade

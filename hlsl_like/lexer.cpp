@@ -6,7 +6,15 @@
 namespace xshade::hlsl {
 namespace {
 
-enum : uint8_t { kIdentStart = 1, kDigit = 2, kHex = 4, kHorizontalSpace = 8, kLineSpecial = 16 };
+enum : uint8_t {
+  kIdentStart = 1,
+  kDigit = 2,
+  kHex = 4,
+  kHorizontalSpace = 8,
+  kLineSpecial = 16,
+  kSpaceStart = 32,  // may begin whitespace, a comment or a splice: where next() calls skip_space
+  kSinglePunct = 64,  // a punctuator that never begins a longer token
+};
 
 constexpr std::array<uint8_t, 256> make_classes() {
   std::array<uint8_t, 256> c{};
@@ -19,6 +27,8 @@ constexpr std::array<uint8_t, 256> make_classes() {
   for (char s : {' ', '\t', '\r', '\v', '\f'}) c[static_cast<unsigned char>(s)] |= kHorizontalSpace;
   // What a skipped line must look at: its end, splices, comments and strings.
   for (char s : {'\n', '\\', '/', '"'}) c[static_cast<unsigned char>(s)] |= kLineSpecial;
+  for (char s : {' ', '\t', '\r', '\v', '\f', '\n', '\\', '/'}) c[static_cast<unsigned char>(s)] |= kSpaceStart;
+  for (char s : {'(', ')', '[', ']', '{', '}', ';', ',', '?', '~'}) c[static_cast<unsigned char>(s)] |= kSinglePunct;
   return c;
 }
 constexpr std::array<uint8_t, 256> kClasses = make_classes();
@@ -34,6 +44,7 @@ Lexer::Lexer(std::string_view text, uint32_t file, DiagnosticEngine& diagnostics
     : text_(text), file_(file), diagnostics_(diagnostics), store_(text_store) {
   // A UTF-8 byte order mark (editors on Windows write one) is no token; columns count from after it.
   if (text_.substr(0, 3) == "\xEF\xBB\xBF") pos_ = line_start_ = 3;
+  ends_outside_names_ = !text_.empty() && !is_ident(static_cast<unsigned char>(text_.back()));
 }
 
 size_t Lexer::splice_at(size_t p) const {
@@ -128,36 +139,46 @@ void Lexer::skip_line_comment(size_t second_slash) {
 void Lexer::skip_space() {
   const char* s = text_.data();
   const size_t n = text_.size();
-  while (pos_ < n) {
-    const char c = s[pos_];
+  // Kept in locals and stored once: pos_ and space_ written on every character cost as much as
+  // the test of the character.
+  size_t p = pos_;
+  bool space = space_;
+  while (p < n) {
+    const char c = s[p];
     if (has(static_cast<unsigned char>(c), kHorizontalSpace)) {
-      ++pos_;
-      space_ = true;
+      space = true;
+      do ++p;
+      while (p < n && has(static_cast<unsigned char>(s[p]), kHorizontalSpace));
     } else if (c == '\n') {
-      ++pos_;
-      new_line(pos_);
+      ++p;
+      new_line(p);
       at_line_start_ = true;
-      space_ = true;
+      space = true;
     } else if (c == '\\') {
-      const size_t length = splice_at(pos_);
-      if (length == 0) return;
-      pos_ += length;
-      new_line(pos_);
+      const size_t length = splice_at(p);
+      if (length == 0) break;
+      p += length;
+      new_line(p);
     } else if (c == '/') {
-      const size_t q = past_splices(pos_ + 1);
-      if (q >= n) return;
+      const size_t q = past_splices(p + 1);
+      if (q >= n) break;
       if (s[q] == '*') {
+        pos_ = p;
         skip_block_comment(q);
       } else if (s[q] == '/') {
+        pos_ = p;
         skip_line_comment(q);
       } else {
-        return;
+        break;
       }
-      space_ = true;
+      p = pos_;
+      space = true;
     } else {
-      return;
+      break;
     }
   }
+  pos_ = p;
+  space_ = space;
 }
 
 bool Lexer::line_ended() {
@@ -259,13 +280,21 @@ size_t Lexer::lex_number(size_t start, Loc loc, TokenKind& kind) {
 }
 
 Token Lexer::next() {
-  skip_space();
+  const char* s = text_.data();
+  const size_t n = text_.size();
+  if (pos_ < n && has(static_cast<unsigned char>(s[pos_]), kSpaceStart)) {
+    // One space between tokens, the most common whitespace, without the call.
+    if (s[pos_] == ' ' && pos_ + 1 < n && !has(static_cast<unsigned char>(s[pos_ + 1]), kSpaceStart)) {
+      ++pos_;
+      space_ = true;
+    } else {
+      skip_space();
+    }
+  }
   Token token;
   token.at_line_start = at_line_start_;
   token.space_before = space_;
   token.loc = loc_at(pos_);
-  const char* s = text_.data();
-  const size_t n = text_.size();
   if (pos_ >= n) {
     token.kind = TokenKind::EndOfFile;
     token.text = text_.substr(n, 0);
@@ -273,6 +302,36 @@ Token Lexer::next() {
   }
   at_line_start_ = false;
   space_ = false;
+  // Most tokens are a name no splice continues or a punctuator that is never the start of a
+  // longer one: taken here, the rest in next_other (a function of its own keeps this path short).
+  const size_t start = pos_;
+  const unsigned char c = static_cast<unsigned char>(s[start]);
+  if (has(c, kIdentStart)) {
+    size_t end = start + 1;
+    if (ends_outside_names_) {
+      while (is_ident(static_cast<unsigned char>(s[end]))) ++end;
+    } else {
+      while (end < n && is_ident(static_cast<unsigned char>(s[end]))) ++end;
+    }
+    if (end == n || s[end] != '\\') {
+      token.kind = TokenKind::Identifier;
+      token.text = std::string_view(s + start, end - start);
+      pos_ = end;
+      return token;
+    }
+  } else if (has(c, kSinglePunct)) {
+    token.kind = TokenKind::Punct;
+    token.text = std::string_view(s + start, 1);
+    pos_ = start + 1;
+    return token;
+  }
+  next_other(token);
+  return token;
+}
+
+void Lexer::next_other(Token& token) {
+  const char* s = text_.data();
+  const size_t n = text_.size();
   first_splice_ = npos;
   const size_t start = pos_;
   const unsigned char c = static_cast<unsigned char>(s[start]);
@@ -383,7 +442,6 @@ Token Lexer::next() {
     token.text = token_text(start, end);
     move_to(end);
   }
-  return token;
 }
 
 Token Lexer::next_header_name() {
@@ -486,47 +544,52 @@ void Lexer::skip_line() {
   const char* s = text_.data();
   const size_t n = text_.size();
   bool in_string = false;
-  while (pos_ < n) {
-    const char c = s[pos_];
-    if (!has(static_cast<unsigned char>(c), kLineSpecial)) {
-      ++pos_;
-      continue;
-    }
+  size_t p = pos_;  // in a local, as in skip_space
+  while (p < n) {
+    while (p < n && !has(static_cast<unsigned char>(s[p]), kLineSpecial)) ++p;
+    if (p >= n) break;
+    const char c = s[p];
     if (c == '\n') {
-      ++pos_;
-      new_line(pos_);
+      ++p;
+      new_line(p);
       at_line_start_ = true;
       space_ = true;
+      pos_ = p;
       return;
     }
     if (c == '\\') {
-      if (size_t length = splice_at(pos_)) {
-        pos_ += length;
-        new_line(pos_);
+      if (size_t length = splice_at(p)) {
+        p += length;
+        new_line(p);
       } else {
-        pos_ += (in_string && pos_ + 1 < n && s[pos_ + 1] != '\n') ? 2 : 1;
+        p += (in_string && p + 1 < n && s[p + 1] != '\n') ? 2 : 1;
       }
       continue;
     }
     if (c == '"') {
       in_string = !in_string;
-      ++pos_;
+      ++p;
       continue;
     }
     // c == '/'
     if (!in_string) {
-      const size_t q = past_splices(pos_ + 1);
+      const size_t q = past_splices(p + 1);
       if (q < n && s[q] == '*') {
+        pos_ = p;
         skip_block_comment(q);
+        p = pos_;
         continue;
       }
       if (q < n && s[q] == '/') {
+        pos_ = p;
         skip_line_comment(q);
+        p = pos_;
         continue;
       }
     }
-    ++pos_;
+    ++p;
   }
+  pos_ = p;
 }
 
 Token Lexer::skip_to_directive() {

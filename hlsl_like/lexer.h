@@ -42,6 +42,7 @@ class Lexer {
  private:
   static constexpr size_t npos = static_cast<size_t>(-1);
 
+  void next_other(Token& token);  // next() for a token other than the common ones; pos_ at its start
   void skip_space();
   void skip_block_comment(size_t star);  // pos_ at the '/', `star` at the '*'
   void skip_line_comment(size_t second_slash);
@@ -71,6 +72,10 @@ class Lexer {
   bool at_line_start_ = true;
   bool space_ = false;               // whitespace or a comment since the last token
   size_t first_splice_ = npos;       // inside the token being lexed
+  // The text's last character cannot continue a name (a file ends with a line end, as a rule):
+  // then a name stops before the end of the text on its own, and its characters are read with
+  // no test of the end.
+  bool ends_outside_names_ = false;
   std::deque<std::string>* store_;
   std::unique_ptr<std::deque<std::string>> own_store_;
 };

@@ -11,45 +11,114 @@
 #include <utility>
 #include <vector>
 
+#include <sys/stat.h>
+
 #include "base/paths.h"
 #include "hlsl_like/preprocessor_internal.h"
 
 namespace xshade::hlsl {
 
 using pp_detail::clip;
+using pp_detail::find_include_path;
 using pp_detail::is_punct1;
 
-std::optional<std::filesystem::path> find_include(std::string_view name, const std::filesystem::path& including_file,
-                                                  bool angled, const std::vector<std::filesystem::path>& include_dirs,
-                                                  std::vector<std::filesystem::path>* searched) {
-  namespace fs = std::filesystem;
+namespace {
+
+// Whether `path` names a regular file (through links), as std::filesystem::is_regular_file, from
+// a string: an #include looks in a folder or two for every name, and a path object parses itself
+// into components, each of them allocated.
+bool is_regular_file(const std::string& path) {
+  struct stat status {};
+  return ::stat(path.c_str(), &status) == 0 && S_ISREG(status.st_mode);
+}
+
+// `folder / name` as std::filesystem::path spells it on POSIX: a separator unless the folder is
+// empty or ends in one.
+void join(std::string_view folder, std::string_view name, std::string& out) {
+  out.assign(folder);
+  if (!folder.empty() && folder.back() != '/') out += '/';
+  out += name;
+}
+
+}  // namespace
+
+bool pp_detail::find_include_path(std::string_view name, const std::string* including_folder,
+                                  const std::vector<std::filesystem::path>& include_dirs, std::string& found,
+                                  std::vector<std::filesystem::path>* searched, size_t* include_dir) {
+  if (include_dir) *include_dir = include_dirs.size();
   // Shaders written on Windows may spell "sub\\file.hlsl".
   std::string portable(name);
   for (char& c : portable)
     if (c == '\\') c = '/';
-  const fs::path relative{portable};
-  auto exists = [](const fs::path& candidate) {
-    std::error_code error;
-    return fs::is_regular_file(candidate, error);
-  };
-  if (relative.is_absolute()) return exists(relative) ? std::optional<fs::path>(relative) : std::nullopt;
-  std::vector<fs::path> folders;
-  if (!angled && !including_file.empty()) folders.push_back(including_file.parent_path());
-  folders.insert(folders.end(), include_dirs.begin(), include_dirs.end());
-  for (const fs::path& folder : folders) {
-    if (searched) searched->push_back(folder);
-    if (exists(folder / relative)) return folder / relative;
+  if (!portable.empty() && portable.front() == '/') {
+    found = std::move(portable);
+    return is_regular_file(found);
   }
-  return std::nullopt;
+  if (including_folder) {
+    if (searched) searched->emplace_back(*including_folder);
+    join(*including_folder, portable, found);
+    if (is_regular_file(found)) return true;
+  }
+  for (size_t i = 0; i < include_dirs.size(); ++i) {
+    if (searched) searched->push_back(include_dirs[i]);
+    join(include_dirs[i].native(), portable, found);
+    if (is_regular_file(found)) {
+      if (include_dir) *include_dir = i;
+      return true;
+    }
+  }
+  return false;
 }
 
-bool Preprocessor::Impl::inside_given_folders(const std::filesystem::path& file) const {
-  return std::any_of(given_folders_.begin(), given_folders_.end(),
-                     [&](const std::filesystem::path& folder) { return path_is_inside(file, folder); });
+std::optional<std::filesystem::path> find_include(std::string_view name, const std::filesystem::path& including_file,
+                                                  bool angled, const std::vector<std::filesystem::path>& include_dirs,
+                                                  std::vector<std::filesystem::path>* searched) {
+  const bool local = !angled && !including_file.empty();
+  const std::string folder = local ? including_file.parent_path().native() : std::string();
+  std::string found;
+  if (!find_include_path(name, local ? &folder : nullptr, include_dirs, found, searched, nullptr)) return std::nullopt;
+  return std::filesystem::path(std::move(found));
+}
+
+void Preprocessor::Impl::resolve_given_folders() {
+  if (folders_resolved_) return;
+  folders_resolved_ = true;
+  resolved_folders_.reserve(given_folders_.size());
+  for (const std::filesystem::path& folder : given_folders_) resolved_folders_.push_back(resolved_path(folder));
+}
+
+std::optional<std::filesystem::path> Preprocessor::Impl::resolved_under(size_t folder, std::string_view relative) {
+  resolve_given_folders();
+  if (folder >= resolved_folders_.size() || !resolved_folders_[folder]) return std::nullopt;
+  std::string path = resolved_folders_[folder]->native();
+  while (!relative.empty()) {
+    const size_t slash = relative.find('/');
+    const std::string_view name = relative.substr(0, slash);
+    if (name.empty() || name == "." || name == "..") return std::nullopt;
+    if (path.empty() || path.back() != '/') path += '/';
+    path += name;
+    struct stat status {};
+    if (::lstat(path.c_str(), &status) != 0 || S_ISLNK(status.st_mode)) return std::nullopt;
+    relative = slash == std::string_view::npos ? std::string_view() : relative.substr(slash + 1);
+  }
+  return std::filesystem::path(std::move(path));
+}
+
+bool Preprocessor::Impl::inside_given_folders(const std::filesystem::path& resolved_file) {
+  resolve_given_folders();
+  return std::any_of(resolved_folders_.begin(), resolved_folders_.end(),
+                     [&](const std::optional<std::filesystem::path>& folder) {
+                       return folder && resolved_path_is_inside(resolved_file, *folder);
+                     });
 }
 
 void Preprocessor::Impl::enter_file(uint32_t file) {
   ensure_file_tables();
+  // Room for the file's tokens ahead, from its size (shaders as written have a token for every
+  // six to ten characters; three leaves room for dense code), so that the output is not moved
+  // again as each included file is read.
+  const size_t expected = out_.size() + sources_.text(file).size() / 3 + 16;
+  if (out_.capacity() < expected) out_.reserve(std::max(expected, out_.capacity() * 2));
   if (!seen_[file]) {
     seen_[file] = 1;
     pp_.files_.push_back(file);
@@ -136,13 +205,19 @@ void Preprocessor::Impl::include_file(IncludeFrame& frame, const Token& name, st
                                      std::to_string(Preprocessor::kMaxIncludeDepth) + " levels)");
     return;
   }
-  const fs::path relative{std::string(spelled)};
-  std::vector<fs::path> searched;
-  const std::optional<fs::path> found =
-      find_include(spelled, sources_.path(frame.file), angled, pp_.options_.include_dirs, &searched);
-  if (!found) {
+  if (!frame.folder_known) {
+    frame.folder_known = true;
+    if (!sources_.path(frame.file).empty()) frame.folder = sources_.path(frame.file).parent_path().native();
+  }
+  const bool local = !angled && !sources_.path(frame.file).empty();
+  std::string& found = found_include_;
+  size_t include_dir = 0;
+  if (!find_include_path(spelled, local ? &frame.folder : nullptr, pp_.options_.include_dirs, found, nullptr,
+                         &include_dir)) {
+    std::vector<fs::path> searched;
+    find_include_path(spelled, local ? &frame.folder : nullptr, pp_.options_.include_dirs, found, &searched, nullptr);
     std::string message = "cannot find include file '" + clip(spelled) + "'";
-    if (relative.is_absolute()) {
+    if (fs::path(std::string(spelled)).is_absolute()) {
       // Nothing was searched: the path was taken as it is.
     } else if (searched.empty()) {
       message += " (no directories to search)";
@@ -157,19 +232,35 @@ void Preprocessor::Impl::include_file(IncludeFrame& frame, const Token& name, st
     diagnostics_.error(where, std::move(message));
     return;
   }
-  if (!inside_given_folders(*found)) {
-    std::string folders;
-    for (const fs::path& folder : given_folders_) folders += (folders.empty() ? "" : ", ") + folder.string();
-    diagnostics_.error(where, "include file '" + clip(spelled) + "' is outside the folders this shader was given (" +
-                                  folders + "); an include may not leave them");
-    return;
+  uint32_t index = 0;
+  for (const auto& [path, file] : loaded_includes_)
+    if (path == found) {
+      index = file;
+      break;
+    }
+  if (index == 0) {
+    // A file found in an include directory is resolved from the directory's resolved path when
+    // no name after it is a link (or . or ..): a check of each of those names, where resolving
+    // the whole path reads every component of it as a link. Anything else is resolved whole.
+    std::optional<fs::path> resolved;
+    if (include_dir < pp_.options_.include_dirs.size())
+      resolved = resolved_under(include_dir, std::string_view(found).substr(found.size() - spelled.size()));
+    if (!resolved) resolved = resolved_path(found);
+    if (!resolved || !inside_given_folders(*resolved)) {
+      std::string folders;
+      for (const fs::path& folder : given_folders_) folders += (folders.empty() ? "" : ", ") + folder.string();
+      diagnostics_.error(where, "include file '" + clip(spelled) + "' is outside the folders this shader was given (" +
+                                    folders + "); an include may not leave them");
+      return;
+    }
+    Result<uint32_t> loaded = sources_.load_canonical(*resolved, found);
+    if (!loaded) {
+      diagnostics_.error(where, loaded.error().message);
+      return;
+    }
+    index = *loaded;
+    loaded_includes_.emplace_back(found, index);
   }
-  Result<uint32_t> loaded = sources_.load(*found);
-  if (!loaded) {
-    diagnostics_.error(where, loaded.error().message);
-    return;
-  }
-  const uint32_t index = *loaded;
   ensure_file_tables();
   if (!seen_[index]) {
     seen_[index] = 1;

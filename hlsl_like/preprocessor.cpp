@@ -37,28 +37,31 @@ std::vector<Token> Preprocessor::Impl::run(uint32_t main_file) {
   given_folders_ = pp_.options_.include_dirs;
   if (const auto folder = sources_.path(main_file).parent_path(); !folder.empty()) given_folders_.push_back(folder);
   enter_file(main_file);
-  out_.reserve(sources_.text(main_file).size() / 3 + 16);
   Context ctx;
   PPTok token;
-  for (;;) {
-    // The common case first: a token straight from a file that names no macro.
+  bool ended = false;
+  while (!ended) {
+    // The common case first, in a loop of its own: tokens straight from a file that name no macro.
     if (ctx.frames.empty() && !ctx.has_pushback && !ctx.carry_space && !ctx.carry_line_start) {
-      IncludeFrame& frame = *includes_.back();
-      const Token next = frame.lexer.next();
-      if (next.kind == TokenKind::Hash || next.kind == TokenKind::EndOfFile) {
-        bool ended;
-        if (special_file_token(frame, next, false, ended)) {
-          if (ended) break;
+      for (;;) {
+        IncludeFrame& frame = *includes_.back();
+        const Token next = frame.lexer.next();
+        if (next.kind == TokenKind::Hash || next.kind == TokenKind::EndOfFile) {
+          if (special_file_token(frame, next, false, ended)) {
+            if (ended) break;
+            continue;
+          }
+        }
+        note_token(frame);
+        if (next.kind != TokenKind::Identifier || !maybe_macro(next.text)) {
+          out_.push_back(next);
           continue;
         }
+        ctx.pushback = PPTok{next, false, false};
+        ctx.has_pushback = true;
+        break;
       }
-      note_token(frame);
-      if (next.kind != TokenKind::Identifier || !maybe_macro(next.text)) {
-        out_.push_back(next);
-        continue;
-      }
-      ctx.pushback = PPTok{next, false, false};
-      ctx.has_pushback = true;
+      if (ended) break;
     }
     if (!expand_next(ctx, token, false)) break;
     out_.push_back(token.tok);

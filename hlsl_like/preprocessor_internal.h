@@ -19,6 +19,7 @@
 #include <string>
 #include <string_view>
 #include <unordered_map>
+#include <utility>
 #include <vector>
 
 #include "hlsl_like/diagnostic_engine.h"
@@ -107,6 +108,9 @@ struct IncludeFrame {
   Guard guard = Guard::Start;
   size_t guard_cond = 0;
   std::string_view guard_macro;
+  // The folder a quoted #include in the file looks in first, made on its first #include.
+  bool folder_known = false;
+  std::string folder;
 };
 
 // The value of a #if expression or of one of its operands.
@@ -132,6 +136,14 @@ inline Token make_token(TokenKind kind, std::string_view text, Loc loc) {
   token.loc = loc;
   return token;
 }
+
+// find_include on strings: the including file's folder (null for an angled name or a file not on
+// disk) and the path found, in `found` (overwritten, kept for its buffer), are the strings
+// std::filesystem::path would hold. `include_dir` (when given) is set to the index of the include
+// directory the file was found in, or to include_dirs.size() when it was found elsewhere.
+bool find_include_path(std::string_view name, const std::string* including_folder,
+                       const std::vector<std::filesystem::path>& include_dirs, std::string& found,
+                       std::vector<std::filesystem::path>* searched, size_t* include_dir);
 
 // A #if or #elif line's tokens, macros already expanded, evaluated as C does: integer arithmetic
 // on 64 bits, signed unless a u suffix or a too large literal makes a value unsigned. A `defined`
@@ -178,9 +190,17 @@ struct Preprocessor::Impl {
 
  private:
   // Macros (pp_macros.cpp).
+  // From the length and the first and last two characters, mixed: names that differ only in the
+  // middle are rare, while float2 and fixed2, or float4x4 and fixed4x4, must not share a bit, or
+  // every vector type in a shader would be looked up in the macro tables.
   static size_t filter_bit(std::string_view name) {
-    return (name.size() * 131 + static_cast<unsigned char>(name.front()) * 7 +
-            static_cast<unsigned char>(name.back())) & 1023;
+    const size_t n = name.size();
+    const auto at = [&](size_t i) { return uint32_t(static_cast<unsigned char>(name[i])); };
+    const uint32_t second = n > 1 ? at(1) : 0;
+    const uint32_t before_last = n > 1 ? at(n - 2) : 0;
+    const uint32_t mixed = uint32_t(n) * 0x9E3779B1u + at(0) * 0x85EBCA77u + at(n - 1) * 0xC2B2AE3Du +
+                           second * 0x27D4EB2Fu + before_last * 0x165667B1u;
+    return mixed >> 22;  // the top 10 bits: the best mixed
   }
   bool maybe_macro(std::string_view name) const {
     const size_t bit = filter_bit(name);
@@ -265,7 +285,20 @@ struct Preprocessor::Impl {
   // The folders a compile was given: the include directories and the main file's folder. An
   // include may not resolve outside them (`#include "../../etc/passwd"` is an error, not a read).
   std::vector<std::filesystem::path> given_folders_;
-  bool inside_given_folders(const std::filesystem::path& file) const;
+  // The given folders resolved (base/paths.h), on the first #include of the run; nothing for a
+  // folder the file system cannot resolve, which holds no file.
+  std::vector<std::optional<std::filesystem::path>> resolved_folders_;
+  bool folders_resolved_ = false;
+  void resolve_given_folders();
+  bool inside_given_folders(const std::filesystem::path& resolved_file);
+  // `relative` (plain names, /-separated) under the resolved given folder `folder`, when no name
+  // is a link; nothing otherwise, or when the folder did not resolve.
+  std::optional<std::filesystem::path> resolved_under(size_t folder, std::string_view relative);
+  // Each path an #include found, with the file it loaded: a file included from several places
+  // (and every #include of a guarded file again) is resolved, held to the folders and looked up
+  // once a run, since each of those asks the file system about every component of its path.
+  std::vector<std::pair<std::string, uint32_t>> loaded_includes_;
+  std::string found_include_;  // the path of the #include being read; kept for its buffer
   void abandon_files_from(size_t first);
   void ensure_file_tables() {
     const size_t count = sources_.file_count();

@@ -642,6 +642,27 @@ TEST_F(PreprocessorTest, IncludeFromAnInMemoryFileUsesOnlyTheIncludeDirectories)
                                  "main.hlsl:4:10: error: empty file name in #include"}));
 }
 
+// A file found in an include directory is held to the folders through links in the directory,
+// and through a link to the directory itself.
+TEST_F(PreprocessorTest, IncludeDirectoryLinksAreFollowedAndHeldToTheFolders) {
+  write("outside/secret.hlsl", "secret");
+  write("real/inc/sub/lib.hlsl", "lib");
+  fs::create_symlink(temp_dir() / "outside", temp_dir() / "real/inc/out");
+  fs::create_symlink(temp_dir() / "real/inc/sub", temp_dir() / "real/inc/in");
+  fs::create_symlink(temp_dir() / "real/inc", temp_dir() / "inc_link");
+  PreprocessorOptions options;
+  options.include_dirs = {temp_dir() / "inc_link"};
+  EXPECT_EQ(run("#include \"sub/lib.hlsl\"\n#include \"in/lib.hlsl\"\n#include \"out/secret.hlsl\"\n"
+                "#include <sub/../sub/lib.hlsl>\n#include <sub//lib.hlsl>",
+                options),
+            "lib lib lib lib");
+  const std::string folder = (temp_dir() / "inc_link").string();
+  EXPECT_EQ(messages(), (Strings{"main.hlsl:3:10: error: include file 'out/secret.hlsl' is outside the folders this "
+                                 "shader was given (" + folder + "); an include may not leave them"}));
+  ASSERT_EQ(pp_->files().size(), 2u);
+  EXPECT_EQ(sources_.path(pp_->files()[1]), temp_dir() / "real/inc/sub/lib.hlsl");
+}
+
 TEST_F(PreprocessorTest, IncludeThroughAMacro) {
   write("inc/lib.hlsl", "lib");
   PreprocessorOptions options;

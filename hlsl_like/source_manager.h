@@ -28,6 +28,9 @@ class SourceManager {
   uint32_t add(std::string name, std::string text);
   // Reads a file from disk once; the same canonical path yields the same index.
   Result<uint32_t> load(const std::filesystem::path& path);
+  // load() for a path already canonical (an #include, resolved to be held to its folders), which
+  // is not resolved again; `name` is what messages call the file.
+  Result<uint32_t> load_canonical(const std::filesystem::path& canonical, std::string name);
 
   std::string_view text(uint32_t file) const { return files_[file]->text; }
   const std::string& name(uint32_t file) const { return files_[file]->name; }
