@@ -269,13 +269,31 @@ class Parser {
   // Words and names (parser.cpp)
 
   // A word's classification and, once declared, its struct or typedef type: one hash lookup
-  // per question, however many questions the look-ahead asks about the same word.
+  // per token, however many questions the look-ahead asks about it (token_words_ remembers the
+  // answer). The words met so far are an open-addressing table (word_slots_) hashed from a few
+  // word-sized loads of the text: identifiers are short, and a general-purpose string hash and
+  // a node per entry were most of what a question cost.
   struct Word {
-    const WordInfo* info;
-    std::optional<Type> user_type;
+    const WordInfo* info = nullptr;
+    int32_t user_type = -1;  // index in user_types_ once the word names a struct or typedef
+    bool names_user_type() const { return user_type >= 0; }
+  };
+  struct WordSlot {
+    const char* text = nullptr;
+    uint32_t size = 0;
+    uint32_t hash = 0;
+    uint32_t word = 0;  // index in words_ + 1; 0 in an empty slot
   };
 
-  Word& word(std::string_view text) const;
+  // The word of the identifier token at `index`.
+  Word& word_at(size_t index) const {
+    if (index >= token_words_.size()) return words_[find_word(tok(index).text)];
+    uint32_t& known = token_words_[index];
+    if (known == 0) known = find_word(tok(index).text) + 1;
+    return words_[known - 1];
+  }
+  uint32_t find_word(std::string_view text) const;
+  void grow_word_slots() const;
   const WordInfo& info(size_t index) const;
   const BuiltinType* find_builtin_type(size_t index) const { return info(index).builtin; }
   bool is_reserved(size_t index) const { return info(index).reserved; }
@@ -310,7 +328,10 @@ class Parser {
   size_t last_error_index_ = kNoIndex;
   size_t unknown_reported_until_ = 0;
   size_t attribute_index_ = 0;
-  mutable std::unordered_map<std::string_view, Word> words_;
+  mutable std::vector<Word> words_;
+  mutable std::vector<WordSlot> word_slots_;  // a power of two long, at most half full
+  mutable std::vector<uint32_t> token_words_;  // per token: index in words_ + 1; 0 until asked
+  std::vector<Type> user_types_;
   std::unordered_map<std::string, int64_t, StringHash, std::equal_to<>> int_constants_;
   std::unordered_set<std::string> uniform_constants_;  // file-scope `const int` without static
   TranslationUnit unit_;
