@@ -259,12 +259,16 @@ bool Parser::parse_call_args(CallExpr& call) {
   DepthGuard guard(*this);
   if (!guard.ok()) return false;
   if (accept(")")) return true;
+  Gathered<ExprPtr> args(gathered_args_);
   for (;;) {
     ExprPtr arg = parse_assignment();
     if (!arg) return false;
-    call.args.push_back(std::move(arg));
+    args.push(std::move(arg));
     if (accept(",")) continue;
-    if (accept(")")) return true;
+    if (accept(")")) {
+      args.move_to(call.args);
+      return true;
+    }
     error_unmatched(")", open);
     return false;
   }

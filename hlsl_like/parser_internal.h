@@ -8,7 +8,10 @@
 #pragma once
 
 #include <cstdint>
+#include <algorithm>
+#include <cstddef>
 #include <functional>
+#include <iterator>
 #include <memory>
 #include <optional>
 #include <string>
@@ -109,6 +112,31 @@ template <class T, class... Args>
 std::unique_ptr<T> make(Args&&... args) {
   return std::make_unique<T>(std::forward<Args>(args)...);
 }
+
+// The children of the node being parsed (a call's arguments, a block's statements) gather on a
+// stack shared with the nested nodes of their kind, and move into the node's vector once, at
+// its final size: a vector grown child by child was allocated two or three times over. Those
+// left on the stack when the node fails are destroyed with the Gathered.
+template <class T>
+class Gathered {
+ public:
+  explicit Gathered(std::vector<T>& stack) : stack_(stack), first_(stack.size()) {}
+  ~Gathered() { stack_.erase(stack_.begin() + std::ptrdiff_t(first_), stack_.end()); }
+  Gathered(const Gathered&) = delete;
+  Gathered& operator=(const Gathered&) = delete;
+
+  void push(T child) { stack_.push_back(std::move(child)); }
+  void move_to(std::vector<T>& out) {
+    const auto first = stack_.begin() + std::ptrdiff_t(first_);
+    out.reserve(out.size() + size_t(stack_.end() - first));
+    std::move(first, stack_.end(), std::back_inserter(out));
+    stack_.erase(first, stack_.end());
+  }
+
+ private:
+  std::vector<T>& stack_;
+  size_t first_;
+};
 
 class Parser {
  public:
@@ -332,6 +360,8 @@ class Parser {
   mutable std::vector<WordSlot> word_slots_;  // a power of two long, at most half full
   mutable std::vector<uint32_t> token_words_;  // per token: index in words_ + 1; 0 until asked
   std::vector<Type> user_types_;
+  std::vector<ExprPtr> gathered_args_;
+  std::vector<StmtPtr> gathered_statements_;
   std::unordered_map<std::string, int64_t, StringHash, std::equal_to<>> int_constants_;
   std::unordered_set<std::string> uniform_constants_;  // file-scope `const int` without static
   TranslationUnit unit_;
