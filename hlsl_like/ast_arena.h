@@ -6,6 +6,8 @@
 // strings and vectors own heap memory), only the node's own memory is not freed one by one.
 // Nodes made while no arena is installed (a test building a tree by hand) come from the heap,
 // so every node carries a word saying where its memory came from, for operator delete.
+// A node dropped before its tree (a production that failed) keeps its memory until the arena
+// goes; the parser makes a few nodes per token at most, so that waste is bounded by the input.
 #pragma once
 
 #include <cstddef>
