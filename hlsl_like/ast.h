@@ -7,8 +7,10 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
+#include "hlsl_like/ast_arena.h"
 #include "hlsl_like/source_manager.h"
 #include "hlsl_like/types.h"
 
@@ -36,7 +38,7 @@ enum class ExprKind : uint8_t {
   Index, Cast, InitList, Conversion,
 };
 
-struct Expr {
+struct Expr : AstNodeMemory {
   ExprKind kind;
   Loc loc;
   Type type;  // sema
@@ -186,7 +188,7 @@ enum class StmtKind : uint8_t {
   Block, Expr, Decl, If, For, While, DoWhile, Switch, Break, Continue, Return, Discard, Empty,
 };
 
-struct Stmt {
+struct Stmt : AstNodeMemory {
   StmtKind kind;
   Loc loc;
   std::vector<Attribute> attributes;
@@ -266,7 +268,7 @@ struct SimpleStmt : Stmt {  // break, continue, discard, ;
 
 enum class DeclKind : uint8_t { Var, Param, Struct, Function, CBuffer, Typedef };
 
-struct Decl {
+struct Decl : AstNodeMemory {
   DeclKind kind;
   Loc loc;  // of the name
   std::string name;
@@ -370,7 +372,30 @@ struct TypedefDecl : Decl {
 };
 
 struct TranslationUnit {
+  // The memory of the tree's nodes (ast_arena.h). Declared first, so that it goes last.
+  AstArena arena;
   std::vector<std::unique_ptr<Decl>> decls;  // in source order
+
+  TranslationUnit() = default;
+  TranslationUnit(TranslationUnit&&) noexcept = default;
+  // The tree this unit held goes before the arena its nodes are in.
+  TranslationUnit& operator=(TranslationUnit&& other) noexcept {
+    if (this != &other) {
+      decls.clear();
+      decls = std::move(other.decls);
+      arena = std::move(other.arena);
+    }
+    return *this;
+  }
 };
+
+// Every node class fits the arena's alignment.
+template <class... Nodes>
+inline constexpr bool kNodesFitArena = ((alignof(Nodes) <= AstArena::kAlignment) && ...);
+static_assert(kNodesFitArena<IntLiteralExpr, FloatLiteralExpr, BoolLiteralExpr, NameExpr, UnaryExpr, BinaryExpr,
+                             AssignExpr, ConditionalExpr, CallExpr, MemberExpr, IndexExpr, CastExpr, InitListExpr,
+                             ConversionExpr, BlockStmt, ExprStmt, DeclStmt, IfStmt, ForStmt, WhileStmt, DoWhileStmt,
+                             SwitchStmt, ReturnStmt, SimpleStmt, VarDecl, ParamDecl, StructDecl, FunctionDecl,
+                             CBufferDecl, TypedefDecl>);
 
 }  // namespace xshade::hlsl

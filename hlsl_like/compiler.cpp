@@ -148,7 +148,10 @@ std::unique_ptr<Module> compile(std::unique_ptr<Module> module, const CompileOpt
     reading.entry_points.fragment_loc = {module->main_file, 1, 1};
   }
   module->unit = parse(tokens, module->diagnostics);
-  module->entry_points = analyze(module->unit, reading.entry_points, module->diagnostics);
+  {
+    AstArenaScope nodes(module->unit.arena);  // the nodes analysis adds join the tree's
+    module->entry_points = analyze(module->unit, reading.entry_points, module->diagnostics);
+  }
   if (!module->diagnostics.has_errors())
     module->resource_origins = resolve_resource_origins(module->entry_points, module->diagnostics);
   if (!module->diagnostics.has_errors())

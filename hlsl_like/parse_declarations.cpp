@@ -111,10 +111,10 @@ std::optional<Type> Parser::parse_type(bool allow_void) {
     error_here("expected a type");
     return std::nullopt;
   }
-  const Word& w = word(token.text);
-  if (w.user_type) {
+  const Word& w = word_at(pos_);
+  if (w.names_user_type()) {
     advance();
-    return *w.user_type;
+    return user_types_[size_t(w.user_type)];
   }
   const BuiltinType* builtin = w.info->builtin;
   if (!builtin) {

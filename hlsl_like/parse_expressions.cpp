@@ -89,30 +89,41 @@ ExprPtr Parser::parse_conditional() {
 
 namespace {
 
-// Precedence of a binary operator (higher binds tighter); 0 when the token is none.
+// Precedence of a binary operator (higher binds tighter); 0 when the token is none. Asked at
+// every level of precedence climbing after every operand, so it switches on the characters
+// rather than comparing the token with each operator in turn.
 int binary_precedence(const Token& token, BinaryOp& op) {
   if (token.kind != TokenKind::Punct) return 0;
   const std::string_view t = token.text;
-  struct Entry {
-    std::string_view text;
-    BinaryOp op;
-    int precedence;
+  auto found = [&op](BinaryOp binary, int precedence) {
+    op = binary;
+    return precedence;
   };
-  static constexpr Entry kTable[] = {
-      {"||", BinaryOp::LogicalOr, 1},   {"&&", BinaryOp::LogicalAnd, 2}, {"|", BinaryOp::BitOr, 3},
-      {"^", BinaryOp::BitXor, 4},       {"&", BinaryOp::BitAnd, 5},      {"==", BinaryOp::Equal, 6},
-      {"!=", BinaryOp::NotEqual, 6},    {"<", BinaryOp::Less, 7},        {">", BinaryOp::Greater, 7},
-      {"<=", BinaryOp::LessEqual, 7},   {">=", BinaryOp::GreaterEqual, 7}, {"<<", BinaryOp::Shl, 8},
-      {">>", BinaryOp::Shr, 8},         {"+", BinaryOp::Add, 9},         {"-", BinaryOp::Sub, 9},
-      {"*", BinaryOp::Mul, 10},         {"/", BinaryOp::Div, 10},        {"%", BinaryOp::Mod, 10},
-  };
-  for (const Entry& entry : kTable) {
-    if (entry.text == t) {
-      op = entry.op;
-      return entry.precedence;
+  if (t.size() == 1) {
+    switch (t[0]) {
+      case '|': return found(BinaryOp::BitOr, 3);
+      case '^': return found(BinaryOp::BitXor, 4);
+      case '&': return found(BinaryOp::BitAnd, 5);
+      case '<': return found(BinaryOp::Less, 7);
+      case '>': return found(BinaryOp::Greater, 7);
+      case '+': return found(BinaryOp::Add, 9);
+      case '-': return found(BinaryOp::Sub, 9);
+      case '*': return found(BinaryOp::Mul, 10);
+      case '/': return found(BinaryOp::Div, 10);
+      case '%': return found(BinaryOp::Mod, 10);
+      default: return 0;
     }
   }
-  return 0;
+  if (t.size() != 2) return 0;
+  switch (t[0]) {
+    case '|': return t[1] == '|' ? found(BinaryOp::LogicalOr, 1) : 0;
+    case '&': return t[1] == '&' ? found(BinaryOp::LogicalAnd, 2) : 0;
+    case '=': return t[1] == '=' ? found(BinaryOp::Equal, 6) : 0;
+    case '!': return t[1] == '=' ? found(BinaryOp::NotEqual, 6) : 0;
+    case '<': return t[1] == '=' ? found(BinaryOp::LessEqual, 7) : t[1] == '<' ? found(BinaryOp::Shl, 8) : 0;
+    case '>': return t[1] == '=' ? found(BinaryOp::GreaterEqual, 7) : t[1] == '>' ? found(BinaryOp::Shr, 8) : 0;
+    default: return 0;
+  }
 }
 
 }  // namespace
@@ -248,12 +259,16 @@ bool Parser::parse_call_args(CallExpr& call) {
   DepthGuard guard(*this);
   if (!guard.ok()) return false;
   if (accept(")")) return true;
+  Gathered<ExprPtr> args(gathered_args_);
   for (;;) {
     ExprPtr arg = parse_assignment();
     if (!arg) return false;
-    call.args.push_back(std::move(arg));
+    args.push(std::move(arg));
     if (accept(",")) continue;
-    if (accept(")")) return true;
+    if (accept(")")) {
+      args.move_to(call.args);
+      return true;
+    }
     error_unmatched(")", open);
     return false;
   }
@@ -319,6 +334,62 @@ ExprPtr Parser::parse_int_literal() {
   return literal;
 }
 
+namespace {
+
+// The value of a plain decimal literal (digits, a point, an exponent) whose significant digits
+// fit a double exactly and whose power of ten is exact too (10^22 at most): then one multiply
+// or divide gives the correctly rounded value, the double strtod would give (Clinger's fast
+// path), without strtod's general machinery, which most of a shader's literals do not need.
+// Nothing for any other text, which strtod reads (and reports).
+std::optional<double> exact_decimal(std::string_view text) {
+  static constexpr double kPowersOfTen[] = {1e0,  1e1,  1e2,  1e3,  1e4,  1e5,  1e6,  1e7,  1e8,  1e9,  1e10, 1e11,
+                                            1e12, 1e13, 1e14, 1e15, 1e16, 1e17, 1e18, 1e19, 1e20, 1e21, 1e22};
+  constexpr int kMaxDigits = 15;  // 10^15 < 2^53: any 15 digits are an exact double
+  uint64_t mantissa = 0;
+  int significant = 0;
+  int scale = 0;
+  bool any_digit = false;
+  size_t i = 0;
+  auto digits = [&](bool fraction) {
+    for (; i < text.size() && text[i] >= '0' && text[i] <= '9'; ++i) {
+      any_digit = true;
+      if (mantissa == 0 && text[i] == '0') {
+        if (fraction) --scale;
+        continue;
+      }
+      if (++significant > kMaxDigits) return false;
+      mantissa = mantissa * 10 + uint64_t(text[i] - '0');
+      if (fraction) --scale;
+    }
+    return true;
+  };
+  if (!digits(false)) return std::nullopt;
+  if (i < text.size() && text[i] == '.') {
+    ++i;
+    if (!digits(true)) return std::nullopt;
+  }
+  if (!any_digit) return std::nullopt;
+  if (i < text.size() && (text[i] == 'e' || text[i] == 'E')) {
+    ++i;
+    const bool negative = i < text.size() && text[i] == '-';
+    if (i < text.size() && (text[i] == '-' || text[i] == '+')) ++i;
+    if (i == text.size() || text[i] < '0' || text[i] > '9') return std::nullopt;
+    int exponent = 0;
+    for (; i < text.size() && text[i] >= '0' && text[i] <= '9'; ++i) {
+      exponent = exponent * 10 + (text[i] - '0');
+      if (exponent > 1000) return std::nullopt;
+    }
+    scale += negative ? -exponent : exponent;
+  }
+  if (i != text.size()) return std::nullopt;
+  if (mantissa == 0) return 0.0;
+  if (scale < -22 || scale > 22) return std::nullopt;
+  const auto value = double(mantissa);
+  return scale < 0 ? value / kPowersOfTen[-scale] : value * kPowersOfTen[scale];
+}
+
+}  // namespace
+
 ExprPtr Parser::parse_float_literal() {
   const Token& token = cur();
   auto literal = make<FloatLiteralExpr>(token.loc);
@@ -333,6 +404,11 @@ ExprPtr Parser::parse_float_literal() {
     }
   }
   literal->spelling = std::string(text);
+  if (const std::optional<double> value = exact_decimal(text)) {
+    literal->value = *value;
+    advance();
+    return literal;
+  }
   const bool starts_well = !text.empty() && ((text[0] >= '0' && text[0] <= '9') || text[0] == '.');
   char* end = nullptr;
   const char* begin = literal->spelling.c_str();

@@ -17,16 +17,18 @@ std::unique_ptr<BlockStmt> Parser::parse_block() {
   const size_t open = pos_;
   auto block = make<BlockStmt>(cur().loc);
   advance();
+  Gathered<StmtPtr> statements(gathered_statements_);
   while (!is("}") && !at_end()) {
     const size_t before = pos_;
     StmtPtr statement = parse_statement();
     if (statement) {
-      block->statements.push_back(std::move(statement));
+      statements.push(std::move(statement));
     } else {
       recover_statement();
     }
     if (pos_ == before && !is("}") && !at_end()) advance();
   }
+  statements.move_to(block->statements);
   if (!accept("}")) error_unmatched("}", open);
   return block;
 }

@@ -8,7 +8,10 @@
 #pragma once
 
 #include <cstdint>
+#include <algorithm>
+#include <cstddef>
 #include <functional>
+#include <iterator>
 #include <memory>
 #include <optional>
 #include <string>
@@ -109,6 +112,31 @@ template <class T, class... Args>
 std::unique_ptr<T> make(Args&&... args) {
   return std::make_unique<T>(std::forward<Args>(args)...);
 }
+
+// The children of the node being parsed (a call's arguments, a block's statements) gather on a
+// stack shared with the nested nodes of their kind, and move into the node's vector once, at
+// its final size: a vector grown child by child was allocated two or three times over. Those
+// left on the stack when the node fails are destroyed with the Gathered.
+template <class T>
+class Gathered {
+ public:
+  explicit Gathered(std::vector<T>& stack) : stack_(stack), first_(stack.size()) {}
+  ~Gathered() { stack_.erase(stack_.begin() + std::ptrdiff_t(first_), stack_.end()); }
+  Gathered(const Gathered&) = delete;
+  Gathered& operator=(const Gathered&) = delete;
+
+  void push(T child) { stack_.push_back(std::move(child)); }
+  void move_to(std::vector<T>& out) {
+    const auto first = stack_.begin() + std::ptrdiff_t(first_);
+    out.reserve(out.size() + size_t(stack_.end() - first));
+    std::move(first, stack_.end(), std::back_inserter(out));
+    stack_.erase(first, stack_.end());
+  }
+
+ private:
+  std::vector<T>& stack_;
+  size_t first_;
+};
 
 class Parser {
  public:
@@ -269,13 +297,31 @@ class Parser {
   // Words and names (parser.cpp)
 
   // A word's classification and, once declared, its struct or typedef type: one hash lookup
-  // per question, however many questions the look-ahead asks about the same word.
+  // per token, however many questions the look-ahead asks about it (token_words_ remembers the
+  // answer). The words met so far are an open-addressing table (word_slots_) hashed from a few
+  // word-sized loads of the text: identifiers are short, and a general-purpose string hash and
+  // a node per entry were most of what a question cost.
   struct Word {
-    const WordInfo* info;
-    std::optional<Type> user_type;
+    const WordInfo* info = nullptr;
+    int32_t user_type = -1;  // index in user_types_ once the word names a struct or typedef
+    bool names_user_type() const { return user_type >= 0; }
+  };
+  struct WordSlot {
+    const char* text = nullptr;
+    uint32_t size = 0;
+    uint32_t hash = 0;
+    uint32_t word = 0;  // index in words_ + 1; 0 in an empty slot
   };
 
-  Word& word(std::string_view text) const;
+  // The word of the identifier token at `index`.
+  Word& word_at(size_t index) const {
+    if (index >= token_words_.size()) return words_[find_word(tok(index).text)];
+    uint32_t& known = token_words_[index];
+    if (known == 0) known = find_word(tok(index).text) + 1;
+    return words_[known - 1];
+  }
+  uint32_t find_word(std::string_view text) const;
+  void grow_word_slots() const;
   const WordInfo& info(size_t index) const;
   const BuiltinType* find_builtin_type(size_t index) const { return info(index).builtin; }
   bool is_reserved(size_t index) const { return info(index).reserved; }
@@ -310,7 +356,12 @@ class Parser {
   size_t last_error_index_ = kNoIndex;
   size_t unknown_reported_until_ = 0;
   size_t attribute_index_ = 0;
-  mutable std::unordered_map<std::string_view, Word> words_;
+  mutable std::vector<Word> words_;
+  mutable std::vector<WordSlot> word_slots_;  // a power of two long, at most half full
+  mutable std::vector<uint32_t> token_words_;  // per token: index in words_ + 1; 0 until asked
+  std::vector<Type> user_types_;
+  std::vector<ExprPtr> gathered_args_;
+  std::vector<StmtPtr> gathered_statements_;
   std::unordered_map<std::string, int64_t, StringHash, std::equal_to<>> int_constants_;
   std::unordered_set<std::string> uniform_constants_;  // file-scope `const int` without static
   TranslationUnit unit_;

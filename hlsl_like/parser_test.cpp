@@ -5,7 +5,10 @@
 #include <gtest/gtest.h>
 
 #include <chrono>
+#include <cmath>
 #include <cstdint>
+#include <cstdlib>
+#include <cstring>
 #include <deque>
 #include <memory>
 #include <random>
@@ -486,6 +489,56 @@ TEST(Parser, CastsAreToldFromParenthesisedExpressionsByTheTypeTable) {
   EXPECT_EQ(expr_tree("(float2x2)(float4)a"), "(cast float2x2 (cast float4 a))");
   EXPECT_EQ(expr_tree("(float3(a, b, c))"), "(ctor float3 a b c)");
   EXPECT_EQ(expr_tree("(Light)0"), "(cast Light 0)");
+}
+
+// Whatever text a FloatLiteral token has (the preprocessor pastes tokens too), its value and
+// whether it is reported are strtod's: every bit of the double, for short and long digit runs,
+// exponents near and past the exact powers of ten, and malformed spellings.
+TEST(Parser, FloatLiteralValuesAreStrtods) {
+  std::mt19937 rng(2024);
+  auto digits = [&](size_t n) {
+    std::string out;
+    for (size_t i = 0; i < n; ++i) out += char('0' + rng() % 10);
+    return out;
+  };
+  std::vector<std::string> spellings = {"0.0", "1.", ".5", "1e5", "1e+5", "1e-5", "1e", "1e+", "1.5.3", ".", "e5",
+                                        "0x1p3", "1.0e22", "1.0e23", "9007199254740993.0", "123456789012345.6",
+                                        "0.000000000000000000000000001", "1e-22", "1e-23", "00012.500e-3", "1e400",
+                                        "1e-400", "4.9e-324", "1.7976931348623157e308", "0e99999", "12a", "1.5f"};
+  for (int i = 0; i < 4000; ++i) {
+    std::string text = digits(rng() % 20);
+    if (rng() % 4 != 0) text += "." + digits(rng() % 20);
+    if (rng() % 3 == 0) {
+      text += (rng() % 2 ? "e" : "E");
+      if (rng() % 2) text += (rng() % 2 ? "-" : "+");
+      text += digits(rng() % 4);
+    }
+    spellings.push_back(text);
+  }
+  for (const std::string& spelling : spellings) {
+    SourceManager sources;
+    DiagnosticEngine diagnostics(sources);
+    Token literal;
+    literal.kind = TokenKind::FloatLiteral;
+    literal.text = spelling;
+    Token end;
+    end.kind = TokenKind::EndOfFile;
+    const std::vector<Token> tokens = {literal, end};
+    parser_detail::Parser parser(tokens, diagnostics);
+    const ExprPtr parsed = parser.parse_float_literal();
+    ASSERT_NE(parsed, nullptr);
+    std::string_view text = spelling;
+    if (text.back() == 'f') text.remove_suffix(1);
+    const std::string unsuffixed(text);
+    char* stop = nullptr;
+    const bool starts_well = !text.empty() && ((text[0] >= '0' && text[0] <= '9') || text[0] == '.');
+    double expected = starts_well ? std::strtod(unsuffixed.c_str(), &stop) : 0.0;
+    const bool valid = starts_well && stop == unsuffixed.c_str() + unsuffixed.size();
+    if (!valid) expected = 0.0;
+    const double value = static_cast<const FloatLiteralExpr&>(*parsed).value;
+    EXPECT_EQ(std::memcmp(&value, &expected, sizeof value), 0) << spelling << ": " << value << " vs " << expected;
+    EXPECT_EQ(diagnostics.error_count() > 0, !valid || std::isinf(expected)) << spelling;
+  }
 }
 
 TEST(Parser, Literals) {
@@ -1024,6 +1077,75 @@ TEST(ParserSkipUntil, EndsAtTheEndOfInputAndNeverRecursesIntoBrackets) {
   Parser skipper(lexed->tokens, lexed->diagnostics);
   EXPECT_EQ(skipper.skip_until({.stops = kSkipSemicolon}), SkipEnd::Stop);
   EXPECT_EQ(at(skipper), "1:" + std::to_string(deep.size()) + " ;");
+}
+
+
+// ---------------------------------------------------------------------------------------------
+// The nodes' memory
+
+TEST(AstArena, NodesMadeInAScopeComeFromItsArenaOneAfterAnother) {
+  AstArena arena;
+  std::unique_ptr<NameExpr> first, second;
+  {
+    AstArenaScope scope(arena);
+    first = std::make_unique<NameExpr>(Loc{});
+    second = std::make_unique<NameExpr>(Loc{});
+  }
+  const auto gap = reinterpret_cast<const char*>(second.get()) - reinterpret_cast<const char*>(first.get());
+  EXPECT_GT(gap, 0);
+  EXPECT_LE(size_t(gap), sizeof(NameExpr) + 2 * AstArena::kAlignment);
+  // Outside any scope the heap is back; both kinds of node are deleted the same way.
+  auto from_heap = std::make_unique<NameExpr>(Loc{});
+  from_heap->name = std::string(100, 'n');
+  first->name = std::string(100, 'f');
+  first.reset();
+  from_heap.reset();
+}
+
+TEST(AstArena, ScopesNestAndRestoreTheOuterArena) {
+  AstArena outer_arena, inner_arena;
+  AstArenaScope outer(outer_arena);
+  auto before = std::make_unique<BlockStmt>(Loc{});
+  {
+    AstArenaScope inner(inner_arena);
+    auto inside = std::make_unique<BlockStmt>(Loc{});
+  }
+  auto after = std::make_unique<BlockStmt>(Loc{});
+  const auto gap = reinterpret_cast<const char*>(after.get()) - reinterpret_cast<const char*>(before.get());
+  EXPECT_GT(gap, 0);
+  EXPECT_LE(size_t(gap), sizeof(BlockStmt) + 2 * AstArena::kAlignment);
+}
+
+TEST(AstArena, ManyAndLargeNodesAndUnitsMovedOver) {
+  // More nodes than one block holds, names that own heap memory, a unit assigned over a
+  // unit that holds a tree (the old tree goes before its arena).
+  TranslationUnit unit;
+  for (int round = 0; round < 3; ++round) {
+    TranslationUnit next;
+    {
+      AstArenaScope scope(next.arena);
+      for (int i = 0; i < 5000; ++i) {
+        auto var = std::make_unique<VarDecl>(Loc{});
+        var->name = "a_name_long_enough_for_the_heap_" + std::to_string(i);
+        auto init = std::make_unique<InitListExpr>(Loc{});
+        for (int k = 0; k < 3; ++k) init->elements.push_back(std::make_unique<IntLiteralExpr>(Loc{}));
+        var->initializer = std::move(init);
+        next.decls.push_back(std::move(var));
+      }
+    }
+    unit = std::move(next);
+    ASSERT_EQ(unit.decls.size(), 5000u);
+    EXPECT_EQ(unit.decls.back()->name, "a_name_long_enough_for_the_heap_4999");
+  }
+  TranslationUnit moved(std::move(unit));
+  EXPECT_EQ(moved.decls.size(), 5000u);
+  // An arena's very large request gets a block of its own; allocation goes on in the current one.
+  AstArena arena;
+  void* small = arena.allocate(16);
+  void* large = arena.allocate(1 << 20);
+  void* small_again = arena.allocate(16);
+  EXPECT_NE(large, nullptr);
+  EXPECT_EQ(static_cast<char*>(small_again) - static_cast<char*>(small), 16);
 }
 
 }  // namespace

@@ -1,0 +1,142 @@
+// Where the syntax tree's nodes live. A tree is made whole (a variant's parse, then the nodes
+// semantic analysis adds) and dropped whole (with its TranslationUnit), so its nodes come from
+// a bump arena the unit owns, instead of one heap allocation and one free apiece.
+//
+// The nodes stay ordinary objects held by std::unique_ptr: their destructors still run (their
+// strings and vectors own heap memory), only the node's own memory is not freed one by one.
+// Nodes made while no arena is installed (a test building a tree by hand) come from the heap,
+// so every node carries a word saying where its memory came from, for operator delete.
+// A node dropped before its tree (a production that failed) keeps its memory until the arena
+// goes; the parser makes a few nodes per token at most, so that waste is bounded by the input.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <cstdlib>
+#include <new>
+#include <utility>
+
+namespace xshade::hlsl {
+
+class AstArena {
+ public:
+  AstArena() = default;
+  AstArena(const AstArena&) = delete;
+  AstArena& operator=(const AstArena&) = delete;
+  // The blocks move, not the nodes in them: what was made from `other` stays where it is.
+  AstArena(AstArena&& other) noexcept
+      : last_(std::exchange(other.last_, nullptr)),
+        cursor_(std::exchange(other.cursor_, nullptr)),
+        end_(std::exchange(other.end_, nullptr)) {}
+  AstArena& operator=(AstArena&& other) noexcept {
+    if (this != &other) {
+      release();
+      last_ = std::exchange(other.last_, nullptr);
+      cursor_ = std::exchange(other.cursor_, nullptr);
+      end_ = std::exchange(other.end_, nullptr);
+    }
+    return *this;
+  }
+  ~AstArena() { release(); }
+
+  // `size` bytes, aligned to kAlignment.
+  void* allocate(size_t size) {
+    size = (size + kAlignment - 1) & ~(kAlignment - 1);
+    if (size > size_t(end_ - cursor_)) return allocate_in_new_block(size);
+    void* memory = cursor_;
+    cursor_ += size;
+    return memory;
+  }
+
+  static constexpr size_t kAlignment = 8;
+
+ private:
+  struct Block {
+    Block* previous;
+  };
+  static constexpr size_t kHeader = (sizeof(Block) + kAlignment - 1) & ~(kAlignment - 1);
+  // Below glibc's mmap threshold, so that a block freed by one compile is reused by the next.
+  static constexpr size_t kBlockSize = 64 * 1024 - 64;
+
+  void* allocate_in_new_block(size_t size) {
+    // Nodes are small; anything larger than a quarter block gets a block of its own, kept
+    // behind the current one, so that the space left in the current block is not lost.
+    if (size > kBlockSize / 4) {
+      Block* block = new_block(kHeader + size);
+      if (last_) {
+        block->previous = last_->previous;
+        last_->previous = block;
+      } else {
+        block->previous = nullptr;
+        last_ = block;
+      }
+      return data(block);
+    }
+    Block* block = new_block(kBlockSize);
+    block->previous = last_;
+    last_ = block;
+    cursor_ = data(block) + size;
+    end_ = reinterpret_cast<char*>(block) + kBlockSize;
+    return data(block);
+  }
+
+  static Block* new_block(size_t bytes) {
+    void* memory = std::malloc(bytes);
+    if (!memory) throw std::bad_alloc();
+    return static_cast<Block*>(memory);
+  }
+  static char* data(Block* block) { return reinterpret_cast<char*>(block) + kHeader; }
+
+  void release() {
+    while (last_) std::free(std::exchange(last_, last_->previous));
+    cursor_ = end_ = nullptr;
+  }
+
+  Block* last_ = nullptr;
+  char* cursor_ = nullptr;
+  char* end_ = nullptr;
+};
+
+namespace ast_arena_detail {
+// The arena new nodes of this thread come from; null: the heap.
+inline thread_local AstArena* current = nullptr;
+
+// The word in front of each node.
+enum class Origin : uint64_t { Heap = 0x6865617021, Arena = 0x6172656e6121 };
+inline constexpr size_t kOriginSize = sizeof(Origin);
+}  // namespace ast_arena_detail
+
+// Nodes made while this lives (on this thread) come from `arena`; the previous arena, if any,
+// is back when it ends.
+class AstArenaScope {
+ public:
+  explicit AstArenaScope(AstArena& arena) : previous_(std::exchange(ast_arena_detail::current, &arena)) {}
+  ~AstArenaScope() { ast_arena_detail::current = previous_; }
+  AstArenaScope(const AstArenaScope&) = delete;
+  AstArenaScope& operator=(const AstArenaScope&) = delete;
+
+ private:
+  AstArena* previous_;
+};
+
+// The base of the node classes (Expr, Stmt, Decl): their operator new and delete. The node
+// types' alignment is checked against AstArena::kAlignment in ast.h.
+struct AstNodeMemory {
+  static void* operator new(size_t size) {
+    using namespace ast_arena_detail;
+    AstArena* arena = current;
+    void* memory = arena ? arena->allocate(kOriginSize + size) : ::operator new(kOriginSize + size);
+    *static_cast<Origin*>(memory) = arena ? Origin::Arena : Origin::Heap;
+    return static_cast<char*>(memory) + kOriginSize;
+  }
+
+  // Arena memory goes when its arena does.
+  static void operator delete(void* node, size_t size) noexcept {
+    using namespace ast_arena_detail;
+    if (!node) return;
+    void* memory = static_cast<char*>(node) - kOriginSize;
+    if (*static_cast<const Origin*>(memory) == Origin::Heap) ::operator delete(memory, kOriginSize + size);
+  }
+};
+
+}  // namespace xshade::hlsl
