@@ -680,20 +680,22 @@ void Sema::check_entry_point(const FunctionDecl& function, bool vertex) {
     const Type* type;
     const std::string* semantic;
     Loc semantic_loc;
-    std::string name;  // "input 'uv'" etc.
+    // Reported as "input 'uv'" (role and quoted name), or the bare name when no role.
+    std::string_view role;
+    std::string_view name;
     Loc loc;
     int depth;
   };
-  auto check = [&](const Type& root_type, const std::string& root_semantic, Loc root_semantic_loc, std::string root_name,
-                   Loc root_loc, bool input) {
-    std::vector<Item> items{{&root_type, &root_semantic, root_semantic_loc, std::move(root_name), root_loc, 0}};
+  auto check = [&](const Type& root_type, const std::string& root_semantic, Loc root_semantic_loc, std::string_view root_role,
+                   std::string_view root_name, Loc root_loc, bool input) {
+    std::vector<Item> items{{&root_type, &root_semantic, root_semantic_loc, root_role, root_name, root_loc, 0}};
     size_t budget = 4096;  // far beyond a real signature; a hostile one stops here
     while (!items.empty()) {
       if (--budget == 0) {
         report(function.loc, "entry point " + in_quotes(function.name) + " has too many inputs or outputs");
         return;
       }
-      Item item = std::move(items.back());
+      const Item item = items.back();
       items.pop_back();
       const Type& type = *item.type;
       if (type.is_error()) {
@@ -704,12 +706,13 @@ void Sema::check_entry_point(const FunctionDecl& function, bool vertex) {
         const auto& fields = type.struct_decl()->fields;
         for (auto field = fields.rbegin(); field != fields.rend(); ++field) {
           items.push_back({&field->type, &field->semantic, field->semantic_loc,
-                           (input ? "input " : "output ") + in_quotes(field->name), field->loc, item.depth + 1});
+                           input ? "input " : "output ", field->name, field->loc, item.depth + 1});
         }
         continue;
       }
       if (item.semantic->empty()) {
-        report(item.loc, item.name + " of entry point " + in_quotes(function.name) + " needs a semantic");
+        const std::string name = item.role.empty() ? std::string(item.name) : std::string(item.role) + in_quotes(item.name);
+        report(item.loc, name + " of entry point " + in_quotes(function.name) + " needs a semantic");
         continue;
       }
       const ParsedSemantic semantic = parse_semantic(*item.semantic);
@@ -746,14 +749,14 @@ void Sema::check_entry_point(const FunctionDecl& function, bool vertex) {
   for (const auto& param : function.params) {
     if (!param || param->is_uniform || param->type.is_resource()) continue;
     if (param->direction != ParamDirection::Out) {
-      check(param->type, param->semantic, param->semantic_loc, "input " + in_quotes(param->name), param->loc, true);
+      check(param->type, param->semantic, param->semantic_loc, "input ", param->name, param->loc, true);
     }
     if (param->direction != ParamDirection::In) {
-      check(param->type, param->semantic, param->semantic_loc, "output " + in_quotes(param->name), param->loc, false);
+      check(param->type, param->semantic, param->semantic_loc, "output ", param->name, param->loc, false);
     }
   }
   if (!function.return_type.is_void()) {
-    check(function.return_type, function.semantic, function.semantic_loc, "return value", function.loc, false);
+    check(function.return_type, function.semantic, function.semantic_loc, "", "return value", function.loc, false);
   }
   if (vertex && !outputs_position && !return_failed) {
     report(function.loc, "vertex entry point " + in_quotes(function.name) + " does not output SV_Position");
