@@ -402,7 +402,7 @@ void Sema::declare_function(FunctionDecl& function) {
   if (canonical == &function) {
     FunctionInfo& info = function_info_[&function];
     info.canonical = &function;
-    info.param_types = param_types;
+    info.param_types = std::move(param_types);
     if (function.body) info.definition = &function;
   }
   canonical_of_[&function] = canonical;

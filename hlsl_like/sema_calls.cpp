@@ -90,10 +90,11 @@ struct Candidate {
   Ranks ranks;
 };
 
-// Deduces T, N, R and C of `signature` from the arguments and ranks every argument's conversion.
-std::optional<Candidate> bind_signature(const Sema& sema, const IntrinsicSignature& signature,
-                              const std::vector<ExprPtr>& args) {
-  if (args.size() != signature.param_count) return std::nullopt;
+// Deduces T, N, R and C of `signature` from the arguments and ranks every argument's conversion
+// into `candidate`; false when the signature does not fit.
+bool bind_signature(const Sema& sema, const IntrinsicSignature& signature, const std::vector<ExprPtr>& args,
+                    Candidate& candidate) {
+  if (args.size() != signature.param_count) return false;
   const size_t count = args.size();
   // T's element: the highest of the (in) arguments at T-element positions.
   const Expr* element_args_storage[4];
@@ -102,14 +103,14 @@ std::optional<Candidate> bind_signature(const Sema& sema, const IntrinsicSignatu
     const ParamPattern& param = signature.params[i];
     const bool generic = param.type.element == PatternElement::T || param.type.shape == PatternShape::T;
     if (param.out || !generic) continue;
-    if (!args[i]->type.is_numeric()) return std::nullopt;
+    if (!args[i]->type.is_numeric()) return false;
     if (param.type.element == PatternElement::T) element_args_storage[element_arg_count++] = args[i].get();
   }
   const std::span<const Expr* const> element_args(element_args_storage, element_arg_count);
   ScalarType element = ScalarType::Float;
   if (!element_args.empty()) {
     const std::optional<ScalarType> fitted = fit_element(sema.common_scalar(element_args), signature.elements);
-    if (!fitted) return std::nullopt;
+    if (!fitted) return false;
     element = *fitted;
   } else if ((signature.elements & element_bit(ScalarType::Float)) == 0) {
     for (ScalarType s : {ScalarType::Uint, ScalarType::Int, ScalarType::Half, ScalarType::Bool}) {
@@ -125,10 +126,10 @@ std::optional<Candidate> bind_signature(const Sema& sema, const IntrinsicSignatu
     const ParamPattern& param = signature.params[i];
     if (param.out || param.type.shape != PatternShape::T) continue;
     shape = shape ? combine_shapes(*shape, args[i]->type, element) : Type::with_scalar(args[i]->type, element);
-    if (!shape) return std::nullopt;
+    if (!shape) return false;
   }
   if (!shape) shape = Type::scalar(element);
-  if ((signature.shapes & shape_bit(*shape)) == 0) return std::nullopt;
+  if ((signature.shapes & shape_bit(*shape)) == 0) return false;
   // Dimension variables: a matrix fixes one; vectors bind the shortest (longer ones truncate).
   struct Dim {
     int matrix = 0;
@@ -142,26 +143,26 @@ std::optional<Candidate> bind_signature(const Sema& sema, const IntrinsicSignatu
     const Type& arg = args[i]->type;
     switch (param.type.shape) {
       case PatternShape::Scalar:
-        if (arg.component_count() != 1) return std::nullopt;
+        if (arg.component_count() != 1) return false;
         break;
       case PatternShape::Vector:
-        if (arg.is_matrix()) return std::nullopt;
+        if (arg.is_matrix()) return false;
         if (arg.is_vector() && arg.cols() > 1 && is_dim_variable(param.type.dims[0])) {
           Dim& dim = dims[dim_slot(param.type.dims[0])];
           dim.vector = dim.vector == 0 ? int(arg.cols()) : std::min(dim.vector, int(arg.cols()));
         }
         break;
       case PatternShape::Matrix:
-        if (!arg.is_matrix()) return std::nullopt;
+        if (!arg.is_matrix()) return false;
         for (int k = 0; k < 2; ++k) {
           const uint8_t pattern_dim = param.type.dims[k];
           const int actual = int(k == 0 ? arg.rows() : arg.cols());
           if (!is_dim_variable(pattern_dim)) {
-            if (actual != pattern_dim) return std::nullopt;
+            if (actual != pattern_dim) return false;
             continue;
           }
           Dim& dim = dims[dim_slot(pattern_dim)];
-          if (dim.matrix != 0 && dim.matrix != actual) return std::nullopt;
+          if (dim.matrix != 0 && dim.matrix != actual) return false;
           dim.matrix = actual;
         }
         break;
@@ -172,7 +173,7 @@ std::optional<Candidate> bind_signature(const Sema& sema, const IntrinsicSignatu
   int bound[3];
   for (size_t k = 0; k < 3; ++k) {
     if (dims[k].matrix != 0) {
-      if (dims[k].vector != 0 && dims[k].vector < dims[k].matrix) return std::nullopt;
+      if (dims[k].vector != 0 && dims[k].vector < dims[k].matrix) return false;
       bound[k] = dims[k].matrix;
     } else {
       bound[k] = dims[k].vector != 0 ? dims[k].vector : 1;
@@ -197,19 +198,18 @@ std::optional<Candidate> bind_signature(const Sema& sema, const IntrinsicSignatu
     }
     return Type::error();
   };
-  Candidate candidate;
   candidate.result = make(signature.result);
   for (size_t i = 0; i < count; ++i) {
     const ParamPattern& param = signature.params[i];
     const Type type = make(param.type);
     const Conversion conversion =
         param.out ? classify_implicit(type, args[i]->type) : classify_implicit(args[i]->type, type);
-    if (!conversion.valid) return std::nullopt;
+    if (!conversion.valid) return false;
     candidate.params[i] = type;
     candidate.out[i] = param.out;
     candidate.ranks.push_back(conversion.rank);
   }
-  return candidate;
+  return true;
 }
 
 // What passing `args` to `function` costs (overload_cost summed, out and inout parameters
@@ -455,10 +455,8 @@ Type Sema::analyze_intrinsic_call(CallExpr& expr, IntrinsicId id) {
   Ranks ranks[kMaxIntrinsicSignatures];
   size_t count = 0;
   for (size_t s = 0; s < info.signatures.size() && s < kMaxIntrinsicSignatures; ++s) {
-    if (auto candidate = bind_signature(*this, info.signatures[s], expr.args)) {
-      ranks[count] = candidate->ranks;
-      candidates[count++] = std::move(candidate);
-    }
+    Candidate& candidate = candidates[count].emplace();
+    if (bind_signature(*this, info.signatures[s], expr.args, candidate)) ranks[count++] = candidate.ranks;
   }
   if (count == 0) {
     diag_.error(expr.loc, "no overload of " + in_quotes(name) + " takes (" + join_types(expr.args) + ")");

@@ -250,7 +250,7 @@ class Sema {
   std::unordered_map<const FunctionDecl*, const FunctionDecl*> canonical_of_;
   std::vector<CallExpr*> user_calls_;
   std::vector<FunctionDecl*> all_functions_;         // every function declaration, in order
-  std::unordered_set<std::string> all_function_names_;  // declared anywhere in the unit
+  std::unordered_set<std::string_view> all_function_names_;  // declared anywhere in the unit (the tree's names)
   FunctionInfo* current_info_ = nullptr;
   const FunctionDecl* current_function_ = nullptr;
   int loop_depth_ = 0;
@@ -283,7 +283,7 @@ inline constexpr size_t kMaxSignatureParams = 8;
 inline constexpr size_t kMaxIntrinsicSignatures = 16;
 // A candidate signature's conversion rank for each argument.
 struct Ranks {
-  int values[kMaxSignatureParams] = {};
+  int values[kMaxSignatureParams];  // the first `count` are set
   size_t count = 0;
   void push_back(int rank) { values[count++] = rank; }
 };
