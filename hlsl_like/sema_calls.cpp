@@ -198,6 +198,7 @@ bool bind_signature(const Sema& sema, const IntrinsicSignature& signature, const
     }
     return Type::error();
   };
+  candidate.ranks.count = 0;
   candidate.result = make(signature.result);
   for (size_t i = 0; i < count; ++i) {
     const ParamPattern& param = signature.params[i];
@@ -451,12 +452,18 @@ Type Sema::analyze_intrinsic_call(CallExpr& expr, IntrinsicId id) {
     diag_.error(expr.loc, in_quotes(name) + " takes " + arity_list(arities) + ", " + std::to_string(expr.args.size()) + " given");
     return Type::error();
   }
-  std::optional<Candidate> candidates[kMaxIntrinsicSignatures];
+  // Only the ranks of every fitting signature are kept; the chosen one is bound again unless it
+  // was the last one tried (as it is for most intrinsics, which have one signature).
+  Candidate candidate;
   Ranks ranks[kMaxIntrinsicSignatures];
+  size_t fitting[kMaxIntrinsicSignatures];
   size_t count = 0;
+  bool last_fits = false;
   for (size_t s = 0; s < info.signatures.size() && s < kMaxIntrinsicSignatures; ++s) {
-    Candidate& candidate = candidates[count].emplace();
-    if (bind_signature(*this, info.signatures[s], expr.args, candidate)) ranks[count++] = candidate.ranks;
+    last_fits = bind_signature(*this, info.signatures[s], expr.args, candidate);
+    if (!last_fits) continue;
+    ranks[count] = candidate.ranks;
+    fitting[count++] = s;
   }
   if (count == 0) {
     diag_.error(expr.loc, "no overload of " + in_quotes(name) + " takes (" + join_types(expr.args) + ")");
@@ -474,7 +481,10 @@ Type Sema::analyze_intrinsic_call(CallExpr& expr, IntrinsicId id) {
       }
     }
   }
-  const Candidate& chosen = *candidates[size_t(best)];
+  if (!(last_fits && size_t(best) + 1 == count)) {
+    bind_signature(*this, info.signatures[fitting[size_t(best)]], expr.args, candidate);
+  }
+  const Candidate& chosen = candidate;
   for (size_t i = 0; i < expr.args.size(); ++i) {
     pass_argument(*this, expr.args[i], chosen.params[i], chosen.out[i] ? ParamDirection::Out : ParamDirection::In, i,
                   name);

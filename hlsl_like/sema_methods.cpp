@@ -110,9 +110,9 @@ bool gathers(TextureShape shape) {
 
 bool compares(TextureShape shape) { return shape != TextureShape::Tex3D && !is_multisampled(shape); }
 
-// The signatures of `id` on a texture, as HLSL defines them; empty when the shape has no such
+// Adds the signatures of `id` on a texture, as HLSL defines them; none when the shape has no such
 // method (a cube map has no Load and no offsets, a multisampled texture samples nothing).
-Signatures texture_signatures(IntrinsicId id, const Type& texture) {
+void texture_signatures(IntrinsicId id, const Type& texture, Signatures& out) {
   const TextureShape shape = texture.texture_shape();
   const uint32_t n = coordinate_components(shape);
   const uint32_t g = gradient_components(shape);
@@ -122,7 +122,6 @@ Signatures texture_signatures(IntrinsicId id, const Type& texture) {
   const Type scalar_texel = Type::scalar(texel.is_numeric() ? texel.scalar_type() : ScalarType::Float);
   const Type gathered = Type::vector(scalar_texel.scalar_type(), 4);
   const bool ms = is_multisampled(shape);
-  Signatures out;
   switch (id) {
     case I::Sample:
       if (!ms) with_offset(out, in_only({sampler, floats(n)}, texel), shape, true);
@@ -170,7 +169,6 @@ Signatures texture_signatures(IntrinsicId id, const Type& texture) {
       break;
     default: break;
   }
-  return out;
 }
 
 bool is_read_write(BufferKind kind) {
@@ -200,13 +198,12 @@ uint32_t buffer_index_components(BufferKind kind) {
   }
 }
 
-// The methods of the buffer resources by name.
-Signatures buffer_signatures(const std::string& method, const Type& buffer) {
+// Adds the signatures of the buffer resources' method `method`.
+void buffer_signatures(const std::string& method, const Type& buffer, Signatures& out) {
   const BufferKind kind = buffer.buffer_kind();
   const Type& element = buffer.element();
   const Type uint_type = kUint;
   const bool byte_address = kind == BufferKind::ByteAddressBuffer || kind == BufferKind::RWByteAddressBuffer;
-  Signatures out;
   auto outs = [&](uint32_t count) {
     MethodSignature signature;
     signature.result = Type::void_type();
@@ -245,7 +242,6 @@ Signatures buffer_signatures(const std::string& method, const Type& buffer) {
   } else if ((method == "IncrementCounter" || method == "DecrementCounter") && kind == BufferKind::RWStructuredBuffer) {
     out.push_back(in_only({}, uint_type));
   }
-  return out;
 }
 
 }  // namespace
@@ -256,11 +252,11 @@ Type Sema::analyze_method_call(CallExpr& expr, const Type& object) {
     const std::optional<IntrinsicId> method = find_texture_method(expr.callee);
     if (method) {
       expr.intrinsic = uint16_t(*method);
-      signatures = texture_signatures(*method, object);
+      texture_signatures(*method, object, signatures);
     }
   } else if (object.kind() == TypeKind::Buffer) {
     expr.intrinsic = uint16_t(IntrinsicId::BufferMethod);
-    signatures = buffer_signatures(expr.callee, object);
+    buffer_signatures(expr.callee, object, signatures);
   }
   if (signatures.empty()) {
     diag_.error(expr.loc, in_quotes(object.name()) + " has no method " + in_quotes(expr.callee));
