@@ -267,6 +267,8 @@ class Resolver {
 }  // namespace
 
 std::vector<std::vector<uint32_t>> resource_paths(const Type& type) {
+  // Most expressions are numeric: answered without the walk's buffers.
+  if (!type.is_resource() && type.kind() != TypeKind::Struct) return {};
   std::vector<std::vector<uint32_t>> out;
   std::vector<uint32_t> prefix;
   collect_paths(type, prefix, out, 0);

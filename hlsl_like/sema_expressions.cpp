@@ -66,8 +66,7 @@ std::optional<int64_t> in_fold_range(int64_t value) {
 
 }  // namespace
 
-bool Sema::nesting_exceeded(Loc loc) {
-  if (depth_ <= kMaxNesting) return false;
+bool Sema::report_nesting(Loc loc) {
   if (!reported_depth_) {
     reported_depth_ = true;
     diag_.error(loc, "expression or statement is nested too deeply");

@@ -267,8 +267,10 @@ class Sema {
     DepthGuard(const DepthGuard&) = delete;
     DepthGuard& operator=(const DepthGuard&) = delete;
   };
-  // True (and reported once) when the current nesting is deeper than kMaxNesting.
-  bool nesting_exceeded(Loc loc);
+  // True (and reported once) when the current nesting is deeper than kMaxNesting. Inline: every
+  // expression and statement asks.
+  bool nesting_exceeded(Loc loc) { return depth_ > kMaxNesting && report_nesting(loc); }
+  bool report_nesting(Loc loc);
 };
 
 std::string join_types(const std::vector<ExprPtr>& args);
