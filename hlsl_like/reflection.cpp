@@ -494,6 +494,15 @@ Reflection reflect(const TranslationUnit& unit, const EntryPoints& entry_points,
   std::optional<size_t> globals_index;
   std::vector<std::pair<size_t, const VarDecl*>> pending_textures, pending_samplers;
 
+  // At most one property per global and cbuffer member: reserved, since a Property is large
+  // and growing the vector moves every one made so far.
+  size_t most_properties = 0;
+  for (const auto& decl : unit.decls) {
+    if (decl && decl->kind == DeclKind::CBuffer) most_properties += static_cast<const CBufferDecl&>(*decl).members.size();
+    if (decl && decl->kind == DeclKind::Var) ++most_properties;
+  }
+  reflection.properties.reserve(most_properties);
+
   for (const auto& decl : unit.decls) {
     if (!decl) continue;
     if (decl->kind == DeclKind::CBuffer) {

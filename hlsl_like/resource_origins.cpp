@@ -123,7 +123,10 @@ class Resolver {
     }
   }
 
-  static bool holds_resources(const Type& type) { return !resource_paths(type).empty(); }
+  // Asked of every expression: most are numeric, answered before the walk.
+  static bool holds_resources(const Type& type) {
+    return (type.is_resource() || type.kind() == TypeKind::Struct) && !resource_paths(type).empty();
+  }
 
   void expression(const Expr* e) {
     if (!e) return;
