@@ -204,7 +204,7 @@ std::string canonical(const std::string& semantic) {
 
 // Every global declaration and user function reachable from the entry points, by what reads it.
 struct Usage {
-  std::unordered_set<const Decl*> globals;
+  std::unordered_set<const Decl*> globals;  // the globals the entry points read
   std::map<const Decl*, const Decl*> texture_sampler;  // texture -> first SamplerState it is sampled with
   std::unordered_set<const Decl*> compared;            // textures sampled with a SamplerComparisonState
 };
@@ -252,7 +252,9 @@ Usage collect_usage(const EntryPoints& entry_points, const ResourceOrigins& orig
             if (const Decl* global = global_of(leaf.origin)) usage.globals.insert(global);
         }
         if (expr.kind == ExprKind::Name) {
-          if (const Decl* decl = static_cast<const NameExpr&>(expr).decl) usage.globals.insert(decl);
+          // Only globals are asked about: locals and parameters would only fill the set.
+          const Decl* decl = static_cast<const NameExpr&>(expr).decl;
+          if (decl && decl->kind == DeclKind::Var && static_cast<const VarDecl*>(decl)->is_global) usage.globals.insert(decl);
         } else if (expr.kind == ExprKind::Call) {
           const auto& call = static_cast<const CallExpr&>(expr);
           if (call.call_kind != CallKind::Method || !call.object || call.args.empty()) return;
