@@ -87,7 +87,7 @@ void Sema::wrap_conversion(ExprPtr& slot, const Type& to) {
 
 bool Sema::coerce(ExprPtr& slot, const Type& to) {
   if (!slot) return true;  // a parse error, already reported
-  const Type from = slot->type;
+  const Type& from = slot->type;  // read before the slot is wrapped below
   if (from.is_error() || to.is_error()) return true;
   const Conversion conversion = classify_implicit(from, to);
   if (!conversion.valid) {
