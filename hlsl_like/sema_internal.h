@@ -285,7 +285,7 @@ inline constexpr size_t kMaxSignatureParams = 8;
 inline constexpr size_t kMaxIntrinsicSignatures = 16;
 // A candidate signature's conversion rank for each argument.
 struct Ranks {
-  int values[kMaxSignatureParams];  // the first `count` are set
+  int values[kMaxSignatureParams] = {};  // the first `count` are meaningful
   size_t count = 0;
   void push_back(int rank) { values[count++] = rank; }
 };
