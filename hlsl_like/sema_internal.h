@@ -278,9 +278,9 @@ std::string join_types(const std::vector<ExprPtr>& args);
 bool is_writable_resource(const Type& type);
 // "1 argument", "2 or 3 arguments": what a call with one of these arities takes.
 std::string arity_list(std::vector<size_t> arities);
-// The most parameters a signature of an intrinsic or a resource method has (SampleGrad with an
-// offset and a clamp has 6), and the most signatures an intrinsic has (mul has 9): candidates are
-// ranked in fixed arrays, since every call of a shader resolves its overloads.
+// Room for the parameters of any signature of an intrinsic or a resource method (SampleGrad with
+// an offset and a clamp has 6) and for the signatures of any intrinsic (mul has 9): candidates
+// are ranked in fixed arrays, since every call of a shader resolves its overloads.
 inline constexpr size_t kMaxSignatureParams = 8;
 inline constexpr size_t kMaxIntrinsicSignatures = 16;
 // A candidate signature's conversion rank for each argument.

@@ -4,6 +4,7 @@
 // checked even though no target here binds them.
 #include <algorithm>
 #include <initializer_list>
+#include <stdexcept>
 
 #include "hlsl_like/sema_internal.h"
 
@@ -13,6 +14,12 @@ namespace {
 
 using I = IntrinsicId;
 
+// The fixed arrays below are sized for HLSL's methods; a table outgrowing them is a bug here,
+// reported loudly rather than written past.
+void check_room(bool room) {
+  if (!room) throw std::logic_error("a resource method signature outgrew its fixed capacity");
+}
+
 // Built for every method call of a shader, so in fixed arrays rather than vectors.
 struct MethodSignature {
   Type params[kMaxSignatureParams];
@@ -21,11 +28,13 @@ struct MethodSignature {
   Type result;
 
   void push_back(const Type& type, bool is_out) {
+    check_room(count < kMaxSignatureParams);
     params[count] = type;
     out[count++] = is_out;
   }
   // Inserts an in parameter before the others.
   void push_front(const Type& type) {
+    check_room(count < kMaxSignatureParams);
     for (size_t i = count; i > 0; --i) {
       params[i] = params[i - 1];
       out[i] = out[i - 1];
@@ -43,7 +52,11 @@ struct Signatures {
   MethodSignature items[kMaxMethodSignatures];
   size_t count = 0;
 
-  void push_back(const MethodSignature& signature) { items[count++] = signature; }
+  void push_back(const MethodSignature& signature) {
+    check_room(count < kMaxMethodSignatures);
+    items[count++] = signature;
+  }
+  MethodSignature& back() { return items[count - 1]; }
   bool empty() const { return count == 0; }
   const MethodSignature* begin() const { return items; }
   const MethodSignature* end() const { return items + count; }
@@ -67,12 +80,11 @@ void with_offset(Signatures& out, const MethodSignature& base, TextureShape shap
   out.push_back(base);
   const uint32_t offset = offset_components(shape);
   if (offset == 0) return;
-  MethodSignature& with = out.items[out.count++];
-  with = base;
-  with.push_back(ints(offset), false);
+  out.push_back(base);
+  out.back().push_back(ints(offset), false);
   if (!clamp) return;
-  out.push_back(with);
-  out.items[out.count - 1].push_back(kFloat, false);
+  out.push_back(out.back());
+  out.back().push_back(kFloat, false);
 }
 
 // GetDimensions: the sizes a shape reports (width, height, depth or layers, samples), each as
