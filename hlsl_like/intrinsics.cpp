@@ -1,5 +1,6 @@
 #include "hlsl_like/intrinsics.h"
 
+#include <algorithm>
 #include <array>
 #include <initializer_list>
 #include <vector>
@@ -234,13 +235,35 @@ const IntrinsicInfo& intrinsic_info(IntrinsicId id) {
   return table().infos[index];
 }
 
-static std::optional<IntrinsicId> find(std::string_view name, bool method) {
-  for (size_t i = 1; i < kIntrinsicCount; ++i) {
-    const IntrinsicInfo& info = table().infos[i];
-    if (info.is_method == method && info.name == name) return info.id;
+namespace {
+
+struct NamedId {
+  std::string_view name;
+  uint16_t id;
+};
+
+// Every name with its id, sorted by name and then id: every call in a shader looks its callee
+// up here, and a scan of the whole table per call showed in profiles.
+constexpr std::array<NamedId, kIntrinsicCount - 1> kByName = [] {
+  std::array<NamedId, kIntrinsicCount - 1> sorted{};
+  for (size_t i = 1; i < kIntrinsicCount; ++i) sorted[i - 1] = {kNames[i], uint16_t(i)};
+  std::sort(sorted.begin(), sorted.end(), [](const NamedId& a, const NamedId& b) {
+    return a.name != b.name ? a.name < b.name : a.id < b.id;
+  });
+  return sorted;
+}();
+
+// The first id (in IntrinsicId order) named `name` that is (or is not) a method.
+std::optional<IntrinsicId> find(std::string_view name, bool method) {
+  auto it = std::lower_bound(kByName.begin(), kByName.end(), name,
+                             [](const NamedId& entry, std::string_view key) { return entry.name < key; });
+  for (; it != kByName.end() && it->name == name; ++it) {
+    if (table().infos[it->id].is_method == method) return IntrinsicId(it->id);
   }
   return std::nullopt;
 }
+
+}  // namespace
 
 std::optional<IntrinsicId> find_intrinsic(std::string_view name) { return find(name, false); }
 

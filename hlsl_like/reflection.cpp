@@ -204,7 +204,7 @@ std::string canonical(const std::string& semantic) {
 
 // Every global declaration and user function reachable from the entry points, by what reads it.
 struct Usage {
-  std::unordered_set<const Decl*> globals;
+  std::unordered_set<const Decl*> globals;  // the globals the entry points read
   std::map<const Decl*, const Decl*> texture_sampler;  // texture -> first SamplerState it is sampled with
   std::unordered_set<const Decl*> compared;            // textures sampled with a SamplerComparisonState
 };
@@ -252,7 +252,9 @@ Usage collect_usage(const EntryPoints& entry_points, const ResourceOrigins& orig
             if (const Decl* global = global_of(leaf.origin)) usage.globals.insert(global);
         }
         if (expr.kind == ExprKind::Name) {
-          if (const Decl* decl = static_cast<const NameExpr&>(expr).decl) usage.globals.insert(decl);
+          // Only globals are asked about: locals and parameters would only fill the set.
+          const Decl* decl = static_cast<const NameExpr&>(expr).decl;
+          if (decl && decl->kind == DeclKind::Var && static_cast<const VarDecl*>(decl)->is_global) usage.globals.insert(decl);
         } else if (expr.kind == ExprKind::Call) {
           const auto& call = static_cast<const CallExpr&>(expr);
           if (call.call_kind != CallKind::Method || !call.object || call.args.empty()) return;
@@ -493,6 +495,15 @@ Reflection reflect(const TranslationUnit& unit, const EntryPoints& entry_points,
   std::vector<const VarDecl*> globals;
   std::optional<size_t> globals_index;
   std::vector<std::pair<size_t, const VarDecl*>> pending_textures, pending_samplers;
+
+  // At most one property per global and cbuffer member: reserved, since a Property is large
+  // and growing the vector moves every one made so far.
+  size_t most_properties = 0;
+  for (const auto& decl : unit.decls) {
+    if (decl && decl->kind == DeclKind::CBuffer) most_properties += static_cast<const CBufferDecl&>(*decl).members.size();
+    if (decl && decl->kind == DeclKind::Var) ++most_properties;
+  }
+  reflection.properties.reserve(most_properties);
 
   for (const auto& decl : unit.decls) {
     if (!decl) continue;

@@ -123,7 +123,10 @@ class Resolver {
     }
   }
 
-  static bool holds_resources(const Type& type) { return !resource_paths(type).empty(); }
+  // Asked of every expression: most are numeric, answered before the walk.
+  static bool holds_resources(const Type& type) {
+    return (type.is_resource() || type.kind() == TypeKind::Struct) && !resource_paths(type).empty();
+  }
 
   void expression(const Expr* e) {
     if (!e) return;
@@ -267,6 +270,8 @@ class Resolver {
 }  // namespace
 
 std::vector<std::vector<uint32_t>> resource_paths(const Type& type) {
+  // Most expressions are numeric: answered without the walk's buffers.
+  if (!type.is_resource() && type.kind() != TypeKind::Struct) return {};
   std::vector<std::vector<uint32_t>> out;
   std::vector<uint32_t> prefix;
   collect_paths(type, prefix, out, 0);

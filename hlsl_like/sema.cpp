@@ -160,22 +160,68 @@ std::optional<std::string> required_type(SemanticKind kind, Stage stage, bool in
 // ---------------------------------------------------------------------------------------------
 // Scopes
 
+size_t SymbolTable::probe(std::string_view name) const {
+  const size_t mask = slots_.size() - 1;
+  size_t index = std::hash<std::string_view>()(name) & mask;
+  while (!slots_[index].name.empty() && slots_[index].name != name) index = (index + 1) & mask;
+  return index;
+}
+
+void SymbolTable::grow() {
+  std::vector<Slot> old = std::move(slots_);
+  // A unit with its includes and the prelude declares a few hundred names.
+  slots_ = std::vector<Slot>(old.empty() ? 512 : old.size() * 2);
+  for (const Slot& slot : old) {
+    if (slot.name.empty()) continue;
+    const size_t index = probe(slot.name);
+    slots_[index] = slot;
+    // Every binding of the name points at its slot: the shadowed ones are re-pointed too.
+    for (uint32_t b = slot.innermost; b != 0; b = bindings_[b - 1].shadowed) bindings_[b - 1].slot = uint32_t(index);
+  }
+}
+
+const Symbol* SymbolTable::lookup(std::string_view name) const {
+  if (slots_.empty()) return nullptr;
+  const Slot& slot = slots_[probe(name)];
+  return slot.innermost != 0 ? &bindings_[slot.innermost - 1].symbol : nullptr;
+}
+
+const Symbol* SymbolTable::add(std::string_view name, Symbol symbol) {
+  if ((used_slots_ + 1) * 2 > slots_.size()) grow();
+  const size_t index = probe(name);
+  Slot& slot = slots_[index];
+  if (slot.innermost != 0 && bindings_[slot.innermost - 1].depth == scope_starts_.size()) {
+    return &bindings_[slot.innermost - 1].symbol;
+  }
+  if (slot.name.empty()) {
+    slot.name = name;
+    ++used_slots_;
+  }
+  bindings_.push_back({name, symbol, uint32_t(index), slot.innermost, uint32_t(scope_starts_.size())});
+  slot.innermost = uint32_t(bindings_.size());
+  return nullptr;
+}
+
+void SymbolTable::pop_scope() {
+  const size_t start = scope_starts_.back();
+  scope_starts_.pop_back();
+  while (bindings_.size() > start) {
+    const Binding& binding = bindings_.back();
+    slots_[binding.slot].innermost = binding.shadowed;
+    bindings_.pop_back();
+  }
+}
+
 bool Sema::declare(const std::string& name, Symbol symbol, Loc loc) {
   if (name.empty() || scopes_.empty()) return true;
-  auto [it, inserted] = scopes_.back().emplace(name, symbol);
-  if (inserted) return true;
+  const Symbol* previous = scopes_.add(name, symbol);
+  if (!previous) return true;
   diag_.error(loc, "redefinition of " + in_quotes(name));
-  if (it->second.decl) diag_.note(it->second.decl->loc, "previous definition of " + in_quotes(name) + " is here");
+  if (previous->decl) diag_.note(previous->decl->loc, "previous definition of " + in_quotes(name) + " is here");
   return false;
 }
 
-const Symbol* Sema::lookup(const std::string& name) const {
-  for (auto scope = scopes_.rbegin(); scope != scopes_.rend(); ++scope) {
-    auto it = scope->find(name);
-    if (it != scope->end()) return &it->second;
-  }
-  return nullptr;
-}
+const Symbol* Sema::lookup(const std::string& name) const { return scopes_.lookup(name); }
 
 std::string Sema::suggestion(const std::string& name, bool functions) const {
   // Suggestions cost a comparison with every name; not worth it once errors are being dropped.
@@ -201,7 +247,13 @@ std::string Sema::suggestion(const std::string& name, bool functions) const {
       if (!info.is_method) consider(std::string(info.name));
     }
   } else {
-    for (const auto& scope : scopes_) {
+    // Each scope's names in the order a hash map of them iterates, the order suggestions have
+    // always been searched in (the first of equally close names wins).
+    for (size_t depth = 0; depth < scopes_.depth(); ++depth) {
+      std::unordered_map<std::string, Symbol> scope;
+      scopes_.for_each_in_scope(depth, [&](std::string_view candidate, const Symbol& symbol) {
+        scope.emplace(std::string(candidate), symbol);
+      });
       for (const auto& [candidate, symbol] : scope) {
         if (symbol.kind == Symbol::Kind::Variable) consider(candidate);
       }
@@ -213,20 +265,22 @@ std::string Sema::suggestion(const std::string& name, bool functions) const {
 // ---------------------------------------------------------------------------------------------
 // Declarations
 
-bool Sema::check_type_usable(const Type& type, const std::string& what, Loc loc, bool allow_resource) {
+bool Sema::check_type_usable(const Type& type, std::string_view kind, std::string_view name, Loc loc,
+                             bool allow_resource) {
+  auto what = [&] { return std::string(kind) + in_quotes(name); };
   if (type.is_void()) {
-    diag_.error(loc, what + " cannot have type 'void'");
+    diag_.error(loc, what() + " cannot have type 'void'");
     return false;
   }
   if (!allow_resource && facts_.contains_resource(type)) {
-    diag_.error(loc, what + " cannot have type " + in_quotes(type.name()) +
+    diag_.error(loc, what() + " cannot have type " + in_quotes(type.name()) +
                          "; resources are only allowed at global scope or as parameters");
     return false;
   }
   // Neither GLSL target can hold them: a GLSL array of samplers needs indices the driver can
   // prove uniform, and reflection gives each texture one binding.
   if (type.kind() == TypeKind::Array && facts_.contains_resource(type)) {
-    diag_.error(loc, what + " cannot have type " + in_quotes(type.name()) +
+    diag_.error(loc, what() + " cannot have type " + in_quotes(type.name()) +
                          "; arrays of resources are not supported: declare each one separately");
     return false;
   }
@@ -249,7 +303,7 @@ void Sema::declare_struct(StructDecl& decl) {
     }
     // A struct may hold resources (FXAA's `struct FxaaTex { SamplerState smpl; Texture2D tex; }`):
     // a local or parameter of it names globals, resolved when compiling (resource_origins.h).
-    if (!check_type_usable(field.type, "field " + in_quotes(field.name), field.loc, true)) continue;
+    if (!check_type_usable(field.type, "field ", field.name, field.loc, true)) continue;
     if (is_unsized_array(field.type)) diag_.error(field.loc, "field " + in_quotes(field.name) + " needs an array size");
   }
   // Learn the struct's facts now, while its fields' structs are already known: later queries
@@ -271,12 +325,12 @@ void Sema::analyze_var_initializer(VarDecl& var) {
 }
 
 void Sema::declare_global_var(VarDecl& var, bool in_cbuffer) {
-  const std::string what = (in_cbuffer ? "cbuffer member " : "variable ") + in_quotes(var.name);
+  const std::string_view kind = in_cbuffer ? "cbuffer member " : "variable ";
   if (var.type.kind() == TypeKind::Struct && facts_.contains_resource(var.type)) {
     // A struct's resources would need registers of their own; HLSL 5.1 gives none to a field.
-    diag_.error(var.loc, what + " of struct " + in_quotes(var.type.name()) +
+    diag_.error(var.loc, std::string(kind) + in_quotes(var.name) + " of struct " + in_quotes(var.type.name()) +
                              " holds resources: declare each resource as a global of its own");
-  } else if (check_type_usable(var.type, what, var.loc, !in_cbuffer)) {
+  } else if (check_type_usable(var.type, kind, var.name, var.loc, !in_cbuffer)) {
     if (var.type.is_resource() && var.initializer) {
       diag_.error(var.initializer->loc, in_quotes(var.type.name()) + " variables cannot have an initializer");
     } else {
@@ -297,7 +351,7 @@ void Sema::declare_cbuffer(CBufferDecl& decl) {
 
 void Sema::analyze_local_var(VarDecl& var) {
   // A local resource (or struct of them) is another name for a global one: `Texture2D t = _MainTex;`.
-  if (check_type_usable(var.type, "variable " + in_quotes(var.name), var.loc, var.storage != StorageClass::Static)) {
+  if (check_type_usable(var.type, "variable ", var.name, var.loc, var.storage != StorageClass::Static)) {
     analyze_var_initializer(var);
   } else if (var.initializer) {
     analyze(var.initializer.get());
@@ -348,7 +402,7 @@ void Sema::declare_function(FunctionDecl& function) {
   if (canonical == &function) {
     FunctionInfo& info = function_info_[&function];
     info.canonical = &function;
-    info.param_types = param_types;
+    info.param_types = std::move(param_types);
     if (function.body) info.definition = &function;
   }
   canonical_of_[&function] = canonical;
@@ -357,9 +411,8 @@ void Sema::declare_function(FunctionDecl& function) {
   push_scope();
   for (auto& param : function.params) {
     if (!param) continue;
-    const std::string what = "parameter " + in_quotes(param->name);
-    check_type_usable(param->type, what, param->loc, true);
-    if (is_unsized_array(param->type)) diag_.error(param->loc, what + " needs an array size");
+    check_type_usable(param->type, "parameter ", param->name, param->loc, true);
+    if (is_unsized_array(param->type)) diag_.error(param->loc, "parameter " + in_quotes(param->name) + " needs an array size");
     if (param->default_value) {
       analyze(param->default_value.get());
       coerce(param->default_value, param->type);
@@ -627,20 +680,22 @@ void Sema::check_entry_point(const FunctionDecl& function, bool vertex) {
     const Type* type;
     const std::string* semantic;
     Loc semantic_loc;
-    std::string name;  // "input 'uv'" etc.
+    // Reported as "input 'uv'" (role and quoted name), or the bare name when no role.
+    std::string_view role;
+    std::string_view name;
     Loc loc;
     int depth;
   };
-  auto check = [&](const Type& root_type, const std::string& root_semantic, Loc root_semantic_loc, std::string root_name,
-                   Loc root_loc, bool input) {
-    std::vector<Item> items{{&root_type, &root_semantic, root_semantic_loc, std::move(root_name), root_loc, 0}};
+  auto check = [&](const Type& root_type, const std::string& root_semantic, Loc root_semantic_loc, std::string_view root_role,
+                   std::string_view root_name, Loc root_loc, bool input) {
+    std::vector<Item> items{{&root_type, &root_semantic, root_semantic_loc, root_role, root_name, root_loc, 0}};
     size_t budget = 4096;  // far beyond a real signature; a hostile one stops here
     while (!items.empty()) {
       if (--budget == 0) {
         report(function.loc, "entry point " + in_quotes(function.name) + " has too many inputs or outputs");
         return;
       }
-      Item item = std::move(items.back());
+      const Item item = items.back();
       items.pop_back();
       const Type& type = *item.type;
       if (type.is_error()) {
@@ -651,12 +706,13 @@ void Sema::check_entry_point(const FunctionDecl& function, bool vertex) {
         const auto& fields = type.struct_decl()->fields;
         for (auto field = fields.rbegin(); field != fields.rend(); ++field) {
           items.push_back({&field->type, &field->semantic, field->semantic_loc,
-                           (input ? "input " : "output ") + in_quotes(field->name), field->loc, item.depth + 1});
+                           input ? "input " : "output ", field->name, field->loc, item.depth + 1});
         }
         continue;
       }
       if (item.semantic->empty()) {
-        report(item.loc, item.name + " of entry point " + in_quotes(function.name) + " needs a semantic");
+        const std::string name = item.role.empty() ? std::string(item.name) : std::string(item.role) + in_quotes(item.name);
+        report(item.loc, name + " of entry point " + in_quotes(function.name) + " needs a semantic");
         continue;
       }
       const ParsedSemantic semantic = parse_semantic(*item.semantic);
@@ -693,14 +749,14 @@ void Sema::check_entry_point(const FunctionDecl& function, bool vertex) {
   for (const auto& param : function.params) {
     if (!param || param->is_uniform || param->type.is_resource()) continue;
     if (param->direction != ParamDirection::Out) {
-      check(param->type, param->semantic, param->semantic_loc, "input " + in_quotes(param->name), param->loc, true);
+      check(param->type, param->semantic, param->semantic_loc, "input ", param->name, param->loc, true);
     }
     if (param->direction != ParamDirection::In) {
-      check(param->type, param->semantic, param->semantic_loc, "output " + in_quotes(param->name), param->loc, false);
+      check(param->type, param->semantic, param->semantic_loc, "output ", param->name, param->loc, false);
     }
   }
   if (!function.return_type.is_void()) {
-    check(function.return_type, function.semantic, function.semantic_loc, "return value", function.loc, false);
+    check(function.return_type, function.semantic, function.semantic_loc, "", "return value", function.loc, false);
   }
   if (vertex && !outputs_position && !return_failed) {
     report(function.loc, "vertex entry point " + in_quotes(function.name) + " does not output SV_Position");

@@ -20,17 +20,17 @@ std::string arity_list(std::vector<size_t> arities) {
   return takes + arguments_word(arities.empty() ? 0 : arities.back());
 }
 
-bool dominates(const std::vector<int>& a, const std::vector<int>& b) {
+bool dominates(const Ranks& a, const Ranks& b) {
   bool better = false;
-  for (size_t i = 0; i < a.size() && i < b.size(); ++i) {
-    if (a[i] > b[i]) return false;
-    if (a[i] < b[i]) better = true;
+  for (size_t i = 0; i < a.count && i < b.count; ++i) {
+    if (a.values[i] > b.values[i]) return false;
+    if (a.values[i] < b.values[i]) better = true;
   }
   return better;
 }
 
 // The candidate better than every other one, or -1.
-int unique_best(const std::vector<std::vector<int>>& ranks) {
+int unique_best(std::span<const Ranks> ranks) {
   for (size_t i = 0; i < ranks.size(); ++i) {
     bool best = true;
     for (size_t j = 0; j < ranks.size() && best; ++j) {
@@ -48,12 +48,16 @@ namespace {
 std::optional<ScalarType> fit_element(ScalarType deduced, uint8_t set) {
   auto allowed = [&](ScalarType s) { return (set & element_bit(s)) != 0; };
   if (allowed(deduced)) return deduced;
-  std::vector<ScalarType> order;
+  std::span<const ScalarType> order;
+  static constexpr ScalarType kFromBool[] = {ScalarType::Int, ScalarType::Uint, ScalarType::Float};
+  static constexpr ScalarType kFromInt[] = {ScalarType::Uint, ScalarType::Float};
+  static constexpr ScalarType kFromUint[] = {ScalarType::Int, ScalarType::Float};
+  static constexpr ScalarType kFromHalf[] = {ScalarType::Float};
   switch (deduced) {
-    case ScalarType::Bool: order = {ScalarType::Int, ScalarType::Uint, ScalarType::Float}; break;
-    case ScalarType::Int: order = {ScalarType::Uint, ScalarType::Float}; break;
-    case ScalarType::Uint: order = {ScalarType::Int, ScalarType::Float}; break;
-    case ScalarType::Half: order = {ScalarType::Float}; break;
+    case ScalarType::Bool: order = kFromBool; break;
+    case ScalarType::Int: order = kFromInt; break;
+    case ScalarType::Uint: order = kFromUint; break;
+    case ScalarType::Half: order = kFromHalf; break;
     case ScalarType::Float: break;  // never silently to an integer or half
   }
   for (ScalarType s : order) {
@@ -80,30 +84,33 @@ uint8_t shape_bit(const Type& type) {
 }
 
 struct Candidate {
-  std::vector<Type> params;
-  std::vector<bool> out;
+  Type params[4];  // IntrinsicSignature's parameters
+  bool out[4] = {};
   Type result;
-  std::vector<int> ranks;
+  Ranks ranks;
 };
 
-// Deduces T, N, R and C of `signature` from the arguments and ranks every argument's conversion.
-std::optional<Candidate> bind_signature(const Sema& sema, const IntrinsicSignature& signature,
-                              const std::vector<ExprPtr>& args) {
-  if (args.size() != signature.param_count) return std::nullopt;
+// Deduces T, N, R and C of `signature` from the arguments and ranks every argument's conversion
+// into `candidate`; false when the signature does not fit.
+bool bind_signature(const Sema& sema, const IntrinsicSignature& signature, const std::vector<ExprPtr>& args,
+                    Candidate& candidate) {
+  if (args.size() != signature.param_count) return false;
   const size_t count = args.size();
   // T's element: the highest of the (in) arguments at T-element positions.
-  std::vector<const Expr*> element_args;
+  const Expr* element_args_storage[4];
+  size_t element_arg_count = 0;
   for (size_t i = 0; i < count; ++i) {
     const ParamPattern& param = signature.params[i];
     const bool generic = param.type.element == PatternElement::T || param.type.shape == PatternShape::T;
     if (param.out || !generic) continue;
-    if (!args[i]->type.is_numeric()) return std::nullopt;
-    if (param.type.element == PatternElement::T) element_args.push_back(args[i].get());
+    if (!args[i]->type.is_numeric()) return false;
+    if (param.type.element == PatternElement::T) element_args_storage[element_arg_count++] = args[i].get();
   }
+  const std::span<const Expr* const> element_args(element_args_storage, element_arg_count);
   ScalarType element = ScalarType::Float;
   if (!element_args.empty()) {
     const std::optional<ScalarType> fitted = fit_element(sema.common_scalar(element_args), signature.elements);
-    if (!fitted) return std::nullopt;
+    if (!fitted) return false;
     element = *fitted;
   } else if ((signature.elements & element_bit(ScalarType::Float)) == 0) {
     for (ScalarType s : {ScalarType::Uint, ScalarType::Int, ScalarType::Half, ScalarType::Bool}) {
@@ -119,10 +126,10 @@ std::optional<Candidate> bind_signature(const Sema& sema, const IntrinsicSignatu
     const ParamPattern& param = signature.params[i];
     if (param.out || param.type.shape != PatternShape::T) continue;
     shape = shape ? combine_shapes(*shape, args[i]->type, element) : Type::with_scalar(args[i]->type, element);
-    if (!shape) return std::nullopt;
+    if (!shape) return false;
   }
   if (!shape) shape = Type::scalar(element);
-  if ((signature.shapes & shape_bit(*shape)) == 0) return std::nullopt;
+  if ((signature.shapes & shape_bit(*shape)) == 0) return false;
   // Dimension variables: a matrix fixes one; vectors bind the shortest (longer ones truncate).
   struct Dim {
     int matrix = 0;
@@ -136,26 +143,26 @@ std::optional<Candidate> bind_signature(const Sema& sema, const IntrinsicSignatu
     const Type& arg = args[i]->type;
     switch (param.type.shape) {
       case PatternShape::Scalar:
-        if (arg.component_count() != 1) return std::nullopt;
+        if (arg.component_count() != 1) return false;
         break;
       case PatternShape::Vector:
-        if (arg.is_matrix()) return std::nullopt;
+        if (arg.is_matrix()) return false;
         if (arg.is_vector() && arg.cols() > 1 && is_dim_variable(param.type.dims[0])) {
           Dim& dim = dims[dim_slot(param.type.dims[0])];
           dim.vector = dim.vector == 0 ? int(arg.cols()) : std::min(dim.vector, int(arg.cols()));
         }
         break;
       case PatternShape::Matrix:
-        if (!arg.is_matrix()) return std::nullopt;
+        if (!arg.is_matrix()) return false;
         for (int k = 0; k < 2; ++k) {
           const uint8_t pattern_dim = param.type.dims[k];
           const int actual = int(k == 0 ? arg.rows() : arg.cols());
           if (!is_dim_variable(pattern_dim)) {
-            if (actual != pattern_dim) return std::nullopt;
+            if (actual != pattern_dim) return false;
             continue;
           }
           Dim& dim = dims[dim_slot(pattern_dim)];
-          if (dim.matrix != 0 && dim.matrix != actual) return std::nullopt;
+          if (dim.matrix != 0 && dim.matrix != actual) return false;
           dim.matrix = actual;
         }
         break;
@@ -166,7 +173,7 @@ std::optional<Candidate> bind_signature(const Sema& sema, const IntrinsicSignatu
   int bound[3];
   for (size_t k = 0; k < 3; ++k) {
     if (dims[k].matrix != 0) {
-      if (dims[k].vector != 0 && dims[k].vector < dims[k].matrix) return std::nullopt;
+      if (dims[k].vector != 0 && dims[k].vector < dims[k].matrix) return false;
       bound[k] = dims[k].matrix;
     } else {
       bound[k] = dims[k].vector != 0 ? dims[k].vector : 1;
@@ -191,19 +198,19 @@ std::optional<Candidate> bind_signature(const Sema& sema, const IntrinsicSignatu
     }
     return Type::error();
   };
-  Candidate candidate;
+  candidate.ranks.count = 0;
   candidate.result = make(signature.result);
   for (size_t i = 0; i < count; ++i) {
     const ParamPattern& param = signature.params[i];
     const Type type = make(param.type);
     const Conversion conversion =
         param.out ? classify_implicit(type, args[i]->type) : classify_implicit(args[i]->type, type);
-    if (!conversion.valid) return std::nullopt;
-    candidate.params.push_back(type);
-    candidate.out.push_back(param.out);
+    if (!conversion.valid) return false;
+    candidate.params[i] = type;
+    candidate.out[i] = param.out;
     candidate.ranks.push_back(conversion.rank);
   }
-  return candidate;
+  return true;
 }
 
 // What passing `args` to `function` costs (overload_cost summed, out and inout parameters
@@ -265,7 +272,7 @@ void Sema::note_fragment_only(std::string what, Loc loc) {
 }
 
 void pass_argument(Sema& sema, ExprPtr& arg, const Type& type, ParamDirection direction, size_t index,
-                          const std::string& callee) {
+                   std::string_view callee) {
   if (direction == ParamDirection::In) {
     sema.coerce(arg, type);
     return;
@@ -435,37 +442,49 @@ Type Sema::analyze_intrinsic_call(CallExpr& expr, IntrinsicId id) {
   const IntrinsicInfo& info = intrinsic_info(id);
   if (!expr.object) expr.call_kind = CallKind::Intrinsic;
   expr.intrinsic = uint16_t(id);
-  const std::string name(info.name);
+  const std::string_view name = info.name;
   // Argument count first: the most helpful message when it is wrong.
-  std::vector<size_t> arities;
-  for (const IntrinsicSignature& signature : info.signatures) arities.push_back(signature.param_count);
-  if (std::find(arities.begin(), arities.end(), expr.args.size()) == arities.end()) {
+  bool arity_matches = false;
+  for (const IntrinsicSignature& signature : info.signatures) arity_matches |= signature.param_count == expr.args.size();
+  if (!arity_matches) {
+    std::vector<size_t> arities;
+    for (const IntrinsicSignature& signature : info.signatures) arities.push_back(signature.param_count);
     diag_.error(expr.loc, in_quotes(name) + " takes " + arity_list(arities) + ", " + std::to_string(expr.args.size()) + " given");
     return Type::error();
   }
-  std::vector<Candidate> candidates;
-  for (const IntrinsicSignature& signature : info.signatures) {
-    if (auto candidate = bind_signature(*this, signature, expr.args)) candidates.push_back(std::move(*candidate));
+  // Only the ranks of every fitting signature are kept; the chosen one is bound again unless it
+  // was the last one tried (as it is for most intrinsics, which have one signature).
+  Candidate candidate;
+  Ranks ranks[kMaxIntrinsicSignatures];
+  size_t fitting[kMaxIntrinsicSignatures];
+  size_t count = 0;
+  bool last_fits = false;
+  for (size_t s = 0; s < info.signatures.size() && s < kMaxIntrinsicSignatures; ++s) {
+    last_fits = bind_signature(*this, info.signatures[s], expr.args, candidate);
+    if (!last_fits) continue;
+    ranks[count] = candidate.ranks;
+    fitting[count++] = s;
   }
-  if (candidates.empty()) {
+  if (count == 0) {
     diag_.error(expr.loc, "no overload of " + in_quotes(name) + " takes (" + join_types(expr.args) + ")");
     return Type::error();
   }
-  std::vector<std::vector<int>> ranks;
-  for (const Candidate& candidate : candidates) ranks.push_back(candidate.ranks);
-  int best = unique_best(ranks);
+  int best = unique_best(std::span<const Ranks>(ranks, count));
   if (best < 0) {
     // No candidate beats every other: the smallest total, the table's order on a tie.
     int best_sum = 0;
-    for (size_t i = 0; i < ranks.size(); ++i) {
-      const int sum = std::accumulate(ranks[i].begin(), ranks[i].end(), 0);
+    for (size_t i = 0; i < count; ++i) {
+      const int sum = std::accumulate(ranks[i].values, ranks[i].values + ranks[i].count, 0);
       if (best < 0 || sum < best_sum) {
         best = int(i);
         best_sum = sum;
       }
     }
   }
-  const Candidate& chosen = candidates[size_t(best)];
+  if (!(last_fits && size_t(best) + 1 == count)) {
+    bind_signature(*this, info.signatures[fitting[size_t(best)]], expr.args, candidate);
+  }
+  const Candidate& chosen = candidate;
   for (size_t i = 0; i < expr.args.size(); ++i) {
     pass_argument(*this, expr.args[i], chosen.params[i], chosen.out[i] ? ParamDirection::Out : ParamDirection::In, i,
                   name);

@@ -66,8 +66,7 @@ std::optional<int64_t> in_fold_range(int64_t value) {
 
 }  // namespace
 
-bool Sema::nesting_exceeded(Loc loc) {
-  if (depth_ <= kMaxNesting) return false;
+bool Sema::report_nesting(Loc loc) {
   if (!reported_depth_) {
     reported_depth_ = true;
     diag_.error(loc, "expression or statement is nested too deeply");
@@ -88,7 +87,7 @@ void Sema::wrap_conversion(ExprPtr& slot, const Type& to) {
 
 bool Sema::coerce(ExprPtr& slot, const Type& to) {
   if (!slot) return true;  // a parse error, already reported
-  const Type from = slot->type;
+  const Type& from = slot->type;  // read before the slot is wrapped below
   if (from.is_error() || to.is_error()) return true;
   const Conversion conversion = classify_implicit(from, to);
   if (!conversion.valid) {
@@ -100,7 +99,7 @@ bool Sema::coerce(ExprPtr& slot, const Type& to) {
   return true;
 }
 
-ScalarType Sema::common_scalar(const std::vector<const Expr*>& operands) const {
+ScalarType Sema::common_scalar(std::span<const Expr* const> operands) const {
   // The highest scalar type, except that a float literal takes a half operand's type.
   bool any = false, any_strict = false;
   ScalarType all = ScalarType::Bool, strict = ScalarType::Bool;
@@ -201,7 +200,7 @@ Type Sema::analyze_name(NameExpr& expr) {
 Type Sema::analyze_unary(UnaryExpr& expr) {
   const Type operand = analyze(expr.operand.get());
   if (operand.is_error()) return Type::error();
-  const std::string op = unary_spelling(expr.op);
+  const std::string_view op = unary_spelling(expr.op);
   if (!operand.is_numeric()) {
     diag_.error(expr.loc, "cannot apply " + in_quotes(op) + " to " + in_quotes(operand.name()));
     return Type::error();
@@ -246,7 +245,7 @@ std::optional<BinaryTyping> Sema::binary_typing(BinaryOp op, Loc loc, const Expr
   const Type& a = lhs->type;
   const Type& b = rhs->type;
   if (a.is_error() || b.is_error()) return std::nullopt;
-  const std::string spelling = binary_spelling(op);
+  const std::string_view spelling = binary_spelling(op);
   if (!a.is_numeric() || !b.is_numeric()) {
     diag_.error(loc, "cannot apply " + in_quotes(spelling) + " to " + in_quotes(a.name()) + " and " + in_quotes(b.name()));
     return std::nullopt;
@@ -272,7 +271,8 @@ std::optional<BinaryTyping> Sema::binary_typing(BinaryOp op, Loc loc, const Expr
     case BinaryOp::Mul:
     case BinaryOp::Div:
     case BinaryOp::Mod: {
-      ScalarType scalar = common_scalar({lhs, rhs});
+      const Expr* const operands[] = {lhs, rhs};
+      ScalarType scalar = common_scalar(operands);
       if (scalar == ScalarType::Bool) scalar = ScalarType::Int;
       const std::optional<Type> shape = combine_shapes(a, b, scalar);
       if (!shape) {
@@ -296,7 +296,8 @@ std::optional<BinaryTyping> Sema::binary_typing(BinaryOp op, Loc loc, const Expr
     case BinaryOp::GreaterEqual:
     case BinaryOp::Equal:
     case BinaryOp::NotEqual: {
-      const std::optional<Type> shape = combine_shapes(a, b, common_scalar({lhs, rhs}));
+      const Expr* const operands[] = {lhs, rhs};
+      const std::optional<Type> shape = combine_shapes(a, b, common_scalar(operands));
       if (!shape) {
         shape_error();
         return std::nullopt;
@@ -357,7 +358,8 @@ Type Sema::analyze_conditional(ConditionalExpr& expr) {
   if (a.is_error() || b.is_error()) return Type::error();
   Type result;
   if (a.is_numeric() && b.is_numeric()) {
-    const ScalarType scalar = common_scalar({expr.then_value.get(), expr.else_value.get()});
+    const Expr* const operands[] = {expr.then_value.get(), expr.else_value.get()};
+    const ScalarType scalar = common_scalar(operands);
     std::optional<Type> shape = combine_shapes(a, b, scalar);
     if (!shape) {
       diag_.error(expr.loc, "cannot combine " + in_quotes(a.name()) + " and " + in_quotes(b.name()) + " in '?:'");
@@ -478,6 +480,7 @@ Type Sema::analyze_member(MemberExpr& expr) {
     return Type::error();
   }
   std::string error;
+  expr.swizzle.reserve(4);  // a swizzle has at most 4 components: one allocation, not one per growth
   if (object.is_scalar() || object.is_vector()) {
     error = parse_vector_swizzle(expr.member, object, expr.swizzle);
   } else if (object.is_matrix()) {

@@ -2,6 +2,7 @@
 #pragma once
 
 #include <optional>
+#include <span>
 #include <string>
 #include <unordered_map>
 #include <unordered_set>
@@ -95,6 +96,53 @@ struct Symbol {
   const Decl* decl = nullptr;  // a VarDecl or ParamDecl; the struct, typedef or first function
 };
 
+// The names in scope. One table serves every scope: a name's slot holds its innermost binding,
+// each binding remembers the one it shadows, and leaving a scope unwinds the bindings it made.
+// A lookup is one hash probe however deeply scopes nest, and once the arrays have grown,
+// declaring allocates nothing (a map per scope allocated a node per declaration). The names are
+// views of the tree's declarations, which outlive the analysis.
+class SymbolTable {
+ public:
+  void push_scope() { scope_starts_.push_back(uint32_t(bindings_.size())); }
+  void pop_scope();
+  bool empty() const { return scope_starts_.empty(); }
+  size_t depth() const { return scope_starts_.size(); }
+  // The innermost binding of `name`, or null.
+  const Symbol* lookup(std::string_view name) const;
+  // Binds `name` in the innermost scope; when that scope binds it already, returns that
+  // binding instead (and binds nothing).
+  const Symbol* add(std::string_view name, Symbol symbol);
+  // Calls visit(name, symbol) for each binding of scope `depth` (0 the outermost), in the order
+  // they were declared.
+  template <class Visit>
+  void for_each_in_scope(size_t depth, Visit&& visit) const {
+    const size_t end = depth + 1 < scope_starts_.size() ? scope_starts_[depth + 1] : bindings_.size();
+    for (size_t i = scope_starts_[depth]; i < end; ++i) visit(bindings_[i].name, bindings_[i].symbol);
+  }
+
+ private:
+  // All zero when free, so that a table of them is cleared as plain memory.
+  struct Slot {
+    std::string_view name;
+    uint32_t innermost;  // 1 + the index of the innermost binding; 0 when out of scope
+  };
+  struct Binding {
+    std::string_view name;
+    Symbol symbol;
+    uint32_t slot;
+    uint32_t shadowed;  // 1 + the index of the binding this one hides, or 0
+    uint32_t depth;
+  };
+  // The slot of `name`, or of the free slot where it would go.
+  size_t probe(std::string_view name) const;
+  void grow();
+
+  std::vector<Slot> slots_;  // open addressing, a power of two in size, at most half full
+  size_t used_slots_ = 0;
+  std::vector<Binding> bindings_;
+  std::vector<uint32_t> scope_starts_;
+};
+
 // One function signature: its first declaration stands for all its declarations.
 struct FunctionInfo {
   const FunctionDecl* canonical = nullptr;
@@ -134,7 +182,8 @@ class Sema {
   void analyze_block(BlockStmt& block, bool new_scope);
   void analyze_attributes(std::vector<Attribute>& attributes);
   void analyze_condition(ExprPtr& condition);
-  bool check_type_usable(const Type& type, const std::string& what, Loc loc, bool allow_resource);
+  // `what` is reported as kind + in_quotes(name) ("variable 'x'"), built only for a diagnostic.
+  bool check_type_usable(const Type& type, std::string_view kind, std::string_view name, Loc loc, bool allow_resource);
   void check_recursion();
   void fix_up_calls();
   const FunctionDecl* find_entry_point(const std::string& name, Loc pragma_loc, const char* stage);
@@ -142,8 +191,8 @@ class Sema {
   void check_fragment_only_reachable(const FunctionDecl& vertex_entry);
 
   // Scopes
-  void push_scope() { scopes_.emplace_back(); }
-  void pop_scope() { scopes_.pop_back(); }
+  void push_scope() { scopes_.push_scope(); }
+  void pop_scope() { scopes_.pop_scope(); }
   // Adds a name to the innermost scope; reports a redefinition (and returns false) if present.
   bool declare(const std::string& name, Symbol symbol, Loc loc);
   const Symbol* lookup(const std::string& name) const;
@@ -165,7 +214,7 @@ class Sema {
   bool rooted_in_local(const Expr* expr) const;
   void analyze_initializer(ExprPtr& init, Type& declared_type, const std::string& var_name);
   std::optional<int64_t> fold_int(const Expr* expr, int depth = 0) const;
-  ScalarType common_scalar(const std::vector<const Expr*>& operands) const;
+  ScalarType common_scalar(std::span<const Expr* const> operands) const;
 
   Type analyze_unary(UnaryExpr& expr);
   Type analyze_binary(BinaryExpr& expr);
@@ -194,14 +243,14 @@ class Sema {
   DiagnosticEngine& diag_;
   mutable TypeFacts facts_;  // memoizes; queried from const members too
   mutable std::unordered_map<const VarDecl*, std::optional<int64_t>> folded_;  // fold_int of constants
-  std::vector<std::unordered_map<std::string, Symbol>> scopes_;
+  SymbolTable scopes_;
   // Overload sets by name: canonical declarations, in order of declaration.
   std::unordered_map<std::string, std::vector<const FunctionDecl*>> functions_;
   std::unordered_map<const FunctionDecl*, FunctionInfo> function_info_;  // by canonical
   std::unordered_map<const FunctionDecl*, const FunctionDecl*> canonical_of_;
   std::vector<CallExpr*> user_calls_;
   std::vector<FunctionDecl*> all_functions_;         // every function declaration, in order
-  std::unordered_set<std::string> all_function_names_;  // declared anywhere in the unit
+  std::unordered_set<std::string_view> all_function_names_;  // declared anywhere in the unit (the tree's names)
   FunctionInfo* current_info_ = nullptr;
   const FunctionDecl* current_function_ = nullptr;
   int loop_depth_ = 0;
@@ -218,8 +267,10 @@ class Sema {
     DepthGuard(const DepthGuard&) = delete;
     DepthGuard& operator=(const DepthGuard&) = delete;
   };
-  // True (and reported once) when the current nesting is deeper than kMaxNesting.
-  bool nesting_exceeded(Loc loc);
+  // True (and reported once) when the current nesting is deeper than kMaxNesting. Inline: every
+  // expression and statement asks.
+  bool nesting_exceeded(Loc loc) { return depth_ > kMaxNesting && report_nesting(loc); }
+  bool report_nesting(Loc loc);
 };
 
 std::string join_types(const std::vector<ExprPtr>& args);
@@ -227,15 +278,26 @@ std::string join_types(const std::vector<ExprPtr>& args);
 bool is_writable_resource(const Type& type);
 // "1 argument", "2 or 3 arguments": what a call with one of these arities takes.
 std::string arity_list(std::vector<size_t> arities);
+// Room for the parameters of any signature of an intrinsic or a resource method (SampleGrad with
+// an offset and a clamp has 6) and for the signatures of any intrinsic (mul has 9): candidates
+// are ranked in fixed arrays, since every call of a shader resolves its overloads.
+inline constexpr size_t kMaxSignatureParams = 8;
+inline constexpr size_t kMaxIntrinsicSignatures = 16;
+// A candidate signature's conversion rank for each argument.
+struct Ranks {
+  int values[kMaxSignatureParams] = {};  // the first `count` are meaningful
+  size_t count = 0;
+  void push_back(int rank) { values[count++] = rank; }
+};
 // a dominates b: no argument converts worse (a higher rank), and one converts better.
-bool dominates(const std::vector<int>& a, const std::vector<int>& b);
+bool dominates(const Ranks& a, const Ranks& b);
 // The candidate that dominates every other one, or -1 (ambiguous).
-int unique_best(const std::vector<std::vector<int>>& ranks);
+int unique_best(std::span<const Ranks> ranks);
 // Passes argument `index` to a parameter of type `type`: in parameters convert, out and inout
 // parameters need an assignable argument; a ConversionExpr around an out argument means the
 // value is converted back to the argument's type after the call.
 void pass_argument(Sema& sema, ExprPtr& arg, const Type& type, ParamDirection direction, size_t index,
-                   const std::string& callee);
+                   std::string_view callee);
 std::string function_signature(const FunctionDecl& function);
 
 }  // namespace xshade::hlsl::sema_detail

@@ -3,6 +3,8 @@
 // the methods of the buffer resources, which are typed so that code reaching them can be
 // checked even though no target here binds them.
 #include <algorithm>
+#include <initializer_list>
+#include <stdexcept>
 
 #include "hlsl_like/sema_internal.h"
 
@@ -12,10 +14,52 @@ namespace {
 
 using I = IntrinsicId;
 
+// The fixed arrays below are sized for HLSL's methods; a table outgrowing them is a bug here,
+// reported loudly rather than written past.
+void check_room(bool room) {
+  if (!room) throw std::logic_error("a resource method signature outgrew its fixed capacity");
+}
+
+// Built for every method call of a shader, so in fixed arrays rather than vectors.
 struct MethodSignature {
-  std::vector<Type> params;
-  std::vector<bool> out;
+  Type params[kMaxSignatureParams];
+  bool out[kMaxSignatureParams] = {};
+  size_t count = 0;
   Type result;
+
+  void push_back(const Type& type, bool is_out) {
+    check_room(count < kMaxSignatureParams);
+    params[count] = type;
+    out[count++] = is_out;
+  }
+  // Inserts an in parameter before the others.
+  void push_front(const Type& type) {
+    check_room(count < kMaxSignatureParams);
+    for (size_t i = count; i > 0; --i) {
+      params[i] = params[i - 1];
+      out[i] = out[i - 1];
+    }
+    params[0] = type;
+    out[0] = false;
+    ++count;
+  }
+};
+
+// The signatures of one method on one resource: at most a base form with an offset and a clamp,
+// or GetDimensions' four (uint or float sizes, with or without a mip level).
+inline constexpr size_t kMaxMethodSignatures = 4;
+struct Signatures {
+  MethodSignature items[kMaxMethodSignatures];
+  size_t count = 0;
+
+  void push_back(const MethodSignature& signature) {
+    check_room(count < kMaxMethodSignatures);
+    items[count++] = signature;
+  }
+  MethodSignature& back() { return items[count - 1]; }
+  bool empty() const { return count == 0; }
+  const MethodSignature* begin() const { return items; }
+  const MethodSignature* end() const { return items + count; }
 };
 
 Type vec(ScalarType scalar, uint32_t n) { return n == 1 ? Type::scalar(scalar) : Type::vector(scalar, n); }
@@ -24,30 +68,28 @@ Type ints(uint32_t n) { return vec(ScalarType::Int, n); }
 const Type kFloat = Type::scalar(ScalarType::Float);
 const Type kUint = Type::scalar(ScalarType::Uint);
 
-MethodSignature in_only(std::vector<Type> params, Type result) {
-  MethodSignature signature{std::move(params), {}, std::move(result)};
-  signature.out.assign(signature.params.size(), false);
+MethodSignature in_only(std::initializer_list<Type> params, const Type& result) {
+  MethodSignature signature;
+  for (const Type& param : params) signature.push_back(param, false);
+  signature.result = result;
   return signature;
 }
 
 // `base`, then `base` + a texel offset, then + offset + a clamp for the level of detail.
-void with_offset(std::vector<MethodSignature>& out, const MethodSignature& base, TextureShape shape, bool clamp) {
+void with_offset(Signatures& out, const MethodSignature& base, TextureShape shape, bool clamp) {
   out.push_back(base);
   const uint32_t offset = offset_components(shape);
   if (offset == 0) return;
-  MethodSignature with = base;
-  with.params.push_back(ints(offset));
-  with.out.push_back(false);
-  out.push_back(with);
+  out.push_back(base);
+  out.back().push_back(ints(offset), false);
   if (!clamp) return;
-  with.params.push_back(kFloat);
-  with.out.push_back(false);
-  out.push_back(with);
+  out.push_back(out.back());
+  out.back().push_back(kFloat, false);
 }
 
 // GetDimensions: the sizes a shape reports (width, height, depth or layers, samples), each as
 // uint or as float, with a mip-level form (mip in, then the sizes and the level count out).
-void get_dimensions(std::vector<MethodSignature>& out, TextureShape shape) {
+void get_dimensions(Signatures& out, TextureShape shape) {
   uint32_t sizes = 0;
   switch (shape) {
     case TextureShape::Tex1D: sizes = 1; break;
@@ -63,17 +105,12 @@ void get_dimensions(std::vector<MethodSignature>& out, TextureShape shape) {
   for (ScalarType scalar : {ScalarType::Uint, ScalarType::Float}) {
     MethodSignature plain;
     plain.result = Type::void_type();
-    for (uint32_t i = 0; i < sizes; ++i) {
-      plain.params.push_back(Type::scalar(scalar));
-      plain.out.push_back(true);
-    }
+    for (uint32_t i = 0; i < sizes; ++i) plain.push_back(Type::scalar(scalar), true);
     out.push_back(plain);
     if (is_multisampled(shape)) continue;
     MethodSignature mip = plain;
-    mip.params.insert(mip.params.begin(), kUint);
-    mip.out.insert(mip.out.begin(), false);
-    mip.params.push_back(Type::scalar(scalar));
-    mip.out.push_back(true);
+    mip.push_front(kUint);
+    mip.push_back(Type::scalar(scalar), true);
     out.push_back(mip);
   }
 }
@@ -85,9 +122,9 @@ bool gathers(TextureShape shape) {
 
 bool compares(TextureShape shape) { return shape != TextureShape::Tex3D && !is_multisampled(shape); }
 
-// The signatures of `id` on a texture, as HLSL defines them; empty when the shape has no such
+// Adds the signatures of `id` on a texture, as HLSL defines them; none when the shape has no such
 // method (a cube map has no Load and no offsets, a multisampled texture samples nothing).
-std::vector<MethodSignature> texture_signatures(IntrinsicId id, const Type& texture) {
+void texture_signatures(IntrinsicId id, const Type& texture, Signatures& out) {
   const TextureShape shape = texture.texture_shape();
   const uint32_t n = coordinate_components(shape);
   const uint32_t g = gradient_components(shape);
@@ -97,7 +134,6 @@ std::vector<MethodSignature> texture_signatures(IntrinsicId id, const Type& text
   const Type scalar_texel = Type::scalar(texel.is_numeric() ? texel.scalar_type() : ScalarType::Float);
   const Type gathered = Type::vector(scalar_texel.scalar_type(), 4);
   const bool ms = is_multisampled(shape);
-  std::vector<MethodSignature> out;
   switch (id) {
     case I::Sample:
       if (!ms) with_offset(out, in_only({sampler, floats(n)}, texel), shape, true);
@@ -145,7 +181,6 @@ std::vector<MethodSignature> texture_signatures(IntrinsicId id, const Type& text
       break;
     default: break;
   }
-  return out;
 }
 
 bool is_read_write(BufferKind kind) {
@@ -175,18 +210,16 @@ uint32_t buffer_index_components(BufferKind kind) {
   }
 }
 
-// The methods of the buffer resources by name.
-std::vector<MethodSignature> buffer_signatures(const std::string& method, const Type& buffer) {
+// Adds the signatures of the buffer resources' method `method`.
+void buffer_signatures(const std::string& method, const Type& buffer, Signatures& out) {
   const BufferKind kind = buffer.buffer_kind();
   const Type& element = buffer.element();
   const Type uint_type = kUint;
   const bool byte_address = kind == BufferKind::ByteAddressBuffer || kind == BufferKind::RWByteAddressBuffer;
-  std::vector<MethodSignature> out;
   auto outs = [&](uint32_t count) {
     MethodSignature signature;
     signature.result = Type::void_type();
-    signature.params.assign(count, uint_type);
-    signature.out.assign(count, true);
+    for (uint32_t i = 0; i < count; ++i) signature.push_back(uint_type, true);
     return signature;
   };
   if (method == "GetDimensions") {
@@ -221,40 +254,42 @@ std::vector<MethodSignature> buffer_signatures(const std::string& method, const 
   } else if ((method == "IncrementCounter" || method == "DecrementCounter") && kind == BufferKind::RWStructuredBuffer) {
     out.push_back(in_only({}, uint_type));
   }
-  return out;
 }
 
 }  // namespace
 
 Type Sema::analyze_method_call(CallExpr& expr, const Type& object) {
-  std::vector<MethodSignature> signatures;
-  std::string owner = object.name();
+  Signatures signatures;
   if (object.kind() == TypeKind::Texture) {
     const std::optional<IntrinsicId> method = find_texture_method(expr.callee);
     if (method) {
       expr.intrinsic = uint16_t(*method);
-      signatures = texture_signatures(*method, object);
+      texture_signatures(*method, object, signatures);
     }
   } else if (object.kind() == TypeKind::Buffer) {
     expr.intrinsic = uint16_t(IntrinsicId::BufferMethod);
-    signatures = buffer_signatures(expr.callee, object);
+    buffer_signatures(expr.callee, object, signatures);
   }
   if (signatures.empty()) {
-    diag_.error(expr.loc, in_quotes(owner) + " has no method " + in_quotes(expr.callee));
+    diag_.error(expr.loc, in_quotes(object.name()) + " has no method " + in_quotes(expr.callee));
     return Type::error();
   }
-  std::vector<size_t> arities;
-  for (const MethodSignature& signature : signatures) arities.push_back(signature.params.size());
-  if (std::find(arities.begin(), arities.end(), expr.args.size()) == arities.end()) {
-    diag_.error(expr.loc, in_quotes(expr.callee) + " of " + in_quotes(owner) + " takes " + arity_list(arities) + ", " +
-                              std::to_string(expr.args.size()) + " given");
+  bool arity_matches = false;
+  for (const MethodSignature& signature : signatures) arity_matches |= signature.count == expr.args.size();
+  if (!arity_matches) {
+    std::vector<size_t> arities;
+    for (const MethodSignature& signature : signatures) arities.push_back(signature.count);
+    diag_.error(expr.loc, in_quotes(expr.callee) + " of " + in_quotes(object.name()) + " takes " + arity_list(arities) +
+                              ", " + std::to_string(expr.args.size()) + " given");
     return Type::error();
   }
-  std::vector<const MethodSignature*> viable;
-  std::vector<std::vector<int>> ranks;
+  const MethodSignature* viable[kMaxMethodSignatures];
+  Ranks ranks[kMaxMethodSignatures];
+  size_t count = 0;
   for (const MethodSignature& signature : signatures) {
-    if (signature.params.size() != expr.args.size()) continue;
-    std::vector<int> rank;
+    if (signature.count != expr.args.size()) continue;
+    Ranks& rank = ranks[count];
+    rank.count = 0;
     bool ok = true;
     for (size_t i = 0; i < expr.args.size() && ok; ++i) {
       const Conversion conversion = signature.out[i] ? classify_implicit(signature.params[i], expr.args[i]->type)
@@ -263,15 +298,14 @@ Type Sema::analyze_method_call(CallExpr& expr, const Type& object) {
       rank.push_back(conversion.rank);
     }
     if (!ok) continue;
-    viable.push_back(&signature);
-    ranks.push_back(std::move(rank));
+    viable[count++] = &signature;
   }
-  if (viable.empty()) {
-    diag_.error(expr.loc, "no overload of " + in_quotes(expr.callee) + " of " + in_quotes(owner) + " takes (" +
+  if (count == 0) {
+    diag_.error(expr.loc, "no overload of " + in_quotes(expr.callee) + " of " + in_quotes(object.name()) + " takes (" +
                               join_types(expr.args) + ")");
     return Type::error();
   }
-  int best = unique_best(ranks);
+  int best = unique_best(std::span<const Ranks>(ranks, count));
   if (best < 0) best = 0;  // the signatures differ only in out types (GetDimensions): uint first
   const MethodSignature& chosen = *viable[size_t(best)];
   for (size_t i = 0; i < expr.args.size(); ++i)

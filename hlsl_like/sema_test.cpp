@@ -202,6 +202,8 @@ TEST(IntrinsicTable, EveryIntrinsicHasANameAndSignatures) {
     EXPECT_FALSE(info.name.empty());
     // Texture methods take their signatures from the texture (sema_methods.cpp).
     EXPECT_EQ(info.signatures.empty(), info.is_method) << info.name;
+    // Sema ranks an intrinsic's candidates in arrays of this size.
+    EXPECT_LE(info.signatures.size(), sema_detail::kMaxIntrinsicSignatures) << info.name;
     for (const IntrinsicSignature& signature : info.signatures) {
       EXPECT_LE(signature.param_count, 4) << info.name;
       EXPECT_NE(signature.elements, 0) << info.name;

@@ -1,21 +1,27 @@
 #include "hlsl_like/semantics.h"
 
 #include <cctype>
+#include <string_view>
 
 namespace xshade::hlsl {
 
 ParsedSemantic parse_semantic(const std::string& text) {
-  std::string upper;
-  for (char c : text) upper += char(std::toupper(static_cast<unsigned char>(c)));
+  // No known semantic is longer than 14 letters and a 2-digit index: anything longer is Unknown,
+  // and the rest fits a buffer on the stack (every entry point parameter and field comes here).
+  constexpr size_t kLongest = 16;
+  if (text.size() > kLongest) return {};
+  char upper[kLongest];
+  for (size_t i = 0; i < text.size(); ++i) upper[i] = char(std::toupper(static_cast<unsigned char>(text[i])));
   // Split a trailing decimal index.
-  size_t digits = upper.size();
+  size_t digits = text.size();
   while (digits > 0 && std::isdigit(static_cast<unsigned char>(upper[digits - 1]))) --digits;
-  const std::string base = upper.substr(0, digits);
-  const std::string number = upper.substr(digits);
-  if (number.size() > 2) return {};
-  const uint32_t index = number.empty() ? 0 : uint32_t(std::stoul(number));
+  const std::string_view base(upper, digits);
+  const size_t number_length = text.size() - digits;
+  if (number_length > 2) return {};
+  uint32_t index = 0;
+  for (size_t i = digits; i < text.size(); ++i) index = index * 10 + uint32_t(upper[i] - '0');
   struct Known {
-    const char* name;
+    std::string_view name;
     SemanticKind kind;
     uint32_t max_index;  // 0: no index allowed
   };
@@ -32,8 +38,8 @@ ParsedSemantic parse_semantic(const std::string& text) {
   };
   for (const Known& known : kKnown) {
     if (base != known.name) continue;
-    if (!number.empty() && index > known.max_index) return {};
-    if (!number.empty() && known.max_index == 0 && index != 0) return {};
+    if (number_length != 0 && index > known.max_index) return {};
+    if (number_length != 0 && known.max_index == 0 && index != 0) return {};
     return {known.kind, index};
   }
   return {};

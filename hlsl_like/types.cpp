@@ -206,13 +206,8 @@ std::string Type::name() const {
   return "?";
 }
 
-bool operator==(const Type& a, const Type& b) {
-  if (a.kind_ != b.kind_) return false;
+bool Type::same_non_numeric(const Type& a, const Type& b) {
   switch (a.kind_) {
-    case TypeKind::Scalar:
-    case TypeKind::Vector:
-    case TypeKind::Matrix:
-      return a.scalar_ == b.scalar_ && a.rows_ == b.rows_ && a.cols_ == b.cols_;
     case TypeKind::Struct: return a.struct_ == b.struct_;
     case TypeKind::Array: return a.array_length_ == b.array_length_ && *a.element_ == *b.element_;
     case TypeKind::Texture: return a.sub_ == b.sub_ && a.scalar_ == b.scalar_ && a.cols_ == b.cols_;

@@ -104,9 +104,19 @@ class Type {
   // HLSL's spelling: float, float3, float4x4, half2, Light, float[4], Texture2D, Texture2D<uint4>.
   std::string name() const;
 
-  friend bool operator==(const Type& a, const Type& b);
+  // Numeric types, most of what sema and the emitters compare, are compared inline.
+  friend bool operator==(const Type& a, const Type& b) {
+    if (a.kind_ != b.kind_) return false;
+    if (a.kind_ == TypeKind::Scalar || a.kind_ == TypeKind::Vector || a.kind_ == TypeKind::Matrix) {
+      return a.scalar_ == b.scalar_ && a.rows_ == b.rows_ && a.cols_ == b.cols_;
+    }
+    return same_non_numeric(a, b);
+  }
 
  private:
+  // operator== for two types of the same kind that is not numeric.
+  static bool same_non_numeric(const Type& a, const Type& b);
+
   static Type with_kind(TypeKind kind) {
     Type type;
     type.kind_ = kind;
