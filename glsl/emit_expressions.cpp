@@ -7,7 +7,7 @@
 #include <cmath>
 #include <cstdlib>
 
-#include "glsl/each_expression.h"
+#include "hlsl_like/ast_walk.h"
 #include "glsl/stage_emitter.h"
 
 namespace xshade::glsl::detail {
@@ -437,7 +437,7 @@ bool StageEmitter::is_simple(const Expr* e) {
 
 bool StageEmitter::has_side_effects(const Expr* e) {
   bool effects = false;
-  each_expression(e, [&](const Expr& x) {
+  hlsl::walk_expressions(e, [&](const Expr& x) {
     switch (x.kind) {
       case ExprKind::Assign: effects = true; break;
       case ExprKind::Unary: {
@@ -465,7 +465,7 @@ bool StageEmitter::has_side_effects(const Expr* e) {
 
 bool StageEmitter::branches(const Expr* e) {
   bool found = false;
-  each_expression(e, [&](const Expr& x) {
+  hlsl::walk_expressions(e, [&](const Expr& x) {
     if (x.kind == ExprKind::Conditional)
       found = found || static_cast<const ConditionalExpr&>(x).condition->type.component_count() == 1;
     if (x.kind == ExprKind::Binary) {

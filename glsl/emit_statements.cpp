@@ -1,6 +1,6 @@
 // Functions and statements. Every branch and loop body is braced; `#line` directives keep the
 // driver's messages on the author's lines.
-#include "glsl/each_expression.h"
+#include "hlsl_like/ast_walk.h"
 #include "glsl/stage_emitter.h"
 
 #include <cstdlib>
@@ -70,7 +70,7 @@ std::optional<int64_t> fold_constant(const Expr* e, int depth = 0) {
 
 bool names(const Expr* e, const Decl* decl) {
   bool found = false;
-  each_expression(e, [&](const Expr& x) {
+  hlsl::walk_expressions(e, [&](const Expr& x) {
     if (x.kind == ExprKind::Name && static_cast<const NameExpr&>(x).decl == decl) found = true;
   });
   return found;
@@ -95,7 +95,7 @@ int offset_argument(const CallExpr& call) {
 bool disturbs_loop(const Stmt* stmt, const Decl* var, int depth = 0) {
   if (!stmt || depth > 256) return false;
   bool writes = false;
-  each_expression(stmt, [&](const Expr& e) {
+  hlsl::walk_expressions(stmt, [&](const Expr& e) {
     if (e.kind == ExprKind::Assign && names(static_cast<const AssignExpr&>(e).target.get(), var)) writes = true;
     if (e.kind == ExprKind::Unary) {
       const auto& unary = static_cast<const UnaryExpr&>(e);
@@ -132,7 +132,7 @@ std::optional<std::vector<int64_t>> StageEmitter::unrolled_values(const ForStmt&
   const VarDecl* var = vars[0].get();
   // Only where GLSL needs it: the variable is a sampling method's texel offset in the body.
   bool feeds_offset = false;
-  each_expression(loop.body.get(), [&](const Expr& e) {
+  hlsl::walk_expressions(loop.body.get(), [&](const Expr& e) {
     if (e.kind != ExprKind::Call) return;
     const auto& call = static_cast<const CallExpr&>(e);
     const int index = offset_argument(call);

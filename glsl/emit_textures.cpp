@@ -1,7 +1,7 @@
 // Textures in GLSL: the types of each texture shape per flavour (gl combines texture and sampler,
 // vk keeps them apart; a texture compared on gl is a shadow sampler), and every texture method
 // and DX9 tex* function as a template for StageEmitter::expand_template.
-#include "glsl/each_expression.h"
+#include "hlsl_like/ast_walk.h"
 #include "glsl/stage_emitter.h"
 
 namespace xshade::glsl::detail {
@@ -87,7 +87,7 @@ void StageEmitter::collect_compared_textures() {
   for (bool changed = true; changed;) {
     changed = false;
     for (const FunctionDecl* function : functions_) {
-      each_expression(function->body.get(), [&](const Expr& e) {
+      hlsl::walk_expressions(function->body.get(), [&](const Expr& e) {
         if (e.kind != ExprKind::Call) return;
         const auto& call = static_cast<const CallExpr&>(e);
         if (call.call_kind == CallKind::Method && is_comparison_method(IntrinsicId(call.intrinsic))) {

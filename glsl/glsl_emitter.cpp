@@ -7,7 +7,7 @@
 #include <functional>
 #include <map>
 
-#include "glsl/each_expression.h"
+#include "hlsl_like/ast_walk.h"
 #include "glsl/glsl_names.h"
 #include "glsl/stage_emitter.h"
 #include "hlsl_like/semantics.h"
@@ -437,7 +437,7 @@ void StageEmitter::collect_used_declarations() {
           if (call.call_kind == CallKind::Function && call.function) found.callees.push_back(defined(call.function));
         }
       };
-      each_expression(function->body.get(), visit);
+      hlsl::walk_expressions(function->body.get(), visit);
     }
     return known->second;
   };
@@ -501,7 +501,7 @@ void StageEmitter::collect_used_declarations() {
     } else {
       const VarDecl* var = statics_to_scan.back();
       statics_to_scan.pop_back();
-      each_expression(var->initializer.get(), visit_initializer);
+      hlsl::walk_expressions(var->initializer.get(), visit_initializer);
     }
   }
   for (const auto& decl : module_.unit.decls)
