@@ -1,0 +1,215 @@
+// The emitter's names: what each of the author's names is called in GLSL (reserved words and
+// the emitter's own prefixes renamed, overloads that GLSL would confuse told apart), and the
+// checks that a renamed name collides with none of the author's.
+#include <algorithm>
+#include <map>
+
+#include "glsl/glsl_names.h"
+#include "glsl/stage_emitter.h"
+
+namespace xshade::glsl::detail {
+
+using namespace hlsl;
+
+namespace {
+
+// Every name a statement tree declares (locals, for-loop variables).
+void collect_local_names(const Stmt* stmt, std::vector<std::string_view>& names) {
+  if (!stmt) return;
+  switch (stmt->kind) {
+    case StmtKind::Block:
+      for (const StmtPtr& child : static_cast<const BlockStmt*>(stmt)->statements) collect_local_names(child.get(), names);
+      break;
+    case StmtKind::Decl:
+      for (const auto& var : static_cast<const DeclStmt*>(stmt)->vars)
+        if (var) names.push_back(var->name);
+      break;
+    case StmtKind::If: {
+      const auto* s = static_cast<const IfStmt*>(stmt);
+      collect_local_names(s->then_branch.get(), names);
+      collect_local_names(s->else_branch.get(), names);
+      break;
+    }
+    case StmtKind::For: {
+      const auto* s = static_cast<const ForStmt*>(stmt);
+      collect_local_names(s->init.get(), names);
+      collect_local_names(s->body.get(), names);
+      break;
+    }
+    case StmtKind::While: collect_local_names(static_cast<const WhileStmt*>(stmt)->body.get(), names); break;
+    case StmtKind::DoWhile: collect_local_names(static_cast<const DoWhileStmt*>(stmt)->body.get(), names); break;
+    case StmtKind::Switch:
+      for (const SwitchCase& c : static_cast<const SwitchStmt*>(stmt)->cases)
+        for (const StmtPtr& child : c.statements) collect_local_names(child.get(), names);
+      break;
+    default: break;
+  }
+}
+
+// "half3" -> "half3", "float[4]" -> "float4": a suffix that tells overloads apart.
+std::string type_suffix(const Type& type) {
+  std::string suffix;
+  for (char c : type.name())
+    if (std::isalnum(static_cast<unsigned char>(c))) suffix += c;
+  return suffix;
+}
+
+}  // namespace
+
+Names::Names(const TranslationUnit& unit, Flavour flavour) : unit_(unit) {
+  std::vector<const FunctionDecl*> functions;
+  for (const auto& decl : unit.decls) {
+    if (!decl || decl->kind != DeclKind::Function) continue;
+    const auto& function = static_cast<const FunctionDecl&>(*decl);
+    function_names_.insert(function.name);
+    if (function.body) functions.push_back(&function);
+  }
+
+  // Overloads whose GLSL signatures coincide get a suffix of their HLSL parameter types. Only
+  // functions that share their GLSL name with another can coincide, so only those are compared:
+  // most shaders have none, and then neither the signatures nor the author's names are needed.
+  std::vector<std::string> glsl_names;
+  glsl_names.reserve(functions.size());
+  for (const FunctionDecl* function : functions) glsl_names.push_back(of(function->name));
+  // Overloads keep their source order, in which their suffixes are chosen.
+  std::vector<uint32_t> by_name(functions.size());
+  for (uint32_t i = 0; i < by_name.size(); ++i) by_name[i] = i;
+  std::sort(by_name.begin(), by_name.end(), [&](uint32_t a, uint32_t b) {
+    const int order = glsl_names[a].compare(glsl_names[b]);
+    return order < 0 || (order == 0 && a < b);
+  });
+  std::map<std::string, std::vector<const FunctionDecl*>> by_signature;  // ordered: deterministic
+  for (size_t i = 0; i < by_name.size(); ++i) {
+    const std::string& name = glsl_names[by_name[i]];
+    const bool shared = (i > 0 && glsl_names[by_name[i - 1]] == name) ||
+                        (i + 1 < by_name.size() && glsl_names[by_name[i + 1]] == name);
+    if (!shared) continue;
+    const FunctionDecl* function = functions[by_name[i]];
+    std::string signature = name + "(";
+    for (const auto& param : function->params) {
+      if (!param) continue;
+      if (flavour == Flavour::Gl && param->type.kind() == TypeKind::SamplerState) continue;
+      signature += type_key(param->type, flavour) + ",";
+    }
+    by_signature[signature].push_back(function);
+  }
+  std::unordered_set<std::string> suffixed;  // the names given so far, which later ones avoid
+  for (const auto& [signature, group] : by_signature) {
+    if (group.size() == 1) continue;  // of(name), which function() falls back to
+    for (const FunctionDecl* function : group) {
+      std::string name = of(function->name);
+      for (const auto& param : function->params)
+        if (param) name += "_" + type_suffix(param->type);
+      std::string candidate = name;
+      for (int k = 1; is_user_name(candidate) || suffixed.count(candidate) > 0; ++k)
+        candidate = name + std::to_string(k);
+      suffixed.insert(candidate);
+      functions_[function] = candidate;
+    }
+  }
+}
+
+namespace {
+
+uint32_t name_hash(std::string_view text) {
+  uint32_t h = 2166136261u;  // FNV-1a
+  for (char c : text) h = (h ^ static_cast<unsigned char>(c)) * 16777619u;
+  return h;
+}
+
+}  // namespace
+
+bool Names::is_user_name(std::string_view name) const {
+  if (!user_gathered_) {
+    user_gathered_ = true;
+    for (const auto& decl : unit_.decls) {
+      if (!decl) continue;
+      user_names_.push_back(decl->name);
+      switch (decl->kind) {
+        case DeclKind::Struct:
+          for (const FieldDecl& field : static_cast<const StructDecl&>(*decl).fields) user_names_.push_back(field.name);
+          break;
+        case DeclKind::CBuffer:
+          for (const auto& member : static_cast<const CBufferDecl&>(*decl).members)
+            if (member) user_names_.push_back(member->name);
+          break;
+        case DeclKind::Function: {
+          const auto& function = static_cast<const FunctionDecl&>(*decl);
+          for (const auto& param : function.params)
+            if (param) user_names_.push_back(param->name);
+          collect_local_names(function.body.get(), user_names_);
+          break;
+        }
+        default: break;
+      }
+    }
+  }
+  // A unit renames a name or two, each asked about once or twice: a scan answers those. One
+  // that asks more gets the table.
+  if (user_slots_.empty() && ++user_scans_ <= kUserScans)
+    return std::find(user_names_.begin(), user_names_.end(), name) != user_names_.end();
+  if (user_slots_.empty()) {
+    // At most half full, so that every probe ends at an empty slot; never empty once built.
+    size_t slots = 16;
+    while (slots < 2 * user_names_.size()) slots *= 2;
+    user_slots_.assign(slots, std::string_view());
+    for (std::string_view user : user_names_) {
+      if (user.empty()) {
+        user_has_empty_name_ = true;
+        continue;
+      }
+      size_t slot = name_hash(user) & (slots - 1);
+      while (!user_slots_[slot].empty() && user_slots_[slot] != user) slot = (slot + 1) & (slots - 1);
+      user_slots_[slot] = user;
+    }
+  }
+  if (name.empty()) return user_has_empty_name_;
+  const size_t mask = user_slots_.size() - 1;
+  for (size_t slot = name_hash(name) & mask; !user_slots_[slot].empty(); slot = (slot + 1) & mask)
+    if (user_slots_[slot] == name) return true;
+  return false;
+}
+
+std::string Names::of(const std::string& name) const {
+  if (!needs_renaming(name)) return name;
+  if (auto it = cache_.find(name); it != cache_.end()) return it->second;
+  const std::string base = renamed(name);
+  std::string candidate = base;
+  for (int k = 1; is_user_name(candidate); ++k) candidate = base + std::to_string(k);
+  cache_.emplace(name, candidate);
+  return candidate;
+}
+
+const std::string& Names::variable(const Decl* decl) const {
+  auto [known, inserted] = variables_.try_emplace(decl);
+  if (!inserted) return known->second;
+  std::string& name = known->second;
+  const bool global = decl->kind == DeclKind::Var && static_cast<const VarDecl*>(decl)->is_global;
+  if (global || function_names_.count(decl->name) == 0) {
+    name = of(decl->name);
+    return name;
+  }
+  const std::string base = of(decl->name);
+  const std::string stem = (base.back() == '_' ? base : base + "_") + "v";
+  std::string candidate = stem;
+  for (int k = 1; is_user_name(candidate) || function_names_.count(candidate) > 0; ++k)
+    candidate = stem + std::to_string(k);
+  name = std::move(candidate);
+  return name;
+}
+
+std::string Names::split_member(const std::string& name, uint32_t index) const {
+  const std::string base = of(name);
+  const std::string stem = base.back() == '_' ? base : base + "_";  // never `__`
+  std::string candidate = stem + std::to_string(index);
+  while (is_user_name(candidate)) candidate += "x";
+  return candidate;
+}
+
+std::string Names::function(const FunctionDecl* function) const {
+  const FunctionDecl* definition = function->definition ? function->definition : function;
+  if (auto it = functions_.find(definition); it != functions_.end()) return it->second;
+  return of(function->name);
+}
+
+}  // namespace xshade::glsl::detail
