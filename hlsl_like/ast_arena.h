@@ -130,12 +130,13 @@ struct AstNodeMemory {
     return static_cast<char*>(memory) + kOriginSize;
   }
 
-  // Arena memory goes when its arena does.
-  static void operator delete(void* node, size_t size) noexcept {
+  // Arena memory goes when its arena does. The unsized global delete: clang leaves sized
+  // deallocation off unless asked (-fsized-deallocation).
+  static void operator delete(void* node) noexcept {
     using namespace ast_arena_detail;
     if (!node) return;
     void* memory = static_cast<char*>(node) - kOriginSize;
-    if (*static_cast<const Origin*>(memory) == Origin::Heap) ::operator delete(memory, kOriginSize + size);
+    if (*static_cast<const Origin*>(memory) == Origin::Heap) ::operator delete(memory);
   }
 };
 
