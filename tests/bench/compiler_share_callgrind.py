@@ -13,6 +13,7 @@ figure is still the benchmark's own time; this one says where the instructions g
 """
 import os
 import re
+import shutil
 import subprocess
 import sys
 import tempfile
@@ -56,6 +57,8 @@ def per_round(lines, round_function):
 
 
 def main():
+    if not shutil.which("valgrind") or not shutil.which("callgrind_annotate"):
+        sys.exit("compiler_share_callgrind.py needs valgrind (Debian: apt-get install valgrind)")
     ours = per_round(profile("FrontEndAndEmission"), "front_end_and_emission_round")
     theirs = per_round(profile("GlslangHlslToSpirv"), "glslang_hlsl_round")
     print(f"front end + emission  {ours / 1e6:8.2f} M instructions a round (9 variants)")
