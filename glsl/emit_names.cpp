@@ -109,65 +109,36 @@ Names::Names(const TranslationUnit& unit, Flavour flavour) : unit_(unit) {
   }
 }
 
-namespace {
-
-uint32_t name_hash(std::string_view text) {
-  uint32_t h = 2166136261u;  // FNV-1a
-  for (char c : text) h = (h ^ static_cast<unsigned char>(c)) * 16777619u;
-  return h;
-}
-
-}  // namespace
-
 bool Names::is_user_name(std::string_view name) const {
   if (!user_gathered_) {
+    // Gathered on the first question: most units rename nothing and never ask.
     user_gathered_ = true;
+    std::vector<std::string_view> names;
     for (const auto& decl : unit_.decls) {
       if (!decl) continue;
-      user_names_.push_back(decl->name);
+      names.push_back(decl->name);
       switch (decl->kind) {
         case DeclKind::Struct:
-          for (const FieldDecl& field : static_cast<const StructDecl&>(*decl).fields) user_names_.push_back(field.name);
+          for (const FieldDecl& field : static_cast<const StructDecl&>(*decl).fields) names.push_back(field.name);
           break;
         case DeclKind::CBuffer:
           for (const auto& member : static_cast<const CBufferDecl&>(*decl).members)
-            if (member) user_names_.push_back(member->name);
+            if (member) names.push_back(member->name);
           break;
         case DeclKind::Function: {
           const auto& function = static_cast<const FunctionDecl&>(*decl);
           for (const auto& param : function.params)
-            if (param) user_names_.push_back(param->name);
-          collect_local_names(function.body.get(), user_names_);
+            if (param) names.push_back(param->name);
+          collect_local_names(function.body.get(), names);
           break;
         }
         default: break;
       }
     }
+    user_names_ = StringIndex(names.size());
+    for (std::string_view user : names) user_names_.insert(user);
   }
-  // A unit renames a name or two, each asked about once or twice: a scan answers those. One
-  // that asks more gets the table.
-  if (user_slots_.empty() && ++user_scans_ <= kUserScans)
-    return std::find(user_names_.begin(), user_names_.end(), name) != user_names_.end();
-  if (user_slots_.empty()) {
-    // At most half full, so that every probe ends at an empty slot; never empty once built.
-    size_t slots = 16;
-    while (slots < 2 * user_names_.size()) slots *= 2;
-    user_slots_.assign(slots, std::string_view());
-    for (std::string_view user : user_names_) {
-      if (user.empty()) {
-        user_has_empty_name_ = true;
-        continue;
-      }
-      size_t slot = name_hash(user) & (slots - 1);
-      while (!user_slots_[slot].empty() && user_slots_[slot] != user) slot = (slot + 1) & (slots - 1);
-      user_slots_[slot] = user;
-    }
-  }
-  if (name.empty()) return user_has_empty_name_;
-  const size_t mask = user_slots_.size() - 1;
-  for (size_t slot = name_hash(name) & mask; !user_slots_[slot].empty(); slot = (slot + 1) & mask)
-    if (user_slots_[slot] == name) return true;
-  return false;
+  return user_names_.find(name) != StringIndex::kAbsent;
 }
 
 std::string Names::of(const std::string& name) const {

@@ -2,8 +2,10 @@
 
 #include <algorithm>
 #include <array>
-#include <cstdint>
+#include <iterator>
 #include <string_view>
+
+#include "base/string_index.h"
 
 namespace xshade::glsl {
 namespace {
@@ -81,40 +83,26 @@ constexpr std::string_view kReservedWords[] = {
 
 bool starts_with(std::string_view text, std::string_view prefix) { return text.substr(0, prefix.size()) == prefix; }
 
-// The reserved words in an open-addressed table of their own. Every name the emitter writes is
-// looked up here, and in a std::unordered_set the string's hash and the bucket's division cost
-// more than the rest of the lookup. This hash reads only the length and three characters, which
-// tell the words apart well enough for a table four times their number.
+// The reserved words in a StringIndex. Every name the emitter writes is looked up here; most
+// are told apart by their first character alone (`_MainTex`, `Light`) or their length, before
+// any hashing.
 class ReservedWords {
  public:
-  ReservedWords() {
+  ReservedWords() : words_(std::size(kReservedWords)) {
     for (std::string_view word : kReservedWords) {
-      size_t slot = hash(word) & kMask;
-      while (!slots_[slot].empty() && slots_[slot] != word) slot = (slot + 1) & kMask;
-      slots_[slot] = word;
+      words_.insert(word);
       longest_ = std::max(longest_, word.size());
       first_chars_[static_cast<unsigned char>(word[0])] = true;
     }
   }
 
   bool contains(std::string_view name) const {
-    // Most names are told apart by their first character alone (`_MainTex`, `Light`).
     if (name.empty() || name.size() > longest_ || !first_chars_[static_cast<unsigned char>(name[0])]) return false;
-    for (size_t slot = hash(name) & kMask; !slots_[slot].empty(); slot = (slot + 1) & kMask)
-      if (slots_[slot] == name) return true;
-    return false;
+    return words_.find(name) != StringIndex::kAbsent;
   }
 
  private:
-  static constexpr size_t kSlots = 2048;  // a power of two, about four times the words
-  static constexpr size_t kMask = kSlots - 1;
-
-  static size_t hash(std::string_view text) {  // text is not empty
-    const auto at = [&](size_t i) { return static_cast<size_t>(static_cast<unsigned char>(text[i])); };
-    return text.size() * 977 + at(0) * 131 + at(text.size() / 2) * 31 + at(text.size() - 1);
-  }
-
-  std::array<std::string_view, kSlots> slots_{};
+  StringIndex words_;
   size_t longest_ = 0;
   std::array<bool, 256> first_chars_{};  // the characters some word starts with
 };

@@ -15,6 +15,7 @@
 
 #include "glsl/flavour.h"
 #include "glsl/glsl_emitter.h"
+#include "base/string_index.h"
 #include "hlsl_like/compiler.h"
 #include "base/result.h"
 #include "hlsl_like/intrinsics.h"
@@ -85,18 +86,12 @@ class Names {
 
  private:
   // Whether the author declared `name` anywhere. Only a renaming asks, so the names (views of
-  // the tree's strings) are gathered on first use; the first few questions scan them, and
-  // after that an open-addressed table answers: one allocation where a std::unordered_set
-  // makes one per name.
+  // the tree's strings) are gathered on first use.
   bool is_user_name(std::string_view name) const;
-  static constexpr int kUserScans = 8;
 
   const hlsl::TranslationUnit& unit_;
   mutable bool user_gathered_ = false;
-  mutable std::vector<std::string_view> user_names_;
-  mutable int user_scans_ = 0;
-  mutable std::vector<std::string_view> user_slots_;  // FNV-1a, linear probing; empty: not built yet
-  mutable bool user_has_empty_name_ = false;
+  mutable StringIndex user_names_;
   std::unordered_set<std::string_view> function_names_;
   // Overloads whose GLSL signatures coincide; every other function is of(name).
   std::unordered_map<const FunctionDecl*, std::string> functions_;

@@ -11,7 +11,6 @@
 #include "hlsl_like/parser.h"
 
 #include <cstdint>
-#include <cstring>
 #include <string>
 #include <string_view>
 #include <unordered_map>
@@ -123,48 +122,6 @@ const WordInfo& lookup_word(std::string_view text) {
   return it == table.end() ? kPlain : it->second;
 }
 
-uint64_t load64(const char* p) {
-  uint64_t v;
-  std::memcpy(&v, p, 8);
-  return v;
-}
-
-uint32_t load32(const char* p) {
-  uint32_t v;
-  std::memcpy(&v, p, 4);
-  return v;
-}
-
-uint64_t mix(uint64_t v) {
-  v *= 0xbf58476d1ce4e5b9ull;
-  return v ^ (v >> 31);
-}
-
-// Every byte of the text counts, read 8 or 4 at a time (the last loads overlap rather than
-// read past the end).
-uint64_t word_hash(std::string_view text) {
-  const char* p = text.data();
-  size_t n = text.size();
-  uint64_t hash = 0x9e3779b97f4a7c15ull * (n + 1);
-  for (; n > 8; p += 8, n -= 8) hash = mix(hash ^ load64(p));
-  uint64_t tail = 0;
-  if (n >= 4) {
-    tail = (uint64_t(load32(p)) << 32) | load32(p + n - 4);
-  } else if (n > 0) {
-    tail = (uint64_t(uint8_t(p[0])) << 16) | (uint64_t(uint8_t(p[n / 2])) << 8) | uint8_t(p[n - 1]);
-  }
-  return mix(mix(hash ^ tail));
-}
-
-bool same_text(const char* a, const char* b, size_t n) {
-  for (; n >= 8; a += 8, b += 8, n -= 8)
-    if (load64(a) != load64(b)) return false;
-  if (n >= 4) return load32(a) == load32(b) && load32(a + n - 4) == load32(b + n - 4);
-  for (size_t i = 0; i < n; ++i)
-    if (a[i] != b[i]) return false;
-  return true;
-}
-
 bool is_opener(const Token& token) {
   return token.kind == TokenKind::Punct && (token.text == "(" || token.text == "[" || token.text == "{");
 }
@@ -189,7 +146,7 @@ unsigned skip_token(const Token& token) {
 }  // namespace
 
 Parser::Parser(const std::vector<Token>& tokens, DiagnosticEngine& diagnostics)
-    : tokens_(tokens), diagnostics_(diagnostics), word_slots_(512), token_words_(tokens.size()) {
+    : tokens_(tokens), diagnostics_(diagnostics), word_index_(256), token_words_(tokens.size()) {
   words_.reserve(256);
   eof_.kind = TokenKind::EndOfFile;
   if (!tokens.empty()) eof_.loc = tokens.back().loc;
@@ -358,36 +315,9 @@ bool Parser::skip_group(size_t open, bool semicolons_inside) {
 // Words and names
 
 uint32_t Parser::find_word(std::string_view text) const {
-  const uint64_t hash = word_hash(text);
-  const auto size = uint32_t(text.size());
-  const auto check = uint32_t(hash >> 32);
-  const size_t mask = word_slots_.size() - 1;
-  for (size_t i = size_t(hash) & mask;; i = (i + 1) & mask) {
-    WordSlot& slot = word_slots_[i];
-    if (slot.word == 0) {
-      if (2 * (words_.size() + 1) > word_slots_.size()) {
-        grow_word_slots();
-        return find_word(text);
-      }
-      words_.push_back({&lookup_word(text), -1});
-      slot = {text.data(), size, check, uint32_t(words_.size())};
-      return slot.word - 1;
-    }
-    if (slot.hash == check && slot.size == size && (slot.text == text.data() || same_text(slot.text, text.data(), size)))
-      return slot.word - 1;
-  }
-}
-
-void Parser::grow_word_slots() const {
-  std::vector<WordSlot> old(word_slots_.size() * 2);
-  old.swap(word_slots_);
-  const size_t mask = word_slots_.size() - 1;
-  for (const WordSlot& slot : old) {
-    if (slot.word == 0) continue;
-    size_t i = word_hash({slot.text, slot.size}) & mask;
-    while (word_slots_[i].word != 0) i = (i + 1) & mask;
-    word_slots_[i] = slot;
-  }
+  const auto [word, added] = word_index_.insert(text);
+  if (added) words_.push_back({&lookup_word(text), -1});
+  return word;
 }
 
 // The classification of the token at `index`; a plain word for anything but an identifier.

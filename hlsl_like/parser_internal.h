@@ -21,6 +21,7 @@
 #include <utility>
 #include <vector>
 
+#include "base/string_index.h"
 #include "hlsl_like/ast.h"
 #include "hlsl_like/diagnostic_engine.h"
 #include "hlsl_like/parser.h"
@@ -298,19 +299,11 @@ class Parser {
 
   // A word's classification and, once declared, its struct or typedef type: one hash lookup
   // per token, however many questions the look-ahead asks about it (token_words_ remembers the
-  // answer). The words met so far are an open-addressing table (word_slots_) hashed from a few
-  // word-sized loads of the text: identifiers are short, and a general-purpose string hash and
-  // a node per entry were most of what a question cost.
+  // answer), and the words met so far are numbered by a StringIndex (base/string_index.h).
   struct Word {
     const WordInfo* info = nullptr;
     int32_t user_type = -1;  // index in user_types_ once the word names a struct or typedef
     bool names_user_type() const { return user_type >= 0; }
-  };
-  struct WordSlot {
-    const char* text = nullptr;
-    uint32_t size = 0;
-    uint32_t hash = 0;
-    uint32_t word = 0;  // index in words_ + 1; 0 in an empty slot
   };
 
   // The word of the identifier token at `index`.
@@ -321,7 +314,6 @@ class Parser {
     return words_[known - 1];
   }
   uint32_t find_word(std::string_view text) const;
-  void grow_word_slots() const;
   const WordInfo& info(size_t index) const;
   const BuiltinType* find_builtin_type(size_t index) const { return info(index).builtin; }
   bool is_reserved(size_t index) const { return info(index).reserved; }
@@ -357,7 +349,7 @@ class Parser {
   size_t unknown_reported_until_ = 0;
   size_t attribute_index_ = 0;
   mutable std::vector<Word> words_;
-  mutable std::vector<WordSlot> word_slots_;  // a power of two long, at most half full
+  mutable StringIndex word_index_;  // numbers words as words_ does
   mutable std::vector<uint32_t> token_words_;  // per token: index in words_ + 1; 0 until asked
   std::vector<Type> user_types_;
   std::vector<ExprPtr> gathered_args_;

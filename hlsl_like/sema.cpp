@@ -160,45 +160,19 @@ std::optional<std::string> required_type(SemanticKind kind, Stage stage, bool in
 // ---------------------------------------------------------------------------------------------
 // Scopes
 
-size_t SymbolTable::probe(std::string_view name) const {
-  const size_t mask = slots_.size() - 1;
-  size_t index = std::hash<std::string_view>()(name) & mask;
-  while (!slots_[index].name.empty() && slots_[index].name != name) index = (index + 1) & mask;
-  return index;
-}
-
-void SymbolTable::grow() {
-  std::vector<Slot> old = std::move(slots_);
-  // A unit with its includes and the prelude declares a few hundred names.
-  slots_ = std::vector<Slot>(old.empty() ? 512 : old.size() * 2);
-  for (const Slot& slot : old) {
-    if (slot.name.empty()) continue;
-    const size_t index = probe(slot.name);
-    slots_[index] = slot;
-    // Every binding of the name points at its slot: the shadowed ones are re-pointed too.
-    for (uint32_t b = slot.innermost; b != 0; b = bindings_[b - 1].shadowed) bindings_[b - 1].slot = uint32_t(index);
-  }
-}
-
 const Symbol* SymbolTable::lookup(std::string_view name) const {
-  if (slots_.empty()) return nullptr;
-  const Slot& slot = slots_[probe(name)];
-  return slot.innermost != 0 ? &bindings_[slot.innermost - 1].symbol : nullptr;
+  const uint32_t number = names_.find(name);
+  if (number == StringIndex::kAbsent || innermost_[number] == 0) return nullptr;
+  return &bindings_[innermost_[number] - 1].symbol;
 }
 
 const Symbol* SymbolTable::add(std::string_view name, Symbol symbol) {
-  if ((used_slots_ + 1) * 2 > slots_.size()) grow();
-  const size_t index = probe(name);
-  Slot& slot = slots_[index];
-  if (slot.innermost != 0 && bindings_[slot.innermost - 1].depth == scope_starts_.size()) {
-    return &bindings_[slot.innermost - 1].symbol;
-  }
-  if (slot.name.empty()) {
-    slot.name = name;
-    ++used_slots_;
-  }
-  bindings_.push_back({name, symbol, uint32_t(index), slot.innermost, uint32_t(scope_starts_.size())});
-  slot.innermost = uint32_t(bindings_.size());
+  const auto [number, added] = names_.insert(name);
+  if (added) innermost_.push_back(0);
+  const uint32_t innermost = innermost_[number];
+  if (innermost != 0 && bindings_[innermost - 1].depth == scope_starts_.size()) return &bindings_[innermost - 1].symbol;
+  bindings_.push_back({name, symbol, number, innermost, uint32_t(scope_starts_.size())});
+  innermost_[number] = uint32_t(bindings_.size());
   return nullptr;
 }
 
@@ -207,7 +181,7 @@ void SymbolTable::pop_scope() {
   scope_starts_.pop_back();
   while (bindings_.size() > start) {
     const Binding& binding = bindings_.back();
-    slots_[binding.slot].innermost = binding.shadowed;
+    innermost_[binding.name_number] = binding.shadowed;
     bindings_.pop_back();
   }
 }

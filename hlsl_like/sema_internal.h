@@ -9,6 +9,7 @@
 #include <utility>
 #include <vector>
 
+#include "base/string_index.h"
 #include "hlsl_like/ast.h"
 #include "hlsl_like/diagnostic_engine.h"
 #include "hlsl_like/intrinsics.h"
@@ -96,7 +97,7 @@ struct Symbol {
   const Decl* decl = nullptr;  // a VarDecl or ParamDecl; the struct, typedef or first function
 };
 
-// The names in scope. One table serves every scope: a name's slot holds its innermost binding,
+// The names in scope. One table serves every scope: each name knows its innermost binding,
 // each binding remembers the one it shadows, and leaving a scope unwinds the bindings it made.
 // A lookup is one hash probe however deeply scopes nest, and once the arrays have grown,
 // declaring allocates nothing (a map per scope allocated a node per declaration). The names are
@@ -121,24 +122,16 @@ class SymbolTable {
   }
 
  private:
-  // All zero when free, so that a table of them is cleared as plain memory.
-  struct Slot {
-    std::string_view name;
-    uint32_t innermost;  // 1 + the index of the innermost binding; 0 when out of scope
-  };
   struct Binding {
     std::string_view name;
     Symbol symbol;
-    uint32_t slot;
-    uint32_t shadowed;  // 1 + the index of the binding this one hides, or 0
+    uint32_t name_number;  // in names_
+    uint32_t shadowed;     // 1 + the index of the binding this one hides, or 0
     uint32_t depth;
   };
-  // The slot of `name`, or of the free slot where it would go.
-  size_t probe(std::string_view name) const;
-  void grow();
 
-  std::vector<Slot> slots_;  // open addressing, a power of two in size, at most half full
-  size_t used_slots_ = 0;
+  StringIndex names_{256};           // every name bound so far, in any scope (a unit and its includes declare a few hundred)
+  std::vector<uint32_t> innermost_;  // per name: 1 + the index of its innermost binding; 0 when out of scope
   std::vector<Binding> bindings_;
   std::vector<uint32_t> scope_starts_;
 };
