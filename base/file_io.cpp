@@ -3,32 +3,48 @@
 #include <atomic>
 #include <cerrno>
 #include <cstring>
-#include <fstream>
 
 #include <fcntl.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 namespace xshade {
 
 namespace fs = std::filesystem;
 
-// In one read into a string of the file's size where the size is known: through a stringstream,
-// hashing the 14 MB executable for the shader cache's key took a quarter of a second, most of
-// it copying. Files that do not say their size (/proc, pipes) are read in chunks until the end.
-std::optional<std::string> read_file(const fs::path& path) {
-  std::ifstream file(path, std::ios::binary);
-  if (!file) return std::nullopt;
-  std::string bytes;
-  std::error_code error;
-  const uintmax_t size = fs::file_size(path, error);
-  if (!error && size > 0) {
-    bytes.resize(size_t(size));
-    file.read(bytes.data(), std::streamsize(size));
-    bytes.resize(size_t(file.gcount()));
+// One open, fstat and read of the file's size for a regular file: the front end reads its
+// includes for every compile and the shader cache hashes the 14 MB executable, where a stream
+// (and a stringstream before it) cost more than the reading. Files that do not say their size
+// (/proc, pipes) are read on to their end.
+std::optional<std::string> read_file(const fs::path& path, ReadFailure* why) {
+  auto failed = [why](ReadFailure failure) {
+    if (why) *why = failure;
+    return std::nullopt;
+  };
+  const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
+  if (fd < 0) return failed(errno == EISDIR ? ReadFailure::IsDirectory : ReadFailure::CannotOpen);
+  struct stat status {};
+  if (::fstat(fd, &status) == 0 && S_ISDIR(status.st_mode)) {
+    ::close(fd);
+    return failed(ReadFailure::IsDirectory);
   }
-  char chunk[65536];
-  while (file.read(chunk, sizeof chunk) || file.gcount() > 0) bytes.append(chunk, size_t(file.gcount()));
-  if (file.bad()) return std::nullopt;
+  std::string bytes(status.st_size > 0 ? size_t(status.st_size) + 1 : 65536, '\0');  // +1: a read that fills it says the file grew
+  size_t size = 0;
+  for (;;) {
+    if (size == bytes.size()) bytes.resize(bytes.size() * 2);
+    const ssize_t n = ::read(fd, bytes.data() + size, bytes.size() - size);
+    if (n < 0 && errno == EINTR) continue;
+    if (n < 0) {
+      ::close(fd);
+      return failed(ReadFailure::CannotRead);
+    }
+    if (n == 0) break;
+    size += size_t(n);
+    // A regular file reads short only at its end: no second read to see that.
+    if (S_ISREG(status.st_mode) && size < bytes.size()) break;
+  }
+  ::close(fd);
+  bytes.resize(size);
   return bytes;
 }
 

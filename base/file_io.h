@@ -10,8 +10,11 @@
 
 namespace xshade {
 
-// The file's bytes, or nothing when it cannot be read.
-std::optional<std::string> read_file(const std::filesystem::path& path);
+// Why read_file gave nothing.
+enum class ReadFailure { CannotOpen, IsDirectory, CannotRead };
+
+// The file's bytes, or nothing when it cannot be read (and, where `why` is given, why not).
+std::optional<std::string> read_file(const std::filesystem::path& path, ReadFailure* why = nullptr);
 
 // Writes all of `bytes` to the open descriptor, through short writes and interruptions; false
 // (with errno set) when the descriptor takes no more.

@@ -1,53 +1,10 @@
 #include "hlsl_like/source_manager.h"
 
-#include <cerrno>
 #include <system_error>
 
-#include <fcntl.h>
-#include <sys/stat.h>
-#include <unistd.h>
+#include "base/file_io.h"
 
 namespace xshade::hlsl {
-namespace {
-
-enum class ReadError { None, Directory, Open, Read };
-
-// The whole file in one read of the size fstat gives (a file that grows meanwhile, or says no
-// size, is read on to its end): a shader is read once per compile, where a stream and a string
-// stream cost more than the reading.
-ReadError read_whole_file(const std::filesystem::path& path, std::string& text) {
-  const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
-  if (fd < 0) {
-    std::error_code error;
-    return std::filesystem::is_directory(path, error) ? ReadError::Directory : ReadError::Open;
-  }
-  struct stat status {};
-  if (::fstat(fd, &status) == 0 && S_ISDIR(status.st_mode)) {
-    ::close(fd);
-    return ReadError::Directory;
-  }
-  const size_t expected = status.st_size > 0 ? size_t(status.st_size) : 0;
-  text.resize(expected + 1);  // one byte more: a read that fills it says the file has grown
-  size_t size = 0;
-  for (;;) {
-    if (size == text.size()) text.resize(text.size() * 2);
-    const ssize_t n = ::read(fd, text.data() + size, text.size() - size);
-    if (n < 0 && errno == EINTR) continue;
-    if (n < 0) {
-      ::close(fd);
-      return ReadError::Read;
-    }
-    if (n == 0) break;
-    size += size_t(n);
-    // A regular file reads short only at its end: no second read to see that.
-    if (S_ISREG(status.st_mode) && size < text.size()) break;
-  }
-  ::close(fd);
-  text.resize(size);
-  return ReadError::None;
-}
-
-}  // namespace
 
 SourceManager::SourceManager() { files_.push_back(std::make_unique<File>()); }  // index 0: none
 
@@ -69,18 +26,13 @@ Result<uint32_t> SourceManager::load(const std::filesystem::path& path) {
 Result<uint32_t> SourceManager::load_canonical(const std::filesystem::path& canonical, std::string name) {
   for (uint32_t i = 1; i < files_.size(); ++i)
     if (!files_[i]->path.empty() && files_[i]->path == canonical) return i;
-  std::string text;
-  switch (read_whole_file(canonical, text)) {
-    case ReadError::None:
-      break;
-    case ReadError::Directory:
-      return fail("'" + name + "' is a directory");
-    case ReadError::Open:
-      return fail("cannot open '" + name + "'");
-    case ReadError::Read:
-      return fail("cannot read '" + name + "'");
+  ReadFailure failure = ReadFailure::CannotOpen;
+  std::optional<std::string> text = read_file(canonical, &failure);
+  if (!text) {
+    if (failure == ReadFailure::IsDirectory) return fail("'" + name + "' is a directory");
+    return fail((failure == ReadFailure::CannotOpen ? "cannot open '" : "cannot read '") + name + "'");
   }
-  uint32_t index = add(std::move(name), std::move(text));
+  uint32_t index = add(std::move(name), std::move(*text));
   files_[index]->path = canonical;
   return index;
 }
