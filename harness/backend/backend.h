@@ -256,6 +256,12 @@ struct TargetDesc {
   uint32_t width = 0;
   uint32_t height = 0;
   bool depth = true;  // a D32F depth attachment beside the RGBA32F colour
+  // A second RGBA32F colour attachment, written by fragment output location 1 and cleared to
+  // zero with every pass (whatever the pass's clear colour): what a traced program records
+  // beside its colour (glsl::EmitOptions::trace_nonfinite). Where a draw's program does not
+  // write location 1 the attachment's value is undefined (on both APIs; llvmpipe leaves what an
+  // earlier draw wrote), so every program drawn into it must.
+  bool second_color = false;
 };
 
 // One pass into one target: clear, then the draws in order, depth-tested (less) when the target
@@ -308,6 +314,9 @@ class Backend {
   virtual Result<void> render(const RenderPass& pass) = 0;
   // RGBA32F, row 0 at the top.
   virtual Result<FloatImage> read_color(TargetHandle target) = 0;
+  // The second colour attachment (TargetDesc::second_color) the same way; fails for a target
+  // without one.
+  virtual Result<FloatImage> read_second_color(TargetHandle target) = 0;
 
   // Messages the driver's debug or validation layer reported since the last call, oldest first.
   // An empty list is the only acceptable state for a correct program.

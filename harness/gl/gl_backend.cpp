@@ -90,6 +90,7 @@ struct Target {
   GlFramebuffer framebuffer;
   Texture color;
   std::optional<Texture> depth;
+  std::optional<Texture> second_color;  // TargetDesc::second_color
 };
 
 struct Mesh {
@@ -129,6 +130,8 @@ class GlBackend final : public Backend {
   Result<void> destroy(ProgramHandle program) override { return destroy_in(objects_.programs, program); }
   Result<void> render(const RenderPass& pass) override;
   Result<FloatImage> read_color(TargetHandle target) override;
+  Result<FloatImage> read_second_color(TargetHandle target) override;
+  Result<FloatImage> read_texture(TargetHandle handle, bool second);
   std::vector<std::string> take_driver_messages() override {
     std::lock_guard lock(log_->mutex);
     return std::exchange(log_->messages, {});
@@ -350,6 +353,7 @@ Result<TargetHandle> GlBackend::create_target(const TargetDesc& desc) {
       return result;
     };
     target->color = make_texture(TextureFormat::Rgba32Float);
+    if (desc.second_color) target->second_color = make_texture(TextureFormat::Rgba32Float);
     if (desc.depth) {
       target->depth = make_texture(TextureFormat::Depth32Float);
       gl_.TextureParameteri(target->depth->texture.get(), GL_TEXTURE_COMPARE_MODE, GL_NONE);
@@ -361,7 +365,13 @@ Result<TargetHandle> GlBackend::create_target(const TargetDesc& desc) {
     if (target->depth)
       gl_.NamedFramebufferTexture(framebuffer, GL_DEPTH_ATTACHMENT, target->depth->texture.get(),
                                   0);
-    gl_.NamedFramebufferDrawBuffer(framebuffer, GL_COLOR_ATTACHMENT0);
+    if (target->second_color) {
+      gl_.NamedFramebufferTexture(framebuffer, GL_COLOR_ATTACHMENT1, target->second_color->texture.get(), 0);
+      const std::array<GLenum, 2> both = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1};
+      gl_.NamedFramebufferDrawBuffers(framebuffer, 2, both.data());
+    } else {
+      gl_.NamedFramebufferDrawBuffer(framebuffer, GL_COLOR_ATTACHMENT0);
+    }
     gl_.NamedFramebufferReadBuffer(framebuffer, GL_COLOR_ATTACHMENT0);
     const GLenum status = gl_.CheckNamedFramebufferStatus(framebuffer, GL_FRAMEBUFFER);
     if (status != GL_FRAMEBUFFER_COMPLETE)
@@ -374,6 +384,7 @@ Result<TargetHandle> GlBackend::create_target(const TargetDesc& desc) {
     const float far_depth = 1.0f;
     gl_.ColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
     gl_.ClearNamedFramebufferfv(framebuffer, GL_COLOR, 0, zero.data());
+    if (target->second_color) gl_.ClearNamedFramebufferfv(framebuffer, GL_COLOR, 1, zero.data());
     if (target->depth) {
       gl_.DepthMask(GL_TRUE);
       gl_.ClearNamedFramebufferfv(framebuffer, GL_DEPTH, 0, &far_depth);
@@ -754,6 +765,10 @@ Result<void> GlBackend::render(const RenderPass& pass) {
     const std::array<float, 4> clear = {pass.clear_color.r, pass.clear_color.g, pass.clear_color.b,
                                         pass.clear_color.a};
     gl_.ClearNamedFramebufferfv(framebuffer, GL_COLOR, 0, clear.data());
+    if (target->second_color) {
+      const std::array<float, 4> zero = {0.0f, 0.0f, 0.0f, 0.0f};
+      gl_.ClearNamedFramebufferfv(framebuffer, GL_COLOR, 1, zero.data());
+    }
     if (target->depth) {
       gl_.Enable(GL_DEPTH_TEST);
       gl_.DepthFunc(GL_LESS);
@@ -815,15 +830,20 @@ Result<void> GlBackend::render(const RenderPass& pass) {
   });
 }
 
-Result<FloatImage> GlBackend::read_color(TargetHandle handle) {
-  const std::string what = fmt::format("read_color of target {}", handle.id);
+Result<FloatImage> GlBackend::read_color(TargetHandle handle) { return read_texture(handle, false); }
+Result<FloatImage> GlBackend::read_second_color(TargetHandle handle) { return read_texture(handle, true); }
+
+Result<FloatImage> GlBackend::read_texture(TargetHandle handle, bool second) {
+  const std::string what = fmt::format("{} of target {}", second ? "read_second_color" : "read_color", handle.id);
   return on_context<FloatImage>(what, [&]() -> Result<FloatImage> {
     auto found = objects_.targets.find(handle, what);
     if (!found) return fail(found.error());
     const Target* target = *found;
-    FloatImage result(target->color.width, target->color.height);
+    if (second && !target->second_color) return fail(what + ": the target has no second colour attachment");
+    const Texture& texture = second ? *target->second_color : target->color;
+    FloatImage result(texture.width, texture.height);
     // Texture row 0 is window row 0, which the clip control made the top: no flip.
-    gl_.GetTextureImage(target->color.texture.get(), 0, GL_RGBA, GL_FLOAT,
+    gl_.GetTextureImage(texture.texture.get(), 0, GL_RGBA, GL_FLOAT,
                         static_cast<GLsizei>(result.rgba.size() * sizeof(float)),
                         result.rgba.data());
     return result;

@@ -381,12 +381,13 @@ vk::raii::Pipeline create_draw_pipeline(const vk::raii::Device& device, const Dr
   blend_attachment.colorWriteMask =
       vk::ColorComponentFlagBits::eR | vk::ColorComponentFlagBits::eG |
       vk::ColorComponentFlagBits::eB | vk::ColorComponentFlagBits::eA;
-  const vk::PipelineColorBlendStateCreateInfo blend({}, VK_FALSE, vk::LogicOp::eCopy,
-                                                    blend_attachment);
+  const std::vector<vk::PipelineColorBlendAttachmentState> blend_attachments(spec.color_attachments, blend_attachment);
+  const vk::PipelineColorBlendStateCreateInfo blend({}, VK_FALSE, vk::LogicOp::eCopy, blend_attachments);
   const std::array<vk::DynamicState, 2> dynamic_states = {vk::DynamicState::eViewport,
                                                           vk::DynamicState::eScissor};
   const vk::PipelineDynamicStateCreateInfo dynamic({}, dynamic_states);
-  vk::PipelineRenderingCreateInfo rendering({}, spec.color_format, spec.depth_format);
+  const std::vector<vk::Format> color_formats(spec.color_attachments, spec.color_format);
+  vk::PipelineRenderingCreateInfo rendering({}, color_formats, spec.depth_format);
   vk::GraphicsPipelineCreateInfo info({}, stages, &vertex_input, &assembly, nullptr,
                                       &viewport, &raster, &multisample, &depth_state, &blend,
                                       &dynamic, spec.layout);

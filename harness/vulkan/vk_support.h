@@ -160,6 +160,7 @@ struct DrawPipelineSpec {
   vk::PipelineLayout layout;
   vk::Format color_format;
   vk::Format depth_format;  // eUndefined: no depth attachment, no depth test
+  uint32_t color_attachments = 1;  // each of color_format, written by the locations 0, 1, ...
 };
 // Triangles, no culling, no blending, depth-tested (less) with depth; viewport and scissor dynamic.
 vk::raii::Pipeline create_draw_pipeline(const vk::raii::Device& device, const DrawPipelineSpec& spec);

@@ -42,6 +42,7 @@ constexpr vk::Format kDepthFormat = vk::Format::eD32Sfloat;
 struct Target {
   Image color;
   std::optional<Image> depth;
+  std::optional<Image> second_color;  // TargetDesc::second_color
 };
 
 struct Mesh {
@@ -64,7 +65,8 @@ struct Program {
   vk::raii::ShaderModule fragment{nullptr};
   vk::raii::DescriptorSetLayout set_layout{nullptr};
   vk::raii::PipelineLayout pipeline_layout{nullptr};
-  std::array<std::optional<vk::raii::Pipeline>, 2> pipelines;  // [target has depth]
+  // [target has depth + 2 * target has a second colour attachment]
+  std::array<std::optional<vk::raii::Pipeline>, 4> pipelines;
 };
 
 // A failed vk::raii call says so; any other exception speaks for itself.
@@ -103,6 +105,7 @@ class VulkanBackend final : public Backend {
   Result<void> destroy(ProgramHandle program) override { return destroy_in(objects_.programs, program); }
   Result<void> render(const RenderPass& pass) override;
   Result<FloatImage> read_color(TargetHandle target) override;
+  Result<FloatImage> read_second_color(TargetHandle target) override;
   std::vector<std::string> take_driver_messages() override {
     std::lock_guard lock(log_->mutex);
     return std::exchange(log_->messages, {});
@@ -121,7 +124,8 @@ class VulkanBackend final : public Backend {
   const Buffer& zero_vertex_buffer();
   // Records with `record`, submits, waits. Layouts roll back if anything throws.
   void submit(const std::function<void(Recording&)>& record);
-  Result<vk::Pipeline> pipeline(Program& program, bool depth);
+  Result<vk::Pipeline> pipeline(Program& program, const Target& target);
+  Result<FloatImage> read_image(TargetHandle handle, bool second);
 
   // Every submit waits for its fence, so no work is in flight between calls and nothing a
   // command buffer used can be pending: the object goes at once.
@@ -336,6 +340,11 @@ Result<TargetHandle> VulkanBackend::create_target(const TargetDesc& desc) {
         device_ref(), {kColorFormat, vk::ImageAspectFlagBits::eColor, desc.width, desc.height, 1,
                        U::eColorAttachment | U::eSampled | U::eTransferSrc | U::eTransferDst,
                        fmt::format("the colour of target {}", id), TextureFormat::Rgba32Float});
+    if (desc.second_color)
+      target->second_color = vk_support::create_image(
+          device_ref(), {kColorFormat, vk::ImageAspectFlagBits::eColor, desc.width, desc.height, 1,
+                         U::eColorAttachment | U::eSampled | U::eTransferSrc | U::eTransferDst,
+                         fmt::format("the second colour of target {}", id), TextureFormat::Rgba32Float});
     if (desc.depth)
       target->depth = vk_support::create_image(
           device_ref(),
@@ -350,6 +359,12 @@ Result<TargetHandle> VulkanBackend::create_target(const TargetDesc& desc) {
           *target->color.image, vk::ImageLayout::eTransferDstOptimal,
           vk::ClearColorValue(std::array<float, 4>{0.0f, 0.0f, 0.0f, 0.0f}),
           vk::ImageSubresourceRange(vk::ImageAspectFlagBits::eColor, 0, 1, 0, 1));
+      if (target->second_color) {
+        rec.transition(*target->second_color, vk::ImageLayout::eTransferDstOptimal);
+        rec.cmd.clearColorImage(*target->second_color->image, vk::ImageLayout::eTransferDstOptimal,
+                                vk::ClearColorValue(std::array<float, 4>{0.0f, 0.0f, 0.0f, 0.0f}),
+                                vk::ImageSubresourceRange(vk::ImageAspectFlagBits::eColor, 0, 1, 0, 1));
+      }
       if (target->depth) {
         rec.transition(*target->depth, vk::ImageLayout::eTransferDstOptimal);
         rec.cmd.clearDepthStencilImage(
@@ -614,15 +629,17 @@ Result<ProgramHandle> VulkanBackend::create_program(const ProgramDesc& desc) {
   });
 }
 
-Result<vk::Pipeline> VulkanBackend::pipeline(Program& program, bool depth) {
-  std::optional<vk::raii::Pipeline>& slot = program.pipelines[depth ? 1 : 0];
+Result<vk::Pipeline> VulkanBackend::pipeline(Program& program, const Target& target) {
+  const bool depth = target.depth.has_value();
+  const bool second_color = target.second_color.has_value();
+  std::optional<vk::raii::Pipeline>& slot = program.pipelines[(depth ? 1 : 0) + (second_color ? 2 : 0)];
   if (slot) return **slot;
   return guarded<vk::Pipeline>(
       fmt::format("creating the pipeline of program '{}'", program.name), [&]() -> Result<vk::Pipeline> {
         slot.emplace(vk_support::create_draw_pipeline(
             device_, {*program.vertex, *program.fragment, program.vertex_entry.c_str(), program.fragment_entry.c_str(),
                       program.vertex_inputs, program.zero_inputs, *program.pipeline_layout, kColorFormat,
-                      depth ? kDepthFormat : vk::Format::eUndefined}));
+                      depth ? kDepthFormat : vk::Format::eUndefined, second_color ? 2u : 1u}));
         return **slot;
       });
 }
@@ -674,7 +691,7 @@ Result<void> VulkanBackend::render(const RenderPass& pass) {
     vk::DeviceSize uniform_bytes = 0;
     size_t uniform_count = 0, combined_count = 0, separate_count = 0, image_only_count = 0;
     for (const auto& draw : resolved->draws) {
-      auto made = pipeline(*draw.program, target->depth.has_value());
+      auto made = pipeline(*draw.program, *target);
       if (!made) return fail(made.error());
       draws.push_back(Resolved{draw.program, draw.mesh, draw.uniforms, draw.textures, *made});
       const ProgramLayout& layout = draw.program->layout;
@@ -786,14 +803,19 @@ Result<void> VulkanBackend::render(const RenderPass& pass) {
       for (Image* image : sampled_targets)
         rec.transition(*image, vk::ImageLayout::eShaderReadOnlyOptimal);
       rec.transition(target->color, vk::ImageLayout::eColorAttachmentOptimal);
+      if (target->second_color) rec.transition(*target->second_color, vk::ImageLayout::eColorAttachmentOptimal);
       if (target->depth)
         rec.transition(*target->depth, vk::ImageLayout::eDepthStencilAttachmentOptimal);
       const vk::Rect2D area({0, 0}, {target->color.width, target->color.height});
-      const vk::RenderingAttachmentInfo color(
+      std::vector<vk::RenderingAttachmentInfo> colors{vk::RenderingAttachmentInfo(
           *target->color.view, vk::ImageLayout::eColorAttachmentOptimal, {}, nullptr, {},
           vk::AttachmentLoadOp::eClear, vk::AttachmentStoreOp::eStore,
           vk::ClearColorValue(std::array<float, 4>{pass.clear_color.r, pass.clear_color.g,
-                                                   pass.clear_color.b, pass.clear_color.a}));
+                                                   pass.clear_color.b, pass.clear_color.a}))};
+      if (target->second_color)
+        colors.emplace_back(*target->second_color->view, vk::ImageLayout::eColorAttachmentOptimal, vk::ResolveModeFlagBits{},
+                            nullptr, vk::ImageLayout{}, vk::AttachmentLoadOp::eClear, vk::AttachmentStoreOp::eStore,
+                            vk::ClearColorValue(std::array<float, 4>{0.0f, 0.0f, 0.0f, 0.0f}));
       vk::RenderingAttachmentInfo depth;
       if (target->depth)
         depth = vk::RenderingAttachmentInfo(
@@ -801,7 +823,7 @@ Result<void> VulkanBackend::render(const RenderPass& pass) {
             vk::AttachmentLoadOp::eClear, vk::AttachmentStoreOp::eStore,
             vk::ClearDepthStencilValue(pass.clear_depth, 0));
       rec.cmd.beginRendering(
-          vk::RenderingInfo({}, area, 1, 0, color, target->depth ? &depth : nullptr));
+          vk::RenderingInfo({}, area, 1, 0, colors, target->depth ? &depth : nullptr));
       // Negative height: clip +y is up and row 0 is the top, as in Direct3D.
       const float width = static_cast<float>(target->color.width);
       const float height = static_cast<float>(target->color.height);
@@ -831,13 +853,17 @@ Result<void> VulkanBackend::render(const RenderPass& pass) {
   });
 }
 
-Result<FloatImage> VulkanBackend::read_color(TargetHandle handle) {
-  const std::string what = fmt::format("read_color of target {}", handle.id);
+Result<FloatImage> VulkanBackend::read_color(TargetHandle handle) { return read_image(handle, false); }
+Result<FloatImage> VulkanBackend::read_second_color(TargetHandle handle) { return read_image(handle, true); }
+
+Result<FloatImage> VulkanBackend::read_image(TargetHandle handle, bool second) {
+  const std::string what = fmt::format("{} of target {}", second ? "read_second_color" : "read_color", handle.id);
   return guarded<FloatImage>(what, [&]() -> Result<FloatImage> {
     auto found = objects_.targets.find(handle, what);
     if (!found) return fail(found.error());
     Target* target = *found;
-    Image& color = target->color;
+    if (second && !target->second_color) return fail(what + ": the target has no second colour attachment");
+    Image& color = second ? *target->second_color : target->color;
     FloatImage result(color.width, color.height);
     const vk::DeviceSize bytes = result.rgba.size() * sizeof(float);
     Buffer readback = create_buffer(bytes, vk::BufferUsageFlagBits::eTransferDst);

@@ -298,6 +298,40 @@ TEST_P(BackendContractTest, SpecialFloatValuesReachReadBack) {
   EXPECT_TRUE(std::isnan(pixel.a)) << pixel.a;
 }
 
+TEST_P(BackendContractTest, ASecondColourAttachmentTakesLocationOne) {
+  auto target = backend().create_target({4, 2, true, /*second_color=*/true});
+  ASSERT_TRUE(target) << target.error().to_string();
+  auto both = fullscreen_program("both",
+                                 "#version 450\n"
+                                 "layout(location = 0) out vec4 color;\n"
+                                 "layout(location = 1) out vec4 second;\n"
+                                 "void main() {\n"
+                                 "  color = vec4(0.25, 0.5, 0.75, 1.0);\n"
+                                 "  second = vec4(floor(gl_FragCoord.xy), 16777215.0, -2.0);\n"
+                                 "}\n");
+  ASSERT_TRUE(both) << both.error().to_string();
+  RenderPass pass;
+  pass.target = *target;
+  pass.clear_color = {9.0f, 9.0f, 9.0f, 9.0f};
+  pass.draws.push_back(draw(*both));
+  ASSERT_TRUE(backend().render(pass));
+  auto color = backend().read_color(*target);
+  auto second = backend().read_second_color(*target);
+  ASSERT_TRUE(color && second) << (second ? "" : second.error().to_string());
+  for (uint32_t y = 0; y < 2; ++y)
+    for (uint32_t x = 0; x < 4; ++x) {
+      expect_near(color->at(x, y), {0.25f, 0.5f, 0.75f, 1.0f}, "colour");
+      // Whole numbers up to 2^24 are exact in the float target: what a traced program counts on.
+      EXPECT_EQ(second->at(x, y), glm::vec4(float(x), float(y), 16777215.0f, -2.0f)) << x << "," << y;
+    }
+
+  auto plain = backend().create_target({1, 1, false});
+  ASSERT_TRUE(plain);
+  auto missing = backend().read_second_color(*plain);
+  ASSERT_FALSE(missing);
+  EXPECT_NE(missing.error().message.find("no second colour attachment"), std::string::npos) << missing.error().message;
+}
+
 TEST_P(BackendContractTest, ADrawProducesNoDriverMessages) {
   auto target = backend().create_target({16, 16, true});
   auto program = fullscreen_program("uv", kUvFragment);
