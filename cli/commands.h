@@ -74,6 +74,7 @@ struct CompileOptions {
   std::vector<std::string> defines;  // KEYWORD, or KEY=VALUE
   std::string target = "vk";         // gl, vk, spirv, vk-hlsl
   std::string precision = "float";  // or "half": half emulation (gl, vk, spirv)
+  bool trace_nonfinite = false;     // the tracing variant of the fragment stage (gl, vk, spirv)
   bool reflect = false;
   std::filesystem::path output;      // a path prefix; empty = standard output
   std::string entry;                 // a fragment function, compiled as a full-screen pass
@@ -94,6 +95,7 @@ struct EvalOptions {
   std::filesystem::path output_dir = ".";
   std::optional<uint32_t> seed;  // inputs from this seed instead of the defaults and white
   bool allow_non_finite = false;  // NaN, Inf and negative output is reported, not a failure
+  bool trace_nonfinite = false;   // render the tracing variant too and say where non-finite values were born
   WorkerLimits workers;
   bool in_worker = false;  // this process is one lane's worker: render it here
 };

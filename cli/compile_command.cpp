@@ -151,7 +151,8 @@ int run_compile(const CompileOptions& options) {
         const harness::Lane lane = options.target == "gl" ? harness::Lane::Gl
                                    : options.target == "vk-hlsl" ? harness::Lane::VkHlsl
                                                                  : harness::Lane::Vk;
-        auto stages = harness::stages_for_lane(*compiled, lane, {.half_emulation = options.precision == "half"});
+        auto stages = harness::stages_for_lane(
+            *compiled, lane, {.half_emulation = options.precision == "half", .trace_nonfinite = options.trace_nonfinite});
         if (!stages) failure = stages.error().to_string() + "\n";
       }
       fmt::print("{} {}{}: {}\n", file.string(), bracketed(keywords), pass_label,
@@ -175,7 +176,7 @@ int run_compile(const CompileOptions& options) {
 
   if (options.target == "gl" || options.target == "vk") {
     auto emitted = glsl::emit(*module, {options.target == "gl" ? glsl::Flavour::Gl : glsl::Flavour::Vk,
-                                        options.precision == "half"});
+                                        options.precision == "half", options.trace_nonfinite});
     if (!emitted) {
       fmt::print(stderr, "{}\n", emitted.error().to_string());
       return kBadInput;
@@ -188,7 +189,8 @@ int run_compile(const CompileOptions& options) {
 
   // spirv and vk-hlsl: the program as the vk or vk-hlsl lane would run it.
   const harness::Lane lane = options.target == "spirv" ? harness::Lane::Vk : harness::Lane::VkHlsl;
-  auto stages = harness::stages_for_lane(*module, lane, {.half_emulation = options.precision == "half"});
+  auto stages = harness::stages_for_lane(
+      *module, lane, {.half_emulation = options.precision == "half", .trace_nonfinite = options.trace_nonfinite});
   if (!stages) {
     fmt::print(stderr, "{}\n", stages.error().to_string());
     return kBadInput;

@@ -10,6 +10,7 @@
 #include "cli/lane_selection.h"
 #include "cli/workers.h"
 #include "harness/render/evaluate.h"
+#include "harness/render/nonfinite_origins.h"
 #include "harness/image/image_compare.h"
 #include "harness/image/image_io.h"
 
@@ -36,6 +37,45 @@ void print_lane_differences(const std::map<harness::Lane, harness::FloatImage>& 
     }
 }
 
+// --trace-nonfinite: the tracing variant on the same inputs, its image held to the plain one, and
+// where its non-finite pixels were born.
+void print_traced(const EvalOptions& options, const hlsl::Module& module, harness::Lane lane, harness::Backend& backend,
+                  const harness::FloatImage& plain, uint32_t width, uint32_t height) {
+  const std::string name(harness::lane_name(lane));
+  harness::ProgramOptions traced_options{.half_emulation = options.precision == "half", .trace_nonfinite = true};
+  auto program = harness::FullscreenProgram::create(module, lane, backend, traced_options);
+  if (!program) {
+    fmt::print("{}: not traced: {}\n", name, program.error().message);
+    return;
+  }
+  harness::FloatImage record;
+  auto traced = options.seed ? program->run_seeded(backend, width, height, *options.seed, &record)
+                             : program->run(backend, width, height, {}, {}, &record);
+  (void)backend.destroy(program->handle());  // made here, destroyed once
+  if (!traced) {
+    fmt::print("{}: the traced render failed: {}\n", name, traced.error().to_string());
+    return;
+  }
+  fmt::print("{}: traced image {}\n", name,
+             harness::bitwise_equal(*traced, plain) ? "bit-identical to the plain one"
+                                                     : "DIFFERS from the plain one (the tracing variant changed a value)");
+  harness::CompiledVariant variant;
+  variant.program.name = module.sources.name(module.main_file);
+  variant.trace = program->trace();
+  auto origins = harness::find_nonfinite_origins(*traced, {"eval", std::move(record)}, {variant});
+  if (!origins) {
+    fmt::print("{}: {}\n", name, origins.error().to_string());
+    return;
+  }
+  if (origins->origins.empty() && !origins->unattributed_pixels) {
+    fmt::print("{}: no pixel's output is NaN, Inf or negative\n", name);
+    return;
+  }
+  fmt::print("{}: where the non-finite values were born:\n{}", name, harness::describe_origins(*origins));
+  const auto map = options.output_dir / (options.file.stem().string() + "." + name + ".origins.png");
+  if (auto written = harness::write_png(origins->map, map); written) fmt::print("{}: origins map {}\n", name, map.string());
+}
+
 // The options of `options` for one lane's worker: the same eval, of that lane alone.
 std::vector<std::string> worker_command(const EvalOptions& options, harness::Lane lane) {
   std::vector<std::string> command = {this_program(), "eval", options.file.string(), "--in-worker",
@@ -47,6 +87,7 @@ std::vector<std::string> worker_command(const EvalOptions& options, harness::Lan
   for (const std::string& keyword : options.keywords) command.insert(command.end(), {"-D", keyword});
   if (options.seed) command.insert(command.end(), {"--seed", std::to_string(*options.seed)});
   if (options.allow_non_finite) command.push_back("--allow-nonfinite");
+  if (options.trace_nonfinite) command.push_back("--trace-nonfinite");
   return command;
 }
 
@@ -169,6 +210,7 @@ int run_eval(const EvalOptions& options) {
       return program->run_seeded(**backend, width, height, *options.seed);
     }()
                               : harness::evaluate(*module, lane, **backend, width, height, {}, program_options);
+    if (image && options.trace_nonfinite) print_traced(options, *module, lane, **backend, *image, width, height);
     if (!image) {
       fmt::print("{}: failed: {}\n", name, image.error().to_string());
       exit_code = kBackendError;

@@ -181,6 +181,9 @@ static int run_command_line(int argc, char** argv) {
                       "half: round every half/min16float/fixed result to fp16 (gl, vk, spirv; vk-hlsl cannot)")
       ->check(CLI::IsMember({"float", "half"}))
       ->capture_default_str();
+  compile->add_flag("--trace-nonfinite", compile_options.trace_nonfinite,
+                    "Emit the fragment stage's tracing variant, which records where each pixel's first NaN or infinity "
+                    "is born (gl, vk, spirv; docs/stability.md)");
   compile->add_flag("--reflect", compile_options.reflect, "Print the reflection (JSON) instead of code");
   compile->add_option("--entry", compile_options.entry,
                       "Compile this fragment function as a full-screen pass (as eval runs it), whatever #pragma fragment says")
@@ -224,6 +227,9 @@ static int run_command_line(int argc, char** argv) {
                    "Fill every constant buffer and texture from seed N (values in ranges shaders mean, noise of each "
                    "texture's declared shape) instead of the defaults and a white texel")
       ->type_name("N");
+  eval->add_flag("--trace-nonfinite", eval_options.trace_nonfinite,
+                 "Render the tracing variant too (gl, vk) and print the source line where each pixel's first NaN, Inf "
+                 "(or negative output) was born, with a map of them as <file>.<lane>.origins.png");
   eval->add_flag("--allow-nonfinite", eval_options.allow_non_finite,
                  "NaN, Inf and negative output values are expected (a test of a hazard): print their counts, do not fail");
   add_worker_options(*eval, eval_options.workers, "lanes");

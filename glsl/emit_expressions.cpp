@@ -659,7 +659,7 @@ static Code arithmetic(StageEmitter& emitter, BinaryOp op, const Type& type, Cod
   return infix(std::move(l), binary_info(op), r);
 }
 
-Code StageEmitter::expr(const Expr* e) {
+Code StageEmitter::expr_untraced(const Expr* e) {
   if (!e) {
     fail({}, "internal error: an expression is missing");
     return {"0"};
@@ -910,6 +910,10 @@ Code StageEmitter::expr(const Expr* e) {
             if (!first) text += ", ";
             append_operand(text, arg, kAssign);
             first = false;
+          }
+          if (trace_) {  // the call path (emit_trace.cpp)
+            if (!first) text += ", ";
+            text += trace_call_path(function->name, e->loc);
           }
           text += ')';
           return half_value({std::move(text), kPostfix}, e->type);

@@ -190,6 +190,7 @@ void StageEmitter::function(const FunctionDecl& f) {
   if (!resource_paths(f.return_type).empty())
     fail(f.loc, "function " + in_quotes(f.name) + " cannot return " + in_quotes(f.return_type.name()) +
                     ", which holds resources; pass them as parameters");
+  current_function_ = f.name;
   std::string signature = type_name(f.return_type, f.loc) + " " + names_.function(&f) + "(";
   bool first = true;
   for (const auto& param : f.params) {
@@ -200,9 +201,11 @@ void StageEmitter::function(const FunctionDecl& f) {
       signature += declaration;
     }
   }
+  if (trace_) signature += first ? "uint xs_path" : ", uint xs_path";  // emit_trace.cpp
   out_.line(signature + ") {");
   body(f.body.get());
   out_.line("}");
+  current_function_ = "main";
 }
 
 std::vector<std::string> StageEmitter::parameter_declarations(const ParamDecl& param) {
@@ -253,6 +256,8 @@ std::string variable_text(StageEmitter& emitter, const VarDecl& var, const Names
       text = "const ";
     }
   }
+  if (!init.empty() && text.empty() && !emitter.is_tested(var.initializer.get()))
+    init = emitter.traced({std::move(init), kAssign}, var.type, TraceSite::Kind::Initialization, var.loc, var.name).text;
   text += emitter.declarator(var.type, names.variable(&var), var.loc);
   if (!init.empty()) {
     text += " = ";
@@ -423,7 +428,10 @@ void StageEmitter::statement(const Stmt* stmt) {
     case StmtKind::Return: {
       const Expr* value = static_cast<const ReturnStmt*>(stmt)->value.get();
       out_.mark(stmt->loc);
-      if (value)
+      if (value && !is_tested(value))
+        out_.line({"return ", traced(expr(value), value->type, TraceSite::Kind::Return, stmt->loc,
+                                     current_function_).text, ";"});
+      else if (value)
         out_.line({"return ", expr(value).text, ";"});
       else
         out_.line("return;");

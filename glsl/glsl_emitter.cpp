@@ -169,9 +169,10 @@ const StageVariable* find_variable(const std::vector<StageVariable>& variables, 
 
 }  // namespace
 
-StageEmitter::StageEmitter(const Module& module, Flavour flavour, const Names& names, bool vertex, bool half_emulation)
+StageEmitter::StageEmitter(const Module& module, Flavour flavour, const Names& names, bool vertex, bool half_emulation,
+                           bool trace, uint32_t trace_program)
     : module_(module), reflection_(module.reflection), flavour_(flavour), half_emulation_(half_emulation), names_(names),
-      vertex_(vertex) {
+      vertex_(vertex), trace_(trace && !vertex), trace_program_(trace_program) {
   entry_ = vertex ? module.entry_points.vertex : module.entry_points.fragment;
 }
 
@@ -541,6 +542,7 @@ std::string StageEmitter::interface_and_main() {
   Writer main;
   main.line("void main() {");
   main.indent = 1;
+  if (trace_) main.line("const uint xs_path = 0u;  // the entry point's calls are the outermost");
   for (const std::string& line : main_prologue_) main.line(line);
 
   // Arguments.
@@ -631,6 +633,7 @@ std::string StageEmitter::interface_and_main() {
               interpolation_qualifier(item.interpolation, source_type) + "in " +
               declarator(source_type, name, item.loc) + ";");
       source = {name};
+      trace_input(main, name, source_type, item.semantic, item.loc);
     }
     main.line(item.path + " = " + convert(source, source_type, item.type, item.loc).text + ";");
   }
@@ -638,6 +641,7 @@ std::string StageEmitter::interface_and_main() {
   // The call.
   std::string call = names_.function(&entry) + "(";
   for (size_t i = 0; i < entry.params.size(); ++i) call += (i ? ", xs_arg" : "xs_arg") + std::to_string(i);
+  if (trace_) call += entry.params.empty() ? "xs_path" : ", xs_path";
   call += ")";
   if (entry.return_type.is_void())
     main.line(call + ";");
@@ -686,8 +690,13 @@ std::string StageEmitter::interface_and_main() {
       declare("layout(location = " + std::to_string(parsed.index) + ") out " + declarator(item.type, name, item.loc) +
               ";");
       main.line(name + " = " + item.path + ";");
+      if (trace_ && parsed.index == 1)
+        fail(item.loc, "the tracing variant records at fragment output location 1, which " + in_quotes(item.semantic) +
+                           " takes; trace a shader that writes SV_Target0 only");
+      trace_output(main, item.path, item.type, item.semantic, item.loc);
     }
   }
+  trace_record(main, interface);
   main.indent = 0;
   main.line("}");
   interface_text_ = interface.text();
@@ -706,10 +715,14 @@ Result<EmittedProgram> emit(const hlsl::Module& module, const EmitOptions& optio
   for (const bool vertex : {true, false}) {
     const hlsl::FunctionDecl* entry = vertex ? module.entry_points.vertex : module.entry_points.fragment;
     if (!entry) continue;
-    detail::StageEmitter emitter(module, options.flavour, names, vertex, options.half_emulation);
+    if (options.trace_nonfinite && options.trace_program >= NonfiniteTrace::kMaxPrograms)
+      return fail("the tracing variant numbers at most " + std::to_string(NonfiniteTrace::kMaxPrograms) + " programs");
+    detail::StageEmitter emitter(module, options.flavour, names, vertex, options.half_emulation,
+                                 options.trace_nonfinite, options.trace_program);
     std::string text = emitter.run();
     if (emitter.error()) return fail(*emitter.error());
     (vertex ? program.vertex : program.fragment) = EmittedStage{std::move(text)};
+    if (!vertex && options.trace_nonfinite) program.trace = emitter.take_trace();
   }
   return program;
 }

@@ -30,6 +30,65 @@ struct EmitOptions {
   // (overflow to infinity past 65504, 11-bit significands) show on drivers that compute half in
   // fp32. Values read from constant buffers stay as stored; half matrices are not rounded.
   bool half_emulation = false;
+  // The tracing variant (fragment stage): every float-typed assignment, initialisation, return
+  // value and call result is tested for NaN and infinity (and the colour outputs for negative
+  // components too); the first site that fails in an invocation is written, with the calls that
+  // led to it, to fragment output location 1 (see NonfiniteTrace). The values computed are the
+  // untraced variant's: each test reads a value and returns it unchanged.
+  bool trace_nonfinite = false;
+  // The traced program's number (below 256), the high bits of its sites' numbers, so that the
+  // record of a target several programs drew into says which program's site it is.
+  uint32_t trace_program = 0;
+};
+
+// A place in the author's source the tracing variant tests.
+struct TraceSite {
+  enum class Kind {
+    Initialization,      // `float x = value;`
+    Assignment,          // `x = value`
+    CompoundAssignment,  // `x += value`, ...
+    Return,              // `return value;`
+    Call,                // the result of a call: the author's function, an intrinsic, a texture read
+    Input,               // a fragment input that arrived non-finite from the vertex stage
+    Output,              // the entry point's colour output (nothing earlier failed)
+    NegativeOutput,      // a colour output component below zero (tested at the output only)
+  };
+  Kind kind = Kind::Assignment;
+  std::string file;         // the source file's name, as messages call it
+  uint32_t line = 0;        // 1-based; 0 for generated code
+  uint32_t column = 0;      // 1-based
+  std::string source_line;  // the text of that line
+  std::string function;     // the function it is in ("main" for the generated entry code)
+  // What the site names: the place assigned or initialised ("D", "color.rgb"), the function
+  // returning, the intrinsic called ("pow"), the input's or output's semantic ("TEXCOORD0").
+  std::string what;
+};
+const char* trace_site_kind_name(TraceSite::Kind kind);
+// "the value D_GGX returns", "the result of pow", "input TEXCOORD0 as it arrived from the vertex stage".
+std::string describe_site(const TraceSite& site);
+
+// A call of one of the author's functions, by which a traced site names its callers.
+struct TraceCall {
+  std::string callee;
+  std::string caller;
+  std::string file;
+  uint32_t line = 0;
+  uint32_t column = 0;
+  std::string source_line;
+};
+
+// What a traced fragment stage records per pixel, in the four channels of location 1, as whole
+// numbers (exact in a float target below 2^24): R the first site that failed, as
+// EmitOptions::trace_program * 65536 + 1 + an index into `sites` (0 where none did); G, B and A
+// the calls that led there, innermost first (1 + an index into `calls`; 0 past the outermost).
+// Calls more than kRecordedCalls deep are not recorded.
+struct NonfiniteTrace {
+  std::vector<TraceSite> sites;
+  std::vector<TraceCall> calls;
+  static constexpr uint32_t kRecordedCalls = 3;
+  static constexpr uint32_t kMaxCalls = 1023;     // a call's number takes 10 bits of the path
+  static constexpr uint32_t kMaxSites = 65535;    // a site's number the low 16 bits of R
+  static constexpr uint32_t kMaxPrograms = 256;   // so that R stays below 2^24
 };
 
 struct EmittedStage {
@@ -42,6 +101,8 @@ struct EmittedProgram {
   // Index i is the source-string number N that `#line L N` uses (the front end's file indices,
   // N >= 1); index 0 is the generated text itself.
   std::vector<std::string> source_files;
+  // With EmitOptions::trace_nonfinite: the fragment stage's sites and calls.
+  NonfiniteTrace trace;
 };
 
 // The module must have compiled without errors. Fails, with the location of the construct, on

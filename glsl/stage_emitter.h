@@ -136,10 +136,13 @@ class Helpers {
 
 class StageEmitter {
  public:
-  StageEmitter(const hlsl::Module& module, Flavour flavour, const Names& names, bool vertex, bool half_emulation);
+  StageEmitter(const hlsl::Module& module, Flavour flavour, const Names& names, bool vertex, bool half_emulation,
+               bool trace = false, uint32_t trace_program = 0);
   // The stage's complete GLSL text; check error() afterwards.
   std::string run();
   const std::optional<Error>& error() const { return error_; }
+  // The tracing variant's sites and calls, after run().
+  NonfiniteTrace take_trace() { return std::move(trace_table_); }
 
   // --- diagnostics: the first error wins; emission goes on so that it ends cleanly.
   void fail(Loc loc, const std::string& message);
@@ -154,8 +157,10 @@ class StageEmitter {
   // The GLSL type of a vector of `count` booleans (`bool` for 1).
   static std::string bool_type(uint32_t count);
 
-  // --- expressions (emit_expressions.cpp)
+  // --- expressions (emit_expressions.cpp; expr() itself in emit_trace.cpp)
+  // An expression; in the tracing variant a site's value is tested on its way.
   Code expr(const Expr* e);
+  Code expr_untraced(const Expr* e);
   // `value` of type `from` as type `to`, GLSL converting explicitly.
   Code convert(Code value, const Type& from, const Type& to, Loc loc);
   Code convert_components(Code value, const Type& from, const Type& to, Loc loc);
@@ -233,6 +238,27 @@ class StageEmitter {
   void local_variable(const hlsl::VarDecl& var);
   std::string initializer(const hlsl::VarDecl& var);
 
+  // --- the tracing variant (emit_trace.cpp)
+  // `value` (of `type`) tested as the site `kind` at `loc`, when tracing and the type is float.
+  Code traced(Code value, const Type& type, TraceSite::Kind kind, Loc loc, std::string what);
+  // Whether expr() tests `e` as a site of its own: an assignment or an intrinsic's result of float
+  // type. A site's value is not tested again as it is assigned, initialises or is returned.
+  bool is_trace_site(const Expr* e) const;
+  // A site, or a call of the author's function (tested where it returns): a value assigned,
+  // initialised or returned from it is not tested again.
+  bool is_tested(const Expr* e) const;
+  // The value of the call path a call of the author's function at `loc` passes on: the caller's
+  // path with this call's number in its low bits.
+  std::string trace_call_path(const std::string& callee, Loc loc);
+  // main(): the fragment inputs tested as they arrive, the colour outputs tested as they leave,
+  // and the record written to location 1.
+  void trace_input(Writer& main, const std::string& path, const Type& type, const std::string& semantic, Loc loc);
+  void trace_output(Writer& main, const std::string& path, const Type& type, const std::string& semantic, Loc loc);
+  void trace_record(Writer& main, Writer& interface);
+  TraceSite site_at(TraceSite::Kind kind, Loc loc, std::string what) const;
+  // Adds `site` to the table; its number as the record holds it.
+  uint32_t add_site(TraceSite site, Loc loc);
+
   // --- the stage (glsl_emitter.cpp)
   void collect_used_declarations();
   std::string declarations();
@@ -269,6 +295,11 @@ class StageEmitter {
   std::unordered_map<const hlsl::Decl*, SplitMember> split_members_;
   // Constant-buffer members by name, viewing the tree's strings.
   std::unordered_map<std::string_view, const hlsl::VarDecl*> uniform_decls_;
+
+  const bool trace_;  // the tracing variant
+  const uint32_t trace_program_;
+  std::string current_function_ = "main";
+  NonfiniteTrace trace_table_;
 };
 
 }  // namespace xshade::glsl::detail

@@ -21,13 +21,16 @@ std::vector<std::byte> default_constant_buffer(const hlsl::ConstantBuffer& buffe
 
 Result<FullscreenProgram> FullscreenProgram::create(const hlsl::Module& module, Lane lane, Backend& backend,
                                                     const ProgramOptions& options) {
-  auto desc = program_for_lane(module, lane, options);
+  glsl::NonfiniteTrace trace;
+  auto desc = program_for_lane(module, lane, options, &trace);
   if (!desc) return fail(desc.error());
   if (!desc->fullscreen) return fail("the shader must be a fragment shader without a vertex stage");
   auto program = backend.create_program(*desc);
   if (!program) return fail(program.error());
   FullscreenProgram made;
   made.program_ = *program;
+  made.traced_ = options.trace_nonfinite;
+  made.trace_ = std::move(trace);
   const auto& buffers = module.reflection.constant_buffers;
   for (size_t i = 0; i < buffers.size(); ++i) {
     hlsl::ConstantBuffer declared = buffers[i];
@@ -79,11 +82,12 @@ TextureData default_texture(const TextureSlot& slot) {
 
 Result<FloatImage> FullscreenProgram::run(Backend& backend, uint32_t width, uint32_t height,
                                           const std::map<std::string, std::vector<std::byte>>& constant_buffers,
-                                          const std::map<std::string, TextureSource>& textures) const {
+                                          const std::map<std::string, TextureSource>& textures,
+                                          FloatImage* record) const {
   // The target and the default textures are this run's own, freed when it returns; a program is
   // run many times (the stability suite, the lane tests), and would otherwise keep every one.
   ResourceSet resources(backend);
-  auto target = resources.create_target({width, height, false});
+  auto target = resources.create_target({width, height, false, traced_});
   if (!target) return fail(target.error());
   DrawItem draw{program_, {}, {}, {}};
   for (const Buffer& buffer : buffers_) {
@@ -114,10 +118,16 @@ Result<FloatImage> FullscreenProgram::run(Backend& backend, uint32_t width, uint
     draw.textures.push_back({slot.name, TextureSource::texture(known->second, {Filter::Nearest, AddressMode::ClampToEdge})});
   }
   if (auto rendered = backend.render({*target, glm::vec4(0.0f), 1.0f, {draw}}); !rendered) return fail(rendered.error());
+  if (record && traced_) {
+    auto recorded = backend.read_second_color(*target);
+    if (!recorded) return fail(recorded.error());
+    *record = std::move(*recorded);
+  }
   return backend.read_color(*target);
 }
 
-Result<FloatImage> FullscreenProgram::run_seeded(Backend& backend, uint32_t width, uint32_t height, uint32_t seed) const {
+Result<FloatImage> FullscreenProgram::run_seeded(Backend& backend, uint32_t width, uint32_t height, uint32_t seed,
+                                                 FloatImage* record) const {
   std::map<std::string, std::vector<std::byte>> constant_buffers;
   for (const Buffer& buffer : buffers_) constant_buffers[buffer.name] = seeded_constant_buffer(buffer.declared, seed);
   ResourceSet resources(backend);  // the textures are this run's own
@@ -127,7 +137,7 @@ Result<FloatImage> FullscreenProgram::run_seeded(Backend& backend, uint32_t widt
     if (!texture) return fail(texture.error());
     textures[slot.name] = TextureSource::texture(*texture, seeded_sampler(slot));
   }
-  return run(backend, width, height, constant_buffers, textures);
+  return run(backend, width, height, constant_buffers, textures, record);
 }
 
 Result<FloatImage> evaluate(const hlsl::Module& module, Lane lane, Backend& backend, uint32_t width, uint32_t height,

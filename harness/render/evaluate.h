@@ -34,13 +34,20 @@ class FullscreenProgram {
   // buffers it names (by their HLSL name); each must have the buffer's size. `textures` binds
   // the textures it names (by their HLSL name, uploaded to `backend` by the caller) in place of
   // the white texel; a name the program does not read is an error.
+  // A program made with ProgramOptions::trace_nonfinite also records where non-finite values
+  // were born: into `record` (glsl::NonfiniteTrace says how it reads) when given.
   Result<FloatImage> run(Backend& backend, uint32_t width, uint32_t height,
                          const std::map<std::string, std::vector<std::byte>>& constant_buffers = {},
-                         const std::map<std::string, TextureSource>& textures = {}) const;
+                         const std::map<std::string, TextureSource>& textures = {},
+                         FloatImage* record = nullptr) const;
 
   // The same with every constant buffer and texture made from `seed` (synthetic_inputs.h) in
   // place of the defaults and the white texel: what corpus execution feeds a real shader.
-  Result<FloatImage> run_seeded(Backend& backend, uint32_t width, uint32_t height, uint32_t seed) const;
+  Result<FloatImage> run_seeded(Backend& backend, uint32_t width, uint32_t height, uint32_t seed,
+                                FloatImage* record = nullptr) const;
+
+  // A traced program's sites and calls (empty otherwise).
+  const glsl::NonfiniteTrace& trace() const { return trace_; }
 
   // The size in bytes of the constant buffer `name`, if the program has one.
   std::optional<uint32_t> constant_buffer_size(const std::string& name) const;
@@ -56,6 +63,8 @@ class FullscreenProgram {
     hlsl::ConstantBuffer declared;  // its members, for seeded bytes (decl cleared: the module may go)
   };
   ProgramHandle program_;
+  bool traced_ = false;
+  glsl::NonfiniteTrace trace_;
   std::vector<Buffer> buffers_;
   std::vector<TextureSlot> texture_slots_;
 };

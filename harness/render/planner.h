@@ -20,6 +20,9 @@ struct VariantRequest {
   std::vector<std::string> keywords;  // sorted, no repeats
   std::string fragment_entry;         // a post pass's entry; empty for a material
   bool half_emulation = false;        // every half result rounded to fp16 (GLSL lanes only)
+  // The tracing variant (gl and vk lanes), numbered trace_program (render/shader_program.h).
+  bool trace_nonfinite = false;
+  uint32_t trace_program = 0;
 
   // "materials/toon.hlsl [_GUARDED]" or "post/depth_of_field.hlsl:frag_coc [_KERNEL_SMALL]".
   std::string label() const;

@@ -115,7 +115,7 @@ class SceneRenderer {
 
   // The scene pass, then the post passes on its colour and depth.
   Result<RenderedScene> render() {
-    auto target = resources_.create_target({scene_.width, scene_.height, true});
+    auto target = resources_.create_target({scene_.width, scene_.height, true, options_.trace_nonfinite});
     if (!target) return fail(from_backend(target.error()));
     scene_target_ = *target;
     const glm::uvec2 size{scene_.width, scene_.height};
@@ -155,6 +155,7 @@ class SceneRenderer {
     for (uint32_t frame = 0; frame < std::max(1u, options_.frames); ++frame) {
       timings_.clear();
       pass_images_.clear();
+      traces_.clear();
       current_ = scene_color_;
       current_effect_ = SIZE_MAX;
       for (size_t p = 0; p < plan_.passes.size(); ++p) {
@@ -167,12 +168,18 @@ class SceneRenderer {
           if (!image) return fail(image.error());
           pass_images_.emplace_back(pass.name, std::move(*image));
         }
+        if (options_.trace_nonfinite) {
+          auto record = backend_.read_second_color(TargetHandle{current_.binding.id});
+          if (!record) return fail(from_backend(record.error()));
+          traces_.push_back({pass.name, std::move(*record)});
+        }
       }
       frame_timings.push_back(timings_);
     }
     auto image = read_current();
     if (!image) return fail(image.error());
-    return RenderedScene{std::move(*image), std::move(timings_), std::move(pass_images_), std::move(frame_timings)};
+    return RenderedScene{std::move(*image), std::move(timings_), std::move(pass_images_), std::move(frame_timings),
+                         std::move(traces_)};
   }
 
   // The image so far is always a target's colour once a pass has run: the scene pass's or a
@@ -350,7 +357,7 @@ class SceneRenderer {
     const uint32_t height = half ? std::max(1u, scene_.height / 2) : scene_.height;
     auto& target = pass_target_[index];
     if (!target) {
-      auto created = resources_.create_target({width, height, false});
+      auto created = resources_.create_target({width, height, false, options_.trace_nonfinite});
       if (!created) return fail(from_backend(created.error()));
       target = *created;
     }
@@ -459,6 +466,7 @@ class SceneRenderer {
   MeshHandle triangle_;
   std::vector<PassTiming> timings_;
   std::vector<std::pair<std::string, FloatImage>> pass_images_;
+  std::vector<PassTrace> traces_;
 };
 
 // What makes two programs the same: their stages' code and the layout they are bound by, not

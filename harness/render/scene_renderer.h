@@ -22,6 +22,12 @@ struct PassTiming {
   double milliseconds = 0.0;  // wall time of Backend::render, which runs the pass to completion
 };
 
+// What a traced pass recorded (glsl::NonfiniteTrace says how it reads), by the pass's name.
+struct PassTrace {
+  std::string pass;
+  FloatImage record;
+};
+
 struct RenderedScene {
   FloatImage image;
   std::vector<PassTiming> timings;  // of the last frame
@@ -31,6 +37,8 @@ struct RenderedScene {
   // The pass times of each frame, in order. The first frame also creates the programs, meshes,
   // textures and targets (and drivers compile their pipelines then).
   std::vector<std::vector<PassTiming>> frame_timings;
+  // With RenderOptions::trace_nonfinite: each pass's record, in order, of the last frame.
+  std::vector<PassTrace> traces = {};
 };
 
 // The time of the passes of one frame whose name starts with `prefix` ("" for all of them).
@@ -56,6 +64,9 @@ struct RenderOptions {
   ProgramCache* programs = nullptr;  // when given, programs come from it (and go into it)
   // Told each pass's name before it is drawn: where a render that hangs or crashes was.
   std::function<void(std::string_view pass)> on_pass = {};
+  // The variants are tracing variants (VariantCompiler::compile_plan): every target gets the
+  // second colour attachment they record into, and each pass's record is read back.
+  bool trace_nonfinite = false;
 };
 
 // `variants` holds the compiled form of each of the plan's variants for this backend's lane.

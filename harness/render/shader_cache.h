@@ -16,6 +16,7 @@
 #include <string>
 #include <vector>
 
+#include "glsl/glsl_emitter.h"
 #include "harness/backend/backend.h"
 #include "harness/render/lanes.h"
 #include "harness/render/planner.h"
@@ -27,6 +28,9 @@ namespace xshade::harness {
 struct CompiledVariant {
   ProgramDesc program;
   ShaderInterface interface;
+  // A traced variant's sites and calls (VariantRequest::trace_nonfinite); traced variants are
+  // never cached, so an entry never holds one.
+  glsl::NonfiniteTrace trace = {};
 };
 
 struct CacheLookup {

@@ -138,6 +138,10 @@ Result<LaneStages> stages_for_lane(const hlsl::Module& module, Lane lane, const 
       return fail("half emulation rewrites the GLSL xshade emits; the vk-hlsl lane compiles the source with glslang and "
                   "cannot emulate half",
                   module.sources.resolve({module.main_file, 0, 0}));
+    if (options.trace_nonfinite)
+      return fail("tracing non-finite values instruments the GLSL xshade emits; the vk-hlsl lane compiles the source with "
+                  "glslang's HLSL front end and cannot be traced (trace gl or vk)",
+                  module.sources.resolve({module.main_file, 0, 0}));
     for (const bool vertex : {true, false}) {
       if (!(vertex ? module.entry_points.vertex : module.entry_points.fragment)) continue;
       auto stage = vk_hlsl_stage(module, vertex ? spirv::Stage::Vertex : spirv::Stage::Fragment,
@@ -149,8 +153,9 @@ Result<LaneStages> stages_for_lane(const hlsl::Module& module, Lane lane, const 
     return stages;
   }
   const glsl::Flavour flavour = lane == Lane::Gl ? glsl::Flavour::Gl : glsl::Flavour::Vk;
-  auto emitted = glsl::emit(module, {flavour, options.half_emulation});
+  auto emitted = glsl::emit(module, {flavour, options.half_emulation, options.trace_nonfinite, options.trace_program});
   if (!emitted) return fail(emitted.error());
+  stages.trace = std::move(emitted->trace);
   const std::string name = module.sources.name(module.main_file);
   for (const bool vertex : {true, false}) {
     const std::optional<glsl::EmittedStage>& emitted_stage = vertex ? emitted->vertex : emitted->fragment;
@@ -171,13 +176,15 @@ Result<LaneStages> stages_for_lane(const hlsl::Module& module, Lane lane, const 
   return stages;
 }
 
-Result<ProgramDesc> program_for_lane(const hlsl::Module& module, Lane lane, const ProgramOptions& options) {
+Result<ProgramDesc> program_for_lane(const hlsl::Module& module, Lane lane, const ProgramOptions& options,
+                                     glsl::NonfiniteTrace* trace) {
   if (!module.ok()) return fail("the shader did not compile", module.sources.resolve({module.main_file, 0, 0}));
   if (!module.entry_points.fragment)
     return fail("the shader has no fragment entry point (#pragma fragment): a program needs one to draw",
                 module.sources.resolve({module.main_file, 0, 0}));
   auto stages = stages_for_lane(module, lane, options);
   if (!stages) return fail(stages.error());
+  if (trace) *trace = std::move(stages->trace);
   ProgramDesc desc;
   desc.name = module.sources.name(module.main_file);
   desc.layout = layout_for_lane(module.reflection, lane);

@@ -1,6 +1,7 @@
 // A shader compiled by xshade's front end, made into a program for one lane's backend.
 #pragma once
 
+#include "glsl/glsl_emitter.h"
 #include "harness/backend/backend.h"
 #include "harness/render/lanes.h"
 #include "hlsl_like/compiler.h"
@@ -17,12 +18,18 @@ namespace xshade::harness {
 // the vk-hlsl lane compiles the source with glslang, which cannot, and fails saying so.
 struct ProgramOptions {
   bool half_emulation = false;
+  // The tracing variant of the fragment stage (glsl::EmitOptions::trace_nonfinite), numbered
+  // `trace_program`; the gl and vk lanes only (vk-hlsl compiles the source with glslang).
+  bool trace_nonfinite = false;
+  uint32_t trace_program = 0;
 };
 
 // Half emulation also defines this macro for the front end, so that a shader can choose to
 // compute in half where a GPU that prefers half would (the library's `real`, include/common.hlsl).
 inline constexpr const char* kHalfEmulationMacro = "XSHADE_PRECISION_HALF";
-Result<ProgramDesc> program_for_lane(const hlsl::Module& module, Lane lane, const ProgramOptions& options = {});
+// With options.trace_nonfinite, `trace` receives the traced fragment stage's sites and calls.
+Result<ProgramDesc> program_for_lane(const hlsl::Module& module, Lane lane, const ProgramOptions& options = {},
+                                     glsl::NonfiniteTrace* trace = nullptr);
 
 // The stages the module has (a vertex shader alone, a fragment shader alone, or both), each
 // compiled for the lane as program_for_lane would, without the full-screen vertex shader: what
@@ -30,6 +37,7 @@ Result<ProgramDesc> program_for_lane(const hlsl::Module& module, Lane lane, cons
 struct LaneStages {
   std::optional<ShaderStageSource> vertex;
   std::optional<ShaderStageSource> fragment;
+  glsl::NonfiniteTrace trace;  // with ProgramOptions::trace_nonfinite
 };
 Result<LaneStages> stages_for_lane(const hlsl::Module& module, Lane lane, const ProgramOptions& options = {});
 

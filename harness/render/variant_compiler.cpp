@@ -31,7 +31,10 @@ Result<const hlsl::Module*> VariantCompiler::front_end(const VariantRequest& req
 }
 
 Result<CompiledVariant> VariantCompiler::compile(const VariantRequest& request, Lane lane) {
-  if (cache_) {
+  // A traced variant is made only where a render failed or was asked for: not worth a cache
+  // entry, and its sites would have to be stored with it.
+  const bool cached = cache_ && !request.trace_nonfinite;
+  if (cached) {
     CacheLookup found = cache_->look_up(request, lane);
     if (found.variant) {
       ++cached_;
@@ -42,21 +45,32 @@ Result<CompiledVariant> VariantCompiler::compile(const VariantRequest& request, 
   }
   auto module = front_end(request);
   if (!module) return fail(module.error());
-  auto program = program_for_lane(**module, lane, {.half_emulation = request.half_emulation});
+  glsl::NonfiniteTrace trace;
+  auto program = program_for_lane(**module, lane,
+                                  {.half_emulation = request.half_emulation,
+                                   .trace_nonfinite = request.trace_nonfinite,
+                                   .trace_program = request.trace_program},
+                                  &trace);
   if (!program) return fail(program.error());
-  CompiledVariant variant{std::move(*program), shader_interface((*module)->reflection)};
+  CompiledVariant variant{std::move(*program), shader_interface((*module)->reflection), std::move(trace)};
   ++compiled_;
-  if (cache_) {
+  if (cached) {
     if (auto stored = cache_->store(request, lane, variant, (*module)->dependencies()); !stored && !cache_write_error_)
       cache_write_error_ = stored.error();
   }
   return variant;
 }
 
-Result<std::vector<CompiledVariant>> VariantCompiler::compile_plan(const Plan& plan, Lane lane, bool half_emulation) {
+Result<std::vector<CompiledVariant>> VariantCompiler::compile_plan(const Plan& plan, Lane lane, bool half_emulation,
+                                                                   bool trace_nonfinite) {
+  if (trace_nonfinite && plan.variants.size() > glsl::NonfiniteTrace::kMaxPrograms)
+    return fail("the tracing variant numbers at most " + std::to_string(glsl::NonfiniteTrace::kMaxPrograms) +
+                " programs in a scene; this one has " + std::to_string(plan.variants.size()));
   std::vector<CompiledVariant> variants;
   for (VariantRequest request : plan.variants) {
     request.half_emulation = half_emulation;
+    request.trace_nonfinite = trace_nonfinite;
+    request.trace_program = uint32_t(variants.size());
     auto compiled = compile(request, lane);
     if (!compiled) return fail(compiled.error());
     variants.push_back(std::move(*compiled));

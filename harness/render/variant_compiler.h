@@ -19,8 +19,10 @@ class VariantCompiler {
   VariantCompiler(ShaderSearchPath shaders, const ShaderCache* cache);
 
   Result<CompiledVariant> compile(const VariantRequest& request, Lane lane);
-  // Every variant of a plan, in the plan's order, each with `half_emulation` as given.
-  Result<std::vector<CompiledVariant>> compile_plan(const Plan& plan, Lane lane, bool half_emulation);
+  // Every variant of a plan, in the plan's order, each with `half_emulation` as given; with
+  // `trace_nonfinite` the tracing variants, each numbered by its place in the plan.
+  Result<std::vector<CompiledVariant>> compile_plan(const Plan& plan, Lane lane, bool half_emulation,
+                                                    bool trace_nonfinite = false);
   bool in_cache(const VariantRequest& request, Lane lane) const;
   // The folders sources and includes come from; a plan for this compiler is made against them.
   const ShaderSearchPath& shaders() const { return shaders_; }
