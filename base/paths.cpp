@@ -12,6 +12,16 @@ std::optional<std::filesystem::path> resolved_path(const std::filesystem::path& 
   return resolved;
 }
 
+std::optional<std::filesystem::path> existing_resolved_path(const std::filesystem::path& path) {
+  namespace fs = std::filesystem;
+  std::error_code error;
+  const fs::path absolute = fs::absolute(path, error);
+  if (error) return std::nullopt;
+  fs::path resolved = fs::canonical(absolute, error);
+  if (error) return std::nullopt;
+  return resolved;
+}
+
 bool resolved_path_is_inside(const std::filesystem::path& file, const std::filesystem::path& folder) {
   // The common case on the strings, as lexically_relative would decide it: the file's path is the
   // folder's, a separator and names none of which is empty or starts with a dot (no `.` or `..`).

@@ -18,6 +18,10 @@ bool path_is_inside(const std::filesystem::path& file, const std::filesystem::pa
 // `path` made absolute with `..` and symbolic links resolved (the part that does not exist yet
 // is kept as written); nothing when the file system cannot tell.
 std::optional<std::filesystem::path> resolved_path(const std::filesystem::path& path);
+// resolved_path for a path that exists, the same path when it does; nothing when it does not.
+// resolved_path first asks whether the whole path exists (to know how much of it to resolve),
+// which a caller that knows the path exists, or is content with nothing otherwise, need not ask.
+std::optional<std::filesystem::path> existing_resolved_path(const std::filesystem::path& path);
 // path_is_inside for a file and a folder resolved_path gave.
 bool resolved_path_is_inside(const std::filesystem::path& file, const std::filesystem::path& folder);
 

@@ -29,6 +29,21 @@ TEST(PathIsInside, HoldsAPathToItsFolderWithDotDotAndLinksResolved) {
   fs::remove_all(root);
 }
 
+// For a path that exists, existing_resolved_path is resolved_path; for one that does not, it
+// gives nothing where resolved_path keeps the missing part as written.
+TEST(ExistingResolvedPath, IsResolvedPathForAPathThatExists) {
+  const fs::path root = fs::temp_directory_path() / "xshade_existing_resolved_path";
+  fs::remove_all(root);
+  fs::create_directories(root / "folder/sub");
+  fs::create_symlink(root / "folder/sub", root / "folder/link");
+  for (const fs::path& path : {root / "folder", root / "folder/sub/..", root / "folder/link", root / "folder//sub"})
+    EXPECT_EQ(existing_resolved_path(path), resolved_path(path)) << path;
+  EXPECT_EQ(existing_resolved_path(root / "folder/link"), resolved_path(root / "folder/sub"));
+  EXPECT_FALSE(existing_resolved_path(root / "folder/missing.hlsl"));
+  EXPECT_TRUE(resolved_path(root / "folder/missing.hlsl"));
+  fs::remove_all(root);
+}
+
 // The lexical half decides as lexically_relative does, on its short path (plain names under the
 // folder) and off it (dots, empty names, a folder written with a trailing separator).
 TEST(PathIsInside, ResolvedPathsAreComparedAsLexicallyRelativeWould) {

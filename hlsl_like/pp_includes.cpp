@@ -2,6 +2,7 @@
 // the folders an include may not leave, the stack of files being read with its limits (depth and
 // cycles), #pragma once and include guards remembered per file.
 #include <algorithm>
+#include <cerrno>
 #include <filesystem>
 #include <memory>
 #include <optional>
@@ -40,12 +41,36 @@ void join(std::string_view folder, std::string_view name, std::string& out) {
   out += name;
 }
 
+// What looking a name up below a folder's resolved path told.
+enum class BelowFolder { Missing, Found, Unsure };
+
+// `relative` (/-separated) below `resolved_folder`, the resolved path of a folder that exists, an
+// lstat a name. When every name is a plain one (not empty, `.` or `..`) and none is a link, the
+// folder's path with the names after it is the file's resolved path (left in `path`), and whether
+// the file is a regular one is what a stat of the path as spelled would tell: Found or Missing.
+// Anything else is Unsure, for that stat and a resolution of the whole path to decide.
+BelowFolder look_below(std::string_view resolved_folder, std::string_view relative, std::string& path) {
+  path.assign(resolved_folder);
+  for (;;) {
+    const size_t slash = relative.find('/');
+    const std::string_view name = relative.substr(0, slash);
+    if (name.empty() || name == "." || name == "..") return BelowFolder::Unsure;
+    if (path.empty() || path.back() != '/') path += '/';
+    path += name;
+    struct stat status {};
+    if (::lstat(path.c_str(), &status) != 0)
+      return errno == ENOENT || errno == ENOTDIR ? BelowFolder::Missing : BelowFolder::Unsure;
+    if (S_ISLNK(status.st_mode)) return BelowFolder::Unsure;
+    if (slash == std::string_view::npos) return S_ISREG(status.st_mode) ? BelowFolder::Found : BelowFolder::Missing;
+    relative = relative.substr(slash + 1);
+  }
+}
+
 }  // namespace
 
 bool pp_detail::find_include_path(std::string_view name, const std::string* including_folder,
                                   const std::vector<std::filesystem::path>& include_dirs, std::string& found,
-                                  std::vector<std::filesystem::path>* searched, size_t* include_dir) {
-  if (include_dir) *include_dir = include_dirs.size();
+                                  std::vector<std::filesystem::path>* searched) {
   // Shaders written on Windows may spell "sub\\file.hlsl".
   std::string portable(name);
   for (char& c : portable)
@@ -62,10 +87,7 @@ bool pp_detail::find_include_path(std::string_view name, const std::string* incl
   for (size_t i = 0; i < include_dirs.size(); ++i) {
     if (searched) searched->push_back(include_dirs[i]);
     join(include_dirs[i].native(), portable, found);
-    if (is_regular_file(found)) {
-      if (include_dir) *include_dir = i;
-      return true;
-    }
+    if (is_regular_file(found)) return true;
   }
   return false;
 }
@@ -76,7 +98,7 @@ std::optional<std::filesystem::path> find_include(std::string_view name, const s
   const bool local = !angled && !including_file.empty();
   const std::string folder = local ? including_file.parent_path().native() : std::string();
   std::string found;
-  if (!find_include_path(name, local ? &folder : nullptr, include_dirs, found, searched, nullptr)) return std::nullopt;
+  if (!find_include_path(name, local ? &folder : nullptr, include_dirs, found, searched)) return std::nullopt;
   return std::filesystem::path(std::move(found));
 }
 
@@ -84,32 +106,120 @@ void Preprocessor::Impl::resolve_given_folders() {
   if (folders_resolved_) return;
   folders_resolved_ = true;
   resolved_folders_.reserve(given_folders_.size());
-  for (const std::filesystem::path& folder : given_folders_) resolved_folders_.push_back(resolved_path(folder));
-}
-
-std::optional<std::filesystem::path> Preprocessor::Impl::resolved_under(size_t folder, std::string_view relative) {
-  resolve_given_folders();
-  if (folder >= resolved_folders_.size() || !resolved_folders_[folder]) return std::nullopt;
-  std::string path = resolved_folders_[folder]->native();
-  while (!relative.empty()) {
-    const size_t slash = relative.find('/');
-    const std::string_view name = relative.substr(0, slash);
-    if (name.empty() || name == "." || name == "..") return std::nullopt;
-    if (path.empty() || path.back() != '/') path += '/';
-    path += name;
-    struct stat status {};
-    if (::lstat(path.c_str(), &status) != 0 || S_ISLNK(status.st_mode)) return std::nullopt;
-    relative = slash == std::string_view::npos ? std::string_view() : relative.substr(slash + 1);
+  for (size_t i = 0; i < given_folders_.size(); ++i) {
+    const std::filesystem::path& folder = given_folders_[i];
+    ResolvedFolder& resolved = resolved_folders_.emplace_back();
+    if (main_folder_resolved_ && i + 1 == given_folders_.size()) {
+      resolved.path = folder;
+      resolved.exists = true;
+      continue;
+    }
+    resolved.path = existing_resolved_path(folder);
+    resolved.exists = resolved.path.has_value();
+    if (!resolved.exists) resolved.path = resolved_path(folder);
   }
-  return std::filesystem::path(std::move(path));
 }
 
 bool Preprocessor::Impl::inside_given_folders(const std::filesystem::path& resolved_file) {
   resolve_given_folders();
-  return std::any_of(resolved_folders_.begin(), resolved_folders_.end(),
-                     [&](const std::optional<std::filesystem::path>& folder) {
-                       return folder && resolved_path_is_inside(resolved_file, *folder);
-                     });
+  return std::any_of(resolved_folders_.begin(), resolved_folders_.end(), [&](const ResolvedFolder& folder) {
+    return folder.path && resolved_path_is_inside(resolved_file, *folder.path);
+  });
+}
+
+bool Preprocessor::Impl::locate_include(const IncludeFrame& frame, bool local, std::string_view spelled,
+                                        IncludeTarget& target) {
+  // Shaders written on Windows may spell "sub\\file.hlsl".
+  std::string& portable = portable_name_;
+  portable.assign(spelled);
+  std::replace(portable.begin(), portable.end(), '\\', '/');
+  std::string& found = target.found;
+  const auto loaded = [&] {
+    for (const auto& [path, file] : loaded_includes_)
+      if (path == found) {
+        target.file = file;
+        return true;
+      }
+    return false;
+  };
+  if (!portable.empty() && portable.front() == '/') {
+    found = portable;
+    return loaded() || is_regular_file(found);
+  }
+  resolve_given_folders();
+  std::string& below = resolved_include_;
+  const auto look_in = [&](std::string_view folder, const std::string* resolved_folder) {
+    join(folder, portable, found);
+    if (loaded()) return true;
+    if (resolved_folder) {
+      switch (look_below(*resolved_folder, portable, below)) {
+        case BelowFolder::Found:
+          target.resolved = std::filesystem::path(below);
+          return true;
+        case BelowFolder::Missing:
+          return false;
+        case BelowFolder::Unsure:
+          break;
+      }
+    }
+    return is_regular_file(found);
+  };
+  // The order of find_include_path: the including file's folder, then the include directories.
+  if (local && look_in(frame.folder, path_resolved_[frame.file] ? &frame.folder : nullptr)) return true;
+  const std::vector<std::filesystem::path>& include_dirs = pp_.options_.include_dirs;
+  for (size_t i = 0; i < include_dirs.size(); ++i) {
+    const ResolvedFolder& folder = resolved_folders_[i];
+    if (look_in(include_dirs[i].native(), folder.exists ? &folder.path->native() : nullptr)) return true;
+  }
+  return false;
+}
+
+uint32_t Preprocessor::Impl::load_include(IncludeFrame& frame, bool local, std::string_view spelled, Loc where) {
+  namespace fs = std::filesystem;
+  IncludeTarget target{found_include_, 0, std::nullopt};
+  if (!locate_include(frame, local, spelled, target)) {
+    std::vector<fs::path> searched;
+    find_include_path(spelled, local ? &frame.folder : nullptr, pp_.options_.include_dirs, found_include_, &searched);
+    std::string message = "cannot find include file '" + clip(spelled) + "'";
+    if (fs::path(std::string(spelled)).is_absolute()) {
+      // Nothing was searched: the path was taken as it is.
+    } else if (searched.empty()) {
+      message += " (no directories to search)";
+    } else {
+      message += " (searched: ";
+      for (size_t i = 0; i < searched.size(); ++i) {
+        if (i) message += ", ";
+        message += searched[i].string();
+      }
+      message += ")";
+    }
+    diagnostics_.error(where, std::move(message));
+    return 0;
+  }
+  if (target.file != 0) return target.file;
+  const std::string& found = target.found;
+  // The search found a regular file there: it is resolved whole, without asking first whether it
+  // exists. Should it have gone since, it is resolved as far as it exists, and does not open.
+  std::optional<fs::path> resolved = std::move(target.resolved);
+  if (!resolved) resolved = existing_resolved_path(found);
+  const bool resolved_whole = resolved.has_value();
+  if (!resolved) resolved = resolved_path(found);
+  if (!resolved || !inside_given_folders(*resolved)) {
+    std::string folders;
+    for (const fs::path& folder : given_folders_) folders += (folders.empty() ? "" : ", ") + folder.string();
+    diagnostics_.error(where, "include file '" + clip(spelled) + "' is outside the folders this shader was given (" +
+                                  folders + "); an include may not leave them");
+    return 0;
+  }
+  Result<uint32_t> loaded = sources_.load_canonical(*resolved, found);
+  if (!loaded) {
+    diagnostics_.error(where, loaded.error().message);
+    return 0;
+  }
+  loaded_includes_.emplace_back(found, *loaded);
+  ensure_file_tables();
+  if (resolved_whole) path_resolved_[*loaded] = 1;
+  return *loaded;
 }
 
 void Preprocessor::Impl::enter_file(uint32_t file) {
@@ -199,7 +309,6 @@ void Preprocessor::Impl::do_include(IncludeFrame& frame, const Token& name) {
 
 void Preprocessor::Impl::include_file(IncludeFrame& frame, const Token& name, std::string_view spelled, bool angled,
                                       Loc where) {
-  namespace fs = std::filesystem;
   if (includes_.size() >= Preprocessor::kMaxIncludeDepth) {
     diagnostics_.error(name.loc, "#include nested too deeply (more than " +
                                      std::to_string(Preprocessor::kMaxIncludeDepth) + " levels)");
@@ -210,56 +319,17 @@ void Preprocessor::Impl::include_file(IncludeFrame& frame, const Token& name, st
     if (!sources_.path(frame.file).empty()) frame.folder = sources_.path(frame.file).parent_path().native();
   }
   const bool local = !angled && !sources_.path(frame.file).empty();
-  std::string& found = found_include_;
-  size_t include_dir = 0;
-  if (!find_include_path(spelled, local ? &frame.folder : nullptr, pp_.options_.include_dirs, found, nullptr,
-                         &include_dir)) {
-    std::vector<fs::path> searched;
-    find_include_path(spelled, local ? &frame.folder : nullptr, pp_.options_.include_dirs, found, &searched, nullptr);
-    std::string message = "cannot find include file '" + clip(spelled) + "'";
-    if (fs::path(std::string(spelled)).is_absolute()) {
-      // Nothing was searched: the path was taken as it is.
-    } else if (searched.empty()) {
-      message += " (no directories to search)";
-    } else {
-      message += " (searched: ";
-      for (size_t i = 0; i < searched.size(); ++i) {
-        if (i) message += ", ";
-        message += searched[i].string();
-      }
-      message += ")";
-    }
-    diagnostics_.error(where, std::move(message));
-    return;
-  }
+  const std::string_view folder = local ? std::string_view(frame.folder) : std::string_view();
   uint32_t index = 0;
-  for (const auto& [path, file] : loaded_includes_)
-    if (path == found) {
-      index = file;
+  for (const IncludeLookup& lookup : include_lookups_)
+    if (lookup.local == local && lookup.folder == folder && lookup.spelled == spelled) {
+      index = lookup.file;
       break;
     }
   if (index == 0) {
-    // A file found in an include directory is resolved from the directory's resolved path when
-    // no name after it is a link (or . or ..): a check of each of those names, where resolving
-    // the whole path reads every component of it as a link. Anything else is resolved whole.
-    std::optional<fs::path> resolved;
-    if (include_dir < pp_.options_.include_dirs.size())
-      resolved = resolved_under(include_dir, std::string_view(found).substr(found.size() - spelled.size()));
-    if (!resolved) resolved = resolved_path(found);
-    if (!resolved || !inside_given_folders(*resolved)) {
-      std::string folders;
-      for (const fs::path& folder : given_folders_) folders += (folders.empty() ? "" : ", ") + folder.string();
-      diagnostics_.error(where, "include file '" + clip(spelled) + "' is outside the folders this shader was given (" +
-                                    folders + "); an include may not leave them");
-      return;
-    }
-    Result<uint32_t> loaded = sources_.load_canonical(*resolved, found);
-    if (!loaded) {
-      diagnostics_.error(where, loaded.error().message);
-      return;
-    }
-    index = *loaded;
-    loaded_includes_.emplace_back(found, index);
+    index = load_include(frame, local, spelled, where);
+    if (index == 0) return;
+    include_lookups_.push_back({local, std::string(folder), std::string(spelled), index});
   }
   ensure_file_tables();
   if (!seen_[index]) {

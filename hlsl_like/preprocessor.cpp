@@ -35,8 +35,12 @@ std::vector<Token> Preprocessor::Impl::run(uint32_t main_file) {
   }
   out_.clear();
   given_folders_ = pp_.options_.include_dirs;
-  if (const auto folder = sources_.path(main_file).parent_path(); !folder.empty()) given_folders_.push_back(folder);
+  if (const auto folder = sources_.path(main_file).parent_path(); !folder.empty()) {
+    given_folders_.push_back(folder);
+    main_folder_resolved_ = sources_.path_resolved_on_load(main_file);
+  }
   enter_file(main_file);
+  path_resolved_[main_file] = sources_.path_resolved_on_load(main_file);
   Context ctx;
   PPTok token;
   bool ended = false;

@@ -139,11 +139,10 @@ inline Token make_token(TokenKind kind, std::string_view text, Loc loc) {
 
 // find_include on strings: the including file's folder (null for an angled name or a file not on
 // disk) and the path found, in `found` (overwritten, kept for its buffer), are the strings
-// std::filesystem::path would hold. `include_dir` (when given) is set to the index of the include
-// directory the file was found in, or to include_dirs.size() when it was found elsewhere.
+// std::filesystem::path would hold.
 bool find_include_path(std::string_view name, const std::string* including_folder,
                        const std::vector<std::filesystem::path>& include_dirs, std::string& found,
-                       std::vector<std::filesystem::path>* searched, size_t* include_dir);
+                       std::vector<std::filesystem::path>* searched);
 
 // A #if or #elif line's tokens, macros already expanded, evaluated as C does: integer arithmetic
 // on 64 bits, signed unless a u suffix or a too large literal makes a value unsigned. A `defined`
@@ -285,20 +284,54 @@ struct Preprocessor::Impl {
   // The folders a compile was given: the include directories and the main file's folder. An
   // include may not resolve outside them (`#include "../../etc/passwd"` is an error, not a read).
   std::vector<std::filesystem::path> given_folders_;
-  // The given folders resolved (base/paths.h), on the first #include of the run; nothing for a
-  // folder the file system cannot resolve, which holds no file.
-  std::vector<std::optional<std::filesystem::path>> resolved_folders_;
+  // The given folders resolved (base/paths.h), on the first #include of the run. A folder that
+  // exists is resolved whole and names below it are looked up from its resolved path; one the
+  // file system cannot resolve holds no file.
+  struct ResolvedFolder {
+    std::optional<std::filesystem::path> path;
+    bool exists = false;
+  };
+  std::vector<ResolvedFolder> resolved_folders_;
   bool folders_resolved_ = false;
+  // The main file's folder is the last given folder, and already resolved when the file's path
+  // was (SourceManager::path_resolved_on_load).
+  bool main_folder_resolved_ = false;
   void resolve_given_folders();
   bool inside_given_folders(const std::filesystem::path& resolved_file);
-  // `relative` (plain names, /-separated) under the resolved given folder `folder`, when no name
-  // is a link; nothing otherwise, or when the folder did not resolve.
-  std::optional<std::filesystem::path> resolved_under(size_t folder, std::string_view relative);
+  // Where an #include's name was found. `found` is the path as the search spells it (what
+  // messages call the file); `file` the file already loaded from it in this run, or 0; `resolved`
+  // its resolved path when the search could tell it without resolving the whole path.
+  struct IncludeTarget {
+    std::string& found;
+    uint32_t file = 0;
+    std::optional<std::filesystem::path> resolved;
+  };
+  // The search of find_include_path, told apart from it by what it remembers and how it asks the
+  // file system: a path this run loaded is not asked about again, and below a folder known
+  // resolved each name is checked to be no link (an lstat a name) instead of stat-ing the path
+  // and then resolving it (a readlink a component of the whole path). False when no folder has it.
+  bool locate_include(const IncludeFrame& frame, bool local, std::string_view spelled, IncludeTarget& target);
+  // The file an #include names, found, held to the given folders and loaded; 0 after an error,
+  // which is reported.
+  uint32_t load_include(IncludeFrame& frame, bool local, std::string_view spelled, Loc where);
   // Each path an #include found, with the file it loaded: a file included from several places
   // (and every #include of a guarded file again) is resolved, held to the folders and looked up
   // once a run, since each of those asks the file system about every component of its path.
   std::vector<std::pair<std::string, uint32_t>> loaded_includes_;
   std::string found_include_;  // the path of the #include being read; kept for its buffer
+  std::string portable_name_;  // its name, each backslash made a slash; kept for its buffer
+  std::string resolved_include_;  // the path found below a resolved folder; kept for its buffer
+  // Each #include this run read, by where its search starts (the including file's folder for a
+  // quoted name in a file on disk, else the include directories only) and the name as spelled:
+  // the same line again (a guarded file included by many files of a folder) is answered without
+  // a search. Only for a run, as the file system may change between compiles.
+  struct IncludeLookup {
+    bool local;
+    std::string folder;
+    std::string spelled;
+    uint32_t file;
+  };
+  std::vector<IncludeLookup> include_lookups_;
   void abandon_files_from(size_t first);
   void ensure_file_tables() {
     const size_t count = sources_.file_count();
@@ -306,6 +339,7 @@ struct Preprocessor::Impl {
       seen_.resize(count, 0);
       once_.resize(count, 0);
       guard_of_.resize(count);
+      path_resolved_.resize(count, 0);
     }
   }
   std::string short_name(uint32_t file) const {
@@ -342,6 +376,9 @@ struct Preprocessor::Impl {
   std::vector<char> seen_;
   std::vector<char> once_;
   std::vector<std::string_view> guard_of_;
+  // Whether a file's path is known resolved (this run resolved it, or load() did for the main
+  // file): the names its quoted #includes spell are then looked up below its folder as it is.
+  std::vector<char> path_resolved_;
   Loc end_loc_;
 
   size_t expansion_depth_ = 0;

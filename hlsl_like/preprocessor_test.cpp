@@ -663,6 +663,57 @@ TEST_F(PreprocessorTest, IncludeDirectoryLinksAreFollowedAndHeldToTheFolders) {
   EXPECT_EQ(sources_.path(pp_->files()[1]), temp_dir() / "real/inc/sub/lib.hlsl");
 }
 
+// A quoted #include in an included file is looked up below that file's resolved folder: a link
+// there (to a folder or to a file) is still followed and held to the folders, and `..` resolved,
+// whether the main file came from disk (through a link to its folder) or from memory.
+TEST_F(PreprocessorTest, LinksBelowAnIncludedFileAreFollowedAndHeldToTheFolders) {
+  write("outside/secret.hlsl", "secret");
+  write("shaders/inc/sub/lib.hlsl", "lib\n#include \"near.hlsl\"");
+  write("shaders/inc/sub/near.hlsl", "near");
+  write("shaders/up.hlsl", "up");
+  write("shaders/inc/a.hlsl", "#include \"in/lib.hlsl\"\n#include \"out/secret.hlsl\"\n#include \"file_out.hlsl\"\n"
+                              "#include \"../up.hlsl\"\n#include \"sub/lib.hlsl\"\n");
+  fs::create_symlink(temp_dir() / "outside", temp_dir() / "shaders/inc/out");
+  fs::create_symlink(temp_dir() / "shaders/inc/sub", temp_dir() / "shaders/inc/in");
+  fs::create_symlink(temp_dir() / "outside/secret.hlsl", temp_dir() / "shaders/inc/file_out.hlsl");
+  fs::create_symlink(temp_dir() / "shaders", temp_dir() / "shaders_link");
+  write("shaders/main.hlsl", "#include \"inc/a.hlsl\"\nmain");
+  PreprocessorOptions from_link;
+  from_link.include_dirs = {temp_dir() / "shaders_link"};
+  for (const bool from_disk : {true, false}) {
+    sources_ = SourceManager();  // a file keeps the name it was first loaded by
+    const std::string out = from_disk ? run_file(load(temp_dir() / "shaders_link/main.hlsl"))
+                                      : run("#include \"inc/a.hlsl\"\nmain", from_link);
+    EXPECT_EQ(out, "lib near up lib near main");
+    const std::string given = (temp_dir() / (from_disk ? "shaders" : "shaders_link")).string();
+    const std::string a = given + "/inc/a.hlsl";
+    const std::string refused = "' is outside the folders this shader was given (" + given + "); an include may not leave them";
+    EXPECT_EQ(messages(), (Strings{a + ":2:10: error: include file 'out/secret.hlsl" + refused,
+                                   a + ":3:10: error: include file 'file_out.hlsl" + refused}));
+    ASSERT_EQ(pp_->files().size(), 5u);
+    EXPECT_EQ(sources_.path(pp_->files()[2]), temp_dir() / "shaders/inc/sub/lib.hlsl");
+    EXPECT_EQ(sources_.name(pp_->files()[3]), (temp_dir() / "shaders/inc/sub/near.hlsl").string());
+  }
+}
+
+// One #include line names a file of the including file's folder: the same line in files of two
+// folders names two files, and again in the first folder the first file. Nothing found in one run
+// is taken for granted in the next.
+TEST_F(PreprocessorTest, AnIncludeLineIsLookedUpFromItsFolderInEachRun) {
+  write("a/common.hlsl", "a_common");
+  write("b/common.hlsl", "b_common");
+  write("a/x.hlsl", "#include \"common.hlsl\"\n#include \"common.hlsl\"\n");
+  write("b/y.hlsl", "#include \"common.hlsl\"\n#include <late.hlsl>\n");
+  write("dir2/late.hlsl", "dir2_late");
+  const fs::path main = write("main.hlsl", "#include \"a/x.hlsl\"\n#include \"b/y.hlsl\"\n#include \"a/x.hlsl\"\n");
+  PreprocessorOptions options;
+  options.include_dirs = {temp_dir() / "dir1", temp_dir() / "dir2"};
+  EXPECT_EQ(run_file(load(main), options), "a_common a_common b_common dir2_late a_common a_common");
+  write("dir1/late.hlsl", "dir1_late");
+  EXPECT_EQ(run_file(load(main), options), "a_common a_common b_common dir1_late a_common a_common");
+  EXPECT_TRUE(messages().empty());
+}
+
 TEST_F(PreprocessorTest, IncludeThroughAMacro) {
   write("inc/lib.hlsl", "lib");
   PreprocessorOptions options;

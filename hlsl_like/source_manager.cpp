@@ -1,8 +1,11 @@
 #include "hlsl_like/source_manager.h"
 
+#include <optional>
 #include <system_error>
+#include <utility>
 
 #include "base/file_io.h"
+#include "base/paths.h"
 
 namespace xshade::hlsl {
 
@@ -17,10 +20,22 @@ uint32_t SourceManager::add(std::string name, std::string text) {
 }
 
 Result<uint32_t> SourceManager::load(const std::filesystem::path& path) {
-  std::error_code error;
-  std::filesystem::path canonical = std::filesystem::weakly_canonical(path, error);
-  if (error) canonical = path;
-  return load_canonical(canonical, path.string());
+  // A file that can be read exists: resolved whole, which weakly_canonical would also do after
+  // first asking whether it exists. Only a path that does not resolve is made canonical as far
+  // as it exists (and then most likely does not open).
+  std::optional<std::filesystem::path> resolved = existing_resolved_path(path);
+  const bool resolved_whole = resolved.has_value();
+  std::filesystem::path canonical;
+  if (resolved_whole) {
+    canonical = std::move(*resolved);
+  } else {
+    std::error_code error;
+    canonical = std::filesystem::weakly_canonical(path, error);
+    if (error) canonical = path;
+  }
+  Result<uint32_t> loaded = load_canonical(canonical, path.string());
+  if (loaded && resolved_whole) files_[*loaded]->resolved_on_load = true;
+  return loaded;
 }
 
 Result<uint32_t> SourceManager::load_canonical(const std::filesystem::path& canonical, std::string name) {

@@ -36,6 +36,10 @@ class SourceManager {
   const std::string& name(uint32_t file) const { return files_[file]->name; }
   // The canonical path of a file read from disk; empty for text given to add().
   const std::filesystem::path& path(uint32_t file) const { return files_[file]->path; }
+  // Whether load() resolved the file's path through the file system (base/paths.h), links and
+  // all, before reading it; a path it could not resolve is only made as canonical as it could be.
+  // The preprocessor then looks names up in the file's folder without resolving the folder again.
+  bool path_resolved_on_load(uint32_t file) const { return files_[file]->resolved_on_load; }
   size_t file_count() const { return files_.size(); }
 
   // The text of one line, without its line ending; empty when out of range.
@@ -46,6 +50,7 @@ class SourceManager {
   struct File {
     std::string name;  // as the user spelled it, for messages
     std::filesystem::path path;
+    bool resolved_on_load = false;
     std::string text;
     mutable std::vector<uint32_t> line_starts;  // computed on first use
   };
