@@ -184,7 +184,7 @@ class StageEmitter {
   // A template of intrinsic_mapping.cpp's kind ($0.., $R, $B0, xs_ helpers) over `operands`;
   // `out` marks the operands passed to out parameters. An operand used twice that is not a
   // simple expression makes the template a helper function, so that it is evaluated once.
-  Code expand_template(const std::string& text, const hlsl::CallExpr& call, const std::vector<const Expr*>& operands,
+  Code expand_template(std::string_view text, const hlsl::CallExpr& call, const std::vector<const Expr*>& operands,
                        const std::vector<bool>& out);
   // A component-wise intrinsic with matrix operands, which GLSL's built-ins do not take: a helper
   // that applies the vector form to each column (all/any and clip combine the columns' results).
