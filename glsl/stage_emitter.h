@@ -79,7 +79,7 @@ class Names {
   std::string function(const FunctionDecl* function) const;
   // A variable's or parameter's name. A local or parameter named like one of the author's
   // functions is renamed too: in GLSL it would hide the function for the rest of its scope.
-  // Every use of a variable asks for its name, so each is worked out once.
+  // Every use of a variable asks for its name, so each renamed one is worked out once.
   const std::string& variable(const hlsl::Decl* decl) const;
   // The scalar `index` of a constant-buffer vector declared as scalars: `_Offset_0`.
   std::string split_member(const std::string& name, uint32_t index) const;
