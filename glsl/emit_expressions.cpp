@@ -943,7 +943,7 @@ Code StageEmitter::expr_untraced(const Expr* e) {
         text += names_.of(field);
         return {std::move(text), kPostfix};
       }
-      const std::vector<uint8_t>& swizzle = member->swizzle;
+      const hlsl::Swizzle& swizzle = member->swizzle;
       const uint32_t count = uint32_t(swizzle.size());
       if (type.is_matrix()) {
         if (count > 1 && has_side_effects(object))

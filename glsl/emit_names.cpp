@@ -152,11 +152,14 @@ std::string Names::of(const std::string& name) const {
 }
 
 const std::string& Names::variable(const Decl* decl) const {
+  const bool global = decl->kind == DeclKind::Var && static_cast<const VarDecl*>(decl)->is_global;
+  const bool may_hide_function = !global && function_names_.count(decl->name) > 0;
+  // Most names are GLSL's as written: the tree's own string is the answer, with nothing to remember.
+  if (!may_hide_function && !needs_renaming(decl->name)) return decl->name;
   auto [known, inserted] = variables_.try_emplace(decl);
   if (!inserted) return known->second;
   std::string& name = known->second;
-  const bool global = decl->kind == DeclKind::Var && static_cast<const VarDecl*>(decl)->is_global;
-  if (global || function_names_.count(decl->name) == 0) {
+  if (!may_hide_function) {
     name = of(decl->name);
     return name;
   }

@@ -268,10 +268,19 @@ struct SplitTemplate {
 
 // A template split once per thread: templates come from a small fixed set (kMappings and the
 // texture forms, with GLSL type names for $R and $B0), and each is expanded again and again.
-const SplitTemplate& split_template_once(const std::string& text) {
-  thread_local std::unordered_map<std::string, SplitTemplate> split;
+// Looked up by view: the text is mostly a template of kMappings itself, not a string of its own.
+struct TemplateHash {
+  using is_transparent = void;
+  size_t operator()(std::string_view text) const { return std::hash<std::string_view>{}(text); }
+};
+
+const SplitTemplate& split_template_once(std::string_view text) {
+  thread_local std::unordered_map<std::string, SplitTemplate, TemplateHash, std::equal_to<>> split;
   auto it = split.find(text);
-  if (it == split.end()) it = split.emplace(text, SplitTemplate{split_template(text), template_prec(text)}).first;
+  if (it == split.end()) {
+    const std::string key(text);
+    it = split.emplace(key, SplitTemplate{split_template(key), template_prec(key)}).first;
+  }
   return it->second;
 }
 
@@ -402,7 +411,7 @@ Code StageEmitter::intrinsic_call(const CallExpr& call) {
     return {"0"};
   }
 
-  const std::string text = mapping->text;
+  const std::string_view text = mapping->text;
   if (text == "@mul") {
     const Expr* a = operands[0];
     const Expr* b = operands[1];
@@ -449,21 +458,28 @@ Code StageEmitter::intrinsic_call(const CallExpr& call) {
   return expand_template(text, call, operands, out);
 }
 
-Code StageEmitter::expand_template(const std::string& text, const CallExpr& call, const std::vector<const Expr*>& operands,
+Code StageEmitter::expand_template(std::string_view text, const CallExpr& call, const std::vector<const Expr*>& operands,
                                    const std::vector<bool>& out) {
   const IntrinsicInfo& info = intrinsic_info(IntrinsicId(call.intrinsic));
   const std::string result_type = type_name(call.type, call.loc);  // also reports a type GLSL lacks
-  std::string expanded = text;
-  if (expanded.find("$R") != std::string::npos) expanded = replace_all(std::move(expanded), "$R", result_type);
-  if (expanded.find("$B0") != std::string::npos)
-    expanded = replace_all(std::move(expanded), "$B0", bool_type(operands[0]->type.component_count()));
+  // Most templates have no $R or $B0: they are expanded as they stand, without a copy.
+  std::string filled_in;
+  std::string_view expanded = text;
+  const bool has_result_type = text.find("$R") != std::string_view::npos;
+  if (has_result_type || text.find("$B0") != std::string_view::npos) {
+    filled_in = text;
+    if (has_result_type) filled_in = replace_all(std::move(filled_in), "$R", result_type);
+    if (filled_in.find("$B0") != std::string::npos)
+      filled_in = replace_all(std::move(filled_in), "$B0", bool_type(operands[0]->type.component_count()));
+    expanded = filled_in;
+  }
   std::vector<Type> numeric_types;  // made only for a template that calls a helper
-  for (size_t at = expanded.find("xs_"); at != std::string::npos; at = expanded.find("xs_", at + 3)) {
+  for (size_t at = expanded.find("xs_"); at != std::string_view::npos; at = expanded.find("xs_", at + 3)) {
     if (numeric_types.empty())
       for (const Expr* e : operands)
         if (e->type.is_numeric()) numeric_types.push_back(e->type);
     const size_t open = expanded.find('(', at);
-    if (open != std::string::npos) require_helper(expanded.substr(at, open - at), numeric_types, call.loc);
+    if (open != std::string_view::npos) require_helper(std::string(expanded.substr(at, open - at)), numeric_types, call.loc);
   }
 
   const SplitTemplate& split = split_template_once(expanded);

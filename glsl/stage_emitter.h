@@ -79,7 +79,7 @@ class Names {
   std::string function(const FunctionDecl* function) const;
   // A variable's or parameter's name. A local or parameter named like one of the author's
   // functions is renamed too: in GLSL it would hide the function for the rest of its scope.
-  // Every use of a variable asks for its name, so each is worked out once.
+  // Every use of a variable asks for its name, so each renamed one is worked out once.
   const std::string& variable(const hlsl::Decl* decl) const;
   // The scalar `index` of a constant-buffer vector declared as scalars: `_Offset_0`.
   std::string split_member(const std::string& name, uint32_t index) const;
@@ -189,7 +189,7 @@ class StageEmitter {
   // A template of intrinsic_mapping.cpp's kind ($0.., $R, $B0, xs_ helpers) over `operands`;
   // `out` marks the operands passed to out parameters. An operand used twice that is not a
   // simple expression makes the template a helper function, so that it is evaluated once.
-  Code expand_template(const std::string& text, const hlsl::CallExpr& call, const std::vector<const Expr*>& operands,
+  Code expand_template(std::string_view text, const hlsl::CallExpr& call, const std::vector<const Expr*>& operands,
                        const std::vector<bool>& out);
   // A component-wise intrinsic with matrix operands, which GLSL's built-ins do not take: a helper
   // that applies the vector form to each column (all/any and clip combine the columns' results).

@@ -146,12 +146,33 @@ struct CallExpr : Expr {
   CallExpr(Loc l) : Expr(ExprKind::Call, l) {}
 };
 
+// The components a swizzle picks, at most 4, held in its node: a swizzle is among the commonest
+// expressions, and a vector would be one heap allocation each.
+class Swizzle {
+ public:
+  static constexpr size_t kMaxComponents = 4;
+  size_t size() const { return count_; }
+  bool empty() const { return count_ == 0; }
+  void clear() { count_ = 0; }
+  // The parsers of swizzles check the count first; a fifth component is dropped, not written past the end.
+  void push_back(uint8_t component) {
+    if (count_ < kMaxComponents) components_[count_++] = component;
+  }
+  uint8_t operator[](size_t i) const { return components_[i]; }
+  const uint8_t* begin() const { return components_; }
+  const uint8_t* end() const { return components_ + count_; }
+
+ private:
+  uint8_t components_[kMaxComponents] = {};
+  uint8_t count_ = 0;
+};
+
 // a.b: a struct field or a swizzle (xyzw / rgba, and _m00 / _11 on matrices).
 struct MemberExpr : Expr {
   ExprPtr object;
   std::string member;
   int field_index = -1;             // sema: the field of a struct
-  std::vector<uint8_t> swizzle;     // sema: component indices (for matrices: row * 4 + col)
+  Swizzle swizzle;                  // sema: component indices (for matrices: row * 4 + col)
   MemberExpr(Loc l) : Expr(ExprKind::Member, l) {}
 };
 

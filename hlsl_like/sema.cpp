@@ -203,7 +203,7 @@ std::string Sema::suggestion(const std::string& name, bool functions) const {
   const size_t limit = std::max<size_t>(1, name.size() / 3);
   std::string best;
   size_t best_distance = limit + 1;
-  auto consider = [&](const std::string& candidate) {
+  auto consider = [&](std::string_view candidate) {
     if (candidate.size() > 64 || candidate == name) return;
     const size_t difference = candidate.size() > name.size() ? candidate.size() - name.size() : name.size() - candidate.size();
     if (difference >= best_distance) return;
@@ -218,7 +218,7 @@ std::string Sema::suggestion(const std::string& name, bool functions) const {
     for (uint16_t id = 1;; ++id) {
       const IntrinsicInfo& info = intrinsic_info(IntrinsicId(id));
       if (info.id == IntrinsicId::None) break;
-      if (!info.is_method) consider(std::string(info.name));
+      if (!info.is_method) consider(info.name);
     }
   } else {
     // Each scope's names in the order a hash map of them iterates, the order suggestions have
@@ -341,6 +341,7 @@ void Sema::declare_function(FunctionDecl& function) {
     diag_.error(function.loc, "function " + in_quotes(function.name) + " cannot return " + in_quotes(function.return_type.name()));
   }
   std::vector<Type> param_types;
+  param_types.reserve(function.params.size());
   for (const auto& param : function.params) param_types.push_back(param ? param->type : Type::error());
 
   // One signature, several declarations: the first is canonical.
@@ -565,33 +566,36 @@ void Sema::analyze_stmt(Stmt* stmt) {
 
 void Sema::check_recursion() {
   // Depth-first search over canonical functions; a call to a function still on the path closes
-  // a cycle. Iterative, so that a long chain of calls cannot overflow the stack.
-  enum class Color : uint8_t { White, Gray, Black };
-  std::unordered_map<const FunctionDecl*, Color> color;
+  // a cycle. Iterative, so that a long chain of calls cannot overflow the stack. The marks live
+  // in the functions' FunctionInfo, which every canonical function has.
+  enum Mark : uint8_t { kUnvisited, kOnPath, kDone };
   struct Frame {
     const FunctionDecl* function;
+    FunctionInfo* info;
     size_t next_call;
   };
+  std::vector<Frame> stack;
   for (const FunctionDecl* root : all_functions_) {
     const FunctionDecl* canonical = canonical_of_[root];
-    if (!canonical || color[canonical] != Color::White) continue;
-    std::vector<Frame> stack{{canonical, 0}};
-    color[canonical] = Color::Gray;
+    if (!canonical) continue;
+    FunctionInfo& root_info = function_info_[canonical];
+    if (root_info.recursion_mark != kUnvisited) continue;
+    stack.push_back({canonical, &root_info, 0});
+    root_info.recursion_mark = kOnPath;
     while (!stack.empty()) {
       Frame& frame = stack.back();
-      const FunctionInfo& info = function_info_[frame.function];
-      if (frame.next_call >= info.calls.size()) {
-        color[frame.function] = Color::Black;
+      if (frame.next_call >= frame.info->calls.size()) {
+        frame.info->recursion_mark = kDone;
         stack.pop_back();
         continue;
       }
-      const FunctionInfo::Call& call = info.calls[frame.next_call++];
-      Color& callee = color[call.callee];
-      if (callee == Color::Gray) {
+      const FunctionInfo::Call& call = frame.info->calls[frame.next_call++];
+      FunctionInfo& callee = function_info_[call.callee];
+      if (callee.recursion_mark == kOnPath) {
         diag_.error(call.loc, "recursive call to " + in_quotes(call.callee->name) + " is not supported");
-      } else if (callee == Color::White) {
-        callee = Color::Gray;
-        stack.push_back({call.callee, 0});
+      } else if (callee.recursion_mark == kUnvisited) {
+        callee.recursion_mark = kOnPath;
+        stack.push_back({call.callee, &callee, 0});
       }
     }
   }

@@ -401,7 +401,7 @@ Type Sema::analyze_conditional(ConditionalExpr& expr) {
 namespace {
 
 // xyzw / rgba swizzles of a scalar or vector. Returns an error message, or "" on success.
-std::string parse_vector_swizzle(const std::string& member, const Type& object, std::vector<uint8_t>& out) {
+std::string parse_vector_swizzle(const std::string& member, const Type& object, Swizzle& out) {
   static constexpr std::string_view kXyzw = "xyzw";
   static constexpr std::string_view kRgba = "rgba";
   bool xyzw = false, rgba = false;
@@ -427,7 +427,7 @@ std::string parse_vector_swizzle(const std::string& member, const Type& object, 
 }
 
 // _m00 (zero-based) and _11 (one-based) matrix swizzles, possibly concatenated.
-std::string parse_matrix_swizzle(const std::string& member, const Type& object, std::vector<uint8_t>& out) {
+std::string parse_matrix_swizzle(const std::string& member, const Type& object, Swizzle& out) {
   const std::string no_member = in_quotes(object.name()) + " has no member " + in_quotes(member);
   size_t pos = 0;
   int based = -1;  // 0 or 1 once known
@@ -480,7 +480,6 @@ Type Sema::analyze_member(MemberExpr& expr) {
     return Type::error();
   }
   std::string error;
-  expr.swizzle.reserve(4);  // a swizzle has at most 4 components: one allocation, not one per growth
   if (object.is_scalar() || object.is_vector()) {
     error = parse_vector_swizzle(expr.member, object, expr.swizzle);
   } else if (object.is_matrix()) {

@@ -153,6 +153,8 @@ struct FunctionInfo {
   std::vector<Use> fragment_only_uses;
   bool called = false;
   Loc first_call;
+  // check_recursion's depth-first search: 0 not reached, 1 on the path, 2 done.
+  uint8_t recursion_mark = 0;
 };
 
 // Nesting deeper than this in expressions, statements or types is reported, not recursed into.
@@ -237,8 +239,10 @@ class Sema {
   mutable TypeFacts facts_;  // memoizes; queried from const members too
   mutable std::unordered_map<const VarDecl*, std::optional<int64_t>> folded_;  // fold_int of constants
   SymbolTable scopes_;
-  // Overload sets by name: canonical declarations, in order of declaration.
-  std::unordered_map<std::string, std::vector<const FunctionDecl*>> functions_;
+  // Overload sets by name: canonical declarations, in order of declaration. Keyed by views of
+  // the declarations' names (the tree outlives the analysis); the hash is std::string's, so the
+  // order suggestions search the names in is that of a map keyed by strings.
+  std::unordered_map<std::string_view, std::vector<const FunctionDecl*>> functions_;
   std::unordered_map<const FunctionDecl*, FunctionInfo> function_info_;  // by canonical
   std::unordered_map<const FunctionDecl*, const FunctionDecl*> canonical_of_;
   std::vector<CallExpr*> user_calls_;

@@ -604,6 +604,9 @@ TEST(SemaMembers, StructFields) {
   EXPECT_EQ(member.type.name(), "float3");
 }
 
+// The components a swizzle picks, as a vector to compare with.
+std::vector<uint8_t> swizzle_of(const MemberExpr& member) { return {member.swizzle.begin(), member.swizzle.end()}; }
+
 TEST(SemaMembers, VectorSwizzles) {
   const std::string g = "float4 v; float2 p; float f; int3 i;";
   EXPECT_EQ(type_of(g, "v.xyz"), "float3");
@@ -612,7 +615,7 @@ TEST(SemaMembers, VectorSwizzles) {
   EXPECT_EQ(type_of(g, "f.xxx"), "float3");
   EXPECT_EQ(type_of(g, "i.zy"), "int2");
   auto a = analyze_source("float4 v;\nfloat2 t() { return v.wx; }\n");
-  EXPECT_EQ(static_cast<const MemberExpr&>(a->expression("t", 0)).swizzle, (std::vector<uint8_t>{3, 0}));
+  EXPECT_EQ(swizzle_of(static_cast<const MemberExpr&>(a->expression("t", 0))), (std::vector<uint8_t>{3, 0}));
   EXPECT_EQ(probe(g, "v.xg").messages, (Strings{"2:14: error: swizzle 'xg' mixes xyzw and rgba components"}));
   EXPECT_EQ(probe(g, "p.z").messages, (Strings{"2:14: error: swizzle 'z' is out of range for 'float2'"}));
   EXPECT_EQ(probe(g, "f.y").messages, (Strings{"2:14: error: swizzle 'y' is out of range for 'float'"}));
@@ -624,10 +627,10 @@ TEST(SemaMembers, MatrixSwizzles) {
   auto a = analyze_source("float4x4 m;\nfloat2 t() { return m._m00_m11; }\nfloat u() { return m._44; }\n"
                           "float3 w() { return m._12_21_34; }\n");
   EXPECT_EQ(a->messages(), Strings{});
-  EXPECT_EQ(static_cast<const MemberExpr&>(a->expression("t", 0)).swizzle, (std::vector<uint8_t>{0, 5}));
-  EXPECT_EQ(static_cast<const MemberExpr&>(a->expression("u", 0)).swizzle, (std::vector<uint8_t>{15}));
+  EXPECT_EQ(swizzle_of(static_cast<const MemberExpr&>(a->expression("t", 0))), (std::vector<uint8_t>{0, 5}));
+  EXPECT_EQ(swizzle_of(static_cast<const MemberExpr&>(a->expression("u", 0))), (std::vector<uint8_t>{15}));
   EXPECT_EQ(a->expression("u", 0).type.name(), "float");
-  EXPECT_EQ(static_cast<const MemberExpr&>(a->expression("w", 0)).swizzle, (std::vector<uint8_t>{1, 4, 11}));
+  EXPECT_EQ(swizzle_of(static_cast<const MemberExpr&>(a->expression("w", 0))), (std::vector<uint8_t>{1, 4, 11}));
   EXPECT_EQ(probe("float2x2 m;", "m._m22").messages, (Strings{"2:14: error: swizzle '_m22' is out of range for 'float2x2'"}));
   EXPECT_EQ(probe("float2x3 m;", "m._13").type, "float");
   EXPECT_EQ(probe("float2x3 m;", "m._31").messages, (Strings{"2:14: error: swizzle '_31' is out of range for 'float2x3'"}));
