@@ -51,6 +51,7 @@ struct RunOptions {
   std::string precision = "float";  // or "half": half emulation (gl and vk; goldens not compared)
   bool plan_only = false;
   bool pass_images = false;  // also write each pass's output (REPORT/SCENE/passes/PASS.LANE.exr)
+  bool trace_nonfinite = false;  // trace every gl and vk lane, not only those with non-finite pixels
   WorkerLimits workers;
   std::string command_line;  // for the reports
 };
@@ -115,6 +116,7 @@ struct WorkerOptions {
   bool validation = false;
   bool pass_images = false;
   bool half_emulation = false;
+  bool trace_nonfinite = false;
   bool serve = false;  // renders read from standard input, one a line, instead of scene and lane
 };
 int run_worker(const WorkerOptions& options);

@@ -142,6 +142,9 @@ static int run_command_line(int argc, char** argv) {
       ->capture_default_str();
   run->add_option("--shard", run_options.shard, "Run every N-th scene from the i-th (name order), for CI matrices")
       ->type_name("i/N");
+  run->add_flag("--trace-nonfinite", run_options.trace_nonfinite,
+                "Render every gl and vk lane again with the tracing variant and report where its NaN, Inf and negative "
+                "values were born (without it, only lanes whose images have them are traced)");
   run->add_flag("--pass-images", run_options.pass_images,
                 "Also write every pass's own output as REPORT/SCENE/passes/PASS.LANE.exr, to find where lanes part");
   add_worker_options(*run, run_options.workers, "scene-and-lane renders");
@@ -251,6 +254,7 @@ static int run_command_line(int argc, char** argv) {
   worker->add_flag("--vk-validation", worker_options.validation);
   worker->add_flag("--pass-images", worker_options.pass_images);
   worker->add_flag("--half-emulation", worker_options.half_emulation);
+  worker->add_flag("--trace-nonfinite", worker_options.trace_nonfinite);
 
   ReportMergeOptions merge_options;
   CLI::App* report = app.add_subcommand("report", "Work on reports that runs wrote");

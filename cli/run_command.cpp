@@ -103,7 +103,13 @@ int run_run(const RunOptions& options) {
   size_t done = 0;
   harness::SceneChecker checker(
       compiler,
-      {options.report_dir, &goldens, backend_options(options.selection), options.pass_images, options.plan_only, half},
+      {.report_dir = options.report_dir,
+       .goldens = &goldens,
+       .backend = backend_options(options.selection),
+       .pass_images = options.pass_images,
+       .plan_only = options.plan_only,
+       .half_emulation = half,
+       .trace_nonfinite = options.trace_nonfinite},
       [&](const std::string& line) {
         fmt::print("[{}/{}] {}\n", done + 1, files->size(), line);
         std::fflush(stdout);
@@ -136,7 +142,8 @@ int run_run(const RunOptions& options) {
                                .gl_platform = options.selection.gl_platform,
                                .validation = options.selection.validation,
                                .pass_images = options.pass_images,
-                               .half_emulation = half};
+                               .half_emulation = half,
+                               .trace_nonfinite = options.trace_nonfinite};
     totals = harness::check_in_workers(checker, scene_workers(shared, options.workers), *files, *lanes, record,
                                        [](const std::string& text) { fmt::print(stderr, "{}", text); });
   }

@@ -42,7 +42,8 @@ int run_worker(const WorkerOptions& options) {
                                              .driver_cache = driver_cache},
                                  .pass_images = options.pass_images,
                                  .half_emulation = options.half_emulation,
-                                 .environments = &environments},
+                                 .environments = &environments,
+                                 .trace_nonfinite = options.trace_nonfinite},
                                 [](const std::string& line) { fmt::print("{}\n", line); });
   const auto render = [&](const std::string& scene, const std::string& lane_name, const std::string& result) {
     auto lane = harness::parse_lane(lane_name);

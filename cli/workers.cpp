@@ -54,6 +54,7 @@ harness::SceneWorkers scene_workers(const WorkerOptions& shared, const WorkerLim
   if (shared.validation) command.push_back("--vk-validation");
   if (shared.pass_images) command.push_back("--pass-images");
   if (shared.half_emulation) command.push_back("--half-emulation");
+  if (shared.trace_nonfinite) command.push_back("--trace-nonfinite");
   const unsigned jobs = worker_jobs(limits);
   WorkerOptions serving = shared;
   serving.serve = true;

@@ -883,7 +883,7 @@ Code StageEmitter::expr_untraced(const Expr* e) {
             fail(e->loc, "internal error: unresolved call to " + in_quotes(call->callee));
             return {"0"};
           }
-          std::string text = names_.function(function) + "(";
+          std::string text = function_name(function) + "(";
           bool first = true;
           for (size_t i = 0; i < function->params.size(); ++i) {
             const ParamDecl* param = function->params[i].get();
@@ -911,7 +911,7 @@ Code StageEmitter::expr_untraced(const Expr* e) {
             append_operand(text, arg, kAssign);
             first = false;
           }
-          if (trace_) {  // the call path (emit_trace.cpp)
+          if (in_traced_copy_) {  // the call path (emit_trace.cpp)
             if (!first) text += ", ";
             text += trace_call_path(function->name, e->loc);
           }

@@ -191,7 +191,7 @@ void StageEmitter::function(const FunctionDecl& f) {
     fail(f.loc, "function " + in_quotes(f.name) + " cannot return " + in_quotes(f.return_type.name()) +
                     ", which holds resources; pass them as parameters");
   current_function_ = f.name;
-  std::string signature = type_name(f.return_type, f.loc) + " " + names_.function(&f) + "(";
+  std::string signature = type_name(f.return_type, f.loc) + " " + function_name(&f) + "(";
   bool first = true;
   for (const auto& param : f.params) {
     if (!param) continue;
@@ -201,7 +201,7 @@ void StageEmitter::function(const FunctionDecl& f) {
       signature += declaration;
     }
   }
-  if (trace_) signature += first ? "uint xs_path" : ", uint xs_path";  // emit_trace.cpp
+  if (in_traced_copy_) signature += first ? "uint xs_path" : ", uint xs_path";  // emit_trace.cpp
   out_.line(signature + ") {");
   body(f.body.get());
   out_.line("}");

@@ -1,7 +1,17 @@
 // The tracing variant of a fragment stage (EmitOptions::trace_nonfinite): where a NaN or an
 // infinity is born.
 //
-// Every float-typed site (an initialisation, an assignment, a compound assignment, a return
+// The stage holds every function twice. The plain copy is what the untraced variant emits and
+// alone makes the colour. The traced copy runs after it on the same inputs and feeds nothing but
+// the record: a test of a value is one more use of it, and a driver's optimiser rewrites
+// differently what has more uses (llvmpipe's NIR reassociates a sum only where its parts are
+// used once), so tests inside the plain copy would move its results by an ulp. To keep the two
+// copies from sharing an instruction (common subexpressions are merged, and a merged one has
+// the uses of both), every value the traced copy starts from -- the entry point's inputs and
+// each uniform it reads -- passes through xs_opaque, an identity the optimiser cannot see
+// through (an OR with a zero read from gl_FragCoord).
+//
+// In the traced copy every float-typed site (an initialisation, an assignment, a compound assignment, a return
 // value, a call's result) goes through xs_trace(value, site, path), which returns the value it
 // was given and, when it is the invocation's first non-finite value, keeps the site's number and
 // the call path in two globals. Each of the author's functions takes the path as one more
@@ -72,7 +82,51 @@ std::string place_name(const Expr* e, int depth = 0) {
 constexpr const char* kRecordGlobals =
     "// The first non-finite site of this invocation and the calls that led to it (the tracing variant).\n"
     "uint xs_trace_site = 0u;\n"
-    "uint xs_trace_path = 0u;\n";
+    "uint xs_trace_path = 0u;\n"
+    "// Zero, from gl_FragCoord at the start of main(): the optimiser cannot know it is.\n"
+    "uint xs_opaque_zero;\n";
+
+// xs_opaque for one GLSL type: its bits ORed with xs_opaque_zero.
+std::string opaque_helper(const std::string& glsl_type) {
+  const bool matrix = glsl_type.rfind("mat", 0) == 0;
+  std::string bits_type = "uint";
+  if (glsl_type.rfind("vec", 0) == 0 || glsl_type.rfind("ivec", 0) == 0 || glsl_type.rfind("uvec", 0) == 0)
+    bits_type = "uvec" + glsl_type.substr(glsl_type.size() - 1);
+  auto one = [&](const std::string& value, const std::string& type, const std::string& bits) {
+    const std::string zero = bits == "uint" ? "xs_opaque_zero" : bits + "(xs_opaque_zero)";
+    if (type == "float" || type.rfind("vec", 0) == 0)
+      return "uintBitsToFloat(floatBitsToUint(" + value + ") | " + zero + ")";
+    if (type == "int" || type.rfind("ivec", 0) == 0) return type + "(" + bits + "(" + value + ") | " + zero + ")";
+    return value + " | " + zero;
+  };
+  std::string body;
+  if (matrix) {
+    const std::string column = glsl_type.size() > 4 && glsl_type[4] == 'x' ? std::string("vec") + glsl_type[5]
+                                                                            : std::string("vec") + glsl_type[3];
+    body = "  for (int c = 0; c < v.length(); ++c) v[c] = " + one("v[c]", column, "uvec" + column.substr(3)) +
+           ";\n  return v;\n";
+  } else {
+    body = "  return " + one("v", glsl_type, bits_type) + ";\n";
+  }
+  return glsl_type + " xs_opaque(" + glsl_type + " v) {\n" + body + "}\n";
+}
+
+// A uniform the traced copy reads: a global that is neither static nor groupshared, or an
+// element or member of one.
+bool reads_uniform(const Expr* e, int depth = 0) {
+  if (!e || depth > 16) return false;
+  switch (e->kind) {
+    case ExprKind::Name: {
+      const Decl* decl = static_cast<const NameExpr*>(e)->decl;
+      if (!decl || decl->kind != DeclKind::Var) return false;
+      const auto* var = static_cast<const VarDecl*>(decl);
+      return var->is_global && (var->storage == StorageClass::Default || var->storage == StorageClass::Uniform);
+    }
+    case ExprKind::Index: return reads_uniform(static_cast<const IndexExpr*>(e)->object.get(), depth + 1);
+    case ExprKind::Member: return reads_uniform(static_cast<const MemberExpr*>(e)->object.get(), depth + 1);
+    default: return false;
+  }
+}
 
 // The test of one GLSL type: scalars and vectors as they are, matrices column by column.
 std::string trace_helper(const std::string& glsl_type) {
@@ -92,7 +146,7 @@ std::string trace_helper(const std::string& glsl_type) {
 }  // namespace
 
 bool StageEmitter::is_trace_site(const Expr* e) const {
-  if (!trace_ || !e || !traceable(e->type)) return false;
+  if (!in_traced_copy_ || !e || !traceable(e->type)) return false;
   if (e->kind == ExprKind::Assign) {
     // `x = f(y)` fails where f(y) does; only a value computed in place is tested as assigned.
     const Expr* value = static_cast<const AssignExpr*>(e)->value.get();
@@ -113,7 +167,8 @@ bool StageEmitter::is_tested(const Expr* e) const {
 }
 
 Code StageEmitter::expr(const Expr* e) {
-  if (!is_trace_site(e)) return expr_untraced(e);
+  if (!in_traced_copy_) return expr_untraced(e);
+  if (!is_trace_site(e)) return opaque_if_uniform(e, expr_untraced(e));
   if (e->kind == ExprKind::Assign) {
     const auto* assign = static_cast<const AssignExpr*>(e);
     const TraceSite::Kind kind =
@@ -146,8 +201,30 @@ uint32_t StageEmitter::add_site(TraceSite site, Loc loc) {
   return (trace_program_ << 16) | uint32_t(trace_table_.sites.size());
 }
 
+Code StageEmitter::opaque_if_uniform(const Expr* e, Code code) {
+  if (!in_traced_copy_ || !e || !e->type.is_numeric() || e->type.is_bool() || !reads_uniform(e)) return code;
+  // Each read: `_Kernel[i].xy` passes through twice, as `_Kernel[i]` and again as its member.
+  const std::string glsl_type = type_name(e->type, e->loc);
+  helpers_.add("xs_trace globals", kRecordGlobals);
+  helpers_.add("xs_opaque " + glsl_type, opaque_helper(glsl_type));
+  std::string text = "xs_opaque(";
+  append_operand(text, code, kAssign);
+  text += ')';
+  return {std::move(text), kPostfix};
+}
+
+std::string StageEmitter::function_name(const FunctionDecl* function) const {
+  return in_traced_copy_ ? "xs_traced_" + names_.function(function) : names_.function(function);
+}
+
+void StageEmitter::traced_functions() {
+  in_traced_copy_ = true;
+  for (const FunctionDecl* f : functions_) function(*f);
+  in_traced_copy_ = false;
+}
+
 Code StageEmitter::traced(Code value, const Type& type, TraceSite::Kind kind, Loc loc, std::string what) {
-  if (!trace_ || !traceable(type)) return value;
+  if (!in_traced_copy_ || !traceable(type)) return value;
   const std::string glsl_type = type_name(type, loc);
   helpers_.add("xs_trace globals", kRecordGlobals);
   helpers_.add("xs_trace " + glsl_type, trace_helper(glsl_type));
@@ -171,13 +248,13 @@ std::string StageEmitter::trace_call_path(const std::string& callee, Loc loc) {
 
 void StageEmitter::trace_input(Writer& main, const std::string& path, const Type& type, const std::string& semantic,
                                Loc loc) {
-  if (!trace_ || !traceable(type)) return;
+  if (!in_traced_copy_ || !traceable(type)) return;
   main.line(traced({path}, type, TraceSite::Kind::Input, loc, semantic).text + ";");
 }
 
 void StageEmitter::trace_output(Writer& main, const std::string& path, const Type& type, const std::string& semantic,
                                 Loc loc) {
-  if (!trace_ || !traceable(type)) return;
+  if (!in_traced_copy_ || !traceable(type)) return;
   main.line(traced({path}, type, TraceSite::Kind::Output, loc, semantic).text + ";");
   // A colour below zero is a hazard of its own (the finite layer counts it), though no test
   // before the output looks at signs: most negative intermediates are meant.
@@ -188,8 +265,46 @@ void StageEmitter::trace_output(Writer& main, const std::string& path, const Typ
   main.line("if (xs_trace_site == 0u && " + negative + ") xs_trace_site = " + std::to_string(number) + "u;");
 }
 
+void StageEmitter::traced_main(Writer& main, Writer& interface, const std::vector<TracedItem>& inputs,
+                               const std::vector<TracedItem>& outputs) {
+  in_traced_copy_ = true;
+  helpers_.add("xs_trace globals", kRecordGlobals);
+  auto traced_path = [](const std::string& path) {
+    for (const char* prefix : {"xs_arg", "xs_result"})
+      if (path.rfind(prefix, 0) == 0) return "xs_traced_" + path.substr(3);
+    return path;
+  };
+  main.line("// The traced copy (the tracing variant): the same inputs, opaque, and nothing it computes reaches the colour.");
+  main.line("xs_opaque_zero = uint(gl_FragCoord.x < 0.0);");
+  main.line("const uint xs_path = 0u;  // the entry point's calls are the outermost");
+  const FunctionDecl& entry = *entry_;
+  std::string call = function_name(&entry) + "(";
+  for (size_t i = 0; i < entry.params.size(); ++i) {
+    const hlsl::ParamDecl* param = entry.params[i].get();
+    if (!param || param->is_uniform || param->type.is_resource()) continue;  // refused above
+    const std::string index = std::to_string(i);
+    main.line(declarator(param->type, "xs_traced_arg" + index, param->loc) + " = xs_arg" + index + ";");
+    call += (i ? ", xs_traced_arg" : "xs_traced_arg") + index;
+  }
+  for (const TracedItem& input : inputs) {
+    if (!input.type.is_numeric() || input.type.is_bool()) continue;
+    const std::string path = traced_path(input.path);
+    const std::string glsl_type = type_name(input.type, input.loc);
+    helpers_.add("xs_opaque " + glsl_type, opaque_helper(glsl_type));
+    main.line(path + " = xs_opaque(" + path + ");");
+    if (!input.semantic.empty()) trace_input(main, path, input.type, input.semantic, input.loc);
+  }
+  call += entry.params.empty() ? "xs_path)" : ", xs_path)";
+  if (entry.return_type.is_void())
+    main.line(call + ";");
+  else
+    main.line(declarator(entry.return_type, "xs_traced_result", entry.loc) + " = " + call + ";");
+  for (const TracedItem& output : outputs) trace_output(main, traced_path(output.path), output.type, output.semantic, output.loc);
+  trace_record(main, interface);
+  in_traced_copy_ = false;
+}
+
 void StageEmitter::trace_record(Writer& main, Writer& interface) {
-  if (!trace_) return;
   helpers_.add("xs_trace globals", kRecordGlobals);
   interface.line("layout(location = 1) out vec4 xs_trace_record;");
   // Whole numbers below 2^24, exact in a float target.

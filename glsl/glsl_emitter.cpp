@@ -442,6 +442,7 @@ std::string StageEmitter::run() {
   }
 
   for (const FunctionDecl* f : functions_) function(*f);
+  if (trace_) traced_functions();
 
   // Declarations, the stage interface and main().
   std::string declared = declarations();
@@ -542,7 +543,6 @@ std::string StageEmitter::interface_and_main() {
   Writer main;
   main.line("void main() {");
   main.indent = 1;
-  if (trace_) main.line("const uint xs_path = 0u;  // the entry point's calls are the outermost");
   for (const std::string& line : main_prologue_) main.line(line);
 
   // Arguments.
@@ -562,6 +562,7 @@ std::string StageEmitter::interface_and_main() {
   }
 
   // Inputs.
+  std::vector<TracedItem> traced_inputs, traced_outputs;  // the tracing variant's (emit_trace.cpp)
   std::vector<std::string> declared;
   auto declare = [&](const std::string& line) {
     if (std::find(declared.begin(), declared.end(), line) != declared.end()) return;
@@ -633,15 +634,14 @@ std::string StageEmitter::interface_and_main() {
               interpolation_qualifier(item.interpolation, source_type) + "in " +
               declarator(source_type, name, item.loc) + ";");
       source = {name};
-      trace_input(main, name, source_type, item.semantic, item.loc);
     }
     main.line(item.path + " = " + convert(source, source_type, item.type, item.loc).text + ";");
+    if (trace_) traced_inputs.push_back({item.path, item.type, vertex_ || source.text.rfind("xs_v_", 0) != 0 ? "" : item.semantic, item.loc});
   }
 
   // The call.
   std::string call = names_.function(&entry) + "(";
   for (size_t i = 0; i < entry.params.size(); ++i) call += (i ? ", xs_arg" : "xs_arg") + std::to_string(i);
-  if (trace_) call += entry.params.empty() ? "xs_path" : ", xs_path";
   call += ")";
   if (entry.return_type.is_void())
     main.line(call + ";");
@@ -693,10 +693,10 @@ std::string StageEmitter::interface_and_main() {
       if (trace_ && parsed.index == 1)
         fail(item.loc, "the tracing variant records at fragment output location 1, which " + in_quotes(item.semantic) +
                            " takes; trace a shader that writes SV_Target0 only");
-      trace_output(main, item.path, item.type, item.semantic, item.loc);
+      if (trace_) traced_outputs.push_back({item.path, item.type, item.semantic, item.loc});
     }
   }
-  trace_record(main, interface);
+  if (trace_) traced_main(main, interface, traced_inputs, traced_outputs);
   main.indent = 0;
   main.line("}");
   interface_text_ = interface.text();

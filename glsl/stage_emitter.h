@@ -255,6 +255,22 @@ class StageEmitter {
   void trace_input(Writer& main, const std::string& path, const Type& type, const std::string& semantic, Loc loc);
   void trace_output(Writer& main, const std::string& path, const Type& type, const std::string& semantic, Loc loc);
   void trace_record(Writer& main, Writer& interface);
+  // The traced copy's functions, after the plain ones.
+  void traced_functions();
+  // The GLSL name of the author's function in the copy being emitted.
+  std::string function_name(const FunctionDecl* function) const;
+  // A uniform read in the traced copy, through xs_opaque (emit_trace.cpp says why); other code as it is.
+  Code opaque_if_uniform(const Expr* e, Code code);
+  // main()'s traced part: the entry point's traced copy on the same inputs, made opaque, with
+  // the inputs and outputs tested and the record written.
+  struct TracedItem {
+    std::string path;  // in the plain copy: xs_arg0.uv, xs_result
+    Type type;
+    std::string semantic;
+    Loc loc;
+  };
+  void traced_main(Writer& main, Writer& interface, const std::vector<TracedItem>& inputs,
+                   const std::vector<TracedItem>& outputs);
   TraceSite site_at(TraceSite::Kind kind, Loc loc, std::string what) const;
   // Adds `site` to the table; its number as the record holds it.
   uint32_t add_site(TraceSite site, Loc loc);
@@ -296,7 +312,8 @@ class StageEmitter {
   // Constant-buffer members by name, viewing the tree's strings.
   std::unordered_map<std::string_view, const hlsl::VarDecl*> uniform_decls_;
 
-  const bool trace_;  // the tracing variant
+  const bool trace_;  // the tracing variant: every function twice, the second copy traced
+  bool in_traced_copy_ = false;  // emitting the traced copy (emit_trace.cpp)
   const uint32_t trace_program_;
   std::string current_function_ = "main";
   NonfiniteTrace trace_table_;

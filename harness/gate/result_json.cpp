@@ -3,6 +3,7 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <tuple>
 
 #include <nlohmann/json.hpp>
 
@@ -38,6 +39,36 @@ json driver_json(const DriverInfo& driver) {
           {"llvm_version", driver.llvm_version}};
 }
 
+json site_json(const glsl::TraceSite& site) {
+  return {{"kind", glsl::trace_site_kind_name(site.kind)}, {"file", site.file},
+          {"line", site.line},   {"column", site.column},
+          {"source_line", site.source_line}, {"function", site.function},
+          {"what", site.what},   {"description", glsl::describe_site(site)}};
+}
+
+json trace_json(const NonfiniteTraceResult& trace) {
+  json passes = json::array();
+  for (const PassOrigins& pass : trace.passes) {
+    json origins = json::array();
+    for (const NonfiniteOrigin& origin : pass.origins) {
+      json calls = json::array();
+      for (const glsl::TraceCall& call : origin.calls)
+        calls.push_back({{"callee", call.callee}, {"caller", call.caller}, {"file", call.file}, {"line", call.line},
+                         {"column", call.column}, {"source_line", call.source_line}});
+      origins.push_back({{"program", origin.program}, {"site", site_json(origin.site)}, {"calls", std::move(calls)},
+                         {"pixels", origin.pixels}, {"nan", origin.nan}, {"inf", origin.inf},
+                         {"negative", origin.negative}, {"first", {{"x", origin.first_x}, {"y", origin.first_y}}}});
+    }
+    passes.push_back({{"pass", pass.pass}, {"output", pass.output}, {"origins", std::move(origins)},
+                      {"unattributed_pixels", pass.unattributed_pixels}, {"recovered_pixels", pass.recovered_pixels},
+                      {"map", pass.map}});
+  }
+  return {{"passes", std::move(passes)}, {"traced_milliseconds", number(trace.traced_milliseconds)},
+          {"plain_milliseconds", number(trace.plain_milliseconds)}, {"identical", trace.identical},
+          {"traced_image", trace.traced_image},
+          {"note", trace.note}};
+}
+
 // Reads a document xshade wrote: a field that is not there or of another type is xshade's fault.
 class Reader {
  public:
@@ -48,7 +79,9 @@ class Reader {
       note(key);
       return fallback;
     }
-    if constexpr (std::is_floating_point_v<T>) {
+    if constexpr (std::is_same_v<T, bool>) {
+      if (!found->is_boolean()) return note(key), fallback;
+    } else if constexpr (std::is_floating_point_v<T>) {
       if (found->is_null()) return std::numeric_limits<T>::quiet_NaN();
       if (!found->is_number()) return note(key), fallback;
     } else if constexpr (std::is_integral_v<T>) {
@@ -120,11 +153,62 @@ class Reader {
     return metrics;
   }
 
+  NonfiniteTraceResult trace(const json& object) {
+    NonfiniteTraceResult trace;
+    for (const json& pass_object : array(object, "passes")) {
+      PassOrigins pass;
+      pass.pass = get<std::string>(pass_object, "pass");
+      pass.output = get<bool>(pass_object, "output");
+      for (const json& origin_object : array(pass_object, "origins")) {
+        NonfiniteOrigin origin;
+        origin.pass = pass.pass;
+        origin.program = get<std::string>(origin_object, "program");
+        const json& site = this->object(origin_object, "site");
+        origin.site.kind = site_kind(get<std::string>(site, "kind"));
+        origin.site.file = get<std::string>(site, "file");
+        origin.site.line = get<uint32_t>(site, "line");
+        origin.site.column = get<uint32_t>(site, "column");
+        origin.site.source_line = get<std::string>(site, "source_line");
+        origin.site.function = get<std::string>(site, "function");
+        origin.site.what = get<std::string>(site, "what");
+        for (const json& call : array(origin_object, "calls"))
+          origin.calls.push_back({get<std::string>(call, "callee"), get<std::string>(call, "caller"),
+                                  get<std::string>(call, "file"), get<uint32_t>(call, "line"),
+                                  get<uint32_t>(call, "column"), get<std::string>(call, "source_line")});
+        origin.pixels = get<size_t>(origin_object, "pixels");
+        origin.nan = get<size_t>(origin_object, "nan");
+        origin.inf = get<size_t>(origin_object, "inf");
+        origin.negative = get<size_t>(origin_object, "negative");
+        const auto first = pixel(origin_object, "first");
+        if (first) std::tie(origin.first_x, origin.first_y) = *first;
+        pass.origins.push_back(std::move(origin));
+      }
+      pass.unattributed_pixels = get<size_t>(pass_object, "unattributed_pixels");
+      pass.recovered_pixels = get<size_t>(pass_object, "recovered_pixels");
+      pass.map = get<std::string>(pass_object, "map");
+      trace.passes.push_back(std::move(pass));
+    }
+    trace.traced_milliseconds = get<double>(object, "traced_milliseconds");
+    trace.plain_milliseconds = get<double>(object, "plain_milliseconds");
+    trace.identical = get<bool>(object, "identical");
+    trace.traced_image = get<std::string>(object, "traced_image");
+    trace.note = get<std::string>(object, "note");
+    return trace;
+  }
+
   const std::string& missing() const { return missing_; }
 
  private:
   void note(const char* key) {
     if (missing_.empty()) missing_ = key;
+  }
+  glsl::TraceSite::Kind site_kind(const std::string& name) {
+    using Kind = glsl::TraceSite::Kind;
+    for (Kind kind : {Kind::Initialization, Kind::Assignment, Kind::CompoundAssignment, Kind::Return, Kind::Call,
+                      Kind::Input, Kind::Output, Kind::NegativeOutput})
+      if (name == glsl::trace_site_kind_name(kind)) return kind;
+    note("kind");
+    return Kind::Assignment;
   }
   std::string missing_;
 };
@@ -176,7 +260,8 @@ json lane_to_json(const LaneResult& lane) {
           {"timings", std::move(timings)},
           {"seconds", number(lane.seconds)},
           {"driver", driver_json(lane.driver)},
-          {"message", lane.message}};
+          {"message", lane.message},
+          {"nonfinite_trace", lane.trace ? trace_json(*lane.trace) : json(nullptr)}};
 }
 
 Result<ImageMetrics> metrics_from_json(const json& object) {
@@ -217,6 +302,8 @@ Result<LaneResult> lane_from_json(const json& object) {
                  read.get<std::string>(driver, "api_version"), read.get<std::string>(driver, "driver_version"),
                  read.get<std::string>(driver, "llvm_version")};
   lane.message = read.get<std::string>(object, "message");
+  if (const auto trace = object.find("nonfinite_trace"); trace != object.end() && trace->is_object())
+    lane.trace = read.trace(*trace);
   if (!read.missing().empty())
     return fail(ErrorKind::Internal, "a lane's result has no valid '" + read.missing() + "'");
   return lane;

@@ -10,12 +10,35 @@
 
 #include "harness/backend/backend.h"
 #include "harness/image/image_compare.h"  // Verdict, LayerResult, ImageMetrics
+#include "harness/render/nonfinite_origins.h"
 
 namespace xshade::harness {
 
 struct PassTime {
   std::string pass;
   double milliseconds = 0.0;
+};
+
+// Where one pass's non-finite pixels were born (render/nonfinite_origins.h), as a report shows it.
+struct PassOrigins {
+  std::string pass;
+  bool output = false;  // the last pass: its image is the lane's, and its counts add up to the finite layer's
+  std::vector<NonfiniteOrigin> origins;  // most pixels first
+  size_t unattributed_pixels = 0;
+  size_t recovered_pixels = 0;
+  std::string map;  // the origins map's PNG, relative to the report folder
+};
+
+// The lane rendered again with the tracing variant: because its finite layer failed, or because
+// the run asked (--trace-nonfinite).
+struct NonfiniteTraceResult {
+  // The output's pass first, then each earlier pass whose image has non-finite pixels, in order.
+  std::vector<PassOrigins> passes;
+  double traced_milliseconds = 0.0;  // the traced render, start to read-back
+  double plain_milliseconds = 0.0;   // the plain render's passes (the lane's timings)
+  bool identical = true;             // the traced image bit-identical to the plain one
+  std::string traced_image;          // where it is not: the traced image's EXR in the report
+  std::string note;                  // set when the lane was not traced, saying why
 };
 
 struct LaneResult {
@@ -35,6 +58,7 @@ struct LaneResult {
   double seconds = 0.0;       // compile + render + checks
   DriverInfo driver;
   std::string message;        // an error's text, or what failed, for a reviewer
+  std::optional<NonfiniteTraceResult> trace;
 };
 
 struct CrossLaneResult {

@@ -1,5 +1,6 @@
 #include "harness/gate/scene_check.h"
 
+#include <algorithm>
 #include <chrono>
 
 #include <fmt/format.h>
@@ -192,6 +193,10 @@ void SceneChecker::check_lane(Lane lane, CheckedScene& checked, const Status& st
   result.image_exr = write_image(image, scene.name, result.lane + ".exr", true);
   result.non_finite = count_non_finite(image);
   if (result.non_finite.total()) result.non_finite_mask = write_image(non_finite_mask(image), scene.name, result.lane + ".nonfinite.png");
+  if (options_.trace_nonfinite || result.non_finite.total()) {
+    at("while tracing non-finite values");
+    trace_lane(lane, scene, plan, *checked.environment, **backend, image, result);
+  }
 
   add_layer(result, determinism_layer(rendered->image, again->image));
 
@@ -239,6 +244,56 @@ void SceneChecker::check_lane(Lane lane, CheckedScene& checked, const Status& st
   }
   checked.images.emplace(lane, image);
   finish(Verdict::Pass, {});
+}
+
+void SceneChecker::trace_lane(Lane lane, const Scene& scene, const Plan& plan, const Environment& environment,
+                              Backend& backend, const FloatImage& plain, LaneResult& result) {
+  NonfiniteTraceResult& trace = result.trace.emplace();
+  for (const PassTime& time : result.timings) trace.plain_milliseconds += time.milliseconds;
+  if (lane == Lane::VkHlsl) {
+    trace.note = "vk-hlsl compiles the source with glslang's HLSL front end, which xshade cannot instrument: the gl and "
+                 "vk lanes say where the values were born";
+    return;
+  }
+  auto variants = compiler_.compile_plan(plan, lane, options_.half_emulation, /*trace_nonfinite=*/true);
+  if (!variants) {
+    trace.note = "the tracing variant did not compile: " + variants.error().to_string();
+    return;
+  }
+  const auto start = std::chrono::steady_clock::now();
+  auto traced = render_scene(backend, scene, plan, *variants, environment,
+                             {.keep_pass_images = true, .trace_nonfinite = true});
+  trace.traced_milliseconds = seconds_since(start) * 1000.0;
+  if (!traced) {
+    trace.note = "the traced render failed: " + traced.error().to_string();
+    return;
+  }
+  trace.identical = bitwise_equal(traced->image, plain);
+  // A traced image that is not the plain one's is a fault of the tracing variant: kept for a look.
+  if (!trace.identical) trace.traced_image = write_image(traced->image, scene.name, result.lane + ".traced.exr", true);
+  // The output's pass first: its counts are the lane's. Then the earlier passes that made
+  // non-finite values of their own, which a later pass read back through a texture.
+  std::vector<size_t> order;
+  for (size_t i = traced->traces.size(); i-- > 0;) order.push_back(i);
+  for (size_t i : order) {
+    const PassTrace& record = traced->traces[i];
+    const FloatImage& image = traced->pass_images[i].second;
+    const bool output = i + 1 == traced->traces.size();
+    const NonFiniteCount bad = count_non_finite(image);
+    if (!output && bad.nan + bad.inf == 0) continue;
+    auto origins = find_nonfinite_origins(image, record, *variants, /*count_negative=*/output);
+    if (!origins) {
+      trace.note = origins.error().to_string();
+      return;
+    }
+    PassOrigins pass{record.pass, output, std::move(origins->origins), origins->unattributed_pixels,
+                     origins->recovered_pixels, {}};
+    if (!pass.origins.empty())
+      pass.map = write_image(origins->map, scene.name, result.lane + "." + record.pass + ".origins.png");
+    trace.passes.push_back(std::move(pass));
+  }
+  // The earlier passes in the order they ran, after the output's.
+  if (trace.passes.size() > 2) std::reverse(trace.passes.begin() + 1, trace.passes.end());
 }
 
 LayerResult determinism_layer(const FloatImage& first, const FloatImage& second) {

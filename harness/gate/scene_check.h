@@ -35,6 +35,9 @@ struct SceneCheckOptions {
   // Where environments come from, built once per process (and kept between runs with a folder);
   // null: each scene builds its own.
   EnvironmentCache* environments = nullptr;
+  // Render every lane again with the tracing variant (gl and vk) and report where its non-finite
+  // values were born; without it, only a lane whose image has NaN, Inf or negative values is.
+  bool trace_nonfinite = false;
 };
 
 struct Plan;
@@ -108,6 +111,9 @@ class SceneChecker {
 
  private:
   void compare_lanes(const Scene& scene, CheckedScene& checked);
+  // The lane rendered again with the tracing variant, into result.trace; `plain` is its image.
+  void trace_lane(Lane lane, const Scene& scene, const Plan& plan, const Environment& environment, Backend& backend,
+                  const FloatImage& plain, LaneResult& result);
   // REPORT/SCENE/FILE, written or copied; its path relative to the report, or empty (said on
   // the progress line) when it could not be.
   std::string write_image(const FloatImage& image, const std::string& scene, const std::string& file, bool exr = false);

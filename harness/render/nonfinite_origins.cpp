@@ -40,7 +40,7 @@ glm::vec4 origins_palette(size_t index) {
 }
 
 Result<NonfiniteOrigins> find_nonfinite_origins(const FloatImage& output, const PassTrace& record,
-                                                const std::vector<CompiledVariant>& variants) {
+                                                const std::vector<CompiledVariant>& variants, bool count_negative) {
   const FloatImage& trace = record.record;
   if (trace.width != output.width || trace.height != output.height)
     return fail(fmt::format("the record of pass {} is {}x{}, its image {}x{}", record.pass, trace.width, trace.height,
@@ -56,7 +56,7 @@ Result<NonfiniteOrigins> find_nonfinite_origins(const FloatImage& output, const 
       for (int c = 0; c < 4; ++c) {
         if (std::isnan(color[c])) ++nan;
         else if (std::isinf(color[c])) ++inf;
-        else if (color[c] < 0.0f) ++negative;
+        else if (count_negative && color[c] < 0.0f) ++negative;
       }
       const bool bad = nan + inf + negative > 0;
       const glm::vec4 channels = trace.at(x, y);

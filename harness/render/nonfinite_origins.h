@@ -41,11 +41,14 @@ struct NonfiniteOrigins {
   FloatImage map;
 };
 
-// `output` is the last pass's image of a traced render, `record` what that pass recorded, and
+// `output` is a pass's image of a traced render, `record` what that pass recorded, and
 // `variants` the traced variants it drew with (the record's program number indexes them).
-// Fails when a record names a program or a site the variants do not have.
+// Negative values count only with `count_negative` (a colour; an earlier pass's signed
+// quantities, a circle of confusion, are meant to be negative). Fails when a record names a
+// program or a site the variants do not have.
 Result<NonfiniteOrigins> find_nonfinite_origins(const FloatImage& output, const PassTrace& record,
-                                                const std::vector<CompiledVariant>& variants);
+                                                const std::vector<CompiledVariant>& variants,
+                                                bool count_negative = true);
 
 // The colour of origin `index` in the map: hues apart by the golden angle, so that neighbours in
 // the list differ most.
