@@ -84,7 +84,7 @@ constexpr const char* kRecordGlobals =
     "uint xs_trace_site = 0u;\n"
     "uint xs_trace_path = 0u;\n"
     "// Zero, from gl_FragCoord at the start of main(): the optimiser cannot know it is.\n"
-    "uint xs_opaque_zero;\n";
+    "uint xs_opaque_zero = 0u;\n";
 
 // xs_opaque for one GLSL type: its bits ORed with xs_opaque_zero.
 std::string opaque_helper(const std::string& glsl_type) {

@@ -74,8 +74,19 @@ std::string SceneChecker::write_image(const FloatImage& image, const std::string
 }
 
 std::string lane_progress_line(const std::string& scene, const LaneResult& lane) {
-  return scene + " on " + lane.lane + ": " + std::string(verdict_name(lane.verdict)) +
-         (lane.message.empty() ? "" : " - " + first_line(lane.message));
+  std::string line = scene + " on " + lane.lane + ": " + std::string(verdict_name(lane.verdict)) +
+                     (lane.message.empty() ? "" : " - " + first_line(lane.message));
+  // The output's sites, most pixels first, so that a failing gate says where to look.
+  if (lane.trace && !lane.trace->passes.empty() && lane.trace->passes.front().output) {
+    const PassOrigins& pass = lane.trace->passes.front();
+    for (size_t i = 0; i < pass.origins.size() && i < 3; ++i) {
+      const NonfiniteOrigin& origin = pass.origins[i];
+      line += fmt::format("\n    {} pixels non-finite from {}:{}:{}: {} in {}", origin.pixels, origin.site.file,
+                          origin.site.line, origin.site.column, glsl::describe_site(origin.site), origin.site.function);
+    }
+    if (pass.origins.size() > 3) line += fmt::format("\n    ... and {} more sites (the report lists them)", pass.origins.size() - 3);
+  }
+  return line;
 }
 
 CheckedScene SceneChecker::prepare(const fs::path& scene_file, const std::vector<Lane>& lanes) {

@@ -27,6 +27,7 @@ h1 { font-size: 22px; margin: 0 0 8px; } h2 { font-size: 18px; margin: 0 0 8px; 
 h3 { font-size: 13px; margin: 0 0 4px; text-transform: uppercase; letter-spacing: .04em; color: var(--muted); }
 a { color: #0969da; }
 code, pre, .mono { font-family: ui-monospace, SFMono-Regular, Menlo, Consolas, monospace; font-size: 12px; }
+.swatch { display: inline-block; width: 12px; height: 12px; border: 1px solid var(--line); }
 pre { background: #f6f8fa; border: 1px solid var(--line); padding: 8px 12px; overflow: auto;
       white-space: pre-wrap; word-break: break-word; }
 header { padding: 16px 20px; margin: 16px -24px 20px; border-bottom: 1px solid var(--line);
@@ -232,6 +233,60 @@ std::string fact_row(std::string_view name, std::string_view value) {
   return fmt::format("<tr><th>{}</th><td>{}</td></tr>\n", escape_text(name), escape_text(value));
 }
 
+// Where the lane's non-finite values were born (the tracing variant): per pass, each site with
+// its pixels, its first pixel, its source line with a caret and the calls that led there, and
+// the map of the pixels in each site's colour.
+std::string trace_section(const NonfiniteTraceResult& trace) {
+  std::string out = "<div class=\"trace\"><h3>Where the non-finite values were born</h3>\n";
+  auto to = std::back_inserter(out);
+  if (!trace.note.empty()) {
+    fmt::format_to(to, "<p class=\"description\">not traced: {}</p>\n</div>\n", escape_text(trace.note));
+    return out;
+  }
+  const double ratio = trace.plain_milliseconds > 0 ? trace.traced_milliseconds / trace.plain_milliseconds : 0.0;
+  fmt::format_to(to, "<p class=\"description\">The lane rendered again with the tracing variant: {:.0f} ms (the plain "
+                     "render's passes {:.0f} ms, {:.1f}x); the traced image is {}.</p>\n",
+                 trace.traced_milliseconds, trace.plain_milliseconds, ratio,
+                 trace.identical ? "bit-identical to the plain one"
+                                 : "NOT bit-identical to the plain one (" + trace.traced_image + "): a fault of the tracing variant");
+  for (const PassOrigins& pass : trace.passes) {
+    fmt::format_to(to, "<h4>{} {}</h4>\n", pass.output ? "Output pass" : "Earlier pass", escape_text(pass.pass));
+    if (pass.origins.empty() && !pass.unattributed_pixels) out += "<p class=\"description\">no pixel is non-finite</p>\n";
+    if (!pass.origins.empty()) {
+      out += "<table class=\"origins\">\n<tr><th></th><th>pixels</th><th>NaN</th><th>Inf</th><th>negative</th><th>first "
+             "at</th><th>site</th></tr>\n";
+      for (size_t i = 0; i < pass.origins.size(); ++i) {
+        const NonfiniteOrigin& origin = pass.origins[i];
+        const glm::vec4 color = origins_palette(i);
+        const glsl::TraceSite& site = origin.site;
+        std::string where = fmt::format("{}:{}:{}: {} in {}", site.file, site.line, site.column,
+                                        glsl::describe_site(site), site.function);
+        std::string source = site.source_line;
+        if (!source.empty()) source += "\n" + std::string(site.column > 0 ? site.column - 1 : 0, ' ') + "^";
+        for (const glsl::TraceCall& call : origin.calls)
+          source += fmt::format("\ncalled from {} at {}:{}:{}", call.caller, call.file, call.line, call.column);
+        fmt::format_to(to,
+                       "<tr><td><span class=\"swatch\" style=\"background: rgb({}, {}, {})\"></span></td><td>{}</td>"
+                       "<td>{}</td><td>{}</td><td>{}</td><td>({}, {})</td><td>{}<pre>{}</pre></td></tr>\n",
+                       int(color.r * 255), int(color.g * 255), int(color.b * 255), origin.pixels, origin.nan, origin.inf,
+                       origin.negative, origin.first_x, origin.first_y, escape_text(where), escape_text(source));
+      }
+      out += "</table>\n";
+    }
+    if (pass.unattributed_pixels)
+      fmt::format_to(to, "<p class=\"description\">{} pixels non-finite with no site recorded (drawn by no traced "
+                         "program)</p>\n",
+                     pass.unattributed_pixels);
+    if (pass.recovered_pixels)
+      fmt::format_to(to, "<p class=\"description\">{} pixels had a NaN or infinity on the way that did not reach the "
+                         "pass's output</p>\n",
+                     pass.recovered_pixels);
+    if (!pass.map.empty()) out += "<div class=\"images\">\n" + figure("origins by site", pass.map, "") + "</div>\n";
+  }
+  out += "</div>\n";
+  return out;
+}
+
 // In the per-pixel layer's domain, 8-bit sRGB steps, as the table says; values above 1 in the
 // float layer's, relative error.
 std::string metrics_table(const ImageMetrics& metrics) {
@@ -275,6 +330,7 @@ void lane_section(std::string& out, const LaneResult& lane) {
   if (lane.image.empty()) out += "<p class=\"description\">not rendered</p>\n";
   if (lane.non_finite.total() > 0 || !lane.non_finite_mask.empty())
     out += "<div class=\"images\">\n" + figure("NaN / Inf / negative", lane.non_finite_mask, "no mask written") + "</div>\n";
+  if (lane.trace) out += trace_section(*lane.trace);
 
   out += "<div class=\"tables\">\n<div><h3>Layers</h3>\n";
   if (lane.layers.empty()) {
