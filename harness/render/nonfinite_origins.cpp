@@ -139,6 +139,7 @@ std::string describe_origins(const NonfiniteOrigins& origins, size_t rows) {
     if (!site.source_line.empty()) text += "    " + site.source_line + "\n    " + caret_line(site.source_line, site.column) + "\n";
     for (const glsl::TraceCall& call : origin.calls)
       text += fmt::format("    called from {} at {}:{}:{}\n", call.caller, call.file, call.line, call.column);
+    if (origin.calls.size() == glsl::NonfiniteTrace::kRecordedCalls) text += "    (calls further out are not recorded)\n";
   }
   if (origins.origins.size() > rows) text += fmt::format("  ... and {} more sites\n", origins.origins.size() - rows);
   if (origins.unattributed_pixels)

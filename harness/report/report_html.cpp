@@ -265,6 +265,7 @@ std::string trace_section(const NonfiniteTraceResult& trace) {
         if (!source.empty()) source += "\n" + std::string(site.column > 0 ? site.column - 1 : 0, ' ') + "^";
         for (const glsl::TraceCall& call : origin.calls)
           source += fmt::format("\ncalled from {} at {}:{}:{}", call.caller, call.file, call.line, call.column);
+        if (origin.calls.size() == glsl::NonfiniteTrace::kRecordedCalls) source += "\n(calls further out are not recorded)";
         fmt::format_to(to,
                        "<tr><td><span class=\"swatch\" style=\"background: rgb({}, {}, {})\"></span></td><td>{}</td>"
                        "<td>{}</td><td>{}</td><td>{}</td><td>({}, {})</td><td>{}<pre>{}</pre></td></tr>\n",

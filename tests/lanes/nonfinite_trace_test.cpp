@@ -270,6 +270,40 @@ TEST_P(TracedFixedScene, EveryFixedSceneRendersTheSameBitsTraced) {
   EXPECT_EQ((*backend)->take_driver_messages(), std::vector<std::string>{});
 }
 
+// SHADERS.md hazard 8 on the fixed material grid with the seed's forms, no guards, in fp16: the
+// smoothest row's D overflows and meets a zero. The tracer names D's division as where it began,
+// and the NaN it accounts for are the image's.
+TEST_P(TracedFixedScene, TheSeedsDIsWhereTheMaterialGridsFp16NanIsBorn) {
+  const harness::Lane lane = GetParam();
+  auto backend = harness::create_backend(lane);
+  ASSERT_TRUE(backend) << backend.error().to_string();
+  harness::VariantCompiler compiler(harness::ShaderSearchPath(fs::path(XSHADE_SHADERS_DIR)), nullptr);
+  auto scene = harness::load_scene(fs::path(XSHADE_SCENES_DIR) / "material_grid.toml");
+  ASSERT_TRUE(scene) << scene.error().to_string();
+  auto plan = harness::plan_scene(*scene, compiler.shaders());
+  auto environment = harness::build_environment(scene->environment);
+  ASSERT_TRUE(plan && environment);
+  auto variants = compiler.compile_plan(*plan, lane, /*half_emulation=*/true, /*trace_nonfinite=*/true);
+  ASSERT_TRUE(variants) << variants.error().to_string();
+  auto traced = harness::render_scene(**backend, *scene, *plan, *variants, *environment, {.trace_nonfinite = true});
+  ASSERT_TRUE(traced) << traced.error().to_string();
+  ASSERT_EQ(traced->traces.size(), 1u);
+  auto origins = harness::find_nonfinite_origins(traced->image, traced->traces[0], *variants);
+  ASSERT_TRUE(origins) << origins.error().to_string();
+  const harness::NonFiniteCount counted = harness::count_non_finite(traced->image);
+  ASSERT_GT(counted.nan, 0u) << "the seed's fp16 D no longer overflows on the smoothest row";
+  ASSERT_FALSE(origins->origins.empty());
+  size_t nan = 0;
+  for (const harness::NonfiniteOrigin& origin : origins->origins) {
+    nan += origin.nan;
+    EXPECT_EQ(origin.site.function, "D_GGX_seed") << harness::describe_origins(*origins);
+    EXPECT_EQ(origin.site.kind, TraceSite::Kind::Return);
+    EXPECT_EQ(fs::path(origin.site.file).filename().string(), "brdf.hlsl");
+    EXPECT_NE(origin.site.source_line.find("a2 / (kPi * d * d)"), std::string::npos) << origin.site.source_line;
+  }
+  EXPECT_EQ(nan, counted.nan);
+}
+
 INSTANTIATE_TEST_SUITE_P(Lanes, TracedFixedScene, ::testing::Values(harness::Lane::Gl, harness::Lane::Vk),
                          [](const auto& lane) { return std::string(harness::lane_name(lane.param)); });
 
