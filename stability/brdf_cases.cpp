@@ -49,7 +49,9 @@ Result<std::vector<BrdfOutput>> run_brdf(const CaseContext& context, const std::
     packed.push_back(glm::vec4(in.l, in.LoH));
     packed.push_back(glm::vec4(in.metallic, 0.0f, 0.0f, 0.0f));
   }
-  auto image = run_probe(context, "brdf_terms.hlsl", 4, packed, 2);
+  std::vector<std::string> labels;
+  for (const BrdfInput& in : inputs) labels.push_back(in.label);
+  auto image = run_probe(context, "brdf_terms.hlsl", 4, packed, 2, labels);
   if (!image) return fail(image.error());
   std::vector<BrdfOutput> outputs;
   for (uint32_t x = 0; x < image->width; ++x) {
@@ -400,11 +402,12 @@ Case material_grid() {
   c.forms = {kSeed, kGuardsSeedD, kGuarded};
   c.run = [](const CaseContext& context) -> Result<std::vector<Measurement>> {
     std::vector<Measurement> measurements;
-    auto image = render_scene_with_form(context, "material_grid");
+    std::string born_at;
+    auto image = render_scene_with_form(context, "material_grid", &born_at);
     if (!image) return fail(image.error());
     const harness::NonFiniteCount bad = harness::count_non_finite(*image);
     measurements.push_back({"scene material_grid (5 x 5 cells, metallic x smoothness)", "NaN and inf channel values",
-                            double(bad.nan + bad.inf), "0", bad.nan + bad.inf == 0});
+                            double(bad.nan + bad.inf), "0", bad.nan + bad.inf == 0, born_at});
 
     constexpr int kSteps = 16;
     std::vector<BrdfInput> inputs;

@@ -8,6 +8,7 @@
 
 #include <filesystem>
 #include <functional>
+#include <map>
 #include <set>
 #include <string>
 #include <vector>
@@ -39,6 +40,9 @@ struct Measurement {
   double value = 0.0;    // what the shader computed (NaN and infinities as they came)
   std::string bound;     // "= 79577.5 +- 1e-5 relative", "finite and in [0, 1]"
   bool ok = true;
+  // Where a NaN or infinity in the value was born (the tracing variant, gl and vk): "brdf.hlsl:19:
+  // the value D_GGX_seed returns"; empty for a finite value or where nothing traced it.
+  std::string born_at = {};
 };
 
 class ProbePrograms;
@@ -55,6 +59,9 @@ struct CaseContext {
   harness::VariantCompiler& compiler;        // for cases that run the library's post effects
   ProbePrograms& probes;                     // the probes compiled so far on this backend
   harness::ProgramCache& programs;           // the effects' programs made so far on this backend
+  // Where the non-finite values of a probe's inputs were born, by input label (run_probe with
+  // labels fills it; the suite copies it into the measurements of those inputs).
+  std::map<std::string, std::string>& born_at;
 };
 
 // What SHADERS.md says a form does on a case at a precision: the inputs (Measurement::input)

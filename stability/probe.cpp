@@ -5,15 +5,18 @@
 #include <cstring>
 
 #include "harness/assets/environment.h"
+#include "harness/image/image_compare.h"
 #include "harness/render/evaluate.h"
+#include "harness/render/nonfinite_origins.h"
 #include "harness/render/planner.h"
 #include "harness/scene/scene.h"
 #include "harness/render/scene_renderer.h"
 
 namespace xshade::stability {
 
-Result<const harness::FullscreenProgram*> ProbePrograms::get(const CaseContext& context, const std::string& file) {
-  std::string key = file + (context.precision == Precision::Half ? " half" : "");
+Result<const harness::FullscreenProgram*> ProbePrograms::get(const CaseContext& context, const std::string& file,
+                                                             bool traced) {
+  std::string key = file + (context.precision == Precision::Half ? " half" : "") + (traced ? " traced" : "");
   for (const std::string& keyword : context.form.keywords) key += " " + keyword;
   if (auto known = programs_.find(key); known != programs_.end()) return &known->second;
 
@@ -24,14 +27,16 @@ Result<const harness::FullscreenProgram*> ProbePrograms::get(const CaseContext& 
   const auto path = context.probes_dir / file;
   auto module = hlsl::compile_file(path, options);
   if (!module->ok()) return fail(path.string() + " does not compile:\n" + module->diagnostics.render_all());
-  auto program = harness::FullscreenProgram::create(*module, context.lane, context.backend,
-                                                    {.half_emulation = context.precision == Precision::Half});
+  auto program = harness::FullscreenProgram::create(
+      *module, context.lane, context.backend,
+      {.half_emulation = context.precision == Precision::Half, .trace_nonfinite = traced});
   if (!program) return fail(program.error());
   return &programs_.emplace(key, std::move(*program)).first->second;
 }
 
 Result<harness::FloatImage> run_probe(const CaseContext& context, const std::string& file, uint32_t vectors_per_input,
-                                      const std::vector<glm::vec4>& inputs, uint32_t rows) {
+                                      const std::vector<glm::vec4>& inputs, uint32_t rows,
+                                      const std::vector<std::string>& labels) {
   auto program = context.probes.get(context, file);
   if (!program) return fail(program.error());
   const std::optional<uint32_t> size = (*program)->constant_buffer_size("ProbeInputs");
@@ -41,10 +46,32 @@ Result<harness::FloatImage> run_probe(const CaseContext& context, const std::str
     return fail(fmt::format("{} inputs do not fit {}'s ProbeInputs", inputs.size() / vectors_per_input, file));
   std::memcpy(bytes.data(), inputs.data(), inputs.size() * sizeof(glm::vec4));
   const auto columns = uint32_t(inputs.size() / vectors_per_input);
-  return (*program)->run(context.backend, columns, rows, {{"ProbeInputs", std::move(bytes)}});
+  auto image = (*program)->run(context.backend, columns, rows, {{"ProbeInputs", bytes}});
+  if (!image || labels.empty() || context.lane == harness::Lane::VkHlsl) return image;
+  const harness::NonFiniteCount bad = harness::count_non_finite(*image);
+  if (bad.nan + bad.inf == 0) return image;
+  // Again, traced: which line of the library made each column's first NaN or infinity.
+  auto traced = context.probes.get(context, file, /*traced=*/true);
+  if (!traced) return fail(traced.error());
+  harness::FloatImage record;
+  auto again = (*traced)->run(context.backend, columns, rows, {{"ProbeInputs", std::move(bytes)}}, {}, &record);
+  if (!again) return fail(again.error());
+  const glsl::NonfiniteTrace& table = (*traced)->trace();
+  for (uint32_t x = 0; x < columns && x < labels.size(); ++x)
+    for (uint32_t y = 0; y < rows; ++y) {
+      const auto number = uint32_t(record.at(x, y).r);
+      const uint32_t site = number & 0xFFFFu;
+      if (site == 0 || site > table.sites.size()) continue;
+      const glsl::TraceSite& born = table.sites[site - 1];
+      context.born_at[labels[x]] = fmt::format("{}:{}: {}", std::filesystem::path(born.file).filename().string(),
+                                               born.line, glsl::describe_site(born));
+      break;
+    }
+  return image;
 }
 
-Result<harness::FloatImage> render_scene_with_form(const CaseContext& context, const std::string& scene_name) {
+Result<harness::FloatImage> render_scene_with_form(const CaseContext& context, const std::string& scene_name,
+                                                   std::string* born_at) {
   auto scene = harness::load_scene(context.scenes_dir / (scene_name + ".toml"));
   if (!scene) return fail(scene.error());
   for (harness::SceneObject& object : scene->objects) object.keywords = context.form.keywords;
@@ -56,6 +83,27 @@ Result<harness::FloatImage> render_scene_with_form(const CaseContext& context, c
   if (!environment) return fail(environment.error());
   auto rendered = harness::render_scene(context.backend, *scene, *plan, *variants, *environment);
   if (!rendered) return fail(rendered.error());
+  const harness::NonFiniteCount bad = harness::count_non_finite(rendered->image);
+  if (!born_at || bad.nan + bad.inf == 0 || context.lane == harness::Lane::VkHlsl) return std::move(rendered->image);
+  auto traced_variants = context.compiler.compile_plan(*plan, context.lane, context.precision == Precision::Half,
+                                                       /*trace_nonfinite=*/true);
+  if (!traced_variants) return fail(traced_variants.error());
+  auto traced = harness::render_scene(context.backend, *scene, *plan, *traced_variants, *environment,
+                                      {.trace_nonfinite = true});
+  if (!traced) return fail(traced.error());
+  auto origins = harness::find_nonfinite_origins(traced->image, traced->traces.back(), *traced_variants,
+                                                 /*count_negative=*/false);
+  if (!origins) return fail(origins.error());
+  if (!origins->origins.empty()) {
+    const harness::NonfiniteOrigin& most = origins->origins.front();
+    *born_at = fmt::format("{}:{}: {} ({} of {} pixels)", std::filesystem::path(most.site.file).filename().string(),
+                           most.site.line, glsl::describe_site(most.site), most.pixels,
+                           [&] {
+                             size_t all = 0;
+                             for (const auto& origin : origins->origins) all += origin.pixels;
+                             return all;
+                           }());
+  }
   return std::move(rendered->image);
 }
 

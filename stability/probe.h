@@ -19,7 +19,9 @@ namespace xshade::stability {
 // compiles each once, however many cases run it.
 class ProbePrograms {
  public:
-  Result<const harness::FullscreenProgram*> get(const CaseContext& context, const std::string& file);
+  // With `traced`, the probe's tracing variant (glsl::EmitOptions::trace_nonfinite).
+  Result<const harness::FullscreenProgram*> get(const CaseContext& context, const std::string& file,
+                                                bool traced = false);
 
  private:
   std::map<std::string, harness::FullscreenProgram> programs_;
@@ -28,12 +30,18 @@ class ProbePrograms {
 // Renders the probe `file` (in the context's probes folder, compiled with the form's keywords)
 // as a full-screen pass of inputs.size() / vectors_per_input columns and `rows` rows; its
 // constant buffer ProbeInputs holds `inputs`, zero-padded to the probe's size.
+// With `labels` (one per column), where a column's first NaN or infinity was born goes into
+// context.born_at under its label: the probe runs again traced when the image has any (gl and vk).
 Result<harness::FloatImage> run_probe(const CaseContext& context, const std::string& file, uint32_t vectors_per_input,
-                                      const std::vector<glm::vec4>& inputs, uint32_t rows);
+                                      const std::vector<glm::vec4>& inputs, uint32_t rows,
+                                      const std::vector<std::string>& labels = {});
 
 // Renders a scene of the project (scenes/NAME.toml) with every object's keywords
 // replaced by the form's.
-Result<harness::FloatImage> render_scene_with_form(const CaseContext& context, const std::string& scene_name);
+// With `born_at`, where most of its NaN and infinities were born, when it has any: the scene
+// renders again traced (gl and vk).
+Result<harness::FloatImage> render_scene_with_form(const CaseContext& context, const std::string& scene_name,
+                                                   std::string* born_at = nullptr);
 
 // The largest rise from one value to the next, and the index of the later value; NaN if a
 // difference is NaN.

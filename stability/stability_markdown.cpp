@@ -109,6 +109,16 @@ std::string stability_markdown(const std::vector<Case>& cases, const SuiteRun& r
         if (o && !o->prediction.note.empty())
           md += fmt::format("- *{}, {}*: {}\n", form.name, precision == Precision::Float ? "fp32" : "fp16", o->prediction.note);
       }
+    // Where each non-finite value was born, once for the lanes that agree (the tracing variant).
+    std::map<std::string, std::string> born;
+    for (const Outcome& o : run.outcomes)
+      if (o.case_id == c.id)
+        for (const Measurement& m : o.measurements)
+          if (!m.born_at.empty())
+            born.emplace(fmt::format("*{}, {}, {} ({})*", o.form, o.precision == Precision::Float ? "fp32" : "fp16",
+                                     cell(m.input), cell(m.quantity)),
+                         m.born_at);
+    for (const auto& [what, where] : born) md += fmt::format("- {}: born at {}\n", what, cell(where));
     for (const Outcome& o : run.outcomes)
       if (o.case_id == c.id && o.error)
         md += fmt::format("- *{}, {}, {}*: could not run: {}\n", o.form, harness::lane_name(o.lane), precision_name(o.precision),

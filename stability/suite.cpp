@@ -4,6 +4,8 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
+#include <map>
 #include <memory>
 
 #include "stability/cases.h"
@@ -97,11 +99,16 @@ Result<SuiteRun> run_suite(const std::vector<Case>& cases, const SuiteOptions& o
           if (lane == harness::Lane::VkHlsl && precision == Precision::Half) continue;
           Outcome outcome{c->id, c->section, form.name, form.seed, lane, precision, {}, {}, {}};
           if (c->predict) outcome.prediction = c->predict(form, precision);
-          const CaseContext context{**backend, lane, precision, form, options.shaders_dir, options.probes_dir,
-                                    options.scenes_dir, compiler, probes, programs};
+          std::map<std::string, std::string> born_at;
+          const CaseContext context{**backend,          lane,     precision, form,     options.shaders_dir,
+                                    options.probes_dir, options.scenes_dir, compiler, probes, programs, born_at};
           auto measured = c->run(context);
           if (measured) outcome.measurements = std::move(*measured);
           else outcome.error = measured.error().to_string();
+          for (Measurement& m : outcome.measurements) {
+            const auto it = born_at.find(m.input);
+            if (!std::isfinite(m.value) && it != born_at.end()) m.born_at = it->second;
+          }
           for (const std::string& message : (*backend)->take_driver_messages())
             outcome.error = outcome.error.value_or("") + "driver message: " + message + "\n";
           ++ran;

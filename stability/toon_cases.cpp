@@ -30,7 +30,9 @@ Result<std::vector<ToonOutput>> run_toon(const CaseContext& context, const std::
     packed.push_back({in.NoL, in.NoV, in.NoH, in.atten});
     packed.push_back({in.threshold, in.smooth, in.shininess, in.gloss});
   }
-  auto image = run_probe(context, "toon_terms.hlsl", 2, packed, 1);
+  std::vector<std::string> labels;
+  for (const ToonInput& in : inputs) labels.push_back(in.label);
+  auto image = run_probe(context, "toon_terms.hlsl", 2, packed, 1, labels);
   if (!image) return fail(image.error());
   std::vector<ToonOutput> outputs;
   for (uint32_t x = 0; x < image->width; ++x) {
