@@ -1,6 +1,8 @@
 // The stability suite as CTest tests: every case on every lane, in fp32 and fp16 emulation,
 // must come out as predicted (the guarded forms hold, the seed's break exactly where predicted).
 // A failure prints the case, the form, the lane, the precision, the input and the value.
+#include <cmath>
+
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
@@ -112,6 +114,27 @@ TEST(StabilitySuite, MarkdownHasTheSummaryAndEveryMeasuredValue) {
   EXPECT_THAT(md, testing::HasSubstr("| [ggx_peak](#ggx_peak) | 5.1 | guarded | holds | holds |"));
   // The seed's fp16 row at a = 0.002: the fp32 column has its own bound's row.
   EXPECT_THAT(md, testing::HasSubstr("| seed | a = 0.002 | D | finite and <= 65504 (fp16's largest) | - | inf ✗ |"));
+}
+
+// Each predicted non-finite value names the line it was born on (the tracing variant): the seed's
+// D at a = 0 and NoH = 1 is 0/0 in its division, its return in brdf.hlsl; the Lagrange form's
+// finite value names nothing.
+TEST(StabilitySuite, ANonFiniteValueNamesTheLineItWasBornOn) {
+  const std::vector<Case> cases = all_cases();
+  auto run = run_suite({find_case(cases, "zero_alpha")}, options_for(harness::Lane::Vk, {Precision::Float}));
+  ASSERT_TRUE(run) << run.error().to_string();
+  bool named = false;
+  for (const Outcome& outcome : run->outcomes)
+    for (const Measurement& m : outcome.measurements) {
+      if (std::isfinite(m.value)) EXPECT_EQ(m.born_at, "") << m.input;
+      if (outcome.form == "seed" && m.input == "a = 0, NoH = 1" && m.quantity == "D") {
+        EXPECT_EQ(m.born_at, "brdf.hlsl:19: the value D_GGX_seed returns");
+        named = true;
+      }
+    }
+  EXPECT_TRUE(named) << "the seed's D at a = 0 was not measured";
+  const std::string md = stability_markdown({find_case(cases, "zero_alpha")}, *run, "xshade stability zero_alpha");
+  EXPECT_THAT(md, testing::HasSubstr("- *seed, fp32, a = 0, NoH = 1 (D)*: born at brdf.hlsl:19: the value D_GGX_seed returns"));
 }
 
 }  // namespace
