@@ -126,7 +126,9 @@ TEST(StabilitySuite, ANonFiniteValueNamesTheLineItWasBornOn) {
   bool named = false;
   for (const Outcome& outcome : run->outcomes)
     for (const Measurement& m : outcome.measurements) {
-      if (std::isfinite(m.value)) EXPECT_EQ(m.born_at, "") << m.input;
+      if (std::isfinite(m.value)) {
+        EXPECT_EQ(m.born_at, "") << m.input;
+      }
       if (outcome.form == "seed" && m.input == "a = 0, NoH = 1" && m.quantity == "D") {
         EXPECT_EQ(m.born_at, "brdf.hlsl:19: the value D_GGX_seed returns");
         named = true;
