@@ -7,6 +7,7 @@
 
 #include <fmt/format.h>
 
+#include "harness/vulkan/vulkan_backend.h"
 #include "spirv/spirv_words.h"
 
 namespace xshade::harness::vk_support {
@@ -451,3 +452,18 @@ vk::CompareOp vk_compare_op(CompareOp op) {
 }
 
 }  // namespace xshade::harness::vk_support
+
+namespace xshade::harness {
+
+bool vulkan_validation_available() {
+  try {
+    vk::raii::Context context;
+    for (const vk::LayerProperties& layer : context.enumerateInstanceLayerProperties())
+      if (std::string_view(layer.layerName.data()) == vk_support::kValidationLayer) return true;
+  } catch (...) {
+    // No loader, or enumeration failed: no validation either.
+  }
+  return false;
+}
+
+}  // namespace xshade::harness

@@ -19,6 +19,8 @@
 
 namespace xshade::harness::vk_support {
 
+inline constexpr const char* kValidationLayer = "VK_LAYER_KHRONOS_validation";
+
 // ---- SPIR-V ------------------------------------------------------------------------------------
 
 struct EntryPointInfo {

@@ -33,7 +33,6 @@ using vk_support::Buffer;
 using vk_support::Image;
 using vk_support::Recording;
 
-constexpr const char* kValidationLayer = "VK_LAYER_KHRONOS_validation";
 constexpr vk::Format kColorFormat = vk::Format::eR32G32B32A32Sfloat;
 constexpr vk::Format kDepthFormat = vk::Format::eD32Sfloat;
 
@@ -104,8 +103,8 @@ class VulkanBackend final : public Backend {
   Result<void> destroy(TextureHandle texture) override { return destroy_in(objects_.textures, texture); }
   Result<void> destroy(ProgramHandle program) override { return destroy_in(objects_.programs, program); }
   Result<void> render(const RenderPass& pass) override;
-  Result<FloatImage> read_color(TargetHandle target) override;
-  Result<FloatImage> read_second_color(TargetHandle target) override;
+  Result<FloatImage> read_color(TargetHandle target) override { return read_image(target, false); }
+  Result<FloatImage> read_second_color(TargetHandle target) override { return read_image(target, true); }
   std::vector<std::string> take_driver_messages() override {
     std::lock_guard lock(log_->mutex);
     return std::exchange(log_->messages, {});
@@ -176,7 +175,7 @@ Result<void> VulkanBackend::init(const VulkanOptions& options) {
     std::vector<const char*> layers;
     std::vector<const char*> extensions;
     if (validation) {
-      layers.push_back(kValidationLayer);
+      layers.push_back(vk_support::kValidationLayer);
       extensions.push_back(VK_EXT_DEBUG_UTILS_EXTENSION_NAME);
     }
     vk::ApplicationInfo app("xshade", 1, "xshade", 1, VK_API_VERSION_1_3);
@@ -336,15 +335,14 @@ Result<TargetHandle> VulkanBackend::create_target(const TargetDesc& desc) {
     using U = vk::ImageUsageFlagBits;
     auto target = std::make_unique<Target>();
     // Transfer-dst only for the initial clear below.
-    target->color = vk_support::create_image(
-        device_ref(), {kColorFormat, vk::ImageAspectFlagBits::eColor, desc.width, desc.height, 1,
-                       U::eColorAttachment | U::eSampled | U::eTransferSrc | U::eTransferDst,
-                       fmt::format("the colour of target {}", id), TextureFormat::Rgba32Float});
-    if (desc.second_color)
-      target->second_color = vk_support::create_image(
+    const auto color_image = [&](const char* what) {
+      return vk_support::create_image(
           device_ref(), {kColorFormat, vk::ImageAspectFlagBits::eColor, desc.width, desc.height, 1,
                          U::eColorAttachment | U::eSampled | U::eTransferSrc | U::eTransferDst,
-                         fmt::format("the second colour of target {}", id), TextureFormat::Rgba32Float});
+                         fmt::format("the {} of target {}", what, id), TextureFormat::Rgba32Float});
+    };
+    target->color = color_image("colour");
+    if (desc.second_color) target->second_color = color_image("second colour");
     if (desc.depth)
       target->depth = vk_support::create_image(
           device_ref(),
@@ -354,14 +352,10 @@ Result<TargetHandle> VulkanBackend::create_target(const TargetDesc& desc) {
     // Start from defined contents (zero colour, far depth) so that reads before a render are
     // stable.
     submit([&](Recording& rec) {
-      rec.transition(target->color, vk::ImageLayout::eTransferDstOptimal);
-      rec.cmd.clearColorImage(
-          *target->color.image, vk::ImageLayout::eTransferDstOptimal,
-          vk::ClearColorValue(std::array<float, 4>{0.0f, 0.0f, 0.0f, 0.0f}),
-          vk::ImageSubresourceRange(vk::ImageAspectFlagBits::eColor, 0, 1, 0, 1));
-      if (target->second_color) {
-        rec.transition(*target->second_color, vk::ImageLayout::eTransferDstOptimal);
-        rec.cmd.clearColorImage(*target->second_color->image, vk::ImageLayout::eTransferDstOptimal,
+      for (Image* color : {&target->color, target->second_color ? &*target->second_color : nullptr}) {
+        if (!color) continue;
+        rec.transition(*color, vk::ImageLayout::eTransferDstOptimal);
+        rec.cmd.clearColorImage(*color->image, vk::ImageLayout::eTransferDstOptimal,
                                 vk::ClearColorValue(std::array<float, 4>{0.0f, 0.0f, 0.0f, 0.0f}),
                                 vk::ImageSubresourceRange(vk::ImageAspectFlagBits::eColor, 0, 1, 0, 1));
       }
@@ -807,15 +801,13 @@ Result<void> VulkanBackend::render(const RenderPass& pass) {
       if (target->depth)
         rec.transition(*target->depth, vk::ImageLayout::eDepthStencilAttachmentOptimal);
       const vk::Rect2D area({0, 0}, {target->color.width, target->color.height});
-      std::vector<vk::RenderingAttachmentInfo> colors{vk::RenderingAttachmentInfo(
-          *target->color.view, vk::ImageLayout::eColorAttachmentOptimal, {}, nullptr, {},
-          vk::AttachmentLoadOp::eClear, vk::AttachmentStoreOp::eStore,
-          vk::ClearColorValue(std::array<float, 4>{pass.clear_color.r, pass.clear_color.g,
-                                                   pass.clear_color.b, pass.clear_color.a}))};
-      if (target->second_color)
-        colors.emplace_back(*target->second_color->view, vk::ImageLayout::eColorAttachmentOptimal, vk::ResolveModeFlagBits{},
-                            nullptr, vk::ImageLayout{}, vk::AttachmentLoadOp::eClear, vk::AttachmentStoreOp::eStore,
-                            vk::ClearColorValue(std::array<float, 4>{0.0f, 0.0f, 0.0f, 0.0f}));
+      const auto attachment = [](const Image& image, const glm::vec4& clear) {
+        return vk::RenderingAttachmentInfo(*image.view, vk::ImageLayout::eColorAttachmentOptimal, {}, nullptr, {},
+                                           vk::AttachmentLoadOp::eClear, vk::AttachmentStoreOp::eStore,
+                                           vk::ClearColorValue(std::array<float, 4>{clear.r, clear.g, clear.b, clear.a}));
+      };
+      std::vector<vk::RenderingAttachmentInfo> colors{attachment(target->color, pass.clear_color)};
+      if (target->second_color) colors.push_back(attachment(*target->second_color, glm::vec4(0.0f)));
       vk::RenderingAttachmentInfo depth;
       if (target->depth)
         depth = vk::RenderingAttachmentInfo(
@@ -853,9 +845,6 @@ Result<void> VulkanBackend::render(const RenderPass& pass) {
   });
 }
 
-Result<FloatImage> VulkanBackend::read_color(TargetHandle handle) { return read_image(handle, false); }
-Result<FloatImage> VulkanBackend::read_second_color(TargetHandle handle) { return read_image(handle, true); }
-
 Result<FloatImage> VulkanBackend::read_image(TargetHandle handle, bool second) {
   const std::string what = fmt::format("{} of target {}", second ? "read_second_color" : "read_color", handle.id);
   return guarded<FloatImage>(what, [&]() -> Result<FloatImage> {
@@ -887,17 +876,6 @@ Result<FloatImage> VulkanBackend::read_image(TargetHandle handle, bool second) {
 }
 
 }  // namespace
-
-bool vulkan_validation_available() {
-  try {
-    vk::raii::Context context;
-    for (const vk::LayerProperties& layer : context.enumerateInstanceLayerProperties())
-      if (std::string_view(layer.layerName.data()) == kValidationLayer) return true;
-  } catch (...) {
-    // No loader, or enumeration failed: no validation either.
-  }
-  return false;
-}
 
 Result<std::unique_ptr<Backend>> create_vulkan_backend(const VulkanOptions& options) {
   try {
