@@ -636,7 +636,10 @@ std::string StageEmitter::interface_and_main() {
       source = {name};
     }
     main.line(item.path + " = " + convert(source, source_type, item.type, item.loc).text + ";");
-    if (trace_) traced_inputs.push_back({item.path, item.type, vertex_ || source.text.rfind("xs_v_", 0) != 0 ? "" : item.semantic, item.loc});
+    if (trace_) {  // what arrives from the vertex stage is tested by its semantic; builtins are not
+      const bool varying = !vertex_ && source.text.rfind("xs_v_", 0) == 0;
+      traced_inputs.push_back({item.path, item.type, varying ? item.semantic : std::string(), item.loc});
+    }
   }
 
   // The call.
