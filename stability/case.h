@@ -60,7 +60,8 @@ struct CaseContext {
   ProbePrograms& probes;                     // the probes compiled so far on this backend
   harness::ProgramCache& programs;           // the effects' programs made so far on this backend
   // Where the non-finite values of a probe's inputs were born, by input label (run_probe with
-  // labels fills it; the suite copies it into the measurements of those inputs).
+  // labels fills it), or under "*" for a whole image's (the depth of field's); the suite copies
+  // it into the non-finite measurements of those inputs, or of the run.
   std::map<std::string, std::string>& born_at;
 };
 

@@ -13,6 +13,8 @@
 #include <cmath>
 #include <functional>
 
+#include "harness/image/image_compare.h"
+#include "harness/render/nonfinite_origins.h"
 #include "harness/render/planner.h"
 #include "harness/render/scene_renderer.h"
 #include "stability/cases.h"
@@ -80,6 +82,33 @@ struct DofImages {
   FloatImage coc;  // the coc pass's output: the signed circle of confusion in pixels, in red
 };
 
+// When the effect's output has NaN or infinities: the effect again, traced, and the first pass whose
+// image has them names where most of them were born, for every non-finite measurement of the run
+// (context.born_at["*"]). The output's own site is often a texture read of an earlier pass's NaN.
+Result<void> name_where_born(const CaseContext& context, const harness::Scene& scene, const harness::Plan& plan,
+                             const FloatImage& color, const FloatImage& depth) {
+  if (context.lane == harness::Lane::VkHlsl || context.born_at.contains("*")) return {};
+  auto variants = context.compiler.compile_plan(plan, context.lane, context.precision == Precision::Half,
+                                                /*trace_nonfinite=*/true);
+  if (!variants) return fail(variants.error());
+  auto traced = harness::render_post_effects(context.backend, scene, plan, *variants, color, depth,
+                                             {.keep_pass_images = true, .trace_nonfinite = true});
+  if (!traced) return fail(traced.error());
+  for (size_t i = 0; i < traced->traces.size(); ++i) {
+    const FloatImage& image = traced->pass_images[i].second;
+    const harness::NonFiniteCount bad = harness::count_non_finite(image);
+    if (bad.nan + bad.inf == 0) continue;
+    auto origins = harness::find_nonfinite_origins(image, traced->traces[i], *variants, /*count_negative=*/false);
+    if (!origins) return fail(origins.error());
+    if (origins->origins.empty()) continue;
+    const harness::NonfiniteOrigin& most = origins->origins.front();
+    context.born_at["*"] = fmt::format("{}:{}: {} (pass {})", std::filesystem::path(most.site.file).filename().string(),
+                                       most.site.line, glsl::describe_site(most.site), traced->traces[i].pass);
+    return {};
+  }
+  return {};
+}
+
 // The depth of field in the context's form, lane and precision over `color` and `depth` (the
 // depth-buffer value in red). The scene has no objects: the effect is its whole plan. `programs`
 // keeps the passes' programs for the case's next renders on the same backend.
@@ -110,6 +139,8 @@ Result<DofImages> run_depth_of_field(const CaseContext& context, harness::Progra
   auto rendered = harness::render_post_effects(context.backend, scene, *plan, *variants, color, depth,
                                                {.keep_pass_images = settings.keep_coc, .programs = &programs});
   if (!rendered) return fail(rendered.error());
+  if (const harness::NonFiniteCount bad = harness::count_non_finite(rendered->image); bad.nan + bad.inf > 0)
+    if (auto named = name_where_born(context, scene, *plan, color, depth); !named) return fail(named.error());
   DofImages images{std::move(rendered->image), {}};
   if (settings.keep_coc) {
     auto coc = std::find_if(rendered->pass_images.begin(), rendered->pass_images.end(),

@@ -105,8 +105,10 @@ Result<SuiteRun> run_suite(const std::vector<Case>& cases, const SuiteOptions& o
           auto measured = c->run(context);
           if (measured) outcome.measurements = std::move(*measured);
           else outcome.error = measured.error().to_string();
+          // By input; "*" for every non-finite value of the run (a whole image's first site).
           for (Measurement& m : outcome.measurements) {
-            const auto it = born_at.find(m.input);
+            auto it = born_at.find(m.input);
+            if (it == born_at.end()) it = born_at.find("*");
             if (!std::isfinite(m.value) && it != born_at.end()) m.born_at = it->second;
           }
           for (const std::string& message : (*backend)->take_driver_messages())
