@@ -94,18 +94,9 @@ Result<void> name_where_born(const CaseContext& context, const harness::Scene& s
   auto traced = harness::render_post_effects(context.backend, scene, plan, *variants, color, depth,
                                              {.keep_pass_images = true, .trace_nonfinite = true});
   if (!traced) return fail(traced.error());
-  for (size_t i = 0; i < traced->traces.size(); ++i) {
-    const FloatImage& image = traced->pass_images[i].second;
-    const harness::NonFiniteCount bad = harness::count_non_finite(image);
-    if (bad.nan + bad.inf == 0) continue;
-    auto origins = harness::find_nonfinite_origins(image, traced->traces[i], *variants, /*count_negative=*/false);
-    if (!origins) return fail(origins.error());
-    if (origins->origins.empty()) continue;
-    const harness::NonfiniteOrigin& most = origins->origins.front();
-    context.born_at["*"] = fmt::format("{}:{}: {} (pass {})", std::filesystem::path(most.site.file).filename().string(),
-                                       most.site.line, glsl::describe_site(most.site), traced->traces[i].pass);
-    return {};
-  }
+  auto born = first_born_at(*traced, *variants);
+  if (!born) return fail(born.error());
+  if (!born->empty()) context.born_at["*"] = std::move(*born);
   return {};
 }
 

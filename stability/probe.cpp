@@ -62,9 +62,7 @@ Result<harness::FloatImage> run_probe(const CaseContext& context, const std::str
       const auto number = uint32_t(record.at(x, y).r);
       const uint32_t site = number & 0xFFFFu;
       if (site == 0 || site > table.sites.size()) continue;
-      const glsl::TraceSite& born = table.sites[site - 1];
-      context.born_at[labels[x]] = fmt::format("{}:{}: {}", std::filesystem::path(born.file).filename().string(),
-                                               born.line, glsl::describe_site(born));
+      context.born_at[labels[x]] = site_text(table.sites[site - 1]);
       break;
     }
   return image;
@@ -89,22 +87,34 @@ Result<harness::FloatImage> render_scene_with_form(const CaseContext& context, c
                                                        /*trace_nonfinite=*/true);
   if (!traced_variants) return fail(traced_variants.error());
   auto traced = harness::render_scene(context.backend, *scene, *plan, *traced_variants, *environment,
-                                      {.trace_nonfinite = true});
+                                      {.keep_pass_images = true, .trace_nonfinite = true});
   if (!traced) return fail(traced.error());
-  auto origins = harness::find_nonfinite_origins(traced->image, traced->traces.back(), *traced_variants,
-                                                 /*count_negative=*/false);
-  if (!origins) return fail(origins.error());
-  if (!origins->origins.empty()) {
-    const harness::NonfiniteOrigin& most = origins->origins.front();
-    *born_at = fmt::format("{}:{}: {} ({} of {} pixels)", std::filesystem::path(most.site.file).filename().string(),
-                           most.site.line, glsl::describe_site(most.site), most.pixels,
-                           [&] {
-                             size_t all = 0;
-                             for (const auto& origin : origins->origins) all += origin.pixels;
-                             return all;
-                           }());
-  }
+  auto born = first_born_at(*traced, *traced_variants);
+  if (!born) return fail(born.error());
+  *born_at = std::move(*born);
   return std::move(rendered->image);
+}
+
+std::string site_text(const glsl::TraceSite& site) {
+  return fmt::format("{}:{}: {}", std::filesystem::path(site.file).filename().string(), site.line,
+                     glsl::describe_site(site));
+}
+
+Result<std::string> first_born_at(const harness::RenderedScene& traced,
+                                  const std::vector<harness::CompiledVariant>& variants) {
+  for (size_t i = 0; i < traced.traces.size() && i < traced.pass_images.size(); ++i) {
+    const harness::FloatImage& image = traced.pass_images[i].second;
+    const harness::NonFiniteCount bad = harness::count_non_finite(image);
+    if (bad.nan + bad.inf == 0) continue;
+    auto origins = harness::find_nonfinite_origins(image, traced.traces[i], variants, /*count_negative=*/false);
+    if (!origins) return fail(origins.error());
+    if (origins->origins.empty()) continue;
+    size_t pixels = 0;
+    for (const harness::NonfiniteOrigin& origin : origins->origins) pixels += origin.pixels;
+    const harness::NonfiniteOrigin& most = origins->origins.front();
+    return fmt::format("{} (pass {}, {} of {} pixels)", site_text(most.site), traced.traces[i].pass, most.pixels, pixels);
+  }
+  return std::string();
 }
 
 Rise largest_rise(const std::vector<double>& values) {

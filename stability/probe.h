@@ -43,6 +43,15 @@ Result<harness::FloatImage> run_probe(const CaseContext& context, const std::str
 Result<harness::FloatImage> render_scene_with_form(const CaseContext& context, const std::string& scene_name,
                                                    std::string* born_at = nullptr);
 
+// "brdf.hlsl:19: the value D_GGX_seed returns": a traced site as the case notes name it.
+std::string site_text(const glsl::TraceSite& site);
+
+// Where most of a traced render's NaN and infinities were born: the leading site of the first
+// pass whose image has any (the render kept its pass images), with its pass and pixels; empty
+// when no pass has any.
+Result<std::string> first_born_at(const harness::RenderedScene& traced,
+                                  const std::vector<harness::CompiledVariant>& variants);
+
 // The largest rise from one value to the next, and the index of the later value; NaN if a
 // difference is NaN.
 struct Rise {

@@ -282,11 +282,9 @@ void SceneChecker::trace_lane(Lane lane, const Scene& scene, const Plan& plan, c
   trace.identical = bitwise_equal(traced->image, plain);
   // A traced image that is not the plain one's is a fault of the tracing variant: kept for a look.
   if (!trace.identical) trace.traced_image = write_image(traced->image, scene.name, result.lane + ".traced.exr", true);
-  // The output's pass first: its counts are the lane's. Then the earlier passes that made
-  // non-finite values of their own, which a later pass read back through a texture.
-  std::vector<size_t> order;
-  for (size_t i = traced->traces.size(); i-- > 0;) order.push_back(i);
-  for (size_t i : order) {
+  // Each pass that made non-finite values of its own (which a later pass read back through a
+  // texture), and the output's pass whatever it holds; the output's goes first below.
+  for (size_t i = 0; i < traced->traces.size(); ++i) {
     const PassTrace& record = traced->traces[i];
     const FloatImage& image = traced->pass_images[i].second;
     const bool output = i + 1 == traced->traces.size();
@@ -303,8 +301,8 @@ void SceneChecker::trace_lane(Lane lane, const Scene& scene, const Plan& plan, c
       pass.map = write_image(origins->map, scene.name, result.lane + "." + record.pass + ".origins.png");
     trace.passes.push_back(std::move(pass));
   }
-  // The earlier passes in the order they ran, after the output's.
-  if (trace.passes.size() > 2) std::reverse(trace.passes.begin() + 1, trace.passes.end());
+  // The output's pass first: its counts are the lane's; the earlier ones in the order they ran.
+  if (!trace.passes.empty()) std::rotate(trace.passes.begin(), trace.passes.end() - 1, trace.passes.end());
 }
 
 LayerResult determinism_layer(const FloatImage& first, const FloatImage& second) {
