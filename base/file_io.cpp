@@ -12,6 +12,33 @@ namespace xshade {
 
 namespace fs = std::filesystem;
 
+namespace {
+
+// The bytes of an open file, `expected` of them or more; `regular`: a short read is its end.
+std::optional<std::string> read_open_file(int fd, size_t expected, bool regular, ReadFailure* why) {
+  std::string bytes(expected > 0 ? expected + 1 : 65536, '\0');  // +1: a read that fills it says the file grew
+  size_t size = 0;
+  for (;;) {
+    if (size == bytes.size()) bytes.resize(bytes.size() * 2);
+    const ssize_t n = ::read(fd, bytes.data() + size, bytes.size() - size);
+    if (n < 0 && errno == EINTR) continue;
+    if (n < 0) {
+      ::close(fd);
+      if (why) *why = ReadFailure::CannotRead;
+      return std::nullopt;
+    }
+    if (n == 0) break;
+    size += size_t(n);
+    // A regular file reads short only at its end: no second read to see that.
+    if (regular && size < bytes.size()) break;
+  }
+  ::close(fd);
+  bytes.resize(size);
+  return bytes;
+}
+
+}  // namespace
+
 // One open, fstat and read of the file's size for a regular file: the front end reads its
 // includes for every compile and the shader cache hashes the 14 MB executable, where a stream
 // (and a stringstream before it) cost more than the reading. Files that do not say their size
@@ -28,24 +55,16 @@ std::optional<std::string> read_file(const fs::path& path, ReadFailure* why) {
     ::close(fd);
     return failed(ReadFailure::IsDirectory);
   }
-  std::string bytes(status.st_size > 0 ? size_t(status.st_size) + 1 : 65536, '\0');  // +1: a read that fills it says the file grew
-  size_t size = 0;
-  for (;;) {
-    if (size == bytes.size()) bytes.resize(bytes.size() * 2);
-    const ssize_t n = ::read(fd, bytes.data() + size, bytes.size() - size);
-    if (n < 0 && errno == EINTR) continue;
-    if (n < 0) {
-      ::close(fd);
-      return failed(ReadFailure::CannotRead);
-    }
-    if (n == 0) break;
-    size += size_t(n);
-    // A regular file reads short only at its end: no second read to see that.
-    if (S_ISREG(status.st_mode) && size < bytes.size()) break;
+  return read_open_file(fd, status.st_size > 0 ? size_t(status.st_size) : 0, S_ISREG(status.st_mode), why);
+}
+
+std::optional<std::string> read_regular_file(const fs::path& path, size_t known_size, ReadFailure* why) {
+  const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
+  if (fd < 0) {
+    if (why) *why = errno == EISDIR ? ReadFailure::IsDirectory : ReadFailure::CannotOpen;
+    return std::nullopt;
   }
-  ::close(fd);
-  bytes.resize(size);
-  return bytes;
+  return read_open_file(fd, known_size, true, why);
 }
 
 bool write_all(int fd, std::string_view bytes) {

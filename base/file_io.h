@@ -15,6 +15,11 @@ enum class ReadFailure { CannotOpen, IsDirectory, CannotRead };
 
 // The file's bytes, or nothing when it cannot be read (and, where `why` is given, why not).
 std::optional<std::string> read_file(const std::filesystem::path& path, ReadFailure* why = nullptr);
+// read_file of a path a stat has just found a regular file of `known_size` bytes: without asking
+// again (the front end reads a few includes for every compile, and each question is a system
+// call). A file that has grown since is still read whole.
+std::optional<std::string> read_regular_file(const std::filesystem::path& path, size_t known_size,
+                                             ReadFailure* why = nullptr);
 
 // Writes all of `bytes` to the open descriptor, through short writes and interruptions; false
 // (with errno set) when the descriptor takes no more.

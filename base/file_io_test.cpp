@@ -36,6 +36,20 @@ TEST(FileIo, ReadsFilesThatDoNotSayTheirSizeAndLargeOnes) {
   fs::remove(large);
 }
 
+// A size told by an earlier stat is where reading starts, not where it stops: a file that grew
+// since (or shrank) still comes back whole.
+TEST(FileIo, ReadsARegularFileWholeWhateverSizeItWasToldBefore) {
+  const fs::path file = fs::temp_directory_path() / "xshade_file_io_known_size.txt";
+  const std::string bytes(100000, 'x');
+  ASSERT_TRUE(write_file_atomically(file, bytes).has_value());
+  for (size_t told : {size_t(0), size_t(10), bytes.size() - 1, bytes.size(), bytes.size() + 1, 4 * bytes.size()})
+    EXPECT_EQ(read_regular_file(file, told), bytes) << told;
+  fs::remove(file);
+  ReadFailure why = ReadFailure::CannotRead;
+  EXPECT_FALSE(read_regular_file(file, 10, &why).has_value());
+  EXPECT_EQ(why, ReadFailure::CannotOpen);
+}
+
 TEST(FileIo, SaysWhatItCouldNotDo) {
   const fs::path missing = fs::temp_directory_path() / "xshade_file_io_test_missing" / "no" / "f.txt";
   EXPECT_FALSE(read_file(missing).has_value());

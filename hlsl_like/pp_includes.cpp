@@ -46,10 +46,12 @@ enum class BelowFolder { Missing, Found, Unsure };
 
 // `relative` (/-separated) below `resolved_folder`, the resolved path of a folder that exists, an
 // lstat a name. When every name is a plain one (not empty, `.` or `..`) and none is a link, the
-// folder's path with the names after it is the file's resolved path (left in `path`), and whether
-// the file is a regular one is what a stat of the path as spelled would tell: Found or Missing.
-// Anything else is Unsure, for that stat and a resolution of the whole path to decide.
-BelowFolder look_below(std::string_view resolved_folder, std::string_view relative, std::string& path) {
+// folder's path with the names after it is the file's resolved path (left in `path`, its size in
+// `size`), and whether the file is a regular one is what a stat of the path as spelled would
+// tell: Found or Missing. Anything else is Unsure, for that stat and a resolution of the whole
+// path to decide. `plain_folders`: the folders this compile found no link, not asked again.
+BelowFolder look_below(std::string_view resolved_folder, std::string_view relative, std::string& path, size_t& size,
+                       std::vector<std::string>& plain_folders) {
   path.assign(resolved_folder);
   for (;;) {
     const size_t slash = relative.find('/');
@@ -57,11 +59,20 @@ BelowFolder look_below(std::string_view resolved_folder, std::string_view relati
     if (name.empty() || name == "." || name == "..") return BelowFolder::Unsure;
     if (path.empty() || path.back() != '/') path += '/';
     path += name;
+    const bool last = slash == std::string_view::npos;
+    if (!last && std::find(plain_folders.begin(), plain_folders.end(), path) != plain_folders.end()) {
+      relative = relative.substr(slash + 1);
+      continue;
+    }
     struct stat status {};
     if (::lstat(path.c_str(), &status) != 0)
       return errno == ENOENT || errno == ENOTDIR ? BelowFolder::Missing : BelowFolder::Unsure;
     if (S_ISLNK(status.st_mode)) return BelowFolder::Unsure;
-    if (slash == std::string_view::npos) return S_ISREG(status.st_mode) ? BelowFolder::Found : BelowFolder::Missing;
+    if (last) {
+      size = size_t(status.st_size);
+      return S_ISREG(status.st_mode) ? BelowFolder::Found : BelowFolder::Missing;
+    }
+    if (S_ISDIR(status.st_mode)) plain_folders.push_back(path);
     relative = relative.substr(slash + 1);
   }
 }
@@ -152,9 +163,11 @@ bool Preprocessor::Impl::locate_include(const IncludeFrame& frame, bool local, s
     join(folder, portable, found);
     if (loaded()) return true;
     if (resolved_folder) {
-      switch (look_below(*resolved_folder, portable, below)) {
+      size_t size = 0;
+      switch (look_below(*resolved_folder, portable, below, size, plain_folders_)) {
         case BelowFolder::Found:
           target.resolved = std::filesystem::path(below);
+          target.size = size;
           return true;
         case BelowFolder::Missing:
           return false;
@@ -176,7 +189,7 @@ bool Preprocessor::Impl::locate_include(const IncludeFrame& frame, bool local, s
 
 uint32_t Preprocessor::Impl::load_include(IncludeFrame& frame, bool local, std::string_view spelled, Loc where) {
   namespace fs = std::filesystem;
-  IncludeTarget target{found_include_, 0, std::nullopt};
+  IncludeTarget target{found_include_, 0, std::nullopt, std::nullopt};
   if (!locate_include(frame, local, spelled, target)) {
     std::vector<fs::path> searched;
     find_include_path(spelled, local ? &frame.folder : nullptr, pp_.options_.include_dirs, found_include_, &searched);
@@ -211,7 +224,7 @@ uint32_t Preprocessor::Impl::load_include(IncludeFrame& frame, bool local, std::
                                   folders + "); an include may not leave them");
     return 0;
   }
-  Result<uint32_t> loaded = sources_.load_canonical(*resolved, found);
+  Result<uint32_t> loaded = sources_.load_canonical(*resolved, found, target.size);
   if (!loaded) {
     diagnostics_.error(where, loaded.error().message);
     return 0;

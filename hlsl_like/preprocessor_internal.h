@@ -305,6 +305,7 @@ struct Preprocessor::Impl {
     std::string& found;
     uint32_t file = 0;
     std::optional<std::filesystem::path> resolved;
+    std::optional<size_t> size;  // with `resolved`: the size its lstat told
   };
   // The search of find_include_path, told apart from it by what it remembers and how it asks the
   // file system: a path this run loaded is not asked about again, and below a folder known
@@ -321,6 +322,7 @@ struct Preprocessor::Impl {
   std::string found_include_;  // the path of the #include being read; kept for its buffer
   std::string portable_name_;  // its name, each backslash made a slash; kept for its buffer
   std::string resolved_include_;  // the path found below a resolved folder; kept for its buffer
+  std::vector<std::string> plain_folders_;  // below resolved folders, found to be folders and no links
   // Each #include this run read, by where its search starts (the including file's folder for a
   // quoted name in a file on disk, else the include directories only) and the name as spelled:
   // the same line again (a guarded file included by many files of a folder) is answered without

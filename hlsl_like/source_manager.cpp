@@ -38,11 +38,13 @@ Result<uint32_t> SourceManager::load(const std::filesystem::path& path) {
   return loaded;
 }
 
-Result<uint32_t> SourceManager::load_canonical(const std::filesystem::path& canonical, std::string name) {
+Result<uint32_t> SourceManager::load_canonical(const std::filesystem::path& canonical, std::string name,
+                                              std::optional<size_t> known_size) {
   for (uint32_t i = 1; i < files_.size(); ++i)
     if (!files_[i]->path.empty() && files_[i]->path == canonical) return i;
   ReadFailure failure = ReadFailure::CannotOpen;
-  std::optional<std::string> text = read_file(canonical, &failure);
+  std::optional<std::string> text =
+      known_size ? read_regular_file(canonical, *known_size, &failure) : read_file(canonical, &failure);
   if (!text) {
     if (failure == ReadFailure::IsDirectory) return fail("'" + name + "' is a directory");
     return fail((failure == ReadFailure::CannotOpen ? "cannot open '" : "cannot read '") + name + "'");

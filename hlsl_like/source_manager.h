@@ -4,6 +4,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <memory>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -29,8 +30,10 @@ class SourceManager {
   // Reads a file from disk once; the same canonical path yields the same index.
   Result<uint32_t> load(const std::filesystem::path& path);
   // load() for a path already canonical (an #include, resolved to be held to its folders), which
-  // is not resolved again; `name` is what messages call the file.
-  Result<uint32_t> load_canonical(const std::filesystem::path& canonical, std::string name);
+  // is not resolved again; `name` is what messages call the file; `known_size`: a stat of the path
+  // has just found a regular file this large (read_regular_file).
+  Result<uint32_t> load_canonical(const std::filesystem::path& canonical, std::string name,
+                                  std::optional<size_t> known_size = std::nullopt);
 
   std::string_view text(uint32_t file) const { return files_[file]->text; }
   const std::string& name(uint32_t file) const { return files_[file]->name; }
