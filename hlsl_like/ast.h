@@ -138,7 +138,7 @@ enum class CallKind : uint8_t {
 struct CallExpr : Expr {
   std::string callee;           // the name as written (for a method, the method's name)
   ExprPtr object;               // a method's object, else null
-  std::vector<ExprPtr> args;
+  AstVector<ExprPtr> args;
   Type constructed;             // parser: the type of a constructor call
   CallKind call_kind = CallKind::Unresolved;  // parser sets Constructor; sema the rest
   const FunctionDecl* function = nullptr;     // sema
@@ -191,7 +191,7 @@ struct CastExpr : Expr {
 
 // { a, b, c } in an initializer; sema gives it the declared type.
 struct InitListExpr : Expr {
-  std::vector<ExprPtr> elements;
+  AstVector<ExprPtr> elements;
   InitListExpr(Loc l) : Expr(ExprKind::InitList, l) {}
 };
 
@@ -218,7 +218,7 @@ struct Stmt : AstNodeMemory {
 };
 
 struct BlockStmt : Stmt {
-  std::vector<StmtPtr> statements;
+  AstVector<StmtPtr> statements;
   BlockStmt(Loc l) : Stmt(StmtKind::Block, l) {}
 };
 
@@ -230,7 +230,7 @@ struct ExprStmt : Stmt {
 struct VarDecl;
 // float a = 1, b[2];
 struct DeclStmt : Stmt {
-  std::vector<std::unique_ptr<VarDecl>> vars;
+  AstVector<std::unique_ptr<VarDecl>> vars;
   DeclStmt(Loc l) : Stmt(StmtKind::Decl, l) {}
 };
 
@@ -383,7 +383,7 @@ struct FunctionDecl : Decl {
 
 struct CBufferDecl : Decl {
   RegisterBinding binding;
-  std::vector<std::unique_ptr<VarDecl>> members;
+  AstVector<std::unique_ptr<VarDecl>> members;
   CBufferDecl(Loc l) : Decl(DeclKind::CBuffer, l) {}
 };
 

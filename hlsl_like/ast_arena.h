@@ -3,7 +3,7 @@
 // a bump arena the unit owns, instead of one heap allocation and one free apiece.
 //
 // The nodes stay ordinary objects held by std::unique_ptr: their destructors still run (their
-// strings and vectors own heap memory), only the node's own memory is not freed one by one.
+// strings and most vectors own heap memory), only the node's own memory is not freed one by one.
 // Nodes made while no arena is installed (a test building a tree by hand) come from the heap,
 // so every node carries a word saying where its memory came from, for operator delete.
 // A node dropped before its tree (a production that failed) keeps its memory until the arena
@@ -15,6 +15,7 @@
 #include <cstdlib>
 #include <new>
 #include <utility>
+#include <vector>
 
 namespace xshade::hlsl {
 
@@ -104,7 +105,43 @@ inline thread_local AstArena* current = nullptr;
 // The word in front of each node.
 enum class Origin : uint64_t { Heap = 0x6865617021, Arena = 0x6172656e6121 };
 inline constexpr size_t kOriginSize = sizeof(Origin);
+
+// `bytes` from the current arena, or the heap while none is installed, behind the word that
+// says which (and so whether release_with_origin frees it).
+inline void* allocate_with_origin(size_t bytes) {
+  AstArena* arena = current;
+  void* memory = arena ? arena->allocate(kOriginSize + bytes) : ::operator new(kOriginSize + bytes);
+  *static_cast<Origin*>(memory) = arena ? Origin::Arena : Origin::Heap;
+  return static_cast<char*>(memory) + kOriginSize;
+}
+// Arena memory goes when its arena does.
+inline void release_with_origin(void* pointer) noexcept {
+  if (!pointer) return;
+  void* memory = static_cast<char*>(pointer) - kOriginSize;
+  if (*static_cast<const Origin*>(memory) == Origin::Heap) ::operator delete(memory);
+}
 }  // namespace ast_arena_detail
+
+// The allocator of the vectors inside nodes (a call's arguments, a block's statements): they
+// are made with the tree and dropped with it, like the nodes, and a vector apiece was among a
+// compile's commonest allocations. A vector that grows leaves its old array in the arena.
+template <class T>
+struct AstAllocator {
+  using value_type = T;
+  static_assert(alignof(T) <= AstArena::kAlignment);
+  AstAllocator() = default;
+  template <class U>
+  AstAllocator(const AstAllocator<U>&) noexcept {}
+  T* allocate(size_t count) { return static_cast<T*>(ast_arena_detail::allocate_with_origin(count * sizeof(T))); }
+  void deallocate(T* array, size_t) noexcept { ast_arena_detail::release_with_origin(array); }
+  template <class U>
+  bool operator==(const AstAllocator<U>&) const noexcept { return true; }
+  template <class U>
+  bool operator!=(const AstAllocator<U>&) const noexcept { return false; }
+};
+
+template <class T>
+using AstVector = std::vector<T, AstAllocator<T>>;
 
 // Nodes made while this lives (on this thread) come from `arena`; the previous arena, if any,
 // is back when it ends.
@@ -122,22 +159,11 @@ class AstArenaScope {
 // The base of the node classes (Expr, Stmt, Decl): their operator new and delete. The node
 // types' alignment is checked against AstArena::kAlignment in ast.h.
 struct AstNodeMemory {
-  static void* operator new(size_t size) {
-    using namespace ast_arena_detail;
-    AstArena* arena = current;
-    void* memory = arena ? arena->allocate(kOriginSize + size) : ::operator new(kOriginSize + size);
-    *static_cast<Origin*>(memory) = arena ? Origin::Arena : Origin::Heap;
-    return static_cast<char*>(memory) + kOriginSize;
-  }
+  static void* operator new(size_t size) { return ast_arena_detail::allocate_with_origin(size); }
 
   // Arena memory goes when its arena does. The unsized global delete: clang leaves sized
   // deallocation off unless asked (-fsized-deallocation).
-  static void operator delete(void* node) noexcept {
-    using namespace ast_arena_detail;
-    if (!node) return;
-    void* memory = static_cast<char*>(node) - kOriginSize;
-    if (*static_cast<const Origin*>(memory) == Origin::Heap) ::operator delete(memory);
-  }
+  static void operator delete(void* node) noexcept { ast_arena_detail::release_with_origin(node); }
 };
 
 }  // namespace xshade::hlsl

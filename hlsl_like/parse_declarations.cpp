@@ -605,7 +605,7 @@ std::unique_ptr<VarDecl> Parser::parse_var_declarator(const Specifiers& spec, co
 
 // name declarator (, name declarator)* ; — the first name already consumed.
 bool Parser::parse_declarators(const Specifiers& spec, const Type& base, size_t first_name, DeclContext context,
-                               std::vector<std::unique_ptr<VarDecl>>& out) {
+                               AstVector<std::unique_ptr<VarDecl>>& out) {
   size_t name_index = first_name;
   for (;;) {
     std::unique_ptr<VarDecl> var = parse_var_declarator(spec, base, name_index, context);
@@ -670,7 +670,7 @@ bool Parser::parse_global(std::vector<Attribute> attributes) {
   if (!name) return false;
   if (is("(")) return parse_function(std::move(attributes), *type, *name);
   if (!attributes.empty()) error_at(attribute_index_, "attributes are only allowed on functions and statements");
-  std::vector<std::unique_ptr<VarDecl>> vars;
+  AstVector<std::unique_ptr<VarDecl>> vars;
   const bool ok = parse_declarators(spec, checked_var_type(*type, type_index), *name, DeclContext::Global, vars);
   for (auto& var : vars) unit_.decls.push_back(std::move(var));
   return ok;

@@ -127,7 +127,8 @@ class Gathered {
   Gathered& operator=(const Gathered&) = delete;
 
   void push(T child) { stack_.push_back(std::move(child)); }
-  void move_to(std::vector<T>& out) {
+  template <class Vector>
+  void move_to(Vector& out) {
     const auto first = stack_.begin() + std::ptrdiff_t(first_);
     out.reserve(out.size() + size_t(stack_.end() - first));
     std::move(first, stack_.end(), std::back_inserter(out));
@@ -163,7 +164,7 @@ class Parser {
   std::unique_ptr<VarDecl> parse_var_declarator(const Specifiers& spec, const Type& base, size_t name_index,
                                                 DeclContext context);
   bool parse_declarators(const Specifiers& spec, const Type& base, size_t first_name, DeclContext context,
-                         std::vector<std::unique_ptr<VarDecl>>& out);
+                         AstVector<std::unique_ptr<VarDecl>>& out);
   std::optional<Type> parse_array_dims(const Type& base, bool allow_unsized, bool* unsized);
   bool parse_colon_clauses(std::string* semantic, Loc* semantic_loc, RegisterBinding* binding,
                            VarDecl* packoffset = nullptr);

@@ -77,7 +77,8 @@ std::unique_ptr<Parsed> parse_text(const std::string& text) {
 // The tree of an expression as an S-expression, to pin shapes in one line.
 std::string sexpr(const Expr& e);
 
-std::string sexpr_list(const std::vector<ExprPtr>& list) {
+template <class List>
+std::string sexpr_list(const List& list) {
   std::string out;
   for (const ExprPtr& item : list) out += " " + sexpr(*item);
   return out;

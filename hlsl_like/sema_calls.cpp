@@ -92,7 +92,7 @@ struct Candidate {
 
 // Deduces T, N, R and C of `signature` from the arguments and ranks every argument's conversion
 // into `candidate`; false when the signature does not fit.
-bool bind_signature(const Sema& sema, const IntrinsicSignature& signature, const std::vector<ExprPtr>& args,
+bool bind_signature(const Sema& sema, const IntrinsicSignature& signature, const AstVector<ExprPtr>& args,
                     Candidate& candidate) {
   if (args.size() != signature.param_count) return false;
   const size_t count = args.size();
@@ -215,7 +215,7 @@ bool bind_signature(const Sema& sema, const IntrinsicSignature& signature, const
 
 // What passing `args` to `function` costs (overload_cost summed, out and inout parameters
 // also for the copy back); nothing when it cannot be called with them.
-std::optional<uint64_t> call_cost(const FunctionDecl& function, const std::vector<ExprPtr>& args) {
+std::optional<uint64_t> call_cost(const FunctionDecl& function, const AstVector<ExprPtr>& args) {
   if (args.size() > function.params.size()) return std::nullopt;
   for (size_t i = args.size(); i < function.params.size(); ++i) {
     if (!function.params[i] || !function.params[i]->default_value) return std::nullopt;
@@ -245,7 +245,7 @@ size_t required_params(const FunctionDecl& function) {
 
 }  // namespace
 
-std::string join_types(const std::vector<ExprPtr>& args) {
+std::string join_types(const AstVector<ExprPtr>& args) {
   std::string text;
   for (const ExprPtr& arg : args) {
     if (!text.empty()) text += ", ";

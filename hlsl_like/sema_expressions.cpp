@@ -737,7 +737,7 @@ namespace {
 // members; the second moves the leaves into place.
 class InitLayout {
  public:
-  InitLayout(Sema& sema, std::vector<ExprPtr>& leaves, const Type& declared, Loc loc)
+  InitLayout(Sema& sema, AstVector<ExprPtr>& leaves, const Type& declared, Loc loc)
       : sema_(sema), leaves_(leaves), declared_(declared), loc_(loc) {}
 
   // Returns false (after reporting) when a leaf straddles members.
@@ -853,7 +853,7 @@ class InitLayout {
   }
 
   Sema& sema_;
-  std::vector<ExprPtr>& leaves_;
+  AstVector<ExprPtr>& leaves_;
   const Type& declared_;
   Loc loc_;
   static constexpr size_t kMaxVisits = size_t(1) << 20;
@@ -884,7 +884,7 @@ void Sema::analyze_initializer(ExprPtr& init, Type& declared, const std::string&
   }
   auto& list = static_cast<InitListExpr&>(*init);
   // Flatten nested lists into leaves, analyzing each leaf.
-  std::vector<ExprPtr> leaves;
+  AstVector<ExprPtr> leaves;
   struct Frame {
     InitListExpr* list;
     size_t next;

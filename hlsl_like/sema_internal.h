@@ -270,7 +270,7 @@ class Sema {
   bool report_nesting(Loc loc);
 };
 
-std::string join_types(const std::vector<ExprPtr>& args);
+std::string join_types(const AstVector<ExprPtr>& args);
 // RWTexture2D, RWBuffer, RWStructuredBuffer...: their elements can be assigned (sema_methods.cpp).
 bool is_writable_resource(const Type& type);
 // "1 argument", "2 or 3 arguments": what a call with one of these arities takes.

@@ -99,7 +99,7 @@ Strings messages_of(const std::string& text) { return analyze_source(text)->mess
 // An expression tree as an S-expression; implicit conversions show as (to TYPE operand).
 std::string dump(const Expr* e);
 
-std::string dump_list(const std::vector<ExprPtr>& list) {
+std::string dump_list(const AstVector<ExprPtr>& list) {
   std::string out;
   for (const ExprPtr& item : list) out += " " + dump(item.get());
   return out;
