@@ -8,6 +8,7 @@
 #include <string>
 #include <optional>
 
+#include "base/heap.h"
 #include "base/spelling.h"
 #include "base/subprocess.h"
 
@@ -387,6 +388,7 @@ static int run_command_line(int argc, char** argv) {
 
 int main(int argc, char** argv) {
   xshade::remember_startup_threads();  // workers are forked only while xshade runs no thread of its own
+  xshade::keep_freed_heap();
   const std::string verb = argc > 1 && argv[1][0] != '-' ? std::string(argv[1]) : std::string();
   return xshade::cli::guarded_verb(verb, [&] { return run_command_line(argc, argv); });
 }

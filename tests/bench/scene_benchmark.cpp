@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "base/heap.h"
 #include "harness/assets/environment.h"
 #include "harness/render/planner.h"
 #include "harness/render/scene_renderer.h"
@@ -43,6 +44,7 @@ double compile_all(VariantCompiler& compiler, const Plan& plan, Lane lane, std::
 }  // namespace
 
 int main(int argc, char** argv) {
+  xshade::keep_freed_heap();  // as xshade's own main: the floor measured in the process a run has
   const int frames = argc > 1 ? std::max(1, std::atoi(argv[1])) : 5;
   std::vector<fs::path> scenes;
   for (const auto& entry : fs::directory_iterator(kSource / "scenes"))

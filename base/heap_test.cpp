@@ -1,0 +1,29 @@
+#include "base/heap.h"
+
+#include <gtest/gtest.h>
+
+#include <memory>
+#include <vector>
+
+#include <unistd.h>
+
+namespace xshade {
+namespace {
+
+#if defined(__GLIBC__)
+// What a compile does to the heap: many small blocks, then all of them freed. glibc by itself
+// gives the freed top back to the system (the break moves down, and the next compile takes the
+// same pages again); after keep_freed_heap the break stays where the blocks took it.
+TEST(Heap, KeepsWhatAFreedTreeHeldForTheNextOne) {
+  keep_freed_heap();
+  std::vector<std::unique_ptr<char[]>> blocks;
+  blocks.reserve(8000);
+  for (int i = 0; i < 8000; ++i) blocks.push_back(std::make_unique<char[]>(200));  // ~1.6 MiB
+  const void* with_blocks = sbrk(0);
+  blocks.clear();
+  EXPECT_EQ(sbrk(0), with_blocks);
+}
+#endif
+
+}  // namespace
+}  // namespace xshade
