@@ -14,6 +14,13 @@ namespace fs = std::filesystem;
 
 namespace {
 
+// The file opened to read, or -1 with `why` set.
+int open_to_read(const fs::path& path, ReadFailure* why) {
+  const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
+  if (fd < 0 && why) *why = errno == EISDIR ? ReadFailure::IsDirectory : ReadFailure::CannotOpen;
+  return fd;
+}
+
 // The bytes of an open file, `expected` of them or more; `regular`: a short read is its end.
 std::optional<std::string> read_open_file(int fd, size_t expected, bool regular, ReadFailure* why) {
   std::string bytes(expected > 0 ? expected + 1 : 65536, '\0');  // +1: a read that fills it says the file grew
@@ -44,26 +51,20 @@ std::optional<std::string> read_open_file(int fd, size_t expected, bool regular,
 // (and a stringstream before it) cost more than the reading. Files that do not say their size
 // (/proc, pipes) are read on to their end.
 std::optional<std::string> read_file(const fs::path& path, ReadFailure* why) {
-  auto failed = [why](ReadFailure failure) {
-    if (why) *why = failure;
-    return std::nullopt;
-  };
-  const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
-  if (fd < 0) return failed(errno == EISDIR ? ReadFailure::IsDirectory : ReadFailure::CannotOpen);
+  const int fd = open_to_read(path, why);
+  if (fd < 0) return std::nullopt;
   struct stat status {};
   if (::fstat(fd, &status) == 0 && S_ISDIR(status.st_mode)) {
     ::close(fd);
-    return failed(ReadFailure::IsDirectory);
+    if (why) *why = ReadFailure::IsDirectory;
+    return std::nullopt;
   }
   return read_open_file(fd, status.st_size > 0 ? size_t(status.st_size) : 0, S_ISREG(status.st_mode), why);
 }
 
 std::optional<std::string> read_regular_file(const fs::path& path, size_t known_size, ReadFailure* why) {
-  const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
-  if (fd < 0) {
-    if (why) *why = errno == EISDIR ? ReadFailure::IsDirectory : ReadFailure::CannotOpen;
-    return std::nullopt;
-  }
+  const int fd = open_to_read(path, why);
+  if (fd < 0) return std::nullopt;
   return read_open_file(fd, known_size, true, why);
 }
 

@@ -13,7 +13,7 @@ namespace xshade {
 // or image (a compile's tree and tables take one or two), and buffers below 4 MiB (a 512 x 512
 // RGBA float image is 4 MiB) come from the heap rather than from a mapping of their own, made
 // and unmapped, page faults and all, for every image. Measured on a warm `xshade run` of the
-// fixed scenes (2 cores): 4.0 s -> 3.5 s wall, 2.0 s -> 1.5 s in the kernel, the largest
+// fixed scenes (2 cores): 4.2 s -> 3.7 s wall, 2.1 s -> 1.6 s in the kernel, the largest
 // process 210 -> 222 MB. With 32 MiB and 64 MiB (glibc's own ceiling for the thresholds it
 // moves by itself): 3.3 s, but 278 MB. Does nothing where the C library is not glibc.
 void keep_freed_heap();

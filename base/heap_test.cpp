@@ -12,15 +12,15 @@ namespace {
 
 #if defined(__has_feature)
 #if __has_feature(address_sanitizer)
-#define XSHADE_HEAP_IS_SANITIZERS 1
+#define XSHADE_SANITIZED_HEAP 1
 #endif
 #endif
 #if defined(__SANITIZE_ADDRESS__)
-#define XSHADE_HEAP_IS_SANITIZERS 1
+#define XSHADE_SANITIZED_HEAP 1
 #endif
 
 // glibc's heap only: a sanitizer's allocator takes no notice of mallopt, nor moves the break.
-#if defined(__GLIBC__) && !defined(XSHADE_HEAP_IS_SANITIZERS)
+#if defined(__GLIBC__) && !defined(XSHADE_SANITIZED_HEAP)
 // What a compile does to the heap: many small blocks, then all of them freed. glibc by itself
 // gives the freed top back to the system (the break moves down, and the next compile takes the
 // same pages again); after keep_freed_heap the break stays where the blocks took it.

@@ -89,6 +89,14 @@ struct NonfiniteTrace {
   static constexpr uint32_t kMaxCalls = 1023;     // a call's number takes 10 bits of the path
   static constexpr uint32_t kMaxSites = 65535;    // a site's number the low 16 bits of R
   static constexpr uint32_t kMaxPrograms = 256;   // so that R stays below 2^24
+
+  // The program and the site a recorded R names; `site_in` null where R names none of the sites
+  // this table has (0: nothing failed).
+  static uint32_t program_in(uint32_t recorded) { return recorded >> 16; }
+  const TraceSite* site_in(uint32_t recorded) const {
+    const uint32_t site = recorded & 0xFFFFu;
+    return site == 0 || site > sites.size() ? nullptr : &sites[site - 1];
+  }
 };
 
 struct EmittedStage {

@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 
 #include "hlsl_like/ast_walk.h"
+#include "hlsl_like/resource_origins.h"
 #include "hlsl_like/sema_internal.h"
 #include "hlsl_like/semantics.h"
 
@@ -224,9 +225,6 @@ Usage collect_usage(const EntryPoints& entry_points, const ResourceOrigins& orig
     }
     return origin.root && origin.root->kind == DeclKind::Var ? origin.root : nullptr;
   };
-  // Only expressions holding resources (a resource or a struct) have origins: most expressions
-  // are neither and are not looked up.
-  auto may_have_origins = [](const Expr& e) { return e.type.is_resource() || e.type.kind() == TypeKind::Struct; };
   // The global behind a resource-typed expression, if it is known.
   auto global_behind = [&](const Expr* e) -> const Decl* {
     auto it = e ? origins.find(e) : origins.end();
@@ -242,7 +240,7 @@ Usage collect_usage(const EntryPoints& entry_points, const ResourceOrigins& orig
         const auto& call = static_cast<const CallExpr&>(expr);
         if (call.call_kind != CallKind::Function || !call.function) return;
         for (size_t i = 0; i < call.args.size() && i < call.function->params.size(); ++i) {
-          if (!may_have_origins(*call.args[i])) continue;
+          if (!may_hold_resources(call.args[i]->type)) continue;
           auto it = origins.find(call.args[i].get());
           if (it == origins.end()) continue;
           for (const ResourceLeaf& leaf : it->second) passed.emplace(Key{call.function->params[i].get(), leaf.path}, leaf.origin);
@@ -251,7 +249,7 @@ Usage collect_usage(const EntryPoints& entry_points, const ResourceOrigins& orig
     }
     for (const FunctionDecl* function : functions) {
       walk_expressions(function->body.get(), [&](const Expr& expr) {
-        if (auto it = may_have_origins(expr) ? origins.find(&expr) : origins.end(); it != origins.end()) {
+        if (auto it = may_hold_resources(expr.type) ? origins.find(&expr) : origins.end(); it != origins.end()) {
           for (const ResourceLeaf& leaf : it->second)
             if (const Decl* global = global_of(leaf.origin)) usage.globals.insert(global);
         }

@@ -125,7 +125,7 @@ class Resolver {
 
   // Asked of every expression: most are numeric, answered before the walk.
   static bool holds_resources(const Type& type) {
-    return (type.is_resource() || type.kind() == TypeKind::Struct) && !resource_paths(type).empty();
+    return may_hold_resources(type) && !resource_paths(type).empty();
   }
 
   void expression(const Expr* e) {

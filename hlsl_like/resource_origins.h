@@ -34,6 +34,11 @@ using ResourceOrigins = std::unordered_map<const Expr*, std::vector<ResourceLeaf
 // struct (nested structs too), none for anything else.
 std::vector<std::vector<uint32_t>> resource_paths(const Type& type);
 
+// Whether a value of `type` may hold resources (a resource, or a struct that may have resource
+// fields): only such expressions have ResourceOrigins, and the question is asked of every
+// expression, most of them numeric, before resource_paths.
+inline bool may_hold_resources(const Type& type) { return type.is_resource() || type.kind() == TypeKind::Struct; }
+
 // Follows the locals of the functions `entry_points` reach; reports a local whose resource is
 // not known when compiling (given in a branch or a loop, read before it is given, chosen by ?:).
 ResourceOrigins resolve_resource_origins(const EntryPoints& entry_points, DiagnosticEngine& diagnostics);

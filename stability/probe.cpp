@@ -59,10 +59,9 @@ Result<harness::FloatImage> run_probe(const CaseContext& context, const std::str
   const glsl::NonfiniteTrace& table = (*traced)->trace();
   for (uint32_t x = 0; x < columns && x < labels.size(); ++x)
     for (uint32_t y = 0; y < rows; ++y) {
-      const auto number = uint32_t(record.at(x, y).r);
-      const uint32_t site = number & 0xFFFFu;
-      if (site == 0 || site > table.sites.size()) continue;
-      context.born_at[labels[x]] = site_text(table.sites[site - 1]);
+      const glsl::TraceSite* site = table.site_in(uint32_t(record.at(x, y).r));
+      if (!site) continue;
+      context.born_at[labels[x]] = site_text(*site);
       break;
     }
   return image;

@@ -77,17 +77,17 @@ Result<NonfiniteOrigins> find_nonfinite_origins(const FloatImage& output, const 
       const Key key{number, call[0], call[1], call[2]};
       auto [it, added] = index_of.emplace(key, found.origins.size());
       if (added) {
-        const uint32_t program = number >> 16;
-        const uint32_t site = number & 0xFFFFu;
-        if (program >= variants.size() || site == 0 || site > variants[program].trace.sites.size())
+        const uint32_t program = glsl::NonfiniteTrace::program_in(number);
+        const glsl::TraceSite* site = program < variants.size() ? variants[program].trace.site_in(number) : nullptr;
+        if (!site)
           return fail(fmt::format("the record of pass {} names site {} of program {}, which the traced variants do "
                                   "not have",
-                                  record.pass, site, program));
+                                  record.pass, number & 0xFFFFu, program));
         const glsl::NonfiniteTrace& table = variants[program].trace;
         NonfiniteOrigin origin;
         origin.pass = record.pass;
         origin.program = variants[program].program.name;
-        origin.site = table.sites[site - 1];
+        origin.site = *site;
         for (uint32_t c : call) {
           if (c == 0) break;
           if (c > table.calls.size())
