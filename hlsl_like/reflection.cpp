@@ -443,6 +443,29 @@ bool is_system_value(const std::string& semantic, bool vertex_input) {
   return !vertex_input && semantic == "POSITION0";
 }
 
+// How many locations a varying of this type takes: an array one per element. (Sema refuses other
+// types that would take more, such as matrices.)
+uint32_t location_count(const Type& type) {
+  return type.kind() == TypeKind::Array ? type.array_length() * location_count(type.element()) : 1;
+}
+
+// Varyings sit at their semantic's location (varying_location), in that order, except that one
+// never overlaps the locations an array before it takes: `float3 c[2] : TEXCOORD2`
+// takes 2 and 3, so a TEXCOORD3 after it moves to 4 and what follows moves on as far as needed.
+// HLSL written for SPIR-V (DXC, glslang) gives every varying its own locations in this way;
+// where nothing takes more than one location every varying keeps its semantic's.
+void place_varyings(std::vector<StageVariable>& varyings) {
+  std::vector<StageVariable*> order;
+  for (StageVariable& varying : varyings) order.push_back(&varying);
+  std::stable_sort(order.begin(), order.end(),
+                   [](const StageVariable* a, const StageVariable* b) { return a->location < b->location; });
+  uint32_t next_free = 0;
+  for (StageVariable* varying : order) {
+    varying->location = std::max(varying->location, next_free);
+    next_free = varying->location + location_count(varying->type);
+  }
+}
+
 }  // namespace
 
 std::string canonical_semantic_name(const std::string& semantic) { return canonical(semantic); }
@@ -641,6 +664,7 @@ Reflection reflect(const TranslationUnit& unit, const EntryPoints& entry_points,
       output.location = *location;
       reflection.varyings.push_back(std::move(output));
     }
+    place_varyings(reflection.varyings);
   }
   if (entry_points.fragment) {
     for (const StageVariable& input : stage_variables(*entry_points.fragment, true)) {
@@ -670,6 +694,7 @@ Reflection reflect(const TranslationUnit& unit, const EntryPoints& entry_points,
           reflection.varyings.push_back({input.semantic, input.type, *location, input.interpolation});
       }
     }
+    if (!entry_points.vertex) place_varyings(reflection.varyings);
     for (StageVariable output : stage_variables(*entry_points.fragment, false)) {
       const ParsedSemantic parsed = parse_semantic(output.semantic);
       // DX9's COLORn out of a fragment shader is SV_Targetn.

@@ -138,7 +138,9 @@ std::string canonical_semantic_name(const std::string& semantic);
 // Empty for others. A mesh supplies 0..3; the backends feed zeros to the rest.
 std::optional<uint32_t> vertex_input_location(const std::string& canonical_semantic);
 // Varyings are placed by semantic, so that the two stages agree whatever their structs look like:
-// TEXCOORD0-7 at 0-7, COLOR0-1 at 8-9, NORMAL 10, TANGENT 11, BINORMAL 12, POSITION 13.
+// TEXCOORD0-7 at 0-7, COLOR0-1 at 8-9, NORMAL 10, TANGENT 11, BINORMAL 12, POSITION 13. A
+// varying after an array moves up past the locations it takes (Reflection::varyings
+// holds where each one is).
 std::optional<uint32_t> varying_location(const std::string& canonical_semantic);
 
 // Builds the reflection of an analysed translation unit. Reports what the bindings or the GLSL

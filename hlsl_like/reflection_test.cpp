@@ -1,5 +1,7 @@
 #include "hlsl_like/reflection.h"
 
+#include <map>
+
 #include <gtest/gtest.h>
 
 #include "hlsl_like/compiler.h"
@@ -155,6 +157,48 @@ float4 frag(v2f i) : SV_Target { return float4(i.data.normal * i.data.uv.x, 1); 
   EXPECT_EQ(r.varyings[1].semantic, "TEXCOORD1");
   EXPECT_EQ(r.varyings[1].location, 1u);
   EXPECT_EQ(r.varyings[1].interpolation, Interpolation::NoInterpolation);
+}
+
+// `float3 light[2] : TEXCOORD2` takes locations 2 and 3, so the TEXCOORD3 after it cannot sit at
+// 3 (GLSL rejects the overlap): it and what follows move up as far as needed, in semantic order.
+TEST(Reflection, AVaryingAfterAnArrayMovesPastTheLocationsItTakes) {
+  auto module = compile(R"(
+#pragma vertex vert
+#pragma fragment frag
+struct v2f {
+  float4 pos : SV_Position;
+  float4 color : TEXCOORD0;
+  float3 light[2] : TEXCOORD2;
+  float3 view : TEXCOORD3;
+  float intensity : TEXCOORD4;
+  float2 offsets[3] : TEXCOORD6;
+  float4 tint : COLOR0;
+  float3 normal : NORMAL;
+};
+v2f vert(float4 p : POSITION) { v2f o = (v2f)0; o.pos = p; return o; }
+float4 frag(v2f i) : SV_Target {
+  return i.color + float4(i.light[1] + i.view * i.intensity + float3(i.offsets[2], 0) + i.normal, 0) + i.tint;
+}
+)");
+  ASSERT_TRUE(module->ok()) << module->diagnostics.render_all();
+  std::map<std::string, uint32_t> locations;
+  for (const StageVariable& varying : module->reflection.varyings) locations[varying.semantic] = varying.location;
+  const std::map<std::string, uint32_t> expected{{"TEXCOORD0", 0}, {"TEXCOORD2", 2}, {"TEXCOORD3", 4},
+                                                 {"TEXCOORD4", 5}, {"TEXCOORD6", 6}, {"COLOR0", 9},
+                                                 {"NORMAL0", 10}};
+  EXPECT_EQ(locations, expected);
+
+  // Without a vertex stage the fragment inputs are placed alike.
+  auto fullscreen = compile(R"(
+#pragma fragment frag
+float4 frag(float4 c : TEXCOORD0, float2 offsets[3] : TEXCOORD1, float2 uv : TEXCOORD2) : SV_Target {
+  return c + float4(offsets[2] + uv, 0, 0);
+}
+)");
+  ASSERT_TRUE(fullscreen->ok()) << fullscreen->diagnostics.render_all();
+  locations.clear();
+  for (const StageVariable& varying : fullscreen->reflection.varyings) locations[varying.semantic] = varying.location;
+  EXPECT_EQ(locations, (std::map<std::string, uint32_t>{{"TEXCOORD0", 0}, {"TEXCOORD1", 1}, {"TEXCOORD2", 4}}));
 }
 
 TEST(Reflection, AFragmentInputNestedInAStructMustBeWritten) {

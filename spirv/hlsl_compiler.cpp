@@ -59,8 +59,9 @@ EShLanguage to_glslang(Stage stage) { return stage == Stage::Vertex ? EShLangVer
 // declaration order, and a mesh would feed the wrong attributes.
 class SemanticIoResolver final : public glslang::TDefaultIoResolverBase {
  public:
-  SemanticIoResolver(const glslang::TIntermediate& intermediate, const std::map<std::string, uint32_t>& bindings)
-      : TDefaultIoResolverBase(intermediate), bindings_(bindings) {}
+  SemanticIoResolver(const glslang::TIntermediate& intermediate, const std::map<std::string, uint32_t>& bindings,
+                     const std::map<std::string, uint32_t>& varying_locations)
+      : TDefaultIoResolverBase(intermediate), bindings_(bindings), varying_locations_(varying_locations) {}
 
   bool validateBinding(EShLanguage, glslang::TVarEntryInfo&) override { return true; }
 
@@ -96,24 +97,33 @@ class SemanticIoResolver final : public glslang::TDefaultIoResolverBase {
   int resolveInOutLocation(EShLanguage stage, glslang::TVarEntryInfo& entry) override {
     const glslang::TQualifier& qualifier = entry.symbol->getType().getQualifier();
     if (qualifier.semanticName != nullptr) {  // glslang numbered them while parsing; the contract wins
-      std::string semantic = hlsl::canonical_semantic_name(qualifier.semanticName);
+      const std::string array_semantic = hlsl::canonical_semantic_name(qualifier.semanticName);
+      std::string semantic = array_semantic;
       // glslang splits an array varying (float4 offsets[3] : TEXCOORD1) into one variable per
       // element, named <name>[k], each with the array's semantic; HLSL gives element k the
-      // semantic's index + k.
+      // semantic's index + k, and the element the array's location + k.
+      std::optional<uint32_t> element;
       if (const std::string name = entry.symbol->getName().c_str(); name.size() > 3 && name.back() == ']') {
         const size_t open = name.rfind('[');
         const std::string digits = open == std::string::npos ? "" : name.substr(open + 1, name.size() - open - 2);
         hlsl::ParsedSemantic parsed = hlsl::parse_semantic(semantic);
-        if (!digits.empty() && digits.find_first_not_of("0123456789") == std::string::npos &&
+        if (!digits.empty() && digits.size() < 6 && digits.find_first_not_of("0123456789") == std::string::npos &&
             parsed.kind != hlsl::SemanticKind::Unknown) {
-          parsed.index += uint32_t(std::stoul(digits));
+          element = uint32_t(std::stoul(digits));
+          parsed.index += *element;
           semantic = hlsl::canonical_semantic(parsed);
         }
       }
       std::optional<uint32_t> location;
       const bool input = qualifier.storage == glslang::EvqVaryingIn;
-      if (stage == EShLangVertex && input) location = hlsl::vertex_input_location(semantic);
-      else if (stage == EShLangVertex || input) location = hlsl::varying_location(semantic);
+      if (stage == EShLangVertex && input) {
+        location = hlsl::vertex_input_location(semantic);
+      } else if (stage == EShLangVertex || input) {
+        if (auto placed = varying_locations_.find(array_semantic); placed != varying_locations_.end())
+          location = placed->second + element.value_or(0);
+        else
+          location = hlsl::varying_location(semantic);
+      }
       if (location) return entry.newLocation = int(*location);
     }
     return TDefaultIoResolverBase::resolveInOutLocation(stage, entry);
@@ -121,6 +131,7 @@ class SemanticIoResolver final : public glslang::TDefaultIoResolverBase {
 
  private:
   const std::map<std::string, uint32_t>& bindings_;
+  const std::map<std::string, uint32_t>& varying_locations_;
 };
 
 // Sets the Offset decoration of each member of the named structs (blocks) that `offsets` gives
@@ -202,7 +213,7 @@ Result<HlslModule> compile_hlsl(const HlslStage& request) {
   }
   glslang::TProgram program;
   program.addShader(&shader);
-  SemanticIoResolver resolver(*shader.getIntermediate(), request.bindings);
+  SemanticIoResolver resolver(*shader.getIntermediate(), request.bindings, request.varying_locations);
   if (!program.link(messages) || !program.mapIO(&resolver)) {
     return fail(Error{"HLSL link failed (glslang)", {request.source_name, 0, 0},
                       parse_glslang_log(program.getInfoLog())});

@@ -52,6 +52,10 @@ struct HlslStage {
   // fragment stage, the number another buffer has there, and one program would bind one number
   // twice. Resources not named here get glslang's lowest free slot.
   std::map<std::string, uint32_t> bindings;
+  // The location of each varying by its canonical semantic, as the program's other stage and the
+  // other lanes place it (hlsl::Reflection::varyings); a varying not named here is placed by
+  // hlsl::varying_location.
+  std::map<std::string, uint32_t> varying_locations = {};
   // Run glslang's legalization (SPIRV-Tools passes that forward opaque values to their uses):
   // HLSL that keeps a texture in a local or a struct field needs it, or the SPIR-V is invalid
   // for Vulkan. Off otherwise, so that the lane's code is glslang's translation as it is.

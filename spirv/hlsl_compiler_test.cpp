@@ -1,5 +1,7 @@
 #include "spirv/hlsl_compiler.h"
 
+#include <set>
+
 #include <gtest/gtest.h>
 #include <spirv-tools/libspirv.hpp>
 
@@ -159,6 +161,25 @@ TEST(HlslCompiler, AnArrayVaryingsElementsTakeConsecutiveSemantics) {
   ASSERT_TRUE(tools.Disassemble(compiled->module.words, &text, SPV_BINARY_TO_TEXT_OPTION_FRIENDLY_NAMES));
   for (int k = 0; k < 3; ++k)  // TEXCOORD1..3 are locations 1..3 (hlsl::varying_location)
     EXPECT_NE(text.find("Location " + std::to_string(1 + k)), std::string::npos) << text;
+}
+
+// Given where the program places its varyings (an array's element k at the array's location + k),
+// the stage takes those locations and no others: TEXCOORD3 after a two-element TEXCOORD2 array.
+TEST(HlslCompiler, VaryingsTakeTheLocationsTheProgramGives) {
+  constexpr const char* kSource = "struct V { float4 p : SV_Position; float3 light[2] : TEXCOORD2; float3 view : TEXCOORD3; };\n"
+                                  "float4 frag(V v) : SV_Target { return float4(v.light[0] + v.light[1] + v.view, 1); }\n";
+  HlslStage stage{kSource, "placed.hlsl", Stage::Fragment, "frag", {}, {}, {}, {}};
+  stage.varying_locations = {{"TEXCOORD2", 2}, {"TEXCOORD3", 4}};
+  auto compiled = compile_hlsl(stage);
+  ASSERT_TRUE(compiled) << compiled.error().to_string();
+  std::string text;
+  spvtools::SpirvTools tools(SPV_ENV_VULKAN_1_3);
+  ASSERT_TRUE(tools.Disassemble(compiled->module.words, &text, SPV_BINARY_TO_TEXT_OPTION_FRIENDLY_NAMES));
+  std::multiset<int> locations;
+  for (size_t at = text.find(" Location "); at != std::string::npos; at = text.find(" Location ", at + 1))
+    locations.insert(std::stoi(text.substr(at + 10)));
+  // The output SV_Target at 0, the elements at 2 and 3, the TEXCOORD3 at 4.
+  EXPECT_EQ(locations, (std::multiset<int>{0, 2, 3, 4})) << text;
 }
 
 }  // namespace

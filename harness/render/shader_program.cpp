@@ -52,6 +52,7 @@ Result<ShaderStageSource> vk_hlsl_stage(const hlsl::Module& module, spirv::Stage
   }
   for (const hlsl::TextureResource& texture : declared.textures) request.bindings[texture.name] = texture.binding;
   for (const hlsl::SamplerResource& sampler : declared.samplers) request.bindings[sampler.name] = sampler.binding;
+  for (const hlsl::StageVariable& varying : declared.varyings) request.varying_locations[varying.semantic] = varying.location;
   auto compiled = spirv::compile_hlsl(request);
   if (!compiled) return fail(compiled.error());
 
