@@ -3,7 +3,7 @@
 output its validators reject, and on any entry of passing.txt (the entries that compile to valid
 GLSL and SPIR-V) that no longer does. New passes are listed, to be added to passing.txt.
 
-usage: check_corpus.py --runner RUN_CORPUS.PY --xshade XSHADE --passing PASSING.TXT --out DIR
+usage: check_corpus.py --runner RUN_CORPUS.PY --xshade XSHADE --passing PASSING.TXT --out DIR [-j N]
 """
 import argparse
 import json
@@ -18,8 +18,9 @@ def main():
     ap.add_argument('--xshade', required=True)
     ap.add_argument('--passing', required=True)
     ap.add_argument('--out', required=True)
+    ap.add_argument('-j', '--jobs', type=int, default=os.cpu_count() or 1, help='entries compiled at once')
     a = ap.parse_args()
-    run = subprocess.run([sys.executable, a.runner, a.xshade, '--out', a.out], stdout=subprocess.PIPE,
+    run = subprocess.run([sys.executable, a.runner, a.xshade, '--out', a.out, '-j', str(a.jobs)], stdout=subprocess.PIPE,
                          stderr=subprocess.STDOUT, text=True)
     print(run.stdout, end='')
     if run.returncode != 0:

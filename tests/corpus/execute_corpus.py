@@ -15,13 +15,16 @@ chain of such roundings stays well within. A disagreement beyond that is a wrong
 lane, and is traced (xshade eval writes each lane's EXR) and fixed, or listed in
 docs/divergences.md with its entry id.
 
-usage: execute_corpus.py --xshade XSHADE [--corpus DIR] [--out DIR] [--seed N] [--size WxH]
+usage: execute_corpus.py --xshade XSHADE [--corpus DIR] [--out DIR] [--seed N] [--size WxH] [-j N]
                          [--only SUBSTR] [--divergences docs/divergences.md] [--require FRACTION]
+Entries run -j at a time (default: one per core); what is printed and written is in the corpus's
+order whatever N is.
 The last line printed is `corpus execution: N of M entries agree on gl, vk and vk-hlsl`. With
 --require, the exit code is 1 when fewer than that fraction agree or when an entry that does not
 agree is missing from the divergences file; 0 otherwise.
 """
 import argparse
+import concurrent.futures
 import json
 import os
 import re
@@ -63,13 +66,14 @@ def run_entry(xshade, corpus, entry, out, seed, size):
         return dict(rc=None, out='timed out after %d s' % TIMEOUT, secs=time.time() - started, cmd=cmd)
 
 
-def glslang_accepts(corpus, entry, out):
+def glslang_accepts(corpus, entry, folder):
     """glslang's own HLSL front end compiles the entry (glslangValidator -D -V): without that the
     vk-hlsl lane cannot run it, and run_corpus.py leaves it out of its denominator too."""
     cmd = ['glslangValidator', '-D', '-V', '-S', 'frag', '-e', entry['entry']]
     cmd += ['-I' + os.path.join(corpus, d) for d in entry['include_dirs']]
     cmd += ['-D' + k for k in entry.get('keywords', [])]
-    cmd += [os.path.join(corpus, entry['wrapper']), '-o', os.path.join(out, 'glslang.spv')]
+    os.makedirs(folder, exist_ok=True)
+    cmd += [os.path.join(corpus, entry['wrapper']), '-o', os.path.join(folder, 'glslang.spv')]
     try:
         p = subprocess.run(cmd, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, timeout=TIMEOUT)
     except subprocess.TimeoutExpired:
@@ -125,22 +129,29 @@ def main():
     ap.add_argument('--relative', type=float, default=1e-4)
     ap.add_argument('--divergences', default='')
     ap.add_argument('--require', type=float, default=None)
+    ap.add_argument('-j', '--jobs', type=int, default=os.cpu_count() or 1, help='entries run at once')
     a = ap.parse_args()
 
     manifest = json.load(open(os.path.join(a.corpus, 'manifest.json')))
     entries = [e for e in manifest['entries'] if e['stage'] == 'fragment' and a.only in e['id']]
     os.makedirs(a.out, exist_ok=True)
-    rows = []
-    for i, entry in enumerate(entries):
-        if not glslang_accepts(a.corpus, entry, a.out):
-            rows.append(dict(id=entry['id'], verdict='glslang', detail='glslang rejects it', secs=0))
-            print('[%d/%d] %s: not counted: glslang\'s HLSL front end rejects it' % (i + 1, len(entries), entry['id']))
-            continue
+
+    def execute(entry):
+        """(row, line to print) of one entry."""
+        if not glslang_accepts(a.corpus, entry, os.path.join(a.out, entry['id'])):
+            return (dict(id=entry['id'], verdict='glslang', detail='glslang rejects it', secs=0),
+                    'not counted: glslang\'s HLSL front end rejects it')
         result = run_entry(a.xshade, a.corpus, entry, a.out, a.seed, a.size)
         verdict, detail = judge(result, a.absolute, a.relative)
-        rows.append(dict(id=entry['id'], verdict=verdict, detail=detail, secs=round(result['secs'], 2)))
-        print('[%d/%d] %s: %s%s' % (i + 1, len(entries), entry['id'], verdict, '' if verdict == 'agree' else ' - ' + detail),
-              flush=True)
+        return (dict(id=entry['id'], verdict=verdict, detail=detail, secs=round(result['secs'], 2)),
+                verdict + ('' if verdict == 'agree' else ' - ' + detail))
+
+    # Each entry is two processes (glslangValidator, xshade eval) that the threads only wait for.
+    rows = []
+    with concurrent.futures.ThreadPoolExecutor(max_workers=max(1, a.jobs)) as pool:
+        for i, (row, line) in enumerate(pool.map(execute, entries)):
+            rows.append(row)
+            print('[%d/%d] %s: %s' % (i + 1, len(entries), row['id'], line), flush=True)
     with open(os.path.join(a.out, 'execution.json'), 'w') as f:
         json.dump(rows, f, indent=1)
     with open(os.path.join(a.out, 'execution.tsv'), 'w') as f:
