@@ -9,9 +9,8 @@
 #include <thread>
 
 #include <fmt/format.h>
-#include <OpenImageIO/imagebuf.h>
-#include <OpenImageIO/imagebufalgo.h>
 
+#include "harness/image/image_codec.h"
 #include "harness/image/image_io.h"
 #include "harness/image/srgb8_encoder.h"
 
@@ -47,21 +46,20 @@ float heat_position(uint32_t steps, uint32_t tolerance) {
 
 }  // namespace
 
-// The heat map's colour for each difference 0..255: OpenImageIO maps a 256-pixel ramp once, so
-// the image itself is a table look-up per pixel. Its maps are matplotlib's, in sRGB.
-std::array<glm::vec4, 256> heat_palette(uint32_t tolerance) {
-  OIIO::ImageBuf ramp(OIIO::ImageSpec(256, 1, 1, OIIO::TypeDesc::FLOAT));
-  for (int steps = 0; steps < 256; ++steps) {
-    const float position = heat_position(uint32_t(steps), tolerance);
-    ramp.setpixel(steps, 0, &position, 1);
-  }
-  const OIIO::ImageBuf colours = OIIO::ImageBufAlgo::color_map(ramp, 0, "inferno");
+// The heat map's colour for each difference 0..255: the image library maps a 256-pixel ramp once,
+// so the image itself is a table look-up per pixel. Its maps are matplotlib's, in sRGB.
+Result<std::array<glm::vec4, 256>> heat_palette(uint32_t tolerance) {
+  auto codec = image_codec();
+  if (!codec) return fail(codec.error());
+  std::vector<float> positions(256);
+  for (uint32_t steps = 0; steps < 256; ++steps) positions[steps] = heat_position(steps, tolerance);
+  std::vector<float> rgb;
+  if (std::string failed = (*codec)->color_map(positions, "inferno", rgb); !failed.empty())
+    return fail(ErrorKind::Backend, "the heat map's colour map 'inferno': " + failed);
   std::array<glm::vec4, 256> palette{};
-  for (int steps = 1; steps < 256; ++steps) {
-    float rgb[3] = {0.0f, 0.0f, 0.0f};
-    colours.getpixel(steps, 0, rgb, 3);  // "inferno" is built in; the heat-map tests see it
-    palette[size_t(steps)] = {srgb_to_linear(rgb[0]), srgb_to_linear(rgb[1]), srgb_to_linear(rgb[2]), 1.0f};
-  }
+  for (size_t steps = 1; steps < 256; ++steps)
+    palette[steps] = {srgb_to_linear(rgb[steps * 3]), srgb_to_linear(rgb[steps * 3 + 1]),
+                      srgb_to_linear(rgb[steps * 3 + 2]), 1.0f};
   palette[0] = {0.0f, 0.0f, 0.0f, 1.0f};  // inferno's first colour is nearly, not quite, black
   return palette;
 }
@@ -69,7 +67,7 @@ std::array<glm::vec4, 256> heat_palette(uint32_t tolerance) {
 namespace {
 
 // ImageBufAlgo does part of this work but not in the form the model needs, so the layers below
-// read the pixels themselves and use OpenImageIO only for the heat map's colour map:
+// read the pixels themselves and use the image library only for the heat map's colour map:
 // computePixelStats counts NaN and Inf but neither negatives nor where the first one is;
 // compare's mean and RMSE become NaN at the first NaN, and its PSNR is relative to the
 // brightest value in the images rather than to 255.
@@ -328,8 +326,12 @@ Comparison compare_images(const FloatImage& test, const FloatImage& reference, c
                                     : LayerResult{"exact", Verdict::Skipped, "not bit-identical; the per-pixel layer decides"});
 
   // 3. per_pixel, with the summary's sums and the heat map from the same pass
-  if (heat_map) result.heat_map = FloatImage(test.width, test.height);
-  PixelPass pass = compare_pixels(test, reference, tolerance, heat_palette(tolerance), heat_map ? &result.heat_map : nullptr);
+  // Without its palette (the image library could not be loaded) there is no heat map; whoever
+  // writes one fails on the same library with its reason.
+  auto palette = heat_map ? heat_palette(tolerance) : std::array<glm::vec4, 256>{};
+  if (heat_map && palette) result.heat_map = FloatImage(test.width, test.height);
+  PixelPass pass = compare_pixels(test, reference, tolerance, palette ? *palette : std::array<glm::vec4, 256>{},
+                                  heat_map && palette ? &result.heat_map : nullptr);
   const size_t failing = pass.failing.size();
   const bool per_pixel_passed = failing <= budget;
   if (identical) {

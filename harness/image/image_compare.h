@@ -16,6 +16,7 @@
 #include <utility>
 #include <vector>
 
+#include "base/result.h"
 #include "harness/image/image.h"
 
 namespace xshade::harness {
@@ -119,7 +120,7 @@ struct Comparison {
   NonFiniteCount test_non_finite;
   NonFiniteCount reference_non_finite;
   // The test image's size (empty when the sizes differ), alpha 1. Each pixel shows its largest
-  // 8-bit channel difference d (alpha included) through OpenImageIO's "inferno" colour map, at a
+  // 8-bit channel difference d (alpha included) through matplotlib's "inferno" colour map (the image library's), at a
   // position that depends on the channel tolerance t:
   //   d = 0            black;
   //   1 <= d <= t      0.05 + 0.25 * d / t: dark purple, within the tolerance;
@@ -131,7 +132,8 @@ struct Comparison {
 
 // The heat map's colour (linear RGB, alpha 1) for each largest channel difference of 0..255
 // 8-bit steps, for a channel tolerance: Comparison::heat_map's colours, and its legend's.
-std::array<glm::vec4, 256> heat_palette(uint32_t channel_tolerance);
+// Fails when the image library (image_codec.h) cannot be loaded.
+Result<std::array<glm::vec4, 256>> heat_palette(uint32_t channel_tolerance);
 
 // Runs every layer on `test` against `reference` with the scene's tolerances. Without
 // `heat_map`, Comparison::heat_map stays empty (a caller that writes none saves its memory).

@@ -4,30 +4,24 @@
 #include <array>
 #include <cmath>
 
-#include <OpenImageIO/imageio.h>
-
 #include "harness/image/exr_header.h"
+#include "harness/image/image_codec.h"
 #include "harness/image/image_limits.h"
 
 namespace xshade::harness {
 namespace {
 
-std::string oiio_error(const std::string& what, const std::filesystem::path& path,
+std::string file_error(const std::string& what, const std::filesystem::path& path,
                        const std::string& detail) {
   std::string message = what + " " + path.string();
   if (!detail.empty()) message += ": " + detail;
   return message;
 }
 
-Result<void> write(const std::filesystem::path& path, const OIIO::ImageSpec& spec,
-                   OIIO::TypeDesc pixel_type, const void* pixels) {
-  auto output = OIIO::ImageOutput::create(path.string());
-  if (!output) return fail(oiio_error("cannot write", path, OIIO::geterror()));
-  if (!output->open(path.string(), spec)) return fail(oiio_error("cannot write", path, output->geterror()));
-  bool written = output->write_image(pixel_type, pixels);
-  bool closed = output->close();
-  if (!written || !closed) return fail(oiio_error("cannot write", path, output->geterror()));
-  return {};
+// A written file, or the error with what the library said.
+Result<void> written(const std::filesystem::path& path, const std::string& detail) {
+  if (detail.empty()) return {};
+  return fail(file_error("cannot write", path, detail));
 }
 
 // What the header claims, against image_limits.h. For an EXR, width and height are its data
@@ -41,22 +35,22 @@ std::string size_refusal(int64_t width, int64_t height, const std::string& size)
          " pixels a side and " + std::to_string(kMaxImageFilePixels) + " pixels in all";
 }
 
-Result<void> check_header(const OIIO::ImageSpec& spec, const std::filesystem::path& path) {
+Result<void> check_header(const ImageFileHeader& spec, const std::filesystem::path& path) {
   std::string size = std::to_string(spec.width) + " x " + std::to_string(spec.height);
   if (spec.depth > 1) size += " x " + std::to_string(spec.depth);
   if (const std::string refused = size_refusal(spec.width, spec.height, size); !refused.empty())
-    return fail(oiio_error("cannot read image", path, refused));
+    return fail(file_error("cannot read image", path, refused));
   if (spec.depth > 1)
-    return fail(oiio_error("cannot read image", path,
+    return fail(file_error("cannot read image", path,
                            "it is a volume of " + size + " pixels; xshade reads flat images (depth 1)"));
-  if (spec.nchannels > kMaxImageFileChannels)
-    return fail(oiio_error("cannot read image", path,
-                           "it has " + std::to_string(spec.nchannels) + " channels; xshade reads images of at most " +
+  if (spec.channels > kMaxImageFileChannels)
+    return fail(file_error("cannot read image", path,
+                           "it has " + std::to_string(spec.channels) + " channels; xshade reads images of at most " +
                                std::to_string(kMaxImageFileChannels)));
-  const uint64_t tile_pixels = uint64_t(std::max(spec.tile_width, 0)) * uint64_t(std::max(spec.tile_height, 0));
+  const uint64_t tile_pixels = uint64_t(std::max<int64_t>(spec.tile_width, 0)) * uint64_t(std::max<int64_t>(spec.tile_height, 0));
   if (spec.tile_width > int64_t(kMaxImageFileSide) || spec.tile_height > int64_t(kMaxImageFileSide) ||
       tile_pixels > kMaxImageFilePixels || spec.tile_depth > 1)
-    return fail(oiio_error("cannot read image", path,
+    return fail(file_error("cannot read image", path,
                            "its tiles are " + std::to_string(spec.tile_width) + " x " +
                                std::to_string(spec.tile_height) + " pixels; xshade reads tiles of at most " +
                                std::to_string(kMaxImageFileSide) + " pixels a side and " +
@@ -96,58 +90,57 @@ Result<void> write_png(const FloatImage& image, const std::filesystem::path& pat
     float alpha = image.rgba[i + 3];
     bytes[i + 3] = alpha > 0.0f ? uint8_t(std::lround(std::min(alpha, 1.0f) * 255.0f)) : 0;
   }
-  OIIO::ImageSpec spec(int(image.width), int(image.height), 4, OIIO::TypeDesc::UINT8);
-  spec.attribute("oiio:ColorSpace", "sRGB");
-  spec.attribute("oiio:UnassociatedAlpha", 1);  // our colour is not premultiplied by alpha
-  spec.attribute("png:compressionLevel", compression == PngCompression::Fast ? 1 : 6);
-  return write(path, spec, OIIO::TypeDesc::UINT8, bytes.data());
+  auto codec = image_codec();
+  if (!codec) return fail(codec.error());
+  return written(path, (*codec)->write_png(path.string(), image.width, image.height, bytes.data(),
+                                           compression == PngCompression::Fast ? 1 : 6));
 }
 
 Result<void> write_exr(const FloatImage& image, const std::filesystem::path& path) {
-  OIIO::ImageSpec spec(int(image.width), int(image.height), 4, OIIO::TypeDesc::FLOAT);
-  spec.attribute("compression", "zip:1");
-  return write(path, spec, OIIO::TypeDesc::FLOAT, image.rgba.data());
+  auto codec = image_codec();
+  if (!codec) return fail(codec.error());
+  return written(path, (*codec)->write_exr(path.string(), image.width, image.height, image.rgba.data()));
 }
 
 Result<FloatImage> read_image(const std::filesystem::path& path, bool srgb) {
-  // Without this OpenImageIO premultiplies colour by alpha when it reads a PNG.
-  OIIO::ImageSpec config;
-  config.attribute("oiio:UnassociatedAlpha", 1);
   // OpenEXR allocates what its header claims as it opens the file: that is checked first.
   auto window = exr_data_window(path);
   if (!window) return fail(window.error());
   if (*window) {
     const std::string size = std::to_string((*window)->width) + " x " + std::to_string((*window)->height);
     if (const std::string refused = size_refusal((*window)->width, (*window)->height, size); !refused.empty())
-      return fail(oiio_error("cannot read image", path, refused));
+      return fail(file_error("cannot read image", path, refused));
   }
-  auto input = OIIO::ImageInput::open(path.string(), &config);
-  if (!input) return fail(oiio_error("cannot read image", path, OIIO::geterror()));
-  const OIIO::ImageSpec& spec = input->spec();
-  if (spec.width <= 0 || spec.height <= 0 || spec.nchannels <= 0)
-    return fail(oiio_error("cannot read image", path, "it has no pixels"));
+  auto codec = image_codec();
+  if (!codec) return fail(codec.error());
+  std::string error;
+  std::unique_ptr<ImageFileReader> input = (*codec)->open(path.string(), error);
+  if (!input) return fail(file_error("cannot read image", path, error));
+  const ImageFileHeader& spec = input->header();
+  if (spec.width <= 0 || spec.height <= 0 || spec.channels <= 0)
+    return fail(file_error("cannot read image", path, "it has no pixels"));
   // The header is all that has been read: its sizes are checked before they size any buffer.
   if (Result<void> fits = check_header(spec, path); !fits) return fail(fits.error());
-  const int channels = spec.nchannels;
+  const int channels = spec.channels;
   // An integer file's colour is sRGB-encoded whatever its depth (a 16-bit PNG too); 8 bits
   // decode through the exact table.
-  const bool encoded = spec.format == OIIO::TypeDesc::UINT8;
-  const bool integer = !spec.format.is_floating_point();
+  const bool encoded = spec.uint8;
+  const bool integer = !spec.floating_point;
 
   FloatImage image(uint32_t(spec.width), uint32_t(spec.height));
   // A float file of RGBA (a render, a golden) is read straight into the image: a 2048 x 2048
   // file is 64 MB, and a second buffer of it was a fifth of what xshade diff took.
   const int file_alpha = spec.alpha_channel >= 0 ? spec.alpha_channel : (channels == 4 ? 3 : -1);
   if (!integer && channels == 4 && file_alpha == 3) {
-    if (!input->read_image(0, 0, 0, 4, OIIO::TypeDesc::FLOAT, image.rgba.data()))
-      return fail(oiio_error("cannot read image", path, input->geterror()));
+    if (std::string failed = input->read(4, PixelType::Float, image.rgba.data()); !failed.empty())
+      return fail(file_error("cannot read image", path, failed));
     return image;
   }
   std::vector<float> pixels(size_t(spec.width) * spec.height * channels);
   std::vector<uint8_t> bytes(encoded ? pixels.size() : 0);
-  bool read = encoded ? input->read_image(0, 0, 0, channels, OIIO::TypeDesc::UINT8, bytes.data())
-                      : input->read_image(0, 0, 0, channels, OIIO::TypeDesc::FLOAT, pixels.data());
-  if (!read) return fail(oiio_error("cannot read image", path, input->geterror()));
+  const std::string failed = encoded ? input->read(channels, PixelType::UInt8, bytes.data())
+                                     : input->read(channels, PixelType::Float, pixels.data());
+  if (!failed.empty()) return fail(file_error("cannot read image", path, failed));
 
   // Grey and grey+alpha files spread their first channel over RGB; missing alpha is 1.
   const int alpha_channel = spec.alpha_channel >= 0 ? spec.alpha_channel : (channels == 2 ? 1 : channels == 4 ? 3 : -1);

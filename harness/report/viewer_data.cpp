@@ -54,9 +54,12 @@ std::string hex_colour(const glm::vec4& linear) {
                      linear_to_srgb8(linear.b));
 }
 
+// Empty when the image library cannot be loaded: the report's images cannot be written then
+// either, and that error says why.
 json palette_json(uint32_t tolerance) {
   json colours = json::array();
-  for (const glm::vec4& colour : heat_palette(tolerance)) colours.push_back(hex_colour(colour));
+  if (auto palette = heat_palette(tolerance))
+    for (const glm::vec4& colour : *palette) colours.push_back(hex_colour(colour));
   return colours;
 }
 
