@@ -6,6 +6,7 @@
 #include <map>
 
 #include "cli/commands.h"
+#include "base/file_io.h"
 #include "base/subprocess.h"
 #include "cli/lane_selection.h"
 #include "cli/workers.h"
@@ -76,6 +77,15 @@ void print_traced(const EvalOptions& options, const hlsl::Module& module, harnes
   if (auto written = harness::write_png(origins->map, map); written) fmt::print("{}: origins map {}\n", name, map.string());
 }
 
+// Where eval writes a lane's image, and where that lane's worker hands it over first (beside it,
+// hidden, removed once read).
+std::filesystem::path exr_path(const EvalOptions& options, const std::string& lane) {
+  return options.output_dir / (options.file.stem().string() + "." + lane + ".exr");
+}
+std::filesystem::path handover_path(const EvalOptions& options, const std::string& lane) {
+  return options.output_dir / ("." + options.file.stem().string() + "." + lane + ".f32");
+}
+
 // The options of `options` for one lane's worker: the same eval, of that lane alone.
 std::vector<std::string> worker_command(const EvalOptions& options, harness::Lane lane) {
   std::vector<std::string> command = {this_program(), "eval", options.file.string(), "--in-worker",
@@ -106,6 +116,8 @@ int run_eval_lanes_in_workers(const EvalOptions& options, const std::vector<harn
     size_t running = 0;
     for (size_t i = next_to_report; i < next_to_start; ++i) running += workers[i] && !workers[i]->finished();
     while (running < jobs && next_to_start < lanes.size()) {
+      std::error_code ignored;  // what an earlier eval that was stopped left
+      std::filesystem::remove(handover_path(options, std::string(harness::lane_name(lanes[next_to_start]))), ignored);
       auto worker = ChildProcess::start(worker_command(options, lanes[next_to_start]), environment,
                                         std::chrono::duration_cast<ChildProcess::Clock::duration>(
                                             std::chrono::duration<double>(timeout)));
@@ -133,7 +145,17 @@ int run_eval_lanes_in_workers(const EvalOptions& options, const std::vector<harn
           exit_code = std::max<int>(exit_code, kBackendError);
         } else {
           exit_code = std::max(exit_code, exit.code);
-          auto image = harness::read_image(options.output_dir / (options.file.stem().string() + "." + name + ".exr"), false);
+          const auto handover = handover_path(options, name);
+          const std::optional<std::string> bytes = read_file(handover);
+          std::error_code ignored;
+          std::filesystem::remove(handover, ignored);
+          std::optional<harness::FloatImage> image = bytes ? harness::float_image_from(*bytes) : std::nullopt;
+          if (image) {
+            if (auto written = harness::write_exr(*image, exr_path(options, name)); !written) {
+              fmt::print(stderr, "xshade eval: {}\n", written.error().to_string());
+              exit_code = std::max<int>(exit_code, kBackendError);
+            }
+          }
           if (exit.code != kBackendError && image) images.emplace(lane, std::move(*image));
         }
       }
@@ -217,12 +239,13 @@ int run_eval(const EvalOptions& options) {
       continue;
     }
     for (const std::string& message : (*backend)->take_driver_messages()) fmt::print("{}: driver message: {}\n", name, message);
-    const auto path = options.output_dir / (options.file.stem().string() + "." + name + ".exr");
-    if (auto written = harness::write_exr(*image, path); !written) {
-      fmt::print(stderr, "xshade eval: {}\n", written.error().to_string());
+    // The image goes to the process that started this worker, which writes the EXR: a worker then
+    // never loads the image library (harness/image/image_codec.h), a third of a second a lane.
+    if (auto handed = write_file_atomically(handover_path(options, name), harness::float_image_bytes(*image)); !handed) {
+      fmt::print(stderr, "xshade eval: {}\n", handed.error().to_string());
       exit_code = kBackendError;
     } else {
-      fmt::print("{}: {}\n", name, path.string());
+      fmt::print("{}: {}\n", name, exr_path(options, name).string());
     }
     // A NaN, an Inf or a negative colour is a failure unless the shader is a test of such a hazard.
     if (const harness::NonFiniteCount bad = harness::count_non_finite(*image); bad.total()) {

@@ -22,31 +22,6 @@ namespace {
 namespace fs = std::filesystem;
 using namespace std::chrono_literals;
 
-// The float image as its bytes: "xsfimg1\0", width and height (uint32, host order: the worker
-// and its supervisor are one program on one machine), then the RGBA floats. Exact, and quick to
-// write and read.
-constexpr char kImageMagic[8] = "xsfimg1";
-
-std::string float_image_bytes(const FloatImage& image) {
-  std::string bytes(kImageMagic, sizeof kImageMagic);
-  bytes.append(reinterpret_cast<const char*>(&image.width), sizeof image.width);
-  bytes.append(reinterpret_cast<const char*>(&image.height), sizeof image.height);
-  bytes.append(reinterpret_cast<const char*>(image.rgba.data()), image.rgba.size() * sizeof(float));
-  return bytes;
-}
-
-std::optional<FloatImage> float_image_from(const std::string& bytes) {
-  constexpr size_t header = sizeof kImageMagic + 2 * sizeof(uint32_t);
-  if (bytes.size() < header || std::memcmp(bytes.data(), kImageMagic, sizeof kImageMagic) != 0) return std::nullopt;
-  uint32_t width = 0, height = 0;
-  std::memcpy(&width, bytes.data() + sizeof kImageMagic, sizeof width);
-  std::memcpy(&height, bytes.data() + sizeof kImageMagic + sizeof width, sizeof height);
-  if (bytes.size() != header + size_t(width) * height * 4 * sizeof(float)) return std::nullopt;
-  FloatImage image(width, height);
-  std::memcpy(image.rgba.data(), bytes.data() + header, image.rgba.size() * sizeof(float));
-  return image;
-}
-
 // A private folder for the workers' results, removed with everything in it at the end.
 class ScratchFolder {
  public:

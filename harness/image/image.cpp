@@ -32,4 +32,28 @@ ImageDifference max_difference(const FloatImage& a, const FloatImage& b) {
   return worst;
 }
 
+namespace {
+constexpr char kImageMagic[8] = "xsfimg1";
+}  // namespace
+
+std::string float_image_bytes(const FloatImage& image) {
+  std::string bytes(kImageMagic, sizeof kImageMagic);
+  bytes.append(reinterpret_cast<const char*>(&image.width), sizeof image.width);
+  bytes.append(reinterpret_cast<const char*>(&image.height), sizeof image.height);
+  bytes.append(reinterpret_cast<const char*>(image.rgba.data()), image.rgba.size() * sizeof(float));
+  return bytes;
+}
+
+std::optional<FloatImage> float_image_from(std::string_view bytes) {
+  constexpr size_t header = sizeof kImageMagic + 2 * sizeof(uint32_t);
+  if (bytes.size() < header || std::memcmp(bytes.data(), kImageMagic, sizeof kImageMagic) != 0) return std::nullopt;
+  uint32_t width = 0, height = 0;
+  std::memcpy(&width, bytes.data() + sizeof kImageMagic, sizeof width);
+  std::memcpy(&height, bytes.data() + sizeof kImageMagic + sizeof width, sizeof height);
+  if (bytes.size() != header + size_t(width) * height * 4 * sizeof(float)) return std::nullopt;
+  FloatImage image(width, height);
+  std::memcpy(image.rgba.data(), bytes.data() + header, image.rgba.size() * sizeof(float));
+  return image;
+}
+
 }  // namespace xshade::harness

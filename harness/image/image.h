@@ -2,6 +2,9 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
+#include <string>
+#include <string_view>
 #include <vector>
 
 #include <glm/vec4.hpp>
@@ -42,5 +45,12 @@ struct ImageDifference {
   uint32_t channel = 0;
 };
 ImageDifference max_difference(const FloatImage& a, const FloatImage& b);
+
+// The float image as bytes, exact and quick to write and read: how a worker hands its image to
+// the process that started it ("xsfimg1\0", width and height as uint32 in host order, since both
+// are one program on one machine, then the RGBA floats).
+std::string float_image_bytes(const FloatImage& image);
+// The image of float_image_bytes; empty when `bytes` are not such an image.
+std::optional<FloatImage> float_image_from(std::string_view bytes);
 
 }  // namespace xshade::harness

@@ -33,5 +33,20 @@ TEST(ImageDifference, NanAndInfinityMatchOnlyThemselves) {
   EXPECT_EQ(max_difference(a, b).x, 1u);
 }
 
+// A worker's image comes back bit for bit (NaN and infinities too); bytes that are not such an
+// image, or are cut short, are refused rather than read.
+TEST(FloatImageBytes, AnImageComesBackBitForBitAndOtherBytesAreRefused) {
+  FloatImage image(3, 2);
+  image.set(0, 0, {std::numeric_limits<float>::quiet_NaN(), -0.0f, std::numeric_limits<float>::infinity(), 1e-40f});
+  image.set(2, 1, {0.25f, -7.0f, 65504.0f, 1.0f});
+  const std::string bytes = float_image_bytes(image);
+  const std::optional<FloatImage> back = float_image_from(bytes);
+  ASSERT_TRUE(back);
+  EXPECT_TRUE(bitwise_equal(*back, image));
+  EXPECT_FALSE(float_image_from(std::string_view(bytes).substr(0, bytes.size() - 1)));
+  EXPECT_FALSE(float_image_from("xsfimg2" + bytes.substr(7)));
+  EXPECT_FALSE(float_image_from(""));
+}
+
 }  // namespace
 }  // namespace xshade::harness
