@@ -21,6 +21,11 @@ SuiteOptions options_for(harness::Lane lane, std::vector<Precision> precisions =
   options.shaders_dir = kSource / "shaders";
   options.probes_dir = kSource / "stability" / "probes";
   options.scenes_dir = kSource / "scenes";
+  // Mesa's shader cache, shared by every stability test of the build: the depth-of-field cases
+  // compile the same passes (the 43-sample kernel in all four, each sampled kernel in two) on each
+  // lane, and LLVM compiling them again is most of what those tests take. The cache is keyed by
+  // the shader and the driver, so a hit runs the code a compile would make.
+  options.backend.driver_cache = XSHADE_STABILITY_DRIVER_CACHE;
   return options;
 }
 
