@@ -219,7 +219,7 @@ class BuiltinInputs : public ::testing::TestWithParam<Row> {
 TEST_P(BuiltinInputs, ShadersReadTheHostsValueOnEveryLane) {
   const Row& row = GetParam();
   const ProbeScene probe("builtin_" + row.name);
-  probe.write_image("environment.exr", direction_equirect());
+  probe.write_direction_equirect("environment.exr");
   std::string scene_text = kSceneText + row.object_tables;
   if (row.post) {
     probe.write("probe_material.hlsl", material_probe("", "float4(0, 0, 0, 1)"));

@@ -9,8 +9,10 @@
 #include "harness/assets/equirect.h"
 #include "harness/image/image_io.h"
 #include "harness/render/lanes.h"
+#include "harness/render/environment_cache.h"
 #include "harness/render/planner.h"
 #include "harness/render/scene_renderer.h"
+#include "harness/render/shader_cache.h"
 #include "harness/render/variant_compiler.h"
 #include "harness/scene/scene.h"
 #include "harness/vulkan/vulkan_backend.h"
@@ -18,6 +20,17 @@
 namespace xshade::tests {
 
 namespace fs = std::filesystem;
+
+namespace {
+// The probes' environments, built once for the whole test run and kept in the build folder
+// between test processes (by the hash of what they are made of, EnvironmentCache): every probe
+// renders in the same environment on three lanes, and building one (its file read, its SH, its
+// prefiltered mips) cost more than rendering the probe.
+harness::EnvironmentCache& environments() {
+  static harness::EnvironmentCache cache(XSHADE_TEST_CACHE_DIR, harness::compiler_identity());
+  return cache;
+}
+}  // namespace
 
 ProbeScene::ProbeScene(const std::string& name)
     : folder_(fs::temp_directory_path() / ("xshade_probe_" + name + "_" + std::to_string(::getpid()))) {
@@ -41,6 +54,20 @@ void ProbeScene::write_image(const std::string& file, const harness::FloatImage&
   if (!written) ADD_FAILURE() << written.error().to_string();
 }
 
+void ProbeScene::write_direction_equirect(const std::string& file) const {
+  // One file for every probe, written once: an EXR's header holds the time it was written, and
+  // the same bytes are what lets the environment cache find the environment built from them.
+  const fs::path shared = fs::path(XSHADE_TEST_CACHE_DIR) / "direction_equirect.exr";
+  if (!fs::exists(shared)) {
+    fs::create_directories(shared.parent_path());
+    const fs::path partial = shared.string() + "." + std::to_string(::getpid()) + ".exr";
+    auto written = harness::write_exr(direction_equirect(), partial);
+    if (!written) ADD_FAILURE() << written.error().to_string();
+    fs::rename(partial, shared);  // whole or not at all, when two test processes write it at once
+  }
+  fs::copy_file(shared, folder_ / file, fs::copy_options::overwrite_existing);
+}
+
 Result<harness::FloatImage> ProbeScene::render(const std::string& scene_text, harness::Lane lane,
                                                harness::Backend& backend) const {
   auto scene = harness::parse_scene(scene_text, folder_ / "probe.toml");
@@ -48,12 +75,12 @@ Result<harness::FloatImage> ProbeScene::render(const std::string& scene_text, ha
   const harness::ShaderSearchPath shaders(std::vector<fs::path>{folder_, XSHADE_SHADERS_DIR});
   auto plan = harness::plan_scene(*scene, shaders);
   if (!plan) return fail(plan.error());
-  auto environment = harness::build_environment(scene->environment);
+  auto environment = environments().get(scene->environment);
   if (!environment) return fail(environment.error());
   harness::VariantCompiler compiler(shaders, nullptr);
   auto variants = compiler.compile_plan(*plan, lane, false);
   if (!variants) return fail(variants.error());
-  auto rendered = harness::render_scene(backend, *scene, *plan, *variants, *environment);
+  auto rendered = harness::render_scene(backend, *scene, *plan, *variants, **environment);
   if (!rendered) return fail(rendered.error());
   return std::move(rendered->image);
 }

@@ -26,6 +26,8 @@ class ProbeScene {
   void write(const std::string& file, const std::string& text) const;
   // PNG (8-bit sRGB) or EXR by the name's extension.
   void write_image(const std::string& file, const harness::FloatImage& image) const;
+  // direction_equirect() as an EXR, always the same bytes.
+  void write_direction_equirect(const std::string& file) const;
 
   // `scene_text` as `probe.toml` in the folder, its shaders found in the folder, then the library.
   Result<harness::FloatImage> render(const std::string& scene_text, harness::Lane lane, harness::Backend& backend) const;

@@ -73,7 +73,7 @@ glm::vec4 face_texel(uint32_t f, uint32_t x, uint32_t y) {
 class SceneTextures : public ::testing::Test {
  protected:
   static void TearDownTestSuite() { release_suite_backends(); }
-  void SetUp() override { probe_.write_image("environment.exr", direction_equirect()); }
+  void SetUp() override { probe_.write_direction_equirect("environment.exr"); }
   void TearDown() override { expect_no_driver_messages(); }
 
   // Renders on every lane and compares pixel k with expected[k] within `tolerance`.
@@ -122,7 +122,7 @@ const std::vector<glm::vec4> kAxisColours = {{1, 0.5f, 0.5f, 1}, {0, 0.5f, 0.5f,
                                               {0.5f, 0, 0.5f, 1}, {0.5f, 0.5f, 1, 1}, {0.5f, 0.5f, 0, 1}};
 
 TEST_F(SceneTextures, ACubeFromAnEquirectImageLooksWhereTheImageDoes) {
-  probe_.write_image("sky.exr", direction_equirect());
+  probe_.write_direction_equirect("sky.exr");
   probe_.write("probe.hlsl", post_probe("TextureCube _Cube; SamplerState sampler_Cube;", kAxes));
   expect_pixels(scene_with_post(6, R"(_Cube = "sky.exr")"), kAxisColours, 0.02f);
 }

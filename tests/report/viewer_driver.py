@@ -35,6 +35,9 @@ from selenium.webdriver.common.by import By
 CHROMIUM_ARGS = ["--headless=new", "--no-sandbox", "--disable-gpu", "--disable-dev-shm-usage",
                  "--disable-background-networking", "--disable-component-update", "--disable-sync",
                  "--no-first-run"]
+# A pointer move takes no time (Selenium's default is 250 ms a move): the viewer reacts to the events,
+# not to how long the pointer took between them, and the smoke test makes about eighty moves.
+MOVE_MS = 0
 READOUT_FIELDS = ["x", "y", "golden", "output", "difference", "golden-srgb", "output-srgb", "steps"]
 
 
@@ -139,25 +142,25 @@ class Browser:
             self.group(group), view))
 
     def move_to(self, point):
-        actions = ActionBuilder(self.driver)
+        actions = ActionBuilder(self.driver, duration=MOVE_MS)
         actions.pointer_action.move_to_location(*point)
         actions.perform()
 
     def move_to_pixel(self, group, view, x, y):
         px, py = self.pixel_point(group, view, x, y)
-        actions = ActionBuilder(self.driver)
+        actions = ActionBuilder(self.driver, duration=MOVE_MS)
         actions.pointer_action.move_to_location(px, py)
         actions.perform()
 
     def click_pixel(self, group, view, x, y):
         px, py = self.pixel_point(group, view, x, y)
-        actions = ActionBuilder(self.driver)
+        actions = ActionBuilder(self.driver, duration=MOVE_MS)
         actions.pointer_action.move_to_location(px, py).click()
         actions.perform()
 
     def drag(self, start, delta, steps=5):
         """Presses at viewport point start, moves by delta in a few steps, releases."""
-        actions = ActionBuilder(self.driver)
+        actions = ActionBuilder(self.driver, duration=MOVE_MS)
         actions.pointer_action.move_to_location(*start).pointer_down()
         for i in range(1, steps + 1):
             actions.pointer_action.move_to_location(start[0] + delta[0] * i // steps, start[1] + delta[1] * i // steps)
@@ -165,11 +168,11 @@ class Browser:
         actions.perform()
 
     def wheel_at(self, point, delta_y):
-        ActionChains(self.driver).scroll_from_origin(ScrollOrigin.from_viewport(*point), 0, delta_y).perform()
+        ActionChains(self.driver, duration=MOVE_MS).scroll_from_origin(ScrollOrigin.from_viewport(*point), 0, delta_y).perform()
 
     def press(self, keys):
         """Keys sent to the page (the body has focus), as a user typing with nothing focused."""
-        ActionChains(self.driver).send_keys(keys).perform()
+        ActionChains(self.driver, duration=MOVE_MS).send_keys(keys).perform()
 
     def readout(self, group):
         """The readout's fields as text, and whether it is pinned."""
