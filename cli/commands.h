@@ -97,6 +97,7 @@ struct EvalOptions {
   std::optional<uint32_t> seed;  // inputs from this seed instead of the defaults and white
   bool allow_non_finite = false;  // NaN, Inf and negative output is reported, not a failure
   bool trace_nonfinite = false;   // render the tracing variant too and say where non-finite values were born
+  bool write_images = true;       // false: compare and print only; the image library is never loaded
   WorkerLimits workers;
   bool in_worker = false;  // this process is one lane's worker: render it here
 };

@@ -73,6 +73,7 @@ void print_traced(const EvalOptions& options, const hlsl::Module& module, harnes
     return;
   }
   fmt::print("{}: where the non-finite values were born:\n{}", name, harness::describe_origins(*origins));
+  if (!options.write_images) return;
   const auto map = options.output_dir / (options.file.stem().string() + "." + name + ".origins.png");
   if (auto written = harness::write_png(origins->map, map); written) fmt::print("{}: origins map {}\n", name, map.string());
 }
@@ -98,6 +99,7 @@ std::vector<std::string> worker_command(const EvalOptions& options, harness::Lan
   if (options.seed) command.insert(command.end(), {"--seed", std::to_string(*options.seed)});
   if (options.allow_non_finite) command.push_back("--allow-nonfinite");
   if (options.trace_nonfinite) command.push_back("--trace-nonfinite");
+  if (!options.write_images) command.push_back("--no-images");
   return command;
 }
 
@@ -150,7 +152,7 @@ int run_eval_lanes_in_workers(const EvalOptions& options, const std::vector<harn
           std::error_code ignored;
           std::filesystem::remove(handover, ignored);
           std::optional<harness::FloatImage> image = bytes ? harness::float_image_from(*bytes) : std::nullopt;
-          if (image) {
+          if (image && options.write_images) {
             if (auto written = harness::write_exr(*image, exr_path(options, name)); !written) {
               fmt::print(stderr, "xshade eval: {}\n", written.error().to_string());
               exit_code = std::max<int>(exit_code, kBackendError);
@@ -244,7 +246,7 @@ int run_eval(const EvalOptions& options) {
     if (auto handed = write_file_atomically(handover_path(options, name), harness::float_image_bytes(*image)); !handed) {
       fmt::print(stderr, "xshade eval: {}\n", handed.error().to_string());
       exit_code = kBackendError;
-    } else {
+    } else if (options.write_images) {
       fmt::print("{}: {}\n", name, exr_path(options, name).string());
     }
     // A NaN, an Inf or a negative colour is a failure unless the shader is a test of such a hazard.

@@ -237,6 +237,9 @@ static int run_command_line(int argc, char** argv) {
                  "(or negative output) was born, with a map of them as <file>.<lane>.origins.png");
   eval->add_flag("--allow-nonfinite", eval_options.allow_non_finite,
                  "NaN, Inf and negative output values are expected (a test of a hazard): print their counts, do not fail");
+  eval->add_flag("--no-images{false}", eval_options.write_images,
+                 "Compare the lanes and print, write no image (for scripts that read the comparisons: the image "
+                 "library is then never loaded, a third of a second saved)");
   add_worker_options(*eval, eval_options.workers, "lanes");
   eval->add_flag("--in-worker", eval_options.in_worker)->group("");  // eval's own workers (cli/workers.h)
 

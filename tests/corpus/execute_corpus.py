@@ -12,8 +12,10 @@ numbers: every lane runs on llvmpipe's LLVM code generator; what differs is the 
 reader, or glslang's own HLSL front end), which orders, fuses and contracts float operations
 differently: a few ulps an operation, and 1e-4 is about 800 ulps of a float, what a shader-length
 chain of such roundings stays well within. A disagreement beyond that is a wrong result on some
-lane, and is traced (xshade eval writes each lane's EXR) and fixed, or listed in
-docs/divergences.md with its entry id.
+lane, and is traced (the eval command printed with it, run by hand without --no-images, writes
+each lane's EXR) and fixed, or listed in docs/divergences.md with its entry id. The runner itself
+asks for no images: it reads only the comparisons, and an eval that writes none never loads the
+image library (a quarter of each entry's time).
 
 usage: execute_corpus.py --xshade XSHADE [--corpus DIR] [--out DIR] [--seed N] [--size WxH] [-j N]
                          [--only SUBSTR] [--divergences docs/divergences.md] [--require FRACTION]
@@ -52,7 +54,7 @@ def run_entry(xshade, corpus, entry, out, seed, size):
     folder = os.path.join(out, entry['id'])
     os.makedirs(folder, exist_ok=True)
     cmd = [xshade, 'eval', os.path.join(corpus, entry['wrapper']), '--entry', entry['entry'], '--size', size,
-           '--seed', str(seed), '-o', folder]
+           '--seed', str(seed), '-o', folder, '--no-images']
     for include in entry['include_dirs']:
         cmd += ['-I', os.path.join(corpus, include)]
     for keyword in entry.get('keywords', []):
@@ -143,7 +145,7 @@ def main():
                     'not counted: glslang\'s HLSL front end rejects it')
         result = run_entry(a.xshade, a.corpus, entry, a.out, a.seed, a.size)
         verdict, detail = judge(result, a.absolute, a.relative)
-        return (dict(id=entry['id'], verdict=verdict, detail=detail, secs=round(result['secs'], 2)),
+        return (dict(id=entry['id'], verdict=verdict, detail=detail, secs=round(result['secs'], 2), cmd=result['cmd']),
                 verdict + ('' if verdict == 'agree' else ' - ' + detail))
 
     # Each entry is two processes (glslangValidator, xshade eval) that the threads only wait for.
@@ -173,7 +175,8 @@ def main():
     if uncompiled:
         print('not counted: %d entries xshade does not compile (the compile corpus, run_corpus.py, tracks them)' % uncompiled)
     for r in unexplained:
-        print('not in %s: %s (%s): %s' % (a.divergences or 'the divergences file', r['id'], r['verdict'], r['detail']))
+        print('not in %s: %s (%s): %s\n  to trace it: %s' % (a.divergences or 'the divergences file', r['id'], r['verdict'],
+                                                            r['detail'], ' '.join(r['cmd'][:-1])))
     print('corpus execution: %d of %d entries agree on gl, vk and vk-hlsl' % (len(agreeing), len(run)))
     if a.require is not None:
         if len(run) == 0 or len(agreeing) < a.require * len(run):

@@ -308,5 +308,27 @@ TEST(CommandLine, EvalFailsOnNonFiniteOutputUnlessTheyAreExpected) {
   fs::remove(shader);
 }
 
+// --no-images: the lanes are compared and printed as always, and nothing is written, not even the
+// image library loaded (the dynamic loader's own account of what each process opened says so).
+TEST(CommandLine, EvalWithNoImagesComparesTheLanesAndWritesNothing) {
+  const fs::path shader = fs::temp_directory_path() / "xshade_eval_no_images.hlsl";
+  const fs::path folder = fs::temp_directory_path() / "xshade_eval_no_images";
+  fs::remove_all(folder);
+  std::ofstream(shader) << "#pragma fragment frag\n"
+                           "float4 frag(float4 p : SV_Position) : SV_Target { return float4(p.xy / 8.0, 0.5, 1); }\n";
+  const std::string common = "eval '" + shader.string() + "' --lane gl,vk --size 8x8 -o '" + folder.string() + "'";
+  Outcome bare = run_xshade("LD_DEBUG=files", common + " --no-images");
+  EXPECT_EQ(bare.exit_code, 0) << bare.output;
+  EXPECT_NE(bare.output.find("gl vs vk: "), std::string::npos) << bare.output;
+  EXPECT_EQ(bare.output.find("libOpenImageIO"), std::string::npos) << "the image library was loaded";
+  EXPECT_TRUE(fs::is_empty(folder)) << "something was written into " << folder;
+  Outcome written = run_xshade("LD_DEBUG=files", common);
+  EXPECT_EQ(written.exit_code, 0) << written.output;
+  EXPECT_NE(written.output.find("libOpenImageIO"), std::string::npos) << "the loader's account shows no image library";
+  EXPECT_TRUE(fs::exists(folder / "xshade_eval_no_images.gl.exr"));
+  fs::remove_all(folder);
+  fs::remove(shader);
+}
+
 }  // namespace
 }  // namespace xshade::tests
