@@ -42,7 +42,7 @@ class ChildProcess {
   // library's 260 take a third of a second). fork copies the calling thread alone, and a lock another thread held stays held in
   // the child, so this is only for a process running no thread of its own: it fails, and the
   // caller starts a program instead, when the process has more threads than it had when main
-  // began (remember_startup_threads) -- those are the idle pools some libraries start as they
+  // began or than it had when it last counted them (remember_startup_threads) -- those are the idle pools some libraries start as they
   // load (log4cplus, which OpenImageIO's formats bring, starts four), which xshade gives no work.
   static Result<ChildProcess> fork(const std::function<int()>& body, const std::vector<std::string>& environment,
                                    Clock::duration time_limit);
@@ -109,7 +109,8 @@ class ChildProcess {
   Clock::time_point ended_{};
 };
 
-// Called first thing in main: the threads the process has before any code of its own ran.
+// Called first thing in main, and again after loading a library that starts idle threads of its
+// own: the threads the process has while none of its own code runs in a thread.
 void remember_startup_threads();
 
 // Waits until one of `children` writes, ends or reaches its deadline, or `longest` has passed.

@@ -13,7 +13,6 @@
 #include "base/subprocess.h"
 
 #include "cli/commands.h"
-#include "harness/image/image_codec.h"
 
 namespace {
 
@@ -392,12 +391,9 @@ static int run_command_line(int argc, char** argv) {
 
 int main(int argc, char** argv) {
   const std::string verb = argc > 1 && argv[1][0] != '-' ? std::string(argv[1]) : std::string();
-  // run and bless write images here and in every worker they fork: the image library loaded once
-  // before the workers are forked is theirs too (a third of a second each otherwise), and the idle
-  // threads it starts as it loads are counted as the process's own from the start. A library that
-  // cannot be loaded is reported where an image is first written.
-  if (verb == "run" || verb == "bless") (void)xshade::harness::image_codec();
-  xshade::remember_startup_threads();  // workers are forked only while xshade runs no thread of its own
+  // Workers are forked only while xshade runs no thread of its own (scene_workers() counts again
+  // once it has loaded the image library for them).
+  xshade::remember_startup_threads();
   xshade::keep_freed_heap();
   return xshade::cli::guarded_verb(verb, [&] { return run_command_line(argc, argv); });
 }

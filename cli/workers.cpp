@@ -8,6 +8,7 @@
 #include <new>
 
 #include "base/subprocess.h"
+#include "harness/image/image_codec.h"
 
 namespace xshade::cli {
 
@@ -43,6 +44,13 @@ std::vector<std::string> worker_environment(unsigned jobs) {
 }
 
 harness::SceneWorkers scene_workers(const WorkerOptions& shared, const WorkerLimits& limits) {
+  // The workers write images: the image library loaded here, once, before they are forked, is
+  // theirs too (a third of a second each otherwise), and a run or bless that stops before this,
+  // at a user's mistake, never loads it. The idle threads it starts as it loads become part of
+  // what the process started with. A library that cannot be loaded is reported where an image is
+  // first written.
+  (void)harness::image_codec();
+  remember_startup_threads();
   std::vector<std::string> command = {this_program(), "worker"};
   for (const std::filesystem::path& folder : shared.shader_folders) {
     command.push_back("--shader-folder");
