@@ -17,6 +17,7 @@ import sys
 LAYERS = {
     "base": [],
     "hlsl_like": ["base"],
+    "shaderlab": ["base"],
     "glsl": ["base", "hlsl_like"],
     "spirv": ["base", "hlsl_like", "glsl"],
     "harness/image": ["base"],
