@@ -136,5 +136,33 @@ TEST(Compiler, APassEntryKeepsTheVertexEntry) {
   EXPECT_EQ(fragment_only->entry_points.vertex, nullptr);
 }
 
+// #line numbers the lines after it, and names the file, in every message from there on; the
+// source line shown under a message is still the one that was compiled.
+TEST(Compiler, LineDirectivesSayWhereTheTextCameFrom) {
+  const auto module = compile_text("composed.hlsl",
+                                   "float4 a;\n"
+                                   "#line 40 \"materials/Toon.shader\"\n"
+                                   "float4 b;\n"
+                                   "float4 c = undefined_name;\n"
+                                   "#line 7\n"
+                                   "float4 d = other_name;\n",
+                                   {});
+  const std::vector<std::string> messages = rendered(*module);
+  ASSERT_EQ(messages.size(), 2u);
+  EXPECT_EQ(messages[0].substr(0, messages[0].find('\n')), "materials/Toon.shader:41:12: error: unknown name 'undefined_name'");
+  EXPECT_NE(messages[0].find("float4 c = undefined_name;"), std::string::npos) << messages[0];
+  EXPECT_EQ(messages[1].substr(0, messages[1].find('\n')), "materials/Toon.shader:7:12: error: unknown name 'other_name'");
+}
+
+TEST(Compiler, AMalformedLineDirectiveSaysWhatItTakes) {
+  const auto module = compile_text("bad_line.hlsl", "#line zero\n#line 3 notquoted\nfloat4 a;\n", {});
+  const std::vector<std::string> messages = rendered(*module);
+  ASSERT_EQ(messages.size(), 2u);
+  EXPECT_EQ(messages[0].substr(0, messages[0].find('\n')),
+            "bad_line.hlsl:1:7: error: #line takes a line number from 1 to 2147483647 in decimal digits, then optionally "
+            "a file name in quotes");
+  EXPECT_EQ(messages[1].substr(0, messages[1].find('\n')), "bad_line.hlsl:2:9: error: #line's file name is a string in quotes");
+}
+
 }  // namespace
 }  // namespace xshade::hlsl

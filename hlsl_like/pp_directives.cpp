@@ -156,9 +156,34 @@ void Preprocessor::Impl::do_message(Lexer& lex, const Token& name) {
   }
 }
 
+// #line N ["name"]: the line after it is line N (of "name"), as C's preprocessor and DXC count
+// them; messages from there on say so (SourceManager::resolve).
 void Preprocessor::Impl::do_line(Lexer& lex, const Token& name) {
-  diagnostics_.warning(name.loc, "#line is not supported; the directive is ignored");
-  skip_line(lex);
+  const Token number = lex.line_ended() ? name : lex.next();
+  uint32_t line = 0;
+  bool digits = number.kind == TokenKind::IntLiteral && !number.text.empty();
+  for (char c : number.text) {
+    digits = digits && c >= '0' && c <= '9' && line <= 214748364u;
+    if (digits) line = line * 10 + uint32_t(c - '0');
+  }
+  if (!digits || line == 0 || line > 2147483647u) {
+    diagnostics_.error(number.loc, "#line takes a line number from 1 to 2147483647 in decimal digits, then optionally "
+                                   "a file name in quotes");
+    skip_line(lex);
+    return;
+  }
+  std::string file_name;
+  if (!lex.line_ended()) {
+    const Token spelled = lex.next();
+    if (spelled.kind != TokenKind::StringLiteral || spelled.text.size() < 2) {
+      diagnostics_.error(spelled.loc, "#line's file name is a string in quotes");
+      skip_line(lex);
+      return;
+    }
+    file_name = std::string(spelled.text.substr(1, spelled.text.size() - 2));
+  }
+  extra_tokens(lex, "line");
+  sources_.add_line_mapping(name.loc.file, name.loc.line + 1, line, std::move(file_name));
 }
 
 }  // namespace xshade::hlsl

@@ -70,7 +70,23 @@ std::string_view SourceManager::line_text(uint32_t file, uint32_t line) const {
 
 SourceLocation SourceManager::resolve(Loc loc) const {
   if (loc.file == 0 || loc.file >= files_.size()) return {};
-  return {files_[loc.file]->name, loc.line, loc.column};
+  const File& f = *files_[loc.file];
+  std::string name = f.name;
+  uint32_t line = loc.line;
+  for (const File::LineMapping& mapping : f.line_mappings) {
+    if (mapping.from_line > loc.line) break;
+    line = mapping.line + (loc.line - mapping.from_line);
+    if (!mapping.name.empty()) name = mapping.name;
+  }
+  return {std::move(name), line, loc.column};
+}
+
+void SourceManager::add_line_mapping(uint32_t file, uint32_t from_line, uint32_t line, std::string name) {
+  if (file == 0 || file >= files_.size()) return;
+  auto& mappings = files_[file]->line_mappings;
+  // A file is read once, top to bottom: each #line comes after the ones before it.
+  if (!mappings.empty() && mappings.back().from_line >= from_line) return;
+  mappings.push_back({from_line, line, std::move(name)});
 }
 
 }  // namespace xshade::hlsl

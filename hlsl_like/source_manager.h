@@ -47,7 +47,13 @@ class SourceManager {
 
   // The text of one line, without its line ending; empty when out of range.
   std::string_view line_text(uint32_t file, uint32_t line) const;
+  // Where `loc` is as messages give it: after a `#line N "name"` in its file, the lines that
+  // follow are counted from N and the file is called `name` (the text a tool composed from
+  // another file, such as a Unity .shader's program blocks, points into that file).
   SourceLocation resolve(Loc loc) const;
+  // Records a #line of `file`: its physical line `from_line` is line `line`; `name`, where not
+  // empty, is what messages call the file from there on.
+  void add_line_mapping(uint32_t file, uint32_t from_line, uint32_t line, std::string name);
 
  private:
   struct File {
@@ -56,6 +62,11 @@ class SourceManager {
     bool resolved_on_load = false;
     std::string text;
     mutable std::vector<uint32_t> line_starts;  // computed on first use
+    struct LineMapping {
+      uint32_t from_line, line;
+      std::string name;
+    };
+    std::vector<LineMapping> line_mappings;  // by from_line, as the #line directives come
   };
   std::vector<std::unique_ptr<File>> files_;  // stable addresses: tokens point into text
 };
