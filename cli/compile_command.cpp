@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <fstream>
+#include <functional>
 
 #include <spirv-tools/libspirv.hpp>
 
@@ -11,6 +12,8 @@
 #include "cli/commands.h"
 #include "harness/render/shader_program.h"
 #include "hlsl_like/compiler.h"
+#include "shaderlab/pass_program.h"
+#include "shaderlab/reader.h"
 
 namespace xshade::cli {
 namespace {
@@ -79,52 +82,12 @@ std::string bracketed(const std::vector<std::string>& keywords) {
   return text + "]";
 }
 
-}  // namespace
-
-int run_compile(const CompileOptions& options) {
-  // The include folders of a run here: -I, the project file's shader folders, xshade's library.
-  auto folders = resolve_folders(options.folders, std::filesystem::current_path(), GoldenUse::None);
-  if (!folders) {
-    fmt::print(stderr, "xshade compile: {}\n", folders.error().to_string());
-    return kBadInput;
-  }
-  hlsl::CompileOptions front_end;
-  front_end.include_dirs = options.include_dirs;
-  for (const std::filesystem::path& folder : folders->shaders.folders()) front_end.include_dirs.push_back(folder);
-  // A file named as a scene names it ("materials/toon.hlsl") is found in the shader folders.
-  std::filesystem::path file = options.file;
-  std::error_code missing;
-  if (!std::filesystem::exists(file, missing) && file.is_relative())
-    if (auto found = folders->shaders.find(file.string())) file = *found;
-  if (options.precision == "half") front_end.defines.push_back({harness::kHalfEmulationMacro, "1"});
-  for (const std::string& define : options.defines) {
-    const size_t equals = define.find('=');
-    if (equals == std::string::npos) front_end.keywords.push_back(define);
-    else front_end.defines.push_back({define.substr(0, equals), define.substr(equals + 1)});
-  }
-  front_end.fragment_only_entry = options.entry;
-  if (!options.entry.empty() && !options.pass.empty()) {
-    fmt::print(stderr, "xshade compile: --entry and --pass each choose the fragment function; give one\n");
-    return kBadInput;
-  }
-
-  auto module = hlsl::compile_file(file, front_end);
-  if (!options.pass.empty() && module->ok()) {
-    const auto& passes = module->passes;
-    auto pass = std::find_if(passes.begin(), passes.end(), [&](const hlsl::PassDeclaration& p) { return p.name == options.pass; });
-    if (pass == passes.end()) {
-      std::vector<std::string> names;
-      for (const hlsl::PassDeclaration& p : passes) names.push_back(p.name);
-      std::string list;
-      for (const std::string& name : names) list += (list.empty() ? "" : ", ") + name;
-      const auto near = nearest(options.pass, names);
-      fmt::print(stderr, "xshade compile: {} declares no pass '{}'{} (its passes: {})\n", file.string(), options.pass,
-                 near ? "; did you mean '" + *near + "'?" : std::string(), list.empty() ? "none" : list);
-      return kBadInput;
-    }
-    front_end.pass_fragment_entry = pass->entry;
-    module = hlsl::compile_file(file, front_end);
-  }
+// What run_compile does with the module of `compile(front_end)`: the target's output, every
+// variant's status, or the reflection. `compile` compiles the file, or a .shader pass's text,
+// with other options.
+int compile_module(const CompileOptions& options, const std::filesystem::path& file, const hlsl::CompileOptions& front_end,
+                   const std::function<std::unique_ptr<hlsl::Module>(const hlsl::CompileOptions&)>& compile,
+                   std::unique_ptr<hlsl::Module> module) {
   if (!module->diagnostics.diagnostics().empty()) fmt::print(stderr, "{}", module->diagnostics.render_all());
   if (!module->ok()) return kBadInput;
 
@@ -143,7 +106,7 @@ int run_compile(const CompileOptions& options) {
       hlsl::CompileOptions variant = front_end;
       variant.keywords = keywords;
       variant.pass_fragment_entry = pass_entry;
-      auto compiled = hlsl::compile_file(file, variant);
+      auto compiled = compile(variant);
       std::string failure;
       if (!compiled->ok()) {
         failure = compiled->diagnostics.render_all();
@@ -203,6 +166,116 @@ int run_compile(const CompileOptions& options) {
     if (!emit_stage(options, stage, disassemble(words), !options.output.empty(), bytes)) return kBackendError;
   }
   return kPass;
+}
+
+// A Unity .shader: each program pass of its first SubShader (or the one --pass names), its text
+// composed as Unity composes it and compiled with the .shader's folder first among the include
+// folders; several passes on standard output each under a header.
+int compile_unity_shader(const CompileOptions& options, const std::filesystem::path& file, hlsl::CompileOptions front_end) {
+  auto shader = shaderlab::read_shader_file(file);
+  if (!shader) {
+    fmt::print(stderr, "{}\n", shader.error().to_string());
+    return kBadInput;
+  }
+  for (const Diagnostic& note : shader->notes) fmt::print(stderr, "{}\n", note.to_string());
+  const shaderlab::SubShader* sub = shaderlab::drawn_subshader(*shader);
+  std::vector<const shaderlab::Pass*> passes;
+  if (!options.pass.empty()) {
+    auto chosen = shaderlab::find_pass(*shader, options.pass);
+    if (!chosen) {
+      fmt::print(stderr, "xshade compile: {}: {}\n", file.string(), chosen.error().message);
+      return kBadInput;
+    }
+    passes.push_back(*chosen);
+  } else if (sub) {
+    for (const shaderlab::Pass& pass : sub->passes)
+      if (pass.kind == shaderlab::PassKind::Program) passes.push_back(&pass);
+  }
+  if (passes.empty()) {
+    fmt::print(stderr, "xshade compile: {}: its first SubShader has no pass with a program{}\n", file.string(),
+               sub && sub->surface ? " (it is a surface shader, whose passes Unity generates; xshade does not generate them yet)"
+                                   : "");
+    return kBadInput;
+  }
+  if (passes.size() > 1 && !options.output.empty()) {
+    fmt::print(stderr, "xshade compile: {} has {} passes; choose the one to write with --pass N or NAME\n", file.string(),
+               passes.size());
+    return kBadInput;
+  }
+  front_end.include_dirs.insert(front_end.include_dirs.begin(), file.parent_path().empty() ? "." : file.parent_path());
+  int worst = kPass;
+  for (const shaderlab::Pass* pass : passes) {
+    auto program = shaderlab::pass_program(*sub, *pass);
+    if (!program) {
+      fmt::print(stderr, "{}\n", program.error().to_string());
+      worst = std::max(worst, int(kBadInput));
+      continue;
+    }
+    if (program->implicit_includes) {
+      if (auto found = shaderlab::find_implicit_includes(front_end.include_dirs); !found) {
+        fmt::print(stderr, "{}: {}\n", pass->program->start.to_string(), found.error().message);
+        return kBadInput;
+      }
+    }
+    if (passes.size() > 1 || options.pass.empty())
+      fmt::print("// ==== {} pass {}{} ====\n", file.string(), program->index, pass->name.empty() ? "" : " \"" + pass->name + "\"");
+    const auto compile = [&](const hlsl::CompileOptions& with) { return hlsl::compile_text(file.string(), program->text, with); };
+    hlsl::CompileOptions pass_options = front_end;
+    pass_options.pass_fragment_entry.clear();
+    worst = std::max(worst, compile_module(options, file, pass_options, compile, compile(pass_options)));
+  }
+  return worst;
+}
+
+}  // namespace
+
+int run_compile(const CompileOptions& options) {
+  // The include folders of a run here: -I, the project file's shader folders, xshade's library.
+  auto folders = resolve_folders(options.folders, std::filesystem::current_path(), GoldenUse::None);
+  if (!folders) {
+    fmt::print(stderr, "xshade compile: {}\n", folders.error().to_string());
+    return kBadInput;
+  }
+  hlsl::CompileOptions front_end;
+  front_end.include_dirs = options.include_dirs;
+  for (const std::filesystem::path& folder : folders->shaders.folders()) front_end.include_dirs.push_back(folder);
+  // A file named as a scene names it ("materials/toon.hlsl") is found in the shader folders.
+  std::filesystem::path file = options.file;
+  std::error_code missing;
+  if (!std::filesystem::exists(file, missing) && file.is_relative())
+    if (auto found = folders->shaders.find(file.string())) file = *found;
+  if (options.precision == "half") front_end.defines.push_back({harness::kHalfEmulationMacro, "1"});
+  for (const std::string& define : options.defines) {
+    const size_t equals = define.find('=');
+    if (equals == std::string::npos) front_end.keywords.push_back(define);
+    else front_end.defines.push_back({define.substr(0, equals), define.substr(equals + 1)});
+  }
+  front_end.fragment_only_entry = options.entry;
+  if (!options.entry.empty() && !options.pass.empty()) {
+    fmt::print(stderr, "xshade compile: --entry and --pass each choose the fragment function; give one\n");
+    return kBadInput;
+  }
+
+  if (file.extension() == ".shader") return compile_unity_shader(options, file, front_end);
+  auto module = hlsl::compile_file(file, front_end);
+  if (!options.pass.empty() && module->ok()) {
+    const auto& passes = module->passes;
+    auto pass = std::find_if(passes.begin(), passes.end(), [&](const hlsl::PassDeclaration& p) { return p.name == options.pass; });
+    if (pass == passes.end()) {
+      std::vector<std::string> names;
+      for (const hlsl::PassDeclaration& p : passes) names.push_back(p.name);
+      std::string list;
+      for (const std::string& name : names) list += (list.empty() ? "" : ", ") + name;
+      const auto near = nearest(options.pass, names);
+      fmt::print(stderr, "xshade compile: {} declares no pass '{}'{} (its passes: {})\n", file.string(), options.pass,
+                 near ? "; did you mean '" + *near + "'?" : std::string(), list.empty() ? "none" : list);
+      return kBadInput;
+    }
+    front_end.pass_fragment_entry = pass->entry;
+    module = hlsl::compile_file(file, front_end);
+  }
+  return compile_module(options, file, front_end,
+                        [&](const hlsl::CompileOptions& with) { return hlsl::compile_file(file, with); }, std::move(module));
 }
 
 }  // namespace xshade::cli

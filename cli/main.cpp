@@ -192,7 +192,9 @@ static int run_command_line(int argc, char** argv) {
   compile->add_option("--entry", compile_options.entry,
                       "Compile this fragment function as a full-screen pass (as eval runs it), whatever #pragma fragment says")
       ->type_name("FUNCTION");
-  compile->add_option("--pass", compile_options.pass, "Compile this post pass of the effect (its #pragma pass name)")
+  compile->add_option("--pass", compile_options.pass,
+                      "Compile this post pass of the effect (its #pragma pass name), or this pass of a Unity .shader "
+                      "(its index or Name; default: every pass with a program)")
       ->type_name("NAME");
   compile->add_flag("--all-variants", compile_options.all_variants,
                     "Compile every keyword combination the file declares for --target and report each; exit 2 if any fails");

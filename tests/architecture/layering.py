@@ -37,7 +37,7 @@ LAYERS = {
 HARNESS = [room for room in LAYERS if room.startswith("harness/")]
 LAYERS["stability"] = ["base", "hlsl_like", "glsl", "spirv"] + HARNESS
 LAYERS["accuracy"] = ["base", "hlsl_like", "glsl", "spirv"] + HARNESS
-LAYERS["cli"] = ["base", "hlsl_like", "glsl", "spirv"] + HARNESS + ["stability", "accuracy"]
+LAYERS["cli"] = ["base", "hlsl_like", "shaderlab", "glsl", "spirv"] + HARNESS + ["stability", "accuracy"]
 
 # The CMake library each room builds.
 LIBRARY = {room: "xshade_" + room.split("/")[-1] for room in LAYERS if room != "cli"}

@@ -330,5 +330,56 @@ TEST(CommandLine, EvalWithNoImagesComparesTheLanesAndWritesNothing) {
   fs::remove(shader);
 }
 
+// A Unity .shader compiles pass by pass as Unity composes it; a message inside a program block
+// points into the .shader file; a CGPROGRAM without Unity's include files says where to get them.
+TEST(CommandLine, CompileReadsAUnityShaderPassByPass) {
+  const fs::path folder = fs::temp_directory_path() / "xshade_compile_unity";
+  fs::remove_all(folder);
+  fs::create_directories(folder);
+  std::ofstream(folder / "Two.shader") << R"SL(Shader "Test/Two" {
+  Properties { _Color ("Colour", Color) = (1, 0, 0, 1) }
+  SubShader {
+    HLSLINCLUDE
+    float4 _Color;
+    float4 vert(float4 p : POSITION) : SV_Position { return p; }
+    ENDHLSL
+    Pass { Name "Body"
+      HLSLPROGRAM
+      #pragma vertex vert
+      #pragma fragment frag
+      float4 frag() : SV_Target { return _Color; }
+      ENDHLSL
+    }
+    Pass {
+      HLSLPROGRAM
+      #pragma vertex vert
+      #pragma fragment frag
+      float4 frag() : SV_Target { return undefined_thing; }
+      ENDHLSL
+    }
+    Pass {
+      CGPROGRAM
+      ENDCG
+    }
+  }
+})SL";
+  const std::string shader = "'" + (folder / "Two.shader").string() + "' --target gl --no-project";
+  Outcome body = run_xshade("", "compile " + shader + " --pass body");
+  EXPECT_EQ(body.exit_code, 0) << body.output;
+  EXPECT_NE(body.output.find("// ---- frag ----"), std::string::npos) << body.output;
+  Outcome broken = run_xshade("", "compile " + shader + " --pass 1");
+  EXPECT_EQ(broken.exit_code, 2) << broken.output;
+  EXPECT_NE(broken.output.find("Two.shader:19:42: error: unknown name 'undefined_thing'"), std::string::npos) << broken.output;
+  Outcome cg = run_xshade("", "compile " + shader + " --pass 2");
+  EXPECT_EQ(cg.exit_code, 2) << cg.output;
+  EXPECT_NE(cg.output.find("Two.shader:23:16: a CGPROGRAM includes Unity's HLSLSupport.cginc"), std::string::npos) << cg.output;
+  Outcome unknown = run_xshade("", "compile " + shader + " --pass Outline");
+  EXPECT_EQ(unknown.exit_code, 2) << unknown.output;
+  EXPECT_NE(unknown.output.find("has no pass 'Outline' in its first SubShader (its passes: 0 (\"Body\"), 1, 2)"),
+            std::string::npos)
+      << unknown.output;
+  fs::remove_all(folder);
+}
+
 }  // namespace
 }  // namespace xshade::tests

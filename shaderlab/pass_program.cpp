@@ -1,0 +1,80 @@
+#include "shaderlab/pass_program.h"
+
+#include <charconv>
+
+namespace xshade::shaderlab {
+namespace {
+
+// `block`'s text behind a #line to where it starts, padded to its column so that columns match too.
+void append_block(std::string& text, const ProgramBlock& block) {
+  text += "#line " + std::to_string(block.start.line) + " \"" + block.start.file + "\"\n";
+  text.append(block.start.column > 0 ? block.start.column - 1 : 0, ' ');
+  text += block.text;
+  text += '\n';
+}
+
+std::string pass_label(const Pass& pass, size_t index) {
+  return std::to_string(index) + (pass.name.empty() ? "" : " (\"" + pass.name + "\")");
+}
+
+}  // namespace
+
+const SubShader* drawn_subshader(const Shader& shader) {
+  return shader.subshaders.empty() ? nullptr : &shader.subshaders.front();
+}
+
+Result<const Pass*> find_pass(const Shader& shader, const std::string& choice) {
+  const SubShader* sub = drawn_subshader(shader);
+  if (!sub) return fail("the shader '" + shader.name + "' has no SubShader");
+  size_t index = 0;
+  const auto [end, error] = std::from_chars(choice.data(), choice.data() + choice.size(), index);
+  if (error == std::errc() && end == choice.data() + choice.size()) {
+    if (index < sub->passes.size()) return &sub->passes[index];
+  } else {
+    for (const Pass& pass : sub->passes)
+      if (!pass.name.empty() && same_word(pass.name, choice)) return &pass;
+  }
+  std::string list;
+  for (size_t i = 0; i < sub->passes.size(); ++i) list += (i ? ", " : "") + pass_label(sub->passes[i], i);
+  return fail(ErrorKind::Usage, "the shader '" + shader.name + "' has no pass '" + choice + "' in its first SubShader (its passes: " +
+                                    (list.empty() ? "none" : list) + ")");
+}
+
+Result<void> find_implicit_includes(const std::vector<std::filesystem::path>& folders) {
+  for (const std::filesystem::path& folder : folders) {
+    bool all = true;
+    for (const char* include : kImplicitIncludes) {
+      std::error_code error;
+      all = all && std::filesystem::is_regular_file(folder / include, error);
+    }
+    if (all) return {};
+  }
+  return fail("a CGPROGRAM includes Unity's HLSLSupport.cginc and UnityShaderVariables.cginc first, as Unity does, and no "
+              "include folder holds them. xshade ships none of Unity's code: take the CGIncludes folder of the "
+              "\"Built-in shaders\" download of your Unity version (or the Editor's Data/CGIncludes) and give it with -I "
+              "or the project file's `shaders`");
+}
+
+Result<PassProgram> pass_program(const SubShader& sub, const Pass& pass) {
+  if (!pass.program) return fail("the pass has no program", pass.where);
+  const ProgramBlock& program = *pass.program;
+  if (program.language == ProgramLanguage::Glsl)
+    return fail("a GLSLPROGRAM is OpenGL-only GLSL that Unity passes through untouched; xshade compiles HLSL "
+                "(CGPROGRAM or HLSLPROGRAM)",
+                program.start);
+  PassProgram composed;
+  composed.pass = &pass;
+  for (size_t i = 0; i < sub.passes.size(); ++i)
+    if (&sub.passes[i] == &pass) composed.index = i;
+  if (program.language == ProgramLanguage::Cg) {
+    composed.implicit_includes = true;
+    for (const char* include : kImplicitIncludes) composed.text += "#include \"" + std::string(include) + "\"\n";
+  }
+  for (const std::vector<ProgramBlock>* blocks : {&sub.includes, &pass.includes})
+    for (const ProgramBlock& block : *blocks)
+      if (block.language == program.language) append_block(composed.text, block);
+  append_block(composed.text, program);
+  return composed;
+}
+
+}  // namespace xshade::shaderlab

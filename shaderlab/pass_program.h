@@ -1,0 +1,43 @@
+// The HLSL text a pass of a .shader compiles, composed as Unity composes it: for a CGPROGRAM,
+// HLSLSupport.cginc and UnityShaderVariables.cginc first (Unity's implicit includes); then the
+// include blocks of the pass's scope in the order the file holds them (the shader's, its
+// Category's, its SubShader's, the pass's own: CGINCLUDE for a CGPROGRAM, HLSLINCLUDE for an
+// HLSLPROGRAM); then the program. Each block stands behind a `#line` to where it is in the .shader
+// file, so that a message about any of it points there.
+#pragma once
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "base/result.h"
+#include "shaderlab/shader.h"
+
+namespace xshade::shaderlab {
+
+// The include files Unity puts before every CGPROGRAM, in order.
+inline constexpr const char* kImplicitIncludes[] = {"HLSLSupport.cginc", "UnityShaderVariables.cginc"};
+
+struct PassProgram {
+  std::string text;                 // to compile as a file named after the .shader
+  bool implicit_includes = false;   // the text begins with kImplicitIncludes
+  const Pass* pass = nullptr;
+  size_t index = 0;                 // of the pass in its SubShader
+};
+
+// The SubShader xshade draws: the first one (Unity takes the first its platform supports; every
+// lane supports every SubShader a reader accepts).
+const SubShader* drawn_subshader(const Shader& shader);
+
+// The pass `choice` names in the drawn SubShader: its index ("0", "1", ...) or its Name, ignoring
+// case as UsePass does. An error lists the passes there are.
+Result<const Pass*> find_pass(const Shader& shader, const std::string& choice);
+
+// Unity's implicit includes are in one of `folders`, or an error that says where a user gets them:
+// xshade ships none of Unity's code.
+Result<void> find_implicit_includes(const std::vector<std::filesystem::path>& folders);
+
+// The text of `pass` (which has a program) in `sub`. A GLSLPROGRAM is an error at its line.
+Result<PassProgram> pass_program(const SubShader& sub, const Pass& pass);
+
+}  // namespace xshade::shaderlab
