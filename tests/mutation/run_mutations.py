@@ -92,8 +92,9 @@ MUTATIONS = [
     ('a misspelt verb gets no suggestion', 'cli/main.cpp',
      'return near ? "; did you mean \'" + *near + "\'?" : std::string();', 'return near ? std::string() : std::string();',
      'CommandLine.Version'),
-    ('--lane takes no comma list', 'cli/main.cpp', '      ->allow_extra_args(false)\n      ->delimiter(\',\');',
-     '      ->allow_extra_args(false);', 'UserMistakes.LanesAre'),
+    # run's --lane (eval's has the same two lines: the text must be found once).
+    ('--lane takes no comma list', 'cli/main.cpp', 'default: all")\n      ->type_name("LANE")\n      ->allow_extra_args(false)\n      ->delimiter(\',\');',
+     'default: all")\n      ->type_name("LANE")\n      ->allow_extra_args(false);', 'UserMistakes.LanesAre'),
     ('a compile error shows no caret', 'base/diagnostic.cpp',
      '    if (!diagnostic.excerpt.empty()) text += "\\n" + diagnostic.excerpt;', '',
      'UserMistakes.AVariantThatDoesNotCompile'),
