@@ -5,6 +5,7 @@
 #include <fstream>
 #include <functional>
 
+#include <nlohmann/json.hpp>
 #include <spirv-tools/libspirv.hpp>
 
 #include "glsl/glsl_emitter.h"
@@ -14,6 +15,7 @@
 #include "hlsl_like/compiler.h"
 #include "shaderlab/pass_program.h"
 #include "shaderlab/reader.h"
+#include "shaderlab/shader_json.h"
 
 namespace xshade::cli {
 namespace {
@@ -203,6 +205,8 @@ int compile_unity_shader(const CompileOptions& options, const std::filesystem::p
     return kBadInput;
   }
   front_end.include_dirs.insert(front_end.include_dirs.begin(), file.parent_path().empty() ? "." : file.parent_path());
+  // --reflect: one object, the Properties and each pass's reflection.
+  std::string reflected_passes;
   int worst = kPass;
   for (const shaderlab::Pass* pass : passes) {
     auto program = shaderlab::pass_program(*sub, *pass);
@@ -217,12 +221,29 @@ int compile_unity_shader(const CompileOptions& options, const std::filesystem::p
         return kBadInput;
       }
     }
-    if (passes.size() > 1 || options.pass.empty())
-      fmt::print("// ==== {} pass {}{} ====\n", file.string(), program->index, pass->name.empty() ? "" : " \"" + pass->name + "\"");
     const auto compile = [&](const hlsl::CompileOptions& with) { return hlsl::compile_text(file.string(), program->text, with); };
     hlsl::CompileOptions pass_options = front_end;
     pass_options.pass_fragment_entry.clear();
+    if (options.reflect) {
+      auto module = compile(pass_options);
+      if (!module->diagnostics.diagnostics().empty()) fmt::print(stderr, "{}", module->diagnostics.render_all());
+      if (!module->ok()) return kBadInput;
+      reflected_passes += fmt::format("{}{{\"index\": {}, \"name\": {}, \"reflection\": {}}}", reflected_passes.empty() ? "" : ", ",
+                                      program->index, nlohmann::json(pass->name).dump(), hlsl::reflection_json(module->reflection));
+      continue;
+    }
+    if (passes.size() > 1 || options.pass.empty())
+      fmt::print("// ==== {} pass {}{} ====\n", file.string(), program->index, pass->name.empty() ? "" : " \"" + pass->name + "\"");
     worst = std::max(worst, compile_module(options, file, pass_options, compile, compile(pass_options)));
+  }
+  if (options.reflect && worst == kPass) {
+    const std::string json = nlohmann::json::parse(fmt::format("{{\"shader\": {}, \"properties\": {}, \"passes\": [{}]}}",
+                                                               nlohmann::json(shader->name).dump(),
+                                                               shaderlab::properties_json(*shader), reflected_passes))
+                                 .dump(2) +
+                             "\n";
+    if (options.output.empty()) fmt::print("{}", json);
+    else if (!write_file(options.output.string() + ".json", json)) return kBackendError;
   }
   return worst;
 }

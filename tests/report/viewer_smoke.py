@@ -411,13 +411,14 @@ def wide_page(browser, fixture, shots):
 def main():
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("fixture", type=Path, help="folder written by make_viewer_fixture.py")
-    parser.add_argument("--shots", type=Path, default=Path("/tmp/viewer_shots"), help="screenshot folder ('' for none)")
+    # A string, not a Path: Path("") is ".", which would write the screenshots where the test runs.
+    parser.add_argument("--shots", default="/tmp/viewer_shots", help="screenshot folder ('' for none)")
     parser.add_argument("--make", action="store_true", help="write the fixture into FIXTURE first")
     args = parser.parse_args()
     if args.make:
         from make_viewer_fixture import write_fixture
         write_fixture(args.fixture)
-    shots = args.shots if str(args.shots) else None
+    shots = Path(args.shots) if args.shots else None
     if shots:
         shots.mkdir(parents=True, exist_ok=True)
     with Browser() as browser:

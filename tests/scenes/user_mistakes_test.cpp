@@ -367,6 +367,12 @@ TEST(CommandLine, CompileReadsAUnityShaderPassByPass) {
   Outcome body = run_xshade("", "compile " + shader + " --pass body");
   EXPECT_EQ(body.exit_code, 0) << body.output;
   EXPECT_NE(body.output.find("// ---- frag ----"), std::string::npos) << body.output;
+  Outcome reflected = run_xshade("", "compile " + shader + " --pass body --reflect");
+  EXPECT_EQ(reflected.exit_code, 0) << reflected.output;
+  EXPECT_NE(reflected.output.find("\"shader\": \"Test/Two\""), std::string::npos) << reflected.output;
+  EXPECT_NE(reflected.output.find("\"display_name\": \"Colour\""), std::string::npos) << reflected.output;
+  EXPECT_NE(reflected.output.find("\"name\": \"Body\""), std::string::npos) << reflected.output;
+  EXPECT_NE(reflected.output.find("\"reflection\": {"), std::string::npos) << reflected.output;
   Outcome broken = run_xshade("", "compile " + shader + " --pass 1");
   EXPECT_EQ(broken.exit_code, 2) << broken.output;
   EXPECT_NE(broken.output.find("Two.shader:19:42: error: unknown name 'undefined_thing'"), std::string::npos) << broken.output;
