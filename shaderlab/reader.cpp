@@ -301,8 +301,20 @@ class Reader {
     return block;
   }
 
+  // An include block joins `includes`; a program becomes `program`, of which a block holds one.
+  void take_program(const Token& token, std::vector<ProgramBlock>& includes, std::optional<ProgramBlock>& program,
+                    std::string_view one) {
+    ProgramBlock block = program_block(token);
+    if (block.include) {
+      includes.push_back(std::move(block));
+    } else if (program) {
+      fail(token, std::string(one) + "; this one already has the block at line " + std::to_string(program->start.line));
+    } else {
+      program = std::move(block);
+    }
+  }
+
   ProgramBlock program_block(const Token& token) {
-    if (token.kind == TokenKind::Bad) fail(token, token.text);
     ProgramBlock block;
     block.language = token.language;
     block.include = token.include;
@@ -359,15 +371,8 @@ class Reader {
       } else if (token.is_word("GrabPass")) {
         sub.passes.push_back(grab_pass(token));
       } else if (token.kind == TokenKind::Program) {
-        ProgramBlock block = program_block(token);
-        if (block.include) {
-          sub.includes.push_back(std::move(block));
-        } else if (sub.surface) {
-          fail(token, "a SubShader holds one surface program; this one already has the block at line " +
-                          std::to_string(sub.surface->start.line));
-        } else {
-          sub.surface = std::move(block);  // a surface shader: its passes are generated from it
-        }
+        // Outside a Pass, a program is a surface shader's: its passes are generated from it.
+        take_program(token, sub.includes, sub.surface, "a SubShader holds one surface program");
       } else if (!state_command(token, own) && !fixed_function(token)) {
         unexpected(token, "in a SubShader block: Tags, LOD, Pass, UsePass, GrabPass, render state or CGINCLUDE");
       }
@@ -404,15 +409,7 @@ class Reader {
       } else if (token.is_word("Tags")) {
         pass.tags = tags();
       } else if (token.kind == TokenKind::Program) {
-        ProgramBlock block = program_block(token);
-        if (block.include) {
-          pass.includes.push_back(std::move(block));
-        } else if (pass.program) {
-          fail(token, "a Pass holds one program; this one already has the block at line " +
-                          std::to_string(pass.program->start.line));
-        } else {
-          pass.program = std::move(block);
-        }
+        take_program(token, pass.includes, pass.program, "a Pass holds one program");
       } else if (fixed_function(token)) {
         pass.fixed_function.push_back(token.text);
       } else if (!state_command(token, pass.state)) {
