@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <set>
 
+#include "hlsl_like/keyword_pragmas.h"
 #include "hlsl_like/parser.h"
 #include "hlsl_like/prelude.h"
 
@@ -17,8 +18,16 @@ struct PragmaReading {
   std::vector<Loc> keyword_set_locs;  // of each set's pragma name
 };
 
+// Unity's pragmas that say how Unity builds a shader (its target is read where a .shader is
+// composed, as SHADER_TARGET) and change nothing of what a variant draws.
+constexpr std::string_view kUnityBuildPragmas[] = {
+    "target", "require", "only_renderers", "exclude_renderers", "hardware_tier_variants", "enable_d3d11_debug_symbols",
+    "fragmentoption", "glsl_no_auto_normalization", "instancing_options", "editor_sync_compilation",
+    "skip_optimizations", "disable_fastmath", "prefer_hlslcc", "enable_cbuffer"};
+
 PragmaReading read_pragmas(const std::vector<Pragma>& pragmas, DiagnosticEngine& diagnostics) {
   PragmaReading reading;
+  std::vector<std::string> skipped;  // #pragma skip_variants
   for (const Pragma& pragma : pragmas) {
     if (pragma.name == "vertex" || pragma.name == "fragment") {
       const bool vertex = pragma.name == "vertex";
@@ -33,9 +42,9 @@ PragmaReading read_pragmas(const std::vector<Pragma>& pragmas, DiagnosticEngine&
       }
       name = std::string(pragma.args[0].text);
       (vertex ? reading.entry_points.vertex_loc : reading.entry_points.fragment_loc) = pragma.args[0].loc;
-    } else if (pragma.name == "multi_compile" || pragma.name == "shader_feature") {
+    } else if (const auto kind = keyword_pragma(pragma.name)) {
       KeywordSet set;
-      set.shader_feature = pragma.name == "shader_feature";
+      set.shader_feature = *kind == KeywordPragma::ShaderFeature;
       for (const Token& token : pragma.args) {
         if (token.kind != TokenKind::Identifier) {
           diagnostics.error(token.loc, "#pragma " + std::string(pragma.name) + " takes keyword names, not '" +
@@ -50,13 +59,35 @@ PragmaReading read_pragmas(const std::vector<Pragma>& pragmas, DiagnosticEngine&
         reading.keyword_sets.push_back(std::move(set));
         reading.keyword_set_locs.push_back(pragma.loc);
       }
+    } else if (auto shortcut = keyword_shortcut(pragma.name)) {
+      for (KeywordSet& set : *shortcut) {
+        reading.keyword_sets.push_back(std::move(set));
+        reading.keyword_set_locs.push_back(pragma.loc);
+      }
+    } else if (pragma.name == "skip_variants") {
+      for (const Token& token : pragma.args) skipped.emplace_back(token.text);
     } else if (pragma.name == "pass") {
       // A post effect's pass (pass_declarations.h), read once the variant's pragmas are final.
-    } else if (pragma.name == "target" || pragma.name == "pack_matrix") {
+    } else if (pragma.name == "surface") {
+      diagnostics.error(pragma.loc, "#pragma surface makes a surface shader, whose passes Unity generates; xshade does "
+                                    "not generate them yet: write the pass's vertex and fragment functions");
+    } else if (pragma.name == "geometry" || pragma.name == "hull" || pragma.name == "domain") {
+      diagnostics.error(pragma.loc, "xshade compiles vertex and fragment stages; a " + std::string(pragma.name) +
+                                        " stage cannot be compiled, and leaving it out would draw something else");
+    } else if (pragma.name == "pack_matrix") {
       diagnostics.warning(pragma.loc, "#pragma " + std::string(pragma.name) + " is ignored");
-    } else {
+    } else if (std::find(std::begin(kUnityBuildPragmas), std::end(kUnityBuildPragmas), pragma.name) ==
+               std::end(kUnityBuildPragmas)) {
       diagnostics.warning(pragma.loc, "unknown pragma '" + std::string(pragma.name) + "'");
     }
+  }
+  // Unity compiles no variant with a skipped keyword: the keyword is no choice of its set (a set
+  // left with none keeps its keywords, and a scene that asks for one gets what it asked).
+  for (KeywordSet& set : reading.keyword_sets) {
+    std::vector<std::string> kept;
+    for (const std::string& keyword : set.keywords)
+      if (std::find(skipped.begin(), skipped.end(), keyword) == skipped.end()) kept.push_back(keyword);
+    if (!kept.empty()) set.keywords = std::move(kept);
   }
   return reading;
 }

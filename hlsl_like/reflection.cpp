@@ -269,6 +269,19 @@ Usage collect_usage(const EntryPoints& entry_points, const ResourceOrigins& orig
       });
     }
   }
+  // A static global's initializer runs for whatever reads the global: what it reads is read too.
+  std::vector<const Decl*> pending(usage.globals.begin(), usage.globals.end());
+  while (!pending.empty()) {
+    const Decl* decl = pending.back();
+    pending.pop_back();
+    if (decl->kind != DeclKind::Var) continue;
+    walk_expressions(static_cast<const VarDecl*>(decl)->initializer.get(), [&](const Expr& expr) {
+      if (expr.kind != ExprKind::Name) return;
+      const Decl* read = static_cast<const NameExpr&>(expr).decl;
+      if (read && read->kind == DeclKind::Var && static_cast<const VarDecl*>(read)->is_global && usage.globals.insert(read).second)
+        pending.push_back(read);
+    });
+  }
   return usage;
 }
 
@@ -377,7 +390,7 @@ void check_texture_default(const VarDecl& var, DiagnosticEngine& diagnostics) {
     const auto& known = kTextureDefaults;
     if (std::find(std::begin(known), std::end(known), annotation.text) == std::end(known))
       diagnostics.error(annotation.loc, "Default of texture " + in_quotes(var.name) +
-                                            " must be \"white\", \"black\", \"checker\" or \"normal\" (a string)");
+                                            " must be \"white\", \"black\", \"checker\", \"normal\", \"gray\", \"red\" or \"clear\" (a string)");
   }
 }
 
@@ -610,6 +623,14 @@ Reflection reflect(const TranslationUnit& unit, const EntryPoints& entry_points,
   // then takes what is left, so that every declared one has a number.
   const bool has_entry = entry_points.vertex || entry_points.fragment;
   auto used = [&](const VarDecl* var) { return !has_entry || usage.globals.count(var) > 0; };
+  std::unordered_set<std::string> read_names;  // a global's name is unique in its scope
+  for (const Decl* global : usage.globals)
+    if (global->kind == DeclKind::Var) read_names.insert(static_cast<const VarDecl*>(global)->name);
+  for (ConstantBuffer& buffer : reflection.constant_buffers) {
+    const bool whole_buffer_read = buffer.decl && usage.globals.count(buffer.decl) > 0;  // ConstantBuffer<S> name
+    for (ConstantBufferMember& member : buffer.members)
+      member.used = !has_entry || whole_buffer_read || read_names.count(member.name) > 0;
+  }
   // An unread resource takes a register only while one is free: it is never bound, and a file
   // of many shaders may declare more than a class holds.
   for (bool used_pass : {true, false}) {

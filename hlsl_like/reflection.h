@@ -37,6 +37,9 @@ struct ConstantBufferMember {
   // A vector whose HLSL offset std140 cannot hold (a float2 at 4, a float3 at 4): the emitter
   // declares it as scalars at these offsets and rebuilds the vector where it is read.
   bool split_into_scalars = false;
+  // Read by the compiled entry points (or by a static global's initializer they read). An unread
+  // member keeps its place in the buffer's layout; nobody needs to give it a value.
+  bool used = true;
 };
 
 struct ConstantBuffer {
@@ -105,7 +108,7 @@ struct Property {
 };
 
 // The defaults a texture may declare: the scene format's built-in textures (docs/scenes.md).
-inline constexpr std::string_view kTextureDefaults[] = {"white", "black", "checker", "normal"};
+inline constexpr std::string_view kTextureDefaults[] = {"white", "black", "checker", "normal", "gray", "red", "clear"};
 
 // Keywords from `#pragma multi_compile A B C` (every combination is a variant) and
 // `#pragma shader_feature A B` (only the combinations a scene asks for). `_` means "none".

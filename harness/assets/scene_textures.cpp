@@ -66,6 +66,9 @@ Result<FloatImage> texture_image(const TextureRef& texture) {
     case TextureOrigin::White: return filled(1, {1.0f, 1.0f, 1.0f, 1.0f});
     case TextureOrigin::Black: return filled(1, {0.0f, 0.0f, 0.0f, 1.0f});
     case TextureOrigin::Normal: return filled(1, {0.5f, 0.5f, 1.0f, 1.0f});
+    case TextureOrigin::Gray: return filled(1, {0.5f, 0.5f, 0.5f, 0.5f});
+    case TextureOrigin::Red: return filled(1, {1.0f, 0.0f, 0.0f, 0.0f});
+    case TextureOrigin::Clear: return filled(1, {0.0f, 0.0f, 0.0f, 0.0f});
     case TextureOrigin::Checker: return checker();
     case TextureOrigin::File: return read_image(texture.file, texture.srgb);
     case TextureOrigin::Faces: return fail("six faces make a cube map, not an image: the shader must declare a TextureCube");

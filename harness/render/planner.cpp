@@ -4,6 +4,7 @@
 #include <map>
 #include <set>
 
+#include "harness/render/material_source.h"
 #include "harness/render/scene_contract.h"
 #include "hlsl_like/compiler.h"
 
@@ -23,6 +24,7 @@ struct SourceFacts {
   std::vector<hlsl::PassDeclaration> passes;  // of a post effect
   std::vector<std::string> vertex_inputs;     // the semantics the vertex entry reads, canonical
   ShaderNames names;                          // what the variant offers a scene by name
+  std::vector<std::string> notes;             // what the plan says of the source (material_source.h)
 };
 
 class SourceReader {
@@ -39,9 +41,12 @@ class SourceReader {
     options.include_dirs = shaders_.folders();
     options.keywords = keywords;
     options.pass_fragment_entry = pass_entry;
-    auto module = hlsl::compile_file(*path, options);
+    auto source = compile_source(*path, options);
+    if (!source) return fail(source.error());
+    const std::unique_ptr<hlsl::Module>& module = source->module;
     SourceFacts facts;
     facts.path = *path;
+    facts.notes = std::move(source->notes);
     if (post) facts.passes = module->passes;
     if (!module->ok()) {
       return fail(Error{"'" + library_path + "' does not compile", {path->string(), 0, 0},
@@ -140,6 +145,7 @@ Result<Plan> plan_scene(const Scene& scene, const ShaderSearchPath& shaders) {
       // The vertex inputs and the names depend on the keywords: the variant's own are read once more.
       auto facts = reader.read(instance.material, keywords, false);
       if (!facts) return fail(facts.error());
+      plan.variant_notes[variant] = facts->notes;
       for (const std::string& semantic : facts->vertex_inputs)
         if (!meshes_supply(semantic))
           plan.variant_notes[variant].push_back("vertex input " + semantic + " is not in the meshes; the shader reads zeros");

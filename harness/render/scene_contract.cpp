@@ -64,13 +64,13 @@ void check_value(const std::string& name, uint32_t count, const ShaderNames::Uni
                       numbers_text(count)));
 }
 
-// The uniforms of `names` that get no value: not the renderer's, not in `given`, without a
-// default in the shader. X_ST is Unity's tiling and offset, (1, 1, 0, 0) unless given.
+// The uniforms of `names` that the variant reads and that get no value: not the renderer's, not in
+// `given`, without a default in the shader. X_ST is Unity's tiling and offset, (1, 1, 0, 0) unless given.
 void check_uniforms_have_values(const ShaderNames& names, const std::set<std::string>& given, const std::string& owner,
                                 const std::string& how_to_set, const SourceLocation& where, ContractProblems& problems) {
   for (const ShaderNames::Uniform& uniform : names.uniforms) {
     const std::string& name = uniform.member.name;
-    if (uniform.has_default || given.count(name) || renderer_uniform(name) || name.ends_with("_ST")) continue;
+    if (!uniform.read || uniform.has_default || given.count(name) || renderer_uniform(name) || name.ends_with("_ST")) continue;
     error(problems, where,
           fmt::format("{}: uniform '{}' ({}) has no value: the renderer does not give it, the scene does not set it "
                       "and the shader declares no default; set {}.{}, or give it an initializer in the shader",
@@ -118,12 +118,14 @@ ShaderNames shader_names(const std::string& source, const hlsl::Reflection& refl
   const ShaderInterface interface = shader_interface(reflection);
   for (const UniformBlock& block : interface.uniform_blocks)
     for (const UniformMember& member : block.members) {
-      ShaderNames::Uniform uniform{member, {}, false};
+      ShaderNames::Uniform uniform{member, {}, false, member.read};
       const PropertyDefault* property = interface.find_property(member.name);
       uniform.has_default = property && !property->value.empty();
       for (const hlsl::ConstantBuffer& buffer : reflection.constant_buffers)
         for (const hlsl::ConstantBufferMember& declared : buffer.members)
-          if (declared.name == member.name) uniform.type = declared.type.name();
+          if (declared.name == member.name) {
+            uniform.type = declared.type.name();
+          }
       names.uniforms.push_back(std::move(uniform));
     }
   for (const hlsl::TextureResource& texture : reflection.textures) {

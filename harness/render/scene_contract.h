@@ -26,6 +26,7 @@ struct ShaderNames {
     UniformMember member;
     std::string type;  // as HLSL spells it, for messages: "float4", "float4x4"
     bool has_default = false;
+    bool read = true;  // by the variant's entry points: only a uniform they read needs a value
   };
   struct Texture {
     std::string name;

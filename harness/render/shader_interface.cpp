@@ -17,6 +17,7 @@ UniformMember uniform_member(const hlsl::ConstantBufferMember& member) {
   out.name = member.name;
   out.offset = member.offset;
   out.row_major = member.row_major;
+  out.read = member.used;
   const hlsl::Type* type = &member.type;
   if (type->kind() == hlsl::TypeKind::Array) {
     out.array_length = type->array_length();
@@ -97,7 +98,7 @@ std::string shader_interface_json(const ShaderInterface& interface) {
     json members = json::array();
     for (const UniformMember& m : block.members)
       members.push_back({{"name", m.name}, {"scalar", scalar_spelling(m.scalar)}, {"rows", m.rows}, {"cols", m.cols},
-                         {"array_length", m.array_length}, {"offset", m.offset}, {"row_major", m.row_major}});
+                         {"array_length", m.array_length}, {"offset", m.offset}, {"row_major", m.row_major}, {"read", m.read}});
     blocks.push_back({{"name", block.name}, {"slot_name", block.slot_name}, {"size", block.size}, {"members", members}});
   }
   json properties = json::array();
@@ -124,6 +125,7 @@ Result<ShaderInterface> parse_shader_interface_json(const std::string& text) {
         member.array_length = m.at("array_length");
         member.offset = m.at("offset");
         member.row_major = m.at("row_major");
+        member.read = m.at("read");
         block.members.push_back(std::move(member));
       }
       interface.uniform_blocks.push_back(std::move(block));
@@ -141,6 +143,7 @@ Result<std::vector<std::byte>> build_uniform_block(const UniformBlock& block, co
   std::vector<std::byte> bytes(block.size);
   for (const UniformMember& member : block.members) {
     const std::vector<float>* value = lookup(member.name);
+    if (!value && !member.read) continue;  // zeros, which nothing reads
     if (!value)
       return fail("uniform '" + member.name + "' in '" + block.name +
                   "' has no value: the renderer does not supply it, the scene does not set it and it has no default");

@@ -21,6 +21,8 @@ struct UniformMember {
   uint32_t array_length = 0;  // 0: not an array
   uint32_t offset = 0;        // bytes, HLSL packing
   bool row_major = false;
+  // Read by the variant's entry points. An unread member needs no value: its bytes stay zero.
+  bool read = true;
 
   uint32_t components() const { return rows * cols * (array_length ? array_length : 1); }
 };

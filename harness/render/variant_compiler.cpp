@@ -1,5 +1,6 @@
 #include "harness/render/variant_compiler.h"
 
+#include "harness/render/material_source.h"
 #include "harness/render/shader_program.h"
 
 namespace xshade::harness {
@@ -20,7 +21,9 @@ Result<const hlsl::Module*> VariantCompiler::front_end(const VariantRequest& req
     options.keywords = request.keywords;
     options.pass_fragment_entry = request.fragment_entry;
     if (request.half_emulation) options.defines.push_back({kHalfEmulationMacro, "1"});
-    known = modules_.emplace(key, hlsl::compile_file(request.source, options)).first;
+    auto source = compile_source(request.source, options);
+    if (!source) return fail(source.error());
+    known = modules_.emplace(key, std::move(source->module)).first;
   }
   const hlsl::Module& module = *known->second;
   if (!module.ok()) {

@@ -337,7 +337,7 @@ class SceneReader : SceneValueReader {
   }
 
   static constexpr std::string_view texture_expectation =
-      "white, black, checker, normal, environment, an image path or a table (file or faces)";
+      "white, black, checker, normal, gray, red, clear, environment, an image path or a table (file or faces)";
 
   std::optional<TextureRef> texture(const toml::node& node, std::string_view path) {
     if (const toml::table* table = node.as_table()) return texture_table(*table, std::string(path));
@@ -362,7 +362,7 @@ class SceneReader : SceneValueReader {
       return reference;
     }
     std::string message = fmt::format("{}: expected {}, got {}", path, texture_expectation, quote_text(name));
-    if (auto suggestion = nearest(name, {"white", "black", "checker", "normal", "environment"}))
+    if (auto suggestion = nearest(name, {"white", "black", "checker", "normal", "gray", "red", "clear", "environment"}))
       message += fmt::format("; did you mean \"{}\"?", *suggestion);
     report(node.source(), std::move(message));
     return std::nullopt;
@@ -791,6 +791,8 @@ std::optional<TextureOrigin> built_in_texture(std::string_view name) {
   const std::pair<std::string_view, TextureOrigin> built_ins[] = {
       {"white", TextureOrigin::White},     {"black", TextureOrigin::Black},
       {"checker", TextureOrigin::Checker}, {"normal", TextureOrigin::Normal},
+      {"gray", TextureOrigin::Gray},       {"red", TextureOrigin::Red},
+      {"clear", TextureOrigin::Clear},
       {"environment", TextureOrigin::Environment}};
   for (const auto& [built_in, origin] : built_ins)
     if (name == built_in) return origin;

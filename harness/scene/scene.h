@@ -81,6 +81,9 @@ enum class TextureOrigin {
   Black,        // (0, 0, 0, 1)
   Checker,      // a black-and-white checkerboard
   Normal,       // a flat tangent-space normal map, (0.5, 0.5, 1, 1)
+  Gray,         // (0.5, 0.5, 0.5, 0.5): Unity's "gray", and what it gives a texture whose default is ""
+  Red,          // (1, 0, 0, 0): Unity's "red"
+  Clear,        // (0, 0, 0, 0): Unity's "black"
   File,         // an image file (or a .cube LUT), read as the shader's texture shape asks
   Faces,        // six image files, a cube map's faces
   Environment,  // the scene's environment as a cube map
@@ -115,7 +118,8 @@ struct SceneLocations {
   }
 };
 
-// The built-in texture a scene value names ("white", "black", "checker", "normal", "environment").
+// The built-in texture a scene value names ("white", "black", "checker", "normal", "gray", "red",
+// "clear", "environment").
 std::optional<TextureOrigin> built_in_texture(std::string_view name);
 
 enum class GridAxis { Rows, Cols };

@@ -350,7 +350,7 @@ _G = { faces = ["a.png", "b.png", "c.png", "d.png", "e.png", "../f.png"] }
                 "scenes/bad.toml:18:6: error: object[0].textures._E.file: missing; expected an image path (or faces = "
                 "[6 image paths])",
                 "scenes/bad.toml:19:6: error: object[0].textures._F: expected white, black, checker, normal, "
-                "environment, an image path or a table (file or faces), got \"enviroment\"; did you mean "
+                "gray, red, clear, environment, an image path or a table (file or faces), got \"enviroment\"; did you mean "
                 "\"environment\"?",
                 "scenes/bad.toml:23:62: error: post[0].textures._G.faces[5]: expected a path inside the scene file's "
                 "folder, got \"../f.png\", which leads out of it",
@@ -434,7 +434,7 @@ _Detail = "whte"
                 "scenes/bad.toml:16:12: error: object[0].textures._MainTex: expected a path inside the scene file's "
                 "folder, got \"../../etc/passwd.png\", which leads out of it",
                 "scenes/bad.toml:17:11: error: object[0].textures._Detail: expected white, black, checker, normal, "
-                "environment, an image path or a table (file or faces), got \"whte\"; did you mean \"white\"?",
+                "gray, red, clear, environment, an image path or a table (file or faces), got \"whte\"; did you mean \"white\"?",
             }));
 }
 

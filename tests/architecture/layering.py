@@ -26,17 +26,17 @@ LAYERS = {
     "harness/gl": ["base", "hlsl_like", "glsl", "harness/image", "harness/backend"],
     "harness/vulkan": ["base", "hlsl_like", "glsl", "spirv", "harness/image", "harness/backend"],
     "harness/assets": ["base", "harness/image", "harness/scene", "harness/backend"],
-    "harness/render": ["base", "hlsl_like", "glsl", "spirv", "harness/image", "harness/scene",
+    "harness/render": ["base", "hlsl_like", "shaderlab", "glsl", "spirv", "harness/image", "harness/scene",
                        "harness/backend", "harness/gl", "harness/vulkan", "harness/assets"],
-    "harness/gate": ["base", "hlsl_like", "glsl", "spirv", "harness/image", "harness/scene",
+    "harness/gate": ["base", "hlsl_like", "shaderlab", "glsl", "spirv", "harness/image", "harness/scene",
                      "harness/backend", "harness/gl", "harness/vulkan", "harness/assets", "harness/render"],
-    "harness/report": ["base", "hlsl_like", "glsl", "spirv", "harness/image", "harness/scene",
+    "harness/report": ["base", "hlsl_like", "shaderlab", "glsl", "spirv", "harness/image", "harness/scene",
                        "harness/backend", "harness/gl", "harness/vulkan", "harness/assets", "harness/render",
                        "harness/gate"],
 }
 HARNESS = [room for room in LAYERS if room.startswith("harness/")]
-LAYERS["stability"] = ["base", "hlsl_like", "glsl", "spirv"] + HARNESS
-LAYERS["accuracy"] = ["base", "hlsl_like", "glsl", "spirv"] + HARNESS
+LAYERS["stability"] = ["base", "hlsl_like", "shaderlab", "glsl", "spirv"] + HARNESS
+LAYERS["accuracy"] = ["base", "hlsl_like", "shaderlab", "glsl", "spirv"] + HARNESS
 LAYERS["cli"] = ["base", "hlsl_like", "shaderlab", "glsl", "spirv"] + HARNESS + ["stability", "accuracy"]
 
 # The CMake library each room builds.

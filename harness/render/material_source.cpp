@@ -1,0 +1,115 @@
+#include "harness/render/material_source.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "shaderlab/compile_environment.h"
+#include "shaderlab/pass_program.h"
+#include "shaderlab/reader.h"
+
+namespace xshade::harness {
+namespace {
+
+namespace fs = std::filesystem;
+
+// sRGB to linear, as Unity converts a Color property for a project in Linear colour space.
+double linear_from_srgb(double c) { return c <= 0.04045 ? c / 12.92 : std::pow((c + 0.055) / 1.055, 2.4); }
+
+// The scene's built-in texture for a Unity built-in texture name.
+std::string built_in_for(const std::string& unity_default) {
+  if (shaderlab::same_word(unity_default, "white")) return "white";
+  if (shaderlab::same_word(unity_default, "black")) return "clear";  // Unity's black is (0, 0, 0, 0)
+  if (shaderlab::same_word(unity_default, "bump")) return "normal";
+  if (shaderlab::same_word(unity_default, "red")) return "red";
+  return "gray";  // "gray", "grey", "" and any name Unity does not know
+}
+
+std::string pass_label(const shaderlab::Pass& pass, size_t index) {
+  std::string label = "pass " + std::to_string(index);
+  if (!pass.name.empty()) label += " '" + pass.name + "'";
+  const std::string light_mode = shaderlab::tag(pass.tags, "LightMode");
+  if (!light_mode.empty()) label += " (LightMode " + light_mode + ")";
+  return label;
+}
+
+}  // namespace
+
+bool is_unity_shader(const fs::path& path) { return path.extension() == ".shader"; }
+
+bool forward_renderer_draws(const shaderlab::Pass& pass) {
+  const std::string light_mode = shaderlab::tag(pass.tags, "LightMode");
+  return light_mode.empty() || shaderlab::same_word(light_mode, "Always") || shaderlab::same_word(light_mode, "ForwardBase");
+}
+
+void apply_properties(const shaderlab::Shader& shader, hlsl::Reflection& reflection) {
+  for (hlsl::Property& declared : reflection.properties) {
+    const shaderlab::Property* property = shader.property(declared.name);
+    if (!property) continue;
+    if (declared.is_texture) {
+      if (property->is_texture() && declared.default_texture.empty())
+        declared.default_texture = built_in_for(property->texture_default);
+      continue;
+    }
+    if (property->is_texture() || !declared.default_value.empty() || !declared.type.is_numeric()) continue;
+    const bool color = property->type == shaderlab::PropertyType::Color;
+    const bool gamma = color || property->attribute("Gamma") != nullptr;
+    const bool four = color || property->type == shaderlab::PropertyType::Vector;
+    const uint32_t count = std::min<uint32_t>(declared.type.rows() * declared.type.cols(), four ? 4 : 1);
+    for (uint32_t i = 0; i < count; ++i) {
+      const double value = property->value[i];
+      declared.default_value.push_back(gamma && i < 3 ? linear_from_srgb(value) : value);
+    }
+  }
+}
+
+Result<SourceModule> compile_source(const fs::path& path, hlsl::CompileOptions options) {
+  if (!is_unity_shader(path)) return SourceModule{hlsl::compile_file(path, options), {}};
+
+  auto shader = shaderlab::read_shader_file(path);
+  if (!shader) return fail(shader.error());
+  const shaderlab::SubShader* sub = shaderlab::drawn_subshader(*shader);
+  if (!sub) return fail("'" + shader->name + "' has no SubShader to draw", {path.string(), 1, 1});
+  SourceModule source;
+  const shaderlab::Pass* drawn = nullptr;
+  for (size_t i = 0; i < sub->passes.size(); ++i) {
+    const shaderlab::Pass& pass = sub->passes[i];
+    if (pass.kind != shaderlab::PassKind::Program) {
+      source.notes.push_back(pass_label(pass, i) + ": not drawn: " +
+                             (pass.kind == shaderlab::PassKind::Use    ? "UsePass is not drawn yet"
+                              : pass.kind == shaderlab::PassKind::Grab ? "GrabPass is not drawn yet"
+                                                                       : "it has no program (fixed-function)"));
+    } else if (!forward_renderer_draws(pass)) {
+      source.notes.push_back(pass_label(pass, i) + ": not drawn: the forward renderer runs it for what the scene has not");
+    } else if (drawn) {
+      source.notes.push_back(pass_label(pass, i) + ": not drawn: a material draws its first pass only, for now");
+    } else {
+      drawn = &pass;
+    }
+  }
+  if (!drawn) {
+    if (sub->surface)
+      return fail("'" + shader->name + "' is a surface shader, whose passes Unity generates; xshade does not generate them yet",
+                  sub->surface->start);
+    return fail("'" + shader->name + "' has no pass the forward renderer draws (a program pass without LightMode, or "
+                "with Always or ForwardBase)",
+                sub->where);
+  }
+  auto program = shaderlab::pass_program(*sub, *drawn);
+  if (!program) return fail(program.error());
+  options.include_dirs.insert(options.include_dirs.begin(), path.parent_path().empty() ? fs::path(".") : path.parent_path());
+  if (program->implicit_includes)
+    if (auto found = shaderlab::find_implicit_includes(options.include_dirs); !found)
+      return fail(Error{found.error().message, drawn->program->start, {}});
+  // Unity's defines first; one the caller gives (-D UNITY_VERSION=...) stands instead.
+  std::vector<hlsl::MacroDefinition> defines;
+  for (const shaderlab::Define& define : shaderlab::unity_defines(program->text))
+    if (std::none_of(options.defines.begin(), options.defines.end(),
+                     [&](const hlsl::MacroDefinition& given) { return given.name == define.name; }))
+      defines.push_back({define.name, define.value});
+  options.defines.insert(options.defines.begin(), defines.begin(), defines.end());
+  source.module = hlsl::compile_text(path.string(), std::move(program->text), options);
+  if (source.module->ok()) apply_properties(*shader, source.module->reflection);
+  return source;
+}
+
+}  // namespace xshade::harness

@@ -1,0 +1,47 @@
+// The source a scene names as a material or a post effect, through the front end. An .hlsl file
+// compiles as it is. A Unity .shader compiles as Unity compiles the pass it draws: the pass's text
+// composed as Unity composes it (shaderlab/pass_program.h), in Unity's compile environment
+// (shaderlab/compile_environment.h), with the .shader's folder first among the include folders;
+// its Properties then give the defaults of the uniforms and textures the program declares, so that
+// nothing is written twice.
+#pragma once
+
+#include <filesystem>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "base/result.h"
+#include "hlsl_like/compiler.h"
+#include "shaderlab/shader.h"
+
+namespace xshade::harness {
+
+bool is_unity_shader(const std::filesystem::path& path);
+
+// The LightModes of the passes Unity's forward renderer draws for an object lit by one
+// directional light and no other: none ("Always") and ForwardBase. ForwardAdd (a further light),
+// ShadowCaster (a shadow map), Meta, Deferred and the rest are for what a scene does not have.
+bool forward_renderer_draws(const shaderlab::Pass& pass);
+
+struct SourceModule {
+  std::unique_ptr<hlsl::Module> module;
+  // What the plan says of the source: the passes of a .shader it leaves out, and why.
+  std::vector<std::string> notes;
+};
+
+// The module of `path` with `options` (its keywords, its fragment entry, its defines). A .shader
+// that cannot be read, has no pass to draw or whose CGPROGRAM finds no Unity include files is an
+// error at its place in the file; a program that does not compile is a module with errors, as for
+// an .hlsl file.
+Result<SourceModule> compile_source(const std::filesystem::path& path, hlsl::CompileOptions options);
+
+// The defaults a .shader's Properties give the uniforms and textures of `reflection` that declare
+// none: Float, Int, Integer and Range as they are written; Color converted from sRGB to linear as
+// Unity's Linear colour space passes it to a shader (alpha as it is), and so a Float or Vector
+// marked [Gamma]; a texture's "white", "black", "gray", "bump", "red" or "" as Unity's built-in
+// textures of those names (the scene built-ins "white", "clear", "gray", "normal", "red", and
+// "gray" for "" or a name Unity does not know).
+void apply_properties(const shaderlab::Shader& shader, hlsl::Reflection& reflection);
+
+}  // namespace xshade::harness

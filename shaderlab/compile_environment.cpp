@@ -1,0 +1,64 @@
+#include "shaderlab/compile_environment.h"
+
+#include <algorithm>
+#include <cctype>
+
+namespace xshade::shaderlab {
+namespace {
+
+std::string_view skip_blanks(std::string_view text) {
+  while (!text.empty() && (text.front() == ' ' || text.front() == '\t')) text.remove_prefix(1);
+  return text;
+}
+
+bool take_word(std::string_view& text, std::string_view word) {
+  if (!text.starts_with(word)) return false;
+  const std::string_view rest = text.substr(word.size());
+  if (!rest.empty() && (std::isalnum(static_cast<unsigned char>(rest.front())) || rest.front() == '_')) return false;
+  text = skip_blanks(rest);
+  return true;
+}
+
+}  // namespace
+
+int shader_target(std::string_view program_text) {
+  int highest = 0;
+  size_t line_start = 0;
+  while (line_start < program_text.size()) {
+    size_t line_end = program_text.find('\n', line_start);
+    if (line_end == std::string_view::npos) line_end = program_text.size();
+    std::string_view line = skip_blanks(program_text.substr(line_start, line_end - line_start));
+    line_start = line_end + 1;
+    if (line.empty() || line.front() != '#') continue;
+    line = skip_blanks(line.substr(1));
+    if (!take_word(line, "pragma") || !take_word(line, "target")) continue;
+    // X.Y: a digit, a point, a digit.
+    if (line.size() >= 3 && std::isdigit(static_cast<unsigned char>(line[0])) && line[1] == '.' &&
+        std::isdigit(static_cast<unsigned char>(line[2])))
+      highest = std::max(highest, (line[0] - '0') * 10 + (line[2] - '0'));
+  }
+  return highest > 0 ? highest : kDefaultShaderTarget;
+}
+
+std::vector<Define> unity_defines(std::string_view program_text) {
+  // The platform, the target and the version; then the tier-3 desktop's graphics settings as
+  // Unity's Graphics Settings have them by default (Standard shader quality High: BRDF1, box
+  // projection and blending of reflection probes, detail normal maps, light probe proxy volumes,
+  // full-HDR lightmaps). UNITY_COLORSPACE_GAMMA stays undefined: the renderer works in linear
+  // colour, as a project set to Linear does.
+  return {{"SHADER_API_GLCORE", "1"},
+          {"SHADER_API_DESKTOP", "1"},
+          {"SHADER_TARGET", std::to_string(shader_target(program_text))},
+          {"UNITY_VERSION", std::to_string(kUnityVersion)},
+          {"UNITY_HARDWARE_TIER3", "1"},
+          {"UNITY_PBS_USE_BRDF1", "1"},
+          {"UNITY_SPECCUBE_BOX_PROJECTION", "1"},
+          {"UNITY_SPECCUBE_BLENDING", "1"},
+          {"UNITY_ENABLE_DETAIL_NORMALMAP", "1"},
+          {"UNITY_ENABLE_REFLECTION_BUFFERS", "1"},
+          {"UNITY_USE_DITHER_MASK_FOR_ALPHABLENDED_SHADOWS", "1"},
+          {"UNITY_LIGHT_PROBE_PROXY_VOLUME", "1"},
+          {"UNITY_LIGHTMAP_FULL_HDR", "1"}};
+}
+
+}  // namespace xshade::shaderlab

@@ -1,0 +1,37 @@
+#include "shaderlab/compile_environment.h"
+
+#include <algorithm>
+
+#include <gtest/gtest.h>
+
+namespace xshade::shaderlab {
+namespace {
+
+TEST(CompileEnvironment, ShaderTargetIsTheHighestPragmaTargetOrUnitysDefault) {
+  EXPECT_EQ(shader_target("#pragma vertex vert\n"), 25);
+  EXPECT_EQ(shader_target("  #  pragma   target 3.0\n#pragma fragment frag\n"), 30);
+  EXPECT_EQ(shader_target("#pragma target 4.5\n#pragma target 3.0\n"), 45);
+  EXPECT_EQ(shader_target("#pragma target 5.0 // tessellation\n"), 50);
+  // Not a target pragma, or a target named by feature.
+  EXPECT_EQ(shader_target("#pragma targetx 3.0\n// #pragma target 3.0\n#pragma target gl4.1\n"), 25);
+}
+
+TEST(CompileEnvironment, TheDefinesAreUnitysGlCoreOnADesktopOfTierThree) {
+  const std::vector<Define> defines = unity_defines("#pragma target 3.0\n");
+  const auto value = [&](const std::string& name) -> std::string {
+    auto found = std::find_if(defines.begin(), defines.end(), [&](const Define& d) { return d.name == name; });
+    return found == defines.end() ? "(undefined)" : found->value;
+  };
+  EXPECT_EQ(value("SHADER_API_GLCORE"), "1");
+  EXPECT_EQ(value("SHADER_API_DESKTOP"), "1");
+  EXPECT_EQ(value("SHADER_TARGET"), "30");
+  EXPECT_EQ(value("UNITY_VERSION"), "201941");
+  EXPECT_EQ(value("UNITY_PBS_USE_BRDF1"), "1");
+  // Set by HLSLSupport.cginc from the API, never by the compiler; linear colour.
+  EXPECT_EQ(value("UNITY_REVERSED_Z"), "(undefined)");
+  EXPECT_EQ(value("UNITY_COLORSPACE_GAMMA"), "(undefined)");
+  EXPECT_EQ(value("SHADER_API_D3D11"), "(undefined)");
+}
+
+}  // namespace
+}  // namespace xshade::shaderlab
