@@ -11,6 +11,7 @@
 #include "glsl/glsl_emitter.h"
 #include "base/spelling.h"
 #include "cli/commands.h"
+#include "harness/render/material_source.h"
 #include "harness/render/shader_program.h"
 #include "hlsl_like/compiler.h"
 #include "shaderlab/pass_program.h"
@@ -172,7 +173,8 @@ int compile_module(const CompileOptions& options, const std::filesystem::path& f
 
 // A Unity .shader: each program pass of its first SubShader (or the one --pass names), its text
 // composed as Unity composes it and compiled with the .shader's folder first among the include
-// folders; several passes on standard output each under a header.
+// folders; several passes on standard output each under a header, or with -o OUT each in its own
+// files, OUT.passN.vert and OUT.passN.frag.
 int compile_unity_shader(const CompileOptions& options, const std::filesystem::path& file, hlsl::CompileOptions front_end) {
   auto shader = shaderlab::read_shader_file(file);
   if (!shader) {
@@ -199,12 +201,6 @@ int compile_unity_shader(const CompileOptions& options, const std::filesystem::p
                                    : "");
     return kBadInput;
   }
-  if (passes.size() > 1 && !options.output.empty()) {
-    fmt::print(stderr, "xshade compile: {} has {} passes; choose the one to write with --pass N or NAME\n", file.string(),
-               passes.size());
-    return kBadInput;
-  }
-  front_end.include_dirs.insert(front_end.include_dirs.begin(), file.parent_path().empty() ? "." : file.parent_path());
   // --reflect: one object, the Properties and each pass's reflection.
   std::string reflected_passes;
   int worst = kPass;
@@ -215,14 +211,14 @@ int compile_unity_shader(const CompileOptions& options, const std::filesystem::p
       worst = std::max(worst, int(kBadInput));
       continue;
     }
-    if (program->implicit_includes) {
-      if (auto found = shaderlab::find_implicit_includes(front_end.include_dirs); !found) {
-        fmt::print(stderr, "{}: {}\n", pass->program->start.to_string(), found.error().message);
-        return kBadInput;
-      }
+    auto unity_options = harness::pass_compile_options(file, *program, front_end);
+    if (!unity_options) {
+      fmt::print(stderr, "{}: {}\n", unity_options.error().where.to_string(), unity_options.error().message);
+      worst = std::max(worst, int(kBadInput));
+      continue;
     }
     const auto compile = [&](const hlsl::CompileOptions& with) { return hlsl::compile_text(file.string(), program->text, with); };
-    hlsl::CompileOptions pass_options = front_end;
+    hlsl::CompileOptions pass_options = *unity_options;
     pass_options.pass_fragment_entry.clear();
     if (options.reflect) {
       auto module = compile(pass_options);
@@ -232,9 +228,13 @@ int compile_unity_shader(const CompileOptions& options, const std::filesystem::p
                                       program->index, nlohmann::json(pass->name).dump(), hlsl::reflection_json(module->reflection));
       continue;
     }
-    if (passes.size() > 1 || options.pass.empty())
+    // Several passes: each under a header on standard output, or in OUT.passN.<stage> files.
+    CompileOptions pass_output = options;
+    if (passes.size() > 1 && !options.output.empty())
+      pass_output.output = options.output.string() + ".pass" + std::to_string(program->index);
+    else if (options.output.empty() && (passes.size() > 1 || options.pass.empty()))
       fmt::print("// ==== {} pass {}{} ====\n", file.string(), program->index, pass->name.empty() ? "" : " \"" + pass->name + "\"");
-    worst = std::max(worst, compile_module(options, file, pass_options, compile, compile(pass_options)));
+    worst = std::max(worst, compile_module(pass_output, file, pass_options, compile, compile(pass_options)));
   }
   if (options.reflect && worst == kPass) {
     const std::string json = nlohmann::json::parse(fmt::format("{{\"shader\": {}, \"properties\": {}, \"passes\": [{}]}}",

@@ -207,7 +207,8 @@ static int run_command_line(int argc, char** argv) {
       ->type_name("FILE");
   compile->add_flag("--no-project", compile_options.folders.no_project, "Read no project file");
   compile->add_option("-o", compile_options.output,
-                      "Write OUT.vert.glsl / OUT.frag.glsl (or .spv, or OUT.json) instead of standard output")
+                      "Write OUT.vert.glsl / OUT.frag.glsl (or .spv, or OUT.json) instead of standard output; each pass of a "
+                      ".shader to OUT.passN.vert.glsl / OUT.passN.frag.glsl")
       ->type_name("OUT");
 
   EvalOptions eval_options;

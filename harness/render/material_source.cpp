@@ -4,7 +4,6 @@
 #include <cmath>
 
 #include "shaderlab/compile_environment.h"
-#include "shaderlab/pass_program.h"
 #include "shaderlab/reader.h"
 
 namespace xshade::harness {
@@ -62,6 +61,21 @@ void apply_properties(const shaderlab::Shader& shader, hlsl::Reflection& reflect
   }
 }
 
+Result<hlsl::CompileOptions> pass_compile_options(const fs::path& file, const shaderlab::PassProgram& program,
+                                                  hlsl::CompileOptions options) {
+  options.include_dirs.insert(options.include_dirs.begin(), file.parent_path().empty() ? fs::path(".") : file.parent_path());
+  if (program.implicit_includes)
+    if (auto found = shaderlab::find_implicit_includes(options.include_dirs); !found)
+      return fail(Error{found.error().message, program.pass->program->start, {}});
+  std::vector<hlsl::MacroDefinition> defines;
+  for (const shaderlab::Define& define : shaderlab::unity_defines(program.text))
+    if (std::none_of(options.defines.begin(), options.defines.end(),
+                     [&](const hlsl::MacroDefinition& given) { return given.name == define.name; }))
+      defines.push_back({define.name, define.value});
+  options.defines.insert(options.defines.begin(), defines.begin(), defines.end());
+  return options;
+}
+
 Result<SourceModule> compile_source(const fs::path& path, hlsl::CompileOptions options) {
   if (!is_unity_shader(path)) return SourceModule{hlsl::compile_file(path, options), {}};
 
@@ -96,18 +110,9 @@ Result<SourceModule> compile_source(const fs::path& path, hlsl::CompileOptions o
   }
   auto program = shaderlab::pass_program(*sub, *drawn);
   if (!program) return fail(program.error());
-  options.include_dirs.insert(options.include_dirs.begin(), path.parent_path().empty() ? fs::path(".") : path.parent_path());
-  if (program->implicit_includes)
-    if (auto found = shaderlab::find_implicit_includes(options.include_dirs); !found)
-      return fail(Error{found.error().message, drawn->program->start, {}});
-  // Unity's defines first; one the caller gives (-D UNITY_VERSION=...) stands instead.
-  std::vector<hlsl::MacroDefinition> defines;
-  for (const shaderlab::Define& define : shaderlab::unity_defines(program->text))
-    if (std::none_of(options.defines.begin(), options.defines.end(),
-                     [&](const hlsl::MacroDefinition& given) { return given.name == define.name; }))
-      defines.push_back({define.name, define.value});
-  options.defines.insert(options.defines.begin(), defines.begin(), defines.end());
-  source.module = hlsl::compile_text(path.string(), std::move(program->text), options);
+  auto pass_options = pass_compile_options(path, *program, std::move(options));
+  if (!pass_options) return fail(pass_options.error());
+  source.module = hlsl::compile_text(path.string(), std::move(program->text), *pass_options);
   if (source.module->ok()) apply_properties(*shader, source.module->reflection);
   return source;
 }

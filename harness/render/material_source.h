@@ -13,6 +13,7 @@
 
 #include "base/result.h"
 #include "hlsl_like/compiler.h"
+#include "shaderlab/pass_program.h"
 #include "shaderlab/shader.h"
 
 namespace xshade::harness {
@@ -35,6 +36,13 @@ struct SourceModule {
 // error at its place in the file; a program that does not compile is a module with errors, as for
 // an .hlsl file.
 Result<SourceModule> compile_source(const std::filesystem::path& path, hlsl::CompileOptions options);
+
+// The options a pass's program of the .shader `file` compiles with: `options` with the .shader's
+// folder first among the include folders and Unity's defines before the caller's (a define the
+// caller gives, -D UNITY_VERSION=..., stands instead of Unity's). A CGPROGRAM whose implicit
+// includes no folder holds is an error at the program's line that says where to get them.
+Result<hlsl::CompileOptions> pass_compile_options(const std::filesystem::path& file, const shaderlab::PassProgram& program,
+                                                  hlsl::CompileOptions options);
 
 // The defaults a .shader's Properties give the uniforms and textures of `reflection` that declare
 // none: Float, Int, Integer and Range as they are written; Color converted from sRGB to linear as

@@ -384,6 +384,12 @@ TEST(CommandLine, CompileReadsAUnityShaderPassByPass) {
   EXPECT_NE(unknown.output.find("has no pass 'Outline' in its first SubShader (its passes: 0 (\"Body\"), 1, 2)"),
             std::string::npos)
       << unknown.output;
+  // Every pass to files: each pass that compiles is written beside the others, the rest say why.
+  Outcome every = run_xshade("", "compile " + shader + " -o '" + (folder / "out").string() + "'");
+  EXPECT_EQ(every.exit_code, 2) << every.output;
+  EXPECT_TRUE(fs::exists(folder / "out.pass0.frag.glsl")) << every.output;
+  EXPECT_FALSE(fs::exists(folder / "out.pass1.frag.glsl")) << every.output;
+  EXPECT_NE(every.output.find("unknown name 'undefined_thing'"), std::string::npos) << every.output;
   fs::remove_all(folder);
 }
 

@@ -1,0 +1,135 @@
+#include "harness/render/material_source.h"
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+
+#include <gtest/gtest.h>
+
+#include "shaderlab/reader.h"
+
+namespace xshade::harness {
+namespace {
+
+namespace fs = std::filesystem;
+
+const hlsl::Property& property(const hlsl::Reflection& reflection, const std::string& name) {
+  auto found = std::find_if(reflection.properties.begin(), reflection.properties.end(),
+                            [&](const hlsl::Property& p) { return p.name == name; });
+  EXPECT_NE(found, reflection.properties.end()) << name;
+  return *found;
+}
+
+// The sRGB curve at 0.5 and 2 (a colour above 1, as an [HDR] picker gives): 0.5 -> 0.214041.
+TEST(MaterialSource, PropertiesGiveTheDefaultsAsUnitysLinearColourSpacePassesThem) {
+  auto shader = shaderlab::read_shader(R"(Shader "T" {
+    Properties {
+      _Color ("Colour", Color) = (0.5, 0.5, 0.5, 0.25)
+      _Tint ("Tint", Color) = (1, 0, 2, 1)
+      _Glossiness ("Smoothness", Range(0, 1)) = 0.5
+      [Gamma] _Gamma ("Gamma vector", Vector) = (0.5, 1, 0, 3)
+      _Plain ("Plain vector", Vector) = (0.5, 1, 0, 3)
+      _Written ("Written in HLSL", Float) = 3
+      _MainTex ("Albedo", 2D) = "black" {}
+      _BumpMap ("Normal", 2D) = "bump" {}
+      _Mask ("Mask", 2D) = "" {}
+      _Tex ("Declared default", 2D) = "red" {}
+    }
+    SubShader { Pass { HLSLPROGRAM
+    ENDHLSL } } })",
+                                       "t.shader");
+  ASSERT_TRUE(shader) << shader.error().to_string();
+  auto module = hlsl::compile_text("t.hlsl",
+                                   "float4 _Color; float3 _Tint; half _Glossiness; float4 _Gamma; float4 _Plain;\n"
+                                   "float _Written = 2; float _Undeclared;\n"
+                                   "Texture2D _MainTex; sampler2D _BumpMap; sampler2D _Mask;\n"
+                                   "Texture2D _Tex <string Default = \"white\";>;\n",
+                                   {});
+  ASSERT_TRUE(module->ok()) << module->diagnostics.render_all();
+  apply_properties(*shader, module->reflection);
+  const hlsl::Reflection& r = module->reflection;
+  const double half_linear = 0.214041;
+  const double two_linear = std::pow((2 + 0.055) / 1.055, 2.4);
+  const auto near = [](const std::vector<double>& got, const std::vector<double>& want) {
+    if (got.size() != want.size()) return false;
+    for (size_t i = 0; i < got.size(); ++i)
+      if (std::abs(got[i] - want[i]) > 1e-6) return false;
+    return true;
+  };
+  EXPECT_TRUE(near(property(r, "_Color").default_value, {half_linear, half_linear, half_linear, 0.25}));
+  EXPECT_TRUE(near(property(r, "_Tint").default_value, {1, 0, two_linear}));  // as many as the uniform has
+  EXPECT_TRUE(near(property(r, "_Glossiness").default_value, {0.5}));
+  EXPECT_TRUE(near(property(r, "_Gamma").default_value, {half_linear, 1, 0, 3}));
+  EXPECT_TRUE(near(property(r, "_Plain").default_value, {0.5, 1, 0, 3}));
+  EXPECT_TRUE(near(property(r, "_Written").default_value, {2}));  // the shader's own initializer stands
+  EXPECT_TRUE(property(r, "_Undeclared").default_value.empty());
+  EXPECT_EQ(property(r, "_MainTex").default_texture, "clear");  // Unity's "black" is (0, 0, 0, 0)
+  EXPECT_EQ(property(r, "_BumpMap").default_texture, "normal");
+  EXPECT_EQ(property(r, "_Mask").default_texture, "gray");
+  EXPECT_EQ(property(r, "_Tex").default_texture, "white");
+}
+
+class UnityShaderSource : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    folder_ = fs::temp_directory_path() /
+              ("xshade_material_source_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
+    fs::remove_all(folder_);
+    fs::create_directories(folder_);
+  }
+  void TearDown() override { fs::remove_all(folder_); }
+  fs::path write(const std::string& name, const std::string& text) {
+    std::ofstream(folder_ / name, std::ios::binary) << text;
+    return folder_ / name;
+  }
+  fs::path folder_;
+};
+
+// The program compiles in Unity's environment (SHADER_TARGET from its #pragma target), from the
+// pass the forward renderer draws; the plan hears of the passes left out.
+TEST_F(UnityShaderSource, TheDrawnPassCompilesInUnitysEnvironment) {
+  const fs::path file = write("two.shader", R"(Shader "Two" {
+  SubShader {
+    Pass { Tags { "LightMode" = "ShadowCaster" } HLSLPROGRAM
+      #pragma fragment caster
+      float4 caster() : SV_Target { return 0; }
+      ENDHLSL }
+    Pass { Name "Body" HLSLPROGRAM
+      #pragma target 3.0
+      #pragma fragment frag
+      #if SHADER_TARGET >= 30 && defined(SHADER_API_GLCORE) && !defined(UNITY_REVERSED_Z)
+      float4 frag(float4 pos : SV_Position) : SV_Target { return 1; }
+      #endif
+      ENDHLSL }
+  }
+})");
+  auto source = compile_source(file, {});
+  ASSERT_TRUE(source) << source.error().to_string();
+  ASSERT_TRUE(source->module->ok()) << source->module->diagnostics.render_all();
+  EXPECT_EQ(source->module->reflection.fragment_entry, "frag");
+  ASSERT_EQ(source->notes.size(), 1u);
+  EXPECT_EQ(source->notes[0], "pass 0 (LightMode ShadowCaster): not drawn: the forward renderer runs it for what the scene has not");
+}
+
+TEST_F(UnityShaderSource, WhatCannotBeDrawnIsAnErrorInTheShaderFile) {
+  const fs::path cg = write("cg.shader", "Shader \"Cg\" {\n  SubShader {\n    Pass {\n      CGPROGRAM\n      #pragma fragment f\n      ENDCG\n    }\n  }\n}\n");
+  auto missing = compile_source(cg, {});
+  ASSERT_FALSE(missing);
+  EXPECT_EQ(missing.error().where.line, 4u);
+  EXPECT_NE(missing.error().message.find("\"Built-in shaders\" download"), std::string::npos) << missing.error().message;
+
+  const fs::path surface =
+      write("surface.shader", "Shader \"Surf\" {\n  SubShader {\n    CGPROGRAM\n    #pragma surface surf Lambert\n    ENDCG\n  }\n}\n");
+  auto generated = compile_source(surface, {});
+  ASSERT_FALSE(generated);
+  EXPECT_EQ(generated.error().where.line, 3u);
+  EXPECT_NE(generated.error().message.find("is a surface shader"), std::string::npos) << generated.error().message;
+
+  const fs::path broken = write("broken.shader", "Shader \"Broken\" {\n  Properties { _A (\"a\", Flaot) = 1 }\n}\n");
+  auto unread = compile_source(broken, {});
+  ASSERT_FALSE(unread);
+  EXPECT_EQ(unread.error().where.line, 2u);
+}
+
+}  // namespace
+}  // namespace xshade::harness
