@@ -12,7 +12,7 @@ namespace {
 
 using Strings = std::vector<std::string>;
 
-std::unique_ptr<Module> compile(const std::string& pragmas, Strings keywords = {}) {
+std::unique_ptr<Module> compile_with_pragmas(const std::string& pragmas, Strings keywords = {}) {
   CompileOptions options;
   options.keywords = std::move(keywords);
   return compile_text("k.hlsl",
@@ -20,7 +20,7 @@ std::unique_ptr<Module> compile(const std::string& pragmas, Strings keywords = {
                       options);
 }
 
-Strings rendered(const Module& module) {
+Strings messages(const Module& module) {
   Strings out;
   for (size_t i = 0; i < module.diagnostics.diagnostics().size(); ++i) out.push_back(module.diagnostics.render(i));
   return out;
@@ -34,8 +34,8 @@ TEST(KeywordPragmas, ScopeSuffixesDeclareTheSetsThePlainFormsDo) {
   EXPECT_FALSE(keyword_pragma("multi_compile_fwdbase"));  // a shortcut, not a list on the line
   EXPECT_FALSE(keyword_pragma("shader_feature_locale"));
 
-  auto module = compile("#pragma multi_compile_local _ A B\n#pragma shader_feature_local_fragment C\n", {"B"});
-  EXPECT_TRUE(rendered(*module).empty()) << rendered(*module)[0];
+  auto module = compile_with_pragmas("#pragma multi_compile_local _ A B\n#pragma shader_feature_local_fragment C\n", {"B"});
+  EXPECT_TRUE(messages(*module).empty()) << messages(*module)[0];
   ASSERT_EQ(module->reflection.keyword_sets.size(), 2u);
   EXPECT_EQ(module->reflection.keyword_sets[0].keywords, (Strings{"_", "A", "B"}));
   EXPECT_EQ(module->reflection.keyword_sets[1].keywords, (Strings{"_", "C"}));
@@ -46,8 +46,8 @@ TEST(KeywordPragmas, ScopeSuffixesDeclareTheSetsThePlainFormsDo) {
 // A ForwardBase pass with one directional light and the environment's harmonics: DIRECTIONAL and
 // LIGHTPROBE_SH on, every lightmap, shadow and fog keyword off, unless the scene asks.
 TEST(KeywordPragmas, ShortcutsDeclareUnitysListsWithTheVariantTheRendererDrawsFirst) {
-  auto module = compile("#pragma multi_compile_fwdbase\n#pragma multi_compile_fog\n");
-  EXPECT_TRUE(rendered(*module).empty()) << rendered(*module)[0];
+  auto module = compile_with_pragmas("#pragma multi_compile_fwdbase\n#pragma multi_compile_fog\n");
+  EXPECT_TRUE(messages(*module).empty()) << messages(*module)[0];
   EXPECT_EQ(module->reflection.active_keywords, (Strings{"DIRECTIONAL", "LIGHTPROBE_SH"}));
   Strings declared;
   for (const KeywordSet& set : module->reflection.keyword_sets)
@@ -57,34 +57,34 @@ TEST(KeywordPragmas, ShortcutsDeclareUnitysListsWithTheVariantTheRendererDrawsFi
                                "SHADOWS_SCREEN", "SHADOWS_SHADOWMASK", "LIGHTMAP_SHADOW_MIXING", "FOG_LINEAR", "FOG_EXP",
                                "FOG_EXP2"}));
 
-  auto fogged = compile("#pragma multi_compile_fwdbase\n#pragma multi_compile_fog\n", {"FOG_EXP2"});
+  auto fogged = compile_with_pragmas("#pragma multi_compile_fwdbase\n#pragma multi_compile_fog\n", {"FOG_EXP2"});
   EXPECT_EQ(fogged->reflection.active_keywords, (Strings{"FOG_EXP2", "DIRECTIONAL", "LIGHTPROBE_SH"}));
 
   // Unity adds no variant without a keyword here: a shadow caster is for a directional or spot
   // light's depth, or a point light's cube.
-  auto caster = compile("#pragma multi_compile_shadowcaster\n");
+  auto caster = compile_with_pragmas("#pragma multi_compile_shadowcaster\n");
   EXPECT_EQ(caster->reflection.active_keywords, (Strings{"SHADOWS_DEPTH"}));
   EXPECT_FALSE(keyword_shortcut("multi_compile_fwdbsae"));
 }
 
 TEST(KeywordPragmas, SkippedKeywordsAreNoChoiceOfTheirSet) {
-  auto module = compile("#pragma multi_compile_fog\n#pragma skip_variants FOG_EXP FOG_EXP2\n");
+  auto module = compile_with_pragmas("#pragma multi_compile_fog\n#pragma skip_variants FOG_EXP FOG_EXP2\n");
   ASSERT_EQ(module->reflection.keyword_sets.size(), 1u);
   EXPECT_EQ(module->reflection.keyword_sets[0].keywords, (Strings{"_", "FOG_LINEAR"}));
 }
 
 TEST(KeywordPragmas, UnitysBuildPragmasAreReadQuietlyAndOtherStagesAreErrors) {
-  EXPECT_TRUE(rendered(*compile("#pragma target 3.0\n#pragma only_renderers d3d11 glcore\n#pragma require derivatives\n"))
+  EXPECT_TRUE(messages(*compile_with_pragmas("#pragma target 3.0\n#pragma only_renderers d3d11 glcore\n#pragma require derivatives\n"))
                   .empty());
-  const Strings misspelt = rendered(*compile("#pragma multi_compile_fwdbsae\n"));
+  const Strings misspelt = messages(*compile_with_pragmas("#pragma multi_compile_fwdbsae\n"));
   ASSERT_EQ(misspelt.size(), 1u);
   EXPECT_TRUE(misspelt[0].starts_with("k.hlsl:1:9: warning: unknown pragma 'multi_compile_fwdbsae'")) << misspelt[0];
-  const Strings geometry = rendered(*compile("#pragma geometry geom\n"));
+  const Strings geometry = messages(*compile_with_pragmas("#pragma geometry geom\n"));
   ASSERT_FALSE(geometry.empty());
   EXPECT_NE(geometry[0].find("k.hlsl:1:9: error: xshade compiles vertex and fragment stages; a geometry stage"),
             std::string::npos)
       << geometry[0];
-  const Strings surface = rendered(*compile("#pragma surface surf Lambert\n"));
+  const Strings surface = messages(*compile_with_pragmas("#pragma surface surf Lambert\n"));
   ASSERT_FALSE(surface.empty());
   EXPECT_NE(surface[0].find("error: #pragma surface makes a surface shader"), std::string::npos) << surface[0];
 }

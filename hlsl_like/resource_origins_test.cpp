@@ -12,7 +12,7 @@ namespace {
 
 using Strings = std::vector<std::string>;
 
-std::unique_ptr<Module> compile(const std::string& body, const std::string& functions = "") {
+std::unique_ptr<Module> compile_body(const std::string& body, const std::string& functions = "") {
   const std::string source = "#pragma fragment frag\n"
                              "struct Pair { SamplerState smpl; Texture2D tex; };\n"
                              "Texture2D _A; Texture2D _B; SamplerState s_A; SamplerState s_B;\n" +
@@ -20,7 +20,7 @@ std::unique_ptr<Module> compile(const std::string& body, const std::string& func
   return compile_text("test.hlsl", source, {});
 }
 
-Strings errors(const Module& module) {
+Strings error_messages(const Module& module) {
   Strings out;
   for (const Diagnostic& d : module.diagnostics.diagnostics())
     if (d.severity == Severity::Error) out.push_back(d.to_string());
@@ -28,7 +28,7 @@ Strings errors(const Module& module) {
 }
 
 TEST(ResourceOrigins, LocalsAndFieldsNameTheGlobalsTheyAreGiven) {
-  auto module = compile("Pair p; p.tex = _B; p.smpl = s_B; Texture2D t = p.tex; return t.Sample(p.smpl, uv);");
+  auto module = compile_body("Pair p; p.tex = _B; p.smpl = s_B; Texture2D t = p.tex; return t.Sample(p.smpl, uv);");
   ASSERT_TRUE(module->ok()) << module->diagnostics.render_all();
   // Reflection pairs the texture with its sampler through the struct, as the Vulkan lanes need.
   ASSERT_EQ(module->reflection.textures.size(), 2u);
@@ -39,7 +39,7 @@ TEST(ResourceOrigins, LocalsAndFieldsNameTheGlobalsTheyAreGiven) {
 }
 
 TEST(ResourceOrigins, AStructParameterIsTracedToWhatTheCallPasses) {
-  auto module = compile("Pair p; p.tex = _A; p.smpl = s_A; return read(p, uv);",
+  auto module = compile_body("Pair p; p.tex = _A; p.smpl = s_A; return read(p, uv);",
                         "float4 read(Pair p, float2 uv) { return p.tex.SampleLevel(p.smpl, uv, 0); }\n");
   ASSERT_TRUE(module->ok()) << module->diagnostics.render_all();
   EXPECT_EQ(module->reflection.textures[0].sampler, "s_A");
@@ -47,24 +47,24 @@ TEST(ResourceOrigins, AStructParameterIsTracedToWhatTheCallPasses) {
 }
 
 TEST(ResourceOrigins, AResourceNotKnownWhenCompilingIsAnErrorAtItsPlace) {
-  EXPECT_EQ(errors(*compile("Texture2D t = _A; if (uv.x > 0.5) t = _B; return t.Sample(s_A, uv);")),
+  EXPECT_EQ(error_messages(*compile_body("Texture2D t = _A; if (uv.x > 0.5) t = _B; return t.Sample(s_A, uv);")),
             (Strings{"test.hlsl:5:35: error: resource 't' is given inside a branch or a loop; its resource must be "
                      "known when compiling: give it once, before any branch"}));
-  EXPECT_EQ(errors(*compile("Pair p; p.tex = _A; return p.tex.Sample(p.smpl, uv);")),
+  EXPECT_EQ(error_messages(*compile_body("Pair p; p.tex = _A; return p.tex.Sample(p.smpl, uv);")),
             (Strings{"test.hlsl:5:43: error: resource 'p.smpl' is read before it is given one: a local resource "
                      "names a global or a parameter, assigned before it is read"}));
-  EXPECT_EQ(errors(*compile("Texture2D t = uv.x > 0.5 ? _A : _B; return t.Sample(s_A, uv);")),
+  EXPECT_EQ(error_messages(*compile_body("Texture2D t = uv.x > 0.5 ? _A : _B; return t.Sample(s_A, uv);")),
             (Strings{"test.hlsl:5:26: error: '?:' cannot choose between resources here: which one is read must be "
                      "known when compiling"}));
 }
 
 TEST(ResourceOrigins, UnreachedFunctionsAreNotFollowed) {
-  auto module = compile("return 0;", "float4 unused(float2 uv) { Texture2D t; return t.Sample(s_A, uv); }\n");
+  auto module = compile_body("return 0;", "float4 unused(float2 uv) { Texture2D t; return t.Sample(s_A, uv); }\n");
   EXPECT_TRUE(module->ok()) << module->diagnostics.render_all();
 }
 
 TEST(ResourceOrigins, ResourcePathsListEveryResourceOfAType) {
-  auto module = compile("return 0;", "struct Outer { float scale; Pair inner; Texture2D other; };\n");
+  auto module = compile_body("return 0;", "struct Outer { float scale; Pair inner; Texture2D other; };\n");
   ASSERT_TRUE(module->ok());
   const StructDecl* outer = nullptr;
   for (const auto& decl : module->unit.decls)

@@ -2,25 +2,21 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 
 #include <glm/geometric.hpp>
 
 namespace xshade::harness {
-namespace {
-
-constexpr double kPi = 3.14159265358979323846;
-
-}  // namespace
 
 glm::vec2 equirect_uv(glm::vec3 direction) {
-  double u = 0.5 + std::atan2(double(direction.x), double(direction.z)) / (2.0 * kPi);
-  double v = std::acos(std::clamp(double(direction.y), -1.0, 1.0)) / kPi;
+  double u = 0.5 + std::atan2(double(direction.x), double(direction.z)) / (2.0 * std::numbers::pi);
+  double v = std::acos(std::clamp(double(direction.y), -1.0, 1.0)) / std::numbers::pi;
   return {float(u), float(v)};
 }
 
 glm::vec3 equirect_direction(glm::vec2 uv) {
-  double phi = (double(uv.x) - 0.5) * 2.0 * kPi;
-  double theta = double(uv.y) * kPi;
+  double phi = (double(uv.x) - 0.5) * 2.0 * std::numbers::pi;
+  double theta = double(uv.y) * std::numbers::pi;
   double sin_theta = std::sin(theta);
   return {float(sin_theta * std::sin(phi)), float(std::cos(theta)), float(sin_theta * std::cos(phi))};
 }
@@ -30,9 +26,9 @@ glm::vec3 equirect_texel_direction(uint32_t x, uint32_t y, uint32_t width, uint3
 }
 
 double equirect_texel_solid_angle(uint32_t y, uint32_t width, uint32_t height) {
-  double theta_top = kPi * y / height;
-  double theta_bottom = kPi * (y + 1) / height;
-  return (2.0 * kPi / width) * (std::cos(theta_top) - std::cos(theta_bottom));
+  double theta_top = std::numbers::pi * y / height;
+  double theta_bottom = std::numbers::pi * (y + 1) / height;
+  return (2.0 * std::numbers::pi / width) * (std::cos(theta_top) - std::cos(theta_bottom));
 }
 
 glm::vec4 sample_equirect(const FloatImage& image, glm::vec2 uv) {

@@ -1,6 +1,7 @@
 #include "harness/assets/equirect.h"
 
 #include <cmath>
+#include <numbers>
 
 #include <glm/geometric.hpp>
 #include <gtest/gtest.h>
@@ -8,7 +9,6 @@
 namespace xshade::harness {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 // Float rounding of atan2/acos results near 1 and of the division by 2 pi.
 constexpr float kUvTolerance = 1e-6f;
 
@@ -37,9 +37,9 @@ TEST(EquirectUv, DirectionIsItsInverse) {
 TEST(EquirectTexelSolidAngle, TheWholeImageIsTheSphere) {
   double total = 0.0;
   for (uint32_t y = 0; y < 64; ++y) total += 128 * equirect_texel_solid_angle(y, 128, 64);
-  EXPECT_NEAR(total, 4.0 * kPi, 1e-9);  // double rounding over 64 rows
+  EXPECT_NEAR(total, 4.0 * std::numbers::pi, 1e-9);  // double rounding over 64 rows
   // A texel at the equator is nearly a (2 pi / W) x (pi / H) rectangle.
-  EXPECT_NEAR(equirect_texel_solid_angle(31, 128, 64), (2 * kPi / 128) * (kPi / 64), 1e-5);
+  EXPECT_NEAR(equirect_texel_solid_angle(31, 128, 64), (2 * std::numbers::pi / 128) * (std::numbers::pi / 64), 1e-5);
 }
 
 TEST(SampleEquirect, WrapsAcrossTheSeamAndClampsAtThePoles) {

@@ -1,13 +1,12 @@
 #include "harness/assets/meshes.h"
 
 #include <cmath>
+#include <numbers>
 
 #include <glm/geometric.hpp>
 
 namespace xshade::harness {
 namespace {
-
-constexpr float kPi = 3.14159265358979f;
 
 // A point of a parametric surface: where it is, its unit normal, and the directions of
 // increasing u and v along it.
@@ -58,7 +57,7 @@ MeshData grid_mesh(uint32_t columns, uint32_t rows, bool poles, Surface surface)
 }
 
 // The azimuth of u on the sphere and the torus: u = 0.5 at +z, as in the equirect mapping.
-float azimuth(float u) { return (u - 0.5f) * 2.0f * kPi; }
+float azimuth(float u) { return (u - 0.5f) * 2.0f * std::numbers::pi_v<float>; }
 
 glm::vec3 along_azimuth(float phi) { return {std::cos(phi), 0.0f, -std::sin(phi)}; }
 
@@ -80,7 +79,7 @@ MeshData clip_rectangle(float x0, float y0, float x1, float y1, float z) {
 
 MeshData sphere_mesh(uint32_t segments, uint32_t rings) {
   return grid_mesh(segments, rings, true, [](glm::vec2 uv) {
-    const float phi = azimuth(uv.x), theta = uv.y * kPi;
+    const float phi = azimuth(uv.x), theta = uv.y * std::numbers::pi_v<float>;
     // Exact poles, so that a pole's vertices coincide.
     const float sin_theta = uv.y == 0.0f || uv.y == 1.0f ? 0.0f : std::sin(theta);
     const float cos_theta = uv.y == 0.0f ? 1.0f : uv.y == 1.0f ? -1.0f : std::cos(theta);
@@ -93,7 +92,7 @@ MeshData sphere_mesh(uint32_t segments, uint32_t rings) {
 MeshData torus_mesh(float major_radius, float minor_radius, uint32_t segments, uint32_t sides) {
   return grid_mesh(segments, sides, false, [=](glm::vec2 uv) {
     const float phi = azimuth(uv.x);
-    const float psi = 0.5f * kPi - uv.y * 2.0f * kPi;  // the angle above the tube's outer equator
+    const float psi = 0.5f * std::numbers::pi_v<float> - uv.y * 2.0f * std::numbers::pi_v<float>;  // the angle above the tube's outer equator
     const float ring = major_radius + minor_radius * std::cos(psi);
     glm::vec3 position{ring * std::sin(phi), minor_radius * std::sin(psi), ring * std::cos(phi)};
     glm::vec3 normal{std::cos(psi) * std::sin(phi), std::sin(psi), std::cos(psi) * std::cos(phi)};

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <numbers>
 #include <vector>
 
 #include <glm/geometric.hpp>
@@ -12,7 +13,6 @@
 namespace xshade::harness {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 // GGX samples per output texel. With filtered importance sampling each sample already averages
 // the source over its share of the lobe, so a few hundred leave no visible noise or banding.
 constexpr uint32_t kSamples = 256;
@@ -87,12 +87,12 @@ std::vector<LobeSample> lobe_samples(double alpha, double source_texel_solid_ang
     // Half vectors distributed as D(n.h) (n.h) (Walter et al. 2007).
     double cos_h = std::sqrt((1.0 - xi.x) / (1.0 + (a2 - 1.0) * xi.x));
     double sin_h = std::sqrt(std::max(0.0, 1.0 - cos_h * cos_h));
-    double phi = 2.0 * kPi * xi.y;
+    double phi = 2.0 * std::numbers::pi * xi.y;
     glm::dvec3 h{sin_h * std::cos(phi), sin_h * std::sin(phi), cos_h};
     glm::dvec3 l = 2.0 * cos_h * h - glm::dvec3(0.0, 0.0, 1.0);
     if (l.z <= 0.0) continue;
     // With v = n, the density of l per solid angle is D(n.h) (n.h) / (4 v.h) = D(n.h) / 4.
-    double d = a2 / (kPi * std::pow(cos_h * cos_h * (a2 - 1.0) + 1.0, 2.0));
+    double d = a2 / (std::numbers::pi * std::pow(cos_h * cos_h * (a2 - 1.0) + 1.0, 2.0));
     double sample_solid_angle = 1.0 / (kSamples * d / 4.0);
     double lod = 0.5 * std::log2(sample_solid_angle / source_texel_solid_angle) + kLodBias;
     lod = std::clamp(lod, 0.0, double(source_levels - 1));
@@ -105,7 +105,7 @@ std::vector<LobeSample> lobe_samples(double alpha, double source_texel_solid_ang
 FloatImage prefilter_level(const std::vector<FloatImage>& chain, uint32_t width, uint32_t height, double alpha) {
   // Texel footprints are judged by their extent in theta, pi / height, the larger side of an
   // equirect texel everywhere (the phi side shrinks toward the poles).
-  const double texel_extent = kPi / chain.front().height;
+  const double texel_extent = std::numbers::pi / chain.front().height;
   const std::vector<LobeSample> samples = lobe_samples(alpha, texel_extent * texel_extent, chain.size());
   FloatImage level(width, height);
   std::vector<glm::vec2> sample_uv(samples.size());

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 
 #include <glm/geometric.hpp>
 #include <gtest/gtest.h>
@@ -10,8 +11,6 @@
 
 namespace xshade::harness {
 namespace {
-
-constexpr double kPi = 3.14159265358979323846;
 
 FloatImage constant_image(float value) {
   FloatImage image(kPrefilteredWidth, kPrefilteredHeight);
@@ -26,7 +25,7 @@ double sphere_mean(const FloatImage& image) {
   for (uint32_t y = 0; y < image.height; ++y)
     for (uint32_t x = 0; x < image.width; ++x)
       sum += image.at(x, y).x * equirect_texel_solid_angle(y, image.width, image.height);
-  return sum / (4.0 * kPi);
+  return sum / (4.0 * std::numbers::pi);
 }
 
 TEST(PrefilteredMip, FollowsUnitysRoughnessMapping) {
@@ -77,7 +76,7 @@ struct BrightCap {
 double ggx(double alpha, double n_dot_h) {
   double a2 = alpha * alpha;
   double denominator = n_dot_h * n_dot_h * (a2 - 1.0) + 1.0;
-  return a2 / (kPi * denominator * denominator);
+  return a2 / (std::numbers::pi * denominator * denominator);
 }
 
 // The split-sum prefilter by brute force over every source texel: the integral of

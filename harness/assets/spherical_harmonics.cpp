@@ -2,19 +2,18 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 #include <vector>
 
 namespace xshade::harness {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
-
 // The normalisation constants, exact; they round to the six-digit values in the header.
-const double kBand0 = 0.5 * std::sqrt(1.0 / kPi);          // 0.282095
-const double kBand1 = std::sqrt(3.0 / (4.0 * kPi));        // 0.488603
-const double kProduct = 0.5 * std::sqrt(15.0 / kPi);        // 1.092548
-const double kZonal = 0.25 * std::sqrt(5.0 / kPi);          // 0.315392
-const double kDifference = 0.25 * std::sqrt(15.0 / kPi);    // 0.546274
+const double kBand0 = 0.5 * std::sqrt(1.0 / std::numbers::pi);          // 0.282095
+const double kBand1 = std::sqrt(3.0 / (4.0 * std::numbers::pi));        // 0.488603
+const double kProduct = 0.5 * std::sqrt(15.0 / std::numbers::pi);        // 1.092548
+const double kZonal = 0.25 * std::sqrt(5.0 / std::numbers::pi);          // 0.315392
+const double kDifference = 0.25 * std::sqrt(15.0 / std::numbers::pi);    // 0.546274
 
 // The cosine lobe's transfer per band divided by pi: A0 / pi, A1 / pi, A2 / pi.
 constexpr std::array<double, 9> kConvolution = {1.0,       2.0 / 3.0, 2.0 / 3.0, 2.0 / 3.0, 0.25,
@@ -28,8 +27,8 @@ struct RowIntegrals {
 };
 
 RowIntegrals row_integrals(uint32_t y, uint32_t height) {
-  double t0 = std::cos(kPi * y / height);         // top edge
-  double t1 = std::cos(kPi * (y + 1) / height);   // bottom edge
+  double t0 = std::cos(std::numbers::pi * y / height);         // top edge
+  double t1 = std::cos(std::numbers::pi * (y + 1) / height);   // bottom edge
   auto sine_antiderivative = [](double t) {
     return 0.5 * (t * std::sqrt(std::max(0.0, 1.0 - t * t)) + std::asin(t));
   };
@@ -50,8 +49,8 @@ struct ColumnIntegrals {
 };
 
 ColumnIntegrals column_integrals(uint32_t x, uint32_t width) {
-  double p0 = (double(x) / width - 0.5) * 2.0 * kPi;
-  double p1 = (double(x + 1) / width - 0.5) * 2.0 * kPi;
+  double p0 = (double(x) / width - 0.5) * 2.0 * std::numbers::pi;
+  double p1 = (double(x + 1) / width - 0.5) * 2.0 * std::numbers::pi;
   ColumnIntegrals c{};
   c.one = p1 - p0;
   c.cosine = std::sin(p1) - std::sin(p0);

@@ -10,6 +10,7 @@
 // - Resources are bound by name through the program's layout, never by hard-coded numbers.
 #pragma once
 
+#include <compare>
 #include <cstddef>
 #include <cstdint>
 #include <memory>
@@ -219,11 +220,50 @@ struct TextureBinding {
   TextureSource source;
 };
 
+// How a draw is rasterized, depth-tested and blended into the target: the render state of a
+// Unity pass (ShaderLab's Cull, ZWrite, ZTest, Blend, BlendOp, ColorMask, Offset) with its
+// Direct3D meaning on every backend. A front face is one whose vertices run clockwise in the
+// image (row 0 at the top), as in Direct3D and Unity; Back culls the others. The default is what
+// a pass of xshade's own materials has always had: no culling, depth written and tested less, no
+// blending, every channel written.
+enum class CullMode { Off, Back, Front };
+enum class BlendFactor {
+  Zero, One, SrcColor, OneMinusSrcColor, DstColor, OneMinusDstColor,
+  SrcAlpha, OneMinusSrcAlpha, DstAlpha, OneMinusDstAlpha, SrcAlphaSaturate,
+};
+enum class BlendOp { Add, Subtract, ReverseSubtract, Min, Max };
+
+struct BlendState {
+  bool enabled = false;
+  BlendFactor color_source = BlendFactor::One, color_destination = BlendFactor::Zero;
+  BlendFactor alpha_source = BlendFactor::One, alpha_destination = BlendFactor::Zero;
+  BlendOp color_op = BlendOp::Add, alpha_op = BlendOp::Add;
+  friend bool operator==(const BlendState&, const BlendState&) = default;
+  friend auto operator<=>(const BlendState&, const BlendState&) = default;
+};
+
+inline constexpr uint8_t kColorWriteAll = 0xF;  // bit 0 red, 1 green, 2 blue, 3 alpha
+
+struct DrawState {
+  CullMode cull = CullMode::Off;
+  bool depth_write = true;                    // where the target has depth
+  CompareOp depth_compare = CompareOp::Less;  // the incoming depth <op> the stored one
+  BlendState blend;                           // the first colour attachment's
+  uint8_t color_write = kColorWriteAll;
+  // Added to the depth before the test: factor x the triangle's depth slope + units x the
+  // smallest step of the depth format (Unity's Offset factor, units).
+  float depth_bias_slope = 0.0f;
+  float depth_bias_units = 0.0f;
+  friend bool operator==(const DrawState&, const DrawState&) = default;
+  friend auto operator<=>(const DrawState&, const DrawState&) = default;
+};
+
 struct DrawItem {
   ProgramHandle program;
   MeshHandle mesh;  // ignored (and may be empty) for a full-screen program
   std::vector<UniformBinding> uniforms;
   std::vector<TextureBinding> textures;
+  DrawState state;
 };
 
 // A draw's bindings matched to its program's layout by name: per layout slot, the binding that
@@ -264,8 +304,8 @@ struct TargetDesc {
   bool second_color = false;
 };
 
-// One pass into one target: clear, then the draws in order, depth-tested (less) when the target
-// has depth. No blending and no culling. A pass may sample any target but its own.
+// One pass into one target: clear, then the draws in order, each with its DrawState (the depth
+// test and write only where the target has depth). A pass may sample any target but its own.
 struct RenderPass {
   TargetHandle target;
   glm::vec4 clear_color{0.0f};

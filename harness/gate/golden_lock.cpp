@@ -16,7 +16,7 @@ namespace {
 namespace fs = std::filesystem;
 
 // Tries without waiting first, so that the notice is given only when there is something to wait for.
-Result<void> lock(int fd, GoldenLock::Mode mode, const fs::path& path, const LockWaitNotice& notice) {
+Result<void> take_flock(int fd, GoldenLock::Mode mode, const fs::path& path, const LockWaitNotice& notice) {
   const int operation = mode == GoldenLock::Mode::Exclusive ? LOCK_EX : LOCK_SH;
   if (::flock(fd, operation | LOCK_NB) == 0) return {};
   if (errno != EWOULDBLOCK)
@@ -44,7 +44,7 @@ Result<GoldenLock> GoldenLock::acquire(const fs::path& folder, Mode mode, const 
     return fail(ErrorKind::Backend, fmt::format("cannot open the golden folder's lock {}: {}", path.string(),
                                                 std::strerror(errno)));
   GoldenLock held(fd, mode, path);
-  if (Result<void> locked = lock(fd, mode, path, notice); !locked) return fail(locked.error());
+  if (Result<void> locked = take_flock(fd, mode, path, notice); !locked) return fail(locked.error());
   return held;
 }
 
@@ -53,7 +53,7 @@ Result<void> GoldenLock::upgrade(const LockWaitNotice& notice) {
   if (mode_ == Mode::Exclusive) return {};
   ::flock(fd_, LOCK_UN);
   mode_ = Mode::Exclusive;
-  return lock(fd_, mode_, path_, notice);
+  return take_flock(fd_, mode_, path_, notice);
 }
 
 GoldenLock::GoldenLock(GoldenLock&& other) noexcept

@@ -67,7 +67,7 @@ std::vector<std::byte> bytes_of(const T& value) {
 DrawItem draw(ProgramHandle program, MeshHandle mesh = {},
               std::vector<UniformBinding> uniforms = {},
               std::vector<TextureBinding> textures = {}) {
-  return DrawItem{program, mesh, std::move(uniforms), std::move(textures)};
+  return DrawItem{program, mesh, std::move(uniforms), std::move(textures), {}};
 }
 
 TextureSlot texture_slot(std::string name, uint32_t binding) {

@@ -25,6 +25,15 @@ namespace xshade::harness::gl {
   X(PFNGLDEPTHFUNCPROC, DepthFunc)                                           \
   X(PFNGLDEPTHMASKPROC, DepthMask)                                           \
   X(PFNGLCOLORMASKPROC, ColorMask)                                           \
+  /* a draw's render state */                                                \
+  X(PFNGLENABLEIPROC, Enablei)                                               \
+  X(PFNGLDISABLEIPROC, Disablei)                                             \
+  X(PFNGLBLENDFUNCSEPARATEIPROC, BlendFuncSeparatei)                         \
+  X(PFNGLBLENDEQUATIONSEPARATEIPROC, BlendEquationSeparatei)                 \
+  X(PFNGLCOLORMASKIPROC, ColorMaski)                                         \
+  X(PFNGLCULLFACEPROC, CullFace)                                             \
+  X(PFNGLFRONTFACEPROC, FrontFace)                                           \
+  X(PFNGLPOLYGONOFFSETPROC, PolygonOffset)                                   \
   X(PFNGLFINISHPROC, Finish)                                                 \
   /* KHR_debug */                                                            \
   X(PFNGLDEBUGMESSAGECALLBACKPROC, DebugMessageCallback)                     \

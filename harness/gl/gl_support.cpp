@@ -35,6 +35,34 @@ GLenum gl_target(TextureShape shape) {
   return GL_TEXTURE_2D;
 }
 
+GLenum gl_blend_factor(BlendFactor factor) {
+  switch (factor) {
+    case BlendFactor::Zero: return GL_ZERO;
+    case BlendFactor::One: return GL_ONE;
+    case BlendFactor::SrcColor: return GL_SRC_COLOR;
+    case BlendFactor::OneMinusSrcColor: return GL_ONE_MINUS_SRC_COLOR;
+    case BlendFactor::DstColor: return GL_DST_COLOR;
+    case BlendFactor::OneMinusDstColor: return GL_ONE_MINUS_DST_COLOR;
+    case BlendFactor::SrcAlpha: return GL_SRC_ALPHA;
+    case BlendFactor::OneMinusSrcAlpha: return GL_ONE_MINUS_SRC_ALPHA;
+    case BlendFactor::DstAlpha: return GL_DST_ALPHA;
+    case BlendFactor::OneMinusDstAlpha: return GL_ONE_MINUS_DST_ALPHA;
+    case BlendFactor::SrcAlphaSaturate: return GL_SRC_ALPHA_SATURATE;
+  }
+  return GL_ONE;
+}
+
+GLenum gl_blend_op(BlendOp op) {
+  switch (op) {
+    case BlendOp::Add: return GL_FUNC_ADD;
+    case BlendOp::Subtract: return GL_FUNC_SUBTRACT;
+    case BlendOp::ReverseSubtract: return GL_FUNC_REVERSE_SUBTRACT;
+    case BlendOp::Min: return GL_MIN;
+    case BlendOp::Max: return GL_MAX;
+  }
+  return GL_FUNC_ADD;
+}
+
 GLint gl_compare_function(CompareOp op) {
   switch (op) {
     case CompareOp::Never: return GL_NEVER;

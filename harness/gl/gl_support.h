@@ -80,6 +80,8 @@ struct GlFormat {
 GlFormat gl_format(TextureFormat format);
 GLenum gl_target(TextureShape shape);
 GLint gl_compare_function(CompareOp op);
+GLenum gl_blend_factor(BlendFactor factor);
+GLenum gl_blend_op(BlendOp op);
 // What a vertex input of GL type `type` reads as; empty for a type no mesh or zero fills (a
 // matrix, a double).
 std::optional<TexelKind> attribute_kind(GLint type);

@@ -89,7 +89,7 @@ Result<FloatImage> FullscreenProgram::run(Backend& backend, uint32_t width, uint
   ResourceSet resources(backend);
   auto target = resources.create_target({width, height, false, traced_});
   if (!target) return fail(target.error());
-  DrawItem draw{program_, {}, {}, {}};
+  DrawItem draw{program_, {}, {}, {}, {}};
   for (const Buffer& buffer : buffers_) {
     auto given = constant_buffers.find(buffer.name);
     const std::vector<std::byte>& bytes = given != constant_buffers.end() ? given->second : buffer.defaults;

@@ -14,7 +14,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-const fs::path kLibrary = fs::path(XSHADE_SOURCE_DIR) / "shaders";
+const fs::path kShaderLibrary = fs::path(XSHADE_SOURCE_DIR) / "shaders";
 
 // Eight lines, so that a scene body's first line is line 9 of the file.
 constexpr const char* kHeader = R"(description = "contract test"
@@ -27,7 +27,7 @@ near = 0.3
 far = 100
 )";
 
-Result<Plan> plan(const std::string& body, const ShaderSearchPath& shaders = kLibrary) {
+Result<Plan> plan(const std::string& body, const ShaderSearchPath& shaders = kShaderLibrary) {
   auto scene = parse_scene(std::string(kHeader) + body, "/tmp/contract_test.toml");
   EXPECT_TRUE(scene) << scene.error().to_string();
   if (!scene) return fail("scene does not parse");
@@ -150,7 +150,7 @@ _Strength = 1
 _RampTexture = "checker"
 _RampTex = "white"
 )",
-                      ShaderSearchPath({user, kLibrary}));
+                      ShaderSearchPath({user, kShaderLibrary}));
   ASSERT_FALSE(planned);
   EXPECT_EQ(planned.error().where.line, 15u);
   EXPECT_EQ(planned.error().message,
@@ -166,7 +166,7 @@ material = "materials/ramp.hlsl"
 [object.properties]
 _Strength = 1
 )",
-                      ShaderSearchPath({user, kLibrary}));
+                      ShaderSearchPath({user, kShaderLibrary}));
   ASSERT_FALSE(missing);
   EXPECT_EQ(missing.error().where.line, 12u);  // the material line
   EXPECT_NE(missing.error().message.find("object 'ball': material 'materials/ramp.hlsl' samples '_RampTex', which the "
@@ -184,7 +184,7 @@ _Strength = 1
 [object.textures]
 _RampTex = "checker"
 )",
-                    ShaderSearchPath({user, kLibrary}));
+                    ShaderSearchPath({user, kShaderLibrary}));
   ASSERT_TRUE(given) << given.error().to_string();
   ASSERT_EQ(given->instances.size(), 1u);
   ASSERT_TRUE(given->instances[0].textures.count("_MaskTex"));
@@ -203,7 +203,7 @@ material = "materials/ramp.hlsl"
 [object.textures]
 _RampTex = "checker"
 )",
-                      ShaderSearchPath({user, kLibrary}));
+                      ShaderSearchPath({user, kShaderLibrary}));
   ASSERT_FALSE(planned);
   EXPECT_EQ(planned.error().where.line, 12u);
   EXPECT_NE(planned.error().message.find("uniform '_Strength' (float) has no value"), std::string::npos)
@@ -237,7 +237,7 @@ float4 frag(float4 p : SV_Position) : SV_Target { return _MaskTex.Sample(s, p.xy
 mesh = "sphere"
 material = "materials/bad_default.hlsl"
 )",
-                      ShaderSearchPath({user, kLibrary}));
+                      ShaderSearchPath({user, kShaderLibrary}));
   ASSERT_FALSE(planned);
   ASSERT_FALSE(planned.error().diagnostics.empty());
   EXPECT_NE(planned.error().diagnostics[0].message.find("Default of texture '_MaskTex' must be \"white\""),

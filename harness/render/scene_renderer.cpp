@@ -321,7 +321,7 @@ class SceneRenderer {
       if (!handle) return fail(handle.error());
       auto mesh_handle = mesh(instance.mesh);
       if (!mesh_handle) return fail(in_context(where, mesh_handle.error()));
-      DrawItem draw{*handle, *mesh_handle, {}, {}};
+      DrawItem draw{*handle, *mesh_handle, {}, {}, {}};
       for (const std::string& name : variants_[variant].interface.textures) {
         auto engine = engine_texture(name);
         if (!engine) return fail(in_context(where + ": texture '" + name + "'", engine.error()));
@@ -373,7 +373,7 @@ class SceneRenderer {
     // Unity draws a post pass as a blit: the identity model matrix.
     add_object_inputs(glm::mat4(1.0f), values);
     const CompiledVariant& variant = variants_[planned.variant];
-    DrawItem draw{{}, {}, {}, {}};
+    DrawItem draw{{}, {}, {}, {}, {}};
     if (!variant.program.fullscreen) {
       // The effect's own vertex shader (#pragma vertex, Unity's VertDefault) reads the triangle
       // Unity's post-processing stack draws.

@@ -97,7 +97,7 @@ Result<FloatImage> render(Backend& backend, Lane lane, uint32_t size) {
     auto mesh = resources.upload_mesh(spec.mesh);
     if (!mesh) return fail(mesh.error());
     pass.draws.push_back({*program, *mesh, {{"Quad", quad_uniforms(spec.color, spec.textured)}},
-                          {texture_binding}});
+                          {texture_binding}, {}});
   }
   if (auto rendered = backend.render(pass); !rendered) return fail(rendered.error());
   return backend.read_color(*target);

@@ -371,18 +371,40 @@ vk::raii::Pipeline create_draw_pipeline(const vk::raii::Device& device, const Dr
   const vk::PipelineInputAssemblyStateCreateInfo assembly(
       {}, vk::PrimitiveTopology::eTriangleList);
   const vk::PipelineViewportStateCreateInfo viewport({}, 1, nullptr, 1, nullptr);
+  const DrawState& state = spec.state;
+  // The negative viewport height puts clip +y at the image's row 0, so a triangle clockwise in
+  // the image is clockwise in framebuffer coordinates: Direct3D's front face.
   vk::PipelineRasterizationStateCreateInfo raster(
-      {}, VK_FALSE, VK_FALSE, vk::PolygonMode::eFill, vk::CullModeFlagBits::eNone,
-      vk::FrontFace::eCounterClockwise);
+      {}, VK_FALSE, VK_FALSE, vk::PolygonMode::eFill,
+      state.cull == CullMode::Back    ? vk::CullModeFlagBits::eBack
+      : state.cull == CullMode::Front ? vk::CullModeFlagBits::eFront
+                                      : vk::CullModeFlagBits::eNone,
+      vk::FrontFace::eClockwise);
   raster.lineWidth = 1.0f;
+  if (state.depth_bias_slope != 0.0f || state.depth_bias_units != 0.0f) {
+    raster.depthBiasEnable = VK_TRUE;
+    raster.depthBiasConstantFactor = state.depth_bias_units;
+    raster.depthBiasSlopeFactor = state.depth_bias_slope;
+  }
   const vk::PipelineMultisampleStateCreateInfo multisample({}, vk::SampleCountFlagBits::e1);
-  const vk::PipelineDepthStencilStateCreateInfo depth_state({}, depth, depth,
-                                                            vk::CompareOp::eLess);
-  vk::PipelineColorBlendAttachmentState blend_attachment;
-  blend_attachment.colorWriteMask =
-      vk::ColorComponentFlagBits::eR | vk::ColorComponentFlagBits::eG |
-      vk::ColorComponentFlagBits::eB | vk::ColorComponentFlagBits::eA;
-  const std::vector<vk::PipelineColorBlendAttachmentState> blend_attachments(spec.color_attachments, blend_attachment);
+  const vk::PipelineDepthStencilStateCreateInfo depth_state({}, depth, depth && state.depth_write,
+                                                            vk_compare_op(state.depth_compare));
+  vk::PipelineColorBlendAttachmentState written;
+  written.colorWriteMask = vk::ColorComponentFlagBits::eR | vk::ColorComponentFlagBits::eG |
+                           vk::ColorComponentFlagBits::eB | vk::ColorComponentFlagBits::eA;
+  std::vector<vk::PipelineColorBlendAttachmentState> blend_attachments(spec.color_attachments, written);
+  vk::PipelineColorBlendAttachmentState& first = blend_attachments.front();
+  first.colorWriteMask = vk::ColorComponentFlags(state.color_write);  // R, G, B, A are bits 0 to 3 in both
+  if (state.blend.enabled) {
+    const BlendState& b = state.blend;
+    first.blendEnable = VK_TRUE;
+    first.srcColorBlendFactor = vk_blend_factor(b.color_source);
+    first.dstColorBlendFactor = vk_blend_factor(b.color_destination);
+    first.colorBlendOp = vk_blend_op(b.color_op);
+    first.srcAlphaBlendFactor = vk_blend_factor(b.alpha_source);
+    first.dstAlphaBlendFactor = vk_blend_factor(b.alpha_destination);
+    first.alphaBlendOp = vk_blend_op(b.alpha_op);
+  }
   const vk::PipelineColorBlendStateCreateInfo blend({}, VK_FALSE, vk::LogicOp::eCopy, blend_attachments);
   const std::array<vk::DynamicState, 2> dynamic_states = {vk::DynamicState::eViewport,
                                                           vk::DynamicState::eScissor};
@@ -435,6 +457,34 @@ bool layout_has_binding(const ProgramLayout& layout, uint32_t binding) {
   for (const TextureSlot& texture : layout.textures)
     if (texture.binding == binding || texture.sampler_binding == binding) return true;
   return false;
+}
+
+vk::BlendFactor vk_blend_factor(BlendFactor factor) {
+  switch (factor) {
+    case BlendFactor::Zero: return vk::BlendFactor::eZero;
+    case BlendFactor::One: return vk::BlendFactor::eOne;
+    case BlendFactor::SrcColor: return vk::BlendFactor::eSrcColor;
+    case BlendFactor::OneMinusSrcColor: return vk::BlendFactor::eOneMinusSrcColor;
+    case BlendFactor::DstColor: return vk::BlendFactor::eDstColor;
+    case BlendFactor::OneMinusDstColor: return vk::BlendFactor::eOneMinusDstColor;
+    case BlendFactor::SrcAlpha: return vk::BlendFactor::eSrcAlpha;
+    case BlendFactor::OneMinusSrcAlpha: return vk::BlendFactor::eOneMinusSrcAlpha;
+    case BlendFactor::DstAlpha: return vk::BlendFactor::eDstAlpha;
+    case BlendFactor::OneMinusDstAlpha: return vk::BlendFactor::eOneMinusDstAlpha;
+    case BlendFactor::SrcAlphaSaturate: return vk::BlendFactor::eSrcAlphaSaturate;
+  }
+  return vk::BlendFactor::eOne;
+}
+
+vk::BlendOp vk_blend_op(BlendOp op) {
+  switch (op) {
+    case BlendOp::Add: return vk::BlendOp::eAdd;
+    case BlendOp::Subtract: return vk::BlendOp::eSubtract;
+    case BlendOp::ReverseSubtract: return vk::BlendOp::eReverseSubtract;
+    case BlendOp::Min: return vk::BlendOp::eMin;
+    case BlendOp::Max: return vk::BlendOp::eMax;
+  }
+  return vk::BlendOp::eAdd;
 }
 
 vk::CompareOp vk_compare_op(CompareOp op) {

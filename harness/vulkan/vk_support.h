@@ -145,6 +145,8 @@ vk::DebugUtilsMessengerCreateInfoEXT messenger_info(MessageLog* log);
 std::string version_string(uint32_t version);  // "1.3.230"
 vk::Format vk_format(TextureFormat format);
 vk::CompareOp vk_compare_op(CompareOp op);
+vk::BlendFactor vk_blend_factor(BlendFactor factor);
+vk::BlendOp vk_blend_op(BlendOp op);
 // Whether a uniform block, texture or separate sampler of `layout` sits at `binding` (of set 0).
 bool layout_has_binding(const ProgramLayout& layout, uint32_t binding);
 
@@ -163,8 +165,9 @@ struct DrawPipelineSpec {
   vk::Format color_format;
   vk::Format depth_format;  // eUndefined: no depth attachment, no depth test
   uint32_t color_attachments = 1;  // each of color_format, written by the locations 0, 1, ...
+  DrawState state;  // culling, depth and blending (of attachment 0; any other is written as it is)
 };
-// Triangles, no culling, no blending, depth-tested (less) with depth; viewport and scissor dynamic.
+// Triangles with `spec.state`; viewport and scissor dynamic.
 vk::raii::Pipeline create_draw_pipeline(const vk::raii::Device& device, const DrawPipelineSpec& spec);
 
 // The internal draw that fills a multisampled image: each sample of every texel of one layer

@@ -14,6 +14,7 @@
 #include <optional>
 #include <set>
 #include <stdexcept>
+#include <tuple>
 #include <utility>
 
 #include <fmt/format.h>
@@ -65,7 +66,8 @@ struct Program {
   vk::raii::DescriptorSetLayout set_layout{nullptr};
   vk::raii::PipelineLayout pipeline_layout{nullptr};
   // [target has depth + 2 * target has a second colour attachment]
-  std::array<std::optional<vk::raii::Pipeline>, 4> pipelines;
+  // One per target kind (with depth or not, with a second colour or not) and draw state it is drawn with.
+  std::map<std::tuple<bool, bool, DrawState>, vk::raii::Pipeline> pipelines;
 };
 
 // A failed vk::raii call says so; any other exception speaks for itself.
@@ -123,7 +125,7 @@ class VulkanBackend final : public Backend {
   const Buffer& zero_vertex_buffer();
   // Records with `record`, submits, waits. Layouts roll back if anything throws.
   void submit(const std::function<void(Recording&)>& record);
-  Result<vk::Pipeline> pipeline(Program& program, const Target& target);
+  Result<vk::Pipeline> pipeline(Program& program, const Target& target, const DrawState& state);
   Result<FloatImage> read_image(TargetHandle handle, bool second);
 
   // Every submit waits for its fence, so no work is in flight between calls and nothing a
@@ -623,18 +625,20 @@ Result<ProgramHandle> VulkanBackend::create_program(const ProgramDesc& desc) {
   });
 }
 
-Result<vk::Pipeline> VulkanBackend::pipeline(Program& program, const Target& target) {
+Result<vk::Pipeline> VulkanBackend::pipeline(Program& program, const Target& target, const DrawState& state) {
   const bool depth = target.depth.has_value();
   const bool second_color = target.second_color.has_value();
-  std::optional<vk::raii::Pipeline>& slot = program.pipelines[(depth ? 1 : 0) + (second_color ? 2 : 0)];
-  if (slot) return **slot;
+  const auto key = std::tuple{depth, second_color, state};
+  if (auto known = program.pipelines.find(key); known != program.pipelines.end()) return *known->second;
   return guarded<vk::Pipeline>(
       fmt::format("creating the pipeline of program '{}'", program.name), [&]() -> Result<vk::Pipeline> {
-        slot.emplace(vk_support::create_draw_pipeline(
-            device_, {*program.vertex, *program.fragment, program.vertex_entry.c_str(), program.fragment_entry.c_str(),
-                      program.vertex_inputs, program.zero_inputs, *program.pipeline_layout, kColorFormat,
-                      depth ? kDepthFormat : vk::Format::eUndefined, second_color ? 2u : 1u}));
-        return **slot;
+        auto made = program.pipelines.emplace(
+            key, vk_support::create_draw_pipeline(
+                     device_, {*program.vertex, *program.fragment, program.vertex_entry.c_str(),
+                               program.fragment_entry.c_str(), program.vertex_inputs, program.zero_inputs,
+                               *program.pipeline_layout, kColorFormat, depth ? kDepthFormat : vk::Format::eUndefined,
+                               second_color ? 2u : 1u, state}));
+        return *made.first->second;
       });
 }
 
@@ -684,8 +688,9 @@ Result<void> VulkanBackend::render(const RenderPass& pass) {
     std::vector<Image*> sampled_targets;
     vk::DeviceSize uniform_bytes = 0;
     size_t uniform_count = 0, combined_count = 0, separate_count = 0, image_only_count = 0;
-    for (const auto& draw : resolved->draws) {
-      auto made = pipeline(*draw.program, *target);
+    for (size_t d = 0; d < resolved->draws.size(); ++d) {
+      const auto& draw = resolved->draws[d];
+      auto made = pipeline(*draw.program, *target, pass.draws[d].state);
       if (!made) return fail(made.error());
       draws.push_back(Resolved{draw.program, draw.mesh, draw.uniforms, draw.textures, *made});
       const ProgramLayout& layout = draw.program->layout;

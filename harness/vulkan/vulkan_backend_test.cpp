@@ -187,7 +187,7 @@ void main() {
   auto a = backend_->create_target({2, 2, true});
   auto b = backend_->create_target({1, 1, false});
   ASSERT_TRUE(a && b);
-  ASSERT_TRUE(backend_->render({*a, glm::vec4(0.0f), 1.0f, {DrawItem{*uv_program, {}, {}, {}}}}));
+  ASSERT_TRUE(backend_->render({*a, glm::vec4(0.0f), 1.0f, {DrawItem{*uv_program, {}, {}, {}, {}}}}));
   const SamplerDesc linear{Filter::Linear, AddressMode::ClampToEdge};
   const SamplerDesc nearest{Filter::Nearest, AddressMode::ClampToEdge};
   // lavapipe does not offer linear filtering of D32_SFLOAT: a clear error, not a validation error.
@@ -196,7 +196,7 @@ void main() {
                 {},
                 {{"color", TextureSource::color_of(*a, linear)},
                  {"depth", TextureSource::depth_of(*a, linear)},
-                 {"srgb", TextureSource::texture(*texture, linear)}}};
+                 {"srgb", TextureSource::texture(*texture, linear)}}, {}};
   auto rendered = backend_->render({*b, glm::vec4(0.0f), 1.0f, {draw}});
   ASSERT_FALSE(rendered);
   EXPECT_NE(rendered.error().message.find("cannot be filtered linearly"), std::string::npos)
@@ -284,14 +284,14 @@ void main() { frag = texture(color, uv) + vec4(0.0, 0.0, 0.0, texture(depth, uv)
       *first,
       {},
       {color_uniform({1, 1, 1, 1})},
-      {{"image", TextureSource::texture(*tex, {Filter::Nearest, AddressMode::ClampToEdge})}}};
+      {{"image", TextureSource::texture(*tex, {Filter::Nearest, AddressMode::ClampToEdge})}}, {}};
   ASSERT_TRUE(backend.render({*a, glm::vec4(0.0f), 0.5f, {draw_a}}));
   DrawItem draw_b{
       *second,
       *mesh,
       {},
       {{"color", TextureSource::color_of(*a, {Filter::Linear, AddressMode::Repeat})},
-       {"depth", TextureSource::depth_of(*a, {Filter::Nearest, AddressMode::ClampToEdge})}}};
+       {"depth", TextureSource::depth_of(*a, {Filter::Nearest, AddressMode::ClampToEdge})}}, {}};
   auto rendered = backend.render({*b, glm::vec4(0.0f), 1.0f, {draw_b}});
   ASSERT_TRUE(rendered) << rendered.error().to_string();
   auto image = backend.read_color(*b);
@@ -321,7 +321,7 @@ void main() { frag = missing; }
   ASSERT_TRUE(program) << program.error().to_string();
   auto target = backend.create_target({2, 2, false});
   ASSERT_TRUE(target);
-  DrawItem draw{*program, {}, {}, {}};
+  DrawItem draw{*program, {}, {}, {}, {}};
   ASSERT_TRUE(backend.render({*target, glm::vec4(0.0f), 1.0f, {draw}}));
   const std::vector<std::string> messages = backend.take_driver_messages();
   ASSERT_FALSE(messages.empty());

@@ -73,9 +73,10 @@ class BackendContractTest : public SharedBackendTest<Api, &create_backend> {
     return backend().create_program(desc);
   }
 
-  Result<ProgramHandle> mesh_program(const std::string& name, const std::string& fragment) {
+  Result<ProgramHandle> mesh_program(const std::string& name, const std::string& fragment, ProgramLayout layout = {}) {
     ProgramDesc desc;
     desc.name = name;
+    desc.layout = std::move(layout);
     desc.vertex = stage(
         "#version 450\n"
         "layout(location = 0) in vec3 position;\n"
@@ -116,7 +117,7 @@ std::vector<std::byte> bytes_of(const T& value) {
 
 DrawItem draw(ProgramHandle program, MeshHandle mesh = {}, std::vector<UniformBinding> uniforms = {},
               std::vector<TextureBinding> textures = {}) {
-  return DrawItem{program, mesh, std::move(uniforms), std::move(textures)};
+  return DrawItem{program, mesh, std::move(uniforms), std::move(textures), {}};
 }
 
 TextureSlot texture_slot(std::string name, uint32_t binding) {
@@ -330,6 +331,202 @@ TEST_P(BackendContractTest, ASecondColourAttachmentTakesLocationOne) {
   auto missing = backend().read_second_color(*plain);
   ASSERT_FALSE(missing);
   EXPECT_NE(missing.error().message.find("no second colour attachment"), std::string::npos) << missing.error().message;
+}
+
+// ---- Render state ---------------------------------------------------------------------------------
+
+// A program that paints what its block says, full screen or on a mesh.
+const char* const kPaintFragment =
+    "#version 450\n"
+    "layout(std140, binding = 0) uniform Paint { vec4 paint; };\n"
+    "layout(location = 0) out vec4 color;\n"
+    "void main() { color = paint; }\n";
+
+std::vector<UniformBinding> paint(glm::vec4 colour) { return {{"Paint", bytes_of(colour)}}; }
+
+// Direct3D's blend factors and operations, worked out on the host.
+glm::vec4 blend_factor(BlendFactor factor, glm::vec4 source, glm::vec4 destination) {
+  switch (factor) {
+    case BlendFactor::Zero: return glm::vec4(0.0f);
+    case BlendFactor::One: return glm::vec4(1.0f);
+    case BlendFactor::SrcColor: return source;
+    case BlendFactor::OneMinusSrcColor: return glm::vec4(1.0f) - source;
+    case BlendFactor::DstColor: return destination;
+    case BlendFactor::OneMinusDstColor: return glm::vec4(1.0f) - destination;
+    case BlendFactor::SrcAlpha: return glm::vec4(source.a);
+    case BlendFactor::OneMinusSrcAlpha: return glm::vec4(1.0f - source.a);
+    case BlendFactor::DstAlpha: return glm::vec4(destination.a);
+    case BlendFactor::OneMinusDstAlpha: return glm::vec4(1.0f - destination.a);
+    case BlendFactor::SrcAlphaSaturate: {
+      const float f = std::min(source.a, 1.0f - destination.a);
+      return {f, f, f, 1.0f};
+    }
+  }
+  return glm::vec4(0.0f);
+}
+
+glm::vec4 blended(const BlendState& b, glm::vec4 s, glm::vec4 d) {
+  const glm::vec4 sf = blend_factor(b.color_source, s, d), df = blend_factor(b.color_destination, s, d);
+  const glm::vec4 saf = blend_factor(b.alpha_source, s, d), daf = blend_factor(b.alpha_destination, s, d);
+  const auto apply = [](BlendOp op, float src, float src_factor, float dst, float dst_factor) {
+    switch (op) {
+      case BlendOp::Add: return src * src_factor + dst * dst_factor;
+      case BlendOp::Subtract: return src * src_factor - dst * dst_factor;
+      case BlendOp::ReverseSubtract: return dst * dst_factor - src * src_factor;
+      case BlendOp::Min: return std::min(src, dst);
+      case BlendOp::Max: return std::max(src, dst);
+    }
+    return 0.0f;
+  };
+  glm::vec4 out;
+  for (int c = 0; c < 3; ++c) out[c] = apply(b.color_op, s[c], sf[c], d[c], df[c]);
+  out.a = apply(b.alpha_op, s.a, saf.a, d.a, daf.a);
+  return out;
+}
+
+// Every factor as the source's and the destination's, every operation, alpha apart from colour:
+// what the backend blends is what the host works out.
+TEST_P(BackendContractTest, BlendingIsDirect3DsForEveryFactorAndOperation) {
+  auto target = backend().create_target({1, 1, false});
+  auto program = fullscreen_program("paint", kPaintFragment, layout({{"Paint", 0, 16}}, {}));
+  ASSERT_TRUE(target && program);
+  const glm::vec4 destination{0.2f, 0.4f, 0.6f, 0.8f}, source{0.5f, 0.25f, 1.0f, 0.3f};
+  std::vector<BlendState> cases;
+  const BlendFactor factors[] = {BlendFactor::Zero,     BlendFactor::One,           BlendFactor::SrcColor,
+                                 BlendFactor::OneMinusSrcColor, BlendFactor::DstColor, BlendFactor::OneMinusDstColor,
+                                 BlendFactor::SrcAlpha, BlendFactor::OneMinusSrcAlpha, BlendFactor::DstAlpha,
+                                 BlendFactor::OneMinusDstAlpha, BlendFactor::SrcAlphaSaturate};
+  for (BlendFactor factor : factors) {
+    cases.push_back({true, factor, BlendFactor::One, BlendFactor::One, BlendFactor::Zero});
+    if (factor != BlendFactor::SrcAlphaSaturate)  // a source factor only, in Direct3D 11
+      cases.push_back({true, BlendFactor::One, factor, BlendFactor::Zero, factor});
+  }
+  for (BlendOp op : {BlendOp::Add, BlendOp::Subtract, BlendOp::ReverseSubtract, BlendOp::Min, BlendOp::Max})
+    cases.push_back({true, BlendFactor::SrcAlpha, BlendFactor::OneMinusSrcAlpha, BlendFactor::One, BlendFactor::One, op,
+                     op == BlendOp::Min ? BlendOp::Max : BlendOp::Add});
+  for (size_t i = 0; i < cases.size(); ++i) {
+    RenderPass pass;
+    pass.target = *target;
+    pass.clear_color = destination;
+    pass.draws.push_back(draw(*program, {}, paint(source)));
+    pass.draws.back().state.blend = cases[i];
+    auto rendered = backend().render(pass);
+    ASSERT_TRUE(rendered) << rendered.error().to_string();
+    auto image = backend().read_color(*target);
+    ASSERT_TRUE(image);
+    expect_near(image->at(0, 0), blended(cases[i], source, destination), "blend case " + std::to_string(i));
+  }
+}
+
+TEST_P(BackendContractTest, TheColourMaskKeepsWhatItDoesNotWrite) {
+  auto target = backend().create_target({1, 1, false});
+  auto program = fullscreen_program("paint", kPaintFragment, layout({{"Paint", 0, 16}}, {}));
+  ASSERT_TRUE(target && program);
+  const glm::vec4 before{0.2f, 0.4f, 0.6f, 0.8f}, painted{1.0f, 1.0f, 1.0f, 1.0f};
+  for (uint8_t mask = 0; mask <= kColorWriteAll; ++mask) {
+    RenderPass pass;
+    pass.target = *target;
+    pass.clear_color = before;
+    pass.draws.push_back(draw(*program, {}, paint(painted)));
+    pass.draws.back().state.color_write = mask;
+    ASSERT_TRUE(backend().render(pass));
+    auto image = backend().read_color(*target);
+    ASSERT_TRUE(image);
+    glm::vec4 expected;
+    for (int c = 0; c < 4; ++c) expected[c] = (mask >> c) & 1 ? painted[c] : before[c];
+    expect_near(image->at(0, 0), expected, "mask " + std::to_string(mask));
+  }
+}
+
+// Two triangles side by side on a 4 x 2 target: the left one clockwise in the image (Direct3D's
+// front face), the right one counter-clockwise.
+TEST_P(BackendContractTest, CullingKeepsTheFacesDirect3DKeeps) {
+  auto target = backend().create_target({4, 2, true});
+  auto mesh = backend().upload_mesh({{vertex_at(-1, -1, 0.5f), vertex_at(-1, 1, 0.5f), vertex_at(0, -1, 0.5f),
+                                      vertex_at(0, -1, 0.5f), vertex_at(1, -1, 0.5f), vertex_at(1, 1, 0.5f)},
+                                     {0, 1, 2, 3, 4, 5}});
+  auto program = mesh_program("paint", kPaintFragment, layout({{"Paint", 0, 16}}, {}));
+  ASSERT_TRUE(target && mesh && program);
+  for (CullMode cull : {CullMode::Off, CullMode::Back, CullMode::Front}) {
+    RenderPass pass;
+    pass.target = *target;
+    pass.draws.push_back(draw(*program, *mesh, paint({1, 0, 0, 1})));
+    pass.draws.back().state.cull = cull;
+    ASSERT_TRUE(backend().render(pass));
+    auto image = backend().read_color(*target);
+    ASSERT_TRUE(image);
+    // Pixel (0, 1) lies inside the left triangle, (3, 1) inside the right one.
+    const bool front_drawn = cull != CullMode::Front, back_drawn = cull != CullMode::Back;
+    const std::string name = cull == CullMode::Off ? "off" : cull == CullMode::Back ? "back" : "front";
+    expect_near(image->at(0, 1), front_drawn ? glm::vec4(1, 0, 0, 1) : glm::vec4(0), "cull " + name + ", front face");
+    expect_near(image->at(3, 1), back_drawn ? glm::vec4(1, 0, 0, 1) : glm::vec4(0), "cull " + name + ", back face");
+  }
+}
+
+// A near red plane (z 0.25) over the top half, then a far green one (z 0.75) over everything,
+// each comparison and with and without depth writes: each pixel as the host's test decides it.
+TEST_P(BackendContractTest, TheDepthTestAndWriteAreAsTheStateSays) {
+  auto target = backend().create_target({2, 4, true});
+  auto near = backend().upload_mesh(upper_half(0.25f));
+  auto far = backend().upload_mesh({{vertex_at(-1, -1, 0.75f), vertex_at(3, -1, 0.75f), vertex_at(-1, 3, 0.75f)}, {0, 1, 2}});
+  auto program = mesh_program("paint", kPaintFragment, layout({{"Paint", 0, 16}}, {}));
+  ASSERT_TRUE(target && near && far && program);
+  const auto passes = [](CompareOp op, float incoming, float stored) {
+    switch (op) {
+      case CompareOp::Never: return false;
+      case CompareOp::Less: return incoming < stored;
+      case CompareOp::Equal: return incoming == stored;
+      case CompareOp::LessEqual: return incoming <= stored;
+      case CompareOp::Greater: return incoming > stored;
+      case CompareOp::NotEqual: return incoming != stored;
+      case CompareOp::GreaterEqual: return incoming >= stored;
+      case CompareOp::Always: return true;
+    }
+    return false;
+  };
+  const glm::vec4 red{1, 0, 0, 1}, green{0, 1, 0, 1}, clear{0, 0, 0, 0};
+  for (bool near_writes : {true, false})
+    for (CompareOp op : {CompareOp::Never, CompareOp::Less, CompareOp::Equal, CompareOp::LessEqual, CompareOp::Greater,
+                         CompareOp::NotEqual, CompareOp::GreaterEqual, CompareOp::Always}) {
+      RenderPass pass;
+      pass.target = *target;
+      pass.draws.push_back(draw(*program, *near, paint(red)));
+      pass.draws.back().state.depth_write = near_writes;
+      pass.draws.push_back(draw(*program, *far, paint(green)));
+      pass.draws.back().state.depth_compare = op;
+      ASSERT_TRUE(backend().render(pass));
+      auto image = backend().read_color(*target);
+      ASSERT_TRUE(image);
+      for (uint32_t y : {0u, 3u}) {
+        const bool covered_by_near = y < 2;
+        const float stored = covered_by_near && near_writes ? 0.25f : 1.0f;
+        const glm::vec4 under = covered_by_near ? red : clear;
+        expect_near(image->at(0, y), passes(op, 0.75f, stored) ? green : under,
+                    "compare " + std::to_string(int(op)) + (near_writes ? ", written" : ", not written") + ", row " +
+                        std::to_string(y));
+      }
+    }
+}
+
+// A second plane at the depth of the first fails a less test; offset towards the viewer by one
+// unit of depth it passes, offset away it still fails.
+TEST_P(BackendContractTest, ADepthOffsetMovesASurfaceByUnitsOfDepth) {
+  auto target = backend().create_target({2, 2, true});
+  auto plane = backend().upload_mesh({{vertex_at(-1, -1, 0.5f), vertex_at(3, -1, 0.5f), vertex_at(-1, 3, 0.5f)}, {0, 1, 2}});
+  auto program = mesh_program("paint", kPaintFragment, layout({{"Paint", 0, 16}}, {}));
+  ASSERT_TRUE(target && plane && program);
+  for (float units : {0.0f, -1.0f, 1.0f}) {
+    RenderPass pass;
+    pass.target = *target;
+    pass.draws.push_back(draw(*program, *plane, paint({1, 0, 0, 1})));
+    pass.draws.push_back(draw(*program, *plane, paint({0, 1, 0, 1})));
+    pass.draws.back().state.depth_bias_units = units;
+    ASSERT_TRUE(backend().render(pass));
+    auto image = backend().read_color(*target);
+    ASSERT_TRUE(image);
+    expect_near(image->at(1, 1), units < 0 ? glm::vec4(0, 1, 0, 1) : glm::vec4(1, 0, 0, 1),
+                "offset " + std::to_string(units));
+  }
 }
 
 TEST_P(BackendContractTest, ADrawProducesNoDriverMessages) {

@@ -35,7 +35,7 @@ class Depth : public LaneTest {
     auto draw = [&](float x0, float x1, float z, glm::vec4 color) {
       auto mesh = lane_backend.upload_mesh(harness::clip_rectangle(x0, -1.0f, x1, 1.0f, z));
       EXPECT_TRUE(mesh);
-      return harness::DrawItem{flat, *mesh, {{"Flat", harness::uniform_bytes(color)}}, {}};
+      return harness::DrawItem{flat, *mesh, {{"Flat", harness::uniform_bytes(color)}}, {}, {}};
     };
     harness::RenderPass scene_pass{*scene, glm::vec4(0.0f), 1.0f, {}};
     scene_pass.draws = {draw(-1.0f, -0.25f, kNearDepth, kNearColor),
@@ -45,7 +45,7 @@ class Depth : public LaneTest {
     EXPECT_TRUE(lane_backend.render(scene_pass));
 
     harness::RenderPass view_pass{*view, glm::vec4(0.0f), 1.0f, {}};
-    view_pass.draws = {{show_depth, {}, {}, {{"scene_depth", TextureSource::depth_of(*scene, {harness::Filter::Nearest, harness::AddressMode::ClampToEdge})}}}};
+    view_pass.draws = {{show_depth, {}, {}, {{"scene_depth", TextureSource::depth_of(*scene, {harness::Filter::Nearest, harness::AddressMode::ClampToEdge})}}, {}}};
     EXPECT_TRUE(lane_backend.render(view_pass));
 
     auto color = lane_backend.read_color(*scene);

@@ -59,7 +59,7 @@ TEST(VulkanValidation, AMessageFromTheLayerReachesTheTest) {
     auto target = (*vk)->create_target({4, 4, false});
     auto mesh = (*vk)->upload_mesh(harness::MeshData{{{}, {}, {}}, {0, 1, 2}});
     ASSERT_TRUE(target && mesh);
-    (void)(*vk)->render({*target, glm::vec4(0.0f), 1.0f, {{*program, *mesh, {}, {}}}});
+    (void)(*vk)->render({*target, glm::vec4(0.0f), 1.0f, {{*program, *mesh, {}, {}, {}}}});
   }
   EXPECT_FALSE((*vk)->take_driver_messages().empty());
 }

@@ -21,7 +21,7 @@ TEST_F(FloatTargets, SpecialValuesSurviveReadBack) {
     auto write = program(lane, "fullscreen", "special_floats", {});
     auto target = lane_backend.create_target({4, 2, false});
     ASSERT_TRUE(target);
-    ASSERT_TRUE(lane_backend.render({*target, glm::vec4(0.0f), 1.0f, {{write, {}, {}, {}}}}));
+    ASSERT_TRUE(lane_backend.render({*target, glm::vec4(0.0f), 1.0f, {{write, {}, {}, {}, {}}}}));
     auto image = lane_backend.read_color(*target);
     ASSERT_TRUE(image) << image.error().to_string();
     for (uint32_t x = 0; x < 4; ++x) {

@@ -217,7 +217,7 @@ TEST_P(NonfiniteTrace, AValueBornInTheVertexStageIsNamedAsItArrives) {
   ASSERT_TRUE(target && program && mesh) << (program ? "" : program.error().to_string());
   std::vector<std::byte> zero(desc->layout.uniform_blocks.at(0).size, std::byte{0});
   ASSERT_TRUE((*backend)->render({*target, glm::vec4(0.0f), 1.0f,
-                                  {{*program, *mesh, {{desc->layout.uniform_blocks[0].name, zero}}, {}}}}));
+                                  {{*program, *mesh, {{desc->layout.uniform_blocks[0].name, zero}}, {}, {}}}}));
   auto image = (*backend)->read_color(*target);
   auto record = (*backend)->read_second_color(*target);
   ASSERT_TRUE(image && record);

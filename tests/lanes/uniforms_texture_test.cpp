@@ -60,7 +60,7 @@ class UniformsAndTextures : public LaneTest {
     Params params = params_;
     params.tiling = tiling;
     harness::RenderPass pass{*target, glm::vec4(0.0f), 1.0f, {}};
-    pass.draws = {{shade, {}, {}, {{"values", harness::TextureSource::texture(*texture, sampler)}}}};
+    pass.draws = {{shade, {}, {}, {{"values", harness::TextureSource::texture(*texture, sampler)}}, {}}};
     if (reads_params) pass.draws[0].uniforms = {{"Params", harness::uniform_bytes(params)}};
     auto rendered = lane_backend.render(pass);
     EXPECT_TRUE(rendered) << rendered.error().to_string();

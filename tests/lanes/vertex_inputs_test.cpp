@@ -70,7 +70,7 @@ class VertexInputs : public LaneTest {
       auto mesh = lane_backend.upload_mesh(quad);
       auto target = lane_backend.create_target({4, 4, false});
       ASSERT_TRUE(mesh && target);
-      auto rendered = lane_backend.render({*target, glm::vec4(-1.0f), 1.0f, {{*program, *mesh, {}, {}}}});
+      auto rendered = lane_backend.render({*target, glm::vec4(-1.0f), 1.0f, {{*program, *mesh, {}, {}, {}}}});
       ASSERT_TRUE(rendered) << rendered.error().to_string();
       auto image = lane_backend.read_color(*target);
       ASSERT_TRUE(image);
