@@ -40,11 +40,10 @@ std::mutex proc_address_mutex;
 const GlContext* loading_context = nullptr;
 void* context_proc_address(const char* name) { return loading_context->proc_address(name); }
 
+using gl_support::apply_draw_state;
 using gl_support::attribute_kind;
 using gl_support::base_name;
 using gl_support::debug_callback;
-using gl_support::gl_blend_factor;
-using gl_support::gl_blend_op;
 using gl_support::gl_compare_function;
 using gl_support::gl_format;
 using gl_support::gl_target;
@@ -162,40 +161,6 @@ class GlBackend final : public Backend {
   std::string get_string(GLenum name) const {
     const GLubyte* text = gl_.GetString(name);
     return text ? reinterpret_cast<const char*>(text) : "";
-  }
-  // Culling, depth and blending for the next draws (the blend and the colour mask of attachment
-  // 0; a second one is written as it is). glClipControl's GL_UPPER_LEFT origin turns the facing
-  // computation around with the window's y (ARB_clip_control), so clockwise in the image is
-  // GL_CW, as it is Direct3D's front.
-  void apply_draw_state(const DrawState& state, bool depth) {
-    if (state.cull == CullMode::Off) {
-      gl_.Disable(GL_CULL_FACE);
-    } else {
-      gl_.Enable(GL_CULL_FACE);
-      gl_.FrontFace(GL_CW);
-      gl_.CullFace(state.cull == CullMode::Back ? GL_BACK : GL_FRONT);
-    }
-    if (depth) {
-      gl_.DepthMask(state.depth_write ? GL_TRUE : GL_FALSE);
-      gl_.DepthFunc(static_cast<GLenum>(gl_compare_function(state.depth_compare)));
-    }
-    if (state.depth_bias_slope != 0.0f || state.depth_bias_units != 0.0f) {
-      gl_.Enable(GL_POLYGON_OFFSET_FILL);
-      gl_.PolygonOffset(state.depth_bias_slope, state.depth_bias_units);
-    } else {
-      gl_.Disable(GL_POLYGON_OFFSET_FILL);
-    }
-    if (state.blend.enabled) {
-      const BlendState& b = state.blend;
-      gl_.Enablei(GL_BLEND, 0);
-      gl_.BlendFuncSeparatei(0, gl_blend_factor(b.color_source), gl_blend_factor(b.color_destination),
-                             gl_blend_factor(b.alpha_source), gl_blend_factor(b.alpha_destination));
-      gl_.BlendEquationSeparatei(0, gl_blend_op(b.color_op), gl_blend_op(b.alpha_op));
-    } else {
-      gl_.Disablei(GL_BLEND, 0);
-    }
-    const auto bit = [&](int channel) -> GLboolean { return (state.color_write >> channel) & 1 ? GL_TRUE : GL_FALSE; };
-    gl_.ColorMaski(0, bit(0), bit(1), bit(2), bit(3));
   }
   // `compare`: a comparison sampler (of a shadow sampler's unit), with desc.compare.
   GLuint sampler(const SamplerDesc& desc, bool mipmapped, bool compare);
@@ -819,7 +784,7 @@ Result<void> GlBackend::render(const RenderPass& pass) {
     for (size_t d = 0; d < resolved->draws.size(); ++d) {
       const auto& draw = resolved->draws[d];
       const Program& program = *draw.program;
-      apply_draw_state(pass.draws[d].state, target->depth.has_value());
+      apply_draw_state(gl_, pass.draws[d].state, target->depth.has_value());
       gl_.UseProgram(program.program.get());
       const auto& blocks = program.layout.uniform_blocks;
       for (size_t s = 0; s < blocks.size(); ++s) {
@@ -864,7 +829,7 @@ Result<void> GlBackend::render(const RenderPass& pass) {
     gl_.BindVertexArray(0);
     gl_.UseProgram(0);
     gl_.BindFramebuffer(GL_FRAMEBUFFER, 0);
-    apply_draw_state({}, false);
+    apply_draw_state(gl_, {}, false);
     return {};
   });
 }

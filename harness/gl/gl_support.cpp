@@ -63,6 +63,37 @@ GLenum gl_blend_op(BlendOp op) {
   return GL_FUNC_ADD;
 }
 
+void apply_draw_state(const gl::Functions& gl, const DrawState& state, bool depth) {
+  if (state.cull == CullMode::Off) {
+    gl.Disable(GL_CULL_FACE);
+  } else {
+    gl.Enable(GL_CULL_FACE);
+    gl.FrontFace(GL_CW);
+    gl.CullFace(state.cull == CullMode::Back ? GL_BACK : GL_FRONT);
+  }
+  if (depth) {
+    gl.DepthMask(state.depth_write ? GL_TRUE : GL_FALSE);
+    gl.DepthFunc(static_cast<GLenum>(gl_compare_function(state.depth_compare)));
+  }
+  if (state.depth_bias_slope != 0.0f || state.depth_bias_units != 0.0f) {
+    gl.Enable(GL_POLYGON_OFFSET_FILL);
+    gl.PolygonOffset(state.depth_bias_slope, state.depth_bias_units);
+  } else {
+    gl.Disable(GL_POLYGON_OFFSET_FILL);
+  }
+  if (state.blend.enabled) {
+    const BlendState& b = state.blend;
+    gl.Enablei(GL_BLEND, 0);
+    gl.BlendFuncSeparatei(0, gl_blend_factor(b.color_source), gl_blend_factor(b.color_destination),
+                          gl_blend_factor(b.alpha_source), gl_blend_factor(b.alpha_destination));
+    gl.BlendEquationSeparatei(0, gl_blend_op(b.color_op), gl_blend_op(b.alpha_op));
+  } else {
+    gl.Disablei(GL_BLEND, 0);
+  }
+  const auto bit = [&](int channel) -> GLboolean { return (state.color_write >> channel) & 1 ? GL_TRUE : GL_FALSE; };
+  gl.ColorMaski(0, bit(0), bit(1), bit(2), bit(3));
+}
+
 GLint gl_compare_function(CompareOp op) {
   switch (op) {
     case CompareOp::Never: return GL_NEVER;

@@ -82,6 +82,11 @@ GLenum gl_target(TextureShape shape);
 GLint gl_compare_function(CompareOp op);
 GLenum gl_blend_factor(BlendFactor factor);
 GLenum gl_blend_op(BlendOp op);
+// Culling, depth and blending for the next draws (the blend and the colour mask of attachment
+// 0; a second one is written as it is). glClipControl's GL_UPPER_LEFT origin turns the facing
+// computation around with the window's y (ARB_clip_control), so clockwise in the image is
+// GL_CW, as it is Direct3D's front.
+void apply_draw_state(const gl::Functions& gl, const DrawState& state, bool depth);
 // What a vertex input of GL type `type` reads as; empty for a type no mesh or zero fills (a
 // matrix, a double).
 std::optional<TexelKind> attribute_kind(GLint type);
