@@ -222,8 +222,11 @@ struct TextureBinding {
 
 // How a draw is rasterized, depth-tested and blended into the target: the render state of a
 // Unity pass (ShaderLab's Cull, ZWrite, ZTest, Blend, BlendOp, ColorMask, Offset) with its
-// Direct3D meaning on every backend. A front face is one whose vertices run clockwise in the
-// image (row 0 at the top), as in Direct3D and Unity; Back culls the others. The default is what
+// Direct3D meaning on every backend. A front face is one whose vertices run counter-clockwise in
+// the image (row 0 at the top): the scene's world is right-handed and its meshes wind
+// counter-clockwise seen from outside (OBJ's convention), which is what Unity's importer turns
+// into its left-handed world's clockwise front faces, so Cull Back removes the same faces here as
+// there. The default is what
 // a pass of xshade's own materials has always had: no culling, depth written and tested less, no
 // blending, every channel written.
 enum class CullMode { Off, Back, Front };

@@ -68,7 +68,7 @@ void apply_draw_state(const gl::Functions& gl, const DrawState& state, bool dept
     gl.Disable(GL_CULL_FACE);
   } else {
     gl.Enable(GL_CULL_FACE);
-    gl.FrontFace(GL_CW);
+    gl.FrontFace(GL_CCW);
     gl.CullFace(state.cull == CullMode::Back ? GL_BACK : GL_FRONT);
   }
   if (depth) {

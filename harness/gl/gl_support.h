@@ -84,8 +84,8 @@ GLenum gl_blend_factor(BlendFactor factor);
 GLenum gl_blend_op(BlendOp op);
 // Culling, depth and blending for the next draws (the blend and the colour mask of attachment
 // 0; a second one is written as it is). glClipControl's GL_UPPER_LEFT origin turns the facing
-// computation around with the window's y (ARB_clip_control), so clockwise in the image is
-// GL_CW, as it is Direct3D's front.
+// computation around with the window's y (ARB_clip_control), so a winding in the image is that
+// winding to OpenGL: the front is GL_CCW (backend.h's DrawState).
 void apply_draw_state(const gl::Functions& gl, const DrawState& state, bool depth);
 // What a vertex input of GL type `type` reads as; empty for a type no mesh or zero fills (a
 // matrix, a double).

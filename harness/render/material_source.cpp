@@ -77,7 +77,11 @@ Result<hlsl::CompileOptions> pass_compile_options(const fs::path& file, const sh
 }
 
 Result<SourceModule> compile_source(const fs::path& path, hlsl::CompileOptions options) {
-  if (!is_unity_shader(path)) return SourceModule{hlsl::compile_file(path, options), {}};
+  if (!is_unity_shader(path)) {
+    SourceModule source;
+    source.module = hlsl::compile_file(path, options);
+    return source;
+  }
 
   auto shader = shaderlab::read_shader_file(path);
   if (!shader) return fail(shader.error());
@@ -113,6 +117,9 @@ Result<SourceModule> compile_source(const fs::path& path, hlsl::CompileOptions o
   auto pass_options = pass_compile_options(path, *program, std::move(options));
   if (!pass_options) return fail(pass_options.error());
   source.module = hlsl::compile_text(path.string(), std::move(program->text), *pass_options);
+  source.render_state = drawn->state.over(sub->state);
+  source.queue = shaderlab::tag(sub->tags, "Queue");
+  for (const shaderlab::Property& property : shader->properties) source.property_defaults[property.name] = property.value[0];
   if (source.module->ok()) apply_properties(*shader, source.module->reflection);
   return source;
 }

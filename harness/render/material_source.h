@@ -7,7 +7,9 @@
 #pragma once
 
 #include <filesystem>
+#include <map>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -29,6 +31,11 @@ struct SourceModule {
   std::unique_ptr<hlsl::Module> module;
   // What the plan says of the source: the passes of a .shader it leaves out, and why.
   std::vector<std::string> notes;
+  // A .shader's: the drawn pass's render state (its own over its SubShader's), its SubShader's
+  // Queue tag, and each Property's default as written (what a state in brackets reads).
+  std::optional<shaderlab::RenderState> render_state;
+  std::string queue;
+  std::map<std::string, float> property_defaults;
 };
 
 // The module of `path` with `options` (its keywords, its fragment entry, its defines). A .shader

@@ -6,6 +6,7 @@
 
 #include "harness/render/material_source.h"
 #include "harness/render/scene_contract.h"
+#include "harness/render/unity_render_state.h"
 #include "hlsl_like/compiler.h"
 
 namespace xshade::harness {
@@ -25,6 +26,9 @@ struct SourceFacts {
   std::vector<std::string> vertex_inputs;     // the semantics the vertex entry reads, canonical
   ShaderNames names;                          // what the variant offers a scene by name
   std::vector<std::string> notes;             // what the plan says of the source (material_source.h)
+  std::optional<shaderlab::RenderState> render_state;  // a .shader's (material_source.h)
+  int queue = kGeometryQueue;
+  std::map<std::string, float> property_defaults;
 };
 
 class SourceReader {
@@ -47,6 +51,11 @@ class SourceReader {
     SourceFacts facts;
     facts.path = *path;
     facts.notes = std::move(source->notes);
+    facts.render_state = std::move(source->render_state);
+    facts.property_defaults = std::move(source->property_defaults);
+    auto queue = render_queue(source->queue);
+    if (!queue) return fail(Error{queue.error().message, {path->string(), 0, 0}, {}});
+    facts.queue = *queue;
     if (post) facts.passes = module->passes;
     if (!module->ok()) {
       return fail(Error{"'" + library_path + "' does not compile", {path->string(), 0, 0},
@@ -102,6 +111,18 @@ bool meshes_supply(const std::string& semantic) {
 
 std::string effect_name(const std::string& library_path) { return fs::path(library_path).stem().string(); }
 
+std::vector<size_t> draw_order(const glm::vec3& camera, const std::vector<ObjectInstance>& instances,
+                               const std::vector<int>& queues) {
+  std::vector<size_t> order(instances.size());
+  for (size_t i = 0; i < order.size(); ++i) order[i] = i;
+  const auto distance = [&](size_t i) { return glm::length(glm::vec3(instances[i].model[3]) - camera); };
+  std::stable_sort(order.begin(), order.end(), [&](size_t a, size_t b) {
+    if (queues[a] != queues[b]) return queues[a] < queues[b];
+    return queues[a] > kLastOpaqueQueue && distance(a) > distance(b);
+  });
+  return order;
+}
+
 }  // namespace
 
 std::string VariantRequest::label() const {
@@ -134,6 +155,21 @@ Result<Plan> plan_scene(const Scene& scene, const ShaderSearchPath& shaders) {
       if (!facts) return fail(facts.error());
       known = materials.emplace(instance.material, std::move(*facts)).first;
     }
+    const SourceFacts& material = known->second;
+    DrawState state;
+    if (material.render_state) {
+      // A state in brackets reads the object's property (its first number), else the shader's default.
+      auto drawn = unity_draw_state(*material.render_state, [&](const std::string& name) -> std::optional<float> {
+        if (auto given = instance.properties.find(name); given != instance.properties.end()) return given->second.components[0];
+        if (auto declared = material.property_defaults.find(name); declared != material.property_defaults.end())
+          return declared->second;
+        return std::nullopt;
+      });
+      if (!drawn) return fail(drawn.error());
+      state = *drawn;
+    }
+    plan.instance_state.push_back(state);
+    plan.instance_queue.push_back(material.queue);
     VariantRequest request{known->second.path, instance.material, variant_keywords(known->second.keyword_sets, instance.keywords), {}};
     used_combinations[instance.material].insert(request.keywords);
     possible_combinations[instance.material] = combinations(known->second.keyword_sets);
@@ -164,6 +200,7 @@ Result<Plan> plan_scene(const Scene& scene, const ShaderSearchPath& shaders) {
   for (ObjectInstance& instance : plan.instances)
     for (const auto& [name, ref] : object_defaults[instance.object_index]) instance.textures.emplace(name, ref);
   if (!plan.instances.empty()) plan.passes.push_back({PlannedPass::Kind::Scene, "scene", 0, {}, 0, {}});
+  plan.draw_order = draw_order(scene.camera.position, plan.instances, plan.instance_queue);
 
   for (size_t e = 0; e < scene.post.size(); ++e) {
     const PostEffect& effect = scene.post[e];

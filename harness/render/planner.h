@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "harness/backend/backend.h"
 #include "harness/scene/scene.h"
 #include "harness/render/shader_search_path.h"
 #include "hlsl_like/pass_declarations.h"
@@ -44,6 +45,15 @@ struct Plan {
   std::vector<VariantRequest> variants;
   std::vector<ObjectInstance> instances;
   std::vector<size_t> instance_variant;  // per instance: index into variants
+  // Per instance: how it is drawn (a .shader's render state; an .hlsl material's is DrawState's
+  // default) and its render queue (a .shader's SubShader Queue; Geometry otherwise).
+  std::vector<DrawState> instance_state;
+  std::vector<int> instance_queue;
+  // The instances in the order the scene pass draws them, as Unity's forward renderer orders
+  // them: by queue; within an opaque queue in the scene's order, within a transparent one (above
+  // AlphaTest) from the farthest to the nearest, by the distance from the camera to the object's
+  // origin.
+  std::vector<size_t> draw_order;
   std::vector<PlannedPass> passes;       // in the order they run: the scene, then each effect's
   std::vector<std::string> left_out;     // what the shader folders have that this scene does not run, and why
   // Per variant, what it should know before it runs: each vertex input its shader reads that the

@@ -116,6 +116,17 @@ UniformValueMap frame_inputs(const Scene& scene, const ShCoefficients& sh) {
     values[probe + "_BoxMax"] = {kUnboundedProbe, kUnboundedProbe, kUnboundedProbe, 1.0f};
     values[probe + "_ProbePosition"] = {0.0f, 0.0f, 0.0f, 0.0f};
   }
+  // What a light without shadows, and an object lit by the environment's harmonics rather than a
+  // light probe proxy volume, have in Unity: a shadow of strength 0 (x = 1 - strength) that
+  // never fades in (z = w = 0), the fade centred on the camera; the main light's shadowmask
+  // channel, red; the proxy volume off (x = 0), so that ShadeSHPerPixel reads unity_SHA*.
+  values["_LightShadowData"] = {1.0f, 0.0f, 0.0f, 0.0f};
+  values["unity_ShadowFadeCenterAndType"] = components(glm::vec4(camera.position, 0.0f));
+  values["unity_OcclusionMaskSelector"] = {1.0f, 0.0f, 0.0f, 0.0f};
+  values["unity_ProbeVolumeParams"] = {0.0f, 0.0f, 0.0f, 0.0f};
+  values["unity_ProbeVolumeWorldToObject"] = hlsl_components(glm::mat4(1.0f));
+  values["unity_ProbeVolumeSizeInv"] = {1.0f, 1.0f, 1.0f};
+  values["unity_ProbeVolumeMin"] = {0.0f, 0.0f, 0.0f};
   return values;
 }
 
@@ -145,6 +156,12 @@ bool renderer_uniform(const std::string& name) {
 
 bool renderer_texture(const std::string& name) {
   return name == "_EnvironmentSpecular" || name == "unity_SpecCube0" || name == "unity_SpecCube1";
+}
+
+std::optional<TextureOrigin> renderer_default_texture(const std::string& name) {
+  // The light probe proxy volume's coefficients, read only where unity_ProbeVolumeParams.x is 1.
+  if (name == "unity_ProbeVolumeSH") return TextureOrigin::Clear;
+  return std::nullopt;
 }
 
 }  // namespace xshade::harness

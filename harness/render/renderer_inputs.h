@@ -11,6 +11,7 @@
 
 #include <array>
 #include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -46,6 +47,11 @@ bool renderer_uniform(const std::string& name);
 // Whether the renderer binds the texture `name` itself: the environment (_EnvironmentSpecular)
 // and Unity's reflection probes (unity_SpecCube0, unity_SpecCube1).
 bool renderer_texture(const std::string& name);
+
+// A texture Unity's renderer binds that xshade's scenes have no data for, and the built-in the
+// renderer binds in its place (the light probe proxy volume's unity_ProbeVolumeSH, which nothing
+// reads while unity_ProbeVolumeParams.x is 0); nullopt for any other name.
+std::optional<TextureOrigin> renderer_default_texture(const std::string& name);
 
 // X_TexelSize of a texture of `size` texels: (1 / width, 1 / height, width, height).
 std::vector<float> texel_size(glm::uvec2 size);

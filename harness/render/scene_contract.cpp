@@ -82,6 +82,13 @@ void check_uniforms_have_values(const ShaderNames& names, const std::set<std::st
 // to give one.
 void default_or_error(const ShaderNames::Texture& texture, const std::string& owner, const std::string& not_given,
                       const std::string& table, const SourceLocation& where, std::map<std::string, TextureRef>& defaults, ContractProblems& problems) {
+  if (auto origin = renderer_default_texture(texture.name)) {
+    TextureRef ref;
+    ref.source = *origin;
+    ref.where = where;
+    defaults.emplace(texture.name, ref);
+    return;
+  }
   if (auto origin = built_in_texture(texture.default_texture)) {
     TextureRef ref;
     ref.source = *origin;

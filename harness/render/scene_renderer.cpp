@@ -311,7 +311,7 @@ class SceneRenderer {
   Result<void> scene_pass() {
     RenderPass pass{scene_target_, scene_.clear_color, 1.0f, {}};
     Values values = frame_values();
-    for (size_t i = 0; i < plan_.instances.size(); ++i) {
+    for (size_t i : plan_.draw_order) {
       const ObjectInstance& instance = plan_.instances[i];
       const size_t variant = plan_.instance_variant[i];
       const std::string where = "object '" + instance.object_name + "'" +
@@ -321,7 +321,7 @@ class SceneRenderer {
       if (!handle) return fail(handle.error());
       auto mesh_handle = mesh(instance.mesh);
       if (!mesh_handle) return fail(in_context(where, mesh_handle.error()));
-      DrawItem draw{*handle, *mesh_handle, {}, {}, {}};
+      DrawItem draw{*handle, *mesh_handle, {}, {}, plan_.instance_state[i]};
       for (const std::string& name : variants_[variant].interface.textures) {
         auto engine = engine_texture(name);
         if (!engine) return fail(in_context(where + ": texture '" + name + "'", engine.error()));

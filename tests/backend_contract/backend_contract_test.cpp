@@ -438,9 +438,9 @@ TEST_P(BackendContractTest, TheColourMaskKeepsWhatItDoesNotWrite) {
   }
 }
 
-// Two triangles side by side on a 4 x 2 target: the left one clockwise in the image (Direct3D's
-// front face), the right one counter-clockwise.
-TEST_P(BackendContractTest, CullingKeepsTheFacesDirect3DKeeps) {
+// Two triangles side by side on a 4 x 2 target: the left one clockwise in the image, the right
+// one counter-clockwise (the front face: backend.h's DrawState).
+TEST_P(BackendContractTest, CullingRemovesTheFacesTheStateNames) {
   auto target = backend().create_target({4, 2, true});
   auto mesh = backend().upload_mesh({{vertex_at(-1, -1, 0.5f), vertex_at(-1, 1, 0.5f), vertex_at(0, -1, 0.5f),
                                       vertex_at(0, -1, 0.5f), vertex_at(1, -1, 0.5f), vertex_at(1, 1, 0.5f)},
@@ -458,8 +458,8 @@ TEST_P(BackendContractTest, CullingKeepsTheFacesDirect3DKeeps) {
     // Pixel (0, 1) lies inside the left triangle, (3, 1) inside the right one.
     const bool front_drawn = cull != CullMode::Front, back_drawn = cull != CullMode::Back;
     const std::string name = cull == CullMode::Off ? "off" : cull == CullMode::Back ? "back" : "front";
-    expect_near(image->at(0, 1), front_drawn ? glm::vec4(1, 0, 0, 1) : glm::vec4(0), "cull " + name + ", front face");
-    expect_near(image->at(3, 1), back_drawn ? glm::vec4(1, 0, 0, 1) : glm::vec4(0), "cull " + name + ", back face");
+    expect_near(image->at(0, 1), back_drawn ? glm::vec4(1, 0, 0, 1) : glm::vec4(0), "cull " + name + ", back face");
+    expect_near(image->at(3, 1), front_drawn ? glm::vec4(1, 0, 0, 1) : glm::vec4(0), "cull " + name + ", front face");
   }
 }
 

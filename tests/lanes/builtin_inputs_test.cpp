@@ -177,6 +177,14 @@ std::vector<Row> rows() {
   shc.tolerance = 1e-3f;
   all.push_back(shc);
 
+  // A light without shadows and no light probe proxy volume, one value a pixel.
+  all.push_back({"unity_shadow_and_probe_volume", true,
+                 "float4 _LightShadowData; float4 unity_ShadowFadeCenterAndType; float4 unity_OcclusionMaskSelector; "
+                 "float4 unity_ProbeVolumeParams;",
+                 "i == 0 ? _LightShadowData : i == 1 ? unity_ShadowFadeCenterAndType : i == 2 ? unity_OcclusionMaskSelector "
+                 ": unity_ProbeVolumeParams",
+                 {1, 0, 0, 0, kCameraPosition.x, kCameraPosition.y, kCameraPosition.z, 0, 1, 0, 0, 0, 0, 0, 0, 0}});
+
   // The matrix macros of the prelude, over the variables they name.
   const std::string mvp_declarations = "float4x4 unity_ObjectToWorld; float4x4 unity_MatrixVP; float4x4 unity_MatrixV;";
   all.push_back({"UNITY_MATRIX_MVP", false, mvp_declarations, "UNITY_MATRIX_MVP[i]", rows_of(gpu_projection() * view() * model()), 1e-4f});
