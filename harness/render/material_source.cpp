@@ -76,7 +76,7 @@ Result<hlsl::CompileOptions> pass_compile_options(const fs::path& file, const sh
   return options;
 }
 
-Result<SourceModule> compile_source(const fs::path& path, hlsl::CompileOptions options) {
+Result<SourceModule> compile_source(const fs::path& path, hlsl::CompileOptions options, std::optional<size_t> pass_index) {
   if (!is_unity_shader(path)) {
     SourceModule source;
     source.module = hlsl::compile_file(path, options);
@@ -88,7 +88,6 @@ Result<SourceModule> compile_source(const fs::path& path, hlsl::CompileOptions o
   const shaderlab::SubShader* sub = shaderlab::drawn_subshader(*shader);
   if (!sub) return fail("'" + shader->name + "' has no SubShader to draw", {path.string(), 1, 1});
   SourceModule source;
-  const shaderlab::Pass* drawn = nullptr;
   for (size_t i = 0; i < sub->passes.size(); ++i) {
     const shaderlab::Pass& pass = sub->passes[i];
     if (pass.kind != shaderlab::PassKind::Program) {
@@ -98,13 +97,11 @@ Result<SourceModule> compile_source(const fs::path& path, hlsl::CompileOptions o
                                                                        : "it has no program (fixed-function)"));
     } else if (!forward_renderer_draws(pass)) {
       source.notes.push_back(pass_label(pass, i) + ": not drawn: the forward renderer runs it for what the scene has not");
-    } else if (drawn) {
-      source.notes.push_back(pass_label(pass, i) + ": not drawn: a material draws its first pass only, for now");
     } else {
-      drawn = &pass;
+      source.drawn_passes.push_back(i);
     }
   }
-  if (!drawn) {
+  if (source.drawn_passes.empty()) {
     if (sub->surface)
       return fail("'" + shader->name + "' is a surface shader, whose passes Unity generates; xshade does not generate them yet",
                   sub->surface->start);
@@ -112,6 +109,10 @@ Result<SourceModule> compile_source(const fs::path& path, hlsl::CompileOptions o
                 "with Always or ForwardBase)",
                 sub->where);
   }
+  source.pass = pass_index.value_or(source.drawn_passes.front());
+  if (source.pass >= sub->passes.size() || sub->passes[source.pass].kind != shaderlab::PassKind::Program)
+    return fail(ErrorKind::Internal, "'" + shader->name + "' has no program pass " + std::to_string(source.pass), sub->where);
+  const shaderlab::Pass* drawn = &sub->passes[source.pass];
   auto program = shaderlab::pass_program(*sub, *drawn);
   if (!program) return fail(program.error());
   auto pass_options = pass_compile_options(path, *program, std::move(options));

@@ -23,26 +23,33 @@ namespace xshade::harness {
 bool is_unity_shader(const std::filesystem::path& path);
 
 // The LightModes of the passes Unity's forward renderer draws for an object lit by one
-// directional light and no other: none ("Always") and ForwardBase. ForwardAdd (a further light),
-// ShadowCaster (a shadow map), Meta, Deferred and the rest are for what a scene does not have.
+// directional light and no other: none ("Always") and ForwardBase, each pass of the drawn
+// SubShader in its order. ForwardAdd (a further light), ShadowCaster (a shadow map), Meta,
+// Deferred and the rest are for what a scene does not have.
 bool forward_renderer_draws(const shaderlab::Pass& pass);
 
 struct SourceModule {
   std::unique_ptr<hlsl::Module> module;
   // What the plan says of the source: the passes of a .shader it leaves out, and why.
   std::vector<std::string> notes;
-  // A .shader's: the drawn pass's render state (its own over its SubShader's), its SubShader's
+  // A .shader's: the passes the forward renderer draws (indices in the drawn SubShader, in
+  // order) and the one compiled here.
+  std::vector<size_t> drawn_passes;
+  size_t pass = 0;
+  // A .shader's: the compiled pass's render state (its own over its SubShader's), its SubShader's
   // Queue tag, and each Property's default as written (what a state in brackets reads).
   std::optional<shaderlab::RenderState> render_state;
   std::string queue;
   std::map<std::string, float> property_defaults;
 };
 
-// The module of `path` with `options` (its keywords, its fragment entry, its defines). A .shader
+// The module of `path` with `options` (its keywords, its fragment entry, its defines); of a
+// .shader, the pass `pass` of its drawn SubShader (by index), or the first pass drawn. A .shader
 // that cannot be read, has no pass to draw or whose CGPROGRAM finds no Unity include files is an
 // error at its place in the file; a program that does not compile is a module with errors, as for
 // an .hlsl file.
-Result<SourceModule> compile_source(const std::filesystem::path& path, hlsl::CompileOptions options);
+Result<SourceModule> compile_source(const std::filesystem::path& path, hlsl::CompileOptions options,
+                                    std::optional<size_t> pass = std::nullopt);
 
 // The options a pass's program of the .shader `file` compiles with: `options` with the .shader's
 // folder first among the include folders and Unity's defines before the caller's (a define the

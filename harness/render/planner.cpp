@@ -29,6 +29,8 @@ struct SourceFacts {
   std::optional<shaderlab::RenderState> render_state;  // a .shader's (material_source.h)
   int queue = kGeometryQueue;
   std::map<std::string, float> property_defaults;
+  std::vector<size_t> drawn_passes;  // a .shader's (material_source.h); empty for an .hlsl
+  std::optional<size_t> pass;        // the .shader's pass read
 };
 
 class SourceReader {
@@ -38,18 +40,20 @@ class SourceReader {
   // Reads `library_path` with `keywords` (pass declarations may depend on them); with
   // `pass_entry`, as that post pass's variant.
   Result<SourceFacts> read(const std::string& library_path, const std::vector<std::string>& keywords, bool post,
-                           const std::string& pass_entry = {}) {
+                           const std::string& pass_entry = {}, std::optional<size_t> shader_pass = std::nullopt) {
     auto path = shaders_.find(library_path);
     if (!path) return fail(path.error());
     hlsl::CompileOptions options;
     options.include_dirs = shaders_.folders();
     options.keywords = keywords;
     options.pass_fragment_entry = pass_entry;
-    auto source = compile_source(*path, options);
+    auto source = compile_source(*path, options, shader_pass);
     if (!source) return fail(source.error());
     const std::unique_ptr<hlsl::Module>& module = source->module;
     SourceFacts facts;
     facts.path = *path;
+    facts.drawn_passes = source->drawn_passes;
+    if (!source->drawn_passes.empty()) facts.pass = source->pass;
     facts.notes = std::move(source->notes);
     facts.render_state = std::move(source->render_state);
     facts.property_defaults = std::move(source->property_defaults);
@@ -128,6 +132,7 @@ std::vector<size_t> draw_order(const glm::vec3& camera, const std::vector<Object
 std::string VariantRequest::label() const {
   std::string text = library_path;
   if (!fragment_entry.empty()) text += ":" + fragment_entry;
+  if (shader_pass) text += " pass " + std::to_string(*shader_pass);
   text += " [";
   for (size_t i = 0; i < keywords.size(); ++i) text += (i ? " " : "") + keywords[i];
   return text + "]" + (half_emulation ? " half" : "");
@@ -149,52 +154,70 @@ Result<Plan> plan_scene(const Scene& scene, const ShaderSearchPath& shaders) {
   ContractProblems contract;
   std::map<size_t, std::map<std::string, TextureRef>> object_defaults;  // by object index
   for (const ObjectInstance& instance : plan.instances) {
-    auto known = materials.find(instance.material);
-    if (known == materials.end()) {
-      auto facts = reader.read(instance.material, {}, false);
-      if (!facts) return fail(facts.error());
-      known = materials.emplace(instance.material, std::move(*facts)).first;
-    }
-    const SourceFacts& material = known->second;
-    DrawState state;
-    if (material.render_state) {
-      // A state in brackets reads the object's property (its first number), else the shader's default.
-      auto drawn = unity_draw_state(*material.render_state, [&](const std::string& name) -> std::optional<float> {
-        if (auto given = instance.properties.find(name); given != instance.properties.end()) return given->second.components[0];
-        if (auto declared = material.property_defaults.find(name); declared != material.property_defaults.end())
-          return declared->second;
-        return std::nullopt;
-      });
-      if (!drawn) return fail(drawn.error());
-      state = *drawn;
-    }
-    plan.instance_state.push_back(state);
+    // A .shader's passes are read each once (keyword sets and render state are a pass's own).
+    auto pass_facts = [&](std::optional<size_t> pass) -> Result<const SourceFacts*> {
+      const std::string key = instance.material + (pass ? "\n" + std::to_string(*pass) : "");
+      auto known = materials.find(key);
+      if (known == materials.end()) {
+        auto facts = reader.read(instance.material, {}, false, {}, pass);
+        if (!facts) return fail(facts.error());
+        known = materials.emplace(key, std::move(*facts)).first;
+      }
+      return &known->second;
+    };
+    auto first = pass_facts(std::nullopt);
+    if (!first) return fail(first.error());
+    const SourceFacts& material = **first;
     plan.instance_queue.push_back(material.queue);
-    VariantRequest request{known->second.path, instance.material, variant_keywords(known->second.keyword_sets, instance.keywords), {}};
-    used_combinations[instance.material].insert(request.keywords);
-    possible_combinations[instance.material] = combinations(known->second.keyword_sets);
-    const std::vector<std::string> keywords = request.keywords;
-    const size_t variants_before = plan.variants.size();
-    const size_t variant = add_variant(plan, std::move(request));
-    plan.instance_variant.push_back(variant);
-    if (plan.variants.size() != variants_before) {
-      // The vertex inputs and the names depend on the keywords: the variant's own are read once more.
-      auto facts = reader.read(instance.material, keywords, false);
-      if (!facts) return fail(facts.error());
-      plan.variant_notes[variant] = facts->notes;
-      for (const std::string& semantic : facts->vertex_inputs)
-        if (!meshes_supply(semantic))
-          plan.variant_notes[variant].push_back("vertex input " + semantic + " is not in the meshes; the shader reads zeros");
-      variant_names.resize(plan.variants.size());
-      variant_names[variant] = std::move(facts->names);
+    std::vector<Plan::InstanceDraw> draws;
+    std::optional<ShaderNames> object_names;  // every drawn pass's, merged, for the object's check
+    std::vector<std::optional<size_t>> passes(1, std::nullopt);  // an .hlsl draws once
+    if (!material.drawn_passes.empty()) passes.assign(material.drawn_passes.begin(), material.drawn_passes.end());
+    for (const std::optional<size_t>& pass : passes) {
+      auto facts_of_pass = pass_facts(pass);
+      if (!facts_of_pass) return fail(facts_of_pass.error());
+      const SourceFacts& facts = **facts_of_pass;
+      DrawState state;
+      if (facts.render_state) {
+        // A state in brackets reads the object's property (its first number), else the shader's default.
+        auto drawn = unity_draw_state(*facts.render_state, [&](const std::string& name) -> std::optional<float> {
+          if (auto given = instance.properties.find(name); given != instance.properties.end()) return given->second.components[0];
+          if (auto declared = facts.property_defaults.find(name); declared != facts.property_defaults.end())
+            return declared->second;
+          return std::nullopt;
+        });
+        if (!drawn) return fail(drawn.error());
+        state = *drawn;
+      }
+      VariantRequest request{facts.path, instance.material, variant_keywords(facts.keyword_sets, instance.keywords), {}};
+      request.shader_pass = pass;
+      used_combinations[instance.material].insert(request.keywords);
+      possible_combinations[instance.material] = combinations(material.keyword_sets);
+      const std::vector<std::string> keywords = request.keywords;
+      const size_t variants_before = plan.variants.size();
+      const size_t variant = add_variant(plan, std::move(request));
+      if (plan.variants.size() != variants_before) {
+        // The vertex inputs and the names depend on the keywords: the variant's own are read once more.
+        auto variant_facts = reader.read(instance.material, keywords, false, {}, pass);
+        if (!variant_facts) return fail(variant_facts.error());
+        plan.variant_notes[variant] = variant_facts->notes;
+        for (const std::string& semantic : variant_facts->vertex_inputs)
+          if (!meshes_supply(semantic))
+            plan.variant_notes[variant].push_back("vertex input " + semantic + " is not in the meshes; the shader reads zeros");
+        variant_names.resize(plan.variants.size());
+        variant_names[variant] = std::move(variant_facts->names);
+      }
+      object_names = object_names ? merge_names(std::move(*object_names), variant_names[variant]) : variant_names[variant];
+      draws.push_back({variant, state});
     }
+    plan.instance_draws.push_back(draws);
     // Each object once: its instances share its material, keywords and names.
     if (!object_defaults.count(instance.object_index)) {
       const SceneObject& object = scene.objects[instance.object_index];
       const size_t before = contract.notes.size();
-      check_keywords(object.keywords, object.where, known->second.names, "material '" + instance.material + "'", contract);
-      object_defaults[instance.object_index] = check_object(object, variant_names[variant], contract);
-      for (size_t n = before; n < contract.notes.size(); ++n) plan.variant_notes[variant].push_back(contract.notes[n]);
+      check_keywords(object.keywords, object.where, *object_names, "material '" + instance.material + "'", contract);
+      object_defaults[instance.object_index] = check_object(object, *object_names, contract);
+      for (size_t n = before; n < contract.notes.size(); ++n) plan.variant_notes[draws.front().variant].push_back(contract.notes[n]);
     }
   }
   for (ObjectInstance& instance : plan.instances)
@@ -269,7 +292,9 @@ std::string describe_plan(const Scene& scene, const Plan& plan, const std::vecto
   text += "  passes to run (" + std::to_string(plan.passes.size()) + "):\n";
   for (const PlannedPass& pass : plan.passes) {
     if (pass.kind == PlannedPass::Kind::Scene) {
-      text += "    scene: " + std::to_string(plan.instances.size()) + " draws\n";
+      size_t draws = 0;  // a .shader draws an object once for each of its passes
+      for (const auto& instance_draws : plan.instance_draws) draws += instance_draws.size();
+      text += "    scene: " + std::to_string(draws) + " draws\n";
       continue;
     }
     const hlsl::PassDeclaration& d = pass.declaration;

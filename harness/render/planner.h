@@ -4,6 +4,7 @@
 
 #include <filesystem>
 #include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -20,12 +21,14 @@ struct VariantRequest {
   std::string library_path;           // as the scene names it, e.g. "materials/toon.hlsl"
   std::vector<std::string> keywords;  // sorted, no repeats
   std::string fragment_entry;         // a post pass's entry; empty for a material
+  std::optional<size_t> shader_pass = std::nullopt;  // a .shader's pass, by its index in the drawn SubShader
   bool half_emulation = false;        // every half result rounded to fp16 (GLSL lanes only)
   // The tracing variant (gl and vk lanes), numbered trace_program (render/shader_program.h).
   bool trace_nonfinite = false;
   uint32_t trace_program = 0;
 
-  // "materials/toon.hlsl [_GUARDED]" or "post/depth_of_field.hlsl:frag_coc [_KERNEL_SMALL]".
+  // "materials/toon.hlsl [_GUARDED]", "post/depth_of_field.hlsl:frag_coc [_KERNEL_SMALL]" or
+  // "Unlit/Outline.shader pass 1 []".
   std::string label() const;
   friend bool operator==(const VariantRequest&, const VariantRequest&) = default;
 };
@@ -44,10 +47,15 @@ struct PlannedPass {
 struct Plan {
   std::vector<VariantRequest> variants;
   std::vector<ObjectInstance> instances;
-  std::vector<size_t> instance_variant;  // per instance: index into variants
-  // Per instance: how it is drawn (a .shader's render state; an .hlsl material's is DrawState's
-  // default) and its render queue (a .shader's SubShader Queue; Geometry otherwise).
-  std::vector<DrawState> instance_state;
+  // Per instance, its draws in order: a variant (index into variants) and how it is drawn (a
+  // .shader's pass's render state; an .hlsl material's is DrawState's default). An .hlsl material
+  // draws once, a .shader once for each pass the forward renderer draws.
+  struct InstanceDraw {
+    size_t variant = 0;
+    DrawState state;
+  };
+  std::vector<std::vector<InstanceDraw>> instance_draws;
+  // Per instance: its render queue (a .shader's SubShader Queue; Geometry otherwise).
   std::vector<int> instance_queue;
   // The instances in the order the scene pass draws them, as Unity's forward renderer orders
   // them: by queue; within an opaque queue in the scene's order, within a transparent one (above

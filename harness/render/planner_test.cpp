@@ -24,6 +24,13 @@ near = 0.3
 far = 100
 )";
 
+// Each instance's first draw's variant (an .hlsl material draws once).
+std::vector<size_t> first_variants(const Plan& plan) {
+  std::vector<size_t> variants;
+  for (const auto& draws : plan.instance_draws) variants.push_back(draws.front().variant);
+  return variants;
+}
+
 Scene scene(const std::string& body) {
   auto parsed = parse_scene(std::string(kCameraAndSize) + body, "/tmp/planner_test.toml");
   EXPECT_TRUE(parsed) << parsed.error().to_string();
@@ -51,7 +58,7 @@ _Metallic = { along = "cols", from = 0.0, to = 1.0 }
   // No keyword asked for: each multi_compile set's first keyword, as the front end defines them.
   EXPECT_EQ(plan->variants[0].keywords, (std::vector<std::string>{"_D_GGX_SEED", "_F_SCHLICK", "_G_COOK_TORRANCE"}));
   EXPECT_EQ(plan->instances.size(), 25u);
-  EXPECT_EQ(plan->instance_variant, std::vector<size_t>(25, 0));
+  EXPECT_EQ(first_variants(*plan), std::vector<size_t>(25, 0));
   ASSERT_EQ(plan->passes.size(), 1u);
   EXPECT_EQ(plan->passes[0].kind, PlannedPass::Kind::Scene);
   // 2 D forms x 3 G forms x 3 F forms x guards on/off.
@@ -81,7 +88,7 @@ keywords = ["_GUARDED", "_GUARDED"]
 )"), kLibrary);
   ASSERT_TRUE(plan) << plan.error().to_string();
   ASSERT_EQ(plan->variants.size(), 2u);
-  EXPECT_EQ(plan->instance_variant, (std::vector<size_t>{0, 1, 1}));
+  EXPECT_EQ(first_variants(*plan), (std::vector<size_t>{0, 1, 1}));
   EXPECT_TRUE(plan->variants[0].keywords.empty());
   EXPECT_EQ(plan->variants[1].keywords, std::vector<std::string>{"_GUARDED"});
 }
@@ -226,8 +233,8 @@ keywords = ["_EXTRA"]
   ASSERT_TRUE(plan) << plan.error().to_string();
   ASSERT_EQ(plan->variants.size(), 2u);
   ASSERT_EQ(plan->variant_notes.size(), 2u);
-  EXPECT_TRUE(plan->variant_notes[plan->instance_variant[0]].empty());
-  EXPECT_EQ(plan->variant_notes[plan->instance_variant[1]],
+  EXPECT_TRUE(plan->variant_notes[first_variants(*plan)[0]].empty());
+  EXPECT_EQ(plan->variant_notes[first_variants(*plan)[1]],
             (std::vector<std::string>{"vertex input COLOR1 is not in the meshes; the shader reads zeros",
                                       "vertex input TEXCOORD2 is not in the meshes; the shader reads zeros"}));
   const std::string described = describe_plan(scene(""), *plan);

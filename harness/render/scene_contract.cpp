@@ -145,6 +145,34 @@ ShaderNames shader_names(const std::string& source, const hlsl::Reflection& refl
   return names;
 }
 
+ShaderNames merge_names(ShaderNames into, const ShaderNames& other) {
+  for (const ShaderNames::Uniform& uniform : other.uniforms) {
+    auto found = std::find_if(into.uniforms.begin(), into.uniforms.end(),
+                              [&](const ShaderNames::Uniform& u) { return u.member.name == uniform.member.name; });
+    if (found == into.uniforms.end()) {
+      into.uniforms.push_back(uniform);
+      continue;
+    }
+    found->read = found->read || uniform.read;
+    found->has_default = found->has_default || uniform.has_default;
+  }
+  for (const ShaderNames::Texture& texture : other.textures) {
+    auto found = std::find_if(into.textures.begin(), into.textures.end(),
+                              [&](const ShaderNames::Texture& t) { return t.name == texture.name; });
+    if (found == into.textures.end()) {
+      into.textures.push_back(texture);
+      continue;
+    }
+    found->sampled = found->sampled || texture.sampled;
+    if (found->default_texture.empty()) found->default_texture = texture.default_texture;
+  }
+  for (const hlsl::KeywordSet& set : other.keyword_sets)
+    if (std::find_if(into.keyword_sets.begin(), into.keyword_sets.end(),
+                     [&](const hlsl::KeywordSet& s) { return s.keywords == set.keywords; }) == into.keyword_sets.end())
+      into.keyword_sets.push_back(set);
+  return into;
+}
+
 void check_keywords(const std::vector<std::string>& keywords, const SceneLocations& where, const ShaderNames& source,
                     const std::string& owner, ContractProblems& problems) {
   std::vector<std::string> declared;

@@ -44,6 +44,11 @@ struct ShaderNames {
 
 ShaderNames shader_names(const std::string& source, const hlsl::Reflection& reflection);
 
+// The names of several variants an object is drawn with (a .shader's passes), as one: every
+// uniform and texture any of them has, read or sampled where any reads it, with a default where
+// any declares one; every keyword set.
+ShaderNames merge_names(ShaderNames into, const ShaderNames& other);
+
 // What checking found: each problem at the scene's line; and per checked use, the textures it
 // samples from their declared defaults (which the renderer then binds) with a note for the plan.
 struct ContractProblems {

@@ -313,37 +313,40 @@ class SceneRenderer {
     Values values = frame_values();
     for (size_t i : plan_.draw_order) {
       const ObjectInstance& instance = plan_.instances[i];
-      const size_t variant = plan_.instance_variant[i];
       const std::string where = "object '" + instance.object_name + "'" +
                                 (instance.in_grid ? " cell " + std::to_string(instance.row) + "," + std::to_string(instance.col) : "");
       add_object_inputs(instance.model, values);
-      auto handle = program(variant);
-      if (!handle) return fail(handle.error());
       auto mesh_handle = mesh(instance.mesh);
       if (!mesh_handle) return fail(in_context(where, mesh_handle.error()));
-      DrawItem draw{*handle, *mesh_handle, {}, {}, plan_.instance_state[i]};
-      for (const std::string& name : variants_[variant].interface.textures) {
-        auto engine = engine_texture(name);
-        if (!engine) return fail(in_context(where + ": texture '" + name + "'", engine.error()));
-        if (*engine) {
-          draw.textures.push_back({name, **engine});
-          continue;
+      // An object's passes, in order, one after the other (Unity's forward renderer).
+      for (const Plan::InstanceDraw& instance_draw : plan_.instance_draws[i]) {
+        const size_t variant = instance_draw.variant;
+        auto handle = program(variant);
+        if (!handle) return fail(handle.error());
+        DrawItem draw{*handle, *mesh_handle, {}, {}, instance_draw.state};
+        for (const std::string& name : variants_[variant].interface.textures) {
+          auto engine = engine_texture(name);
+          if (!engine) return fail(in_context(where + ": texture '" + name + "'", engine.error()));
+          if (*engine) {
+            draw.textures.push_back({name, **engine});
+            continue;
+          }
+          // The planner gave the instance every texture its material samples (the scene's or the
+          // shader's declared default), or refused the scene.
+          auto given = instance.textures.find(name);
+          if (given == instance.textures.end())
+            return fail(ErrorKind::Internal, where + ": texture '" + name + "' has no source; the plan should have refused the scene");
+          const TextureShape shape = declared_shape(variants_[variant], name);
+          auto made = texture(given->second, shape);
+          if (!made) return fail(in_context(where + ": texture '" + name + "'", made.error()));
+          values[name + "_TexelSize"] = texel_size(made->size);
+          draw.textures.push_back({name, TextureSource::texture(made->handle, scene_sampler(shape, false))});
         }
-        // The planner gave the instance every texture its material samples (the scene's or the
-        // shader's declared default), or refused the scene.
-        auto given = instance.textures.find(name);
-        if (given == instance.textures.end())
-          return fail(ErrorKind::Internal, where + ": texture '" + name + "' has no source; the plan should have refused the scene");
-        const TextureShape shape = declared_shape(variants_[variant], name);
-        auto made = texture(given->second, shape);
-        if (!made) return fail(in_context(where + ": texture '" + name + "'", made.error()));
-        values[name + "_TexelSize"] = texel_size(made->size);
-        draw.textures.push_back({name, TextureSource::texture(made->handle, scene_sampler(shape, false))});
+        auto uniforms = uniform_bindings(variants_[variant], UniformValues(values, instance.properties, variants_[variant].interface), where);
+        if (!uniforms) return fail(uniforms.error());
+        draw.uniforms = std::move(*uniforms);
+        pass.draws.push_back(std::move(draw));
       }
-      auto uniforms = uniform_bindings(variants_[variant], UniformValues(values, instance.properties, variants_[variant].interface), where);
-      if (!uniforms) return fail(uniforms.error());
-      draw.uniforms = std::move(*uniforms);
-      pass.draws.push_back(std::move(draw));
     }
     return timed("scene", pass);
   }

@@ -152,8 +152,8 @@ ShaderCache::ShaderCache(fs::path directory, std::string compiler_identity)
 
 std::string ShaderCache::request_key(const VariantRequest& request, Lane lane) const {
   std::string key = compiler_identity_ + "\n" + std::string(lane_name(lane)) + (request.half_emulation ? " half" : "") +
-                    "\n" + request.source.string() + "\n" +
-                    request.fragment_entry + "\n";
+                    "\n" + request.source.string() + "\n" + request.fragment_entry + "\n" +
+                    (request.shader_pass ? "pass " + std::to_string(*request.shader_pass) : std::string()) + "\n";
   for (const std::string& keyword : request.keywords) key += keyword + " ";
   return content_hash(key);
 }

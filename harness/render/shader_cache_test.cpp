@@ -95,6 +95,25 @@ TEST_F(ShaderCacheTest, EditingTheMaterialsOwnFileMisses) {
   EXPECT_NE(last_.program.fragment.glsl.find("0.5"), std::string::npos) << last_.program.fragment.glsl;
 }
 
+// Each pass of a .shader is its own program: the second pass is never the first one's entry.
+TEST_F(ShaderCacheTest, EachPassOfAUnityShaderIsItsOwnEntry) {
+  write("materials/two.shader",
+        "Shader \"Two\" { SubShader {\n"
+        "  Pass { HLSLPROGRAM\n#pragma fragment frag\nfloat4 frag() : SV_Target { return float4(1, 0, 0, 1); }\nENDHLSL }\n"
+        "  Pass { HLSLPROGRAM\n#pragma fragment frag\nfloat4 frag() : SV_Target { return float4(0, 0, 1, 1); }\nENDHLSL }\n"
+        "} }\n");
+  ShaderCache cache(root_ / "cache", "identity");
+  VariantRequest first{root_ / "materials" / "two.shader", "materials/two.shader", {}, {}};
+  first.shader_pass = 0;
+  VariantRequest second = first;
+  second.shader_pass = 1;
+  EXPECT_FALSE(from_cache(cache, first));
+  EXPECT_FALSE(from_cache(cache, second));
+  EXPECT_NE(last_.program.fragment.glsl.find("vec4(0.0, 0.0, 1.0, 1.0)"), std::string::npos) << last_.program.fragment.glsl;
+  EXPECT_TRUE(from_cache(cache, first));
+  EXPECT_NE(last_.program.fragment.glsl.find("vec4(1.0, 0.0, 0.0, 1.0)"), std::string::npos) << last_.program.fragment.glsl;
+}
+
 // Two materials, one of which reads the include: editing the include recompiles that one only.
 TEST_F(ShaderCacheTest, ChangingAnIncludeRecompilesExactlyTheVariantsThatReadIt) {
   write("materials/plain.hlsl", "#pragma fragment frag\nfloat4 frag(float2 uv : TEXCOORD0) : SV_Target { return 1; }\n");
