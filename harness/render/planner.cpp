@@ -30,7 +30,7 @@ struct SourceFacts {
   int queue = kGeometryQueue;
   std::map<std::string, float> property_defaults;
   std::vector<size_t> drawn_passes;  // a .shader's (material_source.h); empty for an .hlsl
-  std::optional<size_t> pass;        // the .shader's pass read
+  std::optional<size_t> pass;        // the .shader's pass read (the first drawn, unless asked for another)
 };
 
 class SourceReader {
@@ -174,7 +174,7 @@ Result<Plan> plan_scene(const Scene& scene, const ShaderSearchPath& shaders) {
     std::vector<std::optional<size_t>> passes(1, std::nullopt);  // an .hlsl draws once
     if (!material.drawn_passes.empty()) passes.assign(material.drawn_passes.begin(), material.drawn_passes.end());
     for (const std::optional<size_t>& pass : passes) {
-      auto facts_of_pass = pass_facts(pass);
+      auto facts_of_pass = pass == material.pass ? Result<const SourceFacts*>(&material) : pass_facts(pass);
       if (!facts_of_pass) return fail(facts_of_pass.error());
       const SourceFacts& facts = **facts_of_pass;
       DrawState state;
