@@ -151,11 +151,10 @@ ShaderCache::ShaderCache(fs::path directory, std::string compiler_identity)
     : directory_(std::move(directory)), compiler_identity_(std::move(compiler_identity)) {}
 
 std::string ShaderCache::request_key(const VariantRequest& request, Lane lane) const {
-  std::string key = compiler_identity_ + "\n" + std::string(lane_name(lane)) + (request.half_emulation ? " half" : "") +
-                    "\n" + request.source.string() + "\n" + request.fragment_entry + "\n" +
-                    (request.shader_pass ? "pass " + std::to_string(*request.shader_pass) : std::string()) + "\n";
-  for (const std::string& keyword : request.keywords) key += keyword + " ";
-  return content_hash(key);
+  // The request's label names everything that makes a variant (entry, pass, keywords, half), so
+  // that a field added to the request is in the key without being listed here again.
+  return content_hash(compiler_identity_ + "\n" + std::string(lane_name(lane)) + "\n" + request.source.string() + "\n" +
+                      request.label());
 }
 
 CacheLookup ShaderCache::look_up(const VariantRequest& request, Lane lane) const {
