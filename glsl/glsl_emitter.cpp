@@ -436,7 +436,12 @@ std::string StageEmitter::run() {
       if (var->is_const) const_decls_.insert(var);
       statics.line(std::string(var->is_const ? "const " : "") + declaration + " = " + value + ";");
     } else {
-      statics.line(declaration + ";");
+      // main() assigns it first, but functions above main() read it, and Mesa's GLSL compiler,
+      // which reads in source order, would warn that they read it uninitialized (a driver
+      // warning fails the gl lane); a scalar, vector or matrix starts at zero to say otherwise.
+      const TypeKind kind = var->type.kind();
+      const bool zeroable = kind == TypeKind::Scalar || kind == TypeKind::Vector || kind == TypeKind::Matrix;
+      statics.line(declaration + (zeroable ? " = " + zero_value(*this, var->type, var->loc) : std::string()) + ";");
       prologue.push_back(name + " = " + value + ";");
     }
   }

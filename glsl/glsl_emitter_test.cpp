@@ -417,7 +417,7 @@ TEST(GlslEmitterExpressions, StaticGlobals) {
                                     "const float local = 2;\n"
                                     "const float runtime = s_zero;\n"
                                     "return s_tint * dot(kLum, 1) + s_zero + s_count + local + runtime;");
-  EXPECT_THAT(text, HasSubstr("vec4 s_tint;"));
+  EXPECT_THAT(text, HasSubstr("vec4 s_tint = vec4(0.0);"));  // until main() assigns it
   EXPECT_THAT(text, HasSubstr("float s_zero = 0.0;"));  // HLSL zero-initializes statics
   EXPECT_THAT(text, HasSubstr("int s_count = 3;"));
   EXPECT_THAT(text, HasSubstr("const vec3 kLum = vec3(0.2, 0.7, 0.1);"));

@@ -74,6 +74,9 @@ PragmaReading read_pragmas(const std::vector<Pragma>& pragmas, DiagnosticEngine&
     } else if (pragma.name == "geometry" || pragma.name == "hull" || pragma.name == "domain") {
       diagnostics.error(pragma.loc, "xshade compiles vertex and fragment stages; a " + std::string(pragma.name) +
                                         " stage cannot be compiled, and leaving it out would draw something else");
+    } else if (pragma.name == "warning") {
+      // fxc's and DXC's `#pragma warning(disable : 3205)` turns their own numbered warnings off;
+      // xshade's warnings have no such numbers, so there is nothing to turn off or to say.
     } else if (pragma.name == "pack_matrix") {
       diagnostics.warning(pragma.loc, "#pragma " + std::string(pragma.name) + " is ignored");
     } else if (std::find(std::begin(kUnityBuildPragmas), std::end(kUnityBuildPragmas), pragma.name) ==

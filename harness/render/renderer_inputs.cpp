@@ -97,6 +97,8 @@ UniformValueMap frame_inputs(const Scene& scene, const ShCoefficients& sh) {
   values["unity_MatrixInvV"] = hlsl_components(glm::inverse(view));
   values["glstate_matrix_projection"] = hlsl_components(projection);
   values["unity_MatrixVP"] = hlsl_components(projection * view);
+  // One view, not stereo: the left eye's index, which single-pass stereo code reads anyway.
+  values["unity_StereoEyeIndex"] = {0.0f};
   // Linear colour space: Unity's luminance weights for linear RGB, w = 1.
   values["unity_ColorSpaceLuminance"] = {0.0396819152f, 0.458021790f, 0.00609653955f, 1.0f};
 

@@ -138,6 +138,7 @@ std::vector<Row> rows() {
       vector_row("_SinTime", "float4", {std::sin(t / 8), std::sin(t / 4), std::sin(t / 2), std::sin(t)}),
       vector_row("_CosTime", "float4", {std::cos(t / 8), std::cos(t / 4), std::cos(t / 2), std::cos(t)}),
       vector_row("unity_DeltaTime", "float4", {1.0f / 60, 60, 1.0f / 60, 60}),
+      vector_row("unity_StereoEyeIndex", "int", {0}),
       vector_row("_WorldSpaceCameraPos", "float3", {kCameraPosition.x, kCameraPosition.y, kCameraPosition.z}),
       vector_row("_ProjectionParams", "float4", {1, kNear, kFar, 1 / kFar}),
       vector_row("_ScreenParams", "float4", {8, 2, 1.125f, 1.5f}),

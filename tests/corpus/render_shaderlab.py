@@ -1,0 +1,256 @@
+#!/usr/bin/env python3
+"""ShaderLab corpus: every `.shader` file under the real-world corpus (../shared/realworld/corpus),
+as Unity ships it, rendered by `xshade run` as the only material of a probe scene (a sphere on a
+plane under one directional light) with nothing but its own Properties defaults, on gl, vk and
+vk-hlsl, and the three images compared as a scene's lanes always are.
+
+A file renders when every lane draws an image that is not one flat colour and every pair of lanes
+agrees within the scene's default tolerance. Surface shaders (`#pragma surface`) are counted apart:
+their generated passes are not made yet, and what is checked of them is that xshade refuses them
+with its error rather than crashing.
+
+usage: render_shaderlab.py --xshade XSHADE [--corpus DIR] [--out DIR] [--passing FILE]
+                           [--divergences docs/divergences.md] [--only SUBSTR] [-j N]
+
+The last line printed is `shaderlab: K of N .shader files render on every lane and agree`. The
+exit code is 1 on a crash or a hang, on a file of the passing list (one corpus path a line) that no
+longer renders, and on a disagreement between lanes that the divergences file does not list (by
+the file's corpus path in backquotes); 0 otherwise.
+"""
+import argparse
+import json
+import os
+import re
+import struct
+import subprocess
+import sys
+import tempfile
+import zlib
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+DEFAULT_CORPUS = os.path.normpath(os.path.join(HERE, '..', '..', '..', 'shared', 'realworld', 'corpus'))
+# One scene of 64x64 on three lanes compiles a handful of variants and draws two objects: about a
+# second on 2 cores. 60 s is a hang, not a slow machine.
+SCENE_TIMEOUT = 60
+
+PROBE_SCENE = '''# Made by render_shaderlab.py: {path} as the only material of a probe scene.
+description = "{path}"
+size = [64, 64]
+
+[camera]
+position = [0, 1.2, 3]
+target = [0, 0, 0]
+fov_y = 45
+near = 0.3
+far = 20
+
+[[light]]
+type = "directional"
+direction = [-0.5, 0.6, 0.6]
+
+[[object]]
+name = "ball"
+mesh = "sphere"
+material = "{material}"
+
+[[object]]
+name = "floor"
+mesh = "plane"
+material = "{material}"
+position = [0, -1, 0]
+scale = [4, 1, 4]
+'''
+
+
+def png_pixels(path):
+    """The rows of an 8-bit, non-interlaced PNG (what xshade writes) as bytes, and the bytes a
+    pixel takes; enough to tell one flat colour from an image."""
+    data = open(path, 'rb').read()
+    if data[:8] != b'\x89PNG\r\n\x1a\n':
+        raise ValueError('%s is not a PNG' % path)
+    offset, idat, width, height, channels = 8, b'', 0, 0, 0
+    while offset < len(data):
+        length, kind = struct.unpack('>I4s', data[offset:offset + 8])
+        body = data[offset + 8:offset + 8 + length]
+        if kind == b'IHDR':
+            width, height, depth, colour, _, _, interlace = struct.unpack('>IIBBBBB', body)
+            channels = {0: 1, 2: 3, 4: 2, 6: 4}.get(colour)
+            if depth != 8 or channels is None or interlace:
+                raise ValueError('%s: only 8-bit non-interlaced grey or RGB(A) is read here' % path)
+        elif kind == b'IDAT':
+            idat += body
+        offset += 12 + length
+    raw = zlib.decompress(idat)
+    stride = width * channels
+    rows, previous = [], bytearray(stride)
+    for y in range(height):
+        filter_type = raw[y * (stride + 1)]
+        row = bytearray(raw[y * (stride + 1) + 1:(y + 1) * (stride + 1)])
+        for x in range(stride):
+            left = row[x - channels] if x >= channels else 0
+            up = previous[x]
+            up_left = previous[x - channels] if x >= channels else 0
+            if filter_type == 1:
+                row[x] = (row[x] + left) & 255
+            elif filter_type == 2:
+                row[x] = (row[x] + up) & 255
+            elif filter_type == 3:
+                row[x] = (row[x] + (left + up) // 2) & 255
+            elif filter_type == 4:
+                p = left + up - up_left
+                pa, pb, pc = abs(p - left), abs(p - up), abs(p - up_left)
+                row[x] = (row[x] + (left if pa <= pb and pa <= pc else up if pb <= pc else up_left)) & 255
+        rows.append(bytes(row))
+        previous = row
+    return rows, channels
+
+
+def is_flat(path):
+    rows, channels = png_pixels(path)
+    first = rows[0][:channels]
+    return all(row == first * (len(row) // channels) for row in rows)
+
+
+def scene_id(relative):
+    return re.sub(r'[^A-Za-z0-9]+', '_', os.path.splitext(relative)[0]).strip('_').lower()
+
+
+def listed_divergences(path):
+    if not path or not os.path.exists(path):
+        return set()
+    return set(re.findall(r'`([^`]+\.shader)`', open(path, encoding='utf-8').read()))
+
+
+def first_error(message):
+    """The first line of a message that says what went wrong (an `error:` line where there is one,
+    rather than the line that says a file did not compile)."""
+    lines = [line.strip() for line in message.splitlines() if line.strip()]
+    return next((line for line in lines if ': error: ' in line), lines[0] if lines else '')
+
+
+def judge(scene, report):
+    """(verdict, detail) of one scene's results: 'render', 'differ', 'flat', 'error' (a lane did
+    not render: compile error, missing input, ...), 'crash' or 'hang'."""
+    if not scene['lanes']:
+        return 'error', first_error(scene['message']) or 'no lane rendered'
+
+    problems = []
+    for lane in scene['lanes']:
+        if lane['verdict'] == 'crash':
+            return 'crash', '%s: %s' % (lane['lane'], lane['message'])
+        if 'timed out' in lane['message'] or 'timeout' in lane['message']:
+            return 'hang', '%s: %s' % (lane['lane'], lane['message'])
+        failing = [l for l in lane['layers'] if l['verdict'] != 'pass' and l['layer'] != 'golden']
+        if not lane['image'] or lane['verdict'] == 'error':
+            problems.append('%s: %s' % (lane['lane'], first_error(lane['message']) or 'no image'))
+        elif failing:
+            problems.append('%s: %s' % (lane['lane'], '; '.join('%s %s' % (l['layer'], l['detail']) for l in failing)))
+    if problems:
+        return 'error', ' | '.join(problems)
+    flat = [lane['lane'] for lane in scene['lanes'] if is_flat(os.path.join(report, lane['image']))]
+    if flat:
+        return 'flat', 'one flat colour on ' + ', '.join(flat)
+    differing = [c for c in scene['cross_lane'] if c['verdict'] != 'pass']
+    if differing or len(scene['cross_lane']) < 2:
+        return 'differ', '; '.join('%s vs %s: %s' % (c['first_lane'], c['second_lane'], c['verdict']) for c in differing) \
+            or 'fewer than two lane comparisons'
+    return 'render', ''
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.split('\n\n')[0])
+    ap.add_argument('--xshade', required=True)
+    ap.add_argument('--corpus', default=DEFAULT_CORPUS)
+    ap.add_argument('--out', default=os.path.join(tempfile.gettempdir(), 'xshade-shaderlab'))
+    ap.add_argument('--passing', default='')
+    ap.add_argument('--divergences', default='')
+    ap.add_argument('--only', default='')
+    ap.add_argument('-j', '--jobs', type=int, default=os.cpu_count() or 1, help='renders at once')
+    a = ap.parse_args()
+
+    shaders = sorted(os.path.relpath(os.path.join(root, name), a.corpus)
+                     for root, _, names in os.walk(a.corpus) for name in names
+                     if name.endswith('.shader') and a.only in os.path.join(root, name))
+    surface = [s for s in shaders if re.search(r'^\s*#\s*pragma\s+surface\b', open(os.path.join(a.corpus, s),
+                                                                                   encoding='utf-8', errors='replace').read(), re.M)]
+    drawn = [s for s in shaders if s not in surface]
+    scenes_dir, golden_dir, report = (os.path.join(a.out, d) for d in ('scenes', 'golden', 'report'))
+    for folder in (scenes_dir, golden_dir):
+        os.makedirs(folder, exist_ok=True)
+        for old in os.listdir(folder):
+            os.remove(os.path.join(folder, old))
+    ids = {}
+    for relative in drawn:
+        ids[scene_id(relative)] = relative
+        with open(os.path.join(scenes_dir, scene_id(relative) + '.toml'), 'w') as f:
+            f.write(PROBE_SCENE.format(path=relative, material=relative.replace('\\', '/')))
+
+    # Each .shader's folder holds its own includes; Unity's CG include files are a corpus source's
+    # CGIncludes folder, found as a user's --shaders folder finds them.
+    # A corpus source is a project: its own root is a shader folder (PPv2 includes
+    # "Packages/com.unity.postprocessing/..." from there, as Unity resolves package paths).
+    sources = sorted(s for s in os.listdir(a.corpus) if os.path.isdir(os.path.join(a.corpus, s)))
+    include_folders = [os.path.join(a.corpus, s, 'CGIncludes') for s in sources if os.path.isdir(os.path.join(a.corpus, s, 'CGIncludes'))]
+    shader_options = ['--shaders', a.corpus] + sum((['--shaders', folder] for folder in
+                                                    include_folders + [os.path.join(a.corpus, s) for s in sources]), [])
+    cmd = [a.xshade, 'run', '--no-project', '--scenes', scenes_dir, '--golden', golden_dir, '--report', report,
+           '--cache', os.path.join(a.out, 'cache'), '--timeout', str(SCENE_TIMEOUT), '-j', str(max(1, a.jobs))] + shader_options
+    rows = []
+    if drawn:
+        # Every scene fails its golden layer (there are none): the exit code says nothing here,
+        # results.json says everything.
+        run = subprocess.run(cmd, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True,
+                             timeout=SCENE_TIMEOUT * 3 * len(drawn) + 120)
+        results_path = os.path.join(report, 'results.json')
+        if not os.path.exists(results_path):
+            print(run.stdout[-3000:])
+            print('render_shaderlab: xshade run wrote no results (exit code %d): %s' % (run.returncode, ' '.join(cmd)))
+            return 1
+        results = {s['scene']: s for s in json.load(open(results_path))['scenes']}
+        for identifier, relative in sorted(ids.items(), key=lambda item: item[1]):
+            scene = results.get(identifier)
+            verdict, detail = judge(scene, report) if scene else ('error', 'not in the run\'s results')
+            rows.append(dict(path=relative, verdict=verdict, detail=detail))
+
+    for relative in surface:
+        check = subprocess.run([a.xshade, 'compile', os.path.join(a.corpus, relative), '--target', 'gl'] + shader_options,
+                               stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True, timeout=SCENE_TIMEOUT)
+        refused = check.returncode == 2 and 'surface' in check.stdout
+        rows.append(dict(path=relative, verdict='surface' if refused else 'crash' if check.returncode not in (0, 1, 2) else 'error',
+                         detail='' if refused else 'exit code %d: %s' % (check.returncode, check.stdout.strip()[:300])))
+
+    with open(os.path.join(a.out, 'shaderlab.tsv'), 'w') as f:
+        for row in rows:
+            f.write('%s\t%s\t%s\n' % (row['path'], row['verdict'], row['detail']))
+    for row in rows:
+        print('%s: %s%s' % (row['path'], row['verdict'], ' - ' + row['detail'] if row['detail'] else ''))
+
+    failures = []
+    passing_list = set()
+    if a.passing:
+        passing_list = {line.split('#')[0].strip() for line in open(a.passing)} - {''}
+    listed = listed_divergences(a.divergences)
+    rendered = {r['path'] for r in rows if r['verdict'] == 'render'}
+    for row in rows:
+        if row['verdict'] in ('crash', 'hang'):
+            failures.append('%s: %s: %s' % (row['path'], row['verdict'], row['detail']))
+        elif row['verdict'] == 'differ' and row['path'] not in listed:
+            failures.append('%s: the lanes disagree and %s does not list it: %s' % (row['path'], a.divergences or 'no divergences file',
+                                                                                   row['detail']))
+    for path in sorted(passing_list - rendered):
+        if any(r['path'] == path for r in rows) or not a.only:
+            failures.append('%s: in %s, but no longer renders' % (path, a.passing))
+    new = sorted(rendered - passing_list)
+    if a.passing and new:
+        print('render now, to be added to %s:\n  %s' % (a.passing, '\n  '.join(new)))
+    for failure in failures:
+        print('FAIL ' + failure)
+    surface_count = sum(1 for r in rows if r['verdict'] == 'surface')
+    print('not counted: %d surface shaders (refused with the surface-shader error: their generated passes are not made yet)'
+          % surface_count)
+    print('shaderlab: %d of %d .shader files render on every lane and agree' % (len(rendered), len(drawn)))
+    return 1 if failures else 0
+
+
+if __name__ == '__main__':
+    sys.exit(main())
