@@ -123,6 +123,12 @@ class SemanticIoResolver final : public glslang::TDefaultIoResolverBase {
           location = placed->second + element.value_or(0);
         else
           location = hlsl::varying_location(semantic);
+      } else if (const hlsl::ParsedSemantic target = hlsl::parse_semantic(semantic);
+                 target.kind == hlsl::SemanticKind::SvTarget || target.kind == hlsl::SemanticKind::Color) {
+        // A pixel shader's SV_TargetN, or DX9's COLORN, is colour attachment N. glslang numbers
+        // a COLOR output like any varying (location 4 for Unity Standard's fragForwardBase,
+        // whose colour then went nowhere and the attachment kept whatever memory held).
+        location = target.index;
       }
       if (location) return entry.newLocation = int(*location);
     }
