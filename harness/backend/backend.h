@@ -40,7 +40,10 @@ using ProgramHandle = Handle<struct ProgramTag>;
 
 // The one vertex format: locations 0..3 are POSITION, NORMAL, TANGENT, TEXCOORD0. A vertex
 // shader may read other locations too (TEXCOORD1..7, COLOR0..1: hlsl::vertex_input_location);
-// no mesh supplies them, so every backend feeds them zeros of the input's type.
+// no mesh supplies them, so every backend feeds them a constant: white (1, 1, 1, 1) to a float
+// colour input (COLOR0 at location 5, COLOR1 at 12), as a Unity mesh without vertex colours
+// gives its shaders, and zeros of the input's type to any other.
+constexpr bool unsupplied_input_reads_white(uint32_t location) { return location == 5 || location == 12; }
 struct Vertex {
   glm::vec3 position{0.0f};
   glm::vec3 normal{0.0f, 0.0f, 1.0f};

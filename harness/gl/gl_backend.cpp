@@ -108,8 +108,8 @@ struct Program {
   GlProgram program;
   std::vector<GlBuffer> uniform_buffers;  // per layout uniform block
   // Vertex inputs no mesh supplies (locations above 3), with what they read as: each draw sets
-  // their generic current value to zeros of that type (GL's own default is (0, 0, 0, 1)).
-  std::vector<std::pair<GLuint, TexelKind>> zero_inputs;
+  // their generic current value to backend.h's constant (GL's own default is (0, 0, 0, 1)).
+  std::vector<std::pair<GLuint, TexelKind>> unsupplied_inputs;
 };
 
 // ---- The backend --------------------------------------------------------------------------------
@@ -719,7 +719,7 @@ Result<ProgramHandle> GlBackend::create_program(const ProgramDesc& desc) {
     }
     settle(before, desc.vertex.glsl + '\0' + desc.fragment.glsl);  // the link's own
 
-    if (auto checked = gl_support::check_interface(gl_, id, program->layout, program->fullscreen, program->zero_inputs, what);
+    if (auto checked = gl_support::check_interface(gl_, id, program->layout, program->fullscreen, program->unsupplied_inputs, what);
         !checked)
       return fail(checked.error());
 
@@ -809,8 +809,9 @@ Result<void> GlBackend::render(const RenderPass& pass) {
         gl_.DrawArrays(GL_TRIANGLES, 0, 3);
       } else {
         // Attributes outside the vertex array read the generic current value.
-        for (const auto& [location, kind] : program.zero_inputs) {
-          if (kind == TexelKind::Float) gl_.VertexAttrib4f(location, 0.0f, 0.0f, 0.0f, 0.0f);
+        for (const auto& [location, kind] : program.unsupplied_inputs) {
+          const float value = unsupplied_input_reads_white(location) ? 1.0f : 0.0f;
+          if (kind == TexelKind::Float) gl_.VertexAttrib4f(location, value, value, value, value);
           if (kind == TexelKind::Int) gl_.VertexAttribI4i(location, 0, 0, 0, 0);
           if (kind == TexelKind::Uint) gl_.VertexAttribI4ui(location, 0, 0, 0, 0);
         }

@@ -275,7 +275,7 @@ std::string base_name(std::string name) {
 
 // The linked program's uniforms, blocks and inputs against the layout and GL's limits.
 Result<void> check_interface(const gl::Functions& gl, GLuint id, const ProgramLayout& layout, bool fullscreen,
-                             std::vector<std::pair<GLuint, TexelKind>>& zero_inputs, const std::string& what) {
+                             std::vector<std::pair<GLuint, TexelKind>>& unsupplied_inputs, const std::string& what) {
   const auto resource_name = [&](GLenum interface, GLuint index) {
     GLint length = 0;
     const GLenum property = GL_NAME_LENGTH;
@@ -334,10 +334,10 @@ Result<void> check_interface(const gl::Functions& gl, GLuint id, const ProgramLa
   }
 
   // Vertex inputs: none for a full-screen program; for a mesh program the mesh's locations 0..3,
-  // and zeros for any other (what glGetActiveAttrib reports, here through the program interface
-  // query that gives the location with the type).
+  // and backend.h's constant for any other (what glGetActiveAttrib reports, here through the
+  // program interface query that gives the location with the type).
   const GLuint inputs = count(GL_PROGRAM_INPUT);
-  zero_inputs.clear();
+  unsupplied_inputs.clear();
   for (GLuint index = 0; index < inputs; ++index) {
     const std::array<GLenum, 2> properties = {GL_LOCATION, GL_TYPE};
     std::array<GLint, 2> values = {-1, 0};
@@ -355,7 +355,7 @@ Result<void> check_interface(const gl::Functions& gl, GLuint id, const ProgramLa
       return fail(fmt::format("{}: the vertex shader reads input '{}' at location {} of GL type 0x{:04X}, which "
                               "no mesh supplies and which is not a float, int or uint scalar or vector",
                               what, resource_name(GL_PROGRAM_INPUT, index), location, values[1]));
-    zero_inputs.emplace_back(static_cast<GLuint>(location), *kind);
+    unsupplied_inputs.emplace_back(static_cast<GLuint>(location), *kind);
   }
   return {};
 }

@@ -121,8 +121,8 @@ std::vector<Diagnostic> parse_log(const std::string& log, const std::string& fil
 
 // The linked program `id`'s uniforms, blocks and inputs against `layout`: every block and sampler
 // listed and no bigger than listed, no vertex input for a full-screen program. Fills
-// `zero_inputs` with the inputs above location 3 (no mesh has them) and what they read as.
+// `unsupplied_inputs` with the inputs above location 3 (no mesh has them) and what they read as.
 Result<void> check_interface(const gl::Functions& gl, GLuint id, const ProgramLayout& layout, bool fullscreen,
-                             std::vector<std::pair<GLuint, TexelKind>>& zero_inputs, const std::string& what);
+                             std::vector<std::pair<GLuint, TexelKind>>& unsupplied_inputs, const std::string& what);
 
 }  // namespace xshade::harness::gl_support

@@ -8,6 +8,7 @@
 #include "harness/render/scene_contract.h"
 #include "harness/render/unity_render_state.h"
 #include "hlsl_like/compiler.h"
+#include "hlsl_like/semantics.h"
 
 namespace xshade::harness {
 namespace {
@@ -203,7 +204,10 @@ Result<Plan> plan_scene(const Scene& scene, const ShaderSearchPath& shaders) {
         plan.variant_notes[variant] = variant_facts->notes;
         for (const std::string& semantic : variant_facts->vertex_inputs)
           if (!meshes_supply(semantic))
-            plan.variant_notes[variant].push_back("vertex input " + semantic + " is not in the meshes; the shader reads zeros");
+            plan.variant_notes[variant].push_back(
+                "vertex input " + semantic + " is not in the meshes; the shader reads " +
+                (hlsl::parse_semantic(semantic).kind == hlsl::SemanticKind::Color ? "white, as from a mesh without vertex colours"
+                                                                                   : "zeros"));
         variant_names.resize(plan.variants.size());
         variant_names[variant] = std::move(variant_facts->names);
       }

@@ -235,11 +235,11 @@ keywords = ["_EXTRA"]
   ASSERT_EQ(plan->variant_notes.size(), 2u);
   EXPECT_TRUE(plan->variant_notes[first_variants(*plan)[0]].empty());
   EXPECT_EQ(plan->variant_notes[first_variants(*plan)[1]],
-            (std::vector<std::string>{"vertex input COLOR1 is not in the meshes; the shader reads zeros",
+            (std::vector<std::string>{"vertex input COLOR1 is not in the meshes; the shader reads white, as from a mesh without vertex colours",
                                       "vertex input TEXCOORD2 is not in the meshes; the shader reads zeros"}));
   const std::string described = describe_plan(scene(""), *plan);
   EXPECT_NE(described.find("    materials/extra_inputs.hlsl [_EXTRA]\n"
-                           "      vertex input COLOR1 is not in the meshes; the shader reads zeros\n"
+                           "      vertex input COLOR1 is not in the meshes; the shader reads white, as from a mesh without vertex colours\n"
                            "      vertex input TEXCOORD2 is not in the meshes; the shader reads zeros\n"),
             std::string::npos)
       << described;

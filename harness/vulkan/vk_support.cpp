@@ -329,7 +329,7 @@ vk::Format vk_format(TextureFormat format) {
   return vk::Format::eUndefined;
 }
 
-vk::Format zero_input_format(TexelKind kind) {
+vk::Format unsupplied_input_format(TexelKind kind) {
   switch (kind) {
     case TexelKind::Float: return vk::Format::eR32G32B32A32Sfloat;
     case TexelKind::Int: return vk::Format::eR32G32B32A32Sint;
@@ -345,8 +345,8 @@ vk::raii::Pipeline create_draw_pipeline(const vk::raii::Device& device, const Dr
                                         spec.vertex_entry),
       vk::PipelineShaderStageCreateInfo({}, vk::ShaderStageFlagBits::eFragment,
                                         spec.fragment, spec.fragment_entry)};
-  // Binding 0 is the mesh; binding 1 the zero buffer, read at stride 0 by every input no
-  // mesh supplies.
+  // Binding 0 is the mesh; binding 1 the constant buffer, read at stride 0 by every input no
+  // mesh supplies: four zeros, then four float ones for a float colour input (backend.h).
   std::vector<vk::VertexInputBindingDescription> bindings;
   const std::array<vk::VertexInputAttributeDescription, 4> all_attributes = {
       vk::VertexInputAttributeDescription(0, 0, vk::Format::eR32G32B32Sfloat,
@@ -362,9 +362,10 @@ vk::raii::Pipeline create_draw_pipeline(const vk::raii::Device& device, const Dr
   for (uint32_t location : spec.vertex_inputs)
     if (location < all_attributes.size()) attributes.push_back(all_attributes[location]);
   if (!attributes.empty()) bindings.emplace_back(0, sizeof(Vertex), vk::VertexInputRate::eVertex);
-  for (const auto& [location, kind] : spec.zero_inputs)
-    attributes.emplace_back(location, 1, zero_input_format(kind), 0);
-  if (!spec.zero_inputs.empty()) bindings.emplace_back(1, 0, vk::VertexInputRate::eVertex);
+  for (const auto& [location, kind] : spec.unsupplied_inputs)
+    attributes.emplace_back(location, 1, unsupplied_input_format(kind),
+                            kind == TexelKind::Float && unsupplied_input_reads_white(location) ? 16 : 0);
+  if (!spec.unsupplied_inputs.empty()) bindings.emplace_back(1, 0, vk::VertexInputRate::eVertex);
   vk::PipelineVertexInputStateCreateInfo vertex_input;
   if (!attributes.empty())
     vertex_input = vk::PipelineVertexInputStateCreateInfo({}, bindings, attributes);

@@ -160,7 +160,7 @@ struct DrawPipelineSpec {
   const char* vertex_entry;
   const char* fragment_entry;
   const std::set<uint32_t>& vertex_inputs;
-  const std::map<uint32_t, TexelKind>& zero_inputs;
+  const std::map<uint32_t, TexelKind>& unsupplied_inputs;
   vk::PipelineLayout layout;
   vk::Format color_format;
   vk::Format depth_format;  // eUndefined: no depth attachment, no depth test

@@ -58,9 +58,9 @@ struct Program {
   std::string vertex_entry;
   std::string fragment_entry;
   std::set<uint32_t> vertex_inputs;
-  // The inputs above location 3 (no mesh has them) and what they read: fed zeros from the
-  // backend's zero buffer at binding 1.
-  std::map<uint32_t, TexelKind> zero_inputs;
+  // The inputs above location 3 (no mesh has them) and what they read: fed backend.h's constant
+  // from the backend's constant buffer at binding 1.
+  std::map<uint32_t, TexelKind> unsupplied_inputs;
   vk::raii::ShaderModule vertex{nullptr};
   vk::raii::ShaderModule fragment{nullptr};
   vk::raii::DescriptorSetLayout set_layout{nullptr};
@@ -122,7 +122,7 @@ class VulkanBackend final : public Backend {
   // Every sample of each texel of `image` (multisampled, just created) from level 0 of `data`.
   void fill_multisampled(Image& image, const TextureData& data);
   // 16 zero bytes, the vertex buffer of every input no mesh supplies (stride 0).
-  const Buffer& zero_vertex_buffer();
+  const Buffer& unsupplied_input_buffer();
   // Records with `record`, submits, waits. Layouts roll back if anything throws.
   void submit(const std::function<void(Recording&)>& record);
   Result<vk::Pipeline> pipeline(Program& program, const Target& target, const DrawState& state);
@@ -152,7 +152,7 @@ class VulkanBackend final : public Backend {
   DriverInfo info_;
 
   std::map<std::tuple<Filter, AddressMode, std::optional<CompareOp>>, vk::raii::Sampler> samplers_;
-  Buffer zero_vertices_;
+  Buffer unsupplied_vertices_;
   BackendObjects<Target, Mesh, Image, Program> objects_;
 };
 
@@ -509,13 +509,14 @@ void VulkanBackend::fill_multisampled(Image& image, const TextureData& data) {
   });
 }
 
-const Buffer& VulkanBackend::zero_vertex_buffer() {
-  if (!*zero_vertices_.buffer) {
-    zero_vertices_ = create_buffer(16, vk::BufferUsageFlagBits::eVertexBuffer);
-    const std::array<uint32_t, 4> zeros{};
-    vk_support::write_buffer(zero_vertices_, zeros.data(), sizeof zeros);
+const Buffer& VulkanBackend::unsupplied_input_buffer() {
+  if (!*unsupplied_vertices_.buffer) {
+    // Four zeros (of any type), then four float ones for a colour input (backend.h).
+    const std::array<float, 8> values{0.0f, 0.0f, 0.0f, 0.0f, 1.0f, 1.0f, 1.0f, 1.0f};
+    unsupplied_vertices_ = create_buffer(sizeof values, vk::BufferUsageFlagBits::eVertexBuffer);
+    vk_support::write_buffer(unsupplied_vertices_, values.data(), sizeof values);
   }
-  return zero_vertices_;
+  return unsupplied_vertices_;
 }
 
 Result<ProgramHandle> VulkanBackend::create_program(const ProgramDesc& desc) {
@@ -558,7 +559,7 @@ Result<ProgramHandle> VulkanBackend::create_program(const ProgramDesc& desc) {
             return fail(fmt::format("{} reads vertex input location {}, which no mesh supplies and whose type is "
                                     "not a 32-bit float, int or uint scalar or vector",
                                     shader, location));
-          program->zero_inputs.emplace(location, *kind);
+          program->unsupplied_inputs.emplace(location, *kind);
         }
       }
       // A resource the layout does not list would reach the driver without a descriptor.
@@ -635,7 +636,7 @@ Result<vk::Pipeline> VulkanBackend::pipeline(Program& program, const Target& tar
         auto made = program.pipelines.emplace(
             key, vk_support::create_draw_pipeline(
                      device_, {*program.vertex, *program.fragment, program.vertex_entry.c_str(),
-                               program.fragment_entry.c_str(), program.vertex_inputs, program.zero_inputs,
+                               program.fragment_entry.c_str(), program.vertex_inputs, program.unsupplied_inputs,
                                *program.pipeline_layout, kColorFormat, depth ? kDepthFormat : vk::Format::eUndefined,
                                second_color ? 2u : 1u, state}));
         return *made.first->second;
@@ -795,9 +796,9 @@ Result<void> VulkanBackend::render(const RenderPass& pass) {
       }
     }
 
-    vk::Buffer zero_buffer;
-    if (std::any_of(draws.begin(), draws.end(), [](const Resolved& d) { return !d.program->zero_inputs.empty(); }))
-      zero_buffer = *zero_vertex_buffer().buffer;
+    vk::Buffer unsupplied_buffer;
+    if (std::any_of(draws.begin(), draws.end(), [](const Resolved& d) { return !d.program->unsupplied_inputs.empty(); }))
+      unsupplied_buffer = *unsupplied_input_buffer().buffer;
     submit([&](Recording& rec) {
       for (Image* image : sampled_targets)
         rec.transition(*image, vk::ImageLayout::eShaderReadOnlyOptimal);
@@ -838,8 +839,8 @@ Result<void> VulkanBackend::render(const RenderPass& pass) {
           if (std::any_of(draw.program->vertex_inputs.begin(), draw.program->vertex_inputs.end(),
                           [](uint32_t location) { return location <= 3; }))
             rec.cmd.bindVertexBuffers(0, *draw.mesh->vertices.buffer, vk::DeviceSize(0));
-          if (!draw.program->zero_inputs.empty())
-            rec.cmd.bindVertexBuffers(1, zero_buffer, vk::DeviceSize(0));
+          if (!draw.program->unsupplied_inputs.empty())
+            rec.cmd.bindVertexBuffers(1, unsupplied_buffer, vk::DeviceSize(0));
           rec.cmd.bindIndexBuffer(*draw.mesh->indices.buffer, 0, vk::IndexType::eUint32);
           rec.cmd.drawIndexed(draw.mesh->index_count, 1, 0, 0, 0);
         }

@@ -36,6 +36,8 @@ SCENE_TIMEOUT = 60
 PROBE_SCENE = '''# Made by render_shaderlab.py: {path} as the only material of a probe scene.
 description = "{path}"
 size = [64, 64]
+# Not black, so that a multiplying or blending material shows over it.
+clear_color = [0.2, 0.3, 0.4, 1]
 
 [camera]
 position = [0, 1.2, 3]

@@ -1,6 +1,7 @@
 // Vertex inputs no mesh supplies (TEXCOORD1..7, COLOR0..1: every location but 0..3) read zeros
-// of their type on every lane: OpenGL through the generic current attribute value, set per draw
-// (its own default would be (0, 0, 0, 1)), Vulkan from a zero buffer read at stride 0.
+// of their type on every lane, and a float colour white, as from a Unity mesh without vertex
+// colours: OpenGL through the generic current attribute value, set per draw (its own default
+// would be (0, 0, 0, 1)), Vulkan from a constant buffer read at stride 0.
 #include <functional>
 #include <string>
 
@@ -79,7 +80,7 @@ class VertexInputs : public LaneTest {
   }
 };
 
-TEST_F(VertexInputs, InputsNoMeshSuppliesReadZerosOfTheirType) {
+TEST_F(VertexInputs, InputsNoMeshSuppliesReadZerosOfTheirTypeAndColoursWhite) {
   auto module = hlsl::compile_text("vertex_inputs.hlsl", kSource, {});
   ASSERT_TRUE(module->ok());
   // The reflection places them where the backends feed zeros: above location 3.
@@ -89,7 +90,8 @@ TEST_F(VertexInputs, InputsNoMeshSuppliesReadZerosOfTheirType) {
     }
   render_on_every_lane("vertex_inputs.hlsl", kSource, [](const harness::FloatImage& image) {
     for (uint32_t y = 0; y < 4; ++y)
-      for (uint32_t x = 0; x < 4; ++x) EXPECT_EQ(image.at(x, y), glm::vec4(0.25f, 0.5f, 0.75f, 1.0f)) << x << "," << y;
+      for (uint32_t x = 0; x < 4; ++x)  // the COLOR1 tint, white, times 10
+        EXPECT_EQ(image.at(x, y), glm::vec4(10.25f, 10.5f, 10.75f, 11.0f)) << x << "," << y;
   });
 }
 
