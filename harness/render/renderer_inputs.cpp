@@ -112,6 +112,10 @@ UniformValueMap frame_inputs(const Scene& scene, const ShCoefficients& sh) {
   const std::array<glm::vec4, 7> unity_sh = unity_sh_constants(sh);
   const char* sh_names[] = {"unity_SHAr", "unity_SHAg", "unity_SHAb", "unity_SHBr", "unity_SHBg", "unity_SHBb", "unity_SHC"};
   for (size_t i = 0; i < unity_sh.size(); ++i) values[sh_names[i]] = components(unity_sh[i]);
+  // The legacy flat ambient (UNITY_LIGHTMODEL_AMBIENT is twice it, as Unity stores half): the
+  // environment's ambient averaged over every direction, ShadeSH9's band 0 (0.282095 * c0).
+  const glm::vec3 mean_ambient = 0.282095f * sh[0];
+  values["glstate_lightmodel_ambient"] = components(glm::vec4(0.5f * mean_ambient, 0.5f));
   for (const std::string probe : {"unity_SpecCube0", "unity_SpecCube1"}) {
     values[probe + "_HDR"] = {1.0f, 1.0f, 0.0f, 0.0f};
     values[probe + "_BoxMin"] = {-kUnboundedProbe, -kUnboundedProbe, -kUnboundedProbe, 1.0f};
@@ -153,7 +157,7 @@ bool renderer_uniform(const std::string& name) {
     for (const auto& [key, value] : values) keys.insert(key);
     return keys;
   }();
-  return names.count(name) || name.ends_with("_TexelSize");
+  return names.count(name) || name.ends_with("_TexelSize") || name.ends_with("_HDR");
 }
 
 bool renderer_texture(const std::string& name) {

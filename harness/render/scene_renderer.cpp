@@ -59,6 +59,10 @@ class UniformValues {
     // default, no tiling and no offset.
     static const std::vector<float> kNoTiling{1.0f, 1.0f, 0.0f, 0.0f};
     if (name.ends_with("_ST")) return &kNoTiling;
+    // X_HDR, texture X's decode instructions for Unity's DecodeHDR: decode nothing (multiplier 1,
+    // exponent 1, alpha unused), since xshade's textures hold their values, not RGBM or dLDR.
+    static const std::vector<float> kNoDecoding{1.0f, 1.0f, 0.0f, 0.0f};
+    if (name.ends_with("_HDR")) return &kNoDecoding;
     return nullptr;
   }
 

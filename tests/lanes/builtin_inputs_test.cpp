@@ -174,6 +174,10 @@ std::vector<Row> rows() {
     row.tolerance = 1e-3f;
     all.push_back(row);
   }
+  // Half the mean ambient, 0.5 (the constant of 0.5 + d / 3), as Unity stores it.
+  Row ambient = vector_row("glstate_lightmodel_ambient", "float4", {0.25f, 0.25f, 0.25f, 0.5f});
+  ambient.tolerance = 1e-3f;
+  all.push_back(ambient);
   Row shc = vector_row("unity_SHC", "float4", {0, 0, 0, 1});
   shc.tolerance = 1e-3f;
   all.push_back(shc);
@@ -197,6 +201,8 @@ std::vector<Row> rows() {
   // Textures' sizes, tiling and offset; the depth texture; the reflection probe.
   const std::string main_tex = "Texture2D _MainTex; SamplerState sampler_MainTex; ";
   const std::string touch_main_tex = " + 0.0 * _MainTex.Load(int3(0, 0, 0))";  // the texture must be read to be bound
+  all.push_back({"material_HDR", false, main_tex + "half4 _MainTex_HDR;", "_MainTex_HDR" + touch_main_tex,
+                 {1, 1, 0, 0}, 1e-5f, "", kCheckerMainTex});
   all.push_back({"material_TexelSize", false, main_tex + "float4 _MainTex_TexelSize;", "_MainTex_TexelSize" + touch_main_tex,
                  {1.0f / 64, 1.0f / 64, 64, 64}, 1e-5f, "", kCheckerMainTex});
   all.push_back({"post_TexelSize", true, main_tex + "float4 _MainTex_TexelSize;", "_MainTex_TexelSize" + touch_main_tex,
