@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "harness/render/renderer_inputs.h"
 #include "shaderlab/compile_environment.h"
 #include "shaderlab/reader.h"
 
@@ -40,10 +41,28 @@ bool forward_renderer_draws(const shaderlab::Pass& pass) {
   return light_mode.empty() || shaderlab::same_word(light_mode, "Always") || shaderlab::same_word(light_mode, "ForwardBase");
 }
 
-void apply_properties(const shaderlab::Shader& shader, hlsl::Reflection& reflection) {
+// Whether a compiled entry point reads the uniform `name`.
+bool read_uniform(const hlsl::Reflection& reflection, const std::string& name) {
+  for (const hlsl::ConstantBuffer& buffer : reflection.constant_buffers)
+    for (const hlsl::ConstantBufferMember& member : buffer.members)
+      if (member.name == name) return member.used;
+  return false;
+}
+
+void apply_properties(const shaderlab::Shader& shader, hlsl::Reflection& reflection, std::vector<std::string>& notes) {
   for (hlsl::Property& declared : reflection.properties) {
     const shaderlab::Property* property = shader.property(declared.name);
-    if (!property) continue;
+    if (!property) {
+      // A uniform the Properties block does not declare is set, in Unity, by a script or not at
+      // all, and reads 0 until one does; the renderer's own inputs and X_ST keep their values.
+      if (declared.is_texture || !declared.default_value.empty() || !declared.type.is_numeric() ||
+          renderer_uniform(declared.name) || declared.name.ends_with("_ST") || !read_uniform(reflection, declared.name))
+        continue;
+      declared.default_value.assign(declared.type.rows() * declared.type.cols(), 0.0);
+      notes.push_back("uniform " + declared.name + " reads 0: neither the Properties block nor the renderer sets it "
+                      "(in Unity a script would; set it in the scene's properties)");
+      continue;
+    }
     if (declared.is_texture) {
       if (property->is_texture() && declared.default_texture.empty())
         declared.default_texture = built_in_for(property->texture_default);
@@ -121,7 +140,7 @@ Result<SourceModule> compile_source(const fs::path& path, hlsl::CompileOptions o
   source.render_state = drawn->state.over(sub->state);
   source.queue = shaderlab::tag(sub->tags, "Queue");
   for (const shaderlab::Property& property : shader->properties) source.property_defaults[property.name] = property.value[0];
-  if (source.module->ok()) apply_properties(*shader, source.module->reflection);
+  if (source.module->ok()) apply_properties(*shader, source.module->reflection, source.notes);
   return source;
 }
 

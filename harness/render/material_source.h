@@ -63,7 +63,9 @@ Result<hlsl::CompileOptions> pass_compile_options(const std::filesystem::path& f
 // Unity's Linear colour space passes it to a shader (alpha as it is), and so a Float or Vector
 // marked [Gamma]; a texture's "white", "black", "gray", "bump", "red" or "" as Unity's built-in
 // textures of those names (the scene built-ins "white", "clear", "gray", "normal", "red", and
-// "gray" for "" or a name Unity does not know).
-void apply_properties(const shaderlab::Shader& shader, hlsl::Reflection& reflection);
+// "gray" for "" or a name Unity does not know). A uniform an entry point reads that neither the
+// Properties block nor the renderer gives reads 0, as in Unity until a script sets it; each such
+// uniform adds a line to `notes`.
+void apply_properties(const shaderlab::Shader& shader, hlsl::Reflection& reflection, std::vector<std::string>& notes);
 
 }  // namespace xshade::harness

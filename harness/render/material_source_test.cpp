@@ -46,7 +46,8 @@ TEST(MaterialSource, PropertiesGiveTheDefaultsAsUnitysLinearColourSpacePassesThe
                                    "Texture2D _Tex <string Default = \"white\";>;\n",
                                    {});
   ASSERT_TRUE(module->ok()) << module->diagnostics.render_all();
-  apply_properties(*shader, module->reflection);
+  std::vector<std::string> notes;
+  apply_properties(*shader, module->reflection, notes);
   const hlsl::Reflection& r = module->reflection;
   const double half_linear = 0.214041;
   const double two_linear = std::pow((2 + 0.055) / 1.055, 2.4);
@@ -62,11 +63,37 @@ TEST(MaterialSource, PropertiesGiveTheDefaultsAsUnitysLinearColourSpacePassesThe
   EXPECT_TRUE(near(property(r, "_Gamma").default_value, {half_linear, 1, 0, 3}));
   EXPECT_TRUE(near(property(r, "_Plain").default_value, {0.5, 1, 0, 3}));
   EXPECT_TRUE(near(property(r, "_Written").default_value, {2}));  // the shader's own initializer stands
-  EXPECT_TRUE(property(r, "_Undeclared").default_value.empty());
+  EXPECT_EQ(property(r, "_Undeclared").default_value, (std::vector<double>{0}));  // no Property: 0, as in Unity
   EXPECT_EQ(property(r, "_MainTex").default_texture, "clear");  // Unity's "black" is (0, 0, 0, 0)
   EXPECT_EQ(property(r, "_BumpMap").default_texture, "normal");
   EXPECT_EQ(property(r, "_Mask").default_texture, "gray");
   EXPECT_EQ(property(r, "_Tex").default_texture, "white");
+}
+
+// Unity's material gives a uniform its Properties block does not declare nothing: it reads 0
+// until a script sets it. The renderer's inputs, X_ST and what no entry point reads keep theirs.
+TEST(MaterialSource, AUniformNoPropertyDeclaresReadsZeroAsInUnity) {
+  auto shader = shaderlab::read_shader(R"(Shader "T" {
+    Properties { _Color ("Colour", Color) = (1, 1, 1, 1) }
+    SubShader { Pass { HLSLPROGRAM
+    ENDHLSL } } })",
+                                       "t.shader");
+  ASSERT_TRUE(shader) << shader.error().to_string();
+  auto module = hlsl::compile_text("t.hlsl",
+                                   "#pragma fragment frag\n"
+                                   "float4 _Color; float2 _Scripted; float4 _Unread; float4 _Time; float4 _MainTex_ST;\n"
+                                   "float4 frag() : SV_Target { return _Color + _Scripted.x + _Time + _MainTex_ST; }\n",
+                                   {});
+  ASSERT_TRUE(module->ok()) << module->diagnostics.render_all();
+  std::vector<std::string> notes;
+  apply_properties(*shader, module->reflection, notes);
+  const hlsl::Reflection& r = module->reflection;
+  EXPECT_EQ(property(r, "_Scripted").default_value, (std::vector<double>{0, 0}));
+  EXPECT_TRUE(property(r, "_Unread").default_value.empty());
+  EXPECT_TRUE(property(r, "_Time").default_value.empty());  // the renderer's
+  EXPECT_TRUE(property(r, "_MainTex_ST").default_value.empty());  // (1, 1, 0, 0) unless given
+  ASSERT_EQ(notes.size(), 1u);
+  EXPECT_TRUE(notes[0].starts_with("uniform _Scripted reads 0")) << notes[0];
 }
 
 class UnityShaderSource : public ::testing::Test {
