@@ -124,6 +124,11 @@ Result<SourceModule> compile_source(const fs::path& path, hlsl::CompileOptions o
     if (sub->surface)
       return fail("'" + shader->name + "' is a surface shader, whose passes Unity generates; xshade does not generate them yet",
                   sub->surface->start);
+    if (std::all_of(sub->passes.begin(), sub->passes.end(),
+                    [](const shaderlab::Pass& pass) { return pass.kind == shaderlab::PassKind::FixedFunction; }))
+      return fail("'" + shader->name + "' is a fixed-function shader (SetTexture, Lighting, Material): Unity generates its " +
+                      "programs, xshade compiles only the programs a shader writes (CGPROGRAM or HLSLPROGRAM)",
+                  sub->where);
     return fail("'" + shader->name + "' has no pass the forward renderer draws (a program pass without LightMode, or "
                 "with Always or ForwardBase)",
                 sub->where);

@@ -152,6 +152,13 @@ TEST_F(UnityShaderSource, WhatCannotBeDrawnIsAnErrorInTheShaderFile) {
   EXPECT_EQ(generated.error().where.line, 3u);
   EXPECT_NE(generated.error().message.find("is a surface shader"), std::string::npos) << generated.error().message;
 
+  const fs::path fixed = write("fixed.shader", "Shader \"Fixed\" {\n  SubShader {\n    Pass { SetTexture [_MainTex] { combine texture } }\n"
+                                               "  }\n}\n");
+  auto fixed_function = compile_source(fixed, {});
+  ASSERT_FALSE(fixed_function);
+  EXPECT_EQ(fixed_function.error().where.line, 2u);
+  EXPECT_NE(fixed_function.error().message.find("is a fixed-function shader"), std::string::npos) << fixed_function.error().message;
+
   const fs::path broken = write("broken.shader", "Shader \"Broken\" {\n  Properties { _A (\"a\", Flaot) = 1 }\n}\n");
   auto unread = compile_source(broken, {});
   ASSERT_FALSE(unread);
