@@ -41,6 +41,7 @@ struct SourceModule {
   std::optional<shaderlab::RenderState> render_state;
   std::string queue;
   std::map<std::string, float> property_defaults;
+  std::vector<shaderlab::Property> properties;  // a .shader's Properties, for the keywords they set
 };
 
 // The module of `path` with `options` (its keywords, its fragment entry, its defines); of a

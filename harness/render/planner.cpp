@@ -9,6 +9,7 @@
 #include "harness/render/unity_render_state.h"
 #include "hlsl_like/compiler.h"
 #include "hlsl_like/semantics.h"
+#include "shaderlab/material_keywords.h"
 
 namespace xshade::harness {
 namespace {
@@ -30,6 +31,7 @@ struct SourceFacts {
   std::optional<shaderlab::RenderState> render_state;  // a .shader's (material_source.h)
   int queue = kGeometryQueue;
   std::map<std::string, float> property_defaults;
+  std::vector<shaderlab::Property> properties;  // a .shader's (material_source.h)
   std::vector<size_t> drawn_passes;  // a .shader's (material_source.h); empty for an .hlsl
   std::optional<size_t> pass;        // the .shader's pass read (the first drawn, unless asked for another)
 };
@@ -58,6 +60,7 @@ class SourceReader {
     facts.notes = std::move(source->notes);
     facts.render_state = std::move(source->render_state);
     facts.property_defaults = std::move(source->property_defaults);
+    facts.properties = std::move(source->properties);
     auto queue = render_queue(source->queue);
     if (!queue) return fail(Error{queue.error().message, {path->string(), 0, 0}, {}});
     facts.queue = *queue;
@@ -70,6 +73,10 @@ class SourceReader {
       return fail("post effect '" + library_path + "' declares no passes (#pragma pass)", {path->string(), 0, 0});
     facts.keyword_sets = module->reflection.keyword_sets;
     facts.names = shader_names(library_path, module->reflection);
+    for (const shaderlab::Property& property : facts.properties)
+      if (!property.is_texture() && !facts.names.uniform(property.name))
+        facts.names.block_properties[property.name] =
+            property.type == shaderlab::PropertyType::Color || property.type == shaderlab::PropertyType::Vector ? 4 : 1;
     for (const hlsl::StageVariable& input : module->reflection.vertex_inputs) facts.vertex_inputs.push_back(input.semantic);
     return facts;
   }
@@ -93,6 +100,22 @@ std::vector<std::string> variant_keywords(const std::vector<hlsl::KeywordSet>& s
   for (const std::string& keyword : asked)
     if (!declared.count(keyword)) keywords.insert(keyword);
   return {keywords.begin(), keywords.end()};
+}
+
+// The keywords a scene asks of a .shader material, and those its [Toggle] and [KeywordEnum]
+// properties set as Unity's material inspector does (shaderlab/material_keywords.h), each only
+// where a keyword set of the pass declares it and the scene asked for none of that set.
+std::vector<std::string> with_inspector_keywords(const SourceFacts& facts, std::vector<std::string> asked,
+                                                 const shaderlab::PropertyValue& value) {
+  for (const std::string& keyword : shaderlab::material_keywords(facts.properties, value)) {
+    for (const hlsl::KeywordSet& set : facts.keyword_sets) {
+      if (std::find(set.keywords.begin(), set.keywords.end(), keyword) == set.keywords.end()) continue;
+      if (std::find_first_of(set.keywords.begin(), set.keywords.end(), asked.begin(), asked.end()) == set.keywords.end())
+        asked.push_back(keyword);
+      break;
+    }
+  }
+  return asked;
 }
 
 size_t combinations(const std::vector<hlsl::KeywordSet>& sets) {
@@ -178,11 +201,16 @@ Result<Plan> plan_scene(const Scene& scene, const ShaderSearchPath& shaders) {
       auto facts_of_pass = pass == material.pass ? Result<const SourceFacts*>(&material) : pass_facts(pass);
       if (!facts_of_pass) return fail(facts_of_pass.error());
       const SourceFacts& facts = **facts_of_pass;
+      // The object's property (its first number), else nullopt for the shader's default.
+      const auto scene_value = [&](const std::string& name) -> std::optional<float> {
+        if (auto given = instance.properties.find(name); given != instance.properties.end()) return given->second.components[0];
+        return std::nullopt;
+      };
       DrawState state;
       if (facts.render_state) {
-        // A state in brackets reads the object's property (its first number), else the shader's default.
+        // A state in brackets reads the object's property, else the shader's default.
         auto drawn = unity_draw_state(*facts.render_state, [&](const std::string& name) -> std::optional<float> {
-          if (auto given = instance.properties.find(name); given != instance.properties.end()) return given->second.components[0];
+          if (auto given = scene_value(name)) return given;
           if (auto declared = facts.property_defaults.find(name); declared != facts.property_defaults.end())
             return declared->second;
           return std::nullopt;
@@ -190,7 +218,8 @@ Result<Plan> plan_scene(const Scene& scene, const ShaderSearchPath& shaders) {
         if (!drawn) return fail(drawn.error());
         state = *drawn;
       }
-      VariantRequest request{facts.path, instance.material, variant_keywords(facts.keyword_sets, instance.keywords), {}};
+      VariantRequest request{facts.path, instance.material,
+                             variant_keywords(facts.keyword_sets, with_inspector_keywords(facts, instance.keywords, scene_value)), {}};
       request.shader_pass = pass;
       used_combinations[instance.material].insert(request.keywords);
       possible_combinations[instance.material] = combinations(material.keyword_sets);

@@ -191,7 +191,47 @@ material = "materials/flat_lit.hlsl"
   fs::remove_all(user);
 }
 
-TEST(Planner, AVariantThatReadsVertexInputsTheMeshesLackIsToldItReadsZeros) {
+// A .shader's [Toggle] and [KeywordEnum] properties choose its variant as Unity's inspector does,
+// from their defaults or the object's values; a keyword the scene asks of the same set wins.
+TEST(Planner, AShadersToggleAndKeywordEnumPropertiesChooseItsVariant) {
+  const fs::path user = fs::temp_directory_path() / "xshade_planner_inspector_keywords";
+  fs::remove_all(user);
+  fs::create_directories(user);
+  std::ofstream(user / "toggled.shader") << R"(Shader "Toggled" {
+  Properties {
+    [Toggle(_GLOW)] _Glow ("Glow", Float) = 1
+    [KeywordEnum(Off, Soft, Hard)] _Rim ("Rim", Float) = 2
+    [Toggle] _Unused ("Declared by no pragma", Float) = 1
+  }
+  SubShader { Pass { HLSLPROGRAM
+    #pragma vertex vert
+    #pragma fragment frag
+    #pragma shader_feature _GLOW
+    #pragma multi_compile _RIM_OFF _RIM_SOFT _RIM_HARD
+    float4 vert(float3 p : POSITION) : SV_Position { return float4(p, 1); }
+    float4 frag() : SV_Target { return 1; }
+    ENDHLSL } }
+})";
+  const auto keywords_of = [&](const std::string& object) {
+    auto plan = plan_scene(scene("[[object]]\nmesh = \"sphere\"\nmaterial = \"toggled.shader\"\n" + object),
+                           ShaderSearchPath({user, kLibrary}));
+    EXPECT_TRUE(plan) << plan.error().to_string();
+    return plan && plan->variants.size() == 1 ? plan->variants[0].keywords : std::vector<std::string>{"(no plan)"};
+  };
+  EXPECT_EQ(keywords_of(""), (std::vector<std::string>{"_GLOW", "_RIM_HARD"}));
+  EXPECT_EQ(keywords_of("[object.properties]\n_Glow = 0\n_Rim = 1\n"), (std::vector<std::string>{"_RIM_SOFT"}));
+  EXPECT_EQ(keywords_of("keywords = [\"_RIM_OFF\"]\n"), (std::vector<std::string>{"_GLOW", "_RIM_OFF"}));
+  // _Glow is the material's though no uniform holds it: a Float, one number.
+  auto wrong = plan_scene(scene("[[object]]\nmesh = \"sphere\"\nmaterial = \"toggled.shader\"\n[object.properties]\n_Glow = [1, 0]\n"),
+                          ShaderSearchPath({user, kLibrary}));
+  ASSERT_FALSE(wrong);
+  EXPECT_NE(wrong.error().to_string().find("'_Glow' is a property of material 'toggled.shader' with 1 number: give it 1 number"),
+            std::string::npos)
+      << wrong.error().to_string();
+  fs::remove_all(user);
+}
+
+TEST(Planner, AVariantThatReadsVertexInputsTheMeshesLackIsToldWhatItReads) {
   // TEXCOORD2 and COLOR1 only with the _EXTRA keyword: one variant reads them, the other not.
   const fs::path user = fs::temp_directory_path() / "xshade_planner_vertex_inputs";
   fs::remove_all(user);

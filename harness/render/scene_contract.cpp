@@ -166,6 +166,7 @@ ShaderNames merge_names(ShaderNames into, const ShaderNames& other) {
     found->sampled = found->sampled || texture.sampled;
     if (found->default_texture.empty()) found->default_texture = texture.default_texture;
   }
+  into.block_properties.insert(other.block_properties.begin(), other.block_properties.end());
   for (const hlsl::KeywordSet& set : other.keyword_sets)
     if (std::find_if(into.keyword_sets.begin(), into.keyword_sets.end(),
                      [&](const hlsl::KeywordSet& s) { return s.keywords == set.keywords; }) == into.keyword_sets.end())
@@ -196,6 +197,13 @@ std::map<std::string, TextureRef> check_object(const SceneObject& object, const 
     const SourceLocation& where = object.where.of(key);
     if (const ShaderNames::Uniform* uniform = material.uniform(name)) {
       check_value(name, count, *uniform, owner, where, problems);
+      return;
+    }
+    if (auto property = material.block_properties.find(name); property != material.block_properties.end()) {
+      if (count != property->second)
+        error(problems, where,
+              fmt::format("'{}' is a property of {} with {}: give it {}", name, owner, numbers_text(property->second),
+                          numbers_text(property->second)));
       return;
     }
     error(problems, where,

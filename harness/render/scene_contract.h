@@ -37,6 +37,10 @@ struct ShaderNames {
   std::vector<Uniform> uniforms;
   std::vector<Texture> textures;
   std::vector<hlsl::KeywordSet> keyword_sets;
+  // A .shader's numeric Properties that no uniform of the program holds, with their component
+  // counts (1, or 4 for a Color or Vector): a material's values all the same (a [Toggle] that only
+  // sets a keyword, a blend factor that only a render state in brackets reads).
+  std::map<std::string, uint32_t> block_properties;
 
   const Uniform* uniform(const std::string& name) const;
   const Texture* texture(const std::string& name) const;
