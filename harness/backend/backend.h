@@ -43,7 +43,6 @@ using ProgramHandle = Handle<struct ProgramTag>;
 // no mesh supplies them, so every backend feeds them a constant: white (1, 1, 1, 1) to a float
 // colour input (COLOR0 at location 5, COLOR1 at 12), as a Unity mesh without vertex colours
 // gives its shaders, and zeros of the input's type to any other.
-constexpr bool unsupplied_input_reads_white(uint32_t location) { return location == 5 || location == 12; }
 struct Vertex {
   glm::vec3 position{0.0f};
   glm::vec3 normal{0.0f, 0.0f, 1.0f};
@@ -51,6 +50,8 @@ struct Vertex {
   glm::vec2 uv{0.0f};
 };
 static_assert(sizeof(Vertex) == 48, "the vertex layout is shared with the shaders");
+// Whether the input at `location`, which no mesh supplies, reads white (a float colour input).
+constexpr bool unsupplied_input_reads_white(uint32_t location) { return location == 5 || location == 12; }
 
 struct MeshData {
   std::vector<Vertex> vertices;

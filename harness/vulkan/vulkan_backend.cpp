@@ -121,7 +121,8 @@ class VulkanBackend final : public Backend {
   const vk::raii::Sampler& sampler(const SamplerDesc& desc, bool compare);
   // Every sample of each texel of `image` (multisampled, just created) from level 0 of `data`.
   void fill_multisampled(Image& image, const TextureData& data);
-  // 16 zero bytes, the vertex buffer of every input no mesh supplies (stride 0).
+  // The vertex buffer of every input no mesh supplies (stride 0): 16 zero bytes, then four
+  // float ones for a colour input (backend.h).
   const Buffer& unsupplied_input_buffer();
   // Records with `record`, submits, waits. Layouts roll back if anything throws.
   void submit(const std::function<void(Recording&)>& record);

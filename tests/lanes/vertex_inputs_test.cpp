@@ -88,6 +88,11 @@ TEST_F(VertexInputs, InputsNoMeshSuppliesReadZerosOfTheirTypeAndColoursWhite) {
     if (input.semantic != "POSITION0") {
       EXPECT_GT(input.location, 3u) << input.semantic;
     }
+  // The backends' white inputs are the colours' locations.
+  for (const char* semantic : {"COLOR0", "COLOR1", "TEXCOORD1", "TEXCOORD7"})
+    EXPECT_EQ(harness::unsupplied_input_reads_white(*hlsl::vertex_input_location(semantic)),
+              std::string(semantic).starts_with("COLOR"))
+        << semantic;
   render_on_every_lane("vertex_inputs.hlsl", kSource, [](const harness::FloatImage& image) {
     for (uint32_t y = 0; y < 4; ++y)
       for (uint32_t x = 0; x < 4; ++x)  // the COLOR1 tint, white, times 10
