@@ -144,7 +144,6 @@ Result<SourceModule> compile_source(const fs::path& path, hlsl::CompileOptions o
   source.module = hlsl::compile_text(path.string(), std::move(program->text), *pass_options);
   source.render_state = drawn->state.over(sub->state);
   source.queue = shaderlab::tag(sub->tags, "Queue");
-  for (const shaderlab::Property& property : shader->properties) source.property_defaults[property.name] = property.value[0];
   source.properties = shader->properties;
   if (source.module->ok()) apply_properties(*shader, source.module->reflection, source.notes);
   return source;

@@ -37,11 +37,11 @@ struct SourceModule {
   std::vector<size_t> drawn_passes;
   size_t pass = 0;
   // A .shader's: the compiled pass's render state (its own over its SubShader's), its SubShader's
-  // Queue tag, and each Property's default as written (what a state in brackets reads).
+  // Queue tag, and its Properties (their defaults as written are what a state in brackets reads;
+  // their attributes set keywords).
   std::optional<shaderlab::RenderState> render_state;
   std::string queue;
-  std::map<std::string, float> property_defaults;
-  std::vector<shaderlab::Property> properties;  // a .shader's Properties, for the keywords they set
+  std::vector<shaderlab::Property> properties;
 };
 
 // The module of `path` with `options` (its keywords, its fragment entry, its defines); of a

@@ -4,11 +4,11 @@
 #include <map>
 #include <set>
 
+#include "harness/backend/backend.h"
 #include "harness/render/material_source.h"
 #include "harness/render/scene_contract.h"
 #include "harness/render/unity_render_state.h"
 #include "hlsl_like/compiler.h"
-#include "hlsl_like/semantics.h"
 #include "shaderlab/material_keywords.h"
 
 namespace xshade::harness {
@@ -30,7 +30,6 @@ struct SourceFacts {
   std::vector<std::string> notes;             // what the plan says of the source (material_source.h)
   std::optional<shaderlab::RenderState> render_state;  // a .shader's (material_source.h)
   int queue = kGeometryQueue;
-  std::map<std::string, float> property_defaults;
   std::vector<shaderlab::Property> properties;  // a .shader's (material_source.h)
   std::vector<size_t> drawn_passes;  // a .shader's (material_source.h); empty for an .hlsl
   std::optional<size_t> pass;        // the .shader's pass read (the first drawn, unless asked for another)
@@ -59,7 +58,6 @@ class SourceReader {
     if (!source->drawn_passes.empty()) facts.pass = source->pass;
     facts.notes = std::move(source->notes);
     facts.render_state = std::move(source->render_state);
-    facts.property_defaults = std::move(source->property_defaults);
     facts.properties = std::move(source->properties);
     auto queue = render_queue(source->queue);
     if (!queue) return fail(Error{queue.error().message, {path->string(), 0, 0}, {}});
@@ -211,8 +209,8 @@ Result<Plan> plan_scene(const Scene& scene, const ShaderSearchPath& shaders) {
         // A state in brackets reads the object's property, else the shader's default.
         auto drawn = unity_draw_state(*facts.render_state, [&](const std::string& name) -> std::optional<float> {
           if (auto given = scene_value(name)) return given;
-          if (auto declared = facts.property_defaults.find(name); declared != facts.property_defaults.end())
-            return declared->second;
+          for (const shaderlab::Property& property : facts.properties)
+            if (property.name == name) return property.value[0];
           return std::nullopt;
         });
         if (!drawn) return fail(drawn.error());
@@ -231,12 +229,14 @@ Result<Plan> plan_scene(const Scene& scene, const ShaderSearchPath& shaders) {
         auto variant_facts = reader.read(instance.material, keywords, false, {}, pass);
         if (!variant_facts) return fail(variant_facts.error());
         plan.variant_notes[variant] = variant_facts->notes;
-        for (const std::string& semantic : variant_facts->vertex_inputs)
-          if (!meshes_supply(semantic))
-            plan.variant_notes[variant].push_back(
-                "vertex input " + semantic + " is not in the meshes; the shader reads " +
-                (hlsl::parse_semantic(semantic).kind == hlsl::SemanticKind::Color ? "white, as from a mesh without vertex colours"
-                                                                                   : "zeros"));
+        for (const std::string& semantic : variant_facts->vertex_inputs) {
+          if (meshes_supply(semantic)) continue;
+          const std::optional<uint32_t> location = hlsl::vertex_input_location(semantic);
+          plan.variant_notes[variant].push_back("vertex input " + semantic + " is not in the meshes; the shader reads " +
+                                                (location && unsupplied_input_reads_white(*location)
+                                                     ? "white, as from a mesh without vertex colours"
+                                                     : "zeros"));
+        }
         variant_names.resize(plan.variants.size());
         variant_names[variant] = std::move(variant_facts->names);
       }

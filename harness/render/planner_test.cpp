@@ -202,8 +202,9 @@ TEST(Planner, AShadersToggleAndKeywordEnumPropertiesChooseItsVariant) {
     [Toggle(_GLOW)] _Glow ("Glow", Float) = 1
     [KeywordEnum(Off, Soft, Hard)] _Rim ("Rim", Float) = 2
     [Toggle] _Unused ("Declared by no pragma", Float) = 1
+    _Cull ("Cull", Float) = 1
   }
-  SubShader { Pass { HLSLPROGRAM
+  SubShader { Pass { Cull [_Cull] HLSLPROGRAM
     #pragma vertex vert
     #pragma fragment frag
     #pragma shader_feature _GLOW
@@ -219,6 +220,15 @@ TEST(Planner, AShadersToggleAndKeywordEnumPropertiesChooseItsVariant) {
     return plan && plan->variants.size() == 1 ? plan->variants[0].keywords : std::vector<std::string>{"(no plan)"};
   };
   EXPECT_EQ(keywords_of(""), (std::vector<std::string>{"_GLOW", "_RIM_HARD"}));
+  // A state in brackets reads the Property's default (Unity's CullMode 1: Front), or the object's value.
+  const auto cull_of = [&](const std::string& object) {
+    auto plan = plan_scene(scene("[[object]]\nmesh = \"sphere\"\nmaterial = \"toggled.shader\"\n" + object),
+                           ShaderSearchPath({user, kLibrary}));
+    EXPECT_TRUE(plan) << plan.error().to_string();
+    return plan ? plan->instance_draws.at(0).at(0).state.cull : CullMode::Off;
+  };
+  EXPECT_EQ(cull_of(""), CullMode::Front);
+  EXPECT_EQ(cull_of("[object.properties]\n_Cull = 2\n"), CullMode::Back);
   EXPECT_EQ(keywords_of("[object.properties]\n_Glow = 0\n_Rim = 1\n"), (std::vector<std::string>{"_RIM_SOFT"}));
   EXPECT_EQ(keywords_of("keywords = [\"_RIM_OFF\"]\n"), (std::vector<std::string>{"_GLOW", "_RIM_OFF"}));
   // _Glow is the material's though no uniform holds it: a Float, one number.
