@@ -228,20 +228,32 @@ bool StageEmitter::rounds_to_half(const Type& type) const {
 
 Code StageEmitter::half_value(Code value, const Type& type) {
   // half, min16float and fixed compute in fp32 on these drivers; with half emulation every such
-  // result goes through fp16 here, in this one place. On llvmpipe and lavapipe packHalf2x16
-  // rounds to nearest and gives infinity past fp16's range, as fp16 arithmetic would
-  // (tests/lanes/half_emulation_test.cpp pins it; GLSL leaves out-of-range packing undefined).
+  // result goes through fp16 here, in this one place.
   if (!rounds_to_half(type)) return value;
   if (is_whole_call(value.text, "xs_half")) return value;  // rounded already
   if (type.component_count() == 1)
     if (std::optional<std::string> literal = half_literal(value.text)) return {*literal, value.prec};
-  // fp16 pairs pack two at a time: vec3 and vec4 are rounded through the vec2 form.
+  // Rounded by arithmetic, not by unpackHalf2x16(packHalf2x16(x)): the same value (fp16's
+  // round-to-nearest-even, infinity past 65504, the sign of zero kept; tests/lanes/
+  // half_emulation_test.cpp compares the two on every exponent), but LLVM compiles a shader
+  // full of packs about four times slower, which is most of what an fp16 stability case costs.
+  // x + c - c rounds x to a multiple of c's float ulp: c = 1.5 x 2^(e + 13) for x's binade
+  // [2^e, 2^(e+1)) has ulp 2^(e - 10), fp16's step there (2^-24 below 2^-14, its subnormals),
+  // and an even multiple of that step, so float's ties-to-even is fp16's. `precise` keeps the
+  // compilers from folding the sum away.
   const uint32_t count = type.component_count();
-  if (count == 1 || count == 3)
-    helpers_.add("xs_half(float)", "float xs_half(float x) { return unpackHalf2x16(packHalf2x16(vec2(x, 0.0))).x; }\n");
-  if (count >= 2) helpers_.add("xs_half(vec2)", "vec2 xs_half(vec2 x) { return unpackHalf2x16(packHalf2x16(x)); }\n");
-  if (count == 3) helpers_.add("xs_half(vec3)", "vec3 xs_half(vec3 x) { return vec3(xs_half(x.xy), xs_half(x.z)); }\n");
-  if (count == 4) helpers_.add("xs_half(vec4)", "vec4 xs_half(vec4 x) { return vec4(xs_half(x.xy), xs_half(x.zw)); }\n");
+  const std::string n = count == 1 ? "" : std::to_string(count);
+  const std::string f = count == 1 ? "float" : "vec" + n;
+  const std::string u = count == 1 ? "uint" : "uvec" + n;
+  const std::string overflows = count == 1 ? "abs(x) >= 65520.0" : "greaterThanEqual(abs(x), " + f + "(65520.0))";
+  helpers_.add("xs_half(" + f + ")",
+               f + " xs_half(" + f + " x) {\n" +                                                        //
+                   "  " + u + " sign = floatBitsToUint(x) & 0x80000000u;\n" +                           //
+                   "  " + f + " c = max(uintBitsToFloat(floatBitsToUint(x) & 0x7f800000u), 6.103515625e-05) * 12288.0;\n" +
+                   "  precise " + f + " rounded = (x + c) - c;\n" +
+                   // 65520, halfway from 65504 to 65536, rounds to even: infinity.
+                   "  return mix(uintBitsToFloat(floatBitsToUint(rounded) | sign), uintBitsToFloat(sign | 0x7f800000u), " +
+                   overflows + ");\n}\n");
   return {"xs_half(" + value.text + ")", kPostfix};
 }
 

@@ -119,9 +119,8 @@ TEST(GlslEmitterHalfEmulation, RoundsHalfResultsOnceAndFloatNever) {
   ASSERT_TRUE(plain && emulated);
   EXPECT_EQ(plain->fragment->text.find("xs_half"), std::string::npos);
   const std::string& text = emulated->fragment->text;
-  EXPECT_NE(text.find("float xs_half(float x) { return unpackHalf2x16(packHalf2x16(vec2(x, 0.0))).x; }"), std::string::npos)
-      << text;
-  EXPECT_NE(text.find("vec3 xs_half(vec3 x)"), std::string::npos) << text;
+  EXPECT_NE(text.find("float xs_half(float x) {"), std::string::npos) << text;
+  EXPECT_NE(text.find("vec3 xs_half(vec3 x) {"), std::string::npos) << text;
   EXPECT_NE(text.find("float f = _F * 3.0;"), std::string::npos) << text;
   // The conversion and the product each round once; a literal is rounded by the emitter, so that
   // it stays a constant expression (3.0 is an fp16 number, 0.1 is not).

@@ -1,8 +1,11 @@
 // Half-precision emulation on the lanes that can do it: a half result past 65504 overflows to
 // infinity, 1/3 (a file-scope constant) keeps fp16's 11 significant bits and 2048 + 1 in a
 // compound assignment stays 2048, as fp16 hardware would compute them, while the same shader
-// without emulation computes in fp32 (what CPU drivers do with half).
+// without emulation computes in fp32 (what CPU drivers do with half). And the emulation's
+// rounding is the driver's own float-to-fp16 conversion, value for value, at every exponent.
+#include <bit>
 #include <cmath>
+#include <cstdint>
 
 #include <gtest/gtest.h>
 
@@ -66,6 +69,44 @@ INSTANTIATE_TEST_SUITE_P(GlslLanes, HalfEmulation, ::testing::Values(harness::La
                          [](const ::testing::TestParamInfo<harness::Lane>& lane) {
                            return lane.param == harness::Lane::Gl ? std::string("gl") : std::string("vk");
                          });
+
+// Each pixel (x, y) of 256 x 256 gives a float's top 16 bits, i = 256 y + x: its sign, its whole
+// exponent and 7 bits of mantissa; the columns of an 8-wide row of such squares give its low 16
+// bits: exact in fp16, the tie below a kept bit that is even or odd (0x1000, 0xf000; with i = 0x477f
+// the latter is 65520, halfway from fp16's largest number to infinity), the ties of fp16's
+// subnormals (0x2000, 0x8000, where fewer bits are kept), one below and one above a tie,
+// and a hash. Red is the emulated (half)x, green f16tof32(f32tof16(x)): the driver's conversion.
+constexpr const char* kEveryExponentShader = R"(
+#pragma fragment frag
+static const uint kLowBits[8] = {0x0000, 0x1000, 0xf000, 0x2000, 0x8000, 0x0fff, 0x1001, 0};
+float4 frag(float4 position : SV_Position) : SV_Target {
+  uint x = (uint)position.x;
+  uint y = (uint)position.y;
+  uint i = (y << 8) | (x & 255);
+  uint low = (x >> 8) == 7 ? ((i * 2654435761u) >> 16) : kLowBits[x >> 8];
+  float value = asfloat((i << 16) | low);
+  half emulated = (half)value;
+  return float4((float)emulated, f16tof32(f32tof16(value)), value, 1.0);
+}
+)";
+
+TEST_P(HalfEmulation, RoundsAsTheDriversOwnConversionAtEveryExponent) {
+  auto module = hlsl::compile_text("every_exponent.hlsl", kEveryExponentShader, {});
+  ASSERT_TRUE(module->ok()) << module->diagnostics.render_all();
+  auto backend = harness::create_backend(GetParam());
+  ASSERT_TRUE(backend) << backend.error().to_string();
+  auto image = harness::evaluate(*module, GetParam(), **backend, 8 * 256, 256, {}, {.half_emulation = true});
+  ASSERT_TRUE(image) << image.error().to_string();
+  uint32_t differing = 0;
+  for (uint32_t y = 0; y < image->height; ++y)
+    for (uint32_t x = 0; x < image->width; ++x) {
+      const glm::vec4 p = image->at(x, y);
+      const bool same = std::bit_cast<uint32_t>(p.r) == std::bit_cast<uint32_t>(p.g) || (std::isnan(p.r) && std::isnan(p.g));
+      if (!same && ++differing <= 5)
+        ADD_FAILURE() << "(half)" << std::hexfloat << p.b << " is " << p.r << ", the driver's conversion gives " << p.g;
+    }
+  EXPECT_EQ(differing, 0u) << "of " << image->width * image->height << " values";
+}
 
 TEST(HalfEmulation, TheVkHlslLaneSaysItCannot) {
   auto module = hlsl::compile_text("half.hlsl", kShader, {});
