@@ -1,10 +1,11 @@
 #include "harness/gate/golden_store.h"
 
 #include <chrono>
-#include <csignal>
 #include <cmath>
+#include <csignal>
 #include <cstdlib>
 #include <ctime>
+#include <thread>
 #include <vector>
 
 #include <fmt/format.h>
@@ -87,6 +88,17 @@ void bless_step_done(int step) {
     return value ? std::atoi(value) : 0;
   }();
   if (step == kill_after) ::raise(SIGKILL);
+}
+
+// XSHADE_TEST_BLESS_HOLDS_MANIFEST_MS=n waits n milliseconds between reading the manifest and
+// writing it back, so that a test of two blesses at once has them overlap where a bless without
+// the folder's lock would lose one entry, every time rather than by chance.
+void hold_manifest_for_test() {
+  static const int hold_ms = [] {
+    const char* value = std::getenv("XSHADE_TEST_BLESS_HOLDS_MANIFEST_MS");
+    return value ? std::atoi(value) : 0;
+  }();
+  if (hold_ms > 0) std::this_thread::sleep_for(std::chrono::milliseconds(hold_ms));
 }
 
 }  // namespace
@@ -194,6 +206,7 @@ Result<BlessOutcome> GoldenStore::bless(const std::string& scene, const std::opt
   // A manifest that cannot be read is not overwritten: its entries would be lost.
   Result<GoldenManifest> manifest = read_golden_manifest(manifest_path());
   if (!manifest) return fail(manifest.error());
+  hold_manifest_for_test();
   if (fs::exists(outcome.path, error)) {
     outcome.replaced = true;
     if (Result<FloatImage> previous = read_image(outcome.path)) outcome.previous = std::move(*previous);

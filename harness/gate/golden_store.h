@@ -54,7 +54,8 @@ class GoldenStore {
   // the reason, `who`, the UTC date and the file's hash in the manifest, replacing any earlier
   // entry for the same image. Refuses a blank reason without touching the folder. Waits for the
   // folder's exclusive lock. A test may kill the process after any step of the commit
-  // (XSHADE_TEST_ABORT_AFTER_BLESS_STEP, golden_store.cpp).
+  // (XSHADE_TEST_ABORT_AFTER_BLESS_STEP, golden_store.cpp) or hold it between reading the
+  // manifest and writing it back (XSHADE_TEST_BLESS_HOLDS_MANIFEST_MS).
   Result<BlessOutcome> bless(const std::string& scene, const std::optional<std::string>& lane,
                              const FloatImage& image, const std::string& reason, const std::string& who) const;
 

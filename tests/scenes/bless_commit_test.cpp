@@ -150,32 +150,29 @@ TEST_F(BlessCommit, AKillAfterAnyStepLeavesTheOldGoldenOrTheNewOneAndTheNextRunF
 }
 
 // Two blesses of different scenes into one folder at once: each reads the manifest, adds its
-// entry and writes it back; without the lock one of the two entries is lost.
+// entry and writes it back; without the lock one of the two entries is lost. Each holds the
+// manifest for 2 s between reading and writing it (far longer than the two renders differ by), so
+// that they always overlap there: the second must wait for the first and say so.
 TEST_F(BlessCommit, TwoBlessesAtOnceKeepBothEntries) {
   scene("toon_a");
   scene("toon_b", "_Color = [0.3, 0.6, 0.9, 1]", "_Color = [0.9, 0.3, 0.3, 1]");
   const fs::path golden = root_ / "golden";
-  for (int round = 0; round < 20; ++round) {
-    fs::remove_all(golden);
-    fs::create_directories(golden);
-    // Both started before either is waited for.
-    const std::string a = xshade_command("XSHADE_BLESSED_BY=test", bless_arguments("toon_a", "a"));
-    const std::string b = xshade_command("XSHADE_BLESSED_BY=test", bless_arguments("toon_b", "b"));
-    FILE* first = popen(a.c_str(), "r");
-    FILE* second = popen(b.c_str(), "r");
-    ASSERT_TRUE(first && second);
-    std::string output;
-    char buffer[4096];
-    for (FILE* pipe : {first, second})
-      while (size_t n = fread(buffer, 1, sizeof buffer, pipe)) output.append(buffer, n);
-    const int status_a = pclose(first), status_b = pclose(second);
-    ASSERT_EQ(status_a, 0) << output;
-    ASSERT_EQ(status_b, 0) << output;
-    const std::string manifest = read_text(golden / "MANIFEST.toml");
-    EXPECT_NE(manifest.find("scene = \"toon_a\""), std::string::npos) << "round " << round << ":\n" << manifest;
-    EXPECT_NE(manifest.find("scene = \"toon_b\""), std::string::npos) << "round " << round << ":\n" << manifest;
-    if (HasFailure()) break;
-  }
+  const std::string environment = "XSHADE_BLESSED_BY=test XSHADE_TEST_BLESS_HOLDS_MANIFEST_MS=2000";
+  // Both started before either is waited for.
+  FILE* first = popen(xshade_command(environment, bless_arguments("toon_a", "a")).c_str(), "r");
+  FILE* second = popen(xshade_command(environment, bless_arguments("toon_b", "b")).c_str(), "r");
+  ASSERT_TRUE(first && second);
+  std::string output;
+  char buffer[4096];
+  for (FILE* pipe : {first, second})
+    while (size_t n = fread(buffer, 1, sizeof buffer, pipe)) output.append(buffer, n);
+  const int status_a = pclose(first), status_b = pclose(second);
+  ASSERT_EQ(status_a, 0) << output;
+  ASSERT_EQ(status_b, 0) << output;
+  EXPECT_NE(output.find("waiting for another xshade"), std::string::npos) << output;
+  const std::string manifest = read_text(golden / "MANIFEST.toml");
+  EXPECT_NE(manifest.find("scene = \"toon_a\""), std::string::npos) << manifest;
+  EXPECT_NE(manifest.find("scene = \"toon_b\""), std::string::npos) << manifest;
   // Both goldens pass with their hashes checked.
   Outcome checked = run("toon_a toon_b");
   EXPECT_EQ(checked.exit_code, 0) << checked.output;
