@@ -86,7 +86,7 @@ struct CompileOptions {
 int run_compile(const CompileOptions& options);
 
 struct EvalOptions {
-  std::filesystem::path file;
+  std::vector<std::filesystem::path> files;  // each evaluated on its own, with these options
   std::vector<std::filesystem::path> include_dirs;
   std::vector<std::string> keywords;
   std::string entry;  // the fragment function; empty = #pragma fragment

@@ -213,8 +213,12 @@ static int run_command_line(int argc, char** argv) {
 
   EvalOptions eval_options;
   CLI::App* eval = app.add_subcommand(
-      "eval", "Run one fragment shader as a full-screen pass on each lane, write EXR images, compare the lanes");
-  eval->add_option("file", eval_options.file, "The hlsl_like source")->required()->type_name("FILE");
+      "eval", "Run fragment shaders as full-screen passes on each lane, write EXR images, compare the lanes");
+  eval->add_option("file", eval_options.files,
+                   "The hlsl_like sources, each evaluated on its own with these options (with several, each one's "
+                   "lines come between `== FILE` and `== FILE: exit CODE`, and the exit code is the worst)")
+      ->required()
+      ->type_name("FILE");
   eval->add_option("--entry", eval_options.entry, "The fragment function (default: #pragma fragment)")
       ->type_name("NAME");
   eval->add_option("--size", eval_options.size, "Image size")->type_name("WxH")->capture_default_str();

@@ -177,6 +177,8 @@ std::unique_ptr<Module> compile(std::unique_ptr<Module> module, const CompileOpt
     reading.entry_points.vertex.clear();
     reading.entry_points.fragment = options.fragment_only_entry;
     reading.entry_points.fragment_loc = {module->main_file, 1, 1};
+  } else if (options.fragment_only) {
+    reading.entry_points.vertex.clear();
   } else if (!options.pass_fragment_entry.empty()) {
     reading.entry_points.fragment = options.pass_fragment_entry;
     reading.entry_points.fragment_loc = {module->main_file, 1, 1};

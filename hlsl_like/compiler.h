@@ -26,6 +26,8 @@ struct CompileOptions {
   // Compile only this fragment function, whatever the pragmas say, and no vertex stage: the
   // shader then runs as a full-screen pass (xshade eval).
   std::string fragment_only_entry;
+  // With fragment_only_entry empty: #pragma fragment's function alone, no vertex stage.
+  bool fragment_only = false;
   // Compile this fragment function in place of #pragma fragment's, with the vertex function of
   // #pragma vertex if the file names one: a post pass (#pragma pass), which draws through its
   // effect's own vertex shader where it has one (Unity's VertDefault) and else full-screen.

@@ -134,6 +134,12 @@ TEST(Compiler, APassEntryKeepsTheVertexEntry) {
   auto fragment_only = compile_text("pass.hlsl", source, alone);
   ASSERT_TRUE(fragment_only->ok());
   EXPECT_EQ(fragment_only->entry_points.vertex, nullptr);
+  CompileOptions pragma_alone;
+  pragma_alone.fragment_only = true;
+  auto pragma_fragment = compile_text("pass.hlsl", source, pragma_alone);
+  ASSERT_TRUE(pragma_fragment->ok());
+  EXPECT_EQ(pragma_fragment->entry_points.vertex, nullptr);
+  EXPECT_EQ(pragma_fragment->reflection.fragment_entry, "frag");
 }
 
 // #line numbers the lines after it, and names the file, in every message from there on; the

@@ -19,8 +19,10 @@ image library (a quarter of each entry's time).
 
 usage: execute_corpus.py --xshade XSHADE [--corpus DIR] [--out DIR] [--seed N] [--size WxH] [-j N]
                          [--only SUBSTR] [--divergences docs/divergences.md] [--require FRACTION]
-Entries run -j at a time (default: one per core); what is printed and written is in the corpus's
-order whatever N is.
+Entries that share include folders and keywords run in batches, one `xshade eval` of several
+files (a driver started once per lane for all of them), -j batches at a time (default: one per
+core); what is printed and written is in the corpus's order whatever N is. The command printed
+for an entry that does not agree evaluates it alone.
 The last line printed is `corpus execution: N of M entries agree on gl, vk and vk-hlsl`. With
 --require, the exit code is 1 when fewer than that fraction agree or when an entry that does not
 agree is missing from the divergences file; 0 otherwise.
@@ -37,7 +39,8 @@ import time
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 DEFAULT_CORPUS = os.path.normpath(os.path.join(HERE, '..', '..', '..', 'shared', 'realworld', 'corpus'))
-TIMEOUT = 60  # one entry: three compiles and three renders of a small image; 10 s is typical on 2 cores
+TIMEOUT = 60  # one entry: three compiles and three renders of a small image; 1 s is typical on 2 cores
+BATCH = 12  # entries in one eval: large enough that starting the drivers is a small part, small enough to spread
 
 COMPARE_RE = re.compile(r'^(\S+) vs (\S+): (?:(bit-identical)|max difference (\S+) at \((\d+), (\d+)\) channel (\w): (\S+) vs (\S+))$')
 FAIL_RE = re.compile(r'^(gl|vk|vk-hlsl): (failed|unavailable): (.*)$')
@@ -50,22 +53,48 @@ def agree(difference, a, b, absolute, relative):
     return difference <= max(absolute, relative * scale)
 
 
-def run_entry(xshade, corpus, entry, out, seed, size):
-    folder = os.path.join(out, entry['id'])
+def run_batch(xshade, corpus, batch, out, seed, size):
+    """One `xshade eval` of several entries that share their include folders and keywords (each
+    wrapper names its fragment entry with #pragma fragment): each lane's worker evaluates them all
+    with one driver, which costs less than starting a driver for each. {id: result} where result
+    is what run_entry gives for that entry alone."""
+    folder = os.path.join(out, 'batches', batch[0]['id'])
     os.makedirs(folder, exist_ok=True)
-    cmd = [xshade, 'eval', os.path.join(corpus, entry['wrapper']), '--entry', entry['entry'], '--size', size,
-           '--seed', str(seed), '-o', folder, '--no-images']
-    for include in entry['include_dirs']:
+    first = batch[0]
+    cmd = [xshade, 'eval'] + [os.path.join(corpus, e['wrapper']) for e in batch]
+    cmd += ['--size', size, '--seed', str(seed), '-o', folder, '--no-images']
+    for include in first['include_dirs']:
         cmd += ['-I', os.path.join(corpus, include)]
-    for keyword in entry.get('keywords', []):
+    for keyword in first.get('keywords', []):
         cmd += ['-D', keyword]
     started = time.time()
+    rc = None
     try:
-        p = subprocess.run(cmd, stdout=subprocess.PIPE, stderr=subprocess.PIPE, timeout=TIMEOUT)
-        text = (p.stdout + p.stderr).decode('utf-8', 'replace')
-        return dict(rc=p.returncode, out=text, secs=time.time() - started, cmd=cmd)
-    except subprocess.TimeoutExpired:
-        return dict(rc=None, out='timed out after %d s' % TIMEOUT, secs=time.time() - started, cmd=cmd)
+        p = subprocess.run(cmd, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, timeout=TIMEOUT * len(batch))
+        text, rc = p.stdout.decode('utf-8', 'replace'), p.returncode
+    except subprocess.TimeoutExpired as e:
+        text = (e.stdout or b'').decode('utf-8', 'replace')
+    secs = (time.time() - started) / len(batch)
+    results = {}
+    for e in batch:
+        wrapper = os.path.join(corpus, e['wrapper'])
+        block = re.search(r'^== %s\n(.*?)^== %s: exit (\d+)$' % (re.escape(wrapper), re.escape(wrapper)), text, re.S | re.M)
+        # The command that traces it: the entry alone, as run_entry would run it.
+        alone = [xshade, 'eval', wrapper, '--entry', e['entry'], '--size', size, '--seed', str(seed), '-o',
+                 os.path.join(out, e['id'])]
+        for include in e['include_dirs']:
+            alone += ['-I', os.path.join(corpus, include)]
+        for keyword in e.get('keywords', []):
+            alone += ['-D', keyword]
+        if len(batch) == 1:  # one file: eval's lines as they are, its exit code the process's
+            results[e['id']] = dict(rc=rc, out=text if rc is not None else 'timed out after %d s' % TIMEOUT,
+                                    secs=round(secs, 2), cmd=alone + ['--no-images'])
+        elif block:
+            results[e['id']] = dict(rc=int(block.group(2)), out=block.group(1), secs=round(secs, 2), cmd=alone + ['--no-images'])
+        else:
+            results[e['id']] = dict(rc=None, out='no result in the batch\'s output (timed out after %d s, or it crashed): %s'
+                                    % (TIMEOUT * len(batch), text[-300:]), secs=round(secs, 2), cmd=alone + ['--no-images'])
+    return results
 
 
 def glslang_accepts(corpus, entry, folder):
@@ -138,22 +167,32 @@ def main():
     entries = [e for e in manifest['entries'] if e['stage'] == 'fragment' and a.only in e['id']]
     os.makedirs(a.out, exist_ok=True)
 
-    def execute(entry):
-        """(row, line to print) of one entry."""
-        if not glslang_accepts(a.corpus, entry, os.path.join(a.out, entry['id'])):
-            return (dict(id=entry['id'], verdict='glslang', detail='glslang rejects it', secs=0),
-                    'not counted: glslang\'s HLSL front end rejects it')
-        result = run_entry(a.xshade, a.corpus, entry, a.out, a.seed, a.size)
-        verdict, detail = judge(result, a.absolute, a.relative)
-        return (dict(id=entry['id'], verdict=verdict, detail=detail, secs=round(result['secs'], 2), cmd=result['cmd']),
-                verdict + ('' if verdict == 'agree' else ' - ' + detail))
-
-    # Each entry is two processes (glslangValidator, xshade eval) that the threads only wait for.
-    rows = []
+    # glslang's front end first (without it there is no vk-hlsl lane); then the entries it accepts
+    # in batches of those that share include folders and keywords, BATCH at most, so that the
+    # batches still spread over the jobs.
     with concurrent.futures.ThreadPoolExecutor(max_workers=max(1, a.jobs)) as pool:
-        for i, (row, line) in enumerate(pool.map(execute, entries)):
-            rows.append(row)
-            print('[%d/%d] %s: %s' % (i + 1, len(entries), row['id'], line), flush=True)
+        accepted = list(pool.map(lambda e: glslang_accepts(a.corpus, e, os.path.join(a.out, e['id'])), entries))
+    groups = {}
+    for entry, ok in zip(entries, accepted):
+        if ok:
+            groups.setdefault((tuple(entry['include_dirs']), tuple(entry.get('keywords', []))), []).append(entry)
+    batches = [group[i:i + BATCH] for group in groups.values() for i in range(0, len(group), BATCH)]
+    results = {}
+    with concurrent.futures.ThreadPoolExecutor(max_workers=max(1, a.jobs)) as pool:
+        for batch_results in pool.map(lambda b: run_batch(a.xshade, a.corpus, b, a.out, a.seed, a.size), batches):
+            results.update(batch_results)
+    rows = []
+    for i, (entry, ok) in enumerate(zip(entries, accepted)):
+        if not ok:
+            row, line = dict(id=entry['id'], verdict='glslang', detail='glslang rejects it', secs=0), \
+                'not counted: glslang\'s HLSL front end rejects it'
+        else:
+            result = results[entry['id']]
+            verdict, detail = judge(result, a.absolute, a.relative)
+            row = dict(id=entry['id'], verdict=verdict, detail=detail, secs=result['secs'], cmd=result['cmd'])
+            line = verdict + ('' if verdict == 'agree' else ' - ' + detail)
+        rows.append(row)
+        print('[%d/%d] %s: %s' % (i + 1, len(entries), row['id'], line), flush=True)
     with open(os.path.join(a.out, 'execution.json'), 'w') as f:
         json.dump(rows, f, indent=1)
     with open(os.path.join(a.out, 'execution.tsv'), 'w') as f:

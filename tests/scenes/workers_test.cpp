@@ -132,7 +132,9 @@ TEST_F(Workers, AWorkerThatDiesIsACrashNamingTheSignalAndWhereItWas) {
       << output;
 }
 
-TEST_F(Workers, AnEvalLaneThatHangsIsATimeout) {
+// Of several files, the one that hangs is a timeout on its lane; the files before it keep their
+// images and the ones after it get a new worker.
+TEST_F(Workers, AnEvalLaneThatHangsIsATimeoutOfThatFileAndTheOthersStillRun) {
   const fs::path shader = root_ / "hang.hlsl";
   std::ofstream(shader) << "#pragma fragment frag\n"
                            "float4 frag(float4 pos : SV_Position) : SV_Target {\n"
@@ -141,10 +143,25 @@ TEST_F(Workers, AnEvalLaneThatHangsIsATimeout) {
                            "    for (int j = 0; j < 50000; ++j) s += sin(s + pos.x * 0.001 + float(i) * 0.001 + float(j));\n"
                            "  return float4(s * 1e-30, 0, 0, 1);\n"
                            "}\n";
-  Outcome outcome = run_xshade("", "eval '" + shader.string() + "' --size 256x256 --lane gl --timeout 2 -o '" +
-                                       (root_ / "eval").string() + "'");
+  for (const char* name : {"before", "after"})
+    std::ofstream(root_ / (std::string(name) + ".hlsl"))
+        << "#pragma fragment frag\nfloat4 frag(float2 uv : TEXCOORD0) : SV_Target { return float4(uv, 0, 1); }\n";
+  const fs::path out = root_ / "eval";
+  Outcome outcome = run_xshade("", "eval '" + (root_ / "before.hlsl").string() + "' '" + shader.string() + "' '" +
+                                       (root_ / "after.hlsl").string() +
+                                       "' --size 256x256 --lane gl --timeout 2 -o '" + out.string() + "'");
   EXPECT_EQ(outcome.exit_code, 1) << outcome.output;
-  EXPECT_NE(outcome.output.find("gl: timeout after 2 s"), std::string::npos) << outcome.output;
+  const std::string hang = "== " + shader.string() + "\ngl: timeout after 2 s";
+  EXPECT_NE(outcome.output.find(hang), std::string::npos) << outcome.output;
+  EXPECT_NE(outcome.output.find("== " + shader.string() + ": exit 1"), std::string::npos) << outcome.output;
+  for (const char* name : {"before", "after"}) {
+    const std::string file = (root_ / (std::string(name) + ".hlsl")).string();
+    EXPECT_NE(outcome.output.find("== " + file + "\ngl: " + (out / (std::string(name) + ".gl.exr")).string() +
+                                  "\n== " + file + ": exit 0"),
+              std::string::npos)
+        << outcome.output;
+    EXPECT_TRUE(fs::exists(out / (std::string(name) + ".gl.exr"))) << name;
+  }
 }
 
 // An EXR's pixels (its header holds the time it was written, which differs from run to run).
