@@ -159,6 +159,7 @@ struct LaneJob {
   std::vector<size_t> todo;  // indices into the evals, in order
   size_t next = 0;           // the first of `todo` not concluded
   std::optional<ChildProcess> worker = {};
+  size_t first_given = 0;  // the worker's file 0 is todo[first_given]
   bool finished() const { return next == todo.size(); }
 };
 
@@ -233,7 +234,8 @@ int run_eval_lanes_in_workers(const EvalOptions& options, const std::vector<harn
       if (several) fmt::print("== {}: exit {}\n", eval.file.string(), eval.exit_code);
       std::fflush(stdout);
       exit_code = std::max(exit_code, eval.exit_code);
-      eval.images.clear();  // printed: a long batch keeps no image it is done with
+      eval.images.clear();  // printed: a long batch keeps no image or module it is done with
+      eval.module.reset();
     }
   };
   print_ready();  // the files the front end refused, before the first that renders
@@ -266,12 +268,13 @@ int run_eval_lanes_in_workers(const EvalOptions& options, const std::vector<harn
           continue;
         }
         job.worker = std::move(*worker);
+        job.first_given = job.next;
       }
       ChildProcess& worker = *job.worker;
       const bool ended = worker.poll();
       for (const std::string& line : worker.take_status_lines()) {
         const auto done = parse_done(line);
-        if (!done || done->first != job.next) continue;
+        if (!done || job.first_given + done->first != job.next) continue;
         worker.poll();  // what it printed before the status line
         conclude_lane(options, job.lane, evals[job.todo[job.next]], worker.take_output(), ChildExit{done->second},
                       timeout);
@@ -282,7 +285,12 @@ int run_eval_lanes_in_workers(const EvalOptions& options, const std::vector<harn
         if (!job.finished()) {
           // It ended before concluding this file: a crash, a timeout, or an exit with no status.
           ChildExit exit = worker.exit_status();
-          conclude_lane(options, job.lane, evals[job.todo[job.next]], worker.take_output(), exit, timeout);
+          std::string output = worker.take_output();
+          if (!exit.timed_out && !exit.signal) {
+            output += fmt::format("{}: the worker ended (exit {}) before it finished this file\n", name, exit.code);
+            exit.code = std::max<int>(exit.code, kBackendError);
+          }
+          conclude_lane(options, job.lane, evals[job.todo[job.next]], std::move(output), exit, timeout);
           ++job.next;
         }
         job.worker.reset();

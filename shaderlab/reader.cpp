@@ -2,6 +2,7 @@
 
 #include <cctype>
 #include <charconv>
+#include <cmath>
 #include <span>
 
 #include "base/file_io.h"
@@ -9,6 +10,9 @@
 
 namespace xshade::shaderlab {
 namespace {
+
+// Unity's LODs are hundreds (100 to 600 for its built-in shaders); the bound keeps one an int.
+constexpr int kLargestLod = 1000000;
 
 // The first error ends the reading; it travels up as this and leaves read_shader as a Result.
 struct ReadError {
@@ -140,6 +144,14 @@ class Reader {
     const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
     if (error != std::errc() || end != text.data() + text.size()) fail(token, "'" + token.text + "' is not a number");
     return value;
+  }
+  // A count or an index: a whole number from `lowest` to `highest`.
+  int whole_number(const Token& token, std::string_view what, int lowest, int highest) {
+    const float value = number(token, what);
+    if (value != std::floor(value) || value < float(lowest) || value > float(highest))
+      fail(token, "expected " + std::string(what) + ", a whole number from " + std::to_string(lowest) + " to " +
+                      std::to_string(highest) + ", found " + token.text);
+    return int(value);
   }
   float signed_number(std::string_view what) {
     // "- 1" as two tokens: ShaderLab allows a sign apart from its number.
@@ -336,7 +348,7 @@ class Reader {
       } else if (token.is_word("Tags")) {
         category_tags = tags();
       } else if (token.is_word("LOD")) {
-        lod = int(number(lex_.next(), "the LOD's number"));
+        lod = whole_number(lex_.next(), "the LOD's number", 0, kLargestLod);
       } else if (token.kind == TokenKind::Program) {
         includes.push_back(include_block(token));
       } else if (!state_command(token, state) && !fixed_function(token)) {
@@ -357,7 +369,7 @@ class Reader {
       if (token.is_word("Tags")) {
         sub.tags = tags();
       } else if (token.is_word("LOD")) {
-        sub.lod = int(number(lex_.next(), "the LOD's number"));
+        sub.lod = whole_number(lex_.next(), "the LOD's number", 0, kLargestLod);
       } else if (token.is_word("Pass")) {
         sub.passes.push_back(pass(token));
       } else if (token.is_word("UsePass")) {
@@ -535,7 +547,7 @@ class Reader {
   BlendState blend() {
     BlendState blend;
     // Blend N ...: render target N.
-    if (lex_.peek().kind == TokenKind::Number) blend.target = int(number(lex_.next(), "a render target's number"));
+    if (lex_.peek().kind == TokenKind::Number) blend.target = whole_number(lex_.next(), "a render target's number", 0, 7);
     if (lex_.peek().is_word("Off")) {
       lex_.next();
       blend.off = true;

@@ -244,6 +244,13 @@ TEST(ShaderLabReader, ErrorsSayWhereAndWhatIsAllowed) {
   EXPECT_EQ(read_error("Shader \"S\" { Properties { } }"), "test.shader:1:1: the shader has no SubShader (and no Fallback)");
   EXPECT_EQ(read_error("Shader \"S\" { SubShader { Pass { Cull @ } } }"),
             "test.shader:1:38: a character ShaderLab does not use: '@'");
+  // Counts and indices are whole numbers an int holds (a fuzzer's LOD of 2e34 was undefined).
+  EXPECT_EQ(read_error("Shader \"S\" { Category { LOD 2e34 } }"),
+            "test.shader:1:29: expected the LOD's number, a whole number from 0 to 1000000, found 2e34");
+  EXPECT_EQ(read_error("Shader \"S\" { SubShader { LOD 1.5 } }"),
+            "test.shader:1:30: expected the LOD's number, a whole number from 0 to 1000000, found 1.5");
+  EXPECT_EQ(read_error("Shader \"S\" { SubShader { Pass { Blend 9 One One } } }"),
+            "test.shader:1:39: expected a render target's number, a whole number from 0 to 7, found 9");
 }
 
 // Every .shader of the real-world corpus beside the project (Unity's built-in shaders and Post

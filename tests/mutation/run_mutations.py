@@ -89,6 +89,10 @@ MUTATIONS = [
     ("the summary's worst is not in the per-pixel layer's steps", 'harness/image/image_compare.cpp',
      'metrics.max_steps = pass.worst_steps;', 'metrics.max_steps = uint32_t(metrics.max_difference * 255.0);',
      'CompareImages|UserMistakes.ABless'),
+    ('bless writes the manifest without the golden folder\'s lock', 'harness/gate/golden_store.cpp',
+     '  Result<GoldenLock> lock = GoldenLock::acquire(folder_, GoldenLock::Mode::Exclusive, on_wait_);\n'
+     '  if (!lock) return fail(lock.error());\n  if (auto recovered',
+     '  if (auto recovered', 'BlessCommit.TwoBlesses'),
     ('a misspelt verb gets no suggestion', 'cli/main.cpp',
      'return near ? "; did you mean \'" + *near + "\'?" : std::string();', 'return near ? std::string() : std::string();',
      'CommandLine.Version'),

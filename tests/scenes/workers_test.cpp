@@ -132,8 +132,8 @@ TEST_F(Workers, AWorkerThatDiesIsACrashNamingTheSignalAndWhereItWas) {
       << output;
 }
 
-// Of several files, the one that hangs is a timeout on its lane; the files before it keep their
-// images and the ones after it get a new worker.
+// Of several files, the one that hangs is a timeout on its lane; the file before it keeps its
+// image and the ones after it get a new worker, which reports each of them.
 TEST_F(Workers, AnEvalLaneThatHangsIsATimeoutOfThatFileAndTheOthersStillRun) {
   const fs::path shader = root_ / "hang.hlsl";
   std::ofstream(shader) << "#pragma fragment frag\n"
@@ -143,18 +143,18 @@ TEST_F(Workers, AnEvalLaneThatHangsIsATimeoutOfThatFileAndTheOthersStillRun) {
                            "    for (int j = 0; j < 50000; ++j) s += sin(s + pos.x * 0.001 + float(i) * 0.001 + float(j));\n"
                            "  return float4(s * 1e-30, 0, 0, 1);\n"
                            "}\n";
-  for (const char* name : {"before", "after"})
+  for (const char* name : {"before", "after", "last"})
     std::ofstream(root_ / (std::string(name) + ".hlsl"))
         << "#pragma fragment frag\nfloat4 frag(float2 uv : TEXCOORD0) : SV_Target { return float4(uv, 0, 1); }\n";
   const fs::path out = root_ / "eval";
   Outcome outcome = run_xshade("", "eval '" + (root_ / "before.hlsl").string() + "' '" + shader.string() + "' '" +
-                                       (root_ / "after.hlsl").string() +
+                                       (root_ / "after.hlsl").string() + "' '" + (root_ / "last.hlsl").string() +
                                        "' --size 256x256 --lane gl --timeout 2 -o '" + out.string() + "'");
   EXPECT_EQ(outcome.exit_code, 1) << outcome.output;
   const std::string hang = "== " + shader.string() + "\ngl: timeout after 2 s";
   EXPECT_NE(outcome.output.find(hang), std::string::npos) << outcome.output;
   EXPECT_NE(outcome.output.find("== " + shader.string() + ": exit 1"), std::string::npos) << outcome.output;
-  for (const char* name : {"before", "after"}) {
+  for (const char* name : {"before", "after", "last"}) {
     const std::string file = (root_ / (std::string(name) + ".hlsl")).string();
     EXPECT_NE(outcome.output.find("== " + file + "\ngl: " + (out / (std::string(name) + ".gl.exr")).string() +
                                   "\n== " + file + ": exit 0"),
