@@ -47,9 +47,16 @@ def times_from_junit(path):
 
 
 def labels_of(build_dir):
-    """{test name: [labels]} as CTest lists them."""
-    listed = subprocess.run(["ctest", "--test-dir", str(build_dir), "--show-only=json-v1"], capture_output=True,
-                            text=True, check=True)
+    """{test name: [labels]} as CTest lists them. Listing rewrites Testing/Temporary/LastTest.log
+    (as an empty run), so the log is put back as it was: this script can read it again."""
+    log = Path(build_dir) / "Testing" / "Temporary" / "LastTest.log"
+    kept = log.read_bytes() if log.is_file() else None
+    try:
+        listed = subprocess.run(["ctest", "--test-dir", str(build_dir), "--show-only=json-v1"], capture_output=True,
+                                text=True, check=True)
+    finally:
+        if kept is not None:
+            log.write_bytes(kept)
     labels = {}
     for test in json.loads(listed.stdout).get("tests", []):
         found = []

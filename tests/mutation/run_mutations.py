@@ -69,7 +69,7 @@ MUTATIONS = [
     ('a missing golden folder is accepted', 'cli/folders.cpp', 'if (golden == GoldenUse::Read && !fs::is_directory',
      'if (false && !fs::is_directory', 'UserMistakes.AFolder'),
     ('eval passes NaN output', 'cli/eval_command.cpp',
-     'if (!options.allow_non_finite) exit_code = std::max<int>(exit_code, kTestFailed);', '',
+     'if (!options.allow_non_finite) result = std::max<int>(result, kTestFailed);', '',
      'CommandLine.EvalFails'),
     ('bless writes a lane golden equal to the common one', 'cli/bless_command.cpp',
      'if (comparison.verdict == harness::Verdict::Pass) {', 'if (false) {', 'UserMistakes.ALaneGolden'),
