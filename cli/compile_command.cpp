@@ -220,8 +220,20 @@ int compile_unity_shader(const CompileOptions& options, const std::filesystem::p
     const auto compile = [&](const hlsl::CompileOptions& with) { return hlsl::compile_text(file.string(), program->text, with); };
     hlsl::CompileOptions pass_options = *unity_options;
     pass_options.pass_fragment_entry.clear();
+    // The variant a material of the Properties' defaults draws: the keywords its [Toggle] and
+    // [KeywordEnum] properties set, where the pass declares them and -D named none of their set.
+    std::unique_ptr<hlsl::Module> first = compile(pass_options);
+    if (!options.all_variants && first->ok()) {
+      const std::vector<std::string> keywords = harness::with_inspector_keywords(
+          shader->properties, first->reflection.keyword_sets, pass_options.keywords,
+          [](const std::string&) -> std::optional<float> { return std::nullopt; });
+      if (keywords != pass_options.keywords) {
+        pass_options.keywords = keywords;
+        first = compile(pass_options);
+      }
+    }
     if (options.reflect) {
-      auto module = compile(pass_options);
+      auto module = std::move(first);
       if (!module->diagnostics.diagnostics().empty()) fmt::print(stderr, "{}", module->diagnostics.render_all());
       if (!module->ok()) return kBadInput;
       reflected_passes += fmt::format("{}{{\"index\": {}, \"name\": {}, \"reflection\": {}}}", reflected_passes.empty() ? "" : ", ",
@@ -234,7 +246,7 @@ int compile_unity_shader(const CompileOptions& options, const std::filesystem::p
       pass_output.output = options.output.string() + ".pass" + std::to_string(program->index);
     else if (options.output.empty() && (passes.size() > 1 || options.pass.empty()))
       fmt::print("// ==== {} pass {}{} ====\n", file.string(), program->index, pass->name.empty() ? "" : " \"" + pass->name + "\"");
-    worst = std::max(worst, compile_module(pass_output, file, pass_options, compile, compile(pass_options)));
+    worst = std::max(worst, compile_module(pass_output, file, pass_options, compile, std::move(first)));
   }
   if (options.reflect && worst == kPass) {
     const std::string json = nlohmann::json::parse(fmt::format("{{\"shader\": {}, \"properties\": {}, \"passes\": [{}]}}",

@@ -149,4 +149,18 @@ Result<SourceModule> compile_source(const fs::path& path, hlsl::CompileOptions o
   return source;
 }
 
+std::vector<std::string> with_inspector_keywords(const std::vector<shaderlab::Property>& properties,
+                                                 const std::vector<hlsl::KeywordSet>& sets, std::vector<std::string> asked,
+                                                 const shaderlab::PropertyValue& value) {
+  for (const std::string& keyword : shaderlab::material_keywords(properties, value)) {
+    for (const hlsl::KeywordSet& set : sets) {
+      if (std::find(set.keywords.begin(), set.keywords.end(), keyword) == set.keywords.end()) continue;
+      if (std::find_first_of(set.keywords.begin(), set.keywords.end(), asked.begin(), asked.end()) == set.keywords.end())
+        asked.push_back(keyword);
+      break;
+    }
+  }
+  return asked;
+}
+
 }  // namespace xshade::harness

@@ -15,6 +15,7 @@
 
 #include "base/result.h"
 #include "hlsl_like/compiler.h"
+#include "shaderlab/material_keywords.h"
 #include "shaderlab/pass_program.h"
 #include "shaderlab/shader.h"
 
@@ -68,5 +69,13 @@ Result<hlsl::CompileOptions> pass_compile_options(const std::filesystem::path& f
 // Properties block nor the renderer gives reads 0, as in Unity until a script sets it; each such
 // uniform adds a line to `notes`.
 void apply_properties(const shaderlab::Shader& shader, hlsl::Reflection& reflection, std::vector<std::string>& notes);
+
+// The keywords asked of a .shader material (a scene's, or -D's), with those its [Toggle] and
+// [KeywordEnum] properties set as Unity's material inspector does (shaderlab/material_keywords.h)
+// from `value`, each only where one of the pass's keyword `sets` declares it and none of that set
+// was asked: the variant `xshade run` draws and `xshade compile` shows.
+std::vector<std::string> with_inspector_keywords(const std::vector<shaderlab::Property>& properties,
+                                                 const std::vector<hlsl::KeywordSet>& sets, std::vector<std::string> asked,
+                                                 const shaderlab::PropertyValue& value);
 
 }  // namespace xshade::harness

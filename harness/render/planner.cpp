@@ -9,7 +9,6 @@
 #include "harness/render/scene_contract.h"
 #include "harness/render/unity_render_state.h"
 #include "hlsl_like/compiler.h"
-#include "shaderlab/material_keywords.h"
 
 namespace xshade::harness {
 namespace {
@@ -98,22 +97,6 @@ std::vector<std::string> variant_keywords(const std::vector<hlsl::KeywordSet>& s
   for (const std::string& keyword : asked)
     if (!declared.count(keyword)) keywords.insert(keyword);
   return {keywords.begin(), keywords.end()};
-}
-
-// The keywords a scene asks of a .shader material, and those its [Toggle] and [KeywordEnum]
-// properties set as Unity's material inspector does (shaderlab/material_keywords.h), each only
-// where a keyword set of the pass declares it and the scene asked for none of that set.
-std::vector<std::string> with_inspector_keywords(const SourceFacts& facts, std::vector<std::string> asked,
-                                                 const shaderlab::PropertyValue& value) {
-  for (const std::string& keyword : shaderlab::material_keywords(facts.properties, value)) {
-    for (const hlsl::KeywordSet& set : facts.keyword_sets) {
-      if (std::find(set.keywords.begin(), set.keywords.end(), keyword) == set.keywords.end()) continue;
-      if (std::find_first_of(set.keywords.begin(), set.keywords.end(), asked.begin(), asked.end()) == set.keywords.end())
-        asked.push_back(keyword);
-      break;
-    }
-  }
-  return asked;
 }
 
 size_t combinations(const std::vector<hlsl::KeywordSet>& sets) {
@@ -217,7 +200,7 @@ Result<Plan> plan_scene(const Scene& scene, const ShaderSearchPath& shaders) {
         state = *drawn;
       }
       VariantRequest request{facts.path, instance.material,
-                             variant_keywords(facts.keyword_sets, with_inspector_keywords(facts, instance.keywords, scene_value)), {}};
+                             variant_keywords(facts.keyword_sets, with_inspector_keywords(facts.properties, facts.keyword_sets, instance.keywords, scene_value)), {}};
       request.shader_pass = pass;
       used_combinations[instance.material].insert(request.keywords);
       possible_combinations[instance.material] = combinations(material.keyword_sets);

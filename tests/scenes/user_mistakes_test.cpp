@@ -393,5 +393,38 @@ TEST(CommandLine, CompileReadsAUnityShaderPassByPass) {
   fs::remove_all(folder);
 }
 
+// A .shader compiles to the variant a material of its Properties' defaults draws, as run renders
+// it: a [Toggle] on by default turns its keyword on, unless -D names another of its set.
+TEST(CommandLine, CompileOfAUnityShaderTakesTheKeywordsItsTogglesSet) {
+  const fs::path folder = fs::temp_directory_path() / "xshade_compile_toggle";
+  fs::remove_all(folder);
+  fs::create_directories(folder);
+  std::ofstream(folder / "Toggled.shader") << R"SL(Shader "Test/Toggled" {
+  Properties { [Toggle(_RED)] _Red ("Red", Float) = 1 }
+  SubShader { Pass {
+    HLSLPROGRAM
+    #pragma vertex vert
+    #pragma fragment frag
+    #pragma multi_compile _GREEN _RED
+    float4 vert(float4 p : POSITION) : SV_Position { return p; }
+    #ifdef _RED
+    float4 frag() : SV_Target { return float4(0.25, 0, 0, 1); }
+    #else
+    float4 frag() : SV_Target { return float4(0, 0.75, 0, 1); }
+    #endif
+    ENDHLSL
+  } }
+})SL";
+  const std::string shader = "'" + (folder / "Toggled.shader").string() + "' --target gl --no-project";
+  Outcome toggled = run_xshade("", "compile " + shader);
+  EXPECT_EQ(toggled.exit_code, 0) << toggled.output;
+  EXPECT_NE(toggled.output.find("0.25"), std::string::npos) << toggled.output;
+  Outcome asked = run_xshade("", "compile " + shader + " -D _GREEN");
+  EXPECT_EQ(asked.exit_code, 0) << asked.output;
+  EXPECT_NE(asked.output.find("0.75"), std::string::npos) << asked.output;
+  EXPECT_EQ(asked.output.find("0.25"), std::string::npos) << asked.output;
+  fs::remove_all(folder);
+}
+
 }  // namespace
 }  // namespace xshade::tests
