@@ -112,7 +112,7 @@ std::vector<std::string> worker_command(const EvalOptions& options, harness::Lan
 // One file of an eval: what its front end said, then each lane's lines and image.
 struct FileEval {
   std::filesystem::path file;
-  std::shared_ptr<hlsl::Module> module = {};  // null when the front end refused it
+  std::unique_ptr<hlsl::Module> module = {};  // null when the front end refused it
   std::string front_end_output = {};
   int exit_code = kPass;
   std::map<harness::Lane, std::string> lane_output = {};
@@ -128,7 +128,7 @@ void compile_for_eval(const EvalOptions& options, FileEval& eval) {
   front_end.fragment_only_entry = options.entry;
   front_end.fragment_only = true;  // eval draws it full-screen: a vertex function is not its to compile
   if (options.precision == "half") front_end.defines.push_back({harness::kHalfEmulationMacro, "1"});
-  std::shared_ptr<hlsl::Module> module = hlsl::compile_file(eval.file, front_end);
+  std::unique_ptr<hlsl::Module> module = hlsl::compile_file(eval.file, front_end);
   if (!module->diagnostics.diagnostics().empty()) eval.front_end_output += module->diagnostics.render_all();
   eval.exit_code = kBadInput;
   if (!module->ok()) return;

@@ -247,8 +247,8 @@ Code StageEmitter::half_value(Code value, const Type& type) {
   const std::string u = count == 1 ? "uint" : "uvec" + n;
   const std::string overflows = count == 1 ? "abs(x) >= 65520.0" : "greaterThanEqual(abs(x), " + f + "(65520.0))";
   helpers_.add("xs_half(" + f + ")",
-               f + " xs_half(" + f + " x) {\n" +                                                        //
-                   "  " + u + " sign = floatBitsToUint(x) & 0x80000000u;\n" +                           //
+               f + " xs_half(" + f + " x) {\n" +
+                   "  " + u + " sign = floatBitsToUint(x) & 0x80000000u;\n" +
                    "  " + f + " c = max(uintBitsToFloat(floatBitsToUint(x) & 0x7f800000u), 6.103515625e-05) * 12288.0;\n" +
                    "  precise " + f + " rounded = (x + c) - c;\n" +
                    // 65520, halfway from 65504 to 65536, rounds to even: infinity.

@@ -79,14 +79,17 @@ bool has_values_above_one(const FloatImage& image) {
   return false;
 }
 
+// The number a test hook's environment variable holds; 0 when it is not set.
+int test_hook(const char* name) {
+  const char* value = std::getenv(name);
+  return value ? std::atoi(value) : 0;
+}
+
 // XSHADE_TEST_ABORT_AFTER_BLESS_STEP=k kills this process right after bless's step k, as a kill -9
 // or a power cut would, so that a test can prove every instant leaves a state the next run
 // recovers from. SIGKILL rather than abort(): nothing runs on the way out and no core is dumped.
 void bless_step_done(int step) {
-  static const int kill_after = [] {
-    const char* value = std::getenv("XSHADE_TEST_ABORT_AFTER_BLESS_STEP");
-    return value ? std::atoi(value) : 0;
-  }();
+  static const int kill_after = test_hook("XSHADE_TEST_ABORT_AFTER_BLESS_STEP");
   if (step == kill_after) ::raise(SIGKILL);
 }
 
@@ -94,10 +97,7 @@ void bless_step_done(int step) {
 // writing it back, so that a test of two blesses at once has them overlap where a bless without
 // the folder's lock would lose one entry, every time rather than by chance.
 void hold_manifest_for_test() {
-  static const int hold_ms = [] {
-    const char* value = std::getenv("XSHADE_TEST_BLESS_HOLDS_MANIFEST_MS");
-    return value ? std::atoi(value) : 0;
-  }();
+  static const int hold_ms = test_hook("XSHADE_TEST_BLESS_HOLDS_MANIFEST_MS");
   if (hold_ms > 0) std::this_thread::sleep_for(std::chrono::milliseconds(hold_ms));
 }
 

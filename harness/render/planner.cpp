@@ -199,8 +199,9 @@ Result<Plan> plan_scene(const Scene& scene, const ShaderSearchPath& shaders) {
         if (!drawn) return fail(drawn.error());
         state = *drawn;
       }
-      VariantRequest request{facts.path, instance.material,
-                             variant_keywords(facts.keyword_sets, with_inspector_keywords(facts.properties, facts.keyword_sets, instance.keywords, scene_value)), {}};
+      const std::vector<std::string> asked =
+          with_inspector_keywords(facts.properties, facts.keyword_sets, instance.keywords, scene_value);
+      VariantRequest request{facts.path, instance.material, variant_keywords(facts.keyword_sets, asked), {}};
       request.shader_pass = pass;
       used_combinations[instance.material].insert(request.keywords);
       possible_combinations[instance.material] = combinations(material.keyword_sets);

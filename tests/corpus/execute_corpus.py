@@ -53,47 +53,51 @@ def agree(difference, a, b, absolute, relative):
     return difference <= max(absolute, relative * scale)
 
 
-def run_batch(xshade, corpus, batch, out, seed, size):
-    """One `xshade eval` of several entries that share their include folders and keywords (each
-    wrapper names its fragment entry with #pragma fragment): each lane's worker evaluates them all
-    with one driver, which costs less than starting a driver for each. {id: result} where result
-    is what run_entry gives for that entry alone."""
-    folder = os.path.join(out, 'batches', batch[0]['id'])
-    os.makedirs(folder, exist_ok=True)
-    first = batch[0]
-    cmd = [xshade, 'eval'] + [os.path.join(corpus, e['wrapper']) for e in batch]
-    cmd += ['--size', size, '--seed', str(seed), '-o', folder, '--no-images']
+def eval_command(xshade, corpus, entries, folder, seed, size):
+    """`xshade eval` of the wrappers of `entries` (which share their include folders and keywords)
+    into `folder`, comparing only; of one entry, with its --entry, the command that traces it."""
+    first = entries[0]
+    cmd = [xshade, 'eval'] + [os.path.join(corpus, e['wrapper']) for e in entries]
+    if len(entries) == 1:
+        cmd += ['--entry', first['entry']]
+    cmd += ['--size', size, '--seed', str(seed), '-o', folder]
     for include in first['include_dirs']:
         cmd += ['-I', os.path.join(corpus, include)]
     for keyword in first.get('keywords', []):
         cmd += ['-D', keyword]
+    return cmd + ['--no-images']
+
+
+def run_batch(xshade, corpus, batch, out, seed, size):
+    """One `xshade eval` of several entries that share their include folders and keywords (each
+    wrapper names its fragment entry with #pragma fragment): each lane's worker evaluates them all
+    with one driver, which costs less than starting a driver for each. {id: result}: the entry's
+    exit code (None when it has none), its lines, its share of the time and the command that
+    evaluates it alone."""
+    folder = os.path.join(out, 'batches', batch[0]['id'])
+    os.makedirs(folder, exist_ok=True)
     started = time.time()
     rc = None
     try:
-        p = subprocess.run(cmd, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, timeout=TIMEOUT * len(batch))
+        p = subprocess.run(eval_command(xshade, corpus, batch, folder, seed, size), stdout=subprocess.PIPE,
+                           stderr=subprocess.STDOUT, timeout=TIMEOUT * len(batch))
         text, rc = p.stdout.decode('utf-8', 'replace'), p.returncode
     except subprocess.TimeoutExpired as e:
         text = (e.stdout or b'').decode('utf-8', 'replace')
-    secs = (time.time() - started) / len(batch)
+    secs = round((time.time() - started) / len(batch), 2)
     results = {}
     for e in batch:
-        wrapper = os.path.join(corpus, e['wrapper'])
-        block = re.search(r'^== %s\n(.*?)^== %s: exit (\d+)$' % (re.escape(wrapper), re.escape(wrapper)), text, re.S | re.M)
-        # The command that traces it: the entry alone, as run_entry would run it.
-        alone = [xshade, 'eval', wrapper, '--entry', e['entry'], '--size', size, '--seed', str(seed), '-o',
-                 os.path.join(out, e['id'])]
-        for include in e['include_dirs']:
-            alone += ['-I', os.path.join(corpus, include)]
-        for keyword in e.get('keywords', []):
-            alone += ['-D', keyword]
+        alone = eval_command(xshade, corpus, [e], os.path.join(out, e['id']), seed, size)
+        wrapper = re.escape(os.path.join(corpus, e['wrapper']))
+        block = re.search(r'^== %s\n(.*?)^== %s: exit (\d+)$' % (wrapper, wrapper), text, re.S | re.M)
         if len(batch) == 1:  # one file: eval's lines as they are, its exit code the process's
-            results[e['id']] = dict(rc=rc, out=text if rc is not None else 'timed out after %d s' % TIMEOUT,
-                                    secs=round(secs, 2), cmd=alone + ['--no-images'])
+            code, lines = rc, text if rc is not None else 'timed out after %d s' % TIMEOUT
         elif block:
-            results[e['id']] = dict(rc=int(block.group(2)), out=block.group(1), secs=round(secs, 2), cmd=alone + ['--no-images'])
+            code, lines = int(block.group(2)), block.group(1)
         else:
-            results[e['id']] = dict(rc=None, out='no result in the batch\'s output (timed out after %d s, or it crashed): %s'
-                                    % (TIMEOUT * len(batch), text[-300:]), secs=round(secs, 2), cmd=alone + ['--no-images'])
+            code, lines = None, 'no result in the batch\'s output (timed out after %d s, or it crashed): %s' % (
+                TIMEOUT * len(batch), text[-300:])
+        results[e['id']] = dict(rc=code, out=lines, secs=secs, cmd=alone)
     return results
 
 
