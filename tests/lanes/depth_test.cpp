@@ -10,7 +10,7 @@ namespace {
 using harness::Lane;
 using harness::TextureSource;
 
-constexpr uint32_t kSize = 32;
+constexpr uint32_t kDepthImageSize = 32;
 constexpr glm::vec4 kNearColor{1.0f, 0.5f, 0.0f, 1.0f};
 constexpr glm::vec4 kFarColor{0.0f, 0.5f, 1.0f, 1.0f};
 constexpr float kNearDepth = 0.25f;
@@ -29,8 +29,8 @@ class Depth : public LaneTest {
     harness::Backend& lane_backend = backend(lane);
     auto flat = program(lane, "mesh", "flat", {{{"Flat", 0, 16}}, {}});
     auto show_depth = program(lane, "fullscreen", "show_depth", {{}, {{"scene_depth", 0, 1}}});
-    auto scene = lane_backend.create_target({kSize, kSize, true});
-    auto view = lane_backend.create_target({kSize, kSize, false});
+    auto scene = lane_backend.create_target({kDepthImageSize, kDepthImageSize, true});
+    auto view = lane_backend.create_target({kDepthImageSize, kDepthImageSize, false});
     EXPECT_TRUE(scene && view);
     auto draw = [&](float x0, float x1, float z, glm::vec4 color) {
       auto mesh = lane_backend.upload_mesh(harness::clip_rectangle(x0, -1.0f, x1, 1.0f, z));
@@ -60,9 +60,9 @@ TEST_F(Depth, NearerGeometryWinsAndLaterPassesSampleTheSameDepth) {
   for (Lane lane : harness::glsl_pair_lanes()) {
     SCOPED_TRACE(harness::lane_name(lane));
     Rendered rendered = render(lane);
-    ASSERT_EQ(rendered.color.width, kSize);
-    ASSERT_EQ(rendered.depth.width, kSize);
-    const uint32_t y = kSize / 2;
+    ASSERT_EQ(rendered.color.width, kDepthImageSize);
+    ASSERT_EQ(rendered.depth.width, kDepthImageSize);
+    const uint32_t y = kDepthImageSize / 2;
     // Pixel columns (32 wide): near-first pair covers x in [0,12) near, [4,16) far; the
     // far-first pair covers [20,32) far and [16,28) near.
     EXPECT_EQ(rendered.color.at(2, y), kNearColor);

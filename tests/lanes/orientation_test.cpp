@@ -10,7 +10,7 @@ namespace {
 namespace pattern = harness::test_pattern;
 using harness::Lane;
 
-constexpr uint32_t kSize = 64;
+constexpr uint32_t kOrientationImageSize = 64;
 
 class Orientation : public LaneTest {};
 
@@ -18,7 +18,7 @@ TEST_F(Orientation, QuadrantsAndFirstTexelAreWhereDirect3DPutsThem) {
   std::map<Lane, harness::FloatImage> images;
   for (Lane lane : harness::all_lanes()) {
     SCOPED_TRACE(harness::lane_name(lane));
-    auto image = pattern::render(backend(lane), lane, kSize);
+    auto image = pattern::render(backend(lane), lane, kOrientationImageSize);
     ASSERT_TRUE(image) << image.error().to_string();
     // Quadrant centres: clip +y is the top of the image, row 0 the top row.
     EXPECT_EQ(image->at(16, 16), pattern::kTopLeft);

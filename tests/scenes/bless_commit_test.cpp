@@ -16,6 +16,7 @@
 
 #include <gtest/gtest.h>
 
+#include "tests/scenes/gating_test_shared.h"
 #include "tests/support/scene_copy.h"
 #include "tests/support/xshade_process.h"
 
@@ -24,8 +25,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-const fs::path kSource = XSHADE_SOURCE_DIR;
-constexpr const char* kScene = "toon_shadow_texture";
 
 // Every file under `folder` with its contents: what "exactly this state" means. The date bless
 // records is left out, as two blesses of one image differ in it and nothing else.
@@ -63,15 +62,15 @@ class BlessCommit : public ::testing::Test {
   void SetUp() override {
     root_ = fs::temp_directory_path() /
             ("xshade_bless_commit_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
-    copy_fixed_scene(kSource, root_, kScene);
+    copy_fixed_scene(kSource, root_, kCopiedScene);
     fs::remove_all(root_ / "golden");
     fs::create_directories(root_ / "golden");
-    const std::string text = read_text(root_ / "scenes" / (std::string(kScene) + ".toml"));
+    const std::string text = read_text(root_ / "scenes" / (std::string(kCopiedScene) + ".toml"));
     const std::string size = "size = [256, 256]";
     ASSERT_NE(text.find(size), std::string::npos);
     tiny_ = text;
     tiny_.replace(tiny_.find(size), size.size(), "size = [24, 24]");
-    fs::remove(root_ / "scenes" / (std::string(kScene) + ".toml"));
+    fs::remove(root_ / "scenes" / (std::string(kCopiedScene) + ".toml"));
   }
   void TearDown() override { fs::remove_all(root_); }
 
@@ -104,19 +103,19 @@ class BlessCommit : public ::testing::Test {
 TEST_F(BlessCommit, AKillAfterAnyStepLeavesTheOldGoldenOrTheNewOneAndTheNextRunFinishesIt) {
   const fs::path golden = root_ / "golden";
   const std::string intensity = "intensity = 1.5";
-  const auto old_scene = [&] { scene(kScene); };
-  const auto new_scene = [&] { scene(kScene, intensity, "intensity = 0.5"); };
+  const auto old_scene = [&] { scene(kCopiedScene); };
+  const auto new_scene = [&] { scene(kCopiedScene, intensity, "intensity = 0.5"); };
 
   old_scene();
-  Outcome first = bless(kScene, "old");
+  Outcome first = bless(kCopiedScene, "old");
   ASSERT_EQ(first.exit_code, 0) << first.output;
-  ASSERT_TRUE(fs::exists(golden / "gl" / (std::string(kScene) + ".exr"))) << "the old golden needs a float image";
+  ASSERT_TRUE(fs::exists(golden / "gl" / (std::string(kCopiedScene) + ".exr"))) << "the old golden needs a float image";
   const auto old_files = raw_files(golden);
   const Snapshot old_state = snapshot(golden);
   new_scene();
-  Outcome second = bless(kScene, "new");
+  Outcome second = bless(kCopiedScene, "new");
   ASSERT_EQ(second.exit_code, 0) << second.output;
-  ASSERT_FALSE(fs::exists(golden / "gl" / (std::string(kScene) + ".exr"))) << "the new golden has no float image";
+  ASSERT_FALSE(fs::exists(golden / "gl" / (std::string(kCopiedScene) + ".exr"))) << "the new golden has no float image";
   const Snapshot new_state = snapshot(golden);
   ASSERT_NE(old_state, new_state);
 
@@ -126,7 +125,7 @@ TEST_F(BlessCommit, AKillAfterAnyStepLeavesTheOldGoldenOrTheNewOneAndTheNextRunF
     ASSERT_LT(step, 20) << "bless never finished";
     restore(golden, old_files);
     new_scene();
-    Outcome killed = bless(kScene, "new", "XSHADE_TEST_ABORT_AFTER_BLESS_STEP=" + std::to_string(step));
+    Outcome killed = bless(kCopiedScene, "new", "XSHADE_TEST_ABORT_AFTER_BLESS_STEP=" + std::to_string(step));
     if (killed.exit_code == 0) break;  // past the last step
     ASSERT_NE(killed.exit_code, 2) << "step " << step << ": " << killed.output;  // killed, not refused
     ASSERT_NE(killed.exit_code, 1) << "step " << step << ": " << killed.output;
@@ -138,7 +137,7 @@ TEST_F(BlessCommit, AKillAfterAnyStepLeavesTheOldGoldenOrTheNewOneAndTheNextRunF
     (is_new ? saw_new : saw_old) = true;
     if (is_new) new_scene();
     else old_scene();
-    Outcome next = run(kScene);
+    Outcome next = run(kCopiedScene);
     EXPECT_EQ(next.exit_code, 0) << "step " << step << " (" << (is_new ? "new" : "old") << "): " << next.output;
     EXPECT_EQ(snapshot(golden), is_new ? new_state : old_state) << "step " << step;
   }
@@ -180,12 +179,12 @@ TEST_F(BlessCommit, TwoBlessesAtOnceKeepBothEntries) {
 
 // The folder's lock held by someone else: bless says it waits, and finishes once it is free.
 TEST_F(BlessCommit, ABlessThatFindsTheFolderLockedWaitsAndSaysSo) {
-  scene(kScene);
+  scene(kCopiedScene);
   // Close-on-exec: a copy inherited by bless would hold the lock for it after the test lets go.
   const int lock = ::open((root_ / "golden" / ".golden.lock").c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0666);
   ASSERT_GE(lock, 0);
   ASSERT_EQ(::flock(lock, LOCK_EX), 0);
-  const std::string command = xshade_command("XSHADE_BLESSED_BY=test", bless_arguments(kScene, "first"));
+  const std::string command = xshade_command("XSHADE_BLESSED_BY=test", bless_arguments(kCopiedScene, "first"));
   FILE* pipe = popen(command.c_str(), "r");
   ASSERT_TRUE(pipe);
   std::string output;

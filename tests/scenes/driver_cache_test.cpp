@@ -27,7 +27,7 @@ float4 frag(SurfaceVaryings input) : SV_Target {
 }
 )";
 
-constexpr const char* kScene = R"(description = "a material whose GLSL the driver warns about"
+constexpr const char* kWarnedScene = R"(description = "a material whose GLSL the driver warns about"
 size = [32, 32]
 lanes = ["gl"]
 [camera]
@@ -55,7 +55,7 @@ class DriverCache : public ::testing::Test {
     fs::remove_all(root_);
     for (const char* folder : {"shaders/materials", "scenes", "golden"}) fs::create_directories(root_ / folder);
     std::ofstream(root_ / "shaders/materials/warns.hlsl") << kWarningMaterial;
-    std::ofstream(root_ / "scenes/warn.toml") << kScene;
+    std::ofstream(root_ / "scenes/warn.toml") << kWarnedScene;
   }
   void TearDown() override { fs::remove_all(root_); }
 

@@ -9,6 +9,7 @@
 
 #include <gtest/gtest.h>
 
+#include "tests/scenes/gating_test_shared.h"
 #include "tests/support/scene_copy.h"
 #include "tests/support/xshade_process.h"
 
@@ -17,16 +18,14 @@ namespace {
 
 namespace fs = std::filesystem;
 
-const fs::path kSource = XSHADE_SOURCE_DIR;
 // The smallest fixed scene (256 x 256), on the gl lane alone: enough to exercise the gate.
-constexpr const char* kScene = "toon_shadow_texture";
 
 class Gating : public ::testing::Test {
  protected:
   void SetUp() override {
     root_ = fs::temp_directory_path() /
             ("xshade_gating_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
-    copy_fixed_scene(kSource, root_, kScene);
+    copy_fixed_scene(kSource, root_, kCopiedScene);
   }
   void TearDown() override { fs::remove_all(root_); }
 
@@ -58,8 +57,8 @@ TEST_F(Gating, AVisiblyChangedShaderFailsWithItsDiffInTheReport) {
   Outcome outcome = run();
   EXPECT_EQ(outcome.exit_code, 1) << outcome.output;
   EXPECT_NE(outcome.output.find("per_pixel"), std::string::npos) << outcome.output;
-  EXPECT_TRUE(fs::exists(root_ / "report" / kScene / "gl.diff.png"));
-  const std::string page = read_text(root_ / "report" / (std::string(kScene) + ".html"));
+  EXPECT_TRUE(fs::exists(root_ / "report" / kCopiedScene / "gl.diff.png"));
+  const std::string page = read_text(root_ / "report" / (std::string(kCopiedScene) + ".html"));
   EXPECT_NE(page.find("gl.diff.png"), std::string::npos);
 }
 
@@ -72,10 +71,10 @@ TEST_F(Gating, AMissingGoldenFailsWithTheBlessCommand) {
 }
 
 TEST_F(Gating, ACorruptGoldenIsBadInputNamingTheFile) {
-  std::ofstream(root_ / "golden" / (std::string(kScene) + ".png"), std::ios::trunc) << "not a png";
+  std::ofstream(root_ / "golden" / (std::string(kCopiedScene) + ".png"), std::ios::trunc) << "not a png";
   Outcome outcome = run();
   EXPECT_EQ(outcome.exit_code, 2) << outcome.output;
-  EXPECT_NE(outcome.output.find((root_ / "golden" / (std::string(kScene) + ".png")).string()), std::string::npos)
+  EXPECT_NE(outcome.output.find((root_ / "golden" / (std::string(kCopiedScene) + ".png")).string()), std::string::npos)
       << outcome.output;
 }
 
@@ -85,7 +84,7 @@ TEST_F(Gating, AMalformedSceneIsBadInputWhileTheOtherScenesRun) {
   EXPECT_EQ(outcome.exit_code, 2) << outcome.output;
   EXPECT_NE(outcome.output.find("broken.toml:2:"), std::string::npos) << outcome.output;
   EXPECT_NE(outcome.output.find("toon_shadow_texture on gl: pass"), std::string::npos) << outcome.output;
-  EXPECT_TRUE(fs::exists(root_ / "report" / kScene / "gl.png"));
+  EXPECT_TRUE(fs::exists(root_ / "report" / kCopiedScene / "gl.png"));
 }
 
 // A second run with the cache the first one filled compiles nothing.
@@ -120,12 +119,12 @@ TEST_F(Gating, HalfEmulationRunsTheGlslLanesAndSkipsVkHlsl) {
 TEST_F(Gating, BlessRefusesWithoutAReasonAndWritesNothing) {
   fs::remove_all(root_ / "golden");  // no golden yet: no image, no float image, no manifest
   fs::create_directories(root_ / "golden");
-  Outcome outcome = run_xshade("", std::string("bless ") + kScene + " --reason ' ' --scenes '" +
+  Outcome outcome = run_xshade("", std::string("bless ") + kCopiedScene + " --reason ' ' --scenes '" +
                                        (root_ / "scenes").string() + "' --golden '" + (root_ / "golden").string() + "'");
   EXPECT_EQ(outcome.exit_code, 2) << outcome.output;
   EXPECT_NE(outcome.output.find("say why with --reason"), std::string::npos) << outcome.output;
   // Refused before anything renders: the command line is checked first, not only the store.
-  EXPECT_EQ(outcome.output.find(std::string(kScene) + " on "), std::string::npos) << outcome.output;
+  EXPECT_EQ(outcome.output.find(std::string(kCopiedScene) + " on "), std::string::npos) << outcome.output;
   EXPECT_TRUE(fs::is_empty(root_ / "golden"));
 }
 

@@ -11,6 +11,7 @@
 #include <gtest/gtest.h>
 
 #include "harness/image/forged_image_headers.h"
+#include "tests/scenes/gating_test_shared.h"
 #include "tests/support/scene_copy.h"
 #include "tests/support/xshade_process.h"
 
@@ -20,8 +21,6 @@ namespace {
 namespace fs = std::filesystem;
 namespace forged = harness::forged;
 
-const fs::path kSource = XSHADE_SOURCE_DIR;
-constexpr const char* kScene = "toon_shadow_texture";
 
 // "a.a.a...": one dotted key of 100,000 parts, the 200 KB line that overflowed toml++'s stack.
 std::string deep_key() {
@@ -45,11 +44,11 @@ class HostileInput : public ::testing::Test {
   void SetUp() override {
     root_ = fs::temp_directory_path() /
             ("xshade_hostile_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
-    copy_fixed_scene(kSource, root_, kScene);
+    copy_fixed_scene(kSource, root_, kCopiedScene);
   }
   void TearDown() override { fs::remove_all(root_); }
 
-  fs::path scene() const { return root_ / "scenes" / (std::string(kScene) + ".toml"); }
+  fs::path scene() const { return root_ / "scenes" / (std::string(kCopiedScene) + ".toml"); }
 
   Outcome run(const std::string& extra = "--lane gl", const std::string& environment = "") {
     return run_xshade(environment,

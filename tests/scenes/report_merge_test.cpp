@@ -9,6 +9,7 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include "tests/scenes/gating_test_shared.h"
 #include "tests/support/scene_copy.h"
 #include "tests/support/xshade_process.h"
 
@@ -18,7 +19,6 @@ namespace {
 namespace fs = std::filesystem;
 using nlohmann::json;
 
-const fs::path kSource = XSHADE_SOURCE_DIR;
 
 // Every verdict a results.json holds, by scene, by scene and lane, and by scene and pair.
 std::map<std::string, std::string> verdicts(const json& results) {

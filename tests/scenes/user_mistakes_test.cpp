@@ -10,6 +10,7 @@
 #include <OpenImageIO/imageio.h>
 #include <gtest/gtest.h>
 
+#include "tests/scenes/gating_test_shared.h"
 #include "tests/support/scene_copy.h"
 #include "tests/support/xshade_process.h"
 
@@ -18,8 +19,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-const fs::path kSource = XSHADE_SOURCE_DIR;
-constexpr const char* kScene = "toon_shadow_texture";
 
 // The 1-based line of `text`'s first occurrence in `file`.
 size_t line_of(const fs::path& file, const std::string& text) {
@@ -34,11 +33,11 @@ class UserMistakes : public ::testing::Test {
   void SetUp() override {
     root_ = fs::temp_directory_path() /
             ("xshade_mistakes_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
-    copy_fixed_scene(kSource, root_, kScene);
+    copy_fixed_scene(kSource, root_, kCopiedScene);
   }
   void TearDown() override { fs::remove_all(root_); }
 
-  fs::path scene() const { return root_ / "scenes" / (std::string(kScene) + ".toml"); }
+  fs::path scene() const { return root_ / "scenes" / (std::string(kCopiedScene) + ".toml"); }
 
   Outcome xshade(const std::string& verb, const std::string& extra = "") {
     return run_xshade("", verb + copied_scene_options(root_) + " --report '" + (root_ / "report").string() + "' " + extra);
@@ -117,7 +116,7 @@ TEST_F(UserMistakes, AUniformWithNoValueIsAnErrorAtTheObjectNotACrash) {
 }
 
 TEST_F(UserMistakes, ABlessOfAnUnchangedSceneShowsNoDifferenceInAnyMetric) {
-  Outcome outcome = xshade("bless", std::string(kScene) + " --reason \"unchanged\"");
+  Outcome outcome = xshade("bless", std::string(kCopiedScene) + " --reason \"unchanged\"");
   EXPECT_EQ(outcome.exit_code, 0) << outcome.output;
   EXPECT_NE(outcome.output.find("exact: pass: bit-identical"), std::string::npos) << outcome.output;
   EXPECT_NE(outcome.output.find("worst 0 sRGB steps at (0, 0), 0 failing pixels"), std::string::npos) << outcome.output;
@@ -154,7 +153,7 @@ TEST_F(UserMistakes, AGoldenOfAnotherSizeSaysSoAndNamesTheBlessCommand) {
   EXPECT_EQ(outcome.exit_code, 2) << outcome.output;
   EXPECT_NE(outcome.output.find("is 256x256 and the scene renders 256x200"), std::string::npos) << outcome.output;
   EXPECT_NE(outcome.output.find("xshade bless toon_shadow_texture --reason"), std::string::npos) << outcome.output;
-  EXPECT_FALSE(fs::exists(root_ / "report" / kScene / "gl.diff.png"));
+  EXPECT_FALSE(fs::exists(root_ / "report" / kCopiedScene / "gl.diff.png"));
 }
 
 TEST_F(UserMistakes, AShardWithNoSceneChecksNothingAndFails) {
@@ -176,25 +175,25 @@ TEST_F(UserMistakes, AFolderThatDoesNotExistIsRefused) {
 }
 
 TEST_F(UserMistakes, LanesAreGivenWithCommasOrRepeatedAndNeverSwallowASceneName) {
-  Outcome commas = run(std::string("--lane gl,vk ") + kScene);
+  Outcome commas = run(std::string("--lane gl,vk ") + kCopiedScene);
   EXPECT_EQ(commas.exit_code, 0) << commas.output;
-  EXPECT_NE(commas.output.find(std::string(kScene) + " on vk: pass"), std::string::npos) << commas.output;
+  EXPECT_NE(commas.output.find(std::string(kCopiedScene) + " on vk: pass"), std::string::npos) << commas.output;
   EXPECT_EQ(commas.output.find(" on vk-hlsl:"), std::string::npos) << commas.output;
-  Outcome repeated = run(std::string("--lane gl --lane vk ") + kScene);
+  Outcome repeated = run(std::string("--lane gl --lane vk ") + kCopiedScene);
   EXPECT_EQ(repeated.exit_code, 0) << repeated.output;
-  EXPECT_NE(repeated.output.find(std::string(kScene) + " on vk: pass"), std::string::npos) << repeated.output;
+  EXPECT_NE(repeated.output.find(std::string(kCopiedScene) + " on vk: pass"), std::string::npos) << repeated.output;
   // Before, `--lane gl vk SCENE` took the scene as a lane; now the bare words are scene names.
-  Outcome bare = run(std::string("--lane gl vk ") + kScene);
+  Outcome bare = run(std::string("--lane gl vk ") + kCopiedScene);
   EXPECT_EQ(bare.exit_code, 2) << bare.output;
   EXPECT_NE(bare.output.find("no scene 'vk' in"), std::string::npos) << bare.output;
   EXPECT_NE(bare.output.find("(lanes are chosen with --lane vk, or --lane gl,vk)"), std::string::npos) << bare.output;
 }
 
 TEST_F(UserMistakes, ALaneGoldenThatMatchesTheCommonOneIsRefused) {
-  Outcome outcome = xshade("bless", std::string(kScene) + " --lane gl --reason \"try\"");
+  Outcome outcome = xshade("bless", std::string(kCopiedScene) + " --lane gl --reason \"try\"");
   EXPECT_EQ(outcome.exit_code, 2) << outcome.output;
   EXPECT_NE(outcome.output.find("matches the common golden"), std::string::npos) << outcome.output;
-  EXPECT_FALSE(fs::exists(root_ / "golden" / (std::string(kScene) + ".gl.png")));
+  EXPECT_FALSE(fs::exists(root_ / "golden" / (std::string(kCopiedScene) + ".gl.png")));
 }
 
 TEST_F(UserMistakes, AValueAboveOneThatChangesFailsThoughThePngCannotShowIt) {
@@ -204,7 +203,7 @@ TEST_F(UserMistakes, AValueAboveOneThatChangesFailsThoughThePngCannotShowIt) {
           "  return fixed4(colour, albedo.a);");
   Outcome outcome = run();
   EXPECT_EQ(outcome.exit_code, 1) << outcome.output;
-  EXPECT_NE(outcome.output.find(std::string(kScene) + " on gl: fail - float: "), std::string::npos) << outcome.output;
+  EXPECT_NE(outcome.output.find(std::string(kCopiedScene) + " on gl: fail - float: "), std::string::npos) << outcome.output;
 }
 
 // white_furnace has no value above 1, so its PNG is its whole golden.
@@ -237,17 +236,17 @@ TEST_F(UserMistakes, ASixteenBitGoldenIsSrgbLikeAnEightBitOne) {
 
 TEST_F(UserMistakes, ARunReplacesTheEarlierRunsPagesAndKeepsWhatItDidNotWrite) {
   ASSERT_EQ(run().exit_code, 0);
-  ASSERT_TRUE(fs::exists(root_ / "report" / (std::string(kScene) + ".html")));
+  ASSERT_TRUE(fs::exists(root_ / "report" / (std::string(kCopiedScene) + ".html")));
   std::ofstream(root_ / "report" / "notes.txt") << "mine";
   fs::rename(scene(), root_ / "scenes" / "renamed.toml");
-  fs::rename(root_ / "golden" / (std::string(kScene) + ".png"), root_ / "golden" / "renamed.png");
-  fs::rename(root_ / "golden" / (std::string(kScene) + ".exr"), root_ / "golden" / "renamed.exr");
-  replace_in_file(root_ / "golden" / "MANIFEST.toml", std::string("scene = \"") + kScene + "\"", "scene = \"renamed\"");
+  fs::rename(root_ / "golden" / (std::string(kCopiedScene) + ".png"), root_ / "golden" / "renamed.png");
+  fs::rename(root_ / "golden" / (std::string(kCopiedScene) + ".exr"), root_ / "golden" / "renamed.exr");
+  replace_in_file(root_ / "golden" / "MANIFEST.toml", std::string("scene = \"") + kCopiedScene + "\"", "scene = \"renamed\"");
   Outcome second = run();
   ASSERT_EQ(second.exit_code, 0) << second.output;
   EXPECT_TRUE(fs::exists(root_ / "report" / "renamed.html"));
-  EXPECT_FALSE(fs::exists(root_ / "report" / (std::string(kScene) + ".html")));
-  EXPECT_FALSE(fs::exists(root_ / "report" / kScene));
+  EXPECT_FALSE(fs::exists(root_ / "report" / (std::string(kCopiedScene) + ".html")));
+  EXPECT_FALSE(fs::exists(root_ / "report" / kCopiedScene));
   EXPECT_TRUE(fs::exists(root_ / "report" / "notes.txt"));
 }
 

@@ -7,6 +7,7 @@
 
 #include <gtest/gtest.h>
 
+#include "tests/scenes/gating_test_shared.h"
 #include "tests/support/xshade_process.h"
 
 namespace xshade::tests {
@@ -14,7 +15,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-const fs::path kSource = XSHADE_SOURCE_DIR;
 
 // A user material on the library's scene inputs: lit by the scene's light, nothing more.
 constexpr const char* kMaterial = R"(#pragma vertex vert
@@ -27,7 +27,7 @@ float4 frag(SurfaceVaryings input) : SV_Target {
 }
 )";
 
-constexpr const char* kScene = R"(description = "one sphere in a user's own material"
+constexpr const char* kUserScene = R"(description = "one sphere in a user's own material"
 size = [48, 48]
 lanes = ["gl", "vk"]
 [camera]
@@ -52,7 +52,7 @@ class UserProject : public ::testing::Test {
     fs::remove_all(root_);
     for (const char* folder : {".git", "shaders/materials", "xshade/scenes", "src/deep"}) fs::create_directories(root_ / folder);
     write("shaders/materials/user_lit.hlsl", kMaterial);
-    write("xshade/scenes/user_sphere.toml", kScene);
+    write("xshade/scenes/user_sphere.toml", kUserScene);
     write("xshade.toml", "scenes = \"xshade/scenes\"\ngolden = \"xshade/golden\"\nshaders = [\"shaders\"]\n");
   }
   void TearDown() override { fs::remove_all(root_); }
@@ -86,7 +86,7 @@ TEST_F(UserProject, TheProjectFileGivesTheFoldersFromAnywhereInTheRepository) {
 TEST_F(UserProject, TheUsersMaterialTakesThePlaceOfTheLibrarysOfTheSamePath) {
   // The library's toon has 4 keyword combinations; the user's file of the same path has 2.
   write("shaders/materials/toon.hlsl", std::string("#pragma multi_compile _ _USER_TOON\n") + kMaterial);
-  std::string scene = kScene;
+  std::string scene = kUserScene;
   scene.replace(scene.find("materials/user_lit.hlsl"), 23, "materials/toon.hlsl");
   write("xshade/scenes/user_sphere.toml", scene);
   Outcome plan = xshade_in("", "run", "--plan");
@@ -96,7 +96,7 @@ TEST_F(UserProject, TheUsersMaterialTakesThePlaceOfTheLibrarysOfTheSamePath) {
 
 TEST_F(UserProject, CommandLineFoldersOverrideTheProjectFile) {
   fs::create_directories(root_ / "other/scenes");
-  write("other/scenes/second.toml", kScene);
+  write("other/scenes/second.toml", kUserScene);
   Outcome plan = xshade_in("", "run", "--plan --scenes '" + (root_ / "other/scenes").string() + "'");
   ASSERT_EQ(plan.exit_code, 0) << plan.output;
   EXPECT_NE(plan.output.find("plan for scene 'second'"), std::string::npos) << plan.output;
