@@ -122,6 +122,7 @@ Result<DofImages> run_depth_of_field(const CaseContext& context, harness::Progra
                   {"_FocusRange", harness::PropertyValue::scalar(settings.focus_range)},
                   {"_BokehRadius", harness::PropertyValue::scalar(kBokehRadius)}},
                  {},
+                 {},
                  {}}};
   auto plan = harness::plan_scene(scene, context.shaders_dir);
   if (!plan) return fail(plan.error());

@@ -9,6 +9,8 @@
 #include "harness/render/scene_contract.h"
 #include "harness/render/unity_render_state.h"
 #include "hlsl_like/compiler.h"
+#include "shaderlab/pass_program.h"
+#include "shaderlab/reader.h"
 
 namespace xshade::harness {
 namespace {
@@ -143,6 +145,83 @@ std::string VariantRequest::label() const {
   return text + "]" + (half_emulation ? " half" : "");
 }
 
+namespace {
+
+// The steps of the .shader post effect `scene.post[e]` (at `path`) as post passes: each its pass
+// of the drawn SubShader compiled whole (its vertex and fragment programs), drawn as Unity's
+// Graphics.Blit draws it, its _MainTex the image of the step before unless it names a source.
+Result<void> plan_shader_effect(const Scene& scene, size_t e, const fs::path& path, SourceReader& reader, Plan& plan,
+                                ContractProblems& contract) {
+  const PostEffect& effect = scene.post[e];
+  auto shader = shaderlab::read_shader_file(path);
+  if (!shader) return fail(shader.error());
+  std::vector<PostStep> steps = effect.passes;
+  if (steps.empty()) {  // its first drawn pass
+    PostStep first;
+    first.where = effect.where.of("effect");
+    steps.push_back(std::move(first));
+  }
+  std::vector<PassNames> pass_names;
+  std::vector<size_t> indices;
+  std::vector<std::vector<std::string>> step_keywords;
+  ShaderNames keyword_names;
+  std::string previous;
+  for (const PostStep& step : steps) {
+    std::optional<size_t> index;
+    if (!step.pass.empty()) {
+      auto found = shaderlab::find_pass(*shader, step.pass);
+      if (!found) return fail(Error{found.error().message, step.where, {}});
+      const shaderlab::SubShader& sub = *shaderlab::drawn_subshader(*shader);
+      index = size_t(*found - sub.passes.data());
+      if ((*found)->kind != shaderlab::PassKind::Program)
+        return fail(Error{"pass '" + step.pass + "' of '" + shader->name +
+                              "' has no program (a UsePass, a GrabPass or fixed-function): a post step blits a pass "
+                              "with CGPROGRAM or HLSLPROGRAM",
+                          step.where,
+                          {}});
+    }
+    auto facts = reader.read(effect.effect, effect.keywords, false, {}, index);
+    if (!facts) return fail(facts.error());
+    const size_t pass_index = *facts->pass;
+    hlsl::PassDeclaration declaration;
+    declaration.name = !step.name.empty() ? step.name : !step.pass.empty() ? step.pass : std::to_string(pass_index);
+    declaration.scale = step.half ? hlsl::PassDeclaration::Scale::Half : hlsl::PassDeclaration::Scale::Full;
+    for (const auto& [texture, source] : step.sources) {
+      using Kind = hlsl::PassInput::Kind;
+      const Kind kind = source == "scene.color" ? Kind::SceneColor : source == "scene.depth" ? Kind::SceneDepth : Kind::Pass;
+      declaration.inputs.push_back({texture, kind, kind == Kind::Pass ? source : std::string()});
+    }
+    if (!step.sources.count("_MainTex"))
+      declaration.inputs.push_back(previous.empty() ? hlsl::PassInput{"_MainTex", hlsl::PassInput::Kind::SceneColor, {}}
+                                                    : hlsl::PassInput{"_MainTex", hlsl::PassInput::Kind::Pass, previous});
+    previous = declaration.name;
+    keyword_names.keyword_sets.insert(keyword_names.keyword_sets.end(), facts->keyword_sets.begin(),
+                                      facts->keyword_sets.end());
+    step_keywords.push_back(variant_keywords(facts->keyword_sets, effect.keywords));
+    indices.push_back(pass_index);
+    pass_names.push_back({std::move(declaration), std::move(facts->names)});
+  }
+  check_keywords(effect.keywords, effect.where, keyword_names, "post effect '" + effect.effect + "'", contract);
+  const size_t notes_before = contract.notes.size();
+  const std::vector<std::map<std::string, TextureRef>> pass_defaults = check_effect(effect, pass_names, contract);
+  for (size_t d = 0; d < pass_names.size(); ++d) {
+    PlannedPass pass;
+    pass.kind = PlannedPass::Kind::Post;
+    pass.name = effect_name(effect.effect) + "." + pass_names[d].declaration.name;
+    pass.effect = e;
+    pass.declaration = pass_names[d].declaration;
+    pass.blit = true;
+    pass.variant = add_variant(plan, {path, effect.effect, step_keywords[d], {}, indices[d]});
+    pass.default_textures = pass_defaults[d];
+    plan.passes.push_back(std::move(pass));
+  }
+  for (size_t n = notes_before; n < contract.notes.size(); ++n)
+    plan.variant_notes[plan.passes.back().variant].push_back(contract.notes[n]);
+  return {};
+}
+
+}  // namespace
+
 Result<Plan> plan_scene(const Scene& scene, const ShaderSearchPath& shaders) {
   Plan plan;
   SourceReader reader(shaders);
@@ -244,6 +323,17 @@ Result<Plan> plan_scene(const Scene& scene, const ShaderSearchPath& shaders) {
 
   for (size_t e = 0; e < scene.post.size(); ++e) {
     const PostEffect& effect = scene.post[e];
+    auto unity = shaders.find(effect.effect);
+    if (unity && is_unity_shader(*unity)) {
+      if (auto planned = plan_shader_effect(scene, e, *unity, reader, plan, contract); !planned) return fail(planned.error());
+      used_combinations[effect.effect];
+      continue;
+    }
+    if (!effect.passes.empty())
+      return fail(Error{"passes = [...] chooses the passes of a Unity .shader effect; an .hlsl effect's passes are its "
+                        "#pragma pass lines",
+                        effect.where.of("effect"),
+                        {}});
     auto facts = reader.read(effect.effect, effect.keywords, true);
     if (!facts) return fail(facts.error());
     const std::vector<std::string> keywords = variant_keywords(facts->keyword_sets, effect.keywords);
@@ -315,7 +405,10 @@ std::string describe_plan(const Scene& scene, const Plan& plan, const std::vecto
       continue;
     }
     const hlsl::PassDeclaration& d = pass.declaration;
-    text += "    " + pass.name + ": " + d.entry + ", " + (d.scale == hlsl::PassDeclaration::Scale::Half ? "half" : "full") +
+    // A .shader's step is its pass's whole program, blitted; an .hlsl pass is its fragment entry.
+    const std::string program =
+        pass.blit ? "blit of pass " + std::to_string(plan.variants[pass.variant].shader_pass.value_or(0)) : d.entry;
+    text += "    " + pass.name + ": " + program + ", " + (d.scale == hlsl::PassDeclaration::Scale::Half ? "half" : "full") +
             " resolution";
     for (const hlsl::PassInput& input : d.inputs) {
       const std::string from = input.kind == hlsl::PassInput::Kind::SceneColor   ? "scene.color"

@@ -42,6 +42,9 @@ struct PlannedPass {
   size_t variant = 0;  // Post: index into Plan::variants
   // Post: textures the pass samples that nothing gives, from the shader's declared defaults.
   std::map<std::string, TextureRef> default_textures;
+  // Post: a .shader's pass, drawn as Unity's Graphics.Blit draws it (identity view and projection,
+  // so that UnityObjectToClipPos puts the full-screen triangle where it is).
+  bool blit = false;
 };
 
 struct Plan {

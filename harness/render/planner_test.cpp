@@ -241,6 +241,82 @@ TEST(Planner, AShadersToggleAndKeywordEnumPropertiesChooseItsVariant) {
   fs::remove_all(user);
 }
 
+// A .shader post effect blits the passes `passes` names, in that order, each compiled whole (its
+// own vertex program); each reads the step before as _MainTex unless its sources say otherwise.
+TEST(Planner, AShaderPostEffectBlitsItsPassesInTheOrderTheSceneGives) {
+  const fs::path user = fs::temp_directory_path() / "xshade_planner_shader_post";
+  fs::remove_all(user);
+  fs::create_directories(user);
+  const std::string pass = R"(Pass { Name "NAME" Cull Off ZWrite Off ZTest Always HLSLPROGRAM
+    #pragma vertex vert
+    #pragma fragment frag
+    Texture2D _MainTex; SamplerState sampler_MainTex; TEXTURES
+    float4 vert(float3 p : POSITION, inout float2 uv : TEXCOORD0) : SV_Position { return float4(p, 1); }
+    float4 frag(float4 pos : SV_Position, float2 uv : TEXCOORD0) : SV_Target { return BODY; }
+    ENDHLSL }
+)";
+  const auto with = [&](std::string text, const std::string& name, const std::string& textures, const std::string& body) {
+    for (const auto& [from, to] : {std::pair<std::string, std::string>{"NAME", name}, {"TEXTURES", textures}, {"BODY", body}})
+      text.replace(text.find(from), from.size(), to);
+    return text;
+  };
+  std::ofstream(user / "blur.shader")
+      << "Shader \"Hidden/Blur\" {\n  SubShader {\n" << with(pass, "Down", "", "_MainTex.Sample(sampler_MainTex, uv)")
+      << with(pass, "Glow", "Texture2D _Bloom;", "_MainTex.Sample(sampler_MainTex, uv) + _Bloom.Sample(sampler_MainTex, uv)")
+      << "  }\n}\n";
+  const ShaderSearchPath folders({user, kLibrary});
+  auto plan = plan_scene(scene(R"(
+[[object]]
+mesh = "sphere"
+material = "materials/toon.hlsl"
+[[post]]
+effect = "blur.shader"
+passes = ["down", { pass = 0, name = "half", scale = "half" }, { pass = "Glow", sources = { _Bloom = "half", _MainTex = "scene.color" } }]
+)"), folders);
+  ASSERT_TRUE(plan) << plan.error().to_string();
+  std::vector<std::string> names;
+  for (const PlannedPass& planned : plan->passes) names.push_back(planned.name);
+  EXPECT_EQ(names, (std::vector<std::string>{"scene", "blur.down", "blur.half", "blur.Glow"}));
+  const auto variant_of = [&](size_t index) { return plan->variants[plan->passes[index].variant]; };
+  EXPECT_EQ(variant_of(1).shader_pass, std::optional<size_t>(0));
+  EXPECT_EQ(variant_of(1).fragment_entry, "");
+  EXPECT_EQ(plan->passes[1].variant, plan->passes[2].variant) << "pass 0 twice is one variant";
+  EXPECT_EQ(variant_of(3).shader_pass, std::optional<size_t>(1));
+  EXPECT_TRUE(plan->passes[1].blit);
+  const auto inputs_of = [&](size_t index) {
+    std::vector<std::string> inputs;
+    for (const hlsl::PassInput& input : plan->passes[index].declaration.inputs)
+      inputs.push_back(input.texture + " <- " +
+                       (input.kind == hlsl::PassInput::Kind::Pass ? input.pass
+                        : input.kind == hlsl::PassInput::Kind::SceneColor ? "scene.color" : "scene.depth"));
+    return inputs;
+  };
+  EXPECT_EQ(inputs_of(1), std::vector<std::string>{"_MainTex <- scene.color"});
+  EXPECT_EQ(inputs_of(2), std::vector<std::string>{"_MainTex <- down"});
+  EXPECT_EQ(plan->passes[2].declaration.scale, hlsl::PassDeclaration::Scale::Half);
+  EXPECT_EQ(inputs_of(3), (std::vector<std::string>{"_Bloom <- half", "_MainTex <- scene.color"}));
+  const std::string described = describe_plan(scene(""), *plan, std::vector<bool>(plan->variants.size(), false));
+  EXPECT_NE(described.find("blur.half: blit of pass 0, half resolution, _MainTex <- down\n"), std::string::npos) << described;
+
+  // No passes: the first pass alone. A pass the shader has not, and passes on an .hlsl effect, are
+  // errors at their line.
+  auto first = plan_scene(scene("[[post]]\neffect = \"blur.shader\"\n"), folders);
+  ASSERT_TRUE(first) << first.error().to_string();
+  ASSERT_EQ(first->passes.size(), 1u);
+  EXPECT_EQ(first->passes[0].name, "blur.0");
+  auto missing = plan_scene(scene("[[post]]\neffect = \"blur.shader\"\npasses = [\"Blur\"]\n"), folders);
+  ASSERT_FALSE(missing);
+  EXPECT_EQ(missing.error().to_string(),
+            "/tmp/planner_test.toml:12:11: the shader 'Hidden/Blur' has no pass 'Blur' in its first SubShader (its passes: "
+            "0 (\"Down\"), 1 (\"Glow\"))");
+  auto hlsl_passes = plan_scene(scene("[[post]]\neffect = \"post/depth_of_field.hlsl\"\npasses = [0]\n"), folders);
+  ASSERT_FALSE(hlsl_passes);
+  EXPECT_NE(hlsl_passes.error().to_string().find(":11:10: passes = [...] chooses the passes of a Unity .shader effect"),
+            std::string::npos)
+      << hlsl_passes.error().to_string();
+  fs::remove_all(user);
+}
+
 TEST(Planner, AVariantThatReadsVertexInputsTheMeshesLackIsToldWhatItReads) {
   // TEXCOORD2 and COLOR1 only with the _EXTRA keyword: one variant reads them, the other not.
   const fs::path user = fs::temp_directory_path() / "xshade_planner_vertex_inputs";

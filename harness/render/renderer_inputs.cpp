@@ -136,6 +136,12 @@ UniformValueMap frame_inputs(const Scene& scene, const ShCoefficients& sh) {
   return values;
 }
 
+void add_blit_inputs(UniformValueMap& values) {
+  const std::vector<float> identity = hlsl_components(glm::mat4(1.0f));
+  for (const char* name : {"_WorldToClip", "unity_MatrixV", "unity_MatrixInvV", "glstate_matrix_projection", "unity_MatrixVP"})
+    values[name] = identity;
+}
+
 void add_object_inputs(const glm::mat4& model, UniformValueMap& values) {
   values["_ObjectToWorld"] = hlsl_components(model);
   values["_NormalToWorld"] = hlsl_components(glm::transpose(glm::inverse(model)));

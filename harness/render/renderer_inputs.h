@@ -40,6 +40,12 @@ UniformValueMap frame_inputs(const Scene& scene, const ShCoefficients& sh);
 // The per-object values of an instance with model matrix `model`, added to (or replaced in) `values`.
 void add_object_inputs(const glm::mat4& model, UniformValueMap& values);
 
+// Graphics.Blit's view and projection, added to (or replaced in) `values`: the identity for both,
+// which puts the full-screen triangle's corners where they are in clip space, as Blit's
+// orthographic projection of its unit quad does (the camera's own matrices, unity_CameraProjection
+// and the rest, stay as they are).
+void add_blit_inputs(UniformValueMap& values);
+
 // Whether the renderer gives the uniform `name` itself (frame_inputs, add_object_inputs, and
 // X_TexelSize of every texture): a scene cannot set such a name, and it needs no default.
 bool renderer_uniform(const std::string& name);

@@ -277,9 +277,9 @@ std::vector<std::map<std::string, TextureRef>> check_effect(const PostEffect& ef
         continue;
       // Unity's depth texture is the scene's depth where the pass names no other source.
       if (texture.name == "_CameraDepthTexture") continue;
-      default_or_error(texture, pass_owner, "neither its #pragma pass nor the effect's textures give",
-                       "textures", effect_line,
-                       defaults[p], problems);
+      default_or_error(texture, pass_owner,
+                       "neither its sources (its #pragma pass line, or its step in passes) nor the effect's textures give",
+                       "textures", effect_line, defaults[p], problems);
     }
     check_uniforms_have_values(pass.names, given, pass_owner, "parameters", effect_line, problems);
   }

@@ -256,12 +256,18 @@ class SceneRenderer {
     return {};
   }
 
-  // Positions (-1, -1), (-1, 3), (3, -1) at z = 0: one triangle over the whole target.
+  // Positions (-1, -1), (-1, 3), (3, -1) at z = 0: one triangle over the whole target; its uv 0
+  // to 1 across the target from the top-left corner, where uv (0, 0) addresses a target's row 0
+  // (docs/architecture.md), so that a blit that samples its source at the mesh's uv copies it
+  // upright, as Graphics.Blit's quad does.
   Result<MeshHandle> fullscreen_triangle() {
     if (!triangle_) {
       MeshData mesh;
-      for (glm::vec2 p : {glm::vec2(-1.0f, -1.0f), glm::vec2(-1.0f, 3.0f), glm::vec2(3.0f, -1.0f)})
-        mesh.vertices.push_back(Vertex{glm::vec3(p, 0.0f)});
+      for (glm::vec2 p : {glm::vec2(-1.0f, -1.0f), glm::vec2(-1.0f, 3.0f), glm::vec2(3.0f, -1.0f)}) {
+        Vertex vertex{glm::vec3(p, 0.0f)};
+        vertex.uv = glm::vec2(0.5f * (p.x + 1.0f), 0.5f * (1.0f - p.y));
+        mesh.vertices.push_back(vertex);
+      }
       mesh.indices = {0, 1, 2};
       auto handle = resources_.upload_mesh(mesh);
       if (!handle) return fail(from_backend(handle.error()));
@@ -379,6 +385,7 @@ class SceneRenderer {
     Values values = frame_values();
     // Unity draws a post pass as a blit: the identity model matrix.
     add_object_inputs(glm::mat4(1.0f), values);
+    if (planned.blit) add_blit_inputs(values);
     const CompiledVariant& variant = variants_[planned.variant];
     DrawItem draw{{}, {}, {}, {}, {}};
     if (!variant.program.fullscreen) {
@@ -421,6 +428,9 @@ class SceneRenderer {
       const PassSource& source = camera_depth || input->kind == hlsl::PassInput::Kind::SceneDepth ? scene_depth_
                                  : input->kind == hlsl::PassInput::Kind::Pass ? pass_outputs_.at(input->pass)
                                                                               : effect_input_;
+      if (const TextureShape shape = declared_shape(variant, name); shape != TextureShape{})
+        return fail("pass '" + planned.name + "' samples '" + name + "' as a " + shape_name(shape) +
+                    ", and its source (the scene's image or depth, or an earlier pass's) is a Texture2D");
       values[name + "_TexelSize"] = texel_size(source.size);
       draw.textures.push_back({name, source.binding});
     }

@@ -6,6 +6,7 @@
 #include <fstream>
 #include <functional>
 #include <initializer_list>
+#include <set>
 #include <sstream>
 #include <system_error>
 #include <utility>
@@ -635,7 +636,7 @@ class SceneReader : SceneValueReader {
   }
 
   void read_post(const toml::table& table, const std::string& path, Scene& scene) {
-    check_keys(table, path, {"effect", "keywords", "parameters", "textures"});
+    check_keys(table, path, {"effect", "keywords", "parameters", "textures", "passes"});
     PostEffect effect;
     effect.where.fallback = where(table.source());
     if (const toml::node* node = table.get("effect")) {
@@ -647,8 +648,75 @@ class SceneReader : SceneValueReader {
     if (const toml::node* node = table.get("keywords")) effect.keywords = keywords(*node, path + ".keywords");
     if (const toml::node* node = table.get("parameters")) effect.parameters = properties(*node, path + ".parameters");
     if (const toml::node* node = table.get("textures")) read_textures(*node, path + ".textures", effect.textures);
+    if (const toml::node* node = table.get("passes")) read_post_steps(*node, path + ".passes", effect.passes);
     record_locations(table, effect.where);
     scene.post.push_back(std::move(effect));
+  }
+
+  // A post step's `sources = { TEXTURE = "scene.color" | "scene.depth" | a step in `earlier` }`.
+  void read_step_sources(const toml::node& node, const std::string& path, const std::set<std::string>& earlier,
+                         std::map<std::string, std::string>& sources) {
+    const auto* table = node.as_table();
+    if (!table) {
+      expected(node, path, "a table of TEXTURE = \"scene.color\", \"scene.depth\" or an earlier step's name");
+      return;
+    }
+    for (auto&& [texture, source] : *table) {
+      const std::string source_path = key_path(path, texture.str());
+      auto text = string(source, source_path, "\"scene.color\", \"scene.depth\" or an earlier step's name");
+      if (!text) continue;
+      if (*text != "scene.color" && *text != "scene.depth" && !earlier.count(*text))
+        expected(source, source_path, "\"scene.color\", \"scene.depth\" or the name of an earlier step");
+      sources[std::string(texture.str())] = *text;
+    }
+  }
+
+  // `passes = [0, "Name", { pass = 1, name = "blurred", scale = "half", sources = { _CoCTex =
+  // "coc" } }]`: each a pass of a .shader effect by index or Name, or a table that says more.
+  void read_post_steps(const toml::node& node, const std::string& path, std::vector<PostStep>& steps) {
+    const auto* array = node.as_array();
+    if (!array || array->empty()) {
+      expected(node, path, "an array of passes, each an index, a Name or a table { pass = ..., name, scale, sources }");
+      return;
+    }
+    std::set<std::string> names;
+    for (size_t i = 0; i < array->size(); ++i) {
+      const toml::node& element = *array->get(i);
+      const std::string element_path = index_path(path, i);
+      PostStep step;
+      step.where = where(element.source());
+      const toml::node* pass = &element;
+      if (const auto* table = element.as_table()) {
+        check_keys(*table, element_path, {"pass", "name", "scale", "sources"});
+        pass = table->get("pass");
+        if (!pass) missing(*table, element_path + ".pass", "the pass's index or Name");
+        if (const toml::node* name = table->get("name"))
+          step.name = string(*name, element_path + ".name", "a name for the step's image").value_or("");
+        if (const toml::node* scale = table->get("scale")) {
+          const auto* text = scale->as_string();
+          if (text && (text->get() == "full" || text->get() == "half"))
+            step.half = text->get() == "half";
+          else
+            expected(*scale, element_path + ".scale", "\"full\" or \"half\"");
+        }
+        if (const toml::node* sources = table->get("sources"))
+          read_step_sources(*sources, element_path + ".sources", names, step.sources);
+      }
+      if (pass) {
+        if (const auto* index = pass->as_integer(); index && index->get() >= 0 && index->get() < 1024)
+          step.pass = std::to_string(index->get());
+        else if (const auto* name = pass->as_string(); name && !name->get().empty())
+          step.pass = name->get();
+        else
+          expected(*pass, pass == &element ? element_path : element_path + ".pass",
+                   "a pass's index (0 to 1023) or Name, or a table { pass = ..., name, scale, sources }");
+      }
+      const std::string& step_name = step.name.empty() ? step.pass : step.name;
+      if (!step_name.empty() && !names.insert(step_name).second)
+        report(element.source(), fmt::format("{}: a step named '{}' comes earlier; give this one its own name = \"...\"",
+                                             element_path, step_name));
+      steps.push_back(std::move(step));
+    }
   }
 
   void read_compare(const toml::table& table, CompareSettings& compare) {

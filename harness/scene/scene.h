@@ -152,12 +152,27 @@ struct SceneObject {
   SceneLocations where;
 };
 
+// One blit of a Unity .shader post effect (`passes` of a [[post]]), as a C# script calls
+// Graphics.Blit(source, destination, material, pass): the pass by its index or Name, into an image
+// of its own that later steps read by the step's name.
+struct PostStep {
+  std::string pass;  // the pass's index ("0", "1", ...) or Name, as written
+  std::string name;  // what later steps call its image; empty: the pass as written
+  bool half = false;  // at half the scene's size
+  // Each texture's source: "scene.color", "scene.depth" or an earlier step's name. _MainTex that
+  // is not given reads the step before (the image the effect receives, for the first).
+  std::map<std::string, std::string> sources;
+  SourceLocation where;
+};
+
 struct PostEffect {
   std::string effect;  // relative to the shader folders, as written
   std::vector<std::string> keywords;
   std::map<std::string, PropertyValue> parameters;
   // Textures its passes sample that their #pragma pass lines give no source (a LUT, a noise).
   std::map<std::string, TextureRef> textures;
+  // A .shader effect's blits in order; none written: its first pass alone.
+  std::vector<PostStep> passes;
   SceneLocations where;
 };
 

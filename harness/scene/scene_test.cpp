@@ -357,6 +357,52 @@ _G = { faces = ["a.png", "b.png", "c.png", "d.png", "e.png", "../f.png"] }
             }));
 }
 
+TEST(SceneParse, AShaderEffectsPassesAreItsBlitsInOrder) {
+  Scene scene = parse_ok(minimal_head + R"(
+[[post]]
+effect = "Hidden/Blur.shader"
+passes = [0, "Downsample", { pass = 2, name = "blurred", scale = "half", sources = { _Bloom = "0" } }]
+)");
+  ASSERT_EQ(scene.post.size(), 1u);
+  const std::vector<PostStep>& steps = scene.post[0].passes;
+  ASSERT_EQ(steps.size(), 3u);
+  EXPECT_EQ(steps[0].pass, "0");
+  EXPECT_EQ(steps[1].pass, "Downsample");
+  EXPECT_FALSE(steps[1].half);
+  EXPECT_EQ(steps[2].pass, "2");
+  EXPECT_EQ(steps[2].name, "blurred");
+  EXPECT_TRUE(steps[2].half);
+  EXPECT_EQ(steps[2].sources, (std::map<std::string, std::string>{{"_Bloom", "0"}}));
+  EXPECT_EQ(steps[2].where.to_string(), "/project/scenes/test.toml:12:28");
+}
+
+TEST(SceneErrors, PostStepsAreCheckedEachAtItsPlace) {
+  EXPECT_EQ(errors_of(minimal_head + R"(
+[[post]]
+effect = "Hidden/Blur.shader"
+passes = [-1, "", 0, 0, { name = "x" }, { pass = 1, scale = "quarter", sources = { _A = "later", _B = 3 } }]
+[[post]]
+effect = "Hidden/Copy.shader"
+passes = []
+)"),
+            (std::vector<std::string>{
+                "scenes/bad.toml:12:11: error: post[0].passes[0]: expected a pass's index (0 to 1023) or Name, or a table "
+                "{ pass = ..., name, scale, sources }, got -1",
+                "scenes/bad.toml:12:15: error: post[0].passes[1]: expected a pass's index (0 to 1023) or Name, or a table "
+                "{ pass = ..., name, scale, sources }, got \"\"",
+                "scenes/bad.toml:12:22: error: post[0].passes[3]: a step named '0' comes earlier; give this one its own "
+                "name = \"...\"",
+                "scenes/bad.toml:12:25: error: post[0].passes[4].pass: missing; expected the pass's index or Name",
+                "scenes/bad.toml:12:61: error: post[0].passes[5].scale: expected \"full\" or \"half\", got \"quarter\"",
+                "scenes/bad.toml:12:89: error: post[0].passes[5].sources._A: expected \"scene.color\", \"scene.depth\" or "
+                "the name of an earlier step, got \"later\"",
+                "scenes/bad.toml:12:103: error: post[0].passes[5].sources._B: expected \"scene.color\", \"scene.depth\" or "
+                "an earlier step's name, got 3",
+                "scenes/bad.toml:15:10: error: post[1].passes: expected an array of passes, each an index, a Name or a "
+                "table { pass = ..., name, scale, sources }, got an empty array",
+            }));
+}
+
 TEST(SceneErrors, TimeIsSecondsFromZeroOn) {
   EXPECT_EQ(errors_of("time = -1\n" + minimal_head),
             (std::vector<std::string>{"scenes/bad.toml:1:8: error: time: expected a number of seconds >= 0, got -1"}));

@@ -4,6 +4,14 @@ as Unity ships it, rendered by `xshade run` as the only material of a probe scen
 plane under one directional light) with nothing but its own Properties defaults, on gl, vk and
 vk-hlsl, and the three images compared as a scene's lanes always are.
 
+A file written as an image effect (every pass `ZTest Always`, the manual's `Cull Off ZWrite Off
+ZTest Always`: drawn over the whole target whatever the depth) is instead the only post effect of
+the probe scene, whose objects then have xshade's Standard-like material: its first pass blits the
+scene's image, as Graphics.Blit(source, destination, material) does. A Post Processing v2 shader
+(one that includes its StdLib.hlsl) also gets what PPv2's PostProcessLayer sets before any of its
+passes: _RenderViewportScaleFactor = 1 (no XR viewport scaling; 0, as nothing set, samples one
+texel) and _UVTransform = (1, 1, 0, 0) (no flip).
+
 A file renders when every lane draws an image that is not one flat colour and every pair of lanes
 agrees within the scene's default tolerance. Surface shaders (`#pragma surface`) are counted apart:
 their generated passes are not made yet, and what is checked of them is that `xshade compile`
@@ -62,6 +70,24 @@ material = "{material}"
 position = [0, -1, 0]
 scale = [4, 1, 4]
 '''
+
+
+# The probe scene for an image effect: the same objects in a material of xshade's, then the file.
+POST_SCENE = PROBE_SCENE.replace('material = "{material}"', 'material = "materials/standard_pbr.hlsl"') + \
+    '\n[[post]]\neffect = "{material}"\n'
+
+# What PPv2's runtime gives every pass of its own shaders.
+PPV2_GLOBALS = '[post.parameters]\n_RenderViewportScaleFactor = 1.0\n_UVTransform = [1, 1, 0, 0]\n'
+
+# A depth test, as a pass or a SubShader states it.
+ZTEST = re.compile(r'\bZTest\s+(\w+)', re.I)
+
+
+def is_image_effect(text):
+    """Whether a .shader's text sets the depth test and every one it sets is Always (a ZTest in a
+    SubShader applies to each of its passes)."""
+    tests = [t.lower() for t in ZTEST.findall(text)]
+    return bool(tests) and all(t == 'always' for t in tests)
 
 
 def png_pixels(path):
@@ -191,8 +217,12 @@ def main():
     ids = {}
     for relative in drawn:
         ids[scene_id(relative)] = relative
+        text = open(os.path.join(a.corpus, relative), encoding='utf-8', errors='replace').read()
+        scene = POST_SCENE if is_image_effect(text) else PROBE_SCENE
+        if scene is POST_SCENE and re.search(r'#\s*include\s+"[^"]*StdLib\.hlsl"', text):
+            scene += PPV2_GLOBALS
         with open(os.path.join(scenes_dir, scene_id(relative) + '.toml'), 'w') as f:
-            f.write(PROBE_SCENE.format(path=relative, material=relative.replace('\\', '/')))
+            f.write(scene.format(path=relative, material=relative.replace('\\', '/')))
 
     # Each .shader's folder holds its own includes; Unity's CG include files are a corpus source's
     # CGIncludes folder, found as a user's --shaders folder finds them.

@@ -1,0 +1,103 @@
+// A Unity .shader as a post effect (docs/unity.md): the passes the scene's `passes` names, blitted
+// in that order on every lane, each into an image of its own that the next reads as _MainTex. The
+// probe's three passes draw the full-screen triangle both ways Unity's code does (through the
+// matrices, as Graphics.Blit's vert_img; and its corners as they are, as Post Processing v2's
+// VertDefault), and a copy through the blit's uv must leave the image upright and whole.
+#include <string>
+
+#include <gtest/gtest.h>
+
+#include "harness/image/image_io.h"
+#include "tests/lanes/probe_scene.h"
+
+namespace xshade::tests {
+namespace {
+
+using harness::Lane;
+
+constexpr const char* kBlitProbe = R"(Shader "Hidden/BlitProbe" {
+  SubShader {
+    Cull Off ZWrite Off ZTest Always
+    HLSLINCLUDE
+    float4x4 unity_ObjectToWorld;
+    float4x4 unity_MatrixVP;
+    Texture2D _MainTex;
+    SamplerState sampler_MainTex;
+    float4 _MainTex_TexelSize;
+    struct Blit {
+      float4 pos : SV_Position;
+      float2 uv : TEXCOORD0;
+    };
+    Blit vert_blit(float4 vertex : POSITION, float2 uv : TEXCOORD0) {
+      Blit o;
+      o.pos = mul(unity_MatrixVP, mul(unity_ObjectToWorld, float4(vertex.xyz, 1.0)));
+      o.uv = uv;
+      return o;
+    }
+    Blit vert_triangle(float4 vertex : POSITION) {
+      Blit o;
+      o.pos = float4(vertex.xy, 0.0, 1.0);
+      o.uv = (vertex.xy + 1.0) * 0.5;
+      return o;
+    }
+    ENDHLSL
+    Pass { Name "Gradient" HLSLPROGRAM
+      #pragma vertex vert_blit
+      #pragma fragment frag
+      float4 frag(Blit i) : SV_Target { return float4(i.pos.x / 8.0, i.pos.y / 4.0, 0.0, 1.0); }
+      ENDHLSL }
+    Pass { Name "Copy" HLSLPROGRAM
+      #pragma vertex vert_blit
+      #pragma fragment frag
+      float4 frag(Blit i) : SV_Target { return _MainTex.Sample(sampler_MainTex, i.uv); }
+      ENDHLSL }
+    Pass { Name "Invert" HLSLPROGRAM
+      #pragma vertex vert_triangle
+      #pragma fragment frag
+      float4 frag(Blit i) : SV_Target {
+        float4 c = _MainTex.Load(int3(i.pos.xy, 0));
+        return float4(1.0 - c.rg, _MainTex_TexelSize.z / 8.0, 1.0);
+      }
+      ENDHLSL }
+  }
+})";
+
+constexpr const char* kScene = R"(description = "a .shader post effect's blits"
+size = [8, 4]
+[camera]
+position = [0, 0, 5]
+target = [0, 0, 0]
+fov_y = 40
+near = 0.1
+far = 10
+[[post]]
+effect = "blit_probe.shader"
+passes = ["Gradient", "copy", { pass = 2, name = "inverted" }]
+)";
+
+class ShaderPostEffect : public ::testing::Test {
+ protected:
+  static void TearDownTestSuite() { release_suite_backends(); }
+  void TearDown() override { expect_no_driver_messages(); }
+  ProbeScene probe_{::testing::UnitTest::GetInstance()->current_test_info()->name()};
+};
+
+TEST_F(ShaderPostEffect, ItsPassesBlitInTheScenesOrderAndACopyKeepsTheImageUpright) {
+  probe_.write("blit_probe.shader", kBlitProbe);
+  for (Lane lane : harness::all_lanes()) {
+    SCOPED_TRACE(harness::lane_name(lane));
+    auto image = probe_.render(kScene, lane, suite_backend(lane));
+    ASSERT_TRUE(image) << image.error().to_string();
+    for (uint32_t y = 0; y < 4; ++y)
+      for (uint32_t x = 0; x < 8; ++x) {
+        // Pixel centres of the gradient, sampled at texel centres by the copy (bilinear there is
+        // the texel, to float rounding), inverted; blue is _MainTex_TexelSize.z, the width, / 8.
+        const glm::vec4 expected{1.0f - (float(x) + 0.5f) / 8.0f, 1.0f - (float(y) + 0.5f) / 4.0f, 1.0f, 1.0f};
+        for (int c = 0; c < 4; ++c)
+          EXPECT_NEAR(image->at(x, y)[c], expected[c], 1e-5f) << "pixel " << x << ", " << y << " channel " << c;
+      }
+  }
+}
+
+}  // namespace
+}  // namespace xshade::tests
