@@ -2,10 +2,12 @@
 
 #include <algorithm>
 #include <cmath>
+#include <deque>
 
 #include "harness/render/renderer_inputs.h"
 #include "shaderlab/compile_environment.h"
 #include "shaderlab/reader.h"
+#include "shaderlab/shader_lookup.h"
 
 namespace xshade::harness {
 namespace {
@@ -95,6 +97,60 @@ Result<hlsl::CompileOptions> pass_compile_options(const fs::path& file, const sh
   return options;
 }
 
+namespace {
+
+// Unity's Fallback and UsePass chains end; a longer one is a cycle.
+constexpr int kMostShadersNamed = 8;
+
+// A pass to draw and where it comes from: the .shader's own, or another shader's by UsePass.
+struct SourcePass {
+  const shaderlab::SubShader* sub = nullptr;
+  const shaderlab::Pass* pass = nullptr;
+  fs::path file;  // the .shader that holds it
+};
+
+// The shaders a compile reads besides the one it was asked for (a Fallback, the shader of a
+// UsePass), each read once and kept while the passes refer to them.
+class NamedShaders {
+ public:
+  explicit NamedShaders(const std::vector<fs::path>& folders) : folders_(folders) {}
+
+  Result<std::pair<const shaderlab::Shader*, fs::path>> read(const std::string& name, const SourceLocation& where) {
+    if (++count_ > kMostShadersNamed)
+      return fail(Error{"more than " + std::to_string(kMostShadersNamed) + " shaders named through Fallback and UsePass "
+                        "(a cycle?) at '" + name + "'", where, {}});
+    auto path = shaderlab::find_shader_named(name, folders_);
+    if (!path) return fail(Error{path.error().message, where, {}});
+    auto shader = shaderlab::read_shader_file(*path);
+    if (!shader) return fail(shader.error());
+    shaders_.push_back(std::move(*shader));
+    return std::pair<const shaderlab::Shader*, fs::path>{&shaders_.back(), *path};
+  }
+
+ private:
+  const std::vector<fs::path>& folders_;
+  std::deque<shaderlab::Shader> shaders_;
+  int count_ = 0;
+};
+
+// The pass UsePass "Shader/NAME" names: NAME in the first SubShader of the shader of that name,
+// matched in upper case as Unity does.
+Result<SourcePass> used_pass(const shaderlab::Pass& use, NamedShaders& named) {
+  const auto [shader_name, pass_name] = shaderlab::split_used_pass(use.used);
+  auto found = named.read(shader_name, use.where);
+  if (!found) return fail(found.error());
+  const shaderlab::SubShader* sub = shaderlab::drawn_subshader(*found->first);
+  if (sub)
+    for (const shaderlab::Pass& pass : sub->passes)
+      if (!pass.name.empty() && shaderlab::same_word(pass.name, pass_name)) return SourcePass{sub, &pass, found->second};
+  return fail(Error{"UsePass \"" + use.used + "\": the shader '" + shader_name + "' (" + found->second.string() +
+                        ") has no pass named '" + pass_name + "' in its first SubShader",
+                    use.where,
+                    {}});
+}
+
+}  // namespace
+
 Result<SourceModule> compile_source(const fs::path& path, hlsl::CompileOptions options, std::optional<size_t> pass_index) {
   if (!is_unity_shader(path)) {
     SourceModule source;
@@ -102,19 +158,45 @@ Result<SourceModule> compile_source(const fs::path& path, hlsl::CompileOptions o
     return source;
   }
 
-  auto shader = shaderlab::read_shader_file(path);
-  if (!shader) return fail(shader.error());
-  const shaderlab::SubShader* sub = shaderlab::drawn_subshader(*shader);
-  if (!sub) return fail("'" + shader->name + "' has no SubShader to draw", {path.string(), 1, 1});
+  auto read = shaderlab::read_shader_file(path);
+  if (!read) return fail(read.error());
+  NamedShaders named(options.include_dirs);
   SourceModule source;
+  // A shader without a SubShader is drawn by its Fallback, as Unity draws a shader none of whose
+  // SubShaders the platform runs (every SubShader xshade reads runs on every lane).
+  const shaderlab::Shader* shader = &*read;
+  fs::path file = path;
+  while (!shaderlab::drawn_subshader(*shader)) {
+    if (!shader->fallback || shader->fallback->empty())
+      return fail("'" + shader->name + "' has no SubShader to draw" + (shader->fallback ? " (Fallback Off)" : ""),
+                  {file.string(), 1, 1});
+    auto fallback = named.read(*shader->fallback, {file.string(), 1, 1});
+    if (!fallback) return fail(fallback.error());
+    source.notes.push_back("'" + shader->name + "' has no SubShader: drawn as its Fallback '" + *shader->fallback + "' (" +
+                           fallback->second.string() + ")");
+    shader = fallback->first;
+    file = fallback->second;
+  }
+  const shaderlab::SubShader* sub = shaderlab::drawn_subshader(*shader);
+  std::vector<SourcePass> passes(sub->passes.size());
   for (size_t i = 0; i < sub->passes.size(); ++i) {
     const shaderlab::Pass& pass = sub->passes[i];
-    if (pass.kind != shaderlab::PassKind::Program) {
+    passes[i] = {sub, &pass, file};
+    if (pass.kind == shaderlab::PassKind::Use) {
+      // One that is not found is left out, as Unity leaves it out with an error in its console.
+      auto used = used_pass(pass, named);
+      if (!used) {
+        source.notes.push_back(pass_label(pass, i) + ": not drawn: " + used.error().to_string());
+        continue;
+      }
+      passes[i] = *used;
+    }
+    const shaderlab::Pass& drawn = *passes[i].pass;
+    if (drawn.kind != shaderlab::PassKind::Program) {
       source.notes.push_back(pass_label(pass, i) + ": not drawn: " +
-                             (pass.kind == shaderlab::PassKind::Use    ? "UsePass is not drawn yet"
-                              : pass.kind == shaderlab::PassKind::Grab ? "GrabPass is not drawn yet"
-                                                                       : "it has no program (fixed-function)"));
-    } else if (!forward_renderer_draws(pass)) {
+                             (drawn.kind == shaderlab::PassKind::Grab ? "GrabPass is not drawn yet"
+                                                                      : "it has no program (fixed-function)"));
+    } else if (!forward_renderer_draws(drawn)) {
       source.notes.push_back(pass_label(pass, i) + ": not drawn: the forward renderer runs it for what the scene has not");
     } else {
       source.drawn_passes.push_back(i);
@@ -134,15 +216,15 @@ Result<SourceModule> compile_source(const fs::path& path, hlsl::CompileOptions o
                 sub->where);
   }
   source.pass = pass_index.value_or(source.drawn_passes.front());
-  if (source.pass >= sub->passes.size() || sub->passes[source.pass].kind != shaderlab::PassKind::Program)
+  if (source.pass >= passes.size() || passes[source.pass].pass->kind != shaderlab::PassKind::Program)
     return fail(ErrorKind::Internal, "'" + shader->name + "' has no program pass " + std::to_string(source.pass), sub->where);
-  const shaderlab::Pass* drawn = &sub->passes[source.pass];
-  auto program = shaderlab::pass_program(*sub, *drawn);
+  const SourcePass& drawn = passes[source.pass];
+  auto program = shaderlab::pass_program(*drawn.sub, *drawn.pass);
   if (!program) return fail(program.error());
-  auto pass_options = pass_compile_options(path, *program, std::move(options));
+  auto pass_options = pass_compile_options(drawn.file, *program, std::move(options));
   if (!pass_options) return fail(pass_options.error());
-  source.module = hlsl::compile_text(path.string(), std::move(program->text), *pass_options);
-  source.render_state = drawn->state.over(sub->state);
+  source.module = hlsl::compile_text(drawn.file.string(), std::move(program->text), *pass_options);
+  source.render_state = drawn.pass->state.over(drawn.sub->state);
   source.queue = shaderlab::tag(sub->tags, "Queue");
   source.properties = shader->properties;
   if (source.module->ok()) apply_properties(*shader, source.module->reflection, source.notes);

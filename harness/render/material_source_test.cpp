@@ -96,6 +96,12 @@ TEST(MaterialSource, AUniformNoPropertyDeclaresReadsZeroAsInUnity) {
   EXPECT_TRUE(notes[0].starts_with("uniform _Scripted reads 0")) << notes[0];
 }
 
+hlsl::CompileOptions in_folders(std::vector<fs::path> folders) {
+  hlsl::CompileOptions options;
+  options.include_dirs = std::move(folders);
+  return options;
+}
+
 class UnityShaderSource : public ::testing::Test {
  protected:
   void SetUp() override {
@@ -163,6 +169,82 @@ TEST_F(UnityShaderSource, WhatCannotBeDrawnIsAnErrorInTheShaderFile) {
   auto unread = compile_source(broken, {});
   ASSERT_FALSE(unread);
   EXPECT_EQ(unread.error().where.line, 2u);
+}
+
+// UsePass "Shader/NAME" draws that shader's pass, with its own includes and render state, found by
+// the shader's name under the include folders; one not found is left out with a note, as Unity
+// leaves it out.
+TEST_F(UnityShaderSource, AUsedPassIsTheNamedShadersPassWithItsIncludesAndState) {
+  fs::create_directories(folder_ / "library" / "legacy");
+  std::ofstream(folder_ / "library" / "legacy" / "base.shader") << R"(Shader "Library/Base" {
+  SubShader {
+    HLSLINCLUDE
+    float4 base_colour() { return float4(0.25, 0.5, 0.75, 1); }
+    ENDHLSL
+    Pass { Name "Caster" Tags { "LightMode" = "ShadowCaster" } HLSLPROGRAM
+      #pragma fragment frag
+      float4 frag() : SV_Target { return 0; }
+      ENDHLSL }
+    Pass { Name "Base" Cull Front HLSLPROGRAM
+      #pragma fragment frag
+      float4 frag() : SV_Target { return base_colour(); }
+      ENDHLSL }
+  }
+})";
+  const fs::path user = write("user.shader", R"(Shader "User" {
+  SubShader {
+    UsePass "Library/Base/BASE"
+    UsePass "Library/Base/CASTER"
+    UsePass "Library/Missing/BASE"
+  }
+})");
+  auto source = compile_source(user, in_folders({folder_ / "library"}));
+  ASSERT_TRUE(source) << source.error().to_string();
+  ASSERT_TRUE(source->module->ok()) << source->module->diagnostics.render_all();
+  EXPECT_EQ(source->drawn_passes, std::vector<size_t>{0});
+  EXPECT_EQ(source->module->reflection.fragment_entry, "frag");
+  ASSERT_TRUE(source->render_state && source->render_state->cull);
+  EXPECT_EQ(source->render_state->cull->text, "Front");
+  ASSERT_EQ(source->notes.size(), 2u);
+  EXPECT_EQ(source->notes[0], "pass 1: not drawn: the forward renderer runs it for what the scene has not");
+  EXPECT_TRUE(source->notes[1].starts_with("pass 2: not drawn: " + user.string() +
+                                           ":5:5: no .shader in the shader folders declares Shader \"Library/Missing\""))
+      << source->notes[1];
+
+  // No pass of that name: an error at the UsePass.
+  const fs::path wrong = write("wrong.shader", "Shader \"Wrong\" {\n  SubShader {\n    UsePass \"Library/Base/TOP\"\n  }\n}\n");
+  auto no_pass = compile_source(wrong, in_folders({folder_ / "library"}));
+  ASSERT_FALSE(no_pass);
+  EXPECT_EQ(no_pass.error().message, "'Wrong' has no pass the forward renderer draws (a program pass without LightMode, or with "
+                                     "Always or ForwardBase)");
+}
+
+// A shader without a SubShader is drawn as its Fallback, found by name; Fallback Off, or a chain
+// that goes round, is an error.
+TEST_F(UnityShaderSource, AShaderWithoutASubShaderIsDrawnAsItsFallback) {
+  write("drawn.shader", "Shader \"Drawn\" {\n  SubShader { Pass { HLSLPROGRAM\n  #pragma fragment frag\n"
+                        "  float4 frag() : SV_Target { return 1; }\n  ENDHLSL } }\n}\n");
+  const fs::path middle = write("middle.shader", "Shader \"Middle\" {\n  Fallback \"Drawn\"\n}\n");
+  const fs::path first = write("first.shader", "Shader \"First\" {\n  Properties { _A (\"a\", Float) = 1 }\n  Fallback \"Middle\"\n}\n");
+  // Every file before the first lookup: a folder is read once a process.
+  const fs::path off = write("off.shader", "Shader \"Off\" {\n  Fallback Off\n}\n");
+  write("loop_a.shader", "Shader \"LoopA\" {\n  Fallback \"LoopB\"\n}\n");
+  const fs::path loop = write("loop_b.shader", "Shader \"LoopB\" {\n  Fallback \"LoopA\"\n}\n");
+  auto source = compile_source(first, in_folders({folder_}));
+  ASSERT_TRUE(source) << source.error().to_string();
+  ASSERT_TRUE(source->module->ok()) << source->module->diagnostics.render_all();
+  EXPECT_EQ(source->notes, (std::vector<std::string>{
+                               "'First' has no SubShader: drawn as its Fallback 'Middle' (" + middle.string() + ")",
+                               "'Middle' has no SubShader: drawn as its Fallback 'Drawn' (" + (folder_ / "drawn.shader").string() + ")"}));
+
+  auto fallback_off = compile_source(off, in_folders({folder_}));
+  ASSERT_FALSE(fallback_off);
+  EXPECT_EQ(fallback_off.error().to_string(), off.string() + ":1:1: 'Off' has no SubShader to draw (Fallback Off)");
+
+  auto cycle = compile_source(loop, in_folders({folder_}));
+  ASSERT_FALSE(cycle);
+  EXPECT_NE(cycle.error().message.find("more than 8 shaders named through Fallback and UsePass (a cycle?)"), std::string::npos)
+      << cycle.error().to_string();
 }
 
 }  // namespace
