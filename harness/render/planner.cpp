@@ -149,7 +149,8 @@ namespace {
 
 // The steps of the .shader post effect `scene.post[e]` (at `path`) as post passes: each its pass
 // of the drawn SubShader compiled whole (its vertex and fragment programs), drawn as Unity's
-// Graphics.Blit draws it, its _MainTex the image of the step before unless it names a source.
+// Graphics.Blit draws it, its _MainTex the image of the step before unless it names a source (or
+// the effect's textures give one: Graphics.Blit of a texture, a cube map, ...).
 Result<void> plan_shader_effect(const Scene& scene, size_t e, const fs::path& path, SourceReader& reader, Plan& plan,
                                 ContractProblems& contract) {
   const PostEffect& effect = scene.post[e];
@@ -191,7 +192,7 @@ Result<void> plan_shader_effect(const Scene& scene, size_t e, const fs::path& pa
       const Kind kind = source == "scene.color" ? Kind::SceneColor : source == "scene.depth" ? Kind::SceneDepth : Kind::Pass;
       declaration.inputs.push_back({texture, kind, kind == Kind::Pass ? source : std::string()});
     }
-    if (!step.sources.count("_MainTex"))
+    if (!step.sources.count("_MainTex") && !effect.textures.count("_MainTex"))
       declaration.inputs.push_back(previous.empty() ? hlsl::PassInput{"_MainTex", hlsl::PassInput::Kind::SceneColor, {}}
                                                     : hlsl::PassInput{"_MainTex", hlsl::PassInput::Kind::Pass, previous});
     previous = declaration.name;

@@ -304,6 +304,10 @@ passes = ["down", { pass = 0, name = "half", scale = "half" }, { pass = "Glow", 
   ASSERT_TRUE(first) << first.error().to_string();
   ASSERT_EQ(first->passes.size(), 1u);
   EXPECT_EQ(first->passes[0].name, "blur.0");
+  // The effect's textures give _MainTex: a blit of that texture, not of the scene's image.
+  auto given = plan_scene(scene("[[post]]\neffect = \"blur.shader\"\n[post.textures]\n_MainTex = \"checker\"\n"), folders);
+  ASSERT_TRUE(given) << given.error().to_string();
+  EXPECT_TRUE(given->passes[0].declaration.inputs.empty());
   auto missing = plan_scene(scene("[[post]]\neffect = \"blur.shader\"\npasses = [\"Blur\"]\n"), folders);
   ASSERT_FALSE(missing);
   EXPECT_EQ(missing.error().to_string(),
