@@ -77,6 +77,9 @@ struct SceneResult {
   std::vector<LaneResult> lanes;
   std::vector<CrossLaneResult> cross_lane;
   std::string plan;     // describe_plan's text
+  // The front end's warnings about the scene's sources (Plan::warnings): run prints them, the
+  // report shows them.
+  std::vector<std::string> warnings;
   std::string message;  // when the scene failed before any lane ran (bad scene file, bad shader)
   CompareSettings compare;  // the tolerances its images were held to
 };

@@ -118,6 +118,7 @@ CheckedScene SceneChecker::prepare(const fs::path& scene_file, const std::vector
       return compiler_.in_cache(variant, lane);
     }));
   result.plan = describe_plan(*scene, *plan, cached);
+  result.warnings = plan->warnings;
   if (options_.plan_only) return checked;
   if (scene_lanes.empty()) {
     // Not a pass: nothing was checked. A CI job that asks for a lane the scene does not list
@@ -135,6 +136,7 @@ CheckedScene SceneChecker::prepare(const fs::path& scene_file, const std::vector
 
 void SceneChecker::conclude(CheckedScene& checked) {
   SceneResult& result = checked.result;
+  for (const std::string& warning : result.warnings) progress_(result.scene + ": " + warning);
   for (const LaneResult& lane : result.lanes) progress_(lane_progress_line(result.scene, lane));
   if (checked.scene) compare_lanes(*checked.scene, checked);
   for (const LaneResult& lane : result.lanes) result.verdict = worst(result.verdict, lane.verdict);

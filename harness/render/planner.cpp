@@ -58,6 +58,19 @@ class SourceReader {
     facts.drawn_passes = source->drawn_passes;
     if (!source->drawn_passes.empty()) facts.pass = source->pass;
     facts.notes = std::move(source->notes);
+    // The source's own warnings each; those of the files it includes (Unity's own, often) counted.
+    size_t included = 0;
+    for (const Diagnostic& diagnostic : module->diagnostics.diagnostics()) {
+      if (diagnostic.severity != Severity::Warning) continue;
+      if (diagnostic.where.file != path->string()) {
+        ++included;
+        continue;
+      }
+      add_warning(diagnostic.to_string());
+    }
+    if (included)
+      add_warning(library_path + ": " + std::to_string(included) + " warning" + (included == 1 ? "" : "s") +
+                  " in the files it includes (xshade compile shows them)");
     facts.render_state = std::move(source->render_state);
     facts.properties = std::move(source->properties);
     auto queue = render_queue(source->queue);
@@ -80,8 +93,16 @@ class SourceReader {
     return facts;
   }
 
+  // Every source's front-end warnings, each once, in the order they were first met.
+  const std::vector<std::string>& warnings() const { return warnings_; }
+
  private:
+  void add_warning(const std::string& warning) {
+    if (std::find(warnings_.begin(), warnings_.end(), warning) == warnings_.end()) warnings_.push_back(warning);
+  }
+
   const ShaderSearchPath& shaders_;
+  std::vector<std::string> warnings_;
 };
 
 // The keywords that make the variant: per set, the one asked for or the set's default, so that
@@ -384,6 +405,7 @@ Result<Plan> plan_scene(const Scene& scene, const ShaderSearchPath& shaders) {
   for (const std::string& effect : shaders.files("post"))
     if (!used_combinations.count(effect))
       plan.left_out.push_back(effect + ": not in the post chain, so none of its passes is compiled or run");
+  plan.warnings = reader.warnings();
   return plan;
 }
 

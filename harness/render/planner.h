@@ -49,6 +49,9 @@ struct PlannedPass {
 
 struct Plan {
   std::vector<VariantRequest> variants;
+  // What the front end warned of in the scene's sources ("file:line:col: warning: ...", an
+  // unknown pragma, ...), each once: run prints them and the report shows them.
+  std::vector<std::string> warnings;
   std::vector<ObjectInstance> instances;
   // Per instance, its draws in order: a variant (index into variants) and how it is drawn (a
   // .shader's pass's render state; an .hlsl material's is DrawState's default). An .hlsl material

@@ -321,6 +321,24 @@ passes = ["down", { pass = 0, name = "half", scale = "half" }, { pass = "Glow", 
   fs::remove_all(user);
 }
 
+// The front end's warnings about a scene's sources are the plan's, each once: the source's own
+// with their place, those of the files it includes counted.
+TEST(Planner, TheSourcesWarningsAreThePlansEachOnce) {
+  const fs::path user = fs::temp_directory_path() / "xshade_planner_warnings";
+  fs::remove_all(user);
+  fs::create_directories(user);
+  std::ofstream(user / "noisy.hlsl") << "#pragma fragment frag\n#pragma frobnicate\n#include \"noisy_include.hlsl\"\n"
+                                        "float4 frag() : SV_Target { return widen(); }\n";
+  std::ofstream(user / "noisy_include.hlsl") << "#pragma also_unknown\nfloat4 widen() { return 1; }\n";
+  auto plan = plan_scene(scene("[[object]]\nmesh = \"sphere\"\nmaterial = \"noisy.hlsl\"\n[[object]]\nmesh = \"cube\"\n"
+                               "material = \"noisy.hlsl\"\n"),
+                         ShaderSearchPath({user, kLibrary}));
+  ASSERT_TRUE(plan) << plan.error().to_string();
+  EXPECT_EQ(plan->warnings, (std::vector<std::string>{(user / "noisy.hlsl").string() + ":2:9: warning: unknown pragma 'frobnicate'",
+                                                      "noisy.hlsl: 1 warning in the files it includes (xshade compile shows them)"}));
+  fs::remove_all(user);
+}
+
 TEST(Planner, AVariantThatReadsVertexInputsTheMeshesLackIsToldWhatItReads) {
   // TEXCOORD2 and COLOR1 only with the _EXTRA keyword: one variant reads them, the other not.
   const fs::path user = fs::temp_directory_path() / "xshade_planner_vertex_inputs";

@@ -82,6 +82,7 @@ figcaption b { color: #1f2328; }
                color: var(--muted); font-size: 12px; word-break: break-word; white-space: pre-wrap; }
 .tables { display: flex; flex-wrap: wrap; gap: 16px; align-items: flex-start; }
 .message { border-left: 4px solid var(--error); }
+.warnings { border-left: 4px solid var(--skipped); }
 .thumbs { display: flex; gap: 4px; margin-bottom: 2px; }
 img.thumb { display: block; width: 64px; height: auto; max-height: 64px; object-fit: contain; image-rendering: auto;
             border: 1px solid var(--line); background: #fff; }
@@ -539,6 +540,11 @@ std::string scene_html(const SceneResult& scene, const ViewerPage& viewer, std::
   if (!scene.message.empty())
     fmt::format_to(to, "<section>\n<h2>The scene did not render</h2>\n<pre class=\"message\">{}</pre>\n</section>\n",
                    escape_text(scene.message));
+  if (!scene.warnings.empty()) {
+    out += "<section>\n<h2>Warnings</h2>\n<pre class=\"warnings\">";
+    for (const std::string& warning : scene.warnings) out += escape_text(warning) + "\n";
+    out += "</pre>\n</section>\n";
+  }
 
   if (!scene.lanes.empty()) {
     out += "<section>\n<table>\n<tr><th>lane</th><th>verdict</th><th>first failure</th><th>time</th></tr>\n";

@@ -128,6 +128,9 @@ MergedReport merge_reports(const std::vector<FoundReport>& reports) {
       if (into.message.empty()) into.message = scene.message;
       if (into.description.empty()) into.description = scene.description;
       if (into.plan.empty()) into.plan = scene.plan;
+      for (const std::string& warning : scene.warnings)
+        if (std::find(into.warnings.begin(), into.warnings.end(), warning) == into.warnings.end())
+          into.warnings.push_back(warning);
       for (const LaneResult& lane : scene.lanes)
         keep_worst(into.lanes, entry->second.lane_report, lane, r,
                    [](const LaneResult& a, const LaneResult& b) { return a.lane == b.lane; });

@@ -93,6 +93,7 @@ RunResults sample_results() {
   toon.lanes = {toon_gl, toon_vk, toon_hlsl};
   toon.cross_lane = {{"gl", "vk", Verdict::Fail, failing_metrics(), "toon/gl_vs_vk.diff.png"}};
   toon.plan = "pass main <with> & without";
+  toon.warnings = {"toon.shader:5:13: warning: unknown pragma '<frob>'"};
 
   SceneResult broken;
   broken.scene = "broken_shader";
@@ -243,6 +244,11 @@ TEST_F(ReportTest, FailingScenePageShowsTheMaskMetricsAndTheMissingGolden) {
   // The first layer that failed is the one a reviewer reads first, not the last.
   EXPECT_EQ(page.find("<p class=\"why\">per_pixel"), std::string::npos);
   EXPECT_NE(page.find("<p class=\"why\">finite: 3 NaN at (4, 7) first</p>"), std::string::npos);
+  // The front end's warnings about the scene's sources, escaped.
+  EXPECT_NE(page.find("<h2>Warnings</h2>\n<pre class=\"warnings\">toon.shader:5:13: warning: unknown pragma "
+                      "&#39;&lt;frob&gt;&#39;\n</pre>"),
+            std::string::npos);
+  EXPECT_EQ(read_text(dir_ / pages_[0]).find("<h2>Warnings</h2>"), std::string::npos) << "none in the sphere's sources";
 }
 
 TEST_F(ReportTest, ErroredScenePageShowsTheMessage) {
@@ -355,6 +361,7 @@ TEST_F(ReportTest, ResultsJsonReadsBackWhole) {
   EXPECT_EQ(read->scenes[1].compare.channel_tolerance, 3u);
   EXPECT_TRUE(read->scenes[0].cross_lane[0].identical);
   EXPECT_EQ(read->merged_from.at(0).command, "xshade run --shard 1/2");
+  EXPECT_EQ(read->scenes[1].warnings, results.scenes[1].warnings);
 }
 
 TEST_F(ReportTest, ResultsJsonOfAnotherKindIsRefusedNamingTheFile) {

@@ -49,6 +49,7 @@ json scene_json(const SceneResult& scene) {
           {"lanes", std::move(lanes)},
           {"cross_lane", std::move(pairs)},
           {"plan", scene.plan},
+          {"warnings", scene.warnings},
           {"message", scene.message},
           {"compare", {{"channel_tolerance", scene.compare.channel_tolerance},
                        {"max_failing_fraction", scene.compare.max_failing_fraction},
@@ -92,6 +93,8 @@ Result<SceneResult> scene_from_json(const json& object) {
   scene.scene = object.at("scene").get<std::string>();
   scene.description = object.at("description").get<std::string>();
   scene.plan = object.at("plan").get<std::string>();
+  // Results written before warnings were kept have none.
+  if (object.contains("warnings")) scene.warnings = object.at("warnings").get<std::vector<std::string>>();
   scene.message = object.at("message").get<std::string>();
   const json& compare = object.at("compare");
   scene.compare.channel_tolerance = compare.at("channel_tolerance").get<uint32_t>();

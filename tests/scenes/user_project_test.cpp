@@ -8,6 +8,7 @@
 #include <gtest/gtest.h>
 
 #include "tests/scenes/gating_test_shared.h"
+#include "tests/support/scene_copy.h"
 #include "tests/support/xshade_process.h"
 
 namespace xshade::tests {
@@ -151,6 +152,19 @@ TEST_F(UserProject, ALaneTheSceneDoesNotListIsSkippedNotPassed) {
   EXPECT_NE(run.output.find("skipped: the scene runs on gl, vk, none of the lanes asked for"), std::string::npos)
       << run.output;
   EXPECT_NE(run.output.find("0 of 1 scenes passed"), std::string::npos) << run.output;
+}
+
+// A pragma xshade does not know is the front end's warning: run prints it at its place in the
+// user's file and the report shows it, beside the render it did not stop.
+TEST_F(UserProject, AnUnknownPragmaIsPrintedByRunAndShownInTheReport) {
+  write("shaders/materials/user_lit.hlsl", std::string("#pragma frobnicate\n") + kMaterial);
+  fs::create_directories(root_ / "xshade/golden");
+  Outcome run = xshade_in("", "run", "--lane gl");
+  EXPECT_EQ(run.exit_code, 1) << "no golden yet: " << run.output;
+  const std::string warning = "materials/user_lit.hlsl:1:9: warning: unknown pragma 'frobnicate'";
+  EXPECT_NE(run.output.find("user_sphere: "), std::string::npos) << run.output;
+  EXPECT_NE(run.output.find(warning), std::string::npos) << run.output;
+  EXPECT_NE(read_text(root_ / "report" / "user_sphere.html").find("unknown pragma &#39;frobnicate&#39;"), std::string::npos);
 }
 
 }  // namespace
