@@ -2,7 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
-#include <deque>
+#include <map>
 
 #include "harness/render/renderer_inputs.h"
 #include "shaderlab/compile_environment.h"
@@ -99,8 +99,8 @@ Result<hlsl::CompileOptions> pass_compile_options(const fs::path& file, const sh
 
 namespace {
 
-// Unity's Fallback and UsePass chains end; a longer one is a cycle.
-constexpr int kMostShadersNamed = 8;
+// Unity's Fallback chains end; a longer one goes round.
+constexpr int kLongestFallbackChain = 8;
 
 // A pass to draw and where it comes from: the .shader's own, or another shader's by UsePass.
 struct SourcePass {
@@ -110,27 +110,26 @@ struct SourcePass {
 };
 
 // The shaders a compile reads besides the one it was asked for (a Fallback, the shader of a
-// UsePass), each read once and kept while the passes refer to them.
+// UsePass), each found and read once however often it is named, and kept while the passes refer
+// to them.
 class NamedShaders {
  public:
   explicit NamedShaders(const std::vector<fs::path>& folders) : folders_(folders) {}
 
   Result<std::pair<const shaderlab::Shader*, fs::path>> read(const std::string& name, const SourceLocation& where) {
-    if (++count_ > kMostShadersNamed)
-      return fail(Error{"more than " + std::to_string(kMostShadersNamed) + " shaders named through Fallback and UsePass "
-                        "(a cycle?) at '" + name + "'", where, {}});
+    if (auto known = read_.find(name); known != read_.end())
+      return std::pair<const shaderlab::Shader*, fs::path>{&known->second.first, known->second.second};
     auto path = shaderlab::find_shader_named(name, folders_);
     if (!path) return fail(Error{path.error().message, where, {}});
     auto shader = shaderlab::read_shader_file(*path);
     if (!shader) return fail(shader.error());
-    shaders_.push_back(std::move(*shader));
-    return std::pair<const shaderlab::Shader*, fs::path>{&shaders_.back(), *path};
+    const auto entry = read_.try_emplace(name, std::move(*shader), *path).first;
+    return std::pair<const shaderlab::Shader*, fs::path>{&entry->second.first, entry->second.second};
   }
 
  private:
   const std::vector<fs::path>& folders_;
-  std::deque<shaderlab::Shader> shaders_;
-  int count_ = 0;
+  std::map<std::string, std::pair<shaderlab::Shader, fs::path>> read_;  // by the name they were asked for
 };
 
 // The pass UsePass "Shader/NAME" names: NAME in the first SubShader of the shader of that name,
@@ -166,9 +165,13 @@ Result<SourceModule> compile_source(const fs::path& path, hlsl::CompileOptions o
   // SubShaders the platform runs (every SubShader xshade reads runs on every lane).
   const shaderlab::Shader* shader = &*read;
   fs::path file = path;
-  while (!shaderlab::drawn_subshader(*shader)) {
+  for (int hops = 0; !shaderlab::drawn_subshader(*shader); ++hops) {
     if (!shader->fallback || shader->fallback->empty())
       return fail("'" + shader->name + "' has no SubShader to draw" + (shader->fallback ? " (Fallback Off)" : ""),
+                  {file.string(), 1, 1});
+    if (hops == kLongestFallbackChain)
+      return fail("'" + shader->name + "' falls back after " + std::to_string(kLongestFallbackChain) +
+                      " shaders without a SubShader (a chain that goes round?)",
                   {file.string(), 1, 1});
     auto fallback = named.read(*shader->fallback, {file.string(), 1, 1});
     if (!fallback) return fail(fallback.error());
@@ -216,8 +219,13 @@ Result<SourceModule> compile_source(const fs::path& path, hlsl::CompileOptions o
                 sub->where);
   }
   source.pass = pass_index.value_or(source.drawn_passes.front());
-  if (source.pass >= passes.size() || passes[source.pass].pass->kind != shaderlab::PassKind::Program)
-    return fail(ErrorKind::Internal, "'" + shader->name + "' has no program pass " + std::to_string(source.pass), sub->where);
+  if (source.pass >= passes.size())
+    return fail(ErrorKind::Internal, "'" + shader->name + "' has no pass " + std::to_string(source.pass), sub->where);
+  // A pass asked for by index (a post step's, compile --pass) that has no program to compile.
+  if (passes[source.pass].pass->kind != shaderlab::PassKind::Program)
+    return fail(pass_label(sub->passes[source.pass], source.pass) + " of '" + shader->name +
+                    "' has no program: a GrabPass, a fixed-function pass or a UsePass not found draws none",
+                sub->passes[source.pass].where);
   const SourcePass& drawn = passes[source.pass];
   auto program = shaderlab::pass_program(*drawn.sub, *drawn.pass);
   if (!program) return fail(program.error());

@@ -211,6 +211,12 @@ TEST_F(UnityShaderSource, AUsedPassIsTheNamedShadersPassWithItsIncludesAndState)
                                            ":5:5: no .shader in the shader folders declares Shader \"Library/Missing\""))
       << source->notes[1];
 
+  // Asked for by index (a post step, compile --pass), the UsePass not found has no program.
+  auto unresolved = compile_source(user, in_folders({folder_ / "library"}), 2);
+  ASSERT_FALSE(unresolved);
+  EXPECT_EQ(unresolved.error().to_string(), user.string() + ":5:5: pass 2 of 'User' has no program: a GrabPass, a "
+                                                            "fixed-function pass or a UsePass not found draws none");
+
   // No pass of that name: an error at the UsePass.
   const fs::path wrong = write("wrong.shader", "Shader \"Wrong\" {\n  SubShader {\n    UsePass \"Library/Base/TOP\"\n  }\n}\n");
   auto no_pass = compile_source(wrong, in_folders({folder_ / "library"}));
@@ -243,7 +249,8 @@ TEST_F(UnityShaderSource, AShaderWithoutASubShaderIsDrawnAsItsFallback) {
 
   auto cycle = compile_source(loop, in_folders({folder_}));
   ASSERT_FALSE(cycle);
-  EXPECT_NE(cycle.error().message.find("more than 8 shaders named through Fallback and UsePass (a cycle?)"), std::string::npos)
+  EXPECT_NE(cycle.error().message.find("falls back after 8 shaders without a SubShader (a chain that goes round?)"),
+            std::string::npos)
       << cycle.error().to_string();
 }
 

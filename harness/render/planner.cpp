@@ -193,14 +193,7 @@ Result<void> plan_shader_effect(const Scene& scene, size_t e, const fs::path& pa
     if (!step.pass.empty()) {
       auto found = shaderlab::find_pass(*shader, step.pass);
       if (!found) return fail(Error{found.error().message, step.where, {}});
-      const shaderlab::SubShader& sub = *shaderlab::drawn_subshader(*shader);
-      index = size_t(*found - sub.passes.data());
-      if ((*found)->kind != shaderlab::PassKind::Program)
-        return fail(Error{"pass '" + step.pass + "' of '" + shader->name +
-                              "' has no program (a UsePass, a GrabPass or fixed-function): a post step blits a pass "
-                              "with CGPROGRAM or HLSLPROGRAM",
-                          step.where,
-                          {}});
+      index = size_t(*found - shaderlab::drawn_subshader(*shader)->passes.data());
     }
     auto facts = reader.read(effect.effect, effect.keywords, false, {}, index);
     if (!facts) return fail(facts.error());

@@ -4,13 +4,13 @@ as Unity ships it, rendered by `xshade run` as the only material of a probe scen
 plane under one directional light) with nothing but its own Properties defaults, on gl, vk and
 vk-hlsl, and the three images compared as a scene's lanes always are.
 
-A file written as an image effect (every pass `ZTest Always`, the manual's `Cull Off ZWrite Off
-ZTest Always`: drawn over the whole target whatever the depth) is instead the only post effect of
-the probe scene, whose objects then have xshade's Standard-like material: its first pass blits the
-scene's image, as Graphics.Blit(source, destination, material) does. A Post Processing v2 shader
-(one that includes its StdLib.hlsl) also gets what PPv2's PostProcessLayer sets before any of its
-passes: _RenderViewportScaleFactor = 1 (no XR viewport scaling; 0, as nothing set, samples one
-texel) and _UVTransform = (1, 1, 0, 0) (no flip).
+A file written as an image effect (every depth test it sets `ZTest Always`, the manual's `Cull
+Off ZWrite Off ZTest Always`: drawn over the whole target whatever the depth) is instead the only
+post effect of the probe scene, whose objects then have xshade's Standard-like material: its first
+pass blits the scene's image, as Graphics.Blit(source, destination, material) does. A Post
+Processing v2 shader (one that includes its StdLib.hlsl) also gets what PPv2's PostProcessLayer
+sets before any of its passes: _RenderViewportScaleFactor = 1 (no XR viewport scaling; 0, as
+nothing set, samples one texel) and _UVTransform = (1, 1, 0, 0) (no flip).
 
 A file renders when every lane draws an image that is not one flat colour and every pair of lanes
 agrees within the scene's default tolerance. Surface shaders (`#pragma surface`) are counted apart:

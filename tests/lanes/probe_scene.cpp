@@ -85,6 +85,11 @@ Result<harness::FloatImage> ProbeScene::render(const std::string& scene_text, ha
   return std::move(rendered->image);
 }
 
+std::string probe_scene_head(const std::string& description, uint32_t width, uint32_t height) {
+  return "description = \"" + description + "\"\nsize = [" + std::to_string(width) + ", " + std::to_string(height) +
+         "]\n[camera]\nposition = [0, 0, 5]\ntarget = [0, 0, 0]\nfov_y = 40\nnear = 0.1\nfar = 10\n";
+}
+
 harness::FloatImage direction_equirect() {
   harness::FloatImage image(256, 128);
   for (uint32_t y = 0; y < image.height; ++y)

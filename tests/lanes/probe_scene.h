@@ -36,6 +36,10 @@ class ProbeScene {
   std::filesystem::path folder_;
 };
 
+// A probe scene's first lines: its description, its size and a camera, which probes drawn
+// full-screen or by their own vertex shader do not look through.
+std::string probe_scene_head(const std::string& description, uint32_t width, uint32_t height);
+
 // An equirect environment of radiance 0.5 + 0.5 d in direction d (256 x 128): every direction,
 // and so every cube face and axis, reads differently.
 harness::FloatImage direction_equirect();

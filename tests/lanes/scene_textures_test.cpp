@@ -20,15 +20,7 @@ using harness::Lane;
 
 // A post effect that writes `expression` for pixel column i: a one-row image of `width` pixels.
 std::string scene_with_post(uint32_t width, const std::string& textures) {
-  return fmt::format(R"(description = "scene textures probe"
-size = [{}, 1]
-[camera]
-position = [0, 0, 5]
-target = [0, 0, 0]
-fov_y = 40
-near = 0.1
-far = 10
-[environment]
+  return probe_scene_head("scene textures probe", width, 1) + fmt::format(R"([environment]
 kind = "equirect"
 file = "environment.exr"
 [[post]]
@@ -36,7 +28,7 @@ effect = "probe.hlsl"
 [post.textures]
 {}
 )",
-                     width, textures);
+                                                                          textures);
 }
 
 std::string post_probe(const std::string& declarations, const std::string& expression) {
@@ -186,15 +178,7 @@ SamplerState sampler_Cube;
 float4 vert(float2 uv : TEXCOORD0) : SV_Position { return float4(uv * 2.0 - 1.0, 0.5, 1.0); }
 float4 frag() : SV_Target { return _Cube.SampleLevel(sampler_Cube, float3(0, 1, 0), 0); }
 )");
-  const std::string scene = R"(description = "a material's cube"
-size = [2, 2]
-[camera]
-position = [0, 0, 5]
-target = [0, 0, 0]
-fov_y = 40
-near = 0.1
-far = 10
-[[object]]
+  const std::string scene = probe_scene_head("a material's cube", 2, 2) + R"([[object]]
 mesh = "plane"
 material = "probe_material.hlsl"
 [object.textures]

@@ -62,15 +62,7 @@ constexpr const char* kBlitProbe = R"(Shader "Hidden/BlitProbe" {
   }
 })";
 
-constexpr const char* kScene = R"(description = "a .shader post effect's blits"
-size = [8, 4]
-[camera]
-position = [0, 0, 5]
-target = [0, 0, 0]
-fov_y = 40
-near = 0.1
-far = 10
-[[post]]
+const std::string kScene = probe_scene_head("a .shader post effect's blits", 8, 4) + R"([[post]]
 effect = "blit_probe.shader"
 passes = ["Gradient", "copy", { pass = 2, name = "inverted" }]
 )";
