@@ -469,8 +469,8 @@ class Reader {
           value.text = std::string(word);
           return value;
         }
-    fail(token, std::string(command) + " takes " + (numbers ? "a number, " : "") + one_of(words) +
-                    ", or a property in brackets ([_Name]), not " + describe(token));
+    const std::string choices = words.empty() ? "a number" : (numbers ? "a number, " : "") + one_of(words) + ",";
+    fail(token, std::string(command) + " takes " + choices + " or a property in brackets ([_Name]), not " + describe(token));
   }
 
   StateValue number_value(std::string_view command) {

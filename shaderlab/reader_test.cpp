@@ -225,6 +225,8 @@ TEST(ShaderLabReader, ASurfaceProgramAndWhatACategoryGivesItsSubShaders) {
 TEST(ShaderLabReader, ErrorsSayWhereAndWhatIsAllowed) {
   EXPECT_EQ(read_error("Shader \"S\" { SubShader { Pass { Cull Sideways } } }"),
             "test.shader:1:38: Cull takes Back, Front or Off, or a property in brackets ([_Name]), not 'Sideways'");
+  EXPECT_EQ(read_error("Shader \"S\" { SubShader { Pass { Stencil { Ref one } } } }"),
+            "test.shader:1:47: Ref takes a number or a property in brackets ([_Name]), not 'one'");
   EXPECT_EQ(read_error("Shader \"S\" {\n  Properties { _X (\"X\", Float4) = 1 }\n}"),
             "test.shader:2:25: unknown property type 'Float4'; a property is Float, Int, Integer, Range(min, max), Color, "
             "Vector, 2D, 2DArray, 3D, Cube, CubeArray or Any");

@@ -225,14 +225,13 @@ struct TextureBinding {
 };
 
 // How a draw is rasterized, depth-tested and blended into the target: the render state of a
-// Unity pass (ShaderLab's Cull, ZWrite, ZTest, Blend, BlendOp, ColorMask, Offset) with its
-// Direct3D meaning on every backend. A front face is one whose vertices run counter-clockwise in
-// the image (row 0 at the top): the scene's world is right-handed and its meshes wind
-// counter-clockwise seen from outside (OBJ's convention), which is what Unity's importer turns
-// into its left-handed world's clockwise front faces, so Cull Back removes the same faces here as
-// there. The default is what
-// a pass of xshade's own materials has always had: no culling, depth written and tested less, no
-// blending, every channel written.
+// Unity pass (ShaderLab's Cull, ZWrite, ZTest, Blend, BlendOp, ColorMask, Offset, Stencil)
+// with its Direct3D meaning on every backend. A front face is one whose vertices run
+// counter-clockwise in the image (row 0 at the top): the scene's world is right-handed and its
+// meshes wind counter-clockwise seen from outside (OBJ's convention), which is what Unity's
+// importer turns into its left-handed world's clockwise front faces, so Cull Back removes the
+// same faces here as there. The default is what a pass of xshade's own materials has always had:
+// no culling, depth written and tested less, no blending, every channel written, no stencil test.
 enum class CullMode { Off, Back, Front };
 enum class BlendFactor {
   Zero, One, SrcColor, OneMinusSrcColor, DstColor, OneMinusDstColor,
@@ -251,6 +250,29 @@ struct BlendState {
 
 inline constexpr uint8_t kColorWriteAll = 0xF;  // bit 0 red, 1 green, 2 blue, 3 alpha
 
+// What a stencil test does to the stored value: Direct3D's operations (the clamped ones stop at 0
+// and 255, the wrapping ones go round).
+enum class StencilOp { Keep, Zero, Replace, IncrementClamp, DecrementClamp, Invert, IncrementWrap, DecrementWrap };
+// One face's test and operations: the test is `(reference & read_mask) <compare> (stored &
+// read_mask)`; `fail` applies where it fails, `depth_fail` where it passes and the depth test
+// fails, `pass` where both pass. The stored value changes only in write_mask's bits.
+struct StencilFaceState {
+  CompareOp compare = CompareOp::Always;
+  StencilOp pass = StencilOp::Keep, fail = StencilOp::Keep, depth_fail = StencilOp::Keep;
+  friend bool operator==(const StencilFaceState&, const StencilFaceState&) = default;
+  friend auto operator<=>(const StencilFaceState&, const StencilFaceState&) = default;
+};
+// An 8-bit stencil test (Unity's Stencil block), front and back faces apart (a front face as
+// DrawState says). Tested and written only where the target has a stencil buffer
+// (TargetDesc::stencil).
+struct StencilState {
+  bool enabled = false;
+  uint8_t reference = 0, read_mask = 0xFF, write_mask = 0xFF;
+  StencilFaceState front, back;
+  friend bool operator==(const StencilState&, const StencilState&) = default;
+  friend auto operator<=>(const StencilState&, const StencilState&) = default;
+};
+
 struct DrawState {
   CullMode cull = CullMode::Off;
   bool depth_write = true;                    // where the target has depth
@@ -261,6 +283,7 @@ struct DrawState {
   // smallest step of the depth format (Unity's Offset factor, units).
   float depth_bias_slope = 0.0f;
   float depth_bias_units = 0.0f;
+  StencilState stencil;
   friend bool operator==(const DrawState&, const DrawState&) = default;
   friend auto operator<=>(const DrawState&, const DrawState&) = default;
 };
@@ -309,15 +332,19 @@ struct TargetDesc {
   // write location 1 the attachment's value is undefined (on both APIs; llvmpipe leaves what an
   // earlier draw wrote), so every program drawn into it must.
   bool second_color = false;
+  // An 8-bit stencil buffer with the depth (D32F + S8; needs `depth`), cleared with every pass.
+  // Sampling the target's depth still reads the depth.
+  bool stencil = false;
 };
 
 // One pass into one target: clear, then the draws in order, each with its DrawState (the depth
-// test and write only where the target has depth). A pass may sample any target but its own.
+// test and write only where the target has depth, the stencil test only where it has stencil). A pass may sample any target but its own.
 struct RenderPass {
   TargetHandle target;
   glm::vec4 clear_color{0.0f};
   float clear_depth = 1.0f;
   std::vector<DrawItem> draws;
+  uint8_t clear_stencil = 0;
 };
 
 // What a lane reports about its driver, carried by every report.

@@ -90,8 +90,9 @@ std::string fill_fragment_shader(TexelKind kind) {
 struct Target {
   GlFramebuffer framebuffer;
   Texture color;
-  std::optional<Texture> depth;
+  std::optional<Texture> depth;          // with an 8-bit stencil where `stencil`
   std::optional<Texture> second_color;  // TargetDesc::second_color
+  bool stencil = false;
 };
 
 struct Mesh {
@@ -164,6 +165,9 @@ class GlBackend final : public Backend {
   }
   // `compare`: a comparison sampler (of a shadow sampler's unit), with desc.compare.
   GLuint sampler(const SamplerDesc& desc, bool mipmapped, bool compare);
+  // Clears the depth (and the stencil, where the target has one) with every bit writable, as a
+  // clear must be whatever the last draw's masks were.
+  void clear_depth_stencil(const Target& target, float depth, uint8_t stencil);
   // Every sample of each texel of `texture` (multisampled, just allocated) from level 0 of `data`.
   Result<void> fill_multisampled(const Texture& texture, const TextureData& data, const std::string& what);
   Result<GLuint> fill_program(TexelKind kind, const std::string& what);
@@ -335,6 +339,16 @@ GLuint GlBackend::sampler(const SamplerDesc& desc, bool mipmapped, bool compare)
   return samplers_.emplace(key, std::move(sampler)).first->second.get();
 }
 
+void GlBackend::clear_depth_stencil(const Target& target, float depth, uint8_t stencil) {
+  gl_.DepthMask(GL_TRUE);
+  if (target.stencil) {
+    gl_.StencilMask(0xFF);
+    gl_.ClearNamedFramebufferfi(target.framebuffer.get(), GL_DEPTH_STENCIL, 0, depth, stencil);
+  } else {
+    gl_.ClearNamedFramebufferfv(target.framebuffer.get(), GL_DEPTH, 0, &depth);
+  }
+}
+
 Result<TargetHandle> GlBackend::create_target(const TargetDesc& desc) {
   return on_context<TargetHandle>("create_target", [&]() -> Result<TargetHandle> {
     if (desc.width == 0 || desc.height == 0)
@@ -346,26 +360,31 @@ Result<TargetHandle> GlBackend::create_target(const TargetDesc& desc) {
     const GLsizei width = static_cast<GLsizei>(desc.width);
     const GLsizei height = static_cast<GLsizei>(desc.height);
     auto target = std::make_unique<Target>();
-    const auto make_texture = [&](TextureFormat format) {
+    // A depth texture with stencil holds both; sampled, it reads the depth
+    // (GL_DEPTH_STENCIL_TEXTURE_MODE's default).
+    const auto make_texture = [&](TextureFormat format, bool with_stencil = false) {
       GLuint texture = 0;
       gl_.CreateTextures(GL_TEXTURE_2D, 1, &texture);
       Texture result{GlTexture(&gl_, texture), desc.width, desc.height, 1, {}, format};
-      gl_.TextureStorage2D(texture, 1, gl_format(format).internal_format, width, height);
+      gl_.TextureStorage2D(texture, 1, with_stencil ? GL_DEPTH32F_STENCIL8 : gl_format(format).internal_format, width,
+                           height);
       return result;
     };
     target->color = make_texture(TextureFormat::Rgba32Float);
     if (desc.second_color) target->second_color = make_texture(TextureFormat::Rgba32Float);
+    if (desc.stencil && !desc.depth) return fail("create_target: a stencil buffer needs a depth buffer");
     if (desc.depth) {
-      target->depth = make_texture(TextureFormat::Depth32Float);
+      target->depth = make_texture(TextureFormat::Depth32Float, desc.stencil);
       gl_.TextureParameteri(target->depth->texture.get(), GL_TEXTURE_COMPARE_MODE, GL_NONE);
+      target->stencil = desc.stencil;
     }
     GLuint framebuffer = 0;
     gl_.CreateFramebuffers(1, &framebuffer);
     target->framebuffer = GlFramebuffer(&gl_, framebuffer);
     gl_.NamedFramebufferTexture(framebuffer, GL_COLOR_ATTACHMENT0, target->color.texture.get(), 0);
     if (target->depth)
-      gl_.NamedFramebufferTexture(framebuffer, GL_DEPTH_ATTACHMENT, target->depth->texture.get(),
-                                  0);
+      gl_.NamedFramebufferTexture(framebuffer, target->stencil ? GL_DEPTH_STENCIL_ATTACHMENT : GL_DEPTH_ATTACHMENT,
+                                  target->depth->texture.get(), 0);
     if (target->second_color) {
       gl_.NamedFramebufferTexture(framebuffer, GL_COLOR_ATTACHMENT1, target->second_color->texture.get(), 0);
       const std::array<GLenum, 2> both = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1};
@@ -378,7 +397,8 @@ Result<TargetHandle> GlBackend::create_target(const TargetDesc& desc) {
     if (status != GL_FRAMEBUFFER_COMPLETE)
       return fail(fmt::format("create_target: the framebuffer of target {} ({}x{}, RGBA32F{}) is "
                               "incomplete (status 0x{:04X})",
-                              id, desc.width, desc.height, desc.depth ? " + D32F" : "", status));
+                              id, desc.width, desc.height, desc.depth ? (desc.stencil ? " + D32F S8" : " + D32F") : "",
+                              status));
     // Start from defined contents (zero colour, far depth) so that reads before a render are
     // stable.
     const std::array<float, 4> zero = {0.0f, 0.0f, 0.0f, 0.0f};
@@ -386,10 +406,7 @@ Result<TargetHandle> GlBackend::create_target(const TargetDesc& desc) {
     gl_.ColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
     gl_.ClearNamedFramebufferfv(framebuffer, GL_COLOR, 0, zero.data());
     if (target->second_color) gl_.ClearNamedFramebufferfv(framebuffer, GL_COLOR, 1, zero.data());
-    if (target->depth) {
-      gl_.DepthMask(GL_TRUE);
-      gl_.ClearNamedFramebufferfv(framebuffer, GL_DEPTH, 0, &far_depth);
-    }
+    if (target->depth) clear_depth_stencil(*target, far_depth, 0);
     return objects_.targets.insert(std::move(target));
   });
 }
@@ -773,8 +790,7 @@ Result<void> GlBackend::render(const RenderPass& pass) {
     if (target->depth) {
       gl_.Enable(GL_DEPTH_TEST);
       gl_.DepthFunc(GL_LESS);
-      gl_.DepthMask(GL_TRUE);
-      gl_.ClearNamedFramebufferfv(framebuffer, GL_DEPTH, 0, &pass.clear_depth);
+      clear_depth_stencil(*target, pass.clear_depth, pass.clear_stencil);
     } else {
       gl_.Disable(GL_DEPTH_TEST);
     }
@@ -784,7 +800,7 @@ Result<void> GlBackend::render(const RenderPass& pass) {
     for (size_t d = 0; d < resolved->draws.size(); ++d) {
       const auto& draw = resolved->draws[d];
       const Program& program = *draw.program;
-      apply_draw_state(gl_, pass.draws[d].state, target->depth.has_value());
+      apply_draw_state(gl_, pass.draws[d].state, target->depth.has_value(), target->stencil);
       gl_.UseProgram(program.program.get());
       const auto& blocks = program.layout.uniform_blocks;
       for (size_t s = 0; s < blocks.size(); ++s) {
@@ -830,7 +846,7 @@ Result<void> GlBackend::render(const RenderPass& pass) {
     gl_.BindVertexArray(0);
     gl_.UseProgram(0);
     gl_.BindFramebuffer(GL_FRAMEBUFFER, 0);
-    apply_draw_state(gl_, {}, false);
+    apply_draw_state(gl_, {}, false, false);
     return {};
   });
 }

@@ -34,6 +34,9 @@ namespace xshade::harness::gl {
   X(PFNGLCULLFACEPROC, CullFace)                                             \
   X(PFNGLFRONTFACEPROC, FrontFace)                                           \
   X(PFNGLPOLYGONOFFSETPROC, PolygonOffset)                                   \
+  X(PFNGLSTENCILFUNCSEPARATEPROC, StencilFuncSeparate)                       \
+  X(PFNGLSTENCILOPSEPARATEPROC, StencilOpSeparate)                           \
+  X(PFNGLSTENCILMASKPROC, StencilMask)                                       \
   X(PFNGLFINISHPROC, Finish)                                                 \
   /* KHR_debug */                                                            \
   X(PFNGLDEBUGMESSAGECALLBACKPROC, DebugMessageCallback)                     \
@@ -67,6 +70,7 @@ namespace xshade::harness::gl {
   X(PFNGLCHECKNAMEDFRAMEBUFFERSTATUSPROC, CheckNamedFramebufferStatus)       \
   X(PFNGLBINDFRAMEBUFFERPROC, BindFramebuffer)                               \
   X(PFNGLCLEARNAMEDFRAMEBUFFERFVPROC, ClearNamedFramebufferfv)               \
+  X(PFNGLCLEARNAMEDFRAMEBUFFERFIPROC, ClearNamedFramebufferfi)               \
   /* buffers and vertex arrays */                                            \
   X(PFNGLCREATEBUFFERSPROC, CreateBuffers)                                   \
   X(PFNGLDELETEBUFFERSPROC, DeleteBuffers)                                   \

@@ -63,13 +63,38 @@ GLenum gl_blend_op(BlendOp op) {
   return GL_FUNC_ADD;
 }
 
-void apply_draw_state(const gl::Functions& gl, const DrawState& state, bool depth) {
+GLenum gl_stencil_op(StencilOp op) {
+  switch (op) {
+    case StencilOp::Keep: return GL_KEEP;
+    case StencilOp::Zero: return GL_ZERO;
+    case StencilOp::Replace: return GL_REPLACE;
+    case StencilOp::IncrementClamp: return GL_INCR;
+    case StencilOp::DecrementClamp: return GL_DECR;
+    case StencilOp::Invert: return GL_INVERT;
+    case StencilOp::IncrementWrap: return GL_INCR_WRAP;
+    case StencilOp::DecrementWrap: return GL_DECR_WRAP;
+  }
+  return GL_KEEP;
+}
+
+void apply_draw_state(const gl::Functions& gl, const DrawState& state, bool depth, bool stencil) {
+  gl.FrontFace(GL_CCW);
   if (state.cull == CullMode::Off) {
     gl.Disable(GL_CULL_FACE);
   } else {
     gl.Enable(GL_CULL_FACE);
-    gl.FrontFace(GL_CCW);
     gl.CullFace(state.cull == CullMode::Back ? GL_BACK : GL_FRONT);
+  }
+  if (stencil && state.stencil.enabled) {
+    const StencilState& s = state.stencil;
+    gl.Enable(GL_STENCIL_TEST);
+    for (const auto& [face, ops] : {std::pair{GLenum(GL_FRONT), s.front}, std::pair{GLenum(GL_BACK), s.back}}) {
+      gl.StencilFuncSeparate(face, GLenum(gl_compare_function(ops.compare)), s.reference, s.read_mask);
+      gl.StencilOpSeparate(face, gl_stencil_op(ops.fail), gl_stencil_op(ops.depth_fail), gl_stencil_op(ops.pass));
+    }
+    gl.StencilMask(s.write_mask);
+  } else {
+    gl.Disable(GL_STENCIL_TEST);
   }
   if (depth) {
     gl.DepthMask(state.depth_write ? GL_TRUE : GL_FALSE);

@@ -82,11 +82,14 @@ GLenum gl_target(TextureShape shape);
 GLint gl_compare_function(CompareOp op);
 GLenum gl_blend_factor(BlendFactor factor);
 GLenum gl_blend_op(BlendOp op);
-// Culling, depth and blending for the next draws (the blend and the colour mask of attachment
-// 0; a second one is written as it is). glClipControl's GL_UPPER_LEFT origin turns the facing
-// computation around with the window's y (ARB_clip_control), so a winding in the image is that
-// winding to OpenGL: the front is GL_CCW (backend.h's DrawState).
-void apply_draw_state(const gl::Functions& gl, const DrawState& state, bool depth);
+GLenum gl_stencil_op(StencilOp op);
+// Culling, depth, stencil and blending for the next draws (the blend and the colour mask of
+// attachment 0; a second one is written as it is), the depth state where the target has depth
+// and the stencil state where it has stencil. glClipControl's GL_UPPER_LEFT origin turns the
+// facing computation around with the window's y (ARB_clip_control), so a winding in the image
+// is that winding to OpenGL: the front is GL_CCW (backend.h's DrawState), for culling and the
+// stencil test's faces alike.
+void apply_draw_state(const gl::Functions& gl, const DrawState& state, bool depth, bool stencil);
 // What a vertex input of GL type `type` reads as; empty for a type no mesh or zero fills (a
 // matrix, a double).
 std::optional<TexelKind> attribute_kind(GLint type);

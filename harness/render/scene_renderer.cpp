@@ -119,7 +119,14 @@ class SceneRenderer {
 
   // The scene pass, then the post passes on its colour and depth.
   Result<RenderedScene> render() {
-    auto target = resources_.create_target({scene_.width, scene_.height, true, options_.trace_nonfinite});
+    // A stencil buffer only where a draw tests stencil (Unity's camera target always has one,
+    // cleared to 0 as here, so a shader sees the same).
+    const bool stencil = std::any_of(plan_.instance_draws.begin(), plan_.instance_draws.end(), [](const auto& draws) {
+      return std::any_of(draws.begin(), draws.end(),
+                         [](const Plan::InstanceDraw& draw) { return draw.state.stencil.enabled; });
+    });
+    auto target =
+        resources_.create_target({scene_.width, scene_.height, true, options_.trace_nonfinite, stencil});
     if (!target) return fail(from_backend(target.error()));
     scene_target_ = *target;
     const glm::uvec2 size{scene_.width, scene_.height};

@@ -75,6 +75,16 @@ constexpr std::array<std::pair<const char*, BlendOp>, 5> kBlendOpWords{
 constexpr std::array<std::optional<BlendOp>, 16> kBlendOpNumbers{BlendOp::Add, BlendOp::Subtract,
                                                                   BlendOp::ReverseSubtract, BlendOp::Min, BlendOp::Max};
 
+constexpr std::array<std::pair<const char*, StencilOp>, 8> kStencilOpWords{
+    {{"Keep", StencilOp::Keep}, {"Zero", StencilOp::Zero}, {"Replace", StencilOp::Replace},
+     {"IncrSat", StencilOp::IncrementClamp}, {"DecrSat", StencilOp::DecrementClamp}, {"Invert", StencilOp::Invert},
+     {"IncrWrap", StencilOp::IncrementWrap}, {"DecrWrap", StencilOp::DecrementWrap}}};
+// UnityEngine.Rendering.StencilOp: Keep 0, Zero 1, Replace 2, IncrementSaturate 3,
+// DecrementSaturate 4, Invert 5, IncrementWrap 6, DecrementWrap 7.
+constexpr std::array<std::optional<StencilOp>, 16> kStencilOpNumbers{
+    StencilOp::Keep,           StencilOp::Zero,   StencilOp::Replace,       StencilOp::IncrementClamp,
+    StencilOp::DecrementClamp, StencilOp::Invert, StencilOp::IncrementWrap, StencilOp::DecrementWrap};
+
 Result<float> number(const StateValue& value, const StatePropertyLookup& property, const char* what) {
   if (value.is_property) {
     if (auto given = property(value.text)) return *given;
@@ -104,6 +114,49 @@ Result<uint8_t> color_mask(const StateValue& value, const StatePropertyLookup& p
   uint8_t mask = 0;
   for (char c : channels) mask |= c == 'R' ? 1 : c == 'G' ? 2 : c == 'B' ? 4 : c == 'A' ? 8 : 0;
   return mask;
+}
+
+// A Stencil block's fields over Unity's defaults (Ref 0, ReadMask 255, WriteMask 255, Comp Always,
+// Pass, Fail and ZFail Keep): Comp, Pass, Fail and ZFail set both faces, their Front and Back
+// forms one face whichever comes first. A state that can neither fail nor write (every
+// comparison Always, every operation Keep) is no test at all, so that a target needs no stencil
+// buffer for it (Unity's UI shaders carry such a block by default).
+Result<StencilState> stencil_state(const shaderlab::StencilState& block, const StatePropertyLookup& property) {
+  StencilState out;
+  out.enabled = true;
+  for (const auto& [name, value] : block.fields) {
+    if (name == "Ref" || name == "ReadMask" || name == "WriteMask") {
+      auto given = number(value, property, name.c_str());
+      if (!given) return fail(given.error());
+      if (*given < 0.0f || *given > 255.0f || *given != std::floor(*given))
+        return fail("Stencil " + name + " takes a whole number from 0 to 255, not " + value.text, value.where);
+      const auto byte = uint8_t(*given);
+      (name == "Ref" ? out.reference : name == "ReadMask" ? out.read_mask : out.write_mask) = byte;
+    }
+  }
+  // The faces' own forms after the shared ones, so that they win wherever they are written.
+  for (const bool own_face : {false, true})
+    for (const auto& [name, value] : block.fields) {
+      const bool front = name.ends_with("Front"), back = name.ends_with("Back");
+      if (own_face != (front || back)) continue;
+      const std::string field = name.substr(0, name.size() - (front ? 5 : back ? 4 : 0));
+      std::vector<StencilFaceState*> faces;
+      if (!back) faces.push_back(&out.front);
+      if (!front) faces.push_back(&out.back);
+      if (field == "Comp") {
+        auto compare = choose(value, kCompareWords, kCompareNumbers, property, "Stencil Comp");
+        if (!compare) return fail(compare.error());
+        for (StencilFaceState* face : faces) face->compare = *compare;
+      } else if (field == "Pass" || field == "Fail" || field == "ZFail") {
+        auto op = choose(value, kStencilOpWords, kStencilOpNumbers, property, ("Stencil " + field).c_str());
+        if (!op) return fail(op.error());
+        for (StencilFaceState* face : faces)
+          (field == "Pass" ? face->pass : field == "Fail" ? face->fail : face->depth_fail) = *op;
+      }
+    }
+  const StencilFaceState inert;
+  if (out.front == inert && out.back == inert) return StencilState{};
+  return out;
 }
 
 }  // namespace
@@ -186,8 +239,11 @@ Result<DrawState> unity_draw_state(const shaderlab::RenderState& state, const St
                   "each driver's own dithering",
                   state.alpha_to_mask->where);
   }
-  if (state.stencil && !state.stencil->fields.empty())
-    return fail("Stencil is not drawn yet: xshade's targets have no stencil buffer", state.stencil->fields.front().second.where);
+  if (state.stencil) {
+    auto stencil = stencil_state(*state.stencil, property);
+    if (!stencil) return fail(stencil.error());
+    out.stencil = *stencil;
+  }
   return out;
 }
 

@@ -1,5 +1,5 @@
 // A Unity pass's render state (ShaderLab's Cull, ZWrite, ZTest, Blend, BlendOp, ColorMask,
-// Offset) as the DrawState the backends draw with, and a SubShader's Queue as the order Unity's
+// Offset, Stencil) as the DrawState the backends draw with, and a SubShader's Queue as the order Unity's
 // forward renderer draws objects in.
 #pragma once
 
@@ -18,11 +18,11 @@ namespace xshade::harness {
 using StatePropertyLookup = std::function<std::optional<float>(const std::string& name)>;
 
 // `state` (a Pass's own over its SubShader's over its Category's) with Unity's defaults for what
-// nothing sets: Cull Back, ZWrite On, ZTest LEqual, Blend Off, ColorMask RGBA, Offset 0, 0. A
-// property's value is read as Unity's enums number them (UnityEngine.Rendering's CullMode,
-// CompareFunction, BlendMode, BlendOp, ColorWriteMask). What xshade does not draw yet is an error
-// at the command: Stencil, AlphaToMask On, a logical or advanced BlendOp, a render target's own
-// blend other than the first's.
+// nothing sets: Cull Back, ZWrite On, ZTest LEqual, Blend Off, ColorMask RGBA, Offset 0, 0, no
+// stencil test. A property's value is read as Unity's enums number them (UnityEngine.Rendering's
+// CullMode, CompareFunction, BlendMode, BlendOp, ColorWriteMask, StencilOp). What xshade does not
+// draw yet is an error at the command: AlphaToMask On, a logical or advanced BlendOp, a render
+// target's own blend other than the first's.
 Result<DrawState> unity_draw_state(const shaderlab::RenderState& state, const StatePropertyLookup& property);
 
 // Unity's render queues: Background 1000, Geometry 2000, AlphaTest 2450, Transparent 3000,

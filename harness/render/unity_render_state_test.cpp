@@ -75,13 +75,48 @@ TEST(UnityRenderState, APropertyInBracketsIsReadAsUnitysEnum) {
   EXPECT_EQ(state->depth_bias_units, 2.0f);
 }
 
+TEST(UnityRenderState, AStencilBlockSetsBothFacesAndItsFaceFormsOne) {
+  auto state = unity_draw_state(pass_state("Stencil { PassFront IncrWrap Ref 3 ReadMask 7 WriteMask 240 Comp Equal "
+                                           "Pass Replace ZFail Invert CompBack Greater FailBack DecrSat }"),
+                                properties({}));
+  ASSERT_TRUE(state) << state.error().to_string();
+  const StencilState& s = state->stencil;
+  EXPECT_TRUE(s.enabled);
+  EXPECT_EQ(s.reference, 3);
+  EXPECT_EQ(s.read_mask, 7);
+  EXPECT_EQ(s.write_mask, 0xF0);
+  // PassFront, written before Pass, still wins on the front face.
+  EXPECT_EQ(s.front, (StencilFaceState{CompareOp::Equal, StencilOp::IncrementWrap, StencilOp::Keep, StencilOp::Invert}));
+  EXPECT_EQ(s.back,
+            (StencilFaceState{CompareOp::Greater, StencilOp::Replace, StencilOp::DecrementClamp, StencilOp::Invert}));
+}
+
+// Unity's UI shaders: Stencil { Ref [_Stencil] Comp [_StencilComp] Pass [_StencilOp] ... } with
+// the properties' numbers; at their defaults (Always, Keep) the block tests nothing.
+TEST(UnityRenderState, StencilPropertiesAreUnitysEnumsAndAnInertBlockIsNoTest) {
+  const std::string block =
+      "Stencil { Ref [_Stencil] Comp [_StencilComp] Pass [_StencilOp] ReadMask [_Read] WriteMask [_Write] }";
+  auto inert = unity_draw_state(pass_state(block), properties({{"_Stencil", 0}, {"_StencilComp", 8}, {"_StencilOp", 0},
+                                                              {"_Read", 255}, {"_Write", 255}}));
+  ASSERT_TRUE(inert) << inert.error().to_string();
+  EXPECT_EQ(inert->stencil, StencilState{});
+  auto masking = unity_draw_state(pass_state(block), properties({{"_Stencil", 2}, {"_StencilComp", 3}, {"_StencilOp", 2},
+                                                                {"_Read", 255}, {"_Write", 255}}));
+  ASSERT_TRUE(masking) << masking.error().to_string();
+  EXPECT_TRUE(masking->stencil.enabled);
+  EXPECT_EQ(masking->stencil.reference, 2);
+  EXPECT_EQ(masking->stencil.front.compare, CompareOp::Equal);
+  EXPECT_EQ(masking->stencil.back.pass, StencilOp::Replace);
+}
+
 TEST(UnityRenderState, WhatIsNotDrawnIsAnErrorAtItsCommand) {
   const auto error_of = [](const std::string& commands, std::map<std::string, float> values = {}) {
     auto state = unity_draw_state(pass_state(commands), properties(std::move(values)));
     return state ? std::string("(drawn)") : state.error().where.to_string() + ": " + state.error().message;
   };
-  EXPECT_EQ(error_of("Stencil { Ref 1 Comp Always Pass Replace }"),
-            "s.shader:4:21: Stencil is not drawn yet: xshade's targets have no stencil buffer");
+  EXPECT_EQ(error_of("Stencil { Ref 256 }"), "s.shader:4:21: Stencil Ref takes a whole number from 0 to 255, not 256");
+  EXPECT_EQ(error_of("Stencil { Pass [_Op] }", {{"_Op", 9}}),
+            "s.shader:4:22: Stencil Pass [_Op] is 9, which is no value of Unity's enum for it");
   EXPECT_EQ(error_of("BlendOp Multiply"), "s.shader:4:15: BlendOp Multiply is not drawn by xshade yet");
   EXPECT_EQ(error_of("Cull [_Cull]"), "s.shader:4:12: Cull [_Cull] names a property the material does not have");
   EXPECT_EQ(error_of("Cull [_Cull]", {{"_Cull", 7}}), "s.shader:4:12: Cull [_Cull] is 7, which is no value of Unity's enum for it");

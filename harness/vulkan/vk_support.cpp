@@ -219,9 +219,18 @@ Image create_image(const DeviceRef& device, ImageSpec spec) {
   result.memory = allocate(device, result.image.getMemoryRequirements(), {},
                            vk::MemoryPropertyFlagBits::eDeviceLocal);
   result.image.bindMemory(*result.memory, 0);
-  result.view = vk::raii::ImageView(
-      device.device, vk::ImageViewCreateInfo({}, *result.image, geometry.view_type, spec.format, {},
-                                             {spec.aspect, 0, spec.levels, 0, geometry.array_layers}));
+  const auto view = [&](vk::ImageAspectFlags aspect) {
+    return vk::raii::ImageView(device.device,
+                               vk::ImageViewCreateInfo({}, *result.image, geometry.view_type, spec.format, {},
+                                                       {aspect, 0, spec.levels, 0, geometry.array_layers}));
+  };
+  const vk::ImageAspectFlags depth_stencil = vk::ImageAspectFlagBits::eDepth | vk::ImageAspectFlagBits::eStencil;
+  if ((spec.aspect & depth_stencil) == depth_stencil) {
+    result.view = view(vk::ImageAspectFlagBits::eDepth);
+    result.attachment_view = view(spec.aspect);
+  } else {
+    result.view = view(spec.aspect);
+  }
   return result;
 }
 
@@ -389,8 +398,19 @@ vk::raii::Pipeline create_draw_pipeline(const vk::raii::Device& device, const Dr
     raster.depthBiasSlopeFactor = state.depth_bias_slope;
   }
   const vk::PipelineMultisampleStateCreateInfo multisample({}, vk::SampleCountFlagBits::e1);
-  const vk::PipelineDepthStencilStateCreateInfo depth_state({}, depth, depth && state.depth_write,
-                                                            vk_compare_op(state.depth_compare));
+  vk::PipelineDepthStencilStateCreateInfo depth_state({}, depth, depth && state.depth_write,
+                                                      vk_compare_op(state.depth_compare));
+  const bool stencil = has_stencil(spec.depth_format);
+  if (stencil && state.stencil.enabled) {
+    const StencilState& s = state.stencil;
+    const auto face = [&](const StencilFaceState& ops) {
+      return vk::StencilOpState(vk_stencil_op(ops.fail), vk_stencil_op(ops.pass), vk_stencil_op(ops.depth_fail),
+                                vk_compare_op(ops.compare), s.read_mask, s.write_mask, s.reference);
+    };
+    depth_state.stencilTestEnable = VK_TRUE;
+    depth_state.front = face(s.front);
+    depth_state.back = face(s.back);
+  }
   vk::PipelineColorBlendAttachmentState written;
   written.colorWriteMask = vk::ColorComponentFlagBits::eR | vk::ColorComponentFlagBits::eG |
                            vk::ColorComponentFlagBits::eB | vk::ColorComponentFlagBits::eA;
@@ -412,7 +432,8 @@ vk::raii::Pipeline create_draw_pipeline(const vk::raii::Device& device, const Dr
                                                           vk::DynamicState::eScissor};
   const vk::PipelineDynamicStateCreateInfo dynamic({}, dynamic_states);
   const std::vector<vk::Format> color_formats(spec.color_attachments, spec.color_format);
-  vk::PipelineRenderingCreateInfo rendering({}, color_formats, spec.depth_format);
+  vk::PipelineRenderingCreateInfo rendering({}, color_formats, spec.depth_format,
+                                            stencil ? spec.depth_format : vk::Format::eUndefined);
   vk::GraphicsPipelineCreateInfo info({}, stages, &vertex_input, &assembly, nullptr,
                                       &viewport, &raster, &multisample, &depth_state, &blend,
                                       &dynamic, spec.layout);
@@ -487,6 +508,36 @@ vk::BlendOp vk_blend_op(BlendOp op) {
     case BlendOp::Max: return vk::BlendOp::eMax;
   }
   return vk::BlendOp::eAdd;
+}
+
+vk::StencilOp vk_stencil_op(StencilOp op) {
+  switch (op) {
+    case StencilOp::Keep: return vk::StencilOp::eKeep;
+    case StencilOp::Zero: return vk::StencilOp::eZero;
+    case StencilOp::Replace: return vk::StencilOp::eReplace;
+    case StencilOp::IncrementClamp: return vk::StencilOp::eIncrementAndClamp;
+    case StencilOp::DecrementClamp: return vk::StencilOp::eDecrementAndClamp;
+    case StencilOp::Invert: return vk::StencilOp::eInvert;
+    case StencilOp::IncrementWrap: return vk::StencilOp::eIncrementAndWrap;
+    case StencilOp::DecrementWrap: return vk::StencilOp::eDecrementAndWrap;
+  }
+  return vk::StencilOp::eKeep;
+}
+
+vk::SamplerCreateInfo sampler_info(const SamplerDesc& desc, bool compare) {
+  const bool linear = desc.filter == Filter::Linear;
+  const vk::Filter filter = linear ? vk::Filter::eLinear : vk::Filter::eNearest;
+  const vk::SamplerMipmapMode mip = linear ? vk::SamplerMipmapMode::eLinear : vk::SamplerMipmapMode::eNearest;
+  const vk::SamplerAddressMode address =
+      desc.address == AddressMode::Repeat ? vk::SamplerAddressMode::eRepeat : vk::SamplerAddressMode::eClampToEdge;
+  return vk::SamplerCreateInfo({}, filter, filter, mip, address, address, address, 0.0f, VK_FALSE, 1.0f,
+                               compare ? VK_TRUE : VK_FALSE,
+                               compare ? vk_compare_op(desc.compare) : vk::CompareOp::eNever, 0.0f, VK_LOD_CLAMP_NONE);
+}
+
+bool has_stencil(vk::Format format) {
+  return format == vk::Format::eD32SfloatS8Uint || format == vk::Format::eD24UnormS8Uint ||
+         format == vk::Format::eD16UnormS8Uint || format == vk::Format::eS8Uint;
 }
 
 vk::CompareOp vk_compare_op(CompareOp op) {

@@ -54,9 +54,13 @@ struct Buffer {
 struct Image {
   vk::raii::DeviceMemory memory{nullptr};
   vk::raii::Image image{nullptr};
-  vk::raii::ImageView view{nullptr};  // all levels and layers, the one aspect, of the shape's view type
+  // All levels and layers of the shape's view type, of the one aspect (the depth of a depth and
+  // stencil image: a sampled view has one aspect).
+  vk::raii::ImageView view{nullptr};
+  // A depth and stencil image's view of both aspects, the one it is attached by; else null.
+  vk::raii::ImageView attachment_view{nullptr};
   vk::Format format = vk::Format::eUndefined;
-  vk::ImageAspectFlags aspect;
+  vk::ImageAspectFlags aspect;  // every aspect the image has
   uint32_t width = 0;
   uint32_t height = 0;
   uint32_t levels = 1;
@@ -147,6 +151,10 @@ vk::Format vk_format(TextureFormat format);
 vk::CompareOp vk_compare_op(CompareOp op);
 vk::BlendFactor vk_blend_factor(BlendFactor factor);
 vk::BlendOp vk_blend_op(BlendOp op);
+vk::StencilOp vk_stencil_op(StencilOp op);
+// A sampler as `desc` says, comparing with desc.compare where `compare`; every mip level.
+vk::SamplerCreateInfo sampler_info(const SamplerDesc& desc, bool compare);
+bool has_stencil(vk::Format format);
 // Whether a uniform block, texture or separate sampler of `layout` sits at `binding` (of set 0).
 bool layout_has_binding(const ProgramLayout& layout, uint32_t binding);
 
@@ -163,9 +171,11 @@ struct DrawPipelineSpec {
   const std::map<uint32_t, TexelKind>& unsupplied_inputs;
   vk::PipelineLayout layout;
   vk::Format color_format;
-  vk::Format depth_format;  // eUndefined: no depth attachment, no depth test
+  vk::Format depth_format;  // eUndefined: no depth attachment, no depth test; with stencil or not
   uint32_t color_attachments = 1;  // each of color_format, written by the locations 0, 1, ...
-  DrawState state;  // culling, depth and blending (of attachment 0; any other is written as it is)
+  // Culling, depth, stencil (where depth_format has it) and blending (of attachment 0; any other
+  // is written as it is).
+  DrawState state;
 };
 // Triangles with `spec.state`; viewport and scissor dynamic.
 vk::raii::Pipeline create_draw_pipeline(const vk::raii::Device& device, const DrawPipelineSpec& spec);

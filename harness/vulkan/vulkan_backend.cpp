@@ -36,6 +36,7 @@ using vk_support::Recording;
 
 constexpr vk::Format kColorFormat = vk::Format::eR32G32B32A32Sfloat;
 constexpr vk::Format kDepthFormat = vk::Format::eD32Sfloat;
+constexpr vk::Format kDepthStencilFormat = vk::Format::eD32SfloatS8Uint;  // TargetDesc::stencil
 
 // ---- Resources ---------------------------------------------------------------------------------
 
@@ -67,7 +68,8 @@ struct Program {
   vk::raii::PipelineLayout pipeline_layout{nullptr};
   // [target has depth + 2 * target has a second colour attachment]
   // One per target kind (with depth or not, with a second colour or not) and draw state it is drawn with.
-  std::map<std::tuple<bool, bool, DrawState>, vk::raii::Pipeline> pipelines;
+  // By the target's depth format (eUndefined: none), whether it has a second colour, the state.
+  std::map<std::tuple<vk::Format, bool, DrawState>, vk::raii::Pipeline> pipelines;
 };
 
 // A failed vk::raii call says so; any other exception speaks for itself.
@@ -252,8 +254,11 @@ Result<void> VulkanBackend::init(const VulkanOptions& options) {
          (F::eColorAttachment | F::eSampledImage | F::eTransferSrc)) !=
             (F::eColorAttachment | F::eSampledImage | F::eTransferSrc) ||
         (format_features(kDepthFormat) & (F::eDepthStencilAttachment | F::eSampledImage)) !=
+            (F::eDepthStencilAttachment | F::eSampledImage) ||
+        (format_features(kDepthStencilFormat) & (F::eDepthStencilAttachment | F::eSampledImage)) !=
             (F::eDepthStencilAttachment | F::eSampledImage))
-      return fail(fmt::format("'{}' cannot render to and sample R32G32B32A32_SFLOAT and D32_SFLOAT",
+      return fail(fmt::format("'{}' cannot render to and sample R32G32B32A32_SFLOAT, D32_SFLOAT and "
+                              "D32_SFLOAT_S8_UINT",
                               info_.renderer));
 
     const auto families = physical_.getQueueFamilyProperties();
@@ -293,18 +298,7 @@ const vk::raii::Sampler& VulkanBackend::sampler(const SamplerDesc& desc, bool co
                                    compare ? std::optional<CompareOp>(desc.compare) : std::nullopt);
   auto found = samplers_.find(key);
   if (found != samplers_.end()) return found->second;
-  const vk::Filter filter =
-      desc.filter == Filter::Linear ? vk::Filter::eLinear : vk::Filter::eNearest;
-  const vk::SamplerMipmapMode mip = desc.filter == Filter::Linear ? vk::SamplerMipmapMode::eLinear
-                                                                  : vk::SamplerMipmapMode::eNearest;
-  const vk::SamplerAddressMode address = desc.address == AddressMode::Repeat
-                                             ? vk::SamplerAddressMode::eRepeat
-                                             : vk::SamplerAddressMode::eClampToEdge;
-  vk::SamplerCreateInfo info({}, filter, filter, mip, address, address, address, 0.0f, VK_FALSE,
-                             1.0f, compare ? VK_TRUE : VK_FALSE,
-                             compare ? vk_support::vk_compare_op(desc.compare) : vk::CompareOp::eNever, 0.0f,
-                             VK_LOD_CLAMP_NONE);
-  return samplers_.emplace(key, vk::raii::Sampler(device_, info)).first->second;
+  return samplers_.emplace(key, vk::raii::Sampler(device_, vk_support::sampler_info(desc, compare))).first->second;
 }
 
 void VulkanBackend::submit(const std::function<void(Recording&)>& record) {
@@ -346,10 +340,14 @@ Result<TargetHandle> VulkanBackend::create_target(const TargetDesc& desc) {
     };
     target->color = color_image("colour");
     if (desc.second_color) target->second_color = color_image("second colour");
+    if (desc.stencil && !desc.depth) return fail("create_target: a stencil buffer needs a depth buffer");
+    const vk::ImageAspectFlags depth_aspect =
+        desc.stencil ? vk::ImageAspectFlagBits::eDepth | vk::ImageAspectFlagBits::eStencil
+                     : vk::ImageAspectFlags(vk::ImageAspectFlagBits::eDepth);
     if (desc.depth)
       target->depth = vk_support::create_image(
           device_ref(),
-          {kDepthFormat, vk::ImageAspectFlagBits::eDepth, desc.width, desc.height, 1,
+          {desc.stencil ? kDepthStencilFormat : kDepthFormat, depth_aspect, desc.width, desc.height, 1,
            U::eDepthStencilAttachment | U::eSampled | U::eTransferSrc | U::eTransferDst,
            fmt::format("the depth of target {}", id), TextureFormat::Depth32Float});
     // Start from defined contents (zero colour, far depth) so that reads before a render are
@@ -366,8 +364,7 @@ Result<TargetHandle> VulkanBackend::create_target(const TargetDesc& desc) {
         rec.transition(*target->depth, vk::ImageLayout::eTransferDstOptimal);
         rec.cmd.clearDepthStencilImage(
             *target->depth->image, vk::ImageLayout::eTransferDstOptimal,
-            vk::ClearDepthStencilValue(1.0f, 0),
-            vk::ImageSubresourceRange(vk::ImageAspectFlagBits::eDepth, 0, 1, 0, 1));
+            vk::ClearDepthStencilValue(1.0f, 0), vk::ImageSubresourceRange(depth_aspect, 0, 1, 0, 1));
       }
     });
     return objects_.targets.insert(std::move(target));
@@ -628,9 +625,9 @@ Result<ProgramHandle> VulkanBackend::create_program(const ProgramDesc& desc) {
 }
 
 Result<vk::Pipeline> VulkanBackend::pipeline(Program& program, const Target& target, const DrawState& state) {
-  const bool depth = target.depth.has_value();
+  const vk::Format depth_format = target.depth ? target.depth->format : vk::Format::eUndefined;
   const bool second_color = target.second_color.has_value();
-  const auto key = std::tuple{depth, second_color, state};
+  const auto key = std::tuple{depth_format, second_color, state};
   if (auto known = program.pipelines.find(key); known != program.pipelines.end()) return *known->second;
   return guarded<vk::Pipeline>(
       fmt::format("creating the pipeline of program '{}'", program.name), [&]() -> Result<vk::Pipeline> {
@@ -638,7 +635,7 @@ Result<vk::Pipeline> VulkanBackend::pipeline(Program& program, const Target& tar
             key, vk_support::create_draw_pipeline(
                      device_, {*program.vertex, *program.fragment, program.vertex_entry.c_str(),
                                program.fragment_entry.c_str(), program.vertex_inputs, program.unsupplied_inputs,
-                               *program.pipeline_layout, kColorFormat, depth ? kDepthFormat : vk::Format::eUndefined,
+                               *program.pipeline_layout, kColorFormat, depth_format,
                                second_color ? 2u : 1u, state}));
         return *made.first->second;
       });
@@ -816,13 +813,14 @@ Result<void> VulkanBackend::render(const RenderPass& pass) {
       std::vector<vk::RenderingAttachmentInfo> colors{attachment(target->color, pass.clear_color)};
       if (target->second_color) colors.push_back(attachment(*target->second_color, glm::vec4(0.0f)));
       vk::RenderingAttachmentInfo depth;
+      const bool stencil = target->depth && *target->depth->attachment_view;
       if (target->depth)
         depth = vk::RenderingAttachmentInfo(
-            *target->depth->view, vk::ImageLayout::eDepthStencilAttachmentOptimal, {}, nullptr, {},
-            vk::AttachmentLoadOp::eClear, vk::AttachmentStoreOp::eStore,
-            vk::ClearDepthStencilValue(pass.clear_depth, 0));
-      rec.cmd.beginRendering(
-          vk::RenderingInfo({}, area, 1, 0, colors, target->depth ? &depth : nullptr));
+            stencil ? *target->depth->attachment_view : *target->depth->view,
+            vk::ImageLayout::eDepthStencilAttachmentOptimal, {}, nullptr, {}, vk::AttachmentLoadOp::eClear,
+            vk::AttachmentStoreOp::eStore, vk::ClearDepthStencilValue(pass.clear_depth, pass.clear_stencil));
+      rec.cmd.beginRendering(vk::RenderingInfo({}, area, 1, 0, colors, target->depth ? &depth : nullptr,
+                                               stencil ? &depth : nullptr));
       // Negative height: clip +y is up and row 0 is the top, as in Direct3D.
       const float width = static_cast<float>(target->color.width);
       const float height = static_cast<float>(target->color.height);

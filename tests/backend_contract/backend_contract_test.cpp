@@ -209,8 +209,11 @@ TEST_P(BackendContractTest, MeshTriangleInUpperClipHalfLandsInTheTopRows) {
                   "pixel " + std::to_string(x) + "," + std::to_string(y));
 }
 
+// With a stencil buffer beside the depth too: the depth is still what a pass samples.
 TEST_P(BackendContractTest, DepthIsZeroToOneLessTestedAndSampleable) {
-  auto target = backend().create_target({4, 4, true});
+  for (bool stencil : {false, true}) {
+  SCOPED_TRACE(stencil ? "with stencil" : "depth alone");
+  auto target = backend().create_target({4, 4, true, false, stencil});
   auto readback = backend().create_target({4, 4, false});
   ASSERT_TRUE(target && readback);
   // Near: the top half at z = 0.25. Far: the whole target at z = 0.75, drawn second.
@@ -246,6 +249,7 @@ TEST_P(BackendContractTest, DepthIsZeroToOneLessTestedAndSampleable) {
   ASSERT_TRUE(depth);
   EXPECT_NEAR(depth->at(2, 0).r, 0.25f, 1e-6f);
   EXPECT_NEAR(depth->at(2, 3).r, 0.75f, 1e-6f);
+  }
 }
 
 TEST_P(BackendContractTest, TextureRowZeroIsTheTopAndUniformBlocksBindByName) {
@@ -527,6 +531,137 @@ TEST_P(BackendContractTest, ADepthOffsetMovesASurfaceByUnitsOfDepth) {
     expect_near(image->at(1, 1), units < 0 ? glm::vec4(0, 1, 0, 1) : glm::vec4(1, 0, 0, 1),
                 "offset " + std::to_string(units));
   }
+}
+
+// Direct3D's stencil operations on an 8-bit value, worked out on the host.
+uint8_t stencil_after(StencilOp op, uint8_t stored, uint8_t reference) {
+  switch (op) {
+    case StencilOp::Keep: return stored;
+    case StencilOp::Zero: return 0;
+    case StencilOp::Replace: return reference;
+    case StencilOp::IncrementClamp: return stored == 255 ? 255 : uint8_t(stored + 1);
+    case StencilOp::DecrementClamp: return stored == 0 ? 0 : uint8_t(stored - 1);
+    case StencilOp::Invert: return uint8_t(~stored);
+    case StencilOp::IncrementWrap: return uint8_t(stored + 1);
+    case StencilOp::DecrementWrap: return uint8_t(stored - 1);
+  }
+  return stored;
+}
+
+bool compare_holds(CompareOp op, uint32_t a, uint32_t b) {
+  switch (op) {
+    case CompareOp::Never: return false;
+    case CompareOp::Less: return a < b;
+    case CompareOp::Equal: return a == b;
+    case CompareOp::LessEqual: return a <= b;
+    case CompareOp::Greater: return a > b;
+    case CompareOp::NotEqual: return a != b;
+    case CompareOp::GreaterEqual: return a >= b;
+    case CompareOp::Always: return true;
+  }
+  return false;
+}
+
+// The stored value after one face's test and operations, where the depth test passed or not.
+uint8_t stencil_written(const StencilState& s, const StencilFaceState& face, uint8_t stored, bool depth_passed) {
+  const bool passed = compare_holds(face.compare, s.reference & s.read_mask, stored & s.read_mask);
+  const StencilOp op = !passed ? face.fail : !depth_passed ? face.depth_fail : face.pass;
+  return uint8_t((stored & ~s.write_mask) | (stencil_after(op, stored, s.reference) & s.write_mask));
+}
+
+// A 4 x 2 target with stencil: a near plane (depth only) over the top row, then the drawn state's
+// quads, back faces over columns 0 and 1, front faces over 2 and 3, writing no colour. Eight
+// probe draws then read the stored value back bit by bit (each adds 2^b / 256 to red where bit b
+// is set), so that every pixel's stencil is compared with the host's: every comparison, every
+// operation as pass, fail and depth-fail, at 0, 255 and between, the masks, each face its own.
+TEST_P(BackendContractTest, TheStencilTestAndOperationsAreDirect3Ds) {
+  auto target = backend().create_target({4, 2, true, false, /*stencil=*/true});
+  auto near = backend().upload_mesh(upper_half(0.25f));
+  auto quads = backend().upload_mesh({{vertex_at(-1, -1, 0.5f), vertex_at(-1, 1, 0.5f), vertex_at(0, 1, 0.5f),
+                                       vertex_at(0, -1, 0.5f), vertex_at(0, -1, 0.5f), vertex_at(1, -1, 0.5f),
+                                       vertex_at(1, 1, 0.5f), vertex_at(0, 1, 0.5f)},
+                                      {0, 1, 2, 0, 2, 3, 4, 5, 6, 4, 6, 7}});
+  auto whole = backend().upload_mesh({{vertex_at(-1, -1, 0.5f), vertex_at(3, -1, 0.5f), vertex_at(-1, 3, 0.5f)}, {0, 1, 2}});
+  auto program = mesh_program("paint", kPaintFragment, layout({{"Paint", 0, 16}}, {}));
+  ASSERT_TRUE(target && near && quads && whole && program);
+
+  struct Case {
+    uint8_t cleared;
+    StencilState state;
+  };
+  std::vector<Case> cases;
+  const CompareOp compares[] = {CompareOp::Never,   CompareOp::Less,     CompareOp::Equal,        CompareOp::LessEqual,
+                                CompareOp::Greater, CompareOp::NotEqual, CompareOp::GreaterEqual, CompareOp::Always};
+  const StencilOp ops[] = {StencilOp::Keep,   StencilOp::Zero,          StencilOp::Replace,       StencilOp::IncrementClamp,
+                           StencilOp::DecrementClamp, StencilOp::Invert, StencilOp::IncrementWrap, StencilOp::DecrementWrap};
+  for (CompareOp compare : compares)
+    for (uint8_t reference : {uint8_t(0x10), uint8_t(0x3C), uint8_t(0xF0)})
+      cases.push_back({0x3C, {true, reference, 0xFF, 0xFF,
+                              {compare, StencilOp::Replace, StencilOp::Invert, StencilOp::IncrementWrap},
+                              {compare, StencilOp::DecrementClamp, StencilOp::Zero, StencilOp::Keep}}});
+  for (StencilOp op : ops)
+    for (uint8_t cleared : {uint8_t(0x00), uint8_t(0xFF), uint8_t(0x3C)}) {
+      cases.push_back({cleared, {true, 0x81, 0xFF, 0xFF, {CompareOp::Always, op, StencilOp::Keep, op},
+                                 {CompareOp::Never, StencilOp::Keep, op, StencilOp::Keep}}});
+      cases.push_back({cleared, {true, 0x81, 0xFF, 0xFF, {CompareOp::Never, StencilOp::Keep, op, StencilOp::Keep},
+                                 {CompareOp::Always, op, StencilOp::Keep, op}}});
+    }
+  // The read mask decides the test on its bits alone; the write mask keeps the others.
+  cases.push_back({0x3C, {true, 0xAC, 0x0F, 0xF0, {CompareOp::Equal, StencilOp::Invert, StencilOp::Zero, StencilOp::Invert},
+                          {CompareOp::NotEqual, StencilOp::Invert, StencilOp::Replace, StencilOp::Invert}}});
+  cases.push_back({0x3C, {true, 0x0C, 0x0F, 0x0F, {CompareOp::Less, StencilOp::Replace, StencilOp::IncrementClamp, StencilOp::Zero},
+                          {CompareOp::Equal, StencilOp::Replace, StencilOp::DecrementWrap, StencilOp::Zero}}});
+
+  for (size_t i = 0; i < cases.size(); ++i) {
+    const Case& c = cases[i];
+    RenderPass pass;
+    pass.target = *target;
+    pass.clear_stencil = c.cleared;
+    pass.draws.push_back(draw(*program, *near, paint({1, 1, 1, 1})));
+    pass.draws.back().state.color_write = 0;
+    pass.draws.push_back(draw(*program, *quads, paint({1, 1, 1, 1})));
+    pass.draws.back().state.color_write = 0;
+    pass.draws.back().state.stencil = c.state;
+    for (int bit = 0; bit < 8; ++bit) {
+      pass.draws.push_back(draw(*program, *whole, paint({float(1 << bit) / 256.0f, 0, 0, 0})));
+      DrawState& probe = pass.draws.back().state;
+      probe.depth_compare = CompareOp::Always;
+      probe.depth_write = false;
+      probe.blend = {true, BlendFactor::One, BlendFactor::One, BlendFactor::One, BlendFactor::One};
+      probe.stencil = {true, uint8_t(1 << bit), uint8_t(1 << bit), 0, {CompareOp::Equal}, {CompareOp::Equal}};
+    }
+    auto rendered = backend().render(pass);
+    ASSERT_TRUE(rendered) << rendered.error().to_string();
+    auto image = backend().read_color(*target);
+    ASSERT_TRUE(image);
+    for (uint32_t x : {0u, 3u})
+      for (uint32_t y : {0u, 1u}) {
+        const StencilFaceState& face = x < 2 ? c.state.back : c.state.front;
+        const uint8_t expected = stencil_written(c.state, face, c.cleared, /*depth_passed=*/y == 1);
+        EXPECT_EQ(std::lround(image->at(x, y).r * 256.0f), long(expected))
+            << "case " << i << ", " << (x < 2 ? "back" : "front") << " face, depth "
+            << (y == 1 ? "passed" : "failed");
+      }
+  }
+}
+
+// As depth is only where a target has depth, so is the stencil test: into a target without
+// stencil a draw with a stencil test that never passes draws as if there were none.
+TEST_P(BackendContractTest, AStencilTestWithoutAStencilBufferIsNotMade) {
+  auto target = backend().create_target({2, 2, true});
+  auto program = fullscreen_program("paint", kPaintFragment, layout({{"Paint", 0, 16}}, {}));
+  ASSERT_TRUE(target && program);
+  RenderPass pass;
+  pass.target = *target;
+  pass.draws.push_back(draw(*program, {}, paint({0, 1, 0, 1})));
+  pass.draws.back().state.stencil = {true, 0, 0xFF, 0xFF, {CompareOp::Never}, {CompareOp::Never}};
+  ASSERT_TRUE(backend().render(pass));
+  auto image = backend().read_color(*target);
+  ASSERT_TRUE(image);
+  expect_near(image->at(1, 1), {0, 1, 0, 1}, "drawn");
+  auto refused = backend().create_target({2, 2, false, false, /*stencil=*/true});
+  ASSERT_FALSE(refused);
+  EXPECT_NE(refused.error().message.find("needs a depth buffer"), std::string::npos) << refused.error().message;
 }
 
 TEST_P(BackendContractTest, ADrawProducesNoDriverMessages) {
