@@ -282,16 +282,21 @@ Result<Plan> plan_scene(const Scene& scene, const ShaderSearchPath& shaders) {
         return std::nullopt;
       };
       DrawState state;
+      bool alpha_to_mask = false;
       if (facts.render_state) {
         // A state in brackets reads the object's property, else the shader's default.
-        auto drawn = unity_draw_state(*facts.render_state, [&](const std::string& name) -> std::optional<float> {
+        const auto material_value = [&](const std::string& name) -> std::optional<float> {
           if (auto given = scene_value(name)) return given;
           for (const shaderlab::Property& property : facts.properties)
             if (property.name == name) return property.value[0];
           return std::nullopt;
-        });
+        };
+        auto drawn = unity_draw_state(*facts.render_state, material_value);
         if (!drawn) return fail(drawn.error());
         state = *drawn;
+        auto masked = unity_alpha_to_mask(*facts.render_state, material_value);
+        if (!masked) return fail(masked.error());
+        alpha_to_mask = *masked;
       }
       const std::vector<std::string> asked =
           with_inspector_keywords(facts.properties, facts.keyword_sets, instance.keywords, scene_value);
@@ -317,6 +322,12 @@ Result<Plan> plan_scene(const Scene& scene, const ShaderSearchPath& shaders) {
         }
         variant_names.resize(plan.variants.size());
         variant_names[variant] = std::move(variant_facts->names);
+      }
+      if (alpha_to_mask) {
+        const std::string note = "AlphaToMask On is drawn as Off: a target of one sample has no samples to mask "
+                                 "(OpenGL skips it, other APIs leave it to the driver)";
+        std::vector<std::string>& notes = plan.variant_notes[variant];
+        if (std::find(notes.begin(), notes.end(), note) == notes.end()) notes.push_back(note);
       }
       object_names = object_names ? merge_names(std::move(*object_names), variant_names[variant]) : variant_names[variant];
       draws.push_back({variant, state});

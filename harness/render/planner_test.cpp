@@ -241,6 +241,37 @@ TEST(Planner, AShadersToggleAndKeywordEnumPropertiesChooseItsVariant) {
   fs::remove_all(user);
 }
 
+// AlphaToMask On (here by a property's default) is drawn as Off on targets of one sample, and the
+// variant's notes say so, once for the two objects that draw it; a material that leaves it off
+// has no such note.
+TEST(Planner, AlphaToMaskOnIsNotedAsDrawnOff) {
+  const fs::path user = fs::temp_directory_path() / "xshade_planner_alpha_to_mask";
+  fs::remove_all(user);
+  fs::create_directories(user);
+  std::ofstream(user / "masked.shader") << R"(Shader "Masked" {
+  Properties { _A2C ("Alpha to coverage", Float) = 1 }
+  SubShader { Pass { AlphaToMask [_A2C] HLSLPROGRAM
+    #pragma vertex vert
+    #pragma fragment frag
+    float4 vert(float3 p : POSITION) : SV_Position { return float4(p, 1); }
+    float4 frag() : SV_Target { return 1; }
+    ENDHLSL } }
+})";
+  const std::string object = "[[object]]\nmesh = \"sphere\"\nmaterial = \"masked.shader\"\n";
+  const auto notes_of = [&](const std::string& objects) {
+    auto plan = plan_scene(scene(objects), ShaderSearchPath({user, kLibrary}));
+    EXPECT_TRUE(plan) << plan.error().to_string();
+    return plan && plan->variant_notes.size() == 1 ? plan->variant_notes[0] : std::vector<std::string>{"(no plan)"};
+  };
+  const auto noted = [](const std::vector<std::string>& notes) {
+    return std::count_if(notes.begin(), notes.end(),
+                         [](const std::string& note) { return note.starts_with("AlphaToMask On is drawn as Off"); });
+  };
+  EXPECT_EQ(noted(notes_of(object + object)), 1);
+  EXPECT_EQ(noted(notes_of(object + "[object.properties]\n_A2C = 0\n")), 0);
+  fs::remove_all(user);
+}
+
 // A .shader post effect blits the passes `passes` names, in that order, each compiled whole (its
 // own vertex program); each reads the step before as _MainTex unless its sources say otherwise.
 TEST(Planner, AShaderPostEffectBlitsItsPassesInTheOrderTheSceneGives) {

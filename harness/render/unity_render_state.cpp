@@ -231,20 +231,18 @@ Result<DrawState> unity_draw_state(const shaderlab::RenderState& state, const St
       out.blend.alpha_op = *alpha;
     }
   }
-  if (state.alpha_to_mask) {
-    auto on = choose(*state.alpha_to_mask, kSwitchWords, kSwitchNumbers, property, "AlphaToMask");
-    if (!on) return fail(on.error());
-    if (*on)
-      return fail("AlphaToMask On is not drawn yet: xshade's targets have one sample, where alpha to coverage is "
-                  "each driver's own dithering",
-                  state.alpha_to_mask->where);
-  }
+  if (auto alpha_to_mask = unity_alpha_to_mask(state, property); !alpha_to_mask) return fail(alpha_to_mask.error());
   if (state.stencil) {
     auto stencil = stencil_state(*state.stencil, property);
     if (!stencil) return fail(stencil.error());
     out.stencil = *stencil;
   }
   return out;
+}
+
+Result<bool> unity_alpha_to_mask(const shaderlab::RenderState& state, const StatePropertyLookup& property) {
+  if (!state.alpha_to_mask) return false;
+  return choose(*state.alpha_to_mask, kSwitchWords, kSwitchNumbers, property, "AlphaToMask");
 }
 
 Result<int> render_queue(const std::string& tag) {

@@ -21,9 +21,15 @@ using StatePropertyLookup = std::function<std::optional<float>(const std::string
 // nothing sets: Cull Back, ZWrite On, ZTest LEqual, Blend Off, ColorMask RGBA, Offset 0, 0, no
 // stencil test. A property's value is read as Unity's enums number them (UnityEngine.Rendering's
 // CullMode, CompareFunction, BlendMode, BlendOp, ColorWriteMask, StencilOp). What xshade does not
-// draw yet is an error at the command: AlphaToMask On, a logical or advanced BlendOp, a render
-// target's own blend other than the first's.
+// draw yet is an error at the command: a logical or advanced BlendOp, a render target's own blend
+// other than the first's.
 Result<DrawState> unity_draw_state(const shaderlab::RenderState& state, const StatePropertyLookup& property);
+
+// Whether the state turns AlphaToMask (alpha to coverage) on. It masks the samples of a pixel,
+// and xshade's targets have one: OpenGL skips it there, Vulkan and Direct3D leave the one
+// sample's fate to the driver, and Unity calls the result unpredictable without MSAA. So it is
+// drawn as Off on every lane, and the plan says so (unity_draw_state leaves it out).
+Result<bool> unity_alpha_to_mask(const shaderlab::RenderState& state, const StatePropertyLookup& property);
 
 // Unity's render queues: Background 1000, Geometry 2000, AlphaTest 2450, Transparent 3000,
 // Overlay 4000, with an offset ("Transparent+1"); a number as it is. A shader without the tag is

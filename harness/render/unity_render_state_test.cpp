@@ -109,6 +109,15 @@ TEST(UnityRenderState, StencilPropertiesAreUnitysEnumsAndAnInertBlockIsNoTest) {
   EXPECT_EQ(masking->stencil.back.pass, StencilOp::Replace);
 }
 
+TEST(UnityRenderState, AlphaToMaskIsReadAsAWordOrAPropertyAndLeavesTheDrawStateAlone) {
+  EXPECT_EQ(unity_alpha_to_mask(pass_state(""), properties({})).value_or(true), false);
+  EXPECT_EQ(unity_alpha_to_mask(pass_state("AlphaToMask True"), properties({})).value_or(false), true);
+  EXPECT_EQ(unity_alpha_to_mask(pass_state("AlphaToMask [_A2C]"), properties({{"_A2C", 0}})).value_or(true), false);
+  auto state = unity_draw_state(pass_state("AlphaToMask On"), properties({}));
+  ASSERT_TRUE(state) << state.error().to_string();
+  EXPECT_EQ(*state, unity_draw_state(pass_state(""), properties({})).value_or(DrawState{}));
+}
+
 TEST(UnityRenderState, WhatIsNotDrawnIsAnErrorAtItsCommand) {
   const auto error_of = [](const std::string& commands, std::map<std::string, float> values = {}) {
     auto state = unity_draw_state(pass_state(commands), properties(std::move(values)));
@@ -120,7 +129,8 @@ TEST(UnityRenderState, WhatIsNotDrawnIsAnErrorAtItsCommand) {
   EXPECT_EQ(error_of("BlendOp Multiply"), "s.shader:4:15: BlendOp Multiply is not drawn by xshade yet");
   EXPECT_EQ(error_of("Cull [_Cull]"), "s.shader:4:12: Cull [_Cull] names a property the material does not have");
   EXPECT_EQ(error_of("Cull [_Cull]", {{"_Cull", 7}}), "s.shader:4:12: Cull [_Cull] is 7, which is no value of Unity's enum for it");
-  EXPECT_NE(error_of("AlphaToMask On").find("AlphaToMask On is not drawn yet"), std::string::npos);
+  EXPECT_EQ(error_of("AlphaToMask [_A2C]", {{"_A2C", 2}}),
+            "s.shader:4:19: AlphaToMask [_A2C] is 2, which is no value of Unity's enum for it");
 }
 
 TEST(UnityRenderState, QueuesAreUnitysNumbers) {
