@@ -54,6 +54,11 @@ const std::vector<std::pair<std::string, fs::path>>& shaders_in(const fs::path& 
 
 }  // namespace
 
+// Unity 5 moved its shaders of before the Standard shader under this prefix and still finds them
+// by their old names, which its own shaders use (Fallback "VertexLit" for "Legacy
+// Shaders/VertexLit").
+constexpr std::string_view kLegacyPrefix = "Legacy Shaders/";
+
 std::string declared_shader_name(std::string_view text) {
   size_t at = text.starts_with("\xEF\xBB\xBF") ? 3 : 0;
   at = skip_space_and_comments(text, at);
@@ -66,9 +71,13 @@ std::string declared_shader_name(std::string_view text) {
 }
 
 Result<fs::path> find_shader_named(const std::string& name, const std::vector<fs::path>& folders) {
-  for (const fs::path& folder : folders)
-    for (const auto& [declared, path] : shaders_in(folder))
-      if (declared == name) return path;
+  std::vector<std::string> names = {name};
+  if (!name.starts_with(kLegacyPrefix)) names.push_back(std::string(kLegacyPrefix) + name);
+  for (const std::string& wanted : names) {
+    for (const fs::path& folder : folders)
+      for (const auto& [declared, path] : shaders_in(folder))
+        if (declared == wanted) return path;
+  }
   std::string list;
   for (const fs::path& folder : folders) list += (list.empty() ? "" : ", ") + folder.string();
   return fail("no .shader in the shader folders declares Shader \"" + name + "\" (searched " +

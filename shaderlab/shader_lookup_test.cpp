@@ -43,6 +43,10 @@ TEST(ShaderLookup, AShaderIsFoundByItsNameUnderTheFoldersInTheirOrder) {
   EXPECT_EQ(text.error().message, "no .shader in the shader folders declares Shader \"Hidden/Text\" (searched " +
                                       (root / "first").string() + ", " + (root / "second").string() + " and their subfolders)");
   EXPECT_FALSE(find_shader_named("legacy shaders/diffuse", folders)) << "Unity's names are matched exactly";
+  // A legacy shader by its name before Unity 5, as Unity's own shaders name them in a Fallback.
+  auto old_name = find_shader_named("VertexLit", folders);
+  ASSERT_TRUE(old_name) << old_name.error().to_string();
+  EXPECT_EQ(*old_name, root / "second" / "c.shader");
   fs::remove_all(root);
 }
 
