@@ -171,7 +171,7 @@ int compile_module(const CompileOptions& options, const std::filesystem::path& f
   return kPass;
 }
 
-// A Unity .shader: each program pass of its first SubShader (or the one --pass names), its text
+// A Unity .shader: each program pass of the SubShader it draws (or the one --pass names), its text
 // composed as Unity composes it and compiled with the .shader's folder first among the include
 // folders; several passes on standard output each under a header, or with -o OUT each in its own
 // files, OUT.passN.vert and OUT.passN.frag.
@@ -195,8 +195,12 @@ int compile_unity_shader(const CompileOptions& options, const std::filesystem::p
     for (const shaderlab::Pass& pass : sub->passes)
       if (pass.kind == shaderlab::PassKind::Program) passes.push_back(&pass);
   }
+  if (!sub && options.pass.empty()) {
+    fmt::print(stderr, "xshade compile: {}: '{}' {}\n", file.string(), shader->name, shaderlab::without_subshader(*shader));
+    return kBadInput;
+  }
   if (passes.empty()) {
-    fmt::print(stderr, "xshade compile: {}: its first SubShader has no pass with a program{}\n", file.string(),
+    fmt::print(stderr, "xshade compile: {}: the SubShader it draws has no pass with a program{}\n", file.string(),
                sub && sub->surface ? " (it is a surface shader, whose passes Unity generates; xshade does not generate them yet)"
                                    : "");
     return kBadInput;

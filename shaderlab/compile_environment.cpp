@@ -19,25 +19,50 @@ bool take_word(std::string_view& text, std::string_view word) {
   return true;
 }
 
+// What follows `#pragma <name>` on each line of `text` that says so, in order.
+std::vector<std::string_view> pragma_arguments(std::string_view text, std::string_view name) {
+  std::vector<std::string_view> found;
+  size_t line_start = 0;
+  while (line_start < text.size()) {
+    size_t line_end = text.find('\n', line_start);
+    if (line_end == std::string_view::npos) line_end = text.size();
+    std::string_view line = skip_blanks(text.substr(line_start, line_end - line_start));
+    line_start = line_end + 1;
+    if (line.empty() || line.front() != '#') continue;
+    line = skip_blanks(line.substr(1));
+    if (take_word(line, "pragma") && take_word(line, name)) found.push_back(line);
+  }
+  return found;
+}
+
+bool names_renderer(std::string_view renderers, std::string_view renderer) {
+  while (!(renderers = skip_blanks(renderers)).empty()) {
+    const size_t end = std::min(renderers.find_first_of(" \t\r/"), renderers.size());
+    if (renderers.substr(0, end) == renderer) return true;
+    if (end < renderers.size() && renderers[end] == '/') break;  // a comment
+    renderers.remove_prefix(end);
+  }
+  return false;
+}
+
 }  // namespace
 
 int shader_target(std::string_view program_text) {
   int highest = 0;
-  size_t line_start = 0;
-  while (line_start < program_text.size()) {
-    size_t line_end = program_text.find('\n', line_start);
-    if (line_end == std::string_view::npos) line_end = program_text.size();
-    std::string_view line = skip_blanks(program_text.substr(line_start, line_end - line_start));
-    line_start = line_end + 1;
-    if (line.empty() || line.front() != '#') continue;
-    line = skip_blanks(line.substr(1));
-    if (!take_word(line, "pragma") || !take_word(line, "target")) continue;
+  for (std::string_view target : pragma_arguments(program_text, "target"))
     // X.Y: a digit, a point, a digit.
-    if (line.size() >= 3 && std::isdigit(static_cast<unsigned char>(line[0])) && line[1] == '.' &&
-        std::isdigit(static_cast<unsigned char>(line[2])))
-      highest = std::max(highest, (line[0] - '0') * 10 + (line[2] - '0'));
-  }
+    if (target.size() >= 3 && std::isdigit(static_cast<unsigned char>(target[0])) && target[1] == '.' &&
+        std::isdigit(static_cast<unsigned char>(target[2])))
+      highest = std::max(highest, (target[0] - '0') * 10 + (target[2] - '0'));
   return highest > 0 ? highest : kDefaultShaderTarget;
+}
+
+bool compiles_for_platform(std::string_view program_text) {
+  for (std::string_view only : pragma_arguments(program_text, "only_renderers"))
+    if (!names_renderer(only, kUnityRenderer)) return false;
+  for (std::string_view excluded : pragma_arguments(program_text, "exclude_renderers"))
+    if (names_renderer(excluded, kUnityRenderer)) return false;
+  return true;
 }
 
 std::vector<Define> unity_defines(std::string_view program_text) {

@@ -25,6 +25,13 @@ inline constexpr int kDefaultShaderTarget = 25;
 // UNITY_VERSION with -D.
 inline constexpr int kUnityVersion = 201941;
 
+// The platform as `#pragma only_renderers` and `exclude_renderers` name it.
+inline constexpr std::string_view kUnityRenderer = "glcore";
+
+// Whether Unity compiles a program with that text for the platform: no `#pragma only_renderers`
+// leaves it out, no `#pragma exclude_renderers` names it.
+bool compiles_for_platform(std::string_view program_text);
+
 // SHADER_TARGET for a program's text: the highest `#pragma target X.Y` it holds as XY, else
 // Unity's default. A target Unity names by feature ("gl4.1", "es3.0") leaves the default.
 int shader_target(std::string_view program_text);

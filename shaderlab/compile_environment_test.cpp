@@ -16,6 +16,19 @@ TEST(CompileEnvironment, ShaderTargetIsTheHighestPragmaTargetOrUnitysDefault) {
   EXPECT_EQ(shader_target("#pragma targetx 3.0\n// #pragma target 3.0\n#pragma target gl4.1\n"), 25);
 }
 
+// PPv2's Uber shader keeps one SubShader for Vulkan and one for GLES out of the others this way.
+TEST(CompileEnvironment, OnlyAndExcludeRenderersSayWhetherAProgramIsCompiledForGlCore) {
+  EXPECT_TRUE(compiles_for_platform("float4 frag() : SV_Target { return 1; }"));
+  EXPECT_TRUE(compiles_for_platform("#pragma exclude_renderers gles gles3 d3d11_9x\n"));
+  EXPECT_TRUE(compiles_for_platform("  #  pragma only_renderers d3d11 glcore // and no other\n"));
+  EXPECT_TRUE(compiles_for_platform("#pragma exclude_renderers nomrt\n"));  // GLCore has several render targets
+  EXPECT_FALSE(compiles_for_platform("#pragma exclude_renderers gles vulkan glcore switch\n"));
+  EXPECT_FALSE(compiles_for_platform("#pragma only_renderers vulkan switch\n"));
+  EXPECT_FALSE(compiles_for_platform("#pragma only_renderers d3d11 // glcore\n"));
+  EXPECT_FALSE(compiles_for_platform("#pragma only_renderers glcore\n#pragma exclude_renderers glcore\n"));
+  EXPECT_FALSE(compiles_for_platform("#pragma only_renderers glcoreish\n"));
+}
+
 TEST(CompileEnvironment, TheDefinesAreUnitysGlCoreOnADesktopOfTierThree) {
   const std::vector<Define> defines = unity_defines("#pragma target 3.0\n");
   const auto value = [&](const std::string& name) -> std::string {

@@ -1,6 +1,9 @@
 #include "shaderlab/pass_program.h"
 
+#include <algorithm>
 #include <charconv>
+
+#include "shaderlab/compile_environment.h"
 
 namespace xshade::shaderlab {
 namespace {
@@ -20,12 +23,26 @@ std::string pass_label(const Pass& pass, size_t index) {
 }  // namespace
 
 const SubShader* drawn_subshader(const Shader& shader) {
-  return shader.subshaders.empty() ? nullptr : &shader.subshaders.front();
+  for (const SubShader& sub : shader.subshaders) {
+    const bool runs = std::all_of(sub.passes.begin(), sub.passes.end(), [&](const Pass& pass) {
+      if (pass.kind != PassKind::Program) return true;
+      auto program = pass_program(sub, pass);
+      return !program || compiles_for_platform(program->text);
+    });
+    if (runs) return &sub;
+  }
+  return nullptr;
+}
+
+std::string without_subshader(const Shader& shader) {
+  return shader.subshaders.empty() ? "has no SubShader"
+                                   : "has no SubShader that Unity compiles for GLCore (#pragma only_renderers or "
+                                     "exclude_renderers keeps each out)";
 }
 
 Result<const Pass*> find_pass(const Shader& shader, const std::string& choice) {
   const SubShader* sub = drawn_subshader(shader);
-  if (!sub) return fail("the shader '" + shader.name + "' has no SubShader");
+  if (!sub) return fail("the shader '" + shader.name + "' " + without_subshader(shader));
   size_t index = 0;
   const auto [end, error] = std::from_chars(choice.data(), choice.data() + choice.size(), index);
   if (error == std::errc() && end == choice.data() + choice.size()) {
@@ -36,7 +53,7 @@ Result<const Pass*> find_pass(const Shader& shader, const std::string& choice) {
   }
   std::string list;
   for (size_t i = 0; i < sub->passes.size(); ++i) list += (i ? ", " : "") + pass_label(sub->passes[i], i);
-  return fail(ErrorKind::Usage, "the shader '" + shader.name + "' has no pass '" + choice + "' in its first SubShader (its passes: " +
+  return fail(ErrorKind::Usage, "the shader '" + shader.name + "' has no pass '" + choice + "' in the SubShader it draws (its passes: " +
                                     (list.empty() ? "none" : list) + ")");
 }
 

@@ -25,9 +25,12 @@ struct PassProgram {
   size_t index = 0;                 // of the pass in its SubShader
 };
 
-// The SubShader xshade draws: the first one (Unity takes the first its platform supports; every
-// lane supports every SubShader a reader accepts).
+// The SubShader xshade draws, as Unity takes the first its platform runs: the first none of whose
+// programs `#pragma only_renderers` or `exclude_renderers` keeps from Unity's GLCore
+// (compile_environment.h); null when there is none, and the shader is drawn as its Fallback.
 const SubShader* drawn_subshader(const Shader& shader);
+// Why a shader has no drawn SubShader: "has no SubShader", or that none runs on the platform.
+std::string without_subshader(const Shader& shader);
 
 // The pass `choice` names in the drawn SubShader: its index ("0", "1", ...) or its Name, ignoring
 // case as UsePass does. An error lists the passes there are.

@@ -86,8 +86,36 @@ TEST(PassProgram, APassIsFoundByIndexOrByNameIgnoringCase) {
   auto missing = find_pass(shader, "Body");
   ASSERT_FALSE(missing);
   EXPECT_EQ(missing.error().message,
-            "the shader 'Toon' has no pass 'Body' in its first SubShader (its passes: 0 (\"Outline\"), 1, 2)");
+            "the shader 'Toon' has no pass 'Body' in the SubShader it draws (its passes: 0 (\"Outline\"), 1, 2)");
   EXPECT_FALSE(find_pass(shader, "3"));
+}
+
+// Unity takes the first SubShader its platform runs: one whose pass (or include block) keeps
+// GLCore out is passed over; with none left, there is no SubShader to draw.
+TEST(PassProgram, TheDrawnSubShaderIsTheFirstWhosePassesAreCompiledForGlCore) {
+  const Shader shader = read(R"SL(Shader "Uber" {
+  SubShader { Pass { Name "A" HLSLPROGRAM
+    #pragma only_renderers vulkan switch
+    ENDHLSL } }
+  SubShader {
+    HLSLINCLUDE
+    #pragma exclude_renderers glcore
+    ENDHLSL
+    Pass { Name "B" HLSLPROGRAM
+    ENDHLSL } }
+  SubShader { Pass { Name "C" HLSLPROGRAM
+    #pragma exclude_renderers gles vulkan switch
+    ENDHLSL } }
+})SL");
+  ASSERT_NE(drawn_subshader(shader), nullptr);
+  EXPECT_EQ(drawn_subshader(shader)->passes.at(0).name, "C");
+  auto found = find_pass(shader, "a");
+  EXPECT_FALSE(found) << "pass A is not in the SubShader drawn";
+
+  const Shader none = read("Shader \"Gles\" { SubShader { Pass { CGPROGRAM\n#pragma only_renderers gles\nENDCG } } }");
+  EXPECT_EQ(drawn_subshader(none), nullptr);
+  EXPECT_EQ(without_subshader(none),
+            "has no SubShader that Unity compiles for GLCore (#pragma only_renderers or exclude_renderers keeps each out)");
 }
 
 TEST(PassProgram, AGlslProgramIsAnErrorAtItsLine) {

@@ -132,7 +132,7 @@ class NamedShaders {
   std::map<std::string, std::pair<shaderlab::Shader, fs::path>> read_;  // by the name they were asked for
 };
 
-// The pass UsePass "Shader/NAME" names: NAME in the first SubShader of the shader of that name,
+// The pass UsePass "Shader/NAME" names: NAME in the SubShader the shader of that name draws,
 // matched in upper case as Unity does.
 Result<SourcePass> used_pass(const shaderlab::Pass& use, NamedShaders& named) {
   const auto [shader_name, pass_name] = shaderlab::split_used_pass(use.used);
@@ -143,7 +143,7 @@ Result<SourcePass> used_pass(const shaderlab::Pass& use, NamedShaders& named) {
     for (const shaderlab::Pass& pass : sub->passes)
       if (!pass.name.empty() && shaderlab::same_word(pass.name, pass_name)) return SourcePass{sub, &pass, found->second};
   return fail(Error{"UsePass \"" + use.used + "\": the shader '" + shader_name + "' (" + found->second.string() +
-                        ") has no pass named '" + pass_name + "' in its first SubShader",
+                        ") has no pass named '" + pass_name + "' in the SubShader it draws",
                     use.where,
                     {}});
 }
@@ -161,13 +161,13 @@ Result<SourceModule> compile_source(const fs::path& path, hlsl::CompileOptions o
   if (!read) return fail(read.error());
   NamedShaders named(options.include_dirs);
   SourceModule source;
-  // A shader without a SubShader is drawn by its Fallback, as Unity draws a shader none of whose
-  // SubShaders the platform runs (every SubShader xshade reads runs on every lane).
+  // A shader without a SubShader the platform runs (shaderlab::drawn_subshader) is drawn by its
+  // Fallback, as Unity draws it.
   const shaderlab::Shader* shader = &*read;
   fs::path file = path;
   for (int hops = 0; !shaderlab::drawn_subshader(*shader); ++hops) {
     if (!shader->fallback || shader->fallback->empty())
-      return fail("'" + shader->name + "' has no SubShader to draw" + (shader->fallback ? " (Fallback Off)" : ""),
+      return fail("'" + shader->name + "' " + shaderlab::without_subshader(*shader) + (shader->fallback ? " (Fallback Off)" : ""),
                   {file.string(), 1, 1});
     if (hops == kLongestFallbackChain)
       return fail("'" + shader->name + "' falls back after " + std::to_string(kLongestFallbackChain) +
@@ -175,7 +175,8 @@ Result<SourceModule> compile_source(const fs::path& path, hlsl::CompileOptions o
                   {file.string(), 1, 1});
     auto fallback = named.read(*shader->fallback, {file.string(), 1, 1});
     if (!fallback) return fail(fallback.error());
-    source.notes.push_back("'" + shader->name + "' has no SubShader: drawn as its Fallback '" + *shader->fallback + "' (" +
+    source.notes.push_back("'" + shader->name + "' " + shaderlab::without_subshader(*shader) + ": drawn as its Fallback '" +
+                           *shader->fallback + "' (" +
                            fallback->second.string() + ")");
     shader = fallback->first;
     file = fallback->second;

@@ -245,7 +245,7 @@ TEST_F(UnityShaderSource, AShaderWithoutASubShaderIsDrawnAsItsFallback) {
 
   auto fallback_off = compile_source(off, in_folders({folder_}));
   ASSERT_FALSE(fallback_off);
-  EXPECT_EQ(fallback_off.error().to_string(), off.string() + ":1:1: 'Off' has no SubShader to draw (Fallback Off)");
+  EXPECT_EQ(fallback_off.error().to_string(), off.string() + ":1:1: 'Off' has no SubShader (Fallback Off)");
 
   auto cycle = compile_source(loop, in_folders({folder_}));
   ASSERT_FALSE(cycle);

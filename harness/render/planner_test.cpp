@@ -342,7 +342,7 @@ passes = ["down", { pass = 0, name = "half", scale = "half" }, { pass = "Glow", 
   auto missing = plan_scene(scene("[[post]]\neffect = \"blur.shader\"\npasses = [\"Blur\"]\n"), folders);
   ASSERT_FALSE(missing);
   EXPECT_EQ(missing.error().to_string(),
-            "/tmp/planner_test.toml:12:11: the shader 'Hidden/Blur' has no pass 'Blur' in its first SubShader (its passes: "
+            "/tmp/planner_test.toml:12:11: the shader 'Hidden/Blur' has no pass 'Blur' in the SubShader it draws (its passes: "
             "0 (\"Down\"), 1 (\"Glow\"))");
   auto hlsl_passes = plan_scene(scene("[[post]]\neffect = \"post/depth_of_field.hlsl\"\npasses = [0]\n"), folders);
   ASSERT_FALSE(hlsl_passes);

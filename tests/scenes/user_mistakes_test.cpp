@@ -380,7 +380,7 @@ TEST(CommandLine, CompileReadsAUnityShaderPassByPass) {
   EXPECT_NE(cg.output.find("Two.shader:23:16: a CGPROGRAM includes Unity's HLSLSupport.cginc"), std::string::npos) << cg.output;
   Outcome unknown = run_xshade("", "compile " + shader + " --pass Outline");
   EXPECT_EQ(unknown.exit_code, 2) << unknown.output;
-  EXPECT_NE(unknown.output.find("has no pass 'Outline' in its first SubShader (its passes: 0 (\"Body\"), 1, 2)"),
+  EXPECT_NE(unknown.output.find("has no pass 'Outline' in the SubShader it draws (its passes: 0 (\"Body\"), 1, 2)"),
             std::string::npos)
       << unknown.output;
   // Every pass to files: each pass that compiles is written beside the others, the rest say why.
