@@ -122,6 +122,18 @@ std::vector<std::string> variant_keywords(const std::vector<hlsl::KeywordSet>& s
   return {keywords.begin(), keywords.end()};
 }
 
+// A keyword the scene turns on for every shader that declares it, as Unity's global keywords (the
+// fog's) are: asked of the set that holds it, unless the object asks another of that set.
+void add_global_keyword(const std::string& keyword, const std::vector<hlsl::KeywordSet>& sets,
+                        std::vector<std::string>& asked) {
+  for (const hlsl::KeywordSet& set : sets) {
+    if (std::find(set.keywords.begin(), set.keywords.end(), keyword) == set.keywords.end()) continue;
+    if (std::find_first_of(set.keywords.begin(), set.keywords.end(), asked.begin(), asked.end()) == set.keywords.end())
+      asked.push_back(keyword);
+    return;
+  }
+}
+
 size_t combinations(const std::vector<hlsl::KeywordSet>& sets) {
   size_t count = 1;
   for (const hlsl::KeywordSet& set : sets) count *= set.keywords.size();
@@ -298,8 +310,9 @@ Result<Plan> plan_scene(const Scene& scene, const ShaderSearchPath& shaders) {
         if (!masked) return fail(masked.error());
         alpha_to_mask = *masked;
       }
-      const std::vector<std::string> asked =
+      std::vector<std::string> asked =
           with_inspector_keywords(facts.properties, facts.keyword_sets, instance.keywords, scene_value);
+      if (scene.fog) add_global_keyword(fog_keyword(scene.fog->mode), facts.keyword_sets, asked);
       VariantRequest request{facts.path, instance.material, variant_keywords(facts.keyword_sets, asked), {}};
       request.shader_pass = pass;
       used_combinations[instance.material].insert(request.keywords);

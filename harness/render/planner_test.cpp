@@ -241,6 +241,38 @@ TEST(Planner, AShadersToggleAndKeywordEnumPropertiesChooseItsVariant) {
   fs::remove_all(user);
 }
 
+// A scene's fog turns its mode's keyword on in every shader with Unity's fog keywords, as Unity's
+// global fog keyword does; an object that asks another of the set keeps its own, a shader without
+// the set gets none, and without fog the set's first (no fog) is drawn.
+TEST(Planner, TheScenesFogChoosesTheFogKeywordOfShadersThatHaveIt) {
+  const fs::path user = fs::temp_directory_path() / "xshade_planner_fog";
+  fs::remove_all(user);
+  fs::create_directories(user / "materials");
+  std::ofstream(user / "materials" / "fogged.hlsl") << R"(#pragma vertex vert
+#pragma fragment frag
+#pragma multi_compile_fog
+float4 vert(float3 p : POSITION) : SV_Position { return float4(p, 1); }
+float4 frag() : SV_Target { return 1; }
+)";
+  const auto keywords_of = [&](const std::string& body) {
+    auto plan = plan_scene(scene(body), ShaderSearchPath({user, kLibrary}));
+    EXPECT_TRUE(plan) << plan.error().to_string();
+    std::vector<std::vector<std::string>> keywords;
+    if (plan)
+      for (const VariantRequest& variant : plan->variants) keywords.push_back(variant.keywords);
+    return keywords;
+  };
+  const std::string fogged = "[[object]]\nmesh = \"sphere\"\nmaterial = \"materials/fogged.hlsl\"\n";
+  const std::string own = fogged + "keywords = [\"FOG_EXP\"]\n";
+  const std::string unfogged = "[[object]]\nmesh = \"sphere\"\nmaterial = \"materials/toon.hlsl\"\n";
+  using Keywords = std::vector<std::vector<std::string>>;
+  EXPECT_EQ(keywords_of("[fog]\nmode = \"linear\"\n" + fogged + own + unfogged),
+            (Keywords{{"FOG_LINEAR"}, {"FOG_EXP"}, {}}));
+  EXPECT_EQ(keywords_of("[fog]\n" + fogged), (Keywords{{"FOG_EXP2"}}));
+  EXPECT_EQ(keywords_of(fogged), (Keywords{{}}));
+  fs::remove_all(user);
+}
+
 // AlphaToMask On (here by a property's default) is drawn as Off on targets of one sample, and the
 // variant's notes say so, once for the two objects that draw it; a material that leaves it off
 // has no such note.

@@ -102,6 +102,16 @@ UniformValueMap frame_inputs(const Scene& scene, const ShCoefficients& sh) {
   // Linear colour space: Unity's luminance weights for linear RGB, w = 1.
   values["unity_ColorSpaceLuminance"] = {0.0396819152f, 0.458021790f, 0.00609653955f, 1.0f};
 
+  // Fog as Unity sets it from its RenderSettings (the scene's, else Unity's defaults, which a
+  // shader reads only with a fog keyword on): x = density / sqrt(ln 2), y = density / ln 2,
+  // z = -1 / (end - start), w = end / (end - start) (UnityShaderVariables.cginc).
+  const FogSpec fog = scene.fog.value_or(FogSpec{});
+  const float ln2 = std::log(2.0f);
+  values["unity_FogColor"] = components(fog.color);
+  const float span = fog.end - fog.start;  // the scene refuses linear fog without one; kept finite for the others
+  values["unity_FogParams"] = {fog.density / std::sqrt(ln2), fog.density / ln2, span > 0.0f ? -1.0f / span : 0.0f,
+                               span > 0.0f ? fog.end / span : 0.0f};
+
   // The light: a directional one is its direction toward the light with w = 0; its colour is
   // Unity's Color (alpha 1) times the intensity, alpha included.
   values["_WorldSpaceLightPos0"] = components(glm::vec4(light.direction, 0.0f));

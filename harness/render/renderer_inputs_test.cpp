@@ -88,6 +88,25 @@ TEST(RendererInputs, TimeAndScreenAreUnitysLayout) {
   EXPECT_EQ(vec4_of(values.at("_ProjectionParams")), glm::vec4(1.0f, 0.3f, 50.0f, 0.02f));
 }
 
+// unity_FogParams through UnityCG.cginc's UNITY_CALC_FOG_FACTOR_RAW for each mode gives the fog
+// factor Unity's manual defines: (end - z) / (end - start), exp(-density z), exp(-(density z)^2).
+TEST(RendererInputs, FogParamsGiveUnitysFogFactorsForEachMode) {
+  Scene scene = test_scene();
+  scene.fog = FogSpec{FogMode::Linear, {0.2f, 0.3f, 0.4f, 1.0f}, 0.05f, 2.0f, 12.0f};
+  const UniformValueMap values = frame_inputs(scene, {});
+  EXPECT_EQ(vec4_of(values.at("unity_FogColor")), glm::vec4(0.2f, 0.3f, 0.4f, 1.0f));
+  const glm::vec4 p = vec4_of(values.at("unity_FogParams"));
+  for (float z : {2.0f, 5.0f, 12.0f}) {
+    EXPECT_NEAR(z * p.z + p.w, (12.0f - z) / 10.0f, 1e-6f) << "linear at " << z;
+    EXPECT_NEAR(std::exp2(-p.y * z), std::exp(-0.05f * z), 1e-6f) << "exponential at " << z;
+    EXPECT_NEAR(std::exp2(-(p.x * z) * (p.x * z)), std::exp(-(0.05f * z) * (0.05f * z)), 1e-6f) << "squared at " << z;
+  }
+  // Without fog, Unity's defaults (grey, density 0.01, 0 to 300), read only with a fog keyword.
+  const glm::vec4 defaults = vec4_of(frame_inputs(test_scene(), {}).at("unity_FogParams"));
+  EXPECT_NEAR(std::exp2(-defaults.y * 100.0f), std::exp(-1.0f), 1e-6f);
+  EXPECT_NEAR(150.0f * defaults.z + defaults.w, 0.5f, 1e-6f);
+}
+
 TEST(RendererInputs, ObjectInputsInvertAndFlagAMirroringTransform) {
   UniformValueMap values;
   const glm::mat4 mirrored = model_matrix({1, 2, 3}, {10, 20, 30}, {-1, 2, 1});

@@ -58,7 +58,7 @@ class SceneReader : SceneValueReader {
 
   void read_root(const toml::table& root, Scene& scene) {
     check_keys(root, "",
-               {"description", "size", "lanes", "clear_color", "time", "camera", "light", "environment", "object",
+               {"description", "size", "lanes", "clear_color", "time", "camera", "light", "environment", "fog", "object",
                 "post", "compare", "timeout", "timeout_reason"});
 
     if (const toml::node* node = root.get("description")) {
@@ -93,6 +93,7 @@ class SceneReader : SceneValueReader {
 
     if (const toml::table* environment = table(root, "", "environment", false))
       read_environment(*environment, scene.environment);
+    if (const toml::table* fog = table(root, "", "fog", false)) read_fog(*fog, scene.fog.emplace());
 
     std::vector<const toml::table*> objects = table_array(root, "object");
     for (size_t i = 0; i < objects.size(); ++i) read_object(*objects[i], i, scene);
@@ -256,6 +257,33 @@ class SceneReader : SceneValueReader {
       if (auto value = float_value(*node, path + ".intensity", "a number >= 0", non_negative)) light.intensity = *value;
     }
     if (ok) scene.lights.push_back(light);
+  }
+
+  void read_fog(const toml::table& table, FogSpec& fog) {
+    check_keys(table, "fog", {"mode", "color", "density", "start", "end"});
+    const char* const modes = "\"linear\", \"exponential\" or \"exponential_squared\"";
+    if (const toml::node* node = table.get("mode")) {
+      const auto* name = node->as_string();
+      if (name && name->get() == "linear") fog.mode = FogMode::Linear;
+      else if (name && name->get() == "exponential") fog.mode = FogMode::Exponential;
+      else if (name && name->get() == "exponential_squared") fog.mode = FogMode::ExponentialSquared;
+      else expected(*node, "fog.mode", modes);
+    }
+    if (const toml::node* node = table.get("color")) {
+      if (auto value = vector<4>(*node, "fog.color", "a number >= 0", non_negative)) fog.color = *value;
+    }
+    if (const toml::node* node = table.get("density")) {
+      if (auto value = float_value(*node, "fog.density", "a number >= 0", non_negative)) fog.density = *value;
+    }
+    for (const auto& [key, out] : {std::pair{"start", &fog.start}, std::pair{"end", &fog.end}})
+      if (const toml::node* node = table.get(key)) {
+        if (auto value = float_value(*node, key_path("fog", key), "a distance >= 0", non_negative)) *out = *value;
+      }
+    // Unity divides by end - start.
+    if (fog.mode == FogMode::Linear && fog.end <= fog.start)
+      report(table.source(), fmt::format("fog: linear fog ends where it starts or before ({} to {}): give an end "
+                                         "beyond the start",
+                                         fog.start, fog.end));
   }
 
   void read_environment(const toml::table& table, EnvironmentSpec& environment) {
@@ -766,28 +794,6 @@ class SceneReader : SceneValueReader {
   std::map<std::string, size_t> object_names_;  // each object's name, the first object of that name
 };
 
-PropertyValue interpolate(const VaryRule& rule, uint32_t index, uint32_t count) {
-  PropertyValue value = rule.from;
-  if (count <= 1) return value;
-  float t = static_cast<float>(index) / static_cast<float>(count - 1);
-  for (uint32_t i = 0; i < value.count; ++i)
-    value.components[i] = rule.from.components[i] + (rule.to.components[i] - rule.from.components[i]) * t;
-  return value;
-}
-
-ObjectInstance instance_of(const SceneObject& object, size_t index, const glm::vec3& position) {
-  ObjectInstance instance;
-  instance.object_name = object.name;
-  instance.object_index = index;
-  instance.model = model_matrix(position, object.rotation_degrees, object.scale);
-  instance.mesh = object.mesh;
-  instance.material = object.material;
-  instance.keywords = object.keywords;
-  instance.textures = object.textures;
-  instance.properties = object.properties;
-  return instance;
-}
-
 }  // namespace
 
 Result<Scene> parse_scene(std::string_view text, const std::filesystem::path& file) {
@@ -801,100 +807,6 @@ Result<Scene> load_scene(const std::filesystem::path& file) {
   text << stream.rdbuf();
   if (stream.bad()) return fail("cannot read the scene file", SourceLocation{file.string(), 0, 0});
   return parse_scene(text.str(), file);
-}
-
-Result<void> check_scene_work(const Scene& scene) {
-  struct Step {
-    uint64_t draws = 0;  // up to and with this object or effect
-    std::string path;    // "object[3]", "post[0]"
-    SourceLocation where;
-  };
-  // The draws up to each object and post effect, so that the error points at where a budget is
-  // passed.
-  std::vector<Step> steps;
-  uint64_t draws = 0;
-  for (size_t i = 0; i < scene.objects.size(); ++i) {
-    const SceneObject& object = scene.objects[i];
-    draws += object.grid ? uint64_t(object.grid->rows) * object.grid->cols : 1;
-    steps.push_back({draws, index_path("object", i), object.where.fallback});
-  }
-  for (size_t i = 0; i < scene.post.size(); ++i)
-    steps.push_back({++draws, index_path("post", i), scene.post[i].where.fallback});
-  auto passing = [&](uint64_t limit, uint64_t per_draw) -> const Step& {
-    for (const Step& step : steps)
-      if (step.draws * per_draw > limit) return step;
-    return steps.back();
-  };
-  const uint64_t pixels = uint64_t(scene.width) * scene.height;
-  const std::string counted =
-      fmt::format("{} objects, a draw for each without a grid and for each cell of a grid, and {} post effects",
-                  scene.objects.size(), scene.post.size());
-  if (draws > kMaxSceneDraws) {
-    const Step& step = passing(kMaxSceneDraws, 1);
-    return fail(fmt::format("{}: here the scene passes {} draws, the most a scene may make; it makes {} in all ({})",
-                            step.path, kMaxSceneDraws, draws, counted),
-                step.where);
-  }
-  if (draws * pixels > kMaxScenePixelDraws) {
-    const Step& step = passing(kMaxScenePixelDraws, pixels);
-    return fail(fmt::format("{}: here the scene passes {} pixel-draws (draws times the {} x {} = {} pixels each may "
-                            "cover), the most a scene may make; it makes {} in all ({} draws: {})",
-                            step.path, kMaxScenePixelDraws, scene.width, scene.height, pixels, draws * pixels, draws,
-                            counted),
-                step.where);
-  }
-  return {};
-}
-
-glm::mat4 model_matrix(const glm::vec3& position, const glm::vec3& rotation_degrees, const glm::vec3& scale) {
-  glm::mat4 model = glm::translate(glm::mat4(1.0f), position);
-  // Matrices apply right to left: the vertex turns about X first, then Y, then Z.
-  model = glm::rotate(model, glm::radians(rotation_degrees.z), glm::vec3(0.0f, 0.0f, 1.0f));
-  model = glm::rotate(model, glm::radians(rotation_degrees.y), glm::vec3(0.0f, 1.0f, 0.0f));
-  model = glm::rotate(model, glm::radians(rotation_degrees.x), glm::vec3(1.0f, 0.0f, 0.0f));
-  return glm::scale(model, scale);
-}
-
-std::optional<TextureOrigin> built_in_texture(std::string_view name) {
-  const std::pair<std::string_view, TextureOrigin> built_ins[] = {
-      {"white", TextureOrigin::White},     {"black", TextureOrigin::Black},
-      {"checker", TextureOrigin::Checker}, {"normal", TextureOrigin::Normal},
-      {"gray", TextureOrigin::Gray},       {"red", TextureOrigin::Red},
-      {"clear", TextureOrigin::Clear},
-      {"environment", TextureOrigin::Environment}};
-  for (const auto& [built_in, origin] : built_ins)
-    if (name == built_in) return origin;
-  return std::nullopt;
-}
-
-std::vector<ObjectInstance> expand_instances(const Scene& scene) {
-  std::vector<ObjectInstance> instances;
-  for (size_t index = 0; index < scene.objects.size(); ++index) {
-    const SceneObject& object = scene.objects[index];
-    if (!object.grid) {
-      instances.push_back(instance_of(object, index, object.position));
-      continue;
-    }
-    const GridSpec& grid = *object.grid;
-    for (uint32_t row = 0; row < grid.rows; ++row) {
-      for (uint32_t col = 0; col < grid.cols; ++col) {
-        // Centred on the object's position, row 0 on top: y falls as the row index grows.
-        glm::vec3 offset((static_cast<float>(col) - static_cast<float>(grid.cols - 1) / 2.0f) * grid.spacing.x,
-                         (static_cast<float>(grid.rows - 1) / 2.0f - static_cast<float>(row)) * grid.spacing.y, 0.0f);
-        ObjectInstance instance = instance_of(object, index, object.position + offset);
-        instance.in_grid = true;
-        instance.row = row;
-        instance.col = col;
-        for (const auto& [name, rule] : grid.vary) {
-          bool along_rows = rule.along == GridAxis::Rows;
-          instance.properties[name] =
-              interpolate(rule, along_rows ? row : col, along_rows ? grid.rows : grid.cols);
-        }
-        instances.push_back(std::move(instance));
-      }
-    }
-  }
-  return instances;
 }
 
 }  // namespace xshade::harness

@@ -65,6 +65,19 @@ struct EnvironmentSpec {
   float intensity = 1.0f;
 };
 
+// Unity's fog (RenderSettings): its modes, colour and distances as the Lighting window sets them,
+// each with Unity's default. A scene with fog draws every shader that has Unity's fog keywords
+// (multi_compile_fog) with the mode's keyword; a scene without draws them without.
+enum class FogMode { Linear, Exponential, ExponentialSquared };
+struct FogSpec {
+  FogMode mode = FogMode::ExponentialSquared;
+  glm::vec4 color{0.5f, 0.5f, 0.5f, 1.0f};  // linear RGBA, as unity_FogColor holds it
+  float density = 0.01f;                   // Exponential and ExponentialSquared
+  float start = 0.0f, end = 300.0f;        // Linear: distances from the camera
+};
+// The keyword Unity's shaders test for `mode` (FOG_LINEAR, FOG_EXP, FOG_EXP2).
+const char* fog_keyword(FogMode mode);
+
 enum class MeshKind { Sphere, Torus, Plane, Cube, ObjFile };
 
 struct MeshRef {
@@ -192,6 +205,7 @@ struct Scene {
   Camera camera;
   std::vector<DirectionalLight> lights;
   EnvironmentSpec environment;
+  std::optional<FogSpec> fog;
   std::vector<SceneObject> objects;
   std::vector<PostEffect> post;
   CompareSettings compare;

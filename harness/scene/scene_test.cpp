@@ -239,6 +239,7 @@ material = "materials/unlit.hlsl"
   EXPECT_TRUE(cube.textures.empty());
   EXPECT_FALSE(cube.grid);
   EXPECT_TRUE(scene.post.empty());
+  EXPECT_FALSE(scene.fog);
   EXPECT_EQ(scene.compare.channel_tolerance, 1u);
   EXPECT_EQ(scene.compare.max_failing_fraction, 0.0);
   EXPECT_EQ(scene.compare.position_radius, 0u);
@@ -254,6 +255,33 @@ TEST(SceneParse, ReadsTheOtherEnvironmentKinds) {
   Scene equirect = parse_ok(minimal_head + "[environment]\nkind = \"equirect\"\nfile = \"./env/../env/sky.exr\"\n");
   EXPECT_EQ(equirect.environment.kind, EnvironmentKind::Equirect);
   EXPECT_EQ(equirect.environment.file, "/project/scenes/env/sky.exr");
+}
+
+// [fog] is Unity's RenderSettings fog: what it leaves out is Unity's default.
+TEST(SceneParse, FogTakesUnitysModesAndDefaults) {
+  Scene linear = parse_ok(minimal_head + "[fog]\nmode = \"linear\"\ncolor = [0.1, 0.2, 0.3, 1]\nstart = 2\nend = 20\n");
+  ASSERT_TRUE(linear.fog);
+  EXPECT_EQ(linear.fog->mode, FogMode::Linear);
+  expect_near(linear.fog->color, {0.1f, 0.2f, 0.3f, 1.0f});
+  EXPECT_EQ(linear.fog->start, 2.0f);
+  EXPECT_EQ(linear.fog->end, 20.0f);
+  EXPECT_STREQ(fog_keyword(linear.fog->mode), "FOG_LINEAR");
+
+  Scene defaults = parse_ok(minimal_head + "[fog]\n");
+  ASSERT_TRUE(defaults.fog);
+  EXPECT_EQ(defaults.fog->mode, FogMode::ExponentialSquared);
+  EXPECT_EQ(defaults.fog->density, 0.01f);
+  expect_near(defaults.fog->color, {0.5f, 0.5f, 0.5f, 1.0f});
+  EXPECT_STREQ(fog_keyword(FogMode::Exponential), "FOG_EXP");
+
+  EXPECT_EQ(errors_of(minimal_head + "[fog]\nmode = \"mist\"\ndensity = -1\n"),
+            (std::vector<std::string>{
+                "scenes/bad.toml:10:8: error: fog.mode: expected \"linear\", \"exponential\" or \"exponential_squared\", "
+                "got \"mist\"",
+                "scenes/bad.toml:11:11: error: fog.density: expected a number >= 0, got -1"}));
+  EXPECT_EQ(errors_of(minimal_head + "[fog]\nmode = \"linear\"\nstart = 5\nend = 5\n"),
+            (std::vector<std::string>{"scenes/bad.toml:9:1: error: fog: linear fog ends where it starts or before (5 to 5): "
+                                      "give an end beyond the start"}));
 }
 
 TEST(SceneParse, ACompareTableWithOnlyAReasonGivesNoTolerance) {
