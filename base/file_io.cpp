@@ -68,6 +68,59 @@ std::optional<std::string> read_regular_file(const fs::path& path, size_t known_
   return read_open_file(fd, known_size, true, why);
 }
 
+namespace {
+
+std::string kind_of(mode_t mode) {
+  if (S_ISDIR(mode)) return "a directory";
+  if (S_ISFIFO(mode)) return "a FIFO";
+  if (S_ISSOCK(mode)) return "a socket";
+  if (S_ISCHR(mode) || S_ISBLK(mode)) return "a device";
+  return S_ISREG(mode) ? "" : "not a regular file";
+}
+
+}  // namespace
+
+std::string not_a_file(const fs::path& path) {
+  struct stat status {};
+  if (::stat(path.c_str(), &status) == 0) return kind_of(status.st_mode);
+  if (::lstat(path.c_str(), &status) == 0 && S_ISLNK(status.st_mode)) return "a symbolic link to nothing";
+  return "";
+}
+
+Result<std::string> read_input_file(const fs::path& path, size_t max_bytes, std::string_view what) {
+  const std::string named = std::string(what) + " " + path.string();
+  // O_NONBLOCK: opening a FIFO to read returns at once instead of waiting for a writer.
+  const int fd = ::open(path.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC);
+  if (fd < 0) {
+    const int error = errno;
+    if (std::string kind = not_a_file(path); !kind.empty()) return fail(named + " is " + kind + ", not a file");
+    return fail(error == ENOENT ? ErrorKind::UserInput : ErrorKind::Backend,
+                named + " cannot be opened: " + std::strerror(error));
+  }
+  struct stat status {};
+  if (::fstat(fd, &status) != 0) {
+    const int error = errno;
+    ::close(fd);
+    return fail(ErrorKind::Backend, named + " cannot be read: " + std::strerror(error));
+  }
+  if (!S_ISREG(status.st_mode)) {
+    ::close(fd);
+    return fail(named + " is " + kind_of(status.st_mode) + ", not a file");
+  }
+  if (size_t(status.st_size) > max_bytes) {
+    ::close(fd);
+    return fail(named + " is " + std::to_string(status.st_size) + " bytes, more than the " + std::to_string(max_bytes) +
+                " a " + std::string(what) + " may have");
+  }
+  ReadFailure why{};
+  auto bytes = read_open_file(fd, size_t(status.st_size), true, &why);
+  if (!bytes) return fail(ErrorKind::Backend, named + " cannot be read: " + std::strerror(errno));
+  // A file that grew past the limit while it was read.
+  if (bytes->size() > max_bytes)
+    return fail(named + " grew past the " + std::to_string(max_bytes) + " bytes a " + std::string(what) + " may have");
+  return std::move(*bytes);
+}
+
 bool write_all(int fd, std::string_view bytes) {
   size_t written = 0;
   while (written < bytes.size()) {

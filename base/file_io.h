@@ -21,6 +21,17 @@ std::optional<std::string> read_file(const std::filesystem::path& path, ReadFail
 std::optional<std::string> read_regular_file(const std::filesystem::path& path, size_t known_size,
                                              ReadFailure* why = nullptr);
 
+// What is at `path` when it is not a regular file, as a message says it: "a directory", "a FIFO",
+// "a socket", "a device", "a symbolic link to nothing"; empty for a regular file, a link to one,
+// or nothing at all.
+std::string not_a_file(const std::filesystem::path& path);
+
+// A file a user gave (a scene, a project file, a manifest, a report's results) read whole, after
+// opening it without waiting (a FIFO is not waited on) and checking it: not there, not a regular
+// file (not_a_file), or more than `max_bytes` bytes is a user's error naming `what` and the path,
+// before anything is read; a read that fails is the environment's error with the errno.
+Result<std::string> read_input_file(const std::filesystem::path& path, size_t max_bytes, std::string_view what);
+
 // Writes all of `bytes` to the open descriptor, through short writes and interruptions; false
 // (with errno set) when the descriptor takes no more.
 bool write_all(int fd, std::string_view bytes);

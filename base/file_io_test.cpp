@@ -2,6 +2,10 @@
 
 #include <gtest/gtest.h>
 
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <chrono>
 #include <filesystem>
 
 namespace xshade {
@@ -56,6 +60,44 @@ TEST(FileIo, SaysWhatItCouldNotDo) {
   auto written = write_file_atomically(missing, "x");
   ASSERT_FALSE(written.has_value());
   EXPECT_NE(written.error().message.find("f.txt"), std::string::npos) << written.error().message;
+}
+
+// A file a user gives is opened without waiting and checked before it is read: a FIFO (which a
+// read would wait on forever), a directory, a link to nothing, a device, or a file past its limit
+// is refused at once, naming what it is.
+TEST(FileIo, AnInputFileThatIsNotAFileOrTooLargeIsRefusedBeforeItIsRead) {
+  const fs::path root = fs::temp_directory_path() / ("xshade_file_io_input_" + std::to_string(::getpid()));
+  fs::remove_all(root);
+  fs::create_directories(root / "folder");
+  ASSERT_TRUE(write_file_atomically(root / "small.toml", "a = 1\n"));
+  ASSERT_EQ(::mkfifo((root / "fifo.toml").c_str(), 0600), 0);
+  fs::create_symlink(root / "gone.toml", root / "dangling.toml");
+  fs::create_symlink(root / "small.toml", root / "link.toml");
+
+  auto small = read_input_file(root / "small.toml", 6, "scene file");
+  ASSERT_TRUE(small) << small.error().message;
+  EXPECT_EQ(*small, "a = 1\n");
+  EXPECT_TRUE(read_input_file(root / "link.toml", 6, "scene file")) << "a link to a file is that file";
+  const auto refusal = [&](const fs::path& path, size_t limit = 1000) {
+    const auto started = std::chrono::steady_clock::now();
+    auto read = read_input_file(path, limit, "scene file");
+    EXPECT_LT(std::chrono::steady_clock::now() - started, std::chrono::seconds(5)) << "waited on " << path;
+    return read ? std::string("(read)") : read.error().message;
+  };
+  EXPECT_EQ(refusal(root / "fifo.toml"), "scene file " + (root / "fifo.toml").string() + " is a FIFO, not a file");
+  EXPECT_EQ(refusal(root / "folder"), "scene file " + (root / "folder").string() + " is a directory, not a file");
+  EXPECT_EQ(refusal(root / "dangling.toml"),
+            "scene file " + (root / "dangling.toml").string() + " is a symbolic link to nothing, not a file");
+  EXPECT_EQ(refusal("/dev/zero"), "scene file /dev/zero is a device, not a file");
+  EXPECT_EQ(refusal(root / "small.toml", 5),
+            "scene file " + (root / "small.toml").string() + " is 6 bytes, more than the 5 a scene file may have");
+  auto missing = read_input_file(root / "none.toml", 5, "scene file");
+  ASSERT_FALSE(missing);
+  EXPECT_EQ(missing.error().kind, ErrorKind::UserInput);
+  EXPECT_EQ(missing.error().message, "scene file " + (root / "none.toml").string() + " cannot be opened: No such file or directory");
+  EXPECT_EQ(not_a_file(root / "small.toml"), "");
+  EXPECT_EQ(not_a_file(root / "none.toml"), "");
+  fs::remove_all(root);
 }
 
 }  // namespace

@@ -36,7 +36,11 @@ Result<SceneFolders> resolve_folders(const FolderOptions& given, const fs::path&
   std::optional<harness::ProjectFile> project;
   if (!given.no_project) {
     std::optional<fs::path> file = given.project;
-    if (file->empty()) file = harness::find_project_file(working_folder);
+    if (file->empty()) {
+      auto found = harness::find_project_file(working_folder);
+      if (!found) return fail(found.error());
+      file = *found;
+    }
     if (file) {
       auto loaded = harness::load_project_file(*file);
       if (!loaded) return fail(loaded.error());

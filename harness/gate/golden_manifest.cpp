@@ -1,13 +1,12 @@
 #include "harness/gate/golden_manifest.h"
 
 #include <algorithm>
-#include <fstream>
-#include <sstream>
 #include <tuple>
 
 #include <fmt/format.h>
 #include <toml++/toml.h>
 
+#include "base/file_io.h"
 #include "harness/scene/lane.h"  // parse_lane
 #include "harness/scene/toml_nesting.h"
 
@@ -145,12 +144,11 @@ Result<GoldenManifest> parse_golden_manifest(std::string_view text, const std::s
 
 Result<GoldenManifest> read_golden_manifest(const std::filesystem::path& path) {
   std::error_code error;
-  if (!std::filesystem::exists(path, error)) return GoldenManifest{};
-  std::ifstream file(path, std::ios::binary);
-  if (!file) return fail("cannot read the golden manifest " + path.string());
-  std::stringstream text;
-  text << file.rdbuf();
-  return parse_golden_manifest(text.str(), path.string());
+  // No manifest is no golden yet; one that is there but not a file (a link to nothing) is refused.
+  if (!std::filesystem::exists(path, error) && not_a_file(path).empty()) return GoldenManifest{};
+  auto text = read_input_file(path, kMaxManifestBytes, "the golden manifest");
+  if (!text) return fail(text.error());
+  return parse_golden_manifest(*text, path.string());
 }
 
 std::string format_golden_manifest(const GoldenManifest& manifest) {

@@ -33,9 +33,14 @@ struct GoldenManifest {
   void record(GoldenEntry entry);
 };
 
-// A missing file is an empty manifest (GoldenStore refuses images without one). An entry without
-// a hash reads, so that bless can repair it; GoldenStore refuses to use its image. Errors carry
-// the manifest's file:line:col.
+// A manifest entry is about 600 bytes; 64 MiB holds some hundred thousand goldens, far past any
+// project, and keeps a mistaken file (a link to a log, /dev/zero) from being read at all.
+inline constexpr size_t kMaxManifestBytes = size_t(64) << 20;
+
+// A missing file is an empty manifest (GoldenStore refuses images without one); one that is not a
+// file (a folder, a FIFO, a link to nothing) or is larger than kMaxManifestBytes is refused. An
+// entry without a hash reads, so that bless can repair it; GoldenStore refuses to use its image.
+// Errors carry the manifest's file:line:col.
 Result<GoldenManifest> read_golden_manifest(const std::filesystem::path& path);
 Result<GoldenManifest> parse_golden_manifest(std::string_view text, const std::string& file_name);
 // The whole file: the header comment explaining the layout, then the entries.

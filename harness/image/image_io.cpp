@@ -4,6 +4,7 @@
 #include <array>
 #include <cmath>
 
+#include "base/file_io.h"
 #include "harness/image/exr_header.h"
 #include "harness/image/image_codec.h"
 #include "harness/image/image_limits.h"
@@ -103,6 +104,10 @@ Result<void> write_exr(const FloatImage& image, const std::filesystem::path& pat
 }
 
 Result<FloatImage> read_image(const std::filesystem::path& path, bool srgb) {
+  // The image libraries open by name and read on to the end: a FIFO would be waited on, and a
+  // device (/dev/zero) read forever.
+  if (const std::string kind = not_a_file(path); !kind.empty())
+    return fail(file_error("cannot read image", path, "it is " + kind + ", not a file"));
   // OpenEXR allocates what its header claims as it opens the file: that is checked first.
   auto window = exr_data_window(path);
   if (!window) return fail(window.error());

@@ -16,8 +16,8 @@ namespace fs = std::filesystem;
 
 Result<FoundReport> read_report(const fs::path& folder) {
   const fs::path file = folder / "results.json";
-  const std::optional<std::string> text = read_file(file);
-  if (!text) return fail("cannot read " + file.string());
+  auto text = read_input_file(file, kMaxResultsBytes, "the report's results");
+  if (!text) return fail(text.error());
   auto results = results_from_json(*text, file.string());
   if (!results) return fail(results.error());
   return FoundReport{folder, std::move(*results)};

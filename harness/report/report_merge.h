@@ -18,6 +18,10 @@ struct FoundReport {
   RunResults results;
 };
 
+// A results.json holds about 2 KB a scene; 256 MiB is a run of a hundred thousand scenes, and
+// keeps a link to /dev/zero or a log from being read at all.
+inline constexpr size_t kMaxResultsBytes = size_t(256) << 20;
+
 // Each of `folders` is a report (it holds a results.json) or a folder of reports (those of its
 // immediate subfolders that hold one, in name order), as a CI artifact download or a CTest
 // report folder lays them out. A folder that is neither, or a results.json that does not read,

@@ -1,12 +1,11 @@
 #include "harness/scene/project_file.h"
 
-#include <fstream>
-#include <sstream>
 #include <system_error>
 
 #include <fmt/format.h>
 
 #include "harness/scene/toml_reader.h"
+#include "base/file_io.h"
 #include "base/paths.h"
 
 namespace xshade::harness {
@@ -98,22 +97,24 @@ Result<ProjectFile> load_project_file(const fs::path& file) {
                     "; a project file must be inside the folder it is for",
                 SourceLocation{file.string(), 0, 0});
   }
-  std::ifstream stream(file, std::ios::binary);
-  std::ostringstream text;
-  text << stream.rdbuf();
-  if (!stream || stream.bad()) return fail("cannot read the project file", SourceLocation{file.string(), 0, 0});
-  return parse_project_file(text.str(), file);
+  auto text = read_input_file(file, kMaxProjectFileBytes, "the project file");
+  if (!text) return fail(text.error());
+  return parse_project_file(*text, file);
 }
 
-std::optional<fs::path> find_project_file(const fs::path& start) {
+Result<std::optional<fs::path>> find_project_file(const fs::path& start) {
   std::error_code error;
   fs::path folder = fs::absolute(start, error).lexically_normal();
-  if (error) return std::nullopt;
+  if (error) return std::optional<fs::path>();
   while (true) {
     const fs::path candidate = folder / kProjectFileName;
-    if (fs::is_regular_file(candidate, error)) return candidate;
+    if (fs::is_regular_file(candidate, error)) return std::optional<fs::path>(candidate);
+    // Passed over, it would leave xshade checking its own fixed scenes and calling that a pass.
+    if (const std::string kind = not_a_file(candidate); !kind.empty())
+      return fail("the project file " + candidate.string() + " is " + kind +
+                  ", not a file: make it the project's xshade.toml or remove it (--no-project ignores it)");
     if (fs::exists(folder / ".git", error) || folder == folder.parent_path() || !folder.has_relative_path())
-      return std::nullopt;
+      return std::optional<fs::path>();
     folder = folder.parent_path();
   }
 }

@@ -36,9 +36,13 @@ Result<ProjectFile> load_project_file(const std::filesystem::path& file);
 // The same for text in memory; `file` names it and anchors its paths.
 Result<ProjectFile> parse_project_file(std::string_view text, const std::filesystem::path& file);
 
+// A project file is a few lines; this bounds what a mistaken or hostile one makes xshade read.
+inline constexpr size_t kMaxProjectFileBytes = size_t(1) << 20;
+
 // The project file that governs `start`: xshade.toml in it or the nearest folder above it,
 // looking no higher than the root of the repository `start` is in (the first folder with a .git)
-// or the file system's root. nullopt when there is none.
-std::optional<std::filesystem::path> find_project_file(const std::filesystem::path& start);
+// or the file system's root. nullopt when there is none; an error when an xshade.toml on the way
+// is not a file (a directory, a FIFO, a link to nothing), which is never passed over.
+Result<std::optional<std::filesystem::path>> find_project_file(const std::filesystem::path& start);
 
 }  // namespace xshade::harness

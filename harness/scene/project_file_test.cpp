@@ -1,5 +1,7 @@
 #include "harness/scene/project_file.h"
 
+#include <sys/stat.h>
+
 #include <fstream>
 
 #include <gtest/gtest.h>
@@ -106,10 +108,32 @@ TEST_F(ProjectFileTest, TheNearestProjectFileAboveIsFoundUpToTheRepositoryRoot) 
   EXPECT_EQ(find_project_file(root_ / "outside"), root_ / "xshade.toml");
 }
 
+// An xshade.toml that is not a file is never passed over: xshade would check its own fixed scenes
+// instead of the project's and call that a pass.
+TEST_F(ProjectFileTest, AnXshadeTomlThatIsNotAFileIsAnErrorNotPassedOver) {
+  std::ofstream(root_ / "xshade.toml") << "";  // above the repository: never reached if the repo's is refused
+  const fs::path here = root_ / "repo" / "xshade.toml";
+  const auto refusal = [&]() {
+    auto found = find_project_file(root_ / "repo/src");
+    return found ? std::string("(found)") : found.error().message;
+  };
+  fs::create_directories(here);
+  EXPECT_EQ(refusal(), "the project file " + here.string() +
+                           " is a directory, not a file: make it the project's xshade.toml or remove it (--no-project "
+                           "ignores it)");
+  fs::remove(here);
+  ASSERT_EQ(::mkfifo(here.c_str(), 0600), 0);
+  EXPECT_NE(refusal().find(" is a FIFO, not a file"), std::string::npos);
+  fs::remove(here);
+  fs::create_symlink(root_ / "repo" / "gone.toml", here);
+  EXPECT_NE(refusal().find(" is a symbolic link to nothing, not a file"), std::string::npos);
+}
+
 TEST_F(ProjectFileTest, LoadNamesTheFileItCannotRead) {
   auto missing = load_project_file(root_ / "repo/absent.toml");
   ASSERT_FALSE(missing);
-  EXPECT_EQ(missing.error().to_string(), (root_ / "repo/absent.toml").string() + ": cannot read the project file");
+  EXPECT_EQ(missing.error().to_string(),
+            "the project file " + (root_ / "repo/absent.toml").string() + " cannot be opened: No such file or directory");
 }
 
 // A project file that is a symbolic link out of its folder is refused before it is read; one

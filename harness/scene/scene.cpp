@@ -3,22 +3,20 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
-#include <fstream>
 #include <functional>
 #include <initializer_list>
 #include <set>
-#include <sstream>
 #include <system_error>
 #include <utility>
 
 #include <fmt/format.h>
 #include <fmt/ranges.h>
-#include <glm/gtc/matrix_transform.hpp>
 
 #include "harness/image/image_limits.h"
 #include "harness/scene/lane.h"
 #include "harness/scene/scene_values.h"
 #include "harness/scene/toml_reader.h"
+#include "base/file_io.h"
 #include "base/paths.h"
 
 namespace xshade::harness {
@@ -801,12 +799,9 @@ Result<Scene> parse_scene(std::string_view text, const std::filesystem::path& fi
 }
 
 Result<Scene> load_scene(const std::filesystem::path& file) {
-  std::ifstream stream(file, std::ios::binary);
-  if (!stream) return fail("cannot open the scene file", SourceLocation{file.string(), 0, 0});
-  std::ostringstream text;
-  text << stream.rdbuf();
-  if (stream.bad()) return fail("cannot read the scene file", SourceLocation{file.string(), 0, 0});
-  return parse_scene(text.str(), file);
+  auto text = read_input_file(file, kMaxSceneFileBytes, "the scene file");
+  if (!text) return fail(text.error());
+  return parse_scene(*text, file);
 }
 
 }  // namespace xshade::harness

@@ -218,6 +218,11 @@ Result<Scene> load_scene(const std::filesystem::path& file);
 // The same for text already in memory; `file` names it in messages and anchors relative paths.
 Result<Scene> parse_scene(std::string_view text, const std::filesystem::path& file);
 
+// A scene file's bytes: the largest scene xshade ships is a few kilobytes, and a generated one of
+// kMaxSceneDraws objects about 2 MB; TOML's parser holds several times the text, so 16 MiB keeps
+// a mistaken or hostile file (a link to a log, a sparse file) from being read at all.
+inline constexpr size_t kMaxSceneFileBytes = size_t(16) << 20;
+
 // What a scene may ask a renderer to do. A 60 KB file of 1000 objects, each a 64 x 64 grid, is
 // 4 million instances: expanding and drawing them took 5.5 GB and minutes before anything was
 // said. Both budgets are checked as the scene is read, before any object is expanded.

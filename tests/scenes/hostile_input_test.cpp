@@ -2,8 +2,11 @@
 // past the parser's stack, image headers claiming gigapixels, a scene that expands into millions
 // of draws, symbolic links out of the folders) are each refused with exit 2 and a message naming
 // the file, the position and the limit; none reaches a signal or an uncaught exception.
+#include <sys/stat.h>
+
 #include <algorithm>
 #include <filesystem>
+#include <functional>
 #include <fstream>
 #include <string>
 #include <tuple>
@@ -205,6 +208,58 @@ TEST_F(HostileInput, AProjectFileLinkedFromOutsideItsFolderIsRefused) {
                                 ": the project file is a symbolic link that points outside its folder"),
             std::string::npos)
       << outcome.output;
+}
+
+// ---- What is not a file is never read, waited on, or passed over.
+
+// An xshade.toml that is a folder, a FIFO or a link to nothing once made `run` check xshade's own
+// fixed scenes instead of the project's and print "10 of 10 scenes passed" with exit 0.
+TEST_F(HostileInput, AnXshadeTomlThatIsNotAFileIsExitTwoNotAPassOfTheFixedScenes) {
+  fs::create_directories(root_ / "repo" / ".git");
+  const fs::path project = root_ / "repo" / "xshade.toml";
+  const std::vector<std::pair<std::string, std::function<void()>>> kinds = {
+      {"a directory", [&] { fs::create_directories(project); }},
+      {"a FIFO", [&] { ASSERT_EQ(::mkfifo(project.c_str(), 0600), 0); }},
+      {"a symbolic link to nothing", [&] { fs::create_symlink(root_ / "repo" / "gone.toml", project); }}};
+  for (const auto& [kind, make] : kinds) {
+    make();
+    Outcome outcome = run_xshade_in(root_ / "repo", "run --lane gl");
+    EXPECT_EQ(outcome.exit_code, 2) << kind << "\n" << outcome.output;
+    EXPECT_NE(outcome.output.find("the project file " + project.string() + " is " + kind + ", not a file"),
+              std::string::npos)
+        << outcome.output;
+    EXPECT_EQ(outcome.output.find("passed"), std::string::npos) << outcome.output;
+    fs::remove(project);
+  }
+}
+
+// A FIFO among the scene files once hung `run` before anything rendered, whether or not the run
+// named it: now it is refused at once, and a run of the other scenes by name does not read it.
+TEST_F(HostileInput, AFifoAmongTheSceneFilesIsRefusedWithoutWaitingOnIt) {
+  const fs::path fifo = root_ / "scenes" / "waiting.toml";
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+  Outcome all = run("--plan");
+  EXPECT_EQ(all.exit_code, 2) << all.output;
+  EXPECT_NE(all.output.find("the scene file " + fifo.string() + " is a FIFO, not a file"), std::string::npos)
+      << all.output;
+  Outcome named = run(std::string(kCopiedScene) + " --plan");
+  EXPECT_EQ(named.exit_code, 0) << named.output;
+}
+
+// `xshade diff a.png /dev/zero` once read /dev/zero at full CPU for ever, and a FIFO image
+// waited for a writer; each is refused at once, naming what it is.
+TEST_F(HostileInput, DiffRefusesADeviceOrAFifoAsAnImage) {
+  const fs::path golden = root_ / "golden" / (std::string(kCopiedScene) + ".png");
+  ASSERT_TRUE(fs::exists(golden));
+  const fs::path fifo = root_ / "waiting.png";
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+  for (const auto& [other, kind] : {std::pair{fs::path("/dev/zero"), "a device"}, std::pair{fifo, "a FIFO"}}) {
+    Outcome outcome = run_xshade("", "diff '" + golden.string() + "' '" + other.string() + "'");
+    EXPECT_EQ(outcome.exit_code, 2) << outcome.output;
+    EXPECT_NE(outcome.output.find("cannot read image " + other.string() + ": it is " + kind + ", not a file"),
+              std::string::npos)
+        << outcome.output;
+  }
 }
 
 // ---- An exception that escapes a verb is exit 3 with a message, not an abort (exit 134).
