@@ -80,6 +80,16 @@ TEST(LaneResultJson, AFieldMissingIsAnInternalErrorNamingIt) {
   EXPECT_FALSE(lane_from_json(nlohmann::json::array()));
 }
 
+// A report merge once took a lane named "dx12" and left it out of every check between lanes.
+TEST(LaneResultJson, ALaneXshadeDoesNotHaveIsRefused) {
+  nlohmann::json json = lane_to_json(full_lane());
+  json["lane"] = "dx12";
+  auto read = lane_from_json(json);
+  ASSERT_FALSE(read);
+  EXPECT_EQ(read.error().kind, ErrorKind::UserInput);
+  EXPECT_EQ(read.error().message, "a lane's result names the lane 'dx12', which xshade does not have");
+}
+
 TEST(DriverThreads, TheWorkersShareTheCoresOnceAndEachHasOne) {
   EXPECT_EQ(driver_threads_per_worker(8, 2), 4u);
   EXPECT_EQ(driver_threads_per_worker(2, 2), 1u);

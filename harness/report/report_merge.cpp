@@ -161,15 +161,22 @@ std::vector<std::string> compare_lanes_across_reports(RunResults& results, const
   for (SceneResult& scene : results.scenes) {
     if (!scene.cross_lane.empty()) continue;
     std::map<Lane, FloatImage> images;
+    // A lane that rendered (it passed or failed against its golden) and whose image cannot be read
+    // leaves checks that should be made: each is an error, never a check that is not there.
+    std::vector<Lane> unreadable, rendered;
     for (const LaneResult& lane : scene.lanes) {
       const std::optional<Lane> id = parse_lane(lane.lane);
-      if (!id || lane.image_exr.empty()) continue;
-      auto image = read_image(folder / lane.image_exr);
-      if (image)
+      if (!id || (lane.verdict != Verdict::Pass && lane.verdict != Verdict::Fail)) continue;
+      rendered.push_back(*id);
+      auto image = lane.image_exr.empty() ? Result<FloatImage>(fail("the report names no float image of it"))
+                                          : read_image(folder / lane.image_exr);
+      if (image) {
         images.emplace(*id, std::move(*image));
-      else
-        warnings.push_back(image.error().message + "; " + scene.scene + " on " + lane.lane +
-                           " is not held against the other lanes");
+        continue;
+      }
+      unreadable.push_back(*id);
+      warnings.push_back(image.error().message + "; " + scene.scene + " on " + lane.lane +
+                         " is not held against the other lanes, and each check it misses is an error");
     }
     scene.cross_lane = cross_lane_results(images, scene.compare, [&](const FloatImage& heat_map, const std::string& file) {
       const std::string relative = scene.scene + "/" + file;
@@ -177,6 +184,24 @@ std::vector<std::string> compare_lanes_across_reports(RunResults& results, const
       fs::create_directories((folder / relative).parent_path(), ignored);
       return write_png(heat_map, folder / relative, PngCompression::Fast) ? relative : std::string();
     });
+    std::sort(rendered.begin(), rendered.end());
+    for (size_t a = 0; a < rendered.size(); ++a)
+      for (size_t b = a + 1; b < rendered.size(); ++b) {
+        const bool missing = std::count(unreadable.begin(), unreadable.end(), rendered[a]) ||
+                             std::count(unreadable.begin(), unreadable.end(), rendered[b]);
+        if (!missing) continue;
+        CrossLaneResult error;
+        error.first_lane = std::string(lane_name(rendered[a]));
+        error.second_lane = std::string(lane_name(rendered[b]));
+        error.verdict = Verdict::Error;
+        scene.cross_lane.push_back(std::move(error));
+      }
+    // In lane order, as a run lists its pairs.
+    const auto order = [](const CrossLaneResult& pair) {
+      return std::pair{parse_lane(pair.first_lane).value_or(Lane::Gl), parse_lane(pair.second_lane).value_or(Lane::Gl)};
+    };
+    std::stable_sort(scene.cross_lane.begin(), scene.cross_lane.end(),
+                     [&](const CrossLaneResult& a, const CrossLaneResult& b) { return order(a) < order(b); });
     for (const CrossLaneResult& pair : scene.cross_lane) scene.verdict = worst(scene.verdict, pair.verdict);
   }
   return warnings;

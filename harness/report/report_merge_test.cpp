@@ -178,6 +178,43 @@ TEST_F(ReportMerge, LanesFromSeparateRunsAreHeldAgainstEachOther) {
   EXPECT_EQ(results.scenes[0].cross_lane.size(), before.size());
 }
 
+// A lane that rendered but whose image is missing, damaged or not named once left a warning and
+// one check fewer ("2 checks (2 pass)" where there were 3) and the merge passed: each check it
+// misses is now an error, in lane order, and so is the scene. A lane that did not render has no
+// checks to miss.
+TEST_F(ReportMerge, ALaneImageThatCannotBeReadMakesEachCheckItMissesAnError) {
+  FloatImage grey(4, 4);
+  for (float& value : grey.rgba) value = 0.5f;
+  fs::create_directories(root_ / "merged/s");
+  ASSERT_TRUE(write_exr(grey, root_ / "merged/s/vk.exr"));
+  ASSERT_TRUE(write_exr(grey, root_ / "merged/s/vk-hlsl.exr"));
+  std::ofstream(root_ / "merged/s/gl.exr") << "truncated";
+  RunResults results;
+  results.scenes = {::xshade::harness::scene(
+      "s", {lane("s", "gl", Verdict::Pass), lane("s", "vk", Verdict::Pass), lane("s", "vk-hlsl", Verdict::Pass)})};
+  for (LaneResult& each : results.scenes[0].lanes) each.image_exr = "s/" + each.lane + ".exr";
+  const std::vector<std::string> warnings = compare_lanes_across_reports(results, root_ / "merged");
+  ASSERT_EQ(warnings.size(), 1u);
+  EXPECT_NE(warnings[0].find("s on gl is not held against the other lanes"), std::string::npos) << warnings[0];
+  const SceneResult& out = results.scenes[0];
+  ASSERT_EQ(out.cross_lane.size(), 3u);
+  EXPECT_EQ(out.cross_lane[0].first_lane + " " + out.cross_lane[0].second_lane, "gl vk");
+  EXPECT_EQ(out.cross_lane[0].verdict, Verdict::Error);
+  EXPECT_EQ(out.cross_lane[1].first_lane + " " + out.cross_lane[1].second_lane, "gl vk-hlsl");
+  EXPECT_EQ(out.cross_lane[1].verdict, Verdict::Error);
+  EXPECT_EQ(out.cross_lane[2].verdict, Verdict::Pass);
+  EXPECT_EQ(out.verdict, Verdict::Error);
+
+  // No image named for a lane that rendered is the same; a lane that crashed misses nothing.
+  RunResults unnamed;
+  unnamed.scenes = {::xshade::harness::scene(
+      "s", {lane("s", "vk", Verdict::Pass), lane("s", "vk-hlsl", Verdict::Pass), lane("s", "gl", Verdict::Crash)})};
+  unnamed.scenes[0].lanes[0].image_exr = "s/vk.exr";
+  compare_lanes_across_reports(unnamed, root_ / "merged");
+  ASSERT_EQ(unnamed.scenes[0].cross_lane.size(), 1u);
+  EXPECT_EQ(unnamed.scenes[0].cross_lane[0].verdict, Verdict::Error);
+}
+
 TEST_F(ReportMerge, AFolderWithoutReportsOrABrokenResultsFileIsRefusedNamingIt) {
   fs::create_directories(root_ / "empty" / "inner");
   auto found = find_reports({root_ / "empty"});
