@@ -2,6 +2,7 @@
 
 #include <atomic>
 #include <cerrno>
+#include <cstdio>
 #include <cstring>
 
 #include <fcntl.h>
@@ -119,6 +120,31 @@ Result<std::string> read_input_file(const fs::path& path, size_t max_bytes, std:
   if (bytes->size() > max_bytes)
     return fail(named + " grew past the " + std::to_string(max_bytes) + " bytes a " + std::string(what) + " may have");
   return std::move(*bytes);
+}
+
+Result<void> make_private_folder(const fs::path& folder) {
+  std::error_code error;
+  if (!fs::exists(folder, error)) {
+    fs::create_directories(folder.parent_path(), error);
+    if (::mkdir(folder.c_str(), 0700) != 0 && errno != EEXIST)
+      return fail(ErrorKind::Backend, "cannot make the folder " + folder.string() + ": " + std::strerror(errno));
+  }
+  struct stat status {};
+  if (::stat(folder.c_str(), &status) != 0)
+    return fail(ErrorKind::Backend, "cannot read the folder " + folder.string() + ": " + std::strerror(errno));
+  if (!S_ISDIR(status.st_mode))
+    return fail(folder.string() + " is " + (S_ISREG(status.st_mode) ? "a file" : kind_of(status.st_mode)) + ", not a folder");
+  if (status.st_uid != ::geteuid())
+    return fail(folder.string() + " belongs to another user (uid " + std::to_string(status.st_uid) + ")");
+  if (status.st_mode & (S_IWGRP | S_IWOTH))
+    return fail(folder.string() + " can be written by other users (mode " +
+                [&] {
+                  char octal[8];
+                  std::snprintf(octal, sizeof octal, "%03o", unsigned(status.st_mode & 0777));
+                  return std::string(octal);
+                }() +
+                "); make it private with chmod 700");
+  return {};
 }
 
 bool write_all(int fd, std::string_view bytes) {

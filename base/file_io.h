@@ -32,6 +32,12 @@ std::string not_a_file(const std::filesystem::path& path);
 // before anything is read; a read that fails is the environment's error with the errno.
 Result<std::string> read_input_file(const std::filesystem::path& path, size_t max_bytes, std::string_view what);
 
+// A folder only this user can write, for what xshade trusts without checking who wrote it (the
+// compile cache): made with mode 0700 where it is missing; where it is there, it must be a
+// directory owned by this user that neither the group nor others can write, or the error says
+// what is wrong with it (another user could have put files in it for xshade to believe).
+Result<void> make_private_folder(const std::filesystem::path& folder);
+
 // Writes all of `bytes` to the open descriptor, through short writes and interruptions; false
 // (with errno set) when the descriptor takes no more.
 bool write_all(int fd, std::string_view bytes);

@@ -100,5 +100,35 @@ TEST(FileIo, AnInputFileThatIsNotAFileOrTooLargeIsRefusedBeforeItIsRead) {
   fs::remove_all(root);
 }
 
+// The compile cache's folder: made 0700; one that others can write, that is not a folder, or
+// (where the test may change owners) that another user owns is refused, saying why.
+TEST(FileIo, APrivateFolderIsMadeOwnerOnlyAndAnotherKindIsRefused) {
+  const fs::path root = fs::temp_directory_path() / ("xshade_private_" + std::to_string(::getpid()));
+  fs::remove_all(root);
+  const fs::path made = root / "deep" / "cache";
+  ASSERT_TRUE(make_private_folder(made));
+  struct stat status {};
+  ASSERT_EQ(::stat(made.c_str(), &status), 0);
+  EXPECT_EQ(status.st_mode & 0777, 0700u);
+  EXPECT_TRUE(make_private_folder(made)) << "the same folder again";
+
+  fs::permissions(made, fs::perms::all);
+  auto open = make_private_folder(made);
+  ASSERT_FALSE(open);
+  EXPECT_EQ(open.error().message, made.string() + " can be written by other users (mode 777); make it private with chmod 700");
+  ASSERT_TRUE(write_file_atomically(root / "file", "x"));
+  auto file = make_private_folder(root / "file");
+  ASSERT_FALSE(file);
+  EXPECT_EQ(file.error().message, (root / "file").string() + " is a file, not a folder");
+  if (::geteuid() == 0) {  // only root can give a folder away
+    fs::permissions(made, fs::perms::owner_all, fs::perm_options::replace);
+    ASSERT_EQ(::chown(made.c_str(), 65534, 65534), 0);
+    auto theirs = make_private_folder(made);
+    ASSERT_FALSE(theirs);
+    EXPECT_EQ(theirs.error().message, made.string() + " belongs to another user (uid 65534)");
+  }
+  fs::remove_all(root);
+}
+
 }  // namespace
 }  // namespace xshade

@@ -62,9 +62,10 @@ int run_bless(const BlessOptions& options) {
     return kBadInput;
   }
 
-  const std::filesystem::path cache_dir = shader_cache_dir(options.cache_dir);
-  harness::ShaderCache cache(cache_dir, harness::compiler_identity());
-  harness::VariantCompiler compiler(folders->shaders, &cache);
+  const std::filesystem::path cache_dir = private_cache_dir(shader_cache_dir(options.cache_dir), "bless");
+  std::optional<harness::ShaderCache> cache;
+  if (!cache_dir.empty()) cache.emplace(cache_dir, harness::compiler_identity());
+  harness::VariantCompiler compiler(folders->shaders, cache ? &*cache : nullptr);
   harness::SceneChecker checker(compiler, {options.report_dir, nullptr, backend_options(selection), false, false},
                                 [](const std::string& line) { fmt::print("{}\n", line); });
   // Rendered as run renders, each lane in a worker: a shader that hangs or a driver that crashes

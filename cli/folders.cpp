@@ -1,15 +1,19 @@
 #include "cli/folders.h"
 
-#include "base/spelling.h"
-#include "harness/render/lanes.h"
+#include <unistd.h>
 
 #include <algorithm>
 #include <cstdlib>
 #include <optional>
 #include <system_error>
 
-#include "harness/scene/project_file.h"
+#include <fmt/format.h>
+
+#include "base/file_io.h"
 #include "base/paths.h"
+#include "base/spelling.h"
+#include "harness/render/lanes.h"
+#include "harness/scene/project_file.h"
 
 namespace xshade::cli {
 
@@ -157,7 +161,16 @@ fs::path shader_cache_dir(const fs::path& given) {
   if (const char* dir = std::getenv("XSHADE_CACHE_DIR"); dir && *dir) return dir;
   if (const char* dir = std::getenv("XDG_CACHE_HOME"); dir && *dir) return fs::path(dir) / "xshade";
   if (const char* home = std::getenv("HOME"); home && *home) return fs::path(home) / ".cache" / "xshade";
-  return fs::temp_directory_path() / "xshade-cache";
+  return fs::temp_directory_path() / ("xshade-cache-" + std::to_string(::geteuid()));
+}
+
+fs::path private_cache_dir(const fs::path& folder, std::string_view verb) {
+  if (folder.empty()) return folder;
+  if (auto made = make_private_folder(folder); !made) {
+    fmt::print(stderr, "xshade {}: warning: not using the compile cache: {}\n", verb, made.error().message);
+    return {};
+  }
+  return folder;
 }
 
 }  // namespace xshade::cli

@@ -4,6 +4,7 @@
 
 #include <filesystem>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "harness/render/shader_search_path.h"
@@ -64,7 +65,13 @@ Result<std::vector<std::filesystem::path>> scene_files(const std::vector<std::st
 // shader can include "include/brdf.hlsl" wherever xshade is installed.
 std::vector<std::filesystem::path> include_folders(const std::vector<std::filesystem::path>& given);
 
-// `given`, else $XSHADE_CACHE_DIR, else $XDG_CACHE_HOME/xshade, else ~/.cache/xshade.
+// `given`, else $XSHADE_CACHE_DIR, else $XDG_CACHE_HOME/xshade, else ~/.cache/xshade, else (no
+// HOME) a folder of this user's in the temporary folder, xshade-cache-UID.
 std::filesystem::path shader_cache_dir(const std::filesystem::path& given);
+
+// `folder` made private (base/file_io.h's make_private_folder); empty, with a warning on stderr
+// naming `verb`, when it cannot be: xshade believes what its cache holds, so it uses no cache
+// another user can write.
+std::filesystem::path private_cache_dir(const std::filesystem::path& folder, std::string_view verb);
 
 }  // namespace xshade::cli

@@ -90,7 +90,8 @@ int run_run(const RunOptions& options) {
     *files = std::move(mine);
   }
 
-  const std::filesystem::path cache_dir = options.no_cache ? std::filesystem::path() : shader_cache_dir(options.cache_dir);
+  const std::filesystem::path cache_dir =
+      options.no_cache ? std::filesystem::path() : private_cache_dir(shader_cache_dir(options.cache_dir), "run");
   std::optional<harness::ShaderCache> cache;
   if (!cache_dir.empty()) cache.emplace(cache_dir, harness::compiler_identity());
   harness::VariantCompiler compiler(folders->shaders, cache ? &*cache : nullptr);

@@ -262,6 +262,37 @@ TEST_F(HostileInput, DiffRefusesADeviceOrAFifoAsAnImage) {
   }
 }
 
+// ---- The compile cache is the user's alone.
+
+// With HOME unset the cache once fell back to /tmp/xshade-cache, which another user had made
+// with mode 777 and filled with variants of their own; xshade used them. The fallback is now the
+// user's own folder, made 0700, and a cache folder others can write is not used (a warning, then
+// the run compiles everything).
+TEST_F(HostileInput, ACacheFolderOthersCanWriteIsNotUsedAndTheFallbackIsTheUsersOwn) {
+  fs::create_directories(root_ / "cache");
+  fs::permissions(root_ / "cache", fs::perms::all);
+  Outcome shared = run("--lane gl");
+  EXPECT_EQ(shared.exit_code, 0) << shared.output;
+  EXPECT_NE(shared.output.find("xshade run: warning: not using the compile cache: " + (root_ / "cache").string() +
+                               " can be written by other users (mode 777); make it private with chmod 700"),
+            std::string::npos)
+      << shared.output;
+  EXPECT_TRUE(fs::is_empty(root_ / "cache")) << "nothing was stored where others can write";
+
+  const fs::path tmp = root_ / "tmp";
+  fs::create_directories(tmp);
+  const std::string options = " --scenes '" + (root_ / "scenes").string() + "' --golden '" + (root_ / "golden").string() +
+                              "' --shaders '" + (root_ / "shaders").string() + "' --report '" +
+                              (root_ / "report").string() + "' --lane gl";
+  Outcome fallback = run_xshade("HOME= XDG_CACHE_HOME= XSHADE_CACHE_DIR= TMPDIR='" + tmp.string() + "'", "run" + options);
+  EXPECT_EQ(fallback.exit_code, 0) << fallback.output;
+  const fs::path own = tmp / ("xshade-cache-" + std::to_string(::geteuid()));
+  struct stat status {};
+  ASSERT_EQ(::stat(own.c_str(), &status), 0) << fallback.output;
+  EXPECT_EQ(status.st_mode & 0777, 0700u);
+  EXPECT_FALSE(fs::is_empty(own));
+}
+
 // ---- An exception that escapes a verb is exit 3 with a message, not an abort (exit 134).
 
 TEST_F(HostileInput, AnAllocationThatFailsIsExitThreeWithAMessage) {
