@@ -134,9 +134,15 @@ void add_global_keyword(const std::string& keyword, const std::vector<hlsl::Keyw
   }
 }
 
+// The keyword combinations of `sets`, SIZE_MAX for as many or more (70 two-keyword sets once
+// overflowed to 0 and the plan said nothing of them).
 size_t combinations(const std::vector<hlsl::KeywordSet>& sets) {
   size_t count = 1;
-  for (const hlsl::KeywordSet& set : sets) count *= set.keywords.size();
+  for (const hlsl::KeywordSet& set : sets) {
+    const size_t size = std::max<size_t>(set.keywords.size(), 1);
+    if (count > SIZE_MAX / size) return SIZE_MAX;
+    count *= size;
+  }
   return count;
 }
 
@@ -413,7 +419,10 @@ Result<Plan> plan_scene(const Scene& scene, const ShaderSearchPath& shaders) {
 
   for (const auto& [source, used] : used_combinations) {
     const size_t possible = possible_combinations[source];
-    if (possible > used.size())
+    if (possible == SIZE_MAX)
+      plan.left_out.push_back(source + ": all but " + std::to_string(used.size()) + " of its " + std::to_string(SIZE_MAX) +
+                              " or more keyword combinations (the scene asks for no other)");
+    else if (possible > used.size())
       plan.left_out.push_back(source + ": " + std::to_string(possible - used.size()) + " of its " +
                               std::to_string(possible) + " keyword combinations (the scene asks for no other)");
   }

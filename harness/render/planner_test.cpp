@@ -273,6 +273,25 @@ float4 frag() : SV_Target { return 1; }
   fs::remove_all(user);
 }
 
+// A shader of 70 two-keyword sets has 2^70 combinations, past what a size_t counts: the plan
+// still says what it leaves out (the count once wrapped to 0 and the line went missing).
+TEST(Planner, TheCombinationsLeftOutAreSaidHoweverManyThereAre) {
+  const fs::path user = fs::temp_directory_path() / "xshade_planner_many_keywords";
+  fs::remove_all(user);
+  fs::create_directories(user / "materials");
+  std::string shader = "#pragma vertex vert\n#pragma fragment frag\n";
+  for (int i = 0; i < 70; ++i) shader += "#pragma multi_compile _ KW_" + std::to_string(i) + "\n";
+  shader += "float4 vert(float3 p : POSITION) : SV_Position { return float4(p, 1); }\n"
+            "float4 frag() : SV_Target { return 1; }\n";
+  std::ofstream(user / "materials" / "many.hlsl") << shader;
+  auto plan = plan_scene(scene("[[object]]\nmesh = \"sphere\"\nmaterial = \"materials/many.hlsl\"\n"),
+                         ShaderSearchPath({user, kLibrary}));
+  ASSERT_TRUE(plan) << plan.error().to_string();
+  EXPECT_TRUE(has_line(plan->left_out, "materials/many.hlsl: all but 1 of its 18446744073709551615 or more keyword "
+                                       "combinations (the scene asks for no other)"));
+  fs::remove_all(user);
+}
+
 // AlphaToMask On (here by a property's default) is drawn as Off on targets of one sample, and the
 // variant's notes say so, once for the two objects that draw it; a material that leaves it off
 // has no such note.

@@ -5,6 +5,7 @@
 #include <sys/stat.h>
 
 #include <algorithm>
+#include <chrono>
 #include <filesystem>
 #include <functional>
 #include <fstream>
@@ -260,6 +261,26 @@ TEST_F(HostileInput, DiffRefusesADeviceOrAFifoAsAnImage) {
               std::string::npos)
         << outcome.output;
   }
+}
+
+// ---- Work and memory have bounds.
+
+// 40 `#pragma multi_compile _ KW_n` lines once made `compile --all-variants` list 2^40
+// combinations until it held 8.5 GB; the count is refused before anything is listed.
+TEST_F(HostileInput, AllVariantsOfTwoToTheFortyIsRefusedAtOnce) {
+  std::string shader = "#pragma fragment frag\n";
+  for (int i = 0; i < 40; ++i) shader += "#pragma multi_compile _ KW_" + std::to_string(i) + "\n";
+  shader += "float4 frag() : SV_Target { return 1; }\n";
+  std::ofstream(root_ / "many.hlsl") << shader;
+  const auto started = std::chrono::steady_clock::now();
+  Outcome outcome = run_xshade("", "compile '" + (root_ / "many.hlsl").string() + "' --target gl --all-variants --no-project");
+  EXPECT_LT(std::chrono::steady_clock::now() - started, std::chrono::seconds(20));  // not minutes of listing
+  EXPECT_EQ(outcome.exit_code, 2) << outcome.output.substr(0, 2000);
+  EXPECT_NE(outcome.output.find("--all-variants compiles at most 16384 keyword combinations, and the 40 keyword sets of "
+                                "this shader make more"),
+            std::string::npos)
+      << outcome.output.substr(0, 2000);
+  EXPECT_EQ(outcome.output.find(": compiles"), std::string::npos);
 }
 
 // ---- The compile cache is the user's alone.
