@@ -13,6 +13,7 @@
 #include "cli/lane_selection.h"
 #include "cli/workers.h"
 #include "harness/report/report.h"
+#include "harness/report/report_lock.h"
 #include "harness/gate/scene_check.h"
 
 namespace xshade::cli {
@@ -90,6 +91,12 @@ int run_run(const RunOptions& options) {
     *files = std::move(mine);
   }
 
+  // Two runs into one report folder would leave one run's report saying it is both.
+  auto report_lock = harness::ReportLock::take(options.report_dir, options.command_line);
+  if (!report_lock) {
+    fmt::print(stderr, "xshade run: {}\n", report_lock.error().to_string());
+    return report_lock.error().kind == ErrorKind::Backend ? kBackendError : kBadInput;
+  }
   const std::filesystem::path cache_dir =
       options.no_cache ? std::filesystem::path() : private_cache_dir(shader_cache_dir(options.cache_dir), "run");
   std::optional<harness::ShaderCache> cache;

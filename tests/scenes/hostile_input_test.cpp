@@ -2,7 +2,10 @@
 // past the parser's stack, image headers claiming gigapixels, a scene that expands into millions
 // of draws, symbolic links out of the folders) are each refused with exit 2 and a message naming
 // the file, the position and the limit; none reaches a signal or an uncaught exception.
+#include <fcntl.h>
+#include <sys/file.h>
 #include <sys/stat.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <chrono>
@@ -261,6 +264,29 @@ TEST_F(HostileInput, DiffRefusesADeviceOrAFifoAsAnImage) {
               std::string::npos)
         << outcome.output;
   }
+}
+
+// `run --shard 1/2` and `run --shard 2/2` at once into one --report once both exited 0 and left
+// shard 1's scenes only. A run holds its report folder; a second is refused at once, told which
+// run holds it (here the test holds the lock as another run would), and runs once it is free.
+TEST_F(HostileInput, ASecondRunIntoAReportFolderInUseIsRefusedNamingTheFirst) {
+  fs::create_directories(root_ / "report");
+  const fs::path lock = root_ / "report" / ".xshade-report.lock";
+  const int fd = ::open(lock.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
+  ASSERT_GE(fd, 0);
+  ASSERT_EQ(::flock(fd, LOCK_EX), 0);
+  const std::string holder = "process 4242: xshade run --shard 1/2\n";
+  ASSERT_EQ(::write(fd, holder.data(), holder.size()), ssize_t(holder.size()));
+  Outcome refused = run("--lane gl");
+  ::close(fd);
+  EXPECT_EQ(refused.exit_code, 2) << refused.output;
+  EXPECT_NE(refused.output.find("the report folder " + (root_ / "report").string() +
+                                " is being written by another xshade (process 4242: xshade run --shard 1/2)"),
+            std::string::npos)
+      << refused.output;
+  EXPECT_FALSE(fs::exists(root_ / "report" / "results.json")) << "the refused run wrote nothing";
+  Outcome free = run("--lane gl");
+  EXPECT_EQ(free.exit_code, 0) << free.output;
 }
 
 // ---- Work and memory have bounds.
