@@ -467,6 +467,23 @@ TEST_P(BackendContractTest, CullingRemovesTheFacesTheStateNames) {
   }
 }
 
+// Whether `a <op> b` holds: the depth test's (the incoming depth against the stored one) and the
+// stencil test's (the masked reference against the masked stored value), as Direct3D defines them.
+template <class T>
+bool compare_holds(CompareOp op, T a, T b) {
+  switch (op) {
+    case CompareOp::Never: return false;
+    case CompareOp::Less: return a < b;
+    case CompareOp::Equal: return a == b;
+    case CompareOp::LessEqual: return a <= b;
+    case CompareOp::Greater: return a > b;
+    case CompareOp::NotEqual: return a != b;
+    case CompareOp::GreaterEqual: return a >= b;
+    case CompareOp::Always: return true;
+  }
+  return false;
+}
+
 // A near red plane (z 0.25) over the top half, then a far green one (z 0.75) over everything,
 // each comparison and with and without depth writes: each pixel as the host's test decides it.
 TEST_P(BackendContractTest, TheDepthTestAndWriteAreAsTheStateSays) {
@@ -475,19 +492,6 @@ TEST_P(BackendContractTest, TheDepthTestAndWriteAreAsTheStateSays) {
   auto far = backend().upload_mesh({{vertex_at(-1, -1, 0.75f), vertex_at(3, -1, 0.75f), vertex_at(-1, 3, 0.75f)}, {0, 1, 2}});
   auto program = mesh_program("paint", kPaintFragment, layout({{"Paint", 0, 16}}, {}));
   ASSERT_TRUE(target && near && far && program);
-  const auto passes = [](CompareOp op, float incoming, float stored) {
-    switch (op) {
-      case CompareOp::Never: return false;
-      case CompareOp::Less: return incoming < stored;
-      case CompareOp::Equal: return incoming == stored;
-      case CompareOp::LessEqual: return incoming <= stored;
-      case CompareOp::Greater: return incoming > stored;
-      case CompareOp::NotEqual: return incoming != stored;
-      case CompareOp::GreaterEqual: return incoming >= stored;
-      case CompareOp::Always: return true;
-    }
-    return false;
-  };
   const glm::vec4 red{1, 0, 0, 1}, green{0, 1, 0, 1}, clear{0, 0, 0, 0};
   for (bool near_writes : {true, false})
     for (CompareOp op : {CompareOp::Never, CompareOp::Less, CompareOp::Equal, CompareOp::LessEqual, CompareOp::Greater,
@@ -505,7 +509,7 @@ TEST_P(BackendContractTest, TheDepthTestAndWriteAreAsTheStateSays) {
         const bool covered_by_near = y < 2;
         const float stored = covered_by_near && near_writes ? 0.25f : 1.0f;
         const glm::vec4 under = covered_by_near ? red : clear;
-        expect_near(image->at(0, y), passes(op, 0.75f, stored) ? green : under,
+        expect_near(image->at(0, y), compare_holds(op, 0.75f, stored) ? green : under,
                     "compare " + std::to_string(int(op)) + (near_writes ? ", written" : ", not written") + ", row " +
                         std::to_string(y));
       }
@@ -546,20 +550,6 @@ uint8_t stencil_after(StencilOp op, uint8_t stored, uint8_t reference) {
     case StencilOp::DecrementWrap: return uint8_t(stored - 1);
   }
   return stored;
-}
-
-bool compare_holds(CompareOp op, uint32_t a, uint32_t b) {
-  switch (op) {
-    case CompareOp::Never: return false;
-    case CompareOp::Less: return a < b;
-    case CompareOp::Equal: return a == b;
-    case CompareOp::LessEqual: return a <= b;
-    case CompareOp::Greater: return a > b;
-    case CompareOp::NotEqual: return a != b;
-    case CompareOp::GreaterEqual: return a >= b;
-    case CompareOp::Always: return true;
-  }
-  return false;
 }
 
 // The stored value after one face's test and operations, where the depth test passed or not.
