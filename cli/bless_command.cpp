@@ -116,10 +116,12 @@ int run_bless(const BlessOptions& options) {
   }
   auto old = goldens.find(result.scene, compared_lane);
   if (!old) {
-    fmt::print(stderr, "xshade bless: {}\n", old.error().to_string());
-    return kBadInput;
-  }
-  if (*old) {
+    // A golden whose files are damaged or gone (its entry intact) is what bless repairs: said,
+    // then replaced in the same transaction as any bless. A manifest that does not read is not
+    // overwritten: GoldenStore::bless refuses it below.
+    fmt::print(stderr, "xshade bless: the golden it replaces cannot be used: {}; blessing writes it again\n",
+               old.error().to_string());
+  } else if (*old) {
     const harness::Comparison comparison = harness::compare_images(image, (*old)->image, checked.scene->compare);
     fmt::print("against the golden it replaces ({}): {}\n", (*old)->path.string(),
                harness::describe_metrics(comparison.metrics));

@@ -152,6 +152,29 @@ TEST_F(BlessCommit, AKillAfterAnyStepLeavesTheOldGoldenOrTheNewOneAndTheNextRunF
 // entry and writes it back; without the lock one of the two entries is lost. Each holds the
 // manifest for 2 s between reading and writing it (far longer than the two renders differ by), so
 // that they always overlap there: the second must wait for the first and say so.
+// A golden whose image was truncated or deleted (its manifest entry intact) once could not be
+// blessed again ("only `xshade bless` may change a golden", exit 2): bless now says what it
+// cannot use and writes the golden again, after which a run passes.
+TEST_F(BlessCommit, BlessRepairsADamagedOrMissingGolden) {
+  scene("s");
+  ASSERT_EQ(bless("s", "first").exit_code, 0);
+  const fs::path png = root_ / "golden" / "gl" / "s.png";  // one lane blessed: its own golden
+  ASSERT_TRUE(fs::exists(png));
+  for (const bool truncate : {true, false}) {
+    if (truncate)
+      std::ofstream(png, std::ios::binary | std::ios::trunc) << read_text(png).substr(0, 40);
+    else
+      fs::remove(png);
+    EXPECT_NE(run("s").exit_code, 0) << "a damaged golden is never a pass";
+    Outcome repaired = bless("s", "repaired");
+    EXPECT_EQ(repaired.exit_code, 0) << repaired.output;
+    EXPECT_NE(repaired.output.find("xshade bless: the golden it replaces cannot be used: "), std::string::npos)
+        << repaired.output;
+    Outcome after = run("s");
+    EXPECT_EQ(after.exit_code, 0) << after.output;
+  }
+}
+
 TEST_F(BlessCommit, TwoBlessesAtOnceKeepBothEntries) {
   scene("toon_a");
   scene("toon_b", "_Color = [0.3, 0.6, 0.9, 1]", "_Color = [0.9, 0.3, 0.3, 1]");
