@@ -102,6 +102,26 @@ MUTATIONS = [
     ('a compile error shows no caret', 'base/diagnostic.cpp',
      '    if (!diagnostic.excerpt.empty()) text += "\\n" + diagnostic.excerpt;', '',
      'UserMistakes.AVariantThatDoesNotCompile'),
+    # The gates no test guarded, and one per check that nothing is passed that was not checked.
+    ('lanes that disagree leave the scene passing', 'harness/gate/scene_check.cpp',
+     '  for (const CrossLaneResult& pair : result.cross_lane) result.verdict = worst(result.verdict, pair.verdict);\n}',
+     '}', 'BlessCommit.LanesThatDisagree'),
+    ('an edited float golden is believed', 'harness/gate/golden_store.cpp',
+     '      if (Result<void> same = check_hash(float_path, *entry, entry->float_hash, bless_command(scene, own)); !same)\n'
+     '        return fail(same.error());\n', '', 'BlessCommit.AnEditedFloatGolden'),
+    ('diff of images of different sizes passes', 'cli/diff_command.cpp',
+     'return comparison.verdict == harness::Verdict::Pass ? kPass : kTestFailed;',
+     'return comparison.verdict == harness::Verdict::Pass || !same_size ? kPass : kTestFailed;',
+     'HostileInput.DiffOfImages'),
+    ('an xshade.toml that is not a file is passed over', 'harness/scene/project_file.cpp',
+     'if (const std::string kind = not_a_file(candidate); !kind.empty())',
+     'if (const std::string kind = not_a_file(candidate); false)', 'ProjectFileTest|HostileInput.AnXshadeToml'),
+    ('a cache folder others can write is used', 'base/file_io.cpp',
+     '  if (status.st_mode & (S_IWGRP | S_IWOTH))', '  if (false)', 'FileIo|HostileInput.ACacheFolder'),
+    ('two runs write one report folder at once', 'harness/report/report_lock.cpp',
+     'if (::flock(fd, LOCK_EX | LOCK_NB) != 0) {', 'if (false) {', 'ReportLock|HostileInput.ASecondRun'),
+    ('a lane image merge cannot read leaves its checks out', 'harness/report/report_merge.cpp',
+     '        if (!missing) continue;', '        continue;', 'ReportMerge'),
 ]
 
 

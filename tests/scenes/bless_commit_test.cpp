@@ -93,6 +93,14 @@ class BlessCommit : public ::testing::Test {
     return run_xshade("XSHADE_BLESSED_BY=test " + environment, bless_arguments(scene_name, reason));
   }
   Outcome run(const std::string& scenes) { return run_xshade("", "run " + scenes + folders("report")); }
+  // scenes/NAME.toml: one sphere of `material`, 8 x 8 pixels, on every lane.
+  void one_sphere_scene(const std::string& name, const std::string& material) const {
+    std::ofstream(root_ / "scenes" / (name + ".toml")) << "description = \"one sphere\"\nsize = [8, 8]\n"
+                                                          "[camera]\nposition = [0, 0, 4]\ntarget = [0, 0, 0]\n"
+                                                          "fov_y = 40\nnear = 0.5\nfar = 20\n"
+                                                          "[[object]]\nmesh = \"sphere\"\nmaterial = \""
+                                                       << material << "\"\n";
+  }
 
   fs::path root_;
   std::string tiny_;
@@ -173,6 +181,55 @@ TEST_F(BlessCommit, BlessRepairsADamagedOrMissingGolden) {
     Outcome after = run("s");
     EXPECT_EQ(after.exit_code, 0) << after.output;
   }
+}
+
+// Lanes that disagree fail the run even where each lane passes against a golden of its own:
+// a material whose fmod of a negative number takes glslang's sign on vk-hlsl (a listed
+// divergence, docs/divergences.md), each lane blessed on its own, then a run of all three.
+TEST_F(BlessCommit, LanesThatDisagreeFailTheRunThoughEachPassesItsOwnGolden) {
+  fs::create_directories(root_ / "shaders" / "materials");
+  std::ofstream(root_ / "shaders" / "materials" / "fmod_sign.hlsl") << R"(#pragma vertex vert
+#pragma fragment frag
+#include "include/scene_inputs.hlsl"
+SurfaceVaryings vert(MeshVertex input) { return surface_vertex(input); }
+float4 frag(SurfaceVaryings input) : SV_Target { return float4(abs(fmod(-1.5 + 0.0 * input.uv.x, 2.0)) / 2.0, 0, 0, 1); }
+)";
+  one_sphere_scene("fmod", "materials/fmod_sign.hlsl");
+  const std::string options = copied_scene_options(root_) + " --report '" + (root_ / "report").string() + "'";
+  for (const char* lane : {"gl", "vk", "vk-hlsl"}) {
+    Outcome blessed = run_xshade("XSHADE_BLESSED_BY=test", std::string("bless fmod --lane ") + lane +
+                                                               " --reason 'this lane on its own'" + options);
+    ASSERT_EQ(blessed.exit_code, 0) << blessed.output;
+  }
+  Outcome outcome = run_xshade("", "run fmod" + options);
+  EXPECT_EQ(outcome.exit_code, 1) << outcome.output;
+  EXPECT_NE(outcome.output.find("fmod on vk-hlsl: pass"), std::string::npos) << outcome.output;
+  EXPECT_NE(outcome.output.find("fmod: gl vs vk-hlsl: fail"), std::string::npos) << outcome.output;
+  EXPECT_NE(outcome.output.find("0 of 1 scenes passed"), std::string::npos) << outcome.output;
+}
+
+// A float golden (values above 1, which the PNG clamps) edited after bless is refused, naming
+// the bless to run, never believed: the run is an error, not a pass against the edited values.
+TEST_F(BlessCommit, AnEditedFloatGoldenIsRefused) {
+  fs::create_directories(root_ / "shaders" / "materials");
+  std::ofstream(root_ / "shaders" / "materials" / "bright.hlsl") << R"(#pragma vertex vert
+#pragma fragment frag
+#include "include/scene_inputs.hlsl"
+SurfaceVaryings vert(MeshVertex input) { return surface_vertex(input); }
+float4 frag(SurfaceVaryings input) : SV_Target { return float4(2.0, 0.5, 0.25, 1.0); }
+)";
+  one_sphere_scene("bright", "materials/bright.hlsl");
+  ASSERT_EQ(bless("bright", "above one").exit_code, 0);
+  fs::path exr;
+  for (const auto& item : fs::recursive_directory_iterator(root_ / "golden"))
+    if (item.path().filename() == "bright.exr") exr = item.path();
+  ASSERT_FALSE(exr.empty()) << "bless wrote no float image";
+  std::string bytes = read_text(exr);
+  bytes.back() = char(bytes.back() ^ 1);
+  std::ofstream(exr, std::ios::binary | std::ios::trunc) << bytes;
+  Outcome outcome = run("bright");
+  EXPECT_EQ(outcome.exit_code, 2) << outcome.output;
+  EXPECT_NE(outcome.output.find(exr.string() + " is not the image blessed on"), std::string::npos) << outcome.output;
 }
 
 TEST_F(BlessCommit, TwoBlessesAtOnceKeepBothEntries) {

@@ -309,6 +309,14 @@ TEST_F(HostileInput, AllVariantsOfTwoToTheFortyIsRefusedAtOnce) {
   EXPECT_EQ(outcome.output.find(": compiles"), std::string::npos);
 }
 
+// Two images of different sizes are two images that differ: exit 1, never the pass code.
+TEST_F(HostileInput, DiffOfImagesOfDifferentSizesFails) {
+  Outcome outcome = run_xshade("", "diff '" + (kSource / "golden" / "dof_off.png").string() + "' '" +
+                                       (kSource / "golden" / "white_furnace.png").string() + "'");
+  EXPECT_EQ(outcome.exit_code, 1) << outcome.output;
+  EXPECT_NE(outcome.output.find("test is 320x96 but the reference is 320x240"), std::string::npos) << outcome.output;
+}
+
 // ---- The compile cache is the user's alone.
 
 // With HOME unset the cache once fell back to /tmp/xshade-cache, which another user had made
