@@ -91,11 +91,16 @@ int run_run(const RunOptions& options) {
     *files = std::move(mine);
   }
 
-  // Two runs into one report folder would leave one run's report saying it is both.
-  auto report_lock = harness::ReportLock::take(options.report_dir, options.command_line);
-  if (!report_lock) {
-    fmt::print(stderr, "xshade run: {}\n", report_lock.error().to_string());
-    return report_lock.error().kind == ErrorKind::Backend ? kBackendError : kBadInput;
+  // Two runs into one report folder would leave one run's report saying it is both. A plan
+  // writes no report, and takes no lock.
+  std::optional<harness::ReportLock> report_lock;
+  if (!options.plan_only) {
+    auto taken = harness::ReportLock::take(options.report_dir, options.command_line);
+    if (!taken) {
+      fmt::print(stderr, "xshade run: {}\n", taken.error().to_string());
+      return taken.error().kind == ErrorKind::Backend ? kBackendError : kBadInput;
+    }
+    report_lock = std::move(*taken);
   }
   const std::filesystem::path cache_dir =
       options.no_cache ? std::filesystem::path() : private_cache_dir(shader_cache_dir(options.cache_dir), "run");

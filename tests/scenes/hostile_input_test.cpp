@@ -287,6 +287,11 @@ TEST_F(HostileInput, ASecondRunIntoAReportFolderInUseIsRefusedNamingTheFirst) {
   EXPECT_FALSE(fs::exists(root_ / "report" / "results.json")) << "the refused run wrote nothing";
   Outcome free = run("--lane gl");
   EXPECT_EQ(free.exit_code, 0) << free.output;
+  // A plan writes no report: it neither takes the lock nor makes the folder.
+  Outcome plan = run_xshade("", "run --plan" + copied_scene_options(root_) + " --report '" +
+                                    (root_ / "plan_report").string() + "'");
+  EXPECT_EQ(plan.exit_code, 0) << plan.output;
+  EXPECT_FALSE(fs::exists(root_ / "plan_report"));
 }
 
 // ---- Work and memory have bounds.
