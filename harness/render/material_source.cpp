@@ -165,7 +165,9 @@ Result<SourceModule> compile_source(const fs::path& path, hlsl::CompileOptions o
   // Fallback, as Unity draws it.
   const shaderlab::Shader* shader = &*read;
   fs::path file = path;
-  for (int hops = 0; !shaderlab::drawn_subshader(*shader); ++hops) {
+  // drawn_subshader composes each pass's text to read its renderer pragmas: asked once a shader.
+  const shaderlab::SubShader* sub = nullptr;
+  for (int hops = 0; !(sub = shaderlab::drawn_subshader(*shader)); ++hops) {
     if (!shader->fallback || shader->fallback->empty())
       return fail("'" + shader->name + "' " + shaderlab::without_subshader(*shader) + (shader->fallback ? " (Fallback Off)" : ""),
                   {file.string(), 1, 1});
@@ -181,7 +183,6 @@ Result<SourceModule> compile_source(const fs::path& path, hlsl::CompileOptions o
     shader = fallback->first;
     file = fallback->second;
   }
-  const shaderlab::SubShader* sub = shaderlab::drawn_subshader(*shader);
   std::vector<SourcePass> passes(sub->passes.size());
   for (size_t i = 0; i < sub->passes.size(); ++i) {
     const shaderlab::Pass& pass = sub->passes[i];
