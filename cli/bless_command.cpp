@@ -7,6 +7,8 @@
 #include <cstdio>
 #include <cstdlib>
 
+#include "base/interrupt.h"
+#include "base/subprocess.h"
 #include "cli/commands.h"
 #include "cli/lane_selection.h"
 #include "cli/workers.h"
@@ -75,10 +77,15 @@ int run_bless(const BlessOptions& options) {
                              .cache_dir = cache_dir,
                              .gl_platform = options.gl_platform};
   harness::CheckedScene checked;
+  catch_interrupts();
   const harness::WorkerTotals totals = harness::check_in_workers(
       checker, scene_workers(shared, options.workers), *files, *lanes,
       [&](harness::CheckedScene&& scene) { checked = std::move(scene); },
       [](const std::string& text) { fmt::print(stderr, "{}", text); });
+  if (const int signal = interrupt_signal()) {
+    fmt::print(stderr, "xshade bless: stopped by {} before it rendered; no golden changed\n", describe_signal(signal));
+    return kInterrupted + signal;
+  }
   const harness::SceneResult& result = checked.result;
   if (!result.message.empty()) {
     fmt::print(stderr, "xshade bless: {}: {}\n", result.scene, result.message);

@@ -18,6 +18,7 @@ enum ExitCode : int {
   kTestFailed = 1,    // a check failed: images differ, a lane disagrees
   kBadInput = 2,      // bad usage, a bad shader or scene file
   kBackendError = 3,  // a driver or lane could not run, or an internal error
+  kInterrupted = 128,  // plus the signal, as a shell reports it: stopped by ^C (130) or `kill` (143)
 };
 
 // Runs a verb: errors travel as values, and an exception that still escapes (an allocation that

@@ -112,7 +112,7 @@ std::optional<std::string> misspelling(const CLI::App& app, const CLI::ParseErro
 static int run_command_line(int argc, char** argv) {
   using namespace xshade::cli;
   CLI::App app{"xshade: author a shader once, render it on OpenGL and Vulkan, diff the images.\n"
-               "Exit codes: 0 pass, 1 a check failed, 2 bad input or usage, 3 backend or internal error.",
+               "Exit codes: 0 pass, 1 a check failed, 2 bad input or usage, 3 backend or internal error; run and bless stopped by a signal (^C) exit 128 + it, their workers and temporary files removed.",
                "xshade"};
   app.require_subcommand(1);
   app.set_version_flag("--version", std::string("xshade ") + XSHADE_VERSION);

@@ -9,6 +9,8 @@
 #include <map>
 #include <system_error>
 
+#include "base/interrupt.h"
+#include "base/subprocess.h"
 #include "cli/commands.h"
 #include "cli/lane_selection.h"
 #include "cli/workers.h"
@@ -157,8 +159,14 @@ int run_run(const RunOptions& options) {
                                .pass_images = options.pass_images,
                                .half_emulation = half,
                                .trace_nonfinite = options.trace_nonfinite};
+    catch_interrupts();
     totals = harness::check_in_workers(checker, scene_workers(shared, options.workers), *files, *lanes, record,
                                        [](const std::string& text) { fmt::print(stderr, "{}", text); });
+    if (const int signal = interrupt_signal()) {
+      fmt::print(stderr, "xshade run: stopped by {} after {} of {} scenes; its workers and their files are gone, "
+                 "and no report was written\n", describe_signal(signal), results.scenes.size(), files->size());
+      return kInterrupted + signal;
+    }
   }
   results.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 

@@ -9,6 +9,7 @@
 #include <fmt/core.h>
 #include <nlohmann/json.hpp>
 
+#include "base/interrupt.h"
 #include "cli/commands.h"
 #include "harness/gate/lane_workers.h"
 
@@ -17,6 +18,8 @@ namespace xshade::cli {
 int run_worker(const WorkerOptions& options) {
   // A worker whose supervisor is gone (killed, or stopped with ^C) has nobody to report to.
   prctl(PR_SET_PDEATHSIG, SIGKILL);
+  // Forked from a run that catches ^C: a worker ends with it, as its supervisor stops.
+  stop_catching_interrupts();
   auto platform = harness::parse_gl_platform(options.gl_platform);
   if (!platform) {
     fmt::print(stderr, "xshade worker: unknown gl platform '{}'\n", options.gl_platform);

@@ -96,8 +96,11 @@ Result<GoldenEntry> read_entry(const toml::table& table, const std::string& file
 }  // namespace
 
 const GoldenEntry* GoldenManifest::find(const std::string& scene, const std::string& lane) const {
-  for (const GoldenEntry& entry : entries)
-    if (entry.scene == scene && entry.lane == lane) return &entry;
+  auto position = std::lower_bound(entries.begin(), entries.end(), std::tie(scene, lane),
+                                   [](const GoldenEntry& entry, const auto& key) {
+                                     return std::tie(entry.scene, entry.lane) < key;
+                                   });
+  if (position != entries.end() && position->scene == scene && position->lane == lane) return &*position;
   return nullptr;
 }
 
@@ -120,6 +123,8 @@ Result<GoldenManifest> parse_golden_manifest(std::string_view text, const std::s
     return fail(fmt::format("syntax error: {}", error.description()), where(file_name, error.source()));
   }
 
+  // Read in file order, then sorted once: a find and an insert per entry would make a large
+  // manifest quadratic.
   GoldenManifest manifest;
   for (const auto& [key, node] : root) {
     if (key.str() != "golden")
@@ -129,15 +134,28 @@ Result<GoldenManifest> parse_golden_manifest(std::string_view text, const std::s
     if (!array || !array->is_array_of_tables())
       return fail("'golden' must be an array of tables: [[golden]]", where(file_name, node.source()));
     for (const toml::node& element : *array) {
+      if (manifest.entries.size() == kMaxManifestEntries)
+        return fail(fmt::format("more than {} [[golden]] entries: this is not a golden manifest xshade wrote",
+                                kMaxManifestEntries),
+                    where(file_name, element.source()));
       Result<GoldenEntry> entry = read_entry(*element.as_table(), file_name);
       if (!entry) return fail(entry.error());
-      if (const GoldenEntry* earlier = manifest.find(entry->scene, entry->lane))
-        return fail(fmt::format("a second entry for the golden of {} (the first is at {})",
-                                entry->lane.empty() ? entry->scene : entry->lane + "/" + entry->scene,
-                                earlier->where.to_string()),
-                    entry->where);
-      manifest.record(std::move(*entry));
+      manifest.entries.push_back(std::move(*entry));
     }
+  }
+  // Stable, so that of two entries for one image the earlier in the file comes first.
+  std::stable_sort(manifest.entries.begin(), manifest.entries.end(), scene_then_lane);
+  auto second = std::adjacent_find(manifest.entries.begin(), manifest.entries.end(),
+                                   [](const GoldenEntry& a, const GoldenEntry& b) {
+                                     return a.scene == b.scene && a.lane == b.lane;
+                                   });
+  if (second != manifest.entries.end()) {
+    const GoldenEntry& earlier = *second;
+    const GoldenEntry& later = *std::next(second);
+    return fail(fmt::format("a second entry for the golden of {} (the first is at {})",
+                            later.lane.empty() ? later.scene : later.lane + "/" + later.scene,
+                            earlier.where.to_string()),
+                later.where);
   }
   return manifest;
 }

@@ -33,9 +33,12 @@ struct GoldenManifest {
   void record(GoldenEntry entry);
 };
 
-// A manifest entry is about 600 bytes; 64 MiB holds some hundred thousand goldens, far past any
+// A manifest entry is about 600 bytes; 32 MiB holds some fifty thousand goldens, far past any
 // project, and keeps a mistaken file (a link to a log, /dev/zero) from being read at all.
-inline constexpr size_t kMaxManifestBytes = size_t(64) << 20;
+inline constexpr size_t kMaxManifestBytes = size_t(32) << 20;
+// The same bound counted in entries, for a file of short ones: 100,000 goldens (a day of
+// blessing a second each) is past any project.
+inline constexpr size_t kMaxManifestEntries = 100'000;
 
 // A missing file is an empty manifest (GoldenStore refuses images without one); one that is not a
 // file (a folder, a FIFO, a link to nothing) or is larger than kMaxManifestBytes is refused. An

@@ -3,6 +3,7 @@
 #include <fstream>
 #include <sstream>
 
+#include <fmt/format.h>
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
@@ -98,6 +99,16 @@ TEST(GoldenManifestTest, AKeyNestedTooDeepIsRefusedBeforeTheTomlParserRecurses) 
                                       "at most 100 (a longer one could overflow the TOML parser's stack)");
 }
 
+TEST(GoldenManifestTest, AManifestOfMoreEntriesThanAnyProjectIsRefusedAtTheFirstOnePastTheLimit) {
+  std::string text;
+  for (size_t i = 0; i <= kMaxManifestEntries; ++i) text += fmt::format("[[golden]]\nscene = \"s{}\"\nreason = \"r\"\n", i);
+  auto read = parse_golden_manifest(text, "MANIFEST.toml");
+  ASSERT_FALSE(read);
+  EXPECT_EQ(read.error().to_string(),
+            fmt::format("MANIFEST.toml:{}:1: more than {} [[golden]] entries: this is not a golden manifest xshade wrote",
+                        3 * kMaxManifestEntries + 1, kMaxManifestEntries));
+}
+
 struct BadManifest {
   std::string text;
   std::string error;
@@ -125,6 +136,11 @@ INSTANTIATE_TEST_SUITE_P(
                     "MANIFEST.toml:1:1: the golden of vk/a has no reason"},
         BadManifest{"[[golden]]\nscene = \"a\"\nreason = \"x\"\n\n[[golden]]\nscene = \"a\"\nreason = \"y\"\n",
                     "MANIFEST.toml:5:1: a second entry for the golden of a (the first is at MANIFEST.toml:1:1)"},
+        // Found when the entries are sorted, and still named in the order of the file.
+        BadManifest{"[[golden]]\nscene = \"b\"\nreason = \"x\"\n\n[[golden]]\nscene = \"a\"\nreason = \"y\"\n\n"
+                    "[[golden]]\nscene = \"b\"\nlane = \"vk\"\nreason = \"z\"\n\n[[golden]]\nscene = \"b\"\nreason = "
+                    "\"w\"\n",
+                    "MANIFEST.toml:14:1: a second entry for the golden of b (the first is at MANIFEST.toml:1:1)"},
         BadManifest{"goldens = 1\n", "MANIFEST.toml:1:11: unknown key 'goldens' (the manifest holds only [[golden]] "
                                      "entries)"},
         BadManifest{"golden = 1\n", "MANIFEST.toml:1:10: 'golden' must be an array of tables: [[golden]]"}));

@@ -1,7 +1,12 @@
 #include "harness/gate/lane_workers.h"
 
+#include <fcntl.h>
 #include <signal.h>
+#include <sys/file.h>
+#include <sys/stat.h>
 #include <unistd.h>
+
+#include <stdio.h>  // renameat2
 
 #include <algorithm>
 #include <cstdlib>
@@ -13,6 +18,7 @@
 #include <nlohmann/json.hpp>
 
 #include "base/file_io.h"
+#include "base/interrupt.h"
 #include "base/subprocess.h"
 #include "harness/gate/result_json.h"
 
@@ -22,27 +28,63 @@ namespace {
 namespace fs = std::filesystem;
 using namespace std::chrono_literals;
 
-// A private folder for the workers' results, removed with everything in it at the end.
+constexpr std::string_view kScratchPrefix = "xshade-workers-";
+
+// A private folder for the workers' results, removed with everything in it at the end. The run
+// holds a lock on it while it lives (flock on the folder, closed on exec so no worker keeps it):
+// a folder whose lock can be taken is a dead run's (killed with SIGKILL, or a machine that went
+// down), and the next run removes it. It is made under a hidden name, locked, and only then
+// given its name, so that no run finds it unlocked.
 class ScratchFolder {
  public:
   static Result<ScratchFolder> make() {
     std::error_code error;
-    std::string pattern = (fs::temp_directory_path(error) / "xshade-workers-XXXXXX").string();
-    if (!mkdtemp(pattern.data()))
-      return fail(ErrorKind::Backend, "cannot make a folder for the workers in " + pattern + ": " + std::strerror(errno));
-    return ScratchFolder(pattern);
+    const fs::path temp = fs::temp_directory_path(error);
+    std::string hidden = (temp / ("." + std::string(kScratchPrefix) + "XXXXXX")).string();
+    if (!mkdtemp(hidden.data()))
+      return fail(ErrorKind::Backend, "cannot make a folder for the workers in " + temp.string() + ": " +
+                                          std::strerror(errno));
+    const fs::path named = temp / fs::path(hidden).filename().string().substr(1);
+    const int fd = open(hidden.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+    if (fd < 0 || flock(fd, LOCK_EX | LOCK_NB) != 0 ||
+        renameat2(AT_FDCWD, hidden.c_str(), AT_FDCWD, named.c_str(), RENAME_NOREPLACE) != 0) {
+      const int cause = errno;
+      if (fd >= 0) close(fd);
+      fs::remove_all(hidden, error);
+      return fail(ErrorKind::Backend, "cannot make the workers' folder " + named.string() + ": " + std::strerror(cause));
+    }
+    return ScratchFolder(named, fd);
   }
-  ScratchFolder(ScratchFolder&& other) noexcept : path_(std::exchange(other.path_, {})) {}
+  // Removes the folders that dead runs of this user left.
+  static void remove_dead_runs() {
+    std::error_code error;
+    const fs::path temp = fs::temp_directory_path(error);
+    if (error) return;
+    for (const fs::directory_entry& entry : fs::directory_iterator(temp, error)) {
+      if (!entry.path().filename().string().starts_with(kScratchPrefix)) continue;
+      const int fd = open(entry.path().c_str(), O_RDONLY | O_DIRECTORY | O_NOFOLLOW | O_CLOEXEC);
+      if (fd < 0) continue;
+      struct stat status {};
+      std::error_code ignored;
+      if (fstat(fd, &status) == 0 && status.st_uid == geteuid() && flock(fd, LOCK_EX | LOCK_NB) == 0)
+        fs::remove_all(entry.path(), ignored);
+      close(fd);
+    }
+  }
+  ScratchFolder(ScratchFolder&& other) noexcept
+      : path_(std::exchange(other.path_, {})), lock_(std::exchange(other.lock_, -1)) {}
   ScratchFolder& operator=(ScratchFolder&&) = delete;
   ~ScratchFolder() {
     std::error_code ignored;
     if (!path_.empty()) fs::remove_all(path_, ignored);
+    if (lock_ >= 0) close(lock_);
   }
   const fs::path& path() const { return path_; }
 
  private:
-  explicit ScratchFolder(fs::path path) : path_(std::move(path)) {}
+  ScratchFolder(fs::path path, int lock) : path_(std::move(path)), lock_(lock) {}
   fs::path path_;
+  int lock_ = -1;
 };
 
 // The last `count` lines of a worker's output, for a message about how it ended.
@@ -130,6 +172,7 @@ WorkerTotals check_in_workers(SceneChecker& checker, const SceneWorkers& workers
                       const std::function<void(const std::string&)>& output) {
   WorkerTotals totals;
   std::vector<SceneInWork> scenes(files.size());
+  ScratchFolder::remove_dead_runs();
   auto scratch = ScratchFolder::make();
   std::deque<Job> queued;
   std::vector<WorkerSlot> slots(std::max(1u, workers.jobs));
@@ -220,7 +263,8 @@ WorkerTotals check_in_workers(SceneChecker& checker, const SceneWorkers& workers
     }
   };
 
-  while (next_to_report < files.size()) {
+  // Asked to stop (interrupt.h): the workers are killed and the folder removed on the way out.
+  while (next_to_report < files.size() && !interrupt_signal()) {
     // Prepare scenes only as far as there is work to queue: the first workers start at once.
     while (busy + queued.size() < slots.size() && next_to_prepare < files.size()) {
       SceneInWork& scene = scenes[next_to_prepare];

@@ -56,7 +56,9 @@ struct WorkerTotals {
 
 // Checks each scene of `files` on those of `lanes` it lists, each lane in a worker; `done` gets
 // each scene once it is concluded, in the order of `files`. Worker output (a driver's warnings)
-// goes to `output` with its scene.
+// goes to `output` with its scene. When the process is asked to stop (base/interrupt.h) it
+// returns early, its workers killed and their folder removed; the scenes not yet given to `done`
+// are not. It first removes the workers' folders that dead runs of this user left.
 WorkerTotals check_in_workers(SceneChecker& checker, const SceneWorkers& workers, const std::vector<std::filesystem::path>& files,
                       const std::vector<Lane>& lanes, const std::function<void(CheckedScene&&)>& done,
                       const std::function<void(const std::string&)>& output);

@@ -24,7 +24,8 @@ constexpr const char* kWrittenList = ".xshade-report-files";
 
 std::vector<std::string> files_of(const RunResults& results, const std::vector<std::string>& pages) {
   std::vector<std::string> files = pages;
-  for (const char* file : {"junit.xml", "results.json", "index.html", kWrittenList}) files.push_back(file);
+  for (const char* file : {"junit.xml", "results.json", "index.html", kViewerScriptFile, kViewerStyleFile, kWrittenList})
+    files.push_back(file);
   for (const SceneResult& scene : results.scenes) {
     for (const LaneResult& lane : scene.lanes)
       for (const std::string* path : {&lane.image, &lane.image_exr, &lane.golden, &lane.golden_exr, &lane.diff, &lane.non_finite_mask})
@@ -62,19 +63,22 @@ Result<void> write_reports(const RunResults& results, const fs::path& report_dir
   fs::create_directories(report_dir, error);
   if (error) return fail("cannot create the report folder " + report_dir.string() + ": " + error.message());
 
+  for (const auto& [file, text] : {std::pair{kViewerScriptFile, viewer_script()}, std::pair{kViewerStyleFile, viewer_style()}})
+    if (auto written = write_file_atomically(report_dir / file, text); !written) return written;
   const std::vector<std::string> pages = scene_page_names(results);
   std::vector<std::string> pixel_scripts;
+  std::set<std::string> scripted;  // the images whose pixels/KEY.js this write made
   for (size_t i = 0; i < results.scenes.size(); ++i) {
-    const ViewerPage viewer =
-        viewers && i < viewers->size() ? (*viewers)[i] : viewer_page(results.scenes[i], report_dir);
-    std::string script;
-    if (!viewer.pixels_script.empty()) {
-      script = "pixels/" + pages[i].substr(0, pages[i].size() - 5) + ".js";
-      fs::create_directories(report_dir / "pixels", error);
-      if (auto written = write_file_atomically(report_dir / script, viewer.pixels_script); !written) return written;
+    const ViewerPage viewer = viewers && i < viewers->size() ? (*viewers)[i]
+                                                             : viewer_page(results.scenes[i], report_dir, {}, &scripted);
+    for (const ViewerPage::PixelScript& pixels : viewer.pixels) {
+      if (pixels.script.empty()) continue;
+      const std::string script = pixel_script_path(pixels.image);
+      fs::create_directories((report_dir / script).parent_path(), error);
+      if (auto written = write_file_atomically(report_dir / script, pixels.script); !written) return written;
       pixel_scripts.push_back(script);
     }
-    if (auto written = write_file_atomically(report_dir / pages[i], scene_html(results.scenes[i], viewer, script)); !written)
+    if (auto written = write_file_atomically(report_dir / pages[i], scene_html(results.scenes[i], viewer)); !written)
       return written;
   }
   if (auto written = write_file_atomically(report_dir / "junit.xml", junit_xml(results)); !written) return written;

@@ -403,8 +403,7 @@ void cross_lane_section(std::string& out, const SceneResult& scene) {
 
 // The image-diff viewer (viewer/viewer.js) with its data; without JavaScript, links to the
 // images it would show.
-void images_section(std::string& out, const SceneResult& scene, const ViewerPage& viewer,
-                    std::string_view pixels_script) {
+void images_section(std::string& out, const SceneResult& scene, const ViewerPage& viewer) {
   auto to = std::back_inserter(out);
   out += "<section id=\"images\">\n<h2>Images</h2>\n<noscript><p>The image viewer needs JavaScript. The images: ";
   for (const LaneResult& lane : scene.lanes)
@@ -414,9 +413,10 @@ void images_section(std::string& out, const SceneResult& scene, const ViewerPage
         fmt::format_to(to, "<a href=\"{}\">{}{}</a> ", escape_attribute(url_path(*path)), escape_text(lane.lane), what);
   out += "</p></noscript>\n<div id=\"xshade-viewer\"></div>\n";
   fmt::format_to(to, "<script id=\"xshade-viewer-data\" type=\"application/json\">{}</script>\n", viewer.data_json);
-  if (!pixels_script.empty())
-    fmt::format_to(to, "<script src=\"{}\"></script>\n", escape_attribute(url_path(pixels_script)));
-  fmt::format_to(to, "<style>{}</style>\n<script>{}</script>\n</section>\n", kViewerStyle, kViewerScript);
+  for (const ViewerPage::PixelScript& pixels : viewer.pixels)
+    fmt::format_to(to, "<script src=\"{}\"></script>\n", escape_attribute(url_path(pixel_script_path(pixels.image))));
+  fmt::format_to(to, "<link rel=\"stylesheet\" href=\"{}\">\n<script src=\"{}\"></script>\n</section>\n",
+                 kViewerStyleFile, kViewerScriptFile);
 }
 
 }  // namespace
@@ -530,7 +530,10 @@ std::string index_html(const RunResults& results) {
   return out + std::string(kPageEnd);
 }
 
-std::string scene_html(const SceneResult& scene, const ViewerPage& viewer, std::string_view pixels_script) {
+std::string_view viewer_script() { return kViewerScript; }
+std::string_view viewer_style() { return kViewerStyle; }
+
+std::string scene_html(const SceneResult& scene, const ViewerPage& viewer) {
   std::string out = page_start(fmt::format("{}: {}", scene.scene, verdict_word(scene.verdict)));
   auto to = std::back_inserter(out);
   fmt::format_to(to, "<nav><a href=\"index.html\">← all scenes</a></nav>\n<header class=\"{}\">\n<h1>{} {}</h1>\n",
@@ -557,7 +560,7 @@ std::string scene_html(const SceneResult& scene, const ViewerPage& viewer, std::
     out += "</table>\n</section>\n";
   }
   if (std::any_of(scene.lanes.begin(), scene.lanes.end(), [](const LaneResult& lane) { return !lane.image.empty(); }))
-    images_section(out, scene, viewer, pixels_script);
+    images_section(out, scene, viewer);
   for (const LaneResult& lane : scene.lanes) lane_section(out, lane);
   if (!scene.lanes.empty() || !scene.cross_lane.empty()) cross_lane_section(out, scene);
   if (!scene.plan.empty()) fmt::format_to(to, "<section>\n<h2>Plan</h2>\n<pre>{}</pre>\n</section>\n", escape_text(scene.plan));

@@ -24,8 +24,15 @@ std::string index_html(const RunResults& results);
 // A scene's page: the image-diff viewer (golden, output and heat map of each group of lanes that
 // rendered alike, viewer_data.h), each lane's layers, metrics, timings, driver, files and
 // non-finite mask, the cross-lane comparisons and the plan. Image paths are the model's,
-// relative to the report folder the page is written to; `pixels_script` is the viewer's float
-// data beside the page (empty: none).
-std::string scene_html(const SceneResult& scene, const ViewerPage& viewer, std::string_view pixels_script);
+// relative to the report folder the page is written to, as are the viewer's pixel scripts
+// (pixel_script_path).
+std::string scene_html(const SceneResult& scene, const ViewerPage& viewer);
+
+// The image-diff viewer (viewer/viewer.js and viewer.css, compiled in) that every scene page
+// loads from beside itself: written once a report, not into each of its thousands of pages.
+inline constexpr const char* kViewerScriptFile = "viewer.js";
+inline constexpr const char* kViewerStyleFile = "viewer.css";
+std::string_view viewer_script();
+std::string_view viewer_style();
 
 }  // namespace xshade::harness

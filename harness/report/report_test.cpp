@@ -10,6 +10,7 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include "harness/image/image_io.h"
 #include "harness/report/junit_report.h"
 #include "harness/report/report_html.h"
 #include "harness/report/results_json.h"
@@ -225,8 +226,13 @@ TEST_F(ReportTest, ScenePageShowsImagesMetricsTimingsAndDriver) {
   EXPECT_NE(page.find("<pre>pass main -&gt; target colour 64x64\n  draw sphere with lit.hlsl</pre>"), std::string::npos);
   // No NaN in this scene: no mask.
   EXPECT_EQ(page.find("NaN / Inf / negative"), std::string::npos);
-  // Nothing fetched: the viewer is inline, and no float data is here to load beside the page.
-  EXPECT_EQ(page.find("<script src"), std::string::npos);
+  // Nothing fetched from elsewhere: the viewer is the report's own, and no float data is here to
+  // load beside the page.
+  EXPECT_EQ(occurrences(page, "<script src"), 1u);
+  EXPECT_NE(page.find("<link rel=\"stylesheet\" href=\"viewer.css\">\n<script src=\"viewer.js\"></script>"),
+            std::string::npos);
+  EXPECT_EQ(read_text(dir_ / "viewer.js"), viewer_script());
+  EXPECT_EQ(read_text(dir_ / "viewer.css"), viewer_style());
   EXPECT_EQ(page.find("http://"), std::string::npos);
   EXPECT_EQ(page.find("https://"), std::string::npos);
 }
@@ -392,6 +398,45 @@ TEST(WriteReports, ReplacesAnEarlierReport) {
   results.scenes.resize(1);
   ASSERT_TRUE(write_reports(results, dir));
   EXPECT_EQ(attribute(read_text(dir / "junit.xml"), "testsuites", "tests"), "4");
+  fs::remove_all(dir);
+}
+
+// A merged report can name one image from thousands of scenes: its float values are written
+// once, in a script of their own that every page showing the image loads.
+TEST(WriteReports, WritesTheFloatValuesOfAnImageOnceHoweverManyPagesShowIt) {
+  const fs::path dir = fs::temp_directory_path() / "xshade_report_test_shared_image";
+  fs::remove_all(dir);
+  FloatImage image(2, 1);
+  image.rgba = {0.25f, 0.5f, 2.0f, 1.0f, 0.0f, 0.0f, 0.0f, 1.0f};
+  fs::create_directories(dir / "shared");
+  ASSERT_TRUE(write_exr(image, dir / "shared" / "gl.exr"));
+  RunResults results;
+  for (const char* name : {"first", "second"}) {
+    SceneResult scene;
+    scene.scene = name;
+    scene.verdict = Verdict::Pass;
+    LaneResult lane;
+    lane.lane = "gl";
+    lane.verdict = Verdict::Pass;
+    lane.image = "shared/gl.png";
+    lane.image_exr = "shared/gl.exr";
+    scene.lanes.push_back(lane);
+    results.scenes.push_back(scene);
+  }
+  auto written = write_reports(results, dir);
+  ASSERT_TRUE(written) << written.error().to_string();
+  const std::string script = read_text(dir / "pixels" / "shared" / "gl.exr.js");
+  EXPECT_EQ(occurrences(script, "(window.XSHADE_PIXELS = window.XSHADE_PIXELS || {})[\"shared/gl.exr\"] = "), 1u)
+      << script.substr(0, 200);
+  EXPECT_EQ(occurrences(script, "\n"), 1u);
+  for (const char* page : {"first.html", "second.html"}) {
+    const std::string text = read_text(dir / page);
+    EXPECT_EQ(occurrences(text, "<script src=\"pixels/shared/gl.exr.js\"></script>"), 1u) << page;
+    EXPECT_NE(text.find(R"("output":{"pixels":"shared/gl.exr","png":"shared/gl.png"})"), std::string::npos) << page;
+  }
+  size_t scripts = 0;
+  for (const auto& entry : fs::recursive_directory_iterator(dir / "pixels")) scripts += entry.is_regular_file();
+  EXPECT_EQ(scripts, 1u);
   fs::remove_all(dir);
 }
 

@@ -100,14 +100,20 @@ class FloatImages {
     used_.emplace(path, image);
     return path;
   }
-  std::string script() const {
-    std::string out;
+  std::vector<ViewerPage::PixelScript> scripts(std::set<std::string>* scripted) const {
+    std::vector<ViewerPage::PixelScript> out;
     for (const auto& [path, image] : used_) {
+      if (scripted && scripted->count(path)) {
+        out.push_back({path, {}});
+        continue;
+      }
       const std::string data = deflated_base64(*image);
       if (data.empty()) continue;
       const json entry = {{"width", image->width}, {"height", image->height}, {"encoding", "deflate-f32le-rgba"},
                           {"data", data}};
-      out += "(window.XSHADE_PIXELS = window.XSHADE_PIXELS || {})[" + json(path).dump() + "] = " + entry.dump() + ";\n";
+      out.push_back({path, "(window.XSHADE_PIXELS = window.XSHADE_PIXELS || {})[" + json(path).dump() + "] = " +
+                               entry.dump() + ";\n"});
+      if (scripted) scripted->insert(path);
     }
     return out;
   }
@@ -131,8 +137,10 @@ bool same_pixels(const FloatImage* a, const FloatImage* b) {
 
 }  // namespace
 
+std::string pixel_script_path(const std::string& image) { return "pixels/" + image + ".js"; }
+
 ViewerPage viewer_page(const SceneResult& scene, const fs::path& report_dir,
-                       const std::map<std::string, const FloatImage*>& in_memory) {
+                       const std::map<std::string, const FloatImage*>& in_memory, std::set<std::string>* scripted) {
   FloatImages images(report_dir, in_memory);
   const uint32_t tolerance = scene.compare.channel_tolerance;
 
@@ -201,7 +209,7 @@ ViewerPage viewer_page(const SceneResult& scene, const fs::path& report_dir,
   // end the <script> element the data sits in, or open a comment in it.
   for (const char c : page.dump(-1, ' ', false, json::error_handler_t::replace))
     out.data_json += c == '<' ? std::string("\\u003c") : std::string(1, c);
-  out.pixels_script = images.script();
+  out.pixels = images.scripts(scripted);
   return out;
 }
 

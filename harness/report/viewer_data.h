@@ -6,7 +6,9 @@
 
 #include <filesystem>
 #include <map>
+#include <set>
 #include <string>
+#include <vector>
 
 #include "harness/gate/run_results.h"
 
@@ -16,10 +18,18 @@ struct ViewerPage {
   // The scene JSON for <script id="xshade-viewer-data" type="application/json">, with every '<'
   // written \u003c so that no text in it can end the element.
   std::string data_json;
-  // pixels/PAGE.js: one line per float image, window.XSHADE_PIXELS[KEY] = {...}; empty when no
-  // lane has a float image in the report folder.
-  std::string pixels_script;
+  // The float images the viewer reads, by their path in the report (KEY), each a script of one
+  // line, window.XSHADE_PIXELS[KEY] = {...}, that the report writes once as pixels/KEY.js however
+  // many pages show the image. `script` is empty for an image an earlier page already carries.
+  struct PixelScript {
+    std::string image;
+    std::string script;
+  };
+  std::vector<PixelScript> pixels;
 };
+
+// pixels/KEY.js, the file that carries the float values of the report's image at `image`.
+std::string pixel_script_path(const std::string& image);
 
 // Lanes whose rendered images are bit-identical, with the same golden and verdict, form one
 // group, shown once ("gl = vk = vk-hlsl"). The float images are read from `report_dir` (each
@@ -28,8 +38,11 @@ struct ViewerPage {
 // alone.
 // Cross-lane pairs are listed only where the images differ.
 // `in_memory` holds images the caller already has, by their path in the report (a run has each
-// lane's render): those are not read again.
+// lane's render): those are not read again. `scripted` holds the images whose script an earlier
+// page of the same report made: they are not encoded again (merged reports can name one image
+// from thousands of scenes); the images this page scripts are added to it.
 ViewerPage viewer_page(const SceneResult& scene, const std::filesystem::path& report_dir,
-                       const std::map<std::string, const FloatImage*>& in_memory = {});
+                       const std::map<std::string, const FloatImage*>& in_memory = {},
+                       std::set<std::string>* scripted = nullptr);
 
 }  // namespace xshade::harness

@@ -2,6 +2,8 @@
 // time limit and reported as that scene's failure while the other scenes pass; a worker that dies
 // by a signal is reported with the signal and where it was; and the images and verdicts do not
 // depend on how many workers run at once.
+#include <fcntl.h>
+#include <sys/file.h>
 #include <unistd.h>
 
 #include <filesystem>
@@ -129,6 +131,59 @@ TEST_F(Workers, AWorkerThatDiesIsACrashNamingTheSignalAndWhereItWas) {
   EXPECT_NE(output.find("slow on gl: crash - worker died: SIGSEGV (segmentation fault) in pass scene (render 1 of 2)"),
             std::string::npos)
       << output;
+}
+
+// ^C or `kill` in the middle of a render: the run ends its worker, removes the workers' folder and
+// exits 128 + the signal, as a shell reports it; it writes no report of the scenes it did not
+// finish. Each run has a temporary folder of its own (TMPDIR), so that what is left is its own.
+TEST_F(Workers, ARunStoppedByASignalEndsItsWorkersAndLeavesNoFolder) {
+  add_slow_scene();
+  for (const auto& [signal, code] : {std::pair{"INT", 130}, std::pair{"TERM", 143}}) {
+    const fs::path temp = root_ / ("tmp_" + std::string(signal));
+    fs::create_directories(temp);
+    const std::string out = (root_ / "out.txt").string();
+    // Through bash with set -m: a background job of a shell without job control starts with SIGINT
+    // ignored, which xshade leaves so.
+    const std::string command =
+        "set -m; TMPDIR='" + temp.string() + "' '" + std::string(xshade_binary()) + "' run slow" + folders() +
+        " --report '" + (root_ / "report").string() + "' --lane gl --timeout 600 > '" + out + "' 2>&1 & run=$!; " +
+        "worker=; for i in $(seq 600); do worker=$(pgrep -P $run); [ -n \"$worker\" ] && break; sleep 0.1; done; " +
+        "sleep 1; kill -" + signal + " $run; wait $run; echo \"exit $?\" >> '" + out + "'; " +
+        "sleep 0.5; kill -0 $worker 2>/dev/null && echo 'worker still running' >> '" + out + "'; true";
+    std::ofstream(root_ / "stop.sh") << command << "\n";
+    ASSERT_EQ(std::system(("bash '" + (root_ / "stop.sh").string() + "' < /dev/null").c_str()), 0) << signal;
+    const std::string output = read_text(out);
+    EXPECT_NE(output.find("exit " + std::to_string(code)), std::string::npos) << output;
+    EXPECT_NE(output.find("xshade run: stopped by SIG" + std::string(signal)), std::string::npos) << output;
+    EXPECT_EQ(output.find("worker still running"), std::string::npos) << output;
+    EXPECT_TRUE(fs::is_empty(temp)) << signal << ": " << fs::directory_iterator(temp)->path();
+    EXPECT_FALSE(fs::exists(root_ / "report/results.json")) << signal;
+  }
+}
+
+// A run killed with SIGKILL cannot clean up: the next run removes the workers' folder it left
+// (its lock is free), and never one whose run still holds it.
+TEST_F(Workers, ARunRemovesTheWorkersFoldersOfDeadRunsAndNoOther) {
+  const fs::path temp = root_ / "tmp";
+  const fs::path dead = temp / "xshade-workers-dEaD01";
+  const fs::path live = temp / "xshade-workers-LiVe01";
+  fs::create_directories(dead / "0-gl");
+  fs::create_directories(live / "0-gl");
+  std::ofstream(dead / "0-gl/image.f32") << "a dead run's render";
+  std::ofstream(live / "0-gl/image.f32") << "a live run's render";
+  const int held = open(live.c_str(), O_RDONLY | O_DIRECTORY);
+  ASSERT_GE(held, 0);
+  ASSERT_EQ(flock(held, LOCK_EX), 0);
+  Outcome outcome = run_xshade("TMPDIR='" + temp.string() + "'",
+                               "run" + folders() + " --report '" + (root_ / "report").string() + "' --lane gl");
+  close(held);
+  EXPECT_EQ(outcome.exit_code, 0) << outcome.output;
+  EXPECT_FALSE(fs::exists(dead)) << outcome.output;
+  EXPECT_TRUE(fs::exists(live / "0-gl/image.f32"));
+  // And the run's own folder is gone with it.
+  std::vector<std::string> left;
+  for (const fs::directory_entry& entry : fs::directory_iterator(temp)) left.push_back(entry.path().filename());
+  EXPECT_EQ(left, std::vector<std::string>{"xshade-workers-LiVe01"});
 }
 
 // Of several files, the one that hangs is a timeout on its lane; the file before it keeps its
