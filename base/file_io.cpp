@@ -17,7 +17,8 @@ namespace {
 
 // The file opened to read, or -1 with `why` set.
 int open_to_read(const fs::path& path, ReadFailure* why) {
-  const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
+  // O_NONBLOCK: a FIFO opens at once instead of waiting for a writer, and is then refused.
+  const int fd = ::open(path.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC);
   if (fd < 0 && why) *why = errno == EISDIR ? ReadFailure::IsDirectory : ReadFailure::CannotOpen;
   return fd;
 }
@@ -50,17 +51,17 @@ std::optional<std::string> read_open_file(int fd, size_t expected, bool regular,
 // One open, fstat and read of the file's size for a regular file: the front end reads its
 // includes for every compile and the shader cache hashes the 14 MB executable, where a stream
 // (and a stringstream before it) cost more than the reading. Files that do not say their size
-// (/proc, pipes) are read on to their end.
+// (/proc) are read on to their end.
 std::optional<std::string> read_file(const fs::path& path, ReadFailure* why) {
   const int fd = open_to_read(path, why);
   if (fd < 0) return std::nullopt;
   struct stat status {};
-  if (::fstat(fd, &status) == 0 && S_ISDIR(status.st_mode)) {
+  if (::fstat(fd, &status) == 0 && !S_ISREG(status.st_mode)) {
     ::close(fd);
-    if (why) *why = ReadFailure::IsDirectory;
+    if (why) *why = S_ISDIR(status.st_mode) ? ReadFailure::IsDirectory : ReadFailure::NotAFile;
     return std::nullopt;
   }
-  return read_open_file(fd, status.st_size > 0 ? size_t(status.st_size) : 0, S_ISREG(status.st_mode), why);
+  return read_open_file(fd, status.st_size > 0 ? size_t(status.st_size) : 0, true, why);
 }
 
 std::optional<std::string> read_regular_file(const fs::path& path, size_t known_size, ReadFailure* why) {

@@ -11,9 +11,10 @@
 namespace xshade {
 
 // Why read_file gave nothing.
-enum class ReadFailure { CannotOpen, IsDirectory, CannotRead };
+enum class ReadFailure { CannotOpen, IsDirectory, NotAFile, CannotRead };
 
-// The file's bytes, or nothing when it cannot be read (and, where `why` is given, why not).
+// The file's bytes, or nothing when it cannot be read (and, where `why` is given, why not). Only
+// a regular file (or a link to one) is read: a FIFO, socket or device is NotAFile, never waited on.
 std::optional<std::string> read_file(const std::filesystem::path& path, ReadFailure* why = nullptr);
 // read_file of a path a stat has just found a regular file of `known_size` bytes: without asking
 // again (the front end reads a few includes for every compile, and each question is a system

@@ -47,6 +47,7 @@ Result<uint32_t> SourceManager::load_canonical(const std::filesystem::path& cano
       known_size ? read_regular_file(canonical, *known_size, &failure) : read_file(canonical, &failure);
   if (!text) {
     if (failure == ReadFailure::IsDirectory) return fail("'" + name + "' is a directory");
+    if (failure == ReadFailure::NotAFile) return fail("'" + name + "' is " + not_a_file(canonical) + ", not a file");
     return fail((failure == ReadFailure::CannotOpen ? "cannot open '" : "cannot read '") + name + "'");
   }
   uint32_t index = add(std::move(name), std::move(*text));

@@ -641,7 +641,9 @@ Result<Shader> read_shader_file(const std::filesystem::path& path) {
   ReadFailure why{};
   const std::optional<std::string> text = read_file(path, &why);
   if (!text)
-    return fail(path.string() + (why == ReadFailure::IsDirectory ? " is a folder, not a .shader file" : ": cannot be read"));
+    return fail(path.string() + (why == ReadFailure::IsDirectory ? " is a folder, not a .shader file"
+                                 : why == ReadFailure::NotAFile  ? " is " + not_a_file(path) + ", not a .shader file"
+                                                                 : ": cannot be read"));
   return read_shader(*text, path.string());
 }
 

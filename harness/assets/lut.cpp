@@ -2,12 +2,13 @@
 
 #include <charconv>
 #include <cstring>
-#include <fstream>
 #include <sstream>
 #include <string>
 #include <vector>
 
 #include <fmt/format.h>
+
+#include "base/file_io.h"
 
 namespace xshade::harness {
 namespace {
@@ -58,8 +59,10 @@ Result<TextureData> lut_from_strip(const FloatImage& strip) {
 }
 
 Result<TextureData> read_cube_lut(const std::filesystem::path& file) {
-  std::ifstream stream(file, std::ios::binary);
-  if (!stream) return fail("cannot open the LUT file", SourceLocation{file.string(), 0, 0});
+  // Checked as a file first (a FIFO is not waited on).
+  auto text = read_input_file(file, kMaxCubeFileBytes, "the LUT file");
+  if (!text) return fail(text.error());
+  std::istringstream stream(std::move(*text));
   const std::string name = file.string();
   uint32_t size = 0;
   std::vector<glm::vec4> texels;

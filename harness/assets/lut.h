@@ -21,5 +21,8 @@ Result<TextureData> lut_from_strip(const FloatImage& strip);
 // fastest; `TITLE`, `DOMAIN_MIN 0 0 0`, `DOMAIN_MAX 1 1 1`, comments (#) and blank lines may come
 // before the data. Errors name the file, line and column. A 1D LUT or another domain is refused.
 Result<TextureData> read_cube_lut(const std::filesystem::path& file);
+// The largest .cube the format allows (256^3 lines of three numbers, some 30 bytes a line) is
+// about 500 MB; past 512 MiB a file is not a LUT (a log, a device), and is refused unread.
+inline constexpr size_t kMaxCubeFileBytes = size_t(512) << 20;
 
 }  // namespace xshade::harness

@@ -1,5 +1,7 @@
 #include "harness/assets/lut.h"
 
+#include <sys/stat.h>
+
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -82,6 +84,15 @@ TEST_F(CubeFile, ErrorsNameTheLineAndColumn) {
   EXPECT_EQ(error_of("LUT_3D_SIZE 2\n0 0\n"), ":2:1: expected three numbers (red green blue), got 2 words");
   EXPECT_EQ(error_of("LUT_3D_SIZE 2\n0 0 0\n"), ": 1 values, LUT_3D_SIZE 2 asks for 8");
   EXPECT_EQ(error_of("TITLE \"x\"\n"), ": no LUT_3D_SIZE line: not a 3D .cube LUT");
+}
+
+TEST(CubeFileKind, AFifoIsRefusedWithoutWaitingForAWriter) {
+  const auto fifo = std::filesystem::temp_directory_path() / ("xshade_lut_fifo_" + std::to_string(::getpid()) + ".cube");
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+  auto lut = read_cube_lut(fifo);
+  std::filesystem::remove(fifo);
+  ASSERT_FALSE(lut);
+  EXPECT_EQ(lut.error().message, "the LUT file " + fifo.string() + " is a FIFO, not a file");
 }
 
 }  // namespace

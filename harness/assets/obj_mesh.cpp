@@ -7,6 +7,7 @@
 #include <glm/geometric.hpp>
 #include <tiny_obj_loader.h>
 
+#include "base/file_io.h"
 #include "harness/assets/vertex_frames.h"
 
 namespace xshade::harness {
@@ -27,8 +28,12 @@ Result<MeshData> load_obj(const std::filesystem::path& path) {
   tinyobj::ObjReaderConfig config;
   config.triangulate = true;
   config.vertex_color = false;
+  // Read here, as a file checked first (a FIFO is not waited on); the OBJ's materials are not
+  // used, so no .mtl file is read beside it.
+  auto text = read_input_file(path, kMaxObjFileBytes, "the OBJ mesh");
+  if (!text) return fail(text.error());
   tinyobj::ObjReader reader;
-  if (!reader.ParseFromFile(path.string(), config)) return fail(reader_error(path, reader.Error()));
+  if (!reader.ParseFromString(*text, "", config)) return fail(reader_error(path, reader.Error()));
   // Out-of-range indices are only a warning to tinyobjloader; reading them would overrun.
   if (reader.Warning().find("out of bounds") != std::string::npos)
     return fail(reader_error(path, reader.Warning()));

@@ -1,5 +1,8 @@
 #include "harness/assets/obj_mesh.h"
 
+#include <sys/stat.h>
+#include <unistd.h>
+
 #include <cmath>
 #include <fstream>
 
@@ -87,6 +90,15 @@ TEST(LoadObj, MissingFilesAndFilesWithoutFacesAreErrors) {
   Result<MeshData> empty = load_obj(write_obj("points.obj", "v 0 0 0\n"));
   ASSERT_FALSE(empty);
   EXPECT_NE(empty.error().message.find("no faces"), std::string::npos) << empty.error().message;
+}
+
+TEST(LoadObj, AFifoIsRefusedWithoutWaitingForAWriter) {
+  const auto fifo = std::filesystem::temp_directory_path() / ("xshade_obj_fifo_" + std::to_string(::getpid()) + ".obj");
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+  Result<MeshData> mesh = load_obj(fifo);
+  std::filesystem::remove(fifo);
+  ASSERT_FALSE(mesh);
+  EXPECT_EQ(mesh.error().message, "the OBJ mesh " + fifo.string() + " is a FIFO, not a file");
 }
 
 }  // namespace

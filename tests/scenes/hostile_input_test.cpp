@@ -250,6 +250,33 @@ TEST_F(HostileInput, AFifoAmongTheSceneFilesIsRefusedWithoutWaitingOnIt) {
   EXPECT_EQ(named.exit_code, 0) << named.output;
 }
 
+// A FIFO as a texture once waited in the worker until the lane's time limit ("timeout while
+// creating the gl backend", exit 1): it is the scene's mistake, exit 2, naming the file.
+TEST_F(HostileInput, AFifoAsATextureIsTheScenesFaultAtOnce) {
+  const fs::path fifo = root_ / "scenes" / "waiting.png";
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+  replace_in_file(scene(), "_ShadowTex = \"checker\"", "_ShadowTex = \"waiting.png\"");
+  Outcome outcome = run("--timeout 60");
+  EXPECT_EQ(outcome.exit_code, 2) << outcome.output;
+  EXPECT_NE(outcome.output.find("texture '_ShadowTex': cannot read image " + fifo.string() + ": it is a FIFO, not a file"),
+            std::string::npos)
+      << outcome.output;
+}
+
+// An #include of a FIFO is refused at the include (only a regular file is an include file), never
+// waited on.
+TEST_F(HostileInput, AnIncludeOfAFifoIsRefusedAtTheInclude) {
+  ASSERT_EQ(::mkfifo((root_ / "waiting.hlsl").c_str(), 0600), 0);
+  const fs::path shader = root_ / "includes_a_fifo.hlsl";
+  std::ofstream(shader) << "#include \"waiting.hlsl\"\n#pragma fragment frag\n"
+                           "float4 frag() : SV_Target { return 1; }\n";
+  Outcome outcome = run_xshade("", "compile '" + shader.string() + "' --target gl");
+  EXPECT_EQ(outcome.exit_code, 2) << outcome.output;
+  EXPECT_NE(outcome.output.find(shader.string() + ":1:10: error: cannot find include file 'waiting.hlsl'"),
+            std::string::npos)
+      << outcome.output;
+}
+
 // `xshade diff a.png /dev/zero` once read /dev/zero at full CPU for ever, and a FIFO image
 // waited for a writer; each is refused at once, naming what it is.
 TEST_F(HostileInput, DiffRefusesADeviceOrAFifoAsAnImage) {
