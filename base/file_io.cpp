@@ -172,17 +172,20 @@ Result<void> write_file_atomically(const fs::path& path, std::string_view bytes)
     fd = ::open(temporary.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
     if (fd < 0 && errno != EEXIST) break;
   }
-  if (fd < 0) return fail("cannot write " + temporary + ": " + std::strerror(errno));
+  // A full disk, a read-only folder, an I/O error: the environment's (exit 3), named by the file
+  // the caller asked for, and no temporary left behind.
+  if (fd < 0) return fail(ErrorKind::Backend, "cannot write " + path.string() + ": " + std::strerror(errno));
   const bool complete = write_all(fd, bytes);
-  const int error_number = errno;
-  const bool ok = ::close(fd) == 0 && complete;
+  int error_number = errno;
+  const bool closed = ::close(fd) == 0;
+  if (complete && !closed) error_number = errno;  // a deferred write error (NFS, a full quota)
   std::error_code error;
-  if (ok) fs::rename(temporary, path, error);
-  if (!ok || error) {
+  if (complete && closed) fs::rename(temporary, path, error);
+  if (!complete || !closed || error) {
     std::error_code ignored;
     fs::remove(temporary, ignored);
-    return fail("cannot write " + (ok ? path.string() + ": " + error.message()
-                                      : temporary + ": " + std::strerror(error_number)));
+    return fail(ErrorKind::Backend, "cannot write " + path.string() + ": " +
+                                        (error ? error.message() : std::string(std::strerror(error_number))));
   }
   return {};
 }

@@ -1,8 +1,11 @@
 #include "cli/folders.h"
 
+#include <sys/statvfs.h>
 #include <unistd.h>
 
 #include <algorithm>
+#include <cerrno>
+#include <cstring>
 #include <cstdlib>
 #include <optional>
 #include <system_error>
@@ -169,6 +172,20 @@ fs::path private_cache_dir(const fs::path& folder, std::string_view verb) {
   if (auto made = make_private_folder(folder); !made) {
     fmt::print(stderr, "xshade {}: warning: not using the compile cache: {}\n", verb, made.error().message);
     return {};
+  }
+  // Mesa writes its shader cache's index through a shared memory map: on a full disk that is a
+  // SIGBUS in every driver, and in a folder it cannot write, every run compiles as if cold and
+  // slower. xshade's own entries are written with checked writes, and stay on.
+  std::string why_not;
+  struct statvfs space {};
+  if (::access(folder.c_str(), W_OK) != 0)
+    why_not = folder.string() + " cannot be written (" + std::strerror(errno) + ")";
+  else if (::statvfs(folder.c_str(), &space) == 0 && uint64_t(space.f_bavail) * space.f_frsize < kMinDriverCacheFreeBytes)
+    why_not = fmt::format("the disk of {} has {} KiB free, less than the {} MiB it needs", folder.string(),
+                          uint64_t(space.f_bavail) * space.f_frsize / 1024, kMinDriverCacheFreeBytes >> 20);
+  if (!why_not.empty()) {
+    fmt::print(stderr, "xshade {}: warning: the drivers' shader cache is off for this run: {}\n", verb, why_not);
+    setenv("MESA_SHADER_CACHE_DISABLE", "true", 1);  // the workers inherit it
   }
   return folder;
 }

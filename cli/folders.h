@@ -72,6 +72,12 @@ std::filesystem::path shader_cache_dir(const std::filesystem::path& given);
 // `folder` made private (base/file_io.h's make_private_folder); empty, with a warning on stderr
 // naming `verb`, when it cannot be: xshade believes what its cache holds, so it uses no cache
 // another user can write.
+// The drivers' own shader cache inside it is turned off for the process and its workers, with a
+// warning, when the folder cannot be written or its disk has less than kMinDriverCacheFreeBytes
+// free (Mesa maps its index file into memory, and a write to a map on a full disk is a SIGBUS).
 std::filesystem::path private_cache_dir(const std::filesystem::path& folder, std::string_view verb);
+// Mesa's index is under 2 MiB and every fixed scene's entries together a few MiB more: 64 MiB
+// leaves room for a project's.
+inline constexpr uint64_t kMinDriverCacheFreeBytes = uint64_t(64) << 20;
 
 }  // namespace xshade::cli

@@ -174,8 +174,9 @@ int run_run(const RunOptions& options) {
   for (const harness::SceneResult& scene : results.scenes) verdict = harness::worst(verdict, scene.verdict);
   if (options.plan_only) return harness::exit_code(verdict);
 
-  if (auto written = harness::write_reports(results, options.report_dir, &viewers); !written) {
-    fmt::print(stderr, "xshade run: {}\n", written.error().to_string());
+  auto report_written = harness::write_reports(results, options.report_dir, &viewers);
+  if (!report_written) {
+    fmt::print(stderr, "xshade run: the report is not whole: {}\n", report_written.error().to_string());
     verdict = harness::worst(verdict, harness::Verdict::Crash);
   }
   size_t passed = 0;
@@ -186,7 +187,7 @@ int run_run(const RunOptions& options) {
              cache ? " (" + cache->directory().string() + ")" : std::string(" (cache off)"));
   if (!totals.cache_write_error.empty()) fmt::print("warning: {}\n", totals.cache_write_error);
   if (!totals.cache_damage.empty()) fmt::print("warning: {}\n", totals.cache_damage);
-  fmt::print("report: {}\n", (options.report_dir / "index.html").string());
+  if (report_written) fmt::print("report: {}\n", (options.report_dir / "index.html").string());
   return harness::exit_code(verdict);
 }
 

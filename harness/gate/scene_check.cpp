@@ -54,7 +54,7 @@ std::string SceneChecker::copy_file(const fs::path& from, const std::string& sce
   const std::optional<std::string> bytes = read_file(from);
   auto written = bytes ? write_file_atomically(path, *bytes) : Result<void>(fail("cannot read " + from.string()));
   if (!written) {
-    progress_("  cannot copy " + from.string() + " to " + path.string() + ": " + written.error().message);
+    progress_("  cannot copy " + from.string() + ": " + written.error().message);
     return {};
   }
   return relative;
@@ -67,7 +67,7 @@ std::string SceneChecker::write_image(const FloatImage& image, const std::string
   fs::create_directories(path.parent_path(), ignored);
   auto written = exr ? write_exr(image, path) : write_png(image, path, PngCompression::Fast);
   if (!written) {
-    progress_("  cannot write " + path.string() + ": " + written.error().message);
+    progress_("  " + written.error().message);
     return {};
   }
   return relative;

@@ -47,13 +47,14 @@ class ImageFileReader {
 class ImageCodec {
  public:
   virtual ~ImageCodec() = default;
-  // Each returns an empty string when it succeeded, else the library's words.
+  // Each returns an empty string when it succeeded, else the library's words. The encoders give
+  // the file's bytes, which image_io.cpp writes as a whole file.
   // 8-bit RGBA, sRGB-encoded colour with unassociated alpha, at zlib level `compression_level`.
-  virtual std::string write_png(const std::string& path, uint32_t width, uint32_t height, const uint8_t* rgba,
-                                int compression_level) const = 0;
+  virtual std::string encode_png(uint32_t width, uint32_t height, const uint8_t* rgba, int compression_level,
+                                 std::vector<unsigned char>& bytes) const = 0;
   // Float RGBA, every value as it is, zip-compressed at zlib's fastest level.
-  virtual std::string write_exr(const std::string& path, uint32_t width, uint32_t height,
-                                const float* rgba) const = 0;
+  virtual std::string encode_exr(uint32_t width, uint32_t height, const float* rgba,
+                                 std::vector<unsigned char>& bytes) const = 0;
   // Opens a file of any format the library knows, alpha unassociated (colour is not premultiplied).
   virtual std::unique_ptr<ImageFileReader> open(const std::string& path, std::string& error) const = 0;
   // The sRGB colour of each of `positions` (0..1) through the colour map `map` ("inferno"): three

@@ -19,10 +19,12 @@ std::string file_error(const std::string& what, const std::filesystem::path& pat
   return message;
 }
 
-// A written file, or the error with what the library said.
-Result<void> written(const std::filesystem::path& path, const std::string& detail) {
-  if (detail.empty()) return {};
-  return fail(file_error("cannot write", path, detail));
+// The encoded file written whole (write_file_atomically): a full disk or an I/O error is the
+// environment's error with its reason, and leaves the old file or none.
+Result<void> write_encoded(const std::filesystem::path& path, const std::string& detail,
+                           const std::vector<unsigned char>& bytes) {
+  if (!detail.empty()) return fail(ErrorKind::Backend, file_error("cannot write", path, detail));
+  return write_file_atomically(path, std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()));
 }
 
 // What the header claims, against image_limits.h. For an EXR, width and height are its data
@@ -93,14 +95,18 @@ Result<void> write_png(const FloatImage& image, const std::filesystem::path& pat
   }
   auto codec = image_codec();
   if (!codec) return fail(codec.error());
-  return written(path, (*codec)->write_png(path.string(), image.width, image.height, bytes.data(),
-                                           compression == PngCompression::Fast ? 1 : 6));
+  std::vector<unsigned char> encoded;
+  const std::string detail =
+      (*codec)->encode_png(image.width, image.height, bytes.data(), compression == PngCompression::Fast ? 1 : 6, encoded);
+  return write_encoded(path, detail, encoded);
 }
 
 Result<void> write_exr(const FloatImage& image, const std::filesystem::path& path) {
   auto codec = image_codec();
   if (!codec) return fail(codec.error());
-  return written(path, (*codec)->write_exr(path.string(), image.width, image.height, image.rgba.data()));
+  std::vector<unsigned char> encoded;
+  const std::string detail = (*codec)->encode_exr(image.width, image.height, image.rgba.data(), encoded);
+  return write_encoded(path, detail, encoded);
 }
 
 Result<FloatImage> read_image(const std::filesystem::path& path, bool srgb) {

@@ -2,6 +2,7 @@
 // why it is one). It holds no xshade code but this file, and knows nothing of xshade's rules:
 // sizes and formats are checked by image_io.cpp from the header it gives.
 #include <OpenImageIO/imagebuf.h>
+#include <OpenImageIO/filesystem.h>
 #include <OpenImageIO/imagebufalgo.h>
 #include <OpenImageIO/imageio.h>
 
@@ -12,10 +13,16 @@ namespace {
 
 OIIO::TypeDesc type_of(PixelType type) { return type == PixelType::UInt8 ? OIIO::TypeDesc::UINT8 : OIIO::TypeDesc::FLOAT; }
 
-std::string write(const std::string& path, const OIIO::ImageSpec& spec, OIIO::TypeDesc pixel_type, const void* pixels) {
-  auto output = OIIO::ImageOutput::create(path);
+// The file's bytes in memory (`format_name` picks the format by its extension): the caller writes
+// them as a whole file, so that a full disk is an error with its reason and never a truncated
+// or empty image (the library's own file writers can ignore a failed flush).
+std::string encode(const char* format_name, const OIIO::ImageSpec& spec, OIIO::TypeDesc pixel_type, const void* pixels,
+                   std::vector<unsigned char>& bytes) {
+  auto output = OIIO::ImageOutput::create(format_name);
   if (!output) return OIIO::geterror();
-  if (!output->open(path, spec)) return output->geterror();
+  if (!output->supports("ioproxy")) return std::string("the image library cannot write ") + format_name + " to memory";
+  OIIO::Filesystem::IOVecOutput memory(bytes);
+  if (!output->set_ioproxy(&memory) || !output->open(format_name, spec)) return output->geterror();
   const bool written = output->write_image(pixel_type, pixels);
   const bool closed = output->close();
   if (!written || !closed) return output->geterror();
@@ -44,19 +51,20 @@ class OiioReader final : public ImageFileReader {
 
 class OiioCodec final : public ImageCodec {
  public:
-  std::string write_png(const std::string& path, uint32_t width, uint32_t height, const uint8_t* rgba,
-                        int compression_level) const override {
+  std::string encode_png(uint32_t width, uint32_t height, const uint8_t* rgba, int compression_level,
+                         std::vector<unsigned char>& bytes) const override {
     OIIO::ImageSpec spec(int(width), int(height), 4, OIIO::TypeDesc::UINT8);
     spec.attribute("oiio:ColorSpace", "sRGB");
     spec.attribute("oiio:UnassociatedAlpha", 1);  // the colour is not premultiplied by alpha
     spec.attribute("png:compressionLevel", compression_level);
-    return write(path, spec, OIIO::TypeDesc::UINT8, rgba);
+    return encode("image.png", spec, OIIO::TypeDesc::UINT8, rgba, bytes);
   }
 
-  std::string write_exr(const std::string& path, uint32_t width, uint32_t height, const float* rgba) const override {
+  std::string encode_exr(uint32_t width, uint32_t height, const float* rgba,
+                         std::vector<unsigned char>& bytes) const override {
     OIIO::ImageSpec spec(int(width), int(height), 4, OIIO::TypeDesc::FLOAT);
     spec.attribute("compression", "zip:1");
-    return write(path, spec, OIIO::TypeDesc::FLOAT, rgba);
+    return encode("image.exr", spec, OIIO::TypeDesc::FLOAT, rgba, bytes);
   }
 
   std::unique_ptr<ImageFileReader> open(const std::string& path, std::string& error) const override {

@@ -32,8 +32,11 @@ Result<ReportLock> ReportLock::take(const fs::path& folder, const std::string& c
   }
   // Who holds it, for a run that is refused.
   const std::string holder = "process " + std::to_string(::getpid()) + ": " + command + "\n";
-  if (::ftruncate(fd, 0) != 0 || !write_all(fd, holder))
-    return fail(ErrorKind::Backend, "cannot write " + path.string() + ": " + std::strerror(errno));
+  if (::ftruncate(fd, 0) != 0 || !write_all(fd, holder)) {
+    const int cause = errno;
+    ::unlink(path.c_str());  // held by this process alone: no empty lock is left on a full disk
+    return fail(ErrorKind::Backend, "cannot write " + path.string() + ": " + std::strerror(cause));
+  }
   return lock;
 }
 

@@ -5,6 +5,7 @@
 #include <fcntl.h>
 #include <sys/file.h>
 #include <sys/stat.h>
+#include <sys/wait.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -45,6 +46,18 @@ size_t lines_in(const fs::path& file) {
 }
 
 void append(const fs::path& file, const std::string& text) { std::ofstream(file, std::ios::app) << text; }
+
+// `command` through sh, its output and exit code.
+Outcome shell(const std::string& command) {
+  Outcome outcome;
+  FILE* pipe = popen((command + " 2>&1").c_str(), "r");
+  if (!pipe) return outcome;
+  char buffer[4096];
+  while (size_t n = fread(buffer, 1, sizeof buffer, pipe)) outcome.output.append(buffer, n);
+  const int status = pclose(pipe);
+  outcome.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  return outcome;
+}
 
 class HostileInput : public ::testing::Test {
  protected:
@@ -275,6 +288,43 @@ TEST_F(HostileInput, AnIncludeOfAFifoIsRefusedAtTheInclude) {
   EXPECT_NE(outcome.output.find(shader.string() + ":1:10: error: cannot find include file 'waiting.hlsl'"),
             std::string::npos)
       << outcome.output;
+}
+
+// A full disk under the cache and the report: once every gl lane died by SIGBUS (Mesa writes its
+// cache index through a memory map) and zero-byte images were left. Now the drivers' cache is off
+// with a warning, each file that cannot be written is named with the system's reason, nothing
+// half-written is left, and the run is the environment's failure (exit 3). The disk is a 2 MiB
+// tmpfs with some 100 KiB free (room for the report's lock, not for its images), in a mount
+// namespace of the test's own (skipped where none can be made).
+TEST_F(HostileInput, AFullDiskIsExitThreeNamingEachFileAndLeavesNoEmptyFile) {
+  const fs::path disk = root_ / "disk";
+  fs::create_directories(disk);
+  const std::string script =
+      "mount -t tmpfs -o size=2m tmpfs '" + disk.string() + "' || exit 77; " +
+      "mkdir -m 700 '" + disk.string() + "/cache'; dd if=/dev/zero of='" + disk.string() +
+      "/fill' bs=64k count=30 2>/dev/null; " +
+      xshade_command("", "run --lane gl,vk --scenes '" + (root_ / "scenes").string() + "' --golden '" +
+                             (root_ / "golden").string() + "' --shaders '" + (root_ / "shaders").string() +
+                             "' --cache '" + disk.string() + "/cache' --report '" + disk.string() + "/report'") +
+      "; echo \"exit $?\"; find '" + disk.string() + "' -type f -size 0 -printf 'empty %p\\n'; find '" + disk.string() +
+      "' -name '*.tmp*' -printf 'temporary %p\\n'";
+  std::ofstream(root_ / "full.sh") << script << "\n";
+  Outcome outcome = shell("unshare --user --map-root-user --mount sh '" + (root_ / "full.sh").string() + "'");
+  if (outcome.exit_code == 77 || outcome.output.find("unshare:") != std::string::npos)
+    GTEST_SKIP() << "no mount namespace here: " << outcome.output;
+  EXPECT_NE(outcome.output.find("exit 3"), std::string::npos) << outcome.output;
+  EXPECT_NE(outcome.output.find("warning: the drivers' shader cache is off for this run: the disk of " + disk.string() +
+                                "/cache has "),
+            std::string::npos)
+      << outcome.output;
+  EXPECT_NE(outcome.output.find(" KiB free, less than the 64 MiB it needs"), std::string::npos) << outcome.output;
+  EXPECT_NE(outcome.output.find("cannot write " + disk.string() + "/report/" + kCopiedScene), std::string::npos)
+      << outcome.output;
+  EXPECT_NE(outcome.output.find(": No space left on device"), std::string::npos) << outcome.output;
+  EXPECT_NE(outcome.output.find("xshade run: the report is not whole"), std::string::npos) << outcome.output;
+  EXPECT_EQ(outcome.output.find("SIGBUS"), std::string::npos) << outcome.output;
+  EXPECT_EQ(outcome.output.find("empty "), std::string::npos) << outcome.output;
+  EXPECT_EQ(outcome.output.find("temporary "), std::string::npos) << outcome.output;
 }
 
 // `xshade diff a.png /dev/zero` once read /dev/zero at full CPU for ever, and a FIFO image
