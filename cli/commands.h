@@ -26,6 +26,13 @@ enum ExitCode : int {
 // never an abort. main runs every verb so, and a forked worker its renders.
 int guarded_verb(const std::string& verb, const std::function<int()>& body);
 
+// A ceiling on each xshade process's address space (RLIMIT_AS, which its workers inherit), so
+// that a runaway allocation is a std::bad_alloc that guarded_verb reports (exit 3), not the
+// kernel's OOM killer: `setting` in GiB (XSHADE_MEMORY_LIMIT; "0" for none), by default half the
+// machine's memory. Never raises a lower limit already set. A `setting` that is not a number is
+// the user's error.
+Result<void> limit_memory(const char* setting);
+
 struct LaneSelection {
   std::vector<std::string> lanes;  // empty = every lane
   bool validation = false;

@@ -112,7 +112,8 @@ std::optional<std::string> misspelling(const CLI::App& app, const CLI::ParseErro
 static int run_command_line(int argc, char** argv) {
   using namespace xshade::cli;
   CLI::App app{"xshade: author a shader once, render it on OpenGL and Vulkan, diff the images.\n"
-               "Exit codes: 0 pass, 1 a check failed, 2 bad input or usage, 3 backend or internal error; run and bless stopped by a signal (^C) exit 128 + it, their workers and temporary files removed.",
+               "Exit codes: 0 pass, 1 a check failed, 2 bad input or usage, 3 backend or internal error; run and bless stopped by a signal (^C) exit 128 + it, their workers and temporary files removed.\n"
+               "Each xshade process may take half the machine's memory as address space (XSHADE_MEMORY_LIMIT=GiB sets another, 0 none): past it an allocation fails with exit 3.",
                "xshade"};
   app.require_subcommand(1);
   app.set_version_flag("--version", std::string("xshade ") + XSHADE_VERSION);
@@ -402,5 +403,9 @@ int main(int argc, char** argv) {
   // once it has loaded the image library for them).
   xshade::remember_startup_threads();
   xshade::keep_freed_heap();
+  if (auto limited = xshade::cli::limit_memory(std::getenv("XSHADE_MEMORY_LIMIT")); !limited) {
+    std::fprintf(stderr, "xshade: %s\n", limited.error().message.c_str());
+    return xshade::cli::kBadInput;
+  }
   return xshade::cli::guarded_verb(verb, [&] { return run_command_line(argc, argv); });
 }

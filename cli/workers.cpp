@@ -1,5 +1,6 @@
 #include "cli/workers.h"
 
+#include <sys/resource.h>
 #include <unistd.h>
 
 #include <cstdio>
@@ -18,12 +19,65 @@ std::string this_program() {
   return error ? std::string("xshade") : self.string();
 }
 
+namespace {
+
+// The soft limit on this process's address space in bytes, or 0 for none.
+uint64_t address_space_limit() {
+  struct rlimit limit {};
+  if (getrlimit(RLIMIT_AS, &limit) != 0 || limit.rlim_cur == RLIM_INFINITY) return 0;
+  return uint64_t(limit.rlim_cur);
+}
+
+}  // namespace
+
+Result<void> limit_memory(const char* setting) {
+  // AddressSanitizer reserves terabytes of address space for its shadow memory.
+#if defined(__SANITIZE_ADDRESS__)
+  constexpr bool kSanitized = true;
+#elif defined(__has_feature)
+  constexpr bool kSanitized = __has_feature(address_sanitizer);
+#else
+  constexpr bool kSanitized = false;
+#endif
+  if (kSanitized) return {};
+  uint64_t bytes = 0;
+  if (setting && *setting) {
+    char* end = nullptr;
+    const double gib = std::strtod(setting, &end);
+    if (end == setting || *end != '\0' || !(gib >= 0.0) || gib > 1e6)
+      return fail(std::string("XSHADE_MEMORY_LIMIT=") + setting +
+                  ": expected the address space each xshade process may take, in GiB (0: no limit)");
+    if (gib == 0.0) return {};
+    bytes = uint64_t(gib * double(uint64_t(1) << 30));
+  } else {
+    // Half the machine's memory: a run that goes past it has a fault to report, and what is left
+    // keeps the machine (and the kernel's OOM killer) out of it.
+    bytes = uint64_t(sysconf(_SC_PHYS_PAGES)) * uint64_t(sysconf(_SC_PAGE_SIZE)) / 2;
+  }
+  struct rlimit limit {};
+  if (getrlimit(RLIMIT_AS, &limit) != 0) return {};
+  // Only ever lowered: a limit the user's shell set stays.
+  if (limit.rlim_cur != RLIM_INFINITY && limit.rlim_cur <= bytes) return {};
+  limit.rlim_cur = bytes;
+  if (limit.rlim_max != RLIM_INFINITY && limit.rlim_max < bytes) limit.rlim_cur = limit.rlim_max;
+  setrlimit(RLIMIT_AS, &limit);
+  return {};
+}
+
 int guarded_verb(const std::string& verb, const std::function<int()>& body) {
   const std::string name = verb.empty() ? std::string() : " " + verb;
   try {
     return body();
   } catch (const std::bad_alloc&) {
-    std::fprintf(stderr, "xshade%s: out of memory (an allocation failed); nothing more was done\n", name.c_str());
+    std::string limit;
+    if (const uint64_t bytes = address_space_limit()) {
+      char gib[32];
+      std::snprintf(gib, sizeof gib, "%.1f", double(bytes) / double(uint64_t(1) << 30));
+      limit = std::string("; each xshade process may take ") + gib +
+              " GiB of address space (XSHADE_MEMORY_LIMIT=GiB sets it, 0 for no limit)";
+    }
+    std::fprintf(stderr, "xshade%s: out of memory (an allocation failed%s); nothing more was done\n", name.c_str(),
+                 limit.c_str());
   } catch (const std::exception& error) {
     std::fprintf(stderr, "xshade%s: internal error: %s\n", name.c_str(), error.what());
   } catch (...) {

@@ -441,7 +441,9 @@ TEST_F(HostileInput, AnAllocationThatFailsIsExitThreeWithAMessage) {
   append(scene(), "\n[environment]\nkind = \"equirect\"\nfile = \"large.hdr\"\n");
   Outcome outcome = run("--lane gl", "ulimit -v 600000;");
   EXPECT_EQ(outcome.exit_code, 3) << outcome.output;
-  EXPECT_NE(outcome.output.find("xshade worker: out of memory (an allocation failed); nothing more was done"),
+  EXPECT_NE(outcome.output.find("xshade worker: out of memory (an allocation failed; each xshade process may take 0.6 "
+                                "GiB of address space (XSHADE_MEMORY_LIMIT=GiB sets it, 0 for no limit)); nothing "
+                                "more was done"),
             std::string::npos)
       << outcome.output;
   EXPECT_NE(outcome.output.find("toon_shadow_texture on gl: crash - worker exited with code 3 while building the "
@@ -449,6 +451,28 @@ TEST_F(HostileInput, AnAllocationThatFailsIsExitThreeWithAMessage) {
             std::string::npos)
       << outcome.output;
   EXPECT_EQ(outcome.output.find("terminate called"), std::string::npos) << outcome.output;
+}
+
+// The same runaway with no limit from the shell: xshade's own ceiling (XSHADE_MEMORY_LIMIT, by
+// default half the machine's memory) turns it into exit 3 with the limit named, never the
+// kernel's OOM killer; a setting that is not a number is the user's mistake.
+TEST_F(HostileInput, XshadesOwnMemoryCeilingStopsARunawayWithExitThree) {
+  forged::write(root_ / "scenes" / "large.hdr", forged::hdr(8192, 4096));
+  append(scene(), "\n[environment]\nkind = \"equirect\"\nfile = \"large.hdr\"\n");
+  Outcome outcome = run("--lane gl", "ulimit -v unlimited; XSHADE_MEMORY_LIMIT=0.6");
+  EXPECT_EQ(outcome.exit_code, 3) << outcome.output;
+  EXPECT_NE(outcome.output.find("xshade worker: out of memory (an allocation failed; each xshade process may take 0.6 "
+                                "GiB of address space"),
+            std::string::npos)
+      << outcome.output;
+  EXPECT_EQ(outcome.output.find("SIGKILL"), std::string::npos) << outcome.output;
+
+  Outcome mistaken = run("--lane gl", "XSHADE_MEMORY_LIMIT=lots");
+  EXPECT_EQ(mistaken.exit_code, 2) << mistaken.output;
+  EXPECT_NE(mistaken.output.find("xshade: XSHADE_MEMORY_LIMIT=lots: expected the address space each xshade process "
+                                 "may take, in GiB (0: no limit)"),
+            std::string::npos)
+      << mistaken.output;
 }
 
 }  // namespace
