@@ -5,6 +5,7 @@
 #include <fstream>
 #include <limits>
 #include <regex>
+#include <set>
 #include <sstream>
 
 #include <gtest/gtest.h>
@@ -14,6 +15,7 @@
 #include "harness/report/junit_report.h"
 #include "harness/report/report_html.h"
 #include "harness/report/results_json.h"
+#include "harness/report/viewer_data.h"
 
 namespace xshade::harness {
 namespace {
@@ -437,6 +439,15 @@ TEST(WriteReports, WritesTheFloatValuesOfAnImageOnceHoweverManyPagesShowIt) {
   size_t scripts = 0;
   for (const auto& entry : fs::recursive_directory_iterator(dir / "pixels")) scripts += entry.is_regular_file();
   EXPECT_EQ(scripts, 1u);
+  // Encoded for the first page that shows it, and only named by the next.
+  std::set<std::string> scripted;
+  const ViewerPage first = viewer_page(results.scenes[0], dir, {}, &scripted);
+  const ViewerPage second = viewer_page(results.scenes[1], dir, {}, &scripted);
+  ASSERT_EQ(first.pixels.size(), 1u);
+  ASSERT_EQ(second.pixels.size(), 1u);
+  EXPECT_EQ(first.pixels[0].script, script);
+  EXPECT_EQ(second.pixels[0].image, "shared/gl.exr");
+  EXPECT_EQ(second.pixels[0].script, "");
   fs::remove_all(dir);
 }
 

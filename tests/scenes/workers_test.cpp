@@ -154,7 +154,9 @@ TEST_F(Workers, ARunStoppedByASignalEndsItsWorkersAndLeavesNoFolder) {
     ASSERT_EQ(std::system(("bash '" + (root_ / "stop.sh").string() + "' < /dev/null").c_str()), 0) << signal;
     const std::string output = read_text(out);
     EXPECT_NE(output.find("exit " + std::to_string(code)), std::string::npos) << output;
+    // At once, in the middle of the render: not once the render has ended.
     EXPECT_NE(output.find("xshade run: stopped by SIG" + std::string(signal)), std::string::npos) << output;
+    EXPECT_NE(output.find(" after 0 of 1 scenes"), std::string::npos) << output;
     EXPECT_EQ(output.find("worker still running"), std::string::npos) << output;
     EXPECT_TRUE(fs::is_empty(temp)) << signal << ": " << fs::directory_iterator(temp)->path();
     EXPECT_FALSE(fs::exists(root_ / "report/results.json")) << signal;
