@@ -4,8 +4,10 @@
 
 #include <system_error>
 
+#include "base/file_io.h"
 #include "cli/commands.h"
 #include "harness/report/report.h"
+#include "harness/report/report_lock.h"
 #include "harness/report/report_merge.h"
 #include "harness/report/report_text.h"
 
@@ -28,14 +30,24 @@ int run_report_merge(const ReportMergeOptions& options) {
       return kBadInput;
     }
 
+  // A run or another merge into the same folder would leave a report that is neither.
+  auto lock = harness::ReportLock::take(options.out, options.command_line);
+  if (!lock) {
+    fmt::print(stderr, "xshade report merge: {}\n", lock.error().to_string());
+    return lock.error().kind == ErrorKind::Backend ? kBackendError : kBadInput;
+  }
+
   harness::MergedReport merged = harness::merge_reports(*found);
   merged.results.command = options.command_line;
   for (const harness::MergedFile& file : merged.files) {
     const fs::path to = options.out / file.to;
     fs::create_directories(to.parent_path(), error);
-    if (error || !fs::copy_file(file.from, to, fs::copy_options::overwrite_existing, error)) {
-      fmt::print(stderr, "xshade report merge: cannot copy {} to {}: {}\n", file.from.string(), to.string(),
-                 error.message());
+    // Whole or not at all (a full disk leaves no truncated image).
+    const std::optional<std::string> bytes = read_file(file.from);
+    auto copied = bytes ? write_file_atomically(to, *bytes)
+                        : Result<void>(fail(ErrorKind::Backend, "cannot read " + file.from.string()));
+    if (!copied) {
+      fmt::print(stderr, "xshade report merge: cannot copy {}: {}\n", file.from.string(), copied.error().message);
       return kBackendError;
     }
   }

@@ -373,6 +373,21 @@ TEST_F(HostileInput, ASecondRunIntoAReportFolderInUseIsRefusedNamingTheFirst) {
                                     (root_ / "plan_report").string() + "'");
   EXPECT_EQ(plan.exit_code, 0) << plan.output;
   EXPECT_FALSE(fs::exists(root_ / "plan_report"));
+
+  // A merge into a folder a run is writing is refused alike, before it copies anything.
+  const fs::path merged = root_ / "merged";
+  fs::create_directories(merged);
+  const int merge_fd = ::open((merged / ".xshade-report.lock").c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
+  ASSERT_GE(merge_fd, 0);
+  ASSERT_EQ(::flock(merge_fd, LOCK_EX), 0);
+  Outcome merge = run_xshade("", "report merge '" + (root_ / "report").string() + "' --out '" + merged.string() + "'");
+  ::close(merge_fd);
+  EXPECT_EQ(merge.exit_code, 2) << merge.output;
+  EXPECT_NE(merge.output.find("the report folder " + merged.string() + " is being written by another xshade"),
+            std::string::npos)
+      << merge.output;
+  EXPECT_FALSE(fs::exists(merged / "results.json"));
+  EXPECT_FALSE(fs::exists(merged / kCopiedScene));
 }
 
 // ---- Work and memory have bounds.
