@@ -22,6 +22,11 @@ std::optional<std::string> read_file(const std::filesystem::path& path, ReadFail
 std::optional<std::string> read_regular_file(const std::filesystem::path& path, size_t known_size,
                                              ReadFailure* why = nullptr);
 
+// The largest shader sources people write (Unity's Standard shader's includes) are some 100 KB;
+// a generated one can be a few MB. Past 16 MiB a file is not a shader (HLSL or ShaderLab), and
+// the readers refuse it unread.
+inline constexpr size_t kMaxSourceFileBytes = size_t(16) << 20;
+
 // What is at `path` when it is not a regular file, as a message says it: "a directory", "a FIFO",
 // "a socket", "a device", "a symbolic link to nothing"; empty for a regular file, a link to one,
 // or nothing at all.

@@ -1,5 +1,7 @@
 #include "hlsl_like/source_manager.h"
 
+#include <sys/stat.h>
+
 #include <optional>
 #include <system_error>
 #include <utility>
@@ -42,6 +44,15 @@ Result<uint32_t> SourceManager::load_canonical(const std::filesystem::path& cano
                                               std::optional<size_t> known_size) {
   for (uint32_t i = 1; i < files_.size(); ++i)
     if (!files_[i]->path.empty() && files_[i]->path == canonical) return i;
+  // The size first, so that a file no shader is as large as (a log, a sparse file of gigabytes)
+  // is refused unread; an #include has been stat'ed already.
+  if (!known_size) {
+    struct stat status {};
+    if (::stat(canonical.c_str(), &status) == 0 && S_ISREG(status.st_mode)) known_size = size_t(status.st_size);
+  }
+  if (known_size && *known_size > kMaxSourceFileBytes)
+    return fail("'" + name + "' is " + std::to_string(*known_size) + " bytes; a shader source may have at most " +
+                std::to_string(kMaxSourceFileBytes >> 20) + " MiB");
   ReadFailure failure = ReadFailure::CannotOpen;
   std::optional<std::string> text =
       known_size ? read_regular_file(canonical, *known_size, &failure) : read_file(canonical, &failure);

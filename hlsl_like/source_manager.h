@@ -27,7 +27,8 @@ class SourceManager {
 
   // Registers a file given as text (tests, the command line's stdin); returns its index.
   uint32_t add(std::string name, std::string text);
-  // Reads a file from disk once; the same canonical path yields the same index.
+  // Reads a file from disk once; the same canonical path yields the same index. Only a regular
+  // file of at most kMaxSourceFileBytes (base/file_io.h) is read.
   Result<uint32_t> load(const std::filesystem::path& path);
   // load() for a path already canonical (an #include, resolved to be held to its folders), which
   // is not resolved again; `name` is what messages call the file; `known_size`: a stat of the path

@@ -638,6 +638,10 @@ Result<Shader> read_shader(std::string_view text, const std::string& file) {
 }
 
 Result<Shader> read_shader_file(const std::filesystem::path& path) {
+  std::error_code error;
+  if (const uintmax_t size = std::filesystem::file_size(path, error); !error && size > kMaxSourceFileBytes)
+    return fail(path.string() + " is " + std::to_string(size) + " bytes; a shader source may have at most " +
+                std::to_string(kMaxSourceFileBytes >> 20) + " MiB");
   ReadFailure why{};
   const std::optional<std::string> text = read_file(path, &why);
   if (!text)

@@ -153,6 +153,8 @@ MUTATIONS = [
      '  auto lock = harness::ReportLock::take(options.out, options.command_line);\n  if (!lock) {',
      '  auto lock = harness::ReportLock::take(options.out, options.command_line);\n  if (false) {',
      'HostileInput.ASecondRun'),
+    ('a shader source of any size is read', 'hlsl_like/source_manager.cpp',
+     '  if (known_size && *known_size > kMaxSourceFileBytes)', '  if (false)', 'HostileInput.AShaderSourceOfGigabytes'),
     ('no memory ceiling', 'cli/main.cpp',
      'xshade::cli::limit_memory(std::getenv("XSHADE_MEMORY_LIMIT"))', 'xshade::cli::limit_memory("0")',
      'HostileInput.XshadesOwnMemoryCeiling'),

@@ -331,6 +331,19 @@ TEST_F(HostileInput, AFullDiskIsExitThreeNamingEachFileAndLeavesNoEmptyFile) {
   EXPECT_EQ(outcome.output.find("temporary "), std::string::npos) << outcome.output;
 }
 
+// A sparse file of 4 GiB named as a shader (HLSL or ShaderLab) is refused by its size, unread.
+TEST_F(HostileInput, AShaderSourceOfGigabytesIsRefusedUnread) {
+  for (const char* name : {"huge.hlsl", "huge.shader"}) {
+    const fs::path shader = root_ / name;
+    std::ofstream(shader) << "// nothing yet\n";
+    fs::resize_file(shader, uint64_t(4) << 30);
+    Outcome outcome = run_xshade("ulimit -v 2000000;", "compile '" + shader.string() + "' --target gl");
+    EXPECT_EQ(outcome.exit_code, 2) << outcome.output;
+    EXPECT_NE(outcome.output.find("is 4294967296 bytes; a shader source may have at most 16 MiB"), std::string::npos)
+        << name << ": " << outcome.output;
+  }
+}
+
 // `xshade diff a.png /dev/zero` once read /dev/zero at full CPU for ever, and a FIFO image
 // waited for a writer; each is refused at once, naming what it is.
 TEST_F(HostileInput, DiffRefusesADeviceOrAFifoAsAnImage) {
