@@ -70,6 +70,11 @@ class HostileInput : public ::testing::Test {
   void TearDown() override { fs::remove_all(root_); }
 
   fs::path scene() const { return root_ / "scenes" / (std::string(kCopiedScene) + ".toml"); }
+  // An 8192 x 4096 environment: within the limits, and some 900 MB to read.
+  void use_large_environment() {
+    forged::write(root_ / "scenes" / "large.hdr", forged::hdr(8192, 4096));
+    append(scene(), "\n[environment]\nkind = \"equirect\"\nfile = \"large.hdr\"\n");
+  }
 
   Outcome run(const std::string& extra = "--lane gl", const std::string& environment = "") {
     return run_xshade(environment,
@@ -469,8 +474,7 @@ TEST_F(HostileInput, AnAllocationThatFailsIsExitThreeWithAMessage) {
   // address space this run is given, so the allocation throws std::bad_alloc in the worker that
   // builds the environment, which says so and exits 3; the run reports that lane's crash with
   // the worker's words and exits 3 too. Neither aborts (exit 134).
-  forged::write(root_ / "scenes" / "large.hdr", forged::hdr(8192, 4096));
-  append(scene(), "\n[environment]\nkind = \"equirect\"\nfile = \"large.hdr\"\n");
+  use_large_environment();
   Outcome outcome = run("--lane gl", "ulimit -v 600000;");
   EXPECT_EQ(outcome.exit_code, 3) << outcome.output;
   EXPECT_NE(outcome.output.find("xshade worker: out of memory (an allocation failed; each xshade process may take 0.6 "
@@ -489,8 +493,7 @@ TEST_F(HostileInput, AnAllocationThatFailsIsExitThreeWithAMessage) {
 // default half the machine's memory) turns it into exit 3 with the limit named, never the
 // kernel's OOM killer; a setting that is not a number is the user's mistake.
 TEST_F(HostileInput, XshadesOwnMemoryCeilingStopsARunawayWithExitThree) {
-  forged::write(root_ / "scenes" / "large.hdr", forged::hdr(8192, 4096));
-  append(scene(), "\n[environment]\nkind = \"equirect\"\nfile = \"large.hdr\"\n");
+  use_large_environment();
   Outcome outcome = run("--lane gl", "ulimit -v unlimited; XSHADE_MEMORY_LIMIT=0.6");
   EXPECT_EQ(outcome.exit_code, 3) << outcome.output;
   EXPECT_NE(outcome.output.find("xshade worker: out of memory (an allocation failed; each xshade process may take 0.6 "
