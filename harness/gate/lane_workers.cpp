@@ -2,11 +2,10 @@
 
 #include <fcntl.h>
 #include <signal.h>
+#include <stdio.h>  // renameat2
 #include <sys/file.h>
 #include <sys/stat.h>
 #include <unistd.h>
-
-#include <stdio.h>  // renameat2
 
 #include <algorithm>
 #include <cstdlib>

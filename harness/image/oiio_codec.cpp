@@ -1,8 +1,8 @@
 // The image codec through OpenImageIO: the module libxshade_image_codec.so (image_codec.h says
 // why it is one). It holds no xshade code but this file, and knows nothing of xshade's rules:
 // sizes and formats are checked by image_io.cpp from the header it gives.
-#include <OpenImageIO/imagebuf.h>
 #include <OpenImageIO/filesystem.h>
+#include <OpenImageIO/imagebuf.h>
 #include <OpenImageIO/imagebufalgo.h>
 #include <OpenImageIO/imageio.h>
 
