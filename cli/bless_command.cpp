@@ -12,6 +12,7 @@
 #include "cli/commands.h"
 #include "cli/lane_selection.h"
 #include "cli/workers.h"
+#include "harness/render/driver_cache.h"
 #include "harness/image/image_compare.h"
 #include "harness/report/report_text.h"
 #include "harness/gate/scene_check.h"
@@ -82,6 +83,7 @@ int run_bless(const BlessOptions& options) {
       checker, scene_workers(shared, options.workers), *files, *lanes,
       [&](harness::CheckedScene&& scene) { checked = std::move(scene); },
       [](const std::string& text) { fmt::print(stderr, "{}", text); });
+  if (!cache_dir.empty()) harness::record_driver_cache(harness::driver_cache_folder(cache_dir));
   if (const int signal = interrupt_signal()) {
     fmt::print(stderr, "xshade bless: stopped by {} before it rendered; no golden changed\n", describe_signal(signal));
     return kInterrupted + signal;

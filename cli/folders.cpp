@@ -15,6 +15,7 @@
 #include "base/file_io.h"
 #include "base/paths.h"
 #include "base/spelling.h"
+#include "harness/render/driver_cache.h"
 #include "harness/render/lanes.h"
 #include "harness/scene/project_file.h"
 
@@ -186,6 +187,8 @@ fs::path private_cache_dir(const fs::path& folder, std::string_view verb) {
   if (!why_not.empty()) {
     fmt::print(stderr, "xshade {}: warning: the drivers' shader cache is off for this run: {}\n", verb, why_not);
     setenv("MESA_SHADER_CACHE_DISABLE", "true", 1);  // the workers inherit it
+  } else if (const std::optional<std::string> damage = harness::check_driver_cache(harness::driver_cache_folder(folder))) {
+    fmt::print(stderr, "xshade {}: warning: {}\n", verb, *damage);
   }
   return folder;
 }

@@ -74,7 +74,9 @@ std::filesystem::path shader_cache_dir(const std::filesystem::path& given);
 // another user can write.
 // The drivers' own shader cache inside it is turned off for the process and its workers, with a
 // warning, when the folder cannot be written or its disk has less than kMinDriverCacheFreeBytes
-// free (Mesa maps its index file into memory, and a write to a map on a full disk is a SIGBUS).
+// free (Mesa maps its index file into memory, and a write to a map on a full disk is a SIGBUS);
+// where it is on, one whose entries changed since the last run recorded them is set aside with a
+// warning (harness/render/driver_cache.h), and the caller records them after its run.
 std::filesystem::path private_cache_dir(const std::filesystem::path& folder, std::string_view verb);
 // Mesa's index is under 2 MiB and every fixed scene's entries together a few MiB more: 64 MiB
 // leaves room for a project's.

@@ -14,6 +14,7 @@
 #include "cli/commands.h"
 #include "cli/lane_selection.h"
 #include "cli/workers.h"
+#include "harness/render/driver_cache.h"
 #include "harness/report/report.h"
 #include "harness/report/report_lock.h"
 #include "harness/gate/scene_check.h"
@@ -162,6 +163,7 @@ int run_run(const RunOptions& options) {
     catch_interrupts();
     totals = harness::check_in_workers(checker, scene_workers(shared, options.workers), *files, *lanes, record,
                                        [](const std::string& text) { fmt::print(stderr, "{}", text); });
+    if (!cache_dir.empty()) harness::record_driver_cache(harness::driver_cache_folder(cache_dir));
     if (const int signal = interrupt_signal()) {
       fmt::print(stderr, "xshade run: stopped by {} after {} of {} scenes; its workers and their files are gone, "
                  "and no report was written\n", describe_signal(signal), results.scenes.size(), files->size());

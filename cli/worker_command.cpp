@@ -12,6 +12,7 @@
 #include "base/interrupt.h"
 #include "cli/commands.h"
 #include "harness/gate/lane_workers.h"
+#include "harness/render/driver_cache.h"
 
 namespace xshade::cli {
 
@@ -30,8 +31,7 @@ int run_worker(const WorkerOptions& options) {
   // The drivers' own shader cache lives in xshade's, in a folder of this build's: Mesa's keys
   // already tell its builds and LLVM's apart, and this one tells xshade's.
   const std::filesystem::path driver_cache =
-      options.cache_dir.empty() ? std::filesystem::path()
-                                : options.cache_dir / ("driver-" + harness::compiler_identity().substr(0, 16));
+      options.cache_dir.empty() ? std::filesystem::path() : harness::driver_cache_folder(options.cache_dir);
   harness::VariantCompiler compiler(harness::ShaderSearchPath(options.shader_folders), cache ? &*cache : nullptr);
   // Environments: built once in this worker, and with a cache once between runs.
   harness::EnvironmentCache environments(options.cache_dir, harness::compiler_identity());

@@ -95,5 +95,32 @@ TEST_F(DriverCache, AWarningFailsTheRunOnAColdCacheAndOnAWarmOne) {
   EXPECT_EQ(forgotten.output.find("used uninitialized"), std::string::npos) << forgotten.output;
 }
 
+// An entry of Mesa's cache damaged between runs was read, failed Mesa's own check, compiled again
+// and never replaced: right images, every later run slower than a cold one, and nothing said.
+// Now the run says so once, sets the folder aside, and the drivers build it again.
+TEST_F(DriverCache, AnEntryDamagedBetweenRunsSetsTheFolderAsideOnceWithAWarning) {
+  run();
+  const fs::path drivers = driver_cache();
+  ASSERT_FALSE(drivers.empty()) << "no driver-* folder in " << (root_ / "cache");
+  fs::path entry;
+  for (const auto& file : fs::recursive_directory_iterator(drivers / "mesa_shader_cache"))
+    if (file.is_regular_file() && file.path().filename() != "index") entry = file.path();
+  ASSERT_FALSE(entry.empty()) << "Mesa kept no entry";
+  std::string bytes = read_text(entry);
+  bytes.back() = char(bytes.back() ^ 0x5a);
+  std::ofstream(entry, std::ios::binary) << bytes;
+
+  Outcome damaged = run();
+  EXPECT_NE(damaged.output.find("warning: the drivers' shader cache in " + drivers.string() + " had 1 entry changed "
+                                "since xshade saw them written (" +
+                                fs::relative(entry, drivers).string() + "): it is set aside and built again"),
+            std::string::npos)
+      << damaged.output;
+  EXPECT_TRUE(fs::is_directory(drivers / "mesa_shader_cache")) << "built again";
+  EXPECT_NE(read_text(entry), bytes) << "the damaged entry is gone";
+  Outcome after = run();
+  EXPECT_EQ(after.output.find("drivers' shader cache"), std::string::npos) << after.output;
+}
+
 }  // namespace
 }  // namespace xshade::tests
