@@ -63,37 +63,10 @@ int no_stage(const hlsl::Module& module, const std::filesystem::path& file) {
   return kBadInput;
 }
 
-// Every combination of the keyword sets' keywords, `_` (none) left out of the names.
 // --all-variants compiles each combination, milliseconds to tens of them apiece: 2^14 is already
 // minutes, and 40 `multi_compile _ KW` lines (2^40) once filled 8.5 GB listing them. Past this
 // the count is refused before anything is listed or compiled.
 constexpr uint64_t kMaxAllVariants = uint64_t(1) << 14;
-
-// The number of keyword combinations, or nullopt when it passes `limit` (counted without
-// overflowing however many sets there are).
-std::optional<uint64_t> combination_count(const std::vector<hlsl::KeywordSet>& sets, uint64_t limit) {
-  uint64_t count = 1;
-  for (const hlsl::KeywordSet& set : sets) {
-    const uint64_t size = std::max<uint64_t>(set.keywords.size(), 1);
-    if (count > limit / size) return std::nullopt;
-    count *= size;
-  }
-  return count;
-}
-
-// Combination `index` of `sets` (a mixed-radix number, the first set changing slowest), each
-// set's "_" left out.
-std::vector<std::string> keyword_combination(const std::vector<hlsl::KeywordSet>& sets, uint64_t index) {
-  std::vector<std::string> keywords(sets.size());
-  for (size_t s = sets.size(); s-- > 0;) {
-    const std::vector<std::string>& set = sets[s].keywords;
-    if (set.empty()) continue;
-    keywords[s] = set[index % set.size()];
-    index /= set.size();
-  }
-  std::erase_if(keywords, [](const std::string& keyword) { return keyword.find_first_not_of('_') == std::string::npos; });
-  return keywords;
-}
 
 std::string bracketed(const std::vector<std::string>& keywords) {
   std::string text = "[";
@@ -120,40 +93,41 @@ int compile_module(const CompileOptions& options, const std::filesystem::path& f
       for (const hlsl::PassDeclaration& pass : module->passes) entries.push_back({" pass " + pass.name, pass.entry});
     }
     const std::vector<hlsl::KeywordSet>& sets = module->reflection.keyword_sets;
-    const std::optional<uint64_t> combinations = combination_count(sets, kMaxAllVariants);
-    if (!combinations) {
+    const uint64_t combinations = hlsl::keyword_combination_count(sets);
+    if (combinations > kMaxAllVariants) {
       fmt::print(stderr,
                  "xshade compile: {}: --all-variants compiles at most {} keyword combinations, and the {} keyword sets "
                  "of this shader make more; compile the variants a scene uses (xshade run --plan lists them)\n",
                  file.string(), kMaxAllVariants, sets.size());
       return kBadInput;
     }
-    for (uint64_t index = 0; index < *combinations; ++index)
-    for (const auto& [pass_label, pass_entry] : entries) {
-      const std::vector<std::string> keywords = keyword_combination(sets, index);
-      hlsl::CompileOptions variant = front_end;
-      variant.keywords = keywords;
-      variant.pass_fragment_entry = pass_entry;
-      auto compiled = compile(variant);
-      std::string failure;
-      if (!compiled->ok()) {
-        failure = compiled->diagnostics.render_all();
-      } else {
-        const harness::Lane lane = options.target == "gl" ? harness::Lane::Gl
-                                   : options.target == "vk-hlsl" ? harness::Lane::VkHlsl
-                                                                 : harness::Lane::Vk;
-        auto stages = harness::stages_for_lane(
-            *compiled, lane, {.half_emulation = options.precision == "half", .trace_nonfinite = options.trace_nonfinite});
-        if (!stages) failure = stages.error().to_string() + "\n";
-      }
-      fmt::print("{} {}{}: {}\n", file.string(), bracketed(keywords), pass_label,
-                 failure.empty() ? "compiles" : "does not compile");
-      if (!failure.empty()) {
-        fmt::print(stderr, "{}", failure);
-        worst = kBadInput;
+    for (uint64_t index = 0; index < combinations; ++index) {
+      const std::vector<std::string> keywords = hlsl::keyword_combination(sets, index);
+      for (const auto& [pass_label, pass_entry] : entries) {
+        hlsl::CompileOptions variant = front_end;
+        variant.keywords = keywords;
+        variant.pass_fragment_entry = pass_entry;
+        auto compiled = compile(variant);
+        std::string failure;
+        if (!compiled->ok()) {
+          failure = compiled->diagnostics.render_all();
+        } else {
+          const harness::Lane lane = options.target == "gl" ? harness::Lane::Gl
+                                     : options.target == "vk-hlsl" ? harness::Lane::VkHlsl
+                                                                   : harness::Lane::Vk;
+          auto stages = harness::stages_for_lane(
+              *compiled, lane, {.half_emulation = options.precision == "half", .trace_nonfinite = options.trace_nonfinite});
+          if (!stages) failure = stages.error().to_string() + "\n";
+        }
+        fmt::print("{} {}{}: {}\n", file.string(), bracketed(keywords), pass_label,
+                   failure.empty() ? "compiles" : "does not compile");
+        if (!failure.empty()) {
+          fmt::print(stderr, "{}", failure);
+          worst = kBadInput;
+        }
       }
     }
-    fmt::print("{} keyword combinations{} for {}\n", *combinations,
+    fmt::print("{} keyword combinations{} for {}\n", combinations,
                entries.size() > 1 ? " x " + std::to_string(entries.size()) + " passes" : std::string(), options.target);
     return worst;
   }

@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include "hlsl_like/compiler.h"
+#include "hlsl_like/reflection.h"
 
 namespace xshade::hlsl {
 namespace {
@@ -89,6 +90,16 @@ TEST(KeywordPragmas, UnitysBuildPragmasAreReadQuietlyAndOtherStagesAreErrors) {
   const Strings surface = messages(*compile_with_pragmas("#pragma surface surf Lambert\n"));
   ASSERT_FALSE(surface.empty());
   EXPECT_NE(surface[0].find("error: #pragma surface makes a surface shader"), std::string::npos) << surface[0];
+}
+
+TEST(KeywordCombinations, AreCountedAndListedOneAtATimeFirstSetSlowest) {
+  const std::vector<KeywordSet> sets = {{{"_", "A"}}, {{"B", "C", "D"}}, {{}}};
+  EXPECT_EQ(keyword_combination_count(sets), 6u);
+  EXPECT_EQ(keyword_combination(sets, 0), Strings{"B"});
+  EXPECT_EQ(keyword_combination(sets, 2), Strings{"D"});
+  EXPECT_EQ(keyword_combination(sets, 4), (Strings{"A", "C"}));
+  EXPECT_EQ(keyword_combination_count(std::vector<KeywordSet>(63, KeywordSet{{"_", "K"}})), uint64_t(1) << 63);
+  EXPECT_EQ(keyword_combination_count(std::vector<KeywordSet>(70, KeywordSet{{"_", "K"}})), UINT64_MAX);
 }
 
 }  // namespace

@@ -804,4 +804,26 @@ std::string reflection_json(const Reflection& reflection) {
   return json.dump(2);
 }
 
+uint64_t keyword_combination_count(const std::vector<KeywordSet>& sets) {
+  uint64_t count = 1;
+  for (const KeywordSet& set : sets) {
+    const uint64_t size = std::max<uint64_t>(set.keywords.size(), 1);
+    if (count > UINT64_MAX / size) return UINT64_MAX;
+    count *= size;
+  }
+  return count;
+}
+
+std::vector<std::string> keyword_combination(const std::vector<KeywordSet>& sets, uint64_t index) {
+  std::vector<std::string> keywords(sets.size());
+  for (size_t s = sets.size(); s-- > 0;) {
+    const std::vector<std::string>& set = sets[s].keywords;
+    if (set.empty()) continue;
+    keywords[s] = set[index % set.size()];
+    index /= set.size();
+  }
+  std::erase_if(keywords, [](const std::string& keyword) { return keyword.find_first_not_of('_') == std::string::npos; });
+  return keywords;
+}
+
 }  // namespace xshade::hlsl

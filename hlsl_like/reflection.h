@@ -117,6 +117,13 @@ struct KeywordSet {
   bool shader_feature = false;
 };
 
+// How many keyword combinations `sets` make (a set without keywords counts once), saturating at
+// UINT64_MAX: 70 two-keyword sets are already past what 64 bits count.
+uint64_t keyword_combination_count(const std::vector<KeywordSet>& sets);
+// Combination `index` (below the count) as a mixed-radix number, the first set changing slowest,
+// each set's `_` (none) left out: the combinations one at a time, never all of them in memory.
+std::vector<std::string> keyword_combination(const std::vector<KeywordSet>& sets, uint64_t index);
+
 struct Reflection {
   std::string vertex_entry;
   std::string fragment_entry;

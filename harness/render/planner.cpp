@@ -134,17 +134,6 @@ void add_global_keyword(const std::string& keyword, const std::vector<hlsl::Keyw
   }
 }
 
-// The keyword combinations of `sets`, SIZE_MAX for as many or more (70 two-keyword sets once
-// overflowed to 0 and the plan said nothing of them).
-size_t combinations(const std::vector<hlsl::KeywordSet>& sets) {
-  size_t count = 1;
-  for (const hlsl::KeywordSet& set : sets) {
-    const size_t size = std::max<size_t>(set.keywords.size(), 1);
-    if (count > SIZE_MAX / size) return SIZE_MAX;
-    count *= size;
-  }
-  return count;
-}
 
 size_t add_variant(Plan& plan, VariantRequest request) {
   auto found = std::find(plan.variants.begin(), plan.variants.end(), request);
@@ -260,7 +249,7 @@ Result<Plan> plan_scene(const Scene& scene, const ShaderSearchPath& shaders) {
   SourceReader reader(shaders);
   // Distinct combinations a source is used with, for the "left out" account.
   std::map<std::string, std::set<std::vector<std::string>>> used_combinations;
-  std::map<std::string, size_t> possible_combinations;
+  std::map<std::string, uint64_t> possible_combinations;
 
   // load_scene has refused a scene over budget; one made in code is held to the same limits
   // before anything is expanded.
@@ -322,7 +311,7 @@ Result<Plan> plan_scene(const Scene& scene, const ShaderSearchPath& shaders) {
       VariantRequest request{facts.path, instance.material, variant_keywords(facts.keyword_sets, asked), {}};
       request.shader_pass = pass;
       used_combinations[instance.material].insert(request.keywords);
-      possible_combinations[instance.material] = combinations(material.keyword_sets);
+      possible_combinations[instance.material] = hlsl::keyword_combination_count(material.keyword_sets);
       const std::vector<std::string> keywords = request.keywords;
       const size_t variants_before = plan.variants.size();
       const size_t variant = add_variant(plan, std::move(request));
@@ -383,7 +372,7 @@ Result<Plan> plan_scene(const Scene& scene, const ShaderSearchPath& shaders) {
     if (!facts) return fail(facts.error());
     const std::vector<std::string> keywords = variant_keywords(facts->keyword_sets, effect.keywords);
     used_combinations[effect.effect].insert(keywords);
-    possible_combinations[effect.effect] = combinations(facts->keyword_sets);
+    possible_combinations[effect.effect] = hlsl::keyword_combination_count(facts->keyword_sets);
     check_keywords(effect.keywords, effect.where, facts->names, "post effect '" + effect.effect + "'", contract);
     std::vector<PassNames> pass_names;
     for (const hlsl::PassDeclaration& declaration : facts->passes) {
@@ -418,9 +407,9 @@ Result<Plan> plan_scene(const Scene& scene, const ShaderSearchPath& shaders) {
   }
 
   for (const auto& [source, used] : used_combinations) {
-    const size_t possible = possible_combinations[source];
-    if (possible == SIZE_MAX)
-      plan.left_out.push_back(source + ": all but " + std::to_string(used.size()) + " of its " + std::to_string(SIZE_MAX) +
+    const uint64_t possible = possible_combinations[source];
+    if (possible == UINT64_MAX)  // saturated: 70 two-keyword sets are more than 64 bits count
+      plan.left_out.push_back(source + ": all but " + std::to_string(used.size()) + " of its " + std::to_string(UINT64_MAX) +
                               " or more keyword combinations (the scene asks for no other)");
     else if (possible > used.size())
       plan.left_out.push_back(source + ": " + std::to_string(possible - used.size()) + " of its " +
