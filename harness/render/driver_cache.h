@@ -2,9 +2,10 @@
 // a build (driver_cache_folder). Mesa checks each entry as it reads it, but an entry that fails
 // its check is compiled again and never replaced: a damaged cache gives right images and every
 // later run slower than a cold one, silently. So xshade does not believe a file it did not see
-// written: after a run it records each entry's hash (record_driver_cache), and before the next it
-// holds the entries to their records (check_driver_cache); a folder with an entry that changed is
-// set aside (renamed, then removed) and the drivers build a new one.
+// written: after a run it records each entry's hash, size and time (record_driver_cache), and
+// before the next it holds the entries to their records (check_driver_cache); a folder with an
+// entry that changed is set aside (renamed, then removed) and the drivers build a new one. Only
+// an entry new or touched since is read: a warm run stats the cache, it does not read it.
 #pragma once
 
 #include <filesystem>
