@@ -123,6 +123,12 @@ Result<std::string> read_input_file(const fs::path& path, size_t max_bytes, std:
   return std::move(*bytes);
 }
 
+Result<void> copy_file_whole(const fs::path& from, const fs::path& to) {
+  const std::optional<std::string> bytes = read_file(from);
+  if (!bytes) return fail(ErrorKind::Backend, "cannot read " + from.string());
+  return write_file_atomically(to, *bytes);
+}
+
 Result<void> make_private_folder(const fs::path& folder) {
   std::error_code error;
   if (!fs::exists(folder, error)) {

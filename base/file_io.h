@@ -38,6 +38,10 @@ std::string not_a_file(const std::filesystem::path& path);
 // before anything is read; a read that fails is the environment's error with the errno.
 Result<std::string> read_input_file(const std::filesystem::path& path, size_t max_bytes, std::string_view what);
 
+// `from` written whole to `to` (write_file_atomically): a copy that fails leaves no part of it.
+// A `from` that cannot be read and a `to` that cannot be written are the environment's errors.
+Result<void> copy_file_whole(const std::filesystem::path& from, const std::filesystem::path& to);
+
 // A folder only this user can write, for what xshade trusts without checking who wrote it (the
 // compile cache): made with mode 0700 where it is missing; where it is there, it must be a
 // directory owned by this user that neither the group nor others can write, or the error says

@@ -59,7 +59,24 @@ TEST(FileIo, SaysWhatItCouldNotDo) {
   EXPECT_FALSE(read_file(missing).has_value());
   auto written = write_file_atomically(missing, "x");
   ASSERT_FALSE(written.has_value());
-  EXPECT_NE(written.error().message.find("f.txt"), std::string::npos) << written.error().message;
+  EXPECT_EQ(written.error().message.find("cannot write " + missing.string() + ": No such file or directory"), 0u)
+      << written.error().message;
+  EXPECT_EQ(written.error().kind, ErrorKind::Backend);  // the environment's: exit 3
+}
+
+TEST(FileIo, CopiesAFileWholeOrLeavesNothing) {
+  const fs::path folder = fs::temp_directory_path() / ("xshade_file_io_copy_" + std::to_string(::getpid()));
+  fs::create_directories(folder);
+  ASSERT_TRUE(write_file_atomically(folder / "from.bin", std::string("a\0b", 3)));
+  ASSERT_TRUE(copy_file_whole(folder / "from.bin", folder / "to.bin"));
+  EXPECT_EQ(read_file(folder / "to.bin"), std::string("a\0b", 3));
+  auto unread = copy_file_whole(folder / "absent.bin", folder / "to2.bin");
+  ASSERT_FALSE(unread);
+  EXPECT_EQ(unread.error().message, "cannot read " + (folder / "absent.bin").string());
+  EXPECT_EQ(unread.error().kind, ErrorKind::Backend);
+  EXPECT_FALSE(fs::exists(folder / "to2.bin"));
+  EXPECT_FALSE(copy_file_whole(folder / "from.bin", folder / "no" / "to.bin"));
+  fs::remove_all(folder);
 }
 
 // A file a user gives is opened without waiting and checked before it is read: a FIFO (which a

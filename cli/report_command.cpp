@@ -43,10 +43,7 @@ int run_report_merge(const ReportMergeOptions& options) {
     const fs::path to = options.out / file.to;
     fs::create_directories(to.parent_path(), error);
     // Whole or not at all (a full disk leaves no truncated image).
-    const std::optional<std::string> bytes = read_file(file.from);
-    auto copied = bytes ? write_file_atomically(to, *bytes)
-                        : Result<void>(fail(ErrorKind::Backend, "cannot read " + file.from.string()));
-    if (!copied) {
+    if (auto copied = copy_file_whole(file.from, to); !copied) {
       fmt::print(stderr, "xshade report merge: cannot copy {}: {}\n", file.from.string(), copied.error().message);
       return kBackendError;
     }

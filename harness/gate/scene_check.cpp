@@ -51,9 +51,7 @@ std::string SceneChecker::copy_file(const fs::path& from, const std::string& sce
   std::error_code ignored;
   fs::create_directories(path.parent_path(), ignored);
   // Whole or not at all: the workers of a scene's lanes copy its common golden at once.
-  const std::optional<std::string> bytes = read_file(from);
-  auto written = bytes ? write_file_atomically(path, *bytes) : Result<void>(fail("cannot read " + from.string()));
-  if (!written) {
+  if (auto written = copy_file_whole(from, path); !written) {
     progress_("  cannot copy " + from.string() + ": " + written.error().message);
     return {};
   }

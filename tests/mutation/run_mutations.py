@@ -156,7 +156,7 @@ MUTATIONS = [
     ('a shader source of any size is read', 'hlsl_like/source_manager.cpp',
      '  if (known_size && *known_size > kMaxSourceFileBytes)', '  if (false)', 'HostileInput.AShaderSourceOfGigabytes'),
     ("a damaged driver cache is believed", 'harness/render/driver_cache.cpp',
-     '    if (bytes && content_hash(*bytes) == hash) continue;', '    continue;',
+     '  return bytes && content_hash(*bytes) == recorded.hash;', '  return true;',
      'DriverCache.AnEntryDamaged'),
     ('no memory ceiling', 'cli/main.cpp',
      'xshade::cli::limit_memory(std::getenv("XSHADE_MEMORY_LIMIT"))', 'xshade::cli::limit_memory("0")',
