@@ -7,7 +7,8 @@
 #                          [PREFIX xshade]         # tests are PREFIX.SCENE.LANE and PREFIX.SCENE.all_lanes
 #                          [LABELS label...]       # CTest labels (default: xshade)
 #                          [REPORT dir]            # default: ${CMAKE_CURRENT_BINARY_DIR}/xshade-report
-#                          [CACHE dir])            # compiled shaders; default: ${CMAKE_BINARY_DIR}/xshade-cache
+#                          [CACHE dir]             # compiled shaders; default: ${CMAKE_BINARY_DIR}/xshade-cache
+#                          [ENVIRONMENT VAR=value...])  # set for every test (CTest's ENVIRONMENT)
 #
 # Relative folders are relative to the calling CMakeLists.txt. Each lane's test runs `xshade run
 # SCENE --lane LANE` with exactly these folders (no project file is read), writes its own report
@@ -21,7 +22,7 @@
 # The scene files are found when CMake configures; adding one re-runs the configuration on the
 # next build.
 function(xshade_add_scene_tests)
-  cmake_parse_arguments(PARSE_ARGV 0 ARG "" "SCENES;GOLDEN;PREFIX;REPORT;CACHE" "SHADERS;LANES;LABELS")
+  cmake_parse_arguments(PARSE_ARGV 0 ARG "" "SCENES;GOLDEN;PREFIX;REPORT;CACHE" "SHADERS;LANES;LABELS;ENVIRONMENT")
   if(ARG_UNPARSED_ARGUMENTS)
     message(FATAL_ERROR "xshade_add_scene_tests: unknown arguments: ${ARG_UNPARSED_ARGUMENTS}")
   endif()
@@ -83,7 +84,7 @@ function(xshade_add_scene_tests)
                        --report "${ARG_REPORT}/tests/${scene}.${lane}" --cache "${ARG_CACHE}")
       set_tests_properties(${ARG_PREFIX}.${scene}.${lane} PROPERTIES LABELS "${ARG_LABELS}"
                            SKIP_REGULAR_EXPRESSION "${skipped}" FIXTURES_REQUIRED ${fixture}
-                           FIXTURES_SETUP ${ARG_PREFIX}_${scene}_lanes)
+                           FIXTURES_SETUP ${ARG_PREFIX}_${scene}_lanes ENVIRONMENT "${ARG_ENVIRONMENT}")
       list(APPEND lane_reports "${ARG_REPORT}/tests/${scene}.${lane}")
     endforeach()
     # The lanes against each other from what the lane tests rendered, not rendered again: their
@@ -94,7 +95,8 @@ function(xshade_add_scene_tests)
                COMMAND xshade::xshade report merge ${lane_reports} --out "${ARG_REPORT}/tests/${scene}"
                        --cross-lane --exit-code)
       set_tests_properties(${ARG_PREFIX}.${scene}.all_lanes PROPERTIES LABELS "${ARG_LABELS}"
-                           FIXTURES_REQUIRED "${fixture};${ARG_PREFIX}_${scene}_lanes")
+                           FIXTURES_REQUIRED "${fixture};${ARG_PREFIX}_${scene}_lanes"
+                           ENVIRONMENT "${ARG_ENVIRONMENT}")
     endif()
   endforeach()
   # One report of the whole CTest run: the per-test folders cleared before, merged after (CTest
@@ -103,5 +105,6 @@ function(xshade_add_scene_tests)
   add_test(NAME ${ARG_PREFIX}.report
            COMMAND xshade::xshade report merge "${ARG_REPORT}/tests" --out "${ARG_REPORT}")
   set_tests_properties(${ARG_PREFIX}.report_start PROPERTIES LABELS "${ARG_LABELS}" FIXTURES_SETUP ${fixture})
-  set_tests_properties(${ARG_PREFIX}.report PROPERTIES LABELS "${ARG_LABELS}" FIXTURES_CLEANUP ${fixture})
+  set_tests_properties(${ARG_PREFIX}.report PROPERTIES LABELS "${ARG_LABELS}" FIXTURES_CLEANUP ${fixture}
+                       ENVIRONMENT "${ARG_ENVIRONMENT}")
 endfunction()
