@@ -137,8 +137,6 @@ bool is_split_name(const Expr* e, const std::unordered_map<const Decl*, StageEmi
   return e && e->kind == ExprKind::Name && split.count(static_cast<const NameExpr*>(e)->decl) > 0;
 }
 
-const char* kComponents = "xyzw";
-
 // Text made of identifier characters and dots only: a name, a literal, a field or swizzle.
 bool is_simple_text(const std::string& text) {
   for (char c : text)

@@ -38,8 +38,6 @@ std::string combined_type(TextureShape shape, ScalarType texel, bool shadow) {
   return texel_prefix(texel) + "sampler" + dimension(shape) + (shadow ? "Shadow" : "");
 }
 
-const char* kComponents = "xyzw";
-
 // ".x", ".xy", ".xyz" for the first n components; "" for 4.
 std::string first_components(uint32_t n) { return n >= 4 ? "" : "." + std::string(kComponents, n); }
 

@@ -28,6 +28,9 @@ using hlsl::Loc;
 using hlsl::Stmt;
 using hlsl::Type;
 
+// A vector's components in order, for swizzles.
+inline constexpr const char* kComponents = "xyzw";
+
 // C's (and GLSL's) operator precedence, lowest first: an operand is parenthesized when its
 // precedence is too low for the place it goes.
 enum Prec : int {

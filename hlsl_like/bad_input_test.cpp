@@ -65,10 +65,6 @@ Strings headers(const Module& module) {
   return out;
 }
 
-double seconds_since(std::chrono::steady_clock::time_point start) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
-
 // A fresh folder under the system's temporary folder, removed with everything in it.
 class TempDir {
  public:

@@ -18,7 +18,7 @@ constexpr const char* kVariants =
     "#pragma shader_feature _ USE_RAMP USE_TINT\n"
     "float4 frag(float4 pos : SV_Position) : SV_Target { return 1; }\n";
 
-std::unique_ptr<Module> compile(std::vector<std::string> keywords) {
+std::unique_ptr<Module> compile_with_keywords(std::vector<std::string> keywords) {
   CompileOptions options;
   options.keywords = std::move(keywords);
   return compile_text("variants.hlsl", kVariants, options);
@@ -31,13 +31,13 @@ Strings rendered(const Module& module) {
 }
 
 TEST(Compiler, OneKeywordOfEachSetIsAVariant) {
-  auto module = compile({"FOG_EXP", "USE_TINT"});
+  auto module = compile_with_keywords({"FOG_EXP", "USE_TINT"});
   EXPECT_TRUE(rendered(*module).empty());
   EXPECT_EQ(module->reflection.active_keywords, (Strings{"FOG_EXP", "USE_TINT"}));
 }
 
 TEST(Compiler, TwoKeywordsOfOneSetAreAnErrorAtThatSetsPragma) {
-  auto module = compile({"FOG_EXP2", "USE_RAMP", "FOG_LINEAR"});
+  auto module = compile_with_keywords({"FOG_EXP2", "USE_RAMP", "FOG_LINEAR"});
   EXPECT_FALSE(module->ok());
   EXPECT_EQ(rendered(*module),
             (Strings{"variants.hlsl:2:9: error: keywords 'FOG_EXP2' and 'FOG_LINEAR' are both of this #pragma "
@@ -47,14 +47,14 @@ TEST(Compiler, TwoKeywordsOfOneSetAreAnErrorAtThatSetsPragma) {
 }
 
 TEST(Compiler, EachExtraKeywordOfASetIsNamedWithTheFirst) {
-  auto module = compile({"USE_TINT", "USE_RAMP", "USE_TINT", "FOG_EXP"});
+  auto module = compile_with_keywords({"USE_TINT", "USE_RAMP", "USE_TINT", "FOG_EXP"});
   // USE_TINT twice is one keyword; USE_RAMP is the conflict.
   EXPECT_EQ(rendered(*module),
             (Strings{"variants.hlsl:3:9: error: keywords 'USE_TINT' and 'USE_RAMP' are both of this #pragma "
                      "shader_feature set; a variant can have only one keyword of each set\n"
                      "    #pragma shader_feature _ USE_RAMP USE_TINT\n"
                      "            ^"}));
-  module = compile({"FOG_LINEAR", "FOG_EXP", "FOG_EXP2"});
+  module = compile_with_keywords({"FOG_LINEAR", "FOG_EXP", "FOG_EXP2"});
   EXPECT_EQ(module->diagnostics.error_count(), 2u);
   ASSERT_EQ(module->diagnostics.diagnostics().size(), 2u);
   EXPECT_NE(module->diagnostics.diagnostics()[0].message.find("'FOG_LINEAR' and 'FOG_EXP'"), std::string::npos);

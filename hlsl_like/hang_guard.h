@@ -3,6 +3,8 @@
 // slower (sanitizers, no optimisation). A test file includes this; nothing else does.
 #pragma once
 
+#include <chrono>
+
 #ifndef __has_feature
 #define __has_feature(x) 0
 #endif
@@ -14,5 +16,10 @@ inline constexpr double kTimeScale = 10;
 #else
 inline constexpr double kTimeScale = 1;
 #endif
+
+// The seconds since `start`, for a test to hold against its bound.
+inline double seconds_since(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
 
 }  // namespace xshade::hlsl

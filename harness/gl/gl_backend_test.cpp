@@ -5,7 +5,10 @@
 #include "harness/backend/shared_backend_test.h"
 #include "harness/gl/gl_backend.h"
 
+#include <unistd.h>
+
 #include <array>
+#include <chrono>
 #include <cmath>
 #include <cstdlib>
 #include <cstring>
@@ -145,11 +148,15 @@ TEST_P(GlBackendTest, ResourcesMissingFromTheLayoutAreRejected) {
 
 TEST_P(GlBackendTest, CompileWarningsOfAGoodProgramAreDriverMessages) {
   // Mesa reports compiler warnings through KHR_debug (at high severity); they are the driver's
-  // complaints about a program, so they stay in the list.
-  auto program = fullscreen_program("warns",
-                                    "#version 450 core\n"
-                                    "layout(location = 0) out vec4 color;\n"
-                                    "void main() { float x; color = vec4(x); }\n");
+  // complaints about a program, so they stay in the list. Mesa gives them only when it compiles:
+  // the source is made new for each process (a comment with its id and the time), so that no
+  // drivers' cache holds the program (the tests share one; xshade's own keeps the messages beside
+  // it, which the run tests check).
+  const std::string unique = "// " + std::to_string(::getpid()) + " " +
+                             std::to_string(std::chrono::steady_clock::now().time_since_epoch().count()) + "\n";
+  auto program = fullscreen_program("warns", "#version 450 core\n" + unique +
+                                                 "layout(location = 0) out vec4 color;\n"
+                                                 "void main() { float x; color = vec4(x); }\n");
   ASSERT_TRUE(program) << program.error().to_string();
   auto messages = backend().take_driver_messages();
   ASSERT_EQ(messages.size(), 1u);

@@ -12,9 +12,9 @@
 #include <string>
 #include <vector>
 
-#include <OpenImageIO/imageio.h>
 #include <gtest/gtest.h>
 
+#include "harness/image/image_io.h"
 #include "tests/scenes/gating_test_shared.h"
 #include "tests/support/scene_copy.h"
 #include "tests/support/xshade_process.h"
@@ -222,12 +222,8 @@ TEST_F(Workers, AnEvalLaneThatHangsIsATimeoutOfThatFileAndTheOthersStillRun) {
 
 // An EXR's pixels (its header holds the time it was written, which differs from run to run).
 std::vector<float> float_pixels(const fs::path& file) {
-  auto input = OIIO::ImageInput::open(file.string());
-  if (!input) return {};
-  const OIIO::ImageSpec& spec = input->spec();
-  std::vector<float> pixels(size_t(spec.width) * spec.height * spec.nchannels);
-  if (!input->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, pixels.data())) return {};
-  return pixels;
+  Result<harness::FloatImage> image = harness::read_image(file, /*srgb=*/false);
+  return image ? image->rgba : std::vector<float>{};
 }
 
 // Every fixed scene on every lane, with one worker and with two, with caches cold and warm (the
