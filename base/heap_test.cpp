@@ -15,7 +15,7 @@ namespace {
 #define XSHADE_SANITIZED_HEAP 1
 #endif
 #endif
-#if defined(__SANITIZE_ADDRESS__)
+#if defined(__SANITIZE_ADDRESS__) || defined(XSHADE_SANITIZED_BUILD)  // the program links ASan's allocator
 #define XSHADE_SANITIZED_HEAP 1
 #endif
 

@@ -11,7 +11,9 @@
 
 namespace xshade::hlsl {
 
-#if defined(__SANITIZE_ADDRESS__) || __has_feature(address_sanitizer) || !defined(NDEBUG)
+// XSHADE_SANITIZED_BUILD: the libraries are instrumented, though a test program itself is not.
+#if defined(XSHADE_SANITIZED_BUILD) || defined(__SANITIZE_ADDRESS__) || __has_feature(address_sanitizer) || \
+    !defined(NDEBUG)
 inline constexpr double kTimeScale = 10;
 #else
 inline constexpr double kTimeScale = 1;
