@@ -86,6 +86,8 @@ TEST(ShaderLabReader, SubShaderTagsLodPassAndProgramWithItsPlaceInTheFile) {
   const SubShader& sub = shader.subshaders[0];
   EXPECT_EQ(tag(sub.tags, "Queue"), "Geometry+1");
   EXPECT_EQ(tag(sub.tags, "RenderType"), "Opaque");
+  EXPECT_EQ(tag(sub.tags, "QUEUE"), "Geometry+1") << "a tag's name ignores case, as Unity reads it";
+  EXPECT_EQ(tag(sub.tags, "LightMode"), "") << "absent";
   EXPECT_EQ(sub.lod, 100);
   ASSERT_EQ(sub.passes.size(), 1u);
   const Pass& pass = sub.passes[0];

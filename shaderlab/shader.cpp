@@ -49,7 +49,7 @@ RenderState RenderState::over(const RenderState& outer) const {
 
 std::string tag(const Tags& tags, std::string_view name) {
   for (const auto& [tag_name, value] : tags)
-    if (tag_name == name) return value;
+    if (same_word(tag_name, name)) return value;
   return {};
 }
 

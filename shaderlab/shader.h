@@ -99,7 +99,9 @@ struct ProgramBlock {
 };
 
 using Tags = std::vector<std::pair<std::string, std::string>>;
-// A tag's value by its name (Unity's tag names are case-sensitive); empty when absent.
+// A tag's value by its name, whose case Unity ignores as it does a ShaderLab keyword's (its own
+// Legacy Shaders/VertexLit tags its lightmapped pass "LIGHTMODE", and Unity draws that pass only
+// for lightmapped objects); empty when absent.
 std::string tag(const Tags& tags, std::string_view name);
 
 enum class PassKind {

@@ -216,8 +216,10 @@ Result<SourceModule> compile_source(const fs::path& path, hlsl::CompileOptions o
       return fail("'" + shader->name + "' is a fixed-function shader (SetTexture, Lighting, Material): Unity generates its " +
                       "programs, xshade compiles only the programs a shader writes (CGPROGRAM or HLSLPROGRAM)",
                   sub->where);
+    std::string why;
+    for (const std::string& note : source.notes) why += (why.empty() ? "" : "; ") + note;
     return fail("'" + shader->name + "' has no pass the forward renderer draws (a program pass without LightMode, or "
-                "with Always or ForwardBase)",
+                "with Always or ForwardBase): " + why,
                 sub->where);
   }
   source.pass = pass_index.value_or(source.drawn_passes.front());

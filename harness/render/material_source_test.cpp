@@ -221,8 +221,9 @@ TEST_F(UnityShaderSource, AUsedPassIsTheNamedShadersPassWithItsIncludesAndState)
   const fs::path wrong = write("wrong.shader", "Shader \"Wrong\" {\n  SubShader {\n    UsePass \"Library/Base/TOP\"\n  }\n}\n");
   auto no_pass = compile_source(wrong, in_folders({folder_ / "library"}));
   ASSERT_FALSE(no_pass);
-  EXPECT_EQ(no_pass.error().message, "'Wrong' has no pass the forward renderer draws (a program pass without LightMode, or with "
-                                     "Always or ForwardBase)");
+  EXPECT_TRUE(no_pass.error().message.starts_with("'Wrong' has no pass the forward renderer draws (a program pass without "
+                                                 "LightMode, or with Always or ForwardBase): pass 0: not drawn: "))
+      << "each pass says why it is not drawn: " << no_pass.error().message;
 }
 
 // A shader without a SubShader is drawn as its Fallback, found by name; Fallback Off, or a chain
