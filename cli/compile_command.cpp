@@ -181,10 +181,13 @@ int compile_unity_shader(const CompileOptions& options, const std::filesystem::p
     return kBadInput;
   }
   for (const Diagnostic& note : shader->notes) fmt::print(stderr, "{}\n", note.to_string());
-  const shaderlab::SubShader* sub = shaderlab::drawn_subshader(*shader);
+  // main.cpp accepts only the platforms there are.
+  const shaderlab::UnityPlatform platform =
+      shaderlab::parse_unity_platform(options.unity_platform).value_or(shaderlab::UnityPlatform::GLCore);
+  const shaderlab::SubShader* sub = shaderlab::drawn_subshader(*shader, platform);
   std::vector<const shaderlab::Pass*> passes;
   if (!options.pass.empty()) {
-    auto chosen = shaderlab::find_pass(*shader, options.pass);
+    auto chosen = shaderlab::find_pass(*shader, options.pass, platform);
     if (!chosen) {
       fmt::print(stderr, "xshade compile: {}: {}\n", file.string(), chosen.error().message);
       return kBadInput;
@@ -195,7 +198,8 @@ int compile_unity_shader(const CompileOptions& options, const std::filesystem::p
       if (pass.kind == shaderlab::PassKind::Program) passes.push_back(&pass);
   }
   if (!sub && options.pass.empty()) {
-    fmt::print(stderr, "xshade compile: {}: '{}' {}\n", file.string(), shader->name, shaderlab::without_subshader(*shader));
+    fmt::print(stderr, "xshade compile: {}: '{}' {}\n", file.string(), shader->name,
+               shaderlab::without_subshader(*shader, platform));
     return kBadInput;
   }
   if (passes.empty()) {
@@ -214,7 +218,7 @@ int compile_unity_shader(const CompileOptions& options, const std::filesystem::p
       worst = std::max(worst, int(kBadInput));
       continue;
     }
-    auto unity_options = harness::pass_compile_options(file, *program, front_end);
+    auto unity_options = harness::pass_compile_options(file, *program, front_end, platform);
     if (!unity_options) {
       fmt::print(stderr, "{}: {}\n", unity_options.error().where.to_string(), unity_options.error().message);
       worst = std::max(worst, int(kBadInput));

@@ -197,6 +197,11 @@ static int run_command_line(int argc, char** argv) {
                       "Compile this post pass of the effect (its #pragma pass name), or this pass of a Unity .shader "
                       "(its index or Name; default: every pass with a program)")
       ->type_name("NAME");
+  compile->add_option("--unity-platform", compile_options.unity_platform,
+                      "Compile a Unity .shader for this platform, as a scene's [unity] platform does: glcore (default), "
+                      "d3d11 or vulkan")
+      ->check(CLI::IsMember({"glcore", "d3d11", "vulkan"}))
+      ->type_name("PLATFORM");
   compile->add_flag("--all-variants", compile_options.all_variants,
                     "Compile every keyword combination the file declares for --target and report each; exit 2 if any fails");
   compile->add_option("--shaders", compile_options.folders.shaders,

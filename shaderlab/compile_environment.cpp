@@ -57,21 +57,42 @@ int shader_target(std::string_view program_text) {
   return highest > 0 ? highest : kDefaultShaderTarget;
 }
 
-bool compiles_for_platform(std::string_view program_text) {
+std::string_view renderer_name(UnityPlatform platform) {
+  switch (platform) {
+    case UnityPlatform::GLCore: return "glcore";
+    case UnityPlatform::D3D11: return "d3d11";
+    case UnityPlatform::Vulkan: return "vulkan";
+  }
+  return "glcore";
+}
+
+std::optional<UnityPlatform> parse_unity_platform(std::string_view name) {
+  for (UnityPlatform platform : {UnityPlatform::GLCore, UnityPlatform::D3D11, UnityPlatform::Vulkan})
+    if (renderer_name(platform) == name) return platform;
+  return std::nullopt;
+}
+
+bool direct3d_conventions(UnityPlatform platform) { return platform != UnityPlatform::GLCore; }
+
+bool compiles_for_platform(std::string_view program_text, UnityPlatform platform) {
+  const std::string_view renderer = renderer_name(platform);
   for (std::string_view only : pragma_arguments(program_text, "only_renderers"))
-    if (!names_renderer(only, kUnityRenderer)) return false;
+    if (!names_renderer(only, renderer)) return false;
   for (std::string_view excluded : pragma_arguments(program_text, "exclude_renderers"))
-    if (names_renderer(excluded, kUnityRenderer)) return false;
+    if (names_renderer(excluded, renderer)) return false;
   return true;
 }
 
-std::vector<Define> unity_defines(std::string_view program_text) {
+std::vector<Define> unity_defines(std::string_view program_text, UnityPlatform platform) {
   // The platform, the target and the version; then the tier-3 desktop's graphics settings as
   // Unity's Graphics Settings have them by default (Standard shader quality High: BRDF1, box
   // projection and blending of reflection probes, detail normal maps, light probe proxy volumes,
   // full-HDR lightmaps). UNITY_COLORSPACE_GAMMA stays undefined: the renderer works in linear
   // colour, as a project set to Linear does.
-  return {{"SHADER_API_GLCORE", "1"},
+  const char* api = platform == UnityPlatform::D3D11    ? "SHADER_API_D3D11"
+                    : platform == UnityPlatform::Vulkan ? "SHADER_API_VULKAN"
+                                                        : "SHADER_API_GLCORE";
+  std::vector<Define> defines{{api, "1"},
           {"SHADER_API_DESKTOP", "1"},
           {"SHADER_TARGET", std::to_string(shader_target(program_text))},
           {"UNITY_VERSION", std::to_string(kUnityVersion)},
@@ -84,6 +105,14 @@ std::vector<Define> unity_defines(std::string_view program_text) {
           {"UNITY_USE_DITHER_MASK_FOR_ALPHABLENDED_SHADOWS", "1"},
           {"UNITY_LIGHT_PROBE_PROXY_VOLUME", "1"},
           {"UNITY_LIGHTMAP_FULL_HDR", "1"}};
+  // Unity's compiler for Vulkan (HLSLcc) reads a texture type with a precision suffix
+  // (Texture2D_half, sampler2D_float) as the type, its samples at that precision; HLSLSupport.cginc
+  // defines them away only for the other platforms. Both are float here, as every half is.
+  if (platform == UnityPlatform::Vulkan)
+    for (const char* type : {"Texture2D", "Texture2DArray", "Texture2DMS", "TextureCube", "TextureCubeArray", "Texture3D",
+                             "sampler2D", "samplerCUBE", "sampler3D"})
+      for (const char* precision : {"_half", "_float"}) defines.push_back({std::string(type) + precision, type});
+  return defines;
 }
 
 }  // namespace xshade::shaderlab

@@ -1,11 +1,11 @@
 // Unity's compile environment: the macros Unity's shader compiler defines for every program of a
-// .shader before its text, for the platform and hardware tier it builds for. xshade compiles every
-// lane as Unity's GLCore platform on a desktop of tier 3 (docs/unity.md says why): its
-// conventions are the renderer's (depth not reversed, 0 at the near plane; uv (0, 0) at the first
-// row of a target; nothing flipped), so the values the renderer gives Unity's built-in variables
-// are the ones a shader compiled so expects.
+// .shader before its text, for the platform and hardware tier it builds for. A scene chooses the
+// platform (GLCore by default; D3D11 or Vulkan, whose conventions Unity makes the same: reversed
+// depth, render targets drawn upside down); the renderer then gives Unity's built-in variables the
+// values a shader compiled for that platform expects (docs/unity.md).
 #pragma once
 
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -25,18 +25,27 @@ inline constexpr int kDefaultShaderTarget = 25;
 // UNITY_VERSION with -D.
 inline constexpr int kUnityVersion = 201941;
 
-// The platform as `#pragma only_renderers` and `exclude_renderers` name it.
-inline constexpr std::string_view kUnityRenderer = "glcore";
+// The Unity platforms a scene can compile its .shader files for.
+enum class UnityPlatform { GLCore, D3D11, Vulkan };
+// The platform as `#pragma only_renderers` and `exclude_renderers` name it: "glcore", "d3d11",
+// "vulkan"; also what a scene writes.
+std::string_view renderer_name(UnityPlatform platform);
+std::optional<UnityPlatform> parse_unity_platform(std::string_view name);
+// Whether Unity's HLSLSupport.cginc defines UNITY_REVERSED_Z and UNITY_UV_STARTS_AT_TOP for the
+// platform (D3D11 and Vulkan; not GLCore): depth is 1 at the near plane, and Unity draws into a
+// render target with the projection flipped (_ProjectionParams.x = -1), so that its rows are
+// stored bottom first as OpenGL stores them.
+bool direct3d_conventions(UnityPlatform platform);
 
 // Whether Unity compiles a program with that text for the platform: no `#pragma only_renderers`
 // leaves it out, no `#pragma exclude_renderers` names it.
-bool compiles_for_platform(std::string_view program_text);
+bool compiles_for_platform(std::string_view program_text, UnityPlatform platform = UnityPlatform::GLCore);
 
 // SHADER_TARGET for a program's text: the highest `#pragma target X.Y` it holds as XY, else
 // Unity's default. A target Unity names by feature ("gl4.1", "es3.0") leaves the default.
 int shader_target(std::string_view program_text);
 
 // The macros for a program with that text, in the order Unity's compiler would define them.
-std::vector<Define> unity_defines(std::string_view program_text);
+std::vector<Define> unity_defines(std::string_view program_text, UnityPlatform platform = UnityPlatform::GLCore);
 
 }  // namespace xshade::shaderlab

@@ -46,5 +46,30 @@ TEST(CompileEnvironment, TheDefinesAreUnitysGlCoreOnADesktopOfTierThree) {
   EXPECT_EQ(value("SHADER_API_D3D11"), "(undefined)");
 }
 
+TEST(CompileEnvironment, AProgramIsCompiledForTheScenesPlatformAsItsRendererPragmasSay) {
+  EXPECT_FALSE(compiles_for_platform("#pragma only_renderers d3d11\n", UnityPlatform::GLCore));
+  EXPECT_TRUE(compiles_for_platform("#pragma only_renderers d3d11\n", UnityPlatform::D3D11));
+  EXPECT_FALSE(compiles_for_platform("#pragma exclude_renderers vulkan\n", UnityPlatform::Vulkan));
+  EXPECT_TRUE(compiles_for_platform("#pragma exclude_renderers vulkan\n", UnityPlatform::D3D11));
+}
+
+TEST(CompileEnvironment, EachPlatformDefinesItsApiAndOnlyIts) {
+  for (UnityPlatform platform : {UnityPlatform::GLCore, UnityPlatform::D3D11, UnityPlatform::Vulkan}) {
+    const std::vector<Define> defines = unity_defines("", platform);
+    std::vector<std::string> apis;
+    for (const Define& define : defines)
+      if (define.name.starts_with("SHADER_API_") && define.name != "SHADER_API_DESKTOP") apis.push_back(define.name);
+    const std::string expected = platform == UnityPlatform::GLCore ? "SHADER_API_GLCORE"
+                                 : platform == UnityPlatform::D3D11 ? "SHADER_API_D3D11"
+                                                                    : "SHADER_API_VULKAN";
+    EXPECT_EQ(apis, std::vector<std::string>{expected});
+    EXPECT_EQ(parse_unity_platform(renderer_name(platform)), platform) << "the name a scene writes reads back";
+  }
+  EXPECT_FALSE(parse_unity_platform("D3D11")) << "as only_renderers spells it";
+  EXPECT_FALSE(direct3d_conventions(UnityPlatform::GLCore));
+  EXPECT_TRUE(direct3d_conventions(UnityPlatform::D3D11));
+  EXPECT_TRUE(direct3d_conventions(UnityPlatform::Vulkan));
+}
+
 }  // namespace
 }  // namespace xshade::shaderlab

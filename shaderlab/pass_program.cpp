@@ -22,27 +22,27 @@ std::string pass_label(const Pass& pass, size_t index) {
 
 }  // namespace
 
-const SubShader* drawn_subshader(const Shader& shader) {
+const SubShader* drawn_subshader(const Shader& shader, UnityPlatform platform) {
   for (const SubShader& sub : shader.subshaders) {
     const bool runs = std::all_of(sub.passes.begin(), sub.passes.end(), [&](const Pass& pass) {
       if (pass.kind != PassKind::Program) return true;
       auto program = pass_program(sub, pass);
-      return !program || compiles_for_platform(program->text);
+      return !program || compiles_for_platform(program->text, platform);
     });
     if (runs) return &sub;
   }
   return nullptr;
 }
 
-std::string without_subshader(const Shader& shader) {
+std::string without_subshader(const Shader& shader, UnityPlatform platform) {
   return shader.subshaders.empty() ? "has no SubShader"
-                                   : "has no SubShader that Unity compiles for GLCore (#pragma only_renderers or "
-                                     "exclude_renderers keeps each out)";
+                                   : "has no SubShader that Unity compiles for " + std::string(renderer_name(platform)) +
+                                         " (#pragma only_renderers or exclude_renderers keeps each out)";
 }
 
-Result<const Pass*> find_pass(const Shader& shader, const std::string& choice) {
-  const SubShader* sub = drawn_subshader(shader);
-  if (!sub) return fail("the shader '" + shader.name + "' " + without_subshader(shader));
+Result<const Pass*> find_pass(const Shader& shader, const std::string& choice, UnityPlatform platform) {
+  const SubShader* sub = drawn_subshader(shader, platform);
+  if (!sub) return fail("the shader '" + shader.name + "' " + without_subshader(shader, platform));
   size_t index = 0;
   const auto [end, error] = std::from_chars(choice.data(), choice.data() + choice.size(), index);
   if (error == std::errc() && end == choice.data() + choice.size()) {

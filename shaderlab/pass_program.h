@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "base/result.h"
+#include "shaderlab/compile_environment.h"
 #include "shaderlab/shader.h"
 
 namespace xshade::shaderlab {
@@ -26,15 +27,16 @@ struct PassProgram {
 };
 
 // The SubShader xshade draws, as Unity takes the first its platform runs: the first none of whose
-// programs `#pragma only_renderers` or `exclude_renderers` keeps from Unity's GLCore
+// programs `#pragma only_renderers` or `exclude_renderers` keeps from the platform
 // (compile_environment.h); null when there is none, and the shader is drawn as its Fallback.
-const SubShader* drawn_subshader(const Shader& shader);
+const SubShader* drawn_subshader(const Shader& shader, UnityPlatform platform = UnityPlatform::GLCore);
 // Why a shader has no drawn SubShader: "has no SubShader", or that none runs on the platform.
-std::string without_subshader(const Shader& shader);
+std::string without_subshader(const Shader& shader, UnityPlatform platform = UnityPlatform::GLCore);
 
 // The pass `choice` names in the drawn SubShader: its index ("0", "1", ...) or its Name, ignoring
 // case as UsePass does. An error lists the passes there are.
-Result<const Pass*> find_pass(const Shader& shader, const std::string& choice);
+Result<const Pass*> find_pass(const Shader& shader, const std::string& choice,
+                              UnityPlatform platform = UnityPlatform::GLCore);
 
 // Unity's implicit includes are in one of `folders`, or an error that says where a user gets them:
 // xshade ships none of Unity's code.

@@ -111,11 +111,16 @@ TEST(PassProgram, TheDrawnSubShaderIsTheFirstWhosePassesAreCompiledForGlCore) {
   EXPECT_EQ(drawn_subshader(shader)->passes.at(0).name, "C");
   auto found = find_pass(shader, "a");
   EXPECT_FALSE(found) << "pass A is not in the SubShader drawn";
+  // The platform a scene chooses chooses the SubShader.
+  ASSERT_NE(drawn_subshader(shader, UnityPlatform::Vulkan), nullptr);
+  EXPECT_EQ(drawn_subshader(shader, UnityPlatform::Vulkan)->passes.at(0).name, "A");
+  ASSERT_NE(drawn_subshader(shader, UnityPlatform::D3D11), nullptr);
+  EXPECT_EQ(drawn_subshader(shader, UnityPlatform::D3D11)->passes.at(0).name, "B");
 
   const Shader none = read("Shader \"Gles\" { SubShader { Pass { CGPROGRAM\n#pragma only_renderers gles\nENDCG } } }");
   EXPECT_EQ(drawn_subshader(none), nullptr);
   EXPECT_EQ(without_subshader(none),
-            "has no SubShader that Unity compiles for GLCore (#pragma only_renderers or exclude_renderers keeps each out)");
+            "has no SubShader that Unity compiles for glcore (#pragma only_renderers or exclude_renderers keeps each out)");
 }
 
 TEST(PassProgram, AGlslProgramIsAnErrorAtItsLine) {

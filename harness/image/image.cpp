@@ -1,5 +1,6 @@
 #include "harness/image/image.h"
 
+#include <algorithm>
 #include <cassert>
 #include <cmath>
 #include <cstring>
@@ -10,6 +11,13 @@ namespace xshade::harness {
 bool bitwise_equal(const FloatImage& a, const FloatImage& b) {
   return a.width == b.width && a.height == b.height &&
          std::memcmp(a.rgba.data(), b.rgba.data(), a.rgba.size() * sizeof(float)) == 0;
+}
+
+void flip_rows(FloatImage& image) {
+  const size_t row = size_t(image.width) * 4;
+  for (uint32_t top = 0, bottom = image.height; top + 1 < bottom; ++top, --bottom)
+    std::swap_ranges(image.rgba.begin() + top * row, image.rgba.begin() + (top + 1) * row,
+                     image.rgba.begin() + (bottom - 1) * row);
 }
 
 ImageDifference max_difference(const FloatImage& a, const FloatImage& b) {

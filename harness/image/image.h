@@ -36,6 +36,9 @@ namespace xshade::harness {
 // Bit-for-bit equality of two images of the same size (NaN equals NaN with the same bits).
 bool bitwise_equal(const FloatImage& a, const FloatImage& b);
 
+// The image with its rows in the opposite order: a target stored bottom row first, upright.
+void flip_rows(FloatImage& image);
+
 // The largest per-channel absolute difference and where it is. A channel where one image is NaN
 // or infinite and the other is not the same value counts as an infinite difference.
 struct ImageDifference {

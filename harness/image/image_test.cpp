@@ -8,6 +8,20 @@
 namespace xshade::harness {
 namespace {
 
+TEST(FlipRows, RowsComeInTheOppositeOrderAndTwiceIsTheImage) {
+  for (uint32_t height : {1u, 2u, 3u}) {
+    FloatImage image(2, height);
+    for (uint32_t y = 0; y < height; ++y)
+      for (uint32_t x = 0; x < 2; ++x) image.set(x, y, {float(x), float(y), 0.0f, 1.0f});
+    FloatImage flipped = image;
+    flip_rows(flipped);
+    for (uint32_t y = 0; y < height; ++y)
+      for (uint32_t x = 0; x < 2; ++x) EXPECT_EQ(flipped.at(x, y), image.at(x, height - 1 - y)) << x << "," << y;
+    flip_rows(flipped);
+    EXPECT_TRUE(bitwise_equal(flipped, image));
+  }
+}
+
 TEST(ImageDifference, FindsTheLargestChannelDifferenceAndWhere) {
   FloatImage a(4, 3), b(4, 3);
   b.set(1, 0, {0.0f, 0.25f, 0.0f, 0.0f});

@@ -83,13 +83,13 @@ void apply_properties(const shaderlab::Shader& shader, hlsl::Reflection& reflect
 }
 
 Result<hlsl::CompileOptions> pass_compile_options(const fs::path& file, const shaderlab::PassProgram& program,
-                                                  hlsl::CompileOptions options) {
+                                                  hlsl::CompileOptions options, shaderlab::UnityPlatform platform) {
   options.include_dirs.insert(options.include_dirs.begin(), file.parent_path().empty() ? fs::path(".") : file.parent_path());
   if (program.implicit_includes)
     if (auto found = shaderlab::find_implicit_includes(options.include_dirs); !found)
       return fail(Error{found.error().message, program.pass->program->start, {}});
   std::vector<hlsl::MacroDefinition> defines;
-  for (const shaderlab::Define& define : shaderlab::unity_defines(program.text))
+  for (const shaderlab::Define& define : shaderlab::unity_defines(program.text, platform))
     if (std::none_of(options.defines.begin(), options.defines.end(),
                      [&](const hlsl::MacroDefinition& given) { return given.name == define.name; }))
       defines.push_back({define.name, define.value});
@@ -134,11 +134,11 @@ class NamedShaders {
 
 // The pass UsePass "Shader/NAME" names: NAME in the SubShader the shader of that name draws,
 // matched in upper case as Unity does.
-Result<SourcePass> used_pass(const shaderlab::Pass& use, NamedShaders& named) {
+Result<SourcePass> used_pass(const shaderlab::Pass& use, NamedShaders& named, shaderlab::UnityPlatform platform) {
   const auto [shader_name, pass_name] = shaderlab::split_used_pass(use.used);
   auto found = named.read(shader_name, use.where);
   if (!found) return fail(found.error());
-  const shaderlab::SubShader* sub = shaderlab::drawn_subshader(*found->first);
+  const shaderlab::SubShader* sub = shaderlab::drawn_subshader(*found->first, platform);
   if (sub)
     for (const shaderlab::Pass& pass : sub->passes)
       if (!pass.name.empty() && shaderlab::same_word(pass.name, pass_name)) return SourcePass{sub, &pass, found->second};
@@ -150,7 +150,8 @@ Result<SourcePass> used_pass(const shaderlab::Pass& use, NamedShaders& named) {
 
 }  // namespace
 
-Result<SourceModule> compile_source(const fs::path& path, hlsl::CompileOptions options, std::optional<size_t> pass_index) {
+Result<SourceModule> compile_source(const fs::path& path, hlsl::CompileOptions options, std::optional<size_t> pass_index,
+                                    shaderlab::UnityPlatform platform) {
   if (!is_unity_shader(path)) {
     SourceModule source;
     source.module = hlsl::compile_file(path, options);
@@ -167,9 +168,10 @@ Result<SourceModule> compile_source(const fs::path& path, hlsl::CompileOptions o
   fs::path file = path;
   // drawn_subshader composes each pass's text to read its renderer pragmas: asked once a shader.
   const shaderlab::SubShader* sub = nullptr;
-  for (int hops = 0; !(sub = shaderlab::drawn_subshader(*shader)); ++hops) {
+  for (int hops = 0; !(sub = shaderlab::drawn_subshader(*shader, platform)); ++hops) {
     if (!shader->fallback || shader->fallback->empty())
-      return fail("'" + shader->name + "' " + shaderlab::without_subshader(*shader) + (shader->fallback ? " (Fallback Off)" : ""),
+      return fail("'" + shader->name + "' " + shaderlab::without_subshader(*shader, platform) +
+                      (shader->fallback ? " (Fallback Off)" : ""),
                   {file.string(), 1, 1});
     if (hops == kLongestFallbackChain)
       return fail("'" + shader->name + "' falls back after " + std::to_string(kLongestFallbackChain) +
@@ -177,7 +179,8 @@ Result<SourceModule> compile_source(const fs::path& path, hlsl::CompileOptions o
                   {file.string(), 1, 1});
     auto fallback = named.read(*shader->fallback, {file.string(), 1, 1});
     if (!fallback) return fail(fallback.error());
-    source.notes.push_back("'" + shader->name + "' " + shaderlab::without_subshader(*shader) + ": drawn as its Fallback '" +
+    source.notes.push_back("'" + shader->name + "' " + shaderlab::without_subshader(*shader, platform) +
+                           ": drawn as its Fallback '" +
                            *shader->fallback + "' (" +
                            fallback->second.string() + ")");
     shader = fallback->first;
@@ -189,7 +192,7 @@ Result<SourceModule> compile_source(const fs::path& path, hlsl::CompileOptions o
     passes[i] = {sub, &pass, file};
     if (pass.kind == shaderlab::PassKind::Use) {
       // One that is not found is left out, as Unity leaves it out with an error in its console.
-      auto used = used_pass(pass, named);
+      auto used = used_pass(pass, named, platform);
       if (!used) {
         source.notes.push_back(pass_label(pass, i) + ": not drawn: " + used.error().to_string());
         continue;
@@ -233,7 +236,7 @@ Result<SourceModule> compile_source(const fs::path& path, hlsl::CompileOptions o
   const SourcePass& drawn = passes[source.pass];
   auto program = shaderlab::pass_program(*drawn.sub, *drawn.pass);
   if (!program) return fail(program.error());
-  auto pass_options = pass_compile_options(drawn.file, *program, std::move(options));
+  auto pass_options = pass_compile_options(drawn.file, *program, std::move(options), platform);
   if (!pass_options) return fail(pass_options.error());
   source.module = hlsl::compile_text(drawn.file.string(), std::move(program->text), *pass_options);
   source.render_state = drawn.pass->state.over(drawn.sub->state);

@@ -46,19 +46,22 @@ struct SourceModule {
 };
 
 // The module of `path` with `options` (its keywords, its fragment entry, its defines); of a
-// .shader, the pass `pass` of its drawn SubShader (by index), or the first pass drawn. A .shader
+// .shader, compiled for the Unity `platform`, the pass `pass` of its drawn SubShader (by index),
+// or the first pass drawn. A .shader
 // that cannot be read, has no pass to draw or whose CGPROGRAM finds no Unity include files is an
 // error at its place in the file; a program that does not compile is a module with errors, as for
 // an .hlsl file.
 Result<SourceModule> compile_source(const std::filesystem::path& path, hlsl::CompileOptions options,
-                                    std::optional<size_t> pass = std::nullopt);
+                                    std::optional<size_t> pass = std::nullopt,
+                                    shaderlab::UnityPlatform platform = shaderlab::UnityPlatform::GLCore);
 
 // The options a pass's program of the .shader `file` compiles with: `options` with the .shader's
 // folder first among the include folders and Unity's defines before the caller's (a define the
 // caller gives, -D UNITY_VERSION=..., stands instead of Unity's). A CGPROGRAM whose implicit
 // includes no folder holds is an error at the program's line that says where to get them.
 Result<hlsl::CompileOptions> pass_compile_options(const std::filesystem::path& file, const shaderlab::PassProgram& program,
-                                                  hlsl::CompileOptions options);
+                                                  hlsl::CompileOptions options,
+                                                  shaderlab::UnityPlatform platform = shaderlab::UnityPlatform::GLCore);
 
 // The defaults a .shader's Properties give the uniforms and textures of `reflection` that declare
 // none: Float, Int, Integer and Range as they are written; Color converted from sRGB to linear as

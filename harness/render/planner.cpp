@@ -38,7 +38,7 @@ struct SourceFacts {
 
 class SourceReader {
  public:
-  explicit SourceReader(const ShaderSearchPath& shaders) : shaders_(shaders) {}
+  SourceReader(const ShaderSearchPath& shaders, shaderlab::UnityPlatform platform) : shaders_(shaders), platform_(platform) {}
 
   // Reads `library_path` with `keywords` (pass declarations may depend on them); with
   // `pass_entry`, as that post pass's variant.
@@ -50,7 +50,7 @@ class SourceReader {
     options.include_dirs = shaders_.folders();
     options.keywords = keywords;
     options.pass_fragment_entry = pass_entry;
-    auto source = compile_source(*path, options, shader_pass);
+    auto source = compile_source(*path, options, shader_pass, platform_);
     if (!source) return fail(source.error());
     const std::unique_ptr<hlsl::Module>& module = source->module;
     SourceFacts facts;
@@ -102,6 +102,7 @@ class SourceReader {
   }
 
   const ShaderSearchPath& shaders_;
+  shaderlab::UnityPlatform platform_;
   std::vector<std::string> warnings_;
 };
 
@@ -168,6 +169,7 @@ std::string VariantRequest::label() const {
   std::string text = library_path;
   if (!fragment_entry.empty()) text += ":" + fragment_entry;
   if (shader_pass) text += " pass " + std::to_string(*shader_pass);
+  if (unity_platform != shaderlab::UnityPlatform::GLCore) text += " for " + std::string(shaderlab::renderer_name(unity_platform));
   text += " [";
   for (size_t i = 0; i < keywords.size(); ++i) text += (i ? " " : "") + keywords[i];
   return text + "]" + (half_emulation ? " half" : "");
@@ -198,9 +200,9 @@ Result<void> plan_shader_effect(const Scene& scene, size_t e, const fs::path& pa
   for (const PostStep& step : steps) {
     std::optional<size_t> index;
     if (!step.pass.empty()) {
-      auto found = shaderlab::find_pass(*shader, step.pass);
+      auto found = shaderlab::find_pass(*shader, step.pass, scene.unity_platform);
       if (!found) return fail(Error{found.error().message, step.where, {}});
-      index = size_t(*found - shaderlab::drawn_subshader(*shader)->passes.data());
+      index = size_t(*found - shaderlab::drawn_subshader(*shader, scene.unity_platform)->passes.data());
     }
     auto facts = reader.read(effect.effect, effect.keywords, false, {}, index);
     if (!facts) return fail(facts.error());
@@ -246,7 +248,7 @@ Result<void> plan_shader_effect(const Scene& scene, size_t e, const fs::path& pa
 
 Result<Plan> plan_scene(const Scene& scene, const ShaderSearchPath& shaders) {
   Plan plan;
-  SourceReader reader(shaders);
+  SourceReader reader(shaders, scene.unity_platform);
   // Distinct combinations a source is used with, for the "left out" account.
   std::map<std::string, std::set<std::vector<std::string>>> used_combinations;
   std::map<std::string, uint64_t> possible_combinations;
@@ -421,6 +423,9 @@ Result<Plan> plan_scene(const Scene& scene, const ShaderSearchPath& shaders) {
     if (!used_combinations.count(effect))
       plan.left_out.push_back(effect + ": not in the post chain, so none of its passes is compiled or run");
   plan.warnings = reader.warnings();
+  // A .shader compiles for the scene's Unity platform; an .hlsl file knows none.
+  for (VariantRequest& request : plan.variants)
+    if (is_unity_shader(request.source)) request.unity_platform = scene.unity_platform;
   return plan;
 }
 

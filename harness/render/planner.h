@@ -22,13 +22,15 @@ struct VariantRequest {
   std::vector<std::string> keywords;  // sorted, no repeats
   std::string fragment_entry;         // a post pass's entry; empty for a material
   std::optional<size_t> shader_pass = std::nullopt;  // a .shader's pass, by its index in the drawn SubShader
+  // The Unity platform a .shader compiles for (the scene's); GLCore for an .hlsl file.
+  shaderlab::UnityPlatform unity_platform = shaderlab::UnityPlatform::GLCore;
   bool half_emulation = false;        // every half result rounded to fp16 (GLSL lanes only)
   // The tracing variant (gl and vk lanes), numbered trace_program (render/shader_program.h).
   bool trace_nonfinite = false;
   uint32_t trace_program = 0;
 
-  // "materials/toon.hlsl [_GUARDED]", "post/depth_of_field.hlsl:frag_coc [_KERNEL_SMALL]" or
-  // "Unlit/Outline.shader pass 1 []".
+  // "materials/toon.hlsl [_GUARDED]", "post/depth_of_field.hlsl:frag_coc [_KERNEL_SMALL]",
+  // "Unlit/Outline.shader pass 1 []" or "Unlit/Outline.shader pass 1 for d3d11 []".
   std::string label() const;
   friend bool operator==(const VariantRequest&, const VariantRequest&) = default;
 };

@@ -34,6 +34,15 @@ glm::mat4 gpu_projection(const Camera& camera, float aspect) {
   return glm::perspectiveRH_ZO(glm::radians(camera.fov_y_degrees), aspect, camera.near_plane, camera.far_plane);
 }
 
+glm::mat4 render_target_convention(shaderlab::UnityPlatform platform) {
+  if (!shaderlab::direct3d_conventions(platform)) return glm::mat4(1.0f);
+  glm::mat4 convention(1.0f);  // column-major: [column][row]
+  convention[1][1] = -1.0f;    // y' = -y
+  convention[2][2] = -1.0f;    // z' = w - z
+  convention[3][2] = 1.0f;
+  return convention;
+}
+
 std::vector<float> texel_size(glm::uvec2 size) {
   return {1.0f / float(size.x), 1.0f / float(size.y), float(size.x), float(size.y)};
 }
@@ -56,7 +65,8 @@ std::array<glm::vec4, 7> unity_sh_constants(const ShCoefficients& sh) {
 UniformValueMap frame_inputs(const Scene& scene, const ShCoefficients& sh) {
   const Camera& camera = scene.camera;
   const float width = float(scene.width), height = float(scene.height);
-  const glm::mat4 projection = gpu_projection(camera, width / height);
+  const bool direct3d = shaderlab::direct3d_conventions(scene.unity_platform);
+  const glm::mat4 projection = render_target_convention(scene.unity_platform) * gpu_projection(camera, width / height);
   const glm::mat4 view = view_matrix(camera);
   // One directional light: the shaders take the first; a scene without one is lit by its
   // environment alone.
@@ -81,11 +91,14 @@ UniformValueMap frame_inputs(const Scene& scene, const ShCoefficients& sh) {
   values["_CosTime"] = {std::cos(t / 8.0f), std::cos(t / 4.0f), std::cos(t / 2.0f), std::cos(t)};
   values["unity_DeltaTime"] = {kFrameSeconds, 1.0f / kFrameSeconds, kFrameSeconds, 1.0f / kFrameSeconds};
 
-  // The camera and the screen. Depth is Direct3D's without reversal: 0 at the near plane.
+  // The camera and the screen. Depth is 0 at the near plane, or 1 where the platform reverses it;
+  // x = -1 says the projection is flipped (render_target_convention).
   values["_WorldSpaceCameraPos"] = components(camera.position);
-  values["_ProjectionParams"] = {1.0f, near, far, 1.0f / far};  // x = 1: the projection is not flipped
+  values["_ProjectionParams"] = {direct3d ? -1.0f : 1.0f, near, far, 1.0f / far};
   values["_ScreenParams"] = {width, height, 1.0f + 1.0f / width, 1.0f + 1.0f / height};
-  values["_ZBufferParams"] = {1.0f - far / near, far / near, (1.0f - far / near) / far, (far / near) / far};
+  // So that Linear01Depth(z) = 1 / (x z + y) is the view distance / far either way.
+  const float zx = direct3d ? far / near - 1.0f : 1.0f - far / near, zy = direct3d ? 1.0f : far / near;
+  values["_ZBufferParams"] = {zx, zy, zx / far, zy / far};
   values["unity_OrthoParams"] = {0.0f, 0.0f, 0.0f, 0.0f};  // w = 0: a perspective camera
   const glm::mat4 camera_projection =  // Camera.projectionMatrix: OpenGL's clip space, z in [-w, w]
       glm::perspectiveRH_NO(glm::radians(camera.fov_y_degrees), width / height, near, far);
@@ -146,10 +159,11 @@ UniformValueMap frame_inputs(const Scene& scene, const ShCoefficients& sh) {
   return values;
 }
 
-void add_blit_inputs(UniformValueMap& values) {
+void add_blit_inputs(UniformValueMap& values, shaderlab::UnityPlatform platform) {
   const std::vector<float> identity = hlsl_components(glm::mat4(1.0f));
-  for (const char* name : {"_WorldToClip", "unity_MatrixV", "unity_MatrixInvV", "glstate_matrix_projection", "unity_MatrixVP"})
-    values[name] = identity;
+  for (const char* name : {"_WorldToClip", "unity_MatrixV", "unity_MatrixInvV"}) values[name] = identity;
+  const std::vector<float> projection = hlsl_components(render_target_convention(platform));
+  for (const char* name : {"glstate_matrix_projection", "unity_MatrixVP"}) values[name] = projection;
 }
 
 void add_object_inputs(const glm::mat4& model, UniformValueMap& values) {

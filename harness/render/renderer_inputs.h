@@ -32,6 +32,12 @@ inline constexpr float kFrameSeconds = 1.0f / 60.0f;
 glm::mat4 view_matrix(const Camera& camera);
 glm::mat4 gpu_projection(const Camera& camera, float aspect);
 
+// What a platform of Direct3D's conventions (shaderlab::direct3d_conventions) does after the
+// projection, as Unity's GL.GetGPUProjectionMatrix does for a render target: depth reversed (z' =
+// w - z: 1 at the near plane, 0 at the far) and y flipped, so that the target's row 0 holds the
+// bottom of the picture; the identity for GLCore.
+glm::mat4 render_target_convention(shaderlab::UnityPlatform platform);
+
 // Every per-frame value: xshade's and Unity's. `screen` is the scene's target size (what
 // _ScreenParams describes in every pass, post passes at half size included, as Unity's camera
 // target does), `sh` the environment's irradiance / pi (spherical_harmonics.h).
@@ -40,11 +46,12 @@ UniformValueMap frame_inputs(const Scene& scene, const ShCoefficients& sh);
 // The per-object values of an instance with model matrix `model`, added to (or replaced in) `values`.
 void add_object_inputs(const glm::mat4& model, UniformValueMap& values);
 
-// Graphics.Blit's view and projection, added to (or replaced in) `values`: the identity for both,
+// Graphics.Blit's view and projection, added to (or replaced in) `values`: the identity for both
+// (the projection then flipped as the platform's render targets are, render_target_convention),
 // which puts the full-screen triangle's corners where they are in clip space, as Blit's
 // orthographic projection of its unit quad does (the camera's own matrices, unity_CameraProjection
 // and the rest, stay as they are).
-void add_blit_inputs(UniformValueMap& values);
+void add_blit_inputs(UniformValueMap& values, shaderlab::UnityPlatform platform);
 
 // Whether the renderer gives the uniform `name` itself (frame_inputs, add_object_inputs, and
 // X_TexelSize of every texture): a scene cannot set such a name, and it needs no default.

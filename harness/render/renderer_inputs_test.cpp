@@ -88,6 +88,39 @@ TEST(RendererInputs, TimeAndScreenAreUnitysLayout) {
   EXPECT_EQ(vec4_of(values.at("_ProjectionParams")), glm::vec4(1.0f, 0.3f, 50.0f, 0.02f));
 }
 
+// Unity's D3D11 and Vulkan draw into a render target with depth reversed and y flipped, and say so
+// in _ProjectionParams.x; _ZBufferParams still linearises the stored depth.
+TEST(RendererInputs, Direct3DConventionsReverseDepthFlipYAndSaySo) {
+  Scene scene = test_scene();
+  const UniformValueMap glcore = frame_inputs(scene, {});
+  scene.unity_platform = shaderlab::UnityPlatform::D3D11;
+  const UniformValueMap d3d11 = frame_inputs(scene, {});
+  EXPECT_EQ(vec4_of(d3d11.at("_ProjectionParams")), glm::vec4(-1.0f, 0.3f, 50.0f, 0.02f));
+  const glm::mat4 projection = matrix_of(d3d11.at("glstate_matrix_projection"));
+  const glm::mat4 forward = matrix_of(glcore.at("glstate_matrix_projection"));
+  for (float distance : {0.3f, 1.0f, 7.0f, 50.0f}) {
+    const glm::vec4 point(0.1f, 0.2f, -distance, 1.0f);
+    const glm::vec4 clip = projection * point, unflipped = forward * point;
+    EXPECT_NEAR(clip.y / clip.w, -unflipped.y / unflipped.w, 1e-6f) << "y flipped at " << distance;
+    const float depth = clip.z / clip.w;
+    EXPECT_NEAR(depth, 1.0f - unflipped.z / unflipped.w, 1e-6f) << "reversed at " << distance;
+    // UnityCG's Linear01Depth: 1 / (x z + y) = distance / far on either platform.
+    for (const UniformValueMap* values : {&glcore, &d3d11}) {
+      const glm::vec4 z = vec4_of(values->at("_ZBufferParams"));
+      const float stored = values == &glcore ? unflipped.z / unflipped.w : depth;
+      EXPECT_NEAR(1.0f / (z.x * stored + z.y), distance / 50.0f, 1e-4f) << distance;
+      EXPECT_NEAR(1.0f / (z.z * stored + z.w), distance, 2e-3f * distance) << "LinearEyeDepth at " << distance;
+    }
+  }
+  EXPECT_EQ(matrix_of(d3d11.at("unity_CameraProjection")), matrix_of(glcore.at("unity_CameraProjection")))
+      << "Camera.projectionMatrix is OpenGL's on every platform";
+
+  UniformValueMap blit = d3d11;
+  add_blit_inputs(blit, scene.unity_platform);
+  EXPECT_EQ(matrix_of(blit.at("glstate_matrix_projection")), render_target_convention(scene.unity_platform));
+  EXPECT_EQ(render_target_convention(shaderlab::UnityPlatform::GLCore), glm::mat4(1.0f));
+}
+
 // unity_FogParams through UnityCG.cginc's UNITY_CALC_FOG_FACTOR_RAW for each mode gives the fog
 // factor Unity's manual defines: (end - z) / (end - start), exp(-density z), exp(-(density z)^2).
 TEST(RendererInputs, FogParamsGiveUnitysFogFactorsForEachMode) {

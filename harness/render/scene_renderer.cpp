@@ -11,6 +11,7 @@
 #include "harness/assets/cube_map.h"
 #include "harness/backend/resource_set.h"
 #include "harness/render/renderer_inputs.h"
+#include "harness/render/unity_render_state.h"
 
 namespace xshade::harness {
 namespace {
@@ -137,6 +138,9 @@ class SceneRenderer {
 
   // The post passes alone, on the given colour and depth.
   Result<RenderedScene> render_post(const FloatImage& color, const FloatImage& depth) {
+    if (direct3d_)
+      return fail("post passes on given images draw with GLCore's conventions only: the images are upright, their "
+                  "depth 0 at the near plane");
     for (const auto& [name, image] : {std::pair{"colour", &color}, std::pair{"depth", &depth}}) {
       const bool fits = image->width == scene_.width && image->height == scene_.height &&
                         image->rgba.size() == size_t(image->width) * image->height * 4;
@@ -182,7 +186,7 @@ class SceneRenderer {
         if (options_.trace_nonfinite) {
           auto record = backend_.read_second_color(TargetHandle{current_.binding.id});
           if (!record) return fail(from_backend(record.error()));
-          traces_.push_back({pass.name, std::move(*record)});
+          traces_.push_back({pass.name, upright(std::move(*record))});
         }
       }
       frame_timings.push_back(timings_);
@@ -199,6 +203,14 @@ class SceneRenderer {
     if (current_.binding.kind != TextureSource::Kind::TargetColor) return fail("no pass has rendered an image to read");
     auto image = backend_.read_color(TargetHandle{current_.binding.id});
     if (!image) return fail(from_backend(image.error()));
+    return upright(std::move(*image));
+  }
+
+  // A target's image as the picture stands: under Direct3D's conventions Unity draws into a
+  // render target upside down (render_target_convention), and its last blit to the screen turns
+  // it round as this does.
+  FloatImage upright(FloatImage image) const {
+    if (direct3d_) flip_rows(image);
     return image;
   }
 
@@ -264,15 +276,17 @@ class SceneRenderer {
   }
 
   // Positions (-1, -1), (-1, 3), (3, -1) at z = 0: one triangle over the whole target; its uv 0
-  // to 1 across the target from the top-left corner, where uv (0, 0) addresses a target's row 0
-  // (docs/architecture.md), so that a blit that samples its source at the mesh's uv copies it
-  // upright, as Graphics.Blit's quad does.
+  // to 1 across the target from the corner that lands on row 0, where uv (0, 0) addresses a
+  // target's row 0 (docs/architecture.md), so that a blit that samples its source at the mesh's uv
+  // copies it as it is, as Graphics.Blit's quad does. That corner is the top-left one, or under
+  // Direct3D's conventions, whose blit projection flips y, the bottom-left one, where Unity's quad
+  // has uv (0, 0).
   Result<MeshHandle> fullscreen_triangle() {
     if (!triangle_) {
       MeshData mesh;
       for (glm::vec2 p : {glm::vec2(-1.0f, -1.0f), glm::vec2(-1.0f, 3.0f), glm::vec2(3.0f, -1.0f)}) {
         Vertex vertex{glm::vec3(p, 0.0f)};
-        vertex.uv = glm::vec2(0.5f * (p.x + 1.0f), 0.5f * (1.0f - p.y));
+        vertex.uv = glm::vec2(0.5f * (p.x + 1.0f), 0.5f * (direct3d_ ? 1.0f + p.y : 1.0f - p.y));
         mesh.vertices.push_back(vertex);
       }
       mesh.indices = {0, 1, 2};
@@ -326,7 +340,8 @@ class SceneRenderer {
   Values frame_values() const { return frame_inputs(scene_, environment_.sh); }
 
   Result<void> scene_pass() {
-    RenderPass pass{scene_target_, scene_.clear_color, 1.0f, {}};
+    // Depth cleared to the far plane: 0 where the platform reverses it.
+    RenderPass pass{scene_target_, scene_.clear_color, direct3d_ ? 0.0f : 1.0f, {}};
     Values values = frame_values();
     for (size_t i : plan_.draw_order) {
       const ObjectInstance& instance = plan_.instances[i];
@@ -340,7 +355,7 @@ class SceneRenderer {
         const size_t variant = instance_draw.variant;
         auto handle = program(variant);
         if (!handle) return fail(handle.error());
-        DrawItem draw{*handle, *mesh_handle, {}, {}, instance_draw.state};
+        DrawItem draw{*handle, *mesh_handle, {}, {}, direct3d_ ? on_direct3d_render_target(instance_draw.state) : instance_draw.state};
         for (const std::string& name : variants_[variant].interface.textures) {
           auto engine = engine_texture(name);
           if (!engine) return fail(in_context(where + ": texture '" + name + "'", engine.error()));
@@ -392,7 +407,7 @@ class SceneRenderer {
     Values values = frame_values();
     // Unity draws a post pass as a blit: the identity model matrix.
     add_object_inputs(glm::mat4(1.0f), values);
-    if (planned.blit) add_blit_inputs(values);
+    if (planned.blit) add_blit_inputs(values, scene_.unity_platform);
     const CompiledVariant& variant = variants_[planned.variant];
     DrawItem draw{{}, {}, {}, {}, {}};
     if (!variant.program.fullscreen) {
@@ -466,6 +481,8 @@ class SceneRenderer {
 
   Backend& backend_;
   const Scene& scene_;
+  // The scene's Unity platform flips its targets and reverses depth (render_target_convention).
+  const bool direct3d_ = shaderlab::direct3d_conventions(scene_.unity_platform);
   const Plan& plan_;
   const std::vector<CompiledVariant>& variants_;
   const Environment& environment_;

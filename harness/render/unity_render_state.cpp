@@ -266,4 +266,22 @@ Result<int> render_queue(const std::string& tag) {
               "offset such as \"Transparent+1\"), nor a number");
 }
 
+DrawState on_direct3d_render_target(DrawState state) {
+  if (state.cull != CullMode::Off) state.cull = state.cull == CullMode::Back ? CullMode::Front : CullMode::Back;
+  std::swap(state.stencil.front, state.stencil.back);
+  switch (state.depth_compare) {
+    case CompareOp::Less: state.depth_compare = CompareOp::Greater; break;
+    case CompareOp::LessEqual: state.depth_compare = CompareOp::GreaterEqual; break;
+    case CompareOp::Greater: state.depth_compare = CompareOp::Less; break;
+    case CompareOp::GreaterEqual: state.depth_compare = CompareOp::LessEqual; break;
+    case CompareOp::Never:
+    case CompareOp::Equal:
+    case CompareOp::NotEqual:
+    case CompareOp::Always: break;
+  }
+  state.depth_bias_slope = -state.depth_bias_slope;
+  state.depth_bias_units = -state.depth_bias_units;
+  return state;
+}
+
 }  // namespace xshade::harness

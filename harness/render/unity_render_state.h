@@ -25,6 +25,12 @@ using StatePropertyLookup = std::function<std::optional<float>(const std::string
 // other than the first's.
 Result<DrawState> unity_draw_state(const shaderlab::RenderState& state, const StatePropertyLookup& property);
 
+// `state` as Unity sets it on a render target of Direct3D's conventions (render_target_convention:
+// y flipped, depth reversed): the faces the flip turns over swap (Cull Back culls what was Front,
+// and the stencil's front and back faces swap), the depth test turns round (LEqual is GEqual), and
+// the depth bias changes sign, so that Offset -1, -1 still pulls toward the camera.
+DrawState on_direct3d_render_target(DrawState state);
+
 // Whether the state turns AlphaToMask (alpha to coverage) on. It masks the samples of a pixel,
 // and xshade's targets have one: OpenGL skips it there, Vulkan and Direct3D leave the one
 // sample's fate to the driver, and Unity calls the result unpredictable without MSAA. So it is

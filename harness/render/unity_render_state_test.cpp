@@ -59,6 +59,31 @@ TEST(UnityRenderState, WordsAreTheirDirect3DMeaning) {
 }
 
 // The numbers a material holds for a state, as UnityEngine.Rendering's enums number them.
+TEST(UnityRenderState, ADirect3DRenderTargetTurnsFacesDepthTestAndBiasRound) {
+  DrawState state;
+  state.cull = CullMode::Back;
+  state.depth_compare = CompareOp::LessEqual;
+  state.depth_bias_slope = -1.0f;
+  state.depth_bias_units = -2.0f;
+  state.stencil.enabled = true;
+  state.stencil.front.compare = CompareOp::Equal;
+  state.stencil.back.pass = StencilOp::Replace;
+  const DrawState turned = on_direct3d_render_target(state);
+  EXPECT_EQ(turned.cull, CullMode::Front);
+  EXPECT_EQ(turned.depth_compare, CompareOp::GreaterEqual);
+  EXPECT_EQ(turned.depth_bias_slope, 1.0f);
+  EXPECT_EQ(turned.depth_bias_units, 2.0f);
+  EXPECT_EQ(turned.stencil.front, state.stencil.back);
+  EXPECT_EQ(turned.stencil.back, state.stencil.front);
+  EXPECT_EQ(on_direct3d_render_target(turned), state) << "twice is as it was";
+  for (CompareOp kept : {CompareOp::Always, CompareOp::Equal, CompareOp::NotEqual, CompareOp::Never}) {
+    state.depth_compare = kept;
+    EXPECT_EQ(on_direct3d_render_target(state).depth_compare, kept);
+  }
+  state.cull = CullMode::Off;
+  EXPECT_EQ(on_direct3d_render_target(state).cull, CullMode::Off);
+}
+
 TEST(UnityRenderState, APropertyInBracketsIsReadAsUnitysEnum) {
   auto state = unity_draw_state(pass_state("Cull [_Cull] ZWrite [_ZWrite] ZTest [_ZTest] Blend [_Src] [_Dst] "
                                            "BlendOp [_Op] ColorMask [_Mask] Offset [_Factor], [_Units]"),

@@ -21,7 +21,7 @@ Result<const hlsl::Module*> VariantCompiler::front_end(const VariantRequest& req
     options.keywords = request.keywords;
     options.pass_fragment_entry = request.fragment_entry;
     if (request.half_emulation) options.defines.push_back({kHalfEmulationMacro, "1"});
-    auto source = compile_source(request.source, options, request.shader_pass);
+    auto source = compile_source(request.source, options, request.shader_pass, request.unity_platform);
     if (!source) return fail(source.error());
     known = modules_.emplace(key, std::move(source->module)).first;
   }

@@ -56,8 +56,8 @@ class SceneReader : SceneValueReader {
 
   void read_root(const toml::table& root, Scene& scene) {
     check_keys(root, "",
-               {"description", "size", "lanes", "clear_color", "time", "camera", "light", "environment", "fog", "object",
-                "post", "compare", "timeout", "timeout_reason"});
+               {"description", "size", "lanes", "clear_color", "time", "camera", "light", "environment", "fog", "unity",
+                "object", "post", "compare", "timeout", "timeout_reason"});
 
     if (const toml::node* node = root.get("description")) {
       if (auto text = string(*node, "description", "a non-empty string")) scene.description = *text;
@@ -92,6 +92,8 @@ class SceneReader : SceneValueReader {
     if (const toml::table* environment = table(root, "", "environment", false))
       read_environment(*environment, scene.environment);
     if (const toml::table* fog = table(root, "", "fog", false)) read_fog(*fog, scene.fog.emplace());
+    const toml::table* unity = table(root, "", "unity", false);
+    if (unity) read_unity(*unity, scene);
 
     std::vector<const toml::table*> objects = table_array(root, "object");
     for (size_t i = 0; i < objects.size(); ++i) read_object(*objects[i], i, scene);
@@ -100,6 +102,36 @@ class SceneReader : SceneValueReader {
     for (size_t i = 0; i < effects.size(); ++i) read_post(*effects[i], index_path("post", i), scene);
 
     if (const toml::table* compare = table(root, "", "compare", false)) read_compare(*compare, scene.compare);
+    if (unity) check_unity_platform(*unity, scene);
+  }
+
+  // The Unity platform the scene's .shader files compile and draw as.
+  void read_unity(const toml::table& table, Scene& scene) {
+    check_keys(table, "unity", {"platform"});
+    if (const toml::node* node = table.get("platform")) {
+      auto name = node->as_string();
+      auto platform = name ? shaderlab::parse_unity_platform(name->get()) : std::nullopt;
+      if (platform) scene.unity_platform = *platform;
+      else expected(*node, "unity.platform", "\"glcore\", \"d3d11\" or \"vulkan\"");
+    }
+  }
+
+  // A platform of Direct3D's conventions flips the scene's targets and reverses its depth for every
+  // draw; xshade's own .hlsl shaders are written for the renderer's conventions and know nothing of
+  // Unity's macros, so a scene that draws one keeps GLCore.
+  void check_unity_platform(const toml::table& table, const Scene& scene) {
+    if (scene.unity_platform == shaderlab::UnityPlatform::GLCore) return;
+    const toml::node* node = table.get("platform");
+    const auto refuse = [&](const std::string& what, const std::string& path) {
+      report(node->source(), fmt::format("unity.platform: \"{}\" is for scenes whose materials and effects are all Unity "
+                                         ".shader files, and {} is '{}', an .hlsl shader written for xshade's own "
+                                         "conventions: remove the platform, or draw it in a scene of its own",
+                                         shaderlab::renderer_name(scene.unity_platform), what, path));
+    };
+    for (const SceneObject& object : scene.objects)
+      if (!object.material.ends_with(".shader")) return refuse("object '" + object.name + "''s material", object.material);
+    for (const PostEffect& effect : scene.post)
+      if (!effect.effect.ends_with(".shader")) return refuse("a post effect", effect.effect);
   }
 
   // A scene's own time limit for each lane's render, in place of the run's, with why it needs it.

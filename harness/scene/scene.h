@@ -20,6 +20,7 @@
 
 #include "base/result.h"
 #include "harness/image/image_compare.h"  // CompareSettings
+#include "shaderlab/compile_environment.h"  // UnityPlatform
 
 namespace xshade::harness {
 
@@ -206,6 +207,8 @@ struct Scene {
   std::vector<DirectionalLight> lights;
   EnvironmentSpec environment;
   std::optional<FogSpec> fog;
+  // [unity] platform: the Unity platform the .shader files compile and draw as (docs/unity.md).
+  shaderlab::UnityPlatform unity_platform = shaderlab::UnityPlatform::GLCore;
   std::vector<SceneObject> objects;
   std::vector<PostEffect> post;
   CompareSettings compare;

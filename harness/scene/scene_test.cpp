@@ -258,6 +258,25 @@ TEST(SceneParse, ReadsTheOtherEnvironmentKinds) {
 }
 
 // [fog] is Unity's RenderSettings fog: what it leaves out is Unity's default.
+TEST(SceneParse, TheUnityPlatformIsGlCoreUnlessTheSceneNamesOneAndOnlyForShaderFiles) {
+  const std::string shader_object = "[[object]]\nmesh = \"sphere\"\nmaterial = \"Unlit/Texture.shader\"\n";
+  EXPECT_EQ(parse_ok(minimal_head + shader_object).unity_platform, shaderlab::UnityPlatform::GLCore);
+  EXPECT_EQ(parse_ok(minimal_head + "[unity]\nplatform = \"d3d11\"\n" + shader_object).unity_platform,
+            shaderlab::UnityPlatform::D3D11);
+  EXPECT_EQ(parse_ok(minimal_head + "[unity]\nplatform = \"vulkan\"\n" + shader_object).unity_platform,
+            shaderlab::UnityPlatform::Vulkan);
+  EXPECT_EQ(errors_of(minimal_head + "[unity]\nplatform = \"metal\"\n"),
+            (std::vector<std::string>{"scenes/bad.toml:10:12: error: unity.platform: expected \"glcore\", \"d3d11\" or "
+                                      "\"vulkan\", got \"metal\""}));
+  const std::vector<std::string> mixed = errors_of(minimal_head + "[unity]\nplatform = \"d3d11\"\n" + shader_object +
+                                                   "[[object]]\nname = \"own\"\nmesh = \"cube\"\nmaterial = \"materials/toon.hlsl\"\n");
+  ASSERT_EQ(mixed.size(), 1u);
+  EXPECT_TRUE(mixed[0].starts_with("scenes/bad.toml:10:12: error: unity.platform: \"d3d11\" is for scenes whose materials "
+                                   "and effects are all Unity .shader files, and object 'own''s material is "
+                                   "'materials/toon.hlsl'"))
+      << mixed[0];
+}
+
 TEST(SceneParse, FogTakesUnitysModesAndDefaults) {
   Scene linear = parse_ok(minimal_head + "[fog]\nmode = \"linear\"\ncolor = [0.1, 0.2, 0.3, 1]\nstart = 2\nend = 20\n");
   ASSERT_TRUE(linear.fog);

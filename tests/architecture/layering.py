@@ -21,7 +21,8 @@ LAYERS = {
     "glsl": ["base", "hlsl_like"],
     "spirv": ["base", "hlsl_like", "glsl"],
     "harness/image": ["base"],
-    "harness/scene": ["base", "harness/image"],
+    # A scene names the Unity platform its .shader files compile for (shaderlab::UnityPlatform).
+    "harness/scene": ["base", "shaderlab", "harness/image"],
     "harness/backend": ["base", "harness/image"],
     "harness/gl": ["base", "hlsl_like", "glsl", "harness/image", "harness/backend"],
     "harness/vulkan": ["base", "hlsl_like", "glsl", "spirv", "harness/image", "harness/backend"],
