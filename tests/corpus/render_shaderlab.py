@@ -83,6 +83,14 @@ PPV2_GLOBALS = '[post.parameters]\n_RenderViewportScaleFactor = 1.0\n_UVTransfor
 ZTEST = re.compile(r'\bZTest\s+(\w+)', re.I)
 
 
+def unlit_texture(corpus):
+    """Unity's Unlit/Texture (Unlit-Normal.shader) in the corpus, as the scene names it."""
+    for root, _, names in os.walk(corpus):
+        if 'Unlit-Normal.shader' in names:
+            return os.path.relpath(os.path.join(root, 'Unlit-Normal.shader'), corpus)
+    raise SystemExit('render_shaderlab: no Unlit-Normal.shader in %s for the objects of a --platform scene' % corpus)
+
+
 def is_image_effect(text):
     """Whether a .shader's text sets the depth test and every one it sets is Always (a ZTest in a
     SubShader applies to each of its passes)."""
@@ -201,6 +209,8 @@ def main():
     ap.add_argument('--divergences', default='')
     ap.add_argument('--only', default='')
     ap.add_argument('-j', '--jobs', type=int, default=os.cpu_count() or 1, help='renders at once')
+    ap.add_argument('--platform', default='glcore', choices=['glcore', 'd3d11', 'vulkan'],
+                    help="the Unity platform the scenes compile and draw as (a scene's [unity] platform)")
     a = ap.parse_args()
 
     shaders = sorted(os.path.relpath(os.path.join(root, name), a.corpus)
@@ -218,9 +228,17 @@ def main():
     for relative in drawn:
         ids[scene_id(relative)] = relative
         text = open(os.path.join(a.corpus, relative), encoding='utf-8', errors='replace').read()
-        scene = POST_SCENE if is_image_effect(text) else PROBE_SCENE
-        if scene is POST_SCENE and re.search(r'#\s*include\s+"[^"]*StdLib\.hlsl"', text):
+        post = is_image_effect(text)
+        scene = POST_SCENE if post else PROBE_SCENE
+        if post and a.platform != 'glcore':
+            # A scene of another platform draws .shader files only: the objects in Unity's
+            # Unlit/Texture, a checker on each.
+            scene = PROBE_SCENE.replace('material = "{material}"', 'material = "%s"\ntextures = {{ _MainTex = \"checker\" }}'
+                                        % unlit_texture(a.corpus)) + '\n[[post]]\neffect = "{material}"\n'
+        if post and re.search(r'#\s*include\s+"[^"]*StdLib\.hlsl"', text):
             scene += PPV2_GLOBALS
+        if a.platform != 'glcore':
+            scene = scene.replace('\n[camera]', '\n[unity]\nplatform = "%s"\n\n[camera]' % a.platform, 1)
         with open(os.path.join(scenes_dir, scene_id(relative) + '.toml'), 'w') as f:
             f.write(scene.format(path=relative, material=relative.replace('\\', '/')))
 

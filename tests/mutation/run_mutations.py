@@ -161,6 +161,14 @@ MUTATIONS = [
     ('no memory ceiling', 'cli/main.cpp',
      'xshade::cli::limit_memory(std::getenv("XSHADE_MEMORY_LIMIT"))', 'xshade::cli::limit_memory("0")',
      'HostileInput.XshadesOwnMemoryCeiling'),
+    # A scene's Unity platform (issue 34): D3D11's conventions, each half of them.
+    ('a D3D11 target is read back upside down', 'harness/render/scene_renderer.cpp',
+     '    if (direct3d_) flip_rows(image);', '    if (false) flip_rows(image);', 'UnityPlatform|TheUnityPlatform'),
+    ('a D3D11 target culls the faces its flip turned over', 'harness/render/unity_render_state.cpp',
+     '  if (state.cull != CullMode::Off) state.cull', '  if (false) state.cull', 'UnityPlatform|ADirect3DRenderTarget'),
+    ('reversed depth is linearised as forward depth', 'harness/render/renderer_inputs.cpp',
+     'const float zx = direct3d ? far / near - 1.0f : 1.0f - far / near, zy = direct3d ? 1.0f : far / near;',
+     'const float zx = 1.0f - far / near, zy = far / near;', 'UnityPlatform|Direct3DConventions'),
 ]
 
 
