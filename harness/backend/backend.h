@@ -4,7 +4,7 @@
 // - Direct3D orientation: clip-space +y is up, clip z in [0, w], framebuffer row 0 is the top row,
 //   and texture coordinate (0,0) addresses the first row of uploaded data (the top of an image
 //   file). OpenGL gets there with glClipControl(GL_UPPER_LEFT, GL_ZERO_TO_ONE), Vulkan with a
-//   negative viewport height.
+//   negative viewport height. A pass may ask for OpenGL's row order instead (RowOrigin).
 // - Targets are RGBA32F colour and D32F depth; both can be sampled by later passes. Nothing is
 //   clamped: NaN, Inf, negatives and values above 1 reach read-back unchanged.
 // - Resources are bound by name through the program's layout, never by hard-coded numbers.
@@ -337,6 +337,13 @@ struct TargetDesc {
   bool stencil = false;
 };
 
+// Which edge of clip space a pass's mesh draws put in the target's row 0: the top (clip +y:
+// Direct3D's orientation, every lane's default) or the bottom (clip -y: OpenGL's window origin, as
+// Unity's GLCore draws). Only where the rows land changes: a front face still runs counter-
+// clockwise in clip space, SV_Position.y still counts rows from row 0 and ddy runs along them, and
+// a full-screen program's uv (0, 0) is still row 0.
+enum class RowOrigin { Top, Bottom };
+
 // One pass into one target: clear, then the draws in order, each with its DrawState (the depth
 // test and write only where the target has depth, the stencil test only where it has stencil). A pass may sample any target but its own.
 struct RenderPass {
@@ -345,6 +352,7 @@ struct RenderPass {
   float clear_depth = 1.0f;
   std::vector<DrawItem> draws;
   uint8_t clear_stencil = 0;
+  RowOrigin row_origin = RowOrigin::Top;
 };
 
 // What a lane reports about its driver, carried by every report.

@@ -800,7 +800,9 @@ Result<void> GlBackend::render(const RenderPass& pass) {
     for (size_t d = 0; d < resolved->draws.size(); ++d) {
       const auto& draw = resolved->draws[d];
       const Program& program = *draw.program;
-      apply_draw_state(gl_, pass.draws[d].state, target->depth.has_value(), target->stencil);
+      // A full-screen program's uv (0, 0) is row 0 whatever the pass's row origin (backend.h).
+      apply_draw_state(gl_, pass.draws[d].state, target->depth.has_value(), target->stencil,
+                       pass.row_origin == RowOrigin::Bottom && !program.fullscreen);
       gl_.UseProgram(program.program.get());
       const auto& blocks = program.layout.uniform_blocks;
       for (size_t s = 0; s < blocks.size(); ++s) {

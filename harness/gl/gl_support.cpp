@@ -77,7 +77,8 @@ GLenum gl_stencil_op(StencilOp op) {
   return GL_KEEP;
 }
 
-void apply_draw_state(const gl::Functions& gl, const DrawState& state, bool depth, bool stencil) {
+void apply_draw_state(const gl::Functions& gl, const DrawState& state, bool depth, bool stencil, bool rows_up) {
+  gl.ClipControl(rows_up ? GL_LOWER_LEFT : GL_UPPER_LEFT, GL_ZERO_TO_ONE);
   gl.FrontFace(GL_CCW);
   if (state.cull == CullMode::Off) {
     gl.Disable(GL_CULL_FACE);

@@ -85,11 +85,12 @@ GLenum gl_blend_op(BlendOp op);
 GLenum gl_stencil_op(StencilOp op);
 // Culling, depth, stencil and blending for the next draws (the blend and the colour mask of
 // attachment 0; a second one is written as it is), the depth state where the target has depth
-// and the stencil state where it has stencil. glClipControl's GL_UPPER_LEFT origin turns the
-// facing computation around with the window's y (ARB_clip_control), so a winding in the image
-// is that winding to OpenGL: the front is GL_CCW (backend.h's DrawState), for culling and the
-// stencil test's faces alike.
-void apply_draw_state(const gl::Functions& gl, const DrawState& state, bool depth, bool stencil);
+// and the stencil state where it has stencil, and the clip control: its GL_UPPER_LEFT origin puts
+// clip +y at row 0, GL_LOWER_LEFT (`rows_up`, RowOrigin::Bottom) clip -y. The upper left one
+// turns the facing computation around with the window's y (ARB_clip_control), so a winding in
+// clip space is that winding to OpenGL either way: the front is GL_CCW (backend.h's DrawState),
+// for culling and the stencil test's faces alike.
+void apply_draw_state(const gl::Functions& gl, const DrawState& state, bool depth, bool stencil, bool rows_up = false);
 // What a vertex input of GL type `type` reads as; empty for a type no mesh or zero fills (a
 // matrix, a double).
 std::optional<TexelKind> attribute_kind(GLint type);

@@ -10,6 +10,7 @@
 #include "harness/assets/scene_textures.h"
 #include "harness/assets/cube_map.h"
 #include "harness/backend/resource_set.h"
+#include "harness/render/material_source.h"
 #include "harness/render/renderer_inputs.h"
 #include "harness/render/unity_render_state.h"
 
@@ -112,6 +113,14 @@ TextureData float_texture(const FloatImage& image) {
   return {TextureFormat::Rgba32Float, image.width, image.height, {float_bytes(image)}};
 }
 
+// Whether a material or post effect of the scene is a Unity .shader.
+bool draws_unity_shader(const Scene& scene) {
+  return std::any_of(scene.objects.begin(), scene.objects.end(),
+                     [](const SceneObject& object) { return is_unity_shader(object.material); }) ||
+         std::any_of(scene.post.begin(), scene.post.end(),
+                     [](const PostEffect& effect) { return is_unity_shader(effect.effect); });
+}
+
 class SceneRenderer {
  public:
   SceneRenderer(Backend& backend, const Scene& scene, const Plan& plan, const std::vector<CompiledVariant>& variants,
@@ -138,9 +147,9 @@ class SceneRenderer {
 
   // The post passes alone, on the given colour and depth.
   Result<RenderedScene> render_post(const FloatImage& color, const FloatImage& depth) {
-    if (direct3d_)
-      return fail("post passes on given images draw with GLCore's conventions only: the images are upright, their "
-                  "depth 0 at the near plane");
+    if (rows_bottom_first_)
+      return fail("post passes on given images draw only in scenes of xshade's own shaders: the images are upright, "
+                  "their depth 0 at the near plane");
     for (const auto& [name, image] : {std::pair{"colour", &color}, std::pair{"depth", &depth}}) {
       const bool fits = image->width == scene_.width && image->height == scene_.height &&
                         image->rgba.size() == size_t(image->width) * image->height * 4;
@@ -206,11 +215,11 @@ class SceneRenderer {
     return upright(std::move(*image));
   }
 
-  // A target's image as the picture stands: under Direct3D's conventions Unity draws into a
-  // render target upside down (render_target_convention), and its last blit to the screen turns
-  // it round as this does.
+  // A target's image as the picture stands: a scene of Unity's shaders keeps its targets' rows
+  // bottom first, as Unity does on every platform, and its last blit to the screen turns them
+  // round as this does.
   FloatImage upright(FloatImage image) const {
-    if (direct3d_) flip_rows(image);
+    if (rows_bottom_first_) flip_rows(image);
     return image;
   }
 
@@ -278,15 +287,15 @@ class SceneRenderer {
   // Positions (-1, -1), (-1, 3), (3, -1) at z = 0: one triangle over the whole target; its uv 0
   // to 1 across the target from the corner that lands on row 0, where uv (0, 0) addresses a
   // target's row 0 (docs/architecture.md), so that a blit that samples its source at the mesh's uv
-  // copies it as it is, as Graphics.Blit's quad does. That corner is the top-left one, or under
-  // Direct3D's conventions, whose blit projection flips y, the bottom-left one, where Unity's quad
-  // has uv (0, 0).
+  // copies it as it is, as Graphics.Blit's quad does. That corner is the top-left one in xshade's
+  // own orientation; where the rows go bottom first (OpenGL's row order, or Direct3D's blit
+  // projection that flips y) the bottom-left one, where Unity's quad has uv (0, 0).
   Result<MeshHandle> fullscreen_triangle() {
     if (!triangle_) {
       MeshData mesh;
       for (glm::vec2 p : {glm::vec2(-1.0f, -1.0f), glm::vec2(-1.0f, 3.0f), glm::vec2(3.0f, -1.0f)}) {
         Vertex vertex{glm::vec3(p, 0.0f)};
-        vertex.uv = glm::vec2(0.5f * (p.x + 1.0f), 0.5f * (direct3d_ ? 1.0f + p.y : 1.0f - p.y));
+        vertex.uv = glm::vec2(0.5f * (p.x + 1.0f), 0.5f * (rows_bottom_first_ ? 1.0f + p.y : 1.0f - p.y));
         mesh.vertices.push_back(vertex);
       }
       mesh.indices = {0, 1, 2};
@@ -342,6 +351,7 @@ class SceneRenderer {
   Result<void> scene_pass() {
     // Depth cleared to the far plane: 0 where the platform reverses it.
     RenderPass pass{scene_target_, scene_.clear_color, direct3d_ ? 0.0f : 1.0f, {}};
+    pass.row_origin = row_origin_;
     Values values = frame_values();
     for (size_t i : plan_.draw_order) {
       const ObjectInstance& instance = plan_.instances[i];
@@ -464,6 +474,7 @@ class SceneRenderer {
     draw.uniforms = std::move(*uniforms);
 
     RenderPass pass{target, glm::vec4(0.0f), 1.0f, {std::move(draw)}};
+    pass.row_origin = row_origin_;
     if (auto rendered = timed(planned.name, pass); !rendered) return rendered;
     current_ = {TextureSource::color_of(target, kColorSampler), {width, height}};
     pass_outputs_[declaration.name] = current_;
@@ -481,8 +492,13 @@ class SceneRenderer {
 
   Backend& backend_;
   const Scene& scene_;
-  // The scene's Unity platform flips its targets and reverses depth (render_target_convention).
+  // How a scene that draws Unity's .shader files keeps Unity's row order, bottom row first: under
+  // Direct3D's conventions the projection flips y and reverses depth (render_target_convention);
+  // under GLCore's the targets take OpenGL's row origin (RowOrigin::Bottom), as Unity's GLCore
+  // draws. A scene of xshade's own shaders keeps xshade's orientation, row 0 at the top.
   const bool direct3d_ = shaderlab::direct3d_conventions(scene_.unity_platform);
+  const RowOrigin row_origin_ = !direct3d_ && draws_unity_shader(scene_) ? RowOrigin::Bottom : RowOrigin::Top;
+  const bool rows_bottom_first_ = direct3d_ || row_origin_ == RowOrigin::Bottom;
   const Plan& plan_;
   const std::vector<CompiledVariant>& variants_;
   const Environment& environment_;

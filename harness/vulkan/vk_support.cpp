@@ -384,13 +384,13 @@ vk::raii::Pipeline create_draw_pipeline(const vk::raii::Device& device, const Dr
   const DrawState& state = spec.state;
   // The negative viewport height puts clip +y at the image's row 0, so a triangle's winding in
   // the image is its winding in framebuffer coordinates: counter-clockwise is the front
-  // (backend.h's DrawState).
+  // (backend.h's DrawState). A positive height mirrors the rows, and the winding with them.
   vk::PipelineRasterizationStateCreateInfo raster(
       {}, VK_FALSE, VK_FALSE, vk::PolygonMode::eFill,
       state.cull == CullMode::Back    ? vk::CullModeFlagBits::eBack
       : state.cull == CullMode::Front ? vk::CullModeFlagBits::eFront
                                       : vk::CullModeFlagBits::eNone,
-      vk::FrontFace::eCounterClockwise);
+      spec.rows_up ? vk::FrontFace::eClockwise : vk::FrontFace::eCounterClockwise);
   raster.lineWidth = 1.0f;
   if (state.depth_bias_slope != 0.0f || state.depth_bias_units != 0.0f) {
     raster.depthBiasEnable = VK_TRUE;

@@ -176,6 +176,9 @@ struct DrawPipelineSpec {
   // Culling, depth, stencil (where depth_format has it) and blending (of attachment 0; any other
   // is written as it is).
   DrawState state;
+  // Drawn with a positive viewport height (clip -y at row 0, RowOrigin::Bottom): the front face
+  // is then clockwise in framebuffer coordinates.
+  bool rows_up = false;
 };
 // Triangles with `spec.state`; viewport and scissor dynamic.
 vk::raii::Pipeline create_draw_pipeline(const vk::raii::Device& device, const DrawPipelineSpec& spec);

@@ -66,10 +66,9 @@ struct Program {
   vk::raii::ShaderModule fragment{nullptr};
   vk::raii::DescriptorSetLayout set_layout{nullptr};
   vk::raii::PipelineLayout pipeline_layout{nullptr};
-  // [target has depth + 2 * target has a second colour attachment]
-  // One per target kind (with depth or not, with a second colour or not) and draw state it is drawn with.
-  // By the target's depth format (eUndefined: none), whether it has a second colour, the state.
-  std::map<std::tuple<vk::Format, bool, DrawState>, vk::raii::Pipeline> pipelines;
+  // One per target kind and draw state: by the target's depth format (eUndefined: none), whether it
+  // has a second colour, the state, and rows_up.
+  std::map<std::tuple<vk::Format, bool, DrawState, bool>, vk::raii::Pipeline> pipelines;
 };
 
 // A failed vk::raii call says so; any other exception speaks for itself.
@@ -128,7 +127,7 @@ class VulkanBackend final : public Backend {
   const Buffer& unsupplied_input_buffer();
   // Records with `record`, submits, waits. Layouts roll back if anything throws.
   void submit(const std::function<void(Recording&)>& record);
-  Result<vk::Pipeline> pipeline(Program& program, const Target& target, const DrawState& state);
+  Result<vk::Pipeline> pipeline(Program& program, const Target& target, const DrawState& state, bool rows_up);
   Result<FloatImage> read_image(TargetHandle handle, bool second);
 
   // Every submit waits for its fence, so no work is in flight between calls and nothing a
@@ -624,10 +623,11 @@ Result<ProgramHandle> VulkanBackend::create_program(const ProgramDesc& desc) {
   });
 }
 
-Result<vk::Pipeline> VulkanBackend::pipeline(Program& program, const Target& target, const DrawState& state) {
+Result<vk::Pipeline> VulkanBackend::pipeline(Program& program, const Target& target, const DrawState& state,
+                                             bool rows_up) {
   const vk::Format depth_format = target.depth ? target.depth->format : vk::Format::eUndefined;
   const bool second_color = target.second_color.has_value();
-  const auto key = std::tuple{depth_format, second_color, state};
+  const auto key = std::tuple{depth_format, second_color, state, rows_up};
   if (auto known = program.pipelines.find(key); known != program.pipelines.end()) return *known->second;
   return guarded<vk::Pipeline>(
       fmt::format("creating the pipeline of program '{}'", program.name), [&]() -> Result<vk::Pipeline> {
@@ -636,7 +636,7 @@ Result<vk::Pipeline> VulkanBackend::pipeline(Program& program, const Target& tar
                      device_, {*program.vertex, *program.fragment, program.vertex_entry.c_str(),
                                program.fragment_entry.c_str(), program.vertex_inputs, program.unsupplied_inputs,
                                *program.pipeline_layout, kColorFormat, depth_format,
-                               second_color ? 2u : 1u, state}));
+                               second_color ? 2u : 1u, state, rows_up}));
         return *made.first->second;
       });
 }
@@ -682,6 +682,7 @@ Result<void> VulkanBackend::render(const RenderPass& pass) {
       const std::vector<const UniformBinding*>& uniforms;
       const std::vector<BoundTexture<Image>>& textures;
       vk::Pipeline pipeline;
+      bool rows_up;  // clip -y at row 0; a full-screen program's uv (0, 0) is row 0 either way
     };
     std::vector<Resolved> draws;
     std::vector<Image*> sampled_targets;
@@ -689,9 +690,10 @@ Result<void> VulkanBackend::render(const RenderPass& pass) {
     size_t uniform_count = 0, combined_count = 0, separate_count = 0, image_only_count = 0;
     for (size_t d = 0; d < resolved->draws.size(); ++d) {
       const auto& draw = resolved->draws[d];
-      auto made = pipeline(*draw.program, *target, pass.draws[d].state);
+      const bool rows_up = pass.row_origin == RowOrigin::Bottom && !draw.program->fullscreen;
+      auto made = pipeline(*draw.program, *target, pass.draws[d].state, rows_up);
       if (!made) return fail(made.error());
-      draws.push_back(Resolved{draw.program, draw.mesh, draw.uniforms, draw.textures, *made});
+      draws.push_back(Resolved{draw.program, draw.mesh, draw.uniforms, draw.textures, *made, rows_up});
       const ProgramLayout& layout = draw.program->layout;
       for (const UniformBlockSlot& block : layout.uniform_blocks)
         uniform_bytes += (block.size + uniform_alignment_ - 1) / uniform_alignment_ * uniform_alignment_;
@@ -821,13 +823,14 @@ Result<void> VulkanBackend::render(const RenderPass& pass) {
             vk::AttachmentStoreOp::eStore, vk::ClearDepthStencilValue(pass.clear_depth, pass.clear_stencil));
       rec.cmd.beginRendering(vk::RenderingInfo({}, area, 1, 0, colors, target->depth ? &depth : nullptr,
                                                stencil ? &depth : nullptr));
-      // Negative height: clip +y is up and row 0 is the top, as in Direct3D.
+      // Negative height: clip +y is up and row 0 is the top, as in Direct3D; positive: rows_up.
       const float width = static_cast<float>(target->color.width);
       const float height = static_cast<float>(target->color.height);
-      rec.cmd.setViewport(0, vk::Viewport(0.0f, height, width, -height, 0.0f, 1.0f));
       rec.cmd.setScissor(0, area);
       for (size_t i = 0; i < draws.size(); ++i) {
         const Resolved& draw = draws[i];
+        rec.cmd.setViewport(0, draw.rows_up ? vk::Viewport(0.0f, 0.0f, width, height, 0.0f, 1.0f)
+                                            : vk::Viewport(0.0f, height, width, -height, 0.0f, 1.0f));
         rec.cmd.bindPipeline(vk::PipelineBindPoint::eGraphics, draw.pipeline);
         if (draw_sets[i])
           rec.cmd.bindDescriptorSets(vk::PipelineBindPoint::eGraphics,

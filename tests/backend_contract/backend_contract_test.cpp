@@ -444,6 +444,53 @@ TEST_P(BackendContractTest, TheColourMaskKeepsWhatItDoesNotWrite) {
 
 // Two triangles side by side on a 4 x 2 target: the left one clockwise in the image, the right
 // one counter-clockwise (the front face: backend.h's DrawState).
+// OpenGL's row order: clip -y lands in row 0, the faces culled are the same ones, and a
+// full-screen program's uv (0, 0) is still row 0.
+TEST_P(BackendContractTest, ABottomRowOriginPutsClipMinusYInRowZeroAndKeepsFacesAndFullscreenUv) {
+  auto target = backend().create_target({4, 4, true});
+  auto upper = backend().upload_mesh(upper_half(0.5f));
+  // The culling test's two triangles: the left one back-facing, the right one front-facing.
+  auto pair = backend().upload_mesh({{vertex_at(-1, -1, 0.5f), vertex_at(-1, 1, 0.5f), vertex_at(0, -1, 0.5f),
+                                      vertex_at(0, -1, 0.5f), vertex_at(1, -1, 0.5f), vertex_at(1, 1, 0.5f)},
+                                     {0, 1, 2, 3, 4, 5}});
+  auto red = mesh_program("red", kRedFragment);
+  auto uv = fullscreen_program("uv", kUvFragment);
+  ASSERT_TRUE(target && upper && pair && red && uv);
+  RenderPass pass;
+  pass.target = *target;
+  pass.row_origin = RowOrigin::Bottom;
+  pass.draws.push_back(draw(*red, *upper));
+  ASSERT_TRUE(backend().render(pass));
+  auto image = backend().read_color(*target);
+  ASSERT_TRUE(image);
+  for (uint32_t y = 0; y < 4; ++y)
+    for (uint32_t x = 0; x < 4; ++x)
+      expect_near(image->at(x, y), y >= 2 ? glm::vec4(1, 0, 0, 1) : glm::vec4(0),
+                  "upper clip half, pixel " + std::to_string(x) + "," + std::to_string(y));
+
+  pass.draws = {draw(*red, *pair)};
+  pass.draws.back().state.cull = CullMode::Back;
+  ASSERT_TRUE(backend().render(pass));
+  image = backend().read_color(*target);
+  ASSERT_TRUE(image);
+  expect_near(image->at(0, 2), glm::vec4(0), "cull back: the back face is culled");
+  expect_near(image->at(3, 2), glm::vec4(1, 0, 0, 1), "cull back: the front face is drawn");
+
+  pass.draws = {draw(*uv)};
+  ASSERT_TRUE(backend().render(pass));
+  image = backend().read_color(*target);
+  ASSERT_TRUE(image);
+  expect_near(image->at(0, 0), {0.125f, 0.125f, 0.0f, 1.0f}, "full-screen uv at row 0");
+
+  // And back to the top origin in the next pass.
+  pass.row_origin = RowOrigin::Top;
+  pass.draws = {draw(*red, *upper)};
+  ASSERT_TRUE(backend().render(pass));
+  image = backend().read_color(*target);
+  ASSERT_TRUE(image);
+  expect_near(image->at(0, 0), glm::vec4(1, 0, 0, 1), "the next pass's own origin");
+}
+
 TEST_P(BackendContractTest, CullingRemovesTheFacesTheStateNames) {
   auto target = backend().create_target({4, 2, true});
   auto mesh = backend().upload_mesh({{vertex_at(-1, -1, 0.5f), vertex_at(-1, 1, 0.5f), vertex_at(0, -1, 0.5f),

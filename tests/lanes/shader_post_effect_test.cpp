@@ -84,7 +84,10 @@ TEST_F(ShaderPostEffect, ItsPassesBlitInTheScenesOrderAndACopyKeepsTheImageUprig
       for (uint32_t x = 0; x < 8; ++x) {
         // Pixel centres of the gradient, sampled at texel centres by the copy (bilinear there is
         // the texel, to float rounding), inverted; blue is _MainTex_TexelSize.z, the width, / 8.
-        const glm::vec4 expected{1.0f - (float(x) + 0.5f) / 8.0f, 1.0f - (float(y) + 0.5f) / 4.0f, 1.0f, 1.0f};
+        // Unity's GLCore keeps OpenGL's rows, bottom first: SV_Position.y counts from the bottom
+        // of the picture, as gl_FragCoord does.
+        const float row_from_bottom = float(4 - 1 - y);
+        const glm::vec4 expected{1.0f - (float(x) + 0.5f) / 8.0f, 1.0f - (row_from_bottom + 0.5f) / 4.0f, 1.0f, 1.0f};
         for (int c = 0; c < 4; ++c)
           EXPECT_NEAR(image->at(x, y)[c], expected[c], 1e-5f) << "pixel " << x << ", " << y << " channel " << c;
       }

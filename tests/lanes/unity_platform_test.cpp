@@ -1,8 +1,9 @@
-// A scene's Unity platform (docs/unity.md): under D3D11 the renderer reverses depth and draws its
-// targets upside down as Unity does, and a shader that follows Unity's conventions (reads depth
-// through _ZBufferParams, flips a triangle's uv where UNITY_UV_STARTS_AT_TOP says so) draws the
-// picture it draws under GLCore, on every lane; one that ignores them does not, which is what
-// the platform is for: a shader that would break in a D3D11 player build breaks here.
+// A scene's Unity platform (docs/unity.md): under GLCore the targets keep OpenGL's rows, bottom
+// first; under D3D11 the renderer reverses depth and draws its targets upside down as Unity does.
+// A shader that follows Unity's conventions (reads depth through _ZBufferParams, flips a
+// triangle's uv where UNITY_UV_STARTS_AT_TOP says so) draws the same picture on both, on every
+// lane; one that ignores them does not, which is what the platform is for: a shader that would
+// break in a D3D11 player build breaks here.
 #include <string>
 
 #include <gtest/gtest.h>
@@ -130,6 +131,9 @@ TEST_F(UnityPlatform, D3D11ReversesDepthAndFlipsTargetsAndAShaderThatFollowsItDr
     const FloatImage d3d11 = render(lane, "d3d11", "Blit");
     const FloatImage triangle = render(lane, "d3d11", "Triangle");
     const FloatImage naive = render(lane, "d3d11", "Naive");
+    // Under GLCore the triangle's uv needs no flip (UNITY_UV_STARTS_AT_TOP is undefined there):
+    // OpenGL's rows start at the bottom, where clip y is -1.
+    const FloatImage glcore_triangle = render(lane, "glcore", "Triangle");
     for (uint32_t y = 0; y < kHeight; ++y)
       for (uint32_t x = 0; x < kWidth; ++x) {
         const glm::vec4 g = glcore.at(x, y), d = d3d11.at(x, y);
@@ -148,6 +152,7 @@ TEST_F(UnityPlatform, D3D11ReversesDepthAndFlipsTargetsAndAShaderThatFollowsItDr
         // blit reads; without the flip it reads the image upside down.
         EXPECT_NEAR(triangle.at(x, y).g, d.g, 1e-4f) << x << ", " << y;
         EXPECT_NEAR(naive.at(x, y).g, d3d11.at(x, kHeight - 1 - y).g, 1e-4f) << x << ", " << y;
+        EXPECT_NEAR(glcore_triangle.at(x, y).g, g.g, 1e-4f) << x << ", " << y;
       }
     // The picture is upright: the plane's far edge (the top of the image) is deeper.
     EXPECT_GT(glcore.at(0, 0).b, glcore.at(0, kHeight - 1).b);
