@@ -499,7 +499,14 @@ void Sema::analyze_stmt(Stmt* stmt) {
       auto& sw = static_cast<SwitchStmt&>(*stmt);
       const Type type = analyze(sw.condition.get());
       if (sw.condition && !type.is_error()) {
-        if (!type.is_numeric() || type.component_count() != 1 || !(type.is_integer() || type.is_bool())) {
+        if (type.component_count() == 1 && type.is_floating()) {
+          // fxc converts a floating-point condition to int, as a cast does (toward zero); DXC
+          // refuses it. Unity's own shaders switch on a float so, and Unity compiles with fxc.
+          diag_.warning(sw.condition->loc, "the condition of a switch is " + in_quotes(type.name()) +
+                                               ": converted to int toward zero, as fxc does (DXC refuses it); "
+                                               "write (int)(...) to say so");
+          wrap_conversion(sw.condition, Type::scalar(ScalarType::Int));
+        } else if (!type.is_numeric() || type.component_count() != 1 || !(type.is_integer() || type.is_bool())) {
           diag_.error(sw.condition->loc, "the condition of a switch must be an integer scalar, not " + in_quotes(type.name()));
         } else if (!type.is_integer() || !type.is_scalar()) {
           wrap_conversion(sw.condition, Type::scalar(type.is_integer() ? type.scalar_type() : ScalarType::Int));

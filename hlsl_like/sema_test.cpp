@@ -1000,7 +1000,10 @@ TEST(SemaStatements, SwitchTakesIntegerConstantsAndBreaks) {
             Strings{});
   EXPECT_EQ(messages_of("float f(uint m) { switch (m) { case 0: case 1: return 1; default: return 2; } }\n"), Strings{});
   EXPECT_EQ(messages_of("void f(float x) { switch (x) { default: break; } }\n"),
-            (Strings{"1:27: error: the condition of a switch must be an integer scalar, not 'float'"}));
+            (Strings{"1:27: warning: the condition of a switch is 'float': converted to int toward zero, as fxc does "
+                     "(DXC refuses it); write (int)(...) to say so"}));
+  EXPECT_EQ(messages_of("void f(float2 x) { switch (x) { default: break; } }\n"),
+            (Strings{"1:28: error: the condition of a switch must be an integer scalar, not 'float2'"}));
   EXPECT_EQ(messages_of("void f(int m, int n) { switch (m) { case 1: break; case n: break; case 1: break; } }\n"),
             (Strings{"1:57: error: a case value must be an integer constant", "1:67: error: case value 1 appears twice",
                      "1:37: note: the first is here"}));
