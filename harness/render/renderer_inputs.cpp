@@ -156,6 +156,41 @@ UniformValueMap frame_inputs(const Scene& scene, const ShCoefficients& sh) {
   values["unity_ProbeVolumeWorldToObject"] = hlsl_components(glm::mat4(1.0f));
   values["unity_ProbeVolumeSizeInv"] = {1.0f, 1.0f, 1.0f};
   values["unity_ProbeVolumeMin"] = {0.0f, 0.0f, 0.0f};
+
+  // The lights a scene of one directional light does not have: ForwardBase's four vertex lights
+  // (no colour, at the origin, no attenuation) and the vertex-lit path's eight, each unused slot
+  // as Unity's manual describes one: no colour, view-space position (0, 0, 1, 0), attenuation
+  // (-1, 1, 0, 0) (not a spot light, no range), spot direction (0, 0, 1, 0).
+  for (const char* name : {"unity_4LightPosX0", "unity_4LightPosY0", "unity_4LightPosZ0", "unity_4LightAtten0"})
+    values[name] = {0.0f, 0.0f, 0.0f, 0.0f};
+  const auto eight = [](glm::vec4 v) {
+    std::vector<float> out;
+    for (int i = 0; i < 8; ++i) out.insert(out.end(), {v.x, v.y, v.z, v.w});
+    return out;
+  };
+  values["unity_LightColor"] = eight(glm::vec4(0.0f));
+  values["unity_LightPosition"] = eight({0.0f, 0.0f, 1.0f, 0.0f});
+  values["unity_LightAtten"] = eight({-1.0f, 1.0f, 0.0f, 0.0f});
+  values["unity_SpotDirection"] = eight({0.0f, 0.0f, 1.0f, 0.0f});
+  // A light without shadows sets none of the shadow map's values, and an object without a
+  // lightmap has the scale-offset of none.
+  values["_LightPositionRange"] = values["_LightProjectionParams"] = {0.0f, 0.0f, 0.0f, 0.0f};
+  values["unity_LightShadowBias"] = values["_LightSplitsNear"] = values["_LightSplitsFar"] = {0.0f, 0.0f, 0.0f, 0.0f};
+  values["unity_ShadowSplitSqRadii"] = {0.0f, 0.0f, 0.0f, 0.0f};
+  values["unity_ShadowSplitSpheres"] = std::vector<float>(16, 0.0f);
+  values["unity_WorldToShadow"] = std::vector<float>(64, 0.0f);
+  values["unity_LightmapST"] = values["unity_DynamicLightmapST"] = {1.0f, 1.0f, 0.0f, 0.0f};
+
+  // The camera's frustum in world space, as Unity's manual orders it (left, right, bottom, top,
+  // near, far): each plane (n, d) with n a unit normal into the frustum, dot(n, p) + d >= 0 inside
+  // (the rows of the projection x view, Gribb and Hartmann's way, for depth 0 to 1).
+  const glm::mat4 clip = gpu_projection(camera, width / height) * view;
+  const auto row = [&](int r) { return glm::vec4(clip[0][r], clip[1][r], clip[2][r], clip[3][r]); };
+  std::vector<float>& planes = values["unity_CameraWorldClipPlanes"];
+  for (const glm::vec4 plane : {row(3) + row(0), row(3) - row(0), row(3) + row(1), row(3) - row(1), row(2), row(3) - row(2)}) {
+    const glm::vec4 unit = plane / glm::length(glm::vec3(plane));
+    planes.insert(planes.end(), {unit.x, unit.y, unit.z, unit.w});
+  }
   return values;
 }
 

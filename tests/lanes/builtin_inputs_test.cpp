@@ -6,6 +6,7 @@
 // taken from the renderer.
 #include <cmath>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include <fmt/format.h>
@@ -189,6 +190,36 @@ std::vector<Row> rows() {
                  "i == 0 ? _LightShadowData : i == 1 ? unity_ShadowFadeCenterAndType : i == 2 ? unity_OcclusionMaskSelector "
                  ": unity_ProbeVolumeParams",
                  {1, 0, 0, 0, kCameraPosition.x, kCameraPosition.y, kCameraPosition.z, 0, 1, 0, 0, 0, 0, 0, 0, 0}});
+
+  // Lights the scene has not: a vertex light's slot as Unity's manual describes an unused one.
+  all.push_back({"unused_vertex_lights", true,
+                 "float4 unity_LightColor[8]; float4 unity_LightPosition[8]; float4 unity_LightAtten[8]; "
+                 "float4 unity_SpotDirection[8]; float4 unity_4LightPosX0; float4 unity_4LightAtten0; float4 unity_LightmapST;",
+                 "i == 0 ? unity_LightColor[7] + unity_4LightPosX0 + unity_4LightAtten0 : i == 1 ? unity_LightPosition[7] "
+                 ": i == 2 ? unity_LightAtten[3] + float4(0, 0, unity_SpotDirection[5].xy) : unity_LightmapST",
+                 {0, 0, 0, 0, 0, 0, 1, 0, -1, 1, 0, 0, 1, 1, 0, 0}});
+  // The frustum's left, right, bottom and top planes, made here from its corners: each plane holds
+  // three of them and its unit normal points at the frustum's centre.
+  {
+    const glm::mat4 inverse = glm::inverse(gpu_projection() * view());
+    const auto corner = [&](float x, float y, float z) {
+      const glm::vec4 p = inverse * glm::vec4(x, y, z, 1);
+      return glm::vec3(p) / p.w;
+    };
+    const glm::vec3 centre = corner(0, 0, 0.5f);
+    std::vector<float> planes;
+    for (const auto& [a, b, c] : {std::tuple{corner(-1, -1, 0), corner(-1, 1, 0), corner(-1, -1, 1)},
+                                  std::tuple{corner(1, -1, 0), corner(1, 1, 0), corner(1, -1, 1)},
+                                  std::tuple{corner(-1, -1, 0), corner(1, -1, 0), corner(-1, -1, 1)},
+                                  std::tuple{corner(-1, 1, 0), corner(1, 1, 0), corner(-1, 1, 1)}}) {
+      glm::vec3 n = glm::normalize(glm::cross(b - a, c - a));
+      if (glm::dot(n, centre - a) < 0) n = -n;
+      planes.insert(planes.end(), {n.x, n.y, n.z, -glm::dot(n, a)});
+    }
+    // Corners unprojected through an inverse: a few ulps of the far plane's 100.
+    all.push_back({"unity_CameraWorldClipPlanes", true, "float4 unity_CameraWorldClipPlanes[6];",
+                   "unity_CameraWorldClipPlanes[i]", planes, 1e-4f});
+  }
 
   // The matrix macros of the prelude, over the variables they name.
   const std::string mvp_declarations = "float4x4 unity_ObjectToWorld; float4x4 unity_MatrixVP; float4x4 unity_MatrixV;";
