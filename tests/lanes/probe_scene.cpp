@@ -85,6 +85,27 @@ Result<harness::FloatImage> ProbeScene::render(const std::string& scene_text, ha
   return std::move(rendered->image);
 }
 
+const char* const kUnityBlitVertexFunctions = R"(
+    float4x4 unity_ObjectToWorld;
+    float4x4 unity_MatrixVP;
+    struct Blit { float4 pos : SV_Position; float2 uv : TEXCOORD0; };
+    Blit vert_img(float4 vertex : POSITION, float2 uv : TEXCOORD0) {
+      Blit o;
+      o.pos = mul(unity_MatrixVP, mul(unity_ObjectToWorld, float4(vertex.xyz, 1.0)));
+      o.uv = uv;
+      return o;
+    }
+    Blit vert_triangle(float4 vertex : POSITION) {
+      Blit o;
+      o.pos = float4(vertex.xy, 0.0, 1.0);
+      o.uv = (vertex.xy + 1.0) * 0.5;
+    #if UNITY_UV_STARTS_AT_TOP
+      o.uv = o.uv * float2(1.0, -1.0) + float2(0.0, 1.0);
+    #endif
+      return o;
+    }
+)";
+
 std::string probe_scene_head(const std::string& description, uint32_t width, uint32_t height) {
   return "description = \"" + description + "\"\nsize = [" + std::to_string(width) + ", " + std::to_string(height) +
          "]\n[camera]\nposition = [0, 0, 5]\ntarget = [0, 0, 0]\nfov_y = 40\nnear = 0.1\nfar = 10\n";

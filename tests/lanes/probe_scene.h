@@ -44,6 +44,12 @@ std::string probe_scene_head(const std::string& description, uint32_t width, uin
 // and so every cube face and axis, reads differently.
 harness::FloatImage direction_equirect();
 
+// The vertex functions Unity's code draws a full-screen triangle with, for the HLSLINCLUDE of a probe
+// .shader: `vert_img` through the matrices, as Graphics.Blit's vert_img; `vert_triangle` with the
+// triangle's corners as they are and uv flipped where UNITY_UV_STARTS_AT_TOP is defined, as Post
+// Processing v2's VertDefault. Both output `Blit` (pos : SV_Position, uv : TEXCOORD0).
+extern const char* const kUnityBlitVertexFunctions;
+
 // One backend per lane for a whole test suite (creating a Vulkan instance per test costs more
 // than the test), the Vulkan one with its validation layer when installed.
 harness::Backend& suite_backend(harness::Lane lane);

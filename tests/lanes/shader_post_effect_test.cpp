@@ -15,39 +15,21 @@ namespace {
 
 using harness::Lane;
 
-constexpr const char* kBlitProbe = R"(Shader "Hidden/BlitProbe" {
+const std::string kBlitProbe = std::string(R"(Shader "Hidden/BlitProbe" {
   SubShader {
     Cull Off ZWrite Off ZTest Always
     HLSLINCLUDE
-    float4x4 unity_ObjectToWorld;
-    float4x4 unity_MatrixVP;
     Texture2D _MainTex;
     SamplerState sampler_MainTex;
-    float4 _MainTex_TexelSize;
-    struct Blit {
-      float4 pos : SV_Position;
-      float2 uv : TEXCOORD0;
-    };
-    Blit vert_blit(float4 vertex : POSITION, float2 uv : TEXCOORD0) {
-      Blit o;
-      o.pos = mul(unity_MatrixVP, mul(unity_ObjectToWorld, float4(vertex.xyz, 1.0)));
-      o.uv = uv;
-      return o;
-    }
-    Blit vert_triangle(float4 vertex : POSITION) {
-      Blit o;
-      o.pos = float4(vertex.xy, 0.0, 1.0);
-      o.uv = (vertex.xy + 1.0) * 0.5;
-      return o;
-    }
+    float4 _MainTex_TexelSize;)") + kUnityBlitVertexFunctions + R"(
     ENDHLSL
     Pass { Name "Gradient" HLSLPROGRAM
-      #pragma vertex vert_blit
+      #pragma vertex vert_img
       #pragma fragment frag
       float4 frag(Blit i) : SV_Target { return float4(i.pos.x / 8.0, i.pos.y / 4.0, 0.0, 1.0); }
       ENDHLSL }
     Pass { Name "Copy" HLSLPROGRAM
-      #pragma vertex vert_blit
+      #pragma vertex vert_img
       #pragma fragment frag
       float4 frag(Blit i) : SV_Target { return _MainTex.Sample(sampler_MainTex, i.uv); }
       ENDHLSL }

@@ -17,23 +17,15 @@ using harness::FloatImage;
 using harness::Lane;
 
 // A plane tilted away from the camera so that depth changes down the image, in a material whose
-// colour is its uv (red across, green along): every row and column reads differently. Cull Back,
+// colour is its uv (red across, green along; UnityCG's vert_img draws any mesh): every row and
+// column reads differently. Cull Back,
 // Unity's default: a platform that turned faces over without turning the culling round would
 // draw nothing.
-constexpr const char* kSurface = R"(Shader "Probe/Surface" { SubShader { Pass {
+const std::string kSurface = std::string(R"(Shader "Probe/Surface" { SubShader { Pass {
   HLSLPROGRAM
-  #pragma vertex vert
-  #pragma fragment frag
-  float4x4 unity_ObjectToWorld;
-  float4x4 unity_MatrixVP;
-  struct V { float4 pos : SV_Position; float2 uv : TEXCOORD0; };
-  V vert(float4 p : POSITION, float2 uv : TEXCOORD0) {
-    V o;
-    o.pos = mul(unity_MatrixVP, mul(unity_ObjectToWorld, float4(p.xyz, 1.0)));
-    o.uv = uv;
-    return o;
-  }
-  float4 frag(V i) : SV_Target { return float4(i.uv, 0.0, 1.0); }
+  #pragma vertex vert_img
+  #pragma fragment frag)") + kUnityBlitVertexFunctions + R"(
+  float4 frag(Blit i) : SV_Target { return float4(i.uv, 0.0, 1.0); }
   ENDHLSL } } })";
 
 // Each pass reads the scene's colour and depth at its uv: red and green the colour, blue the
@@ -41,7 +33,7 @@ constexpr const char* kSurface = R"(Shader "Probe/Surface" { SubShader { Pass {
 // "Blit" draws Graphics.Blit's quad through the matrices (vert_img); "Triangle" puts the
 // triangle's corners where they are and flips uv where UNITY_UV_STARTS_AT_TOP is defined (Post
 // Processing v2's VertDefault); "Naive" does not flip.
-constexpr const char* kEffect = R"(Shader "Probe/Conventions" {
+const std::string kEffect = std::string(R"(Shader "Probe/Conventions" {
   SubShader {
     Cull Off ZWrite Off ZTest Always
     HLSLINCLUDE
@@ -49,29 +41,11 @@ constexpr const char* kEffect = R"(Shader "Probe/Conventions" {
     #if defined(SHADER_API_D3D11) || defined(SHADER_API_VULKAN)
     #define UNITY_UV_STARTS_AT_TOP 1
     #endif
-    float4x4 unity_ObjectToWorld;
-    float4x4 unity_MatrixVP;
     float4 _ZBufferParams;
     Texture2D _MainTex;
     SamplerState sampler_MainTex;
     Texture2D _CameraDepthTexture;
-    SamplerState sampler_CameraDepthTexture;
-    struct Blit { float4 pos : SV_Position; float2 uv : TEXCOORD0; };
-    Blit vert_img(float4 vertex : POSITION, float2 uv : TEXCOORD0) {
-      Blit o;
-      o.pos = mul(unity_MatrixVP, mul(unity_ObjectToWorld, float4(vertex.xyz, 1.0)));
-      o.uv = uv;
-      return o;
-    }
-    Blit vert_triangle(float4 vertex : POSITION) {
-      Blit o;
-      o.pos = float4(vertex.xy, 0.0, 1.0);
-      o.uv = (vertex.xy + 1.0) * 0.5;
-    #if UNITY_UV_STARTS_AT_TOP
-      o.uv = o.uv * float2(1.0, -1.0) + float2(0.0, 1.0);
-    #endif
-      return o;
-    }
+    SamplerState sampler_CameraDepthTexture;)") + kUnityBlitVertexFunctions + R"(
     Blit vert_naive(float4 vertex : POSITION) {
       Blit o;
       o.pos = float4(vertex.xy, 0.0, 1.0);
