@@ -80,11 +80,17 @@ const Decl* StageEmitter::named_decl(const Expr* e) {
 
 void StageEmitter::collect_compared_textures() {
   // The objects of comparison methods, then, back through the calls, what is passed for a
-  // compared parameter, until nothing changes (a call chain passes the texture down).
+  // compared parameter, until nothing changes (a call chain passes the texture down). Over both
+  // stages' functions: a texture is one uniform of one type in the linked program, so one the
+  // fragment stage compares is a shadow sampler in the vertex stage too.
+  std::vector<const FunctionDecl*> program_functions;
+  for (const FunctionDecl* entry : {module_.entry_points.vertex, module_.entry_points.fragment})
+    if (entry)
+      for (const FunctionDecl* function : hlsl::reachable_functions(entry)) program_functions.push_back(function);
   auto decl_of = named_decl;
   for (bool changed = true; changed;) {
     changed = false;
-    for (const FunctionDecl* function : functions_) {
+    for (const FunctionDecl* function : program_functions) {
       hlsl::walk_expressions(function->body.get(), [&](const Expr& e) {
         if (e.kind != ExprKind::Call) return;
         const auto& call = static_cast<const CallExpr&>(e);

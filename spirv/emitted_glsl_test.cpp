@@ -634,6 +634,25 @@ TEST(EmittedGlsl, EveryTextureShapeAndMethodCompilesInBothFlavours) {
   EXPECT_NE(compiled.gl.fragment->text.find("uniform sampler2DMS tms;"), std::string::npos);
 }
 
+// A texture only the fragment stage compares is one uniform of one type in the linked program:
+// where the vertex stage declares it too, it is a shadow sampler there as well (OpenGL refuses to
+// link a uniform of two types), as Unity's screen-space shadows have it.
+TEST(EmittedGlsl, ATextureOneStageComparesIsAShadowSamplerInBothStages) {
+  Compiled compiled = emit_and_compile("shadow.hlsl", R"(
+#pragma vertex vert
+#pragma fragment frag
+Texture2D shadow_map; SamplerComparisonState cmp;
+float4 vert(float3 p : POSITION) : SV_Position { return float4(p, 1); }
+float4 frag(float4 position : SV_Position) : SV_Target { return shadow_map.SampleCmpLevelZero(cmp, position.xy, 0.5); }
+)");
+  ASSERT_TRUE(compiled.gl.vertex && compiled.gl.fragment);
+  EXPECT_NE(compiled.gl.fragment->text.find("uniform sampler2DShadow shadow_map;"), std::string::npos);
+  const std::string& vertex = compiled.gl.vertex->text;
+  EXPECT_TRUE(vertex.find("shadow_map") == std::string::npos ||
+              vertex.find("uniform sampler2DShadow shadow_map;") != std::string::npos)
+      << vertex;
+}
+
 // FXAA keeps a texture and its sampler in a struct; a local of it names the globals.
 const char* kStructOfResources = R"(
 #pragma fragment frag

@@ -187,6 +187,7 @@ Result<SourceModule> compile_source(const fs::path& path, hlsl::CompileOptions o
     file = fallback->second;
   }
   std::vector<SourcePass> passes(sub->passes.size());
+  std::vector<std::pair<std::string, SourceLocation>> grabs;  // each GrabPass's texture
   for (size_t i = 0; i < sub->passes.size(); ++i) {
     const shaderlab::Pass& pass = sub->passes[i];
     passes[i] = {sub, &pass, file};
@@ -200,10 +201,13 @@ Result<SourceModule> compile_source(const fs::path& path, hlsl::CompileOptions o
       passes[i] = *used;
     }
     const shaderlab::Pass& drawn = *passes[i].pass;
-    if (drawn.kind != shaderlab::PassKind::Program) {
-      source.notes.push_back(pass_label(pass, i) + ": not drawn: " +
-                             (drawn.kind == shaderlab::PassKind::Grab ? "GrabPass is not drawn yet"
-                                                                      : "it has no program (fixed-function)"));
+    if (drawn.kind == shaderlab::PassKind::Grab) {
+      // Left out; a pass that reads what it grabs is refused below.
+      grabs.emplace_back(drawn.grab_texture.empty() ? "_GrabTexture" : drawn.grab_texture, drawn.where);
+      source.notes.push_back(pass_label(pass, i) + ": not drawn: GrabPass is not drawn yet, and the drawn passes do not "
+                                                   "read what it grabs");
+    } else if (drawn.kind != shaderlab::PassKind::Program) {
+      source.notes.push_back(pass_label(pass, i) + ": not drawn: it has no program (fixed-function)");
     } else if (!forward_renderer_draws(drawn)) {
       source.notes.push_back(pass_label(pass, i) + ": not drawn: the forward renderer runs it for what the scene has not");
     } else {
@@ -239,6 +243,13 @@ Result<SourceModule> compile_source(const fs::path& path, hlsl::CompileOptions o
   auto pass_options = pass_compile_options(drawn.file, *program, std::move(options), platform);
   if (!pass_options) return fail(pass_options.error());
   source.module = hlsl::compile_text(drawn.file.string(), std::move(program->text), *pass_options);
+  for (const hlsl::TextureResource& texture : source.module->reflection.textures)
+    for (const auto& [grabbed, where] : grabs)
+      if (texture.used && texture.name == grabbed)
+        return fail("'" + shader->name + "': GrabPass is not drawn yet: xshade's renderer does not copy the target "
+                        "between an object's passes, and " + pass_label(*drawn.pass, source.pass) + " reads '" +
+                        grabbed + "'",
+                    where);
   source.render_state = drawn.pass->state.over(drawn.sub->state);
   source.queue = shaderlab::tag(sub->tags, "Queue");
   source.properties = shader->properties;

@@ -165,6 +165,25 @@ TEST_F(UnityShaderSource, WhatCannotBeDrawnIsAnErrorInTheShaderFile) {
   EXPECT_EQ(fixed_function.error().where.line, 2u);
   EXPECT_NE(fixed_function.error().message.find("is a fixed-function shader"), std::string::npos) << fixed_function.error().message;
 
+  // A GrabPass whose image a drawn pass reads; one that nothing reads is left out with a note.
+  const std::string glass = "Shader \"Glass\" {\n  SubShader {\n    GrabPass { \"_Behind\" }\n    Pass { HLSLPROGRAM\n"
+                            "    #pragma vertex v\n    #pragma fragment f\n    Texture2D _Behind; SamplerState s;\n"
+                            "    float4 v(float4 p : POSITION) : SV_Position { return p; }\n"
+                            "    float4 f(float4 p : SV_Position) : SV_Target { return READ; }\n    ENDHLSL }\n  }\n}\n";
+  const auto with_read = [&](const std::string& read) {
+    std::string text = glass;
+    return text.replace(text.find("READ"), 4, read);
+  };
+  auto grabbed = compile_source(write("grab.shader", with_read("_Behind.Sample(s, p.xy)")), {});
+  ASSERT_FALSE(grabbed);
+  EXPECT_EQ(grabbed.error().where.line, 3u);
+  EXPECT_EQ(grabbed.error().message, "'Glass': GrabPass is not drawn yet: xshade's renderer does not copy the target "
+                                     "between an object's passes, and pass 1 reads '_Behind'");
+  auto ungrabbed = compile_source(write("ungrabbed.shader", with_read("p")), {});
+  ASSERT_TRUE(ungrabbed) << ungrabbed.error().to_string();
+  EXPECT_EQ(ungrabbed->notes, std::vector<std::string>{"pass 0: not drawn: GrabPass is not drawn yet, and the drawn passes "
+                                                    "do not read what it grabs"});
+
   const fs::path broken = write("broken.shader", "Shader \"Broken\" {\n  Properties { _A (\"a\", Flaot) = 1 }\n}\n");
   auto unread = compile_source(broken, {});
   ASSERT_FALSE(unread);

@@ -78,10 +78,19 @@ void check_uniforms_have_values(const ShaderNames& names, const std::set<std::st
   }
 }
 
+// Every texture a scene or a default gives holds colour; a comparison reads depth.
+constexpr const char* kComparedTexture =
+    "with a comparison sampler, a shadow map's depth: no texture a scene names holds depth, only the scene's own "
+    "(a post pass's scene.depth source)";
+
 // A texture the variant samples and nobody gives: its declared default, or an error saying how
 // to give one.
 void default_or_error(const ShaderNames::Texture& texture, const std::string& owner, const std::string& not_given,
                       const std::string& table, const SourceLocation& where, std::map<std::string, TextureRef>& defaults, ContractProblems& problems) {
+  if (texture.comparison) {
+    error(problems, where, fmt::format("{} samples '{}' {}, which {}", owner, texture.name, kComparedTexture, not_given));
+    return;
+  }
   if (auto origin = renderer_default_texture(texture.name)) {
     TextureRef ref;
     ref.source = *origin;
@@ -136,7 +145,7 @@ ShaderNames shader_names(const std::string& source, const hlsl::Reflection& refl
       names.uniforms.push_back(std::move(uniform));
     }
   for (const hlsl::TextureResource& texture : reflection.textures) {
-    ShaderNames::Texture out{texture.name, texture.used, {}};
+    ShaderNames::Texture out{texture.name, texture.used, {}, texture.comparison};
     for (const hlsl::Property& property : reflection.properties)
       if (property.name == texture.name) out.default_texture = property.default_texture;
     names.textures.push_back(std::move(out));
@@ -215,7 +224,11 @@ std::map<std::string, TextureRef> check_object(const SceneObject& object, const 
       if (!object.properties.count(name)) check_named(name, rule.from.count, "grid.vary." + name);
 
   for (const auto& [name, ref] : object.textures) {
-    if (material.texture(name) && !renderer_texture(name)) continue;
+    if (const ShaderNames::Texture* texture = material.texture(name); texture && !renderer_texture(name)) {
+      if (texture->comparison)
+        error(problems, object.where.of("textures." + name), fmt::format("{} samples '{}' {}", owner, name, kComparedTexture));
+      continue;
+    }
     const std::string why = renderer_texture(name) ? fmt::format("; '{}' is the renderer's (the scene's environment)", name)
                                                    : suggestion(name, texture_names(material), "textures");
     error(problems, object.where.of("textures." + name), fmt::format("{} has no texture '{}'{}", owner, name, why));
@@ -258,10 +271,16 @@ std::vector<std::map<std::string, TextureRef>> check_effect(const PostEffect& ef
       error(problems, where,
             fmt::format("{} has no parameter '{}'{}", owner, name, suggestion(name, parameters, "parameters")));
   }
-  for (const auto& [name, ref] : effect.textures)
+  for (const auto& [name, ref] : effect.textures) {
     if (std::find(textures.begin(), textures.end(), name) == textures.end())
       error(problems, effect.where.of("textures." + name),
             fmt::format("{} has no texture '{}'{}", owner, name, suggestion(name, textures, "textures")));
+    for (const PassNames& pass : passes)
+      if (const ShaderNames::Texture* texture = pass.names.texture(name); texture && texture->comparison) {
+        error(problems, effect.where.of("textures." + name), fmt::format("{} samples '{}' {}", owner, name, kComparedTexture));
+        break;
+      }
+  }
 
   std::set<std::string> given;
   for (const auto& [name, value] : effect.parameters) given.insert(name);

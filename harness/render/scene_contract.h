@@ -32,6 +32,7 @@ struct ShaderNames {
     std::string name;
     bool sampled = false;         // read by the variant's entry points
     std::string default_texture;  // its declared Default, or empty
+    bool comparison = false;      // read with a comparison sampler: a shadow map, which holds depth
   };
   std::string source;  // as the scene names it: "materials/toon.hlsl"
   std::vector<Uniform> uniforms;

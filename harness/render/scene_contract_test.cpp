@@ -194,6 +194,28 @@ _RampTex = "checker"
                 "object 'ball': material 'materials/ramp.hlsl': texture _MaskTex is the shader's default \"black\""});
 }
 
+// A shadow map is compared against depth, and every texture a scene names or a default gives
+// holds colour: an error at the scene's line, not a draw the driver refuses.
+TEST(SceneContract, ATextureReadWithAComparisonSamplerTakesNoSceneTexture) {
+  const fs::path user = user_folder("shadowed", R"(#pragma vertex vert
+#pragma fragment frag
+Texture2D _ShadowMap <string Default = "white";>;
+SamplerComparisonState sampler_ShadowMap;
+float4 vert(float3 p : POSITION) : SV_Position { return float4(p, 1); }
+float4 frag(float4 p : SV_Position) : SV_Target { return _ShadowMap.SampleCmpLevelZero(sampler_ShadowMap, p.xy, 0.5); }
+)");
+  for (const std::string textures : {"", "[object.textures]\n_ShadowMap = \"white\"\n"}) {
+    auto refused = plan("[[object]]\nname = \"ball\"\nmesh = \"sphere\"\nmaterial = \"materials/shadowed.hlsl\"\n" + textures,
+                        ShaderSearchPath({user, kShaderLibrary}));
+    ASSERT_FALSE(refused);
+    EXPECT_NE(refused.error().message.find("samples '_ShadowMap' with a comparison sampler, a shadow map's depth: no "
+                                           "texture a scene names holds depth"),
+              std::string::npos)
+        << refused.error().message;
+    EXPECT_EQ(refused.error().where.line, textures.empty() ? 12u : 14u) << "the material's line, or the texture's";
+  }
+}
+
 TEST(SceneContract, AUniformWithoutAValueIsAnErrorAtTheObject) {
   const fs::path user = user_folder("ramp", kRampMaterial);
   auto planned = plan(R"([[object]]
