@@ -62,7 +62,8 @@ void apply_properties(const shaderlab::Shader& shader, hlsl::Reflection& reflect
         continue;
       declared.default_value.assign(declared.type.rows() * declared.type.cols(), 0.0);
       notes.push_back("uniform " + declared.name + " reads 0: neither the Properties block nor the renderer sets it "
-                      "(in Unity a script would; set it in the scene's properties)");
+                      "(in Unity a script, or the engine for what this scene has not, would; set it in the scene's "
+                      "properties)");
       continue;
     }
     if (declared.is_texture) {
