@@ -72,10 +72,10 @@ const std::string kEffect = std::string(R"(Shader "Probe/Conventions" {
   }
 })";
 
-constexpr uint32_t kWidth = 16, kHeight = 8;
+constexpr uint32_t kPictureWidth = 16, kPictureHeight = 8;
 
-std::string scene(const std::string& platform, const std::string& pass) {
-  return probe_scene_head("a Unity platform's conventions", kWidth, kHeight) + "[unity]\nplatform = \"" + platform +
+std::string platform_scene(const std::string& platform, const std::string& pass) {
+  return probe_scene_head("a Unity platform's conventions", kPictureWidth, kPictureHeight) + "[unity]\nplatform = \"" + platform +
          "\"\n[[object]]\nmesh = \"plane\"\nmaterial = \"surface.shader\"\nrotation = [60, 0, 0]\nscale = [8, 1, 8]\n"
          "[[post]]\neffect = \"conventions.shader\"\npasses = [\"" + pass + "\"]\n";
 }
@@ -90,9 +90,9 @@ class UnityPlatform : public ::testing::Test {
   void TearDown() override { expect_no_driver_messages(); }
 
   FloatImage render(Lane lane, const std::string& platform, const std::string& pass) {
-    auto image = probe_.render(scene(platform, pass), lane, suite_backend(lane));
+    auto image = probe_.render(platform_scene(platform, pass), lane, suite_backend(lane));
     EXPECT_TRUE(image) << platform << " " << pass << ": " << image.error().to_string();
-    return image ? *image : FloatImage(kWidth, kHeight);
+    return image ? *image : FloatImage(kPictureWidth, kPictureHeight);
   }
 
   ProbeScene probe_{::testing::UnitTest::GetInstance()->current_test_info()->name()};
@@ -108,8 +108,8 @@ TEST_F(UnityPlatform, D3D11ReversesDepthAndFlipsTargetsAndAShaderThatFollowsItDr
     // Under GLCore the triangle's uv needs no flip (UNITY_UV_STARTS_AT_TOP is undefined there):
     // OpenGL's rows start at the bottom, where clip y is -1.
     const FloatImage glcore_triangle = render(lane, "glcore", "Triangle");
-    for (uint32_t y = 0; y < kHeight; ++y)
-      for (uint32_t x = 0; x < kWidth; ++x) {
+    for (uint32_t y = 0; y < kPictureHeight; ++y)
+      for (uint32_t x = 0; x < kPictureWidth; ++x) {
         const glm::vec4 g = glcore.at(x, y), d = d3d11.at(x, y);
         ASSERT_GT(g.a, 0.0f) << "the plane covers pixel " << x << ", " << y;
         // The same surface at the same place: the flip mirrors where the rasterizer samples, and
@@ -125,11 +125,11 @@ TEST_F(UnityPlatform, D3D11ReversesDepthAndFlipsTargetsAndAShaderThatFollowsItDr
         // Post Processing v2's triangle, flipped as UNITY_UV_STARTS_AT_TOP says, reads what the
         // blit reads; without the flip it reads the image upside down.
         EXPECT_NEAR(triangle.at(x, y).g, d.g, 1e-4f) << x << ", " << y;
-        EXPECT_NEAR(naive.at(x, y).g, d3d11.at(x, kHeight - 1 - y).g, 1e-4f) << x << ", " << y;
+        EXPECT_NEAR(naive.at(x, y).g, d3d11.at(x, kPictureHeight - 1 - y).g, 1e-4f) << x << ", " << y;
         EXPECT_NEAR(glcore_triangle.at(x, y).g, g.g, 1e-4f) << x << ", " << y;
       }
     // The picture is upright: the plane's far edge (the top of the image) is deeper.
-    EXPECT_GT(glcore.at(0, 0).b, glcore.at(0, kHeight - 1).b);
+    EXPECT_GT(glcore.at(0, 0).b, glcore.at(0, kPictureHeight - 1).b);
   }
 }
 
