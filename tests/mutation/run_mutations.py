@@ -161,7 +161,7 @@ MUTATIONS = [
     ('no memory ceiling', 'cli/main.cpp',
      'xshade::cli::limit_memory(std::getenv("XSHADE_MEMORY_LIMIT"))', 'xshade::cli::limit_memory("0")',
      'HostileInput.XshadesOwnMemoryCeiling'),
-    # A scene's Unity platform (issue 34): D3D11's conventions, each half of them.
+    # A scene's Unity platform and its row order: each half of the conventions.
     ('a Unity scene\'s target is read back upside down', 'harness/render/scene_renderer.cpp',
      '    if (rows_bottom_first_) flip_rows(image);', '    if (false) flip_rows(image);',
      'UnityPlatform|ShaderPostEffect'),
