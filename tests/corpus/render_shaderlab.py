@@ -19,6 +19,7 @@ refuses them with its error, or compiles the passes they also write, without cra
 
 usage: render_shaderlab.py --xshade XSHADE [--corpus DIR] [--out DIR] [--passing FILE]
                            [--divergences docs/divergences.md] [--only SUBSTR] [-j N]
+                           [--platform glcore|d3d11|vulkan]
 
 The last line printed is `shaderlab: K of N .shader files render on every lane and agree`. The
 exit code is 1 on a crash or a hang, on a file of the passing list (one corpus path a line) that no
