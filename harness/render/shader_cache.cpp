@@ -151,8 +151,9 @@ ShaderCache::ShaderCache(fs::path directory, std::string compiler_identity)
     : directory_(std::move(directory)), compiler_identity_(std::move(compiler_identity)) {}
 
 std::string ShaderCache::request_key(const VariantRequest& request, Lane lane) const {
-  // The request's label names everything that makes a variant (entry, pass, keywords, half), so
-  // that a field added to the request is in the key without being listed here again.
+  // The request's label names everything that makes a variant (entry, pass, Unity platform,
+  // keywords, half), so that a field added to the request is in the key without being listed here
+  // again.
   return content_hash(compiler_identity_ + "\n" + std::string(lane_name(lane)) + "\n" + request.source.string() + "\n" +
                       request.label());
 }

@@ -114,6 +114,25 @@ TEST_F(ShaderCacheTest, EachPassOfAUnityShaderIsItsOwnEntry) {
   EXPECT_NE(last_.program.fragment.glsl.find("vec4(1.0, 0.0, 0.0, 1.0)"), std::string::npos) << last_.program.fragment.glsl;
 }
 
+// A .shader compiled for another Unity platform is another program (its SHADER_API and what
+// HLSLSupport.cginc makes of it): never the GLCore entry.
+TEST_F(ShaderCacheTest, AUnityPlatformIsItsOwnEntry) {
+  write("materials/api.shader",
+        "Shader \"Api\" { SubShader {\n  Pass { HLSLPROGRAM\n#pragma fragment frag\n"
+        "float4 frag() : SV_Target {\n#if defined(SHADER_API_D3D11)\n  return float4(0, 1, 0, 1);\n#else\n"
+        "  return float4(1, 0, 0, 1);\n#endif\n}\nENDHLSL }\n} }\n");
+  ShaderCache cache(root_ / "cache", "identity");
+  VariantRequest glcore{root_ / "materials" / "api.shader", "materials/api.shader", {}, {}};
+  glcore.shader_pass = 0;
+  VariantRequest d3d11 = glcore;
+  d3d11.unity_platform = shaderlab::UnityPlatform::D3D11;
+  EXPECT_FALSE(from_cache(cache, glcore));
+  EXPECT_FALSE(from_cache(cache, d3d11));
+  EXPECT_NE(last_.program.fragment.glsl.find("vec4(0.0, 1.0, 0.0, 1.0)"), std::string::npos) << last_.program.fragment.glsl;
+  EXPECT_TRUE(from_cache(cache, glcore));
+  EXPECT_NE(last_.program.fragment.glsl.find("vec4(1.0, 0.0, 0.0, 1.0)"), std::string::npos) << last_.program.fragment.glsl;
+}
+
 // Two materials, one of which reads the include: editing the include recompiles that one only.
 TEST_F(ShaderCacheTest, ChangingAnIncludeRecompilesExactlyTheVariantsThatReadIt) {
   write("materials/plain.hlsl", "#pragma fragment frag\nfloat4 frag(float2 uv : TEXCOORD0) : SV_Target { return 1; }\n");
