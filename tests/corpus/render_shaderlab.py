@@ -226,6 +226,8 @@ def main():
         for old in os.listdir(folder):
             os.remove(os.path.join(folder, old))
     ids = {}
+    # The objects of a --platform scene's image effect (below), found once.
+    objects_material = unlit_texture(a.corpus) if a.platform != 'glcore' and drawn else ''
     for relative in drawn:
         ids[scene_id(relative)] = relative
         text = open(os.path.join(a.corpus, relative), encoding='utf-8', errors='replace').read()
@@ -235,7 +237,7 @@ def main():
             # A scene of another platform draws .shader files only: the objects in Unity's
             # Unlit/Texture, a checker on each.
             scene = PROBE_SCENE.replace('material = "{material}"', 'material = "%s"\ntextures = {{ _MainTex = \"checker\" }}'
-                                        % unlit_texture(a.corpus)) + '\n[[post]]\neffect = "{material}"\n'
+                                        % objects_material) + '\n[[post]]\neffect = "{material}"\n'
         if post and re.search(r'#\s*include\s+"[^"]*StdLib\.hlsl"', text):
             scene += PPV2_GLOBALS
         if a.platform != 'glcore':
