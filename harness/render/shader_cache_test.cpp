@@ -51,6 +51,18 @@ class ShaderCacheTest : public ::testing::Test {
   }
 
   fs::path root_;
+  // Two requests of one .shader that make different programs (red for `first`, the colour
+  // `second_colour` of GLSL for `second`) are two entries: both compiled, then `first` from the
+  // cache, still red.
+  void expect_two_entries(const VariantRequest& first, const VariantRequest& second, const std::string& second_colour) {
+    ShaderCache cache(root_ / "cache", "identity");
+    EXPECT_FALSE(from_cache(cache, first));
+    EXPECT_FALSE(from_cache(cache, second));
+    EXPECT_NE(last_.program.fragment.glsl.find(second_colour), std::string::npos) << last_.program.fragment.glsl;
+    EXPECT_TRUE(from_cache(cache, first));
+    EXPECT_NE(last_.program.fragment.glsl.find("vec4(1.0, 0.0, 0.0, 1.0)"), std::string::npos) << last_.program.fragment.glsl;
+  }
+
   CompiledVariant last_;
 };
 
@@ -102,16 +114,11 @@ TEST_F(ShaderCacheTest, EachPassOfAUnityShaderIsItsOwnEntry) {
         "  Pass { HLSLPROGRAM\n#pragma fragment frag\nfloat4 frag() : SV_Target { return float4(1, 0, 0, 1); }\nENDHLSL }\n"
         "  Pass { HLSLPROGRAM\n#pragma fragment frag\nfloat4 frag() : SV_Target { return float4(0, 0, 1, 1); }\nENDHLSL }\n"
         "} }\n");
-  ShaderCache cache(root_ / "cache", "identity");
   VariantRequest first{root_ / "materials" / "two.shader", "materials/two.shader", {}, {}};
   first.shader_pass = 0;
   VariantRequest second = first;
   second.shader_pass = 1;
-  EXPECT_FALSE(from_cache(cache, first));
-  EXPECT_FALSE(from_cache(cache, second));
-  EXPECT_NE(last_.program.fragment.glsl.find("vec4(0.0, 0.0, 1.0, 1.0)"), std::string::npos) << last_.program.fragment.glsl;
-  EXPECT_TRUE(from_cache(cache, first));
-  EXPECT_NE(last_.program.fragment.glsl.find("vec4(1.0, 0.0, 0.0, 1.0)"), std::string::npos) << last_.program.fragment.glsl;
+  expect_two_entries(first, second, "vec4(0.0, 0.0, 1.0, 1.0)");
 }
 
 // A .shader compiled for another Unity platform is another program (its SHADER_API and what
@@ -121,16 +128,11 @@ TEST_F(ShaderCacheTest, AUnityPlatformIsItsOwnEntry) {
         "Shader \"Api\" { SubShader {\n  Pass { HLSLPROGRAM\n#pragma fragment frag\n"
         "float4 frag() : SV_Target {\n#if defined(SHADER_API_D3D11)\n  return float4(0, 1, 0, 1);\n#else\n"
         "  return float4(1, 0, 0, 1);\n#endif\n}\nENDHLSL }\n} }\n");
-  ShaderCache cache(root_ / "cache", "identity");
   VariantRequest glcore{root_ / "materials" / "api.shader", "materials/api.shader", {}, {}};
   glcore.shader_pass = 0;
   VariantRequest d3d11 = glcore;
   d3d11.unity_platform = shaderlab::UnityPlatform::D3D11;
-  EXPECT_FALSE(from_cache(cache, glcore));
-  EXPECT_FALSE(from_cache(cache, d3d11));
-  EXPECT_NE(last_.program.fragment.glsl.find("vec4(0.0, 1.0, 0.0, 1.0)"), std::string::npos) << last_.program.fragment.glsl;
-  EXPECT_TRUE(from_cache(cache, glcore));
-  EXPECT_NE(last_.program.fragment.glsl.find("vec4(1.0, 0.0, 0.0, 1.0)"), std::string::npos) << last_.program.fragment.glsl;
+  expect_two_entries(glcore, d3d11, "vec4(0.0, 1.0, 0.0, 1.0)");
 }
 
 // Two materials, one of which reads the include: editing the include recompiles that one only.
