@@ -20,8 +20,9 @@ struct ExrDataWindow {
 
 // For an OpenEXR file (known by its magic number, whatever its name): an error when an attribute
 // of its header claims more bytes than the file holds, else the size of its data window (the
-// first part's, in a multi-part file). nullopt for a file that is not OpenEXR, or whose header is
-// too broken to walk: OpenImageIO reads it and says what is wrong.
+// first part's, in a multi-part file), also where the header breaks after it. nullopt for a file
+// that is not OpenEXR, or whose header breaks before its data window: OpenImageIO reads it and
+// says what is wrong.
 Result<std::optional<ExrDataWindow>> exr_data_window(const std::filesystem::path& path);
 
 }  // namespace xshade::harness

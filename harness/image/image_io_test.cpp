@@ -139,6 +139,13 @@ TEST(ImageIo, AnExrHeaderThatClaimsMoreThanTheFileHoldsIsRefusedBeforeOpenExrRea
   auto read = read_image(tall);
   ASSERT_FALSE(read);
   EXPECT_NE(read.error().message.find("it is 1 x 1073741824 pixels"), std::string::npos) << read.error().message;
+  // An attribute name past OpenEXR's short-name length (31 bytes), which OpenEXR reads all the same,
+  // does not end the walk before OpenEXR's open does.
+  const auto wide = temp_path("wide_long_name.exr");
+  forged::write(wide, forged::exr(1 << 24, 1, false, forged::exr_attribute(std::string(100, 'K'), "string", 2, "ok")));
+  read = read_image(wide);
+  ASSERT_FALSE(read);
+  EXPECT_NE(read.error().message.find("it is 16777216 x 1 pixels"), std::string::npos) << read.error().message;
   // A truthful header of the same shape still reads as far as its missing pixels.
   const auto honest = temp_path("honest.exr");
   forged::write(honest, forged::exr(16, 16, true, forged::exr_attribute("comments", "string", 2, "ok")));
