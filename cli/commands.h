@@ -90,6 +90,7 @@ struct CompileOptions {
   std::string pass;                  // a post pass by its #pragma pass name
   bool all_variants = false;         // every keyword combination the file declares, each reported
   std::string unity_platform = "glcore";  // a .shader's: glcore, d3d11 or vulkan
+  bool generated = false;            // a .shader's passes' HLSL as composed and generated, not compiled
   FolderOptions folders;             // the project file's shader folders (only shaders, project, no_project)
 };
 int run_compile(const CompileOptions& options);

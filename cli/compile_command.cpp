@@ -12,6 +12,7 @@
 #include "base/spelling.h"
 #include "cli/commands.h"
 #include "harness/render/material_source.h"
+#include "harness/render/surface_program.h"
 #include "harness/render/shader_program.h"
 #include "hlsl_like/compiler.h"
 #include "shaderlab/pass_program.h"
@@ -185,27 +186,36 @@ int compile_unity_shader(const CompileOptions& options, const std::filesystem::p
   const shaderlab::UnityPlatform platform =
       shaderlab::parse_unity_platform(options.unity_platform).value_or(shaderlab::UnityPlatform::GLCore);
   const shaderlab::SubShader* sub = shaderlab::drawn_subshader(*shader, platform);
+  if (!sub) {
+    fmt::print(stderr, "xshade compile: {}: '{}' {}\n", file.string(), shader->name,
+               shaderlab::without_subshader(*shader, platform));
+    return kBadInput;
+  }
+  // A surface shader's passes are generated (shaderlab/surface_shader.h).
+  shaderlab::SubShader generated;
+  if (sub->surface) {
+    auto with_passes = harness::with_surface_passes(file, *sub, front_end, platform);
+    if (!with_passes) {
+      fmt::print(stderr, "{}\n", with_passes.error().to_string());
+      return kBadInput;
+    }
+    generated = std::move(*with_passes);
+    sub = &generated;
+  }
   std::vector<const shaderlab::Pass*> passes;
   if (!options.pass.empty()) {
-    auto chosen = shaderlab::find_pass(*shader, options.pass, platform);
+    auto chosen = shaderlab::find_pass_in(*sub, shader->name, options.pass);
     if (!chosen) {
       fmt::print(stderr, "xshade compile: {}: {}\n", file.string(), chosen.error().message);
       return kBadInput;
     }
     passes.push_back(*chosen);
-  } else if (sub) {
+  } else {
     for (const shaderlab::Pass& pass : sub->passes)
       if (pass.kind == shaderlab::PassKind::Program) passes.push_back(&pass);
   }
-  if (!sub && options.pass.empty()) {
-    fmt::print(stderr, "xshade compile: {}: '{}' {}\n", file.string(), shader->name,
-               shaderlab::without_subshader(*shader, platform));
-    return kBadInput;
-  }
   if (passes.empty()) {
-    fmt::print(stderr, "xshade compile: {}: the SubShader it draws has no pass with a program{}\n", file.string(),
-               sub && sub->surface ? " (it is a surface shader, whose passes Unity generates; xshade does not generate them yet)"
-                                   : "");
+    fmt::print(stderr, "xshade compile: {}: the SubShader it draws has no pass with a program\n", file.string());
     return kBadInput;
   }
   // --reflect: one object, the Properties and each pass's reflection.
@@ -222,6 +232,12 @@ int compile_unity_shader(const CompileOptions& options, const std::filesystem::p
     if (!unity_options) {
       fmt::print(stderr, "{}: {}\n", unity_options.error().where.to_string(), unity_options.error().message);
       worst = std::max(worst, int(kBadInput));
+      continue;
+    }
+    if (options.generated) {
+      // The text the pass compiles, as composed and generated, before Unity's defines.
+      fmt::print("// ==== {} pass {}{} ====\n{}", file.string(), program->index, pass->name.empty() ? "" : " \"" + pass->name + "\"",
+                 program->text);
       continue;
     }
     const auto compile = [&](const hlsl::CompileOptions& with) { return hlsl::compile_text(file.string(), program->text, with); };

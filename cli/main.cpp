@@ -202,6 +202,9 @@ static int run_command_line(int argc, char** argv) {
                       "d3d11 or vulkan")
       ->check(CLI::IsMember({"glcore", "d3d11", "vulkan"}))
       ->type_name("PLATFORM");
+  compile->add_flag("--generated", compile_options.generated,
+                    "Print each pass's HLSL as a Unity .shader composes it (its include blocks, and a surface shader's "
+                    "generated passes, with #line back to the .shader's lines) instead of compiling it");
   compile->add_flag("--all-variants", compile_options.all_variants,
                     "Compile every keyword combination the file declares for --target and report each; exit 2 if any fails");
   compile->add_option("--shaders", compile_options.folders.shaders,

@@ -43,17 +43,21 @@ std::string without_subshader(const Shader& shader, UnityPlatform platform) {
 Result<const Pass*> find_pass(const Shader& shader, const std::string& choice, UnityPlatform platform) {
   const SubShader* sub = drawn_subshader(shader, platform);
   if (!sub) return fail("the shader '" + shader.name + "' " + without_subshader(shader, platform));
+  return find_pass_in(*sub, shader.name, choice);
+}
+
+Result<const Pass*> find_pass_in(const SubShader& sub, const std::string& shader_name, const std::string& choice) {
   size_t index = 0;
   const auto [end, error] = std::from_chars(choice.data(), choice.data() + choice.size(), index);
   if (error == std::errc() && end == choice.data() + choice.size()) {
-    if (index < sub->passes.size()) return &sub->passes[index];
+    if (index < sub.passes.size()) return &sub.passes[index];
   } else {
-    for (const Pass& pass : sub->passes)
+    for (const Pass& pass : sub.passes)
       if (!pass.name.empty() && same_word(pass.name, choice)) return &pass;
   }
   std::string list;
-  for (size_t i = 0; i < sub->passes.size(); ++i) list += (i ? ", " : "") + pass_label(sub->passes[i], i);
-  return fail(ErrorKind::Usage, "the shader '" + shader.name + "' has no pass '" + choice + "' in the SubShader it draws (its passes: " +
+  for (size_t i = 0; i < sub.passes.size(); ++i) list += (i ? ", " : "") + pass_label(sub.passes[i], i);
+  return fail(ErrorKind::Usage, "the shader '" + shader_name + "' has no pass '" + choice + "' in the SubShader it draws (its passes: " +
                                     (list.empty() ? "none" : list) + ")");
 }
 
@@ -87,9 +91,10 @@ Result<PassProgram> pass_program(const SubShader& sub, const Pass& pass) {
     composed.implicit_includes = true;
     for (const char* include : kImplicitIncludes) composed.text += "#include \"" + std::string(include) + "\"\n";
   }
-  for (const std::vector<ProgramBlock>* blocks : {&sub.includes, &pass.includes})
-    for (const ProgramBlock& block : *blocks)
-      if (block.language == program.language) append_block(composed.text, block);
+  if (!pass.generated)
+    for (const std::vector<ProgramBlock>* blocks : {&sub.includes, &pass.includes})
+      for (const ProgramBlock& block : *blocks)
+        if (block.language == program.language) append_block(composed.text, block);
   append_block(composed.text, program);
   return composed;
 }

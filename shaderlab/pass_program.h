@@ -37,6 +37,9 @@ std::string without_subshader(const Shader& shader, UnityPlatform platform = Uni
 // case as UsePass does. An error lists the passes there are.
 Result<const Pass*> find_pass(const Shader& shader, const std::string& choice,
                               UnityPlatform platform = UnityPlatform::GLCore);
+// The same in `sub`, a SubShader of the shader named `shader_name` (one with its surface
+// program's passes generated).
+Result<const Pass*> find_pass_in(const SubShader& sub, const std::string& shader_name, const std::string& choice);
 
 // Unity's implicit includes are in one of `folders`, or an error that says where a user gets them:
 // xshade ships none of Unity's code.

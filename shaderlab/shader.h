@@ -121,6 +121,9 @@ struct Pass {
   std::string used;          // Use: "Shader/NAME"
   std::string grab_texture;  // Grab: "_Name", empty for the default _GrabTexture
   std::vector<std::string> fixed_function;  // the fixed-function commands the pass holds
+  // Generated from a surface program (surface_shader.h): its program holds the include blocks of
+  // its scope itself, after the Unity includes the generated code needs.
+  bool generated = false;
   SourceLocation where;
 };
 

@@ -5,6 +5,7 @@
 #include <map>
 
 #include "harness/render/renderer_inputs.h"
+#include "harness/render/surface_program.h"
 #include "shaderlab/compile_environment.h"
 #include "shaderlab/reader.h"
 #include "shaderlab/shader_lookup.h"
@@ -187,6 +188,14 @@ Result<SourceModule> compile_source(const fs::path& path, hlsl::CompileOptions o
     shader = fallback->first;
     file = fallback->second;
   }
+  // A surface shader's passes are generated, and drawn as written ones are.
+  shaderlab::SubShader generated;
+  if (sub->surface) {
+    auto with_passes = with_surface_passes(file, *sub, options, platform);
+    if (!with_passes) return fail(with_passes.error());
+    generated = std::move(*with_passes);
+    sub = &generated;
+  }
   std::vector<SourcePass> passes(sub->passes.size());
   std::vector<std::pair<std::string, SourceLocation>> grabs;  // each GrabPass's texture
   for (size_t i = 0; i < sub->passes.size(); ++i) {
@@ -216,9 +225,6 @@ Result<SourceModule> compile_source(const fs::path& path, hlsl::CompileOptions o
     }
   }
   if (source.drawn_passes.empty()) {
-    if (sub->surface)
-      return fail("'" + shader->name + "' is a surface shader, whose passes Unity generates; xshade does not generate them yet",
-                  sub->surface->start);
     if (std::all_of(sub->passes.begin(), sub->passes.end(),
                     [](const shaderlab::Pass& pass) { return pass.kind == shaderlab::PassKind::FixedFunction; }))
       return fail("'" + shader->name + "' is a fixed-function shader (SetTexture, Lighting, Material): Unity generates its " +
