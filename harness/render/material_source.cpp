@@ -218,6 +218,8 @@ Result<SourceModule> compile_source(const fs::path& path, hlsl::CompileOptions o
                                                    "read what it grabs");
     } else if (drawn.kind != shaderlab::PassKind::Program) {
       source.notes.push_back(pass_label(pass, i) + ": not drawn: it has no program (fixed-function)");
+    } else if (shaderlab::same_word(shaderlab::tag(drawn.tags, "LightMode"), "ForwardAdd")) {
+      source.additive_passes.push_back(i);  // drawn once for each further pixel light (forward_lights.h)
     } else if (!forward_renderer_draws(drawn)) {
       source.notes.push_back(pass_label(pass, i) + ": not drawn: the forward renderer runs it for what the scene has not");
     } else {

@@ -23,9 +23,9 @@ namespace xshade::harness {
 
 bool is_unity_shader(const std::filesystem::path& path);
 
-// The LightModes of the passes Unity's forward renderer draws for an object lit by one
-// directional light and no other: none ("Always") and ForwardBase, each pass of the drawn
-// SubShader in its order. ForwardAdd (a further light), ShadowCaster (a shadow map), Meta,
+// The LightModes of the passes Unity's forward renderer draws once for every object: none
+// ("Always") and ForwardBase, each pass of the drawn SubShader in its order. ForwardAdd is drawn
+// once for each further light (SourceModule::additive_passes); ShadowCaster (a shadow map), Meta,
 // Deferred and the rest are for what a scene does not have.
 bool forward_renderer_draws(const shaderlab::Pass& pass);
 
@@ -37,6 +37,9 @@ struct SourceModule {
   // order) and the one compiled here.
   std::vector<size_t> drawn_passes;
   size_t pass = 0;
+  // A .shader's ForwardAdd passes, which the forward renderer draws again for each light besides
+  // the main one (forward_lights.h).
+  std::vector<size_t> additive_passes;
   // A .shader's: the compiled pass's render state (its own over its SubShader's), its SubShader's
   // Queue tag, and its Properties (their defaults as written are what a state in brackets reads;
   // their attributes set keywords).

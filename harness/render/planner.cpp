@@ -5,6 +5,7 @@
 #include <set>
 
 #include "harness/backend/backend.h"
+#include "harness/render/forward_lights.h"
 #include "harness/render/material_source.h"
 #include "harness/render/scene_contract.h"
 #include "harness/render/unity_render_state.h"
@@ -33,6 +34,7 @@ struct SourceFacts {
   int queue = kGeometryQueue;
   std::vector<shaderlab::Property> properties;  // a .shader's (material_source.h)
   std::vector<size_t> drawn_passes;  // a .shader's (material_source.h); empty for an .hlsl
+  std::vector<size_t> additive_passes;  // a .shader's ForwardAdd passes (material_source.h)
   std::optional<size_t> pass;        // the .shader's pass read (the first drawn, unless asked for another)
 };
 
@@ -56,6 +58,7 @@ class SourceReader {
     SourceFacts facts;
     facts.path = *path;
     facts.drawn_passes = source->drawn_passes;
+    facts.additive_passes = source->additive_passes;
     if (!source->drawn_passes.empty()) facts.pass = source->pass;
     facts.notes = std::move(source->notes);
     // The source's own warnings each; those of the files it includes (Unity's own, often) counted.
@@ -135,6 +138,11 @@ void add_global_keyword(const std::string& keyword, const std::vector<hlsl::Keyw
   }
 }
 
+
+// `note` once: every instance of a material would say it again.
+void add_left_out(std::vector<std::string>& left_out, const std::string& note) {
+  if (std::find(left_out.begin(), left_out.end(), note) == left_out.end()) left_out.push_back(note);
+}
 
 size_t add_variant(Plan& plan, VariantRequest request) {
   auto found = std::find(plan.variants.begin(), plan.variants.end(), request);
@@ -257,6 +265,8 @@ Result<Plan> plan_scene(const Scene& scene, const ShaderSearchPath& shaders) {
   // before anything is expanded.
   if (Result<void> work = check_scene_work(scene); !work) return fail(work.error());
   plan.instances = expand_instances(scene);
+  const ForwardLights lights = forward_lights(scene);
+  for (const std::string& note : lights.left_out) plan.left_out.push_back(note);
   std::map<std::string, SourceFacts> materials;
   std::vector<ShaderNames> variant_names;  // per variant of the scene pass
   ContractProblems contract;
@@ -279,9 +289,20 @@ Result<Plan> plan_scene(const Scene& scene, const ShaderSearchPath& shaders) {
     plan.instance_queue.push_back(material.queue);
     std::vector<Plan::InstanceDraw> draws;
     std::optional<ShaderNames> object_names;  // every drawn pass's, merged, for the object's check
-    std::vector<std::optional<size_t>> passes(1, std::nullopt);  // an .hlsl draws once
-    if (!material.drawn_passes.empty()) passes.assign(material.drawn_passes.begin(), material.drawn_passes.end());
-    for (const std::optional<size_t>& pass : passes) {
+    // An .hlsl draws once; a .shader each pass the forward renderer draws, then each ForwardAdd
+    // pass once for each pixel light besides the main one.
+    std::vector<std::pair<std::optional<size_t>, std::optional<size_t>>> passes(1);  // (pass, light)
+    if (!material.drawn_passes.empty()) {
+      passes.clear();
+      for (size_t pass : material.drawn_passes) passes.emplace_back(pass, std::nullopt);
+    }
+    for (size_t pass : material.additive_passes) {
+      for (size_t light : lights.pixel) passes.emplace_back(pass, light);
+      if (lights.pixel.empty())
+        add_left_out(plan.left_out, "'" + instance.material + "' pass " + std::to_string(pass) +
+                               " (ForwardAdd): not drawn: the scene has no light besides its main directional one");
+    }
+    for (const auto& [pass, light] : passes) {
       auto facts_of_pass = pass == material.pass ? Result<const SourceFacts*>(&material) : pass_facts(pass);
       if (!facts_of_pass) return fail(facts_of_pass.error());
       const SourceFacts& facts = **facts_of_pass;
@@ -310,6 +331,10 @@ Result<Plan> plan_scene(const Scene& scene, const ShaderSearchPath& shaders) {
       std::vector<std::string> asked =
           with_inspector_keywords(facts.properties, facts.keyword_sets, instance.keywords, scene_value);
       if (scene.fog) add_global_keyword(fog_keyword(scene.fog->mode), facts.keyword_sets, asked);
+      // The light a pass is drawn for chooses its variant, as Unity's forward renderer sets the
+      // keywords: an additive pass's light type; ForwardBase's per-vertex lights where there are any.
+      if (light) add_global_keyword(additive_keyword(scene.lights[*light].type), facts.keyword_sets, asked);
+      else if (!lights.vertex.empty()) add_global_keyword("VERTEXLIGHT_ON", facts.keyword_sets, asked);
       VariantRequest request{facts.path, instance.material, variant_keywords(facts.keyword_sets, asked), {}};
       request.shader_pass = pass;
       used_combinations[instance.material].insert(request.keywords);
@@ -340,7 +365,7 @@ Result<Plan> plan_scene(const Scene& scene, const ShaderSearchPath& shaders) {
         if (std::find(notes.begin(), notes.end(), note) == notes.end()) notes.push_back(note);
       }
       object_names = object_names ? merge_names(std::move(*object_names), variant_names[variant]) : variant_names[variant];
-      draws.push_back({variant, state});
+      draws.push_back({variant, state, light});
     }
     plan.instance_draws.push_back(draws);
     // Each object once: its instances share its material, keywords and names.
@@ -445,6 +470,20 @@ std::string describe_plan(const Scene& scene, const Plan& plan, const std::vecto
       size_t draws = 0;  // a .shader draws an object once for each of its passes
       for (const auto& instance_draws : plan.instance_draws) draws += instance_draws.size();
       text += "    scene: " + std::to_string(draws) + " draws\n";
+      // The lights as the forward renderer divides them, and each draw an additive light adds.
+      const ForwardLights lights = forward_lights(scene);
+      const auto light_name = [&](size_t i) {
+        const LightType type = scene.lights[i].type;
+        return "light " + std::to_string(i + 1) + " (" +
+               (type == LightType::Directional ? "directional" : type == LightType::Point ? "point" : "spot") + ")";
+      };
+      if (lights.main) text += "      main light: " + light_name(*lights.main) + ", in ForwardBase\n";
+      for (size_t i : lights.vertex) text += "      per-vertex light: " + light_name(i) + ", in ForwardBase\n";
+      for (size_t i = 0; i < plan.instance_draws.size(); ++i)
+        for (const Plan::InstanceDraw& draw : plan.instance_draws[i])
+          if (draw.light)
+            text += "      object '" + plan.instances[i].object_name + "': " + plan.variants[draw.variant].label() + " for " +
+                    light_name(*draw.light) + "\n";
       continue;
     }
     const hlsl::PassDeclaration& d = pass.declaration;

@@ -57,10 +57,14 @@ struct Plan {
   std::vector<ObjectInstance> instances;
   // Per instance, its draws in order: a variant (index into variants) and how it is drawn (a
   // .shader's pass's render state; an .hlsl material's is DrawState's default). An .hlsl material
-  // draws once, a .shader once for each pass the forward renderer draws.
+  // draws once, a .shader once for each pass the forward renderer draws and each ForwardAdd pass
+  // once more for each pixel light besides the main one.
   struct InstanceDraw {
     size_t variant = 0;
     DrawState state;
+    // A ForwardAdd pass's light (index into Scene::lights), whose values replace the main
+    // light's for this draw (forward_lights.h).
+    std::optional<size_t> light;
   };
   std::vector<std::vector<InstanceDraw>> instance_draws;
   // Per instance: its render queue (a .shader's SubShader Queue; Geometry otherwise).

@@ -323,6 +323,65 @@ TEST(Planner, AlphaToMaskOnIsNotedAsDrawnOff) {
   fs::remove_all(user);
 }
 
+// Unity's forward renderer: a ForwardAdd pass is drawn once for each light besides the main
+// directional one, compiled with that light's keyword; a scene of one light draws none (and the
+// plan says so), and one with more point lights than pixel lights gives ForwardBase the rest per
+// vertex (VERTEXLIGHT_ON).
+TEST(Planner, AForwardAddPassIsDrawnOnceForEachFurtherLightWithItsKeyword) {
+  const fs::path user = fs::temp_directory_path() / "xshade_planner_forward_add";
+  fs::remove_all(user);
+  fs::create_directories(user);
+  std::ofstream(user / "lit.shader") << R"(Shader "Lit" {
+  SubShader {
+    HLSLINCLUDE
+    float4 vert(float3 p : POSITION) : SV_Position { return float4(p, 1); }
+    float4 frag() : SV_Target { return 1; }
+    ENDHLSL
+    Pass { Tags { "LightMode" = "ForwardBase" } HLSLPROGRAM
+      #pragma vertex vert
+      #pragma fragment frag
+      #pragma multi_compile _ VERTEXLIGHT_ON
+      ENDHLSL }
+    Pass { Tags { "LightMode" = "ForwardAdd" } Blend One One ZWrite Off HLSLPROGRAM
+      #pragma vertex vert
+      #pragma fragment frag
+      #pragma multi_compile POINT DIRECTIONAL SPOT
+      ENDHLSL }
+  }
+})";
+  const std::string object = "[[object]]\nname = \"ball\"\nmesh = \"sphere\"\nmaterial = \"lit.shader\"\n";
+  const std::string sun = "[[light]]\ntype = \"directional\"\ndirection = [0, 1, 0]\n";
+  const std::string lamp = "[[light]]\ntype = \"point\"\nposition = [1, 1, 1]\n";
+  const std::string spot = "[[light]]\ntype = \"spot\"\nposition = [0, 3, 0]\ndirection = [0, 1, 0]\nintensity = 2\n";
+
+  auto one = plan_scene(scene(sun + object), ShaderSearchPath({user, kLibrary}));
+  ASSERT_TRUE(one) << one.error().to_string();
+  ASSERT_EQ(one->instance_draws[0].size(), 1u);
+  EXPECT_TRUE(has_line(one->left_out, "'lit.shader' pass 1 (ForwardAdd): not drawn: the scene has no light besides its main "
+                                      "directional one"));
+
+  auto three = plan_scene(scene(sun + lamp + spot + object), ShaderSearchPath({user, kLibrary}));
+  ASSERT_TRUE(three) << three.error().to_string();
+  const auto& draws = three->instance_draws[0];
+  ASSERT_EQ(draws.size(), 3u);
+  EXPECT_FALSE(draws[0].light);
+  EXPECT_EQ(draws[1].light, 2u);  // the brighter spot first
+  EXPECT_EQ(draws[2].light, 1u);
+  EXPECT_EQ(three->variants[draws[1].variant].keywords, (std::vector<std::string>{"SPOT"}));
+  EXPECT_EQ(three->variants[draws[2].variant].keywords, (std::vector<std::string>{"POINT"}));
+  EXPECT_EQ(draws[1].state.blend.enabled, true);
+  const std::string described = describe_plan(scene(sun + lamp + spot + object), *three);
+  EXPECT_NE(described.find("main light: light 1 (directional), in ForwardBase"), std::string::npos) << described;
+  EXPECT_NE(described.find("object 'ball': lit.shader pass 1 [SPOT] for light 3 (spot)"), std::string::npos) << described;
+
+  // No pixel lights: the point light lights ForwardBase per vertex, and ForwardAdd is not drawn.
+  auto vertex = plan_scene(scene("[unity]\npixel_lights = 0\n" + sun + lamp + object), ShaderSearchPath({user, kLibrary}));
+  ASSERT_TRUE(vertex) << vertex.error().to_string();
+  ASSERT_EQ(vertex->instance_draws[0].size(), 1u);
+  EXPECT_EQ(vertex->variants[vertex->instance_draws[0][0].variant].keywords, (std::vector<std::string>{"VERTEXLIGHT_ON"}));
+  fs::remove_all(user);
+}
+
 // A .shader post effect blits the passes `passes` names, in that order, each compiled whole (its
 // own vertex program); each reads the step before as _MainTex unless its sources say otherwise.
 TEST(Planner, AShaderPostEffectBlitsItsPassesInTheOrderTheSceneGives) {

@@ -5,6 +5,8 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
+#include "harness/render/forward_lights.h"
+
 namespace xshade::harness {
 namespace {
 
@@ -68,10 +70,9 @@ UniformValueMap frame_inputs(const Scene& scene, const ShCoefficients& sh) {
   const bool direct3d = shaderlab::direct3d_conventions(scene.unity_platform);
   const glm::mat4 projection = render_target_convention(scene.unity_platform) * gpu_projection(camera, width / height);
   const glm::mat4 view = view_matrix(camera);
-  // One directional light: the shaders take the first; a scene without one is lit by its
-  // environment alone.
-  const DirectionalLight light =
-      scene.lights.empty() ? DirectionalLight{{0, 1, 0}, glm::vec3(0.0f), 0.0f} : scene.lights.front();
+  // The main light: the brightest directional one (Unity's ForwardBase light; xshade's own
+  // materials take it too); a scene without one is lit by its other lights and its environment.
+  const Light light = main_light(scene).value_or(Light{LightType::Directional, {0, 1, 0}, {}, 0.0f, 0.0f, glm::vec3(0.0f), 0.0f});
   const float near = camera.near_plane, far = camera.far_plane;
 
   UniformValueMap values;
@@ -125,10 +126,10 @@ UniformValueMap frame_inputs(const Scene& scene, const ShCoefficients& sh) {
   values["unity_FogParams"] = {fog.density / std::sqrt(ln2), fog.density / ln2, span > 0.0f ? -1.0f / span : 0.0f,
                                span > 0.0f ? fog.end / span : 0.0f};
 
-  // The light: a directional one is its direction toward the light with w = 0; its colour is
-  // Unity's Color (alpha 1) times the intensity, alpha included.
-  values["_WorldSpaceLightPos0"] = components(glm::vec4(light.direction, 0.0f));
-  values["_LightColor0"] = components(glm::vec4(light.color, 1.0f) * light.intensity);
+  // The main light: a directional one is its direction toward the light with w = 0; its colour
+  // is Unity's Color (alpha 1) times the intensity, alpha included. An additive pass's light
+  // replaces these (forward_lights.h).
+  add_light_inputs(light, values);
 
   // The environment: ambient light as SH, and the reflection probe (unity_SpecCube0, the
   // environment as a cube map of linear HDR texels, decoded by DecodeHDR with (1, 1, 0, 0)).
@@ -169,6 +170,7 @@ UniformValueMap frame_inputs(const Scene& scene, const ShCoefficients& sh) {
     return out;
   };
   values["unity_LightColor"] = eight(glm::vec4(0.0f));
+  add_vertex_light_inputs(scene, forward_lights(scene).vertex, values);
   values["unity_LightPosition"] = eight({0.0f, 0.0f, 1.0f, 0.0f});
   values["unity_LightAtten"] = eight({-1.0f, 1.0f, 0.0f, 0.0f});
   values["unity_SpotDirection"] = eight({0.0f, 0.0f, 1.0f, 0.0f});
@@ -226,7 +228,8 @@ bool renderer_uniform(const std::string& name) {
 }
 
 bool renderer_texture(const std::string& name) {
-  return name == "_EnvironmentSpecular" || name == "unity_SpecCube0" || name == "unity_SpecCube1";
+  return name == "_EnvironmentSpecular" || name == "unity_SpecCube0" || name == "unity_SpecCube1" ||
+         name == "_LightTexture0" || name == "_LightTextureB0";
 }
 
 std::optional<TextureOrigin> renderer_default_texture(const std::string& name) {

@@ -57,8 +57,9 @@ void add_blit_inputs(UniformValueMap& values, shaderlab::UnityPlatform platform)
 // X_TexelSize of every texture): a scene cannot set such a name, and it needs no default.
 bool renderer_uniform(const std::string& name);
 
-// Whether the renderer binds the texture `name` itself: the environment (_EnvironmentSpecular)
-// and Unity's reflection probes (unity_SpecCube0, unity_SpecCube1).
+// Whether the renderer binds the texture `name` itself: the environment (_EnvironmentSpecular),
+// Unity's reflection probes (unity_SpecCube0, unity_SpecCube1) and a light's attenuation textures
+// (_LightTexture0, _LightTextureB0; forward_lights.h).
 bool renderer_texture(const std::string& name);
 
 // A texture Unity's renderer binds that xshade's scenes have no data for, and the built-in the

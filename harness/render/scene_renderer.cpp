@@ -10,6 +10,7 @@
 #include "harness/assets/scene_textures.h"
 #include "harness/assets/cube_map.h"
 #include "harness/backend/resource_set.h"
+#include "harness/render/forward_lights.h"
 #include "harness/render/material_source.h"
 #include "harness/render/renderer_inputs.h"
 #include "harness/render/unity_render_state.h"
@@ -328,10 +329,23 @@ class SceneRenderer {
 
   // A texture the renderer itself gives a shader, by its name: the environment (xshade's
   // equirect, Unity's reflection probes). Nothing for any other name.
-  Result<std::optional<TextureSource>> engine_texture(const std::string& name) {
+  // `light`: the type of the light the draw is lit by, whose attenuation textures it reads.
+  Result<std::optional<TextureSource>> engine_texture(const std::string& name, LightType light) {
     // Clamped: the equirect's top and bottom rows are the poles, not neighbours; a cube's
-    // faces meet without wrapping either way.
+    // faces meet without wrapping either way; a light's falloff ends at its last texel.
     const SamplerDesc clamped{Filter::Linear, AddressMode::ClampToEdge};
+    // _LightTexture0 is a spot's cookie, else (a point light's) the falloff; _LightTextureB0 a
+    // spot's falloff.
+    if (name == "_LightTexture0" || name == "_LightTextureB0") {
+      const bool cookie = name == "_LightTexture0" && light == LightType::Spot;
+      std::optional<TextureHandle>& made = cookie ? spot_cookie_ : light_falloff_;
+      if (!made) {
+        auto handle = resources_.upload_texture(cookie ? spot_cookie_texture() : light_falloff_texture());
+        if (!handle) return fail(from_backend(handle.error()));
+        made = *handle;
+      }
+      return TextureSource::texture(*made, clamped);
+    }
     if (name == "_EnvironmentSpecular") {
       auto env = environment_texture();
       if (!env) return fail(env.error());
@@ -363,11 +377,14 @@ class SceneRenderer {
       // An object's passes, in order, one after the other (Unity's forward renderer).
       for (const Plan::InstanceDraw& instance_draw : plan_.instance_draws[i]) {
         const size_t variant = instance_draw.variant;
+        // A ForwardAdd pass reads its own light where the others read the main one.
+        const Light& light = instance_draw.light ? scene_.lights[*instance_draw.light] : main_light_;
+        add_light_inputs(light, values);
         auto handle = program(variant);
         if (!handle) return fail(handle.error());
         DrawItem draw{*handle, *mesh_handle, {}, {}, direct3d_ ? on_direct3d_render_target(instance_draw.state) : instance_draw.state};
         for (const std::string& name : variants_[variant].interface.textures) {
-          auto engine = engine_texture(name);
+          auto engine = engine_texture(name, light.type);
           if (!engine) return fail(in_context(where + ": texture '" + name + "'", engine.error()));
           if (*engine) {
             draw.textures.push_back({name, **engine});
@@ -445,7 +462,7 @@ class SceneRenderer {
           draw.textures.push_back({name, TextureSource::texture(made->handle, scene_sampler(shape, true))});
           continue;
         }
-        auto engine = engine_texture(name);
+        auto engine = engine_texture(name, main_light_.type);
         if (!engine) return fail(in_context("pass '" + planned.name + "': texture '" + name + "'", engine.error()));
         if (*engine) {
           draw.textures.push_back({name, **engine});
@@ -520,6 +537,9 @@ class SceneRenderer {
   std::vector<SceneTexture> textures_;
   TextureHandle environment_handle_;
   TextureHandle environment_cube_;
+  std::optional<TextureHandle> light_falloff_, spot_cookie_;  // made where a draw reads them
+  // What the passes that are not an additive light's read as the light: the main light, or none.
+  Light main_light_ = main_light(scene_).value_or(Light{LightType::Directional, {0, 1, 0}, {}, 0.0f, 0.0f, glm::vec3(0.0f), 0.0f});
   MeshHandle triangle_;
   std::vector<PassTiming> timings_;
   std::vector<std::pair<std::string, FloatImage>> pass_images_;

@@ -107,7 +107,12 @@ class SceneReader : SceneValueReader {
 
   // The Unity platform the scene's .shader files compile and draw as.
   void read_unity(const toml::table& table, Scene& scene) {
-    check_keys(table, "unity", {"platform"});
+    check_keys(table, "unity", {"platform", "pixel_lights"});
+    if (const toml::node* node = table.get("pixel_lights")) {
+      const auto* count = node->as_integer();
+      if (count && count->get() >= 0 && count->get() <= 8) scene.pixel_lights = static_cast<int>(count->get());
+      else expected(*node, "unity.pixel_lights", "a whole number from 0 to 8");
+    }
     if (const toml::node* node = table.get("platform")) {
       auto name = node->as_string();
       auto platform = name ? shaderlab::parse_unity_platform(name->get()) : std::nullopt;
@@ -253,20 +258,40 @@ class SceneReader : SceneValueReader {
   }
 
   void read_light(const toml::table& table, const std::string& path, Scene& scene) {
-    check_keys(table, path, {"type", "direction", "color", "intensity"});
-    DirectionalLight light;
+    check_keys(table, path, {"type", "direction", "position", "range", "spot_angle", "color", "intensity"});
+    Light light;
     bool ok = true;
+    const char* const types = "\"directional\", \"point\" or \"spot\"";
     if (const toml::node* node = table.get("type")) {
       auto* type = node->as_string();
-      if (!type || type->get() != "directional") {
-        expected(*node, path + ".type", "\"directional\"");
+      if (type && type->get() == "directional") light.type = LightType::Directional;
+      else if (type && type->get() == "point") light.type = LightType::Point;
+      else if (type && type->get() == "spot") light.type = LightType::Spot;
+      else {
+        expected(*node, path + ".type", types);
         ok = false;
       }
     } else {
-      missing(table, path + ".type", "\"directional\"");
+      missing(table, path + ".type", types);
       ok = false;
     }
-    if (const toml::node* node = table.get("direction")) {
+    const bool positioned = light.type != LightType::Directional;
+    const bool aimed = light.type != LightType::Point;
+    // Each key belongs to the kinds of light that have it.
+    const auto not_for = [&](const char* key, const char* kinds) {
+      if (const toml::node* node = table.get(key)) {
+        report(node->source(), fmt::format("{}.{} is for {} lights; a {} light has none", path, key, kinds,
+                                 light.type == LightType::Directional ? "directional" : light.type == LightType::Point ? "point" : "spot"));
+        ok = false;
+      }
+    };
+    if (!aimed) not_for("direction", "directional and spot");
+    if (!positioned) {
+      not_for("position", "point and spot");
+      not_for("range", "point and spot");
+    }
+    if (light.type != LightType::Spot) not_for("spot_angle", "spot");
+    if (const toml::node* node = aimed ? table.get("direction") : nullptr) {
       auto direction = point(*node, path + ".direction");
       if (direction && glm::length(*direction) == 0.0f) {
         expected(*node, path + ".direction", "a non-zero vector");
@@ -276,9 +301,27 @@ class SceneReader : SceneValueReader {
         light.direction = glm::normalize(*direction);
       else
         ok = false;
-    } else {
+    } else if (aimed) {
       missing(table, path + ".direction", "an array of 3 numbers pointing toward the light");
       ok = false;
+    }
+    if (const toml::node* node = positioned ? table.get("position") : nullptr) {
+      if (auto position = point(*node, path + ".position")) light.position = *position;
+      else ok = false;
+    } else if (positioned) {
+      missing(table, path + ".position", "an array of 3 numbers");
+      ok = false;
+    }
+    if (const toml::node* node = positioned ? table.get("range") : nullptr) {
+      if (auto value = float_value(*node, path + ".range", "a number > 0", [](double v) { return v > 0.0; })) light.range = *value;
+      else ok = false;
+    }
+    if (const toml::node* node = light.type == LightType::Spot ? table.get("spot_angle") : nullptr) {
+      if (auto value = float_value(*node, path + ".spot_angle", "a number of degrees in (0, 180)",
+                                   [](double v) { return v > 0.0 && v < 180.0; }))
+        light.spot_angle = *value;
+      else
+        ok = false;
     }
     if (const toml::node* node = table.get("color")) {
       if (auto value = colour(*node, path + ".color")) light.color = *value;

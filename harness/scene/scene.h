@@ -44,10 +44,20 @@ struct Camera {
   float far_plane = 0.0f;      // > near_plane
 };
 
-struct DirectionalLight {
-  glm::vec3 direction{0.0f, 1.0f, 0.0f};  // unit length, pointing toward the light (the shaders' l)
+enum class LightType { Directional, Point, Spot };
+
+// A light as Unity's built-in forward renderer has one (docs/scenes.md, [[light]]).
+struct Light {
+  LightType type = LightType::Directional;
+  glm::vec3 direction{0.0f, 1.0f, 0.0f};  // unit length, pointing toward the light (the shaders' l); a spot's points back along its axis
+  glm::vec3 position{0.0f};               // Point, Spot
+  float range = 10.0f;                    // Point, Spot: where its light ends
+  float spot_angle = 30.0f;               // Spot: the cone's full angle, in degrees, in (0, 180)
   glm::vec3 color{1.0f};
   float intensity = 1.0f;
+  // How much it lights: Unity ranks pixel lights by it (the colour's luminance times the
+  // intensity).
+  float brightness() const { return (0.2126f * color.r + 0.7152f * color.g + 0.0722f * color.b) * intensity; }
 };
 
 enum class EnvironmentKind {
@@ -204,11 +214,15 @@ struct Scene {
   // The time since the level loaded that the frame shows, in seconds (Unity's _Time.y).
   float time_seconds = 0.0f;
   Camera camera;
-  std::vector<DirectionalLight> lights;
+  std::vector<Light> lights;
   EnvironmentSpec environment;
   std::optional<FogSpec> fog;
   // [unity] platform: the Unity platform the .shader files compile and draw as (docs/unity.md).
   shaderlab::UnityPlatform unity_platform = shaderlab::UnityPlatform::GLCore;
+  // [unity] pixel_lights: how many lights besides the main directional one light per pixel, each
+  // in an object's ForwardAdd pass (Unity's Quality setting, 4 by default); the rest light per
+  // vertex in ForwardBase, up to four point lights.
+  int pixel_lights = 4;
   std::vector<SceneObject> objects;
   std::vector<PostEffect> post;
   CompareSettings compare;

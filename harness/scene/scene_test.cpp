@@ -537,6 +537,38 @@ TEST(SceneErrors, LightDirectionMustNotBeZero) {
                                       "got [0, 0, 0.0]"}));
 }
 
+TEST(Scene, PointAndSpotLightsHaveAPositionARangeAndASpotAngle) {
+  auto scene = parse_scene(minimal_head + "[[light]]\ntype = \"point\"\nposition = [1, 2, 3]\nrange = 4\n"
+                                          "[[light]]\ntype = \"spot\"\nposition = [0, 5, 0]\ndirection = [0, 2, 0]\n"
+                                          "spot_angle = 40\nintensity = 2\n[unity]\npixel_lights = 1\n",
+                           "scenes/lights.toml");
+  ASSERT_TRUE(scene) << scene.error().to_string();
+  ASSERT_EQ(scene->lights.size(), 2u);
+  EXPECT_EQ(scene->lights[0].type, LightType::Point);
+  expect_vec(scene->lights[0].position, {1, 2, 3});
+  EXPECT_FLOAT_EQ(scene->lights[0].range, 4.0f);
+  EXPECT_EQ(scene->lights[1].type, LightType::Spot);
+  expect_vec(scene->lights[1].direction, {0, 1, 0});
+  EXPECT_FLOAT_EQ(scene->lights[1].spot_angle, 40.0f);
+  EXPECT_FLOAT_EQ(scene->lights[1].range, 10.0f);  // Unity's default
+  EXPECT_EQ(scene->pixel_lights, 1);
+}
+
+TEST(SceneErrors, ALightKeyOfAnotherKindOfLightIsAnError) {
+  EXPECT_EQ(errors_of(minimal_head + "[[light]]\ntype = \"point\"\nposition = [0, 1, 0]\ndirection = [0, 1, 0]\n"),
+            (std::vector<std::string>{"scenes/bad.toml:12:13: error: light[0].direction is for directional and spot lights; "
+                                      "a point light has none"}));
+  EXPECT_EQ(errors_of(minimal_head + "[[light]]\ntype = \"directional\"\ndirection = [0, 1, 0]\nrange = 3\n"),
+            (std::vector<std::string>{"scenes/bad.toml:12:9: error: light[0].range is for point and spot lights; "
+                                      "a directional light has none"}));
+  EXPECT_EQ(errors_of(minimal_head + "[[light]]\ntype = \"spot\"\nposition = [0, 1, 0]\ndirection = [0, 1, 0]\n"
+                                     "spot_angle = 180\n"),
+            (std::vector<std::string>{"scenes/bad.toml:13:14: error: light[0].spot_angle: expected a number of degrees in "
+                                      "(0, 180), got 180"}));
+  EXPECT_EQ(errors_of(minimal_head + "[[light]]\ntype = \"point\"\n"),
+            (std::vector<std::string>{"scenes/bad.toml:9:1: error: light[0].position: missing; expected an array of 3 numbers"}));
+}
+
 TEST(SceneErrors, CameraMustSeeSomething) {
   std::string text = minimal_head;
   text.replace(text.find("target = [0, 0, 0]"), 18, "target = [0, 0, 8]");
@@ -586,7 +618,7 @@ TEST(SceneErrors, ObjectNamesAreUnique) {
 }
 
 TEST(SceneErrors, TheErrorCarriesTheFirstProblemAsItsMessage) {
-  std::string text = minimal_head + "[[light]]\ntype = \"point\"\ndirection = [0, 1, 0]\n";
+  std::string text = minimal_head + "[[light]]\ntype = \"area\"\ndirection = [0, 1, 0]\n";
   text.replace(text.find("size = [64, 32]"), 15, "size = [0, 32]");
   auto scene = parse_scene(text, "scenes/bad.toml");
   ASSERT_FALSE(scene);
@@ -594,7 +626,7 @@ TEST(SceneErrors, TheErrorCarriesTheFirstProblemAsItsMessage) {
   EXPECT_EQ(scene.error().where.to_string(), "scenes/bad.toml:2:9");
   ASSERT_EQ(scene.error().diagnostics.size(), 2u);
   EXPECT_EQ(scene.error().diagnostics[1].to_string(),
-            "scenes/bad.toml:10:8: error: light[0].type: expected \"directional\", got \"point\"");
+            "scenes/bad.toml:10:8: error: light[0].type: expected \"directional\", \"point\" or \"spot\", got \"area\"");
   EXPECT_EQ(scene.error().diagnostics[0].message, scene.error().message);
 }
 
