@@ -104,7 +104,11 @@ std::vector<Define> unity_defines(std::string_view program_text, UnityPlatform p
           {"UNITY_ENABLE_REFLECTION_BUFFERS", "1"},
           {"UNITY_USE_DITHER_MASK_FOR_ALPHABLENDED_SHADOWS", "1"},
           {"UNITY_LIGHT_PROBE_PROXY_VOLUME", "1"},
-          {"UNITY_LIGHTMAP_FULL_HDR", "1"}};
+          {"UNITY_LIGHTMAP_FULL_HDR", "1"},
+          // The main light's shadow is read from its shadow map at the pixel's world position, as
+          // Unity does where screen-space shadows are off, rather than collected from the camera's
+          // depth into a screen-space texture first (docs/unity.md, "Shadows").
+          {"UNITY_NO_SCREENSPACE_SHADOWS", "1"}};
   // Unity's compiler for Vulkan (HLSLcc) reads a texture type with a precision suffix
   // (Texture2D_half, sampler2D_float) as the type, its samples at that precision; HLSLSupport.cginc
   // defines them away only for the other platforms. Both are float here, as every half is.

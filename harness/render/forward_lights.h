@@ -25,6 +25,9 @@ struct ForwardLights {
 
 ForwardLights forward_lights(const Scene& scene);
 
+// The texture a pass that receives the main light's shadow samples, with a comparison sampler.
+inline constexpr const char* kShadowMapTexture = "_ShadowMapTexture";
+
 // The main light, if the scene has a directional light.
 std::optional<Light> main_light(const Scene& scene);
 

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <list>
 #include <map>
 
 #include "harness/render/renderer_inputs.h"
@@ -150,6 +151,32 @@ Result<SourcePass> used_pass(const shaderlab::Pass& use, NamedShaders& named, sh
                     {}});
 }
 
+// The ShadowCaster pass of the first shader of `shader`'s Fallback chain whose drawn SubShader has
+// one (its surface program's generated passes included); none when no shader of the chain has.
+Result<std::optional<SourcePass>> fallback_caster(const shaderlab::Shader& shader, const fs::path& file, NamedShaders& named,
+                                                  const hlsl::CompileOptions& options, shaderlab::UnityPlatform platform,
+                                                  std::list<shaderlab::SubShader>& generated) {
+  const shaderlab::Shader* current = &shader;
+  fs::path current_file = file;
+  for (int hops = 0; hops < kLongestFallbackChain && current->fallback && !current->fallback->empty(); ++hops) {
+    auto fallback = named.read(*current->fallback, {current_file.string(), 1, 1});
+    if (!fallback) return std::optional<SourcePass>{};  // a Fallback not found casts nothing, as in Unity
+    current = fallback->first;
+    current_file = fallback->second;
+    const shaderlab::SubShader* sub = shaderlab::drawn_subshader(*current, platform);
+    if (!sub) continue;
+    if (sub->surface) {
+      auto with_passes = with_surface_passes(current_file, *sub, options, platform);
+      if (!with_passes) return fail(with_passes.error());
+      sub = &generated.emplace_back(std::move(*with_passes));
+    }
+    for (const shaderlab::Pass& pass : sub->passes)
+      if (pass.kind == shaderlab::PassKind::Program && shaderlab::same_word(shaderlab::tag(pass.tags, "LightMode"), "ShadowCaster"))
+        return std::optional<SourcePass>{SourcePass{sub, &pass, current_file}};
+  }
+  return std::optional<SourcePass>{};
+}
+
 }  // namespace
 
 Result<SourceModule> compile_source(const fs::path& path, hlsl::CompileOptions options, std::optional<size_t> pass_index,
@@ -220,10 +247,22 @@ Result<SourceModule> compile_source(const fs::path& path, hlsl::CompileOptions o
       source.notes.push_back(pass_label(pass, i) + ": not drawn: it has no program (fixed-function)");
     } else if (shaderlab::same_word(shaderlab::tag(drawn.tags, "LightMode"), "ForwardAdd")) {
       source.additive_passes.push_back(i);  // drawn once for each further pixel light (forward_lights.h)
+    } else if (shaderlab::same_word(shaderlab::tag(drawn.tags, "LightMode"), "ShadowCaster")) {
+      if (!source.caster_pass) source.caster_pass = i;  // drawn into a shadow map where a light casts
     } else if (!forward_renderer_draws(drawn)) {
       source.notes.push_back(pass_label(pass, i) + ": not drawn: the forward renderer runs it for what the scene has not");
     } else {
       source.drawn_passes.push_back(i);
+    }
+  }
+  // Without a ShadowCaster of its own, an object casts with its Fallback's, as Unity looks for one.
+  std::list<shaderlab::SubShader> fallback_subs;  // generated surface passes, kept while passes point into them
+  if (!source.caster_pass) {
+    auto caster = fallback_caster(*shader, file, named, options, platform, fallback_subs);
+    if (!caster) return fail(caster.error());
+    if (*caster) {
+      source.caster_pass = passes.size();
+      passes.push_back(**caster);
     }
   }
   if (source.drawn_passes.empty()) {
@@ -243,9 +282,9 @@ Result<SourceModule> compile_source(const fs::path& path, hlsl::CompileOptions o
     return fail(ErrorKind::Internal, "'" + shader->name + "' has no pass " + std::to_string(source.pass), sub->where);
   // A pass asked for by index (a post step's, compile --pass) that has no program to compile.
   if (passes[source.pass].pass->kind != shaderlab::PassKind::Program)
-    return fail(pass_label(sub->passes[source.pass], source.pass) + " of '" + shader->name +
+    return fail(pass_label(*passes[source.pass].pass, source.pass) + " of '" + shader->name +
                     "' has no program: a GrabPass, a fixed-function pass or a UsePass not found draws none",
-                sub->passes[source.pass].where);
+                passes[source.pass].pass->where);
   const SourcePass& drawn = passes[source.pass];
   auto program = shaderlab::pass_program(*drawn.sub, *drawn.pass);
   if (!program) return fail(program.error());

@@ -40,6 +40,9 @@ struct SourceModule {
   // A .shader's ForwardAdd passes, which the forward renderer draws again for each light besides
   // the main one (forward_lights.h).
   std::vector<size_t> additive_passes;
+  // A .shader's ShadowCaster pass: its drawn SubShader's, else its Fallback chain's first (an index
+  // past the SubShader's passes then), which a shadow-casting light draws into its shadow map.
+  std::optional<size_t> caster_pass;
   // A .shader's: the compiled pass's render state (its own over its SubShader's), its SubShader's
   // Queue tag, and its Properties (their defaults as written are what a state in brackets reads;
   // their attributes set keywords).

@@ -140,8 +140,9 @@ TEST_F(UnityShaderSource, TheDrawnPassCompilesInUnitysEnvironment) {
   ASSERT_TRUE(source) << source.error().to_string();
   ASSERT_TRUE(source->module->ok()) << source->module->diagnostics.render_all();
   EXPECT_EQ(source->module->reflection.fragment_entry, "frag");
-  ASSERT_EQ(source->notes.size(), 1u);
-  EXPECT_EQ(source->notes[0], "pass 0 (LightMode ShadowCaster): not drawn: the forward renderer runs it for what the scene has not");
+  // The ShadowCaster is drawn only into a shadow map, where a light casts (the planner decides).
+  EXPECT_TRUE(source->notes.empty());
+  EXPECT_EQ(source->caster_pass, 0u);
 }
 
 TEST_F(UnityShaderSource, WhatCannotBeDrawnIsAnErrorInTheShaderFile) {
@@ -225,11 +226,11 @@ TEST_F(UnityShaderSource, AUsedPassIsTheNamedShadersPassWithItsIncludesAndState)
   EXPECT_EQ(source->module->reflection.fragment_entry, "frag");
   ASSERT_TRUE(source->render_state && source->render_state->cull);
   EXPECT_EQ(source->render_state->cull->text, "Front");
-  ASSERT_EQ(source->notes.size(), 2u);
-  EXPECT_EQ(source->notes[0], "pass 1: not drawn: the forward renderer runs it for what the scene has not");
-  EXPECT_TRUE(source->notes[1].starts_with("pass 2: not drawn: " + user.string() +
+  EXPECT_EQ(source->caster_pass, 1u);  // the used CASTER, a ShadowCaster
+  ASSERT_EQ(source->notes.size(), 1u);
+  EXPECT_TRUE(source->notes[0].starts_with("pass 2: not drawn: " + user.string() +
                                            ":5:5: no .shader in the shader folders declares Shader \"Library/Missing\""))
-      << source->notes[1];
+      << source->notes[0];
 
   // Asked for by index (a post step, compile --pass), the UsePass not found has no program.
   auto unresolved = compile_source(user, in_folders({folder_ / "library"}), 2);
@@ -273,6 +274,34 @@ TEST_F(UnityShaderSource, AShaderWithoutASubShaderIsDrawnAsItsFallback) {
   EXPECT_NE(cycle.error().message.find("falls back after 8 shaders without a SubShader (a chain that goes round?)"),
             std::string::npos)
       << cycle.error().to_string();
+}
+
+// Unity looks for a ShadowCaster in the Fallback chain where the drawn SubShader has none: the
+// first shader of the chain that has one casts for the object (compiled as one more pass).
+TEST_F(UnityShaderSource, WithoutAShadowCasterOfItsOwnAnObjectCastsWithItsFallbacks) {
+  const std::string program = "HLSLPROGRAM\n  #pragma vertex v\n  #pragma fragment f\n"
+                              "  float4 v(float4 p : POSITION) : SV_Position { return p; }\n"
+                              "  float4 f() : SV_Target { return CASTS; }\n  ENDHLSL";
+  const auto pass = [&](const std::string& tags, const std::string& value) {
+    std::string text = "Pass { " + tags + " " + program + " }";
+    return text.replace(text.find("CASTS"), 5, value);
+  };
+  write("caster.shader", "Shader \"Caster\" {\n  SubShader { " + pass("", "0") + "\n" +
+                             pass("Tags { \"LightMode\" = \"ShadowCaster\" }", "0.5") + " }\n}\n");
+  write("plain.shader", "Shader \"Plain\" {\n  SubShader { " + pass("", "0") + " }\n  Fallback \"Caster\"\n}\n");
+  const fs::path lit = write("lit.shader", "Shader \"Lit\" {\n  SubShader { " + pass("", "1") + " }\n  Fallback \"Plain\"\n}\n");
+  const fs::path alone = write("alone.shader", "Shader \"Alone\" {\n  SubShader { " + pass("", "1") + " }\n}\n");
+  auto source = compile_source(lit, in_folders({folder_}));
+  ASSERT_TRUE(source) << source.error().to_string();
+  ASSERT_EQ(source->caster_pass, 1u);  // past its one pass: the Fallback's Fallback's
+  auto caster = compile_source(lit, in_folders({folder_}), source->caster_pass);
+  ASSERT_TRUE(caster) << caster.error().to_string();
+  ASSERT_TRUE(caster->module->ok()) << caster->module->diagnostics.render_all();
+  EXPECT_EQ(caster->module->reflection.fragment_entry, "f");
+  EXPECT_NE(caster->module->sources.text(caster->module->main_file).find("return 0.5"), std::string::npos);
+  auto without = compile_source(alone, in_folders({folder_}));
+  ASSERT_TRUE(without) << without.error().to_string();
+  EXPECT_FALSE(without->caster_pass);
 }
 
 }  // namespace

@@ -35,6 +35,7 @@ struct SourceFacts {
   std::vector<shaderlab::Property> properties;  // a .shader's (material_source.h)
   std::vector<size_t> drawn_passes;  // a .shader's (material_source.h); empty for an .hlsl
   std::vector<size_t> additive_passes;  // a .shader's ForwardAdd passes (material_source.h)
+  std::optional<size_t> caster_pass;    // a .shader's ShadowCaster pass (material_source.h)
   std::optional<size_t> pass;        // the .shader's pass read (the first drawn, unless asked for another)
 };
 
@@ -59,6 +60,7 @@ class SourceReader {
     facts.path = *path;
     facts.drawn_passes = source->drawn_passes;
     facts.additive_passes = source->additive_passes;
+    facts.caster_pass = source->caster_pass;
     if (!source->drawn_passes.empty()) facts.pass = source->pass;
     facts.notes = std::move(source->notes);
     // The source's own warnings each; those of the files it includes (Unity's own, often) counted.
@@ -142,6 +144,12 @@ void add_global_keyword(const std::string& keyword, const std::vector<hlsl::Keyw
 // `note` once: every instance of a material would say it again.
 void add_left_out(std::vector<std::string>& left_out, const std::string& note) {
   if (std::find(left_out.begin(), left_out.end(), note) == left_out.end()) left_out.push_back(note);
+}
+
+bool declares(const std::vector<hlsl::KeywordSet>& sets, const std::string& keyword) {
+  return std::any_of(sets.begin(), sets.end(), [&](const hlsl::KeywordSet& set) {
+    return std::find(set.keywords.begin(), set.keywords.end(), keyword) != set.keywords.end();
+  });
 }
 
 size_t add_variant(Plan& plan, VariantRequest request) {
@@ -267,22 +275,56 @@ Result<Plan> plan_scene(const Scene& scene, const ShaderSearchPath& shaders) {
   plan.instances = expand_instances(scene);
   const ForwardLights lights = forward_lights(scene);
   for (const std::string& note : lights.left_out) plan.left_out.push_back(note);
+  // Shadows: the main light's (only a directional light casts so far; the scene refuses others').
+  const bool casting = lights.main && scene.lights[*lights.main].shadows != Light::Shadows::None;
+  for (size_t i = 0; i < scene.lights.size(); ++i)
+    if (scene.lights[i].shadows != Light::Shadows::None && lights.main != i)
+      plan.left_out.push_back("light " + std::to_string(i + 1) + "'s shadows: not rendered: only the main light casts "
+                              "shadows so far");
   std::map<std::string, SourceFacts> materials;
+  // A .shader's passes are read each once (keyword sets and render state are a pass's own).
+  auto material_facts = [&](const std::string& material, std::optional<size_t> pass) -> Result<const SourceFacts*> {
+    const std::string key = material + (pass ? "\n" + std::to_string(*pass) : "");
+    auto known = materials.find(key);
+    if (known == materials.end()) {
+      auto facts = reader.read(material, {}, false, {}, pass);
+      if (!facts) return fail(facts.error());
+      known = materials.emplace(key, std::move(*facts)).first;
+    }
+    return &known->second;
+  };
+  // A shadow map only where a pass drawn receives it (declares SHADOWS_SCREEN) and something casts.
+  bool receivers = false, casters = false;
+  if (casting) {
+    for (const ObjectInstance& instance : plan.instances) {
+      auto first = material_facts(instance.material, std::nullopt);
+      if (!first) return fail(first.error());
+      casters = casters || (*first)->caster_pass.has_value();
+      std::vector<size_t> drawn = (*first)->drawn_passes;
+      for (size_t pass : drawn) {
+        auto facts = material_facts(instance.material, pass);
+        if (!facts) return fail(facts.error());
+        receivers = receivers || declares((*facts)->keyword_sets, "SHADOWS_SCREEN");
+      }
+    }
+    if (!receivers || !casters)
+      plan.left_out.push_back("light " + std::to_string(*lights.main + 1) + "'s shadows: no shadow map: " +
+                              (!receivers ? "no pass drawn receives them (none declares SHADOWS_SCREEN)"
+                                          : "no object casts (no ShadowCaster pass, nor its Fallback's)"));
+    else if (scene.unity_platform != shaderlab::UnityPlatform::GLCore)
+      return fail("light " + std::to_string(*lights.main + 1) + "'s shadows: a scene of the Unity platform " +
+                  std::string(shaderlab::renderer_name(scene.unity_platform)) +
+                  " draws no shadow map yet (its reversed depth and flipped targets are not in the shadow pass); "
+                  "use [unity] platform = \"glcore\" or shadows = \"none\"");
+    else
+      plan.shadow_light = lights.main;
+  }
+  const bool shadowed = plan.shadow_light.has_value();
   std::vector<ShaderNames> variant_names;  // per variant of the scene pass
   ContractProblems contract;
   std::map<size_t, std::map<std::string, TextureRef>> object_defaults;  // by object index
   for (const ObjectInstance& instance : plan.instances) {
-    // A .shader's passes are read each once (keyword sets and render state are a pass's own).
-    auto pass_facts = [&](std::optional<size_t> pass) -> Result<const SourceFacts*> {
-      const std::string key = instance.material + (pass ? "\n" + std::to_string(*pass) : "");
-      auto known = materials.find(key);
-      if (known == materials.end()) {
-        auto facts = reader.read(instance.material, {}, false, {}, pass);
-        if (!facts) return fail(facts.error());
-        known = materials.emplace(key, std::move(*facts)).first;
-      }
-      return &known->second;
-    };
+    auto pass_facts = [&](std::optional<size_t> pass) { return material_facts(instance.material, pass); };
     auto first = pass_facts(std::nullopt);
     if (!first) return fail(first.error());
     const SourceFacts& material = **first;
@@ -291,18 +333,29 @@ Result<Plan> plan_scene(const Scene& scene, const ShaderSearchPath& shaders) {
     std::optional<ShaderNames> object_names;  // every drawn pass's, merged, for the object's check
     // An .hlsl draws once; a .shader each pass the forward renderer draws, then each ForwardAdd
     // pass once for each pixel light besides the main one.
-    std::vector<std::pair<std::optional<size_t>, std::optional<size_t>>> passes(1);  // (pass, light)
+    struct PassToDraw {
+      std::optional<size_t> pass;   // none: an .hlsl's one program
+      std::optional<size_t> light;  // an additive pass's light
+      bool caster = false;          // drawn into the main light's shadow map, not the scene
+    };
+    std::vector<PassToDraw> passes(1);
     if (!material.drawn_passes.empty()) {
       passes.clear();
-      for (size_t pass : material.drawn_passes) passes.emplace_back(pass, std::nullopt);
+      for (size_t pass : material.drawn_passes) passes.push_back({pass, std::nullopt, false});
     }
     for (size_t pass : material.additive_passes) {
-      for (size_t light : lights.pixel) passes.emplace_back(pass, light);
+      for (size_t light : lights.pixel) passes.push_back({pass, light, false});
       if (lights.pixel.empty())
         add_left_out(plan.left_out, "'" + instance.material + "' pass " + std::to_string(pass) +
                                " (ForwardAdd): not drawn: the scene has no light besides its main directional one");
     }
-    for (const auto& [pass, light] : passes) {
+    if (material.caster_pass) {
+      if (shadowed) passes.push_back({material.caster_pass, std::nullopt, true});
+      else
+        add_left_out(plan.left_out, "'" + instance.material + "' pass " + std::to_string(*material.caster_pass) +
+                                        " (ShadowCaster): not drawn: no shadow map is drawn");
+    }
+    for (const auto& [pass, light, caster] : passes) {
       auto facts_of_pass = pass == material.pass ? Result<const SourceFacts*>(&material) : pass_facts(pass);
       if (!facts_of_pass) return fail(facts_of_pass.error());
       const SourceFacts& facts = **facts_of_pass;
@@ -333,8 +386,15 @@ Result<Plan> plan_scene(const Scene& scene, const ShaderSearchPath& shaders) {
       if (scene.fog) add_global_keyword(fog_keyword(scene.fog->mode), facts.keyword_sets, asked);
       // The light a pass is drawn for chooses its variant, as Unity's forward renderer sets the
       // keywords: an additive pass's light type; ForwardBase's per-vertex lights where there are any.
-      if (light) add_global_keyword(additive_keyword(scene.lights[*light].type), facts.keyword_sets, asked);
-      else if (!lights.vertex.empty()) add_global_keyword("VERTEXLIGHT_ON", facts.keyword_sets, asked);
+      if (caster) {
+        add_global_keyword("SHADOWS_DEPTH", facts.keyword_sets, asked);  // a directional or spot light's map
+      } else if (light) {
+        add_global_keyword(additive_keyword(scene.lights[*light].type), facts.keyword_sets, asked);
+      } else {
+        if (!lights.vertex.empty()) add_global_keyword("VERTEXLIGHT_ON", facts.keyword_sets, asked);
+        // The main light's shadow, as Unity's forward base pass receives it.
+        if (shadowed) add_global_keyword("SHADOWS_SCREEN", facts.keyword_sets, asked);
+      }
       VariantRequest request{facts.path, instance.material, variant_keywords(facts.keyword_sets, asked), {}};
       request.shader_pass = pass;
       used_combinations[instance.material].insert(request.keywords);
@@ -365,7 +425,7 @@ Result<Plan> plan_scene(const Scene& scene, const ShaderSearchPath& shaders) {
         if (std::find(notes.begin(), notes.end(), note) == notes.end()) notes.push_back(note);
       }
       object_names = object_names ? merge_names(std::move(*object_names), variant_names[variant]) : variant_names[variant];
-      draws.push_back({variant, state, light});
+      draws.push_back({variant, state, light, caster});
     }
     plan.instance_draws.push_back(draws);
     // Each object once: its instances share its material, keywords and names.
@@ -373,6 +433,10 @@ Result<Plan> plan_scene(const Scene& scene, const ShaderSearchPath& shaders) {
       const SceneObject& object = scene.objects[instance.object_index];
       const size_t before = contract.notes.size();
       check_keywords(object.keywords, object.where, *object_names, "material '" + instance.material + "'", contract);
+      // The main light's shadow map is the renderer's to give where it draws one.
+      if (shadowed)
+        std::erase_if(object_names->textures,
+                      [](const ShaderNames::Texture& texture) { return texture.name == kShadowMapTexture; });
       object_defaults[instance.object_index] = check_object(object, *object_names, contract);
       for (size_t n = before; n < contract.notes.size(); ++n) plan.variant_notes[draws.front().variant].push_back(contract.notes[n]);
     }
@@ -470,6 +534,17 @@ std::string describe_plan(const Scene& scene, const Plan& plan, const std::vecto
       size_t draws = 0;  // a .shader draws an object once for each of its passes
       for (const auto& instance_draws : plan.instance_draws) draws += instance_draws.size();
       text += "    scene: " + std::to_string(draws) + " draws\n";
+      if (plan.shadow_light) {
+        const Light& caster = scene.lights[*plan.shadow_light];
+        size_t casting = 0;
+        for (const auto& instance_draws : plan.instance_draws)
+          casting += size_t(std::count_if(instance_draws.begin(), instance_draws.end(),
+                                          [](const Plan::InstanceDraw& draw) { return draw.caster; }));
+        text += "      shadow map of light " + std::to_string(*plan.shadow_light + 1) + ": " +
+                std::to_string(caster.shadow_resolution) + "x" + std::to_string(caster.shadow_resolution) + ", " +
+                (caster.shadows == Light::Shadows::Soft ? "soft" : "hard") + ", " + std::to_string(casting) +
+                " casters drawn first (ShadowCaster passes), the rest of these draws receiving it\n";
+      }
       // The lights as the forward renderer divides them, and each draw an additive light adds.
       const ForwardLights lights = forward_lights(scene);
       const auto light_name = [&](size_t i) {

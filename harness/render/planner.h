@@ -65,8 +65,13 @@ struct Plan {
     // A ForwardAdd pass's light (index into Scene::lights), whose values replace the main
     // light's for this draw (forward_lights.h).
     std::optional<size_t> light;
+    // A ShadowCaster pass, drawn into the shadow map of `Plan::shadow_light`, not the scene.
+    bool caster = false;
   };
   std::vector<std::vector<InstanceDraw>> instance_draws;
+  // The light whose shadow map the scene pass draws first (the main light, where it casts
+  // shadows, something casts and a drawn pass receives them).
+  std::optional<size_t> shadow_light;
   // Per instance: its render queue (a .shader's SubShader Queue; Geometry otherwise).
   std::vector<int> instance_queue;
   // The instances in the order the scene pass draws them, as Unity's forward renderer orders

@@ -382,6 +382,74 @@ TEST(Planner, AForwardAddPassIsDrawnOnceForEachFurtherLightWithItsKeyword) {
   fs::remove_all(user);
 }
 
+// A shadow map only where the scene calls for one: the main light casts, a drawn pass receives
+// (declares SHADOWS_SCREEN, then compiled with it) and something casts (its ShadowCaster drawn
+// into the map with SHADOWS_DEPTH, not into the scene). Otherwise no caster is drawn and --plan
+// says why.
+TEST(Planner, AShadowMapIsDrawnOnlyWhereALightCastsAndSomethingReceivesIt) {
+  const fs::path user = fs::temp_directory_path() / "xshade_planner_shadows";
+  fs::remove_all(user);
+  fs::create_directories(user);
+  const std::string program = R"(HLSLINCLUDE
+    float4 vert(float3 p : POSITION) : SV_Position { return float4(p, 1); }
+    float4 frag() : SV_Target { return 1; }
+    ENDHLSL)";
+  std::ofstream(user / "receiver.shader") << "Shader \"Receiver\" { SubShader { " << program << R"(
+    Pass { Tags { "LightMode" = "ForwardBase" } HLSLPROGRAM
+      #pragma vertex vert
+      #pragma fragment frag
+      #pragma multi_compile _ SHADOWS_SCREEN
+      ENDHLSL }
+    Pass { Tags { "LightMode" = "ShadowCaster" } HLSLPROGRAM
+      #pragma vertex vert
+      #pragma fragment frag
+      #pragma multi_compile SHADOWS_CUBE SHADOWS_DEPTH
+      ENDHLSL } } })";
+  std::ofstream(user / "unlit.shader") << "Shader \"Unlit\" { SubShader { " << program << R"(
+    Pass { HLSLPROGRAM
+      #pragma vertex vert
+      #pragma fragment frag
+      ENDHLSL } } })";
+  const auto object = [](const std::string& material) {
+    return "[[object]]\nmesh = \"sphere\"\nmaterial = \"" + material + "\"\n";
+  };
+  const std::string sun = "[[light]]\ntype = \"directional\"\ndirection = [0, 1, 0]\n";
+  const auto casters = [](const Plan& plan) {
+    size_t count = 0;
+    for (const auto& draws : plan.instance_draws)
+      count += size_t(std::count_if(draws.begin(), draws.end(), [](const Plan::InstanceDraw& draw) { return draw.caster; }));
+    return count;
+  };
+
+  auto shadowed = plan_scene(scene(sun + "shadows = \"hard\"\n" + object("receiver.shader")), ShaderSearchPath({user, kLibrary}));
+  ASSERT_TRUE(shadowed) << shadowed.error().to_string();
+  EXPECT_EQ(shadowed->shadow_light, 0u);
+  ASSERT_EQ(shadowed->instance_draws[0].size(), 2u);
+  EXPECT_EQ(shadowed->variants[shadowed->instance_draws[0][0].variant].keywords, (std::vector<std::string>{"SHADOWS_SCREEN"}));
+  EXPECT_TRUE(shadowed->instance_draws[0][1].caster);
+  EXPECT_EQ(shadowed->variants[shadowed->instance_draws[0][1].variant].keywords, (std::vector<std::string>{"SHADOWS_DEPTH"}));
+
+  auto unlit = plan_scene(scene(sun + "shadows = \"soft\"\n" + object("unlit.shader") + object("receiver.shader") +
+                                "position = [0, -2, 0]\n"),
+                          ShaderSearchPath({user, kLibrary}));
+  ASSERT_TRUE(unlit) << unlit.error().to_string();
+  EXPECT_EQ(casters(*unlit), 1u);  // the receiver casts too; the unlit object has nothing to cast with
+
+  auto without = plan_scene(scene(sun + object("receiver.shader")), ShaderSearchPath({user, kLibrary}));
+  ASSERT_TRUE(without) << without.error().to_string();
+  EXPECT_FALSE(without->shadow_light);
+  EXPECT_EQ(casters(*without), 0u);
+  EXPECT_TRUE(without->variants[without->instance_draws[0][0].variant].keywords.empty());
+  EXPECT_TRUE(has_line(without->left_out, "'receiver.shader' pass 1 (ShadowCaster): not drawn: no shadow map is drawn"));
+
+  auto unreceived = plan_scene(scene(sun + "shadows = \"hard\"\n" + object("unlit.shader")), ShaderSearchPath({user, kLibrary}));
+  ASSERT_TRUE(unreceived) << unreceived.error().to_string();
+  EXPECT_FALSE(unreceived->shadow_light);
+  EXPECT_TRUE(has_line(unreceived->left_out,
+                       "light 1's shadows: no shadow map: no pass drawn receives them (none declares SHADOWS_SCREEN)"));
+  fs::remove_all(user);
+}
+
 // A .shader post effect blits the passes `passes` names, in that order, each compiled whole (its
 // own vertex program); each reads the step before as _MainTex unless its sources say otherwise.
 TEST(Planner, AShaderPostEffectBlitsItsPassesInTheOrderTheSceneGives) {

@@ -13,6 +13,7 @@
 #include "harness/render/forward_lights.h"
 #include "harness/render/material_source.h"
 #include "harness/render/renderer_inputs.h"
+#include "harness/render/shadow_map.h"
 #include "harness/render/unity_render_state.h"
 
 namespace xshade::harness {
@@ -336,6 +337,14 @@ class SceneRenderer {
     const SamplerDesc clamped{Filter::Linear, AddressMode::ClampToEdge};
     // _LightTexture0 is a spot's cookie, else (a point light's) the falloff; _LightTextureB0 a
     // spot's falloff.
+    // The main light's shadow map, where the plan draws one: its depth, compared (LEqual: lit where
+    // the pixel is no farther from the light than the nearest caster), one comparison for hard
+    // shadows, the hardware's 2x2 filtered comparison for soft ones.
+    if (name == kShadowMapTexture && shadow_target_) {
+      const bool soft = scene_.lights[*plan_.shadow_light].shadows == Light::Shadows::Soft;
+      return TextureSource::depth_of(*shadow_target_,
+                                     SamplerDesc{soft ? Filter::Linear : Filter::Nearest, AddressMode::ClampToEdge, CompareOp::LessEqual});
+    }
     if (name == "_LightTexture0" || name == "_LightTextureB0") {
       const bool cookie = name == "_LightTexture0" && light == LightType::Spot;
       std::optional<TextureHandle>& made = cookie ? spot_cookie_ : light_falloff_;
@@ -363,51 +372,109 @@ class SceneRenderer {
   Values frame_values() const { return frame_inputs(scene_, environment_.sh); }
 
   Result<void> scene_pass() {
+    Values values = frame_values();
+    if (plan_.shadow_light) {
+      if (auto drawn = shadow_pass(values); !drawn) return fail(drawn.error());
+    }
     // Depth cleared to the far plane: 0 where the platform reverses it.
     RenderPass pass{scene_target_, scene_.clear_color, direct3d_ ? 0.0f : 1.0f, {}};
     pass.row_origin = row_origin_;
-    Values values = frame_values();
     for (size_t i : plan_.draw_order) {
-      const ObjectInstance& instance = plan_.instances[i];
-      const std::string where = "object '" + instance.object_name + "'" +
-                                (instance.in_grid ? " cell " + std::to_string(instance.row) + "," + std::to_string(instance.col) : "");
-      add_object_inputs(instance.model, values);
-      auto mesh_handle = mesh(instance.mesh);
-      if (!mesh_handle) return fail(in_context(where, mesh_handle.error()));
       // An object's passes, in order, one after the other (Unity's forward renderer).
       for (const Plan::InstanceDraw& instance_draw : plan_.instance_draws[i]) {
-        const size_t variant = instance_draw.variant;
-        // A ForwardAdd pass reads its own light where the others read the main one.
-        const Light& light = instance_draw.light ? scene_.lights[*instance_draw.light] : main_light_;
-        add_light_inputs(light, values);
-        auto handle = program(variant);
-        if (!handle) return fail(handle.error());
-        DrawItem draw{*handle, *mesh_handle, {}, {}, direct3d_ ? on_direct3d_render_target(instance_draw.state) : instance_draw.state};
-        for (const std::string& name : variants_[variant].interface.textures) {
-          auto engine = engine_texture(name, light.type);
-          if (!engine) return fail(in_context(where + ": texture '" + name + "'", engine.error()));
-          if (*engine) {
-            draw.textures.push_back({name, **engine});
-            continue;
-          }
-          // The planner gave the instance every texture its material samples (the scene's or the
-          // shader's declared default), or refused the scene.
-          auto given = instance.textures.find(name);
-          if (given == instance.textures.end())
-            return fail(ErrorKind::Internal, where + ": texture '" + name + "' has no source; the plan should have refused the scene");
-          const TextureShape shape = declared_shape(variants_[variant], name);
-          auto made = texture(given->second, shape);
-          if (!made) return fail(in_context(where + ": texture '" + name + "'", made.error()));
-          values[name + "_TexelSize"] = texel_size(made->size);
-          draw.textures.push_back({name, TextureSource::texture(made->handle, scene_sampler(shape, false))});
-        }
-        auto uniforms = uniform_bindings(variants_[variant], UniformValues(values, instance.properties, variants_[variant].interface), where);
-        if (!uniforms) return fail(uniforms.error());
-        draw.uniforms = std::move(*uniforms);
-        pass.draws.push_back(std::move(draw));
+        if (instance_draw.caster) continue;
+        auto draw = draw_item(plan_.instances[i], instance_draw, values);
+        if (!draw) return fail(draw.error());
+        pass.draws.push_back(std::move(*draw));
       }
     }
     return timed("scene", pass);
+  }
+
+  // An instance's draw of one of its passes, with `values` as its uniforms read them (the
+  // instance's model and the light it is drawn for are set in them here).
+  Result<DrawItem> draw_item(const ObjectInstance& instance, const Plan::InstanceDraw& instance_draw, Values& values) {
+    const std::string where = "object '" + instance.object_name + "'" +
+                              (instance.in_grid ? " cell " + std::to_string(instance.row) + "," + std::to_string(instance.col) : "");
+    add_object_inputs(instance.model, values);
+    auto mesh_handle = mesh(instance.mesh);
+    if (!mesh_handle) return fail(in_context(where, mesh_handle.error()));
+    const size_t variant = instance_draw.variant;
+    // A ForwardAdd pass reads its own light where the others read the main one.
+    const Light& light = instance_draw.light ? scene_.lights[*instance_draw.light] : main_light_;
+    add_light_inputs(light, values);
+    auto handle = program(variant);
+    if (!handle) return fail(handle.error());
+    DrawItem draw{*handle, *mesh_handle, {}, {}, direct3d_ ? on_direct3d_render_target(instance_draw.state) : instance_draw.state};
+    for (const std::string& name : variants_[variant].interface.textures) {
+      auto engine = engine_texture(name, light.type);
+      if (!engine) return fail(in_context(where + ": texture '" + name + "'", engine.error()));
+      if (*engine) {
+        draw.textures.push_back({name, **engine});
+        continue;
+      }
+      // The planner gave the instance every texture its material samples (the scene's or the
+      // shader's declared default), or refused the scene.
+      auto given = instance.textures.find(name);
+      if (given == instance.textures.end())
+        return fail(ErrorKind::Internal, where + ": texture '" + name + "' has no source; the plan should have refused the scene");
+      const TextureShape shape = declared_shape(variants_[variant], name);
+      auto made = texture(given->second, shape);
+      if (!made) return fail(in_context(where + ": texture '" + name + "'", made.error()));
+      values[name + "_TexelSize"] = texel_size(made->size);
+      draw.textures.push_back({name, TextureSource::texture(made->handle, scene_sampler(shape, false))});
+    }
+    auto uniforms = uniform_bindings(variants_[variant], UniformValues(values, instance.properties, variants_[variant].interface), where);
+    if (!uniforms) return fail(uniforms.error());
+    draw.uniforms = std::move(*uniforms);
+    return draw;
+  }
+
+  // The main light's shadow map: every caster's ShadowCaster pass drawn from the light, with an
+  // orthographic projection fitted to everything the scene draws; then what the receiving passes
+  // read of it set in `values` (shadow_map.h).
+  Result<void> shadow_pass(Values& values) {
+    const Light& light = scene_.lights[*plan_.shadow_light];
+    std::vector<std::pair<glm::vec3, glm::vec3>> boxes;  // each instance's world-space box
+    for (const ObjectInstance& instance : plan_.instances) {
+      auto box = mesh_box(instance.mesh);
+      if (!box) return fail(box.error());
+      boxes.push_back(world_box(*box, instance.model));
+    }
+    const ShadowView view = directional_shadow_view(light, boxes);
+    if (!shadow_target_) {
+      auto target = resources_.create_target({light.shadow_resolution, light.shadow_resolution, true, false, false});
+      if (!target) return fail(from_backend(target.error()));
+      shadow_target_ = *target;
+    }
+    Values caster_values = values;
+    add_shadow_caster_inputs(light, view, caster_values);
+    RenderPass pass{*shadow_target_, glm::vec4(1.0f), 1.0f, {}};
+    pass.row_origin = row_origin_;
+    for (size_t i = 0; i < plan_.instances.size(); ++i)
+      for (const Plan::InstanceDraw& instance_draw : plan_.instance_draws[i]) {
+        if (!instance_draw.caster) continue;
+        auto draw = draw_item(plan_.instances[i], instance_draw, caster_values);
+        if (!draw) return fail(draw.error());
+        pass.draws.push_back(std::move(*draw));
+      }
+    add_shadow_receiver_inputs(light, view, values);
+    return timed("shadow", pass);
+  }
+
+  // A mesh's object-space bounds, read once.
+  Result<std::pair<glm::vec3, glm::vec3>> mesh_box(const MeshRef& ref) {
+    for (const auto& [known, box] : mesh_boxes_)
+      if (known == ref) return box;
+    auto data = mesh_data(ref);
+    if (!data) return fail(at_scene_value(data.error(), ref.where));
+    glm::vec3 low(std::numeric_limits<float>::max()), high(-std::numeric_limits<float>::max());
+    for (const Vertex& vertex : data->vertices) {
+      low = glm::min(low, vertex.position);
+      high = glm::max(high, vertex.position);
+    }
+    mesh_boxes_.emplace_back(ref, std::make_pair(low, high));
+    return mesh_boxes_.back().second;
   }
 
   Result<void> post_pass(size_t index) {
@@ -538,6 +605,8 @@ class SceneRenderer {
   TextureHandle environment_handle_;
   TextureHandle environment_cube_;
   std::optional<TextureHandle> light_falloff_, spot_cookie_;  // made where a draw reads them
+  std::optional<TargetHandle> shadow_target_;                 // the main light's shadow map
+  std::vector<std::pair<MeshRef, std::pair<glm::vec3, glm::vec3>>> mesh_boxes_;
   // What the passes that are not an additive light's read as the light: the main light, or none.
   Light main_light_ = main_light(scene_).value_or(Light{LightType::Directional, {0, 1, 0}, {}, 0.0f, 0.0f, glm::vec3(0.0f), 0.0f});
   MeshHandle triangle_;

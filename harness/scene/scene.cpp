@@ -1,3 +1,6 @@
+// Why this file is long: it reads every table of the scene format (docs/scenes.md), one reader
+// method per table, each checking its keys where they are written; split, each table would reach
+// into the same reporting state.
 #include "harness/scene/scene.h"
 
 #include <algorithm>
@@ -258,7 +261,8 @@ class SceneReader : SceneValueReader {
   }
 
   void read_light(const toml::table& table, const std::string& path, Scene& scene) {
-    check_keys(table, path, {"type", "direction", "position", "range", "spot_angle", "color", "intensity"});
+    check_keys(table, path, {"type", "direction", "position", "range", "spot_angle", "color", "intensity", "shadows",
+                             "shadow_strength", "shadow_bias", "shadow_normal_bias", "shadow_resolution"});
     Light light;
     bool ok = true;
     const char* const types = "\"directional\", \"point\" or \"spot\"";
@@ -312,24 +316,60 @@ class SceneReader : SceneValueReader {
       missing(table, path + ".position", "an array of 3 numbers");
       ok = false;
     }
-    if (const toml::node* node = positioned ? table.get("range") : nullptr) {
-      if (auto value = float_value(*node, path + ".range", "a number > 0", [](double v) { return v > 0.0; })) light.range = *value;
-      else ok = false;
-    }
-    if (const toml::node* node = light.type == LightType::Spot ? table.get("spot_angle") : nullptr) {
-      if (auto value = float_value(*node, path + ".spot_angle", "a number of degrees in (0, 180)",
-                                   [](double v) { return v > 0.0 && v < 180.0; }))
-        light.spot_angle = *value;
-      else
-        ok = false;
-    }
+    if (positioned) ok &= float_key(table, "range", path, "a number > 0", [](double v) { return v > 0.0; }, light.range);
+    if (light.type == LightType::Spot)
+      ok &= float_key(table, "spot_angle", path, "a number of degrees in (0, 180)", [](double v) { return v > 0.0 && v < 180.0; },
+                   light.spot_angle);
     if (const toml::node* node = table.get("color")) {
       if (auto value = colour(*node, path + ".color")) light.color = *value;
     }
-    if (const toml::node* node = table.get("intensity")) {
-      if (auto value = float_value(*node, path + ".intensity", "a number >= 0", non_negative)) light.intensity = *value;
-    }
+    float_key(table, "intensity", path, "a number >= 0", non_negative, light.intensity);
+    read_shadows(table, path, light, ok);
     if (ok) scene.lights.push_back(light);
+  }
+
+  void read_shadows(const toml::table& table, const std::string& path, Light& light, bool& ok) {
+    if (const toml::node* node = table.get("shadows")) {
+      auto* mode = node->as_string();
+      if (mode && mode->get() == "none") light.shadows = Light::Shadows::None;
+      else if (mode && mode->get() == "hard") light.shadows = Light::Shadows::Hard;
+      else if (mode && mode->get() == "soft") light.shadows = Light::Shadows::Soft;
+      else {
+        expected(*node, path + ".shadows", "\"none\", \"hard\" or \"soft\"");
+        ok = false;
+      }
+      if (ok && light.shadows != Light::Shadows::None && light.type != LightType::Directional) {
+        report(node->source(), fmt::format("{}.shadows: a {} light's shadows are not rendered yet (a point light's are a cube "
+                                           "map, a spot's its own shadow map); only a directional light casts shadows so far",
+                                           path, light.type == LightType::Point ? "point" : "spot"));
+        ok = false;
+      }
+    }
+    ok &= float_key(table, "shadow_strength", path, "a number in [0, 1]", [](double v) { return v >= 0.0 && v <= 1.0; },
+                 light.shadow_strength);
+    const auto bias_range = [](double v) { return v >= 0.0 && v <= 10.0; };
+    ok &= float_key(table, "shadow_bias", path, "a number of texels in [0, 10]", bias_range, light.shadow_bias);
+    ok &= float_key(table, "shadow_normal_bias", path, "a number of texels in [0, 10]", bias_range, light.shadow_normal_bias);
+    if (const toml::node* node = table.get("shadow_resolution")) {
+      const auto* size = node->as_integer();
+      const int64_t n = size ? size->get() : 0;
+      if (n >= 64 && n <= 4096 && (n & (n - 1)) == 0) light.shadow_resolution = static_cast<uint32_t>(n);
+      else {
+        expected(*node, path + ".shadow_resolution", "a power of two from 64 to 4096");
+        ok = false;
+      }
+    }
+  }
+
+  // `table.key`, where given, into `out` when `valid`; false where it is given and not valid.
+  template <class Valid>
+  bool float_key(const toml::table& table, const char* key, const std::string& path, const char* expectation, const Valid& valid,
+              float& out) {
+    const toml::node* node = table.get(key);
+    if (!node) return true;
+    auto value = float_value(*node, path + "." + key, expectation, valid);
+    if (value) out = *value;
+    return value.has_value();
   }
 
   void read_fog(const toml::table& table, FogSpec& fog) {

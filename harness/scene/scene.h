@@ -55,6 +55,16 @@ struct Light {
   float spot_angle = 30.0f;               // Spot: the cone's full angle, in degrees, in (0, 180)
   glm::vec3 color{1.0f};
   float intensity = 1.0f;
+  // Shadows, as Unity's Light has them (the main directional light's so far): none, hard (one
+  // comparison per pixel) or soft (the comparison filtered over 2x2 texels); strength 0..1;
+  // the depth and normal biases in shadow-map texels (xshade's unit: Unity's internal scale of
+  // its Bias and Normal Bias is not published; one texel of each keeps a lit surface facing the
+  // light free of acne at any angle the normal offset leaves); the shadow map's size.
+  enum class Shadows { None, Hard, Soft } shadows = Shadows::None;
+  float shadow_strength = 1.0f;
+  float shadow_bias = 1.0f;
+  float shadow_normal_bias = 1.0f;
+  uint32_t shadow_resolution = 1024;
   // How much it lights: Unity ranks pixel lights by it (the colour's luminance times the
   // intensity).
   float brightness() const { return (0.2126f * color.r + 0.7152f * color.g + 0.0722f * color.b) * intensity; }
