@@ -541,8 +541,8 @@ std::string describe_plan(const Scene& scene, const Plan& plan, const std::vecto
           casting += size_t(std::count_if(instance_draws.begin(), instance_draws.end(),
                                           [](const Plan::InstanceDraw& draw) { return draw.caster; }));
         text += "      shadow map of light " + std::to_string(*plan.shadow_light + 1) + ": " +
-                std::to_string(caster.shadow_resolution) + "x" + std::to_string(caster.shadow_resolution) + ", " +
-                (caster.shadows == Light::Shadows::Soft ? "soft" : "hard") + ", " + std::to_string(casting) +
+                std::to_string(caster.shadow_resolution) + "x" + std::to_string(caster.shadow_resolution) + ", hard, " +
+                std::to_string(casting) +
                 " casters drawn first (ShadowCaster passes), the rest of these draws receiving it\n";
       }
       // The lights as the forward renderer divides them, and each draw an additive light adds.

@@ -429,7 +429,7 @@ TEST(Planner, AShadowMapIsDrawnOnlyWhereALightCastsAndSomethingReceivesIt) {
   EXPECT_TRUE(shadowed->instance_draws[0][1].caster);
   EXPECT_EQ(shadowed->variants[shadowed->instance_draws[0][1].variant].keywords, (std::vector<std::string>{"SHADOWS_DEPTH"}));
 
-  auto unlit = plan_scene(scene(sun + "shadows = \"soft\"\n" + object("unlit.shader") + object("receiver.shader") +
+  auto unlit = plan_scene(scene(sun + "shadows = \"hard\"\n" + object("unlit.shader") + object("receiver.shader") +
                                 "position = [0, -2, 0]\n"),
                           ShaderSearchPath({user, kLibrary}));
   ASSERT_TRUE(unlit) << unlit.error().to_string();

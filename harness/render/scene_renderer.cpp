@@ -338,13 +338,9 @@ class SceneRenderer {
     // _LightTexture0 is a spot's cookie, else (a point light's) the falloff; _LightTextureB0 a
     // spot's falloff.
     // The main light's shadow map, where the plan draws one: its depth, compared (LEqual: lit where
-    // the pixel is no farther from the light than the nearest caster), one comparison for hard
-    // shadows, the hardware's 2x2 filtered comparison for soft ones.
-    if (name == kShadowMapTexture && shadow_target_) {
-      const bool soft = scene_.lights[*plan_.shadow_light].shadows == Light::Shadows::Soft;
-      return TextureSource::depth_of(*shadow_target_,
-                                     SamplerDesc{soft ? Filter::Linear : Filter::Nearest, AddressMode::ClampToEdge, CompareOp::LessEqual});
-    }
+    // the pixel is no farther from the light than the nearest caster), one comparison a pixel.
+    if (name == kShadowMapTexture && shadow_target_)
+      return TextureSource::depth_of(*shadow_target_, SamplerDesc{Filter::Nearest, AddressMode::ClampToEdge, CompareOp::LessEqual});
     if (name == "_LightTexture0" || name == "_LightTextureB0") {
       const bool cookie = name == "_LightTexture0" && light == LightType::Spot;
       std::optional<TextureHandle>& made = cookie ? spot_cookie_ : light_falloff_;

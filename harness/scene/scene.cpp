@@ -338,6 +338,13 @@ class SceneReader : SceneValueReader {
         expected(*node, path + ".shadows", "\"none\", \"hard\" or \"soft\"");
         ok = false;
       }
+      if (ok && light.shadows == Light::Shadows::Soft) {
+        report(node->source(), fmt::format("{}.shadows: \"soft\" is not rendered yet: Unity filters a directional light's "
+                                           "soft shadows in its screen-space collector, which xshade replaces by reading the "
+                                           "shadow map directly, and lavapipe cannot filter a depth texture; use \"hard\"",
+                                           path));
+        ok = false;
+      }
       if (ok && light.shadows != Light::Shadows::None && light.type != LightType::Directional) {
         report(node->source(), fmt::format("{}.shadows: a {} light's shadows are not rendered yet (a point light's are a cube "
                                            "map, a spot's its own shadow map); only a directional light casts shadows so far",

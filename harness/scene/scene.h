@@ -56,7 +56,7 @@ struct Light {
   glm::vec3 color{1.0f};
   float intensity = 1.0f;
   // Shadows, as Unity's Light has them (the main directional light's so far): none, hard (one
-  // comparison per pixel) or soft (the comparison filtered over 2x2 texels); strength 0..1;
+  // comparison per pixel) or soft (refused by the reader: not rendered yet); strength 0..1;
   // the depth and normal biases in shadow-map texels (xshade's unit: Unity's internal scale of
   // its Bias and Normal Bias is not published; one texel of each keeps a lit surface facing the
   // light free of acne at any angle the normal offset leaves); the shadow map's size.
