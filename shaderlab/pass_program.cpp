@@ -8,19 +8,18 @@
 namespace xshade::shaderlab {
 namespace {
 
-// `block`'s text behind a #line to where it starts, padded to its column so that columns match too.
-void append_block(std::string& text, const ProgramBlock& block) {
-  text += "#line " + std::to_string(block.start.line) + " \"" + block.start.file + "\"\n";
-  text.append(block.start.column > 0 ? block.start.column - 1 : 0, ' ');
-  text += block.text;
-  text += '\n';
-}
-
 std::string pass_label(const Pass& pass, size_t index) {
   return std::to_string(index) + (pass.name.empty() ? "" : " (\"" + pass.name + "\")");
 }
 
 }  // namespace
+
+void append_block(std::string& text, const ProgramBlock& block, std::optional<std::string_view> body) {
+  text += "#line " + std::to_string(block.start.line) + " \"" + block.start.file + "\"\n";
+  text.append(block.start.column > 0 ? block.start.column - 1 : 0, ' ');
+  text += body ? *body : std::string_view(block.text);
+  text += '\n';
+}
 
 const SubShader* drawn_subshader(const Shader& shader, UnityPlatform platform) {
   for (const SubShader& sub : shader.subshaders) {

@@ -7,6 +7,8 @@
 #pragma once
 
 #include <filesystem>
+#include <optional>
+#include <string_view>
 #include <string>
 #include <vector>
 
@@ -44,6 +46,10 @@ Result<const Pass*> find_pass_in(const SubShader& sub, const std::string& shader
 // Unity's implicit includes are in one of `folders`, or an error that says where a user gets them:
 // xshade ships none of Unity's code.
 Result<void> find_implicit_includes(const std::vector<std::filesystem::path>& folders);
+
+// `block`'s text (or `body` in its place: the block's text rewritten, line for line) appended to
+// `text` behind a #line to where the block starts, padded to its column so that columns match too.
+void append_block(std::string& text, const ProgramBlock& block, std::optional<std::string_view> body = std::nullopt);
 
 // The text of `pass` (which has a program) in `sub`. A GLSLPROGRAM is an error at its line.
 Result<PassProgram> pass_program(const SubShader& sub, const Pass& pass);

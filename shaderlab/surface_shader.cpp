@@ -4,6 +4,8 @@
 #include <array>
 #include <cctype>
 
+#include "shaderlab/pass_program.h"
+
 namespace xshade::shaderlab {
 namespace {
 
@@ -55,14 +57,6 @@ std::string without_surface_pragma(const std::string& text) {
   auto [begin, end] = find_surface_pragma(result);
   if (begin != std::string::npos) result.insert(begin, "//");
   return result;
-}
-
-// `block`'s text behind a #line to where it starts, padded to its column.
-void append_author_block(std::string& text, const ProgramBlock& block, const std::string& body) {
-  text += "#line " + std::to_string(block.start.line) + " \"" + block.start.file + "\"\n";
-  text.append(block.start.column > 0 ? block.start.column - 1 : 0, ' ');
-  text += body;
-  text += '\n';
 }
 
 bool has_field(const std::vector<std::string>& fields, std::string_view name) {
@@ -251,8 +245,8 @@ class SurfaceGenerator {
       out += "#include \"UnityPBSLighting.cginc\"\n";
     out += "#include \"AutoLight.cginc\"\n";
     out += shape_.writes_normal ? kTangentSpaceMacros : kWorldSpaceMacros;
-    for (const ProgramBlock& block : includes_) append_author_block(out, block, block.text);
-    append_author_block(out, surface_, without_surface_pragma(surface_.text));
+    for (const ProgramBlock& block : includes_) append_block(out, block);
+    append_block(out, surface_, without_surface_pragma(surface_.text));
     out += "#line 1 \"" + surface_.start.file + " (generated)\"\n";
     declarations(out);
     vertex_function(out);
@@ -573,8 +567,8 @@ std::string surface_program_for_analysis(const ProgramBlock& surface, const std:
   // INTERNAL_DATA as the tangent-space form declares it, so that an Input that holds it shows it.
   out += "#define INTERNAL_DATA half3 internalSurfaceTtoW0; half3 internalSurfaceTtoW1; half3 internalSurfaceTtoW2;\n"
          "#define WorldReflectionVector(data,normal) data.worldRefl\n#define WorldNormalVector(data,normal) normal\n";
-  for (const ProgramBlock& block : includes) append_author_block(out, block, block.text);
-  append_author_block(out, surface, without_surface_pragma(surface.text));
+  for (const ProgramBlock& block : includes) append_block(out, block);
+  append_block(out, surface, without_surface_pragma(surface.text));
   return out;
 }
 
