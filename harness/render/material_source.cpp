@@ -222,6 +222,8 @@ Result<SourceModule> compile_source(const fs::path& path, hlsl::CompileOptions o
     if (!with_passes) return fail(with_passes.error());
     generated = std::move(*with_passes);
     sub = &generated;
+    source.notes.push_back("'" + shader->name + "': its surface program's Meta and Deferred passes, which Unity also "
+                           "generates, are not generated: the forward renderer of a still scene draws neither");
   }
   std::vector<SourcePass> passes(sub->passes.size());
   std::vector<std::pair<std::string, SourceLocation>> grabs;  // each GrabPass's texture

@@ -79,8 +79,11 @@ TEST_F(SurfaceProgram, TheGeneratedPassesCompileAndTheForwardRendererDrawsTheBas
   EXPECT_EQ(source->module->reflection.vertex_entry, "vert_surf");
   EXPECT_EQ(source->module->reflection.fragment_entry, "frag_surf");
   EXPECT_EQ(source->drawn_passes, (std::vector<size_t>{0}));
-  // The additive pass is drawn once for each further light.
+  // The additive pass is drawn once for each further light; Meta and Deferred are not generated.
   EXPECT_EQ(source->additive_passes, (std::vector<size_t>{1}));
+  EXPECT_TRUE(std::any_of(source->notes.begin(), source->notes.end(), [](const std::string& note) {
+    return note.find("Meta and Deferred passes, which Unity also generates, are not generated") != std::string::npos;
+  }));
   // The additive pass compiles too.
   auto add = compile_source(write("toon_add.shader", kToon), options_, 1);
   ASSERT_TRUE(add) << add.error().to_string();
