@@ -25,8 +25,9 @@ std::vector<Column> columns_of(const SuiteRun& run) {
   for (Precision precision : {Precision::Float, Precision::Half})
     for (const auto& [lane, driver] : run.drivers) {
       const Column column{lane, precision};
-      const bool any = std::any_of(run.outcomes.begin(), run.outcomes.end(),
-                                   [&](const Outcome& o) { return o.lane == lane && o.precision == precision; });
+      const bool any = std::any_of(run.outcomes.begin(), run.outcomes.end(), [&column](const Outcome& o) {
+        return o.lane == column.lane && o.precision == column.precision;
+      });
       if (any) columns.push_back(column);
     }
   return columns;

@@ -98,9 +98,11 @@ Result<FloatImage> FullscreenProgram::run(Backend& backend, uint32_t width, uint
                   std::to_string(bytes.size()));
     draw.uniforms.push_back({buffer.slot_name, bytes});
   }
-  for (const auto& [name, source] : textures)
-    if (std::none_of(texture_slots_.begin(), texture_slots_.end(), [&](const TextureSlot& slot) { return slot.name == name; }))
-      return fail("the program reads no texture named '" + name + "'");
+  // A named entry, not a structured binding: clang before 16 lets no lambda capture one.
+  for (const auto& given : textures)
+    if (std::none_of(texture_slots_.begin(), texture_slots_.end(),
+                     [&](const TextureSlot& slot) { return slot.name == given.first; }))
+      return fail("the program reads no texture named '" + given.first + "'");
   // One default per distinct declaration, uploaded once per run.
   std::map<std::string, TextureHandle> defaults;
   for (const TextureSlot& slot : texture_slots_) {
