@@ -405,6 +405,15 @@ TEST(Planner, AShadowMapIsDrawnOnlyWhereALightCastsAndSomethingReceivesIt) {
       #pragma fragment frag
       #pragma multi_compile SHADOWS_CUBE SHADOWS_DEPTH
       ENDHLSL } } })";
+  std::ofstream(user / "caster.shader") << "Shader \"Caster\" { SubShader { " << program << R"(
+    Pass { HLSLPROGRAM
+      #pragma vertex vert
+      #pragma fragment frag
+      ENDHLSL }
+    Pass { Tags { "LightMode" = "ShadowCaster" } HLSLPROGRAM
+      #pragma vertex vert
+      #pragma fragment frag
+      ENDHLSL } } })";
   std::ofstream(user / "unlit.shader") << "Shader \"Unlit\" { SubShader { " << program << R"(
     Pass { HLSLPROGRAM
       #pragma vertex vert
@@ -442,11 +451,17 @@ TEST(Planner, AShadowMapIsDrawnOnlyWhereALightCastsAndSomethingReceivesIt) {
   EXPECT_TRUE(without->variants[without->instance_draws[0][0].variant].keywords.empty());
   EXPECT_TRUE(has_line(without->left_out, "'receiver.shader' pass 1 (ShadowCaster): not drawn: no shadow map is drawn"));
 
-  auto unreceived = plan_scene(scene(sun + "shadows = \"hard\"\n" + object("unlit.shader")), ShaderSearchPath({user, kLibrary}));
+  // Something casts, nothing receives: no map.
+  auto unreceived = plan_scene(scene(sun + "shadows = \"hard\"\n" + object("caster.shader")), ShaderSearchPath({user, kLibrary}));
   ASSERT_TRUE(unreceived) << unreceived.error().to_string();
   EXPECT_FALSE(unreceived->shadow_light);
   EXPECT_TRUE(has_line(unreceived->left_out,
                        "light 1's shadows: no shadow map: no pass drawn receives them (none declares SHADOWS_SCREEN)"));
+  EXPECT_EQ(casters(*unreceived), 0u);
+  // Something receives, nothing casts: no map either.
+  auto uncast = plan_scene(scene(sun + "shadows = \"hard\"\n" + object("unlit.shader")), ShaderSearchPath({user, kLibrary}));
+  ASSERT_TRUE(uncast) << uncast.error().to_string();
+  EXPECT_FALSE(uncast->shadow_light);
   fs::remove_all(user);
 }
 

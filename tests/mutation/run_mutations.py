@@ -177,6 +177,28 @@ MUTATIONS = [
     ('reversed depth is linearised as forward depth', 'harness/render/renderer_inputs.cpp',
      'const float zx = direct3d ? far / near - 1.0f : 1.0f - far / near, zy = direct3d ? 1.0f : far / near;',
      'const float zx = 1.0f - far / near, zy = far / near;', 'UnityPlatform|Direct3DConventions'),
+    # Surface shaders, lights and shadows.
+    ("a surface shader's legacy lighting loses its SH ambient", 'shaderlab/surface_shader.cpp',
+     'c.rgb += o.Albedo * IN.sh;', 'c.rgb += 0;', 'SurfaceShader'),
+    ('a surface shader reads uv_MainTex as the texture MainTex', 'shaderlab/surface_shader.cpp',
+     'name[prefix.size()] ==', "'_' !=", 'SurfaceShader|SurfaceProgram'),
+    ('a written o.Normal is taken for a world-space one', 'harness/render/surface_program.cpp',
+     'shape.writes_normal = function_writes(*function, output, "Normal");',
+     'shape.writes_normal = function_writes(*function, output, "Normals");',
+     'SurfaceProgram'),
+    ('the main light is the first directional one, not the brightest', 'harness/render/forward_lights.cpp',
+     '(!out.main || scene.lights[i].brightness() > scene.lights[*out.main].brightness())', '!out.main',
+     'ForwardLights'),
+    ("a point light's falloff leaves out Unity's constant", 'harness/render/forward_lights.cpp',
+     'return fade / (1.0f + 25.0f * t);', 'return fade / (1.0f + t);', 'ForwardLights'),
+    ('a ForwardAdd pass is drawn without its light', 'harness/render/planner.cpp',
+     'for (size_t light : lights.pixel) passes.push_back({pass, light, false});', '',
+     'Planner.AForwardAdd|realworld.unity_toon_point_light'),
+    ('a shadow map is drawn though nothing receives it', 'harness/render/planner.cpp',
+     'if (!receivers || !casters)', 'if (!casters)', 'Planner.AShadowMap'),
+    ("the shadow map's depth is compared the wrong way", 'harness/render/scene_renderer.cpp',
+     'AddressMode::ClampToEdge, CompareOp::LessEqual});', 'AddressMode::ClampToEdge, CompareOp::Greater});',
+     'realworld.unity_toon_shadow|realworld.unity_standard_pbr_shadow'),
 ]
 
 
