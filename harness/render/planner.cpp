@@ -275,12 +275,18 @@ Result<Plan> plan_scene(const Scene& scene, const ShaderSearchPath& shaders) {
   plan.instances = expand_instances(scene);
   const ForwardLights lights = forward_lights(scene);
   for (const std::string& note : lights.left_out) plan.left_out.push_back(note);
-  // Shadows: the main light's (only a directional light casts so far; the scene refuses others').
-  const bool casting = lights.main && scene.lights[*lights.main].shadows != Light::Shadows::None;
-  for (size_t i = 0; i < scene.lights.size(); ++i)
-    if (scene.lights[i].shadows != Light::Shadows::None && lights.main != i)
-      plan.left_out.push_back("light " + std::to_string(i + 1) + "'s shadows: not rendered: only the main light casts "
-                              "shadows so far");
+  // Shadows: the main light's, received by ForwardBase (SHADOWS_SCREEN), and each spot pixel
+  // light's, received by its ForwardAdd (SHADOWS_DEPTH); the scene refuses point lights'.
+  std::vector<std::pair<size_t, const char*>> casting;  // each light that casts, and its receivers' keyword
+  for (size_t i = 0; i < scene.lights.size(); ++i) {
+    if (scene.lights[i].shadows == Light::Shadows::None) continue;
+    const bool pixel = std::find(lights.pixel.begin(), lights.pixel.end(), i) != lights.pixel.end();
+    if (lights.main == i) casting.emplace_back(i, "SHADOWS_SCREEN");
+    else if (pixel && scene.lights[i].type == LightType::Spot) casting.emplace_back(i, "SHADOWS_DEPTH");
+    else
+      plan.left_out.push_back("light " + std::to_string(i + 1) + "'s shadows: not rendered: only the main light and "
+                              "spot pixel lights cast shadows so far");
+  }
   std::map<std::string, SourceFacts> materials;
   // A .shader's passes are read each once (keyword sets and render state are a pass's own).
   auto material_facts = [&](const std::string& material, std::optional<size_t> pass) -> Result<const SourceFacts*> {
@@ -293,33 +299,38 @@ Result<Plan> plan_scene(const Scene& scene, const ShaderSearchPath& shaders) {
     }
     return &known->second;
   };
-  // A shadow map only where a pass drawn receives it (declares SHADOWS_SCREEN) and something casts.
-  bool receivers = false, casters = false;
-  if (casting) {
+  // A shadow map only where a pass drawn for the light receives it (declares the keyword) and
+  // something casts.
+  for (const auto& [light, keyword] : casting) {
+    bool receivers = false, casters = false;
+    const bool additive = lights.main != light;
     for (const ObjectInstance& instance : plan.instances) {
       auto first = material_facts(instance.material, std::nullopt);
       if (!first) return fail(first.error());
       casters = casters || (*first)->caster_pass.has_value();
-      std::vector<size_t> drawn = (*first)->drawn_passes;
-      for (size_t pass : drawn) {
+      const std::vector<size_t> receiving = additive ? (*first)->additive_passes : (*first)->drawn_passes;
+      for (size_t pass : receiving) {
         auto facts = material_facts(instance.material, pass);
         if (!facts) return fail(facts.error());
-        receivers = receivers || declares((*facts)->keyword_sets, "SHADOWS_SCREEN");
+        receivers = receivers || declares((*facts)->keyword_sets, keyword);
       }
     }
     if (!receivers || !casters)
-      plan.left_out.push_back("light " + std::to_string(*lights.main + 1) + "'s shadows: no shadow map: " +
-                              (!receivers ? "no pass drawn receives them (none declares SHADOWS_SCREEN)"
-                                          : "no object casts (no ShadowCaster pass, nor its Fallback's)"));
+      plan.left_out.push_back("light " + std::to_string(light + 1) + "'s shadows: no shadow map: " +
+                              (!receivers ? std::string("no pass drawn for it receives them (none declares ") + keyword + ")"
+                                          : std::string("no object casts (no ShadowCaster pass, nor its Fallback's)")));
     else if (scene.unity_platform != shaderlab::UnityPlatform::GLCore)
-      return fail("light " + std::to_string(*lights.main + 1) + "'s shadows: a scene of the Unity platform " +
+      return fail("light " + std::to_string(light + 1) + "'s shadows: a scene of the Unity platform " +
                   std::string(shaderlab::renderer_name(scene.unity_platform)) +
                   " draws no shadow map yet (its reversed depth and flipped targets are not in the shadow pass); "
                   "use [unity] platform = \"glcore\" or shadows = \"none\"");
     else
-      plan.shadow_light = lights.main;
+      plan.shadow_lights.push_back(light);
   }
-  const bool shadowed = plan.shadow_light.has_value();
+  const auto has_map = [&](std::optional<size_t> light) {
+    return light && std::find(plan.shadow_lights.begin(), plan.shadow_lights.end(), *light) != plan.shadow_lights.end();
+  };
+  const bool shadowed = !plan.shadow_lights.empty();
   std::vector<ShaderNames> variant_names;  // per variant of the scene pass
   ContractProblems contract;
   std::map<size_t, std::map<std::string, TextureRef>> object_defaults;  // by object index
@@ -350,8 +361,8 @@ Result<Plan> plan_scene(const Scene& scene, const ShaderSearchPath& shaders) {
                                " (ForwardAdd): not drawn: the scene has no light besides its main directional one");
     }
     if (material.caster_pass) {
-      if (shadowed) passes.push_back({material.caster_pass, std::nullopt, true});
-      else
+      for (size_t light : plan.shadow_lights) passes.push_back({material.caster_pass, light, true});
+      if (!shadowed)
         add_left_out(plan.left_out, "'" + instance.material + "' pass " + std::to_string(*material.caster_pass) +
                                         " (ShadowCaster): not drawn: no shadow map is drawn");
     }
@@ -390,10 +401,12 @@ Result<Plan> plan_scene(const Scene& scene, const ShaderSearchPath& shaders) {
         add_global_keyword("SHADOWS_DEPTH", facts.keyword_sets, asked);  // a directional or spot light's map
       } else if (light) {
         add_global_keyword(additive_keyword(scene.lights[*light].type), facts.keyword_sets, asked);
+        // A spot light's shadow, as Unity's additive pass receives it.
+        if (has_map(light)) add_global_keyword("SHADOWS_DEPTH", facts.keyword_sets, asked);
       } else {
         if (!lights.vertex.empty()) add_global_keyword("VERTEXLIGHT_ON", facts.keyword_sets, asked);
         // The main light's shadow, as Unity's forward base pass receives it.
-        if (shadowed) add_global_keyword("SHADOWS_SCREEN", facts.keyword_sets, asked);
+        if (has_map(lights.main)) add_global_keyword("SHADOWS_SCREEN", facts.keyword_sets, asked);
       }
       VariantRequest request{facts.path, instance.material, variant_keywords(facts.keyword_sets, asked), {}};
       request.shader_pass = pass;
@@ -433,7 +446,7 @@ Result<Plan> plan_scene(const Scene& scene, const ShaderSearchPath& shaders) {
       const SceneObject& object = scene.objects[instance.object_index];
       const size_t before = contract.notes.size();
       check_keywords(object.keywords, object.where, *object_names, "material '" + instance.material + "'", contract);
-      // The main light's shadow map is the renderer's to give where it draws one.
+      // A light's shadow map is the renderer's to give where it draws one.
       if (shadowed)
         std::erase_if(object_names->textures,
                       [](const ShaderNames::Texture& texture) { return texture.name == kShadowMapTexture; });
@@ -534,15 +547,15 @@ std::string describe_plan(const Scene& scene, const Plan& plan, const std::vecto
       size_t draws = 0;  // a .shader draws an object once for each of its passes
       for (const auto& instance_draws : plan.instance_draws) draws += instance_draws.size();
       text += "    scene: " + std::to_string(draws) + " draws\n";
-      if (plan.shadow_light) {
-        const Light& caster = scene.lights[*plan.shadow_light];
-        size_t casting = 0;
+      for (size_t light : plan.shadow_lights) {
+        const Light& caster = scene.lights[light];
+        size_t casting_draws = 0;
         for (const auto& instance_draws : plan.instance_draws)
-          casting += size_t(std::count_if(instance_draws.begin(), instance_draws.end(),
-                                          [](const Plan::InstanceDraw& draw) { return draw.caster; }));
-        text += "      shadow map of light " + std::to_string(*plan.shadow_light + 1) + ": " +
-                std::to_string(caster.shadow_resolution) + "x" + std::to_string(caster.shadow_resolution) + ", hard, " +
-                std::to_string(casting) +
+          casting_draws += size_t(std::count_if(instance_draws.begin(), instance_draws.end(), [&](const Plan::InstanceDraw& draw) {
+            return draw.caster && draw.light == light;
+          }));
+        text += "      shadow map of light " + std::to_string(light + 1) + ": " + std::to_string(caster.shadow_resolution) +
+                "x" + std::to_string(caster.shadow_resolution) + ", hard, " + std::to_string(casting_draws) +
                 " casters drawn first (ShadowCaster passes), the rest of these draws receiving it\n";
       }
       // The lights as the forward renderer divides them, and each draw an additive light adds.
@@ -557,8 +570,8 @@ std::string describe_plan(const Scene& scene, const Plan& plan, const std::vecto
       for (size_t i = 0; i < plan.instance_draws.size(); ++i)
         for (const Plan::InstanceDraw& draw : plan.instance_draws[i])
           if (draw.light)
-            text += "      object '" + plan.instances[i].object_name + "': " + plan.variants[draw.variant].label() + " for " +
-                    light_name(*draw.light) + "\n";
+            text += "      object '" + plan.instances[i].object_name + "': " + plan.variants[draw.variant].label() +
+                    (draw.caster ? " into the shadow map of " : " for ") + light_name(*draw.light) + "\n";
       continue;
     }
     const hlsl::PassDeclaration& d = pass.declaration;

@@ -63,15 +63,16 @@ struct Plan {
     size_t variant = 0;
     DrawState state;
     // A ForwardAdd pass's light (index into Scene::lights), whose values replace the main
-    // light's for this draw (forward_lights.h).
+    // light's for this draw (forward_lights.h); a caster's, the light whose map it is drawn into.
     std::optional<size_t> light;
-    // A ShadowCaster pass, drawn into the shadow map of `Plan::shadow_light`, not the scene.
+    // A ShadowCaster pass, drawn into the shadow map of `light` (one of Plan::shadow_lights), not
+    // the scene.
     bool caster = false;
   };
   std::vector<std::vector<InstanceDraw>> instance_draws;
-  // The light whose shadow map the scene pass draws first (the main light, where it casts
-  // shadows, something casts and a drawn pass receives them).
-  std::optional<size_t> shadow_light;
+  // The lights whose shadow maps the scene pass draws first: the main light and each spot pixel
+  // light that casts shadows where something casts and a pass drawn for it receives them.
+  std::vector<size_t> shadow_lights;
   // Per instance: its render queue (a .shader's SubShader Queue; Geometry otherwise).
   std::vector<int> instance_queue;
   // The instances in the order the scene pass draws them, as Unity's forward renderer orders

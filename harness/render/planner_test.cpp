@@ -432,7 +432,7 @@ TEST(Planner, AShadowMapIsDrawnOnlyWhereALightCastsAndSomethingReceivesIt) {
 
   auto shadowed = plan_scene(scene(sun + "shadows = \"hard\"\n" + object("receiver.shader")), ShaderSearchPath({user, kLibrary}));
   ASSERT_TRUE(shadowed) << shadowed.error().to_string();
-  EXPECT_EQ(shadowed->shadow_light, 0u);
+  EXPECT_EQ(shadowed->shadow_lights, (std::vector<size_t>{0}));
   ASSERT_EQ(shadowed->instance_draws[0].size(), 2u);
   EXPECT_EQ(shadowed->variants[shadowed->instance_draws[0][0].variant].keywords, (std::vector<std::string>{"SHADOWS_SCREEN"}));
   EXPECT_TRUE(shadowed->instance_draws[0][1].caster);
@@ -444,9 +444,35 @@ TEST(Planner, AShadowMapIsDrawnOnlyWhereALightCastsAndSomethingReceivesIt) {
   ASSERT_TRUE(unlit) << unlit.error().to_string();
   EXPECT_EQ(casters(*unlit), 1u);  // the receiver casts too; the unlit object has nothing to cast with
 
+  // A spot pixel light's shadow: its own map, received by the ForwardAdd drawn for it.
+  std::ofstream(user / "spotlit.shader") << "Shader \"Spotlit\" { SubShader { " << program << R"(
+    Pass { Tags { "LightMode" = "ForwardBase" } HLSLPROGRAM
+      #pragma vertex vert
+      #pragma fragment frag
+      ENDHLSL }
+    Pass { Tags { "LightMode" = "ForwardAdd" } HLSLPROGRAM
+      #pragma vertex vert
+      #pragma fragment frag
+      #pragma multi_compile POINT SPOT
+      #pragma multi_compile _ SHADOWS_DEPTH
+      ENDHLSL }
+    Pass { Tags { "LightMode" = "ShadowCaster" } HLSLPROGRAM
+      #pragma vertex vert
+      #pragma fragment frag
+      ENDHLSL } } })";
+  const std::string spot = "[[light]]\ntype = \"spot\"\nposition = [0, 3, 0]\ndirection = [0, 1, 0]\nshadows = \"hard\"\n";
+  auto spotlit = plan_scene(scene(sun + spot + object("spotlit.shader")), ShaderSearchPath({user, kLibrary}));
+  ASSERT_TRUE(spotlit) << spotlit.error().to_string();
+  EXPECT_EQ(spotlit->shadow_lights, (std::vector<size_t>{1}));  // the sun casts none
+  ASSERT_EQ(spotlit->instance_draws[0].size(), 3u);
+  EXPECT_EQ(spotlit->variants[spotlit->instance_draws[0][1].variant].keywords,
+            (std::vector<std::string>{"SHADOWS_DEPTH", "SPOT"}));
+  EXPECT_TRUE(spotlit->instance_draws[0][2].caster);
+  EXPECT_EQ(spotlit->instance_draws[0][2].light, 1u);
+
   auto without = plan_scene(scene(sun + object("receiver.shader")), ShaderSearchPath({user, kLibrary}));
   ASSERT_TRUE(without) << without.error().to_string();
-  EXPECT_FALSE(without->shadow_light);
+  EXPECT_TRUE(without->shadow_lights.empty());
   EXPECT_EQ(casters(*without), 0u);
   EXPECT_TRUE(without->variants[without->instance_draws[0][0].variant].keywords.empty());
   EXPECT_TRUE(has_line(without->left_out, "'receiver.shader' pass 1 (ShadowCaster): not drawn: no shadow map is drawn"));
@@ -454,14 +480,14 @@ TEST(Planner, AShadowMapIsDrawnOnlyWhereALightCastsAndSomethingReceivesIt) {
   // Something casts, nothing receives: no map.
   auto unreceived = plan_scene(scene(sun + "shadows = \"hard\"\n" + object("caster.shader")), ShaderSearchPath({user, kLibrary}));
   ASSERT_TRUE(unreceived) << unreceived.error().to_string();
-  EXPECT_FALSE(unreceived->shadow_light);
+  EXPECT_TRUE(unreceived->shadow_lights.empty());
   EXPECT_TRUE(has_line(unreceived->left_out,
-                       "light 1's shadows: no shadow map: no pass drawn receives them (none declares SHADOWS_SCREEN)"));
+                       "light 1's shadows: no shadow map: no pass drawn for it receives them (none declares SHADOWS_SCREEN)"));
   EXPECT_EQ(casters(*unreceived), 0u);
   // Something receives, nothing casts: no map either.
   auto uncast = plan_scene(scene(sun + "shadows = \"hard\"\n" + object("unlit.shader")), ShaderSearchPath({user, kLibrary}));
   ASSERT_TRUE(uncast) << uncast.error().to_string();
-  EXPECT_FALSE(uncast->shadow_light);
+  EXPECT_TRUE(uncast->shadow_lights.empty());
   fs::remove_all(user);
 }
 

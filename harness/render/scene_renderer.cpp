@@ -329,18 +329,20 @@ class SceneRenderer {
   }
 
   // A texture the renderer itself gives a shader, by its name: the environment (xshade's
-  // equirect, Unity's reflection probes). Nothing for any other name.
-  // `light`: the type of the light the draw is lit by, whose attenuation textures it reads.
-  Result<std::optional<TextureSource>> engine_texture(const std::string& name, LightType light) {
+  // equirect, Unity's reflection probes), the main light's shadow map where the plan draws one,
+  // the attenuation textures of `light`, the type of the light the draw is lit by. Nothing for
+  // any other name.
+  Result<std::optional<TextureSource>> engine_texture(const std::string& name, LightType light,
+                                                      std::optional<TargetHandle> shadow_map = std::nullopt) {
     // Clamped: the equirect's top and bottom rows are the poles, not neighbours; a cube's
     // faces meet without wrapping either way; a light's falloff ends at its last texel.
     const SamplerDesc clamped{Filter::Linear, AddressMode::ClampToEdge};
+    // The shadow map's depth, compared (LEqual: lit where the pixel is no farther from the light
+    // than the nearest caster), one comparison a pixel.
+    if (name == kShadowMapTexture && shadow_map)
+      return TextureSource::depth_of(*shadow_map, SamplerDesc{Filter::Nearest, AddressMode::ClampToEdge, CompareOp::LessEqual});
     // _LightTexture0 is a spot's cookie, else (a point light's) the falloff; _LightTextureB0 a
     // spot's falloff.
-    // The main light's shadow map, where the plan draws one: its depth, compared (LEqual: lit where
-    // the pixel is no farther from the light than the nearest caster), one comparison a pixel.
-    if (name == kShadowMapTexture && shadow_target_)
-      return TextureSource::depth_of(*shadow_target_, SamplerDesc{Filter::Nearest, AddressMode::ClampToEdge, CompareOp::LessEqual});
     if (name == "_LightTexture0" || name == "_LightTextureB0") {
       const bool cookie = name == "_LightTexture0" && light == LightType::Spot;
       std::optional<TextureHandle>& made = cookie ? spot_cookie_ : light_falloff_;
@@ -369,9 +371,8 @@ class SceneRenderer {
 
   Result<void> scene_pass() {
     Values values = frame_values();
-    if (plan_.shadow_light) {
-      if (auto drawn = shadow_pass(values); !drawn) return fail(drawn.error());
-    }
+    for (size_t light : plan_.shadow_lights)
+      if (auto drawn = shadow_pass(light, values); !drawn) return fail(drawn.error());
     // Depth cleared to the far plane: 0 where the platform reverses it.
     RenderPass pass{scene_target_, scene_.clear_color, direct3d_ ? 0.0f : 1.0f, {}};
     pass.row_origin = row_origin_;
@@ -397,13 +398,19 @@ class SceneRenderer {
     if (!mesh_handle) return fail(in_context(where, mesh_handle.error()));
     const size_t variant = instance_draw.variant;
     // A ForwardAdd pass reads its own light where the others read the main one.
+    const std::optional<size_t> light_index = instance_draw.light ? instance_draw.light : main_light_index_;
     const Light& light = instance_draw.light ? scene_.lights[*instance_draw.light] : main_light_;
     add_light_inputs(light, values);
+    // What a receiving pass reads of its light's shadow map (a caster draws into it instead).
+    const auto map = light_index ? shadow_maps_.find(*light_index) : shadow_maps_.end();
+    const std::optional<TargetHandle> shadow_map =
+        map != shadow_maps_.end() && !instance_draw.caster ? std::optional<TargetHandle>(map->second.first) : std::nullopt;
+    if (shadow_map) add_shadow_receiver_inputs(light, map->second.second, values);
     auto handle = program(variant);
     if (!handle) return fail(handle.error());
     DrawItem draw{*handle, *mesh_handle, {}, {}, direct3d_ ? on_direct3d_render_target(instance_draw.state) : instance_draw.state};
     for (const std::string& name : variants_[variant].interface.textures) {
-      auto engine = engine_texture(name, light.type);
+      auto engine = engine_texture(name, light.type, shadow_map);
       if (!engine) return fail(in_context(where + ": texture '" + name + "'", engine.error()));
       if (*engine) {
         draw.textures.push_back({name, **engine});
@@ -426,35 +433,41 @@ class SceneRenderer {
     return draw;
   }
 
-  // The main light's shadow map: every caster's ShadowCaster pass drawn from the light, with an
-  // orthographic projection fitted to everything the scene draws; then what the receiving passes
-  // read of it set in `values` (shadow_map.h).
-  Result<void> shadow_pass(Values& values) {
-    const Light& light = scene_.lights[*plan_.shadow_light];
-    std::vector<std::pair<glm::vec3, glm::vec3>> boxes;  // each instance's world-space box
-    for (const ObjectInstance& instance : plan_.instances) {
-      auto box = mesh_box(instance.mesh);
-      if (!box) return fail(box.error());
-      boxes.push_back(world_box(*box, instance.model));
+  // A light's shadow map: every caster's ShadowCaster pass drawn from the light, a directional
+  // light's with an orthographic projection fitted to everything the scene draws, a spot's with
+  // its cone's perspective (shadow_map.h); the receiving passes read it in draw_item.
+  Result<void> shadow_pass(size_t light_index, const Values& values) {
+    const Light& light = scene_.lights[light_index];
+    ShadowView view;
+    if (light.type == LightType::Spot) {
+      view = spot_shadow_view(light);
+    } else {
+      std::vector<std::pair<glm::vec3, glm::vec3>> boxes;  // each instance's world-space box
+      for (const ObjectInstance& instance : plan_.instances) {
+        auto box = mesh_box(instance.mesh);
+        if (!box) return fail(box.error());
+        boxes.push_back(world_box(*box, instance.model));
+      }
+      view = directional_shadow_view(light, boxes);
     }
-    const ShadowView view = directional_shadow_view(light, boxes);
-    if (!shadow_target_) {
+    auto known = shadow_maps_.find(light_index);
+    if (known == shadow_maps_.end()) {
       auto target = resources_.create_target({light.shadow_resolution, light.shadow_resolution, true, false, false});
       if (!target) return fail(from_backend(target.error()));
-      shadow_target_ = *target;
+      known = shadow_maps_.emplace(light_index, std::make_pair(*target, view)).first;
     }
+    known->second.second = view;
     Values caster_values = values;
     add_shadow_caster_inputs(light, view, caster_values);
-    RenderPass pass{*shadow_target_, glm::vec4(1.0f), 1.0f, {}};
+    RenderPass pass{known->second.first, glm::vec4(1.0f), 1.0f, {}};
     pass.row_origin = row_origin_;
     for (size_t i = 0; i < plan_.instances.size(); ++i)
       for (const Plan::InstanceDraw& instance_draw : plan_.instance_draws[i]) {
-        if (!instance_draw.caster) continue;
+        if (!instance_draw.caster || instance_draw.light != light_index) continue;
         auto draw = draw_item(plan_.instances[i], instance_draw, caster_values);
         if (!draw) return fail(draw.error());
         pass.draws.push_back(std::move(*draw));
       }
-    add_shadow_receiver_inputs(light, view, values);
     return timed("shadow", pass);
   }
 
@@ -601,10 +614,12 @@ class SceneRenderer {
   TextureHandle environment_handle_;
   TextureHandle environment_cube_;
   std::optional<TextureHandle> light_falloff_, spot_cookie_;  // made where a draw reads them
-  std::optional<TargetHandle> shadow_target_;                 // the main light's shadow map
+  // Each casting light's shadow map and the view it was drawn from, by light.
+  std::map<size_t, std::pair<TargetHandle, ShadowView>> shadow_maps_;
   std::vector<std::pair<MeshRef, std::pair<glm::vec3, glm::vec3>>> mesh_boxes_;
   // What the passes that are not an additive light's read as the light: the main light, or none.
   Light main_light_ = main_light(scene_).value_or(Light{LightType::Directional, {0, 1, 0}, {}, 0.0f, 0.0f, glm::vec3(0.0f), 0.0f});
+  std::optional<size_t> main_light_index_ = forward_lights(scene_).main;
   MeshHandle triangle_;
   std::vector<PassTiming> timings_;
   std::vector<std::pair<std::string, FloatImage>> pass_images_;

@@ -47,6 +47,19 @@ ShadowView directional_shadow_view(const Light& light, const std::vector<std::pa
   return out;
 }
 
+ShadowView spot_shadow_view(const Light& light) {
+  ShadowView out;
+  const glm::vec3 beam = -light.direction;
+  const glm::vec3 up = std::abs(beam.y) < 0.99f ? glm::vec3(0, 1, 0) : glm::vec3(1, 0, 0);
+  out.view = glm::lookAtRH(light.position, light.position + beam, up);
+  const float near_plane = std::min(0.2f, 0.1f * light.range);
+  out.projection = glm::perspectiveRH_ZO(glm::radians(light.spot_angle), 1.0f, near_plane, light.range);
+  out.texel = 2.0f * 0.5f * light.range * std::tan(glm::radians(light.spot_angle) * 0.5f) / float(light.shadow_resolution);
+  out.depth_range = light.range - near_plane;
+  out.perspective = true;
+  return out;
+}
+
 void add_shadow_caster_inputs(const Light& light, const ShadowView& view, UniformValueMap& values) {
   values["unity_MatrixV"] = hlsl_components(view.view);
   values["unity_MatrixInvV"] = hlsl_components(glm::inverse(view.view));
@@ -56,8 +69,15 @@ void add_shadow_caster_inputs(const Light& light, const ShadowView& view, Unifor
   // UnityClipSpaceShadowCasterPos moves each vertex z world units against its normal, scaled by
   // the sine of the light's angle to it. Both from the light's biases in texels, as Unity scales
   // its Bias and Normal Bias by the texel's world size.
-  values["unity_LightShadowBias"] = {light.shadow_bias * view.texel / view.depth_range, 1.0f,
-                                     light.shadow_normal_bias * view.texel, 0.0f};
+  // A perspective's depth d = f (z - n) / ((f - n) z) moves by f n dz / ((f - n) z^2) for dz world
+  // units at distance z, and adding x / w (w = z) to clip z moves it by x / z^2: x = f n dz / (f - n)
+  // is the same world offset at every distance.
+  float depth_bias = light.shadow_bias * view.texel / view.depth_range;
+  if (view.perspective) {
+    const float far_plane = light.range, near_plane = light.range - view.depth_range;
+    depth_bias = far_plane * near_plane / (far_plane - near_plane) * light.shadow_bias * view.texel;
+  }
+  values["unity_LightShadowBias"] = {depth_bias, view.perspective ? 0.0f : 1.0f, light.shadow_normal_bias * view.texel, 0.0f};
 }
 
 void add_shadow_receiver_inputs(const Light& light, const ShadowView& view, UniformValueMap& values) {

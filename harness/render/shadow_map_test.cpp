@@ -56,6 +56,34 @@ TEST(ShadowMap, TheLightsViewHoldsEveryBoxAndTheReceiversMatrixMapsItIntoTheMap)
   EXPECT_GT(view.texel, 6.0f / 512.0f);
 }
 
+TEST(ShadowMap, ASpotLightsMapIsItsConeSeenFromItsPosition) {
+  Light spot;
+  spot.type = LightType::Spot;
+  spot.position = {0, 4, 0};
+  spot.direction = {0, 1, 0};  // the beam points down
+  spot.range = 8.0f;
+  spot.spot_angle = 60.0f;
+  spot.shadow_resolution = 256;
+  const ShadowView view = spot_shadow_view(spot);
+  EXPECT_TRUE(view.perspective);
+  UniformValueMap values;
+  add_shadow_receiver_inputs(spot, view, values);
+  const auto projected = [&](const glm::vec3& p) {
+    const glm::vec4 c = hlsl_mul_of(values["unity_WorldToShadow"], glm::vec4(p, 1.0f));
+    return glm::vec3(c) / c.w;  // UNITY_SAMPLE_SHADOW_PROJ divides by w
+  };
+  const glm::vec3 axis = projected({0, 0, 0});  // 4 below the light
+  EXPECT_NEAR(axis.x, 0.5f, 1e-5f);
+  EXPECT_NEAR(axis.y, 0.5f, 1e-5f);
+  EXPECT_LT(projected({0, 2, 0}).z, axis.z);  // nearer the light, a smaller depth
+  // On the cone's edge, 30 degrees off the axis, the map's border.
+  const glm::vec3 edge = projected({4.0f * std::tan(glm::radians(30.0f)), 0, 0});
+  EXPECT_NEAR(std::max(std::abs(edge.x - 0.5f), std::abs(edge.y - 0.5f)), 0.5f, 1e-4f);
+  UniformValueMap caster;
+  add_shadow_caster_inputs(spot, view, caster);
+  EXPECT_FLOAT_EQ(caster["unity_LightShadowBias"][1], 0.0f);  // no pancaking for a perspective
+}
+
 TEST(ShadowMap, TheCastersBiasesAreTheLightsTexelsInClipDepthAndWorldUnits) {
   Light sun;
   sun.shadow_bias = 2.0f;

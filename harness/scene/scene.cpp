@@ -345,10 +345,10 @@ class SceneReader : SceneValueReader {
                                            path));
         ok = false;
       }
-      if (ok && light.shadows != Light::Shadows::None && light.type != LightType::Directional) {
-        report(node->source(), fmt::format("{}.shadows: a {} light's shadows are not rendered yet (a point light's are a cube "
-                                           "map, a spot's its own shadow map); only a directional light casts shadows so far",
-                                           path, light.type == LightType::Point ? "point" : "spot"));
+      if (ok && light.shadows != Light::Shadows::None && light.type == LightType::Point) {
+        report(node->source(), fmt::format("{}.shadows: a point light's shadows are not rendered yet (a cube map of six "
+                                           "views); directional and spot lights cast shadows",
+                                           path));
         ok = false;
       }
     }

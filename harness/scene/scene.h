@@ -55,7 +55,7 @@ struct Light {
   float spot_angle = 30.0f;               // Spot: the cone's full angle, in degrees, in (0, 180)
   glm::vec3 color{1.0f};
   float intensity = 1.0f;
-  // Shadows, as Unity's Light has them (the main directional light's so far): none, hard (one
+  // Shadows, as Unity's Light has them (a directional or spot light's): none, hard (one
   // comparison per pixel) or soft (refused by the reader: not rendered yet); strength 0..1;
   // the depth and normal biases in shadow-map texels (xshade's unit: Unity's internal scale of
   // its Bias and Normal Bias is not published; one texel of each keeps a lit surface facing the

@@ -569,6 +569,21 @@ TEST(SceneErrors, ALightKeyOfAnotherKindOfLightIsAnError) {
             (std::vector<std::string>{"scenes/bad.toml:9:1: error: light[0].position: missing; expected an array of 3 numbers"}));
 }
 
+TEST(SceneErrors, ShadowsNotRenderedYetAreErrorsThatSayWhy) {
+  const std::vector<std::string> point =
+      errors_of(minimal_head + "[[light]]\ntype = \"point\"\nposition = [0, 1, 0]\nshadows = \"hard\"\n");
+  ASSERT_EQ(point.size(), 1u);
+  EXPECT_NE(point[0].find("light[0].shadows: a point light's shadows are not rendered yet"), std::string::npos) << point[0];
+  const std::vector<std::string> soft =
+      errors_of(minimal_head + "[[light]]\ntype = \"directional\"\ndirection = [0, 1, 0]\nshadows = \"soft\"\n");
+  ASSERT_EQ(soft.size(), 1u);
+  EXPECT_NE(soft[0].find("\"soft\" is not rendered yet"), std::string::npos) << soft[0];
+  EXPECT_EQ(errors_of(minimal_head + "[[light]]\ntype = \"spot\"\nposition = [0, 1, 0]\ndirection = [0, 1, 0]\n"
+                                     "shadows = \"hard\"\nshadow_resolution = 1000\n"),
+            (std::vector<std::string>{"scenes/bad.toml:14:21: error: light[0].shadow_resolution: expected a power of two "
+                                      "from 64 to 4096, got 1000"}));
+}
+
 TEST(SceneErrors, CameraMustSeeSomething) {
   std::string text = minimal_head;
   text.replace(text.find("target = [0, 0, 0]"), 18, "target = [0, 0, 8]");
