@@ -92,5 +92,33 @@ TEST(MeasureStudy, DepthOfFieldKernelsOnGl) {
   EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 5);  // header and four rows
 }
 
+// The shadow-map study on gl, where Unity's include files are: a larger map places the shadow's
+// edge closer to the reference's, so the error falls with each doubling.
+TEST(MeasureStudy, ShadowMapResolutionOnGl) {
+  const std::filesystem::path source = XSHADE_SOURCE_DIR;
+  const std::filesystem::path unity = std::filesystem::path(XSHADE_REALWORLD_CORPUS) / "TwoTailsGames+Unity-Built-in-Shaders";
+  if (!std::filesystem::is_directory(unity / "CGIncludes")) GTEST_SKIP() << "no Unity include files at " << unity;
+  Study study;
+  for (const Study& s : all_studies())
+    if (s.id == "shadow_map") study = s;
+  ASSERT_EQ(study.id, "shadow_map");
+  EXPECT_TRUE(study.unity);  // run only when named, with its folders
+  auto backend = harness::create_backend(harness::Lane::Gl);
+  ASSERT_TRUE(backend) << backend.error().to_string();
+  MeasureOptions options;
+  options.scenes_dir = source / "tests" / "realworld" / "scenes";
+  options.shaders_dir = source / "shaders";
+  options.shader_folders = {source / "examples" / "unity", unity, unity / "CGIncludes"};
+  options.rounds = 1;
+  options.reference_check = false;
+  auto result = measure_study(study, harness::Lane::Gl, **backend, options);
+  ASSERT_TRUE(result) << result.error().to_string();
+  ASSERT_EQ(result->configurations.size(), 4u);
+  for (size_t i = 1; i < result->configurations.size(); ++i)
+    EXPECT_LT(chart_error(result->configurations[i]), chart_error(result->configurations[i - 1]))
+        << result->configurations[i].label;
+  EXPECT_GT(chart_error(result->configurations.back()), 0.0);
+}
+
 }  // namespace
 }  // namespace xshade::accuracy

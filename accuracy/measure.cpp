@@ -29,6 +29,9 @@ harness::Scene configured(const harness::Scene& base, const Configuration& confi
     for (const auto& [name, value] : configuration.post_parameters)
       effect.parameters[name] = harness::PropertyValue::scalar(value);
   }
+  if (configuration.shadow_resolution)
+    for (harness::Light& light : scene.lights)
+      if (light.shadows != harness::Light::Shadows::None) light.shadow_resolution = *configuration.shadow_resolution;
   scene.width *= configuration.supersample;
   scene.height *= configuration.supersample;
   return scene;
@@ -48,12 +51,15 @@ Result<Prepared> prepare(const Configuration& configuration, const harness::Scen
                          harness::ProgramCache& programs) {
   Prepared prepared;
   prepared.scene = configured(base, configuration);
-  auto plan = harness::plan_scene(prepared.scene, options.shaders_dir);
+  std::vector<std::filesystem::path> folders = options.shader_folders;
+  folders.push_back(options.shaders_dir);
+  const harness::ShaderSearchPath shaders(folders);
+  auto plan = harness::plan_scene(prepared.scene, shaders);
   if (!plan) return fail(plan.error());
   prepared.plan = std::move(*plan);
 
   // No cache: the compile time is what a cold build of this configuration costs.
-  harness::VariantCompiler compiler(options.shaders_dir, nullptr);
+  harness::VariantCompiler compiler(shaders, nullptr);
   const auto compile_start = std::chrono::steady_clock::now();
   auto variants = compiler.compile_plan(prepared.plan, lane, configuration.half_emulation);
   if (!variants) return fail(configuration.label + ": " + variants.error().to_string());

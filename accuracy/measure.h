@@ -43,6 +43,7 @@ struct StudyResult {
 struct MeasureOptions {
   std::filesystem::path scenes_dir;
   std::filesystem::path shaders_dir;
+  std::vector<std::filesystem::path> shader_folders;  // searched before shaders_dir
   // Timing: `rounds` turns through the configurations; each turn renders `warmup_frames` untimed
   // (the first makes the scene's resources again) and then `frames_per_round` timed frames.
   uint32_t rounds = 5;

@@ -134,10 +134,37 @@ Study supersampling() {
   return s;
 }
 
+Study shadow_map() {
+  Study s;
+  s.id = "shadow_map";
+  s.knob = "shadow-map resolution";
+  s.scene = "unity_toon_shadow";
+  s.why_reference =
+      "A 4096 x 4096 map: each of its texels a sixteenth of the default's area, so the shadow's edge is placed to "
+      "within a quarter of the default's texel. No check: a map of 8192 texels a side is 256 MB of depth.";
+  const auto at = [](uint32_t size) {
+    return Configuration{.label = std::to_string(size) + " texels", .shadow_resolution = size};
+  };
+  s.reference = at(4096);
+  s.configurations = {at(256), at(512), at(1024), at(2048)};
+  s.timed_passes = "shadow";
+  s.quick = false;
+  s.unity = true;
+  s.findings =
+      "Each doubling of the map's side roughly halves the error against the 4096 map (mean 1.1e-3, 5.7e-4, 3.2e-4, "
+      "1.3e-4 from 256 to 2048) and shrinks the share of pixels beyond the scene's tolerance (0.45 % to 0.20 %): only "
+      "the shadow's edge moves, by up to a texel of the map, so the worst pixel stays one that flips from lit to "
+      "shadowed (0.71) at every size. The shadow pass's time grows with the map's texels once they outnumber the "
+      "casters' fixed cost: about 4x per doubling from 512 on (1.6, 4.9, 17.6 ms on gl), the same on the three "
+      "lanes. The default, 1024, keeps the edge within 2 sRGB steps of the reference (RMSE) for 5 ms. Only hard "
+      "shadows are measured: soft ones are refused (docs/unity.md, \"Shadows\").";
+  return s;
+}
+
 }  // namespace
 
 std::vector<Study> all_studies() {
-  return {dof_kernel(), brdf_forms(), precision(), indirect_specular(), supersampling()};
+  return {dof_kernel(), brdf_forms(), precision(), indirect_specular(), supersampling(), shadow_map()};
 }
 
 }  // namespace xshade::accuracy

@@ -20,6 +20,7 @@ struct Configuration {
   std::map<std::string, float> object_parameters = {};  // set on every object
   bool half_emulation = false;  // gl and vk only
   uint32_t supersample = 1;     // rendered at k times the size, then averaged over k x k pixels
+  std::optional<uint32_t> shadow_resolution = std::nullopt;  // every shadow map's size
 };
 
 struct Study {
@@ -36,6 +37,9 @@ struct Study {
   // ("scene", or "depth_of_field." for the effect's passes).
   std::string timed_passes;
   bool quick = true;  // part of `xshade accuracy --quick`
+  // Its scene draws Unity .shader files: run only when named, with the folders that hold them and
+  // Unity's include files (xshade ships none).
+  bool unity = false;
   // What the measurements showed when this study was written, and why: shown under its table.
   std::string findings = {};
 };

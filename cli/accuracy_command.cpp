@@ -28,7 +28,9 @@ int run_accuracy(const AccuracyOptions& options) {
   std::vector<accuracy::Study> studies;
   for (accuracy::Study& study : accuracy::all_studies()) {
     const bool named = std::find(options.studies.begin(), options.studies.end(), study.id) != options.studies.end();
-    if (options.studies.empty() ? (!options.quick || study.quick) : named) studies.push_back(std::move(study));
+    // A study of Unity shaders runs only when named: its scene needs Unity's include files.
+    const bool by_default = !study.unity && (!options.quick || study.quick);
+    if (options.studies.empty() ? by_default : named) studies.push_back(std::move(study));
   }
   for (const std::string& id : options.studies)
     if (std::none_of(studies.begin(), studies.end(), [&](const accuracy::Study& s) { return s.id == id; })) {
@@ -47,6 +49,7 @@ int run_accuracy(const AccuracyOptions& options) {
   run.command_line = options.command_line;
   run.options.scenes_dir = options.scenes_dir;
   run.options.shaders_dir = options.shaders_dir;
+  run.options.shader_folders = options.shader_folders;
   run.options.rounds = options.quick ? 1 : options.rounds;
   run.options.reference_check = !options.quick;
   for (harness::Lane lane : *lanes) {

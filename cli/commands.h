@@ -178,6 +178,9 @@ struct AccuracyOptions {
   std::filesystem::path markdown;    // also write docs/accuracy.md's text here, charts beside it
   std::filesystem::path scenes_dir = own_folders().scenes;
   std::filesystem::path shaders_dir = own_folders().shaders;
+  // Shader folders searched before the library: a study of Unity shaders names theirs and
+  // Unity's include files here.
+  std::vector<std::filesystem::path> shader_folders;
   std::string command_line;
 };
 int run_accuracy(const AccuracyOptions& options);

@@ -345,10 +345,12 @@ static int run_command_line(int argc, char** argv) {
 
   AccuracyOptions accuracy_options;
   CLI::App* accuracy = app.add_subcommand(
-      "accuracy", "For each accuracy knob (DoF kernel, BRDF forms, precision, supersampling), render its scene in every "
-                  "configuration on each lane and measure error against a reference and time; tables and Pareto charts");
-  accuracy->add_option("study", accuracy_options.studies, "Study ids (dof_kernel, brdf_forms, precision, supersampling); "
-                                                          "default: all")
+      "accuracy", "For each accuracy knob (DoF kernel, BRDF forms, precision, indirect specular, supersampling, "
+                  "shadow-map resolution), render its scene in every configuration on each lane and measure error "
+                  "against a reference and time; tables and Pareto charts");
+  accuracy->add_option("study", accuracy_options.studies,
+                       "Study ids (dof_kernel, brdf_forms, precision, indirect_specular, supersampling, shadow_map); "
+                       "default: all but shadow_map, whose scene of Unity shaders needs --scenes and --shader-folder")
       ->type_name("STUDY");
   add_lane_options(*accuracy, accuracy_options.selection);
   accuracy->add_flag("--quick", accuracy_options.quick,
@@ -369,6 +371,11 @@ static int run_command_line(int argc, char** argv) {
       ->type_name("DIR");
   accuracy->add_option("--shaders", accuracy_options.shaders_dir, "The shader library (default: xshade's own)")
       ->type_name("DIR");
+  accuracy->add_option("--shader-folder", accuracy_options.shader_folders,
+                       "A shader folder searched before the library; repeat for more (a study of Unity shaders, named "
+                       "on the command line, needs its .shader files and Unity's include files)")
+      ->type_name("DIR")
+      ->allow_extra_args(false);
 
   try {
     app.parse(argc, argv);
