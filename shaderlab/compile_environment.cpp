@@ -19,7 +19,18 @@ bool take_word(std::string_view& text, std::string_view word) {
   return true;
 }
 
-// What follows `#pragma <name>` on each line of `text` that says so, in order.
+bool names_renderer(std::string_view renderers, std::string_view renderer) {
+  while (!(renderers = skip_blanks(renderers)).empty()) {
+    const size_t end = std::min(renderers.find_first_of(" \t\r/"), renderers.size());
+    if (renderers.substr(0, end) == renderer) return true;
+    if (end < renderers.size() && renderers[end] == '/') break;  // a comment
+    renderers.remove_prefix(end);
+  }
+  return false;
+}
+
+}  // namespace
+
 std::vector<std::string_view> pragma_arguments(std::string_view text, std::string_view name) {
   std::vector<std::string_view> found;
   size_t line_start = 0;
@@ -34,18 +45,6 @@ std::vector<std::string_view> pragma_arguments(std::string_view text, std::strin
   }
   return found;
 }
-
-bool names_renderer(std::string_view renderers, std::string_view renderer) {
-  while (!(renderers = skip_blanks(renderers)).empty()) {
-    const size_t end = std::min(renderers.find_first_of(" \t\r/"), renderers.size());
-    if (renderers.substr(0, end) == renderer) return true;
-    if (end < renderers.size() && renderers[end] == '/') break;  // a comment
-    renderers.remove_prefix(end);
-  }
-  return false;
-}
-
-}  // namespace
 
 int shader_target(std::string_view program_text) {
   int highest = 0;

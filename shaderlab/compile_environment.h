@@ -37,6 +37,10 @@ std::optional<UnityPlatform> parse_unity_platform(std::string_view name);
 // stored bottom first as OpenGL stores them.
 bool direct3d_conventions(UnityPlatform platform);
 
+// What follows `#pragma <name>` on each line of `text` that says so, in order: views into `text`,
+// each to the end of its line.
+std::vector<std::string_view> pragma_arguments(std::string_view text, std::string_view name);
+
 // Whether Unity compiles a program with that text for the platform: no `#pragma only_renderers`
 // leaves it out, no `#pragma exclude_renderers` names it.
 bool compiles_for_platform(std::string_view program_text, UnityPlatform platform = UnityPlatform::GLCore);

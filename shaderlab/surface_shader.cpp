@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <array>
-#include <cctype>
 
 #include "shaderlab/pass_program.h"
 
@@ -26,36 +25,14 @@ constexpr KnownOption kOptions[] = {
     {"softvegetation", false}, {"dithercrossfade", false}, {"noinstancing", false},    {"vertexcolor", false},
 };
 
-bool is_identifier_char(char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_'; }
-
-// Where `#pragma surface` is in `text`: the offset of its '#' and of the line's end; npos when absent.
-std::pair<size_t, size_t> find_surface_pragma(std::string_view text) {
-  size_t line_start = 0;
-  while (line_start < text.size()) {
-    size_t line_end = text.find('\n', line_start);
-    if (line_end == std::string_view::npos) line_end = text.size();
-    std::string_view line = text.substr(line_start, line_end - line_start);
-    size_t at = line.find_first_not_of(" \t");
-    if (at != std::string_view::npos && line[at] == '#') {
-      size_t word = line.find_first_not_of(" \t", at + 1);
-      if (word != std::string_view::npos && line.substr(word, 6) == "pragma") {
-        size_t name = line.find_first_not_of(" \t", word + 6);
-        if (name != std::string_view::npos && line.substr(name, 7) == "surface" &&
-            (name + 7 == line.size() || !is_identifier_char(line[name + 7])))
-          return {line_start + at, line_end};
-      }
-    }
-    line_start = line_end + 1;
-  }
-  return {std::string_view::npos, std::string_view::npos};
-}
-
-// The program's text with its `#pragma surface` line made a comment, so that its lines keep their
-// numbers and the front end reads no pragma it would warn about.
+// The program's text with its `#pragma surface` line made a comment (at its '#'), so that its
+// lines keep their numbers and the front end reads no pragma it would warn about.
 std::string without_surface_pragma(const std::string& text) {
+  const std::vector<std::string_view> found = pragma_arguments(text, "surface");
+  if (found.empty()) return text;
+  const size_t hash = text.rfind('#', size_t(found.front().data() - text.data()));
   std::string result = text;
-  auto [begin, end] = find_surface_pragma(result);
-  if (begin != std::string::npos) result.insert(begin, "//");
+  result.insert(hash, "//");
   return result;
 }
 
@@ -96,12 +73,13 @@ struct InputUse {
   int uv_set = 0;       // Uv: 0 for uv_, 1 for uv2_, ...
   std::string texture;  // Uv: the texture whose _ST transforms it
   std::string packed;   // Uv: where it travels, two to an interpolator as Unity packs them: pack0.xy
+  bool half_pack = false;  // Uv: in half of its interpolator (.xy or .zw), a float2; else all of it
 };
 
 std::vector<InputUse> classify_input(const std::vector<SurfaceField>& input) {
   std::vector<InputUse> uses;
   for (const SurfaceField& field : input) {
-    InputUse use{&field, InputUse::Custom, 0, {}, {}};
+    InputUse use{&field, InputUse::Custom, 0, {}, {}, false};
     const std::string& name = field.name;
     // "uv" or "uv2" to "uv4" followed by the texture's name: uv_MainTex is _MainTex's.
     static constexpr std::array<const char*, 4> kUvPrefixes = {"uv", "uv2", "uv3", "uv4"};
@@ -148,7 +126,8 @@ class SurfaceGenerator {
     for (InputUse& use : uses_) {
       if (use.kind != InputUse::Uv) continue;
       const std::string pack = "pack" + std::to_string(packs_);
-      if (width_of(use.field->type) <= 2) {
+      use.half_pack = width_of(use.field->type) <= 2;
+      if (use.half_pack) {
         use.packed = pack + (half_used ? ".zw" : ".xy");
         if (half_used) ++packs_;
         half_used = !half_used;
@@ -178,10 +157,11 @@ class SurfaceGenerator {
       pass.tags = {{"LightMode", which == GeneratedPass::ForwardBase ? "ForwardBase" : "ForwardAdd"}};
       set_forward_state(pass.state, which);
     }
+    // Messages about the generated lines name them by the pass and their line in its text.
     ProgramBlock program;
     program.language = ProgramLanguage::Cg;
-    program.text = text();
     program.start = {surface_.start.file + " (generated " + pass.tags.front().second + " pass)", 1, 1};
+    program.text = text(program.start.file);
     pass.program = std::move(program);
     return pass;
   }
@@ -222,7 +202,7 @@ class SurfaceGenerator {
     if (!decal.empty()) state.offset = std::make_pair(word("-1", at), word("-1", at));
   }
 
-  std::string text() {
+  std::string text(const std::string& generated_name) {
     std::string out;
     out += "#pragma vertex vert_surf\n#pragma fragment frag_surf\n";
     if (fog()) out += "#pragma multi_compile_fog\n";
@@ -247,7 +227,8 @@ class SurfaceGenerator {
     out += shape_.writes_normal ? kTangentSpaceMacros : kWorldSpaceMacros;
     for (const ProgramBlock& block : includes_) append_block(out, block);
     append_block(out, surface_, without_surface_pragma(surface_.text));
-    out += "#line 1 \"" + surface_.start.file + " (generated)\"\n";
+    // Back to the generated text: the line after this one is its line count + 2 in it.
+    out += "#line " + std::to_string(std::count(out.begin(), out.end(), '\n') + 2) + " \"" + generated_name + "\"\n";
     declarations(out);
     vertex_function(out);
     fragment_function(out);
@@ -322,7 +303,7 @@ class SurfaceGenerator {
       if (use.kind != InputUse::Uv) continue;
       const std::string source = vertex_input(texcoords[static_cast<size_t>(use.uv_set)], "float4(0,0,0,0)");
       const std::string transformed = "TRANSFORM_TEX(" + source + ", " + use.texture + ")";
-      if (use.packed.find('.') != std::string::npos) {
+      if (use.half_pack) {
         out += "  o." + use.packed + " = " + transformed + ";\n";
       } else {
         out += "  o." + use.packed + " = " + source + ";\n  o." + use.packed + ".xy = " + transformed + ";\n";
@@ -384,7 +365,7 @@ class SurfaceGenerator {
       switch (use.kind) {
         case InputUse::Uv:
           out += "  " + field + " = IN." + use.packed +
-                 (use.packed.find('.') != std::string::npos ? "" : "." + swizzle(width_of(use.field->type))) + ";\n";
+                 (use.half_pack ? "" : "." + swizzle(width_of(use.field->type))) + ";\n";
           break;
         case InputUse::Custom: out += "  " + field + " = IN." + custom(use) + ";\n"; break;
         case InputUse::WorldPos: out += "  " + field + " = worldPos;\n"; break;
@@ -505,16 +486,15 @@ std::string SurfaceDirective::value(std::string_view option) const {
 }
 
 Result<SurfaceDirective> read_surface_directive(const ProgramBlock& program) {
-  auto [begin, end] = find_surface_pragma(program.text);
-  if (begin == std::string::npos)
+  const std::vector<std::string_view> found = pragma_arguments(program.text, "surface");
+  if (found.empty())
     return fail("a program outside any Pass is a surface shader's, and this one has no `#pragma surface surfFunc "
                 "lightModel`; put a vertex and fragment program inside a Pass { }",
                 program.start);
   SurfaceDirective directive;
-  const size_t line = static_cast<size_t>(std::count(program.text.begin(), program.text.begin() + static_cast<long>(begin), '\n'));
+  std::string_view rest = found.front();
+  const auto line = std::count(program.text.data(), rest.data(), '\n');
   directive.where = {program.start.file, program.start.line + static_cast<uint32_t>(line), 1};
-  std::string_view rest(program.text.data() + begin, end - begin);
-  rest.remove_prefix(rest.find("surface") + 7);
   if (size_t comment = rest.find("//"); comment != std::string_view::npos) rest = rest.substr(0, comment);
   std::vector<std::string> words;
   size_t at = 0;

@@ -1,5 +1,7 @@
 #include "shaderlab/surface_shader.h"
 
+#include <algorithm>
+
 #include <gtest/gtest.h>
 
 namespace xshade::shaderlab {
@@ -78,6 +80,13 @@ TEST(SurfaceShader, GeneratesForwardBaseAndForwardAddAsUnityDoesAndTheShadowCast
     EXPECT_TRUE(contains(text_of(pass), "//#pragma surface surf Lambert"));
     EXPECT_TRUE(contains(text_of(pass), "float4 _MainTex_ST;"));  // each program declares what it reads
   }
+  // After the author's text, the generated lines are named by the pass and numbered as its text's.
+  const std::string& base = text_of(passes[0]);
+  const size_t back = base.rfind("#line ");
+  const auto next_line = std::count(base.begin(), base.begin() + static_cast<long>(back), '\n') + 2;
+  EXPECT_EQ(base.substr(back, base.find('\n', back) - back),
+            "#line " + std::to_string(next_line) + " \"toon.shader (generated ForwardBase pass)\"");
+  EXPECT_EQ(passes[0].program->start.file, "toon.shader (generated ForwardBase pass)");
   EXPECT_TRUE(contains(text_of(passes[0]), "#pragma multi_compile_fwdbase"));
   EXPECT_TRUE(contains(text_of(passes[0]), "LightingLambert_GI(o, giInput, gi);"));
   EXPECT_TRUE(contains(text_of(passes[0]), "UNITY_OPAQUE_ALPHA(c.a);"));

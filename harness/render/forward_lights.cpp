@@ -37,10 +37,13 @@ TextureData float_texture(uint32_t width, uint32_t height, const Texel& texel) {
 
 }  // namespace
 
-std::optional<Light> main_light(const Scene& scene) {
+Light main_light(const Scene& scene) {
   const ForwardLights lights = forward_lights(scene);
-  if (!lights.main) return std::nullopt;
-  return scene.lights[*lights.main];
+  if (lights.main) return scene.lights[*lights.main];
+  Light none;
+  none.color = glm::vec3(0.0f);
+  none.intensity = 0.0f;
+  return none;
 }
 
 ForwardLights forward_lights(const Scene& scene) {

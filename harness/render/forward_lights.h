@@ -28,8 +28,9 @@ ForwardLights forward_lights(const Scene& scene);
 // The texture a pass that receives the main light's shadow samples, with a comparison sampler.
 inline constexpr const char* kShadowMapTexture = "_ShadowMapTexture";
 
-// The main light, if the scene has a directional light.
-std::optional<Light> main_light(const Scene& scene);
+// The main light; where the scene has no directional light, one of no colour pointing up, which
+// lights nothing.
+Light main_light(const Scene& scene);
 
 // The keyword of Unity's multi_compile_fwdadd that a pass lit by `light` is compiled with.
 const char* additive_keyword(LightType type);

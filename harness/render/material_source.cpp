@@ -151,6 +151,17 @@ Result<SourcePass> used_pass(const shaderlab::Pass& use, NamedShaders& named, sh
                     {}});
 }
 
+// `sub` as drawn: itself, or for a surface shader a copy with its generated passes, kept in
+// `generated` while passes point into it.
+Result<const shaderlab::SubShader*> with_generated_passes(const shaderlab::SubShader* sub, const fs::path& file,
+                                                          const hlsl::CompileOptions& options, shaderlab::UnityPlatform platform,
+                                                          std::list<shaderlab::SubShader>& generated) {
+  if (!sub->surface) return sub;
+  auto with_passes = with_surface_passes(file, *sub, options, platform);
+  if (!with_passes) return fail(with_passes.error());
+  return &generated.emplace_back(std::move(*with_passes));
+}
+
 // The ShadowCaster pass of the first shader of `shader`'s Fallback chain whose drawn SubShader has
 // one (its surface program's generated passes included); none when no shader of the chain has.
 Result<std::optional<SourcePass>> fallback_caster(const shaderlab::Shader& shader, const fs::path& file, NamedShaders& named,
@@ -163,16 +174,13 @@ Result<std::optional<SourcePass>> fallback_caster(const shaderlab::Shader& shade
     if (!fallback) return std::optional<SourcePass>{};  // a Fallback not found casts nothing, as in Unity
     current = fallback->first;
     current_file = fallback->second;
-    const shaderlab::SubShader* sub = shaderlab::drawn_subshader(*current, platform);
-    if (!sub) continue;
-    if (sub->surface) {
-      auto with_passes = with_surface_passes(current_file, *sub, options, platform);
-      if (!with_passes) return fail(with_passes.error());
-      sub = &generated.emplace_back(std::move(*with_passes));
-    }
-    for (const shaderlab::Pass& pass : sub->passes)
+    const shaderlab::SubShader* drawn = shaderlab::drawn_subshader(*current, platform);
+    if (!drawn) continue;
+    auto sub = with_generated_passes(drawn, current_file, options, platform, generated);
+    if (!sub) return fail(sub.error());
+    for (const shaderlab::Pass& pass : (*sub)->passes)
       if (pass.kind == shaderlab::PassKind::Program && shaderlab::same_word(shaderlab::tag(pass.tags, "LightMode"), "ShadowCaster"))
-        return std::optional<SourcePass>{SourcePass{sub, &pass, current_file}};
+        return std::optional<SourcePass>{SourcePass{*sub, &pass, current_file}};
   }
   return std::optional<SourcePass>{};
 }
@@ -215,16 +223,15 @@ Result<SourceModule> compile_source(const fs::path& path, hlsl::CompileOptions o
     shader = fallback->first;
     file = fallback->second;
   }
-  // A surface shader's passes are generated, and drawn as written ones are.
-  shaderlab::SubShader generated;
-  if (sub->surface) {
-    auto with_passes = with_surface_passes(file, *sub, options, platform);
-    if (!with_passes) return fail(with_passes.error());
-    generated = std::move(*with_passes);
-    sub = &generated;
+  // A surface shader's passes are generated, and drawn as written ones are; so are those of a
+  // Fallback's that casts for it (below).
+  std::list<shaderlab::SubShader> generated;
+  if (sub->surface)
     source.notes.push_back("'" + shader->name + "': its surface program's Meta and Deferred passes, which Unity also "
                            "generates, are not generated: the forward renderer of a still scene draws neither");
-  }
+  auto drawn_sub = with_generated_passes(sub, file, options, platform, generated);
+  if (!drawn_sub) return fail(drawn_sub.error());
+  sub = *drawn_sub;
   std::vector<SourcePass> passes(sub->passes.size());
   std::vector<std::pair<std::string, SourceLocation>> grabs;  // each GrabPass's texture
   for (size_t i = 0; i < sub->passes.size(); ++i) {
@@ -258,9 +265,8 @@ Result<SourceModule> compile_source(const fs::path& path, hlsl::CompileOptions o
     }
   }
   // Without a ShadowCaster of its own, an object casts with its Fallback's, as Unity looks for one.
-  std::list<shaderlab::SubShader> fallback_subs;  // generated surface passes, kept while passes point into them
   if (!source.caster_pass) {
-    auto caster = fallback_caster(*shader, file, named, options, platform, fallback_subs);
+    auto caster = fallback_caster(*shader, file, named, options, platform, generated);
     if (!caster) return fail(caster.error());
     if (*caster) {
       source.caster_pass = passes.size();

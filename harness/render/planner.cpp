@@ -308,7 +308,8 @@ Result<Plan> plan_scene(const Scene& scene, const ShaderSearchPath& shaders) {
       auto first = material_facts(instance.material, std::nullopt);
       if (!first) return fail(first.error());
       casters = casters || (*first)->caster_pass.has_value();
-      const std::vector<size_t> receiving = additive ? (*first)->additive_passes : (*first)->drawn_passes;
+      // A reference: the facts read below are new map entries, which move none of the others.
+      const std::vector<size_t>& receiving = additive ? (*first)->additive_passes : (*first)->drawn_passes;
       for (size_t pass : receiving) {
         auto facts = material_facts(instance.material, pass);
         if (!facts) return fail(facts.error());

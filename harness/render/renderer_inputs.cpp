@@ -72,7 +72,7 @@ UniformValueMap frame_inputs(const Scene& scene, const ShCoefficients& sh) {
   const glm::mat4 view = view_matrix(camera);
   // The main light: the brightest directional one (Unity's ForwardBase light; xshade's own
   // materials take it too); a scene without one is lit by its other lights and its environment.
-  const Light light = main_light(scene).value_or(Light{LightType::Directional, {0, 1, 0}, {}, 0.0f, 0.0f, glm::vec3(0.0f), 0.0f});
+  const Light light = main_light(scene);
   const float near = camera.near_plane, far = camera.far_plane;
 
   UniformValueMap values;
@@ -158,19 +158,16 @@ UniformValueMap frame_inputs(const Scene& scene, const ShCoefficients& sh) {
   values["unity_ProbeVolumeSizeInv"] = {1.0f, 1.0f, 1.0f};
   values["unity_ProbeVolumeMin"] = {0.0f, 0.0f, 0.0f};
 
-  // The lights a scene of one directional light does not have: ForwardBase's four vertex lights
-  // (no colour, at the origin, no attenuation) and the vertex-lit path's eight, each unused slot
-  // as Unity's manual describes one: no colour, view-space position (0, 0, 1, 0), attenuation
-  // (-1, 1, 0, 0) (not a spot light, no range), spot direction (0, 0, 1, 0).
-  for (const char* name : {"unity_4LightPosX0", "unity_4LightPosY0", "unity_4LightPosZ0", "unity_4LightAtten0"})
-    values[name] = {0.0f, 0.0f, 0.0f, 0.0f};
+  // ForwardBase's four per-vertex lights (forward_lights.h; an unused slot has no colour, no
+  // attenuation), and the vertex-lit path's eight, each unused slot as Unity's manual describes
+  // one: no colour, view-space position (0, 0, 1, 0), attenuation (-1, 1, 0, 0) (not a spot light,
+  // no range), spot direction (0, 0, 1, 0).
+  add_vertex_light_inputs(scene, forward_lights(scene).vertex, values);
   const auto eight = [](glm::vec4 v) {
     std::vector<float> out;
     for (int i = 0; i < 8; ++i) out.insert(out.end(), {v.x, v.y, v.z, v.w});
     return out;
   };
-  values["unity_LightColor"] = eight(glm::vec4(0.0f));
-  add_vertex_light_inputs(scene, forward_lights(scene).vertex, values);
   values["unity_LightPosition"] = eight({0.0f, 0.0f, 1.0f, 0.0f});
   values["unity_LightAtten"] = eight({-1.0f, 1.0f, 0.0f, 0.0f});
   values["unity_SpotDirection"] = eight({0.0f, 0.0f, 1.0f, 0.0f});

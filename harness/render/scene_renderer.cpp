@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <deque>
 #include <map>
 
 
@@ -234,15 +235,32 @@ class SceneRenderer {
     return *created;
   }
 
-  Result<MeshHandle> mesh(const MeshRef& ref) {
-    for (const auto& [known, handle] : meshes_)
-      if (known == ref) return handle;
+  // A mesh the scene names, read and uploaded once, with its object-space bounds (a shadow map's
+  // view is fitted to them).
+  struct SceneMesh {
+    MeshRef ref;
+    MeshHandle handle;
+    std::pair<glm::vec3, glm::vec3> box;
+  };
+  Result<const SceneMesh*> scene_mesh(const MeshRef& ref) {
+    for (const SceneMesh& known : meshes_)
+      if (known.ref == ref) return &known;
     auto data = mesh_data(ref);
     if (!data) return fail(at_scene_value(data.error(), ref.where));
     auto handle = resources_.upload_mesh(*data);
     if (!handle) return fail(from_backend(handle.error()));
-    meshes_.emplace_back(ref, *handle);
-    return *handle;
+    glm::vec3 low(std::numeric_limits<float>::max()), high(-std::numeric_limits<float>::max());
+    for (const Vertex& vertex : data->vertices) {
+      low = glm::min(low, vertex.position);
+      high = glm::max(high, vertex.position);
+    }
+    return &meshes_.emplace_back(SceneMesh{ref, *handle, {low, high}});
+  }
+
+  Result<MeshHandle> mesh(const MeshRef& ref) {
+    auto known = scene_mesh(ref);
+    if (!known) return fail(known.error());
+    return (*known)->handle;
   }
 
   struct SceneTexture {
@@ -444,9 +462,9 @@ class SceneRenderer {
     } else {
       std::vector<std::pair<glm::vec3, glm::vec3>> boxes;  // each instance's world-space box
       for (const ObjectInstance& instance : plan_.instances) {
-        auto box = mesh_box(instance.mesh);
-        if (!box) return fail(box.error());
-        boxes.push_back(world_box(*box, instance.model));
+        auto known = scene_mesh(instance.mesh);
+        if (!known) return fail(known.error());
+        boxes.push_back(world_box((*known)->box, instance.model));
       }
       view = directional_shadow_view(light, boxes);
     }
@@ -469,21 +487,6 @@ class SceneRenderer {
         pass.draws.push_back(std::move(*draw));
       }
     return timed("shadow", pass);
-  }
-
-  // A mesh's object-space bounds, read once.
-  Result<std::pair<glm::vec3, glm::vec3>> mesh_box(const MeshRef& ref) {
-    for (const auto& [known, box] : mesh_boxes_)
-      if (known == ref) return box;
-    auto data = mesh_data(ref);
-    if (!data) return fail(at_scene_value(data.error(), ref.where));
-    glm::vec3 low(std::numeric_limits<float>::max()), high(-std::numeric_limits<float>::max());
-    for (const Vertex& vertex : data->vertices) {
-      low = glm::min(low, vertex.position);
-      high = glm::max(high, vertex.position);
-    }
-    mesh_boxes_.emplace_back(ref, std::make_pair(low, high));
-    return mesh_boxes_.back().second;
   }
 
   Result<void> post_pass(size_t index) {
@@ -609,16 +612,15 @@ class SceneRenderer {
   std::map<std::string, PassSource> pass_outputs_;  // of the current effect, by pass name
   std::map<size_t, TargetHandle> pass_target_;  // by index into the plan's passes
   std::map<size_t, ProgramHandle> programs_;
-  std::vector<std::pair<MeshRef, MeshHandle>> meshes_;
+  std::deque<SceneMesh> meshes_;  // a deque: pointers to its meshes stay valid as it grows
   std::vector<SceneTexture> textures_;
   TextureHandle environment_handle_;
   TextureHandle environment_cube_;
   std::optional<TextureHandle> light_falloff_, spot_cookie_;  // made where a draw reads them
   // Each casting light's shadow map and the view it was drawn from, by light.
   std::map<size_t, std::pair<TargetHandle, ShadowView>> shadow_maps_;
-  std::vector<std::pair<MeshRef, std::pair<glm::vec3, glm::vec3>>> mesh_boxes_;
   // What the passes that are not an additive light's read as the light: the main light, or none.
-  Light main_light_ = main_light(scene_).value_or(Light{LightType::Directional, {0, 1, 0}, {}, 0.0f, 0.0f, glm::vec3(0.0f), 0.0f});
+  Light main_light_ = main_light(scene_);
   std::optional<size_t> main_light_index_ = forward_lights(scene_).main;
   MeshHandle triangle_;
   std::vector<PassTiming> timings_;

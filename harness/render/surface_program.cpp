@@ -87,7 +87,7 @@ std::optional<shaderlab::LightingForm> lighting_form(const std::vector<const hls
 // A message about the program that the front end's first error explains better, where it has one.
 Error program_error(const hlsl::Module& module, std::string message, const SourceLocation& where) {
   for (const Diagnostic& diagnostic : module.diagnostics.diagnostics())
-    if (diagnostic.severity == Severity::Error && diagnostic.message.find("entry point") == std::string::npos)
+    if (diagnostic.severity == Severity::Error)
       return Error{message + "; the program does not compile: " + diagnostic.message, diagnostic.where, {}};
   return Error{std::move(message), where, {}};
 }
@@ -108,8 +108,8 @@ Result<shaderlab::SurfaceProgramShape> read_surface_program(const fs::path& file
   program.text += shaderlab::surface_program_for_analysis(surface, sub.includes);
   auto compile_options = pass_compile_options(file, program, std::move(options), platform);
   if (!compile_options) return fail(compile_options.error());
-  // Read for its declarations only: it has no entry point yet, and what does not compile in it is
-  // reported where the generated passes compile.
+  // Read for its declarations (it has no entry point yet); an error in it is reported with what
+  // the program lacks, or where the generated passes compile.
   auto module = hlsl::compile_text(file.string(), program.text, *compile_options);
   const hlsl::TranslationUnit& unit = module->unit;
 

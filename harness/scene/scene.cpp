@@ -316,14 +316,14 @@ class SceneReader : SceneValueReader {
       missing(table, path + ".position", "an array of 3 numbers");
       ok = false;
     }
-    if (positioned) ok &= float_key(table, "range", path, "a number > 0", [](double v) { return v > 0.0; }, light.range);
+    if (positioned) ok &= optional_float(table, "range", path, "a number > 0", [](double v) { return v > 0.0; }, light.range);
     if (light.type == LightType::Spot)
-      ok &= float_key(table, "spot_angle", path, "a number of degrees in (0, 180)", [](double v) { return v > 0.0 && v < 180.0; },
+      ok &= optional_float(table, "spot_angle", path, "a number of degrees in (0, 180)", [](double v) { return v > 0.0 && v < 180.0; },
                    light.spot_angle);
     if (const toml::node* node = table.get("color")) {
       if (auto value = colour(*node, path + ".color")) light.color = *value;
     }
-    float_key(table, "intensity", path, "a number >= 0", non_negative, light.intensity);
+    optional_float(table, "intensity", path, "a number >= 0", non_negative, light.intensity);
     read_shadows(table, path, light, ok);
     if (ok) scene.lights.push_back(light);
   }
@@ -352,11 +352,11 @@ class SceneReader : SceneValueReader {
         ok = false;
       }
     }
-    ok &= float_key(table, "shadow_strength", path, "a number in [0, 1]", [](double v) { return v >= 0.0 && v <= 1.0; },
+    ok &= optional_float(table, "shadow_strength", path, "a number in [0, 1]", [](double v) { return v >= 0.0 && v <= 1.0; },
                  light.shadow_strength);
     const auto bias_range = [](double v) { return v >= 0.0 && v <= 10.0; };
-    ok &= float_key(table, "shadow_bias", path, "a number of texels in [0, 10]", bias_range, light.shadow_bias);
-    ok &= float_key(table, "shadow_normal_bias", path, "a number of texels in [0, 10]", bias_range, light.shadow_normal_bias);
+    ok &= optional_float(table, "shadow_bias", path, "a number of texels in [0, 10]", bias_range, light.shadow_bias);
+    ok &= optional_float(table, "shadow_normal_bias", path, "a number of texels in [0, 10]", bias_range, light.shadow_normal_bias);
     if (const toml::node* node = table.get("shadow_resolution")) {
       const auto* size = node->as_integer();
       const int64_t n = size ? size->get() : 0;
@@ -366,17 +366,6 @@ class SceneReader : SceneValueReader {
         ok = false;
       }
     }
-  }
-
-  // `table.key`, where given, into `out` when `valid`; false where it is given and not valid.
-  template <class Valid>
-  bool float_key(const toml::table& table, const char* key, const std::string& path, const char* expectation, const Valid& valid,
-              float& out) {
-    const toml::node* node = table.get(key);
-    if (!node) return true;
-    auto value = float_value(*node, path + "." + key, expectation, valid);
-    if (value) out = *value;
-    return value.has_value();
   }
 
   void read_fog(const toml::table& table, FogSpec& fog) {

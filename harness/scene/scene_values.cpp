@@ -43,6 +43,15 @@ std::optional<float> SceneValueReader::float_value(const toml::node& node, std::
   return static_cast<float>(*value);
 }
 
+bool SceneValueReader::optional_float(const toml::table& table, std::string_view key, const std::string& path,
+                                      std::string_view expectation, const NumberCheck& check, float& out) {
+  const toml::node* node = table.get(key);
+  if (!node) return true;
+  auto value = float_value(*node, path + "." + std::string(key), expectation, check);
+  if (value) out = *value;
+  return value.has_value();
+}
+
 std::optional<int64_t> SceneValueReader::integer(const toml::node& node, std::string_view path, int64_t min,
                                                  int64_t max) {
   auto* value = node.as_integer();

@@ -42,6 +42,11 @@ class SceneValueReader : protected TomlReader {
   std::optional<float> float_value(const toml::node& node, std::string_view path, std::string_view expectation,
                                    const NumberCheck& check);
 
+  // `table`'s optional `key` (at `path`.key) into `out` where it is given and passes `check`;
+  // false where it is given and does not (reported).
+  bool optional_float(const toml::table& table, std::string_view key, const std::string& path, std::string_view expectation,
+                      const NumberCheck& check, float& out);
+
   std::optional<int64_t> integer(const toml::node& node, std::string_view path, int64_t min, int64_t max);
 
   std::optional<glm::vec3> point(const toml::node& node, std::string_view path);
