@@ -21,6 +21,9 @@ struct Configuration {
   bool half_emulation = false;  // gl and vk only
   uint32_t supersample = 1;     // rendered at k times the size, then averaged over k x k pixels
   std::optional<uint32_t> shadow_resolution = std::nullopt;  // every shadow map's size
+  // Every shadow-casting light's filter when set: soft (the 2x2 comparisons filtered) or hard
+  // (one comparison). Soft is not run on vk-hlsl (harness::Light::Shadows).
+  std::optional<bool> soft_shadows = std::nullopt;
 };
 
 struct Study {

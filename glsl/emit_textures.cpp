@@ -56,6 +56,19 @@ std::string shadow_coordinate(TextureShape shape) {
   }
 }
 
+// A 2D comparison read (coordinate $2, reference $3, constant offset operand `offset` if not 0)
+// as a linear comparison sampler filters it, in the shader (EmitOptions::filter_comparisons):
+// the 2x2 texels a bilinear read weights, compared by one textureGather at their shared corner,
+// then weighted by xs_compare_bilinear. Level 0, which is all a shadow map has; SampleCmp's
+// derivatives do not choose a level here.
+std::string bilinear_comparison(const std::string& sampler, size_t offset) {
+  const std::string size = "vec2(textureSize(" + sampler + ", 0))";
+  const std::string coordinate = offset ? "($2 + vec2($" + std::to_string(offset) + ") / " + size + ")" : "$2";
+  const std::string texel = coordinate + " * " + size;
+  return "xs_compare_bilinear(textureGather(" + sampler + ", (floor(" + texel + " - 0.5) + 1.0) / " + size + ", $3), " +
+         texel + ")";
+}
+
 }  // namespace
 
 std::string StageEmitter::resource_type(const Type& type, const Decl* decl, Loc loc) {
@@ -234,6 +247,10 @@ Code StageEmitter::texture_call(const CallExpr& call) {
   };
   const std::string texel_part = first_components(call.type.component_count());
   std::string text;
+  // A comparison the shader filters is a helper on every call: glslang (12) types a texture first
+  // used in a shadow sampler's constructor as a depth image, and a helper that takes it as a
+  // texture2D after that no longer matches it in SPIR-V; used only in helpers, it never is.
+  bool filtered_in_helper = false;
   switch (id) {
     case I::Sample:
       no_clamp(3);
@@ -259,7 +276,10 @@ Code StageEmitter::texture_call(const CallExpr& call) {
     case I::SampleCmp:
       no_clamp(4);
       constant_offset(3);
-      if (shape == TextureShape::CubeArray) {
+      if (filter_comparisons_ && shape == TextureShape::Tex2D) {
+        text = bilinear_comparison(sampler, args >= 4 ? 4 : 0);
+        filtered_in_helper = true;
+      } else if (shape == TextureShape::CubeArray) {
         if (args >= 4) fail(call.loc, "'SampleCmp' of a TextureCubeArray takes no offset");
         text = "texture(" + sampler + ", $2, $3)";
       } else {
@@ -271,7 +291,10 @@ Code StageEmitter::texture_call(const CallExpr& call) {
       // GLSL has textureLod only for 1D and 2D shadow samplers; zero gradients give level 0 too.
       constant_offset(3);
       const std::string coordinate = shadow_coordinate(shape);
-      if (shape == TextureShape::CubeArray) {
+      if (filter_comparisons_ && shape == TextureShape::Tex2D) {
+        text = bilinear_comparison(sampler, args >= 4 ? 4 : 0);
+        filtered_in_helper = true;
+      } else if (shape == TextureShape::CubeArray) {
         fail(call.loc, "'SampleCmpLevelZero' of a TextureCubeArray is not supported on this target");
       } else if (shape == TextureShape::Tex2DArray || shape == TextureShape::Cube) {
         const std::string zero = shape == TextureShape::Cube ? "vec3(0.0)" : "vec2(0.0)";
@@ -369,7 +392,7 @@ Code StageEmitter::texture_call(const CallExpr& call) {
       fail(call.loc, in_quotes(name) + " is not supported on this target");
       return {"0"};
   }
-  return expand_template(text, call, operands, out);
+  return expand_template(text, call, operands, out, filtered_in_helper);
 }
 
 }  // namespace xshade::glsl::detail

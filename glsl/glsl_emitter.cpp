@@ -169,10 +169,10 @@ const StageVariable* find_variable(const std::vector<StageVariable>& variables, 
 
 }  // namespace
 
-StageEmitter::StageEmitter(const Module& module, Flavour flavour, const Names& names, bool vertex, bool half_emulation,
-                           bool trace, uint32_t trace_program)
-    : module_(module), reflection_(module.reflection), flavour_(flavour), half_emulation_(half_emulation), names_(names),
-      vertex_(vertex), trace_(trace && !vertex), trace_program_(trace_program) {
+StageEmitter::StageEmitter(const Module& module, const EmitOptions& options, const Names& names, bool vertex)
+    : module_(module), reflection_(module.reflection), flavour_(options.flavour), half_emulation_(options.half_emulation),
+      filter_comparisons_(options.filter_comparisons), names_(names), vertex_(vertex),
+      trace_(options.trace_nonfinite && !vertex), trace_program_(options.trace_program) {
   entry_ = vertex ? module.entry_points.vertex : module.entry_points.fragment;
 }
 
@@ -725,8 +725,7 @@ Result<EmittedProgram> emit(const hlsl::Module& module, const EmitOptions& optio
     if (!entry) continue;
     if (options.trace_nonfinite && options.trace_program >= NonfiniteTrace::kMaxPrograms)
       return fail("the tracing variant numbers at most " + std::to_string(NonfiniteTrace::kMaxPrograms) + " programs");
-    detail::StageEmitter emitter(module, options.flavour, names, vertex, options.half_emulation,
-                                 options.trace_nonfinite, options.trace_program);
+    detail::StageEmitter emitter(module, options, names, vertex);
     std::string text = emitter.run();
     if (emitter.error()) return fail(*emitter.error());
     (vertex ? program.vertex : program.fragment) = EmittedStage{std::move(text)};

@@ -39,6 +39,12 @@ struct EmitOptions {
   // The traced program's number (below 256), the high bits of its sites' numbers, so that the
   // record of a target several programs drew into says which program's site it is.
   uint32_t trace_program = 0;
+  // Comparison reads of a 2D texture (SampleCmp, SampleCmpLevelZero) filter in the shader: the
+  // four nearest comparisons (textureGather with the reference) weighted bilinearly, which is
+  // what a linear comparison sampler computes (a soft shadow's 2x2 PCF). For a driver that
+  // cannot filter a depth texture (lavapipe has no linear filtering of any depth format); the
+  // sampler bound is then read nearest (glsl::filters_comparisons_in_shader).
+  bool filter_comparisons = false;
 };
 
 // A place in the author's source the tracing variant tests.

@@ -345,6 +345,13 @@ std::string StageEmitter::require_helper(const std::string& name, const std::vec
       parts += (i ? ", " : "") + (to_float ? "unpackHalf2x16(" + c + ").x" : "packHalf2x16(vec2(" + c + ", 0.0))");
     }
     definition = result + " " + name + "(" + t + " a) {\n  return " + result + "(" + parts + ");\n}\n";
+  } else if (name == "xs_compare_bilinear") {
+    // The four comparisons textureGather returns, (i0, j1), (i1, j1), (i1, j0), (i0, j0), weighted
+    // as a bilinear read of the texel coordinate weights its four texels.
+    definition = "float xs_compare_bilinear(vec4 compared, vec2 texel) {\n  vec2 f = fract(texel - 0.5);\n"
+                 "  return mix(mix(compared.w, compared.z, f.x), mix(compared.x, compared.y, f.x), f.y);\n}\n";
+    helpers_.add(name, definition);  // one definition, whatever the operands' types
+    return name;
   } else if (name == "xs_clip") {
     if (n == 1)
       definition = "void xs_clip(float a) {\n  if (a < 0.0) discard;\n}\n";
@@ -459,7 +466,7 @@ Code StageEmitter::intrinsic_call(const CallExpr& call) {
 }
 
 Code StageEmitter::expand_template(std::string_view text, const CallExpr& call, const std::vector<const Expr*>& operands,
-                                   const std::vector<bool>& out) {
+                                   const std::vector<bool>& out, bool always_helper) {
   const IntrinsicInfo& info = intrinsic_info(IntrinsicId(call.intrinsic));
   const std::string result_type = type_name(call.type, call.loc);  // also reports a type GLSL lacks
   // Most templates have no $R or $B0: they are expanded as they stand, without a copy.
@@ -493,7 +500,7 @@ Code StageEmitter::expand_template(std::string_view text, const CallExpr& call, 
     }
     ++uses[size_t(piece.operand)];
   }
-  bool needs_helper = false;
+  bool needs_helper = always_helper;
   for (size_t i = 0; i < operands.size(); ++i)
     if (uses[i] > 1 && !is_simple(operands[i])) needs_helper = true;
   // vk: glslang makes a combined sampler ($0, $1) before it evaluates the later arguments, and

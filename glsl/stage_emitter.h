@@ -139,8 +139,7 @@ class Helpers {
 
 class StageEmitter {
  public:
-  StageEmitter(const hlsl::Module& module, Flavour flavour, const Names& names, bool vertex, bool half_emulation,
-               bool trace = false, uint32_t trace_program = 0);
+  StageEmitter(const hlsl::Module& module, const EmitOptions& options, const Names& names, bool vertex);
   // The stage's complete GLSL text; check error() afterwards.
   std::string run();
   const std::optional<Error>& error() const { return error_; }
@@ -191,9 +190,10 @@ class StageEmitter {
   Code intrinsic_call(const hlsl::CallExpr& call);
   // A template of intrinsic_mapping.cpp's kind ($0.., $R, $B0, xs_ helpers) over `operands`;
   // `out` marks the operands passed to out parameters. An operand used twice that is not a
-  // simple expression makes the template a helper function, so that it is evaluated once.
+  // simple expression makes the template a helper function, so that it is evaluated once;
+  // `always_helper` makes it one whatever its operands.
   Code expand_template(std::string_view text, const hlsl::CallExpr& call, const std::vector<const Expr*>& operands,
-                       const std::vector<bool>& out);
+                       const std::vector<bool>& out, bool always_helper = false);
   // A component-wise intrinsic with matrix operands, which GLSL's built-ins do not take: a helper
   // that applies the vector form to each column (all/any and clip combine the columns' results).
   Code matrix_intrinsic_call(const hlsl::CallExpr& call, const std::vector<const Expr*>& operands);
@@ -288,6 +288,7 @@ class StageEmitter {
   const hlsl::Reflection& reflection_;
   const Flavour flavour_;
   const bool half_emulation_;
+  const bool filter_comparisons_;
   const Names& names_;
   const bool vertex_;
   const FunctionDecl* entry_ = nullptr;

@@ -177,6 +177,10 @@ struct TextureSlot {
   // Vulkan only: a sampled image without a sampler (a texture the shader only Loads from or
   // asks the size of).
   bool image_only = false;
+  // A comparison slot whose filtering the shader does itself (2x2 comparisons by textureGather,
+  // glsl::EmitOptions::filter_comparisons; the vk lane's, for a device that cannot filter a
+  // depth texture): the driver reads it nearest whatever filter the bound sampler names.
+  bool filtered_in_shader = false;
   // OpenGL only: the sampler uniform's name in the GLSL when it is not `name` (GLSL reserves the
   // HLSL name, e.g. `sample` or `flat`, and the emitter renames it). Draws still bind by `name`.
   std::string glsl_name = {};

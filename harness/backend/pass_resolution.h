@@ -101,7 +101,10 @@ Result<ResolvedPass<Target, Program, Mesh, Texture>> resolve_pass(
                                           source.sampler, where);
           !fits)
         return fail(fits.error());
-      const BoundTexture<Texture> bound{texture, source.sampler, source.kind != TextureSource::Kind::Texture};
+      // A slot the shader filters itself is read nearest, whatever the filter asked for.
+      SamplerDesc sampler = source.sampler;
+      if (layout.textures[index].filtered_in_shader) sampler.filter = Filter::Nearest;
+      const BoundTexture<Texture> bound{texture, sampler, source.kind != TextureSource::Kind::Texture};
       if (auto checked = check(layout, index, binding, bound, draw.textures, where); !checked)
         return fail(checked.error());
       draw.textures.push_back(bound);

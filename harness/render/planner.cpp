@@ -188,7 +188,7 @@ std::string VariantRequest::label() const {
   if (unity_platform != shaderlab::UnityPlatform::GLCore) text += " for " + std::string(shaderlab::renderer_name(unity_platform));
   text += " [";
   for (size_t i = 0; i < keywords.size(); ++i) text += (i ? " " : "") + keywords[i];
-  return text + "]" + (half_emulation ? " half" : "");
+  return text + "]" + (filtered_comparison ? " filtered comparison" : "") + (half_emulation ? " half" : "");
 }
 
 namespace {
@@ -398,19 +398,33 @@ Result<Plan> plan_scene(const Scene& scene, const ShaderSearchPath& shaders) {
       if (scene.fog) add_global_keyword(fog_keyword(scene.fog->mode), facts.keyword_sets, asked);
       // The light a pass is drawn for chooses its variant, as Unity's forward renderer sets the
       // keywords: an additive pass's light type; ForwardBase's per-vertex lights where there are any.
+      std::optional<size_t> received;  // the light whose shadow map the pass reads
       if (caster) {
         add_global_keyword("SHADOWS_DEPTH", facts.keyword_sets, asked);  // a directional or spot light's map
       } else if (light) {
         add_global_keyword(additive_keyword(scene.lights[*light].type), facts.keyword_sets, asked);
         // A spot light's shadow, as Unity's additive pass receives it.
-        if (has_map(light)) add_global_keyword("SHADOWS_DEPTH", facts.keyword_sets, asked);
+        if (has_map(light)) {
+          add_global_keyword("SHADOWS_DEPTH", facts.keyword_sets, asked);
+          received = light;
+        }
       } else {
         if (!lights.vertex.empty()) add_global_keyword("VERTEXLIGHT_ON", facts.keyword_sets, asked);
         // The main light's shadow, as Unity's forward base pass receives it.
-        if (has_map(lights.main)) add_global_keyword("SHADOWS_SCREEN", facts.keyword_sets, asked);
+        if (has_map(lights.main)) {
+          add_global_keyword("SHADOWS_SCREEN", facts.keyword_sets, asked);
+          received = lights.main;
+        }
       }
+      // A soft shadow: Unity's keyword (its fullshadows passes filter more taps), and the map's
+      // comparisons filtered linearly where the variant reads it.
+      const bool soft = received && scene.lights[*received].shadows == Light::Shadows::Soft;
+      if (soft) add_global_keyword("SHADOWS_SOFT", facts.keyword_sets, asked);
       VariantRequest request{facts.path, instance.material, variant_keywords(facts.keyword_sets, asked), {}};
       request.shader_pass = pass;
+      request.filtered_comparison =
+          soft && std::find(request.keywords.begin(), request.keywords.end(),
+                            lights.main == received ? "SHADOWS_SCREEN" : "SHADOWS_DEPTH") != request.keywords.end();
       used_combinations[instance.material].insert(request.keywords);
       possible_combinations[instance.material] = hlsl::keyword_combination_count(material.keyword_sets);
       const std::vector<std::string> keywords = request.keywords;
@@ -556,7 +570,9 @@ std::string describe_plan(const Scene& scene, const Plan& plan, const std::vecto
             return draw.caster && draw.light == light;
           }));
         text += "      shadow map of light " + std::to_string(light + 1) + ": " + std::to_string(caster.shadow_resolution) +
-                "x" + std::to_string(caster.shadow_resolution) + ", hard, " + std::to_string(casting_draws) +
+                "x" + std::to_string(caster.shadow_resolution) +
+                (caster.shadows == Light::Shadows::Soft ? ", soft (2x2 comparisons filtered), " : ", hard, ") +
+                std::to_string(casting_draws) +
                 " casters drawn first (ShadowCaster passes), the rest of these draws receiving it\n";
       }
       // The lights as the forward renderer divides them, and each draw an additive light adds.

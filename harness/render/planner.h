@@ -25,12 +25,16 @@ struct VariantRequest {
   // The Unity platform a .shader compiles for (the scene's); GLCore for an .hlsl file.
   shaderlab::UnityPlatform unity_platform = shaderlab::UnityPlatform::GLCore;
   bool half_emulation = false;        // every half result rounded to fp16 (GLSL lanes only)
+  // Drawn where its comparison samplers filter linearly (a soft shadow's map):
+  // ProgramOptions::filter_comparisons.
+  bool filtered_comparison = false;
   // The tracing variant (gl and vk lanes), numbered trace_program (render/shader_program.h).
   bool trace_nonfinite = false;
   uint32_t trace_program = 0;
 
   // "materials/toon.hlsl [_GUARDED]", "post/depth_of_field.hlsl:frag_coc [_KERNEL_SMALL]",
-  // "Unlit/Outline.shader pass 1 []" or "Unlit/Outline.shader pass 1 for d3d11 []".
+  // "Unlit/Outline.shader pass 1 []", "Unlit/Outline.shader pass 1 for d3d11 []" or
+  // "Standard.shader pass 1 [SHADOWS_SCREEN] filtered comparison".
   std::string label() const;
   friend bool operator==(const VariantRequest&, const VariantRequest&) = default;
 };

@@ -351,14 +351,17 @@ class SceneRenderer {
   // the attenuation textures of `light`, the type of the light the draw is lit by. Nothing for
   // any other name.
   Result<std::optional<TextureSource>> engine_texture(const std::string& name, LightType light,
-                                                      std::optional<TargetHandle> shadow_map = std::nullopt) {
+                                                      std::optional<TargetHandle> shadow_map = std::nullopt,
+                                                      bool soft_shadow = false) {
     // Clamped: the equirect's top and bottom rows are the poles, not neighbours; a cube's
     // faces meet without wrapping either way; a light's falloff ends at its last texel.
     const SamplerDesc clamped{Filter::Linear, AddressMode::ClampToEdge};
     // The shadow map's depth, compared (LEqual: lit where the pixel is no farther from the light
-    // than the nearest caster), one comparison a pixel.
+    // than the nearest caster): one comparison a pixel for hard shadows, the 2x2 nearest
+    // comparisons weighted bilinearly for soft ones.
     if (name == kShadowMapTexture && shadow_map)
-      return TextureSource::depth_of(*shadow_map, SamplerDesc{Filter::Nearest, AddressMode::ClampToEdge, CompareOp::LessEqual});
+      return TextureSource::depth_of(*shadow_map, SamplerDesc{soft_shadow ? Filter::Linear : Filter::Nearest,
+                                                              AddressMode::ClampToEdge, CompareOp::LessEqual});
     // _LightTexture0 is a spot's cookie, else (a point light's) the falloff; _LightTextureB0 a
     // spot's falloff.
     if (name == "_LightTexture0" || name == "_LightTextureB0") {
@@ -428,7 +431,7 @@ class SceneRenderer {
     if (!handle) return fail(handle.error());
     DrawItem draw{*handle, *mesh_handle, {}, {}, direct3d_ ? on_direct3d_render_target(instance_draw.state) : instance_draw.state};
     for (const std::string& name : variants_[variant].interface.textures) {
-      auto engine = engine_texture(name, light.type, shadow_map);
+      auto engine = engine_texture(name, light.type, shadow_map, light.shadows == Light::Shadows::Soft);
       if (!engine) return fail(in_context(where + ": texture '" + name + "'", engine.error()));
       if (*engine) {
         draw.textures.push_back({name, **engine});

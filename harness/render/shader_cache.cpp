@@ -47,6 +47,7 @@ std::string variant_json(const CompiledVariant& variant) {
               {"comparison", t.comparison},
               {"texel", int(t.texel)},
               {"image_only", t.image_only},
+              {"filtered_in_shader", t.filtered_in_shader},
               {"glsl_name", t.glsl_name}};
     if (t.sampler_binding) slot["sampler_binding"] = *t.sampler_binding;
     textures.push_back(std::move(slot));
@@ -78,6 +79,7 @@ std::optional<CompiledVariant> variant_from_json(const std::string& text) {
       slot.comparison = t.at("comparison");
       slot.texel = TexelKind(t.at("texel").get<int>());
       slot.image_only = t.at("image_only");
+      slot.filtered_in_shader = t.at("filtered_in_shader");
       slot.glsl_name = t.at("glsl_name");
       p.layout.textures.push_back(std::move(slot));
     }

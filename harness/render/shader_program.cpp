@@ -82,6 +82,12 @@ Result<ShaderStageSource> vk_hlsl_stage(const hlsl::Module& module, spirv::Stage
   return source;
 }
 
+// The lanes whose GLSL filters 2D comparison reads in the shader when a program's comparison
+// samplers filter linearly (ProgramOptions::filter_comparisons).
+bool filters_comparisons_in_shader(Lane lane, const ProgramOptions& options) {
+  return options.filter_comparisons && lane == Lane::Vk;
+}
+
 }  // namespace
 
 TextureShape harness_shape(hlsl::TextureShape shape) {
@@ -107,7 +113,8 @@ TexelKind harness_texel(hlsl::ScalarType texel) {
   return TexelKind::Float;
 }
 
-ProgramLayout layout_for_lane(const hlsl::Reflection& reflection, Lane lane) {
+
+ProgramLayout layout_for_lane(const hlsl::Reflection& reflection, Lane lane, const ProgramOptions& options) {
   ProgramLayout layout;
   for (const hlsl::ConstantBuffer& buffer : reflection.constant_buffers)
     layout.uniform_blocks.push_back({glsl::block_name(buffer.name), buffer.binding, buffer.size});
@@ -116,6 +123,8 @@ ProgramLayout layout_for_lane(const hlsl::Reflection& reflection, Lane lane) {
     TextureSlot slot{texture.name, texture.binding, std::nullopt};
     slot.shape = harness_shape(texture.shape);
     slot.comparison = texture.comparison;
+    slot.filtered_in_shader = texture.comparison && texture.shape == hlsl::TextureShape::Tex2D &&
+                              filters_comparisons_in_shader(lane, options);
     slot.texel = harness_texel(texture.texel);
     if (lane == Lane::Gl && glsl::needs_renaming(texture.name)) slot.glsl_name = glsl::renamed(texture.name);
     if (lane != Lane::Gl && texture.kind == hlsl::TextureKind::Texture) {
@@ -154,7 +163,11 @@ Result<LaneStages> stages_for_lane(const hlsl::Module& module, Lane lane, const 
     return stages;
   }
   const glsl::Flavour flavour = lane == Lane::Gl ? glsl::Flavour::Gl : glsl::Flavour::Vk;
-  auto emitted = glsl::emit(module, {flavour, options.half_emulation, options.trace_nonfinite, options.trace_program});
+  auto emitted = glsl::emit(module, {.flavour = flavour,
+                                     .half_emulation = options.half_emulation,
+                                     .trace_nonfinite = options.trace_nonfinite,
+                                     .trace_program = options.trace_program,
+                                     .filter_comparisons = filters_comparisons_in_shader(lane, options)});
   if (!emitted) return fail(emitted.error());
   stages.trace = std::move(emitted->trace);
   const std::string name = module.sources.name(module.main_file);
@@ -188,7 +201,7 @@ Result<ProgramDesc> program_for_lane(const hlsl::Module& module, Lane lane, cons
   if (trace) *trace = std::move(stages->trace);
   ProgramDesc desc;
   desc.name = module.sources.name(module.main_file);
-  desc.layout = layout_for_lane(module.reflection, lane);
+  desc.layout = layout_for_lane(module.reflection, lane, options);
   desc.fullscreen = module.entry_points.vertex == nullptr;
   desc.fragment = std::move(*stages->fragment);
   if (stages->vertex) {

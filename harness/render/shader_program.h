@@ -22,6 +22,12 @@ struct ProgramOptions {
   // `trace_program`; the gl and vk lanes only (vk-hlsl compiles the source with glslang).
   bool trace_nonfinite = false;
   uint32_t trace_program = 0;
+  // The program's comparison samplers are bound filtering linearly (a soft shadow's map). gl
+  // filters in the driver; on vk, whose lavapipe cannot filter a depth texture, the shader filters
+  // its 2D comparison reads itself (glsl::EmitOptions::filter_comparisons, the slots
+  // filtered_in_shader); vk-hlsl compiles the source with glslang and cannot, so the backend
+  // refuses the linear sampler there.
+  bool filter_comparisons = false;
 };
 
 // Half emulation also defines this macro for the front end, so that a shader can choose to
@@ -44,7 +50,7 @@ Result<LaneStages> stages_for_lane(const hlsl::Module& module, Lane lane, const 
 // The layout the harness binds by: uniform blocks by their GLSL block name, textures by name
 // with their samplers' bindings (Vulkan only; OpenGL combines them).
 // Each texture slot carries the shape, texel kind and comparison the shader declared.
-ProgramLayout layout_for_lane(const hlsl::Reflection& reflection, Lane lane);
+ProgramLayout layout_for_lane(const hlsl::Reflection& reflection, Lane lane, const ProgramOptions& options = {});
 // A texture shape and texel type of the front end as the backends name them.
 TextureShape harness_shape(hlsl::TextureShape shape);
 TexelKind harness_texel(hlsl::ScalarType texel);

@@ -52,7 +52,8 @@ Result<CompiledVariant> VariantCompiler::compile(const VariantRequest& request, 
   auto program = program_for_lane(**module, lane,
                                   {.half_emulation = request.half_emulation,
                                    .trace_nonfinite = request.trace_nonfinite,
-                                   .trace_program = request.trace_program},
+                                   .trace_program = request.trace_program,
+                                   .filter_comparisons = request.filtered_comparison},
                                   &trace);
   if (!program) return fail(program.error());
   CompiledVariant variant{std::move(*program), shader_interface((*module)->reflection), std::move(trace)};

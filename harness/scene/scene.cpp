@@ -324,11 +324,12 @@ class SceneReader : SceneValueReader {
       if (auto value = colour(*node, path + ".color")) light.color = *value;
     }
     optional_float(table, "intensity", path, "a number >= 0", non_negative, light.intensity);
-    read_shadows(table, path, light, ok);
+    read_shadows(table, path, scene.lanes, light, ok);
     if (ok) scene.lights.push_back(light);
   }
 
-  void read_shadows(const toml::table& table, const std::string& path, Light& light, bool& ok) {
+  void read_shadows(const toml::table& table, const std::string& path, const std::vector<std::string>& lanes, Light& light,
+                    bool& ok) {
     if (const toml::node* node = table.get("shadows")) {
       auto* mode = node->as_string();
       if (mode && mode->get() == "none") light.shadows = Light::Shadows::None;
@@ -338,11 +339,13 @@ class SceneReader : SceneValueReader {
         expected(*node, path + ".shadows", "\"none\", \"hard\" or \"soft\"");
         ok = false;
       }
-      if (ok && light.shadows == Light::Shadows::Soft) {
-        report(node->source(), fmt::format("{}.shadows: \"soft\" is not rendered yet: Unity filters a directional light's "
-                                           "soft shadows in its screen-space collector, which xshade replaces by reading the "
-                                           "shadow map directly, and lavapipe cannot filter a depth texture; use \"hard\"",
-                                           path));
+      if (ok && light.shadows == Light::Shadows::Soft && std::find(lanes.begin(), lanes.end(), "vk-hlsl") != lanes.end()) {
+        report(node->source(),
+               fmt::format("{}.shadows: \"soft\" is not drawn on the vk-hlsl lane: a soft shadow's comparisons are filtered "
+                           "linearly, which lavapipe cannot do for a depth texture, and glslang's HLSL output cannot do "
+                           "in the shader as xshade's does on vk; list the lanes without it (lanes = [\"gl\", \"vk\"]) or "
+                           "use \"hard\"",
+                           path));
         ok = false;
       }
       if (ok && light.shadows != Light::Shadows::None && light.type == LightType::Point) {

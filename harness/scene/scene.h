@@ -56,7 +56,8 @@ struct Light {
   glm::vec3 color{1.0f};
   float intensity = 1.0f;
   // Shadows, as Unity's Light has them (a directional or spot light's): none, hard (one
-  // comparison per pixel) or soft (refused by the reader: not rendered yet); strength 0..1;
+  // comparison per pixel) or soft (the 2x2 comparisons weighted bilinearly, and Unity's
+  // SHADOWS_SOFT; not on the vk-hlsl lane, which the reader refuses); strength 0..1;
   // the depth and normal biases in shadow-map texels (xshade's unit: Unity's internal scale of
   // its Bias and Normal Bias is not published; one texel of each keeps a lit surface facing the
   // light free of acne at any angle the normal offset leaves); the shadow map's size.

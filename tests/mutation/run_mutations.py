@@ -199,6 +199,12 @@ MUTATIONS = [
     ("the shadow map's depth is compared the wrong way", 'harness/render/scene_renderer.cpp',
      'AddressMode::ClampToEdge, CompareOp::LessEqual});', 'AddressMode::ClampToEdge, CompareOp::Greater});',
      'realworld.unity_toon_shadow|realworld.unity_standard_pbr_shadow'),
+    ("a comparison filtered in the shader weighs its texels in the wrong order", 'glsl/intrinsic_mapping.cpp',
+     'mix(compared.w, compared.z, f.x)', 'mix(compared.z, compared.w, f.x)',
+     'FilteredComparison|realworld.unity_soft_shadows'),
+    ("a soft shadow's map is read without filtering", 'harness/render/scene_renderer.cpp',
+     'soft_shadow ? Filter::Linear : Filter::Nearest', 'soft_shadow ? Filter::Nearest : Filter::Nearest',
+     'realworld.unity_soft_shadows'),
 ]
 
 
