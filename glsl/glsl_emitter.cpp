@@ -129,19 +129,20 @@ struct StageItem {
   ParsedSemantic parsed;  // parse_semantic of the author's spelling, which `semantic` parses to as well
   Interpolation interpolation = Interpolation::Default;
   Loc loc;
+  std::string builtin = {};  // [[vk::builtin("PointSize")]]: written to GLSL's built-in, not a varying
 };
 
 void flatten(const Type& type, const std::string& path, const std::string& semantic, Interpolation interpolation,
-             Loc loc, const Names& names, std::vector<StageItem>& items, int depth = 0) {
+             Loc loc, const std::string& builtin, const Names& names, std::vector<StageItem>& items, int depth = 0) {
   if (type.kind() == TypeKind::Struct && type.struct_decl() && depth < 64) {
     for (const FieldDecl& field : type.struct_decl()->fields)
-      flatten(field.type, path + "." + names.of(field.name), field.semantic, field.interpolation, field.loc, names,
-              items, depth + 1);
+      flatten(field.type, path + "." + names.of(field.name), field.semantic, field.interpolation, field.loc,
+              field.vk.builtin, names, items, depth + 1);
     return;
   }
   if (semantic.empty()) return;
   const ParsedSemantic parsed = parse_semantic(semantic);
-  items.push_back({path, type, canonical_semantic(parsed), parsed, interpolation, loc});
+  items.push_back({path, type, canonical_semantic(parsed), parsed, interpolation, loc, builtin});
 }
 
 // The inputs (or outputs) of an entry point, with `xs_arg<i>` / `xs_result` paths.
@@ -153,11 +154,11 @@ std::vector<StageItem> stage_items(const FunctionDecl& entry, bool inputs, const
     const bool is_input = param->direction != ParamDirection::Out;
     const bool is_output = param->direction != ParamDirection::In;
     if (inputs ? is_input : is_output)
-      flatten(param->type, "xs_arg" + std::to_string(i), param->semantic, param->interpolation, param->loc, names,
-              items);
+      flatten(param->type, "xs_arg" + std::to_string(i), param->semantic, param->interpolation, param->loc,
+              param->vk.builtin, names, items);
   }
   if (!inputs && !entry.return_type.is_void())
-    flatten(entry.return_type, "xs_result", entry.semantic, Interpolation::Default, entry.loc, names, items);
+    flatten(entry.return_type, "xs_result", entry.semantic, Interpolation::Default, entry.loc, {}, names, items);
   return items;
 }
 
@@ -434,7 +435,10 @@ std::string StageEmitter::run() {
     const std::string value = initializer(*var);
     if (is_constant(var->initializer.get()) && value.find("xs_half(") == std::string::npos) {
       if (var->is_const) const_decls_.insert(var);
-      statics.line(std::string(var->is_const ? "const " : "") + declaration + " = " + value + ";");
+      // [[vk::constant_id(N)]]: a specialization constant, whose value is the default here.
+      const std::string specialized =
+          var->vk.constant_id && flavour_ == Flavour::Vk ? "layout(constant_id = " + std::to_string(*var->vk.constant_id) + ") " : "";
+      statics.line(specialized + (var->is_const ? "const " : "") + declaration + " = " + value + ";");
     } else {
       // main() assigns it first, but functions above main() read it, and Mesa's GLSL compiler,
       // which reads in source order, would warn that they read it uninitialized (a driver
@@ -496,12 +500,19 @@ std::string StageEmitter::declarations() {
     w.line("};");
   }
 
-  const std::string set = flavour_ == Flavour::Vk ? "set = 0, " : "";
+  // Vulkan's descriptor set, and the binding: a uniform-block binding point or texture unit on gl.
+  const auto place = [&](uint32_t set, uint32_t binding) {
+    return (flavour_ == Flavour::Vk ? "set = " + std::to_string(set) + ", " : std::string()) + "binding = " +
+           std::to_string(binding);
+  };
   for (const ConstantBuffer& buffer : reflection_.constant_buffers) {
     // ConstantBuffer<S> cb is read as cb.field: a block with an instance name.
     const bool view = buffer.decl && buffer.decl->kind == DeclKind::Var;
-    w.line("layout(std140, " + set + "binding = " + std::to_string(buffer.binding) + ") uniform " +
-           block_name(buffer.name) + " {");
+    // A push-constant block keeps HLSL's packing (std140 strides, explicit offsets) as a uniform
+    // block does; gl has no push constants and reads it as a uniform block.
+    const std::string where = flavour_ == Flavour::Vk && buffer.push_constant ? "push_constant"
+                                                                              : place(buffer.set, buffer.binding);
+    w.line("layout(std140, " + where + ") uniform " + block_name(buffer.name) + " {");
     w.indent = 1;
     for (const ConstantBufferMember& member : buffer.members) {
       const std::string name = names_.of(member.name);
@@ -530,13 +541,13 @@ std::string StageEmitter::declarations() {
 
   for (const TextureResource& texture : reflection_.textures) {
     if (!texture.used || !texture.decl) continue;
-    const std::string binding = "layout(" + set + "binding = " + std::to_string(texture.binding) + ") uniform ";
+    const std::string binding = "layout(" + place(texture.set, texture.binding) + ") uniform ";
     w.line(binding + resource_type(texture.decl->type, texture.decl, texture.decl->loc) + " " + names_.of(texture.name) + ";");
   }
   if (flavour_ == Flavour::Vk) {
     for (const SamplerResource& sampler : reflection_.samplers)
       if (sampler.used && sampler.decl)
-        w.line("layout(set = 0, binding = " + std::to_string(sampler.binding) + ") uniform " +
+        w.line("layout(" + place(sampler.set, sampler.binding) + ") uniform " +
                resource_type(sampler.decl->type, sampler.decl, sampler.decl->loc) + " " + names_.of(sampler.name) + ";");
   }
   return w.text();
@@ -667,6 +678,10 @@ std::string StageEmitter::interface_and_main() {
     const Code value{item.path, kPostfix};
     if (vertex_ && (parsed.kind == SemanticKind::SvPosition || item.semantic == "POSITION0")) {  // DX9's name
       main.line("gl_Position = " + convert(value, item.type, Type::vector(ScalarType::Float, 4), item.loc).text + ";");
+      continue;
+    }
+    if (vertex_ && item.builtin == "PointSize") {
+      main.line("gl_PointSize = " + convert(value, item.type, Type::scalar(ScalarType::Float), item.loc).text + ";");
       continue;
     }
     if (!vertex_ && parsed.kind == SemanticKind::SvDepth) {

@@ -30,6 +30,19 @@ struct Attribute {
   Loc loc;
 };
 
+// Vulkan's attributes on a declaration, as DXC's SPIR-V back end reads them
+// (`[[vk::location(0)]] float2 uv : TEXCOORD0`, `[[vk::binding(1, 0)]] Texture2D t`).
+struct VulkanAttributes {
+  std::optional<uint32_t> location;     // vk::location(N): a stage input's or output's location
+  std::optional<uint32_t> binding;      // vk::binding(N[, set]): a resource's binding
+  uint32_t set = 0;                     // its descriptor set
+  bool push_constant = false;           // vk::push_constant: a struct variable or ConstantBuffer<S>
+  std::optional<uint32_t> constant_id;  // vk::constant_id(N): a specialization constant
+  std::string builtin;                  // vk::builtin("PointSize"): an output SPIR-V names itself
+  Loc loc;                              // of the first attribute
+  bool any() const { return location || binding || push_constant || constant_id || !builtin.empty(); }
+};
+
 // ---------------------------------------------------------------------------------------------
 // Expressions
 
@@ -339,6 +352,7 @@ struct VarDecl : Decl {
   std::vector<Annotation> annotations;  // <...>
   ExprPtr initializer;
   bool is_global = false;               // parser: declared at file or cbuffer scope
+  VulkanAttributes vk;                  // [[vk::binding(...)]], [[vk::constant_id(...)]], ...
   VarDecl(Loc l) : Decl(DeclKind::Var, l) {}
 };
 
@@ -353,6 +367,7 @@ struct ParamDecl : Decl {
   std::string semantic;
   Loc semantic_loc;
   ExprPtr default_value;
+  VulkanAttributes vk;  // [[vk::location(N)]], [[vk::builtin(...)]]
   ParamDecl(Loc l) : Decl(DeclKind::Param, l) {}
 };
 
@@ -363,6 +378,7 @@ struct FieldDecl {
   std::string semantic;
   Loc loc;
   Loc semantic_loc;
+  VulkanAttributes vk;  // [[vk::location(N)]], [[vk::builtin(...)]]
 };
 
 struct StructDecl : Decl {
@@ -383,6 +399,7 @@ struct FunctionDecl : Decl {
 
 struct CBufferDecl : Decl {
   RegisterBinding binding;
+  VulkanAttributes vk;  // [[vk::binding(N[, set])]]
   AstVector<std::unique_ptr<VarDecl>> members;
   CBufferDecl(Loc l) : Decl(DeclKind::CBuffer, l) {}
 };

@@ -411,15 +411,32 @@ TEST(BadInput, ConstructorComponentCount) {
 // ---------------------------------------------------------------------------------------------
 // Semantics and entry points
 
-TEST(BadInput, UnknownSemantic) {
+// Any identifier is a semantic in HLSL, so a misspelt one compiles: with a warning that names
+// the semantic it is closest to.
+TEST(BadInput, MisspeltSemanticIsAUserSemanticWithAWarning) {
   auto m = compile("sem.hlsl",
                    "#pragma fragment frag\n"
                    "float4 frag(float2 uv : TEXCORD0) : SV_Target {\n"
                    "  return float4(uv, 0, 1);\n"
                    "}\n");
-  EXPECT_EQ(all_rendered(*m), (Strings{"sem.hlsl:2:25: error: unknown semantic 'TEXCORD0'\n"
+  EXPECT_TRUE(m->ok());
+  EXPECT_EQ(all_rendered(*m), (Strings{"sem.hlsl:2:25: warning: 'TEXCORD0' is a user-defined semantic; did you mean "
+                                       "'TEXCOORD0'?\n"
                                        "    float4 frag(float2 uv : TEXCORD0) : SV_Target {\n"
                                        "                            ^"}));
+}
+
+TEST(BadInput, UnknownSystemValue) {
+  auto m = compile("sem.hlsl",
+                   "#pragma fragment frag\n"
+                   "float4 frag(float2 uv : SV_Texcoord) : SV_Target {\n"
+                   "  return float4(uv, 0, 1);\n"
+                   "}\n");
+  ASSERT_EQ(all_rendered(*m).size(), 1u);
+  EXPECT_NE(all_rendered(*m)[0].find("sem.hlsl:2:25: error: unknown semantic 'SV_Texcoord': a system value's name "
+                                     "starts SV_"),
+            std::string::npos)
+      << all_rendered(*m)[0];
 }
 
 TEST(BadInput, EntryInputWithoutSemantic) {

@@ -637,14 +637,19 @@ bool Parser::parse_top_level() {
     return true;
   }
   std::vector<Attribute> attributes;
-  if (is("[") && !parse_attributes(attributes)) return false;
+  VulkanAttributes vk;
+  while (is("[")) {
+    if (at_vulkan_attribute() ? !parse_vulkan_attributes(vk) : !parse_attributes(attributes)) return false;
+  }
   const Token& token = cur();
   if (token.kind == TokenKind::Identifier) {
     if (token.text == "struct" || token.text == "typedef" || token.text == "cbuffer") {
       if (!attributes.empty()) error_at(attribute_index_, "attributes are only allowed on functions and statements");
+      if (vk.any() && token.text != "cbuffer")
+        diagnostics_.error(vk.loc, "a Vulkan attribute applies to a variable, parameter, field or cbuffer");
       if (token.text == "struct") return parse_struct();
       if (token.text == "typedef") return parse_typedef();
-      return parse_cbuffer();
+      return parse_cbuffer(vk);
     }
     if (info(pos_).unsupported) {
       error_here(in_quotes(token.text) + " is not supported");
@@ -653,26 +658,40 @@ bool Parser::parse_top_level() {
     // An unknown word followed by a name is a declaration with a misspelt type; anything else
     // that is neither a qualifier nor a type cannot start a declaration.
     if (is_specifier_at(pos_) || is_type_start(pos_) || (!is_reserved(pos_) && is_name(pos_ + 1)))
-      return parse_global(std::move(attributes));
+      return parse_global(std::move(attributes), vk);
   }
   error_here("expected a declaration");
   return false;
 }
 
 // A global variable or a function.
-bool Parser::parse_global(std::vector<Attribute> attributes) {
+bool Parser::parse_global(std::vector<Attribute> attributes, VulkanAttributes vk) {
   Specifiers spec;
   parse_specifiers(DeclContext::Global, spec);
   const size_t type_index = pos_;
-  const std::optional<Type> type = parse_type(true);
+  std::optional<Type> type = parse_type(true);
   if (!type) return false;
   const std::optional<size_t> name = expect_name();
   if (!name) return false;
-  if (is("(")) return parse_function(std::move(attributes), *type, *name);
+  if (is("(")) {
+    if (vk.any()) diagnostics_.error(vk.loc, "a Vulkan attribute applies to a variable, parameter, field or cbuffer");
+    return parse_function(std::move(attributes), *type, *name);
+  }
   if (!attributes.empty()) error_at(attribute_index_, "attributes are only allowed on functions and statements");
+  // DXC reads a push-constant struct variable as a block of its fields: ConstantBuffer<S>.
+  if (vk.push_constant && type->kind() == TypeKind::Struct) type = Type::constant_buffer(*type);
   AstVector<std::unique_ptr<VarDecl>> vars;
   const bool ok = parse_declarators(spec, checked_var_type(*type, type_index), *name, DeclContext::Global, vars);
-  for (auto& var : vars) unit_.decls.push_back(std::move(var));
+  for (auto& var : vars) {
+    var->vk = vk;
+    // A specialization constant: a constant to everything but the SPIR-V, whose host may give
+    // another value (its default is not folded into array sizes).
+    if (vk.constant_id && (!var->is_const || !var->type.is_scalar() || !var->initializer))
+      diagnostics_.error(vk.loc, "vk::constant_id applies to a `const` scalar with an initializer");
+    else if (vk.constant_id)
+      var->storage = StorageClass::Static;
+    unit_.decls.push_back(std::move(var));
+  }
   return ok;
 }
 
@@ -711,6 +730,8 @@ bool Parser::parse_function(std::vector<Attribute> attributes, const Type& retur
 }
 
 std::unique_ptr<ParamDecl> Parser::parse_param() {
+  VulkanAttributes vk;
+  if (at_vulkan_attribute() && !parse_vulkan_attributes(vk)) return nullptr;
   Specifiers spec;
   parse_specifiers(DeclContext::Param, spec);
   const size_t type_index = pos_;
@@ -727,6 +748,7 @@ std::unique_ptr<ParamDecl> Parser::parse_param() {
     return nullptr;
   }
   auto param = make<ParamDecl>(loc);
+  param->vk = vk;
   param->name = std::move(name);
   param->direction = spec.direction;
   param->explicit_in = spec.explicit_in;
@@ -771,6 +793,8 @@ bool Parser::parse_struct() {
 }
 
 bool Parser::parse_field(StructDecl& decl) {
+  VulkanAttributes vk;
+  if (at_vulkan_attribute() && !parse_vulkan_attributes(vk)) return false;
   Specifiers spec;
   parse_specifiers(DeclContext::Field, spec);
   const size_t type_index = pos_;
@@ -784,6 +808,7 @@ bool Parser::parse_field(StructDecl& decl) {
       return false;
     }
     FieldDecl field;
+    field.vk = vk;
     field.name = std::string(tok(*name).text);
     field.loc = tok(*name).loc;
     field.interpolation = spec.interpolation;
@@ -821,12 +846,13 @@ bool Parser::parse_typedef() {
   return expect_semicolon("typedef");
 }
 
-bool Parser::parse_cbuffer() {
+bool Parser::parse_cbuffer(VulkanAttributes vk) {
   advance();
   const std::optional<size_t> name = expect_name();
   if (!name) return false;
   auto decl = make<CBufferDecl>(tok(*name).loc);
   decl->name = std::string(tok(*name).text);
+  decl->vk = vk;
   while (is(":")) {
     advance();
     if (is_word("register")) {

@@ -152,15 +152,20 @@ class Parser {
 
   // File scope and declarations (parse_declarations.cpp).
   bool parse_top_level();
-  bool parse_global(std::vector<Attribute> attributes);
+  bool parse_global(std::vector<Attribute> attributes, VulkanAttributes vk = {});
   bool parse_function(std::vector<Attribute> attributes, const Type& return_type, size_t name_index);
   std::unique_ptr<ParamDecl> parse_param();
   bool parse_struct();
   bool parse_field(StructDecl& decl);
   bool parse_typedef();
-  bool parse_cbuffer();
+  bool parse_cbuffer(VulkanAttributes vk = {});
   bool parse_cbuffer_member(CBufferDecl& decl);
   bool parse_attributes(std::vector<Attribute>& out);
+  // [[vk::location(0)]] and the other Vulkan attributes (parse_vulkan_attributes.cpp).
+  bool parse_vulkan_attributes(VulkanAttributes& out);
+  bool at_vulkan_attribute() const {
+    return is("[") && tok(pos_ + 1).kind == TokenKind::Punct && tok(pos_ + 1).text == "[";
+  }
   std::unique_ptr<VarDecl> parse_var_declarator(const Specifiers& spec, const Type& base, size_t name_index,
                                                 DeclContext context);
   bool parse_declarators(const Specifiers& spec, const Type& base, size_t first_name, DeclContext context,

@@ -11,6 +11,7 @@
 #include "hlsl_like/resource_origins.h"
 #include "hlsl_like/sema_internal.h"
 #include "hlsl_like/semantics.h"
+#include "hlsl_like/vulkan_bindings.h"
 
 namespace xshade::hlsl {
 namespace {
@@ -421,10 +422,12 @@ std::vector<StageVariable> stage_variables(const FunctionDecl& entry, bool input
     const Type* type;
     const std::string* semantic;
     Interpolation interpolation;
+    std::optional<uint32_t> location;
     int depth;
   };
-  auto add = [&](const Type& root_type, const std::string& root_semantic, Interpolation root_interpolation) {
-    std::vector<Pending> pending{{&root_type, &root_semantic, root_interpolation, 0}};
+  auto add = [&](const Type& root_type, const std::string& root_semantic, Interpolation root_interpolation,
+                 std::optional<uint32_t> root_location) {
+    std::vector<Pending> pending{{&root_type, &root_semantic, root_interpolation, root_location, 0}};
     while (!pending.empty()) {
       const Pending item = pending.back();
       pending.pop_back();
@@ -433,19 +436,22 @@ std::vector<StageVariable> stage_variables(const FunctionDecl& entry, bool input
         if (item.depth >= sema_detail::kMaxNesting) continue;
         const auto& fields = type.struct_decl()->fields;
         for (auto field = fields.rbegin(); field != fields.rend(); ++field)  // in declaration order
-          pending.push_back({&field->type, &field->semantic, field->interpolation, item.depth + 1});
+          if (field->vk.builtin.empty())  // [[vk::builtin]]: GLSL's built-in, not a location
+            pending.push_back({&field->type, &field->semantic, field->interpolation, field->vk.location, item.depth + 1});
         continue;
       }
-      if (!item.semantic->empty()) variables.push_back({canonical(*item.semantic), type, 0, item.interpolation});
+      if (!item.semantic->empty())
+        variables.push_back({canonical(*item.semantic), type, item.location.value_or(0), item.interpolation, item.location});
     }
   };
   for (const auto& param : entry.params) {
     if (!param || param->is_uniform) continue;
     const bool is_input = param->direction != ParamDirection::Out;
     const bool is_output = param->direction != ParamDirection::In;
-    if (inputs ? is_input : is_output) add(param->type, param->semantic, param->interpolation);
+    if ((inputs ? is_input : is_output) && param->vk.builtin.empty())
+      add(param->type, param->semantic, param->interpolation, param->vk.location);
   }
-  if (!inputs && !entry.return_type.is_void()) add(entry.return_type, entry.semantic, Interpolation::Default);
+  if (!inputs && !entry.return_type.is_void()) add(entry.return_type, entry.semantic, Interpolation::Default, std::nullopt);
   return variables;
 }
 
@@ -455,6 +461,11 @@ bool is_system_value(const std::string& semantic, bool vertex_input) {
   if (semantic.rfind("SV_", 0) == 0 || semantic == "VFACE") return true;
   return !vertex_input && semantic == "POSITION0";
 }
+
+// Where the semantics the fixed tables have no place for begin (vertex_input_location,
+// varying_location).
+constexpr uint32_t kFirstUserVertexInput = 13;
+constexpr uint32_t kFirstUserVarying = 14;
 
 // How many locations a varying of this type takes: an array one per element. (Sema refuses other
 // types that would take more, such as matrices.)
@@ -467,16 +478,40 @@ uint32_t location_count(const Type& type) {
 // takes 2 and 3, so a TEXCOORD3 after it moves to 4 and what follows moves on as far as needed.
 // HLSL written for SPIR-V (DXC, glslang) gives every varying its own locations in this way;
 // where nothing takes more than one location every varying keeps its semantic's.
-void place_varyings(std::vector<StageVariable>& varyings) {
+// A varying the source places with [[vk::location]] stays where it is put; one that would overlap
+// it is reported.
+void place_varyings(std::vector<StageVariable>& varyings, Loc where, DiagnosticEngine& diagnostics) {
   std::vector<StageVariable*> order;
   for (StageVariable& varying : varyings) order.push_back(&varying);
   std::stable_sort(order.begin(), order.end(),
                    [](const StageVariable* a, const StageVariable* b) { return a->location < b->location; });
   uint32_t next_free = 0;
+  const StageVariable* previous = nullptr;
   for (StageVariable* varying : order) {
-    varying->location = std::max(varying->location, next_free);
-    next_free = varying->location + location_count(varying->type);
+    if (varying->given_location && *varying->given_location < next_free && previous)
+      diagnostics.error(where, "varying " + in_quotes(varying->semantic) + " at [[vk::location(" +
+                                   std::to_string(*varying->given_location) + ")]] overlaps " +
+                                   in_quotes(previous->semantic) + ", which takes locations " +
+                                   std::to_string(previous->location) + " to " + std::to_string(next_free - 1));
+    if (!varying->given_location) varying->location = std::max(varying->location, next_free);
+    next_free = std::max(next_free, varying->location + location_count(varying->type));
+    previous = varying;
   }
+}
+
+// The location of a semantic the fixed table (`fixed`) has no place for: the next one from
+// `first` that no variable of `variables` takes, in declaration order.
+uint32_t next_free_location(const std::vector<StageVariable>& variables, uint32_t first) {
+  uint32_t location = first;
+  for (bool moved = true; moved;) {
+    moved = false;
+    for (const StageVariable& variable : variables)
+      if (location >= variable.location && location < variable.location + location_count(variable.type)) {
+        location = variable.location + location_count(variable.type);
+        moved = true;
+      }
+  }
+  return location;
 }
 
 }  // namespace
@@ -555,7 +590,7 @@ Reflection reflect(const TranslationUnit& unit, const EntryPoints& entry_points,
         if (member && !member->type.is_error()) members.push_back(member.get());
       pack_members(buffer, packed_items(members), diagnostics);
       for (const VarDecl* member : members) reflection.properties.push_back(property_of(*member));
-      if (cbuffer.binding.register_class == 'b') buffers.claim(cbuffer.binding, cbuffer.name);
+      if (cbuffer.binding.register_class == 'b' && !cbuffer.vk.binding) buffers.claim(cbuffer.binding, cbuffer.name);
       else if (cbuffer.binding.register_class != 0)
         diagnostics.error(cbuffer.binding.loc, "constant buffer " + in_quotes(cbuffer.name) + " needs a b register, not " +
                                                    cbuffer.binding.register_class);
@@ -573,7 +608,7 @@ Reflection reflect(const TranslationUnit& unit, const EntryPoints& entry_points,
           texture.texel = var.type.scalar_type() == ScalarType::Half ? ScalarType::Float : var.type.scalar_type();
         texture.decl = &var;
         // glslang puts a sampler2D in the texture range whatever its register letter says.
-        if (var.binding.register_class != 0) textures.claim(var.binding, var.name);
+        if (var.binding.register_class != 0 && !var.vk.binding) textures.claim(var.binding, var.name);
         pending_textures.push_back({reflection.textures.size(), &var});
         reflection.textures.push_back(std::move(texture));
         reflection.properties.push_back(property_of(var));
@@ -583,16 +618,17 @@ Reflection reflect(const TranslationUnit& unit, const EntryPoints& entry_points,
         ConstantBuffer buffer;
         buffer.name = var.name;
         buffer.decl = &var;
+        buffer.push_constant = var.vk.push_constant;
         std::vector<PackedItem> members;
         if (const StructDecl* structure = var.type.element().struct_decl())
           for (const FieldDecl& field : structure->fields) members.push_back({field.name, field.type, false, field.loc, {}});
         pack_members(buffer, members, diagnostics);
-        if (var.binding.register_class == 'b') buffers.claim(var.binding, var.name);
+        if (var.binding.register_class == 'b' && !var.vk.binding) buffers.claim(var.binding, var.name);
         pending_buffers.push_back({reflection.constant_buffers.size(), &var.binding, var.loc});
         reflection.constant_buffers.push_back(std::move(buffer));
       } else if (kind == TypeKind::SamplerState) {
         SamplerResource sampler{var.name, 0, var.type.is_comparison(), true, &var};
-        if (var.binding.register_class != 0) samplers.claim(var.binding, var.name);
+        if (var.binding.register_class != 0 && !var.vk.binding) samplers.claim(var.binding, var.name);
         pending_samplers.push_back({reflection.samplers.size(), &var});
         reflection.samplers.push_back(std::move(sampler));
       } else if (is_uniform_global(var)) {
@@ -613,6 +649,7 @@ Reflection reflect(const TranslationUnit& unit, const EntryPoints& entry_points,
   // Bindings: explicit ones were claimed above; the rest take the lowest free register.
   for (const PendingBuffer& pending : pending_buffers) {
     ConstantBuffer& buffer = reflection.constant_buffers[pending.index];
+    if (given_binding(buffer.decl)) continue;
     if (pending.binding && pending.binding->register_class == 'b') {
       buffer.binding = buffers.binding_of(*pending.binding);
     } else if (auto binding = buffers.next_free(buffer.name, pending.loc)) {
@@ -638,6 +675,7 @@ Reflection reflect(const TranslationUnit& unit, const EntryPoints& entry_points,
       if (used(var) != used_pass) continue;
       TextureResource& texture = reflection.textures[index];
       texture.used = used_pass;
+      if (var->vk.binding) continue;
       if (var->binding.register_class != 0) texture.binding = textures.binding_of(var->binding);
       else texture.binding = textures.next_free(var->name, var->loc, used_pass).value_or(0);
     }
@@ -645,11 +683,13 @@ Reflection reflect(const TranslationUnit& unit, const EntryPoints& entry_points,
       if (used(var) != used_pass) continue;
       SamplerResource& sampler = reflection.samplers[index];
       sampler.used = used_pass;
+      if (var->vk.binding) continue;
       if (var->binding.register_class != 0) sampler.binding = samplers.binding_of(var->binding);
       else sampler.binding = samplers.next_free(var->name, var->loc, used_pass).value_or(0);
     }
   }
 
+  give_vulkan_bindings(reflection, diagnostics);
   for (TextureResource& texture : reflection.textures) {
     texture.comparison = usage.compared.count(texture.decl) > 0;
     auto it = usage.texture_sampler.find(texture.decl);
@@ -661,31 +701,40 @@ Reflection reflect(const TranslationUnit& unit, const EntryPoints& entry_points,
 
   // Stage interfaces.
   if (entry_points.vertex) {
+    // The vertex format's semantics first, then the others after them.
+    std::vector<StageVariable> unplaced;
     for (StageVariable input : stage_variables(*entry_points.vertex, true)) {
       if (is_system_value(input.semantic, true)) continue;
-      auto location = vertex_input_location(input.semantic);
+      const std::optional<uint32_t> location = input.given_location ? input.given_location
+                                                                    : vertex_input_location(input.semantic);
       if (!location) {
-        diagnostics.error(entry_points.vertex->loc, "vertex input " + in_quotes(input.semantic) +
-                                                        " has no place in the vertex format; use POSITION, "
-                                                        "NORMAL, TANGENT, TEXCOORD0-7 or COLOR0-1");
+        unplaced.push_back(std::move(input));
         continue;
       }
       input.location = *location;
       reflection.vertex_inputs.push_back(std::move(input));
     }
+    for (StageVariable& input : unplaced) {
+      input.location = next_free_location(reflection.vertex_inputs, kFirstUserVertexInput);
+      reflection.vertex_inputs.push_back(std::move(input));
+    }
+    unplaced.clear();
     for (StageVariable output : stage_variables(*entry_points.vertex, false)) {
       if (is_system_value(output.semantic, false)) continue;
-      auto location = varying_location(output.semantic);
+      const std::optional<uint32_t> location = output.given_location ? output.given_location
+                                                                      : varying_location(output.semantic);
       if (!location) {
-        diagnostics.error(entry_points.vertex->loc, "vertex output " + in_quotes(output.semantic) +
-                                                        " cannot be passed to the fragment stage; use TEXCOORD0-7, "
-                                                        "COLOR0-1, NORMAL, TANGENT, BINORMAL or POSITION");
+        unplaced.push_back(std::move(output));
         continue;
       }
       output.location = *location;
       reflection.varyings.push_back(std::move(output));
     }
-    place_varyings(reflection.varyings);
+    place_varyings(reflection.varyings, entry_points.vertex->loc, diagnostics);
+    for (StageVariable& output : unplaced) {
+      output.location = next_free_location(reflection.varyings, kFirstUserVarying);
+      reflection.varyings.push_back(std::move(output));
+    }
   }
   if (entry_points.fragment) {
     for (const StageVariable& input : stage_variables(*entry_points.fragment, true)) {
@@ -699,7 +748,8 @@ Reflection reflect(const TranslationUnit& unit, const EntryPoints& entry_points,
       if (!entry_points.vertex) {
         // A full-screen pass: the shared vertex shader feeds every scalar or vector varying
         // (glsl::fullscreen_vertex_shader: uv for floats, 0 for integers).
-        auto location = varying_location(input.semantic);
+        std::optional<uint32_t> location = input.given_location ? input.given_location : varying_location(input.semantic);
+        if (!location) location = next_free_location(reflection.varyings, kFirstUserVarying);
         const Type& element = input.type.kind() == TypeKind::Array ? input.type.element() : input.type;
         const ScalarType scalar = element.scalar_type();
         const bool fed = (element.is_scalar() || element.is_vector()) &&
@@ -712,10 +762,10 @@ Reflection reflect(const TranslationUnit& unit, const EntryPoints& entry_points,
                                 input.type.name() + " " +
                                 in_quotes(input.semantic));
         else
-          reflection.varyings.push_back({input.semantic, input.type, *location, input.interpolation});
+          reflection.varyings.push_back({input.semantic, input.type, *location, input.interpolation, input.given_location});
       }
     }
-    if (!entry_points.vertex) place_varyings(reflection.varyings);
+    if (!entry_points.vertex) place_varyings(reflection.varyings, entry_points.fragment->loc, diagnostics);
     for (StageVariable output : stage_variables(*entry_points.fragment, false)) {
       const ParsedSemantic parsed = parse_semantic(output.semantic);
       // DX9's COLORn out of a fragment shader is SV_Targetn.

@@ -50,6 +50,8 @@ struct ConstantBuffer {
   // The CBufferDecl, or the VarDecl of a `ConstantBuffer<S> name` (whose members are S's fields,
   // read as name.field); null for $Globals.
   const Decl* decl = nullptr;
+  uint32_t set = 0;  // Vulkan's descriptor set: 0 unless [[vk::binding(N, set)]] says otherwise
+  bool push_constant = false;  // [[vk::push_constant]]: a push-constant block on Vulkan
 };
 
 enum class TextureKind : uint8_t {
@@ -75,6 +77,7 @@ struct TextureResource {
   // move when a shader stops reading one) but is neither declared in GLSL nor bound.
   bool used = true;
   const VarDecl* decl = nullptr;
+  uint32_t set = 0;  // as ConstantBuffer::set
 };
 
 struct SamplerResource {
@@ -83,6 +86,7 @@ struct SamplerResource {
   bool comparison = false;  // a SamplerComparisonState
   bool used = true;  // as TextureResource::used
   const VarDecl* decl = nullptr;
+  uint32_t set = 0;  // as ConstantBuffer::set
 };
 
 // A stage input or output with the location the compiler gave it.
@@ -91,6 +95,8 @@ struct StageVariable {
   Type type;
   uint32_t location = 0;
   Interpolation interpolation = Interpolation::Default;
+  // The location the source gives with [[vk::location(N)]], which `location` then is.
+  std::optional<uint32_t> given_location = std::nullopt;
 };
 
 // A material property: a uniform with its annotations (`<string UIName = ...; float UIMin...>`).
@@ -145,12 +151,15 @@ std::string canonical_semantic_name(const std::string& semantic);
 
 // Vertex inputs have fixed locations so that every mesh serves every shader:
 // POSITION 0, NORMAL 1, TANGENT 2, TEXCOORD0 3, TEXCOORD1 4, COLOR0 5, TEXCOORD2-7 6-11, COLOR1 12.
-// Empty for others. A mesh supplies 0..3; the backends feed zeros to the rest.
+// Empty for others, which take the next free location from 13 in the order they are declared
+// ([[vk::location(N)]] puts one at N). A mesh supplies 0..3; the backends feed zeros to the rest.
 std::optional<uint32_t> vertex_input_location(const std::string& canonical_semantic);
 // Varyings are placed by semantic, so that the two stages agree whatever their structs look like:
 // TEXCOORD0-7 at 0-7, COLOR0-1 at 8-9, NORMAL 10, TANGENT 11, BINORMAL 12, POSITION 13. A
-// varying after an array moves up past the locations it takes (Reflection::varyings
-// holds where each one is).
+// varying after an array moves up past the locations it takes, and any other semantic (HLSL's
+// user semantics, TEXCOORD8 and up) takes the next free location from 14, in the order the
+// vertex stage declares them (Reflection::varyings holds where each one is). [[vk::location(N)]]
+// puts one at N, as DXC does.
 std::optional<uint32_t> varying_location(const std::string& canonical_semantic);
 
 // Builds the reflection of an analysed translation unit. Reports what the bindings or the GLSL

@@ -105,6 +105,7 @@ enum class Stage { Vertex, Fragment };
 bool semantic_allowed(SemanticKind kind, Stage stage, bool input) {
   switch (kind) {
     case SemanticKind::Unknown: return false;
+    case SemanticKind::User: return !(stage == Stage::Fragment && !input);  // a pixel shader writes targets
     case SemanticKind::Position: return true;  // an attribute in, the clip position out (DX9)
     case SemanticKind::Normal:
     case SemanticKind::Tangent:
@@ -702,8 +703,22 @@ void Sema::check_entry_point(const FunctionDecl& function, bool vertex) {
       }
       const ParsedSemantic semantic = parse_semantic(*item.semantic);
       if (semantic.kind == SemanticKind::Unknown) {
-        report(item.semantic_loc, "unknown semantic " + in_quotes(*item.semantic));
+        report(item.semantic_loc, "unknown semantic " + in_quotes(*item.semantic) +
+                                      ": a system value's name starts SV_ and names one of Direct3D's, any other "
+                                      "identifier (with an index of at most two digits) names a varying");
         continue;
+      }
+      if (semantic.kind == SemanticKind::User) {
+        // Any identifier is a semantic, so a misspelt TEXCOORD0 is one too: worth a warning.
+        const std::string key = "user semantic " + std::to_string(item.semantic_loc.file) + ":" +
+                                std::to_string(item.semantic_loc.line) + ":" + std::to_string(item.semantic_loc.column);
+        // Closer than base/spelling's nearest: PREVPOSITION is a name of its own, not a typo.
+        std::optional<std::string_view> meant;
+        for (std::string_view known : {"POSITION", "NORMAL", "TANGENT", "BINORMAL", "TEXCOORD", "COLOR"})
+          if (edit_distance(semantic.user_name, known) <= (known.size() >= 6 ? 2u : 1u)) meant = known;
+        if (meant && reported_.insert(key).second)
+          diag_.warning(item.semantic_loc, in_quotes(*item.semantic) + " is a user-defined semantic; did you mean " +
+                                               in_quotes(std::string(*meant) + std::to_string(semantic.index)) + "?");
       }
       if (!semantic_allowed(semantic.kind, stage, input)) {
         report(item.semantic_loc, "semantic " + in_quotes(*item.semantic) + " is not allowed on a " + stage_name + " shader " +

@@ -1089,11 +1089,15 @@ TEST(SemaEntryPoints, FragmentMustOutputATarget) {
 }
 
 TEST(SemaEntryPoints, UnknownAndMisplacedSemantics) {
+  // FOO is a user-defined semantic: a vertex input like any other; a pixel shader cannot output one.
   EXPECT_EQ(messages_of("#pragma vertex vert\nfloat4 vert(float4 p : FOO, float4 q : SV_Target) : SV_Position { return p; }\n"),
-            (Strings{"2:24: error: unknown semantic 'FOO'",
-                     "2:40: error: semantic 'SV_Target' is not allowed on a vertex shader input"}));
+            (Strings{"2:40: error: semantic 'SV_Target' is not allowed on a vertex shader input"}));
+  EXPECT_EQ(messages_of("#pragma fragment frag\nfloat4 frag(float4 p : SV_POSITION) : FOO { return p; }\n"),
+            (Strings{"2:39: error: semantic 'FOO' is not allowed on a fragment shader output",
+                     "2:8: error: fragment entry point 'frag' does not output SV_Target or SV_Depth"}));
   EXPECT_EQ(messages_of("#pragma fragment frag\nfloat4 frag(float4 p : SV_POSITION) : SV_TARGET8 { return p; }\n"),
-            (Strings{"2:39: error: unknown semantic 'SV_TARGET8'",
+            (Strings{"2:39: error: unknown semantic 'SV_TARGET8': a system value's name starts SV_ and names one of "
+                     "Direct3D's, any other identifier (with an index of at most two digits) names a varying",
                      "2:8: error: fragment entry point 'frag' does not output SV_Target or SV_Depth"}));
 }
 

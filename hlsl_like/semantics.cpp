@@ -5,11 +5,30 @@
 
 namespace xshade::hlsl {
 
+namespace {
+
+// A name HLSL takes as a user-defined semantic: an identifier (its trailing digits the index)
+// that no system value's SV_ prefix claims. Anything else is Unknown.
+ParsedSemantic user_semantic(const std::string& text) {
+  std::string upper;
+  for (char c : text) {
+    if (!std::isalnum(static_cast<unsigned char>(c)) && c != '_') return {};
+    upper += char(std::toupper(static_cast<unsigned char>(c)));
+  }
+  size_t digits = upper.size();
+  while (digits > 0 && std::isdigit(static_cast<unsigned char>(upper[digits - 1]))) --digits;
+  if (digits == 0 || upper.size() - digits > 2 || upper.rfind("SV_", 0) == 0) return {};
+  const uint32_t index = digits == upper.size() ? 0 : uint32_t(std::stoul(upper.substr(digits)));
+  return {SemanticKind::User, index, upper.substr(0, digits)};
+}
+
+}  // namespace
+
 ParsedSemantic parse_semantic(const std::string& text) {
   // No known semantic is longer than 14 letters and a 2-digit index: anything longer is Unknown,
   // and the rest fits a buffer on the stack (every entry point parameter and field comes here).
   constexpr size_t kLongest = 16;
-  if (text.size() > kLongest) return {};
+  if (text.size() > kLongest) return user_semantic(text);
   char upper[kLongest];
   for (size_t i = 0; i < text.size(); ++i) upper[i] = char(std::toupper(static_cast<unsigned char>(text[i])));
   // Split a trailing decimal index.
@@ -42,7 +61,7 @@ ParsedSemantic parse_semantic(const std::string& text) {
     if (number_length != 0 && known.max_index == 0 && index != 0) return {};
     return {known.kind, index};
   }
-  return {};
+  return user_semantic(text);
 }
 
 std::string canonical_semantic(const ParsedSemantic& semantic) {
@@ -62,6 +81,7 @@ std::string canonical_semantic(const ParsedSemantic& semantic) {
     case SemanticKind::SvVertexId: return "SV_VertexID";
     case SemanticKind::SvInstanceId: return "SV_InstanceID";
     case SemanticKind::Vface: return "VFACE";
+    case SemanticKind::User: return semantic.user_name + std::to_string(semantic.index);
   }
   return base + std::to_string(semantic.index);
 }

@@ -12,10 +12,14 @@ enum class SemanticKind : uint8_t {
   Unknown, Position, Normal, Tangent, Binormal, Texcoord, Color, SvPosition, SvTarget, SvDepth,
   SvIsFrontFace, SvVertexId, SvInstanceId,
   Vface,  // DX9's VFACE: a float, positive for a front face
+  // Any other name that is not a system value (SV_...): HLSL's user-defined semantics
+  // (PREVPOSITION, BITANGENT, VECTOR0), which name varyings and vertex inputs.
+  User,
 };
 struct ParsedSemantic {
   SemanticKind kind = SemanticKind::Unknown;
   uint32_t index = 0;
+  std::string user_name = {};  // User: the name in capitals, without its index
 };
 ParsedSemantic parse_semantic(const std::string& text);
 std::string canonical_semantic(const ParsedSemantic& semantic);  // "TEXCOORD0", "SV_Target0"

@@ -60,8 +60,10 @@ EShLanguage to_glslang(Stage stage) { return stage == Stage::Vertex ? EShLangVer
 class SemanticIoResolver final : public glslang::TDefaultIoResolverBase {
  public:
   SemanticIoResolver(const glslang::TIntermediate& intermediate, const std::map<std::string, uint32_t>& bindings,
-                     const std::map<std::string, uint32_t>& varying_locations)
-      : TDefaultIoResolverBase(intermediate), bindings_(bindings), varying_locations_(varying_locations) {}
+                     const std::map<std::string, uint32_t>& varying_locations,
+                     const std::map<std::string, uint32_t>& vertex_input_locations)
+      : TDefaultIoResolverBase(intermediate), bindings_(bindings), varying_locations_(varying_locations),
+        vertex_input_locations_(vertex_input_locations) {}
 
   bool validateBinding(EShLanguage, glslang::TVarEntryInfo&) override { return true; }
 
@@ -117,7 +119,10 @@ class SemanticIoResolver final : public glslang::TDefaultIoResolverBase {
       std::optional<uint32_t> location;
       const bool input = qualifier.storage == glslang::EvqVaryingIn;
       if (stage == EShLangVertex && input) {
-        location = hlsl::vertex_input_location(semantic);
+        if (auto placed = vertex_input_locations_.find(semantic); placed != vertex_input_locations_.end())
+          location = placed->second;
+        else
+          location = hlsl::vertex_input_location(semantic);
       } else if (stage == EShLangVertex || input) {
         if (auto placed = varying_locations_.find(array_semantic); placed != varying_locations_.end())
           location = placed->second + element.value_or(0);
@@ -138,6 +143,7 @@ class SemanticIoResolver final : public glslang::TDefaultIoResolverBase {
  private:
   const std::map<std::string, uint32_t>& bindings_;
   const std::map<std::string, uint32_t>& varying_locations_;
+  const std::map<std::string, uint32_t>& vertex_input_locations_;
 };
 
 // Sets the Offset decoration of each member of the named structs (blocks) that `offsets` gives
@@ -219,7 +225,8 @@ Result<HlslModule> compile_hlsl(const HlslStage& request) {
   }
   glslang::TProgram program;
   program.addShader(&shader);
-  SemanticIoResolver resolver(*shader.getIntermediate(), request.bindings, request.varying_locations);
+  SemanticIoResolver resolver(*shader.getIntermediate(), request.bindings, request.varying_locations,
+                              request.vertex_input_locations);
   if (!program.link(messages) || !program.mapIO(&resolver)) {
     return fail(Error{"HLSL link failed (glslang)", {request.source_name, 0, 0},
                       parse_glslang_log(program.getInfoLog())});

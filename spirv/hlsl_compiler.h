@@ -56,6 +56,9 @@ struct HlslStage {
   // other lanes place it (hlsl::Reflection::varyings); a varying not named here is placed by
   // hlsl::varying_location.
   std::map<std::string, uint32_t> varying_locations = {};
+  // The same for vertex inputs (hlsl::Reflection::vertex_inputs); one not named here is placed
+  // by hlsl::vertex_input_location.
+  std::map<std::string, uint32_t> vertex_input_locations = {};
   // Run glslang's legalization (SPIRV-Tools passes that forward opaque values to their uses):
   // HLSL that keeps a texture in a local or a struct field needs it, or the SPIR-V is invalid
   // for Vulkan. Off otherwise, so that the lane's code is glslang's translation as it is.

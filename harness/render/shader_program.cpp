@@ -53,6 +53,8 @@ Result<ShaderStageSource> vk_hlsl_stage(const hlsl::Module& module, spirv::Stage
   for (const hlsl::TextureResource& texture : declared.textures) request.bindings[texture.name] = texture.binding;
   for (const hlsl::SamplerResource& sampler : declared.samplers) request.bindings[sampler.name] = sampler.binding;
   for (const hlsl::StageVariable& varying : declared.varyings) request.varying_locations[varying.semantic] = varying.location;
+  for (const hlsl::StageVariable& input : declared.vertex_inputs)
+    request.vertex_input_locations[input.semantic] = input.location;
   auto compiled = spirv::compile_hlsl(request);
   if (!compiled) return fail(compiled.error());
 
@@ -128,9 +130,11 @@ ProgramLayout layout_for_lane(const hlsl::Reflection& reflection, Lane lane, con
     slot.texel = harness_texel(texture.texel);
     if (lane == Lane::Gl && glsl::needs_renaming(texture.name)) slot.glsl_name = glsl::renamed(texture.name);
     if (lane != Lane::Gl && texture.kind == hlsl::TextureKind::Texture) {
-      // A Texture object is a sampled image on Vulkan; its sampler, if any, is a binding of its own.
+      // A Texture object is a sampled image on Vulkan; its sampler, if any, is a binding of its
+      // own, or the texture's ([[vk::binding]] of both at one: a combined image sampler).
       slot.sampler_binding = texture.sampler_binding;
       slot.image_only = !texture.sampler_binding;
+      if (texture.sampler_binding == texture.binding) slot.sampler_binding = std::nullopt;
     }
     layout.textures.push_back(std::move(slot));
   }
@@ -190,9 +194,41 @@ Result<LaneStages> stages_for_lane(const hlsl::Module& module, Lane lane, const 
   return stages;
 }
 
+// What the harness cannot draw of what Vulkan's attributes ask ([[vk::...]]), said before it is
+// compiled for a lane: its backends bind descriptor set 0 and no push constants, and its meshes
+// feed the vertex format's locations.
+Result<void> drawable(const hlsl::Module& module, Lane lane) {
+  const hlsl::Reflection& reflection = module.reflection;
+  const SourceLocation where = module.sources.resolve({module.main_file, 0, 0});
+  const auto refuse = [&](const std::string& what) {
+    return fail(what + "; `xshade compile` writes it as the source asks, but the harness cannot draw it", where);
+  };
+  for (const hlsl::ConstantBuffer& buffer : reflection.constant_buffers) {
+    if (buffer.push_constant && lane != Lane::Gl)
+      return refuse("'" + buffer.name + "' is a push-constant block ([[vk::push_constant]]), which the harness's Vulkan "
+                    "backend does not give yet (the gl lane reads it as a uniform block)");
+    if (buffer.set != 0) return refuse("'" + buffer.name + "' is in descriptor set " + std::to_string(buffer.set));
+  }
+  for (const hlsl::TextureResource& texture : reflection.textures)
+    if (texture.used && texture.set != 0)
+      return refuse("'" + texture.name + "' is in descriptor set " + std::to_string(texture.set));
+  for (const hlsl::SamplerResource& sampler : reflection.samplers)
+    if (sampler.used && sampler.set != 0)
+      return refuse("'" + sampler.name + "' is in descriptor set " + std::to_string(sampler.set));
+  for (const hlsl::StageVariable& input : reflection.vertex_inputs) {
+    const std::optional<uint32_t> fed = hlsl::vertex_input_location(input.semantic);
+    if (input.given_location && fed != input.given_location)
+      return refuse("vertex input " + input.semantic + " is at [[vk::location(" + std::to_string(*input.given_location) +
+                    ")]], where the meshes feed " + (fed ? "location " + std::to_string(*fed) : "nothing") +
+                    " (docs/hlsl_like.md, section 8)");
+  }
+  return {};
+}
+
 Result<ProgramDesc> program_for_lane(const hlsl::Module& module, Lane lane, const ProgramOptions& options,
                                      glsl::NonfiniteTrace* trace) {
   if (!module.ok()) return fail("the shader did not compile", module.sources.resolve({module.main_file, 0, 0}));
+  if (Result<void> can = drawable(module, lane); !can) return fail(can.error());
   if (!module.entry_points.fragment)
     return fail("the shader has no fragment entry point (#pragma fragment): a program needs one to draw",
                 module.sources.resolve({module.main_file, 0, 0}));
