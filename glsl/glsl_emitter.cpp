@@ -595,6 +595,11 @@ std::string StageEmitter::interface_and_main() {
     return true;
   };
     for (const StageItem& item : stage_items(entry, true, names_)) {
+    if (!item.builtin.empty()) {
+      // vk::builtin("PointSize") of a struct the fragment stage reads too: nothing arrives in it.
+      main.line(item.path + " = " + zero_value(*this, item.type, item.loc) + ";");
+      continue;
+    }
     const SemanticKind kind = item.parsed.kind;
     Code source;
     Type source_type = item.type;

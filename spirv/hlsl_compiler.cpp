@@ -81,16 +81,18 @@ class SemanticIoResolver final : public glslang::TDefaultIoResolverBase {
     const glslang::TResourceType resource = getResourceType(type);
     if (resource < glslang::EResCount) {
       const int base = getBaseBinding(stage, resource, static_cast<unsigned>(set));
-      if (type.getQualifier().hasBinding())
-        return entry.newBinding = reserveSlot(set, base + int(type.getQualifier().layoutBinding));
       // A constant buffer is known by its block's name, any other resource by its variable's.
       const std::string name = type.getBasicType() == glslang::EbtBlock ? type.getTypeName().c_str()
                                                                         : entry.symbol->getName().c_str();
       // Dead ones too: glslang keeps a global texture or sampler the stage never reads in the
       // module (a vertex stage declares the fragment stage's textures), and the backend checks
-      // every binding a module declares against the program's layout.
+      // every binding a module declares against the program's layout. The reflection's number
+      // comes first: it is a register's shifted as glslang shifts it, and [[vk::binding(N)]]'s N
+      // itself, which glslang would shift too (DXC does not).
       if (auto given = bindings_.find(name); given != bindings_.end())
         return entry.newBinding = reserveSlot(set, int(given->second));
+      if (type.getQualifier().hasBinding())
+        return entry.newBinding = reserveSlot(set, base + int(type.getQualifier().layoutBinding));
       if (entry.live && doAutoBindingMapping()) return entry.newBinding = getFreeSlot(set, base);
     }
     return entry.newBinding = -1;
