@@ -467,10 +467,11 @@ bool is_system_value(const std::string& semantic, bool vertex_input) {
 constexpr uint32_t kFirstUserVertexInput = 13;
 constexpr uint32_t kFirstUserVarying = 14;
 
-// How many locations a varying of this type takes: an array one per element. (Sema refuses other
-// types that would take more, such as matrices.)
+// How many locations a varying of this type takes: an array one per element, a matrix one per
+// row (GLSL's matRxC, the transpose the emitter holds, has R columns).
 uint32_t location_count(const Type& type) {
-  return type.kind() == TypeKind::Array ? type.array_length() * location_count(type.element()) : 1;
+  if (type.kind() == TypeKind::Array) return type.array_length() * location_count(type.element());
+  return type.is_matrix() ? type.rows() : 1;
 }
 
 // Varyings sit at their semantic's location (varying_location), in that order, except that one

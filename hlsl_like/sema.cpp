@@ -147,9 +147,10 @@ std::optional<std::string> required_type(SemanticKind kind, Stage stage, bool in
       if (!(type.is_scalar() && type.is_floating())) return "float";
       break;
     default:
-      if (!type.is_numeric() || type.is_matrix()) {
+      // A float matrix takes a location per row, as DXC gives it; GLSL has no integer matrices.
+      if (!type.is_numeric() || (type.is_matrix() && !type.is_floating())) {
         if (type.kind() == TypeKind::Array && type.element().is_numeric()) break;
-        return "a scalar or vector";
+        return "a scalar, vector or float matrix";
       }
       break;
   }

@@ -67,6 +67,19 @@ TEST(VulkanAttributes, LocationsAreTheSourcesAndOtherSemanticsTakeTheNextFree) {
   EXPECT_EQ(find(r.varyings, "PSIZE0"), nullptr);
 }
 
+TEST(VulkanAttributes, AMatrixVaryingTakesALocationPerRow) {
+  auto module = compiled(R"(
+#pragma vertex v
+struct O { float4 p : SV_Position; float4x4 m : MATRIX0; float3x4 n : TEXCOORD0; float4 after : NEXT; };
+O v(float4 p : POSITION) { O o = (O)0; o.p = p; return o; }
+)");
+  ASSERT_TRUE(module->ok());
+  const Reflection& r = module->reflection;
+  EXPECT_EQ(find(r.varyings, "TEXCOORD0")->location, 0u);  // 0 to 2
+  EXPECT_EQ(find(r.varyings, "MATRIX0")->location, 14u);   // 14 to 17
+  EXPECT_EQ(find(r.varyings, "NEXT0")->location, 18u);
+}
+
 TEST(VulkanAttributes, BindingsAndSetsAreTheSourcesAndNothingElseLandsOnThem) {
   auto module = compiled(R"(
 #pragma fragment main
