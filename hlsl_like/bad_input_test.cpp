@@ -961,7 +961,8 @@ TEST(BadInput, DuplicateTextureRegister) {
                    "float4 frag(float2 uv : TEXCOORD0) : SV_Target {\n"
                    "  return _MainTex.Sample(sampler_MainTex, uv) * _DetailTex.Sample(sampler_MainTex, uv);\n"
                    "}\n");
-  EXPECT_EQ(all_rendered(*m), (Strings{"reg.hlsl:3:24: error: register t0 of '_DetailTex' is already taken by '_MainTex'\n"
+  EXPECT_EQ(all_rendered(*m), (Strings{"reg.hlsl:3:24: error: register t0 of '_DetailTex' is already taken by '_MainTex', and the "
+                                       "entry points read both; give one another register\n"
                                        "    Texture2D _DetailTex : register(t0);\n"
                                        "                           ^"}));
 }
@@ -974,9 +975,26 @@ TEST(BadInput, DuplicateConstantBufferRegister) {
                    "float4 frag(float2 uv : TEXCOORD0) : SV_Target {\n"
                    "  return _A + _B;\n"
                    "}\n");
-  EXPECT_EQ(all_rendered(*m), (Strings{"reg.hlsl:3:13: error: register b1 of 'B' is already taken by 'A'\n"
+  EXPECT_EQ(all_rendered(*m), (Strings{"reg.hlsl:3:13: error: register b1 of 'B' is already taken by 'A', and the entry points "
+                                       "read both; give one another register\n"
                                        "    cbuffer B : register(b1) { float4 _B; };\n"
                                        "                ^"}));
+}
+
+// fxc and DXC let resources share a register where no entry point reads both: a file of
+// several shaders declares each one's inputs at t0.
+TEST(BadInput, ASharedRegisterIsAnErrorOnlyWhereBothAreRead) {
+  auto m = compile("reg.hlsl",
+                   "#pragma fragment frag\n"
+                   "Texture2D BloomInput : register(t0);\n"
+                   "Texture2D InputTexture0 : register(t0);\n"
+                   "cbuffer VSConstants : register(b0) { float4 _V; };\n"
+                   "cbuffer PSConstants : register(b0) { float4 _P; };\n"
+                   "SamplerState s;\n"
+                   "float4 frag(float2 uv : TEXCOORD0) : SV_Target { return InputTexture0.Sample(s, uv) * _P; }\n");
+  EXPECT_TRUE(m->ok()) << all_rendered(*m).size();
+  EXPECT_EQ(m->reflection.textures.at(1).binding, 16u);  // the read one has t0
+  EXPECT_EQ(m->reflection.find_constant_buffer("PSConstants")->binding, 0u);
 }
 
 TEST(BadInput, ConstantBufferStructGlslCannotLayOut) {

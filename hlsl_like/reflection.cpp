@@ -293,24 +293,32 @@ class RegisterClass {
   RegisterClass(char letter, uint32_t base, DiagnosticEngine& diagnostics)
       : letter_(letter), base_(base), diagnostics_(diagnostics) {}
 
-  void claim(const RegisterBinding& binding, const std::string& name) {
+  // Two resources may declare one register where no entry point reaches both, as fxc and DXC
+  // allow (a file of several shaders); `reached` says whether one reaches this one. A space is
+  // a register set of its own (Vulkan's descriptor set of that number).
+  void claim(const RegisterBinding& binding, const std::string& name, bool reached) {
     if (binding.index >= kRegistersPerClass) {
       diagnostics_.error(binding.loc, std::string("register ") + binding.register_class + std::to_string(binding.index) +
                                           " of " + in_quotes(name) + " is out of range (0 to " +
                                           std::to_string(kRegistersPerClass - 1) + ")");
       return;
     }
-    if (binding.space != 0) diagnostics_.warning(binding.loc, "register space of " + in_quotes(name) + " is ignored: every resource is in set 0");
-    auto [it, inserted] = used_.emplace(binding.index, name);
-    if (!inserted)
+    auto [it, inserted] = used_.emplace(std::pair{binding.space, binding.index}, Claim{name, reached});
+    if (inserted) return;
+    if (it->second.reached && reached) {
       diagnostics_.error(binding.loc, std::string("register ") + binding.register_class + std::to_string(binding.index) +
-                                          " of " + in_quotes(name) + " is already taken by " + in_quotes(it->second));
+                                          (binding.space ? ", space" + std::to_string(binding.space) : std::string()) +
+                                          " of " + in_quotes(name) + " is already taken by " + in_quotes(it->second.name) +
+                                          ", and the entry points read both; give one another register");
+    } else if (reached) {
+      it->second = Claim{name, reached};
+    }
   }
   uint32_t binding_of(const RegisterBinding& binding) const { return base_ + binding.index; }
   // The lowest free register; when none is left, an error if `required`.
   std::optional<uint32_t> next_free(const std::string& name, Loc loc, bool required = true) {
     for (uint32_t index = 0; index < kRegistersPerClass; ++index)
-      if (used_.emplace(index, name).second) return base_ + index;
+      if (used_.emplace(std::pair{0u, index}, Claim{name, true}).second) return base_ + index;
     if (required)
       diagnostics_.error(loc, std::string("no free ") + letter_ + " register for " + in_quotes(name) + ": a shader reads at most " +
                                   std::to_string(kRegistersPerClass) + " of this class here");
@@ -321,7 +329,11 @@ class RegisterClass {
   char letter_;
   uint32_t base_;
   DiagnosticEngine& diagnostics_;
-  std::map<uint32_t, std::string> used_;
+  struct Claim {
+    std::string name;
+    bool reached;  // by an entry point
+  };
+  std::map<std::pair<uint32_t, uint32_t>, Claim> used_;  // by space and index
 };
 
 double literal_value(const Expr* expr) {
@@ -554,6 +566,10 @@ Reflection reflect(const TranslationUnit& unit, const EntryPoints& entry_points,
   if (entry_points.vertex) reflection.vertex_entry = entry_points.vertex->name;
   if (entry_points.fragment) reflection.fragment_entry = entry_points.fragment->name;
   const Usage usage = collect_usage(entry_points, origins);
+  // glslang maps only the resources a stage reads, so those come first; a resource nobody reads
+  // then takes what is left, so that every declared one has a number.
+  const bool has_entry = entry_points.vertex || entry_points.fragment;
+  auto used = [&](const VarDecl* var) { return !has_entry || usage.globals.count(var) > 0; };
 
   // Constant buffers, textures and samplers in declaration order; $Globals takes its place at
   // its first member.
@@ -591,7 +607,8 @@ Reflection reflect(const TranslationUnit& unit, const EntryPoints& entry_points,
         if (member && !member->type.is_error()) members.push_back(member.get());
       pack_members(buffer, packed_items(members), diagnostics);
       for (const VarDecl* member : members) reflection.properties.push_back(property_of(*member));
-      if (cbuffer.binding.register_class == 'b' && !cbuffer.vk.binding) buffers.claim(cbuffer.binding, cbuffer.name);
+      const bool reached = std::any_of(members.begin(), members.end(), used);
+      if (cbuffer.binding.register_class == 'b' && !cbuffer.vk.binding) buffers.claim(cbuffer.binding, cbuffer.name, reached);
       else if (cbuffer.binding.register_class != 0)
         diagnostics.error(cbuffer.binding.loc, "constant buffer " + in_quotes(cbuffer.name) + " needs a b register, not " +
                                                    cbuffer.binding.register_class);
@@ -609,7 +626,7 @@ Reflection reflect(const TranslationUnit& unit, const EntryPoints& entry_points,
           texture.texel = var.type.scalar_type() == ScalarType::Half ? ScalarType::Float : var.type.scalar_type();
         texture.decl = &var;
         // glslang puts a sampler2D in the texture range whatever its register letter says.
-        if (var.binding.register_class != 0 && !var.vk.binding) textures.claim(var.binding, var.name);
+        if (var.binding.register_class != 0 && !var.vk.binding) textures.claim(var.binding, var.name, used(&var));
         pending_textures.push_back({reflection.textures.size(), &var});
         reflection.textures.push_back(std::move(texture));
         reflection.properties.push_back(property_of(var));
@@ -624,12 +641,12 @@ Reflection reflect(const TranslationUnit& unit, const EntryPoints& entry_points,
         if (const StructDecl* structure = var.type.element().struct_decl())
           for (const FieldDecl& field : structure->fields) members.push_back({field.name, field.type, false, field.loc, {}});
         pack_members(buffer, members, diagnostics);
-        if (var.binding.register_class == 'b' && !var.vk.binding) buffers.claim(var.binding, var.name);
+        if (var.binding.register_class == 'b' && !var.vk.binding) buffers.claim(var.binding, var.name, used(&var));
         pending_buffers.push_back({reflection.constant_buffers.size(), &var.binding, var.loc});
         reflection.constant_buffers.push_back(std::move(buffer));
       } else if (kind == TypeKind::SamplerState) {
         SamplerResource sampler{var.name, 0, var.type.is_comparison(), true, &var};
-        if (var.binding.register_class != 0 && !var.vk.binding) samplers.claim(var.binding, var.name);
+        if (var.binding.register_class != 0 && !var.vk.binding) samplers.claim(var.binding, var.name, used(&var));
         pending_samplers.push_back({reflection.samplers.size(), &var});
         reflection.samplers.push_back(std::move(sampler));
       } else if (is_uniform_global(var)) {
@@ -653,14 +670,11 @@ Reflection reflect(const TranslationUnit& unit, const EntryPoints& entry_points,
     if (given_binding(buffer.decl)) continue;
     if (pending.binding && pending.binding->register_class == 'b') {
       buffer.binding = buffers.binding_of(*pending.binding);
+      buffer.set = pending.binding->space;
     } else if (auto binding = buffers.next_free(buffer.name, pending.loc)) {
       buffer.binding = *binding;
     }
   }
-  // glslang maps only the resources a stage reads, so those come first; a resource nobody reads
-  // then takes what is left, so that every declared one has a number.
-  const bool has_entry = entry_points.vertex || entry_points.fragment;
-  auto used = [&](const VarDecl* var) { return !has_entry || usage.globals.count(var) > 0; };
   std::unordered_set<std::string> read_names;  // a global's name is unique in its scope
   for (const Decl* global : usage.globals)
     if (global->kind == DeclKind::Var) read_names.insert(static_cast<const VarDecl*>(global)->name);
@@ -677,6 +691,7 @@ Reflection reflect(const TranslationUnit& unit, const EntryPoints& entry_points,
       TextureResource& texture = reflection.textures[index];
       texture.used = used_pass;
       if (var->vk.binding) continue;
+      texture.set = var->binding.space;
       if (var->binding.register_class != 0) texture.binding = textures.binding_of(var->binding);
       else texture.binding = textures.next_free(var->name, var->loc, used_pass).value_or(0);
     }
@@ -685,6 +700,7 @@ Reflection reflect(const TranslationUnit& unit, const EntryPoints& entry_points,
       SamplerResource& sampler = reflection.samplers[index];
       sampler.used = used_pass;
       if (var->vk.binding) continue;
+      sampler.set = var->binding.space;
       if (var->binding.register_class != 0) sampler.binding = samplers.binding_of(var->binding);
       else sampler.binding = samplers.next_free(var->name, var->loc, used_pass).value_or(0);
     }
