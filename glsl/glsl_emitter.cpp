@@ -626,7 +626,7 @@ std::string StageEmitter::interface_and_main() {
         declare("layout(location = " + std::to_string(*location) + ") in " + declarator(item.type, name, item.loc) + ";");
         source = {name};
       }
-    } else if (kind == SemanticKind::SvPosition || item.semantic == "POSITION0") {
+    } else if (kind == SemanticKind::SvPosition || is_clip_position_alias(item.parsed, item.type)) {
       // Direct3D's position w is the clip-space w; GL's gl_FragCoord.w is its reciprocal.
       source = {"vec4(gl_FragCoord.xyz, 1.0 / gl_FragCoord.w)"};
       source_type = Type::vector(ScalarType::Float, 4);
@@ -681,7 +681,7 @@ std::string StageEmitter::interface_and_main() {
   for (const StageItem& item : stage_items(entry, false, names_)) {
     const ParsedSemantic& parsed = item.parsed;
     const Code value{item.path, kPostfix};
-    if (vertex_ && (parsed.kind == SemanticKind::SvPosition || item.semantic == "POSITION0")) {  // DX9's name
+    if (vertex_ && (parsed.kind == SemanticKind::SvPosition || is_clip_position_alias(parsed, item.type))) {  // DX9's
       main.line("gl_Position = " + convert(value, item.type, Type::vector(ScalarType::Float, 4), item.loc).text + ";");
       continue;
     }

@@ -468,10 +468,11 @@ std::vector<StageVariable> stage_variables(const FunctionDecl& entry, bool input
 }
 
 // System values, and the DX9 spellings sema reads as system values: POSITION out of a vertex
-// shader or into a fragment shader is SV_Position.
-bool is_system_value(const std::string& semantic, bool vertex_input) {
+// shader or into a fragment shader is SV_Position where it is a float4.
+bool is_system_value(const StageVariable& variable, bool vertex_input) {
+  const std::string& semantic = variable.semantic;
   if (semantic.rfind("SV_", 0) == 0 || semantic == "VFACE") return true;
-  return !vertex_input && semantic == "POSITION0";
+  return !vertex_input && is_clip_position_alias(parse_semantic(semantic), variable.type);
 }
 
 // Where the semantics the fixed tables have no place for begin (vertex_input_location,
@@ -721,7 +722,7 @@ Reflection reflect(const TranslationUnit& unit, const EntryPoints& entry_points,
     // The vertex format's semantics first, then the others after them.
     std::vector<StageVariable> unplaced;
     for (StageVariable input : stage_variables(*entry_points.vertex, true)) {
-      if (is_system_value(input.semantic, true)) continue;
+      if (is_system_value(input, true)) continue;
       const std::optional<uint32_t> location = input.given_location ? input.given_location
                                                                     : vertex_input_location(input.semantic);
       if (!location) {
@@ -737,7 +738,7 @@ Reflection reflect(const TranslationUnit& unit, const EntryPoints& entry_points,
     }
     unplaced.clear();
     for (StageVariable output : stage_variables(*entry_points.vertex, false)) {
-      if (is_system_value(output.semantic, false)) continue;
+      if (is_system_value(output, false)) continue;
       const std::optional<uint32_t> location = output.given_location ? output.given_location
                                                                       : varying_location(output.semantic);
       if (!location) {
@@ -755,7 +756,7 @@ Reflection reflect(const TranslationUnit& unit, const EntryPoints& entry_points,
   }
   if (entry_points.fragment) {
     for (const StageVariable& input : stage_variables(*entry_points.fragment, true)) {
-      if (is_system_value(input.semantic, false)) continue;
+      if (is_system_value(input, false)) continue;
       const bool written = std::any_of(reflection.varyings.begin(), reflection.varyings.end(),
                                        [&](const StageVariable& v) { return v.semantic == input.semantic; });
       if (entry_points.vertex && !written)

@@ -125,10 +125,10 @@ bool semantic_allowed(SemanticKind kind, Stage stage, bool input) {
 }
 
 // The type a system value needs, or nothing when any numeric type will do.
-std::optional<std::string> required_type(SemanticKind kind, Stage stage, bool input, const Type& type) {
-  const bool clip_position =
-      kind == SemanticKind::SvPosition || (kind == SemanticKind::Position && !(stage == Stage::Vertex && input));
-  if (clip_position) {
+std::optional<std::string> required_type(SemanticKind kind, const Type& type) {
+  // DX9's POSITION is the clip position only as a float4 (is_clip_position_alias), otherwise a
+  // varying of any numeric type.
+  if (kind == SemanticKind::SvPosition) {
     if (!(type.is_vector() && type.cols() == 4 && type.is_floating())) return "float4";
     return std::nullopt;
   }
@@ -726,7 +726,7 @@ void Sema::check_entry_point(const FunctionDecl& function, bool vertex) {
                                       (input ? "input" : "output"));
         continue;
       }
-      if (auto needed = required_type(semantic.kind, stage, input, type)) {
+      if (auto needed = required_type(semantic.kind, type)) {
         report(item.loc, "semantic " + in_quotes(*item.semantic) + " needs " + (needed->front() == 'a' ? "" : "type '") + *needed +
                              (needed->front() == 'a' ? "" : "'") + ", not " + in_quotes(type.name()));
         continue;
@@ -737,7 +737,7 @@ void Sema::check_entry_point(const FunctionDecl& function, bool vertex) {
                                       (input ? "inputs" : "outputs") + " of entry point " + in_quotes(function.name));
         continue;
       }
-      if (!input && vertex && (semantic.kind == SemanticKind::SvPosition || semantic.kind == SemanticKind::Position)) {
+      if (!input && vertex && (semantic.kind == SemanticKind::SvPosition || is_clip_position_alias(semantic, type))) {
         outputs_position = true;
       }
       if (!input && !vertex &&

@@ -86,4 +86,9 @@ std::string canonical_semantic(const ParsedSemantic& semantic) {
   return base + std::to_string(semantic.index);
 }
 
+bool is_clip_position_alias(const ParsedSemantic& semantic, const Type& type) {
+  return semantic.kind == SemanticKind::Position && semantic.index == 0 && type.is_vector() && type.cols() == 4 &&
+         type.is_floating();
+}
+
 }  // namespace xshade::hlsl

@@ -6,6 +6,8 @@
 #include <cstdint>
 #include <string>
 
+#include "hlsl_like/types.h"
+
 namespace xshade::hlsl {
 
 enum class SemanticKind : uint8_t {
@@ -22,6 +24,10 @@ struct ParsedSemantic {
   std::string user_name = {};  // User: the name in capitals, without its index
 };
 ParsedSemantic parse_semantic(const std::string& text);
+// DX9's POSITION out of a vertex shader or into a fragment shader is the clip position
+// (SV_Position) where it is POSITION0 of a float4, as fxc's compatibility mode reads it; any
+// other POSITIONn there (a float, POSITION1) is an ordinary varying, as DXC reads it.
+bool is_clip_position_alias(const ParsedSemantic& semantic, const Type& type);
 std::string canonical_semantic(const ParsedSemantic& semantic);  // "TEXCOORD0", "SV_Target0"
 
 }  // namespace xshade::hlsl

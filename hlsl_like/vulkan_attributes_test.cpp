@@ -80,6 +80,20 @@ O v(float4 p : POSITION) { O o = (O)0; o.p = p; return o; }
   EXPECT_EQ(find(r.varyings, "NEXT0")->location, 18u);
 }
 
+// DX9's POSITION is the clip position only as a float4; a float POSITION0 or a POSITION1 is a
+// varying, as DXC reads them (Vulkan samples pass a particle's gradient in one).
+TEST(VulkanAttributes, APositionThatIsNoFloat4IsAVarying) {
+  auto module = compiled(R"(
+#pragma fragment f
+float4 f(float4 p : SV_POSITION, [[vk::location(0)]] float gradient : POSITION0,
+         [[vk::location(1)]] float2 centre : POSITION1) : SV_Target { return gradient + centre.x; }
+)");
+  ASSERT_TRUE(module->ok());
+  EXPECT_EQ(find(module->reflection.varyings, "POSITION0")->location, 0u);
+  EXPECT_EQ(find(module->reflection.varyings, "POSITION1")->location, 1u);
+  EXPECT_FALSE(compiled("#pragma vertex v\nfloat v(float4 p : POSITION) : POSITION { return p.x; }\n")->ok());
+}
+
 TEST(VulkanAttributes, BindingsAndSetsAreTheSourcesAndNothingElseLandsOnThem) {
   auto module = compiled(R"(
 #pragma fragment main
