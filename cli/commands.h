@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "base/result.h"
 #include "cli/folders.h"
 
 namespace xshade::cli {
@@ -20,6 +21,18 @@ enum ExitCode : int {
   kBackendError = 3,  // a driver or lane could not run, or an internal error
   kInterrupted = 128,  // plus the signal, as a shell reports it: stopped by ^C (130) or `kill` (143)
 };
+
+// The exit code of a verb that an error of `kind` stopped: whose fault it is decides.
+inline int exit_code_of(ErrorKind kind) {
+  switch (kind) {
+    case ErrorKind::UserInput:
+    case ErrorKind::Usage: return kBadInput;
+    case ErrorKind::CheckFailed: return kTestFailed;
+    case ErrorKind::Backend:
+    case ErrorKind::Internal: return kBackendError;
+  }
+  return kBackendError;
+}
 
 // Runs a verb: errors travel as values, and an exception that still escapes (an allocation that
 // failed, a library that throws) is reported as a crash of xshade's (exit 3) naming the verb,

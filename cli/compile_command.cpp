@@ -6,11 +6,10 @@
 #include <functional>
 
 #include <nlohmann/json.hpp>
-#include <spirv-tools/libspirv.hpp>
 
-#include "glsl/glsl_emitter.h"
 #include "base/spelling.h"
 #include "cli/commands.h"
+#include "cli/compile_output.h"
 #include "harness/render/material_source.h"
 #include "harness/render/surface_program.h"
 #include "harness/render/shader_program.h"
@@ -26,13 +25,6 @@ bool write_file(const std::filesystem::path& path, std::string_view bytes) {
   std::ofstream file(path, std::ios::binary);
   file.write(bytes.data(), std::streamsize(bytes.size()));
   return bool(file);
-}
-
-std::string disassemble(const std::vector<uint32_t>& words) {
-  spvtools::SpirvTools tools(SPV_ENV_VULKAN_1_3);
-  std::string text;
-  tools.Disassemble(words, &text, SPV_BINARY_TO_TEXT_OPTION_FRIENDLY_NAMES | SPV_BINARY_TO_TEXT_OPTION_INDENT);
-  return text;
 }
 
 // Writes one stage's output to OUT.<stage><extension>, or to stdout under a header.
@@ -83,6 +75,9 @@ int compile_module(const CompileOptions& options, const std::filesystem::path& f
                    std::unique_ptr<hlsl::Module> module) {
   if (!module->diagnostics.diagnostics().empty()) fmt::print(stderr, "{}", module->diagnostics.render_all());
   if (!module->ok()) return kBadInput;
+  const OutputOptions output_options{.target = target_named(options.target),
+                                     .half_emulation = options.precision == "half",
+                                     .trace_nonfinite = options.trace_nonfinite};
 
   if (options.all_variants) {
     // Each combination compiled to the target as a lane would; a status line each, the errors in full.
@@ -110,22 +105,22 @@ int compile_module(const CompileOptions& options, const std::filesystem::path& f
         variant.pass_fragment_entry = pass_entry;
         auto compiled = compile(variant);
         std::string failure;
+        int code = kPass;
         if (!compiled->ok()) {
           failure = compiled->diagnostics.render_all();
-        } else {
-          const harness::Lane lane = options.target == "gl" ? harness::Lane::Gl
-                                     : options.target == "vk-hlsl" ? harness::Lane::VkHlsl
-                                                                   : harness::Lane::Vk;
-          auto stages = harness::stages_for_lane(
-              *compiled, lane, {.half_emulation = options.precision == "half", .trace_nonfinite = options.trace_nonfinite});
-          if (!stages) failure = stages.error().to_string() + "\n";
+          code = kBadInput;
+        } else if (auto output = compile_output(*compiled, output_options); !output) {
+          failure = output.error().to_string() + "\n";
+          code = exit_code_of(output.error().kind);
+        } else if (!output->vertex && !output->fragment) {
+          failure = "the shader has no entry point (#pragma vertex or #pragma fragment)\n";
+          code = kBadInput;
         }
+        // An output a validator refused is xshade's failure, not the variant's (compile_output.h).
         fmt::print("{} {}{}: {}\n", file.string(), bracketed(keywords), pass_label,
-                   failure.empty() ? "compiles" : "does not compile");
-        if (!failure.empty()) {
-          fmt::print(stderr, "{}", failure);
-          worst = kBadInput;
-        }
+                   code == kPass ? "compiles" : code == kBackendError ? "internal error: invalid output" : "does not compile");
+        if (!failure.empty()) fmt::print(stderr, "{}", failure);
+        worst = std::max(worst, code);
       }
     }
     fmt::print("{} keyword combinations{} for {}\n", combinations,
@@ -140,33 +135,20 @@ int compile_module(const CompileOptions& options, const std::filesystem::path& f
     return kPass;
   }
 
-  if (options.target == "gl" || options.target == "vk") {
-    auto emitted = glsl::emit(*module, {options.target == "gl" ? glsl::Flavour::Gl : glsl::Flavour::Vk,
-                                        options.precision == "half", options.trace_nonfinite});
-    if (!emitted) {
-      fmt::print(stderr, "{}\n", emitted.error().to_string());
-      return kBadInput;
-    }
-    if (!emitted->vertex && !emitted->fragment) return no_stage(*module, file);
-    if (emitted->vertex && !emit_stage(options, "vert", emitted->vertex->text, false)) return kBackendError;
-    if (emitted->fragment && !emit_stage(options, "frag", emitted->fragment->text, false)) return kBackendError;
-    return kPass;
+  // Every stage validated before any is written: an invalid output never leaves with exit 0.
+  auto output = compile_output(*module, output_options);
+  if (!output) {
+    fmt::print(stderr, "{}\n", output.error().to_string());
+    return exit_code_of(output.error().kind);
   }
-
-  // spirv and vk-hlsl: the program as the vk or vk-hlsl lane would run it.
-  const harness::Lane lane = options.target == "spirv" ? harness::Lane::Vk : harness::Lane::VkHlsl;
-  auto stages = harness::stages_for_lane(
-      *module, lane, {.half_emulation = options.precision == "half", .trace_nonfinite = options.trace_nonfinite});
-  if (!stages) {
-    fmt::print(stderr, "{}\n", stages.error().to_string());
-    return kBadInput;
-  }
-  if (!stages->vertex && !stages->fragment) return no_stage(*module, file);
-  for (const auto& [stage, source] : {std::pair{"vert", &stages->vertex}, std::pair{"frag", &stages->fragment}}) {
-    if (!*source) continue;
-    const std::vector<uint32_t>& words = (*source)->spirv;
+  if (!output->vertex && !output->fragment) return no_stage(*module, file);
+  for (const auto& [stage, written] : {std::pair{"vert", &output->vertex}, std::pair{"frag", &output->fragment}}) {
+    if (!*written) continue;
+    const std::vector<uint32_t>& words = (*written)->words;
     const std::string_view bytes(reinterpret_cast<const char*>(words.data()), words.size() * 4);
-    if (!emit_stage(options, stage, disassemble(words), !options.output.empty(), bytes)) return kBackendError;
+    // A SPIR-V target writes the module to a file and its disassembly to standard output.
+    const bool binary = !words.empty() && !options.output.empty();
+    if (!emit_stage(options, stage, (*written)->text, binary, bytes)) return kBackendError;
   }
   return kPass;
 }

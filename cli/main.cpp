@@ -174,6 +174,11 @@ static int run_command_line(int argc, char** argv) {
 
   CompileOptions compile_options;
   CLI::App* compile = app.add_subcommand("compile", "Compile one shader to GLSL (gl, vk), SPIR-V (spirv, vk-hlsl) or reflection");
+  compile->footer(
+      "Every output is validated before it is written: gl's GLSL by glslang as OpenGL GLSL 4.50 core, vk's as Vulkan "
+      "GLSL, the SPIR-V of spirv and vk-hlsl by spirv-val. Exit 0: the output, valid. Exit 2: the shader is wrong, or "
+      "the target cannot express it. Exit 3: a validator refused xshade's own output, an internal error: the output is "
+      "not written, and the message gives the validator's words and the generated lines they name, for a bug report.");
   compile->add_option("file", compile_options.file, "The hlsl_like source")->required()->type_name("FILE");
   compile->add_option("-I", compile_options.include_dirs, "Search DIR for #include files")->type_name("DIR")->allow_extra_args(false);
   compile->add_option("-D", compile_options.defines, "Enable KEYWORD (a variant), or define KEY=VALUE")
@@ -206,7 +211,8 @@ static int run_command_line(int argc, char** argv) {
                     "Print each pass's HLSL as a Unity .shader composes it (its include blocks, and a surface shader's "
                     "generated passes, with #line back to the .shader's lines) instead of compiling it");
   compile->add_flag("--all-variants", compile_options.all_variants,
-                    "Compile every keyword combination the file declares for --target and report each; exit 2 if any fails");
+                    "Compile every keyword combination the file declares for --target and report each; exit 2 if any "
+                    "fails, 3 if any output is invalid (an internal error)");
   compile->add_option("--shaders", compile_options.folders.shaders,
                       "A shader folder to include from and find FILE in, before xshade's library; repeat for more "
                       "(default: the project file's)")

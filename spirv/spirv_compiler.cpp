@@ -22,40 +22,80 @@ std::vector<Diagnostic> only(std::vector<Diagnostic> diagnostics, Severity sever
   return diagnostics;
 }
 
-}  // namespace
+// The environments a GLSL text is checked in.
+enum class Client { OpenGL, Vulkan };
 
-Result<SpirvModule> compile_vulkan_glsl(std::string_view source, Stage stage,
-                                        std::string_view source_name) {
+// The message of validate()'s error: is_spirv_validation_failure() knows that error by it.
+constexpr std::string_view kSpirvValidationFailed = "SPIR-V validation failed";
+
+// One stage parsed and linked as a program of its own, the setup every GLSL check here shares.
+// The program refers to the shader, so it is declared after it and destroyed before it.
+struct LinkedStage {
+  explicit LinkedStage(Stage stage) : shader(to_glslang(stage)) {}
+  glslang::TShader shader;
+  glslang::TProgram program;
+};
+
+EShMessages messages_for(Client client) {
+  return client == Client::Vulkan ? static_cast<EShMessages>(EShMsgSpvRules | EShMsgVulkanRules) : EShMsgDefault;
+}
+
+Result<void> parse_and_link(LinkedStage& linked, std::string_view source, Stage stage, const std::string& name,
+                            Client client) {
   ensure_glslang_initialized();
-  const std::string name(source_name);
+  // The shader keeps pointers to these three until it is parsed, which happens below.
   const char* text = source.data();
   const int length = static_cast<int>(source.size());
   const char* names = name.c_str();
 
-  glslang::TShader shader(to_glslang(stage));
+  glslang::TShader& shader = linked.shader;
   shader.setStringsWithLengthsAndNames(&text, &length, &names, 1);
-  shader.setEnvInput(glslang::EShSourceGlsl, to_glslang(stage), glslang::EShClientVulkan, 100);
-  shader.setEnvClient(glslang::EShClientVulkan, glslang::EShTargetVulkan_1_3);
-  shader.setEnvTarget(glslang::EShTargetSpv, glslang::EShTargetSpv_1_6);
-  const auto messages = static_cast<EShMessages>(EShMsgSpvRules | EShMsgVulkanRules);
-
-  if (!shader.parse(GetDefaultResources(), 450, ENoProfile, false, false, messages)) {
+  if (client == Client::Vulkan) {
+    shader.setEnvInput(glslang::EShSourceGlsl, to_glslang(stage), glslang::EShClientVulkan, 100);
+    shader.setEnvClient(glslang::EShClientVulkan, glslang::EShTargetVulkan_1_3);
+    shader.setEnvTarget(glslang::EShTargetSpv, glslang::EShTargetSpv_1_6);
+  } else {
+    // No client, as glslangValidator checks a file without -V or -G: the text as an OpenGL driver
+    // compiles it. glslang's OpenGL client is GLSL for SPIR-V (ARB_gl_spirv), whose extra rules
+    // a driver reading text does not apply.
+    shader.setEnvInput(glslang::EShSourceGlsl, to_glslang(stage), glslang::EShClientNone, 0);
+  }
+  // A text without #version is read as 4.50 core; the emitter always writes one.
+  const EProfile profile = client == Client::Vulkan ? ENoProfile : ECoreProfile;
+  if (!shader.parse(GetDefaultResources(), 450, profile, false, false, messages_for(client))) {
     Error error{"GLSL compilation failed", {name, 0, 0}, parse_glslang_log(shader.getInfoLog())};
     return fail(std::move(error));
   }
-  glslang::TProgram program;
-  program.addShader(&shader);
-  if (!program.link(messages)) {
-    Error error{"GLSL link failed", {name, 0, 0}, parse_glslang_log(program.getInfoLog())};
+  linked.program.addShader(&shader);
+  if (!linked.program.link(messages_for(client))) {
+    Error error{"GLSL link failed", {name, 0, 0}, parse_glslang_log(linked.program.getInfoLog())};
     return fail(std::move(error));
   }
+  return {};
+}
+
+}  // namespace
+
+Result<std::vector<Diagnostic>> validate_opengl_glsl(std::string_view source, Stage stage,
+                                                     std::string_view source_name) {
+  LinkedStage linked(stage);
+  if (auto valid = parse_and_link(linked, source, stage, std::string(source_name), Client::OpenGL); !valid)
+    return fail(valid.error());
+  return only(parse_glslang_log(linked.shader.getInfoLog()), Severity::Warning);
+}
+
+Result<SpirvModule> compile_vulkan_glsl(std::string_view source, Stage stage,
+                                        std::string_view source_name) {
+  const std::string name(source_name);
+  LinkedStage linked(stage);
+  if (auto valid = parse_and_link(linked, source, stage, name, Client::Vulkan); !valid) return fail(valid.error());
 
   SpirvModule module;
-  module.warnings = only(parse_glslang_log(shader.getInfoLog()), Severity::Warning);
+  module.warnings = only(parse_glslang_log(linked.shader.getInfoLog()), Severity::Warning);
   spv::SpvBuildLogger logger;
   glslang::SpvOptions options;
   options.validate = false;  // validated below with the project's own environment and messages
-  glslang::GlslangToSpv(*program.getIntermediate(to_glslang(stage)), module.words, &logger,
+  glslang::GlslangToSpv(*linked.program.getIntermediate(to_glslang(stage)), module.words, &logger,
                         &options);
   if (std::string log = logger.getAllMessages(); !log.empty())
     module.warnings.push_back({Severity::Warning, {name, 0, 0}, log});
@@ -66,7 +106,7 @@ Result<SpirvModule> compile_vulkan_glsl(std::string_view source, Stage stage,
 
 Result<void> validate(const std::vector<uint32_t>& words, std::string_view module_name) {
   spvtools::SpirvTools tools(SPV_ENV_VULKAN_1_3);
-  Error error{"SPIR-V validation failed", {std::string(module_name), 0, 0}, {}};
+  Error error{std::string(kSpirvValidationFailed), {std::string(module_name), 0, 0}, {}};
   tools.SetMessageConsumer([&](spv_message_level_t, const char*, const spv_position_t& position,
                                const char* message) {
     error.diagnostics.push_back({Severity::Error,
@@ -76,6 +116,8 @@ Result<void> validate(const std::vector<uint32_t>& words, std::string_view modul
   if (!tools.Validate(words)) return fail(std::move(error));
   return {};
 }
+
+bool is_spirv_validation_failure(const Error& error) { return error.message == kSpirvValidationFailed; }
 
 std::string compiler_version() {
   const glslang::Version version = glslang::GetVersion();

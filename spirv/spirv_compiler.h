@@ -1,4 +1,5 @@
-// Vulkan GLSL -> SPIR-V in-process through glslang, and validation of every module by SPIRV-Tools.
+// Vulkan GLSL -> SPIR-V in-process through glslang, validation of every module by SPIRV-Tools, and
+// glslang's check of OpenGL GLSL (the gl lane's drivers compile the text themselves).
 #pragma once
 
 #include <cstdint>
@@ -22,8 +23,21 @@ struct SpirvModule {
 Result<SpirvModule> compile_vulkan_glsl(std::string_view source, Stage stage,
                                         std::string_view source_name);
 
+// Checks OpenGL GLSL (#version 450 core) as glslang does without a SPIR-V target, the stage parsed
+// and linked on its own: what the GLSL specification has an OpenGL driver refuse, as far as
+// glslang knows it (glslangValidator FILE gives the same verdict). Returns glslang's warnings. On
+// failure the error's diagnostics carry `source_name`, or the source string a #line names
+// ("1"), and the line of each problem.
+Result<std::vector<Diagnostic>> validate_opengl_glsl(std::string_view source, Stage stage,
+                                                     std::string_view source_name);
+
 // spirv-val for the Vulkan 1.3 environment; the error lists the validator's messages.
 Result<void> validate(const std::vector<uint32_t>& words, std::string_view module_name);
+
+// Whether `error` is validate()'s, passed on unchanged (compile_vulkan_glsl's and compile_hlsl's
+// are): spirv-val refused a module the compiler made, rather than the compiler its source. Whose
+// fault that is only the caller knows, so the error's kind says nothing of it.
+bool is_spirv_validation_failure(const Error& error);
 
 // "glslang 12.0.0", for reports and cache keys.
 std::string compiler_version();
