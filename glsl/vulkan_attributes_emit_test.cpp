@@ -14,7 +14,7 @@ namespace {
 using ::testing::HasSubstr;
 using ::testing::Not;
 
-constexpr const char* kSource = R"(
+constexpr const char* kVulkanAttributesShader = R"(
 #pragma vertex vert
 #pragma fragment frag
 struct UBO { float4x4 mvp; };
@@ -29,8 +29,8 @@ V vert([[vk::location(2)]] float3 p : POSITION) { V v; v.pos = mul(ubo.mvp, floa
 float4 frag(V v) : SV_Target { return colorMap.Sample(colorSampler, v.uv) * push.tint * (MODE == 2 ? 1 : 0.5); }
 )";
 
-std::string stages(Flavour flavour) {
-  auto module = hlsl::compile_text("vk.hlsl", kSource, {});
+std::string vulkan_attribute_stages(Flavour flavour) {
+  auto module = hlsl::compile_text("vk.hlsl", kVulkanAttributesShader, {});
   EXPECT_TRUE(module->ok());
   auto program = emit(*module, {flavour});
   if (!program || !program->vertex || !program->fragment) {
@@ -41,7 +41,7 @@ std::string stages(Flavour flavour) {
 }
 
 TEST(VulkanAttributesEmit, TheVkFlavourSaysWhatTheAttributesAsk) {
-  const std::string text = stages(Flavour::Vk);
+  const std::string text = vulkan_attribute_stages(Flavour::Vk);
   EXPECT_THAT(text, HasSubstr("layout(std140, set = 1, binding = 3) uniform ubo {"));
   EXPECT_THAT(text, HasSubstr("layout(std140, push_constant) uniform push {"));
   EXPECT_THAT(text, HasSubstr("layout(constant_id = 4) const int MODE = 2;"));
@@ -55,7 +55,7 @@ TEST(VulkanAttributesEmit, TheVkFlavourSaysWhatTheAttributesAsk) {
 }
 
 TEST(VulkanAttributesEmit, TheGlFlavourKeepsWhatOpenGlHas) {
-  const std::string text = stages(Flavour::Gl);
+  const std::string text = vulkan_attribute_stages(Flavour::Gl);
   EXPECT_THAT(text, HasSubstr("layout(std140, binding = 3) uniform ubo {"));
   EXPECT_THAT(text, HasSubstr(") uniform push {"));
   EXPECT_THAT(text, Not(HasSubstr("push_constant")));

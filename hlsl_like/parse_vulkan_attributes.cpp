@@ -89,10 +89,11 @@ bool Parser::parse_vulkan_attributes(VulkanAttributes& out) {
       if (!out.any()) out.loc = loc;
       const auto arguments = [&](size_t least, size_t most, bool string) {
         if (numbers.size() >= least && numbers.size() <= most && string == !text.empty()) return true;
-        error_at(name_index, "vk::" + name + " takes " +
-                                 (string ? std::string("a string") : least == most ? std::to_string(least) + " integer" +
-                                                                                         (least == 1 ? "" : "s")
-                                                                                   : "1 or 2 integers"));
+        const std::string takes = string          ? "a string"
+                                  : most == 0       ? "no arguments"
+                                  : least == most   ? std::to_string(least) + " integer" + (least == 1 ? "" : "s")
+                                                    : std::to_string(least) + " or " + std::to_string(most) + " integers";
+        error_at(name_index, "vk::" + name + " takes " + takes);
         return false;
       };
       if (space != "vk") {

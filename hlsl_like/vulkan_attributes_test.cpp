@@ -11,23 +11,23 @@
 namespace xshade::hlsl {
 namespace {
 
-std::unique_ptr<Module> compiled(const std::string& source) { return compile_text("vk.hlsl", source, {}); }
+std::unique_ptr<Module> compiled_with_attributes(const std::string& source) { return compile_text("vk.hlsl", source, {}); }
 
-std::vector<std::string> errors_of(const std::string& source) {
+std::vector<std::string> attribute_errors_of(const std::string& source) {
   std::vector<std::string> errors;
-  const std::unique_ptr<Module> module = compiled(source);
+  const std::unique_ptr<Module> module = compiled_with_attributes(source);
   for (const Diagnostic& d : module->diagnostics.diagnostics())
     if (d.severity == Severity::Error) errors.push_back(d.to_string());
   return errors;
 }
 
-const StageVariable* find(const std::vector<StageVariable>& variables, const std::string& semantic) {
+const StageVariable* variable_named(const std::vector<StageVariable>& variables, const std::string& semantic) {
   for (const StageVariable& variable : variables)
     if (variable.semantic == semantic) return &variable;
   return nullptr;
 }
 
-constexpr const char* kVertex = R"(
+constexpr const char* kVulkanVertex = R"(
 #pragma vertex main
 struct VSInput {
   [[vk::location(0)]] float3 Pos : POSITION0;
@@ -53,49 +53,49 @@ VSOutput main(VSInput input) {
 )";
 
 TEST(VulkanAttributes, LocationsAreTheSourcesAndOtherSemanticsTakeTheNextFree) {
-  auto module = compiled(kVertex);
+  auto module = compiled_with_attributes(kVulkanVertex);
   ASSERT_TRUE(module->ok()) << module->diagnostics.errors_with_excerpts().size();
   const Reflection& r = module->reflection;
-  ASSERT_NE(find(r.vertex_inputs, "COLOR0"), nullptr);
-  EXPECT_EQ(find(r.vertex_inputs, "POSITION0")->location, 0u);
-  EXPECT_EQ(find(r.vertex_inputs, "COLOR0")->location, 1u);  // not the vertex format's 5
-  EXPECT_EQ(find(r.vertex_inputs, "BITANGENT0")->location, 13u);  // a user semantic, after the format's
-  EXPECT_EQ(find(r.varyings, "COLOR0")->location, 0u);
-  EXPECT_EQ(find(r.varyings, "PREVPOSITION0")->location, 14u);
-  EXPECT_EQ(find(r.varyings, "TEXCOORD9")->location, 15u);
+  ASSERT_NE(variable_named(r.vertex_inputs, "COLOR0"), nullptr);
+  EXPECT_EQ(variable_named(r.vertex_inputs, "POSITION0")->location, 0u);
+  EXPECT_EQ(variable_named(r.vertex_inputs, "COLOR0")->location, 1u);  // not the vertex format's 5
+  EXPECT_EQ(variable_named(r.vertex_inputs, "BITANGENT0")->location, 13u);  // a user semantic, after the format's
+  EXPECT_EQ(variable_named(r.varyings, "COLOR0")->location, 0u);
+  EXPECT_EQ(variable_named(r.varyings, "PREVPOSITION0")->location, 14u);
+  EXPECT_EQ(variable_named(r.varyings, "TEXCOORD9")->location, 15u);
   // The point size is GLSL's built-in, not a varying.
-  EXPECT_EQ(find(r.varyings, "PSIZE0"), nullptr);
+  EXPECT_EQ(variable_named(r.varyings, "PSIZE0"), nullptr);
 }
 
 TEST(VulkanAttributes, AMatrixVaryingTakesALocationPerRow) {
-  auto module = compiled(R"(
+  auto module = compiled_with_attributes(R"(
 #pragma vertex v
 struct O { float4 p : SV_Position; float4x4 m : MATRIX0; float3x4 n : TEXCOORD0; float4 after : NEXT; };
 O v(float4 p : POSITION) { O o = (O)0; o.p = p; return o; }
 )");
   ASSERT_TRUE(module->ok());
   const Reflection& r = module->reflection;
-  EXPECT_EQ(find(r.varyings, "TEXCOORD0")->location, 0u);  // 0 to 2
-  EXPECT_EQ(find(r.varyings, "MATRIX0")->location, 14u);   // 14 to 17
-  EXPECT_EQ(find(r.varyings, "NEXT0")->location, 18u);
+  EXPECT_EQ(variable_named(r.varyings, "TEXCOORD0")->location, 0u);  // 0 to 2
+  EXPECT_EQ(variable_named(r.varyings, "MATRIX0")->location, 14u);   // 14 to 17
+  EXPECT_EQ(variable_named(r.varyings, "NEXT0")->location, 18u);
 }
 
 // DX9's POSITION is the clip position only as a float4; a float POSITION0 or a POSITION1 is a
 // varying, as DXC reads them (Vulkan samples pass a particle's gradient in one).
 TEST(VulkanAttributes, APositionThatIsNoFloat4IsAVarying) {
-  auto module = compiled(R"(
+  auto module = compiled_with_attributes(R"(
 #pragma fragment f
 float4 f(float4 p : SV_POSITION, [[vk::location(0)]] float gradient : POSITION0,
          [[vk::location(1)]] float2 centre : POSITION1) : SV_Target { return gradient + centre.x; }
 )");
   ASSERT_TRUE(module->ok());
-  EXPECT_EQ(find(module->reflection.varyings, "POSITION0")->location, 0u);
-  EXPECT_EQ(find(module->reflection.varyings, "POSITION1")->location, 1u);
-  EXPECT_FALSE(compiled("#pragma vertex v\nfloat v(float4 p : POSITION) : POSITION { return p.x; }\n")->ok());
+  EXPECT_EQ(variable_named(module->reflection.varyings, "POSITION0")->location, 0u);
+  EXPECT_EQ(variable_named(module->reflection.varyings, "POSITION1")->location, 1u);
+  EXPECT_FALSE(compiled_with_attributes("#pragma vertex v\nfloat v(float4 p : POSITION) : POSITION { return p.x; }\n")->ok());
 }
 
 TEST(VulkanAttributes, BindingsAndSetsAreTheSourcesAndNothingElseLandsOnThem) {
-  auto module = compiled(R"(
+  auto module = compiled_with_attributes(R"(
 #pragma fragment main
 struct UBO { float4 tint; };
 [[vk::binding(2, 1)]] ConstantBuffer<UBO> ubo : register(b0);
@@ -126,28 +126,28 @@ float4 main(float2 uv : TEXCOORD0) : SV_Target { return colorMap.Sample(colorSam
 }
 
 TEST(VulkanAttributes, MisuseIsAnErrorThatSaysWhat) {
-  EXPECT_EQ(errors_of("[[vk::binding(0)]] Texture2D a; [[vk::binding(0)]] Texture2D b;\n"
+  EXPECT_EQ(attribute_errors_of("[[vk::binding(0)]] Texture2D a; [[vk::binding(0)]] Texture2D b;\n"
                       "SamplerState s;\n#pragma fragment f\n"
                       "float4 f(float2 uv : TEXCOORD0) : SV_Target { return a.Sample(s, uv) + b.Sample(s, uv); }\n"),
             (std::vector<std::string>{"vk.hlsl:1:35: error: 'b' is at binding 0 of set 0, which 'a' already takes; give "
                                       "each resource a binding of its own"}));
-  const std::vector<std::string> ext = errors_of("[[vk::ext_capability(5009)]] float x;\n");
+  const std::vector<std::string> ext = attribute_errors_of("[[vk::ext_capability(5009)]] float x;\n");
   ASSERT_FALSE(ext.empty());
   EXPECT_NE(ext[0].find("vk.hlsl:1:3: error: SPIR-V extension instructions and types (vk::ext_capability)"),
             std::string::npos)
       << ext[0];
-  const std::vector<std::string> unknown = errors_of("[[vk::locaton(0)]] float x;\n");
+  const std::vector<std::string> unknown = attribute_errors_of("[[vk::locaton(0)]] float x;\n");
   ASSERT_FALSE(unknown.empty());
   EXPECT_NE(unknown[0].find("unknown Vulkan attribute 'vk::locaton'"), std::string::npos) << unknown[0];
-  const std::vector<std::string> arguments = errors_of("[[vk::binding]] Texture2D t;\n");
+  const std::vector<std::string> arguments = attribute_errors_of("[[vk::binding]] Texture2D t;\n");
   ASSERT_FALSE(arguments.empty());
   EXPECT_NE(arguments[0].find("vk::binding takes 1 or 2 integers"), std::string::npos) << arguments[0];
-  const std::vector<std::string> constant = errors_of("[[vk::constant_id(3)]] float4 v;\n");
+  const std::vector<std::string> constant = attribute_errors_of("[[vk::constant_id(3)]] float4 v;\n");
   ASSERT_FALSE(constant.empty());
   EXPECT_NE(constant[0].find("vk::constant_id applies to a `const` scalar with an initializer"), std::string::npos)
       << constant[0];
   const std::vector<std::string> overlap =
-      errors_of("#pragma vertex v\nstruct O { float4 p : SV_Position; [[vk::location(2)]] float4 a[2] : TEXCOORD0;\n"
+      attribute_errors_of("#pragma vertex v\nstruct O { float4 p : SV_Position; [[vk::location(2)]] float4 a[2] : TEXCOORD0;\n"
                 "[[vk::location(3)]] float4 b : TEXCOORD5; };\n"
                 "O v(float4 p : POSITION) { O o = (O)0; o.p = p; return o; }\n");
   ASSERT_FALSE(overlap.empty());
@@ -156,7 +156,7 @@ TEST(VulkanAttributes, MisuseIsAnErrorThatSaysWhat) {
 }
 
 TEST(VulkanAttributes, ASpecializationConstantIsAConstantOfItsDefault) {
-  auto module = compiled("[[vk::constant_id(7)]] const int MODE = 2;\n#pragma fragment f\n"
+  auto module = compiled_with_attributes("[[vk::constant_id(7)]] const int MODE = 2;\n#pragma fragment f\n"
                          "float4 f(float2 uv : TEXCOORD0) : SV_Target { return MODE == 2 ? 1 : 0; }\n");
   ASSERT_TRUE(module->ok());
   // Not a member of $Globals: the host specializes it, it gives it no bytes.

@@ -15,7 +15,7 @@ namespace {
 
 using harness::Lane;
 
-constexpr const char* kSource = R"(
+constexpr const char* kVulkanAttributesSource = R"(
 #pragma fragment f
 [[vk::binding(1)]] Texture2D colorMap : register(t0);
 [[vk::binding(1)]] SamplerState colorSampler : register(s0);
@@ -38,7 +38,7 @@ TEST_F(VulkanAttributesDraw, ACombinedBindingAndASpecializationConstantReadTheSa
   std::memcpy(texel.levels[0].data(), value, sizeof value);
   for (Lane lane : harness::all_lanes()) {
     SCOPED_TRACE(harness::lane_name(lane));
-    auto module = hlsl::compile_text("vk_attributes.hlsl", kSource, {});
+    auto module = hlsl::compile_text("vk_attributes.hlsl", kVulkanAttributesSource, {});
     ASSERT_TRUE(module->ok());
     EXPECT_EQ(module->reflection.textures.at(0).binding, 1u);
     auto uploaded = backend(lane).upload_texture(texel);
