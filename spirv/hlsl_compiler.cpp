@@ -138,6 +138,10 @@ class SemanticIoResolver final : public glslang::TDefaultIoResolverBase {
         location = target.index;
       }
       if (location) return entry.newLocation = int(*location);
+      // A variable of no semantic the program places (a vk::builtin field glslang also declares as
+      // a varying): past every location xshade gives, where glslang's own count from 0 would
+      // collide with them.
+      if (!qualifier.builtIn) return entry.newLocation = int(kUnplacedLocations + unplaced_++);
     }
     return TDefaultIoResolverBase::resolveInOutLocation(stage, entry);
   }
@@ -146,6 +150,8 @@ class SemanticIoResolver final : public glslang::TDefaultIoResolverBase {
   const std::map<std::string, uint32_t>& bindings_;
   const std::map<std::string, uint32_t>& varying_locations_;
   const std::map<std::string, uint32_t>& vertex_input_locations_;
+  static constexpr uint32_t kUnplacedLocations = 24;  // above the vertex format's and the varyings' tables
+  uint32_t unplaced_ = 0;
 };
 
 // Sets the Offset decoration of each member of the named structs (blocks) that `offsets` gives

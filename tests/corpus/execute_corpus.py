@@ -149,7 +149,7 @@ def judge(result, absolute, relative):
 def listed_divergences(path):
     if not path or not os.path.exists(path):
         return set()
-    return set(re.findall(r'`((?:ppv2|dxs|unity)-[\w.+-]+)`', open(path, encoding='utf-8').read()))
+    return set(re.findall(r'`((?:ppv2|dxs|unity|vks)-[\w.+-]+)`', open(path, encoding='utf-8').read()))
 
 
 def main():
