@@ -398,33 +398,28 @@ Result<Plan> plan_scene(const Scene& scene, const ShaderSearchPath& shaders) {
       if (scene.fog) add_global_keyword(fog_keyword(scene.fog->mode), facts.keyword_sets, asked);
       // The light a pass is drawn for chooses its variant, as Unity's forward renderer sets the
       // keywords: an additive pass's light type; ForwardBase's per-vertex lights where there are any.
-      std::optional<size_t> received;  // the light whose shadow map the pass reads
+      // The light whose shadow map the pass reads, and the keyword that says so.
+      std::optional<std::pair<size_t, const char*>> received;
       if (caster) {
         add_global_keyword("SHADOWS_DEPTH", facts.keyword_sets, asked);  // a directional or spot light's map
       } else if (light) {
         add_global_keyword(additive_keyword(scene.lights[*light].type), facts.keyword_sets, asked);
         // A spot light's shadow, as Unity's additive pass receives it.
-        if (has_map(light)) {
-          add_global_keyword("SHADOWS_DEPTH", facts.keyword_sets, asked);
-          received = light;
-        }
+        if (has_map(light)) received = {*light, "SHADOWS_DEPTH"};
       } else {
         if (!lights.vertex.empty()) add_global_keyword("VERTEXLIGHT_ON", facts.keyword_sets, asked);
         // The main light's shadow, as Unity's forward base pass receives it.
-        if (has_map(lights.main)) {
-          add_global_keyword("SHADOWS_SCREEN", facts.keyword_sets, asked);
-          received = lights.main;
-        }
+        if (has_map(lights.main)) received = {*lights.main, "SHADOWS_SCREEN"};
       }
+      if (received) add_global_keyword(received->second, facts.keyword_sets, asked);
       // A soft shadow: Unity's keyword (its fullshadows passes filter more taps), and the map's
       // comparisons filtered linearly where the variant reads it.
-      const bool soft = received && scene.lights[*received].shadows == Light::Shadows::Soft;
+      const bool soft = received && scene.lights[received->first].shadows == Light::Shadows::Soft;
       if (soft) add_global_keyword("SHADOWS_SOFT", facts.keyword_sets, asked);
       VariantRequest request{facts.path, instance.material, variant_keywords(facts.keyword_sets, asked), {}};
       request.shader_pass = pass;
       request.filtered_comparison =
-          soft && std::find(request.keywords.begin(), request.keywords.end(),
-                            lights.main == received ? "SHADOWS_SCREEN" : "SHADOWS_DEPTH") != request.keywords.end();
+          soft && std::find(request.keywords.begin(), request.keywords.end(), received->second) != request.keywords.end();
       used_combinations[instance.material].insert(request.keywords);
       possible_combinations[instance.material] = hlsl::keyword_combination_count(material.keyword_sets);
       const std::vector<std::string> keywords = request.keywords;

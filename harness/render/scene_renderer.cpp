@@ -348,24 +348,24 @@ class SceneRenderer {
 
   // A texture the renderer itself gives a shader, by its name: the environment (xshade's
   // equirect, Unity's reflection probes), the main light's shadow map where the plan draws one,
-  // the attenuation textures of `light`, the type of the light the draw is lit by. Nothing for
-  // any other name.
-  Result<std::optional<TextureSource>> engine_texture(const std::string& name, LightType light,
-                                                      std::optional<TargetHandle> shadow_map = std::nullopt,
-                                                      bool soft_shadow = false) {
+  // the attenuation textures of `light`, the light the draw is lit by (its type, and its shadows'
+  // filter for its map). Nothing for any other name.
+  Result<std::optional<TextureSource>> engine_texture(const std::string& name, const Light& light,
+                                                      std::optional<TargetHandle> shadow_map = std::nullopt) {
     // Clamped: the equirect's top and bottom rows are the poles, not neighbours; a cube's
     // faces meet without wrapping either way; a light's falloff ends at its last texel.
     const SamplerDesc clamped{Filter::Linear, AddressMode::ClampToEdge};
     // The shadow map's depth, compared (LEqual: lit where the pixel is no farther from the light
     // than the nearest caster): one comparison a pixel for hard shadows, the 2x2 nearest
     // comparisons weighted bilinearly for soft ones.
-    if (name == kShadowMapTexture && shadow_map)
-      return TextureSource::depth_of(*shadow_map, SamplerDesc{soft_shadow ? Filter::Linear : Filter::Nearest,
-                                                              AddressMode::ClampToEdge, CompareOp::LessEqual});
+    if (name == kShadowMapTexture && shadow_map) {
+      const Filter filter = light.shadows == Light::Shadows::Soft ? Filter::Linear : Filter::Nearest;
+      return TextureSource::depth_of(*shadow_map, SamplerDesc{filter, AddressMode::ClampToEdge, CompareOp::LessEqual});
+    }
     // _LightTexture0 is a spot's cookie, else (a point light's) the falloff; _LightTextureB0 a
     // spot's falloff.
     if (name == "_LightTexture0" || name == "_LightTextureB0") {
-      const bool cookie = name == "_LightTexture0" && light == LightType::Spot;
+      const bool cookie = name == "_LightTexture0" && light.type == LightType::Spot;
       std::optional<TextureHandle>& made = cookie ? spot_cookie_ : light_falloff_;
       if (!made) {
         auto handle = resources_.upload_texture(cookie ? spot_cookie_texture() : light_falloff_texture());
@@ -431,7 +431,7 @@ class SceneRenderer {
     if (!handle) return fail(handle.error());
     DrawItem draw{*handle, *mesh_handle, {}, {}, direct3d_ ? on_direct3d_render_target(instance_draw.state) : instance_draw.state};
     for (const std::string& name : variants_[variant].interface.textures) {
-      auto engine = engine_texture(name, light.type, shadow_map, light.shadows == Light::Shadows::Soft);
+      auto engine = engine_texture(name, light, shadow_map);
       if (!engine) return fail(in_context(where + ": texture '" + name + "'", engine.error()));
       if (*engine) {
         draw.textures.push_back({name, **engine});
@@ -544,7 +544,7 @@ class SceneRenderer {
           draw.textures.push_back({name, TextureSource::texture(made->handle, scene_sampler(shape, true))});
           continue;
         }
-        auto engine = engine_texture(name, main_light_.type);
+        auto engine = engine_texture(name, main_light_);
         if (!engine) return fail(in_context("pass '" + planned.name + "': texture '" + name + "'", engine.error()));
         if (*engine) {
           draw.textures.push_back({name, **engine});

@@ -203,7 +203,7 @@ MUTATIONS = [
      'mix(compared.w, compared.z, f.x)', 'mix(compared.z, compared.w, f.x)',
      'FilteredComparison|realworld.unity_soft_shadows'),
     ("a soft shadow's map is read without filtering", 'harness/render/scene_renderer.cpp',
-     'soft_shadow ? Filter::Linear : Filter::Nearest', 'soft_shadow ? Filter::Nearest : Filter::Nearest',
+     'Light::Shadows::Soft ? Filter::Linear : Filter::Nearest', 'Light::Shadows::Soft ? Filter::Nearest : Filter::Nearest',
      'realworld.unity_soft_shadows'),
 ]
 
