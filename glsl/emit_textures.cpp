@@ -173,7 +173,7 @@ Code StageEmitter::resource_text(const Expr* e, const std::vector<uint32_t>& lea
 Code StageEmitter::texture_index(const IndexExpr& index) {
   const Type& type = index.object->type;
   const uint32_t n = coordinate_components(type.texture_shape());
-  if (flavour_ == Flavour::Vk) needs_samplerless_ = true;
+  if (flavour_ == Flavour::Vk) require_extension("GL_EXT_samplerless_texture_functions");
   const std::string coordinate = n == 1 ? "int(" + expr(index.index.get()).text + ")"
                                         : "ivec" + std::to_string(n) + "(" + expr(index.index.get()).text + ")";
   return {"texelFetch(" + expr(index.object.get()).text + ", " + coordinate + ", 0)" +
@@ -311,7 +311,7 @@ Code StageEmitter::texture_call(const CallExpr& call) {
       // offset is added to the coordinate: texelFetch neither filters nor wraps, so that is what
       // HLSL's offset means, and it need not be a constant.
       // An array's layer takes no offset: only the texel coordinates before it move.
-      if (flavour_ == Flavour::Vk) needs_samplerless_ = true;
+      if (flavour_ == Flavour::Vk) require_extension("GL_EXT_samplerless_texture_functions");
       const auto offset_coordinate = [&](const std::string& offset) {
         const std::string coordinate = "$1" + first_components(n);
         if (!is_array_shape(shape)) return coordinate + " + " + offset;
@@ -352,7 +352,7 @@ Code StageEmitter::texture_call(const CallExpr& call) {
     case I::GetDimensions: {
       // textureSize gives width, height and depth or layers as one int vector; HLSL's out
       // parameters take them one by one, then the level count (or the sample count).
-      if (flavour_ == Flavour::Vk) needs_samplerless_ = true;
+      if (flavour_ == Flavour::Vk) require_extension("GL_EXT_samplerless_texture_functions");
       const bool ms = is_multisampled(shape);
       uint32_t sizes = 3;
       switch (shape) {

@@ -24,8 +24,9 @@ std::string fullscreen_vertex_shader(Flavour flavour);
 // The same triangle feeding every varying a fragment shader reads (hlsl::Reflection::varyings):
 // a float scalar or vector gets the first components of (u, v, 0, 1), so TEXCOORD0 is uv as
 // above and every other texture coordinate (Unity's texcoordStereo) is uv too; an integer one
-// gets 0; each element of an array of those gets the same. Matrices and other types are left
-// unwritten.
-std::string fullscreen_vertex_shader(Flavour flavour, const std::vector<hlsl::StageVariable>& varyings);
+// gets 0; a float matrix the identity; each element of an array of those gets the same. The
+// clip and cull distances the fragment stage reads (Reflection::clip_distances, cull_distances)
+// are 0: nothing clips or culls the full-screen triangle.
+std::string fullscreen_vertex_shader(Flavour flavour, const hlsl::Reflection& reflection);
 
 }  // namespace xshade::glsl

@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <initializer_list>
 #include <optional>
+#include <set>
 #include <string>
 #include <string_view>
 #include <unordered_map>
@@ -300,7 +301,10 @@ class StageEmitter {
   std::unordered_map<std::string, std::string> template_helpers_;
   std::unordered_map<std::string, int> template_helper_count_;
   std::optional<Error> error_;
-  bool needs_samplerless_ = false;  // vk: texelFetch/textureSize on a texture2D
+  // The #extension lines the stage needs (vk: GL_EXT_samplerless_texture_functions for
+  // texelFetch/textureSize on a texture2D, ...), written after #version in name order.
+  std::set<std::string> extensions_;
+  void require_extension(const std::string& name) { extensions_.insert(name); }
   std::unordered_set<const hlsl::Decl*> compared_;  // see collect_compared_textures
   std::vector<const FunctionDecl*> functions_;
   std::vector<const hlsl::VarDecl*> statics_;  // used static globals, in source order

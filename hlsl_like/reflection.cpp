@@ -5,8 +5,6 @@
 #include <set>
 #include <unordered_set>
 
-#include <nlohmann/json.hpp>
-
 #include "hlsl_like/ast_walk.h"
 #include "hlsl_like/resource_origins.h"
 #include "hlsl_like/sema_internal.h"
@@ -754,7 +752,18 @@ Reflection reflect(const TranslationUnit& unit, const EntryPoints& entry_points,
       reflection.varyings.push_back(std::move(output));
     }
   }
+  // The distances cross from the stage that writes them (the vertex stage, or for a full-screen
+  // pass the shared vertex shader, which writes what the fragment stage reads).
+  if (const FunctionDecl* distances_entry = entry_points.vertex ? entry_points.vertex : entry_points.fragment) {
+    for (const StageVariable& variable : stage_variables(*distances_entry, !entry_points.vertex)) {
+      const SemanticKind kind = parse_semantic(variable.semantic).kind;
+      if (kind == SemanticKind::SvClipDistance) reflection.clip_distances += variable.type.component_count();
+      if (kind == SemanticKind::SvCullDistance) reflection.cull_distances += variable.type.component_count();
+    }
+  }
   if (entry_points.fragment) {
+    for (const StageVariable& input : stage_variables(*entry_points.fragment, true))
+      if (parse_semantic(input.semantic).kind == SemanticKind::SvShadingRate) reflection.reads_shading_rate = true;
     for (const StageVariable& input : stage_variables(*entry_points.fragment, true)) {
       if (is_system_value(input, false)) continue;
       const bool written = std::any_of(reflection.varyings.begin(), reflection.varyings.end(),
@@ -765,18 +774,20 @@ Reflection reflect(const TranslationUnit& unit, const EntryPoints& entry_points,
                                                           in_quotes(entry_points.vertex->name));
       if (!entry_points.vertex) {
         // A full-screen pass: the shared vertex shader feeds every scalar or vector varying
-        // (glsl::fullscreen_vertex_shader: uv for floats, 0 for integers).
+        // (glsl::fullscreen_vertex_shader: uv for floats, 0 for integers, the identity for matrices).
         std::optional<uint32_t> location = input.given_location ? input.given_location : varying_location(input.semantic);
         if (!location) location = next_free_location(reflection.varyings, kFirstUserVarying);
         const Type& element = input.type.kind() == TypeKind::Array ? input.type.element() : input.type;
         const ScalarType scalar = element.scalar_type();
-        const bool fed = (element.is_scalar() || element.is_vector()) &&
-                         (scalar == ScalarType::Float || scalar == ScalarType::Half || scalar == ScalarType::Int ||
-                          scalar == ScalarType::Uint);
+        const bool is_float = scalar == ScalarType::Float || scalar == ScalarType::Half;
+        const bool fed = ((element.is_scalar() || element.is_vector()) &&
+                          (is_float || scalar == ScalarType::Int || scalar == ScalarType::Uint)) ||
+                         (element.is_matrix() && is_float);
         if (!location || !fed)
           diagnostics.error(entry_points.fragment->loc,
                             "a fragment shader without a vertex stage receives uv in its float scalar and vector inputs "
-                            "(TEXCOORD0 and the like, arrays of them too) and 0 in its integer ones, not " +
+                            "(TEXCOORD0 and the like, arrays of them too), 0 in its integer ones and the identity in its "
+                            "float matrices, not " +
                                 input.type.name() + " " +
                                 in_quotes(input.semantic));
         else
@@ -795,81 +806,6 @@ Reflection reflect(const TranslationUnit& unit, const EntryPoints& entry_points,
     }
   }
   return reflection;
-}
-
-namespace {
-
-nlohmann::json type_json(const Type& type) { return type.name(); }
-
-const char* interpolation_name(Interpolation interpolation) {
-  switch (interpolation) {
-    case Interpolation::Default: return "linear";
-    case Interpolation::Linear: return "linear";
-    case Interpolation::Centroid: return "centroid";
-    case Interpolation::NoInterpolation: return "nointerpolation";
-    case Interpolation::NoPerspective: return "noperspective";
-    case Interpolation::Sample: return "sample";
-  }
-  return "linear";
-}
-
-nlohmann::json stage_json(const std::vector<StageVariable>& variables) {
-  nlohmann::json list = nlohmann::json::array();
-  for (const StageVariable& v : variables)
-    list.push_back({{"semantic", v.semantic}, {"type", type_json(v.type)}, {"location", v.location},
-                    {"interpolation", interpolation_name(v.interpolation)}});
-  return list;
-}
-
-}  // namespace
-
-std::string reflection_json(const Reflection& reflection) {
-  nlohmann::json json;
-  json["entry_points"] = {{"vertex", reflection.vertex_entry}, {"fragment", reflection.fragment_entry}};
-  json["vertex_inputs"] = stage_json(reflection.vertex_inputs);
-  json["varyings"] = stage_json(reflection.varyings);
-  json["fragment_outputs"] = stage_json(reflection.fragment_outputs);
-  json["constant_buffers"] = nlohmann::json::array();
-  for (const ConstantBuffer& buffer : reflection.constant_buffers) {
-    nlohmann::json members = nlohmann::json::array();
-    for (const ConstantBufferMember& m : buffer.members)
-      members.push_back({{"name", m.name}, {"type", type_json(m.type)}, {"offset", m.offset}, {"size", m.size},
-                         {"row_major", m.row_major}});
-    json["constant_buffers"].push_back(
-        {{"name", buffer.name}, {"binding", buffer.binding}, {"size", buffer.size}, {"members", members}});
-  }
-  json["textures"] = nlohmann::json::array();
-  for (const TextureResource& t : reflection.textures) {
-    nlohmann::json texture = {{"name", t.name},
-                              {"kind", texture_shape_name(t.shape, t.kind == TextureKind::Sampler)},
-                              {"binding", t.binding},
-                              {"used", t.used}};
-    if (t.texel != ScalarType::Float) texture["texel"] = scalar_name(t.texel);
-    if (t.comparison) texture["comparison"] = true;
-    if (!t.sampler.empty()) texture["sampler"] = t.sampler;
-    if (t.sampler_binding) texture["sampler_binding"] = *t.sampler_binding;
-    json["textures"].push_back(texture);
-  }
-  json["samplers"] = nlohmann::json::array();
-  for (const SamplerResource& s : reflection.samplers) {
-    nlohmann::json sampler = {{"name", s.name}, {"binding", s.binding}, {"used", s.used}};
-    if (s.comparison) sampler["comparison"] = true;
-    json["samplers"].push_back(sampler);
-  }
-  json["properties"] = nlohmann::json::array();
-  for (const Property& p : reflection.properties) {
-    nlohmann::json property = {{"name", p.name}, {"display_name", p.display_name}, {"type", type_json(p.type)}};
-    if (p.min) property["min"] = *p.min;
-    if (p.max) property["max"] = *p.max;
-    if (!p.default_value.empty()) property["default"] = p.default_value;
-    if (!p.default_texture.empty()) property["default"] = p.default_texture;
-    json["properties"].push_back(property);
-  }
-  json["keywords"] = nlohmann::json::array();
-  for (const KeywordSet& set : reflection.keyword_sets)
-    json["keywords"].push_back({{"keywords", set.keywords}, {"pragma", set.shader_feature ? "shader_feature" : "multi_compile"}});
-  json["active_keywords"] = reflection.active_keywords;
-  return json.dump(2);
 }
 
 uint64_t keyword_combination_count(const std::vector<KeywordSet>& sets) {

@@ -142,6 +142,13 @@ struct Reflection {
   std::vector<Property> properties;
   std::vector<KeywordSet> keyword_sets;
   std::vector<std::string> active_keywords;  // of this variant
+  // Components of gl_ClipDistance[] and gl_CullDistance[] the program carries (its vertex stage's
+  // SV_ClipDistanceN and SV_CullDistanceN outputs; a full-screen pass's fragment inputs): an
+  // OpenGL draw enables that many clip planes.
+  uint32_t clip_distances = 0;
+  uint32_t cull_distances = 0;
+  // The fragment stage reads SV_ShadingRate (Vulkan's gl_ShadingRateEXT, which a device must have).
+  bool reads_shading_rate = false;
 
   const ConstantBuffer* find_constant_buffer(std::string_view name) const;
 };

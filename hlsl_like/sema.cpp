@@ -120,6 +120,9 @@ bool semantic_allowed(SemanticKind kind, Stage stage, bool input) {
     case SemanticKind::SvVertexId:
     case SemanticKind::SvInstanceId: return stage == Stage::Vertex && input;
     case SemanticKind::Vface: return stage == Stage::Fragment && input;
+    case SemanticKind::SvClipDistance:
+    case SemanticKind::SvCullDistance: return stage == Stage::Vertex ? !input : input;
+    case SemanticKind::SvShadingRate: return stage == Stage::Fragment && input;
   }
   return false;
 }
@@ -141,10 +144,15 @@ std::optional<std::string> required_type(SemanticKind kind, const Type& type) {
       break;
     case SemanticKind::SvVertexId:
     case SemanticKind::SvInstanceId:
+    case SemanticKind::SvShadingRate:
       if (!(type.is_scalar() && type.is_integer())) return "uint";
       break;
     case SemanticKind::Vface:
       if (!(type.is_scalar() && type.is_floating())) return "float";
+      break;
+    case SemanticKind::SvClipDistance:
+    case SemanticKind::SvCullDistance:
+      if (!((type.is_scalar() || type.is_vector()) && type.is_floating())) return "float or a float vector";
       break;
     default:
       // A float matrix takes a location per row, as DXC gives it; GLSL has no integer matrices.

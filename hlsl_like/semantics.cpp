@@ -51,6 +51,8 @@ ParsedSemantic parse_semantic(const std::string& text) {
       {"SV_POSITION", SemanticKind::SvPosition, 0}, {"SV_TARGET", SemanticKind::SvTarget, 7},
       {"SV_DEPTH", SemanticKind::SvDepth, 0},     {"SV_ISFRONTFACE", SemanticKind::SvIsFrontFace, 0},
       {"SV_VERTEXID", SemanticKind::SvVertexId, 0}, {"SV_INSTANCEID", SemanticKind::SvInstanceId, 0},
+      {"SV_CLIPDISTANCE", SemanticKind::SvClipDistance, 1}, {"SV_CULLDISTANCE", SemanticKind::SvCullDistance, 1},
+      {"SV_SHADINGRATE", SemanticKind::SvShadingRate, 0},
       // DX9's names, which Unity's HLSLSupport.cginc defines SV_Depth as on some APIs.
       {"DEPTH", SemanticKind::SvDepth, 0},        {"VPOS", SemanticKind::SvPosition, 0},
       {"VFACE", SemanticKind::Vface, 0},
@@ -80,6 +82,9 @@ std::string canonical_semantic(const ParsedSemantic& semantic) {
     case SemanticKind::SvIsFrontFace: return "SV_IsFrontFace";
     case SemanticKind::SvVertexId: return "SV_VertexID";
     case SemanticKind::SvInstanceId: return "SV_InstanceID";
+    case SemanticKind::SvClipDistance: base = "SV_ClipDistance"; break;
+    case SemanticKind::SvCullDistance: base = "SV_CullDistance"; break;
+    case SemanticKind::SvShadingRate: return "SV_ShadingRate";
     case SemanticKind::Vface: return "VFACE";
     case SemanticKind::User: return semantic.user_name + std::to_string(semantic.index);
   }

@@ -105,7 +105,8 @@ class SemanticIoResolver final : public glslang::TDefaultIoResolverBase {
       std::string semantic = array_semantic;
       // glslang splits an array varying (float4 offsets[3] : TEXCOORD1) into one variable per
       // element, named <name>[k], each with the array's semantic; HLSL gives element k the
-      // semantic's index + k, and the element the array's location + k.
+      // semantic's index + k, and the element the array's location + k times the locations an
+      // element takes (a matrix takes several).
       std::optional<uint32_t> element;
       if (const std::string name = entry.symbol->getName().c_str(); name.size() > 3 && name.back() == ']') {
         const size_t open = name.rfind('[');
@@ -127,7 +128,9 @@ class SemanticIoResolver final : public glslang::TDefaultIoResolverBase {
           location = hlsl::vertex_input_location(semantic);
       } else if (stage == EShLangVertex || input) {
         if (auto placed = varying_locations_.find(array_semantic); placed != varying_locations_.end())
-          location = placed->second + element.value_or(0);
+          location = placed->second +
+                     element.value_or(0) * uint32_t(glslang::TIntermediate::computeTypeLocationSize(
+                                               entry.symbol->getType(), stage));
         else
           location = hlsl::varying_location(semantic);
       } else if (const hlsl::ParsedSemantic target = hlsl::parse_semantic(semantic);
@@ -181,8 +184,9 @@ std::vector<HlslResource> reflect(glslang::TProgram& program) {
   program.buildReflection(EShReflectionSeparateBuffers | EShReflectionAllBlockVariables);
   for (int i = 0; i < program.getNumUniformBlocks(); ++i) {
     const glslang::TObjectReflection& block = program.getUniformBlock(i);
+    const bool push_constant = block.getType() && block.getType()->getQualifier().isPushConstant();
     resources.push_back({HlslResource::Kind::ConstantBuffer, block.name, uint32_t(block.getBinding()),
-                         uint32_t(block.size)});
+                         uint32_t(block.size), push_constant});
   }
   for (int i = 0; i < program.getNumUniformVariables(); ++i) {
     const glslang::TObjectReflection& uniform = program.getUniform(i);

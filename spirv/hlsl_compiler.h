@@ -78,6 +78,7 @@ struct HlslResource {
   std::string name;
   uint32_t binding = 0;
   uint32_t size = 0;  // bytes, for constant buffers
+  bool push_constant = false;  // a constant buffer in push constants, which has no binding
 };
 
 struct HlslModule {

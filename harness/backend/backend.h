@@ -209,6 +209,9 @@ struct ProgramDesc {
   // A mesh program reads the Vertex format; a full-screen program reads no vertex input and is
   // drawn as one triangle of three vertices (see glsl::fullscreen_vertex_shader).
   bool fullscreen = false;
+  // How many of gl_ClipDistance[] the vertex stage writes: OpenGL clips by a distance only where
+  // its plane is enabled (Vulkan by every one the shader writes).
+  uint32_t clip_distances = 0;
 };
 
 // The bytes of a host-side uniform block (a struct laid out to match the shader's block).

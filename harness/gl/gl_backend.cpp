@@ -71,22 +71,6 @@ struct Texture {
   TextureFormat format = TextureFormat::Rgba32Float;
 };
 
-// The internal draw that fills a multisampled texture: every sample of each texel of one layer
-// gets the texel of a single-sampled copy. Without sample shading a fragment's one output goes
-// to every sample it covers, and the triangle covers the whole layer.
-constexpr const char* kFillVertexShader = R"(#version 450 core
-void main() {
-  vec2 corner = vec2((gl_VertexID << 1) & 2, gl_VertexID & 2);
-  gl_Position = vec4(corner * 2.0 - 1.0, 0.0, 1.0);
-}
-)";
-std::string fill_fragment_shader(TexelKind kind) {
-  const std::string prefix = kind == TexelKind::Int ? "i" : kind == TexelKind::Uint ? "u" : "";
-  return "#version 450 core\nlayout(binding = 0) uniform " + prefix + "sampler2DArray source;\n"
-         "uniform int layer;\nlayout(location = 0) out " + prefix + "vec4 color;\n"
-         "void main() { color = texelFetch(source, ivec3(ivec2(gl_FragCoord.xy), layer), 0); }\n";
-}
-
 struct Target {
   GlFramebuffer framebuffer;
   Texture color;
@@ -106,6 +90,7 @@ struct Program {
   std::string name;
   ProgramLayout layout;
   bool fullscreen = false;
+  uint32_t clip_distances = 0;
   GlProgram program;
   std::vector<GlBuffer> uniform_buffers;  // per layout uniform block
   // Vertex inputs no mesh supplies (locations above 3), with what they read as: each draw sets
@@ -526,8 +511,8 @@ Result<TextureHandle> GlBackend::upload_texture(const TextureData& data) {
 
 Result<GLuint> GlBackend::fill_program(TexelKind kind, const std::string& what) {
   if (auto found = fill_programs_.find(kind); found != fill_programs_.end()) return found->second.get();
-  ShaderStageSource vertex_source{kFillVertexShader, {}, "main", "multisample_fill.vert", {}};
-  ShaderStageSource fragment_source{fill_fragment_shader(kind), {}, "main", "multisample_fill.frag", {}};
+  ShaderStageSource vertex_source{gl_support::kFillVertexShader, {}, "main", "multisample_fill.vert", {}};
+  ShaderStageSource fragment_source{gl_support::fill_fragment_shader(kind), {}, "main", "multisample_fill.frag", {}};
   auto vertex = compile(vertex_source, GL_VERTEX_SHADER, "vertex", what);
   if (!vertex) return fail(vertex.error());
   auto fragment = compile(fragment_source, GL_FRAGMENT_SHADER, "fragment", what);
@@ -706,6 +691,7 @@ Result<ProgramHandle> GlBackend::create_program(const ProgramDesc& desc) {
     program->name = desc.name;
     program->layout = desc.layout;
     program->fullscreen = desc.fullscreen;
+    program->clip_distances = desc.clip_distances;
     program->program = GlProgram(&gl_, gl_.CreateProgram());
     const GLuint id = program->program.get();
     gl_.AttachShader(id, vertex->get());
@@ -804,6 +790,7 @@ Result<void> GlBackend::render(const RenderPass& pass) {
       apply_draw_state(gl_, pass.draws[d].state, target->depth.has_value(), target->stencil,
                        pass.row_origin == RowOrigin::Bottom && !program.fullscreen);
       gl_.UseProgram(program.program.get());
+      gl_support::enable_clip_planes(gl_, program.clip_distances);
       const auto& blocks = program.layout.uniform_blocks;
       for (size_t s = 0; s < blocks.size(); ++s) {
         const std::vector<std::byte>& bytes = draw.uniforms[s]->bytes;

@@ -386,4 +386,28 @@ Result<void> check_interface(const gl::Functions& gl, GLuint id, const ProgramLa
   return {};
 }
 
+const char* const kFillVertexShader = R"(#version 450 core
+void main() {
+  vec2 corner = vec2((gl_VertexID << 1) & 2, gl_VertexID & 2);
+  gl_Position = vec4(corner * 2.0 - 1.0, 0.0, 1.0);
+}
+)";
+
+std::string fill_fragment_shader(TexelKind kind) {
+  const std::string prefix = kind == TexelKind::Int ? "i" : kind == TexelKind::Uint ? "u" : "";
+  return "#version 450 core\nlayout(binding = 0) uniform " + prefix + "sampler2DArray source;\n"
+         "uniform int layer;\nlayout(location = 0) out " + prefix + "vec4 color;\n"
+         "void main() { color = texelFetch(source, ivec3(ivec2(gl_FragCoord.xy), layer), 0); }\n";
+}
+
+void enable_clip_planes(const gl::Functions& gl, uint32_t count) {
+  constexpr uint32_t kMaxClipDistances = 8;  // Direct3D's and Vulkan's clip and cull distances together
+  for (uint32_t plane = 0; plane < kMaxClipDistances; ++plane) {
+    if (plane < count)
+      gl.Enable(GL_CLIP_DISTANCE0 + plane);
+    else
+      gl.Disable(GL_CLIP_DISTANCE0 + plane);
+  }
+}
+
 }  // namespace xshade::harness::gl_support

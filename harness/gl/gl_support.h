@@ -91,6 +91,18 @@ GLenum gl_stencil_op(StencilOp op);
 // clip space is that winding to OpenGL either way: the front is GL_CCW (backend.h's DrawState),
 // for culling and the stencil test's faces alike.
 void apply_draw_state(const gl::Functions& gl, const DrawState& state, bool depth, bool stencil, bool rows_up = false);
+
+// The internal draw that fills a multisampled texture: every sample of each texel of one layer
+// gets the texel of a single-sampled copy. Without sample shading a fragment's one output goes
+// to every sample it covers, and the triangle covers the whole layer. The fragment stage reads
+// texture unit 0 and the uniform `layer`.
+extern const char* const kFillVertexShader;
+std::string fill_fragment_shader(TexelKind kind);
+
+// Enables the clip planes of the `count` distances a program writes (gl_ClipDistance[0..count))
+// and disables the others: OpenGL clips by a distance only where its plane is enabled, and an
+// enabled plane the shader does not write clips at random.
+void enable_clip_planes(const gl::Functions& gl, uint32_t count);
 // What a vertex input of GL type `type` reads as; empty for a type no mesh or zero fills (a
 // matrix, a double).
 std::optional<TexelKind> attribute_kind(GLint type);

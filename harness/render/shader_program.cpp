@@ -64,7 +64,11 @@ Result<ShaderStageSource> vk_hlsl_stage(const hlsl::Module& module, spirv::Stage
     std::optional<uint32_t> ours;
     const std::string resource_name = resource.name == "$Global" ? hlsl::kGlobalsBufferName : resource.name;
     if (resource.kind == spirv::HlslResource::Kind::ConstantBuffer) {
-      if (const auto* buffer = reflection.find_constant_buffer(resource_name)) ours = buffer->binding;
+      if (const auto* buffer = reflection.find_constant_buffer(resource_name)) {
+        // A push-constant block has no binding.
+        if (buffer->push_constant && resource.push_constant) continue;
+        ours = buffer->binding;
+      }
     } else if (resource.kind == spirv::HlslResource::Kind::Sampler) {
       for (const auto& sampler : reflection.samplers)
         if (sampler.name == resource_name) ours = sampler.binding;
@@ -72,6 +76,15 @@ Result<ShaderStageSource> vk_hlsl_stage(const hlsl::Module& module, spirv::Stage
       for (const auto& texture : reflection.textures)
         if (texture.name == resource_name) ours = texture.binding;
     }
+    const bool push_constant_in_globals =
+        resource.name == "$Global" && !ours &&
+        std::any_of(reflection.constant_buffers.begin(), reflection.constant_buffers.end(),
+                    [](const hlsl::ConstantBuffer& buffer) { return buffer.push_constant; });
+    if (push_constant_in_globals)
+      return fail("vk-hlsl lane: glslang's HLSL front end reads a [[vk::push_constant]] struct global as a member of "
+                  "$Global, where DXC and xshade's other targets make it a push-constant block; compile it with --target "
+                  "vk or spirv, or declare it as [[vk::push_constant]] ConstantBuffer<T>",
+                  {name, 0, 0});
     if (ours != resource.binding)
       return fail("vk-hlsl lane: glslang binds '" + resource.name + "' at " + std::to_string(resource.binding) +
                       ", xshade's reflection " + (ours ? "at " + std::to_string(*ours) : std::string("not at all")),
@@ -215,6 +228,9 @@ Result<void> drawable(const hlsl::Module& module, Lane lane) {
   for (const hlsl::SamplerResource& sampler : reflection.samplers)
     if (sampler.used && sampler.set != 0)
       return refuse("'" + sampler.name + "' is in descriptor set " + std::to_string(sampler.set));
+  if (reflection.reads_shading_rate && lane != Lane::Gl)
+    return refuse("it reads SV_ShadingRate, and lavapipe has no variable-rate shading (VK_KHR_fragment_shading_rate); "
+                  "the gl lane reads 0, OpenGL's one rate (1x1)");
   for (const hlsl::StageVariable& input : reflection.vertex_inputs) {
     const std::optional<uint32_t> fed = hlsl::vertex_input_location(input.semantic);
     if (input.given_location && fed != input.given_location)
@@ -239,6 +255,7 @@ Result<ProgramDesc> program_for_lane(const hlsl::Module& module, Lane lane, cons
   desc.name = module.sources.name(module.main_file);
   desc.layout = layout_for_lane(module.reflection, lane, options);
   desc.fullscreen = module.entry_points.vertex == nullptr;
+  desc.clip_distances = module.reflection.clip_distances;
   desc.fragment = std::move(*stages->fragment);
   if (stages->vertex) {
     desc.vertex = std::move(*stages->vertex);
@@ -246,7 +263,7 @@ Result<ProgramDesc> program_for_lane(const hlsl::Module& module, Lane lane, cons
   }
   // A full-screen pass: the shared vertex shader feeds its TEXCOORD0.
   const glsl::Flavour flavour = lane == Lane::Gl ? glsl::Flavour::Gl : glsl::Flavour::Vk;
-  const std::string text = glsl::fullscreen_vertex_shader(flavour, module.reflection.varyings);
+  const std::string text = glsl::fullscreen_vertex_shader(flavour, module.reflection);
   desc.vertex.name = "fullscreen.vert";
   if (lane == Lane::Gl) {
     desc.vertex.glsl = text;
