@@ -702,7 +702,8 @@ Code StageEmitter::expr_untraced(const Expr* e) {
       }
       if (flavour_ == Flavour::Gl && e->type.kind() == TypeKind::SamplerState)
         fail(e->loc, "SamplerState " + in_quotes(name->name) + " can only be passed to Sample methods and functions on OpenGL");
-      if (e->type.kind() == TypeKind::ConstantBuffer) return {constant_buffer_instance(name->name)};
+      const Type& element = e->type.is_resource_array() ? e->type.element() : e->type;
+      if (element.kind() == TypeKind::ConstantBuffer) return {constant_buffer_instance(name->name)};
       if (e->type.kind() == TypeKind::Buffer) {
         type_name(e->type, e->loc);  // reports that this target has none
         return {"0"};

@@ -167,6 +167,10 @@ std::vector<StageItem> stage_items(const FunctionDecl& entry, bool inputs, const
 // gl_CullDistance[]): in the order of N, as DXC packs them, each taking its components. Keyed by
 // the item's path; `total` is the array's size.
 constexpr uint32_t kMaxDistanceComponents = 8;
+
+// "[N]" after the name of an array of N resources; nothing after a single one.
+std::string array_suffix(uint32_t count) { return count > 1 ? "[" + std::to_string(count) + "]" : std::string(); }
+
 struct DistancePacking {
   std::map<std::string, uint32_t> offsets;
   uint32_t total = 0;
@@ -559,19 +563,26 @@ std::string StageEmitter::declarations() {
       w.line({"layout(offset = ", std::to_string(member.offset), major, ") ", declarator(member.type, name, loc), ";"});
     }
     w.indent = 0;
-    w.line(view ? "} " + constant_buffer_instance(buffer.name) + ";" : "};");
+    w.line(view ? "} " + constant_buffer_instance(buffer.name) + array_suffix(buffer.count) + ";" : "};");
   }
 
+  // An array of resources is a GLSL array: its elements at consecutive bindings on gl (texture
+  // units, uniform-block binding points), one binding of that many descriptors on vk.
+  const auto element_type = [](const VarDecl& decl) -> const Type& {
+    return decl.type.is_resource_array() ? decl.type.element() : decl.type;
+  };
   for (const TextureResource& texture : reflection_.textures) {
     if (!texture.used || !texture.decl) continue;
     const std::string binding = "layout(" + place(texture.set, texture.binding) + ") uniform ";
-    w.line(binding + resource_type(texture.decl->type, texture.decl, texture.decl->loc) + " " + names_.of(texture.name) + ";");
+    w.line(binding + resource_type(element_type(*texture.decl), texture.decl, texture.decl->loc) + " " +
+           names_.of(texture.name) + array_suffix(texture.count) + ";");
   }
   if (flavour_ == Flavour::Vk) {
     for (const SamplerResource& sampler : reflection_.samplers)
       if (sampler.used && sampler.decl)
         w.line("layout(" + place(sampler.set, sampler.binding) + ") uniform " +
-               resource_type(sampler.decl->type, sampler.decl, sampler.decl->loc) + " " + names_.of(sampler.name) + ";");
+               resource_type(element_type(*sampler.decl), sampler.decl, sampler.decl->loc) + " " +
+               names_.of(sampler.name) + array_suffix(sampler.count) + ";");
   }
   return w.text();
 }

@@ -1053,19 +1053,23 @@ TEST(BadInput, AssignmentToAUniform) {
                                        "      ^"}));
 }
 
-TEST(BadInput, ArraysOfResourcesAreErrorsNamingTheDeclaration) {
+TEST(BadInput, ArraysOfResourcesAreGlobalsOfASizeNamingTheDeclarationOtherwise) {
+  // A global array is one binding of that many descriptors; a parameter, a local or an unsized
+  // global (descriptor indexing) has no GLSL form for OpenGL.
   auto m = compile("layers.hlsl",
                    "#pragma fragment frag\n"
                    "Texture2D _Layers[4];\n"
                    "sampler2D _Legacy[2];\n"
                    "SamplerState _Samplers[2];\n"
+                   "Texture2D _Bindless[];\n"
                    "float4 pick(Texture2D layers[2], SamplerState s, float2 uv) { return layers[1].Sample(s, uv); }\n"
-                   "float4 frag(float2 uv : TEXCOORD0) : SV_Target { return 0; }\n");
-  const std::string why = "; arrays of resources are not supported: declare each one separately";
-  EXPECT_EQ(headers(*m), (Strings{"layers.hlsl:2:11: error: variable '_Layers' cannot have type 'Texture2D[4]'" + why,
-                                  "layers.hlsl:3:11: error: variable '_Legacy' cannot have type 'sampler2D[2]'" + why,
-                                  "layers.hlsl:4:14: error: variable '_Samplers' cannot have type 'SamplerState[2]'" + why,
-                                  "layers.hlsl:5:23: error: parameter 'layers' cannot have type 'Texture2D[2]'" + why}));
+                   "float4 frag(float2 uv : TEXCOORD0) : SV_Target { return _Layers[2].Sample(_Samplers[1], uv); }\n");
+  const std::string why = "; arrays of resources are supported as globals of textures, samplers and constant buffers "
+                          "only: declare each one separately";
+  EXPECT_EQ(headers(*m), (Strings{"layers.hlsl:5:11: error: '_Bindless' is an unsized array of resources "
+                                  "(descriptor indexing), which GLSL for OpenGL cannot declare: give it the size the "
+                                  "application binds",
+                                  "layers.hlsl:6:23: error: parameter 'layers' cannot have type 'Texture2D[2]'" + why}));
 }
 
 TEST(BadInput, AFileScopeConstWithoutStaticIsNoArraySize) {

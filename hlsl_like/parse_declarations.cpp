@@ -578,7 +578,11 @@ std::unique_ptr<VarDecl> Parser::parse_var_declarator(const Specifiers& spec, co
     if (!var->initializer) return nullptr;
   }
   if (unsized) {
-    if (!var->initializer || var->initializer->kind != ExprKind::InitList) {
+    if (var->type.element().is_resource()) {
+      error_at(name_index, "'" + var->name + "' is an unsized array of resources (descriptor indexing), which GLSL for "
+                           "OpenGL cannot declare: give it the size the application binds");
+      var->type = Type::array(var->type.element(), 1);
+    } else if (!var->initializer || var->initializer->kind != ExprKind::InitList) {
       error_at(name_index, "an unsized array needs an initializer list");
       var->type = Type::array(var->type.element(), 1);
     } else if (static_cast<const InitListExpr&>(*var->initializer).elements.empty()) {

@@ -195,7 +195,7 @@ std::vector<PackedItem> packed_items(const std::vector<const VarDecl*>& vars) {
 
 bool is_uniform_global(const VarDecl& var) {
   return var.is_global && var.storage != StorageClass::Static && var.storage != StorageClass::GroupShared &&
-         !var.type.is_resource() && !var.type.is_error();
+         !var.type.is_resource() && !var.type.is_resource_array() && !var.type.is_error();
 }
 
 std::string canonical(const std::string& semantic) {
@@ -294,7 +294,13 @@ class RegisterClass {
   // Two resources may declare one register where no entry point reaches both, as fxc and DXC
   // allow (a file of several shaders); `reached` says whether one reaches this one. A space is
   // a register set of its own (Vulkan's descriptor set of that number).
-  void claim(const RegisterBinding& binding, const std::string& name, bool reached) {
+  // An array of `count` resources takes the registers from its own on.
+  void claim(const RegisterBinding& binding, const std::string& name, bool reached, uint32_t count = 1) {
+    for (uint32_t element = 1; element < count; ++element) {
+      RegisterBinding next = binding;
+      next.index += element;
+      claim(next, name, reached);
+    }
     if (binding.index >= kRegistersPerClass) {
       diagnostics_.error(binding.loc, std::string("register ") + binding.register_class + std::to_string(binding.index) +
                                           " of " + in_quotes(name) + " is out of range (0 to " +
@@ -314,9 +320,14 @@ class RegisterClass {
   }
   uint32_t binding_of(const RegisterBinding& binding) const { return base_ + binding.index; }
   // The lowest free register; when none is left, an error if `required`.
-  std::optional<uint32_t> next_free(const std::string& name, Loc loc, bool required = true) {
-    for (uint32_t index = 0; index < kRegistersPerClass; ++index)
-      if (used_.emplace(std::pair{0u, index}, Claim{name, true}).second) return base_ + index;
+  std::optional<uint32_t> next_free(const std::string& name, Loc loc, bool required = true, uint32_t count = 1) {
+    for (uint32_t index = 0; index + count <= kRegistersPerClass; ++index) {
+      bool free = true;
+      for (uint32_t element = 0; element < count && free; ++element) free = !used_.count(std::pair{0u, index + element});
+      if (!free) continue;
+      for (uint32_t element = 0; element < count; ++element) used_.emplace(std::pair{0u, index + element}, Claim{name, true});
+      return base_ + index;
+    }
     if (required)
       diagnostics_.error(loc, std::string("no free ") + letter_ + " register for " + in_quotes(name) + ": a shader reads at most " +
                                   std::to_string(kRegistersPerClass) + " of this class here");
@@ -615,17 +626,22 @@ Reflection reflect(const TranslationUnit& unit, const EntryPoints& entry_points,
       reflection.constant_buffers.push_back(std::move(buffer));
     } else if (decl->kind == DeclKind::Var) {
       const auto& var = static_cast<const VarDecl&>(*decl);
-      const TypeKind kind = var.type.kind();
+      // An array of resources is one resource of `count` elements.
+      const bool array = var.type.is_resource_array();
+      const Type& type = array ? var.type.element() : var.type;
+      const uint32_t count = array ? var.type.array_length() : 1;
+      const TypeKind kind = type.kind();
       if (kind == TypeKind::Texture || kind == TypeKind::Sampler) {
         TextureResource texture;
         texture.name = var.name;
         texture.kind = kind == TypeKind::Texture ? TextureKind::Texture : TextureKind::Sampler;
-        texture.shape = var.type.texture_shape();
+        texture.shape = type.texture_shape();
         if (kind == TypeKind::Texture)
-          texture.texel = var.type.scalar_type() == ScalarType::Half ? ScalarType::Float : var.type.scalar_type();
+          texture.texel = type.scalar_type() == ScalarType::Half ? ScalarType::Float : type.scalar_type();
         texture.decl = &var;
+        texture.count = count;
         // glslang puts a sampler2D in the texture range whatever its register letter says.
-        if (var.binding.register_class != 0 && !var.vk.binding) textures.claim(var.binding, var.name, used(&var));
+        if (var.binding.register_class != 0 && !var.vk.binding) textures.claim(var.binding, var.name, used(&var), count);
         pending_textures.push_back({reflection.textures.size(), &var});
         reflection.textures.push_back(std::move(texture));
         reflection.properties.push_back(property_of(var));
@@ -636,16 +652,18 @@ Reflection reflect(const TranslationUnit& unit, const EntryPoints& entry_points,
         buffer.name = var.name;
         buffer.decl = &var;
         buffer.push_constant = var.vk.push_constant;
+        buffer.count = count;
         std::vector<PackedItem> members;
-        if (const StructDecl* structure = var.type.element().struct_decl())
+        if (const StructDecl* structure = type.element().struct_decl())
           for (const FieldDecl& field : structure->fields) members.push_back({field.name, field.type, false, field.loc, {}});
         pack_members(buffer, members, diagnostics);
-        if (var.binding.register_class == 'b' && !var.vk.binding) buffers.claim(var.binding, var.name, used(&var));
+        if (var.binding.register_class == 'b' && !var.vk.binding) buffers.claim(var.binding, var.name, used(&var), count);
         pending_buffers.push_back({reflection.constant_buffers.size(), &var.binding, var.loc});
         reflection.constant_buffers.push_back(std::move(buffer));
       } else if (kind == TypeKind::SamplerState) {
-        SamplerResource sampler{var.name, 0, var.type.is_comparison(), true, &var};
-        if (var.binding.register_class != 0 && !var.vk.binding) samplers.claim(var.binding, var.name, used(&var));
+        SamplerResource sampler{var.name, 0, type.is_comparison(), true, &var};
+        sampler.count = count;
+        if (var.binding.register_class != 0 && !var.vk.binding) samplers.claim(var.binding, var.name, used(&var), count);
         pending_samplers.push_back({reflection.samplers.size(), &var});
         reflection.samplers.push_back(std::move(sampler));
       } else if (is_uniform_global(var)) {
@@ -670,7 +688,7 @@ Reflection reflect(const TranslationUnit& unit, const EntryPoints& entry_points,
     if (pending.binding && pending.binding->register_class == 'b') {
       buffer.binding = buffers.binding_of(*pending.binding);
       buffer.set = pending.binding->space;
-    } else if (auto binding = buffers.next_free(buffer.name, pending.loc)) {
+    } else if (auto binding = buffers.next_free(buffer.name, pending.loc, true, buffer.count)) {
       buffer.binding = *binding;
     }
   }
@@ -692,7 +710,7 @@ Reflection reflect(const TranslationUnit& unit, const EntryPoints& entry_points,
       if (var->vk.binding) continue;
       texture.set = var->binding.space;
       if (var->binding.register_class != 0) texture.binding = textures.binding_of(var->binding);
-      else texture.binding = textures.next_free(var->name, var->loc, used_pass).value_or(0);
+      else texture.binding = textures.next_free(var->name, var->loc, used_pass, texture.count).value_or(0);
     }
     for (auto [index, var] : pending_samplers) {
       if (used(var) != used_pass) continue;
@@ -701,7 +719,7 @@ Reflection reflect(const TranslationUnit& unit, const EntryPoints& entry_points,
       if (var->vk.binding) continue;
       sampler.set = var->binding.space;
       if (var->binding.register_class != 0) sampler.binding = samplers.binding_of(var->binding);
-      else sampler.binding = samplers.next_free(var->name, var->loc, used_pass).value_or(0);
+      else sampler.binding = samplers.next_free(var->name, var->loc, used_pass, sampler.count).value_or(0);
     }
   }
 

@@ -52,6 +52,9 @@ struct ConstantBuffer {
   const Decl* decl = nullptr;
   uint32_t set = 0;  // Vulkan's descriptor set: 0 unless [[vk::binding(N, set)]] says otherwise
   bool push_constant = false;  // [[vk::push_constant]]: a push-constant block on Vulkan
+  // Elements of an array of them (ConstantBuffer<S> cb[2]): the registers from `binding` on on
+  // Direct3D and OpenGL, one binding of that many descriptors on Vulkan.
+  uint32_t count = 1;
 };
 
 enum class TextureKind : uint8_t {
@@ -78,6 +81,7 @@ struct TextureResource {
   bool used = true;
   const VarDecl* decl = nullptr;
   uint32_t set = 0;  // as ConstantBuffer::set
+  uint32_t count = 1;  // as ConstantBuffer::count
 };
 
 struct SamplerResource {
@@ -87,6 +91,7 @@ struct SamplerResource {
   bool used = true;  // as TextureResource::used
   const VarDecl* decl = nullptr;
   uint32_t set = 0;  // as ConstantBuffer::set
+  uint32_t count = 1;  // as ConstantBuffer::count
 };
 
 // A stage input or output with the location the compiler gave it.

@@ -43,8 +43,11 @@ std::string reflection_json(const Reflection& reflection) {
     for (const ConstantBufferMember& m : buffer.members)
       members.push_back({{"name", m.name}, {"type", type_json(m.type)}, {"offset", m.offset}, {"size", m.size},
                          {"row_major", m.row_major}});
-    json["constant_buffers"].push_back(
-        {{"name", buffer.name}, {"binding", buffer.binding}, {"size", buffer.size}, {"members", members}});
+    nlohmann::json entry = {{"name", buffer.name}, {"binding", buffer.binding}, {"size", buffer.size}, {"members", members}};
+    if (buffer.set) entry["set"] = buffer.set;
+    if (buffer.count > 1) entry["count"] = buffer.count;
+    if (buffer.push_constant) entry["push_constant"] = true;
+    json["constant_buffers"].push_back(entry);
   }
   json["textures"] = nlohmann::json::array();
   for (const TextureResource& t : reflection.textures) {
@@ -56,12 +59,16 @@ std::string reflection_json(const Reflection& reflection) {
     if (t.comparison) texture["comparison"] = true;
     if (!t.sampler.empty()) texture["sampler"] = t.sampler;
     if (t.sampler_binding) texture["sampler_binding"] = *t.sampler_binding;
+    if (t.set) texture["set"] = t.set;
+    if (t.count > 1) texture["count"] = t.count;
     json["textures"].push_back(texture);
   }
   json["samplers"] = nlohmann::json::array();
   for (const SamplerResource& s : reflection.samplers) {
     nlohmann::json sampler = {{"name", s.name}, {"binding", s.binding}, {"used", s.used}};
     if (s.comparison) sampler["comparison"] = true;
+    if (s.set) sampler["set"] = s.set;
+    if (s.count > 1) sampler["count"] = s.count;
     json["samplers"].push_back(sampler);
   }
   json["properties"] = nlohmann::json::array();

@@ -300,6 +300,51 @@ float4 frag(float2 uv : TEXCOORD0) : SV_Target { return a.Sample(s, uv) + b.Samp
       << module->diagnostics.render_all();
 }
 
+// As on Direct3D, an array of N resources takes N registers from its own; the next free one is
+// past them all. On Vulkan the array is one binding of N descriptors at its first register's.
+TEST(Reflection, AnArrayOfResourcesTakesARegisterPerElement) {
+  auto module = compile(R"(
+#pragma fragment frag
+Texture2D layers[3] : register(t1);
+Texture2D after;
+SamplerState samplers[2];
+SamplerState one;
+struct Camera { float4x4 view; };
+ConstantBuffer<Camera> cameras[2];
+cbuffer Next { float4 tint; };
+float4 frag(float2 uv : TEXCOORD0) : SV_Target {
+  return layers[2].Sample(samplers[1], uv) + after.Sample(one, uv) + cameras[1].view[0] + tint;
+}
+)");
+  ASSERT_TRUE(module->ok()) << module->diagnostics.render_all();
+  const Reflection& r = module->reflection;
+  ASSERT_EQ(r.textures.size(), 2u);
+  EXPECT_EQ(r.textures[0].count, 3u);
+  EXPECT_EQ(r.textures[0].binding, kTextureBindingBase + 1);
+  EXPECT_EQ(r.textures[1].count, 1u);
+  EXPECT_EQ(r.textures[1].binding, kTextureBindingBase + 0);  // t0 is free before the array
+  ASSERT_EQ(r.samplers.size(), 2u);
+  EXPECT_EQ(r.samplers[0].count, 2u);
+  EXPECT_EQ(r.samplers[0].binding, kSamplerBindingBase + 0);
+  EXPECT_EQ(r.samplers[1].binding, kSamplerBindingBase + 2);
+  ASSERT_EQ(r.constant_buffers.size(), 2u);
+  EXPECT_EQ(r.constant_buffers[0].name, "cameras");
+  EXPECT_EQ(r.constant_buffers[0].count, 2u);
+  EXPECT_EQ(r.constant_buffers[0].size, 64u);  // one element's
+  EXPECT_EQ(r.constant_buffers[1].binding, kConstantBufferBindingBase + 2);
+
+  // A register inside an array is taken.
+  auto clash = compile(R"(
+#pragma fragment frag
+Texture2D layers[3] : register(t1);
+Texture2D b : register(t3);
+SamplerState s;
+float4 frag(float2 uv : TEXCOORD0) : SV_Target { return layers[0].Sample(s, uv) + b.Sample(s, uv); }
+)");
+  EXPECT_NE(clash->diagnostics.render_all().find("register t3 of 'b' is already taken by 'layers'"), std::string::npos)
+      << clash->diagnostics.render_all();
+}
+
 TEST(Reflection, Dx9SemanticsAreSystemValuesWhereSemaSaysSo) {
   auto module = compile(R"(
 #pragma vertex vert

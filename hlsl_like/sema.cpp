@@ -250,7 +250,7 @@ std::string Sema::suggestion(const std::string& name, bool functions) const {
 // Declarations
 
 bool Sema::check_type_usable(const Type& type, std::string_view kind, std::string_view name, Loc loc,
-                             bool allow_resource) {
+                             bool allow_resource, bool allow_resource_array) {
   auto what = [&] { return std::string(kind) + in_quotes(name); };
   if (type.is_void()) {
     diag_.error(loc, what() + " cannot have type 'void'");
@@ -261,12 +261,18 @@ bool Sema::check_type_usable(const Type& type, std::string_view kind, std::strin
                          "; resources are only allowed at global scope or as parameters");
     return false;
   }
-  // Neither GLSL target can hold them: a GLSL array of samplers needs indices the driver can
-  // prove uniform, and reflection gives each texture one binding.
+  // A global array of textures, samplers or constant buffers is one binding of that many
+  // descriptors (register t2 and the next ones on Direct3D); GLSL holds no other array of them.
   if (type.kind() == TypeKind::Array && facts_.contains_resource(type)) {
-    diag_.error(loc, what() + " cannot have type " + in_quotes(type.name()) +
-                         "; arrays of resources are not supported: declare each one separately");
-    return false;
+    const Type& element = type.element();
+    const bool bindable = element.kind() == TypeKind::Texture || element.kind() == TypeKind::SamplerState ||
+                          element.kind() == TypeKind::Sampler || element.kind() == TypeKind::ConstantBuffer;
+    if (!allow_resource_array || !bindable) {
+      diag_.error(loc, what() + " cannot have type " + in_quotes(type.name()) +
+                           "; arrays of resources are supported as globals of textures, samplers and constant buffers "
+                           "only: declare each one separately");
+      return false;
+    }
   }
   return true;
 }
@@ -314,7 +320,7 @@ void Sema::declare_global_var(VarDecl& var, bool in_cbuffer) {
     // A struct's resources would need registers of their own; HLSL 5.1 gives none to a field.
     diag_.error(var.loc, std::string(kind) + in_quotes(var.name) + " of struct " + in_quotes(var.type.name()) +
                              " holds resources: declare each resource as a global of its own");
-  } else if (check_type_usable(var.type, kind, var.name, var.loc, !in_cbuffer)) {
+  } else if (check_type_usable(var.type, kind, var.name, var.loc, !in_cbuffer, !in_cbuffer)) {
     if (var.type.is_resource() && var.initializer) {
       diag_.error(var.initializer->loc, in_quotes(var.type.name()) + " variables cannot have an initializer");
     } else {

@@ -178,7 +178,9 @@ class Sema {
   void analyze_attributes(std::vector<Attribute>& attributes);
   void analyze_condition(ExprPtr& condition);
   // `what` is reported as kind + in_quotes(name) ("variable 'x'"), built only for a diagnostic.
-  bool check_type_usable(const Type& type, std::string_view kind, std::string_view name, Loc loc, bool allow_resource);
+  // `allow_resource_array`: a global, which may be an array of textures, samplers or constant buffers.
+  bool check_type_usable(const Type& type, std::string_view kind, std::string_view name, Loc loc, bool allow_resource,
+                         bool allow_resource_array = false);
   void check_recursion();
   void fix_up_calls();
   const FunctionDecl* find_entry_point(const std::string& name, Loc pragma_loc, const char* stage);

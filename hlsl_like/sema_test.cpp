@@ -1037,13 +1037,13 @@ TEST(SemaStatements, BreakAndContinueNeedALoop) {
                      "4:3: error: 'continue' is only allowed inside a loop"}));
 }
 
-TEST(SemaStatements, ResourcesInStructsAndLocalsButNotInArraysOrGlobalStructs) {
+TEST(SemaStatements, ResourcesInStructsAndLocalsButNotInLocalArraysOrGlobalStructs) {
   EXPECT_EQ(messages_of("struct S { Texture2D t; SamplerState s; };\nTexture2D g;\n"
                         "void f(Texture2D t, S p) { Texture2D u = g; S v = p; v.t = u; }\n"),
             Strings{});
   EXPECT_EQ(messages_of("void f() { Texture2D t[2]; }\n"),
-            (Strings{"1:22: error: variable 't' cannot have type 'Texture2D[2]'; arrays of resources are not supported: "
-                     "declare each one separately"}));
+            (Strings{"1:22: error: variable 't' cannot have type 'Texture2D[2]'; arrays of resources are supported as "
+                     "globals of textures, samplers and constant buffers only: declare each one separately"}));
   EXPECT_EQ(messages_of("struct S { Texture2D t; };\nS g;\n"),
             (Strings{"2:3: error: variable 'g' of struct 'S' holds resources: declare each resource as a global of "
                      "its own"}));

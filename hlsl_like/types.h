@@ -95,6 +95,13 @@ class Type {
   bool is_numeric() const { return is_scalar() || is_vector() || is_matrix(); }
   bool is_resource() const { return kind_ >= TypeKind::Texture; }
   bool is_texture() const { return kind_ == TypeKind::Texture; }
+  // A sized global array of textures, samplers or constant buffers (Texture2D t[4]), which
+  // reflection makes one resource of that many elements.
+  bool is_resource_array() const {
+    return kind_ == TypeKind::Array && array_length_ > 0 && element_ &&
+           (element_->kind_ == TypeKind::Texture || element_->kind_ == TypeKind::SamplerState ||
+            element_->kind_ == TypeKind::Sampler || element_->kind_ == TypeKind::ConstantBuffer);
+  }
   bool is_floating() const { return is_numeric() && (scalar_ == ScalarType::Float || scalar_ == ScalarType::Half); }
   bool is_integer() const { return is_numeric() && (scalar_ == ScalarType::Int || scalar_ == ScalarType::Uint); }
   bool is_bool() const { return is_numeric() && scalar_ == ScalarType::Bool; }

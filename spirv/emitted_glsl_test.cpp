@@ -688,5 +688,55 @@ TEST(EmittedGlsl, StructsOfResourcesAreFlattenedToTheGlobalsTheyName) {
   EXPECT_NE(gl.find("vec4 fetch(sampler2D t_tex, vec2 uv)"), std::string::npos) << gl;
 }
 
+// ---------------------------------------------------------------------------------------------
+// Arrays of resources (one binding of N descriptors on vk, N consecutive bindings on gl) and clip
+// and cull distances (packed into GLSL's built-in arrays in the order of their index).
+constexpr const char* kArraysAndDistances = R"(
+#pragma vertex vert
+#pragma fragment frag
+Texture2D layers[3] : register(t1);
+SamplerState samplers[2];
+struct Camera { float4x4 view; float4 tint; };
+ConstantBuffer<Camera> cameras[2];
+cbuffer Select { int layer; int camera; };
+struct V {
+  float4 pos : SV_Position;
+  float clip_far : SV_ClipDistance1;
+  float2 clip_near : SV_ClipDistance0;
+  float cull : SV_CullDistance0;
+  float2 uv : TEXCOORD0;
+};
+V vert(float3 p : POSITION, float2 uv : TEXCOORD0) {
+  V v;
+  v.pos = mul(cameras[camera].view, float4(p, 1));
+  v.clip_near = float2(p.x, p.y);
+  v.clip_far = p.z;
+  v.cull = 1;
+  v.uv = uv;
+  return v;
+}
+float4 frag(V v) : SV_Target {
+  return layers[layer].Sample(samplers[1], v.uv) * cameras[camera].tint + v.clip_near.y + v.clip_far;
+}
+)";
+
+TEST(EmittedGlsl, ArraysOfResourcesAndClipDistancesCompileInBothFlavours) {
+  const Compiled compiled = emit_and_compile("arrays.hlsl", kArraysAndDistances);
+  ASSERT_TRUE(compiled.gl.vertex && compiled.vk.fragment);
+  const std::string gl = compiled.gl.vertex->text + compiled.gl.fragment->text;
+  const std::string vk = compiled.vk.vertex->text + compiled.vk.fragment->text;
+  EXPECT_NE(gl.find("layout(binding = 17) uniform sampler2D layers[3];"), std::string::npos) << gl;
+  EXPECT_NE(vk.find("layout(set = 0, binding = 17) uniform texture2D layers[3];"), std::string::npos) << vk;
+  EXPECT_NE(vk.find("uniform sampler samplers[2];"), std::string::npos) << vk;
+  EXPECT_NE(vk.find("texture(sampler2D(layers[layer], samplers[1]), v.uv)"), std::string::npos) << vk;
+  EXPECT_NE(gl.find("} xs_cb_cameras[2];"), std::string::npos) << gl;
+  // SV_ClipDistance0 (two components) first, then SV_ClipDistance1, whatever the struct's order.
+  EXPECT_NE(gl.find("out float gl_ClipDistance[3];"), std::string::npos) << gl;
+  EXPECT_NE(gl.find("gl_ClipDistance[1] = float(xs_result.clip_near.y);"), std::string::npos) << gl;
+  EXPECT_NE(gl.find("gl_ClipDistance[2] = float(xs_result.clip_far);"), std::string::npos) << gl;
+  EXPECT_NE(gl.find("out float gl_CullDistance[1];"), std::string::npos) << gl;
+  EXPECT_NE(vk.find("in float gl_ClipDistance[3];"), std::string::npos) << vk;
+}
+
 }  // namespace
 }  // namespace xshade::spirv

@@ -62,7 +62,10 @@ Result<ShaderStageSource> vk_hlsl_stage(const hlsl::Module& module, spirv::Stage
   const hlsl::Reflection& reflection = module.reflection;
   for (const spirv::HlslResource& resource : compiled->resources) {
     std::optional<uint32_t> ours;
-    const std::string resource_name = resource.name == "$Global" ? hlsl::kGlobalsBufferName : resource.name;
+    std::string resource_name = resource.name == "$Global" ? hlsl::kGlobalsBufferName : resource.name;
+    // glslang reflects each element of an array of blocks (ubo[0], ubo[1]) at the array's binding.
+    if (const size_t open = resource_name.rfind('['); open != std::string::npos && resource_name.back() == ']')
+      resource_name.erase(open);
     if (resource.kind == spirv::HlslResource::Kind::ConstantBuffer) {
       if (const auto* buffer = reflection.find_constant_buffer(resource_name)) {
         // A push-constant block has no binding.
@@ -210,6 +213,11 @@ Result<LaneStages> stages_for_lane(const hlsl::Module& module, Lane lane, const 
 // What the harness cannot draw of what Vulkan's attributes ask ([[vk::...]]), said before it is
 // compiled for a lane: its backends bind descriptor set 0 and no push constants, and its meshes
 // feed the vertex format's locations.
+std::string array_of_resources(const std::string& name, uint32_t count) {
+  return "'" + name + "' is an array of " + std::to_string(count) +
+         " resources, which a scene cannot give yet (it binds one texture or buffer per name)";
+}
+
 Result<void> drawable(const hlsl::Module& module, Lane lane) {
   const hlsl::Reflection& reflection = module.reflection;
   const SourceLocation where = module.sources.resolve({module.main_file, 0, 0});
@@ -221,13 +229,18 @@ Result<void> drawable(const hlsl::Module& module, Lane lane) {
       return refuse("'" + buffer.name + "' is a push-constant block ([[vk::push_constant]]), which the harness's Vulkan "
                     "backend does not give yet (the gl lane reads it as a uniform block)");
     if (buffer.set != 0) return refuse("'" + buffer.name + "' is in descriptor set " + std::to_string(buffer.set));
+    if (buffer.count > 1) return refuse(array_of_resources(buffer.name, buffer.count));
   }
-  for (const hlsl::TextureResource& texture : reflection.textures)
-    if (texture.used && texture.set != 0)
-      return refuse("'" + texture.name + "' is in descriptor set " + std::to_string(texture.set));
-  for (const hlsl::SamplerResource& sampler : reflection.samplers)
-    if (sampler.used && sampler.set != 0)
-      return refuse("'" + sampler.name + "' is in descriptor set " + std::to_string(sampler.set));
+  for (const hlsl::TextureResource& texture : reflection.textures) {
+    if (!texture.used) continue;
+    if (texture.set != 0) return refuse("'" + texture.name + "' is in descriptor set " + std::to_string(texture.set));
+    if (texture.count > 1) return refuse(array_of_resources(texture.name, texture.count));
+  }
+  for (const hlsl::SamplerResource& sampler : reflection.samplers) {
+    if (!sampler.used) continue;
+    if (sampler.set != 0) return refuse("'" + sampler.name + "' is in descriptor set " + std::to_string(sampler.set));
+    if (sampler.count > 1) return refuse(array_of_resources(sampler.name, sampler.count));
+  }
   if (reflection.reads_shading_rate && lane != Lane::Gl)
     return refuse("it reads SV_ShadingRate, and lavapipe has no variable-rate shading (VK_KHR_fragment_shading_rate); "
                   "the gl lane reads 0, OpenGL's one rate (1x1)");
