@@ -23,6 +23,8 @@ std::string dimension(TextureShape shape) {
     case TextureShape::Tex3D: return "3D";
     case TextureShape::Cube: return "Cube";
     case TextureShape::CubeArray: return "CubeArray";
+    case TextureShape::Subpass: return "2D";  // gl reads the attachment as a texture at the pixel
+    case TextureShape::SubpassMS: return "2DMS";
   }
   return "2D";
 }
@@ -75,7 +77,10 @@ std::string StageEmitter::resource_type(const Type& type, const Decl* decl, Loc 
   switch (type.kind()) {
     case TypeKind::Texture: {
       const ScalarType texel = type.scalar_type() == ScalarType::Half ? ScalarType::Float : type.scalar_type();
-      if (flavour_ == Flavour::Vk) return texel_prefix(texel) + "texture" + dimension(type.texture_shape());
+      const TextureShape shape = type.texture_shape();
+      if (flavour_ == Flavour::Vk && (shape == TextureShape::Subpass || shape == TextureShape::SubpassMS))
+        return texel_prefix(texel) + (shape == TextureShape::Subpass ? "subpassInput" : "subpassInputMS");
+      if (flavour_ == Flavour::Vk) return texel_prefix(texel) + "texture" + dimension(shape);
       return combined_type(type.texture_shape(), texel, decl && compared_.count(decl) > 0);
     }
     case TypeKind::Sampler: return combined_type(type.texture_shape(), ScalarType::Float, false);
@@ -306,6 +311,16 @@ Code StageEmitter::texture_call(const CallExpr& call) {
       }
       break;
     }
+    case I::SubpassLoad:
+      // Vulkan reads the input attachment at the fragment's pixel; OpenGL, which has no subpasses,
+      // reads the previous pass's target bound as a texture at the same pixel.
+      if (flavour_ == Flavour::Vk)
+        text = std::string(shape == TextureShape::SubpassMS ? "subpassLoad($0, $1)" : "subpassLoad($0)") + texel_part;
+      else
+        text = std::string(shape == TextureShape::SubpassMS ? "texelFetch($0, ivec2(gl_FragCoord.xy), $1)"
+                                                            : "texelFetch($0, ivec2(gl_FragCoord.xy), 0)") +
+               texel_part;
+      break;
     case I::Load: {
       // texelFetch takes no sampler, so on vk it needs GL_EXT_samplerless_texture_functions. An
       // offset is added to the coordinate: texelFetch neither filters nor wraps, so that is what

@@ -573,7 +573,13 @@ std::string StageEmitter::declarations() {
   };
   for (const TextureResource& texture : reflection_.textures) {
     if (!texture.used || !texture.decl) continue;
-    const std::string binding = "layout(" + place(texture.set, texture.binding) + ") uniform ";
+    // A subpass input names its input attachment on vk; gl reads it as a texture.
+    const std::optional<uint32_t> attachment = texture.decl->vk.input_attachment_index;
+    const std::string binding = "layout(" +
+                                (flavour_ == Flavour::Vk && attachment
+                                     ? "input_attachment_index = " + std::to_string(*attachment) + ", "
+                                     : std::string()) +
+                                place(texture.set, texture.binding) + ") uniform ";
     w.line(binding + resource_type(element_type(*texture.decl), texture.decl, texture.decl->loc) + " " +
            names_.of(texture.name) + array_suffix(texture.count) + ";");
   }

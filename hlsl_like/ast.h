@@ -39,8 +39,12 @@ struct VulkanAttributes {
   bool push_constant = false;           // vk::push_constant: a struct variable or ConstantBuffer<S>
   std::optional<uint32_t> constant_id;  // vk::constant_id(N): a specialization constant
   std::string builtin;                  // vk::builtin("PointSize"): an output SPIR-V names itself
+  // vk::input_attachment_index(N): a SubpassInput's input attachment of the subpass
+  std::optional<uint32_t> input_attachment_index;
   Loc loc;                              // of the first attribute
-  bool any() const { return location || binding || push_constant || constant_id || !builtin.empty(); }
+  bool any() const {
+    return location || binding || push_constant || constant_id || !builtin.empty() || input_attachment_index;
+  }
 };
 
 // ---------------------------------------------------------------------------------------------

@@ -183,7 +183,8 @@ std::vector<Entry> make_entries() {
   add_dx9_sampling(entries, Sh::Sampler3D, I::Tex3D, I::Tex3Dbias, I::Tex3Dgrad, I::Tex3Dlod, I::Tex3Dproj);
   add_dx9_sampling(entries, Sh::SamplerCube, I::TexCUBE, I::TexCUBEbias, I::TexCUBEgrad, I::TexCUBElod, I::TexCUBEproj);
   // Texture methods: names and stages here, signatures in sema_methods.cpp.
-  for (I id : {I::Sample, I::SampleBias, I::SampleCmp, I::CalculateLevelOfDetail, I::CalculateLevelOfDetailUnclamped})
+  for (I id : {I::Sample, I::SampleBias, I::SampleCmp, I::CalculateLevelOfDetail, I::CalculateLevelOfDetailUnclamped,
+               I::SubpassLoad})
     entries.push_back({id, true, true, {}});
   for (I id : {I::SampleGrad, I::SampleLevel, I::SampleCmpLevelZero, I::Load, I::GetDimensions, I::Gather, I::GatherRed,
                I::GatherGreen, I::GatherBlue, I::GatherAlpha, I::GatherCmp, I::GatherCmpRed, I::GatherCmpGreen,

@@ -39,7 +39,7 @@ namespace xshade::hlsl {
   /* texture methods; their signatures depend on the texture (sema_methods.cpp) */               \
   X(Sample, "Sample") X(SampleBias, "SampleBias") X(SampleGrad, "SampleGrad")                    \
   X(SampleLevel, "SampleLevel") X(SampleCmp, "SampleCmp")                                        \
-  X(SampleCmpLevelZero, "SampleCmpLevelZero") X(Load, "Load") X(GetDimensions, "GetDimensions")  \
+  X(SampleCmpLevelZero, "SampleCmpLevelZero") X(Load, "Load") X(SubpassLoad, "SubpassLoad") X(GetDimensions, "GetDimensions")  \
   X(Gather, "Gather") X(GatherRed, "GatherRed") X(GatherGreen, "GatherGreen")                    \
   X(GatherBlue, "GatherBlue") X(GatherAlpha, "GatherAlpha") X(GatherCmp, "GatherCmp")            \
   X(GatherCmpRed, "GatherCmpRed") X(GatherCmpGreen, "GatherCmpGreen")                            \

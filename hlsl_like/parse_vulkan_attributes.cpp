@@ -15,9 +15,6 @@ std::optional<std::string> not_implemented(const std::string& name) {
   if (name.rfind("ext_", 0) == 0)
     return "SPIR-V extension instructions and types (vk::" + name + ") are not supported: they need DXC's SPIR-V "
            "back end";
-  if (name == "input_attachment_index")
-    return "subpass inputs (vk::input_attachment_index, SubpassInput) are not supported yet: read the previous pass's "
-           "target as a Texture2D at the pixel instead";
   if (name == "combinedImageSampler")
     return "vk::combinedImageSampler is not supported yet: xshade gives a texture and its SamplerState bindings of "
            "their own";
@@ -118,6 +115,9 @@ bool Parser::parse_vulkan_attributes(VulkanAttributes& out) {
           return false;
         }
         out.builtin = text;
+      } else if (name == "input_attachment_index") {
+        if (!arguments(1, 1, false)) return false;
+        out.input_attachment_index = numbers[0];
       } else if (name == "image_format") {
         // The format of a storage image's texels, for reads without the shaderStorageImageReadWithoutFormat
         // feature: xshade reads no storage image in a vertex or fragment stage.

@@ -62,7 +62,7 @@ BuiltinTable make_builtin_types() {
   table["matrix"] = {Type::matrix(ScalarType::Float, 4, 4), TypeWord::Matrix};
   for (TextureShape shape : {TextureShape::Tex1D, TextureShape::Tex1DArray, TextureShape::Tex2D, TextureShape::Tex2DArray,
                              TextureShape::Tex2DMS, TextureShape::Tex2DMSArray, TextureShape::Tex3D, TextureShape::Cube,
-                             TextureShape::CubeArray})
+                             TextureShape::CubeArray, TextureShape::Subpass, TextureShape::SubpassMS})
     table[texture_shape_name(shape)] = {Type::texture(shape, Type::vector(ScalarType::Float, 4)), TypeWord::Texture};
   table["SamplerState"] = {Type::sampler_state(), TypeWord::Plain};
   table["SamplerComparisonState"] = {Type::sampler_state(true), TypeWord::Plain};

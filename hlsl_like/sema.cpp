@@ -330,6 +330,15 @@ void Sema::declare_global_var(VarDecl& var, bool in_cbuffer) {
   if (var.is_const && var.storage == StorageClass::Static && !var.initializer) {
     diag_.error(var.loc, "static const " + in_quotes(var.name) + " needs an initializer");
   }
+  // As DXC: a subpass input names its input attachment, and only a subpass input has one.
+  const Type& resource = var.type.is_resource_array() ? var.type.element() : var.type;
+  const bool subpass = resource.kind() == TypeKind::Texture && (resource.texture_shape() == TextureShape::Subpass ||
+                                                                resource.texture_shape() == TextureShape::SubpassMS);
+  if (subpass && !var.vk.input_attachment_index)
+    diag_.error(var.loc, in_quotes(resource.name()) + " " + in_quotes(var.name) +
+                             " needs [[vk::input_attachment_index(N)]]: the input attachment of the subpass it reads");
+  if (!subpass && var.vk.input_attachment_index)
+    diag_.error(var.vk.loc, "vk::input_attachment_index belongs on a SubpassInput, not on " + in_quotes(var.name));
   declare(var.name, {Symbol::Kind::Variable, &var}, var.loc);
 }
 

@@ -101,6 +101,8 @@ void get_dimensions(Signatures& out, TextureShape shape) {
     case TextureShape::Tex3D:
     case TextureShape::Tex2DMS: sizes = 3; break;
     case TextureShape::Tex2DMSArray: sizes = 4; break;
+    case TextureShape::Subpass:
+    case TextureShape::SubpassMS: return;  // a subpass input is read at the pixel, of no size
   }
   for (ScalarType scalar : {ScalarType::Uint, ScalarType::Float}) {
     MethodSignature plain;
@@ -134,6 +136,12 @@ void texture_signatures(IntrinsicId id, const Type& texture, Signatures& out) {
   const Type scalar_texel = Type::scalar(texel.is_numeric() ? texel.scalar_type() : ScalarType::Float);
   const Type gathered = Type::vector(scalar_texel.scalar_type(), 4);
   const bool ms = is_multisampled(shape);
+  if (shape == TextureShape::Subpass || shape == TextureShape::SubpassMS) {
+    // SubpassLoad() at the fragment's pixel; of a multisampled one, SubpassLoad(sample).
+    if (id == I::SubpassLoad)
+      out.push_back(shape == TextureShape::Subpass ? in_only({}, texel) : in_only({Type::scalar(ScalarType::Int)}, texel));
+    return;
+  }
   switch (id) {
     case I::Sample:
       if (!ms) with_offset(out, in_only({sampler, floats(n)}, texel), shape, true);

@@ -87,7 +87,9 @@ uint32_t coordinate_components(TextureShape shape) {
     case TextureShape::Tex1D: return 1;
     case TextureShape::Tex1DArray:
     case TextureShape::Tex2D:
-    case TextureShape::Tex2DMS: return 2;
+    case TextureShape::Tex2DMS:
+    case TextureShape::Subpass:
+    case TextureShape::SubpassMS: return 2;
     case TextureShape::Tex2DArray:
     case TextureShape::Tex2DMSArray:
     case TextureShape::Tex3D:
@@ -107,7 +109,9 @@ uint32_t offset_components(TextureShape shape) {
     case TextureShape::Tex2DMSArray: return 2;
     case TextureShape::Tex3D: return 3;
     case TextureShape::Cube:
-    case TextureShape::CubeArray: return 0;
+    case TextureShape::CubeArray:
+    case TextureShape::Subpass:
+    case TextureShape::SubpassMS: return 0;
   }
   return 0;
 }
@@ -146,6 +150,8 @@ std::string texture_shape_name(TextureShape shape, bool sampler) {
     case TextureShape::Tex3D: return "Texture3D";
     case TextureShape::Cube: return "TextureCube";
     case TextureShape::CubeArray: return "TextureCubeArray";
+    case TextureShape::Subpass: return "SubpassInput";
+    case TextureShape::SubpassMS: return "SubpassInputMS";
   }
   return "Texture2D";
 }

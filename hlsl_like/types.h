@@ -30,7 +30,11 @@ enum class TypeKind : uint8_t {
 };
 
 // The shape of a texture or a DX9 sampler.
-enum class TextureShape : uint8_t { Tex1D, Tex1DArray, Tex2D, Tex2DArray, Tex2DMS, Tex2DMSArray, Tex3D, Cube, CubeArray };
+// Subpass and SubpassMS are Vulkan's subpass inputs (SubpassInput, SubpassInputMS): the
+// previous subpass's attachment read at the fragment's own pixel with SubpassLoad.
+enum class TextureShape : uint8_t {
+  Tex1D, Tex1DArray, Tex2D, Tex2DArray, Tex2DMS, Tex2DMSArray, Tex3D, Cube, CubeArray, Subpass, SubpassMS
+};
 
 // Components of the coordinate that addresses a texel (with the array layer), of a texel
 // offset (0: the shape has none), of a gradient, and of the size GetDimensions reports

@@ -155,6 +155,29 @@ TEST(VulkanAttributes, MisuseIsAnErrorThatSaysWhat) {
       << overlap[0];
 }
 
+TEST(VulkanAttributes, ASubpassInputNamesItsInputAttachmentAndNothingElseHasOne) {
+  EXPECT_EQ(attribute_errors_of("#pragma fragment f\n[[vk::input_attachment_index(2)]] SubpassInput<float2> g;\n"
+                                "[[vk::input_attachment_index(3)]] SubpassInputMS ms;\n"
+                                "float4 f() : SV_Target { return g.SubpassLoad().x + ms.SubpassLoad(1); }\n"),
+            std::vector<std::string>{});
+  EXPECT_EQ(attribute_errors_of("SubpassInput a;\n[[vk::input_attachment_index(0)]] Texture2D t;\n"),
+            (std::vector<std::string>{
+                "vk.hlsl:1:14: error: 'SubpassInput' 'a' needs [[vk::input_attachment_index(N)]]: the input attachment "
+                "of the subpass it reads",
+                "vk.hlsl:2:3: error: vk::input_attachment_index belongs on a SubpassInput, not on 't'"}));
+  // A subpass input has SubpassLoad and nothing else, and only a pixel shader reads one.
+  const std::vector<std::string> sampled = attribute_errors_of(
+      "[[vk::input_attachment_index(0)]] SubpassInput a;\nSamplerState s;\n#pragma fragment f\n"
+      "float4 f() : SV_Target { return a.Sample(s, float2(0, 0)); }\n");
+  ASSERT_FALSE(sampled.empty());
+  EXPECT_EQ(sampled[0], "vk.hlsl:4:35: error: 'SubpassInput' has no method 'Sample'");
+  const std::vector<std::string> vertex = attribute_errors_of(
+      "[[vk::input_attachment_index(0)]] SubpassInput a;\n#pragma vertex v\n"
+      "float4 v() : SV_Position { return a.SubpassLoad(); }\n");
+  ASSERT_FALSE(vertex.empty());
+  EXPECT_NE(vertex[0].find("'SubpassLoad' is only available in fragment shaders"), std::string::npos) << vertex[0];
+}
+
 TEST(VulkanAttributes, ASpecializationConstantIsAConstantOfItsDefault) {
   auto module = compiled_with_attributes("[[vk::constant_id(7)]] const int MODE = 2;\n#pragma fragment f\n"
                          "float4 f(float2 uv : TEXCOORD0) : SV_Target { return MODE == 2 ? 1 : 0; }\n");

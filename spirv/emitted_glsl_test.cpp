@@ -738,5 +738,26 @@ TEST(EmittedGlsl, ArraysOfResourcesAndClipDistancesCompileInBothFlavours) {
   EXPECT_NE(vk.find("in float gl_ClipDistance[3];"), std::string::npos) << vk;
 }
 
+// Subpass inputs: Vulkan's input attachments on vk; on gl the texture at the binding read at the
+// fragment's pixel.
+constexpr const char* kSubpassInputs = R"(
+#pragma fragment frag
+[[vk::input_attachment_index(0)]] [[vk::binding(1)]] SubpassInput albedo;
+[[vk::input_attachment_index(1)]] SubpassInputMS<int4> samples;
+float4 frag() : SV_Target { return albedo.SubpassLoad() + samples.SubpassLoad(2).x; }
+)";
+
+TEST(EmittedGlsl, SubpassInputsCompileInBothFlavours) {
+  const Compiled compiled = emit_and_compile("subpass.hlsl", kSubpassInputs);
+  ASSERT_TRUE(compiled.gl.fragment && compiled.vk.fragment);
+  const std::string& gl = compiled.gl.fragment->text;
+  const std::string& vk = compiled.vk.fragment->text;
+  EXPECT_NE(vk.find("layout(input_attachment_index = 0, set = 0, binding = 1) uniform subpassInput albedo;"),
+            std::string::npos) << vk;
+  EXPECT_NE(vk.find("subpassLoad(albedo) + float(subpassLoad(samples, 2).x)"), std::string::npos) << vk;
+  EXPECT_NE(gl.find("layout(binding = 1) uniform sampler2D albedo;"), std::string::npos) << gl;
+  EXPECT_NE(gl.find("texelFetch(samples, ivec2(gl_FragCoord.xy), 2)"), std::string::npos) << gl;
+}
+
 }  // namespace
 }  // namespace xshade::spirv

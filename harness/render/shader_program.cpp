@@ -121,6 +121,8 @@ TextureShape harness_shape(hlsl::TextureShape shape) {
     case S::Tex3D: return {D::Tex3D, false};
     case S::Cube: return {D::Cube, false};
     case S::CubeArray: return {D::CubeArray, false};
+    case S::Subpass: return {D::Tex2D, false};
+    case S::SubpassMS: return {D::Tex2D, true};
   }
   return {};
 }
@@ -235,6 +237,9 @@ Result<void> drawable(const hlsl::Module& module, Lane lane) {
     if (!texture.used) continue;
     if (texture.set != 0) return refuse("'" + texture.name + "' is in descriptor set " + std::to_string(texture.set));
     if (texture.count > 1) return refuse(array_of_resources(texture.name, texture.count));
+    if (texture.shape == hlsl::TextureShape::Subpass || texture.shape == hlsl::TextureShape::SubpassMS)
+      return refuse("'" + texture.name + "' is a subpass input, which a scene cannot give yet (on Vulkan an input "
+                    "attachment; the gl target reads the texture bound at its binding at the fragment's pixel)");
   }
   for (const hlsl::SamplerResource& sampler : reflection.samplers) {
     if (!sampler.used) continue;
