@@ -86,7 +86,8 @@ std::string glsl_type(const Type& type, Flavour flavour, std::string* why) {
       return type.name();
     case TypeKind::Buffer:
       if (why)
-        *why = in_quotes(type.name()) + " is not supported on this target: shaders here read textures and constant buffers";
+        *why = in_quotes(type.name()) + " is not supported on this target: shaders here read textures, constant buffers and "
+                                            "read-only buffers (StructuredBuffer, ByteAddressBuffer, Buffer)";
       return type.name();
     case TypeKind::ConstantBuffer:
       if (why) *why = in_quotes(type.name()) + " can only be a global variable";
@@ -987,6 +988,8 @@ Code StageEmitter::expr_untraced(const Expr* e) {
     case ExprKind::Index: {
       const auto* index = static_cast<const IndexExpr*>(e);
       if (index->object->type.is_texture()) return texture_index(*index);
+      if (index->object->type.kind() == TypeKind::Buffer && is_read_only_buffer(index->object->type.buffer_kind()))
+        return buffer_index(*index);
       Code object = expr(index->object.get());
       if (index->object->type.is_vector() && index->object->type.cols() == 1) return object;  // float1[0]
       std::string text = operand(std::move(object), kPostfix);

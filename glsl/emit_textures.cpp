@@ -187,6 +187,8 @@ Code StageEmitter::texture_index(const IndexExpr& index) {
 }
 
 Code StageEmitter::texture_call(const CallExpr& call) {
+  if (call.object && call.object->type.kind() == TypeKind::Buffer && is_read_only_buffer(call.object->type.buffer_kind()))
+    return buffer_call(call);
   const auto id = IntrinsicId(call.intrinsic);
   const std::string name(intrinsic_info(id).name);
   std::vector<const Expr*> operands;

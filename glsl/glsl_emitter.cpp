@@ -583,6 +583,8 @@ std::string StageEmitter::declarations() {
     w.line(binding + resource_type(element_type(*texture.decl), texture.decl, texture.decl->loc) + " " +
            names_.of(texture.name) + array_suffix(texture.count) + ";");
   }
+  for (const StorageBufferResource& buffer : reflection_.buffers)
+    if (buffer.used && buffer.decl) w.line(buffer_declaration(buffer));
   if (flavour_ == Flavour::Vk) {
     for (const SamplerResource& sampler : reflection_.samplers)
       if (sampler.used && sampler.decl)

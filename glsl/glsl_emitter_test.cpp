@@ -933,7 +933,7 @@ TEST(GlslEmitterReach, WhatTheTargetCannotExpressIsAnErrorWhereItIsReached) {
   without_shared.replace(without_shared.find(", shared_sum[0]"), 15, ", 0");
   EXPECT_THAT(emit_error(without_shared),
               HasSubstr("test.hlsl:9:3: error: 'RWTexture2D<float4>' is not supported on this target: shaders here read "
-                        "textures and constant buffers"));
+                        "textures, constant buffers and read-only buffers (StructuredBuffer, ByteAddressBuffer, Buffer)"));
 }
 
 TEST(GlslEmitterStatements, SwitchKeepsItsLabelsAndFallThrough) {

@@ -208,6 +208,16 @@ class StageEmitter {
   Code texture_call(const hlsl::CallExpr& call);
   // t[p] on a texture: a texel of mip 0.
   Code texture_index(const hlsl::IndexExpr& index);
+  // --- read-only buffers (emit_buffers.cpp)
+  // buf[i], buf.Load(i), a ByteAddressBuffer's Load2..4, GetDimensions.
+  Code buffer_index(const hlsl::IndexExpr& index);
+  Code buffer_call(const hlsl::CallExpr& call);
+  std::string buffer_declaration(const hlsl::StorageBufferResource& buffer) const;
+  // The buffer a global names; null (with an error) for anything else.
+  const hlsl::StorageBufferResource* buffer_of(const Expr* object, Loc loc);
+  // The helper that assembles an element (or `words` words of a ByteAddressBuffer); its name.
+  std::string buffer_element_helper(const hlsl::StorageBufferResource& buffer, uint32_t words, Loc loc);
+
   // The GLSL type of a texture, sampler or other resource; `decl` is the variable or parameter
   // declared with it (a texture compared on OpenGL is a shadow sampler), or null.
   std::string resource_type(const Type& type, const hlsl::Decl* decl, Loc loc);

@@ -594,7 +594,7 @@ Reflection reflect(const TranslationUnit& unit, const EntryPoints& entry_points,
   std::vector<PendingBuffer> pending_buffers;
   std::vector<const VarDecl*> globals;
   std::optional<size_t> globals_index;
-  std::vector<std::pair<size_t, const VarDecl*>> pending_textures, pending_samplers;
+  std::vector<std::pair<size_t, const VarDecl*>> pending_textures, pending_samplers, pending_buffers_read;
 
   // At most one property per global and cbuffer member: reserved, since a Property is large
   // and growing the vector moves every one made so far.
@@ -660,6 +660,18 @@ Reflection reflect(const TranslationUnit& unit, const EntryPoints& entry_points,
         if (var.binding.register_class == 'b' && !var.vk.binding) buffers.claim(var.binding, var.name, used(&var), count);
         pending_buffers.push_back({reflection.constant_buffers.size(), &var.binding, var.loc});
         reflection.constant_buffers.push_back(std::move(buffer));
+      } else if (kind == TypeKind::Buffer && !array && is_read_only_buffer(type.buffer_kind())) {
+        StorageBufferResource buffer;
+        buffer.name = var.name;
+        buffer.kind = type.buffer_kind();
+        const bool bytes = buffer.kind == BufferKind::ByteAddressBuffer;
+        buffer.element = bytes ? Type::scalar(ScalarType::Uint) : type.element();
+        buffer.stride = bytes ? 4 : structured_size(buffer.element);
+        buffer.decl = &var;
+        // A shader resource view: a t register, shared with the textures.
+        if (var.binding.register_class != 0 && !var.vk.binding) textures.claim(var.binding, var.name, used(&var));
+        pending_buffers_read.push_back({reflection.buffers.size(), &var});
+        reflection.buffers.push_back(std::move(buffer));
       } else if (kind == TypeKind::SamplerState) {
         SamplerResource sampler{var.name, 0, type.is_comparison(), true, &var};
         sampler.count = count;
@@ -711,6 +723,15 @@ Reflection reflect(const TranslationUnit& unit, const EntryPoints& entry_points,
       texture.set = var->binding.space;
       if (var->binding.register_class != 0) texture.binding = textures.binding_of(var->binding);
       else texture.binding = textures.next_free(var->name, var->loc, used_pass, texture.count).value_or(0);
+    }
+    for (auto [index, var] : pending_buffers_read) {
+      if (used(var) != used_pass) continue;
+      StorageBufferResource& buffer = reflection.buffers[index];
+      buffer.used = used_pass;
+      if (var->vk.binding) continue;
+      buffer.set = var->binding.space;
+      if (var->binding.register_class != 0) buffer.binding = textures.binding_of(var->binding);
+      else buffer.binding = textures.next_free(var->name, var->loc, used_pass).value_or(0);
     }
     for (auto [index, var] : pending_samplers) {
       if (used(var) != used_pass) continue;
@@ -846,6 +867,26 @@ std::vector<std::string> keyword_combination(const std::vector<KeywordSet>& sets
   }
   std::erase_if(keywords, [](const std::string& keyword) { return keyword.find_first_not_of('_') == std::string::npos; });
   return keywords;
+}
+
+bool is_read_only_buffer(BufferKind kind) {
+  return kind == BufferKind::StructuredBuffer || kind == BufferKind::ByteAddressBuffer || kind == BufferKind::Buffer;
+}
+
+uint32_t structured_size(const Type& type) {
+  switch (type.kind()) {
+    case TypeKind::Scalar:
+    case TypeKind::Vector:
+    case TypeKind::Matrix: return 4 * type.component_count();  // half is 32 bits without -enable-16bit-types
+    case TypeKind::Array: return type.array_length() * structured_size(type.element());
+    case TypeKind::Struct: {
+      uint32_t size = 0;
+      if (type.struct_decl())
+        for (const FieldDecl& field : type.struct_decl()->fields) size += structured_size(field.type);
+      return size;
+    }
+    default: return 0;
+  }
 }
 
 }  // namespace xshade::hlsl

@@ -94,6 +94,25 @@ struct SamplerResource {
   uint32_t count = 1;  // as ConstantBuffer::count
 };
 
+// A read-only buffer (StructuredBuffer<T>, ByteAddressBuffer, Buffer<T>): Direct3D's shader
+// resource view in a t register, a storage buffer on OpenGL and Vulkan read as 32-bit words laid
+// out as Direct3D lays them out (an element of a structured buffer packed tightly, four bytes per
+// scalar, matrices column by column unless row_major; a typed buffer's element its components).
+struct StorageBufferResource {
+  std::string name;
+  BufferKind kind = BufferKind::StructuredBuffer;
+  Type element;         // T; uint for a ByteAddressBuffer
+  uint32_t stride = 4;  // bytes from one element to the next (4 for a ByteAddressBuffer's words)
+  uint32_t binding = 0;  // in the texture range, as the register it shares with textures
+  bool used = true;      // as TextureResource::used
+  const VarDecl* decl = nullptr;
+  uint32_t set = 0;  // as ConstantBuffer::set
+};
+// Whether this target reads `kind` (the read-only buffers); the read-write ones are refused.
+bool is_read_only_buffer(BufferKind kind);
+// Bytes a value of `type` takes in a structured buffer, packed as Direct3D packs it.
+uint32_t structured_size(const Type& type);
+
 // A stage input or output with the location the compiler gave it.
 struct StageVariable {
   std::string semantic;  // canonical: "TEXCOORD0", "SV_Target0", "POSITION"
@@ -144,6 +163,7 @@ struct Reflection {
   std::vector<ConstantBuffer> constant_buffers;
   std::vector<TextureResource> textures;
   std::vector<SamplerResource> samplers;
+  std::vector<StorageBufferResource> buffers;
   std::vector<Property> properties;
   std::vector<KeywordSet> keyword_sets;
   std::vector<std::string> active_keywords;  // of this variant

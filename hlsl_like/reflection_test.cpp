@@ -345,6 +345,40 @@ float4 frag(float2 uv : TEXCOORD0) : SV_Target { return layers[0].Sample(s, uv) 
       << clash->diagnostics.render_all();
 }
 
+// A read-only buffer is a shader resource view: a t register, which it shares with the textures.
+TEST(Reflection, ReadOnlyBuffersTakeTextureRegistersAndTheirPackedStride) {
+  auto module = compile(R"(
+#pragma fragment frag
+struct Light { float3 position; float radius; float4x4 m; half2 extra[3]; };
+Texture2D t0 : register(t0);
+StructuredBuffer<Light> lights;
+ByteAddressBuffer raw : register(t4);
+Buffer<float3> normals;
+SamplerState s;
+float4 frag(float2 uv : TEXCOORD0) : SV_Target {
+  return t0.Sample(s, uv) + lights[0].radius + raw.Load(0) + normals[1].x;
+}
+)");
+  ASSERT_TRUE(module->ok()) << module->diagnostics.render_all();
+  const Reflection& r = module->reflection;
+  ASSERT_EQ(r.buffers.size(), 3u);
+  EXPECT_EQ(r.buffers[0].binding, kTextureBindingBase + 1);  // t0 is the texture's
+  EXPECT_EQ(r.buffers[0].stride, 4u * (3 + 1 + 16 + 6));    // tightly packed, half as 32 bits
+  EXPECT_EQ(r.buffers[1].binding, kTextureBindingBase + 4);
+  EXPECT_EQ(r.buffers[1].stride, 4u);
+  EXPECT_EQ(r.buffers[2].stride, 12u);
+
+  auto clash = compile(R"(
+#pragma fragment frag
+Texture2D t : register(t1);
+StructuredBuffer<float> b : register(t1);
+SamplerState s;
+float4 frag(float2 uv : TEXCOORD0) : SV_Target { return t.Sample(s, uv) + b[0]; }
+)");
+  EXPECT_NE(clash->diagnostics.render_all().find("register t1 of 'b' is already taken by 't'"), std::string::npos)
+      << clash->diagnostics.render_all();
+}
+
 TEST(Reflection, Dx9SemanticsAreSystemValuesWhereSemaSaysSo) {
   auto module = compile(R"(
 #pragma vertex vert

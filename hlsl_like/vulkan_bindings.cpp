@@ -45,6 +45,8 @@ void give_vulkan_bindings(Reflection& reflection, DiagnosticEngine& diagnostics)
     give(texture.decl, texture.name, kTexture, texture.used, texture.binding, texture.set);
   for (SamplerResource& sampler : reflection.samplers)
     give(sampler.decl, sampler.name, kSampler, sampler.used, sampler.binding, sampler.set);
+  for (StorageBufferResource& buffer : reflection.buffers)
+    give(buffer.decl, buffer.name, kBuffer, buffer.used, buffer.binding, buffer.set);
   if (taken.empty()) return;
   // What has no [[vk::binding]] (a push-constant block's binding on gl, $Globals, a resource
   // without the attribute) moves off the numbers the attributes took in set 0.
@@ -59,6 +61,7 @@ void give_vulkan_bindings(Reflection& reflection, DiagnosticEngine& diagnostics)
   for (ConstantBuffer& buffer : reflection.constant_buffers) move_off(buffer.decl, buffer.binding);
   for (TextureResource& texture : reflection.textures) move_off(texture.decl, texture.binding);
   for (SamplerResource& sampler : reflection.samplers) move_off(sampler.decl, sampler.binding);
+  for (StorageBufferResource& buffer : reflection.buffers) move_off(buffer.decl, buffer.binding);
 }
 
 }  // namespace xshade::hlsl

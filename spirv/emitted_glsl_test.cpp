@@ -759,5 +759,41 @@ TEST(EmittedGlsl, SubpassInputsCompileInBothFlavours) {
   EXPECT_NE(gl.find("texelFetch(samples, ivec2(gl_FragCoord.xy), 2)"), std::string::npos) << gl;
 }
 
+// Read-only buffers: storage buffers of words on both flavours, each element assembled as
+// Direct3D packs it (a float3 then a float share 16 bytes; a matrix column by column).
+constexpr const char* kReadOnlyBuffers = R"(
+#pragma fragment frag
+struct Light { float3 position; float radius; float2x2 m; int kind; };
+StructuredBuffer<Light> lights : register(t2);
+ByteAddressBuffer raw;
+Buffer<float4> colors;
+float4 frag(float2 uv : TEXCOORD0) : SV_Target {
+  uint count, stride, bytes;
+  lights.GetDimensions(count, stride);
+  raw.GetDimensions(bytes);
+  Light l = lights[1];
+  uint3 w = raw.Load3(12);
+  return float4(l.position, l.radius) + l.m[1].y + float(w.z + raw.Load(4)) + colors.Load(2) + count + stride + bytes;
+}
+)";
+
+TEST(EmittedGlsl, ReadOnlyBuffersCompileInBothFlavours) {
+  const Compiled compiled = emit_and_compile("buffers.hlsl", kReadOnlyBuffers);
+  ASSERT_TRUE(compiled.gl.fragment && compiled.vk.fragment);
+  const std::string& gl = compiled.gl.fragment->text;
+  const std::string& vk = compiled.vk.fragment->text;
+  EXPECT_NE(gl.find("layout(std430, binding = 18) readonly buffer xs_buffer_lights { uint xs_words[]; } lights;"),
+            std::string::npos) << gl;
+  EXPECT_NE(vk.find("layout(std430, set = 0, binding = 18) readonly buffer xs_buffer_lights"), std::string::npos) << vk;
+  // Nine words an element: position 0-2, radius 3, m (column-major) 4-7, kind 8; m[1].y is
+  // element (1, 1), word 4 + 1 * 2 + 1.
+  EXPECT_NE(gl.find("uint base = index * 9u;"), std::string::npos) << gl;
+  EXPECT_NE(gl.find("mat2(uintBitsToFloat(lights.xs_words[base + 4u]), uintBitsToFloat(lights.xs_words[base + 6u]), "
+                    "uintBitsToFloat(lights.xs_words[base + 5u]), uintBitsToFloat(lights.xs_words[base + 7u]))"),
+            std::string::npos) << gl;
+  EXPECT_NE(gl.find("uint base = address >> 2u;"), std::string::npos) << gl;
+  EXPECT_NE(gl.find("(count = ((uint(lights.xs_words.length()) * 4u) / 36u), stride = 36u)"), std::string::npos) << gl;
+}
+
 }  // namespace
 }  // namespace xshade::spirv

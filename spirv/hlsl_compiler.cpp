@@ -220,7 +220,8 @@ Result<HlslModule> compile_hlsl(const HlslStage& request) {
   shader.setSourceEntryPoint(request.entry_point.c_str());
   shader.setEnvInput(glslang::EShSourceHlsl, language, glslang::EShClientVulkan, 100);
   shader.setEnvClient(glslang::EShClientVulkan, glslang::EShTargetVulkan_1_3);
-  shader.setEnvTarget(glslang::EShTargetSpv, glslang::EShTargetSpv_1_6);
+  shader.setEnvTarget(glslang::EShTargetSpv,
+                      request.storage_buffers ? glslang::EShTargetSpv_1_3 : glslang::EShTargetSpv_1_6);
   shader.setShiftBinding(glslang::EResUbo, request.shifts.constant_buffer);
   shader.setShiftBinding(glslang::EResTexture, request.shifts.texture);
   shader.setShiftBinding(glslang::EResSampler, request.shifts.sampler);

@@ -63,6 +63,10 @@ struct HlslStage {
   // HLSL that keeps a texture in a local or a struct field needs it, or the SPIR-V is invalid
   // for Vulkan. Off otherwise, so that the lane's code is glslang's translation as it is.
   bool legalize = false;
+  // The source reads storage buffers (StructuredBuffer & co.): glslang (12) decorates their blocks
+  // BufferBlock, which SPIR-V after 1.3 does not have, so such a module is made as SPIR-V 1.3
+  // (Vulkan 1.3 runs it the same).
+  bool storage_buffers = false;
   // The byte offset of each member of each constant buffer, by buffer ("$Global" for the globals)
   // and member name: HLSL's packing, which the host writes. glslang packs a declared cbuffer so,
   // but lays the globals' block out by std140 rules (a float3 after a float at 16, not 4); a member

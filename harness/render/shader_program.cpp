@@ -40,6 +40,7 @@ Result<ShaderStageSource> vk_hlsl_stage(const hlsl::Module& module, spirv::Stage
       request.legalize = true;
     }
   }
+  request.storage_buffers = !module.reflection.buffers.empty();
   // Resources without a register are numbered once for the whole program, by xshade's reflection
   // (glslang alone would number each stage on its own; see HlslStage::bindings).
   const hlsl::Reflection& declared = module.reflection;
@@ -52,6 +53,7 @@ Result<ShaderStageSource> vk_hlsl_stage(const hlsl::Module& module, spirv::Stage
   }
   for (const hlsl::TextureResource& texture : declared.textures) request.bindings[texture.name] = texture.binding;
   for (const hlsl::SamplerResource& sampler : declared.samplers) request.bindings[sampler.name] = sampler.binding;
+  for (const hlsl::StorageBufferResource& buffer : declared.buffers) request.bindings[buffer.name] = buffer.binding;
   for (const hlsl::StageVariable& varying : declared.varyings) request.varying_locations[varying.semantic] = varying.location;
   for (const hlsl::StageVariable& input : declared.vertex_inputs)
     request.vertex_input_locations[input.semantic] = input.location;
@@ -79,6 +81,9 @@ Result<ShaderStageSource> vk_hlsl_stage(const hlsl::Module& module, spirv::Stage
       for (const auto& texture : reflection.textures)
         if (texture.name == resource_name) ours = texture.binding;
     }
+    // glslang reflects a structured buffer as a block, a typed buffer as a texture.
+    for (const auto& buffer : reflection.buffers)
+      if (buffer.name == resource_name) ours = buffer.binding;
     const bool push_constant_in_globals =
         resource.name == "$Global" && !ours &&
         std::any_of(reflection.constant_buffers.begin(), reflection.constant_buffers.end(),
@@ -241,6 +246,10 @@ Result<void> drawable(const hlsl::Module& module, Lane lane) {
       return refuse("'" + texture.name + "' is a subpass input, which a scene cannot give yet (on Vulkan an input "
                     "attachment; the gl target reads the texture bound at its binding at the fragment's pixel)");
   }
+  for (const hlsl::StorageBufferResource& buffer : reflection.buffers)
+    if (buffer.used)
+      return refuse("'" + buffer.name + "' is a " + hlsl::buffer_kind_name(buffer.kind) +
+                    ", which a scene cannot give yet (the targets read it as a storage buffer of 32-bit words)");
   for (const hlsl::SamplerResource& sampler : reflection.samplers) {
     if (!sampler.used) continue;
     if (sampler.set != 0) return refuse("'" + sampler.name + "' is in descriptor set " + std::to_string(sampler.set));
