@@ -420,6 +420,22 @@ float4 frag(float2 uv : TEXCOORD0, float4 pos : SV_Position) : SV_Target {
 
 TEST(EmittedGlsl, EveryIntrinsicCompilesInBothFlavours) { emit_and_compile("intrinsics.hlsl", kEveryIntrinsic); }
 
+// lit() with each kind of argument HLSL converts to its float parameters.
+TEST(EmittedGlsl, LitInEveryFormCompilesInBothFlavours) {
+  const Compiled compiled = emit_and_compile("lit.hlsl", R"(#pragma fragment frag
+float4 _A;
+float4 frag() : SV_Target {
+  float1 l = _A.x;
+  min16float h = _A.y;
+  return lit(_A.x, _A.y, _A.z) + lit(half(_A.x), h, half(_A.z)) + lit(int(_A.x), uint(_A.y), 3) + lit(l, l, l) +
+         lit(0.5, 0.25h, 8) + lit(_A.x * 2.0, abs(_A.y), _A.z + 1.0);
+}
+)");
+  ASSERT_TRUE(compiled.gl.fragment);
+  EXPECT_NE(compiled.gl.fragment->text.find("vec4 xs_lit(float n_dot_l, float n_dot_h, float m)"), std::string::npos)
+      << compiled.gl.fragment->text;
+}
+
 
 // ---------------------------------------------------------------------------------------------
 // The corners of the mapping: reserved names, overloads that collide in GLSL, default
