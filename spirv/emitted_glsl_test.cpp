@@ -436,6 +436,36 @@ float4 frag() : SV_Target {
       << compiled.gl.fragment->text;
 }
 
+// A variable, parameter or global named like a struct, as HLSL allows: the struct takes a GLSL
+// name of its own, where glslang would refuse a global beside it.
+TEST(EmittedGlsl, VariablesNamedLikeStructsCompileInBothFlavours) {
+  const Compiled compiled = emit_and_compile("names.hlsl", R"(#pragma vertex vert
+#pragma fragment frag
+struct Attributes { float4 pos : POSITION; };
+struct Varyings { float4 pos : SV_Position; float4 c : TEXCOORD0; };
+struct VertexPositionInputs { float4 positionCS; float3 positionWS; };
+struct Params { float4 tint; };
+Params Params;
+VertexPositionInputs GetVertexPositionInputs(float4 p) {
+  VertexPositionInputs o;
+  o.positionCS = p;
+  o.positionWS = p.xyz;
+  return o;
+}
+float4 shade(Varyings Varyings) { return Varyings.c * Params.tint; }
+Varyings vert(Attributes v) {
+  VertexPositionInputs Attributes = GetVertexPositionInputs(v.pos);
+  Varyings o;
+  o.pos = Attributes.positionCS;
+  o.c = float4(Attributes.positionWS, 1);
+  return o;
+}
+float4 frag(Varyings Varyings) : SV_Target { Attributes a = (Attributes)0; return shade(Varyings) + a.pos; }
+)");
+  ASSERT_TRUE(compiled.vk.fragment);
+  EXPECT_NE(compiled.vk.fragment->text.find("struct Params_t {"), std::string::npos) << compiled.vk.fragment->text;
+}
+
 
 // ---------------------------------------------------------------------------------------------
 // The corners of the mapping: reserved names, overloads that collide in GLSL, default
