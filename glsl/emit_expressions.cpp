@@ -177,7 +177,7 @@ std::string StageEmitter::type_name(const Type& type, Loc loc) {
   std::string why;
   std::string name = glsl_type(type, flavour_, &why);
   if (!why.empty()) fail(loc, why);
-  if (type.kind() == TypeKind::Struct && type.struct_decl()) return names_.of(type.struct_decl()->name);
+  if (type.kind() == TypeKind::Struct && type.struct_decl()) return names_.type(type.struct_decl());
   if (type.kind() == TypeKind::Array) {
     // The element's name (a struct's may be renamed) and the lengths.
     const Type* element = &type;

@@ -172,6 +172,49 @@ const std::string& Names::variable(const Decl* decl) const {
   return name;
 }
 
+bool Names::is_value_name(std::string_view name) const {
+  if (!values_gathered_) {
+    values_gathered_ = true;
+    std::vector<std::string_view> names;
+    for (const auto& decl : unit_.decls) {
+      if (!decl) continue;
+      switch (decl->kind) {
+        case DeclKind::Var: names.push_back(decl->name); break;
+        case DeclKind::Struct:
+          for (const FieldDecl& field : static_cast<const StructDecl&>(*decl).fields) names.push_back(field.name);
+          break;
+        case DeclKind::CBuffer:
+          for (const auto& member : static_cast<const CBufferDecl&>(*decl).members)
+            if (member) names.push_back(member->name);
+          break;
+        case DeclKind::Function: {
+          const auto& function = static_cast<const FunctionDecl&>(*decl);
+          for (const auto& param : function.params)
+            if (param) names.push_back(param->name);
+          collect_local_names(function.body.get(), names);
+          break;
+        }
+        default: break;
+      }
+    }
+    value_names_ = StringIndex(names.size());
+    for (std::string_view value : names) value_names_.insert(value);
+  }
+  return value_names_.find(name) != StringIndex::kAbsent;
+}
+
+const std::string& Names::type(const StructDecl* decl) const {
+  auto [known, inserted] = types_.try_emplace(decl);
+  if (!inserted) return known->second;
+  std::string& name = known->second;
+  name = of(decl->name);
+  if (!is_value_name(decl->name)) return name;
+  const std::string stem = (name.back() == '_' ? name : name + "_") + "t";
+  name = stem;
+  for (int k = 1; is_user_name(name); ++k) name = stem + std::to_string(k);
+  return name;
+}
+
 std::string Names::split_member(const std::string& name, uint32_t index) const {
   const std::string base = of(name);
   const std::string stem = base.back() == '_' ? base : base + "_";  // never `__`

@@ -520,7 +520,7 @@ std::string StageEmitter::declarations() {
       fail(s.loc, "struct " + in_quotes(s.name) + " has no fields; GLSL does not allow empty structs");
       continue;
     }
-    w.line("struct " + names_.of(s.name) + " {");
+    w.line("struct " + names_.type(&s) + " {");
     w.indent = 1;
     for (const FieldDecl& field : s.fields) w.line({declarator(field.type, names_.of(field.name), field.loc), ";"});
     w.indent = 0;

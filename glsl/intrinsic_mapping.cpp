@@ -100,6 +100,7 @@ constexpr Mapping kMappings[] = {
     m(I::Ldexp, "($0 * exp2($1))"),  // HLSL's exponent is a float; GLSL's ldexp takes an int
     m(I::Length, "length($0)"),
     m(I::Lerp, "mix($0, $1, $2)"),
+    m(I::Lit, "xs_lit($0, $1, $2)"),
     m(I::Log, "log($0)"),
     m(I::Log10, "(log2($0) * 0.30102999566398120)"),
     m(I::Log2, "log2($0)"),
@@ -351,6 +352,14 @@ std::string StageEmitter::require_helper(const std::string& name, const std::vec
     definition = "float xs_compare_bilinear(vec4 compared, vec2 texel) {\n  vec2 f = fract(texel - 0.5);\n"
                  "  return mix(mix(compared.w, compared.z, f.x), mix(compared.x, compared.y, f.x), f.y);\n}\n";
     helpers_.add(name, definition);  // one definition, whatever the operands' types
+    return name;
+  } else if (name == "xs_lit") {
+    // HLSL's documented lit(): ambient 1, diffuse max(n.l, 0), specular (n.h)^m unless either
+    // dot product is negative, w 1. Its arguments are float scalars, whatever was passed.
+    definition = "vec4 xs_lit(float n_dot_l, float n_dot_h, float m) {\n"
+                 "  float specular = (n_dot_l < 0.0 || n_dot_h < 0.0) ? 0.0 : pow(n_dot_h, m);\n"
+                 "  return vec4(1.0, max(n_dot_l, 0.0), specular, 1.0);\n}\n";
+    helpers_.add(name, definition);
     return name;
   } else if (name == "xs_clip") {
     if (n == 1)

@@ -87,11 +87,16 @@ class Names {
   const std::string& variable(const hlsl::Decl* decl) const;
   // The scalar `index` of a constant-buffer vector declared as scalars: `_Offset_0`.
   std::string split_member(const std::string& name, uint32_t index) const;
+  // A struct's name: of(name), or a name of its own when a variable, parameter or field is named
+  // like it (HLSL lets a variable hide a type, as C does; GLSL refuses a global beside the struct).
+  const std::string& type(const hlsl::StructDecl* decl) const;
 
  private:
   // Whether the author declared `name` anywhere. Only a renaming asks, so the names (views of
   // the tree's strings) are gathered on first use.
   bool is_user_name(std::string_view name) const;
+  // Whether a variable, parameter or field is named `name`; gathered on first use too.
+  bool is_value_name(std::string_view name) const;
 
   const hlsl::TranslationUnit& unit_;
   mutable bool user_gathered_ = false;
@@ -101,6 +106,9 @@ class Names {
   std::unordered_map<const FunctionDecl*, std::string> functions_;
   mutable std::unordered_map<std::string, std::string> cache_;
   mutable std::unordered_map<const hlsl::Decl*, std::string> variables_;
+  mutable bool values_gathered_ = false;
+  mutable StringIndex value_names_;
+  mutable std::unordered_map<const hlsl::StructDecl*, std::string> types_;
 };
 
 // The GLSL spelling of a type for overload comparison; no diagnostics (see StageEmitter::type_name).

@@ -95,6 +95,36 @@ PragmaReading read_pragmas(const std::vector<Pragma>& pragmas, DiagnosticEngine&
   return reading;
 }
 
+// The pragmas Unity (and xshade's `pass`) reads itself, which it ignores in a file read by a
+// plain #include; the others (`warning`, `pack_matrix`) are HLSL's own and go to the compiler.
+bool is_unity_pragma(std::string_view name) {
+  constexpr std::string_view kStages[] = {"vertex", "fragment", "geometry", "hull", "domain", "surface",
+                                          "skip_variants", "pass"};
+  return std::find(std::begin(kStages), std::end(kStages), name) != std::end(kStages) ||
+         std::find(std::begin(kUnityBuildPragmas), std::end(kUnityBuildPragmas), name) !=
+             std::end(kUnityBuildPragmas) ||
+         keyword_pragma(name) || keyword_shortcut(name);
+}
+
+// The pragmas that apply to the program, as Unity reads them: its own pragmas count only in the
+// program and in files included by #include_with_pragmas; elsewhere each is reported and dropped,
+// so that a multi_compile in a plain include does not silently declare keywords Unity would not.
+std::vector<Pragma> program_pragmas(const std::vector<Pragma>& pragmas, DiagnosticEngine& diagnostics) {
+  std::vector<Pragma> kept;
+  kept.reserve(pragmas.size());
+  for (const Pragma& pragma : pragmas) {
+    if (pragma.in_program || !is_unity_pragma(pragma.name)) {
+      kept.push_back(pragma);
+      continue;
+    }
+    diagnostics.warning(pragma.loc, "#pragma " + std::string(pragma.name) +
+                                        " is ignored: this file is read by a plain #include, and Unity takes its "
+                                        "pragmas only from the shader's program and the files it includes with "
+                                        "#include_with_pragmas; include this file with #include_with_pragmas to apply it");
+  }
+  return kept;
+}
+
 bool is_no_keyword(const std::string& keyword) { return !keyword.empty() && keyword.find_first_not_of('_') == std::string::npos; }
 
 // A variant has one keyword of each set: asking for two of one set is an error at the set's
@@ -145,7 +175,7 @@ std::unique_ptr<Module> compile(std::unique_ptr<Module> module, const CompileOpt
     module->macros.insert(module->macros.end(), pp_options.defines.begin(), pp_options.defines.end());
     module->preprocessor = std::make_unique<Preprocessor>(module->sources, module->diagnostics, std::move(pp_options));
     std::vector<Token> tokens = module->preprocessor->run(module->main_file);
-    module->pragmas = module->preprocessor->pragmas();
+    module->pragmas = program_pragmas(module->preprocessor->pragmas(), module->diagnostics);
     const std::set<std::string>& redefined = module->preprocessor->redefined_predefined();
     std::erase_if(module->macros, [&](const MacroDefinition& m) { return redefined.count(m.name) > 0; });
     return tokens;

@@ -118,7 +118,7 @@ std::optional<Type> Parser::parse_type(bool allow_void) {
   }
   const BuiltinType* builtin = w.info->builtin;
   if (!builtin) {
-    error_here(in_quotes(token.text) + " is not a type");
+    if (!report_hidden_type(pos_)) error_here(in_quotes(token.text) + " is not a type");
     advance();
     return Type::error();
   }
@@ -566,6 +566,7 @@ std::unique_ptr<VarDecl> Parser::parse_var_declarator(const Specifiers& spec, co
   const std::optional<Type> type = parse_array_dims(base, true, &unsized);
   if (!type) return nullptr;
   var->type = *type;
+  hide_type_name(name_index);  // C's point of declaration: the initializer sees the variable
   if (is("<")) parse_annotations(&var->annotations);
   const bool allow_register = context == DeclContext::Global;
   if (!parse_colon_clauses(&var->semantic, &var->semantic_loc, allow_register ? &var->binding : nullptr,
@@ -704,6 +705,7 @@ bool Parser::parse_function(std::vector<Attribute> attributes, const Type& retur
   function->name = std::string(tok(name_index).text);
   function->return_type = return_type;
   function->attributes = std::move(attributes);
+  NameScope parameters(*this);  // the parameters' names, through the body
   const size_t open = pos_;
   advance();
   if (is_word("void") && tok(pos_ + 1).is_punct(")")) advance();  // f(void)
@@ -743,9 +745,10 @@ std::unique_ptr<ParamDecl> Parser::parse_param() {
   if (!type) return nullptr;
   Loc loc = tok(type_index).loc;
   std::string name;
-  if (is_name(pos_)) {
+  if (is_declared_name(pos_)) {
     loc = cur().loc;
     name = std::string(cur().text);
+    hide_type_name(pos_);
     advance();
   } else if (!is(",") && !is(")")) {
     error_here("expected a name");

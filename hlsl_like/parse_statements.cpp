@@ -17,6 +17,7 @@ std::unique_ptr<BlockStmt> Parser::parse_block() {
   const size_t open = pos_;
   auto block = make<BlockStmt>(cur().loc);
   advance();
+  NameScope scope(*this);
   Gathered<StmtPtr> statements(gathered_statements_);
   while (!is("}") && !at_end()) {
     const size_t before = pos_;
@@ -123,6 +124,7 @@ StmtPtr Parser::parse_switch() {
   }
   const size_t brace = pos_;
   advance();
+  NameScope scope(*this);  // the cases share one scope, as in C
   while (!is("}") && !at_end()) {
     const size_t before = pos_;
     if (is_word("case") || is_word("default")) {
@@ -215,11 +217,11 @@ StmtPtr Parser::parse_if() {
   }
   statement->condition = parse_paren_condition("if");
   if (!statement->condition && (is("}") || at_end())) return make_simple(StmtKind::Empty, statement->loc);
-  statement->then_branch = parse_statement();
+  statement->then_branch = parse_substatement();
   if (!statement->then_branch) return nullptr;
   if (is_word("else")) {
     advance();
-    statement->else_branch = parse_statement();
+    statement->else_branch = parse_substatement();
     if (!statement->else_branch) return nullptr;
   }
   if (!statement->condition) return make_simple(StmtKind::Empty, statement->loc);
@@ -235,7 +237,7 @@ StmtPtr Parser::parse_while() {
   }
   statement->condition = parse_paren_condition("while");
   if (!statement->condition && (is("}") || at_end())) return make_simple(StmtKind::Empty, statement->loc);
-  statement->body = parse_statement();
+  statement->body = parse_substatement();
   if (!statement->body) return nullptr;
   if (!statement->condition) return make_simple(StmtKind::Empty, statement->loc);
   return statement;
@@ -244,7 +246,7 @@ StmtPtr Parser::parse_while() {
 StmtPtr Parser::parse_do_while() {
   auto statement = make<DoWhileStmt>(cur().loc);
   advance();
-  statement->body = parse_statement();
+  statement->body = parse_substatement();
   if (!statement->body) return nullptr;
   if (!is_word("while")) {
     error_here("expected 'while' after the body of 'do'");
@@ -270,12 +272,13 @@ StmtPtr Parser::parse_for() {
   }
   const size_t open = pos_;
   advance();
+  NameScope scope(*this);  // the header's declaration, through the body
   const bool header_ok = parse_for_header(*statement, open);
   if (!header_ok) {
     skip_group(open, true);
     if (is("}") || at_end()) return make_simple(StmtKind::Empty, statement->loc);
   }
-  statement->body = parse_statement();
+  statement->body = parse_substatement();
   if (!statement->body) return nullptr;
   if (!header_ok) return make_simple(StmtKind::Empty, statement->loc);
   return statement;

@@ -2,7 +2,8 @@
 //
 // Shape of the code:
 // - Declarations and statements are told apart C-style: the parser keeps a table of the struct
-//   and typedef names declared so far, beside the built-in type names.
+//   and typedef names declared so far, beside the built-in type names, less those a variable
+//   hides in the scope being read (parse_scopes.cpp).
 // - A failed parse function returns null without skipping; the nearest recovery point skips:
 //   a statement in a block, a declaration at file scope, a struct field or cbuffer member, the
 //   parenthesised header of if/while/for, and the outermost initializer list.
@@ -380,9 +381,17 @@ bool Parser::is_name(size_t index) const {
   return !w.info->reserved && !w.info->builtin && !w.names_user_type();
 }
 
+bool Parser::is_declared_name(size_t index) const {
+  if (is_name(index)) return true;
+  const Token& token = tok(index);
+  if (token.kind != TokenKind::Identifier) return false;
+  const Word& w = word_at(index);
+  return w.user_type >= 0 && !w.info->reserved && !w.info->builtin;
+}
+
 // Consumes a declared name; reports "expected a name" when there is none.
 std::optional<size_t> Parser::expect_name() {
-  if (!is_name(pos_)) {
+  if (!is_declared_name(pos_)) {
     error_here("expected a name");
     return std::nullopt;
   }
@@ -408,7 +417,7 @@ std::optional<size_t> Parser::expect_type_name() {
 void Parser::declare_type(size_t name_index, const Type& type) {
   const std::string_view name = tok(name_index).text;
   Word& w = word_at(name_index);
-  if (w.names_user_type()) {
+  if (w.user_type >= 0) {
     error_at(name_index, "redefinition of type " + in_quotes(name));
     return;
   }

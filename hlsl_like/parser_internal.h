@@ -4,7 +4,7 @@
 //
 // parser.cpp: tokens, diagnostics, the word table and recovery (skip_until);
 // parse_declarations.cpp: file scope, declarations, types and qualifiers; parse_statements.cpp;
-// parse_expressions.cpp.
+// parse_expressions.cpp; parse_scopes.cpp: the type names variables hide, scope by scope.
 #pragma once
 
 #include <cstdint>
@@ -309,16 +309,20 @@ class Parser {
   struct Word {
     const WordInfo* info = nullptr;
     int32_t user_type = -1;  // index in user_types_ once the word names a struct or typedef
-    bool names_user_type() const { return user_type >= 0; }
+    // 1 + the token index of the variable named like the type that hides it in the scopes being
+    // read (parse_scopes.cpp); 0 when the word names its type there.
+    uint32_t hidden_by = 0;
+    bool names_user_type() const { return user_type >= 0 && hidden_by == 0; }
   };
 
-  // The word of the identifier token at `index`.
-  Word& word_at(size_t index) const {
-    if (index >= token_words_.size()) return words_[find_word(tok(index).text)];
+  // The number of the word of the identifier token at `index` (its index in words_).
+  uint32_t word_number(size_t index) const {
+    if (index >= token_words_.size()) return find_word(tok(index).text);
     uint32_t& known = token_words_[index];
     if (known == 0) known = find_word(tok(index).text) + 1;
-    return words_[known - 1];
+    return known - 1;
   }
+  Word& word_at(size_t index) const { return words_[word_number(index)]; }
   uint32_t find_word(std::string_view text) const;
   const WordInfo& info(size_t index) const;
   const BuiltinType* find_builtin_type(size_t index) const { return info(index).builtin; }
@@ -327,9 +331,30 @@ class Parser {
   size_t type_end(size_t index) const;
   bool is_specifier_at(size_t index) const;
   bool is_name(size_t index) const;
+  // A name being declared: a name, or a struct or typedef name that the declaration hides.
+  bool is_declared_name(size_t index) const;
   std::optional<size_t> expect_name();
   std::optional<size_t> expect_type_name();
   void declare_type(size_t name_index, const Type& type);
+
+  // Scopes of names (parse_scopes.cpp). C's rule, which HLSL keeps: a variable or parameter
+  // named like a struct or typedef hides the type from its declarator to the end of its scope.
+  class NameScope {
+   public:
+    explicit NameScope(Parser& parser) : parser_(parser), mark_(parser.hidden_log_.size()) {}
+    ~NameScope() { parser_.restore_hidden(mark_); }
+    NameScope(const NameScope&) = delete;
+    NameScope& operator=(const NameScope&) = delete;
+
+   private:
+    Parser& parser_;
+    size_t mark_;
+  };
+  void hide_type_name(size_t name_index);
+  void restore_hidden(size_t mark);
+  // Reports a type name used where a variable hides it; false when it is not hidden.
+  bool report_hidden_type(size_t index);
+  StmtPtr parse_substatement();
 
   // Types and declarators (parse_declarations.cpp)
   bool expect_closing_angle(size_t open_index);
@@ -358,6 +383,11 @@ class Parser {
   mutable StringIndex word_index_;  // numbers words as words_ does
   mutable std::vector<uint32_t> token_words_;  // per token: index in words_ + 1; 0 until asked
   std::vector<Type> user_types_;
+  struct HiddenWord {
+    uint32_t word;       // in words_
+    uint32_t previous;   // its hidden_by before
+  };
+  std::vector<HiddenWord> hidden_log_;  // undone by each NameScope as it closes
   std::vector<ExprPtr> gathered_args_;
   std::vector<StmtPtr> gathered_statements_;
   std::unordered_map<std::string, int64_t, StringHash, std::equal_to<>> int_constants_;

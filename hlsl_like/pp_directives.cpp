@@ -141,6 +141,7 @@ void Preprocessor::Impl::do_pragma(IncludeFrame& frame, const Token& name) {
   Pragma pragma;
   pragma.name = first.text;
   pragma.loc = first.loc;
+  pragma.in_program = frame.in_program;
   while (!lex.line_ended()) pragma.args.push_back(lex.next());
   pp_.pragmas_.push_back(std::move(pragma));
 }

@@ -260,8 +260,9 @@ void Preprocessor::Impl::finish_file(IncludeFrame& frame) {
 
 void Preprocessor::Impl::do_include(IncludeFrame& frame, const Token& name) {
   Lexer& lex = frame.lexer;
+  const std::string directive = "#" + std::string(name.text);
   if (lex.line_ended()) {
-    diagnostics_.error(name.loc, "expected \"file\" or <file> after #include");
+    diagnostics_.error(name.loc, "expected \"file\" or <file> after " + directive);
     return;
   }
   const Token file = lex.next_header_name();
@@ -275,7 +276,7 @@ void Preprocessor::Impl::do_include(IncludeFrame& frame, const Token& name) {
     }
     spelled = file.text.substr(1, file.text.size() - 2);
     angled = file.kind == TokenKind::AngledHeader;
-    extra_tokens(lex, "include");
+    extra_tokens(lex, name.text);
   } else {
     // #include MACRO: the line is expanded and must give "file" or <file>.
     expr_in_.clear();
@@ -309,12 +310,12 @@ void Preprocessor::Impl::do_include(IncludeFrame& frame, const Token& name) {
       }
     }
     if (!ok) {
-      diagnostics_.error(file.loc, "expected \"file\" or <file> after #include");
+      diagnostics_.error(file.loc, "expected \"file\" or <file> after " + directive);
       return;
     }
   }
   if (spelled.empty()) {
-    diagnostics_.error(file.loc, "empty file name in #include");
+    diagnostics_.error(file.loc, "empty file name in " + directive);
     return;
   }
   include_file(frame, name, spelled, angled, file.loc);
@@ -367,6 +368,9 @@ void Preprocessor::Impl::include_file(IncludeFrame& frame, const Token& name, st
     return;
   }
   enter_file(index);
+  // Unity applies an included file's pragmas only along an unbroken chain of
+  // #include_with_pragmas from the program (its manual's "pragma directives" limitations).
+  includes_.back()->in_program = frame.in_program && name.text == "include_with_pragmas";
 }
 
 // The files from includes_[first] up were read a second time only to reach a cycle: what they

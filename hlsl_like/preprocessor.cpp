@@ -135,7 +135,7 @@ void Preprocessor::Impl::directive(IncludeFrame& frame) {
     do_define(lex, name.loc);
   } else if (d == "undef") {
     do_undef(lex, name);
-  } else if (d == "include") {
+  } else if (d == "include" || d == "include_with_pragmas") {
     do_include(frame, name);
   } else if (d == "if" || d == "ifdef" || d == "ifndef") {
     do_if(frame, name, guard_start);

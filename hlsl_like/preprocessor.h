@@ -54,6 +54,10 @@ struct Pragma {
   std::string_view name;    // the first word after #pragma
   std::vector<Token> args;  // the rest of the line, not macro-expanded
   Loc loc;                  // of the name
+  // In the program Unity reads pragmas from: the main file, or a file reached from it by
+  // Unity's `#include_with_pragmas` alone. A file a plain #include reads along the way is not:
+  // Unity ignores its own pragmas there (multi_compile, vertex, target, ...).
+  bool in_program = true;
 };
 
 // Where `#include "name"` (or `<name>` when `angled`) from `including_file` resolves: an absolute

@@ -105,6 +105,7 @@ struct IncludeFrame {
   size_t output_mark;  // output tokens and pragmas made before the file was entered
   size_t pragma_mark;
   bool finished = false;
+  bool in_program = true;  // its pragmas are the program's (Pragma::in_program)
   Guard guard = Guard::Start;
   size_t guard_cond = 0;
   std::string_view guard_macro;

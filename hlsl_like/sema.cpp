@@ -180,7 +180,14 @@ const Symbol* SymbolTable::add(std::string_view name, Symbol symbol) {
   const auto [number, added] = names_.insert(name);
   if (added) innermost_.push_back(0);
   const uint32_t innermost = innermost_[number];
-  if (innermost != 0 && bindings_[innermost - 1].depth == scope_starts_.size()) return &bindings_[innermost - 1].symbol;
+  if (innermost != 0 && bindings_[innermost - 1].depth == scope_starts_.size()) {
+    // A variable named like a struct or typedef of its scope hides it, as in C (the parser
+    // already reads the name as the variable from there on); anything else is a redefinition.
+    const Symbol::Kind previous = bindings_[innermost - 1].symbol.kind;
+    const bool hides_type = symbol.kind == Symbol::Kind::Variable &&
+                            (previous == Symbol::Kind::Struct || previous == Symbol::Kind::Typedef);
+    if (!hides_type) return &bindings_[innermost - 1].symbol;
+  }
   bindings_.push_back({name, symbol, number, innermost, uint32_t(scope_starts_.size())});
   innermost_[number] = uint32_t(bindings_.size());
   return nullptr;
@@ -655,24 +662,44 @@ void Sema::fix_up_calls() {
 // ---------------------------------------------------------------------------------------------
 // Entry points
 
+// DXC's rule (SemaHLSL.cpp, DiagnoseTranslationUnit): the entry point's name must name one
+// function. Declarations of one parameter list are one function (a prototype and its
+// definition); two parameter lists are two functions, and then the name is ambiguous whether
+// or not each has a body, since nothing in the pragma says which one is meant.
 const FunctionDecl* Sema::find_entry_point(const std::string& name, Loc pragma_loc, const char* stage) {
   if (name.empty()) return nullptr;
   auto it = functions_.find(name);
-  std::vector<const FunctionDecl*> defined;
-  if (it != functions_.end()) {
-    for (const FunctionDecl* canonical : it->second) {
-      if (const FunctionDecl* definition = function_info_[canonical].definition) defined.push_back(definition);
-    }
-  }
-  if (defined.empty()) {
+  if (it == functions_.end() || it->second.empty()) {
     diag_.error(pragma_loc, "entry point " + in_quotes(name) + " is not defined");
     return nullptr;
   }
-  if (defined.size() > 1) {
-    diag_.error(pragma_loc, std::string(stage) + " entry point " + in_quotes(name) + " is overloaded; it must have one definition");
+  // Each function by its definition where it has one, or else its first declaration.
+  std::vector<const FunctionDecl*> overloads;
+  for (const FunctionDecl* canonical : it->second) {
+    const FunctionDecl* definition = function_info_[canonical].definition;
+    overloads.push_back(definition ? definition : canonical);
+  }
+  if (overloads.size() > 1) {
+    const FunctionDecl& first = *overloads[0];
+    const FunctionDecl& second = *overloads[1];
+    const auto kind = [](const FunctionDecl& f) { return f.body ? "defined" : "declared"; };
+    diag_.error(second.loc, std::string(stage) + " entry point " + in_quotes(name) + " is ambiguous: '" +
+                                function_signature(second) + "' is " + kind(second) + " here and '" +
+                                function_signature(first) + "' at " + diag_.sources().resolve(first.loc).to_string() +
+                                "; an entry point cannot be overloaded: rename or remove all but one of them");
+    for (const FunctionDecl* other : overloads)
+      if (other != &second)
+        diag_.note(other->loc, "'" + function_signature(*other) + "' is " + kind(*other) + " here");
+    diag_.note(pragma_loc, "named the " + std::string(stage) + " entry point here");
     return nullptr;
   }
-  return defined[0];
+  const FunctionDecl* definition = function_info_[it->second[0]].definition;
+  if (!definition) {
+    diag_.error(pragma_loc, "entry point " + in_quotes(name) + " is not defined");
+    diag_.note(it->second[0]->loc, "'" + function_signature(*it->second[0]) +
+                                       "' is declared here, without a body; give it one");
+  }
+  return definition;
 }
 
 void Sema::check_entry_point(const FunctionDecl& function, bool vertex) {

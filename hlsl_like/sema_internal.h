@@ -111,7 +111,7 @@ class SymbolTable {
   // The innermost binding of `name`, or null.
   const Symbol* lookup(std::string_view name) const;
   // Binds `name` in the innermost scope; when that scope binds it already, returns that
-  // binding instead (and binds nothing).
+  // binding instead (and binds nothing), unless a variable hides a type there.
   const Symbol* add(std::string_view name, Symbol symbol);
   // Calls visit(name, symbol) for each binding of scope `depth` (0 the outermost), in the order
   // they were declared.

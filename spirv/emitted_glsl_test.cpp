@@ -420,6 +420,52 @@ float4 frag(float2 uv : TEXCOORD0, float4 pos : SV_Position) : SV_Target {
 
 TEST(EmittedGlsl, EveryIntrinsicCompilesInBothFlavours) { emit_and_compile("intrinsics.hlsl", kEveryIntrinsic); }
 
+// lit() with each kind of argument HLSL converts to its float parameters.
+TEST(EmittedGlsl, LitInEveryFormCompilesInBothFlavours) {
+  const Compiled compiled = emit_and_compile("lit.hlsl", R"(#pragma fragment frag
+float4 _A;
+float4 frag() : SV_Target {
+  float1 l = _A.x;
+  min16float h = _A.y;
+  return lit(_A.x, _A.y, _A.z) + lit(half(_A.x), h, half(_A.z)) + lit(int(_A.x), uint(_A.y), 3) + lit(l, l, l) +
+         lit(0.5, 0.25h, 8) + lit(_A.x * 2.0, abs(_A.y), _A.z + 1.0);
+}
+)");
+  ASSERT_TRUE(compiled.gl.fragment);
+  EXPECT_NE(compiled.gl.fragment->text.find("vec4 xs_lit(float n_dot_l, float n_dot_h, float m)"), std::string::npos)
+      << compiled.gl.fragment->text;
+}
+
+// A variable, parameter or global named like a struct, as HLSL allows: the struct takes a GLSL
+// name of its own, where glslang would refuse a global beside it.
+TEST(EmittedGlsl, VariablesNamedLikeStructsCompileInBothFlavours) {
+  const Compiled compiled = emit_and_compile("names.hlsl", R"(#pragma vertex vert
+#pragma fragment frag
+struct Attributes { float4 pos : POSITION; };
+struct Varyings { float4 pos : SV_Position; float4 c : TEXCOORD0; };
+struct VertexPositionInputs { float4 positionCS; float3 positionWS; };
+struct Params { float4 tint; };
+Params Params;
+VertexPositionInputs GetVertexPositionInputs(float4 p) {
+  VertexPositionInputs o;
+  o.positionCS = p;
+  o.positionWS = p.xyz;
+  return o;
+}
+float4 shade(Varyings Varyings) { return Varyings.c * Params.tint; }
+Varyings vert(Attributes v) {
+  VertexPositionInputs Attributes = GetVertexPositionInputs(v.pos);
+  Varyings o;
+  o.pos = Attributes.positionCS;
+  o.c = float4(Attributes.positionWS, 1);
+  return o;
+}
+float4 frag(Varyings Varyings) : SV_Target { Attributes a = (Attributes)0; return shade(Varyings) + a.pos; }
+)");
+  ASSERT_TRUE(compiled.vk.fragment);
+  EXPECT_NE(compiled.vk.fragment->text.find("struct Params_t {"), std::string::npos) << compiled.vk.fragment->text;
+}
+
 
 // ---------------------------------------------------------------------------------------------
 // The corners of the mapping: reserved names, overloads that collide in GLSL, default

@@ -5,6 +5,7 @@
 #include <glslang/Public/ShaderLang.h>
 #include <glslang/SPIRV/GlslangToSpv.h>
 
+#include <cctype>
 #include <cstring>
 #include <fstream>
 #include <map>
@@ -20,6 +21,28 @@
 
 namespace xshade::spirv {
 namespace {
+
+// Unity's `#include_with_pragmas` is an #include whose file's Unity pragmas apply to the
+// program; glslang's preprocessor knows no such directive, and reads no Unity pragma either, so
+// to glslang it is an #include, spelt so (padded to the same width, so columns stay right).
+std::string as_glslang_reads(std::string text) {
+  constexpr std::string_view kUnity = "include_with_pragmas";
+  size_t line = 0;
+  while (line < text.size()) {
+    size_t at = text.find_first_not_of(" \t", line);
+    if (at != std::string::npos && text[at] == '#') {
+      at = text.find_first_not_of(" \t", at + 1);
+      const size_t after = at == std::string::npos ? at : at + kUnity.size();
+      if (at != std::string::npos && text.compare(at, kUnity.size(), kUnity) == 0 &&
+          (after >= text.size() || !(std::isalnum(static_cast<unsigned char>(text[after])) || text[after] == '_')))
+        text.replace(at, kUnity.size(), "include             ");
+    }
+    const size_t end = text.find('\n', line);
+    if (end == std::string::npos) break;
+    line = end + 1;
+  }
+  return text;
+}
 
 // glslang asks for each #include through this; the resolver decides where files come from.
 class Includer final : public glslang::TShader::Includer {
@@ -43,7 +66,7 @@ class Includer final : public glslang::TShader::Includer {
     if (!resolve_) return nullptr;
     std::optional<IncludedFile> file = resolve_(name, includer ? includer : "", angled);
     if (!file) return nullptr;
-    auto* text = new std::string(std::move(file->text));
+    auto* text = new std::string(as_glslang_reads(std::move(file->text)));
     return new IncludeResult(file->name, text->data(), text->size(), text);
   }
 
@@ -206,8 +229,9 @@ std::vector<HlslResource> reflect(glslang::TProgram& program) {
 Result<HlslModule> compile_hlsl(const HlslStage& request) {
   ensure_glslang_initialized();
   const EShLanguage language = to_glslang(request.stage);
-  const char* text = request.source.data();
-  const int length = static_cast<int>(request.source.size());
+  const std::string source = as_glslang_reads(std::string(request.source));
+  const char* text = source.data();
+  const int length = static_cast<int>(source.size());
   const char* name = request.source_name.c_str();
 
   std::string preamble;

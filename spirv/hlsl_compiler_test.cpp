@@ -65,6 +65,25 @@ TEST(HlslCompiler, DefinesAndIncludesReachGlslang) {
   EXPECT_EQ(failed.error().diagnostics[0].where.line, 2u);
 }
 
+// glslang knows no #include_with_pragmas; it reads Unity's directive, in the source and in an
+// included file, as the #include it is to any compiler that takes no Unity pragma.
+TEST(HlslCompiler, UnitysIncludeWithPragmasIsAnInclude) {
+  HlslStage stage;
+  stage.source = "  #  include_with_pragmas \"outer.hlsl\"\nfloat4 frag() : SV_Target { return float4(TINT, 1); }\n";
+  stage.source_name = "main.hlsl";
+  stage.entry_point = "frag";
+  stage.resolve_include = [](std::string_view name, std::string_view, bool) -> std::optional<IncludedFile> {
+    if (name == "outer.hlsl") return IncludedFile{"outer.hlsl", "#pragma multi_compile _ X\n#include_with_pragmas <inner.hlsl>\n"};
+    if (name == "inner.hlsl") return IncludedFile{"inner.hlsl", "#define TINT float3(1, 0.5, 0)\n"};
+    return std::nullopt;
+  };
+  auto module = compile_hlsl(stage);
+  EXPECT_TRUE(module) << module.error().to_string();
+  // Only the directive: a name that merely begins so is an unknown directive still.
+  stage.source = "#include_with_pragmas_x \"outer.hlsl\"\nfloat4 frag() : SV_Target { return 1; }\n";
+  EXPECT_FALSE(compile_hlsl(stage));
+}
+
 TEST(HlslCompiler, MissingIncludeAndEntryPointAreErrors) {
   HlslStage stage{"#include \"nowhere.hlsl\"\n", "main.hlsl", Stage::Fragment, "frag", {}, {}, {}, {}};
   EXPECT_FALSE(compile_hlsl(stage));

@@ -5,6 +5,7 @@
 #include <list>
 #include <map>
 
+#include "base/file_io.h"
 #include "harness/render/renderer_inputs.h"
 #include "harness/render/surface_program.h"
 #include "shaderlab/compile_environment.h"
@@ -34,6 +35,42 @@ std::string pass_label(const shaderlab::Pass& pass, size_t index) {
   const std::string light_mode = shaderlab::tag(pass.tags, "LightMode");
   if (!light_mode.empty()) label += " (LightMode " + light_mode + ")";
   return label;
+}
+
+// The text Unity reads a program's build pragmas from (`#pragma target`, which SHADER_TARGET
+// says): the program's own and, after it, each file it includes with #include_with_pragmas, and
+// theirs in turn, found where the preprocessor finds them. Read as Unity reads these pragmas,
+// before compiling: conditionals are not weighed. A file not found is left to the compile to
+// report.
+std::string with_pragma_includes(std::string text, const fs::path& including, const std::vector<fs::path>& folders,
+                                 int depth = 0) {
+  constexpr std::string_view kDirective = "include_with_pragmas";
+  std::string included;
+  size_t start = 0;
+  while (start < text.size() && depth < 16) {
+    size_t end = text.find('\n', start);
+    if (end == std::string::npos) end = text.size();
+    std::string_view line = std::string_view(text).substr(start, end - start);
+    start = end + 1;
+    const auto skip_blanks = [&] {
+      while (!line.empty() && (line.front() == ' ' || line.front() == '\t')) line.remove_prefix(1);
+    };
+    skip_blanks();
+    if (line.empty() || line.front() != '#') continue;
+    line.remove_prefix(1);
+    skip_blanks();
+    if (!line.starts_with(kDirective)) continue;
+    line.remove_prefix(kDirective.size());
+    skip_blanks();
+    if (line.empty() || (line.front() != '"' && line.front() != '<')) continue;
+    const bool angled = line.front() == '<';
+    const size_t close = line.find(angled ? '>' : '"', 1);
+    if (close == std::string_view::npos) continue;
+    const auto found = hlsl::find_include(line.substr(1, close - 1), including, angled, folders);
+    if (!found) continue;
+    if (auto file = read_file(*found)) included += "\n" + with_pragma_includes(std::move(*file), *found, folders, depth + 1);
+  }
+  return text + included;
 }
 
 }  // namespace
@@ -92,7 +129,8 @@ Result<hlsl::CompileOptions> pass_compile_options(const fs::path& file, const sh
     if (auto found = shaderlab::find_implicit_includes(options.include_dirs); !found)
       return fail(Error{found.error().message, program.pass->program->start, {}});
   std::vector<hlsl::MacroDefinition> defines;
-  for (const shaderlab::Define& define : shaderlab::unity_defines(program.text, platform))
+  for (const shaderlab::Define& define :
+       shaderlab::unity_defines(with_pragma_includes(program.text, file, options.include_dirs), platform))
     if (std::none_of(options.defines.begin(), options.defines.end(),
                      [&](const hlsl::MacroDefinition& given) { return given.name == define.name; }))
       defines.push_back({define.name, define.value});

@@ -145,6 +145,38 @@ TEST_F(UnityShaderSource, TheDrawnPassCompilesInUnitysEnvironment) {
   EXPECT_EQ(source->caster_pass, 0u);
 }
 
+// A file included with #include_with_pragmas gives the program its pragmas, #pragma target and
+// its SHADER_TARGET among them; a plain #include's are Unity's to ignore.
+TEST_F(UnityShaderSource, IncludeWithPragmasGivesTheProgramItsTargetAndStages) {
+  write("settings.hlsl", "#pragma target 4.5\n#pragma fragment frag\n");
+  const std::string body = R"(
+      #if SHADER_TARGET == 45
+      float4 frag(float4 pos : SV_Position) : SV_Target { return 1; }
+      #else
+      float4 frag() : SV_Target { return 0; }
+      #endif
+      ENDHLSL } } })";
+  const fs::path with = write("with.shader", "Shader \"With\" { SubShader { Pass { HLSLPROGRAM\n"
+                                             "      #include_with_pragmas \"settings.hlsl\"" + body);
+  auto source = compile_source(with, {});
+  ASSERT_TRUE(source) << source.error().to_string();
+  ASSERT_TRUE(source->module->ok()) << source->module->diagnostics.render_all();
+  EXPECT_EQ(source->module->reflection.fragment_entry, "frag");
+  const hlsl::FunctionDecl* frag = source->module->entry_points.fragment;
+  ASSERT_NE(frag, nullptr);
+  EXPECT_EQ(frag->params.size(), 1u);  // the SHADER_TARGET == 45 branch
+
+  const fs::path plain = write("plain.shader", "Shader \"Plain\" { SubShader { Pass { HLSLPROGRAM\n"
+                                               "      #pragma fragment frag\n"
+                                               "      #include \"settings.hlsl\"" + body);
+  source = compile_source(plain, {});
+  ASSERT_TRUE(source) << source.error().to_string();
+  ASSERT_TRUE(source->module->ok()) << source->module->diagnostics.render_all();
+  ASSERT_NE(source->module->entry_points.fragment, nullptr);
+  EXPECT_EQ(source->module->entry_points.fragment->params.size(), 0u);  // Unity's default target, 2.5
+  EXPECT_EQ(source->module->diagnostics.warning_count(), 2u);  // the two ignored pragmas
+}
+
 TEST_F(UnityShaderSource, WhatCannotBeDrawnIsAnErrorInTheShaderFile) {
   const fs::path cg = write("cg.shader", "Shader \"Cg\" {\n  SubShader {\n    Pass {\n      CGPROGRAM\n      #pragma fragment f\n      ENDCG\n    }\n  }\n}\n");
   auto missing = compile_source(cg, {});

@@ -4,6 +4,7 @@
 // A lane that disagrees on purpose is listed in kDivergences with the reason (and in
 // docs/divergences.md); the test then checks that it still disagrees, so that the list cannot
 // outlive the bug it describes.
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <functional>
@@ -40,12 +41,23 @@ const std::map<std::pair<std::string, Lane>, const char*> kDivergences{
     {{"matrices", Lane::VkHlsl},
      "glslang's HLSL front end compiles matrix * matrix as a matrix product; HLSL's * is "
      "component-wise (mul() is the product)"},
+    {{"lit", Lane::VkHlsl},
+     "glslang's HLSL front end gives lit()'s specular as n_dot_h * m (as DXC does); HLSL's "
+     "documentation gives pow(n_dot_h, m)"},
     {{"one_component_vectors", Lane::VkHlsl},
      "glslang's HLSL front end refuses a float1's .x as an l-value ('assign': l-value required), "
      "so Unity's fog (UNITY_TRANSFER_FOG) does not compile there"},
 };
 
 double hlsl_fmod(double a, double b) { return a - b * std::trunc(a / b); }
+
+// lit() as HLSL's documentation defines it: ambient, diffuse, specular, 1.
+glm::dvec4 hlsl_lit(double n_dot_l, double n_dot_h, double m) {
+  const double specular = n_dot_l < 0.0 || n_dot_h < 0.0 ? 0.0 : std::pow(n_dot_h, m);
+  return glm::dvec4(1.0, std::max(n_dot_l, 0.0), specular, 1.0);
+}
+const glm::dvec3 kLitArgs[8] = {{0.5, 0.25, 2.0},  {0.5, 0.75, 4.0},  {2.0, 3.0, 2.0},  {1.0, 2.0, 3.0},
+                                {0.25, 0.5, 3.0},  {0.25, 0.5, 3.0},  {-0.5, 0.5, 2.0}, {0.5, -0.25, 2.0}};
 
 const float kFmodInputs[8] = {-7.5f, -3.0f, -0.5f, 0.0f, 0.5f, 3.0f, 7.25f, -1.75f};
 const int kIntA[8] = {-7, -7, 7, 7, -8, 0, 5, -1};
@@ -153,6 +165,9 @@ std::vector<Rule> rules() {
        0.0, "small integers are exact", {{"Params", params_bytes()}}},
       {"one_component_vectors", 4, [](uint32_t x) { return glm::dvec4(x + 1.0, x + 1.0, x + 1.0, 2.0 * (x + 1.0)); },
        0.0, "small integers are exact"},
+      {"lit", 8, [](uint32_t x) { return hlsl_lit(kLitArgs[x].x, kLitArgs[x].y, kLitArgs[x].z); },
+       // GLSL's pow is exp2(m * log2(h)), each within a few ULP; the largest result is 9.
+       2e-5, "fp32 pow against the fp64 reference"},
       {"globals_packing", 2,
        [](uint32_t x) { return x == 0 ? glm::dvec4(1, 2, 3, 4) : glm::dvec4(5, 6, 7, 0); },
        0.0, "small integers are exact", {{std::string(hlsl::kGlobalsBufferName), globals_bytes()}}},
