@@ -71,6 +71,13 @@ std::string reflection_json(const Reflection& reflection) {
     if (s.count > 1) sampler["count"] = s.count;
     json["samplers"].push_back(sampler);
   }
+  json["buffers"] = nlohmann::json::array();
+  for (const StorageBufferResource& b : reflection.buffers) {
+    nlohmann::json buffer = {{"name", b.name},     {"kind", buffer_kind_name(b.kind)}, {"element", type_json(b.element)},
+                             {"stride", b.stride}, {"binding", b.binding},           {"used", b.used}};
+    if (b.set) buffer["set"] = b.set;
+    json["buffers"].push_back(buffer);
+  }
   json["properties"] = nlohmann::json::array();
   for (const Property& p : reflection.properties) {
     nlohmann::json property = {{"name", p.name}, {"display_name", p.display_name}, {"type", type_json(p.type)}};
