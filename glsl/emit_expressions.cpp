@@ -932,6 +932,18 @@ Code StageEmitter::expr_untraced(const Expr* e) {
         }
         case CallKind::Intrinsic:
         case CallKind::Method: return half_value(intrinsic_call(*call), e->type);
+        case CallKind::Printf: {
+          // Vulkan's debug printf, which the validation layer prints; OpenGL has none, and the
+          // statement is left out there (emit_statements.cpp).
+          if (flavour_ == Flavour::Gl) {
+            fail(e->loc, "printf has no OpenGL form inside an expression; call it as a statement of its own");
+            return {"0"};
+          }
+          require_extension("GL_EXT_debug_printf");
+          std::string text = "debugPrintfEXT(" + call->format;
+          for (const ExprPtr& arg : call->args) append_operand(text += ", ", expr(arg.get()), kAssign);
+          return {text + ")", kPostfix};
+        }
         case CallKind::Unresolved:
           fail(e->loc, "internal error: unresolved call to " + in_quotes(call->callee));
           return {"0"};

@@ -306,6 +306,11 @@ void StageEmitter::statement(const Stmt* stmt) {
       if (e->kind == ExprKind::Assign && !resource_paths(static_cast<const AssignExpr*>(e)->target->type).empty()) break;
       out_.mark(stmt->loc);
       if (clip_statement(e)) break;
+      if (flavour_ == Flavour::Gl && e->kind == ExprKind::Call &&
+          static_cast<const CallExpr*>(e)->call_kind == CallKind::Printf) {
+        out_.line({prefix, "// printf: OpenGL has no debug printf"});
+        break;
+      }
       out_.line({prefix, expr(e).text, ";"});
       break;
     }

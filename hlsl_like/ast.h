@@ -150,6 +150,9 @@ enum class CallKind : uint8_t {
   Intrinsic,     // a built-in function: `intrinsic`
   Constructor,   // float3(...), float2x2(...): `type` is the constructed type
   Method,        // object.Sample(...): `object` and `intrinsic`
+  // printf("format", args...) as DXC reads it for Vulkan (GL_EXT_debug_printf): `format` holds
+  // the string literal as written, quotes and escapes included; `args` the values.
+  Printf,
 };
 
 struct CallExpr : Expr {
@@ -160,6 +163,7 @@ struct CallExpr : Expr {
   CallKind call_kind = CallKind::Unresolved;  // parser sets Constructor; sema the rest
   const FunctionDecl* function = nullptr;     // sema
   uint16_t intrinsic = 0;                     // sema: an IntrinsicId (intrinsics.h)
+  std::string format;                         // Printf's
   CallExpr(Loc l) : Expr(ExprKind::Call, l) {}
 };
 

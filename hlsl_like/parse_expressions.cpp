@@ -486,6 +486,27 @@ ExprPtr Parser::parse_name_or_call() {
     return nullptr;
   }
   advance();
+  if (is("(") && token.text == "printf" && tok(pos_ + 1).kind == TokenKind::StringLiteral) {
+    // printf("format", values...): the one place a string literal is an operand.
+    auto call = make<CallExpr>(token.loc);
+    call->callee = "printf";
+    call->call_kind = CallKind::Printf;
+    const size_t open = pos_;
+    advance();
+    call->format = std::string(cur().text);
+    advance();
+    while (accept(",")) {
+      ExprPtr arg = parse_assignment();
+      if (!arg) return nullptr;
+      call->args.push_back(std::move(arg));
+    }
+    if (!is(")")) {
+      error_unmatched(")", open);
+      return nullptr;
+    }
+    advance();
+    return call;
+  }
   if (is("(")) {
     auto call = make<CallExpr>(token.loc);
     call->callee = std::string(token.text);

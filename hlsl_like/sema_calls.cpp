@@ -304,6 +304,15 @@ void pass_argument(Sema& sema, ExprPtr& arg, const Type& type, ParamDirection di
 
 Type Sema::analyze_call(CallExpr& expr) {
   if (expr.call_kind == CallKind::Constructor) return analyze_constructor(expr);
+  if (expr.call_kind == CallKind::Printf) {
+    for (ExprPtr& arg : expr.args) {
+      if (!arg) continue;
+      const Type type = analyze(arg.get());
+      if (!type.is_error() && !type.is_scalar() && !type.is_vector())
+        diag_.error(arg->loc, "printf prints scalars and vectors, not " + in_quotes(type.name()));
+    }
+    return Type::void_type();
+  }
   Type object;
   if (expr.object) object = analyze(expr.object.get());
   bool args_ok = true;

@@ -178,6 +178,17 @@ TEST(VulkanAttributes, ASubpassInputNamesItsInputAttachmentAndNothingElseHasOne)
   EXPECT_NE(vertex[0].find("'SubpassLoad' is only available in fragment shaders"), std::string::npos) << vertex[0];
 }
 
+TEST(VulkanAttributes, PrintfTakesAFormatLiteralThenScalarsAndVectors) {
+  EXPECT_EQ(attribute_errors_of("#pragma fragment f\nstruct S { float a; };\n"
+                                "float4 f(float2 uv : TEXCOORD0) : SV_Target {\n"
+                                "  S s = (S)0; printf(\"%f %v2f\", uv.x, uv); printf(\"%f\", s);\n  return 0; }\n"),
+            (std::vector<std::string>{"vk.hlsl:4:57: error: printf prints scalars and vectors, not 'S'"}));
+  // Anywhere else a string literal is still an error.
+  const std::vector<std::string> elsewhere = attribute_errors_of("void g() { float x = \"s\"; }\n");
+  ASSERT_FALSE(elsewhere.empty());
+  EXPECT_NE(elsewhere[0].find("string literals are only allowed in annotations"), std::string::npos) << elsewhere[0];
+}
+
 TEST(VulkanAttributes, ASpecializationConstantIsAConstantOfItsDefault) {
   auto module = compiled_with_attributes("[[vk::constant_id(7)]] const int MODE = 2;\n#pragma fragment f\n"
                          "float4 f(float2 uv : TEXCOORD0) : SV_Target { return MODE == 2 ? 1 : 0; }\n");

@@ -841,5 +841,24 @@ TEST(EmittedGlsl, ReadOnlyBuffersCompileInBothFlavours) {
   EXPECT_NE(gl.find("(count = ((uint(lights.xs_words.length()) * 4u) / 36u), stride = 36u)"), std::string::npos) << gl;
 }
 
+// DXC's printf for Vulkan: GL_EXT_debug_printf on vk; OpenGL has no debug printf, so the
+// statement is left out there.
+constexpr const char* kDebugPrintf = R"(
+#pragma fragment frag
+float4 frag(float2 uv : TEXCOORD0) : SV_Target {
+  printf("uv = %v2f, %d", uv, 7);
+  return float4(uv, 0, 1);
+}
+)";
+
+TEST(EmittedGlsl, DebugPrintfIsVulkansAndLeftOutOnOpenGl) {
+  const Compiled compiled = emit_and_compile("printf.hlsl", kDebugPrintf);
+  ASSERT_TRUE(compiled.gl.fragment && compiled.vk.fragment);
+  const std::string& vk = compiled.vk.fragment->text;
+  EXPECT_NE(vk.find("#extension GL_EXT_debug_printf : require"), std::string::npos) << vk;
+  EXPECT_NE(vk.find("debugPrintfEXT(\"uv = %v2f, %d\", uv, 7);"), std::string::npos) << vk;
+  EXPECT_EQ(compiled.gl.fragment->text.find("debugPrintfEXT"), std::string::npos) << compiled.gl.fragment->text;
+}
+
 }  // namespace
 }  // namespace xshade::spirv
