@@ -159,6 +159,9 @@ struct UniformBlockSlot {
   std::string name;
   uint32_t binding = 0;
   uint32_t size = 0;  // bytes; a bound block must supply exactly this many
+  // Vulkan only: the block is the program's push constants (at most one, given with each draw),
+  // not a descriptor; `binding` is then unused. OpenGL reads every block as a uniform block.
+  bool push_constant = false;
 };
 struct TextureSlot {
   std::string name;

@@ -37,7 +37,7 @@ std::string variant_json(const CompiledVariant& variant) {
   const ProgramDesc& p = variant.program;
   json blocks = json::array();
   for (const UniformBlockSlot& b : p.layout.uniform_blocks)
-    blocks.push_back({{"name", b.name}, {"binding", b.binding}, {"size", b.size}});
+    blocks.push_back({{"name", b.name}, {"binding", b.binding}, {"size", b.size}, {"push_constant", b.push_constant}});
   json textures = json::array();
   for (const TextureSlot& t : p.layout.textures) {
     json slot{{"name", t.name},
@@ -54,6 +54,7 @@ std::string variant_json(const CompiledVariant& variant) {
   }
   return json{{"name", p.name},
               {"fullscreen", p.fullscreen},
+              {"clip_distances", p.clip_distances},
               {"vertex", stage_json(p.vertex)},
               {"fragment", stage_json(p.fragment)},
               {"uniform_blocks", blocks},
@@ -69,9 +70,11 @@ std::optional<CompiledVariant> variant_from_json(const std::string& text) {
     ProgramDesc& p = variant.program;
     p.name = j.at("name");
     p.fullscreen = j.at("fullscreen");
+    p.clip_distances = j.at("clip_distances");
     p.vertex = stage_from_json(j.at("vertex"));
     p.fragment = stage_from_json(j.at("fragment"));
-    for (const json& b : j.at("uniform_blocks")) p.layout.uniform_blocks.push_back({b.at("name"), b.at("binding"), b.at("size")});
+    for (const json& b : j.at("uniform_blocks"))
+      p.layout.uniform_blocks.push_back({b.at("name"), b.at("binding"), b.at("size"), b.at("push_constant")});
     for (const json& t : j.at("textures")) {
       TextureSlot slot{t.at("name"), t.at("binding"), std::nullopt};
       if (t.contains("sampler_binding")) slot.sampler_binding = t.at("sampler_binding").get<uint32_t>();

@@ -142,7 +142,8 @@ TexelKind harness_texel(hlsl::ScalarType texel) {
 ProgramLayout layout_for_lane(const hlsl::Reflection& reflection, Lane lane, const ProgramOptions& options) {
   ProgramLayout layout;
   for (const hlsl::ConstantBuffer& buffer : reflection.constant_buffers)
-    layout.uniform_blocks.push_back({glsl::block_name(buffer.name), buffer.binding, buffer.size});
+    layout.uniform_blocks.push_back(
+        {glsl::block_name(buffer.name), buffer.binding, buffer.size, buffer.push_constant && lane != Lane::Gl});
   for (const hlsl::TextureResource& texture : reflection.textures) {
     if (!texture.used) continue;
     TextureSlot slot{texture.name, texture.binding, std::nullopt};
@@ -232,9 +233,6 @@ Result<void> drawable(const hlsl::Module& module, Lane lane) {
     return fail(what + "; `xshade compile` writes it as the source asks, but the harness cannot draw it", where);
   };
   for (const hlsl::ConstantBuffer& buffer : reflection.constant_buffers) {
-    if (buffer.push_constant && lane != Lane::Gl)
-      return refuse("'" + buffer.name + "' is a push-constant block ([[vk::push_constant]]), which the harness's Vulkan "
-                    "backend does not give yet (the gl lane reads it as a uniform block)");
     if (buffer.set != 0) return refuse("'" + buffer.name + "' is in descriptor set " + std::to_string(buffer.set));
     if (buffer.count > 1) return refuse(array_of_resources(buffer.name, buffer.count));
   }

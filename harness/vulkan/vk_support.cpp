@@ -476,7 +476,7 @@ vk::raii::Pipeline create_fill_pipeline(const vk::raii::Device& device, vk::Shad
 
 bool layout_has_binding(const ProgramLayout& layout, uint32_t binding) {
   for (const UniformBlockSlot& block : layout.uniform_blocks)
-    if (block.binding == binding) return true;
+    if (!block.push_constant && block.binding == binding) return true;
   for (const TextureSlot& texture : layout.textures)
     if (texture.binding == binding || texture.sampler_binding == binding) return true;
   return false;

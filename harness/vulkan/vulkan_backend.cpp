@@ -3,6 +3,10 @@
 // Each public operation records one command buffer, submits it and waits on a fence, so nothing is
 // in flight between calls. Image layouts are tracked per image (all subresources share one
 // layout) and changed with synchronization2 barriers; drawing uses dynamic rendering.
+//
+// Why this file is long: it is the one class of the Backend seam for Vulkan, and render() is one
+// pass of what a draw needs there (descriptor sets, push constants, a pipeline per draw state); its
+// stateless pieces live in vk_support.
 #include "harness/vulkan/vulkan_backend.h"
 
 #include <algorithm>
@@ -66,6 +70,8 @@ struct Program {
   vk::raii::ShaderModule fragment{nullptr};
   vk::raii::DescriptorSetLayout set_layout{nullptr};
   vk::raii::PipelineLayout pipeline_layout{nullptr};
+  // The layout's push-constant block (UniformBlockSlot::push_constant), if it has one.
+  std::optional<size_t> push_constant_slot;
   // One per target kind and draw state: by the target's depth format (eUndefined: none), whether it
   // has a second colour, the state, and rows_up.
   std::map<std::tuple<vk::Format, bool, DrawState, bool>, vk::raii::Pipeline> pipelines;
@@ -151,6 +157,7 @@ class VulkanBackend final : public Backend {
   vk::DeviceSize uniform_alignment_ = 256;
   uint32_t max_image_size_ = 4096;
   uint32_t max_uniform_range_ = 16384;
+  uint32_t max_push_constants_ = 128;
   DriverInfo info_;
 
   std::map<std::tuple<Filter, AddressMode, std::optional<CompareOp>>, vk::raii::Sampler> samplers_;
@@ -243,6 +250,7 @@ Result<void> VulkanBackend::init(const VulkanOptions& options) {
     uniform_alignment_ = std::max<vk::DeviceSize>(props.limits.minUniformBufferOffsetAlignment, 16);
     max_image_size_ = props.limits.maxImageDimension2D;
     max_uniform_range_ = props.limits.maxUniformBufferRange;
+    max_push_constants_ = props.limits.maxPushConstantsSize;
     memory_properties_ = physical_.getMemoryProperties();
 
     const auto format_features = [&](vk::Format format) {
@@ -588,9 +596,20 @@ Result<ProgramHandle> VulkanBackend::create_program(const ProgramDesc& desc) {
       bindings.emplace_back(binding, type, 1, stages);
       return {};
     };
-    for (const UniformBlockSlot& slot : desc.layout.uniform_blocks) {
+    for (size_t s = 0; s < desc.layout.uniform_blocks.size(); ++s) {
+      const UniformBlockSlot& slot = desc.layout.uniform_blocks[s];
       if (!names.insert(slot.name).second)
         return fail(fmt::format("{}: the layout names '{}' twice", what, slot.name));
+      if (slot.push_constant) {
+        if (program->push_constant_slot)
+          return fail(fmt::format("{}: '{}' and '{}' are both push constants; a program has one block of them", what,
+                                  desc.layout.uniform_blocks[*program->push_constant_slot].name, slot.name));
+        if (slot.size == 0 || slot.size > max_push_constants_)
+          return fail(fmt::format("{}: push-constant block '{}' has size {}; the device allows 1..{} bytes", what,
+                                  slot.name, slot.size, max_push_constants_));
+        program->push_constant_slot = s;
+        continue;
+      }
       if (slot.size == 0 || slot.size > max_uniform_range_)
         return fail(fmt::format("{}: uniform block '{}' has size {}; the device allows 1..{} bytes",
                                 what, slot.name, slot.size, max_uniform_range_));
@@ -617,8 +636,11 @@ Result<ProgramHandle> VulkanBackend::create_program(const ProgramDesc& desc) {
     program->set_layout =
         vk::raii::DescriptorSetLayout(device_, vk::DescriptorSetLayoutCreateInfo({}, bindings));
     const vk::DescriptorSetLayout set_layout = *program->set_layout;
+    std::vector<vk::PushConstantRange> push_ranges;
+    if (program->push_constant_slot)
+      push_ranges.emplace_back(stages, 0, desc.layout.uniform_blocks[*program->push_constant_slot].size);
     program->pipeline_layout =
-        vk::raii::PipelineLayout(device_, vk::PipelineLayoutCreateInfo({}, set_layout));
+        vk::raii::PipelineLayout(device_, vk::PipelineLayoutCreateInfo({}, set_layout, push_ranges));
     return objects_.programs.insert(std::move(program));
   });
 }
@@ -695,9 +717,11 @@ Result<void> VulkanBackend::render(const RenderPass& pass) {
       if (!made) return fail(made.error());
       draws.push_back(Resolved{draw.program, draw.mesh, draw.uniforms, draw.textures, *made, rows_up});
       const ProgramLayout& layout = draw.program->layout;
-      for (const UniformBlockSlot& block : layout.uniform_blocks)
+      for (const UniformBlockSlot& block : layout.uniform_blocks) {
+        if (block.push_constant) continue;
         uniform_bytes += (block.size + uniform_alignment_ - 1) / uniform_alignment_ * uniform_alignment_;
-      uniform_count += layout.uniform_blocks.size();
+        uniform_count += 1;
+      }
       for (size_t s = 0; s < layout.textures.size(); ++s) {
         if (draw.textures[s].of_target) sampled_targets.push_back(draw.textures[s].texture);
         const TextureSlot& slot = layout.textures[s];
@@ -716,7 +740,9 @@ Result<void> VulkanBackend::render(const RenderPass& pass) {
       void* mapped = uniforms.memory.mapMemory(0, uniform_bytes);
       vk::DeviceSize offset = 0;
       for (const Resolved& draw : draws) {
-        for (const UniformBinding* binding : draw.uniforms) {
+        for (size_t s = 0; s < draw.uniforms.size(); ++s) {
+          if (draw.program->push_constant_slot == s) continue;
+          const UniformBinding* binding = draw.uniforms[s];
           std::memcpy(static_cast<std::byte*>(mapped) + offset, binding->bytes.data(),
                       binding->bytes.size());
           offset += (binding->bytes.size() + uniform_alignment_ - 1) / uniform_alignment_ *
@@ -745,7 +771,8 @@ Result<void> VulkanBackend::render(const RenderPass& pass) {
       for (size_t i = 0; i < draws.size(); ++i) {
         const Resolved& draw = draws[i];
         const ProgramLayout& layout = draw.program->layout;
-        if (layout.uniform_blocks.empty() && layout.textures.empty()) continue;
+        if (layout.uniform_blocks.size() == (draw.program->push_constant_slot ? 1u : 0u) && layout.textures.empty())
+          continue;
         const vk::DescriptorSetLayout set_layout = *draw.program->set_layout;
         vk::raii::DescriptorSets allocated(device_,
                                            vk::DescriptorSetAllocateInfo(*pool, set_layout));
@@ -758,6 +785,7 @@ Result<void> VulkanBackend::render(const RenderPass& pass) {
         image_infos.reserve(layout.textures.size() * 2);
         std::vector<vk::WriteDescriptorSet> writes;
         for (const UniformBlockSlot& slot : layout.uniform_blocks) {
+          if (slot.push_constant) continue;
           buffer_infos.emplace_back(*uniforms.buffer, offset, slot.size);
           writes.emplace_back(draw_sets[i], slot.binding, 0, vk::DescriptorType::eUniformBuffer,
                               nullptr, buffer_infos.back());
@@ -835,6 +863,12 @@ Result<void> VulkanBackend::render(const RenderPass& pass) {
         if (draw_sets[i])
           rec.cmd.bindDescriptorSets(vk::PipelineBindPoint::eGraphics,
                                      *draw.program->pipeline_layout, 0, draw_sets[i], nullptr);
+        if (const std::optional<size_t> push = draw.program->push_constant_slot) {
+          const std::vector<std::byte>& bytes = draw.uniforms[*push]->bytes;
+          rec.cmd.pushConstants<std::byte>(*draw.program->pipeline_layout,
+                                           vk::ShaderStageFlagBits::eVertex | vk::ShaderStageFlagBits::eFragment, 0,
+                                           bytes);
+        }
         if (draw.program->fullscreen) {
           rec.cmd.draw(3, 1, 0, 0);
         } else {

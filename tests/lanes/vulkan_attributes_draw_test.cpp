@@ -2,6 +2,7 @@
 // combined image sampler serves both on Vulkan), a specialization constant read at its default,
 // and a user-defined semantic and [[vk::location]] between the stages of a program.
 #include <cstring>
+#include <string>
 
 #include <gtest/gtest.h>
 
@@ -54,6 +55,51 @@ TEST_F(VulkanAttributesDraw, ACombinedBindingAndASpecializationConstantReadTheSa
         EXPECT_FLOAT_EQ(got.z, 0.3f) << x << "," << y;
         EXPECT_FLOAT_EQ(got.w, 0.4f) << x << "," << y;
       }
+  }
+}
+
+// A push-constant block given like any constant buffer: push constants on the Vulkan lanes, a
+// uniform block on gl. glslang's HLSL front end (vk-hlsl) keeps only ConstantBuffer<T>'s form.
+constexpr const char* kPushConstantsSource = R"(
+#pragma fragment f
+struct Tint { float4 color; float scale; };
+[[vk::push_constant]] ConstantBuffer<Tint> tint;
+float4 f(float2 uv : TEXCOORD0) : SV_Target { return tint.color * tint.scale; }
+)";
+constexpr const char* kPushConstantGlobalSource = R"(
+#pragma fragment f
+struct Tint { float4 color; float scale; };
+[[vk::push_constant]] Tint tint;
+float4 f(float2 uv : TEXCOORD0) : SV_Target { return tint.color * tint.scale; }
+)";
+
+TEST_F(VulkanAttributesDraw, APushConstantBlockReadsWhatTheHostGivesOnEveryLane) {
+  struct Tint {
+    float color[4];
+    float scale;
+    float pad[3];  // HLSL rounds a buffer up to 16 bytes
+  } given{{0.25f, 0.5f, 0.75f, 1.0f}, 0.5f, {}};
+  for (const char* source : {kPushConstantsSource, kPushConstantGlobalSource}) {
+    for (Lane lane : harness::all_lanes()) {
+      SCOPED_TRACE(std::string(harness::lane_name(lane)) + (source == kPushConstantsSource ? " ConstantBuffer" : " struct"));
+      auto module = hlsl::compile_text("push.hlsl", source, {});
+      ASSERT_TRUE(module->ok());
+      ASSERT_TRUE(module->reflection.constant_buffers.at(0).push_constant);
+      auto image = harness::evaluate(*module, lane, backend(lane), 2, 2, {{"tint", harness::uniform_bytes(given)}});
+      if (lane == Lane::VkHlsl && source == kPushConstantGlobalSource) {
+        ASSERT_FALSE(image);
+        EXPECT_NE(image.error().to_string().find("reads a [[vk::push_constant]] struct global as a member of $Global"),
+                  std::string::npos)
+            << image.error().to_string();
+        continue;
+      }
+      ASSERT_TRUE(image) << image.error().to_string();
+      const glm::vec4 got = image->at(1, 1);
+      EXPECT_FLOAT_EQ(got.x, 0.125f);
+      EXPECT_FLOAT_EQ(got.y, 0.25f);
+      EXPECT_FLOAT_EQ(got.z, 0.375f);
+      EXPECT_FLOAT_EQ(got.w, 0.5f);
+    }
   }
 }
 
