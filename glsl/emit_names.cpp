@@ -54,6 +54,34 @@ std::string type_suffix(const Type& type) {
   return suffix;
 }
 
+// Every name the unit declares for a value (a global, field, cbuffer member, parameter or local),
+// and with `every_declaration` the names of its structs, typedefs and functions too.
+std::vector<std::string_view> names_in(const TranslationUnit& unit, bool every_declaration) {
+  std::vector<std::string_view> names;
+  for (const auto& decl : unit.decls) {
+    if (!decl) continue;
+    if (every_declaration || decl->kind == DeclKind::Var) names.push_back(decl->name);
+    switch (decl->kind) {
+      case DeclKind::Struct:
+        for (const FieldDecl& field : static_cast<const StructDecl&>(*decl).fields) names.push_back(field.name);
+        break;
+      case DeclKind::CBuffer:
+        for (const auto& member : static_cast<const CBufferDecl&>(*decl).members)
+          if (member) names.push_back(member->name);
+        break;
+      case DeclKind::Function: {
+        const auto& function = static_cast<const FunctionDecl&>(*decl);
+        for (const auto& param : function.params)
+          if (param) names.push_back(param->name);
+        collect_local_names(function.body.get(), names);
+        break;
+      }
+      default: break;
+    }
+  }
+  return names;
+}
+
 }  // namespace
 
 Names::Names(const TranslationUnit& unit, Flavour flavour) : unit_(unit) {
@@ -113,28 +141,7 @@ bool Names::is_user_name(std::string_view name) const {
   if (!user_gathered_) {
     // Gathered on the first question: most units rename nothing and never ask.
     user_gathered_ = true;
-    std::vector<std::string_view> names;
-    for (const auto& decl : unit_.decls) {
-      if (!decl) continue;
-      names.push_back(decl->name);
-      switch (decl->kind) {
-        case DeclKind::Struct:
-          for (const FieldDecl& field : static_cast<const StructDecl&>(*decl).fields) names.push_back(field.name);
-          break;
-        case DeclKind::CBuffer:
-          for (const auto& member : static_cast<const CBufferDecl&>(*decl).members)
-            if (member) names.push_back(member->name);
-          break;
-        case DeclKind::Function: {
-          const auto& function = static_cast<const FunctionDecl&>(*decl);
-          for (const auto& param : function.params)
-            if (param) names.push_back(param->name);
-          collect_local_names(function.body.get(), names);
-          break;
-        }
-        default: break;
-      }
-    }
+    const std::vector<std::string_view> names = names_in(unit_, true);
     user_names_ = StringIndex(names.size());
     for (std::string_view user : names) user_names_.insert(user);
   }
@@ -175,28 +182,7 @@ const std::string& Names::variable(const Decl* decl) const {
 bool Names::is_value_name(std::string_view name) const {
   if (!values_gathered_) {
     values_gathered_ = true;
-    std::vector<std::string_view> names;
-    for (const auto& decl : unit_.decls) {
-      if (!decl) continue;
-      switch (decl->kind) {
-        case DeclKind::Var: names.push_back(decl->name); break;
-        case DeclKind::Struct:
-          for (const FieldDecl& field : static_cast<const StructDecl&>(*decl).fields) names.push_back(field.name);
-          break;
-        case DeclKind::CBuffer:
-          for (const auto& member : static_cast<const CBufferDecl&>(*decl).members)
-            if (member) names.push_back(member->name);
-          break;
-        case DeclKind::Function: {
-          const auto& function = static_cast<const FunctionDecl&>(*decl);
-          for (const auto& param : function.params)
-            if (param) names.push_back(param->name);
-          collect_local_names(function.body.get(), names);
-          break;
-        }
-        default: break;
-      }
-    }
+    const std::vector<std::string_view> names = names_in(unit_, false);
     value_names_ = StringIndex(names.size());
     for (std::string_view value : names) value_names_.insert(value);
   }

@@ -4,6 +4,7 @@
 
 #include <string>
 
+#include "glsl/emitted_fragment_for_tests.h"
 #include "glsl/glsl_emitter.h"
 
 namespace xshade::glsl {
@@ -11,24 +12,10 @@ namespace {
 
 using ::testing::HasSubstr;
 
-// The fragment stage of `source` in `flavour`; a front-end or emitter error fails the test.
-std::string lit_fragment(const std::string& source, Flavour flavour) {
-  auto module = hlsl::compile_text("test.hlsl", source, {});
-  if (!module->ok()) {
-    ADD_FAILURE() << module->diagnostics.render_all();
-    return "";
-  }
-  auto program = emit(*module, {flavour});
-  if (!program || !program->fragment) {
-    ADD_FAILURE() << (program ? "no fragment stage" : program.error().to_string());
-    return "";
-  }
-  return program->fragment->text;
-}
 
 TEST(LitInGlsl, IsTheDocumentedFormulaOnFloatScalars) {
   for (Flavour flavour : {Flavour::Gl, Flavour::Vk}) {
-    const std::string text = lit_fragment(
+    const std::string text = emitted_fragment(
         "#pragma fragment frag\nfloat4 _A;\n"
         "float4 frag() : SV_Target { return lit(_A.x, _A.y, _A.z); }\n",
         flavour);
@@ -40,7 +27,7 @@ TEST(LitInGlsl, IsTheDocumentedFormulaOnFloatScalars) {
 }
 
 TEST(LitInGlsl, EveryArgumentBecomesAFloat) {
-  const std::string text = lit_fragment(
+  const std::string text = emitted_fragment(
       "#pragma fragment frag\nfloat4 _A;\nint _I;\nuint _U;\n"
       "float4 frag() : SV_Target {\n"
       "  float1 one = _A.x;\n"

@@ -5,6 +5,7 @@
 
 #include <string>
 
+#include "glsl/emitted_fragment_for_tests.h"
 #include "glsl/glsl_emitter.h"
 
 namespace xshade::glsl {
@@ -13,23 +14,9 @@ namespace {
 using ::testing::HasSubstr;
 using ::testing::Not;
 
-// The fragment stage of `source` in `flavour`; a front-end or emitter error fails the test.
-std::string struct_names_fragment(const std::string& source, Flavour flavour) {
-  auto module = hlsl::compile_text("test.hlsl", source, {});
-  if (!module->ok()) {
-    ADD_FAILURE() << module->diagnostics.render_all();
-    return "";
-  }
-  auto program = emit(*module, {flavour});
-  if (!program || !program->fragment) {
-    ADD_FAILURE() << (program ? "no fragment stage" : program.error().to_string());
-    return "";
-  }
-  return program->fragment->text;
-}
 
 TEST(StructNamesInGlsl, AStructAVariableIsNamedLikeTakesANameOfItsOwn) {
-  const std::string text = struct_names_fragment(
+  const std::string text = emitted_fragment(
       "#pragma fragment frag\n"
       "struct Light { float4 color; };\n"
       "struct Surface { float4 albedo; };\n"
@@ -44,7 +31,7 @@ TEST(StructNamesInGlsl, AStructAVariableIsNamedLikeTakesANameOfItsOwn) {
 }
 
 TEST(StructNamesInGlsl, TheNewNameAvoidsTheAuthorsNames) {
-  const std::string text = struct_names_fragment(
+  const std::string text = emitted_fragment(
       "#pragma fragment frag\n"
       "struct S { float4 a; };\n"
       "float4 S_t;\n"

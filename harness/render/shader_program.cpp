@@ -210,7 +210,12 @@ Result<LaneStages> stages_for_lane(const hlsl::Module& module, Lane lane, const 
     } else {
       auto words = spirv::compile_vulkan_glsl(emitted_stage->text, vertex ? spirv::Stage::Vertex : spirv::Stage::Fragment,
                                               source.name);
-      if (!words) return fail(with_source_names(words.error(), emitted->source_files));
+      if (!words) {
+        // glslang refusing the GLSL xshade wrote is xshade's fault, whatever the shader says.
+        Error refused = with_source_names(words.error(), emitted->source_files);
+        refused.kind = ErrorKind::Internal;
+        return fail(std::move(refused));
+      }
       source.spirv = std::move(words->words);
     }
     (vertex ? stages.vertex : stages.fragment) = std::move(source);
@@ -218,14 +223,14 @@ Result<LaneStages> stages_for_lane(const hlsl::Module& module, Lane lane, const 
   return stages;
 }
 
-// What the harness cannot draw of what Vulkan's attributes ask ([[vk::...]]), said before it is
-// compiled for a lane: its backends bind descriptor set 0 and no push constants, and its meshes
-// feed the vertex format's locations.
 std::string array_of_resources(const std::string& name, uint32_t count) {
   return "'" + name + "' is an array of " + std::to_string(count) +
          " resources, which a scene cannot give yet (it binds one texture or buffer per name)";
 }
 
+// What the harness cannot draw, said before the program is compiled for a lane: its backends bind
+// descriptor set 0, a scene gives no buffers, subpass inputs or arrays of resources, lavapipe has
+// no variable-rate shading, and its meshes feed the vertex format's locations.
 Result<void> drawable(const hlsl::Module& module, Lane lane) {
   const hlsl::Reflection& reflection = module.reflection;
   const SourceLocation where = module.sources.resolve({module.main_file, 0, 0});
