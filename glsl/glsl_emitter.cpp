@@ -163,14 +163,15 @@ std::vector<StageItem> stage_items(const FunctionDecl& entry, bool inputs, const
   return items;
 }
 
-// Where each SV_ClipDistanceN (or SV_CullDistanceN) of a stage begins in gl_ClipDistance[] (or
-// gl_CullDistance[]): in the order of N, as DXC packs them, each taking its components. Keyed by
-// the item's path; `total` is the array's size.
-constexpr uint32_t kMaxDistanceComponents = 8;
-
 // "[N]" after the name of an array of N resources; nothing after a single one.
 std::string array_suffix(uint32_t count) { return count > 1 ? "[" + std::to_string(count) + "]" : std::string(); }
 
+// Direct3D's and Vulkan's clip and cull distance components, together.
+constexpr uint32_t kMaxDistanceComponents = 8;
+
+// Where each SV_ClipDistanceN (or SV_CullDistanceN) of a stage begins in gl_ClipDistance[] (or
+// gl_CullDistance[]): in the order of N, as DXC packs them, each taking its components. Keyed by
+// the item's path; `total` is the array's size.
 struct DistancePacking {
   std::map<std::string, uint32_t> offsets;
   uint32_t total = 0;

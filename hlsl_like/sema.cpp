@@ -152,7 +152,7 @@ std::optional<std::string> required_type(SemanticKind kind, const Type& type) {
       break;
     case SemanticKind::SvClipDistance:
     case SemanticKind::SvCullDistance:
-      if (!((type.is_scalar() || type.is_vector()) && type.is_floating())) return "float or a float vector";
+      if (!((type.is_scalar() || type.is_vector()) && type.is_floating())) return "a float or a float vector";
       break;
     default:
       // A float matrix takes a location per row, as DXC gives it; GLSL has no integer matrices.
