@@ -82,6 +82,19 @@ std::vector<std::string_view> names_in(const TranslationUnit& unit, bool every_d
   return names;
 }
 
+// Whether `index` holds `name`, the index made of names_in(unit, every_declaration) on the first
+// question: most units rename nothing and never ask.
+bool gathered_contains(const TranslationUnit& unit, bool every_declaration, bool& gathered, StringIndex& index,
+                       std::string_view name) {
+  if (!gathered) {
+    gathered = true;
+    const std::vector<std::string_view> names = names_in(unit, every_declaration);
+    index = StringIndex(names.size());
+    for (std::string_view each : names) index.insert(each);
+  }
+  return index.find(name) != StringIndex::kAbsent;
+}
+
 }  // namespace
 
 Names::Names(const TranslationUnit& unit, Flavour flavour) : unit_(unit) {
@@ -138,14 +151,7 @@ Names::Names(const TranslationUnit& unit, Flavour flavour) : unit_(unit) {
 }
 
 bool Names::is_user_name(std::string_view name) const {
-  if (!user_gathered_) {
-    // Gathered on the first question: most units rename nothing and never ask.
-    user_gathered_ = true;
-    const std::vector<std::string_view> names = names_in(unit_, true);
-    user_names_ = StringIndex(names.size());
-    for (std::string_view user : names) user_names_.insert(user);
-  }
-  return user_names_.find(name) != StringIndex::kAbsent;
+  return gathered_contains(unit_, true, user_gathered_, user_names_, name);
 }
 
 std::string Names::of(const std::string& name) const {
@@ -180,13 +186,7 @@ const std::string& Names::variable(const Decl* decl) const {
 }
 
 bool Names::is_value_name(std::string_view name) const {
-  if (!values_gathered_) {
-    values_gathered_ = true;
-    const std::vector<std::string_view> names = names_in(unit_, false);
-    value_names_ = StringIndex(names.size());
-    for (std::string_view value : names) value_names_.insert(value);
-  }
-  return value_names_.find(name) != StringIndex::kAbsent;
+  return gathered_contains(unit_, false, values_gathered_, value_names_, name);
 }
 
 const std::string& Names::type(const StructDecl* decl) const {

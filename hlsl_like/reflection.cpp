@@ -715,33 +715,22 @@ Reflection reflect(const TranslationUnit& unit, const EntryPoints& entry_points,
   // An unread resource takes a register only while one is free: it is never bound, and a file
   // of many shaders may declare more than a class holds.
   for (bool used_pass : {true, false}) {
-    for (auto [index, var] : pending_textures) {
-      if (used(var) != used_pass) continue;
-      TextureResource& texture = reflection.textures[index];
-      texture.used = used_pass;
-      if (var->vk.binding) continue;
-      texture.set = var->binding.space;
-      if (var->binding.register_class != 0) texture.binding = textures.binding_of(var->binding);
-      else texture.binding = textures.next_free(var->name, var->loc, used_pass, texture.count).value_or(0);
-    }
-    for (auto [index, var] : pending_buffers_read) {
-      if (used(var) != used_pass) continue;
-      StorageBufferResource& buffer = reflection.buffers[index];
-      buffer.used = used_pass;
-      if (var->vk.binding) continue;
-      buffer.set = var->binding.space;
-      if (var->binding.register_class != 0) buffer.binding = textures.binding_of(var->binding);
-      else buffer.binding = textures.next_free(var->name, var->loc, used_pass).value_or(0);
-    }
-    for (auto [index, var] : pending_samplers) {
-      if (used(var) != used_pass) continue;
-      SamplerResource& sampler = reflection.samplers[index];
-      sampler.used = used_pass;
-      if (var->vk.binding) continue;
-      sampler.set = var->binding.space;
-      if (var->binding.register_class != 0) sampler.binding = samplers.binding_of(var->binding);
-      else sampler.binding = samplers.next_free(var->name, var->loc, used_pass, sampler.count).value_or(0);
-    }
+    const auto place = [&](const auto& pending, auto& resources, RegisterClass& registers) {
+      for (auto [index, var] : pending) {
+        if (used(var) != used_pass) continue;
+        auto& resource = resources[index];
+        resource.used = used_pass;
+        if (var->vk.binding) continue;
+        resource.set = var->binding.space;
+        uint32_t count = 1;
+        if constexpr (requires { resource.count; }) count = resource.count;
+        if (var->binding.register_class != 0) resource.binding = registers.binding_of(var->binding);
+        else resource.binding = registers.next_free(var->name, var->loc, used_pass, count).value_or(0);
+      }
+    };
+    place(pending_textures, reflection.textures, textures);
+    place(pending_buffers_read, reflection.buffers, textures);  // shader resource views share t
+    place(pending_samplers, reflection.samplers, samplers);
   }
 
   give_vulkan_bindings(reflection, diagnostics);
