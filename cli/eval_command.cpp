@@ -55,7 +55,7 @@ void print_traced(const EvalOptions& options, const std::filesystem::path& file,
   }
   harness::FloatImage record;
   auto traced = options.seed ? program->run_seeded(backend, width, height, *options.seed, &record)
-                             : program->run(backend, width, height, {}, {}, &record);
+                             : program->run(backend, width, height, {}, &record);
   (void)backend.destroy(program->handle());  // made here, destroyed once
   if (!traced) {
     fmt::print("{}: the traced render failed: {}\n", name, traced.error().to_string());

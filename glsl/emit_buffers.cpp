@@ -10,10 +10,10 @@ using namespace hlsl;
 
 namespace {
 
-// The GLSL value of `type` whose first word is words[base + offset] (Direct3D's structured
+// The GLSL value of `type` whose first word is read(base + offset) (Direct3D's structured
 // layout: four bytes per scalar in order, a matrix column by column, HLSL's default packing).
-std::string word_value(StageEmitter& emitter, const Type& type, const std::string& words, uint32_t offset, Loc loc) {
-  const auto word = [&](uint32_t k) { return words + "[base + " + std::to_string(offset + k) + "u]"; };
+std::string word_value(StageEmitter& emitter, const Type& type, const std::string& read, uint32_t offset, Loc loc) {
+  const auto word = [&](uint32_t k) { return read + "(base + " + std::to_string(offset + k) + "u)"; };
   const auto scalar = [&](ScalarType scalar_type, uint32_t k) -> std::string {
     switch (scalar_type) {
       case ScalarType::Float:
@@ -42,7 +42,7 @@ std::string word_value(StageEmitter& emitter, const Type& type, const std::strin
       const uint32_t size = structured_size(type.element()) / 4;
       std::string text = emitter.type_name(type, loc) + "(";
       for (uint32_t i = 0; i < type.array_length(); ++i)
-        text += (i ? ", " : "") + word_value(emitter, type.element(), words, offset + i * size, loc);
+        text += (i ? ", " : "") + word_value(emitter, type.element(), read, offset + i * size, loc);
       return text + ")";
     }
     case TypeKind::Struct: {
@@ -50,7 +50,7 @@ std::string word_value(StageEmitter& emitter, const Type& type, const std::strin
       uint32_t at = offset;
       bool first = true;
       for (const FieldDecl& field : type.struct_decl()->fields) {
-        text += (first ? "" : ", ") + word_value(emitter, field.type, words, at, loc);
+        text += (first ? "" : ", ") + word_value(emitter, field.type, read, at, loc);
         at += structured_size(field.type) / 4;
         first = false;
       }
@@ -79,7 +79,7 @@ const StorageBufferResource* StageEmitter::buffer_of(const Expr* object, Loc loc
 std::string StageEmitter::buffer_declaration(const StorageBufferResource& buffer) const {
   const std::string place = (flavour_ == Flavour::Vk ? "set = " + std::to_string(buffer.set) + ", " : std::string()) +
                             "binding = " + std::to_string(buffer.binding);
-  return "layout(std430, " + place + ") readonly buffer xs_buffer_" + buffer.name + " { uint xs_words[]; } " +
+  return "layout(std430, " + place + ") readonly buffer " + buffer_block_name(buffer.name) + " { uint xs_words[]; } " +
          names_.of(buffer.name) + ";";
 }
 
@@ -92,8 +92,12 @@ std::string StageEmitter::buffer_element_helper(const StorageBufferResource& buf
   // A ByteAddressBuffer is addressed in bytes (Direct3D ignores the two low bits), the others by element.
   const std::string base = bytes ? "address >> 2u" : "index * " + std::to_string(buffer.stride / 4) + "u";
   const std::string type = type_name(element, loc);
+  // A word past the bound buffer's end reads 0, as Direct3D reads past a view's end.
+  const std::string read = "xs_word_" + buffer.name;
+  helpers_.add(read, "uint " + read + "(uint at) {\n  return at < uint(" + instance + ".xs_words.length()) ? " + instance +
+                         ".xs_words[at] : 0u;\n}\n");
   helpers_.add(name, type + " " + name + "(uint " + (bytes ? "address" : "index") + ") {\n  uint base = " + base +
-                         ";\n  return " + word_value(*this, element, instance + ".xs_words", 0, loc) + ";\n}\n");
+                         ";\n  return " + word_value(*this, element, read, 0, loc) + ";\n}\n");
   return name;
 }
 

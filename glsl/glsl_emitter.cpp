@@ -25,6 +25,8 @@ std::string block_name(std::string_view constant_buffer_name) {
   return std::string(constant_buffer_name);
 }
 
+std::string buffer_block_name(std::string_view buffer_name) { return "xs_buffer_" + std::string(buffer_name); }
+
 namespace detail {
 
 using namespace hlsl;

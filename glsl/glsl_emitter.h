@@ -128,6 +128,9 @@ Result<EmittedProgram> emit(const hlsl::Module& module, const EmitOptions& optio
 // The GLSL name of a constant buffer's block, by which the harness binds uniform blocks on
 // OpenGL: "$Globals" -> "xs_Globals"; other names unchanged unless GLSL reserves them.
 std::string block_name(std::string_view constant_buffer_name);
+// The GLSL name of a read-only buffer's storage block (hlsl::StorageBufferResource), which an
+// OpenGL program lists among its storage blocks.
+std::string buffer_block_name(std::string_view buffer_name);
 // The GLSL instance name of a `ConstantBuffer<S> name` block, through which name.field is read.
 std::string constant_buffer_instance(std::string_view variable_name);
 

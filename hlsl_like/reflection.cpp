@@ -862,20 +862,5 @@ bool is_read_only_buffer(BufferKind kind) {
   return kind == BufferKind::StructuredBuffer || kind == BufferKind::ByteAddressBuffer || kind == BufferKind::Buffer;
 }
 
-uint32_t structured_size(const Type& type) {
-  switch (type.kind()) {
-    case TypeKind::Scalar:
-    case TypeKind::Vector:
-    case TypeKind::Matrix: return 4 * type.component_count();  // half is 32 bits without -enable-16bit-types
-    case TypeKind::Array: return type.array_length() * structured_size(type.element());
-    case TypeKind::Struct: {
-      uint32_t size = 0;
-      if (type.struct_decl())
-        for (const FieldDecl& field : type.struct_decl()->fields) size += structured_size(field.type);
-      return size;
-    }
-    default: return 0;
-  }
-}
 
 }  // namespace xshade::hlsl

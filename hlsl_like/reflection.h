@@ -110,8 +110,6 @@ struct StorageBufferResource {
 };
 // Whether this target reads `kind` (the read-only buffers); the read-write ones are refused.
 bool is_read_only_buffer(BufferKind kind);
-// Bytes a value of `type` takes in a structured buffer, packed as Direct3D packs it.
-uint32_t structured_size(const Type& type);
 
 // A stage input or output with the location the compiler gave it.
 struct StageVariable {

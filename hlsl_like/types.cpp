@@ -225,4 +225,44 @@ bool Type::same_non_numeric(const Type& a, const Type& b) {
   }
 }
 
+std::vector<ScalarType> structured_words(const Type& type) {
+  std::vector<ScalarType> words;
+  switch (type.kind()) {
+    case TypeKind::Scalar:
+    case TypeKind::Vector:
+    case TypeKind::Matrix: words.assign(type.component_count(), type.scalar_type()); break;
+    case TypeKind::Array:
+      for (uint32_t i = 0; i < type.array_length(); ++i) {
+        const std::vector<ScalarType> element = structured_words(type.element());
+        words.insert(words.end(), element.begin(), element.end());
+      }
+      break;
+    case TypeKind::Struct:
+      if (type.struct_decl())
+        for (const FieldDecl& field : type.struct_decl()->fields) {
+          const std::vector<ScalarType> member = structured_words(field.type);
+          words.insert(words.end(), member.begin(), member.end());
+        }
+      break;
+    default: break;
+  }
+  return words;
+}
+
+uint32_t structured_size(const Type& type) {
+  switch (type.kind()) {
+    case TypeKind::Scalar:
+    case TypeKind::Vector:
+    case TypeKind::Matrix: return 4 * type.component_count();  // half is 32 bits without -enable-16bit-types
+    case TypeKind::Array: return type.array_length() * structured_size(type.element());
+    case TypeKind::Struct: {
+      uint32_t size = 0;
+      if (type.struct_decl())
+        for (const FieldDecl& field : type.struct_decl()->fields) size += structured_size(field.type);
+      return size;
+    }
+    default: return 0;
+  }
+}
+
 }  // namespace xshade::hlsl

@@ -4,6 +4,7 @@
 #include <cstdint>
 #include <memory>
 #include <string>
+#include <vector>
 
 namespace xshade::hlsl {
 
@@ -145,5 +146,11 @@ class Type {
 };
 
 std::string scalar_name(ScalarType scalar);
+
+// Bytes a value of `type` takes in a structured buffer, packed as Direct3D packs it.
+uint32_t structured_size(const Type& type);
+// The scalar type of each 32-bit word of a value of `type` in a structured buffer, in order
+// (structured_size / 4 of them).
+std::vector<ScalarType> structured_words(const Type& type);
 
 }  // namespace xshade::hlsl

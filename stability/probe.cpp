@@ -46,7 +46,7 @@ Result<harness::FloatImage> run_probe(const CaseContext& context, const std::str
     return fail(fmt::format("{} inputs do not fit {}'s ProbeInputs", inputs.size() / vectors_per_input, file));
   std::memcpy(bytes.data(), inputs.data(), inputs.size() * sizeof(glm::vec4));
   const auto columns = uint32_t(inputs.size() / vectors_per_input);
-  auto image = (*program)->run(context.backend, columns, rows, {{"ProbeInputs", bytes}});
+  auto image = (*program)->run(context.backend, columns, rows, {.constant_buffers = {{"ProbeInputs", bytes}}});
   if (!image || labels.empty() || context.lane == harness::Lane::VkHlsl) return image;
   const harness::NonFiniteCount bad = harness::count_non_finite(*image);
   if (bad.nan + bad.inf == 0) return image;
@@ -54,7 +54,7 @@ Result<harness::FloatImage> run_probe(const CaseContext& context, const std::str
   auto traced = context.probes.get(context, file, /*traced=*/true);
   if (!traced) return fail(traced.error());
   harness::FloatImage record;
-  auto again = (*traced)->run(context.backend, columns, rows, {{"ProbeInputs", std::move(bytes)}}, {}, &record);
+  auto again = (*traced)->run(context.backend, columns, rows, {.constant_buffers = {{"ProbeInputs", std::move(bytes)}}}, &record);
   if (!again) return fail(again.error());
   const glsl::NonfiniteTrace& table = (*traced)->trace();
   for (uint32_t x = 0; x < columns && x < labels.size(); ++x)

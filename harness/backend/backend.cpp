@@ -168,6 +168,12 @@ Result<void> match_by_name(const std::vector<Slot>& slots, const std::vector<Bin
         return fail(where + ": " + kind + " '" + binding.name + "' needs " + std::to_string(slot->size) +
                     " bytes but " + std::to_string(binding.bytes.size()) + " were bound");
     }
+    if constexpr (std::is_same_v<Binding, StorageBufferBinding>) {
+      // The shaders read 32-bit words, and no API binds an empty buffer.
+      if (binding.bytes.empty() || binding.bytes.size() % 4 != 0)
+        return fail(where + ": " + kind + " '" + binding.name + "' needs a whole number of 32-bit words, at least one, but " +
+                    std::to_string(binding.bytes.size()) + " bytes were bound");
+    }
     const auto index = size_t(slot - slots.begin());
     if (matched[index]) return fail(where + ": " + kind + " '" + binding.name + "' is bound twice");
     matched[index] = &binding;
@@ -198,6 +204,10 @@ Result<MatchedBindings> match_bindings(const ProgramLayout& layout, const DrawIt
   if (auto ok = match_by_name(layout.uniform_blocks, draw.uniforms, matched.uniforms, "uniform block", where); !ok)
     return fail(ok.error());
   if (auto ok = match_by_name(layout.textures, draw.textures, matched.textures, "texture", where); !ok)
+    return fail(ok.error());
+  if (auto ok = match_by_name(layout.storage_buffers, draw.storage_buffers, matched.storage_buffers, "storage buffer",
+                              where);
+      !ok)
     return fail(ok.error());
   return matched;
 }

@@ -189,9 +189,18 @@ struct TextureSlot {
   std::string glsl_name = {};
   const std::string& uniform_name() const { return glsl_name.empty() ? name : glsl_name; }
 };
+// A read-only buffer (HLSL's StructuredBuffer, ByteAddressBuffer, Buffer): a shader storage
+// buffer of 32-bit words at `binding` (a storage-buffer binding point on OpenGL, a storage-buffer
+// descriptor on Vulkan) whose bytes each draw gives.
+struct StorageBufferSlot {
+  std::string name;
+  uint32_t binding = 0;
+  std::string glsl_block = {};  // OpenGL: the block's name in the GLSL, which the linked program lists
+};
 struct ProgramLayout {
   std::vector<UniformBlockSlot> uniform_blocks;
   std::vector<TextureSlot> textures;
+  std::vector<StorageBufferSlot> storage_buffers = {};
 };
 
 struct ShaderStageSource {
@@ -232,6 +241,10 @@ struct UniformBinding {
 struct TextureBinding {
   std::string name;  // a TextureSlot's name
   TextureSource source;
+};
+struct StorageBufferBinding {
+  std::string name;              // a StorageBufferSlot's name
+  std::vector<std::byte> bytes;  // whole 32-bit words, at least one
 };
 
 // How a draw is rasterized, depth-tested and blended into the target: the render state of a
@@ -304,14 +317,17 @@ struct DrawItem {
   std::vector<UniformBinding> uniforms;
   std::vector<TextureBinding> textures;
   DrawState state;
+  std::vector<StorageBufferBinding> storage_buffers = {};
 };
 
 // A draw's bindings matched to its program's layout by name: per layout slot, the binding that
 // fills it. Fails, naming `where` and the slot, when a name matches no slot, a uniform block has
-// the wrong size, or a slot is bound twice or not at all. Every backend checks draws with this.
+// the wrong size, a storage buffer is not whole words, or a slot is bound twice or not at all.
+// Every backend checks draws with this.
 struct MatchedBindings {
   std::vector<const UniformBinding*> uniforms;  // per ProgramLayout::uniform_blocks entry
   std::vector<const TextureBinding*> textures;  // per ProgramLayout::textures entry
+  std::vector<const StorageBufferBinding*> storage_buffers;  // per ProgramLayout::storage_buffers entry
 };
 Result<MatchedBindings> match_bindings(const ProgramLayout& layout, const DrawItem& draw,
                                        const std::string& where);

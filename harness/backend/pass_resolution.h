@@ -30,6 +30,7 @@ struct ResolvedDraw {
   Mesh* mesh = nullptr;                               // null for a full-screen program
   std::vector<const UniformBinding*> uniforms;        // per layout uniform block
   std::vector<BoundTexture<Texture>> textures;        // per layout texture slot
+  std::vector<const StorageBufferBinding*> storage_buffers;  // per layout storage buffer
 };
 
 template <class Target, class Program, class Mesh, class Texture>
@@ -75,6 +76,7 @@ Result<ResolvedPass<Target, Program, Mesh, Texture>> resolve_pass(
     auto matched = match_bindings(layout, item, where);
     if (!matched) return fail(matched.error());
     draw.uniforms = std::move(matched->uniforms);
+    draw.storage_buffers = std::move(matched->storage_buffers);
 
     for (size_t index = 0; index < layout.textures.size(); ++index) {
       const TextureBinding& binding = *matched->textures[index];

@@ -6,6 +6,10 @@
 // (the OSMesa route has a 1x1 dummy one, the EGL route none). Every public call makes this
 // backend's context current when it is not, so that several backends (of either route) can
 // share one process, and ends by checking glGetError.
+//
+// Why this file is long: it is the one class of the Backend seam for OpenGL, each call one
+// context-current step of the API (textures of every shape, programs with their interface checked,
+// a render of draws with their state); its stateless pieces live in gl_support.
 #include "harness/gl/gl_backend.h"
 
 #include <algorithm>
@@ -93,6 +97,7 @@ struct Program {
   uint32_t clip_distances = 0;
   GlProgram program;
   std::vector<GlBuffer> uniform_buffers;  // per layout uniform block
+  std::vector<GlBuffer> storage_buffers;  // per layout storage buffer
   // Vertex inputs no mesh supplies (locations above 3), with what they read as: each draw sets
   // their generic current value to backend.h's constant (GL's own default is (0, 0, 0, 1)).
   std::vector<std::pair<GLuint, TexelKind>> unsupplied_inputs;
@@ -169,6 +174,7 @@ class GlBackend final : public Backend {
   GLint max_texture_size_ = 0;
   GLint max_uniform_buffer_bindings_ = 0;
   GLint max_texture_units_ = 0;
+  GLint max_storage_buffer_bindings_ = 0;
   GLint max_uniform_block_size_ = 0;
   GLint max_3d_texture_size_ = 0;
   GLint max_array_layers_ = 0;
@@ -285,6 +291,7 @@ Result<void> GlBackend::init(std::unique_ptr<GlContext> context, std::filesystem
   max_texture_size_ = get_integer(GL_MAX_TEXTURE_SIZE);
   max_uniform_buffer_bindings_ = get_integer(GL_MAX_UNIFORM_BUFFER_BINDINGS);
   max_texture_units_ = get_integer(GL_MAX_COMBINED_TEXTURE_IMAGE_UNITS);
+  max_storage_buffer_bindings_ = get_integer(GL_MAX_SHADER_STORAGE_BUFFER_BINDINGS);
   max_uniform_block_size_ = get_integer(GL_MAX_UNIFORM_BLOCK_SIZE);
   max_3d_texture_size_ = get_integer(GL_MAX_3D_TEXTURE_SIZE);
   max_array_layers_ = get_integer(GL_MAX_ARRAY_TEXTURE_LAYERS);
@@ -662,6 +669,18 @@ Result<ProgramHandle> GlBackend::create_program(const ProgramDesc& desc) {
         return fail(fmt::format("{}: binding {} is used by both texture '{}' and texture '{}'",
                                 what, slot.binding, it->second, slot.name));
     }
+    std::map<uint32_t, std::string> storage_bindings;
+    for (const StorageBufferSlot& slot : desc.layout.storage_buffers) {
+      if (!names.insert(slot.name).second)
+        return fail(fmt::format("{}: the layout names '{}' twice", what, slot.name));
+      if (slot.binding >= static_cast<uint32_t>(max_storage_buffer_bindings_))
+        return fail(fmt::format("{}: storage buffer '{}' has binding {}, but OpenGL allows 0..{} "
+                                "(GL_MAX_SHADER_STORAGE_BUFFER_BINDINGS)",
+                                what, slot.name, slot.binding, max_storage_buffer_bindings_ - 1));
+      if (auto [it, fresh] = storage_bindings.emplace(slot.binding, slot.name); !fresh)
+        return fail(fmt::format("{}: binding {} is used by both storage buffer '{}' and storage buffer '{}'", what,
+                                slot.binding, it->second, slot.name));
+    }
 
     // Each step's messages, or (when Mesa's shader cache skipped the step) those it gave before.
     const std::string driver = info_.renderer + '\n' + info_.driver_version;
@@ -738,6 +757,11 @@ Result<ProgramHandle> GlBackend::create_program(const ProgramDesc& desc) {
       const GLint location = gl_.GetUniformLocation(id, slot.uniform_name().c_str());
       if (location >= 0) gl_.ProgramUniform1i(id, location, static_cast<GLint>(slot.binding));
     }
+    for (size_t s = 0; s < desc.layout.storage_buffers.size(); ++s) {
+      GLuint buffer = 0;
+      gl_.CreateBuffers(1, &buffer);
+      program->storage_buffers.emplace_back(&gl_, buffer);
+    }
     return objects_.programs.insert(std::move(program));
   });
 
@@ -801,6 +825,13 @@ Result<void> GlBackend::render(const RenderPass& pass) {
         gl_.NamedBufferData(buffer, static_cast<GLsizeiptr>(padded.size()), padded.data(),
                             GL_STREAM_DRAW);
         gl_.BindBufferBase(GL_UNIFORM_BUFFER, blocks[s].binding, buffer);
+      }
+      const auto& storage = program.layout.storage_buffers;
+      for (size_t s = 0; s < storage.size(); ++s) {
+        const std::vector<std::byte>& bytes = draw.storage_buffers[s]->bytes;
+        const GLuint buffer = program.storage_buffers[s].get();
+        gl_.NamedBufferData(buffer, static_cast<GLsizeiptr>(bytes.size()), bytes.data(), GL_STREAM_DRAW);
+        gl_.BindBufferBase(GL_SHADER_STORAGE_BUFFER, storage[s].binding, buffer);
       }
       const auto& slots = program.layout.textures;
       for (size_t s = 0; s < slots.size(); ++s) {

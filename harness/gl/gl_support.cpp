@@ -338,6 +338,15 @@ Result<void> check_interface(const gl::Functions& gl, GLuint id, const ProgramLa
                               what, name, size, slot->size));
   }
 
+  // Storage blocks: each one a listed buffer's.
+  const GLuint storage_blocks = count(GL_SHADER_STORAGE_BLOCK);
+  for (GLuint index = 0; index < storage_blocks; ++index) {
+    const std::string name = resource_name(GL_SHADER_STORAGE_BLOCK, index);
+    if (std::none_of(layout.storage_buffers.begin(), layout.storage_buffers.end(),
+                     [&](const StorageBufferSlot& s) { return s.glsl_block == name; }))
+      return fail(fmt::format("{}: the program uses storage block '{}', which the layout does not list", what, name));
+  }
+
   // Uniforms outside blocks: only samplers, each listed as a texture.
   const GLuint uniforms = count(GL_UNIFORM);
   for (GLuint index = 0; index < uniforms; ++index) {

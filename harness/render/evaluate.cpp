@@ -39,6 +39,11 @@ Result<FullscreenProgram> FullscreenProgram::create(const hlsl::Module& module, 
                              default_constant_buffer(buffers[i], module.reflection.properties), std::move(declared)});
   }
   made.texture_slots_ = desc->layout.textures;
+  for (hlsl::StorageBufferResource buffer : module.reflection.buffers) {
+    if (!buffer.used) continue;
+    buffer.decl = nullptr;
+    made.storage_buffers_.push_back(std::move(buffer));
+  }
   return made;
 }
 
@@ -81,9 +86,9 @@ TextureData default_texture(const TextureSlot& slot) {
 }
 
 Result<FloatImage> FullscreenProgram::run(Backend& backend, uint32_t width, uint32_t height,
-                                          const std::map<std::string, std::vector<std::byte>>& constant_buffers,
-                                          const std::map<std::string, TextureSource>& textures,
-                                          FloatImage* record) const {
+                                          const FullscreenInputs& inputs, FloatImage* record) const {
+  const auto& constant_buffers = inputs.constant_buffers;
+  const auto& textures = inputs.textures;
   // The target and the default textures are this run's own, freed when it returns; a program is
   // run many times (the stability suite, the lane tests), and would otherwise keep every one.
   ResourceSet resources(backend);
@@ -97,6 +102,17 @@ Result<FloatImage> FullscreenProgram::run(Backend& backend, uint32_t width, uint
       return fail("constant buffer '" + buffer.name + "' needs " + std::to_string(buffer.defaults.size()) + " bytes, not " +
                   std::to_string(bytes.size()));
     draw.uniforms.push_back({buffer.slot_name, bytes});
+  }
+  for (const auto& given : inputs.storage_buffers)
+    if (std::none_of(storage_buffers_.begin(), storage_buffers_.end(),
+                     [&](const hlsl::StorageBufferResource& buffer) { return buffer.name == given.first; }))
+      return fail("the program reads no buffer named '" + given.first + "'");
+  for (const hlsl::StorageBufferResource& buffer : storage_buffers_) {
+    auto given = inputs.storage_buffers.find(buffer.name);
+    if (given == inputs.storage_buffers.end())
+      return fail("the shader reads the " + std::string(hlsl::buffer_kind_name(buffer.kind)) + " '" + buffer.name +
+                  "', which has no default: give its bytes (xshade eval: --seed N)");
+    draw.storage_buffers.push_back({buffer.name, given->second});
   }
   // A named entry, not a structured binding: clang before 16 lets no lambda capture one.
   for (const auto& given : textures)
@@ -130,24 +146,26 @@ Result<FloatImage> FullscreenProgram::run(Backend& backend, uint32_t width, uint
 
 Result<FloatImage> FullscreenProgram::run_seeded(Backend& backend, uint32_t width, uint32_t height, uint32_t seed,
                                                  FloatImage* record) const {
-  std::map<std::string, std::vector<std::byte>> constant_buffers;
-  for (const Buffer& buffer : buffers_) constant_buffers[buffer.name] = seeded_constant_buffer(buffer.declared, seed);
+  FullscreenInputs inputs;
+  for (const Buffer& buffer : buffers_) inputs.constant_buffers[buffer.name] = seeded_constant_buffer(buffer.declared, seed);
   ResourceSet resources(backend);  // the textures are this run's own
-  std::map<std::string, TextureSource> textures;
   for (const TextureSlot& slot : texture_slots_) {
     auto texture = resources.upload_texture(seeded_texture(slot, seed));
     if (!texture) return fail(texture.error());
-    textures[slot.name] = TextureSource::texture(*texture, seeded_sampler(slot));
+    inputs.textures[slot.name] = TextureSource::texture(*texture, seeded_sampler(slot));
   }
-  return run(backend, width, height, constant_buffers, textures, record);
+  for (const hlsl::StorageBufferResource& buffer : storage_buffers_)
+    inputs.storage_buffers[buffer.name] = seeded_storage_buffer(buffer, seed);
+  return run(backend, width, height, inputs, record);
 }
 
 Result<FloatImage> evaluate(const hlsl::Module& module, Lane lane, Backend& backend, uint32_t width, uint32_t height,
                             const std::map<std::string, std::vector<std::byte>>& constant_buffers,
-                            const ProgramOptions& options, const std::map<std::string, TextureSource>& textures) {
+                            const ProgramOptions& options, const std::map<std::string, TextureSource>& textures,
+                            const std::map<std::string, std::vector<std::byte>>& storage_buffers) {
   auto program = FullscreenProgram::create(module, lane, backend, options);
   if (!program) return fail(program.error());
-  Result<FloatImage> image = program->run(backend, width, height, constant_buffers, textures);
+  Result<FloatImage> image = program->run(backend, width, height, {constant_buffers, textures, storage_buffers});
   (void)backend.destroy(program->handle());  // made here, destroyed once: the backend refuses nothing
   return image;
 }

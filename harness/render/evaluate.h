@@ -20,29 +20,35 @@ namespace xshade::harness {
 std::vector<std::byte> default_constant_buffer(const hlsl::ConstantBuffer& buffer,
                                                const std::vector<hlsl::Property>& properties);
 
+// What a full-screen program reads besides its defaults, each by its HLSL name: constant buffers'
+// bytes (each the buffer's size), textures (uploaded to the backend by the caller) and read-only
+// buffers' bytes (whole 32-bit words laid out as Direct3D lays the buffer out).
+struct FullscreenInputs {
+  std::map<std::string, std::vector<std::byte>> constant_buffers = {};
+  std::map<std::string, TextureSource> textures = {};
+  std::map<std::string, std::vector<std::byte>> storage_buffers = {};
+};
+
 // A module's fragment entry made into a full-screen program on one backend, to run as often as
 // needed: the driver compiles it once. The shader reads uv (TEXCOORD0, (0,0) at the top-left)
 // and the pixel position (SV_Position); constant buffers hold their defaults unless given, and
 // every texture not given is one white texel of the shape and texel kind the shader declared
-// (a depth texel of 1 for a texture read with a comparison sampler).
+// (a depth texel of 1 for a texture read with a comparison sampler). A read-only buffer has no
+// default: one the shader reads must be given.
 class FullscreenProgram {
  public:
   static Result<FullscreenProgram> create(const hlsl::Module& module, Lane lane, Backend& backend,
                                           const ProgramOptions& options = {});
 
-  // Renders a width x height RGBA32F target. `constant_buffers` replaces the defaults of the
-  // buffers it names (by their HLSL name); each must have the buffer's size. `textures` binds
-  // the textures it names (by their HLSL name, uploaded to `backend` by the caller) in place of
-  // the white texel; a name the program does not read is an error.
+  // Renders a width x height RGBA32F target with `inputs` in place of the defaults; a name the
+  // program does not read is an error.
   // A program made with ProgramOptions::trace_nonfinite also records where non-finite values
   // were born: into `record` (glsl::NonfiniteTrace says how it reads) when given.
-  Result<FloatImage> run(Backend& backend, uint32_t width, uint32_t height,
-                         const std::map<std::string, std::vector<std::byte>>& constant_buffers = {},
-                         const std::map<std::string, TextureSource>& textures = {},
+  Result<FloatImage> run(Backend& backend, uint32_t width, uint32_t height, const FullscreenInputs& inputs = {},
                          FloatImage* record = nullptr) const;
 
-  // The same with every constant buffer and texture made from `seed` (synthetic_inputs.h) in
-  // place of the defaults and the white texel: what corpus execution feeds a real shader.
+  // The same with every constant buffer, texture and read-only buffer made from `seed`
+  // (synthetic_inputs.h) in place of the defaults: what corpus execution feeds a real shader.
   Result<FloatImage> run_seeded(Backend& backend, uint32_t width, uint32_t height, uint32_t seed,
                                 FloatImage* record = nullptr) const;
 
@@ -67,6 +73,7 @@ class FullscreenProgram {
   glsl::NonfiniteTrace trace_;
   std::vector<Buffer> buffers_;
   std::vector<TextureSlot> texture_slots_;
+  std::vector<hlsl::StorageBufferResource> storage_buffers_;  // the ones read (decl cleared)
 };
 
 // FullscreenProgram::create then run, once, then the program destroyed: what `xshade eval` and the
@@ -74,7 +81,8 @@ class FullscreenProgram {
 Result<FloatImage> evaluate(const hlsl::Module& module, Lane lane, Backend& backend, uint32_t width, uint32_t height,
                             const std::map<std::string, std::vector<std::byte>>& constant_buffers = {},
                             const ProgramOptions& options = {},
-                            const std::map<std::string, TextureSource>& textures = {});
+                            const std::map<std::string, TextureSource>& textures = {},
+                            const std::map<std::string, std::vector<std::byte>>& storage_buffers = {});
 
 // One texel of value 1 in every channel (a depth of 1 for a comparison slot) in the shape and
 // texel kind `slot` declares: what a texture the caller does not give reads.

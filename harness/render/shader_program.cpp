@@ -162,6 +162,8 @@ ProgramLayout layout_for_lane(const hlsl::Reflection& reflection, Lane lane, con
     }
     layout.textures.push_back(std::move(slot));
   }
+  for (const hlsl::StorageBufferResource& buffer : reflection.buffers)
+    if (buffer.used) layout.storage_buffers.push_back({buffer.name, buffer.binding, glsl::buffer_block_name(buffer.name)});
   return layout;
 }
 
@@ -229,7 +231,7 @@ std::string array_of_resources(const std::string& name, uint32_t count) {
 }
 
 // What the harness cannot draw, said before the program is compiled for a lane: its backends bind
-// descriptor set 0, a scene gives no buffers, subpass inputs or arrays of resources, lavapipe has
+// descriptor set 0, a scene gives no subpass inputs or arrays of resources, lavapipe has
 // no variable-rate shading, and its meshes feed the vertex format's locations.
 Result<void> drawable(const hlsl::Module& module, Lane lane) {
   const hlsl::Reflection& reflection = module.reflection;
@@ -250,9 +252,8 @@ Result<void> drawable(const hlsl::Module& module, Lane lane) {
                     "attachment; the gl target reads the texture bound at its binding at the fragment's pixel)");
   }
   for (const hlsl::StorageBufferResource& buffer : reflection.buffers)
-    if (buffer.used)
-      return refuse("'" + buffer.name + "' is a " + hlsl::buffer_kind_name(buffer.kind) +
-                    ", which a scene cannot give yet (the targets read it as a storage buffer of 32-bit words)");
+    if (buffer.used && buffer.set != 0)
+      return refuse("'" + buffer.name + "' is in descriptor set " + std::to_string(buffer.set));
   for (const hlsl::SamplerResource& sampler : reflection.samplers) {
     if (!sampler.used) continue;
     if (sampler.set != 0) return refuse("'" + sampler.name + "' is in descriptor set " + std::to_string(sampler.set));

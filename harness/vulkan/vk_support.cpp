@@ -479,6 +479,8 @@ bool layout_has_binding(const ProgramLayout& layout, uint32_t binding) {
     if (!block.push_constant && block.binding == binding) return true;
   for (const TextureSlot& texture : layout.textures)
     if (texture.binding == binding || texture.sampler_binding == binding) return true;
+  for (const StorageBufferSlot& buffer : layout.storage_buffers)
+    if (buffer.binding == binding) return true;
   return false;
 }
 

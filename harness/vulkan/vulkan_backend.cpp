@@ -155,6 +155,7 @@ class VulkanBackend final : public Backend {
   uint32_t queue_family_ = 0;
   vk::PhysicalDeviceMemoryProperties memory_properties_;
   vk::DeviceSize uniform_alignment_ = 256;
+  vk::DeviceSize storage_alignment_ = 256;
   uint32_t max_image_size_ = 4096;
   uint32_t max_uniform_range_ = 16384;
   uint32_t max_push_constants_ = 128;
@@ -248,6 +249,7 @@ Result<void> VulkanBackend::init(const VulkanOptions& options) {
       info_.driver_version.resize(paren);  // "Mesa 22.3.6 (LLVM 15.0.6)" -> "Mesa 22.3.6"
     info_.llvm_version = llvm_version_of(info_.renderer);
     uniform_alignment_ = std::max<vk::DeviceSize>(props.limits.minUniformBufferOffsetAlignment, 16);
+    storage_alignment_ = std::max<vk::DeviceSize>(props.limits.minStorageBufferOffsetAlignment, 16);
     max_image_size_ = props.limits.maxImageDimension2D;
     max_uniform_range_ = props.limits.maxUniformBufferRange;
     max_push_constants_ = props.limits.maxPushConstantsSize;
@@ -633,6 +635,12 @@ Result<ProgramHandle> VulkanBackend::create_program(const ProgramDesc& desc) {
       }
       if (!ok) return fail(ok.error());
     }
+    for (const StorageBufferSlot& slot : desc.layout.storage_buffers) {
+      if (!names.insert(slot.name).second)
+        return fail(fmt::format("{}: the layout names '{}' twice", what, slot.name));
+      if (auto ok = add(slot.binding, vk::DescriptorType::eStorageBuffer, fmt::format("storage buffer '{}'", slot.name)); !ok)
+        return fail(ok.error());
+    }
     program->set_layout =
         vk::raii::DescriptorSetLayout(device_, vk::DescriptorSetLayoutCreateInfo({}, bindings));
     const vk::DescriptorSetLayout set_layout = *program->set_layout;
@@ -703,19 +711,26 @@ Result<void> VulkanBackend::render(const RenderPass& pass) {
       Mesh* mesh;
       const std::vector<const UniformBinding*>& uniforms;
       const std::vector<BoundTexture<Image>>& textures;
+      const std::vector<const StorageBufferBinding*>& storage_buffers;
       vk::Pipeline pipeline;
       bool rows_up;  // clip -y at row 0; a full-screen program's uv (0, 0) is row 0 either way
     };
     std::vector<Resolved> draws;
     std::vector<Image*> sampled_targets;
-    vk::DeviceSize uniform_bytes = 0;
-    size_t uniform_count = 0, combined_count = 0, separate_count = 0, image_only_count = 0;
+    vk::DeviceSize uniform_bytes = 0, storage_bytes = 0;
+    size_t uniform_count = 0, combined_count = 0, separate_count = 0, image_only_count = 0, storage_count = 0;
+    const auto storage_step = [&](size_t bytes) {
+      return (bytes + storage_alignment_ - 1) / storage_alignment_ * storage_alignment_;
+    };
     for (size_t d = 0; d < resolved->draws.size(); ++d) {
       const auto& draw = resolved->draws[d];
       const bool rows_up = pass.row_origin == RowOrigin::Bottom && !draw.program->fullscreen;
       auto made = pipeline(*draw.program, *target, pass.draws[d].state, rows_up);
       if (!made) return fail(made.error());
-      draws.push_back(Resolved{draw.program, draw.mesh, draw.uniforms, draw.textures, *made, rows_up});
+      draws.push_back(
+          Resolved{draw.program, draw.mesh, draw.uniforms, draw.textures, draw.storage_buffers, *made, rows_up});
+      for (const StorageBufferBinding* buffer : draw.storage_buffers) storage_bytes += storage_step(buffer->bytes.size());
+      storage_count += draw.storage_buffers.size();
       const ProgramLayout& layout = draw.program->layout;
       for (const UniformBlockSlot& block : layout.uniform_blocks) {
         if (block.push_constant) continue;
@@ -751,6 +766,19 @@ Result<void> VulkanBackend::render(const RenderPass& pass) {
       }
       uniforms.memory.unmapMemory();
     }
+    // Storage-buffer data likewise, each draw's buffers at aligned offsets.
+    Buffer storage;
+    if (storage_bytes > 0) {
+      storage = create_buffer(storage_bytes, vk::BufferUsageFlagBits::eStorageBuffer);
+      void* mapped = storage.memory.mapMemory(0, storage_bytes);
+      vk::DeviceSize offset = 0;
+      for (const Resolved& draw : draws)
+        for (const StorageBufferBinding* buffer : draw.storage_buffers) {
+          std::memcpy(static_cast<std::byte*>(mapped) + offset, buffer->bytes.data(), buffer->bytes.size());
+          offset += storage_step(buffer->bytes.size());
+        }
+      storage.memory.unmapMemory();
+    }
     std::vector<vk::DescriptorPoolSize> pool_sizes;
     auto add_size = [&](vk::DescriptorType type, size_t count) {
       if (count) pool_sizes.emplace_back(type, static_cast<uint32_t>(count));
@@ -759,6 +787,7 @@ Result<void> VulkanBackend::render(const RenderPass& pass) {
     add_size(vk::DescriptorType::eCombinedImageSampler, combined_count);
     add_size(vk::DescriptorType::eSampledImage, separate_count + image_only_count);
     add_size(vk::DescriptorType::eSampler, separate_count);
+    add_size(vk::DescriptorType::eStorageBuffer, storage_count);
     vk::raii::DescriptorPool pool{nullptr};
     std::vector<vk::raii::DescriptorSet> sets;  // declared after the pool: freed before it
     std::vector<vk::DescriptorSet> draw_sets(draws.size());
@@ -767,11 +796,12 @@ Result<void> VulkanBackend::render(const RenderPass& pass) {
           device_,
           vk::DescriptorPoolCreateInfo(vk::DescriptorPoolCreateFlagBits::eFreeDescriptorSet,
                                        static_cast<uint32_t>(draws.size()), pool_sizes));
-      vk::DeviceSize offset = 0;
+      vk::DeviceSize offset = 0, storage_offset = 0;
       for (size_t i = 0; i < draws.size(); ++i) {
         const Resolved& draw = draws[i];
         const ProgramLayout& layout = draw.program->layout;
-        if (layout.uniform_blocks.size() == (draw.program->push_constant_slot ? 1u : 0u) && layout.textures.empty())
+        if (layout.uniform_blocks.size() == (draw.program->push_constant_slot ? 1u : 0u) && layout.textures.empty() &&
+            layout.storage_buffers.empty())
           continue;
         const vk::DescriptorSetLayout set_layout = *draw.program->set_layout;
         vk::raii::DescriptorSets allocated(device_,
@@ -781,7 +811,7 @@ Result<void> VulkanBackend::render(const RenderPass& pass) {
         // Reserved up front: the writes point into these vectors.
         std::vector<vk::DescriptorBufferInfo> buffer_infos;
         std::vector<vk::DescriptorImageInfo> image_infos;
-        buffer_infos.reserve(layout.uniform_blocks.size());
+        buffer_infos.reserve(layout.uniform_blocks.size() + layout.storage_buffers.size());
         image_infos.reserve(layout.textures.size() * 2);
         std::vector<vk::WriteDescriptorSet> writes;
         for (const UniformBlockSlot& slot : layout.uniform_blocks) {
@@ -790,6 +820,13 @@ Result<void> VulkanBackend::render(const RenderPass& pass) {
           writes.emplace_back(draw_sets[i], slot.binding, 0, vk::DescriptorType::eUniformBuffer,
                               nullptr, buffer_infos.back());
           offset += (slot.size + uniform_alignment_ - 1) / uniform_alignment_ * uniform_alignment_;
+        }
+        for (size_t s = 0; s < layout.storage_buffers.size(); ++s) {
+          const vk::DeviceSize size = draw.storage_buffers[s]->bytes.size();
+          buffer_infos.emplace_back(*storage.buffer, storage_offset, size);
+          writes.emplace_back(draw_sets[i], layout.storage_buffers[s].binding, 0, vk::DescriptorType::eStorageBuffer,
+                              nullptr, buffer_infos.back());
+          storage_offset += storage_step(size);
         }
         for (size_t s = 0; s < layout.textures.size(); ++s) {
           const TextureSlot& slot = layout.textures[s];

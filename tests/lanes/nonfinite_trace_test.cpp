@@ -54,7 +54,7 @@ Traced trace_fullscreen(harness::Lane lane, const fs::path& folder, const std::s
   EXPECT_TRUE(program) << program.error().to_string();
   if (!plain || !program) return out;
   harness::FloatImage record;
-  auto traced = program->run(**backend, 8, 8, {}, {}, &record);
+  auto traced = program->run(**backend, 8, 8, {}, &record);
   EXPECT_TRUE(traced) << traced.error().to_string();
   if (!traced) return out;
   harness::CompiledVariant variant;
