@@ -251,9 +251,13 @@ Result<void> drawable(const hlsl::Module& module, Lane lane) {
       return refuse("'" + texture.name + "' is a subpass input, which a scene cannot give yet (on Vulkan an input "
                     "attachment; the gl target reads the texture bound at its binding at the fragment's pixel)");
   }
-  for (const hlsl::StorageBufferResource& buffer : reflection.buffers)
-    if (buffer.used && buffer.set != 0)
-      return refuse("'" + buffer.name + "' is in descriptor set " + std::to_string(buffer.set));
+  for (const hlsl::StorageBufferResource& buffer : reflection.buffers) {
+    if (!buffer.used) continue;
+    if (buffer.set != 0) return refuse("'" + buffer.name + "' is in descriptor set " + std::to_string(buffer.set));
+    if (buffer.kind == hlsl::BufferKind::Buffer && lane == Lane::VkHlsl)
+      return refuse("'" + buffer.name + "' is a Buffer<T>, which glslang's HLSL front end reads as a uniform texel "
+                    "buffer, and the harness binds read-only buffers as storage buffers (the gl and vk lanes read it so)");
+  }
   for (const hlsl::SamplerResource& sampler : reflection.samplers) {
     if (!sampler.used) continue;
     if (sampler.set != 0) return refuse("'" + sampler.name + "' is in descriptor set " + std::to_string(sampler.set));
