@@ -7,6 +7,9 @@
 #include <map>
 #include <memory>
 #include <optional>
+#include <string>
+#include <string_view>
+#include <utility>
 
 #include "cli/commands.h"
 #include "base/file_io.h"
@@ -151,17 +154,35 @@ void compile_for_eval(const EvalOptions& options, FileEval& eval) {
 }
 
 // One lane's worker and the files it has still to do (cli/workers.h): it evaluates them in
-// order, reporting "done INDEX CODE" on its status pipe after each, and has the run's time limit
-// for each file. One that dies or passes the limit is that file's failure on that lane; the
-// files after it go to a new worker.
+// order, ending each file's lines with kFileEnd and then reporting "done INDEX CODE" on its status
+// pipe, and has the run's time limit for each file. One that dies or passes the limit is that
+// file's failure on that lane; the files after it go to a new worker.
 struct LaneJob {
   harness::Lane lane;
   std::vector<size_t> todo;  // indices into the evals, in order
   size_t next = 0;           // the first of `todo` not concluded
   std::optional<ChildProcess> worker = {};
   size_t first_given = 0;  // the worker's file 0 is todo[first_given]
+  // What the worker printed that is not yet a concluded file's: its output and its status come
+  // through two pipes, so a read may already hold the next file's lines.
+  std::string output = {};
   bool finished() const { return next == todo.size(); }
+
+  // The lines of the file the worker has just reported done: up to its kFileEnd.
+  std::string take_file_output();
 };
+
+// The line a worker prints after each file's lines (an ASCII record separator, which no message
+// holds).
+constexpr std::string_view kFileEnd = "\x1e\n";
+
+std::string LaneJob::take_file_output() {
+  const size_t end = output.find(kFileEnd);
+  if (end == std::string::npos) return std::exchange(output, {});
+  std::string file = output.substr(0, end);
+  output.erase(0, end + kFileEnd.size());
+  return file;
+}
 
 // The lane's result for `eval`, from its worker's output, exit code and handed-over image.
 void conclude_lane(const EvalOptions& options, harness::Lane lane, FileEval& eval, std::string output,
@@ -276,7 +297,8 @@ int run_eval_lanes_in_workers(const EvalOptions& options, const std::vector<harn
         const auto done = parse_done(line);
         if (!done || job.first_given + done->first != job.next) continue;
         worker.poll();  // what it printed before the status line
-        conclude_lane(options, job.lane, evals[job.todo[job.next]], worker.take_output(), ChildExit{done->second},
+        job.output += worker.take_output();
+        conclude_lane(options, job.lane, evals[job.todo[job.next]], job.take_file_output(), ChildExit{done->second},
                       timeout);
         ++job.next;
         worker.set_deadline(ChildProcess::Clock::now() + time_limit);  // the limit is each file's
@@ -285,7 +307,7 @@ int run_eval_lanes_in_workers(const EvalOptions& options, const std::vector<harn
         if (!job.finished()) {
           // It ended before concluding this file: a crash, a timeout, or an exit with no status.
           ChildExit exit = worker.exit_status();
-          std::string output = worker.take_output();
+          std::string output = std::exchange(job.output, {}) + worker.take_output();
           if (!exit.timed_out && !exit.signal) {
             output += fmt::format("{}: the worker ended (exit {}) before it finished this file\n", name, exit.code);
             exit.code = std::max<int>(exit.code, kBackendError);
@@ -354,8 +376,9 @@ int evaluate_lane_in_worker(const EvalOptions& options, harness::Lane lane, std:
       }
       return result;
     }();
-    std::fflush(stdout);
     std::fflush(stderr);
+    fmt::print("{}", kFileEnd);
+    std::fflush(stdout);
     harness::report_worker_status(fmt::format("done {} {}", index, code));
     exit_code = std::max(exit_code, code);
   }
