@@ -128,6 +128,12 @@ const ShaderNames::Texture* ShaderNames::texture(const std::string& name) const 
   return nullptr;
 }
 
+const StorageBufferInput* ShaderNames::buffer(const std::string& name) const {
+  for (const StorageBufferInput& b : buffers)
+    if (b.name == name) return &b;
+  return nullptr;
+}
+
 ShaderNames shader_names(const std::string& source, const hlsl::Reflection& reflection) {
   ShaderNames names;
   names.source = source;
@@ -150,6 +156,7 @@ ShaderNames shader_names(const std::string& source, const hlsl::Reflection& refl
       if (property.name == texture.name) out.default_texture = property.default_texture;
     names.textures.push_back(std::move(out));
   }
+  names.buffers = interface.storage_buffers;
   names.keyword_sets = reflection.keyword_sets;
   return names;
 }
@@ -165,6 +172,8 @@ ShaderNames merge_names(ShaderNames into, const ShaderNames& other) {
     found->read = found->read || uniform.read;
     found->has_default = found->has_default || uniform.has_default;
   }
+  for (const StorageBufferInput& buffer : other.buffers)
+    if (!into.buffer(buffer.name)) into.buffers.push_back(buffer);
   for (const ShaderNames::Texture& texture : other.textures) {
     auto found = std::find_if(into.textures.begin(), into.textures.end(),
                               [&](const ShaderNames::Texture& t) { return t.name == texture.name; });
@@ -234,8 +243,30 @@ std::map<std::string, TextureRef> check_object(const SceneObject& object, const 
     error(problems, object.where.of("textures." + name), fmt::format("{} has no texture '{}'{}", owner, name, why));
   }
 
+  std::vector<std::string> buffer_names;
+  for (const StorageBufferInput& buffer : material.buffers) buffer_names.push_back(buffer.name);
+  for (const auto& [name, ref] : object.buffers) {
+    const SourceLocation& where = object.where.of("buffers." + name);
+    const StorageBufferInput* buffer = material.buffer(name);
+    if (!buffer) {
+      error(problems, where,
+            fmt::format("{} reads no buffer '{}'{}", owner, name, suggestion(name, buffer_names, "buffers")));
+      continue;
+    }
+    if (!ref.numbers.empty() && ref.numbers.size() % buffer->words.size() != 0)
+      error(problems, where,
+            fmt::format("an element of {}'s buffer '{}' is {} 32-bit words: give a multiple of {} numbers, not {}", owner,
+                        name, buffer->words.size(), buffer->words.size(), ref.numbers.size()));
+  }
+
   std::map<std::string, TextureRef> defaults;
   const SourceLocation& material_line = object.where.of("material");
+  for (const StorageBufferInput& buffer : material.buffers)
+    if (!object.buffers.count(buffer.name))
+      error(problems, material_line,
+            fmt::format("object '{}': {} reads the buffer '{}', which has no default: give it in [object.buffers] "
+                        "({} = [numbers] or \"file.bin\")",
+                        object.name, owner, buffer.name, buffer.name));
   for (const ShaderNames::Texture& texture : material.textures) {
     if (!texture.sampled || object.textures.count(texture.name) || renderer_texture(texture.name)) continue;
     default_or_error(texture, fmt::format("object '{}': {}", object.name, owner), "the object's textures do not give",
@@ -289,6 +320,11 @@ std::vector<std::map<std::string, TextureRef>> check_effect(const PostEffect& ef
   for (size_t p = 0; p < passes.size(); ++p) {
     const PassNames& pass = passes[p];
     const std::string pass_owner = fmt::format("{} pass '{}'", owner, pass.declaration.name);
+    for (const StorageBufferInput& buffer : pass.names.buffers)
+      error(problems, effect_line,
+            fmt::format("{} reads the buffer '{}', and a post effect cannot be given buffers yet (an object can, in "
+                        "[object.buffers])",
+                        pass_owner, buffer.name));
     for (const ShaderNames::Texture& texture : pass.names.textures) {
       if (!texture.sampled || effect.textures.count(texture.name) || renderer_texture(texture.name)) continue;
       const auto& inputs = pass.declaration.inputs;

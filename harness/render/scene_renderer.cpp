@@ -14,6 +14,7 @@
 #include "harness/render/forward_lights.h"
 #include "harness/render/material_source.h"
 #include "harness/render/renderer_inputs.h"
+#include "harness/render/scene_buffers.h"
 #include "harness/render/shadow_map.h"
 #include "harness/render/unity_render_state.h"
 
@@ -447,6 +448,15 @@ class SceneRenderer {
       if (!made) return fail(in_context(where + ": texture '" + name + "'", made.error()));
       values[name + "_TexelSize"] = texel_size(made->size);
       draw.textures.push_back({name, TextureSource::texture(made->handle, scene_sampler(shape, false))});
+    }
+    // The planner refused a scene that does not give each buffer the material reads.
+    for (const StorageBufferInput& buffer : variants_[variant].interface.storage_buffers) {
+      auto given = instance.buffers.find(buffer.name);
+      if (given == instance.buffers.end())
+        return fail(ErrorKind::Internal, where + ": buffer '" + buffer.name + "' has no source; the plan should have refused the scene");
+      auto bytes = scene_buffer_bytes(given->second, buffer);
+      if (!bytes) return fail(bytes.error());
+      draw.storage_buffers.push_back({buffer.name, std::move(*bytes)});
     }
     auto uniforms = uniform_bindings(variants_[variant], UniformValues(values, instance.properties, variants_[variant].interface), where);
     if (!uniforms) return fail(uniforms.error());

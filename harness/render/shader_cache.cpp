@@ -52,6 +52,9 @@ std::string variant_json(const CompiledVariant& variant) {
     if (t.sampler_binding) slot["sampler_binding"] = *t.sampler_binding;
     textures.push_back(std::move(slot));
   }
+  json storage_buffers = json::array();
+  for (const StorageBufferSlot& b : p.layout.storage_buffers)
+    storage_buffers.push_back({{"name", b.name}, {"binding", b.binding}, {"glsl_block", b.glsl_block}});
   return json{{"name", p.name},
               {"fullscreen", p.fullscreen},
               {"clip_distances", p.clip_distances},
@@ -59,6 +62,7 @@ std::string variant_json(const CompiledVariant& variant) {
               {"fragment", stage_json(p.fragment)},
               {"uniform_blocks", blocks},
               {"textures", textures},
+              {"storage_buffers", storage_buffers},
               {"interface", shader_interface_json(variant.interface)}}
       .dump();
 }
@@ -86,6 +90,8 @@ std::optional<CompiledVariant> variant_from_json(const std::string& text) {
       slot.glsl_name = t.at("glsl_name");
       p.layout.textures.push_back(std::move(slot));
     }
+    for (const json& b : j.at("storage_buffers"))
+      p.layout.storage_buffers.push_back({b.at("name"), b.at("binding"), b.at("glsl_block")});
     auto interface = parse_shader_interface_json(j.at("interface"));
     if (!interface) return std::nullopt;
     variant.interface = std::move(*interface);

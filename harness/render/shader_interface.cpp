@@ -83,6 +83,17 @@ ShaderInterface shader_interface(const hlsl::Reflection& reflection) {
   }
   for (const hlsl::TextureResource& texture : reflection.textures)
     if (texture.used) interface.textures.push_back(texture.name);
+  for (const hlsl::StorageBufferResource& buffer : reflection.buffers) {
+    if (!buffer.used) continue;
+    StorageBufferInput input{buffer.name, buffer.stride, "f"};
+    if (buffer.kind != hlsl::BufferKind::ByteAddressBuffer) {
+      input.words.clear();
+      for (hlsl::ScalarType scalar : hlsl::structured_words(buffer.element))
+        input.words += scalar == hlsl::ScalarType::Int ? 'i' : scalar == hlsl::ScalarType::Uint ? 'u'
+                       : scalar == hlsl::ScalarType::Bool ? 'b' : 'f';
+    }
+    interface.storage_buffers.push_back(std::move(input));
+  }
   for (const hlsl::Property& property : reflection.properties) {
     if (property.is_texture) continue;
     PropertyDefault out{property.name, {}};
@@ -104,7 +115,12 @@ std::string shader_interface_json(const ShaderInterface& interface) {
   json properties = json::array();
   for (const PropertyDefault& property : interface.properties)
     properties.push_back({{"name", property.name}, {"value", property.value}});
-  return json{{"uniform_blocks", blocks}, {"textures", interface.textures}, {"properties", properties}}.dump(1);
+  json storage_buffers = json::array();
+  for (const StorageBufferInput& buffer : interface.storage_buffers)
+    storage_buffers.push_back({{"name", buffer.name}, {"stride", buffer.stride}, {"words", buffer.words}});
+  return json{{"uniform_blocks", blocks}, {"textures", interface.textures}, {"storage_buffers", storage_buffers},
+              {"properties", properties}}
+      .dump(1);
 }
 
 Result<ShaderInterface> parse_shader_interface_json(const std::string& text) {
@@ -131,6 +147,8 @@ Result<ShaderInterface> parse_shader_interface_json(const std::string& text) {
       interface.uniform_blocks.push_back(std::move(block));
     }
     interface.textures = document.at("textures").get<std::vector<std::string>>();
+    for (const json& b : document.at("storage_buffers"))
+      interface.storage_buffers.push_back({b.at("name"), b.at("stride"), b.at("words")});
     for (const json& p : document.at("properties"))
       interface.properties.push_back({p.at("name"), p.at("value").get<std::vector<float>>()});
     return interface;

@@ -34,6 +34,15 @@ struct UniformBlock {
   std::vector<UniformMember> members;
 };
 
+// A read-only buffer the variant reads, which the scene must give (it has no default).
+struct StorageBufferInput {
+  std::string name;
+  uint32_t stride = 4;  // bytes an element takes, as Direct3D packs it
+  // The type of each 32-bit word of an element, in order: 'f' float, 'i' int, 'u' uint, 'b'
+  // bool. A ByteAddressBuffer's is "f": the numbers a scene writes for raw words are floats.
+  std::string words;
+};
+
 struct PropertyDefault {
   std::string name;
   std::vector<float> value;  // empty: no default
@@ -42,6 +51,7 @@ struct PropertyDefault {
 struct ShaderInterface {
   std::vector<UniformBlock> uniform_blocks;
   std::vector<std::string> textures;  // every Texture2D / sampler2D the layout lists
+  std::vector<StorageBufferInput> storage_buffers;
   std::vector<PropertyDefault> properties;
 
   const PropertyDefault* find_property(const std::string& name) const;

@@ -571,7 +571,7 @@ class SceneReader : SceneValueReader {
     std::string path = index_path("object", index);
     check_keys(table, path,
                {"name", "mesh", "material", "keywords", "position", "rotation", "scale", "properties", "textures",
-                "grid"});
+                "buffers", "grid"});
     SceneObject object;
     object.name = fmt::format("object{}", index);
     object.where.fallback = where(table.source());
@@ -609,6 +609,7 @@ class SceneReader : SceneValueReader {
     if (const toml::node* node = table.get("scale")) read_scale(*node, path + ".scale", object.scale);
     if (const toml::node* node = table.get("properties")) object.properties = properties(*node, path + ".properties");
     if (const toml::node* node = table.get("textures")) read_textures(*node, path + ".textures", object.textures);
+    if (const toml::node* node = table.get("buffers")) read_buffers(*node, path + ".buffers", object.buffers);
     if (const toml::node* node = table.get("grid")) {
       if (!node->is_table())
         expected(*node, path + ".grid", "a table");
@@ -643,6 +644,47 @@ class SceneReader : SceneValueReader {
         continue;
       }
       if (auto reference = texture(value, name_path)) textures.emplace(name, *reference);
+    }
+  }
+
+  // NAME = [numbers] or NAME = "data.bin" (BufferRef).
+  void read_buffers(const toml::node& node, const std::string& path, std::map<std::string, BufferRef>& buffers) {
+    auto* table = node.as_table();
+    if (!table) {
+      expected(node, path, "a table of buffer names");
+      return;
+    }
+    constexpr const char* kBufferValue = "an array of numbers or the path of a file of the buffer's bytes";
+    for (auto&& [key, value] : *table) {
+      std::string name(key.str());
+      std::string name_path = key_path(path, name);
+      if (!is_identifier(name)) {
+        report(key.source(), fmt::format("{}: expected a buffer name (letters, digits and _)", name_path));
+        continue;
+      }
+      BufferRef reference;
+      reference.where = where(value.source());
+      if (auto* text = value.as_string()) {
+        auto resolved = scene_file_path(value, name_path, text->get());
+        if (!resolved) continue;
+        reference.file = *resolved;
+      } else if (auto* array = value.as_array(); array && !array->empty()) {
+        bool ok = true;
+        for (const toml::node& element : *array) {
+          if (auto number = element.value<double>(); number && !element.is_boolean()) {
+            reference.numbers.push_back(*number);
+          } else {
+            expected(element, name_path, "numbers only");
+            ok = false;
+            break;
+          }
+        }
+        if (!ok) continue;
+      } else {
+        expected(value, name_path, kBufferValue);
+        continue;
+      }
+      buffers.emplace(name, std::move(reference));
     }
   }
 
@@ -764,7 +806,7 @@ class SceneReader : SceneValueReader {
   // Where each name the table gives a shader is written: the keys of its properties, parameters,
   // textures and grid.vary tables, and each keyword.
   void record_locations(const toml::table& table, SceneLocations& locations) {
-    for (std::string_view group : {"properties", "parameters", "textures"})
+    for (std::string_view group : {"properties", "parameters", "textures", "buffers"})
       if (const toml::table* names = table.get_as<toml::table>(group))
         for (auto&& [key, value] : *names) locations.at[std::string(group) + "." + std::string(key.str())] = where(key.source());
     if (const toml::table* grid = table.get_as<toml::table>("grid"))

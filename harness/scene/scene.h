@@ -140,9 +140,27 @@ struct TextureRef {
   }
 };
 
+// What a scene gives a shader's read-only buffer (StructuredBuffer, ByteAddressBuffer, Buffer):
+// numbers written in the scene, each becoming one 32-bit word of the type the element declares at
+// that place (float, int, uint or bool: 0 or 1), elements one after another; or a file of the
+// buffer's bytes as Direct3D lays them out (little-endian words, a structured buffer's elements
+// packed tightly).
+struct BufferRef {
+  std::vector<double> numbers;
+  std::filesystem::path file;  // absolute and normalised, inside the scene's folder; empty: the numbers
+  SourceLocation where;        // the value in the scene file
+
+  // The same buffer, wherever the scene names it.
+  bool operator==(const BufferRef& other) const { return numbers == other.numbers && file == other.file; }
+};
+
+// A buffer file's bytes at most: a scene's data, not a dataset (lavapipe's storage-buffer range is
+// 128 MiB; what a test scene reads fits in far less).
+inline constexpr uintmax_t kMaxSceneBufferBytes = uintmax_t(16) << 20;
+
 // Where a scene file names each thing it gives a shader, so that a name the shader does not have
 // is reported at the name: "material", "effect", "properties.NAME", "parameters.NAME",
-// "keywords.NAME", "textures.NAME", "grid.vary.NAME". A key it lacks answers `fallback`.
+// "keywords.NAME", "textures.NAME", "buffers.NAME", "grid.vary.NAME". A key it lacks answers `fallback`.
 struct SceneLocations {
   std::map<std::string, SourceLocation> at;
   SourceLocation fallback;  // the object's or the effect's table
@@ -183,6 +201,7 @@ struct SceneObject {
   glm::vec3 scale{1.0f};             // each component > 0
   std::map<std::string, PropertyValue> properties;
   std::map<std::string, TextureRef> textures;
+  std::map<std::string, BufferRef> buffers;
   std::optional<GridSpec> grid;
   SceneLocations where;
 };
@@ -283,6 +302,7 @@ struct ObjectInstance {
   std::string material;
   std::vector<std::string> keywords;
   std::map<std::string, TextureRef> textures;
+  std::map<std::string, BufferRef> buffers;
   std::map<std::string, PropertyValue> properties;  // the object's, then the grid's vary rules
 };
 

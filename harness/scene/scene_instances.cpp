@@ -30,6 +30,7 @@ ObjectInstance instance_of(const SceneObject& object, size_t index, const glm::v
   instance.material = object.material;
   instance.keywords = object.keywords;
   instance.textures = object.textures;
+  instance.buffers = object.buffers;
   instance.properties = object.properties;
   return instance;
 }

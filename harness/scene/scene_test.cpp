@@ -404,6 +404,47 @@ _G = { faces = ["a.png", "b.png", "c.png", "d.png", "e.png", "../f.png"] }
             }));
 }
 
+TEST(SceneParse, BuffersAreNumbersOrAFileInTheScenesFolder) {
+  const Scene scene = parse_ok(minimal_head + R"(
+[[object]]
+mesh = "plane"
+material = "materials/unlit.hlsl"
+[object.buffers]
+palette = [1, 0.5, -2]
+words = "data/words.bin"
+)");
+  ASSERT_EQ(scene.objects.size(), 1u);
+  const auto& buffers = scene.objects[0].buffers;
+  ASSERT_EQ(buffers.size(), 2u);
+  EXPECT_EQ(buffers.at("palette").numbers, (std::vector<double>{1, 0.5, -2}));
+  EXPECT_TRUE(buffers.at("palette").file.empty());
+  EXPECT_EQ(buffers.at("words").file, scene_root / "scenes/data/words.bin");
+  EXPECT_EQ(buffers.at("words").where.line, 15u);
+  EXPECT_EQ(expand_instances(scene).at(0).buffers, buffers);
+}
+
+TEST(SceneErrors, BufferValuesAreChecked) {
+  EXPECT_EQ(errors_of(minimal_head + R"(
+[[object]]
+mesh = "plane"
+material = "materials/unlit.hlsl"
+[object.buffers]
+a = []
+b = [1, true]
+c = "../outside.bin"
+d = 3
+)"),
+            (std::vector<std::string>{
+                "scenes/bad.toml:14:5: error: object[0].buffers.a: expected an array of numbers or the path of a file of "
+                "the buffer's bytes, got an empty array",
+                "scenes/bad.toml:15:9: error: object[0].buffers.b: expected numbers only, got true",
+                "scenes/bad.toml:16:5: error: object[0].buffers.c: expected a path inside the scene file's folder, got "
+                "\"../outside.bin\", which leads out of it",
+                "scenes/bad.toml:17:5: error: object[0].buffers.d: expected an array of numbers or the path of a file of "
+                "the buffer's bytes, got 3",
+            }));
+}
+
 TEST(SceneParse, AShaderEffectsPassesAreItsBlitsInOrder) {
   Scene scene = parse_ok(minimal_head + R"(
 [[post]]
