@@ -250,8 +250,9 @@ static int run_command_line(int argc, char** argv) {
   eval->add_option("-D", eval_options.keywords, "Enable KEYWORD")->type_name("KEYWORD")->allow_extra_args(false);
   eval->add_option("-o", eval_options.output_dir, "Folder for the EXR images")->type_name("DIR")->capture_default_str();
   eval->add_option("--seed", eval_options.seed,
-                   "Fill every constant buffer and texture from seed N (values in ranges shaders mean, noise of each "
-                   "texture's declared shape) instead of the defaults and a white texel")
+                   "Fill every constant buffer, texture and read-only buffer from seed N (values in ranges shaders mean, "
+                   "noise of each texture's declared shape) instead of the defaults and a white texel; a shader that "
+                   "reads a buffer needs it")
       ->type_name("N");
   eval->add_flag("--trace-nonfinite", eval_options.trace_nonfinite,
                  "Render the tracing variant too (gl, vk) and print the source line where each pixel's first NaN, Inf "

@@ -130,6 +130,10 @@ TEST_F(StorageBuffersDraw, GivenBytesReadAsDirect3DLaysThemOutAndPastTheEndReads
     auto image = harness::evaluate(*module, lane, backend(lane), kColumns, 3, {}, {}, {}, given);
     ASSERT_TRUE(image) << image.error().to_string();
     expect_image(*image, lane, items, raw, typed);
+    // The divergence docs/divergences.md lists, still there: glslang reads element 1 from byte 48.
+    if (lane == Lane::VkHlsl) {
+      EXPECT_NE(image->at(1, 0).x, expected_pixel(items, raw, typed, 1, 0).x);
+    }
   }
 }
 
