@@ -118,6 +118,7 @@ struct EvalOptions {
   LaneSelection selection;  // "all" or a list
   std::filesystem::path output_dir = ".";
   std::optional<uint32_t> seed;  // inputs from this seed instead of the defaults and white
+  std::vector<std::string> specializations;  // NAME=VALUE: a [[vk::constant_id]] constant's value
   bool allow_non_finite = false;  // NaN, Inf and negative output is reported, not a failure
   bool trace_nonfinite = false;   // render the tracing variant too and say where non-finite values were born
   bool write_images = true;       // false: compare and print only; the image library is never loaded

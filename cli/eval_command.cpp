@@ -106,6 +106,7 @@ std::vector<std::string> worker_command(const EvalOptions& options, harness::Lan
   for (const auto& folder : options.include_dirs) command.insert(command.end(), {"-I", folder.string()});
   for (const std::string& keyword : options.keywords) command.insert(command.end(), {"-D", keyword});
   if (options.seed) command.insert(command.end(), {"--seed", std::to_string(*options.seed)});
+  for (const std::string& given : options.specializations) command.insert(command.end(), {"--specialize", given});
   if (options.allow_non_finite) command.push_back("--allow-nonfinite");
   if (options.trace_nonfinite) command.push_back("--trace-nonfinite");
   if (!options.write_images) command.push_back("--no-images");
@@ -147,6 +148,10 @@ void compile_for_eval(const EvalOptions& options, FileEval& eval) {
       })) {
     eval.front_end_output += fmt::format(
         "xshade eval: {} writes no colour (SV_Target); eval renders and compares colour only\n", eval.file.string());
+    return;
+  }
+  if (auto specialization = harness::resolve_specialization(options.specializations, module->reflection); !specialization) {
+    eval.front_end_output += fmt::format("xshade eval: {}: {}\n", eval.file.string(), specialization.error().message);
     return;
   }
   eval.exit_code = kPass;
@@ -342,7 +347,11 @@ int evaluate_lane_in_worker(const EvalOptions& options, harness::Lane lane, std:
         return kBackendError;
       }
       const hlsl::Module& module = *eval.module;
-      const harness::ProgramOptions program_options{.half_emulation = options.precision == "half"};
+      // Resolved once already, when the file was compiled.
+      const harness::ProgramOptions program_options{
+          .half_emulation = options.precision == "half",
+          .specialization = harness::resolve_specialization(options.specializations, module.reflection).value_or(
+              std::map<uint32_t, double>{})};
       auto image = options.seed ? [&]() -> Result<harness::FloatImage> {
         auto program = harness::FullscreenProgram::create(module, lane, **backend, program_options);
         if (!program) return fail(program.error());

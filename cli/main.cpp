@@ -254,6 +254,11 @@ static int run_command_line(int argc, char** argv) {
                    "noise of each texture's declared shape) instead of the defaults and a white texel; a shader that "
                    "reads a buffer needs it")
       ->type_name("N");
+  eval->add_option("--specialize", eval_options.specializations,
+                   "Give the [[vk::constant_id]] constant NAME the value VALUE (a specialization constant on the Vulkan "
+                   "lanes, the constant's value in the GLSL on gl); repeat for more")
+      ->type_name("NAME=VALUE")
+      ->allow_extra_args(false);
   eval->add_flag("--trace-nonfinite", eval_options.trace_nonfinite,
                  "Render the tracing variant too (gl, vk) and print the source line where each pixel's first NaN, Inf "
                  "(or negative output) was born, with a map of them as <file>.<lane>.origins.png");

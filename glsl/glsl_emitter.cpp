@@ -3,6 +3,7 @@
 #include "glsl/glsl_emitter.h"
 
 #include <algorithm>
+#include <charconv>
 #include <cstring>
 #include <functional>
 #include <map>
@@ -200,9 +201,29 @@ const StageVariable* find_variable(const std::vector<StageVariable>& variables, 
 
 }  // namespace
 
+namespace {
+
+// `value` as a GLSL literal of `scalar`: a specialization constant's given value.
+std::string scalar_value_text(double value, ScalarType scalar) {
+  switch (scalar) {
+    case ScalarType::Bool: return value != 0.0 ? "true" : "false";
+    case ScalarType::Int: return std::to_string(int64_t(value));
+    case ScalarType::Uint: return std::to_string(uint64_t(value)) + "u";
+    default: {
+      char buffer[32];
+      const auto written = std::to_chars(buffer, buffer + sizeof buffer, float(value));  // the shortest exact spelling
+      std::string text(buffer, written.ptr);
+      if (text.find_first_of(".e") == std::string::npos) text += ".0";
+      return text;
+    }
+  }
+}
+
+}  // namespace
+
 StageEmitter::StageEmitter(const Module& module, const EmitOptions& options, const Names& names, bool vertex)
     : module_(module), reflection_(module.reflection), flavour_(options.flavour), half_emulation_(options.half_emulation),
-      filter_comparisons_(options.filter_comparisons), names_(names), vertex_(vertex),
+      filter_comparisons_(options.filter_comparisons), specialization_(options.specialization), names_(names), vertex_(vertex),
       trace_(options.trace_nonfinite && !vertex), trace_program_(options.trace_program) {
   entry_ = vertex ? module.entry_points.vertex : module.entry_points.fragment;
 }
@@ -465,10 +486,14 @@ std::string StageEmitter::run() {
     const std::string value = initializer(*var);
     if (is_constant(var->initializer.get()) && value.find("xs_half(") == std::string::npos) {
       if (var->is_const) const_decls_.insert(var);
-      // [[vk::constant_id(N)]]: a specialization constant, whose value is the default here.
+      // [[vk::constant_id(N)]]: a specialization constant, whose default the pipeline replaces
+      // on Vulkan; on OpenGL the value given for it is the constant's.
       const std::string specialized =
           var->vk.constant_id && flavour_ == Flavour::Vk ? "layout(constant_id = " + std::to_string(*var->vk.constant_id) + ") " : "";
-      statics.line(specialized + (var->is_const ? "const " : "") + declaration + " = " + value + ";");
+      const auto given = var->vk.constant_id && flavour_ == Flavour::Gl ? specialization_.find(*var->vk.constant_id)
+                                                                         : specialization_.end();
+      const std::string written = given != specialization_.end() ? scalar_value_text(given->second, var->type.scalar_type()) : value;
+      statics.line(specialized + (var->is_const ? "const " : "") + declaration + " = " + written + ";");
     } else {
       // main() assigns it first, but functions above main() read it, and Mesa's GLSL compiler,
       // which reads in source order, would warn that they read it uninitialized (a driver

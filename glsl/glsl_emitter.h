@@ -12,6 +12,7 @@
 // - `#line L N` directives point the driver's messages at the author's file N, line L.
 #pragma once
 
+#include <map>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -45,6 +46,11 @@ struct EmitOptions {
   // cannot filter a depth texture (lavapipe has no linear filtering of any depth format); the
   // sampler bound is then read nearest (glsl::filters_comparisons_in_shader).
   bool filter_comparisons = false;
+  // Specialization constants' values by constant_id ([[vk::constant_id(N)]]), each in its
+  // constant's scalar type (finite; whole for an int, uint or bool). The gl flavour writes the
+  // value where the constant is declared (GLSL for OpenGL has no specialization); the vk flavour
+  // keeps the default, which the pipeline's specialization replaces.
+  std::map<uint32_t, double> specialization = {};
 };
 
 // A place in the author's source the tracing variant tests.

@@ -6,6 +6,7 @@
 
 #include <cstdint>
 #include <initializer_list>
+#include <map>
 #include <optional>
 #include <set>
 #include <string>
@@ -308,6 +309,7 @@ class StageEmitter {
   const Flavour flavour_;
   const bool half_emulation_;
   const bool filter_comparisons_;
+  const std::map<uint32_t, double> specialization_;
   const Names& names_;
   const bool vertex_;
   const FunctionDecl* entry_ = nullptr;

@@ -626,6 +626,8 @@ Reflection reflect(const TranslationUnit& unit, const EntryPoints& entry_points,
       reflection.constant_buffers.push_back(std::move(buffer));
     } else if (decl->kind == DeclKind::Var) {
       const auto& var = static_cast<const VarDecl&>(*decl);
+      if (var.vk.constant_id && var.type.is_scalar())
+        reflection.specialization_constants.push_back({var.name, *var.vk.constant_id, var.type.scalar_type()});
       // An array of resources is one resource of `count` elements.
       const bool array = var.type.is_resource_array();
       const Type& type = array ? var.type.element() : var.type;

@@ -152,6 +152,14 @@ uint64_t keyword_combination_count(const std::vector<KeywordSet>& sets);
 // each set's `_` (none) left out: the combinations one at a time, never all of them in memory.
 std::vector<std::string> keyword_combination(const std::vector<KeywordSet>& sets, uint64_t index);
 
+// A `[[vk::constant_id(N)]] const` scalar: a specialization constant, which a host may give
+// another value than its initializer (docs/hlsl_like.md, section 10).
+struct SpecializationConstant {
+  std::string name;
+  uint32_t id = 0;
+  ScalarType scalar = ScalarType::Float;
+};
+
 struct Reflection {
   std::string vertex_entry;
   std::string fragment_entry;
@@ -162,6 +170,7 @@ struct Reflection {
   std::vector<TextureResource> textures;
   std::vector<SamplerResource> samplers;
   std::vector<StorageBufferResource> buffers;
+  std::vector<SpecializationConstant> specialization_constants;
   std::vector<Property> properties;
   std::vector<KeywordSet> keyword_sets;
   std::vector<std::string> active_keywords;  // of this variant

@@ -78,6 +78,9 @@ std::string reflection_json(const Reflection& reflection) {
     if (b.set) buffer["set"] = b.set;
     json["buffers"].push_back(buffer);
   }
+  json["specialization_constants"] = nlohmann::json::array();
+  for (const SpecializationConstant& c : reflection.specialization_constants)
+    json["specialization_constants"].push_back({{"name", c.name}, {"id", c.id}, {"type", scalar_name(c.scalar)}});
   json["properties"] = nlohmann::json::array();
   for (const Property& p : reflection.properties) {
     nlohmann::json property = {{"name", p.name}, {"display_name", p.display_name}, {"type", type_json(p.type)}};

@@ -13,6 +13,7 @@
 #include <compare>
 #include <cstddef>
 #include <cstdint>
+#include <map>
 #include <memory>
 #include <optional>
 #include <string>
@@ -224,6 +225,9 @@ struct ProgramDesc {
   // How many of gl_ClipDistance[] the vertex stage writes: OpenGL clips by a distance only where
   // its plane is enabled (Vulkan by every one the shader writes).
   uint32_t clip_distances = 0;
+  // Vulkan only: the specialization constants' values (the 32-bit word of each, by constant_id),
+  // given to both stages (an id a stage lacks is not its). OpenGL's GLSL has them written in.
+  std::map<uint32_t, uint32_t> specialization = {};
 };
 
 // The bytes of a host-side uniform block (a struct laid out to match the shader's block).

@@ -4,6 +4,8 @@
 #include <map>
 #include <set>
 
+#include <fmt/format.h>
+
 #include "harness/backend/backend.h"
 #include "harness/render/forward_lights.h"
 #include "harness/render/material_source.h"
@@ -188,7 +190,14 @@ std::string VariantRequest::label() const {
   if (unity_platform != shaderlab::UnityPlatform::GLCore) text += " for " + std::string(shaderlab::renderer_name(unity_platform));
   text += " [";
   for (size_t i = 0; i < keywords.size(); ++i) text += (i ? " " : "") + keywords[i];
-  return text + "]" + (filtered_comparison ? " filtered comparison" : "") + (half_emulation ? " half" : "");
+  text += "]" + std::string(filtered_comparison ? " filtered comparison" : "") + (half_emulation ? " half" : "");
+  if (!specialization.empty()) {
+    text += " specialized {";
+    for (const auto& [id, value] : specialization)
+      text += (text.back() == '{' ? "" : ",") + fmt::format("{}={}", id, value);
+    text += "}";
+  }
+  return text;
 }
 
 namespace {
@@ -418,6 +427,9 @@ Result<Plan> plan_scene(const Scene& scene, const ShaderSearchPath& shaders) {
       if (soft) add_global_keyword("SHADOWS_SOFT", facts.keyword_sets, asked);
       VariantRequest request{facts.path, instance.material, variant_keywords(facts.keyword_sets, asked), {}};
       request.shader_pass = pass;
+      for (const hlsl::SpecializationConstant& constant : facts.names.specialization_constants)
+        if (auto given = instance.properties.find(constant.name); given != instance.properties.end())
+          request.specialization[constant.id] = given->second.components[0];
       request.filtered_comparison =
           soft && std::find(request.keywords.begin(), request.keywords.end(), received->second) != request.keywords.end();
       used_combinations[instance.material].insert(request.keywords);

@@ -31,10 +31,13 @@ struct VariantRequest {
   // The tracing variant (gl and vk lanes), numbered trace_program (render/shader_program.h).
   bool trace_nonfinite = false;
   uint32_t trace_program = 0;
+  // The values the object gives the shader's specialization constants, by constant_id
+  // (ProgramOptions::specialization).
+  std::map<uint32_t, double> specialization = {};
 
   // "materials/toon.hlsl [_GUARDED]", "post/depth_of_field.hlsl:frag_coc [_KERNEL_SMALL]",
   // "Unlit/Outline.shader pass 1 []", "Unlit/Outline.shader pass 1 for d3d11 []" or
-  // "Standard.shader pass 1 [SHADOWS_SCREEN] filtered comparison".
+  // "Standard.shader pass 1 [SHADOWS_SCREEN] filtered comparison", "vk.hlsl [] specialized {0=2}".
   std::string label() const;
   friend bool operator==(const VariantRequest&, const VariantRequest&) = default;
 };

@@ -1,6 +1,8 @@
 #include "harness/render/scene_contract.h"
 
 #include <algorithm>
+#include <cmath>
+#include <optional>
 #include <set>
 
 #include <fmt/format.h>
@@ -40,6 +42,30 @@ std::vector<std::string> texture_names(const ShaderNames& names) {
   for (const ShaderNames::Texture& texture : names.textures)
     if (!renderer_texture(texture.name)) out.push_back(texture.name);
   return out;
+}
+
+// A value the scene gives the specialization constant `name` of `owner`: one number, whole for an
+// int, uint or bool (0 or 1); a grid may vary a float one only (`value` nullopt).
+void check_specialization_value(const std::string& name, uint32_t count, std::optional<float> value,
+                                const hlsl::SpecializationConstant& constant, const std::string& owner,
+                                const SourceLocation& where, ContractProblems& problems) {
+  const std::string type = hlsl::scalar_name(constant.scalar);
+  const bool whole = constant.scalar == hlsl::ScalarType::Int || constant.scalar == hlsl::ScalarType::Uint ||
+                     constant.scalar == hlsl::ScalarType::Bool;
+  if (count != 1) {
+    error(problems, where,
+          fmt::format("'{}' is a specialization constant ({}) of {}: give it 1 number, not {}", name, type, owner,
+                      numbers_text(count)));
+  } else if (whole && !value) {
+    error(problems, where,
+          fmt::format("'{}' is a specialization constant ({}) of {}: a grid may vary a float one only", name, type, owner));
+  } else if (whole && value &&
+             (std::floor(*value) != *value || (constant.scalar == hlsl::ScalarType::Uint && *value < 0) ||
+              (constant.scalar == hlsl::ScalarType::Bool && *value != 0 && *value != 1))) {
+    error(problems, where,
+          fmt::format("'{}' is a specialization constant ({}) of {}: give it {}, not {}", name, type, owner,
+                      constant.scalar == hlsl::ScalarType::Bool ? "0 or 1" : "a whole number", *value));
+  }
 }
 
 // A value the scene gives `name` (a property, a parameter or a grid rule) against the uniform
@@ -134,6 +160,12 @@ const StorageBufferInput* ShaderNames::buffer(const std::string& name) const {
   return nullptr;
 }
 
+const hlsl::SpecializationConstant* ShaderNames::specialization_constant(const std::string& name) const {
+  for (const hlsl::SpecializationConstant& c : specialization_constants)
+    if (c.name == name) return &c;
+  return nullptr;
+}
+
 ShaderNames shader_names(const std::string& source, const hlsl::Reflection& reflection) {
   ShaderNames names;
   names.source = source;
@@ -157,6 +189,7 @@ ShaderNames shader_names(const std::string& source, const hlsl::Reflection& refl
     names.textures.push_back(std::move(out));
   }
   names.buffers = interface.storage_buffers;
+  names.specialization_constants = reflection.specialization_constants;
   names.keyword_sets = reflection.keyword_sets;
   return names;
 }
@@ -174,6 +207,8 @@ ShaderNames merge_names(ShaderNames into, const ShaderNames& other) {
   }
   for (const StorageBufferInput& buffer : other.buffers)
     if (!into.buffer(buffer.name)) into.buffers.push_back(buffer);
+  for (const hlsl::SpecializationConstant& constant : other.specialization_constants)
+    if (!into.specialization_constant(constant.name)) into.specialization_constants.push_back(constant);
   for (const ShaderNames::Texture& texture : other.textures) {
     auto found = std::find_if(into.textures.begin(), into.textures.end(),
                               [&](const ShaderNames::Texture& t) { return t.name == texture.name; });
@@ -210,11 +245,17 @@ std::map<std::string, TextureRef> check_object(const SceneObject& object, const 
                                                ContractProblems& problems) {
   const std::string owner = "material '" + material.source + "'";
   std::set<std::string> given;
-  const auto check_named = [&](const std::string& name, uint32_t count, const std::string& key) {
+  // `value`: the object's number (nullopt for a grid rule's, which differ from cell to cell).
+  const auto check_named = [&](const std::string& name, uint32_t count, const std::string& key,
+                               std::optional<float> value) {
     given.insert(name);
     const SourceLocation& where = object.where.of(key);
     if (const ShaderNames::Uniform* uniform = material.uniform(name)) {
       check_value(name, count, *uniform, owner, where, problems);
+      return;
+    }
+    if (const hlsl::SpecializationConstant* constant = material.specialization_constant(name)) {
+      check_specialization_value(name, count, value, *constant, owner, where, problems);
       return;
     }
     if (auto property = material.block_properties.find(name); property != material.block_properties.end()) {
@@ -227,10 +268,11 @@ std::map<std::string, TextureRef> check_object(const SceneObject& object, const 
     error(problems, where,
           fmt::format("{} has no property '{}'{}", owner, name, suggestion(name, settable_uniforms(material), "properties")));
   };
-  for (const auto& [name, value] : object.properties) check_named(name, value.count, "properties." + name);
+  for (const auto& [name, value] : object.properties)
+    check_named(name, value.count, "properties." + name, value.components[0]);
   if (object.grid)
     for (const auto& [name, rule] : object.grid->vary)
-      if (!object.properties.count(name)) check_named(name, rule.from.count, "grid.vary." + name);
+      if (!object.properties.count(name)) check_named(name, rule.from.count, "grid.vary." + name, std::nullopt);
 
   for (const auto& [name, ref] : object.textures) {
     if (const ShaderNames::Texture* texture = material.texture(name); texture && !renderer_texture(name)) {

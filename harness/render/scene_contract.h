@@ -38,6 +38,8 @@ struct ShaderNames {
   std::vector<Uniform> uniforms;
   std::vector<Texture> textures;
   std::vector<StorageBufferInput> buffers;  // the read-only buffers the variant reads
+  // [[vk::constant_id]] constants, which a scene sets by name like a property.
+  std::vector<hlsl::SpecializationConstant> specialization_constants;
   std::vector<hlsl::KeywordSet> keyword_sets;
   // A .shader's numeric Properties that no uniform of the program holds, with their component
   // counts (1, or 4 for a Color or Vector): a material's values all the same (a [Toggle] that only
@@ -47,6 +49,7 @@ struct ShaderNames {
   const Uniform* uniform(const std::string& name) const;
   const Texture* texture(const std::string& name) const;
   const StorageBufferInput* buffer(const std::string& name) const;
+  const hlsl::SpecializationConstant* specialization_constant(const std::string& name) const;
 };
 
 ShaderNames shader_names(const std::string& source, const hlsl::Reflection& reflection);

@@ -63,6 +63,7 @@ std::string variant_json(const CompiledVariant& variant) {
               {"uniform_blocks", blocks},
               {"textures", textures},
               {"storage_buffers", storage_buffers},
+              {"specialization", p.specialization},
               {"interface", shader_interface_json(variant.interface)}}
       .dump();
 }
@@ -90,6 +91,7 @@ std::optional<CompiledVariant> variant_from_json(const std::string& text) {
       slot.glsl_name = t.at("glsl_name");
       p.layout.textures.push_back(std::move(slot));
     }
+    p.specialization = j.at("specialization").get<std::map<uint32_t, uint32_t>>();
     for (const json& b : j.at("storage_buffers"))
       p.layout.storage_buffers.push_back({b.at("name"), b.at("binding"), b.at("glsl_block")});
     auto interface = parse_shader_interface_json(j.at("interface"));

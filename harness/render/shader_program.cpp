@@ -1,5 +1,11 @@
 #include "harness/render/shader_program.h"
 
+#include <algorithm>
+#include <bit>
+#include <cmath>
+#include <cstdlib>
+#include <map>
+
 #include "glsl/flavour.h"
 #include "glsl/glsl_emitter.h"
 #include "glsl/glsl_names.h"
@@ -197,7 +203,8 @@ Result<LaneStages> stages_for_lane(const hlsl::Module& module, Lane lane, const 
                                      .half_emulation = options.half_emulation,
                                      .trace_nonfinite = options.trace_nonfinite,
                                      .trace_program = options.trace_program,
-                                     .filter_comparisons = filters_comparisons_in_shader(lane, options)});
+                                     .filter_comparisons = filters_comparisons_in_shader(lane, options),
+                                     .specialization = options.specialization});
   if (!emitted) return fail(emitted.error());
   stages.trace = std::move(emitted->trace);
   const std::string name = module.sources.name(module.main_file);
@@ -223,6 +230,49 @@ Result<LaneStages> stages_for_lane(const hlsl::Module& module, Lane lane, const 
     (vertex ? stages.vertex : stages.fragment) = std::move(source);
   }
   return stages;
+}
+
+Result<std::map<uint32_t, double>> resolve_specialization(const std::vector<std::string>& given,
+                                                          const hlsl::Reflection& reflection) {
+  std::map<uint32_t, double> values;
+  std::string names;
+  for (const hlsl::SpecializationConstant& constant : reflection.specialization_constants)
+    names += (names.empty() ? "" : ", ") + constant.name;
+  for (const std::string& text : given) {
+    const size_t equals = text.find('=');
+    const std::string name = text.substr(0, equals);
+    const auto constant = std::find_if(reflection.specialization_constants.begin(), reflection.specialization_constants.end(),
+                                       [&](const hlsl::SpecializationConstant& c) { return c.name == name; });
+    if (equals == std::string::npos || constant == reflection.specialization_constants.end())
+      return fail("--specialize " + text + ": expected NAME=VALUE naming a [[vk::constant_id]] constant of the shader (" +
+                  (names.empty() ? "it has none" : "it has " + names) + ")");
+    const std::string number = text.substr(equals + 1);
+    char* end = nullptr;
+    const double value = std::strtod(number.c_str(), &end);
+    const bool whole = constant->scalar != hlsl::ScalarType::Float && constant->scalar != hlsl::ScalarType::Half;
+    const bool fits = constant->scalar == hlsl::ScalarType::Bool   ? value == 0.0 || value == 1.0
+                      : constant->scalar == hlsl::ScalarType::Uint ? value >= 0.0 && value <= 4294967295.0
+                      : constant->scalar == hlsl::ScalarType::Int  ? value >= -2147483648.0 && value <= 2147483647.0
+                                                                    : true;
+    if (number.empty() || end != number.c_str() + number.size() || !std::isfinite(value) ||
+        (whole && std::floor(value) != value) || !fits)
+      return fail("--specialize " + text + ": '" + name + "' is of type " + hlsl::scalar_name(constant->scalar) +
+                  "; give it " +
+                  (constant->scalar == hlsl::ScalarType::Bool ? std::string("0 or 1")
+                   : whole                                     ? "a whole number in its range"
+                                                               : "a finite number"));
+    values[constant->id] = value;
+  }
+  return values;
+}
+
+uint32_t specialization_word(double value, hlsl::ScalarType scalar) {
+  switch (scalar) {
+    case hlsl::ScalarType::Bool: return value != 0.0 ? 1u : 0u;  // a VkBool32
+    case hlsl::ScalarType::Int: return uint32_t(int32_t(value));
+    case hlsl::ScalarType::Uint: return uint32_t(value);
+    default: return std::bit_cast<uint32_t>(float(value));
+  }
 }
 
 std::string array_of_resources(const std::string& name, uint32_t count) {
@@ -291,6 +341,10 @@ Result<ProgramDesc> program_for_lane(const hlsl::Module& module, Lane lane, cons
   desc.layout = layout_for_lane(module.reflection, lane, options);
   desc.fullscreen = module.entry_points.vertex == nullptr;
   desc.clip_distances = module.reflection.clip_distances;
+  if (lane != Lane::Gl)
+    for (const hlsl::SpecializationConstant& constant : module.reflection.specialization_constants)
+      if (auto given = options.specialization.find(constant.id); given != options.specialization.end())
+        desc.specialization[constant.id] = specialization_word(given->second, constant.scalar);
   desc.fragment = std::move(*stages->fragment);
   if (stages->vertex) {
     desc.vertex = std::move(*stages->vertex);

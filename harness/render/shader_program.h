@@ -1,6 +1,10 @@
 // A shader compiled by xshade's front end, made into a program for one lane's backend.
 #pragma once
 
+#include <map>
+#include <string>
+#include <vector>
+
 #include "glsl/glsl_emitter.h"
 #include "harness/backend/backend.h"
 #include "harness/render/lanes.h"
@@ -28,11 +32,24 @@ struct ProgramOptions {
   // filtered_in_shader); vk-hlsl compiles the source with glslang and cannot, so the backend
   // refuses the linear sampler there.
   bool filter_comparisons = false;
+  // Values of the module's specialization constants by constant_id (glsl::EmitOptions::
+  // specialization): written into the GLSL on gl, given to the pipeline on vk and vk-hlsl.
+  std::map<uint32_t, double> specialization = {};
 };
 
 // Half emulation also defines this macro for the front end, so that a shader can choose to
 // compute in half where a GPU that prefers half would (the library's `real`, include/common.hlsl).
 inline constexpr const char* kHalfEmulationMacro = "XSHADE_PRECISION_HALF";
+// ProgramOptions::specialization from "NAME=VALUE" texts, each naming one of the reflection's
+// specialization constants with a finite number (whole for an int or uint, 0 or 1 for a bool).
+// Fails naming the first that is not, with the constants the shader has.
+Result<std::map<uint32_t, double>> resolve_specialization(const std::vector<std::string>& given,
+                                                          const hlsl::Reflection& reflection);
+
+// A specialization constant's value of `scalar` as the 32-bit word Vulkan's specialization data
+// holds (a bool a VkBool32); `value` is finite, and whole for an integer type.
+uint32_t specialization_word(double value, hlsl::ScalarType scalar);
+
 // With options.trace_nonfinite, `trace` receives the traced fragment stage's sites and calls.
 Result<ProgramDesc> program_for_lane(const hlsl::Module& module, Lane lane, const ProgramOptions& options = {},
                                      glsl::NonfiniteTrace* trace = nullptr);

@@ -53,7 +53,8 @@ Result<CompiledVariant> VariantCompiler::compile(const VariantRequest& request, 
                                   {.half_emulation = request.half_emulation,
                                    .trace_nonfinite = request.trace_nonfinite,
                                    .trace_program = request.trace_program,
-                                   .filter_comparisons = request.filtered_comparison},
+                                   .filter_comparisons = request.filtered_comparison,
+                                   .specialization = request.specialization},
                                   &trace);
   if (!program) return fail(program.error());
   CompiledVariant variant{std::move(*program), shader_interface((*module)->reflection), std::move(trace)};

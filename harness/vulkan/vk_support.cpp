@@ -349,11 +349,15 @@ vk::Format unsupplied_input_format(TexelKind kind) {
 
 vk::raii::Pipeline create_draw_pipeline(const vk::raii::Device& device, const DrawPipelineSpec& spec) {
   const bool depth = spec.depth_format != vk::Format::eUndefined;
+  const vk::SpecializationInfo specialization(
+      uint32_t(spec.specialization_entries.size()), spec.specialization_entries.data(),
+      spec.specialization_data.size() * sizeof(uint32_t), spec.specialization_data.data());
+  const vk::SpecializationInfo* specialized = spec.specialization_entries.empty() ? nullptr : &specialization;
   const std::array<vk::PipelineShaderStageCreateInfo, 2> stages = {
-      vk::PipelineShaderStageCreateInfo({}, vk::ShaderStageFlagBits::eVertex, spec.vertex,
-                                        spec.vertex_entry),
-      vk::PipelineShaderStageCreateInfo({}, vk::ShaderStageFlagBits::eFragment,
-                                        spec.fragment, spec.fragment_entry)};
+      vk::PipelineShaderStageCreateInfo({}, vk::ShaderStageFlagBits::eVertex, spec.vertex, spec.vertex_entry,
+                                        specialized),
+      vk::PipelineShaderStageCreateInfo({}, vk::ShaderStageFlagBits::eFragment, spec.fragment, spec.fragment_entry,
+                                        specialized)};
   // Binding 0 is the mesh; binding 1 the constant buffer, read at stride 0 by every input no
   // mesh supplies: four zeros, then four float ones for a float colour input (backend.h).
   std::vector<vk::VertexInputBindingDescription> bindings;

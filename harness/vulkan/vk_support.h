@@ -179,6 +179,9 @@ struct DrawPipelineSpec {
   // Drawn with a positive viewport height (clip -y at row 0, RowOrigin::Bottom): the front face
   // is then clockwise in framebuffer coordinates.
   bool rows_up = false;
+  // The specialization constants of both stages (none when empty).
+  const std::vector<vk::SpecializationMapEntry>& specialization_entries;
+  const std::vector<uint32_t>& specialization_data;
 };
 // Triangles with `spec.state`; viewport and scissor dynamic.
 vk::raii::Pipeline create_draw_pipeline(const vk::raii::Device& device, const DrawPipelineSpec& spec);

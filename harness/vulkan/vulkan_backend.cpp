@@ -72,6 +72,9 @@ struct Program {
   vk::raii::PipelineLayout pipeline_layout{nullptr};
   // The layout's push-constant block (UniformBlockSlot::push_constant), if it has one.
   std::optional<size_t> push_constant_slot;
+  // ProgramDesc::specialization as the pipelines' specialization data: a word per entry.
+  std::vector<vk::SpecializationMapEntry> specialization_entries;
+  std::vector<uint32_t> specialization_data;
   // One per target kind and draw state: by the target's depth format (eUndefined: none), whether it
   // has a second colour, the state, and rows_up.
   std::map<std::tuple<vk::Format, bool, DrawState, bool>, vk::raii::Pipeline> pipelines;
@@ -533,6 +536,11 @@ Result<ProgramHandle> VulkanBackend::create_program(const ProgramDesc& desc) {
     program->name = desc.name;
     program->layout = desc.layout;
     program->fullscreen = desc.fullscreen;
+    for (const auto& [id, word] : desc.specialization) {
+      program->specialization_entries.emplace_back(
+          id, uint32_t(program->specialization_data.size() * sizeof(uint32_t)), sizeof(uint32_t));
+      program->specialization_data.push_back(word);
+    }
     program->vertex_entry = desc.vertex.entry_point;
     program->fragment_entry = desc.fragment.entry_point;
 
@@ -666,7 +674,8 @@ Result<vk::Pipeline> VulkanBackend::pipeline(Program& program, const Target& tar
                      device_, {*program.vertex, *program.fragment, program.vertex_entry.c_str(),
                                program.fragment_entry.c_str(), program.vertex_inputs, program.unsupplied_inputs,
                                *program.pipeline_layout, kColorFormat, depth_format,
-                               second_color ? 2u : 1u, state, rows_up}));
+                               second_color ? 2u : 1u, state, rows_up, program.specialization_entries,
+                               program.specialization_data}));
         return *made.first->second;
       });
 }

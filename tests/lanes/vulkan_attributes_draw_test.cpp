@@ -1,5 +1,6 @@
 // Vulkan HLSL drawn on every lane: a texture and its sampler at one [[vk::binding]] (one
-// combined image sampler serves both on Vulkan), a specialization constant read at its default,
+// combined image sampler serves both on Vulkan), specialization constants at their defaults and
+// given other values,
 // and a user-defined semantic and [[vk::location]] between the stages of a program.
 #include <cstring>
 #include <string>
@@ -27,6 +28,49 @@ float4 f(float2 uv : TEXCOORD0, [[vk::location(3)]] float2 other : MYUV) : SV_Ta
 )";
 
 class VulkanAttributesDraw : public LaneTest {};
+
+// A float, an int (a loop's count) and a bool specialization constant, each read back.
+constexpr const char* kSpecializedSource = R"(
+#pragma fragment f
+[[vk::constant_id(0)]] const float SCALE = 0.5;
+[[vk::constant_id(3)]] const int COUNT = 2;
+[[vk::constant_id(5)]] const bool FLIP = false;
+float4 f(float2 uv : TEXCOORD0) : SV_Target {
+  float sum = 0;
+  for (int i = 0; i < COUNT; ++i) sum += 0.125;
+  return float4(SCALE, sum, FLIP ? 1 : 0, 1);
+}
+)";
+
+TEST_F(VulkanAttributesDraw, SpecializationConstantsReadTheirDefaultsOrTheValuesGivenOnEveryLane) {
+  auto module = hlsl::compile_text("specialized.hlsl", kSpecializedSource, {});
+  ASSERT_TRUE(module->ok());
+  auto given = harness::resolve_specialization({"SCALE=0.75", "COUNT=5", "FLIP=1"}, module->reflection);
+  ASSERT_TRUE(given) << given.error().to_string();
+  for (Lane lane : harness::all_lanes()) {
+    SCOPED_TRACE(harness::lane_name(lane));
+    auto defaults = harness::evaluate(*module, lane, backend(lane), 1, 1);
+    ASSERT_TRUE(defaults) << defaults.error().to_string();
+    EXPECT_EQ(defaults->at(0, 0), glm::vec4(0.5f, 2 * 0.125f, 0.0f, 1.0f));
+    auto specialized = harness::evaluate(*module, lane, backend(lane), 1, 1, {}, {.specialization = *given});
+    ASSERT_TRUE(specialized) << specialized.error().to_string();
+    EXPECT_EQ(specialized->at(0, 0), glm::vec4(0.75f, 5 * 0.125f, 1.0f, 1.0f));
+  }
+}
+
+TEST_F(VulkanAttributesDraw, ASpecializationValueMustNameAConstantAndFitItsType) {
+  auto module = hlsl::compile_text("specialized.hlsl", kSpecializedSource, {});
+  ASSERT_TRUE(module->ok());
+  const auto message = [&](const std::string& text) {
+    auto resolved = harness::resolve_specialization({text}, module->reflection);
+    return resolved ? std::string("(resolved)") : resolved.error().message;
+  };
+  EXPECT_EQ(message("SCALX=1"), "--specialize SCALX=1: expected NAME=VALUE naming a [[vk::constant_id]] constant of the "
+                                "shader (it has SCALE, COUNT, FLIP)");
+  EXPECT_EQ(message("COUNT=1.5"), "--specialize COUNT=1.5: 'COUNT' is of type int; give it a whole number in its range");
+  EXPECT_EQ(message("FLIP=2"), "--specialize FLIP=2: 'FLIP' is of type bool; give it 0 or 1");
+  EXPECT_EQ(message("SCALE=x"), "--specialize SCALE=x: 'SCALE' is of type float; give it a finite number");
+}
 
 TEST_F(VulkanAttributesDraw, ACombinedBindingAndASpecializationConstantReadTheSameOnEveryLane) {
   // One texel of (0.2, 0.4, 0.6, 0.8): the image is that times SCALE's default, 0.5, and the
