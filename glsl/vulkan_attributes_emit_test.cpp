@@ -4,6 +4,7 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <map>
 #include <string>
 
 #include "glsl/glsl_emitter.h"
@@ -29,10 +30,10 @@ V vert([[vk::location(2)]] float3 p : POSITION) { V v; v.pos = mul(ubo.mvp, floa
 float4 frag(V v) : SV_Target { return colorMap.Sample(colorSampler, v.uv) * push.tint * (MODE == 2 ? 1 : 0.5); }
 )";
 
-std::string vulkan_attribute_stages(Flavour flavour) {
+std::string vulkan_attribute_stages(Flavour flavour, std::map<uint32_t, double> specialization = {}) {
   auto module = hlsl::compile_text("vk.hlsl", kVulkanAttributesShader, {});
   EXPECT_TRUE(module->ok());
-  auto program = emit(*module, {flavour});
+  auto program = emit(*module, {.flavour = flavour, .specialization = std::move(specialization)});
   if (!program || !program->vertex || !program->fragment) {
     ADD_FAILURE() << (program ? "a stage is missing" : program.error().to_string());
     return "";
@@ -62,6 +63,14 @@ TEST(VulkanAttributesEmit, TheGlFlavourKeepsWhatOpenGlHas) {
   EXPECT_THAT(text, HasSubstr("const int MODE = 2;"));
   EXPECT_THAT(text, Not(HasSubstr("constant_id")));
   EXPECT_THAT(text, HasSubstr("layout(binding = 5) uniform sampler2D colorMap;"));
+}
+
+// A specialization constant's given value: written in on gl, which has no specialization; the vk
+// flavour keeps the default, which the pipeline replaces.
+TEST(VulkanAttributesEmit, AGivenSpecializationValueIsWrittenInOnGlOnly) {
+  EXPECT_THAT(vulkan_attribute_stages(Flavour::Gl, {{4, 7.0}}), HasSubstr("const int MODE = 7;"));
+  EXPECT_THAT(vulkan_attribute_stages(Flavour::Vk, {{4, 7.0}}), HasSubstr("layout(constant_id = 4) const int MODE = 2;"));
+  EXPECT_THAT(vulkan_attribute_stages(Flavour::Gl, {{9, 7.0}}), HasSubstr("const int MODE = 2;"));  // another id
 }
 
 }  // namespace

@@ -425,5 +425,25 @@ TEST(Reflection, JsonHasEverySection) {
     EXPECT_NE(json.find(key), std::string::npos) << key;
 }
 
+TEST(Reflection, SpecializationConstantsAreListedWithTheirIdsAndTypes) {
+  auto module = compile(R"(
+#pragma fragment frag
+[[vk::constant_id(3)]] const uint STEPS = 2;
+[[vk::constant_id(0)]] const float SCALE = 0.5;
+static const float PLAIN = 1;
+float4 frag() : SV_Target { return SCALE * STEPS * PLAIN; }
+)");
+  ASSERT_TRUE(module->ok()) << module->diagnostics.render_all();
+  const auto& constants = module->reflection.specialization_constants;
+  ASSERT_EQ(constants.size(), 2u);
+  EXPECT_EQ(constants[0].name, "STEPS");
+  EXPECT_EQ(constants[0].id, 3u);
+  EXPECT_EQ(constants[0].scalar, ScalarType::Uint);
+  EXPECT_EQ(constants[1].name, "SCALE");
+  EXPECT_EQ(constants[1].id, 0u);
+  const std::string json = reflection_json(module->reflection);
+  EXPECT_NE(json.find("\"id\": 3,\n      \"name\": \"STEPS\",\n      \"type\": \"uint\""), std::string::npos) << json;
+}
+
 }  // namespace
 }  // namespace xshade::hlsl
