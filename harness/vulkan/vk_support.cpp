@@ -17,6 +17,11 @@ EntryPointInfo reflect_entry_point(const std::vector<uint32_t>& words, Execution
   constexpr uint32_t kOpName = 5, kOpMemberName = 6, kOpEntryPoint = 15, kOpFunction = 54, kOpFunctionEnd = 56,
                      kOpFunctionCall = 57, kOpVariable = 59, kOpDecorate = 71, kOpMemberDecorate = 72;
   constexpr uint32_t kOpTypeInt = 21, kOpTypeFloat = 22, kOpTypeVector = 23, kOpTypePointer = 32;
+  constexpr uint32_t kOpTypeImage = 25, kOpTypeSampler = 26, kOpTypeSampledImage = 27, kOpTypeArray = 28,
+                     kOpTypeRuntimeArray = 29;
+  constexpr uint32_t kDecorationBlock = 2, kDecorationBufferBlock = 3;
+  constexpr uint32_t kDimBuffer = 5, kDimSubpassData = 6;
+  constexpr uint32_t kStorageClassStorageBuffer = 12;
   constexpr uint32_t kDecorationLocation = 30, kDecorationBinding = 33, kDecorationDescriptorSet = 34;
   constexpr uint32_t kStorageClassUniformConstant = 0, kStorageClassInput = 1, kStorageClassUniform = 2;
   EntryPointInfo info;
@@ -28,7 +33,12 @@ EntryPointInfo reflect_entry_point(const std::vector<uint32_t>& words, Execution
   std::map<uint32_t, uint32_t> pointers;     // pointer type id -> pointee type id
   std::map<uint32_t, uint32_t> bindings;     // id -> Binding
   std::map<uint32_t, uint32_t> sets;         // id -> DescriptorSet
-  std::set<uint32_t> resources;              // ids of UniformConstant and Uniform variables
+  std::set<uint32_t> resources;              // ids of UniformConstant, Uniform and StorageBuffer variables
+  std::map<uint32_t, vk::DescriptorType> descriptor_kinds;  // type id -> the descriptor a variable of it needs
+  std::map<uint32_t, uint32_t> elements;     // array type id -> element type id
+  std::map<uint32_t, uint32_t> resource_types;  // resource variable id -> pointee type id
+  std::map<uint32_t, uint32_t> storage_classes;  // resource variable id -> its storage class
+  std::set<uint32_t> blocks, buffer_blocks;  // struct type ids decorated Block, BufferBlock
   // The ids each function's instructions read, and the functions it calls: a resource counts
   // where the entry point's call tree reads it (Vulkan's static use), not in a function nothing
   // calls (glslang's HLSL front end emits those too).
@@ -51,6 +61,22 @@ EntryPointInfo reflect_entry_point(const std::vector<uint32_t>& words, Execution
       bindings[op[1]] = op[3];
     } else if (opcode == kOpDecorate && count >= 4 && op[2] == kDecorationDescriptorSet) {
       sets[op[1]] = op[3];
+    } else if (opcode == kOpDecorate && count >= 3 && (op[2] == kDecorationBlock || op[2] == kDecorationBufferBlock)) {
+      (op[2] == kDecorationBlock ? blocks : buffer_blocks).insert(op[1]);
+    } else if (opcode == kOpTypeImage && count >= 8) {
+      // OpTypeImage result sampled-type Dim Depth Arrayed MS Sampled format
+      const uint32_t dim = op[3], sampled = op[7];
+      descriptor_kinds[op[1]] = dim == kDimSubpassData ? vk::DescriptorType::eInputAttachment
+                                : dim == kDimBuffer    ? (sampled == 2 ? vk::DescriptorType::eStorageTexelBuffer
+                                                                       : vk::DescriptorType::eUniformTexelBuffer)
+                                : sampled == 2         ? vk::DescriptorType::eStorageImage
+                                                       : vk::DescriptorType::eSampledImage;
+    } else if (opcode == kOpTypeSampler && count >= 2) {
+      descriptor_kinds[op[1]] = vk::DescriptorType::eSampler;
+    } else if (opcode == kOpTypeSampledImage && count >= 3) {
+      descriptor_kinds[op[1]] = vk::DescriptorType::eCombinedImageSampler;
+    } else if ((opcode == kOpTypeArray || opcode == kOpTypeRuntimeArray) && count >= 3) {
+      elements[op[1]] = op[2];
     } else if (opcode == kOpTypeInt && count >= 4 && op[2] == 32) {
       scalars[op[1]] = op[3] ? TexelKind::Int : TexelKind::Uint;
     } else if (opcode == kOpTypeFloat && count >= 3 && op[2] == 32) {
@@ -62,8 +88,11 @@ EntryPointInfo reflect_entry_point(const std::vector<uint32_t>& words, Execution
     } else if (opcode == kOpVariable && count >= 4 && op[3] == kStorageClassInput) {
       inputs[op[2]] = op[1];
     } else if (opcode == kOpVariable && count >= 4 &&
-               (op[3] == kStorageClassUniformConstant || op[3] == kStorageClassUniform)) {
+               (op[3] == kStorageClassUniformConstant || op[3] == kStorageClassUniform ||
+                op[3] == kStorageClassStorageBuffer)) {
       resources.insert(op[2]);
+      storage_classes[op[2]] = op[3];
+      if (auto pointee = pointers.find(op[1]); pointee != pointers.end()) resource_types[op[2]] = pointee->second;
     } else if (opcode == kOpFunction && count >= 3) {
       current_function = op[2];
     } else if (opcode == kOpFunctionEnd) {
@@ -105,8 +134,21 @@ EntryPointInfo reflect_entry_point(const std::vector<uint32_t>& words, Execution
     operands.insert(function_operands[function].begin(), function_operands[function].end());
     for (uint32_t callee : function_calls[function]) pending.push_back(callee);
   }
-  for (const auto& [id, binding] : bindings)
-    if (resources.count(id) && operands.count(id)) info.descriptor_bindings.insert({sets.count(id) ? sets[id] : 0, binding});
+  for (const auto& [id, binding] : bindings) {
+    if (!resources.count(id) || !operands.count(id)) continue;
+    const std::pair<uint32_t, uint32_t> place{sets.count(id) ? sets[id] : 0, binding};
+    info.descriptor_bindings.insert(place);
+    if (!resource_types.count(id)) continue;
+    uint32_t type = resource_types[id];
+    while (elements.count(type)) type = elements[type];
+    if (auto kind = descriptor_kinds.find(type); kind != descriptor_kinds.end()) {
+      info.descriptor_types[place] = kind->second;
+    } else if (buffer_blocks.count(type) || (blocks.count(type) && storage_classes[id] == kStorageClassStorageBuffer)) {
+      info.descriptor_types[place] = vk::DescriptorType::eStorageBuffer;
+    } else if (blocks.count(type) && storage_classes[id] == kStorageClassUniform) {
+      info.descriptor_types[place] = vk::DescriptorType::eUniformBuffer;
+    }
+  }
   return info;
 }
 

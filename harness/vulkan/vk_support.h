@@ -32,6 +32,10 @@ struct EntryPointInfo {
   // (set, binding) of every resource variable the entry point's call tree reads (one the module
   // only declares, or reads in a function the entry point never calls, needs no descriptor).
   std::set<std::pair<uint32_t, uint32_t>> descriptor_bindings;
+  // The descriptor type each of those needs, where its variable's type says (an array of
+  // descriptors by its element): a layout of another type at the binding would reach the driver
+  // mismatched, which lavapipe does not survive.
+  std::map<std::pair<uint32_t, uint32_t>, vk::DescriptorType> descriptor_types;
 };
 
 enum class ExecutionModel : uint32_t { Vertex = 0, Fragment = 4 };

@@ -551,6 +551,8 @@ Result<ProgramHandle> VulkanBackend::create_program(const ProgramDesc& desc) {
       vk::raii::ShaderModule& module;
     };
     using vk_support::ExecutionModel;
+    // What each stage's SPIR-V needs at each binding of set 0, and which shader says so.
+    std::map<uint32_t, std::pair<vk::DescriptorType, std::string>> needed_types;
     for (const StageIn& in :
          {StageIn{desc.vertex, "vertex", ExecutionModel::Vertex, program->vertex},
           StageIn{desc.fragment, "fragment", ExecutionModel::Fragment, program->fragment}}) {
@@ -583,6 +585,8 @@ Result<ProgramHandle> VulkanBackend::create_program(const ProgramDesc& desc) {
           return fail(fmt::format("{} reads the resource at set {} binding {}, which the program's "
                                   "layout does not list",
                                   shader, set, binding));
+      for (const auto& [place, type] : entry.descriptor_types)
+        if (place.first == 0) needed_types.emplace(place.second, std::pair{type, shader});
       in.module = vk::raii::ShaderModule(
           device_, vk::ShaderModuleCreateInfo({}, in.source.spirv.size() * sizeof(uint32_t),
                                               in.source.spirv.data()));
@@ -649,6 +653,19 @@ Result<ProgramHandle> VulkanBackend::create_program(const ProgramDesc& desc) {
       if (auto ok = add(slot.binding, vk::DescriptorType::eStorageBuffer, fmt::format("storage buffer '{}'", slot.name)); !ok)
         return fail(ok.error());
     }
+    // A combined image sampler also serves a separate image and sampler at its binding (Vulkan's
+    // rule, what [[vk::binding]] of a texture and its sampler at one number asks).
+    const auto serves = [](vk::DescriptorType layout, vk::DescriptorType needed) {
+      return layout == needed || (layout == vk::DescriptorType::eCombinedImageSampler &&
+                                  (needed == vk::DescriptorType::eSampledImage || needed == vk::DescriptorType::eSampler));
+    };
+    for (const vk::DescriptorSetLayoutBinding& binding : bindings)
+      if (auto needed = needed_types.find(binding.binding);
+          needed != needed_types.end() && !serves(binding.descriptorType, needed->second.first))
+        return fail(ErrorKind::Internal,
+                    fmt::format("{} reads binding {} as a {} descriptor, but the program's layout gives it a {}",
+                                needed->second.second, binding.binding, vk::to_string(needed->second.first),
+                                vk::to_string(binding.descriptorType)));
     program->set_layout =
         vk::raii::DescriptorSetLayout(device_, vk::DescriptorSetLayoutCreateInfo({}, bindings));
     const vk::DescriptorSetLayout set_layout = *program->set_layout;

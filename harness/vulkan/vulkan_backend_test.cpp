@@ -122,6 +122,24 @@ TEST_F(VulkanBackendTest, InvalidSpirvFails) {
       << program.error().message;
 }
 
+TEST_F(VulkanBackendTest, AResourceOfAnotherDescriptorTypeThanTheLayoutsFails) {
+  // A texel buffer where the layout says storage buffer: the driver would be given a mismatched
+  // descriptor, which lavapipe does not survive.
+  ProgramDesc desc = fullscreen_program(R"(#version 450
+layout(set = 0, binding = 3) uniform samplerBuffer values;
+layout(location = 0) in vec2 uv;
+layout(location = 0) out vec4 frag;
+void main() { frag = texelFetch(values, int(uv.x * 4.0)); }
+)");
+  desc.layout.storage_buffers = {{"values", 3}};
+  auto program = backend_->create_program(desc);
+  ASSERT_FALSE(program);
+  EXPECT_NE(program.error().message.find("reads binding 3 as a UniformTexelBuffer descriptor, but the program's layout "
+                                         "gives it a StorageBuffer"),
+            std::string::npos)
+      << program.error().message;
+}
+
 TEST_F(VulkanBackendTest, ResourceMissingFromTheLayoutFails) {
   // The shader samples a separate texture (binding 1) and sampler (binding 2); a layout that
   // calls binding 1 a combined sampler leaves binding 2 without a descriptor.
