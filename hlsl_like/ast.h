@@ -41,9 +41,14 @@ struct VulkanAttributes {
   std::string builtin;                  // vk::builtin("PointSize"): an output SPIR-V names itself
   // vk::input_attachment_index(N): a SubpassInput's input attachment of the subpass
   std::optional<uint32_t> input_attachment_index;
+  // vk::combinedImageSampler: a texture and a SamplerState at one vk::binding read as one combined
+  // image sampler there
+  bool combined_image_sampler = false;
+  std::optional<uint32_t> offset;       // vk::offset(N): a constant-buffer member's byte offset
   Loc loc;                              // of the first attribute
   bool any() const {
-    return location || binding || push_constant || constant_id || !builtin.empty() || input_attachment_index;
+    return location || binding || push_constant || constant_id || !builtin.empty() || input_attachment_index ||
+           combined_image_sampler || offset;
   }
 };
 

@@ -890,6 +890,8 @@ bool Parser::parse_cbuffer(VulkanAttributes vk) {
 }
 
 bool Parser::parse_cbuffer_member(CBufferDecl& decl) {
+  VulkanAttributes vk;
+  if (at_vulkan_attribute() && !parse_vulkan_attributes(vk)) return false;
   Specifiers spec;
   parse_specifiers(DeclContext::CBufferMember, spec);
   const size_t type_index = pos_;
@@ -897,8 +899,11 @@ bool Parser::parse_cbuffer_member(CBufferDecl& decl) {
   if (!type) return false;
   const std::optional<size_t> name = expect_name();
   if (!name) return false;
-  return parse_declarators(spec, checked_var_type(*type, type_index), *name, DeclContext::CBufferMember,
-                           decl.members);
+  const size_t first = decl.members.size();
+  const bool ok = parse_declarators(spec, checked_var_type(*type, type_index), *name, DeclContext::CBufferMember,
+                                    decl.members);
+  for (size_t i = first; i < decl.members.size(); ++i) decl.members[i]->vk = vk;
+  return ok;
 }
 
 // [unroll], [loop], [unroll(4)], [numthreads(8, 8, 1)]: any number in a row.

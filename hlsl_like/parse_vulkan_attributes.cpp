@@ -15,11 +15,6 @@ std::optional<std::string> not_implemented(const std::string& name) {
   if (name.rfind("ext_", 0) == 0)
     return "SPIR-V extension instructions and types (vk::" + name + ") are not supported: they need DXC's SPIR-V "
            "back end";
-  if (name == "combinedImageSampler")
-    return "vk::combinedImageSampler is not supported yet: xshade gives a texture and its SamplerState bindings of "
-           "their own";
-  if (name == "offset")
-    return "vk::offset is not supported yet: xshade lays a block's members out by HLSL's packing rules";
   if (name == "counter_binding" || name == "shader_record_nv" || name == "shader_record_ext" ||
       name == "shader_record_buffer" || name == "index" || name == "post_depth_coverage" || name == "early_and_late_tests")
     return "vk::" + name + " is not supported: it belongs to resources or stages xshade does not compile";
@@ -115,6 +110,12 @@ bool Parser::parse_vulkan_attributes(VulkanAttributes& out) {
           return false;
         }
         out.builtin = text;
+      } else if (name == "combinedImageSampler") {
+        if (!arguments(0, 0, false)) return false;
+        out.combined_image_sampler = true;
+      } else if (name == "offset") {
+        if (!arguments(1, 1, false)) return false;
+        out.offset = numbers[0];
       } else if (name == "input_attachment_index") {
         if (!arguments(1, 1, false)) return false;
         out.input_attachment_index = numbers[0];

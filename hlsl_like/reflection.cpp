@@ -101,6 +101,7 @@ struct PackedItem {
   bool row_major = false;
   Loc loc;
   std::optional<uint32_t> packoffset;  // bytes, when the member has : packoffset(cN.y)
+  std::optional<uint32_t> vk_offset;   // bytes, when it has [[vk::offset(N)]]
 };
 
 // Lays out `members` by HLSL rules (packoffset where given; after the previous member otherwise)
@@ -118,7 +119,14 @@ void pack_members(ConstantBuffer& buffer, const std::vector<PackedItem>& members
     member.row_major = item.row_major;
     member.size = packed_size(type, member.row_major);
     const bool starts_register = !type.is_scalar() && !type.is_vector();
-    if (item.packoffset) {
+    if (item.vk_offset) {
+      // Vulkan's explicit offset: no HLSL register rule, only what the std140 block can hold.
+      member.offset = *item.vk_offset;
+      if (starts_register && member.offset % kRegister != 0)
+        diagnostics.error(item.loc, "vk::offset(" + std::to_string(member.offset) + ") of " + in_quotes(item.name) +
+                                        ": an array, matrix or struct starts at a multiple of 16 bytes in the std140 "
+                                        "block the targets read");
+    } else if (item.packoffset) {
       member.offset = *item.packoffset;
       const std::string where = "c" + std::to_string(member.offset / kRegister) +
                                 (member.offset % kRegister ? std::string(".") + "xyzw"[member.offset % kRegister / 4] : "");
@@ -189,7 +197,7 @@ std::vector<PackedItem> packed_items(const std::vector<const VarDecl*>& vars) {
   std::vector<PackedItem> items;
   for (const VarDecl* var : vars)
     items.push_back({var->name, var->type, var->packing == MatrixPacking::RowMajor,
-                     var->packoffset ? var->packoffset_loc : var->loc, var->packoffset});
+                     var->packoffset ? var->packoffset_loc : var->loc, var->packoffset, var->vk.offset});
   return items;
 }
 
@@ -570,6 +578,28 @@ const ConstantBuffer* Reflection::find_constant_buffer(std::string_view name) co
   return nullptr;
 }
 
+// [[vk::combinedImageSampler]] as DXC reads it: on a texture and a SamplerState that share one
+// vk::binding (and set), which then are one combined image sampler there; each needs its partner.
+static void check_combined_image_samplers(const Reflection& reflection, DiagnosticEngine& diagnostics) {
+  const auto partner = [](const VarDecl* decl, const VarDecl* other) {
+    return other && other->vk.combined_image_sampler && decl->vk.binding && other->vk.binding == decl->vk.binding &&
+           other->vk.set == decl->vk.set;
+  };
+  const auto check = [&](const VarDecl* decl, bool texture) {
+    if (!decl || !decl->vk.combined_image_sampler) return;
+    const bool paired = texture ? std::any_of(reflection.samplers.begin(), reflection.samplers.end(),
+                                              [&](const SamplerResource& s) { return partner(decl, s.decl); })
+                                : std::any_of(reflection.textures.begin(), reflection.textures.end(),
+                                              [&](const TextureResource& t) { return partner(decl, t.decl); });
+    if (!paired)
+      diagnostics.error(decl->vk.loc, "vk::combinedImageSampler on " + in_quotes(decl->name) + " needs a " +
+                                          (texture ? "SamplerState" : "texture") + " with it at the same vk::binding: " +
+                                          "the two are one combined image sampler there");
+  };
+  for (const TextureResource& texture : reflection.textures) check(texture.decl, true);
+  for (const SamplerResource& sampler : reflection.samplers) check(sampler.decl, false);
+}
+
 Reflection reflect(const TranslationUnit& unit, const EntryPoints& entry_points, const ResourceOrigins& origins,
                    DiagnosticEngine& diagnostics) {
   Reflection reflection;
@@ -657,7 +687,8 @@ Reflection reflect(const TranslationUnit& unit, const EntryPoints& entry_points,
         buffer.count = count;
         std::vector<PackedItem> members;
         if (const StructDecl* structure = type.element().struct_decl())
-          for (const FieldDecl& field : structure->fields) members.push_back({field.name, field.type, false, field.loc, {}});
+          for (const FieldDecl& field : structure->fields)
+            members.push_back({field.name, field.type, false, field.loc, {}, field.vk.offset});
         pack_members(buffer, members, diagnostics);
         if (var.binding.register_class == 'b' && !var.vk.binding) buffers.claim(var.binding, var.name, used(&var), count);
         pending_buffers.push_back({reflection.constant_buffers.size(), &var.binding, var.loc});
@@ -835,6 +866,7 @@ Reflection reflect(const TranslationUnit& unit, const EntryPoints& entry_points,
       reflection.fragment_outputs.push_back(std::move(output));
     }
   }
+  check_combined_image_samplers(reflection, diagnostics);
   return reflection;
 }
 

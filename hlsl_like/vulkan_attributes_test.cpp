@@ -136,6 +136,18 @@ TEST(VulkanAttributes, MisuseIsAnErrorThatSaysWhat) {
   EXPECT_NE(ext[0].find("vk.hlsl:1:3: error: SPIR-V extension instructions and types (vk::ext_capability)"),
             std::string::npos)
       << ext[0];
+  // A combined image sampler needs its partner at its binding; an array's vk::offset its 16 bytes.
+  EXPECT_EQ(attribute_errors_of("[[vk::combinedImageSampler]] [[vk::binding(2)]] Texture2D t;\n"
+                                "[[vk::combinedImageSampler]] [[vk::binding(3)]] SamplerState s;\n#pragma fragment f\n"
+                                "float4 f(float2 uv : TEXCOORD0) : SV_Target { return t.Sample(s, uv); }\n"),
+            (std::vector<std::string>{"vk.hlsl:1:3: error: vk::combinedImageSampler on 't' needs a SamplerState with it "
+                                      "at the same vk::binding: the two are one combined image sampler there",
+                                      "vk.hlsl:2:3: error: vk::combinedImageSampler on 's' needs a texture with it at the "
+                                      "same vk::binding: the two are one combined image sampler there"}));
+  EXPECT_EQ(attribute_errors_of("cbuffer C { float a; [[vk::offset(20)]] float4 b[2]; };\n#pragma fragment f\n"
+                                "float4 f() : SV_Target { return b[0] * a; }\n"),
+            (std::vector<std::string>{"vk.hlsl:1:48: error: vk::offset(20) of 'b': an array, matrix or struct starts at "
+                                      "a multiple of 16 bytes in the std140 block the targets read"}));
   const std::vector<std::string> unknown = attribute_errors_of("[[vk::locaton(0)]] float x;\n");
   ASSERT_FALSE(unknown.empty());
   EXPECT_NE(unknown[0].find("unknown Vulkan attribute 'vk::locaton'"), std::string::npos) << unknown[0];

@@ -4,6 +4,7 @@
 // and a user-defined semantic and [[vk::location]] between the stages of a program.
 #include <cstring>
 #include <string>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -55,6 +56,39 @@ TEST_F(VulkanAttributesDraw, SpecializationConstantsReadTheirDefaultsOrTheValues
     auto specialized = harness::evaluate(*module, lane, backend(lane), 1, 1, {}, {.specialization = *given});
     ASSERT_TRUE(specialized) << specialized.error().to_string();
     EXPECT_EQ(specialized->at(0, 0), glm::vec4(0.75f, 5 * 0.125f, 1.0f, 1.0f));
+  }
+}
+
+// Members at the byte offsets [[vk::offset]] gives (past HLSL's packing) and a texture and its
+// sampler made one combined image sampler by [[vk::combinedImageSampler]].
+constexpr const char* kOffsetsSource = R"(
+#pragma fragment f
+struct Params { float a; [[vk::offset(32)]] float4 tint; };
+[[vk::binding(0)]] ConstantBuffer<Params> params;
+cbuffer Extra : register(b1) { float e0; [[vk::offset(20)]] float e1; };
+[[vk::combinedImageSampler]] [[vk::binding(3)]] Texture2D tex;
+[[vk::combinedImageSampler]] [[vk::binding(3)]] SamplerState smp;
+float4 f(float2 uv : TEXCOORD0) : SV_Target { return params.tint * params.a * tex.Sample(smp, uv) + e1; }
+)";
+
+TEST_F(VulkanAttributesDraw, MembersAtTheirVkOffsetsAndACombinedImageSamplerReadWhatTheHostWroteThere) {
+  auto module = hlsl::compile_text("offsets.hlsl", kOffsetsSource, {});
+  ASSERT_TRUE(module->ok());
+  const hlsl::ConstantBuffer* params = module->reflection.find_constant_buffer("params");
+  const hlsl::ConstantBuffer* extra = module->reflection.find_constant_buffer("Extra");
+  ASSERT_TRUE(params && extra);
+  ASSERT_EQ(params->members.at(1).offset, 32u);
+  ASSERT_EQ(extra->members.at(1).offset, 20u);
+  std::vector<std::byte> params_bytes(params->size), extra_bytes(extra->size);
+  const float a = 0.5f, tint[4] = {0.2f, 0.4f, 0.6f, 0.8f}, e1 = 0.125f;
+  std::memcpy(params_bytes.data(), &a, 4);
+  std::memcpy(params_bytes.data() + 32, tint, 16);
+  std::memcpy(extra_bytes.data() + 20, &e1, 4);
+  for (Lane lane : harness::all_lanes()) {
+    SCOPED_TRACE(harness::lane_name(lane));
+    auto image = harness::evaluate(*module, lane, backend(lane), 1, 1, {{"params", params_bytes}, {"Extra", extra_bytes}});
+    ASSERT_TRUE(image) << image.error().to_string();
+    for (int c = 0; c < 4; ++c) EXPECT_FLOAT_EQ(image->at(0, 0)[c], tint[c] * a + e1) << "channel " << c;
   }
 }
 
