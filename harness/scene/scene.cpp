@@ -631,61 +631,43 @@ class SceneReader : SceneValueReader {
   }
 
   void read_textures(const toml::node& node, const std::string& path, std::map<std::string, TextureRef>& textures) {
-    auto* table = node.as_table();
-    if (!table) {
-      expected(node, path, "a table of texture names");
-      return;
-    }
-    for (auto&& [key, value] : *table) {
-      std::string name(key.str());
-      std::string name_path = key_path(path, name);
-      if (!is_identifier(name)) {
-        report(key.source(), fmt::format("{}: expected a texture property name (letters, digits and _)", name_path));
-        continue;
-      }
-      if (auto reference = texture(value, name_path)) textures.emplace(name, *reference);
-    }
+    for_each_named(node, path, "a table of texture names", "a texture property name",
+                   [&](const std::string& name, const toml::node& value, const std::string& name_path) {
+                     if (auto reference = texture(value, name_path)) textures.emplace(name, *reference);
+                   });
   }
 
   // NAME = [numbers] or NAME = "data.bin" (BufferRef).
   void read_buffers(const toml::node& node, const std::string& path, std::map<std::string, BufferRef>& buffers) {
-    auto* table = node.as_table();
-    if (!table) {
-      expected(node, path, "a table of buffer names");
-      return;
+    for_each_named(node, path, "a table of buffer names", "a buffer name",
+                   [&](const std::string& name, const toml::node& value, const std::string& name_path) {
+                     if (auto reference = buffer(value, name_path)) buffers.emplace(name, std::move(*reference));
+                   });
+  }
+
+  std::optional<BufferRef> buffer(const toml::node& value, const std::string& path) {
+    BufferRef reference;
+    reference.where = where(value.source());
+    if (auto* text = value.as_string()) {
+      auto resolved = scene_file_path(value, path, text->get());
+      if (!resolved) return std::nullopt;
+      reference.file = *resolved;
+      return reference;
     }
-    constexpr const char* kBufferValue = "an array of numbers or the path of a file of the buffer's bytes";
-    for (auto&& [key, value] : *table) {
-      std::string name(key.str());
-      std::string name_path = key_path(path, name);
-      if (!is_identifier(name)) {
-        report(key.source(), fmt::format("{}: expected a buffer name (letters, digits and _)", name_path));
-        continue;
-      }
-      BufferRef reference;
-      reference.where = where(value.source());
-      if (auto* text = value.as_string()) {
-        auto resolved = scene_file_path(value, name_path, text->get());
-        if (!resolved) continue;
-        reference.file = *resolved;
-      } else if (auto* array = value.as_array(); array && !array->empty()) {
-        bool ok = true;
-        for (const toml::node& element : *array) {
-          if (auto number = element.value<double>(); number && !element.is_boolean()) {
-            reference.numbers.push_back(*number);
-          } else {
-            expected(element, name_path, "numbers only");
-            ok = false;
-            break;
-          }
-        }
-        if (!ok) continue;
-      } else {
-        expected(value, name_path, kBufferValue);
-        continue;
-      }
-      buffers.emplace(name, std::move(reference));
+    auto* array = value.as_array();
+    if (!array || array->empty()) {
+      expected(value, path, "an array of numbers or the path of a file of the buffer's bytes");
+      return std::nullopt;
     }
+    for (const toml::node& element : *array) {
+      auto number = element.value<double>();
+      if (!number || element.is_boolean()) {
+        expected(element, path, "numbers only");
+        return std::nullopt;
+      }
+      reference.numbers.push_back(*number);
+    }
+    return reference;
   }
 
   std::optional<GridSpec> read_grid(const toml::table& table, const std::string& path,

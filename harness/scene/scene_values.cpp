@@ -158,22 +158,31 @@ std::vector<std::string> SceneValueReader::keywords(const toml::node& node, std:
   return result;
 }
 
-std::map<std::string, PropertyValue> SceneValueReader::properties(const toml::node& node, std::string_view path) {
-  std::map<std::string, PropertyValue> result;
+void SceneValueReader::for_each_named(
+    const toml::node& node, std::string_view path, std::string_view table_expectation, std::string_view name_expectation,
+    const std::function<void(const std::string&, const toml::node&, const std::string&)>& read) {
   auto* table = node.as_table();
   if (!table) {
-    expected(node, path, "a table of property values");
-    return result;
+    expected(node, path, table_expectation);
+    return;
   }
   for (auto&& [key, value] : *table) {
     std::string name(key.str());
     std::string name_path = key_path(path, name);
     if (!is_identifier(name)) {
-      report(key.source(), fmt::format("{}: expected a property name (letters, digits and _)", name_path));
+      report(key.source(), fmt::format("{}: expected {} (letters, digits and _)", name_path, name_expectation));
       continue;
     }
-    if (auto property = property_value(value, name_path)) result.emplace(name, *property);
+    read(name, value, name_path);
   }
+}
+
+std::map<std::string, PropertyValue> SceneValueReader::properties(const toml::node& node, std::string_view path) {
+  std::map<std::string, PropertyValue> result;
+  for_each_named(node, path, "a table of property values", "a property name",
+                 [&](const std::string& name, const toml::node& value, const std::string& name_path) {
+                   if (auto property = property_value(value, name_path)) result.emplace(name, *property);
+                 });
   return result;
 }
 

@@ -67,6 +67,11 @@ class SceneValueReader : protected TomlReader {
   std::vector<std::string> keywords(const toml::node& node, std::string_view path);
 
   std::map<std::string, PropertyValue> properties(const toml::node& node, std::string_view path);
+  // A table of names a shader has (properties, textures, buffers): `read(name, value, name_path)`
+  // for each key that is an identifier; `table` and `name` say what was expected where the node
+  // is not a table ("a table of texture names") or a key is not a name ("a texture property name").
+  void for_each_named(const toml::node& node, std::string_view path, std::string_view table, std::string_view name,
+                      const std::function<void(const std::string&, const toml::node&, const std::string&)>& read);
 
   // A table `name` of `parent`: nullptr when absent (reported when required) or not a table.
   const toml::table* table(const toml::table& parent, std::string_view parent_path, std::string_view name,
