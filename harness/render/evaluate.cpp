@@ -39,11 +39,7 @@ Result<FullscreenProgram> FullscreenProgram::create(const hlsl::Module& module, 
                              default_constant_buffer(buffers[i], module.reflection.properties), std::move(declared)});
   }
   made.texture_slots_ = desc->layout.textures;
-  for (hlsl::StorageBufferResource buffer : module.reflection.buffers) {
-    if (!buffer.used) continue;
-    buffer.decl = nullptr;
-    made.storage_buffers_.push_back(std::move(buffer));
-  }
+  made.storage_buffers_ = shader_interface(module.reflection).storage_buffers;  // plain data: the module may go
   return made;
 }
 
@@ -105,12 +101,12 @@ Result<FloatImage> FullscreenProgram::run(Backend& backend, uint32_t width, uint
   }
   for (const auto& given : inputs.storage_buffers)
     if (std::none_of(storage_buffers_.begin(), storage_buffers_.end(),
-                     [&](const hlsl::StorageBufferResource& buffer) { return buffer.name == given.first; }))
+                     [&](const StorageBufferInput& buffer) { return buffer.name == given.first; }))
       return fail("the program reads no buffer named '" + given.first + "'");
-  for (const hlsl::StorageBufferResource& buffer : storage_buffers_) {
+  for (const StorageBufferInput& buffer : storage_buffers_) {
     auto given = inputs.storage_buffers.find(buffer.name);
     if (given == inputs.storage_buffers.end())
-      return fail("the shader reads the " + std::string(hlsl::buffer_kind_name(buffer.kind)) + " '" + buffer.name +
+      return fail("the shader reads the buffer '" + buffer.name +
                   "', which has no default: give its bytes (xshade eval: --seed N)");
     draw.storage_buffers.push_back({buffer.name, given->second});
   }
@@ -154,7 +150,7 @@ Result<FloatImage> FullscreenProgram::run_seeded(Backend& backend, uint32_t widt
     if (!texture) return fail(texture.error());
     inputs.textures[slot.name] = TextureSource::texture(*texture, seeded_sampler(slot));
   }
-  for (const hlsl::StorageBufferResource& buffer : storage_buffers_)
+  for (const StorageBufferInput& buffer : storage_buffers_)
     inputs.storage_buffers[buffer.name] = seeded_storage_buffer(buffer, seed);
   return run(backend, width, height, inputs, record);
 }

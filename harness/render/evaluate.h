@@ -10,6 +10,7 @@
 
 #include "harness/backend/backend.h"
 #include "harness/render/lanes.h"
+#include "harness/render/shader_interface.h"
 #include "harness/render/shader_program.h"
 #include "hlsl_like/compiler.h"
 
@@ -73,7 +74,7 @@ class FullscreenProgram {
   glsl::NonfiniteTrace trace_;
   std::vector<Buffer> buffers_;
   std::vector<TextureSlot> texture_slots_;
-  std::vector<hlsl::StorageBufferResource> storage_buffers_;  // the ones read (decl cleared)
+  std::vector<StorageBufferInput> storage_buffers_;  // the ones read
 };
 
 // FullscreenProgram::create then run, once, then the program destroyed: what `xshade eval` and the

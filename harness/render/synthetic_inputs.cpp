@@ -51,25 +51,22 @@ std::vector<std::byte> seeded_constant_buffer(const hlsl::ConstantBuffer& buffer
   });
 }
 
-std::vector<std::byte> seeded_storage_buffer(const hlsl::StorageBufferResource& buffer, uint32_t seed) {
-  const bool raw = buffer.kind == hlsl::BufferKind::ByteAddressBuffer;
-  const std::vector<hlsl::ScalarType> element =
-      raw ? std::vector<hlsl::ScalarType>{hlsl::ScalarType::Float} : hlsl::structured_words(buffer.element);
-  const uint32_t elements = raw ? 256 : 64;
+std::vector<std::byte> seeded_storage_buffer(const StorageBufferInput& buffer, uint32_t seed) {
+  const uint32_t elements = buffer.words.size() == 1 ? 256 : 64;
   Noise noise(seed, buffer.name);
   std::vector<std::byte> bytes;
-  bytes.reserve(size_t(elements) * element.size() * 4);
+  bytes.reserve(size_t(elements) * buffer.words.size() * 4);
   const auto append = [&bytes](auto value) {
     const size_t end = bytes.size();
     bytes.resize(end + 4);
     std::memcpy(bytes.data() + end, &value, 4);
   };
   for (uint32_t e = 0; e < elements; ++e)
-    for (hlsl::ScalarType scalar : element) {
-      switch (scalar) {
-        case hlsl::ScalarType::Int: append(int32_t(noise.below(4))); break;
-        case hlsl::ScalarType::Uint: append(noise.below(4)); break;
-        case hlsl::ScalarType::Bool: append(noise.below(2)); break;
+    for (char word : buffer.words) {
+      switch (word) {
+        case 'i': append(int32_t(noise.below(4))); break;
+        case 'u': append(noise.below(4)); break;
+        case 'b': append(noise.below(2)); break;
         default: append(0.1f + 0.9f * noise.unit());
       }
     }

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "harness/backend/backend.h"
+#include "harness/render/shader_interface.h"
 #include "hlsl_like/reflection.h"
 
 namespace xshade::harness {
@@ -16,11 +17,11 @@ namespace xshade::harness {
 // counts, indices), a bool 0 or 1. HLSL packing, as reflection gives it.
 std::vector<std::byte> seeded_constant_buffer(const hlsl::ConstantBuffer& buffer, uint32_t seed);
 
-// The bytes of a read-only buffer from the seed and the buffer's name: 64 elements (a
-// ByteAddressBuffer 256 words), each word by its scalar type in the ranges of a constant buffer's
-// (a float in [0.1, 1], an int or uint in 0..3, a bool 0 or 1); a ByteAddressBuffer's words
-// floats, what raw buffers mostly hold.
-std::vector<std::byte> seeded_storage_buffer(const hlsl::StorageBufferResource& buffer, uint32_t seed);
+// The bytes of a read-only buffer from the seed and the buffer's name: 64 elements, or 256 of one
+// word each (a ByteAddressBuffer's, a StructuredBuffer<float>'s), each word by its type in the ranges of a constant buffer's
+// (a float in [0.1, 1], an int or uint in 0..3, a bool 0 or 1); a ByteAddressBuffer's words are
+// floats (StorageBufferInput::words), what raw buffers mostly hold.
+std::vector<std::byte> seeded_storage_buffer(const StorageBufferInput& buffer, uint32_t seed);
 
 // Noise of the slot's shape and texel kind from the seed and the slot's name: 16 texels a side
 // (1D: 16 x 1; arrays 2 layers; cubes 6 faces; 3D 16 slices), a full mip chain (one level when

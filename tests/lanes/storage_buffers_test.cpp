@@ -8,6 +8,7 @@
 #include <gtest/gtest.h>
 
 #include "harness/render/evaluate.h"
+#include "harness/render/shader_interface.h"
 #include "harness/render/synthetic_inputs.h"
 #include "hlsl_like/compiler.h"
 #include "tests/lanes/lane_fixture.h"
@@ -144,7 +145,7 @@ TEST_F(StorageBuffersDraw, SeededBuffersReadAsTheHostReadsTheSeedsBytes) {
     auto module = buffers_module(lane);
     ASSERT_TRUE(module->ok());
     std::map<std::string, std::vector<std::byte>> seeded = {{"typed", {}}};
-    for (const hlsl::StorageBufferResource& buffer : module->reflection.buffers)
+    for (const harness::StorageBufferInput& buffer : harness::shader_interface(module->reflection).storage_buffers)
       seeded[buffer.name] = harness::seeded_storage_buffer(buffer, kSeed);
     auto program = harness::FullscreenProgram::create(*module, lane, backend(lane));
     ASSERT_TRUE(program) << program.error().to_string();
