@@ -117,6 +117,7 @@ std::vector<std::string> worker_command(const EvalOptions& options, harness::Lan
 struct FileEval {
   std::filesystem::path file;
   std::unique_ptr<hlsl::Module> module = {};  // null when the front end refused it
+  std::map<uint32_t, double> specialization = {};  // --specialize, resolved against the module
   std::string front_end_output = {};
   int exit_code = kPass;
   std::map<harness::Lane, std::string> lane_output = {};
@@ -150,10 +151,12 @@ void compile_for_eval(const EvalOptions& options, FileEval& eval) {
         "xshade eval: {} writes no colour (SV_Target); eval renders and compares colour only\n", eval.file.string());
     return;
   }
-  if (auto specialization = harness::resolve_specialization(options.specializations, module->reflection); !specialization) {
+  auto specialization = harness::resolve_specialization(options.specializations, module->reflection);
+  if (!specialization) {
     eval.front_end_output += fmt::format("xshade eval: {}: {}\n", eval.file.string(), specialization.error().message);
     return;
   }
+  eval.specialization = std::move(*specialization);
   eval.exit_code = kPass;
   eval.module = std::move(module);
 }
@@ -347,11 +350,8 @@ int evaluate_lane_in_worker(const EvalOptions& options, harness::Lane lane, std:
         return kBackendError;
       }
       const hlsl::Module& module = *eval.module;
-      // Resolved once already, when the file was compiled.
-      const harness::ProgramOptions program_options{
-          .half_emulation = options.precision == "half",
-          .specialization = harness::resolve_specialization(options.specializations, module.reflection).value_or(
-              std::map<uint32_t, double>{})};
+      const harness::ProgramOptions program_options{.half_emulation = options.precision == "half",
+                                                    .specialization = eval.specialization};
       auto image = options.seed ? [&]() -> Result<harness::FloatImage> {
         auto program = harness::FullscreenProgram::create(module, lane, **backend, program_options);
         if (!program) return fail(program.error());
