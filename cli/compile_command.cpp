@@ -75,7 +75,7 @@ int compile_module(const CompileOptions& options, const std::filesystem::path& f
                    std::unique_ptr<hlsl::Module> module) {
   if (!module->diagnostics.diagnostics().empty()) fmt::print(stderr, "{}", module->diagnostics.render_all());
   if (!module->ok()) return kBadInput;
-  const OutputOptions output_options{.target = target_named(options.target),
+  const OutputOptions output_options{.target = *codegen::target_named(options.target),
                                      .half_emulation = options.precision == "half",
                                      .trace_nonfinite = options.trace_nonfinite};
 

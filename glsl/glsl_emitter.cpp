@@ -862,6 +862,12 @@ Result<EmittedProgram> emit(const hlsl::Module& module, const EmitOptions& optio
     (vertex ? program.vertex : program.fragment) = EmittedStage{std::move(text)};
     if (!vertex && options.trace_nonfinite) program.trace = emitter.take_trace();
   }
+  for (const hlsl::ConstantBuffer& buffer : module.reflection.constant_buffers)
+    program.names.blocks[buffer.name] = block_name(buffer.name);
+  for (const hlsl::TextureResource& texture : module.reflection.textures)
+    program.names.textures[texture.name] = names.of(texture.name);
+  for (const hlsl::StorageBufferResource& buffer : module.reflection.buffers)
+    program.names.storage_blocks[buffer.name] = buffer_block_name(buffer.name);
   return program;
 }
 

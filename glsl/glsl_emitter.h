@@ -115,6 +115,15 @@ struct EmittedStage {
   std::string text;  // a complete GLSL shader
 };
 
+// The names the GLSL gives what an OpenGL program binds by name, by their HLSL names: each constant
+// buffer's block ("$Globals" is "xs_Globals"), each texture's sampler uniform (renamed where GLSL
+// reserves the HLSL name) and each read-only buffer's storage block.
+struct DeclaredNames {
+  std::map<std::string, std::string> blocks;
+  std::map<std::string, std::string> textures;
+  std::map<std::string, std::string> storage_blocks;
+};
+
 struct EmittedProgram {
   std::optional<EmittedStage> vertex;    // absent when the module has no vertex entry point
   std::optional<EmittedStage> fragment;  // absent when the module has no fragment entry point
@@ -123,6 +132,7 @@ struct EmittedProgram {
   std::vector<std::string> source_files;
   // With EmitOptions::trace_nonfinite: the fragment stage's sites and calls.
   NonfiniteTrace trace;
+  DeclaredNames names;
 };
 
 // The module must have compiled without errors. Fails, with the location of the construct, on

@@ -17,7 +17,7 @@
 #include "hlsl_like/semantics.h"
 #include "spirv/glslang_log.h"
 #include "spirv/glslang_process.h"
-#include "spirv/spirv_words.h"
+#include "base/spirv_words.h"
 
 namespace xshade::spirv {
 namespace {

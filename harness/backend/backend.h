@@ -163,6 +163,10 @@ struct UniformBlockSlot {
   // Vulkan only: the block is the program's push constants (at most one, given with each draw),
   // not a descriptor; `binding` is then unused. OpenGL reads every block as a uniform block.
   bool push_constant = false;
+  // OpenGL only: the block's name in the GLSL when it is not `name` ("$Globals" is "xs_Globals",
+  // and GLSL reserves some HLSL names). Draws still bind by `name`.
+  std::string glsl_block = {};
+  const std::string& glsl_block_name() const { return glsl_block.empty() ? name : glsl_block; }
 };
 struct TextureSlot {
   std::string name;

@@ -747,7 +747,7 @@ Result<ProgramHandle> GlBackend::create_program(const ProgramDesc& desc) {
 
     // Bindings by name, from the layout.
     for (const UniformBlockSlot& slot : desc.layout.uniform_blocks) {
-      const GLuint index = gl_.GetUniformBlockIndex(id, slot.name.c_str());
+      const GLuint index = gl_.GetUniformBlockIndex(id, slot.glsl_block_name().c_str());
       if (index != GL_INVALID_INDEX) gl_.UniformBlockBinding(id, index, slot.binding);
       GLuint buffer = 0;
       gl_.CreateBuffers(1, &buffer);

@@ -327,7 +327,7 @@ Result<void> check_interface(const gl::Functions& gl, GLuint id, const ProgramLa
     GLint size = 0;
     gl.GetProgramResourceiv(id, GL_UNIFORM_BLOCK, index, 1, &property, 1, nullptr, &size);
     auto slot = std::find_if(layout.uniform_blocks.begin(), layout.uniform_blocks.end(),
-                             [&](const UniformBlockSlot& s) { return s.name == name; });
+                             [&](const UniformBlockSlot& s) { return s.glsl_block_name() == name; });
     if (slot == layout.uniform_blocks.end())
       return fail(fmt::format("{}: the program uses uniform block '{}', which the layout does not "
                               "list",

@@ -35,8 +35,7 @@ Result<FullscreenProgram> FullscreenProgram::create(const hlsl::Module& module, 
   for (size_t i = 0; i < buffers.size(); ++i) {
     hlsl::ConstantBuffer declared = buffers[i];
     declared.decl = nullptr;
-    made.buffers_.push_back({buffers[i].name, desc->layout.uniform_blocks[i].name,
-                             default_constant_buffer(buffers[i], module.reflection.properties), std::move(declared)});
+    made.buffers_.push_back({buffers[i].name, default_constant_buffer(buffers[i], module.reflection.properties), std::move(declared)});
   }
   made.texture_slots_ = desc->layout.textures;
   made.storage_buffers_ = shader_interface(module.reflection).storage_buffers;  // plain data: the module may go
@@ -97,7 +96,7 @@ Result<FloatImage> FullscreenProgram::run(Backend& backend, uint32_t width, uint
     if (bytes.size() != buffer.defaults.size())
       return fail("constant buffer '" + buffer.name + "' needs " + std::to_string(buffer.defaults.size()) + " bytes, not " +
                   std::to_string(bytes.size()));
-    draw.uniforms.push_back({buffer.slot_name, bytes});
+    draw.uniforms.push_back({buffer.name, bytes});
   }
   for (const auto& given : inputs.storage_buffers)
     if (std::none_of(storage_buffers_.begin(), storage_buffers_.end(),

@@ -64,8 +64,7 @@ class FullscreenProgram {
 
  private:
   struct Buffer {
-    std::string name;       // HLSL
-    std::string slot_name;  // the layout's
+    std::string name;  // HLSL, the layout's name for it
     std::vector<std::byte> defaults;
     hlsl::ConstantBuffer declared;  // its members, for seeded bytes (decl cleared: the module may go)
   };

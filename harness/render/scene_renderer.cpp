@@ -84,7 +84,7 @@ Result<std::vector<UniformBinding>> uniform_bindings(const CompiledVariant& vari
   for (const UniformBlock& block : variant.interface.uniform_blocks) {
     auto bytes = build_uniform_block(block, [&values](const std::string& name) { return values(name); });
     if (!bytes) return fail(where + ": " + bytes.error().message);
-    bindings.push_back({block.slot_name, std::move(*bytes)});
+    bindings.push_back({block.name, std::move(*bytes)});
   }
   return bindings;
 }
@@ -651,7 +651,8 @@ std::string program_key(const ProgramDesc& desc) {
     key += "\n";
   }
   for (const UniformBlockSlot& block : desc.layout.uniform_blocks)
-    key += "b " + block.name + " " + std::to_string(block.binding) + " " + std::to_string(block.size) + "\n";
+    key += "b " + block.name + " " + std::to_string(block.binding) + " " + std::to_string(block.size) + " " +
+           block.glsl_block + "\n";
   for (const TextureSlot& texture : desc.layout.textures)
     key += "t " + texture.name + " " + std::to_string(texture.binding) + " " +
            (texture.sampler_binding ? std::to_string(*texture.sampler_binding) : "-") + " " + shape_name(texture.shape) +

@@ -37,7 +37,11 @@ std::string variant_json(const CompiledVariant& variant) {
   const ProgramDesc& p = variant.program;
   json blocks = json::array();
   for (const UniformBlockSlot& b : p.layout.uniform_blocks)
-    blocks.push_back({{"name", b.name}, {"binding", b.binding}, {"size", b.size}, {"push_constant", b.push_constant}});
+    blocks.push_back({{"name", b.name},
+                      {"binding", b.binding},
+                      {"size", b.size},
+                      {"push_constant", b.push_constant},
+                      {"glsl_block", b.glsl_block}});
   json textures = json::array();
   for (const TextureSlot& t : p.layout.textures) {
     json slot{{"name", t.name},
@@ -79,7 +83,7 @@ std::optional<CompiledVariant> variant_from_json(const std::string& text) {
     p.vertex = stage_from_json(j.at("vertex"));
     p.fragment = stage_from_json(j.at("fragment"));
     for (const json& b : j.at("uniform_blocks"))
-      p.layout.uniform_blocks.push_back({b.at("name"), b.at("binding"), b.at("size"), b.at("push_constant")});
+      p.layout.uniform_blocks.push_back({b.at("name"), b.at("binding"), b.at("size"), b.at("push_constant"), b.at("glsl_block")});
     for (const json& t : j.at("textures")) {
       TextureSlot slot{t.at("name"), t.at("binding"), std::nullopt};
       if (t.contains("sampler_binding")) slot.sampler_binding = t.at("sampler_binding").get<uint32_t>();

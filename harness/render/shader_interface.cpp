@@ -75,7 +75,7 @@ const PropertyDefault* ShaderInterface::find_property(const std::string& name) c
 ShaderInterface shader_interface(const hlsl::Reflection& reflection) {
   ShaderInterface interface;
   for (const hlsl::ConstantBuffer& buffer : reflection.constant_buffers) {
-    UniformBlock block{buffer.name, glsl::block_name(buffer.name), buffer.size, {}};
+    UniformBlock block{buffer.name, buffer.size, {}};
     for (const hlsl::ConstantBufferMember& member : buffer.members)
       if (member.type.is_numeric() || member.type.kind() == hlsl::TypeKind::Array)
         block.members.push_back(uniform_member(member));
@@ -110,7 +110,7 @@ std::string shader_interface_json(const ShaderInterface& interface) {
     for (const UniformMember& m : block.members)
       members.push_back({{"name", m.name}, {"scalar", scalar_spelling(m.scalar)}, {"rows", m.rows}, {"cols", m.cols},
                          {"array_length", m.array_length}, {"offset", m.offset}, {"row_major", m.row_major}, {"read", m.read}});
-    blocks.push_back({{"name", block.name}, {"slot_name", block.slot_name}, {"size", block.size}, {"members", members}});
+    blocks.push_back({{"name", block.name}, {"size", block.size}, {"members", members}});
   }
   json properties = json::array();
   for (const PropertyDefault& property : interface.properties)
@@ -128,7 +128,7 @@ Result<ShaderInterface> parse_shader_interface_json(const std::string& text) {
     const json document = json::parse(text);
     ShaderInterface interface;
     for (const json& b : document.at("uniform_blocks")) {
-      UniformBlock block{b.at("name"), b.at("slot_name"), b.at("size"), {}};
+      UniformBlock block{b.at("name"), b.at("size"), {}};
       for (const json& m : b.at("members")) {
         UniformMember member;
         member.name = m.at("name");

@@ -28,8 +28,7 @@ struct UniformMember {
 };
 
 struct UniformBlock {
-  std::string name;        // as the shader declares it ("$Globals" for loose globals)
-  std::string slot_name;   // the ProgramLayout's name for it
+  std::string name;        // as the shader declares it ("$Globals" for loose globals), the layout's too
   uint32_t size = 0;       // bytes
   std::vector<UniformMember> members;
 };

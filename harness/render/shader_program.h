@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "codegen/generate.h"
 #include "glsl/glsl_emitter.h"
 #include "harness/backend/backend.h"
 #include "harness/render/lanes.h"
@@ -54,20 +55,9 @@ uint32_t specialization_word(double value, hlsl::ScalarType scalar);
 Result<ProgramDesc> program_for_lane(const hlsl::Module& module, Lane lane, const ProgramOptions& options = {},
                                      glsl::NonfiniteTrace* trace = nullptr);
 
-// The stages the module has (a vertex shader alone, a fragment shader alone, or both), each
-// compiled for the lane as program_for_lane would, without the full-screen vertex shader: what
-// `xshade compile` prints.
-struct LaneStages {
-  std::optional<ShaderStageSource> vertex;
-  std::optional<ShaderStageSource> fragment;
-  glsl::NonfiniteTrace trace;  // with ProgramOptions::trace_nonfinite
-};
-Result<LaneStages> stages_for_lane(const hlsl::Module& module, Lane lane, const ProgramOptions& options = {});
+// The target whose code a lane runs: gl's GLSL, vk's SPIR-V from the vk GLSL, vk-hlsl's from glslang.
+codegen::Target lane_target(Lane lane);
 
-// The layout the harness binds by: uniform blocks by their GLSL block name, textures by name
-// with their samplers' bindings (Vulkan only; OpenGL combines them).
-// Each texture slot carries the shape, texel kind and comparison the shader declared.
-ProgramLayout layout_for_lane(const hlsl::Reflection& reflection, Lane lane, const ProgramOptions& options = {});
 // A texture shape and texel type of the front end as the backends name them.
 TextureShape harness_shape(hlsl::TextureShape shape);
 TexelKind harness_texel(hlsl::ScalarType texel);

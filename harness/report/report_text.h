@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "harness/backend/backend.h"
-#include "harness/render/lanes.h"
+#include "harness/scene/lane.h"
 #include "harness/gate/run_results.h"
 
 namespace xshade::harness {

@@ -7,8 +7,16 @@
 
 #include <fmt/format.h>
 
+#include <spirv-tools/libspirv.hpp>
+
+#include "base/spirv_words.h"
 #include "harness/vulkan/vulkan_backend.h"
-#include "spirv/spirv_words.h"
+
+// The multisample fill's SPIR-V (CMakeLists.txt makes these from shaders/).
+#include "multisample_fill_float.h"
+#include "multisample_fill_int.h"
+#include "multisample_fill_uint.h"
+#include "multisample_fill_vertex.h"
 
 namespace xshade::harness::vk_support {
 
@@ -487,12 +495,25 @@ vk::raii::Pipeline create_draw_pipeline(const vk::raii::Device& device, const Dr
   return vk::raii::Pipeline(device, nullptr, info);
 }
 
-std::string fill_fragment_shader(TexelKind kind) {
-  const std::string prefix = kind == TexelKind::Int ? "i" : kind == TexelKind::Uint ? "u" : "";
-  return "#version 450\nlayout(set = 0, binding = 0) uniform " + prefix + "sampler2DArray source;\n"
-         "layout(push_constant) uniform Fill { int layer; } fill;\n"
-         "layout(location = 0) out " + prefix + "vec4 color;\n"
-         "void main() { color = texelFetch(source, ivec3(ivec2(gl_FragCoord.xy), fill.layer), 0); }\n";
+std::span<const uint32_t> fill_vertex_shader() { return kMultisampleFill_vertex; }
+
+std::span<const uint32_t> fill_fragment_shader(TexelKind kind) {
+  switch (kind) {
+    case TexelKind::Int: return kMultisampleFill_int;
+    case TexelKind::Uint: return kMultisampleFill_uint;
+    case TexelKind::Float: break;
+  }
+  return kMultisampleFill_float;
+}
+
+std::vector<std::string> spirv_validation_messages(const std::vector<uint32_t>& words) {
+  spvtools::SpirvTools tools(SPV_ENV_VULKAN_1_3);
+  std::vector<std::string> messages;
+  tools.SetMessageConsumer([&](spv_message_level_t, const char*, const spv_position_t& position, const char* message) {
+    messages.push_back("instruction " + std::to_string(position.index) + ": " + message);
+  });
+  if (!tools.Validate(words) && messages.empty()) messages.push_back("spirv-val refuses it");
+  return messages;
 }
 
 vk::raii::Pipeline create_fill_pipeline(const vk::raii::Device& device, vk::ShaderModule vertex,

@@ -9,6 +9,7 @@
 #include <mutex>
 #include <optional>
 #include <set>
+#include <span>
 #include <string>
 #include <utility>
 #include <vector>
@@ -192,15 +193,15 @@ vk::raii::Pipeline create_draw_pipeline(const vk::raii::Device& device, const Dr
 
 // The internal draw that fills a multisampled image: each sample of every texel of one layer
 // gets the texel of a single-sampled copy. Without sample shading a fragment's one output goes to
-// every sample it covers, and the triangle covers the whole layer.
-constexpr const char* kFillVertexShader = R"(#version 450
-void main() {
-  vec2 corner = vec2((gl_VertexIndex << 1) & 2, gl_VertexIndex & 2);
-  gl_Position = vec4(corner * 2.0 - 1.0, 0.0, 1.0);
-}
-)";
-// Reads the layer a push constant names from a 2D array of texels of `kind`.
-std::string fill_fragment_shader(TexelKind kind);
+// every sample it covers, and the triangle covers the whole layer. The SPIR-V of shaders/, made
+// when xshade is built: the vertex shader, and the fragment shader that reads the layer a push
+// constant names from a 2D array of texels of `kind`.
+std::span<const uint32_t> fill_vertex_shader();
+std::span<const uint32_t> fill_fragment_shader(TexelKind kind);
+
+// A SPIR-V module as the Vulkan environment validates it (SPIRV-Tools): the validator's messages,
+// or none when it is valid.
+std::vector<std::string> spirv_validation_messages(const std::vector<uint32_t>& words);
 // The fill's pipeline: `samples` samples of `format` over `area`, the layer as a push constant.
 vk::raii::Pipeline create_fill_pipeline(const vk::raii::Device& device, vk::ShaderModule vertex,
                                         vk::ShaderModule fragment, vk::PipelineLayout layout, vk::Format format,

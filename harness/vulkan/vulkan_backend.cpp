@@ -29,7 +29,6 @@
 #include "harness/backend/pass_resolution.h"
 #include "harness/vulkan/lavapipe_loading.h"
 #include "harness/vulkan/vk_support.h"
-#include "spirv/spirv_compiler.h"
 
 namespace xshade::harness {
 namespace {
@@ -464,17 +463,11 @@ void VulkanBackend::fill_multisampled(Image& image, const TextureData& data) {
   vk_support::write_buffer(staging, data.levels[0].data(), data.levels[0].size());
 
   const TexelKind kind = texel_kind(data.format);
-  auto vertex_code = spirv::compile_vulkan_glsl(vk_support::kFillVertexShader, spirv::Stage::Vertex, "multisample_fill.vert");
-  auto fragment_code =
-      spirv::compile_vulkan_glsl(vk_support::fill_fragment_shader(kind), spirv::Stage::Fragment, "multisample_fill.frag");
-  if (!vertex_code || !fragment_code)
-    throw std::runtime_error("the multisample fill shaders do not compile: " +
-                             (vertex_code ? fragment_code.error() : vertex_code.error()).to_string());
-  const auto module = [&](const std::vector<uint32_t>& words) {
-    return vk::raii::ShaderModule(device_, vk::ShaderModuleCreateInfo({}, words.size() * sizeof(uint32_t), words.data()));
+  const auto module = [&](std::span<const uint32_t> words) {
+    return vk::raii::ShaderModule(device_, vk::ShaderModuleCreateInfo({}, words.size_bytes(), words.data()));
   };
-  const vk::raii::ShaderModule vertex = module(vertex_code->words);
-  const vk::raii::ShaderModule fragment = module(fragment_code->words);
+  const vk::raii::ShaderModule vertex = module(vk_support::fill_vertex_shader());
+  const vk::raii::ShaderModule fragment = module(vk_support::fill_fragment_shader(kind));
   const vk::DescriptorSetLayoutBinding binding(0, vk::DescriptorType::eCombinedImageSampler, 1,
                                                vk::ShaderStageFlagBits::eFragment);
   const vk::raii::DescriptorSetLayout set_layout(device_, vk::DescriptorSetLayoutCreateInfo({}, binding));
@@ -558,9 +551,11 @@ Result<ProgramHandle> VulkanBackend::create_program(const ProgramDesc& desc) {
           StageIn{desc.fragment, "fragment", ExecutionModel::Fragment, program->fragment}}) {
       const std::string shader = fmt::format("{}: {} shader '{}'", what, in.stage, in.source.name);
       if (in.source.spirv.empty()) return fail(shader + " has no SPIR-V");
-      if (auto valid = spirv::validate(in.source.spirv, in.source.name); !valid) {
-        Error error = valid.error();
-        error.message = fmt::format("{} is not valid SPIR-V: {}", shader, error.message);
+      if (const std::vector<std::string> refusals = vk_support::spirv_validation_messages(in.source.spirv);
+          !refusals.empty()) {
+        Error error{fmt::format("{} is not valid SPIR-V", shader), {in.source.name, 0, 0}, {}};
+        for (const std::string& refusal : refusals)
+          error.diagnostics.push_back({Severity::Error, {in.source.name, 0, 0}, refusal});
         return fail(std::move(error));
       }
       const vk_support::EntryPointInfo entry =

@@ -50,10 +50,17 @@ with tree({"harness/gl/gl.cpp": '#include "harness/vulkan/vk.h"\n'}) as root:
     code, output = run(root)
     expect(code == 1 and "harness/gl may use only" in output, "a sideways include between backends fails", output)
 
+with tree({"harness/vulkan/vulkan_backend.cpp": '#include "spirv/spirv_compiler.h"\n',
+           "harness/vulkan/vulkan_backend_test.cpp": '#include "spirv/spirv_compiler.h"\n'}) as root:
+    code, output = run(root)
+    expect(code == 1 and "harness/vulkan/vulkan_backend.cpp:1: includes spirv/spirv_compiler.h" in output
+           and "vulkan_backend_test.cpp" not in output,
+           "a backend may not use the compiler, and its tests may", output)
+
 with tree({"harness/backend/CMakeLists.txt": "add_library(xshade_backend b.cpp)\n"
            "target_link_libraries(xshade_backend PUBLIC xshade_image PRIVATE xshade_render)\n"}) as root:
     code, output = run(root)
     expect(code == 1 and "harness/backend/CMakeLists.txt:2: xshade_backend links xshade_render" in output,
            "a CMake link that runs up fails", output)
 
-print("layering_test: 5 cases as expected")
+print("layering_test: 6 cases as expected")
