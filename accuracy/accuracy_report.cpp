@@ -31,12 +31,13 @@ std::vector<Row> rows_of(const Study& study, const AccuracyRun& run) {
       for (const ConfigurationResult& measured : result->configurations)
         if (measured.label == study.configurations[c].label) {
           const auto& e = measured.error;
-          rows.push_back({measured.label, std::string(harness::lane_name(result->lane)), fmt::format("{:.4g}", e.max_difference),
-                          fmt::format("{:.3g}", e.mean), fmt::format("{:.3g}", e.rmse),
-                          fmt::format("{:.3g}", chart_error(measured)), harness::describe_psnr(e.psnr),
-                          fmt::format("{:.2f}%", 100.0 * measured.failing_fraction),
-                          fmt::format("{} ({}-{})", ms(measured.time.median_ms), ms(measured.time.q1_ms), ms(measured.time.q3_ms)),
-                          ms(measured.compile_ms)});
+          rows.push_back(
+              {measured.label, std::string(harness::lane_name(result->lane)), fmt::format("{:.4g}", e.max_difference),
+               fmt::format("{:.3g}", e.mean), fmt::format("{:.3g}", e.rmse),
+               fmt::format("{:.3g}", chart_error(measured)), harness::describe_psnr(e.psnr),
+               fmt::format("{:.2f}%", 100.0 * measured.failing_fraction),
+               fmt::format("{} ({}-{})", ms(measured.time.median_ms), ms(measured.time.q1_ms), ms(measured.time.q3_ms)),
+               ms(measured.compile_ms)});
         }
   return rows;
 }
@@ -79,9 +80,10 @@ std::string study_chart_svg(const Study& study, const AccuracyRun& run) {
   }
   ChartOptions options;
   options.title = fmt::format("{}: {} (scene {})", study.id, study.knob, study.scene);
-  options.x_label = study.timed_passes == "scene" ? "scene pass time, median over frames (ms)"
-                                                  : "time of the " + study.timed_passes.substr(0, study.timed_passes.size() - 1) +
-                                                        " passes, median over frames (ms)";
+  options.x_label = study.timed_passes == "scene"
+                        ? "scene pass time, median over frames (ms)"
+                        : "time of the " + study.timed_passes.substr(0, study.timed_passes.size() - 1) +
+                              " passes, median over frames (ms)";
   options.y_label = "RMSE against " + study.reference.label + " (8-bit sRGB steps)";
   return pareto_chart_svg(series, options);
 }
@@ -92,9 +94,10 @@ std::string accuracy_csv(const AccuracyRun& run) {
       "repetitions,compile_ms\n";
   for (const StudyResult& result : run.results)
     for (const ConfigurationResult& m : result.configurations)
-      csv += fmt::format("{},\"{}\",{},{:.6g},{:.6g},{:.6g},{:.3f},{:.6f},{:.4f},{:.4f},{:.4f},{},{:.3f}\n", result.study, m.label,
-                         harness::lane_name(result.lane), m.error.max_difference, m.error.mean, m.error.rmse, m.error.psnr,
-                         m.failing_fraction, m.time.median_ms, m.time.q1_ms, m.time.q3_ms, m.time.repetitions, m.compile_ms);
+      csv += fmt::format("{},\"{}\",{},{:.6g},{:.6g},{:.6g},{:.3f},{:.6f},{:.4f},{:.4f},{:.4f},{},{:.3f}\n",
+                         result.study, m.label, harness::lane_name(result.lane), m.error.max_difference, m.error.mean,
+                         m.error.rmse, m.error.psnr, m.failing_fraction, m.time.median_ms, m.time.q1_ms, m.time.q3_ms,
+                         m.time.repetitions, m.compile_ms);
   return csv;
 }
 
@@ -116,8 +119,8 @@ std::string accuracy_markdown(const AccuracyRun& run, const std::string& chart_d
   for (const Study& study : run.studies) {
     const std::vector<const StudyResult*> results = results_of(run, study.id);
     if (results.empty()) continue;
-    md += fmt::format("\n## {}: {}\n\nScene `{}`. Reference: {}; {}\n\n", study.id, study.knob, study.scene, study.reference.label,
-                      study.why_reference);
+    md += fmt::format("\n## {}: {}\n\nScene `{}`. Reference: {}; {}\n\n", study.id, study.knob, study.scene,
+                      study.reference.label, study.why_reference);
     md += fmt::format("![{}]({}/{}.svg)\n\n", study.id, chart_dir, study.id);
     if (!study.findings.empty()) md += study.findings + "\n\n";
     for (const StudyResult* result : results) {
@@ -125,11 +128,13 @@ std::string accuracy_markdown(const AccuracyRun& run, const std::string& chart_d
       for (const std::string& skipped : result->skipped)
         md += fmt::format("- {}: not run: {}\n", harness::lane_name(result->lane), skipped);
     }
-    md += "\n| configuration | lane | max | mean | RMSE | RMSE, sRGB steps | PSNR | beyond tolerance | time ms, median (IQR) | "
-          "compile ms |\n|---|---|---|---|---|---|---|---|---|---|\n";
+    md +=
+        "\n| configuration | lane | max | mean | RMSE | RMSE, sRGB steps | PSNR | beyond tolerance | time ms, median "
+        "(IQR) | "
+        "compile ms |\n|---|---|---|---|---|---|---|---|---|---|\n";
     for (const Row& r : rows_of(study, run))
-      md += fmt::format("| {} | {} | {} | {} | {} | {} | {} | {} | {} | {} |\n", r.configuration, r.lane, r.max, r.mean, r.rmse,
-                        r.rmse8, r.psnr, r.beyond, r.time, r.compile);
+      md += fmt::format("| {} | {} | {} | {} | {} | {} | {} | {} | {} | {} |\n", r.configuration, r.lane, r.max, r.mean,
+                        r.rmse, r.rmse8, r.psnr, r.beyond, r.time, r.compile);
   }
   return md;
 }
@@ -142,22 +147,29 @@ std::string accuracy_html(const AccuracyRun& run, const std::string& chart_dir) 
       "<h1>What accuracy costs</h1>\n";
   html += "<p>" + escape_text(run.command_line) + "</p>\n<ul>\n";
   for (const auto& [lane, driver] : run.drivers)
-    html += fmt::format("<li>{}: {}</li>\n", escape_text(harness::lane_name(lane)), escape_text(driver.renderer + ", " + driver.api_version));
+    html += fmt::format("<li>{}: {}</li>\n", escape_text(harness::lane_name(lane)),
+                        escape_text(driver.renderer + ", " + driver.api_version));
   html += "</ul>\n";
   for (const Study& study : run.studies) {
     if (results_of(run, study.id).empty()) continue;
-    html += fmt::format("<h2>{}: {}</h2>\n<p>Scene {}. Reference: {}; {}</p>\n", escape_text(study.id), escape_text(study.knob),
-                        escape_text(study.scene), escape_text(study.reference.label), escape_text(study.why_reference));
+    html += fmt::format("<h2>{}: {}</h2>\n<p>Scene {}. Reference: {}; {}</p>\n", escape_text(study.id),
+                        escape_text(study.knob), escape_text(study.scene), escape_text(study.reference.label),
+                        escape_text(study.why_reference));
     html += fmt::format("<img src=\"{}/{}.svg\" alt=\"{}\">\n<p>{}</p>\n<ul>\n", url_path(chart_dir),
                         url_path(study.id), escape_attribute(study.id), escape_text(study.findings));
     for (const StudyResult* result : results_of(run, study.id))
-      if (std::string line = convergence_line(*result, study); !line.empty()) html += "<li>" + escape_text(line) + "</li>\n";
-    html += "</ul>\n<table>\n<tr><th>configuration</th><th>lane</th><th>max</th><th>mean</th><th>RMSE</th>"
-            "<th>RMSE, sRGB steps</th><th>PSNR</th><th>beyond tolerance</th><th>time ms, median (IQR)</th><th>compile ms</th></tr>\n";
+      if (std::string line = convergence_line(*result, study); !line.empty())
+        html += "<li>" + escape_text(line) + "</li>\n";
+    html +=
+        "</ul>\n<table>\n<tr><th>configuration</th><th>lane</th><th>max</th><th>mean</th><th>RMSE</th>"
+        "<th>RMSE, sRGB steps</th><th>PSNR</th><th>beyond tolerance</th><th>time ms, median (IQR)</th><th>compile "
+        "ms</th></tr>\n";
     for (const Row& r : rows_of(study, run))
-      html += fmt::format("<tr><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td></tr>\n",
-                          escape_text(r.configuration), escape_text(r.lane), r.max, r.mean, r.rmse, r.rmse8, r.psnr, r.beyond,
-                          r.time, r.compile);
+      html += fmt::format(
+          "<tr><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</"
+          "td><td>{}</td></tr>\n",
+          escape_text(r.configuration), escape_text(r.lane), r.max, r.mean, r.rmse, r.rmse8, r.psnr, r.beyond, r.time,
+          r.compile);
     html += "</table>\n";
   }
   return html + "</body>\n</html>\n";

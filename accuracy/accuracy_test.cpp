@@ -87,7 +87,8 @@ TEST(MeasureStudy, DepthOfFieldKernelsOnGl) {
   EXPECT_THAT(md, testing::HasSubstr("| 71 samples | gl | "));
   EXPECT_THAT(md, testing::HasSubstr("dense gather, half-texel spacing against the reference"));
   const std::string svg = study_chart_svg(study, run);
-  for (const char* label : {"16 samples", "22 samples", "43 samples", "71 samples"}) EXPECT_THAT(svg, testing::HasSubstr(label));
+  for (const char* label : {"16 samples", "22 samples", "43 samples", "71 samples"})
+    EXPECT_THAT(svg, testing::HasSubstr(label));
   const std::string csv = accuracy_csv(run);
   EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 5);  // header and four rows
 }
@@ -97,7 +98,8 @@ TEST(MeasureStudy, DepthOfFieldKernelsOnGl) {
 // comparisons (soft) brings it closer still at every size.
 TEST(MeasureStudy, ShadowMapResolutionOnGl) {
   const std::filesystem::path source = XSHADE_SOURCE_DIR;
-  const std::filesystem::path unity = std::filesystem::path(XSHADE_REALWORLD_CORPUS) / "TwoTailsGames+Unity-Built-in-Shaders";
+  const std::filesystem::path unity =
+      std::filesystem::path(XSHADE_REALWORLD_CORPUS) / "TwoTailsGames+Unity-Built-in-Shaders";
   if (!std::filesystem::is_directory(unity / "CGIncludes")) GTEST_SKIP() << "no Unity include files at " << unity;
   Study study;
   for (const Study& s : all_studies())

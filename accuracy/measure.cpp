@@ -6,9 +6,9 @@
 #include "harness/assets/environment.h"
 #include "harness/image/image_compare.h"
 #include "harness/render/planner.h"
-#include "harness/scene/scene.h"
 #include "harness/render/scene_renderer.h"
 #include "harness/render/variant_compiler.h"
+#include "harness/scene/scene.h"
 
 namespace xshade::accuracy {
 namespace {
@@ -50,8 +50,8 @@ struct Prepared {
 };
 
 Result<Prepared> prepare(const Configuration& configuration, const harness::Scene& base, harness::Lane lane,
-                         harness::Backend& backend, const harness::Environment& environment, const MeasureOptions& options,
-                         harness::ProgramCache& programs) {
+                         harness::Backend& backend, const harness::Environment& environment,
+                         const MeasureOptions& options, harness::ProgramCache& programs) {
   Prepared prepared;
   prepared.scene = configured(base, configuration);
   std::vector<std::filesystem::path> folders = options.shader_folders;
@@ -70,8 +70,8 @@ Result<Prepared> prepare(const Configuration& configuration, const harness::Scen
   prepared.result.label = configuration.label;
   prepared.result.compile_ms = milliseconds_since(compile_start);
 
-  auto rendered =
-      harness::render_scene(backend, prepared.scene, prepared.plan, prepared.variants, environment, {.programs = &programs});
+  auto rendered = harness::render_scene(backend, prepared.scene, prepared.plan, prepared.variants, environment,
+                                        {.programs = &programs});
   if (!rendered) return fail(configuration.label + ": " + rendered.error().to_string());
   prepared.result.image = configuration.supersample > 1 ? box_downsample(rendered->image, configuration.supersample)
                                                         : std::move(rendered->image);
@@ -83,15 +83,17 @@ Result<Prepared> prepare(const Configuration& configuration, const harness::Scen
 Result<void> time_round(const Study& study, Prepared& prepared, harness::Backend& backend,
                         const harness::Environment& environment, const MeasureOptions& options,
                         harness::ProgramCache& programs) {
-  auto rendered = harness::render_scene(backend, prepared.scene, prepared.plan, prepared.variants, environment,
-                                        {.frames = options.warmup_frames + options.frames_per_round, .programs = &programs});
+  auto rendered =
+      harness::render_scene(backend, prepared.scene, prepared.plan, prepared.variants, environment,
+                            {.frames = options.warmup_frames + options.frames_per_round, .programs = &programs});
   if (!rendered) return fail(prepared.result.label + ": " + rendered.error().to_string());
   for (size_t frame = options.warmup_frames; frame < rendered->frame_timings.size(); ++frame)
     prepared.times.push_back(harness::milliseconds_of(rendered->frame_timings[frame], study.timed_passes));
   return {};
 }
 
-void judge(ConfigurationResult& result, const ConfigurationResult& reference, const harness::CompareSettings& settings) {
+void judge(ConfigurationResult& result, const ConfigurationResult& reference,
+           const harness::CompareSettings& settings) {
   const harness::Comparison comparison = harness::compare_images(result.image, reference.image, settings);
   result.error = comparison.metrics;
   result.failing_fraction = comparison.metrics.failing_fraction;
@@ -150,12 +152,14 @@ Result<StudyResult> measure_study(const Study& study, harness::Lane lane, harnes
   std::vector<Prepared> measured;
   for (const Configuration& configuration : study.configurations) {
     if (configuration.half_emulation && lane == harness::Lane::VkHlsl) {
-      result.skipped.push_back(configuration.label + ": vk-hlsl compiles the source with glslang, which cannot emulate fp16");
+      result.skipped.push_back(configuration.label +
+                               ": vk-hlsl compiles the source with glslang, which cannot emulate fp16");
       continue;
     }
     if (configuration.soft_shadows.value_or(false) && lane == harness::Lane::VkHlsl) {
-      result.skipped.push_back(configuration.label + ": lavapipe cannot filter a depth texture, and glslang's HLSL output "
-                                                     "leaves the filtering to it");
+      result.skipped.push_back(configuration.label +
+                               ": lavapipe cannot filter a depth texture, and glslang's HLSL output "
+                               "leaves the filtering to it");
       continue;
     }
     auto prepared = prepare(configuration, *scene, lane, backend, *environment, options, programs);
@@ -167,7 +171,8 @@ Result<StudyResult> measure_study(const Study& study, harness::Lane lane, harnes
   // falls on all of them rather than on whichever was being timed.
   for (uint32_t round = 0; round < options.rounds; ++round)
     for (Prepared& prepared : measured)
-      if (auto timed = time_round(study, prepared, backend, *environment, options, programs); !timed) return fail(timed.error());
+      if (auto timed = time_round(study, prepared, backend, *environment, options, programs); !timed)
+        return fail(timed.error());
   for (Prepared& prepared : measured) {
     prepared.result.time = summarize(std::move(prepared.times));
     result.configurations.push_back(std::move(prepared.result));

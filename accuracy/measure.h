@@ -9,9 +9,9 @@
 
 #include "accuracy/study.h"
 #include "harness/backend/backend.h"
+#include "harness/gate/run_results.h"
 #include "harness/image/image.h"
 #include "harness/render/lanes.h"
-#include "harness/gate/run_results.h"
 
 namespace xshade::accuracy {
 
@@ -24,11 +24,11 @@ struct Timing {
 
 struct ConfigurationResult {
   std::string label;
-  harness::ImageMetrics error;  // against the reference, on this lane
+  harness::ImageMetrics error;    // against the reference, on this lane
   double failing_fraction = 0.0;  // of pixels beyond the scene's tolerance
-  Timing time;                   // of the study's timed passes, warm-up excluded
-  double compile_ms = 0.0;       // every variant of the configuration, no cache
-  harness::FloatImage image;     // at the scene's size
+  Timing time;                    // of the study's timed passes, warm-up excluded
+  double compile_ms = 0.0;        // every variant of the configuration, no cache
+  harness::FloatImage image;      // at the scene's size
 };
 
 struct StudyResult {

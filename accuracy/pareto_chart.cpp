@@ -36,7 +36,8 @@ constexpr size_t kMaxNotes = 12;
 // well-formed XML; a chart label is one line, so line breaks and tabs become spaces.
 std::string escape_xml(std::string_view text) {
   std::string out = escape_text(text);
-  std::replace_if(out.begin(), out.end(), [](char c) { return c == '\n' || c == '\r' || c == '\t'; }, ' ');
+  std::replace_if(
+      out.begin(), out.end(), [](char c) { return c == '\n' || c == '\r' || c == '\t'; }, ' ');
   return out;
 }
 
@@ -73,8 +74,8 @@ std::string px(double value) { return fmt::format("{:.2f}", value); }
 
 struct Axis {
   bool log = true;
-  double lo = 0, hi = 1;          // the range in axis space (log10 of the value on a log axis)
-  double px_lo = 0, px_hi = 1;    // the pixels of lo and hi (px_hi < px_lo on the y axis)
+  double lo = 0, hi = 1;        // the range in axis space (log10 of the value on a log axis)
+  double px_lo = 0, px_hi = 1;  // the pixels of lo and hi (px_hi < px_lo on the y axis)
   double space(double value) const { return log ? std::log10(value) : value; }
   double pixel(double value) const { return px_lo + (space(value) - lo) / (hi - lo) * (px_hi - px_lo); }
   double clamp_pixel(double pixel_value) const {
@@ -154,7 +155,8 @@ std::vector<double> log_ticks(double lo, double hi, size_t max_ticks) {
 
 std::vector<double> ticks_of(const Axis& axis, size_t max_ticks) {
   max_ticks = std::max<size_t>(max_ticks, 2);
-  return axis.log ? log_ticks(axis.lo, axis.hi, max_ticks) : linear_ticks(axis.lo, axis.hi, std::min<size_t>(max_ticks, 6));
+  return axis.log ? log_ticks(axis.lo, axis.hi, max_ticks)
+                  : linear_ticks(axis.lo, axis.hi, std::min<size_t>(max_ticks, 6));
 }
 
 // ---- marks ----
@@ -214,16 +216,27 @@ struct LabelSpot {
   std::string_view anchor;
 };
 constexpr std::array<LabelSpot, 14> kLabelSpots = {{
-    {6, -6, "start"},   {6, 15, "start"},   {-6, -6, "end"},    {-6, 15, "end"},
-    {0, -10, "middle"}, {0, 19, "middle"},  {9, 4, "start"},    {-9, 4, "end"},
-    {6, -19, "start"},  {6, 28, "start"},   {-6, -19, "end"},   {-6, 28, "end"},
-    {0, -23, "middle"}, {0, 32, "middle"},
+    {6, -6, "start"},
+    {6, 15, "start"},
+    {-6, -6, "end"},
+    {-6, 15, "end"},
+    {0, -10, "middle"},
+    {0, 19, "middle"},
+    {9, 4, "start"},
+    {-9, 4, "end"},
+    {6, -19, "start"},
+    {6, 28, "start"},
+    {-6, -19, "end"},
+    {-6, 28, "end"},
+    {0, -23, "middle"},
+    {0, 32, "middle"},
 }};
 
 Box label_box(double x, double y, const LabelSpot& spot, double width) {
   const double ax = x + spot.dx, baseline = y + spot.dy;
   const double left = spot.anchor == "start" ? ax : spot.anchor == "end" ? ax - width : ax - width / 2;
-  return {left - 3, baseline - kLabelFont * 0.8, left + width + 3, baseline + kLabelFont * 0.25};  // a gap between words
+  return {left - 3, baseline - kLabelFont * 0.8, left + width + 3,
+          baseline + kLabelFont * 0.25};  // a gap between words
 }
 
 // ---- the chart's points ----
@@ -419,7 +432,8 @@ std::string pareto_chart_svg(const std::vector<ChartSeries>& series, const Chart
                        "<polyline points=\"{},{} {},{} {},{}\" fill=\"none\" stroke=\"#555555\" "
                        "stroke-width=\"1.2\"/>\n",
                        px(x), px(y - 5), px(x + 12), px(y - 5), px(x + 12), px(y + 5));
-        fmt::format_to(out, "<line x1=\"{0}\" y1=\"{2}\" x2=\"{1}\" y2=\"{2}\" stroke=\"#555555\" stroke-width=\"1.2\"/>\n",
+        fmt::format_to(out,
+                       "<line x1=\"{0}\" y1=\"{2}\" x2=\"{1}\" y2=\"{2}\" stroke=\"#555555\" stroke-width=\"1.2\"/>\n",
                        px(x + 12), px(x + 22), px(y + 5));
         text_x = x + 30;
       } else {
@@ -448,8 +462,8 @@ std::string pareto_chart_svg(const std::vector<ChartSeries>& series, const Chart
                    px(plot_right), px(y), grid);
     fmt::format_to(out, "<line x1=\"{0}\" y1=\"{2}\" x2=\"{1}\" y2=\"{2}\" stroke=\"{3}\"/>\n", px(plot_left - 5),
                    px(plot_left), px(y), frame);
-    fmt::format_to(out, "<text class=\"y-tick\" x=\"{}\" y=\"{}\" text-anchor=\"end\">{}</text>\n",
-                   px(plot_left - 8), px(y + 4), format_number(t));
+    fmt::format_to(out, "<text class=\"y-tick\" x=\"{}\" y=\"{}\" text-anchor=\"end\">{}</text>\n", px(plot_left - 8),
+                   px(y + 4), format_number(t));
   }
   for (const double t : x_ticks) {
     const double x = x_axis.pixel(t);
@@ -511,8 +525,7 @@ std::string pareto_chart_svg(const std::vector<ChartSeries>& series, const Chart
   for (const Placed& p : placed) {
     const ChartPoint& point = series[p.series].points[p.index];
     const std::string_view colour = kColours[p.series % kColours.size()];
-    const std::string spread =
-        p.bar ? fmt::format(" ± {}", format_number(point.spread_ms)) : std::string();
+    const std::string spread = p.bar ? fmt::format(" ± {}", format_number(point.spread_ms)) : std::string();
     fmt::format_to(out, "<g class=\"point\"><title>{}: {} ms{}, error {}</title>",
                    escape_xml(point_name(series[p.series], point)), format_number(point.milliseconds),
                    escape_xml(spread), format_number(point.error));
@@ -529,9 +542,8 @@ std::string pareto_chart_svg(const std::vector<ChartSeries>& series, const Chart
   // already placed, and stays inside the frame.
   std::vector<std::pair<Box, double>> obstacles;  // and the weight of overlapping each
   for (const Placed& p : placed) {
-    obstacles.push_back({{p.x - kMarkerRadius - 1, p.y - kMarkerRadius - 1, p.x + kMarkerRadius + 1,
-                          p.y + kMarkerRadius + 1},
-                         3.0});
+    obstacles.push_back(
+        {{p.x - kMarkerRadius - 1, p.y - kMarkerRadius - 1, p.x + kMarkerRadius + 1, p.y + kMarkerRadius + 1}, 3.0});
     if (p.bar) obstacles.push_back({{p.bar_left, p.y - 3.5, p.bar_right, p.y + 3.5}, 0.5});
   }
   // A label stays in its point's own frame: the log scale's, or the row of zeros.
@@ -557,8 +569,8 @@ std::string pareto_chart_svg(const std::vector<ChartSeries>& series, const Chart
     const LabelSpot& spot = kLabelSpots[best];
     obstacles.push_back({label_box(p.x, p.y, spot, w), 6.0});
     const std::string text = escape_xml(point.label);
-    const std::string at = fmt::format("x=\"{}\" y=\"{}\" text-anchor=\"{}\"", px(p.x + spot.dx), px(p.y + spot.dy),
-                                       spot.anchor);
+    const std::string at =
+        fmt::format("x=\"{}\" y=\"{}\" text-anchor=\"{}\"", px(p.x + spot.dx), px(p.y + spot.dy), spot.anchor);
     // A white halo under the text keeps it legible where it crosses a line.
     fmt::format_to(out,
                    "<text {0} fill=\"none\" stroke=\"#ffffff\" stroke-width=\"3\" stroke-linejoin=\"round\" "

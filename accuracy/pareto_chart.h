@@ -29,7 +29,7 @@ struct ChartOptions {
   std::string y_label = "error";
   bool log_x = true;
   bool log_y = true;
-  int width = 720;   // the chart's size in pixels; notes about points not drawn add lines below it
+  int width = 720;  // the chart's size in pixels; notes about points not drawn add lines below it
   int height = 480;
 };
 

@@ -6,10 +6,10 @@
 #include <array>
 #include <cmath>
 #include <cstdio>
-#include <sstream>
 #include <limits>
 #include <map>
 #include <optional>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -65,7 +65,8 @@ bool decode(std::string_view raw, std::string& out) {
       // A character reference, decimal or hexadecimal, written back as UTF-8.
       const bool hex = entity[1] == 'x';
       const std::string digits(entity.substr(hex ? 2 : 1));
-      if (digits.empty() || digits.find_first_not_of(hex ? "0123456789abcdefABCDEF" : "0123456789") != std::string::npos)
+      if (digits.empty() ||
+          digits.find_first_not_of(hex ? "0123456789abcdefABCDEF" : "0123456789") != std::string::npos)
         return false;
       const unsigned long code = std::stoul(digits, nullptr, hex ? 16 : 10);
       if (code < 0x80) {
@@ -159,7 +160,8 @@ Xml parse_xml(std::string_view doc) {
       const size_t name_start = j;
       while (j < doc.size() && name_char(doc[j], false)) ++j;
       const std::string name(doc.substr(name_start, j - name_start));
-      if (j + 1 >= doc.size() || doc[j] != '=' || (doc[j + 1] != '"' && doc[j + 1] != '\'')) return fail("bad attribute " + name);
+      if (j + 1 >= doc.size() || doc[j] != '=' || (doc[j + 1] != '"' && doc[j + 1] != '\''))
+        return fail("bad attribute " + name);
       const char quote = doc[j + 1];
       const size_t value_end = doc.find(quote, j + 2);
       if (value_end == std::string_view::npos) return fail("unterminated attribute");
@@ -263,10 +265,9 @@ TEST(ParetoFrontTest, LeavesOutDominatedPointsInOrderOfTime) {
 
 TEST(ParetoFrontTest, KeepsExactTiesAndDropsPartialOnes) {
   const std::vector<ChartPoint> points = {
-      {"a", 10, 0, 0.1},
-      {"a again", 10, 0, 0.1},  // the same time and error: both stay
-      {"same time", 10, 0, 0.2},  // as fast, less accurate: out
-      {"same error", 12, 0, 0.1},  // as accurate, slower: out
+      {"a", 10, 0, 0.1},          {"a again", 10, 0, 0.1},  // the same time and error: both stay
+      {"same time", 10, 0, 0.2},                            // as fast, less accurate: out
+      {"same error", 12, 0, 0.1},                           // as accurate, slower: out
       {"b", 20, 0, 0.01},
   };
   EXPECT_THAT(pareto_front(points), ElementsAre(0, 1, 4));
@@ -279,11 +280,8 @@ TEST(ParetoFrontTest, SingleAndNoPoints) {
 
 TEST(ParetoFrontTest, NonFinitePointsAreNeitherOnItNorDominate) {
   const std::vector<ChartPoint> points = {
-      {"nan time", kNaN, 0, 0},   // would dominate everything if NaN compared as small
-      {"a", 10, 0, 0.1},
-      {"inf error", 1, 0, kInf},
-      {"b", 20, 0, 0.05},
-      {"-inf time", -kInf, 0, 0},
+      {"nan time", kNaN, 0, 0},  // would dominate everything if NaN compared as small
+      {"a", 10, 0, 0.1},        {"inf error", 1, 0, kInf}, {"b", 20, 0, 0.05}, {"-inf time", -kInf, 0, 0},
   };
   EXPECT_THAT(pareto_front(points), ElementsAre(1, 3));
 }
@@ -302,7 +300,7 @@ TEST(ParetoChartTest, IsWellFormedSvgWithAMarkerPerPointAndALegendEntryPerLane) 
   EXPECT_EQ(xml.elements[0].attributes.at("version"), "1.1");
   EXPECT_EQ(xml.elements[0].attributes.at("font-family"), "sans-serif");
   EXPECT_THAT(svg, Not(HasSubstr("<script")));
-  EXPECT_THAT(svg, Not(HasSubstr("href")));  // nothing external
+  EXPECT_THAT(svg, Not(HasSubstr("href")));               // nothing external
   EXPECT_EQ(with_class(xml, "marker").size(), 15u + 3u);  // 15 points and 3 legend entries
   EXPECT_EQ(with_class(xml, "label").size(), 15u);
   EXPECT_EQ(with_class(xml, "front").size(), 3u);
@@ -403,8 +401,7 @@ TEST(ParetoChartTest, LinearAxesPlaceValuesProportionally) {
 }
 
 TEST(ParetoChartTest, ZeroErrorGoesOnItsOwnRowBelowTheLogScale) {
-  const std::vector<ChartSeries> series = {
-      {"gl", {{"fast", 5, 0, 0.1}, {"exact", 50, 2, 0}, {"mid", 12, 0, 1e-4}}}};
+  const std::vector<ChartSeries> series = {{"gl", {{"fast", 5, 0, 0.1}, {"exact", 50, 2, 0}, {"mid", 12, 0, 1e-4}}}};
   const Xml xml = parse_xml(pareto_chart_svg(series, ChartOptions{}));
   ASSERT_EQ(xml.error, "");
   const Element* row = tick(xml, "y-tick", "0 (reference)");
@@ -469,15 +466,14 @@ TEST(ParetoChartTest, SpreadIsAHorizontalBarThroughTheMarker) {
 }
 
 TEST(ParetoChartTest, NonFinitePointsAreLeftOutAndNoted) {
-  const std::vector<ChartSeries> series = {
-      {"gl",
-       {{"good", 10, 1, 0.01},
-        {"nan time", kNaN, 1, 0.01},
-        {"inf error", 12, 1, kInf},
-        {"both", -kInf, 1, kNaN},
-        {"zero time", 0, 0, 0.1},
-        {"negative error", 15, 0, -0.5},
-        {"nan spread", 20, kNaN, 0.001}}}};
+  const std::vector<ChartSeries> series = {{"gl",
+                                            {{"good", 10, 1, 0.01},
+                                             {"nan time", kNaN, 1, 0.01},
+                                             {"inf error", 12, 1, kInf},
+                                             {"both", -kInf, 1, kNaN},
+                                             {"zero time", 0, 0, 0.1},
+                                             {"negative error", 15, 0, -0.5},
+                                             {"nan spread", 20, kNaN, 0.001}}}};
   const std::string svg = pareto_chart_svg(series, ChartOptions{});
   const Xml xml = parse_xml(svg);
   ASSERT_EQ(xml.error, "") << svg;

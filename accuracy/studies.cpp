@@ -76,8 +76,10 @@ Study precision() {
   s.timed_passes = "scene";
   s.findings =
       "fp16 moves the exact forms by about one and a half sRGB steps: every half result rounded, and the fp16 "
-      "guards' larger floors (alpha from 0.0079 instead of 0.002, cosines from 2^-8). The time is the emulation's (a rounding in "
-      "about ten extra instructions per result, on a CPU): it says nothing about fp16 hardware, which runs half faster.";
+      "guards' larger floors (alpha from 0.0079 instead of 0.002, cosines from 2^-8). The time is the emulation's (a "
+      "rounding in "
+      "about ten extra instructions per result, on a CPU): it says nothing about fp16 hardware, which runs half "
+      "faster.";
   return s;
 }
 
@@ -98,8 +100,8 @@ Study indirect_specular() {
   };
   s.reference = sampled(1024);
   s.reference_check = sampled(2048);
-  s.configurations = {{.label = "prefiltered (Unity)", .material_keywords = kExactForms}, sampled(16), sampled(64),
-                      sampled(256)};
+  s.configurations = {
+      {.label = "prefiltered (Unity)", .material_keywords = kExactForms}, sampled(16), sampled(64), sampled(256)};
   s.timed_passes = "scene";
   s.quick = false;
   s.findings =

@@ -18,8 +18,8 @@ struct Configuration {
   std::optional<std::vector<std::string>> post_keywords = std::nullopt;
   std::map<std::string, float> post_parameters = {};    // set on every post effect
   std::map<std::string, float> object_parameters = {};  // set on every object
-  bool half_emulation = false;  // gl and vk only
-  uint32_t supersample = 1;     // rendered at k times the size, then averaged over k x k pixels
+  bool half_emulation = false;                          // gl and vk only
+  uint32_t supersample = 1;                             // rendered at k times the size, then averaged over k x k pixels
   std::optional<uint32_t> shadow_resolution = std::nullopt;  // every shadow map's size
   // Every shadow-casting light's filter when set: soft (the 2x2 comparisons filtered) or hard
   // (one comparison). Soft is not run on vk-hlsl (harness::Light::Shadows).
@@ -27,9 +27,9 @@ struct Configuration {
 };
 
 struct Study {
-  std::string id;     // "dof_kernel": names files and table rows
-  std::string knob;   // "depth-of-field kernel"
-  std::string scene;  // a scene of scenes
+  std::string id;             // "dof_kernel": names files and table rows
+  std::string knob;           // "depth-of-field kernel"
+  std::string scene;          // a scene of scenes
   std::string why_reference;  // what makes the reference the most accurate configuration
   Configuration reference;
   // The reference with its own accuracy doubled (twice the samples): it must differ from the

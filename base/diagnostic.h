@@ -7,8 +7,8 @@
 namespace xshade {
 
 struct SourceLocation {
-  std::string file;   // empty when the error has no source file
-  uint32_t line = 0;  // 1-based; 0 = unknown
+  std::string file;     // empty when the error has no source file
+  uint32_t line = 0;    // 1-based; 0 = unknown
   uint32_t column = 0;  // 1-based; 0 = unknown
 
   bool known() const { return !file.empty(); }

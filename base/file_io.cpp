@@ -140,17 +140,16 @@ Result<void> make_private_folder(const fs::path& folder) {
   if (::stat(folder.c_str(), &status) != 0)
     return fail(ErrorKind::Backend, "cannot read the folder " + folder.string() + ": " + std::strerror(errno));
   if (!S_ISDIR(status.st_mode))
-    return fail(folder.string() + " is " + (S_ISREG(status.st_mode) ? "a file" : kind_of(status.st_mode)) + ", not a folder");
+    return fail(folder.string() + " is " + (S_ISREG(status.st_mode) ? "a file" : kind_of(status.st_mode)) +
+                ", not a folder");
   if (status.st_uid != ::geteuid())
     return fail(folder.string() + " belongs to another user (uid " + std::to_string(status.st_uid) + ")");
   if (status.st_mode & (S_IWGRP | S_IWOTH))
-    return fail(folder.string() + " can be written by other users (mode " +
-                [&] {
-                  char octal[8];
-                  std::snprintf(octal, sizeof octal, "%03o", unsigned(status.st_mode & 0777));
-                  return std::string(octal);
-                }() +
-                "); make it private with chmod 700");
+    return fail(folder.string() + " can be written by other users (mode " + [&] {
+      char octal[8];
+      std::snprintf(octal, sizeof octal, "%03o", unsigned(status.st_mode & 0777));
+      return std::string(octal);
+    }() + "); make it private with chmod 700");
   return {};
 }
 

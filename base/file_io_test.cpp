@@ -111,7 +111,8 @@ TEST(FileIo, AnInputFileThatIsNotAFileOrTooLargeIsRefusedBeforeItIsRead) {
   auto missing = read_input_file(root / "none.toml", 5, "scene file");
   ASSERT_FALSE(missing);
   EXPECT_EQ(missing.error().kind, ErrorKind::UserInput);
-  EXPECT_EQ(missing.error().message, "scene file " + (root / "none.toml").string() + " cannot be opened: No such file or directory");
+  EXPECT_EQ(missing.error().message,
+            "scene file " + (root / "none.toml").string() + " cannot be opened: No such file or directory");
   EXPECT_EQ(not_a_file(root / "small.toml"), "");
   EXPECT_EQ(not_a_file(root / "none.toml"), "");
   fs::remove_all(root);
@@ -132,7 +133,8 @@ TEST(FileIo, APrivateFolderIsMadeOwnerOnlyAndAnotherKindIsRefused) {
   fs::permissions(made, fs::perms::all);
   auto open = make_private_folder(made);
   ASSERT_FALSE(open);
-  EXPECT_EQ(open.error().message, made.string() + " can be written by other users (mode 777); make it private with chmod 700");
+  EXPECT_EQ(open.error().message,
+            made.string() + " can be written by other users (mode 777); make it private with chmod 700");
   ASSERT_TRUE(write_file_atomically(root / "file", "x"));
   auto file = make_private_folder(root / "file");
   ASSERT_FALSE(file);

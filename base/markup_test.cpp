@@ -10,15 +10,17 @@ TEST(EscapeText, EscapesEveryMarkupCharacter) {
             "&lt;script&gt;alert(&quot;x&quot;) &amp; &#39;y&#39;&lt;/script&gt;");
 }
 
-TEST(EscapeText, KeepsLineBreaksAndMultiByteCharacters) {
-  EXPECT_EQ(escape_text("a\n\tb — ∞ 😀"), "a\n\tb — ∞ 😀");
-}
+TEST(EscapeText, KeepsLineBreaksAndMultiByteCharacters) { EXPECT_EQ(escape_text("a\n\tb — ∞ 😀"), "a\n\tb — ∞ 😀"); }
 
 TEST(EscapeText, ReplacesWhatXmlCannotCarry) {
   // A control character, a lone continuation byte, a truncated sequence, an overlong '/' and an
   // encoded surrogate: each becomes U+FFFD, and the text around it survives.
-  EXPECT_EQ(escape_text(std::string("a\x01" "b")), "a\uFFFDb");
-  EXPECT_EQ(escape_text(std::string("a\x80" "b")), "a\uFFFDb");
+  EXPECT_EQ(escape_text(std::string("a\x01"
+                                    "b")),
+            "a\uFFFDb");
+  EXPECT_EQ(escape_text(std::string("a\x80"
+                                    "b")),
+            "a\uFFFDb");
   EXPECT_EQ(escape_text(std::string("a\xE2\x88")), "a\uFFFD\uFFFD");
   EXPECT_EQ(escape_text(std::string("\xC0\xAF")), "\uFFFD\uFFFD");
   EXPECT_EQ(escape_text(std::string("\xED\xA0\x80")), "\uFFFD\uFFFD\uFFFD");

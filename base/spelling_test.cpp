@@ -6,9 +6,9 @@ namespace xshade {
 namespace {
 
 TEST(EditDistance, CountsOneEditPerTypoAndIgnoresCase) {
-  EXPECT_EQ(edit_distance("_Colr", "_Color"), 1u);      // a letter missing
-  EXPECT_EQ(edit_distance("_Cloor", "_Color"), 1u);     // two letters swapped
-  EXPECT_EQ(edit_distance("_COLOR", "_Color"), 0u);     // case only
+  EXPECT_EQ(edit_distance("_Colr", "_Color"), 1u);   // a letter missing
+  EXPECT_EQ(edit_distance("_Cloor", "_Color"), 1u);  // two letters swapped
+  EXPECT_EQ(edit_distance("_COLOR", "_Color"), 0u);  // case only
   EXPECT_EQ(edit_distance("_RampTexture", "_RampTex"), 4u);
   EXPECT_EQ(edit_distance("", "abc"), 3u);
 }

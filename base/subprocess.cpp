@@ -114,8 +114,8 @@ Result<ChildProcess> ChildProcess::start_with(const std::function<pid_t(const in
   return child;
 }
 
-Result<ChildProcess> ChildProcess::start(const std::vector<std::string>& argv, const std::vector<std::string>& environment,
-                                         Clock::duration time_limit) {
+Result<ChildProcess> ChildProcess::start(const std::vector<std::string>& argv,
+                                         const std::vector<std::string>& environment, Clock::duration time_limit) {
   if (argv.empty()) return fail(ErrorKind::Internal, "a child process needs a program to run");
   return start_with(
       [&](const int fds[4], int& error) -> pid_t {
@@ -127,7 +127,8 @@ Result<ChildProcess> ChildProcess::start(const std::vector<std::string>& argv, c
         std::vector<char*> argument_pointers = pointers(arguments);
         std::vector<char*> variable_pointers = pointers(variables);
         pid_t pid = -1;
-        error = posix_spawn(&pid, argv[0].c_str(), &actions, nullptr, argument_pointers.data(), variable_pointers.data());
+        error =
+            posix_spawn(&pid, argv[0].c_str(), &actions, nullptr, argument_pointers.data(), variable_pointers.data());
         posix_spawn_file_actions_destroy(&actions);
         return error == 0 ? pid : -1;
       },
@@ -293,7 +294,8 @@ bool ChildProcess::send(const std::string& line) {
   if (input_fd_ < 0 || finished_) return false;
   const std::string text = line + "\n";
   // A child that has ended makes the write fail with EPIPE rather than end us with SIGPIPE.
-  struct sigaction ignore{}, previous{};
+  struct sigaction ignore {
+  }, previous{};
   ignore.sa_handler = SIG_IGN;
   sigaction(SIGPIPE, &ignore, &previous);
   const bool written = write_all(input_fd_, text);

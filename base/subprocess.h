@@ -39,11 +39,11 @@ class ChildProcess {
                                     Clock::duration time_limit);
   // The same, but the child is a fork of this process that runs `body` and exits with what it
   // returns: no program is loaded again, nor the drivers and libraries it has loaded (the image
-  // library's 260 take a third of a second). fork copies the calling thread alone, and a lock another thread held stays held in
-  // the child, so this is only for a process running no thread of its own: it fails, and the
-  // caller starts a program instead, when the process has more threads than it had when main
-  // began or than it had when it last counted them (remember_startup_threads) -- those are the idle pools some libraries start as they
-  // load (log4cplus, which OpenImageIO's formats bring, starts four), which xshade gives no work.
+  // library's 260 take a third of a second). fork copies the calling thread alone, and a lock another thread held stays
+  // held in the child, so this is only for a process running no thread of its own: it fails, and the caller starts a
+  // program instead, when the process has more threads than it had when main began or than it had when it last counted
+  // them (remember_startup_threads) -- those are the idle pools some libraries start as they load (log4cplus, which
+  // OpenImageIO's formats bring, starts four), which xshade gives no work.
   static Result<ChildProcess> fork(const std::function<int()>& body, const std::vector<std::string>& environment,
                                    Clock::duration time_limit);
 

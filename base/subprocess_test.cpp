@@ -63,9 +63,10 @@ TEST(ChildProcess, IsKilledAtItsDeadline) {
 // "done" status line; the parent takes output and status lines request by request, and each
 // request has a deadline of its own.
 TEST(ChildProcess, ServesRequestsEachWithItsOutputStatusAndDeadline) {
-  ChildProcess child = shell("while read request; do echo \"answer $request\"; echo \"done $request\" >&3; "
-                             "[ \"$request\" = slow ] && sleep 30; done",
-                             {}, 60s);
+  ChildProcess child = shell(
+      "while read request; do echo \"answer $request\"; echo \"done $request\" >&3; "
+      "[ \"$request\" = slow ] && sleep 30; done",
+      {}, 60s);
   for (const std::string request : {"one", "two"}) {
     ASSERT_TRUE(child.send(request));
     std::vector<std::string> lines;

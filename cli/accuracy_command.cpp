@@ -5,9 +5,9 @@
 #include <algorithm>
 
 #include "accuracy/accuracy_report.h"
+#include "base/file_io.h"
 #include "cli/commands.h"
 #include "cli/lane_selection.h"
-#include "base/file_io.h"
 
 namespace xshade::cli {
 namespace {
@@ -62,7 +62,8 @@ int run_accuracy(const AccuracyOptions& options) {
     for (const accuracy::Study& study : studies) {
       auto result = accuracy::measure_study(study, lane, **backend, run.options);
       if (!result) {
-        fmt::print(stderr, "xshade accuracy: {} on {}: {}\n", study.id, harness::lane_name(lane), result.error().to_string());
+        fmt::print(stderr, "xshade accuracy: {} on {}: {}\n", study.id, harness::lane_name(lane),
+                   result.error().to_string());
         return kBackendError;
       }
       std::string line = fmt::format("{} on {}:", study.id, harness::lane_name(lane));
@@ -80,13 +81,15 @@ int run_accuracy(const AccuracyOptions& options) {
   bool written = write(options.report_dir / "accuracy.csv", accuracy::accuracy_csv(run)) &&
                  write(options.report_dir / "index.html", accuracy::accuracy_html(run, "charts"));
   for (const accuracy::Study& study : run.studies)
-    written = written && write(options.report_dir / "charts" / (study.id + ".svg"), accuracy::study_chart_svg(study, run));
+    written =
+        written && write(options.report_dir / "charts" / (study.id + ".svg"), accuracy::study_chart_svg(study, run));
   if (!options.markdown.empty()) {
     // The charts go beside the Markdown file, in a folder named after it.
     const std::string chart_dir = options.markdown.stem().string();
     written = written && write(options.markdown, accuracy::accuracy_markdown(run, chart_dir));
     for (const accuracy::Study& study : run.studies)
-      written = written && write(options.markdown.parent_path() / chart_dir / (study.id + ".svg"), accuracy::study_chart_svg(study, run));
+      written = written && write(options.markdown.parent_path() / chart_dir / (study.id + ".svg"),
+                                 accuracy::study_chart_svg(study, run));
   }
   if (!written) return kBackendError;
   fmt::print("report: {}\n", (options.report_dir / "index.html").string());
@@ -94,9 +97,10 @@ int run_accuracy(const AccuracyOptions& options) {
   bool converged = true;
   for (const accuracy::StudyResult& result : run.results)
     if (auto c = accuracy::convergence(result); c && !c->converged) {
-      fmt::print("{} on {}: the reference does not converge: its check differs by {:.3g}, more than the smallest error it "
-                 "judges ({:.3g})\n",
-                 result.study, harness::lane_name(result.lane), c->check_error, c->smallest_error);
+      fmt::print(
+          "{} on {}: the reference does not converge: its check differs by {:.3g}, more than the smallest error it "
+          "judges ({:.3g})\n",
+          result.study, harness::lane_name(result.lane), c->check_error, c->smallest_error);
       converged = false;
     }
   return converged ? kPass : kTestFailed;

@@ -12,10 +12,10 @@
 #include "cli/commands.h"
 #include "cli/lane_selection.h"
 #include "cli/workers.h"
-#include "harness/render/driver_cache.h"
-#include "harness/image/image_compare.h"
-#include "harness/report/report_text.h"
 #include "harness/gate/scene_check.h"
+#include "harness/image/image_compare.h"
+#include "harness/render/driver_cache.h"
+#include "harness/report/report_text.h"
 
 namespace xshade::cli {
 namespace {
@@ -104,8 +104,8 @@ int run_bless(const BlessOptions& options) {
   }
 
   // A second bless into the folder waits for the first to commit; saying so explains the pause.
-  const harness::GoldenStore goldens(folders->golden,
-                                     [](const std::string& message) { fmt::print(stderr, "xshade bless: {}\n", message); });
+  const harness::GoldenStore goldens(
+      folders->golden, [](const std::string& message) { fmt::print(stderr, "xshade bless: {}\n", message); });
   const std::optional<std::string> lane = options.lane.empty() ? std::nullopt : std::optional(options.lane);
   const harness::FloatImage& image = checked.images.begin()->second;
   const std::string compared_lane = lane ? *lane : std::string(harness::lane_name(checked.images.begin()->first));

@@ -15,10 +15,10 @@ namespace xshade::cli {
 
 // The exit codes every verb shares (docs/cli.md).
 enum ExitCode : int {
-  kPass = 0,          // everything checked passed
-  kTestFailed = 1,    // a check failed: images differ, a lane disagrees
-  kBadInput = 2,      // bad usage, a bad shader or scene file
-  kBackendError = 3,  // a driver or lane could not run, or an internal error
+  kPass = 0,           // everything checked passed
+  kTestFailed = 1,     // a check failed: images differ, a lane disagrees
+  kBadInput = 2,       // bad usage, a bad shader or scene file
+  kBackendError = 3,   // a driver or lane could not run, or an internal error
   kInterrupted = 128,  // plus the signal, as a shell reports it: stopped by ^C (130) or `kill` (143)
 };
 
@@ -68,10 +68,10 @@ struct RunOptions {
   std::filesystem::path report_dir = "report";
   std::filesystem::path cache_dir;  // empty: $XSHADE_CACHE_DIR, else the user's cache folder
   bool no_cache = false;
-  std::string shard;         // "i/N": every N-th scene from the i-th, in name order
+  std::string shard;                // "i/N": every N-th scene from the i-th, in name order
   std::string precision = "float";  // or "half": half emulation (gl and vk; goldens not compared)
   bool plan_only = false;
-  bool pass_images = false;  // also write each pass's output (REPORT/SCENE/passes/PASS.LANE.exr)
+  bool pass_images = false;      // also write each pass's output (REPORT/SCENE/passes/PASS.LANE.exr)
   bool trace_nonfinite = false;  // trace every gl and vk lane, not only those with non-finite pixels
   WorkerLimits workers;
   std::string command_line;  // for the reports
@@ -85,7 +85,7 @@ struct BlessOptions {
   FolderOptions folders;
   std::filesystem::path cache_dir;
   std::filesystem::path report_dir = "bless-report";  // where the rendered images go
-  std::string gl_platform = "auto";  // as LaneSelection::gl_platform
+  std::string gl_platform = "auto";                   // as LaneSelection::gl_platform
   WorkerLimits workers;
 };
 int run_bless(const BlessOptions& options);
@@ -95,16 +95,16 @@ struct CompileOptions {
   std::vector<std::filesystem::path> include_dirs;
   std::vector<std::string> defines;  // KEYWORD, or KEY=VALUE
   std::string target = "vk";         // gl, vk, spirv, vk-hlsl
-  std::string precision = "float";  // or "half": half emulation (gl, vk, spirv)
-  bool trace_nonfinite = false;     // the tracing variant of the fragment stage (gl, vk, spirv)
+  std::string precision = "float";   // or "half": half emulation (gl, vk, spirv)
+  bool trace_nonfinite = false;      // the tracing variant of the fragment stage (gl, vk, spirv)
   bool reflect = false;
-  std::filesystem::path output;      // a path prefix; empty = standard output
-  std::string entry;                 // a fragment function, compiled as a full-screen pass
-  std::string pass;                  // a post pass by its #pragma pass name
-  bool all_variants = false;         // every keyword combination the file declares, each reported
+  std::filesystem::path output;           // a path prefix; empty = standard output
+  std::string entry;                      // a fragment function, compiled as a full-screen pass
+  std::string pass;                       // a post pass by its #pragma pass name
+  bool all_variants = false;              // every keyword combination the file declares, each reported
   std::string unity_platform = "glcore";  // a .shader's: glcore, d3d11 or vulkan
-  bool generated = false;            // a .shader's passes' HLSL as composed and generated, not compiled
-  FolderOptions folders;             // the project file's shader folders (only shaders, project, no_project)
+  bool generated = false;                 // a .shader's passes' HLSL as composed and generated, not compiled
+  FolderOptions folders;                  // the project file's shader folders (only shaders, project, no_project)
 };
 int run_compile(const CompileOptions& options);
 
@@ -115,13 +115,13 @@ struct EvalOptions {
   std::string entry;  // the fragment function; empty = #pragma fragment
   std::string size = "64x64";
   std::string precision = "float";  // or "half": half emulation on the GLSL lanes
-  LaneSelection selection;  // "all" or a list
+  LaneSelection selection;          // "all" or a list
   std::filesystem::path output_dir = ".";
-  std::optional<uint32_t> seed;  // inputs from this seed instead of the defaults and white
+  std::optional<uint32_t> seed;              // inputs from this seed instead of the defaults and white
   std::vector<std::string> specializations;  // NAME=VALUE: a [[vk::constant_id]] constant's value
-  bool allow_non_finite = false;  // NaN, Inf and negative output is reported, not a failure
-  bool trace_nonfinite = false;   // render the tracing variant too and say where non-finite values were born
-  bool write_images = true;       // false: compare and print only; the image library is never loaded
+  bool allow_non_finite = false;             // NaN, Inf and negative output is reported, not a failure
+  bool trace_nonfinite = false;              // render the tracing variant too and say where non-finite values were born
+  bool write_images = true;                  // false: compare and print only; the image library is never loaded
   WorkerLimits workers;
   bool in_worker = false;  // this process is one lane's worker: render it here
 };
@@ -136,7 +136,7 @@ struct WorkerOptions {
   std::vector<std::filesystem::path> shader_folders = {};  // the whole search path, in order
   std::filesystem::path golden = {};                       // empty: no golden layer
   std::filesystem::path report_dir = {};
-  std::filesystem::path cache_dir = {};                    // empty: no cache
+  std::filesystem::path cache_dir = {};  // empty: no cache
   std::string gl_platform = "auto";
   bool validation = false;
   bool pass_images = false;
@@ -150,7 +150,7 @@ int run_worker(const WorkerOptions& options);
 struct ReportMergeOptions {
   std::vector<std::filesystem::path> folders;
   std::filesystem::path out;
-  bool exit_code = false;  // exit with the merged verdict's code, as xshade run would
+  bool exit_code = false;   // exit with the merged verdict's code, as xshade run would
   bool cross_lane = false;  // hold the lanes of scenes whose lanes came from separate runs against each other
   std::string command_line;
 };
@@ -158,11 +158,11 @@ int run_report_merge(const ReportMergeOptions& options);
 
 // `xshade diff A B`: B held against A by the comparison model's layers.
 struct DiffOptions {
-  std::filesystem::path a;  // the reference (a golden)
-  std::filesystem::path b;  // the image under test
-  uint32_t tolerance = 1;   // channel tolerance, 8-bit sRGB steps
-  double budget = 0.0;      // fraction of the pixels that may fail
-  uint32_t radius = 0;      // position radius, pixels
+  std::filesystem::path a;         // the reference (a golden)
+  std::filesystem::path b;         // the image under test
+  uint32_t tolerance = 1;          // channel tolerance, 8-bit sRGB steps
+  double budget = 0.0;             // fraction of the pixels that may fail
+  uint32_t radius = 0;             // position radius, pixels
   double float_tolerance = 0.005;  // relative, for values above 1
   std::filesystem::path heat_map;  // PNG of the difference, when asked
   std::filesystem::path mask;      // PNG, white where the per-pixel layer failed, when asked
@@ -172,10 +172,10 @@ int run_diff(const DiffOptions& options);
 
 struct StabilityOptions {
   LaneSelection selection;
-  std::string precision = "all";     // float, half or all
-  std::vector<std::string> cases;    // ids; empty = every case
-  bool list = false;                 // print the cases and run nothing
-  std::filesystem::path markdown;    // write docs/stability.md's text here
+  std::string precision = "all";   // float, half or all
+  std::vector<std::string> cases;  // ids; empty = every case
+  bool list = false;               // print the cases and run nothing
+  std::filesystem::path markdown;  // write docs/stability.md's text here
   std::filesystem::path shaders_dir = own_folders().shaders;
   std::filesystem::path probes_dir = own_folders().probes;
   std::filesystem::path scenes_dir = own_folders().scenes;
@@ -189,7 +189,7 @@ struct AccuracyOptions {
   bool quick = false;                // one round, no reference check, the quick studies
   uint32_t rounds = 5;
   std::filesystem::path report_dir = "accuracy-report";
-  std::filesystem::path markdown;    // also write docs/accuracy.md's text here, charts beside it
+  std::filesystem::path markdown;  // also write docs/accuracy.md's text here, charts beside it
   std::filesystem::path scenes_dir = own_folders().scenes;
   std::filesystem::path shaders_dir = own_folders().shaders;
   // Shader folders searched before the library: a study of Unity shaders names theirs and

@@ -11,8 +11,8 @@
 #include "cli/commands.h"
 #include "cli/compile_output.h"
 #include "harness/render/material_source.h"
-#include "harness/render/surface_program.h"
 #include "harness/render/shader_program.h"
+#include "harness/render/surface_program.h"
 #include "hlsl_like/compiler.h"
 #include "shaderlab/pass_program.h"
 #include "shaderlab/reader.h"
@@ -48,8 +48,10 @@ int no_stage(const hlsl::Module& module, const std::filesystem::path& file) {
   std::string passes;
   for (const hlsl::PassDeclaration& pass : module.passes) passes += (passes.empty() ? "" : ", ") + pass.name;
   if (!passes.empty())
-    fmt::print(stderr, "xshade compile: {} is a post effect with no #pragma fragment: choose one of its passes ({}) "
-                       "with --pass NAME\n", file.string(), passes);
+    fmt::print(stderr,
+               "xshade compile: {} is a post effect with no #pragma fragment: choose one of its passes ({}) "
+               "with --pass NAME\n",
+               file.string(), passes);
   else
     fmt::print(stderr, "xshade compile: {} has no entry point: give #pragma vertex/fragment, or --entry FUNCTION\n",
                file.string());
@@ -70,7 +72,8 @@ std::string bracketed(const std::vector<std::string>& keywords) {
 // What run_compile does with the module of `compile(front_end)`: the target's output, every
 // variant's status, or the reflection. `compile` compiles the file, or a .shader pass's text,
 // with other options.
-int compile_module(const CompileOptions& options, const std::filesystem::path& file, const hlsl::CompileOptions& front_end,
+int compile_module(const CompileOptions& options, const std::filesystem::path& file,
+                   const hlsl::CompileOptions& front_end,
                    const std::function<std::unique_ptr<hlsl::Module>(const hlsl::CompileOptions&)>& compile,
                    std::unique_ptr<hlsl::Module> module) {
   if (!module->diagnostics.diagnostics().empty()) fmt::print(stderr, "{}", module->diagnostics.render_all());
@@ -118,7 +121,9 @@ int compile_module(const CompileOptions& options, const std::filesystem::path& f
         }
         // An output a validator refused is xshade's failure, not the variant's (compile_output.h).
         fmt::print("{} {}{}: {}\n", file.string(), bracketed(keywords), pass_label,
-                   code == kPass ? "compiles" : code == kBackendError ? "internal error: invalid output" : "does not compile");
+                   code == kPass           ? "compiles"
+                   : code == kBackendError ? "internal error: invalid output"
+                                           : "does not compile");
         if (!failure.empty()) fmt::print(stderr, "{}", failure);
         worst = std::max(worst, code);
       }
@@ -130,8 +135,10 @@ int compile_module(const CompileOptions& options, const std::filesystem::path& f
 
   if (options.reflect) {
     const std::string json = hlsl::reflection_json(module->reflection) + "\n";
-    if (options.output.empty()) fmt::print("{}", json);
-    else if (!write_file(options.output.string() + ".json", json)) return kBackendError;
+    if (options.output.empty())
+      fmt::print("{}", json);
+    else if (!write_file(options.output.string() + ".json", json))
+      return kBackendError;
     return kPass;
   }
 
@@ -157,7 +164,8 @@ int compile_module(const CompileOptions& options, const std::filesystem::path& f
 // composed as Unity composes it and compiled with the .shader's folder first among the include
 // folders; several passes on standard output each under a header, or with -o OUT each in its own
 // files, OUT.passN.vert and OUT.passN.frag.
-int compile_unity_shader(const CompileOptions& options, const std::filesystem::path& file, hlsl::CompileOptions front_end) {
+int compile_unity_shader(const CompileOptions& options, const std::filesystem::path& file,
+                         hlsl::CompileOptions front_end) {
   auto shader = shaderlab::read_shader_file(file);
   if (!shader) {
     fmt::print(stderr, "{}\n", shader.error().to_string());
@@ -218,20 +226,22 @@ int compile_unity_shader(const CompileOptions& options, const std::filesystem::p
     }
     if (options.generated) {
       // The text the pass compiles, as composed and generated, before Unity's defines.
-      fmt::print("// ==== {} pass {}{} ====\n{}", file.string(), program->index, pass->name.empty() ? "" : " \"" + pass->name + "\"",
-                 program->text);
+      fmt::print("// ==== {} pass {}{} ====\n{}", file.string(), program->index,
+                 pass->name.empty() ? "" : " \"" + pass->name + "\"", program->text);
       continue;
     }
-    const auto compile = [&](const hlsl::CompileOptions& with) { return hlsl::compile_text(file.string(), program->text, with); };
+    const auto compile = [&](const hlsl::CompileOptions& with) {
+      return hlsl::compile_text(file.string(), program->text, with);
+    };
     hlsl::CompileOptions pass_options = *unity_options;
     pass_options.pass_fragment_entry.clear();
     // The variant a material of the Properties' defaults draws: the keywords its [Toggle] and
     // [KeywordEnum] properties set, where the pass declares them and -D named none of their set.
     std::unique_ptr<hlsl::Module> first = compile(pass_options);
     if (!options.all_variants && first->ok()) {
-      const std::vector<std::string> keywords = harness::with_inspector_keywords(
-          shader->properties, first->reflection.keyword_sets, pass_options.keywords,
-          [](const std::string&) -> std::optional<float> { return std::nullopt; });
+      const std::vector<std::string> keywords =
+          harness::with_inspector_keywords(shader->properties, first->reflection.keyword_sets, pass_options.keywords,
+                                           [](const std::string&) -> std::optional<float> { return std::nullopt; });
       if (keywords != pass_options.keywords) {
         pass_options.keywords = keywords;
         first = compile(pass_options);
@@ -241,8 +251,9 @@ int compile_unity_shader(const CompileOptions& options, const std::filesystem::p
       auto module = std::move(first);
       if (!module->diagnostics.diagnostics().empty()) fmt::print(stderr, "{}", module->diagnostics.render_all());
       if (!module->ok()) return kBadInput;
-      reflected_passes += fmt::format("{}{{\"index\": {}, \"name\": {}, \"reflection\": {}}}", reflected_passes.empty() ? "" : ", ",
-                                      program->index, nlohmann::json(pass->name).dump(), hlsl::reflection_json(module->reflection));
+      reflected_passes +=
+          fmt::format("{}{{\"index\": {}, \"name\": {}, \"reflection\": {}}}", reflected_passes.empty() ? "" : ", ",
+                      program->index, nlohmann::json(pass->name).dump(), hlsl::reflection_json(module->reflection));
       continue;
     }
     // Several passes: each under a header on standard output, or in OUT.passN.<stage> files.
@@ -250,17 +261,21 @@ int compile_unity_shader(const CompileOptions& options, const std::filesystem::p
     if (passes.size() > 1 && !options.output.empty())
       pass_output.output = options.output.string() + ".pass" + std::to_string(program->index);
     else if (options.output.empty() && (passes.size() > 1 || options.pass.empty()))
-      fmt::print("// ==== {} pass {}{} ====\n", file.string(), program->index, pass->name.empty() ? "" : " \"" + pass->name + "\"");
+      fmt::print("// ==== {} pass {}{} ====\n", file.string(), program->index,
+                 pass->name.empty() ? "" : " \"" + pass->name + "\"");
     worst = std::max(worst, compile_module(pass_output, file, pass_options, compile, std::move(first)));
   }
   if (options.reflect && worst == kPass) {
-    const std::string json = nlohmann::json::parse(fmt::format("{{\"shader\": {}, \"properties\": {}, \"passes\": [{}]}}",
-                                                               nlohmann::json(shader->name).dump(),
-                                                               shaderlab::properties_json(*shader), reflected_passes))
-                                 .dump(2) +
-                             "\n";
-    if (options.output.empty()) fmt::print("{}", json);
-    else if (!write_file(options.output.string() + ".json", json)) return kBackendError;
+    const std::string json =
+        nlohmann::json::parse(fmt::format("{{\"shader\": {}, \"properties\": {}, \"passes\": [{}]}}",
+                                          nlohmann::json(shader->name).dump(), shaderlab::properties_json(*shader),
+                                          reflected_passes))
+            .dump(2) +
+        "\n";
+    if (options.output.empty())
+      fmt::print("{}", json);
+    else if (!write_file(options.output.string() + ".json", json))
+      return kBackendError;
   }
   return worst;
 }
@@ -285,8 +300,10 @@ int run_compile(const CompileOptions& options) {
   if (options.precision == "half") front_end.defines.push_back({harness::kHalfEmulationMacro, "1"});
   for (const std::string& define : options.defines) {
     const size_t equals = define.find('=');
-    if (equals == std::string::npos) front_end.keywords.push_back(define);
-    else front_end.defines.push_back({define.substr(0, equals), define.substr(equals + 1)});
+    if (equals == std::string::npos)
+      front_end.keywords.push_back(define);
+    else
+      front_end.defines.push_back({define.substr(0, equals), define.substr(equals + 1)});
   }
   front_end.fragment_only_entry = options.entry;
   if (!options.entry.empty() && !options.pass.empty()) {
@@ -298,7 +315,8 @@ int run_compile(const CompileOptions& options) {
   auto module = hlsl::compile_file(file, front_end);
   if (!options.pass.empty() && module->ok()) {
     const auto& passes = module->passes;
-    auto pass = std::find_if(passes.begin(), passes.end(), [&](const hlsl::PassDeclaration& p) { return p.name == options.pass; });
+    auto pass = std::find_if(passes.begin(), passes.end(),
+                             [&](const hlsl::PassDeclaration& p) { return p.name == options.pass; });
     if (pass == passes.end()) {
       std::vector<std::string> names;
       for (const hlsl::PassDeclaration& p : passes) names.push_back(p.name);
@@ -312,8 +330,9 @@ int run_compile(const CompileOptions& options) {
     front_end.pass_fragment_entry = pass->entry;
     module = hlsl::compile_file(file, front_end);
   }
-  return compile_module(options, file, front_end,
-                        [&](const hlsl::CompileOptions& with) { return hlsl::compile_file(file, with); }, std::move(module));
+  return compile_module(
+      options, file, front_end, [&](const hlsl::CompileOptions& with) { return hlsl::compile_file(file, with); },
+      std::move(module));
 }
 
 }  // namespace xshade::cli

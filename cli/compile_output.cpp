@@ -15,13 +15,13 @@ std::string disassemble(const std::vector<uint32_t>& words) {
 }  // namespace
 
 Result<CompileOutput> compile_output(const hlsl::Module& module, const OutputOptions& options) {
-  auto generated = codegen::generate(module, options.target,
-                                     {.half_emulation = options.half_emulation,
-                                      .trace_nonfinite = options.trace_nonfinite,
-                                      .check_gl = true});
+  auto generated = codegen::generate(
+      module, options.target,
+      {.half_emulation = options.half_emulation, .trace_nonfinite = options.trace_nonfinite, .check_gl = true});
   if (!generated) return fail(generated.error());
   CompileOutput output;
-  for (auto [from, to] : {std::pair{&generated->vertex, &output.vertex}, std::pair{&generated->fragment, &output.fragment}}) {
+  for (auto [from, to] :
+       {std::pair{&generated->vertex, &output.vertex}, std::pair{&generated->fragment, &output.fragment}}) {
     if (!*from) continue;
     OutputStage stage;
     if (codegen::makes_spirv(options.target)) {

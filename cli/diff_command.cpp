@@ -83,7 +83,8 @@ int run_diff(const DiffOptions& options) {
   if (options.json) {
     json layers = json::array();
     for (const harness::LayerResult& layer : comparison.layers)
-      layers.push_back({{"layer", layer.layer}, {"verdict", harness::verdict_name(layer.verdict)}, {"detail", layer.detail}});
+      layers.push_back(
+          {{"layer", layer.layer}, {"verdict", harness::verdict_name(layer.verdict)}, {"detail", layer.detail}});
     json document = {{"a", options.a.string()},
                      {"b", options.b.string()},
                      {"verdict", harness::verdict_name(comparison.verdict)},
@@ -91,17 +92,22 @@ int run_diff(const DiffOptions& options) {
                      {"layers", std::move(layers)},
                      {"width", b->width},
                      {"height", b->height},
-                     {"non_finite", {{"a", non_finite_json(comparison.reference_non_finite)},
-                                     {"b", non_finite_json(comparison.test_non_finite)}}}};
+                     {"non_finite",
+                      {{"a", non_finite_json(comparison.reference_non_finite)},
+                       {"b", non_finite_json(comparison.test_non_finite)}}}};
     if (same_size) {
       document["metrics"] = harness::metrics_to_json(m);
-      document["worst"] = {{"x", m.worst_x}, {"y", m.worst_y}, {"steps", m.max_steps},
-                           {"a", rgba_json(m.worst_reference)}, {"b", rgba_json(m.worst_test)}};
+      document["worst"] = {{"x", m.worst_x},
+                           {"y", m.worst_y},
+                           {"steps", m.max_steps},
+                           {"a", rgba_json(m.worst_reference)},
+                           {"b", rgba_json(m.worst_test)}};
     }
     fmt::print("{}\n", document.dump(2, ' ', false, json::error_handler_t::replace));
   } else {
     fmt::print("{}: {} against {}: {} ({})\n", comparison.verdict == harness::Verdict::Pass ? "PASS" : "FAIL",
-               options.b.string(), options.a.string(), harness::verdict_name(comparison.verdict), comparison.decided_by);
+               options.b.string(), options.a.string(), harness::verdict_name(comparison.verdict),
+               comparison.decided_by);
     for (const harness::LayerResult& layer : comparison.layers)
       fmt::print("  {:<9} {:<7} {}\n", layer.layer, harness::verdict_name(layer.verdict), layer.detail);
     if (same_size && m.max_steps > 0)

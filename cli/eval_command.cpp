@@ -11,15 +11,15 @@
 #include <string_view>
 #include <utility>
 
-#include "cli/commands.h"
 #include "base/file_io.h"
 #include "base/subprocess.h"
+#include "cli/commands.h"
 #include "cli/lane_selection.h"
 #include "cli/workers.h"
-#include "harness/render/evaluate.h"
-#include "harness/render/nonfinite_origins.h"
 #include "harness/image/image_compare.h"
 #include "harness/image/image_io.h"
+#include "harness/render/evaluate.h"
+#include "harness/render/nonfinite_origins.h"
 
 namespace xshade::cli {
 
@@ -29,19 +29,18 @@ namespace {
 void print_lane_differences(const std::map<harness::Lane, harness::FloatImage>& images) {
   if (images.size() < 2) return;
   const auto& [first_lane, first] = *images.begin();
-    for (const auto& [lane, image] : images) {
-      if (lane == first_lane) continue;
-      const harness::ImageDifference difference = harness::max_difference(first, image);
-      const auto pixel = first.at(difference.x, difference.y);
-      const auto other = image.at(difference.x, difference.y);
-      if (harness::bitwise_equal(first, image))
-        fmt::print("{} vs {}: bit-identical\n", harness::lane_name(first_lane), harness::lane_name(lane));
-      else
-        fmt::print("{} vs {}: max difference {:g} at ({}, {}) channel {}: {:g} vs {:g}\n",
-                   harness::lane_name(first_lane), harness::lane_name(lane), difference.max, difference.x,
-                   difference.y, "rgba"[difference.channel], pixel[int(difference.channel)],
-                   other[int(difference.channel)]);
-    }
+  for (const auto& [lane, image] : images) {
+    if (lane == first_lane) continue;
+    const harness::ImageDifference difference = harness::max_difference(first, image);
+    const auto pixel = first.at(difference.x, difference.y);
+    const auto other = image.at(difference.x, difference.y);
+    if (harness::bitwise_equal(first, image))
+      fmt::print("{} vs {}: bit-identical\n", harness::lane_name(first_lane), harness::lane_name(lane));
+    else
+      fmt::print("{} vs {}: max difference {:g} at ({}, {}) channel {}: {:g} vs {:g}\n", harness::lane_name(first_lane),
+                 harness::lane_name(lane), difference.max, difference.x, difference.y, "rgba"[difference.channel],
+                 pixel[int(difference.channel)], other[int(difference.channel)]);
+  }
 }
 
 // --trace-nonfinite: the tracing variant on the same inputs, its image held to the plain one, and
@@ -65,8 +64,9 @@ void print_traced(const EvalOptions& options, const std::filesystem::path& file,
     return;
   }
   fmt::print("{}: traced image {}\n", name,
-             harness::bitwise_equal(*traced, plain) ? "bit-identical to the plain one"
-                                                     : "DIFFERS from the plain one (the tracing variant changed a value)");
+             harness::bitwise_equal(*traced, plain)
+                 ? "bit-identical to the plain one"
+                 : "DIFFERS from the plain one (the tracing variant changed a value)");
   harness::CompiledVariant variant;
   variant.program.name = module.sources.name(module.main_file);
   variant.trace = program->trace();
@@ -82,7 +82,8 @@ void print_traced(const EvalOptions& options, const std::filesystem::path& file,
   fmt::print("{}: where the non-finite values were born:\n{}", name, harness::describe_origins(*origins));
   if (!options.write_images) return;
   const auto map = options.output_dir / (file.stem().string() + "." + name + ".origins.png");
-  if (auto written = harness::write_png(origins->map, map); written) fmt::print("{}: origins map {}\n", name, map.string());
+  if (auto written = harness::write_png(origins->map, map); written)
+    fmt::print("{}: origins map {}\n", name, map.string());
 }
 
 // Where eval writes a lane's image, and where that lane's worker hands it over first (beside it,
@@ -90,7 +91,8 @@ void print_traced(const EvalOptions& options, const std::filesystem::path& file,
 std::filesystem::path exr_path(const EvalOptions& options, const std::filesystem::path& file, const std::string& lane) {
   return options.output_dir / (file.stem().string() + "." + lane + ".exr");
 }
-std::filesystem::path handover_path(const EvalOptions& options, const std::filesystem::path& file, const std::string& lane) {
+std::filesystem::path handover_path(const EvalOptions& options, const std::filesystem::path& file,
+                                    const std::string& lane) {
   return options.output_dir / ("." + file.stem().string() + "." + lane + ".f32");
 }
 
@@ -116,7 +118,7 @@ std::vector<std::string> worker_command(const EvalOptions& options, harness::Lan
 // One file of an eval: what its front end said, then each lane's lines and image.
 struct FileEval {
   std::filesystem::path file;
-  std::unique_ptr<hlsl::Module> module = {};  // null when the front end refused it
+  std::unique_ptr<hlsl::Module> module = {};       // null when the front end refused it
   std::map<uint32_t, double> specialization = {};  // --specialize, resolved against the module
   std::string front_end_output = {};
   int exit_code = kPass;
@@ -144,9 +146,8 @@ void compile_for_eval(const EvalOptions& options, FileEval& eval) {
   }
   // A shader that writes only SV_Depth leaves the colour undefined: nothing to compare.
   const auto& outputs = module->reflection.fragment_outputs;
-  if (std::none_of(outputs.begin(), outputs.end(), [](const hlsl::StageVariable& output) {
-        return output.semantic.starts_with("SV_Target");
-      })) {
+  if (std::none_of(outputs.begin(), outputs.end(),
+                   [](const hlsl::StageVariable& output) { return output.semantic.starts_with("SV_Target"); })) {
     eval.front_end_output += fmt::format(
         "xshade eval: {} writes no colour (SV_Target); eval renders and compares colour only\n", eval.file.string());
     return;
@@ -273,7 +274,8 @@ int run_eval_lanes_in_workers(const EvalOptions& options, const std::vector<harn
     // Lanes start in order, up to `jobs` at once; a lane keeps its slot until its files are done.
     size_t running = 0;
     for (size_t i = 0; i < next_to_start; ++i) running += !lane_jobs[i].finished();
-    for (; running < jobs && next_to_start < lane_jobs.size(); ++next_to_start) running += !lane_jobs[next_to_start].finished();
+    for (; running < jobs && next_to_start < lane_jobs.size(); ++next_to_start)
+      running += !lane_jobs[next_to_start].finished();
     std::vector<ChildProcess*> waiting;
     for (size_t j = 0; j < next_to_start; ++j) {
       LaneJob& job = lane_jobs[j];
@@ -290,7 +292,8 @@ int run_eval_lanes_in_workers(const EvalOptions& options, const std::vector<harn
         if (!worker) {
           for (; job.next < job.todo.size(); ++job.next) {
             FileEval& eval = evals[job.todo[job.next]];
-            eval.lane_output[job.lane] = fmt::format("{}: cannot start a worker: {}\n", name, worker.error().to_string());
+            eval.lane_output[job.lane] =
+                fmt::format("{}: cannot start a worker: {}\n", name, worker.error().to_string());
             eval.exit_code = std::max<int>(eval.exit_code, kBackendError);
             ++eval.lanes_done;
           }
@@ -336,8 +339,8 @@ int run_eval_lanes_in_workers(const EvalOptions& options, const std::vector<harn
 }
 
 // A worker: `lane` for each file in order, with one backend.
-int evaluate_lane_in_worker(const EvalOptions& options, harness::Lane lane, std::vector<FileEval>& evals, uint32_t width,
-                            uint32_t height) {
+int evaluate_lane_in_worker(const EvalOptions& options, harness::Lane lane, std::vector<FileEval>& evals,
+                            uint32_t width, uint32_t height) {
   const std::string name(harness::lane_name(lane));
   auto backend = harness::create_backend(lane, backend_options(options.selection));
   int exit_code = kPass;
@@ -359,8 +362,9 @@ int evaluate_lane_in_worker(const EvalOptions& options, harness::Lane lane, std:
         (void)(*backend)->destroy(program->handle());  // made here, destroyed once
         return seeded;
       }()
-                                : harness::evaluate(module, lane, **backend, width, height, {}, program_options);
-      if (image && options.trace_nonfinite) print_traced(options, eval.file, module, lane, **backend, *image, width, height);
+          : harness::evaluate(module, lane, **backend, width, height, {}, program_options);
+      if (image && options.trace_nonfinite)
+        print_traced(options, eval.file, module, lane, **backend, *image, width, height);
       if (!image) {
         fmt::print("{}: failed: {}\n", name, image.error().to_string());
         return kBackendError;
@@ -370,7 +374,8 @@ int evaluate_lane_in_worker(const EvalOptions& options, harness::Lane lane, std:
         fmt::print("{}: driver message: {}\n", name, message);
       // The image goes to the process that started this worker, which writes the EXR: a worker
       // then never loads the image library (harness/image/image_codec.h), a third of a second a lane.
-      if (auto handed = write_file_atomically(handover_path(options, eval.file, name), harness::float_image_bytes(*image));
+      if (auto handed =
+              write_file_atomically(handover_path(options, eval.file, name), harness::float_image_bytes(*image));
           !handed) {
         fmt::print(stderr, "xshade eval: {}\n", handed.error().to_string());
         result = kBackendError;
@@ -398,8 +403,8 @@ int evaluate_lane_in_worker(const EvalOptions& options, harness::Lane lane, std:
 
 int run_eval(const EvalOptions& options) {
   uint32_t width = 0, height = 0;
-  if (std::sscanf(options.size.c_str(), "%ux%u", &width, &height) != 2 || width == 0 || height == 0 ||
-      width > 8192 || height > 8192) {
+  if (std::sscanf(options.size.c_str(), "%ux%u", &width, &height) != 2 || width == 0 || height == 0 || width > 8192 ||
+      height > 8192) {
     fmt::print(stderr, "xshade eval: --size wants WxH with each side 1 to 8192, not '{}'\n", options.size);
     return kBadInput;
   }

@@ -5,8 +5,8 @@
 
 #include <algorithm>
 #include <cerrno>
-#include <cstring>
 #include <cstdlib>
+#include <cstring>
 #include <optional>
 #include <system_error>
 
@@ -34,8 +34,7 @@ const OwnFolders& own_folders() {
         return OwnFolders{data / "shaders", data / "scenes", data / "golden", data / "probes", true};
     }
     const fs::path source = XSHADE_SOURCE_DIR;
-    return OwnFolders{source / "shaders", source / "scenes", source / "golden",
-                      source / "stability/probes", false};
+    return OwnFolders{source / "shaders", source / "scenes", source / "golden", source / "stability/probes", false};
   }();
   return folders;
 }
@@ -57,17 +56,19 @@ Result<SceneFolders> resolve_folders(const FolderOptions& given, const fs::path&
   }
   const OwnFolders& own = own_folders();
   std::vector<fs::path> shaders = !given.shaders.empty() ? given.shaders
-                                  : project                ? project->shaders
-                                                           : std::vector<fs::path>{};
+                                  : project              ? project->shaders
+                                                         : std::vector<fs::path>{};
   for (const fs::path& folder : shaders) {
     std::error_code error;
     if (!fs::is_directory(folder, error))
-      return fail(ErrorKind::Usage, "the shader folder " + folder.string() + " (" +
-                                        (given.shaders.empty() ? "the project file's shaders" : std::string("--shaders")) +
-                                        ") is not a folder");
+      return fail(ErrorKind::Usage,
+                  "the shader folder " + folder.string() + " (" +
+                      (given.shaders.empty() ? "the project file's shaders" : std::string("--shaders")) +
+                      ") is not a folder");
   }
   shaders.push_back(own.shaders);
-  SceneFolders folders{{}, {}, harness::ShaderSearchPath(std::move(shaders)), project ? project->path : fs::path(), false};
+  SceneFolders folders{
+      {}, {}, harness::ShaderSearchPath(std::move(shaders)), project ? project->path : fs::path(), false};
 
   const bool own_scenes = given.scenes.empty() && !(project && project->scenes);
   folders.scenes = !given.scenes.empty() ? given.scenes : own_scenes ? own.scenes : *project->scenes;
@@ -181,13 +182,15 @@ fs::path private_cache_dir(const fs::path& folder, std::string_view verb) {
   struct statvfs space {};
   if (::access(folder.c_str(), W_OK) != 0)
     why_not = folder.string() + " cannot be written (" + std::strerror(errno) + ")";
-  else if (::statvfs(folder.c_str(), &space) == 0 && uint64_t(space.f_bavail) * space.f_frsize < kMinDriverCacheFreeBytes)
+  else if (::statvfs(folder.c_str(), &space) == 0 &&
+           uint64_t(space.f_bavail) * space.f_frsize < kMinDriverCacheFreeBytes)
     why_not = fmt::format("the disk of {} has {} KiB free, less than the {} MiB it needs", folder.string(),
                           uint64_t(space.f_bavail) * space.f_frsize / 1024, kMinDriverCacheFreeBytes >> 20);
   if (!why_not.empty()) {
     fmt::print(stderr, "xshade {}: warning: the drivers' shader cache is off for this run: {}\n", verb, why_not);
     setenv("MESA_SHADER_CACHE_DISABLE", "true", 1);  // the workers inherit it
-  } else if (const std::optional<std::string> damage = harness::check_driver_cache(harness::driver_cache_folder(folder))) {
+  } else if (const std::optional<std::string> damage =
+                 harness::check_driver_cache(harness::driver_cache_folder(folder))) {
     fmt::print(stderr, "xshade {}: warning: {}\n", verb, *damage);
   }
   return folder;

@@ -7,8 +7,8 @@
 #include <string_view>
 #include <vector>
 
-#include "harness/render/shader_search_path.h"
 #include "base/result.h"
+#include "harness/render/shader_search_path.h"
 
 namespace xshade::cli {
 
@@ -29,8 +29,8 @@ struct FolderOptions {
   std::filesystem::path scenes;
   std::filesystem::path golden;
   std::vector<std::filesystem::path> shaders;  // searched in order, before xshade's library
-  std::filesystem::path project;  // the project file; empty: xshade.toml found from the working folder
-  bool no_project = false;        // use no project file
+  std::filesystem::path project;               // the project file; empty: xshade.toml found from the working folder
+  bool no_project = false;                     // use no project file
 };
 
 struct SceneFolders {

@@ -40,8 +40,8 @@ int run_info(const LaneSelection& selection) {
     fmt::print(stderr, "xshade info: {}\n", folders.error().to_string());
     return kBadInput;
   }
-  fmt::print("project file: {}\n", folders->project_file.empty() ? "none (xshade's own scenes and goldens)"
-                                                                    : folders->project_file.string());
+  fmt::print("project file: {}\n",
+             folders->project_file.empty() ? "none (xshade's own scenes and goldens)" : folders->project_file.string());
   fmt::print("  scenes:  {}\n", folders->scenes.string());
   fmt::print("  golden:  {}\n", folders->golden.empty() ? "not set" : folders->golden.string());
   fmt::print("  shaders: {}\n", folders->shaders.describe());

@@ -11,7 +11,8 @@ Result<std::vector<harness::Lane>> resolve_lanes(const LaneSelection& selection)
     auto lane = harness::parse_lane(name);
     if (!lane) {
       std::string known;
-      for (harness::Lane l : harness::all_lanes()) known += std::string(known.empty() ? "" : ", ") + std::string(harness::lane_name(l));
+      for (harness::Lane l : harness::all_lanes())
+        known += std::string(known.empty() ? "" : ", ") + std::string(harness::lane_name(l));
       return fail("unknown lane '" + name + "' (lanes: " + known + ")");
     }
     lanes.push_back(*lane);

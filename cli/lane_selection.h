@@ -3,8 +3,8 @@
 
 #include <vector>
 
-#include "harness/render/lanes.h"
 #include "cli/commands.h"
+#include "harness/render/lanes.h"
 
 namespace xshade::cli {
 

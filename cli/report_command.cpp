@@ -25,7 +25,8 @@ int run_report_merge(const ReportMergeOptions& options) {
   std::error_code error;
   for (const harness::FoundReport& report : *found)
     if (fs::equivalent(report.folder, options.out, error)) {
-      fmt::print(stderr, "xshade report merge: --out {} is one of the reports being merged; merge into another folder\n",
+      fmt::print(stderr,
+                 "xshade report merge: --out {} is one of the reports being merged; merge into another folder\n",
                  options.out.string());
       return kBadInput;
     }
@@ -60,9 +61,10 @@ int run_report_merge(const ReportMergeOptions& options) {
   const harness::VerdictCounts scenes = harness::count_scenes(merged.results);
   const harness::VerdictCounts checks = harness::count_checks(merged.results);
   const harness::Verdict verdict = harness::run_verdict(merged.results);
-  fmt::print("merged {} reports: {} scenes ({} pass, {} fail, {} error, {} crash, {} skipped), {} checks ({} pass); {}\n",
-             found->size(), scenes.total(), scenes.pass, scenes.fail, scenes.error, scenes.crash, scenes.skipped,
-             checks.total(), checks.pass, harness::verdict_name(verdict));
+  fmt::print(
+      "merged {} reports: {} scenes ({} pass, {} fail, {} error, {} crash, {} skipped), {} checks ({} pass); {}\n",
+      found->size(), scenes.total(), scenes.pass, scenes.fail, scenes.error, scenes.crash, scenes.skipped,
+      checks.total(), checks.pass, harness::verdict_name(verdict));
   fmt::print("report: {}\n", (options.out / "index.html").string());
   return options.exit_code ? harness::exit_code(verdict) : kPass;
 }

@@ -14,10 +14,10 @@
 #include "cli/commands.h"
 #include "cli/lane_selection.h"
 #include "cli/workers.h"
+#include "harness/gate/scene_check.h"
 #include "harness/render/driver_cache.h"
 #include "harness/report/report.h"
 #include "harness/report/report_lock.h"
-#include "harness/gate/scene_check.h"
 
 namespace xshade::cli {
 namespace {
@@ -66,7 +66,8 @@ int run_run(const RunOptions& options) {
     fmt::print(stderr, "xshade run: {}\n", lanes.error().to_string());
     return kBadInput;
   }
-  auto folders = resolve_folders(options.folders, fs::current_path(), options.plan_only ? GoldenUse::None : GoldenUse::Read);
+  auto folders =
+      resolve_folders(options.folders, fs::current_path(), options.plan_only ? GoldenUse::None : GoldenUse::Read);
   if (!folders) {
     fmt::print(stderr, "xshade run: {}\n", folders.error().to_string());
     return kBadInput;
@@ -117,19 +118,18 @@ int run_run(const RunOptions& options) {
   results.started = utc_now();
   results.command = options.command_line;
   size_t done = 0;
-  harness::SceneChecker checker(
-      compiler,
-      {.report_dir = options.report_dir,
-       .goldens = &goldens,
-       .backend = backend_options(options.selection),
-       .pass_images = options.pass_images,
-       .plan_only = options.plan_only,
-       .half_emulation = half,
-       .trace_nonfinite = options.trace_nonfinite},
-      [&](const std::string& line) {
-        fmt::print("[{}/{}] {}\n", done + 1, files->size(), line);
-        std::fflush(stdout);
-      });
+  harness::SceneChecker checker(compiler,
+                                {.report_dir = options.report_dir,
+                                 .goldens = &goldens,
+                                 .backend = backend_options(options.selection),
+                                 .pass_images = options.pass_images,
+                                 .plan_only = options.plan_only,
+                                 .half_emulation = half,
+                                 .trace_nonfinite = options.trace_nonfinite},
+                                [&](const std::string& line) {
+                                  fmt::print("[{}/{}] {}\n", done + 1, files->size(), line);
+                                  std::fflush(stdout);
+                                });
   std::vector<harness::ViewerPage> viewers;
   auto record = [&](harness::CheckedScene&& checked) {
     if (options.plan_only && checked.result.message.empty()) fmt::print("{}", checked.result.plan);
@@ -165,8 +165,10 @@ int run_run(const RunOptions& options) {
                                        [](const std::string& text) { fmt::print(stderr, "{}", text); });
     if (!cache_dir.empty()) harness::record_driver_cache(harness::driver_cache_folder(cache_dir));
     if (const int signal = interrupt_signal()) {
-      fmt::print(stderr, "xshade run: stopped by {} after {} of {} scenes; its workers and their files are gone, "
-                 "and no report was written\n", describe_signal(signal), results.scenes.size(), files->size());
+      fmt::print(stderr,
+                 "xshade run: stopped by {} after {} of {} scenes; its workers and their files are gone, "
+                 "and no report was written\n",
+                 describe_signal(signal), results.scenes.size(), files->size());
       return kInterrupted + signal;
     }
   }
@@ -183,10 +185,11 @@ int run_run(const RunOptions& options) {
   }
   size_t passed = 0;
   for (const harness::SceneResult& scene : results.scenes) passed += scene.verdict == harness::Verdict::Pass;
-  fmt::print("{} of {} scenes passed in {:.1f} s; {} renders in {} worker{}; shaders: {} compiled, {} from the cache{}\n",
-             passed, results.scenes.size(), results.seconds, totals.renders, totals.workers_started,
-             totals.workers_started == 1 ? "" : "s", totals.compiled, totals.cached,
-             cache ? " (" + cache->directory().string() + ")" : std::string(" (cache off)"));
+  fmt::print(
+      "{} of {} scenes passed in {:.1f} s; {} renders in {} worker{}; shaders: {} compiled, {} from the cache{}\n",
+      passed, results.scenes.size(), results.seconds, totals.renders, totals.workers_started,
+      totals.workers_started == 1 ? "" : "s", totals.compiled, totals.cached,
+      cache ? " (" + cache->directory().string() + ")" : std::string(" (cache off)"));
   if (!totals.cache_write_error.empty()) fmt::print("warning: {}\n", totals.cache_write_error);
   if (!totals.cache_damage.empty()) fmt::print("warning: {}\n", totals.cache_damage);
   if (report_written) fmt::print("report: {}\n", (options.report_dir / "index.html").string());

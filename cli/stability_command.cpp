@@ -1,9 +1,9 @@
 // xshade stability: the hard numeric cases of SHADERS.md section 5 on every lane and precision.
 #include <fmt/core.h>
 
+#include "base/file_io.h"
 #include "cli/commands.h"
 #include "cli/lane_selection.h"
-#include "base/file_io.h"
 #include "stability/cases.h"
 #include "stability/suite.h"
 
@@ -45,7 +45,8 @@ int run_stability(const StabilityOptions& options) {
   }
   for (const std::string& skipped : run->skipped) fmt::print("skipped: {}\n", skipped);
   if (!options.markdown.empty()) {
-    if (auto written = write_file_atomically(options.markdown, stability::stability_markdown(cases, *run, options.command_line));
+    if (auto written =
+            write_file_atomically(options.markdown, stability::stability_markdown(cases, *run, options.command_line));
         !written) {
       fmt::print(stderr, "xshade stability: {}\n", written.error().to_string());
       return kBackendError;

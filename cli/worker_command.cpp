@@ -37,17 +37,16 @@ int run_worker(const WorkerOptions& options) {
   harness::EnvironmentCache environments(options.cache_dir, harness::compiler_identity());
   std::optional<harness::GoldenStore> goldens;
   if (!options.golden.empty()) goldens.emplace(options.golden);
-  harness::SceneChecker checker(compiler,
-                                {.report_dir = options.report_dir,
-                                 .goldens = goldens ? &*goldens : nullptr,
-                                 .backend = {.validation = options.validation,
-                                             .gl_platform = *platform,
-                                             .driver_cache = driver_cache},
-                                 .pass_images = options.pass_images,
-                                 .half_emulation = options.half_emulation,
-                                 .environments = &environments,
-                                 .trace_nonfinite = options.trace_nonfinite},
-                                [](const std::string& line) { fmt::print("{}\n", line); });
+  harness::SceneChecker checker(
+      compiler,
+      {.report_dir = options.report_dir,
+       .goldens = goldens ? &*goldens : nullptr,
+       .backend = {.validation = options.validation, .gl_platform = *platform, .driver_cache = driver_cache},
+       .pass_images = options.pass_images,
+       .half_emulation = options.half_emulation,
+       .environments = &environments,
+       .trace_nonfinite = options.trace_nonfinite},
+      [](const std::string& line) { fmt::print("{}\n", line); });
   const auto render = [&](const std::string& scene, const std::string& lane_name, const std::string& result) {
     auto lane = harness::parse_lane(lane_name);
     if (!lane) {

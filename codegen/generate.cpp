@@ -10,9 +10,10 @@ SourceLocation whole_module(const hlsl::Module& module) { return module.sources.
 
 // The names the target's code gives the module's resources (the emitter's, or glslang's for
 // vk-hlsl, which keeps the HLSL names but for the loose globals' block), and where they are bound.
-BindingInterface binding_interface(const hlsl::Reflection& reflection, Target target, const glsl::DeclaredNames* glsl_names,
-                                   const GenerateOptions& options) {
-  const auto code_name = [&](const std::map<std::string, std::string> glsl::DeclaredNames::*kind, const std::string& name) {
+BindingInterface binding_interface(const hlsl::Reflection& reflection, Target target,
+                                   const glsl::DeclaredNames* glsl_names, const GenerateOptions& options) {
+  const auto code_name = [&](const std::map<std::string, std::string> glsl::DeclaredNames::*kind,
+                             const std::string& name) {
     if (!glsl_names) return name == hlsl::kGlobalsBufferName ? std::string("$Global") : name;
     const auto& names = glsl_names->*kind;
     const auto found = names.find(name);
@@ -21,8 +22,8 @@ BindingInterface binding_interface(const hlsl::Reflection& reflection, Target ta
   BindingInterface interface;
   const bool vulkan = target != Target::Gl;
   for (const hlsl::ConstantBuffer& buffer : reflection.constant_buffers)
-    interface.uniform_blocks.push_back({buffer.name, code_name(&glsl::DeclaredNames::blocks, buffer.name), buffer.binding,
-                                        buffer.size, buffer.push_constant && vulkan});
+    interface.uniform_blocks.push_back({buffer.name, code_name(&glsl::DeclaredNames::blocks, buffer.name),
+                                        buffer.binding, buffer.size, buffer.push_constant && vulkan});
   for (const hlsl::TextureResource& texture : reflection.textures) {
     if (!texture.used) continue;
     BindingInterface::Texture slot;
@@ -54,13 +55,15 @@ BindingInterface binding_interface(const hlsl::Reflection& reflection, Target ta
 
 Result<void> vk_hlsl_can_take(const hlsl::Module& module, const GenerateOptions& options) {
   if (options.half_emulation)
-    return fail("half emulation rewrites the GLSL xshade emits; the vk-hlsl lane compiles the source with glslang and "
-                "cannot emulate half",
-                whole_module(module));
+    return fail(
+        "half emulation rewrites the GLSL xshade emits; the vk-hlsl lane compiles the source with glslang and "
+        "cannot emulate half",
+        whole_module(module));
   if (options.trace_nonfinite)
-    return fail("tracing non-finite values instruments the GLSL xshade emits; the vk-hlsl lane compiles the source with "
-                "glslang's HLSL front end and cannot be traced (trace gl or vk)",
-                whole_module(module));
+    return fail(
+        "tracing non-finite values instruments the GLSL xshade emits; the vk-hlsl lane compiles the source with "
+        "glslang's HLSL front end and cannot be traced (trace gl or vk)",
+        whole_module(module));
   return {};
 }
 
@@ -77,9 +80,10 @@ Result<Generated> generate_vk_hlsl(const hlsl::Module& module, const GenerateOpt
       // module spirv-val refuses is xshade's (the resolver, the offsets it mends, whether it legalizes).
       Error error = stage.error();
       error.kind = ErrorKind::Internal;
-      error.message = "internal error: the SPIR-V glslang made of the shader for --target vk-hlsl is not valid (spirv-val "
-                      "refuses it). This is a bug in xshade, not in the shader: please report it with the shader and "
-                      "what follows.";
+      error.message =
+          "internal error: the SPIR-V glslang made of the shader for --target vk-hlsl is not valid (spirv-val "
+          "refuses it). This is a bug in xshade, not in the shader: please report it with the shader and "
+          "what follows.";
       return fail(std::move(error));
     }
     (vertex ? generated.vertex : generated.fragment) = std::move(*stage);
@@ -143,7 +147,8 @@ Result<Generated> generate(const hlsl::Module& module, Target target, const Gene
   if (!module.entry_points.vertex && !module.entry_points.fragment) return Generated{};
   // vk-hlsl refuses what it cannot take before it compiles anything, so the message is the same
   // whichever stages the module has.
-  auto generated = target == Target::VkHlsl ? generate_vk_hlsl(module, options) : generate_glsl(module, target, options);
+  auto generated =
+      target == Target::VkHlsl ? generate_vk_hlsl(module, options) : generate_glsl(module, target, options);
   if (!generated) return fail(generated.error());
   return generated;
 }

@@ -46,7 +46,7 @@ struct GeneratedStage {
   std::string glsl;             // gl, vk
   std::vector<uint32_t> spirv;  // spirv, vk-hlsl; vk too, the module it was checked by
   std::string entry_point = "main";
-  std::string name;             // in diagnostics: "toon.hlsl.vert"
+  std::string name;  // in diagnostics: "toon.hlsl.vert"
   // `#line L N` in the GLSL names source string N: entry N is the author's file (0 the text itself).
   std::vector<std::string> source_files;
 };

@@ -37,8 +37,10 @@ TEST(Generate, EveryTargetGivesEveryStageInItsForm) {
     EXPECT_EQ(generated->fragment->glsl.empty(), makes_spirv(target)) << target_name(target);
     // vk's text was checked by compiling it: the module comes along.
     EXPECT_EQ(generated->fragment->spirv.empty(), target == Target::Gl) << target_name(target);
-    if (!makes_spirv(target)) EXPECT_NE(generated->fragment->glsl.find("#version 450"), std::string::npos);
-    else EXPECT_EQ(generated->fragment->spirv.at(0), 0x07230203u);  // the SPIR-V magic number
+    if (!makes_spirv(target))
+      EXPECT_NE(generated->fragment->glsl.find("#version 450"), std::string::npos);
+    else
+      EXPECT_EQ(generated->fragment->spirv.at(0), 0x07230203u);  // the SPIR-V magic number
   }
   // What the gl target gives, glslang accepts as OpenGL GLSL.
   auto gl = generate(*module, Target::Gl);

@@ -19,7 +19,6 @@ constexpr size_t kMaxShownPerMessage = 3;
 
 const char* stage_name(spirv::Stage stage) { return stage == spirv::Stage::Vertex ? "vertex" : "fragment"; }
 
-
 std::vector<std::string_view> split_lines(std::string_view text) {
   std::vector<std::string_view> lines;
   while (!text.empty()) {
@@ -102,10 +101,10 @@ std::string excerpt_around(std::string_view text, const std::vector<uint32_t>& m
 // a line, the whole stage, numbered.
 Error invalid_output(Target target, spirv::Stage stage, std::string_view text, std::string_view name,
                      const Error& refusal, const std::vector<std::string>& source_files) {
-  const std::string what =
-      spirv::is_spirv_validation_failure(refusal)
-          ? "compiles to SPIR-V that spirv-val refuses"
-          : fmt::format("is not valid {} (glslang refuses it)", target == Target::Gl ? "OpenGL GLSL 4.50 core" : "Vulkan GLSL");
+  const std::string what = spirv::is_spirv_validation_failure(refusal)
+                               ? "compiles to SPIR-V that spirv-val refuses"
+                               : fmt::format("is not valid {} (glslang refuses it)",
+                                             target == Target::Gl ? "OpenGL GLSL 4.50 core" : "Vulkan GLSL");
   Error error{fmt::format("internal error: the {} stage xshade generated for --target {} {}. This is a bug in xshade, "
                           "not in the shader: please report it with the shader and what follows.",
                           stage_name(stage), target_name(target), what),
@@ -142,7 +141,8 @@ Error invalid_output(Target target, spirv::Stage stage, std::string_view text, s
     }
     if (!at.empty()) {
       diagnostic.where = {std::string(name), at.front(), 0};
-      if (std::find(shown.begin(), shown.end(), at.front()) == shown.end()) diagnostic.excerpt = excerpt_around(text, at);
+      if (std::find(shown.begin(), shown.end(), at.front()) == shown.end())
+        diagnostic.excerpt = excerpt_around(text, at);
       shown.insert(shown.end(), at.begin(), at.end());
     }
     error.diagnostics.push_back(std::move(diagnostic));
@@ -150,8 +150,10 @@ Error invalid_output(Target target, spirv::Stage stage, std::string_view text, s
   if (shown.empty()) {
     std::string whole = numbered_lines(text, 1, uint32_t(logical.size()));
     if (whole.ends_with('\n')) whole.pop_back();
-    error.diagnostics.push_back({Severity::Note, {std::string(name), 0, 0},
-                                 fmt::format("the {} stage as generated:", stage_name(stage)), std::move(whole)});
+    error.diagnostics.push_back({Severity::Note,
+                                 {std::string(name), 0, 0},
+                                 fmt::format("the {} stage as generated:", stage_name(stage)),
+                                 std::move(whole)});
   }
   return error;
 }

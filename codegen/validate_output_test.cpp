@@ -119,7 +119,8 @@ void main() {
 
 TEST(ValidateGeneratedGlsl, ARefusalNamingNoLineShowsTheWholeStage) {
   // No main(): glslang's link refuses it without naming a line.
-  constexpr std::string_view kNoMain = "#version 450 core\nlayout(location = 0) out vec4 c;\nvoid f() { c = vec4(1.0); }\n";
+  constexpr std::string_view kNoMain =
+      "#version 450 core\nlayout(location = 0) out vec4 c;\nvoid f() { c = vec4(1.0); }\n";
   auto valid = validate_generated_glsl(Target::Gl, spirv::Stage::Fragment, kNoMain, "nomain.frag", {});
   ASSERT_FALSE(valid);
   const std::vector<Diagnostic>& diagnostics = valid.error().diagnostics;
@@ -128,7 +129,6 @@ TEST(ValidateGeneratedGlsl, ARefusalNamingNoLineShowsTheWholeStage) {
   EXPECT_NE(diagnostics.back().excerpt.find("  3 | void f() { c = vec4(1.0); }"), std::string::npos)
       << diagnostics.back().excerpt;
 }
-
 
 TEST(ValidateGeneratedGlsl, EveryGeneratedLineOfTheAuthorsLineIsShownInOneExcerpt) {
   // Two generated lines are lights.hlsl line 7 (the emitter may write several for one); glslang
@@ -148,7 +148,8 @@ void main() { xs_target0 = vec4(g() + h()); }
   const Diagnostic& diagnostic = valid.error().diagnostics[0];
   EXPECT_NE(diagnostic.message.find("(at lights.hlsl:7, generated line 4)"), std::string::npos) << diagnostic.message;
   EXPECT_NE(diagnostic.excerpt.find("> 4 | float g() { return 1.0; }"), std::string::npos) << diagnostic.excerpt;
-  EXPECT_NE(diagnostic.excerpt.find("> 6 | float h() { return unknown_thing; }"), std::string::npos) << diagnostic.excerpt;
+  EXPECT_NE(diagnostic.excerpt.find("> 6 | float h() { return unknown_thing; }"), std::string::npos)
+      << diagnostic.excerpt;
   EXPECT_EQ(diagnostic.excerpt.find("5 | #line"), diagnostic.excerpt.rfind("5 | #line")) << diagnostic.excerpt;
   EXPECT_EQ(diagnostic.excerpt.find("..."), std::string::npos) << diagnostic.excerpt;
 }

@@ -40,7 +40,8 @@ Result<GeneratedStage> vk_hlsl_stage(const hlsl::Module& module, spirv::Stage st
   for (const hlsl::TextureResource& texture : declared.textures) request.bindings[texture.name] = texture.binding;
   for (const hlsl::SamplerResource& sampler : declared.samplers) request.bindings[sampler.name] = sampler.binding;
   for (const hlsl::StorageBufferResource& buffer : declared.buffers) request.bindings[buffer.name] = buffer.binding;
-  for (const hlsl::StageVariable& varying : declared.varyings) request.varying_locations[varying.semantic] = varying.location;
+  for (const hlsl::StageVariable& varying : declared.varyings)
+    request.varying_locations[varying.semantic] = varying.location;
   for (const hlsl::StageVariable& input : declared.vertex_inputs)
     request.vertex_input_locations[input.semantic] = input.location;
   auto compiled = spirv::compile_hlsl(request);
@@ -75,10 +76,11 @@ Result<GeneratedStage> vk_hlsl_stage(const hlsl::Module& module, spirv::Stage st
         std::any_of(reflection.constant_buffers.begin(), reflection.constant_buffers.end(),
                     [](const hlsl::ConstantBuffer& buffer) { return buffer.push_constant; });
     if (push_constant_in_globals)
-      return fail("vk-hlsl lane: glslang's HLSL front end reads a [[vk::push_constant]] struct global as a member of "
-                  "$Global, where DXC and xshade's other targets make it a push-constant block; compile it with --target "
-                  "vk or spirv, or declare it as [[vk::push_constant]] ConstantBuffer<T>",
-                  {name, 0, 0});
+      return fail(
+          "vk-hlsl lane: glslang's HLSL front end reads a [[vk::push_constant]] struct global as a member of "
+          "$Global, where DXC and xshade's other targets make it a push-constant block; compile it with --target "
+          "vk or spirv, or declare it as [[vk::push_constant]] ConstantBuffer<T>",
+          {name, 0, 0});
     if (ours != resource.binding)
       return fail("vk-hlsl lane: glslang binds '" + resource.name + "' at " + std::to_string(resource.binding) +
                       ", xshade's reflection " + (ours ? "at " + std::to_string(*ours) : std::string("not at all")),

@@ -56,9 +56,7 @@ std::string word_value(StageEmitter& emitter, const Type& type, const std::strin
       }
       return text + ")";
     }
-    default:
-      emitter.fail(loc, in_quotes(type.name()) + " cannot be an element of a buffer on this target");
-      return "0";
+    default: emitter.fail(loc, in_quotes(type.name()) + " cannot be an element of a buffer on this target"); return "0";
   }
 }
 
@@ -69,8 +67,9 @@ const StorageBufferResource* StageEmitter::buffer_of(const Expr* object, Loc loc
   for (const StorageBufferResource& buffer : reflection_.buffers)
     if (decl && buffer.decl == decl) return &buffer;
   if (object && !is_read_only_buffer(object->type.buffer_kind()))
-    fail(loc, in_quotes(object->type.name()) + " is not supported on this target: xshade reads StructuredBuffer, "
-                                               "ByteAddressBuffer and Buffer, which a vertex or fragment stage only reads");
+    fail(loc, in_quotes(object->type.name()) +
+                  " is not supported on this target: xshade reads StructuredBuffer, "
+                  "ByteAddressBuffer and Buffer, which a vertex or fragment stage only reads");
   else
     fail(loc, "a buffer is read here through a parameter or local; read the global buffer itself");
   return nullptr;
@@ -86,16 +85,16 @@ std::string StageEmitter::buffer_declaration(const StorageBufferResource& buffer
 std::string StageEmitter::buffer_element_helper(const StorageBufferResource& buffer, uint32_t words, Loc loc) {
   const std::string instance = names_.of(buffer.name);
   const bool bytes = buffer.kind == BufferKind::ByteAddressBuffer;
-  const Type element = bytes ? (words == 1 ? Type::scalar(ScalarType::Uint) : Type::vector(ScalarType::Uint, words))
-                             : buffer.element;
+  const Type element =
+      bytes ? (words == 1 ? Type::scalar(ScalarType::Uint) : Type::vector(ScalarType::Uint, words)) : buffer.element;
   const std::string name = "xs_load" + (bytes ? std::to_string(words) : std::string()) + "_" + buffer.name;
   // A ByteAddressBuffer is addressed in bytes (Direct3D ignores the two low bits), the others by element.
   const std::string base = bytes ? "address >> 2u" : "index * " + std::to_string(buffer.stride / 4) + "u";
   const std::string type = type_name(element, loc);
   // A word past the bound buffer's end reads 0, as Direct3D reads past a view's end.
   const std::string read = "xs_word_" + buffer.name;
-  helpers_.add(read, "uint " + read + "(uint at) {\n  return at < uint(" + instance + ".xs_words.length()) ? " + instance +
-                         ".xs_words[at] : 0u;\n}\n");
+  helpers_.add(read, "uint " + read + "(uint at) {\n  return at < uint(" + instance + ".xs_words.length()) ? " +
+                         instance + ".xs_words[at] : 0u;\n}\n");
   helpers_.add(name, type + " " + name + "(uint " + (bytes ? "address" : "index") + ") {\n  uint base = " + base +
                          ";\n  return " + word_value(*this, element, read, 0, loc) + ";\n}\n");
   return name;
@@ -117,12 +116,13 @@ Code StageEmitter::buffer_call(const CallExpr& call) {
     const std::string bytes = "(uint(" + instance + ".xs_words.length()) * 4u)";
     std::string parts;
     for (size_t i = 0; i < call.args.size(); ++i) {
-      const std::string value = i == 1                                              ? std::to_string(buffer->stride) + "u"
-                                : buffer->kind == BufferKind::ByteAddressBuffer ? bytes
-                                                                                : "(" + bytes + " / " +
-                                                                                      std::to_string(buffer->stride) + "u)";
-      parts += (i ? ", " : "") + operand(expr(call.args[i].get()), kUnary) + " = " +
-               operand(convert({value, kPostfix}, Type::scalar(ScalarType::Uint), call.args[i]->type, call.loc), kAssign);
+      const std::string value = i == 1 ? std::to_string(buffer->stride) + "u"
+                                : buffer->kind == BufferKind::ByteAddressBuffer
+                                    ? bytes
+                                    : "(" + bytes + " / " + std::to_string(buffer->stride) + "u)";
+      parts +=
+          (i ? ", " : "") + operand(expr(call.args[i].get()), kUnary) + " = " +
+          operand(convert({value, kPostfix}, Type::scalar(ScalarType::Uint), call.args[i]->type, call.loc), kAssign);
     }
     return {"(" + parts + ")"};
   }

@@ -7,8 +7,8 @@
 #include <cmath>
 #include <cstdlib>
 
-#include "hlsl_like/ast_walk.h"
 #include "glsl/stage_emitter.h"
+#include "hlsl_like/ast_walk.h"
 
 namespace xshade::glsl::detail {
 
@@ -28,7 +28,6 @@ bool is_whole_call(const std::string& text, std::string_view function) {
   }
   return false;
 }
-
 
 const char* scalar_glsl(ScalarType scalar) {
   switch (scalar) {
@@ -63,11 +62,14 @@ std::string glsl_type(const Type& type, Flavour flavour, std::string* why) {
     case TypeKind::Matrix: {
       // HLSL floatRxC (R rows) is held transposed: GLSL matRxC has R columns of C components.
       if (!type.is_floating()) {
-        if (why) *why = "matrices of " + scalar_name(type.scalar_type()) + " (" + in_quotes(type.name()) + ") are not supported on this target";
+        if (why)
+          *why = "matrices of " + scalar_name(type.scalar_type()) + " (" + in_quotes(type.name()) +
+                 ") are not supported on this target";
         return type.name();
       }
       if (type.rows() == 1 || type.cols() == 1) {
-        if (why) *why = "matrices with one row or column (" + in_quotes(type.name()) + ") are not supported on this target";
+        if (why)
+          *why = "matrices with one row or column (" + in_quotes(type.name()) + ") are not supported on this target";
         return type.name();
       }
       if (type.rows() == type.cols()) return "mat" + std::to_string(type.rows());
@@ -86,8 +88,9 @@ std::string glsl_type(const Type& type, Flavour flavour, std::string* why) {
       return type.name();
     case TypeKind::Buffer:
       if (why)
-        *why = in_quotes(type.name()) + " is not supported on this target: shaders here read textures, constant buffers and "
-                                            "read-only buffers (StructuredBuffer, ByteAddressBuffer, Buffer)";
+        *why = in_quotes(type.name()) +
+               " is not supported on this target: shaders here read textures, constant buffers and "
+               "read-only buffers (StructuredBuffer, ByteAddressBuffer, Buffer)";
       return type.name();
     case TypeKind::ConstantBuffer:
       if (why) *why = in_quotes(type.name()) + " can only be a global variable";
@@ -245,14 +248,14 @@ Code StageEmitter::half_value(Code value, const Type& type) {
   const std::string f = count == 1 ? "float" : "vec" + n;
   const std::string u = count == 1 ? "uint" : "uvec" + n;
   const std::string overflows = count == 1 ? "abs(x) >= 65520.0" : "greaterThanEqual(abs(x), " + f + "(65520.0))";
-  helpers_.add("xs_half(" + f + ")",
-               f + " xs_half(" + f + " x) {\n" +
-                   "  " + u + " sign = floatBitsToUint(x) & 0x80000000u;\n" +
-                   "  " + f + " c = max(uintBitsToFloat(floatBitsToUint(x) & 0x7f800000u), 6.103515625e-05) * 12288.0;\n" +
-                   "  precise " + f + " rounded = (x + c) - c;\n" +
-                   // 65520, halfway from 65504 to 65536, rounds to even: infinity.
-                   "  return mix(uintBitsToFloat(floatBitsToUint(rounded) | sign), uintBitsToFloat(sign | 0x7f800000u), " +
-                   overflows + ");\n}\n");
+  helpers_.add(
+      "xs_half(" + f + ")",
+      f + " xs_half(" + f + " x) {\n" + "  " + u + " sign = floatBitsToUint(x) & 0x80000000u;\n" + "  " + f +
+          " c = max(uintBitsToFloat(floatBitsToUint(x) & 0x7f800000u), 6.103515625e-05) * 12288.0;\n" + "  precise " +
+          f + " rounded = (x + c) - c;\n" +
+          // 65520, halfway from 65504 to 65536, rounds to even: infinity.
+          "  return mix(uintBitsToFloat(floatBitsToUint(rounded) | sign), uintBitsToFloat(sign | 0x7f800000u), " +
+          overflows + ");\n}\n");
   return {"xs_half(" + value.text + ")", kPostfix};
 }
 
@@ -396,7 +399,8 @@ Code StageEmitter::convert_expr(const Expr* e, const Type& to) {
   bool negative = false;
   if (const Expr* literal = literal_of(e, negative); literal && to.is_numeric()) {
     if (auto folded = fold_literal(literal, negative, to.scalar_type())) {
-      const Code scalar = half_value({*folded, (*folded)[0] == '-' ? kUnary : kPrimary}, Type::scalar(to.scalar_type()));
+      const Code scalar =
+          half_value({*folded, (*folded)[0] == '-' ? kUnary : kPrimary}, Type::scalar(to.scalar_type()));
       if (to.component_count() == 1) return scalar;
       return convert(scalar, Type::scalar(to.scalar_type()), to, e->loc);
     }
@@ -546,7 +550,8 @@ Code StageEmitter::out_argument(const Expr* arg) {
     const auto* conversion = static_cast<const ConversionExpr*>(arg);
     const Expr* inner = conversion->operand.get();
     if (inner && !same_glsl(inner->type, conversion->type)) {
-      fail(arg->loc, "passing a " + in_quotes(inner->type.name()) + " to an out parameter of type " + in_quotes(conversion->type.name()) +
+      fail(arg->loc, "passing a " + in_quotes(inner->type.name()) + " to an out parameter of type " +
+                         in_quotes(conversion->type.name()) +
                          " needs a conversion, which this target does not support; pass a variable of type " +
                          in_quotes(conversion->type.name()));
     }
@@ -602,13 +607,11 @@ const char* comparison_function(BinaryOp op) {
   }
 }
 
-
 // HLSL operators that GLSL's operator of the same spelling computes differently on `type`.
 bool needs_lowering(BinaryOp op, const Type& type) {
-  if (type.is_matrix() && op == BinaryOp::Mul) return true;  // component-wise in HLSL
+  if (type.is_matrix() && op == BinaryOp::Mul) return true;    // component-wise in HLSL
   if (op == BinaryOp::Mod && type.is_floating()) return true;  // HLSL truncates, GLSL's mod floors
-  if ((op == BinaryOp::Div || op == BinaryOp::Mod) && type.scalar_type() == ScalarType::Int &&
-      type.is_integer())
+  if ((op == BinaryOp::Div || op == BinaryOp::Mod) && type.scalar_type() == ScalarType::Int && type.is_integer())
     return true;  // GLSL leaves negative operands undefined
   return false;
 }
@@ -693,7 +696,8 @@ Code StageEmitter::expr_untraced(const Expr* e) {
       }
       if (name->decl && e->type.is_resource() && e->type.kind() != TypeKind::ConstantBuffer) {
         if (flavour_ == Flavour::Gl && e->type.kind() == TypeKind::SamplerState)
-          fail(e->loc, "SamplerState " + in_quotes(name->name) + " can only be passed to Sample methods and functions on OpenGL");
+          fail(e->loc, "SamplerState " + in_quotes(name->name) +
+                           " can only be passed to Sample methods and functions on OpenGL");
         return resource_text(e, {});
       }
       if (auto it = split_members_.find(name->decl); it != split_members_.end()) {
@@ -702,7 +706,8 @@ Code StageEmitter::expr_untraced(const Expr* e) {
         return {text + ")"};
       }
       if (flavour_ == Flavour::Gl && e->type.kind() == TypeKind::SamplerState)
-        fail(e->loc, "SamplerState " + in_quotes(name->name) + " can only be passed to Sample methods and functions on OpenGL");
+        fail(e->loc,
+             "SamplerState " + in_quotes(name->name) + " can only be passed to Sample methods and functions on OpenGL");
       const Type& element = e->type.is_resource_array() ? e->type.element() : e->type;
       if (element.kind() == TypeKind::ConstantBuffer) return {constant_buffer_instance(name->name)};
       if (e->type.kind() == TypeKind::Buffer) {
@@ -913,11 +918,13 @@ Code StageEmitter::expr_untraced(const Expr* e) {
             if (flavour_ == Flavour::Gl && param->type.kind() == TypeKind::SamplerState) continue;
             Code arg;
             if (i < call->args.size()) {
-              arg = param->direction == ParamDirection::In ? expr(call->args[i].get()) : out_argument(call->args[i].get());
+              arg = param->direction == ParamDirection::In ? expr(call->args[i].get())
+                                                           : out_argument(call->args[i].get());
             } else if (param->default_value) {
               arg = expr(param->default_value.get());
             } else {
-              fail(e->loc, "internal error: argument " + std::to_string(i + 1) + " of " + in_quotes(call->callee) + " is missing");
+              fail(e->loc, "internal error: argument " + std::to_string(i + 1) + " of " + in_quotes(call->callee) +
+                               " is missing");
             }
             if (!first) text += ", ";
             append_operand(text, arg, kAssign);
@@ -975,7 +982,8 @@ Code StageEmitter::expr_untraced(const Expr* e) {
         const std::string base = operand(expr(object), kPostfix);
         std::string parts;
         for (uint32_t i = 0; i < count; ++i)
-          parts += (i ? ", " : "") + base + "[" + std::to_string(swizzle[i] / 4) + "][" + std::to_string(swizzle[i] % 4) + "]";
+          parts += (i ? ", " : "") + base + "[" + std::to_string(swizzle[i] / 4) + "][" +
+                   std::to_string(swizzle[i] % 4) + "]";
         if (count == 1) return {parts, kPostfix};
         return {type_name(e->type, e->loc) + "(" + parts + ")", kPostfix};
       }

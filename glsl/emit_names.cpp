@@ -18,7 +18,8 @@ void collect_local_names(const Stmt* stmt, std::vector<std::string_view>& names)
   if (!stmt) return;
   switch (stmt->kind) {
     case StmtKind::Block:
-      for (const StmtPtr& child : static_cast<const BlockStmt*>(stmt)->statements) collect_local_names(child.get(), names);
+      for (const StmtPtr& child : static_cast<const BlockStmt*>(stmt)->statements)
+        collect_local_names(child.get(), names);
       break;
     case StmtKind::Decl:
       for (const auto& var : static_cast<const DeclStmt*>(stmt)->vars)
@@ -122,8 +123,8 @@ Names::Names(const TranslationUnit& unit, Flavour flavour) : unit_(unit) {
   std::map<std::string, std::vector<const FunctionDecl*>> by_signature;  // ordered: deterministic
   for (size_t i = 0; i < by_name.size(); ++i) {
     const std::string& name = glsl_names[by_name[i]];
-    const bool shared = (i > 0 && glsl_names[by_name[i - 1]] == name) ||
-                        (i + 1 < by_name.size() && glsl_names[by_name[i + 1]] == name);
+    const bool shared =
+        (i > 0 && glsl_names[by_name[i - 1]] == name) || (i + 1 < by_name.size() && glsl_names[by_name[i + 1]] == name);
     if (!shared) continue;
     const FunctionDecl* function = functions[by_name[i]];
     std::string signature = name + "(";

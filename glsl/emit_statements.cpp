@@ -1,10 +1,9 @@
 // Functions and statements. Every branch and loop body is braced; `#line` directives keep the
 // driver's messages on the author's lines.
-#include "hlsl_like/ast_walk.h"
 #include "glsl/stage_emitter.h"
+#include "hlsl_like/ast_walk.h"
 
 #include <cstdlib>
-
 
 namespace xshade::glsl::detail {
 
@@ -19,7 +18,8 @@ std::string attributes_comment(StageEmitter& emitter, const std::vector<Attribut
     text += "/* [" + attribute.name;
     if (!attribute.args.empty()) {
       text += "(";
-      for (size_t i = 0; i < attribute.args.size(); ++i) text += (i ? ", " : "") + emitter.expr(attribute.args[i].get()).text;
+      for (size_t i = 0; i < attribute.args.size(); ++i)
+        text += (i ? ", " : "") + emitter.expr(attribute.args[i].get()).text;
       text += ")";
     }
     text += "] */ ";
@@ -61,7 +61,8 @@ std::optional<int64_t> fold_constant(const Expr* e, int depth = 0) {
       const Decl* decl = static_cast<const NameExpr*>(e)->decl;
       if (!decl || decl->kind != DeclKind::Var) return std::nullopt;
       const auto* var = static_cast<const VarDecl*>(decl);
-      if (!var->is_const || !var->initializer || (var->is_global && var->storage != StorageClass::Static)) return std::nullopt;
+      if (!var->is_const || !var->initializer || (var->is_global && var->storage != StorageClass::Static))
+        return std::nullopt;
       return fold_constant(var->initializer.get(), depth + 1);
     }
     default: return std::nullopt;
@@ -136,13 +137,15 @@ std::optional<std::vector<int64_t>> StageEmitter::unrolled_values(const ForStmt&
     if (e.kind != ExprKind::Call) return;
     const auto& call = static_cast<const CallExpr&>(e);
     const int index = offset_argument(call);
-    if (index >= 0 && size_t(index) < call.args.size() && names(call.args[size_t(index)].get(), var)) feeds_offset = true;
+    if (index >= 0 && size_t(index) < call.args.size() && names(call.args[size_t(index)].get(), var))
+      feeds_offset = true;
   });
   if (!feeds_offset) return std::nullopt;
   const std::optional<int64_t> first = fold_constant(var->initializer.get());
   if (!first) return std::nullopt;
   const Expr* condition = loop.condition.get();
-  while (condition->kind == ExprKind::Conversion) condition = static_cast<const ConversionExpr*>(condition)->operand.get();
+  while (condition->kind == ExprKind::Conversion)
+    condition = static_cast<const ConversionExpr*>(condition)->operand.get();
   if (condition->kind != ExprKind::Binary) return std::nullopt;
   const auto& compare = static_cast<const BinaryExpr&>(*condition);
   auto is_var = [&](const Expr* e) {
@@ -155,8 +158,11 @@ std::optional<std::vector<int64_t>> StageEmitter::unrolled_values(const ForStmt&
     bound = fold_constant(compare.rhs.get());
   } else if (is_var(compare.rhs.get())) {
     bound = fold_constant(compare.lhs.get());
-    op = op == BinaryOp::Less ? BinaryOp::Greater : op == BinaryOp::Greater ? BinaryOp::Less
-       : op == BinaryOp::LessEqual ? BinaryOp::GreaterEqual : op == BinaryOp::GreaterEqual ? BinaryOp::LessEqual : op;
+    op = op == BinaryOp::Less           ? BinaryOp::Greater
+         : op == BinaryOp::Greater      ? BinaryOp::Less
+         : op == BinaryOp::LessEqual    ? BinaryOp::GreaterEqual
+         : op == BinaryOp::GreaterEqual ? BinaryOp::LessEqual
+                                        : op;
   }
   if (!bound) return std::nullopt;
   int64_t step = 0;
@@ -176,9 +182,12 @@ std::optional<std::vector<int64_t>> StageEmitter::unrolled_values(const ForStmt&
   if (step == 0 || disturbs_loop(loop.body.get(), var)) return std::nullopt;
   std::vector<int64_t> values;
   for (int64_t i = *first; values.size() <= kMaxUnrolledIterations; i += step) {
-    const bool go = op == BinaryOp::Less ? i < *bound : op == BinaryOp::LessEqual ? i <= *bound
-                  : op == BinaryOp::Greater ? i > *bound : op == BinaryOp::GreaterEqual ? i >= *bound
-                  : op == BinaryOp::NotEqual ? i != *bound : false;
+    const bool go = op == BinaryOp::Less           ? i < *bound
+                    : op == BinaryOp::LessEqual    ? i <= *bound
+                    : op == BinaryOp::Greater      ? i > *bound
+                    : op == BinaryOp::GreaterEqual ? i >= *bound
+                    : op == BinaryOp::NotEqual     ? i != *bound
+                                                   : false;
     if (!go) return values;
     values.push_back(i);
   }
@@ -257,7 +266,8 @@ std::string variable_text(StageEmitter& emitter, const VarDecl& var, const Names
     }
   }
   if (!init.empty() && text.empty() && !emitter.is_tested(var.initializer.get()))
-    init = emitter.traced({std::move(init), kAssign}, var.type, TraceSite::Kind::Initialization, var.loc, var.name).text;
+    init =
+        emitter.traced({std::move(init), kAssign}, var.type, TraceSite::Kind::Initialization, var.loc, var.name).text;
   text += emitter.declarator(var.type, names.variable(&var), var.loc);
   if (!init.empty()) {
     text += " = ";
@@ -303,7 +313,8 @@ void StageEmitter::statement(const Stmt* stmt) {
       const Expr* e = static_cast<const ExprStmt*>(stmt)->expr.get();
       if (!e) break;
       // Giving a local its resource happens when compiling (resource_origins.h).
-      if (e->kind == ExprKind::Assign && !resource_paths(static_cast<const AssignExpr*>(e)->target->type).empty()) break;
+      if (e->kind == ExprKind::Assign && !resource_paths(static_cast<const AssignExpr*>(e)->target->type).empty())
+        break;
       out_.mark(stmt->loc);
       if (clip_statement(e)) break;
       if (flavour_ == Flavour::Gl && e->kind == ExprKind::Call &&
@@ -349,8 +360,8 @@ void StageEmitter::statement(const Stmt* stmt) {
         for (int64_t value : *values) {
           out_.line(prefix + "{  // unrolled: " + names_.variable(&var) + " = " + std::to_string(value));
           ++out_.indent;
-          out_.line("const " + type_name(var.type, var.loc) + " " + names_.variable(&var) + " = " + std::to_string(value) +
-                    (var.type.scalar_type() == ScalarType::Uint ? "u;" : ";"));
+          out_.line("const " + type_name(var.type, var.loc) + " " + names_.variable(&var) + " = " +
+                    std::to_string(value) + (var.type.scalar_type() == ScalarType::Uint ? "u;" : ";"));
           --out_.indent;
           body(loop->body.get());
           out_.line("}");
@@ -372,8 +383,10 @@ void StageEmitter::statement(const Stmt* stmt) {
         if (one_type) {
           for (size_t i = 0; i < vars.size(); ++i) {
             const VarDecl& var = *vars[i];
-            if (i == 0) init = type_name(var.type, var.loc) + " ";
-            else init += ", ";
+            if (i == 0)
+              init = type_name(var.type, var.loc) + " ";
+            else
+              init += ", ";
             init += names_.variable(&var);
             if (var.initializer) init += " = " + initializer(var);
           }
@@ -434,8 +447,8 @@ void StageEmitter::statement(const Stmt* stmt) {
       const Expr* value = static_cast<const ReturnStmt*>(stmt)->value.get();
       out_.mark(stmt->loc);
       if (value && !is_tested(value))
-        out_.line({"return ", traced(expr(value), value->type, TraceSite::Kind::Return, stmt->loc,
-                                     current_function_).text, ";"});
+        out_.line({"return ",
+                   traced(expr(value), value->type, TraceSite::Kind::Return, stmt->loc, current_function_).text, ";"});
       else if (value)
         out_.line({"return ", expr(value).text, ";"});
       else

@@ -1,8 +1,8 @@
 // Textures in GLSL: the types of each texture shape per flavour (gl combines texture and sampler,
 // vk keeps them apart; a texture compared on gl is a shadow sampler), and every texture method
 // and DX9 tex* function as a template for StageEmitter::expand_template.
-#include "hlsl_like/ast_walk.h"
 #include "glsl/stage_emitter.h"
+#include "hlsl_like/ast_walk.h"
 
 namespace xshade::glsl::detail {
 
@@ -187,7 +187,8 @@ Code StageEmitter::texture_index(const IndexExpr& index) {
 }
 
 Code StageEmitter::texture_call(const CallExpr& call) {
-  if (call.object && call.object->type.kind() == TypeKind::Buffer && is_read_only_buffer(call.object->type.buffer_kind()))
+  if (call.object && call.object->type.kind() == TypeKind::Buffer &&
+      is_read_only_buffer(call.object->type.buffer_kind()))
     return buffer_call(call);
   const auto id = IntrinsicId(call.intrinsic);
   const std::string name(intrinsic_info(id).name);
@@ -237,16 +238,17 @@ Code StageEmitter::texture_call(const CallExpr& call) {
   const bool compare = is_comparison_method(id);
   const Decl* object_decl = named_decl(call.object.get());
   if (flavour_ == Flavour::Gl && !compare && id != I::GetDimensions && object_decl && compared_.count(object_decl))
-    fail(call.loc, "texture " + in_quotes(object_decl->name) + " is read both with and without a SamplerComparisonState; "
-                   "OpenGL declares a texture one way, as a shadow sampler or not: use two textures");
+    fail(call.loc, "texture " + in_quotes(object_decl->name) +
+                       " is read both with and without a SamplerComparisonState; "
+                       "OpenGL declares a texture one way, as a shadow sampler or not: use two textures");
   // The sampler a Sample-like method reads through: the texture itself on gl (the sampler state
   // belongs to the texture unit), a combined sampler made of texture and sampler state on vk.
-  const std::string sampler =
-      flavour_ == Flavour::Gl ? "$0" : combined_type(shape, texel, compare) + "($0, $1)";
+  const std::string sampler = flavour_ == Flavour::Gl ? "$0" : combined_type(shape, texel, compare) + "($0, $1)";
   // An offset must be a constant expression for GLSL's *Offset functions.
   auto constant_offset = [&](size_t arg) {
     if (arg < args && !is_constant(call.args[arg].get()))
-      fail(call.args[arg]->loc, "the texel offset of " + in_quotes(name) + " must be a constant expression on this target");
+      fail(call.args[arg]->loc,
+           "the texel offset of " + in_quotes(name) + " must be a constant expression on this target");
   };
   auto no_clamp = [&](size_t arg) {
     if (arg < args)
@@ -267,7 +269,8 @@ Code StageEmitter::texture_call(const CallExpr& call) {
     case I::SampleBias:
       no_clamp(4);
       constant_offset(3);
-      text = (args >= 4 ? "textureOffset(" + sampler + ", $2, $4, $3)" : "texture(" + sampler + ", $2, $3)") + texel_part;
+      text =
+          (args >= 4 ? "textureOffset(" + sampler + ", $2, $4, $3)" : "texture(" + sampler + ", $2, $3)") + texel_part;
       break;
     case I::SampleLevel:
       constant_offset(3);
@@ -277,7 +280,8 @@ Code StageEmitter::texture_call(const CallExpr& call) {
     case I::SampleGrad:
       no_clamp(5);
       constant_offset(4);
-      text = (args >= 5 ? "textureGradOffset(" + sampler + ", $2, $3, $4, $5)" : "textureGrad(" + sampler + ", $2, $3, $4)") +
+      text = (args >= 5 ? "textureGradOffset(" + sampler + ", $2, $3, $4, $5)"
+                        : "textureGrad(" + sampler + ", $2, $3, $4)") +
              texel_part;
       break;
     case I::SampleCmp:
@@ -333,14 +337,15 @@ Code StageEmitter::texture_call(const CallExpr& call) {
         const std::string coordinate = "$1" + first_components(n);
         if (!is_array_shape(shape)) return coordinate + " + " + offset;
         const uint32_t moved = offset_components(shape);
-        return "ivec" + std::to_string(n) + "($1" + first_components(moved) + " + " + offset + ", $1." + kComponents[moved] +
-               ")";
+        return "ivec" + std::to_string(n) + "($1" + first_components(moved) + " + " + offset + ", $1." +
+               kComponents[moved] + ")";
       };
       if (is_multisampled(shape)) {
         text = "texelFetch($0, " + (args >= 3 ? offset_coordinate("$3") : std::string("$1")) + ", $2)";
       } else {
         const std::string level = std::string("$1.") + kComponents[n];
-        text = "texelFetch($0, " + (args >= 2 ? offset_coordinate("$2") : "$1" + first_components(n)) + ", " + level + ")";
+        text =
+            "texelFetch($0, " + (args >= 2 ? offset_coordinate("$2") : "$1" + first_components(n)) + ", " + level + ")";
       }
       text += texel_part;
       break;
@@ -362,7 +367,8 @@ Code StageEmitter::texture_call(const CallExpr& call) {
     case I::GatherCmpGreen:
     case I::GatherCmpBlue:
     case I::GatherCmpAlpha:
-      fail(call.loc, in_quotes(name) + " is not supported on this target: a GLSL shadow gather compares the first component");
+      fail(call.loc,
+           in_quotes(name) + " is not supported on this target: a GLSL shadow gather compares the first component");
       return {"vec4(0.0)"};
     case I::CalculateLevelOfDetail: text = "textureQueryLod(" + sampler + ", $2).x"; break;
     case I::CalculateLevelOfDetailUnclamped: text = "textureQueryLod(" + sampler + ", $2).y"; break;
@@ -387,7 +393,8 @@ Code StageEmitter::texture_call(const CallExpr& call) {
       const std::string texture_text = expr(call.object.get()).text;
       const std::string size = ms ? "textureSize(" + texture_text + ")"
                                   : "textureSize(" + texture_text + ", " +
-                                        (mip_form ? "int(" + expr(call.args[0].get()).text + ")" : std::string("0")) + ")";
+                                        (mip_form ? "int(" + expr(call.args[0].get()).text + ")" : std::string("0")) +
+                                        ")";
       std::string parts;
       for (size_t i = first_out; i < args; ++i) {
         const Expr* target = call.args[i].get();
@@ -405,9 +412,7 @@ Code StageEmitter::texture_call(const CallExpr& call) {
       }
       return {"(" + parts + ")"};
     }
-    default:
-      fail(call.loc, in_quotes(name) + " is not supported on this target");
-      return {"0"};
+    default: fail(call.loc, in_quotes(name) + " is not supported on this target"); return {"0"};
   }
   return expand_template(text, call, operands, out, filtered_in_helper);
 }

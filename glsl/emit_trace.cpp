@@ -102,7 +102,7 @@ std::string opaque_helper(const std::string& glsl_type) {
   std::string body;
   if (matrix) {
     const std::string column = glsl_type.size() > 4 && glsl_type[4] == 'x' ? std::string("vec") + glsl_type[5]
-                                                                            : std::string("vec") + glsl_type[3];
+                                                                           : std::string("vec") + glsl_type[3];
     body = "  for (int c = 0; c < v.length(); ++c) v[c] = " + one("v[c]", column, "uvec" + column.substr(3)) +
            ";\n  return v;\n";
   } else {
@@ -132,7 +132,9 @@ bool reads_uniform(const Expr* e, int depth = 0) {
 std::string trace_helper(const std::string& glsl_type) {
   std::string bad;
   if (glsl_type.rfind("mat", 0) == 0) {
-    bad = "bool bad = false;\n  for (int c = 0; c < v.length(); ++c) bad = bad || any(isnan(v[c])) || any(isinf(v[c]));\n  if (";
+    bad =
+        "bool bad = false;\n  for (int c = 0; c < v.length(); ++c) bad = bad || any(isnan(v[c])) || "
+        "any(isinf(v[c]));\n  if (";
     bad += "xs_trace_site == 0u && bad) {\n";
   } else if (glsl_type == "float") {
     bad = "if (xs_trace_site == 0u && (isnan(v) || isinf(v))) {\n";
@@ -274,7 +276,8 @@ void StageEmitter::traced_main(Writer& main, Writer& interface, const std::vecto
       if (path.rfind(prefix, 0) == 0) return "xs_traced_" + path.substr(3);
     return path;
   };
-  main.line("// The traced copy (the tracing variant): the same inputs, opaque, and nothing it computes reaches the colour.");
+  main.line(
+      "// The traced copy (the tracing variant): the same inputs, opaque, and nothing it computes reaches the colour.");
   main.line("xs_opaque_zero = uint(gl_FragCoord.x < 0.0);");
   main.line("const uint xs_path = 0u;  // the entry point's calls are the outermost");
   const FunctionDecl& entry = *entry_;
@@ -299,7 +302,8 @@ void StageEmitter::traced_main(Writer& main, Writer& interface, const std::vecto
     main.line(call + ";");
   else
     main.line(declarator(entry.return_type, "xs_traced_result", entry.loc) + " = " + call + ";");
-  for (const TracedItem& output : outputs) trace_output(main, traced_path(output.path), output.type, output.semantic, output.loc);
+  for (const TracedItem& output : outputs)
+    trace_output(main, traced_path(output.path), output.type, output.semantic, output.loc);
   trace_record(main, interface);
   in_traced_copy_ = false;
 }

@@ -2,9 +2,7 @@
 
 namespace xshade::glsl {
 
-std::string_view flavour_name(Flavour flavour) {
-  return flavour == Flavour::Gl ? "gl" : "vk";
-}
+std::string_view flavour_name(Flavour flavour) { return flavour == Flavour::Gl ? "gl" : "vk"; }
 
 std::string fullscreen_vertex_shader(Flavour flavour) {
   hlsl::Reflection uv_only;
@@ -36,18 +34,20 @@ std::string fullscreen_vertex_shader(Flavour flavour, const hlsl::Reflection& re
     if (type.is_matrix() && !is_float) continue;
     // HLSL's floatRxC is GLSL's matRxC (each HLSL row one GLSL column), so matRxC(1.0), the
     // identity, is fed: a transform that leaves what it multiplies as it was.
-    const std::string glsl_type =
-        type.is_matrix() ? "mat" + std::to_string(type.rows()) + "x" + std::to_string(type.cols())
-        : n == 1         ? (is_float ? "float" : scalar == hlsl::ScalarType::Int ? "int" : "uint")
-                         : std::string(prefix) + "vec" + std::to_string(n);
+    const std::string glsl_type = type.is_matrix()
+                                      ? "mat" + std::to_string(type.rows()) + "x" + std::to_string(type.cols())
+                                  : n == 1 ? (is_float                          ? "float"
+                                              : scalar == hlsl::ScalarType::Int ? "int"
+                                                                                : "uint")
+                                           : std::string(prefix) + "vec" + std::to_string(n);
     const std::string name = "xs_fed" + std::to_string(varying.location);
     // The fragment's interpolation, so that both stages say the same.
     const bool flat = !is_float || varying.interpolation == hlsl::Interpolation::NoInterpolation;
-    const char* qualifier = flat ? "flat "
+    const char* qualifier = flat                                                          ? "flat "
                             : varying.interpolation == hlsl::Interpolation::NoPerspective ? "noperspective "
                             : varying.interpolation == hlsl::Interpolation::Centroid      ? "centroid "
                             : varying.interpolation == hlsl::Interpolation::Sample        ? "sample "
-                                                                                           : "";
+                                                                                          : "";
     const uint32_t elements = array ? varying.type.array_length() : 0;
     text += "layout(location = " + std::to_string(varying.location) + ") " + qualifier + "out " + glsl_type + " " +
             name + (array ? "[" + std::to_string(elements) + "]" : std::string()) + ";\n";
@@ -58,16 +58,19 @@ std::string fullscreen_vertex_shader(Flavour flavour, const hlsl::Reflection& re
     if (!array) writes += "  " + name + " = " + value + ";\n";
     for (uint32_t e = 0; e < elements; ++e) writes += "  " + name + "[" + std::to_string(e) + "] = " + value + ";\n";
   }
-  text += "void main() {\n"
-          "  vec2 position = vec2(float((";
+  text +=
+      "void main() {\n"
+      "  vec2 position = vec2(float((";
   text += vertex_index;
   text += " & 1) << 2) - 1.0, float((";
   text += vertex_index;
-  text += " & 2) << 1) - 1.0);\n"
-          "  vec2 uv = vec2(position.x * 0.5 + 0.5, 0.5 - position.y * 0.5);\n";
+  text +=
+      " & 2) << 1) - 1.0);\n"
+      "  vec2 uv = vec2(position.x * 0.5 + 0.5, 0.5 - position.y * 0.5);\n";
   text += writes;
-  text += "  gl_Position = vec4(position, 0.0, 1.0);\n"
-          "}\n";
+  text +=
+      "  gl_Position = vec4(position, 0.0, 1.0);\n"
+      "}\n";
   return text;
 }
 

@@ -8,9 +8,9 @@
 #include <functional>
 #include <map>
 
-#include "hlsl_like/ast_walk.h"
 #include "glsl/glsl_names.h"
 #include "glsl/stage_emitter.h"
+#include "hlsl_like/ast_walk.h"
 #include "hlsl_like/semantics.h"
 
 namespace xshade::glsl {
@@ -127,9 +127,9 @@ const char* interpolation_qualifier(Interpolation interpolation, const Type& typ
 
 // One value crossing the stage boundary, after struct parameters and results are taken apart.
 struct StageItem {
-  std::string path;      // where the entry point's argument or result holds it: xs_arg0.uv
+  std::string path;  // where the entry point's argument or result holds it: xs_arg0.uv
   Type type;
-  std::string semantic;  // canonical
+  std::string semantic;   // canonical
   ParsedSemantic parsed;  // parse_semantic of the author's spelling, which `semantic` parses to as well
   Interpolation interpolation = Interpolation::Default;
   Loc loc;
@@ -222,9 +222,16 @@ std::string scalar_value_text(double value, ScalarType scalar) {
 }  // namespace
 
 StageEmitter::StageEmitter(const Module& module, const EmitOptions& options, const Names& names, bool vertex)
-    : module_(module), reflection_(module.reflection), flavour_(options.flavour), half_emulation_(options.half_emulation),
-      filter_comparisons_(options.filter_comparisons), specialization_(options.specialization), names_(names), vertex_(vertex),
-      trace_(options.trace_nonfinite && !vertex), trace_program_(options.trace_program) {
+    : module_(module),
+      reflection_(module.reflection),
+      flavour_(options.flavour),
+      half_emulation_(options.half_emulation),
+      filter_comparisons_(options.filter_comparisons),
+      specialization_(options.specialization),
+      names_(names),
+      vertex_(vertex),
+      trace_(options.trace_nonfinite && !vertex),
+      trace_program_(options.trace_program) {
   entry_ = vertex ? module.entry_points.vertex : module.entry_points.fragment;
 }
 
@@ -242,7 +249,9 @@ void StageEmitter::fail(Loc loc, const std::string& message) {
 
 namespace {
 
-const FunctionDecl* defined(const FunctionDecl* function) { return function->definition ? function->definition : function; }
+const FunctionDecl* defined(const FunctionDecl* function) {
+  return function->definition ? function->definition : function;
+}
 
 }  // namespace
 
@@ -454,9 +463,7 @@ std::string zero_value(StageEmitter& emitter, const Type& type, Loc loc) {
       for (uint32_t i = 0; i < type.array_length(); ++i) text += (i ? ", " : "") + element;
       return text + ")";
     }
-    default:
-      emitter.fail(loc, "cannot give a value of type " + in_quotes(type.name()) + " a zero value");
-      return "0";
+    default: emitter.fail(loc, "cannot give a value of type " + in_quotes(type.name()) + " a zero value"); return "0";
   }
 }
 
@@ -488,11 +495,13 @@ std::string StageEmitter::run() {
       if (var->is_const) const_decls_.insert(var);
       // [[vk::constant_id(N)]]: a specialization constant, whose default the pipeline replaces
       // on Vulkan; on OpenGL the value given for it is the constant's.
-      const std::string specialized =
-          var->vk.constant_id && flavour_ == Flavour::Vk ? "layout(constant_id = " + std::to_string(*var->vk.constant_id) + ") " : "";
+      const std::string specialized = var->vk.constant_id && flavour_ == Flavour::Vk
+                                          ? "layout(constant_id = " + std::to_string(*var->vk.constant_id) + ") "
+                                          : "";
       const auto given = var->vk.constant_id && flavour_ == Flavour::Gl ? specialization_.find(*var->vk.constant_id)
-                                                                         : specialization_.end();
-      const std::string written = given != specialization_.end() ? scalar_value_text(given->second, var->type.scalar_type()) : value;
+                                                                        : specialization_.end();
+      const std::string written =
+          given != specialization_.end() ? scalar_value_text(given->second, var->type.scalar_type()) : value;
       statics.line(specialized + (var->is_const ? "const " : "") + declaration + " = " + written + ";");
     } else {
       // main() assigns it first, but functions above main() read it, and Mesa's GLSL compiler,
@@ -529,8 +538,8 @@ std::string StageEmitter::run() {
   text += helpers;
   text += out_.text();
   size_t lines = 0;
-  for (const char* at = text.data(); (at = static_cast<const char*>(std::memchr(at, '\n', size_t(text.data() + text.size() - at))));
-       ++at)
+  for (const char* at = text.data();
+       (at = static_cast<const char*>(std::memchr(at, '\n', size_t(text.data() + text.size() - at)))); ++at)
     ++lines;
   text += "#line " + std::to_string(lines + 2) + " 0\n";  // main() is generated text
   text += main_text;
@@ -557,16 +566,16 @@ std::string StageEmitter::declarations() {
 
   // Vulkan's descriptor set, and the binding: a uniform-block binding point or texture unit on gl.
   const auto place = [&](uint32_t set, uint32_t binding) {
-    return (flavour_ == Flavour::Vk ? "set = " + std::to_string(set) + ", " : std::string()) + "binding = " +
-           std::to_string(binding);
+    return (flavour_ == Flavour::Vk ? "set = " + std::to_string(set) + ", " : std::string()) +
+           "binding = " + std::to_string(binding);
   };
   for (const ConstantBuffer& buffer : reflection_.constant_buffers) {
     // ConstantBuffer<S> cb is read as cb.field: a block with an instance name.
     const bool view = buffer.decl && buffer.decl->kind == DeclKind::Var;
     // A push-constant block keeps HLSL's packing (std140 strides, explicit offsets) as a uniform
     // block does; gl has no push constants and reads it as a uniform block.
-    const std::string where = flavour_ == Flavour::Vk && buffer.push_constant ? "push_constant"
-                                                                              : place(buffer.set, buffer.binding);
+    const std::string where =
+        flavour_ == Flavour::Vk && buffer.push_constant ? "push_constant" : place(buffer.set, buffer.binding);
     w.line("layout(std140, " + where + ") uniform " + block_name(buffer.name) + " {");
     w.indent = 1;
     for (const ConstantBufferMember& member : buffer.members) {
@@ -603,11 +612,11 @@ std::string StageEmitter::declarations() {
     if (!texture.used || !texture.decl) continue;
     // A subpass input names its input attachment on vk; gl reads it as a texture.
     const std::optional<uint32_t> attachment = texture.decl->vk.input_attachment_index;
-    const std::string binding = "layout(" +
-                                (flavour_ == Flavour::Vk && attachment
-                                     ? "input_attachment_index = " + std::to_string(*attachment) + ", "
-                                     : std::string()) +
-                                place(texture.set, texture.binding) + ") uniform ";
+    const std::string binding =
+        "layout(" +
+        (flavour_ == Flavour::Vk && attachment ? "input_attachment_index = " + std::to_string(*attachment) + ", "
+                                               : std::string()) +
+        place(texture.set, texture.binding) + ") uniform ";
     w.line(binding + resource_type(element_type(*texture.decl), texture.decl, texture.decl->loc) + " " +
            names_.of(texture.name) + array_suffix(texture.count) + ";");
   }
@@ -641,7 +650,8 @@ std::string StageEmitter::interface_and_main() {
       continue;
     }
     if (param->type.is_resource()) {
-      fail(param->loc, "entry point parameter " + in_quotes(param->name) + " cannot be a resource; declare it as a global");
+      fail(param->loc,
+           "entry point parameter " + in_quotes(param->name) + " cannot be a resource; declare it as a global");
       continue;
     }
     main.line(declarator(param->type, "xs_arg" + std::to_string(i), param->loc) + ";");
@@ -675,7 +685,8 @@ std::string StageEmitter::interface_and_main() {
                         std::to_string(kMaxDistanceComponents) + " in all");
   for (const auto& [packing, array] : {std::pair{&clip, "gl_ClipDistance"}, std::pair{&cull, "gl_CullDistance"}})
     if (packing->total != 0)
-      interface.line(std::string(vertex_ ? "out" : "in") + " float " + array + "[" + std::to_string(packing->total) + "];");
+      interface.line(std::string(vertex_ ? "out" : "in") + " float " + array + "[" + std::to_string(packing->total) +
+                     "];");
   // The components of one distance item as `array[offset + c]`.
   auto distance_element = [&](const StageItem& item, uint32_t component) {
     const bool is_clip = item.parsed.kind == SemanticKind::SvClipDistance;
@@ -716,7 +727,8 @@ std::string StageEmitter::interface_and_main() {
           continue;
         }
         const std::string name = "xs_in_" + item.semantic;
-        declare("layout(location = " + std::to_string(*location) + ") in " + declarator(item.type, name, item.loc) + ";");
+        declare("layout(location = " + std::to_string(*location) + ") in " + declarator(item.type, name, item.loc) +
+                ";");
         source = {name};
       }
     } else if (kind == SemanticKind::SvPosition || is_clip_position_alias(item.parsed, item.type)) {
@@ -820,8 +832,8 @@ std::string StageEmitter::interface_and_main() {
       if (auto it = fragment_interpolation.find(item.semantic); it != fragment_interpolation.end())
         interpolation = it->second;
       const std::string name = "xs_v_" + item.semantic;
-      declare("layout(location = " + std::to_string(*location) + ") " + interpolation_qualifier(interpolation, item.type) +
-              "out " + declarator(item.type, name, item.loc) + ";");
+      declare("layout(location = " + std::to_string(*location) + ") " +
+              interpolation_qualifier(interpolation, item.type) + "out " + declarator(item.type, name, item.loc) + ";");
       main.line(name + " = " + item.path + ";");
     } else {
       // SV_TargetN, and DX9's COLORn, are render target N.

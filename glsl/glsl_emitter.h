@@ -18,9 +18,9 @@
 #include <string_view>
 #include <vector>
 
+#include "base/result.h"
 #include "glsl/flavour.h"
 #include "hlsl_like/compiler.h"
-#include "base/result.h"
 
 namespace xshade::glsl {
 
@@ -98,9 +98,9 @@ struct NonfiniteTrace {
   std::vector<TraceSite> sites;
   std::vector<TraceCall> calls;
   static constexpr uint32_t kRecordedCalls = 3;
-  static constexpr uint32_t kMaxCalls = 1023;     // a call's number takes 10 bits of the path
-  static constexpr uint32_t kMaxSites = 65535;    // a site's number the low 16 bits of R
-  static constexpr uint32_t kMaxPrograms = 256;   // so that R stays below 2^24
+  static constexpr uint32_t kMaxCalls = 1023;    // a call's number takes 10 bits of the path
+  static constexpr uint32_t kMaxSites = 65535;   // a site's number the low 16 bits of R
+  static constexpr uint32_t kMaxPrograms = 256;  // so that R stays below 2^24
 
   // The program and the site a recorded R names; `site_in` null where R names none of the sites
   // this table has (0: nothing failed).

@@ -108,11 +108,12 @@ float4 frag(v2f i) : SV_Target {
 
 // Half emulation rounds each half result once, where it is made, and leaves float alone.
 TEST(GlslEmitterHalfEmulation, RoundsHalfResultsOnceAndFloatNever) {
-  auto module = hlsl::compile_text(
-      "test.hlsl",
-      fragment_source("float _F = 1.0;", "half3 c = half3(_F, 0.5, 2.0);\nhalf h = (half)_F * 3.0;\n"
+  auto module =
+      hlsl::compile_text("test.hlsl",
+                         fragment_source("float _F = 1.0;",
+                                         "half3 c = half3(_F, 0.5, 2.0);\nhalf h = (half)_F * 3.0;\n"
                                          "float f = _F * 3.0;\nhalf t = (half)_F * 0.1;\nreturn float4(c * h * t, f);"),
-      {});
+                         {});
   ASSERT_TRUE(module->ok()) << diagnostics_of(*module);
   auto plain = emit(*module, {Flavour::Gl, false});
   auto emulated = emit(*module, {Flavour::Gl, true});
@@ -217,9 +218,10 @@ TEST(GlslEmitterConstantBuffers, BlockNames) {
 }
 
 TEST(GlslEmitterConstantBuffers, StructMembers) {
-  const std::string text = fragment("struct Light { float4 dir; float4 color; };\n"
-                                    "cbuffer Lights { Light lights[2]; float4x4 m; };\n",
-                                    "return lights[1].color + m[0];");
+  const std::string text = fragment(
+      "struct Light { float4 dir; float4 color; };\n"
+      "cbuffer Lights { Light lights[2]; float4x4 m; };\n",
+      "return lights[1].color + m[0];");
   EXPECT_THAT(text, HasSubstr("struct Light {\n  vec4 dir;\n  vec4 color;\n};"));
   EXPECT_THAT(text, HasSubstr("layout(offset = 0) Light lights[2];"));
   EXPECT_THAT(text, HasSubstr("return lights[1].color + m[0];"));
@@ -283,7 +285,8 @@ TEST(GlslEmitterOperators, CompoundAssignmentThroughAnotherType) {
 TEST(GlslEmitterOperators, CompoundAssignmentToATargetWithSideEffectsIsAnError) {
   const std::string error = emit_error(fragment_source("int4 a;", "int4 b = a; int i = 0;\nb[i++] %= 3;\nreturn b;"));
   EXPECT_THAT(error, HasSubstr("test.hlsl:5:"));
-  EXPECT_THAT(error, HasSubstr("compound assignment '%=' to an expression with side effects is not supported on this target"));
+  EXPECT_THAT(error,
+              HasSubstr("compound assignment '%=' to an expression with side effects is not supported on this target"));
 }
 
 TEST(GlslEmitterOperators, VectorComparisonsAndLogic) {
@@ -406,18 +409,19 @@ TEST(GlslEmitterExpressions, StructsArraysAndInitializerLists) {
 }
 
 TEST(GlslEmitterExpressions, StaticGlobals) {
-  const std::string text = fragment("float4 _Color;\n"
-                                    "static float4 s_tint = _Color * 2;\n"
-                                    "static float s_zero;\n"
-                                    "static int s_count = 3;\n"
-                                    "static const float3 kLum = float3(0.2, 0.7, 0.1);\n"
-                                    "static const float kUnused = 1;\n",
-                                    "s_zero += 1;\n"
-                                    "const float local = 2;\n"
-                                    "const float runtime = s_zero;\n"
-                                    "return s_tint * dot(kLum, 1) + s_zero + s_count + local + runtime;");
+  const std::string text = fragment(
+      "float4 _Color;\n"
+      "static float4 s_tint = _Color * 2;\n"
+      "static float s_zero;\n"
+      "static int s_count = 3;\n"
+      "static const float3 kLum = float3(0.2, 0.7, 0.1);\n"
+      "static const float kUnused = 1;\n",
+      "s_zero += 1;\n"
+      "const float local = 2;\n"
+      "const float runtime = s_zero;\n"
+      "return s_tint * dot(kLum, 1) + s_zero + s_count + local + runtime;");
   EXPECT_THAT(text, HasSubstr("vec4 s_tint = vec4(0.0);"));  // until main() assigns it
-  EXPECT_THAT(text, HasSubstr("float s_zero = 0.0;"));  // HLSL zero-initializes statics
+  EXPECT_THAT(text, HasSubstr("float s_zero = 0.0;"));       // HLSL zero-initializes statics
   EXPECT_THAT(text, HasSubstr("int s_count = 3;"));
   EXPECT_THAT(text, HasSubstr("const vec3 kLum = vec3(0.2, 0.7, 0.1);"));
   EXPECT_THAT(text, Not(HasSubstr("kUnused")));
@@ -445,7 +449,8 @@ TEST(GlslEmitterIntrinsics, TheTableMapsToGlslWithHlslSemantics) {
                                     "bool all3 = all(i);\n"
                                     "return float4(r + s + f + sn + cs, c + h + any3 + all3);");
   EXPECT_THAT(text, HasSubstr("clamp(a, 0.0, 1.0) + mix(a, b, vec3(t)) + inversesqrt(a) + fract(a) + roundEven(a)"));
-  EXPECT_THAT(text, HasSubstr("(log2(a) * 0.30102999566398120) + (1.0 / a) + (a * b + a) + atan(a, b) + dFdx(a) + dFdy(a)"));
+  EXPECT_THAT(text,
+              HasSubstr("(log2(a) * 0.30102999566398120) + (1.0 / a) + (a * b + a) + atan(a, b) + dFdx(a) + dFdy(a)"));
   EXPECT_THAT(text, HasSubstr("ivec3 s = ivec3(sign(a));"));
   EXPECT_THAT(text, HasSubstr("bvec3 f = xs_isfinite(a);"));
   EXPECT_THAT(text, HasSubstr("bvec3 xs_isfinite(vec3 a) {"));
@@ -496,13 +501,14 @@ TEST(GlslEmitterIntrinsics, ComponentWiseIntrinsicsOfMatricesGoColumnByColumn) {
 TEST(GlslEmitterIntrinsics, EveryComponentWiseIntrinsicTakesAFloatMatrix) {
   // Whatever sema lets through with a float matrix the emitter must write; the only refusals
   // are results that are matrices of int or bool, which no GLSL type holds (§3 of the docs).
-  for (const char* call : {"abs(m)", "acos(m)", "asin(m)", "atan(m)", "atan2(m, m)", "ceil(m)", "clamp(m, 0, 1)",
-                           "cos(m)", "cosh(m)", "ddx(m)", "ddy(m)", "degrees(m)", "exp(m)", "exp2(m)", "floor(m)",
-                           "fma(m, m, m)", "fmod(m, m)", "frac(m)", "fwidth(m)", "ldexp(m, m)", "lerp(m, m, 0.5)",
-                           "log(m)", "log10(m)", "log2(m)", "mad(m, m, m)", "max(m, m)", "min(m, m)", "pow(m, m)",
-                           "radians(m)", "rcp(m)", "round(m)", "rsqrt(m)", "saturate(m)", "sin(m)", "sinh(m)",
-                           "smoothstep(m, m, m)", "sqrt(m)", "step(m, m)", "tan(m)", "tanh(m)", "trunc(m)",
-                           "asfloat(m)"}) {
+  for (const char* call :
+       {"abs(m)",         "acos(m)",     "asin(m)",         "atan(m)",      "atan2(m, m)", "ceil(m)",
+        "clamp(m, 0, 1)", "cos(m)",      "cosh(m)",         "ddx(m)",       "ddy(m)",      "degrees(m)",
+        "exp(m)",         "exp2(m)",     "floor(m)",        "fma(m, m, m)", "fmod(m, m)",  "frac(m)",
+        "fwidth(m)",      "ldexp(m, m)", "lerp(m, m, 0.5)", "log(m)",       "log10(m)",    "log2(m)",
+        "mad(m, m, m)",   "max(m, m)",   "min(m, m)",       "pow(m, m)",    "radians(m)",  "rcp(m)",
+        "round(m)",       "rsqrt(m)",    "saturate(m)",     "sin(m)",       "sinh(m)",     "smoothstep(m, m, m)",
+        "sqrt(m)",        "step(m, m)",  "tan(m)",          "tanh(m)",      "trunc(m)",    "asfloat(m)"}) {
     SCOPED_TRACE(call);
     const std::string text = fragment("float3x3 m;", std::string("float3x3 r = ") + call + ";\nreturn r[0].xyzx;");
     EXPECT_THAT(text, HasSubstr("mat3 r = xs_"));
@@ -681,7 +687,8 @@ TEST(GlslEmitterEntryPoints, FragmentOnlyReadsUvAtLocationZero) {
 }
 
 TEST(GlslEmitterEntryPoints, TheAuthorsMainIsRenamed) {
-  const std::string source = "#pragma fragment main\nfloat4 main(float2 uv : TEXCOORD0) : SV_Target { return uv.xyxy; }\n";
+  const std::string source =
+      "#pragma fragment main\nfloat4 main(float2 uv : TEXCOORD0) : SV_Target { return uv.xyxy; }\n";
   const EmittedProgram program = emit_ok(source);
   ASSERT_TRUE(program.fragment);
   EXPECT_THAT(program.fragment->text, HasSubstr("vec4 main_(vec2 uv) {"));
@@ -699,11 +706,12 @@ TEST(GlslEmitterEntryPoints, UniformParametersAreAnError) {
 // Functions
 
 TEST(GlslEmitterFunctions, OnlyReachableFunctionsInDependencyOrder) {
-  const std::string text = fragment("float unused(float x) { return x; }\n"
-                                    "float leaf(float x) { return x * 2; }\n"
-                                    "float middle(float x) { return leaf(x) + 1; }\n"
-                                    "void twice(inout float x, out float y) { x *= 2; y = x; }\n",
-                                    "float a = middle(uv.x), b;\ntwice(a, b);\nreturn a + b;");
+  const std::string text = fragment(
+      "float unused(float x) { return x; }\n"
+      "float leaf(float x) { return x * 2; }\n"
+      "float middle(float x) { return leaf(x) + 1; }\n"
+      "void twice(inout float x, out float y) { x *= 2; y = x; }\n",
+      "float a = middle(uv.x), b;\ntwice(a, b);\nreturn a + b;");
   EXPECT_THAT(text, Not(HasSubstr("unused")));
   EXPECT_LT(text.find("float leaf(float x)"), text.find("float middle(float x)"));
   EXPECT_LT(text.find("float middle(float x)"), text.find("vec4 frag("));
@@ -712,11 +720,12 @@ TEST(GlslEmitterFunctions, OnlyReachableFunctionsInDependencyOrder) {
 }
 
 TEST(GlslEmitterFunctions, OverloadsThatCollideInGlslAreMangled) {
-  const std::string text = fragment("float f(float x) { return x; }\n"
-                                    "half f(half x) { return x * 2; }\n"
-                                    "float g(float x) { return x; }\n"
-                                    "float g(float2 x) { return x.x; }\n",
-                                    "half h = 1;\nreturn f(uv.x) + f(h) + g(uv) + g(uv.y);");
+  const std::string text = fragment(
+      "float f(float x) { return x; }\n"
+      "half f(half x) { return x * 2; }\n"
+      "float g(float x) { return x; }\n"
+      "float g(float2 x) { return x.x; }\n",
+      "half h = 1;\nreturn f(uv.x) + f(h) + g(uv) + g(uv.y);");
   EXPECT_THAT(text, HasSubstr("float f_float(float x) {"));
   EXPECT_THAT(text, HasSubstr("float f_half(float x) {"));
   EXPECT_THAT(text, HasSubstr("float g(float x) {"));
@@ -739,13 +748,13 @@ TEST(GlslEmitterFunctions, OutArgumentsNeedingAConversionAreAnError) {
 
 TEST(GlslEmitterFunctions, StatementsAndLoops) {
   const std::string text = without_line_directives(fragment("",
-                                    "float s = 0;\n"
-                                    "[unroll] for (int i = 0, j = 4; i < j; ++i) { s += i; }\n"
-                                    "int k = 0;\n"
-                                    "while (k < 3) { k++; if (k == 2) continue; }\n"
-                                    "do { s *= 0.5; } while (s > 1);\n"
-                                    "if (s > 0) s = 1; else if (s < 0) s = -1; else discard;\n"
-                                    "return s;"));
+                                                            "float s = 0;\n"
+                                                            "[unroll] for (int i = 0, j = 4; i < j; ++i) { s += i; }\n"
+                                                            "int k = 0;\n"
+                                                            "while (k < 3) { k++; if (k == 2) continue; }\n"
+                                                            "do { s *= 0.5; } while (s > 1);\n"
+                                                            "if (s > 0) s = 1; else if (s < 0) s = -1; else discard;\n"
+                                                            "return s;"));
   EXPECT_THAT(text, HasSubstr("/* [unroll] */ for (int i = 0, j = 4; i < j; ++i) {\n    s += float(i);\n  }"));
   EXPECT_THAT(text, HasSubstr("while (k < 3) {\n    k++;\n    if (k == 2) {\n      continue;\n    }\n  }"));
   EXPECT_THAT(text, HasSubstr("do {\n    s *= 0.5;\n  } while (s > 1.0);"));
@@ -785,15 +794,16 @@ TEST(GlslEmitterNames, ReservedNamesGetATrailingUnderscore) {
 }
 
 TEST(GlslEmitterLines, LineDirectivesPointAtTheAuthorsFile) {
-  const std::string source = "#pragma fragment frag\n"  // 1
-                             "float helper(float x) {\n"  // 2
-                             "  return x * 2;\n"  // 3
-                             "}\n"  // 4
-                             "float4 frag(float2 uv : TEXCOORD0) : SV_Target {\n"  // 5
-                             "  float a = helper(uv.x);\n"  // 6
-                             "\n"  // 7
-                             "  return a;\n"  // 8
-                             "}\n";
+  const std::string source =
+      "#pragma fragment frag\n"                             // 1
+      "float helper(float x) {\n"                           // 2
+      "  return x * 2;\n"                                   // 3
+      "}\n"                                                 // 4
+      "float4 frag(float2 uv : TEXCOORD0) : SV_Target {\n"  // 5
+      "  float a = helper(uv.x);\n"                         // 6
+      "\n"                                                  // 7
+      "  return a;\n"                                       // 8
+      "}\n";
   auto module = hlsl::compile_text("shader.hlsl", source, {});
   ASSERT_TRUE(module->ok()) << diagnostics_of(*module);
   auto program = emit(*module, {Flavour::Gl});
@@ -819,11 +829,11 @@ TEST(GlslEmitterLines, LineDirectivesPointAtTheAuthorsFile) {
 }
 
 TEST(GlslEmitterNames, VariablesNamedLikeFunctionsDoNotHideThem) {
-  const std::string text = without_line_directives(
-      fragment("float3 fresnel(float3 f0) { return f0 * 0.5; }\n"
-               "float shade(float fresnel) { return fresnel * 2; }\n",
-               "float3 fresnel = fresnel(uv.xyx);\n"
-               "return float4(fresnel(fresnel), shade(fresnel.x));"));
+  const std::string text =
+      without_line_directives(fragment("float3 fresnel(float3 f0) { return f0 * 0.5; }\n"
+                                       "float shade(float fresnel) { return fresnel * 2; }\n",
+                                       "float3 fresnel = fresnel(uv.xyx);\n"
+                                       "return float4(fresnel(fresnel), shade(fresnel.x));"));
   EXPECT_THAT(text, HasSubstr("float shade(float fresnel_v) {\n  return fresnel_v * 2.0;\n}"));
   EXPECT_THAT(text, HasSubstr("vec3 fresnel_v = fresnel(uv.xyx);"));
   EXPECT_THAT(text, HasSubstr("return vec4(fresnel(fresnel_v), shade(fresnel_v.x));"));
@@ -878,8 +888,11 @@ TEST(GlslEmitterErrors, ErrorsReadLikeTheFrontEndsDiagnostics) {
   EXPECT_EQ(program.error().to_string(),
             "test.hlsl:2:51: error: uniform parameter 'tint' of an entry point is not supported on this target; "
             "declare it as a global\n"
-            "    " + line + "\n"
-            "    " + std::string(50, ' ') + "^");
+            "    " +
+                line +
+                "\n"
+                "    " +
+                std::string(50, ' ') + "^");
   EXPECT_EQ(program.error().where.to_string(), "test.hlsl:2:51");
 }
 
@@ -890,7 +903,6 @@ TEST(GlslEmitterErrors, ModulesWithErrorsAreRefused) {
   ASSERT_FALSE(program);
   EXPECT_THAT(program.error().message, HasSubstr("errors"));
 }
-
 
 // ---------------------------------------------------------------------------------------------
 // What the entry points reach
@@ -922,27 +934,31 @@ TEST(GlslEmitterReach, UnreachedCodeMayUseWhatTheTargetCannotExpress) {
 }
 
 TEST(GlslEmitterReach, WhatTheTargetCannotExpressIsAnErrorWhereItIsReached) {
-  const std::string reached = std::string(kUnreachedResources) +
-                              "float4 frag2(float4 p : SV_Position) : SV_Target { return float4(simulate(uint(p.x)), 1); }\n";
+  const std::string reached =
+      std::string(kUnreachedResources) +
+      "float4 frag2(float4 p : SV_Position) : SV_Target { return float4(simulate(uint(p.x)), 1); }\n";
   std::string source = reached;
   source.replace(source.find("#pragma fragment frag\n"), 22, "#pragma fragment frag2\n");
   // A reached groupshared variable is named at its declaration; a resource at its first use.
-  EXPECT_THAT(emit_error(source), HasSubstr("test.hlsl:7:19: error: groupshared variable 'shared_sum' is not supported"));
+  EXPECT_THAT(emit_error(source),
+              HasSubstr("test.hlsl:7:19: error: groupshared variable 'shared_sum' is not supported"));
   std::string without_shared = source;
   without_shared.replace(without_shared.find("  shared_sum[i % 64] = 1;\n"), 26, "");
   without_shared.replace(without_shared.find(", shared_sum[0]"), 15, ", 0");
-  EXPECT_THAT(emit_error(without_shared),
-              HasSubstr("test.hlsl:9:3: error: 'RWTexture2D<float4>' is not supported on this target: shaders here read "
-                        "textures, constant buffers and read-only buffers (StructuredBuffer, ByteAddressBuffer, Buffer)"));
+  EXPECT_THAT(
+      emit_error(without_shared),
+      HasSubstr("test.hlsl:9:3: error: 'RWTexture2D<float4>' is not supported on this target: shaders here read "
+                "textures, constant buffers and read-only buffers (StructuredBuffer, ByteAddressBuffer, Buffer)"));
 }
 
 TEST(GlslEmitterStatements, SwitchKeepsItsLabelsAndFallThrough) {
   std::string text = fragment("int _Mode; uint _Index;",
-                                    "float4 c = 0;\n"
-                                    "switch (_Mode) { case 0: case 1: c.r = 1; break; case -2: c.g = 1; default: c.b = 1; }\n"
-                                    "switch (_Index) { case 3: c.a = 1; }\n"
-                                    "return c;");
-  for (size_t at = text.find("#line"); at != std::string::npos; at = text.find("#line")) text.erase(at, text.find('\n', at) + 1 - at);
+                              "float4 c = 0;\n"
+                              "switch (_Mode) { case 0: case 1: c.r = 1; break; case -2: c.g = 1; default: c.b = 1; }\n"
+                              "switch (_Index) { case 3: c.a = 1; }\n"
+                              "return c;");
+  for (size_t at = text.find("#line"); at != std::string::npos; at = text.find("#line"))
+    text.erase(at, text.find('\n', at) + 1 - at);
   EXPECT_THAT(text, HasSubstr("switch (_Mode) {\n  case 0:\n  case 1:\n    c.x = 1.0;\n    break;\n  case -2:\n"));
   EXPECT_THAT(text, HasSubstr("  default:\n    c.z = 1.0;\n  }\n"));
   // A uint condition takes uint labels; GLSL converts neither.
@@ -957,7 +973,8 @@ TEST(GlslEmitterStatements, ALoopWhoseVariableIsATexelOffsetIsUnrolled) {
                               "[unroll] for (int x = kBegin; x <= 1; ++x) c += _MainTex.Sample(s, uv, int2(x, 0));\n"
                               "for (int i = 0; i < 2; i++) { c *= 0.5; }\n"
                               "return c;");
-  for (size_t at = text.find("#line"); at != std::string::npos; at = text.find("#line")) text.erase(at, text.find('\n', at) + 1 - at);
+  for (size_t at = text.find("#line"); at != std::string::npos; at = text.find("#line"))
+    text.erase(at, text.find('\n', at) + 1 - at);
   EXPECT_THAT(text, HasSubstr("/* [unroll] */ {  // unrolled: x = -1\n    const int x = -1;\n"
                               "    c += textureOffset(_MainTex, uv, ivec2(x, 0));\n  }\n"));
   EXPECT_THAT(text, HasSubstr("const int x = 1;\n"));
@@ -965,27 +982,33 @@ TEST(GlslEmitterStatements, ALoopWhoseVariableIsATexelOffsetIsUnrolled) {
   // A loop that needs no constant stays a loop.
   EXPECT_THAT(text, HasSubstr("for (int i = 0; i < 2; i++) {"));
   // A loop that breaks cannot be unrolled; its offset is then not constant.
-  EXPECT_THAT(emit_error(fragment_source(globals, "float4 c = 0;\n"
-                                                  "for (int j = 0; j < 4; j++) { if (c.x > 1) break; c += _MainTex.Sample(s, uv, int2(j, 0)); }\n"
-                                                  "return c;")),
-              HasSubstr("test.hlsl:5:79: error: the texel offset of 'Sample' must be a constant expression on this target"));
+  EXPECT_THAT(
+      emit_error(fragment_source(
+          globals,
+          "float4 c = 0;\n"
+          "for (int j = 0; j < 4; j++) { if (c.x > 1) break; c += _MainTex.Sample(s, uv, int2(j, 0)); }\n"
+          "return c;")),
+      HasSubstr("test.hlsl:5:79: error: the texel offset of 'Sample' must be a constant expression on this target"));
 }
 
 TEST(GlslEmitterConstantBuffers, AConstantBufferOfAStructIsABlockWithAnInstanceName) {
-  const std::string globals = "struct Scene { float4x4 view; float3 light; float strength; };\n"
-                              "ConstantBuffer<Scene> scene : register(b3);";
+  const std::string globals =
+      "struct Scene { float4x4 view; float3 light; float strength; };\n"
+      "ConstantBuffer<Scene> scene : register(b3);";
   const std::string body = "return float4(scene.light * scene.strength, scene.view._m00);";
   for (const Flavour flavour : {Flavour::Gl, Flavour::Vk}) {
     const std::string text = fragment(globals, body, flavour);
-    EXPECT_THAT(text, HasSubstr("binding = 3) uniform scene {\n  layout(offset = 0, row_major) mat4 view;\n"
-                                "  layout(offset = 64) vec3 light;\n  layout(offset = 76) float strength;\n} xs_cb_scene;"));
+    EXPECT_THAT(text,
+                HasSubstr("binding = 3) uniform scene {\n  layout(offset = 0, row_major) mat4 view;\n"
+                          "  layout(offset = 64) vec3 light;\n  layout(offset = 76) float strength;\n} xs_cb_scene;"));
     EXPECT_THAT(text, HasSubstr("xs_cb_scene.light * xs_cb_scene.strength"));
     EXPECT_THAT(text, Not(HasSubstr("struct Scene")));  // read through the block only
   }
 }
 
 TEST(GlslEmitterIntrinsics, SelectChoosesComponentByComponent) {
-  const std::string text = fragment("float4 _A; float4 _B; float _S;", "return select(_A > _B, _A, _B) + select(_S > 0, _S, 1.0);");
+  const std::string text =
+      fragment("float4 _A; float4 _B; float _S;", "return select(_A > _B, _A, _B) + select(_S > 0, _S, 1.0);");
   EXPECT_THAT(text, HasSubstr("mix(_B, _A, greaterThan(_A, _B))"));
   EXPECT_THAT(text, HasSubstr("((_S > 0.0) ? _S : 1.0)"));
 }

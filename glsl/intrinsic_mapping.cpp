@@ -229,8 +229,8 @@ int template_prec(const std::string& text) {
 
 // The placeholders of a template, in order, with the text around them.
 struct Piece {
-  std::string text;  // literal text before the operand
-  int operand = -1;  // -1 for the trailing text
+  std::string text;      // literal text before the operand
+  int operand = -1;      // -1 for the trailing text
   int needed = kAssign;  // the precedence the operand needs where it stands
 };
 
@@ -312,8 +312,9 @@ std::string StageEmitter::require_helper(const std::string& name, const std::vec
   } else if (name == "xs_idiv") {
     // HLSL's signed division truncates toward zero; GLSL leaves negative operands undefined.
     if (n == 1)
-      definition = "int xs_idiv(int a, int b) {\n  int q = int(uint(abs(a)) / uint(abs(b)));\n"
-                   "  return (a < 0) != (b < 0) ? -q : q;\n}\n";
+      definition =
+          "int xs_idiv(int a, int b) {\n  int q = int(uint(abs(a)) / uint(abs(b)));\n"
+          "  return (a < 0) != (b < 0) ? -q : q;\n}\n";
     else
       definition = t + " xs_idiv(" + t + " a, " + t + " b) {\n  " + t + " q = " + t + "(uvec" + ns + "(abs(a)) / uvec" +
                    ns + "(abs(b)));\n  return mix(q, -q, notEqual(lessThan(a, " + t + "(0)), lessThan(b, " + t +
@@ -321,8 +322,9 @@ std::string StageEmitter::require_helper(const std::string& name, const std::vec
   } else if (name == "xs_imod") {
     // HLSL's remainder has the sign of the dividend.
     if (n == 1)
-      definition = "int xs_imod(int a, int b) {\n  int r = int(uint(abs(a)) % uint(abs(b)));\n"
-                   "  return a < 0 ? -r : r;\n}\n";
+      definition =
+          "int xs_imod(int a, int b) {\n  int r = int(uint(abs(a)) % uint(abs(b)));\n"
+          "  return a < 0 ? -r : r;\n}\n";
     else
       definition = t + " xs_imod(" + t + " a, " + t + " b) {\n  " + t + " r = " + t + "(uvec" + ns + "(abs(a)) % uvec" +
                    ns + "(abs(b)));\n  return mix(r, -r, lessThan(a, " + t + "(0)));\n}\n";
@@ -330,8 +332,8 @@ std::string StageEmitter::require_helper(const std::string& name, const std::vec
     if (n == 1)
       definition = "bool xs_isfinite(float a) {\n  return !isinf(a) && !isnan(a);\n}\n";
     else
-      definition = "bvec" + ns + " xs_isfinite(" + t + " a) {\n  return not(bvec" + ns + "(uvec" + ns + "(isinf(a)) | uvec" +
-                   ns + "(isnan(a))));\n}\n";
+      definition = "bvec" + ns + " xs_isfinite(" + t + " a) {\n  return not(bvec" + ns + "(uvec" + ns +
+                   "(isinf(a)) | uvec" + ns + "(isnan(a))));\n}\n";
   } else if (name == "xs_dot") {
     const std::string scalar = type_name(Type::scalar(type.scalar_type()), loc);
     std::string sum;
@@ -349,16 +351,18 @@ std::string StageEmitter::require_helper(const std::string& name, const std::vec
   } else if (name == "xs_compare_bilinear") {
     // The four comparisons textureGather returns, (i0, j1), (i1, j1), (i1, j0), (i0, j0), weighted
     // as a bilinear read of the texel coordinate weights its four texels.
-    definition = "float xs_compare_bilinear(vec4 compared, vec2 texel) {\n  vec2 f = fract(texel - 0.5);\n"
-                 "  return mix(mix(compared.w, compared.z, f.x), mix(compared.x, compared.y, f.x), f.y);\n}\n";
+    definition =
+        "float xs_compare_bilinear(vec4 compared, vec2 texel) {\n  vec2 f = fract(texel - 0.5);\n"
+        "  return mix(mix(compared.w, compared.z, f.x), mix(compared.x, compared.y, f.x), f.y);\n}\n";
     helpers_.add(name, definition);  // one definition, whatever the operands' types
     return name;
   } else if (name == "xs_lit") {
     // HLSL's documented lit(): ambient 1, diffuse max(n.l, 0), specular (n.h)^m unless either
     // dot product is negative, w 1. Its arguments are float scalars, whatever was passed.
-    definition = "vec4 xs_lit(float n_dot_l, float n_dot_h, float m) {\n"
-                 "  float specular = (n_dot_l < 0.0 || n_dot_h < 0.0) ? 0.0 : pow(n_dot_h, m);\n"
-                 "  return vec4(1.0, max(n_dot_l, 0.0), specular, 1.0);\n}\n";
+    definition =
+        "vec4 xs_lit(float n_dot_l, float n_dot_h, float m) {\n"
+        "  float specular = (n_dot_l < 0.0 || n_dot_h < 0.0) ? 0.0 : pow(n_dot_h, m);\n"
+        "  return vec4(1.0, max(n_dot_l, 0.0), specular, 1.0);\n}\n";
     helpers_.add(name, definition);
     return name;
   } else if (name == "xs_clip") {
@@ -474,8 +478,9 @@ Code StageEmitter::intrinsic_call(const CallExpr& call) {
   return expand_template(text, call, operands, out);
 }
 
-Code StageEmitter::expand_template(std::string_view text, const CallExpr& call, const std::vector<const Expr*>& operands,
-                                   const std::vector<bool>& out, bool always_helper) {
+Code StageEmitter::expand_template(std::string_view text, const CallExpr& call,
+                                   const std::vector<const Expr*>& operands, const std::vector<bool>& out,
+                                   bool always_helper) {
   const IntrinsicInfo& info = intrinsic_info(IntrinsicId(call.intrinsic));
   const std::string result_type = type_name(call.type, call.loc);  // also reports a type GLSL lacks
   // Most templates have no $R or $B0: they are expanded as they stand, without a copy.
@@ -495,7 +500,8 @@ Code StageEmitter::expand_template(std::string_view text, const CallExpr& call, 
       for (const Expr* e : operands)
         if (e->type.is_numeric()) numeric_types.push_back(e->type);
     const size_t open = expanded.find('(', at);
-    if (open != std::string_view::npos) require_helper(std::string(expanded.substr(at, open - at)), numeric_types, call.loc);
+    if (open != std::string_view::npos)
+      require_helper(std::string(expanded.substr(at, open - at)), numeric_types, call.loc);
   }
 
   const SplitTemplate& split = split_template_once(expanded);
@@ -532,8 +538,9 @@ Code StageEmitter::expand_template(std::string_view text, const CallExpr& call, 
     for (size_t i = 0; i < operands.size(); ++i) {
       if (uses[i] == 0) continue;
       const Type& operand_type = operands[i]->type;
-      const std::string type = operand_type.is_resource() ? resource_type(operand_type, named_decl(operands[i]), call.loc)
-                                                          : type_name(operand_type, call.loc);
+      const std::string type = operand_type.is_resource()
+                                   ? resource_type(operand_type, named_decl(operands[i]), call.loc)
+                                   : type_name(operand_type, call.loc);
       params += (params.empty() ? "" : ", ") + std::string(out[i] ? "out " : "") + type + " a" + std::to_string(i);
       args += (args.empty() ? "" : ", ") + operand(code_of(i), kAssign);
     }
@@ -542,7 +549,8 @@ Code StageEmitter::expand_template(std::string_view text, const CallExpr& call, 
       if (piece.operand >= 0) body += "a" + std::to_string(piece.operand);
     }
     const std::string result = type_name(call.type, call.loc);
-    const std::string unnamed = result + " (" + params + ") {\n  " + (call.type.is_void() ? "" : "return ") + body + ";\n}\n";
+    const std::string unnamed =
+        result + " (" + params + ") {\n  " + (call.type.is_void() ? "" : "return ") + body + ";\n}\n";
     std::string& name = template_helpers_[unnamed];
     if (name.empty()) {
       const std::string base = "xs_" + std::string(info.name);

@@ -12,7 +12,6 @@ namespace {
 
 using ::testing::HasSubstr;
 
-
 TEST(LitInGlsl, IsTheDocumentedFormulaOnFloatScalars) {
   for (Flavour flavour : {Flavour::Gl, Flavour::Vk}) {
     const std::string text = emitted_fragment(

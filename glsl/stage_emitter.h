@@ -15,11 +15,11 @@
 #include <unordered_set>
 #include <vector>
 
+#include "base/result.h"
+#include "base/string_index.h"
 #include "glsl/flavour.h"
 #include "glsl/glsl_emitter.h"
-#include "base/string_index.h"
 #include "hlsl_like/compiler.h"
-#include "base/result.h"
 #include "hlsl_like/intrinsics.h"
 
 namespace xshade::glsl::detail {
@@ -327,9 +327,9 @@ class StageEmitter {
   void require_extension(const std::string& name) { extensions_.insert(name); }
   std::unordered_set<const hlsl::Decl*> compared_;  // see collect_compared_textures
   std::vector<const FunctionDecl*> functions_;
-  std::vector<const hlsl::VarDecl*> statics_;  // used static globals, in source order
+  std::vector<const hlsl::VarDecl*> statics_;                 // used static globals, in source order
   std::unordered_set<const hlsl::StructDecl*> used_structs_;  // structs the stage's code uses
-  std::vector<std::string> main_prologue_;     // statements that initialize statics in main()
+  std::vector<std::string> main_prologue_;                    // statements that initialize statics in main()
   std::string interface_text_;
   std::unordered_set<const hlsl::Decl*> const_decls_;  // emitted as GLSL `const`
   struct SplitMember {
@@ -340,7 +340,7 @@ class StageEmitter {
   // Constant-buffer members by name, viewing the tree's strings.
   std::unordered_map<std::string_view, const hlsl::VarDecl*> uniform_decls_;
 
-  const bool trace_;  // the tracing variant: every function twice, the second copy traced
+  const bool trace_;             // the tracing variant: every function twice, the second copy traced
   bool in_traced_copy_ = false;  // emitting the traced copy (emit_trace.cpp)
   const uint32_t trace_program_;
   std::string current_function_ = "main";

@@ -14,7 +14,6 @@ namespace {
 using ::testing::HasSubstr;
 using ::testing::Not;
 
-
 TEST(StructNamesInGlsl, AStructAVariableIsNamedLikeTakesANameOfItsOwn) {
   const std::string text = emitted_fragment(
       "#pragma fragment frag\n"

@@ -69,7 +69,8 @@ TEST(VulkanAttributesEmit, TheGlFlavourKeepsWhatOpenGlHas) {
 // flavour keeps the default, which the pipeline replaces.
 TEST(VulkanAttributesEmit, AGivenSpecializationValueIsWrittenInOnGlOnly) {
   EXPECT_THAT(vulkan_attribute_stages(Flavour::Gl, {{4, 7.0}}), HasSubstr("const int MODE = 7;"));
-  EXPECT_THAT(vulkan_attribute_stages(Flavour::Vk, {{4, 7.0}}), HasSubstr("layout(constant_id = 4) const int MODE = 2;"));
+  EXPECT_THAT(vulkan_attribute_stages(Flavour::Vk, {{4, 7.0}}),
+              HasSubstr("layout(constant_id = 4) const int MODE = 2;"));
   EXPECT_THAT(vulkan_attribute_stages(Flavour::Gl, {{9, 7.0}}), HasSubstr("const int MODE = 2;"));  // another id
 }
 

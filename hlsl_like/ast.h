@@ -44,8 +44,8 @@ struct VulkanAttributes {
   // vk::combinedImageSampler: a texture and a SamplerState at one vk::binding read as one combined
   // image sampler there
   bool combined_image_sampler = false;
-  std::optional<uint32_t> offset;       // vk::offset(N): a constant-buffer member's byte offset
-  Loc loc;                              // of the first attribute
+  std::optional<uint32_t> offset;  // vk::offset(N): a constant-buffer member's byte offset
+  Loc loc;                         // of the first attribute
   bool any() const {
     return location || binding || push_constant || constant_id || !builtin.empty() || input_attachment_index ||
            combined_image_sampler || offset;
@@ -56,8 +56,20 @@ struct VulkanAttributes {
 // Expressions
 
 enum class ExprKind : uint8_t {
-  IntLiteral, FloatLiteral, BoolLiteral, Name, Unary, Binary, Assign, Conditional, Call, Member,
-  Index, Cast, InitList, Conversion,
+  IntLiteral,
+  FloatLiteral,
+  BoolLiteral,
+  Name,
+  Unary,
+  Binary,
+  Assign,
+  Conditional,
+  Call,
+  Member,
+  Index,
+  Cast,
+  InitList,
+  Conversion,
 };
 
 struct Expr : AstNodeMemory {
@@ -77,7 +89,7 @@ struct IntLiteralExpr : Expr {
 
 struct FloatLiteralExpr : Expr {
   double value = 0.0;
-  std::string spelling;  // as written, without suffix: the emitter prints it back unchanged
+  std::string spelling;      // as written, without suffix: the emitter prints it back unchanged
   bool half_suffix = false;  // 1.5h
   FloatLiteralExpr(Loc l) : Expr(ExprKind::FloatLiteral, l) {}
 };
@@ -102,8 +114,25 @@ struct UnaryExpr : Expr {
 };
 
 enum class BinaryOp : uint8_t {
-  Add, Sub, Mul, Div, Mod, Shl, Shr, BitAnd, BitOr, BitXor, LogicalAnd, LogicalOr,
-  Less, Greater, LessEqual, GreaterEqual, Equal, NotEqual, Comma,
+  Add,
+  Sub,
+  Mul,
+  Div,
+  Mod,
+  Shl,
+  Shr,
+  BitAnd,
+  BitOr,
+  BitXor,
+  LogicalAnd,
+  LogicalOr,
+  Less,
+  Greater,
+  LessEqual,
+  GreaterEqual,
+  Equal,
+  NotEqual,
+  Comma,
 };
 
 struct BinaryExpr : Expr {
@@ -150,21 +179,21 @@ struct ConditionalExpr : Expr {
 };
 
 enum class CallKind : uint8_t {
-  Unresolved,    // before sema
-  Function,      // a user function: `function`
-  Intrinsic,     // a built-in function: `intrinsic`
-  Constructor,   // float3(...), float2x2(...): `type` is the constructed type
-  Method,        // object.Sample(...): `object` and `intrinsic`
+  Unresolved,   // before sema
+  Function,     // a user function: `function`
+  Intrinsic,    // a built-in function: `intrinsic`
+  Constructor,  // float3(...), float2x2(...): `type` is the constructed type
+  Method,       // object.Sample(...): `object` and `intrinsic`
   // printf("format", args...) as DXC reads it for Vulkan (GL_EXT_debug_printf): `format` holds
   // the string literal as written, quotes and escapes included; `args` the values.
   Printf,
 };
 
 struct CallExpr : Expr {
-  std::string callee;           // the name as written (for a method, the method's name)
-  ExprPtr object;               // a method's object, else null
+  std::string callee;  // the name as written (for a method, the method's name)
+  ExprPtr object;      // a method's object, else null
   AstVector<ExprPtr> args;
-  Type constructed;             // parser: the type of a constructor call
+  Type constructed;                           // parser: the type of a constructor call
   CallKind call_kind = CallKind::Unresolved;  // parser sets Constructor; sema the rest
   const FunctionDecl* function = nullptr;     // sema
   uint16_t intrinsic = 0;                     // sema: an IntrinsicId (intrinsics.h)
@@ -197,8 +226,8 @@ class Swizzle {
 struct MemberExpr : Expr {
   ExprPtr object;
   std::string member;
-  int field_index = -1;             // sema: the field of a struct
-  Swizzle swizzle;                  // sema: component indices (for matrices: row * 4 + col)
+  int field_index = -1;  // sema: the field of a struct
+  Swizzle swizzle;       // sema: component indices (for matrices: row * 4 + col)
   MemberExpr(Loc l) : Expr(ExprKind::Member, l) {}
 };
 
@@ -232,7 +261,19 @@ struct ConversionExpr : Expr {
 // Statements
 
 enum class StmtKind : uint8_t {
-  Block, Expr, Decl, If, For, While, DoWhile, Switch, Break, Continue, Return, Discard, Empty,
+  Block,
+  Expr,
+  Decl,
+  If,
+  For,
+  While,
+  DoWhile,
+  Switch,
+  Break,
+  Continue,
+  Return,
+  Discard,
+  Empty,
 };
 
 struct Stmt : AstNodeMemory {
@@ -268,9 +309,9 @@ struct IfStmt : Stmt {
 };
 
 struct ForStmt : Stmt {
-  StmtPtr init;        // a DeclStmt, an ExprStmt or null
-  ExprPtr condition;   // may be null
-  ExprPtr step;        // may be null
+  StmtPtr init;       // a DeclStmt, an ExprStmt or null
+  ExprPtr condition;  // may be null
+  ExprPtr step;       // may be null
   StmtPtr body;
   ForStmt(Loc l) : Stmt(StmtKind::For, l) {}
 };
@@ -357,15 +398,15 @@ struct VarDecl : Decl {
   bool is_const = false;
   MatrixPacking packing = MatrixPacking::Default;
   Interpolation interpolation = Interpolation::Default;
-  std::string semantic;                 // : TEXCOORD0 (as written; empty if none)
+  std::string semantic;  // : TEXCOORD0 (as written; empty if none)
   Loc semantic_loc;
-  RegisterBinding binding;              // : register(t0)
-  std::optional<uint32_t> packoffset;   // : packoffset(c1.y) of a cbuffer member, in bytes (20)
+  RegisterBinding binding;             // : register(t0)
+  std::optional<uint32_t> packoffset;  // : packoffset(c1.y) of a cbuffer member, in bytes (20)
   Loc packoffset_loc;
   std::vector<Annotation> annotations;  // <...>
   ExprPtr initializer;
-  bool is_global = false;               // parser: declared at file or cbuffer scope
-  VulkanAttributes vk;                  // [[vk::binding(...)]], [[vk::constant_id(...)]], ...
+  bool is_global = false;  // parser: declared at file or cbuffer scope
+  VulkanAttributes vk;     // [[vk::binding(...)]], [[vk::constant_id(...)]], ...
   VarDecl(Loc l) : Decl(DeclKind::Var, l) {}
 };
 
@@ -405,7 +446,7 @@ struct FunctionDecl : Decl {
   std::string semantic;  // of the return value: float4 frag(...) : SV_Target
   Loc semantic_loc;
   std::vector<Attribute> attributes;
-  std::unique_ptr<BlockStmt> body;  // null for a prototype
+  std::unique_ptr<BlockStmt> body;           // null for a prototype
   const FunctionDecl* definition = nullptr;  // sema: for a prototype, the function it declares
   FunctionDecl(Loc l) : Decl(DeclKind::Function, l) {}
 };
@@ -443,10 +484,10 @@ struct TranslationUnit {
 // Every node class fits the arena's alignment.
 template <class... Nodes>
 inline constexpr bool kNodesFitArena = ((alignof(Nodes) <= AstArena::kAlignment) && ...);
-static_assert(kNodesFitArena<IntLiteralExpr, FloatLiteralExpr, BoolLiteralExpr, NameExpr, UnaryExpr, BinaryExpr,
-                             AssignExpr, ConditionalExpr, CallExpr, MemberExpr, IndexExpr, CastExpr, InitListExpr,
-                             ConversionExpr, BlockStmt, ExprStmt, DeclStmt, IfStmt, ForStmt, WhileStmt, DoWhileStmt,
-                             SwitchStmt, ReturnStmt, SimpleStmt, VarDecl, ParamDecl, StructDecl, FunctionDecl,
-                             CBufferDecl, TypedefDecl>);
+static_assert(
+    kNodesFitArena<IntLiteralExpr, FloatLiteralExpr, BoolLiteralExpr, NameExpr, UnaryExpr, BinaryExpr, AssignExpr,
+                   ConditionalExpr, CallExpr, MemberExpr, IndexExpr, CastExpr, InitListExpr, ConversionExpr, BlockStmt,
+                   ExprStmt, DeclStmt, IfStmt, ForStmt, WhileStmt, DoWhileStmt, SwitchStmt, ReturnStmt, SimpleStmt,
+                   VarDecl, ParamDecl, StructDecl, FunctionDecl, CBufferDecl, TypedefDecl>);
 
 }  // namespace xshade::hlsl

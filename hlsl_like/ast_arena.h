@@ -135,9 +135,13 @@ struct AstAllocator {
   T* allocate(size_t count) { return static_cast<T*>(ast_arena_detail::allocate_with_origin(count * sizeof(T))); }
   void deallocate(T* array, size_t) noexcept { ast_arena_detail::release_with_origin(array); }
   template <class U>
-  bool operator==(const AstAllocator<U>&) const noexcept { return true; }
+  bool operator==(const AstAllocator<U>&) const noexcept {
+    return true;
+  }
   template <class U>
-  bool operator!=(const AstAllocator<U>&) const noexcept { return false; }
+  bool operator!=(const AstAllocator<U>&) const noexcept {
+    return false;
+  }
 };
 
 template <class T>

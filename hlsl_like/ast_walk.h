@@ -43,9 +43,7 @@ void walk_expressions(const Expr* expr, const Visit& visit) {
       for (const ExprPtr& arg : e->args) walk_expressions(arg.get(), visit);
       break;
     }
-    case ExprKind::Member:
-      walk_expressions(static_cast<const MemberExpr*>(expr)->object.get(), visit);
-      break;
+    case ExprKind::Member: walk_expressions(static_cast<const MemberExpr*>(expr)->object.get(), visit); break;
     case ExprKind::Index: {
       const auto* e = static_cast<const IndexExpr*>(expr);
       walk_expressions(e->object.get(), visit);
@@ -57,9 +55,7 @@ void walk_expressions(const Expr* expr, const Visit& visit) {
       for (const ExprPtr& element : static_cast<const InitListExpr*>(expr)->elements)
         walk_expressions(element.get(), visit);
       break;
-    case ExprKind::Conversion:
-      walk_expressions(static_cast<const ConversionExpr*>(expr)->operand.get(), visit);
-      break;
+    case ExprKind::Conversion: walk_expressions(static_cast<const ConversionExpr*>(expr)->operand.get(), visit); break;
     case ExprKind::IntLiteral:
     case ExprKind::FloatLiteral:
     case ExprKind::BoolLiteral:
@@ -72,8 +68,7 @@ void walk_expressions(const Stmt* stmt, const Visit& visit) {
   if (!stmt) return;
   switch (stmt->kind) {
     case StmtKind::Block:
-      for (const StmtPtr& child : static_cast<const BlockStmt*>(stmt)->statements)
-        walk_expressions(child.get(), visit);
+      for (const StmtPtr& child : static_cast<const BlockStmt*>(stmt)->statements) walk_expressions(child.get(), visit);
       break;
     case StmtKind::Expr: walk_expressions(static_cast<const ExprStmt*>(stmt)->expr.get(), visit); break;
     case StmtKind::Decl:

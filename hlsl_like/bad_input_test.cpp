@@ -421,9 +421,9 @@ TEST(BadInput, MissingSourceFile) {
 TEST(BadInput, IncludeNotFoundListsTheSearchedFolders) {
   TempDir dir;
   const fs::path main = dir.write("main.hlsl",
-                                   "#pragma fragment frag\n"
-                                   "#include \"Lighting.hlsl\"\n"
-                                   "float4 frag(float4 pos : SV_Position) : SV_Target { return 1; }\n");
+                                  "#pragma fragment frag\n"
+                                  "#include \"Lighting.hlsl\"\n"
+                                  "float4 frag(float4 pos : SV_Position) : SV_Target { return 1; }\n");
   CompileOptions options;
   options.include_dirs = {dir.path() / "a", dir.path() / "b"};
   auto m = compile_file(main, options);
@@ -456,25 +456,32 @@ TEST(BadInput, IncludeOutsideTheGivenFoldersIsRefused) {
   dir.write("secret.txt", "float secret_value;\n");
   dir.write("shaders/include/common.hlsl", "#include \"../../secret.txt\"\n");
   const fs::path main = dir.write("shaders/materials/main.hlsl",
-                                   "#include \"include/common.hlsl\"\n"
-                                   "#include \"" + (dir.path() / "secret.txt").string() + "\"\n"
-                                   "#include \"../include/link.hlsl\"\n"
-                                   "float4 frag(float4 pos : SV_Position) : SV_Target { return 1; }\n");
+                                  "#include \"include/common.hlsl\"\n"
+                                  "#include \"" +
+                                      (dir.path() / "secret.txt").string() +
+                                      "\"\n"
+                                      "#include \"../include/link.hlsl\"\n"
+                                      "float4 frag(float4 pos : SV_Position) : SV_Target { return 1; }\n");
   fs::create_symlink(dir.path() / "secret.txt", dir.path() / "shaders" / "include" / "link.hlsl");
   CompileOptions options;
   options.include_dirs = {dir.path() / "shaders"};
   auto m = compile_file(main, options);
-  const std::string folders = (dir.path() / "shaders").string() + ", " + (dir.path() / "shaders" / "materials").string();
+  const std::string folders =
+      (dir.path() / "shaders").string() + ", " + (dir.path() / "shaders" / "materials").string();
   const Strings rendered = all_rendered(*m);
   ASSERT_EQ(rendered.size(), 3u) << m->diagnostics.render_all();
   EXPECT_EQ(rendered[0], (dir.path() / "shaders" / "include" / "common.hlsl").string() +
                              ":1:10: error: include file '../../secret.txt' is outside the folders this shader was "
-                             "given (" + folders + "); an include may not leave them\n"
+                             "given (" +
+                             folders +
+                             "); an include may not leave them\n"
                              "    #include \"../../secret.txt\"\n"
                              "             ^");
   EXPECT_NE(rendered[1].find("error: include file '" + (dir.path() / "secret.txt").string() + "' is outside"),
-            std::string::npos) << rendered[1];
-  EXPECT_NE(rendered[2].find("error: include file '../include/link.hlsl' is outside"), std::string::npos) << rendered[2];
+            std::string::npos)
+      << rendered[1];
+  EXPECT_NE(rendered[2].find("error: include file '../include/link.hlsl' is outside"), std::string::npos)
+      << rendered[2];
   EXPECT_EQ(m->diagnostics.render_all().find("secret_value"), std::string::npos);
 }
 
@@ -493,10 +500,10 @@ TEST(BadInput, IncludeCycleIsTheOnlyError) {
   auto m = compile_file(main, {});
   EXPECT_LT(seconds_since(start), kFastSeconds * kTimeScale);
   // A file may be on the include stack twice (a deliberate re-inclusion); the third time is a cycle.
-  EXPECT_EQ(all_rendered(*m), (Strings{c.string() +
-                                       ":1:2: error: #include cycle: a.hlsl -> b.hlsl -> c.hlsl -> a.hlsl -> ...\n"
-                                       "    #include \"a.hlsl\"\n"
-                                       "     ^"}));
+  EXPECT_EQ(all_rendered(*m),
+            (Strings{c.string() + ":1:2: error: #include cycle: a.hlsl -> b.hlsl -> c.hlsl -> a.hlsl -> ...\n"
+                                  "    #include \"a.hlsl\"\n"
+                                  "     ^"}));
 }
 
 TEST(BadInput, ErrorInsideAnIncludedFileNamesThatFile) {
@@ -505,13 +512,14 @@ TEST(BadInput, ErrorInsideAnIncludedFileNamesThatFile) {
                                     "float3 helper(float3 n) {\n"
                                     "  return normalise(n);\n"
                                     "}\n");
-  const fs::path main = dir.write("main.hlsl",
-                                  "#pragma fragment frag\n"
-                                  "#include \"Common.hlsl\"\n"
-                                  "float4 frag(float4 pos : SV_Position) : SV_Target { return float4(helper(pos.xyz), 1); }\n");
+  const fs::path main =
+      dir.write("main.hlsl",
+                "#pragma fragment frag\n"
+                "#include \"Common.hlsl\"\n"
+                "float4 frag(float4 pos : SV_Position) : SV_Target { return float4(helper(pos.xyz), 1); }\n");
   auto m = compile_file(main, {});
-  EXPECT_EQ(all_rendered(*m), (Strings{common.string() +
-                                       ":2:10: error: unknown function 'normalise'; did you mean 'normalize'?\n"
+  EXPECT_EQ(all_rendered(*m),
+            (Strings{common.string() + ":2:10: error: unknown function 'normalise'; did you mean 'normalize'?\n"
                                        "      return normalise(n);\n"
                                        "             ^"}));
 }

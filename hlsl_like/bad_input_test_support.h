@@ -25,7 +25,8 @@ inline constexpr double kFastSeconds = 1.0;
 // The whole rendered output of a hostile input stays readable.
 inline constexpr size_t kShortRender = 4096;
 
-inline std::unique_ptr<Module> compile(const std::string& name, const std::string& text, const CompileOptions& options = {}) {
+inline std::unique_ptr<Module> compile(const std::string& name, const std::string& text,
+                                       const CompileOptions& options = {}) {
   return compile_text(name, text, options);
 }
 

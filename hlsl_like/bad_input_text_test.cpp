@@ -29,12 +29,13 @@ TEST(BadInput, MutuallyRecursiveMacros) {
                    "  float x = A;\n"
                    "  return x;\n"
                    "}\n");
-  EXPECT_EQ(all_rendered(*m), (Strings{"macro.hlsl:5:13: warning: macro 'A' refers to itself; it is not expanded again\n"
-                                       "      float x = A;\n"
-                                       "                ^",
-                                       "macro.hlsl:5:13: error: unknown name 'A'\n"
-                                       "      float x = A;\n"
-                                       "                ^"}));
+  EXPECT_EQ(all_rendered(*m),
+            (Strings{"macro.hlsl:5:13: warning: macro 'A' refers to itself; it is not expanded again\n"
+                     "      float x = A;\n"
+                     "                ^",
+                     "macro.hlsl:5:13: error: unknown name 'A'\n"
+                     "      float x = A;\n"
+                     "                ^"}));
 }
 
 TEST(BadInput, ErrorInsideAMacroExpansionPointsAtTheInvocation) {
@@ -135,14 +136,14 @@ TEST(BadInput, UnterminatedStringInAnInclude) {
 TEST(BadInput, BinaryGarbage) {
   // One error per byte that cannot start a token; a valid byte run ("garbage") is a name.
   auto m = compile("garbage.hlsl", "#pragma fragment frag\n\x01\x02\xff\xfe\x80garbage\x00\x7f\n"s);
-  EXPECT_EQ(headers(*m), (Strings{"garbage.hlsl:2:1: error: unknown character '\\x01'",
-                                  "garbage.hlsl:2:2: error: unknown character '\\x02'",
-                                  "garbage.hlsl:2:3: error: unknown character '\\xFF'",
-                                  "garbage.hlsl:2:4: error: unknown character '\\xFE'",
-                                  "garbage.hlsl:2:5: error: unknown character '\\x80'",
-                                  "garbage.hlsl:2:13: error: unknown character '\\x00'",
-                                  "garbage.hlsl:2:14: error: unknown character '\\x7F'",
-                                  "garbage.hlsl:1:18: error: entry point 'frag' is not defined"}));
+  EXPECT_EQ(
+      headers(*m),
+      (Strings{
+          "garbage.hlsl:2:1: error: unknown character '\\x01'", "garbage.hlsl:2:2: error: unknown character '\\x02'",
+          "garbage.hlsl:2:3: error: unknown character '\\xFF'", "garbage.hlsl:2:4: error: unknown character '\\xFE'",
+          "garbage.hlsl:2:5: error: unknown character '\\x80'", "garbage.hlsl:2:13: error: unknown character '\\x00'",
+          "garbage.hlsl:2:14: error: unknown character '\\x7F'",
+          "garbage.hlsl:1:18: error: entry point 'frag' is not defined"}));
   EXPECT_EQ(rendered(*m, 7),
             "garbage.hlsl:1:18: error: entry point 'frag' is not defined\n"
             "    #pragma fragment frag\n"
@@ -231,9 +232,13 @@ TEST(BadInput, OneMebibyteExpressionLine) {
   const std::string all = m->diagnostics.render_all();
   EXPECT_LT(all.size(), kShortRender) << all.substr(0, kShortRender);
   // The excerpt is 120 characters around the column, after "...".
-  EXPECT_EQ(first(*m), "long.hlsl:2:1037: error: nesting is too deep (more than 256 levels)\n"
-                       "    ..." + line.substr(976, 120) + "\n"
-                       "       " + std::string(60, ' ') + "^");
+  EXPECT_EQ(first(*m),
+            "long.hlsl:2:1037: error: nesting is too deep (more than 256 levels)\n"
+            "    ..." +
+                line.substr(976, 120) +
+                "\n"
+                "       " +
+                std::string(60, ' ') + "^");
   EXPECT_EQ(line.substr(1036, 1), "+");
 }
 
@@ -245,49 +250,67 @@ TEST(BadInput, OneMebibyteIdentifierKeepsTheMessageShort) {
   auto m = compile("long.hlsl",
                    "#pragma fragment frag\n"
                    "float4 frag(float4 pos : SV_Position) : SV_Target {\n"
-                   "  return " + name + ";\n"
-                   "}\n");
+                   "  return " +
+                       name +
+                       ";\n"
+                       "}\n");
   EXPECT_LT(seconds_since(start), kFastSeconds * kTimeScale);
   EXPECT_EQ(m->diagnostics.error_count(), 1u);
   ASSERT_LT(m->diagnostics.render_all().size(), kShortRender);  // stops before printing 1 MiB
-  EXPECT_EQ(first(*m), "long.hlsl:3:10: error: unknown name '" + std::string(64, 'a') + "...'\n"
-                       "      return " + std::string(111, 'a') + "\n"
-                       "             ^");
+  EXPECT_EQ(first(*m), "long.hlsl:3:10: error: unknown name '" + std::string(64, 'a') +
+                           "...'\n"
+                           "      return " +
+                           std::string(111, 'a') +
+                           "\n"
+                           "             ^");
 }
 
 TEST(BadInput, TenThousandNestedParentheses) {
   const size_t depth = 10000;
-  const std::string text = "#pragma fragment frag\n"
-                           "float4 frag(float4 pos : SV_Position) : SV_Target {\n"
-                           "  float x = " + std::string(depth, '(') + "1" + std::string(depth, ')') + ";\n"
-                           "  return x;\n"
-                           "}\n";
+  const std::string text =
+      "#pragma fragment frag\n"
+      "float4 frag(float4 pos : SV_Position) : SV_Target {\n"
+      "  float x = " +
+      std::string(depth, '(') + "1" + std::string(depth, ')') +
+      ";\n"
+      "  return x;\n"
+      "}\n";
   const auto start = std::chrono::steady_clock::now();
   auto m = compile("deep.hlsl", text);
   EXPECT_LT(seconds_since(start), kFastSeconds * kTimeScale);
   EXPECT_EQ(m->diagnostics.error_count(), 1u) << m->diagnostics.render_all().substr(0, kShortRender);
   EXPECT_LT(m->diagnostics.render_all().size(), kShortRender);
   // The 257th '(' (column 13 + 256) is one level too many.
-  EXPECT_EQ(first(*m), "deep.hlsl:3:269: error: nesting is too deep (more than 256 levels)\n"
-                       "    ..." + std::string(120, '(') + "\n"
-                       "       " + std::string(60, ' ') + "^");
+  EXPECT_EQ(first(*m),
+            "deep.hlsl:3:269: error: nesting is too deep (more than 256 levels)\n"
+            "    ..." +
+                std::string(120, '(') +
+                "\n"
+                "       " +
+                std::string(60, ' ') + "^");
 }
 
 TEST(BadInput, TenThousandNestedBraces) {
   const size_t depth = 10000;
-  const std::string text = "#pragma fragment frag\n"
-                           "float4 frag(float4 pos : SV_Position) : SV_Target {\n"
-                           "  " + std::string(depth, '{') + std::string(depth, '}') + "\n"
-                           "  return 1;\n"
-                           "}\n";
+  const std::string text =
+      "#pragma fragment frag\n"
+      "float4 frag(float4 pos : SV_Position) : SV_Target {\n"
+      "  " +
+      std::string(depth, '{') + std::string(depth, '}') +
+      "\n"
+      "  return 1;\n"
+      "}\n";
   const auto start = std::chrono::steady_clock::now();
   auto m = compile("deep.hlsl", text);
   EXPECT_LT(seconds_since(start), kFastSeconds * kTimeScale);
   EXPECT_LT(m->diagnostics.render_all().size(), kShortRender);
   // The 257th '{' (column 3 + 256) is one level too many.
   EXPECT_EQ(all_rendered(*m), (Strings{"deep.hlsl:3:259: error: nesting is too deep (more than 256 levels)\n"
-                                       "    ..." + std::string(120, '{') + "\n"
-                                       "       " + std::string(60, ' ') + "^"}));
+                                       "    ..." +
+                                       std::string(120, '{') +
+                                       "\n"
+                                       "       " +
+                                       std::string(60, ' ') + "^"}));
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -325,9 +348,10 @@ TEST(BadInput, SeveralErrorsInOneFileAreAllReported) {
 }
 
 TEST(BadInput, TheErrorLimit) {
-  std::string text = "#pragma fragment frag\n"
-                     "float4 frag(float4 pos : SV_Position) : SV_Target {\n"
-                     "  float x = 0;\n";
+  std::string text =
+      "#pragma fragment frag\n"
+      "float4 frag(float4 pos : SV_Position) : SV_Target {\n"
+      "  float x = 0;\n";
   for (int i = 0; i < 60; ++i) text += "  x += missing" + std::to_string(i) + ";\n";
   text += "  return x;\n}\n";
   auto m = compile("limit.hlsl", text);
@@ -354,9 +378,10 @@ TEST(BadInput, ImplicitTruncationIsOnlyAWarning) {
                    "}\n");
   EXPECT_TRUE(m->ok());
   EXPECT_NE(m->entry_points.fragment, nullptr);
-  EXPECT_EQ(all_rendered(*m), (Strings{"trunc.hlsl:4:16: warning: implicit truncation of vector type from 'float4' to 'float3'\n"
-                                       "      float3 rgb = c;\n"
-                                       "                   ^"}));
+  EXPECT_EQ(all_rendered(*m),
+            (Strings{"trunc.hlsl:4:16: warning: implicit truncation of vector type from 'float4' to 'float3'\n"
+                     "      float3 rgb = c;\n"
+                     "                   ^"}));
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -371,10 +396,11 @@ TEST(BadInput, DuplicateTextureRegister) {
                    "float4 frag(float2 uv : TEXCOORD0) : SV_Target {\n"
                    "  return _MainTex.Sample(sampler_MainTex, uv) * _DetailTex.Sample(sampler_MainTex, uv);\n"
                    "}\n");
-  EXPECT_EQ(all_rendered(*m), (Strings{"reg.hlsl:3:24: error: register t0 of '_DetailTex' is already taken by '_MainTex', and the "
-                                       "entry points read both; give one another register\n"
-                                       "    Texture2D _DetailTex : register(t0);\n"
-                                       "                           ^"}));
+  EXPECT_EQ(all_rendered(*m),
+            (Strings{"reg.hlsl:3:24: error: register t0 of '_DetailTex' is already taken by '_MainTex', and the "
+                     "entry points read both; give one another register\n"
+                     "    Texture2D _DetailTex : register(t0);\n"
+                     "                           ^"}));
 }
 
 TEST(BadInput, DuplicateConstantBufferRegister) {
@@ -385,10 +411,11 @@ TEST(BadInput, DuplicateConstantBufferRegister) {
                    "float4 frag(float2 uv : TEXCOORD0) : SV_Target {\n"
                    "  return _A + _B;\n"
                    "}\n");
-  EXPECT_EQ(all_rendered(*m), (Strings{"reg.hlsl:3:13: error: register b1 of 'B' is already taken by 'A', and the entry points "
-                                       "read both; give one another register\n"
-                                       "    cbuffer B : register(b1) { float4 _B; };\n"
-                                       "                ^"}));
+  EXPECT_EQ(all_rendered(*m),
+            (Strings{"reg.hlsl:3:13: error: register b1 of 'B' is already taken by 'A', and the entry points "
+                     "read both; give one another register\n"
+                     "    cbuffer B : register(b1) { float4 _B; };\n"
+                     "                ^"}));
 }
 
 // fxc and DXC let resources share a register where no entry point reads both: a file of
@@ -474,12 +501,14 @@ TEST(BadInput, ArraysOfResourcesAreGlobalsOfASizeNamingTheDeclarationOtherwise) 
                    "Texture2D _Bindless[];\n"
                    "float4 pick(Texture2D layers[2], SamplerState s, float2 uv) { return layers[1].Sample(s, uv); }\n"
                    "float4 frag(float2 uv : TEXCOORD0) : SV_Target { return _Layers[2].Sample(_Samplers[1], uv); }\n");
-  const std::string why = "; arrays of resources are supported as globals of textures, samplers and constant buffers "
-                          "only: declare each one separately";
-  EXPECT_EQ(headers(*m), (Strings{"layers.hlsl:5:11: error: '_Bindless' is an unsized array of resources "
-                                  "(descriptor indexing), which GLSL for OpenGL cannot declare: give it the size the "
-                                  "application binds",
-                                  "layers.hlsl:6:23: error: parameter 'layers' cannot have type 'Texture2D[2]'" + why}));
+  const std::string why =
+      "; arrays of resources are supported as globals of textures, samplers and constant buffers "
+      "only: declare each one separately";
+  EXPECT_EQ(headers(*m),
+            (Strings{"layers.hlsl:5:11: error: '_Bindless' is an unsized array of resources "
+                     "(descriptor indexing), which GLSL for OpenGL cannot declare: give it the size the "
+                     "application binds",
+                     "layers.hlsl:6:23: error: parameter 'layers' cannot have type 'Texture2D[2]'" + why}));
 }
 
 TEST(BadInput, AFileScopeConstWithoutStaticIsNoArraySize) {
@@ -495,14 +524,17 @@ TEST(BadInput, AFileScopeConstWithoutStaticIsNoArraySize) {
                    "  float v[1 + N];\n"
                    "  return 0;\n"
                    "}\n");
-  const std::string why = "array size must be an integer constant; 'N' is a uniform (a file-scope const without "
-                          "static); declare it 'static const'";
-  EXPECT_EQ(all_rendered(*m), (Strings{"consts.hlsl:4:15: error: " + why + "\n"
-                                       "    float weights[N];\n"
-                                       "                  ^",
-                                       "consts.hlsl:7:11: error: " + why + "\n"
-                                       "      float v[1 + N];\n"
-                                       "              ^"}));
+  const std::string why =
+      "array size must be an integer constant; 'N' is a uniform (a file-scope const without "
+      "static); declare it 'static const'";
+  EXPECT_EQ(all_rendered(*m), (Strings{"consts.hlsl:4:15: error: " + why +
+                                           "\n"
+                                           "    float weights[N];\n"
+                                           "                  ^",
+                                       "consts.hlsl:7:11: error: " + why +
+                                           "\n"
+                                           "      float v[1 + N];\n"
+                                           "              ^"}));
 }
 
 TEST(BadInput, AStatementBeforeTheFirstCaseOfASwitch) {

@@ -20,10 +20,20 @@ struct PragmaReading {
 
 // Unity's pragmas that say how Unity builds a shader (its target is read where a .shader is
 // composed, as SHADER_TARGET) and change nothing of what a variant draws.
-constexpr std::string_view kUnityBuildPragmas[] = {
-    "target", "require", "only_renderers", "exclude_renderers", "hardware_tier_variants", "enable_d3d11_debug_symbols",
-    "fragmentoption", "glsl_no_auto_normalization", "instancing_options", "editor_sync_compilation",
-    "skip_optimizations", "disable_fastmath", "prefer_hlslcc", "enable_cbuffer"};
+constexpr std::string_view kUnityBuildPragmas[] = {"target",
+                                                   "require",
+                                                   "only_renderers",
+                                                   "exclude_renderers",
+                                                   "hardware_tier_variants",
+                                                   "enable_d3d11_debug_symbols",
+                                                   "fragmentoption",
+                                                   "glsl_no_auto_normalization",
+                                                   "instancing_options",
+                                                   "editor_sync_compilation",
+                                                   "skip_optimizations",
+                                                   "disable_fastmath",
+                                                   "prefer_hlslcc",
+                                                   "enable_cbuffer"};
 
 PragmaReading read_pragmas(const std::vector<Pragma>& pragmas, DiagnosticEngine& diagnostics) {
   PragmaReading reading;
@@ -69,8 +79,9 @@ PragmaReading read_pragmas(const std::vector<Pragma>& pragmas, DiagnosticEngine&
     } else if (pragma.name == "pass") {
       // A post effect's pass (pass_declarations.h), read once the variant's pragmas are final.
     } else if (pragma.name == "surface") {
-      diagnostics.error(pragma.loc, "#pragma surface makes a surface shader, whose passes Unity generates; xshade does "
-                                    "not generate them yet: write the pass's vertex and fragment functions");
+      diagnostics.error(pragma.loc,
+                        "#pragma surface makes a surface shader, whose passes Unity generates; xshade does "
+                        "not generate them yet: write the pass's vertex and fragment functions");
     } else if (pragma.name == "geometry" || pragma.name == "hull" || pragma.name == "domain") {
       diagnostics.error(pragma.loc, "xshade compiles vertex and fragment stages; a " + std::string(pragma.name) +
                                         " stage cannot be compiled, and leaving it out would draw something else");
@@ -98,8 +109,8 @@ PragmaReading read_pragmas(const std::vector<Pragma>& pragmas, DiagnosticEngine&
 // The pragmas Unity (and xshade's `pass`) reads itself, which it ignores in a file read by a
 // plain #include; the others (`warning`, `pack_matrix`) are HLSL's own and go to the compiler.
 bool is_unity_pragma(std::string_view name) {
-  constexpr std::string_view kStages[] = {"vertex", "fragment", "geometry", "hull", "domain", "surface",
-                                          "skip_variants", "pass"};
+  constexpr std::string_view kStages[] = {"vertex", "fragment", "geometry",      "hull",
+                                          "domain", "surface",  "skip_variants", "pass"};
   return std::find(std::begin(kStages), std::end(kStages), name) != std::end(kStages) ||
          std::find(std::begin(kUnityBuildPragmas), std::end(kUnityBuildPragmas), name) !=
              std::end(kUnityBuildPragmas) ||
@@ -117,15 +128,18 @@ std::vector<Pragma> program_pragmas(const std::vector<Pragma>& pragmas, Diagnost
       kept.push_back(pragma);
       continue;
     }
-    diagnostics.warning(pragma.loc, "#pragma " + std::string(pragma.name) +
-                                        " is ignored: this file is read by a plain #include, and Unity takes its "
-                                        "pragmas only from the shader's program and the files it includes with "
-                                        "#include_with_pragmas; include this file with #include_with_pragmas to apply it");
+    diagnostics.warning(pragma.loc,
+                        "#pragma " + std::string(pragma.name) +
+                            " is ignored: this file is read by a plain #include, and Unity takes its "
+                            "pragmas only from the shader's program and the files it includes with "
+                            "#include_with_pragmas; include this file with #include_with_pragmas to apply it");
   }
   return kept;
 }
 
-bool is_no_keyword(const std::string& keyword) { return !keyword.empty() && keyword.find_first_not_of('_') == std::string::npos; }
+bool is_no_keyword(const std::string& keyword) {
+  return !keyword.empty() && keyword.find_first_not_of('_') == std::string::npos;
+}
 
 // A variant has one keyword of each set: asking for two of one set is an error at the set's
 // pragma, since either keyword alone would make a valid variant and the front end cannot choose.
@@ -139,10 +153,10 @@ void check_one_keyword_per_set(const PragmaReading& reading, const std::vector<s
           std::find(named.begin(), named.end(), keyword) == named.end())
         named.push_back(keyword);
     for (size_t k = 1; k < named.size(); ++k)
-      diagnostics.error(reading.keyword_set_locs[i],
-                        "keywords '" + named[0] + "' and '" + named[k] + "' are both of this #pragma " +
-                            (set.shader_feature ? "shader_feature" : "multi_compile") +
-                            " set; a variant can have only one keyword of each set");
+      diagnostics.error(reading.keyword_set_locs[i], "keywords '" + named[0] + "' and '" + named[k] +
+                                                         "' are both of this #pragma " +
+                                                         (set.shader_feature ? "shader_feature" : "multi_compile") +
+                                                         " set; a variant can have only one keyword of each set");
   }
 }
 
@@ -192,12 +206,14 @@ std::unique_ptr<Module> compile(std::unique_ptr<Module> module, const CompileOpt
     reading = read_pragmas(module->pragmas, module->diagnostics);
   }
   for (const std::string& keyword : options.keywords) {
-    const bool declared = std::any_of(reading.keyword_sets.begin(), reading.keyword_sets.end(), [&](const KeywordSet& set) {
-      return std::find(set.keywords.begin(), set.keywords.end(), keyword) != set.keywords.end();
-    });
+    const bool declared =
+        std::any_of(reading.keyword_sets.begin(), reading.keyword_sets.end(), [&](const KeywordSet& set) {
+          return std::find(set.keywords.begin(), set.keywords.end(), keyword) != set.keywords.end();
+        });
     if (!declared)
-      module->diagnostics.warning({module->main_file, 1, 1}, "keyword '" + keyword +
-                                                                  "' is not declared by #pragma multi_compile or shader_feature");
+      module->diagnostics.warning(
+          {module->main_file, 1, 1},
+          "keyword '" + keyword + "' is not declared by #pragma multi_compile or shader_feature");
   }
 
   check_one_keyword_per_set(reading, options.keywords, module->diagnostics);

@@ -43,8 +43,8 @@ struct Module {
   TranslationUnit unit;
   EntryPoints entry_points;
   Reflection reflection;
-  ResourceOrigins resource_origins;  // which global or parameter each resource read is
-  std::vector<Pragma> pragmas;  // those that apply: Unity's own only from the program (Pragma::in_program)
+  ResourceOrigins resource_origins;     // which global or parameter each resource read is
+  std::vector<Pragma> pragmas;          // those that apply: Unity's own only from the program (Pragma::in_program)
   std::vector<PassDeclaration> passes;  // a post effect's `#pragma pass` lines
   // The macros the variant was compiled with (prelude, keywords, defines), for other compilers
   // of the same source (glslang's HLSL front end on the vk-hlsl lane); a prelude macro the source

@@ -96,10 +96,11 @@ TEST(Compiler, PreludeMacrosExpandInEveryCompile) {
 
 // Unity's UnityShaderVariables.cginc defines the matrix macros the prelude has, its own way.
 TEST(Compiler, ASourceRedefinesAPreludeMacroWithoutAWarning) {
-  auto module = compile_text("unity.hlsl",
-                             "#pragma fragment frag\nfloat4x4 unity_MatrixMVP;\n#define UNITY_MATRIX_MVP unity_MatrixMVP\n"
-                             "float4 frag() : SV_Target { return UNITY_MATRIX_MVP[0]; }\n#define UNITY_MATRIX_MVP 0\n",
-                             {});
+  auto module =
+      compile_text("unity.hlsl",
+                   "#pragma fragment frag\nfloat4x4 unity_MatrixMVP;\n#define UNITY_MATRIX_MVP unity_MatrixMVP\n"
+                   "float4 frag() : SV_Target { return UNITY_MATRIX_MVP[0]; }\n#define UNITY_MATRIX_MVP 0\n",
+                   {});
   ASSERT_TRUE(module->ok());
   const auto& diagnostics = module->diagnostics.diagnostics();
   // The second definition replaces the source's own: that one warns, with a note.
@@ -110,7 +111,8 @@ TEST(Compiler, ASourceRedefinesAPreludeMacroWithoutAWarning) {
   // Another compiler handed the variant's macros (glslang on vk-hlsl) gets the prelude less the
   // one the source defines: two definitions are an error there.
   const auto has = [&](const std::string& name) {
-    return std::any_of(module->macros.begin(), module->macros.end(), [&](const MacroDefinition& m) { return m.name == name; });
+    return std::any_of(module->macros.begin(), module->macros.end(),
+                       [&](const MacroDefinition& m) { return m.name == name; });
   };
   EXPECT_FALSE(has("UNITY_MATRIX_MVP"));
   EXPECT_TRUE(has("UNITY_MATRIX_MV"));
@@ -119,9 +121,10 @@ TEST(Compiler, ASourceRedefinesAPreludeMacroWithoutAWarning) {
 // A post pass compiles its own fragment entry with the file's vertex entry (Unity's VertDefault);
 // eval's fragment-only compile has none.
 TEST(Compiler, APassEntryKeepsTheVertexEntry) {
-  const char* source = "#pragma vertex vert\n#pragma fragment frag\n"
-                       "float4 vert(float3 p : POSITION) : SV_Position { return float4(p, 1); }\n"
-                       "float4 frag() : SV_Target { return 0; }\nfloat4 other() : SV_Target { return 1; }\n";
+  const char* source =
+      "#pragma vertex vert\n#pragma fragment frag\n"
+      "float4 vert(float3 p : POSITION) : SV_Position { return float4(p, 1); }\n"
+      "float4 frag() : SV_Target { return 0; }\nfloat4 other() : SV_Target { return 1; }\n";
   CompileOptions pass;
   pass.pass_fragment_entry = "other";
   auto module = compile_text("pass.hlsl", source, pass);
@@ -155,19 +158,23 @@ TEST(Compiler, LineDirectivesSayWhereTheTextCameFrom) {
                                    {});
   const std::vector<std::string> messages = rendered(*module);
   ASSERT_EQ(messages.size(), 2u);
-  EXPECT_EQ(messages[0].substr(0, messages[0].find('\n')), "materials/Toon.shader:41:12: error: unknown name 'undefined_name'");
+  EXPECT_EQ(messages[0].substr(0, messages[0].find('\n')),
+            "materials/Toon.shader:41:12: error: unknown name 'undefined_name'");
   EXPECT_NE(messages[0].find("float4 c = undefined_name;"), std::string::npos) << messages[0];
-  EXPECT_EQ(messages[1].substr(0, messages[1].find('\n')), "materials/Toon.shader:7:12: error: unknown name 'other_name'");
+  EXPECT_EQ(messages[1].substr(0, messages[1].find('\n')),
+            "materials/Toon.shader:7:12: error: unknown name 'other_name'");
 }
 
 TEST(Compiler, AMalformedLineDirectiveSaysWhatItTakes) {
   const auto module = compile_text("bad_line.hlsl", "#line zero\n#line 3 notquoted\nfloat4 a;\n", {});
   const std::vector<std::string> messages = rendered(*module);
   ASSERT_EQ(messages.size(), 2u);
-  EXPECT_EQ(messages[0].substr(0, messages[0].find('\n')),
-            "bad_line.hlsl:1:7: error: #line takes a line number from 1 to 2147483647 in decimal digits, then optionally "
-            "a file name in quotes");
-  EXPECT_EQ(messages[1].substr(0, messages[1].find('\n')), "bad_line.hlsl:2:9: error: #line's file name is a string in quotes");
+  EXPECT_EQ(
+      messages[0].substr(0, messages[0].find('\n')),
+      "bad_line.hlsl:1:7: error: #line takes a line number from 1 to 2147483647 in decimal digits, then optionally "
+      "a file name in quotes");
+  EXPECT_EQ(messages[1].substr(0, messages[1].find('\n')),
+            "bad_line.hlsl:2:9: error: #line's file name is a string in quotes");
 }
 
 }  // namespace

@@ -71,7 +71,8 @@ std::string DiagnosticEngine::excerpt(size_t index) const {
   // A very long line is shown around the column, so that a 1 MiB line prints a readable excerpt.
   constexpr size_t kWidth = 120;
   size_t start = 0;
-  if (line.size() > kWidth && loc.column > kWidth / 2) start = std::min<size_t>(loc.column - 1 - kWidth / 2, line.size() - 1);
+  if (line.size() > kWidth && loc.column > kWidth / 2)
+    start = std::min<size_t>(loc.column - 1 - kWidth / 2, line.size() - 1);
   const size_t end = std::min(line.size(), start + kWidth);
   // The caret goes where the pointed-at byte starts in the shown text; a column past the end of
   // the line (a missing ';' after the last token) is that many places past the shown text.
@@ -85,7 +86,8 @@ std::string DiagnosticEngine::excerpt(size_t index) const {
     else
       append_printable(shown, line[i]);
   }
-  if (caret == std::string::npos) caret = shown.size() + (caret_byte >= end && caret_byte <= line.size() ? caret_byte - end : 0);
+  if (caret == std::string::npos)
+    caret = shown.size() + (caret_byte >= end && caret_byte <= line.size() ? caret_byte - end : 0);
   text += "    ";
   if (start > 0) text += "...";
   text += shown;

@@ -29,15 +29,17 @@ TEST(DiagnosticEngine, RendersTheLineWithACaretExpandingTabs) {
   // 8 bytes after 'i', so it shows 16 places in.
   const uint32_t f = sources.add("c.hlsl", "x\n\tint a = @;\r\n  \tb\n");
   diagnostics.error({f, 2, 10}, "unexpected character '@'");
-  EXPECT_EQ(diagnostics.render(0), "c.hlsl:2:10: error: unexpected character '@'\n"
-                                   "            int a = @;\n"
-                                   "                    ^");
+  EXPECT_EQ(diagnostics.render(0),
+            "c.hlsl:2:10: error: unexpected character '@'\n"
+            "            int a = @;\n"
+            "                    ^");
   EXPECT_EQ(diagnostics.render_all(), diagnostics.render(0) + "\n");
   // A tab after two spaces still ends at the tab stop: 'b' shows 8 places in, not 10.
   diagnostics.error({f, 3, 4}, "here");
-  EXPECT_EQ(diagnostics.render(1), "c.hlsl:3:4: error: here\n"
-                                   "            b\n"
-                                   "            ^");
+  EXPECT_EQ(diagnostics.render(1),
+            "c.hlsl:3:4: error: here\n"
+            "            b\n"
+            "            ^");
 }
 
 TEST(DiagnosticEngine, ControlBytesAreEscapedAndTheCaretFollows) {
@@ -47,14 +49,16 @@ TEST(DiagnosticEngine, ControlBytesAreEscapedAndTheCaretFollows) {
   // "a" and three escapes, 1 + 3 * 4 = 13 places in.
   const uint32_t f = sources.add("e.hlsl", std::string("a\0\x1b\xffz\n", 6));
   diagnostics.error({f, 1, 5}, "z");
-  EXPECT_EQ(diagnostics.render(0), "e.hlsl:1:5: error: z\n"
-                                   "    a\\x00\\x1B\\xFFz\n"
-                                   "                 ^");
+  EXPECT_EQ(diagnostics.render(0),
+            "e.hlsl:1:5: error: z\n"
+            "    a\\x00\\x1B\\xFFz\n"
+            "                 ^");
   // Pointing at an escaped byte puts the caret under its backslash.
   diagnostics.error({f, 1, 3}, "escape");
-  EXPECT_EQ(diagnostics.render(1), "e.hlsl:1:3: error: escape\n"
-                                   "    a\\x00\\x1B\\xFFz\n"
-                                   "         ^");
+  EXPECT_EQ(diagnostics.render(1),
+            "e.hlsl:1:3: error: escape\n"
+            "    a\\x00\\x1B\\xFFz\n"
+            "         ^");
 }
 
 TEST(DiagnosticEngine, ACaretPastTheEndOfTheLineSitsJustAfterIt) {
@@ -62,9 +66,10 @@ TEST(DiagnosticEngine, ACaretPastTheEndOfTheLineSitsJustAfterIt) {
   DiagnosticEngine diagnostics(sources);
   const uint32_t f = sources.add("s.hlsl", "int x = 1\n");
   diagnostics.error({f, 1, 10}, "expected ';'");
-  EXPECT_EQ(diagnostics.render(0), "s.hlsl:1:10: error: expected ';'\n"
-                                   "    int x = 1\n"
-                                   "             ^");
+  EXPECT_EQ(diagnostics.render(0),
+            "s.hlsl:1:10: error: expected ';'\n"
+            "    int x = 1\n"
+            "             ^");
 }
 
 TEST(DiagnosticEngine, QuotedTextIsClippedAndEscaped) {

@@ -21,8 +21,8 @@ class PragmaFolder {
   PragmaFolder() {
     std::random_device random;
     for (;;) {
-      const fs::path candidate =
-          fs::temp_directory_path() / ("xshade_include_pragmas_" + std::to_string(random()) + "_" + std::to_string(random()));
+      const fs::path candidate = fs::temp_directory_path() / ("xshade_include_pragmas_" + std::to_string(random()) +
+                                                              "_" + std::to_string(random()));
       if (fs::create_directory(candidate)) {
         path_ = fs::canonical(candidate);
         return;
@@ -74,7 +74,8 @@ constexpr const char* kPragmaFrag =
 TEST(IncludeWithPragmas, TheIncludedFilesPragmasApplyAsIfWrittenInTheProgram) {
   PragmaFolder folder;
   folder.write("features.hlsl", kPragmaFeatures);
-  const fs::path main = folder.write("main.hlsl", std::string("#include_with_pragmas \"features.hlsl\"\n") + kPragmaFrag);
+  const fs::path main =
+      folder.write("main.hlsl", std::string("#include_with_pragmas \"features.hlsl\"\n") + kPragmaFrag);
   auto module = compile_file(main, {});
   ASSERT_TRUE(module->ok()) << module->diagnostics.render_all();
   EXPECT_TRUE(module->diagnostics.diagnostics().empty()) << module->diagnostics.render_all();
@@ -113,7 +114,8 @@ TEST(IncludeWithPragmas, OnlyAnUnbrokenChainFromTheProgramApplies) {
   folder.write("both.hlsl", "#include_with_pragmas \"features.hlsl\"\n");
   // Unity's note: a file included by #include ignores the pragmas of what it includes by
   // #include_with_pragmas; and a plain #include inside an #include_with_pragmas file is plain.
-  for (const char* chain : {"#include \"plain_then_pragmas.hlsl\"\n", "#include_with_pragmas \"pragmas_then_plain.hlsl\"\n"}) {
+  for (const char* chain :
+       {"#include \"plain_then_pragmas.hlsl\"\n", "#include_with_pragmas \"pragmas_then_plain.hlsl\"\n"}) {
     SCOPED_TRACE(chain);
     const fs::path main = folder.write("main.hlsl", std::string("#pragma fragment frag\n") + chain + kPragmaFrag);
     auto module = compile_file(main, {});

@@ -14,18 +14,18 @@ namespace {
 using E = PatternElement;
 using Sh = PatternShape;
 
-constexpr TypePattern kT{E::T, Sh::T, {0, 0}};                     // T
-constexpr TypePattern kS{E::T, Sh::Scalar, {0, 0}};                // scalar of T's element
-constexpr TypePattern kVN{E::T, Sh::Vector, {kDimN, 0}};           // vector<T, N>
+constexpr TypePattern kT{E::T, Sh::T, {0, 0}};            // T
+constexpr TypePattern kS{E::T, Sh::Scalar, {0, 0}};       // scalar of T's element
+constexpr TypePattern kVN{E::T, Sh::Vector, {kDimN, 0}};  // vector<T, N>
 constexpr TypePattern kVR{E::T, Sh::Vector, {kDimR, 0}};
 constexpr TypePattern kVC{E::T, Sh::Vector, {kDimC, 0}};
 constexpr TypePattern kV3{E::T, Sh::Vector, {3, 0}};
-constexpr TypePattern kMRC{E::T, Sh::Matrix, {kDimR, kDimC}};      // matrix<T, R, C>
+constexpr TypePattern kMRC{E::T, Sh::Matrix, {kDimR, kDimC}};  // matrix<T, R, C>
 constexpr TypePattern kMCR{E::T, Sh::Matrix, {kDimC, kDimR}};
 constexpr TypePattern kMRN{E::T, Sh::Matrix, {kDimR, kDimN}};
 constexpr TypePattern kMNC{E::T, Sh::Matrix, {kDimN, kDimC}};
 constexpr TypePattern kMNN{E::T, Sh::Matrix, {kDimN, kDimN}};
-constexpr TypePattern kBoolT{E::Bool, Sh::T, {0, 0}};              // T's shape, other elements
+constexpr TypePattern kBoolT{E::Bool, Sh::T, {0, 0}};  // T's shape, other elements
 constexpr TypePattern kIntT{E::Int, Sh::T, {0, 0}};
 constexpr TypePattern kUintT{E::Uint, Sh::T, {0, 0}};
 constexpr TypePattern kFloatT{E::Float, Sh::T, {0, 0}};
@@ -43,7 +43,8 @@ constexpr ParamPattern out(TypePattern type) { return {type, true}; }
 constexpr uint8_t kFloatLike = element_bit(ScalarType::Half) | element_bit(ScalarType::Float);
 constexpr uint8_t kNumeric = kFloatLike | element_bit(ScalarType::Int) | element_bit(ScalarType::Uint);
 constexpr uint8_t kAny = kNumeric | element_bit(ScalarType::Bool);
-constexpr uint8_t kBitCastable = element_bit(ScalarType::Int) | element_bit(ScalarType::Uint) | element_bit(ScalarType::Float);
+constexpr uint8_t kBitCastable =
+    element_bit(ScalarType::Int) | element_bit(ScalarType::Uint) | element_bit(ScalarType::Float);
 constexpr uint8_t kUintOnly = element_bit(ScalarType::Uint);
 constexpr uint8_t kIntegers = element_bit(ScalarType::Int) | element_bit(ScalarType::Uint);
 constexpr uint8_t kFloatOnly = element_bit(ScalarType::Float);
@@ -79,11 +80,14 @@ void add_dx9_sampling(std::vector<Entry>& entries, Sh sampler, IntrinsicId plain
                       IntrinsicId lod, IntrinsicId proj) {
   const TypePattern s{E::Float, sampler, {0, 0}};
   const TypePattern coordinate = sampler == Sh::Sampler1D ? kFloat : sampler == Sh::Sampler2D ? kFloat2 : kFloat3;
-  entries.push_back({plain, false, true,
+  entries.push_back({plain,
+                     false,
+                     true,
                      {sig(kFloatOnly, kFloat4, {in(s), in(coordinate)}),
                       sig(kFloatOnly, kFloat4, {in(s), in(coordinate), in(coordinate), in(coordinate)})}});
   entries.push_back({bias, false, true, {sig(kFloatOnly, kFloat4, {in(s), in(kFloat4)})}});
-  entries.push_back({grad, false, false, {sig(kFloatOnly, kFloat4, {in(s), in(coordinate), in(coordinate), in(coordinate)})}});
+  entries.push_back(
+      {grad, false, false, {sig(kFloatOnly, kFloat4, {in(s), in(coordinate), in(coordinate), in(coordinate)})}});
   entries.push_back({lod, false, false, {sig(kFloatOnly, kFloat4, {in(s), in(kFloat4)})}});
   entries.push_back({proj, false, true, {sig(kFloatOnly, kFloat4, {in(s), in(kFloat4)})}});
 }
@@ -148,7 +152,9 @@ std::vector<Entry> make_entries() {
       {I::Min, false, false, {sig(kNumeric, kT, {in(kT), in(kT)})}},
       {I::Modf, false, false, {sig(kFloatLike, kT, {in(kT), out(kT)})}},
       // mul: every HLSL overload; vectors are rows on the left of a matrix, columns on its right.
-      {I::Mul, false, false,
+      {I::Mul,
+       false,
+       false,
        {sig(kNumeric, kS, {in(kS), in(kS)}), sig(kNumeric, kVN, {in(kS), in(kVN)}),
         sig(kNumeric, kMRC, {in(kS), in(kMRC)}), sig(kNumeric, kVN, {in(kVN), in(kS)}),
         sig(kNumeric, kS, {in(kVN), in(kVN)}), sig(kNumeric, kVC, {in(kVN), in(kMNC)}),
@@ -197,10 +203,9 @@ std::vector<Entry> make_entries() {
 constexpr size_t kIntrinsicCount = 1 XSHADE_INTRINSICS(XSHADE_INTRINSIC_COUNT);  // with None
 #undef XSHADE_INTRINSIC_COUNT
 
-constexpr std::array<std::string_view, kIntrinsicCount> kNames = {
-    "",
+constexpr std::array<std::string_view, kIntrinsicCount> kNames = {"",
 #define XSHADE_INTRINSIC_NAME(id, name) name,
-    XSHADE_INTRINSICS(XSHADE_INTRINSIC_NAME)
+                                                                  XSHADE_INTRINSICS(XSHADE_INTRINSIC_NAME)
 #undef XSHADE_INTRINSIC_NAME
 };
 
@@ -248,9 +253,8 @@ struct NamedId {
 constexpr std::array<NamedId, kIntrinsicCount - 1> kByName = [] {
   std::array<NamedId, kIntrinsicCount - 1> sorted{};
   for (size_t i = 1; i < kIntrinsicCount; ++i) sorted[i - 1] = {kNames[i], uint16_t(i)};
-  std::sort(sorted.begin(), sorted.end(), [](const NamedId& a, const NamedId& b) {
-    return a.name != b.name ? a.name < b.name : a.id < b.id;
-  });
+  std::sort(sorted.begin(), sorted.end(),
+            [](const NamedId& a, const NamedId& b) { return a.name != b.name ? a.name < b.name : a.id < b.id; });
   return sorted;
 }();
 

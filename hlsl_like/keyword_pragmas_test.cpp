@@ -16,9 +16,9 @@ using Strings = std::vector<std::string>;
 std::unique_ptr<Module> compile_with_pragmas(const std::string& pragmas, Strings keywords = {}) {
   CompileOptions options;
   options.keywords = std::move(keywords);
-  return compile_text("k.hlsl",
-                      pragmas + "#pragma fragment frag\nfloat4 frag(float4 pos : SV_Position) : SV_Target { return 1; }\n",
-                      options);
+  return compile_text(
+      "k.hlsl", pragmas + "#pragma fragment frag\nfloat4 frag(float4 pos : SV_Position) : SV_Target { return 1; }\n",
+      options);
 }
 
 Strings messages(const Module& module) {
@@ -35,7 +35,8 @@ TEST(KeywordPragmas, ScopeSuffixesDeclareTheSetsThePlainFormsDo) {
   EXPECT_FALSE(keyword_pragma("multi_compile_fwdbase"));  // a shortcut, not a list on the line
   EXPECT_FALSE(keyword_pragma("shader_feature_locale"));
 
-  auto module = compile_with_pragmas("#pragma multi_compile_local _ A B\n#pragma shader_feature_local_fragment C\n", {"B"});
+  auto module =
+      compile_with_pragmas("#pragma multi_compile_local _ A B\n#pragma shader_feature_local_fragment C\n", {"B"});
   EXPECT_TRUE(messages(*module).empty()) << messages(*module)[0];
   ASSERT_EQ(module->reflection.keyword_sets.size(), 2u);
   EXPECT_EQ(module->reflection.keyword_sets[0].keywords, (Strings{"_", "A", "B"}));
@@ -54,9 +55,9 @@ TEST(KeywordPragmas, ShortcutsDeclareUnitysListsWithTheVariantTheRendererDrawsFi
   for (const KeywordSet& set : module->reflection.keyword_sets)
     for (const std::string& keyword : set.keywords)
       if (keyword != "_") declared.push_back(keyword);
-  EXPECT_EQ(declared, (Strings{"DIRECTIONAL", "LIGHTPROBE_SH", "LIGHTMAP_ON", "DIRLIGHTMAP_COMBINED", "DYNAMICLIGHTMAP_ON",
-                               "SHADOWS_SCREEN", "SHADOWS_SHADOWMASK", "LIGHTMAP_SHADOW_MIXING", "FOG_LINEAR", "FOG_EXP",
-                               "FOG_EXP2"}));
+  EXPECT_EQ(declared, (Strings{"DIRECTIONAL", "LIGHTPROBE_SH", "LIGHTMAP_ON", "DIRLIGHTMAP_COMBINED",
+                               "DYNAMICLIGHTMAP_ON", "SHADOWS_SCREEN", "SHADOWS_SHADOWMASK", "LIGHTMAP_SHADOW_MIXING",
+                               "FOG_LINEAR", "FOG_EXP", "FOG_EXP2"}));
 
   auto fogged = compile_with_pragmas("#pragma multi_compile_fwdbase\n#pragma multi_compile_fog\n", {"FOG_EXP2"});
   EXPECT_EQ(fogged->reflection.active_keywords, (Strings{"FOG_EXP2", "DIRECTIONAL", "LIGHTPROBE_SH"}));
@@ -75,7 +76,8 @@ TEST(KeywordPragmas, SkippedKeywordsAreNoChoiceOfTheirSet) {
 }
 
 TEST(KeywordPragmas, UnitysBuildPragmasAreReadQuietlyAndOtherStagesAreErrors) {
-  EXPECT_TRUE(messages(*compile_with_pragmas("#pragma target 3.0\n#pragma only_renderers d3d11 glcore\n#pragma require derivatives\n"))
+  EXPECT_TRUE(messages(*compile_with_pragmas(
+                           "#pragma target 3.0\n#pragma only_renderers d3d11 glcore\n#pragma require derivatives\n"))
                   .empty());
   // fxc's own warning switches, as HLSLSupport.cginc sets them.
   EXPECT_TRUE(messages(*compile_with_pragmas("#pragma warning (disable : 3205)\n")).empty());

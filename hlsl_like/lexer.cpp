@@ -12,7 +12,7 @@ enum : uint8_t {
   kHex = 4,
   kHorizontalSpace = 8,
   kLineSpecial = 16,
-  kSpaceStart = 32,  // may begin whitespace, a comment or a splice: where next() calls skip_space
+  kSpaceStart = 32,   // may begin whitespace, a comment or a splice: where next() calls skip_space
   kSinglePunct = 64,  // a punctuator that never begins a longer token
 };
 
@@ -39,8 +39,7 @@ bool is_digit(int c) { return has(c, kDigit); }
 
 }  // namespace
 
-Lexer::Lexer(std::string_view text, uint32_t file, DiagnosticEngine& diagnostics,
-             std::deque<std::string>* text_store)
+Lexer::Lexer(std::string_view text, uint32_t file, DiagnosticEngine& diagnostics, std::deque<std::string>* text_store)
     : text_(text), file_(file), diagnostics_(diagnostics), store_(text_store) {
   // A UTF-8 byte order mark (editors on Windows write one) is no token; columns count from after it.
   if (text_.substr(0, 3) == "\xEF\xBB\xBF") pos_ = line_start_ = 3;
@@ -272,8 +271,7 @@ size_t Lexer::lex_number(size_t start, Loc loc, TokenKind& kind) {
         }
       }
       if (suffix.size() > 64) suffix = suffix.substr(0, 64) + "...";
-      diagnostics_.error(loc, "invalid suffix '" + suffix + "' on " + (is_float ? "floating" : "integer") +
-                                  " literal");
+      diagnostics_.error(loc, "invalid suffix '" + suffix + "' on " + (is_float ? "floating" : "integer") + " literal");
     }
   }
   return end;
@@ -392,21 +390,30 @@ void Lexer::next_other(Token& token) {
         }
         break;
       }
-      case '(': case ')': case '[': case ']': case '{': case '}': case ';': case ',': case '?': case '~':
-      case '.':
-        break;
-      case ':':
-        match(':');
-        break;
+      case '(':
+      case ')':
+      case '[':
+      case ']':
+      case '{':
+      case '}':
+      case ';':
+      case ',':
+      case '?':
+      case '~':
+      case '.': break;
+      case ':': match(':'); break;
       case '+':
         if (!match('+')) match('=');
         break;
       case '-':
         if (!match('-')) match('=');
         break;
-      case '*': case '/': case '%': case '^': case '!': case '=':
-        match('=');
-        break;
+      case '*':
+      case '/':
+      case '%':
+      case '^':
+      case '!':
+      case '=': match('='); break;
       case '<':
         if (match('<')) {
           match('=');
@@ -427,12 +434,8 @@ void Lexer::next_other(Token& token) {
       case '|':
         if (!match('|')) match('=');
         break;
-      case '#':
-        token.kind = match('#') ? TokenKind::HashHash : TokenKind::Hash;
-        break;
-      default:
-        token.kind = TokenKind::Unknown;
-        break;
+      case '#': token.kind = match('#') ? TokenKind::HashHash : TokenKind::Hash; break;
+      default: token.kind = TokenKind::Unknown; break;
     }
   }
   if (first_splice_ == npos) {

@@ -70,8 +70,8 @@ class Lexer {
   uint32_t line_ = 1;
   size_t line_start_ = 0;
   bool at_line_start_ = true;
-  bool space_ = false;               // whitespace or a comment since the last token
-  size_t first_splice_ = npos;       // inside the token being lexed
+  bool space_ = false;          // whitespace or a comment since the last token
+  size_t first_splice_ = npos;  // inside the token being lexed
   // The text's last character cannot continue a name (a file ends with a line end, as a rule):
   // then a name stops before the end of the text on its own, and its characters are read with
   // no test of the end.

@@ -98,16 +98,17 @@ TEST(Lexer, IntegerForms) {
 
 TEST(Lexer, FloatForms) {
   Lexed l("1.0 .5 1. 2e-3 1.5e+2f 3E4 0.5f 1.h 2.0H 1.0F 4.0l 5.0L .5e1");
-  EXPECT_EQ(l.kinds(), (Strings{"float 1.0", "float .5", "float 1.", "float 2e-3", "float 1.5e+2f", "float 3E4",
-                                "float 0.5f", "float 1.h", "float 2.0H", "float 1.0F", "float 4.0l", "float 5.0L",
-                                "float .5e1"}));
+  EXPECT_EQ(l.kinds(),
+            (Strings{"float 1.0", "float .5", "float 1.", "float 2e-3", "float 1.5e+2f", "float 3E4", "float 0.5f",
+                     "float 1.h", "float 2.0H", "float 1.0F", "float 4.0l", "float 5.0L", "float .5e1"}));
   EXPECT_TRUE(l.messages().empty());
 }
 
 TEST(Lexer, ExponentWithoutDigitsIsAnError) {
   Lexed l("x = 1e;\ny = 2e+ ;");
   EXPECT_EQ(l.kinds(), (Strings{"id x", "punct =", "float 1e", "punct ;", "id y", "punct =", "float 2e+", "punct ;"}));
-  EXPECT_EQ(l.messages(), (Strings{"t.hlsl:1:5: error: exponent has no digits", "t.hlsl:2:5: error: exponent has no digits"}));
+  EXPECT_EQ(l.messages(),
+            (Strings{"t.hlsl:1:5: error: exponent has no digits", "t.hlsl:2:5: error: exponent has no digits"}));
 }
 
 TEST(Lexer, BadNumberSuffixesAndEmptyHex) {
@@ -128,9 +129,9 @@ TEST(Lexer, DotIsPunctUnlessADigitFollows) {
 }
 
 TEST(Lexer, EveryPunctuatorByLongestMatch) {
-  const Strings all{"(",  ")",  "[",  "]",  "{",  "}",  ";",  ",",  ".",  "?",  ":",  "::", "+",  "-",  "*",
-                    "/",  "%",  "++", "--", "=",  "+=", "-=", "*=", "/=", "%=", "==", "!=", "<",  ">",  "<=",
-                    ">=", "&&", "||", "!",  "~",  "&",  "|",  "^",  "<<", ">>", "&=", "|=", "^=", "<<=", ">>="};
+  const Strings all{"(",  ")",  "[",  "]",  "{", "}",  ";",  ",",  ".",  "?",  ":",  "::", "+",  "-",   "*",
+                    "/",  "%",  "++", "--", "=", "+=", "-=", "*=", "/=", "%=", "==", "!=", "<",  ">",   "<=",
+                    ">=", "&&", "||", "!",  "~", "&",  "|",  "^",  "<<", ">>", "&=", "|=", "^=", "<<=", ">>="};
   std::string text;
   for (const std::string& p : all) text += p + " ";
   Lexed l(text);
@@ -171,7 +172,7 @@ TEST(Lexer, CommentsAreSkippedAndCountAsSpace) {
   EXPECT_EQ(l.where(1), "2:1");
   EXPECT_EQ(l.where(2), "3:12");
   EXPECT_TRUE(l.tokens[1].at_line_start);
-  EXPECT_TRUE(l.tokens[2].space_before);  // the comment stands for a space
+  EXPECT_TRUE(l.tokens[2].space_before);    // the comment stands for a space
   EXPECT_FALSE(l.tokens[2].at_line_start);  // newlines inside a comment start no line
   EXPECT_TRUE(l.tokens[3].space_before);
   EXPECT_TRUE(l.messages().empty());
@@ -254,7 +255,10 @@ TEST(Lexer, UnusedBytesComeBackAsUnknownOneByteEach) {
 }
 
 TEST(Lexer, ByteOrderMarkAtTheStartIsSkipped) {
-  Lexed l("\xEF\xBB\xBF" "float x;\n" "\xEF\xBB\xBF");
+  Lexed l(
+      "\xEF\xBB\xBF"
+      "float x;\n"
+      "\xEF\xBB\xBF");
   EXPECT_EQ(l.kinds()[0], "id float");
   EXPECT_EQ(l.where(0), "1:1");
   EXPECT_TRUE(l.tokens[0].at_line_start);

@@ -168,12 +168,13 @@ TEST(Names, AnOverloadedEntryPointIsAmbiguousNamingBothDefinitions) {
       "#pragma fragment frag\n"
       "float4 frag(float4 p : SV_Position) : SV_Target { return p; }\n"
       "float4 frag(float2 uv : TEXCOORD0) : SV_Target { return uv.xyxy; }\n");
-  EXPECT_EQ(names_messages(*module),
-            (std::vector<std::string>{
-                "3:8: error: fragment entry point 'frag' is ambiguous: 'float4 frag(float2)' is defined here and "
-                "'float4 frag(float4)' at names.hlsl:2:8; an entry point cannot be overloaded: rename or remove all "
-                "but one of them",
-                "2:8: note: 'float4 frag(float4)' is defined here", "1:18: note: named the fragment entry point here"}));
+  EXPECT_EQ(
+      names_messages(*module),
+      (std::vector<std::string>{
+          "3:8: error: fragment entry point 'frag' is ambiguous: 'float4 frag(float2)' is defined here and "
+          "'float4 frag(float4)' at names.hlsl:2:8; an entry point cannot be overloaded: rename or remove all "
+          "but one of them",
+          "2:8: note: 'float4 frag(float4)' is defined here", "1:18: note: named the fragment entry point here"}));
 }
 
 TEST(Names, AnOverloadWithoutABodyStillMakesTheEntryPointAmbiguous) {

@@ -124,9 +124,7 @@ std::optional<Type> Parser::parse_type(bool allow_void) {
   }
   const size_t word_index = pos_;
   switch (builtin->word) {
-    case TypeWord::Plain:
-      advance();
-      return builtin->type;
+    case TypeWord::Plain: advance(); return builtin->type;
     case TypeWord::Double:
       error_here("double is not supported");
       advance();
@@ -156,12 +154,13 @@ std::optional<Type> Parser::parse_type(bool allow_void) {
         texel = parse_type(false);
       }
       if (!texel) return std::nullopt;
-      if (is_multisampled(builtin->type.texture_shape()) && accept(",") && !parse_template_number()) return std::nullopt;
+      if (is_multisampled(builtin->type.texture_shape()) && accept(",") && !parse_template_number())
+        return std::nullopt;
       if (!expect_closing_angle(open)) return std::nullopt;
       if (texel->is_error()) return Type::error();
       if (!texel->is_scalar() && !texel->is_vector()) {
-        error_at(texel_index, "the texel type of " + in_quotes(tok(word_index).text) + " must be a scalar or vector, not " +
-                                  in_quotes(texel->name()));
+        error_at(texel_index, "the texel type of " + in_quotes(tok(word_index).text) +
+                                  " must be a scalar or vector, not " + in_quotes(texel->name()));
         return Type::error();
       }
       return Type::texture(builtin->type.texture_shape(), *texel);
@@ -174,7 +173,8 @@ std::optional<Type> Parser::parse_type(bool allow_void) {
                               kind == BufferKind::AppendStructuredBuffer || kind == BufferKind::ConsumeStructuredBuffer;
       if (byte_address || !is("<")) {
         if (structured) {
-          error_here("expected '<' after " + in_quotes(tok(word_index).text) + ": a structured buffer needs an element type");
+          error_here("expected '<' after " + in_quotes(tok(word_index).text) +
+                     ": a structured buffer needs an element type");
           return Type::error();
         }
         return builtin->type;
@@ -284,7 +284,6 @@ void Parser::parse_specifiers(DeclContext context, Specifiers& spec) {
     advance();
   }
 }
-
 
 // -------------------------------------------------------------------------------------------
 // Declarator pieces
@@ -430,12 +429,15 @@ bool Parser::parse_register(RegisterBinding& binding) {
   const size_t open = pos_;
   advance();
   // An optional shader profile first: register(ps_5_0, t0).
-  if (cur().kind == TokenKind::Identifier && tok(pos_ + 1).is_punct(",") && cur().text.find('_') != std::string_view::npos) {
+  if (cur().kind == TokenKind::Identifier && tok(pos_ + 1).is_punct(",") &&
+      cur().text.find('_') != std::string_view::npos) {
     advance();
     advance();
   }
   const Token& name = cur();
-  const std::optional<uint32_t> index = name.kind == TokenKind::Identifier ? register_number(name.text.substr(std::min<size_t>(1, name.text.size()))) : std::nullopt;
+  const std::optional<uint32_t> index = name.kind == TokenKind::Identifier
+                                            ? register_number(name.text.substr(std::min<size_t>(1, name.text.size())))
+                                            : std::nullopt;
   const char letter = name.text.empty() ? 0 : char(name.text[0] | 0x20);
   if (!index || (letter != 't' && letter != 's' && letter != 'b' && letter != 'u')) {
     error_here("invalid register " + in_quotes(name.text));
@@ -580,8 +582,9 @@ std::unique_ptr<VarDecl> Parser::parse_var_declarator(const Specifiers& spec, co
   }
   if (unsized) {
     if (var->type.element().is_resource()) {
-      error_at(name_index, "'" + var->name + "' is an unsized array of resources (descriptor indexing), which GLSL for "
-                           "OpenGL cannot declare: give it the size the application binds");
+      error_at(name_index, "'" + var->name +
+                               "' is an unsized array of resources (descriptor indexing), which GLSL for "
+                               "OpenGL cannot declare: give it the size the application binds");
       var->type = Type::array(var->type.element(), 1);
     } else if (!var->initializer || var->initializer->kind != ExprKind::InitList) {
       error_at(name_index, "an unsized array needs an initializer list");
@@ -900,8 +903,8 @@ bool Parser::parse_cbuffer_member(CBufferDecl& decl) {
   const std::optional<size_t> name = expect_name();
   if (!name) return false;
   const size_t first = decl.members.size();
-  const bool ok = parse_declarators(spec, checked_var_type(*type, type_index), *name, DeclContext::CBufferMember,
-                                    decl.members);
+  const bool ok =
+      parse_declarators(spec, checked_var_type(*type, type_index), *name, DeclContext::CBufferMember, decl.members);
   for (size_t i = first; i < decl.members.size(); ++i) decl.members[i]->vk = vk;
   return ok;
 }

@@ -77,8 +77,7 @@ ExprPtr Parser::parse_conditional() {
   conditional->then_value = parse_expression();
   if (!conditional->then_value) return nullptr;
   if (!is(":")) {
-    if (error_here("expected ':' in conditional expression"))
-      diagnostics_.note(tok(question).loc, "to match this '?'");
+    if (error_here("expected ':' in conditional expression")) diagnostics_.note(tok(question).loc, "to match this '?'");
     return nullptr;
   }
   advance();
@@ -158,12 +157,18 @@ ExprPtr Parser::parse_unary() {
   if (token.kind == TokenKind::Punct) {
     std::optional<UnaryOp> op;
     const std::string_view t = token.text;
-    if (t == "+") op = UnaryOp::Plus;
-    else if (t == "-") op = UnaryOp::Minus;
-    else if (t == "!") op = UnaryOp::Not;
-    else if (t == "~") op = UnaryOp::BitNot;
-    else if (t == "++") op = UnaryOp::PreIncrement;
-    else if (t == "--") op = UnaryOp::PreDecrement;
+    if (t == "+")
+      op = UnaryOp::Plus;
+    else if (t == "-")
+      op = UnaryOp::Minus;
+    else if (t == "!")
+      op = UnaryOp::Not;
+    else if (t == "~")
+      op = UnaryOp::BitNot;
+    else if (t == "++")
+      op = UnaryOp::PreIncrement;
+    else if (t == "--")
+      op = UnaryOp::PreDecrement;
     if (op) {
       auto unary = make<UnaryExpr>(token.loc, *op);
       advance();

@@ -34,7 +34,7 @@ bool Parser::report_hidden_type(size_t index) {
   const std::string name = in_quotes(tok(index).text);
   const Token& variable = tok(word.hidden_by - 1);
   if (error_at(index, name + " is a variable here, not a type: a variable named like a type hides it to the end of "
-                          "the variable's scope; rename the variable to use the type here"))
+                             "the variable's scope; rename the variable to use the type here"))
     diagnostics_.note(variable.loc, "the variable " + name + " that hides the type is declared here");
   return true;
 }

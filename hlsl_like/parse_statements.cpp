@@ -67,7 +67,9 @@ StmtPtr Parser::parse_statement_body() {
     if (word == "break" || word == "continue" || word == "discard") {
       advance();
       if (!expect_semicolon(in_quotes(word))) return nullptr;
-      const StmtKind kind = word == "break" ? StmtKind::Break : word == "continue" ? StmtKind::Continue : StmtKind::Discard;
+      const StmtKind kind = word == "break"      ? StmtKind::Break
+                            : word == "continue" ? StmtKind::Continue
+                                                 : StmtKind::Discard;
       return make_simple(kind, loc);
     }
     if (word == "switch") return parse_switch();
@@ -156,8 +158,10 @@ StmtPtr Parser::parse_switch() {
       continue;
     }
     StmtPtr child = parse_statement();
-    if (child) statement->cases.back().statements.push_back(std::move(child));
-    else recover_statement();
+    if (child)
+      statement->cases.back().statements.push_back(std::move(child));
+    else
+      recover_statement();
     if (pos_ == before && !is("}") && !at_end()) advance();
   }
   if (!accept("}")) error_unmatched("}", brace);

@@ -13,10 +13,12 @@ namespace {
 // Attributes DXC defines that xshade reads but does not implement, with what to do instead.
 std::optional<std::string> not_implemented(const std::string& name) {
   if (name.rfind("ext_", 0) == 0)
-    return "SPIR-V extension instructions and types (vk::" + name + ") are not supported: they need DXC's SPIR-V "
+    return "SPIR-V extension instructions and types (vk::" + name +
+           ") are not supported: they need DXC's SPIR-V "
            "back end";
   if (name == "counter_binding" || name == "shader_record_nv" || name == "shader_record_ext" ||
-      name == "shader_record_buffer" || name == "index" || name == "post_depth_coverage" || name == "early_and_late_tests")
+      name == "shader_record_buffer" || name == "index" || name == "post_depth_coverage" ||
+      name == "early_and_late_tests")
     return "vk::" + name + " is not supported: it belongs to resources or stages xshade does not compile";
   return std::nullopt;
 }
@@ -82,9 +84,9 @@ bool Parser::parse_vulkan_attributes(VulkanAttributes& out) {
       const auto arguments = [&](size_t least, size_t most, bool string) {
         if (numbers.size() >= least && numbers.size() <= most && string == !text.empty()) return true;
         const std::string takes = string          ? "a string"
-                                  : most == 0       ? "no arguments"
-                                  : least == most   ? std::to_string(least) + " integer" + (least == 1 ? "" : "s")
-                                                    : std::to_string(least) + " or " + std::to_string(most) + " integers";
+                                  : most == 0     ? "no arguments"
+                                  : least == most ? std::to_string(least) + " integer" + (least == 1 ? "" : "s")
+                                                  : std::to_string(least) + " or " + std::to_string(most) + " integers";
         error_at(name_index, "vk::" + name + " takes " + takes);
         return false;
       };
@@ -106,7 +108,8 @@ bool Parser::parse_vulkan_attributes(VulkanAttributes& out) {
       } else if (name == "builtin") {
         if (!arguments(0, 0, true)) return false;
         if (text != "PointSize") {
-          error_at(name_index, "vk::builtin(\"" + text + "\") is not supported; xshade writes vk::builtin(\"PointSize\")");
+          error_at(name_index,
+                   "vk::builtin(\"" + text + "\") is not supported; xshade writes vk::builtin(\"PointSize\")");
           return false;
         }
         out.builtin = text;

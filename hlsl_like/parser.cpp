@@ -61,20 +61,21 @@ BuiltinTable make_builtin_types() {
   table["void"] = {Type::void_type(), TypeWord::Void};
   table["vector"] = {Type::vector(ScalarType::Float, 4), TypeWord::Vector};
   table["matrix"] = {Type::matrix(ScalarType::Float, 4, 4), TypeWord::Matrix};
-  for (TextureShape shape : {TextureShape::Tex1D, TextureShape::Tex1DArray, TextureShape::Tex2D, TextureShape::Tex2DArray,
-                             TextureShape::Tex2DMS, TextureShape::Tex2DMSArray, TextureShape::Tex3D, TextureShape::Cube,
-                             TextureShape::CubeArray, TextureShape::Subpass, TextureShape::SubpassMS})
+  for (TextureShape shape :
+       {TextureShape::Tex1D, TextureShape::Tex1DArray, TextureShape::Tex2D, TextureShape::Tex2DArray,
+        TextureShape::Tex2DMS, TextureShape::Tex2DMSArray, TextureShape::Tex3D, TextureShape::Cube,
+        TextureShape::CubeArray, TextureShape::Subpass, TextureShape::SubpassMS})
     table[texture_shape_name(shape)] = {Type::texture(shape, Type::vector(ScalarType::Float, 4)), TypeWord::Texture};
   table["SamplerState"] = {Type::sampler_state(), TypeWord::Plain};
   table["SamplerComparisonState"] = {Type::sampler_state(true), TypeWord::Plain};
   for (TextureShape shape : {TextureShape::Tex1D, TextureShape::Tex2D, TextureShape::Tex3D, TextureShape::Cube})
     table[texture_shape_name(shape, true)] = {Type::sampler(shape), TypeWord::Plain};
   table["sampler"] = {Type::sampler2d(), TypeWord::Plain};  // DX9: read as sampler2D
-  for (BufferKind kind : {BufferKind::Buffer, BufferKind::RWBuffer, BufferKind::StructuredBuffer,
-                          BufferKind::RWStructuredBuffer, BufferKind::ByteAddressBuffer, BufferKind::RWByteAddressBuffer,
-                          BufferKind::AppendStructuredBuffer, BufferKind::ConsumeStructuredBuffer, BufferKind::RWTexture1D,
-                          BufferKind::RWTexture1DArray, BufferKind::RWTexture2D, BufferKind::RWTexture2DArray,
-                          BufferKind::RWTexture3D})
+  for (BufferKind kind :
+       {BufferKind::Buffer, BufferKind::RWBuffer, BufferKind::StructuredBuffer, BufferKind::RWStructuredBuffer,
+        BufferKind::ByteAddressBuffer, BufferKind::RWByteAddressBuffer, BufferKind::AppendStructuredBuffer,
+        BufferKind::ConsumeStructuredBuffer, BufferKind::RWTexture1D, BufferKind::RWTexture1DArray,
+        BufferKind::RWTexture2D, BufferKind::RWTexture2DArray, BufferKind::RWTexture3D})
     table[buffer_kind_name(kind)] = {Type::buffer(kind, Type::vector(ScalarType::Float, 4)), TypeWord::Buffer};
   table["ConstantBuffer"] = {Type::error(), TypeWord::ConstantBuffer};
   for (const char* name : {"texture", "string"}) table[name] = {Type::error(), TypeWord::Unsupported};
@@ -93,17 +94,16 @@ WordTable make_word_table() {
   for (const auto& [name, builtin] : builtin_types()) table[name].builtin = &builtin;
   table["ConstantBuffer"].template_only = true;
   for (std::string_view word :
-       {"struct", "typedef", "cbuffer", "tbuffer", "if", "else", "for", "while", "do", "break", "continue",
-        "return", "discard", "switch", "case", "default", "goto", "true", "false", "register", "packoffset",
-        "class", "interface", "namespace", "template", "typename", "enum", "technique", "technique10",
-        "technique11", "sizeof", "this"})
+       {"struct",   "typedef",  "cbuffer",  "tbuffer",   "if",          "else",        "for",       "while",
+        "do",       "break",    "continue", "return",    "discard",     "switch",      "case",      "default",
+        "goto",     "true",     "false",    "register",  "packoffset",  "class",       "interface", "namespace",
+        "template", "typename", "enum",     "technique", "technique10", "technique11", "sizeof",    "this"})
     table[word].reserved = true;
   for (std::string_view word : {"class", "interface", "namespace", "template", "typename", "tbuffer", "enum",
                                 "technique", "technique10", "technique11", "sizeof", "this"})
     table[word].unsupported = true;
-  for (std::string_view word : {"static", "const", "uniform", "extern", "groupshared", "volatile", "precise",
-                                "inline", "row_major", "column_major", "in", "out", "inout", "shared", "snorm",
-                                "unorm"}) {
+  for (std::string_view word : {"static", "const", "uniform", "extern", "groupshared", "volatile", "precise", "inline",
+                                "row_major", "column_major", "in", "out", "inout", "shared", "snorm", "unorm"}) {
     table[word].reserved = true;
     table[word].hard_specifier = true;
   }
@@ -307,9 +307,9 @@ bool Parser::skip_group(size_t open, bool semicolons_inside) {
   advance();
   const unsigned barriers =
       (semicolons_inside ? 0u : kSkipSemicolon) | (parens ? kSkipOpenBrace | kSkipCloseBrace : 0u);
-  return skip_until({.stops = kSkipCloseParen | kSkipCloseBracket | kSkipCloseBrace,
-                     .barriers = barriers,
-                     .consume = true}) == SkipEnd::Stop;
+  return skip_until(
+             {.stops = kSkipCloseParen | kSkipCloseBracket | kSkipCloseBrace, .barriers = barriers, .consume = true}) ==
+         SkipEnd::Stop;
 }
 
 // -------------------------------------------------------------------------------------------
@@ -357,8 +357,8 @@ size_t Parser::type_end(size_t index) const {
     } else if (token.text == ">>") {
       depth -= 2;
       if (depth <= 0) return i + 1;
-    } else if (token.text == ";" || token.text == "{" || token.text == "}" || token.text == "(" ||
-               token.text == ")" || token.text == "=") {
+    } else if (token.text == ";" || token.text == "{" || token.text == "}" || token.text == "(" || token.text == ")" ||
+               token.text == "=") {
       return next;
     }
   }

@@ -108,8 +108,7 @@ TEST(Parser, UnityShaderEndToEnd) {
   EXPECT_EQ(frag.return_type, Type::vector(ScalarType::Half, 4));
   ASSERT_EQ(frag.body->statements.size(), 6u);
   const auto& albedo = static_cast<const DeclStmt&>(*frag.body->statements[2]);
-  EXPECT_EQ(sexpr(*albedo.vars[0]->initializer),
-            "(* (method _MainTex Sample sampler_MainTex (. i uv)) _Color)");
+  EXPECT_EQ(sexpr(*albedo.vars[0]->initializer), "(* (method _MainTex Sample sampler_MainTex (. i uv)) _Color)");
   const auto& tint = static_cast<const ExprStmt&>(*frag.body->statements[3]);
   EXPECT_EQ(sexpr(*tint.expr), "(*= (. albedo rgb) (. (call tex2D _RampTex (ctor float2 nd 0.5)) rgb))");
   const auto& discard_if = static_cast<const IfStmt&>(*frag.body->statements[4]);
@@ -157,7 +156,7 @@ TEST(Parser, ScalarVectorAndMatrixTypes) {
 TEST(Parser, DoubleIsReportedAndReadAsFloat) {
   auto p = parse_text("double x;\ndouble3 y = double3(1, 2, 3);\n");
   EXPECT_EQ(p->errors(), (std::vector<std::string>{"1:1: double is not supported", "2:1: double is not supported",
-                                                    "2:13: double is not supported"}));
+                                                   "2:13: double is not supported"}));
   EXPECT_EQ(p->var("x").type, Type::scalar(ScalarType::Float));
   EXPECT_EQ(p->var("y").type, Type::vector(ScalarType::Float, 3));
 }

@@ -75,10 +75,33 @@ TEST(Parser, FloatLiteralValuesAreStrtods) {
     for (size_t i = 0; i < n; ++i) out += char('0' + rng() % 10);
     return out;
   };
-  std::vector<std::string> spellings = {"0.0", "1.", ".5", "1e5", "1e+5", "1e-5", "1e", "1e+", "1.5.3", ".", "e5",
-                                        "0x1p3", "1.0e22", "1.0e23", "9007199254740993.0", "123456789012345.6",
-                                        "0.000000000000000000000000001", "1e-22", "1e-23", "00012.500e-3", "1e400",
-                                        "1e-400", "4.9e-324", "1.7976931348623157e308", "0e99999", "12a", "1.5f"};
+  std::vector<std::string> spellings = {"0.0",
+                                        "1.",
+                                        ".5",
+                                        "1e5",
+                                        "1e+5",
+                                        "1e-5",
+                                        "1e",
+                                        "1e+",
+                                        "1.5.3",
+                                        ".",
+                                        "e5",
+                                        "0x1p3",
+                                        "1.0e22",
+                                        "1.0e23",
+                                        "9007199254740993.0",
+                                        "123456789012345.6",
+                                        "0.000000000000000000000000001",
+                                        "1e-22",
+                                        "1e-23",
+                                        "00012.500e-3",
+                                        "1e400",
+                                        "1e-400",
+                                        "4.9e-324",
+                                        "1.7976931348623157e308",
+                                        "0e99999",
+                                        "12a",
+                                        "1.5f"};
   for (int i = 0; i < 4000; ++i) {
     std::string text = digits(rng() % 20);
     if (rng() % 4 != 0) text += "." + digits(rng() % 20);
@@ -116,8 +139,9 @@ TEST(Parser, FloatLiteralValuesAreStrtods) {
 }
 
 TEST(Parser, Literals) {
-  auto p = parse_text("static const uint a = 4294967295u; static const int b = 0xFFFFFFFF;\n"
-                      "static const float c = 1.25f; static const half d = 2.5h; static const int e = 010;\n");
+  auto p = parse_text(
+      "static const uint a = 4294967295u; static const int b = 0xFFFFFFFF;\n"
+      "static const float c = 1.25f; static const half d = 2.5h; static const int e = 010;\n");
   ASSERT_EQ(p->errors(), std::vector<std::string>{});
   const auto& a = static_cast<const IntLiteralExpr&>(*p->var("a").initializer);
   EXPECT_EQ(a.value, 4294967295u);
@@ -133,8 +157,8 @@ TEST(Parser, Literals) {
   EXPECT_EQ(static_cast<const IntLiteralExpr&>(*p->var("e").initializer).value, 8u);
 
   auto big = parse_text("static const int x = 4294967296;\nstatic const int y = 0x100000000;\n");
-  EXPECT_EQ(big->errors(), (std::vector<std::string>{"1:22: integer literal is too large",
-                                                     "2:22: integer literal is too large"}));
+  EXPECT_EQ(big->errors(),
+            (std::vector<std::string>{"1:22: integer literal is too large", "2:22: integer literal is too large"}));
 }
 
 TEST(Parser, Statements) {
@@ -224,7 +248,8 @@ TEST(Parser, ResourceTypesOfEveryKind) {
   auto p = parse_text(
       "Texture3D<half4> lut; TextureCubeArray cubes; Texture2DMS<float, 8> depth; Texture1DArray<uint2> ids;\n"
       "SamplerComparisonState cmp; samplerCUBE env; sampler3D vol;\n"
-      "struct Light { float3 color; };\nStructuredBuffer<Light> lights; RWByteAddressBuffer raw; RWTexture3D<uint> grid;\n"
+      "struct Light { float3 color; };\nStructuredBuffer<Light> lights; RWByteAddressBuffer raw; RWTexture3D<uint> "
+      "grid;\n"
       "struct Scene { float4x4 view; };\nConstantBuffer<Scene> scene : register(b2);\n");
   ASSERT_EQ(p->errors(), std::vector<std::string>{});
   EXPECT_EQ(p->var("lut").type.name(), "Texture3D<half4>");
@@ -250,23 +275,28 @@ TEST(Parser, ConstantBufferAloneIsAName) {
 
 TEST(Parser, ResourceTypeArgumentsAreChecked) {
   const std::vector<std::pair<std::string, std::string>> cases = {
-      {"struct L { float a; };\nTexture2D<L> t;", "2:11: the texel type of 'Texture2D' must be a scalar or vector, not 'L'"},
+      {"struct L { float a; };\nTexture2D<L> t;",
+       "2:11: the texel type of 'Texture2D' must be a scalar or vector, not 'L'"},
       {"Texture2D<float4x4> t;", "1:11: the texel type of 'Texture2D' must be a scalar or vector, not 'float4x4'"},
       {"StructuredBuffer b;", "1:18: expected '<' after 'StructuredBuffer': a structured buffer needs an element type"},
       {"ConstantBuffer<float4> c;", "1:16: ConstantBuffer holds a struct, not 'float4'"},
   };
-  for (const auto& [source, error] : cases) EXPECT_EQ(parse_text(source)->errors(), std::vector<std::string>{error}) << source;
+  for (const auto& [source, error] : cases)
+    EXPECT_EQ(parse_text(source)->errors(), std::vector<std::string>{error}) << source;
 }
 
 TEST(Parser, AttributesWithStringsAreIgnoredWithANote) {
-  auto p = parse_text("[RootSignature(\"RootFlags(0), \" \"CBV(b0)\")]\nfloat4 f() : SV_Target { return 0; }\n"
-                      "[domain(\"tri\")] [partitioning(\"integer\")] void g() {}\n");
+  auto p = parse_text(
+      "[RootSignature(\"RootFlags(0), \" \"CBV(b0)\")]\nfloat4 f() : SV_Target { return 0; }\n"
+      "[domain(\"tri\")] [partitioning(\"integer\")] void g() {}\n");
   EXPECT_EQ(p->errors(), std::vector<std::string>{});
   std::vector<std::string> notes;
   for (const Diagnostic& d : p->diagnostics.diagnostics())
-    if (d.severity == Severity::Note) notes.push_back(std::to_string(d.where.line) + ":" + std::to_string(d.where.column) + ": " + d.message);
-  EXPECT_EQ(notes, (std::vector<std::string>{"1:2: attribute 'RootSignature' is ignored", "3:2: attribute 'domain' is ignored",
-                                             "3:18: attribute 'partitioning' is ignored"}));
+    if (d.severity == Severity::Note)
+      notes.push_back(std::to_string(d.where.line) + ":" + std::to_string(d.where.column) + ": " + d.message);
+  EXPECT_EQ(notes,
+            (std::vector<std::string>{"1:2: attribute 'RootSignature' is ignored", "3:2: attribute 'domain' is ignored",
+                                      "3:18: attribute 'partitioning' is ignored"}));
   EXPECT_EQ(p->function("f").attributes.at(0).name, "RootSignature");
 }
 

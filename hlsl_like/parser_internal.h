@@ -7,9 +7,9 @@
 // parse_expressions.cpp; parse_scopes.cpp: the type names variables hide, scope by scope.
 #pragma once
 
-#include <cstdint>
 #include <algorithm>
 #include <cstddef>
+#include <cstdint>
 #include <functional>
 #include <iterator>
 #include <memory>
@@ -52,13 +52,13 @@ struct BuiltinType {
 
 // Everything the parser needs to know about a word, from one lookup.
 struct WordInfo {
-  const BuiltinType* builtin = nullptr;      // a built-in type name
+  const BuiltinType* builtin = nullptr;  // a built-in type name
   // A type only with template arguments: `ConstantBuffer<S>`; alone it is a name, as the D3D11
   // samples' `cbuffer ConstantBuffer : register(b0)` has it.
   bool template_only = false;
-  bool reserved = false;                     // never a variable, function or field name
-  bool hard_specifier = false;               // always a qualifier
-  bool unsupported = false;                  // a reserved word of HLSL (or C) not supported
+  bool reserved = false;                       // never a variable, function or field name
+  bool hard_specifier = false;                 // always a qualifier
+  bool unsupported = false;                    // a reserved word of HLSL (or C) not supported
   std::optional<Interpolation> interpolation;  // a qualifier only in front of a type
 };
 
@@ -100,11 +100,11 @@ enum SkipToken : unsigned {
 // token inside it does not count; a barrier counts wherever it is: it cannot be inside what is
 // being skipped, so meeting it means the skip went too far.
 struct SkipUntil {
-  unsigned stops = 0;          // SkipToken bits that end the skip outside any group met on the way
-  unsigned barriers = 0;       // SkipToken bits that end the skip anywhere, before the token
-  bool consume = false;        // move past the stop token (never past a barrier)
-  bool after_braces = false;   // a {...} group met on the way also ends the skip, past its '}'
-  bool flat = false;           // brackets are tokens like any other: no group is skipped whole
+  unsigned stops = 0;         // SkipToken bits that end the skip outside any group met on the way
+  unsigned barriers = 0;      // SkipToken bits that end the skip anywhere, before the token
+  bool consume = false;       // move past the stop token (never past a barrier)
+  bool after_braces = false;  // a {...} group met on the way also ends the skip, past its '}'
+  bool flat = false;          // brackets are tokens like any other: no group is skipped whole
 };
 
 enum class SkipEnd : uint8_t { Stop, Barrier, AfterBraces, EndOfFile };
@@ -374,18 +374,18 @@ class Parser {
   int depth_ = 0;
   bool too_deep_reported_ = false;
   bool unwinding_too_deep_ = false;  // the depth limit failed the construct being unwound
-  bool split_angle_ = false;  // the first '>' of the current '>>' closed a template
+  bool split_angle_ = false;         // the first '>' of the current '>>' closed a template
   size_t init_list_nesting_ = 0;
   size_t last_error_index_ = kNoIndex;
   size_t unknown_reported_until_ = 0;
   size_t attribute_index_ = 0;
   mutable std::vector<Word> words_;
-  mutable StringIndex word_index_;  // numbers words as words_ does
+  mutable StringIndex word_index_;             // numbers words as words_ does
   mutable std::vector<uint32_t> token_words_;  // per token: index in words_ + 1; 0 until asked
   std::vector<Type> user_types_;
   struct HiddenWord {
-    uint32_t word;       // in words_
-    uint32_t previous;   // its hidden_by before
+    uint32_t word;      // in words_
+    uint32_t previous;  // its hidden_by before
   };
   std::vector<HiddenWord> hidden_log_;  // undone by each NameScope as it closes
   std::vector<ExprPtr> gathered_args_;

@@ -37,10 +37,12 @@ TEST(Parser, ErrorMessagesArePinned) {
       {"void f(1) {}", {"1:8: expected a type"}},
       {"float x = 99999999999;", {"1:11: integer literal is too large"}},
       {"double d;", {"1:1: double is not supported"}},
-      {"cbuffer C { float4 c : packoffset(r0); };", {"1:35: invalid packoffset 'r0'; write packoffset(cN) or packoffset(cN.y)"}},
+      {"cbuffer C { float4 c : packoffset(r0); };",
+       {"1:35: invalid packoffset 'r0'; write packoffset(cN) or packoffset(cN.y)"}},
       {"cbuffer C { float c : packoffset(c0.q); };", {"1:37: invalid packoffset component 'q'; use x, y, z or w"}},
       {"float4 c : packoffset(c0);", {"1:12: packoffset is only allowed on the members of a cbuffer"}},
-      {"void f(int i) { switch (i) { i = 2; case 0: break; } i = 1; }", {"1:30: expected 'case' or 'default' in a switch"}},
+      {"void f(int i) { switch (i) { i = 2; case 0: break; } i = 1; }",
+       {"1:30: expected 'case' or 'default' in a switch"}},
       {"void f(int i) { switch (i) { case 0 break; } }", {"1:36: expected ':' after the case value"}},
       {"void f() { goto end; }", {"1:12: goto is not supported"}},
       {"class C {};", {"1:1: 'class' is not supported"}},
@@ -74,7 +76,8 @@ TEST(Parser, RegistersAttributesAndQualifierDiagnostics) {
       "Texture2D a : register(T3);\n"
       "SamplerState b : register(ps_5_0, s1);\n"
       "RWTexture2D<float4> c : register(u2, space4);\n"
-      "void f(float x) { [unroll(4)] for (int i = 0; i < 4; i++) {} [loop] while (x > 0) x -= 1; [flatten] if (x) {} }\n");
+      "void f(float x) { [unroll(4)] for (int i = 0; i < 4; i++) {} [loop] while (x > 0) x -= 1; [flatten] if (x) {} "
+      "}\n");
   EXPECT_EQ(p->errors(), std::vector<std::string>{});
   EXPECT_EQ(p->var("a").binding.register_class, 't');
   EXPECT_EQ(p->var("a").binding.index, 3u);
@@ -127,15 +130,14 @@ TEST(Parser, RecoveryReportsEachMistakeOnce) {
       "struct V { float4 pos : SV_Position; float2 uv : TEXCOORD0 };\n"  // 1: missing ';' after field
       "float4 tint = float4(1, 1, 1, 1);\n"
       "float4 frag(V i) : SV_Target {\n"
-      "  float4 c = tint * ;\n"                                             // 4: missing operand
-      "  c.rgb = saturate(c.rgb;\n"                                        // 5: missing ')'
+      "  float4 c = tint * ;\n"      // 4: missing operand
+      "  c.rgb = saturate(c.rgb;\n"  // 5: missing ')'
       "  if (c.a > 0.5) { c.a = 1; }\n"
       "  return c;\n"
       "}\n"
       "float after;\n");
   EXPECT_EQ(p->errors(), (std::vector<std::string>{"1:59: expected ';' after declaration",
-                                                   "4:21: expected an expression",
-                                                   "5:25: expected ')' to match '('"}));
+                                                   "4:21: expected an expression", "5:25: expected ')' to match '('"}));
   ASSERT_EQ(p->unit.decls.size(), 4u);
   EXPECT_EQ(p->decl<StructDecl>(0).fields.size(), 2u);
   const FunctionDecl& frag = p->function("frag");
@@ -155,8 +157,7 @@ TEST(Parser, RecoveryInsideConditionsAndInitializerLists) {
       "  x = 3;\n"
       "}\n");
   EXPECT_EQ(p->errors(), (std::vector<std::string>{"1:35: expected an expression", "3:11: expected an expression",
-                                                   "4:23: expected an expression",
-                                                   "5:13: expected an expression"}));
+                                                   "4:23: expected an expression", "5:13: expected an expression"}));
   const FunctionDecl& f = p->function("f");
   ASSERT_FALSE(f.body->statements.empty());
   const Stmt& last = *f.body->statements.back();
@@ -184,7 +185,8 @@ TEST(Parser, DeepNestingIsOneErrorNotAStackOverflow) {
   EXPECT_EQ(blocks->errors(), std::vector<std::string>{"1:267: nesting is too deep (more than 256 levels)"});
   EXPECT_NO_THROW(blocks->var("y"));
 
-  auto lists = parse_text("float z[1] = " + std::string(kDepth, '{') + "1" + std::string(kDepth, '}') + ";\nfloat y;\n");
+  auto lists =
+      parse_text("float z[1] = " + std::string(kDepth, '{') + "1" + std::string(kDepth, '}') + ";\nfloat y;\n");
   EXPECT_EQ(lists->errors().size(), 1u);
   EXPECT_NO_THROW(lists->var("y"));
 
@@ -238,10 +240,11 @@ TEST(Parser, EveryPrefixOfAShaderParsesWithoutCrashing) {
 TEST(Parser, RandomTokenStreamsTerminate) {
   // Tokens from a pool that covers every construct, shuffled: the parser must neither crash,
   // nor hang, nor read out of bounds (ASan runs this), and report at most one error per token.
-  auto pool = parse_text(std::string(kUnityShader) +
-                         "void g() { switch (1) {} do {} while (0); x = a ? b : c; x <<= 1; x >>= 1; }\n"
-                         "float2x2 m = {1, 2, 3, 4}; struct S; typedef S T; vector<float, 2> v; matrix<int, 2, 2> mi;"
-                         "class else goto case default packoffset register 1.5h 0x1Fu \"s\" # ## ` @ [ ] ( ) { } < > >> ;");
+  auto pool =
+      parse_text(std::string(kUnityShader) +
+                 "void g() { switch (1) {} do {} while (0); x = a ? b : c; x <<= 1; x >>= 1; }\n"
+                 "float2x2 m = {1, 2, 3, 4}; struct S; typedef S T; vector<float, 2> v; matrix<int, 2, 2> mi;"
+                 "class else goto case default packoffset register 1.5h 0x1Fu \"s\" # ## ` @ [ ] ( ) { } < > >> ;");
   std::vector<Token> source = pool->tokens;
   source.pop_back();
   std::mt19937 rng(12345);
@@ -257,7 +260,6 @@ TEST(Parser, RandomTokenStreamsTerminate) {
   DiagnosticEngine empty_diagnostics(pool->sources);
   EXPECT_TRUE(parse({}, empty_diagnostics).decls.empty());
 }
-
 
 // ---------------------------------------------------------------------------------------------
 // Productions and recovery alone, through parser_internal.h

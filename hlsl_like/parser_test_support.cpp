@@ -23,7 +23,6 @@ std::unique_ptr<Parsed> parse_text(const std::string& text) {
   return parsed;
 }
 
-
 std::string sexpr(const Expr& e) {
   switch (e.kind) {
     case ExprKind::IntLiteral: {
@@ -43,8 +42,8 @@ std::string sexpr(const Expr& e) {
     }
     case ExprKind::Binary: {
       const auto& x = static_cast<const BinaryExpr&>(e);
-      static const char* const kOps[] = {"+", "-", "*", "/", "%", "<<", ">>", "&", "|", "^", "&&", "||",
-                                         "<", ">", "<=", ">=", "==", "!=", ","};
+      static const char* const kOps[] = {"+",  "-",  "*", "/", "%",  "<<", ">>", "&",  "|", "^",
+                                         "&&", "||", "<", ">", "<=", ">=", "==", "!=", ","};
       return std::string("(") + kOps[int(x.op)] + " " + sexpr(*x.lhs) + " " + sexpr(*x.rhs) + ")";
     }
     case ExprKind::Assign: {
@@ -81,11 +80,12 @@ std::string sexpr(const Expr& e) {
 }
 
 std::string expr_tree(const std::string& expression) {
-  auto parsed = parse_text("struct Light { float3 color; };\n"
-                           "void f(float a, float b, float c, float d, float x, float y, float z, float w, float v,"
-                           " float3 n, int i, int j, Texture2D tex, SamplerState s, float2 uv, Light l,"
-                           " float arr[4]) {\n  " +
-                           expression + ";\n}\n");
+  auto parsed = parse_text(
+      "struct Light { float3 color; };\n"
+      "void f(float a, float b, float c, float d, float x, float y, float z, float w, float v,"
+      " float3 n, int i, int j, Texture2D tex, SamplerState s, float2 uv, Light l,"
+      " float arr[4]) {\n  " +
+      expression + ";\n}\n");
   EXPECT_EQ(parsed->errors(), std::vector<std::string>{}) << expression;
   if (parsed->diagnostics.has_errors()) return "<error>";
   const FunctionDecl& f = parsed->function("f");

@@ -117,5 +117,4 @@ fixed4 frag(v2f i) : SV_Target {
 }
 )";
 
-
 }  // namespace xshade::hlsl::parser_test

@@ -28,9 +28,12 @@ class PassPragmaReader {
       const std::string value = dotted_value(*key);
       if (value.empty()) return false;
       if (key->text == "scale") {
-        if (value == "full") pass.scale = PassDeclaration::Scale::Full;
-        else if (value == "half") pass.scale = PassDeclaration::Scale::Half;
-        else return error(*key, "scale is 'full' or 'half', not '" + value + "'");
+        if (value == "full")
+          pass.scale = PassDeclaration::Scale::Full;
+        else if (value == "half")
+          pass.scale = PassDeclaration::Scale::Half;
+        else
+          return error(*key, "scale is 'full' or 'half', not '" + value + "'");
       } else if (key->text == "format") {
         // Every target the backends make is RGBA32F; the key exists so that a source says so.
         if (value != "rgba32f") return error(*key, "format is 'rgba32f' (the only target format), not '" + value + "'");

@@ -18,7 +18,8 @@ Read read(const std::string& pragmas) {
   CompileOptions options;
   options.fragment_only_entry = "a";
   // The front end reads the pass declarations as it compiles; nothing else should complain.
-  result.module = compile_text("fx.hlsl", pragmas + "float4 a(float2 uv : TEXCOORD0) : SV_Target { return 0; }\n", options);
+  result.module =
+      compile_text("fx.hlsl", pragmas + "float4 a(float2 uv : TEXCOORD0) : SV_Target { return 0; }\n", options);
   result.passes = result.module->passes;
   for (const Diagnostic& d : result.module->diagnostics.diagnostics())
     result.messages.push_back(std::to_string(d.where.line) + ":" + std::to_string(d.where.column) + ": " + d.message);
@@ -55,8 +56,9 @@ TEST(PassDeclarations, ASourceMustBeAnEarlierPass) {
   Read r = read(
       "#pragma pass first f _A=second\n"
       "#pragma pass second g\n");
-  EXPECT_EQ(r.messages, (std::vector<std::string>{
-                            "1:22: #pragma pass: 'second' is not scene.color, scene.depth or an earlier pass"}));
+  EXPECT_EQ(
+      r.messages,
+      (std::vector<std::string>{"1:22: #pragma pass: 'second' is not scene.color, scene.depth or an earlier pass"}));
   ASSERT_EQ(r.passes.size(), 1u);
   EXPECT_EQ(r.passes[0].name, "second");
 }

@@ -168,8 +168,9 @@ void Preprocessor::Impl::do_line(Lexer& lex, const Token& name) {
     if (digits) line = line * 10 + uint32_t(c - '0');
   }
   if (!digits || line == 0 || line > 2147483647u) {
-    diagnostics_.error(number.loc, "#line takes a line number from 1 to 2147483647 in decimal digits, then optionally "
-                                   "a file name in quotes");
+    diagnostics_.error(number.loc,
+                       "#line takes a line number from 1 to 2147483647 in decimal digits, then optionally "
+                       "a file name in quotes");
     skip_line(lex);
     return;
   }

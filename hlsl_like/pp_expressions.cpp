@@ -31,7 +31,7 @@ class ExpressionParser {
     if (!failed_ && i_ < t_.size()) {
       const Token& token = t_[i_].tok;
       fail(token.loc, is_punct1(token, ')') ? std::string("unexpected ')' in expression")
-                                             : "unexpected '" + clip(token.text) + "' in expression");
+                                            : "unexpected '" + clip(token.text) + "' in expression");
     }
     if (failed_) return std::nullopt;
     return value;
@@ -181,18 +181,13 @@ class ExpressionParser {
     }
     const Token& token = t_[i_].tok;
     switch (token.kind) {
-      case TokenKind::IntLiteral:
-        ++i_;
-        return integer(token);
+      case TokenKind::IntLiteral: ++i_; return integer(token);
       case TokenKind::Identifier:
         ++i_;
         if (token.text == "defined") return defined(token);
         return {};  // an identifier that is not a macro counts as 0
-      case TokenKind::FloatLiteral:
-        fail(token.loc, "floating-point literal in preprocessor expression");
-        return {};
-      default:
-        break;
+      case TokenKind::FloatLiteral: fail(token.loc, "floating-point literal in preprocessor expression"); return {};
+      default: break;
     }
     if (is_punct1(token, '(')) {
       ++i_;

@@ -169,10 +169,8 @@ bool Preprocessor::Impl::locate_include(const IncludeFrame& frame, bool local, s
           target.resolved = std::filesystem::path(below);
           target.size = size;
           return true;
-        case BelowFolder::Missing:
-          return false;
-        case BelowFolder::Unsure:
-          break;
+        case BelowFolder::Missing: return false;
+        case BelowFolder::Unsure: break;
       }
     }
     return is_regular_file(found);

@@ -42,7 +42,8 @@ using pp_detail::PPTok;
 PredefinedMacros::PredefinedMacros(std::unique_ptr<Table> table) : table_(std::move(table)) {}
 PredefinedMacros::~PredefinedMacros() = default;
 
-Result<std::shared_ptr<const PredefinedMacros>> PredefinedMacros::read(const std::vector<MacroDefinition>& definitions) {
+Result<std::shared_ptr<const PredefinedMacros>> PredefinedMacros::read(
+    const std::vector<MacroDefinition>& definitions) {
   SourceManager sources;
   DiagnosticEngine diagnostics(sources);
   Preprocessor reader(sources, diagnostics, {});
@@ -460,8 +461,8 @@ bool Preprocessor::Impl::collect_args(Context& ctx, const Macro& macro, const To
   return true;
 }
 
-void Preprocessor::Impl::expand_list(const std::vector<PPTok>& list, size_t begin, size_t end,
-                                     std::vector<PPTok>& out, bool in_if) {
+void Preprocessor::Impl::expand_list(const std::vector<PPTok>& list, size_t begin, size_t end, std::vector<PPTok>& out,
+                                     bool in_if) {
   bool any = false;
   for (size_t i = begin; i < end && !any; ++i) {
     const PPTok& t = list[i];
@@ -471,11 +472,11 @@ void Preprocessor::Impl::expand_list(const std::vector<PPTok>& list, size_t begi
   if (!any || budget_spent_ || too_deep || argument_nesting_ >= kMaxArgumentNesting) {
     if (any && !budget_spent_ && !depth_reported_) {
       depth_reported_ = true;
-      diagnostics_.error(list[begin].tok.loc,
-                         too_deep ? "macro expansion nested too deeply (more than " +
-                                        std::to_string(Preprocessor::kMaxExpansionDepth) + " levels)"
-                                  : "macro calls nested too deeply in arguments (more than " +
-                                        std::to_string(kMaxArgumentNesting) + " levels)");
+      diagnostics_.error(list[begin].tok.loc, too_deep
+                                                  ? "macro expansion nested too deeply (more than " +
+                                                        std::to_string(Preprocessor::kMaxExpansionDepth) + " levels)"
+                                                  : "macro calls nested too deeply in arguments (more than " +
+                                                        std::to_string(kMaxArgumentNesting) + " levels)");
     }
     out.insert(out.end(), list.begin() + std::ptrdiff_t(begin), list.begin() + std::ptrdiff_t(end));
     return;
@@ -551,15 +552,14 @@ void Preprocessor::Impl::paste(std::vector<PPTok>& out, const PPTok& rhs, Loc lo
     lhs.no_expand = false;
     return;
   }
-  diagnostics_.error(loc, "pasting \"" + clip(lhs.tok.text) + "\" and \"" + clip(rhs.tok.text) +
-                              "\" does not give a valid token");
+  diagnostics_.error(
+      loc, "pasting \"" + clip(lhs.tok.text) + "\" and \"" + clip(rhs.tok.text) + "\" does not give a valid token");
   PPTok second_token = rhs;
   second_token.tok.loc = loc;
   out.push_back(second_token);
 }
 
-void Preprocessor::Impl::substitute(const Macro& macro, const Token& name, const Args* args,
-                                    std::vector<PPTok>& out) {
+void Preprocessor::Impl::substitute(const Macro& macro, const Token& name, const Args* args, std::vector<PPTok>& out) {
   const std::vector<BodyToken>& body = macro.body;
   const size_t n = body.size();
   std::vector<std::vector<PPTok>> expanded;

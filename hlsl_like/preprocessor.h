@@ -10,9 +10,9 @@
 #include <filesystem>
 #include <memory>
 #include <optional>
-#include <string_view>
 #include <set>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "hlsl_like/diagnostic_engine.h"

@@ -74,8 +74,8 @@ struct Context {
   bool has_pushback = false;
   bool carry_space = false;  // an expansion that vanished leaves its spacing to the next token
   bool carry_line_start = false;
-  bool in_if = false;          // a #if line: the operand of a `defined` from a macro is kept
-  uint8_t defined_state = 0;   // 1 after `defined`, 2 after `defined (`
+  bool in_if = false;         // a #if line: the operand of a `defined` from a macro is kept
+  uint8_t defined_state = 0;  // 1 after `defined`, 2 after `defined (`
 };
 
 struct Args {
@@ -95,9 +95,12 @@ struct Cond {
 enum class Guard : uint8_t { Start, Inside, Closed, None };
 
 struct IncludeFrame {
-  IncludeFrame(std::string_view text, uint32_t index, DiagnosticEngine& diagnostics,
-               std::deque<std::string>* store, size_t conds, size_t output, size_t pragmas)
-      : lexer(text, index, diagnostics, store), file(index), cond_base(conds), output_mark(output),
+  IncludeFrame(std::string_view text, uint32_t index, DiagnosticEngine& diagnostics, std::deque<std::string>* store,
+               size_t conds, size_t output, size_t pragmas)
+      : lexer(text, index, diagnostics, store),
+        file(index),
+        cond_base(conds),
+        output_mark(output),
         pragma_mark(pragmas) {}
   Lexer lexer;
   uint32_t file;
@@ -223,9 +226,7 @@ struct Preprocessor::Impl {
     macros_.emplace(adopted->name, adopted);
     return adopted;
   }
-  bool is_defined(std::string_view name) {
-    return find(name) != nullptr || name == "__FILE__" || name == "__LINE__";
-  }
+  bool is_defined(std::string_view name) { return find(name) != nullptr || name == "__FILE__" || name == "__LINE__"; }
   void do_define(Lexer& lex, Loc directive_loc);
   void do_undef(Lexer& lex, const Token& name);
   void add_macro(Macro macro);
@@ -320,9 +321,9 @@ struct Preprocessor::Impl {
   // (and every #include of a guarded file again) is resolved, held to the folders and looked up
   // once a run, since each of those asks the file system about every component of its path.
   std::vector<std::pair<std::string, uint32_t>> loaded_includes_;
-  std::string found_include_;  // the path of the #include being read; kept for its buffer
-  std::string portable_name_;  // its name, each backslash made a slash; kept for its buffer
-  std::string resolved_include_;  // the path found below a resolved folder; kept for its buffer
+  std::string found_include_;               // the path of the #include being read; kept for its buffer
+  std::string portable_name_;               // its name, each backslash made a slash; kept for its buffer
+  std::string resolved_include_;            // the path found below a resolved folder; kept for its buffer
   std::vector<std::string> plain_folders_;  // below resolved folders, found to be folders and no links
   // Each #include this run read, by where its search starts (the including file's folder for a
   // quoted name in a file on disk, else the include directories only) and the name as spelled:
@@ -345,9 +346,7 @@ struct Preprocessor::Impl {
       path_resolved_.resize(count, 0);
     }
   }
-  std::string short_name(uint32_t file) const {
-    return std::filesystem::path(sources_.name(file)).filename().string();
-  }
+  std::string short_name(uint32_t file) const { return std::filesystem::path(sources_.name(file)).filename().string(); }
 
   // Conditionals and the other directives (pp_directives.cpp).
   void do_if(IncludeFrame& frame, const Token& name, bool guard_start);

@@ -1,3 +1,5 @@
+// Why this file is long: one case per rule of the preprocessor as DXC and fxc apply it (macros,
+// expansion, conditionals, #include, #pragma, errors), read as the list of them.
 #include "hlsl_like/preprocessor.h"
 
 #include <gtest/gtest.h>
@@ -53,9 +55,7 @@ class PreprocessorTest : public ::testing::Test {
     for (const Diagnostic& d : diagnostics_->diagnostics()) out.push_back(d.to_string());
     return out;
   }
-  std::string where(const Token& t) const {
-    return sources_.resolve(t.loc).to_string();
-  }
+  std::string where(const Token& t) const { return sources_.resolve(t.loc).to_string(); }
   // Evaluates `text` as the #if expression evaluator alone sees a line: no macro expansion, and
   // a `defined` left in it asks whether the name is one of `defined_names`.
   std::optional<pp_detail::ExpressionValue> evaluate(std::string text, const Strings& defined_names = {}) {
@@ -111,8 +111,7 @@ class PreprocessorTest : public ::testing::Test {
 // --- plain text ----------------------------------------------------------------------------------
 
 TEST_F(PreprocessorTest, PassesTokensThroughWithTheirLocationsAndOneEndOfFile) {
-  EXPECT_EQ(run("float4 main() : SV_Target\n{\n  return 1.0;\n}\n"),
-            "float4 main ( ) : SV_Target { return 1.0 ; }");
+  EXPECT_EQ(run("float4 main() : SV_Target\n{\n  return 1.0;\n}\n"), "float4 main ( ) : SV_Target { return 1.0 ; }");
   EXPECT_TRUE(messages().empty());
   ASSERT_EQ(count_eof(), 1u);
   EXPECT_EQ(tokens_.back().kind, TokenKind::EndOfFile);
@@ -367,14 +366,44 @@ TEST_F(PreprocessorTest, ADefinitionIsReadIntoParametersAndABodyThatNamesThem) {
 // --- conditionals ----------------------------------------------------------------------------------
 
 TEST_F(PreprocessorTest, IfArithmetic) {
-  const char* true_expressions[] = {
-      "1", "1 + 2 * 3 == 7", "(1 + 2) * 3 == 9", "(1 << 4) == 16", "256 >> 4 == 16", "-1 < 0", "!(-1 < 0u)",
-      "0x10 == 16", "0XfF == 255", "010 == 8", "!0", "~0 == -1", "1 ? 2 : 0", "0 ? 0 : 3", "(0, 5)",
-      "7 / 2 == 3", "-7 % 3 == -1", "-7 / 2 == -3", "1 && 0 || 1", "5 > 3 && 3 >= 3 && 2 <= 2 && 1 != 2",
-      "(6 & 3) == 2", "(6 | 1) == 7", "(6 ^ 3) == 5", "7 & 3 == 3", "UNDEFINED == 0", "!UNDEFINED",
-      "- - 1 == 1", "+1", "1u", "18446744073709551615 == -1", "(0 - 1) / 2 == 0", "0 || 0 || 2",
-      "1 ? 0 ? 5 : 6 : 7 == 6", "-9223372036854775807 - 1 < 0", "(-9223372036854775807 - 1) / -1 < 0",
-      "1 << 64 == 0", "-1 >> 70 == -1", "3L == 3"};
+  const char* true_expressions[] = {"1",
+                                    "1 + 2 * 3 == 7",
+                                    "(1 + 2) * 3 == 9",
+                                    "(1 << 4) == 16",
+                                    "256 >> 4 == 16",
+                                    "-1 < 0",
+                                    "!(-1 < 0u)",
+                                    "0x10 == 16",
+                                    "0XfF == 255",
+                                    "010 == 8",
+                                    "!0",
+                                    "~0 == -1",
+                                    "1 ? 2 : 0",
+                                    "0 ? 0 : 3",
+                                    "(0, 5)",
+                                    "7 / 2 == 3",
+                                    "-7 % 3 == -1",
+                                    "-7 / 2 == -3",
+                                    "1 && 0 || 1",
+                                    "5 > 3 && 3 >= 3 && 2 <= 2 && 1 != 2",
+                                    "(6 & 3) == 2",
+                                    "(6 | 1) == 7",
+                                    "(6 ^ 3) == 5",
+                                    "7 & 3 == 3",
+                                    "UNDEFINED == 0",
+                                    "!UNDEFINED",
+                                    "- - 1 == 1",
+                                    "+1",
+                                    "1u",
+                                    "18446744073709551615 == -1",
+                                    "(0 - 1) / 2 == 0",
+                                    "0 || 0 || 2",
+                                    "1 ? 0 ? 5 : 6 : 7 == 6",
+                                    "-9223372036854775807 - 1 < 0",
+                                    "(-9223372036854775807 - 1) / -1 < 0",
+                                    "1 << 64 == 0",
+                                    "-1 >> 70 == -1",
+                                    "3L == 3"};
   for (const char* expression : true_expressions) {
     EXPECT_EQ(run(std::string("#if ") + expression + "\nyes\n#else\nno\n#endif"), "yes") << expression;
     EXPECT_TRUE(messages().empty()) << expression << ": " << (messages().empty() ? "" : messages()[0]);
@@ -409,19 +438,19 @@ TEST_F(PreprocessorTest, IfExpressionErrors) {
       "#if 99999999999999999999999\n#endif\n"
       "#if 2 % 0\n#endif\n"
       "#if \"s\"\n#endif\n");
-  EXPECT_EQ(messages(), (Strings{"main.hlsl:1:7: error: division by zero in preprocessor expression",
-                                 "main.hlsl:3:2: error: #if with no expression",
-                                 "main.hlsl:5:5: error: missing ')' in expression",
-                                 "main.hlsl:7:7: error: expected value in expression",
-                                 "main.hlsl:9:5: error: floating-point literal in preprocessor expression",
-                                 "main.hlsl:11:7: error: unexpected '2' in expression",
-                                 "main.hlsl:13:9: error: expected ':' in expression",
-                                 "main.hlsl:15:5: error: macro name missing after 'defined'",
-                                 "main.hlsl:17:5: error: missing ')' after 'defined'",
-                                 "main.hlsl:19:5: error: invalid digit '9' in octal literal",
-                                 "main.hlsl:21:5: error: integer literal is too large",
-                                 "main.hlsl:23:7: error: division by zero in preprocessor expression",
-                                 "main.hlsl:25:5: error: expected value in expression, found '\"s\"'"}));
+  EXPECT_EQ(messages(),
+            (Strings{"main.hlsl:1:7: error: division by zero in preprocessor expression",
+                     "main.hlsl:3:2: error: #if with no expression", "main.hlsl:5:5: error: missing ')' in expression",
+                     "main.hlsl:7:7: error: expected value in expression",
+                     "main.hlsl:9:5: error: floating-point literal in preprocessor expression",
+                     "main.hlsl:11:7: error: unexpected '2' in expression",
+                     "main.hlsl:13:9: error: expected ':' in expression",
+                     "main.hlsl:15:5: error: macro name missing after 'defined'",
+                     "main.hlsl:17:5: error: missing ')' after 'defined'",
+                     "main.hlsl:19:5: error: invalid digit '9' in octal literal",
+                     "main.hlsl:21:5: error: integer literal is too large",
+                     "main.hlsl:23:7: error: division by zero in preprocessor expression",
+                     "main.hlsl:25:5: error: expected value in expression, found '\"s\"'"}));
 }
 
 TEST_F(PreprocessorTest, ElifChainsTakeTheFirstTrueGroup) {
@@ -445,20 +474,19 @@ TEST_F(PreprocessorTest, NestedSkippingOnlyTracksNesting) {
 }
 
 TEST_F(PreprocessorTest, ConditionalStructureErrors) {
-  run("#else\n#endif\n#elif 1\n#if 1\n#else\n#else\n#elif 1\n#endif\n#if 0\n#else\n#else\n#endif junk\n#ifdef\n#endif\n");
-  EXPECT_EQ(messages(), (Strings{"main.hlsl:1:2: error: #else without #if",
-                                 "main.hlsl:2:2: error: #endif without #if",
-                                 "main.hlsl:3:2: error: #elif without #if",
-                                 "main.hlsl:6:2: error: #else after #else",
-                                 "main.hlsl:7:2: error: #elif after #else",
-                                 "main.hlsl:11:2: error: #else after #else",
+  run("#else\n#endif\n#elif 1\n#if 1\n#else\n#else\n#elif 1\n#endif\n#if 0\n#else\n#else\n#endif "
+      "junk\n#ifdef\n#endif\n");
+  EXPECT_EQ(messages(), (Strings{"main.hlsl:1:2: error: #else without #if", "main.hlsl:2:2: error: #endif without #if",
+                                 "main.hlsl:3:2: error: #elif without #if", "main.hlsl:6:2: error: #else after #else",
+                                 "main.hlsl:7:2: error: #elif after #else", "main.hlsl:11:2: error: #else after #else",
                                  "main.hlsl:12:8: warning: extra tokens at end of #endif directive",
                                  "main.hlsl:13:2: error: macro name missing in #ifdef"}));
 }
 
 TEST_F(PreprocessorTest, UnterminatedIfIsReportedAtTheIf) {
   EXPECT_EQ(run("a\n#if 1\nb\n  #ifdef Q\nc\n"), "a b");
-  EXPECT_EQ(messages(), (Strings{"main.hlsl:2:2: error: unterminated #if", "main.hlsl:4:4: error: unterminated #ifdef"}));
+  EXPECT_EQ(messages(),
+            (Strings{"main.hlsl:2:2: error: unterminated #if", "main.hlsl:4:4: error: unterminated #ifdef"}));
 }
 
 TEST_F(PreprocessorTest, TenThousandNestedIfsGiveAnErrorNotACrash) {
@@ -604,7 +632,8 @@ TEST_F(PreprocessorTest, IncludeSearchOrder) {
   write("dir1/b.hlsl", "dir1_b");
   write("dir2/b.hlsl", "dir2_b");
   write("dir2/c.hlsl", "dir2_c");
-  const fs::path main = write("local/main.hlsl", "#include \"a.hlsl\"\n#include <a.hlsl>\n#include \"b.hlsl\"\n#include <c.hlsl>\n");
+  const fs::path main =
+      write("local/main.hlsl", "#include \"a.hlsl\"\n#include <a.hlsl>\n#include \"b.hlsl\"\n#include <c.hlsl>\n");
   PreprocessorOptions options;
   options.include_dirs = {temp_dir() / "dir1", temp_dir() / "dir2"};
   EXPECT_EQ(run_file(load(main), options), "local_a dir1_a dir1_b dir2_c");
@@ -620,8 +649,10 @@ TEST_F(PreprocessorTest, IncludeNotFoundListsTheSearchedDirectories) {
   const std::string d2 = (temp_dir() / "dir2").string();
   const std::string m = (temp_dir() / "m").string();
   const std::string name = main.string();
-  EXPECT_EQ(messages(), (Strings{name + ":1:10: error: cannot find include file 'x.hlsl' (searched: " + m + ", " + d1 + ", " + d2 + ")",
-                                 name + ":2:12: error: cannot find include file 'y.hlsl' (searched: " + d1 + ", " + d2 + ")"}));
+  EXPECT_EQ(
+      messages(),
+      (Strings{name + ":1:10: error: cannot find include file 'x.hlsl' (searched: " + m + ", " + d1 + ", " + d2 + ")",
+               name + ":2:12: error: cannot find include file 'y.hlsl' (searched: " + d1 + ", " + d2 + ")"}));
 }
 
 TEST_F(PreprocessorTest, IncludeFromAnInMemoryFileUsesOnlyTheIncludeDirectories) {
@@ -632,10 +663,11 @@ TEST_F(PreprocessorTest, IncludeFromAnInMemoryFileUsesOnlyTheIncludeDirectories)
   EXPECT_EQ(messages(), (Strings{"main.hlsl:2:10: error: cannot find include file 'none.hlsl' (searched: " +
                                  (temp_dir() / "inc").string() + ")"}));
   run("#include <none.hlsl>\n#include\n#include foo\n#include \"\"");
-  EXPECT_EQ(messages(), (Strings{"main.hlsl:1:10: error: cannot find include file 'none.hlsl' (no directories to search)",
-                                 "main.hlsl:2:2: error: expected \"file\" or <file> after #include",
-                                 "main.hlsl:3:10: error: expected \"file\" or <file> after #include",
-                                 "main.hlsl:4:10: error: empty file name in #include"}));
+  EXPECT_EQ(messages(),
+            (Strings{"main.hlsl:1:10: error: cannot find include file 'none.hlsl' (no directories to search)",
+                     "main.hlsl:2:2: error: expected \"file\" or <file> after #include",
+                     "main.hlsl:3:10: error: expected \"file\" or <file> after #include",
+                     "main.hlsl:4:10: error: empty file name in #include"}));
 }
 
 // A file found in an include directory is held to the folders through links in the directory,
@@ -654,7 +686,8 @@ TEST_F(PreprocessorTest, IncludeDirectoryLinksAreFollowedAndHeldToTheFolders) {
             "lib lib lib lib");
   const std::string folder = (temp_dir() / "inc_link").string();
   EXPECT_EQ(messages(), (Strings{"main.hlsl:3:10: error: include file 'out/secret.hlsl' is outside the folders this "
-                                 "shader was given (" + folder + "); an include may not leave them"}));
+                                 "shader was given (" +
+                                 folder + "); an include may not leave them"}));
   ASSERT_EQ(pp_->files().size(), 2u);
   EXPECT_EQ(sources_.path(pp_->files()[1]), temp_dir() / "real/inc/sub/lib.hlsl");
 }
@@ -667,8 +700,9 @@ TEST_F(PreprocessorTest, LinksBelowAnIncludedFileAreFollowedAndHeldToTheFolders)
   write("shaders/inc/sub/lib.hlsl", "lib\n#include \"near.hlsl\"");
   write("shaders/inc/sub/near.hlsl", "near");
   write("shaders/up.hlsl", "up");
-  write("shaders/inc/a.hlsl", "#include \"in/lib.hlsl\"\n#include \"out/secret.hlsl\"\n#include \"file_out.hlsl\"\n"
-                              "#include \"../up.hlsl\"\n#include \"sub/lib.hlsl\"\n");
+  write("shaders/inc/a.hlsl",
+        "#include \"in/lib.hlsl\"\n#include \"out/secret.hlsl\"\n#include \"file_out.hlsl\"\n"
+        "#include \"../up.hlsl\"\n#include \"sub/lib.hlsl\"\n");
   fs::create_symlink(temp_dir() / "outside", temp_dir() / "shaders/inc/out");
   fs::create_symlink(temp_dir() / "shaders/inc/sub", temp_dir() / "shaders/inc/in");
   fs::create_symlink(temp_dir() / "outside/secret.hlsl", temp_dir() / "shaders/inc/file_out.hlsl");
@@ -683,7 +717,8 @@ TEST_F(PreprocessorTest, LinksBelowAnIncludedFileAreFollowedAndHeldToTheFolders)
     EXPECT_EQ(out, "lib near up lib near main");
     const std::string given = (temp_dir() / (from_disk ? "shaders" : "shaders_link")).string();
     const std::string a = given + "/inc/a.hlsl";
-    const std::string refused = "' is outside the folders this shader was given (" + given + "); an include may not leave them";
+    const std::string refused =
+        "' is outside the folders this shader was given (" + given + "); an include may not leave them";
     EXPECT_EQ(messages(), (Strings{a + ":2:10: error: include file 'out/secret.hlsl" + refused,
                                    a + ":3:10: error: include file 'file_out.hlsl" + refused}));
     ASSERT_EQ(pp_->files().size(), 5u);
@@ -714,7 +749,8 @@ TEST_F(PreprocessorTest, IncludeThroughAMacro) {
   write("inc/lib.hlsl", "lib");
   PreprocessorOptions options;
   options.include_dirs = {temp_dir() / "inc"};
-  EXPECT_EQ(run("#define LIB \"lib.hlsl\"\n#define ANGLED <lib.hlsl>\n#include LIB\n#include ANGLED", options), "lib lib");
+  EXPECT_EQ(run("#define LIB \"lib.hlsl\"\n#define ANGLED <lib.hlsl>\n#include LIB\n#include ANGLED", options),
+            "lib lib");
   EXPECT_TRUE(messages().empty());
 }
 
@@ -796,15 +832,18 @@ TEST_F(PreprocessorTest, MacroCallDoesNotRunPastTheEndOfAnIncludedFile) {
 
 TEST_F(PreprocessorTest, ExponentialExpansionIsCutOff) {
   std::string text = "#define X0 a b\n";
-  for (int i = 1; i <= 40; ++i) text += "#define X" + std::to_string(i) + " X" + std::to_string(i - 1) + " X" + std::to_string(i - 1) + "\n";
-  text += "X40\n#define D(x) x x\n#define D2(x) D(D(x))\n#define D4(x) D2(D2(x))\n#define D8(x) D4(D4(x))\n"
-          "D8(D8(D8(D8(q))))";
+  for (int i = 1; i <= 40; ++i)
+    text += "#define X" + std::to_string(i) + " X" + std::to_string(i - 1) + " X" + std::to_string(i - 1) + "\n";
+  text +=
+      "X40\n#define D(x) x x\n#define D2(x) D(D(x))\n#define D4(x) D2(D2(x))\n#define D8(x) D4(D4(x))\n"
+      "D8(D8(D8(D8(q))))";
   const auto start = std::chrono::steady_clock::now();
   run(text);
   EXPECT_LT(seconds_since(start), 1.5 * kTimeScale);
   ASSERT_FALSE(messages().empty());
-  EXPECT_EQ(messages()[0], "main.hlsl:42:1: error: macro expansion is too large (more than 1048576 tokens); "
-                           "macros are no longer expanded");
+  EXPECT_EQ(messages()[0],
+            "main.hlsl:42:1: error: macro expansion is too large (more than 1048576 tokens); "
+            "macros are no longer expanded");
   EXPECT_EQ(count_eof(), 1u);
 }
 
@@ -857,9 +896,11 @@ TEST_F(PreprocessorTest, OneMebibyteLineRunsQuickly) {
 
 TEST_F(PreprocessorTest, RandomInputNeverBreaksIt) {
   static const char* kPieces[] = {
-      "#define ", "#undef ", "#if ", "#ifdef ", "#ifndef ", "#elif ", "#else", "#endif", "#include ", "#pragma ",
-      "#error ", "\n", "\n", "\n", " ", "A", "B", "F", "G", "(", ")", ",", "#", "##", "...", "__VA_ARGS__",
-      "defined", "1", "0", "/", "%", "?", ":", "\"s\"", "<x>", "/*", "*/", "//", "\\\n", "x", "+", "-", "'", "\0"};
+      "#define ", "#undef ", "#if ", "#ifdef ", "#ifndef ", "#elif ", "#else", "#endif",      "#include ",
+      "#pragma ", "#error ", "\n",   "\n",      "\n",       " ",      "A",     "B",           "F",
+      "G",        "(",       ")",    ",",       "#",        "##",     "...",   "__VA_ARGS__", "defined",
+      "1",        "0",       "/",    "%",       "?",        ":",      "\"s\"", "<x>",         "/*",
+      "*/",       "//",      "\\\n", "x",       "+",        "-",      "'",     "\0"};
   std::mt19937 random(42);
   const auto start = std::chrono::steady_clock::now();
   for (int round = 0; round < 300; ++round) {

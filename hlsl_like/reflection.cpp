@@ -1,3 +1,6 @@
+// Why this file is long: the reflection is one walk of the analysed tree that fills every part of
+// it (constant-buffer packing with packoffset, bindings, texture shapes, stage interfaces,
+// properties, keywords) and its JSON, each part reading what the earlier ones found.
 #include "hlsl_like/reflection.h"
 
 #include <algorithm>
@@ -128,8 +131,9 @@ void pack_members(ConstantBuffer& buffer, const std::vector<PackedItem>& members
                                         "block the targets read");
     } else if (item.packoffset) {
       member.offset = *item.packoffset;
-      const std::string where = "c" + std::to_string(member.offset / kRegister) +
-                                (member.offset % kRegister ? std::string(".") + "xyzw"[member.offset % kRegister / 4] : "");
+      const std::string where =
+          "c" + std::to_string(member.offset / kRegister) +
+          (member.offset % kRegister ? std::string(".") + "xyzw"[member.offset % kRegister / 4] : "");
       if (starts_register && member.offset % kRegister != 0)
         diagnostics.error(item.loc, "packoffset(" + where + ") of " + in_quotes(item.name) +
                                         ": arrays, matrices and structs start a register; write packoffset(c" +
@@ -167,21 +171,21 @@ void pack_members(ConstantBuffer& buffer, const std::vector<PackedItem>& members
     const Type& type = member.type;
     if (type.kind() == TypeKind::Struct && type.struct_decl()) {
       if (auto mismatch = struct_layout_mismatch(type.struct_decl()))
-        diagnostics.error(item.loc, in_quotes(item.name) + " in constant buffer " + in_quotes(buffer.name) + ": struct " +
-                                        in_quotes(type.struct_decl()->name) + " cannot keep its HLSL layout in GLSL: " +
-                                        *mismatch + "; reorder its fields or pad them to 16-byte registers");
+        diagnostics.error(item.loc, in_quotes(item.name) + " in constant buffer " + in_quotes(buffer.name) +
+                                        ": struct " + in_quotes(type.struct_decl()->name) +
+                                        " cannot keep its HLSL layout in GLSL: " + *mismatch +
+                                        "; reorder its fields or pad them to 16-byte registers");
     }
     if (!previous_name.empty() && member.offset < previous_end_hlsl) {
       diagnostics.error(item.loc, in_quotes(item.name) + " at offset " + std::to_string(member.offset) +
                                       " of constant buffer " + in_quotes(buffer.name) + " overlaps " +
                                       in_quotes(previous_name) + " (up to " + std::to_string(previous_end_hlsl) + ")");
     } else if (!previous_name.empty() && member.offset < previous_end_std140) {
-      diagnostics.error(item.loc, in_quotes(item.name) + " is at offset " + std::to_string(member.offset) +
-                                      " of constant buffer " + in_quotes(buffer.name) + ", inside the padding GLSL gives " +
-                                      in_quotes(previous_name) + " (up to " + std::to_string(previous_end_std140) +
-                                      "); start " + in_quotes(item.name) +
-                                      " on a new 16-byte register (pad before it) or declare it before " +
-                                      in_quotes(previous_name));
+      diagnostics.error(
+          item.loc, in_quotes(item.name) + " is at offset " + std::to_string(member.offset) + " of constant buffer " +
+                        in_quotes(buffer.name) + ", inside the padding GLSL gives " + in_quotes(previous_name) +
+                        " (up to " + std::to_string(previous_end_std140) + "); start " + in_quotes(item.name) +
+                        " on a new 16-byte register (pad before it) or declare it before " + in_quotes(previous_name));
     }
     previous_end_hlsl = member.offset + member.size;
     previous_end_std140 =
@@ -206,13 +210,11 @@ bool is_uniform_global(const VarDecl& var) {
          !var.type.is_resource() && !var.type.is_resource_array() && !var.type.is_error();
 }
 
-std::string canonical(const std::string& semantic) {
-  return canonical_semantic(parse_semantic(semantic));
-}
+std::string canonical(const std::string& semantic) { return canonical_semantic(parse_semantic(semantic)); }
 
 // Every global declaration and user function reachable from the entry points, by what reads it.
 struct Usage {
-  std::unordered_set<const Decl*> globals;  // the globals the entry points read
+  std::unordered_set<const Decl*> globals;             // the globals the entry points read
   std::map<const Decl*, const Decl*> texture_sampler;  // texture -> first SamplerState it is sampled with
   std::unordered_set<const Decl*> compared;            // textures sampled with a SamplerComparisonState
 };
@@ -250,7 +252,8 @@ Usage collect_usage(const EntryPoints& entry_points, const ResourceOrigins& orig
           if (!may_hold_resources(call.args[i]->type)) continue;
           auto it = origins.find(call.args[i].get());
           if (it == origins.end()) continue;
-          for (const ResourceLeaf& leaf : it->second) passed.emplace(Key{call.function->params[i].get(), leaf.path}, leaf.origin);
+          for (const ResourceLeaf& leaf : it->second)
+            passed.emplace(Key{call.function->params[i].get(), leaf.path}, leaf.origin);
         }
       });
     }
@@ -263,7 +266,8 @@ Usage collect_usage(const EntryPoints& entry_points, const ResourceOrigins& orig
         if (expr.kind == ExprKind::Name) {
           // Only globals are asked about: locals and parameters would only fill the set.
           const Decl* decl = static_cast<const NameExpr&>(expr).decl;
-          if (decl && decl->kind == DeclKind::Var && static_cast<const VarDecl*>(decl)->is_global) usage.globals.insert(decl);
+          if (decl && decl->kind == DeclKind::Var && static_cast<const VarDecl*>(decl)->is_global)
+            usage.globals.insert(decl);
         } else if (expr.kind == ExprKind::Call) {
           const auto& call = static_cast<const CallExpr&>(expr);
           if (call.call_kind != CallKind::Method || !call.object || call.args.empty()) return;
@@ -285,7 +289,8 @@ Usage collect_usage(const EntryPoints& entry_points, const ResourceOrigins& orig
     walk_expressions(static_cast<const VarDecl*>(decl)->initializer.get(), [&](const Expr& expr) {
       if (expr.kind != ExprKind::Name) return;
       const Decl* read = static_cast<const NameExpr&>(expr).decl;
-      if (read && read->kind == DeclKind::Var && static_cast<const VarDecl*>(read)->is_global && usage.globals.insert(read).second)
+      if (read && read->kind == DeclKind::Var && static_cast<const VarDecl*>(read)->is_global &&
+          usage.globals.insert(read).second)
         pending.push_back(read);
     });
   }
@@ -310,18 +315,19 @@ class RegisterClass {
       claim(next, name, reached);
     }
     if (binding.index >= kRegistersPerClass) {
-      diagnostics_.error(binding.loc, std::string("register ") + binding.register_class + std::to_string(binding.index) +
-                                          " of " + in_quotes(name) + " is out of range (0 to " +
-                                          std::to_string(kRegistersPerClass - 1) + ")");
+      diagnostics_.error(binding.loc, std::string("register ") + binding.register_class +
+                                          std::to_string(binding.index) + " of " + in_quotes(name) +
+                                          " is out of range (0 to " + std::to_string(kRegistersPerClass - 1) + ")");
       return;
     }
     auto [it, inserted] = used_.emplace(std::pair{binding.space, binding.index}, Claim{name, reached});
     if (inserted) return;
     if (it->second.reached && reached) {
-      diagnostics_.error(binding.loc, std::string("register ") + binding.register_class + std::to_string(binding.index) +
-                                          (binding.space ? ", space" + std::to_string(binding.space) : std::string()) +
-                                          " of " + in_quotes(name) + " is already taken by " + in_quotes(it->second.name) +
-                                          ", and the entry points read both; give one another register");
+      diagnostics_.error(binding.loc,
+                         std::string("register ") + binding.register_class + std::to_string(binding.index) +
+                             (binding.space ? ", space" + std::to_string(binding.space) : std::string()) + " of " +
+                             in_quotes(name) + " is already taken by " + in_quotes(it->second.name) +
+                             ", and the entry points read both; give one another register");
     } else if (reached) {
       it->second = Claim{name, reached};
     }
@@ -331,14 +337,17 @@ class RegisterClass {
   std::optional<uint32_t> next_free(const std::string& name, Loc loc, bool required = true, uint32_t count = 1) {
     for (uint32_t index = 0; index + count <= kRegistersPerClass; ++index) {
       bool free = true;
-      for (uint32_t element = 0; element < count && free; ++element) free = !used_.count(std::pair{0u, index + element});
+      for (uint32_t element = 0; element < count && free; ++element)
+        free = !used_.count(std::pair{0u, index + element});
       if (!free) continue;
-      for (uint32_t element = 0; element < count; ++element) used_.emplace(std::pair{0u, index + element}, Claim{name, true});
+      for (uint32_t element = 0; element < count; ++element)
+        used_.emplace(std::pair{0u, index + element}, Claim{name, true});
       return base_ + index;
     }
     if (required)
-      diagnostics_.error(loc, std::string("no free ") + letter_ + " register for " + in_quotes(name) + ": a shader reads at most " +
-                                  std::to_string(kRegistersPerClass) + " of this class here");
+      diagnostics_.error(loc, std::string("no free ") + letter_ + " register for " + in_quotes(name) +
+                                  ": a shader reads at most " + std::to_string(kRegistersPerClass) +
+                                  " of this class here");
     return std::nullopt;
   }
 
@@ -375,9 +384,7 @@ bool constant_components(const Expr* expr, std::vector<double>& out) {
   switch (expr->kind) {
     case ExprKind::IntLiteral:
     case ExprKind::FloatLiteral:
-    case ExprKind::BoolLiteral:
-      out.push_back(literal_value(expr));
-      return true;
+    case ExprKind::BoolLiteral: out.push_back(literal_value(expr)); return true;
     case ExprKind::Unary: {
       auto* unary = static_cast<const UnaryExpr*>(expr);
       if (unary->op != UnaryOp::Minus && unary->op != UnaryOp::Plus) return false;
@@ -419,8 +426,10 @@ void check_texture_default(const VarDecl& var, DiagnosticEngine& diagnostics) {
     if (annotation.name != "Default") continue;
     const auto& known = kTextureDefaults;
     if (std::find(std::begin(known), std::end(known), annotation.text) == std::end(known))
-      diagnostics.error(annotation.loc, "Default of texture " + in_quotes(var.name) +
-                                            " must be \"white\", \"black\", \"checker\", \"normal\", \"gray\", \"red\" or \"clear\" (a string)");
+      diagnostics.error(
+          annotation.loc,
+          "Default of texture " + in_quotes(var.name) +
+              " must be \"white\", \"black\", \"checker\", \"normal\", \"gray\", \"red\" or \"clear\" (a string)");
   }
 }
 
@@ -466,11 +475,13 @@ std::vector<StageVariable> stage_variables(const FunctionDecl& entry, bool input
         const auto& fields = type.struct_decl()->fields;
         for (auto field = fields.rbegin(); field != fields.rend(); ++field)  // in declaration order
           if (field->vk.builtin.empty())  // [[vk::builtin]]: GLSL's built-in, not a location
-            pending.push_back({&field->type, &field->semantic, field->interpolation, field->vk.location, item.depth + 1});
+            pending.push_back(
+                {&field->type, &field->semantic, field->interpolation, field->vk.location, item.depth + 1});
         continue;
       }
       if (!item.semantic->empty())
-        variables.push_back({canonical(*item.semantic), type, item.location.value_or(0), item.interpolation, item.location});
+        variables.push_back(
+            {canonical(*item.semantic), type, item.location.value_or(0), item.interpolation, item.location});
     }
   };
   for (const auto& param : entry.params) {
@@ -480,7 +491,8 @@ std::vector<StageVariable> stage_variables(const FunctionDecl& entry, bool input
     if ((inputs ? is_input : is_output) && param->vk.builtin.empty())
       add(param->type, param->semantic, param->interpolation, param->vk.location);
   }
-  if (!inputs && !entry.return_type.is_void()) add(entry.return_type, entry.semantic, Interpolation::Default, std::nullopt);
+  if (!inputs && !entry.return_type.is_void())
+    add(entry.return_type, entry.semantic, Interpolation::Default, std::nullopt);
   return variables;
 }
 
@@ -551,8 +563,8 @@ std::string canonical_semantic_name(const std::string& semantic) { return canoni
 
 std::optional<uint32_t> vertex_input_location(const std::string& semantic) {
   static const std::map<std::string, uint32_t> locations{
-      {"POSITION0", 0},  {"NORMAL0", 1},    {"TANGENT0", 2},   {"TEXCOORD0", 3},  {"TEXCOORD1", 4},
-      {"COLOR0", 5},     {"TEXCOORD2", 6},  {"TEXCOORD3", 7},  {"TEXCOORD4", 8},  {"TEXCOORD5", 9},
+      {"POSITION0", 0},  {"NORMAL0", 1},    {"TANGENT0", 2},  {"TEXCOORD0", 3}, {"TEXCOORD1", 4},
+      {"COLOR0", 5},     {"TEXCOORD2", 6},  {"TEXCOORD3", 7}, {"TEXCOORD4", 8}, {"TEXCOORD5", 9},
       {"TEXCOORD6", 10}, {"TEXCOORD7", 11}, {"COLOR1", 12}};
   auto it = locations.find(semantic);
   if (it != locations.end()) return it->second;
@@ -561,7 +573,7 @@ std::optional<uint32_t> vertex_input_location(const std::string& semantic) {
 
 std::optional<uint32_t> varying_location(const std::string& semantic) {
   const ParsedSemantic parsed = parse_semantic(semantic);
-    switch (parsed.kind) {
+  switch (parsed.kind) {
     case SemanticKind::Texcoord: return parsed.index < 8 ? std::optional<uint32_t>(parsed.index) : std::nullopt;
     case SemanticKind::Color: return parsed.index < 2 ? std::optional<uint32_t>(8 + parsed.index) : std::nullopt;
     case SemanticKind::Normal: return parsed.index == 0 ? std::optional<uint32_t>(10) : std::nullopt;
@@ -592,9 +604,10 @@ static void check_combined_image_samplers(const Reflection& reflection, Diagnost
                                 : std::any_of(reflection.textures.begin(), reflection.textures.end(),
                                               [&](const TextureResource& t) { return partner(decl, t.decl); });
     if (!paired)
-      diagnostics.error(decl->vk.loc, "vk::combinedImageSampler on " + in_quotes(decl->name) + " needs a " +
-                                          (texture ? "SamplerState" : "texture") + " with it at the same vk::binding: " +
-                                          "the two are one combined image sampler there");
+      diagnostics.error(decl->vk.loc,
+                        "vk::combinedImageSampler on " + in_quotes(decl->name) + " needs a " +
+                            (texture ? "SamplerState" : "texture") +
+                            " with it at the same vk::binding: " + "the two are one combined image sampler there");
   };
   for (const TextureResource& texture : reflection.textures) check(texture.decl, true);
   for (const SamplerResource& sampler : reflection.samplers) check(sampler.decl, false);
@@ -630,7 +643,8 @@ Reflection reflect(const TranslationUnit& unit, const EntryPoints& entry_points,
   // and growing the vector moves every one made so far.
   size_t most_properties = 0;
   for (const auto& decl : unit.decls) {
-    if (decl && decl->kind == DeclKind::CBuffer) most_properties += static_cast<const CBufferDecl&>(*decl).members.size();
+    if (decl && decl->kind == DeclKind::CBuffer)
+      most_properties += static_cast<const CBufferDecl&>(*decl).members.size();
     if (decl && decl->kind == DeclKind::Var) ++most_properties;
   }
   reflection.properties.reserve(most_properties);
@@ -648,10 +662,11 @@ Reflection reflect(const TranslationUnit& unit, const EntryPoints& entry_points,
       pack_members(buffer, packed_items(members), diagnostics);
       for (const VarDecl* member : members) reflection.properties.push_back(property_of(*member));
       const bool reached = std::any_of(members.begin(), members.end(), used);
-      if (cbuffer.binding.register_class == 'b' && !cbuffer.vk.binding) buffers.claim(cbuffer.binding, cbuffer.name, reached);
+      if (cbuffer.binding.register_class == 'b' && !cbuffer.vk.binding)
+        buffers.claim(cbuffer.binding, cbuffer.name, reached);
       else if (cbuffer.binding.register_class != 0)
-        diagnostics.error(cbuffer.binding.loc, "constant buffer " + in_quotes(cbuffer.name) + " needs a b register, not " +
-                                                   cbuffer.binding.register_class);
+        diagnostics.error(cbuffer.binding.loc, "constant buffer " + in_quotes(cbuffer.name) +
+                                                   " needs a b register, not " + cbuffer.binding.register_class);
       pending_buffers.push_back({reflection.constant_buffers.size(), &cbuffer.binding, cbuffer.loc});
       reflection.constant_buffers.push_back(std::move(buffer));
     } else if (decl->kind == DeclKind::Var) {
@@ -673,7 +688,8 @@ Reflection reflect(const TranslationUnit& unit, const EntryPoints& entry_points,
         texture.decl = &var;
         texture.count = count;
         // glslang puts a sampler2D in the texture range whatever its register letter says.
-        if (var.binding.register_class != 0 && !var.vk.binding) textures.claim(var.binding, var.name, used(&var), count);
+        if (var.binding.register_class != 0 && !var.vk.binding)
+          textures.claim(var.binding, var.name, used(&var), count);
         pending_textures.push_back({reflection.textures.size(), &var});
         reflection.textures.push_back(std::move(texture));
         reflection.properties.push_back(property_of(var));
@@ -690,7 +706,8 @@ Reflection reflect(const TranslationUnit& unit, const EntryPoints& entry_points,
           for (const FieldDecl& field : structure->fields)
             members.push_back({field.name, field.type, false, field.loc, {}, field.vk.offset});
         pack_members(buffer, members, diagnostics);
-        if (var.binding.register_class == 'b' && !var.vk.binding) buffers.claim(var.binding, var.name, used(&var), count);
+        if (var.binding.register_class == 'b' && !var.vk.binding)
+          buffers.claim(var.binding, var.name, used(&var), count);
         pending_buffers.push_back({reflection.constant_buffers.size(), &var.binding, var.loc});
         reflection.constant_buffers.push_back(std::move(buffer));
       } else if (kind == TypeKind::Buffer && !array && is_read_only_buffer(type.buffer_kind())) {
@@ -708,12 +725,14 @@ Reflection reflect(const TranslationUnit& unit, const EntryPoints& entry_points,
       } else if (kind == TypeKind::SamplerState) {
         SamplerResource sampler{var.name, 0, type.is_comparison(), true, &var};
         sampler.count = count;
-        if (var.binding.register_class != 0 && !var.vk.binding) samplers.claim(var.binding, var.name, used(&var), count);
+        if (var.binding.register_class != 0 && !var.vk.binding)
+          samplers.claim(var.binding, var.name, used(&var), count);
         pending_samplers.push_back({reflection.samplers.size(), &var});
         reflection.samplers.push_back(std::move(sampler));
       } else if (is_uniform_global(var)) {
         if (var.binding.register_class != 0)
-          diagnostics.warning(var.binding.loc, "register of " + in_quotes(var.name) + " is ignored: it lives in $Globals");
+          diagnostics.warning(var.binding.loc,
+                              "register of " + in_quotes(var.name) + " is ignored: it lives in $Globals");
         if (!globals_index) {
           globals_index = reflection.constant_buffers.size();
           reflection.constant_buffers.push_back({kGlobalsBufferName, 0, 0, {}, nullptr});
@@ -757,8 +776,10 @@ Reflection reflect(const TranslationUnit& unit, const EntryPoints& entry_points,
         resource.set = var->binding.space;
         uint32_t count = 1;
         if constexpr (requires { resource.count; }) count = resource.count;
-        if (var->binding.register_class != 0) resource.binding = registers.binding_of(var->binding);
-        else resource.binding = registers.next_free(var->name, var->loc, used_pass, count).value_or(0);
+        if (var->binding.register_class != 0)
+          resource.binding = registers.binding_of(var->binding);
+        else
+          resource.binding = registers.next_free(var->name, var->loc, used_pass, count).value_or(0);
       }
     };
     place(pending_textures, reflection.textures, textures);
@@ -782,8 +803,8 @@ Reflection reflect(const TranslationUnit& unit, const EntryPoints& entry_points,
     std::vector<StageVariable> unplaced;
     for (StageVariable input : stage_variables(*entry_points.vertex, true)) {
       if (is_system_value(input, true)) continue;
-      const std::optional<uint32_t> location = input.given_location ? input.given_location
-                                                                    : vertex_input_location(input.semantic);
+      const std::optional<uint32_t> location =
+          input.given_location ? input.given_location : vertex_input_location(input.semantic);
       if (!location) {
         unplaced.push_back(std::move(input));
         continue;
@@ -798,8 +819,8 @@ Reflection reflect(const TranslationUnit& unit, const EntryPoints& entry_points,
     unplaced.clear();
     for (StageVariable output : stage_variables(*entry_points.vertex, false)) {
       if (is_system_value(output, false)) continue;
-      const std::optional<uint32_t> location = output.given_location ? output.given_location
-                                                                      : varying_location(output.semantic);
+      const std::optional<uint32_t> location =
+          output.given_location ? output.given_location : varying_location(output.semantic);
       if (!location) {
         unplaced.push_back(std::move(output));
         continue;
@@ -836,7 +857,8 @@ Reflection reflect(const TranslationUnit& unit, const EntryPoints& entry_points,
       if (!entry_points.vertex) {
         // A full-screen pass: the shared vertex shader feeds every scalar or vector varying
         // (glsl::fullscreen_vertex_shader: uv for floats, 0 for integers, the identity for matrices).
-        std::optional<uint32_t> location = input.given_location ? input.given_location : varying_location(input.semantic);
+        std::optional<uint32_t> location =
+            input.given_location ? input.given_location : varying_location(input.semantic);
         if (!location) location = next_free_location(reflection.varyings, kFirstUserVarying);
         const Type& element = input.type.kind() == TypeKind::Array ? input.type.element() : input.type;
         const ScalarType scalar = element.scalar_type();
@@ -845,14 +867,15 @@ Reflection reflect(const TranslationUnit& unit, const EntryPoints& entry_points,
                           (is_float || scalar == ScalarType::Int || scalar == ScalarType::Uint)) ||
                          (element.is_matrix() && is_float);
         if (!location || !fed)
-          diagnostics.error(entry_points.fragment->loc,
-                            "a fragment shader without a vertex stage receives uv in its float scalar and vector inputs "
-                            "(TEXCOORD0 and the like, arrays of them too), 0 in its integer ones and the identity in its "
-                            "float matrices, not " +
-                                input.type.name() + " " +
-                                in_quotes(input.semantic));
+          diagnostics.error(
+              entry_points.fragment->loc,
+              "a fragment shader without a vertex stage receives uv in its float scalar and vector inputs "
+              "(TEXCOORD0 and the like, arrays of them too), 0 in its integer ones and the identity in its "
+              "float matrices, not " +
+                  input.type.name() + " " + in_quotes(input.semantic));
         else
-          reflection.varyings.push_back({input.semantic, input.type, *location, input.interpolation, input.given_location});
+          reflection.varyings.push_back(
+              {input.semantic, input.type, *location, input.interpolation, input.given_location});
       }
     }
     if (!entry_points.vertex) place_varyings(reflection.varyings, entry_points.fragment->loc, diagnostics);
@@ -888,13 +911,13 @@ std::vector<std::string> keyword_combination(const std::vector<KeywordSet>& sets
     keywords[s] = set[index % set.size()];
     index /= set.size();
   }
-  std::erase_if(keywords, [](const std::string& keyword) { return keyword.find_first_not_of('_') == std::string::npos; });
+  std::erase_if(keywords,
+                [](const std::string& keyword) { return keyword.find_first_not_of('_') == std::string::npos; });
   return keywords;
 }
 
 bool is_read_only_buffer(BufferKind kind) {
   return kind == BufferKind::StructuredBuffer || kind == BufferKind::ByteAddressBuffer || kind == BufferKind::Buffer;
 }
-
 
 }  // namespace xshade::hlsl

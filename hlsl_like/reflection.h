@@ -31,8 +31,8 @@ inline constexpr const char* kGlobalsBufferName = "$Globals";
 struct ConstantBufferMember {
   std::string name;
   Type type;
-  uint32_t offset = 0;  // bytes from the start of the buffer, HLSL packing
-  uint32_t size = 0;    // bytes HLSL gives it (an array's last element is not padded)
+  uint32_t offset = 0;     // bytes from the start of the buffer, HLSL packing
+  uint32_t size = 0;       // bytes HLSL gives it (an array's last element is not padded)
   bool row_major = false;  // a matrix stored by rows (HLSL's default is by columns)
   // A vector whose HLSL offset std140 cannot hold (a float2 at 4, a float3 at 4): the emitter
   // declares it as scalars at these offsets and rebuilds the vector where it is read.
@@ -50,7 +50,7 @@ struct ConstantBuffer {
   // The CBufferDecl, or the VarDecl of a `ConstantBuffer<S> name` (whose members are S's fields,
   // read as name.field); null for $Globals.
   const Decl* decl = nullptr;
-  uint32_t set = 0;  // Vulkan's descriptor set: 0 unless [[vk::binding(N, set)]] says otherwise
+  uint32_t set = 0;            // Vulkan's descriptor set: 0 unless [[vk::binding(N, set)]] says otherwise
   bool push_constant = false;  // [[vk::push_constant]]: a push-constant block on Vulkan
   // Elements of an array of them (ConstantBuffer<S> cb[2]): the registers from `binding` on on
   // Direct3D and OpenGL, one binding of that many descriptors on Vulkan.
@@ -80,7 +80,7 @@ struct TextureResource {
   // move when a shader stops reading one) but is neither declared in GLSL nor bound.
   bool used = true;
   const VarDecl* decl = nullptr;
-  uint32_t set = 0;  // as ConstantBuffer::set
+  uint32_t set = 0;    // as ConstantBuffer::set
   uint32_t count = 1;  // as ConstantBuffer::count
 };
 
@@ -88,9 +88,9 @@ struct SamplerResource {
   std::string name;
   uint32_t binding = 0;
   bool comparison = false;  // a SamplerComparisonState
-  bool used = true;  // as TextureResource::used
+  bool used = true;         // as TextureResource::used
   const VarDecl* decl = nullptr;
-  uint32_t set = 0;  // as ConstantBuffer::set
+  uint32_t set = 0;    // as ConstantBuffer::set
   uint32_t count = 1;  // as ConstantBuffer::count
 };
 
@@ -101,8 +101,8 @@ struct SamplerResource {
 struct StorageBufferResource {
   std::string name;
   BufferKind kind = BufferKind::StructuredBuffer;
-  Type element;         // T; uint for a ByteAddressBuffer
-  uint32_t stride = 4;  // bytes from one element to the next (4 for a ByteAddressBuffer's words)
+  Type element;          // T; uint for a ByteAddressBuffer
+  uint32_t stride = 4;   // bytes from one element to the next (4 for a ByteAddressBuffer's words)
   uint32_t binding = 0;  // in the texture range, as the register it shares with textures
   bool used = true;      // as TextureResource::used
   const VarDecl* decl = nullptr;
@@ -124,10 +124,10 @@ struct StageVariable {
 // A material property: a uniform with its annotations (`<string UIName = ...; float UIMin...>`).
 struct Property {
   std::string name;
-  std::string display_name;    // UIName, or the name
+  std::string display_name;  // UIName, or the name
   Type type;
-  std::optional<double> min;   // UIMin
-  std::optional<double> max;   // UIMax
+  std::optional<double> min;          // UIMin
+  std::optional<double> max;          // UIMax
   std::vector<double> default_value;  // the initializer's components, when constant
   bool is_texture = false;
   // A texture's `<string Default = "white";>`: what it samples where a scene gives it nothing

@@ -24,7 +24,9 @@ const char* interpolation_name(Interpolation interpolation) {
 nlohmann::json stage_json(const std::vector<StageVariable>& variables) {
   nlohmann::json list = nlohmann::json::array();
   for (const StageVariable& v : variables)
-    list.push_back({{"semantic", v.semantic}, {"type", type_json(v.type)}, {"location", v.location},
+    list.push_back({{"semantic", v.semantic},
+                    {"type", type_json(v.type)},
+                    {"location", v.location},
                     {"interpolation", interpolation_name(v.interpolation)}});
   return list;
 }
@@ -41,9 +43,13 @@ std::string reflection_json(const Reflection& reflection) {
   for (const ConstantBuffer& buffer : reflection.constant_buffers) {
     nlohmann::json members = nlohmann::json::array();
     for (const ConstantBufferMember& m : buffer.members)
-      members.push_back({{"name", m.name}, {"type", type_json(m.type)}, {"offset", m.offset}, {"size", m.size},
+      members.push_back({{"name", m.name},
+                         {"type", type_json(m.type)},
+                         {"offset", m.offset},
+                         {"size", m.size},
                          {"row_major", m.row_major}});
-    nlohmann::json entry = {{"name", buffer.name}, {"binding", buffer.binding}, {"size", buffer.size}, {"members", members}};
+    nlohmann::json entry = {
+        {"name", buffer.name}, {"binding", buffer.binding}, {"size", buffer.size}, {"members", members}};
     if (buffer.set) entry["set"] = buffer.set;
     if (buffer.count > 1) entry["count"] = buffer.count;
     if (buffer.push_constant) entry["push_constant"] = true;
@@ -73,8 +79,12 @@ std::string reflection_json(const Reflection& reflection) {
   }
   json["buffers"] = nlohmann::json::array();
   for (const StorageBufferResource& b : reflection.buffers) {
-    nlohmann::json buffer = {{"name", b.name},     {"kind", buffer_kind_name(b.kind)}, {"element", type_json(b.element)},
-                             {"stride", b.stride}, {"binding", b.binding},           {"used", b.used}};
+    nlohmann::json buffer = {{"name", b.name},
+                             {"kind", buffer_kind_name(b.kind)},
+                             {"element", type_json(b.element)},
+                             {"stride", b.stride},
+                             {"binding", b.binding},
+                             {"used", b.used}};
     if (b.set) buffer["set"] = b.set;
     json["buffers"].push_back(buffer);
   }
@@ -92,7 +102,8 @@ std::string reflection_json(const Reflection& reflection) {
   }
   json["keywords"] = nlohmann::json::array();
   for (const KeywordSet& set : reflection.keyword_sets)
-    json["keywords"].push_back({{"keywords", set.keywords}, {"pragma", set.shader_feature ? "shader_feature" : "multi_compile"}});
+    json["keywords"].push_back(
+        {{"keywords", set.keywords}, {"pragma", set.shader_feature ? "shader_feature" : "multi_compile"}});
   json["active_keywords"] = reflection.active_keywords;
   if (reflection.clip_distances) json["clip_distances"] = reflection.clip_distances;
   if (reflection.cull_distances) json["cull_distances"] = reflection.cull_distances;

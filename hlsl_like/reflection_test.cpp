@@ -183,9 +183,8 @@ float4 frag(v2f i) : SV_Target {
   ASSERT_TRUE(module->ok()) << module->diagnostics.render_all();
   std::map<std::string, uint32_t> locations;
   for (const StageVariable& varying : module->reflection.varyings) locations[varying.semantic] = varying.location;
-  const std::map<std::string, uint32_t> expected{{"TEXCOORD0", 0}, {"TEXCOORD2", 2}, {"TEXCOORD3", 4},
-                                                 {"TEXCOORD4", 5}, {"TEXCOORD6", 6}, {"COLOR0", 9},
-                                                 {"NORMAL0", 10}};
+  const std::map<std::string, uint32_t> expected{{"TEXCOORD0", 0}, {"TEXCOORD2", 2}, {"TEXCOORD3", 4}, {"TEXCOORD4", 5},
+                                                 {"TEXCOORD6", 6}, {"COLOR0", 9},    {"NORMAL0", 10}};
   EXPECT_EQ(locations, expected);
 
   // Without a vertex stage the fragment inputs are placed alike.
@@ -264,24 +263,28 @@ float4 frag() : SV_Target { return w[0] + after; }
 }
 
 TEST(Reflection, PackoffsetPlacesMembersAndGlslListsThemByOffset) {
-  auto module = compile("#pragma fragment frag\ncbuffer Light : register(b0) {\n"
-                        "  float3 color : packoffset(c1);\n  float intensity : packoffset(c1.w);\n"
-                        "  float2 uv_scale : packoffset(c0.z);\n  float after;\n};\n"
-                        "float4 frag() : SV_Target { return float4(color * intensity, uv_scale.x + after); }\n");
+  auto module = compile(
+      "#pragma fragment frag\ncbuffer Light : register(b0) {\n"
+      "  float3 color : packoffset(c1);\n  float intensity : packoffset(c1.w);\n"
+      "  float2 uv_scale : packoffset(c0.z);\n  float after;\n};\n"
+      "float4 frag() : SV_Target { return float4(color * intensity, uv_scale.x + after); }\n");
   ASSERT_TRUE(module->ok()) << module->diagnostics.render_all();
   const ConstantBuffer& buffer = module->reflection.constant_buffers.at(0);
   std::vector<std::pair<std::string, uint32_t>> offsets;
   for (const ConstantBufferMember& member : buffer.members) offsets.push_back({member.name, member.offset});
   // `after` follows the member before it (uv_scale ends at 16: the next register starts at 16,
   // but c1 is taken up to 32, so it goes after what is placed: 32).
-  EXPECT_EQ(offsets, (std::vector<std::pair<std::string, uint32_t>>{{"uv_scale", 8}, {"color", 16}, {"intensity", 28},
-                                                                       {"after", 32}}));
+  EXPECT_EQ(offsets, (std::vector<std::pair<std::string, uint32_t>>{
+                         {"uv_scale", 8}, {"color", 16}, {"intensity", 28}, {"after", 32}}));
   EXPECT_EQ(buffer.size, 48u);
-  auto overlap = compile("#pragma fragment frag\ncbuffer C { float4 a : packoffset(c0); float b : packoffset(c0.y); };\n"
-                         "float4 frag() : SV_Target { return a + b; }\n");
-  EXPECT_EQ(errors(*overlap), (Strings{"test.hlsl:2:50: error: 'b' at offset 4 of constant buffer 'C' overlaps 'a' (up to 16)"}));
-  auto straddle = compile("#pragma fragment frag\ncbuffer C { float3 a : packoffset(c0.z); float4x4 m : packoffset(c1.y); };\n"
-                          "float4 frag() : SV_Target { return a.x + m[0]; }\n");
+  auto overlap = compile(
+      "#pragma fragment frag\ncbuffer C { float4 a : packoffset(c0); float b : packoffset(c0.y); };\n"
+      "float4 frag() : SV_Target { return a + b; }\n");
+  EXPECT_EQ(errors(*overlap),
+            (Strings{"test.hlsl:2:50: error: 'b' at offset 4 of constant buffer 'C' overlaps 'a' (up to 16)"}));
+  auto straddle = compile(
+      "#pragma fragment frag\ncbuffer C { float3 a : packoffset(c0.z); float4x4 m : packoffset(c1.y); };\n"
+      "float4 frag() : SV_Target { return a.x + m[0]; }\n");
   EXPECT_EQ(errors(*straddle),
             (Strings{"test.hlsl:2:24: error: packoffset(c0.z) of 'a' puts its 12 bytes across a 16-byte register",
                      "test.hlsl:2:55: error: packoffset(c1.y) of 'm': arrays, matrices and structs start a register; "
@@ -363,7 +366,7 @@ float4 frag(float2 uv : TEXCOORD0) : SV_Target {
   const Reflection& r = module->reflection;
   ASSERT_EQ(r.buffers.size(), 3u);
   EXPECT_EQ(r.buffers[0].binding, kTextureBindingBase + 1);  // t0 is the texture's
-  EXPECT_EQ(r.buffers[0].stride, 4u * (3 + 1 + 16 + 6));    // tightly packed, half as 32 bits
+  EXPECT_EQ(r.buffers[0].stride, 4u * (3 + 1 + 16 + 6));     // tightly packed, half as 32 bits
   EXPECT_EQ(r.buffers[1].binding, kTextureBindingBase + 4);
   EXPECT_EQ(r.buffers[1].stride, 4u);
   EXPECT_EQ(r.buffers[2].stride, 12u);

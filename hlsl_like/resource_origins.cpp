@@ -10,7 +10,8 @@ namespace xshade::hlsl {
 
 namespace {
 
-void collect_paths(const Type& type, std::vector<uint32_t>& prefix, std::vector<std::vector<uint32_t>>& out, int depth) {
+void collect_paths(const Type& type, std::vector<uint32_t>& prefix, std::vector<std::vector<uint32_t>>& out,
+                   int depth) {
   if (depth > 64) return;  // sema has refused deeper nesting already
   if (type.is_resource()) {
     out.push_back(prefix);
@@ -83,7 +84,8 @@ class Resolver {
     const Type* type = decl->kind == DeclKind::Var ? &static_cast<const VarDecl*>(decl)->type
                                                    : &static_cast<const ParamDecl*>(decl)->type;
     for (uint32_t field : path) {
-      if (type->kind() != TypeKind::Struct || !type->struct_decl() || field >= type->struct_decl()->fields.size()) break;
+      if (type->kind() != TypeKind::Struct || !type->struct_decl() || field >= type->struct_decl()->fields.size())
+        break;
       const FieldDecl& f = type->struct_decl()->fields[field];
       text += "." + f.name;
       type = &f.type;
@@ -124,9 +126,7 @@ class Resolver {
   }
 
   // Asked of every expression: most are numeric, answered before the walk.
-  static bool holds_resources(const Type& type) {
-    return may_hold_resources(type) && !resource_paths(type).empty();
-  }
+  static bool holds_resources(const Type& type) { return may_hold_resources(type) && !resource_paths(type).empty(); }
 
   void expression(const Expr* e) {
     if (!e) return;
@@ -134,9 +134,7 @@ class Resolver {
       switch (e->kind) {
         case ExprKind::Name:
         case ExprKind::Member:
-        case ExprKind::Conversion:
-          read(e);
-          return;
+        case ExprKind::Conversion: read(e); return;
         case ExprKind::Assign: {
           const auto* assignment = static_cast<const AssignExpr*>(e);
           expression(assignment->value.get());

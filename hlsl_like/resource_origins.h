@@ -16,7 +16,7 @@
 namespace xshade::hlsl {
 
 struct ResourceOrigin {
-  const Decl* root = nullptr;   // a global VarDecl, or a ParamDecl of the function
+  const Decl* root = nullptr;    // a global VarDecl, or a ParamDecl of the function
   std::vector<uint32_t> fields;  // field indices below a parameter of struct type; empty otherwise
 };
 

@@ -13,10 +13,11 @@ namespace {
 using Strings = std::vector<std::string>;
 
 std::unique_ptr<Module> compile_body(const std::string& body, const std::string& functions = "") {
-  const std::string source = "#pragma fragment frag\n"
-                             "struct Pair { SamplerState smpl; Texture2D tex; };\n"
-                             "Texture2D _A; Texture2D _B; SamplerState s_A; SamplerState s_B;\n" +
-                             functions + "float4 frag(float2 uv : TEXCOORD0) : SV_Target {\n" + body + "\n}\n";
+  const std::string source =
+      "#pragma fragment frag\n"
+      "struct Pair { SamplerState smpl; Texture2D tex; };\n"
+      "Texture2D _A; Texture2D _B; SamplerState s_A; SamplerState s_B;\n" +
+      functions + "float4 frag(float2 uv : TEXCOORD0) : SV_Target {\n" + body + "\n}\n";
   return compile_text("test.hlsl", source, {});
 }
 
@@ -40,7 +41,7 @@ TEST(ResourceOrigins, LocalsAndFieldsNameTheGlobalsTheyAreGiven) {
 
 TEST(ResourceOrigins, AStructParameterIsTracedToWhatTheCallPasses) {
   auto module = compile_body("Pair p; p.tex = _A; p.smpl = s_A; return read(p, uv);",
-                        "float4 read(Pair p, float2 uv) { return p.tex.SampleLevel(p.smpl, uv, 0); }\n");
+                             "float4 read(Pair p, float2 uv) { return p.tex.SampleLevel(p.smpl, uv, 0); }\n");
   ASSERT_TRUE(module->ok()) << module->diagnostics.render_all();
   EXPECT_EQ(module->reflection.textures[0].sampler, "s_A");
   EXPECT_FALSE(module->reflection.textures[1].used);

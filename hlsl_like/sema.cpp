@@ -32,8 +32,7 @@ bool always_returns(const Sema& sema, const Stmt* stmt, int depth) {
   if (!stmt || depth > kMaxNesting) return false;
   switch (stmt->kind) {
     case StmtKind::Return:
-    case StmtKind::Discard:
-      return true;
+    case StmtKind::Discard: return true;
     case StmtKind::Block:
       for (const StmtPtr& child : static_cast<const BlockStmt*>(stmt)->statements) {
         if (always_returns(sema, child.get(), depth + 1)) return true;
@@ -76,8 +75,7 @@ bool always_returns(const Sema& sema, const Stmt* stmt, int depth) {
       if (always_returns(sema, loop->body.get(), depth + 1)) return true;
       return loop->condition && constant_true(sema, loop->condition.get()) && !contains_break(loop->body.get(), 0);
     }
-    default:
-      return false;
+    default: return false;
   }
 }
 
@@ -93,10 +91,10 @@ bool contains_break(const Stmt* stmt, int depth) {
       return false;
     case StmtKind::If: {
       const auto* branch = static_cast<const IfStmt*>(stmt);
-      return contains_break(branch->then_branch.get(), depth + 1) || contains_break(branch->else_branch.get(), depth + 1);
+      return contains_break(branch->then_branch.get(), depth + 1) ||
+             contains_break(branch->else_branch.get(), depth + 1);
     }
-    default:
-      return false;  // loops own their breaks
+    default: return false;  // loops own their breaks
   }
 }
 
@@ -110,8 +108,7 @@ bool semantic_allowed(SemanticKind kind, Stage stage, bool input) {
     case SemanticKind::Normal:
     case SemanticKind::Tangent:
     case SemanticKind::Binormal:
-    case SemanticKind::Texcoord:
-      return !(stage == Stage::Fragment && !input);
+    case SemanticKind::Texcoord: return !(stage == Stage::Fragment && !input);
     case SemanticKind::Color: return true;  // a fragment output COLORn is SV_Targetn (DX9)
     case SemanticKind::SvPosition: return !(stage == Stage::Vertex && input) && !(stage == Stage::Fragment && !input);
     case SemanticKind::SvTarget:
@@ -222,7 +219,8 @@ std::string Sema::suggestion(const std::string& name, bool functions) const {
   size_t best_distance = limit + 1;
   auto consider = [&](std::string_view candidate) {
     if (candidate.size() > 64 || candidate == name) return;
-    const size_t difference = candidate.size() > name.size() ? candidate.size() - name.size() : name.size() - candidate.size();
+    const size_t difference =
+        candidate.size() > name.size() ? candidate.size() - name.size() : name.size() - candidate.size();
     if (difference >= best_distance) return;
     const size_t distance = edit_distance(name, candidate);
     if (distance < best_distance && distance < candidate.size()) {
@@ -370,7 +368,8 @@ void Sema::declare_function(FunctionDecl& function) {
   all_functions_.push_back(&function);
   analyze_attributes(function.attributes);
   if (function.return_type.is_resource() || function.return_type.kind() == TypeKind::Array) {
-    diag_.error(function.loc, "function " + in_quotes(function.name) + " cannot return " + in_quotes(function.return_type.name()));
+    diag_.error(function.loc,
+                "function " + in_quotes(function.name) + " cannot return " + in_quotes(function.return_type.name()));
   }
   std::vector<Type> param_types;
   param_types.reserve(function.params.size());
@@ -389,7 +388,8 @@ void Sema::declare_function(FunctionDecl& function) {
   if (canonical) {
     FunctionInfo& info = function_info_[canonical];
     if (!(canonical->return_type == function.return_type)) {
-      diag_.error(function.loc, in_quotes(function.name) + " differs from a previous declaration only in its return type");
+      diag_.error(function.loc,
+                  in_quotes(function.name) + " differs from a previous declaration only in its return type");
       diag_.note(canonical->loc, "previous declaration of " + in_quotes(function.name) + " is here");
     } else if (function.body && info.definition) {
       diag_.error(function.loc, "redefinition of " + in_quotes(function.name));
@@ -419,7 +419,8 @@ void Sema::declare_function(FunctionDecl& function) {
   for (auto& param : function.params) {
     if (!param) continue;
     check_type_usable(param->type, "parameter ", param->name, param->loc, true);
-    if (is_unsized_array(param->type)) diag_.error(param->loc, "parameter " + in_quotes(param->name) + " needs an array size");
+    if (is_unsized_array(param->type))
+      diag_.error(param->loc, "parameter " + in_quotes(param->name) + " needs an array size");
     if (param->default_value) {
       analyze(param->default_value.get());
       coerce(param->default_value, param->type);
@@ -481,12 +482,8 @@ void Sema::analyze_stmt(Stmt* stmt) {
     pop_scope();
   };
   switch (stmt->kind) {
-    case StmtKind::Block:
-      analyze_block(static_cast<BlockStmt&>(*stmt), true);
-      break;
-    case StmtKind::Expr:
-      analyze(static_cast<ExprStmt&>(*stmt).expr.get());
-      break;
+    case StmtKind::Block: analyze_block(static_cast<BlockStmt&>(*stmt), true); break;
+    case StmtKind::Expr: analyze(static_cast<ExprStmt&>(*stmt).expr.get()); break;
     case StmtKind::Decl:
       for (auto& var : static_cast<DeclStmt&>(*stmt).vars) {
         if (var) analyze_local_var(*var);
@@ -539,7 +536,8 @@ void Sema::analyze_stmt(Stmt* stmt) {
                                                "write (int)(...) to say so");
           wrap_conversion(sw.condition, Type::scalar(ScalarType::Int));
         } else if (!type.is_numeric() || type.component_count() != 1 || !(type.is_integer() || type.is_bool())) {
-          diag_.error(sw.condition->loc, "the condition of a switch must be an integer scalar, not " + in_quotes(type.name()));
+          diag_.error(sw.condition->loc,
+                      "the condition of a switch must be an integer scalar, not " + in_quotes(type.name()));
         } else if (!type.is_integer() || !type.is_scalar()) {
           wrap_conversion(sw.condition, Type::scalar(type.is_integer() ? type.scalar_type() : ScalarType::Int));
         }
@@ -570,7 +568,8 @@ void Sema::analyze_stmt(Stmt* stmt) {
       break;
     }
     case StmtKind::Break:
-      if (loop_depth_ == 0 && switch_depth_ == 0) diag_.error(stmt->loc, "'break' is only allowed inside a loop or a switch");
+      if (loop_depth_ == 0 && switch_depth_ == 0)
+        diag_.error(stmt->loc, "'break' is only allowed inside a loop or a switch");
       break;
     case StmtKind::Continue:
       if (loop_depth_ == 0) diag_.error(stmt->loc, "'continue' is only allowed inside a loop");
@@ -586,17 +585,15 @@ void Sema::analyze_stmt(Stmt* stmt) {
           diag_.error(ret.value->loc, "void function " + in_quotes(current_function_->name) + " cannot return a value");
         }
       } else if (!ret.value) {
-        diag_.error(stmt->loc, in_quotes(current_function_->name) + " must return a value of type " + in_quotes(expected.name()));
+        diag_.error(stmt->loc,
+                    in_quotes(current_function_->name) + " must return a value of type " + in_quotes(expected.name()));
       } else {
         coerce(ret.value, expected);
       }
       break;
     }
-    case StmtKind::Discard:
-      note_fragment_only("'discard'", stmt->loc);
-      break;
-    case StmtKind::Empty:
-      break;
+    case StmtKind::Discard: note_fragment_only("'discard'", stmt->loc); break;
+    case StmtKind::Empty: break;
   }
 }
 
@@ -688,16 +685,15 @@ const FunctionDecl* Sema::find_entry_point(const std::string& name, Loc pragma_l
                                 function_signature(first) + "' at " + diag_.sources().resolve(first.loc).to_string() +
                                 "; an entry point cannot be overloaded: rename or remove all but one of them");
     for (const FunctionDecl* other : overloads)
-      if (other != &second)
-        diag_.note(other->loc, "'" + function_signature(*other) + "' is " + kind(*other) + " here");
+      if (other != &second) diag_.note(other->loc, "'" + function_signature(*other) + "' is " + kind(*other) + " here");
     diag_.note(pragma_loc, "named the " + std::string(stage) + " entry point here");
     return nullptr;
   }
   const FunctionDecl* definition = function_info_[it->second[0]].definition;
   if (!definition) {
     diag_.error(pragma_loc, "entry point " + in_quotes(name) + " is not defined");
-    diag_.note(it->second[0]->loc, "'" + function_signature(*it->second[0]) +
-                                       "' is declared here, without a body; give it one");
+    diag_.note(it->second[0]->loc,
+               "'" + function_signature(*it->second[0]) + "' is declared here, without a body; give it one");
   }
   return definition;
 }
@@ -708,8 +704,8 @@ void Sema::check_entry_point(const FunctionDecl& function, bool vertex) {
   bool outputs_position = false, outputs_target = false, return_failed = false;
   std::unordered_map<std::string, Loc> seen[2];  // inputs, outputs
   auto report = [&](Loc loc, const std::string& message) {
-    const std::string key = std::to_string(loc.file) + ":" + std::to_string(loc.line) + ":" +
-                            std::to_string(loc.column) + ":" + message;
+    const std::string key =
+        std::to_string(loc.file) + ":" + std::to_string(loc.line) + ":" + std::to_string(loc.column) + ":" + message;
     if (reported_.insert(key).second) diag_.error(loc, message);
   };
   // One value crossing the stage boundary: a parameter, a field of a struct, the return value.
@@ -723,8 +719,8 @@ void Sema::check_entry_point(const FunctionDecl& function, bool vertex) {
     Loc loc;
     int depth;
   };
-  auto check = [&](const Type& root_type, const std::string& root_semantic, Loc root_semantic_loc, std::string_view root_role,
-                   std::string_view root_name, Loc root_loc, bool input) {
+  auto check = [&](const Type& root_type, const std::string& root_semantic, Loc root_semantic_loc,
+                   std::string_view root_role, std::string_view root_name, Loc root_loc, bool input) {
     std::vector<Item> items{{&root_type, &root_semantic, root_semantic_loc, root_role, root_name, root_loc, 0}};
     size_t budget = 4096;  // far beyond a real signature; a hostile one stops here
     while (!items.empty()) {
@@ -742,13 +738,14 @@ void Sema::check_entry_point(const FunctionDecl& function, bool vertex) {
       if (type.kind() == TypeKind::Struct && type.struct_decl() && item.depth < kMaxNesting) {
         const auto& fields = type.struct_decl()->fields;
         for (auto field = fields.rbegin(); field != fields.rend(); ++field) {
-          items.push_back({&field->type, &field->semantic, field->semantic_loc,
-                           input ? "input " : "output ", field->name, field->loc, item.depth + 1});
+          items.push_back({&field->type, &field->semantic, field->semantic_loc, input ? "input " : "output ",
+                           field->name, field->loc, item.depth + 1});
         }
         continue;
       }
       if (item.semantic->empty()) {
-        const std::string name = item.role.empty() ? std::string(item.name) : std::string(item.role) + in_quotes(item.name);
+        const std::string name =
+            item.role.empty() ? std::string(item.name) : std::string(item.role) + in_quotes(item.name);
         report(item.loc, name + " of entry point " + in_quotes(function.name) + " needs a semantic");
         continue;
       }
@@ -772,13 +769,14 @@ void Sema::check_entry_point(const FunctionDecl& function, bool vertex) {
                                                in_quotes(std::string(*meant) + std::to_string(semantic.index)) + "?");
       }
       if (!semantic_allowed(semantic.kind, stage, input)) {
-        report(item.semantic_loc, "semantic " + in_quotes(*item.semantic) + " is not allowed on a " + stage_name + " shader " +
-                                      (input ? "input" : "output"));
+        report(item.semantic_loc, "semantic " + in_quotes(*item.semantic) + " is not allowed on a " + stage_name +
+                                      " shader " + (input ? "input" : "output"));
         continue;
       }
       if (auto needed = required_type(semantic.kind, type)) {
-        report(item.loc, "semantic " + in_quotes(*item.semantic) + " needs " + (needed->front() == 'a' ? "" : "type '") + *needed +
-                             (needed->front() == 'a' ? "" : "'") + ", not " + in_quotes(type.name()));
+        report(item.loc, "semantic " + in_quotes(*item.semantic) + " needs " +
+                             (needed->front() == 'a' ? "" : "type '") + *needed + (needed->front() == 'a' ? "" : "'") +
+                             ", not " + in_quotes(type.name()));
         continue;
       }
       const std::string canonical = canonical_semantic(semantic);

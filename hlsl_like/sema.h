@@ -9,7 +9,7 @@
 namespace xshade::hlsl {
 
 struct EntryPointNames {
-  std::string vertex;    // from #pragma vertex; empty when the source has no vertex stage
+  std::string vertex;  // from #pragma vertex; empty when the source has no vertex stage
   Loc vertex_loc;
   std::string fragment;  // from #pragma fragment
   Loc fragment_loc;
@@ -24,7 +24,6 @@ struct EntryPoints {
 // its type, names their declarations, calls their function, intrinsic or constructor, and every
 // implicit HLSL conversion becomes an explicit ConversionExpr. Errors and warnings go to
 // `diagnostics`; analysis goes on after an error, giving failed expressions the Error type.
-EntryPoints analyze(TranslationUnit& unit, const EntryPointNames& entry_points,
-                    DiagnosticEngine& diagnostics);
+EntryPoints analyze(TranslationUnit& unit, const EntryPointNames& entry_points, DiagnosticEngine& diagnostics);
 
 }  // namespace xshade::hlsl

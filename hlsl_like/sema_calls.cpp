@@ -166,8 +166,7 @@ bool bind_signature(const Sema& sema, const IntrinsicSignature& signature, const
           dim.matrix = actual;
         }
         break;
-      default:
-        break;
+      default: break;
     }
   }
   int bound[3];
@@ -369,7 +368,8 @@ Type Sema::analyze_constructor(CallExpr& expr) {
   uint64_t given = 0;
   for (ExprPtr& arg : expr.args) {
     if (!arg->type.is_numeric()) {
-      diag_.error(arg->loc, "cannot use a value of type " + in_quotes(arg->type.name()) + " in a " + in_quotes(type.name()) + " constructor");
+      diag_.error(arg->loc, "cannot use a value of type " + in_quotes(arg->type.name()) + " in a " +
+                                in_quotes(type.name()) + " constructor");
       return type;
     }
     given += arg->type.component_count();
@@ -394,10 +394,11 @@ Type Sema::analyze_function_call(CallExpr& expr, const std::vector<const Functio
     const size_t required = required_params(*chosen);
     const size_t total = chosen->params.size();
     if (expr.args.size() < required || expr.args.size() > total) {
-      const std::string takes = required == total ? std::to_string(total) + arguments_word(total)
-                                                  : std::to_string(required) + " to " + std::to_string(total) +
-                                                        arguments_word(total);
-      diag_.error(expr.loc, in_quotes(expr.callee) + " takes " + takes + ", " + std::to_string(expr.args.size()) + " given");
+      const std::string takes = required == total
+                                    ? std::to_string(total) + arguments_word(total)
+                                    : std::to_string(required) + " to " + std::to_string(total) + arguments_word(total);
+      diag_.error(expr.loc,
+                  in_quotes(expr.callee) + " takes " + takes + ", " + std::to_string(expr.args.size()) + " given");
       return Type::error();
     }
   } else {
@@ -454,11 +455,13 @@ Type Sema::analyze_intrinsic_call(CallExpr& expr, IntrinsicId id) {
   const std::string_view name = info.name;
   // Argument count first: the most helpful message when it is wrong.
   bool arity_matches = false;
-  for (const IntrinsicSignature& signature : info.signatures) arity_matches |= signature.param_count == expr.args.size();
+  for (const IntrinsicSignature& signature : info.signatures)
+    arity_matches |= signature.param_count == expr.args.size();
   if (!arity_matches) {
     std::vector<size_t> arities;
     for (const IntrinsicSignature& signature : info.signatures) arities.push_back(signature.param_count);
-    diag_.error(expr.loc, in_quotes(name) + " takes " + arity_list(arities) + ", " + std::to_string(expr.args.size()) + " given");
+    diag_.error(expr.loc,
+                in_quotes(name) + " takes " + arity_list(arities) + ", " + std::to_string(expr.args.size()) + " given");
     return Type::error();
   }
   // Only the ranks of every fitting signature are kept; the chosen one is bound again unless it

@@ -23,7 +23,8 @@ TEST(SemaCalls, ConstructorsCountComponents) {
   EXPECT_EQ(probe("", "float3(1)").tree, "(float3 (to float3 1))");
   EXPECT_EQ(type_of("", "float2x2(1, 0, 0, 1)"), "float2x2");
   EXPECT_EQ(type_of("float2 a; float2 b;", "float2x2(a, b)"), "float2x2");
-  EXPECT_EQ(probe("", "float3(1, 2)").messages, (Strings{"2:12: error: 'float3' constructor needs 3 components, 2 given"}));
+  EXPECT_EQ(probe("", "float3(1, 2)").messages,
+            (Strings{"2:12: error: 'float3' constructor needs 3 components, 2 given"}));
   EXPECT_EQ(probe("float3 v;", "float4(v, 1, 2)").messages,
             (Strings{"2:12: error: 'float4' constructor needs 4 components, 5 given"}));
 }
@@ -53,7 +54,8 @@ std::string pick_of(const OverloadCase& c) {
 TEST(SemaCalls, OverloadsAreRankedAsDxcRanksThem) {
   const OverloadCase cases[] = {
       // Unity's PositivePow(float3, float): a splat costs less than a truncation.
-      {"void f(float a, float b) {}\nvoid f(float3 a, float3 b) {}", "float3 v; float s;", "v, s", "void f(float3, float3)"},
+      {"void f(float a, float b) {}\nvoid f(float3 a, float3 b) {}", "float3 v; float s;", "v, s",
+       "void f(float3, float3)"},
       {"void f(float a) {}\nvoid f(int a) {}", "bool b;", "b", "ambiguous"},
       {"void f(float a) {}\nvoid f(int a) {}", "half h;", "h", "void f(float)"},
       {"void f(float a) {}\nvoid f(int a) {}", "uint u;", "u", "void f(int)"},
@@ -81,8 +83,7 @@ TEST(SemaCalls, OverloadsAreRankedAsDxcRanksThem) {
       // Out parameters are costed for the copy back too.
       {"void f(out float a) {}\nvoid f(out int a) {}", "float x;", "x", "void f(out float)"},
   };
-  for (const OverloadCase& c : cases)
-    EXPECT_EQ(pick_of(c), c.dxc_pick) << c.overloads << " with f(" << c.args << ")";
+  for (const OverloadCase& c : cases) EXPECT_EQ(pick_of(c), c.dxc_pick) << c.overloads << " with f(" << c.args << ")";
 }
 
 TEST(SemaCalls, AmbiguousCallsListTheCandidates) {
@@ -99,12 +100,14 @@ TEST(SemaCalls, NoViableOverloadListsTheCandidates) {
 }
 
 TEST(SemaCalls, ASingleFunctionConvertsItsArguments) {
-  auto a = analyze_source("float f(float3 v, out float o) { o = 1; return v.x; }\n"
-                          "void t(float4 p) {\n  float r;\n  f(p, r);\n  f(p);\n  f(p, 1);\n}\n");
-  EXPECT_EQ(a->messages(), (Strings{"4:5: warning: implicit truncation of vector type from 'float4' to 'float3'",
-                                    "5:3: error: 'f' takes 2 arguments, 1 given",
-                                    "6:5: warning: implicit truncation of vector type from 'float4' to 'float3'",
-                                    "6:8: error: argument 2 of 'f' is an out parameter and needs an assignable expression"}));
+  auto a = analyze_source(
+      "float f(float3 v, out float o) { o = 1; return v.x; }\n"
+      "void t(float4 p) {\n  float r;\n  f(p, r);\n  f(p);\n  f(p, 1);\n}\n");
+  EXPECT_EQ(a->messages(),
+            (Strings{"4:5: warning: implicit truncation of vector type from 'float4' to 'float3'",
+                     "5:3: error: 'f' takes 2 arguments, 1 given",
+                     "6:5: warning: implicit truncation of vector type from 'float4' to 'float3'",
+                     "6:8: error: argument 2 of 'f' is an out parameter and needs an assignable expression"}));
 }
 
 TEST(SemaCalls, DefaultArgumentsMayBeLeftOut) {
@@ -192,8 +195,8 @@ TEST(SemaIntrinsics, VectorIntrinsics) {
 TEST(SemaIntrinsics, MulCoversEveryHlslOverload) {
   const std::string g =
       "float s; float3 v3; float4 v4; float4x4 m44; float3x4 m34; float4x3 m43; float2x3 m23; float3x4 n34;";
-  EXPECT_EQ(type_of(g, "mul(v4, m44)"), "float4");   // row vector
-  EXPECT_EQ(type_of(g, "mul(m44, v4)"), "float4");   // column vector
+  EXPECT_EQ(type_of(g, "mul(v4, m44)"), "float4");  // row vector
+  EXPECT_EQ(type_of(g, "mul(m44, v4)"), "float4");  // column vector
   EXPECT_EQ(type_of(g, "mul(m34, v4)"), "float3");
   EXPECT_EQ(type_of(g, "mul(v4, m43)"), "float3");
   EXPECT_EQ(type_of(g, "mul(v3, m34)"), "float4");
@@ -232,7 +235,8 @@ TEST(SemaIntrinsics, PredicatesBitCastsAndMatrices) {
   EXPECT_EQ(type_of(g, "reversebits(i)"), "uint2");
   EXPECT_EQ(type_of(g, "transpose(m)"), "float4x3");
   EXPECT_EQ(type_of(g, "determinant(n)"), "float");
-  EXPECT_EQ(probe(g, "determinant(m)").messages, (Strings{"2:12: error: no overload of 'determinant' takes (float3x4)"}));
+  EXPECT_EQ(probe(g, "determinant(m)").messages,
+            (Strings{"2:12: error: no overload of 'determinant' takes (float3x4)"}));
   EXPECT_EQ(type_of(g, "mad(f, f, 1)"), "float3");
   EXPECT_EQ(type_of(g, "ldexp(f, 2)"), "float3");
   EXPECT_EQ(type_of(g, "exp2(log10(f))"), "float3");
@@ -242,8 +246,9 @@ TEST(SemaIntrinsics, PredicatesBitCastsAndMatrices) {
 }
 
 TEST(SemaIntrinsics, OutParametersNeedAssignableArguments) {
-  auto a = analyze_source("void t(float3 x) {\n  float3 s, c;\n  sincos(x, s, c);\n  sincos(x, 1.0, c);\n"
-                          "  float3 ip;\n  float3 fr = modf(x, ip);\n}\n");
+  auto a = analyze_source(
+      "void t(float3 x) {\n  float3 s, c;\n  sincos(x, s, c);\n  sincos(x, 1.0, c);\n"
+      "  float3 ip;\n  float3 fr = modf(x, ip);\n}\n");
   EXPECT_EQ(a->messages(),
             (Strings{"4:13: error: argument 2 of 'sincos' is an out parameter and needs an assignable expression"}));
   EXPECT_EQ(dump(&a->expression("t", 1)), "(sincos x s c)");
@@ -264,7 +269,8 @@ TEST(SemaIntrinsics, Dx9Samplers) {
   EXPECT_EQ(type_of(g, "tex2Dlod(s, float4(uv, 0, 2))"), "float4");
   EXPECT_EQ(type_of(g, "tex2Dbias(s, q)"), "float4");
   EXPECT_EQ(type_of(g, "tex2Dgrad(s, uv, ddx(uv), ddy(uv))"), "float4");
-  EXPECT_EQ(probe(g, "tex2D(tex, uv)").messages, (Strings{"2:12: error: no overload of 'tex2D' takes (Texture2D, float2)"}));
+  EXPECT_EQ(probe(g, "tex2D(tex, uv)").messages,
+            (Strings{"2:12: error: no overload of 'tex2D' takes (Texture2D, float2)"}));
 }
 
 TEST(SemaIntrinsics, Texture2DMethods) {
@@ -311,13 +317,15 @@ TEST(SemaTextures, EachShapeTakesItsCoordinatesOffsetsAndGivesItsTexels) {
   EXPECT_EQ(type_of(g, "tc.CalculateLevelOfDetail(s, p)"), "float");
   EXPECT_EQ(type_of(g, "uint w, h, l, n; tms.GetDimensions(w, h, n); t2a.GetDimensions(0, w, h, n, l)"), "void");
   // What a shape does not have.
-  EXPECT_EQ(probe(g, "tc.Load(int4(0, 0, 0, 0))").messages, (Strings{"2:15: error: 'TextureCube' has no method 'Load'"}));
+  EXPECT_EQ(probe(g, "tc.Load(int4(0, 0, 0, 0))").messages,
+            (Strings{"2:15: error: 'TextureCube' has no method 'Load'"}));
   EXPECT_EQ(probe(g, "tc.SampleLevel(s, p, 0, int3(1, 0, 0))").messages,
             (Strings{"2:15: error: 'SampleLevel' of 'TextureCube' takes 3 arguments, 4 given"}));
   EXPECT_EQ(probe(g, "tms.Sample(s, uv)").messages, (Strings{"2:16: error: 'Texture2DMS' has no method 'Sample'"}));
   EXPECT_EQ(probe(g, "t3.Gather(s, p)").messages, (Strings{"2:15: error: 'Texture3D' has no method 'Gather'"}));
-  EXPECT_EQ(probe(g, "depth.SampleCmp(s, uv, 0.5)").messages,
-            (Strings{"2:18: error: no overload of 'SampleCmp' of 'Texture2D<float>' takes (SamplerState, float2, float)"}));
+  EXPECT_EQ(
+      probe(g, "depth.SampleCmp(s, uv, 0.5)").messages,
+      (Strings{"2:18: error: no overload of 'SampleCmp' of 'Texture2D<float>' takes (SamplerState, float2, float)"}));
   EXPECT_EQ(probe(g, "t2a.Sample(s, uv)").messages,
             (Strings{"2:16: error: no overload of 'Sample' of 'Texture2DArray' takes (SamplerState, float2)"}));
 }
@@ -328,7 +336,8 @@ TEST(SemaTextures, Dx9SamplersOfEveryShape) {
   EXPECT_EQ(type_of(g, "tex3Dlod(d3, float4(p, 2))"), "float4");
   EXPECT_EQ(type_of(g, "texCUBE(dc, p)"), "float4");
   EXPECT_EQ(type_of(g, "texCUBEbias(dc, float4(p, -1))"), "float4");
-  EXPECT_EQ(probe(g, "texCUBE(d3, p)").messages, (Strings{"2:12: error: no overload of 'texCUBE' takes (sampler3D, float3)"}));
+  EXPECT_EQ(probe(g, "texCUBE(d3, p)").messages,
+            (Strings{"2:12: error: no overload of 'texCUBE' takes (sampler3D, float3)"}));
 }
 
 TEST(SemaTextures, ResourcesNoTargetHereBindsAreTypedAsHlslDefinesThem) {
@@ -348,20 +357,24 @@ TEST(SemaTextures, ResourcesNoTargetHereBindsAreTypedAsHlslDefinesThem) {
 }
 
 TEST(SemaConstantBuffers, AConstantBufferOfAStructIsReadByItsFields) {
-  auto a = analyze_source("struct Scene { float4x4 view; float3 light; };\nConstantBuffer<Scene> scene : register(b1);\n"
-                          "float3 f() { return scene.light + scene.view[0].xyz; }\n");
+  auto a = analyze_source(
+      "struct Scene { float4x4 view; float3 light; };\nConstantBuffer<Scene> scene : register(b1);\n"
+      "float3 f() { return scene.light + scene.view[0].xyz; }\n");
   EXPECT_EQ(a->messages(), Strings{});
-  EXPECT_EQ(messages_of("struct Scene { float3 light; };\nConstantBuffer<Scene> scene;\nvoid f() { scene.light = 1; }\n"),
-            (Strings{"3:12: error: cannot assign to 'scene': uniforms are read-only"}));
-  EXPECT_EQ(messages_of("struct Scene { float3 light; };\nConstantBuffer<Scene> scene;\nfloat f() { return scene.dark; }\n"),
-            (Strings{"3:26: error: 'ConstantBuffer<Scene>' has no member 'dark'"}));
+  EXPECT_EQ(
+      messages_of("struct Scene { float3 light; };\nConstantBuffer<Scene> scene;\nvoid f() { scene.light = 1; }\n"),
+      (Strings{"3:12: error: cannot assign to 'scene': uniforms are read-only"}));
+  EXPECT_EQ(
+      messages_of("struct Scene { float3 light; };\nConstantBuffer<Scene> scene;\nfloat f() { return scene.dark; }\n"),
+      (Strings{"3:26: error: 'ConstantBuffer<Scene>' has no member 'dark'"}));
 }
 
 TEST(SemaStatements, SwitchTakesIntegerConstantsAndBreaks) {
   EXPECT_EQ(messages_of("int f(int m) { switch (m) { case 0: return 1; case 1 + 1: m = 2; break; default: break; }\n"
                         "  return m; }\n"),
             Strings{});
-  EXPECT_EQ(messages_of("float f(uint m) { switch (m) { case 0: case 1: return 1; default: return 2; } }\n"), Strings{});
+  EXPECT_EQ(messages_of("float f(uint m) { switch (m) { case 0: case 1: return 1; default: return 2; } }\n"),
+            Strings{});
   EXPECT_EQ(messages_of("void f(float x) { switch (x) { default: break; } }\n"),
             (Strings{"1:27: warning: the condition of a switch is 'float': converted to int toward zero, as fxc does "
                      "(DXC refuses it); write (int)(...) to say so"}));
@@ -384,8 +397,9 @@ TEST(SemaIntrinsics, SelectIsAComponentWiseChoice) {
 }
 
 TEST(SemaIntrinsics, UserFunctionsNamedLikeIntrinsicsAreCalledWhenTheyFit) {
-  auto a = analyze_source("struct S { float a; };\nfloat saturate(S s) { return s.a; }\n"
-                          "void t(S s, float3 v) { saturate(s); saturate(v); }\n");
+  auto a = analyze_source(
+      "struct S { float a; };\nfloat saturate(S s) { return s.a; }\n"
+      "void t(S s, float3 v) { saturate(s); saturate(v); }\n");
   EXPECT_EQ(a->messages(), Strings{});
   EXPECT_EQ(static_cast<const CallExpr&>(a->expression("t", 0)).call_kind, CallKind::Function);
   EXPECT_EQ(static_cast<const CallExpr&>(a->expression("t", 1)).call_kind, CallKind::Intrinsic);

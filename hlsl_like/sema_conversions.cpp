@@ -54,8 +54,7 @@ Conversion classify_implicit(const Type& from, const Type& to) {
   const int type_change = scalar_change_rank(from.scalar_type(), to.scalar_type());
   const uint32_t from_count = from.component_count();
   switch (from.kind()) {
-    case TypeKind::Scalar:
-      return valid(to.is_scalar() ? kRankExact : kRankSplat, type_change);
+    case TypeKind::Scalar: return valid(to.is_scalar() ? kRankExact : kRankSplat, type_change);
     case TypeKind::Vector:
       if (to.is_scalar()) {
         if (from.cols() == 1) return valid(kRankSplat, type_change);  // float1 -> float
@@ -83,8 +82,7 @@ Conversion classify_implicit(const Type& from, const Type& to) {
       }
       if (from_count == 1) return valid(kRankSplat, type_change);  // float1x1 -> float3
       return invalid();
-    default:
-      return invalid();
+    default: return invalid();
   }
 }
 
@@ -120,7 +118,8 @@ Element combine(Element a, Element b) {
     }
     const Element f = a_float ? a : b;
     const Element other = a_float ? b : a;
-    if (f == Element::Half) return other == Element::Bool || other == Element::LiteralInt ? Element::Half : Element::Float;
+    if (f == Element::Half)
+      return other == Element::Bool || other == Element::LiteralInt ? Element::Half : Element::Float;
     return Element::Float;
   }
   if (a == Element::Uint || b == Element::Uint) return Element::Uint;
@@ -136,7 +135,8 @@ bool is_cast(Element a, Element b) {
   if (a == b) return false;
   auto int_like = [](Element e) { return e == Element::Int || e == Element::Uint || e == Element::LiteralInt; };
   if (int_like(a) && int_like(b)) return false;
-  if ((a == Element::LiteralFloat && is_float_element(b)) || (b == Element::LiteralFloat && is_float_element(a))) return false;
+  if ((a == Element::LiteralFloat && is_float_element(b)) || (b == Element::LiteralFloat && is_float_element(a)))
+    return false;
   return true;
 }
 
@@ -164,12 +164,18 @@ std::optional<uint64_t> overload_cost(const Type& from, bool literal, const Type
   const Element param = element_of(to.scalar_type(), false);
   const Element arg = element_of(from.scalar_type(), literal && from.is_scalar());
   const Element met = combine(param, arg);
-  if (is_promotion(param, met)) cost += flag(kParamPromotion);
-  else if (is_cast(param, met)) cost += flag(kParamCast);
-  else if (is_int_cast(param, met)) cost += flag(kParamIntCast);
-  if (is_promotion(met, arg)) cost += flag(kArgPromotion);
-  else if (is_cast(met, arg)) cost += flag(kArgCast);
-  else if (is_int_cast(met, arg)) cost += flag(kArgIntCast);
+  if (is_promotion(param, met))
+    cost += flag(kParamPromotion);
+  else if (is_cast(param, met))
+    cost += flag(kParamCast);
+  else if (is_int_cast(param, met))
+    cost += flag(kParamIntCast);
+  if (is_promotion(met, arg))
+    cost += flag(kArgPromotion);
+  else if (is_cast(met, arg))
+    cost += flag(kArgCast);
+  else if (is_int_cast(met, arg))
+    cost += flag(kArgIntCast);
   return cost;
 }
 
@@ -219,16 +225,14 @@ bool is_literal(const Expr* expr) {
     switch (expr->kind) {
       case ExprKind::IntLiteral:
       case ExprKind::FloatLiteral:
-      case ExprKind::BoolLiteral:
-        return true;
+      case ExprKind::BoolLiteral: return true;
       case ExprKind::Unary: {
         const auto* unary = static_cast<const UnaryExpr*>(expr);
         if (unary->op != UnaryOp::Minus && unary->op != UnaryOp::Plus) return false;
         expr = unary->operand.get();
         break;
       }
-      default:
-        return false;
+      default: return false;
     }
   }
   return false;
@@ -251,8 +255,7 @@ std::optional<uint64_t> TypeFacts::component_count(const Type& type, int depth) 
   switch (type.kind()) {
     case TypeKind::Scalar:
     case TypeKind::Vector:
-    case TypeKind::Matrix:
-      return type.component_count();
+    case TypeKind::Matrix: return type.component_count();
     case TypeKind::Array: {
       const std::optional<uint64_t> element = component_count(type.element(), depth + 1);
       if (!element || *element * type.array_length() > kLimit) return std::nullopt;
@@ -274,8 +277,7 @@ std::optional<uint64_t> TypeFacts::component_count(const Type& type, int depth) 
       counts_[decl] = total;
       return total;
     }
-    default:
-      return std::nullopt;
+    default: return std::nullopt;
   }
 }
 

@@ -50,7 +50,6 @@ const char* binary_spelling(BinaryOp op) {
   return "?";
 }
 
-
 bool is_uniform(const VarDecl& var) {
   return var.is_global && var.storage != StorageClass::Static && var.storage != StorageClass::GroupShared;
 }
@@ -86,7 +85,7 @@ void Sema::wrap_conversion(ExprPtr& slot, const Type& to) {
 }
 
 bool Sema::coerce(ExprPtr& slot, const Type& to) {
-  if (!slot) return true;  // a parse error, already reported
+  if (!slot) return true;         // a parse error, already reported
   const Type& from = slot->type;  // read before the slot is wrapped below
   if (from.is_error() || to.is_error()) return true;
   const Conversion conversion = classify_implicit(from, to);
@@ -247,11 +246,13 @@ std::optional<BinaryTyping> Sema::binary_typing(BinaryOp op, Loc loc, const Expr
   if (a.is_error() || b.is_error()) return std::nullopt;
   const std::string_view spelling = binary_spelling(op);
   if (!a.is_numeric() || !b.is_numeric()) {
-    diag_.error(loc, "cannot apply " + in_quotes(spelling) + " to " + in_quotes(a.name()) + " and " + in_quotes(b.name()));
+    diag_.error(loc,
+                "cannot apply " + in_quotes(spelling) + " to " + in_quotes(a.name()) + " and " + in_quotes(b.name()));
     return std::nullopt;
   }
   auto shape_error = [&] {
-    std::string message = "cannot apply " + in_quotes(spelling) + " to " + in_quotes(a.name()) + " and " + in_quotes(b.name());
+    std::string message =
+        "cannot apply " + in_quotes(spelling) + " to " + in_quotes(a.name()) + " and " + in_quotes(b.name());
     if (op == BinaryOp::Mul) message += "; use mul()";
     diag_.error(loc, message);
   };
@@ -262,7 +263,8 @@ std::optional<BinaryTyping> Sema::binary_typing(BinaryOp op, Loc loc, const Expr
     case BinaryOp::BitOr:
     case BinaryOp::BitXor:
       if (a.is_floating() || b.is_floating()) {
-        diag_.error(loc, in_quotes(spelling) + " needs integer operands, not " + in_quotes((a.is_floating() ? a : b).name()));
+        diag_.error(
+            loc, in_quotes(spelling) + " needs integer operands, not " + in_quotes((a.is_floating() ? a : b).name()));
         return std::nullopt;
       }
       [[fallthrough]];
@@ -304,8 +306,7 @@ std::optional<BinaryTyping> Sema::binary_typing(BinaryOp op, Loc loc, const Expr
       }
       return BinaryTyping{*shape, Type::with_scalar(*shape, ScalarType::Bool)};
     }
-    case BinaryOp::Comma:
-      return BinaryTyping{b, b};
+    case BinaryOp::Comma: return BinaryTyping{b, b};
   }
   return std::nullopt;
 }
@@ -343,7 +344,8 @@ Type Sema::analyze_assign(AssignExpr& expr) {
   coerce(expr.value, typing->operand);
   const Conversion back = classify_implicit(typing->result, target);
   if (!back.valid) {
-    diag_.error(expr.loc, "cannot convert from " + in_quotes(typing->result.name()) + " to " + in_quotes(target.name()));
+    diag_.error(expr.loc,
+                "cannot convert from " + in_quotes(typing->result.name()) + " to " + in_quotes(target.name()));
   } else if (back.truncation) {
     diag_.warning(expr.loc, truncation_message(typing->result, target));
   }
@@ -369,7 +371,8 @@ Type Sema::analyze_conditional(ConditionalExpr& expr) {
       // Component-wise selection: the condition's shape joins the values' shape.
       shape = combine_shapes(condition, *shape, scalar);
       if (!shape) {
-        diag_.error(expr.loc, "cannot combine condition " + in_quotes(condition.name()) + " with " + in_quotes(a.name()) + " in '?:'");
+        diag_.error(expr.loc, "cannot combine condition " + in_quotes(condition.name()) + " with " +
+                                  in_quotes(a.name()) + " in '?:'");
         return Type::error();
       }
       coerce(expr.condition, Type::with_scalar(*shape, ScalarType::Bool));
@@ -380,8 +383,8 @@ Type Sema::analyze_conditional(ConditionalExpr& expr) {
   } else if (a == b && !a.is_void()) {
     result = a;
     if (condition.is_numeric() && condition.component_count() > 1) {
-      diag_.error(expr.condition->loc, "condition must be a scalar, not " + in_quotes(condition.name()) +
-                                           "; use any() or all()");
+      diag_.error(expr.condition->loc,
+                  "condition must be a scalar, not " + in_quotes(condition.name()) + "; use any() or all()");
     } else {
       coerce(expr.condition, Type::scalar(ScalarType::Bool));
     }
@@ -516,11 +519,8 @@ Type Sema::analyze_index(IndexExpr& expr) {
       length = object.rows();
       break;
     case TypeKind::Texture:
-    case TypeKind::Buffer:
-      return analyze_resource_index(expr, object);
-    default:
-      diag_.error(expr.loc, "cannot index a value of type " + in_quotes(object.name()));
-      return Type::error();
+    case TypeKind::Buffer: return analyze_resource_index(expr, object);
+    default: diag_.error(expr.loc, "cannot index a value of type " + in_quotes(object.name())); return Type::error();
   }
   if (expr.index && !index.is_error()) {
     if (!index.is_numeric() || index.component_count() != 1) {
@@ -534,7 +534,8 @@ Type Sema::analyze_index(IndexExpr& expr) {
     if (length > 0) {
       const std::optional<int64_t> value = fold_int(expr.index.get());
       if (value && (*value < 0 || *value >= int64_t(length))) {
-        diag_.error(expr.index->loc, "index " + std::to_string(*value) + " is out of range for " + in_quotes(object.name()));
+        diag_.error(expr.index->loc,
+                    "index " + std::to_string(*value) + " is out of range for " + in_quotes(object.name()));
         return Type::error();
       }
     }
@@ -572,7 +573,8 @@ std::optional<std::pair<Loc, std::string>> Sema::not_assignable(const Expr* expr
         if (!name.decl) return std::nullopt;
         if (name.decl->kind == DeclKind::Var) {
           const auto& var = static_cast<const VarDecl&>(*name.decl);
-          if (var.is_const) return std::make_pair(expr->loc, "cannot assign to " + in_quotes(var.name) + ": it is const");
+          if (var.is_const)
+            return std::make_pair(expr->loc, "cannot assign to " + in_quotes(var.name) + ": it is const");
           if (is_uniform(var)) {
             return std::make_pair(expr->loc, "cannot assign to " + in_quotes(var.name) + ": uniforms are read-only");
           }
@@ -605,8 +607,7 @@ std::optional<std::pair<Loc, std::string>> Sema::not_assignable(const Expr* expr
         expr = object;
         break;
       }
-      default:
-        return std::make_pair(expr->loc, std::string("expression is not assignable"));
+      default: return std::make_pair(expr->loc, std::string("expression is not assignable"));
     }
   }
   return std::nullopt;
@@ -721,8 +722,7 @@ std::optional<int64_t> Sema::fold_int(const Expr* expr, int depth) const {
       if (overflow) return std::nullopt;
       return in_fold_range(result);
     }
-    default:
-      return std::nullopt;
+    default: return std::nullopt;
   }
 }
 
@@ -777,7 +777,7 @@ class InitLayout {
   void straddle() {
     if (!failed_) {
       sema_.diag_.error(leaves_[next_]->loc, "initializer element of type " + in_quotes(leaf_type().name()) +
-                                                  " spans several elements of " + in_quotes(declared_.name()));
+                                                 " spans several elements of " + in_quotes(declared_.name()));
     }
     failed_ = true;
   }
@@ -876,7 +876,8 @@ void Sema::analyze_initializer(ExprPtr& init, Type& declared, const std::string&
   if (init->kind != ExprKind::InitList) {
     const Type type = analyze(init.get());
     if (unsized) {
-      if (!type.is_error()) diag_.error(init->loc, "unsized array " + in_quotes(var_name) + " needs an initializer list");
+      if (!type.is_error())
+        diag_.error(init->loc, "unsized array " + in_quotes(var_name) + " needs an initializer list");
       return;
     }
     coerce(init, declared);
@@ -943,7 +944,8 @@ void Sema::analyze_initializer(ExprPtr& init, Type& declared, const std::string&
     }
     if (total == 0 || total % *element != 0) {
       diag_.error(list.loc, "initializer has " + std::to_string(total) + " components, " +
-                                in_quotes(type_name_for_count(declared)) + " needs a multiple of " + std::to_string(*element));
+                                in_quotes(type_name_for_count(declared)) + " needs a multiple of " +
+                                std::to_string(*element));
       keep_leaves();
       return;
     }
@@ -956,8 +958,8 @@ void Sema::analyze_initializer(ExprPtr& init, Type& declared, const std::string&
     return;
   }
   if (total != *needed) {
-    diag_.error(list.loc, "initializer has " + std::to_string(total) + " components, " + in_quotes(declared.name()) + " needs " +
-                              std::to_string(*needed));
+    diag_.error(list.loc, "initializer has " + std::to_string(total) + " components, " + in_quotes(declared.name()) +
+                              " needs " + std::to_string(*needed));
     keep_leaves();
     return;
   }

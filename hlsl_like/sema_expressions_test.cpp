@@ -72,8 +72,7 @@ TEST(IntrinsicTable, SincosHasTwoOutParameters) {
 // Names and scopes
 
 TEST(SemaNames, UnknownNameIsAnErrorAndSilencesTheRest) {
-  EXPECT_EQ(messages_of("void t() {\n  float3 x = foo * 2 + 1;\n}\n"),
-            (Strings{"2:14: error: unknown name 'foo'"}));
+  EXPECT_EQ(messages_of("void t() {\n  float3 x = foo * 2 + 1;\n}\n"), (Strings{"2:14: error: unknown name 'foo'"}));
 }
 
 TEST(SemaNames, UnknownNameSuggestsACloseOne) {
@@ -99,7 +98,8 @@ TEST(SemaNames, ForInitVariablesEndWithTheLoop) {
 }
 
 TEST(SemaNames, NamesPointAtTheirDeclarations) {
-  auto a = analyze_source("cbuffer C { float4 tint; };\nstatic float k = 2;\nfloat4 t(float s) { return tint * s * k; }\n");
+  auto a =
+      analyze_source("cbuffer C { float4 tint; };\nstatic float k = 2;\nfloat4 t(float s) { return tint * s * k; }\n");
   ASSERT_EQ(a->messages(), Strings{});
   const Expr& ret = a->expression("t", 0);
   ASSERT_EQ(ret.kind, ExprKind::Binary);
@@ -161,8 +161,9 @@ TEST(SemaConversions, WideningAVectorIsAnError) {
 }
 
 TEST(SemaConversions, StructsAndResourcesDoNotConvert) {
-  EXPECT_EQ(messages_of("struct A { float x; };\nstruct B { float x; };\nvoid t(A a) { B b = a; float f = a; }\n"),
-            (Strings{"3:21: error: cannot convert from 'A' to 'B'", "3:34: error: cannot convert from 'A' to 'float'"}));
+  EXPECT_EQ(
+      messages_of("struct A { float x; };\nstruct B { float x; };\nvoid t(A a) { B b = a; float f = a; }\n"),
+      (Strings{"3:21: error: cannot convert from 'A' to 'B'", "3:34: error: cannot convert from 'A' to 'float'"}));
   EXPECT_EQ(messages_of("Texture2D tex;\nvoid t() { float4 f = tex; }\n"),
             (Strings{"2:23: error: cannot convert from 'Texture2D' to 'float4'"}));
 }
@@ -284,7 +285,8 @@ TEST(SemaOperators, ConditionalWithAVectorConditionIsComponentWise) {
 TEST(SemaOperators, ConditionsMustBeScalar) {
   EXPECT_EQ(messages_of("void t(float3 v) {\n  if (v > 0) {}\n}\n"),
             (Strings{"2:9: error: condition must be a scalar, not 'bool3'; use any() or all()"}));
-  auto a = analyze_source("void t(int n, float x) { while (n) { n--; } if (x) {} do {} while (false); for (;;) { break; } }");
+  auto a = analyze_source(
+      "void t(int n, float x) { while (n) { n--; } if (x) {} do {} while (false); for (;;) { break; } }");
   EXPECT_EQ(a->messages(), Strings{});
   const auto& loop = static_cast<const WhileStmt&>(a->statement("t", 0));
   EXPECT_EQ(dump(loop.condition.get()), "(to bool n)");
@@ -331,7 +333,8 @@ TEST(SemaAssign, ResourcesAreNotAssignable) {
 }
 
 TEST(SemaAssign, CompoundAssignmentFollowsTheOperator) {
-  auto a = analyze_source("void t(float3 v, int i, float f, float3 w) {\n  v *= 2;\n  i *= 0.5;\n  f += w;\n  v += f;\n}\n");
+  auto a =
+      analyze_source("void t(float3 v, int i, float f, float3 w) {\n  v *= 2;\n  i *= 0.5;\n  f += w;\n  v += f;\n}\n");
   EXPECT_EQ(a->messages(), (Strings{"4:5: warning: implicit truncation of vector type from 'float3' to 'float'"}));
   EXPECT_EQ(dump(&a->expression("t", 0)), "(*= v (to float3 2))");
   EXPECT_EQ(dump(&a->expression("t", 1)), "(*= i 0.5)");  // computed in float, then back to int
@@ -347,11 +350,11 @@ TEST(SemaAssign, AssignmentConvertsTheValue) {
 }
 
 TEST(SemaAssign, ReturnValuesConvertToTheReturnType) {
-  auto a = analyze_source("float3 f(float4 v) {\n  return v;\n}\nvoid g() {\n  return 1;\n}\nfloat h() {\n  return;\n}\n");
-  EXPECT_EQ(a->messages(),
-            (Strings{"2:10: warning: implicit truncation of vector type from 'float4' to 'float3'",
-                     "5:10: error: void function 'g' cannot return a value",
-                     "8:3: error: 'h' must return a value of type 'float'"}));
+  auto a =
+      analyze_source("float3 f(float4 v) {\n  return v;\n}\nvoid g() {\n  return 1;\n}\nfloat h() {\n  return;\n}\n");
+  EXPECT_EQ(a->messages(), (Strings{"2:10: warning: implicit truncation of vector type from 'float4' to 'float3'",
+                                    "5:10: error: void function 'g' cannot return a value",
+                                    "8:3: error: 'h' must return a value of type 'float'"}));
 }
 
 TEST(SemaAssign, MissingReturnOnSomePathWarns) {
@@ -376,7 +379,8 @@ TEST(SemaInit, ComponentsAreCountedHlslStyle) {
       "}\n");
   EXPECT_EQ(a->messages(), Strings{});
   EXPECT_EQ(dump(&a->expression("t", 0)), "({} float4 (to float 1) (to float 2) (to float 3) (to float 4))");
-  EXPECT_EQ(dump(&a->expression("t", 1)), "({} float2[2] (float2 (to float 0) (to float 1)) (float2 (to float 1) (to float 0)))");
+  EXPECT_EQ(dump(&a->expression("t", 1)),
+            "({} float2[2] (float2 (to float 0) (to float 1)) (float2 (to float 1) (to float 0)))");
   EXPECT_EQ(dump(&a->expression("t", 2)),
             "({} float2[2] ({} float2 (to float 0) (to float 1)) ({} float2 (to float 1) (to float 0)))");
   EXPECT_EQ(dump(&a->expression("t", 3)), "({} float4 p (to float 1) (to float 2))");
@@ -417,15 +421,17 @@ TEST(SemaInit, AnElementMayNotStraddleTwoMembers) {
 }
 
 TEST(SemaInit, StaticConstNeedsAnInitializer) {
-  EXPECT_EQ(messages_of("static const float k;\nvoid t() { const int n; }\n"),
-            (Strings{"1:20: error: static const 'k' needs an initializer", "2:22: error: const 'n' needs an initializer"}));
+  EXPECT_EQ(
+      messages_of("static const float k;\nvoid t() { const int n; }\n"),
+      (Strings{"1:20: error: static const 'k' needs an initializer", "2:22: error: const 'n' needs an initializer"}));
 }
 
 // ---------------------------------------------------------------------------------------------
 // Members and indexing
 
 TEST(SemaMembers, StructFields) {
-  auto a = analyze_source("struct S { float a; float3 b; };\nfloat3 t(S s) { return s.b; }\nvoid u(S s) { s.c = 1; }\n");
+  auto a =
+      analyze_source("struct S { float a; float3 b; };\nfloat3 t(S s) { return s.b; }\nvoid u(S s) { s.c = 1; }\n");
   EXPECT_EQ(a->messages(), (Strings{"3:17: error: 'S' has no member 'c'"}));
   const auto& member = static_cast<const MemberExpr&>(a->expression("t", 0));
   EXPECT_EQ(member.field_index, 1);
@@ -452,16 +458,19 @@ TEST(SemaMembers, VectorSwizzles) {
 }
 
 TEST(SemaMembers, MatrixSwizzles) {
-  auto a = analyze_source("float4x4 m;\nfloat2 t() { return m._m00_m11; }\nfloat u() { return m._44; }\n"
-                          "float3 w() { return m._12_21_34; }\n");
+  auto a = analyze_source(
+      "float4x4 m;\nfloat2 t() { return m._m00_m11; }\nfloat u() { return m._44; }\n"
+      "float3 w() { return m._12_21_34; }\n");
   EXPECT_EQ(a->messages(), Strings{});
   EXPECT_EQ(swizzle_of(static_cast<const MemberExpr&>(a->expression("t", 0))), (std::vector<uint8_t>{0, 5}));
   EXPECT_EQ(swizzle_of(static_cast<const MemberExpr&>(a->expression("u", 0))), (std::vector<uint8_t>{15}));
   EXPECT_EQ(a->expression("u", 0).type.name(), "float");
   EXPECT_EQ(swizzle_of(static_cast<const MemberExpr&>(a->expression("w", 0))), (std::vector<uint8_t>{1, 4, 11}));
-  EXPECT_EQ(probe("float2x2 m;", "m._m22").messages, (Strings{"2:14: error: swizzle '_m22' is out of range for 'float2x2'"}));
+  EXPECT_EQ(probe("float2x2 m;", "m._m22").messages,
+            (Strings{"2:14: error: swizzle '_m22' is out of range for 'float2x2'"}));
   EXPECT_EQ(probe("float2x3 m;", "m._13").type, "float");
-  EXPECT_EQ(probe("float2x3 m;", "m._31").messages, (Strings{"2:14: error: swizzle '_31' is out of range for 'float2x3'"}));
+  EXPECT_EQ(probe("float2x3 m;", "m._31").messages,
+            (Strings{"2:14: error: swizzle '_31' is out of range for 'float2x3'"}));
 }
 
 TEST(SemaMembers, IndexingAMatrixGivesARow) {

@@ -82,7 +82,6 @@ class TypeFacts {
   std::unordered_map<const StructDecl*, bool> resources_;
 };
 
-
 // ---------------------------------------------------------------------------------------------
 // The analyzer
 
@@ -130,7 +129,7 @@ class SymbolTable {
     uint32_t depth;
   };
 
-  StringIndex names_{256};           // every name bound so far, in any scope (a unit and its includes declare a few hundred)
+  StringIndex names_{256};  // every name bound so far, in any scope (a unit and its includes declare a few hundred)
   std::vector<uint32_t> innermost_;  // per name: 1 + the index of its innermost binding; 0 when out of scope
   std::vector<Binding> bindings_;
   std::vector<uint32_t> scope_starts_;
@@ -248,7 +247,7 @@ class Sema {
   std::unordered_map<const FunctionDecl*, FunctionInfo> function_info_;  // by canonical
   std::unordered_map<const FunctionDecl*, const FunctionDecl*> canonical_of_;
   std::vector<CallExpr*> user_calls_;
-  std::vector<FunctionDecl*> all_functions_;         // every function declaration, in order
+  std::vector<FunctionDecl*> all_functions_;                 // every function declaration, in order
   std::unordered_set<std::string_view> all_function_names_;  // declared anywhere in the unit (the tree's names)
   FunctionInfo* current_info_ = nullptr;
   const FunctionDecl* current_function_ = nullptr;

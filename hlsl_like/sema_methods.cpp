@@ -139,7 +139,8 @@ void texture_signatures(IntrinsicId id, const Type& texture, Signatures& out) {
   if (shape == TextureShape::Subpass || shape == TextureShape::SubpassMS) {
     // SubpassLoad() at the fragment's pixel; of a multisampled one, SubpassLoad(sample).
     if (id == I::SubpassLoad)
-      out.push_back(shape == TextureShape::Subpass ? in_only({}, texel) : in_only({Type::scalar(ScalarType::Int)}, texel));
+      out.push_back(shape == TextureShape::Subpass ? in_only({}, texel)
+                                                   : in_only({Type::scalar(ScalarType::Int)}, texel));
     return;
   }
   switch (id) {
@@ -200,10 +201,8 @@ bool is_read_write(BufferKind kind) {
     case BufferKind::RWTexture1DArray:
     case BufferKind::RWTexture2D:
     case BufferKind::RWTexture2DArray:
-    case BufferKind::RWTexture3D:
-      return true;
-    default:
-      return false;
+    case BufferKind::RWTexture3D: return true;
+    default: return false;
   }
 }
 
@@ -253,7 +252,8 @@ void buffer_signatures(const std::string& method, const Type& buffer, Signatures
       if (kind == BufferKind::RWByteAddressBuffer && method == "Store" + suffix)
         out.push_back(in_only({uint_type, vec(ScalarType::Uint, n)}, Type::void_type()));
     }
-  } else if (method == "Load" && kind != BufferKind::AppendStructuredBuffer && kind != BufferKind::ConsumeStructuredBuffer) {
+  } else if (method == "Load" && kind != BufferKind::AppendStructuredBuffer &&
+             kind != BufferKind::ConsumeStructuredBuffer) {
     out.push_back(in_only({ints(buffer_index_components(kind))}, element));
   } else if (method == "Append" && kind == BufferKind::AppendStructuredBuffer) {
     out.push_back(in_only({element}, Type::void_type()));
@@ -345,14 +345,16 @@ Type Sema::analyze_resource_index(IndexExpr& expr, const Type& object) {
   const Type index_type = vec(ScalarType::Uint, components);
   const Conversion conversion = classify_implicit(expr.index->type, index_type);
   if (!conversion.valid) {
-    diag_.error(expr.index->loc, "the index of " + in_quotes(object.name()) + " must be " + in_quotes(index_type.name()) +
-                                     ", not " + in_quotes(expr.index->type.name()));
+    diag_.error(expr.index->loc, "the index of " + in_quotes(object.name()) + " must be " +
+                                     in_quotes(index_type.name()) + ", not " + in_quotes(expr.index->type.name()));
     return Type::error();
   }
   coerce(expr.index, index_type);
   return result;
 }
 
-bool is_writable_resource(const Type& type) { return type.kind() == TypeKind::Buffer && is_read_write(type.buffer_kind()); }
+bool is_writable_resource(const Type& type) {
+  return type.kind() == TypeKind::Buffer && is_read_write(type.buffer_kind());
+}
 
 }  // namespace xshade::hlsl::sema_detail

@@ -42,7 +42,8 @@ TEST(SemaStatements, ResourcesInStructsAndLocalsButNotInLocalArraysOrGlobalStruc
 // Entry points
 
 TEST(SemaEntryPoints, MissingEntryPointIsReportedAtThePragma) {
-  auto a = analyze_source("#pragma vertex vert\n#pragma fragment frag\nfloat4 vert(float4 p : POSITION) : SV_Position { return p; }\n");
+  auto a = analyze_source(
+      "#pragma vertex vert\n#pragma fragment frag\nfloat4 vert(float4 p : POSITION) : SV_Position { return p; }\n");
   EXPECT_EQ(a->messages(), (Strings{"2:18: error: entry point 'frag' is not defined"}));
   EXPECT_NE(a->entry_points.vertex, nullptr);
   EXPECT_EQ(a->entry_points.fragment, nullptr);
@@ -71,15 +72,17 @@ TEST(SemaEntryPoints, FragmentMustOutputATarget) {
   EXPECT_EQ(messages_of("#pragma fragment frag\nfloat4 frag(float2 uv : TEXCOORD0) : TEXCOORD1 { return 1; }\n"),
             (Strings{"2:38: error: semantic 'TEXCOORD1' is not allowed on a fragment shader output",
                      "2:8: error: fragment entry point 'frag' does not output SV_Target or SV_Depth"}));
-  EXPECT_EQ(messages_of("#pragma fragment frag\nstruct O { float4 c : SV_Target1; float d : SV_Depth; };\n"
-                        "O frag(float4 p : SV_Position, bool face : SV_IsFrontFace) { O o; o.c = p; o.d = 0; return o; }\n"),
-            Strings{});
+  EXPECT_EQ(
+      messages_of("#pragma fragment frag\nstruct O { float4 c : SV_Target1; float d : SV_Depth; };\n"
+                  "O frag(float4 p : SV_Position, bool face : SV_IsFrontFace) { O o; o.c = p; o.d = 0; return o; }\n"),
+      Strings{});
   EXPECT_EQ(messages_of("#pragma fragment frag\nfloat4 frag() : color0 { return 1; }\n"), Strings{});
 }
 
 TEST(SemaEntryPoints, UnknownAndMisplacedSemantics) {
   // FOO is a user-defined semantic: a vertex input like any other; a pixel shader cannot output one.
-  EXPECT_EQ(messages_of("#pragma vertex vert\nfloat4 vert(float4 p : FOO, float4 q : SV_Target) : SV_Position { return p; }\n"),
+  EXPECT_EQ(messages_of(
+                "#pragma vertex vert\nfloat4 vert(float4 p : FOO, float4 q : SV_Target) : SV_Position { return p; }\n"),
             (Strings{"2:40: error: semantic 'SV_Target' is not allowed on a vertex shader input"}));
   EXPECT_EQ(messages_of("#pragma fragment frag\nfloat4 frag(float4 p : SV_POSITION) : FOO { return p; }\n"),
             (Strings{"2:39: error: semantic 'FOO' is not allowed on a fragment shader output",
@@ -113,9 +116,10 @@ TEST(SemaEntryPoints, ImplicitLodSamplingIsFragmentOnly) {
 }
 
 TEST(SemaEntryPoints, EntryPointsAreReturned) {
-  auto a = analyze_source("#pragma vertex vert\n#pragma fragment frag\n"
-                          "float4 vert(float4 p : POSITION, uniform float4x4 mvp) : SV_Position { return mul(mvp, p); }\n"
-                          "float4 frag() : SV_Target { return 1; }\n");
+  auto a = analyze_source(
+      "#pragma vertex vert\n#pragma fragment frag\n"
+      "float4 vert(float4 p : POSITION, uniform float4x4 mvp) : SV_Position { return mul(mvp, p); }\n"
+      "float4 frag() : SV_Target { return 1; }\n");
   EXPECT_EQ(a->messages(), Strings{});
   EXPECT_EQ(a->entry_points.vertex, &a->function("vert"));
   EXPECT_EQ(a->entry_points.fragment, &a->function("frag"));
@@ -275,8 +279,9 @@ TEST(SemaRobustness, EveryPrefixOfAShaderIsAnalyzedWithoutCrashing) {
 TEST(SemaRobustness, MutatedShadersAreAnalyzedWithoutCrashing) {
   const std::string text = kRealisticShader;
   std::mt19937 random(1234);
-  const std::string pieces[] = {"(", ")", "{", "}", ";", ",", "=", "[", "]", ".", "x", "float4", "1", "?", ":",
-                                "Texture2D", "out", "return", "discard", "mul(", "{1,2}", "_m00", "++", "S"};
+  const std::string pieces[] = {"(",   ")",      "{",       "}",      ";",     ",",    "=",  "[",
+                                "]",   ".",      "x",       "float4", "1",     "?",    ":",  "Texture2D",
+                                "out", "return", "discard", "mul(",   "{1,2}", "_m00", "++", "S"};
   for (int round = 0; round < 150; ++round) {
     std::string mutated = text;
     for (int edit = 0; edit < 4; ++edit) {
@@ -325,8 +330,9 @@ TEST(SemaRobustness, NestedStructsAndConstantsStayLinear) {
     source += "struct S" + n + " { S" + p + " a; S" + p + " b; };\n";
     source += "static const int c" + n + " = c" + p + " + c" + p + " - c" + p + ";\n";
   }
-  source += "float4 arr[2];\n#pragma vertex vert\n"
-            "float4 vert(S30 s) : SV_Position { S30 x = (S30)0; S30 y = {1, 2}; return arr[c30] + arr[c30 + 1]; }\n";
+  source +=
+      "float4 arr[2];\n#pragma vertex vert\n"
+      "float4 vert(S30 s) : SV_Position { S30 x = (S30)0; S30 y = {1, 2}; return arr[c30] + arr[c30 + 1]; }\n";
   auto a = analyze_source(source);
   EXPECT_EQ(a->messages(), (Strings{"65:60: error: initializer has 2 components, 'S30' needs 1073741824",
                                     "65:94: error: index 2 is out of range for 'float4[2]'",
@@ -337,9 +343,11 @@ TEST(SemaRobustness, NestedStructsAndConstantsStayLinear) {
 TEST(SemaRobustness, ConstantFoldingDoesNotOverflow) {
   auto a = analyze_source(
       "static const int big = 2147483647;\n"
-      "float t(float4 v) { return v[4294967295u * 4294967295u * 4294967295u] + v[-big - big - big] + v[(big << 31) << 31]"
+      "float t(float4 v) { return v[4294967295u * 4294967295u * 4294967295u] + v[-big - big - big] + v[(big << 31) << "
+      "31]"
       " + v[~big * big] + v[1 << 40] + v[5 % 0]; }\n");
-  for (const std::string& message : a->messages()) EXPECT_EQ(message.find("out of range"), std::string::npos) << message;
+  for (const std::string& message : a->messages())
+    EXPECT_EQ(message.find("out of range"), std::string::npos) << message;
 }
 
 TEST(SemaRobustness, HandBuiltTreesWithNullChildren) {

@@ -9,7 +9,8 @@ namespace xshade::hlsl::sema_test {
 std::unique_ptr<Analyzed> analyze_source(const std::string& text) {
   auto analyzed = std::make_unique<Analyzed>();
   const uint32_t file = analyzed->sources.add("test.hlsl", text);
-  analyzed->preprocessor = std::make_unique<Preprocessor>(analyzed->sources, analyzed->diagnostics, PreprocessorOptions{});
+  analyzed->preprocessor =
+      std::make_unique<Preprocessor>(analyzed->sources, analyzed->diagnostics, PreprocessorOptions{});
   analyzed->tokens = analyzed->preprocessor->run(file);
   analyzed->unit = parse(analyzed->tokens, analyzed->diagnostics);
   EntryPointNames names;
@@ -49,8 +50,8 @@ std::string dump(const Expr* e) {
     }
     case ExprKind::Binary: {
       const auto* x = static_cast<const BinaryExpr*>(e);
-      static const char* const kOps[] = {"+", "-", "*", "/", "%", "<<", ">>", "&", "|", "^", "&&", "||",
-                                         "<", ">", "<=", ">=", "==", "!=", ","};
+      static const char* const kOps[] = {"+",  "-",  "*", "/", "%",  "<<", ">>", "&",  "|", "^",
+                                         "&&", "||", "<", ">", "<=", ">=", "==", "!=", ","};
       return std::string("(") + kOps[int(x->op)] + " " + dump(x->lhs.get()) + " " + dump(x->rhs.get()) + ")";
     }
     case ExprKind::Assign: {

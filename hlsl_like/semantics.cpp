@@ -45,16 +45,24 @@ ParsedSemantic parse_semantic(const std::string& text) {
     uint32_t max_index;  // 0: no index allowed
   };
   static constexpr Known kKnown[] = {
-      {"POSITION", SemanticKind::Position, 15},   {"NORMAL", SemanticKind::Normal, 15},
-      {"TANGENT", SemanticKind::Tangent, 15},     {"BINORMAL", SemanticKind::Binormal, 15},
-      {"TEXCOORD", SemanticKind::Texcoord, 31},   {"COLOR", SemanticKind::Color, 15},
-      {"SV_POSITION", SemanticKind::SvPosition, 0}, {"SV_TARGET", SemanticKind::SvTarget, 7},
-      {"SV_DEPTH", SemanticKind::SvDepth, 0},     {"SV_ISFRONTFACE", SemanticKind::SvIsFrontFace, 0},
-      {"SV_VERTEXID", SemanticKind::SvVertexId, 0}, {"SV_INSTANCEID", SemanticKind::SvInstanceId, 0},
-      {"SV_CLIPDISTANCE", SemanticKind::SvClipDistance, 1}, {"SV_CULLDISTANCE", SemanticKind::SvCullDistance, 1},
+      {"POSITION", SemanticKind::Position, 15},
+      {"NORMAL", SemanticKind::Normal, 15},
+      {"TANGENT", SemanticKind::Tangent, 15},
+      {"BINORMAL", SemanticKind::Binormal, 15},
+      {"TEXCOORD", SemanticKind::Texcoord, 31},
+      {"COLOR", SemanticKind::Color, 15},
+      {"SV_POSITION", SemanticKind::SvPosition, 0},
+      {"SV_TARGET", SemanticKind::SvTarget, 7},
+      {"SV_DEPTH", SemanticKind::SvDepth, 0},
+      {"SV_ISFRONTFACE", SemanticKind::SvIsFrontFace, 0},
+      {"SV_VERTEXID", SemanticKind::SvVertexId, 0},
+      {"SV_INSTANCEID", SemanticKind::SvInstanceId, 0},
+      {"SV_CLIPDISTANCE", SemanticKind::SvClipDistance, 1},
+      {"SV_CULLDISTANCE", SemanticKind::SvCullDistance, 1},
       {"SV_SHADINGRATE", SemanticKind::SvShadingRate, 0},
       // DX9's names, which Unity's HLSLSupport.cginc defines SV_Depth as on some APIs.
-      {"DEPTH", SemanticKind::SvDepth, 0},        {"VPOS", SemanticKind::SvPosition, 0},
+      {"DEPTH", SemanticKind::SvDepth, 0},
+      {"VPOS", SemanticKind::SvPosition, 0},
       {"VFACE", SemanticKind::Vface, 0},
   };
   for (const Known& known : kKnown) {

@@ -11,13 +11,25 @@
 namespace xshade::hlsl {
 
 enum class SemanticKind : uint8_t {
-  Unknown, Position, Normal, Tangent, Binormal, Texcoord, Color, SvPosition, SvTarget, SvDepth,
-  SvIsFrontFace, SvVertexId, SvInstanceId,
+  Unknown,
+  Position,
+  Normal,
+  Tangent,
+  Binormal,
+  Texcoord,
+  Color,
+  SvPosition,
+  SvTarget,
+  SvDepth,
+  SvIsFrontFace,
+  SvVertexId,
+  SvInstanceId,
   // Distances to user clip planes (a primitive is clipped where one is negative) and cull
   // distances (a primitive is dropped where every vertex's is negative): a float or floatN out of
   // the vertex stage, readable in the fragment stage; SV_ClipDistance0 and 1 (and the cull ones)
   // share eight components, packed in the order of their index (GLSL's gl_ClipDistance[]).
-  SvClipDistance, SvCullDistance,
+  SvClipDistance,
+  SvCullDistance,
   // A fragment input: the rate the fragment is shaded at, Direct3D's D3D12_SHADING_RATE (log2 of
   // the width in bits 2-3, of the height in bits 0-1), which Vulkan's gl_ShadingRateEXT encodes alike.
   SvShadingRate,

@@ -41,7 +41,7 @@ Result<uint32_t> SourceManager::load(const std::filesystem::path& path) {
 }
 
 Result<uint32_t> SourceManager::load_canonical(const std::filesystem::path& canonical, std::string name,
-                                              std::optional<size_t> known_size) {
+                                               std::optional<size_t> known_size) {
   for (uint32_t i = 1; i < files_.size(); ++i)
     if (!files_[i]->path.empty() && files_[i]->path == canonical) return i;
   // The size first, so that a file no shader is as large as (a log, a sparse file of gigabytes)

@@ -66,6 +66,5 @@ TEST(SourceManager, LoadReadsAFileOnceByCanonicalPath) {
   fs::remove_all(dir, error);
 }
 
-
 }  // namespace
 }  // namespace xshade::hlsl

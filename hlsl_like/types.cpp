@@ -129,7 +129,9 @@ bool is_array_shape(TextureShape shape) {
          shape == TextureShape::Tex2DMSArray || shape == TextureShape::CubeArray;
 }
 
-bool is_multisampled(TextureShape shape) { return shape == TextureShape::Tex2DMS || shape == TextureShape::Tex2DMSArray; }
+bool is_multisampled(TextureShape shape) {
+  return shape == TextureShape::Tex2DMS || shape == TextureShape::Tex2DMSArray;
+}
 
 std::string texture_shape_name(TextureShape shape, bool sampler) {
   if (sampler) {
@@ -204,7 +206,8 @@ std::string Type::name() const {
     case TypeKind::Sampler: return texture_shape_name(texture_shape(), true);
     case TypeKind::Buffer: {
       const std::string base = buffer_kind_name(buffer_kind());
-      if (buffer_kind() == BufferKind::ByteAddressBuffer || buffer_kind() == BufferKind::RWByteAddressBuffer) return base;
+      if (buffer_kind() == BufferKind::ByteAddressBuffer || buffer_kind() == BufferKind::RWByteAddressBuffer)
+        return base;
       return base + "<" + element_->name() + ">";
     }
     case TypeKind::ConstantBuffer: return "ConstantBuffer<" + element_->name() + ">";

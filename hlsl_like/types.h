@@ -15,11 +15,11 @@ struct StructDecl;
 enum class ScalarType : uint8_t { Bool, Int, Uint, Half, Float };
 
 enum class TypeKind : uint8_t {
-  Error,           // the type of an expression that already failed; silences follow-on errors
+  Error,  // the type of an expression that already failed; silences follow-on errors
   Void,
   Scalar,
-  Vector,          // cols components, 1..4 (a 1-component vector is float1, distinct from float)
-  Matrix,          // rows x cols, each 1..4: HLSL floatRxC has R rows
+  Vector,  // cols components, 1..4 (a 1-component vector is float1, distinct from float)
+  Matrix,  // rows x cols, each 1..4: HLSL floatRxC has R rows
   Struct,
   Array,           // array_length elements of *element
   Texture,         // Texture1D .. TextureCubeArray, Texture2DMS: texture_shape(), read as texel_type()
@@ -34,7 +34,17 @@ enum class TypeKind : uint8_t {
 // Subpass and SubpassMS are Vulkan's subpass inputs (SubpassInput, SubpassInputMS): the
 // previous subpass's attachment read at the fragment's own pixel with SubpassLoad.
 enum class TextureShape : uint8_t {
-  Tex1D, Tex1DArray, Tex2D, Tex2DArray, Tex2DMS, Tex2DMSArray, Tex3D, Cube, CubeArray, Subpass, SubpassMS
+  Tex1D,
+  Tex1DArray,
+  Tex2D,
+  Tex2DArray,
+  Tex2DMS,
+  Tex2DMSArray,
+  Tex3D,
+  Cube,
+  CubeArray,
+  Subpass,
+  SubpassMS
 };
 
 // Components of the coordinate that addresses a texel (with the array layer), of a texel
@@ -49,9 +59,19 @@ bool is_multisampled(TextureShape shape);
 std::string texture_shape_name(TextureShape shape, bool sampler = false);
 
 enum class BufferKind : uint8_t {
-  Buffer, RWBuffer, StructuredBuffer, RWStructuredBuffer, ByteAddressBuffer, RWByteAddressBuffer,
-  AppendStructuredBuffer, ConsumeStructuredBuffer, RWTexture1D, RWTexture1DArray, RWTexture2D,
-  RWTexture2DArray, RWTexture3D,
+  Buffer,
+  RWBuffer,
+  StructuredBuffer,
+  RWStructuredBuffer,
+  ByteAddressBuffer,
+  RWByteAddressBuffer,
+  AppendStructuredBuffer,
+  ConsumeStructuredBuffer,
+  RWTexture1D,
+  RWTexture1DArray,
+  RWTexture2D,
+  RWTexture2DArray,
+  RWTexture3D,
 };
 std::string buffer_kind_name(BufferKind kind);
 
@@ -84,7 +104,7 @@ class Type {
   uint32_t cols() const { return cols_; }             // 1 for scalars
   const StructDecl* struct_decl() const { return struct_; }
   uint32_t array_length() const { return array_length_; }
-  const Type& element() const { return *element_; }  // of Array, Buffer, ConstantBuffer
+  const Type& element() const { return *element_; }                  // of Array, Buffer, ConstantBuffer
   TextureShape texture_shape() const { return TextureShape(sub_); }  // of Texture and Sampler
   BufferKind buffer_kind() const { return BufferKind(sub_); }        // of Buffer
   bool is_comparison() const { return kind_ == TypeKind::SamplerState && sub_ != 0; }

@@ -11,7 +11,9 @@
 namespace xshade::hlsl {
 namespace {
 
-std::unique_ptr<Module> compiled_with_attributes(const std::string& source) { return compile_text("vk.hlsl", source, {}); }
+std::unique_ptr<Module> compiled_with_attributes(const std::string& source) {
+  return compile_text("vk.hlsl", source, {});
+}
 
 std::vector<std::string> attribute_errors_of(const std::string& source) {
   std::vector<std::string> errors;
@@ -58,7 +60,7 @@ TEST(VulkanAttributes, LocationsAreTheSourcesAndOtherSemanticsTakeTheNextFree) {
   const Reflection& r = module->reflection;
   ASSERT_NE(variable_named(r.vertex_inputs, "COLOR0"), nullptr);
   EXPECT_EQ(variable_named(r.vertex_inputs, "POSITION0")->location, 0u);
-  EXPECT_EQ(variable_named(r.vertex_inputs, "COLOR0")->location, 1u);  // not the vertex format's 5
+  EXPECT_EQ(variable_named(r.vertex_inputs, "COLOR0")->location, 1u);       // not the vertex format's 5
   EXPECT_EQ(variable_named(r.vertex_inputs, "BITANGENT0")->location, 13u);  // a user semantic, after the format's
   EXPECT_EQ(variable_named(r.varyings, "COLOR0")->location, 0u);
   EXPECT_EQ(variable_named(r.varyings, "PREVPOSITION0")->location, 14u);
@@ -91,7 +93,8 @@ float4 f(float4 p : SV_POSITION, [[vk::location(0)]] float gradient : POSITION0,
   ASSERT_TRUE(module->ok());
   EXPECT_EQ(variable_named(module->reflection.varyings, "POSITION0")->location, 0u);
   EXPECT_EQ(variable_named(module->reflection.varyings, "POSITION1")->location, 1u);
-  EXPECT_FALSE(compiled_with_attributes("#pragma vertex v\nfloat v(float4 p : POSITION) : POSITION { return p.x; }\n")->ok());
+  EXPECT_FALSE(
+      compiled_with_attributes("#pragma vertex v\nfloat v(float4 p : POSITION) : POSITION { return p.x; }\n")->ok());
 }
 
 TEST(VulkanAttributes, BindingsAndSetsAreTheSourcesAndNothingElseLandsOnThem) {
@@ -126,28 +129,32 @@ float4 main(float2 uv : TEXCOORD0) : SV_Target { return colorMap.Sample(colorSam
 }
 
 TEST(VulkanAttributes, MisuseIsAnErrorThatSaysWhat) {
-  EXPECT_EQ(attribute_errors_of("[[vk::binding(0)]] Texture2D a; [[vk::binding(0)]] Texture2D b;\n"
-                      "SamplerState s;\n#pragma fragment f\n"
-                      "float4 f(float2 uv : TEXCOORD0) : SV_Target { return a.Sample(s, uv) + b.Sample(s, uv); }\n"),
-            (std::vector<std::string>{"vk.hlsl:1:35: error: 'b' is at binding 0 of set 0, which 'a' already takes; give "
-                                      "each resource a binding of its own"}));
+  EXPECT_EQ(
+      attribute_errors_of(
+          "[[vk::binding(0)]] Texture2D a; [[vk::binding(0)]] Texture2D b;\n"
+          "SamplerState s;\n#pragma fragment f\n"
+          "float4 f(float2 uv : TEXCOORD0) : SV_Target { return a.Sample(s, uv) + b.Sample(s, uv); }\n"),
+      (std::vector<std::string>{"vk.hlsl:1:35: error: 'b' is at binding 0 of set 0, which 'a' already takes; give "
+                                "each resource a binding of its own"}));
   const std::vector<std::string> ext = attribute_errors_of("[[vk::ext_capability(5009)]] float x;\n");
   ASSERT_FALSE(ext.empty());
   EXPECT_NE(ext[0].find("vk.hlsl:1:3: error: SPIR-V extension instructions and types (vk::ext_capability)"),
             std::string::npos)
       << ext[0];
   // A combined image sampler needs its partner at its binding; an array's vk::offset its 16 bytes.
-  EXPECT_EQ(attribute_errors_of("[[vk::combinedImageSampler]] [[vk::binding(2)]] Texture2D t;\n"
-                                "[[vk::combinedImageSampler]] [[vk::binding(3)]] SamplerState s;\n#pragma fragment f\n"
-                                "float4 f(float2 uv : TEXCOORD0) : SV_Target { return t.Sample(s, uv); }\n"),
-            (std::vector<std::string>{"vk.hlsl:1:3: error: vk::combinedImageSampler on 't' needs a SamplerState with it "
-                                      "at the same vk::binding: the two are one combined image sampler there",
-                                      "vk.hlsl:2:3: error: vk::combinedImageSampler on 's' needs a texture with it at the "
-                                      "same vk::binding: the two are one combined image sampler there"}));
-  EXPECT_EQ(attribute_errors_of("cbuffer C { float a; [[vk::offset(20)]] float4 b[2]; };\n#pragma fragment f\n"
-                                "float4 f() : SV_Target { return b[0] * a; }\n"),
-            (std::vector<std::string>{"vk.hlsl:1:48: error: vk::offset(20) of 'b': an array, matrix or struct starts at "
-                                      "a multiple of 16 bytes in the std140 block the targets read"}));
+  EXPECT_EQ(
+      attribute_errors_of("[[vk::combinedImageSampler]] [[vk::binding(2)]] Texture2D t;\n"
+                          "[[vk::combinedImageSampler]] [[vk::binding(3)]] SamplerState s;\n#pragma fragment f\n"
+                          "float4 f(float2 uv : TEXCOORD0) : SV_Target { return t.Sample(s, uv); }\n"),
+      (std::vector<std::string>{"vk.hlsl:1:3: error: vk::combinedImageSampler on 't' needs a SamplerState with it "
+                                "at the same vk::binding: the two are one combined image sampler there",
+                                "vk.hlsl:2:3: error: vk::combinedImageSampler on 's' needs a texture with it at the "
+                                "same vk::binding: the two are one combined image sampler there"}));
+  EXPECT_EQ(
+      attribute_errors_of("cbuffer C { float a; [[vk::offset(20)]] float4 b[2]; };\n#pragma fragment f\n"
+                          "float4 f() : SV_Target { return b[0] * a; }\n"),
+      (std::vector<std::string>{"vk.hlsl:1:48: error: vk::offset(20) of 'b': an array, matrix or struct starts at "
+                                "a multiple of 16 bytes in the std140 block the targets read"}));
   const std::vector<std::string> unknown = attribute_errors_of("[[vk::locaton(0)]] float x;\n");
   ASSERT_FALSE(unknown.empty());
   EXPECT_NE(unknown[0].find("unknown Vulkan attribute 'vk::locaton'"), std::string::npos) << unknown[0];
@@ -158,10 +165,10 @@ TEST(VulkanAttributes, MisuseIsAnErrorThatSaysWhat) {
   ASSERT_FALSE(constant.empty());
   EXPECT_NE(constant[0].find("vk::constant_id applies to a `const` scalar with an initializer"), std::string::npos)
       << constant[0];
-  const std::vector<std::string> overlap =
-      attribute_errors_of("#pragma vertex v\nstruct O { float4 p : SV_Position; [[vk::location(2)]] float4 a[2] : TEXCOORD0;\n"
-                "[[vk::location(3)]] float4 b : TEXCOORD5; };\n"
-                "O v(float4 p : POSITION) { O o = (O)0; o.p = p; return o; }\n");
+  const std::vector<std::string> overlap = attribute_errors_of(
+      "#pragma vertex v\nstruct O { float4 p : SV_Position; [[vk::location(2)]] float4 a[2] : TEXCOORD0;\n"
+      "[[vk::location(3)]] float4 b : TEXCOORD5; };\n"
+      "O v(float4 p : POSITION) { O o = (O)0; o.p = p; return o; }\n");
   ASSERT_FALSE(overlap.empty());
   EXPECT_NE(overlap[0].find("varying 'TEXCOORD5' at [[vk::location(3)]] overlaps 'TEXCOORD0'"), std::string::npos)
       << overlap[0];
@@ -202,8 +209,9 @@ TEST(VulkanAttributes, PrintfTakesAFormatLiteralThenScalarsAndVectors) {
 }
 
 TEST(VulkanAttributes, ASpecializationConstantIsAConstantOfItsDefault) {
-  auto module = compiled_with_attributes("[[vk::constant_id(7)]] const int MODE = 2;\n#pragma fragment f\n"
-                         "float4 f(float2 uv : TEXCOORD0) : SV_Target { return MODE == 2 ? 1 : 0; }\n");
+  auto module = compiled_with_attributes(
+      "[[vk::constant_id(7)]] const int MODE = 2;\n#pragma fragment f\n"
+      "float4 f(float2 uv : TEXCOORD0) : SV_Target { return MODE == 2 ? 1 : 0; }\n");
   ASSERT_TRUE(module->ok());
   // Not a member of $Globals: the host specializes it, it gives it no bytes.
   EXPECT_EQ(module->reflection.find_constant_buffer(kGlobalsBufferName), nullptr);

@@ -23,7 +23,8 @@ int main(int argc, char** argv) {
       "#define XSHADE_PRELUDE_HLSL\n",
       out);
   for (const xshade::hlsl::MacroDefinition& macro : xshade::hlsl::prelude_macros())
-    std::fprintf(out, "#ifndef %s\n#define %s %s\n#endif\n", macro.name.c_str(), macro.name.c_str(), macro.value.c_str());
+    std::fprintf(out, "#ifndef %s\n#define %s %s\n#endif\n", macro.name.c_str(), macro.name.c_str(),
+                 macro.value.c_str());
   std::fputs("#endif\n", out);
   return std::fclose(out) == 0 ? 0 : 1;
 }

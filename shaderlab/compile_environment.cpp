@@ -92,28 +92,28 @@ std::vector<Define> unity_defines(std::string_view program_text, UnityPlatform p
                     : platform == UnityPlatform::Vulkan ? "SHADER_API_VULKAN"
                                                         : "SHADER_API_GLCORE";
   std::vector<Define> defines{{api, "1"},
-          {"SHADER_API_DESKTOP", "1"},
-          {"SHADER_TARGET", std::to_string(shader_target(program_text))},
-          {"UNITY_VERSION", std::to_string(kUnityVersion)},
-          {"UNITY_HARDWARE_TIER3", "1"},
-          {"UNITY_PBS_USE_BRDF1", "1"},
-          {"UNITY_SPECCUBE_BOX_PROJECTION", "1"},
-          {"UNITY_SPECCUBE_BLENDING", "1"},
-          {"UNITY_ENABLE_DETAIL_NORMALMAP", "1"},
-          {"UNITY_ENABLE_REFLECTION_BUFFERS", "1"},
-          {"UNITY_USE_DITHER_MASK_FOR_ALPHABLENDED_SHADOWS", "1"},
-          {"UNITY_LIGHT_PROBE_PROXY_VOLUME", "1"},
-          {"UNITY_LIGHTMAP_FULL_HDR", "1"},
-          // The main light's shadow is read from its shadow map at the pixel's world position, as
-          // Unity does where screen-space shadows are off, rather than collected from the camera's
-          // depth into a screen-space texture first (docs/unity.md, "Shadows").
-          {"UNITY_NO_SCREENSPACE_SHADOWS", "1"}};
+                              {"SHADER_API_DESKTOP", "1"},
+                              {"SHADER_TARGET", std::to_string(shader_target(program_text))},
+                              {"UNITY_VERSION", std::to_string(kUnityVersion)},
+                              {"UNITY_HARDWARE_TIER3", "1"},
+                              {"UNITY_PBS_USE_BRDF1", "1"},
+                              {"UNITY_SPECCUBE_BOX_PROJECTION", "1"},
+                              {"UNITY_SPECCUBE_BLENDING", "1"},
+                              {"UNITY_ENABLE_DETAIL_NORMALMAP", "1"},
+                              {"UNITY_ENABLE_REFLECTION_BUFFERS", "1"},
+                              {"UNITY_USE_DITHER_MASK_FOR_ALPHABLENDED_SHADOWS", "1"},
+                              {"UNITY_LIGHT_PROBE_PROXY_VOLUME", "1"},
+                              {"UNITY_LIGHTMAP_FULL_HDR", "1"},
+                              // The main light's shadow is read from its shadow map at the pixel's world position, as
+                              // Unity does where screen-space shadows are off, rather than collected from the camera's
+                              // depth into a screen-space texture first (docs/unity.md, "Shadows").
+                              {"UNITY_NO_SCREENSPACE_SHADOWS", "1"}};
   // Unity's compiler for Vulkan (HLSLcc) reads a texture type with a precision suffix
   // (Texture2D_half, sampler2D_float) as the type, its samples at that precision; HLSLSupport.cginc
   // defines them away only for the other platforms. Both are float here, as every half is.
   if (platform == UnityPlatform::Vulkan)
-    for (const char* type : {"Texture2D", "Texture2DArray", "Texture2DMS", "TextureCube", "TextureCubeArray", "Texture3D",
-                             "sampler2D", "samplerCUBE", "sampler3D"})
+    for (const char* type : {"Texture2D", "Texture2DArray", "Texture2DMS", "TextureCube", "TextureCubeArray",
+                             "Texture3D", "sampler2D", "samplerCUBE", "sampler3D"})
       for (const char* precision : {"_half", "_float"}) defines.push_back({std::string(type) + precision, type});
   return defines;
 }

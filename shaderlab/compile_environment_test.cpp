@@ -59,7 +59,7 @@ TEST(CompileEnvironment, EachPlatformDefinesItsApiAndOnlyIts) {
     std::vector<std::string> apis;
     for (const Define& define : defines)
       if (define.name.starts_with("SHADER_API_") && define.name != "SHADER_API_DESKTOP") apis.push_back(define.name);
-    const std::string expected = platform == UnityPlatform::GLCore ? "SHADER_API_GLCORE"
+    const std::string expected = platform == UnityPlatform::GLCore  ? "SHADER_API_GLCORE"
                                  : platform == UnityPlatform::D3D11 ? "SHADER_API_D3D11"
                                                                     : "SHADER_API_VULKAN";
     EXPECT_EQ(apis, std::vector<std::string>{expected});

@@ -58,7 +58,8 @@ Token Lexer::program(Token start, ProgramLanguage language, bool include, std::s
   start.text_column = column_;
   const size_t begin = pos_;
   // Unity ends the block at the first end word that stands alone as a word, wherever it is.
-  for (size_t found = text_.find(end_word, pos_); found != std::string_view::npos; found = text_.find(end_word, found + 1)) {
+  for (size_t found = text_.find(end_word, pos_); found != std::string_view::npos;
+       found = text_.find(end_word, found + 1)) {
     const bool alone_before = found == 0 || !word_char(text_[found - 1]);
     const size_t after = found + end_word.size();
     const bool alone_after = after >= text_.size() || !word_char(text_[after]);
@@ -128,9 +129,12 @@ Token Lexer::next() {
       bool include;
     };
     static constexpr Block kBlocks[] = {
-        {"CGPROGRAM", "ENDCG", ProgramLanguage::Cg, false},      {"CGINCLUDE", "ENDCG", ProgramLanguage::Cg, true},
-        {"HLSLPROGRAM", "ENDHLSL", ProgramLanguage::Hlsl, false}, {"HLSLINCLUDE", "ENDHLSL", ProgramLanguage::Hlsl, true},
-        {"GLSLPROGRAM", "ENDGLSL", ProgramLanguage::Glsl, false}, {"GLSLINCLUDE", "ENDGLSL", ProgramLanguage::Glsl, true},
+        {"CGPROGRAM", "ENDCG", ProgramLanguage::Cg, false},
+        {"CGINCLUDE", "ENDCG", ProgramLanguage::Cg, true},
+        {"HLSLPROGRAM", "ENDHLSL", ProgramLanguage::Hlsl, false},
+        {"HLSLINCLUDE", "ENDHLSL", ProgramLanguage::Hlsl, true},
+        {"GLSLPROGRAM", "ENDGLSL", ProgramLanguage::Glsl, false},
+        {"GLSLINCLUDE", "ENDGLSL", ProgramLanguage::Glsl, true},
     };
     for (const Block& block : kBlocks)
       if (token.text == block.open) return program(token, block.language, block.include, block.close);
@@ -144,7 +148,8 @@ Token Lexer::next() {
     const bool printable = c > ' ' && c < 127;
     char hex[8];
     std::snprintf(hex, sizeof hex, "\\x%02X", static_cast<unsigned char>(c));
-    token.text = std::string("a character ShaderLab does not use: '") + (printable ? std::string(1, c) : std::string(hex)) + "'";
+    token.text =
+        std::string("a character ShaderLab does not use: '") + (printable ? std::string(1, c) : std::string(hex)) + "'";
   }
   return token;
 }

@@ -34,9 +34,10 @@ const SubShader* drawn_subshader(const Shader& shader, UnityPlatform platform) {
 }
 
 std::string without_subshader(const Shader& shader, UnityPlatform platform) {
-  return shader.subshaders.empty() ? "has no SubShader"
-                                   : "has no SubShader that Unity compiles for " + std::string(renderer_name(platform)) +
-                                         " (#pragma only_renderers or exclude_renderers keeps each out)";
+  return shader.subshaders.empty()
+             ? "has no SubShader"
+             : "has no SubShader that Unity compiles for " + std::string(renderer_name(platform)) +
+                   " (#pragma only_renderers or exclude_renderers keeps each out)";
 }
 
 Result<const Pass*> find_pass(const Shader& shader, const std::string& choice, UnityPlatform platform) {
@@ -56,8 +57,8 @@ Result<const Pass*> find_pass_in(const SubShader& sub, const std::string& shader
   }
   std::string list;
   for (size_t i = 0; i < sub.passes.size(); ++i) list += (i ? ", " : "") + pass_label(sub.passes[i], i);
-  return fail(ErrorKind::Usage, "the shader '" + shader_name + "' has no pass '" + choice + "' in the SubShader it draws (its passes: " +
-                                    (list.empty() ? "none" : list) + ")");
+  return fail(ErrorKind::Usage, "the shader '" + shader_name + "' has no pass '" + choice +
+                                    "' in the SubShader it draws (its passes: " + (list.empty() ? "none" : list) + ")");
 }
 
 Result<void> find_implicit_includes(const std::vector<std::filesystem::path>& folders) {
@@ -69,19 +70,21 @@ Result<void> find_implicit_includes(const std::vector<std::filesystem::path>& fo
     }
     if (all) return {};
   }
-  return fail("a CGPROGRAM includes Unity's HLSLSupport.cginc and UnityShaderVariables.cginc first, as Unity does, and no "
-              "include folder holds them. xshade ships none of Unity's code: take the CGIncludes folder of the "
-              "\"Built-in shaders\" download of your Unity version (or the Editor's Data/CGIncludes) and give it with -I "
-              "or the project file's `shaders`");
+  return fail(
+      "a CGPROGRAM includes Unity's HLSLSupport.cginc and UnityShaderVariables.cginc first, as Unity does, and no "
+      "include folder holds them. xshade ships none of Unity's code: take the CGIncludes folder of the "
+      "\"Built-in shaders\" download of your Unity version (or the Editor's Data/CGIncludes) and give it with -I "
+      "or the project file's `shaders`");
 }
 
 Result<PassProgram> pass_program(const SubShader& sub, const Pass& pass) {
   if (!pass.program) return fail("the pass has no program", pass.where);
   const ProgramBlock& program = *pass.program;
   if (program.language == ProgramLanguage::Glsl)
-    return fail("a GLSLPROGRAM is OpenGL-only GLSL that Unity passes through untouched; xshade compiles HLSL "
-                "(CGPROGRAM or HLSLPROGRAM)",
-                program.start);
+    return fail(
+        "a GLSLPROGRAM is OpenGL-only GLSL that Unity passes through untouched; xshade compiles HLSL "
+        "(CGPROGRAM or HLSLPROGRAM)",
+        program.start);
   PassProgram composed;
   composed.pass = &pass;
   for (size_t i = 0; i < sub.passes.size(); ++i)

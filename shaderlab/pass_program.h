@@ -8,8 +8,8 @@
 
 #include <filesystem>
 #include <optional>
-#include <string_view>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "base/result.h"
@@ -22,10 +22,10 @@ namespace xshade::shaderlab {
 inline constexpr const char* kImplicitIncludes[] = {"HLSLSupport.cginc", "UnityShaderVariables.cginc"};
 
 struct PassProgram {
-  std::string text;                 // to compile as a file named after the .shader
-  bool implicit_includes = false;   // the text begins with kImplicitIncludes
+  std::string text;                // to compile as a file named after the .shader
+  bool implicit_includes = false;  // the text begins with kImplicitIncludes
   const Pass* pass = nullptr;
-  size_t index = 0;                 // of the pass in its SubShader
+  size_t index = 0;  // of the pass in its SubShader
 };
 
 // The SubShader xshade draws, as Unity takes the first its platform runs: the first none of whose

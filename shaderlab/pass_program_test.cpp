@@ -119,8 +119,9 @@ TEST(PassProgram, TheDrawnSubShaderIsTheFirstWhosePassesAreCompiledForGlCore) {
 
   const Shader none = read("Shader \"Gles\" { SubShader { Pass { CGPROGRAM\n#pragma only_renderers gles\nENDCG } } }");
   EXPECT_EQ(drawn_subshader(none), nullptr);
-  EXPECT_EQ(without_subshader(none),
-            "has no SubShader that Unity compiles for glcore (#pragma only_renderers or exclude_renderers keeps each out)");
+  EXPECT_EQ(
+      without_subshader(none),
+      "has no SubShader that Unity compiles for glcore (#pragma only_renderers or exclude_renderers keeps each out)");
 }
 
 TEST(PassProgram, AGlslProgramIsAnErrorAtItsLine) {

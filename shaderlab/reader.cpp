@@ -43,25 +43,61 @@ std::string one_of(Words words) {
 
 // The words each render state command takes, in Unity's spelling.
 constexpr std::string_view kCull[] = {"Back", "Front", "Off"};
-constexpr std::string_view kCompare[] = {"Less",     "Greater", "LEqual", "GEqual", "Equal",
-                                                              "NotEqual", "Always",  "Never"};
-constexpr std::string_view kBlendFactors[] = {
-    "One",      "Zero",     "SrcColor",         "SrcAlpha",         "SrcAlphaSaturate", "DstColor",
-    "DstAlpha", "OneMinusSrcColor", "OneMinusSrcAlpha", "OneMinusDstColor", "OneMinusDstAlpha"};
-constexpr std::string_view kBlendOps[] = {
-    "Add",        "Sub",        "RevSub",       "Min",           "Max",           "LogicalClear",
-    "LogicalSet", "LogicalCopy", "LogicalCopyInverted", "LogicalNoop", "LogicalInvert", "LogicalAnd",
-    "LogicalNand", "LogicalOr", "LogicalNor",   "LogicalXor",    "LogicalEquiv",  "LogicalAndReverse",
-    "LogicalAndInverted", "LogicalOrReverse", "LogicalOrInverted", "Multiply", "Screen", "Overlay",
-    "Darken",     "Lighten",    "ColorDodge",   "ColorBurn",     "HardLight",     "SoftLight",
-    "Difference", "Exclusion",  "HSLHue",       "HSLSaturation", "HSLColor",      "HSLLuminosity"};
-constexpr std::string_view kStencilOps[] = {"Keep",    "Zero",    "Replace",  "IncrSat",
-                                                                 "DecrSat", "Invert",  "IncrWrap", "DecrWrap"};
+constexpr std::string_view kCompare[] = {"Less", "Greater", "LEqual", "GEqual", "Equal", "NotEqual", "Always", "Never"};
+constexpr std::string_view kBlendFactors[] = {"One",
+                                              "Zero",
+                                              "SrcColor",
+                                              "SrcAlpha",
+                                              "SrcAlphaSaturate",
+                                              "DstColor",
+                                              "DstAlpha",
+                                              "OneMinusSrcColor",
+                                              "OneMinusSrcAlpha",
+                                              "OneMinusDstColor",
+                                              "OneMinusDstAlpha"};
+constexpr std::string_view kBlendOps[] = {"Add",
+                                          "Sub",
+                                          "RevSub",
+                                          "Min",
+                                          "Max",
+                                          "LogicalClear",
+                                          "LogicalSet",
+                                          "LogicalCopy",
+                                          "LogicalCopyInverted",
+                                          "LogicalNoop",
+                                          "LogicalInvert",
+                                          "LogicalAnd",
+                                          "LogicalNand",
+                                          "LogicalOr",
+                                          "LogicalNor",
+                                          "LogicalXor",
+                                          "LogicalEquiv",
+                                          "LogicalAndReverse",
+                                          "LogicalAndInverted",
+                                          "LogicalOrReverse",
+                                          "LogicalOrInverted",
+                                          "Multiply",
+                                          "Screen",
+                                          "Overlay",
+                                          "Darken",
+                                          "Lighten",
+                                          "ColorDodge",
+                                          "ColorBurn",
+                                          "HardLight",
+                                          "SoftLight",
+                                          "Difference",
+                                          "Exclusion",
+                                          "HSLHue",
+                                          "HSLSaturation",
+                                          "HSLColor",
+                                          "HSLLuminosity"};
+constexpr std::string_view kStencilOps[] = {"Keep",    "Zero",   "Replace",  "IncrSat",
+                                            "DecrSat", "Invert", "IncrWrap", "DecrWrap"};
 // A switch: Unity reads On and True alike, and Off and False.
 constexpr std::string_view kSwitch[] = {"On", "Off", "True", "False"};
 // Commands of the fixed-function pipeline: read past, noted, never drawn.
-constexpr std::string_view kFixedFunction[] = {
-    "Lighting", "Material", "SetTexture", "Fog", "AlphaTest", "ColorMaterial", "SeparateSpecular", "BindChannels"};
+constexpr std::string_view kFixedFunction[] = {"Lighting",  "Material",      "SetTexture",       "Fog",
+                                               "AlphaTest", "ColorMaterial", "SeparateSpecular", "BindChannels"};
 
 class Reader {
  public:
@@ -93,7 +129,9 @@ class Reader {
       } else if (token.kind == TokenKind::Program) {
         includes.push_back(include_block(token));
       } else {
-        unexpected(token, "in a Shader block: Properties, SubShader, Category, Fallback, CustomEditor, Dependency or CGINCLUDE");
+        unexpected(
+            token,
+            "in a Shader block: Properties, SubShader, Category, Fallback, CustomEditor, Dependency or CGINCLUDE");
       }
     }
     lex_.next();
@@ -124,7 +162,8 @@ class Reader {
   }
   Token expect(char punct, std::string_view context) {
     const Token token = lex_.next();
-    if (!token.is(punct)) fail(token, "expected '" + std::string(1, punct) + "' " + std::string(context) + ", found " + describe(token));
+    if (!token.is(punct))
+      fail(token, "expected '" + std::string(1, punct) + "' " + std::string(context) + ", found " + describe(token));
     return token;
   }
   void expect_word(std::string_view word) {
@@ -171,7 +210,8 @@ class Reader {
         property.attributes.push_back(attribute(token));
         token = lex_.next();
       }
-      if (token.kind != TokenKind::Word) unexpected(token, "where a property's name belongs (_Name (\"Label\", Type) = default)");
+      if (token.kind != TokenKind::Word)
+        unexpected(token, "where a property's name belongs (_Name (\"Label\", Type) = default)");
       property.name = token.text;
       property.where = where(token);
       expect('(', "after the property's name");
@@ -210,7 +250,8 @@ class Reader {
       } else {
         for (size_t start = 0; start <= inside.size();) {
           const size_t comma = inside.find(',', start);
-          const std::string argument = trim(inside.substr(start, comma == std::string_view::npos ? std::string_view::npos : comma - start));
+          const std::string argument =
+              trim(inside.substr(start, comma == std::string_view::npos ? std::string_view::npos : comma - start));
           if (!argument.empty()) attribute.arguments.push_back(argument);
           if (comma == std::string_view::npos) break;
           start = comma + 1;
@@ -218,15 +259,17 @@ class Reader {
       }
     }
     static constexpr std::string_view kKnown[] = {
-        "HDR", "Gamma", "NoScaleOffset", "Normal", "PerRendererData", "MainTexture", "MainColor", "Toggle", "ToggleOff",
-        "MaterialToggle", "KeywordEnum", "Enum", "IntRange", "PowerSlider", "Header", "Space", "HideInInspector",
-        "NoKeywordToggle", "ToggleUI"};
+        "HDR",       "Gamma",       "NoScaleOffset", "Normal",         "PerRendererData", "MainTexture",
+        "MainColor", "Toggle",      "ToggleOff",     "MaterialToggle", "KeywordEnum",     "Enum",
+        "IntRange",  "PowerSlider", "Header",        "Space",          "HideInInspector", "NoKeywordToggle",
+        "ToggleUI"};
     bool known = false;
     for (std::string_view name : kKnown) known = known || same_word(name, attribute.name);
     if (!known)
       shader_.notes.push_back({Severity::Warning, attribute.where,
-                               "attribute [" + attribute.name + "] is kept but means nothing to xshade (a custom drawer of the "
-                               "material inspector)"});
+                               "attribute [" + attribute.name +
+                                   "] is kept but means nothing to xshade (a custom drawer of the "
+                                   "material inspector)"});
     return attribute;
   }
 
@@ -236,11 +279,18 @@ class Reader {
       std::string_view name;
       PropertyType type;
     };
-    static constexpr Named kTypes[] = {
-        {"Float", PropertyType::Float},       {"Int", PropertyType::Int},       {"Integer", PropertyType::Integer},
-        {"Color", PropertyType::Color},       {"Vector", PropertyType::Vector}, {"2D", PropertyType::Texture2D},
-        {"2DArray", PropertyType::Texture2DArray}, {"3D", PropertyType::Texture3D}, {"Cube", PropertyType::Cube},
-        {"CubeArray", PropertyType::CubeArray}, {"Any", PropertyType::Any},    {"Range", PropertyType::Range}};
+    static constexpr Named kTypes[] = {{"Float", PropertyType::Float},
+                                       {"Int", PropertyType::Int},
+                                       {"Integer", PropertyType::Integer},
+                                       {"Color", PropertyType::Color},
+                                       {"Vector", PropertyType::Vector},
+                                       {"2D", PropertyType::Texture2D},
+                                       {"2DArray", PropertyType::Texture2DArray},
+                                       {"3D", PropertyType::Texture3D},
+                                       {"Cube", PropertyType::Cube},
+                                       {"CubeArray", PropertyType::CubeArray},
+                                       {"Any", PropertyType::Any},
+                                       {"Range", PropertyType::Range}};
     for (const Named& named : kTypes)
       if (token.is_word(named.name)) {
         property.type = named.type;
@@ -254,18 +304,22 @@ class Reader {
         return;
       }
     fail(token, "unknown property type " + describe(token) +
-                    "; a property is Float, Int, Integer, Range(min, max), Color, Vector, 2D, 2DArray, 3D, Cube, CubeArray or Any");
+                    "; a property is Float, Int, Integer, Range(min, max), Color, Vector, 2D, 2DArray, 3D, Cube, "
+                    "CubeArray or Any");
   }
 
   void property_default(Property& property) {
     if (property.is_texture()) {
-      property.texture_default = expect(TokenKind::String, "a texture's default in quotes (\"white\", \"black\", \"gray\", \"bump\", \"\")").text;
+      property.texture_default =
+          expect(TokenKind::String, "a texture's default in quotes (\"white\", \"black\", \"gray\", \"bump\", \"\")")
+              .text;
       // { } after it: options of old Unity versions (TexGen ...), read past.
       if (accept('{')) skip_block();
       return;
     }
     if (property.type == PropertyType::Color || property.type == PropertyType::Vector) {
-      expect('(', "before the components of a " + std::string(property.type == PropertyType::Color ? "Color" : "Vector"));
+      expect('(',
+             "before the components of a " + std::string(property.type == PropertyType::Color ? "Color" : "Vector"));
       size_t count = 0;
       do {
         if (count == 4) fail(lex_.peek(), "a default has at most four components");
@@ -402,10 +456,14 @@ class Reader {
     expect('{', "after GrabPass");
     while (!accept('}')) {
       const Token token = lex_.next();
-      if (token.kind == TokenKind::String) grab.grab_texture = token.text;
-      else if (token.is_word("Name")) grab.name = expect(TokenKind::String, "the pass's name in quotes").text;
-      else if (token.is_word("Tags")) grab.tags = tags();
-      else unexpected(token, "in a GrabPass block: the texture's name in quotes, Name or Tags");
+      if (token.kind == TokenKind::String)
+        grab.grab_texture = token.text;
+      else if (token.is_word("Name"))
+        grab.name = expect(TokenKind::String, "the pass's name in quotes").text;
+      else if (token.is_word("Tags"))
+        grab.tags = tags();
+      else
+        unexpected(token, "in a GrabPass block: the texture's name in quotes, Name or Tags");
     }
     return grab;
   }
@@ -470,7 +528,8 @@ class Reader {
           return value;
         }
     const std::string choices = words.empty() ? "a number" : (numbers ? "a number, " : "") + one_of(words) + ",";
-    fail(token, std::string(command) + " takes " + choices + " or a property in brackets ([_Name]), not " + describe(token));
+    fail(token,
+         std::string(command) + " takes " + choices + " or a property in brackets ([_Name]), not " + describe(token));
   }
 
   StateValue number_value(std::string_view command) {
@@ -534,7 +593,8 @@ class Reader {
       for (char c : token.kind == TokenKind::Word ? token.text : std::string("?")) {
         const char upper = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
         if (std::string_view("RGBA").find(upper) == std::string_view::npos || channels.find(upper) != std::string::npos)
-          fail(token, "ColorMask takes 0 or channels of RGBA (each once), or a property in brackets, not " + describe(token));
+          fail(token,
+               "ColorMask takes 0 or channels of RGBA (each once), or a property in brackets, not " + describe(token));
         channels += upper;
       }
       value.text = channels;
@@ -547,7 +607,8 @@ class Reader {
   BlendState blend() {
     BlendState blend;
     // Blend N ...: render target N.
-    if (lex_.peek().kind == TokenKind::Number) blend.target = whole_number(lex_.next(), "a render target's number", 0, 7);
+    if (lex_.peek().kind == TokenKind::Number)
+      blend.target = whole_number(lex_.next(), "a render target's number", 0, 7);
     if (lex_.peek().is_word("Off")) {
       lex_.next();
       blend.off = true;
@@ -569,9 +630,11 @@ class Reader {
       const Token token = lex_.next();
       static constexpr std::string_view kMasks[] = {"Ref", "ReadMask", "WriteMask"};
       static constexpr std::string_view kCompares[] = {"Comp", "CompFront", "CompBack"};
-      static constexpr std::string_view kOperations[] = {"Pass", "Fail", "ZFail", "PassFront", "FailFront",
+      static constexpr std::string_view kOperations[] = {"Pass",       "Fail",     "ZFail",    "PassFront", "FailFront",
                                                          "ZFailFront", "PassBack", "FailBack", "ZFailBack"};
-      auto add = [&](std::string_view name, StateValue value) { stencil.fields.emplace_back(std::string(name), std::move(value)); };
+      auto add = [&](std::string_view name, StateValue value) {
+        stencil.fields.emplace_back(std::string(name), std::move(value));
+      };
       bool known = false;
       for (std::string_view name : kMasks)
         if (!known && token.is_word(name)) {
@@ -589,7 +652,9 @@ class Reader {
           known = true;
         }
       if (!known)
-        unexpected(token, "in a Stencil block: Ref, ReadMask, WriteMask, Comp, Pass, Fail, ZFail (and their Front and Back forms)");
+        unexpected(
+            token,
+            "in a Stencil block: Ref, ReadMask, WriteMask, Comp, Pass, Fail, ZFail (and their Front and Back forms)");
     }
     return stencil;
   }
@@ -600,9 +665,11 @@ class Reader {
     bool known = false;
     for (std::string_view word : kFixedFunction) known = known || token.is_word(word);
     if (!known) return false;
-    for (Token next = lex_.peek(); next.line == token.line && (next.kind == TokenKind::Word ? !command_word(next)
-                                                               : next.kind != TokenKind::End && next.kind != TokenKind::Program &&
-                                                                     !next.is('{') && !next.is('}'));
+    for (Token next = lex_.peek();
+         next.line == token.line &&
+         (next.kind == TokenKind::Word
+              ? !command_word(next)
+              : next.kind != TokenKind::End && next.kind != TokenKind::Program && !next.is('{') && !next.is('}'));
          next = lex_.peek())
       lex_.next();
     if (accept('{')) skip_block();
@@ -612,9 +679,9 @@ class Reader {
 
   // A word that begins a command of a block, which ends the arguments of the one before it.
   static bool command_word(const Token& token) {
-    static constexpr std::string_view kCommands[] = {"Cull",   "ZWrite",  "ZTest",    "Blend",     "BlendOp",  "ColorMask",
-                                                     "Offset", "AlphaToMask", "ZClip", "Conservative", "Stencil", "Name",
-                                                     "Tags",   "Pass",    "UsePass",  "GrabPass",  "LOD"};
+    static constexpr std::string_view kCommands[] = {
+        "Cull",         "ZWrite",  "ZTest", "Blend", "BlendOp", "ColorMask", "Offset",   "AlphaToMask", "ZClip",
+        "Conservative", "Stencil", "Name",  "Tags",  "Pass",    "UsePass",   "GrabPass", "LOD"};
     for (std::string_view word : kCommands)
       if (token.is_word(word)) return true;
     for (std::string_view word : kFixedFunction)

@@ -190,7 +190,8 @@ TEST(ShaderLabReader, IncludeBlocksReachTheSubShadersInTheirScope) {
   EXPECT_EQ(fixed.fixed_function, (std::vector<std::string>{"Lighting", "SetTexture"}));
   ASSERT_EQ(shader.notes.size(), 2u);
   EXPECT_EQ(shader.notes[0].to_string(),
-            "test.shader:17:22: warning: 'Lighting' is a fixed-function command; xshade draws programs only, and reads past it");
+            "test.shader:17:22: warning: 'Lighting' is a fixed-function command; xshade draws programs only, and reads "
+            "past it");
 }
 
 // A CGPROGRAM outside any Pass is a surface shader's program; a Category's LOD, tags and state
@@ -229,9 +230,10 @@ TEST(ShaderLabReader, ErrorsSayWhereAndWhatIsAllowed) {
             "test.shader:1:38: Cull takes Back, Front or Off, or a property in brackets ([_Name]), not 'Sideways'");
   EXPECT_EQ(read_error("Shader \"S\" { SubShader { Pass { Stencil { Ref one } } } }"),
             "test.shader:1:47: Ref takes a number or a property in brackets ([_Name]), not 'one'");
-  EXPECT_EQ(read_error("Shader \"S\" {\n  Properties { _X (\"X\", Float4) = 1 }\n}"),
-            "test.shader:2:25: unknown property type 'Float4'; a property is Float, Int, Integer, Range(min, max), Color, "
-            "Vector, 2D, 2DArray, 3D, Cube, CubeArray or Any");
+  EXPECT_EQ(
+      read_error("Shader \"S\" {\n  Properties { _X (\"X\", Float4) = 1 }\n}"),
+      "test.shader:2:25: unknown property type 'Float4'; a property is Float, Int, Integer, Range(min, max), Color, "
+      "Vector, 2D, 2DArray, 3D, Cube, CubeArray or Any");
   EXPECT_EQ(read_error("Shader \"S\" {\n  SubShader { Pass {\n  CGPROGRAM\n float4 f;\n"),
             "test.shader:3:3: CGPROGRAM has no ENDCG before the end of the file");
   EXPECT_EQ(read_error("Shader \"S\" { SubShader { Pass { CGPROGRAM ENDCG CGPROGRAM ENDCG } } }"),
@@ -245,7 +247,8 @@ TEST(ShaderLabReader, ErrorsSayWhereAndWhatIsAllowed) {
             "test.shader:1:33: expected a tag's name in quotes (\"Queue\" = \"Geometry\"), found 'Queue'");
   EXPECT_EQ(read_error("Shader \"S\" { SubShader { Pass { } } } }"),
             "test.shader:1:39: '}' after the Shader block's closing '}'");
-  EXPECT_EQ(read_error("Shader \"S\" { Properties { } }"), "test.shader:1:1: the shader has no SubShader (and no Fallback)");
+  EXPECT_EQ(read_error("Shader \"S\" { Properties { } }"),
+            "test.shader:1:1: the shader has no SubShader (and no Fallback)");
   EXPECT_EQ(read_error("Shader \"S\" { SubShader { Pass { Cull @ } } }"),
             "test.shader:1:38: a character ShaderLab does not use: '@'");
   // Counts and indices are whole numbers an int holds (a fuzzer's LOD of 2e34 was undefined).

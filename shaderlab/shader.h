@@ -6,8 +6,8 @@
 
 #include <array>
 #include <optional>
-#include <string_view>
 #include <string>
+#include <string_view>
 #include <utility>
 #include <vector>
 
@@ -21,7 +21,20 @@ bool same_word(std::string_view a, std::string_view b);
 
 // ---- Properties ----
 
-enum class PropertyType { Float, Int, Integer, Range, Color, Vector, Texture2D, Texture2DArray, Texture3D, Cube, CubeArray, Any };
+enum class PropertyType {
+  Float,
+  Int,
+  Integer,
+  Range,
+  Color,
+  Vector,
+  Texture2D,
+  Texture2DArray,
+  Texture3D,
+  Cube,
+  CubeArray,
+  Any
+};
 
 // A property's attribute as written: [HDR], [Toggle(_FOO_ON)], [KeywordEnum(None, Add)], ...
 struct PropertyAttribute {
@@ -76,8 +89,8 @@ struct StencilState {
 // ZWrite On, ZTest LEqual, Blend Off).
 struct RenderState {
   std::optional<StateValue> cull, zwrite, ztest, color_mask, alpha_to_mask, zclip, conservative;
-  std::optional<std::pair<StateValue, StateValue>> offset;  // factor, units
-  std::vector<BlendState> blend;                            // in the order written
+  std::optional<std::pair<StateValue, StateValue>> offset;                   // factor, units
+  std::vector<BlendState> blend;                                             // in the order written
   std::optional<std::pair<StateValue, std::optional<StateValue>>> blend_op;  // colour, alpha
   std::optional<StencilState> stencil;
 
@@ -118,8 +131,8 @@ struct Pass {
   RenderState state;
   std::vector<ProgramBlock> includes;  // CGINCLUDE blocks written inside the pass
   std::optional<ProgramBlock> program;
-  std::string used;          // Use: "Shader/NAME"
-  std::string grab_texture;  // Grab: "_Name", empty for the default _GrabTexture
+  std::string used;                         // Use: "Shader/NAME"
+  std::string grab_texture;                 // Grab: "_Name", empty for the default _GrabTexture
   std::vector<std::string> fixed_function;  // the fixed-function commands the pass holds
   // Generated from a surface program (surface_shader.h): its program holds the include blocks of
   // its scope itself, after the Unity includes the generated code needs.
@@ -130,7 +143,7 @@ struct Pass {
 struct SubShader {
   Tags tags;
   int lod = 0;
-  RenderState state;  // its own over its Category's
+  RenderState state;                   // its own over its Category's
   std::vector<ProgramBlock> includes;  // the shader's, its Category's and its own, in that order
   std::vector<Pass> passes;
   // A CGPROGRAM outside any Pass: a surface shader's program (#pragma surface), from which Unity

@@ -28,7 +28,8 @@ const char* type_name(PropertyType type) {
 std::string properties_json(const Shader& shader) {
   nlohmann::json properties = nlohmann::json::array();
   for (const Property& property : shader.properties) {
-    nlohmann::json entry = {{"name", property.name}, {"display_name", property.display_name}, {"type", type_name(property.type)}};
+    nlohmann::json entry = {
+        {"name", property.name}, {"display_name", property.display_name}, {"type", type_name(property.type)}};
     if (property.is_texture())
       entry["default"] = property.texture_default;
     else if (property.type == PropertyType::Color || property.type == PropertyType::Vector)

@@ -21,7 +21,8 @@ std::string declared_shader_name(std::string_view text);
 // `name`, matched exactly as Unity's Shader.Find does, else one that declares "Legacy Shaders/"
 // followed by `name` (the old name of one of Unity's legacy shaders, which Unity still finds); an
 // error naming the folders when none does. Each folder is read once a process.
-Result<std::filesystem::path> find_shader_named(const std::string& name, const std::vector<std::filesystem::path>& folders);
+Result<std::filesystem::path> find_shader_named(const std::string& name,
+                                                const std::vector<std::filesystem::path>& folders);
 
 // UsePass "Shader/NAME": the shader's name and the pass's, split at the last '/'.
 std::pair<std::string, std::string> split_used_pass(const std::string& used);

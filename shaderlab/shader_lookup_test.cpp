@@ -14,7 +14,8 @@ namespace fs = std::filesystem;
 
 TEST(ShaderLookup, TheNameIsTheShaderLinesStringAfterCommentsAndAByteOrderMark) {
   EXPECT_EQ(declared_shader_name("Shader \"Unlit/Texture\" {"), "Unlit/Texture");
-  EXPECT_EQ(declared_shader_name("\xEF\xBB\xBF// licence\n/* more\n lines */\n  Shader\n\t\"Hidden/A B\"{}"), "Hidden/A B");
+  EXPECT_EQ(declared_shader_name("\xEF\xBB\xBF// licence\n/* more\n lines */\n  Shader\n\t\"Hidden/A B\"{}"),
+            "Hidden/A B");
   EXPECT_EQ(declared_shader_name("// Shader \"Commented/Out\"\nShader \"Real\" {}"), "Real");
   EXPECT_EQ(declared_shader_name("Properties { } Shader \"Late\""), "");
   EXPECT_EQ(declared_shader_name("Shader Unquoted {"), "");
@@ -41,7 +42,8 @@ TEST(ShaderLookup, AShaderIsFoundByItsNameUnderTheFoldersInTheirOrder) {
   auto text = find_shader_named("Hidden/Text", folders);
   ASSERT_FALSE(text);
   EXPECT_EQ(text.error().message, "no .shader in the shader folders declares Shader \"Hidden/Text\" (searched " +
-                                      (root / "first").string() + ", " + (root / "second").string() + " and their subfolders)");
+                                      (root / "first").string() + ", " + (root / "second").string() +
+                                      " and their subfolders)");
   EXPECT_FALSE(find_shader_named("legacy shaders/diffuse", folders)) << "Unity's names are matched exactly";
   // A legacy shader by its name before Unity 5, as Unity's own shaders name them in a Fallback.
   auto old_name = find_shader_named("VertexLit", folders);
@@ -51,7 +53,8 @@ TEST(ShaderLookup, AShaderIsFoundByItsNameUnderTheFoldersInTheirOrder) {
 }
 
 TEST(ShaderLookup, AUsedPassIsTheShadersNameAndThePassesSplitAtTheLastSlash) {
-  EXPECT_EQ(split_used_pass("Reflective/Bumped Unlit/BASE"), (std::pair<std::string, std::string>{"Reflective/Bumped Unlit", "BASE"}));
+  EXPECT_EQ(split_used_pass("Reflective/Bumped Unlit/BASE"),
+            (std::pair<std::string, std::string>{"Reflective/Bumped Unlit", "BASE"}));
   EXPECT_EQ(split_used_pass("NOSLASH"), (std::pair<std::string, std::string>{"NOSLASH", ""}));
 }
 

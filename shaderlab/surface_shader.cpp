@@ -15,14 +15,14 @@ struct KnownOption {
   bool takes_value;
 };
 constexpr KnownOption kOptions[] = {
-    {"alpha", false},          {"alphatest", true},       {"keepalpha", false},        {"decal", true},
-    {"vertex", true},          {"finalcolor", true},      {"finalgbuffer", true},      {"finalprepass", true},
-    {"addshadow", false},      {"fullforwardshadows", false}, {"tessellate", true},    {"tessphong", true},
-    {"exclude_path", true},    {"noshadow", false},       {"noambient", false},        {"novertexlights", false},
-    {"nolightmap", false},     {"nodynlightmap", false},  {"nodirlightmap", false},    {"nofog", false},
-    {"nometa", false},         {"noforwardadd", false},   {"nolppv", false},           {"noshadowmask", false},
-    {"halfasview", false},     {"approxview", false},     {"interpolateview", false},  {"dualforward", false},
-    {"softvegetation", false}, {"dithercrossfade", false}, {"noinstancing", false},    {"vertexcolor", false},
+    {"alpha", false},          {"alphatest", true},           {"keepalpha", false},       {"decal", true},
+    {"vertex", true},          {"finalcolor", true},          {"finalgbuffer", true},     {"finalprepass", true},
+    {"addshadow", false},      {"fullforwardshadows", false}, {"tessellate", true},       {"tessphong", true},
+    {"exclude_path", true},    {"noshadow", false},           {"noambient", false},       {"novertexlights", false},
+    {"nolightmap", false},     {"nodynlightmap", false},      {"nodirlightmap", false},   {"nofog", false},
+    {"nometa", false},         {"noforwardadd", false},       {"nolppv", false},          {"noshadowmask", false},
+    {"halfasview", false},     {"approxview", false},         {"interpolateview", false}, {"dualforward", false},
+    {"softvegetation", false}, {"dithercrossfade", false},    {"noinstancing", false},    {"vertexcolor", false},
 };
 
 // The program's text with its `#pragma surface` line made a comment (at its '#'), so that its
@@ -70,9 +70,9 @@ AlphaMode alpha_mode(const SurfaceDirective& directive) {
 struct InputUse {
   const SurfaceField* field;
   enum Kind { Uv, WorldPos, WorldNormal, WorldRefl, ViewDir, ScreenPos, Color, Face, TangentToWorld, Custom } kind;
-  int uv_set = 0;       // Uv: 0 for uv_, 1 for uv2_, ...
-  std::string texture;  // Uv: the texture whose _ST transforms it
-  std::string packed;   // Uv: where it travels, two to an interpolator as Unity packs them: pack0.xy
+  int uv_set = 0;          // Uv: 0 for uv_, 1 for uv2_, ...
+  std::string texture;     // Uv: the texture whose _ST transforms it
+  std::string packed;      // Uv: where it travels, two to an interpolator as Unity packs them: pack0.xy
   bool half_pack = false;  // Uv: in half of its interpolator (.xy or .zw), a float2; else all of it
 };
 
@@ -85,21 +85,30 @@ std::vector<InputUse> classify_input(const std::vector<SurfaceField>& input) {
     static constexpr std::array<const char*, 4> kUvPrefixes = {"uv", "uv2", "uv3", "uv4"};
     for (size_t set = 0; set < kUvPrefixes.size(); ++set) {
       std::string_view prefix = kUvPrefixes[set];
-      if (name.size() > prefix.size() + 1 && name.compare(0, prefix.size(), prefix) == 0 && name[prefix.size()] == '_') {
+      if (name.size() > prefix.size() + 1 && name.compare(0, prefix.size(), prefix) == 0 &&
+          name[prefix.size()] == '_') {
         use.kind = InputUse::Uv;
         use.uv_set = static_cast<int>(set);
         use.texture = name.substr(prefix.size());
       }
     }
     if (use.kind == InputUse::Custom) {
-      if (same_word(field.semantic, "COLOR") || same_word(field.semantic, "COLOR0")) use.kind = InputUse::Color;
-      else if (same_word(field.semantic, "VFACE") || same_word(field.semantic, "SV_IsFrontFace")) use.kind = InputUse::Face;
-      else if (name == "worldPos") use.kind = InputUse::WorldPos;
-      else if (name == "worldNormal") use.kind = InputUse::WorldNormal;
-      else if (name == "worldRefl") use.kind = InputUse::WorldRefl;
-      else if (name == "viewDir") use.kind = InputUse::ViewDir;
-      else if (name == "screenPos") use.kind = InputUse::ScreenPos;
-      else if (name.rfind("internalSurfaceTtoW", 0) == 0) use.kind = InputUse::TangentToWorld;
+      if (same_word(field.semantic, "COLOR") || same_word(field.semantic, "COLOR0"))
+        use.kind = InputUse::Color;
+      else if (same_word(field.semantic, "VFACE") || same_word(field.semantic, "SV_IsFrontFace"))
+        use.kind = InputUse::Face;
+      else if (name == "worldPos")
+        use.kind = InputUse::WorldPos;
+      else if (name == "worldNormal")
+        use.kind = InputUse::WorldNormal;
+      else if (name == "worldRefl")
+        use.kind = InputUse::WorldRefl;
+      else if (name == "viewDir")
+        use.kind = InputUse::ViewDir;
+      else if (name == "screenPos")
+        use.kind = InputUse::ScreenPos;
+      else if (name.rfind("internalSurfaceTtoW", 0) == 0)
+        use.kind = InputUse::TangentToWorld;
     }
     uses.push_back(std::move(use));
   }
@@ -118,7 +127,11 @@ class SurfaceGenerator {
  public:
   SurfaceGenerator(const ProgramBlock& surface, const std::vector<ProgramBlock>& includes,
                    const SurfaceDirective& directive, const SurfaceProgramShape& shape)
-      : surface_(surface), includes_(includes), directive_(directive), shape_(shape), uses_(classify_input(shape.input)),
+      : surface_(surface),
+        includes_(includes),
+        directive_(directive),
+        shape_(shape),
+        uses_(classify_input(shape.input)),
         alpha_(alpha_mode(directive)) {
     // Unity packs two float2 uvs into one float4 interpolator (pack0.xy, pack0.zw), so that a
     // surface shader with several textures stays inside the eight TEXCOORDs a target has.
@@ -207,13 +220,14 @@ class SurfaceGenerator {
     out += "#pragma vertex vert_surf\n#pragma fragment frag_surf\n";
     if (fog()) out += "#pragma multi_compile_fog\n";
     if (base()) {
-      out += alpha_ == AlphaMode::Opaque ? "#pragma multi_compile_fwdbase" : "#pragma multi_compile_fwdbasealpha noshadow";
+      out +=
+          alpha_ == AlphaMode::Opaque ? "#pragma multi_compile_fwdbase" : "#pragma multi_compile_fwdbasealpha noshadow";
       for (const char* option : {"nolightmap", "nodynlightmap", "nodirlightmap", "noshadowmask"})
         if (directive_.has(option)) out += std::string(" ") + option;
       out += "\n#define UNITY_PASS_FORWARDBASE\n";
     } else if (which_ == GeneratedPass::ForwardAdd) {
       out += directive_.has("fullforwardshadows") ? "#pragma multi_compile_fwdadd_fullshadows\n"
-                                                   : "#pragma multi_compile_fwdadd\n";
+                                                  : "#pragma multi_compile_fwdadd\n";
       out += "#define UNITY_PASS_FORWARDADD\n";
     } else {
       out += "#pragma multi_compile_shadowcaster\n#define UNITY_PASS_SHADOWCASTER\n";
@@ -313,7 +327,8 @@ class SurfaceGenerator {
     out += "  float3 worldNormal = UnityObjectToWorldNormal(v.normal);\n";
     if (shape_.writes_normal) {
       out += "  fixed3 worldTangent = UnityObjectToWorldDir(" + vertex_input("tangent", "float4(1,0,0,1)") + ".xyz);\n";
-      out += "  fixed tangentSign = " + vertex_input("tangent", "float4(1,0,0,1)") + ".w * unity_WorldTransformParams.w;\n";
+      out += "  fixed tangentSign = " + vertex_input("tangent", "float4(1,0,0,1)") +
+             ".w * unity_WorldTransformParams.w;\n";
       out += "  fixed3 worldBinormal = cross(worldNormal, worldTangent) * tangentSign;\n";
       out += "  o.tSpace0 = float4(worldTangent.x, worldBinormal.x, worldNormal.x, worldPos.x);\n";
       out += "  o.tSpace1 = float4(worldTangent.y, worldBinormal.y, worldNormal.y, worldPos.y);\n";
@@ -330,11 +345,12 @@ class SurfaceGenerator {
       out += "  #if UNITY_SHOULD_SAMPLE_SH && !UNITY_SAMPLE_FULL_SH_PER_PIXEL\n";
       out += legacy() ? "  o.sh = ShadeSH9(float4(worldNormal, 1.0));\n" : "  o.sh = 0;\n";
       if (!directive_.has("novertexlights"))
-        out += "  #ifdef VERTEXLIGHT_ON\n"
-               "  o.sh += Shade4PointLights(unity_4LightPosX0, unity_4LightPosY0, unity_4LightPosZ0,\n"
-               "    unity_LightColor[0].rgb, unity_LightColor[1].rgb, unity_LightColor[2].rgb, unity_LightColor[3].rgb,\n"
-               "    unity_4LightAtten0, worldPos, worldNormal);\n"
-               "  #endif\n";
+        out +=
+            "  #ifdef VERTEXLIGHT_ON\n"
+            "  o.sh += Shade4PointLights(unity_4LightPosX0, unity_4LightPosY0, unity_4LightPosZ0,\n"
+            "    unity_LightColor[0].rgb, unity_LightColor[1].rgb, unity_LightColor[2].rgb, unity_LightColor[3].rgb,\n"
+            "    unity_4LightAtten0, worldPos, worldNormal);\n"
+            "  #endif\n";
       if (!legacy()) out += "  o.sh = ShadeSHPerVertex(worldNormal, o.sh);\n";
       out += "  #endif\n";
     }
@@ -349,17 +365,19 @@ class SurfaceGenerator {
 
   void fragment_function(std::string& out) {
     const bool face = has_input(InputUse::Face);
-    out += std::string(forward() ? "fixed4" : "float4") + " frag_surf (v2f_surf IN" + (face ? ", fixed facing : VFACE" : "") +
-           ") : SV_Target {\n";
+    out += std::string(forward() ? "fixed4" : "float4") + " frag_surf (v2f_surf IN" +
+           (face ? ", fixed facing : VFACE" : "") + ") : SV_Target {\n";
     out += "  UNITY_SETUP_INSTANCE_ID(IN);\n  Input surfIN;\n  UNITY_INITIALIZE_OUTPUT(Input,surfIN);\n";
     out += shape_.writes_normal ? "  float3 worldPos = float3(IN.tSpace0.w, IN.tSpace1.w, IN.tSpace2.w);\n"
                                 : "  float3 worldPos = IN.worldPos;\n";
-    out += "  #ifndef USING_DIRECTIONAL_LIGHT\n  fixed3 lightDir = normalize(UnityWorldSpaceLightDir(worldPos));\n"
-           "  #else\n  fixed3 lightDir = _WorldSpaceLightPos0.xyz;\n  #endif\n";
+    out +=
+        "  #ifndef USING_DIRECTIONAL_LIGHT\n  fixed3 lightDir = normalize(UnityWorldSpaceLightDir(worldPos));\n"
+        "  #else\n  fixed3 lightDir = _WorldSpaceLightPos0.xyz;\n  #endif\n";
     out += "  float3 worldViewDir = normalize(UnityWorldSpaceViewDir(worldPos));\n";
     if (shape_.writes_normal)
-      out += "  float3 _unity_tbn_0 = IN.tSpace0.xyz;\n  float3 _unity_tbn_1 = IN.tSpace1.xyz;\n"
-             "  float3 _unity_tbn_2 = IN.tSpace2.xyz;\n";
+      out +=
+          "  float3 _unity_tbn_0 = IN.tSpace0.xyz;\n  float3 _unity_tbn_1 = IN.tSpace1.xyz;\n"
+          "  float3 _unity_tbn_2 = IN.tSpace2.xyz;\n";
     for (const InputUse& use : uses_) {
       const std::string field = "surfIN." + use.field->name;
       switch (use.kind) {
@@ -373,14 +391,15 @@ class SurfaceGenerator {
           out += "  " + field + (shape_.writes_normal ? " = 0.0;\n" : " = IN.worldNormal;\n");
           break;
         case InputUse::WorldRefl:
-          out += "  " + field + (shape_.writes_normal ? " = -worldViewDir;\n" : " = reflect(-worldViewDir, IN.worldNormal);\n");
+          out += "  " + field +
+                 (shape_.writes_normal ? " = -worldViewDir;\n" : " = reflect(-worldViewDir, IN.worldNormal);\n");
           break;
         case InputUse::ViewDir:
           // In tangent space where the surface function writes a tangent-space normal (Unity's manual).
           out += "  " + field +
-                 (shape_.writes_normal
-                      ? " = _unity_tbn_0 * worldViewDir.x + _unity_tbn_1 * worldViewDir.y + _unity_tbn_2 * worldViewDir.z;\n"
-                      : " = worldViewDir;\n");
+                 (shape_.writes_normal ? " = _unity_tbn_0 * worldViewDir.x + _unity_tbn_1 * worldViewDir.y + "
+                                         "_unity_tbn_2 * worldViewDir.z;\n"
+                                       : " = worldViewDir;\n");
           break;
         case InputUse::ScreenPos: out += "  " + field + " = IN.screenPos;\n"; break;
         case InputUse::Color: out += "  " + field + " = IN.color;\n"; break;
@@ -403,8 +422,9 @@ class SurfaceGenerator {
     const std::string cutoff = directive_.value("alphatest");
     if (!cutoff.empty()) out += "  clip(o.Alpha - " + cutoff + ");\n";
     if (shape_.writes_normal)
-      out += "  float3 worldN;\n  worldN.x = dot(_unity_tbn_0, o.Normal);\n  worldN.y = dot(_unity_tbn_1, o.Normal);\n"
-             "  worldN.z = dot(_unity_tbn_2, o.Normal);\n  worldN = normalize(worldN);\n  o.Normal = worldN;\n";
+      out +=
+          "  float3 worldN;\n  worldN.x = dot(_unity_tbn_0, o.Normal);\n  worldN.y = dot(_unity_tbn_1, o.Normal);\n"
+          "  worldN.z = dot(_unity_tbn_2, o.Normal);\n  worldN = normalize(worldN);\n  o.Normal = worldN;\n";
     if (!forward()) {
       out += "  SHADOW_CASTER_FRAGMENT(IN)\n}\n";
       return;
@@ -425,26 +445,30 @@ class SurfaceGenerator {
     const std::string view = directive_.has("halfasview") ? "normalize(lightDir + worldViewDir)" : "worldViewDir";
     if (legacy()) {
       if (ambient()) out += "  #if UNITY_SHOULD_SAMPLE_SH\n  c.rgb += o.Albedo * IN.sh;\n  #endif\n";
-      out += "  c += " + function + " (o, lightDir, " + (shape_.lighting == LightingForm::LegacyView ? view + ", " : "") +
-             "atten);\n";
+      out += "  c += " + function + " (o, lightDir, " +
+             (shape_.lighting == LightingForm::LegacyView ? view + ", " : "") + "atten);\n";
       return;
     }
-    out += "  UnityGI gi;\n  UNITY_INITIALIZE_OUTPUT(UnityGI, gi);\n  gi.indirect.diffuse = 0;\n  gi.indirect.specular = 0;\n"
-           "  gi.light.color = _LightColor0.rgb;\n  gi.light.dir = lightDir;\n";
+    out +=
+        "  UnityGI gi;\n  UNITY_INITIALIZE_OUTPUT(UnityGI, gi);\n  gi.indirect.diffuse = 0;\n  gi.indirect.specular = "
+        "0;\n"
+        "  gi.light.color = _LightColor0.rgb;\n  gi.light.dir = lightDir;\n";
     if (base()) {
-      out += "  UnityGIInput giInput;\n  UNITY_INITIALIZE_OUTPUT(UnityGIInput, giInput);\n  giInput.light = gi.light;\n"
-             "  giInput.worldPos = worldPos;\n  giInput.worldViewDir = worldViewDir;\n  giInput.atten = atten;\n"
-             "  giInput.lightmapUV = 0.0;\n";
+      out +=
+          "  UnityGIInput giInput;\n  UNITY_INITIALIZE_OUTPUT(UnityGIInput, giInput);\n  giInput.light = gi.light;\n"
+          "  giInput.worldPos = worldPos;\n  giInput.worldViewDir = worldViewDir;\n  giInput.atten = atten;\n"
+          "  giInput.lightmapUV = 0.0;\n";
       out += ambient() ? "  #if UNITY_SHOULD_SAMPLE_SH && !UNITY_SAMPLE_FULL_SH_PER_PIXEL\n  giInput.ambient = IN.sh;\n"
                          "  #else\n  giInput.ambient.rgb = 0.0;\n  #endif\n"
                        : "  giInput.ambient.rgb = 0.0;\n";
-      out += "  giInput.probeHDR[0] = unity_SpecCube0_HDR;\n  giInput.probeHDR[1] = unity_SpecCube1_HDR;\n"
-             "  #if defined(UNITY_SPECCUBE_BLENDING) || defined(UNITY_SPECCUBE_BOX_PROJECTION)\n"
-             "  giInput.boxMin[0] = unity_SpecCube0_BoxMin;\n  #endif\n"
-             "  #ifdef UNITY_SPECCUBE_BOX_PROJECTION\n  giInput.boxMax[0] = unity_SpecCube0_BoxMax;\n"
-             "  giInput.probePosition[0] = unity_SpecCube0_ProbePosition;\n  giInput.boxMax[1] = unity_SpecCube1_BoxMax;\n"
-             "  giInput.boxMin[1] = unity_SpecCube1_BoxMin;\n  giInput.probePosition[1] = unity_SpecCube1_ProbePosition;\n"
-             "  #endif\n";
+      out +=
+          "  giInput.probeHDR[0] = unity_SpecCube0_HDR;\n  giInput.probeHDR[1] = unity_SpecCube1_HDR;\n"
+          "  #if defined(UNITY_SPECCUBE_BLENDING) || defined(UNITY_SPECCUBE_BOX_PROJECTION)\n"
+          "  giInput.boxMin[0] = unity_SpecCube0_BoxMin;\n  #endif\n"
+          "  #ifdef UNITY_SPECCUBE_BOX_PROJECTION\n  giInput.boxMax[0] = unity_SpecCube0_BoxMax;\n"
+          "  giInput.probePosition[0] = unity_SpecCube0_ProbePosition;\n  giInput.boxMax[1] = unity_SpecCube1_BoxMax;\n"
+          "  giInput.boxMin[1] = unity_SpecCube1_BoxMin;\n  giInput.probePosition[1] = unity_SpecCube1_ProbePosition;\n"
+          "  #endif\n";
       out += "  " + function + "_GI(o, giInput, gi);\n";
     } else {
       out += "  gi.light.color *= atten;\n";
@@ -458,7 +482,8 @@ class SurfaceGenerator {
       "#define WorldNormalVector(data,normal) normal\n";
   static constexpr const char* kTangentSpaceMacros =
       "#define INTERNAL_DATA half3 internalSurfaceTtoW0; half3 internalSurfaceTtoW1; half3 internalSurfaceTtoW2;\n"
-      "#define WorldReflectionVector(data,normal) reflect (data.worldRefl, half3(dot(data.internalSurfaceTtoW0,normal), "
+      "#define WorldReflectionVector(data,normal) reflect (data.worldRefl, "
+      "half3(dot(data.internalSurfaceTtoW0,normal), "
       "dot(data.internalSurfaceTtoW1,normal), dot(data.internalSurfaceTtoW2,normal)))\n"
       "#define WorldNormalVector(data,normal) fixed3(dot(data.internalSurfaceTtoW0,normal), "
       "dot(data.internalSurfaceTtoW1,normal), dot(data.internalSurfaceTtoW2,normal))\n";
@@ -488,9 +513,10 @@ std::string SurfaceDirective::value(std::string_view option) const {
 Result<SurfaceDirective> read_surface_directive(const ProgramBlock& program) {
   const std::vector<std::string_view> found = pragma_arguments(program.text, "surface");
   if (found.empty())
-    return fail("a program outside any Pass is a surface shader's, and this one has no `#pragma surface surfFunc "
-                "lightModel`; put a vertex and fragment program inside a Pass { }",
-                program.start);
+    return fail(
+        "a program outside any Pass is a surface shader's, and this one has no `#pragma surface surfFunc "
+        "lightModel`; put a vertex and fragment program inside a Pass { }",
+        program.start);
   SurfaceDirective directive;
   std::string_view rest = found.front();
   const auto line = std::count(program.text.data(), rest.data(), '\n');
@@ -515,14 +541,16 @@ Result<SurfaceDirective> read_surface_directive(const ProgramBlock& program) {
     const auto known = std::find_if(std::begin(kOptions), std::end(kOptions),
                                     [&](const KnownOption& candidate) { return name == candidate.name; });
     if (known == std::end(kOptions))
-      return fail("`#pragma surface` has no option '" + name + "' (Unity's manual lists alpha, alphatest:, vertex:, "
-                  "finalcolor:, addshadow, fullforwardshadows, noforwardadd, nofog, ...)",
+      return fail("`#pragma surface` has no option '" + name +
+                      "' (Unity's manual lists alpha, alphatest:, vertex:, "
+                      "finalcolor:, addshadow, fullforwardshadows, noforwardadd, nofog, ...)",
                   directive.where);
     if (known->takes_value && value.empty())
       return fail("the surface option '" + name + "' takes a value: `" + name + ":...`", directive.where);
     if (name == "tessellate" || name == "tessphong")
-      return fail("`" + name + ":` asks for a tessellation stage, and xshade compiles vertex and fragment programs only",
-                  directive.where);
+      return fail(
+          "`" + name + ":` asks for a tessellation stage, and xshade compiles vertex and fragment programs only",
+          directive.where);
     directive.options.emplace_back(std::move(name), std::move(value));
   }
   return directive;
@@ -542,11 +570,13 @@ std::vector<Pass> generate_surface_passes(const ProgramBlock& surface, const std
 }
 
 std::string surface_program_for_analysis(const ProgramBlock& surface, const std::vector<ProgramBlock>& includes) {
-  std::string out = "#include \"UnityCG.cginc\"\n#include \"Lighting.cginc\"\n#include \"UnityPBSLighting.cginc\"\n"
-                    "#include \"AutoLight.cginc\"\n";
+  std::string out =
+      "#include \"UnityCG.cginc\"\n#include \"Lighting.cginc\"\n#include \"UnityPBSLighting.cginc\"\n"
+      "#include \"AutoLight.cginc\"\n";
   // INTERNAL_DATA as the tangent-space form declares it, so that an Input that holds it shows it.
-  out += "#define INTERNAL_DATA half3 internalSurfaceTtoW0; half3 internalSurfaceTtoW1; half3 internalSurfaceTtoW2;\n"
-         "#define WorldReflectionVector(data,normal) data.worldRefl\n#define WorldNormalVector(data,normal) normal\n";
+  out +=
+      "#define INTERNAL_DATA half3 internalSurfaceTtoW0; half3 internalSurfaceTtoW1; half3 internalSurfaceTtoW2;\n"
+      "#define WorldReflectionVector(data,normal) data.worldRefl\n#define WorldNormalVector(data,normal) normal\n";
   for (const ProgramBlock& block : includes) append_block(out, block);
   append_block(out, surface, without_surface_pragma(surface.text));
   return out;

@@ -49,25 +49,25 @@ struct SurfaceField {
 
 // The lighting function's form, of those Unity's manual lists for Lighting<Name>.
 enum class LightingForm {
-  Gi,             // half4 Lighting<Name>(SurfaceOutput s, UnityGI gi), with Lighting<Name>_GI
-  ViewGi,         // half4 Lighting<Name>(SurfaceOutput s, half3 viewDir, UnityGI gi), with _GI
-  Legacy,         // half4 Lighting<Name>(SurfaceOutput s, half3 lightDir, half atten)
-  LegacyView,     // half4 Lighting<Name>(SurfaceOutput s, half3 lightDir, half3 viewDir, half atten)
+  Gi,          // half4 Lighting<Name>(SurfaceOutput s, UnityGI gi), with Lighting<Name>_GI
+  ViewGi,      // half4 Lighting<Name>(SurfaceOutput s, half3 viewDir, UnityGI gi), with _GI
+  Legacy,      // half4 Lighting<Name>(SurfaceOutput s, half3 lightDir, half atten)
+  LegacyView,  // half4 Lighting<Name>(SurfaceOutput s, half3 lightDir, half3 viewDir, half atten)
 };
 
 // What the generated code needs to know of the author's program.
 struct SurfaceProgramShape {
-  std::vector<SurfaceField> input;           // struct Input
-  std::string output_type;                   // the surface function's second parameter's type
-  std::vector<std::string> output_fields;    // its fields' names
+  std::vector<SurfaceField> input;         // struct Input
+  std::string output_type;                 // the surface function's second parameter's type
+  std::vector<std::string> output_fields;  // its fields' names
   LightingForm lighting = LightingForm::Gi;
-  bool writes_normal = false;                // the surface function writes o.Normal (tangent space)
+  bool writes_normal = false;  // the surface function writes o.Normal (tangent space)
   // vertex:func: the type its first parameter takes (appdata_full) with its fields' names, and
   // whether it has a second, `out Input`, parameter that fills Input's own fields.
   std::string vertex_input_type = "appdata_full";
   std::vector<std::string> vertex_input_fields;
   bool vertex_fills_input = false;
-  std::vector<std::string> globals;          // names declared at file scope (an alphatest property)
+  std::vector<std::string> globals;  // names declared at file scope (an alphatest property)
 };
 
 // The passes Unity generates in `forward` (ForwardBase, ForwardAdd unless noforwardadd;

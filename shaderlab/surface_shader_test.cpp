@@ -9,7 +9,8 @@ namespace {
 
 ProgramBlock surface_block(const std::string& pragma) {
   ProgramBlock block;
-  block.text = "\n  struct Input { float2 uv_MainTex; };\n  " + pragma + "\n  void surf(Input IN, inout SurfaceOutput o) {}\n";
+  block.text =
+      "\n  struct Input { float2 uv_MainTex; };\n  " + pragma + "\n  void surf(Input IN, inout SurfaceOutput o) {}\n";
   block.start = {"toon.shader", 10, 5};
   return block;
 }
@@ -47,11 +48,11 @@ TEST(SurfaceDirective, ReadsTheFunctionTheModelAndEachOptionAtThePragmasLine) {
 }
 
 TEST(SurfaceDirective, WhatUnityDoesNotHaveOrXshadeDoesNotGenerateIsAnErrorAtThePragma) {
-  for (const auto& [pragma, says] :
-       std::vector<std::pair<std::string, std::string>>{{"#pragma surface surf", "needs a surface function and a lighting model"},
-                                                        {"#pragma surface surf Lambert shiny", "has no option 'shiny'"},
-                                                        {"#pragma surface surf Lambert vertex", "takes a value"},
-                                                        {"#pragma surface surf Lambert tessellate:tess", "tessellation stage"}}) {
+  for (const auto& [pragma, says] : std::vector<std::pair<std::string, std::string>>{
+           {"#pragma surface surf", "needs a surface function and a lighting model"},
+           {"#pragma surface surf Lambert shiny", "has no option 'shiny'"},
+           {"#pragma surface surf Lambert vertex", "takes a value"},
+           {"#pragma surface surf Lambert tessellate:tess", "tessellation stage"}}) {
     auto directive = read_surface_directive(surface_block(pragma));
     ASSERT_FALSE(directive) << pragma;
     EXPECT_EQ(directive.error().where.line, 12u) << pragma;
@@ -64,7 +65,8 @@ TEST(SurfaceDirective, WhatUnityDoesNotHaveOrXshadeDoesNotGenerateIsAnErrorAtThe
 
 TEST(SurfaceShader, GeneratesForwardBaseAndForwardAddAsUnityDoesAndTheShadowCasterOnlyWithAddshadow) {
   const ProgramBlock block = surface_block("#pragma surface surf Lambert");
-  std::vector<Pass> passes = generate_surface_passes(block, {}, directive_of("#pragma surface surf Lambert"), lambert_shape());
+  std::vector<Pass> passes =
+      generate_surface_passes(block, {}, directive_of("#pragma surface surf Lambert"), lambert_shape());
   ASSERT_EQ(passes.size(), 2u);
   EXPECT_EQ(tag(passes[0].tags, "LightMode"), "ForwardBase");
   EXPECT_FALSE(passes[0].state.zwrite);  // Unity's defaults: ZWrite On, no blending
@@ -94,12 +96,14 @@ TEST(SurfaceShader, GeneratesForwardBaseAndForwardAddAsUnityDoesAndTheShadowCast
   EXPECT_TRUE(contains(text_of(passes[1]), "gi.light.color *= atten;"));
   EXPECT_FALSE(contains(text_of(passes[1]), "_GI("));  // an additive light has no indirect part
 
-  passes = generate_surface_passes(block, {}, directive_of("#pragma surface surf Lambert noforwardadd addshadow"), lambert_shape());
+  passes = generate_surface_passes(block, {}, directive_of("#pragma surface surf Lambert noforwardadd addshadow"),
+                                   lambert_shape());
   ASSERT_EQ(passes.size(), 2u);
   EXPECT_EQ(tag(passes[1].tags, "LightMode"), "ShadowCaster");
   EXPECT_TRUE(contains(text_of(passes[1]), "TRANSFER_SHADOW_CASTER_NORMALOFFSET(o)"));
   EXPECT_TRUE(contains(text_of(passes[1]), "SHADOW_CASTER_FRAGMENT(IN)"));
-  EXPECT_TRUE(generate_surface_passes(block, {}, directive_of("#pragma surface surf Lambert exclude_path:forward"), lambert_shape())
+  EXPECT_TRUE(generate_surface_passes(block, {}, directive_of("#pragma surface surf Lambert exclude_path:forward"),
+                                      lambert_shape())
                   .empty());
 }
 
@@ -120,7 +124,8 @@ TEST(SurfaceShader, AlphaAndDecalSetTheBlendOfUnitysManual) {
   SurfaceProgramShape standard = lambert_shape();
   standard.output_type = "SurfaceOutputStandard";
   standard.lighting = LightingForm::ViewGi;
-  const Pass premultiplied = generate_surface_passes(block, {}, directive_of("#pragma surface surf Standard alpha"), standard).front();
+  const Pass premultiplied =
+      generate_surface_passes(block, {}, directive_of("#pragma surface surf Standard alpha"), standard).front();
   EXPECT_EQ(premultiplied.state.blend[0].source.text, "One");
   EXPECT_TRUE(contains(text_of(premultiplied), "#define _ALPHAPREMULTIPLY_ON 1"));
   EXPECT_TRUE(contains(text_of(premultiplied), "#include \"UnityPBSLighting.cginc\""));
@@ -142,16 +147,18 @@ TEST(SurfaceShader, ALegacyLightingFunctionGetsTheLightDirectionAttenuationAndSH
   EXPECT_TRUE(contains(base, "c.rgb += o.Albedo * IN.sh;"));
   EXPECT_TRUE(contains(base, "o.sh = ShadeSH9(float4(worldNormal, 1.0));"));
   EXPECT_FALSE(contains(base, "UnityGI gi;"));
-  const std::string half_vector =
-      text_of(generate_surface_passes(surface_block(""), {}, directive_of("#pragma surface surf Toon halfasview"), shape)[0]);
+  const std::string half_vector = text_of(
+      generate_surface_passes(surface_block(""), {}, directive_of("#pragma surface surf Toon halfasview"), shape)[0]);
   EXPECT_TRUE(contains(half_vector, "LightingToon (o, lightDir, normalize(lightDir + worldViewDir), atten)"));
 }
 
 TEST(SurfaceShader, UvsTravelTwoToAnInterpolatorAndATangentSpaceNormalCarriesTheWorldPositionInW) {
   SurfaceProgramShape shape = lambert_shape();
-  shape.input = {{"float2", "uv_MainTex", ""}, {"float2", "uv_BumpMap", ""}, {"float2", "uv2_Detail", ""},
-                 {"float3", "viewDir", ""}, {"float4", "color", "COLOR"}, {"float3", "worldNormal", ""},
-                 {"half3", "internalSurfaceTtoW0", ""}, {"half3", "internalSurfaceTtoW1", ""}, {"half3", "internalSurfaceTtoW2", ""}};
+  shape.input = {{"float2", "uv_MainTex", ""},          {"float2", "uv_BumpMap", ""},
+                 {"float2", "uv2_Detail", ""},          {"float3", "viewDir", ""},
+                 {"float4", "color", "COLOR"},          {"float3", "worldNormal", ""},
+                 {"half3", "internalSurfaceTtoW0", ""}, {"half3", "internalSurfaceTtoW1", ""},
+                 {"half3", "internalSurfaceTtoW2", ""}};
   shape.writes_normal = true;
   const std::string base =
       text_of(generate_surface_passes(surface_block(""), {}, directive_of("#pragma surface surf Lambert"), shape)[0]);
@@ -179,7 +186,8 @@ TEST(SurfaceShader, AVertexModifierThatFillsInputPassesItsFieldsAndAlphatestClip
   shape.vertex_fills_input = true;
   shape.vertex_input_type = "appdata_full";
   const std::string base = text_of(generate_surface_passes(
-      surface_block(""), {}, directive_of("#pragma surface surf Lambert vertex:displace alphatest:_Cutoff finalcolor:tint"), shape)[0]);
+      surface_block(""), {},
+      directive_of("#pragma surface surf Lambert vertex:displace alphatest:_Cutoff finalcolor:tint"), shape)[0]);
   EXPECT_TRUE(contains(base, "displace (v, customInputData);"));
   EXPECT_TRUE(contains(base, "o.custom_localPos = customInputData.localPos;"));
   EXPECT_TRUE(contains(base, "surfIN.localPos = IN.custom_localPos;"));

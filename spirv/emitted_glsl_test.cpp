@@ -84,9 +84,7 @@ Compiled emit_and_compile(const std::string& name, const std::string& source, hl
         if (!text) continue;
         const Stage stage = text == vertex ? Stage::Vertex : Stage::Fragment;
         auto spirv = compile_vulkan_glsl(*text, stage, name);
-        EXPECT_TRUE(spirv) << name << " (vk)\n"
-                           << (spirv ? "" : spirv.error().to_string()) << "\n"
-                           << numbered(*text);
+        EXPECT_TRUE(spirv) << name << " (vk)\n" << (spirv ? "" : spirv.error().to_string()) << "\n" << numbered(*text);
         if (spirv && !spirv->warnings.empty()) ADD_FAILURE() << name << ": " << spirv->warnings.front().to_string();
       }
       compiled.vk = *program;
@@ -466,7 +464,6 @@ float4 frag(Varyings Varyings) : SV_Target { Attributes a = (Attributes)0; retur
   EXPECT_NE(compiled.vk.fragment->text.find("struct Params_t {"), std::string::npos) << compiled.vk.fragment->text;
 }
 
-
 // ---------------------------------------------------------------------------------------------
 // The corners of the mapping: reserved names, overloads that collide in GLSL, default
 // arguments, textures as parameters, statics, integer helpers, compound assignments through
@@ -568,7 +565,6 @@ void main(output i, bool front : SV_IsFrontFace, out Targets o) {
 )";
 
 TEST(EmittedGlsl, CornersCompileInBothFlavours) { emit_and_compile("corners.hlsl", kCorners); }
-
 
 // The fragment stage may read fewer components than the vertex stage writes, as in Direct3D:
 // both stages declare the vertex stage's type, and the fragment stage truncates where it reads.
@@ -727,9 +723,12 @@ TEST(EmittedGlsl, StructsOfResourcesAreFlattenedToTheGlobalsTheyName) {
   EXPECT_EQ(vk.find("struct FxaaTex"), std::string::npos);
   EXPECT_NE(vk.find("vec4 fetch(sampler t_smpl, texture2D t_tex, vec2 uv)"), std::string::npos) << vk;
   EXPECT_NE(vk.find("vec4 both(sampler p_a_smpl, texture2D p_a_tex, sampler p_b_smpl, texture2D p_b_tex, vec2 uv)"),
-            std::string::npos) << vk;
-  EXPECT_NE(vk.find("both(sampler_MainTex, _MainTex, sampler_Other, _Other, uv) + texture(sampler2D(_MainTex, sampler_MainTex), uv)"),
-            std::string::npos) << vk;
+            std::string::npos)
+      << vk;
+  EXPECT_NE(vk.find("both(sampler_MainTex, _MainTex, sampler_Other, _Other, uv) + texture(sampler2D(_MainTex, "
+                    "sampler_MainTex), uv)"),
+            std::string::npos)
+      << vk;
   const std::string& gl = compiled.gl.fragment->text;
   EXPECT_NE(gl.find("vec4 fetch(sampler2D t_tex, vec2 uv)"), std::string::npos) << gl;
 }
@@ -799,7 +798,8 @@ TEST(EmittedGlsl, SubpassInputsCompileInBothFlavours) {
   const std::string& gl = compiled.gl.fragment->text;
   const std::string& vk = compiled.vk.fragment->text;
   EXPECT_NE(vk.find("layout(input_attachment_index = 0, set = 0, binding = 1) uniform subpassInput albedo;"),
-            std::string::npos) << vk;
+            std::string::npos)
+      << vk;
   EXPECT_NE(vk.find("subpassLoad(albedo) + float(subpassLoad(samples, 2).x)"), std::string::npos) << vk;
   EXPECT_NE(gl.find("layout(binding = 1) uniform sampler2D albedo;"), std::string::npos) << gl;
   EXPECT_NE(gl.find("texelFetch(samples, ivec2(gl_FragCoord.xy), 2)"), std::string::npos) << gl;
@@ -829,14 +829,16 @@ TEST(EmittedGlsl, ReadOnlyBuffersCompileInBothFlavours) {
   const std::string& gl = compiled.gl.fragment->text;
   const std::string& vk = compiled.vk.fragment->text;
   EXPECT_NE(gl.find("layout(std430, binding = 18) readonly buffer xs_buffer_lights { uint xs_words[]; } lights;"),
-            std::string::npos) << gl;
+            std::string::npos)
+      << gl;
   EXPECT_NE(vk.find("layout(std430, set = 0, binding = 18) readonly buffer xs_buffer_lights"), std::string::npos) << vk;
   // Nine words an element: position 0-2, radius 3, m (column-major) 4-7, kind 8; m[1].y is
   // element (1, 1), word 4 + 1 * 2 + 1.
   EXPECT_NE(gl.find("uint base = index * 9u;"), std::string::npos) << gl;
   EXPECT_NE(gl.find("mat2(uintBitsToFloat(xs_word_lights(base + 4u)), uintBitsToFloat(xs_word_lights(base + 6u)), "
                     "uintBitsToFloat(xs_word_lights(base + 5u)), uintBitsToFloat(xs_word_lights(base + 7u)))"),
-            std::string::npos) << gl;
+            std::string::npos)
+      << gl;
   // A word past the bound buffer's end reads 0, as Direct3D reads past a view's end.
   EXPECT_NE(gl.find("return at < uint(lights.xs_words.length()) ? lights.xs_words[at] : 0u;"), std::string::npos) << gl;
   EXPECT_NE(gl.find("uint base = address >> 2u;"), std::string::npos) << gl;

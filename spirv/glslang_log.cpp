@@ -5,9 +5,7 @@
 namespace xshade::spirv {
 namespace {
 
-bool starts_with(std::string_view text, std::string_view prefix) {
-  return text.substr(0, prefix.size()) == prefix;
-}
+bool starts_with(std::string_view text, std::string_view prefix) { return text.substr(0, prefix.size()) == prefix; }
 
 // Splits "name:12: message" at the last ":<digits>: " so that names may contain colons.
 bool split_location(std::string_view rest, SourceLocation& where, std::string_view& message) {

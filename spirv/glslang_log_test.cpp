@@ -29,9 +29,7 @@ TEST(GlslangLog, NamesMayContainColons) {
   EXPECT_EQ(diagnostics[0].where.line, 7u);
 }
 
-TEST(GlslangLog, IgnoresLinesThatAreNotMessages) {
-  EXPECT_TRUE(parse_glslang_log("\n\nshaders/a.frag\n").empty());
-}
+TEST(GlslangLog, IgnoresLinesThatAreNotMessages) { EXPECT_TRUE(parse_glslang_log("\n\nshaders/a.frag\n").empty()); }
 
 }  // namespace
 }  // namespace xshade::spirv

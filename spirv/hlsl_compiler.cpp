@@ -12,12 +12,12 @@
 #include <set>
 #include <sstream>
 
+#include "base/spirv_words.h"
 #include "hlsl_like/preprocessor.h"
 #include "hlsl_like/reflection.h"
 #include "hlsl_like/semantics.h"
 #include "spirv/glslang_log.h"
 #include "spirv/glslang_process.h"
-#include "base/spirv_words.h"
 
 namespace xshade::spirv {
 namespace {
@@ -85,7 +85,9 @@ class SemanticIoResolver final : public glslang::TDefaultIoResolverBase {
   SemanticIoResolver(const glslang::TIntermediate& intermediate, const std::map<std::string, uint32_t>& bindings,
                      const std::map<std::string, uint32_t>& varying_locations,
                      const std::map<std::string, uint32_t>& vertex_input_locations)
-      : TDefaultIoResolverBase(intermediate), bindings_(bindings), varying_locations_(varying_locations),
+      : TDefaultIoResolverBase(intermediate),
+        bindings_(bindings),
+        varying_locations_(varying_locations),
         vertex_input_locations_(vertex_input_locations) {}
 
   bool validateBinding(EShLanguage, glslang::TVarEntryInfo&) override { return true; }
@@ -105,8 +107,8 @@ class SemanticIoResolver final : public glslang::TDefaultIoResolverBase {
     if (resource < glslang::EResCount) {
       const int base = getBaseBinding(stage, resource, static_cast<unsigned>(set));
       // A constant buffer is known by its block's name, any other resource by its variable's.
-      const std::string name = type.getBasicType() == glslang::EbtBlock ? type.getTypeName().c_str()
-                                                                        : entry.symbol->getName().c_str();
+      const std::string name =
+          type.getBasicType() == glslang::EbtBlock ? type.getTypeName().c_str() : entry.symbol->getName().c_str();
       // Dead ones too: glslang keeps a global texture or sampler the stage never reads in the
       // module (a vertex stage declares the fragment stage's textures), and the backend checks
       // every binding a module declares against the program's layout. The reflection's number
@@ -151,9 +153,8 @@ class SemanticIoResolver final : public glslang::TDefaultIoResolverBase {
           location = hlsl::vertex_input_location(semantic);
       } else if (stage == EShLangVertex || input) {
         if (auto placed = varying_locations_.find(array_semantic); placed != varying_locations_.end())
-          location = placed->second +
-                     element.value_or(0) * uint32_t(glslang::TIntermediate::computeTypeLocationSize(
-                                               entry.symbol->getType(), stage));
+          location = placed->second + element.value_or(0) * uint32_t(glslang::TIntermediate::computeTypeLocationSize(
+                                                                entry.symbol->getType(), stage));
         else
           location = hlsl::varying_location(semantic);
       } else if (const hlsl::ParsedSemantic target = hlsl::parse_semantic(semantic);
@@ -217,8 +218,8 @@ std::vector<HlslResource> reflect(glslang::TProgram& program) {
     if (!type || type->getBasicType() != glslang::EbtSampler) continue;
     const glslang::TSampler& sampler = type->getSampler();
     HlslResource::Kind kind = sampler.isPureSampler() ? HlslResource::Kind::Sampler
-                              : sampler.isCombined() ? HlslResource::Kind::CombinedSampler
-                                                     : HlslResource::Kind::Texture;
+                              : sampler.isCombined()  ? HlslResource::Kind::CombinedSampler
+                                                      : HlslResource::Kind::Texture;
     resources.push_back({kind, uniform.name, uint32_t(uniform.getBinding()), 0});
   }
   return resources;
@@ -257,23 +258,23 @@ Result<HlslModule> compile_hlsl(const HlslStage& request) {
 
   Includer includer(request.resolve_include);
   if (!shader.parse(GetDefaultResources(), 100, ENoProfile, false, false, messages, includer)) {
-    return fail(Error{"HLSL compilation failed (glslang)", {request.source_name, 0, 0},
-                      parse_glslang_log(shader.getInfoLog())});
+    return fail(Error{
+        "HLSL compilation failed (glslang)", {request.source_name, 0, 0}, parse_glslang_log(shader.getInfoLog())});
   }
   glslang::TProgram program;
   program.addShader(&shader);
   SemanticIoResolver resolver(*shader.getIntermediate(), request.bindings, request.varying_locations,
                               request.vertex_input_locations);
   if (!program.link(messages) || !program.mapIO(&resolver)) {
-    return fail(Error{"HLSL link failed (glslang)", {request.source_name, 0, 0},
-                      parse_glslang_log(program.getInfoLog())});
+    return fail(
+        Error{"HLSL link failed (glslang)", {request.source_name, 0, 0}, parse_glslang_log(program.getInfoLog())});
   }
 
   HlslModule result;
   result.resources = reflect(program);
   spv::SpvBuildLogger logger;
   glslang::SpvOptions options;
-  options.validate = false;  // validated below with the project's environment and messages
+  options.validate = false;                      // validated below with the project's environment and messages
   options.disableOptimizer = !request.legalize;  // glslang legalizes HLSL when its optimizer runs
   glslang::GlslangToSpv(*program.getIntermediate(language), result.module.words, &logger, &options);
   set_member_offsets(result.module.words, request.member_offsets);
@@ -284,7 +285,8 @@ Result<HlslModule> compile_hlsl(const HlslStage& request) {
 IncludeResolver include_resolver(std::vector<std::filesystem::path> include_dirs) {
   return [dirs = std::move(include_dirs)](std::string_view name, std::string_view includer,
                                           bool angled) -> std::optional<IncludedFile> {
-    const std::optional<std::filesystem::path> found = hlsl::find_include(name, std::filesystem::path(includer), angled, dirs);
+    const std::optional<std::filesystem::path> found =
+        hlsl::find_include(name, std::filesystem::path(includer), angled, dirs);
     if (!found) return std::nullopt;
     std::ifstream file(*found, std::ios::binary);
     if (!file) return std::nullopt;

@@ -81,7 +81,7 @@ struct HlslResource {
   Kind kind = Kind::ConstantBuffer;
   std::string name;
   uint32_t binding = 0;
-  uint32_t size = 0;  // bytes, for constant buffers
+  uint32_t size = 0;           // bytes, for constant buffers
   bool push_constant = false;  // a constant buffer in push constants, which has no binding
 };
 

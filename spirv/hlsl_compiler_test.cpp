@@ -73,7 +73,8 @@ TEST(HlslCompiler, UnitysIncludeWithPragmasIsAnInclude) {
   stage.source_name = "main.hlsl";
   stage.entry_point = "frag";
   stage.resolve_include = [](std::string_view name, std::string_view, bool) -> std::optional<IncludedFile> {
-    if (name == "outer.hlsl") return IncludedFile{"outer.hlsl", "#pragma multi_compile _ X\n#include_with_pragmas <inner.hlsl>\n"};
+    if (name == "outer.hlsl")
+      return IncludedFile{"outer.hlsl", "#pragma multi_compile _ X\n#include_with_pragmas <inner.hlsl>\n"};
     if (name == "inner.hlsl") return IncludedFile{"inner.hlsl", "#define TINT float3(1, 0.5, 0)\n"};
     return std::nullopt;
   };
@@ -87,23 +88,25 @@ TEST(HlslCompiler, UnitysIncludeWithPragmasIsAnInclude) {
 TEST(HlslCompiler, MissingIncludeAndEntryPointAreErrors) {
   HlslStage stage{"#include \"nowhere.hlsl\"\n", "main.hlsl", Stage::Fragment, "frag", {}, {}, {}, {}};
   EXPECT_FALSE(compile_hlsl(stage));
-  HlslStage no_entry{"float4 other() : SV_Target { return 0; }\n", "main.hlsl", Stage::Fragment, "frag", {}, {}, {}, {}};
+  HlslStage no_entry{
+      "float4 other() : SV_Target { return 0; }\n", "main.hlsl", Stage::Fragment, "frag", {}, {}, {}, {}};
   EXPECT_FALSE(compile_hlsl(no_entry));
 }
-
 
 // glslang numbers resources without a register per stage: the fragment stage below does not read
 // VertexOnly, so alone it would give $Global the first free number, which VertexOnly has in the
 // vertex stage. The program-wide numbers in HlslStage::bindings keep the two stages apart.
 TEST(HlslCompiler, ATextureInAStructNeedsGlslangsLegalization) {
-  const char* source = "struct Pair { SamplerState s; Texture2D t; };\nTexture2D _T; SamplerState _S;\n"
-                       "float4 read(Pair p, float2 uv) { return p.t.Sample(p.s, uv); }\n"
-                       "float4 frag(float2 uv : TEXCOORD0) : SV_Target { Pair p; p.t = _T; p.s = _S; return read(p, uv); }\n";
+  const char* source =
+      "struct Pair { SamplerState s; Texture2D t; };\nTexture2D _T; SamplerState _S;\n"
+      "float4 read(Pair p, float2 uv) { return p.t.Sample(p.s, uv); }\n"
+      "float4 frag(float2 uv : TEXCOORD0) : SV_Target { Pair p; p.t = _T; p.s = _S; return read(p, uv); }\n";
   HlslStage stage{source, "pair.hlsl", Stage::Fragment, "frag", {}, {}, {}, {}};
   // As glslang translates it, the struct holds opaque values, which Vulkan's SPIR-V forbids.
   auto plain = compile_hlsl(stage);
   ASSERT_FALSE(plain);
-  EXPECT_NE(plain.error().to_string().find("must not contain an opaque type"), std::string::npos) << plain.error().to_string();
+  EXPECT_NE(plain.error().to_string().find("must not contain an opaque type"), std::string::npos)
+      << plain.error().to_string();
   stage.legalize = true;
   auto legalized = compile_hlsl(stage);
   EXPECT_TRUE(legalized) << legalized.error().to_string();
@@ -170,8 +173,9 @@ TEST(HlslCompiler, TheGlobalsTakeTheOffsetsTheHostWrites) {
 // glslang splits an array varying into a variable per element, each with the array's semantic;
 // element k takes the semantic's index + k, as HLSL has it, so the locations do not collide.
 TEST(HlslCompiler, AnArrayVaryingsElementsTakeConsecutiveSemantics) {
-  constexpr const char* kSource = "struct V { float4 p : SV_Position; float4 offsets[3] : TEXCOORD1; };\n"
-                                  "float4 frag(V v) : SV_Target { return v.offsets[0] + v.offsets[2]; }\n";
+  constexpr const char* kSource =
+      "struct V { float4 p : SV_Position; float4 offsets[3] : TEXCOORD1; };\n"
+      "float4 frag(V v) : SV_Target { return v.offsets[0] + v.offsets[2]; }\n";
   HlslStage stage{kSource, "array.hlsl", Stage::Fragment, "frag", {}, {}, {}, {}};
   auto compiled = compile_hlsl(stage);
   ASSERT_TRUE(compiled) << compiled.error().to_string();
@@ -185,8 +189,9 @@ TEST(HlslCompiler, AnArrayVaryingsElementsTakeConsecutiveSemantics) {
 // Given where the program places its varyings (an array's element k at the array's location + k),
 // the stage takes those locations and no others: TEXCOORD3 after a two-element TEXCOORD2 array.
 TEST(HlslCompiler, VaryingsTakeTheLocationsTheProgramGives) {
-  constexpr const char* kSource = "struct V { float4 p : SV_Position; float3 light[2] : TEXCOORD2; float3 view : TEXCOORD3; };\n"
-                                  "float4 frag(V v) : SV_Target { return float4(v.light[0] + v.light[1] + v.view, 1); }\n";
+  constexpr const char* kSource =
+      "struct V { float4 p : SV_Position; float3 light[2] : TEXCOORD2; float3 view : TEXCOORD3; };\n"
+      "float4 frag(V v) : SV_Target { return float4(v.light[0] + v.light[1] + v.view, 1); }\n";
   HlslStage stage{kSource, "placed.hlsl", Stage::Fragment, "frag", {}, {}, {}, {}};
   stage.varying_locations = {{"TEXCOORD2", 2}, {"TEXCOORD3", 4}};
   auto compiled = compile_hlsl(stage);

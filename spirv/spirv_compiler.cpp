@@ -13,9 +13,7 @@
 namespace xshade::spirv {
 namespace {
 
-EShLanguage to_glslang(Stage stage) {
-  return stage == Stage::Vertex ? EShLangVertex : EShLangFragment;
-}
+EShLanguage to_glslang(Stage stage) { return stage == Stage::Vertex ? EShLangVertex : EShLangFragment; }
 
 std::vector<Diagnostic> only(std::vector<Diagnostic> diagnostics, Severity severity) {
   std::erase_if(diagnostics, [&](const Diagnostic& d) { return d.severity != severity; });
@@ -84,8 +82,7 @@ Result<std::vector<Diagnostic>> validate_opengl_glsl(std::string_view source, St
   return only(parse_glslang_log(linked.shader.getInfoLog()), Severity::Warning);
 }
 
-Result<SpirvModule> compile_vulkan_glsl(std::string_view source, Stage stage,
-                                        std::string_view source_name) {
+Result<SpirvModule> compile_vulkan_glsl(std::string_view source, Stage stage, std::string_view source_name) {
   const std::string name(source_name);
   LinkedStage linked(stage);
   if (auto valid = parse_and_link(linked, source, stage, name, Client::Vulkan); !valid) return fail(valid.error());
@@ -95,8 +92,7 @@ Result<SpirvModule> compile_vulkan_glsl(std::string_view source, Stage stage,
   spv::SpvBuildLogger logger;
   glslang::SpvOptions options;
   options.validate = false;  // validated below with the project's own environment and messages
-  glslang::GlslangToSpv(*linked.program.getIntermediate(to_glslang(stage)), module.words, &logger,
-                        &options);
+  glslang::GlslangToSpv(*linked.program.getIntermediate(to_glslang(stage)), module.words, &logger, &options);
   if (std::string log = logger.getAllMessages(); !log.empty())
     module.warnings.push_back({Severity::Warning, {name, 0, 0}, log});
 
@@ -107,8 +103,7 @@ Result<SpirvModule> compile_vulkan_glsl(std::string_view source, Stage stage,
 Result<void> validate(const std::vector<uint32_t>& words, std::string_view module_name) {
   spvtools::SpirvTools tools(SPV_ENV_VULKAN_1_3);
   Error error{std::string(kSpirvValidationFailed), {std::string(module_name), 0, 0}, {}};
-  tools.SetMessageConsumer([&](spv_message_level_t, const char*, const spv_position_t& position,
-                               const char* message) {
+  tools.SetMessageConsumer([&](spv_message_level_t, const char*, const spv_position_t& position, const char* message) {
     error.diagnostics.push_back({Severity::Error,
                                  {std::string(module_name), 0, 0},
                                  "instruction " + std::to_string(position.index) + ": " + message});

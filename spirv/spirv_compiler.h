@@ -20,8 +20,7 @@ struct SpirvModule {
 
 // Compiles Vulkan-flavoured GLSL (#version 450, targeting Vulkan 1.3 / SPIR-V 1.6) and validates
 // the result. On failure the error's diagnostics carry `source_name` and the line of each problem.
-Result<SpirvModule> compile_vulkan_glsl(std::string_view source, Stage stage,
-                                        std::string_view source_name);
+Result<SpirvModule> compile_vulkan_glsl(std::string_view source, Stage stage, std::string_view source_name);
 
 // Checks OpenGL GLSL (#version 450 core) as glslang does without a SPIR-V target, the stage parsed
 // and linked on its own: what the GLSL specification has an OpenGL driver refuse, as far as

@@ -22,8 +22,8 @@ TEST(SpirvCompiler, CompilesAndValidatesAFragmentShader) {
 }
 
 TEST(SpirvCompiler, CompilesTheFullscreenVertexShader) {
-  auto module = compile_vulkan_glsl(glsl::fullscreen_vertex_shader(glsl::Flavour::Vk),
-                                    Stage::Vertex, "fullscreen.vert");
+  auto module =
+      compile_vulkan_glsl(glsl::fullscreen_vertex_shader(glsl::Flavour::Vk), Stage::Vertex, "fullscreen.vert");
   ASSERT_TRUE(module) << module.error().to_string();
 }
 
@@ -134,9 +134,7 @@ TEST(OpenGlGlsl, EmptyAndGarbageInputFailCleanly) {
   EXPECT_FALSE(validate_opengl_glsl("\x01\x02#version 450\n}}}{{{", Stage::Vertex, "junk.vert"));
 }
 
-TEST(SpirvCompiler, ReportsItsVersion) {
-  EXPECT_EQ(compiler_version().rfind("glslang ", 0), 0u);
-}
+TEST(SpirvCompiler, ReportsItsVersion) { EXPECT_EQ(compiler_version().rfind("glslang ", 0), 0u); }
 
 }  // namespace
 }  // namespace xshade::spirv

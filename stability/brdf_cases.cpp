@@ -6,8 +6,8 @@
 #include <numbers>
 
 #include "harness/image/image_compare.h"
-#include "stability/forms.h"
 #include "stability/cases.h"
+#include "stability/forms.h"
 #include "stability/probe.h"
 
 namespace xshade::stability {
@@ -31,7 +31,7 @@ struct BrdfInput {
 
 // What the probe wrote for one input.
 struct BrdfOutput {
-  double D, V, F, specular;               // row 0
+  double D, V, F, specular;              // row 0
   double direct, specular_cos, diffuse;  // row 1
 };
 
@@ -88,8 +88,8 @@ Case ggx_peak() {
         measurements.push_back({inputs[i].label, "D", D, fmt::format("= {} +- 1e-5 relative", number(expected)),
                                 finite(D) && std::abs(D - expected) <= 1e-5 * expected});
       } else {
-        measurements.push_back({inputs[i].label, "D", D, "finite and <= 65504 (fp16's largest)",
-                                finite(D) && D <= kHalfMax});
+        measurements.push_back(
+            {inputs[i].label, "D", D, "finite and <= 65504 (fp16's largest)", finite(D) && D <= kHalfMax});
       }
     }
     return measurements;
@@ -124,7 +124,8 @@ Case ggx_peak_fp16() {
   c.precisions = {Precision::Half};
   c.run = [](const CaseContext& context) -> Result<std::vector<Measurement>> {
     std::vector<BrdfInput> inputs;
-    for (float a : {0.0079f, 0.0156f, 0.02f, 0.03f, 0.05f, 0.1f, 0.25f, 1.0f}) inputs.push_back({.label = alpha_label(a), .a = a});
+    for (float a : {0.0079f, 0.0156f, 0.02f, 0.03f, 0.05f, 0.1f, 0.25f, 1.0f})
+      inputs.push_back({.label = alpha_label(a), .a = a});
     auto outputs = run_brdf(context, inputs);
     if (!outputs) return fail(outputs.error());
     std::vector<Measurement> measurements;
@@ -214,7 +215,8 @@ Case grazing_view() {
         // limit is finite; a term that diverges like 1/NoV grows 100x per decade).
         const bool ok = finite(value) && value >= 0.0 && finite(reference) && value <= 2.0 * reference + 1e-6;
         measurements.push_back({inputs[i].label, "f NoL (specular)", value,
-                                fmt::format("finite, >= 0 and <= 2x its value at NoV = 1e-4 ({})", number(reference)), ok});
+                                fmt::format("finite, >= 0 and <= 2x its value at NoV = 1e-4 ({})", number(reference)),
+                                ok});
       }
     }
     return measurements;
@@ -273,7 +275,8 @@ Case opposite_horizon() {
   c.run = [](const CaseContext& context) -> Result<std::vector<Measurement>> {
     std::vector<BrdfInput> inputs;
     for (float a : {0.05f, 0.5f})
-      inputs.push_back({.label = "l = -v = (1, 0, 0), a = " + number(a), .v = at_cosine(0.0, true), .l = at_cosine(0.0), .a = a});
+      inputs.push_back(
+          {.label = "l = -v = (1, 0, 0), a = " + number(a), .v = at_cosine(0.0, true), .l = at_cosine(0.0), .a = a});
     auto outputs = run_brdf(context, inputs);
     if (!outputs) return fail(outputs.error());
     std::vector<Measurement> measurements;
@@ -333,8 +336,9 @@ Case loh_above_one() {
               "hazard 4: pow(1 - LoH, 5) of a negative base is undefined in GLSL; llvmpipe computes pow "
               "as exp2(5 log2(x)), and log2 of a negative number is NaN."};
     if (form.name == kSeed.name)
-      return {{}, "hazard 4 does not show in fp16: the seed's F takes half parameters, and 1 + 2^-23 rounds to "
-                  "exactly 1 in fp16, so the base is 0 and F = R0."};
+      return {{},
+              "hazard 4 does not show in fp16: the seed's F takes half parameters, and 1 + 2^-23 rounds to "
+              "exactly 1 in fp16, so the base is 0 and F = R0."};
     return {};
   };
   return c;
@@ -369,14 +373,16 @@ Case fresnel_endpoints() {
       const double at_one = (*outputs)[first + kSteps].F, at_zero = (*outputs)[first].F;
       measurements.push_back({inputs[first + kSteps].label, "F", at_one, fmt::format("= R0 = {} +- 1e-3", number(r0)),
                               finite(at_one) && std::abs(at_one - r0) <= kTolerance});
-      measurements.push_back({inputs[first].label, "F", at_zero, "= 1 +- 1e-3", finite(at_zero) && std::abs(at_zero - 1.0) <= kTolerance});
+      measurements.push_back(
+          {inputs[first].label, "F", at_zero, "= 1 +- 1e-3", finite(at_zero) && std::abs(at_zero - 1.0) <= kTolerance});
       // Monotone: the largest rise from one step to the next, which must not exceed rounding.
       std::vector<double> sweep;
       for (int k = 0; k <= kSteps; ++k) sweep.push_back((*outputs)[first + k].F);
       const Rise rise = largest_rise(sweep);
       measurements.push_back({fmt::format("LoH from 0 to 1 in {} steps, R0 = {}", kSteps, number(r0)),
-                              fmt::format("largest rise of F (at LoH = {})", number(inputs[first + rise.at].LoH)), rise.value,
-                              "<= 1e-3 (non-increasing up to rounding)", finite(rise.value) && rise.value <= kTolerance});
+                              fmt::format("largest rise of F (at LoH = {})", number(inputs[first + rise.at].LoH)),
+                              rise.value, "<= 1e-3 (non-increasing up to rounding)",
+                              finite(rise.value) && rise.value <= kTolerance});
     }
     return measurements;
   };
@@ -421,8 +427,8 @@ Case material_grid() {
     std::vector<double> diffuse;
     for (const BrdfOutput& out : *outputs) diffuse.push_back(out.diffuse);
     const double rise = largest_rise(diffuse).value;
-    measurements.push_back({fmt::format("white albedo, metallic from 0 to 1 in {} steps", kSteps), "largest rise of the diffuse colour",
-                            rise, "<= 0", rise <= 0.0});
+    measurements.push_back({fmt::format("white albedo, metallic from 0 to 1 in {} steps", kSteps),
+                            "largest rise of the diffuse colour", rise, "<= 0", rise <= 0.0});
     return measurements;
   };
   c.predict = [](const Form& form, Precision precision) -> Prediction {
@@ -438,8 +444,8 @@ Case material_grid() {
 }  // namespace
 
 std::vector<Case> brdf_cases() {
-  return {ggx_peak(), zero_alpha(), grazing_view(), light_below_horizon(), opposite_horizon(), loh_above_one(),
-          fresnel_endpoints(), material_grid(), ggx_peak_fp16()};
+  return {ggx_peak(),      zero_alpha(),        grazing_view(),  light_below_horizon(), opposite_horizon(),
+          loh_above_one(), fresnel_endpoints(), material_grid(), ggx_peak_fp16()};
 }
 
 }  // namespace xshade::stability

@@ -26,7 +26,6 @@ namespace {
 
 using harness::FloatImage;
 
-
 constexpr float kNear = 1.0f;
 constexpr float kFar = 3.0f;
 constexpr float kFocusDistance = 2.0f;

@@ -7,8 +7,8 @@
 #include <cmath>
 #include <map>
 
-#include "stability/forms.h"
 #include "stability/cases.h"
+#include "stability/forms.h"
 #include "stability/probe.h"
 
 namespace xshade::stability {
@@ -47,8 +47,8 @@ Case ggx_normalisation() {
     for (size_t i = 0; i < alphas.size(); ++i)
       // SHADERS.md's bound. The 2048-point rule itself is exact to ~1e-6 here (the substitution
       // makes the integrand smooth), so the bound judges D, not the quadrature.
-      measurements.push_back({"a = " + number(alphas[i]) + " (2048-point rule)", "integral of D (n.m)", (*values)[i], "= 1 +- 1e-3",
-                              std::isfinite((*values)[i]) && std::abs((*values)[i] - 1.0) <= 1e-3});
+      measurements.push_back({"a = " + number(alphas[i]) + " (2048-point rule)", "integral of D (n.m)", (*values)[i],
+                              "= 1 +- 1e-3", std::isfinite((*values)[i]) && std::abs((*values)[i] - 1.0) <= 1e-3});
     return measurements;
   };
   c.predict = [](const Form& form, Precision precision) -> Prediction {
@@ -106,9 +106,10 @@ Case directional_albedo() {
     // The rule is judged in fp32; in fp16 the terms' own rounding is noise the rule cannot remove.
     for (size_t k = 0; k < n && context.precision == Precision::Float; ++k) {
       const double coarse = (*values)[k], fine = (*values)[cosines.size() * n + k];
-      measurements.push_back({fmt::format("NoV = 1, a = {}: 128 x 128 points against 64 x 64", number(kReferenceAlphas[k])),
-                              "change of E(v)", fine - coarse, "within +-5e-4 (the rule has converged)",
-                              std::isfinite(fine) && std::abs(fine - coarse) <= 5e-4});
+      measurements.push_back(
+          {fmt::format("NoV = 1, a = {}: 128 x 128 points against 64 x 64", number(kReferenceAlphas[k])),
+           "change of E(v)", fine - coarse, "within +-5e-4 (the rule has converged)",
+           std::isfinite(fine) && std::abs(fine - coarse) <= 5e-4});
     }
     const double rise = largest_rise({values->begin(), values->begin() + long(n)}).value;
     measurements.push_back({"NoV = 1, a = 0.05 .. 1", "largest rise of E(v) from one a to the next", rise,
@@ -143,8 +144,8 @@ Case white_furnace_scene() {
       }
     // The constant environment's prefiltered mips are 1 up to the rounding of their weighted
     // sums (a few fp32 ulps); 1e-4 is far above that and far below one 8-bit step.
-    return std::vector<Measurement>{{fmt::format("scene white_furnace (brightest at ({}, {}))", at_x, at_y), "largest channel",
-                                     brightest, "<= 1 + 1e-4 (the environment's radiance)",
+    return std::vector<Measurement>{{fmt::format("scene white_furnace (brightest at ({}, {}))", at_x, at_y),
+                                     "largest channel", brightest, "<= 1 + 1e-4 (the environment's radiance)",
                                      std::isfinite(brightest) && brightest <= 1.0 + 1e-4}};
   };
   return c;

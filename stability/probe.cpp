@@ -9,8 +9,8 @@
 #include "harness/render/evaluate.h"
 #include "harness/render/nonfinite_origins.h"
 #include "harness/render/planner.h"
-#include "harness/scene/scene.h"
 #include "harness/render/scene_renderer.h"
+#include "harness/scene/scene.h"
 
 namespace xshade::stability {
 
@@ -54,7 +54,8 @@ Result<harness::FloatImage> run_probe(const CaseContext& context, const std::str
   auto traced = context.probes.get(context, file, /*traced=*/true);
   if (!traced) return fail(traced.error());
   harness::FloatImage record;
-  auto again = (*traced)->run(context.backend, columns, rows, {.constant_buffers = {{"ProbeInputs", std::move(bytes)}}}, &record);
+  auto again = (*traced)->run(context.backend, columns, rows, {.constant_buffers = {{"ProbeInputs", std::move(bytes)}}},
+                              &record);
   if (!again) return fail(again.error());
   const glsl::NonfiniteTrace& table = (*traced)->trace();
   for (uint32_t x = 0; x < columns && x < labels.size(); ++x)
@@ -111,7 +112,8 @@ Result<std::string> first_born_at(const harness::RenderedScene& traced,
     size_t pixels = 0;
     for (const harness::NonfiniteOrigin& origin : origins->origins) pixels += origin.pixels;
     const harness::NonfiniteOrigin& most = origins->origins.front();
-    return fmt::format("{} (pass {}, {} of {} pixels)", site_text(most.site), traced.traces[i].pass, most.pixels, pixels);
+    return fmt::format("{} (pass {}, {} of {} pixels)", site_text(most.site), traced.traces[i].pass, most.pixels,
+                       pixels);
   }
   return std::string();
 }

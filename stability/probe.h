@@ -9,8 +9,8 @@
 
 #include <glm/glm.hpp>
 
-#include "harness/render/evaluate.h"
 #include "harness/image/image.h"
+#include "harness/render/evaluate.h"
 #include "stability/case.h"
 
 namespace xshade::stability {

@@ -46,7 +46,8 @@ std::string verdict(const Outcome& o) {
                           std::set<std::string> all;
                           for (const Measurement& m : o.measurements) all.insert(m.input);
                           return all;
-                        }()).size();
+                        }())
+                            .size();
   if (!o.as_predicted()) return fmt::format("**UNEXPECTED** ({} of {} inputs break)", failing, inputs);
   if (failing == 0) return "holds";
   return fmt::format("breaks as predicted ({} of {})", failing, inputs);
@@ -55,8 +56,10 @@ std::string verdict(const Outcome& o) {
 // Table cells may not hold '|' or line breaks.
 std::string cell(std::string text) {
   for (char& ch : text)
-    if (ch == '|') ch = '/';
-    else if (ch == '\n') ch = ' ';
+    if (ch == '|')
+      ch = '/';
+    else if (ch == '\n')
+      ch = ' ';
   return text;
 }
 
@@ -80,8 +83,8 @@ std::string stability_markdown(const std::vector<Case>& cases, const SuiteRun& r
     for (const std::string& s : run.skipped) md += "- " + s + "\n";
     md += "\n";
   }
-  md += fmt::format("{} outcomes, {} not as predicted.\n\n## Summary\n\n| case | SHADERS.md | form |", run.outcomes.size(),
-                    run.unexpected());
+  md += fmt::format("{} outcomes, {} not as predicted.\n\n## Summary\n\n| case | SHADERS.md | form |",
+                    run.outcomes.size(), run.unexpected());
   for (const Column& c : columns) md += " " + c.title() + " |";
   md += "\n|---|---|---|";
   for (size_t i = 0; i < columns.size(); ++i) md += "---|";
@@ -99,7 +102,8 @@ std::string stability_markdown(const std::vector<Case>& cases, const SuiteRun& r
     }
 
   for (const Case& c : cases) {
-    const bool ran = std::any_of(run.outcomes.begin(), run.outcomes.end(), [&](const Outcome& o) { return o.case_id == c.id; });
+    const bool ran =
+        std::any_of(run.outcomes.begin(), run.outcomes.end(), [&](const Outcome& o) { return o.case_id == c.id; });
     if (!ran) continue;
     md += fmt::format("\n## {}\n\nSHADERS.md {}: {}\n\n", c.id, c.section, c.title);
     // The notes of the predictions, once per form and precision.
@@ -108,7 +112,8 @@ std::string stability_markdown(const std::vector<Case>& cases, const SuiteRun& r
         const Column any_lane{run.drivers.front().first, precision};
         const Outcome* o = find(run, c.id, form.name, any_lane);
         if (o && !o->prediction.note.empty())
-          md += fmt::format("- *{}, {}*: {}\n", form.name, precision == Precision::Float ? "fp32" : "fp16", o->prediction.note);
+          md += fmt::format("- *{}, {}*: {}\n", form.name, precision == Precision::Float ? "fp32" : "fp16",
+                            o->prediction.note);
       }
     // Where each non-finite value was born, once for the lanes that agree (the tracing variant).
     std::map<std::string, std::string> born;
@@ -122,8 +127,8 @@ std::string stability_markdown(const std::vector<Case>& cases, const SuiteRun& r
     for (const auto& [what, where] : born) md += fmt::format("- {}: born at {}\n", what, cell(where));
     for (const Outcome& o : run.outcomes)
       if (o.case_id == c.id && o.error)
-        md += fmt::format("- *{}, {}, {}*: could not run: {}\n", o.form, harness::lane_name(o.lane), precision_name(o.precision),
-                          cell(*o.error));
+        md += fmt::format("- *{}, {}, {}*: could not run: {}\n", o.form, harness::lane_name(o.lane),
+                          precision_name(o.precision), cell(*o.error));
     md += "\n| form | input | quantity | bound |";
     for (const Column& column : columns) md += " " + column.title() + " |";
     md += "\n|---|---|---|---|";
@@ -148,7 +153,8 @@ std::string stability_markdown(const std::vector<Case>& cases, const SuiteRun& r
         md += fmt::format("| {} | {} | {} | {} |", form.name, cell(input), cell(quantity), cell(bound));
         for (size_t k = 0; k < columns.size(); ++k) {
           auto it = values[key].find(k);
-          md += it == values[key].end() ? " - |" : fmt::format(" {}{} |", number(it->second->value), it->second->ok ? "" : " ✗");
+          md += it == values[key].end() ? " - |"
+                                        : fmt::format(" {}{} |", number(it->second->value), it->second->ok ? "" : " ✗");
         }
         md += "\n";
       }

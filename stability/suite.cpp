@@ -13,7 +13,9 @@
 
 namespace xshade::stability {
 
-std::string_view precision_name(Precision precision) { return precision == Precision::Float ? "fp32" : "fp16 emulation"; }
+std::string_view precision_name(Precision precision) {
+  return precision == Precision::Float ? "fp32" : "fp16 emulation";
+}
 
 std::vector<Case> all_cases() {
   std::vector<Case> cases;
@@ -36,8 +38,8 @@ std::set<std::string> Outcome::failing_inputs() const {
 bool Outcome::as_predicted() const { return !error && failing_inputs() == prediction.failing_inputs; }
 
 std::string Outcome::explain() const {
-  const std::string where = fmt::format("stability case {} (SHADERS.md {}), form '{}', lane {}, {}", case_id, section, form,
-                                        harness::lane_name(lane), precision_name(precision));
+  const std::string where = fmt::format("stability case {} (SHADERS.md {}), form '{}', lane {}, {}", case_id, section,
+                                        form, harness::lane_name(lane), precision_name(precision));
   if (error) return where + ": could not run: " + *error + "\n";
   std::string text;
   for (const Measurement& m : measurements)
@@ -88,7 +90,8 @@ Result<SuiteRun> run_suite(const std::vector<Case>& cases, const SuiteOptions& o
     harness::ProgramCache programs;
     if (lane == harness::Lane::VkHlsl &&
         std::find(precisions.begin(), precisions.end(), Precision::Half) != precisions.end())
-      run.skipped.push_back("vk-hlsl in fp16 emulation: that lane compiles the source with glslang, which cannot round to fp16");
+      run.skipped.push_back(
+          "vk-hlsl in fp16 emulation: that lane compiles the source with glslang, which cannot round to fp16");
 
     for (const Case* c : chosen) {
       const auto start = std::chrono::steady_clock::now();
@@ -100,11 +103,14 @@ Result<SuiteRun> run_suite(const std::vector<Case>& cases, const SuiteOptions& o
           Outcome outcome{c->id, c->section, form.name, form.seed, lane, precision, {}, {}, {}};
           if (c->predict) outcome.prediction = c->predict(form, precision);
           std::map<std::string, std::string> born_at;
-          const CaseContext context{**backend,          lane,     precision, form,     options.shaders_dir,
-                                    options.probes_dir, options.scenes_dir, compiler, probes, programs, born_at};
+          const CaseContext context{
+              **backend, lane,   precision, form,   options.shaders_dir, options.probes_dir, options.scenes_dir,
+              compiler,  probes, programs,  born_at};
           auto measured = c->run(context);
-          if (measured) outcome.measurements = std::move(*measured);
-          else outcome.error = measured.error().to_string();
+          if (measured)
+            outcome.measurements = std::move(*measured);
+          else
+            outcome.error = measured.error().to_string();
           // By input; "*" for every non-finite value of the run (a whole image's first site).
           for (Measurement& m : outcome.measurements) {
             auto it = born_at.find(m.input);
@@ -118,8 +124,8 @@ Result<SuiteRun> run_suite(const std::vector<Case>& cases, const SuiteOptions& o
           run.outcomes.push_back(std::move(outcome));
         }
       const std::chrono::duration<double> elapsed = std::chrono::steady_clock::now() - start;
-      progress(fmt::format("{} on {}: {} of {} as predicted ({:.1f} s)", c->id, harness::lane_name(lane), as_predicted, ran,
-                           elapsed.count()));
+      progress(fmt::format("{} on {}: {} of {} as predicted ({:.1f} s)", c->id, harness::lane_name(lane), as_predicted,
+                           ran, elapsed.count()));
     }
   }
   return run;

@@ -34,10 +34,10 @@ struct Outcome {
 };
 
 struct SuiteOptions {
-  std::vector<harness::Lane> lanes;      // empty: every lane
-  harness::BackendOptions backend;       // how each lane's backend is made (validation, the gl route)
-  std::vector<Precision> precisions;     // empty: both
-  std::vector<std::string> case_ids;     // empty: every case
+  std::vector<harness::Lane> lanes;   // empty: every lane
+  harness::BackendOptions backend;    // how each lane's backend is made (validation, the gl route)
+  std::vector<Precision> precisions;  // empty: both
+  std::vector<std::string> case_ids;  // empty: every case
   std::filesystem::path shaders_dir;
   std::filesystem::path probes_dir;
   std::filesystem::path scenes_dir;

@@ -39,7 +39,9 @@ struct CaseOnLane {
 };
 
 // How CTest's test names show the parameter.
-void PrintTo(const CaseOnLane& param, std::ostream* out) { *out << param.case_id << " on " << harness::lane_name(param.lane); }
+void PrintTo(const CaseOnLane& param, std::ostream* out) {
+  *out << param.case_id << " on " << harness::lane_name(param.lane);
+}
 
 class StabilityCase : public testing::TestWithParam<CaseOnLane> {};
 
@@ -64,7 +66,8 @@ std::vector<CaseOnLane> every_case_on_every_lane() {
 
 INSTANTIATE_TEST_SUITE_P(Cases, StabilityCase, testing::ValuesIn(every_case_on_every_lane()),
                          [](const testing::TestParamInfo<CaseOnLane>& param) {
-                           std::string name = param.param.case_id + "_" + std::string(harness::lane_name(param.param.lane));
+                           std::string name =
+                               param.param.case_id + "_" + std::string(harness::lane_name(param.param.lane));
                            std::replace(name.begin(), name.end(), '-', '_');
                            return name;
                          });
@@ -82,8 +85,9 @@ TEST(StabilitySuite, ABreakNamesTheCaseTheInputAndTheValue) {
   const Outcome& outcome = run->outcomes.front();
   EXPECT_FALSE(outcome.as_predicted());
   EXPECT_EQ(run->unexpected(), 1u);
-  EXPECT_THAT(outcome.explain(), testing::HasSubstr("stability case ggx_peak (SHADERS.md 5.1), form 'seed D claimed stable', "
-                                                    "lane gl, fp16 emulation: D at a = 0.002 was inf, expected finite and <= 65504"));
+  EXPECT_THAT(outcome.explain(),
+              testing::HasSubstr("stability case ggx_peak (SHADERS.md 5.1), form 'seed D claimed stable', "
+                                 "lane gl, fp16 emulation: D at a = 0.002 was inf, expected finite and <= 65504"));
 }
 
 // A predicted break that does not happen is reported too: the prediction is wrong.
@@ -96,7 +100,8 @@ TEST(StabilitySuite, APredictedBreakThatHoldsIsReported) {
   ASSERT_TRUE(run) << run.error().to_string();
   ASSERT_EQ(run->outcomes.size(), 1u);
   EXPECT_FALSE(run->outcomes.front().as_predicted());
-  EXPECT_THAT(run->outcomes.front().explain(), testing::HasSubstr("predicted to break at a = 0, NoH = 1 but held: D = "));
+  EXPECT_THAT(run->outcomes.front().explain(),
+              testing::HasSubstr("predicted to break at a = 0, NoH = 1 but held: D = "));
 }
 
 TEST(StabilitySuite, AnUnknownCaseIsRefusedWithTheKnownOnes) {
@@ -141,7 +146,8 @@ TEST(StabilitySuite, ANonFiniteValueNamesTheLineItWasBornOn) {
     }
   EXPECT_TRUE(named) << "the seed's D at a = 0 was not measured";
   const std::string md = stability_markdown({find_case(cases, "zero_alpha")}, *run, "xshade stability zero_alpha");
-  EXPECT_THAT(md, testing::HasSubstr("- *seed, fp32, a = 0, NoH = 1 (D)*: born at brdf.hlsl:19: the value D_GGX_seed returns"));
+  EXPECT_THAT(
+      md, testing::HasSubstr("- *seed, fp32, a = 0, NoH = 1 (D)*: born at brdf.hlsl:19: the value D_GGX_seed returns"));
 }
 
 }  // namespace

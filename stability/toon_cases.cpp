@@ -42,7 +42,6 @@ Result<std::vector<ToonOutput>> run_toon(const CaseContext& context, const std::
   return outputs;
 }
 
-
 bool in_unit_range(double value) { return std::isfinite(value) && value >= 0.0 && value <= 1.0; }
 
 Case toon_hard_inputs() {
@@ -67,9 +66,10 @@ Case toon_hard_inputs() {
     for (const Dots& d : dots)
       for (float smooth : {0.0f, -0.1f})
         for (const Knobs& k : knobs)
-          inputs.push_back({fmt::format("NoL = {}, NoV = {}, NoH = {}, smooth = {}, shininess = {}, gloss = {}", number(d.NoL),
-                                        number(d.NoV), number(d.NoH), number(smooth), number(k.shininess), number(k.gloss)),
-                            d.NoL, d.NoV, d.NoH, smooth, k.shininess, k.gloss});
+          inputs.push_back(
+              {fmt::format("NoL = {}, NoV = {}, NoH = {}, smooth = {}, shininess = {}, gloss = {}", number(d.NoL),
+                           number(d.NoV), number(d.NoH), number(smooth), number(k.shininess), number(k.gloss)),
+               d.NoL, d.NoV, d.NoH, smooth, k.shininess, k.gloss});
     auto outputs = run_toon(context, inputs);
     if (!outputs) return fail(outputs.error());
     std::vector<Measurement> measurements;
@@ -105,7 +105,8 @@ Case toon_hard_edge() {
     std::vector<ToonInput> inputs;
     for (float smooth : {0.0f, -0.1f})
       for (const auto& [NoL, value] : expected)
-        inputs.push_back({fmt::format("NoL = {}, smooth = {}", number(NoL), number(smooth)), NoL, 0.5f, 0.5f, smooth, 0.2f, 1.0f});
+        inputs.push_back(
+            {fmt::format("NoL = {}, smooth = {}", number(NoL), number(smooth)), NoL, 0.5f, 0.5f, smooth, 0.2f, 1.0f});
     auto outputs = run_toon(context, inputs);
     if (!outputs) return fail(outputs.error());
     std::vector<Measurement> measurements;
@@ -147,7 +148,8 @@ Case toon_continuity() {
       std::vector<ToonInput> inputs;
       for (int k = 0; k <= kSteps; ++k) {
         const float NoL = float(-1.0 + step * k);
-        inputs.push_back({fmt::format("NoL = {}, smooth = {}", number(NoL), number(smooth)), NoL, 0.3f, 0.5f, smooth, 0.2f, 1.0f});
+        inputs.push_back(
+            {fmt::format("NoL = {}, smooth = {}", number(NoL), number(smooth)), NoL, 0.3f, 0.5f, smooth, 0.2f, 1.0f});
       }
       auto outputs = run_toon(context, inputs);
       if (!outputs) return fail(outputs.error());
@@ -167,9 +169,10 @@ Case toon_continuity() {
         if (!(dr <= ramp_jump)) ramp_jump = dr, ramp_at = k + 1;
         if (!(di <= rim_jump)) rim_jump = di, rim_at = k + 1;
       }
-      const std::string sweep = fmt::format("NoL from -1 to 1 in {} steps, NoV = 0.3, smooth = {}", kSteps, number(smooth));
-      measurements.push_back({sweep + " (worst at " + inputs[ramp_at].label + ")", "largest step of the ramp", ramp_jump,
-                              fmt::format("<= {} (steepest smoothstep slope x step)", number(ramp_bound)),
+      const std::string sweep =
+          fmt::format("NoL from -1 to 1 in {} steps, NoV = 0.3, smooth = {}", kSteps, number(smooth));
+      measurements.push_back({sweep + " (worst at " + inputs[ramp_at].label + ")", "largest step of the ramp",
+                              ramp_jump, fmt::format("<= {} (steepest smoothstep slope x step)", number(ramp_bound)),
                               std::isfinite(ramp_jump) && ramp_jump <= ramp_bound});
       measurements.push_back({sweep + " (worst at " + inputs[rim_at].label + ")", "largest step of the rim", rim_jump,
                               fmt::format("<= {} (steepest smoothstep slope x step)", number(rim_bound)),

@@ -51,7 +51,8 @@ Result<TextureData> cube_from_faces(const std::array<FloatImage, kCubeFaces>& fa
   const uint32_t size = faces[0].width;
   for (uint32_t f = 0; f < kCubeFaces; ++f) {
     if (faces[f].width != faces[f].height)
-      return fail(fmt::format("cube face {} is {}x{}: a face must be square", kNames[f], faces[f].width, faces[f].height));
+      return fail(
+          fmt::format("cube face {} is {}x{}: a face must be square", kNames[f], faces[f].width, faces[f].height));
     if (faces[f].width != size)
       return fail(fmt::format("cube face {} is {}x{}, face +x {}x{}: every face must be the same size", kNames[f],
                               faces[f].width, faces[f].height, size, size));
@@ -80,7 +81,8 @@ TextureData cube_from_prefiltered(const TextureData& prefiltered_equirect) {
   for (uint32_t level = 0; level < prefiltered_equirect.levels.size(); ++level) {
     const FloatImage equirect = prefiltered_level(prefiltered_equirect, level);
     std::vector<std::byte>& bytes = cube.levels.emplace_back();
-    for (uint32_t f = 0; f < kCubeFaces; ++f) append(bytes, face_from_equirect(equirect, f, std::max(1u, size >> level)));
+    for (uint32_t f = 0; f < kCubeFaces; ++f)
+      append(bytes, face_from_equirect(equirect, f, std::max(1u, size >> level)));
   }
   return cube;
 }

@@ -11,9 +11,9 @@
 
 #include <glm/glm.hpp>
 
+#include "base/result.h"
 #include "harness/backend/backend.h"
 #include "harness/image/image.h"
-#include "base/result.h"
 
 namespace xshade::harness {
 

@@ -51,7 +51,8 @@ TEST(CubeMap, FacesCentresLookAlongTheirAxes) {
 glm::vec4 texel(const TextureData& cube, uint32_t level, uint32_t face, uint32_t x, uint32_t y) {
   const uint32_t size = std::max(1u, cube.width >> level);
   glm::vec4 value;
-  std::memcpy(&value, cube.levels[level].data() + ((size_t(face) * size + y) * size + x) * sizeof(glm::vec4), sizeof value);
+  std::memcpy(&value, cube.levels[level].data() + ((size_t(face) * size + y) * size + x) * sizeof(glm::vec4),
+              sizeof value);
   return value;
 }
 
@@ -68,7 +69,8 @@ TEST(CubeMap, FromAnEquirectEachTexelHoldsWhatLiesAlongIt) {
   for (uint32_t face = 0; face < kCubeFaces; ++face)
     for (uint32_t y = 0; y < 16; y += 5)
       for (uint32_t x = 0; x < 16; x += 3) {
-        const glm::vec3 d = glm::normalize(cube_face_direction(face, {(float(x) + 0.5f) / 16.0f, (float(y) + 0.5f) / 16.0f}));
+        const glm::vec3 d =
+            glm::normalize(cube_face_direction(face, {(float(x) + 0.5f) / 16.0f, (float(y) + 0.5f) / 16.0f}));
         const glm::vec4 value = texel(cube, 0, face, x, y);
         // Bilinear filtering of a smooth function at 4 texels a face texel: within 0.05.
         EXPECT_NEAR(glm::length(glm::vec3(value) - d), 0.0f, 0.05f) << "face " << face << " texel " << x << ", " << y;

@@ -4,8 +4,8 @@
 #include <cmath>
 
 #include "harness/assets/equirect.h"
-#include "harness/image/image_io.h"
 #include "harness/assets/specular_prefilter.h"
+#include "harness/image/image_io.h"
 
 namespace xshade::harness {
 namespace {

@@ -9,18 +9,18 @@
 
 #include <glm/vec3.hpp>
 
+#include "base/result.h"
+#include "harness/assets/spherical_harmonics.h"
 #include "harness/backend/backend.h"
 #include "harness/image/image.h"
 #include "harness/scene/scene.h"
-#include "harness/assets/spherical_harmonics.h"
-#include "base/result.h"
 
 namespace xshade::harness {
 
 struct Environment {
-  FloatImage radiance;         // equirect, kPrefilteredWidth x kPrefilteredHeight, alpha 1
-  ShCoefficients sh{};         // irradiance / pi, from `radiance`
-  TextureData prefiltered;     // RGBA32F, level 0 = `radiance`
+  FloatImage radiance;      // equirect, kPrefilteredWidth x kPrefilteredHeight, alpha 1
+  ShCoefficients sh{};      // irradiance / pi, from `radiance`
+  TextureData prefiltered;  // RGBA32F, level 0 = `radiance`
 };
 
 // The gradient sky's radiance in direction d (before `intensity`), a function of d.y alone:
@@ -29,8 +29,8 @@ struct Environment {
 // Continuous everywhere, equal to `horizon` at y = 0, `sky` straight up, `ground` below.
 glm::vec3 gradient_radiance(const EnvironmentSpec& desc, glm::vec3 direction);
 
-// Builds everything a scene's [environment] (scene.h) needs. Fails, naming the file, when an Equirect image cannot be read.
-// An equirect image of another size is resampled (see resample_equirect); its alpha is ignored.
+// Builds everything a scene's [environment] (scene.h) needs. Fails, naming the file, when an Equirect image cannot be
+// read. An equirect image of another size is resampled (see resample_equirect); its alpha is ignored.
 Result<Environment> build_environment(const EnvironmentSpec& desc);
 
 }  // namespace xshade::harness

@@ -2,19 +2,20 @@
 
 #include <fstream>
 
-#include <glm/geometric.hpp>
 #include <gtest/gtest.h>
+#include <glm/geometric.hpp>
 
 #include "harness/assets/equirect.h"
-#include "harness/image/image_io.h"
 #include "harness/assets/specular_prefilter.h"
+#include "harness/image/image_io.h"
 
 namespace xshade::harness {
 namespace {
 
 std::filesystem::path scratch_directory() {
-  auto directory = std::filesystem::temp_directory_path() /
-                   ("xshade_environment_test_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
+  auto directory =
+      std::filesystem::temp_directory_path() /
+      ("xshade_environment_test_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
   std::filesystem::create_directories(directory);
   return directory;
 }
@@ -27,7 +28,8 @@ TEST(BuildEnvironment, ConstantEnvironmentLightsEveryNormalWithItsRadiance) {
   Result<Environment> environment = build_environment(desc);
   ASSERT_TRUE(environment) << environment.error().to_string();
   const glm::vec3 expected = desc.color * desc.intensity;
-  for (glm::vec3 n : {glm::vec3(1, 0, 0), glm::vec3(0, 1, 0), glm::vec3(0, 0, -1), glm::normalize(glm::vec3(1, -2, 3))}) {
+  for (glm::vec3 n :
+       {glm::vec3(1, 0, 0), glm::vec3(0, 1, 0), glm::vec3(0, 0, -1), glm::normalize(glm::vec3(1, -2, 3))}) {
     glm::vec3 irradiance = sh_evaluate(environment->sh, n);
     for (int c = 0; c < 3; ++c) EXPECT_NEAR(irradiance[c], expected[c], 2e-6f);  // float rounding
   }
@@ -88,7 +90,7 @@ TEST(BuildEnvironment, ReadsAnEquirectFileScaledByItsIntensityAndOrientedByTheCo
   ASSERT_TRUE(environment) << environment.error().to_string();
   ASSERT_EQ(environment->radiance.width, kPrefilteredWidth);
   ASSERT_EQ(environment->radiance.height, kPrefilteredHeight);
-  EXPECT_FLOAT_EQ(environment->radiance.at(64, 64).x, 2.0f);  // u = 0.25: -x
+  EXPECT_FLOAT_EQ(environment->radiance.at(64, 64).x, 2.0f);   // u = 0.25: -x
   EXPECT_FLOAT_EQ(environment->radiance.at(192, 64).x, 0.0f);  // u = 0.75: +x
   EXPECT_FLOAT_EQ(environment->radiance.at(192, 64).y, 0.5f);
   EXPECT_FLOAT_EQ(environment->radiance.at(192, 64).w, 1.0f);  // the file's alpha is not light

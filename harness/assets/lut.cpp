@@ -94,15 +94,19 @@ Result<TextureData> read_cube_lut(const std::filesystem::path& file) {
       continue;
     }
     if (!size) return fail("expected LUT_3D_SIZE before the table's values", at(words[0].second));
-    if (words.size() != 3) return fail(fmt::format("expected three numbers (red green blue), got {} words", words.size()), at(words[0].second));
+    if (words.size() != 3)
+      return fail(fmt::format("expected three numbers (red green blue), got {} words", words.size()),
+                  at(words[0].second));
     glm::vec4 texel{0.0f, 0.0f, 0.0f, 1.0f};
     for (int c = 0; c < 3; ++c) {
       const auto value = number(words[size_t(c)].first);
-      if (!value) return fail(fmt::format("expected a number, got '{}'", words[size_t(c)].first), at(words[size_t(c)].second));
+      if (!value)
+        return fail(fmt::format("expected a number, got '{}'", words[size_t(c)].first), at(words[size_t(c)].second));
       texel[c] = *value;
     }
     if (texels.size() == size_t(size) * size * size)
-      return fail(fmt::format("more than the {}^3 = {} values LUT_3D_SIZE asks for", size, texels.size()), at(words[0].second));
+      return fail(fmt::format("more than the {}^3 = {} values LUT_3D_SIZE asks for", size, texels.size()),
+                  at(words[0].second));
     texels.push_back(texel);
   }
   if (stream.bad()) return fail("cannot read the LUT file", SourceLocation{name, 0, 0});

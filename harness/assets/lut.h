@@ -5,9 +5,9 @@
 
 #include <filesystem>
 
+#include "base/result.h"
 #include "harness/backend/backend.h"
 #include "harness/image/image.h"
-#include "base/result.h"
 
 namespace xshade::harness {
 

@@ -38,8 +38,7 @@ void grid_triangles(MeshData& mesh, uint32_t columns, uint32_t rows, bool top_co
       uint32_t bottom_left = top_left + columns + 1, bottom_right = bottom_left + 1;
       if (!(bottom_collapsed && j == rows - 1))
         mesh.indices.insert(mesh.indices.end(), {top_left, bottom_left, bottom_right});
-      if (!(top_collapsed && j == 0))
-        mesh.indices.insert(mesh.indices.end(), {top_left, bottom_right, top_right});
+      if (!(top_collapsed && j == 0)) mesh.indices.insert(mesh.indices.end(), {top_left, bottom_right, top_right});
     }
 }
 
@@ -71,8 +70,7 @@ MeshData clip_rectangle(float x0, float y0, float x1, float y1, float z) {
     return vertex;
   };
   MeshData mesh;
-  mesh.vertices = {corner(x0, y1, 0, 0), corner(x1, y1, 1, 0), corner(x0, y0, 0, 1),
-                   corner(x1, y0, 1, 1)};
+  mesh.vertices = {corner(x0, y1, 0, 0), corner(x1, y1, 1, 0), corner(x0, y0, 0, 1), corner(x1, y0, 1, 1)};
   mesh.indices = {0, 1, 2, 2, 1, 3};
   return mesh;
 }
@@ -92,7 +90,8 @@ MeshData sphere_mesh(uint32_t segments, uint32_t rings) {
 MeshData torus_mesh(float major_radius, float minor_radius, uint32_t segments, uint32_t sides) {
   return grid_mesh(segments, sides, false, [=](glm::vec2 uv) {
     const float phi = azimuth(uv.x);
-    const float psi = 0.5f * std::numbers::pi_v<float> - uv.y * 2.0f * std::numbers::pi_v<float>;  // the angle above the tube's outer equator
+    const float psi = 0.5f * std::numbers::pi_v<float> -
+                      uv.y * 2.0f * std::numbers::pi_v<float>;  // the angle above the tube's outer equator
     const float ring = major_radius + minor_radius * std::cos(psi);
     glm::vec3 position{ring * std::sin(phi), minor_radius * std::sin(psi), ring * std::cos(phi)};
     glm::vec3 normal{std::cos(psi) * std::sin(phi), std::sin(psi), std::cos(psi) * std::cos(phi)};

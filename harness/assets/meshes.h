@@ -30,8 +30,7 @@ MeshData sphere_mesh(uint32_t segments = 64, uint32_t rings = 32);
 // A torus around the y axis: the tube's centre circle has radius `major_radius` in the xz plane,
 // the tube radius `minor_radius`. u runs around the y axis as on the sphere (u = 0.5 at +z);
 // v runs around the tube from its top (v = 0) over its outside (v = 0.25) to its bottom (0.5).
-MeshData torus_mesh(float major_radius = 1.0f, float minor_radius = 0.35f, uint32_t segments = 64,
-                    uint32_t sides = 32);
+MeshData torus_mesh(float major_radius = 1.0f, float minor_radius = 0.35f, uint32_t segments = 64, uint32_t sides = 32);
 
 // A 2 x 2 square in the xz plane at y = 0, normal +y, u along +x and v along +z (the top of a
 // texture lies at -z, away from a camera at +z).

@@ -3,8 +3,8 @@
 #include <cmath>
 #include <string>
 
-#include <glm/geometric.hpp>
 #include <gtest/gtest.h>
+#include <glm/geometric.hpp>
 
 #include "harness/assets/equirect.h"
 

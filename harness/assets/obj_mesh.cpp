@@ -4,8 +4,8 @@
 #include <regex>
 #include <tuple>
 
-#include <glm/geometric.hpp>
 #include <tiny_obj_loader.h>
+#include <glm/geometric.hpp>
 
 #include "base/file_io.h"
 #include "harness/assets/vertex_frames.h"
@@ -35,8 +35,7 @@ Result<MeshData> load_obj(const std::filesystem::path& path) {
   tinyobj::ObjReader reader;
   if (!reader.ParseFromString(*text, "", config)) return fail(reader_error(path, reader.Error()));
   // Out-of-range indices are only a warning to tinyobjloader; reading them would overrun.
-  if (reader.Warning().find("out of bounds") != std::string::npos)
-    return fail(reader_error(path, reader.Warning()));
+  if (reader.Warning().find("out of bounds") != std::string::npos) return fail(reader_error(path, reader.Warning()));
 
   const tinyobj::attrib_t& attrib = reader.GetAttrib();
   const auto positions = int(attrib.vertices.size() / 3), normals = int(attrib.normals.size() / 3),

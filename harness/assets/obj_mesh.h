@@ -3,8 +3,8 @@
 
 #include <filesystem>
 
-#include "harness/backend/backend.h"
 #include "base/result.h"
+#include "harness/backend/backend.h"
 
 namespace xshade::harness {
 
@@ -20,7 +20,8 @@ inline constexpr size_t kMaxObjFileBytes = size_t(256) << 20;
 //   the top); (0, 0) where a corner has none.
 // - Tangents: computed from uv (compute_tangents), following the convention of meshes.h.
 // Materials are ignored. Fails, naming the file and the line where the reader says one, when the
-// file cannot be read (or is not a file, or is past kMaxObjFileBytes), a line is malformed, an index is out of range, or there are no faces.
+// file cannot be read (or is not a file, or is past kMaxObjFileBytes), a line is malformed, an index is out of range,
+// or there are no faces.
 Result<MeshData> load_obj(const std::filesystem::path& path);
 
 }  // namespace xshade::harness

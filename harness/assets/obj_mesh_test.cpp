@@ -6,8 +6,8 @@
 #include <cmath>
 #include <fstream>
 
-#include <glm/geometric.hpp>
 #include <gtest/gtest.h>
+#include <glm/geometric.hpp>
 
 namespace xshade::harness {
 namespace {

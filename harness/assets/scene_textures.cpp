@@ -71,7 +71,8 @@ Result<FloatImage> texture_image(const TextureRef& texture) {
     case TextureOrigin::Clear: return filled(1, {0.0f, 0.0f, 0.0f, 0.0f});
     case TextureOrigin::Checker: return checker();
     case TextureOrigin::File: return read_image(texture.file, texture.srgb);
-    case TextureOrigin::Faces: return fail("six faces make a cube map, not an image: the shader must declare a TextureCube");
+    case TextureOrigin::Faces:
+      return fail("six faces make a cube map, not an image: the shader must declare a TextureCube");
     case TextureOrigin::Environment:
       return fail("the environment is a cube map, not an image: the shader must declare a TextureCube");
   }

@@ -128,8 +128,7 @@ FloatImage prefilter_level(const std::vector<FloatImage>& chain, uint32_t width,
         const LobeSample& sample = samples[k];
         const float u = sample_uv[k].x + turn, v = sample_uv[k].y;
         glm::vec3 value = bilinear(chain[sample.level], u, v);
-        if (sample.blend > 0.0f)
-          value += sample.blend * (bilinear(chain[sample.level + 1], u, v) - value);
+        if (sample.blend > 0.0f) value += sample.blend * (bilinear(chain[sample.level + 1], u, v) - value);
         sum += sample.weight * value;
         weight += sample.weight;
       }

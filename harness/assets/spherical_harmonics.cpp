@@ -9,15 +9,14 @@ namespace xshade::harness {
 namespace {
 
 // The normalisation constants, exact; they round to the six-digit values in the header.
-const double kBand0 = 0.5 * std::sqrt(1.0 / std::numbers::pi);          // 0.282095
-const double kBand1 = std::sqrt(3.0 / (4.0 * std::numbers::pi));        // 0.488603
-const double kProduct = 0.5 * std::sqrt(15.0 / std::numbers::pi);        // 1.092548
-const double kZonal = 0.25 * std::sqrt(5.0 / std::numbers::pi);          // 0.315392
-const double kDifference = 0.25 * std::sqrt(15.0 / std::numbers::pi);    // 0.546274
+const double kBand0 = 0.5 * std::sqrt(1.0 / std::numbers::pi);         // 0.282095
+const double kBand1 = std::sqrt(3.0 / (4.0 * std::numbers::pi));       // 0.488603
+const double kProduct = 0.5 * std::sqrt(15.0 / std::numbers::pi);      // 1.092548
+const double kZonal = 0.25 * std::sqrt(5.0 / std::numbers::pi);        // 0.315392
+const double kDifference = 0.25 * std::sqrt(15.0 / std::numbers::pi);  // 0.546274
 
 // The cosine lobe's transfer per band divided by pi: A0 / pi, A1 / pi, A2 / pi.
-constexpr std::array<double, 9> kConvolution = {1.0,       2.0 / 3.0, 2.0 / 3.0, 2.0 / 3.0, 0.25,
-                                                0.25,      0.25,      0.25,      0.25};
+constexpr std::array<double, 9> kConvolution = {1.0, 2.0 / 3.0, 2.0 / 3.0, 2.0 / 3.0, 0.25, 0.25, 0.25, 0.25, 0.25};
 
 // Integrals over one row of texels of the theta-dependent factors, with t = cos(theta) and the
 // solid-angle weight sin(theta) dtheta = -dt: the integrals run over t from the row's bottom
@@ -27,11 +26,9 @@ struct RowIntegrals {
 };
 
 RowIntegrals row_integrals(uint32_t y, uint32_t height) {
-  double t0 = std::cos(std::numbers::pi * y / height);         // top edge
-  double t1 = std::cos(std::numbers::pi * (y + 1) / height);   // bottom edge
-  auto sine_antiderivative = [](double t) {
-    return 0.5 * (t * std::sqrt(std::max(0.0, 1.0 - t * t)) + std::asin(t));
-  };
+  double t0 = std::cos(std::numbers::pi * y / height);        // top edge
+  double t1 = std::cos(std::numbers::pi * (y + 1) / height);  // bottom edge
+  auto sine_antiderivative = [](double t) { return 0.5 * (t * std::sqrt(std::max(0.0, 1.0 - t * t)) + std::asin(t)); };
   auto sine_t_antiderivative = [](double t) { return -std::pow(std::max(0.0, 1.0 - t * t), 1.5) / 3.0; };
   RowIntegrals r{};
   r.one = t0 - t1;

@@ -2,8 +2,8 @@
 
 #include <functional>
 
-#include <glm/geometric.hpp>
 #include <gtest/gtest.h>
+#include <glm/geometric.hpp>
 
 #include "harness/assets/equirect.h"
 
@@ -28,9 +28,15 @@ std::vector<glm::vec3> test_directions() {
 TEST(ShBasis, MatchesTheListedConstants) {
   const glm::vec3 n = glm::normalize(glm::vec3(1, 2, 3));
   const float x = n.x, y = n.y, z = n.z;
-  const float expected[9] = {0.282095f,         0.488603f * y,        0.488603f * z,
-                             0.488603f * x,     1.092548f * x * y,    1.092548f * y * z,
-                             0.315392f * (3 * z * z - 1), 1.092548f * x * z, 0.546274f * (x * x - y * y)};
+  const float expected[9] = {0.282095f,
+                             0.488603f * y,
+                             0.488603f * z,
+                             0.488603f * x,
+                             1.092548f * x * y,
+                             1.092548f * y * z,
+                             0.315392f * (3 * z * z - 1),
+                             1.092548f * x * z,
+                             0.546274f * (x * x - y * y)};
   std::array<float, 9> basis = sh_basis(n);
   // The listed constants have six decimals.
   for (size_t i = 0; i < 9; ++i) EXPECT_NEAR(basis[i], expected[i], 1e-6f) << i;

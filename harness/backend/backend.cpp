@@ -78,8 +78,8 @@ size_t level_bytes(const TextureData& texture, uint32_t level) {
 
 Result<void> validate_texture(const TextureData& texture, uint32_t max_size) {
   const std::string what = "upload_texture: " + shape_name(texture.shape());
-  const std::string size = std::to_string(texture.width) + "x" + std::to_string(texture.height) + "x" +
-                           std::to_string(texture.layers);
+  const std::string size =
+      std::to_string(texture.width) + "x" + std::to_string(texture.height) + "x" + std::to_string(texture.layers);
   if (texture.width == 0 || texture.height == 0 || texture.layers == 0 || texture.levels.empty())
     return fail(what + ": the texture is empty (" + size + ", " + std::to_string(texture.levels.size()) + " levels)");
   const TextureDimension dimension = texture.dimension;
@@ -88,12 +88,15 @@ Result<void> validate_texture(const TextureData& texture, uint32_t max_size) {
     return fail(what + ": a 1D texture has height 1, not " + std::to_string(texture.height));
   if (!is_array(dimension) && dimension != TextureDimension::Tex3D && dimension != TextureDimension::Cube &&
       texture.layers != 1)
-    return fail(what + ": has " + std::to_string(texture.layers) + " layers; only arrays, cubes and 3D textures have more than one");
+    return fail(what + ": has " + std::to_string(texture.layers) +
+                " layers; only arrays, cubes and 3D textures have more than one");
   if (dimension == TextureDimension::Cube && texture.layers != 6)
-    return fail(what + ": a cube has 6 faces (+X, -X, +Y, -Y, +Z, -Z), not " + std::to_string(texture.layers) + " layers");
+    return fail(what + ": a cube has 6 faces (+X, -X, +Y, -Y, +Z, -Z), not " + std::to_string(texture.layers) +
+                " layers");
   if (dimension == TextureDimension::CubeArray && texture.layers % 6 != 0)
     return fail(what + ": a cube array has 6 layers per cube, not " + std::to_string(texture.layers));
-  if ((dimension == TextureDimension::Cube || dimension == TextureDimension::CubeArray) && texture.width != texture.height)
+  if ((dimension == TextureDimension::Cube || dimension == TextureDimension::CubeArray) &&
+      texture.width != texture.height)
     return fail(what + ": a cube's faces are square, not " + std::to_string(texture.width) + "x" +
                 std::to_string(texture.height));
   const uint32_t extent = dimension == TextureDimension::Tex3D
@@ -121,12 +124,14 @@ Result<void> validate_texture(const TextureData& texture, uint32_t max_size) {
     return fail(what + ": " + std::to_string(texture.levels.size()) + " mip levels given but a " + size +
                 " texture has at most " + std::to_string(full_chain));
   for (uint32_t level = 0; level < texture.levels.size(); ++level) {
-    const uint32_t w = std::max<uint32_t>(1, texture.width >> level), h = std::max<uint32_t>(1, texture.height >> level);
+    const uint32_t w = std::max<uint32_t>(1, texture.width >> level),
+                   h = std::max<uint32_t>(1, texture.height >> level);
     const size_t expected = level_bytes(texture, level);
     if (texture.levels[level].size() != expected)
-      return fail(what + ": mip level " + std::to_string(level) + " has " + std::to_string(texture.levels[level].size()) +
-                  " bytes, expected " + std::to_string(expected) + " (" + std::to_string(w) + "x" + std::to_string(h) +
-                  ", " + std::to_string(expected / (size_t(w) * h * bytes_per_texel(texture.format))) + " layers, " +
+      return fail(what + ": mip level " + std::to_string(level) + " has " +
+                  std::to_string(texture.levels[level].size()) + " bytes, expected " + std::to_string(expected) + " (" +
+                  std::to_string(w) + "x" + std::to_string(h) + ", " +
+                  std::to_string(expected / (size_t(w) * h * bytes_per_texel(texture.format))) + " layers, " +
                   std::to_string(bytes_per_texel(texture.format)) + " bytes a texel)");
   }
   return {};
@@ -143,8 +148,10 @@ Result<void> check_bound_texture(const TextureSlot& slot, const BoundTextureFact
     return fail(texture + " reads " + texel_kind_name(slot.texel) + " texels, but " + bound.label + " is " +
                 format_name(bound.format) + " (" + texel_kind_name(kind) + " texels)");
   if (slot.comparison && bound.format != TextureFormat::Depth32Float)
-    return fail(texture + " is read with a comparison sampler, which needs a depth texture (Depth32Float or a "
-                "target's depth), but " + bound.label + " is " + format_name(bound.format));
+    return fail(texture +
+                " is read with a comparison sampler, which needs a depth texture (Depth32Float or a "
+                "target's depth), but " +
+                bound.label + " is " + format_name(bound.format));
   if (kind != TexelKind::Float && sampler.filter == Filter::Linear)
     return fail(texture + ": " + bound.label + " has integer texels (" + format_name(bound.format) +
                 "), which cannot be filtered linearly; use a nearest sampler");
@@ -156,13 +163,11 @@ namespace {
 // Fills `matched` (one entry per slot) from `bindings`, by name.
 template <class Slot, class Binding>
 Result<void> match_by_name(const std::vector<Slot>& slots, const std::vector<Binding>& bindings,
-                           std::vector<const Binding*>& matched, const char* kind,
-                           const std::string& where) {
+                           std::vector<const Binding*>& matched, const char* kind, const std::string& where) {
   matched.assign(slots.size(), nullptr);
   for (const Binding& binding : bindings) {
     auto slot = std::find_if(slots.begin(), slots.end(), [&](const Slot& s) { return s.name == binding.name; });
-    if (slot == slots.end())
-      return fail(where + ": the program has no " + kind + " named '" + binding.name + "'");
+    if (slot == slots.end()) return fail(where + ": the program has no " + kind + " named '" + binding.name + "'");
     if constexpr (std::is_same_v<Binding, UniformBinding>) {
       if (binding.bytes.size() != slot->size)
         return fail(where + ": " + kind + " '" + binding.name + "' needs " + std::to_string(slot->size) +
@@ -171,7 +176,8 @@ Result<void> match_by_name(const std::vector<Slot>& slots, const std::vector<Bin
     if constexpr (std::is_same_v<Binding, StorageBufferBinding>) {
       // The shaders read 32-bit words, and no API binds an empty buffer.
       if (binding.bytes.empty() || binding.bytes.size() % 4 != 0)
-        return fail(where + ": " + kind + " '" + binding.name + "' needs a whole number of 32-bit words, at least one, but " +
+        return fail(where + ": " + kind + " '" + binding.name +
+                    "' needs a whole number of 32-bit words, at least one, but " +
                     std::to_string(binding.bytes.size()) + " bytes were bound");
     }
     const auto index = size_t(slot - slots.begin());
@@ -198,15 +204,14 @@ Result<void> validate_mesh(const MeshData& mesh) {
   return {};
 }
 
-Result<MatchedBindings> match_bindings(const ProgramLayout& layout, const DrawItem& draw,
-                                       const std::string& where) {
+Result<MatchedBindings> match_bindings(const ProgramLayout& layout, const DrawItem& draw, const std::string& where) {
   MatchedBindings matched;
   if (auto ok = match_by_name(layout.uniform_blocks, draw.uniforms, matched.uniforms, "uniform block", where); !ok)
     return fail(ok.error());
   if (auto ok = match_by_name(layout.textures, draw.textures, matched.textures, "texture", where); !ok)
     return fail(ok.error());
-  if (auto ok = match_by_name(layout.storage_buffers, draw.storage_buffers, matched.storage_buffers, "storage buffer",
-                              where);
+  if (auto ok =
+          match_by_name(layout.storage_buffers, draw.storage_buffers, matched.storage_buffers, "storage buffer", where);
       !ok)
     return fail(ok.error());
   return matched;
@@ -216,8 +221,7 @@ std::string llvm_version_of(const std::string& renderer) {
   const size_t at = renderer.find("LLVM ");
   if (at == std::string::npos) return {};
   size_t end = at + 5;
-  while (end < renderer.size() &&
-         (std::isdigit(static_cast<unsigned char>(renderer[end])) || renderer[end] == '.'))
+  while (end < renderer.size() && (std::isdigit(static_cast<unsigned char>(renderer[end])) || renderer[end] == '.'))
     ++end;
   std::string version = renderer.substr(at + 5, end - at - 5);
   while (!version.empty() && version.back() == '.') version.pop_back();

@@ -22,8 +22,8 @@
 
 #include <glm/glm.hpp>
 
-#include "harness/image/image.h"
 #include "base/result.h"
+#include "harness/image/image.h"
 
 namespace xshade::harness {
 
@@ -209,10 +209,10 @@ struct ProgramLayout {
 };
 
 struct ShaderStageSource {
-  std::string glsl;              // read by OpenGL backends
-  std::vector<uint32_t> spirv;   // read by Vulkan backends
+  std::string glsl;             // read by OpenGL backends
+  std::vector<uint32_t> spirv;  // read by Vulkan backends
   std::string entry_point = "main";
-  std::string name;              // shown in diagnostics, e.g. the source file
+  std::string name;  // shown in diagnostics, e.g. the source file
   // Generated GLSL says `#line L N` to point at the author's files: entry N names source
   // string N, so that the driver's messages name the author's file and line.
   std::vector<std::string> source_files;
@@ -265,8 +265,17 @@ struct StorageBufferBinding {
 // no culling, depth written and tested less, no blending, every channel written, no stencil test.
 enum class CullMode { Off, Back, Front };
 enum class BlendFactor {
-  Zero, One, SrcColor, OneMinusSrcColor, DstColor, OneMinusDstColor,
-  SrcAlpha, OneMinusSrcAlpha, DstAlpha, OneMinusDstAlpha, SrcAlphaSaturate,
+  Zero,
+  One,
+  SrcColor,
+  OneMinusSrcColor,
+  DstColor,
+  OneMinusDstColor,
+  SrcAlpha,
+  OneMinusSrcAlpha,
+  DstAlpha,
+  OneMinusDstAlpha,
+  SrcAlphaSaturate,
 };
 enum class BlendOp { Add, Subtract, ReverseSubtract, Min, Max };
 
@@ -333,12 +342,11 @@ struct DrawItem {
 // the wrong size, a storage buffer is not whole words, or a slot is bound twice or not at all.
 // Every backend checks draws with this.
 struct MatchedBindings {
-  std::vector<const UniformBinding*> uniforms;  // per ProgramLayout::uniform_blocks entry
-  std::vector<const TextureBinding*> textures;  // per ProgramLayout::textures entry
+  std::vector<const UniformBinding*> uniforms;               // per ProgramLayout::uniform_blocks entry
+  std::vector<const TextureBinding*> textures;               // per ProgramLayout::textures entry
   std::vector<const StorageBufferBinding*> storage_buffers;  // per ProgramLayout::storage_buffers entry
 };
-Result<MatchedBindings> match_bindings(const ProgramLayout& layout, const DrawItem& draw,
-                                       const std::string& where);
+Result<MatchedBindings> match_bindings(const ProgramLayout& layout, const DrawItem& draw, const std::string& where);
 
 // What a draw binds to a texture slot, as far as the slot's checks need it.
 struct BoundTextureFacts {
@@ -379,7 +387,8 @@ struct TargetDesc {
 enum class RowOrigin { Top, Bottom };
 
 // One pass into one target: clear, then the draws in order, each with its DrawState (the depth
-// test and write only where the target has depth, the stencil test only where it has stencil). A pass may sample any target but its own.
+// test and write only where the target has depth, the stencil test only where it has stencil). A pass may sample any
+// target but its own.
 struct RenderPass {
   TargetHandle target;
   glm::vec4 clear_color{0.0f};

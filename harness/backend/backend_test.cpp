@@ -42,8 +42,10 @@ TEST(Textures, EachDimensionKeepsItsOwnRules) {
             "upload_texture: TextureCube: a cube has 6 faces (+X, -X, +Y, -Y, +Z, -Z), not 5 layers");
   EXPECT_EQ(refusal(texture(TextureDimension::CubeArray, 4, 4, 8)),
             "upload_texture: TextureCubeArray: a cube array has 6 layers per cube, not 8");
-  EXPECT_EQ(refusal(texture(TextureDimension::Cube, 4, 2, 6)), "upload_texture: TextureCube: a cube's faces are square, not 4x2");
-  EXPECT_EQ(refusal(texture(TextureDimension::Tex1D, 4, 2, 1)), "upload_texture: Texture1D: a 1D texture has height 1, not 2");
+  EXPECT_EQ(refusal(texture(TextureDimension::Cube, 4, 2, 6)),
+            "upload_texture: TextureCube: a cube's faces are square, not 4x2");
+  EXPECT_EQ(refusal(texture(TextureDimension::Tex1D, 4, 2, 1)),
+            "upload_texture: Texture1D: a 1D texture has height 1, not 2");
   EXPECT_EQ(refusal(texture(TextureDimension::Tex2D, 4, 4, 3)),
             "upload_texture: Texture2D: has 3 layers; only arrays, cubes and 3D textures have more than one");
   EXPECT_EQ(refusal(texture(TextureDimension::Tex3D, 4, 4, 4, TextureFormat::Rgba8Unorm, 4)),

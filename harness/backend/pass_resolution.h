@@ -27,9 +27,9 @@ struct BoundTexture {
 template <class Program, class Mesh, class Texture>
 struct ResolvedDraw {
   Program* program = nullptr;
-  Mesh* mesh = nullptr;                               // null for a full-screen program
-  std::vector<const UniformBinding*> uniforms;        // per layout uniform block
-  std::vector<BoundTexture<Texture>> textures;        // per layout texture slot
+  Mesh* mesh = nullptr;                                      // null for a full-screen program
+  std::vector<const UniformBinding*> uniforms;               // per layout uniform block
+  std::vector<BoundTexture<Texture>> textures;               // per layout texture slot
   std::vector<const StorageBufferBinding*> storage_buffers;  // per layout storage buffer
 };
 
@@ -99,8 +99,8 @@ Result<ResolvedPass<Target, Program, Mesh, Texture>> resolve_pass(
         texture = source.kind == TextureSource::Kind::TargetColor ? &sampled->color : &*sampled->depth;
       }
       const auto [shape, format] = facts(*texture);
-      if (auto fits = check_bound_texture(layout.textures[index], {shape, format, source_label(source)},
-                                          source.sampler, where);
+      if (auto fits =
+              check_bound_texture(layout.textures[index], {shape, format, source_label(source)}, source.sampler, where);
           !fits)
         return fail(fits.error());
       // A slot the shader filters itself is read nearest, whatever the filter asked for.

@@ -6,9 +6,13 @@ Result<TargetHandle> ResourceSet::create_target(const TargetDesc& desc) { return
 
 Result<MeshHandle> ResourceSet::upload_mesh(const MeshData& mesh) { return keep(backend_.upload_mesh(mesh)); }
 
-Result<TextureHandle> ResourceSet::upload_texture(const TextureData& texture) { return keep(backend_.upload_texture(texture)); }
+Result<TextureHandle> ResourceSet::upload_texture(const TextureData& texture) {
+  return keep(backend_.upload_texture(texture));
+}
 
-Result<ProgramHandle> ResourceSet::create_program(const ProgramDesc& desc) { return keep(backend_.create_program(desc)); }
+Result<ProgramHandle> ResourceSet::create_program(const ProgramDesc& desc) {
+  return keep(backend_.create_program(desc));
+}
 
 void ResourceSet::release() {
   while (!handles_.empty()) {

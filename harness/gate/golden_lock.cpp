@@ -41,8 +41,8 @@ Result<GoldenLock> GoldenLock::acquire(const fs::path& folder, Mode mode, const 
     if (fd < 0) return GoldenLock(-1, mode, path);
   }
   if (fd < 0)
-    return fail(ErrorKind::Backend, fmt::format("cannot open the golden folder's lock {}: {}", path.string(),
-                                                std::strerror(errno)));
+    return fail(ErrorKind::Backend,
+                fmt::format("cannot open the golden folder's lock {}: {}", path.string(), std::strerror(errno)));
   GoldenLock held(fd, mode, path);
   if (Result<void> locked = take_flock(fd, mode, path, notice); !locked) return fail(locked.error());
   return held;

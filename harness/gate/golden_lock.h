@@ -27,8 +27,7 @@ class GoldenLock {
   // Takes the lock on `folder`/.golden.lock, creating the file, waiting while another process
   // holds it in a conflicting mode. `folder` must exist. A shared lock on a folder this process
   // cannot write to (a read-only checkout) is returned unheld: no bless can be writing there.
-  static Result<GoldenLock> acquire(const std::filesystem::path& folder, Mode mode,
-                                    const LockWaitNotice& notice = {});
+  static Result<GoldenLock> acquire(const std::filesystem::path& folder, Mode mode, const LockWaitNotice& notice = {});
 
   GoldenLock(GoldenLock&& other) noexcept;
   GoldenLock& operator=(GoldenLock&& other) noexcept;

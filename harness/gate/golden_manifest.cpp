@@ -85,8 +85,8 @@ Result<GoldenEntry> read_entry(const toml::table& table, const std::string& file
     return fail(fmt::format("unknown lane '{}' (lanes: gl, vk, vk-hlsl)", entry.lane),
                 where(file, table.get("lane")->source()));
   if (entry.reason.find_first_not_of(" \t\r\n") == std::string::npos)
-    return fail(fmt::format("the golden of {} has no reason", entry.lane.empty() ? entry.scene
-                                                                                 : entry.lane + "/" + entry.scene),
+    return fail(fmt::format("the golden of {} has no reason",
+                            entry.lane.empty() ? entry.scene : entry.lane + "/" + entry.scene),
                 entry.where);
   // An entry without its hash reads, so that bless can repair it; GoldenStore::find refuses to
   // use its image, as it refuses one whose hash differs.
@@ -96,10 +96,9 @@ Result<GoldenEntry> read_entry(const toml::table& table, const std::string& file
 }  // namespace
 
 const GoldenEntry* GoldenManifest::find(const std::string& scene, const std::string& lane) const {
-  auto position = std::lower_bound(entries.begin(), entries.end(), std::tie(scene, lane),
-                                   [](const GoldenEntry& entry, const auto& key) {
-                                     return std::tie(entry.scene, entry.lane) < key;
-                                   });
+  auto position = std::lower_bound(
+      entries.begin(), entries.end(), std::tie(scene, lane),
+      [](const GoldenEntry& entry, const auto& key) { return std::tie(entry.scene, entry.lane) < key; });
   if (position != entries.end() && position->scene == scene && position->lane == lane) return &*position;
   return nullptr;
 }
@@ -145,17 +144,16 @@ Result<GoldenManifest> parse_golden_manifest(std::string_view text, const std::s
   }
   // Stable, so that of two entries for one image the earlier in the file comes first.
   std::stable_sort(manifest.entries.begin(), manifest.entries.end(), scene_then_lane);
-  auto second = std::adjacent_find(manifest.entries.begin(), manifest.entries.end(),
-                                   [](const GoldenEntry& a, const GoldenEntry& b) {
-                                     return a.scene == b.scene && a.lane == b.lane;
-                                   });
+  auto second = std::adjacent_find(
+      manifest.entries.begin(), manifest.entries.end(),
+      [](const GoldenEntry& a, const GoldenEntry& b) { return a.scene == b.scene && a.lane == b.lane; });
   if (second != manifest.entries.end()) {
     const GoldenEntry& earlier = *second;
     const GoldenEntry& later = *std::next(second);
-    return fail(fmt::format("a second entry for the golden of {} (the first is at {})",
-                            later.lane.empty() ? later.scene : later.lane + "/" + later.scene,
-                            earlier.where.to_string()),
-                later.where);
+    return fail(
+        fmt::format("a second entry for the golden of {} (the first is at {})",
+                    later.lane.empty() ? later.scene : later.lane + "/" + later.scene, earlier.where.to_string()),
+        later.where);
   }
   return manifest;
 }

@@ -13,8 +13,14 @@ namespace {
 using ::testing::StartsWith;
 
 GoldenEntry entry(std::string scene, std::string lane, std::string reason) {
-  return {std::move(scene), std::move(lane), std::move(reason), "ada", "2024-05-01T12:34:56Z",
-          "0123456789abcdef0123456789abcdef", {}, {}};
+  return {std::move(scene),
+          std::move(lane),
+          std::move(reason),
+          "ada",
+          "2024-05-01T12:34:56Z",
+          "0123456789abcdef0123456789abcdef",
+          {},
+          {}};
 }
 
 TEST(GoldenManifestTest, FormatsEntriesSortedAfterTheHeaderAndReadsThemBack) {
@@ -95,18 +101,21 @@ TEST(GoldenManifestTest, AKeyNestedTooDeepIsRefusedBeforeTheTomlParserRecurses) 
   for (int i = 1; i < 100000; ++i) key += ".a";
   auto read = parse_golden_manifest("[[golden]]\nscene = \"a\"\n" + key + " = 1\n", "MANIFEST.toml");
   ASSERT_FALSE(read);
-  EXPECT_EQ(read.error().to_string(), "MANIFEST.toml:3:1: a dotted key or table header of 100000 parts; xshade reads "
-                                      "at most 100 (a longer one could overflow the TOML parser's stack)");
+  EXPECT_EQ(read.error().to_string(),
+            "MANIFEST.toml:3:1: a dotted key or table header of 100000 parts; xshade reads "
+            "at most 100 (a longer one could overflow the TOML parser's stack)");
 }
 
 TEST(GoldenManifestTest, AManifestOfMoreEntriesThanAnyProjectIsRefusedAtTheFirstOnePastTheLimit) {
   std::string text;
-  for (size_t i = 0; i <= kMaxManifestEntries; ++i) text += fmt::format("[[golden]]\nscene = \"s{}\"\nreason = \"r\"\n", i);
+  for (size_t i = 0; i <= kMaxManifestEntries; ++i)
+    text += fmt::format("[[golden]]\nscene = \"s{}\"\nreason = \"r\"\n", i);
   auto read = parse_golden_manifest(text, "MANIFEST.toml");
   ASSERT_FALSE(read);
-  EXPECT_EQ(read.error().to_string(),
-            fmt::format("MANIFEST.toml:{}:1: more than {} [[golden]] entries: this is not a golden manifest xshade wrote",
-                        3 * kMaxManifestEntries + 1, kMaxManifestEntries));
+  EXPECT_EQ(
+      read.error().to_string(),
+      fmt::format("MANIFEST.toml:{}:1: more than {} [[golden]] entries: this is not a golden manifest xshade wrote",
+                  3 * kMaxManifestEntries + 1, kMaxManifestEntries));
 }
 
 struct BadManifest {
@@ -141,8 +150,9 @@ INSTANTIATE_TEST_SUITE_P(
                     "[[golden]]\nscene = \"b\"\nlane = \"vk\"\nreason = \"z\"\n\n[[golden]]\nscene = \"b\"\nreason = "
                     "\"w\"\n",
                     "MANIFEST.toml:14:1: a second entry for the golden of b (the first is at MANIFEST.toml:1:1)"},
-        BadManifest{"goldens = 1\n", "MANIFEST.toml:1:11: unknown key 'goldens' (the manifest holds only [[golden]] "
-                                     "entries)"},
+        BadManifest{"goldens = 1\n",
+                    "MANIFEST.toml:1:11: unknown key 'goldens' (the manifest holds only [[golden]] "
+                    "entries)"},
         BadManifest{"golden = 1\n", "MANIFEST.toml:1:10: 'golden' must be an array of tables: [[golden]]"}));
 
 }  // namespace

@@ -147,24 +147,28 @@ Result<std::optional<GoldenImage>> GoldenStore::find(const std::string& scene, c
     const fs::path& unlisted = present ? path : float_path;
     const std::optional<std::string> own = candidate.empty() ? std::nullopt : std::optional(candidate);
     if (!has_manifest)
-      return fail(fmt::format("{} is a golden, but {} does not exist, so no golden here can be checked: restore it "
-                              "(it is committed with the goldens) or bless again with {}",
-                              unlisted.string(), manifest_path().string(), bless_command(scene, own)));
+      return fail(
+          fmt::format("{} is a golden, but {} does not exist, so no golden here can be checked: restore it "
+                      "(it is committed with the goldens) or bless again with {}",
+                      unlisted.string(), manifest_path().string(), bless_command(scene, own)));
     if (!entry && !candidate.empty())
-      return fail(fmt::format("{} has no entry in {}: a lane's own golden must say why the lane differs; bless it "
-                              "with {} or remove it",
-                              unlisted.string(), manifest_path().string(), bless_command(scene, candidate)));
+      return fail(
+          fmt::format("{} has no entry in {}: a lane's own golden must say why the lane differs; bless it "
+                      "with {} or remove it",
+                      unlisted.string(), manifest_path().string(), bless_command(scene, candidate)));
     if (!entry)
-      return fail(fmt::format("{} has no entry in {}: a golden is trusted only as bless wrote it; bless it with {} or "
-                              "remove it",
-                              unlisted.string(), manifest_path().string(), bless_command(scene, std::nullopt)));
+      return fail(
+          fmt::format("{} has no entry in {}: a golden is trusted only as bless wrote it; bless it with {} or "
+                      "remove it",
+                      unlisted.string(), manifest_path().string(), bless_command(scene, std::nullopt)));
     if (Result<void> same = check_hash(path, *entry, entry->hash, bless_command(scene, own)); !same)
       return fail(same.error());
     // The float image where bless wrote one: the values above 1 that the PNG clamps.
     if (has_float && entry->float_hash.empty())
-      return fail(fmt::format("{} has no float_hash in {}: a golden's float image is trusted only as bless wrote it; "
-                              "bless it with {} or remove it",
-                              float_path.string(), manifest_path().string(), bless_command(scene, candidate)));
+      return fail(
+          fmt::format("{} has no float_hash in {}: a golden's float image is trusted only as bless wrote it; "
+                      "bless it with {} or remove it",
+                      float_path.string(), manifest_path().string(), bless_command(scene, candidate)));
     if (!entry->float_hash.empty()) {
       if (!has_float)
         return fail(fmt::format("the manifest records a float image for {}, but {} does not exist",
@@ -244,8 +248,7 @@ Result<BlessOutcome> GoldenStore::bless(const std::string& scene, const std::opt
     if (Result<void> marked = write_synced(float_pending, ""); !marked) return abandon(marked.error());
   if (Result<void> synced = sync_folder(folder); !synced) return abandon(synced.error());
   bless_step_done(2);
-  manifest->record(
-      GoldenEntry{scene, lane.value_or(""), reason, who, utc_now_iso8601(), *png_hash, *float_hash, {}});
+  manifest->record(GoldenEntry{scene, lane.value_or(""), reason, who, utc_now_iso8601(), *png_hash, *float_hash, {}});
   if (Result<void> written = write_synced(manifest_pending, format_golden_manifest(*manifest)); !written)
     return abandon(written.error());
   bless_step_done(3);
@@ -253,9 +256,11 @@ Result<BlessOutcome> GoldenStore::bless(const std::string& scene, const std::opt
   // The commit.
   fs::rename(manifest_pending, manifest_path(), error);
   if (error)
-    return abandon(Error{fmt::format("cannot update {}: {}; nothing was blessed", manifest_path().string(),
-                                     error.message()),
-                         {}, {}, ErrorKind::Backend});
+    return abandon(
+        Error{fmt::format("cannot update {}: {}; nothing was blessed", manifest_path().string(), error.message()),
+              {},
+              {},
+              ErrorKind::Backend});
   if (Result<void> synced = sync_folder(folder_); !synced) return fail(synced.error());
   bless_step_done(4);
 

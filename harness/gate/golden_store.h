@@ -16,9 +16,9 @@
 #include <optional>
 #include <string>
 
+#include "base/result.h"
 #include "harness/gate/golden_lock.h"
 #include "harness/image/image.h"
-#include "base/result.h"
 
 namespace xshade::harness {
 
@@ -31,7 +31,7 @@ struct GoldenImage {
 
 struct BlessOutcome {
   std::filesystem::path path;  // the image written
-  bool replaced = false;  // an image was already at `path`
+  bool replaced = false;       // an image was already at `path`
   // The image that was replaced, for the caller to report how much the golden moved; nullopt
   // when there was none or it could not be read (blessing is how a damaged golden is repaired).
   std::optional<FloatImage> previous;
@@ -56,8 +56,8 @@ class GoldenStore {
   // folder's exclusive lock. A test may kill the process after any step of the commit
   // (XSHADE_TEST_ABORT_AFTER_BLESS_STEP, golden_store.cpp) or hold it between reading the
   // manifest and writing it back (XSHADE_TEST_BLESS_HOLDS_MANIFEST_MS).
-  Result<BlessOutcome> bless(const std::string& scene, const std::optional<std::string>& lane,
-                             const FloatImage& image, const std::string& reason, const std::string& who) const;
+  Result<BlessOutcome> bless(const std::string& scene, const std::optional<std::string>& lane, const FloatImage& image,
+                             const std::string& reason, const std::string& who) const;
 
   // The command that creates the golden, e.g. `xshade bless material_grid --lane vk --reason "..."`.
   static std::string bless_command(const std::string& scene, const std::optional<std::string>& lane);

@@ -288,10 +288,11 @@ TEST_F(GoldenStoreTest, AGoldenChangedWithoutBlessingIsAnError) {
 
   auto found = GoldenStore(folder_).find("material_grid", "gl");
   ASSERT_FALSE(found);
-  EXPECT_EQ(found.error().to_string(), (folder_ / "MANIFEST.toml").string() + ":16:1: " +
-                                           (folder_ / "material_grid.png").string() + " is not the image blessed on " +
-                                           date + " (its hash differs from the manifest's): only `xshade bless` may "
-                                                  "change a golden");
+  EXPECT_EQ(found.error().to_string(), (folder_ / "MANIFEST.toml").string() +
+                                           ":16:1: " + (folder_ / "material_grid.png").string() +
+                                           " is not the image blessed on " + date +
+                                           " (its hash differs from the manifest's): only `xshade bless` may "
+                                           "change a golden");
 }
 
 TEST_F(GoldenStoreTest, AMalformedManifestIsAnErrorWithItsLineAndColumnAndIsNotOverwritten) {
@@ -323,7 +324,6 @@ TEST_F(GoldenStoreTest, NamesThatAreNotScenesOrLanesAreRefused) {
   EXPECT_EQ(found.error().to_string(), "unknown lane 'metal' (lanes: gl, vk, vk-hlsl)");
   EXPECT_TRUE(fs::is_empty(folder_));
 }
-
 
 TEST_F(GoldenStoreTest, ACommonGoldenWithoutAnEntryIsAnErrorNamingTheBlessCommand) {
   bless("material_grid", std::nullopt, solid(128, 128, 128), "first render");

@@ -73,8 +73,7 @@ Result<void> sync_descriptor(const fs::path& path, int flags) {
 }  // namespace
 
 fs::path pending_path(const fs::path& golden) {
-  return golden.parent_path() /
-         ("." + golden.stem().string() + std::string(kPending) + golden.extension().string());
+  return golden.parent_path() / ("." + golden.stem().string() + std::string(kPending) + golden.extension().string());
 }
 
 fs::path pending_manifest_path(const fs::path& folder) { return folder / "MANIFEST.toml.pending"; }

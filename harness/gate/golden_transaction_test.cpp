@@ -18,8 +18,9 @@ using Kind = RecoveryAction::Kind;
 class GoldenTransactionTest : public ::testing::Test {
  protected:
   void SetUp() override {
-    folder_ = fs::temp_directory_path() / ("xshade_transaction_test_" +
-                                           std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
+    folder_ =
+        fs::temp_directory_path() /
+        ("xshade_transaction_test_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
     fs::remove_all(folder_);
     fs::create_directories(folder_);
   }
@@ -38,8 +39,14 @@ class GoldenTransactionTest : public ::testing::Test {
   // The manifest with one entry for `scene` (on `lane`) whose image is `png` (and float image `exr`).
   void commit(const std::string& scene, const std::string& lane, const std::string& png, const std::string& exr = "") {
     GoldenManifest manifest;
-    manifest.record({scene, lane, "why", "ada", "2024-05-01T12:34:56Z", content_hash(png),
-                     exr.empty() ? "" : content_hash(exr), {}});
+    manifest.record({scene,
+                     lane,
+                     "why",
+                     "ada",
+                     "2024-05-01T12:34:56Z",
+                     content_hash(png),
+                     exr.empty() ? "" : content_hash(exr),
+                     {}});
     write(folder_ / "MANIFEST.toml", format_golden_manifest(manifest));
   }
   std::vector<std::pair<Kind, std::string>> plan() const {
@@ -83,10 +90,10 @@ TEST_F(GoldenTransactionTest, BeforeTheCommitEverythingPendingIsDiscarded) {
   write(folder_ / "MANIFEST.toml.tmp.4242", "what bless wrote before it had pending names");
   write(folder_ / "gl" / ".dof_off.pending.png", "a lane's new png");
   EXPECT_EQ(plan(), (std::vector<std::pair<Kind, std::string>>{{Kind::Discard, ".dof_off.pending.exr"},
-                                                                {Kind::Discard, ".dof_off.pending.png"},
-                                                                {Kind::Discard, "MANIFEST.toml.pending"},
-                                                                {Kind::Discard, "MANIFEST.toml.tmp.4242"},
-                                                                {Kind::Discard, "gl/.dof_off.pending.png"}}));
+                                                               {Kind::Discard, ".dof_off.pending.png"},
+                                                               {Kind::Discard, "MANIFEST.toml.pending"},
+                                                               {Kind::Discard, "MANIFEST.toml.tmp.4242"},
+                                                               {Kind::Discard, "gl/.dof_off.pending.png"}}));
   const std::string manifest = read(folder_ / "MANIFEST.toml");
   auto recovered = recover_golden_folder(folder_);
   ASSERT_TRUE(recovered) << recovered.error().to_string();
@@ -105,8 +112,8 @@ TEST_F(GoldenTransactionTest, AfterTheCommitWhatTheManifestRecordsIsRolledForwar
   write(folder_ / "vk" / ".dof_off.pending.exr", "new exr");
   write(folder_ / "vk" / ".other.pending.png", "no entry records this");
   EXPECT_EQ(plan(), (std::vector<std::pair<Kind, std::string>>{{Kind::RollForward, "vk/.dof_off.pending.exr"},
-                                                                {Kind::RollForward, "vk/.dof_off.pending.png"},
-                                                                {Kind::Discard, "vk/.other.pending.png"}}));
+                                                               {Kind::RollForward, "vk/.dof_off.pending.png"},
+                                                               {Kind::Discard, "vk/.other.pending.png"}}));
   auto recovered = recover_golden_folder(folder_);
   ASSERT_TRUE(recovered) << recovered.error().to_string();
   EXPECT_TRUE(find_leftovers(folder_).empty());
@@ -122,7 +129,7 @@ TEST_F(GoldenTransactionTest, APendingImageThatIsNotTheCommittedOneIsDiscarded) 
   write(folder_ / ".dof_off.pending.png", "something else");
   write(folder_ / ".dof_off.pending.exr", "a float image the manifest does not record");
   EXPECT_EQ(plan(), (std::vector<std::pair<Kind, std::string>>{{Kind::Discard, ".dof_off.pending.exr"},
-                                                                {Kind::Discard, ".dof_off.pending.png"}}));
+                                                               {Kind::Discard, ".dof_off.pending.png"}}));
 }
 
 // The committed golden has no float image: the old one goes, as bless would have removed it.

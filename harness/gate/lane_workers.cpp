@@ -41,8 +41,8 @@ class ScratchFolder {
     const fs::path temp = fs::temp_directory_path(error);
     std::string hidden = (temp / ("." + std::string(kScratchPrefix) + "XXXXXX")).string();
     if (!mkdtemp(hidden.data()))
-      return fail(ErrorKind::Backend, "cannot make a folder for the workers in " + temp.string() + ": " +
-                                          std::strerror(errno));
+      return fail(ErrorKind::Backend,
+                  "cannot make a folder for the workers in " + temp.string() + ": " + std::strerror(errno));
     const fs::path named = temp / fs::path(hidden).filename().string().substr(1);
     const int fd = open(hidden.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
     if (fd < 0 || flock(fd, LOCK_EX | LOCK_NB) != 0 ||
@@ -50,7 +50,8 @@ class ScratchFolder {
       const int cause = errno;
       if (fd >= 0) close(fd);
       fs::remove_all(hidden, error);
-      return fail(ErrorKind::Backend, "cannot make the workers' folder " + named.string() + ": " + std::strerror(cause));
+      return fail(ErrorKind::Backend,
+                  "cannot make the workers' folder " + named.string() + ": " + std::strerror(cause));
     }
     return ScratchFolder(named, fd);
   }
@@ -131,9 +132,9 @@ LaneResult ended_without_result(Lane lane, const ChildProcess& worker, double ti
   }
   result.layers.push_back({layer, result.verdict, result.message});
   if (exit.timed_out)
-    result.message += "; a scene that needs longer says so with `timeout = SECONDS` and `timeout_reason`, a run with --timeout";
-  if (const std::string tail = last_lines(output, 20); !tail.empty())
-    result.message += "\nits last output:\n" + tail;
+    result.message +=
+        "; a scene that needs longer says so with `timeout = SECONDS` and `timeout_reason`, a run with --timeout";
+  if (const std::string tail = last_lines(output, 20); !tail.empty()) result.message += "\nits last output:\n" + tail;
   return result;
 }
 
@@ -162,13 +163,11 @@ struct WorkerSlot {
 
 }  // namespace
 
-unsigned driver_threads_per_worker(unsigned cores, unsigned jobs) {
-  return std::max(1u, cores / std::max(1u, jobs));
-}
+unsigned driver_threads_per_worker(unsigned cores, unsigned jobs) { return std::max(1u, cores / std::max(1u, jobs)); }
 
 WorkerTotals check_in_workers(SceneChecker& checker, const SceneWorkers& workers, const std::vector<fs::path>& files,
-                      const std::vector<Lane>& lanes, const std::function<void(CheckedScene&&)>& done,
-                      const std::function<void(const std::string&)>& output) {
+                              const std::vector<Lane>& lanes, const std::function<void(CheckedScene&&)>& done,
+                              const std::function<void(const std::string&)>& output) {
   WorkerTotals totals;
   std::vector<SceneInWork> scenes(files.size());
   ScratchFolder::remove_dead_runs();
@@ -189,7 +188,8 @@ WorkerTotals check_in_workers(SceneChecker& checker, const SceneWorkers& workers
                                ? *scene.checked.scene->timeout_seconds
                                : workers.timeout_seconds;
     if (!scratch) return finish_lane(job, crashed(job.lane, scratch.error().to_string()));
-    const auto limit = std::chrono::duration_cast<ChildProcess::Clock::duration>(std::chrono::duration<double>(timeout));
+    const auto limit =
+        std::chrono::duration_cast<ChildProcess::Clock::duration>(std::chrono::duration<double>(timeout));
     if (!slot.process || slot.process->finished()) {
       std::vector<std::string> command = workers.command;
       command.push_back("--serve");
@@ -315,8 +315,8 @@ int run_lane_worker(SceneChecker& checker, const fs::path& scene_file, Lane lane
     // Its supervisor prepared this scene and found the lane in it: the file changed since.
     result.lane = std::string(lane_name(lane));
     result.verdict = checked.result.verdict == Verdict::Pass ? Verdict::Error : checked.result.verdict;
-    result.message = checked.result.message.empty() ? "the scene no longer runs on " + result.lane
-                                                    : checked.result.message;
+    result.message =
+        checked.result.message.empty() ? "the scene no longer runs on " + result.lane : checked.result.message;
   } else {
     checker.check_lane(lane, checked, status);
     result = std::move(checked.result.lanes.back());

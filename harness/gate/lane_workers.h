@@ -46,10 +46,10 @@ struct SceneWorkers {
 
 // What the workers compiled, over the whole run.
 struct WorkerTotals {
-  size_t renders = 0;            // scene-and-lane renders handed to workers
-  size_t workers_started = 0;    // worker processes it took: one per job slot, and one after each that ended
-  size_t compiled = 0;           // shader variants compiled
-  size_t cached = 0;             // found in the cache
+  size_t renders = 0;             // scene-and-lane renders handed to workers
+  size_t workers_started = 0;     // worker processes it took: one per job slot, and one after each that ended
+  size_t compiled = 0;            // shader variants compiled
+  size_t cached = 0;              // found in the cache
   std::string cache_write_error;  // the first one, when a worker could not write the cache
   std::string cache_damage;       // the first damaged entry a worker found (and recompiled)
 };
@@ -59,9 +59,10 @@ struct WorkerTotals {
 // goes to `output` with its scene. When the process is asked to stop (base/interrupt.h) it
 // returns early, its workers killed and their folder removed; the scenes not yet given to `done`
 // are not. It first removes the workers' folders that dead runs of this user left.
-WorkerTotals check_in_workers(SceneChecker& checker, const SceneWorkers& workers, const std::vector<std::filesystem::path>& files,
-                      const std::vector<Lane>& lanes, const std::function<void(CheckedScene&&)>& done,
-                      const std::function<void(const std::string&)>& output);
+WorkerTotals check_in_workers(SceneChecker& checker, const SceneWorkers& workers,
+                              const std::vector<std::filesystem::path>& files, const std::vector<Lane>& lanes,
+                              const std::function<void(CheckedScene&&)>& done,
+                              const std::function<void(const std::string&)>& output);
 
 // The worker's side: one lane of one scene checked in this process, its result and image written
 // to `result_dir`, its status to kChildStatusFd. The exit code is 0 when the result was written

@@ -27,7 +27,10 @@ json rgba_json(const std::array<float, 4>& value) {
 }
 
 json non_finite_json(const NonFiniteCount& count) {
-  return {{"nan", count.nan}, {"inf", count.inf}, {"negative", count.negative}, {"total", count.total()},
+  return {{"nan", count.nan},
+          {"inf", count.inf},
+          {"negative", count.negative},
+          {"total", count.total()},
           {"first", pixel_json(count.first)}};
 }
 
@@ -40,10 +43,14 @@ json driver_json(const DriverInfo& driver) {
 }
 
 json site_json(const glsl::TraceSite& site) {
-  return {{"kind", glsl::trace_site_kind_name(site.kind)}, {"file", site.file},
-          {"line", site.line},   {"column", site.column},
-          {"source_line", site.source_line}, {"function", site.function},
-          {"what", site.what},   {"description", glsl::describe_site(site)}};
+  return {{"kind", glsl::trace_site_kind_name(site.kind)},
+          {"file", site.file},
+          {"line", site.line},
+          {"column", site.column},
+          {"source_line", site.source_line},
+          {"function", site.function},
+          {"what", site.what},
+          {"description", glsl::describe_site(site)}};
 }
 
 json trace_json(const NonfiniteTraceResult& trace) {
@@ -53,18 +60,32 @@ json trace_json(const NonfiniteTraceResult& trace) {
     for (const NonfiniteOrigin& origin : pass.origins) {
       json calls = json::array();
       for (const glsl::TraceCall& call : origin.calls)
-        calls.push_back({{"callee", call.callee}, {"caller", call.caller}, {"file", call.file}, {"line", call.line},
-                         {"column", call.column}, {"source_line", call.source_line}});
-      origins.push_back({{"program", origin.program}, {"site", site_json(origin.site)}, {"calls", std::move(calls)},
-                         {"pixels", origin.pixels}, {"nan", origin.nan}, {"inf", origin.inf},
-                         {"negative", origin.negative}, {"first", {{"x", origin.first_x}, {"y", origin.first_y}}}});
+        calls.push_back({{"callee", call.callee},
+                         {"caller", call.caller},
+                         {"file", call.file},
+                         {"line", call.line},
+                         {"column", call.column},
+                         {"source_line", call.source_line}});
+      origins.push_back({{"program", origin.program},
+                         {"site", site_json(origin.site)},
+                         {"calls", std::move(calls)},
+                         {"pixels", origin.pixels},
+                         {"nan", origin.nan},
+                         {"inf", origin.inf},
+                         {"negative", origin.negative},
+                         {"first", {{"x", origin.first_x}, {"y", origin.first_y}}}});
     }
-    passes.push_back({{"pass", pass.pass}, {"output", pass.output}, {"origins", std::move(origins)},
-                      {"unattributed_pixels", pass.unattributed_pixels}, {"recovered_pixels", pass.recovered_pixels},
+    passes.push_back({{"pass", pass.pass},
+                      {"output", pass.output},
+                      {"origins", std::move(origins)},
+                      {"unattributed_pixels", pass.unattributed_pixels},
+                      {"recovered_pixels", pass.recovered_pixels},
                       {"map", pass.map}});
   }
-  return {{"passes", std::move(passes)}, {"traced_milliseconds", number(trace.traced_milliseconds)},
-          {"plain_milliseconds", number(trace.plain_milliseconds)}, {"identical", trace.identical},
+  return {{"passes", std::move(passes)},
+          {"traced_milliseconds", number(trace.traced_milliseconds)},
+          {"plain_milliseconds", number(trace.plain_milliseconds)},
+          {"identical", trace.identical},
           {"traced_image", trace.traced_image},
           {"note", trace.note}};
 }
@@ -135,7 +156,7 @@ class Reader {
     metrics.rmse_steps = get<double>(steps, "rmse");
     // The only PSNR JSON cannot hold is that of identical images.
     metrics.psnr = steps.contains("psnr") && steps["psnr"].is_null() ? std::numeric_limits<double>::infinity()
-                                                                    : get<double>(steps, "psnr");
+                                                                     : get<double>(steps, "psnr");
     metrics.failing_pixels = get<size_t>(steps, "failing_pixels");
     metrics.failing_fraction = get<double>(steps, "failing_fraction");
     const json& above_one = this->object(object, "above_one");
@@ -216,33 +237,37 @@ class Reader {
 }  // namespace
 
 json metrics_to_json(const ImageMetrics& metrics) {
-  return {{"steps", {{"worst", metrics.max_steps},
-                     {"worst_x", metrics.worst_x},
-                     {"worst_y", metrics.worst_y},
-                     {"worst_test", rgba_json(metrics.worst_test)},
-                     {"worst_reference", rgba_json(metrics.worst_reference)},
-                     {"first_failing", pixel_json(metrics.first_failing)},
-                     {"mean", number(metrics.mean_steps)},
-                     {"rmse", number(metrics.rmse_steps)},
-                     {"psnr", number(metrics.psnr)},
-                     {"failing_pixels", metrics.failing_pixels},
-                     {"failing_fraction", number(metrics.failing_fraction)}}},
-          {"above_one", {{"values", metrics.hdr_values},
-                         {"failing_pixels", metrics.float_failing_pixels},
-                         {"worst_relative", number(metrics.float_max_relative)},
-                         {"worst_x", metrics.float_x},
-                         {"worst_y", metrics.float_y}}},
-          {"linear", {{"max_difference", number(metrics.max_difference)},
-                      {"max_x", metrics.max_x},
-                      {"max_y", metrics.max_y},
-                      {"mean", number(metrics.mean)},
-                      {"rmse", number(metrics.rmse)}}}};
+  return {{"steps",
+           {{"worst", metrics.max_steps},
+            {"worst_x", metrics.worst_x},
+            {"worst_y", metrics.worst_y},
+            {"worst_test", rgba_json(metrics.worst_test)},
+            {"worst_reference", rgba_json(metrics.worst_reference)},
+            {"first_failing", pixel_json(metrics.first_failing)},
+            {"mean", number(metrics.mean_steps)},
+            {"rmse", number(metrics.rmse_steps)},
+            {"psnr", number(metrics.psnr)},
+            {"failing_pixels", metrics.failing_pixels},
+            {"failing_fraction", number(metrics.failing_fraction)}}},
+          {"above_one",
+           {{"values", metrics.hdr_values},
+            {"failing_pixels", metrics.float_failing_pixels},
+            {"worst_relative", number(metrics.float_max_relative)},
+            {"worst_x", metrics.float_x},
+            {"worst_y", metrics.float_y}}},
+          {"linear",
+           {{"max_difference", number(metrics.max_difference)},
+            {"max_x", metrics.max_x},
+            {"max_y", metrics.max_y},
+            {"mean", number(metrics.mean)},
+            {"rmse", number(metrics.rmse)}}}};
 }
 
 json lane_to_json(const LaneResult& lane) {
   json layers = json::array();
   for (const LayerResult& layer : lane.layers)
-    layers.push_back({{"layer", layer.layer}, {"verdict", std::string(verdict_name(layer.verdict))}, {"detail", layer.detail}});
+    layers.push_back(
+        {{"layer", layer.layer}, {"verdict", std::string(verdict_name(layer.verdict))}, {"detail", layer.detail}});
   json timings = json::array();
   for (const PassTime& time : lane.timings)
     timings.push_back({{"pass", time.pass}, {"milliseconds", number(time.milliseconds)}});
@@ -307,7 +332,8 @@ Result<LaneResult> lane_from_json(const json& object) {
   if (!read.missing().empty())
     return fail(ErrorKind::Internal, "a lane's result has no valid '" + read.missing() + "'");
   // A lane xshade does not have would be left out of every check between lanes without a word.
-  if (!parse_lane(lane.lane)) return fail("a lane's result names the lane '" + lane.lane + "', which xshade does not have");
+  if (!parse_lane(lane.lane))
+    return fail("a lane's result names the lane '" + lane.lane + "', which xshade does not have");
   return lane;
 }
 

@@ -15,7 +15,8 @@ LaneResult full_lane() {
   LaneResult lane;
   lane.lane = "vk";
   lane.verdict = Verdict::Fail;
-  lane.layers = {{"determinism", Verdict::Pass, "two renders are bit-identical"}, {"per_pixel", Verdict::Fail, "12 pixels"}};
+  lane.layers = {{"determinism", Verdict::Pass, "two renders are bit-identical"},
+                 {"per_pixel", Verdict::Fail, "12 pixels"}};
   ImageMetrics metrics;
   metrics.max_difference = 0.25;
   metrics.max_x = 3;

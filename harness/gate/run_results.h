@@ -44,20 +44,20 @@ struct NonfiniteTraceResult {
 struct LaneResult {
   std::string lane;
   Verdict verdict = Verdict::Pass;
-  std::vector<LayerResult> layers;      // in the order they ran
+  std::vector<LayerResult> layers;  // in the order they ran
   std::optional<ImageMetrics> against_golden;
   NonFiniteCount non_finite;
   // Files, relative to the report folder; empty when there is none.
-  std::string image;          // the lane's PNG
-  std::string image_exr;      // the lane's float image
-  std::string golden;         // the golden it was compared with (a copy in the report)
-  std::string golden_exr;     // the golden's float image, where it has one (values above 1)
-  std::string diff;           // heat map of the difference against the golden
+  std::string image;            // the lane's PNG
+  std::string image_exr;        // the lane's float image
+  std::string golden;           // the golden it was compared with (a copy in the report)
+  std::string golden_exr;       // the golden's float image, where it has one (values above 1)
+  std::string diff;             // heat map of the difference against the golden
   std::string non_finite_mask;  // white where NaN/Inf/negative values are
   std::vector<PassTime> timings;
-  double seconds = 0.0;       // compile + render + checks
+  double seconds = 0.0;  // compile + render + checks
   DriverInfo driver;
-  std::string message;        // an error's text, or what failed, for a reviewer
+  std::string message;  // an error's text, or what failed, for a reviewer
   std::optional<NonfiniteTraceResult> trace;
 };
 
@@ -66,7 +66,7 @@ struct CrossLaneResult {
   std::string second_lane;
   Verdict verdict = Verdict::Pass;
   ImageMetrics metrics;
-  std::string diff;  // heat map, relative to the report folder; none for identical images
+  std::string diff;        // heat map, relative to the report folder; none for identical images
   bool identical = false;  // bit-identical images (a heat map of them would be black)
 };
 
@@ -76,17 +76,17 @@ struct SceneResult {
   Verdict verdict = Verdict::Pass;  // the worst of its lanes and cross-lane checks
   std::vector<LaneResult> lanes;
   std::vector<CrossLaneResult> cross_lane;
-  std::string plan;     // describe_plan's text
+  std::string plan;  // describe_plan's text
   // The front end's warnings about the scene's sources (Plan::warnings): run prints them, the
   // report shows them.
   std::vector<std::string> warnings;
-  std::string message;  // when the scene failed before any lane ran (bad scene file, bad shader)
+  std::string message;      // when the scene failed before any lane ran (bad scene file, bad shader)
   CompareSettings compare;  // the tolerances its images were held to
 };
 
 // One of the runs a merged report was made from (xshade report merge).
 struct MergedRun {
-  std::string folder;   // as given to the merge
+  std::string folder;  // as given to the merge
   std::string started;
   double seconds = 0.0;
   std::string command;
@@ -94,9 +94,9 @@ struct MergedRun {
 
 struct RunResults {
   std::vector<SceneResult> scenes;
-  std::string started;     // ISO 8601, UTC
+  std::string started;  // ISO 8601, UTC
   double seconds = 0.0;
-  std::string command;     // how the run was invoked
+  std::string command;                 // how the run was invoked
   std::vector<MergedRun> merged_from;  // empty for a run; the runs a merged report holds
 };
 

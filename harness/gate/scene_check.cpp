@@ -25,9 +25,7 @@ std::string first_line(const std::string& text) { return text.substr(0, text.fin
 
 // Whose fault a failed render is: a scene's or a shader's mistake is the user's (exit 2), a
 // driver's or xshade's is a crash (exit 3).
-Verdict verdict_of(const Error& error) {
-  return error.kind == ErrorKind::UserInput ? Verdict::Error : Verdict::Crash;
-}
+Verdict verdict_of(const Error& error) { return error.kind == ErrorKind::UserInput ? Verdict::Error : Verdict::Crash; }
 
 // Records a layer; a deciding one sets the lane's verdict (the first failing one its message).
 // A comparison layer that does not decide is shown but judges nothing: a per-pixel failure that
@@ -58,7 +56,8 @@ std::string SceneChecker::copy_file(const fs::path& from, const std::string& sce
   return relative;
 }
 
-std::string SceneChecker::write_image(const FloatImage& image, const std::string& scene, const std::string& file, bool exr) {
+std::string SceneChecker::write_image(const FloatImage& image, const std::string& scene, const std::string& file,
+                                      bool exr) {
   const std::string relative = scene + "/" + file;
   const fs::path path = options_.report_dir / relative;
   std::error_code ignored;
@@ -82,7 +81,8 @@ std::string lane_progress_line(const std::string& scene, const LaneResult& lane)
       line += fmt::format("\n    {} pixels non-finite from {}:{}:{}: {} in {}", origin.pixels, origin.site.file,
                           origin.site.line, origin.site.column, glsl::describe_site(origin.site), origin.site.function);
     }
-    if (pass.origins.size() > 3) line += fmt::format("\n    ... and {} more sites (the report lists them)", pass.origins.size() - 3);
+    if (pass.origins.size() > 3)
+      line += fmt::format("\n    ... and {} more sites (the report lists them)", pass.origins.size() - 3);
   }
   return line;
 }
@@ -112,9 +112,8 @@ CheckedScene SceneChecker::prepare(const fs::path& scene_file, const std::vector
       scene_lanes.push_back(lane);
   std::vector<bool> cached;
   for (const VariantRequest& variant : plan->variants)
-    cached.push_back(!scene_lanes.empty() && std::all_of(scene_lanes.begin(), scene_lanes.end(), [&](Lane lane) {
-      return compiler_.in_cache(variant, lane);
-    }));
+    cached.push_back(!scene_lanes.empty() && std::all_of(scene_lanes.begin(), scene_lanes.end(),
+                                                         [&](Lane lane) { return compiler_.in_cache(variant, lane); }));
   result.plan = describe_plan(*scene, *plan, cached);
   result.warnings = plan->warnings;
   if (options_.plan_only) return checked;
@@ -158,7 +157,8 @@ void SceneChecker::check_lane(Lane lane, CheckedScene& checked, const Status& st
   };
 
   if (options_.half_emulation && lane == Lane::VkHlsl)
-    return finish(Verdict::Skipped, "half emulation rewrites the GLSL xshade emits; this lane compiles the source with glslang");
+    return finish(Verdict::Skipped,
+                  "half emulation rewrites the GLSL xshade emits; this lane compiles the source with glslang");
   if (!checked.environment) {
     at("while building the environment");
     if (options_.environments) {
@@ -203,7 +203,8 @@ void SceneChecker::check_lane(Lane lane, CheckedScene& checked, const Status& st
   result.image = write_image(image, scene.name, result.lane + ".png");
   result.image_exr = write_image(image, scene.name, result.lane + ".exr", true);
   result.non_finite = count_non_finite(image);
-  if (result.non_finite.total()) result.non_finite_mask = write_image(non_finite_mask(image), scene.name, result.lane + ".nonfinite.png");
+  if (result.non_finite.total())
+    result.non_finite_mask = write_image(non_finite_mask(image), scene.name, result.lane + ".nonfinite.png");
   if (options_.trace_nonfinite || result.non_finite.total()) {
     at("while tracing non-finite values");
     trace_lane(lane, scene, plan, *checked.environment, **backend, image, result);
@@ -220,13 +221,13 @@ void SceneChecker::check_lane(Lane lane, CheckedScene& checked, const Status& st
     } else if ((*golden)->image.width != image.width || (*golden)->image.height != image.height) {
       // The scene's size changed since the golden was blessed: nothing to compare pixel by pixel.
       const FloatImage& old = (*golden)->image;
-      add_layer(result, {"golden", Verdict::Error,
-                         fmt::format("{} is {}x{} and the scene renders {}x{}: its size changed since it was blessed; "
-                                     "review the new image and bless it with {}",
-                                     (*golden)->path.string(), old.width, old.height, image.width, image.height,
-                                     GoldenStore::bless_command(scene.name, (*golden)->lane_specific
-                                                                                ? std::optional(result.lane)
-                                                                                : std::nullopt))});
+      add_layer(result,
+                {"golden", Verdict::Error,
+                 fmt::format("{} is {}x{} and the scene renders {}x{}: its size changed since it was blessed; "
+                             "review the new image and bless it with {}",
+                             (*golden)->path.string(), old.width, old.height, image.width, image.height,
+                             GoldenStore::bless_command(
+                                 scene.name, (*golden)->lane_specific ? std::optional(result.lane) : std::nullopt))});
     } else {
       const GoldenImage& reference = **golden;
       // The golden's own files, as bless wrote them: its PNG, and its float image where it has one;
@@ -245,13 +246,15 @@ void SceneChecker::check_lane(Lane lane, CheckedScene& checked, const Status& st
     }
   } else {
     if (options_.half_emulation)
-      add_layer(result, {"golden", Verdict::Skipped, "goldens are fp32 renders; half emulation is not compared with them"});
+      add_layer(result,
+                {"golden", Verdict::Skipped, "goldens are fp32 renders; half emulation is not compared with them"});
     const NonFiniteCount& bad = result.non_finite;
-    add_layer(result, {"finite", bad.total() ? Verdict::Fail : Verdict::Pass,
-                       bad.total() ? std::to_string(bad.nan) + " NaN, " + std::to_string(bad.inf) + " Inf, " +
-                                         std::to_string(bad.negative) + " negative values, first at (" +
-                                         std::to_string(bad.first->first) + ", " + std::to_string(bad.first->second) + ")"
-                                   : "no NaN, Inf or negative values"});
+    add_layer(result,
+              {"finite", bad.total() ? Verdict::Fail : Verdict::Pass,
+               bad.total() ? std::to_string(bad.nan) + " NaN, " + std::to_string(bad.inf) + " Inf, " +
+                                 std::to_string(bad.negative) + " negative values, first at (" +
+                                 std::to_string(bad.first->first) + ", " + std::to_string(bad.first->second) + ")"
+                           : "no NaN, Inf or negative values"});
   }
   checked.images.emplace(lane, image);
   finish(Verdict::Pass, {});
@@ -262,8 +265,9 @@ void SceneChecker::trace_lane(Lane lane, const Scene& scene, const Plan& plan, c
   NonfiniteTraceResult& trace = result.trace.emplace();
   for (const PassTime& time : result.timings) trace.plain_milliseconds += time.milliseconds;
   if (lane == Lane::VkHlsl) {
-    trace.note = "vk-hlsl compiles the source with glslang's HLSL front end, which xshade cannot instrument: the gl and "
-                 "vk lanes say where the values were born";
+    trace.note =
+        "vk-hlsl compiles the source with glslang's HLSL front end, which xshade cannot instrument: the gl and "
+        "vk lanes say where the values were born";
     return;
   }
   auto variants = compiler_.compile_plan(plan, lane, options_.half_emulation, /*trace_nonfinite=*/true);
@@ -272,8 +276,8 @@ void SceneChecker::trace_lane(Lane lane, const Scene& scene, const Plan& plan, c
     return;
   }
   const auto start = std::chrono::steady_clock::now();
-  auto traced = render_scene(backend, scene, plan, *variants, environment,
-                             {.keep_pass_images = true, .trace_nonfinite = true});
+  auto traced =
+      render_scene(backend, scene, plan, *variants, environment, {.keep_pass_images = true, .trace_nonfinite = true});
   trace.traced_milliseconds = seconds_since(start) * 1000.0;
   if (!traced) {
     trace.note = "the traced render failed: " + traced.error().to_string();
@@ -295,8 +299,8 @@ void SceneChecker::trace_lane(Lane lane, const Scene& scene, const Plan& plan, c
       trace.note = origins.error().to_string();
       return;
     }
-    PassOrigins pass{record.pass, output, std::move(origins->origins), origins->unattributed_pixels,
-                     origins->recovered_pixels, {}};
+    PassOrigins pass{
+        record.pass, output, std::move(origins->origins), origins->unattributed_pixels, origins->recovered_pixels, {}};
     if (!pass.origins.empty())
       pass.map = write_image(origins->map, scene.name, result.lane + "." + record.pass + ".origins.png");
     trace.passes.push_back(std::move(pass));
@@ -335,9 +339,9 @@ std::optional<BlessRefusal> bless_refusal(const SceneResult& result) {
   return std::nullopt;
 }
 
-std::vector<CrossLaneResult> cross_lane_results(const std::map<Lane, FloatImage>& images,
-                                                const CompareSettings& settings, const HeatMapWriter& write,
-                                                const std::function<void(const CrossLaneResult&, const std::string&)>& said) {
+std::vector<CrossLaneResult> cross_lane_results(
+    const std::map<Lane, FloatImage>& images, const CompareSettings& settings, const HeatMapWriter& write,
+    const std::function<void(const CrossLaneResult&, const std::string&)>& said) {
   std::vector<CrossLaneResult> pairs;
   for (LanePairComparison& compared : compare_lane_images(images, settings)) {
     Comparison& comparison = compared.comparison;
@@ -348,7 +352,8 @@ std::vector<CrossLaneResult> cross_lane_results(const std::map<Lane, FloatImage>
     pair.metrics = comparison.metrics;
     // A heat map of bit-identical images is black: the report says "identical" instead.
     pair.identical = comparison.decided_by == "exact";
-    if (!pair.identical) pair.diff = write(comparison.heat_map, pair.first_lane + "_vs_" + pair.second_lane + ".diff.png");
+    if (!pair.identical)
+      pair.diff = write(comparison.heat_map, pair.first_lane + "_vs_" + pair.second_lane + ".diff.png");
     std::string detail;
     for (const LayerResult& layer : comparison.layers)
       if (layer.layer == comparison.decided_by) detail = layer.detail;

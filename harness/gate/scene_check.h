@@ -14,11 +14,11 @@
 #include <vector>
 
 #include "harness/gate/golden_store.h"
+#include "harness/gate/run_results.h"
 #include "harness/render/environment_cache.h"
 #include "harness/render/lanes.h"
-#include "harness/gate/run_results.h"
-#include "harness/scene/scene.h"
 #include "harness/render/variant_compiler.h"
+#include "harness/scene/scene.h"
 
 namespace xshade::harness {
 

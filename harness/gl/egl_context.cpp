@@ -21,8 +21,8 @@
 namespace xshade::harness {
 namespace {
 
-constexpr const char* kLoaderPackage = "libegl1";     // libEGL.so.1, glvnd's dispatcher
-constexpr const char* kVendorPackage = "libegl-mesa0";  // Mesa's EGL, which glvnd finds
+constexpr const char* kLoaderPackage = "libegl1";          // libEGL.so.1, glvnd's dispatcher
+constexpr const char* kVendorPackage = "libegl-mesa0";     // Mesa's EGL, which glvnd finds
 constexpr const char* kDriverPackage = "libgl1-mesa-dri";  // swrast_dri.so: llvmpipe for EGL
 
 struct EglFunctions {
@@ -127,9 +127,10 @@ class EglContext final : public GlContext {
     const char* client = egl_.QueryString(EGL_NO_DISPLAY, EGL_EXTENSIONS);
     for (const char* needed : {"EGL_EXT_platform_base", "EGL_MESA_platform_surfaceless"})
       if (!has_extension(client, needed))
-        return fail(fmt::format("EGL in '{}' does not offer {} (client extensions: {}); Mesa's EGL provides it: "
-                                "install the Debian package {}",
-                                library, needed, client ? client : "none", kVendorPackage));
+        return fail(
+            fmt::format("EGL in '{}' does not offer {} (client extensions: {}); Mesa's EGL provides it: "
+                        "install the Debian package {}",
+                        library, needed, client ? client : "none", kVendorPackage));
     egl_.GetPlatformDisplayEXT =
         reinterpret_cast<PFNEGLGETPLATFORMDISPLAYEXTPROC>(egl_.GetProcAddress("eglGetPlatformDisplayEXT"));
     if (egl_.GetPlatformDisplayEXT == nullptr)
@@ -137,54 +138,55 @@ class EglContext final : public GlContext {
 
     display_ = egl_.GetPlatformDisplayEXT(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, nullptr);
     if (display_ == EGL_NO_DISPLAY)
-      return fail(fmt::format("eglGetPlatformDisplayEXT(EGL_PLATFORM_SURFACELESS_MESA) in '{}' gives no display "
-                              "({}); install the Debian package {}",
-                              library, egl_error_name(egl_.GetError()), kVendorPackage));
+      return fail(
+          fmt::format("eglGetPlatformDisplayEXT(EGL_PLATFORM_SURFACELESS_MESA) in '{}' gives no display "
+                      "({}); install the Debian package {}",
+                      library, egl_error_name(egl_.GetError()), kVendorPackage));
     EGLint major = 0, minor = 0;
     if (egl_.Initialize(display_, &major, &minor) != EGL_TRUE)
-      return fail(fmt::format("eglInitialize of the surfaceless display failed ({}): Mesa's software driver "
-                              "swrast_dri.so is needed; install the Debian package {}",
-                              egl_error_name(egl_.GetError()), kDriverPackage));
+      return fail(
+          fmt::format("eglInitialize of the surfaceless display failed ({}): Mesa's software driver "
+                      "swrast_dri.so is needed; install the Debian package {}",
+                      egl_error_name(egl_.GetError()), kDriverPackage));
 
     const char* extensions = egl_.QueryString(display_, EGL_EXTENSIONS);
     for (const char* needed : {"EGL_KHR_create_context", "EGL_KHR_no_config_context", "EGL_KHR_surfaceless_context"})
       if (!has_extension(extensions, needed))
-        return fail(fmt::format("the EGL surfaceless display (EGL {}.{}, '{}') lacks {}; install a newer Debian "
-                                "package {}",
-                                major, minor, library, needed, kVendorPackage));
+        return fail(
+            fmt::format("the EGL surfaceless display (EGL {}.{}, '{}') lacks {}; install a newer Debian "
+                        "package {}",
+                        major, minor, library, needed, kVendorPackage));
     if (egl_.BindAPI(EGL_OPENGL_API) != EGL_TRUE)
       return fail(fmt::format("eglBindAPI(EGL_OPENGL_API) failed ({}): this EGL offers no desktop OpenGL",
                               egl_error_name(egl_.GetError())));
 
     // As the OSMesa route: no debug flag (KHR_debug output is enabled on the context instead).
-    const EGLint attributes[] = {EGL_CONTEXT_MAJOR_VERSION,
-                                 4,
-                                 EGL_CONTEXT_MINOR_VERSION,
-                                 5,
-                                 EGL_CONTEXT_OPENGL_PROFILE_MASK,
-                                 EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT,
-                                 EGL_NONE};
+    const EGLint attributes[] = {
+        EGL_CONTEXT_MAJOR_VERSION,           4,       EGL_CONTEXT_MINOR_VERSION, 5, EGL_CONTEXT_OPENGL_PROFILE_MASK,
+        EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT, EGL_NONE};
     context_ = egl_.CreateContext(display_, EGL_NO_CONFIG_KHR, EGL_NO_CONTEXT, attributes);
     if (context_ == EGL_NO_CONTEXT)
-      return fail(fmt::format("eglCreateContext cannot make an OpenGL 4.5 core context on the surfaceless display "
-                              "({}); Mesa's llvmpipe is needed ({}, {}: xshade sets LIBGL_ALWAYS_SOFTWARE=1 and "
-                              "GALLIUM_DRIVER=llvmpipe when they are unset): install the Debian package {}",
-                              egl_error_name(egl_.GetError()), environment_value("LIBGL_ALWAYS_SOFTWARE"),
-                              environment_value("GALLIUM_DRIVER"), kDriverPackage));
+      return fail(
+          fmt::format("eglCreateContext cannot make an OpenGL 4.5 core context on the surfaceless display "
+                      "({}); Mesa's llvmpipe is needed ({}, {}: xshade sets LIBGL_ALWAYS_SOFTWARE=1 and "
+                      "GALLIUM_DRIVER=llvmpipe when they are unset): install the Debian package {}",
+                      egl_error_name(egl_.GetError()), environment_value("LIBGL_ALWAYS_SOFTWARE"),
+                      environment_value("GALLIUM_DRIVER"), kDriverPackage));
     if (!make_current())
-      return fail(fmt::format("eglMakeCurrent failed for a new 4.5 core context ({})",
-                              egl_error_name(egl_.GetError())));
+      return fail(
+          fmt::format("eglMakeCurrent failed for a new 4.5 core context ({})", egl_error_name(egl_.GetError())));
 
     const auto get_string = reinterpret_cast<PFNGLGETSTRINGPROC>(proc_address("glGetString"));
     const GLubyte* text = get_string ? get_string(GL_RENDERER) : nullptr;
     const std::string renderer = text ? reinterpret_cast<const char*>(text) : "";
     // "llvmpipe (LLVM 15.0.6, 256 bits)"; zink on lavapipe says "zink (llvmpipe (...))".
     if (!renderer.starts_with("llvmpipe"))
-      return fail(fmt::format("EGL surfaceless gives the renderer '{}', not llvmpipe, which the gl lane's goldens "
-                              "come from ({}, {}: xshade sets LIBGL_ALWAYS_SOFTWARE=1 and GALLIUM_DRIVER=llvmpipe "
-                              "when they are unset); install the Debian package {}",
-                              renderer.empty() ? "(none)" : renderer, environment_value("LIBGL_ALWAYS_SOFTWARE"),
-                              environment_value("GALLIUM_DRIVER"), kDriverPackage));
+      return fail(
+          fmt::format("EGL surfaceless gives the renderer '{}', not llvmpipe, which the gl lane's goldens "
+                      "come from ({}, {}: xshade sets LIBGL_ALWAYS_SOFTWARE=1 and GALLIUM_DRIVER=llvmpipe "
+                      "when they are unset); install the Debian package {}",
+                      renderer.empty() ? "(none)" : renderer, environment_value("LIBGL_ALWAYS_SOFTWARE"),
+                      environment_value("GALLIUM_DRIVER"), kDriverPackage));
     return {};
   }
 

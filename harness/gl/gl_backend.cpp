@@ -78,7 +78,7 @@ struct Texture {
 struct Target {
   GlFramebuffer framebuffer;
   Texture color;
-  std::optional<Texture> depth;          // with an 8-bit stencil where `stencil`
+  std::optional<Texture> depth;         // with an 8-bit stencil where `stencil`
   std::optional<Texture> second_color;  // TargetDesc::second_color
   bool stencil = false;
 };
@@ -240,8 +240,7 @@ Result<T> GlBackend::on_context(const std::string& what, F&& body) {
 Result<void> GlBackend::init(std::unique_ptr<GlContext> context, std::filesystem::path compile_messages) {
   context_ = std::move(context);
   compile_messages_ = CompileMessages(std::move(compile_messages));
-  if (!make_current())
-    return fail(fmt::format("{} could not make a new 4.5 core context current", context_->route()));
+  if (!make_current()) return fail(fmt::format("{} could not make a new 4.5 core context current", context_->route()));
 
   std::vector<std::string> missing;
   {
@@ -259,22 +258,21 @@ Result<void> GlBackend::init(std::unique_ptr<GlContext> context, std::filesystem
   info_.api_version = get_string(GL_VERSION);
   if (size_t mesa = info_.api_version.find("Mesa "); mesa != std::string::npos) {
     info_.driver_version = info_.api_version.substr(mesa);
-    if (size_t paren = info_.driver_version.find(" ("); paren != std::string::npos)
-      info_.driver_version.resize(paren);
+    if (size_t paren = info_.driver_version.find(" ("); paren != std::string::npos) info_.driver_version.resize(paren);
   }
   info_.llvm_version = llvm_version_of(info_.renderer);
   const GLint major = get_integer(GL_MAJOR_VERSION);
   const GLint minor = get_integer(GL_MINOR_VERSION);
   if (major < 4 || (major == 4 && minor < 5))
-    return fail(fmt::format("'{}' gives OpenGL {}.{} ({}), but 4.5 core is required; install a "
-                            "newer Debian package {}",
-                            info_.renderer, major, minor, info_.api_version, context_->packages()));
+    return fail(
+        fmt::format("'{}' gives OpenGL {}.{} ({}), but 4.5 core is required; install a "
+                    "newer Debian package {}",
+                    info_.renderer, major, minor, info_.api_version, context_->packages()));
 
   gl_.Enable(GL_DEBUG_OUTPUT);
   gl_.Enable(GL_DEBUG_OUTPUT_SYNCHRONOUS);
   gl_.DebugMessageCallback(&debug_callback, log_.get());
-  gl_.DebugMessageControl(GL_DONT_CARE, GL_DONT_CARE, GL_DEBUG_SEVERITY_NOTIFICATION, 0, nullptr,
-                          GL_FALSE);
+  gl_.DebugMessageControl(GL_DONT_CARE, GL_DONT_CARE, GL_DEBUG_SEVERITY_NOTIFICATION, 0, nullptr, GL_FALSE);
 
   // Direct3D orientation: clip +y maps to window row 0 (the first row read back), z in [0, 1].
   gl_.ClipControl(GL_UPPER_LEFT, GL_ZERO_TO_ONE);
@@ -316,8 +314,8 @@ GLuint GlBackend::sampler(const SamplerDesc& desc, bool mipmapped, bool compare)
   gl_.CreateSamplers(1, &id);
   GlSampler sampler(&gl_, id);
   const bool linear = desc.filter == Filter::Linear;
-  const GLint min_filter = mipmapped ? (linear ? GL_LINEAR_MIPMAP_LINEAR : GL_NEAREST_MIPMAP_NEAREST)
-                                     : (linear ? GL_LINEAR : GL_NEAREST);
+  const GLint min_filter =
+      mipmapped ? (linear ? GL_LINEAR_MIPMAP_LINEAR : GL_NEAREST_MIPMAP_NEAREST) : (linear ? GL_LINEAR : GL_NEAREST);
   const GLint mag_filter = linear ? GL_LINEAR : GL_NEAREST;
   const GLint wrap = desc.address == AddressMode::Repeat ? GL_REPEAT : GL_CLAMP_TO_EDGE;
   gl_.SamplerParameteri(id, GL_TEXTURE_MIN_FILTER, min_filter);
@@ -346,8 +344,8 @@ Result<TargetHandle> GlBackend::create_target(const TargetDesc& desc) {
     if (desc.width == 0 || desc.height == 0)
       return fail(fmt::format("create_target: size {}x{} is empty", desc.width, desc.height));
     if (std::max(desc.width, desc.height) > static_cast<uint32_t>(max_texture_size_))
-      return fail(fmt::format("create_target: size {}x{} exceeds the driver limit of {}",
-                              desc.width, desc.height, max_texture_size_));
+      return fail(fmt::format("create_target: size {}x{} exceeds the driver limit of {}", desc.width, desc.height,
+                              max_texture_size_));
     const uint32_t id = objects_.targets.next_handle().id;
     const GLsizei width = static_cast<GLsizei>(desc.width);
     const GLsizei height = static_cast<GLsizei>(desc.height);
@@ -387,10 +385,10 @@ Result<TargetHandle> GlBackend::create_target(const TargetDesc& desc) {
     gl_.NamedFramebufferReadBuffer(framebuffer, GL_COLOR_ATTACHMENT0);
     const GLenum status = gl_.CheckNamedFramebufferStatus(framebuffer, GL_FRAMEBUFFER);
     if (status != GL_FRAMEBUFFER_COMPLETE)
-      return fail(fmt::format("create_target: the framebuffer of target {} ({}x{}, RGBA32F{}) is "
-                              "incomplete (status 0x{:04X})",
-                              id, desc.width, desc.height, desc.depth ? (desc.stencil ? " + D32F S8" : " + D32F") : "",
-                              status));
+      return fail(fmt::format(
+          "create_target: the framebuffer of target {} ({}x{}, RGBA32F{}) is "
+          "incomplete (status 0x{:04X})",
+          id, desc.width, desc.height, desc.depth ? (desc.stencil ? " + D32F S8" : " + D32F") : "", status));
     // Start from defined contents (zero colour, far depth) so that reads before a render are
     // stable.
     const std::array<float, 4> zero = {0.0f, 0.0f, 0.0f, 0.0f};
@@ -411,11 +409,9 @@ Result<MeshHandle> GlBackend::upload_mesh(const MeshData& data) {
     gl_.CreateBuffers(2, buffers);
     mesh->vertices = GlBuffer(&gl_, buffers[0]);
     mesh->indices = GlBuffer(&gl_, buffers[1]);
-    gl_.NamedBufferStorage(buffers[0],
-                           static_cast<GLsizeiptr>(data.vertices.size() * sizeof(Vertex)),
+    gl_.NamedBufferStorage(buffers[0], static_cast<GLsizeiptr>(data.vertices.size() * sizeof(Vertex)),
                            data.vertices.data(), 0);
-    gl_.NamedBufferStorage(buffers[1],
-                           static_cast<GLsizeiptr>(data.indices.size() * sizeof(uint32_t)),
+    gl_.NamedBufferStorage(buffers[1], static_cast<GLsizeiptr>(data.indices.size() * sizeof(uint32_t)),
                            data.indices.data(), 0);
     GLuint vertex_array = 0;
     gl_.CreateVertexArrays(1, &vertex_array);
@@ -431,8 +427,8 @@ Result<MeshHandle> GlBackend::upload_mesh(const MeshData& data) {
          {Attribute{0, 3, offsetof(Vertex, position)}, Attribute{1, 3, offsetof(Vertex, normal)},
           Attribute{2, 4, offsetof(Vertex, tangent)}, Attribute{3, 2, offsetof(Vertex, uv)}}) {
       gl_.EnableVertexArrayAttrib(vertex_array, attribute.location);
-      gl_.VertexArrayAttribFormat(vertex_array, attribute.location, attribute.components, GL_FLOAT,
-                                  GL_FALSE, attribute.offset);
+      gl_.VertexArrayAttribFormat(vertex_array, attribute.location, attribute.components, GL_FLOAT, GL_FALSE,
+                                  attribute.offset);
       gl_.VertexArrayAttribBinding(vertex_array, attribute.location, 0);
     }
     mesh->index_count = static_cast<uint32_t>(data.indices.size());
@@ -442,7 +438,8 @@ Result<MeshHandle> GlBackend::upload_mesh(const MeshData& data) {
 
 Result<TextureHandle> GlBackend::upload_texture(const TextureData& data) {
   return on_context<TextureHandle>("upload_texture", [&]() -> Result<TextureHandle> {
-    if (auto valid = validate_texture(data, static_cast<uint32_t>(max_texture_size_)); !valid) return fail(valid.error());
+    if (auto valid = validate_texture(data, static_cast<uint32_t>(max_texture_size_)); !valid)
+      return fail(valid.error());
     const TextureShape shape = data.shape();
     const std::string what = "upload_texture: " + shape_name(shape);
     if (data.dimension == TextureDimension::Tex3D &&
@@ -459,8 +456,8 @@ Result<TextureHandle> GlBackend::upload_texture(const TextureData& data) {
     const uint32_t levels = static_cast<uint32_t>(data.levels.size());
     GLuint id = 0;
     gl_.CreateTextures(gl_target(shape), 1, &id);
-    auto texture = std::make_unique<Texture>(
-        Texture{GlTexture(&gl_, id), data.width, data.height, levels, shape, data.format});
+    auto texture =
+        std::make_unique<Texture>(Texture{GlTexture(&gl_, id), data.width, data.height, levels, shape, data.format});
     const auto size = [](uint32_t extent, uint32_t level) {
       return static_cast<GLsizei>(std::max<uint32_t>(1, extent >> level));
     };
@@ -481,8 +478,8 @@ Result<TextureHandle> GlBackend::upload_texture(const TextureData& data) {
         case TextureDimension::Tex1D:
           gl_.TextureStorage1D(id, static_cast<GLsizei>(levels), format.internal_format, width);
           for (uint32_t level = 0; level < levels; ++level)
-            gl_.TextureSubImage1D(id, static_cast<GLint>(level), 0, size(data.width, level), format.format,
-                                  format.type, data.levels[level].data());
+            gl_.TextureSubImage1D(id, static_cast<GLint>(level), 0, size(data.width, level), format.format, format.type,
+                                  data.levels[level].data());
           break;
         case TextureDimension::Tex1DArray:  // a 2D storage whose rows are the layers
         case TextureDimension::Tex2D: {
@@ -573,9 +570,10 @@ Result<void> GlBackend::fill_multisampled(const Texture& texture, const TextureD
       gl_.NamedFramebufferTextureLayer(framebuffer_id, GL_COLOR_ATTACHMENT0, texture.texture.get(), 0, layer);
     const GLenum status = gl_.CheckNamedFramebufferStatus(framebuffer_id, GL_FRAMEBUFFER);
     if (status != GL_FRAMEBUFFER_COMPLETE) {
-      result = fail(fmt::format("{}: the framebuffer that fills layer {} ({} samples of {}) is incomplete "
-                                "(status 0x{:04X})",
-                                what, layer, data.samples, format_name(data.format), status));
+      result =
+          fail(fmt::format("{}: the framebuffer that fills layer {} ({} samples of {}) is incomplete "
+                           "(status 0x{:04X})",
+                           what, layer, data.samples, format_name(data.format), status));
       break;
     }
     gl_.BindFramebuffer(GL_FRAMEBUFFER, framebuffer_id);
@@ -590,13 +588,12 @@ Result<void> GlBackend::fill_multisampled(const Texture& texture, const TextureD
   return result;
 }
 
-Result<GlShader> GlBackend::compile(const ShaderStageSource& source, GLenum stage,
-                                        const char* stage_name, const std::string& what) {
+Result<GlShader> GlBackend::compile(const ShaderStageSource& source, GLenum stage, const char* stage_name,
+                                    const std::string& what) {
   const std::string shader = fmt::format("{}: the {} shader '{}'", what, stage_name, source.name);
   if (source.glsl.empty()) return fail(shader + " has no GLSL");
   if (source.entry_point != "main")
-    return fail(fmt::format("{} has entry point '{}', but OpenGL calls 'main' only", shader,
-                            source.entry_point));
+    return fail(fmt::format("{} has entry point '{}', but OpenGL calls 'main' only", shader, source.entry_point));
   GlShader object(&gl_, gl_.CreateShader(stage));
   if (!object) return fail(shader + ": glCreateShader failed");
   const GLchar* text = source.glsl.c_str();
@@ -618,16 +615,14 @@ Result<GlShader> GlBackend::compile(const ShaderStageSource& source, GLenum stag
   error.message = shader + " does not compile";
   auto first = std::find_if(error.diagnostics.begin(), error.diagnostics.end(),
                             [](const Diagnostic& d) { return d.severity == Severity::Error; });
-  if (first == error.diagnostics.end() && !error.diagnostics.empty())
-    first = error.diagnostics.begin();
+  if (first == error.diagnostics.end() && !error.diagnostics.empty()) first = error.diagnostics.begin();
   if (first != error.diagnostics.end()) {
     error.message += ": " + first->message;
     error.where = first->where;
   }
   if (error.where.file.empty()) error.where.file = source.name;
   if (error.diagnostics.empty())
-    error.diagnostics.push_back(
-        Diagnostic{Severity::Error, {source.name, 0, 0}, "the compiler gave no log"});
+    error.diagnostics.push_back(Diagnostic{Severity::Error, {source.name, 0, 0}, "the compiler gave no log"});
   return fail(std::move(error));
 }
 
@@ -644,39 +639,40 @@ Result<ProgramHandle> GlBackend::create_program(const ProgramDesc& desc) {
     std::set<std::string> names;
     std::map<uint32_t, std::string> block_bindings, texture_units;
     for (const UniformBlockSlot& slot : desc.layout.uniform_blocks) {
-      if (!names.insert(slot.name).second)
-        return fail(fmt::format("{}: the layout names '{}' twice", what, slot.name));
+      if (!names.insert(slot.name).second) return fail(fmt::format("{}: the layout names '{}' twice", what, slot.name));
       if (slot.size == 0 || slot.size > static_cast<uint32_t>(max_uniform_block_size_))
-        return fail(fmt::format("{}: uniform block '{}' has size {}; the driver allows 1..{} bytes",
-                                what, slot.name, slot.size, max_uniform_block_size_));
+        return fail(fmt::format("{}: uniform block '{}' has size {}; the driver allows 1..{} bytes", what, slot.name,
+                                slot.size, max_uniform_block_size_));
       if (slot.binding >= static_cast<uint32_t>(max_uniform_buffer_bindings_))
-        return fail(fmt::format("{}: uniform block '{}' has binding {}, but OpenGL allows "
-                                "0..{} (GL_MAX_UNIFORM_BUFFER_BINDINGS)",
-                                what, slot.name, slot.binding, max_uniform_buffer_bindings_ - 1));
+        return fail(
+            fmt::format("{}: uniform block '{}' has binding {}, but OpenGL allows "
+                        "0..{} (GL_MAX_UNIFORM_BUFFER_BINDINGS)",
+                        what, slot.name, slot.binding, max_uniform_buffer_bindings_ - 1));
       if (auto [it, fresh] = block_bindings.emplace(slot.binding, slot.name); !fresh)
-        return fail(fmt::format("{}: binding {} is used by both uniform block '{}' and uniform "
-                                "block '{}'",
-                                what, slot.binding, it->second, slot.name));
+        return fail(
+            fmt::format("{}: binding {} is used by both uniform block '{}' and uniform "
+                        "block '{}'",
+                        what, slot.binding, it->second, slot.name));
     }
     for (const TextureSlot& slot : desc.layout.textures) {
-      if (!names.insert(slot.name).second)
-        return fail(fmt::format("{}: the layout names '{}' twice", what, slot.name));
+      if (!names.insert(slot.name).second) return fail(fmt::format("{}: the layout names '{}' twice", what, slot.name));
       if (slot.binding >= static_cast<uint32_t>(max_texture_units_))
-        return fail(fmt::format("{}: texture '{}' has binding {}, but OpenGL allows 0..{} "
-                                "(GL_MAX_COMBINED_TEXTURE_IMAGE_UNITS)",
-                                what, slot.name, slot.binding, max_texture_units_ - 1));
+        return fail(
+            fmt::format("{}: texture '{}' has binding {}, but OpenGL allows 0..{} "
+                        "(GL_MAX_COMBINED_TEXTURE_IMAGE_UNITS)",
+                        what, slot.name, slot.binding, max_texture_units_ - 1));
       if (auto [it, fresh] = texture_units.emplace(slot.binding, slot.name); !fresh)
-        return fail(fmt::format("{}: binding {} is used by both texture '{}' and texture '{}'",
-                                what, slot.binding, it->second, slot.name));
+        return fail(fmt::format("{}: binding {} is used by both texture '{}' and texture '{}'", what, slot.binding,
+                                it->second, slot.name));
     }
     std::map<uint32_t, std::string> storage_bindings;
     for (const StorageBufferSlot& slot : desc.layout.storage_buffers) {
-      if (!names.insert(slot.name).second)
-        return fail(fmt::format("{}: the layout names '{}' twice", what, slot.name));
+      if (!names.insert(slot.name).second) return fail(fmt::format("{}: the layout names '{}' twice", what, slot.name));
       if (slot.binding >= static_cast<uint32_t>(max_storage_buffer_bindings_))
-        return fail(fmt::format("{}: storage buffer '{}' has binding {}, but OpenGL allows 0..{} "
-                                "(GL_MAX_SHADER_STORAGE_BUFFER_BINDINGS)",
-                                what, slot.name, slot.binding, max_storage_buffer_bindings_ - 1));
+        return fail(
+            fmt::format("{}: storage buffer '{}' has binding {}, but OpenGL allows 0..{} "
+                        "(GL_MAX_SHADER_STORAGE_BUFFER_BINDINGS)",
+                        what, slot.name, slot.binding, max_storage_buffer_bindings_ - 1));
       if (auto [it, fresh] = storage_bindings.emplace(slot.binding, slot.name); !fresh)
         return fail(fmt::format("{}: binding {} is used by both storage buffer '{}' and storage buffer '{}'", what,
                                 slot.binding, it->second, slot.name));
@@ -729,9 +725,10 @@ Result<ProgramHandle> GlBackend::create_program(const ProgramDesc& desc) {
       log.resize(static_cast<size_t>(std::max(written, 0)));
       Error error;
       error.diagnostics = parse_log(log, {});
-      error.message = fmt::format("{}: the vertex shader '{}' and the fragment shader '{}' do not "
-                                  "link",
-                                  what, desc.vertex.name, desc.fragment.name);
+      error.message = fmt::format(
+          "{}: the vertex shader '{}' and the fragment shader '{}' do not "
+          "link",
+          what, desc.vertex.name, desc.fragment.name);
       auto first = std::find_if(error.diagnostics.begin(), error.diagnostics.end(),
                                 [](const Diagnostic& d) { return d.severity == Severity::Error; });
       if (first != error.diagnostics.end()) error.message += ": " + first->message;
@@ -741,7 +738,8 @@ Result<ProgramHandle> GlBackend::create_program(const ProgramDesc& desc) {
     }
     settle(before, desc.vertex.glsl + '\0' + desc.fragment.glsl);  // the link's own
 
-    if (auto checked = gl_support::check_interface(gl_, id, program->layout, program->fullscreen, program->unsupplied_inputs, what);
+    if (auto checked = gl_support::check_interface(gl_, id, program->layout, program->fullscreen,
+                                                   program->unsupplied_inputs, what);
         !checked)
       return fail(checked.error());
 
@@ -769,8 +767,7 @@ Result<ProgramHandle> GlBackend::create_program(const ProgramDesc& desc) {
   std::vector<std::string> held = std::move(*log_->held);
   log_->held.reset();
   if (result)
-    for (std::string& message : held)
-      log_->messages.push_back(fmt::format("program '{}': {}", desc.name, message));
+    for (std::string& message : held) log_->messages.push_back(fmt::format("program '{}': {}", desc.name, message));
   return result;
 }
 
@@ -787,11 +784,9 @@ Result<void> GlBackend::render(const RenderPass& pass) {
     // The pass: clear, then each draw.
     const GLuint framebuffer = target->framebuffer.get();
     gl_.BindFramebuffer(GL_FRAMEBUFFER, framebuffer);
-    gl_.Viewport(0, 0, static_cast<GLsizei>(target->color.width),
-                 static_cast<GLsizei>(target->color.height));
+    gl_.Viewport(0, 0, static_cast<GLsizei>(target->color.width), static_cast<GLsizei>(target->color.height));
     gl_.ColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
-    const std::array<float, 4> clear = {pass.clear_color.r, pass.clear_color.g, pass.clear_color.b,
-                                        pass.clear_color.a};
+    const std::array<float, 4> clear = {pass.clear_color.r, pass.clear_color.g, pass.clear_color.b, pass.clear_color.a};
     gl_.ClearNamedFramebufferfv(framebuffer, GL_COLOR, 0, clear.data());
     if (target->second_color) {
       const std::array<float, 4> zero = {0.0f, 0.0f, 0.0f, 0.0f};
@@ -822,8 +817,7 @@ Result<void> GlBackend::render(const RenderPass& pass) {
         padded.assign(round_up_16(blocks[s].size), std::byte{0});
         std::copy(bytes.begin(), bytes.end(), padded.begin());
         const GLuint buffer = program.uniform_buffers[s].get();
-        gl_.NamedBufferData(buffer, static_cast<GLsizeiptr>(padded.size()), padded.data(),
-                            GL_STREAM_DRAW);
+        gl_.NamedBufferData(buffer, static_cast<GLsizeiptr>(padded.size()), padded.data(), GL_STREAM_DRAW);
         gl_.BindBufferBase(GL_UNIFORM_BUFFER, blocks[s].binding, buffer);
       }
       const auto& storage = program.layout.storage_buffers;
@@ -852,8 +846,7 @@ Result<void> GlBackend::render(const RenderPass& pass) {
           if (kind == TexelKind::Uint) gl_.VertexAttribI4ui(location, 0, 0, 0, 0);
         }
         gl_.BindVertexArray(draw.mesh->vertex_array.get());
-        gl_.DrawElements(GL_TRIANGLES, static_cast<GLsizei>(draw.mesh->index_count),
-                         GL_UNSIGNED_INT, nullptr);
+        gl_.DrawElements(GL_TRIANGLES, static_cast<GLsizei>(draw.mesh->index_count), GL_UNSIGNED_INT, nullptr);
       }
     }
     gl_.Finish();
@@ -885,8 +878,7 @@ Result<FloatImage> GlBackend::read_texture(TargetHandle handle, bool second) {
     FloatImage result(texture.width, texture.height);
     // Texture row 0 is window row 0, which the clip control made the top: no flip.
     gl_.GetTextureImage(texture.texture.get(), 0, GL_RGBA, GL_FLOAT,
-                        static_cast<GLsizei>(result.rgba.size() * sizeof(float)),
-                        result.rgba.data());
+                        static_cast<GLsizei>(result.rgba.size() * sizeof(float)), result.rgba.data());
     return result;
   });
 }

@@ -2,8 +2,8 @@
 // the driver it reports, GLSL compile and link logs, the layout against the linked program,
 // KHR_debug messages, texture units from the layout; choosing the route; and backends of both
 // routes taking turns in one process. The Backend contract itself is tests/backend_contract/.
-#include "harness/backend/shared_backend_test.h"
 #include "harness/gl/gl_backend.h"
+#include "harness/backend/shared_backend_test.h"
 
 #include <unistd.h>
 
@@ -34,11 +34,12 @@ std::string platform_test_name(const ::testing::TestParamInfo<GlPlatform>& info)
 }
 
 // One backend per route for the suite (SharedBackendTest).
-Result<std::unique_ptr<Backend>> gl_backend_on(GlPlatform platform) { return create_gl_backend({.platform = platform}); }
+Result<std::unique_ptr<Backend>> gl_backend_on(GlPlatform platform) {
+  return create_gl_backend({.platform = platform});
+}
 
 class GlBackendTest : public SharedBackendTest<GlPlatform, &gl_backend_on> {
  protected:
-
   static ShaderStageSource stage(std::string glsl, std::string name) {
     ShaderStageSource source;
     source.glsl = std::move(glsl);
@@ -46,9 +47,8 @@ class GlBackendTest : public SharedBackendTest<GlPlatform, &gl_backend_on> {
     return source;
   }
 
-  Result<ProgramHandle> fullscreen_program(const std::string& name,
-                                                  const std::string& fragment,
-                                                  ProgramLayout layout = {}) {
+  Result<ProgramHandle> fullscreen_program(const std::string& name, const std::string& fragment,
+                                           ProgramLayout layout = {}) {
     ProgramDesc desc;
     desc.name = name;
     desc.vertex = stage(glsl::fullscreen_vertex_shader(glsl::Flavour::Gl), "fullscreen.vert");
@@ -57,7 +57,6 @@ class GlBackendTest : public SharedBackendTest<GlPlatform, &gl_backend_on> {
     desc.fullscreen = true;
     return backend().create_program(desc);
   }
-
 };
 
 template <class T>
@@ -67,8 +66,7 @@ std::vector<std::byte> bytes_of(const T& value) {
   return bytes;
 }
 
-DrawItem draw(ProgramHandle program, MeshHandle mesh = {},
-              std::vector<UniformBinding> uniforms = {},
+DrawItem draw(ProgramHandle program, MeshHandle mesh = {}, std::vector<UniformBinding> uniforms = {},
               std::vector<TextureBinding> textures = {}) {
   return DrawItem{program, mesh, std::move(uniforms), std::move(textures), {}};
 }
@@ -82,8 +80,7 @@ ProgramLayout layout(std::vector<UniformBlockSlot> blocks, std::vector<TextureSl
 }
 
 void expect_near(glm::vec4 actual, glm::vec4 expected, const std::string& what) {
-  for (int c = 0; c < 4; ++c)
-    EXPECT_NEAR(actual[c], expected[c], 1e-5f) << what << ", channel " << c;
+  for (int c = 0; c < 4; ++c) EXPECT_NEAR(actual[c], expected[c], 1e-5f) << what << ", channel " << c;
 }
 
 TEST_P(GlBackendTest, ReportsLlvmpipeAndOpenGl45) {
@@ -111,8 +108,7 @@ TEST_P(GlBackendTest, BrokenGlslGivesDiagnosticsWithLineNumbers) {
   bool found = false;
   for (const Diagnostic& diagnostic : error.diagnostics)
     if (diagnostic.severity == Severity::Error && diagnostic.where.file == "broken.frag" &&
-        diagnostic.where.line == 4 &&
-        diagnostic.message.find("undeclared_thing") != std::string::npos)
+        diagnostic.where.line == 4 && diagnostic.message.find("undeclared_thing") != std::string::npos)
       found = true;
   EXPECT_TRUE(found) << error.to_string();
   EXPECT_EQ(error.where.line, 4u);
@@ -142,8 +138,7 @@ TEST_P(GlBackendTest, ResourcesMissingFromTheLayoutAreRejected) {
                                     "layout(location = 0) out vec4 color;\n"
                                     "void main() { color = value; }\n");
   ASSERT_FALSE(program);
-  EXPECT_NE(program.error().message.find("'Hidden'"), std::string::npos)
-      << program.error().message;
+  EXPECT_NE(program.error().message.find("'Hidden'"), std::string::npos) << program.error().message;
 }
 
 TEST_P(GlBackendTest, CompileWarningsOfAGoodProgramAreDriverMessages) {
@@ -173,14 +168,13 @@ TEST_P(GlBackendTest, MipLevelsAndSrgbDecodeAreSampled) {
   ASSERT_TRUE(texture) << texture.error().to_string();
   auto target = backend().create_target({2, 1, false});
   ASSERT_TRUE(target);
-  auto program = fullscreen_program(
-      "lod",
-      "#version 450 core\n"
-      "uniform sampler2D image;\n"  // no layout(binding): the unit comes from the layout
-      "layout(location = 0) in vec2 uv;\n"
-      "layout(location = 0) out vec4 color;\n"
-      "void main() { color = textureLod(image, uv, uv.x < 0.5 ? 0.0 : 1.0); }\n",
-      layout({}, {texture_slot("image", 5)}));
+  auto program = fullscreen_program("lod",
+                                    "#version 450 core\n"
+                                    "uniform sampler2D image;\n"  // no layout(binding): the unit comes from the layout
+                                    "layout(location = 0) in vec2 uv;\n"
+                                    "layout(location = 0) out vec4 color;\n"
+                                    "void main() { color = textureLod(image, uv, uv.x < 0.5 ? 0.0 : 1.0); }\n",
+                                    layout({}, {texture_slot("image", 5)}));
   ASSERT_TRUE(program) << program.error().to_string();
   RenderPass pass;
   pass.target = *target;

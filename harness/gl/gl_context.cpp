@@ -68,11 +68,11 @@ Result<std::unique_ptr<GlContext>> create_gl_context(const GlContextOptions& opt
     return osmesa;
   auto egl = create_egl_context(options.egl_library);
   if (egl) return egl;
-  return fail(fmt::format(
-      "no OpenGL 4.5 core context: tried OSMesa: {}; then tried EGL surfaceless: {}. Install the Debian "
-      "package libosmesa6 (Mesa before 25.1), or libegl1, libegl-mesa0 and libgl1-mesa-dri (any Mesa), "
-      "or choose a route with --gl-platform",
-      osmesa.error().message, egl.error().message));
+  return fail(
+      fmt::format("no OpenGL 4.5 core context: tried OSMesa: {}; then tried EGL surfaceless: {}. Install the Debian "
+                  "package libosmesa6 (Mesa before 25.1), or libegl1, libegl-mesa0 and libgl1-mesa-dri (any Mesa), "
+                  "or choose a route with --gl-platform",
+                  osmesa.error().message, egl.error().message));
 }
 
 }  // namespace xshade::harness

@@ -4,11 +4,10 @@
 
 namespace xshade::harness::gl {
 
-std::vector<std::string> load_functions(Functions& functions,
-                                        ProcAddressFunction get_proc_address) {
+std::vector<std::string> load_functions(Functions& functions, ProcAddressFunction get_proc_address) {
   std::vector<std::string> missing;
   // A function pointer travels through void* here, as with dlsym; POSIX guarantees this works.
-#define XSHADE_GL_LOAD(type, name)                                      \
+#define XSHADE_GL_LOAD(type, name)                                       \
   functions.name = reinterpret_cast<type>(get_proc_address("gl" #name)); \
   if (functions.name == nullptr) missing.push_back("gl" #name);
   XSHADE_GL_FUNCTIONS(XSHADE_GL_LOAD)

@@ -27,7 +27,8 @@ GLenum gl_target(TextureShape shape) {
     case TextureDimension::Tex1D: return GL_TEXTURE_1D;
     case TextureDimension::Tex1DArray: return GL_TEXTURE_1D_ARRAY;
     case TextureDimension::Tex2D: return shape.multisampled ? GL_TEXTURE_2D_MULTISAMPLE : GL_TEXTURE_2D;
-    case TextureDimension::Tex2DArray: return shape.multisampled ? GL_TEXTURE_2D_MULTISAMPLE_ARRAY : GL_TEXTURE_2D_ARRAY;
+    case TextureDimension::Tex2DArray:
+      return shape.multisampled ? GL_TEXTURE_2D_MULTISAMPLE_ARRAY : GL_TEXTURE_2D_ARRAY;
     case TextureDimension::Tex3D: return GL_TEXTURE_3D;
     case TextureDimension::Cube: return GL_TEXTURE_CUBE_MAP;
     case TextureDimension::CubeArray: return GL_TEXTURE_CUBE_MAP_ARRAY;
@@ -138,10 +139,18 @@ GLint gl_compare_function(CompareOp op) {
 // matrix, a double).
 std::optional<TexelKind> attribute_kind(GLint type) {
   switch (static_cast<GLenum>(type)) {
-    case GL_FLOAT: case GL_FLOAT_VEC2: case GL_FLOAT_VEC3: case GL_FLOAT_VEC4: return TexelKind::Float;
-    case GL_INT: case GL_INT_VEC2: case GL_INT_VEC3: case GL_INT_VEC4: return TexelKind::Int;
-    case GL_UNSIGNED_INT: case GL_UNSIGNED_INT_VEC2: case GL_UNSIGNED_INT_VEC3: case GL_UNSIGNED_INT_VEC4:
-      return TexelKind::Uint;
+    case GL_FLOAT:
+    case GL_FLOAT_VEC2:
+    case GL_FLOAT_VEC3:
+    case GL_FLOAT_VEC4: return TexelKind::Float;
+    case GL_INT:
+    case GL_INT_VEC2:
+    case GL_INT_VEC3:
+    case GL_INT_VEC4: return TexelKind::Int;
+    case GL_UNSIGNED_INT:
+    case GL_UNSIGNED_INT_VEC2:
+    case GL_UNSIGNED_INT_VEC3:
+    case GL_UNSIGNED_INT_VEC4: return TexelKind::Uint;
     default: return std::nullopt;
   }
 }
@@ -181,15 +190,14 @@ const char* type_name(GLenum type) {
 
 }  // namespace
 
-void APIENTRY debug_callback(GLenum source, GLenum type, GLuint id, GLenum severity,
-                             GLsizei length, const GLchar* message, const void* user) {
+void APIENTRY debug_callback(GLenum source, GLenum type, GLuint id, GLenum severity, GLsizei length,
+                             const GLchar* message, const void* user) {
   if (severity == GL_DEBUG_SEVERITY_NOTIFICATION) return;
   auto* log = static_cast<MessageLog*>(const_cast<void*>(user));
-  std::string text = length >= 0 ? std::string(message, static_cast<size_t>(length))
-                                  : std::string(message);
+  std::string text = length >= 0 ? std::string(message, static_cast<size_t>(length)) : std::string(message);
   while (!text.empty() && std::isspace(static_cast<unsigned char>(text.back()))) text.pop_back();
-  std::string line = fmt::format("OpenGL {} {} (severity {}, id {}): {}", source_name(source),
-                                 type_name(type), severity_name(severity), id, text);
+  std::string line = fmt::format("OpenGL {} {} (severity {}, id {}): {}", source_name(source), type_name(type),
+                                 severity_name(severity), id, text);
   std::lock_guard lock(log->mutex);
   (log->held ? *log->held : log->messages).push_back(std::move(line));
 }
@@ -230,8 +238,7 @@ std::vector<Diagnostic> parse_log(const std::string& log, const std::string& fil
     if (end == std::string::npos) end = log.size();
     std::string_view line(log.data() + start, end - start);
     start = end + 1;
-    while (!line.empty() && std::isspace(static_cast<unsigned char>(line.back())))
-      line.remove_suffix(1);
+    while (!line.empty() && std::isspace(static_cast<unsigned char>(line.back()))) line.remove_suffix(1);
     if (line.empty()) continue;
 
     Diagnostic diagnostic;
@@ -267,29 +274,49 @@ std::vector<Diagnostic> parse_log(const std::string& log, const std::string& fil
   return diagnostics;
 }
 
-
 bool is_sampler_type(GLint type) {
   switch (static_cast<GLenum>(type)) {
-    case GL_SAMPLER_1D: case GL_SAMPLER_2D: case GL_SAMPLER_3D: case GL_SAMPLER_CUBE:
-    case GL_SAMPLER_1D_SHADOW: case GL_SAMPLER_2D_SHADOW: case GL_SAMPLER_1D_ARRAY:
-    case GL_SAMPLER_2D_ARRAY: case GL_SAMPLER_1D_ARRAY_SHADOW: case GL_SAMPLER_2D_ARRAY_SHADOW:
-    case GL_SAMPLER_2D_MULTISAMPLE: case GL_SAMPLER_2D_MULTISAMPLE_ARRAY:
-    case GL_SAMPLER_CUBE_SHADOW: case GL_SAMPLER_BUFFER: case GL_SAMPLER_2D_RECT:
-    case GL_SAMPLER_2D_RECT_SHADOW: case GL_SAMPLER_CUBE_MAP_ARRAY:
+    case GL_SAMPLER_1D:
+    case GL_SAMPLER_2D:
+    case GL_SAMPLER_3D:
+    case GL_SAMPLER_CUBE:
+    case GL_SAMPLER_1D_SHADOW:
+    case GL_SAMPLER_2D_SHADOW:
+    case GL_SAMPLER_1D_ARRAY:
+    case GL_SAMPLER_2D_ARRAY:
+    case GL_SAMPLER_1D_ARRAY_SHADOW:
+    case GL_SAMPLER_2D_ARRAY_SHADOW:
+    case GL_SAMPLER_2D_MULTISAMPLE:
+    case GL_SAMPLER_2D_MULTISAMPLE_ARRAY:
+    case GL_SAMPLER_CUBE_SHADOW:
+    case GL_SAMPLER_BUFFER:
+    case GL_SAMPLER_2D_RECT:
+    case GL_SAMPLER_2D_RECT_SHADOW:
+    case GL_SAMPLER_CUBE_MAP_ARRAY:
     case GL_SAMPLER_CUBE_MAP_ARRAY_SHADOW:
-    case GL_INT_SAMPLER_1D: case GL_INT_SAMPLER_2D: case GL_INT_SAMPLER_3D:
-    case GL_INT_SAMPLER_CUBE: case GL_INT_SAMPLER_1D_ARRAY: case GL_INT_SAMPLER_2D_ARRAY:
-    case GL_INT_SAMPLER_2D_MULTISAMPLE: case GL_INT_SAMPLER_2D_MULTISAMPLE_ARRAY:
-    case GL_INT_SAMPLER_BUFFER: case GL_INT_SAMPLER_2D_RECT: case GL_INT_SAMPLER_CUBE_MAP_ARRAY:
-    case GL_UNSIGNED_INT_SAMPLER_1D: case GL_UNSIGNED_INT_SAMPLER_2D:
-    case GL_UNSIGNED_INT_SAMPLER_3D: case GL_UNSIGNED_INT_SAMPLER_CUBE:
-    case GL_UNSIGNED_INT_SAMPLER_1D_ARRAY: case GL_UNSIGNED_INT_SAMPLER_2D_ARRAY:
+    case GL_INT_SAMPLER_1D:
+    case GL_INT_SAMPLER_2D:
+    case GL_INT_SAMPLER_3D:
+    case GL_INT_SAMPLER_CUBE:
+    case GL_INT_SAMPLER_1D_ARRAY:
+    case GL_INT_SAMPLER_2D_ARRAY:
+    case GL_INT_SAMPLER_2D_MULTISAMPLE:
+    case GL_INT_SAMPLER_2D_MULTISAMPLE_ARRAY:
+    case GL_INT_SAMPLER_BUFFER:
+    case GL_INT_SAMPLER_2D_RECT:
+    case GL_INT_SAMPLER_CUBE_MAP_ARRAY:
+    case GL_UNSIGNED_INT_SAMPLER_1D:
+    case GL_UNSIGNED_INT_SAMPLER_2D:
+    case GL_UNSIGNED_INT_SAMPLER_3D:
+    case GL_UNSIGNED_INT_SAMPLER_CUBE:
+    case GL_UNSIGNED_INT_SAMPLER_1D_ARRAY:
+    case GL_UNSIGNED_INT_SAMPLER_2D_ARRAY:
     case GL_UNSIGNED_INT_SAMPLER_2D_MULTISAMPLE:
-    case GL_UNSIGNED_INT_SAMPLER_2D_MULTISAMPLE_ARRAY: case GL_UNSIGNED_INT_SAMPLER_BUFFER:
-    case GL_UNSIGNED_INT_SAMPLER_2D_RECT: case GL_UNSIGNED_INT_SAMPLER_CUBE_MAP_ARRAY:
-      return true;
-    default:
-      return false;
+    case GL_UNSIGNED_INT_SAMPLER_2D_MULTISAMPLE_ARRAY:
+    case GL_UNSIGNED_INT_SAMPLER_BUFFER:
+    case GL_UNSIGNED_INT_SAMPLER_2D_RECT:
+    case GL_UNSIGNED_INT_SAMPLER_CUBE_MAP_ARRAY: return true;
+    default: return false;
   }
 }
 
@@ -308,8 +335,7 @@ Result<void> check_interface(const gl::Functions& gl, GLuint id, const ProgramLa
     gl.GetProgramResourceiv(id, interface, index, 1, &property, 1, nullptr, &length);
     std::string name(static_cast<size_t>(std::max(length, 1)), '\0');
     GLsizei written = 0;
-    gl.GetProgramResourceName(id, interface, index, static_cast<GLsizei>(name.size()), &written,
-                               name.data());
+    gl.GetProgramResourceName(id, interface, index, static_cast<GLsizei>(name.size()), &written, name.data());
     name.resize(static_cast<size_t>(std::max(written, 0)));
     return name;
   };
@@ -329,13 +355,15 @@ Result<void> check_interface(const gl::Functions& gl, GLuint id, const ProgramLa
     auto slot = std::find_if(layout.uniform_blocks.begin(), layout.uniform_blocks.end(),
                              [&](const UniformBlockSlot& s) { return s.glsl_block_name() == name; });
     if (slot == layout.uniform_blocks.end())
-      return fail(fmt::format("{}: the program uses uniform block '{}', which the layout does not "
-                              "list",
-                              what, name));
+      return fail(
+          fmt::format("{}: the program uses uniform block '{}', which the layout does not "
+                      "list",
+                      what, name));
     if (static_cast<uint32_t>(size) > round_up_16(slot->size))
-      return fail(fmt::format("{}: uniform block '{}' is {} bytes in the GLSL, but the layout "
-                              "gives it {}",
-                              what, name, size, slot->size));
+      return fail(
+          fmt::format("{}: uniform block '{}' is {} bytes in the GLSL, but the layout "
+                      "gives it {}",
+                      what, name, size, slot->size));
   }
 
   // Storage blocks: each one a listed buffer's.
@@ -352,20 +380,17 @@ Result<void> check_interface(const gl::Functions& gl, GLuint id, const ProgramLa
   for (GLuint index = 0; index < uniforms; ++index) {
     const std::array<GLenum, 3> properties = {GL_BLOCK_INDEX, GL_TYPE, GL_LOCATION};
     std::array<GLint, 3> values = {-1, 0, -1};
-    gl.GetProgramResourceiv(id, GL_UNIFORM, index, static_cast<GLsizei>(properties.size()),
-                             properties.data(), static_cast<GLsizei>(values.size()), nullptr,
-                             values.data());
+    gl.GetProgramResourceiv(id, GL_UNIFORM, index, static_cast<GLsizei>(properties.size()), properties.data(),
+                            static_cast<GLsizei>(values.size()), nullptr, values.data());
     if (values[0] != -1) continue;  // a member of a block
     const std::string name = base_name(resource_name(GL_UNIFORM, index));
     if (name.starts_with("gl_")) continue;
     auto slot = std::find_if(layout.textures.begin(), layout.textures.end(),
                              [&](const TextureSlot& s) { return s.uniform_name() == name; });
     if (slot == layout.textures.end())
-      return fail(fmt::format("{}: the program uses uniform '{}', which the layout does not list",
-                              what, name));
+      return fail(fmt::format("{}: the program uses uniform '{}', which the layout does not list", what, name));
     if (!is_sampler_type(values[1]))
-      return fail(fmt::format("{}: the layout lists '{}' as a texture, but it is not a sampler",
-                              what, name));
+      return fail(fmt::format("{}: the layout lists '{}' as a texture, but it is not a sampler", what, name));
   }
 
   // Vertex inputs: none for a full-screen program; for a mesh program the mesh's locations 0..3,
@@ -376,20 +401,22 @@ Result<void> check_interface(const gl::Functions& gl, GLuint id, const ProgramLa
   for (GLuint index = 0; index < inputs; ++index) {
     const std::array<GLenum, 2> properties = {GL_LOCATION, GL_TYPE};
     std::array<GLint, 2> values = {-1, 0};
-    gl.GetProgramResourceiv(id, GL_PROGRAM_INPUT, index, static_cast<GLsizei>(properties.size()),
-                             properties.data(), static_cast<GLsizei>(values.size()), nullptr, values.data());
+    gl.GetProgramResourceiv(id, GL_PROGRAM_INPUT, index, static_cast<GLsizei>(properties.size()), properties.data(),
+                            static_cast<GLsizei>(values.size()), nullptr, values.data());
     const GLint location = values[0];
     if (location < 0) continue;  // a built-in such as gl_VertexID
     if (fullscreen)
-      return fail(fmt::format("{}: a full-screen program's vertex shader must read no vertex "
-                              "input, but it reads location {}",
-                              what, location));
+      return fail(
+          fmt::format("{}: a full-screen program's vertex shader must read no vertex "
+                      "input, but it reads location {}",
+                      what, location));
     if (location <= 3) continue;
     const std::optional<TexelKind> kind = attribute_kind(values[1]);
     if (!kind)
-      return fail(fmt::format("{}: the vertex shader reads input '{}' at location {} of GL type 0x{:04X}, which "
-                              "no mesh supplies and which is not a float, int or uint scalar or vector",
-                              what, resource_name(GL_PROGRAM_INPUT, index), location, values[1]));
+      return fail(
+          fmt::format("{}: the vertex shader reads input '{}' at location {} of GL type 0x{:04X}, which "
+                      "no mesh supplies and which is not a float, int or uint scalar or vector",
+                      what, resource_name(GL_PROGRAM_INPUT, index), location, values[1]));
     unsupplied_inputs.emplace_back(static_cast<GLuint>(location), *kind);
   }
   return {};
@@ -404,8 +431,11 @@ void main() {
 
 std::string fill_fragment_shader(TexelKind kind) {
   const std::string prefix = kind == TexelKind::Int ? "i" : kind == TexelKind::Uint ? "u" : "";
-  return "#version 450 core\nlayout(binding = 0) uniform " + prefix + "sampler2DArray source;\n"
-         "uniform int layer;\nlayout(location = 0) out " + prefix + "vec4 color;\n"
+  return "#version 450 core\nlayout(binding = 0) uniform " + prefix +
+         "sampler2DArray source;\n"
+         "uniform int layer;\nlayout(location = 0) out " +
+         prefix +
+         "vec4 color;\n"
          "void main() { color = texelFetch(source, ivec3(ivec2(gl_FragCoord.xy), layer), 0); }\n";
 }
 

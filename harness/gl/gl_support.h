@@ -27,8 +27,7 @@ class GlObject {
  public:
   GlObject() = default;
   GlObject(const gl::Functions* gl, GLuint id) : gl_(gl), id_(id) {}
-  GlObject(GlObject&& other) noexcept
-      : gl_(other.gl_), id_(std::exchange(other.id_, 0)) {}
+  GlObject(GlObject&& other) noexcept : gl_(other.gl_), id_(std::exchange(other.id_, 0)) {}
   GlObject& operator=(GlObject&& other) noexcept {
     if (this != &other) {
       reset();

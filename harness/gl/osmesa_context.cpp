@@ -65,10 +65,10 @@ class OsmesaContext final : public GlContext {
                                             0};
     context_ = osmesa_.CreateContextAttribs(attributes.data(), nullptr);
     if (context_ == nullptr)
-      return fail(fmt::format(
-          "OSMesaCreateContextAttribs in '{}' cannot make an OpenGL 4.5 core context (Mesa's llvmpipe is "
-          "needed; install the Debian package {})",
-          library, kDebianPackage));
+      return fail(
+          fmt::format("OSMesaCreateContextAttribs in '{}' cannot make an OpenGL 4.5 core context (Mesa's llvmpipe is "
+                      "needed; install the Debian package {})",
+                      library, kDebianPackage));
     if (!make_current())
       return fail(fmt::format("OSMesaMakeCurrent in '{}' failed for a new 4.5 core context", library));
     return {};

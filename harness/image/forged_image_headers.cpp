@@ -42,7 +42,8 @@ std::string exr_box(int32_t width, int32_t height) {
 
 }  // namespace
 
-std::string exr_attribute(const std::string& name, const std::string& type, uint32_t claimed, const std::string& value) {
+std::string exr_attribute(const std::string& name, const std::string& type, uint32_t claimed,
+                          const std::string& value) {
   return name + '\0' + type + '\0' + little_endian(claimed) + value;
 }
 
@@ -59,9 +60,10 @@ std::string exr(int32_t width, int32_t height, bool offset_table, const std::str
   };
   std::string channels;
   for (const char* name : {"B", "G", "R"})  // sorted, as OpenEXR writes them
-    channels += std::string(name) + '\0' + little_endian(2) + std::string(4, '\0') + little_endian(1) + little_endian(1);
+    channels +=
+        std::string(name) + '\0' + little_endian(2) + std::string(4, '\0') + little_endian(1) + little_endian(1);
   channels += '\0';
-  const std::string one = little_endian(0x3F800000);  // 1.0f
+  const std::string one = little_endian(0x3F800000);              // 1.0f
   std::string file = little_endian(20000630) + little_endian(2);  // magic number, version 2, scan lines
   file += exr_attribute("channels", "chlist", channels);
   file += exr_attribute("compression", "compression", std::string(1, '\x03'));  // ZIP: 16 lines a chunk

@@ -10,8 +10,8 @@ Result<const ImageCodec*> image_codec() {
     void* module = ::dlopen(kImageCodecModule, RTLD_NOW | RTLD_LOCAL);
     if (!module) {
       const char* why = ::dlerror();
-      return fail(ErrorKind::Backend, std::string("cannot load the image library module ") + kImageCodecModule +
-                                          ": " + (why ? why : "unknown reason") +
+      return fail(ErrorKind::Backend, std::string("cannot load the image library module ") + kImageCodecModule + ": " +
+                                          (why ? why : "unknown reason") +
                                           " (it is built beside xshade and installed in <libdir>/xshade; it needs "
                                           "OpenImageIO, Debian's libopenimageio2.4)");
     }

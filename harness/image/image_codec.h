@@ -5,8 +5,9 @@
 // of loading before main, so it is reached only through this seam: its implementation
 // (oiio_codec.cpp) is a module of its own, libxshade_image_codec.so, opened the first time a
 // process reads or writes an image file (run and bless open it first thing, for the workers they
-// fork to share). A process that reads none (compile, --version, a unit test) never loads it. The module is found through the program's run path: beside the build's
-// harness/image folder in a build tree, in <libdir>/xshade when installed.
+// fork to share). A process that reads none (compile, --version, a unit test) never loads it. The module is found
+// through the program's run path: beside the build's harness/image folder in a build tree, in <libdir>/xshade when
+// installed.
 #pragma once
 
 #include <cstdint>

@@ -25,7 +25,8 @@ bool image_library_loaded() {
 // first image it writes loads it. Checked in a child, so that the answer is this process's alone.
 TEST(ImageCodec, TheImageLibraryIsLoadedByTheFirstImageAndNotBefore) {
   if (image_library_loaded()) GTEST_SKIP() << "an earlier test of this process has loaded the image library";
-  const auto path = std::filesystem::temp_directory_path() / ("xshade_codec_test_" + std::to_string(::getpid()) + ".png");
+  const auto path =
+      std::filesystem::temp_directory_path() / ("xshade_codec_test_" + std::to_string(::getpid()) + ".png");
   const pid_t child = ::fork();
   ASSERT_GE(child, 0);
   if (child == 0) {

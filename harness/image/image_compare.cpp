@@ -107,8 +107,7 @@ std::string describe_budget(const CompareSettings& settings, size_t budget) {
 }
 
 LayerResult finite_layer(const NonFiniteCount& test, const NonFiniteCount& reference) {
-  if (test.total() == 0 && reference.total() == 0)
-    return {"finite", Verdict::Pass, "no NaN, Inf or negative values"};
+  if (test.total() == 0 && reference.total() == 0) return {"finite", Verdict::Pass, "no NaN, Inf or negative values"};
   std::string detail;
   if (test.total() > 0) detail = "test has " + describe_non_finite(test);
   if (reference.total() > 0)
@@ -217,8 +216,8 @@ PixelPass compare_pixels(const FloatImage& test, const FloatImage& reference, ui
                                    tolerance, palette, heat_map);
   };
   // A thread costs tens of microseconds: small images are compared on this one alone.
-  const uint32_t threads =
-      std::min({std::max(1u, std::thread::hardware_concurrency()), block_count, uint32_t(size_t(test.width) * test.height >> 16)});
+  const uint32_t threads = std::min({std::max(1u, std::thread::hardware_concurrency()), block_count,
+                                     uint32_t(size_t(test.width) * test.height >> 16)});
   std::vector<std::thread> helpers;
   for (uint32_t t = 1; t < threads; ++t) helpers.emplace_back(work);
   work();
@@ -252,8 +251,10 @@ size_t forgiven_pixels(const std::vector<uint32_t>& failing, const std::vector<u
     const int64_t y = p / width;
     const uint8_t* pixel = &test8[size_t(p) * 4];
     bool matched = false;
-    for (int64_t ny = std::max<int64_t>(0, y - radius); ny <= std::min<int64_t>(height - 1, y + radius) && !matched; ++ny)
-      for (int64_t nx = std::max<int64_t>(0, x - radius); nx <= std::min<int64_t>(width - 1, x + radius) && !matched; ++nx)
+    for (int64_t ny = std::max<int64_t>(0, y - radius); ny <= std::min<int64_t>(height - 1, y + radius) && !matched;
+         ++ny)
+      for (int64_t nx = std::max<int64_t>(0, x - radius); nx <= std::min<int64_t>(width - 1, x + radius) && !matched;
+           ++nx)
         matched = matches(pixel, &reference8[(size_t(ny) * width + size_t(nx)) * 4], settings.channel_tolerance);
     if (matched) ++forgiven;
   }
@@ -322,8 +323,9 @@ Comparison compare_images(const FloatImage& test, const FloatImage& reference, c
   // 2. exact
   const bool identical = bitwise_equal(test, reference);
   // Not identical is no failure: the exact layer is the fast path, and the next layer decides.
-  result.layers.push_back(identical ? LayerResult{"exact", Verdict::Pass, "bit-identical"}
-                                    : LayerResult{"exact", Verdict::Skipped, "not bit-identical; the per-pixel layer decides"});
+  result.layers.push_back(
+      identical ? LayerResult{"exact", Verdict::Pass, "bit-identical"}
+                : LayerResult{"exact", Verdict::Skipped, "not bit-identical; the per-pixel layer decides"});
 
   // 3. per_pixel, with the summary's sums and the heat map from the same pass
   // Without its palette (the image library could not be loaded) there is no heat map; whoever
@@ -337,12 +339,11 @@ Comparison compare_images(const FloatImage& test, const FloatImage& reference, c
   if (identical) {
     result.layers.push_back({"per_pixel", Verdict::Skipped, "bit-identical"});
   } else {
-    result.layers.push_back(
-        {"per_pixel", per_pixel_passed ? Verdict::Pass : Verdict::Fail,
-         fmt::format("{} of {} differ by more than {} ({}); worst {} at ({}, {})", failing,
-                     plural(pixels, "pixel", "pixels"), tolerance_steps, describe_budget(settings, budget),
-                     plural(pass.worst_steps, "step", "steps"), pass.worst_pixel % test.width,
-                     pass.worst_pixel / test.width)});
+    result.layers.push_back({"per_pixel", per_pixel_passed ? Verdict::Pass : Verdict::Fail,
+                             fmt::format("{} of {} differ by more than {} ({}); worst {} at ({}, {})", failing,
+                                         plural(pixels, "pixel", "pixels"), tolerance_steps,
+                                         describe_budget(settings, budget), plural(pass.worst_steps, "step", "steps"),
+                                         pass.worst_pixel % test.width, pass.worst_pixel / test.width)});
   }
 
   // 4. position
@@ -352,8 +353,8 @@ Comparison compare_images(const FloatImage& test, const FloatImage& reference, c
   } else if (settings.position_radius == 0) {
     result.layers.push_back({"position", Verdict::Skipped, "position_radius is 0"});
   } else {
-    const size_t forgiven = forgiven_pixels(pass.failing, encode_8bit(test), encode_8bit(reference), test.width,
-                                            test.height, settings);
+    const size_t forgiven =
+        forgiven_pixels(pass.failing, encode_8bit(test), encode_8bit(reference), test.width, test.height, settings);
     const size_t remaining = failing - forgiven;
     position_passed = remaining <= budget;
     result.layers.push_back(
@@ -425,14 +426,16 @@ Comparison compare_images(const FloatImage& test, const FloatImage& reference, c
   }
   metrics.mean_steps = pixels > 0 ? pass.sum_steps / double(pixels * 4) : 0.0;
   metrics.rmse_steps = std::sqrt(mean_squared_steps);
-  if (!pass.failing.empty()) metrics.first_failing = {pass.failing.front() % test.width, pass.failing.front() / test.width};
+  if (!pass.failing.empty())
+    metrics.first_failing = {pass.failing.front() % test.width, pass.failing.front() / test.width};
   metrics.hdr_values = hdr.values;
   metrics.float_failing_pixels = hdr.failing.size();
   metrics.float_max_relative = hdr.max_relative;
   metrics.float_x = uint32_t(hdr.max_pixel % test.width);
   metrics.float_y = uint32_t(hdr.max_pixel / test.width);
   std::string summary = fmt::format(
-      "in 8-bit sRGB steps, the per-pixel layer's values: worst {} at ({}, {}); mean {:.4g}; RMSE {:.4g}; PSNR {:.2f} dB; "
+      "in 8-bit sRGB steps, the per-pixel layer's values: worst {} at ({}, {}); mean {:.4g}; RMSE {:.4g}; PSNR {:.2f} "
+      "dB; "
       "{} ({:.4g}%) differ by more than {}",
       plural(metrics.max_steps, "step", "steps"), metrics.worst_x, metrics.worst_y, metrics.mean_steps,
       metrics.rmse_steps, metrics.psnr, plural(failing, "pixel", "pixels"), metrics.failing_fraction * 100.0,
@@ -440,17 +443,18 @@ Comparison compare_images(const FloatImage& test, const FloatImage& reference, c
   if (metrics.first_failing)
     summary += fmt::format(", the first at ({}, {})", metrics.first_failing->first, metrics.first_failing->second);
   if (hdr.values > 0)
-    summary += fmt::format("; above 1, relative: worst {:.4g} at ({}, {}), {} beyond {:g}", hdr.max_relative,
-                           metrics.float_x, metrics.float_y, plural(hdr.failing.size(), "pixel", "pixels"),
-                           settings.float_tolerance);
+    summary +=
+        fmt::format("; above 1, relative: worst {:.4g} at ({}, {}), {} beyond {:g}", hdr.max_relative, metrics.float_x,
+                    metrics.float_y, plural(hdr.failing.size(), "pixel", "pixels"), settings.float_tolerance);
   result.layers.push_back({"summary", Verdict::Pass, std::move(summary)});
   result.failing_pixels = std::move(pass.failing);
   return result;
 }
 
 std::string describe_metrics(const ImageMetrics& metrics) {
-  std::string text = fmt::format("worst {} sRGB steps at ({}, {}), {} failing pixels ({:.3g}%)", metrics.max_steps,
-                                 metrics.worst_x, metrics.worst_y, metrics.failing_pixels, metrics.failing_fraction * 100.0);
+  std::string text =
+      fmt::format("worst {} sRGB steps at ({}, {}), {} failing pixels ({:.3g}%)", metrics.max_steps, metrics.worst_x,
+                  metrics.worst_y, metrics.failing_pixels, metrics.failing_fraction * 100.0);
   if (metrics.float_failing_pixels > 0)
     text += fmt::format("; above 1: {} pixels beyond the float tolerance, worst {:.4g} relative at ({}, {})",
                         metrics.float_failing_pixels, metrics.float_max_relative, metrics.float_x, metrics.float_y);
@@ -458,8 +462,8 @@ std::string describe_metrics(const ImageMetrics& metrics) {
 }
 
 std::string describe_non_finite(const NonFiniteCount& count) {
-  return fmt::format("{} NaN, {} Inf, {} negative channel values, first at ({}, {})", count.nan,
-                     count.inf, count.negative, count.first->first, count.first->second);
+  return fmt::format("{} NaN, {} Inf, {} negative channel values, first at ({}, {})", count.nan, count.inf,
+                     count.negative, count.first->first, count.first->second);
 }
 
 }  // namespace xshade::harness

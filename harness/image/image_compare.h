@@ -36,12 +36,12 @@ struct CompareSettings {
   // scene), measured by `xshade run` (results.json, cross_lane metrics.above_one.worst_relative).
   static constexpr double default_float_tolerance = 0.005;
 
-  uint32_t channel_tolerance = default_channel_tolerance;  // 8-bit sRGB steps, 0..255
+  uint32_t channel_tolerance = default_channel_tolerance;      // 8-bit sRGB steps, 0..255
   double max_failing_fraction = default_max_failing_fraction;  // of the pixels, 0..1
-  uint32_t position_radius = default_position_radius;  // pixels, 0..8
-  double float_tolerance = default_float_tolerance;  // relative, for values above 1; 0..1
-  std::string reason;  // why; required whenever a tolerance is given
-  bool tolerances_given = false;  // any of the three numbers was written in the scene
+  uint32_t position_radius = default_position_radius;          // pixels, 0..8
+  double float_tolerance = default_float_tolerance;            // relative, for values above 1; 0..1
+  std::string reason;                                          // why; required whenever a tolerance is given
+  bool tolerances_given = false;                               // any of the three numbers was written in the scene
 };
 
 enum class Verdict {
@@ -51,7 +51,7 @@ enum class Verdict {
   Crash,    // a backend or internal error (exit 3)
   Skipped,  // not run (e.g. the lane is not selected)
 };
-std::string_view verdict_name(Verdict verdict);  // "pass", "fail", "error", "crash", "skipped"
+std::string_view verdict_name(Verdict verdict);                   // "pass", "fail", "error", "crash", "skipped"
 std::optional<Verdict> verdict_from_name(std::string_view name);  // verdict_name's inverse
 
 // One layer of the comparison model (DESIGN.md), or one of the other gate layers:
@@ -70,25 +70,26 @@ struct ImageMetrics {
   double max_difference = 0.0;  // linear, largest over channels
   uint32_t max_x = 0;
   uint32_t max_y = 0;
-  double mean = 0.0;            // mean absolute difference, linear
+  double mean = 0.0;  // mean absolute difference, linear
   double rmse = 0.0;
-  double psnr = 0.0;            // dB, on the 8-bit sRGB images; infinite when identical
-  size_t failing_pixels = 0;    // beyond the channel tolerance (per-pixel layer)
+  double psnr = 0.0;          // dB, on the 8-bit sRGB images; infinite when identical
+  size_t failing_pixels = 0;  // beyond the channel tolerance (per-pixel layer)
   double failing_fraction = 0.0;
 
-  uint32_t max_steps = 0;       // the worst pixel's largest channel difference, sRGB steps
-  uint32_t worst_x = 0;         // the first pixel with max_steps
+  uint32_t max_steps = 0;  // the worst pixel's largest channel difference, sRGB steps
+  uint32_t worst_x = 0;    // the first pixel with max_steps
   uint32_t worst_y = 0;
-  std::array<float, 4> worst_test{};       // the worst pixel's values, RGBA as compared
+  std::array<float, 4> worst_test{};  // the worst pixel's values, RGBA as compared
   std::array<float, 4> worst_reference{};
-  double mean_steps = 0.0;      // over every channel of every pixel
+  double mean_steps = 0.0;  // over every channel of every pixel
   double rmse_steps = 0.0;
-  std::optional<std::pair<uint32_t, uint32_t>> first_failing = std::nullopt;  // the first pixel the per-pixel layer failed
+  std::optional<std::pair<uint32_t, uint32_t>> first_failing =
+      std::nullopt;  // the first pixel the per-pixel layer failed
 
-  size_t hdr_values = 0;             // channel pairs with a value above 1, which the float layer compares
-  size_t float_failing_pixels = 0;   // with a value beyond the float tolerance
-  double float_max_relative = 0.0;   // the largest relative error among them
-  uint32_t float_x = 0;              // where it is
+  size_t hdr_values = 0;            // channel pairs with a value above 1, which the float layer compares
+  size_t float_failing_pixels = 0;  // with a value beyond the float tolerance
+  double float_max_relative = 0.0;  // the largest relative error among them
+  uint32_t float_x = 0;             // where it is
   uint32_t float_y = 0;
 };
 

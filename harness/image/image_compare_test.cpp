@@ -138,8 +138,7 @@ TEST(CompareImages, NanInTheTestFailsTheFiniteLayerWithTheFirstPixel) {
   EXPECT_EQ(comparison.verdict, Verdict::Fail);
   EXPECT_EQ(comparison.decided_by, "finite");
   EXPECT_EQ(layer(comparison, "finite").verdict, Verdict::Fail);
-  EXPECT_EQ(layer(comparison, "finite").detail,
-            "test has 1 NaN, 1 Inf, 1 negative channel values, first at (3, 1)");
+  EXPECT_EQ(layer(comparison, "finite").detail, "test has 1 NaN, 1 Inf, 1 negative channel values, first at (3, 1)");
   EXPECT_EQ(comparison.test_non_finite.nan, 1u);
   EXPECT_EQ(comparison.test_non_finite.inf, 1u);
   EXPECT_EQ(comparison.test_non_finite.negative, 1u);
@@ -282,9 +281,9 @@ TEST(CompareImages, TheSummaryPointsAtTheWorstPixelInStepsNotInLinearValues) {
 TEST(CompareImages, TheWorstPixelsValuesAndTheFailingPixelsAreKept) {
   const FloatImage reference = filled(3, 2, code_colour(100, 100, 100));
   FloatImage test = reference;
-  test.set(2, 0, code_colour(103, 100, 100));  // 3 steps
+  test.set(2, 0, code_colour(103, 100, 100));       // 3 steps
   test.set(0, 1, code_colour(100, 109, 100, 250));  // 9 steps, the worst
-  test.set(1, 1, code_colour(101, 100, 100));  // 1 step: within the tolerance
+  test.set(1, 1, code_colour(101, 100, 100));       // 1 step: within the tolerance
   const Comparison comparison = compare_images(test, reference, settings(1));
   EXPECT_EQ(comparison.failing_pixels, (std::vector<uint32_t>{2, 3}));
   EXPECT_EQ(comparison.metrics.worst_x, 0u);
@@ -357,8 +356,9 @@ FloatImage gradient_render(float peak) {
   FloatImage render(64, 48);
   for (uint32_t y = 0; y < 48; ++y)
     for (uint32_t x = 0; x < 64; ++x)
-      render.set(x, y, {peak * float(x) / 63.0f, 0.5f + 0.5f * std::sin(float(x * y) * 0.01f), float(y) / 47.0f * 0.013f,
-                        0.25f + 0.75f * float(x) / 63.0f});
+      render.set(x, y,
+                 {peak * float(x) / 63.0f, 0.5f + 0.5f * std::sin(float(x * y) * 0.01f), float(y) / 47.0f * 0.013f,
+                  0.25f + 0.75f * float(x) / 63.0f});
   return render;
 }
 

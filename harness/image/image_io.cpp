@@ -12,8 +12,7 @@
 namespace xshade::harness {
 namespace {
 
-std::string file_error(const std::string& what, const std::filesystem::path& path,
-                       const std::string& detail) {
+std::string file_error(const std::string& what, const std::filesystem::path& path, const std::string& detail) {
   std::string message = what + " " + path.string();
   if (!detail.empty()) message += ": " + detail;
   return message;
@@ -50,7 +49,8 @@ Result<void> check_header(const ImageFileHeader& spec, const std::filesystem::pa
     return fail(file_error("cannot read image", path,
                            "it has " + std::to_string(spec.channels) + " channels; xshade reads images of at most " +
                                std::to_string(kMaxImageFileChannels)));
-  const uint64_t tile_pixels = uint64_t(std::max<int64_t>(spec.tile_width, 0)) * uint64_t(std::max<int64_t>(spec.tile_height, 0));
+  const uint64_t tile_pixels =
+      uint64_t(std::max<int64_t>(spec.tile_width, 0)) * uint64_t(std::max<int64_t>(spec.tile_height, 0));
   if (spec.tile_width > int64_t(kMaxImageFileSide) || spec.tile_height > int64_t(kMaxImageFileSide) ||
       tile_pixels > kMaxImageFilePixels || spec.tile_depth > 1)
     return fail(file_error("cannot read image", path,
@@ -96,8 +96,8 @@ Result<void> write_png(const FloatImage& image, const std::filesystem::path& pat
   auto codec = image_codec();
   if (!codec) return fail(codec.error());
   std::vector<unsigned char> encoded;
-  const std::string detail =
-      (*codec)->encode_png(image.width, image.height, bytes.data(), compression == PngCompression::Fast ? 1 : 6, encoded);
+  const std::string detail = (*codec)->encode_png(image.width, image.height, bytes.data(),
+                                                  compression == PngCompression::Fast ? 1 : 6, encoded);
   return write_encoded(path, detail, encoded);
 }
 

@@ -4,8 +4,8 @@
 #include <cstdint>
 #include <filesystem>
 
-#include "harness/image/image.h"
 #include "base/result.h"
+#include "harness/image/image.h"
 
 namespace xshade::harness {
 

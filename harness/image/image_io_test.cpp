@@ -22,13 +22,12 @@ std::filesystem::path temp_path(const std::string& name) {
 TEST(Srgb, EncodesTheStandardCurve) {
   EXPECT_EQ(linear_to_srgb8(0.0f), 0);
   EXPECT_EQ(linear_to_srgb8(1.0f), 255);
-  EXPECT_EQ(linear_to_srgb8(0.5f), 188);     // 0.7354 * 255
-  EXPECT_EQ(linear_to_srgb8(0.002f), 7);     // the linear segment: 12.92 * 0.002 * 255 = 6.6
+  EXPECT_EQ(linear_to_srgb8(0.5f), 188);  // 0.7354 * 255
+  EXPECT_EQ(linear_to_srgb8(0.002f), 7);  // the linear segment: 12.92 * 0.002 * 255 = 6.6
   EXPECT_EQ(linear_to_srgb8(-3.0f), 0);
   EXPECT_EQ(linear_to_srgb8(7.0f), 255);
   EXPECT_EQ(linear_to_srgb8(std::numeric_limits<float>::quiet_NaN()), 0);
-  for (int code = 0; code < 256; ++code)
-    EXPECT_EQ(linear_to_srgb8(srgb8_to_linear(uint8_t(code))), code) << code;
+  for (int code = 0; code < 256; ++code) EXPECT_EQ(linear_to_srgb8(srgb8_to_linear(uint8_t(code))), code) << code;
 }
 
 TEST(ImageIo, ExrKeepsEveryFloat) {
@@ -128,9 +127,10 @@ TEST(ImageIo, AnExrHeaderThatClaimsMoreThanTheFileHoldsIsRefusedBeforeOpenExrRea
     forged::write(path, forged::exr(16, 16, true, lying));
     auto read = read_image(path);
     ASSERT_FALSE(read) << name;
-    EXPECT_EQ(read.error().message,
-              "cannot read image " + path.string() + ": its header's attribute 'comments' claims 1999568987 bytes, more "
-              "than the file holds (" + std::to_string(std::filesystem::file_size(path)) + " bytes in all)");
+    EXPECT_EQ(read.error().message, "cannot read image " + path.string() +
+                                        ": its header's attribute 'comments' claims 1999568987 bytes, more "
+                                        "than the file holds (" +
+                                        std::to_string(std::filesystem::file_size(path)) + " bytes in all)");
     EXPECT_EQ(read.error().kind, ErrorKind::UserInput);
   }
   // 2^30 lines and no offset table: refused by its data window alone, in a file of 300 bytes.
@@ -155,9 +155,7 @@ TEST(ImageIo, AnExrHeaderThatClaimsMoreThanTheFileHoldsIsRefusedBeforeOpenExrRea
   EXPECT_EQ(read.error().message.find("pixels a side"), std::string::npos) << read.error().message;
 }
 
-TEST(ImageIo, UnwritablePathIsAnError) {
-  EXPECT_FALSE(write_png(FloatImage(1, 1), "/nonexistent_dir/x.png"));
-}
+TEST(ImageIo, UnwritablePathIsAnError) { EXPECT_FALSE(write_png(FloatImage(1, 1), "/nonexistent_dir/x.png")); }
 
 }  // namespace
 }  // namespace xshade::harness

@@ -11,7 +11,9 @@
 namespace xshade::harness {
 namespace {
 
-OIIO::TypeDesc type_of(PixelType type) { return type == PixelType::UInt8 ? OIIO::TypeDesc::UINT8 : OIIO::TypeDesc::FLOAT; }
+OIIO::TypeDesc type_of(PixelType type) {
+  return type == PixelType::UInt8 ? OIIO::TypeDesc::UINT8 : OIIO::TypeDesc::FLOAT;
+}
 
 // The file's bytes in memory (`format_name` picks the format by its extension): the caller writes
 // them as a whole file, so that a full disk is an error with its reason and never a truncated
@@ -33,9 +35,16 @@ class OiioReader final : public ImageFileReader {
  public:
   explicit OiioReader(std::unique_ptr<OIIO::ImageInput> input) : input_(std::move(input)) {
     const OIIO::ImageSpec& spec = input_->spec();
-    header_ = {spec.width,      spec.height,      spec.depth,        spec.nchannels,
-               spec.alpha_channel, spec.tile_width, spec.tile_height, spec.tile_depth,
-               spec.format == OIIO::TypeDesc::UINT8, spec.format.is_floating_point()};
+    header_ = {spec.width,
+               spec.height,
+               spec.depth,
+               spec.nchannels,
+               spec.alpha_channel,
+               spec.tile_width,
+               spec.tile_height,
+               spec.tile_depth,
+               spec.format == OIIO::TypeDesc::UINT8,
+               spec.format.is_floating_point()};
   }
   const ImageFileHeader& header() const override { return header_; }
   std::string read(int channels, PixelType type, void* pixels) override {

@@ -47,9 +47,8 @@ Srgb8Table build_table() {
   for (uint32_t group = 0; group < table.group_first_code.size(); ++group) {
     const float smallest = std::bit_cast<float>(group << kGroupShift);
     // The number of codes 1..255 that start at or below it.
-    table.group_first_code[group] =
-        uint8_t(std::upper_bound(table.starts.begin() + 1, table.starts.begin() + 256, smallest) -
-                (table.starts.begin() + 1));
+    table.group_first_code[group] = uint8_t(
+        std::upper_bound(table.starts.begin() + 1, table.starts.begin() + 256, smallest) - (table.starts.begin() + 1));
   }
   return table;
 }

@@ -73,8 +73,8 @@ std::optional<std::string> check_driver_cache(const fs::path& folder) {
   const fs::path aside = folder.string() + ".damaged-" + std::to_string(::getpid());
   fs::rename(folder, aside, error);
   fs::remove_all(error ? folder : aside, error);
-  return "the drivers' shader cache in " + folder.string() + " had " + std::to_string(changed) +
-         " entr" + (changed == 1 ? "y" : "ies") + " changed since xshade saw them written (" + first +
+  return "the drivers' shader cache in " + folder.string() + " had " + std::to_string(changed) + " entr" +
+         (changed == 1 ? "y" : "ies") + " changed since xshade saw them written (" + first +
          "): it is set aside and built again";
 }
 
@@ -91,8 +91,8 @@ void record_driver_cache(const fs::path& folder) {
     const std::string path = fs::relative(it->path(), folder).string();
     std::optional<Seen> now = stat_of(it->path());
     if (!now) continue;
-    if (auto known = before.find(path); known != before.end() && known->second.size == now->size &&
-                                        known->second.mtime == now->mtime) {
+    if (auto known = before.find(path);
+        known != before.end() && known->second.size == now->size && known->second.mtime == now->mtime) {
       now->hash = known->second.hash;
     } else {
       const std::optional<std::string> bytes = read_file(it->path());

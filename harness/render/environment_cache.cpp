@@ -152,8 +152,8 @@ Result<std::shared_ptr<const Environment>> EnvironmentCache::get(const Environme
     std::error_code ignored;
     fs::create_directories(folder_, ignored);
     // Keeping it is worth a try, not a failure: without it the next run builds it again.
-    [[maybe_unused]] const auto written = write_file_atomically(
-        folder_ / ("environment-" + key + ".bin"), std::string(kMagic) + content_hash(body) + "\n" + body);
+    [[maybe_unused]] const auto written = write_file_atomically(folder_ / ("environment-" + key + ".bin"),
+                                                                std::string(kMagic) + content_hash(body) + "\n" + body);
   }
   return kept_[key] = std::move(environment);
 }

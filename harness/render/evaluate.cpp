@@ -15,7 +15,7 @@ std::vector<std::byte> default_constant_buffer(const hlsl::ConstantBuffer& buffe
   return constant_buffer_from(buffer, properties, [](const UniformMember& member, const ShaderInterface& interface) {
     const PropertyDefault* property = interface.find_property(member.name);
     return property && property->value.size() == member.components() ? property->value
-                                                                      : std::vector<float>(member.components(), 0.0f);
+                                                                     : std::vector<float>(member.components(), 0.0f);
   });
 }
 
@@ -35,7 +35,8 @@ Result<FullscreenProgram> FullscreenProgram::create(const hlsl::Module& module, 
   for (size_t i = 0; i < buffers.size(); ++i) {
     hlsl::ConstantBuffer declared = buffers[i];
     declared.decl = nullptr;
-    made.buffers_.push_back({buffers[i].name, default_constant_buffer(buffers[i], module.reflection.properties), std::move(declared)});
+    made.buffers_.push_back(
+        {buffers[i].name, default_constant_buffer(buffers[i], module.reflection.properties), std::move(declared)});
   }
   made.texture_slots_ = desc->layout.textures;
   made.storage_buffers_ = shader_interface(module.reflection).storage_buffers;  // plain data: the module may go
@@ -52,7 +53,8 @@ TextureData default_texture(const TextureSlot& slot) {
   TextureData texture;
   texture.width = texture.height = 1;
   texture.dimension = slot.shape.dimension;
-  texture.layers = slot.shape.dimension == TextureDimension::Cube || slot.shape.dimension == TextureDimension::CubeArray ? 6 : 1;
+  texture.layers =
+      slot.shape.dimension == TextureDimension::Cube || slot.shape.dimension == TextureDimension::CubeArray ? 6 : 1;
   // Four samples: the count both backends' drivers offer for every colour format.
   texture.samples = slot.shape.multisampled ? 4 : 1;
   std::vector<std::byte> texel;
@@ -94,8 +96,8 @@ Result<FloatImage> FullscreenProgram::run(Backend& backend, uint32_t width, uint
     auto given = constant_buffers.find(buffer.name);
     const std::vector<std::byte>& bytes = given != constant_buffers.end() ? given->second : buffer.defaults;
     if (bytes.size() != buffer.defaults.size())
-      return fail("constant buffer '" + buffer.name + "' needs " + std::to_string(buffer.defaults.size()) + " bytes, not " +
-                  std::to_string(bytes.size()));
+      return fail("constant buffer '" + buffer.name + "' needs " + std::to_string(buffer.defaults.size()) +
+                  " bytes, not " + std::to_string(bytes.size()));
     draw.uniforms.push_back({buffer.name, bytes});
   }
   for (const auto& given : inputs.storage_buffers)
@@ -128,9 +130,11 @@ Result<FloatImage> FullscreenProgram::run(Backend& backend, uint32_t width, uint
       if (!texture) return fail(texture.error());
       known = defaults.emplace(key, *texture).first;
     }
-    draw.textures.push_back({slot.name, TextureSource::texture(known->second, {Filter::Nearest, AddressMode::ClampToEdge})});
+    draw.textures.push_back(
+        {slot.name, TextureSource::texture(known->second, {Filter::Nearest, AddressMode::ClampToEdge})});
   }
-  if (auto rendered = backend.render({*target, glm::vec4(0.0f), 1.0f, {draw}}); !rendered) return fail(rendered.error());
+  if (auto rendered = backend.render({*target, glm::vec4(0.0f), 1.0f, {draw}}); !rendered)
+    return fail(rendered.error());
   if (record && traced_) {
     auto recorded = backend.read_second_color(*target);
     if (!recorded) return fail(recorded.error());
@@ -142,7 +146,8 @@ Result<FloatImage> FullscreenProgram::run(Backend& backend, uint32_t width, uint
 Result<FloatImage> FullscreenProgram::run_seeded(Backend& backend, uint32_t width, uint32_t height, uint32_t seed,
                                                  FloatImage* record) const {
   FullscreenInputs inputs;
-  for (const Buffer& buffer : buffers_) inputs.constant_buffers[buffer.name] = seeded_constant_buffer(buffer.declared, seed);
+  for (const Buffer& buffer : buffers_)
+    inputs.constant_buffers[buffer.name] = seeded_constant_buffer(buffer.declared, seed);
   ResourceSet resources(backend);  // the textures are this run's own
   for (const TextureSlot& slot : texture_slots_) {
     auto texture = resources.upload_texture(seeded_texture(slot, seed));

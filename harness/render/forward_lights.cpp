@@ -67,10 +67,11 @@ ForwardLights forward_lights(const Scene& scene) {
     } else if (light.type == LightType::Point && out.vertex.size() < kVertexLights) {
       out.vertex.push_back(i);
     } else {
-      out.left_out.push_back("light " + std::to_string(i + 1) + ": beyond the " + std::to_string(scene.pixel_lights) +
-                             " pixel lights of [unity] pixel_lights" +
-                             (light.type == LightType::Point ? " and the 4 vertex lights" : " (only point lights light per vertex)") +
-                             ": it lights nothing (Unity folds such lights into the SH ambient; xshade does not)");
+      out.left_out.push_back(
+          "light " + std::to_string(i + 1) + ": beyond the " + std::to_string(scene.pixel_lights) +
+          " pixel lights of [unity] pixel_lights" +
+          (light.type == LightType::Point ? " and the 4 vertex lights" : " (only point lights light per vertex)") +
+          ": it lights nothing (Unity folds such lights into the SH ambient; xshade does not)");
     }
   }
   return out;
@@ -97,7 +98,8 @@ void add_light_inputs(const Light& light, UniformValueMap& values) {
   if (light.type == LightType::Point) {
     // A point light's space: the light at the origin, its range 1 (AutoLight.cginc reads the
     // falloff at dot(lightCoord, lightCoord) = (distance / range)^2).
-    values["unity_WorldToLight"] = hlsl_components(glm::scale(glm::mat4(1.0f), glm::vec3(1.0f / light.range)) * to_origin);
+    values["unity_WorldToLight"] =
+        hlsl_components(glm::scale(glm::mat4(1.0f), glm::vec3(1.0f / light.range)) * to_origin);
     return;
   }
   // A spot light's space: x right, y up, z along the beam (Unity's light transform), the range 1,

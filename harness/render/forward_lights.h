@@ -17,9 +17,9 @@
 namespace xshade::harness {
 
 struct ForwardLights {
-  std::optional<size_t> main;   // index into Scene::lights
-  std::vector<size_t> pixel;    // ForwardAdd's, in the order they are drawn
-  std::vector<size_t> vertex;   // ForwardBase's per-vertex point lights
+  std::optional<size_t> main;         // index into Scene::lights
+  std::vector<size_t> pixel;          // ForwardAdd's, in the order they are drawn
+  std::vector<size_t> vertex;         // ForwardBase's per-vertex point lights
   std::vector<std::string> left_out;  // lights that light nothing, and why
 };
 

@@ -26,7 +26,7 @@ glm::vec4 hlsl_mul(const std::vector<float>& m, const glm::vec4& v) {
 TEST(ForwardLights, TheBrightestDirectionalLightIsMainThenPixelLightsByBrightnessThenPointLightsPerVertex) {
   Scene scene;
   scene.pixel_lights = 2;
-  scene.lights = {light_of(LightType::Point, 1.0f),      light_of(LightType::Directional, 0.5f),
+  scene.lights = {light_of(LightType::Point, 1.0f),       light_of(LightType::Directional, 0.5f),
                   light_of(LightType::Directional, 2.0f), light_of(LightType::Spot, 3.0f),
                   light_of(LightType::Point, 0.2f),       light_of(LightType::Spot, 0.1f)};
   const ForwardLights lights = forward_lights(scene);
@@ -66,7 +66,7 @@ TEST(ForwardLights, APointLightsSpaceHasItsRangeOne) {
   EXPECT_EQ(values["_WorldSpaceLightPos0"], (std::vector<float>{1, 2, 3, 1}));
   EXPECT_EQ(values["_LightColor0"], (std::vector<float>{2, 1, 0, 2}));
   const glm::vec4 at = hlsl_mul(values["unity_WorldToLight"], {1, 2, 5, 1});  // 2 from the light along z
-  EXPECT_NEAR(glm::dot(glm::vec3(at), glm::vec3(at)), 0.25f, 1e-6f);       // (2 / 4)^2
+  EXPECT_NEAR(glm::dot(glm::vec3(at), glm::vec3(at)), 0.25f, 1e-6f);          // (2 / 4)^2
 }
 
 TEST(ForwardLights, ASpotLightsSpaceSpansItsConeWithTheCookieAndMeasuresDistanceAsAPointLights) {

@@ -9,15 +9,14 @@
 #include <vector>
 
 #include "harness/backend/backend.h"
-#include "harness/scene/lane.h"
 #include "harness/gl/gl_context.h"  // GlPlatform, gl_platform_name, parse_gl_platform
+#include "harness/scene/lane.h"
 #include "spirv/spirv_compiler.h"
 
 namespace xshade::harness {
 
-
 struct BackendOptions {
-  bool validation = false;  // Vulkan validation layer, when installed
+  bool validation = false;                    // Vulkan validation layer, when installed
   GlPlatform gl_platform = GlPlatform::Auto;  // how the gl lane gets its context (gl_context.h)
   // Mesa's on-disk shader cache, in this folder (xshade's own, never the user's): the drivers
   // load what they compiled before instead of compiling it again, and the gl lane keeps its

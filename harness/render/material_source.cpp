@@ -68,7 +68,8 @@ std::string with_pragma_includes(std::string text, const fs::path& including, co
     if (close == std::string_view::npos) continue;
     const auto found = hlsl::find_include(line.substr(1, close - 1), including, angled, folders);
     if (!found) continue;
-    if (auto file = read_file(*found)) included += "\n" + with_pragma_includes(std::move(*file), *found, folders, depth + 1);
+    if (auto file = read_file(*found))
+      included += "\n" + with_pragma_includes(std::move(*file), *found, folders, depth + 1);
   }
   return text + included;
 }
@@ -79,7 +80,8 @@ bool is_unity_shader(const fs::path& path) { return path.extension() == ".shader
 
 bool forward_renderer_draws(const shaderlab::Pass& pass) {
   const std::string light_mode = shaderlab::tag(pass.tags, "LightMode");
-  return light_mode.empty() || shaderlab::same_word(light_mode, "Always") || shaderlab::same_word(light_mode, "ForwardBase");
+  return light_mode.empty() || shaderlab::same_word(light_mode, "Always") ||
+         shaderlab::same_word(light_mode, "ForwardBase");
 }
 
 // Whether a compiled entry point reads the uniform `name`.
@@ -100,7 +102,8 @@ void apply_properties(const shaderlab::Shader& shader, hlsl::Reflection& reflect
           renderer_uniform(declared.name) || declared.name.ends_with("_ST") || !read_uniform(reflection, declared.name))
         continue;
       declared.default_value.assign(declared.type.rows() * declared.type.cols(), 0.0);
-      notes.push_back("uniform " + declared.name + " reads 0: neither the Properties block nor the renderer sets it "
+      notes.push_back("uniform " + declared.name +
+                      " reads 0: neither the Properties block nor the renderer sets it "
                       "(in Unity a script, or the engine for what this scene has not, would; set it in the scene's "
                       "properties)");
       continue;
@@ -124,7 +127,8 @@ void apply_properties(const shaderlab::Shader& shader, hlsl::Reflection& reflect
 
 Result<hlsl::CompileOptions> pass_compile_options(const fs::path& file, const shaderlab::PassProgram& program,
                                                   hlsl::CompileOptions options, shaderlab::UnityPlatform platform) {
-  options.include_dirs.insert(options.include_dirs.begin(), file.parent_path().empty() ? fs::path(".") : file.parent_path());
+  options.include_dirs.insert(options.include_dirs.begin(),
+                              file.parent_path().empty() ? fs::path(".") : file.parent_path());
   if (program.implicit_includes)
     if (auto found = shaderlab::find_implicit_includes(options.include_dirs); !found)
       return fail(Error{found.error().message, program.pass->program->start, {}});
@@ -182,7 +186,8 @@ Result<SourcePass> used_pass(const shaderlab::Pass& use, NamedShaders& named, sh
   const shaderlab::SubShader* sub = shaderlab::drawn_subshader(*found->first, platform);
   if (sub)
     for (const shaderlab::Pass& pass : sub->passes)
-      if (!pass.name.empty() && shaderlab::same_word(pass.name, pass_name)) return SourcePass{sub, &pass, found->second};
+      if (!pass.name.empty() && shaderlab::same_word(pass.name, pass_name))
+        return SourcePass{sub, &pass, found->second};
   return fail(Error{"UsePass \"" + use.used + "\": the shader '" + shader_name + "' (" + found->second.string() +
                         ") has no pass named '" + pass_name + "' in the SubShader it draws",
                     use.where,
@@ -192,7 +197,8 @@ Result<SourcePass> used_pass(const shaderlab::Pass& use, NamedShaders& named, sh
 // `sub` as drawn: itself, or for a surface shader a copy with its generated passes, kept in
 // `generated` while passes point into it.
 Result<const shaderlab::SubShader*> with_generated_passes(const shaderlab::SubShader* sub, const fs::path& file,
-                                                          const hlsl::CompileOptions& options, shaderlab::UnityPlatform platform,
+                                                          const hlsl::CompileOptions& options,
+                                                          shaderlab::UnityPlatform platform,
                                                           std::list<shaderlab::SubShader>& generated) {
   if (!sub->surface) return sub;
   auto with_passes = with_surface_passes(file, *sub, options, platform);
@@ -202,8 +208,9 @@ Result<const shaderlab::SubShader*> with_generated_passes(const shaderlab::SubSh
 
 // The ShadowCaster pass of the first shader of `shader`'s Fallback chain whose drawn SubShader has
 // one (its surface program's generated passes included); none when no shader of the chain has.
-Result<std::optional<SourcePass>> fallback_caster(const shaderlab::Shader& shader, const fs::path& file, NamedShaders& named,
-                                                  const hlsl::CompileOptions& options, shaderlab::UnityPlatform platform,
+Result<std::optional<SourcePass>> fallback_caster(const shaderlab::Shader& shader, const fs::path& file,
+                                                  NamedShaders& named, const hlsl::CompileOptions& options,
+                                                  shaderlab::UnityPlatform platform,
                                                   std::list<shaderlab::SubShader>& generated) {
   const shaderlab::Shader* current = &shader;
   fs::path current_file = file;
@@ -217,7 +224,8 @@ Result<std::optional<SourcePass>> fallback_caster(const shaderlab::Shader& shade
     auto sub = with_generated_passes(drawn, current_file, options, platform, generated);
     if (!sub) return fail(sub.error());
     for (const shaderlab::Pass& pass : (*sub)->passes)
-      if (pass.kind == shaderlab::PassKind::Program && shaderlab::same_word(shaderlab::tag(pass.tags, "LightMode"), "ShadowCaster"))
+      if (pass.kind == shaderlab::PassKind::Program &&
+          shaderlab::same_word(shaderlab::tag(pass.tags, "LightMode"), "ShadowCaster"))
         return std::optional<SourcePass>{SourcePass{*sub, &pass, current_file}};
   }
   return std::optional<SourcePass>{};
@@ -225,8 +233,8 @@ Result<std::optional<SourcePass>> fallback_caster(const shaderlab::Shader& shade
 
 }  // namespace
 
-Result<SourceModule> compile_source(const fs::path& path, hlsl::CompileOptions options, std::optional<size_t> pass_index,
-                                    shaderlab::UnityPlatform platform) {
+Result<SourceModule> compile_source(const fs::path& path, hlsl::CompileOptions options,
+                                    std::optional<size_t> pass_index, shaderlab::UnityPlatform platform) {
   if (!is_unity_shader(path)) {
     SourceModule source;
     source.module = hlsl::compile_file(path, options);
@@ -255,9 +263,7 @@ Result<SourceModule> compile_source(const fs::path& path, hlsl::CompileOptions o
     auto fallback = named.read(*shader->fallback, {file.string(), 1, 1});
     if (!fallback) return fail(fallback.error());
     source.notes.push_back("'" + shader->name + "' " + shaderlab::without_subshader(*shader, platform) +
-                           ": drawn as its Fallback '" +
-                           *shader->fallback + "' (" +
-                           fallback->second.string() + ")");
+                           ": drawn as its Fallback '" + *shader->fallback + "' (" + fallback->second.string() + ")");
     shader = fallback->first;
     file = fallback->second;
   }
@@ -265,7 +271,8 @@ Result<SourceModule> compile_source(const fs::path& path, hlsl::CompileOptions o
   // Fallback's that casts for it (below).
   std::list<shaderlab::SubShader> generated;
   if (sub->surface)
-    source.notes.push_back("'" + shader->name + "': its surface program's Meta and Deferred passes, which Unity also "
+    source.notes.push_back("'" + shader->name +
+                           "': its surface program's Meta and Deferred passes, which Unity also "
                            "generates, are not generated: the forward renderer of a still scene draws neither");
   auto drawn_sub = with_generated_passes(sub, file, options, platform, generated);
   if (!drawn_sub) return fail(drawn_sub.error());
@@ -288,8 +295,9 @@ Result<SourceModule> compile_source(const fs::path& path, hlsl::CompileOptions o
     if (drawn.kind == shaderlab::PassKind::Grab) {
       // Left out; a pass that reads what it grabs is refused below.
       grabs.emplace_back(drawn.grab_texture.empty() ? "_GrabTexture" : drawn.grab_texture, drawn.where);
-      source.notes.push_back(pass_label(pass, i) + ": not drawn: GrabPass is not drawn yet, and the drawn passes do not "
-                                                   "read what it grabs");
+      source.notes.push_back(pass_label(pass, i) +
+                             ": not drawn: GrabPass is not drawn yet, and the drawn passes do not "
+                             "read what it grabs");
     } else if (drawn.kind != shaderlab::PassKind::Program) {
       source.notes.push_back(pass_label(pass, i) + ": not drawn: it has no program (fixed-function)");
     } else if (shaderlab::same_word(shaderlab::tag(drawn.tags, "LightMode"), "ForwardAdd")) {
@@ -297,7 +305,8 @@ Result<SourceModule> compile_source(const fs::path& path, hlsl::CompileOptions o
     } else if (shaderlab::same_word(shaderlab::tag(drawn.tags, "LightMode"), "ShadowCaster")) {
       if (!source.caster_pass) source.caster_pass = i;  // drawn into a shadow map where a light casts
     } else if (!forward_renderer_draws(drawn)) {
-      source.notes.push_back(pass_label(pass, i) + ": not drawn: the forward renderer runs it for what the scene has not");
+      source.notes.push_back(pass_label(pass, i) +
+                             ": not drawn: the forward renderer runs it for what the scene has not");
     } else {
       source.drawn_passes.push_back(i);
     }
@@ -314,13 +323,16 @@ Result<SourceModule> compile_source(const fs::path& path, hlsl::CompileOptions o
   if (source.drawn_passes.empty()) {
     if (std::all_of(sub->passes.begin(), sub->passes.end(),
                     [](const shaderlab::Pass& pass) { return pass.kind == shaderlab::PassKind::FixedFunction; }))
-      return fail("'" + shader->name + "' is a fixed-function shader (SetTexture, Lighting, Material): Unity generates its " +
+      return fail("'" + shader->name +
+                      "' is a fixed-function shader (SetTexture, Lighting, Material): Unity generates its " +
                       "programs, xshade compiles only the programs a shader writes (CGPROGRAM or HLSLPROGRAM)",
                   sub->where);
     std::string why;
     for (const std::string& note : source.notes) why += (why.empty() ? "" : "; ") + note;
-    return fail("'" + shader->name + "' has no pass the forward renderer draws (a program pass without LightMode, or "
-                "with Always or ForwardBase): " + why,
+    return fail("'" + shader->name +
+                    "' has no pass the forward renderer draws (a program pass without LightMode, or "
+                    "with Always or ForwardBase): " +
+                    why,
                 sub->where);
   }
   source.pass = pass_index.value_or(source.drawn_passes.front());
@@ -340,9 +352,10 @@ Result<SourceModule> compile_source(const fs::path& path, hlsl::CompileOptions o
   for (const hlsl::TextureResource& texture : source.module->reflection.textures)
     for (const auto& [grabbed, where] : grabs)
       if (texture.used && texture.name == grabbed)
-        return fail("'" + shader->name + "': GrabPass is not drawn yet: xshade's renderer does not copy the target "
-                        "between an object's passes, and " + pass_label(*drawn.pass, source.pass) + " reads '" +
-                        grabbed + "'",
+        return fail("'" + shader->name +
+                        "': GrabPass is not drawn yet: xshade's renderer does not copy the target "
+                        "between an object's passes, and " +
+                        pass_label(*drawn.pass, source.pass) + " reads '" + grabbed + "'",
                     where);
   source.render_state = drawn.pass->state.over(drawn.sub->state);
   source.queue = shaderlab::tag(sub->tags, "Queue");
@@ -352,12 +365,14 @@ Result<SourceModule> compile_source(const fs::path& path, hlsl::CompileOptions o
 }
 
 std::vector<std::string> with_inspector_keywords(const std::vector<shaderlab::Property>& properties,
-                                                 const std::vector<hlsl::KeywordSet>& sets, std::vector<std::string> asked,
+                                                 const std::vector<hlsl::KeywordSet>& sets,
+                                                 std::vector<std::string> asked,
                                                  const shaderlab::PropertyValue& value) {
   for (const std::string& keyword : shaderlab::material_keywords(properties, value)) {
     for (const hlsl::KeywordSet& set : sets) {
       if (std::find(set.keywords.begin(), set.keywords.end(), keyword) == set.keywords.end()) continue;
-      if (std::find_first_of(set.keywords.begin(), set.keywords.end(), asked.begin(), asked.end()) == set.keywords.end())
+      if (std::find_first_of(set.keywords.begin(), set.keywords.end(), asked.begin(), asked.end()) ==
+          set.keywords.end())
         asked.push_back(keyword);
       break;
     }

@@ -65,8 +65,8 @@ Result<SourceModule> compile_source(const std::filesystem::path& path, hlsl::Com
 // folder first among the include folders and Unity's defines before the caller's (a define the
 // caller gives, -D UNITY_VERSION=..., stands instead of Unity's). A CGPROGRAM whose implicit
 // includes no folder holds is an error at the program's line that says where to get them.
-Result<hlsl::CompileOptions> pass_compile_options(const std::filesystem::path& file, const shaderlab::PassProgram& program,
-                                                  hlsl::CompileOptions options,
+Result<hlsl::CompileOptions> pass_compile_options(const std::filesystem::path& file,
+                                                  const shaderlab::PassProgram& program, hlsl::CompileOptions options,
                                                   shaderlab::UnityPlatform platform = shaderlab::UnityPlatform::GLCore);
 
 // The defaults a .shader's Properties give the uniforms and textures of `reflection` that declare
@@ -84,7 +84,7 @@ void apply_properties(const shaderlab::Shader& shader, hlsl::Reflection& reflect
 // from `value`, each only where one of the pass's keyword `sets` declares it and none of that set
 // was asked: the variant `xshade run` draws and `xshade compile` shows.
 std::vector<std::string> with_inspector_keywords(const std::vector<shaderlab::Property>& properties,
-                                                 const std::vector<hlsl::KeywordSet>& sets, std::vector<std::string> asked,
-                                                 const shaderlab::PropertyValue& value);
+                                                 const std::vector<hlsl::KeywordSet>& sets,
+                                                 std::vector<std::string> asked, const shaderlab::PropertyValue& value);
 
 }  // namespace xshade::harness

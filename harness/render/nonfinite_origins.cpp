@@ -54,18 +54,22 @@ Result<NonfiniteOrigins> find_nonfinite_origins(const FloatImage& output, const 
       const glm::vec4 color = output.at(x, y);
       size_t nan = 0, inf = 0, negative = 0;
       for (int c = 0; c < 4; ++c) {
-        if (std::isnan(color[c])) ++nan;
-        else if (std::isinf(color[c])) ++inf;
-        else if (count_negative && color[c] < 0.0f) ++negative;
+        if (std::isnan(color[c]))
+          ++nan;
+        else if (std::isinf(color[c]))
+          ++inf;
+        else if (count_negative && color[c] < 0.0f)
+          ++negative;
       }
       const bool bad = nan + inf + negative > 0;
       const glm::vec4 channels = trace.at(x, y);
       uint32_t number = 0, call[3] = {0, 0, 0};
       if (!whole(channels.r, number) || !whole(channels.g, call[0]) || !whole(channels.b, call[1]) ||
           !whole(channels.a, call[2]))
-        return fail(fmt::format("the record of pass {} holds ({:g}, {:g}, {:g}, {:g}) at ({}, {}), which no traced "
-                                "program writes",
-                                record.pass, channels.r, channels.g, channels.b, channels.a, x, y));
+        return fail(
+            fmt::format("the record of pass {} holds ({:g}, {:g}, {:g}, {:g}) at ({}, {}), which no traced "
+                        "program writes",
+                        record.pass, channels.r, channels.g, channels.b, channels.a, x, y));
       if (number == 0) {
         if (bad) ++found.unattributed_pixels;
         continue;
@@ -80,9 +84,10 @@ Result<NonfiniteOrigins> find_nonfinite_origins(const FloatImage& output, const 
         const uint32_t program = glsl::NonfiniteTrace::program_in(number);
         const glsl::TraceSite* site = program < variants.size() ? variants[program].trace.site_in(number) : nullptr;
         if (!site)
-          return fail(fmt::format("the record of pass {} names site {} of program {}, which the traced variants do "
-                                  "not have",
-                                  record.pass, number & 0xFFFFu, program));
+          return fail(
+              fmt::format("the record of pass {} names site {} of program {}, which the traced variants do "
+                          "not have",
+                          record.pass, number & 0xFFFFu, program));
         const glsl::NonfiniteTrace& table = variants[program].trace;
         NonfiniteOrigin origin;
         origin.pass = record.pass;
@@ -136,10 +141,12 @@ std::string describe_origins(const NonfiniteOrigins& origins, size_t rows) {
     text += fmt::format("  {} pixels ({} NaN, {} Inf, {} negative values), first at ({}, {}): {}:{}:{}: {} in {}\n",
                         origin.pixels, origin.nan, origin.inf, origin.negative, origin.first_x, origin.first_y,
                         site.file, site.line, site.column, glsl::describe_site(site), site.function);
-    if (!site.source_line.empty()) text += "    " + site.source_line + "\n    " + caret_line(site.source_line, site.column) + "\n";
+    if (!site.source_line.empty())
+      text += "    " + site.source_line + "\n    " + caret_line(site.source_line, site.column) + "\n";
     for (const glsl::TraceCall& call : origin.calls)
       text += fmt::format("    called from {} at {}:{}:{}\n", call.caller, call.file, call.line, call.column);
-    if (origin.calls.size() == glsl::NonfiniteTrace::kRecordedCalls) text += "    (calls further out are not recorded)\n";
+    if (origin.calls.size() == glsl::NonfiniteTrace::kRecordedCalls)
+      text += "    (calls further out are not recorded)\n";
   }
   if (origins.origins.size() > rows) text += fmt::format("  ... and {} more sites\n", origins.origins.size() - rows);
   if (origins.unattributed_pixels)

@@ -17,15 +17,15 @@ namespace xshade::harness {
 // One site, reached through one chain of calls, and the output pixels it was the first
 // non-finite value of.
 struct NonfiniteOrigin {
-  std::string pass;                     // the pass whose program holds the site
-  std::string program;                  // that program's name (its source file)
+  std::string pass;     // the pass whose program holds the site
+  std::string program;  // that program's name (its source file)
   glsl::TraceSite site;
-  std::vector<glsl::TraceCall> calls;   // the calls that led there, innermost first
-  size_t pixels = 0;                    // output pixels with a NaN, Inf or negative channel
-  size_t nan = 0;                       // their channel values, as the finite layer counts them
+  std::vector<glsl::TraceCall> calls;  // the calls that led there, innermost first
+  size_t pixels = 0;                   // output pixels with a NaN, Inf or negative channel
+  size_t nan = 0;                      // their channel values, as the finite layer counts them
   size_t inf = 0;
   size_t negative = 0;
-  uint32_t first_x = 0;                 // the first such pixel in row order
+  uint32_t first_x = 0;  // the first such pixel in row order
   uint32_t first_y = 0;
 };
 

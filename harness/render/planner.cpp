@@ -28,22 +28,23 @@ bool is_no_keyword(const std::string& keyword) {
 struct SourceFacts {
   fs::path path;
   std::vector<hlsl::KeywordSet> keyword_sets;
-  std::vector<hlsl::PassDeclaration> passes;  // of a post effect
-  std::vector<std::string> vertex_inputs;     // the semantics the vertex entry reads, canonical
-  ShaderNames names;                          // what the variant offers a scene by name
-  std::vector<std::string> notes;             // what the plan says of the source (material_source.h)
+  std::vector<hlsl::PassDeclaration> passes;           // of a post effect
+  std::vector<std::string> vertex_inputs;              // the semantics the vertex entry reads, canonical
+  ShaderNames names;                                   // what the variant offers a scene by name
+  std::vector<std::string> notes;                      // what the plan says of the source (material_source.h)
   std::optional<shaderlab::RenderState> render_state;  // a .shader's (material_source.h)
   int queue = kGeometryQueue;
   std::vector<shaderlab::Property> properties;  // a .shader's (material_source.h)
-  std::vector<size_t> drawn_passes;  // a .shader's (material_source.h); empty for an .hlsl
-  std::vector<size_t> additive_passes;  // a .shader's ForwardAdd passes (material_source.h)
-  std::optional<size_t> caster_pass;    // a .shader's ShadowCaster pass (material_source.h)
-  std::optional<size_t> pass;        // the .shader's pass read (the first drawn, unless asked for another)
+  std::vector<size_t> drawn_passes;             // a .shader's (material_source.h); empty for an .hlsl
+  std::vector<size_t> additive_passes;          // a .shader's ForwardAdd passes (material_source.h)
+  std::optional<size_t> caster_pass;            // a .shader's ShadowCaster pass (material_source.h)
+  std::optional<size_t> pass;                   // the .shader's pass read (the first drawn, unless asked for another)
 };
 
 class SourceReader {
  public:
-  SourceReader(const ShaderSearchPath& shaders, shaderlab::UnityPlatform platform) : shaders_(shaders), platform_(platform) {}
+  SourceReader(const ShaderSearchPath& shaders, shaderlab::UnityPlatform platform)
+      : shaders_(shaders), platform_(platform) {}
 
   // Reads `library_path` with `keywords` (pass declarations may depend on them); with
   // `pass_entry`, as that post pass's variant.
@@ -85,7 +86,8 @@ class SourceReader {
     facts.queue = *queue;
     if (post) facts.passes = module->passes;
     if (!module->ok()) {
-      return fail(Error{"'" + library_path + "' does not compile", {path->string(), 0, 0},
+      return fail(Error{"'" + library_path + "' does not compile",
+                        {path->string(), 0, 0},
                         module->diagnostics.errors_with_excerpts()});
     }
     if (post && facts.passes.empty())
@@ -96,7 +98,8 @@ class SourceReader {
       if (!property.is_texture() && !facts.names.uniform(property.name))
         facts.names.block_properties[property.name] =
             property.type == shaderlab::PropertyType::Color || property.type == shaderlab::PropertyType::Vector ? 4 : 1;
-    for (const hlsl::StageVariable& input : module->reflection.vertex_inputs) facts.vertex_inputs.push_back(input.semantic);
+    for (const hlsl::StageVariable& input : module->reflection.vertex_inputs)
+      facts.vertex_inputs.push_back(input.semantic);
     return facts;
   }
 
@@ -116,7 +119,8 @@ class SourceReader {
 // The keywords that make the variant: per set, the one asked for or the set's default, so that
 // naming a default explicitly or not gives the same variant. Keywords no set declares are kept
 // here; the contract then refuses the scene at the keyword's line (scene_contract.h).
-std::vector<std::string> variant_keywords(const std::vector<hlsl::KeywordSet>& sets, const std::vector<std::string>& asked) {
+std::vector<std::string> variant_keywords(const std::vector<hlsl::KeywordSet>& sets,
+                                          const std::vector<std::string>& asked) {
   std::set<std::string> keywords;
   std::set<std::string> declared;
   for (const hlsl::KeywordSet& set : sets) {
@@ -141,7 +145,6 @@ void add_global_keyword(const std::string& keyword, const std::vector<hlsl::Keyw
     return;
   }
 }
-
 
 // `note` once: every instance of a material would say it again.
 void add_left_out(std::vector<std::string>& left_out, const std::string& note) {
@@ -187,7 +190,8 @@ std::string VariantRequest::label() const {
   std::string text = library_path;
   if (!fragment_entry.empty()) text += ":" + fragment_entry;
   if (shader_pass) text += " pass " + std::to_string(*shader_pass);
-  if (unity_platform != shaderlab::UnityPlatform::GLCore) text += " for " + std::string(shaderlab::renderer_name(unity_platform));
+  if (unity_platform != shaderlab::UnityPlatform::GLCore)
+    text += " for " + std::string(shaderlab::renderer_name(unity_platform));
   text += " [";
   for (size_t i = 0; i < keywords.size(); ++i) text += (i ? " " : "") + keywords[i];
   text += "]" + std::string(filtered_comparison ? " filtered comparison" : "") + (half_emulation ? " half" : "");
@@ -237,12 +241,15 @@ Result<void> plan_shader_effect(const Scene& scene, size_t e, const fs::path& pa
     declaration.scale = step.half ? hlsl::PassDeclaration::Scale::Half : hlsl::PassDeclaration::Scale::Full;
     for (const auto& [texture, source] : step.sources) {
       using Kind = hlsl::PassInput::Kind;
-      const Kind kind = source == "scene.color" ? Kind::SceneColor : source == "scene.depth" ? Kind::SceneDepth : Kind::Pass;
+      const Kind kind = source == "scene.color"   ? Kind::SceneColor
+                        : source == "scene.depth" ? Kind::SceneDepth
+                                                  : Kind::Pass;
       declaration.inputs.push_back({texture, kind, kind == Kind::Pass ? source : std::string()});
     }
     if (!step.sources.count("_MainTex") && !effect.textures.count("_MainTex"))
-      declaration.inputs.push_back(previous.empty() ? hlsl::PassInput{"_MainTex", hlsl::PassInput::Kind::SceneColor, {}}
-                                                    : hlsl::PassInput{"_MainTex", hlsl::PassInput::Kind::Pass, previous});
+      declaration.inputs.push_back(previous.empty()
+                                       ? hlsl::PassInput{"_MainTex", hlsl::PassInput::Kind::SceneColor, {}}
+                                       : hlsl::PassInput{"_MainTex", hlsl::PassInput::Kind::Pass, previous});
     previous = declaration.name;
     keyword_names.keyword_sets.insert(keyword_names.keyword_sets.end(), facts->keyword_sets.begin(),
                                       facts->keyword_sets.end());
@@ -290,10 +297,13 @@ Result<Plan> plan_scene(const Scene& scene, const ShaderSearchPath& shaders) {
   for (size_t i = 0; i < scene.lights.size(); ++i) {
     if (scene.lights[i].shadows == Light::Shadows::None) continue;
     const bool pixel = std::find(lights.pixel.begin(), lights.pixel.end(), i) != lights.pixel.end();
-    if (lights.main == i) casting.emplace_back(i, "SHADOWS_SCREEN");
-    else if (pixel && scene.lights[i].type == LightType::Spot) casting.emplace_back(i, "SHADOWS_DEPTH");
+    if (lights.main == i)
+      casting.emplace_back(i, "SHADOWS_SCREEN");
+    else if (pixel && scene.lights[i].type == LightType::Spot)
+      casting.emplace_back(i, "SHADOWS_DEPTH");
     else
-      plan.left_out.push_back("light " + std::to_string(i + 1) + "'s shadows: not rendered: only the main light and "
+      plan.left_out.push_back("light " + std::to_string(i + 1) +
+                              "'s shadows: not rendered: only the main light and "
                               "spot pixel lights cast shadows so far");
   }
   std::map<std::string, SourceFacts> materials;
@@ -327,8 +337,9 @@ Result<Plan> plan_scene(const Scene& scene, const ShaderSearchPath& shaders) {
     }
     if (!receivers || !casters)
       plan.left_out.push_back("light " + std::to_string(light + 1) + "'s shadows: no shadow map: " +
-                              (!receivers ? std::string("no pass drawn for it receives them (none declares ") + keyword + ")"
-                                          : std::string("no object casts (no ShadowCaster pass, nor its Fallback's)")));
+                              (!receivers
+                                   ? std::string("no pass drawn for it receives them (none declares ") + keyword + ")"
+                                   : std::string("no object casts (no ShadowCaster pass, nor its Fallback's)")));
     else if (scene.unity_platform != shaderlab::UnityPlatform::GLCore)
       return fail("light " + std::to_string(light + 1) + "'s shadows: a scene of the Unity platform " +
                   std::string(shaderlab::renderer_name(scene.unity_platform)) +
@@ -367,8 +378,9 @@ Result<Plan> plan_scene(const Scene& scene, const ShaderSearchPath& shaders) {
     for (size_t pass : material.additive_passes) {
       for (size_t light : lights.pixel) passes.push_back({pass, light, false});
       if (lights.pixel.empty())
-        add_left_out(plan.left_out, "'" + instance.material + "' pass " + std::to_string(pass) +
-                               " (ForwardAdd): not drawn: the scene has no light besides its main directional one");
+        add_left_out(plan.left_out,
+                     "'" + instance.material + "' pass " + std::to_string(pass) +
+                         " (ForwardAdd): not drawn: the scene has no light besides its main directional one");
     }
     if (material.caster_pass) {
       for (size_t light : plan.shadow_lights) passes.push_back({material.caster_pass, light, true});
@@ -382,7 +394,8 @@ Result<Plan> plan_scene(const Scene& scene, const ShaderSearchPath& shaders) {
       const SourceFacts& facts = **facts_of_pass;
       // The object's property (its first number), else nullopt for the shader's default.
       const auto scene_value = [&](const std::string& name) -> std::optional<float> {
-        if (auto given = instance.properties.find(name); given != instance.properties.end()) return given->second.components[0];
+        if (auto given = instance.properties.find(name); given != instance.properties.end())
+          return given->second.components[0];
         return std::nullopt;
       };
       DrawState state;
@@ -430,8 +443,8 @@ Result<Plan> plan_scene(const Scene& scene, const ShaderSearchPath& shaders) {
       for (const hlsl::SpecializationConstant& constant : facts.names.specialization_constants)
         if (auto given = instance.properties.find(constant.name); given != instance.properties.end())
           request.specialization[constant.id] = given->second.components[0];
-      request.filtered_comparison =
-          soft && std::find(request.keywords.begin(), request.keywords.end(), received->second) != request.keywords.end();
+      request.filtered_comparison = soft && std::find(request.keywords.begin(), request.keywords.end(),
+                                                      received->second) != request.keywords.end();
       used_combinations[instance.material].insert(request.keywords);
       possible_combinations[instance.material] = hlsl::keyword_combination_count(material.keyword_sets);
       const std::vector<std::string> keywords = request.keywords;
@@ -445,21 +458,23 @@ Result<Plan> plan_scene(const Scene& scene, const ShaderSearchPath& shaders) {
         for (const std::string& semantic : variant_facts->vertex_inputs) {
           if (meshes_supply(semantic)) continue;
           const std::optional<uint32_t> location = hlsl::vertex_input_location(semantic);
-          plan.variant_notes[variant].push_back("vertex input " + semantic + " is not in the meshes; the shader reads " +
-                                                (location && unsupplied_input_reads_white(*location)
-                                                     ? "white, as from a mesh without vertex colours"
-                                                     : "zeros"));
+          plan.variant_notes[variant].push_back(
+              "vertex input " + semantic + " is not in the meshes; the shader reads " +
+              (location && unsupplied_input_reads_white(*location) ? "white, as from a mesh without vertex colours"
+                                                                   : "zeros"));
         }
         variant_names.resize(plan.variants.size());
         variant_names[variant] = std::move(variant_facts->names);
       }
       if (alpha_to_mask) {
-        const std::string note = "AlphaToMask On is drawn as Off: a target of one sample has no samples to mask "
-                                 "(OpenGL skips it, other APIs leave it to the driver)";
+        const std::string note =
+            "AlphaToMask On is drawn as Off: a target of one sample has no samples to mask "
+            "(OpenGL skips it, other APIs leave it to the driver)";
         std::vector<std::string>& notes = plan.variant_notes[variant];
         if (std::find(notes.begin(), notes.end(), note) == notes.end()) notes.push_back(note);
       }
-      object_names = object_names ? merge_names(std::move(*object_names), variant_names[variant]) : variant_names[variant];
+      object_names =
+          object_names ? merge_names(std::move(*object_names), variant_names[variant]) : variant_names[variant];
       draws.push_back({variant, state, light, caster});
     }
     plan.instance_draws.push_back(draws);
@@ -473,7 +488,8 @@ Result<Plan> plan_scene(const Scene& scene, const ShaderSearchPath& shaders) {
         std::erase_if(object_names->textures,
                       [](const ShaderNames::Texture& texture) { return texture.name == kShadowMapTexture; });
       object_defaults[instance.object_index] = check_object(object, *object_names, contract);
-      for (size_t n = before; n < contract.notes.size(); ++n) plan.variant_notes[draws.front().variant].push_back(contract.notes[n]);
+      for (size_t n = before; n < contract.notes.size(); ++n)
+        plan.variant_notes[draws.front().variant].push_back(contract.notes[n]);
     }
   }
   for (ObjectInstance& instance : plan.instances)
@@ -485,15 +501,17 @@ Result<Plan> plan_scene(const Scene& scene, const ShaderSearchPath& shaders) {
     const PostEffect& effect = scene.post[e];
     auto unity = shaders.find(effect.effect);
     if (unity && is_unity_shader(*unity)) {
-      if (auto planned = plan_shader_effect(scene, e, *unity, reader, plan, contract); !planned) return fail(planned.error());
+      if (auto planned = plan_shader_effect(scene, e, *unity, reader, plan, contract); !planned)
+        return fail(planned.error());
       used_combinations[effect.effect];
       continue;
     }
     if (!effect.passes.empty())
-      return fail(Error{"passes = [...] chooses the passes of a Unity .shader effect; an .hlsl effect's passes are its "
-                        "#pragma pass lines",
-                        effect.where.of("effect"),
-                        {}});
+      return fail(
+          Error{"passes = [...] chooses the passes of a Unity .shader effect; an .hlsl effect's passes are its "
+                "#pragma pass lines",
+                effect.where.of("effect"),
+                {}});
     auto facts = reader.read(effect.effect, effect.keywords, true);
     if (!facts) return fail(facts.error());
     const std::vector<std::string> keywords = variant_keywords(facts->keyword_sets, effect.keywords);
@@ -535,7 +553,8 @@ Result<Plan> plan_scene(const Scene& scene, const ShaderSearchPath& shaders) {
   for (const auto& [source, used] : used_combinations) {
     const uint64_t possible = possible_combinations[source];
     if (possible == UINT64_MAX)  // saturated: 70 two-keyword sets are more than 64 bits count
-      plan.left_out.push_back(source + ": all but " + std::to_string(used.size()) + " of its " + std::to_string(UINT64_MAX) +
+      plan.left_out.push_back(source + ": all but " + std::to_string(used.size()) + " of its " +
+                              std::to_string(UINT64_MAX) +
                               " or more keyword combinations (the scene asks for no other)");
     else if (possible > used.size())
       plan.left_out.push_back(source + ": " + std::to_string(possible - used.size()) + " of its " +
@@ -573,11 +592,11 @@ std::string describe_plan(const Scene& scene, const Plan& plan, const std::vecto
         const Light& caster = scene.lights[light];
         size_t casting_draws = 0;
         for (const auto& instance_draws : plan.instance_draws)
-          casting_draws += size_t(std::count_if(instance_draws.begin(), instance_draws.end(), [&](const Plan::InstanceDraw& draw) {
-            return draw.caster && draw.light == light;
-          }));
-        text += "      shadow map of light " + std::to_string(light + 1) + ": " + std::to_string(caster.shadow_resolution) +
-                "x" + std::to_string(caster.shadow_resolution) +
+          casting_draws +=
+              size_t(std::count_if(instance_draws.begin(), instance_draws.end(),
+                                   [&](const Plan::InstanceDraw& draw) { return draw.caster && draw.light == light; }));
+        text += "      shadow map of light " + std::to_string(light + 1) + ": " +
+                std::to_string(caster.shadow_resolution) + "x" + std::to_string(caster.shadow_resolution) +
                 (caster.shadows == Light::Shadows::Soft ? ", soft (2x2 comparisons filtered), " : ", hard, ") +
                 std::to_string(casting_draws) +
                 " casters drawn first (ShadowCaster passes), the rest of these draws receiving it\n";
@@ -587,7 +606,10 @@ std::string describe_plan(const Scene& scene, const Plan& plan, const std::vecto
       const auto light_name = [&](size_t i) {
         const LightType type = scene.lights[i].type;
         return "light " + std::to_string(i + 1) + " (" +
-               (type == LightType::Directional ? "directional" : type == LightType::Point ? "point" : "spot") + ")";
+               (type == LightType::Directional ? "directional"
+                : type == LightType::Point     ? "point"
+                                               : "spot") +
+               ")";
       };
       if (lights.main) text += "      main light: " + light_name(*lights.main) + ", in ForwardBase\n";
       for (size_t i : lights.vertex) text += "      per-vertex light: " + light_name(i) + ", in ForwardBase\n";
@@ -602,8 +624,8 @@ std::string describe_plan(const Scene& scene, const Plan& plan, const std::vecto
     // A .shader's step is its pass's whole program, blitted; an .hlsl pass is its fragment entry.
     const std::string program =
         pass.blit ? "blit of pass " + std::to_string(plan.variants[pass.variant].shader_pass.value_or(0)) : d.entry;
-    text += "    " + pass.name + ": " + program + ", " + (d.scale == hlsl::PassDeclaration::Scale::Half ? "half" : "full") +
-            " resolution";
+    text += "    " + pass.name + ": " + program + ", " +
+            (d.scale == hlsl::PassDeclaration::Scale::Half ? "half" : "full") + " resolution";
     for (const hlsl::PassInput& input : d.inputs) {
       const std::string from = input.kind == hlsl::PassInput::Kind::SceneColor   ? "scene.color"
                                : input.kind == hlsl::PassInput::Kind::SceneDepth ? "scene.depth"

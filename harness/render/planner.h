@@ -9,22 +9,22 @@
 #include <vector>
 
 #include "harness/backend/backend.h"
-#include "harness/scene/scene.h"
 #include "harness/render/shader_search_path.h"
+#include "harness/scene/scene.h"
 #include "hlsl_like/pass_declarations.h"
 
 namespace xshade::harness {
 
 // One compile of one source: a keyword set, and for a post pass the fragment entry it runs.
 struct VariantRequest {
-  std::filesystem::path source;       // absolute
-  std::string library_path;           // as the scene names it, e.g. "materials/toon.hlsl"
-  std::vector<std::string> keywords;  // sorted, no repeats
-  std::string fragment_entry;         // a post pass's entry; empty for a material
+  std::filesystem::path source;                      // absolute
+  std::string library_path;                          // as the scene names it, e.g. "materials/toon.hlsl"
+  std::vector<std::string> keywords;                 // sorted, no repeats
+  std::string fragment_entry;                        // a post pass's entry; empty for a material
   std::optional<size_t> shader_pass = std::nullopt;  // a .shader's pass, by its index in the drawn SubShader
   // The Unity platform a .shader compiles for (the scene's); GLCore for an .hlsl file.
   shaderlab::UnityPlatform unity_platform = shaderlab::UnityPlatform::GLCore;
-  bool half_emulation = false;        // every half result rounded to fp16 (GLSL lanes only)
+  bool half_emulation = false;  // every half result rounded to fp16 (GLSL lanes only)
   // Drawn where its comparison samplers filter linearly (a soft shadow's map):
   // ProgramOptions::filter_comparisons.
   bool filtered_comparison = false;
@@ -45,10 +45,10 @@ struct VariantRequest {
 struct PlannedPass {
   enum class Kind { Scene, Post };
   Kind kind = Kind::Scene;
-  std::string name;   // "scene", or "depth_of_field.coc"
-  size_t effect = 0;  // Post: index into Scene::post
+  std::string name;                   // "scene", or "depth_of_field.coc"
+  size_t effect = 0;                  // Post: index into Scene::post
   hlsl::PassDeclaration declaration;  // Post
-  size_t variant = 0;  // Post: index into Plan::variants
+  size_t variant = 0;                 // Post: index into Plan::variants
   // Post: textures the pass samples that nothing gives, from the shader's declared defaults.
   std::map<std::string, TextureRef> default_textures;
   // Post: a .shader's pass, drawn as Unity's Graphics.Blit draws it (identity view and projection,
@@ -87,8 +87,8 @@ struct Plan {
   // AlphaTest) from the farthest to the nearest, by the distance from the camera to the object's
   // origin.
   std::vector<size_t> draw_order;
-  std::vector<PlannedPass> passes;       // in the order they run: the scene, then each effect's
-  std::vector<std::string> left_out;     // what the shader folders have that this scene does not run, and why
+  std::vector<PlannedPass> passes;    // in the order they run: the scene, then each effect's
+  std::vector<std::string> left_out;  // what the shader folders have that this scene does not run, and why
   // Per variant, what it should know before it runs: each vertex input its shader reads that the
   // meshes do not supply (anything but POSITION, NORMAL, TANGENT, TEXCOORD0), which reads zeros.
   std::vector<std::vector<std::string>> variant_notes;

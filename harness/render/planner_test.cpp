@@ -52,7 +52,8 @@ cols = 5
 spacing = 2.2
 [object.grid.vary]
 _Metallic = { along = "cols", from = 0.0, to = 1.0 }
-)"), kLibrary);
+)"),
+                         kLibrary);
   ASSERT_TRUE(plan) << plan.error().to_string();
   ASSERT_EQ(plan->variants.size(), 1u);
   // No keyword asked for: each multi_compile set's first keyword, as the front end defines them.
@@ -85,7 +86,8 @@ name = "c"
 mesh = "torus"
 material = "materials/toon.hlsl"
 keywords = ["_GUARDED", "_GUARDED"]
-)"), kLibrary);
+)"),
+                         kLibrary);
   ASSERT_TRUE(plan) << plan.error().to_string();
   ASSERT_EQ(plan->variants.size(), 2u);
   EXPECT_EQ(first_variants(*plan), (std::vector<size_t>{0, 1, 1}));
@@ -101,13 +103,14 @@ material = "materials/toon.hlsl"
 [[post]]
 effect = "post/depth_of_field.hlsl"
 keywords = ["_KERNEL_MEDIUM"]
-)"), kLibrary);
+)"),
+                         kLibrary);
   ASSERT_TRUE(plan) << plan.error().to_string();
   std::vector<std::string> names;
   for (const PlannedPass& pass : plan->passes) names.push_back(pass.name);
-  EXPECT_EQ(names, (std::vector<std::string>{"scene", "depth_of_field.coc", "depth_of_field.prefilter",
-                                             "depth_of_field.bokeh", "depth_of_field.postfilter",
-                                             "depth_of_field.combine"}));
+  EXPECT_EQ(names,
+            (std::vector<std::string>{"scene", "depth_of_field.coc", "depth_of_field.prefilter", "depth_of_field.bokeh",
+                                      "depth_of_field.postfilter", "depth_of_field.combine"}));
   ASSERT_EQ(plan->variants.size(), 6u);
   EXPECT_EQ(plan->variants[plan->passes[3].variant].fragment_entry, "frag_bokeh");
   EXPECT_EQ(plan->variants[plan->passes[3].variant].keywords, std::vector<std::string>{"_KERNEL_MEDIUM"});
@@ -121,9 +124,11 @@ keywords = ["_KERNEL_MEDIUM"]
   EXPECT_TRUE(has_line(plan->left_out,
                        "post/depth_of_field.hlsl: 9 of its 10 keyword combinations (the scene asks for no other)"));
   // The effect is in the chain, so it is not left out as one that is not.
-  for (const std::string& line : plan->left_out) EXPECT_EQ(line.find("not in the post chain"), std::string::npos) << line;
+  for (const std::string& line : plan->left_out)
+    EXPECT_EQ(line.find("not in the post chain"), std::string::npos) << line;
   const std::string described = describe_plan(scene(""), *plan, std::vector<bool>(6, false));
-  EXPECT_NE(described.find("depth_of_field.bokeh: frag_bokeh, half resolution, _MainTex <- prefilter"), std::string::npos)
+  EXPECT_NE(described.find("depth_of_field.bokeh: frag_bokeh, half resolution, _MainTex <- prefilter"),
+            std::string::npos)
       << described;
 }
 
@@ -132,7 +137,8 @@ TEST(Planner, AToonOnlySceneCompilesNoPbrVariant) {
 [[object]]
 mesh = "torus"
 material = "materials/toon.hlsl"
-)"), kLibrary);
+)"),
+                         kLibrary);
   ASSERT_TRUE(plan) << plan.error().to_string();
   ASSERT_EQ(plan->variants.size(), 1u);
   for (const VariantRequest& variant : plan->variants) EXPECT_EQ(variant.library_path, "materials/toon.hlsl");
@@ -144,18 +150,22 @@ TEST(Planner, ASourceOutsideTheLibraryOrBrokenIsAnError) {
 [[object]]
 mesh = "sphere"
 material = "materials/velvet.hlsl"
-)"), kLibrary);
+)"),
+                            kLibrary);
   ASSERT_FALSE(missing);
-  EXPECT_EQ(missing.error().message, "'materials/velvet.hlsl' is in none of the shader folders (" + kLibrary.string() + ")");
+  EXPECT_EQ(missing.error().message,
+            "'materials/velvet.hlsl' is in none of the shader folders (" + kLibrary.string() + ")");
 
   const fs::path root = fs::temp_directory_path() / "xshade_planner_test";
   fs::create_directories(root / "materials");
-  std::ofstream(root / "materials" / "broken.hlsl") << "#pragma fragment frag\nfloat4 frag() : SV_Target { return x; }\n";
+  std::ofstream(root / "materials" / "broken.hlsl")
+      << "#pragma fragment frag\nfloat4 frag() : SV_Target { return x; }\n";
   auto broken = plan_scene(scene(R"(
 [[object]]
 mesh = "sphere"
 material = "materials/broken.hlsl"
-)"), root);
+)"),
+                           root);
   ASSERT_FALSE(broken);
   EXPECT_EQ(broken.error().message, "'materials/broken.hlsl' does not compile");
   ASSERT_FALSE(broken.error().diagnostics.empty());
@@ -181,11 +191,13 @@ float4 frag(SurfaceVaryings input) : SV_Target {
 [[object]]
 mesh = "sphere"
 material = "materials/flat_lit.hlsl"
-)"), ShaderSearchPath({user, kLibrary}));
+)"),
+                         ShaderSearchPath({user, kLibrary}));
   ASSERT_TRUE(plan) << plan.error().to_string();
   ASSERT_EQ(plan->variants.size(), 1u);
   EXPECT_EQ(plan->variants[0].source, user / "materials" / "flat_lit.hlsl");
-  EXPECT_TRUE(has_line(plan->left_out, "materials/flat_lit.hlsl: 1 of its 2 keyword combinations (the scene asks for no other)"));
+  EXPECT_TRUE(has_line(plan->left_out,
+                       "materials/flat_lit.hlsl: 1 of its 2 keyword combinations (the scene asks for no other)"));
   // The library's own materials are still there to be used, and are left out here.
   EXPECT_TRUE(has_line(plan->left_out, "materials/toon.hlsl: no object uses it"));
   fs::remove_all(user);
@@ -232,10 +244,12 @@ TEST(Planner, AShadersToggleAndKeywordEnumPropertiesChooseItsVariant) {
   EXPECT_EQ(keywords_of("[object.properties]\n_Glow = 0\n_Rim = 1\n"), (std::vector<std::string>{"_RIM_SOFT"}));
   EXPECT_EQ(keywords_of("keywords = [\"_RIM_OFF\"]\n"), (std::vector<std::string>{"_GLOW", "_RIM_OFF"}));
   // _Glow is the material's though no uniform holds it: a Float, one number.
-  auto wrong = plan_scene(scene("[[object]]\nmesh = \"sphere\"\nmaterial = \"toggled.shader\"\n[object.properties]\n_Glow = [1, 0]\n"),
-                          ShaderSearchPath({user, kLibrary}));
+  auto wrong = plan_scene(
+      scene("[[object]]\nmesh = \"sphere\"\nmaterial = \"toggled.shader\"\n[object.properties]\n_Glow = [1, 0]\n"),
+      ShaderSearchPath({user, kLibrary}));
   ASSERT_FALSE(wrong);
-  EXPECT_NE(wrong.error().to_string().find("'_Glow' is a property of material 'toggled.shader' with 1 number: give it 1 number"),
+  EXPECT_NE(wrong.error().to_string().find(
+                "'_Glow' is a property of material 'toggled.shader' with 1 number: give it 1 number"),
             std::string::npos)
       << wrong.error().to_string();
   fs::remove_all(user);
@@ -281,14 +295,16 @@ TEST(Planner, TheCombinationsLeftOutAreSaidHoweverManyThereAre) {
   fs::create_directories(user / "materials");
   std::string shader = "#pragma vertex vert\n#pragma fragment frag\n";
   for (int i = 0; i < 70; ++i) shader += "#pragma multi_compile _ KW_" + std::to_string(i) + "\n";
-  shader += "float4 vert(float3 p : POSITION) : SV_Position { return float4(p, 1); }\n"
-            "float4 frag() : SV_Target { return 1; }\n";
+  shader +=
+      "float4 vert(float3 p : POSITION) : SV_Position { return float4(p, 1); }\n"
+      "float4 frag() : SV_Target { return 1; }\n";
   std::ofstream(user / "materials" / "many.hlsl") << shader;
   auto plan = plan_scene(scene("[[object]]\nmesh = \"sphere\"\nmaterial = \"materials/many.hlsl\"\n"),
                          ShaderSearchPath({user, kLibrary}));
   ASSERT_TRUE(plan) << plan.error().to_string();
-  EXPECT_TRUE(has_line(plan->left_out, "materials/many.hlsl: all but 1 of its 18446744073709551615 or more keyword "
-                                       "combinations (the scene asks for no other)"));
+  EXPECT_TRUE(has_line(plan->left_out,
+                       "materials/many.hlsl: all but 1 of its 18446744073709551615 or more keyword "
+                       "combinations (the scene asks for no other)"));
   fs::remove_all(user);
 }
 
@@ -357,8 +373,9 @@ TEST(Planner, AForwardAddPassIsDrawnOnceForEachFurtherLightWithItsKeyword) {
   auto one = plan_scene(scene(sun + object), ShaderSearchPath({user, kLibrary}));
   ASSERT_TRUE(one) << one.error().to_string();
   ASSERT_EQ(one->instance_draws[0].size(), 1u);
-  EXPECT_TRUE(has_line(one->left_out, "'lit.shader' pass 1 (ForwardAdd): not drawn: the scene has no light besides its main "
-                                      "directional one"));
+  EXPECT_TRUE(has_line(one->left_out,
+                       "'lit.shader' pass 1 (ForwardAdd): not drawn: the scene has no light besides its main "
+                       "directional one"));
 
   auto three = plan_scene(scene(sun + lamp + spot + object), ShaderSearchPath({user, kLibrary}));
   ASSERT_TRUE(three) << three.error().to_string();
@@ -372,13 +389,16 @@ TEST(Planner, AForwardAddPassIsDrawnOnceForEachFurtherLightWithItsKeyword) {
   EXPECT_EQ(draws[1].state.blend.enabled, true);
   const std::string described = describe_plan(scene(sun + lamp + spot + object), *three);
   EXPECT_NE(described.find("main light: light 1 (directional), in ForwardBase"), std::string::npos) << described;
-  EXPECT_NE(described.find("object 'ball': lit.shader pass 1 [SPOT] for light 3 (spot)"), std::string::npos) << described;
+  EXPECT_NE(described.find("object 'ball': lit.shader pass 1 [SPOT] for light 3 (spot)"), std::string::npos)
+      << described;
 
   // No pixel lights: the point light lights ForwardBase per vertex, and ForwardAdd is not drawn.
-  auto vertex = plan_scene(scene("[unity]\npixel_lights = 0\n" + sun + lamp + object), ShaderSearchPath({user, kLibrary}));
+  auto vertex =
+      plan_scene(scene("[unity]\npixel_lights = 0\n" + sun + lamp + object), ShaderSearchPath({user, kLibrary}));
   ASSERT_TRUE(vertex) << vertex.error().to_string();
   ASSERT_EQ(vertex->instance_draws[0].size(), 1u);
-  EXPECT_EQ(vertex->variants[vertex->instance_draws[0][0].variant].keywords, (std::vector<std::string>{"VERTEXLIGHT_ON"}));
+  EXPECT_EQ(vertex->variants[vertex->instance_draws[0][0].variant].keywords,
+            (std::vector<std::string>{"VERTEXLIGHT_ON"}));
   fs::remove_all(user);
 }
 
@@ -426,17 +446,21 @@ TEST(Planner, AShadowMapIsDrawnOnlyWhereALightCastsAndSomethingReceivesIt) {
   const auto casters = [](const Plan& plan) {
     size_t count = 0;
     for (const auto& draws : plan.instance_draws)
-      count += size_t(std::count_if(draws.begin(), draws.end(), [](const Plan::InstanceDraw& draw) { return draw.caster; }));
+      count +=
+          size_t(std::count_if(draws.begin(), draws.end(), [](const Plan::InstanceDraw& draw) { return draw.caster; }));
     return count;
   };
 
-  auto shadowed = plan_scene(scene(sun + "shadows = \"hard\"\n" + object("receiver.shader")), ShaderSearchPath({user, kLibrary}));
+  auto shadowed =
+      plan_scene(scene(sun + "shadows = \"hard\"\n" + object("receiver.shader")), ShaderSearchPath({user, kLibrary}));
   ASSERT_TRUE(shadowed) << shadowed.error().to_string();
   EXPECT_EQ(shadowed->shadow_lights, (std::vector<size_t>{0}));
   ASSERT_EQ(shadowed->instance_draws[0].size(), 2u);
-  EXPECT_EQ(shadowed->variants[shadowed->instance_draws[0][0].variant].keywords, (std::vector<std::string>{"SHADOWS_SCREEN"}));
+  EXPECT_EQ(shadowed->variants[shadowed->instance_draws[0][0].variant].keywords,
+            (std::vector<std::string>{"SHADOWS_SCREEN"}));
   EXPECT_TRUE(shadowed->instance_draws[0][1].caster);
-  EXPECT_EQ(shadowed->variants[shadowed->instance_draws[0][1].variant].keywords, (std::vector<std::string>{"SHADOWS_DEPTH"}));
+  EXPECT_EQ(shadowed->variants[shadowed->instance_draws[0][1].variant].keywords,
+            (std::vector<std::string>{"SHADOWS_DEPTH"}));
 
   auto unlit = plan_scene(scene(sun + "shadows = \"hard\"\n" + object("unlit.shader") + object("receiver.shader") +
                                 "position = [0, -2, 0]\n"),
@@ -460,7 +484,8 @@ TEST(Planner, AShadowMapIsDrawnOnlyWhereALightCastsAndSomethingReceivesIt) {
       #pragma vertex vert
       #pragma fragment frag
       ENDHLSL } } })";
-  const std::string spot = "[[light]]\ntype = \"spot\"\nposition = [0, 3, 0]\ndirection = [0, 1, 0]\nshadows = \"hard\"\n";
+  const std::string spot =
+      "[[light]]\ntype = \"spot\"\nposition = [0, 3, 0]\ndirection = [0, 1, 0]\nshadows = \"hard\"\n";
   auto spotlit = plan_scene(scene(sun + spot + object("spotlit.shader")), ShaderSearchPath({user, kLibrary}));
   ASSERT_TRUE(spotlit) << spotlit.error().to_string();
   EXPECT_EQ(spotlit->shadow_lights, (std::vector<size_t>{1}));  // the sun casts none
@@ -475,17 +500,21 @@ TEST(Planner, AShadowMapIsDrawnOnlyWhereALightCastsAndSomethingReceivesIt) {
   EXPECT_TRUE(without->shadow_lights.empty());
   EXPECT_EQ(casters(*without), 0u);
   EXPECT_TRUE(without->variants[without->instance_draws[0][0].variant].keywords.empty());
-  EXPECT_TRUE(has_line(without->left_out, "'receiver.shader' pass 1 (ShadowCaster): not drawn: no shadow map is drawn"));
+  EXPECT_TRUE(
+      has_line(without->left_out, "'receiver.shader' pass 1 (ShadowCaster): not drawn: no shadow map is drawn"));
 
   // Something casts, nothing receives: no map.
-  auto unreceived = plan_scene(scene(sun + "shadows = \"hard\"\n" + object("caster.shader")), ShaderSearchPath({user, kLibrary}));
+  auto unreceived =
+      plan_scene(scene(sun + "shadows = \"hard\"\n" + object("caster.shader")), ShaderSearchPath({user, kLibrary}));
   ASSERT_TRUE(unreceived) << unreceived.error().to_string();
   EXPECT_TRUE(unreceived->shadow_lights.empty());
-  EXPECT_TRUE(has_line(unreceived->left_out,
-                       "light 1's shadows: no shadow map: no pass drawn for it receives them (none declares SHADOWS_SCREEN)"));
+  EXPECT_TRUE(
+      has_line(unreceived->left_out,
+               "light 1's shadows: no shadow map: no pass drawn for it receives them (none declares SHADOWS_SCREEN)"));
   EXPECT_EQ(casters(*unreceived), 0u);
   // Something receives, nothing casts: no map either.
-  auto uncast = plan_scene(scene(sun + "shadows = \"hard\"\n" + object("unlit.shader")), ShaderSearchPath({user, kLibrary}));
+  auto uncast =
+      plan_scene(scene(sun + "shadows = \"hard\"\n" + object("unlit.shader")), ShaderSearchPath({user, kLibrary}));
   ASSERT_TRUE(uncast) << uncast.error().to_string();
   EXPECT_TRUE(uncast->shadow_lights.empty());
   fs::remove_all(user);
@@ -505,14 +534,18 @@ TEST(Planner, AShaderPostEffectBlitsItsPassesInTheOrderTheSceneGives) {
     float4 frag(float4 pos : SV_Position, float2 uv : TEXCOORD0) : SV_Target { return BODY; }
     ENDHLSL }
 )";
-  const auto with = [&](std::string text, const std::string& name, const std::string& textures, const std::string& body) {
-    for (const auto& [from, to] : {std::pair<std::string, std::string>{"NAME", name}, {"TEXTURES", textures}, {"BODY", body}})
+  const auto with = [&](std::string text, const std::string& name, const std::string& textures,
+                        const std::string& body) {
+    for (const auto& [from, to] :
+         {std::pair<std::string, std::string>{"NAME", name}, {"TEXTURES", textures}, {"BODY", body}})
       text.replace(text.find(from), from.size(), to);
     return text;
   };
   std::ofstream(user / "blur.shader")
-      << "Shader \"Hidden/Blur\" {\n  SubShader {\n" << with(pass, "Down", "", "_MainTex.Sample(sampler_MainTex, uv)")
-      << with(pass, "Glow", "Texture2D _Bloom;", "_MainTex.Sample(sampler_MainTex, uv) + _Bloom.Sample(sampler_MainTex, uv)")
+      << "Shader \"Hidden/Blur\" {\n  SubShader {\n"
+      << with(pass, "Down", "", "_MainTex.Sample(sampler_MainTex, uv)")
+      << with(pass, "Glow", "Texture2D _Bloom;",
+              "_MainTex.Sample(sampler_MainTex, uv) + _Bloom.Sample(sampler_MainTex, uv)")
       << "  }\n}\n";
   const ShaderSearchPath folders({user, kLibrary});
   auto plan = plan_scene(scene(R"(
@@ -522,7 +555,8 @@ material = "materials/toon.hlsl"
 [[post]]
 effect = "blur.shader"
 passes = ["down", { pass = 0, name = "half", scale = "half" }, { pass = "Glow", sources = { _Bloom = "half", _MainTex = "scene.color" } }]
-)"), folders);
+)"),
+                         folders);
   ASSERT_TRUE(plan) << plan.error().to_string();
   std::vector<std::string> names;
   for (const PlannedPass& planned : plan->passes) names.push_back(planned.name);
@@ -537,8 +571,9 @@ passes = ["down", { pass = 0, name = "half", scale = "half" }, { pass = "Glow", 
     std::vector<std::string> inputs;
     for (const hlsl::PassInput& input : plan->passes[index].declaration.inputs)
       inputs.push_back(input.texture + " <- " +
-                       (input.kind == hlsl::PassInput::Kind::Pass ? input.pass
-                        : input.kind == hlsl::PassInput::Kind::SceneColor ? "scene.color" : "scene.depth"));
+                       (input.kind == hlsl::PassInput::Kind::Pass         ? input.pass
+                        : input.kind == hlsl::PassInput::Kind::SceneColor ? "scene.color"
+                                                                          : "scene.depth"));
     return inputs;
   };
   EXPECT_EQ(inputs_of(1), std::vector<std::string>{"_MainTex <- scene.color"});
@@ -546,7 +581,8 @@ passes = ["down", { pass = 0, name = "half", scale = "half" }, { pass = "Glow", 
   EXPECT_EQ(plan->passes[2].declaration.scale, hlsl::PassDeclaration::Scale::Half);
   EXPECT_EQ(inputs_of(3), (std::vector<std::string>{"_Bloom <- half", "_MainTex <- scene.color"}));
   const std::string described = describe_plan(scene(""), *plan, std::vector<bool>(plan->variants.size(), false));
-  EXPECT_NE(described.find("blur.half: blit of pass 0, half resolution, _MainTex <- down\n"), std::string::npos) << described;
+  EXPECT_NE(described.find("blur.half: blit of pass 0, half resolution, _MainTex <- down\n"), std::string::npos)
+      << described;
 
   // No passes: the first pass alone. A pass the shader has not, and passes on an .hlsl effect, are
   // errors at their line.
@@ -555,13 +591,15 @@ passes = ["down", { pass = 0, name = "half", scale = "half" }, { pass = "Glow", 
   ASSERT_EQ(first->passes.size(), 1u);
   EXPECT_EQ(first->passes[0].name, "blur.0");
   // The effect's textures give _MainTex: a blit of that texture, not of the scene's image.
-  auto given = plan_scene(scene("[[post]]\neffect = \"blur.shader\"\n[post.textures]\n_MainTex = \"checker\"\n"), folders);
+  auto given =
+      plan_scene(scene("[[post]]\neffect = \"blur.shader\"\n[post.textures]\n_MainTex = \"checker\"\n"), folders);
   ASSERT_TRUE(given) << given.error().to_string();
   EXPECT_TRUE(given->passes[0].declaration.inputs.empty());
   auto missing = plan_scene(scene("[[post]]\neffect = \"blur.shader\"\npasses = [\"Blur\"]\n"), folders);
   ASSERT_FALSE(missing);
   EXPECT_EQ(missing.error().to_string(),
-            "/tmp/planner_test.toml:12:11: the shader 'Hidden/Blur' has no pass 'Blur' in the SubShader it draws (its passes: "
+            "/tmp/planner_test.toml:12:11: the shader 'Hidden/Blur' has no pass 'Blur' in the SubShader it draws (its "
+            "passes: "
             "0 (\"Down\"), 1 (\"Glow\"))");
   auto hlsl_passes = plan_scene(scene("[[post]]\neffect = \"post/depth_of_field.hlsl\"\npasses = [0]\n"), folders);
   ASSERT_FALSE(hlsl_passes);
@@ -584,8 +622,9 @@ TEST(Planner, TheSourcesWarningsAreThePlansEachOnce) {
                                "material = \"noisy.hlsl\"\n"),
                          ShaderSearchPath({user, kLibrary}));
   ASSERT_TRUE(plan) << plan.error().to_string();
-  EXPECT_EQ(plan->warnings, (std::vector<std::string>{(user / "noisy.hlsl").string() + ":2:9: warning: unknown pragma 'frobnicate'",
-                                                      "noisy.hlsl: 1 warning in the files it includes (xshade compile shows them)"}));
+  EXPECT_EQ(plan->warnings,
+            (std::vector<std::string>{(user / "noisy.hlsl").string() + ":2:9: warning: unknown pragma 'frobnicate'",
+                                      "noisy.hlsl: 1 warning in the files it includes (xshade compile shows them)"}));
   fs::remove_all(user);
 }
 
@@ -627,17 +666,21 @@ name = "extra"
 mesh = "cube"
 material = "materials/extra_inputs.hlsl"
 keywords = ["_EXTRA"]
-)"), ShaderSearchPath({user, kLibrary}));
+)"),
+                         ShaderSearchPath({user, kLibrary}));
   ASSERT_TRUE(plan) << plan.error().to_string();
   ASSERT_EQ(plan->variants.size(), 2u);
   ASSERT_EQ(plan->variant_notes.size(), 2u);
   EXPECT_TRUE(plan->variant_notes[first_variants(*plan)[0]].empty());
-  EXPECT_EQ(plan->variant_notes[first_variants(*plan)[1]],
-            (std::vector<std::string>{"vertex input COLOR1 is not in the meshes; the shader reads white, as from a mesh without vertex colours",
-                                      "vertex input TEXCOORD2 is not in the meshes; the shader reads zeros"}));
+  EXPECT_EQ(
+      plan->variant_notes[first_variants(*plan)[1]],
+      (std::vector<std::string>{
+          "vertex input COLOR1 is not in the meshes; the shader reads white, as from a mesh without vertex colours",
+          "vertex input TEXCOORD2 is not in the meshes; the shader reads zeros"}));
   const std::string described = describe_plan(scene(""), *plan);
   EXPECT_NE(described.find("    materials/extra_inputs.hlsl [_EXTRA]\n"
-                           "      vertex input COLOR1 is not in the meshes; the shader reads white, as from a mesh without vertex colours\n"
+                           "      vertex input COLOR1 is not in the meshes; the shader reads white, as from a mesh "
+                           "without vertex colours\n"
                            "      vertex input TEXCOORD2 is not in the meshes; the shader reads zeros\n"),
             std::string::npos)
       << described;

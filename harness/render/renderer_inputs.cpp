@@ -101,7 +101,7 @@ UniformValueMap frame_inputs(const Scene& scene, const ShCoefficients& sh) {
   const float zx = direct3d ? far / near - 1.0f : 1.0f - far / near, zy = direct3d ? 1.0f : far / near;
   values["_ZBufferParams"] = {zx, zy, zx / far, zy / far};
   values["unity_OrthoParams"] = {0.0f, 0.0f, 0.0f, 0.0f};  // w = 0: a perspective camera
-  const glm::mat4 camera_projection =  // Camera.projectionMatrix: OpenGL's clip space, z in [-w, w]
+  const glm::mat4 camera_projection =                      // Camera.projectionMatrix: OpenGL's clip space, z in [-w, w]
       glm::perspectiveRH_NO(glm::radians(camera.fov_y_degrees), width / height, near, far);
   values["unity_CameraProjection"] = hlsl_components(camera_projection);
   values["unity_CameraInvProjection"] = hlsl_components(glm::inverse(camera_projection));
@@ -134,7 +134,8 @@ UniformValueMap frame_inputs(const Scene& scene, const ShCoefficients& sh) {
   // The environment: ambient light as SH, and the reflection probe (unity_SpecCube0, the
   // environment as a cube map of linear HDR texels, decoded by DecodeHDR with (1, 1, 0, 0)).
   const std::array<glm::vec4, 7> unity_sh = unity_sh_constants(sh);
-  const char* sh_names[] = {"unity_SHAr", "unity_SHAg", "unity_SHAb", "unity_SHBr", "unity_SHBg", "unity_SHBb", "unity_SHC"};
+  const char* sh_names[] = {"unity_SHAr", "unity_SHAg", "unity_SHAb", "unity_SHBr",
+                            "unity_SHBg", "unity_SHBb", "unity_SHC"};
   for (size_t i = 0; i < unity_sh.size(); ++i) values[sh_names[i]] = components(unity_sh[i]);
   // The legacy flat ambient (UNITY_LIGHTMODEL_AMBIENT is twice it, as Unity stores half): the
   // environment's ambient averaged over every direction, ShadeSH9's band 0 (0.282095 * c0).
@@ -186,7 +187,8 @@ UniformValueMap frame_inputs(const Scene& scene, const ShCoefficients& sh) {
   const glm::mat4 clip = gpu_projection(camera, width / height) * view;
   const auto row = [&](int r) { return glm::vec4(clip[0][r], clip[1][r], clip[2][r], clip[3][r]); };
   std::vector<float>& planes = values["unity_CameraWorldClipPlanes"];
-  for (const glm::vec4 plane : {row(3) + row(0), row(3) - row(0), row(3) + row(1), row(3) - row(1), row(2), row(3) - row(2)}) {
+  for (const glm::vec4 plane :
+       {row(3) + row(0), row(3) - row(0), row(3) + row(1), row(3) - row(1), row(2), row(3) - row(2)}) {
     const glm::vec4 unit = plane / glm::length(glm::vec3(plane));
     planes.insert(planes.end(), {unit.x, unit.y, unit.z, unit.w});
   }

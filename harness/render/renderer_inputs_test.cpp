@@ -72,7 +72,8 @@ TEST(RendererInputs, CameraSpaceLooksAlongPlusZAndCameraProjectionIsOpenGLs) {
   const glm::vec4 origin = matrix_of(values.at("unity_CameraToWorld")) * glm::vec4(0, 0, 0, 1);
   EXPECT_NEAR(glm::distance(glm::vec3(origin), scene.camera.position), 0.0f, 1e-5f);
   const glm::mat4 camera_projection = matrix_of(values.at("unity_CameraProjection"));
-  const glm::vec4 near = camera_projection * glm::vec4(0, 0, -0.3f, 1), far = camera_projection * glm::vec4(0, 0, -50.0f, 1);
+  const glm::vec4 near = camera_projection * glm::vec4(0, 0, -0.3f, 1),
+                  far = camera_projection * glm::vec4(0, 0, -50.0f, 1);
   EXPECT_NEAR(near.z / near.w, -1.0f, 1e-5f);
   EXPECT_NEAR(far.z / far.w, 1.0f, 1e-4f);
   const glm::mat4 round_trip = matrix_of(values.at("unity_CameraInvProjection")) * camera_projection;

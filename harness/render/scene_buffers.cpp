@@ -14,7 +14,9 @@ namespace {
 
 // The word `number` makes as `type` ('f', 'i', 'u' or 'b'), or why it cannot.
 Result<uint32_t> word_of(double number, char type) {
-  const auto whole_in = [&](double low, double high) { return std::floor(number) == number && number >= low && number <= high; };
+  const auto whole_in = [&](double low, double high) {
+    return std::floor(number) == number && number >= low && number <= high;
+  };
   switch (type) {
     case 'i':
       if (!whole_in(double(INT32_MIN), double(INT32_MAX))) return fail(fmt::format("{} is not an int", number));

@@ -42,7 +42,8 @@ TEST(SceneBuffers, NumbersThatAreNotWholeElementsOrNotTheirWordsTypeAreRefusedAt
   auto partial = scene_buffer_bytes(given, kMixed);
   ASSERT_FALSE(partial);
   EXPECT_EQ(partial.error().where.line, 7u);
-  EXPECT_NE(partial.error().message.find("give a multiple of 4 numbers, not 3"), std::string::npos) << partial.error().message;
+  EXPECT_NE(partial.error().message.find("give a multiple of 4 numbers, not 3"), std::string::npos)
+      << partial.error().message;
   given.numbers = {1, 2.5, 3, 1};
   auto fraction = scene_buffer_bytes(given, kMixed);
   ASSERT_FALSE(fraction);
@@ -72,7 +73,8 @@ TEST(SceneBuffers, AFileGivesItsBytesWhenTheyAreWholeElements) {
   EXPECT_EQ(word_at(*bytes, 3), 4u);
   auto wider = scene_buffer_bytes(given, {"wide", 12, "fff"});
   ASSERT_FALSE(wider);
-  EXPECT_NE(wider.error().message.find("16 bytes, which is not a whole number of its 12-byte elements"), std::string::npos)
+  EXPECT_NE(wider.error().message.find("16 bytes, which is not a whole number of its 12-byte elements"),
+            std::string::npos)
       << wider.error().message;
   std::filesystem::remove(file);
 }

@@ -58,7 +58,8 @@ void check_specialization_value(const std::string& name, uint32_t count, std::op
                       numbers_text(count)));
   } else if (whole && !value) {
     error(problems, where,
-          fmt::format("'{}' is a specialization constant ({}) of {}: a grid may vary a float one only", name, type, owner));
+          fmt::format("'{}' is a specialization constant ({}) of {}: a grid may vary a float one only", name, type,
+                      owner));
   } else if (whole && value &&
              (std::floor(*value) != *value || (constant.scalar == hlsl::ScalarType::Uint && *value < 0) ||
               (constant.scalar == hlsl::ScalarType::Bool && *value != 0 && *value != 1))) {
@@ -75,28 +76,32 @@ void check_value(const std::string& name, uint32_t count, const ShaderNames::Uni
                  const SourceLocation& where, ContractProblems& problems) {
   if (renderer_uniform(name)) {
     error(problems, where,
-          fmt::format("'{}' is set by the renderer (docs/shader_library.md lists its inputs); a scene cannot set it", name));
+          fmt::format("'{}' is set by the renderer (docs/shader_library.md lists its inputs); a scene cannot set it",
+                      name));
     return;
   }
   const UniformMember& member = uniform.member;
   if (member.rows > 1 || member.array_length) {
     error(problems, where,
-          fmt::format("'{}' is a {} in {}; a scene sets only float, float2, float3 and float4 values", name, uniform.type, owner));
+          fmt::format("'{}' is a {} in {}; a scene sets only float, float2, float3 and float4 values", name,
+                      uniform.type, owner));
     return;
   }
   if (member.components() != count)
     error(problems, where,
-          fmt::format("'{}' is a {} in {}: give it {}, not {}", name, uniform.type, owner, numbers_text(member.components()),
-                      numbers_text(count)));
+          fmt::format("'{}' is a {} in {}: give it {}, not {}", name, uniform.type, owner,
+                      numbers_text(member.components()), numbers_text(count)));
 }
 
 // The uniforms of `names` that the variant reads and that get no value: not the renderer's, not in
 // `given`, without a default in the shader. X_ST is Unity's tiling and offset, (1, 1, 0, 0) unless given.
 void check_uniforms_have_values(const ShaderNames& names, const std::set<std::string>& given, const std::string& owner,
-                                const std::string& how_to_set, const SourceLocation& where, ContractProblems& problems) {
+                                const std::string& how_to_set, const SourceLocation& where,
+                                ContractProblems& problems) {
   for (const ShaderNames::Uniform& uniform : names.uniforms) {
     const std::string& name = uniform.member.name;
-    if (!uniform.read || uniform.has_default || given.count(name) || renderer_uniform(name) || name.ends_with("_ST")) continue;
+    if (!uniform.read || uniform.has_default || given.count(name) || renderer_uniform(name) || name.ends_with("_ST"))
+      continue;
     error(problems, where,
           fmt::format("{}: uniform '{}' ({}) has no value: the renderer does not give it, the scene does not set it "
                       "and the shader declares no default; set {}.{}, or give it an initializer in the shader",
@@ -112,9 +117,11 @@ constexpr const char* kComparedTexture =
 // A texture the variant samples and nobody gives: its declared default, or an error saying how
 // to give one.
 void default_or_error(const ShaderNames::Texture& texture, const std::string& owner, const std::string& not_given,
-                      const std::string& table, const SourceLocation& where, std::map<std::string, TextureRef>& defaults, ContractProblems& problems) {
+                      const std::string& table, const SourceLocation& where,
+                      std::map<std::string, TextureRef>& defaults, ContractProblems& problems) {
   if (texture.comparison) {
-    error(problems, where, fmt::format("{} samples '{}' {}, which {}", owner, texture.name, kComparedTexture, not_given));
+    error(problems, where,
+          fmt::format("{} samples '{}' {}, which {}", owner, texture.name, kComparedTexture, not_given));
     return;
   }
   if (auto origin = renderer_default_texture(texture.name)) {
@@ -129,8 +136,8 @@ void default_or_error(const ShaderNames::Texture& texture, const std::string& ow
     ref.source = *origin;
     ref.where = where;
     defaults.emplace(texture.name, ref);
-    problems.notes.push_back(fmt::format("{}: texture {} is the shader's default \"{}\"", owner, texture.name,
-                                         texture.default_texture));
+    problems.notes.push_back(
+        fmt::format("{}: texture {} is the shader's default \"{}\"", owner, texture.name, texture.default_texture));
     return;
   }
   error(problems, where,
@@ -266,7 +273,8 @@ std::map<std::string, TextureRef> check_object(const SceneObject& object, const 
       return;
     }
     error(problems, where,
-          fmt::format("{} has no property '{}'{}", owner, name, suggestion(name, settable_uniforms(material), "properties")));
+          fmt::format("{} has no property '{}'{}", owner, name,
+                      suggestion(name, settable_uniforms(material), "properties")));
   };
   for (const auto& [name, value] : object.properties)
     check_named(name, value.count, "properties." + name, value.components[0]);
@@ -277,11 +285,13 @@ std::map<std::string, TextureRef> check_object(const SceneObject& object, const 
   for (const auto& [name, ref] : object.textures) {
     if (const ShaderNames::Texture* texture = material.texture(name); texture && !renderer_texture(name)) {
       if (texture->comparison)
-        error(problems, object.where.of("textures." + name), fmt::format("{} samples '{}' {}", owner, name, kComparedTexture));
+        error(problems, object.where.of("textures." + name),
+              fmt::format("{} samples '{}' {}", owner, name, kComparedTexture));
       continue;
     }
-    const std::string why = renderer_texture(name) ? fmt::format("; '{}' is the renderer's (the scene's environment)", name)
-                                                   : suggestion(name, texture_names(material), "textures");
+    const std::string why = renderer_texture(name)
+                                ? fmt::format("; '{}' is the renderer's (the scene's environment)", name)
+                                : suggestion(name, texture_names(material), "textures");
     error(problems, object.where.of("textures." + name), fmt::format("{} has no texture '{}'{}", owner, name, why));
   }
 
@@ -297,8 +307,8 @@ std::map<std::string, TextureRef> check_object(const SceneObject& object, const 
     }
     if (!ref.numbers.empty() && ref.numbers.size() % buffer->words.size() != 0)
       error(problems, where,
-            fmt::format("an element of {}'s buffer '{}' is {} 32-bit words: give a multiple of {} numbers, not {}", owner,
-                        name, buffer->words.size(), buffer->words.size(), ref.numbers.size()));
+            fmt::format("an element of {}'s buffer '{}' is {} 32-bit words: give a multiple of {} numbers, not {}",
+                        owner, name, buffer->words.size(), buffer->words.size(), ref.numbers.size()));
   }
 
   std::map<std::string, TextureRef> defaults;
@@ -319,7 +329,8 @@ std::map<std::string, TextureRef> check_object(const SceneObject& object, const 
   return defaults;
 }
 
-std::vector<std::map<std::string, TextureRef>> check_effect(const PostEffect& effect, const std::vector<PassNames>& passes,
+std::vector<std::map<std::string, TextureRef>> check_effect(const PostEffect& effect,
+                                                            const std::vector<PassNames>& passes,
                                                             ContractProblems& problems) {
   const std::string owner = "post effect '" + effect.effect + "'";
   std::vector<std::string> parameters;
@@ -350,7 +361,8 @@ std::vector<std::map<std::string, TextureRef>> check_effect(const PostEffect& ef
             fmt::format("{} has no texture '{}'{}", owner, name, suggestion(name, textures, "textures")));
     for (const PassNames& pass : passes)
       if (const ShaderNames::Texture* texture = pass.names.texture(name); texture && texture->comparison) {
-        error(problems, effect.where.of("textures." + name), fmt::format("{} samples '{}' {}", owner, name, kComparedTexture));
+        error(problems, effect.where.of("textures." + name),
+              fmt::format("{} samples '{}' {}", owner, name, kComparedTexture));
         break;
       }
   }
@@ -370,13 +382,15 @@ std::vector<std::map<std::string, TextureRef>> check_effect(const PostEffect& ef
     for (const ShaderNames::Texture& texture : pass.names.textures) {
       if (!texture.sampled || effect.textures.count(texture.name) || renderer_texture(texture.name)) continue;
       const auto& inputs = pass.declaration.inputs;
-      if (std::any_of(inputs.begin(), inputs.end(), [&](const hlsl::PassInput& i) { return i.texture == texture.name; }))
+      if (std::any_of(inputs.begin(), inputs.end(),
+                      [&](const hlsl::PassInput& i) { return i.texture == texture.name; }))
         continue;
       // Unity's depth texture is the scene's depth where the pass names no other source.
       if (texture.name == "_CameraDepthTexture") continue;
-      default_or_error(texture, pass_owner,
-                       "neither its sources (its #pragma pass line, or its step in passes) nor the effect's textures give",
-                       "textures", effect_line, defaults[p], problems);
+      default_or_error(
+          texture, pass_owner,
+          "neither its sources (its #pragma pass line, or its step in passes) nor the effect's textures give",
+          "textures", effect_line, defaults[p], problems);
     }
     check_uniforms_have_values(pass.names, given, pass_owner, "parameters", effect_line, problems);
   }

@@ -80,7 +80,8 @@ struct PassNames {
 // An effect against its passes: each parameter and texture it gives must be one some pass has,
 // each pass's uniforms get a value and its textures a source. Returns, per pass, the textures
 // it samples from their declared defaults.
-std::vector<std::map<std::string, TextureRef>> check_effect(const PostEffect& effect, const std::vector<PassNames>& passes,
+std::vector<std::map<std::string, TextureRef>> check_effect(const PostEffect& effect,
+                                                            const std::vector<PassNames>& passes,
                                                             ContractProblems& problems);
 
 // Every keyword a scene asks of `source` must be one its #pragma multi_compile or shader_feature

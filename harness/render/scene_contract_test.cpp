@@ -121,8 +121,9 @@ keywords = ["_SHADOW_TEXTURE"]
 )");
   ASSERT_FALSE(planned);
   EXPECT_EQ(planned.error().where.to_string(), "/tmp/contract_test.toml:12:13");
-  EXPECT_EQ(planned.error().message, "material 'materials/toon.hlsl' declares no keyword '_SHADOW_TEXTURE' "
-                                     "(#pragma multi_compile or shader_feature); did you mean '_SHADOW_TEX'?");
+  EXPECT_EQ(planned.error().message,
+            "material 'materials/toon.hlsl' declares no keyword '_SHADOW_TEXTURE' "
+            "(#pragma multi_compile or shader_feature); did you mean '_SHADOW_TEX'?");
 }
 
 TEST(SceneContract, APostParameterTheEffectLacksIsAnError) {
@@ -205,8 +206,9 @@ float4 vert(float3 p : POSITION) : SV_Position { return float4(p, 1); }
 float4 frag(float4 p : SV_Position) : SV_Target { return _ShadowMap.SampleCmpLevelZero(sampler_ShadowMap, p.xy, 0.5); }
 )");
   for (const std::string textures : {"", "[object.textures]\n_ShadowMap = \"white\"\n"}) {
-    auto refused = plan("[[object]]\nname = \"ball\"\nmesh = \"sphere\"\nmaterial = \"materials/shadowed.hlsl\"\n" + textures,
-                        ShaderSearchPath({user, kShaderLibrary}));
+    auto refused =
+        plan("[[object]]\nname = \"ball\"\nmesh = \"sphere\"\nmaterial = \"materials/shadowed.hlsl\"\n" + textures,
+             ShaderSearchPath({user, kShaderLibrary}));
     ASSERT_FALSE(refused);
     EXPECT_NE(refused.error().message.find("samples '_ShadowMap' with a comparison sampler, a shadow map's depth: no "
                                            "texture a scene names holds depth"),

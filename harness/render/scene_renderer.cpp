@@ -5,11 +5,10 @@
 #include <deque>
 #include <map>
 
-
+#include "harness/assets/cube_map.h"
 #include "harness/assets/meshes.h"
 #include "harness/assets/obj_mesh.h"
 #include "harness/assets/scene_textures.h"
-#include "harness/assets/cube_map.h"
 #include "harness/backend/resource_set.h"
 #include "harness/render/forward_lights.h"
 #include "harness/render/material_source.h"
@@ -46,7 +45,8 @@ Error at_scene_value(Error error, const SourceLocation& where) {
 // The renderer's own values, looked up first, then the scene's, then the shader's defaults.
 class UniformValues {
  public:
-  UniformValues(const Values& engine, const std::map<std::string, PropertyValue>& scene, const ShaderInterface& interface)
+  UniformValues(const Values& engine, const std::map<std::string, PropertyValue>& scene,
+                const ShaderInterface& interface)
       : engine_(engine), interface_(interface) {
     for (const auto& [name, value] : scene)
       scene_[name] = std::vector<float>(value.components.begin(), value.components.begin() + value.count);
@@ -129,7 +129,12 @@ class SceneRenderer {
  public:
   SceneRenderer(Backend& backend, const Scene& scene, const Plan& plan, const std::vector<CompiledVariant>& variants,
                 const Environment& environment, const RenderOptions& options)
-      : backend_(backend), scene_(scene), plan_(plan), variants_(variants), environment_(environment), options_(options) {}
+      : backend_(backend),
+        scene_(scene),
+        plan_(plan),
+        variants_(variants),
+        environment_(environment),
+        options_(options) {}
 
   // The scene pass, then the post passes on its colour and depth.
   Result<RenderedScene> render() {
@@ -139,8 +144,7 @@ class SceneRenderer {
       return std::any_of(draws.begin(), draws.end(),
                          [](const Plan::InstanceDraw& draw) { return draw.state.stencil.enabled; });
     });
-    auto target =
-        resources_.create_target({scene_.width, scene_.height, true, options_.trace_nonfinite, stencil});
+    auto target = resources_.create_target({scene_.width, scene_.height, true, options_.trace_nonfinite, stencil});
     if (!target) return fail(from_backend(target.error()));
     scene_target_ = *target;
     const glm::uvec2 size{scene_.width, scene_.height};
@@ -152,8 +156,9 @@ class SceneRenderer {
   // The post passes alone, on the given colour and depth.
   Result<RenderedScene> render_post(const FloatImage& color, const FloatImage& depth) {
     if (rows_bottom_first_)
-      return fail("post passes on given images draw only in scenes of xshade's own shaders: the images are upright, "
-                  "their depth 0 at the near plane");
+      return fail(
+          "post passes on given images draw only in scenes of xshade's own shaders: the images are upright, "
+          "their depth 0 at the near plane");
     for (const auto& [name, image] : {std::pair{"colour", &color}, std::pair{"depth", &depth}}) {
       const bool fits = image->width == scene_.width && image->height == scene_.height &&
                         image->rgba.size() == size_t(image->width) * image->height * 4;
@@ -280,7 +285,8 @@ class SceneRenderer {
         return fail("the environment is a cube map; the shader declares a " + shape_name(shape), ref.where);
       auto cube = environment_cube();
       if (!cube) return fail(cube.error());
-      return textures_.emplace_back(SceneTexture{ref, shape, *cube, {environment_.prefiltered.width / 4, environment_.prefiltered.width / 4}});
+      return textures_.emplace_back(
+          SceneTexture{ref, shape, *cube, {environment_.prefiltered.width / 4, environment_.prefiltered.width / 4}});
     }
     auto data = texture_data(ref, shape);
     if (!data) {
@@ -413,8 +419,9 @@ class SceneRenderer {
   // An instance's draw of one of its passes, with `values` as its uniforms read them (the
   // instance's model and the light it is drawn for are set in them here).
   Result<DrawItem> draw_item(const ObjectInstance& instance, const Plan::InstanceDraw& instance_draw, Values& values) {
-    const std::string where = "object '" + instance.object_name + "'" +
-                              (instance.in_grid ? " cell " + std::to_string(instance.row) + "," + std::to_string(instance.col) : "");
+    const std::string where =
+        "object '" + instance.object_name + "'" +
+        (instance.in_grid ? " cell " + std::to_string(instance.row) + "," + std::to_string(instance.col) : "");
     add_object_inputs(instance.model, values);
     auto mesh_handle = mesh(instance.mesh);
     if (!mesh_handle) return fail(in_context(where, mesh_handle.error()));
@@ -425,12 +432,17 @@ class SceneRenderer {
     add_light_inputs(light, values);
     // What a receiving pass reads of its light's shadow map (a caster draws into it instead).
     const auto map = light_index ? shadow_maps_.find(*light_index) : shadow_maps_.end();
-    const std::optional<TargetHandle> shadow_map =
-        map != shadow_maps_.end() && !instance_draw.caster ? std::optional<TargetHandle>(map->second.first) : std::nullopt;
+    const std::optional<TargetHandle> shadow_map = map != shadow_maps_.end() && !instance_draw.caster
+                                                       ? std::optional<TargetHandle>(map->second.first)
+                                                       : std::nullopt;
     if (shadow_map) add_shadow_receiver_inputs(light, map->second.second, values);
     auto handle = program(variant);
     if (!handle) return fail(handle.error());
-    DrawItem draw{*handle, *mesh_handle, {}, {}, direct3d_ ? on_direct3d_render_target(instance_draw.state) : instance_draw.state};
+    DrawItem draw{*handle,
+                  *mesh_handle,
+                  {},
+                  {},
+                  direct3d_ ? on_direct3d_render_target(instance_draw.state) : instance_draw.state};
     for (const std::string& name : variants_[variant].interface.textures) {
       auto engine = engine_texture(name, light, shadow_map);
       if (!engine) return fail(in_context(where + ": texture '" + name + "'", engine.error()));
@@ -442,7 +454,8 @@ class SceneRenderer {
       // shader's declared default), or refused the scene.
       auto given = instance.textures.find(name);
       if (given == instance.textures.end())
-        return fail(ErrorKind::Internal, where + ": texture '" + name + "' has no source; the plan should have refused the scene");
+        return fail(ErrorKind::Internal,
+                    where + ": texture '" + name + "' has no source; the plan should have refused the scene");
       const TextureShape shape = declared_shape(variants_[variant], name);
       auto made = texture(given->second, shape);
       if (!made) return fail(in_context(where + ": texture '" + name + "'", made.error()));
@@ -453,12 +466,14 @@ class SceneRenderer {
     for (const StorageBufferInput& buffer : variants_[variant].interface.storage_buffers) {
       auto given = instance.buffers.find(buffer.name);
       if (given == instance.buffers.end())
-        return fail(ErrorKind::Internal, where + ": buffer '" + buffer.name + "' has no source; the plan should have refused the scene");
+        return fail(ErrorKind::Internal,
+                    where + ": buffer '" + buffer.name + "' has no source; the plan should have refused the scene");
       auto bytes = scene_buffer_bytes(given->second, buffer);
       if (!bytes) return fail(bytes.error());
       draw.storage_buffers.push_back({buffer.name, std::move(*bytes)});
     }
-    auto uniforms = uniform_bindings(variants_[variant], UniformValues(values, instance.properties, variants_[variant].interface), where);
+    auto uniforms = uniform_bindings(variants_[variant],
+                                     UniformValues(values, instance.properties, variants_[variant].interface), where);
     if (!uniforms) return fail(uniforms.error());
     draw.uniforms = std::move(*uniforms);
     return draw;
@@ -548,8 +563,7 @@ class SceneRenderer {
         if (given) {
           const TextureShape shape = declared_shape(variant, name);
           auto made = texture(*given, shape);
-          if (!made)
-            return fail(in_context("pass '" + planned.name + "': texture '" + name + "'", made.error()));
+          if (!made) return fail(in_context("pass '" + planned.name + "': texture '" + name + "'", made.error()));
           values[name + "_TexelSize"] = texel_size(made->size);
           draw.textures.push_back({name, TextureSource::texture(made->handle, scene_sampler(shape, true))});
           continue;
@@ -578,7 +592,8 @@ class SceneRenderer {
     auto handle = program(planned.variant);
     if (!handle) return fail(handle.error());
     draw.program = *handle;
-    auto uniforms = uniform_bindings(variant, UniformValues(values, effect.parameters, variant.interface), "pass '" + planned.name + "'");
+    auto uniforms = uniform_bindings(variant, UniformValues(values, effect.parameters, variant.interface),
+                                     "pass '" + planned.name + "'");
     if (!uniforms) return fail(uniforms.error());
     draw.uniforms = std::move(*uniforms);
 
@@ -617,13 +632,13 @@ class SceneRenderer {
   ResourceSet resources_{backend_};
 
   TargetHandle scene_target_;  // none when the post passes run on given images
-  PassSource scene_color_;      // what scene.color and scene.depth name
+  PassSource scene_color_;     // what scene.color and scene.depth name
   PassSource scene_depth_;
-  PassSource current_;          // the image so far
+  PassSource current_;  // the image so far
   size_t current_effect_ = SIZE_MAX;
-  PassSource effect_input_;     // the image the current effect received
+  PassSource effect_input_;                         // the image the current effect received
   std::map<std::string, PassSource> pass_outputs_;  // of the current effect, by pass name
-  std::map<size_t, TargetHandle> pass_target_;  // by index into the plan's passes
+  std::map<size_t, TargetHandle> pass_target_;      // by index into the plan's passes
   std::map<size_t, ProgramHandle> programs_;
   std::deque<SceneMesh> meshes_;  // a deque: pointers to its meshes stay valid as it grows
   std::vector<SceneTexture> textures_;
@@ -655,8 +670,8 @@ std::string program_key(const ProgramDesc& desc) {
            block.glsl_block + "\n";
   for (const TextureSlot& texture : desc.layout.textures)
     key += "t " + texture.name + " " + std::to_string(texture.binding) + " " +
-           (texture.sampler_binding ? std::to_string(*texture.sampler_binding) : "-") + " " + shape_name(texture.shape) +
-           " " + texel_kind_name(texture.texel) + (texture.comparison ? " compare" : "") +
+           (texture.sampler_binding ? std::to_string(*texture.sampler_binding) : "-") + " " +
+           shape_name(texture.shape) + " " + texel_kind_name(texture.texel) + (texture.comparison ? " compare" : "") +
            (texture.image_only ? " image" : "") + " " + texture.glsl_name + "\n";
   return key;
 }

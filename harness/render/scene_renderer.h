@@ -10,8 +10,8 @@
 #include <string_view>
 #include <vector>
 
-#include "harness/backend/backend.h"
 #include "harness/assets/environment.h"
+#include "harness/backend/backend.h"
 #include "harness/render/planner.h"
 #include "harness/render/shader_cache.h"
 
@@ -60,7 +60,7 @@ class ProgramCache {
 
 struct RenderOptions {
   bool keep_pass_images = false;
-  uint32_t frames = 1;  // rendered one after another with the same resources; the last one is returned
+  uint32_t frames = 1;               // rendered one after another with the same resources; the last one is returned
   ProgramCache* programs = nullptr;  // when given, programs come from it (and go into it)
   // Told each pass's name before it is drawn: where a render that hangs or crashes was.
   std::function<void(std::string_view pass)> on_pass = {};

@@ -1,8 +1,8 @@
 #include "harness/render/shader_cache.h"
 
 #include <fmt/format.h>
-#include <nlohmann/json.hpp>
 #include <xxhash.h>
+#include <nlohmann/json.hpp>
 
 #include <fstream>
 
@@ -83,7 +83,8 @@ std::optional<CompiledVariant> variant_from_json(const std::string& text) {
     p.vertex = stage_from_json(j.at("vertex"));
     p.fragment = stage_from_json(j.at("fragment"));
     for (const json& b : j.at("uniform_blocks"))
-      p.layout.uniform_blocks.push_back({b.at("name"), b.at("binding"), b.at("size"), b.at("push_constant"), b.at("glsl_block")});
+      p.layout.uniform_blocks.push_back(
+          {b.at("name"), b.at("binding"), b.at("size"), b.at("push_constant"), b.at("glsl_block")});
     for (const json& t : j.at("textures")) {
       TextureSlot slot{t.at("name"), t.at("binding"), std::nullopt};
       if (t.contains("sampler_binding")) slot.sampler_binding = t.at("sampler_binding").get<uint32_t>();
@@ -125,7 +126,9 @@ Error damaged(const fs::path& path, const VariantRequest& request) {
   return Error{fmt::format("the shader cache entry {} was damaged (its contents do not match their hash), so {} was "
                            "compiled again and the entry rewritten",
                            path.string(), request.label()),
-               {}, {}, ErrorKind::Internal};
+               {},
+               {},
+               ErrorKind::Internal};
 }
 
 }  // namespace

@@ -21,8 +21,8 @@ namespace fs = std::filesystem;
 class ShaderCacheTest : public ::testing::Test {
  protected:
   void SetUp() override {
-    root_ = fs::temp_directory_path() / ("xshade_cache_test_" + std::string(
-        ::testing::UnitTest::GetInstance()->current_test_info()->name()));
+    root_ = fs::temp_directory_path() /
+            ("xshade_cache_test_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
     fs::remove_all(root_);
     fs::create_directories(root_ / "materials");
     fs::create_directories(root_ / "include");
@@ -60,7 +60,8 @@ class ShaderCacheTest : public ::testing::Test {
     EXPECT_FALSE(from_cache(cache, second));
     EXPECT_NE(last_.program.fragment.glsl.find(second_colour), std::string::npos) << last_.program.fragment.glsl;
     EXPECT_TRUE(from_cache(cache, first));
-    EXPECT_NE(last_.program.fragment.glsl.find("vec4(1.0, 0.0, 0.0, 1.0)"), std::string::npos) << last_.program.fragment.glsl;
+    EXPECT_NE(last_.program.fragment.glsl.find("vec4(1.0, 0.0, 0.0, 1.0)"), std::string::npos)
+        << last_.program.fragment.glsl;
   }
 
   CompiledVariant last_;
@@ -84,7 +85,8 @@ TEST_F(ShaderCacheTest, ChangingAnIncludeKeywordsLaneOrCompilerMisses) {
 
   write("include/tint.hlsl", "float4 tint() { return float4(0, 1, 0, 1); }\n");
   EXPECT_FALSE(from_cache(cache, request()));
-  EXPECT_NE(last_.program.fragment.glsl.find("vec4(0.0, 1.0, 0.0, 1.0)"), std::string::npos) << last_.program.fragment.glsl;
+  EXPECT_NE(last_.program.fragment.glsl.find("vec4(0.0, 1.0, 0.0, 1.0)"), std::string::npos)
+      << last_.program.fragment.glsl;
   EXPECT_TRUE(from_cache(cache, request()));
 
   EXPECT_FALSE(cache.find(request(), Lane::Vk).has_value());
@@ -111,8 +113,10 @@ TEST_F(ShaderCacheTest, EditingTheMaterialsOwnFileMisses) {
 TEST_F(ShaderCacheTest, EachPassOfAUnityShaderIsItsOwnEntry) {
   write("materials/two.shader",
         "Shader \"Two\" { SubShader {\n"
-        "  Pass { HLSLPROGRAM\n#pragma fragment frag\nfloat4 frag() : SV_Target { return float4(1, 0, 0, 1); }\nENDHLSL }\n"
-        "  Pass { HLSLPROGRAM\n#pragma fragment frag\nfloat4 frag() : SV_Target { return float4(0, 0, 1, 1); }\nENDHLSL }\n"
+        "  Pass { HLSLPROGRAM\n#pragma fragment frag\nfloat4 frag() : SV_Target { return float4(1, 0, 0, 1); "
+        "}\nENDHLSL }\n"
+        "  Pass { HLSLPROGRAM\n#pragma fragment frag\nfloat4 frag() : SV_Target { return float4(0, 0, 1, 1); "
+        "}\nENDHLSL }\n"
         "} }\n");
   VariantRequest first{root_ / "materials" / "two.shader", "materials/two.shader", {}, {}};
   first.shader_pass = 0;
@@ -137,7 +141,8 @@ TEST_F(ShaderCacheTest, AUnityPlatformIsItsOwnEntry) {
 
 // Two materials, one of which reads the include: editing the include recompiles that one only.
 TEST_F(ShaderCacheTest, ChangingAnIncludeRecompilesExactlyTheVariantsThatReadIt) {
-  write("materials/plain.hlsl", "#pragma fragment frag\nfloat4 frag(float2 uv : TEXCOORD0) : SV_Target { return 1; }\n");
+  write("materials/plain.hlsl",
+        "#pragma fragment frag\nfloat4 frag(float2 uv : TEXCOORD0) : SV_Target { return 1; }\n");
   const VariantRequest plain{root_ / "materials" / "plain.hlsl", "materials/plain.hlsl", {}, {}};
   ShaderCache cache(root_ / "cache", "identity");
   EXPECT_FALSE(from_cache(cache, request()));
@@ -206,9 +211,10 @@ class DamagedCacheEntryTest : public ShaderCacheTest {
     auto [cached, warning] = compile(cache, lane);
     EXPECT_FALSE(cached) << "a damaged entry was used";
     ASSERT_TRUE(warning.has_value());
-    EXPECT_EQ(warning->message, "the shader cache entry " + damaged.string() +
-                                    " was damaged (its contents do not match their hash), so materials/flat.hlsl [] was "
-                                    "compiled again and the entry rewritten");
+    EXPECT_EQ(warning->message,
+              "the shader cache entry " + damaged.string() +
+                  " was damaged (its contents do not match their hash), so materials/flat.hlsl [] was "
+                  "compiled again and the entry rewritten");
     EXPECT_EQ(last_.program.fragment.glsl, original.program.fragment.glsl);
     auto [again, no_warning] = compile(cache, lane);
     EXPECT_TRUE(again) << "the rewritten entry is not a hit";
@@ -236,9 +242,8 @@ TEST_F(DamagedCacheEntryTest, FlippedSpirvWordsAreCompiledAgainWithAWarning) {
   ASSERT_FALSE(compile(cache, Lane::Vk).first);
   const CompiledVariant original = last_;
   ASSERT_GT(original.program.fragment.spirv.size(), 10u);
-  edit(entry(".variant"), [](nlohmann::json& j) {
-    j["fragment"]["spirv"][8] = j["fragment"]["spirv"][8].get<uint32_t>() ^ 0x00010000u;
-  });
+  edit(entry(".variant"),
+       [](nlohmann::json& j) { j["fragment"]["spirv"][8] = j["fragment"]["spirv"][8].get<uint32_t>() ^ 0x00010000u; });
   expect_recompiled_and_repaired(cache, Lane::Vk, entry(".variant"), original);
 }
 
@@ -287,7 +292,8 @@ TEST_F(ShaderCacheTest, ProcessesStoringTheSameEntryAtOnceNeverTearIt) {
     ASSERT_GE(pid, 0);
     if (pid == 0) {
       bool ok = true;
-      for (int round = 0; round < 200 && ok; ++round) ok = bool(cache.store(request(), Lane::Gl, variant, dependencies));
+      for (int round = 0; round < 200 && ok; ++round)
+        ok = bool(cache.store(request(), Lane::Gl, variant, dependencies));
       ::_exit(ok ? 0 : 1);
     }
     writers.push_back(pid);

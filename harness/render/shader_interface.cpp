@@ -89,8 +89,10 @@ ShaderInterface shader_interface(const hlsl::Reflection& reflection) {
     if (buffer.kind != hlsl::BufferKind::ByteAddressBuffer) {
       input.words.clear();
       for (hlsl::ScalarType scalar : hlsl::structured_words(buffer.element))
-        input.words += scalar == hlsl::ScalarType::Int ? 'i' : scalar == hlsl::ScalarType::Uint ? 'u'
-                       : scalar == hlsl::ScalarType::Bool ? 'b' : 'f';
+        input.words += scalar == hlsl::ScalarType::Int    ? 'i'
+                       : scalar == hlsl::ScalarType::Uint ? 'u'
+                       : scalar == hlsl::ScalarType::Bool ? 'b'
+                                                          : 'f';
     }
     interface.storage_buffers.push_back(std::move(input));
   }
@@ -108,8 +110,14 @@ std::string shader_interface_json(const ShaderInterface& interface) {
   for (const UniformBlock& block : interface.uniform_blocks) {
     json members = json::array();
     for (const UniformMember& m : block.members)
-      members.push_back({{"name", m.name}, {"scalar", scalar_spelling(m.scalar)}, {"rows", m.rows}, {"cols", m.cols},
-                         {"array_length", m.array_length}, {"offset", m.offset}, {"row_major", m.row_major}, {"read", m.read}});
+      members.push_back({{"name", m.name},
+                         {"scalar", scalar_spelling(m.scalar)},
+                         {"rows", m.rows},
+                         {"cols", m.cols},
+                         {"array_length", m.array_length},
+                         {"offset", m.offset},
+                         {"row_major", m.row_major},
+                         {"read", m.read}});
     blocks.push_back({{"name", block.name}, {"size", block.size}, {"members", members}});
   }
   json properties = json::array();
@@ -118,7 +126,9 @@ std::string shader_interface_json(const ShaderInterface& interface) {
   json storage_buffers = json::array();
   for (const StorageBufferInput& buffer : interface.storage_buffers)
     storage_buffers.push_back({{"name", buffer.name}, {"stride", buffer.stride}, {"words", buffer.words}});
-  return json{{"uniform_blocks", blocks}, {"textures", interface.textures}, {"storage_buffers", storage_buffers},
+  return json{{"uniform_blocks", blocks},
+              {"textures", interface.textures},
+              {"storage_buffers", storage_buffers},
               {"properties", properties}}
       .dump(1);
 }
@@ -174,12 +184,15 @@ Result<std::vector<std::byte>> build_uniform_block(const UniformBlock& block, co
       for (uint32_t row = 0; row < member.rows; ++row) {
         for (uint32_t col = 0; col < member.cols; ++col) {
           uint32_t offset = member.offset + element * stride;
-          if (member.rows > 1) offset += member.row_major ? row * 16 + col * 4 : col * 16 + row * 4;
-          else offset += col * 4;
+          if (member.rows > 1)
+            offset += member.row_major ? row * 16 + col * 4 : col * 16 + row * 4;
+          else
+            offset += col * 4;
           if (offset + 4 > bytes.size())
             return fail("uniform '" + member.name + "' in '" + block.name + "' lies outside the block's " +
                         std::to_string(block.size) + " bytes");
-          const uint32_t bits = component_bits(member.scalar, (*value)[element * per_element + row * member.cols + col]);
+          const uint32_t bits =
+              component_bits(member.scalar, (*value)[element * per_element + row * member.cols + col]);
           std::memcpy(bytes.data() + offset, &bits, 4);
         }
       }
@@ -189,7 +202,8 @@ Result<std::vector<std::byte>> build_uniform_block(const UniformBlock& block, co
 }
 
 std::vector<std::byte> constant_buffer_from(const hlsl::ConstantBuffer& buffer,
-                                            const std::vector<hlsl::Property>& properties, const MemberValue& value_of) {
+                                            const std::vector<hlsl::Property>& properties,
+                                            const MemberValue& value_of) {
   hlsl::Reflection only_this;
   only_this.constant_buffers = {buffer};
   only_this.properties = properties;

@@ -28,8 +28,8 @@ struct UniformMember {
 };
 
 struct UniformBlock {
-  std::string name;        // as the shader declares it ("$Globals" for loose globals), the layout's too
-  uint32_t size = 0;       // bytes
+  std::string name;   // as the shader declares it ("$Globals" for loose globals), the layout's too
+  uint32_t size = 0;  // bytes
   std::vector<UniformMember> members;
 };
 

@@ -34,7 +34,6 @@ TexelKind harness_texel(hlsl::ScalarType texel) {
   return TexelKind::Float;
 }
 
-
 Result<std::map<uint32_t, double>> resolve_specialization(const std::vector<std::string>& given,
                                                           const hlsl::Reflection& reflection) {
   std::map<uint32_t, double> values;
@@ -44,10 +43,12 @@ Result<std::map<uint32_t, double>> resolve_specialization(const std::vector<std:
   for (const std::string& text : given) {
     const size_t equals = text.find('=');
     const std::string name = text.substr(0, equals);
-    const auto constant = std::find_if(reflection.specialization_constants.begin(), reflection.specialization_constants.end(),
-                                       [&](const hlsl::SpecializationConstant& c) { return c.name == name; });
+    const auto constant =
+        std::find_if(reflection.specialization_constants.begin(), reflection.specialization_constants.end(),
+                     [&](const hlsl::SpecializationConstant& c) { return c.name == name; });
     if (equals == std::string::npos || constant == reflection.specialization_constants.end())
-      return fail("--specialize " + text + ": expected NAME=VALUE naming a [[vk::constant_id]] constant of the shader (" +
+      return fail("--specialize " + text +
+                  ": expected NAME=VALUE naming a [[vk::constant_id]] constant of the shader (" +
                   (names.empty() ? "it has none" : "it has " + names) + ")");
     const std::string number = text.substr(equals + 1);
     char* end = nullptr;
@@ -56,14 +57,14 @@ Result<std::map<uint32_t, double>> resolve_specialization(const std::vector<std:
     const bool fits = constant->scalar == hlsl::ScalarType::Bool   ? value == 0.0 || value == 1.0
                       : constant->scalar == hlsl::ScalarType::Uint ? value >= 0.0 && value <= 4294967295.0
                       : constant->scalar == hlsl::ScalarType::Int  ? value >= -2147483648.0 && value <= 2147483647.0
-                                                                    : true;
+                                                                   : true;
     if (number.empty() || end != number.c_str() + number.size() || !std::isfinite(value) ||
         (whole && std::floor(value) != value) || !fits)
       return fail("--specialize " + text + ": '" + name + "' is of type " + hlsl::scalar_name(constant->scalar) +
                   "; give it " +
                   (constant->scalar == hlsl::ScalarType::Bool ? std::string("0 or 1")
-                   : whole                                     ? "a whole number in its range"
-                                                               : "a finite number"));
+                   : whole                                    ? "a whole number in its range"
+                                                              : "a finite number"));
     values[constant->id] = value;
   }
   return values;
@@ -101,15 +102,18 @@ Result<void> drawable(const hlsl::Module& module, Lane lane) {
     if (texture.set != 0) return refuse("'" + texture.name + "' is in descriptor set " + std::to_string(texture.set));
     if (texture.count > 1) return refuse(array_of_resources(texture.name, texture.count));
     if (texture.shape == hlsl::TextureShape::Subpass || texture.shape == hlsl::TextureShape::SubpassMS)
-      return refuse("'" + texture.name + "' is a subpass input, which a scene cannot give yet (on Vulkan an input "
+      return refuse("'" + texture.name +
+                    "' is a subpass input, which a scene cannot give yet (on Vulkan an input "
                     "attachment; the gl target reads the texture bound at its binding at the fragment's pixel)");
   }
   for (const hlsl::StorageBufferResource& buffer : reflection.buffers) {
     if (!buffer.used) continue;
     if (buffer.set != 0) return refuse("'" + buffer.name + "' is in descriptor set " + std::to_string(buffer.set));
     if (buffer.kind == hlsl::BufferKind::Buffer && lane == Lane::VkHlsl)
-      return refuse("'" + buffer.name + "' is a Buffer<T>, which glslang's HLSL front end reads as a uniform texel "
-                    "buffer, and the harness binds read-only buffers as storage buffers (the gl and vk lanes read it so)");
+      return refuse(
+          "'" + buffer.name +
+          "' is a Buffer<T>, which glslang's HLSL front end reads as a uniform texel "
+          "buffer, and the harness binds read-only buffers as storage buffers (the gl and vk lanes read it so)");
   }
   for (const hlsl::SamplerResource& sampler : reflection.samplers) {
     if (!sampler.used) continue;
@@ -117,14 +121,15 @@ Result<void> drawable(const hlsl::Module& module, Lane lane) {
     if (sampler.count > 1) return refuse(array_of_resources(sampler.name, sampler.count));
   }
   if (reflection.reads_shading_rate && lane != Lane::Gl)
-    return refuse("it reads SV_ShadingRate, and lavapipe has no variable-rate shading (VK_KHR_fragment_shading_rate); "
-                  "the gl lane reads 0, OpenGL's one rate (1x1)");
+    return refuse(
+        "it reads SV_ShadingRate, and lavapipe has no variable-rate shading (VK_KHR_fragment_shading_rate); "
+        "the gl lane reads 0, OpenGL's one rate (1x1)");
   for (const hlsl::StageVariable& input : reflection.vertex_inputs) {
     const std::optional<uint32_t> fed = hlsl::vertex_input_location(input.semantic);
     if (input.given_location && fed != input.given_location)
-      return refuse("vertex input " + input.semantic + " is at [[vk::location(" + std::to_string(*input.given_location) +
-                    ")]], where the meshes feed " + (fed ? "location " + std::to_string(*fed) : "nothing") +
-                    " (docs/hlsl_like.md, section 8)");
+      return refuse("vertex input " + input.semantic + " is at [[vk::location(" +
+                    std::to_string(*input.given_location) + ")]], where the meshes feed " +
+                    (fed ? "location " + std::to_string(*fed) : "nothing") + " (docs/hlsl_like.md, section 8)");
   }
   return {};
 }

@@ -36,7 +36,8 @@ std::vector<std::string> ShaderSearchPath::files(const std::string& kind) const 
   for (const fs::path& folder : folders_) {
     std::error_code error;
     for (fs::directory_iterator it(folder / kind, error), end; !error && it != end; it.increment(error))
-      if (it->path().extension() == ".hlsl" || it->path().extension() == ".shader") found.insert(kind + "/" + it->path().filename().string());
+      if (it->path().extension() == ".hlsl" || it->path().extension() == ".shader")
+        found.insert(kind + "/" + it->path().filename().string());
   }
   return {found.begin(), found.end()};
 }

@@ -13,8 +13,8 @@ class ShaderSearchPathTest : public ::testing::Test {
  protected:
   void SetUp() override {
     // A folder per test: CTest runs the cases of this fixture in parallel.
-    root_ = fs::temp_directory_path() /
-            ("xshade_shader_search_path_test_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
+    root_ = fs::temp_directory_path() / ("xshade_shader_search_path_test_" +
+                                         std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
     fs::remove_all(root_);
     for (const char* folder : {"user/materials", "library/materials", "library/post", "secret"})
       fs::create_directories(root_ / folder);

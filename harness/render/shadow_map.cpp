@@ -40,8 +40,10 @@ ShadowView directional_shadow_view(const Light& light, const std::vector<std::pa
   const glm::vec2 centre = (glm::vec2(low) + glm::vec2(high)) * 0.5f;
   const float half = std::max(std::max(high.x - low.x, high.y - low.y) * 0.5f * 1.02f, 1e-3f);
   // View space looks down -z: the nearest point has the largest z.
-  const float near_plane = -high.z - 0.01f * (high.z - low.z + 1.0f), far_plane = -low.z + 0.01f * (high.z - low.z + 1.0f);
-  out.projection = glm::orthoRH_ZO(centre.x - half, centre.x + half, centre.y - half, centre.y + half, near_plane, far_plane);
+  const float near_plane = -high.z - 0.01f * (high.z - low.z + 1.0f),
+              far_plane = -low.z + 0.01f * (high.z - low.z + 1.0f);
+  out.projection =
+      glm::orthoRH_ZO(centre.x - half, centre.x + half, centre.y - half, centre.y + half, near_plane, far_plane);
   out.texel = 2.0f * half / float(light.shadow_resolution);
   out.depth_range = far_plane - near_plane;
   return out;
@@ -54,7 +56,8 @@ ShadowView spot_shadow_view(const Light& light) {
   out.view = glm::lookAtRH(light.position, light.position + beam, up);
   const float near_plane = std::min(0.2f, 0.1f * light.range);
   out.projection = glm::perspectiveRH_ZO(glm::radians(light.spot_angle), 1.0f, near_plane, light.range);
-  out.texel = 2.0f * 0.5f * light.range * std::tan(glm::radians(light.spot_angle) * 0.5f) / float(light.shadow_resolution);
+  out.texel =
+      2.0f * 0.5f * light.range * std::tan(glm::radians(light.spot_angle) * 0.5f) / float(light.shadow_resolution);
   out.depth_range = light.range - near_plane;
   out.perspective = true;
   return out;
@@ -77,7 +80,8 @@ void add_shadow_caster_inputs(const Light& light, const ShadowView& view, Unifor
     const float far_plane = light.range, near_plane = light.range - view.depth_range;
     depth_bias = far_plane * near_plane / (far_plane - near_plane) * light.shadow_bias * view.texel;
   }
-  values["unity_LightShadowBias"] = {depth_bias, view.perspective ? 0.0f : 1.0f, light.shadow_normal_bias * view.texel, 0.0f};
+  values["unity_LightShadowBias"] = {depth_bias, view.perspective ? 0.0f : 1.0f, light.shadow_normal_bias * view.texel,
+                                     0.0f};
 }
 
 void add_shadow_receiver_inputs(const Light& light, const ShadowView& view, UniformValueMap& values) {

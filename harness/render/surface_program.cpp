@@ -2,8 +2,8 @@
 
 #include <algorithm>
 
-#include "hlsl_like/ast_walk.h"
 #include "harness/render/material_source.h"
+#include "hlsl_like/ast_walk.h"
 #include "shaderlab/pass_program.h"
 
 namespace xshade::harness {
@@ -96,7 +96,8 @@ Error program_error(const hlsl::Module& module, std::string message, const Sourc
 
 Result<shaderlab::SurfaceProgramShape> read_surface_program(const fs::path& file, const shaderlab::SubShader& sub,
                                                             const shaderlab::SurfaceDirective& directive,
-                                                            hlsl::CompileOptions options, shaderlab::UnityPlatform platform) {
+                                                            hlsl::CompileOptions options,
+                                                            shaderlab::UnityPlatform platform) {
   const shaderlab::ProgramBlock& surface = *sub.surface;
   shaderlab::Pass reading;
   reading.kind = shaderlab::PassKind::Program;
@@ -104,7 +105,8 @@ Result<shaderlab::SurfaceProgramShape> read_surface_program(const fs::path& file
   shaderlab::PassProgram program;
   program.pass = &reading;
   program.implicit_includes = true;
-  for (const char* include : shaderlab::kImplicitIncludes) program.text += "#include \"" + std::string(include) + "\"\n";
+  for (const char* include : shaderlab::kImplicitIncludes)
+    program.text += "#include \"" + std::string(include) + "\"\n";
   program.text += shaderlab::surface_program_for_analysis(surface, sub.includes);
   auto compile_options = pass_compile_options(file, program, std::move(options), platform);
   if (!compile_options) return fail(compile_options.error());
@@ -118,13 +120,16 @@ Result<shaderlab::SurfaceProgramShape> read_surface_program(const fs::path& file
   if (!input)
     return fail(program_error(*module, "a surface program declares `struct Input` with what its surface function reads",
                               directive.where));
-  for (const hlsl::FieldDecl& field : input->fields) shape.input.push_back({field.type.name(), field.name, field.semantic});
+  for (const hlsl::FieldDecl& field : input->fields)
+    shape.input.push_back({field.type.name(), field.name, field.semantic});
 
   const auto* function = find_decl<hlsl::FunctionDecl>(unit, hlsl::DeclKind::Function, directive.function, true);
   if (!function || function->params.size() != 2 || function->params[1]->type.kind() != hlsl::TypeKind::Struct)
     return fail(program_error(*module,
-                              "the surface function '" + directive.function + "' of `#pragma surface` is not defined as "
-                              "`void " + directive.function + "(Input IN, inout SurfaceOutput o)`",
+                              "the surface function '" + directive.function +
+                                  "' of `#pragma surface` is not defined as "
+                                  "`void " +
+                                  directive.function + "(Input IN, inout SurfaceOutput o)`",
                               directive.where));
   const hlsl::ParamDecl* output = function->params[1].get();
   shape.output_type = output->type.name();
@@ -134,12 +139,13 @@ Result<shaderlab::SurfaceProgramShape> read_surface_program(const fs::path& file
   const std::string lighting = "Lighting" + directive.lighting_model;
   const auto form = lighting_form(functions_named(unit, lighting));
   if (!form)
-    return fail(program_error(*module,
-                              "the lighting model '" + directive.lighting_model + "' has no function " + lighting +
-                              " of a form Unity's manual lists: (SurfaceOutput s, UnityGI gi), (s, half3 viewDir, UnityGI gi), "
-                              "(s, half3 lightDir, half atten) or (s, half3 lightDir, half3 viewDir, half atten); "
-                              "Lambert and BlinnPhong are Lighting.cginc's, Standard and StandardSpecular UnityPBSLighting.cginc's",
-                              directive.where));
+    return fail(program_error(
+        *module,
+        "the lighting model '" + directive.lighting_model + "' has no function " + lighting +
+            " of a form Unity's manual lists: (SurfaceOutput s, UnityGI gi), (s, half3 viewDir, UnityGI gi), "
+            "(s, half3 lightDir, half atten) or (s, half3 lightDir, half3 viewDir, half atten); "
+            "Lambert and BlinnPhong are Lighting.cginc's, Standard and StandardSpecular UnityPBSLighting.cginc's",
+        directive.where));
   shape.lighting = *form;
   if ((*form == shaderlab::LightingForm::Gi || *form == shaderlab::LightingForm::ViewGi) &&
       functions_named(unit, lighting + "_GI").empty())
@@ -153,8 +159,8 @@ Result<shaderlab::SurfaceProgramShape> read_surface_program(const fs::path& file
     const auto* vertex = find_decl<hlsl::FunctionDecl>(unit, hlsl::DeclKind::Function, modifier, true);
     if (!vertex || vertex->params.empty() || vertex->params[0]->type.kind() != hlsl::TypeKind::Struct)
       return fail(program_error(*module,
-                                "the vertex modifier '" + modifier + "' of `vertex:` is not defined as `void " + modifier +
-                                "(inout appdata_full v)` or `(inout appdata_full v, out Input o)`",
+                                "the vertex modifier '" + modifier + "' of `vertex:` is not defined as `void " +
+                                    modifier + "(inout appdata_full v)` or `(inout appdata_full v, out Input o)`",
                                 directive.where));
     vertex_input = vertex->params[0]->type.struct_decl();
     shape.vertex_input_type = vertex->params[0]->type.name();
@@ -172,14 +178,16 @@ Result<shaderlab::SurfaceProgramShape> read_surface_program(const fs::path& file
 }
 
 Result<shaderlab::SubShader> with_surface_passes(const fs::path& file, const shaderlab::SubShader& sub,
-                                                 const hlsl::CompileOptions& options, shaderlab::UnityPlatform platform) {
+                                                 const hlsl::CompileOptions& options,
+                                                 shaderlab::UnityPlatform platform) {
   shaderlab::SubShader generated = sub;
   if (!sub.surface) return generated;
   auto directive = shaderlab::read_surface_directive(*sub.surface);
   if (!directive) return fail(directive.error());
   auto shape = read_surface_program(file, sub, *directive, options, platform);
   if (!shape) return fail(shape.error());
-  std::vector<shaderlab::Pass> passes = shaderlab::generate_surface_passes(*sub.surface, sub.includes, *directive, *shape);
+  std::vector<shaderlab::Pass> passes =
+      shaderlab::generate_surface_passes(*sub.surface, sub.includes, *directive, *shape);
   // Where the program stands among the written passes: Unity puts the generated passes there.
   const auto before = [&](const shaderlab::Pass& pass) {
     return pass.where.line < sub.surface->start.line ||

@@ -17,13 +17,16 @@ namespace xshade::harness {
 // The shape of `sub`'s surface program (read with `options`, whose include folders find Unity's
 // include files), or an error at the pragma that says what the program lacks: the surface
 // function, an Input struct, a lighting function of a form Unity's manual lists.
-Result<shaderlab::SurfaceProgramShape> read_surface_program(const std::filesystem::path& file, const shaderlab::SubShader& sub,
+Result<shaderlab::SurfaceProgramShape> read_surface_program(const std::filesystem::path& file,
+                                                            const shaderlab::SubShader& sub,
                                                             const shaderlab::SurfaceDirective& directive,
-                                                            hlsl::CompileOptions options, shaderlab::UnityPlatform platform);
+                                                            hlsl::CompileOptions options,
+                                                            shaderlab::UnityPlatform platform);
 
 // `sub` with the passes Unity generates from its surface program in the place of the program,
 // after the passes written before it and before those after it.
 Result<shaderlab::SubShader> with_surface_passes(const std::filesystem::path& file, const shaderlab::SubShader& sub,
-                                                 const hlsl::CompileOptions& options, shaderlab::UnityPlatform platform);
+                                                 const hlsl::CompileOptions& options,
+                                                 shaderlab::UnityPlatform platform);
 
 }  // namespace xshade::harness

@@ -14,7 +14,8 @@ namespace {
 namespace fs = std::filesystem;
 
 // Unity's include files, which xshade does not ship: the corpus beside the project has them.
-const fs::path kUnityIncludes = fs::path(XSHADE_REALWORLD_CORPUS) / "TwoTailsGames+Unity-Built-in-Shaders" / "CGIncludes";
+const fs::path kUnityIncludes =
+    fs::path(XSHADE_REALWORLD_CORPUS) / "TwoTailsGames+Unity-Built-in-Shaders" / "CGIncludes";
 
 class SurfaceProgram : public ::testing::Test {
  protected:
@@ -26,7 +27,8 @@ class SurfaceProgram : public ::testing::Test {
   }
   fs::path write(const std::string& name, const std::string& program) {
     const fs::path path = folder_ / name;
-    std::ofstream(path) << "Shader \"Test/" << name << "\" {\n  SubShader {\n    CGPROGRAM\n" << program << "\n    ENDCG\n  }\n}\n";
+    std::ofstream(path) << "Shader \"Test/" << name << "\" {\n  SubShader {\n    CGPROGRAM\n"
+                        << program << "\n    ENDCG\n  }\n}\n";
     return path;
   }
   Result<shaderlab::SurfaceProgramShape> shape_of(const fs::path& path) {
@@ -61,8 +63,8 @@ TEST_F(SurfaceProgram, TheFrontEndReadsInputTheOutputTheLightingFormAndAWrittenN
   ASSERT_TRUE(shape) << shape.error().to_string();
   std::vector<std::string> input;
   for (const shaderlab::SurfaceField& field : shape->input) input.push_back(field.name);
-  EXPECT_EQ(input, (std::vector<std::string>{"uv_MainTex", "viewDir", "localPos", "internalSurfaceTtoW0", "internalSurfaceTtoW1",
-                                             "internalSurfaceTtoW2"}));
+  EXPECT_EQ(input, (std::vector<std::string>{"uv_MainTex", "viewDir", "localPos", "internalSurfaceTtoW0",
+                                             "internalSurfaceTtoW1", "internalSurfaceTtoW2"}));
   EXPECT_EQ(shape->output_type, "SurfaceOutput");
   EXPECT_EQ(shape->lighting, shaderlab::LightingForm::LegacyView);
   EXPECT_TRUE(shape->writes_normal);
@@ -99,12 +101,14 @@ TEST_F(SurfaceProgram, WhatTheProgramLacksIsAnErrorAtThePragma) {
   Error no_input = error_of("no_input.shader", "    #pragma surface surf Lambert\n    void surf(float x) {}");
   EXPECT_EQ(no_input.where.line, 4u);
   EXPECT_NE(no_input.message.find("struct Input"), std::string::npos) << no_input.message;
-  Error no_model = error_of("no_model.shader", "    #pragma surface surf Cel\n    struct Input { float2 uv_MainTex; };\n"
-                                               "    void surf(Input IN, inout SurfaceOutput o) {}");
+  Error no_model = error_of("no_model.shader",
+                            "    #pragma surface surf Cel\n    struct Input { float2 uv_MainTex; };\n"
+                            "    void surf(Input IN, inout SurfaceOutput o) {}");
   EXPECT_NE(no_model.message.find("has no function LightingCel"), std::string::npos) << no_model.message;
-  Error no_gi = error_of("no_gi.shader", "    #pragma surface surf Cel\n    struct Input { float2 uv_MainTex; };\n"
-                                         "    void surf(Input IN, inout SurfaceOutput o) {}\n"
-                                         "    half4 LightingCel(SurfaceOutput s, UnityGI gi) { return 1; }");
+  Error no_gi = error_of("no_gi.shader",
+                         "    #pragma surface surf Cel\n    struct Input { float2 uv_MainTex; };\n"
+                         "    void surf(Input IN, inout SurfaceOutput o) {}\n"
+                         "    half4 LightingCel(SurfaceOutput s, UnityGI gi) { return 1; }");
   EXPECT_NE(no_gi.message.find("LightingCel_GI"), std::string::npos) << no_gi.message;
 }
 

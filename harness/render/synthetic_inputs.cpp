@@ -78,9 +78,9 @@ TextureData seeded_texture(const TextureSlot& slot, uint32_t seed) {
   TextureData texture;
   texture.dimension = slot.shape.dimension;
   texture.width = kSize;
-  texture.height = slot.shape.dimension == TextureDimension::Tex1D || slot.shape.dimension == TextureDimension::Tex1DArray
-                       ? 1
-                       : kSize;
+  texture.height =
+      slot.shape.dimension == TextureDimension::Tex1D || slot.shape.dimension == TextureDimension::Tex1DArray ? 1
+                                                                                                              : kSize;
   switch (slot.shape.dimension) {
     case TextureDimension::Tex1DArray:
     case TextureDimension::Tex2DArray: texture.layers = 2; break;
@@ -93,10 +93,10 @@ TextureData seeded_texture(const TextureSlot& slot, uint32_t seed) {
   std::string lower = slot.name;
   for (char& c : lower) c = char(std::tolower(static_cast<unsigned char>(c)));
   const bool depth_like = slot.comparison || lower.find("depth") != std::string::npos;
-  texture.format = slot.comparison                   ? TextureFormat::Depth32Float
-                   : slot.texel == TexelKind::Int    ? TextureFormat::Rgba32Sint
-                   : slot.texel == TexelKind::Uint   ? TextureFormat::Rgba32Uint
-                                                     : TextureFormat::Rgba32Float;
+  texture.format = slot.comparison                 ? TextureFormat::Depth32Float
+                   : slot.texel == TexelKind::Int  ? TextureFormat::Rgba32Sint
+                   : slot.texel == TexelKind::Uint ? TextureFormat::Rgba32Uint
+                                                   : TextureFormat::Rgba32Float;
   Noise noise(seed, slot.name);
   const uint32_t levels = slot.shape.multisampled ? 1 : [&] {
     uint32_t count = 1;

@@ -18,9 +18,9 @@ namespace xshade::harness {
 std::vector<std::byte> seeded_constant_buffer(const hlsl::ConstantBuffer& buffer, uint32_t seed);
 
 // The bytes of a read-only buffer from the seed and the buffer's name: 64 elements, or 256 of one
-// word each (a ByteAddressBuffer's, a StructuredBuffer<float>'s), each word by its type in the ranges of a constant buffer's
-// (a float in [0.1, 1], an int or uint in 0..3, a bool 0 or 1); a ByteAddressBuffer's words are
-// floats (StorageBufferInput::words), what raw buffers mostly hold.
+// word each (a ByteAddressBuffer's, a StructuredBuffer<float>'s), each word by its type in the ranges of a constant
+// buffer's (a float in [0.1, 1], an int or uint in 0..3, a bool 0 or 1); a ByteAddressBuffer's words are floats
+// (StorageBufferInput::words), what raw buffers mostly hold.
 std::vector<std::byte> seeded_storage_buffer(const StorageBufferInput& buffer, uint32_t seed);
 
 // Noise of the slot's shape and texel kind from the seed and the slot's name: 16 texels a side

@@ -72,8 +72,7 @@ Result<FloatImage> render(Backend& backend, Lane lane, uint32_t size) {
   for (uint32_t row = 0; row < kTextureSize; ++row)
     for (uint32_t column = 0; column < kTextureSize; ++column)
       for (int c = 0; c < 4; ++c)
-        level[(row * kTextureSize + column) * 4 + c] =
-            std::byte(uint8_t(texel(column, row)[c] * 255.0f + 0.5f));
+        level[(row * kTextureSize + column) * 4 + c] = std::byte(uint8_t(texel(column, row)[c] * 255.0f + 0.5f));
   auto pattern = resources.upload_texture(texture);
   if (!pattern) return fail(pattern.error());
 
@@ -82,8 +81,8 @@ Result<FloatImage> render(Backend& backend, Lane lane, uint32_t size) {
 
   RenderPass pass;
   pass.target = *target;
-  const TextureBinding texture_binding{
-      "pattern", TextureSource::texture(*pattern, {Filter::Nearest, AddressMode::ClampToEdge})};
+  const TextureBinding texture_binding{"pattern",
+                                       TextureSource::texture(*pattern, {Filter::Nearest, AddressMode::ClampToEdge})};
   struct QuadSpec {
     MeshData mesh;
     glm::vec4 color;
@@ -96,8 +95,8 @@ Result<FloatImage> render(Backend& backend, Lane lane, uint32_t size) {
   for (const QuadSpec& spec : quads) {
     auto mesh = resources.upload_mesh(spec.mesh);
     if (!mesh) return fail(mesh.error());
-    pass.draws.push_back({*program, *mesh, {{"Quad", quad_uniforms(spec.color, spec.textured)}},
-                          {texture_binding}, {}});
+    pass.draws.push_back(
+        {*program, *mesh, {{"Quad", quad_uniforms(spec.color, spec.textured)}}, {texture_binding}, {}});
   }
   if (auto rendered = backend.render(pass); !rendered) return fail(rendered.error());
   return backend.read_color(*target);

@@ -22,13 +22,15 @@ Result<T> choose(const StateValue& value, const std::array<std::pair<const char*
   if (value.is_property) {
     const std::optional<float> number = property(value.text);
     if (!number)
-      return fail(std::string(command) + " [" + value.text + "] names a property the material does not have", value.where);
+      return fail(std::string(command) + " [" + value.text + "] names a property the material does not have",
+                  value.where);
     const long index = std::lround(*number);
     if (index >= 0 && index < long(by_number.size()) && by_number[size_t(index)]) return *by_number[size_t(index)];
     char shown[32];
     std::snprintf(shown, sizeof shown, "%g", double(*number));
-    return fail(std::string(command) + " [" + value.text + "] is " + shown + ", which is no value of Unity's enum for it",
-                value.where);
+    return fail(
+        std::string(command) + " [" + value.text + "] is " + shown + ", which is no value of Unity's enum for it",
+        value.where);
   }
   for (const auto& [word, meaning] : words)
     if (same_word(value.text, word)) return meaning;
@@ -40,10 +42,14 @@ constexpr std::array<std::pair<const char*, CullMode>, 3> kCullWords{
 // UnityEngine.Rendering.CullMode: Off 0, Front 1, Back 2.
 constexpr std::array<std::optional<CullMode>, 16> kCullNumbers{CullMode::Off, CullMode::Front, CullMode::Back};
 
-constexpr std::array<std::pair<const char*, CompareOp>, 8> kCompareWords{
-    {{"Never", CompareOp::Never}, {"Less", CompareOp::Less}, {"Equal", CompareOp::Equal},
-     {"LEqual", CompareOp::LessEqual}, {"Greater", CompareOp::Greater}, {"NotEqual", CompareOp::NotEqual},
-     {"GEqual", CompareOp::GreaterEqual}, {"Always", CompareOp::Always}}};
+constexpr std::array<std::pair<const char*, CompareOp>, 8> kCompareWords{{{"Never", CompareOp::Never},
+                                                                          {"Less", CompareOp::Less},
+                                                                          {"Equal", CompareOp::Equal},
+                                                                          {"LEqual", CompareOp::LessEqual},
+                                                                          {"Greater", CompareOp::Greater},
+                                                                          {"NotEqual", CompareOp::NotEqual},
+                                                                          {"GEqual", CompareOp::GreaterEqual},
+                                                                          {"Always", CompareOp::Always}}};
 // UnityEngine.Rendering.CompareFunction: Disabled 0 (no test: Always), Never 1 ... Always 8.
 constexpr std::array<std::optional<CompareOp>, 16> kCompareNumbers{
     CompareOp::Always,  CompareOp::Never,    CompareOp::Less,         CompareOp::Equal, CompareOp::LessEqual,
@@ -54,31 +60,50 @@ constexpr std::array<std::pair<const char*, bool>, 4> kSwitchWords{
 constexpr std::array<std::optional<bool>, 16> kSwitchNumbers{false, true};
 
 constexpr std::array<std::pair<const char*, BlendFactor>, 11> kFactorWords{
-    {{"Zero", BlendFactor::Zero}, {"One", BlendFactor::One}, {"SrcColor", BlendFactor::SrcColor},
-     {"OneMinusSrcColor", BlendFactor::OneMinusSrcColor}, {"DstColor", BlendFactor::DstColor},
-     {"OneMinusDstColor", BlendFactor::OneMinusDstColor}, {"SrcAlpha", BlendFactor::SrcAlpha},
-     {"OneMinusSrcAlpha", BlendFactor::OneMinusSrcAlpha}, {"DstAlpha", BlendFactor::DstAlpha},
-     {"OneMinusDstAlpha", BlendFactor::OneMinusDstAlpha}, {"SrcAlphaSaturate", BlendFactor::SrcAlphaSaturate}}};
+    {{"Zero", BlendFactor::Zero},
+     {"One", BlendFactor::One},
+     {"SrcColor", BlendFactor::SrcColor},
+     {"OneMinusSrcColor", BlendFactor::OneMinusSrcColor},
+     {"DstColor", BlendFactor::DstColor},
+     {"OneMinusDstColor", BlendFactor::OneMinusDstColor},
+     {"SrcAlpha", BlendFactor::SrcAlpha},
+     {"OneMinusSrcAlpha", BlendFactor::OneMinusSrcAlpha},
+     {"DstAlpha", BlendFactor::DstAlpha},
+     {"OneMinusDstAlpha", BlendFactor::OneMinusDstAlpha},
+     {"SrcAlphaSaturate", BlendFactor::SrcAlphaSaturate}}};
 // UnityEngine.Rendering.BlendMode: Zero 0, One 1, DstColor 2, SrcColor 3, OneMinusDstColor 4,
 // SrcAlpha 5, OneMinusSrcColor 6, DstAlpha 7, OneMinusDstAlpha 8, SrcAlphaSaturate 9,
 // OneMinusSrcAlpha 10.
-constexpr std::array<std::optional<BlendFactor>, 16> kFactorNumbers{
-    BlendFactor::Zero,     BlendFactor::One,      BlendFactor::DstColor,         BlendFactor::SrcColor,
-    BlendFactor::OneMinusDstColor, BlendFactor::SrcAlpha, BlendFactor::OneMinusSrcColor, BlendFactor::DstAlpha,
-    BlendFactor::OneMinusDstAlpha, BlendFactor::SrcAlphaSaturate, BlendFactor::OneMinusSrcAlpha};
+constexpr std::array<std::optional<BlendFactor>, 16> kFactorNumbers{BlendFactor::Zero,
+                                                                    BlendFactor::One,
+                                                                    BlendFactor::DstColor,
+                                                                    BlendFactor::SrcColor,
+                                                                    BlendFactor::OneMinusDstColor,
+                                                                    BlendFactor::SrcAlpha,
+                                                                    BlendFactor::OneMinusSrcColor,
+                                                                    BlendFactor::DstAlpha,
+                                                                    BlendFactor::OneMinusDstAlpha,
+                                                                    BlendFactor::SrcAlphaSaturate,
+                                                                    BlendFactor::OneMinusSrcAlpha};
 
-constexpr std::array<std::pair<const char*, BlendOp>, 5> kBlendOpWords{
-    {{"Add", BlendOp::Add}, {"Sub", BlendOp::Subtract}, {"RevSub", BlendOp::ReverseSubtract}, {"Min", BlendOp::Min},
-     {"Max", BlendOp::Max}}};
+constexpr std::array<std::pair<const char*, BlendOp>, 5> kBlendOpWords{{{"Add", BlendOp::Add},
+                                                                        {"Sub", BlendOp::Subtract},
+                                                                        {"RevSub", BlendOp::ReverseSubtract},
+                                                                        {"Min", BlendOp::Min},
+                                                                        {"Max", BlendOp::Max}}};
 // UnityEngine.Rendering.BlendOp: Add 0, Subtract 1, ReverseSubtract 2, Min 3, Max 4 (the logical
 // and advanced operations after them are not drawn).
 constexpr std::array<std::optional<BlendOp>, 16> kBlendOpNumbers{BlendOp::Add, BlendOp::Subtract,
-                                                                  BlendOp::ReverseSubtract, BlendOp::Min, BlendOp::Max};
+                                                                 BlendOp::ReverseSubtract, BlendOp::Min, BlendOp::Max};
 
-constexpr std::array<std::pair<const char*, StencilOp>, 8> kStencilOpWords{
-    {{"Keep", StencilOp::Keep}, {"Zero", StencilOp::Zero}, {"Replace", StencilOp::Replace},
-     {"IncrSat", StencilOp::IncrementClamp}, {"DecrSat", StencilOp::DecrementClamp}, {"Invert", StencilOp::Invert},
-     {"IncrWrap", StencilOp::IncrementWrap}, {"DecrWrap", StencilOp::DecrementWrap}}};
+constexpr std::array<std::pair<const char*, StencilOp>, 8> kStencilOpWords{{{"Keep", StencilOp::Keep},
+                                                                            {"Zero", StencilOp::Zero},
+                                                                            {"Replace", StencilOp::Replace},
+                                                                            {"IncrSat", StencilOp::IncrementClamp},
+                                                                            {"DecrSat", StencilOp::DecrementClamp},
+                                                                            {"Invert", StencilOp::Invert},
+                                                                            {"IncrWrap", StencilOp::IncrementWrap},
+                                                                            {"DecrWrap", StencilOp::DecrementWrap}}};
 // UnityEngine.Rendering.StencilOp: Keep 0, Zero 1, Replace 2, IncrementSaturate 3,
 // DecrementSaturate 4, Invert 5, IncrementWrap 6, DecrementWrap 7.
 constexpr std::array<std::optional<StencilOp>, 16> kStencilOpNumbers{
@@ -196,7 +221,8 @@ Result<DrawState> unity_draw_state(const shaderlab::RenderState& state, const St
   for (const shaderlab::BlendState& blend : state.blend) {
     if (blend.target > 0) {
       if (!blend.off)
-        return fail("Blend " + std::to_string(blend.target) + ": xshade draws into one render target", blend.source.where);
+        return fail("Blend " + std::to_string(blend.target) + ": xshade draws into one render target",
+                    blend.source.where);
       continue;
     }
     if (blend.off) {
@@ -205,7 +231,9 @@ Result<DrawState> unity_draw_state(const shaderlab::RenderState& state, const St
     }
     BlendState& b = out.blend;
     b.enabled = true;
-    const auto factor = [&](const StateValue& value) { return choose(value, kFactorWords, kFactorNumbers, property, "Blend"); };
+    const auto factor = [&](const StateValue& value) {
+      return choose(value, kFactorWords, kFactorNumbers, property, "Blend");
+    };
     auto source = factor(blend.source);
     if (!source) return fail(source.error());
     auto destination = factor(blend.destination);
@@ -262,7 +290,8 @@ Result<int> render_queue(const std::string& tag) {
     int offset = 0;  // "+1" or "-1"; from_chars reads no plus sign
     if (whole_number(std::string_view(tag).substr(sign + (tag[sign] == '+' ? 1 : 0)), offset)) return base + offset;
   }
-  return fail("Queue \"" + tag + "\" is none of Background, Geometry, AlphaTest, Transparent and Overlay (with an "
+  return fail("Queue \"" + tag +
+              "\" is none of Background, Geometry, AlphaTest, Transparent and Overlay (with an "
               "offset such as \"Transparent+1\"), nor a number");
 }
 

@@ -45,8 +45,13 @@ TEST(UnityRenderState, WordsAreTheirDirect3DMeaning) {
   EXPECT_EQ(state->cull, CullMode::Front);
   EXPECT_FALSE(state->depth_write);
   EXPECT_EQ(state->depth_compare, CompareOp::Always);
-  const BlendState expected{true, BlendFactor::SrcAlpha, BlendFactor::OneMinusSrcAlpha, BlendFactor::One, BlendFactor::Zero,
-                            BlendOp::ReverseSubtract, BlendOp::Max};
+  const BlendState expected{true,
+                            BlendFactor::SrcAlpha,
+                            BlendFactor::OneMinusSrcAlpha,
+                            BlendFactor::One,
+                            BlendFactor::Zero,
+                            BlendOp::ReverseSubtract,
+                            BlendOp::Max};
   EXPECT_EQ(state->blend, expected);
   EXPECT_EQ(state->color_write, 1 | 4);  // red and blue
   EXPECT_EQ(state->depth_bias_slope, -1.0f);
@@ -87,8 +92,15 @@ TEST(UnityRenderState, ADirect3DRenderTargetTurnsFacesDepthTestAndBiasRound) {
 TEST(UnityRenderState, APropertyInBracketsIsReadAsUnitysEnum) {
   auto state = unity_draw_state(pass_state("Cull [_Cull] ZWrite [_ZWrite] ZTest [_ZTest] Blend [_Src] [_Dst] "
                                            "BlendOp [_Op] ColorMask [_Mask] Offset [_Factor], [_Units]"),
-                                properties({{"_Cull", 1}, {"_ZWrite", 0}, {"_ZTest", 4}, {"_Src", 5}, {"_Dst", 10},
-                                            {"_Op", 2}, {"_Mask", 14}, {"_Factor", 1}, {"_Units", 2}}));
+                                properties({{"_Cull", 1},
+                                            {"_ZWrite", 0},
+                                            {"_ZTest", 4},
+                                            {"_Src", 5},
+                                            {"_Dst", 10},
+                                            {"_Op", 2},
+                                            {"_Mask", 14},
+                                            {"_Factor", 1},
+                                            {"_Units", 2}}));
   ASSERT_TRUE(state) << state.error().to_string();
   EXPECT_EQ(state->cull, CullMode::Front);
   EXPECT_FALSE(state->depth_write);
@@ -111,7 +123,8 @@ TEST(UnityRenderState, AStencilBlockSetsBothFacesAndItsFaceFormsOne) {
   EXPECT_EQ(s.read_mask, 7);
   EXPECT_EQ(s.write_mask, 0xF0);
   // PassFront, written before Pass, still wins on the front face.
-  EXPECT_EQ(s.front, (StencilFaceState{CompareOp::Equal, StencilOp::IncrementWrap, StencilOp::Keep, StencilOp::Invert}));
+  EXPECT_EQ(s.front,
+            (StencilFaceState{CompareOp::Equal, StencilOp::IncrementWrap, StencilOp::Keep, StencilOp::Invert}));
   EXPECT_EQ(s.back,
             (StencilFaceState{CompareOp::Greater, StencilOp::Replace, StencilOp::DecrementClamp, StencilOp::Invert}));
 }
@@ -121,12 +134,14 @@ TEST(UnityRenderState, AStencilBlockSetsBothFacesAndItsFaceFormsOne) {
 TEST(UnityRenderState, StencilPropertiesAreUnitysEnumsAndAnInertBlockIsNoTest) {
   const std::string block =
       "Stencil { Ref [_Stencil] Comp [_StencilComp] Pass [_StencilOp] ReadMask [_Read] WriteMask [_Write] }";
-  auto inert = unity_draw_state(pass_state(block), properties({{"_Stencil", 0}, {"_StencilComp", 8}, {"_StencilOp", 0},
-                                                              {"_Read", 255}, {"_Write", 255}}));
+  auto inert = unity_draw_state(
+      pass_state(block),
+      properties({{"_Stencil", 0}, {"_StencilComp", 8}, {"_StencilOp", 0}, {"_Read", 255}, {"_Write", 255}}));
   ASSERT_TRUE(inert) << inert.error().to_string();
   EXPECT_EQ(inert->stencil, StencilState{});
-  auto masking = unity_draw_state(pass_state(block), properties({{"_Stencil", 2}, {"_StencilComp", 3}, {"_StencilOp", 2},
-                                                                {"_Read", 255}, {"_Write", 255}}));
+  auto masking = unity_draw_state(
+      pass_state(block),
+      properties({{"_Stencil", 2}, {"_StencilComp", 3}, {"_StencilOp", 2}, {"_Read", 255}, {"_Write", 255}}));
   ASSERT_TRUE(masking) << masking.error().to_string();
   EXPECT_TRUE(masking->stencil.enabled);
   EXPECT_EQ(masking->stencil.reference, 2);
@@ -153,7 +168,8 @@ TEST(UnityRenderState, WhatIsNotDrawnIsAnErrorAtItsCommand) {
             "s.shader:4:22: Stencil Pass [_Op] is 9, which is no value of Unity's enum for it");
   EXPECT_EQ(error_of("BlendOp Multiply"), "s.shader:4:15: BlendOp Multiply is not drawn by xshade yet");
   EXPECT_EQ(error_of("Cull [_Cull]"), "s.shader:4:12: Cull [_Cull] names a property the material does not have");
-  EXPECT_EQ(error_of("Cull [_Cull]", {{"_Cull", 7}}), "s.shader:4:12: Cull [_Cull] is 7, which is no value of Unity's enum for it");
+  EXPECT_EQ(error_of("Cull [_Cull]", {{"_Cull", 7}}),
+            "s.shader:4:12: Cull [_Cull] is 7, which is no value of Unity's enum for it");
   EXPECT_EQ(error_of("AlphaToMask [_A2C]", {{"_A2C", 2}}),
             "s.shader:4:19: AlphaToMask [_A2C] is 2, which is no value of Unity's enum for it");
 }

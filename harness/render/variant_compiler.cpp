@@ -27,7 +27,8 @@ Result<const hlsl::Module*> VariantCompiler::front_end(const VariantRequest& req
   }
   const hlsl::Module& module = *known->second;
   if (!module.ok()) {
-    return fail(Error{request.label() + " does not compile", {request.source.string(), 0, 0},
+    return fail(Error{request.label() + " does not compile",
+                      {request.source.string(), 0, 0},
                       module.diagnostics.errors_with_excerpts()});
   }
   return &module;

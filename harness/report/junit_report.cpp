@@ -31,8 +31,8 @@ std::vector<TestCase> test_cases(const SceneResult& scene) {
   std::vector<TestCase> cases;
   Verdict carried = Verdict::Skipped;
   for (const LaneResult& lane : scene.lanes) {
-    cases.push_back({lane.lane, lane.verdict, lane.seconds, std::string(first_line(first_failure(lane))),
-                     layers_text(lane)});
+    cases.push_back(
+        {lane.lane, lane.verdict, lane.seconds, std::string(first_line(first_failure(lane))), layers_text(lane)});
     carried = worst(carried, lane.verdict);
   }
   for (const CrossLaneResult& pair : scene.cross_lane) {
@@ -59,8 +59,8 @@ struct Totals {
     seconds += test.seconds;
   }
   std::string attributes() const {
-    return fmt::format(R"(tests="{}" failures="{}" errors="{}" skipped="{}" time="{:.3f}")", tests, failures,
-                       errors, skipped, seconds);
+    return fmt::format(R"(tests="{}" failures="{}" errors="{}" skipped="{}" time="{:.3f}")", tests, failures, errors,
+                       skipped, seconds);
   }
 };
 

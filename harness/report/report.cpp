@@ -24,11 +24,13 @@ constexpr const char* kWrittenList = ".xshade-report-files";
 
 std::vector<std::string> files_of(const RunResults& results, const std::vector<std::string>& pages) {
   std::vector<std::string> files = pages;
-  for (const char* file : {"junit.xml", "results.json", "index.html", kViewerScriptFile, kViewerStyleFile, kWrittenList})
+  for (const char* file :
+       {"junit.xml", "results.json", "index.html", kViewerScriptFile, kViewerStyleFile, kWrittenList})
     files.push_back(file);
   for (const SceneResult& scene : results.scenes) {
     for (const LaneResult& lane : scene.lanes)
-      for (const std::string* path : {&lane.image, &lane.image_exr, &lane.golden, &lane.golden_exr, &lane.diff, &lane.non_finite_mask})
+      for (const std::string* path :
+           {&lane.image, &lane.image_exr, &lane.golden, &lane.golden_exr, &lane.diff, &lane.non_finite_mask})
         if (!path->empty()) files.push_back(*path);
     for (const CrossLaneResult& pair : scene.cross_lane)
       if (!pair.diff.empty()) files.push_back(pair.diff);
@@ -50,27 +52,29 @@ void remove_stale(const fs::path& report_dir, const std::vector<std::string>& no
     const fs::path path = report_dir / line;
     if (!path_is_inside(path, report_dir)) continue;
     if (fs::is_regular_file(fs::symlink_status(path, ignored))) fs::remove(path, ignored);
-    for (fs::path folder = path.parent_path(); folder != report_dir && folder.string().size() > report_dir.string().size();
-         folder = folder.parent_path())
+    for (fs::path folder = path.parent_path();
+         folder != report_dir && folder.string().size() > report_dir.string().size(); folder = folder.parent_path())
       if (!fs::remove(folder, ignored)) break;  // only an empty folder is removed
   }
 }
 
 }  // namespace
 
-Result<void> write_reports(const RunResults& results, const fs::path& report_dir, const std::vector<ViewerPage>* viewers) {
+Result<void> write_reports(const RunResults& results, const fs::path& report_dir,
+                           const std::vector<ViewerPage>* viewers) {
   std::error_code error;
   fs::create_directories(report_dir, error);
   if (error) return fail("cannot create the report folder " + report_dir.string() + ": " + error.message());
 
-  for (const auto& [file, text] : {std::pair{kViewerScriptFile, viewer_script()}, std::pair{kViewerStyleFile, viewer_style()}})
+  for (const auto& [file, text] :
+       {std::pair{kViewerScriptFile, viewer_script()}, std::pair{kViewerStyleFile, viewer_style()}})
     if (auto written = write_file_atomically(report_dir / file, text); !written) return written;
   const std::vector<std::string> pages = scene_page_names(results);
   std::vector<std::string> pixel_scripts;
   std::set<std::string> scripted;  // the images whose pixels/KEY.js this write made
   for (size_t i = 0; i < results.scenes.size(); ++i) {
-    const ViewerPage viewer = viewers && i < viewers->size() ? (*viewers)[i]
-                                                             : viewer_page(results.scenes[i], report_dir, {}, &scripted);
+    const ViewerPage viewer =
+        viewers && i < viewers->size() ? (*viewers)[i] : viewer_page(results.scenes[i], report_dir, {}, &scripted);
     for (const ViewerPage::PixelScript& pixels : viewer.pixels) {
       if (pixels.script.empty()) continue;
       const std::string script = pixel_script_path(pixels.image);
@@ -82,7 +86,8 @@ Result<void> write_reports(const RunResults& results, const fs::path& report_dir
       return written;
   }
   if (auto written = write_file_atomically(report_dir / "junit.xml", junit_xml(results)); !written) return written;
-  if (auto written = write_file_atomically(report_dir / "results.json", results_json(results)); !written) return written;
+  if (auto written = write_file_atomically(report_dir / "results.json", results_json(results)); !written)
+    return written;
   if (auto written = write_file_atomically(report_dir / "index.html", index_html(results)); !written) return written;
   std::vector<std::string> files = files_of(results, pages);
   files.insert(files.end(), pixel_scripts.begin(), pixel_scripts.end());

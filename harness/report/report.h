@@ -6,9 +6,9 @@
 #include <filesystem>
 #include <vector>
 
+#include "base/result.h"
 #include "harness/gate/run_results.h"
 #include "harness/report/viewer_data.h"
-#include "base/result.h"
 
 namespace xshade::harness {
 

@@ -169,21 +169,22 @@ void index_row(std::string& out, const SceneResult& scene, const std::string& pa
                const std::vector<std::string>& lanes) {
   auto to = std::back_inserter(out);
   const std::string href = escape_attribute(url_path(page));
-  fmt::format_to(to, "<tr class=\"{}row-{}\">\n", is_problem(scene.verdict) ? "problem " : "", verdict_name(scene.verdict));
+  fmt::format_to(to, "<tr class=\"{}row-{}\">\n", is_problem(scene.verdict) ? "problem " : "",
+                 verdict_name(scene.verdict));
   fmt::format_to(to, "<td class=\"scene\"><a href=\"{}\">{}</a>", href, escape_text(scene.scene));
   if (!scene.description.empty())
     fmt::format_to(to, "<span class=\"description detail\">{}</span>", escape_text(scene.description));
-  fmt::format_to(to, "</td>\n<td class=\"cell {0}\"><a href=\"{1}\">{2}</a></td>\n",
-                 verdict_class(scene.verdict), href, verdict_span(scene.verdict));
+  fmt::format_to(to, "</td>\n<td class=\"cell {0}\"><a href=\"{1}\">{2}</a></td>\n", verdict_class(scene.verdict), href,
+                 verdict_span(scene.verdict));
   if (scene.lanes.empty() && !scene.message.empty()) {
     // The scene stopped before any lane ran: one cell across the lanes says why.
-    fmt::format_to(to, "<td class=\"cell {}\" colspan=\"{}\"><a href=\"{}\"><span class=\"detail\">{}</span></a></td>\n",
-                   verdict_class(scene.verdict), std::max<size_t>(lanes.size(), 1), href,
-                   escape_text(first_line(scene.message)));
+    fmt::format_to(
+        to, "<td class=\"cell {}\" colspan=\"{}\"><a href=\"{}\"><span class=\"detail\">{}</span></a></td>\n",
+        verdict_class(scene.verdict), std::max<size_t>(lanes.size(), 1), href, escape_text(first_line(scene.message)));
   } else {
     for (const std::string& name : lanes) {
-      const auto lane = std::find_if(scene.lanes.begin(), scene.lanes.end(),
-                                     [&](const LaneResult& l) { return l.lane == name; });
+      const auto lane =
+          std::find_if(scene.lanes.begin(), scene.lanes.end(), [&](const LaneResult& l) { return l.lane == name; });
       if (lane == scene.lanes.end()) {
         out += "<td class=\"cell absent\"><span>—</span></td>\n";
         continue;
@@ -208,8 +209,8 @@ void index_row(std::string& out, const SceneResult& scene, const std::string& pa
   }
   out += "<td class=\"cross\">";
   for (const CrossLaneResult& pair : scene.cross_lane) {
-    fmt::format_to(to, "<div class=\"pair\"><a href=\"{}#cross-lane\">{}</a> {}",
-                   href, escape_text(pair_name(pair)), verdict_span(pair.verdict));
+    fmt::format_to(to, "<div class=\"pair\"><a href=\"{}#cross-lane\">{}</a> {}", href, escape_text(pair_name(pair)),
+                   verdict_span(pair.verdict));
     if (is_problem(pair.verdict))
       fmt::format_to(to, "<span class=\"detail\">{}</span>", escape_text(describe_metrics(pair.metrics)));
     out += "</div>";
@@ -245,17 +246,21 @@ std::string trace_section(const NonfiniteTraceResult& trace) {
     return out;
   }
   const double ratio = trace.plain_milliseconds > 0 ? trace.traced_milliseconds / trace.plain_milliseconds : 0.0;
-  fmt::format_to(to, "<p class=\"description\">The lane rendered again with the tracing variant: {:.0f} ms (the plain "
-                     "render's passes {:.0f} ms, {:.1f}x); the traced image is {}.</p>\n",
+  fmt::format_to(to,
+                 "<p class=\"description\">The lane rendered again with the tracing variant: {:.0f} ms (the plain "
+                 "render's passes {:.0f} ms, {:.1f}x); the traced image is {}.</p>\n",
                  trace.traced_milliseconds, trace.plain_milliseconds, ratio,
                  trace.identical ? "bit-identical to the plain one"
-                                 : "NOT bit-identical to the plain one (" + trace.traced_image + "): a fault of the tracing variant");
+                                 : "NOT bit-identical to the plain one (" + trace.traced_image +
+                                       "): a fault of the tracing variant");
   for (const PassOrigins& pass : trace.passes) {
     fmt::format_to(to, "<h4>{} {}</h4>\n", pass.output ? "Output pass" : "Earlier pass", escape_text(pass.pass));
-    if (pass.origins.empty() && !pass.unattributed_pixels) out += "<p class=\"description\">no pixel is non-finite</p>\n";
+    if (pass.origins.empty() && !pass.unattributed_pixels)
+      out += "<p class=\"description\">no pixel is non-finite</p>\n";
     if (!pass.origins.empty()) {
-      out += "<table class=\"origins\">\n<tr><th></th><th>pixels</th><th>NaN</th><th>Inf</th><th>negative</th><th>first "
-             "at</th><th>site</th></tr>\n";
+      out +=
+          "<table class=\"origins\">\n<tr><th></th><th>pixels</th><th>NaN</th><th>Inf</th><th>negative</th><th>first "
+          "at</th><th>site</th></tr>\n";
       for (size_t i = 0; i < pass.origins.size(); ++i) {
         const NonfiniteOrigin& origin = pass.origins[i];
         const glm::vec4 color = origins_palette(i);
@@ -266,22 +271,26 @@ std::string trace_section(const NonfiniteTraceResult& trace) {
         if (!source.empty()) source += "\n" + std::string(site.column > 0 ? site.column - 1 : 0, ' ') + "^";
         for (const glsl::TraceCall& call : origin.calls)
           source += fmt::format("\ncalled from {} at {}:{}:{}", call.caller, call.file, call.line, call.column);
-        if (origin.calls.size() == glsl::NonfiniteTrace::kRecordedCalls) source += "\n(calls further out are not recorded)";
+        if (origin.calls.size() == glsl::NonfiniteTrace::kRecordedCalls)
+          source += "\n(calls further out are not recorded)";
         fmt::format_to(to,
                        "<tr><td><span class=\"swatch\" style=\"background: rgb({}, {}, {})\"></span></td><td>{}</td>"
                        "<td>{}</td><td>{}</td><td>{}</td><td>({}, {})</td><td>{}<pre>{}</pre></td></tr>\n",
-                       int(color.r * 255), int(color.g * 255), int(color.b * 255), origin.pixels, origin.nan, origin.inf,
-                       origin.negative, origin.first_x, origin.first_y, escape_text(where), escape_text(source));
+                       int(color.r * 255), int(color.g * 255), int(color.b * 255), origin.pixels, origin.nan,
+                       origin.inf, origin.negative, origin.first_x, origin.first_y, escape_text(where),
+                       escape_text(source));
       }
       out += "</table>\n";
     }
     if (pass.unattributed_pixels)
-      fmt::format_to(to, "<p class=\"description\">{} pixels non-finite with no site recorded (drawn by no traced "
-                         "program)</p>\n",
+      fmt::format_to(to,
+                     "<p class=\"description\">{} pixels non-finite with no site recorded (drawn by no traced "
+                     "program)</p>\n",
                      pass.unattributed_pixels);
     if (pass.recovered_pixels)
-      fmt::format_to(to, "<p class=\"description\">{} pixels had a NaN or infinity on the way that did not reach the "
-                         "pass's output</p>\n",
+      fmt::format_to(to,
+                     "<p class=\"description\">{} pixels had a NaN or infinity on the way that did not reach the "
+                     "pass's output</p>\n",
                      pass.recovered_pixels);
     if (!pass.map.empty()) out += "<div class=\"images\">\n" + figure("origins by site", pass.map, "") + "</div>\n";
   }
@@ -296,15 +305,17 @@ std::string metrics_table(const ImageMetrics& metrics) {
   out += fact_row("domain", "8-bit sRGB steps, as the per-pixel layer compares");
   out += fact_row("worst", fmt::format("{} steps at ({}, {})", metrics.max_steps, metrics.worst_x, metrics.worst_y));
   if (metrics.first_failing)
-    out += fact_row("first failing", fmt::format("({}, {})", metrics.first_failing->first, metrics.first_failing->second));
+    out +=
+        fact_row("first failing", fmt::format("({}, {})", metrics.first_failing->first, metrics.first_failing->second));
   out += fact_row("mean", fmt::format("{:.4g} steps", metrics.mean_steps));
   out += fact_row("RMSE", fmt::format("{:.4g} steps", metrics.rmse_steps));
   out += fact_row("PSNR", describe_psnr(metrics.psnr));
-  out += fact_row("failing pixels",
-                  fmt::format("{} ({:.4g}%)", metrics.failing_pixels, metrics.failing_fraction * 100.0));
+  out +=
+      fact_row("failing pixels", fmt::format("{} ({:.4g}%)", metrics.failing_pixels, metrics.failing_fraction * 100.0));
   if (metrics.hdr_values > 0)
-    out += fact_row("above 1 (relative)", fmt::format("worst {:.4g} at ({}, {}); {} failing pixels", metrics.float_max_relative,
-                                                      metrics.float_x, metrics.float_y, metrics.float_failing_pixels));
+    out += fact_row("above 1 (relative)",
+                    fmt::format("worst {:.4g} at ({}, {}); {} failing pixels", metrics.float_max_relative,
+                                metrics.float_x, metrics.float_y, metrics.float_failing_pixels));
   return out + "</table>\n";
 }
 
@@ -331,7 +342,8 @@ void lane_section(std::string& out, const LaneResult& lane) {
   if (!files.empty()) fmt::format_to(to, "<p class=\"files\">Files: {}</p>\n", files);
   if (lane.image.empty()) out += "<p class=\"description\">not rendered</p>\n";
   if (lane.non_finite.total() > 0 || !lane.non_finite_mask.empty())
-    out += "<div class=\"images\">\n" + figure("NaN / Inf / negative", lane.non_finite_mask, "no mask written") + "</div>\n";
+    out += "<div class=\"images\">\n" + figure("NaN / Inf / negative", lane.non_finite_mask, "no mask written") +
+           "</div>\n";
   if (lane.trace) out += trace_section(*lane.trace);
 
   out += "<div class=\"tables\">\n<div><h3>Layers</h3>\n";
@@ -340,9 +352,8 @@ void lane_section(std::string& out, const LaneResult& lane) {
   } else {
     out += "<table class=\"layers\">\n<tr><th>layer</th><th>verdict</th><th>detail</th></tr>\n";
     for (const LayerResult& layer : lane.layers)
-      fmt::format_to(to, "<tr><td>{}</td><td class=\"cell {}\">{}</td><td>{}</td></tr>\n",
-                     escape_text(layer.layer), verdict_class(layer.verdict), verdict_span(layer.verdict),
-                     escape_text(layer.detail));
+      fmt::format_to(to, "<tr><td>{}</td><td class=\"cell {}\">{}</td><td>{}</td></tr>\n", escape_text(layer.layer),
+                     verdict_class(layer.verdict), verdict_span(layer.verdict), escape_text(layer.detail));
     out += "</table>\n";
   }
   out += "</div>\n<div><h3>Against the golden</h3>\n";
@@ -356,7 +367,8 @@ void lane_section(std::string& out, const LaneResult& lane) {
     out += fact_row("first at", fmt::format("({}, {})", lane.non_finite.first->first, lane.non_finite.first->second));
   out += "</table>\n</div>\n<div><h3>Time</h3>\n<table>\n<tr><th>pass</th><th>ms</th></tr>\n";
   for (const PassTime& time : lane.timings)
-    fmt::format_to(to, "<tr><td>{}</td><td class=\"num\">{:.2f}</td></tr>\n", escape_text(time.pass), time.milliseconds);
+    fmt::format_to(to, "<tr><td>{}</td><td class=\"num\">{:.2f}</td></tr>\n", escape_text(time.pass),
+                   time.milliseconds);
   fmt::format_to(to, "<tr><th>total</th><td class=\"num\">{:.3f} s</td></tr>\n</table>\n</div>\n", lane.seconds);
   out += "<div><h3>Driver</h3>\n<table>\n";
   out += fact_row("api", lane.driver.api);
@@ -365,7 +377,8 @@ void lane_section(std::string& out, const LaneResult& lane) {
   out += fact_row("driver_version", lane.driver.driver_version);
   out += fact_row("llvm_version", lane.driver.llvm_version);
   out += "</table>\n</div>\n</div>\n";
-  if (!lane.message.empty()) fmt::format_to(to, "<h3>Message</h3>\n<pre class=\"message\">{}</pre>\n", escape_text(lane.message));
+  if (!lane.message.empty())
+    fmt::format_to(to, "<h3>Message</h3>\n<pre class=\"message\">{}</pre>\n", escape_text(lane.message));
   out += "</section>\n";
 }
 
@@ -376,8 +389,9 @@ void cross_lane_section(std::string& out, const SceneResult& scene) {
     out += "<p class=\"description\">no pair of lanes compared</p>\n</section>\n";
     return;
   }
-  out += "<table>\n<tr><th>pair</th><th>verdict</th><th>worst, sRGB steps</th><th>mean, steps</th><th>RMSE, steps</th>"
-         "<th>PSNR</th><th>failing pixels</th></tr>\n";
+  out +=
+      "<table>\n<tr><th>pair</th><th>verdict</th><th>worst, sRGB steps</th><th>mean, steps</th><th>RMSE, steps</th>"
+      "<th>PSNR</th><th>failing pixels</th></tr>\n";
   for (const CrossLaneResult& pair : scene.cross_lane) {
     const ImageMetrics& m = pair.metrics;
     if (pair.identical) {
@@ -389,8 +403,8 @@ void cross_lane_section(std::string& out, const SceneResult& scene) {
                    "<tr><td>{}</td><td class=\"cell {}\">{}</td>"
                    "<td class=\"num\">{} at ({}, {})</td><td class=\"num\">{:.4g}</td><td class=\"num\">{:.4g}</td>"
                    "<td class=\"num\">{}</td><td class=\"num\">{} ({:.4g}%)</td></tr>\n",
-                   escape_text(pair_name(pair)), verdict_class(pair.verdict), verdict_span(pair.verdict),
-                   m.max_steps, m.worst_x, m.worst_y, m.mean_steps, m.rmse_steps, escape_text(describe_psnr(m.psnr)),
+                   escape_text(pair_name(pair)), verdict_class(pair.verdict), verdict_span(pair.verdict), m.max_steps,
+                   m.worst_x, m.worst_y, m.mean_steps, m.rmse_steps, escape_text(describe_psnr(m.psnr)),
                    m.failing_pixels, m.failing_fraction * 100.0);
   }
   out += "</table>\n";
@@ -407,8 +421,8 @@ void images_section(std::string& out, const SceneResult& scene, const ViewerPage
   auto to = std::back_inserter(out);
   out += "<section id=\"images\">\n<h2>Images</h2>\n<noscript><p>The image viewer needs JavaScript. The images: ";
   for (const LaneResult& lane : scene.lanes)
-    for (const auto& [what, path] : {std::pair{"", &lane.image}, std::pair{" golden", &lane.golden},
-                                     std::pair{" heat map", &lane.diff}})
+    for (const auto& [what, path] :
+         {std::pair{"", &lane.image}, std::pair{" golden", &lane.golden}, std::pair{" heat map", &lane.diff}})
       if (!path->empty())
         fmt::format_to(to, "<a href=\"{}\">{}{}</a> ", escape_attribute(url_path(*path)), escape_text(lane.lane), what);
   out += "</p></noscript>\n<div id=\"xshade-viewer\"></div>\n";
@@ -455,10 +469,13 @@ std::string index_html(const RunResults& results) {
     out += "</ul></dd>\n";
   }
   fmt::format_to(to, "<dt>scenes</dt><dd class=\"counts\">{}</dd>\n", counts_html(count_scenes(results)));
-  fmt::format_to(to, "<dt>checks</dt><dd class=\"counts\">{} <span class=\"description\">(lanes and cross-lane pairs)</span></dd>\n",
-                 counts_html(count_checks(results)));
-  out += "</dl>\n<p class=\"description\">Machine-readable: <a href=\"junit.xml\">junit.xml</a>, "
-         "<a href=\"results.json\">results.json</a></p>\n</header>\n";
+  fmt::format_to(
+      to,
+      "<dt>checks</dt><dd class=\"counts\">{} <span class=\"description\">(lanes and cross-lane pairs)</span></dd>\n",
+      counts_html(count_checks(results)));
+  out +=
+      "</dl>\n<p class=\"description\">Machine-readable: <a href=\"junit.xml\">junit.xml</a>, "
+      "<a href=\"results.json\">results.json</a></p>\n</header>\n";
 
   if (results.scenes.empty()) {
     out += "<p>No scene ran.</p>\n";
@@ -498,8 +515,8 @@ std::string index_html(const RunResults& results) {
   for (const size_t i : order) {
     const bool problem = is_problem(results.scenes[i].verdict);
     if (problem && !in_problems) {
-      const size_t count = static_cast<size_t>(std::count_if(results.scenes.begin(), results.scenes.end(),
-                                                             [](const SceneResult& s) { return is_problem(s.verdict); }));
+      const size_t count = static_cast<size_t>(std::count_if(
+          results.scenes.begin(), results.scenes.end(), [](const SceneResult& s) { return is_problem(s.verdict); }));
       fmt::format_to(to, "<tr class=\"separator\"><td colspan=\"{}\">Did not pass ({})</td></tr>\n", columns, count);
       in_problems = true;
     }
@@ -563,7 +580,8 @@ std::string scene_html(const SceneResult& scene, const ViewerPage& viewer) {
     images_section(out, scene, viewer);
   for (const LaneResult& lane : scene.lanes) lane_section(out, lane);
   if (!scene.lanes.empty() || !scene.cross_lane.empty()) cross_lane_section(out, scene);
-  if (!scene.plan.empty()) fmt::format_to(to, "<section>\n<h2>Plan</h2>\n<pre>{}</pre>\n</section>\n", escape_text(scene.plan));
+  if (!scene.plan.empty())
+    fmt::format_to(to, "<section>\n<h2>Plan</h2>\n<pre>{}</pre>\n</section>\n", escape_text(scene.plan));
   return out + std::string(kPageEnd);
 }
 

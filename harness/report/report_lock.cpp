@@ -19,7 +19,9 @@ Result<ReportLock> ReportLock::take(const fs::path& folder, const std::string& c
   fs::create_directories(folder, error);
   const fs::path path = folder / kFileName;
   const int fd = ::open(path.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
-  if (fd < 0) return fail(ErrorKind::Backend, "cannot open the report folder's lock " + path.string() + ": " + std::strerror(errno));
+  if (fd < 0)
+    return fail(ErrorKind::Backend,
+                "cannot open the report folder's lock " + path.string() + ": " + std::strerror(errno));
   ReportLock lock(fd);
   if (::flock(fd, LOCK_EX | LOCK_NB) != 0) {
     if (errno != EWOULDBLOCK)

@@ -22,8 +22,8 @@ TEST(ReportLock, OneRunHoldsAReportFolderAndASecondIsToldWhich) {
     auto second = ReportLock::take(folder, "xshade run --shard 2/2");
     ASSERT_FALSE(second);
     EXPECT_EQ(second.error().kind, ErrorKind::UserInput);
-    EXPECT_EQ(second.error().message, "the report folder " + folder.string() + " is being written by another xshade (process " +
-                                          std::to_string(::getpid()) +
+    EXPECT_EQ(second.error().message, "the report folder " + folder.string() +
+                                          " is being written by another xshade (process " + std::to_string(::getpid()) +
                                           ": xshade run --shard 1/2); give this run another --report, or wait for "
                                           "that one to finish");
   }

@@ -95,8 +95,9 @@ Result<std::vector<FoundReport>> find_reports(const std::vector<fs::path>& folde
     for (const fs::directory_entry& entry : fs::directory_iterator(folder, error))
       if (entry.is_directory() && fs::exists(entry.path() / "results.json")) inner.push_back(entry.path());
     if (inner.empty())
-      return fail(folder.string() + " holds no results.json, and none of its folders does: it is not a report of "
-                                    "xshade run nor a folder of them");
+      return fail(folder.string() +
+                  " holds no results.json, and none of its folders does: it is not a report of "
+                  "xshade run nor a folder of them");
     std::sort(inner.begin(), inner.end());
     for (const fs::path& each : inner) {
       auto report = read_report(each);
@@ -135,9 +136,10 @@ MergedReport merge_reports(const std::vector<FoundReport>& reports) {
         keep_worst(into.lanes, entry->second.lane_report, lane, r,
                    [](const LaneResult& a, const LaneResult& b) { return a.lane == b.lane; });
       for (const CrossLaneResult& pair : scene.cross_lane)
-        keep_worst(into.cross_lane, entry->second.pair_report, pair, r, [](const CrossLaneResult& a, const CrossLaneResult& b) {
-          return a.first_lane == b.first_lane && a.second_lane == b.second_lane;
-        });
+        keep_worst(into.cross_lane, entry->second.pair_report, pair, r,
+                   [](const CrossLaneResult& a, const CrossLaneResult& b) {
+                     return a.first_lane == b.first_lane && a.second_lane == b.second_lane;
+                   });
     }
   }
 
@@ -145,8 +147,8 @@ MergedReport merge_reports(const std::vector<FoundReport>& reports) {
   for (auto& [name, scene] : scenes) {
     for (size_t i = 0; i < scene.scene.lanes.size(); ++i) {
       LaneResult& lane = scene.scene.lanes[i];
-      for (std::string* path : {&lane.image, &lane.image_exr, &lane.golden, &lane.golden_exr, &lane.diff,
-                                &lane.non_finite_mask})
+      for (std::string* path :
+           {&lane.image, &lane.image_exr, &lane.golden, &lane.golden_exr, &lane.diff, &lane.non_finite_mask})
         *path = files.map(scene.lane_report[i], *path);
     }
     for (size_t i = 0; i < scene.scene.cross_lane.size(); ++i)
@@ -178,12 +180,13 @@ std::vector<std::string> compare_lanes_across_reports(RunResults& results, const
       warnings.push_back(image.error().message + "; " + scene.scene + " on " + lane.lane +
                          " is not held against the other lanes, and each check it misses is an error");
     }
-    scene.cross_lane = cross_lane_results(images, scene.compare, [&](const FloatImage& heat_map, const std::string& file) {
-      const std::string relative = scene.scene + "/" + file;
-      std::error_code ignored;
-      fs::create_directories((folder / relative).parent_path(), ignored);
-      return write_png(heat_map, folder / relative, PngCompression::Fast) ? relative : std::string();
-    });
+    scene.cross_lane =
+        cross_lane_results(images, scene.compare, [&](const FloatImage& heat_map, const std::string& file) {
+          const std::string relative = scene.scene + "/" + file;
+          std::error_code ignored;
+          fs::create_directories((folder / relative).parent_path(), ignored);
+          return write_png(heat_map, folder / relative, PngCompression::Fast) ? relative : std::string();
+        });
     std::sort(rendered.begin(), rendered.end());
     for (size_t a = 0; a < rendered.size(); ++a)
       for (size_t b = a + 1; b < rendered.size(); ++b) {

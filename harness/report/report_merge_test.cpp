@@ -135,7 +135,8 @@ TEST_F(ReportMerge, PathsAreHeldToTheirReportAndNeverOverwriteEachOther) {
   ASSERT_TRUE(found) << found.error().to_string();
   const MergedReport merged = merge_reports(*found);
   ASSERT_EQ(merged.warnings.size(), 2u);
-  EXPECT_NE(merged.warnings[0].find("names ../one/x/gl.png, which leads out of"), std::string::npos) << merged.warnings[0];
+  EXPECT_NE(merged.warnings[0].find("names ../one/x/gl.png, which leads out of"), std::string::npos)
+      << merged.warnings[0];
   EXPECT_NE(merged.warnings[1].find("names z/vk.png, which is not there"), std::string::npos) << merged.warnings[1];
   ASSERT_EQ(merged.files.size(), 2u);
   EXPECT_EQ(merged.files[0].to, "x/gl.png");

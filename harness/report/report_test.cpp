@@ -225,7 +225,8 @@ TEST_F(ReportTest, ScenePageShowsImagesMetricsTimingsAndDriver) {
   EXPECT_NE(page.find("llvmpipe (LLVM 15.0.6, 256 bits)"), std::string::npos);
   EXPECT_NE(page.find("<th>llvm_version</th><td>15.0.6</td>"), std::string::npos);
   EXPECT_NE(page.find("<th>PSNR</th><td>identical</td>"), std::string::npos);
-  EXPECT_NE(page.find("<pre>pass main -&gt; target colour 64x64\n  draw sphere with lit.hlsl</pre>"), std::string::npos);
+  EXPECT_NE(page.find("<pre>pass main -&gt; target colour 64x64\n  draw sphere with lit.hlsl</pre>"),
+            std::string::npos);
   // No NaN in this scene: no mask.
   EXPECT_EQ(page.find("NaN / Inf / negative"), std::string::npos);
   // Nothing fetched from elsewhere: the viewer is the report's own, and no float data is here to
@@ -282,8 +283,9 @@ TEST_F(ReportTest, JUnitCountsMatchTheResults) {
   EXPECT_EQ(occurrences(xml, "<error "), 1u);
   EXPECT_EQ(occurrences(xml, "<skipped "), 1u);
   EXPECT_NE(xml.find("<testcase classname=\"lit_sphere\" name=\"gl vs vk\""), std::string::npos);
-  EXPECT_NE(xml.find("<testsuite name=\"lit_sphere\" tests=\"4\" failures=\"0\" errors=\"0\" skipped=\"1\" time=\"1.500\""),
-            std::string::npos);
+  EXPECT_NE(
+      xml.find("<testsuite name=\"lit_sphere\" tests=\"4\" failures=\"0\" errors=\"0\" skipped=\"1\" time=\"1.500\""),
+      std::string::npos);
   EXPECT_NE(xml.find("<failure message=\"finite: 3 NaN at (4, 7) first\" type=\"fail\">"), std::string::npos);
   EXPECT_NE(xml.find("<testcase classname=\"broken_shader\" name=\"scene\" time=\"0.000\">\n      <error "
                      "message=\"materials/broken.hlsl:3:5: error: unknown identifier &#39;colr&#39;\" type=\"error\">"),

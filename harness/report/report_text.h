@@ -9,8 +9,8 @@
 #include <vector>
 
 #include "harness/backend/backend.h"
-#include "harness/scene/lane.h"
 #include "harness/gate/run_results.h"
+#include "harness/scene/lane.h"
 
 namespace xshade::harness {
 
@@ -40,7 +40,7 @@ Verdict run_verdict(const RunResults& results);
 // message; empty for a lane that passed.
 std::string first_failure(const LaneResult& lane);
 // "gl vs vk"
-std::string pair_name(const CrossLaneResult& pair);// "38.52 dB", or "identical" when the PSNR is infinite.
+std::string pair_name(const CrossLaneResult& pair);  // "38.52 dB", or "identical" when the PSNR is infinite.
 std::string describe_psnr(double psnr);
 // "850 ms", "12.3 s" or "2 min 5.0 s".
 std::string describe_duration(double seconds);

@@ -30,12 +30,9 @@ json lane_json(const LaneResult& lane) {
 }
 
 json pair_json(const CrossLaneResult& pair) {
-  return {{"first_lane", pair.first_lane},
-          {"second_lane", pair.second_lane},
-          {"verdict", verdict_json(pair.verdict)},
-          {"metrics", metrics_to_json(pair.metrics)},
-          {"identical", pair.identical},
-          {"diff", pair.diff}};
+  return {{"first_lane", pair.first_lane},         {"second_lane", pair.second_lane},
+          {"verdict", verdict_json(pair.verdict)}, {"metrics", metrics_to_json(pair.metrics)},
+          {"identical", pair.identical},           {"diff", pair.diff}};
 }
 
 json scene_json(const SceneResult& scene) {
@@ -51,18 +48,19 @@ json scene_json(const SceneResult& scene) {
           {"plan", scene.plan},
           {"warnings", scene.warnings},
           {"message", scene.message},
-          {"compare", {{"channel_tolerance", scene.compare.channel_tolerance},
-                       {"max_failing_fraction", scene.compare.max_failing_fraction},
-                       {"position_radius", scene.compare.position_radius},
-                       {"float_tolerance", scene.compare.float_tolerance},
-                       {"reason", scene.compare.reason}}}};
+          {"compare",
+           {{"channel_tolerance", scene.compare.channel_tolerance},
+            {"max_failing_fraction", scene.compare.max_failing_fraction},
+            {"position_radius", scene.compare.position_radius},
+            {"float_tolerance", scene.compare.float_tolerance},
+            {"reason", scene.compare.reason}}}};
 }
 
 json merged_json(const std::vector<MergedRun>& runs) {
   json array = json::array();
   for (const MergedRun& run : runs)
-    array.push_back({{"folder", run.folder}, {"started", run.started}, {"seconds", number(run.seconds)},
-                     {"command", run.command}});
+    array.push_back(
+        {{"folder", run.folder}, {"started", run.started}, {"seconds", number(run.seconds)}, {"command", run.command}});
   return array;
 }
 

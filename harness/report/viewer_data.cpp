@@ -6,8 +6,8 @@
 #include <optional>
 
 #include <fmt/format.h>
-#include <nlohmann/json.hpp>
 #include <zlib.h>
+#include <nlohmann/json.hpp>
 
 #include "harness/image/image_compare.h"
 #include "harness/image/image_io.h"
@@ -109,10 +109,10 @@ class FloatImages {
       }
       const std::string data = deflated_base64(*image);
       if (data.empty()) continue;
-      const json entry = {{"width", image->width}, {"height", image->height}, {"encoding", "deflate-f32le-rgba"},
-                          {"data", data}};
-      out.push_back({path, "(window.XSHADE_PIXELS = window.XSHADE_PIXELS || {})[" + json(path).dump() + "] = " +
-                               entry.dump() + ";\n"});
+      const json entry = {
+          {"width", image->width}, {"height", image->height}, {"encoding", "deflate-f32le-rgba"}, {"data", data}};
+      out.push_back({path, "(window.XSHADE_PIXELS = window.XSHADE_PIXELS || {})[" + json(path).dump() +
+                               "] = " + entry.dump() + ";\n"});
       if (scripted) scripted->insert(path);
     }
     return out;
@@ -127,7 +127,9 @@ class FloatImages {
 
 // The golden's values as the comparison held them: its float image where it has one, else its
 // PNG, decoded as every 8-bit golden is.
-const std::string& golden_floats(const LaneResult& lane) { return lane.golden_exr.empty() ? lane.golden : lane.golden_exr; }
+const std::string& golden_floats(const LaneResult& lane) {
+  return lane.golden_exr.empty() ? lane.golden : lane.golden_exr;
+}
 
 bool same_pixels(const FloatImage* a, const FloatImage* b) {
   if (!a || !b) return a == b;

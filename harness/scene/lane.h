@@ -9,8 +9,8 @@
 namespace xshade::harness {
 
 enum class Lane {
-  Gl,  // GLSL 4.50 core on OpenGL (llvmpipe) through OSMesa or EGL surfaceless
-  Vk,  // Vulkan GLSL -> glslang -> SPIR-V on lavapipe
+  Gl,      // GLSL 4.50 core on OpenGL (llvmpipe) through OSMesa or EGL surfaceless
+  Vk,      // Vulkan GLSL -> glslang -> SPIR-V on lavapipe
   VkHlsl,  // the hlsl_like source through glslang's own HLSL front end -> SPIR-V on lavapipe
 };
 

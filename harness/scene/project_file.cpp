@@ -4,9 +4,9 @@
 
 #include <fmt/format.h>
 
-#include "harness/scene/toml_reader.h"
 #include "base/file_io.h"
 #include "base/paths.h"
+#include "harness/scene/toml_reader.h"
 
 namespace xshade::harness {
 namespace {
@@ -43,7 +43,8 @@ class ProjectFileReader : TomlReader {
     const toml::array* array = node.as_array();
     if (!array) return expected(node, "shaders", "a folder or an array of folders");
     for (size_t i = 0; i < array->size(); ++i)
-      if (auto path = folder(*array->get(i), index_path("shaders", i), Kind::MustExist)) project_.shaders.push_back(*path);
+      if (auto path = folder(*array->get(i), index_path("shaders", i), Kind::MustExist))
+        project_.shaders.push_back(*path);
   }
 
   // A folder relative to the project file's folder, inside it, made absolute.

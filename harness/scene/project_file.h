@@ -20,8 +20,8 @@
 namespace xshade::harness {
 
 struct ProjectFile {
-  std::filesystem::path path;  // the file, absolute
-  std::filesystem::path root;  // its folder: every path below is inside it
+  std::filesystem::path path;                   // the file, absolute
+  std::filesystem::path root;                   // its folder: every path below is inside it
   std::optional<std::filesystem::path> scenes;  // absolute; nullopt when the file does not say
   std::optional<std::filesystem::path> golden;
   std::vector<std::filesystem::path> shaders;

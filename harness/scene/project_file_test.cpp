@@ -15,17 +15,19 @@ class ProjectFileTest : public ::testing::Test {
  protected:
   void SetUp() override {
     // A folder per test: CTest runs the cases of this fixture in parallel.
-    root_ = fs::temp_directory_path() /
-            ("xshade_project_file_test_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
+    root_ = fs::temp_directory_path() / ("xshade_project_file_test_" +
+                                         std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
     fs::remove_all(root_);
-    for (const char* folder : {"repo/.git", "repo/xshade/scenes", "repo/shaders", "repo/more_shaders", "repo/src/deep",
-                               "outside"})
+    for (const char* folder :
+         {"repo/.git", "repo/xshade/scenes", "repo/shaders", "repo/more_shaders", "repo/src/deep", "outside"})
       fs::create_directories(root_ / folder);
     std::ofstream(root_ / "repo/README.md") << "a file\n";
   }
   void TearDown() override { fs::remove_all(root_); }
 
-  Result<ProjectFile> parse(const std::string& text) const { return parse_project_file(text, root_ / "repo/xshade.toml"); }
+  Result<ProjectFile> parse(const std::string& text) const {
+    return parse_project_file(text, root_ / "repo/xshade.toml");
+  }
   // Each problem as "line:col: message".
   std::vector<std::string> problems(const std::string& text) const {
     auto project = parse(text);
@@ -41,7 +43,8 @@ class ProjectFileTest : public ::testing::Test {
 };
 
 TEST_F(ProjectFileTest, PathsResolveAgainstTheProjectFilesFolder) {
-  auto project = parse("scenes = \"xshade/scenes\"\ngolden = \"xshade/golden\"\nshaders = [\"shaders\", \"more_shaders/\"]\n");
+  auto project =
+      parse("scenes = \"xshade/scenes\"\ngolden = \"xshade/golden\"\nshaders = [\"shaders\", \"more_shaders/\"]\n");
   ASSERT_TRUE(project) << project.error().to_string();
   EXPECT_EQ(project->root, root_ / "repo");
   EXPECT_EQ(project->scenes, root_ / "repo/xshade/scenes");
@@ -88,9 +91,10 @@ TEST_F(ProjectFileTest, WrongKeysTypesAndFoldersAreReportedWhereTheyAre) {
                 "2:11: shaders: expected a folder or an array of folders, got 3",
                 "3:10: golden: expected a folder, got \"README.md\", which is a file",
             }));
-  EXPECT_EQ(problems("scenes = \"scenes\"\n"),
-            (std::vector<std::string>{"1:10: scenes: expected an existing folder, got \"scenes\", which does not exist (" +
-                                      (root_ / "repo/scenes").string() + ")"}));
+  EXPECT_EQ(
+      problems("scenes = \"scenes\"\n"),
+      (std::vector<std::string>{"1:10: scenes: expected an existing folder, got \"scenes\", which does not exist (" +
+                                (root_ / "repo/scenes").string() + ")"}));
   const std::vector<std::string> syntax = problems("scenes = [\"a\"\n");
   ASSERT_EQ(syntax.size(), 1u);
   EXPECT_EQ(syntax[0].rfind("1:15: syntax error: ", 0), 0u) << syntax[0];  // where TOML stops: the end of the file
@@ -132,8 +136,8 @@ TEST_F(ProjectFileTest, AnXshadeTomlThatIsNotAFileIsAnErrorNotPassedOver) {
 TEST_F(ProjectFileTest, LoadNamesTheFileItCannotRead) {
   auto missing = load_project_file(root_ / "repo/absent.toml");
   ASSERT_FALSE(missing);
-  EXPECT_EQ(missing.error().to_string(),
-            "the project file " + (root_ / "repo/absent.toml").string() + " cannot be opened: No such file or directory");
+  EXPECT_EQ(missing.error().to_string(), "the project file " + (root_ / "repo/absent.toml").string() +
+                                             " cannot be opened: No such file or directory");
 }
 
 // A project file that is a symbolic link out of its folder is refused before it is read; one
@@ -143,10 +147,10 @@ TEST_F(ProjectFileTest, ALinkOutOfItsFolderIsRefusedAndOneInsideIsRead) {
   fs::create_symlink(root_ / "outside/elsewhere.toml", root_ / "repo/xshade.toml");
   auto linked = load_project_file(root_ / "repo/xshade.toml");
   ASSERT_FALSE(linked);
-  EXPECT_EQ(linked.error().to_string(), (root_ / "repo/xshade.toml").string() +
-                                            ": the project file is a symbolic link that points outside its folder (to " +
-                                            (root_ / "outside/elsewhere.toml").string() +
-                                            "); a project file must be inside the folder it is for");
+  EXPECT_EQ(linked.error().to_string(),
+            (root_ / "repo/xshade.toml").string() +
+                ": the project file is a symbolic link that points outside its folder (to " +
+                (root_ / "outside/elsewhere.toml").string() + "); a project file must be inside the folder it is for");
   EXPECT_EQ(linked.error().kind, ErrorKind::UserInput);
 
   fs::remove(root_ / "repo/xshade.toml");

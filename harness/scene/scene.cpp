@@ -15,12 +15,12 @@
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 
+#include "base/file_io.h"
+#include "base/paths.h"
 #include "harness/image/image_limits.h"
 #include "harness/scene/lane.h"
 #include "harness/scene/scene_values.h"
 #include "harness/scene/toml_reader.h"
-#include "base/file_io.h"
-#include "base/paths.h"
 
 namespace xshade::harness {
 namespace {
@@ -82,7 +82,8 @@ class SceneReader : SceneValueReader {
       if (auto value = vector<4>(*node, "clear_color", "a number >= 0", non_negative)) scene.clear_color = *value;
     }
     if (const toml::node* node = root.get("time")) {
-      if (auto value = float_value(*node, "time", "a number of seconds >= 0", non_negative)) scene.time_seconds = *value;
+      if (auto value = float_value(*node, "time", "a number of seconds >= 0", non_negative))
+        scene.time_seconds = *value;
     }
 
     read_timeout(root, scene);
@@ -113,14 +114,18 @@ class SceneReader : SceneValueReader {
     check_keys(table, "unity", {"platform", "pixel_lights"});
     if (const toml::node* node = table.get("pixel_lights")) {
       const auto* count = node->as_integer();
-      if (count && count->get() >= 0 && count->get() <= 8) scene.pixel_lights = static_cast<int>(count->get());
-      else expected(*node, "unity.pixel_lights", "a whole number from 0 to 8");
+      if (count && count->get() >= 0 && count->get() <= 8)
+        scene.pixel_lights = static_cast<int>(count->get());
+      else
+        expected(*node, "unity.pixel_lights", "a whole number from 0 to 8");
     }
     if (const toml::node* node = table.get("platform")) {
       auto name = node->as_string();
       auto platform = name ? shaderlab::parse_unity_platform(name->get()) : std::nullopt;
-      if (platform) scene.unity_platform = *platform;
-      else expected(*node, "unity.platform", "\"glcore\", \"d3d11\" or \"vulkan\"");
+      if (platform)
+        scene.unity_platform = *platform;
+      else
+        expected(*node, "unity.platform", "\"glcore\", \"d3d11\" or \"vulkan\"");
     }
   }
 
@@ -131,13 +136,15 @@ class SceneReader : SceneValueReader {
     if (scene.unity_platform == shaderlab::UnityPlatform::GLCore) return;
     const toml::node* node = table.get("platform");
     const auto refuse = [&](const std::string& what, const std::string& path) {
-      report(node->source(), fmt::format("unity.platform: \"{}\" is for scenes whose materials and effects are all Unity "
-                                         ".shader files, and {} is '{}', an .hlsl shader written for xshade's own "
-                                         "conventions: remove the platform, or draw it in a scene of its own",
-                                         shaderlab::renderer_name(scene.unity_platform), what, path));
+      report(node->source(),
+             fmt::format("unity.platform: \"{}\" is for scenes whose materials and effects are all Unity "
+                         ".shader files, and {} is '{}', an .hlsl shader written for xshade's own "
+                         "conventions: remove the platform, or draw it in a scene of its own",
+                         shaderlab::renderer_name(scene.unity_platform), what, path));
     };
     for (const SceneObject& object : scene.objects)
-      if (!object.material.ends_with(".shader")) return refuse("object '" + object.name + "''s material", object.material);
+      if (!object.material.ends_with(".shader"))
+        return refuse("object '" + object.name + "''s material", object.material);
     for (const PostEffect& effect : scene.post)
       if (!effect.effect.ends_with(".shader")) return refuse("a post effect", effect.effect);
   }
@@ -155,7 +162,9 @@ class SceneReader : SceneValueReader {
     }
     if (reason) {
       if (auto text = string(*reason, "timeout_reason", "a non-empty string")) scene.timeout_reason = *text;
-      if (!timeout) report(reason->source(), "timeout_reason: there is no timeout for it to explain; set timeout = SECONDS or remove it");
+      if (!timeout)
+        report(reason->source(),
+               "timeout_reason: there is no timeout for it to explain; set timeout = SECONDS or remove it");
     }
   }
 
@@ -182,7 +191,8 @@ class SceneReader : SceneValueReader {
       std::string path = index_path("lanes", i);
       auto* name = element.as_string();
       if (!name || std::find(lane_names().begin(), lane_names().end(), name->get()) == lane_names().end()) {
-        std::string message = fmt::format("{}: expected one of {}, got {}", path, fmt::join(lane_names(), ", "), describe(element));
+        std::string message =
+            fmt::format("{}: expected one of {}, got {}", path, fmt::join(lane_names(), ", "), describe(element));
         if (name) {
           if (auto suggestion = nearest(name->get(), lane_names()))
             message += fmt::format("; did you mean \"{}\"?", *suggestion);
@@ -235,8 +245,8 @@ class SceneReader : SceneValueReader {
     }
 
     if (const toml::node* node = table.get("fov_y")) {
-      if (auto value = float_value(*node, "camera.fov_y", "a number in (0, 180)",
-                                   [](double v) { return v > 0.0 && v < 180.0; }))
+      if (auto value =
+              float_value(*node, "camera.fov_y", "a number in (0, 180)", [](double v) { return v > 0.0 && v < 180.0; }))
         camera.fov_y_degrees = *value;
     } else {
       missing(table, "camera.fov_y", "a number in (0, 180)");
@@ -261,16 +271,20 @@ class SceneReader : SceneValueReader {
   }
 
   void read_light(const toml::table& table, const std::string& path, Scene& scene) {
-    check_keys(table, path, {"type", "direction", "position", "range", "spot_angle", "color", "intensity", "shadows",
-                             "shadow_strength", "shadow_bias", "shadow_normal_bias", "shadow_resolution"});
+    check_keys(table, path,
+               {"type", "direction", "position", "range", "spot_angle", "color", "intensity", "shadows",
+                "shadow_strength", "shadow_bias", "shadow_normal_bias", "shadow_resolution"});
     Light light;
     bool ok = true;
     const char* const types = "\"directional\", \"point\" or \"spot\"";
     if (const toml::node* node = table.get("type")) {
       auto* type = node->as_string();
-      if (type && type->get() == "directional") light.type = LightType::Directional;
-      else if (type && type->get() == "point") light.type = LightType::Point;
-      else if (type && type->get() == "spot") light.type = LightType::Spot;
+      if (type && type->get() == "directional")
+        light.type = LightType::Directional;
+      else if (type && type->get() == "point")
+        light.type = LightType::Point;
+      else if (type && type->get() == "spot")
+        light.type = LightType::Spot;
       else {
         expected(*node, path + ".type", types);
         ok = false;
@@ -285,7 +299,9 @@ class SceneReader : SceneValueReader {
     const auto not_for = [&](const char* key, const char* kinds) {
       if (const toml::node* node = table.get(key)) {
         report(node->source(), fmt::format("{}.{} is for {} lights; a {} light has none", path, key, kinds,
-                                 light.type == LightType::Directional ? "directional" : light.type == LightType::Point ? "point" : "spot"));
+                                           light.type == LightType::Directional ? "directional"
+                                           : light.type == LightType::Point     ? "point"
+                                                                                : "spot"));
         ok = false;
       }
     };
@@ -310,16 +326,21 @@ class SceneReader : SceneValueReader {
       ok = false;
     }
     if (const toml::node* node = positioned ? table.get("position") : nullptr) {
-      if (auto position = point(*node, path + ".position")) light.position = *position;
-      else ok = false;
+      if (auto position = point(*node, path + ".position"))
+        light.position = *position;
+      else
+        ok = false;
     } else if (positioned) {
       missing(table, path + ".position", "an array of 3 numbers");
       ok = false;
     }
-    if (positioned) ok &= optional_float(table, "range", path, "a number > 0", [](double v) { return v > 0.0; }, light.range);
+    if (positioned)
+      ok &= optional_float(
+          table, "range", path, "a number > 0", [](double v) { return v > 0.0; }, light.range);
     if (light.type == LightType::Spot)
-      ok &= optional_float(table, "spot_angle", path, "a number of degrees in (0, 180)", [](double v) { return v > 0.0 && v < 180.0; },
-                   light.spot_angle);
+      ok &= optional_float(
+          table, "spot_angle", path, "a number of degrees in (0, 180)", [](double v) { return v > 0.0 && v < 180.0; },
+          light.spot_angle);
     if (const toml::node* node = table.get("color")) {
       if (auto value = colour(*node, path + ".color")) light.color = *value;
     }
@@ -328,42 +349,51 @@ class SceneReader : SceneValueReader {
     if (ok) scene.lights.push_back(light);
   }
 
-  void read_shadows(const toml::table& table, const std::string& path, const std::vector<std::string>& lanes, Light& light,
-                    bool& ok) {
+  void read_shadows(const toml::table& table, const std::string& path, const std::vector<std::string>& lanes,
+                    Light& light, bool& ok) {
     if (const toml::node* node = table.get("shadows")) {
       auto* mode = node->as_string();
-      if (mode && mode->get() == "none") light.shadows = Light::Shadows::None;
-      else if (mode && mode->get() == "hard") light.shadows = Light::Shadows::Hard;
-      else if (mode && mode->get() == "soft") light.shadows = Light::Shadows::Soft;
+      if (mode && mode->get() == "none")
+        light.shadows = Light::Shadows::None;
+      else if (mode && mode->get() == "hard")
+        light.shadows = Light::Shadows::Hard;
+      else if (mode && mode->get() == "soft")
+        light.shadows = Light::Shadows::Soft;
       else {
         expected(*node, path + ".shadows", "\"none\", \"hard\" or \"soft\"");
         ok = false;
       }
-      if (ok && light.shadows == Light::Shadows::Soft && std::find(lanes.begin(), lanes.end(), "vk-hlsl") != lanes.end()) {
+      if (ok && light.shadows == Light::Shadows::Soft &&
+          std::find(lanes.begin(), lanes.end(), "vk-hlsl") != lanes.end()) {
         report(node->source(),
-               fmt::format("{}.shadows: \"soft\" is not drawn on the vk-hlsl lane: a soft shadow's comparisons are filtered "
-                           "linearly, which lavapipe cannot do for a depth texture, and glslang's HLSL output cannot do "
-                           "in the shader as xshade's does on vk; list the lanes without it (lanes = [\"gl\", \"vk\"]) or "
-                           "use \"hard\"",
-                           path));
+               fmt::format(
+                   "{}.shadows: \"soft\" is not drawn on the vk-hlsl lane: a soft shadow's comparisons are filtered "
+                   "linearly, which lavapipe cannot do for a depth texture, and glslang's HLSL output cannot do "
+                   "in the shader as xshade's does on vk; list the lanes without it (lanes = [\"gl\", \"vk\"]) or "
+                   "use \"hard\"",
+                   path));
         ok = false;
       }
       if (ok && light.shadows != Light::Shadows::None && light.type == LightType::Point) {
-        report(node->source(), fmt::format("{}.shadows: a point light's shadows are not rendered yet (a cube map of six "
-                                           "views); directional and spot lights cast shadows",
-                                           path));
+        report(node->source(),
+               fmt::format("{}.shadows: a point light's shadows are not rendered yet (a cube map of six "
+                           "views); directional and spot lights cast shadows",
+                           path));
         ok = false;
       }
     }
-    ok &= optional_float(table, "shadow_strength", path, "a number in [0, 1]", [](double v) { return v >= 0.0 && v <= 1.0; },
-                 light.shadow_strength);
+    ok &= optional_float(
+        table, "shadow_strength", path, "a number in [0, 1]", [](double v) { return v >= 0.0 && v <= 1.0; },
+        light.shadow_strength);
     const auto bias_range = [](double v) { return v >= 0.0 && v <= 10.0; };
     ok &= optional_float(table, "shadow_bias", path, "a number of texels in [0, 10]", bias_range, light.shadow_bias);
-    ok &= optional_float(table, "shadow_normal_bias", path, "a number of texels in [0, 10]", bias_range, light.shadow_normal_bias);
+    ok &= optional_float(table, "shadow_normal_bias", path, "a number of texels in [0, 10]", bias_range,
+                         light.shadow_normal_bias);
     if (const toml::node* node = table.get("shadow_resolution")) {
       const auto* size = node->as_integer();
       const int64_t n = size ? size->get() : 0;
-      if (n >= 64 && n <= 4096 && (n & (n - 1)) == 0) light.shadow_resolution = static_cast<uint32_t>(n);
+      if (n >= 64 && n <= 4096 && (n & (n - 1)) == 0)
+        light.shadow_resolution = static_cast<uint32_t>(n);
       else {
         expected(*node, path + ".shadow_resolution", "a power of two from 64 to 4096");
         ok = false;
@@ -376,10 +406,14 @@ class SceneReader : SceneValueReader {
     const char* const modes = "\"linear\", \"exponential\" or \"exponential_squared\"";
     if (const toml::node* node = table.get("mode")) {
       const auto* name = node->as_string();
-      if (name && name->get() == "linear") fog.mode = FogMode::Linear;
-      else if (name && name->get() == "exponential") fog.mode = FogMode::Exponential;
-      else if (name && name->get() == "exponential_squared") fog.mode = FogMode::ExponentialSquared;
-      else expected(*node, "fog.mode", modes);
+      if (name && name->get() == "linear")
+        fog.mode = FogMode::Linear;
+      else if (name && name->get() == "exponential")
+        fog.mode = FogMode::Exponential;
+      else if (name && name->get() == "exponential_squared")
+        fog.mode = FogMode::ExponentialSquared;
+      else
+        expected(*node, "fog.mode", modes);
     }
     if (const toml::node* node = table.get("color")) {
       if (auto value = vector<4>(*node, "fog.color", "a number >= 0", non_negative)) fog.color = *value;
@@ -582,9 +616,9 @@ class SceneReader : SceneValueReader {
     // A map, not a search of the objects before: a file of many thousand objects reads in
     // linear time.
     if (auto [earlier, added] = object_names_.emplace(object.name, index); !added) {
-      report(name_node ? name_node->source() : table.source(),
-             fmt::format("{}.name: {} is already the name of object[{}]", path, quote_text(object.name),
-                         earlier->second));
+      report(
+          name_node ? name_node->source() : table.source(),
+          fmt::format("{}.name: {} is already the name of object[{}]", path, quote_text(object.name), earlier->second));
     }
 
     if (const toml::node* node = table.get("mesh")) {
@@ -790,7 +824,8 @@ class SceneReader : SceneValueReader {
   void record_locations(const toml::table& table, SceneLocations& locations) {
     for (std::string_view group : {"properties", "parameters", "textures", "buffers"})
       if (const toml::table* names = table.get_as<toml::table>(group))
-        for (auto&& [key, value] : *names) locations.at[std::string(group) + "." + std::string(key.str())] = where(key.source());
+        for (auto&& [key, value] : *names)
+          locations.at[std::string(group) + "." + std::string(key.str())] = where(key.source());
     if (const toml::table* grid = table.get_as<toml::table>("grid"))
       if (const toml::table* vary = grid->get_as<toml::table>("vary"))
         for (auto&& [key, value] : *vary) locations.at["grid.vary." + std::string(key.str())] = where(key.source());
@@ -877,8 +912,9 @@ class SceneReader : SceneValueReader {
       }
       const std::string& step_name = step.name.empty() ? step.pass : step.name;
       if (!step_name.empty() && !names.insert(step_name).second)
-        report(element.source(), fmt::format("{}: a step named '{}' comes earlier; give this one its own name = \"...\"",
-                                             element_path, step_name));
+        report(element.source(),
+               fmt::format("{}: a step named '{}' comes earlier; give this one its own name = \"...\"", element_path,
+                           step_name));
       steps.push_back(std::move(step));
     }
   }

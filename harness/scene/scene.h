@@ -19,7 +19,7 @@
 #include <glm/glm.hpp>
 
 #include "base/result.h"
-#include "harness/image/image_compare.h"  // CompareSettings
+#include "harness/image/image_compare.h"    // CompareSettings
 #include "shaderlab/compile_environment.h"  // UnityPlatform
 
 namespace xshade::harness {
@@ -49,10 +49,12 @@ enum class LightType { Directional, Point, Spot };
 // A light as Unity's built-in forward renderer has one (docs/scenes.md, [[light]]).
 struct Light {
   LightType type = LightType::Directional;
-  glm::vec3 direction{0.0f, 1.0f, 0.0f};  // unit length, pointing toward the light (the shaders' l); a spot's points back along its axis
-  glm::vec3 position{0.0f};               // Point, Spot
-  float range = 10.0f;                    // Point, Spot: where its light ends
-  float spot_angle = 30.0f;               // Spot: the cone's full angle, in degrees, in (0, 180)
+  glm::vec3 direction{
+      0.0f, 1.0f,
+      0.0f};  // unit length, pointing toward the light (the shaders' l); a spot's points back along its axis
+  glm::vec3 position{0.0f};  // Point, Spot
+  float range = 10.0f;       // Point, Spot: where its light ends
+  float spot_angle = 30.0f;  // Spot: the cone's full angle, in degrees, in (0, 180)
   glm::vec3 color{1.0f};
   float intensity = 1.0f;
   // Shadows, as Unity's Light has them (a directional or spot light's): none, hard (one
@@ -94,8 +96,8 @@ enum class FogMode { Linear, Exponential, ExponentialSquared };
 struct FogSpec {
   FogMode mode = FogMode::ExponentialSquared;
   glm::vec4 color{0.5f, 0.5f, 0.5f, 1.0f};  // linear RGBA, as unity_FogColor holds it
-  float density = 0.01f;                   // Exponential and ExponentialSquared
-  float start = 0.0f, end = 300.0f;        // Linear: distances from the camera
+  float density = 0.01f;                    // Exponential and ExponentialSquared
+  float start = 0.0f, end = 300.0f;         // Linear: distances from the camera
 };
 // The keyword Unity's shaders test for `mode` (FOG_LINEAR, FOG_EXP, FOG_EXP2).
 const char* fog_keyword(FogMode mode);
@@ -131,7 +133,7 @@ struct TextureRef {
   TextureOrigin source = TextureOrigin::White;
   std::filesystem::path file;                // File: absolute and normalised, inside the scene's folder
   std::vector<std::filesystem::path> faces;  // Faces: +x, -x, +y, -y, +z, -z, each like `file`
-  bool srgb = true;  // an 8-bit file's colour is sRGB-encoded (Unity's default); false: linear data
+  bool srgb = true;      // an 8-bit file's colour is sRGB-encoded (Unity's default); false: linear data
   SourceLocation where;  // the value in the scene file, for errors found when the texture is made
 
   // The same texture, wherever the scene names it.
@@ -185,8 +187,8 @@ struct VaryRule {
 };
 
 struct GridSpec {
-  uint32_t rows = 1;  // 1..64; row 0 is the top row
-  uint32_t cols = 1;  // 1..64; column 0 is the leftmost
+  uint32_t rows = 1;        // 1..64; row 0 is the top row
+  uint32_t cols = 1;        // 1..64; column 0 is the leftmost
   glm::vec2 spacing{1.0f};  // distance between neighbouring centres along x (cols) and y (rows)
   std::map<std::string, VaryRule> vary;
 };
@@ -210,8 +212,8 @@ struct SceneObject {
 // Graphics.Blit(source, destination, material, pass): the pass by its index or Name, into an image
 // of its own that later steps read by the step's name.
 struct PostStep {
-  std::string pass;  // the pass's index ("0", "1", ...) or Name, as written
-  std::string name;  // what later steps call its image; empty: the pass as written
+  std::string pass;   // the pass's index ("0", "1", ...) or Name, as written
+  std::string name;   // what later steps call its image; empty: the pass as written
   bool half = false;  // at half the scene's size
   // Each texture's source: "scene.color", "scene.depth" or an earlier step's name. _MainTex that
   // is not given reads the step before (the image the effect receives, for the first).
@@ -231,11 +233,11 @@ struct PostEffect {
 };
 
 struct Scene {
-  std::string name;             // the file's stem
-  std::filesystem::path path;   // the file as it was named to the loader
+  std::string name;            // the file's stem
+  std::filesystem::path path;  // the file as it was named to the loader
   std::string description;
-  uint32_t width = 0;           // 1..4096
-  uint32_t height = 0;          // 1..4096
+  uint32_t width = 0;              // 1..4096
+  uint32_t height = 0;             // 1..4096
   std::vector<std::string> lanes;  // a subset of "gl", "vk", "vk-hlsl" in the order written
   // Each lane's render stops after this long instead of the run's --timeout; set with a reason.
   std::optional<double> timeout_seconds = std::nullopt;

@@ -80,11 +80,11 @@ Result<void> check_scene_work(const Scene& scene) {
   }
   if (draws * pixels > kMaxScenePixelDraws) {
     const Step& step = passing(kMaxScenePixelDraws, pixels);
-    return fail(fmt::format("{}: here the scene passes {} pixel-draws (draws times the {} x {} = {} pixels each may "
-                            "cover), the most a scene may make; it makes {} in all ({} draws: {})",
-                            step.path, kMaxScenePixelDraws, scene.width, scene.height, pixels, draws * pixels, draws,
-                            counted),
-                step.where);
+    return fail(
+        fmt::format("{}: here the scene passes {} pixel-draws (draws times the {} x {} = {} pixels each may "
+                    "cover), the most a scene may make; it makes {} in all ({} draws: {})",
+                    step.path, kMaxScenePixelDraws, scene.width, scene.height, pixels, draws * pixels, draws, counted),
+        step.where);
   }
   return {};
 }
@@ -103,8 +103,7 @@ std::optional<TextureOrigin> built_in_texture(std::string_view name) {
       {"white", TextureOrigin::White},     {"black", TextureOrigin::Black},
       {"checker", TextureOrigin::Checker}, {"normal", TextureOrigin::Normal},
       {"gray", TextureOrigin::Gray},       {"red", TextureOrigin::Red},
-      {"clear", TextureOrigin::Clear},
-      {"environment", TextureOrigin::Environment}};
+      {"clear", TextureOrigin::Clear},     {"environment", TextureOrigin::Environment}};
   for (const auto& [built_in, origin] : built_ins)
     if (name == built_in) return origin;
   return std::nullopt;
@@ -130,8 +129,7 @@ std::vector<ObjectInstance> expand_instances(const Scene& scene) {
         instance.col = col;
         for (const auto& [name, rule] : grid.vary) {
           bool along_rows = rule.along == GridAxis::Rows;
-          instance.properties[name] =
-              interpolate(rule, along_rows ? row : col, along_rows ? grid.rows : grid.cols);
+          instance.properties[name] = interpolate(rule, along_rows ? row : col, along_rows ? grid.rows : grid.cols);
         }
         instances.push_back(std::move(instance));
       }

@@ -1,3 +1,5 @@
+// Why this file is long: one case per table and key of the scene format (docs/scenes.md), each
+// with the mistakes a user makes in it, read as the format's list.
 #include "harness/scene/scene.h"
 
 #include <filesystem>
@@ -5,8 +7,8 @@
 #include <string>
 #include <vector>
 
-#include <glm/gtc/matrix_transform.hpp>
 #include <gtest/gtest.h>
+#include <glm/gtc/matrix_transform.hpp>
 
 namespace xshade::harness {
 namespace {
@@ -177,8 +179,7 @@ reason = "edges of the spheres alias differently on the two rasterisers"
   ASSERT_EQ(balls.textures.size(), 3u);
   EXPECT_EQ(balls.textures.at("_MainTex"), texture_ref(TextureOrigin::White));
   EXPECT_EQ(balls.textures.at("_BumpMap"), texture_ref(TextureOrigin::Normal));
-  EXPECT_EQ(balls.textures.at("_DetailTex"),
-            texture_ref(TextureOrigin::File, "/project/scenes/textures/detail.png"));
+  EXPECT_EQ(balls.textures.at("_DetailTex"), texture_ref(TextureOrigin::File, "/project/scenes/textures/detail.png"));
   ASSERT_TRUE(balls.grid);
   EXPECT_EQ(balls.grid->rows, 5u);
   EXPECT_EQ(balls.grid->cols, 4u);
@@ -268,12 +269,14 @@ TEST(SceneParse, TheUnityPlatformIsGlCoreUnlessTheSceneNamesOneAndOnlyForShaderF
   EXPECT_EQ(errors_of(minimal_head + "[unity]\nplatform = \"metal\"\n"),
             (std::vector<std::string>{"scenes/bad.toml:10:12: error: unity.platform: expected \"glcore\", \"d3d11\" or "
                                       "\"vulkan\", got \"metal\""}));
-  const std::vector<std::string> mixed = errors_of(minimal_head + "[unity]\nplatform = \"d3d11\"\n" + shader_object +
-                                                   "[[object]]\nname = \"own\"\nmesh = \"cube\"\nmaterial = \"materials/toon.hlsl\"\n");
+  const std::vector<std::string> mixed =
+      errors_of(minimal_head + "[unity]\nplatform = \"d3d11\"\n" + shader_object +
+                "[[object]]\nname = \"own\"\nmesh = \"cube\"\nmaterial = \"materials/toon.hlsl\"\n");
   ASSERT_EQ(mixed.size(), 1u);
-  EXPECT_TRUE(mixed[0].starts_with("scenes/bad.toml:10:12: error: unity.platform: \"d3d11\" is for scenes whose materials "
-                                   "and effects are all Unity .shader files, and object 'own''s material is "
-                                   "'materials/toon.hlsl'"))
+  EXPECT_TRUE(
+      mixed[0].starts_with("scenes/bad.toml:10:12: error: unity.platform: \"d3d11\" is for scenes whose materials "
+                           "and effects are all Unity .shader files, and object 'own''s material is "
+                           "'materials/toon.hlsl'"))
       << mixed[0];
 }
 
@@ -293,14 +296,16 @@ TEST(SceneParse, FogTakesUnitysModesAndDefaults) {
   expect_near(defaults.fog->color, {0.5f, 0.5f, 0.5f, 1.0f});
   EXPECT_STREQ(fog_keyword(FogMode::Exponential), "FOG_EXP");
 
-  EXPECT_EQ(errors_of(minimal_head + "[fog]\nmode = \"mist\"\ndensity = -1\n"),
-            (std::vector<std::string>{
-                "scenes/bad.toml:10:8: error: fog.mode: expected \"linear\", \"exponential\" or \"exponential_squared\", "
-                "got \"mist\"",
-                "scenes/bad.toml:11:11: error: fog.density: expected a number >= 0, got -1"}));
-  EXPECT_EQ(errors_of(minimal_head + "[fog]\nmode = \"linear\"\nstart = 5\nend = 5\n"),
-            (std::vector<std::string>{"scenes/bad.toml:9:1: error: fog: linear fog ends where it starts or before (5 to 5): "
-                                      "give an end beyond the start"}));
+  EXPECT_EQ(
+      errors_of(minimal_head + "[fog]\nmode = \"mist\"\ndensity = -1\n"),
+      (std::vector<std::string>{
+          "scenes/bad.toml:10:8: error: fog.mode: expected \"linear\", \"exponential\" or \"exponential_squared\", "
+          "got \"mist\"",
+          "scenes/bad.toml:11:11: error: fog.density: expected a number >= 0, got -1"}));
+  EXPECT_EQ(
+      errors_of(minimal_head + "[fog]\nmode = \"linear\"\nstart = 5\nend = 5\n"),
+      (std::vector<std::string>{"scenes/bad.toml:9:1: error: fog: linear fog ends where it starts or before (5 to 5): "
+                                "give an end beyond the start"}));
 }
 
 TEST(SceneParse, ACompareTableWithOnlyAReasonGivesNoTolerance) {
@@ -318,8 +323,9 @@ TEST(SceneErrors, SyntaxErrorIsReportedWhereTomlStops) {
 TEST(SceneErrors, WrongTypeNamesTheKeyAndWhatWasFound) {
   std::string text = minimal_head;
   text.replace(text.find("fov_y = 40"), 10, "fov_y = \"wide\"");
-  EXPECT_EQ(errors_of(text), (std::vector<std::string>{
-                                 "scenes/bad.toml:6:9: error: camera.fov_y: expected a number in (0, 180), got \"wide\""}));
+  EXPECT_EQ(errors_of(text),
+            (std::vector<std::string>{
+                "scenes/bad.toml:6:9: error: camera.fov_y: expected a number in (0, 180), got \"wide\""}));
 }
 
 TEST(SceneErrors, OutOfRangeValues) {
@@ -369,7 +375,8 @@ _Lut = "luts/film.cube"
 }
 
 TEST(SceneErrors, TextureTablesAreChecked) {
-  EXPECT_EQ(errors_of(minimal_head + R"(
+  EXPECT_EQ(
+      errors_of(minimal_head + R"(
 [[object]]
 mesh = "cube"
 material = "materials/unlit.hlsl"
@@ -385,23 +392,23 @@ effect = "post/grade.hlsl"
 [post.textures]
 _G = { faces = ["a.png", "b.png", "c.png", "d.png", "e.png", "../f.png"] }
 )"),
-            (std::vector<std::string>{
-                "scenes/bad.toml:14:16: error: object[0].textures._A.faces: expected an array of 6 image paths: +x, -x, "
-                "+y, -y, +z, -z, got [\"a.png\", \"b.png\"]",
-                "scenes/bad.toml:15:32: error: object[0].textures._B: give either file or faces, not both",
-                "scenes/bad.toml:16:31: error: object[0].textures._C.srgb: expected true (8-bit colour is sRGB-encoded) "
-                "or false (linear data), got \"no\"",
-                "scenes/bad.toml:17:6: error: object[0].textures._D.file: missing; expected an image path (or faces = "
-                "[6 image paths])",
-                "scenes/bad.toml:17:8: error: object[0].textures._D.fil: unknown key; did you mean file?",
-                "scenes/bad.toml:18:6: error: object[0].textures._E.file: missing; expected an image path (or faces = "
-                "[6 image paths])",
-                "scenes/bad.toml:19:6: error: object[0].textures._F: expected white, black, checker, normal, "
-                "gray, red, clear, environment, an image path or a table (file or faces), got \"enviroment\"; did you mean "
-                "\"environment\"?",
-                "scenes/bad.toml:23:62: error: post[0].textures._G.faces[5]: expected a path inside the scene file's "
-                "folder, got \"../f.png\", which leads out of it",
-            }));
+      (std::vector<std::string>{
+          "scenes/bad.toml:14:16: error: object[0].textures._A.faces: expected an array of 6 image paths: +x, -x, "
+          "+y, -y, +z, -z, got [\"a.png\", \"b.png\"]",
+          "scenes/bad.toml:15:32: error: object[0].textures._B: give either file or faces, not both",
+          "scenes/bad.toml:16:31: error: object[0].textures._C.srgb: expected true (8-bit colour is sRGB-encoded) "
+          "or false (linear data), got \"no\"",
+          "scenes/bad.toml:17:6: error: object[0].textures._D.file: missing; expected an image path (or faces = "
+          "[6 image paths])",
+          "scenes/bad.toml:17:8: error: object[0].textures._D.fil: unknown key; did you mean file?",
+          "scenes/bad.toml:18:6: error: object[0].textures._E.file: missing; expected an image path (or faces = "
+          "[6 image paths])",
+          "scenes/bad.toml:19:6: error: object[0].textures._F: expected white, black, checker, normal, "
+          "gray, red, clear, environment, an image path or a table (file or faces), got \"enviroment\"; did you mean "
+          "\"environment\"?",
+          "scenes/bad.toml:23:62: error: post[0].textures._G.faces[5]: expected a path inside the scene file's "
+          "folder, got \"../f.png\", which leads out of it",
+      }));
 }
 
 TEST(SceneParse, BuffersAreNumbersOrAFileInTheScenesFolder) {
@@ -422,7 +429,8 @@ words = "data/words.bin"
 }
 
 TEST(SceneErrors, BufferValuesAreChecked) {
-  EXPECT_EQ(errors_of(minimal_head + R"(
+  EXPECT_EQ(
+      errors_of(minimal_head + R"(
 [[object]]
 mesh = "plane"
 material = "materials/unlit.hlsl"
@@ -431,13 +439,13 @@ a = []
 b = [1, true]
 c = "../outside.bin"
 )"),
-            (std::vector<std::string>{
-                "scenes/bad.toml:14:5: error: object[0].buffers.a: expected an array of numbers or the path of a file of "
-                "the buffer's bytes, got an empty array",
-                "scenes/bad.toml:15:9: error: object[0].buffers.b: expected numbers only, got true",
-                "scenes/bad.toml:16:5: error: object[0].buffers.c: expected a path inside the scene file's folder, got "
-                "\"../outside.bin\", which leads out of it",
-            }));
+      (std::vector<std::string>{
+          "scenes/bad.toml:14:5: error: object[0].buffers.a: expected an array of numbers or the path of a file of "
+          "the buffer's bytes, got an empty array",
+          "scenes/bad.toml:15:9: error: object[0].buffers.b: expected numbers only, got true",
+          "scenes/bad.toml:16:5: error: object[0].buffers.c: expected a path inside the scene file's folder, got "
+          "\"../outside.bin\", which leads out of it",
+      }));
 }
 
 TEST(SceneParse, AShaderEffectsPassesAreItsBlitsInOrder) {
@@ -460,7 +468,8 @@ passes = [0, "Downsample", { pass = 2, name = "blurred", scale = "half", sources
 }
 
 TEST(SceneErrors, PostStepsAreCheckedEachAtItsPlace) {
-  EXPECT_EQ(errors_of(minimal_head + R"(
+  EXPECT_EQ(
+      errors_of(minimal_head + R"(
 [[post]]
 effect = "Hidden/Blur.shader"
 passes = [-1, "", 0, 0, { name = "x" }, { pass = 1, scale = "quarter", sources = { _A = "later", _B = 3 } }]
@@ -468,22 +477,22 @@ passes = [-1, "", 0, 0, { name = "x" }, { pass = 1, scale = "quarter", sources =
 effect = "Hidden/Copy.shader"
 passes = []
 )"),
-            (std::vector<std::string>{
-                "scenes/bad.toml:12:11: error: post[0].passes[0]: expected a pass's index (0 to 1023) or Name, or a table "
-                "{ pass = ..., name, scale, sources }, got -1",
-                "scenes/bad.toml:12:15: error: post[0].passes[1]: expected a pass's index (0 to 1023) or Name, or a table "
-                "{ pass = ..., name, scale, sources }, got \"\"",
-                "scenes/bad.toml:12:22: error: post[0].passes[3]: a step named '0' comes earlier; give this one its own "
-                "name = \"...\"",
-                "scenes/bad.toml:12:25: error: post[0].passes[4].pass: missing; expected the pass's index or Name",
-                "scenes/bad.toml:12:61: error: post[0].passes[5].scale: expected \"full\" or \"half\", got \"quarter\"",
-                "scenes/bad.toml:12:89: error: post[0].passes[5].sources._A: expected \"scene.color\", \"scene.depth\" or "
-                "the name of an earlier step, got \"later\"",
-                "scenes/bad.toml:12:103: error: post[0].passes[5].sources._B: expected \"scene.color\", \"scene.depth\" or "
-                "an earlier step's name, got 3",
-                "scenes/bad.toml:15:10: error: post[1].passes: expected an array of passes, each an index, a Name or a "
-                "table { pass = ..., name, scale, sources }, got an empty array",
-            }));
+      (std::vector<std::string>{
+          "scenes/bad.toml:12:11: error: post[0].passes[0]: expected a pass's index (0 to 1023) or Name, or a table "
+          "{ pass = ..., name, scale, sources }, got -1",
+          "scenes/bad.toml:12:15: error: post[0].passes[1]: expected a pass's index (0 to 1023) or Name, or a table "
+          "{ pass = ..., name, scale, sources }, got \"\"",
+          "scenes/bad.toml:12:22: error: post[0].passes[3]: a step named '0' comes earlier; give this one its own "
+          "name = \"...\"",
+          "scenes/bad.toml:12:25: error: post[0].passes[4].pass: missing; expected the pass's index or Name",
+          "scenes/bad.toml:12:61: error: post[0].passes[5].scale: expected \"full\" or \"half\", got \"quarter\"",
+          "scenes/bad.toml:12:89: error: post[0].passes[5].sources._A: expected \"scene.color\", \"scene.depth\" or "
+          "the name of an earlier step, got \"later\"",
+          "scenes/bad.toml:12:103: error: post[0].passes[5].sources._B: expected \"scene.color\", \"scene.depth\" or "
+          "an earlier step's name, got 3",
+          "scenes/bad.toml:15:10: error: post[1].passes: expected an array of passes, each an index, a Name or a "
+          "table { pass = ..., name, scale, sources }, got an empty array",
+      }));
 }
 
 TEST(SceneErrors, TimeIsSecondsFromZeroOn) {
@@ -494,7 +503,8 @@ TEST(SceneErrors, TimeIsSecondsFromZeroOn) {
 TEST(SceneErrors, UnknownKeysAreAllReportedWithTheNearestKnownKey) {
   std::string text = minimal_head;
   text.replace(text.find("fov_y = 40"), 10, "fvo_y = 40");
-  EXPECT_EQ(errors_of("discription = \"typo\"\n" + text + "zoom = 2\n[[object]]\nmesh = \"sphere\"\n"
+  EXPECT_EQ(errors_of("discription = \"typo\"\n" + text +
+                      "zoom = 2\n[[object]]\nmesh = \"sphere\"\n"
                       "material = \"m.hlsl\"\ncolour = [1, 1, 1]\n"),
             (std::vector<std::string>{
                 "scenes/bad.toml:1:1: error: discription: unknown key; did you mean description?",
@@ -563,7 +573,8 @@ _Detail = "whte"
                 "scenes/bad.toml:16:12: error: object[0].textures._MainTex: expected a path inside the scene file's "
                 "folder, got \"../../etc/passwd.png\", which leads out of it",
                 "scenes/bad.toml:17:11: error: object[0].textures._Detail: expected white, black, checker, normal, "
-                "gray, red, clear, environment, an image path or a table (file or faces), got \"whte\"; did you mean \"white\"?",
+                "gray, red, clear, environment, an image path or a table (file or faces), got \"whte\"; did you mean "
+                "\"white\"?",
             }));
 }
 
@@ -574,9 +585,10 @@ TEST(SceneErrors, LightDirectionMustNotBeZero) {
 }
 
 TEST(Scene, PointAndSpotLightsHaveAPositionARangeAndASpotAngle) {
-  auto scene = parse_scene(minimal_head + "[[light]]\ntype = \"point\"\nposition = [1, 2, 3]\nrange = 4\n"
-                                          "[[light]]\ntype = \"spot\"\nposition = [0, 5, 0]\ndirection = [0, 2, 0]\n"
-                                          "spot_angle = 40\nintensity = 2\n[unity]\npixel_lights = 1\n",
+  auto scene = parse_scene(minimal_head +
+                               "[[light]]\ntype = \"point\"\nposition = [1, 2, 3]\nrange = 4\n"
+                               "[[light]]\ntype = \"spot\"\nposition = [0, 5, 0]\ndirection = [0, 2, 0]\n"
+                               "spot_angle = 40\nintensity = 2\n[unity]\npixel_lights = 1\n",
                            "scenes/lights.toml");
   ASSERT_TRUE(scene) << scene.error().to_string();
   ASSERT_EQ(scene->lights.size(), 2u);
@@ -591,39 +603,45 @@ TEST(Scene, PointAndSpotLightsHaveAPositionARangeAndASpotAngle) {
 }
 
 TEST(SceneErrors, ALightKeyOfAnotherKindOfLightIsAnError) {
-  EXPECT_EQ(errors_of(minimal_head + "[[light]]\ntype = \"point\"\nposition = [0, 1, 0]\ndirection = [0, 1, 0]\n"),
-            (std::vector<std::string>{"scenes/bad.toml:12:13: error: light[0].direction is for directional and spot lights; "
-                                      "a point light has none"}));
+  EXPECT_EQ(
+      errors_of(minimal_head + "[[light]]\ntype = \"point\"\nposition = [0, 1, 0]\ndirection = [0, 1, 0]\n"),
+      (std::vector<std::string>{"scenes/bad.toml:12:13: error: light[0].direction is for directional and spot lights; "
+                                "a point light has none"}));
   EXPECT_EQ(errors_of(minimal_head + "[[light]]\ntype = \"directional\"\ndirection = [0, 1, 0]\nrange = 3\n"),
             (std::vector<std::string>{"scenes/bad.toml:12:9: error: light[0].range is for point and spot lights; "
                                       "a directional light has none"}));
-  EXPECT_EQ(errors_of(minimal_head + "[[light]]\ntype = \"spot\"\nposition = [0, 1, 0]\ndirection = [0, 1, 0]\n"
-                                     "spot_angle = 180\n"),
-            (std::vector<std::string>{"scenes/bad.toml:13:14: error: light[0].spot_angle: expected a number of degrees in "
-                                      "(0, 180), got 180"}));
+  EXPECT_EQ(
+      errors_of(minimal_head + "[[light]]\ntype = \"spot\"\nposition = [0, 1, 0]\ndirection = [0, 1, 0]\n"
+                               "spot_angle = 180\n"),
+      (std::vector<std::string>{"scenes/bad.toml:13:14: error: light[0].spot_angle: expected a number of degrees in "
+                                "(0, 180), got 180"}));
   EXPECT_EQ(errors_of(minimal_head + "[[light]]\ntype = \"point\"\n"),
-            (std::vector<std::string>{"scenes/bad.toml:9:1: error: light[0].position: missing; expected an array of 3 numbers"}));
+            (std::vector<std::string>{
+                "scenes/bad.toml:9:1: error: light[0].position: missing; expected an array of 3 numbers"}));
 }
 
 TEST(SceneErrors, ShadowsNotRenderedYetAreErrorsThatSayWhy) {
   const std::vector<std::string> point =
       errors_of(minimal_head + "[[light]]\ntype = \"point\"\nposition = [0, 1, 0]\nshadows = \"hard\"\n");
   ASSERT_EQ(point.size(), 1u);
-  EXPECT_NE(point[0].find("light[0].shadows: a point light's shadows are not rendered yet"), std::string::npos) << point[0];
+  EXPECT_NE(point[0].find("light[0].shadows: a point light's shadows are not rendered yet"), std::string::npos)
+      << point[0];
   // Soft shadows on every lane (the default lanes): vk-hlsl cannot filter them.
   const std::vector<std::string> soft =
       errors_of(minimal_head + "[[light]]\ntype = \"directional\"\ndirection = [0, 1, 0]\nshadows = \"soft\"\n");
   ASSERT_EQ(soft.size(), 1u);
   EXPECT_NE(soft[0].find("light[0].shadows: \"soft\" is not drawn on the vk-hlsl lane"), std::string::npos) << soft[0];
-  auto without_vk_hlsl = parse_scene("lanes = [\"gl\", \"vk\"]\n" + minimal_head +
-                                         "[[light]]\ntype = \"directional\"\ndirection = [0, 1, 0]\nshadows = \"soft\"\n",
-                                     "scenes/soft.toml");
+  auto without_vk_hlsl =
+      parse_scene("lanes = [\"gl\", \"vk\"]\n" + minimal_head +
+                      "[[light]]\ntype = \"directional\"\ndirection = [0, 1, 0]\nshadows = \"soft\"\n",
+                  "scenes/soft.toml");
   ASSERT_TRUE(without_vk_hlsl) << without_vk_hlsl.error().to_string();
   EXPECT_EQ(without_vk_hlsl->lights.at(0).shadows, Light::Shadows::Soft);
-  EXPECT_EQ(errors_of(minimal_head + "[[light]]\ntype = \"spot\"\nposition = [0, 1, 0]\ndirection = [0, 1, 0]\n"
-                                     "shadows = \"hard\"\nshadow_resolution = 1000\n"),
-            (std::vector<std::string>{"scenes/bad.toml:14:21: error: light[0].shadow_resolution: expected a power of two "
-                                      "from 64 to 4096, got 1000"}));
+  EXPECT_EQ(
+      errors_of(minimal_head + "[[light]]\ntype = \"spot\"\nposition = [0, 1, 0]\ndirection = [0, 1, 0]\n"
+                               "shadows = \"hard\"\nshadow_resolution = 1000\n"),
+      (std::vector<std::string>{"scenes/bad.toml:14:21: error: light[0].shadow_resolution: expected a power of two "
+                                "from 64 to 4096, got 1000"}));
 }
 
 TEST(SceneErrors, CameraMustSeeSomething) {
@@ -682,8 +700,9 @@ TEST(SceneErrors, TheErrorCarriesTheFirstProblemAsItsMessage) {
   EXPECT_EQ(scene.error().message, "size[0]: expected an integer in 1..4096, got 0");
   EXPECT_EQ(scene.error().where.to_string(), "scenes/bad.toml:2:9");
   ASSERT_EQ(scene.error().diagnostics.size(), 2u);
-  EXPECT_EQ(scene.error().diagnostics[1].to_string(),
-            "scenes/bad.toml:10:8: error: light[0].type: expected \"directional\", \"point\" or \"spot\", got \"area\"");
+  EXPECT_EQ(
+      scene.error().diagnostics[1].to_string(),
+      "scenes/bad.toml:10:8: error: light[0].type: expected \"directional\", \"point\" or \"spot\", got \"area\"");
   EXPECT_EQ(scene.error().diagnostics[0].message, scene.error().message);
 }
 
@@ -694,8 +713,9 @@ TEST(SceneErrors, AKeyNestedTooDeepIsRefusedBeforeTheTomlParserRecurses) {
   for (int i = 1; i < 100000; ++i) key += ".a";
   const std::vector<std::string> errors = errors_of(minimal_head + key + " = 1\n");
   ASSERT_EQ(errors.size(), 1u);
-  EXPECT_EQ(errors[0], "scenes/bad.toml:9:1: error: a dotted key or table header of 100000 parts; xshade reads at "
-                       "most 100 (a longer one could overflow the TOML parser's stack)");
+  EXPECT_EQ(errors[0],
+            "scenes/bad.toml:9:1: error: a dotted key or table header of 100000 parts; xshade reads at "
+            "most 100 (a longer one could overflow the TOML parser's stack)");
 }
 
 TEST(SceneLoad, ReadsAFileAndReportsAMissingOne) {
@@ -810,9 +830,9 @@ TEST(SceneInstances, GridRowZeroIsOnTopAndVaryRulesInterpolate) {
   EXPECT_EQ(at(2, 3).col, 3u);
 
   // Centred on (1, 2): columns at x = 1 + (c - 2) * 2, rows at y = 2 + (1 - r) * 3.
-  expect_vec(translation(at(0, 0).model), {-3, 5, 0});  // top left
-  expect_vec(translation(at(0, 4).model), {5, 5, 0});   // top right
-  expect_vec(translation(at(1, 2).model), {1, 2, 0});   // centre
+  expect_vec(translation(at(0, 0).model), {-3, 5, 0});   // top left
+  expect_vec(translation(at(0, 4).model), {5, 5, 0});    // top right
+  expect_vec(translation(at(1, 2).model), {1, 2, 0});    // centre
   expect_vec(translation(at(2, 0).model), {-3, -1, 0});  // bottom left
   expect_vec(translation(at(2, 4).model), {5, -1, 0});   // bottom right
 

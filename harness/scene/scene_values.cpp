@@ -159,7 +159,8 @@ std::vector<std::string> SceneValueReader::keywords(const toml::node& node, std:
 }
 
 void SceneValueReader::for_each_named(
-    const toml::node& node, std::string_view path, std::string_view table_expectation, std::string_view name_expectation,
+    const toml::node& node, std::string_view path, std::string_view table_expectation,
+    std::string_view name_expectation,
     const std::function<void(const std::string&, const toml::node&, const std::string&)>& read) {
   auto* table = node.as_table();
   if (!table) {

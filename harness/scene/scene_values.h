@@ -44,8 +44,8 @@ class SceneValueReader : protected TomlReader {
 
   // `table`'s optional `key` (at `path`.key) into `out` where it is given and passes `check`;
   // false where it is given and does not (reported).
-  bool optional_float(const toml::table& table, std::string_view key, const std::string& path, std::string_view expectation,
-                      const NumberCheck& check, float& out);
+  bool optional_float(const toml::table& table, std::string_view key, const std::string& path,
+                      std::string_view expectation, const NumberCheck& check, float& out);
 
   std::optional<int64_t> integer(const toml::node& node, std::string_view path, int64_t min, int64_t max);
 

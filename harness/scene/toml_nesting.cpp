@@ -42,9 +42,7 @@ class NestingScanner {
           break;
         case ' ':
         case '\t':
-        case '\r':
-          advance();
-          break;
+        case '\r': advance(); break;
         case '.':
           start_key();
           ++key_parts_;

@@ -34,12 +34,18 @@ TEST(TomlNesting, AKeyOfTheLimitsPartsPassesAndOneMoreIsRefusedAtItsFirstPart) {
 }
 
 TEST(TomlNesting, TableHeadersQuotedPartsAndSpacesAroundDotsCount) {
-  EXPECT_THAT(error_of("[" + dotted(101) + "]\n"), StartsWith("f.toml:1:2: a dotted key or table header of 101 parts;"));
-  EXPECT_THAT(error_of("[[" + dotted(101) + "]]\n"), StartsWith("f.toml:1:3: a dotted key or table header of 101 parts;"));
-  EXPECT_THAT(error_of(dotted(101, "\"q\"") + " = 1\n"), StartsWith("f.toml:1:1: a dotted key or table header of 101 parts;"));
-  EXPECT_THAT(error_of(dotted(101, "'q'") + " = 1\n"), StartsWith("f.toml:1:1: a dotted key or table header of 101 parts;"));
-  EXPECT_THAT(error_of(dotted(101, " a ") + " = 1\n"), StartsWith("f.toml:1:2: a dotted key or table header of 101 parts;"));
-  EXPECT_THAT(error_of("t = { " + dotted(101) + " = 1 }\n"), StartsWith("f.toml:1:7: a dotted key or table header of 101 parts;"));
+  EXPECT_THAT(error_of("[" + dotted(101) + "]\n"),
+              StartsWith("f.toml:1:2: a dotted key or table header of 101 parts;"));
+  EXPECT_THAT(error_of("[[" + dotted(101) + "]]\n"),
+              StartsWith("f.toml:1:3: a dotted key or table header of 101 parts;"));
+  EXPECT_THAT(error_of(dotted(101, "\"q\"") + " = 1\n"),
+              StartsWith("f.toml:1:1: a dotted key or table header of 101 parts;"));
+  EXPECT_THAT(error_of(dotted(101, "'q'") + " = 1\n"),
+              StartsWith("f.toml:1:1: a dotted key or table header of 101 parts;"));
+  EXPECT_THAT(error_of(dotted(101, " a ") + " = 1\n"),
+              StartsWith("f.toml:1:2: a dotted key or table header of 101 parts;"));
+  EXPECT_THAT(error_of("t = { " + dotted(101) + " = 1 }\n"),
+              StartsWith("f.toml:1:7: a dotted key or table header of 101 parts;"));
 }
 
 TEST(TomlNesting, DotsInStringsAndCommentsDoNotCount) {

@@ -6,8 +6,8 @@
 
 #include <initializer_list>
 #include <optional>
-#include <string>
 #include <span>
+#include <string>
 #include <string_view>
 #include <vector>
 

@@ -18,7 +18,8 @@ std::string lavapipe_manifest() {
   for (size_t start = 0; start <= folders.size();) {
     const size_t end = std::min(folders.find(':', start), folders.size());
     std::error_code error;
-    for (const auto& entry : std::filesystem::directory_iterator(folders.substr(start, end - start) + "/vulkan/icd.d", error))
+    for (const auto& entry :
+         std::filesystem::directory_iterator(folders.substr(start, end - start) + "/vulkan/icd.d", error))
       if (entry.path().filename().string().starts_with("lvp_icd")) return entry.path().string();
     start = end + 1;
   }

@@ -20,8 +20,7 @@
 
 namespace xshade::harness::vk_support {
 
-EntryPointInfo reflect_entry_point(const std::vector<uint32_t>& words, ExecutionModel model,
-                                   const std::string& name) {
+EntryPointInfo reflect_entry_point(const std::vector<uint32_t>& words, ExecutionModel model, const std::string& name) {
   constexpr uint32_t kOpName = 5, kOpMemberName = 6, kOpEntryPoint = 15, kOpFunction = 54, kOpFunctionEnd = 56,
                      kOpFunctionCall = 57, kOpVariable = 59, kOpDecorate = 71, kOpMemberDecorate = 72;
   constexpr uint32_t kOpTypeInt = 21, kOpTypeFloat = 22, kOpTypeVector = 23, kOpTypePointer = 32;
@@ -34,19 +33,19 @@ EntryPointInfo reflect_entry_point(const std::vector<uint32_t>& words, Execution
   constexpr uint32_t kStorageClassUniformConstant = 0, kStorageClassInput = 1, kStorageClassUniform = 2;
   EntryPointInfo info;
   std::vector<uint32_t> interface_ids;
-  std::map<uint32_t, uint32_t> locations;    // id -> Location
-  std::map<uint32_t, uint32_t> inputs;       // ids of Input-storage variables -> their pointer type
-  std::map<uint32_t, TexelKind> scalars;     // 32-bit scalar type ids
-  std::map<uint32_t, uint32_t> vectors;      // vector type id -> component type id
-  std::map<uint32_t, uint32_t> pointers;     // pointer type id -> pointee type id
-  std::map<uint32_t, uint32_t> bindings;     // id -> Binding
-  std::map<uint32_t, uint32_t> sets;         // id -> DescriptorSet
-  std::set<uint32_t> resources;              // ids of UniformConstant, Uniform and StorageBuffer variables
+  std::map<uint32_t, uint32_t> locations;  // id -> Location
+  std::map<uint32_t, uint32_t> inputs;     // ids of Input-storage variables -> their pointer type
+  std::map<uint32_t, TexelKind> scalars;   // 32-bit scalar type ids
+  std::map<uint32_t, uint32_t> vectors;    // vector type id -> component type id
+  std::map<uint32_t, uint32_t> pointers;   // pointer type id -> pointee type id
+  std::map<uint32_t, uint32_t> bindings;   // id -> Binding
+  std::map<uint32_t, uint32_t> sets;       // id -> DescriptorSet
+  std::set<uint32_t> resources;            // ids of UniformConstant, Uniform and StorageBuffer variables
   std::map<uint32_t, vk::DescriptorType> descriptor_kinds;  // type id -> the descriptor a variable of it needs
-  std::map<uint32_t, uint32_t> elements;     // array type id -> element type id
-  std::map<uint32_t, uint32_t> resource_types;  // resource variable id -> pointee type id
-  std::map<uint32_t, uint32_t> storage_classes;  // resource variable id -> its storage class
-  std::set<uint32_t> blocks, buffer_blocks;  // struct type ids decorated Block, BufferBlock
+  std::map<uint32_t, uint32_t> elements;                    // array type id -> element type id
+  std::map<uint32_t, uint32_t> resource_types;              // resource variable id -> pointee type id
+  std::map<uint32_t, uint32_t> storage_classes;             // resource variable id -> its storage class
+  std::set<uint32_t> blocks, buffer_blocks;                 // struct type ids decorated Block, BufferBlock
   // The ids each function's instructions read, and the functions it calls: a resource counts
   // where the entry point's call tree reads it (Vulkan's static use), not in a function nothing
   // calls (glslang's HLSL front end emits those too).
@@ -61,7 +60,8 @@ EntryPointInfo reflect_entry_point(const std::vector<uint32_t>& words, Execution
       if (entry_name == name) {
         info.found = true;
         entry_function = op[2];
-        for (size_t i = 3 + spirv::literal_string_words(entry_name.size()); i < count; ++i) interface_ids.push_back(op[i]);
+        for (size_t i = 3 + spirv::literal_string_words(entry_name.size()); i < count; ++i)
+          interface_ids.push_back(op[i]);
       }
     } else if (opcode == kOpDecorate && count >= 4 && op[2] == kDecorationLocation) {
       locations[op[1]] = op[3];
@@ -164,36 +164,30 @@ uint32_t memory_type(const vk::PhysicalDeviceMemoryProperties& memory, uint32_t 
                      vk::MemoryPropertyFlags required, vk::MemoryPropertyFlags preferred) {
   for (vk::MemoryPropertyFlags wanted : {required | preferred, required}) {
     for (uint32_t i = 0; i < memory.memoryTypeCount; ++i) {
-      if ((type_bits & (1u << i)) && (memory.memoryTypes[i].propertyFlags & wanted) == wanted)
-        return i;
+      if ((type_bits & (1u << i)) && (memory.memoryTypes[i].propertyFlags & wanted) == wanted) return i;
     }
   }
-  throw std::runtime_error(
-      fmt::format("no memory type with properties {}", vk::to_string(required)));
+  throw std::runtime_error(fmt::format("no memory type with properties {}", vk::to_string(required)));
 }
 
 namespace {
 
 vk::raii::DeviceMemory allocate(const DeviceRef& device, const vk::MemoryRequirements& needs,
-                                vk::MemoryPropertyFlags required,
-                                vk::MemoryPropertyFlags preferred) {
+                                vk::MemoryPropertyFlags required, vk::MemoryPropertyFlags preferred) {
   return vk::raii::DeviceMemory(
       device.device,
-      vk::MemoryAllocateInfo(
-          needs.size, memory_type(device.memory, needs.memoryTypeBits, required, preferred)));
+      vk::MemoryAllocateInfo(needs.size, memory_type(device.memory, needs.memoryTypeBits, required, preferred)));
 }
 
 }  // namespace
 
-Buffer create_host_buffer(const DeviceRef& device, vk::DeviceSize size,
-                          vk::BufferUsageFlags usage) {
+Buffer create_host_buffer(const DeviceRef& device, vk::DeviceSize size, vk::BufferUsageFlags usage) {
   Buffer result;
   result.size = size;
   result.buffer = vk::raii::Buffer(device.device, vk::BufferCreateInfo({}, size, usage));
-  result.memory =
-      allocate(device, result.buffer.getMemoryRequirements(),
-               vk::MemoryPropertyFlagBits::eHostVisible | vk::MemoryPropertyFlagBits::eHostCoherent,
-               vk::MemoryPropertyFlagBits::eDeviceLocal);
+  result.memory = allocate(device, result.buffer.getMemoryRequirements(),
+                           vk::MemoryPropertyFlagBits::eHostVisible | vk::MemoryPropertyFlagBits::eHostCoherent,
+                           vk::MemoryPropertyFlagBits::eDeviceLocal);
   result.buffer.bindMemory(*result.memory, 0);
   return result;
 }
@@ -216,8 +210,11 @@ ImageGeometry image_geometry(const ImageSpec& spec) {
     case D::Tex3D: return {vk::ImageType::e3D, vk::ImageViewType::e3D, {spec.width, spec.height, spec.layers}, 1, {}};
     case D::Cube:
     case D::CubeArray:
-      return {vk::ImageType::e2D, spec.dimension == D::Cube ? vk::ImageViewType::eCube : vk::ImageViewType::eCubeArray,
-              {spec.width, spec.height, 1}, spec.layers, vk::ImageCreateFlagBits::eCubeCompatible};
+      return {vk::ImageType::e2D,
+              spec.dimension == D::Cube ? vk::ImageViewType::eCube : vk::ImageViewType::eCubeArray,
+              {spec.width, spec.height, 1},
+              spec.layers,
+              vk::ImageCreateFlagBits::eCubeCompatible};
   }
   return {vk::ImageType::e2D, vk::ImageViewType::e2D, {spec.width, spec.height, 1}, 1, {}};
 }
@@ -258,16 +255,14 @@ Image create_image(const DeviceRef& device, ImageSpec spec) {
   result.shape = {spec.dimension, spec.samples > 1};
   result.texture_format = spec.texture_format;
   result.label = std::move(spec.label);
-  result.linear_filter =
-      bool(device.physical.getFormatProperties(spec.format).optimalTilingFeatures &
-           vk::FormatFeatureFlagBits::eSampledImageFilterLinear);
+  result.linear_filter = bool(device.physical.getFormatProperties(spec.format).optimalTilingFeatures &
+                              vk::FormatFeatureFlagBits::eSampledImageFilterLinear);
   result.image = vk::raii::Image(
       device.device,
       vk::ImageCreateInfo(geometry.flags, geometry.type, spec.format, geometry.extent, spec.levels,
                           geometry.array_layers, vk::SampleCountFlagBits(spec.samples), vk::ImageTiling::eOptimal,
                           spec.usage, vk::SharingMode::eExclusive, {}, vk::ImageLayout::eUndefined));
-  result.memory = allocate(device, result.image.getMemoryRequirements(), {},
-                           vk::MemoryPropertyFlagBits::eDeviceLocal);
+  result.memory = allocate(device, result.image.getMemoryRequirements(), {}, vk::MemoryPropertyFlagBits::eDeviceLocal);
   result.image.bindMemory(*result.memory, 0);
   const auto view = [&](vk::ImageAspectFlags aspect) {
     return vk::raii::ImageView(device.device,
@@ -296,12 +291,9 @@ StageAccess stage_access(vk::ImageLayout layout) {
   using S = vk::PipelineStageFlagBits2;
   using A = vk::AccessFlagBits2;
   switch (layout) {
-    case vk::ImageLayout::eUndefined:
-      return {S::eNone, A::eNone};
-    case vk::ImageLayout::eTransferDstOptimal:
-      return {S::eAllTransfer, A::eTransferWrite};
-    case vk::ImageLayout::eTransferSrcOptimal:
-      return {S::eAllTransfer, A::eTransferRead};
+    case vk::ImageLayout::eUndefined: return {S::eNone, A::eNone};
+    case vk::ImageLayout::eTransferDstOptimal: return {S::eAllTransfer, A::eTransferWrite};
+    case vk::ImageLayout::eTransferSrcOptimal: return {S::eAllTransfer, A::eTransferRead};
     case vk::ImageLayout::eColorAttachmentOptimal:
       return {S::eColorAttachmentOutput, A::eColorAttachmentRead | A::eColorAttachmentWrite};
     case vk::ImageLayout::eDepthStencilAttachmentOptimal:
@@ -310,8 +302,7 @@ StageAccess stage_access(vk::ImageLayout layout) {
     case vk::ImageLayout::eShaderReadOnlyOptimal:
       // eShaderRead rather than eShaderSampledRead: the best-practices layer of 1.3.239 expects it.
       return {S::eVertexShader | S::eFragmentShader, A::eShaderRead};
-    default:
-      return {S::eAllCommands, A::eMemoryRead | A::eMemoryWrite};
+    default: return {S::eAllCommands, A::eMemoryRead | A::eMemoryWrite};
   }
 }
 
@@ -321,9 +312,9 @@ void Recording::transition(Image& image, vk::ImageLayout to) {
   if (image.layout == to && to == vk::ImageLayout::eShaderReadOnlyOptimal) return;
   const StageAccess src = stage_access(image.layout);
   const StageAccess dst = stage_access(to);
-  const vk::ImageMemoryBarrier2 barrier(src.stage, src.access, dst.stage, dst.access, image.layout,
-                                        to, VK_QUEUE_FAMILY_IGNORED, VK_QUEUE_FAMILY_IGNORED,
-                                        *image.image, {image.aspect, 0, image.levels, 0, image.layers});
+  const vk::ImageMemoryBarrier2 barrier(src.stage, src.access, dst.stage, dst.access, image.layout, to,
+                                        VK_QUEUE_FAMILY_IGNORED, VK_QUEUE_FAMILY_IGNORED, *image.image,
+                                        {image.aspect, 0, image.levels, 0, image.layers});
   cmd.pipelineBarrier2(vk::DependencyInfo({}, {}, {}, barrier));
   saved_.emplace_back(&image, image.layout);
   image.layout = to;
@@ -338,16 +329,14 @@ namespace {
 
 VKAPI_ATTR VkBool32 VKAPI_CALL debug_callback(VkDebugUtilsMessageSeverityFlagBitsEXT severity,
                                               VkDebugUtilsMessageTypeFlagsEXT types,
-                                              const VkDebugUtilsMessengerCallbackDataEXT* data,
-                                              void* user) {
+                                              const VkDebugUtilsMessengerCallbackDataEXT* data, void* user) {
   auto* log = static_cast<MessageLog*>(user);
-  const char* level =
-      (severity & VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT) ? "error" : "warning";
+  const char* level = (severity & VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT) ? "error" : "warning";
   const char* kind = (types & VK_DEBUG_UTILS_MESSAGE_TYPE_VALIDATION_BIT_EXT)    ? "validation"
                      : (types & VK_DEBUG_UTILS_MESSAGE_TYPE_PERFORMANCE_BIT_EXT) ? "performance"
                                                                                  : "general";
-  std::string text = fmt::format("vulkan {} {}: {}", kind, level,
-                                 data && data->pMessage ? data->pMessage : "(no message)");
+  std::string text =
+      fmt::format("vulkan {} {}: {}", kind, level, data && data->pMessage ? data->pMessage : "(no message)");
   std::lock_guard lock(log->mutex);
   log->messages.push_back(std::move(text));
   return VK_FALSE;  // never abort the call that triggered the message
@@ -358,9 +347,9 @@ VKAPI_ATTR VkBool32 VKAPI_CALL debug_callback(VkDebugUtilsMessageSeverityFlagBit
 vk::DebugUtilsMessengerCreateInfoEXT messenger_info(MessageLog* log) {
   using Severity = vk::DebugUtilsMessageSeverityFlagBitsEXT;
   using Type = vk::DebugUtilsMessageTypeFlagBitsEXT;
-  return vk::DebugUtilsMessengerCreateInfoEXT(
-      {}, Severity::eWarning | Severity::eError,
-      Type::eGeneral | Type::eValidation | Type::ePerformance, &debug_callback, log);
+  return vk::DebugUtilsMessengerCreateInfoEXT({}, Severity::eWarning | Severity::eError,
+                                              Type::eGeneral | Type::eValidation | Type::ePerformance, &debug_callback,
+                                              log);
 }
 
 std::string version_string(uint32_t version) {
@@ -370,20 +359,13 @@ std::string version_string(uint32_t version) {
 
 vk::Format vk_format(TextureFormat format) {
   switch (format) {
-    case TextureFormat::Rgba8Unorm:
-      return vk::Format::eR8G8B8A8Unorm;
-    case TextureFormat::Rgba8Srgb:
-      return vk::Format::eR8G8B8A8Srgb;
-    case TextureFormat::Rgba32Float:
-      return vk::Format::eR32G32B32A32Sfloat;
-    case TextureFormat::R32Float:
-      return vk::Format::eR32Sfloat;
-    case TextureFormat::Depth32Float:
-      return vk::Format::eD32Sfloat;
-    case TextureFormat::Rgba32Uint:
-      return vk::Format::eR32G32B32A32Uint;
-    case TextureFormat::Rgba32Sint:
-      return vk::Format::eR32G32B32A32Sint;
+    case TextureFormat::Rgba8Unorm: return vk::Format::eR8G8B8A8Unorm;
+    case TextureFormat::Rgba8Srgb: return vk::Format::eR8G8B8A8Srgb;
+    case TextureFormat::Rgba32Float: return vk::Format::eR32G32B32A32Sfloat;
+    case TextureFormat::R32Float: return vk::Format::eR32Sfloat;
+    case TextureFormat::Depth32Float: return vk::Format::eD32Sfloat;
+    case TextureFormat::Rgba32Uint: return vk::Format::eR32G32B32A32Uint;
+    case TextureFormat::Rgba32Sint: return vk::Format::eR32G32B32A32Sint;
   }
   return vk::Format::eUndefined;
 }
@@ -412,14 +394,10 @@ vk::raii::Pipeline create_draw_pipeline(const vk::raii::Device& device, const Dr
   // mesh supplies: four zeros, then four float ones for a float colour input (backend.h).
   std::vector<vk::VertexInputBindingDescription> bindings;
   const std::array<vk::VertexInputAttributeDescription, 4> all_attributes = {
-      vk::VertexInputAttributeDescription(0, 0, vk::Format::eR32G32B32Sfloat,
-                                          offsetof(Vertex, position)),
-      vk::VertexInputAttributeDescription(1, 0, vk::Format::eR32G32B32Sfloat,
-                                          offsetof(Vertex, normal)),
-      vk::VertexInputAttributeDescription(2, 0, vk::Format::eR32G32B32A32Sfloat,
-                                          offsetof(Vertex, tangent)),
-      vk::VertexInputAttributeDescription(3, 0, vk::Format::eR32G32Sfloat,
-                                          offsetof(Vertex, uv))};
+      vk::VertexInputAttributeDescription(0, 0, vk::Format::eR32G32B32Sfloat, offsetof(Vertex, position)),
+      vk::VertexInputAttributeDescription(1, 0, vk::Format::eR32G32B32Sfloat, offsetof(Vertex, normal)),
+      vk::VertexInputAttributeDescription(2, 0, vk::Format::eR32G32B32A32Sfloat, offsetof(Vertex, tangent)),
+      vk::VertexInputAttributeDescription(3, 0, vk::Format::eR32G32Sfloat, offsetof(Vertex, uv))};
   // Only the locations the shader reads: the validation layer warns about unread attributes.
   std::vector<vk::VertexInputAttributeDescription> attributes;
   for (uint32_t location : spec.vertex_inputs)
@@ -430,10 +408,8 @@ vk::raii::Pipeline create_draw_pipeline(const vk::raii::Device& device, const Dr
                             kind == TexelKind::Float && unsupplied_input_reads_white(location) ? 16 : 0);
   if (!spec.unsupplied_inputs.empty()) bindings.emplace_back(1, 0, vk::VertexInputRate::eVertex);
   vk::PipelineVertexInputStateCreateInfo vertex_input;
-  if (!attributes.empty())
-    vertex_input = vk::PipelineVertexInputStateCreateInfo({}, bindings, attributes);
-  const vk::PipelineInputAssemblyStateCreateInfo assembly(
-      {}, vk::PrimitiveTopology::eTriangleList);
+  if (!attributes.empty()) vertex_input = vk::PipelineVertexInputStateCreateInfo({}, bindings, attributes);
+  const vk::PipelineInputAssemblyStateCreateInfo assembly({}, vk::PrimitiveTopology::eTriangleList);
   const vk::PipelineViewportStateCreateInfo viewport({}, 1, nullptr, 1, nullptr);
   const DrawState& state = spec.state;
   // The negative viewport height puts clip +y at the image's row 0, so a triangle's winding in
@@ -482,15 +458,13 @@ vk::raii::Pipeline create_draw_pipeline(const vk::raii::Device& device, const Dr
     first.alphaBlendOp = vk_blend_op(b.alpha_op);
   }
   const vk::PipelineColorBlendStateCreateInfo blend({}, VK_FALSE, vk::LogicOp::eCopy, blend_attachments);
-  const std::array<vk::DynamicState, 2> dynamic_states = {vk::DynamicState::eViewport,
-                                                          vk::DynamicState::eScissor};
+  const std::array<vk::DynamicState, 2> dynamic_states = {vk::DynamicState::eViewport, vk::DynamicState::eScissor};
   const vk::PipelineDynamicStateCreateInfo dynamic({}, dynamic_states);
   const std::vector<vk::Format> color_formats(spec.color_attachments, spec.color_format);
   vk::PipelineRenderingCreateInfo rendering({}, color_formats, spec.depth_format,
                                             stencil ? spec.depth_format : vk::Format::eUndefined);
-  vk::GraphicsPipelineCreateInfo info({}, stages, &vertex_input, &assembly, nullptr,
-                                      &viewport, &raster, &multisample, &depth_state, &blend,
-                                      &dynamic, spec.layout);
+  vk::GraphicsPipelineCreateInfo info({}, stages, &vertex_input, &assembly, nullptr, &viewport, &raster, &multisample,
+                                      &depth_state, &blend, &dynamic, spec.layout);
   info.pNext = &rendering;
   return vk::raii::Pipeline(device, nullptr, info);
 }

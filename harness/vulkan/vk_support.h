@@ -44,8 +44,7 @@ enum class ExecutionModel : uint32_t { Vertex = 0, Fragment = 4 };
 // Finds the entry point `name` of `model`, the locations and component types of its inputs, and the module's
 // descriptor bindings. The module must already
 // have passed spirv-val.
-EntryPointInfo reflect_entry_point(const std::vector<uint32_t>& words, ExecutionModel model,
-                                   const std::string& name);
+EntryPointInfo reflect_entry_point(const std::vector<uint32_t>& words, ExecutionModel model, const std::string& name);
 
 // ---- Resources ---------------------------------------------------------------------------------
 
@@ -74,7 +73,7 @@ struct Image {
   TextureFormat texture_format = TextureFormat::Rgba32Float;
   vk::ImageLayout layout = vk::ImageLayout::eUndefined;  // of every subresource
   bool linear_filter = false;                            // the format supports linear filtering
-  std::string label;  // for messages: "texture 3", "colour of target 1"
+  std::string label;                                     // for messages: "texture 3", "colour of target 1"
 };
 
 struct ImageSpec {
@@ -176,7 +175,7 @@ struct DrawPipelineSpec {
   const std::map<uint32_t, TexelKind>& unsupplied_inputs;
   vk::PipelineLayout layout;
   vk::Format color_format;
-  vk::Format depth_format;  // eUndefined: no depth attachment, no depth test; with stencil or not
+  vk::Format depth_format;         // eUndefined: no depth attachment, no depth test; with stencil or not
   uint32_t color_attachments = 1;  // each of color_format, written by the locations 0, 1, ...
   // Culling, depth, stencil (where depth_format has it) and blending (of attachment 0; any other
   // is written as it is).

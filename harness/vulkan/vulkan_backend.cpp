@@ -173,9 +173,8 @@ Result<void> VulkanBackend::init(const VulkanOptions& options) {
   try {
     context_ = std::make_unique<vk::raii::Context>();
   } catch (const std::exception& e) {
-    return fail(fmt::format(
-        "cannot load the Vulkan loader libvulkan.so.1 ({}); install the Debian package libvulkan1",
-        e.what()));
+    return fail(fmt::format("cannot load the Vulkan loader libvulkan.so.1 ({}); install the Debian package libvulkan1",
+                            e.what()));
   }
   return guarded<void>("creating the Vulkan lavapipe backend", [&]() -> Result<void> {
     const uint32_t loader_version = context_->enumerateInstanceVersion();
@@ -222,8 +221,7 @@ Result<void> VulkanBackend::init(const VulkanOptions& options) {
     for (auto& candidate : devices) {
       const vk::PhysicalDeviceProperties properties = candidate.getProperties();
       seen += fmt::format("{}'{}'", seen.empty() ? "" : ", ", properties.deviceName.data());
-      if (properties.deviceType == vk::PhysicalDeviceType::eCpu && !*physical_)
-        physical_ = std::move(candidate);
+      if (properties.deviceType == vk::PhysicalDeviceType::eCpu && !*physical_) physical_ = std::move(candidate);
     }
     if (!*physical_)
       return fail(
@@ -233,10 +231,8 @@ Result<void> VulkanBackend::init(const VulkanOptions& options) {
                       seen.empty() ? "none" : seen));
 
     const auto properties =
-        physical_
-            .getProperties2<vk::PhysicalDeviceProperties2, vk::PhysicalDeviceDriverProperties>();
-    const vk::PhysicalDeviceProperties& props =
-        properties.get<vk::PhysicalDeviceProperties2>().properties;
+        physical_.getProperties2<vk::PhysicalDeviceProperties2, vk::PhysicalDeviceDriverProperties>();
+    const vk::PhysicalDeviceProperties& props = properties.get<vk::PhysicalDeviceProperties2>().properties;
     const auto& driver = properties.get<vk::PhysicalDeviceDriverProperties>();
     if (props.apiVersion < VK_API_VERSION_1_3)
       return fail(
@@ -261,31 +257,28 @@ Result<void> VulkanBackend::init(const VulkanOptions& options) {
       return physical_.getFormatProperties(format).optimalTilingFeatures;
     };
     using F = vk::FormatFeatureFlagBits;
-    if ((format_features(kColorFormat) &
-         (F::eColorAttachment | F::eSampledImage | F::eTransferSrc)) !=
+    if ((format_features(kColorFormat) & (F::eColorAttachment | F::eSampledImage | F::eTransferSrc)) !=
             (F::eColorAttachment | F::eSampledImage | F::eTransferSrc) ||
         (format_features(kDepthFormat) & (F::eDepthStencilAttachment | F::eSampledImage)) !=
             (F::eDepthStencilAttachment | F::eSampledImage) ||
         (format_features(kDepthStencilFormat) & (F::eDepthStencilAttachment | F::eSampledImage)) !=
             (F::eDepthStencilAttachment | F::eSampledImage))
-      return fail(fmt::format("'{}' cannot render to and sample R32G32B32A32_SFLOAT, D32_SFLOAT and "
-                              "D32_SFLOAT_S8_UINT",
-                              info_.renderer));
+      return fail(
+          fmt::format("'{}' cannot render to and sample R32G32B32A32_SFLOAT, D32_SFLOAT and "
+                      "D32_SFLOAT_S8_UINT",
+                      info_.renderer));
 
     const auto families = physical_.getQueueFamilyProperties();
     auto graphics = std::find_if(families.begin(), families.end(), [](const auto& family) {
       return bool(family.queueFlags & vk::QueueFlagBits::eGraphics);
     });
-    if (graphics == families.end())
-      return fail(fmt::format("'{}' has no graphics queue", info_.renderer));
+    if (graphics == families.end()) return fail(fmt::format("'{}' has no graphics queue", info_.renderer));
     queue_family_ = static_cast<uint32_t>(graphics - families.begin());
 
     // Enable what the device supports, so that any valid shader runs, except robustness (which
     // would hide out-of-bounds bugs behind defined results).
-    auto features =
-        physical_
-            .getFeatures2<vk::PhysicalDeviceFeatures2, vk::PhysicalDeviceVulkan11Features,
-                          vk::PhysicalDeviceVulkan12Features, vk::PhysicalDeviceVulkan13Features>();
+    auto features = physical_.getFeatures2<vk::PhysicalDeviceFeatures2, vk::PhysicalDeviceVulkan11Features,
+                                           vk::PhysicalDeviceVulkan12Features, vk::PhysicalDeviceVulkan13Features>();
     features.get<vk::PhysicalDeviceFeatures2>().features.robustBufferAccess = VK_FALSE;
     auto& features13 = features.get<vk::PhysicalDeviceVulkan13Features>();
     features13.robustImageAccess = VK_FALSE;
@@ -298,23 +291,22 @@ Result<void> VulkanBackend::init(const VulkanOptions& options) {
     device_ = vk::raii::Device(physical_, device_info);
     queue_ = vk::raii::Queue(device_, queue_family_, 0);
     command_pool_ = vk::raii::CommandPool(
-        device_,
-        vk::CommandPoolCreateInfo(vk::CommandPoolCreateFlagBits::eTransient, queue_family_));
+        device_, vk::CommandPoolCreateInfo(vk::CommandPoolCreateFlagBits::eTransient, queue_family_));
     return {};
   });
 }
 
 const vk::raii::Sampler& VulkanBackend::sampler(const SamplerDesc& desc, bool compare) {
-  const auto key = std::make_tuple(desc.filter, desc.address,
-                                   compare ? std::optional<CompareOp>(desc.compare) : std::nullopt);
+  const auto key =
+      std::make_tuple(desc.filter, desc.address, compare ? std::optional<CompareOp>(desc.compare) : std::nullopt);
   auto found = samplers_.find(key);
   if (found != samplers_.end()) return found->second;
   return samplers_.emplace(key, vk::raii::Sampler(device_, vk_support::sampler_info(desc, compare))).first->second;
 }
 
 void VulkanBackend::submit(const std::function<void(Recording&)>& record) {
-  vk::raii::CommandBuffers buffers(
-      device_, vk::CommandBufferAllocateInfo(*command_pool_, vk::CommandBufferLevel::ePrimary, 1));
+  vk::raii::CommandBuffers buffers(device_,
+                                   vk::CommandBufferAllocateInfo(*command_pool_, vk::CommandBufferLevel::ePrimary, 1));
   Recording recording(std::move(buffers.front()));
   try {
     recording.cmd.begin(vk::CommandBufferBeginInfo(vk::CommandBufferUsageFlagBits::eOneTimeSubmit));
@@ -337,30 +329,29 @@ Result<TargetHandle> VulkanBackend::create_target(const TargetDesc& desc) {
     if (desc.width == 0 || desc.height == 0)
       return fail(fmt::format("create_target: size {}x{} is empty", desc.width, desc.height));
     if (std::max(desc.width, desc.height) > max_image_size_)
-      return fail(fmt::format("create_target: size {}x{} exceeds the device limit of {}",
-                              desc.width, desc.height, max_image_size_));
+      return fail(fmt::format("create_target: size {}x{} exceeds the device limit of {}", desc.width, desc.height,
+                              max_image_size_));
     const uint32_t id = objects_.targets.next_handle().id;
     using U = vk::ImageUsageFlagBits;
     auto target = std::make_unique<Target>();
     // Transfer-dst only for the initial clear below.
     const auto color_image = [&](const char* what) {
-      return vk_support::create_image(
-          device_ref(), {kColorFormat, vk::ImageAspectFlagBits::eColor, desc.width, desc.height, 1,
-                         U::eColorAttachment | U::eSampled | U::eTransferSrc | U::eTransferDst,
-                         fmt::format("the {} of target {}", what, id), TextureFormat::Rgba32Float});
+      return vk_support::create_image(device_ref(),
+                                      {kColorFormat, vk::ImageAspectFlagBits::eColor, desc.width, desc.height, 1,
+                                       U::eColorAttachment | U::eSampled | U::eTransferSrc | U::eTransferDst,
+                                       fmt::format("the {} of target {}", what, id), TextureFormat::Rgba32Float});
     };
     target->color = color_image("colour");
     if (desc.second_color) target->second_color = color_image("second colour");
     if (desc.stencil && !desc.depth) return fail("create_target: a stencil buffer needs a depth buffer");
-    const vk::ImageAspectFlags depth_aspect =
-        desc.stencil ? vk::ImageAspectFlagBits::eDepth | vk::ImageAspectFlagBits::eStencil
-                     : vk::ImageAspectFlags(vk::ImageAspectFlagBits::eDepth);
+    const vk::ImageAspectFlags depth_aspect = desc.stencil
+                                                  ? vk::ImageAspectFlagBits::eDepth | vk::ImageAspectFlagBits::eStencil
+                                                  : vk::ImageAspectFlags(vk::ImageAspectFlagBits::eDepth);
     if (desc.depth)
       target->depth = vk_support::create_image(
-          device_ref(),
-          {desc.stencil ? kDepthStencilFormat : kDepthFormat, depth_aspect, desc.width, desc.height, 1,
-           U::eDepthStencilAttachment | U::eSampled | U::eTransferSrc | U::eTransferDst,
-           fmt::format("the depth of target {}", id), TextureFormat::Depth32Float});
+          device_ref(), {desc.stencil ? kDepthStencilFormat : kDepthFormat, depth_aspect, desc.width, desc.height, 1,
+                         U::eDepthStencilAttachment | U::eSampled | U::eTransferSrc | U::eTransferDst,
+                         fmt::format("the depth of target {}", id), TextureFormat::Depth32Float});
     // Start from defined contents (zero colour, far depth) so that reads before a render are
     // stable.
     submit([&](Recording& rec) {
@@ -373,9 +364,9 @@ Result<TargetHandle> VulkanBackend::create_target(const TargetDesc& desc) {
       }
       if (target->depth) {
         rec.transition(*target->depth, vk::ImageLayout::eTransferDstOptimal);
-        rec.cmd.clearDepthStencilImage(
-            *target->depth->image, vk::ImageLayout::eTransferDstOptimal,
-            vk::ClearDepthStencilValue(1.0f, 0), vk::ImageSubresourceRange(depth_aspect, 0, 1, 0, 1));
+        rec.cmd.clearDepthStencilImage(*target->depth->image, vk::ImageLayout::eTransferDstOptimal,
+                                       vk::ClearDepthStencilValue(1.0f, 0),
+                                       vk::ImageSubresourceRange(depth_aspect, 0, 1, 0, 1));
       }
     });
     return objects_.targets.insert(std::move(target));
@@ -439,11 +430,10 @@ Result<TextureHandle> VulkanBackend::upload_texture(const TextureData& data) {
       // numbered in the image; row 0 of each is v = 0.
       std::vector<vk::BufferImageCopy> regions;
       for (uint32_t level = 0; level < image->levels; ++level)
-        regions.emplace_back(offsets[level], 0, 0, vk::ImageSubresourceLayers(aspect, level, 0, image->layers),
-                             vk::Offset3D(0, 0, 0),
-                             vk::Extent3D(std::max<uint32_t>(1, data.width >> level),
-                                          std::max<uint32_t>(1, data.height >> level),
-                                          volume ? std::max<uint32_t>(1, data.layers >> level) : 1));
+        regions.emplace_back(
+            offsets[level], 0, 0, vk::ImageSubresourceLayers(aspect, level, 0, image->layers), vk::Offset3D(0, 0, 0),
+            vk::Extent3D(std::max<uint32_t>(1, data.width >> level), std::max<uint32_t>(1, data.height >> level),
+                         volume ? std::max<uint32_t>(1, data.layers >> level) : 1));
       rec.cmd.copyBufferToImage(*staging.buffer, *image->image, vk::ImageLayout::eTransferDstOptimal, regions);
       rec.transition(*image, vk::ImageLayout::eShaderReadOnlyOptimal);
     });
@@ -456,9 +446,9 @@ void VulkanBackend::fill_multisampled(Image& image, const TextureData& data) {
   // array first, and a draw per layer writes it into every sample.
   using U = vk::ImageUsageFlagBits;
   Image source = vk_support::create_image(
-      device_ref(), {image.format, vk::ImageAspectFlagBits::eColor, data.width, data.height, 1,
-                     U::eSampled | U::eTransferDst, "the single-sampled copy of " + image.label, data.format,
-                     TextureDimension::Tex2DArray, data.layers, 1});
+      device_ref(),
+      {image.format, vk::ImageAspectFlagBits::eColor, data.width, data.height, 1, U::eSampled | U::eTransferDst,
+       "the single-sampled copy of " + image.label, data.format, TextureDimension::Tex2DArray, data.layers, 1});
   Buffer staging = create_buffer(data.levels[0].size(), vk::BufferUsageFlagBits::eTransferSrc);
   vk_support::write_buffer(staging, data.levels[0].data(), data.levels[0].size());
 
@@ -488,11 +478,12 @@ void VulkanBackend::fill_multisampled(Image& image, const TextureData& data) {
       vk::WriteDescriptorSet(*sets.front(), 0, 0, vk::DescriptorType::eCombinedImageSampler, source_info), nullptr);
   std::vector<vk::raii::ImageView> layer_views;
   for (uint32_t layer = 0; layer < data.layers; ++layer)
-    layer_views.emplace_back(device_, vk::ImageViewCreateInfo({}, *image.image, vk::ImageViewType::e2D, image.format, {},
-                                                              {vk::ImageAspectFlagBits::eColor, 0, 1, layer, 1}));
+    layer_views.emplace_back(device_, vk::ImageViewCreateInfo({}, *image.image, vk::ImageViewType::e2D, image.format,
+                                                              {}, {vk::ImageAspectFlagBits::eColor, 0, 1, layer, 1}));
   submit([&](Recording& rec) {
     rec.transition(source, vk::ImageLayout::eTransferDstOptimal);
-    const vk::BufferImageCopy region(0, 0, 0, vk::ImageSubresourceLayers(vk::ImageAspectFlagBits::eColor, 0, 0, data.layers),
+    const vk::BufferImageCopy region(0, 0, 0,
+                                     vk::ImageSubresourceLayers(vk::ImageAspectFlagBits::eColor, 0, 0, data.layers),
                                      vk::Offset3D(0, 0, 0), vk::Extent3D(data.width, data.height, 1));
     rec.cmd.copyBufferToImage(*staging.buffer, *source.image, vk::ImageLayout::eTransferDstOptimal, region);
     rec.transition(source, vk::ImageLayout::eShaderReadOnlyOptimal);
@@ -500,8 +491,9 @@ void VulkanBackend::fill_multisampled(Image& image, const TextureData& data) {
     rec.cmd.bindPipeline(vk::PipelineBindPoint::eGraphics, *pipeline);
     rec.cmd.bindDescriptorSets(vk::PipelineBindPoint::eGraphics, *pipeline_layout, 0, *sets.front(), nullptr);
     for (uint32_t layer = 0; layer < data.layers; ++layer) {
-      const vk::RenderingAttachmentInfo color(*layer_views[layer], vk::ImageLayout::eColorAttachmentOptimal, {}, nullptr,
-                                              {}, vk::AttachmentLoadOp::eDontCare, vk::AttachmentStoreOp::eStore);
+      const vk::RenderingAttachmentInfo color(*layer_views[layer], vk::ImageLayout::eColorAttachmentOptimal, {},
+                                              nullptr, {}, vk::AttachmentLoadOp::eDontCare,
+                                              vk::AttachmentStoreOp::eStore);
       rec.cmd.beginRendering(vk::RenderingInfo({}, area, 1, 0, color));
       const int32_t layer_index = static_cast<int32_t>(layer);
       rec.cmd.pushConstants<int32_t>(*pipeline_layout, vk::ShaderStageFlagBits::eFragment, 0, layer_index);
@@ -530,8 +522,8 @@ Result<ProgramHandle> VulkanBackend::create_program(const ProgramDesc& desc) {
     program->layout = desc.layout;
     program->fullscreen = desc.fullscreen;
     for (const auto& [id, word] : desc.specialization) {
-      program->specialization_entries.emplace_back(
-          id, uint32_t(program->specialization_data.size() * sizeof(uint32_t)), sizeof(uint32_t));
+      program->specialization_entries.emplace_back(id, uint32_t(program->specialization_data.size() * sizeof(uint32_t)),
+                                                   sizeof(uint32_t));
       program->specialization_data.push_back(word);
     }
     program->vertex_entry = desc.vertex.entry_point;
@@ -546,9 +538,8 @@ Result<ProgramHandle> VulkanBackend::create_program(const ProgramDesc& desc) {
     using vk_support::ExecutionModel;
     // What each stage's SPIR-V needs at each binding of set 0, and which shader says so.
     std::map<uint32_t, std::pair<vk::DescriptorType, std::string>> needed_types;
-    for (const StageIn& in :
-         {StageIn{desc.vertex, "vertex", ExecutionModel::Vertex, program->vertex},
-          StageIn{desc.fragment, "fragment", ExecutionModel::Fragment, program->fragment}}) {
+    for (const StageIn& in : {StageIn{desc.vertex, "vertex", ExecutionModel::Vertex, program->vertex},
+                              StageIn{desc.fragment, "fragment", ExecutionModel::Fragment, program->fragment}}) {
       const std::string shader = fmt::format("{}: {} shader '{}'", what, in.stage, in.source.name);
       if (in.source.spirv.empty()) return fail(shader + " has no SPIR-V");
       if (const std::vector<std::string> refusals = vk_support::spirv_validation_messages(in.source.spirv);
@@ -561,30 +552,30 @@ Result<ProgramHandle> VulkanBackend::create_program(const ProgramDesc& desc) {
       const vk_support::EntryPointInfo entry =
           vk_support::reflect_entry_point(in.source.spirv, in.model, in.source.entry_point);
       if (!entry.found)
-        return fail(fmt::format("{} has no {} entry point named '{}'", shader, in.stage,
-                                in.source.entry_point));
+        return fail(fmt::format("{} has no {} entry point named '{}'", shader, in.stage, in.source.entry_point));
       if (in.model == ExecutionModel::Vertex) {
         program->vertex_inputs = entry.input_locations;
         for (const auto& [location, kind] : entry.input_types) {
           if (location <= 3) continue;
           if (!kind)
-            return fail(fmt::format("{} reads vertex input location {}, which no mesh supplies and whose type is "
-                                    "not a 32-bit float, int or uint scalar or vector",
-                                    shader, location));
+            return fail(
+                fmt::format("{} reads vertex input location {}, which no mesh supplies and whose type is "
+                            "not a 32-bit float, int or uint scalar or vector",
+                            shader, location));
           program->unsupplied_inputs.emplace(location, *kind);
         }
       }
       // A resource the layout does not list would reach the driver without a descriptor.
       for (const auto& [set, binding] : entry.descriptor_bindings)
         if (set != 0 || !vk_support::layout_has_binding(desc.layout, binding))
-          return fail(fmt::format("{} reads the resource at set {} binding {}, which the program's "
-                                  "layout does not list",
-                                  shader, set, binding));
+          return fail(
+              fmt::format("{} reads the resource at set {} binding {}, which the program's "
+                          "layout does not list",
+                          shader, set, binding));
       for (const auto& [place, type] : entry.descriptor_types)
         if (place.first == 0) needed_types.emplace(place.second, std::pair{type, shader});
       in.module = vk::raii::ShaderModule(
-          device_, vk::ShaderModuleCreateInfo({}, in.source.spirv.size() * sizeof(uint32_t),
-                                              in.source.spirv.data()));
+          device_, vk::ShaderModuleCreateInfo({}, in.source.spirv.size() * sizeof(uint32_t), in.source.spirv.data()));
     }
     if (desc.fullscreen && !program->vertex_inputs.empty())
       return fail(
@@ -597,18 +588,15 @@ Result<ProgramHandle> VulkanBackend::create_program(const ProgramDesc& desc) {
     std::set<uint32_t> shared_samplers;    // sampler bindings already listed
     std::set<std::string> names;
     const auto stages = vk::ShaderStageFlagBits::eVertex | vk::ShaderStageFlagBits::eFragment;
-    auto add = [&](uint32_t binding, vk::DescriptorType type,
-                   const std::string& user) -> Result<void> {
+    auto add = [&](uint32_t binding, vk::DescriptorType type, const std::string& user) -> Result<void> {
       if (auto [it, fresh] = used.emplace(binding, user); !fresh)
-        return fail(fmt::format("{}: binding {} is used by both {} and {}", what, binding,
-                                it->second, user));
+        return fail(fmt::format("{}: binding {} is used by both {} and {}", what, binding, it->second, user));
       bindings.emplace_back(binding, type, 1, stages);
       return {};
     };
     for (size_t s = 0; s < desc.layout.uniform_blocks.size(); ++s) {
       const UniformBlockSlot& slot = desc.layout.uniform_blocks[s];
-      if (!names.insert(slot.name).second)
-        return fail(fmt::format("{}: the layout names '{}' twice", what, slot.name));
+      if (!names.insert(slot.name).second) return fail(fmt::format("{}: the layout names '{}' twice", what, slot.name));
       if (slot.push_constant) {
         if (program->push_constant_slot)
           return fail(fmt::format("{}: '{}' and '{}' are both push constants; a program has one block of them", what,
@@ -620,16 +608,14 @@ Result<ProgramHandle> VulkanBackend::create_program(const ProgramDesc& desc) {
         continue;
       }
       if (slot.size == 0 || slot.size > max_uniform_range_)
-        return fail(fmt::format("{}: uniform block '{}' has size {}; the device allows 1..{} bytes",
-                                what, slot.name, slot.size, max_uniform_range_));
-      if (auto ok = add(slot.binding, vk::DescriptorType::eUniformBuffer,
-                        fmt::format("uniform block '{}'", slot.name));
+        return fail(fmt::format("{}: uniform block '{}' has size {}; the device allows 1..{} bytes", what, slot.name,
+                                slot.size, max_uniform_range_));
+      if (auto ok = add(slot.binding, vk::DescriptorType::eUniformBuffer, fmt::format("uniform block '{}'", slot.name));
           !ok)
         return fail(ok.error());
     }
     for (const TextureSlot& slot : desc.layout.textures) {
-      if (!names.insert(slot.name).second)
-        return fail(fmt::format("{}: the layout names '{}' twice", what, slot.name));
+      if (!names.insert(slot.name).second) return fail(fmt::format("{}: the layout names '{}' twice", what, slot.name));
       const std::string user = fmt::format("texture '{}'", slot.name);
       Result<void> ok = slot.sampler_binding || slot.image_only
                             ? add(slot.binding, vk::DescriptorType::eSampledImage, user)
@@ -643,16 +629,18 @@ Result<ProgramHandle> VulkanBackend::create_program(const ProgramDesc& desc) {
       if (!ok) return fail(ok.error());
     }
     for (const StorageBufferSlot& slot : desc.layout.storage_buffers) {
-      if (!names.insert(slot.name).second)
-        return fail(fmt::format("{}: the layout names '{}' twice", what, slot.name));
-      if (auto ok = add(slot.binding, vk::DescriptorType::eStorageBuffer, fmt::format("storage buffer '{}'", slot.name)); !ok)
+      if (!names.insert(slot.name).second) return fail(fmt::format("{}: the layout names '{}' twice", what, slot.name));
+      if (auto ok =
+              add(slot.binding, vk::DescriptorType::eStorageBuffer, fmt::format("storage buffer '{}'", slot.name));
+          !ok)
         return fail(ok.error());
     }
     // A combined image sampler also serves a separate image and sampler at its binding (Vulkan's
     // rule, what [[vk::binding]] of a texture and its sampler at one number asks).
     const auto serves = [](vk::DescriptorType layout, vk::DescriptorType needed) {
-      return layout == needed || (layout == vk::DescriptorType::eCombinedImageSampler &&
-                                  (needed == vk::DescriptorType::eSampledImage || needed == vk::DescriptorType::eSampler));
+      return layout == needed ||
+             (layout == vk::DescriptorType::eCombinedImageSampler &&
+              (needed == vk::DescriptorType::eSampledImage || needed == vk::DescriptorType::eSampler));
     };
     for (const vk::DescriptorSetLayoutBinding& binding : bindings)
       if (auto needed = needed_types.find(binding.binding);
@@ -661,8 +649,7 @@ Result<ProgramHandle> VulkanBackend::create_program(const ProgramDesc& desc) {
                     fmt::format("{} reads binding {} as a {} descriptor, but the program's layout gives it a {}",
                                 needed->second.second, binding.binding, vk::to_string(needed->second.first),
                                 vk::to_string(binding.descriptorType)));
-    program->set_layout =
-        vk::raii::DescriptorSetLayout(device_, vk::DescriptorSetLayoutCreateInfo({}, bindings));
+    program->set_layout = vk::raii::DescriptorSetLayout(device_, vk::DescriptorSetLayoutCreateInfo({}, bindings));
     const vk::DescriptorSetLayout set_layout = *program->set_layout;
     std::vector<vk::PushConstantRange> push_ranges;
     if (program->push_constant_slot)
@@ -685,9 +672,8 @@ Result<vk::Pipeline> VulkanBackend::pipeline(Program& program, const Target& tar
             key, vk_support::create_draw_pipeline(
                      device_, {*program.vertex, *program.fragment, program.vertex_entry.c_str(),
                                program.fragment_entry.c_str(), program.vertex_inputs, program.unsupplied_inputs,
-                               *program.pipeline_layout, kColorFormat, depth_format,
-                               second_color ? 2u : 1u, state, rows_up, program.specialization_entries,
-                               program.specialization_data}));
+                               *program.pipeline_layout, kColorFormat, depth_format, second_color ? 2u : 1u, state,
+                               rows_up, program.specialization_entries, program.specialization_data}));
         return *made.first->second;
       });
 }
@@ -702,9 +688,10 @@ Result<void> VulkanBackend::render(const RenderPass& pass) {
                                   const BoundTexture<Image>& bound, const std::vector<BoundTexture<Image>>& earlier,
                                   const std::string& where) -> Result<void> {
       if (bound.sampler.filter == Filter::Linear && !bound.texture->linear_filter)
-        return fail(fmt::format("{}: texture '{}': {} cannot be filtered linearly on this device; "
-                                "use a nearest sampler",
-                                where, binding.name, bound.texture->label));
+        return fail(
+            fmt::format("{}: texture '{}': {} cannot be filtered linearly on this device; "
+                        "use a nearest sampler",
+                        where, binding.name, bound.texture->label));
       const auto& slots = layout.textures;
       const auto& sampler_binding = slots[index].sampler_binding;
       if (!sampler_binding) return {};
@@ -716,9 +703,10 @@ Result<void> VulkanBackend::render(const RenderPass& pass) {
         if (first.filter == bound.sampler.filter && first.address == bound.sampler.address &&
             slots[other].comparison == compared && (!compared || first.compare == bound.sampler.compare))
           continue;
-        return fail(fmt::format("{}: textures '{}' and '{}' are sampled through one sampler (binding {}) but are "
-                                "bound with different samplers",
-                                where, slots[other].name, slots[index].name, *sampler_binding));
+        return fail(
+            fmt::format("{}: textures '{}' and '{}' are sampled through one sampler (binding {}) but are "
+                        "bound with different samplers",
+                        where, slots[other].name, slots[index].name, *sampler_binding));
       }
       return {};
     };
@@ -750,7 +738,8 @@ Result<void> VulkanBackend::render(const RenderPass& pass) {
       if (!made) return fail(made.error());
       draws.push_back(
           Resolved{draw.program, draw.mesh, draw.uniforms, draw.textures, draw.storage_buffers, *made, rows_up});
-      for (const StorageBufferBinding* buffer : draw.storage_buffers) storage_bytes += storage_step(buffer->bytes.size());
+      for (const StorageBufferBinding* buffer : draw.storage_buffers)
+        storage_bytes += storage_step(buffer->bytes.size());
       storage_count += draw.storage_buffers.size();
       const ProgramLayout& layout = draw.program->layout;
       for (const UniformBlockSlot& block : layout.uniform_blocks) {
@@ -779,10 +768,8 @@ Result<void> VulkanBackend::render(const RenderPass& pass) {
         for (size_t s = 0; s < draw.uniforms.size(); ++s) {
           if (draw.program->push_constant_slot == s) continue;
           const UniformBinding* binding = draw.uniforms[s];
-          std::memcpy(static_cast<std::byte*>(mapped) + offset, binding->bytes.data(),
-                      binding->bytes.size());
-          offset += (binding->bytes.size() + uniform_alignment_ - 1) / uniform_alignment_ *
-                    uniform_alignment_;
+          std::memcpy(static_cast<std::byte*>(mapped) + offset, binding->bytes.data(), binding->bytes.size());
+          offset += (binding->bytes.size() + uniform_alignment_ - 1) / uniform_alignment_ * uniform_alignment_;
         }
       }
       uniforms.memory.unmapMemory();
@@ -813,10 +800,9 @@ Result<void> VulkanBackend::render(const RenderPass& pass) {
     std::vector<vk::raii::DescriptorSet> sets;  // declared after the pool: freed before it
     std::vector<vk::DescriptorSet> draw_sets(draws.size());
     if (!pool_sizes.empty()) {
-      pool = vk::raii::DescriptorPool(
-          device_,
-          vk::DescriptorPoolCreateInfo(vk::DescriptorPoolCreateFlagBits::eFreeDescriptorSet,
-                                       static_cast<uint32_t>(draws.size()), pool_sizes));
+      pool = vk::raii::DescriptorPool(device_,
+                                      vk::DescriptorPoolCreateInfo(vk::DescriptorPoolCreateFlagBits::eFreeDescriptorSet,
+                                                                   static_cast<uint32_t>(draws.size()), pool_sizes));
       vk::DeviceSize offset = 0, storage_offset = 0;
       for (size_t i = 0; i < draws.size(); ++i) {
         const Resolved& draw = draws[i];
@@ -825,8 +811,7 @@ Result<void> VulkanBackend::render(const RenderPass& pass) {
             layout.storage_buffers.empty())
           continue;
         const vk::DescriptorSetLayout set_layout = *draw.program->set_layout;
-        vk::raii::DescriptorSets allocated(device_,
-                                           vk::DescriptorSetAllocateInfo(*pool, set_layout));
+        vk::raii::DescriptorSets allocated(device_, vk::DescriptorSetAllocateInfo(*pool, set_layout));
         sets.push_back(std::move(allocated.front()));
         draw_sets[i] = *sets.back();
         // Reserved up front: the writes point into these vectors.
@@ -838,8 +823,8 @@ Result<void> VulkanBackend::render(const RenderPass& pass) {
         for (const UniformBlockSlot& slot : layout.uniform_blocks) {
           if (slot.push_constant) continue;
           buffer_infos.emplace_back(*uniforms.buffer, offset, slot.size);
-          writes.emplace_back(draw_sets[i], slot.binding, 0, vk::DescriptorType::eUniformBuffer,
-                              nullptr, buffer_infos.back());
+          writes.emplace_back(draw_sets[i], slot.binding, 0, vk::DescriptorType::eUniformBuffer, nullptr,
+                              buffer_infos.back());
           offset += (slot.size + uniform_alignment_ - 1) / uniform_alignment_ * uniform_alignment_;
         }
         for (size_t s = 0; s < layout.storage_buffers.size(); ++s) {
@@ -855,27 +840,22 @@ Result<void> VulkanBackend::render(const RenderPass& pass) {
           const vk::Sampler smp = *sampler(bound.sampler, slot.comparison);
           if (slot.image_only) {
             image_infos.emplace_back(nullptr, *bound.texture->view, vk::ImageLayout::eShaderReadOnlyOptimal);
-            writes.emplace_back(draw_sets[i], slot.binding, 0, vk::DescriptorType::eSampledImage,
-                                image_infos.back());
+            writes.emplace_back(draw_sets[i], slot.binding, 0, vk::DescriptorType::eSampledImage, image_infos.back());
           } else if (slot.sampler_binding) {
-            image_infos.emplace_back(nullptr, *bound.texture->view,
-                                     vk::ImageLayout::eShaderReadOnlyOptimal);
-            writes.emplace_back(draw_sets[i], slot.binding, 0, vk::DescriptorType::eSampledImage,
-                                image_infos.back());
-            const bool first_reader = std::none_of(layout.textures.begin(), layout.textures.begin() + long(s),
-                                                   [&](const TextureSlot& other) {
-                                                     return other.sampler_binding == slot.sampler_binding;
-                                                   });
+            image_infos.emplace_back(nullptr, *bound.texture->view, vk::ImageLayout::eShaderReadOnlyOptimal);
+            writes.emplace_back(draw_sets[i], slot.binding, 0, vk::DescriptorType::eSampledImage, image_infos.back());
+            const bool first_reader =
+                std::none_of(layout.textures.begin(), layout.textures.begin() + long(s),
+                             [&](const TextureSlot& other) { return other.sampler_binding == slot.sampler_binding; });
             if (first_reader) {
               image_infos.emplace_back(smp, nullptr, vk::ImageLayout::eUndefined);
               writes.emplace_back(draw_sets[i], *slot.sampler_binding, 0, vk::DescriptorType::eSampler,
                                   image_infos.back());
             }
           } else {
-            image_infos.emplace_back(smp, *bound.texture->view,
-                                     vk::ImageLayout::eShaderReadOnlyOptimal);
-            writes.emplace_back(draw_sets[i], slot.binding, 0,
-                                vk::DescriptorType::eCombinedImageSampler, image_infos.back());
+            image_infos.emplace_back(smp, *bound.texture->view, vk::ImageLayout::eShaderReadOnlyOptimal);
+            writes.emplace_back(draw_sets[i], slot.binding, 0, vk::DescriptorType::eCombinedImageSampler,
+                                image_infos.back());
           }
         }
         device_.updateDescriptorSets(writes, nullptr);
@@ -883,32 +863,32 @@ Result<void> VulkanBackend::render(const RenderPass& pass) {
     }
 
     vk::Buffer unsupplied_buffer;
-    if (std::any_of(draws.begin(), draws.end(), [](const Resolved& d) { return !d.program->unsupplied_inputs.empty(); }))
+    if (std::any_of(draws.begin(), draws.end(),
+                    [](const Resolved& d) { return !d.program->unsupplied_inputs.empty(); }))
       unsupplied_buffer = *unsupplied_input_buffer().buffer;
     submit([&](Recording& rec) {
-      for (Image* image : sampled_targets)
-        rec.transition(*image, vk::ImageLayout::eShaderReadOnlyOptimal);
+      for (Image* image : sampled_targets) rec.transition(*image, vk::ImageLayout::eShaderReadOnlyOptimal);
       rec.transition(target->color, vk::ImageLayout::eColorAttachmentOptimal);
       if (target->second_color) rec.transition(*target->second_color, vk::ImageLayout::eColorAttachmentOptimal);
-      if (target->depth)
-        rec.transition(*target->depth, vk::ImageLayout::eDepthStencilAttachmentOptimal);
+      if (target->depth) rec.transition(*target->depth, vk::ImageLayout::eDepthStencilAttachmentOptimal);
       const vk::Rect2D area({0, 0}, {target->color.width, target->color.height});
       const auto attachment = [](const Image& image, const glm::vec4& clear) {
-        return vk::RenderingAttachmentInfo(*image.view, vk::ImageLayout::eColorAttachmentOptimal, {}, nullptr, {},
-                                           vk::AttachmentLoadOp::eClear, vk::AttachmentStoreOp::eStore,
-                                           vk::ClearColorValue(std::array<float, 4>{clear.r, clear.g, clear.b, clear.a}));
+        return vk::RenderingAttachmentInfo(
+            *image.view, vk::ImageLayout::eColorAttachmentOptimal, {}, nullptr, {}, vk::AttachmentLoadOp::eClear,
+            vk::AttachmentStoreOp::eStore,
+            vk::ClearColorValue(std::array<float, 4>{clear.r, clear.g, clear.b, clear.a}));
       };
       std::vector<vk::RenderingAttachmentInfo> colors{attachment(target->color, pass.clear_color)};
       if (target->second_color) colors.push_back(attachment(*target->second_color, glm::vec4(0.0f)));
       vk::RenderingAttachmentInfo depth;
       const bool stencil = target->depth && *target->depth->attachment_view;
       if (target->depth)
-        depth = vk::RenderingAttachmentInfo(
-            stencil ? *target->depth->attachment_view : *target->depth->view,
-            vk::ImageLayout::eDepthStencilAttachmentOptimal, {}, nullptr, {}, vk::AttachmentLoadOp::eClear,
-            vk::AttachmentStoreOp::eStore, vk::ClearDepthStencilValue(pass.clear_depth, pass.clear_stencil));
-      rec.cmd.beginRendering(vk::RenderingInfo({}, area, 1, 0, colors, target->depth ? &depth : nullptr,
-                                               stencil ? &depth : nullptr));
+        depth = vk::RenderingAttachmentInfo(stencil ? *target->depth->attachment_view : *target->depth->view,
+                                            vk::ImageLayout::eDepthStencilAttachmentOptimal, {}, nullptr, {},
+                                            vk::AttachmentLoadOp::eClear, vk::AttachmentStoreOp::eStore,
+                                            vk::ClearDepthStencilValue(pass.clear_depth, pass.clear_stencil));
+      rec.cmd.beginRendering(
+          vk::RenderingInfo({}, area, 1, 0, colors, target->depth ? &depth : nullptr, stencil ? &depth : nullptr));
       // Negative height: clip +y is up and row 0 is the top, as in Direct3D; positive: rows_up.
       const float width = static_cast<float>(target->color.width);
       const float height = static_cast<float>(target->color.height);
@@ -919,8 +899,8 @@ Result<void> VulkanBackend::render(const RenderPass& pass) {
                                             : vk::Viewport(0.0f, height, width, -height, 0.0f, 1.0f));
         rec.cmd.bindPipeline(vk::PipelineBindPoint::eGraphics, draw.pipeline);
         if (draw_sets[i])
-          rec.cmd.bindDescriptorSets(vk::PipelineBindPoint::eGraphics,
-                                     *draw.program->pipeline_layout, 0, draw_sets[i], nullptr);
+          rec.cmd.bindDescriptorSets(vk::PipelineBindPoint::eGraphics, *draw.program->pipeline_layout, 0, draw_sets[i],
+                                     nullptr);
         if (const std::optional<size_t> push = draw.program->push_constant_slot) {
           const std::vector<std::byte>& bytes = draw.uniforms[*push]->bytes;
           rec.cmd.pushConstants<std::byte>(*draw.program->pipeline_layout,
@@ -958,14 +938,11 @@ Result<FloatImage> VulkanBackend::read_image(TargetHandle handle, bool second) {
     Buffer readback = create_buffer(bytes, vk::BufferUsageFlagBits::eTransferDst);
     submit([&](Recording& rec) {
       rec.transition(color, vk::ImageLayout::eTransferSrcOptimal);
-      const vk::BufferImageCopy region(
-          0, 0, 0, vk::ImageSubresourceLayers(vk::ImageAspectFlagBits::eColor, 0, 0, 1),
-          vk::Offset3D(0, 0, 0), vk::Extent3D(color.width, color.height, 1));
-      rec.cmd.copyImageToBuffer(*color.image, vk::ImageLayout::eTransferSrcOptimal,
-                                *readback.buffer, region);
-      const vk::MemoryBarrier2 to_host(
-          vk::PipelineStageFlagBits2::eAllTransfer, vk::AccessFlagBits2::eTransferWrite,
-          vk::PipelineStageFlagBits2::eHost, vk::AccessFlagBits2::eHostRead);
+      const vk::BufferImageCopy region(0, 0, 0, vk::ImageSubresourceLayers(vk::ImageAspectFlagBits::eColor, 0, 0, 1),
+                                       vk::Offset3D(0, 0, 0), vk::Extent3D(color.width, color.height, 1));
+      rec.cmd.copyImageToBuffer(*color.image, vk::ImageLayout::eTransferSrcOptimal, *readback.buffer, region);
+      const vk::MemoryBarrier2 to_host(vk::PipelineStageFlagBits2::eAllTransfer, vk::AccessFlagBits2::eTransferWrite,
+                                       vk::PipelineStageFlagBits2::eHost, vk::AccessFlagBits2::eHostRead);
       rec.cmd.pipelineBarrier2(vk::DependencyInfo({}, to_host, {}, {}));
     });
     const void* mapped = readback.memory.mapMemory(0, bytes);

@@ -33,8 +33,8 @@ ShaderStageSource stage_source(const std::string& glsl, spirv::Stage stage, cons
 ProgramDesc fullscreen_program(const std::string& fragment_glsl, ProgramLayout layout = {}) {
   ProgramDesc desc;
   desc.name = "fullscreen test";
-  desc.vertex = stage_source(glsl::fullscreen_vertex_shader(glsl::Flavour::Vk),
-                             spirv::Stage::Vertex, "fullscreen.vert");
+  desc.vertex =
+      stage_source(glsl::fullscreen_vertex_shader(glsl::Flavour::Vk), spirv::Stage::Vertex, "fullscreen.vert");
   desc.fragment = stage_source(fragment_glsl, spirv::Stage::Fragment, "test.frag");
   desc.layout = std::move(layout);
   desc.fullscreen = true;
@@ -68,8 +68,7 @@ UniformBinding color_uniform(glm::vec4 color) {
 }
 
 void expect_near(glm::vec4 actual, glm::vec4 expected, const std::string& where) {
-  for (int i = 0; i < 4; ++i)
-    EXPECT_NEAR(actual[i], expected[i], 1e-5f) << where << " channel " << i;
+  for (int i = 0; i < 4; ++i) EXPECT_NEAR(actual[i], expected[i], 1e-5f) << where << " channel " << i;
 }
 
 // One backend shared by the tests that do not need validation: creating a device takes time.
@@ -111,15 +110,13 @@ TEST_F(VulkanBackendTest, InvalidSpirvFails) {
   auto program = backend_->create_program(desc);
   ASSERT_FALSE(program);
   EXPECT_NE(program.error().message.find("broken"), std::string::npos) << program.error().message;
-  EXPECT_NE(program.error().message.find("not valid SPIR-V"), std::string::npos)
-      << program.error().message;
+  EXPECT_NE(program.error().message.find("not valid SPIR-V"), std::string::npos) << program.error().message;
 
   desc = mesh_color_program();
   desc.fragment.entry_point = "missing";
   program = backend_->create_program(desc);
   ASSERT_FALSE(program);
-  EXPECT_NE(program.error().message.find("'missing'"), std::string::npos)
-      << program.error().message;
+  EXPECT_NE(program.error().message.find("'missing'"), std::string::npos) << program.error().message;
 }
 
 TEST_F(VulkanBackendTest, AResourceOfAnotherDescriptorTypeThanTheLayoutsFails) {
@@ -214,7 +211,8 @@ void main() {
                 {},
                 {{"color", TextureSource::color_of(*a, linear)},
                  {"depth", TextureSource::depth_of(*a, linear)},
-                 {"srgb", TextureSource::texture(*texture, linear)}}, {}};
+                 {"srgb", TextureSource::texture(*texture, linear)}},
+                {}};
   auto rendered = backend_->render({*b, glm::vec4(0.0f), 1.0f, {draw}});
   ASSERT_FALSE(rendered);
   EXPECT_NE(rendered.error().message.find("cannot be filtered linearly"), std::string::npos)
@@ -235,8 +233,7 @@ void main() {
 // A frame with a texture, separate and combined samplers, a uniform block, depth, and a second
 // pass sampling the first pass's colour and depth must leave the validation layer silent.
 TEST(LavapipeValidation, DrawLeavesNoDriverMessages) {
-  ASSERT_TRUE(vulkan_validation_available())
-      << "install the Debian package vulkan-validationlayers";
+  ASSERT_TRUE(vulkan_validation_available()) << "install the Debian package vulkan-validationlayers";
   auto created = create_vulkan_backend({.validation = true});
   ASSERT_TRUE(created) << created.error().to_string();
   Backend& backend = **created;
@@ -298,18 +295,18 @@ void main() { frag = texture(color, uv) + vec4(0.0, 0.0, 0.0, texture(depth, uv)
   auto a = backend.create_target({4, 4, true});
   auto b = backend.create_target({4, 4, true});
   ASSERT_TRUE(a && b);
-  DrawItem draw_a{
-      *first,
-      {},
-      {color_uniform({1, 1, 1, 1})},
-      {{"image", TextureSource::texture(*tex, {Filter::Nearest, AddressMode::ClampToEdge})}}, {}};
+  DrawItem draw_a{*first,
+                  {},
+                  {color_uniform({1, 1, 1, 1})},
+                  {{"image", TextureSource::texture(*tex, {Filter::Nearest, AddressMode::ClampToEdge})}},
+                  {}};
   ASSERT_TRUE(backend.render({*a, glm::vec4(0.0f), 0.5f, {draw_a}}));
-  DrawItem draw_b{
-      *second,
-      *mesh,
-      {},
-      {{"color", TextureSource::color_of(*a, {Filter::Linear, AddressMode::Repeat})},
-       {"depth", TextureSource::depth_of(*a, {Filter::Nearest, AddressMode::ClampToEdge})}}, {}};
+  DrawItem draw_b{*second,
+                  *mesh,
+                  {},
+                  {{"color", TextureSource::color_of(*a, {Filter::Linear, AddressMode::Repeat})},
+                   {"depth", TextureSource::depth_of(*a, {Filter::Nearest, AddressMode::ClampToEdge})}},
+                  {}};
   auto rendered = backend.render({*b, glm::vec4(0.0f), 1.0f, {draw_b}});
   ASSERT_TRUE(rendered) << rendered.error().to_string();
   auto image = backend.read_color(*b);
@@ -322,8 +319,8 @@ void main() { frag = texture(color, uv) + vec4(0.0, 0.0, 0.0, texture(depth, uv)
   expect_near(image->at(3, 3), {1, 1, 1, 1}, "bottom-right");
 
   const std::vector<std::string> messages = backend.take_driver_messages();
-  EXPECT_TRUE(messages.empty()) << messages.size() << " messages, first: "
-                                << (messages.empty() ? "" : messages.front());
+  EXPECT_TRUE(messages.empty()) << messages.size()
+                                << " messages, first: " << (messages.empty() ? "" : messages.front());
 }
 
 // The messenger really collects: a fragment input no vertex output produces is reported once.

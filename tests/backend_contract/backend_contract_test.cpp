@@ -45,7 +45,6 @@ Result<std::unique_ptr<Backend>> create_backend(Api api) {
 // The contract on every API, one backend each for the suite (SharedBackendTest).
 class BackendContractTest : public SharedBackendTest<Api, &create_backend> {
  protected:
-
   // The GLSL for OpenGL, its SPIR-V for Vulkan.
   ShaderStageSource stage(const std::string& glsl, spirv::Stage kind, std::string name) const {
     ShaderStageSource source;
@@ -87,7 +86,6 @@ class BackendContractTest : public SharedBackendTest<Api, &create_backend> {
     desc.fragment = stage(fragment, spirv::Stage::Fragment, name + ".frag");
     return backend().create_program(desc);
   }
-
 };
 
 const char* const kUvFragment =
@@ -134,9 +132,7 @@ Vertex vertex_at(float x, float y, float z) {
   return vertex;
 }
 
-MeshData upper_half(float z) {
-  return {{vertex_at(-1, 0, z), vertex_at(3, 0, z), vertex_at(-1, 4, z)}, {0, 1, 2}};
-}
+MeshData upper_half(float z) { return {{vertex_at(-1, 0, z), vertex_at(3, 0, z), vertex_at(-1, 4, z)}, {0, 1, 2}}; }
 
 TextureData float_texture(uint32_t width, uint32_t height, const std::vector<float>& texels) {
   TextureData data{TextureFormat::Rgba32Float, width, height, {}};
@@ -212,43 +208,43 @@ TEST_P(BackendContractTest, MeshTriangleInUpperClipHalfLandsInTheTopRows) {
 // With a stencil buffer beside the depth too: the depth is still what a pass samples.
 TEST_P(BackendContractTest, DepthIsZeroToOneLessTestedAndSampleable) {
   for (bool stencil : {false, true}) {
-  SCOPED_TRACE(stencil ? "with stencil" : "depth alone");
-  auto target = backend().create_target({4, 4, true, false, stencil});
-  auto readback = backend().create_target({4, 4, false});
-  ASSERT_TRUE(target && readback);
-  // Near: the top half at z = 0.25. Far: the whole target at z = 0.75, drawn second.
-  auto near = backend().upload_mesh(upper_half(0.25f));
-  auto far = backend().upload_mesh(
-      {{vertex_at(-1, -1, 0.75f), vertex_at(3, -1, 0.75f), vertex_at(-1, 3, 0.75f)}, {0, 1, 2}});
-  ASSERT_TRUE(near && far);
-  auto red = mesh_program("red", kRedFragment);
-  auto green = mesh_program("green",
-                            "#version 450\n"
-                            "layout(location = 0) out vec4 color;\n"
-                            "void main() { color = vec4(0.0, 1.0, 0.0, 1.0); }\n");
-  ASSERT_TRUE(red && green);
-  RenderPass pass;
-  pass.target = *target;
-  pass.draws.push_back(draw(*red, *near));
-  pass.draws.push_back(draw(*green, *far));
-  ASSERT_TRUE(backend().render(pass));
-  auto image = backend().read_color(*target);
-  ASSERT_TRUE(image);
-  expect_near(image->at(1, 0), {1, 0, 0, 1}, "near wins at the top");
-  expect_near(image->at(1, 3), {0, 1, 0, 1}, "far fills the bottom");
+    SCOPED_TRACE(stencil ? "with stencil" : "depth alone");
+    auto target = backend().create_target({4, 4, true, false, stencil});
+    auto readback = backend().create_target({4, 4, false});
+    ASSERT_TRUE(target && readback);
+    // Near: the top half at z = 0.25. Far: the whole target at z = 0.75, drawn second.
+    auto near = backend().upload_mesh(upper_half(0.25f));
+    auto far = backend().upload_mesh(
+        {{vertex_at(-1, -1, 0.75f), vertex_at(3, -1, 0.75f), vertex_at(-1, 3, 0.75f)}, {0, 1, 2}});
+    ASSERT_TRUE(near && far);
+    auto red = mesh_program("red", kRedFragment);
+    auto green = mesh_program("green",
+                              "#version 450\n"
+                              "layout(location = 0) out vec4 color;\n"
+                              "void main() { color = vec4(0.0, 1.0, 0.0, 1.0); }\n");
+    ASSERT_TRUE(red && green);
+    RenderPass pass;
+    pass.target = *target;
+    pass.draws.push_back(draw(*red, *near));
+    pass.draws.push_back(draw(*green, *far));
+    ASSERT_TRUE(backend().render(pass));
+    auto image = backend().read_color(*target);
+    ASSERT_TRUE(image);
+    expect_near(image->at(1, 0), {1, 0, 0, 1}, "near wins at the top");
+    expect_near(image->at(1, 3), {0, 1, 0, 1}, "far fills the bottom");
 
-  // The depth of clip z = 0.25 (w = 1) is 0.25, and reads as .r.
-  auto copy = fullscreen_program("depth_copy", kCopyFragment, layout({}, {texture_slot("source", 1)}));
-  ASSERT_TRUE(copy) << copy.error().to_string();
-  RenderPass second;
-  second.target = *readback;
-  second.draws.push_back(draw(*copy, {}, {}, {{"source", TextureSource::depth_of(*target, {Filter::Nearest, {}})}}));
-  auto rendered = backend().render(second);
-  ASSERT_TRUE(rendered) << rendered.error().to_string();
-  auto depth = backend().read_color(*readback);
-  ASSERT_TRUE(depth);
-  EXPECT_NEAR(depth->at(2, 0).r, 0.25f, 1e-6f);
-  EXPECT_NEAR(depth->at(2, 3).r, 0.75f, 1e-6f);
+    // The depth of clip z = 0.25 (w = 1) is 0.25, and reads as .r.
+    auto copy = fullscreen_program("depth_copy", kCopyFragment, layout({}, {texture_slot("source", 1)}));
+    ASSERT_TRUE(copy) << copy.error().to_string();
+    RenderPass second;
+    second.target = *readback;
+    second.draws.push_back(draw(*copy, {}, {}, {{"source", TextureSource::depth_of(*target, {Filter::Nearest, {}})}}));
+    auto rendered = backend().render(second);
+    ASSERT_TRUE(rendered) << rendered.error().to_string();
+    auto depth = backend().read_color(*readback);
+    ASSERT_TRUE(depth);
+    EXPECT_NEAR(depth->at(2, 0).r, 0.25f, 1e-6f);
+    EXPECT_NEAR(depth->at(2, 3).r, 0.75f, 1e-6f);
   }
 }
 
@@ -282,13 +278,13 @@ TEST_P(BackendContractTest, TextureRowZeroIsTheTopAndUniformBlocksBindByName) {
 TEST_P(BackendContractTest, SpecialFloatValuesReachReadBack) {
   auto target = backend().create_target({1, 1, false});
   ASSERT_TRUE(target);
-  auto program = fullscreen_program(
-      "special",
-      "#version 450\n"
-      "layout(location = 0) out vec4 color;\n"
-      "void main() {\n"
-      "  color = vec4(-3.5, 1e30, uintBitsToFloat(0x7f800000u), uintBitsToFloat(0x7fc00000u));\n"
-      "}\n");
+  auto program =
+      fullscreen_program("special",
+                         "#version 450\n"
+                         "layout(location = 0) out vec4 color;\n"
+                         "void main() {\n"
+                         "  color = vec4(-3.5, 1e30, uintBitsToFloat(0x7f800000u), uintBitsToFloat(0x7fc00000u));\n"
+                         "}\n");
   ASSERT_TRUE(program) << program.error().to_string();
   RenderPass pass;
   pass.target = *target;
@@ -396,10 +392,17 @@ TEST_P(BackendContractTest, BlendingIsDirect3DsForEveryFactorAndOperation) {
   ASSERT_TRUE(target && program);
   const glm::vec4 destination{0.2f, 0.4f, 0.6f, 0.8f}, source{0.5f, 0.25f, 1.0f, 0.3f};
   std::vector<BlendState> cases;
-  const BlendFactor factors[] = {BlendFactor::Zero,     BlendFactor::One,           BlendFactor::SrcColor,
-                                 BlendFactor::OneMinusSrcColor, BlendFactor::DstColor, BlendFactor::OneMinusDstColor,
-                                 BlendFactor::SrcAlpha, BlendFactor::OneMinusSrcAlpha, BlendFactor::DstAlpha,
-                                 BlendFactor::OneMinusDstAlpha, BlendFactor::SrcAlphaSaturate};
+  const BlendFactor factors[] = {BlendFactor::Zero,
+                                 BlendFactor::One,
+                                 BlendFactor::SrcColor,
+                                 BlendFactor::OneMinusSrcColor,
+                                 BlendFactor::DstColor,
+                                 BlendFactor::OneMinusDstColor,
+                                 BlendFactor::SrcAlpha,
+                                 BlendFactor::OneMinusSrcAlpha,
+                                 BlendFactor::DstAlpha,
+                                 BlendFactor::OneMinusDstAlpha,
+                                 BlendFactor::SrcAlphaSaturate};
   for (BlendFactor factor : factors) {
     cases.push_back({true, factor, BlendFactor::One, BlendFactor::One, BlendFactor::Zero});
     if (factor != BlendFactor::SrcAlphaSaturate)  // a source factor only, in Direct3D 11
@@ -536,7 +539,8 @@ bool compare_holds(CompareOp op, T a, T b) {
 TEST_P(BackendContractTest, TheDepthTestAndWriteAreAsTheStateSays) {
   auto target = backend().create_target({2, 4, true});
   auto near = backend().upload_mesh(upper_half(0.25f));
-  auto far = backend().upload_mesh({{vertex_at(-1, -1, 0.75f), vertex_at(3, -1, 0.75f), vertex_at(-1, 3, 0.75f)}, {0, 1, 2}});
+  auto far =
+      backend().upload_mesh({{vertex_at(-1, -1, 0.75f), vertex_at(3, -1, 0.75f), vertex_at(-1, 3, 0.75f)}, {0, 1, 2}});
   auto program = mesh_program("paint", kPaintFragment, layout({{"Paint", 0, 16}}, {}));
   ASSERT_TRUE(target && near && far && program);
   const glm::vec4 red{1, 0, 0, 1}, green{0, 1, 0, 1}, clear{0, 0, 0, 0};
@@ -567,7 +571,8 @@ TEST_P(BackendContractTest, TheDepthTestAndWriteAreAsTheStateSays) {
 // unit of depth it passes, offset away it still fails.
 TEST_P(BackendContractTest, ADepthOffsetMovesASurfaceByUnitsOfDepth) {
   auto target = backend().create_target({2, 2, true});
-  auto plane = backend().upload_mesh({{vertex_at(-1, -1, 0.5f), vertex_at(3, -1, 0.5f), vertex_at(-1, 3, 0.5f)}, {0, 1, 2}});
+  auto plane =
+      backend().upload_mesh({{vertex_at(-1, -1, 0.5f), vertex_at(3, -1, 0.5f), vertex_at(-1, 3, 0.5f)}, {0, 1, 2}});
   auto program = mesh_program("paint", kPaintFragment, layout({{"Paint", 0, 16}}, {}));
   ASSERT_TRUE(target && plane && program);
   for (float units : {0.0f, -1.0f, 1.0f}) {
@@ -614,11 +619,12 @@ uint8_t stencil_written(const StencilState& s, const StencilFaceState& face, uin
 TEST_P(BackendContractTest, TheStencilTestAndOperationsAreDirect3Ds) {
   auto target = backend().create_target({4, 2, true, false, /*stencil=*/true});
   auto near = backend().upload_mesh(upper_half(0.25f));
-  auto quads = backend().upload_mesh({{vertex_at(-1, -1, 0.5f), vertex_at(-1, 1, 0.5f), vertex_at(0, 1, 0.5f),
-                                       vertex_at(0, -1, 0.5f), vertex_at(0, -1, 0.5f), vertex_at(1, -1, 0.5f),
-                                       vertex_at(1, 1, 0.5f), vertex_at(0, 1, 0.5f)},
-                                      {0, 1, 2, 0, 2, 3, 4, 5, 6, 4, 6, 7}});
-  auto whole = backend().upload_mesh({{vertex_at(-1, -1, 0.5f), vertex_at(3, -1, 0.5f), vertex_at(-1, 3, 0.5f)}, {0, 1, 2}});
+  auto quads = backend().upload_mesh(
+      {{vertex_at(-1, -1, 0.5f), vertex_at(-1, 1, 0.5f), vertex_at(0, 1, 0.5f), vertex_at(0, -1, 0.5f),
+        vertex_at(0, -1, 0.5f), vertex_at(1, -1, 0.5f), vertex_at(1, 1, 0.5f), vertex_at(0, 1, 0.5f)},
+       {0, 1, 2, 0, 2, 3, 4, 5, 6, 4, 6, 7}});
+  auto whole =
+      backend().upload_mesh({{vertex_at(-1, -1, 0.5f), vertex_at(3, -1, 0.5f), vertex_at(-1, 3, 0.5f)}, {0, 1, 2}});
   auto program = mesh_program("paint", kPaintFragment, layout({{"Paint", 0, 16}}, {}));
   ASSERT_TRUE(target && near && quads && whole && program);
 
@@ -629,25 +635,50 @@ TEST_P(BackendContractTest, TheStencilTestAndOperationsAreDirect3Ds) {
   std::vector<Case> cases;
   const CompareOp compares[] = {CompareOp::Never,   CompareOp::Less,     CompareOp::Equal,        CompareOp::LessEqual,
                                 CompareOp::Greater, CompareOp::NotEqual, CompareOp::GreaterEqual, CompareOp::Always};
-  const StencilOp ops[] = {StencilOp::Keep,   StencilOp::Zero,          StencilOp::Replace,       StencilOp::IncrementClamp,
-                           StencilOp::DecrementClamp, StencilOp::Invert, StencilOp::IncrementWrap, StencilOp::DecrementWrap};
+  const StencilOp ops[] = {StencilOp::Keep,           StencilOp::Zero,           StencilOp::Replace,
+                           StencilOp::IncrementClamp, StencilOp::DecrementClamp, StencilOp::Invert,
+                           StencilOp::IncrementWrap,  StencilOp::DecrementWrap};
   for (CompareOp compare : compares)
     for (uint8_t reference : {uint8_t(0x10), uint8_t(0x3C), uint8_t(0xF0)})
-      cases.push_back({0x3C, {true, reference, 0xFF, 0xFF,
-                              {compare, StencilOp::Replace, StencilOp::Invert, StencilOp::IncrementWrap},
-                              {compare, StencilOp::DecrementClamp, StencilOp::Zero, StencilOp::Keep}}});
+      cases.push_back({0x3C,
+                       {true,
+                        reference,
+                        0xFF,
+                        0xFF,
+                        {compare, StencilOp::Replace, StencilOp::Invert, StencilOp::IncrementWrap},
+                        {compare, StencilOp::DecrementClamp, StencilOp::Zero, StencilOp::Keep}}});
   for (StencilOp op : ops)
     for (uint8_t cleared : {uint8_t(0x00), uint8_t(0xFF), uint8_t(0x3C)}) {
-      cases.push_back({cleared, {true, 0x81, 0xFF, 0xFF, {CompareOp::Always, op, StencilOp::Keep, op},
-                                 {CompareOp::Never, StencilOp::Keep, op, StencilOp::Keep}}});
-      cases.push_back({cleared, {true, 0x81, 0xFF, 0xFF, {CompareOp::Never, StencilOp::Keep, op, StencilOp::Keep},
-                                 {CompareOp::Always, op, StencilOp::Keep, op}}});
+      cases.push_back({cleared,
+                       {true,
+                        0x81,
+                        0xFF,
+                        0xFF,
+                        {CompareOp::Always, op, StencilOp::Keep, op},
+                        {CompareOp::Never, StencilOp::Keep, op, StencilOp::Keep}}});
+      cases.push_back({cleared,
+                       {true,
+                        0x81,
+                        0xFF,
+                        0xFF,
+                        {CompareOp::Never, StencilOp::Keep, op, StencilOp::Keep},
+                        {CompareOp::Always, op, StencilOp::Keep, op}}});
     }
   // The read mask decides the test on its bits alone; the write mask keeps the others.
-  cases.push_back({0x3C, {true, 0xAC, 0x0F, 0xF0, {CompareOp::Equal, StencilOp::Invert, StencilOp::Zero, StencilOp::Invert},
-                          {CompareOp::NotEqual, StencilOp::Invert, StencilOp::Replace, StencilOp::Invert}}});
-  cases.push_back({0x3C, {true, 0x0C, 0x0F, 0x0F, {CompareOp::Less, StencilOp::Replace, StencilOp::IncrementClamp, StencilOp::Zero},
-                          {CompareOp::Equal, StencilOp::Replace, StencilOp::DecrementWrap, StencilOp::Zero}}});
+  cases.push_back({0x3C,
+                   {true,
+                    0xAC,
+                    0x0F,
+                    0xF0,
+                    {CompareOp::Equal, StencilOp::Invert, StencilOp::Zero, StencilOp::Invert},
+                    {CompareOp::NotEqual, StencilOp::Invert, StencilOp::Replace, StencilOp::Invert}}});
+  cases.push_back({0x3C,
+                   {true,
+                    0x0C,
+                    0x0F,
+                    0x0F,
+                    {CompareOp::Less, StencilOp::Replace, StencilOp::IncrementClamp, StencilOp::Zero},
+                    {CompareOp::Equal, StencilOp::Replace, StencilOp::DecrementWrap, StencilOp::Zero}}});
 
   for (size_t i = 0; i < cases.size(); ++i) {
     const Case& c = cases[i];
@@ -676,8 +707,7 @@ TEST_P(BackendContractTest, TheStencilTestAndOperationsAreDirect3Ds) {
         const StencilFaceState& face = x < 2 ? c.state.back : c.state.front;
         const uint8_t expected = stencil_written(c.state, face, c.cleared, /*depth_passed=*/y == 1);
         EXPECT_EQ(std::lround(image->at(x, y).r * 256.0f), long(expected))
-            << "case " << i << ", " << (x < 2 ? "back" : "front") << " face, depth "
-            << (y == 1 ? "passed" : "failed");
+            << "case " << i << ", " << (x < 2 ? "back" : "front") << " face, depth " << (y == 1 ? "passed" : "failed");
       }
   }
 }
@@ -774,13 +804,15 @@ TEST_P(BackendContractTest, DestroyedHandlesAreRefusedWithAnError) {
   ASSERT_TRUE(backend().destroy(*red));
   expect_error(backend().render({*target, glm::vec4(0.0f), 1.0f, {draw(*red, *mesh)}}), "no such program");
   ASSERT_TRUE(backend().destroy(*texture));
-  expect_error(backend().render({*target, glm::vec4(0.0f), 1.0f,
-                                 {draw(*copy, {}, {}, {{"source", TextureSource::texture(*texture)}})}}),
-               "missing texture");
+  expect_error(
+      backend().render(
+          {*target, glm::vec4(0.0f), 1.0f, {draw(*copy, {}, {}, {{"source", TextureSource::texture(*texture)}})}}),
+      "missing texture");
   ASSERT_TRUE(backend().destroy(*sampled));
-  expect_error(backend().render({*target, glm::vec4(0.0f), 1.0f,
-                                 {draw(*copy, {}, {}, {{"source", TextureSource::color_of(*sampled)}})}}),
-               "missing target");
+  expect_error(
+      backend().render(
+          {*target, glm::vec4(0.0f), 1.0f, {draw(*copy, {}, {}, {{"source", TextureSource::color_of(*sampled)}})}}),
+      "missing target");
   ASSERT_TRUE(backend().destroy(*target));
   expect_error(backend().render({*target, glm::vec4(0.0f), 1.0f, {}}), "no such target");
   auto read = backend().read_color(*target);
@@ -818,7 +850,9 @@ TEST_P(BackendContractTest, CreatingAfterDestroyingWorksAndGivesANewHandle) {
     ASSERT_TRUE(texture && target);
     EXPECT_NE(*target, previous) << "a destroyed target's handle is not given out again";
     previous = *target;
-    RenderPass pass{*target, glm::vec4(0.0f), 1.0f,
+    RenderPass pass{*target,
+                    glm::vec4(0.0f),
+                    1.0f,
                     {draw(*program, {}, {}, {{"source", TextureSource::texture(*texture, {Filter::Nearest, {}})}})}};
     auto rendered = backend().render(pass);
     ASSERT_TRUE(rendered) << rendered.error().to_string();
@@ -837,8 +871,11 @@ TEST_P(BackendContractTest, ATargetSampledByAnEarlierPassCanBeDestroyedAfterIt) 
   auto copy = fullscreen_program("copy", kCopyFragment, layout({}, {texture_slot("source", 1)}));
   ASSERT_TRUE(first && second && uv && copy);
   ASSERT_TRUE(backend().render({*first, glm::vec4(0.0f), 1.0f, {draw(*uv)}}));
-  ASSERT_TRUE(backend().render({*second, glm::vec4(0.0f), 1.0f,
-                                {draw(*copy, {}, {}, {{"source", TextureSource::color_of(*first, {Filter::Nearest, {}})}})}}));
+  ASSERT_TRUE(
+      backend().render({*second,
+                        glm::vec4(0.0f),
+                        1.0f,
+                        {draw(*copy, {}, {}, {{"source", TextureSource::color_of(*first, {Filter::Nearest, {}})}})}}));
   ASSERT_TRUE(backend().destroy(*first));
   auto image = backend().read_color(*second);
   ASSERT_TRUE(image);

@@ -95,8 +95,12 @@ void FullPathToSpirv(benchmark::State& state) {
       auto module = xshade::hlsl::compile_text(source.name, source.text, source.options);
       auto vk = xshade::glsl::emit(*module, {xshade::glsl::Flavour::Vk});
       if (!vk) continue;
-      if (vk->vertex) benchmark::DoNotOptimize(xshade::spirv::compile_vulkan_glsl(vk->vertex->text, xshade::spirv::Stage::Vertex, source.name));
-      if (vk->fragment) benchmark::DoNotOptimize(xshade::spirv::compile_vulkan_glsl(vk->fragment->text, xshade::spirv::Stage::Fragment, source.name));
+      if (vk->vertex)
+        benchmark::DoNotOptimize(
+            xshade::spirv::compile_vulkan_glsl(vk->vertex->text, xshade::spirv::Stage::Vertex, source.name));
+      if (vk->fragment)
+        benchmark::DoNotOptimize(
+            xshade::spirv::compile_vulkan_glsl(vk->fragment->text, xshade::spirv::Stage::Fragment, source.name));
     }
   });
 }

@@ -54,7 +54,9 @@ int main(int argc, char** argv) {
   fs::remove_all(cache_dir);
   const ShaderCache cache(cache_dir, compiler_identity());
 
-  std::printf("| scene | lane | variants | compile cold (ms) | compile warm (ms) | first frame (ms) | render median (ms) | fastest - slowest (ms) |\n");
+  std::printf(
+      "| scene | lane | variants | compile cold (ms) | compile warm (ms) | first frame (ms) | render median (ms) | "
+      "fastest - slowest (ms) |\n");
   std::printf("|---|---|---|---|---|---|---|---|\n");
   for (const fs::path& file : scenes) {
     auto scene = load_scene(file);
@@ -88,7 +90,8 @@ int main(int argc, char** argv) {
       if (times.empty()) continue;
       std::printf("| %s | %s | %zu | %.1f | %.2f | %.1f | %.1f | %.1f - %.1f |\n", scene->name.c_str(),
                   std::string(lane_name(lane)).c_str(), plan->variants.size(), cold_ms, warm_ms,
-                  milliseconds_of(rendered->frame_timings.front()), times[times.size() / 2], times.front(), times.back());
+                  milliseconds_of(rendered->frame_timings.front()), times[times.size() / 2], times.front(),
+                  times.back());
       std::fflush(stdout);
     }
   }

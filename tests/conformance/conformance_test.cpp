@@ -11,8 +11,8 @@
 #include <map>
 #include <numbers>
 
-#include <glm/glm.hpp>
 #include <gtest/gtest.h>
+#include <glm/glm.hpp>
 
 #include "harness/render/evaluate.h"
 #include "harness/render/lanes.h"
@@ -56,8 +56,8 @@ glm::dvec4 hlsl_lit(double n_dot_l, double n_dot_h, double m) {
   const double specular = n_dot_l < 0.0 || n_dot_h < 0.0 ? 0.0 : std::pow(n_dot_h, m);
   return glm::dvec4(1.0, std::max(n_dot_l, 0.0), specular, 1.0);
 }
-const glm::dvec3 kLitArgs[8] = {{0.5, 0.25, 2.0},  {0.5, 0.75, 4.0},  {2.0, 3.0, 2.0},  {1.0, 2.0, 3.0},
-                                {0.25, 0.5, 3.0},  {0.25, 0.5, 3.0},  {-0.5, 0.5, 2.0}, {0.5, -0.25, 2.0}};
+const glm::dvec3 kLitArgs[8] = {{0.5, 0.25, 2.0}, {0.5, 0.75, 4.0}, {2.0, 3.0, 2.0},  {1.0, 2.0, 3.0},
+                                {0.25, 0.5, 3.0}, {0.25, 0.5, 3.0}, {-0.5, 0.5, 2.0}, {0.5, -0.25, 2.0}};
 
 const float kFmodInputs[8] = {-7.5f, -3.0f, -0.5f, 0.0f, 0.5f, 3.0f, 7.25f, -1.75f};
 const int kIntA[8] = {-7, -7, 7, 7, -8, 0, 5, -1};
@@ -80,10 +80,10 @@ std::vector<std::byte> globals_bytes() {
 
 std::vector<std::byte> params_bytes() {
   std::vector<float> floats(32 / 4 + 16, 0.0f);
-  floats[0] = 1.0f;                                  // first
+  floats[0] = 1.0f;                                      // first
   floats[1] = 2.0f, floats[2] = 3.0f, floats[3] = 4.0f;  // packed
-  floats[4] = 5.0f;                                  // scalar
-  floats[5] = 6.0f, floats[6] = 7.0f;                // pair
+  floats[4] = 5.0f;                                      // scalar
+  floats[5] = 6.0f, floats[6] = 7.0f;                    // pair
   // matrix_ M with rows (1 2 3 4), (5 6 7 8), (9 10 11 12), (13 14 15 16): column c at 32 + 16c.
   for (int row = 0; row < 4; ++row)
     for (int col = 0; col < 4; ++col) floats[8 + size_t(col) * 4 + size_t(row)] = float(row * 4 + col + 1);
@@ -115,7 +115,7 @@ std::vector<Rule> rules() {
        0.0, "integers are exact"},
       {"matrices", 7,
        [](uint32_t x) {
-         const glm::dvec4 results[7] = {{321, 654, 0, 0},   {41, 52, 63, 0},  {4, 5, 6, 3},   {2, 4, 2, -2},
+         const glm::dvec4 results[7] = {{321, 654, 0, 0}, {41, 52, 63, 0}, {4, 5, 6, 3}, {2, 4, 2, -2},
                                         {19, 22, 43, 50}, {5, 12, 21, 32}, {1, 4, 3, 6}};
          return results[x];
        },
@@ -152,25 +152,35 @@ std::vector<Rule> rules() {
          return glm::dvec4(r, b, 2.0 * (0.5 + v), -v);
        },
        0.0, "halves and small integers are exact"},
-      {"derivatives", 8,
-       [](uint32_t) { return glm::dvec4(1.0 / 8.0, 1.0 / 2.0, 1.0, 0.0); },
-       0.0, "uv steps by 1/8 across and 1/2 down (an 8x2 image); pixel positions by 1"},
-      {"clip", 8, [](uint32_t) { return glm::dvec4(1, 2, 3, 4); }, 0.0, "constants",
-       {}, [](uint32_t x) { return double(x) + 0.5 - 3.5 < 0.0; }},
-      {"constant_buffer", 3,
+      {"derivatives", 8, [](uint32_t) { return glm::dvec4(1.0 / 8.0, 1.0 / 2.0, 1.0, 0.0); }, 0.0,
+       "uv steps by 1/8 across and 1/2 down (an 8x2 image); pixel positions by 1"},
+      {"clip",
+       8,
+       [](uint32_t) { return glm::dvec4(1, 2, 3, 4); },
+       0.0,
+       "constants",
+       {},
+       [](uint32_t x) { return double(x) + 0.5 - 3.5 < 0.0; }},
+      {"constant_buffer",
+       3,
        [](uint32_t x) {
          const glm::dvec4 results[3] = {{1, 2, 3, 4}, {5, 6, 7, 0}, {30, 70, 110, 150}};
          return results[x];
        },
-       0.0, "small integers are exact", {{"Params", params_bytes()}}},
+       0.0,
+       "small integers are exact",
+       {{"Params", params_bytes()}}},
       {"one_component_vectors", 4, [](uint32_t x) { return glm::dvec4(x + 1.0, x + 1.0, x + 1.0, 2.0 * (x + 1.0)); },
        0.0, "small integers are exact"},
       {"lit", 8, [](uint32_t x) { return hlsl_lit(kLitArgs[x].x, kLitArgs[x].y, kLitArgs[x].z); },
        // GLSL's pow is exp2(m * log2(h)), each within a few ULP; the largest result is 9.
        2e-5, "fp32 pow against the fp64 reference"},
-      {"globals_packing", 2,
+      {"globals_packing",
+       2,
        [](uint32_t x) { return x == 0 ? glm::dvec4(1, 2, 3, 4) : glm::dvec4(5, 6, 7, 0); },
-       0.0, "small integers are exact", {{std::string(hlsl::kGlobalsBufferName), globals_bytes()}}},
+       0.0,
+       "small integers are exact",
+       {{std::string(hlsl::kGlobalsBufferName), globals_bytes()}}},
   };
 }
 
@@ -200,8 +210,8 @@ TEST_P(Conformance, EveryLaneComputesWhatHlslDefines) {
       const glm::vec4 got = image->at(x, 0);
       for (int c = 0; c < 4; ++c)
         if (!(std::fabs(double(got[c]) - expected[c]) <= rule.tolerance)) {
-          first_mismatch = "pixel " + std::to_string(x) + " channel " + "rgba"[c] + ": got " +
-                           std::to_string(got[c]) + ", HLSL gives " + std::to_string(expected[c]);
+          first_mismatch = "pixel " + std::to_string(x) + " channel " + "rgba"[c] + ": got " + std::to_string(got[c]) +
+                           ", HLSL gives " + std::to_string(expected[c]);
           break;
         }
     }
@@ -214,7 +224,9 @@ TEST_P(Conformance, EveryLaneComputesWhatHlslDefines) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Rules, Conformance, ::testing::ValuesIn(rules()),
-                         [](const ::testing::TestParamInfo<Rule>& rule_info) { return std::string(rule_info.param.name); });
+                         [](const ::testing::TestParamInfo<Rule>& rule_info) {
+                           return std::string(rule_info.param.name);
+                         });
 
 }  // namespace
 }  // namespace xshade::tests

@@ -19,8 +19,8 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   static const char* const extensions[] = {".png", ".exr", ".hdr"};
   const std::filesystem::path path = std::filesystem::temp_directory_path() /
                                      ("xshade_image_fuzz_" + std::to_string(::getpid()) + extensions[data[0] % 3]);
-  std::ofstream(path, std::ios::binary | std::ios::trunc).write(reinterpret_cast<const char*>(data + 1),
-                                                                std::streamsize(size - 1));
+  std::ofstream(path, std::ios::binary | std::ios::trunc)
+      .write(reinterpret_cast<const char*>(data + 1), std::streamsize(size - 1));
   auto image = xshade::harness::read_image(path, (data[0] & 0x80) == 0);
   std::error_code ignored;
   std::filesystem::remove(path, ignored);

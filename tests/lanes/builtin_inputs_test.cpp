@@ -10,8 +10,8 @@
 #include <vector>
 
 #include <fmt/format.h>
-#include <glm/gtc/matrix_transform.hpp>
 #include <gtest/gtest.h>
+#include <glm/gtc/matrix_transform.hpp>
 
 #include "tests/lanes/probe_scene.h"
 
@@ -104,16 +104,17 @@ glm::mat4 camera_projection() {  // Unity's Camera.projectionMatrix: OpenGL's cl
   return glm::perspectiveRH_NO(glm::radians(kFovY), float(kWidth) / float(kHeight), kNear, kFar);
 }
 glm::mat4 model() {
-  return glm::scale(glm::rotate(glm::translate(glm::mat4(1.0f), kObjectPosition), glm::radians(90.0f), glm::vec3(0, 1, 0)),
-                    glm::vec3(kObjectScale));
+  return glm::scale(
+      glm::rotate(glm::translate(glm::mat4(1.0f), kObjectPosition), glm::radians(90.0f), glm::vec3(0, 1, 0)),
+      glm::vec3(kObjectScale));
 }
 const glm::mat4 kFlipZ = glm::scale(glm::mat4(1.0f), glm::vec3(1, 1, -1));
 
 struct Row {
-  std::string name;          // the test's name: the table's row
-  bool post = false;         // read in a post pass; else in the object's material
-  std::string declarations;  // what the probe declares
-  std::string expression;    // the float4 pixel column i writes
+  std::string name;             // the test's name: the table's row
+  bool post = false;            // read in a post pass; else in the object's material
+  std::string declarations;     // what the probe declares
+  std::string expression;       // the float4 pixel column i writes
   std::vector<float> expected;  // pixel 0's four values, then pixel 1's, ... (at most 4 pixels)
   // Why the comparison allows what it does: float32 through different drivers' arithmetic.
   float tolerance = 1e-5f;
@@ -124,12 +125,15 @@ struct Row {
 void PrintTo(const Row& row, std::ostream* out) { *out << row.name; }
 
 Row vector_row(const std::string& name, const std::string& type, std::vector<float> expected, bool post = true) {
-  std::string expression = type == "float4" ? name : type == "float3" ? "float4(" + name + ", 0)" : "float4(" + name + ", 0, 0, 0)";
+  std::string expression = type == "float4"   ? name
+                           : type == "float3" ? "float4(" + name + ", 0)"
+                                              : "float4(" + name + ", 0, 0, 0)";
   expected.resize(4, 0.0f);
   return {name, post, type + " " + name + ";", expression, expected};
 }
 Row matrix_row(const std::string& name, const glm::mat4& m, bool post = true) {
-  return {name, post, "float4x4 " + name + ";", name + "[i]", rows_of(m), 1e-4f};  // inverses and products: a few ulps of 100
+  return {name,         post,       "float4x4 " + name + ";",
+          name + "[i]", rows_of(m), 1e-4f};  // inverses and products: a few ulps of 100
 }
 
 std::vector<Row> rows() {
@@ -184,20 +188,24 @@ std::vector<Row> rows() {
   all.push_back(shc);
 
   // A light without shadows and no light probe proxy volume, one value a pixel.
-  all.push_back({"unity_shadow_and_probe_volume", true,
-                 "float4 _LightShadowData; float4 unity_ShadowFadeCenterAndType; float4 unity_OcclusionMaskSelector; "
-                 "float4 unity_ProbeVolumeParams;",
-                 "i == 0 ? _LightShadowData : i == 1 ? unity_ShadowFadeCenterAndType : i == 2 ? unity_OcclusionMaskSelector "
-                 ": unity_ProbeVolumeParams",
-                 {1, 0, 0, 0, kCameraPosition.x, kCameraPosition.y, kCameraPosition.z, 0, 1, 0, 0, 0, 0, 0, 0, 0}});
+  all.push_back(
+      {"unity_shadow_and_probe_volume",
+       true,
+       "float4 _LightShadowData; float4 unity_ShadowFadeCenterAndType; float4 unity_OcclusionMaskSelector; "
+       "float4 unity_ProbeVolumeParams;",
+       "i == 0 ? _LightShadowData : i == 1 ? unity_ShadowFadeCenterAndType : i == 2 ? unity_OcclusionMaskSelector "
+       ": unity_ProbeVolumeParams",
+       {1, 0, 0, 0, kCameraPosition.x, kCameraPosition.y, kCameraPosition.z, 0, 1, 0, 0, 0, 0, 0, 0, 0}});
 
   // Lights the scene has not: a vertex light's slot as Unity's manual describes an unused one.
-  all.push_back({"unused_vertex_lights", true,
-                 "float4 unity_LightColor[8]; float4 unity_LightPosition[8]; float4 unity_LightAtten[8]; "
-                 "float4 unity_SpotDirection[8]; float4 unity_4LightPosX0; float4 unity_4LightAtten0; float4 unity_LightmapST;",
-                 "i == 0 ? unity_LightColor[7] + unity_4LightPosX0 + unity_4LightAtten0 : i == 1 ? unity_LightPosition[7] "
-                 ": i == 2 ? unity_LightAtten[3] + float4(0, 0, unity_SpotDirection[5].xy) : unity_LightmapST",
-                 {0, 0, 0, 0, 0, 0, 1, 0, -1, 1, 0, 0, 1, 1, 0, 0}});
+  all.push_back(
+      {"unused_vertex_lights",
+       true,
+       "float4 unity_LightColor[8]; float4 unity_LightPosition[8]; float4 unity_LightAtten[8]; "
+       "float4 unity_SpotDirection[8]; float4 unity_4LightPosX0; float4 unity_4LightAtten0; float4 unity_LightmapST;",
+       "i == 0 ? unity_LightColor[7] + unity_4LightPosX0 + unity_4LightAtten0 : i == 1 ? unity_LightPosition[7] "
+       ": i == 2 ? unity_LightAtten[3] + float4(0, 0, unity_SpotDirection[5].xy) : unity_LightmapST",
+       {0, 0, 0, 0, 0, 0, 1, 0, -1, 1, 0, 0, 1, 1, 0, 0}});
   // The frustum's left, right, bottom and top planes, made here from its corners: each plane holds
   // three of them and its unit normal points at the frustum's centre.
   {
@@ -223,35 +231,71 @@ std::vector<Row> rows() {
 
   // The matrix macros of the prelude, over the variables they name.
   const std::string mvp_declarations = "float4x4 unity_ObjectToWorld; float4x4 unity_MatrixVP; float4x4 unity_MatrixV;";
-  all.push_back({"UNITY_MATRIX_MVP", false, mvp_declarations, "UNITY_MATRIX_MVP[i]", rows_of(gpu_projection() * view() * model()), 1e-4f});
+  all.push_back({"UNITY_MATRIX_MVP", false, mvp_declarations, "UNITY_MATRIX_MVP[i]",
+                 rows_of(gpu_projection() * view() * model()), 1e-4f});
   all.push_back({"UNITY_MATRIX_MV", false, mvp_declarations, "UNITY_MATRIX_MV[i]", rows_of(view() * model()), 1e-4f});
   all.push_back({"UNITY_MATRIX_IT_MV", false, "float4x4 unity_WorldToObject; float4x4 unity_MatrixInvV;",
                  "UNITY_MATRIX_IT_MV[i]", rows_of(glm::transpose(glm::inverse(view() * model()))), 1e-4f});
-  all.push_back({"UNITY_MATRIX_P", true, "float4x4 glstate_matrix_projection;", "UNITY_MATRIX_P[i]", rows_of(gpu_projection()), 1e-5f});
+  all.push_back({"UNITY_MATRIX_P", true, "float4x4 glstate_matrix_projection;", "UNITY_MATRIX_P[i]",
+                 rows_of(gpu_projection()), 1e-5f});
 
   // Textures' sizes, tiling and offset; the depth texture; the reflection probe.
   const std::string main_tex = "Texture2D _MainTex; SamplerState sampler_MainTex; ";
   const std::string touch_main_tex = " + 0.0 * _MainTex.Load(int3(0, 0, 0))";  // the texture must be read to be bound
-  all.push_back({"material_HDR", false, main_tex + "half4 _MainTex_HDR;", "_MainTex_HDR" + touch_main_tex,
-                 {1, 1, 0, 0}, 1e-5f, "", kCheckerMainTex});
-  all.push_back({"material_TexelSize", false, main_tex + "float4 _MainTex_TexelSize;", "_MainTex_TexelSize" + touch_main_tex,
-                 {1.0f / 64, 1.0f / 64, 64, 64}, 1e-5f, "", kCheckerMainTex});
-  all.push_back({"post_TexelSize", true, main_tex + "float4 _MainTex_TexelSize;", "_MainTex_TexelSize" + touch_main_tex,
-                 {1.0f / 8, 1.0f / 2, 8, 2}, 1e-5f, "_MainTex=scene.color"});
-  all.push_back({"ST_default", false, main_tex + "float4 _MainTex_ST;", "_MainTex_ST" + touch_main_tex, {1, 1, 0, 0},
-                 1e-5f, "", kCheckerMainTex});
-  all.push_back({"ST_from_the_scene", false, "float4 _DetailTex_ST;", "_DetailTex_ST", {2, 3, 0.5f, 0.25f}, 1e-5f, "",
+  all.push_back({"material_HDR",
+                 false,
+                 main_tex + "half4 _MainTex_HDR;",
+                 "_MainTex_HDR" + touch_main_tex,
+                 {1, 1, 0, 0},
+                 1e-5f,
+                 "",
+                 kCheckerMainTex});
+  all.push_back({"material_TexelSize",
+                 false,
+                 main_tex + "float4 _MainTex_TexelSize;",
+                 "_MainTex_TexelSize" + touch_main_tex,
+                 {1.0f / 64, 1.0f / 64, 64, 64},
+                 1e-5f,
+                 "",
+                 kCheckerMainTex});
+  all.push_back({"post_TexelSize",
+                 true,
+                 main_tex + "float4 _MainTex_TexelSize;",
+                 "_MainTex_TexelSize" + touch_main_tex,
+                 {1.0f / 8, 1.0f / 2, 8, 2},
+                 1e-5f,
+                 "_MainTex=scene.color"});
+  all.push_back({"ST_default",
+                 false,
+                 main_tex + "float4 _MainTex_ST;",
+                 "_MainTex_ST" + touch_main_tex,
+                 {1, 1, 0, 0},
+                 1e-5f,
+                 "",
+                 kCheckerMainTex});
+  all.push_back({"ST_from_the_scene",
+                 false,
+                 "float4 _DetailTex_ST;",
+                 "_DetailTex_ST",
+                 {2, 3, 0.5f, 0.25f},
+                 1e-5f,
+                 "",
                  "[object.properties]\n_DetailTex_ST = [2, 3, 0.5, 0.25]\n"});
   // The material wrote depth 0.5 everywhere; the pass names no source for the depth texture.
-  all.push_back({"_CameraDepthTexture", true, "Texture2D _CameraDepthTexture;",
-                 "_CameraDepthTexture.Load(int3(i, 0, 0)).rrrr", {0.5f, 0.5f, 0.5f, 0.5f, 0.5f, 0.5f, 0.5f, 0.5f,
-                                                                   0.5f, 0.5f, 0.5f, 0.5f, 0.5f, 0.5f, 0.5f, 0.5f}});
+  all.push_back({"_CameraDepthTexture",
+                 true,
+                 "Texture2D _CameraDepthTexture;",
+                 "_CameraDepthTexture.Load(int3(i, 0, 0)).rrrr",
+                 {0.5f, 0.5f, 0.5f, 0.5f, 0.5f, 0.5f, 0.5f, 0.5f, 0.5f, 0.5f, 0.5f, 0.5f, 0.5f, 0.5f, 0.5f, 0.5f}});
   // Level 0 along +x, -y, +z, -z: 0.5 + 0.5 d. The cube's texel centres are a half texel off the
   // axis and the equirect behind them is bilinear: 0.02 is about one texel's change of d.
-  Row probe{"unity_SpecCube0", true, "TextureCube unity_SpecCube0; SamplerState samplerunity_SpecCube0;",
+  Row probe{"unity_SpecCube0",
+            true,
+            "TextureCube unity_SpecCube0; SamplerState samplerunity_SpecCube0;",
             "unity_SpecCube0.SampleLevel(samplerunity_SpecCube0, i == 0 ? float3(1, 0, 0) : i == 1 ? float3(0, -1, 0) "
             ": i == 2 ? float3(0, 0, 1) : float3(0, 0, -1), 0)",
-            {1, 0.5f, 0.5f, 1, 0.5f, 0, 0.5f, 1, 0.5f, 0.5f, 1, 1, 0.5f, 0.5f, 0, 1}, 0.02f};
+            {1, 0.5f, 0.5f, 1, 0.5f, 0, 0.5f, 1, 0.5f, 0.5f, 1, 1, 0.5f, 0.5f, 0, 1},
+            0.02f};
   all.push_back(probe);
   return all;
 }

@@ -38,14 +38,17 @@ class Depth : public LaneTest {
       return harness::DrawItem{flat, *mesh, {{"Flat", harness::uniform_bytes(color)}}, {}, {}};
     };
     harness::RenderPass scene_pass{*scene, glm::vec4(0.0f), 1.0f, {}};
-    scene_pass.draws = {draw(-1.0f, -0.25f, kNearDepth, kNearColor),
-                        draw(-0.75f, 0.0f, kFarDepth, kFarColor),
-                        draw(0.25f, 1.0f, kFarDepth, kFarColor),
-                        draw(0.0f, 0.75f, kNearDepth, kNearColor)};
+    scene_pass.draws = {draw(-1.0f, -0.25f, kNearDepth, kNearColor), draw(-0.75f, 0.0f, kFarDepth, kFarColor),
+                        draw(0.25f, 1.0f, kFarDepth, kFarColor), draw(0.0f, 0.75f, kNearDepth, kNearColor)};
     EXPECT_TRUE(lane_backend.render(scene_pass));
 
     harness::RenderPass view_pass{*view, glm::vec4(0.0f), 1.0f, {}};
-    view_pass.draws = {{show_depth, {}, {}, {{"scene_depth", TextureSource::depth_of(*scene, {harness::Filter::Nearest, harness::AddressMode::ClampToEdge})}}, {}}};
+    view_pass.draws = {{show_depth,
+                        {},
+                        {},
+                        {{"scene_depth", TextureSource::depth_of(
+                                             *scene, {harness::Filter::Nearest, harness::AddressMode::ClampToEdge})}},
+                        {}}};
     EXPECT_TRUE(lane_backend.render(view_pass));
 
     auto color = lane_backend.read_color(*scene);
@@ -66,7 +69,7 @@ TEST_F(Depth, NearerGeometryWinsAndLaterPassesSampleTheSameDepth) {
     // Pixel columns (32 wide): near-first pair covers x in [0,12) near, [4,16) far; the
     // far-first pair covers [20,32) far and [16,28) near.
     EXPECT_EQ(rendered.color.at(2, y), kNearColor);
-    EXPECT_EQ(rendered.color.at(8, y), kNearColor);   // overlap, near drawn first
+    EXPECT_EQ(rendered.color.at(8, y), kNearColor);  // overlap, near drawn first
     EXPECT_EQ(rendered.color.at(14, y), kFarColor);
     EXPECT_EQ(rendered.color.at(18, y), kNearColor);
     EXPECT_EQ(rendered.color.at(24, y), kNearColor);  // overlap, near drawn last

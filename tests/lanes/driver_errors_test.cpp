@@ -39,15 +39,14 @@ TEST(BrokenGlsl, EachLaneNamesTheLine) {
 }
 
 TEST(VulkanValidation, AMessageFromTheLayerReachesTheTest) {
-  if (!harness::vulkan_validation_available())
-    GTEST_SKIP() << "vulkan-validationlayers is not installed";
+  if (!harness::vulkan_validation_available()) GTEST_SKIP() << "vulkan-validationlayers is not installed";
   auto vk = harness::create_backend(Lane::Vk, {.validation = true});
   ASSERT_TRUE(vk) << vk.error().to_string();
   harness::ProgramDesc desc;
   desc.name = "unfed_input";
   desc.vertex = *harness::stage_for_lane(Lane::Vk, spirv::Stage::Vertex, load_shader_pair("mesh", "vert"));
-  auto fragment = spirv::compile_vulkan_glsl(read_shader("unfed_input.vk.frag"),
-                                             spirv::Stage::Fragment, "unfed_input.vk.frag");
+  auto fragment =
+      spirv::compile_vulkan_glsl(read_shader("unfed_input.vk.frag"), spirv::Stage::Fragment, "unfed_input.vk.frag");
   ASSERT_TRUE(fragment) << fragment.error().to_string();
   desc.fragment.spirv = fragment->words;
   desc.fragment.name = "unfed_input.vk.frag";

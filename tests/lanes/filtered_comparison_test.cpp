@@ -6,8 +6,8 @@
 #include <cmath>
 #include <cstring>
 
-#include <glm/glm.hpp>
 #include <gtest/gtest.h>
+#include <glm/glm.hpp>
 
 #include "harness/render/evaluate.h"
 #include "harness/render/shader_program.h"
@@ -77,8 +77,8 @@ class FilteredComparison : public LaneTest {
     if (!map) return fail(map.error());
     const harness::SamplerDesc linear{harness::Filter::Linear, harness::AddressMode::ClampToEdge,
                                       harness::CompareOp::LessEqual};
-    return harness::evaluate(*module, lane, backend(lane), kComparedImageSize, kComparedImageSize, {}, {.filter_comparisons = true},
-                             {{"shadow", harness::TextureSource::texture(*map, linear)}});
+    return harness::evaluate(*module, lane, backend(lane), kComparedImageSize, kComparedImageSize, {},
+                             {.filter_comparisons = true}, {{"shadow", harness::TextureSource::texture(*map, linear)}});
   }
 };
 

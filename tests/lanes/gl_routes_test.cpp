@@ -16,9 +16,9 @@
 #include "harness/gl/gl_backend.h"
 #include "harness/image/image.h"
 #include "harness/render/planner.h"
-#include "harness/scene/scene.h"
 #include "harness/render/scene_renderer.h"
 #include "harness/render/variant_compiler.h"
+#include "harness/scene/scene.h"
 
 namespace xshade::tests {
 namespace {
@@ -44,8 +44,8 @@ std::string describe_difference(const FloatImage& osmesa, const FloatImage& egl)
   const glm::vec4 a = osmesa.at(difference.x, difference.y);
   const glm::vec4 b = egl.at(difference.x, difference.y);
   return fmt::format("largest difference {} in channel {} at ({}, {}): OSMesa ({}, {}, {}, {}), EGL ({}, {}, {}, {})",
-                     difference.max, difference.channel, difference.x, difference.y, a.r, a.g, a.b, a.a, b.r, b.g,
-                     b.b, b.a);
+                     difference.max, difference.channel, difference.x, difference.y, a.r, a.g, a.b, a.a, b.r, b.g, b.b,
+                     b.a);
 }
 
 TEST(GlRoutesAgree, TheScenesFolderHasScenes) {

@@ -101,7 +101,8 @@ TEST_P(HalfEmulation, RoundsAsTheDriversOwnConversionAtEveryExponent) {
   for (uint32_t y = 0; y < image->height; ++y)
     for (uint32_t x = 0; x < image->width; ++x) {
       const glm::vec4 p = image->at(x, y);
-      const bool same = std::bit_cast<uint32_t>(p.r) == std::bit_cast<uint32_t>(p.g) || (std::isnan(p.r) && std::isnan(p.g));
+      const bool same =
+          std::bit_cast<uint32_t>(p.r) == std::bit_cast<uint32_t>(p.g) || (std::isnan(p.r) && std::isnan(p.g));
       if (!same && ++differing <= 5)
         ADD_FAILURE() << "(half)" << std::hexfloat << p.b << " is " << p.r << ", the driver's conversion gives " << p.g;
     }

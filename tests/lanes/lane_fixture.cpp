@@ -18,8 +18,7 @@ std::string read_shader(const std::string& name) {
 }
 
 harness::GlslStagePair load_shader_pair(const std::string& name, const std::string& stage) {
-  return {read_shader(name + ".gl." + stage), read_shader(name + ".vk." + stage),
-          name + "." + stage};
+  return {read_shader(name + ".gl." + stage), read_shader(name + ".vk." + stage), name + "." + stage};
 }
 
 void LaneTest::SetUp() {
@@ -36,16 +35,15 @@ void LaneTest::TearDown() {
       ADD_FAILURE() << harness::lane_name(lane) << " driver message: " << message;
 }
 
-harness::ProgramHandle LaneTest::program(harness::Lane lane, const std::string& vertex,
-                                         const std::string& fragment, harness::ProgramLayout layout) {
+harness::ProgramHandle LaneTest::program(harness::Lane lane, const std::string& vertex, const std::string& fragment,
+                                         harness::ProgramLayout layout) {
   harness::ProgramDesc desc;
   desc.name = fragment;
   desc.layout = std::move(layout);
   desc.fullscreen = vertex == "fullscreen";
   harness::GlslStagePair vertex_pair =
       desc.fullscreen ? harness::GlslStagePair{glsl::fullscreen_vertex_shader(glsl::Flavour::Gl),
-                                               glsl::fullscreen_vertex_shader(glsl::Flavour::Vk),
-                                               "fullscreen.vert"}
+                                               glsl::fullscreen_vertex_shader(glsl::Flavour::Vk), "fullscreen.vert"}
                       : load_shader_pair(vertex, "vert");
   auto vertex_stage = harness::stage_for_lane(lane, spirv::Stage::Vertex, vertex_pair);
   auto fragment_stage = harness::stage_for_lane(lane, spirv::Stage::Fragment, load_shader_pair(fragment, "frag"));

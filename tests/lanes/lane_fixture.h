@@ -28,8 +28,8 @@ class LaneTest : public ::testing::Test {
 
   // A program of two hand-written stages (tests/shaders/<vertex>.*.vert, <fragment>.*.frag);
   // vertex "fullscreen" is the shared full-screen triangle.
-  harness::ProgramHandle program(harness::Lane lane, const std::string& vertex,
-                                 const std::string& fragment, harness::ProgramLayout layout);
+  harness::ProgramHandle program(harness::Lane lane, const std::string& vertex, const std::string& fragment,
+                                 harness::ProgramLayout layout);
 
  private:
   std::map<harness::Lane, std::unique_ptr<harness::Backend>> backends_;

@@ -7,6 +7,7 @@
 
 #include <gtest/gtest.h>
 
+#include "harness/assets/environment.h"
 #include "harness/backend/resource_set.h"
 #include "harness/image/image_compare.h"
 #include "harness/render/evaluate.h"
@@ -15,7 +16,6 @@
 #include "harness/render/scene_renderer.h"
 #include "harness/render/variant_compiler.h"
 #include "harness/scene/scene.h"
-#include "harness/assets/environment.h"
 #include "hlsl_like/compiler.h"
 
 namespace xshade::tests {
@@ -105,12 +105,13 @@ class NonfiniteTrace : public ::testing::TestWithParam<harness::Lane> {};
 constexpr const char* kZeroOverZero = "float zero = uv.x < 0.125 ? 0.0 : 1.0;\n";
 
 TEST_P(NonfiniteTrace, AnAssignmentIsNamed) {
-  const fs::path folder = write_files("assignment", {{"main.hlsl", std::string("#pragma fragment frag\n"
-                                                                               "float4 frag(float2 uv : TEXCOORD0) : SV_Target {\n  ") +
-                                                                       kZeroOverZero +
-                                                                       "  float x = 1.0;\n"
-                                                                       "  x = zero / zero;\n"  // line 5
-                                                                       "  return float4(x, 0.5, 0.5, 1.0);\n}\n"}});
+  const fs::path folder =
+      write_files("assignment", {{"main.hlsl", std::string("#pragma fragment frag\n"
+                                                           "float4 frag(float2 uv : TEXCOORD0) : SV_Target {\n  ") +
+                                                   kZeroOverZero +
+                                                   "  float x = 1.0;\n"
+                                                   "  x = zero / zero;\n"  // line 5
+                                                   "  return float4(x, 0.5, 0.5, 1.0);\n}\n"}});
   const Traced traced = trace_fullscreen(GetParam(), folder, "main.hlsl");
   expect_accounted(traced);
   expect_single_origin(traced, TraceSite::Kind::Assignment, "main.hlsl", 5, "frag");
@@ -119,25 +120,27 @@ TEST_P(NonfiniteTrace, AnAssignmentIsNamed) {
 }
 
 TEST_P(NonfiniteTrace, ACompoundAssignmentIsNamed) {
-  const fs::path folder = write_files("compound", {{"main.hlsl", std::string("#pragma fragment frag\n"
-                                                                             "float4 frag(float2 uv : TEXCOORD0) : SV_Target {\n  ") +
-                                                                     kZeroOverZero +
-                                                                     "  float x = zero;\n"
-                                                                     "  x /= zero;\n"  // line 5
-                                                                     "  return float4(0.5, x, 0.5, 1.0);\n}\n"}});
+  const fs::path folder =
+      write_files("compound", {{"main.hlsl", std::string("#pragma fragment frag\n"
+                                                         "float4 frag(float2 uv : TEXCOORD0) : SV_Target {\n  ") +
+                                                 kZeroOverZero +
+                                                 "  float x = zero;\n"
+                                                 "  x /= zero;\n"  // line 5
+                                                 "  return float4(0.5, x, 0.5, 1.0);\n}\n"}});
   const Traced traced = trace_fullscreen(GetParam(), folder, "main.hlsl");
   expect_accounted(traced);
   expect_single_origin(traced, TraceSite::Kind::CompoundAssignment, "main.hlsl", 5, "frag");
 }
 
 TEST_P(NonfiniteTrace, AReturnValueIsNamedWithTheCallThatMadeIt) {
-  const fs::path folder = write_files("return", {{"main.hlsl", std::string("#pragma fragment frag\n"
-                                                                           "float ratio(float a, float b) {\n"
-                                                                           "  return a / b;\n"  // line 3
-                                                                           "}\n"
-                                                                           "float4 frag(float2 uv : TEXCOORD0) : SV_Target {\n  ") +
-                                                                   kZeroOverZero +
-                                                                   "  return float4(ratio(zero, zero), 0.5, 0.5, 1.0);\n}\n"}});  // line 7
+  const fs::path folder = write_files(
+      "return",
+      {{"main.hlsl", std::string("#pragma fragment frag\n"
+                                 "float ratio(float a, float b) {\n"
+                                 "  return a / b;\n"  // line 3
+                                 "}\n"
+                                 "float4 frag(float2 uv : TEXCOORD0) : SV_Target {\n  ") +
+                         kZeroOverZero + "  return float4(ratio(zero, zero), 0.5, 0.5, 1.0);\n}\n"}});  // line 7
   const Traced traced = trace_fullscreen(GetParam(), folder, "main.hlsl");
   expect_accounted(traced);
   expect_single_origin(traced, TraceSite::Kind::Return, "main.hlsl", 3, "ratio");
@@ -149,24 +152,24 @@ TEST_P(NonfiniteTrace, AReturnValueIsNamedWithTheCallThatMadeIt) {
 }
 
 TEST_P(NonfiniteTrace, ALibraryCallFromAnIncludeIsNamedInTheIncludeWithItsCallers) {
-  const fs::path folder = write_files(
-      "include",
-      {{"lib.hlsl", "float soft_root(float x) {\n"
-                    "  float r = sqrt(x);\n"  // line 2: the intrinsic's result
-                    "  return r;\n"
-                    "}\n"
-                    "float shade(float x) { return soft_root(x) * 2.0; }\n"},
-       {"main.hlsl", "#include \"lib.hlsl\"\n"
-                     "#pragma fragment frag\n"
-                     "float4 frag(float2 uv : TEXCOORD0) : SV_Target {\n"
-                     "  float x = uv.y < 0.25 ? -1.0 : 1.0;\n"
-                     "  return float4(0.5, 0.5, shade(x), 1.0);\n}\n"}});  // line 5
+  const fs::path folder = write_files("include", {{"lib.hlsl",
+                                                   "float soft_root(float x) {\n"
+                                                   "  float r = sqrt(x);\n"  // line 2: the intrinsic's result
+                                                   "  return r;\n"
+                                                   "}\n"
+                                                   "float shade(float x) { return soft_root(x) * 2.0; }\n"},
+                                                  {"main.hlsl",
+                                                   "#include \"lib.hlsl\"\n"
+                                                   "#pragma fragment frag\n"
+                                                   "float4 frag(float2 uv : TEXCOORD0) : SV_Target {\n"
+                                                   "  float x = uv.y < 0.25 ? -1.0 : 1.0;\n"
+                                                   "  return float4(0.5, 0.5, shade(x), 1.0);\n}\n"}});  // line 5
   const Traced traced = trace_fullscreen(GetParam(), folder, "main.hlsl");
   expect_accounted(traced);
   expect_single_origin(traced, TraceSite::Kind::Call, "lib.hlsl", 2, "soft_root");
   const harness::NonfiniteOrigin& origin = traced.origins.origins[0];
   EXPECT_EQ(origin.site.what, "sqrt");
-  EXPECT_EQ(origin.pixels, 16u);  // rows 0 and 1
+  EXPECT_EQ(origin.pixels, 16u);       // rows 0 and 1
   ASSERT_EQ(origin.calls.size(), 2u);  // soft_root from shade, shade from frag
   EXPECT_EQ(origin.calls[0].caller, "shade");
   EXPECT_EQ(fs::path(origin.calls[0].file).filename().string(), "lib.hlsl");
@@ -175,9 +178,10 @@ TEST_P(NonfiniteTrace, ALibraryCallFromAnIncludeIsNamedInTheIncludeWithItsCaller
 }
 
 TEST_P(NonfiniteTrace, ANegativeColourIsNamedAtTheOutput) {
-  const fs::path folder = write_files("negative", {{"main.hlsl", "#pragma fragment frag\n"
-                                                                 "float4 frag(float2 uv : TEXCOORD0) : SV_Target {\n"
-                                                                 "  return float4(uv.x - 0.5, 0.5, 0.5, 1.0);\n}\n"}});
+  const fs::path folder = write_files("negative", {{"main.hlsl",
+                                                    "#pragma fragment frag\n"
+                                                    "float4 frag(float2 uv : TEXCOORD0) : SV_Target {\n"
+                                                    "  return float4(uv.x - 0.5, 0.5, 0.5, 1.0);\n}\n"}});
   const Traced traced = trace_fullscreen(GetParam(), folder, "main.hlsl");
   EXPECT_TRUE(harness::bitwise_equal(traced.plain, traced.traced));
   ASSERT_EQ(traced.origins.origins.size(), 1u) << harness::describe_origins(traced.origins);
@@ -216,8 +220,8 @@ TEST_P(NonfiniteTrace, AValueBornInTheVertexStageIsNamedAsItArrives) {
   auto mesh = resources.upload_mesh(triangle);
   ASSERT_TRUE(target && program && mesh) << (program ? "" : program.error().to_string());
   std::vector<std::byte> zero(desc->layout.uniform_blocks.at(0).size, std::byte{0});
-  ASSERT_TRUE((*backend)->render({*target, glm::vec4(0.0f), 1.0f,
-                                  {{*program, *mesh, {{desc->layout.uniform_blocks[0].name, zero}}, {}, {}}}}));
+  ASSERT_TRUE((*backend)->render(
+      {*target, glm::vec4(0.0f), 1.0f, {{*program, *mesh, {{desc->layout.uniform_blocks[0].name, zero}}, {}, {}}}}));
   auto image = (*backend)->read_color(*target);
   auto record = (*backend)->read_second_color(*target);
   ASSERT_TRUE(image && record);
@@ -259,8 +263,8 @@ TEST_P(TracedFixedScene, EveryFixedSceneRendersTheSameBitsTraced) {
     auto traced_variants = compiler.compile_plan(*plan, lane, false, /*trace_nonfinite=*/true);
     ASSERT_TRUE(plain_variants && traced_variants);
     auto plain = harness::render_scene(**backend, *scene, *plan, *plain_variants, *environment);
-    auto traced = harness::render_scene(**backend, *scene, *plan, *traced_variants, *environment,
-                                        {.trace_nonfinite = true});
+    auto traced =
+        harness::render_scene(**backend, *scene, *plan, *traced_variants, *environment, {.trace_nonfinite = true});
     ASSERT_TRUE(plain && traced) << (traced ? "" : traced.error().to_string());
     EXPECT_TRUE(harness::bitwise_equal(plain->image, traced->image));
     EXPECT_EQ(traced->traces.size(), plan->passes.size());

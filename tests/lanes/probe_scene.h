@@ -7,10 +7,10 @@
 #include <memory>
 #include <string>
 
+#include "base/result.h"
 #include "harness/backend/backend.h"
 #include "harness/image/image.h"
 #include "harness/scene/lane.h"
-#include "base/result.h"
 
 namespace xshade::tests {
 
@@ -30,7 +30,8 @@ class ProbeScene {
   void write_direction_equirect(const std::string& file) const;
 
   // `scene_text` as `probe.toml` in the folder, its shaders found in the folder, then the library.
-  Result<harness::FloatImage> render(const std::string& scene_text, harness::Lane lane, harness::Backend& backend) const;
+  Result<harness::FloatImage> render(const std::string& scene_text, harness::Lane lane,
+                                     harness::Backend& backend) const;
 
  private:
   std::filesystem::path folder_;

@@ -70,17 +70,20 @@ TEST_F(SceneBuffersDraw, NumbersAndAFileReadBackWhereTheShaderReadsThemOnEveryLa
 TEST_F(SceneBuffersDraw, ABufferNotGivenOrNotReadIsRefusedAtTheScenesLine) {
   auto missing = probe_.render(buffer_scene("palette = [1, 1, 1, 1]\n"), Lane::Gl, suite_backend(Lane::Gl));
   ASSERT_FALSE(missing);
-  EXPECT_NE(missing.error().to_string().find("reads the buffer 'words', which has no default: give it in [object.buffers]"),
-            std::string::npos)
+  EXPECT_NE(
+      missing.error().to_string().find("reads the buffer 'words', which has no default: give it in [object.buffers]"),
+      std::string::npos)
       << missing.error().to_string();
   auto unknown = probe_.render(buffer_scene("palette = [1, 1, 1, 1]\nwords = [1, 2]\npalete = [1]\n"), Lane::Gl,
                                suite_backend(Lane::Gl));
   ASSERT_FALSE(unknown);
   EXPECT_NE(unknown.error().to_string().find("reads no buffer 'palete'; did you mean"), std::string::npos)
       << unknown.error().to_string();
-  auto partial = probe_.render(buffer_scene("palette = [1, 1, 1]\nwords = [1, 2]\n"), Lane::Gl, suite_backend(Lane::Gl));
+  auto partial =
+      probe_.render(buffer_scene("palette = [1, 1, 1]\nwords = [1, 2]\n"), Lane::Gl, suite_backend(Lane::Gl));
   ASSERT_FALSE(partial);
-  EXPECT_NE(partial.error().to_string().find("is 4 32-bit words: give a multiple of 4 numbers, not 3"), std::string::npos)
+  EXPECT_NE(partial.error().to_string().find("is 4 32-bit words: give a multiple of 4 numbers, not 3"),
+            std::string::npos)
       << partial.error().to_string();
 }
 

@@ -49,9 +49,10 @@ TEST_F(SceneSpecialization, AnObjectsValueOrTheDefaultIsWhatTheShaderReadsOnEver
 TEST_F(SceneSpecialization, AValueThatDoesNotFitTheConstantsTypeIsRefusedAtItsLine) {
   auto fraction = probe_.render(specialized_scene("STEPS = 1.5\n"), Lane::Gl, suite_backend(Lane::Gl));
   ASSERT_FALSE(fraction);
-  EXPECT_NE(fraction.error().to_string().find("'STEPS' is a specialization constant (uint) of material 'specialized.hlsl': "
-                                              "give it a whole number, not 1.5"),
-            std::string::npos)
+  EXPECT_NE(
+      fraction.error().to_string().find("'STEPS' is a specialization constant (uint) of material 'specialized.hlsl': "
+                                        "give it a whole number, not 1.5"),
+      std::string::npos)
       << fraction.error().to_string();
   auto vector = probe_.render(specialized_scene("LEVEL = [1, 2]\n"), Lane::Gl, suite_backend(Lane::Gl));
   ASSERT_FALSE(vector);

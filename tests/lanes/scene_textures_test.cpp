@@ -100,8 +100,10 @@ TEST_F(SceneTextures, SixFacesEachWhereDirect3DPutsIt) {
     for (uint32_t y = 0; y < 2; ++y)
       for (uint32_t x = 0; x < 2; ++x) expected.push_back(face_texel(f, x, y));
   // 1e-5: an exact texel read, through each driver's float filtering.
-  expect_pixels(scene_with_post(24, R"(_Cube = { faces = ["face0.exr", "face1.exr", "face2.exr", "face3.exr", "face4.exr", "face5.exr"] })"),
-                expected, 1e-5f);
+  expect_pixels(
+      scene_with_post(
+          24, R"(_Cube = { faces = ["face0.exr", "face1.exr", "face2.exr", "face3.exr", "face4.exr", "face5.exr"] })"),
+      expected, 1e-5f);
 }
 
 // The axes +x, -x, +y, -y, +z, -z read 0.5 + 0.5 axis from a cube made of an equirect image, and
@@ -111,7 +113,7 @@ constexpr const char* kAxes =
     "_Cube.SampleLevel(sampler_Cube, i == 0 ? float3(1, 0, 0) : i == 1 ? float3(-1, 0, 0) : i == 2 ? float3(0, 1, 0) "
     ": i == 3 ? float3(0, -1, 0) : i == 4 ? float3(0, 0, 1) : float3(0, 0, -1), 0)";
 const std::vector<glm::vec4> kAxisColours = {{1, 0.5f, 0.5f, 1}, {0, 0.5f, 0.5f, 1}, {0.5f, 1, 0.5f, 1},
-                                              {0.5f, 0, 0.5f, 1}, {0.5f, 0.5f, 1, 1}, {0.5f, 0.5f, 0, 1}};
+                                             {0.5f, 0, 0.5f, 1}, {0.5f, 0.5f, 1, 1}, {0.5f, 0.5f, 0, 1}};
 
 TEST_F(SceneTextures, ACubeFromAnEquirectImageLooksWhereTheImageDoes) {
   probe_.write_direction_equirect("sky.exr");
@@ -125,15 +127,15 @@ TEST_F(SceneTextures, TheEnvironmentAsACube) {
 }
 
 // Pixel 16 b + 4 g + r samples the centre of texel (r, g, b) of a 4 x 4 x 4 LUT.
-constexpr const char* kLutProbe =
-    "_Lut.SampleLevel(sampler_Lut, (float3(i % 4, (i / 4) % 4, i / 16) + 0.5) / 4.0, 0)";
+constexpr const char* kLutProbe = "_Lut.SampleLevel(sampler_Lut, (float3(i % 4, (i / 4) % 4, i / 16) + 0.5) / 4.0, 0)";
 
 TEST_F(SceneTextures, A3DTextureFromALutStripAsUnityLaysItOut) {
   // Unity's layout: slice b at columns 4b..4b+3, red to the right, green up from the bottom row.
   FloatImage strip(16, 4);
   for (uint32_t b = 0; b < 4; ++b)
     for (uint32_t g = 0; g < 4; ++g)
-      for (uint32_t r = 0; r < 4; ++r) strip.set(4 * b + r, 3 - g, glm::vec4(float(r), float(g), float(b), 3.0f) / 3.0f);
+      for (uint32_t r = 0; r < 4; ++r)
+        strip.set(4 * b + r, 3 - g, glm::vec4(float(r), float(g), float(b), 3.0f) / 3.0f);
   probe_.write_image("lut.png", strip);
   probe_.write("probe.hlsl", post_probe("Texture3D _Lut; SamplerState sampler_Lut;", kLutProbe));
   // srgb = false: the file's bytes are data, byte / 255: what the PNG's encoding of each value left.
@@ -192,21 +194,25 @@ _Cube = { faces = ["face0.exr", "face1.exr", "face2.exr", "face3.exr", "face4.ex
 TEST_F(SceneTextures, ErrorsNameTheSceneLineOrTheFilesLine) {
   probe_.write_image("strip.png", FloatImage(10, 4));
   probe_.write("bad.cube", "LUT_3D_SIZE 2\n0 0 zero\n");
-  probe_.write("probe.hlsl", post_probe("Texture3D _Lut; SamplerState sampler_Lut;", "_Lut.SampleLevel(sampler_Lut, 0.5, 0)"));
+  probe_.write("probe.hlsl",
+               post_probe("Texture3D _Lut; SamplerState sampler_Lut;", "_Lut.SampleLevel(sampler_Lut, 0.5, 0)"));
   Lane lane = Lane::Gl;
   auto strip = probe_.render(scene_with_post(1, R"(_Lut = "strip.png")"), lane, suite_backend(lane));
   ASSERT_FALSE(strip);
   EXPECT_EQ(strip.error().where.to_string(), (probe_.folder() / "probe.toml").string() + ":15:8");
-  EXPECT_EQ(strip.error().message, "pass 'probe.probe': texture '_Lut': a LUT strip is N * N x N texels (Unity's is 1024 x 32), "
-                                   "this image is 10x4");
+  EXPECT_EQ(strip.error().message,
+            "pass 'probe.probe': texture '_Lut': a LUT strip is N * N x N texels (Unity's is 1024 x 32), "
+            "this image is 10x4");
   auto cube_file = probe_.render(scene_with_post(1, R"(_Lut = "bad.cube")"), lane, suite_backend(lane));
   ASSERT_FALSE(cube_file);
   EXPECT_EQ(cube_file.error().where.to_string(), (probe_.folder() / "bad.cube").string() + ":2:5");
-  probe_.write("probe.hlsl", post_probe("Texture2D _Lut; SamplerState sampler_Lut;", "_Lut.SampleLevel(sampler_Lut, 0.5, 0)"));
+  probe_.write("probe.hlsl",
+               post_probe("Texture2D _Lut; SamplerState sampler_Lut;", "_Lut.SampleLevel(sampler_Lut, 0.5, 0)"));
   auto shape = probe_.render(scene_with_post(1, R"(_Lut = "environment")"), lane, suite_backend(lane));
   ASSERT_FALSE(shape);
   EXPECT_EQ(shape.error().where.to_string(), (probe_.folder() / "probe.toml").string() + ":15:8");
-  EXPECT_EQ(shape.error().message, "pass 'probe.probe': texture '_Lut': the environment is a cube map; the shader declares a Texture2D");
+  EXPECT_EQ(shape.error().message,
+            "pass 'probe.probe': texture '_Lut': the environment is a cube map; the shader declares a Texture2D");
 }
 
 }  // namespace

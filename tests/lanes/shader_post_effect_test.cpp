@@ -21,7 +21,8 @@ const std::string kBlitProbe = std::string(R"(Shader "Hidden/BlitProbe" {
     HLSLINCLUDE
     Texture2D _MainTex;
     SamplerState sampler_MainTex;
-    float4 _MainTex_TexelSize;)") + kUnityBlitVertexFunctions + R"(
+    float4 _MainTex_TexelSize;)") +
+                               kUnityBlitVertexFunctions + R"(
     ENDHLSL
     Pass { Name "Gradient" HLSLPROGRAM
       #pragma vertex vert_img

@@ -85,7 +85,8 @@ glm::vec4 expected_pixel(const std::vector<std::byte>& items, const std::vector<
   if (y == 1)
     return {word_float(raw, 2 * x), word_float(raw, 2 * x + 1), float(items.size() / (kItemWords * 4)),
             float(kItemWords * 4)};
-  return {word_float(typed, 4 * x), word_float(typed, 4 * x + 1), word_float(typed, 4 * x + 2), word_float(typed, 4 * x + 3)};
+  return {word_float(typed, 4 * x), word_float(typed, 4 * x + 1), word_float(typed, 4 * x + 2),
+          word_float(typed, 4 * x + 3)};
 }
 
 std::vector<std::byte> float_words(const std::vector<float>& values) {

@@ -12,12 +12,12 @@
 #include <functional>
 #include <map>
 
-#include <glm/glm.hpp>
 #include <gtest/gtest.h>
+#include <glm/glm.hpp>
 
 #include "harness/render/evaluate.h"
-#include "harness/vulkan/vulkan_backend.h"
 #include "harness/render/shader_program.h"
+#include "harness/vulkan/vulkan_backend.h"
 #include "hlsl_like/compiler.h"
 #include "tests/lanes/lane_fixture.h"
 
@@ -46,8 +46,8 @@ void append(std::vector<std::byte>& bytes, const T& value) {
 
 // An RGBA32F texture of texel_value, every level filled: `layers` array layers (or the depth of
 // a 3D texture, which halves per level).
-TextureData float_texture(TextureDimension dimension, uint32_t width, uint32_t height, uint32_t layers,
-                          uint32_t levels, uint32_t samples = 1) {
+TextureData float_texture(TextureDimension dimension, uint32_t width, uint32_t height, uint32_t layers, uint32_t levels,
+                          uint32_t samples = 1) {
   TextureData texture;
   texture.format = TextureFormat::Rgba32Float;
   texture.dimension = dimension;
@@ -499,15 +499,14 @@ float4 frag(float2 uv : TEXCOORD0, float4 pos : SV_Position) : SV_Target {
 }
 )";
   const auto clamped = [](int v, int size) { return uint32_t(std::clamp(v, 0, size - 1)); };
-  check(source, 8, 24, {{"colors", {float_texture(TextureDimension::Tex2D, 8, 8, 1, 2)}}},
-        [&](uint32_t x, uint32_t y) {
-          const int row = int(y % 8), column = int(x);
-          switch (y / 8) {
-            case 0: return texel_value(clamped(column - 1, 8), clamped(row + 2, 8), 0, 0);
-            case 1: return texel_value(clamped(column / 2 - 1, 4), clamped(row / 2 + 2, 4), 0, 1);
-            default: return texel_value(clamped(column + 2, 8), clamped(row - 3, 8), 0, 0);
-          }
-        });
+  check(source, 8, 24, {{"colors", {float_texture(TextureDimension::Tex2D, 8, 8, 1, 2)}}}, [&](uint32_t x, uint32_t y) {
+    const int row = int(y % 8), column = int(x);
+    switch (y / 8) {
+      case 0: return texel_value(clamped(column - 1, 8), clamped(row + 2, 8), 0, 0);
+      case 1: return texel_value(clamped(column / 2 - 1, 4), clamped(row / 2 + 2, 4), 0, 1);
+      default: return texel_value(clamped(column + 2, 8), clamped(row - 3, 8), 0, 0);
+    }
+  });
 }
 
 TEST_F(TextureShapes, GatherReturnsTheFootprintInDirect3DOrder) {
@@ -537,18 +536,17 @@ float4 frag(float2 uv : TEXCOORD0, float4 pos : SV_Position) : SV_Target {
   return result;
 }
 )";
-  check(source, 70, 7, {{"colors", {float_texture(TextureDimension::Tex2D, 8, 8, 1, 1)}}},
-        [](uint32_t x, uint32_t y) {
-          const uint32_t mode = x / 7;
-          const int offset_x = mode >= 5 ? 1 : 0, offset_y = mode >= 5 ? 2 : 0;
-          const int component = mode % 5 == 0 ? 0 : int(mode % 5) - 1;
-          const auto fetch = [&](int i, int j) {
-            return texel_value(uint32_t(std::clamp(i + offset_x, 0, 7)), uint32_t(std::clamp(j + offset_y, 0, 7)), 0,
-                               0)[component];
-          };
-          const int i = int(x % 7), j = int(y);
-          return glm::vec4(fetch(i, j + 1), fetch(i + 1, j + 1), fetch(i + 1, j), fetch(i, j));
-        });
+  check(source, 70, 7, {{"colors", {float_texture(TextureDimension::Tex2D, 8, 8, 1, 1)}}}, [](uint32_t x, uint32_t y) {
+    const uint32_t mode = x / 7;
+    const int offset_x = mode >= 5 ? 1 : 0, offset_y = mode >= 5 ? 2 : 0;
+    const int component = mode % 5 == 0 ? 0 : int(mode % 5) - 1;
+    const auto fetch = [&](int i, int j) {
+      return texel_value(uint32_t(std::clamp(i + offset_x, 0, 7)), uint32_t(std::clamp(j + offset_y, 0, 7)), 0,
+                         0)[component];
+    };
+    const int i = int(x % 7), j = int(y);
+    return glm::vec4(fetch(i, j + 1), fetch(i + 1, j + 1), fetch(i + 1, j), fetch(i, j));
+  });
 }
 
 // ---- Comparison -------------------------------------------------------------------------------
@@ -741,9 +739,8 @@ TEST_F(TextureShapes, GetDimensionsOfEveryShape) {
   for (const DimensionCase& c : cases) inputs[c.name] = {c.data};
   for (uint32_t mip : {0u, 1u}) {
     SCOPED_TRACE("mip " + std::to_string(mip));
-    check(kDimensions, 9, 1, inputs,
-          [&](uint32_t x, uint32_t) { return mip == 0 ? cases[x].level0 : cases[x].level1; }, 0.0f,
-          {{"Query", query_buffer(mip)}});
+    check(kDimensions, 9, 1, inputs, [&](uint32_t x, uint32_t) { return mip == 0 ? cases[x].level0 : cases[x].level1; },
+          0.0f, {{"Query", query_buffer(mip)}});
   }
 }
 
@@ -789,12 +786,13 @@ float4 frag(float2 uv : TEXCOORD0, float4 pos : SV_Position) : SV_Target {
   // llvmpipe computes log2 of the derivative's length with a fast approximation; Vulkan asks a
   // level of detail to mipmapPrecisionBits (4 on lavapipe) only. 1/64 is four times finer than
   // that and far below the 1.0 between the levels each block expects.
-  check(source, 8, 40, {{"colors", {float_texture(TextureDimension::Tex2D, 16, 16, 1, 5), trilinear}}},
-        [](uint32_t, uint32_t y) {
-          const float lod = float(int(y / 8) - 1);
-          return glm::vec4(std::max(lod, 0.0f), lod, 0.0f, 1.0f);
-        },
-        1.0f / 64.0f);
+  check(
+      source, 8, 40, {{"colors", {float_texture(TextureDimension::Tex2D, 16, 16, 1, 5), trilinear}}},
+      [](uint32_t, uint32_t y) {
+        const float lod = float(int(y / 8) - 1);
+        return glm::vec4(std::max(lod, 0.0f), lod, 0.0f, 1.0f);
+      },
+      1.0f / 64.0f);
 }
 
 TEST_F(TextureShapes, TwoTexturesReadThroughOneSamplerState) {
@@ -862,11 +860,20 @@ float4 frag(float2 uv : TEXCOORD0) : SV_Target { return shadow.SampleCmp(compare
     std::vector<std::string> message;
   };
   const std::vector<Case> cases = {
-      {cube_source, "environment", float_texture(TextureDimension::Tex2D, 2, 2, 1, 1), kPoint,
+      {cube_source,
+       "environment",
+       float_texture(TextureDimension::Tex2D, 2, 2, 1, 1),
+       kPoint,
        {"texture 'environment' is declared TextureCube", "texture 1 is a Texture2D"}},
-      {uint_source, "ids", float_texture(TextureDimension::Tex2D, 2, 2, 1, 1), kPoint,
+      {uint_source,
+       "ids",
+       float_texture(TextureDimension::Tex2D, 2, 2, 1, 1),
+       kPoint,
        {"texture 'ids' reads uint texels", "texture 1 is Rgba32Float (float texels)"}},
-      {shadow_source, "shadow", float_texture(TextureDimension::Tex2D, 2, 2, 1, 1), kPoint,
+      {shadow_source,
+       "shadow",
+       float_texture(TextureDimension::Tex2D, 2, 2, 1, 1),
+       kPoint,
        {"texture 'shadow' is read with a comparison sampler", "texture 1 is Rgba32Float"}},
   };
   for (Lane lane : harness::all_lanes()) {

@@ -4,8 +4,8 @@
 #include <cstring>
 #include <random>
 
-#include <glm/gtc/matrix_transform.hpp>
 #include <gtest/gtest.h>
+#include <glm/gtc/matrix_transform.hpp>
 
 #include "tests/lanes/lane_fixture.h"
 
@@ -39,16 +39,16 @@ class UniformsAndTextures : public LaneTest {
     auto& level = texture_.levels.emplace_back(texels_.size() * sizeof(glm::vec4));
     std::memcpy(level.data(), texels_.data(), level.size());
 
-    params_.transform = glm::rotate(glm::scale(glm::mat4(1.0f), glm::vec3(0.5f, 2.0f, 1.5f)), 0.7f,
-                                    glm::vec3(0.3f, 0.8f, 0.1f));
+    params_.transform =
+        glm::rotate(glm::scale(glm::mat4(1.0f), glm::vec3(0.5f, 2.0f, 1.5f)), 0.7f, glm::vec3(0.3f, 0.8f, 0.1f));
     params_.transform[3] = glm::vec4(0.25f, -0.5f, 0.125f, 1.0f);
     params_.bias = {0.1f, 0.2f, -0.3f, 0.4f};
     params_.gain = 1.75f;
   }
 
   // Runs tests/shaders/<shader>.*.frag, which reads `values` and maybe `Params`.
-  harness::FloatImage render(Lane lane, const std::string& shader, uint32_t width, uint32_t height,
-                             glm::vec4 tiling, harness::SamplerDesc sampler) {
+  harness::FloatImage render(Lane lane, const std::string& shader, uint32_t width, uint32_t height, glm::vec4 tiling,
+                             harness::SamplerDesc sampler) {
     harness::Backend& lane_backend = backend(lane);
     const bool reads_params = shader == "uniforms_texture";
     harness::ProgramLayout layout{{}, {{"values", 1, 2}}};
@@ -110,7 +110,8 @@ glm::dvec4 bilinear_reference(const std::vector<glm::vec4>& texels, glm::dvec2 u
   const glm::dvec2 base = glm::floor(position);
   const glm::dvec2 f = position - base;
   const int x = int(base.x), y = int(base.y);
-  return glm::mix(glm::mix(fetch(x, y), fetch(x + 1, y), f.x), glm::mix(fetch(x, y + 1), fetch(x + 1, y + 1), f.x), f.y);
+  return glm::mix(glm::mix(fetch(x, y), fetch(x + 1, y), f.x), glm::mix(fetch(x, y + 1), fetch(x + 1, y + 1), f.x),
+                  f.y);
 }
 
 TEST_F(UniformsAndTextures, FilteredSamplingMatchesAnExactBilinearReference) {

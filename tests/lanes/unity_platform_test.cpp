@@ -24,7 +24,8 @@ using harness::Lane;
 const std::string kSurface = std::string(R"(Shader "Probe/Surface" { SubShader { Pass {
   HLSLPROGRAM
   #pragma vertex vert_img
-  #pragma fragment frag)") + kUnityBlitVertexFunctions + R"(
+  #pragma fragment frag)") + kUnityBlitVertexFunctions +
+                             R"(
   float4 frag(Blit i) : SV_Target { return float4(i.uv, 0.0, 1.0); }
   ENDHLSL } } })";
 
@@ -45,7 +46,8 @@ const std::string kEffect = std::string(R"(Shader "Probe/Conventions" {
     Texture2D _MainTex;
     SamplerState sampler_MainTex;
     Texture2D _CameraDepthTexture;
-    SamplerState sampler_CameraDepthTexture;)") + kUnityBlitVertexFunctions + R"(
+    SamplerState sampler_CameraDepthTexture;)") +
+                            kUnityBlitVertexFunctions + R"(
     Blit vert_naive(float4 vertex : POSITION) {
       Blit o;
       o.pos = float4(vertex.xy, 0.0, 1.0);
@@ -75,9 +77,11 @@ const std::string kEffect = std::string(R"(Shader "Probe/Conventions" {
 constexpr uint32_t kPictureWidth = 16, kPictureHeight = 8;
 
 std::string platform_scene(const std::string& platform, const std::string& pass) {
-  return probe_scene_head("a Unity platform's conventions", kPictureWidth, kPictureHeight) + "[unity]\nplatform = \"" + platform +
+  return probe_scene_head("a Unity platform's conventions", kPictureWidth, kPictureHeight) + "[unity]\nplatform = \"" +
+         platform +
          "\"\n[[object]]\nmesh = \"plane\"\nmaterial = \"surface.shader\"\nrotation = [60, 0, 0]\nscale = [8, 1, 8]\n"
-         "[[post]]\neffect = \"conventions.shader\"\npasses = [\"" + pass + "\"]\n";
+         "[[post]]\neffect = \"conventions.shader\"\npasses = [\"" +
+         pass + "\"]\n";
 }
 
 class UnityPlatform : public ::testing::Test {

@@ -86,7 +86,8 @@ TEST_F(VulkanAttributesDraw, MembersAtTheirVkOffsetsAndACombinedImageSamplerRead
   std::memcpy(extra_bytes.data() + 20, &e1, 4);
   for (Lane lane : harness::all_lanes()) {
     SCOPED_TRACE(harness::lane_name(lane));
-    auto image = harness::evaluate(*module, lane, backend(lane), 1, 1, {{"params", params_bytes}, {"Extra", extra_bytes}});
+    auto image =
+        harness::evaluate(*module, lane, backend(lane), 1, 1, {{"params", params_bytes}, {"Extra", extra_bytes}});
     ASSERT_TRUE(image) << image.error().to_string();
     for (int c = 0; c < 4; ++c) EXPECT_FLOAT_EQ(image->at(0, 0)[c], tint[c] * a + e1) << "channel " << c;
   }
@@ -99,9 +100,11 @@ TEST_F(VulkanAttributesDraw, ASpecializationValueMustNameAConstantAndFitItsType)
     auto resolved = harness::resolve_specialization({text}, module->reflection);
     return resolved ? std::string("(resolved)") : resolved.error().message;
   };
-  EXPECT_EQ(message("SCALX=1"), "--specialize SCALX=1: expected NAME=VALUE naming a [[vk::constant_id]] constant of the "
-                                "shader (it has SCALE, COUNT, FLIP)");
-  EXPECT_EQ(message("COUNT=1.5"), "--specialize COUNT=1.5: 'COUNT' is of type int; give it a whole number in its range");
+  EXPECT_EQ(message("SCALX=1"),
+            "--specialize SCALX=1: expected NAME=VALUE naming a [[vk::constant_id]] constant of the "
+            "shader (it has SCALE, COUNT, FLIP)");
+  EXPECT_EQ(message("COUNT=1.5"),
+            "--specialize COUNT=1.5: 'COUNT' is of type int; give it a whole number in its range");
   EXPECT_EQ(message("FLIP=2"), "--specialize FLIP=2: 'FLIP' is of type bool; give it 0 or 1");
   EXPECT_EQ(message("SCALE=x"), "--specialize SCALE=x: 'SCALE' is of type float; give it a finite number");
 }
@@ -159,7 +162,8 @@ TEST_F(VulkanAttributesDraw, APushConstantBlockReadsWhatTheHostGivesOnEveryLane)
   } given{{0.25f, 0.5f, 0.75f, 1.0f}, 0.5f, {}};
   for (const char* source : {kPushConstantsSource, kPushConstantGlobalSource}) {
     for (Lane lane : harness::all_lanes()) {
-      SCOPED_TRACE(std::string(harness::lane_name(lane)) + (source == kPushConstantsSource ? " ConstantBuffer" : " struct"));
+      SCOPED_TRACE(std::string(harness::lane_name(lane)) +
+                   (source == kPushConstantsSource ? " ConstantBuffer" : " struct"));
       auto module = hlsl::compile_text("push.hlsl", source, {});
       ASSERT_TRUE(module->ok());
       ASSERT_TRUE(module->reflection.constant_buffers.at(0).push_constant);

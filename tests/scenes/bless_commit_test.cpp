@@ -25,7 +25,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-
 // Every file under `folder` with its contents: what "exactly this state" means. The date bless
 // records is left out, as two blesses of one image differ in it and nothing else.
 using Snapshot = std::map<std::string, std::string>;
@@ -134,7 +133,7 @@ TEST_F(BlessCommit, AKillAfterAnyStepLeavesTheOldGoldenOrTheNewOneAndTheNextRunF
     restore(golden, old_files);
     new_scene();
     Outcome killed = bless(kCopiedScene, "new", "XSHADE_TEST_ABORT_AFTER_BLESS_STEP=" + std::to_string(step));
-    if (killed.exit_code == 0) break;  // past the last step
+    if (killed.exit_code == 0) break;                                            // past the last step
     ASSERT_NE(killed.exit_code, 2) << "step " << step << ": " << killed.output;  // killed, not refused
     ASSERT_NE(killed.exit_code, 1) << "step " << step << ": " << killed.output;
 
@@ -143,8 +142,10 @@ TEST_F(BlessCommit, AKillAfterAnyStepLeavesTheOldGoldenOrTheNewOneAndTheNextRunF
     const bool is_new = manifest == new_state.at("MANIFEST.toml");
     ASSERT_TRUE(is_new || manifest == old_state.at("MANIFEST.toml")) << "step " << step << ": " << manifest;
     (is_new ? saw_new : saw_old) = true;
-    if (is_new) new_scene();
-    else old_scene();
+    if (is_new)
+      new_scene();
+    else
+      old_scene();
     Outcome next = run(kCopiedScene);
     EXPECT_EQ(next.exit_code, 0) << "step " << step << " (" << (is_new ? "new" : "old") << "): " << next.output;
     EXPECT_EQ(snapshot(golden), is_new ? new_state : old_state) << "step " << step;

@@ -44,8 +44,9 @@ mesh = "sphere"
 material = "materials/warns.hlsl"
 )";
 
-constexpr const char* kWarning = "warns.hlsl': OpenGL shader compiler other (severity high, id 1): 0:8(100): warning: "
-                                 "`unset' used uninitialized";
+constexpr const char* kWarning =
+    "warns.hlsl': OpenGL shader compiler other (severity high, id 1): 0:8(100): warning: "
+    "`unset' used uninitialized";
 
 class DriverCache : public ::testing::Test {
  protected:
@@ -62,8 +63,8 @@ class DriverCache : public ::testing::Test {
   Outcome run() {
     return run_xshade("", "run --no-project --scenes '" + (root_ / "scenes").string() + "' --golden '" +
                               (root_ / "golden").string() + "' --shaders '" + (root_ / "shaders").string() +
-                              "' --cache '" + (root_ / "cache").string() + "' --report '" + (root_ / "report").string() +
-                              "'");
+                              "' --cache '" + (root_ / "cache").string() + "' --report '" +
+                              (root_ / "report").string() + "'");
   }
   // xshade's folder for the drivers' cache: one per build of xshade, inside its own cache.
   fs::path driver_cache() const {
@@ -111,7 +112,8 @@ TEST_F(DriverCache, AnEntryDamagedBetweenRunsSetsTheFolderAsideOnceWithAWarning)
   std::ofstream(entry, std::ios::binary) << bytes;
 
   Outcome damaged = run();
-  EXPECT_NE(damaged.output.find("warning: the drivers' shader cache in " + drivers.string() + " had 1 entry changed "
+  EXPECT_NE(damaged.output.find("warning: the drivers' shader cache in " + drivers.string() +
+                                " had 1 entry changed "
                                 "since xshade saw them written (" +
                                 fs::relative(entry, drivers).string() + "): it is set aside and built again"),
             std::string::npos)

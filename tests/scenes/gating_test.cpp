@@ -67,7 +67,8 @@ TEST_F(Gating, AMissingGoldenFailsWithTheBlessCommand) {
   fs::create_directories(root_ / "golden");
   Outcome outcome = run();
   EXPECT_EQ(outcome.exit_code, 1) << outcome.output;
-  EXPECT_NE(outcome.output.find("xshade bless toon_shadow_texture --reason \"...\""), std::string::npos) << outcome.output;
+  EXPECT_NE(outcome.output.find("xshade bless toon_shadow_texture --reason \"...\""), std::string::npos)
+      << outcome.output;
 }
 
 TEST_F(Gating, ACorruptGoldenIsBadInputNamingTheFile) {
@@ -93,7 +94,8 @@ TEST_F(Gating, ASecondRunWithAWarmCacheCompilesNothing) {
                                 (root_ / "scenes").string() + "' --shaders '" + (root_ / "shaders").string() + "'";
   const std::string render = "run --lane gl --cache '" + (root_ / "cache").string() + "' --scenes '" +
                              (root_ / "scenes").string() + "' --golden '" + (root_ / "golden").string() +
-                             "' --shaders '" + (root_ / "shaders").string() + "' --report '" + (root_ / "report").string() + "'";
+                             "' --shaders '" + (root_ / "shaders").string() + "' --report '" +
+                             (root_ / "report").string() + "'";
   Outcome cold = run_xshade("", render);
   ASSERT_EQ(cold.exit_code, 0) << cold.output;
   EXPECT_EQ(cold.output.find("shaders: 0 compiled"), std::string::npos) << cold.output;
@@ -107,10 +109,10 @@ TEST_F(Gating, ASecondRunWithAWarmCacheCompilesNothing) {
 
 // Half emulation runs on the GLSL lanes; vk-hlsl is skipped, and the fp32 golden is not compared.
 TEST_F(Gating, HalfEmulationRunsTheGlslLanesAndSkipsVkHlsl) {
-  Outcome outcome = run_xshade("", "run --precision half --lane gl --lane vk-hlsl --no-cache --scenes '" +
-                                       (root_ / "scenes").string() + "' --golden '" + (root_ / "golden").string() +
-                                       "' --shaders '" + (root_ / "shaders").string() + "' --report '" +
-                                       (root_ / "report").string() + "'");
+  Outcome outcome =
+      run_xshade("", "run --precision half --lane gl --lane vk-hlsl --no-cache --scenes '" +
+                         (root_ / "scenes").string() + "' --golden '" + (root_ / "golden").string() + "' --shaders '" +
+                         (root_ / "shaders").string() + "' --report '" + (root_ / "report").string() + "'");
   EXPECT_EQ(outcome.exit_code, 0) << outcome.output;
   EXPECT_NE(outcome.output.find("toon_shadow_texture on gl: pass"), std::string::npos) << outcome.output;
   EXPECT_NE(outcome.output.find("toon_shadow_texture on vk-hlsl: skipped"), std::string::npos) << outcome.output;
@@ -119,15 +121,15 @@ TEST_F(Gating, HalfEmulationRunsTheGlslLanesAndSkipsVkHlsl) {
 TEST_F(Gating, BlessRefusesWithoutAReasonAndWritesNothing) {
   fs::remove_all(root_ / "golden");  // no golden yet: no image, no float image, no manifest
   fs::create_directories(root_ / "golden");
-  Outcome outcome = run_xshade("", std::string("bless ") + kCopiedScene + " --reason ' ' --scenes '" +
-                                       (root_ / "scenes").string() + "' --golden '" + (root_ / "golden").string() + "'");
+  Outcome outcome =
+      run_xshade("", std::string("bless ") + kCopiedScene + " --reason ' ' --scenes '" + (root_ / "scenes").string() +
+                         "' --golden '" + (root_ / "golden").string() + "'");
   EXPECT_EQ(outcome.exit_code, 2) << outcome.output;
   EXPECT_NE(outcome.output.find("say why with --reason"), std::string::npos) << outcome.output;
   // Refused before anything renders: the command line is checked first, not only the store.
   EXPECT_EQ(outcome.output.find(std::string(kCopiedScene) + " on "), std::string::npos) << outcome.output;
   EXPECT_TRUE(fs::is_empty(root_ / "golden"));
 }
-
 
 // Shards split the fixed scenes between CI jobs: together they cover each scene exactly once.
 TEST(Sharding, ShardsCoverEverySceneOnce) {

@@ -11,8 +11,8 @@
 #include <algorithm>
 #include <chrono>
 #include <filesystem>
-#include <functional>
 #include <fstream>
+#include <functional>
 #include <regex>
 #include <string>
 #include <tuple>
@@ -29,7 +29,6 @@ namespace {
 
 namespace fs = std::filesystem;
 namespace forged = harness::forged;
-
 
 // "a.a.a...": one dotted key of 100,000 parts, the 200 KB line that overflowed toml++'s stack.
 std::string deep_key() {
@@ -132,12 +131,11 @@ TEST_F(HostileInput, ATextureWhoseHeaderClaimsTooManyPixelsIsTheScenesFault) {
 
 TEST_F(HostileInput, AnEnvironmentWhoseHeaderClaimsTooManyPixelsIsTheScenesFault) {
   const std::string original = read_text(scene());
-  for (const auto& [name, bytes, size] :
-       {std::tuple{"huge.hdr", forged::hdr(100000, 100000), "100000 x 100000"},
-        std::tuple{"huge.exr", forged::exr(1000000, 1000000), "1000000 x 1000000"}}) {
+  for (const auto& [name, bytes, size] : {std::tuple{"huge.hdr", forged::hdr(100000, 100000), "100000 x 100000"},
+                                          std::tuple{"huge.exr", forged::exr(1000000, 1000000), "1000000 x 1000000"}}) {
     forged::write(root_ / "scenes" / name, bytes);
-    std::ofstream(scene(), std::ios::trunc) << original << "\n[environment]\nkind = \"equirect\"\nfile = \"" << name
-                                            << "\"\n";
+    std::ofstream(scene(), std::ios::trunc)
+        << original << "\n[environment]\nkind = \"equirect\"\nfile = \"" << name << "\"\n";
     Outcome outcome = run();
     EXPECT_EQ(outcome.exit_code, 2) << outcome.output;
     EXPECT_NE(outcome.output.find("cannot read image " + (root_ / "scenes" / name).string() + ": it is " + size +
@@ -157,7 +155,8 @@ TEST_F(HostileInput, AGoldenWhoseHeaderClaimsTooManyPixelsIsRefused) {
   write_manifest_for(root_ / "golden", "white_furnace");
   Outcome outcome = run();
   EXPECT_EQ(outcome.exit_code, 2) << outcome.output;
-  EXPECT_NE(outcome.output.find("cannot read image " + golden.string() + ": it is 65535 x 65535 pixels; xshade reads "
+  EXPECT_NE(outcome.output.find("cannot read image " + golden.string() +
+                                ": it is 65535 x 65535 pixels; xshade reads "
                                 "images of at most 16384 pixels a side"),
             std::string::npos)
       << outcome.output;
@@ -194,10 +193,11 @@ TEST_F(HostileInput, ALargeFrameTimesManyDrawsIsRefused) {
   append(scene(), "[object.grid]\nrows = 64\ncols = 64\nspacing = 0.1\n");
   Outcome outcome = run("--plan");
   EXPECT_EQ(outcome.exit_code, 2) << outcome.output;
-  EXPECT_NE(outcome.output.find("object[0]: here the scene passes 4294967296 pixel-draws (draws times the 4096 x 4096 = "
-                                "16777216 pixels each may cover), the most a scene may make; it makes 68719476736 in "
-                                "all (4096 draws: 1 objects"),
-            std::string::npos)
+  EXPECT_NE(
+      outcome.output.find("object[0]: here the scene passes 4294967296 pixel-draws (draws times the 4096 x 4096 = "
+                          "16777216 pixels each may cover), the most a scene may make; it makes 68719476736 in "
+                          "all (4096 draws: 1 objects"),
+      std::string::npos)
       << outcome.output;
 }
 
@@ -277,8 +277,9 @@ TEST_F(HostileInput, AFifoAsATextureIsTheScenesFaultAtOnce) {
   replace_in_file(scene(), "_ShadowTex = \"checker\"", "_ShadowTex = \"waiting.png\"");
   Outcome outcome = run("--timeout 60");
   EXPECT_EQ(outcome.exit_code, 2) << outcome.output;
-  EXPECT_NE(outcome.output.find("texture '_ShadowTex': cannot read image " + fifo.string() + ": it is a FIFO, not a file"),
-            std::string::npos)
+  EXPECT_NE(
+      outcome.output.find("texture '_ShadowTex': cannot read image " + fifo.string() + ": it is a FIFO, not a file"),
+      std::string::npos)
       << outcome.output;
 }
 
@@ -387,8 +388,8 @@ TEST_F(HostileInput, ASecondRunIntoAReportFolderInUseIsRefusedNamingTheFirst) {
   Outcome free = run("--lane gl");
   EXPECT_EQ(free.exit_code, 0) << free.output;
   // A plan writes no report: it neither takes the lock nor makes the folder.
-  Outcome plan = run_xshade("", "run --plan" + copied_scene_options(root_) + " --report '" +
-                                    (root_ / "plan_report").string() + "'");
+  Outcome plan = run_xshade(
+      "", "run --plan" + copied_scene_options(root_) + " --report '" + (root_ / "plan_report").string() + "'");
   EXPECT_EQ(plan.exit_code, 0) << plan.output;
   EXPECT_FALSE(fs::exists(root_ / "plan_report"));
 
@@ -418,12 +419,14 @@ TEST_F(HostileInput, AllVariantsOfTwoToTheFortyIsRefusedAtOnce) {
   shader += "float4 frag() : SV_Target { return 1; }\n";
   std::ofstream(root_ / "many.hlsl") << shader;
   const auto started = std::chrono::steady_clock::now();
-  Outcome outcome = run_xshade("", "compile '" + (root_ / "many.hlsl").string() + "' --target gl --all-variants --no-project");
+  Outcome outcome =
+      run_xshade("", "compile '" + (root_ / "many.hlsl").string() + "' --target gl --all-variants --no-project");
   EXPECT_LT(std::chrono::steady_clock::now() - started, std::chrono::seconds(20));  // not minutes of listing
   EXPECT_EQ(outcome.exit_code, 2) << outcome.output.substr(0, 2000);
-  EXPECT_NE(outcome.output.find("--all-variants compiles at most 16384 keyword combinations, and the 40 keyword sets of "
-                                "this shader make more"),
-            std::string::npos)
+  EXPECT_NE(
+      outcome.output.find("--all-variants compiles at most 16384 keyword combinations, and the 40 keyword sets of "
+                          "this shader make more"),
+      std::string::npos)
       << outcome.output.substr(0, 2000);
   EXPECT_EQ(outcome.output.find(": compiles"), std::string::npos);
 }
@@ -455,10 +458,11 @@ TEST_F(HostileInput, ACacheFolderOthersCanWriteIsNotUsedAndTheFallbackIsTheUsers
 
   const fs::path tmp = root_ / "tmp";
   fs::create_directories(tmp);
-  const std::string options = " --scenes '" + (root_ / "scenes").string() + "' --golden '" + (root_ / "golden").string() +
-                              "' --shaders '" + (root_ / "shaders").string() + "' --report '" +
-                              (root_ / "report").string() + "' --lane gl";
-  Outcome fallback = run_xshade("HOME= XDG_CACHE_HOME= XSHADE_CACHE_DIR= TMPDIR='" + tmp.string() + "'", "run" + options);
+  const std::string options = " --scenes '" + (root_ / "scenes").string() + "' --golden '" +
+                              (root_ / "golden").string() + "' --shaders '" + (root_ / "shaders").string() +
+                              "' --report '" + (root_ / "report").string() + "' --lane gl";
+  Outcome fallback =
+      run_xshade("HOME= XDG_CACHE_HOME= XSHADE_CACHE_DIR= TMPDIR='" + tmp.string() + "'", "run" + options);
   EXPECT_EQ(fallback.exit_code, 0) << fallback.output;
   const fs::path own = tmp / ("xshade-cache-" + std::to_string(::geteuid()));
   struct stat status {};

@@ -19,14 +19,14 @@ namespace {
 namespace fs = std::filesystem;
 using nlohmann::json;
 
-
 // Every verdict a results.json holds, by scene, by scene and lane, and by scene and pair.
 std::map<std::string, std::string> verdicts(const json& results) {
   std::map<std::string, std::string> out;
   for (const json& scene : results.at("scenes")) {
     const std::string name = scene.at("scene");
     out[name] = scene.at("verdict");
-    for (const json& lane : scene.at("lanes")) out[name + "/" + lane.at("lane").get<std::string>()] = lane.at("verdict");
+    for (const json& lane : scene.at("lanes"))
+      out[name + "/" + lane.at("lane").get<std::string>()] = lane.at("verdict");
     for (const json& pair : scene.at("cross_lane"))
       out[name + "/" + pair.at("first_lane").get<std::string>() + "~" + pair.at("second_lane").get<std::string>()] =
           pair.at("verdict");
@@ -40,8 +40,10 @@ TEST(ReportMergeThroughTheBinary, ThreeShardsMergedAreTheUnshardedRun) {
   fs::create_directories(root / "scenes");
   fs::copy(kSource / "golden", root / "golden", fs::copy_options::recursive);
   for (const char* scene : {"toon_shadow_texture", "white_furnace", "toon_vs_standard"})
-    fs::copy_file(kSource / "scenes" / (std::string(scene) + ".toml"), root / "scenes" / (std::string(scene) + ".toml"));
-  replace_in_file(root / "scenes/toon_shadow_texture.toml", "_Color = [0.3, 0.6, 0.9, 1]", "_Color = [0.3, 0.62, 0.9, 1]");
+    fs::copy_file(kSource / "scenes" / (std::string(scene) + ".toml"),
+                  root / "scenes" / (std::string(scene) + ".toml"));
+  replace_in_file(root / "scenes/toon_shadow_texture.toml", "_Color = [0.3, 0.6, 0.9, 1]",
+                  "_Color = [0.3, 0.62, 0.9, 1]");
   const std::string folders = " --no-project --scenes '" + (root / "scenes").string() + "' --golden '" +
                               (root / "golden").string() + "' --cache '" + (root / "cache").string() + "'";
 
@@ -52,8 +54,8 @@ TEST(ReportMergeThroughTheBinary, ThreeShardsMergedAreTheUnshardedRun) {
                                       (root / "shards" / std::to_string(shard)).string() + "'" + folders);
     ASSERT_NE(part.exit_code, 2) << part.output;
   }
-  Outcome merged = run_xshade("", "report merge '" + (root / "shards").string() + "' --out '" + (root / "merged").string() +
-                                      "'");
+  Outcome merged =
+      run_xshade("", "report merge '" + (root / "shards").string() + "' --out '" + (root / "merged").string() + "'");
   ASSERT_EQ(merged.exit_code, 0) << merged.output;  // written; without --exit-code the verdict is not the exit
   EXPECT_NE(merged.output.find("merged 3 reports: 3 scenes (2 pass, 1 fail, 0 error, 0 crash, 0 skipped)"),
             std::string::npos)

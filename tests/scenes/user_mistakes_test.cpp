@@ -19,7 +19,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-
 // The 1-based line of `text`'s first occurrence in `file`.
 size_t line_of(const fs::path& file, const std::string& text) {
   const std::string content = read_text(file);
@@ -40,7 +39,8 @@ class UserMistakes : public ::testing::Test {
   fs::path scene() const { return root_ / "scenes" / (std::string(kCopiedScene) + ".toml"); }
 
   Outcome xshade(const std::string& verb, const std::string& extra = "") {
-    return run_xshade("", verb + copied_scene_options(root_) + " --report '" + (root_ / "report").string() + "' " + extra);
+    return run_xshade("",
+                      verb + copied_scene_options(root_) + " --report '" + (root_ / "report").string() + "' " + extra);
   }
   Outcome run(const std::string& extra = "--lane gl") { return xshade("run", extra); }
 
@@ -106,12 +106,13 @@ TEST_F(UserMistakes, AValueOfTheWrongSizeIsAnErrorNotACrash) {
 
 TEST_F(UserMistakes, AUniformWithNoValueIsAnErrorAtTheObjectNotACrash) {
   replace_in_file(root_ / "shaders/materials/toon.hlsl", "float UIMax = 1.0;> = 0.5;\nfixed _RampSmooth",
-          "float UIMax = 1.0;>;\nfixed _RampSmooth");
+                  "float UIMax = 1.0;>;\nfixed _RampSmooth");
   Outcome outcome = run();
   EXPECT_EQ(outcome.exit_code, 2) << outcome.output;
-  EXPECT_NE(outcome.output.find(at_line_of("material = ") + "12: object 'toon': material 'materials/toon.hlsl': uniform "
-                                                            "'_RampThreshold' (half) has no value"),
-            std::string::npos)
+  EXPECT_NE(
+      outcome.output.find(at_line_of("material = ") + "12: object 'toon': material 'materials/toon.hlsl': uniform "
+                                                      "'_RampThreshold' (half) has no value"),
+      std::string::npos)
       << outcome.output;
 }
 
@@ -139,7 +140,7 @@ TEST_F(UserMistakes, AMissingMeshFileIsTheScenesFaultAtItsLine) {
 
 TEST_F(UserMistakes, AVariantThatDoesNotCompileShowsItsDiagnosticAndCaretOnTheConsole) {
   replace_in_file(root_ / "shaders/materials/toon.hlsl", "return fixed4(diffuse + specular + rim, albedo.a);",
-          "return fixed4(diffuse + specular + rimm, albedo.a);");
+                  "return fixed4(diffuse + specular + rimm, albedo.a);");
   Outcome outcome = run();
   EXPECT_EQ(outcome.exit_code, 2) << outcome.output;
   EXPECT_NE(outcome.output.find("error: unknown name 'rimm'"), std::string::npos) << outcome.output;
@@ -163,8 +164,9 @@ TEST_F(UserMistakes, AShardWithNoSceneChecksNothingAndFails) {
 }
 
 TEST_F(UserMistakes, AFolderThatDoesNotExistIsRefused) {
-  Outcome golden = run_xshade("", "run --lane gl --scenes '" + (root_ / "scenes").string() + "' --golden '" +
-                                      (root_ / "nothere").string() + "' --report '" + (root_ / "report").string() + "'");
+  Outcome golden =
+      run_xshade("", "run --lane gl --scenes '" + (root_ / "scenes").string() + "' --golden '" +
+                         (root_ / "nothere").string() + "' --report '" + (root_ / "report").string() + "'");
   EXPECT_EQ(golden.exit_code, 2) << golden.output;
   EXPECT_NE(golden.output.find("the golden folder " + (root_ / "nothere").string() + " (--golden) does not exist"),
             std::string::npos)
@@ -199,11 +201,12 @@ TEST_F(UserMistakes, ALaneGoldenThatMatchesTheCommonOneIsRefused) {
 TEST_F(UserMistakes, AValueAboveOneThatChangesFailsThoughThePngCannotShowIt) {
   // Every colour above 1 raised further (1.85 becomes 6.07): the same 255 in 8 bits.
   replace_in_file(root_ / "shaders/materials/toon.hlsl", "return fixed4(diffuse + specular + rim, albedo.a);",
-          "fixed3 colour = diffuse + specular + rim;\n  colour += max(colour - 1, 0) * 5;\n"
-          "  return fixed4(colour, albedo.a);");
+                  "fixed3 colour = diffuse + specular + rim;\n  colour += max(colour - 1, 0) * 5;\n"
+                  "  return fixed4(colour, albedo.a);");
   Outcome outcome = run();
   EXPECT_EQ(outcome.exit_code, 1) << outcome.output;
-  EXPECT_NE(outcome.output.find(std::string(kCopiedScene) + " on gl: fail - float: "), std::string::npos) << outcome.output;
+  EXPECT_NE(outcome.output.find(std::string(kCopiedScene) + " on gl: fail - float: "), std::string::npos)
+      << outcome.output;
 }
 
 // white_furnace has no value above 1, so its PNG is its whole golden.
@@ -213,8 +216,8 @@ TEST_F(UserMistakes, ASixteenBitGoldenIsSrgbLikeAnEightBitOne) {
   const fs::path golden = root_ / "golden" / "white_furnace.png";
   // The same codes times 257 (the 16-bit code of each 8-bit one), by OpenImageIO's own tool, so that
   // this test program need not load the image library.
-  const std::string convert = "oiiotool '" + (kSource / "golden" / "white_furnace.png").string() +
-                              "' -d uint16 -o '" + golden.string() + "'";
+  const std::string convert =
+      "oiiotool '" + (kSource / "golden" / "white_furnace.png").string() + "' -d uint16 -o '" + golden.string() + "'";
   ASSERT_EQ(std::system(convert.c_str()), 0) << convert;
   // No golden is used without its entry and hash (bless writes only 8-bit PNGs, so this one is
   // recorded by hand).
@@ -231,7 +234,8 @@ TEST_F(UserMistakes, ARunReplacesTheEarlierRunsPagesAndKeepsWhatItDidNotWrite) {
   fs::rename(scene(), root_ / "scenes" / "renamed.toml");
   fs::rename(root_ / "golden" / (std::string(kCopiedScene) + ".png"), root_ / "golden" / "renamed.png");
   fs::rename(root_ / "golden" / (std::string(kCopiedScene) + ".exr"), root_ / "golden" / "renamed.exr");
-  replace_in_file(root_ / "golden" / "MANIFEST.toml", std::string("scene = \"") + kCopiedScene + "\"", "scene = \"renamed\"");
+  replace_in_file(root_ / "golden" / "MANIFEST.toml", std::string("scene = \"") + kCopiedScene + "\"",
+                  "scene = \"renamed\"");
   Outcome second = run();
   ASSERT_EQ(second.exit_code, 0) << second.output;
   EXPECT_TRUE(fs::exists(root_ / "report" / "renamed.html"));
@@ -249,8 +253,9 @@ TEST(CommandLine, ThePlanOfASceneWithoutPostEffectsHasNoPostVariantOrPass) {
   EXPECT_NE(variants.find("materials/"), std::string::npos) << plan.output;
   EXPECT_EQ(variants.find("post/"), std::string::npos) << plan.output;
   EXPECT_NE(plan.output.find("  passes to run (1):\n    scene: "), std::string::npos) << plan.output;
-  EXPECT_NE(plan.output.find("post/depth_of_field.hlsl: not in the post chain, so none of its passes is compiled or run"),
-            std::string::npos)
+  EXPECT_NE(
+      plan.output.find("post/depth_of_field.hlsl: not in the post chain, so none of its passes is compiled or run"),
+      std::string::npos)
       << plan.output;
 }
 
@@ -364,10 +369,12 @@ TEST(CommandLine, CompileReadsAUnityShaderPassByPass) {
   EXPECT_NE(reflected.output.find("\"reflection\": {"), std::string::npos) << reflected.output;
   Outcome broken = run_xshade("", "compile " + shader + " --pass 1");
   EXPECT_EQ(broken.exit_code, 2) << broken.output;
-  EXPECT_NE(broken.output.find("Two.shader:19:42: error: unknown name 'undefined_thing'"), std::string::npos) << broken.output;
+  EXPECT_NE(broken.output.find("Two.shader:19:42: error: unknown name 'undefined_thing'"), std::string::npos)
+      << broken.output;
   Outcome cg = run_xshade("", "compile " + shader + " --pass 2");
   EXPECT_EQ(cg.exit_code, 2) << cg.output;
-  EXPECT_NE(cg.output.find("Two.shader:23:16: a CGPROGRAM includes Unity's HLSLSupport.cginc"), std::string::npos) << cg.output;
+  EXPECT_NE(cg.output.find("Two.shader:23:16: a CGPROGRAM includes Unity's HLSLSupport.cginc"), std::string::npos)
+      << cg.output;
   Outcome unknown = run_xshade("", "compile " + shader + " --pass Outline");
   EXPECT_EQ(unknown.exit_code, 2) << unknown.output;
   EXPECT_NE(unknown.output.find("has no pass 'Outline' in the SubShader it draws (its passes: 0 (\"Body\"), 1, 2)"),

@@ -16,7 +16,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-
 // A user material on the library's scene inputs: lit by the scene's light, nothing more.
 constexpr const char* kMaterial = R"(#pragma vertex vert
 #pragma fragment frag
@@ -51,7 +50,8 @@ class UserProject : public ::testing::Test {
     root_ = fs::temp_directory_path() /
             ("xshade_user_project_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
     fs::remove_all(root_);
-    for (const char* folder : {".git", "shaders/materials", "xshade/scenes", "src/deep"}) fs::create_directories(root_ / folder);
+    for (const char* folder : {".git", "shaders/materials", "xshade/scenes", "src/deep"})
+      fs::create_directories(root_ / folder);
     write("shaders/materials/user_lit.hlsl", kMaterial);
     write("xshade/scenes/user_sphere.toml", kUserScene);
     write("xshade.toml", "scenes = \"xshade/scenes\"\ngolden = \"xshade/golden\"\nshaders = [\"shaders\"]\n");
@@ -109,7 +109,7 @@ TEST_F(UserProject, AProjectFolderThatLeavesTheProjectIsRefusedWithItsLocation) 
   Outcome run = xshade_in("src", "run");
   EXPECT_EQ(run.exit_code, 2) << run.output;
   EXPECT_NE(run.output.find((root_ / "xshade.toml").string() + ":2:10: golden: expected a folder inside the project "
-                            "file's folder"),
+                                                               "file's folder"),
             std::string::npos)
       << run.output;
   EXPECT_NE(run.output.find("which leads out of it"), std::string::npos) << run.output;
@@ -164,7 +164,8 @@ TEST_F(UserProject, AnUnknownPragmaIsPrintedByRunAndShownInTheReport) {
   const std::string warning = "materials/user_lit.hlsl:1:9: warning: unknown pragma 'frobnicate'";
   EXPECT_NE(run.output.find("user_sphere: "), std::string::npos) << run.output;
   EXPECT_NE(run.output.find(warning), std::string::npos) << run.output;
-  EXPECT_NE(read_text(root_ / "report" / "user_sphere.html").find("unknown pragma &#39;frobnicate&#39;"), std::string::npos);
+  EXPECT_NE(read_text(root_ / "report" / "user_sphere.html").find("unknown pragma &#39;frobnicate&#39;"),
+            std::string::npos);
 }
 
 }  // namespace

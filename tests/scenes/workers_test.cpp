@@ -24,7 +24,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-
 class Workers : public ::testing::Test {
  protected:
   void SetUp() override {
@@ -78,7 +77,8 @@ TEST_F(Workers, ARenderThatHangsIsATimeoutInItsPassAndTheOtherScenesPass) {
   set_scene_timeout(root_ / "scenes/slow.toml", "timeout = 5\ntimeout_reason = \"a test of a render that hangs\"\n");
   Outcome outcome = run("--lane gl");
   EXPECT_EQ(outcome.exit_code, 1) << outcome.output;
-  EXPECT_NE(outcome.output.find("slow on gl: fail - timeout after 5 s in pass scene (render 1 of 2)"), std::string::npos)
+  EXPECT_NE(outcome.output.find("slow on gl: fail - timeout after 5 s in pass scene (render 1 of 2)"),
+            std::string::npos)
       << outcome.output;
   EXPECT_NE(outcome.output.find(std::string(kCopiedScene) + " on gl: pass"), std::string::npos) << outcome.output;
   EXPECT_NE(outcome.output.find("1 of 2 scenes passed"), std::string::npos) << outcome.output;
@@ -106,7 +106,8 @@ TEST_F(Workers, TheRunsTimeoutStopsARenderAndAScenesOwnNeedsItsReason) {
   add_slow_scene();
   Outcome outcome = run("slow --lane gl --timeout 5");
   EXPECT_EQ(outcome.exit_code, 1) << outcome.output;
-  EXPECT_NE(outcome.output.find("slow on gl: fail - timeout after 5 s in pass scene"), std::string::npos) << outcome.output;
+  EXPECT_NE(outcome.output.find("slow on gl: fail - timeout after 5 s in pass scene"), std::string::npos)
+      << outcome.output;
 
   // A limit without its reason is the user's mistake, at its line.
   set_scene_timeout(root_ / "scenes/slow.toml", "timeout = 5\n");
@@ -120,11 +121,11 @@ TEST_F(Workers, AWorkerThatDiesIsACrashNamingTheSignalAndWhereItWas) {
   // The run in the background; once the slow scene's worker (the run's one child: one render)
   // has been drawing for a while, it is sent SIGSEGV, as a driver's fault would end it.
   const std::string out = (root_ / "out.txt").string();
-  const std::string command =
-      "'" + std::string(xshade_binary()) + "' run slow" + folders() + " --report '" + (root_ / "report").string() +
-      "' --lane gl --timeout 600 > '" + out + "' 2>&1 & run=$!; pid=; for i in $(seq 600); do pid=$(pgrep -P $run); " +
-      "[ -n \"$pid\" ] && break; sleep 0.1; done; " +
-      "sleep 2; kill -SEGV $pid; wait $run; echo \"exit $?\" >> '" + out + "'";
+  const std::string command = "'" + std::string(xshade_binary()) + "' run slow" + folders() + " --report '" +
+                              (root_ / "report").string() + "' --lane gl --timeout 600 > '" + out +
+                              "' 2>&1 & run=$!; pid=; for i in $(seq 600); do pid=$(pgrep -P $run); " +
+                              "[ -n \"$pid\" ] && break; sleep 0.1; done; " +
+                              "sleep 2; kill -SEGV $pid; wait $run; echo \"exit $?\" >> '" + out + "'";
   ASSERT_EQ(std::system(command.c_str()), 0);
   const std::string output = read_text(out);
   EXPECT_NE(output.find("exit 3"), std::string::npos) << output;
@@ -192,13 +193,14 @@ TEST_F(Workers, ARunRemovesTheWorkersFoldersOfDeadRunsAndNoOther) {
 // image and the ones after it get a new worker, which reports each of them.
 TEST_F(Workers, AnEvalLaneThatHangsIsATimeoutOfThatFileAndTheOthersStillRun) {
   const fs::path shader = root_ / "hang.hlsl";
-  std::ofstream(shader) << "#pragma fragment frag\n"
-                           "float4 frag(float4 pos : SV_Position) : SV_Target {\n"
-                           "  float s = 0.0;\n"
-                           "  for (int i = 0; i < 50000; ++i)\n"
-                           "    for (int j = 0; j < 50000; ++j) s += sin(s + pos.x * 0.001 + float(i) * 0.001 + float(j));\n"
-                           "  return float4(s * 1e-30, 0, 0, 1);\n"
-                           "}\n";
+  std::ofstream(shader)
+      << "#pragma fragment frag\n"
+         "float4 frag(float4 pos : SV_Position) : SV_Target {\n"
+         "  float s = 0.0;\n"
+         "  for (int i = 0; i < 50000; ++i)\n"
+         "    for (int j = 0; j < 50000; ++j) s += sin(s + pos.x * 0.001 + float(i) * 0.001 + float(j));\n"
+         "  return float4(s * 1e-30, 0, 0, 1);\n"
+         "}\n";
   for (const char* name : {"before", "after", "last"})
     std::ofstream(root_ / (std::string(name) + ".hlsl"))
         << "#pragma fragment frag\nfloat4 frag(float2 uv : TEXCOORD0) : SV_Target { return float4(uv, 0, 1); }\n";
@@ -234,8 +236,8 @@ TEST(WorkerCount, ImagesAndVerdictsOfEveryFixedSceneDoNotDependOnItNorOnTheCache
   const fs::path root = fs::temp_directory_path() / "xshade_workers_count";
   fs::remove_all(root);
   const std::string cache = " --cache '" + (root / "cache").string() + "'";
-  const std::pair<std::string, std::string> runs[] = {
-      {"one_worker_cold_cache", "-j 1" + cache}, {"two_workers_warm_cache", "-j 2" + cache}};
+  const std::pair<std::string, std::string> runs[] = {{"one_worker_cold_cache", "-j 1" + cache},
+                                                      {"two_workers_warm_cache", "-j 2" + cache}};
   std::map<std::string, std::string> verdicts;
   for (const auto& [name, options] : runs) {
     const fs::path report = root / name;

@@ -35,17 +35,17 @@
 #include <string>
 #include <vector>
 
-#include <glm/glm.hpp>
 #include <gtest/gtest.h>
+#include <glm/glm.hpp>
 
 #include "harness/assets/environment.h"
 #include "harness/gate/golden_store.h"
 #include "harness/image/image_compare.h"
 #include "harness/render/lanes.h"
 #include "harness/render/planner.h"
-#include "harness/scene/scene.h"
 #include "harness/render/scene_renderer.h"
 #include "harness/render/variant_compiler.h"
+#include "harness/scene/scene.h"
 
 namespace xshade::harness {
 namespace {
@@ -89,13 +89,23 @@ struct SensitivityCase {
   Perturbation perturbation;
 };
 
-void PrintTo(const SensitivityCase& c, std::ostream* out) { *out << c.scene << " / " << perturbation_name(c.perturbation); }
+void PrintTo(const SensitivityCase& c, std::ostream* out) {
+  *out << c.scene << " / " << perturbation_name(c.perturbation);
+}
 
 // Every fixed scene. FixedScenesAreExactlyTheSceneFolder keeps this list honest: a new scene
 // without a sensitivity proof fails there.
 const std::vector<std::string> kFixedScenes = {
-    "dof_off",   "dof_on_16",     "dof_on_22",          "dof_on_43",           "dof_on_71",
-    "material_grid", "material_grid_guarded", "toon_shadow_texture", "toon_vs_standard", "white_furnace",
+    "dof_off",
+    "dof_on_16",
+    "dof_on_22",
+    "dof_on_43",
+    "dof_on_71",
+    "material_grid",
+    "material_grid_guarded",
+    "toon_shadow_texture",
+    "toon_vs_standard",
+    "white_furnace",
 };
 
 // Which perturbations apply to a scene follows from what it draws; the table is written out so
@@ -311,8 +321,7 @@ Result<Comparison> render_against_golden(const Scene& scene, const fs::path& sha
 // what the position layer forgave, and the summary.
 std::string describe(const Comparison& comparison) {
   std::string text = "verdict " + std::string(verdict_name(comparison.verdict)) + ", decided by " +
-                     comparison.decided_by + "; failing pixels " +
-                     std::to_string(comparison.metrics.failing_pixels);
+                     comparison.decided_by + "; failing pixels " + std::to_string(comparison.metrics.failing_pixels);
   for (const LayerResult& layer : comparison.layers)
     if (layer.layer == "per_pixel" || layer.layer == "position" || layer.layer == "summary" || layer.layer == "size")
       text += "\n  " + layer.layer + ": " + layer.detail;
@@ -347,8 +356,10 @@ TEST(SensitivityCoverage, PerturbationsCoverWhatEachSceneDraws) {
 // library's.
 TEST(SensitivityCoverage, PerturbationsStartFromTheLibrarysValues) {
   const std::string toon = read_text(kShaderLibrary / kToonMaterial);
-  EXPECT_NE(toon.find("fixed _RimThreshold <string UIName = \"Rim threshold\"; float UIMin = 0.0; float UIMax = 1.0;> = 0.5;"),
-            std::string::npos)
+  EXPECT_NE(
+      toon.find(
+          "fixed _RimThreshold <string UIName = \"Rim threshold\"; float UIMin = 0.0; float UIMax = 1.0;> = 0.5;"),
+      std::string::npos)
       << "the toon material's _RimThreshold default is no longer " << kRimThresholdDefault;
   EXPECT_TRUE(replace_once(read_text(kShaderLibrary / "include" / "brdf.hlsl"), kR0Line, kPerturbedR0Line))
       << "brdf.hlsl no longer holds exactly one '" << kR0Line << "'";
@@ -357,8 +368,10 @@ TEST(SensitivityCoverage, PerturbationsStartFromTheLibrarysValues) {
 TEST(SensitivityCoverage, OneRingIsDroppedFromEachKernel) {
   const std::string kernels = read_text(kShaderLibrary / "include" / "dof_kernels.hlsl");
   // The outer ring of each kernel (radius 1) and what remains: the rings inside it.
-  const std::map<std::string, std::pair<int, int>> expected = {
-      {"_KERNEL_SMALL", {16, 6}}, {"_KERNEL_MEDIUM", {22, 8}}, {"_KERNEL_LARGE", {43, 22}}, {"_KERNEL_VERY_LARGE", {71, 43}}};
+  const std::map<std::string, std::pair<int, int>> expected = {{"_KERNEL_SMALL", {16, 6}},
+                                                               {"_KERNEL_MEDIUM", {22, 8}},
+                                                               {"_KERNEL_LARGE", {43, 22}},
+                                                               {"_KERNEL_VERY_LARGE", {71, 43}}};
   for (const auto& [keyword, counts] : expected) {
     auto dropped = drop_outer_ring(kernels, keyword);
     ASSERT_TRUE(dropped) << dropped.error().to_string();

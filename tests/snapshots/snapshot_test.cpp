@@ -36,13 +36,17 @@ struct Variant {
 std::vector<Variant> variants() {
   std::vector<Variant> list{
       {"standard_pbr", "materials/standard_pbr.hlsl", {}, {}},
-      {"standard_pbr.alternatives_guarded", "materials/standard_pbr.hlsl",
-       {"_D_GGX_LAGRANGE", "_G_SMITH_CORRELATED", "_F_SPHERICAL_GAUSSIAN", "_GUARDED"}, {}},
+      {"standard_pbr.alternatives_guarded",
+       "materials/standard_pbr.hlsl",
+       {"_D_GGX_LAGRANGE", "_G_SMITH_CORRELATED", "_F_SPHERICAL_GAUSSIAN", "_GUARDED"},
+       {}},
       {"toon", "materials/toon.hlsl", {}, {}},
       {"toon.shadow_tex_guarded", "materials/toon.hlsl", {"_SHADOW_TEX", "_GUARDED"}, {}},
   };
   for (const char* pass : {"coc", "prefilter", "bokeh", "postfilter", "combine"})
-    list.push_back({std::string("depth_of_field.") + pass, "post/depth_of_field.hlsl", {"_KERNEL_LARGE"},
+    list.push_back({std::string("depth_of_field.") + pass,
+                    "post/depth_of_field.hlsl",
+                    {"_KERNEL_LARGE"},
                     std::string("frag_") + pass});
   return list;
 }
@@ -69,7 +73,8 @@ std::string first_difference(const std::string& expected, const std::string& act
     const bool more_a = bool(std::getline(a, la)), more_b = bool(std::getline(b, lb));
     if (!more_a && !more_b) return "identical";
     if (la != lb || more_a != more_b)
-      return "line " + std::to_string(line) + ":\n  snapshot: " + (more_a ? la : "<end>") + "\n  emitted:  " + (more_b ? lb : "<end>");
+      return "line " + std::to_string(line) + ":\n  snapshot: " + (more_a ? la : "<end>") +
+             "\n  emitted:  " + (more_b ? lb : "<end>");
   }
 }
 
@@ -97,8 +102,9 @@ TEST_P(Snapshot, EmittedGlslMatches) {
       if (!*stage) {
         // A stage the emitter stopped producing is a change too, not a snapshot to skip.
         if (update) fs::remove(file);
-        EXPECT_TRUE(update || !fs::exists(file)) << file.filename().string() << " is a snapshot of a stage the emitter no "
-                                                 << "longer produces";
+        EXPECT_TRUE(update || !fs::exists(file))
+            << file.filename().string() << " is a snapshot of a stage the emitter no "
+            << "longer produces";
         continue;
       }
       const std::string text = without_library_root((*stage)->text);
@@ -106,11 +112,13 @@ TEST_P(Snapshot, EmittedGlslMatches) {
         std::ofstream(file, std::ios::binary) << text;
         continue;
       }
-      ASSERT_TRUE(fs::exists(file)) << file << " is missing; write it with cmake --build build --target update_snapshots";
+      ASSERT_TRUE(fs::exists(file)) << file
+                                    << " is missing; write it with cmake --build build --target update_snapshots";
       const std::string expected = read(file);
-      EXPECT_TRUE(expected == text) << file.filename().string() << " differs at " << first_difference(expected, text)
-                                    << "\nIf the change is meant, rewrite with cmake --build build --target update_snapshots and "
-                                       "review the diff.";
+      EXPECT_TRUE(expected == text)
+          << file.filename().string() << " differs at " << first_difference(expected, text)
+          << "\nIf the change is meant, rewrite with cmake --build build --target update_snapshots and "
+             "review the diff.";
     }
   }
 }
