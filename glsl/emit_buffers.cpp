@@ -63,7 +63,7 @@ std::string word_value(StageEmitter& emitter, const Type& type, const std::strin
 }  // namespace
 
 const StorageBufferResource* StageEmitter::buffer_of(const Expr* object, Loc loc) {
-  const Decl* decl = named_decl(object);
+  const Decl* decl = lower::named_decl(object);
   for (const StorageBufferResource& buffer : reflection_.buffers)
     if (decl && buffer.decl == decl) return &buffer;
   if (object && !is_read_only_buffer(object->type.buffer_kind()))

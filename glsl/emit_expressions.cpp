@@ -137,7 +137,7 @@ std::optional<std::string> half_literal(const std::string& text) {
   return float_text(std::string(buffer, written.ptr));
 }
 
-bool is_split_name(const Expr* e, const std::unordered_map<const Decl*, StageEmitter::SplitMember>& split) {
+bool is_split_name(const Expr* e, const std::unordered_map<const Decl*, lower::SplitMember>& split) {
   return e && e->kind == ExprKind::Name && split.count(static_cast<const NameExpr*>(e)->decl) > 0;
 }
 
@@ -528,7 +528,7 @@ bool StageEmitter::is_constant(const Expr* e) {
       return true;
     }
     case ExprKind::Member:
-      if (is_split_name(static_cast<const MemberExpr*>(e)->object.get(), split_members_)) return false;
+      if (is_split_name(static_cast<const MemberExpr*>(e)->object.get(), constant_buffer_members_.split)) return false;
       return is_constant(static_cast<const MemberExpr*>(e)->object.get());
     case ExprKind::Index: {
       const auto* index = static_cast<const IndexExpr*>(e);
@@ -700,7 +700,7 @@ Code StageEmitter::expr_untraced(const Expr* e) {
                            " can only be passed to Sample methods and functions on OpenGL");
         return resource_text(e, {});
       }
-      if (auto it = split_members_.find(name->decl); it != split_members_.end()) {
+      if (auto it = constant_buffer_members_.split.find(name->decl); it != constant_buffer_members_.split.end()) {
         std::string text = type_name(Type::vector(it->second.scalar, it->second.count), e->loc) + "(";
         for (uint32_t i = 0; i < it->second.count; ++i) text += (i ? ", " : "") + names_.split_member(name->name, i);
         return {text + ")"};
@@ -992,7 +992,7 @@ Code StageEmitter::expr_untraced(const Expr* e) {
         if (count == 1) return value;
         return convert(value, Type::scalar(type.scalar_type()), e->type, e->loc);
       }
-      if (is_split_name(object, split_members_)) {
+      if (is_split_name(object, constant_buffer_members_.split)) {
         const std::string& base = static_cast<const NameExpr*>(object)->name;
         std::string parts;
         for (uint32_t i = 0; i < count; ++i) parts += (i ? ", " : "") + names_.split_member(base, swizzle[i]);

@@ -43,10 +43,6 @@ std::string combined_type(TextureShape shape, ScalarType texel, bool shadow) {
 // ".x", ".xy", ".xyz" for the first n components; "" for 4.
 std::string first_components(uint32_t n) { return n >= 4 ? "" : "." + std::string(kComponents, n); }
 
-bool is_comparison_method(I id) {
-  return id == I::SampleCmp || id == I::SampleCmpLevelZero || (id >= I::GatherCmp && id <= I::GatherCmpAlpha);
-}
-
 // The shadow lookup's coordinate: the reference value goes after the coordinate (a 1D one
 // takes an unused second component first).
 std::string shadow_coordinate(TextureShape shape) {
@@ -88,39 +84,6 @@ std::string StageEmitter::resource_type(const Type& type, const Decl* decl, Loc 
       if (flavour_ == Flavour::Gl) fail(loc, "a SamplerState has no GLSL type on OpenGL");
       return type.is_comparison() ? "samplerShadow" : "sampler";
     default: return type_name(type, loc);
-  }
-}
-
-const Decl* StageEmitter::named_decl(const Expr* e) {
-  while (e && e->kind == ExprKind::Conversion) e = static_cast<const ConversionExpr*>(e)->operand.get();
-  return e && e->kind == ExprKind::Name ? static_cast<const NameExpr*>(e)->decl : nullptr;
-}
-
-void StageEmitter::collect_compared_textures() {
-  // The objects of comparison methods, then, back through the calls, what is passed for a
-  // compared parameter, until nothing changes (a call chain passes the texture down). Over both
-  // stages' functions: a texture is one uniform of one type in the linked program, so one the
-  // fragment stage compares is a shadow sampler in the vertex stage too.
-  std::vector<const FunctionDecl*> program_functions;
-  for (const FunctionDecl* entry : {module_.entry_points.vertex, module_.entry_points.fragment})
-    if (entry)
-      for (const FunctionDecl* function : hlsl::reachable_functions(entry)) program_functions.push_back(function);
-  auto decl_of = named_decl;
-  for (bool changed = true; changed;) {
-    changed = false;
-    for (const FunctionDecl* function : program_functions) {
-      hlsl::walk_expressions(function->body.get(), [&](const Expr& e) {
-        if (e.kind != ExprKind::Call) return;
-        const auto& call = static_cast<const CallExpr&>(e);
-        if (call.call_kind == CallKind::Method && is_comparison_method(IntrinsicId(call.intrinsic))) {
-          if (const Decl* decl = decl_of(call.object.get())) changed |= compared_.insert(decl).second;
-        } else if (call.call_kind == CallKind::Function && call.function) {
-          for (size_t i = 0; i < call.args.size() && i < call.function->params.size(); ++i)
-            if (compared_.count(call.function->params[i].get()))
-              if (const Decl* decl = decl_of(call.args[i].get())) changed |= compared_.insert(decl).second;
-        }
-      });
-    }
   }
 }
 
@@ -235,8 +198,8 @@ Code StageEmitter::texture_call(const CallExpr& call) {
   const TextureShape shape = texture.texture_shape();
   const uint32_t n = coordinate_components(shape);
   const ScalarType texel = texture.scalar_type() == ScalarType::Half ? ScalarType::Float : texture.scalar_type();
-  const bool compare = is_comparison_method(id);
-  const Decl* object_decl = named_decl(call.object.get());
+  const bool compare = lower::is_comparison_method(id);
+  const Decl* object_decl = lower::named_decl(call.object.get());
   if (flavour_ == Flavour::Gl && !compare && id != I::GetDimensions && object_decl && compared_.count(object_decl))
     fail(call.loc, "texture " + in_quotes(object_decl->name) +
                        " is read both with and without a SamplerComparisonState; "

@@ -249,185 +249,6 @@ void StageEmitter::fail(Loc loc, const std::string& message) {
 
 namespace {
 
-const FunctionDecl* defined(const FunctionDecl* function) {
-  return function->definition ? function->definition : function;
-}
-
-}  // namespace
-
-void StageEmitter::collect_used_declarations() {
-  std::vector<const StructDecl*> struct_queue;
-  auto use_type = [&](const Type& type) {
-    const Type* base = &type;
-    for (int depth = 0; base->kind() == TypeKind::Array && depth < 64; ++depth) base = &base->element();
-    if (base->kind() == TypeKind::Struct && base->struct_decl() && used_structs_.insert(base->struct_decl()).second)
-      struct_queue.push_back(base->struct_decl());
-  };
-  auto named_static = [](const Expr& expr) -> const VarDecl* {
-    if (expr.kind != ExprKind::Name) return nullptr;
-    const Decl* decl = static_cast<const NameExpr&>(expr).decl;
-    if (!decl || decl->kind != DeclKind::Var) return nullptr;
-    const auto* var = static_cast<const VarDecl*>(decl);
-    // groupshared goes with them, to be refused where it is reached.
-    const bool is_static = var->storage == StorageClass::Static || var->storage == StorageClass::GroupShared;
-    return var->is_global && is_static ? var : nullptr;
-  };
-
-  // One walk of each function's body finds what the rest asks of it: the functions it calls
-  // (as hlsl::reachable_functions counts them) and the statics it names, in order; the types
-  // of its expressions make their structs used as it goes.
-  struct FunctionUses {
-    std::vector<const FunctionDecl*> callees;
-    std::vector<const VarDecl*> statics;
-  };
-  std::unordered_map<const FunctionDecl*, FunctionUses> uses;
-  auto uses_of = [&](const FunctionDecl* function) -> const FunctionUses& {
-    auto [known, inserted] = uses.try_emplace(function);
-    if (inserted) {
-      FunctionUses& found = known->second;
-      auto visit = [&](const Expr& expr) {
-        use_type(expr.type);
-        if (const VarDecl* var = named_static(expr)) {
-          found.statics.push_back(var);
-        } else if (expr.kind == ExprKind::Call) {
-          const auto& call = static_cast<const CallExpr&>(expr);
-          if (call.call_kind == CallKind::Function && call.function) found.callees.push_back(defined(call.function));
-        }
-      };
-      hlsl::walk_expressions(function->body.get(), visit);
-    }
-    return known->second;
-  };
-  // hlsl::reachable_functions, from the walks above: callees before callers, `root` last.
-  auto reachable = [&](const FunctionDecl* root_decl) {
-    std::vector<const FunctionDecl*> order;
-    const FunctionDecl* root = defined(root_decl);
-    struct Frame {
-      const FunctionDecl* function;
-      const std::vector<const FunctionDecl*>* callees;
-      size_t next = 0;
-    };
-    std::unordered_set<const FunctionDecl*> visited{root};
-    std::vector<Frame> stack{{root, &uses_of(root).callees}};
-    while (!stack.empty()) {
-      Frame& top = stack.back();
-      if (top.next < top.callees->size()) {
-        const FunctionDecl* callee = (*top.callees)[top.next++];
-        if (visited.insert(callee).second) stack.push_back({callee, &uses_of(callee).callees});
-        continue;
-      }
-      order.push_back(top.function);
-      stack.pop_back();
-    }
-    return order;
-  };
-
-  // Functions the entry point reaches, then those that static initializers call.
-  std::unordered_set<const FunctionDecl*> seen;
-  std::vector<const FunctionDecl*> to_scan;
-  auto add_tree = [&](const FunctionDecl* root) {
-    for (const FunctionDecl* function : reachable(root)) {
-      if (seen.insert(function).second) {
-        functions_.push_back(function);
-        to_scan.push_back(function);
-      }
-    }
-  };
-  std::unordered_set<const Decl*> used_statics;
-  std::vector<const VarDecl*> statics_to_scan;
-  auto use_static = [&](const VarDecl* var) {
-    if (used_statics.insert(var).second) statics_to_scan.push_back(var);
-  };
-  auto visit_initializer = [&](const Expr& expr) {
-    if (const VarDecl* var = named_static(expr)) {
-      use_static(var);
-    } else if (expr.kind == ExprKind::Call) {
-      const auto& call = static_cast<const CallExpr&>(expr);
-      // A function seen already came with everything it reaches: its tree adds nothing.
-      if (call.call_kind == CallKind::Function && call.function && !seen.count(defined(call.function)))
-        add_tree(call.function);
-    }
-  };
-  if (entry_) add_tree(entry_);
-  while (!to_scan.empty() || !statics_to_scan.empty()) {
-    if (!to_scan.empty()) {
-      // Its calls add nothing: what it calls came in the same tree.
-      const FunctionDecl* function = to_scan.back();
-      to_scan.pop_back();
-      for (const VarDecl* var : uses_of(function).statics) use_static(var);
-    } else {
-      const VarDecl* var = statics_to_scan.back();
-      statics_to_scan.pop_back();
-      hlsl::walk_expressions(var->initializer.get(), visit_initializer);
-    }
-  }
-  for (const auto& decl : module_.unit.decls)
-    if (decl && used_statics.count(decl.get())) statics_.push_back(static_cast<const VarDecl*>(decl.get()));
-
-  // The structs those use, with the structs inside them: only these are declared, so that an
-  // unreached struct of what this target cannot hold does not matter. (The types of the
-  // functions' expressions were taken as their bodies were walked above.)
-  std::function<void(const Stmt*)> use_locals = [&](const Stmt* stmt) {
-    if (!stmt) return;
-    switch (stmt->kind) {
-      case StmtKind::Block:
-        for (const StmtPtr& child : static_cast<const BlockStmt*>(stmt)->statements) use_locals(child.get());
-        break;
-      case StmtKind::Decl:
-        for (const auto& var : static_cast<const DeclStmt*>(stmt)->vars)
-          if (var) use_type(var->type);
-        break;
-      case StmtKind::If:
-        use_locals(static_cast<const IfStmt*>(stmt)->then_branch.get());
-        use_locals(static_cast<const IfStmt*>(stmt)->else_branch.get());
-        break;
-      case StmtKind::For:
-        use_locals(static_cast<const ForStmt*>(stmt)->init.get());
-        use_locals(static_cast<const ForStmt*>(stmt)->body.get());
-        break;
-      case StmtKind::While: use_locals(static_cast<const WhileStmt*>(stmt)->body.get()); break;
-      case StmtKind::DoWhile: use_locals(static_cast<const DoWhileStmt*>(stmt)->body.get()); break;
-      case StmtKind::Switch:
-        for (const SwitchCase& c : static_cast<const SwitchStmt*>(stmt)->cases)
-          for (const StmtPtr& child : c.statements) use_locals(child.get());
-        break;
-      default: break;
-    }
-  };
-  for (const FunctionDecl* function : functions_) {
-    use_type(function->return_type);
-    for (const auto& param : function->params)
-      if (param) use_type(param->type);
-    use_locals(function->body.get());
-  }
-  for (const VarDecl* var : statics_) use_type(var->type);
-  for (const ConstantBuffer& buffer : reflection_.constant_buffers)
-    for (const ConstantBufferMember& member : buffer.members) use_type(member.type);
-  while (!struct_queue.empty()) {
-    const StructDecl* decl = struct_queue.back();
-    struct_queue.pop_back();
-    for (const FieldDecl& field : decl->fields) use_type(field.type);
-  }
-
-  // Constant-buffer members that std140 cannot place as vectors are read as scalars.
-  for (const auto& decl : module_.unit.decls) {
-    if (!decl) continue;
-    if (decl->kind == DeclKind::Var) uniform_decls_.emplace(decl->name, static_cast<const VarDecl*>(decl.get()));
-    if (decl->kind == DeclKind::CBuffer)
-      for (const auto& member : static_cast<const CBufferDecl&>(*decl).members)
-        if (member) uniform_decls_.emplace(member->name, member.get());
-  }
-  for (const ConstantBuffer& buffer : reflection_.constant_buffers) {
-    for (const ConstantBufferMember& member : buffer.members) {
-      if (!member.split_into_scalars) continue;
-      if (auto it = uniform_decls_.find(member.name); it != uniform_decls_.end())
-        split_members_[it->second] = {member.type.scalar_type(), member.type.cols()};
-    }
-  }
-}
-
-namespace {
-
 // What a static global starts as in HLSL when it has no initializer: zero.
 std::string zero_value(StageEmitter& emitter, const Type& type, Loc loc) {
   switch (type.kind()) {
@@ -471,8 +292,14 @@ std::string zero_value(StageEmitter& emitter, const Type& type, Loc loc) {
 
 std::string StageEmitter::run() {
   if (!entry_) return {};
-  collect_used_declarations();
-  if (flavour_ == Flavour::Gl) collect_compared_textures();
+  // The lowering passes decide; what follows prints what they decided.
+  lower::UsedDeclarations used = lower::used_declarations(module_, entry_);
+  functions_ = std::move(used.functions);
+  statics_ = std::move(used.statics);
+  used_structs_ = std::move(used.structs);
+  constant_buffer_members_ = lower::split_constant_buffers(module_);
+  unrolled_loops_ = lower::unroll_offset_loops(functions_);
+  if (flavour_ == Flavour::Gl) compared_ = lower::compared_textures(module_);
 
   // Static globals first, so that functions see which of them are GLSL constants.
   Writer statics;
@@ -580,8 +407,11 @@ std::string StageEmitter::declarations() {
     w.indent = 1;
     for (const ConstantBufferMember& member : buffer.members) {
       const std::string name = names_.of(member.name);
-      const auto decl = view ? uniform_decls_.end() : uniform_decls_.find(member.name);
-      const Loc loc = decl != uniform_decls_.end() ? decl->second->loc : buffer.decl ? buffer.decl->loc : Loc{};
+      const auto decl =
+          view ? constant_buffer_members_.by_name.end() : constant_buffer_members_.by_name.find(member.name);
+      const Loc loc = decl != constant_buffer_members_.by_name.end() ? decl->second->loc
+                      : buffer.decl                                  ? buffer.decl->loc
+                                                                     : Loc{};
       if (member.split_into_scalars && view) {
         fail(loc, "field " + in_quotes(member.name) + " of " + in_quotes(buffer.name) + " is at offset " +
                       std::to_string(member.offset) + ", which std140 cannot give a " + in_quotes(member.type.name()) +

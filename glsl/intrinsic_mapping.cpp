@@ -539,7 +539,7 @@ Code StageEmitter::expand_template(std::string_view text, const CallExpr& call,
       if (uses[i] == 0) continue;
       const Type& operand_type = operands[i]->type;
       const std::string type = operand_type.is_resource()
-                                   ? resource_type(operand_type, named_decl(operands[i]), call.loc)
+                                   ? resource_type(operand_type, lower::named_decl(operands[i]), call.loc)
                                    : type_name(operand_type, call.loc);
       params += (params.empty() ? "" : ", ") + std::string(out[i] ? "out " : "") + type + " a" + std::to_string(i);
       args += (args.empty() ? "" : ", ") + operand(code_of(i), kAssign);

@@ -19,6 +19,10 @@
 #include "base/string_index.h"
 #include "glsl/flavour.h"
 #include "glsl/glsl_emitter.h"
+#include "glsl/lower/compared_textures.h"
+#include "glsl/lower/split_constant_buffers.h"
+#include "glsl/lower/unroll_offset_loops.h"
+#include "glsl/lower/used_declarations.h"
 #include "hlsl_like/compiler.h"
 #include "hlsl_like/intrinsics.h"
 
@@ -230,11 +234,6 @@ class StageEmitter {
   // The GLSL type of a texture, sampler or other resource; `decl` is the variable or parameter
   // declared with it (a texture compared on OpenGL is a shadow sampler), or null.
   std::string resource_type(const Type& type, const hlsl::Decl* decl, Loc loc);
-  // The variable or parameter `e` names (through implicit conversions), or null.
-  static const hlsl::Decl* named_decl(const Expr* e);
-  // Textures (globals and parameters) that OpenGL declares as shadow samplers: the objects of
-  // SampleCmp and GatherCmp, and what is passed for them.
-  void collect_compared_textures();
 
   // --- resources held in locals and struct fields (emit_textures.cpp)
   // The GLSL text of the resource `leaf` (a field path) of the value `e`: the global or the
@@ -249,11 +248,6 @@ class StageEmitter {
 
   // --- functions and statements (emit_statements.cpp)
   void function(const FunctionDecl& function);
-  // The values of a for loop's int variable, when the loop is to be unrolled: its variable is a
-  // texel offset in the body, its trip is known when compiling (at most kMaxUnrolledIterations),
-  // and the body neither writes the variable nor breaks or continues the loop.
-  std::optional<std::vector<int64_t>> unrolled_values(const hlsl::ForStmt& loop);
-  static constexpr size_t kMaxUnrolledIterations = 256;
   // What one HLSL parameter declares in GLSL: itself, or one parameter per resource it holds.
   std::vector<std::string> parameter_declarations(const hlsl::ParamDecl& param);
   void statement(const Stmt* stmt);
@@ -299,7 +293,6 @@ class StageEmitter {
   uint32_t add_site(TraceSite site, Loc loc);
 
   // --- the stage (glsl_emitter.cpp)
-  void collect_used_declarations();
   std::string declarations();
   // main(); the stage's in and out variables go to interface_text_.
   std::string interface_and_main();
@@ -325,20 +318,16 @@ class StageEmitter {
   // texelFetch/textureSize on a texture2D, ...), written after #version in name order.
   std::set<std::string> extensions_;
   void require_extension(const std::string& name) { extensions_.insert(name); }
-  std::unordered_set<const hlsl::Decl*> compared_;  // see collect_compared_textures
-  std::vector<const FunctionDecl*> functions_;
-  std::vector<const hlsl::VarDecl*> statics_;                 // used static globals, in source order
-  std::unordered_set<const hlsl::StructDecl*> used_structs_;  // structs the stage's code uses
-  std::vector<std::string> main_prologue_;                    // statements that initialize statics in main()
+  // What the lowering passes (lower/) decided, which the rest prints.
+  std::unordered_set<const hlsl::Decl*> compared_;  // lower::compared_textures (OpenGL only)
+  std::vector<const FunctionDecl*> functions_;      // lower::used_declarations
+  std::vector<const hlsl::VarDecl*> statics_;
+  std::unordered_set<const hlsl::StructDecl*> used_structs_;
+  lower::ConstantBufferMembers constant_buffer_members_;  // lower::split_constant_buffers
+  lower::UnrolledLoops unrolled_loops_;                   // lower::unroll_offset_loops
+  std::vector<std::string> main_prologue_;                // statements that initialize statics in main()
   std::string interface_text_;
   std::unordered_set<const hlsl::Decl*> const_decls_;  // emitted as GLSL `const`
-  struct SplitMember {
-    hlsl::ScalarType scalar;
-    uint32_t count;
-  };
-  std::unordered_map<const hlsl::Decl*, SplitMember> split_members_;
-  // Constant-buffer members by name, viewing the tree's strings.
-  std::unordered_map<std::string_view, const hlsl::VarDecl*> uniform_decls_;
 
   const bool trace_;             // the tracing variant: every function twice, the second copy traced
   bool in_traced_copy_ = false;  // emitting the traced copy (emit_trace.cpp)

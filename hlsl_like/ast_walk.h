@@ -119,6 +119,34 @@ void walk_expressions(const Stmt* stmt, const Visit& visit) {
   }
 }
 
+// Calls visit(statement) for `stmt` and every statement inside it (a block's, a branch's, a
+// loop's init and body, a switch case's), outer before inner, in source order.
+template <class Visit>
+void walk_statements(const Stmt* stmt, const Visit& visit) {
+  if (!stmt) return;
+  visit(*stmt);
+  switch (stmt->kind) {
+    case StmtKind::Block:
+      for (const StmtPtr& child : static_cast<const BlockStmt*>(stmt)->statements) walk_statements(child.get(), visit);
+      break;
+    case StmtKind::If:
+      walk_statements(static_cast<const IfStmt*>(stmt)->then_branch.get(), visit);
+      walk_statements(static_cast<const IfStmt*>(stmt)->else_branch.get(), visit);
+      break;
+    case StmtKind::For:
+      walk_statements(static_cast<const ForStmt*>(stmt)->init.get(), visit);
+      walk_statements(static_cast<const ForStmt*>(stmt)->body.get(), visit);
+      break;
+    case StmtKind::While: walk_statements(static_cast<const WhileStmt*>(stmt)->body.get(), visit); break;
+    case StmtKind::DoWhile: walk_statements(static_cast<const DoWhileStmt*>(stmt)->body.get(), visit); break;
+    case StmtKind::Switch:
+      for (const SwitchCase& c : static_cast<const SwitchStmt*>(stmt)->cases)
+        for (const StmtPtr& child : c.statements) walk_statements(child.get(), visit);
+      break;
+    default: break;
+  }
+}
+
 // The user functions `entry` calls, directly or not, callees before callers, `entry` last: the
 // order a GLSL file must define them in.
 std::vector<const FunctionDecl*> reachable_functions(const FunctionDecl* entry);
