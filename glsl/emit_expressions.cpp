@@ -161,8 +161,6 @@ Code constructed(const std::string& type, const Code& value) {
 
 }  // namespace
 
-std::string type_key(const Type& type, Flavour flavour) { return glsl_type(type, flavour, nullptr); }
-
 std::string StageEmitter::type_name(const Type& type, Loc loc) {
   // Scalars and vectors, most of what is asked, from a table: glsl_type spells them without a
   // complaint, and building their names was much of its cost.
@@ -1054,3 +1052,10 @@ Code StageEmitter::expr_untraced(const Expr* e) {
 }
 
 }  // namespace xshade::glsl::detail
+
+namespace xshade::glsl::lower {
+
+// Renaming's overload key is the printer's type spelling, without its diagnostics.
+std::string type_key(const hlsl::Type& type, Flavour flavour) { return detail::glsl_type(type, flavour, nullptr); }
+
+}  // namespace xshade::glsl::lower

@@ -692,7 +692,7 @@ Result<EmittedProgram> emit(const hlsl::Module& module, const EmitOptions& optio
   program.source_files.emplace_back();
   for (uint32_t file = 1; file < module.sources.file_count(); ++file)
     program.source_files.push_back(module.sources.name(file));
-  const detail::Names names(module.unit, options.flavour);
+  const lower::Names names(module.unit, options.flavour);
   for (const bool vertex : {true, false}) {
     const hlsl::FunctionDecl* entry = vertex ? module.entry_points.vertex : module.entry_points.fragment;
     if (!entry) continue;

@@ -20,6 +20,7 @@
 #include "glsl/flavour.h"
 #include "glsl/glsl_emitter.h"
 #include "glsl/lower/compared_textures.h"
+#include "glsl/lower/rename.h"
 #include "glsl/lower/split_constant_buffers.h"
 #include "glsl/lower/unroll_offset_loops.h"
 #include "glsl/lower/used_declarations.h"
@@ -27,6 +28,9 @@
 #include "hlsl_like/intrinsics.h"
 
 namespace xshade::glsl::detail {
+
+using lower::Names;
+using lower::type_key;
 
 using hlsl::Expr;
 using hlsl::FunctionDecl;
@@ -74,50 +78,6 @@ std::string operand(Code&& code, int prec);
 void append_operand(std::string& out, const Code& code, int prec);
 
 std::string replace_all(std::string text, std::string_view from, const std::string& to);
-
-// The GLSL names of the author's declarations, the same in both stages of a program.
-class Names {
- public:
-  Names(const hlsl::TranslationUnit& unit, Flavour flavour);
-
-  // The GLSL spelling of an author's name: unchanged unless GLSL reserves it (glsl_names.h);
-  // a renamed name never collides with another name of the author's.
-  std::string of(const std::string& name) const;
-  // A function's name: of(name), or with a type suffix when two overloads have the same GLSL
-  // signature (half and float parameters are both float in GLSL).
-  std::string function(const FunctionDecl* function) const;
-  // A variable's or parameter's name. A local or parameter named like one of the author's
-  // functions is renamed too: in GLSL it would hide the function for the rest of its scope.
-  // Every use of a variable asks for its name, so each renamed one is worked out once.
-  const std::string& variable(const hlsl::Decl* decl) const;
-  // The scalar `index` of a constant-buffer vector declared as scalars: `_Offset_0`.
-  std::string split_member(const std::string& name, uint32_t index) const;
-  // A struct's name: of(name), or a name of its own when a variable, parameter or field is named
-  // like it (HLSL lets a variable hide a type, as C does; GLSL refuses a global beside the struct).
-  const std::string& type(const hlsl::StructDecl* decl) const;
-
- private:
-  // Whether the author declared `name` anywhere. Only a renaming asks, so the names (views of
-  // the tree's strings) are gathered on first use.
-  bool is_user_name(std::string_view name) const;
-  // Whether a variable, parameter or field is named `name`; gathered on first use too.
-  bool is_value_name(std::string_view name) const;
-
-  const hlsl::TranslationUnit& unit_;
-  mutable bool user_gathered_ = false;
-  mutable StringIndex user_names_;
-  std::unordered_set<std::string_view> function_names_;
-  // Overloads whose GLSL signatures coincide; every other function is of(name).
-  std::unordered_map<const FunctionDecl*, std::string> functions_;
-  mutable std::unordered_map<std::string, std::string> cache_;
-  mutable std::unordered_map<const hlsl::Decl*, std::string> variables_;
-  mutable bool values_gathered_ = false;
-  mutable StringIndex value_names_;
-  mutable std::unordered_map<const hlsl::StructDecl*, std::string> types_;
-};
-
-// The GLSL spelling of a type for overload comparison; no diagnostics (see StageEmitter::type_name).
-std::string type_key(const Type& type, Flavour flavour);
 
 // Text with its line count, and `#line` directives that map the lines that follow back to the
 // author's source.

@@ -1,13 +1,12 @@
-// The emitter's names: what each of the author's names is called in GLSL (reserved words and
-// the emitter's own prefixes renamed, overloads that GLSL would confuse told apart), and the
-// checks that a renamed name collides with none of the author's.
+// Renaming (rename.h), with the checks that a renamed name collides with none of the author's.
+#include "glsl/lower/rename.h"
+
 #include <algorithm>
 #include <map>
 
 #include "glsl/glsl_names.h"
-#include "glsl/stage_emitter.h"
 
-namespace xshade::glsl::detail {
+namespace xshade::glsl::lower {
 
 using namespace hlsl;
 
@@ -216,4 +215,4 @@ std::string Names::function(const FunctionDecl* function) const {
   return of(function->name);
 }
 
-}  // namespace xshade::glsl::detail
+}  // namespace xshade::glsl::lower
