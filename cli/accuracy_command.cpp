@@ -1,11 +1,14 @@
 // xshade accuracy: for each knob of SHADERS.md section 6, error against a reference and time, per
 // lane, as tables and Pareto charts.
 #include <fmt/core.h>
+#include <CLI/CLI.hpp>
 
 #include <algorithm>
+#include <memory>
 
 #include "accuracy/accuracy_report.h"
 #include "base/file_io.h"
+#include "cli/command_options.h"
 #include "cli/commands.h"
 #include "cli/lane_selection.h"
 
@@ -104,6 +107,51 @@ int run_accuracy(const AccuracyOptions& options) {
       converged = false;
     }
   return converged ? kPass : kTestFailed;
+}
+
+Verb add_accuracy_command(CLI::App& app) {
+  auto options = std::make_shared<AccuracyOptions>();
+  CLI::App* accuracy = app.add_subcommand(
+      "accuracy",
+      "For each accuracy knob (DoF kernel, BRDF forms, precision, indirect specular, supersampling, "
+      "shadow-map resolution), render its scene in every configuration on each lane and measure error "
+      "against a reference and time; tables and Pareto charts");
+  accuracy
+      ->add_option("study", options->studies,
+                   "Study ids (dof_kernel, brdf_forms, precision, indirect_specular, supersampling, shadow_map); "
+                   "default: all but shadow_map, whose scene of Unity shaders needs --scenes and --shader-folder")
+      ->type_name("STUDY");
+  add_lane_options(*accuracy, options->selection);
+  accuracy->add_flag("--quick", options->quick, "One round of timing, no reference check, and only the quick studies");
+  accuracy
+      ->add_option("--rounds", options->rounds,
+                   "Rounds of timing: the configurations take turns, each turn 1 warm-up frame and 3 timed frames")
+      ->check(CLI::Range(1, 100))
+      ->capture_default_str();
+  accuracy->add_option("--report", options->report_dir, "Folder for index.html, accuracy.csv and charts/")
+      ->type_name("DIR")
+      ->capture_default_str();
+  accuracy
+      ->add_option("--markdown", options->markdown,
+                   "Also write the tables as Markdown, with the charts in a folder beside it named after it "
+                   "(docs/accuracy.md is this output)")
+      ->type_name("FILE");
+  accuracy
+      ->add_option("--scenes", options->scenes_dir,
+                   "Folder of the studies' scenes (default: xshade's own fixed scenes)")
+      ->type_name("DIR");
+  accuracy->add_option("--shaders", options->shaders_dir, "The shader library (default: xshade's own)")
+      ->type_name("DIR");
+  accuracy
+      ->add_option("--shader-folder", options->shader_folders,
+                   "A shader folder searched before the library; repeat for more (a study of Unity shaders, named "
+                   "on the command line, needs its .shader files and Unity's include files)")
+      ->type_name("DIR")
+      ->allow_extra_args(false);
+  return {accuracy, [options](const std::string& command_line) {
+            options->command_line = command_line;
+            return run_accuracy(*options);
+          }};
 }
 
 }  // namespace xshade::cli

@@ -3,12 +3,15 @@
 // deterministically, and it shows what it is about to replace before committing it (GoldenStore:
 // under the folder's lock, the manifest renamed into place last).
 #include <fmt/core.h>
+#include <CLI/CLI.hpp>
 
 #include <cstdio>
 #include <cstdlib>
+#include <memory>
 
 #include "base/interrupt.h"
 #include "base/subprocess.h"
+#include "cli/command_options.h"
 #include "cli/commands.h"
 #include "cli/lane_selection.h"
 #include "cli/workers.h"
@@ -151,6 +154,27 @@ int run_bless(const BlessOptions& options) {
   fmt::print("blessed {} ({}), reason: {}\n", blessed->path.string(), blessed->replaced ? "replaced" : "new",
              options.reason);
   return kPass;
+}
+
+Verb add_bless_command(CLI::App& app) {
+  auto options = std::make_shared<BlessOptions>();
+  CLI::App* bless = app.add_subcommand(
+      "bless", "Render a scene and accept it as its golden (the common one from lanes that agree, or one lane's)");
+  bless->add_option("scene", options->scene, "Scene name (in --scenes) or .toml file")->required()->type_name("SCENE");
+  bless->add_option("--lane", options->lane, "Bless this lane's own golden (needs a reason it differs)")
+      ->check(CLI::IsMember({"gl", "vk", "vk-hlsl"}))
+      ->type_name("LANE");
+  add_gl_platform_option(*bless, options->gl_platform);
+  bless->add_option("--reason", options->reason, "Why this image is right (recorded in golden/MANIFEST.toml)")
+      ->required()
+      ->type_name("TEXT");
+  add_folder_options(*bless, options->folders);
+  bless->add_option("--cache", options->cache_dir, "Compiled-shader cache (as for run)")->type_name("DIR");
+  bless->add_option("--report", options->report_dir, "Folder for the rendered images")
+      ->type_name("DIR")
+      ->capture_default_str();
+  add_worker_options(*bless, options->workers, "lanes");
+  return {bless, [options](const std::string&) { return run_bless(*options); }};
 }
 
 }  // namespace xshade::cli

@@ -11,7 +11,29 @@
 #include "base/result.h"
 #include "cli/folders.h"
 
+namespace CLI {
+class App;
+}
+
 namespace xshade::cli {
+
+// A verb of the command line: its subcommand, which parsing marks when it is given, and what runs
+// it then, with the whole command line (which run, report merge and the studies record). Each
+// verb's file registers its own options (add_*_command below, in --help's order in main.cpp).
+struct Verb {
+  CLI::App* command = nullptr;
+  std::function<int(const std::string& command_line)> run;
+};
+Verb add_info_command(CLI::App& app);
+Verb add_run_command(CLI::App& app);
+Verb add_bless_command(CLI::App& app);
+Verb add_compile_command(CLI::App& app);
+Verb add_eval_command(CLI::App& app);
+Verb add_worker_command(CLI::App& app);  // the workers run, bless and eval start; not in --help
+Verb add_report_command(CLI::App& app);  // report merge
+Verb add_diff_command(CLI::App& app);
+Verb add_stability_command(CLI::App& app);
+Verb add_accuracy_command(CLI::App& app);
 
 // The exit codes every verb shares (docs/cli.md).
 enum ExitCode : int {

@@ -1,9 +1,11 @@
 // xshade compile: one shader through the front end to GLSL, SPIR-V or reflection.
 #include <fmt/core.h>
+#include <CLI/CLI.hpp>
 
 #include <algorithm>
 #include <fstream>
 #include <functional>
+#include <memory>
 
 #include <nlohmann/json.hpp>
 
@@ -333,6 +335,74 @@ int run_compile(const CompileOptions& options) {
   return compile_module(
       options, file, front_end, [&](const hlsl::CompileOptions& with) { return hlsl::compile_file(file, with); },
       std::move(module));
+}
+
+Verb add_compile_command(CLI::App& app) {
+  auto options = std::make_shared<CompileOptions>();
+  CLI::App* compile =
+      app.add_subcommand("compile", "Compile one shader to GLSL (gl, vk), SPIR-V (spirv, vk-hlsl) or reflection");
+  compile->footer(
+      "Every output is validated before it is written: gl's GLSL by glslang as OpenGL GLSL 4.50 core, vk's as Vulkan "
+      "GLSL, the SPIR-V of spirv and vk-hlsl by spirv-val. Exit 0: the output, valid. Exit 2: the shader is wrong, or "
+      "the target cannot express it. Exit 3: a validator refused xshade's own output, an internal error: the output is "
+      "not written, and the message gives the validator's words and the generated lines they name, for a bug report.");
+  compile->add_option("file", options->file, "The hlsl_like source")->required()->type_name("FILE");
+  compile->add_option("-I", options->include_dirs, "Search DIR for #include files")
+      ->type_name("DIR")
+      ->allow_extra_args(false);
+  compile->add_option("-D", options->defines, "Enable KEYWORD (a variant), or define KEY=VALUE")
+      ->type_name("KEYWORD")
+      ->allow_extra_args(false);
+  compile->add_option("--target", options->target, "gl, vk (GLSL text), spirv or vk-hlsl (SPIR-V)")
+      ->check(CLI::IsMember({"gl", "vk", "spirv", "vk-hlsl"}))
+      ->capture_default_str();
+  compile
+      ->add_option("--precision", options->precision,
+                   "half: round every half/min16float/fixed result to fp16 (gl, vk, spirv; vk-hlsl cannot)")
+      ->check(CLI::IsMember({"float", "half"}))
+      ->capture_default_str();
+  compile->add_flag("--trace-nonfinite", options->trace_nonfinite,
+                    "Emit the fragment stage's tracing variant, which records where each pixel's first NaN or infinity "
+                    "is born (gl, vk, spirv; docs/stability.md)");
+  compile->add_flag("--reflect", options->reflect, "Print the reflection (JSON) instead of code");
+  compile
+      ->add_option(
+          "--entry", options->entry,
+          "Compile this fragment function as a full-screen pass (as eval runs it), whatever #pragma fragment says")
+      ->type_name("FUNCTION");
+  compile
+      ->add_option("--pass", options->pass,
+                   "Compile this post pass of the effect (its #pragma pass name), or this pass of a Unity .shader "
+                   "(its index or Name; default: every pass with a program)")
+      ->type_name("NAME");
+  compile
+      ->add_option("--unity-platform", options->unity_platform,
+                   "Compile a Unity .shader for this platform, as a scene's [unity] platform does: glcore (default), "
+                   "d3d11 or vulkan")
+      ->check(CLI::IsMember({"glcore", "d3d11", "vulkan"}))
+      ->type_name("PLATFORM");
+  compile->add_flag("--generated", options->generated,
+                    "Print each pass's HLSL as a Unity .shader composes it (its include blocks, and a surface shader's "
+                    "generated passes, with #line back to the .shader's lines) instead of compiling it");
+  compile->add_flag("--all-variants", options->all_variants,
+                    "Compile every keyword combination the file declares for --target and report each; exit 2 if any "
+                    "fails, 3 if any output is invalid (an internal error)");
+  compile
+      ->add_option("--shaders", options->folders.shaders,
+                   "A shader folder to include from and find FILE in, before xshade's library; repeat for more "
+                   "(default: the project file's)")
+      ->type_name("DIR")
+      ->allow_extra_args(false);
+  compile->add_option("--project", options->folders.project, "The project file (default: xshade.toml here or above)")
+      ->type_name("FILE");
+  compile->add_flag("--no-project", options->folders.no_project, "Read no project file");
+  compile
+      ->add_option(
+          "-o", options->output,
+          "Write OUT.vert.glsl / OUT.frag.glsl (or .spv, or OUT.json) instead of standard output; each pass of a "
+          ".shader to OUT.passN.vert.glsl / OUT.passN.frag.glsl")
+      ->type_name("OUT");
+  return {compile, [options](const std::string&) { return run_compile(*options); }};
 }
 
 }  // namespace xshade::cli

@@ -3,9 +3,12 @@
 // 1 when it does not (or the sizes differ), 2 when an image cannot be read; idiff's pass, fail
 // and error.
 #include <fmt/core.h>
+#include <CLI/CLI.hpp>
+
 #include <nlohmann/json.hpp>
 
 #include <future>
+#include <memory>
 
 #include "cli/commands.h"
 #include "harness/gate/result_json.h"
@@ -116,6 +119,38 @@ int run_diff(const DiffOptions& options) {
   }
   if (written != kPass) return written;
   return comparison.verdict == harness::Verdict::Pass ? kPass : kTestFailed;
+}
+
+Verb add_diff_command(CLI::App& app) {
+  auto options = std::make_shared<DiffOptions>();
+  CLI::App* diff = app.add_subcommand(
+      "diff",
+      "Hold image B against image A (PNG, EXR, HDR) with the layers a run uses on a golden: exit 0 pass, 1 "
+      "fail, 2 an image that does not read");
+  diff->add_option("a", options->a, "The reference image (a golden)")->required()->type_name("A");
+  diff->add_option("b", options->b, "The image under test")->required()->type_name("B");
+  diff->add_option("--tolerance", options->tolerance, "Steps of 8-bit sRGB a channel may differ")
+      ->type_name("STEPS")
+      ->check(CLI::Range(0, 255))
+      ->capture_default_str();
+  diff->add_option("--budget", options->budget, "Fraction of the pixels that may fail, 0 to 1")
+      ->type_name("FRACTION")
+      ->check(CLI::Range(0.0, 1.0))
+      ->capture_default_str();
+  diff->add_option("--radius", options->radius,
+                   "A failing pixel passes when A has a matching pixel this near (an edge that moved)")
+      ->type_name("PIXELS")
+      ->check(CLI::Range(0, 8))
+      ->capture_default_str();
+  diff->add_option("--float-tolerance", options->float_tolerance, "Relative error allowed a value above 1")
+      ->type_name("RELATIVE")
+      ->check(CLI::Range(0.0, 1.0))
+      ->capture_default_str();
+  diff->add_option("--heat-map", options->heat_map, "Write the difference's heat map (PNG) here")->type_name("FILE");
+  diff->add_option("--mask", options->mask, "Write the failing pixels' mask (PNG, white where failing) here")
+      ->type_name("FILE");
+  diff->add_flag("--json", options->json, "Print the verdict, layers and metrics as JSON");
+  return {diff, [options](const std::string&) { return run_diff(*options); }};
 }
 
 }  // namespace xshade::cli

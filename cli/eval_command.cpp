@@ -1,6 +1,7 @@
 // xshade eval: fragment shaders, each as a full-screen pass on each lane, the images written as
 // EXR, and how far the lanes agree.
 #include <fmt/core.h>
+#include <CLI/CLI.hpp>
 
 #include <algorithm>
 #include <cstdio>
@@ -13,6 +14,7 @@
 
 #include "base/file_io.h"
 #include "base/subprocess.h"
+#include "cli/command_options.h"
 #include "cli/commands.h"
 #include "cli/lane_selection.h"
 #include "cli/workers.h"
@@ -439,6 +441,57 @@ int run_eval(const EvalOptions& options) {
     return evals.front().exit_code;
   }
   return run_eval_lanes_in_workers(options, *lanes, evals);
+}
+
+Verb add_eval_command(CLI::App& app) {
+  auto options = std::make_shared<EvalOptions>();
+  CLI::App* eval = app.add_subcommand(
+      "eval", "Run fragment shaders as full-screen passes on each lane, write EXR images, compare the lanes");
+  eval->add_option("file", options->files,
+                   "The hlsl_like sources, each evaluated on its own with these options (with several, each one's "
+                   "lines come between `== FILE` and `== FILE: exit CODE`, and the exit code is the worst)")
+      ->required()
+      ->type_name("FILE");
+  eval->add_option("--entry", options->entry, "The fragment function (default: #pragma fragment)")->type_name("NAME");
+  eval->add_option("--size", options->size, "Image size")->type_name("WxH")->capture_default_str();
+  eval->add_option("--precision", options->precision,
+                   "half: round every half/min16float/fixed result to fp16 (gl and vk lanes; vk-hlsl cannot)")
+      ->check(CLI::IsMember({"float", "half"}))
+      ->capture_default_str();
+  add_gl_platform_option(*eval, options->selection.gl_platform);
+  eval->add_option("--lane", options->selection.lanes, "gl, vk, vk-hlsl or all (default: all); --lane gl,vk for two")
+      ->type_name("LANE")
+      ->allow_extra_args(false)
+      ->delimiter(',');
+  eval->add_option("-I", options->include_dirs, "Search DIR for #include files")
+      ->type_name("DIR")
+      ->allow_extra_args(false);
+  eval->add_option("-D", options->keywords, "Enable KEYWORD")->type_name("KEYWORD")->allow_extra_args(false);
+  eval->add_option("-o", options->output_dir, "Folder for the EXR images")->type_name("DIR")->capture_default_str();
+  eval->add_option(
+          "--seed", options->seed,
+          "Fill every constant buffer, texture and read-only buffer from seed N (values in ranges shaders mean, "
+          "noise of each texture's declared shape) instead of the defaults and a white texel; a shader that "
+          "reads a buffer needs it")
+      ->type_name("N");
+  eval->add_option(
+          "--specialize", options->specializations,
+          "Give the [[vk::constant_id]] constant NAME the value VALUE (a specialization constant on the Vulkan "
+          "lanes, the constant's value in the GLSL on gl); repeat for more")
+      ->type_name("NAME=VALUE")
+      ->allow_extra_args(false);
+  eval->add_flag("--trace-nonfinite", options->trace_nonfinite,
+                 "Render the tracing variant too (gl, vk) and print the source line where each pixel's first NaN, Inf "
+                 "(or negative output) was born, with a map of them as <file>.<lane>.origins.png");
+  eval->add_flag(
+      "--allow-nonfinite", options->allow_non_finite,
+      "NaN, Inf and negative output values are expected (a test of a hazard): print their counts, do not fail");
+  eval->add_flag("--no-images{false}", options->write_images,
+                 "Compare the lanes and print, write no image (for scripts that read the comparisons: the image "
+                 "library is then never loaded, a third of a second saved)");
+  add_worker_options(*eval, options->workers, "lanes");
+  eval->add_flag("--in-worker", options->in_worker)->group("");  // eval's own workers (cli/workers.h)
+  return {eval, [options](const std::string&) { return run_eval(*options); }};
 }
 
 }  // namespace xshade::cli

@@ -1,9 +1,12 @@
 // xshade info: what each lane runs on (every report carries the same strings), and which folders
 // a run here would use.
 #include <fmt/core.h>
+#include <CLI/CLI.hpp>
 
 #include <filesystem>
+#include <memory>
 
+#include "cli/command_options.h"
 #include "cli/commands.h"
 #include "cli/lane_selection.h"
 
@@ -46,6 +49,16 @@ int run_info(const LaneSelection& selection) {
   fmt::print("  golden:  {}\n", folders->golden.empty() ? "not set" : folders->golden.string());
   fmt::print("  shaders: {}\n", folders->shaders.describe());
   return exit_code;
+}
+
+Verb add_info_command(CLI::App& app) {
+  auto options = std::make_shared<LaneSelection>();
+  CLI::App* info = app.add_subcommand(
+      "info",
+      "Print each lane's driver (route, renderer, API, Mesa and LLVM versions) and the folders a run here "
+      "would use (the project file's, xshade's own)");
+  add_lane_options(*info, *options);
+  return {info, [options](const std::string&) { return run_info(*options); }};
 }
 
 }  // namespace xshade::cli

@@ -1,7 +1,9 @@
 // xshade report merge: the reports of several runs (the shards of a CI matrix, the per-test
 // folders of a CTest run) as one report, with one index, one junit.xml and one results.json.
 #include <fmt/core.h>
+#include <CLI/CLI.hpp>
 
+#include <memory>
 #include <system_error>
 
 #include "base/file_io.h"
@@ -67,6 +69,31 @@ int run_report_merge(const ReportMergeOptions& options) {
       checks.total(), checks.pass, harness::verdict_name(verdict));
   fmt::print("report: {}\n", (options.out / "index.html").string());
   return options.exit_code ? harness::exit_code(verdict) : kPass;
+}
+
+Verb add_report_command(CLI::App& app) {
+  auto options = std::make_shared<ReportMergeOptions>();
+  CLI::App* report = app.add_subcommand("report", "Work on reports that runs wrote");
+  report->require_subcommand(1);
+  CLI::App* merge = report->add_subcommand(
+      "merge",
+      "Merge the reports of several runs (the shards of a CI matrix, a CTest run's per-test folders) into "
+      "one index, junit.xml and results.json");
+  merge
+      ->add_option("report", options->folders,
+                   "A report folder (it holds results.json), or a folder of them (each of its folders that holds one)")
+      ->required()
+      ->type_name("DIR");
+  merge->add_option("--out", options->out, "Folder for the merged report")->required()->type_name("DIR");
+  merge->add_flag("--cross-lane", options->cross_lane,
+                  "Hold the lanes of each scene whose lanes came from separate runs (one per lane, as CTest's tests) "
+                  "against each other, as one run of all of them would");
+  merge->add_flag("--exit-code", options->exit_code,
+                  "Exit with the merged results' code, as xshade run would (default: 0 once the report is written)");
+  return {merge, [options](const std::string& command_line) {
+            options->command_line = command_line;
+            return run_report_merge(*options);
+          }};
 }
 
 }  // namespace xshade::cli

@@ -2,15 +2,18 @@
 // lanes, against itself rendered twice), write the images and the reports, and exit with the
 // worst verdict.
 #include <fmt/core.h>
+#include <CLI/CLI.hpp>
 
 #include <chrono>
 #include <cstdlib>
 #include <ctime>
 #include <map>
+#include <memory>
 #include <system_error>
 
 #include "base/interrupt.h"
 #include "base/subprocess.h"
+#include "cli/command_options.h"
 #include "cli/commands.h"
 #include "cli/lane_selection.h"
 #include "cli/workers.h"
@@ -194,6 +197,43 @@ int run_run(const RunOptions& options) {
   if (!totals.cache_damage.empty()) fmt::print("warning: {}\n", totals.cache_damage);
   if (report_written) fmt::print("report: {}\n", (options.report_dir / "index.html").string());
   return harness::exit_code(verdict);
+}
+
+Verb add_run_command(CLI::App& app) {
+  auto options = std::make_shared<RunOptions>();
+  CLI::App* run =
+      app.add_subcommand("run", "Render scenes on each of their lanes, write PNG and EXR images, compare the lanes");
+  run->add_option("scene", options->scenes, "Scene names (in --scenes) or .toml files; default: every scene")
+      ->type_name("SCENE");
+  add_lane_options(*run, options->selection);
+  run->add_option("--report", options->report_dir, "Folder for images and the report")
+      ->type_name("DIR")
+      ->capture_default_str();
+  add_folder_options(*run, options->folders);
+  run->add_option("--cache", options->cache_dir,
+                  "Compiled-shader cache (default: $XSHADE_CACHE_DIR, else $XDG_CACHE_HOME/xshade or ~/.cache/xshade)")
+      ->type_name("DIR");
+  run->add_flag("--no-cache", options->no_cache, "Compile every shader, read and write no cache");
+  run->add_option("--precision", options->precision,
+                  "half: round every half/min16float/fixed result to fp16 on gl and vk (vk-hlsl is skipped); "
+                  "goldens are fp32 renders and are not compared")
+      ->check(CLI::IsMember({"float", "half"}))
+      ->capture_default_str();
+  run->add_option("--shard", options->shard, "Run every N-th scene from the i-th (name order), for CI matrices")
+      ->type_name("i/N");
+  run->add_flag("--trace-nonfinite", options->trace_nonfinite,
+                "Render every gl and vk lane again with the tracing variant and report where its NaN, Inf and negative "
+                "values were born (without it, only lanes whose images have them are traced)");
+  run->add_flag("--pass-images", options->pass_images,
+                "Also write every pass's own output as REPORT/SCENE/passes/PASS.LANE.exr, to find where lanes part");
+  add_worker_options(*run, options->workers, "scene-and-lane renders");
+  run->add_flag("--plan", options->plan_only,
+                "Print each scene's plan (variants to compile or found in the cache, passes, what is left out) "
+                "and render nothing");
+  return {run, [options](const std::string& command_line) {
+            options->command_line = command_line;
+            return run_run(*options);
+          }};
 }
 
 }  // namespace xshade::cli

@@ -1,7 +1,11 @@
 // xshade stability: the hard numeric cases of SHADERS.md section 5 on every lane and precision.
 #include <fmt/core.h>
+#include <CLI/CLI.hpp>
+
+#include <memory>
 
 #include "base/file_io.h"
+#include "cli/command_options.h"
 #include "cli/commands.h"
 #include "cli/lane_selection.h"
 #include "stability/cases.h"
@@ -62,6 +66,37 @@ int run_stability(const StabilityOptions& options) {
   fmt::print("{} outcomes, {} not as predicted\n", run->outcomes.size(), run->unexpected());
   if (could_not_run) return kBackendError;
   return run->unexpected() == 0 ? kPass : kTestFailed;
+}
+
+Verb add_stability_command(CLI::App& app) {
+  auto options = std::make_shared<StabilityOptions>();
+  CLI::App* stability = app.add_subcommand(
+      "stability",
+      "Run the library's shader code on the hard numeric cases of SHADERS.md section 5 and check each "
+      "case's property on every lane, in fp32 and in fp16 emulation");
+  stability->add_option("case", options->cases, "Case ids (see --list); default: every case")->type_name("CASE");
+  add_lane_options(*stability, options->selection);
+  stability
+      ->add_option("--precision", options->precision,
+                   "float, half (fp16 emulation on gl and vk; vk-hlsl cannot) or all")
+      ->check(CLI::IsMember({"float", "half", "all"}))
+      ->capture_default_str();
+  stability->add_flag("--list", options->list, "Print the cases with their forms and run nothing");
+  stability
+      ->add_option("--markdown", options->markdown, "Write the results as Markdown (docs/stability.md is this output)")
+      ->type_name("FILE");
+  stability->add_option("--shaders", options->shaders_dir, "The shader library (default: xshade's own)")
+      ->type_name("DIR");
+  stability->add_option("--probes", options->probes_dir, "The suite's probe shaders (default: xshade's own)")
+      ->type_name("DIR");
+  stability
+      ->add_option("--scenes", options->scenes_dir,
+                   "Folder of the scenes the suite renders (default: xshade's own fixed scenes)")
+      ->type_name("DIR");
+  return {stability, [options](const std::string& command_line) {
+            options->command_line = command_line;
+            return run_stability(*options);
+          }};
 }
 
 }  // namespace xshade::cli

@@ -5,8 +5,10 @@
 
 #include <csignal>
 #include <iostream>
+#include <memory>
 
 #include <fmt/core.h>
+#include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
 #include "base/interrupt.h"
@@ -71,6 +73,27 @@ int run_worker(const WorkerOptions& options) {
     harness::report_worker_status("done " + std::to_string(code));
   }
   return kPass;
+}
+
+Verb add_worker_command(CLI::App& app) {
+  // Started by run, bless and eval for each render (cli/worker_command.cpp); not in --help.
+  auto options = std::make_shared<WorkerOptions>();
+  CLI::App* worker = app.add_subcommand("worker", "One lane of one scene, for the run that started it");
+  worker->group("");
+  worker->add_option("--scene", options->scene);
+  worker->add_option("--lane", options->lane);
+  worker->add_option("--result", options->result_dir);
+  worker->add_flag("--serve", options->serve);
+  worker->add_option("--shader-folder", options->shader_folders)->allow_extra_args(false);
+  worker->add_option("--golden", options->golden);
+  worker->add_option("--report", options->report_dir)->required();
+  worker->add_option("--cache", options->cache_dir);
+  worker->add_option("--gl-platform", options->gl_platform);
+  worker->add_flag("--vk-validation", options->validation);
+  worker->add_flag("--pass-images", options->pass_images);
+  worker->add_flag("--half-emulation", options->half_emulation);
+  worker->add_flag("--trace-nonfinite", options->trace_nonfinite);
+  return {worker, [options](const std::string&) { return run_worker(*options); }};
 }
 
 }  // namespace xshade::cli

@@ -5,46 +5,13 @@
 #include <map>
 
 #include "glsl/glsl_names.h"
+#include "hlsl_like/ast_walk.h"
 
 namespace xshade::glsl::lower {
 
 using namespace hlsl;
 
 namespace {
-
-// Every name a statement tree declares (locals, for-loop variables).
-void collect_local_names(const Stmt* stmt, std::vector<std::string_view>& names) {
-  if (!stmt) return;
-  switch (stmt->kind) {
-    case StmtKind::Block:
-      for (const StmtPtr& child : static_cast<const BlockStmt*>(stmt)->statements)
-        collect_local_names(child.get(), names);
-      break;
-    case StmtKind::Decl:
-      for (const auto& var : static_cast<const DeclStmt*>(stmt)->vars)
-        if (var) names.push_back(var->name);
-      break;
-    case StmtKind::If: {
-      const auto* s = static_cast<const IfStmt*>(stmt);
-      collect_local_names(s->then_branch.get(), names);
-      collect_local_names(s->else_branch.get(), names);
-      break;
-    }
-    case StmtKind::For: {
-      const auto* s = static_cast<const ForStmt*>(stmt);
-      collect_local_names(s->init.get(), names);
-      collect_local_names(s->body.get(), names);
-      break;
-    }
-    case StmtKind::While: collect_local_names(static_cast<const WhileStmt*>(stmt)->body.get(), names); break;
-    case StmtKind::DoWhile: collect_local_names(static_cast<const DoWhileStmt*>(stmt)->body.get(), names); break;
-    case StmtKind::Switch:
-      for (const SwitchCase& c : static_cast<const SwitchStmt*>(stmt)->cases)
-        for (const StmtPtr& child : c.statements) collect_local_names(child.get(), names);
-      break;
-    default: break;
-  }
-}
 
 // "half3" -> "half3", "float[4]" -> "float4": a suffix that tells overloads apart.
 std::string type_suffix(const Type& type) {
@@ -73,7 +40,12 @@ std::vector<std::string_view> names_in(const TranslationUnit& unit, bool every_d
         const auto& function = static_cast<const FunctionDecl&>(*decl);
         for (const auto& param : function.params)
           if (param) names.push_back(param->name);
-        collect_local_names(function.body.get(), names);
+        // Its locals and for-loop variables.
+        hlsl::walk_statements(function.body.get(), [&](const Stmt& stmt) {
+          if (stmt.kind == StmtKind::Decl)
+            for (const auto& var : static_cast<const DeclStmt&>(stmt).vars)
+              if (var) names.push_back(var->name);
+        });
         break;
       }
       default: break;
