@@ -161,64 +161,118 @@ struct WorkerSlot {
   ChildProcess::Clock::time_point job_started{};
 };
 
-}  // namespace
+// check_in_workers' state and its steps: scenes prepared as far as there is work to queue, jobs
+// (a scene's lane) given to free workers, ended renders collected, finished scenes reported in order.
+class LaneRenderPool {
+ public:
+  LaneRenderPool(SceneChecker& checker, const SceneWorkers& workers, const std::vector<fs::path>& files,
+                 const std::vector<Lane>& lanes, const std::function<void(CheckedScene&&)>& done,
+                 const std::function<void(const std::string&)>& output)
+      : checker_(checker),
+        workers_(workers),
+        files_(files),
+        lanes_(lanes),
+        done_(done),
+        output_(output),
+        scenes_(files.size()),
+        scratch_(fresh_scratch()),
+        slots_(std::max(1u, workers.jobs)) {}
 
-unsigned driver_threads_per_worker(unsigned cores, unsigned jobs) { return std::max(1u, cores / std::max(1u, jobs)); }
+  WorkerTotals run() {
+    // Asked to stop (interrupt.h): the workers are killed and the folder removed on the way out.
+    while (next_to_report_ < files_.size() && !interrupt_signal()) {
+      prepare_scenes();
+      start_queued();
+      report_ready();
+      if (busy_ == 0) continue;
+      wait_and_collect();
+      report_ready();
+    }
+    return totals_;
+  }
 
-WorkerTotals check_in_workers(SceneChecker& checker, const SceneWorkers& workers, const std::vector<fs::path>& files,
-                              const std::vector<Lane>& lanes, const std::function<void(CheckedScene&&)>& done,
-                              const std::function<void(const std::string&)>& output) {
-  WorkerTotals totals;
-  std::vector<SceneInWork> scenes(files.size());
-  ScratchFolder::remove_dead_runs();
-  auto scratch = ScratchFolder::make();
-  std::deque<Job> queued;
-  std::vector<WorkerSlot> slots(std::max(1u, workers.jobs));
-  size_t busy = 0;
-  size_t next_to_prepare = 0, next_to_report = 0;
+ private:
+  // The run's scratch folder, after those of runs that died are gone.
+  static Result<ScratchFolder> fresh_scratch() {
+    ScratchFolder::remove_dead_runs();
+    return ScratchFolder::make();
+  }
 
-  auto finish_lane = [&](const Job& job, LaneResult result) {
-    SceneInWork& scene = scenes[job.scene];
-    scene.results[job.lane] = std::move(result);
-    --scene.waiting;
-  };
-  auto start = [&](WorkerSlot& slot, const Job& job) {
-    SceneInWork& scene = scenes[job.scene];
+  // Prepare scenes only as far as there is work to queue: the first workers start at once.
+  void prepare_scenes() {
+    while (busy_ + queued_.size() < slots_.size() && next_to_prepare_ < files_.size()) {
+      SceneInWork& scene = scenes_[next_to_prepare_];
+      scene.checked = checker_.prepare(files_[next_to_prepare_], lanes_);
+      scene.waiting = scene.checked.lanes.size();
+      for (Lane lane : scene.checked.lanes) queued_.push_back({next_to_prepare_, lane});
+      ++next_to_prepare_;
+    }
+  }
+
+  void start_queued() {
+    for (WorkerSlot& slot : slots_) {
+      if (slot.job || queued_.empty()) continue;
+      const Job job = queued_.front();
+      queued_.pop_front();
+      start(slot, job);
+    }
+  }
+
+  // Waits up to a second for a worker to say something, then collects every render that ended.
+  void wait_and_collect() {
+    std::vector<ChildProcess*> children;
+    for (WorkerSlot& slot : slots_)
+      if (slot.job) children.push_back(&*slot.process);
+    wait_for_any(children, 1000ms);
+    for (WorkerSlot& slot : slots_) {
+      if (!slot.job) continue;
+      const bool ended = slot.process->poll();  // reads its pipes; kills it at its deadline
+      const std::vector<std::string> lines = slot.process->take_status_lines();
+      const bool rendered =
+          std::any_of(lines.begin(), lines.end(), [](const std::string& line) { return line.starts_with("done "); });
+      if (rendered || ended) collect(slot, rendered);
+    }
+  }
+
+  // Gives `job` to the slot's worker, starting one if it has none (or it ended).
+  void start(WorkerSlot& slot, const Job& job) {
+    SceneInWork& scene = scenes_[job.scene];
     const double timeout = scene.checked.scene && scene.checked.scene->timeout_seconds
                                ? *scene.checked.scene->timeout_seconds
-                               : workers.timeout_seconds;
-    if (!scratch) return finish_lane(job, crashed(job.lane, scratch.error().to_string()));
+                               : workers_.timeout_seconds;
+    if (!scratch_) return finish_lane(job, crashed(job.lane, scratch_.error().to_string()));
     const auto limit =
         std::chrono::duration_cast<ChildProcess::Clock::duration>(std::chrono::duration<double>(timeout));
     if (!slot.process || slot.process->finished()) {
-      std::vector<std::string> command = workers.command;
+      std::vector<std::string> command = workers_.command;
       command.push_back("--serve");
-      auto process = workers.serve ? ChildProcess::fork(workers.serve, workers.environment, limit)
-                                   : ChildProcess::start(command, workers.environment, limit);
-      if (!process && workers.serve) process = ChildProcess::start(command, workers.environment, limit);
+      auto process = workers_.serve ? ChildProcess::fork(workers_.serve, workers_.environment, limit)
+                                    : ChildProcess::start(command, workers_.environment, limit);
+      if (!process && workers_.serve) process = ChildProcess::start(command, workers_.environment, limit);
       if (!process) return finish_lane(job, crashed(job.lane, "cannot start a worker: " + process.error().to_string()));
       slot.process.emplace(std::move(*process));
-      ++totals.workers_started;
+      ++totals_.workers_started;
     }
-    slot.folder = scratch->path() / fmt::format("{}-{}", job.scene, lane_name(job.lane));
+    slot.folder = scratch_->path() / fmt::format("{}-{}", job.scene, lane_name(job.lane));
     std::error_code error;
     fs::create_directories(slot.folder, error);
     const nlohmann::json request = {
-        {"scene", files[job.scene].string()}, {"lane", lane_name(job.lane)}, {"result", slot.folder.string()}};
+        {"scene", files_[job.scene].string()}, {"lane", lane_name(job.lane)}, {"result", slot.folder.string()}};
     slot.process->forget_status();
     slot.job_started = ChildProcess::Clock::now();
     slot.process->set_deadline(slot.job_started + limit);
     slot.timeout_seconds = timeout;
     slot.job = job;
-    ++busy;
-    ++totals.renders;
+    ++busy_;
+    ++totals_.renders;
     // A worker that ended between renders has not read this one: its poll says so at once.
     slot.process->send(request.dump());
-  };
+  }
+
   // The render `slot` was doing has ended, done or not; its worker stays for the next when done.
-  auto collect = [&](WorkerSlot& slot, bool rendered) {
+  void collect(WorkerSlot& slot, bool rendered) {
     const Job job = *slot.job;
-    SceneInWork& scene = scenes[job.scene];
+    SceneInWork& scene = scenes_[job.scene];
     ChildProcess& worker = *slot.process;
     const std::string written = worker.take_output();
     scene.output += written;
@@ -228,10 +282,10 @@ WorkerTotals check_in_workers(SceneChecker& checker, const SceneWorkers& workers
       const nlohmann::json json = text ? nlohmann::json::parse(*text, nullptr, false) : nlohmann::json();
       auto parsed = lane_from_json(json.is_object() ? json.value("result", nlohmann::json()) : json);
       if (json.is_object()) {
-        totals.compiled += json.value("compiled", size_t(0));
-        totals.cached += json.value("cached", size_t(0));
-        if (totals.cache_write_error.empty()) totals.cache_write_error = json.value("cache_write_error", "");
-        if (totals.cache_damage.empty()) totals.cache_damage = json.value("cache_damage", "");
+        totals_.compiled += json.value("compiled", size_t(0));
+        totals_.cached += json.value("cached", size_t(0));
+        if (totals_.cache_write_error.empty()) totals_.cache_write_error = json.value("cache_write_error", "");
+        if (totals_.cache_damage.empty()) totals_.cache_damage = json.value("cache_damage", "");
       }
       if (parsed) {
         result = std::move(*parsed);
@@ -248,53 +302,50 @@ WorkerTotals check_in_workers(SceneChecker& checker, const SceneWorkers& workers
     std::error_code ignored;
     fs::remove_all(slot.folder, ignored);
     slot.job.reset();
-    --busy;
+    --busy_;
     finish_lane(job, std::move(*result));
-  };
-  // Concludes and reports, in the order of `files`, every scene whose lanes are all in.
-  auto report_ready = [&] {
-    while (next_to_report < next_to_prepare && scenes[next_to_report].waiting == 0) {
-      SceneInWork& scene = scenes[next_to_report++];
-      for (Lane lane : scene.checked.lanes) scene.checked.result.lanes.push_back(std::move(scene.results[lane]));
-      if (!scene.output.empty()) output(scene.output);
-      checker.conclude(scene.checked);
-      done(std::move(scene.checked));
-    }
-  };
-
-  // Asked to stop (interrupt.h): the workers are killed and the folder removed on the way out.
-  while (next_to_report < files.size() && !interrupt_signal()) {
-    // Prepare scenes only as far as there is work to queue: the first workers start at once.
-    while (busy + queued.size() < slots.size() && next_to_prepare < files.size()) {
-      SceneInWork& scene = scenes[next_to_prepare];
-      scene.checked = checker.prepare(files[next_to_prepare], lanes);
-      scene.waiting = scene.checked.lanes.size();
-      for (Lane lane : scene.checked.lanes) queued.push_back({next_to_prepare, lane});
-      ++next_to_prepare;
-    }
-    for (WorkerSlot& slot : slots) {
-      if (slot.job || queued.empty()) continue;
-      const Job job = queued.front();
-      queued.pop_front();
-      start(slot, job);
-    }
-    report_ready();
-    if (busy == 0) continue;
-    std::vector<ChildProcess*> children;
-    for (WorkerSlot& slot : slots)
-      if (slot.job) children.push_back(&*slot.process);
-    wait_for_any(children, 1000ms);
-    for (WorkerSlot& slot : slots) {
-      if (!slot.job) continue;
-      const bool ended = slot.process->poll();  // reads its pipes; kills it at its deadline
-      const std::vector<std::string> lines = slot.process->take_status_lines();
-      const bool rendered =
-          std::any_of(lines.begin(), lines.end(), [](const std::string& line) { return line.starts_with("done "); });
-      if (rendered || ended) collect(slot, rendered);
-    }
-    report_ready();
   }
-  return totals;
+
+  // Concludes and reports, in the order of `files`, every scene whose lanes are all in.
+  void report_ready() {
+    while (next_to_report_ < next_to_prepare_ && scenes_[next_to_report_].waiting == 0) {
+      SceneInWork& scene = scenes_[next_to_report_++];
+      for (Lane lane : scene.checked.lanes) scene.checked.result.lanes.push_back(std::move(scene.results[lane]));
+      if (!scene.output.empty()) output_(scene.output);
+      checker_.conclude(scene.checked);
+      done_(std::move(scene.checked));
+    }
+  }
+
+  void finish_lane(const Job& job, LaneResult result) {
+    SceneInWork& scene = scenes_[job.scene];
+    scene.results[job.lane] = std::move(result);
+    --scene.waiting;
+  }
+
+  SceneChecker& checker_;
+  const SceneWorkers& workers_;
+  const std::vector<fs::path>& files_;
+  const std::vector<Lane>& lanes_;
+  const std::function<void(CheckedScene&&)>& done_;
+  const std::function<void(const std::string&)>& output_;
+  WorkerTotals totals_;
+  std::vector<SceneInWork> scenes_;
+  Result<ScratchFolder> scratch_;  // the workers' result folders, removed on the way out
+  std::deque<Job> queued_;
+  std::vector<WorkerSlot> slots_;
+  size_t busy_ = 0;
+  size_t next_to_prepare_ = 0, next_to_report_ = 0;
+};
+
+}  // namespace
+
+unsigned driver_threads_per_worker(unsigned cores, unsigned jobs) { return std::max(1u, cores / std::max(1u, jobs)); }
+
+WorkerTotals check_in_workers(SceneChecker& checker, const SceneWorkers& workers, const std::vector<fs::path>& files,
+                              const std::vector<Lane>& lanes, const std::function<void(CheckedScene&&)>& done,
+                              const std::function<void(const std::string&)>& output) {
+  return LaneRenderPool(checker, workers, files, lanes, done, output).run();
 }
 
 void report_worker_status(const std::string& line) {

@@ -38,6 +38,15 @@ void add_layer(LaneResult& lane, LayerResult layer, bool decides = true) {
   lane.layers.push_back(std::move(layer));
 }
 
+// "finite": the image has no NaN, Inf or negative value.
+LayerResult finite_layer(const NonFiniteCount& bad) {
+  return {"finite", bad.total() ? Verdict::Fail : Verdict::Pass,
+          bad.total() ? std::to_string(bad.nan) + " NaN, " + std::to_string(bad.inf) + " Inf, " +
+                            std::to_string(bad.negative) + " negative values, first at (" +
+                            std::to_string(bad.first->first) + ", " + std::to_string(bad.first->second) + ")"
+                      : "no NaN, Inf or negative values"};
+}
+
 }  // namespace
 
 SceneChecker::SceneChecker(VariantCompiler& compiler, SceneCheckOptions options, Progress progress)
@@ -161,15 +170,8 @@ void SceneChecker::check_lane(Lane lane, CheckedScene& checked, const Status& st
                   "half emulation rewrites the GLSL xshade emits; this lane compiles the source with glslang");
   if (!checked.environment) {
     at("while building the environment");
-    if (options_.environments) {
-      auto environment = options_.environments->get(scene.environment);
-      if (!environment) return finish(Verdict::Error, environment.error().to_string());
-      checked.environment = *environment;
-    } else {
-      auto environment = build_environment(scene.environment);
-      if (!environment) return finish(Verdict::Error, environment.error().to_string());
-      checked.environment = std::make_shared<const Environment>(std::move(*environment));
-    }
+    if (Result<void> built = build_scene_environment(checked); !built)
+      return finish(Verdict::Error, built.error().to_string());
   }
   at("while compiling");
   auto compiled = compiler_.compile_plan(plan, lane, options_.half_emulation);
@@ -200,64 +202,84 @@ void SceneChecker::check_lane(Lane lane, CheckedScene& checked, const Status& st
     add_layer(result, {"driver", Verdict::Fail, message});
 
   const FloatImage& image = rendered->image;
-  result.image = write_image(image, scene.name, result.lane + ".png");
-  result.image_exr = write_image(image, scene.name, result.lane + ".exr", true);
-  result.non_finite = count_non_finite(image);
-  if (result.non_finite.total())
-    result.non_finite_mask = write_image(non_finite_mask(image), scene.name, result.lane + ".nonfinite.png");
+  write_lane_images(scene, image, result);
   if (options_.trace_nonfinite || result.non_finite.total()) {
     at("while tracing non-finite values");
     trace_lane(lane, scene, plan, *checked.environment, **backend, image, result);
   }
 
   add_layer(result, determinism_layer(rendered->image, again->image));
+  add_reference_layers(scene, image, result);
+  checked.images.emplace(lane, image);
+  finish(Verdict::Pass, {});
+}
 
-  if (options_.goldens && !options_.half_emulation) {
-    auto golden = options_.goldens->find(scene.name, result.lane);
-    if (!golden) {
-      add_layer(result, {"golden", Verdict::Error, golden.error().to_string()});
-    } else if (!*golden) {
-      add_layer(result, {"golden", Verdict::Fail, options_.goldens->missing_message(scene.name, result.lane)});
-    } else if ((*golden)->image.width != image.width || (*golden)->image.height != image.height) {
-      // The scene's size changed since the golden was blessed: nothing to compare pixel by pixel.
-      const FloatImage& old = (*golden)->image;
-      add_layer(result,
-                {"golden", Verdict::Error,
-                 fmt::format("{} is {}x{} and the scene renders {}x{}: its size changed since it was blessed; "
-                             "review the new image and bless it with {}",
-                             (*golden)->path.string(), old.width, old.height, image.width, image.height,
-                             GoldenStore::bless_command(
-                                 scene.name, (*golden)->lane_specific ? std::optional(result.lane) : std::nullopt))});
-    } else {
-      const GoldenImage& reference = **golden;
-      // The golden's own files, as bless wrote them: its PNG, and its float image where it has one;
-      // the common golden once for the scene, a lane's own golden as that lane's.
-      const bool has_float = reference.path.extension() == ".exr";
-      const std::string name = reference.lane_specific ? result.lane + ".golden" : std::string("golden");
-      result.golden = copy_file(fs::path(reference.path).replace_extension(".png"), scene.name, name + ".png");
-      if (has_float) result.golden_exr = copy_file(reference.path, scene.name, name + ".exr");
-      Comparison comparison = compare_images(image, reference.image, scene.compare);
-      for (LayerResult& layer : comparison.layers) {
-        const bool decides = layer.layer == comparison.decided_by;
-        add_layer(result, std::move(layer), decides);
-      }
-      result.against_golden = comparison.metrics;
-      result.diff = write_image(comparison.heat_map, scene.name, result.lane + ".diff.png");
-    }
-  } else {
+// The layers that hold a lane's image to what it should be: its golden (the common one or the
+// lane's own), or, with no golden to hold it to (none kept, or half emulation, which goldens are not
+// renders of), that it is finite.
+void SceneChecker::add_reference_layers(const Scene& scene, const FloatImage& image, LaneResult& result) {
+  if (!options_.goldens || options_.half_emulation) {
     if (options_.half_emulation)
       add_layer(result,
                 {"golden", Verdict::Skipped, "goldens are fp32 renders; half emulation is not compared with them"});
-    const NonFiniteCount& bad = result.non_finite;
-    add_layer(result,
-              {"finite", bad.total() ? Verdict::Fail : Verdict::Pass,
-               bad.total() ? std::to_string(bad.nan) + " NaN, " + std::to_string(bad.inf) + " Inf, " +
-                                 std::to_string(bad.negative) + " negative values, first at (" +
-                                 std::to_string(bad.first->first) + ", " + std::to_string(bad.first->second) + ")"
-                           : "no NaN, Inf or negative values"});
+    add_layer(result, finite_layer(result.non_finite));
+    return;
   }
-  checked.images.emplace(lane, image);
-  finish(Verdict::Pass, {});
+  auto golden = options_.goldens->find(scene.name, result.lane);
+  if (!golden) {
+    add_layer(result, {"golden", Verdict::Error, golden.error().to_string()});
+  } else if (!*golden) {
+    add_layer(result, {"golden", Verdict::Fail, options_.goldens->missing_message(scene.name, result.lane)});
+  } else if ((*golden)->image.width != image.width || (*golden)->image.height != image.height) {
+    // The scene's size changed since the golden was blessed: nothing to compare pixel by pixel.
+    const FloatImage& old = (*golden)->image;
+    add_layer(result,
+              {"golden", Verdict::Error,
+               fmt::format("{} is {}x{} and the scene renders {}x{}: its size changed since it was blessed; "
+                           "review the new image and bless it with {}",
+                           (*golden)->path.string(), old.width, old.height, image.width, image.height,
+                           GoldenStore::bless_command(
+                               scene.name, (*golden)->lane_specific ? std::optional(result.lane) : std::nullopt))});
+  } else {
+    const GoldenImage& reference = **golden;
+    // The golden's own files, as bless wrote them: its PNG, and its float image where it has one;
+    // the common golden once for the scene, a lane's own golden as that lane's.
+    const bool has_float = reference.path.extension() == ".exr";
+    const std::string name = reference.lane_specific ? result.lane + ".golden" : std::string("golden");
+    result.golden = copy_file(fs::path(reference.path).replace_extension(".png"), scene.name, name + ".png");
+    if (has_float) result.golden_exr = copy_file(reference.path, scene.name, name + ".exr");
+    Comparison comparison = compare_images(image, reference.image, scene.compare);
+    for (LayerResult& layer : comparison.layers) {
+      const bool decides = layer.layer == comparison.decided_by;
+      add_layer(result, std::move(layer), decides);
+    }
+    result.against_golden = comparison.metrics;
+    result.diff = write_image(comparison.heat_map, scene.name, result.lane + ".diff.png");
+  }
+}
+
+// The lane's image as PNG and EXR, and a mask of its non-finite pixels when it has any.
+void SceneChecker::write_lane_images(const Scene& scene, const FloatImage& image, LaneResult& result) {
+  result.image = write_image(image, scene.name, result.lane + ".png");
+  result.image_exr = write_image(image, scene.name, result.lane + ".exr", true);
+  result.non_finite = count_non_finite(image);
+  if (result.non_finite.total())
+    result.non_finite_mask = write_image(non_finite_mask(image), scene.name, result.lane + ".nonfinite.png");
+}
+
+// The scene's environment, from the shared cache of them when the checker has one.
+Result<void> SceneChecker::build_scene_environment(CheckedScene& checked) {
+  const EnvironmentSpec& wanted = checked.scene->environment;
+  if (options_.environments) {
+    auto environment = options_.environments->get(wanted);
+    if (!environment) return fail(environment.error());
+    checked.environment = *environment;
+    return {};
+  }
+  auto environment = build_environment(wanted);
+  if (!environment) return fail(environment.error());
+  checked.environment = std::make_shared<const Environment>(std::move(*environment));
+  return {};
 }
 
 void SceneChecker::trace_lane(Lane lane, const Scene& scene, const Plan& plan, const Environment& environment,

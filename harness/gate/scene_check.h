@@ -110,6 +110,10 @@ class SceneChecker {
   const VariantCompiler& compiler() const { return compiler_; }
 
  private:
+  // check_lane's steps, in its order.
+  Result<void> build_scene_environment(CheckedScene& checked);
+  void write_lane_images(const Scene& scene, const FloatImage& image, LaneResult& result);
+  void add_reference_layers(const Scene& scene, const FloatImage& image, LaneResult& result);
   void compare_lanes(const Scene& scene, CheckedScene& checked);
   // The lane rendered again with the tracing variant, into result.trace; `plain` is its image.
   void trace_lane(Lane lane, const Scene& scene, const Plan& plan, const Environment& environment, Backend& backend,
