@@ -97,7 +97,7 @@ MUTATIONS = [
      'return near ? "; did you mean \'" + *near + "\'?" : std::string();', 'return near ? std::string() : std::string();',
      'CommandLine.Version'),
     # run's --lane (eval's has the same two lines: the text must be found once).
-    ('--lane takes no comma list', 'cli/main.cpp', 'default: all")\n      ->type_name("LANE")\n      ->allow_extra_args(false)\n      ->delimiter(\',\');',
+    ('--lane takes no comma list', 'cli/command_options.cpp', 'default: all")\n      ->type_name("LANE")\n      ->allow_extra_args(false)\n      ->delimiter(\',\');',
      'default: all")\n      ->type_name("LANE")\n      ->allow_extra_args(false);', 'UserMistakes.LanesAre'),
     ('a compile error shows no caret', 'base/diagnostic.cpp',
      '    if (!diagnostic.excerpt.empty()) text += "\\n" + diagnostic.excerpt;', '',
@@ -133,7 +133,8 @@ MUTATIONS = [
      '  for (const ViewerPage::PixelScript& pixels : viewer.pixels)\n    if (!pixels.script.empty())\n',
      'WriteReports'),
     ('a run stopped by a signal leaves its workers and folder', 'harness/gate/lane_workers.cpp',
-     '  while (next_to_report < files.size() && !interrupt_signal()) {', '  while (next_to_report < files.size()) {',
+     '    while (next_to_report_ < files_.size() && !interrupt_signal()) {',
+     '    while (next_to_report_ < files_.size()) {',
      'Workers.ARunStoppedByASignal'),
     ("dead runs' worker folders are kept", 'harness/gate/lane_workers.cpp',
      '  ScratchFolder::remove_dead_runs();\n', '', 'Workers.ARunRemovesTheWorkersFolders'),
