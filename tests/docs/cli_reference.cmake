@@ -31,7 +31,8 @@ endif()
 set(markdown "# xshade command line\n\n")
 string(APPEND markdown
   "<!-- Generated from xshade's own --help by tests/docs/cli_reference.cmake: edit the help texts in\n"
-  "cli/main.cpp, then `cmake --build build --target cli_reference`. The test\n"
+  "the verb's file (cli/VERB_command.cpp; shared options in cli/command_options.cpp), then\n"
+  "`cmake --build build --target cli_reference`. The test\n"
   "docs.cli_reference_is_current fails when this file differs from what the binary prints. -->\n\n"
   "Every verb as `xshade VERB --help` prints it. Folders: [getting_started.md](getting_started.md);\n"
   "scene files: [scenes.md](scenes.md); the language: [hlsl_like.md](hlsl_like.md).\n\n"
