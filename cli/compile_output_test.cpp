@@ -33,20 +33,6 @@ TEST(CompileOutput, EveryTargetGivesEveryStageValidatedAndReadable) {
   }
 }
 
-TEST(CompileOutput, WhatTheTargetCannotExpressStaysTheAuthorsError) {
-  // Integer matrices: HLSL has them, GLSL does not.
-  auto module = hlsl::compile_text("imatrix.hlsl", R"(#pragma fragment frag
-int2x2 m;
-float4 frag() : SV_Target { return float4(m[0].x, 0, 0, 1); }
-)",
-                                   {});
-  ASSERT_TRUE(module->ok()) << module->diagnostics.render_all();
-  auto output = compile_output(*module, {.target = Target::Gl});
-  ASSERT_FALSE(output);
-  EXPECT_EQ(output.error().kind, ErrorKind::UserInput);
-  EXPECT_EQ(exit_code_of(output.error().kind), kBadInput);
-}
-
 TEST(ExitCodeOf, WhoseFaultDecides) {
   EXPECT_EQ(exit_code_of(ErrorKind::UserInput), 2);
   EXPECT_EQ(exit_code_of(ErrorKind::Usage), 2);

@@ -1,7 +1,9 @@
-// The GLSL emitter's inside: one StageEmitter writes one stage of one module. Its parts live in
-// glsl_emitter.cpp (declarations, stage interface, main), emit_statements.cpp (functions and
-// statements), emit_expressions.cpp (expressions and conversions) and intrinsic_mapping.cpp (the
-// HLSL intrinsic -> GLSL table and the xs_* helper functions).
+// The GLSL emitter's inside: one StageEmitter writes one stage of one module, after the lowering
+// passes (lower/) have decided what it is to write. Its parts live in glsl_emitter.cpp
+// (declarations, stage interface, main), emit_statements.cpp (functions and statements),
+// emit_expressions.cpp (expressions and conversions), emit_textures.cpp and emit_buffers.cpp
+// (resources), emit_trace.cpp (the tracing variant) and intrinsic_mapping.cpp (the HLSL intrinsic
+// -> GLSL table and the xs_* helper functions).
 #pragma once
 
 #include <cstdint>

@@ -279,13 +279,13 @@ class LaneRenderPool {
     std::optional<LaneResult> result;
     if (rendered) {
       const auto text = read_file(slot.folder / "lane.json");
-      const nlohmann::json json = text ? nlohmann::json::parse(*text, nullptr, false) : nlohmann::json();
-      auto parsed = lane_from_json(json.is_object() ? json.value("result", nlohmann::json()) : json);
-      if (json.is_object()) {
-        totals_.compiled += json.value("compiled", size_t(0));
-        totals_.cached += json.value("cached", size_t(0));
-        if (totals_.cache_write_error.empty()) totals_.cache_write_error = json.value("cache_write_error", "");
-        if (totals_.cache_damage.empty()) totals_.cache_damage = json.value("cache_damage", "");
+      const nlohmann::json lane_file = text ? nlohmann::json::parse(*text, nullptr, false) : nlohmann::json();
+      auto parsed = lane_from_json(lane_file.is_object() ? lane_file.value("result", nlohmann::json()) : lane_file);
+      if (lane_file.is_object()) {
+        totals_.compiled += lane_file.value("compiled", size_t(0));
+        totals_.cached += lane_file.value("cached", size_t(0));
+        if (totals_.cache_write_error.empty()) totals_.cache_write_error = lane_file.value("cache_write_error", "");
+        if (totals_.cache_damage.empty()) totals_.cache_damage = lane_file.value("cache_damage", "");
       }
       if (parsed) {
         result = std::move(*parsed);
