@@ -8,6 +8,12 @@ namespace {
 
 SourceLocation whole_module(const hlsl::Module& module) { return module.sources.resolve({module.main_file, 0, 0}); }
 
+// The code filters its 2D comparison reads itself: the vk flavour's, when asked. OpenGL's driver
+// filters a depth texture; vk-hlsl is glslang's code of the source, which cannot.
+bool filters_in_code(Target target, const GenerateOptions& options) {
+  return options.filter_comparisons && (target == Target::Vk || target == Target::Spirv);
+}
+
 // The names the target's code gives the module's resources (the emitter's, or glslang's for
 // vk-hlsl, which keeps the HLSL names but for the loose globals' block), and where they are bound.
 BindingInterface binding_interface(const hlsl::Reflection& reflection, Target target,
@@ -33,10 +39,8 @@ BindingInterface binding_interface(const hlsl::Reflection& reflection, Target ta
     slot.shape = texture.shape;
     slot.texel = texture.texel;
     slot.comparison = texture.comparison;
-    // Only the vk flavour filters in the shader (glsl::EmitOptions::filter_comparisons); vk-hlsl
-    // compiles the source and cannot.
-    slot.filtered_in_shader = texture.comparison && texture.shape == hlsl::TextureShape::Tex2D &&
-                              options.filter_comparisons && (target == Target::Vk || target == Target::Spirv);
+    slot.filtered_in_shader =
+        texture.comparison && texture.shape == hlsl::TextureShape::Tex2D && filters_in_code(target, options);
     if (vulkan && texture.kind == hlsl::TextureKind::Texture) {
       // A Texture object is a sampled image on Vulkan; its sampler, if any, is a binding of its
       // own, or the texture's ([[vk::binding]] of both at one: a combined image sampler).
@@ -97,7 +101,7 @@ Result<Generated> generate_glsl(const hlsl::Module& module, Target target, const
                                      .half_emulation = options.half_emulation,
                                      .trace_nonfinite = options.trace_nonfinite,
                                      .trace_program = options.trace_program,
-                                     .filter_comparisons = options.filter_comparisons && target != Target::Gl,
+                                     .filter_comparisons = filters_in_code(target, options),
                                      .specialization = options.specialization});
   if (!emitted) return fail(emitted.error());  // a construct the flavour cannot express: the author's
   Generated generated;

@@ -29,13 +29,21 @@ std::optional<Target> target_named(std::string_view name);
 // Whether the target's code is SPIR-V (spirv, vk-hlsl) rather than GLSL text (gl, vk).
 bool makes_spirv(Target target);
 
+// glsl::EmitOptions' knobs. vk-hlsl, which glslang compiles from the source, refuses half
+// emulation and tracing, and cannot filter comparisons.
 struct GenerateOptions {
-  // glsl::EmitOptions' knobs; vk-hlsl, which glslang compiles from the source, refuses the first
-  // two and cannot filter comparisons. gl never does: OpenGL filters a depth texture itself.
+  // Every half-typed result rounded to fp16, as hardware with a half type computes it.
   bool half_emulation = false;
+  // The tracing variant of the fragment stage (glsl::EmitOptions::trace_nonfinite), numbered
+  // `trace_program`.
   bool trace_nonfinite = false;
   uint32_t trace_program = 0;
+  // The comparison samplers are bound filtering linearly (a soft shadow's map). OpenGL filters a
+  // depth texture itself; lavapipe cannot, so the vk flavour's code filters its 2D comparison
+  // reads itself (BindingInterface::Texture::filtered_in_shader).
   bool filter_comparisons = false;
+  // Values of the module's specialization constants by constant_id: written into the GLSL on gl,
+  // given to the pipeline on vk and vk-hlsl.
   std::map<uint32_t, double> specialization = {};
   // gl: check the text with glslang as OpenGL GLSL 4.50 core before handing it on, as `xshade
   // compile` does (a driver that compiles it anyway need not wait for this).

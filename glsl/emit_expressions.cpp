@@ -108,32 +108,12 @@ std::string float_text(const std::string& spelling) {
   return spelling;
 }
 
-// The fp16 value nearest `value` (ties to even), infinite past fp16's range: what a cast to
-// _Float16 gives, written out because not every compiler has that type (clang 14 on x86 lacks it).
-double nearest_half(double value) {
-  if (!std::isfinite(value) || value == 0.0) return value;
-  const double magnitude = std::fabs(value);
-  // 65504 is the largest half; halfway to the next step (65536) rounds to even, which is infinity.
-  if (magnitude >= 65520.0) return std::copysign(HUGE_VAL, value);
-  int exponent = 0;
-  std::frexp(magnitude, &exponent);  // magnitude in [2^(exponent-1), 2^exponent)
-  // 11 significant bits for normal halves; below 2^-14 the subnormals' fixed step of 2^-24.
-  const double step = exponent - 1 < -14 ? std::ldexp(1.0, -24) : std::ldexp(1.0, exponent - 1 - 10);
-  return std::copysign(std::nearbyint(magnitude / step) * step, value);
-}
-
-// A scalar literal rounded to fp16 here, so that it stays a GLSL constant expression (a static
-// const may only be initialised with one): "0.333251953" for "0.33333". None when the text is
-// not a plain number, or when fp16 has no finite value for it (then xs_half gives infinity).
+// A scalar literal rounded to fp16 and spelt as a literal (lower::HalfEmulation::rounded_literal).
 std::optional<std::string> half_literal(const std::string& text) {
-  if (text.empty() || text.find_first_not_of("0123456789.eE+-") != std::string::npos) return std::nullopt;
-  char* end = nullptr;
-  const double value = std::strtod(text.c_str(), &end);
-  if (end != text.c_str() + text.size()) return std::nullopt;
-  const auto rounded = static_cast<float>(nearest_half(value));
-  if (!std::isfinite(rounded)) return std::nullopt;
+  const std::optional<float> rounded = lower::HalfEmulation::rounded_literal(text);
+  if (!rounded) return std::nullopt;
   char buffer[32];
-  const auto written = std::to_chars(buffer, buffer + sizeof buffer, rounded);  // the shortest exact spelling
+  const auto written = std::to_chars(buffer, buffer + sizeof buffer, *rounded);  // the shortest exact spelling
   return float_text(std::string(buffer, written.ptr));
 }
 
@@ -222,14 +202,8 @@ bool StageEmitter::same_glsl(const Type& a, const Type& b) {
 
 std::string StageEmitter::bool_type(uint32_t count) { return count <= 1 ? "bool" : "bvec" + std::to_string(count); }
 
-bool StageEmitter::rounds_to_half(const Type& type) const {
-  return half_emulation_ && type.is_floating() && type.scalar_type() == ScalarType::Half && !type.is_matrix();
-}
-
 Code StageEmitter::half_value(Code value, const Type& type) {
-  // half, min16float and fixed compute in fp32 on these drivers; with half emulation every such
-  // result goes through fp16 here, in this one place.
-  if (!rounds_to_half(type)) return value;
+  if (!half_.rounds(type)) return value;
   if (is_whole_call(value.text, "xs_half")) return value;  // rounded already
   if (type.component_count() == 1)
     if (std::optional<std::string> literal = half_literal(value.text)) return {*literal, value.prec};
@@ -262,10 +236,7 @@ Code StageEmitter::half_value(Code value, const Type& type) {
 
 Code StageEmitter::convert(Code value, const Type& from, const Type& to, Loc loc) {
   Code converted = convert_components(std::move(value), from, to, loc);
-  // float -> half is where a value first becomes half: the rounding the conversion means.
-  const bool becomes_half = to.is_floating() && to.scalar_type() == ScalarType::Half &&
-                            !(from.is_floating() && from.scalar_type() == ScalarType::Half);
-  if (becomes_half) return half_value(std::move(converted), to);
+  if (half_.rounds_conversion(from, to)) return half_value(std::move(converted), to);
   return converted;
 }
 
@@ -672,8 +643,13 @@ static Code arithmetic(StageEmitter& emitter, BinaryOp op, const Type& type, Cod
 }
 
 Code StageEmitter::expr_untraced(const Expr* e) {
+  if (e && half_.rounds_result(*e)) return half_value(expr_unrounded(e), e->type);
+  return expr_unrounded(e);
+}
+
+Code StageEmitter::expr_unrounded(const Expr* e) {
   if (!e) {
-    fail({}, "internal error: an expression is missing");
+    fail_internal({}, "an expression is missing");
     return {"0"};
   }
   switch (e->kind) {
@@ -682,8 +658,7 @@ Code StageEmitter::expr_untraced(const Expr* e) {
       const bool is_unsigned = e->type.scalar_type() == ScalarType::Uint;
       return {std::to_string(literal->value) + (is_unsigned ? "u" : "")};
     }
-    case ExprKind::FloatLiteral:
-      return half_value({float_text(static_cast<const FloatLiteralExpr*>(e)->spelling)}, e->type);
+    case ExprKind::FloatLiteral: return {float_text(static_cast<const FloatLiteralExpr*>(e)->spelling)};
     case ExprKind::BoolLiteral: return {static_cast<const BoolLiteralExpr*>(e)->value ? "true" : "false"};
 
     case ExprKind::Name: {
@@ -721,7 +696,7 @@ Code StageEmitter::expr_untraced(const Expr* e) {
       auto prefix = [&](const char* op) {
         std::string text = operand(value, kUnary);
         if (!text.empty() && text[0] == op[0]) text = "(" + text + ")";  // - -x, not --x
-        return half_value({op + text, kUnary}, e->type);
+        return Code{op + text, kUnary};
       };
       switch (unary->op) {
         case UnaryOp::Plus: return prefix("+");
@@ -783,16 +758,16 @@ Code StageEmitter::expr_untraced(const Expr* e) {
       if (scalar_operand_allowed(op, type) && splatted_scalar(lhs) && !splatted_scalar(rhs)) {
         l = convert_expr(splatted_scalar(lhs), Type::scalar(type.scalar_type()));
         r = expr(rhs);
-        return half_value(infix(std::move(l), binary_info(op), r), e->type);
+        return infix(std::move(l), binary_info(op), r);
       }
       if (scalar_operand_allowed(op, type) && splatted_scalar(rhs) && !splatted_scalar(lhs)) {
         l = expr(lhs);
         r = convert_expr(splatted_scalar(rhs), Type::scalar(type.scalar_type()));
-        return half_value(infix(std::move(l), binary_info(op), r), e->type);
+        return infix(std::move(l), binary_info(op), r);
       }
       l = expr(lhs);
       r = expr(rhs);
-      return half_value(arithmetic(*this, op, type, std::move(l), r, e->loc), e->type);
+      return arithmetic(*this, op, type, std::move(l), r, e->loc);
     }
 
     case ExprKind::Assign: {
@@ -816,7 +791,7 @@ Code StageEmitter::expr_untraced(const Expr* e) {
       const Type& target_type = target->type;
       const Expr* scalar = splatted_scalar(assign->value.get());
       // With half emulation a half result is rounded, so `h += x` is written out as h = xs_half(h + x).
-      if (same_glsl(operation, target_type) && !rounds_to_half(operation) &&
+      if (same_glsl(operation, target_type) && !half_.rounds(operation) &&
           (!needs_lowering(*op, operation) || (scalar && scalar_operand_allowed(*op, operation)))) {
         const BinaryInfo info = binary_info(*op);
         const Code v = scalar ? convert_expr(scalar, Type::scalar(operation.scalar_type())) : expr(assign->value.get());
@@ -890,12 +865,12 @@ Code StageEmitter::expr_untraced(const Expr* e) {
             append_operand(text, expr(arg), kAssign);
           }
           text += ')';
-          return half_value({std::move(text), kPostfix}, type);
+          return {std::move(text), kPostfix};
         }
         case CallKind::Function: {
           const FunctionDecl* function = call->function;
           if (!function) {
-            fail(e->loc, "internal error: unresolved call to " + in_quotes(call->callee));
+            fail_internal(e->loc, "unresolved call to " + in_quotes(call->callee));
             return {"0"};
           }
           std::string text = function_name(function) + "(";
@@ -903,12 +878,10 @@ Code StageEmitter::expr_untraced(const Expr* e) {
           for (size_t i = 0; i < function->params.size(); ++i) {
             const ParamDecl* param = function->params[i].get();
             if (!param) continue;
-            const std::vector<std::vector<uint32_t>> paths = resource_paths(param->type);
-            if (!paths.empty() && i < call->args.size()) {
+            if (!resource_paths(param->type).empty() && i < call->args.size()) {
               // One argument per resource, as the callee's parameters are flattened.
-              for (const std::vector<uint32_t>& path : paths) {
-                if (flavour_ == Flavour::Gl && leaf_type(param->type, path).kind() == TypeKind::SamplerState) continue;
-                text += (first ? "" : ", ") + resource_text(call->args[i].get(), path).text;
+              for (const lower::FlattenedParameter& flat : lower::flattened_parameters(*param, names_, flavour_)) {
+                text += (first ? "" : ", ") + resource_text(call->args[i].get(), flat.path).text;
                 first = false;
               }
               continue;
@@ -921,8 +894,8 @@ Code StageEmitter::expr_untraced(const Expr* e) {
             } else if (param->default_value) {
               arg = expr(param->default_value.get());
             } else {
-              fail(e->loc, "internal error: argument " + std::to_string(i + 1) + " of " + in_quotes(call->callee) +
-                               " is missing");
+              fail_internal(e->loc,
+                            "argument " + std::to_string(i + 1) + " of " + in_quotes(call->callee) + " is missing");
             }
             if (!first) text += ", ";
             append_operand(text, arg, kAssign);
@@ -933,10 +906,10 @@ Code StageEmitter::expr_untraced(const Expr* e) {
             text += trace_call_path(function->name, e->loc);
           }
           text += ')';
-          return half_value({std::move(text), kPostfix}, e->type);
+          return {std::move(text), kPostfix};
         }
         case CallKind::Intrinsic:
-        case CallKind::Method: return half_value(intrinsic_call(*call), e->type);
+        case CallKind::Method: return intrinsic_call(*call);
         case CallKind::Printf: {
           // Vulkan's debug printf, which the validation layer prints; OpenGL has none, and the
           // statement is left out there (emit_statements.cpp).
@@ -949,9 +922,7 @@ Code StageEmitter::expr_untraced(const Expr* e) {
           for (const ExprPtr& arg : call->args) append_operand(text += ", ", expr(arg.get()), kAssign);
           return {text + ")", kPostfix};
         }
-        case CallKind::Unresolved:
-          fail(e->loc, "internal error: unresolved call to " + in_quotes(call->callee));
-          return {"0"};
+        case CallKind::Unresolved: fail_internal(e->loc, "unresolved call to " + in_quotes(call->callee)); return {"0"};
       }
       return {"0"};
     }
@@ -1024,7 +995,7 @@ Code StageEmitter::expr_untraced(const Expr* e) {
       if ((cast->target.kind() == TypeKind::Struct || cast->target.kind() == TypeKind::Array) && operand_expr &&
           operand_expr->type.component_count() == 1 && !(operand_expr->type == cast->target))
         return splat_aggregate(operand_expr, cast->target, e->loc);  // (S)0
-      return half_value(convert_expr(operand_expr, cast->target), cast->target);
+      return convert_expr(operand_expr, cast->target);
     }
 
     case ExprKind::InitList: {
@@ -1045,7 +1016,7 @@ Code StageEmitter::expr_untraced(const Expr* e) {
 
     case ExprKind::Conversion: {
       const auto* conversion = static_cast<const ConversionExpr*>(e);
-      return half_value(convert_expr(conversion->operand.get(), e->type), e->type);
+      return convert_expr(conversion->operand.get(), e->type);
     }
   }
   return {"0"};

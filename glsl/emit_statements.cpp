@@ -66,11 +66,8 @@ std::vector<std::string> StageEmitter::parameter_declarations(const ParamDecl& p
   // A resource, or a struct of resources: one GLSL parameter per resource (none for a
   // SamplerState on gl, whose state belongs to the texture unit).
   std::vector<std::string> out;
-  for (const std::vector<uint32_t>& path : paths) {
-    const Type& leaf = leaf_type(param.type, path);
-    if (flavour_ == Flavour::Gl && leaf.kind() == TypeKind::SamplerState) continue;
-    out.push_back(resource_type(leaf, &param, param.loc) + " " + flattened_name(param, path));
-  }
+  for (const lower::FlattenedParameter& flat : lower::flattened_parameters(param, names_, flavour_))
+    out.push_back(resource_type(*flat.type, &param, param.loc) + " " + flat.name);
   return out;
 }
 
@@ -100,7 +97,7 @@ std::string variable_text(StageEmitter& emitter, const VarDecl& var, const Names
       text = "const ";
     }
   }
-  if (!init.empty() && text.empty() && !emitter.is_tested(var.initializer.get()))
+  if (!init.empty() && text.empty() && !lower::is_tested(var.initializer.get()))
     init =
         emitter.traced({std::move(init), kAssign}, var.type, TraceSite::Kind::Initialization, var.loc, var.name).text;
   text += emitter.declarator(var.type, names.variable(&var), var.loc);
@@ -282,7 +279,7 @@ void StageEmitter::statement(const Stmt* stmt) {
     case StmtKind::Return: {
       const Expr* value = static_cast<const ReturnStmt*>(stmt)->value.get();
       out_.mark(stmt->loc);
-      if (value && !is_tested(value))
+      if (value && !lower::is_tested(value))
         out_.line({"return ",
                    traced(expr(value), value->type, TraceSite::Kind::Return, stmt->loc, current_function_).text, ";"});
       else if (value)

@@ -87,54 +87,13 @@ std::string StageEmitter::resource_type(const Type& type, const Decl* decl, Loc 
   }
 }
 
-const Type& StageEmitter::leaf_type(const Type& type, const std::vector<uint32_t>& path) {
-  const Type* at = &type;
-  for (uint32_t field : path) {
-    if (at->kind() != TypeKind::Struct || !at->struct_decl() || field >= at->struct_decl()->fields.size()) break;
-    at = &at->struct_decl()->fields[field].type;
-  }
-  return *at;
-}
-
-std::string StageEmitter::flattened_name(const ParamDecl& param, const std::vector<uint32_t>& path) {
-  std::string name = names_.variable(&param);
-  const Type* at = &param.type;
-  for (uint32_t field : path) {
-    if (at->kind() != TypeKind::Struct || !at->struct_decl() || field >= at->struct_decl()->fields.size()) break;
-    const FieldDecl& f = at->struct_decl()->fields[field];
-    name += "_" + names_.of(f.name);
-    at = &f.type;
-  }
-  return name;
-}
-
 void StageEmitter::check_struct_of_resources(const Type& type, Loc loc) {
-  const StructDecl* decl = type.struct_decl();
-  if (!decl) return;
-  for (const FieldDecl& field : decl->fields) {
-    if (field.type.is_resource()) continue;
-    if (field.type.kind() == TypeKind::Struct && !resource_paths(field.type).empty()) {
-      check_struct_of_resources(field.type, loc);
-      continue;
-    }
-    fail(loc, "struct " + in_quotes(decl->name) + " holds both resources and the value " + in_quotes(field.name) +
-                  ", which this target cannot keep together: keep its resources in a struct of their own");
-    return;
-  }
+  if (std::optional<std::string> message = lower::mixed_struct_message(type)) fail(loc, *message);
 }
 
 Code StageEmitter::resource_text(const Expr* e, const std::vector<uint32_t>& leaf) {
-  auto it = module_.resource_origins.find(e);
-  if (it != module_.resource_origins.end()) {
-    for (const ResourceLeaf& known : it->second) {
-      if (known.path != leaf) continue;
-      const ResourceOrigin& origin = known.origin;
-      if (origin.root->kind == DeclKind::Param)
-        return {flattened_name(static_cast<const ParamDecl&>(*origin.root), origin.fields)};
-      return {names_.variable(origin.root)};
-    }
-  }
-  fail(e->loc, "internal error: no resource is known for this expression");
+  if (std::optional<std::string> name = lower::resource_name(module_, e, leaf, names_)) return {std::move(*name)};
+  fail_internal(e->loc, "no resource is known for this expression");
   return {"0"};
 }
 

@@ -61,24 +61,6 @@ using namespace hlsl;
 
 namespace {
 
-// Float and half scalars, vectors and matrices: what can hold a NaN or an infinity.
-bool traceable(const Type& type) { return type.is_floating(); }
-
-// The assigned place as the author wrote it, for the report: `color.rgb`, `weights[...]`.
-std::string place_name(const Expr* e, int depth = 0) {
-  if (!e || depth > 16) return "a value";
-  switch (e->kind) {
-    case ExprKind::Name: return static_cast<const NameExpr*>(e)->name;
-    case ExprKind::Member: {
-      const auto* member = static_cast<const MemberExpr*>(e);
-      return place_name(member->object.get(), depth + 1) + "." + member->member;
-    }
-    case ExprKind::Index: return place_name(static_cast<const IndexExpr*>(e)->object.get(), depth + 1) + "[...]";
-    case ExprKind::Conversion: return place_name(static_cast<const ConversionExpr*>(e)->operand.get(), depth + 1);
-    default: return "a value";
-  }
-}
-
 constexpr const char* kRecordGlobals =
     "// The first non-finite site of this invocation and the calls that led to it (the tracing variant).\n"
     "uint xs_trace_site = 0u;\n"
@@ -111,23 +93,6 @@ std::string opaque_helper(const std::string& glsl_type) {
   return glsl_type + " xs_opaque(" + glsl_type + " v) {\n" + body + "}\n";
 }
 
-// A uniform the traced copy reads: a global that is neither static nor groupshared, or an
-// element or member of one.
-bool reads_uniform(const Expr* e, int depth = 0) {
-  if (!e || depth > 16) return false;
-  switch (e->kind) {
-    case ExprKind::Name: {
-      const Decl* decl = static_cast<const NameExpr*>(e)->decl;
-      if (!decl || decl->kind != DeclKind::Var) return false;
-      const auto* var = static_cast<const VarDecl*>(decl);
-      return var->is_global && (var->storage == StorageClass::Default || var->storage == StorageClass::Uniform);
-    }
-    case ExprKind::Index: return reads_uniform(static_cast<const IndexExpr*>(e)->object.get(), depth + 1);
-    case ExprKind::Member: return reads_uniform(static_cast<const MemberExpr*>(e)->object.get(), depth + 1);
-    default: return false;
-  }
-}
-
 // The test of one GLSL type: scalars and vectors as they are, matrices column by column.
 std::string trace_helper(const std::string& glsl_type) {
   std::string bad;
@@ -147,37 +112,11 @@ std::string trace_helper(const std::string& glsl_type) {
 
 }  // namespace
 
-bool StageEmitter::is_trace_site(const Expr* e) const {
-  if (!in_traced_copy_ || !e || !traceable(e->type)) return false;
-  if (e->kind == ExprKind::Assign) {
-    // `x = f(y)` fails where f(y) does; only a value computed in place is tested as assigned.
-    const Expr* value = static_cast<const AssignExpr*>(e)->value.get();
-    return static_cast<const AssignExpr*>(e)->op != AssignOp::Assign || !is_tested(value);
-  }
-  if (e->kind == ExprKind::Call) {
-    // The author's functions are tested at their returns (and assignments), where the value is
-    // born; their call would name the same value a second time.
-    const CallKind kind = static_cast<const CallExpr*>(e)->call_kind;
-    return kind == CallKind::Intrinsic || kind == CallKind::Method;
-  }
-  return false;
-}
-
-bool StageEmitter::is_tested(const Expr* e) const {
-  return is_trace_site(e) ||
-         (e && e->kind == ExprKind::Call && static_cast<const CallExpr*>(e)->call_kind == CallKind::Function);
-}
-
 Code StageEmitter::expr(const Expr* e) {
   if (!in_traced_copy_) return expr_untraced(e);
-  if (!is_trace_site(e)) return opaque_if_uniform(e, expr_untraced(e));
-  if (e->kind == ExprKind::Assign) {
-    const auto* assign = static_cast<const AssignExpr*>(e);
-    const TraceSite::Kind kind =
-        assign->op == AssignOp::Assign ? TraceSite::Kind::Assignment : TraceSite::Kind::CompoundAssignment;
-    return traced(expr_untraced(e), e->type, kind, e->loc, place_name(assign->target.get()));
-  }
-  return traced(expr_untraced(e), e->type, TraceSite::Kind::Call, e->loc, static_cast<const CallExpr*>(e)->callee);
+  std::optional<lower::ExpressionSite> site = lower::expression_site(e);
+  if (!site) return opaque_if_uniform(e, expr_untraced(e));
+  return traced(expr_untraced(e), e->type, site->kind, e->loc, std::move(site->what));
 }
 
 TraceSite StageEmitter::site_at(TraceSite::Kind kind, Loc loc, std::string what) const {
@@ -204,7 +143,7 @@ uint32_t StageEmitter::add_site(TraceSite site, Loc loc) {
 }
 
 Code StageEmitter::opaque_if_uniform(const Expr* e, Code code) {
-  if (!in_traced_copy_ || !e || !e->type.is_numeric() || e->type.is_bool() || !reads_uniform(e)) return code;
+  if (!in_traced_copy_ || !e || !e->type.is_numeric() || e->type.is_bool() || !lower::reads_uniform(e)) return code;
   // Each read: `_Kernel[i].xy` passes through twice, as `_Kernel[i]` and again as its member.
   const std::string glsl_type = type_name(e->type, e->loc);
   helpers_.add("xs_trace globals", kRecordGlobals);
@@ -226,7 +165,7 @@ void StageEmitter::traced_functions() {
 }
 
 Code StageEmitter::traced(Code value, const Type& type, TraceSite::Kind kind, Loc loc, std::string what) {
-  if (!in_traced_copy_ || !traceable(type)) return value;
+  if (!in_traced_copy_ || !lower::traceable(type)) return value;
   const std::string glsl_type = type_name(type, loc);
   helpers_.add("xs_trace globals", kRecordGlobals);
   helpers_.add("xs_trace " + glsl_type, trace_helper(glsl_type));
@@ -250,13 +189,13 @@ std::string StageEmitter::trace_call_path(const std::string& callee, Loc loc) {
 
 void StageEmitter::trace_input(Writer& main, const std::string& path, const Type& type, const std::string& semantic,
                                Loc loc) {
-  if (!in_traced_copy_ || !traceable(type)) return;
+  if (!in_traced_copy_ || !lower::traceable(type)) return;
   main.line(traced({path}, type, TraceSite::Kind::Input, loc, semantic).text + ";");
 }
 
 void StageEmitter::trace_output(Writer& main, const std::string& path, const Type& type, const std::string& semantic,
                                 Loc loc) {
-  if (!in_traced_copy_ || !traceable(type)) return;
+  if (!in_traced_copy_ || !lower::traceable(type)) return;
   main.line(traced({path}, type, TraceSite::Kind::Output, loc, semantic).text + ";");
   // A colour below zero is a hazard of its own (the finite layer counts it), though no test
   // before the output looks at signs: most negative intermediates are meant.

@@ -225,7 +225,7 @@ StageEmitter::StageEmitter(const Module& module, const EmitOptions& options, con
     : module_(module),
       reflection_(module.reflection),
       flavour_(options.flavour),
-      half_emulation_(options.half_emulation),
+      half_(options.half_emulation),
       filter_comparisons_(options.filter_comparisons),
       specialization_(options.specialization),
       names_(names),
@@ -245,6 +245,12 @@ void StageEmitter::fail(Loc loc, const std::string& message) {
   std::string rendered = diagnostics.render(0);
   if (where.known()) rendered.erase(0, where.to_string().size() + 2);  // "file:line:col: "
   error_ = Error{std::move(rendered), where, {}};
+}
+
+void StageEmitter::fail_internal(Loc loc, const std::string& what) {
+  if (error_) return;
+  fail(loc, "internal error: " + what);
+  error_->kind = ErrorKind::Internal;
 }
 
 namespace {

@@ -298,7 +298,7 @@ std::string replace_all(std::string text, std::string_view from, const std::stri
 
 std::string StageEmitter::require_helper(const std::string& name, const std::vector<Type>& operands, Loc loc) {
   if (operands.empty()) {
-    fail(loc, "internal error: helper " + in_quotes(name) + " without operands");
+    fail_internal(loc, "helper " + in_quotes(name) + " without operands");
     return name;
   }
   const Type& type = operands[0];
@@ -371,7 +371,7 @@ std::string StageEmitter::require_helper(const std::string& name, const std::vec
     else
       definition = "void xs_clip(" + t + " a) {\n  if (any(lessThan(a, " + t + "(0.0)))) discard;\n}\n";
   } else {
-    fail(loc, "internal error: no helper " + in_quotes(name));
+    fail_internal(loc, "no helper " + in_quotes(name));
     return name;
   }
   helpers_.add(signature, definition);
@@ -410,7 +410,7 @@ Code StageEmitter::intrinsic_call(const CallExpr& call) {
   for (const ExprPtr& arg : call.args) operands.push_back(arg.get());
   for (const Expr* e : operands) {
     if (!e) {
-      fail(call.loc, "internal error: an argument of " + in_quotes(info.name) + " is missing");
+      fail_internal(call.loc, "an argument of " + in_quotes(info.name) + " is missing");
       return {"0"};
     }
   }
@@ -510,7 +510,7 @@ Code StageEmitter::expand_template(std::string_view text, const CallExpr& call,
   for (const Piece& piece : pieces) {
     if (piece.operand < 0) continue;
     if (size_t(piece.operand) >= operands.size()) {
-      fail(call.loc, "internal error: the template of " + in_quotes(info.name) + " names a missing operand");
+      fail_internal(call.loc, "the template of " + in_quotes(info.name) + " names a missing operand");
       return {"0"};
     }
     ++uses[size_t(piece.operand)];
@@ -581,7 +581,7 @@ Code StageEmitter::matrix_intrinsic_call(const CallExpr& call, const std::vector
     }
   }
   if (!matrix) {
-    fail(call.loc, "internal error: " + in_quotes(info.name) + " has no matrix operand");
+    fail_internal(call.loc, "" + in_quotes(info.name) + " has no matrix operand");
     return {"0"};
   }
   // GLSL holds HLSL's floatRxC as a matRxC: R columns of C components, each one HLSL row. A
@@ -628,7 +628,7 @@ Code StageEmitter::matrix_intrinsic_call(const CallExpr& call, const std::vector
         part += piece.text;
         if (piece.operand < 0) continue;
         if (size_t(piece.operand) >= operands.size()) {
-          fail(call.loc, "internal error: the template of " + in_quotes(info.name) + " names a missing operand");
+          fail_internal(call.loc, "the template of " + in_quotes(info.name) + " names a missing operand");
           return {"0"};
         }
         part += operand_at(size_t(piece.operand), i);

@@ -22,8 +22,11 @@
 #include "glsl/flavour.h"
 #include "glsl/glsl_emitter.h"
 #include "glsl/lower/compared_textures.h"
+#include "glsl/lower/flatten_resources.h"
+#include "glsl/lower/half_emulation.h"
 #include "glsl/lower/rename.h"
 #include "glsl/lower/split_constant_buffers.h"
+#include "glsl/lower/trace_sites.h"
 #include "glsl/lower/unroll_offset_loops.h"
 #include "glsl/lower/used_declarations.h"
 #include "hlsl_like/compiler.h"
@@ -124,6 +127,8 @@ class StageEmitter {
 
   // --- diagnostics: the first error wins; emission goes on so that it ends cleanly.
   void fail(Loc loc, const std::string& message);
+  // A tree the front end should not have let through: xshade's fault (ErrorKind::Internal).
+  void fail_internal(Loc loc, const std::string& what);
 
   // --- types (emit_expressions.cpp)
   // GLSL's name for `type`; reports what GLSL cannot hold. Resources: the flavour's opaque types.
@@ -139,15 +144,16 @@ class StageEmitter {
   // An expression; in the tracing variant a site's value is tested on its way.
   Code expr(const Expr* e);
   Code expr_untraced(const Expr* e);
+  // The same before rounding: what expr_untraced rounds when half_ says `e` makes a half value.
+  Code expr_unrounded(const Expr* e);
   // `value` of type `from` as type `to`, GLSL converting explicitly.
   Code convert(Code value, const Type& from, const Type& to, Loc loc);
   Code convert_components(Code value, const Type& from, const Type& to, Loc loc);
   // An expression converted to `to`; literals are folded (`1` as a float is `1.0`).
   Code convert_expr(const Expr* e, const Type& to);
-  // Every half-typed value passes through here; with half emulation it is rounded to fp16.
+  // `value` of `type` rounded to fp16 when half_ says a value of that type is (xs_half, or a
+  // literal rounded here); expr_untraced rounds each result half_ says is made there.
   Code half_value(Code value, const Type& type);
-  // Whether half emulation rounds a result of this type.
-  bool rounds_to_half(const Type& type) const;
   // The value of a static const or other constant initializer could be a GLSL constant expression.
   bool is_constant(const Expr* e);
   // A name, literal, field, swizzle or constant index of those: cheap and free of side effects,
@@ -198,14 +204,10 @@ class StageEmitter {
   std::string resource_type(const Type& type, const hlsl::Decl* decl, Loc loc);
 
   // --- resources held in locals and struct fields (emit_textures.cpp)
-  // The GLSL text of the resource `leaf` (a field path) of the value `e`: the global or the
-  // (flattened) parameter resource_origins.h found for it.
+  // The GLSL text of the resource `leaf` (a field path) of the value `e` (lower::resource_name).
   Code resource_text(const Expr* e, const std::vector<uint32_t>& leaf);
-  // The resource parameter GLSL gets for `path` inside the parameter: tex_smpl for tex.smpl.
-  std::string flattened_name(const hlsl::ParamDecl& param, const std::vector<uint32_t>& path);
-  static const Type& leaf_type(const Type& type, const std::vector<uint32_t>& path);
-  // A struct holding resources must hold nothing else (its values would need a GLSL struct of
-  // their own beside the flattened resources); fails at `loc` otherwise.
+  // Fails at `loc` when `type` is a struct of resources that holds a value too
+  // (lower::mixed_struct_message).
   void check_struct_of_resources(const Type& type, Loc loc);
 
   // --- functions and statements (emit_statements.cpp)
@@ -220,12 +222,6 @@ class StageEmitter {
   // --- the tracing variant (emit_trace.cpp)
   // `value` (of `type`) tested as the site `kind` at `loc`, when tracing and the type is float.
   Code traced(Code value, const Type& type, TraceSite::Kind kind, Loc loc, std::string what);
-  // Whether expr() tests `e` as a site of its own: an assignment or an intrinsic's result of float
-  // type. A site's value is not tested again as it is assigned, initialises or is returned.
-  bool is_trace_site(const Expr* e) const;
-  // A site, or a call of the author's function (tested where it returns): a value assigned,
-  // initialised or returned from it is not tested again.
-  bool is_tested(const Expr* e) const;
   // The value of the call path a call of the author's function at `loc` passes on: the caller's
   // path with this call's number in its low bits.
   std::string trace_call_path(const std::string& callee, Loc loc);
@@ -262,7 +258,7 @@ class StageEmitter {
   const hlsl::Module& module_;
   const hlsl::Reflection& reflection_;
   const Flavour flavour_;
-  const bool half_emulation_;
+  const lower::HalfEmulation half_;  // which half values are rounded to fp16
   const bool filter_comparisons_;
   const std::map<uint32_t, double> specialization_;
   const Names& names_;

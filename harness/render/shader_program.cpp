@@ -188,12 +188,7 @@ Result<ProgramDesc> program_for_lane(const hlsl::Module& module, Lane lane, cons
     return fail("the shader has no fragment entry point (#pragma fragment): a program needs one to draw",
                 module.sources.resolve({module.main_file, 0, 0}));
   const codegen::Target target = lane_target(lane);
-  auto generated = codegen::generate(module, target,
-                                     {.half_emulation = options.half_emulation,
-                                      .trace_nonfinite = options.trace_nonfinite,
-                                      .trace_program = options.trace_program,
-                                      .filter_comparisons = options.filter_comparisons,
-                                      .specialization = options.specialization});
+  auto generated = codegen::generate(module, target, options);
   if (!generated) return fail(generated.error());
   if (trace) *trace = std::move(generated->trace);
   ProgramDesc desc;

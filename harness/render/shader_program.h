@@ -21,22 +21,8 @@ namespace xshade::harness {
 //
 // With `half_emulation` the GLSL lanes round every half-typed result to fp16 (glsl::EmitOptions);
 // the vk-hlsl lane compiles the source with glslang, which cannot, and fails saying so.
-struct ProgramOptions {
-  bool half_emulation = false;
-  // The tracing variant of the fragment stage (glsl::EmitOptions::trace_nonfinite), numbered
-  // `trace_program`; the gl and vk lanes only (vk-hlsl compiles the source with glslang).
-  bool trace_nonfinite = false;
-  uint32_t trace_program = 0;
-  // The program's comparison samplers are bound filtering linearly (a soft shadow's map). gl
-  // filters in the driver; on vk, whose lavapipe cannot filter a depth texture, the shader filters
-  // its 2D comparison reads itself (glsl::EmitOptions::filter_comparisons, the slots
-  // filtered_in_shader); vk-hlsl compiles the source with glslang and cannot, so the backend
-  // refuses the linear sampler there.
-  bool filter_comparisons = false;
-  // Values of the module's specialization constants by constant_id (glsl::EmitOptions::
-  // specialization): written into the GLSL on gl, given to the pipeline on vk and vk-hlsl.
-  std::map<uint32_t, double> specialization = {};
-};
+// The options a program's code is generated with.
+using ProgramOptions = codegen::GenerateOptions;
 
 // Half emulation also defines this macro for the front end, so that a shader can choose to
 // compute in half where a GPU that prefers half would (the library's `real`, include/common.hlsl).
