@@ -206,6 +206,17 @@ MUTATIONS = [
     ("a soft shadow's map is read without filtering", 'harness/render/scene_renderer.cpp',
      'Light::Shadows::Soft ? Filter::Linear : Filter::Nearest', 'Light::Shadows::Soft ? Filter::Nearest : Filter::Nearest',
      'realworld.unity_soft_shadows'),
+    # The lowerings (glsl/lower/): a decision gone wrong must show in what is drawn, not only in
+    # the lowering's own test.
+    ('half emulation leaves arithmetic unrounded', 'glsl/lower/half_emulation.cpp',
+     'case ExprKind::Binary: return static_cast<const hlsl::BinaryExpr&>(e).op != hlsl::BinaryOp::Comma;',
+     'case ExprKind::Binary: return false;', 'HalfEmulation'),
+    ('the tracing variant tests no intrinsic result', 'glsl/lower/trace_sites.cpp',
+     'if (call->call_kind == CallKind::Intrinsic || call->call_kind == CallKind::Method)', 'if (false)',
+     'TraceSites|NonfiniteTrace|TraceVariant'),
+    ("a read of a struct parameter's resource names the whole parameter", 'glsl/lower/flatten_resources.cpp',
+     'return flattened_name(static_cast<const ParamDecl&>(*origin.root), origin.fields, names);',
+     'return flattened_name(static_cast<const ParamDecl&>(*origin.root), {}, names);', 'FlattenResources|Resource'),
 ]
 
 
