@@ -189,6 +189,13 @@ struct DiffOptions {
   std::filesystem::path heat_map;  // PNG of the difference, when asked
   std::filesystem::path mask;      // PNG, white where the per-pixel layer failed, when asked
   bool json = false;
+  // --metric: the verdict is this metric's against its threshold (harness/image/metric_layers.h)
+  // instead of the per-pixel layers'.
+  std::string metric;
+  std::optional<double> threshold;  // the metric's default when not given
+  double pixel_threshold = 1.0;     // deltae: per-pixel CIEDE2000 ignored below
+  double incorrect_fraction = 0.0;  // deltae: pixels above the per-pixel threshold allowed
+  double pixels_per_degree = 0.0;   // flip: 0 for the reference implementation's 67.02
 };
 int run_diff(const DiffOptions& options);
 

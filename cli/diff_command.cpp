@@ -14,6 +14,7 @@
 #include "harness/gate/result_json.h"
 #include "harness/image/image_compare.h"
 #include "harness/image/image_io.h"
+#include "harness/image/metric_layers.h"
 
 namespace xshade::cli {
 namespace {
@@ -42,6 +43,59 @@ std::string rgba_text(const std::array<float, 4>& value) {
   return fmt::format("({:g}, {:g}, {:g}, {:g})", value[0], value[1], value[2], value[3]);
 }
 
+// --metric: the verdict is the metric's. Sizes that differ fail as the layers' "size" does.
+int run_metric_diff(const DiffOptions& options, const harness::FloatImage& a, const harness::FloatImage& b) {
+  const std::optional<harness::Metric> metric = harness::metric_named(options.metric);
+  harness::MetricSettings settings;
+  settings.metric = *metric;  // the option's check admits only the metrics' names
+  settings.threshold = options.threshold.value_or(harness::default_metric_threshold(*metric));
+  settings.pixel_threshold = options.pixel_threshold;
+  settings.incorrect_fraction = options.incorrect_fraction;
+  settings.pixels_per_degree = options.pixels_per_degree;
+  if (a.width != b.width || a.height != b.height) {
+    fmt::print("FAIL: {} against {}: the sizes differ ({}x{} against {}x{})\n", options.b.string(), options.a.string(),
+               b.width, b.height, a.width, a.height);
+    return kTestFailed;
+  }
+  auto result = harness::run_metric(b, a, settings);
+  if (!result) {
+    fmt::print(stderr, "xshade diff: {}\n", result.error().to_string());
+    return exit_code_of(result.error().kind);
+  }
+  int written = kPass;
+  if (!options.heat_map.empty()) {
+    auto heat = harness::metric_heat_map(*result);
+    auto saved = heat ? harness::write_png(*heat, options.heat_map) : Result<void>(fail(heat.error()));
+    if (!saved) {
+      fmt::print(stderr, "xshade diff: {}\n", saved.error().to_string());
+      written = exit_code_of(saved.error().kind);
+    }
+  }
+  const bool pass = result->layer.verdict == harness::Verdict::Pass;
+  if (options.json) {
+    json figures = json::object();
+    for (const auto& [name, value] : result->figures) figures[name] = value;
+    const json document = {{"a", options.a.string()},
+                           {"b", options.b.string()},
+                           {"verdict", harness::verdict_name(result->layer.verdict)},
+                           {"decided_by", result->layer.layer},
+                           {"metric",
+                            {{"name", options.metric},
+                             {"value", result->value},
+                             {"threshold", settings.threshold},
+                             {"figures", std::move(figures)},
+                             {"detail", result->layer.detail}}},
+                           {"width", b.width},
+                           {"height", b.height}};
+    fmt::print("{}\n", document.dump(2, ' ', false, json::error_handler_t::replace));
+  } else {
+    fmt::print("{}: {} against {}: {} ({})\n  {}\n", pass ? "PASS" : "FAIL", options.b.string(), options.a.string(),
+               harness::verdict_name(result->layer.verdict), result->layer.layer, result->layer.detail);
+  }
+  if (written != kPass) return written;
+  return pass ? kPass : kTestFailed;
+}
+
 }  // namespace
 
 int run_diff(const DiffOptions& options) {
@@ -58,6 +112,7 @@ int run_diff(const DiffOptions& options) {
     fmt::print(stderr, "xshade diff: {}\n", b.error().to_string());
     return kBadInput;
   }
+  if (!options.metric.empty()) return run_metric_diff(options, *a, *b);
   harness::CompareSettings settings;
   settings.channel_tolerance = options.tolerance;
   settings.max_failing_fraction = options.budget;
@@ -147,9 +202,35 @@ Verb add_diff_command(CLI::App& app) {
       ->check(CLI::Range(0.0, 1.0))
       ->capture_default_str();
   diff->add_option("--heat-map", options->heat_map, "Write the difference's heat map (PNG) here")->type_name("FILE");
-  diff->add_option("--mask", options->mask, "Write the failing pixels' mask (PNG, white where failing) here")
-      ->type_name("FILE");
+  CLI::Option* mask =
+      diff->add_option("--mask", options->mask, "Write the failing pixels' mask (PNG, white where failing) here")
+          ->type_name("FILE");
   diff->add_flag("--json", options->json, "Print the verdict, layers and metrics as JSON");
+  diff->add_option("--metric", options->metric,
+                   "Decide by a perceptual metric instead of the per-pixel layers: flip (NVIDIA's FLIP; HDR-FLIP "
+                   "when an image holds values above 1), ssim, or deltae (CIEDE2000 with Unity's thresholds)")
+      ->type_name("METRIC")
+      ->check(CLI::IsMember({"flip", "ssim", "deltae"}))
+      ->excludes(mask);  // the mask is the per-pixel layer's; a metric writes its --heat-map
+  diff->add_option("--threshold", options->threshold,
+                   "--metric's bound: flip the highest mean (default 0.01), ssim the lowest mean (0.99), deltae the "
+                   "highest average CIEDE2000 above --pixel-threshold (0)")
+      ->type_name("VALUE");
+  diff->add_option("--pixel-threshold", options->pixel_threshold,
+                   "deltae: a pixel's CIEDE2000 below this is ignored (1 is the just noticeable difference)")
+      ->type_name("DELTA_E")
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
+  diff->add_option("--incorrect-fraction", options->incorrect_fraction,
+                   "deltae: the fraction of the pixels that may be above --pixel-threshold, 0 to 1")
+      ->type_name("FRACTION")
+      ->check(CLI::Range(0.0, 1.0))
+      ->capture_default_str();
+  diff->add_option(
+          "--ppd", options->pixels_per_degree,
+          "flip: the viewing distance in pixels per degree (default 67.02: 0.7 m from a 0.7 m wide 4K monitor)")
+      ->type_name("PPD")
+      ->check(CLI::PositiveNumber);
   return {diff, [options](const std::string&) { return run_diff(*options); }};
 }
 

@@ -1,0 +1,153 @@
+#include "harness/image/metric_layers.h"
+
+#include <fmt/core.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "harness/image/delta_e.h"
+#include "harness/image/flip.h"
+#include "harness/image/image_codec.h"
+#include "harness/image/image_io.h"
+#include "harness/image/ssim.h"
+
+namespace xshade::harness {
+
+namespace {
+
+bool has_values_above_one(const FloatImage& image) {
+  for (size_t v = 0; v < image.rgba.size(); ++v)
+    if (v % 4 != 3 && image.rgba[v] > 1.0f) return true;
+  return false;
+}
+
+MetricResult flip_result(const FloatImage& test, const FloatImage& reference, const MetricSettings& settings) {
+  const double ppd = settings.pixels_per_degree > 0.0 ? settings.pixels_per_degree : flip_default_pixels_per_degree();
+  // HDR-FLIP when either image holds a value a display cannot show, as the reference tool takes
+  // an EXR: LDR-FLIP would clamp the difference away.
+  const bool hdr = has_values_above_one(test) || has_values_above_one(reference);
+  const FlipMeasure m = hdr ? measure_hdr_flip(test, reference, ppd) : measure_flip(test, reference, ppd);
+  MetricResult result;
+  result.value = m.mean;
+  const bool pass = m.mean <= settings.threshold;
+  result.layer = {
+      "flip", pass ? Verdict::Pass : Verdict::Fail,
+      fmt::format(
+          "{}FLIP mean {:.6f} (at most {:g}), weighted median {:.6f}, max {:.6f} at ({}, {}){}", hdr ? "HDR-" : "LDR-",
+          m.mean, settings.threshold, m.weighted_median, m.max, m.max_x, m.max_y,
+          hdr ? fmt::format(", {} exposures from {:.4f} to {:.4f}", m.exposures, m.start_exposure, m.stop_exposure)
+              : "")};
+  result.figures = {{"mean", m.mean},
+                    {"weighted_median", m.weighted_median},
+                    {"weighted_first_quartile", m.weighted_first_quartile},
+                    {"weighted_third_quartile", m.weighted_third_quartile},
+                    {"min", m.min},
+                    {"max", m.max},
+                    {"pixels_per_degree", ppd},
+                    {"hdr", hdr ? 1.0 : 0.0}};
+  result.heat = m.per_pixel;
+  return result;
+}
+
+Result<MetricResult> ssim_result(const FloatImage& test, const FloatImage& reference, const MetricSettings& settings) {
+  auto m = measure_ssim(test, reference);
+  if (!m) return fail(m.error());
+  MetricResult result;
+  result.value = m->mean;
+  const bool pass = m->mean >= settings.threshold;
+  result.layer = {"ssim", pass ? Verdict::Pass : Verdict::Fail,
+                  fmt::format("SSIM mean {:.6f} (at least {:g}), least similar window {:.6f} at ({}, {})", m->mean,
+                              settings.threshold, m->min, m->min_x, m->min_y)};
+  result.figures = {{"mean", m->mean}, {"min", m->min}};
+  result.heat.assign(size_t(test.width) * test.height, 0.0f);
+  for (uint32_t y = 0; y < m->map_height; ++y)
+    for (uint32_t x = 0; x < m->map_width; ++x)
+      result.heat[size_t(y + kSsimRadius) * test.width + x + kSsimRadius] =
+          std::clamp(1.0f - m->map[size_t(y) * m->map_width + x], 0.0f, 1.0f);
+  return result;
+}
+
+MetricResult delta_e_result(const FloatImage& test, const FloatImage& reference, const MetricSettings& settings) {
+  const DeltaEMeasure m = measure_delta_e(test, reference, settings.pixel_threshold);
+  MetricResult result;
+  result.value = m.average_excess;
+  const bool pass = m.average_excess <= settings.threshold && m.incorrect_fraction <= settings.incorrect_fraction;
+  result.layer = {
+      "deltae", pass ? Verdict::Pass : Verdict::Fail,
+      fmt::format("CIEDE2000 above {:g}: average {:.6f} (at most {:g}), {} pixels ({:.4f}%, at most {:g}%); mean "
+                  "{:.4f}, max {:.4f} at ({}, {})",
+                  settings.pixel_threshold, m.average_excess, settings.threshold, m.incorrect_pixels,
+                  100.0 * m.incorrect_fraction, 100.0 * settings.incorrect_fraction, m.mean, m.max, m.max_x, m.max_y)};
+  result.figures = {{"average_excess", m.average_excess},
+                    {"incorrect_fraction", m.incorrect_fraction},
+                    {"mean", m.mean},
+                    {"max", m.max},
+                    {"pixel_threshold", settings.pixel_threshold}};
+  // 10 is a difference anyone sees at a glance (1 is the smallest noticed side by side).
+  result.heat.resize(m.per_pixel.size());
+  for (size_t p = 0; p < m.per_pixel.size(); ++p) result.heat[p] = std::min(m.per_pixel[p] / 10.0f, 1.0f);
+  return result;
+}
+
+}  // namespace
+
+std::string_view metric_name(Metric metric) {
+  switch (metric) {
+    case Metric::Flip: return "flip";
+    case Metric::Ssim: return "ssim";
+    case Metric::DeltaE: return "deltae";
+  }
+  return "?";
+}
+
+std::optional<Metric> metric_named(std::string_view name) {
+  for (Metric metric : {Metric::Flip, Metric::Ssim, Metric::DeltaE})
+    if (metric_name(metric) == name) return metric;
+  return std::nullopt;
+}
+
+double default_metric_threshold(Metric metric) {
+  switch (metric) {
+    // A mean FLIP of 0.01 is a hundredth of the largest difference: an edge moved by a pixel in a
+    // 512x512 image stays below it, a changed material does not (docs/reports.md has the figures).
+    case Metric::Flip: return 0.01;
+    // SSIM 0.99: above it structure reads as the same (Wang et al. report mean opinion scores
+    // saturating there); blur or a lost texture detail falls below.
+    case Metric::Ssim: return 0.99;
+    // Nothing may remain above the per-pixel threshold (1, the just noticeable difference): Unity's
+    // own default, an exact match of what a viewer can tell apart.
+    case Metric::DeltaE: return 0.0;
+  }
+  return 0.0;
+}
+
+Result<MetricResult> run_metric(const FloatImage& test, const FloatImage& reference, const MetricSettings& settings) {
+  Result<MetricResult> result;
+  switch (settings.metric) {
+    case Metric::Flip: result = flip_result(test, reference, settings); break;
+    case Metric::Ssim: result = ssim_result(test, reference, settings); break;
+    case Metric::DeltaE: result = delta_e_result(test, reference, settings); break;
+  }
+  if (result) {
+    result->width = test.width;
+    result->height = test.height;
+  }
+  return result;
+}
+
+Result<FloatImage> metric_heat_map(const MetricResult& result) {
+  auto codec = image_codec();
+  if (!codec) return fail(codec.error());
+  std::vector<float> rgb;
+  if (std::string failed = (*codec)->color_map(result.heat, "inferno", rgb); !failed.empty())
+    return fail(ErrorKind::Backend, "the heat map's colour map 'inferno': " + failed);
+  FloatImage image(result.width, result.height);
+  for (size_t p = 0; p < result.heat.size(); ++p)
+    image.set(uint32_t(p % result.width), uint32_t(p / result.width),
+              result.heat[p] > 0.0f ? glm::vec4(srgb_to_linear(rgb[p * 3]), srgb_to_linear(rgb[p * 3 + 1]),
+                                                srgb_to_linear(rgb[p * 3 + 2]), 1.0f)
+                                    : glm::vec4(0.0f, 0.0f, 0.0f, 1.0f));
+  return image;
+}
+
+}  // namespace xshade::harness

@@ -1,0 +1,59 @@
+// The perceptual metrics (FLIP, SSIM, CIEDE2000) as comparison layers: each measured on a test
+// image against its reference, held to a threshold, and described in one line, with a heat map
+// of its per-pixel values. A scene chooses one in `[compare] metric`; `xshade diff --metric` runs
+// one on any two images. Which to choose is in docs/reports.md.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <string_view>
+#include <utility>
+#include <vector>
+
+#include "base/result.h"
+#include "harness/image/image.h"
+#include "harness/image/image_compare.h"
+
+namespace xshade::harness {
+
+enum class Metric { Flip, Ssim, DeltaE };
+std::string_view metric_name(Metric metric);  // "flip", "ssim", "deltae"
+std::optional<Metric> metric_named(std::string_view name);
+
+struct MetricSettings {
+  Metric metric = Metric::Flip;
+  // flip: the highest mean FLIP; ssim: the lowest mean SSIM; deltae: the highest average of what
+  // each pixel's CIEDE2000 leaves above `pixel_threshold` (Unity's AverageCorrectnessThreshold).
+  double threshold = 0.0;
+  // deltae: a pixel's difference below this is ignored (PerPixelCorrectnessThreshold), and the
+  // fraction of pixels above it may be at most `incorrect_fraction` (IncorrectPixelsThreshold).
+  double pixel_threshold = 1.0;
+  double incorrect_fraction = 0.0;
+  // flip: the viewing distance, pixels per degree.
+  double pixels_per_degree = 0.0;  // 0: the reference implementation's 67.02
+};
+
+// The threshold a metric is held to when none is given, and why (docs/reports.md).
+double default_metric_threshold(Metric metric);
+
+struct MetricResult {
+  LayerResult layer;   // "flip", "ssim" or "deltae", its verdict and one line
+  double value = 0.0;  // the number held to the threshold: mean FLIP, mean SSIM, average excess ΔE
+  // The metric's own figures by name, in the order a report shows them ("mean", "weighted_median",
+  // ...), for results.json and the page.
+  std::vector<std::pair<std::string, double>> figures;
+  // Per pixel, in [0, 1] where 1 is the worst the metric can say: FLIP itself, 1 - SSIM (of the
+  // window centred there; 0 at the edge the windows do not reach), CIEDE2000 / 10 clamped.
+  std::vector<float> heat;
+  uint32_t width = 0;
+  uint32_t height = 0;
+};
+
+// Fails when the metric cannot measure the images (SSIM of an image smaller than its window).
+// The images have the same size.
+Result<MetricResult> run_metric(const FloatImage& test, const FloatImage& reference, const MetricSettings& settings);
+
+// `result.heat` through the inferno colour map (0 black, 1 pale yellow), linear, alpha 1.
+Result<FloatImage> metric_heat_map(const MetricResult& result);
+
+}  // namespace xshade::harness
