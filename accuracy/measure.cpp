@@ -65,14 +65,14 @@ Result<Prepared> prepare(const Configuration& configuration, const harness::Scen
   harness::VariantCompiler compiler(shaders, nullptr);
   const auto compile_start = std::chrono::steady_clock::now();
   auto variants = compiler.compile_plan(prepared.plan, lane, configuration.half_emulation);
-  if (!variants) return fail(configuration.label + ": " + variants.error().to_string());
+  if (!variants) return fail(variants.error().kind, configuration.label + ": " + variants.error().to_string());
   prepared.variants = std::move(*variants);
   prepared.result.label = configuration.label;
   prepared.result.compile_ms = milliseconds_since(compile_start);
 
   auto rendered = harness::render_scene(backend, prepared.scene, prepared.plan, prepared.variants, environment,
                                         {.programs = &programs});
-  if (!rendered) return fail(configuration.label + ": " + rendered.error().to_string());
+  if (!rendered) return fail(rendered.error().kind, configuration.label + ": " + rendered.error().to_string());
   prepared.result.image = configuration.supersample > 1 ? box_downsample(rendered->image, configuration.supersample)
                                                         : std::move(rendered->image);
   return prepared;
@@ -86,7 +86,7 @@ Result<void> time_round(const Study& study, Prepared& prepared, harness::Backend
   auto rendered =
       harness::render_scene(backend, prepared.scene, prepared.plan, prepared.variants, environment,
                             {.frames = options.warmup_frames + options.frames_per_round, .programs = &programs});
-  if (!rendered) return fail(prepared.result.label + ": " + rendered.error().to_string());
+  if (!rendered) return fail(rendered.error().kind, prepared.result.label + ": " + rendered.error().to_string());
   for (size_t frame = options.warmup_frames; frame < rendered->frame_timings.size(); ++frame)
     prepared.times.push_back(harness::milliseconds_of(rendered->frame_timings[frame], study.timed_passes));
   return {};

@@ -26,14 +26,25 @@ TEST(Error, ListsItsDiagnosticsUnderTheMessage) {
 
 TEST(Result, CarriesAValueOrAnError) {
   Result<int> good = 4;
-  Result<int> bad = fail("nope", {"f", 1, 2});
+  Result<int> bad = fail(ErrorKind::UserInput, "nope", {"f", 1, 2});
   ASSERT_TRUE(good.has_value());
   EXPECT_EQ(*good, 4);
   ASSERT_FALSE(bad.has_value());
   EXPECT_EQ(bad.error().where.line, 1u);
   EXPECT_EQ(bad.error().message, "nope");
-  EXPECT_EQ(bad.error().kind, ErrorKind::UserInput);  // what most failures are
+  EXPECT_EQ(bad.error().kind, ErrorKind::UserInput);
 }
+
+// Every failure names its kind where it is born: there is no fail() that chooses one for it.
+template <class... Arguments>
+concept Fails = requires(Arguments... arguments) {
+  fail(arguments...);
+};
+static_assert(!Fails<std::string>);
+static_assert(!Fails<std::string, SourceLocation>);
+static_assert(Fails<ErrorKind, std::string>);
+static_assert(Fails<ErrorKind, std::string, SourceLocation>);
+static_assert(Fails<Error>);
 
 TEST(Error, KeepsTheKindItWasGiven) {
   Result<int> lost = fail(ErrorKind::Backend, "device lost");

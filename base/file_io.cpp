@@ -95,7 +95,8 @@ Result<std::string> read_input_file(const fs::path& path, size_t max_bytes, std:
   const int fd = ::open(path.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC);
   if (fd < 0) {
     const int error = errno;
-    if (std::string kind = not_a_file(path); !kind.empty()) return fail(named + " is " + kind + ", not a file");
+    if (std::string kind = not_a_file(path); !kind.empty())
+      return fail(ErrorKind::UserInput, named + " is " + kind + ", not a file");
     return fail(error == ENOENT ? ErrorKind::UserInput : ErrorKind::Backend,
                 named + " cannot be opened: " + std::strerror(error));
   }
@@ -107,19 +108,20 @@ Result<std::string> read_input_file(const fs::path& path, size_t max_bytes, std:
   }
   if (!S_ISREG(status.st_mode)) {
     ::close(fd);
-    return fail(named + " is " + kind_of(status.st_mode) + ", not a file");
+    return fail(ErrorKind::UserInput, named + " is " + kind_of(status.st_mode) + ", not a file");
   }
   if (size_t(status.st_size) > max_bytes) {
     ::close(fd);
-    return fail(named + " is " + std::to_string(status.st_size) + " bytes, more than the " + std::to_string(max_bytes) +
-                " a " + std::string(what) + " may have");
+    return fail(ErrorKind::UserInput, named + " is " + std::to_string(status.st_size) + " bytes, more than the " +
+                                          std::to_string(max_bytes) + " a " + std::string(what) + " may have");
   }
   ReadFailure why{};
   auto bytes = read_open_file(fd, size_t(status.st_size), true, &why);
   if (!bytes) return fail(ErrorKind::Backend, named + " cannot be read: " + std::strerror(errno));
   // A file that grew past the limit while it was read.
   if (bytes->size() > max_bytes)
-    return fail(named + " grew past the " + std::to_string(max_bytes) + " bytes a " + std::string(what) + " may have");
+    return fail(ErrorKind::UserInput,
+                named + " grew past the " + std::to_string(max_bytes) + " bytes a " + std::string(what) + " may have");
   return std::move(*bytes);
 }
 
@@ -140,16 +142,19 @@ Result<void> make_private_folder(const fs::path& folder) {
   if (::stat(folder.c_str(), &status) != 0)
     return fail(ErrorKind::Backend, "cannot read the folder " + folder.string() + ": " + std::strerror(errno));
   if (!S_ISDIR(status.st_mode))
-    return fail(folder.string() + " is " + (S_ISREG(status.st_mode) ? "a file" : kind_of(status.st_mode)) +
-                ", not a folder");
+    return fail(
+        ErrorKind::Backend,
+        folder.string() + " is " + (S_ISREG(status.st_mode) ? "a file" : kind_of(status.st_mode)) + ", not a folder");
   if (status.st_uid != ::geteuid())
-    return fail(folder.string() + " belongs to another user (uid " + std::to_string(status.st_uid) + ")");
+    return fail(ErrorKind::Backend,
+                folder.string() + " belongs to another user (uid " + std::to_string(status.st_uid) + ")");
   if (status.st_mode & (S_IWGRP | S_IWOTH))
-    return fail(folder.string() + " can be written by other users (mode " + [&] {
-      char octal[8];
-      std::snprintf(octal, sizeof octal, "%03o", unsigned(status.st_mode & 0777));
-      return std::string(octal);
-    }() + "); make it private with chmod 700");
+    return fail(
+        ErrorKind::Backend, folder.string() + " can be written by other users (mode " + [&] {
+          char octal[8];
+          std::snprintf(octal, sizeof octal, "%03o", unsigned(status.st_mode & 0777));
+          return std::string(octal);
+        }() + "); make it private with chmod 700");
   return {};
 }
 

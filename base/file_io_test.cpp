@@ -135,10 +135,12 @@ TEST(FileIo, APrivateFolderIsMadeOwnerOnlyAndAnotherKindIsRefused) {
   ASSERT_FALSE(open);
   EXPECT_EQ(open.error().message,
             made.string() + " can be written by other users (mode 777); make it private with chmod 700");
+  EXPECT_EQ(open.error().kind, ErrorKind::Backend);  // the environment's folder, not an input
   ASSERT_TRUE(write_file_atomically(root / "file", "x"));
   auto file = make_private_folder(root / "file");
   ASSERT_FALSE(file);
   EXPECT_EQ(file.error().message, (root / "file").string() + " is a file, not a folder");
+  EXPECT_EQ(file.error().kind, ErrorKind::Backend);
   if (::geteuid() == 0) {  // only root can give a folder away
     fs::permissions(made, fs::perms::owner_all, fs::perm_options::replace);
     ASSERT_EQ(::chown(made.c_str(), 65534, 65534), 0);

@@ -35,11 +35,8 @@ struct Error {
 template <class T>
 using Result = tl::expected<T, Error>;
 
-// Most failures are of the input being read (the shader, the scene), so that is the default kind.
-inline tl::unexpected<Error> fail(std::string message, SourceLocation where = {}) {
-  return tl::unexpected<Error>(Error{std::move(message), std::move(where), {}});
-}
-
+// A failure names its kind where the error is born, where whose fault it is is known: there is no
+// overload without one.
 inline tl::unexpected<Error> fail(ErrorKind kind, std::string message, SourceLocation where = {}) {
   return tl::unexpected<Error>(Error{std::move(message), std::move(where), {}, kind});
 }

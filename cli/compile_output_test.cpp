@@ -33,6 +33,20 @@ TEST(CompileOutput, EveryTargetGivesEveryStageValidatedAndReadable) {
   }
 }
 
+// The vk-hlsl target compiles the source with glslang: what only xshade's GLSL can do, asked of it,
+// is the command line's mistake (--precision half, --trace-nonfinite), not the shader's.
+TEST(CompileOutput, WhatVkHlslCannotDoIsTheCommandLinesMistake) {
+  auto module = hlsl::compile_text("uv.hlsl", kShader, {});
+  ASSERT_TRUE(module->ok()) << module->diagnostics.render_all();
+  for (const OutputOptions& options : {OutputOptions{.target = Target::VkHlsl, .half_emulation = true},
+                                       OutputOptions{.target = Target::VkHlsl, .trace_nonfinite = true}}) {
+    auto output = compile_output(*module, options);
+    ASSERT_FALSE(output);
+    EXPECT_EQ(output.error().kind, ErrorKind::Usage) << output.error().message;
+    EXPECT_EQ(exit_code_of(output.error().kind), kBadInput);
+  }
+}
+
 TEST(ExitCodeOf, WhoseFaultDecides) {
   EXPECT_EQ(exit_code_of(ErrorKind::UserInput), 2);
   EXPECT_EQ(exit_code_of(ErrorKind::Usage), 2);

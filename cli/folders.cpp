@@ -81,9 +81,9 @@ Result<SceneFolders> resolve_folders(const FolderOptions& given, const fs::path&
     folders.golden = own.golden;
     folders.own_golden = true;
   } else if (golden != GoldenUse::None) {
-    return fail("the scenes in " + folders.scenes.string() +
-                " are not xshade's own, so their goldens cannot be either: give --golden DIR" +
-                (project ? " or golden = \"...\" in " + project->path.string() : std::string()));
+    return fail(ErrorKind::Usage, "the scenes in " + folders.scenes.string() +
+                                      " are not xshade's own, so their goldens cannot be either: give --golden DIR" +
+                                      (project ? " or golden = \"...\" in " + project->path.string() : std::string()));
   }
   std::error_code error;
   if (golden == GoldenUse::Read && !fs::is_directory(folders.golden, error))
@@ -110,7 +110,8 @@ static Result<void> check_inside(const fs::path& file, const fs::path& folder) {
   if (path_is_inside(file, folder)) return {};
   std::error_code error;
   const fs::path target = fs::weakly_canonical(file, error);
-  return fail("the scene file " + file.string() + " is a symbolic link that points outside the scenes folder " +
+  return fail(ErrorKind::UserInput,
+              "the scene file " + file.string() + " is a symbolic link that points outside the scenes folder " +
                   folder.string() + (error ? std::string() : " (to " + target.string() + ")") +
                   "; a scene file must be inside its folder",
               SourceLocation{file.string(), 0, 0});
@@ -121,8 +122,10 @@ Result<std::vector<fs::path>> scene_files(const std::vector<std::string>& scenes
   if (scenes.empty()) {
     std::error_code error;
     files = scenes_in(folders.scenes, error);
-    if (error) return fail("cannot read the scenes folder " + folders.scenes.string() + ": " + error.message());
-    if (files.empty()) return fail("no scenes (*.toml) in " + folders.scenes.string());
+    if (error)
+      return fail(ErrorKind::Usage,
+                  "cannot read the scenes folder " + folders.scenes.string() + ": " + error.message());
+    if (files.empty()) return fail(ErrorKind::Usage, "no scenes (*.toml) in " + folders.scenes.string());
     for (const fs::path& file : files)
       if (Result<void> inside = check_inside(file, folders.scenes); !inside) return fail(inside.error());
     return files;
@@ -131,14 +134,15 @@ Result<std::vector<fs::path>> scene_files(const std::vector<std::string>& scenes
     const fs::path as_given(scene);
     if (as_given.extension() == ".toml") {
       if (folders.own_golden && !path_is_inside(as_given, folders.scenes))
-        return fail("'" + scene + "' is not one of xshade's own scenes (" + folders.scenes.string() +
-                    "), so its golden cannot be xshade's either: give --golden DIR");
+        return fail(ErrorKind::Usage, "'" + scene + "' is not one of xshade's own scenes (" + folders.scenes.string() +
+                                          "), so its golden cannot be xshade's either: give --golden DIR");
       files.push_back(as_given);
       continue;
     }
     if (scene.empty() || as_given.has_parent_path() || scene == "." || scene == "..")
-      return fail("'" + scene + "' is not a scene name: a name is a file name in " + folders.scenes.string() +
-                  " without .toml; give a path ending in .toml for a file elsewhere");
+      return fail(ErrorKind::Usage, "'" + scene + "' is not a scene name: a name is a file name in " +
+                                        folders.scenes.string() +
+                                        " without .toml; give a path ending in .toml for a file elsewhere");
     const fs::path file = folders.scenes / (scene + ".toml");
     std::error_code error;
     if (!fs::exists(file, error)) {

@@ -4,7 +4,7 @@ namespace xshade::cli {
 
 Result<std::vector<harness::Lane>> resolve_lanes(const LaneSelection& selection) {
   if (!harness::parse_gl_platform(selection.gl_platform))
-    return fail("unknown --gl-platform '" + selection.gl_platform + "' (auto, osmesa, egl)");
+    return fail(ErrorKind::Usage, "unknown --gl-platform '" + selection.gl_platform + "' (auto, osmesa, egl)");
   if (selection.lanes.empty()) return harness::all_lanes();
   std::vector<harness::Lane> lanes;
   for (const std::string& name : selection.lanes) {
@@ -13,7 +13,7 @@ Result<std::vector<harness::Lane>> resolve_lanes(const LaneSelection& selection)
       std::string known;
       for (harness::Lane l : harness::all_lanes())
         known += std::string(known.empty() ? "" : ", ") + std::string(harness::lane_name(l));
-      return fail("unknown lane '" + name + "' (lanes: " + known + ")");
+      return fail(ErrorKind::Usage, "unknown lane '" + name + "' (lanes: " + known + ")");
     }
     lanes.push_back(*lane);
   }

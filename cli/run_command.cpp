@@ -41,7 +41,7 @@ Result<std::pair<size_t, size_t>> parse_shard(const std::string& shard) {
   int consumed = 0;
   if (std::sscanf(shard.c_str(), "%zu%c%zu%n", &index, &slash, &count, &consumed) != 3 || slash != '/' ||
       size_t(consumed) != shard.size() || count == 0 || index == 0 || index > count)
-    return fail("--shard takes i/N with 1 <= i <= N, not '" + shard + "'");
+    return fail(ErrorKind::Usage, "--shard takes i/N with 1 <= i <= N, not '" + shard + "'");
   return std::pair{index, count};
 }
 

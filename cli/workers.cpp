@@ -45,8 +45,9 @@ Result<void> limit_memory(const char* setting) {
     char* end = nullptr;
     const double gib = std::strtod(setting, &end);
     if (end == setting || *end != '\0' || !(gib >= 0.0) || gib > 1e6)
-      return fail(std::string("XSHADE_MEMORY_LIMIT=") + setting +
-                  ": expected the address space each xshade process may take, in GiB (0: no limit)");
+      return fail(ErrorKind::Usage,
+                  std::string("XSHADE_MEMORY_LIMIT=") + setting +
+                      ": expected the address space each xshade process may take, in GiB (0: no limit)");
     if (gib == 0.0) return {};
     bytes = uint64_t(gib * double(uint64_t(1) << 30));
   } else {

@@ -59,12 +59,13 @@ BindingInterface binding_interface(const hlsl::Reflection& reflection, Target ta
 
 Result<void> vk_hlsl_can_take(const hlsl::Module& module, const GenerateOptions& options) {
   if (options.half_emulation)
-    return fail(
-        "half emulation rewrites the GLSL xshade emits; the vk-hlsl lane compiles the source with glslang and "
-        "cannot emulate half",
-        whole_module(module));
+    return fail(ErrorKind::Usage,
+                "half emulation rewrites the GLSL xshade emits; the vk-hlsl lane compiles the source with glslang and "
+                "cannot emulate half",
+                whole_module(module));
   if (options.trace_nonfinite)
     return fail(
+        ErrorKind::Usage,
         "tracing non-finite values instruments the GLSL xshade emits; the vk-hlsl lane compiles the source with "
         "glslang's HLSL front end and cannot be traced (trace gl or vk)",
         whole_module(module));
@@ -147,7 +148,7 @@ std::optional<Target> target_named(std::string_view name) {
 bool makes_spirv(Target target) { return target == Target::Spirv || target == Target::VkHlsl; }
 
 Result<Generated> generate(const hlsl::Module& module, Target target, const GenerateOptions& options) {
-  if (!module.ok()) return fail("the shader did not compile", whole_module(module));
+  if (!module.ok()) return fail(ErrorKind::UserInput, "the shader did not compile", whole_module(module));
   if (!module.entry_points.vertex && !module.entry_points.fragment) return Generated{};
   // vk-hlsl refuses what it cannot take before it compiles anything, so the message is the same
   // whichever stages the module has.

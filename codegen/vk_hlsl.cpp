@@ -77,12 +77,14 @@ Result<GeneratedStage> vk_hlsl_stage(const hlsl::Module& module, spirv::Stage st
                     [](const hlsl::ConstantBuffer& buffer) { return buffer.push_constant; });
     if (push_constant_in_globals)
       return fail(
+          ErrorKind::UserInput,
           "vk-hlsl lane: glslang's HLSL front end reads a [[vk::push_constant]] struct global as a member of "
           "$Global, where DXC and xshade's other targets make it a push-constant block; compile it with --target "
           "vk or spirv, or declare it as [[vk::push_constant]] ConstantBuffer<T>",
           {name, 0, 0});
     if (ours != resource.binding)
-      return fail("vk-hlsl lane: glslang binds '" + resource.name + "' at " + std::to_string(resource.binding) +
+      return fail(ErrorKind::Internal,
+                  "vk-hlsl lane: glslang binds '" + resource.name + "' at " + std::to_string(resource.binding) +
                       ", xshade's reflection " + (ours ? "at " + std::to_string(*ours) : std::string("not at all")),
                   {name, 0, 0});
   }

@@ -16,7 +16,7 @@ Result<EmittedProgram> try_emit(const std::string& source, Flavour flavour) {
   auto module = hlsl::compile_text("test.hlsl", source, {});
   if (!module->ok()) {
     ADD_FAILURE() << "the front end rejected the source:\n" << diagnostics_of(*module);
-    return fail("front end");
+    return fail(ErrorKind::UserInput, "front end");
   }
   return emit(*module, {flavour});
 }

@@ -693,7 +693,7 @@ std::string StageEmitter::interface_and_main() {
 }  // namespace detail
 
 Result<EmittedProgram> emit(const hlsl::Module& module, const EmitOptions& options) {
-  if (!module.ok()) return fail("cannot emit GLSL for a module with errors");
+  if (!module.ok()) return fail(ErrorKind::UserInput, "cannot emit GLSL for a module with errors");
   EmittedProgram program;
   program.source_files.emplace_back();
   for (uint32_t file = 1; file < module.sources.file_count(); ++file)
@@ -703,7 +703,8 @@ Result<EmittedProgram> emit(const hlsl::Module& module, const EmitOptions& optio
     const hlsl::FunctionDecl* entry = vertex ? module.entry_points.vertex : module.entry_points.fragment;
     if (!entry) continue;
     if (options.trace_nonfinite && options.trace_program >= NonfiniteTrace::kMaxPrograms)
-      return fail("the tracing variant numbers at most " + std::to_string(NonfiniteTrace::kMaxPrograms) + " programs");
+      return fail(ErrorKind::UserInput,
+                  "the tracing variant numbers at most " + std::to_string(NonfiniteTrace::kMaxPrograms) + " programs");
     detail::StageEmitter emitter(module, options, names, vertex);
     std::string text = emitter.run();
     if (emitter.error()) return fail(*emitter.error());

@@ -52,7 +52,8 @@ Result<std::shared_ptr<const PredefinedMacros>> PredefinedMacros::read(
     Preprocessor::Impl impl(reader);
     impl.define(definitions);
     for (const Diagnostic& diagnostic : diagnostics.diagnostics())
-      if (diagnostic.severity == Severity::Error) return fail("predefined macros: " + diagnostic.message);
+      if (diagnostic.severity == Severity::Error)
+        return fail(ErrorKind::Internal, "predefined macros: " + diagnostic.message);
     impl.export_macros(*table);
   }
   table->text = std::move(reader.text_store_);  // a deque moves without moving its strings

@@ -51,15 +51,18 @@ Result<uint32_t> SourceManager::load_canonical(const std::filesystem::path& cano
     if (::stat(canonical.c_str(), &status) == 0 && S_ISREG(status.st_mode)) known_size = size_t(status.st_size);
   }
   if (known_size && *known_size > kMaxSourceFileBytes)
-    return fail("'" + name + "' is " + std::to_string(*known_size) + " bytes; a shader source may have at most " +
-                std::to_string(kMaxSourceFileBytes >> 20) + " MiB");
+    return fail(ErrorKind::UserInput, "'" + name + "' is " + std::to_string(*known_size) +
+                                          " bytes; a shader source may have at most " +
+                                          std::to_string(kMaxSourceFileBytes >> 20) + " MiB");
   ReadFailure failure = ReadFailure::CannotOpen;
   std::optional<std::string> text =
       known_size ? read_regular_file(canonical, *known_size, &failure) : read_file(canonical, &failure);
   if (!text) {
-    if (failure == ReadFailure::IsDirectory) return fail("'" + name + "' is a directory");
-    if (failure == ReadFailure::NotAFile) return fail("'" + name + "' is " + not_a_file(canonical) + ", not a file");
-    return fail((failure == ReadFailure::CannotOpen ? "cannot open '" : "cannot read '") + name + "'");
+    if (failure == ReadFailure::IsDirectory) return fail(ErrorKind::UserInput, "'" + name + "' is a directory");
+    if (failure == ReadFailure::NotAFile)
+      return fail(ErrorKind::UserInput, "'" + name + "' is " + not_a_file(canonical) + ", not a file");
+    return fail(ErrorKind::UserInput,
+                (failure == ReadFailure::CannotOpen ? "cannot open '" : "cannot read '") + name + "'");
   }
   uint32_t index = add(std::move(name), std::move(*text));
   files_[index]->path = canonical;

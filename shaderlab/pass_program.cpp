@@ -42,7 +42,8 @@ std::string without_subshader(const Shader& shader, UnityPlatform platform) {
 
 Result<const Pass*> find_pass(const Shader& shader, const std::string& choice, UnityPlatform platform) {
   const SubShader* sub = drawn_subshader(shader, platform);
-  if (!sub) return fail("the shader '" + shader.name + "' " + without_subshader(shader, platform));
+  if (!sub)
+    return fail(ErrorKind::UserInput, "the shader '" + shader.name + "' " + without_subshader(shader, platform));
   return find_pass_in(*sub, shader.name, choice);
 }
 
@@ -71,6 +72,7 @@ Result<void> find_implicit_includes(const std::vector<std::filesystem::path>& fo
     if (all) return {};
   }
   return fail(
+      ErrorKind::Usage,
       "a CGPROGRAM includes Unity's HLSLSupport.cginc and UnityShaderVariables.cginc first, as Unity does, and no "
       "include folder holds them. xshade ships none of Unity's code: take the CGIncludes folder of the "
       "\"Built-in shaders\" download of your Unity version (or the Editor's Data/CGIncludes) and give it with -I "
@@ -78,13 +80,13 @@ Result<void> find_implicit_includes(const std::vector<std::filesystem::path>& fo
 }
 
 Result<PassProgram> pass_program(const SubShader& sub, const Pass& pass) {
-  if (!pass.program) return fail("the pass has no program", pass.where);
+  if (!pass.program) return fail(ErrorKind::UserInput, "the pass has no program", pass.where);
   const ProgramBlock& program = *pass.program;
   if (program.language == ProgramLanguage::Glsl)
-    return fail(
-        "a GLSLPROGRAM is OpenGL-only GLSL that Unity passes through untouched; xshade compiles HLSL "
-        "(CGPROGRAM or HLSLPROGRAM)",
-        program.start);
+    return fail(ErrorKind::UserInput,
+                "a GLSLPROGRAM is OpenGL-only GLSL that Unity passes through untouched; xshade compiles HLSL "
+                "(CGPROGRAM or HLSLPROGRAM)",
+                program.start);
   PassProgram composed;
   composed.pass = &pass;
   for (size_t i = 0; i < sub.passes.size(); ++i)

@@ -700,19 +700,21 @@ Result<Shader> read_shader(std::string_view text, const std::string& file) {
   try {
     return Reader(text, file).read();
   } catch (const ReadError& error) {
-    return fail(error.diagnostic.message, error.diagnostic.where);
+    return fail(ErrorKind::UserInput, error.diagnostic.message, error.diagnostic.where);
   }
 }
 
 Result<Shader> read_shader_file(const std::filesystem::path& path) {
   std::error_code error;
   if (const uintmax_t size = std::filesystem::file_size(path, error); !error && size > kMaxSourceFileBytes)
-    return fail(path.string() + " is " + std::to_string(size) + " bytes; a shader source may have at most " +
-                std::to_string(kMaxSourceFileBytes >> 20) + " MiB");
+    return fail(ErrorKind::UserInput, path.string() + " is " + std::to_string(size) +
+                                          " bytes; a shader source may have at most " +
+                                          std::to_string(kMaxSourceFileBytes >> 20) + " MiB");
   ReadFailure why{};
   const std::optional<std::string> text = read_file(path, &why);
   if (!text)
-    return fail(path.string() + (why == ReadFailure::IsDirectory ? " is a folder, not a .shader file"
+    return fail(ErrorKind::UserInput,
+                path.string() + (why == ReadFailure::IsDirectory ? " is a folder, not a .shader file"
                                  : why == ReadFailure::NotAFile  ? " is " + not_a_file(path) + ", not a .shader file"
                                                                  : ": cannot be read"));
   return read_shader(*text, path.string());

@@ -80,8 +80,8 @@ Result<fs::path> find_shader_named(const std::string& name, const std::vector<fs
   }
   std::string list;
   for (const fs::path& folder : folders) list += (list.empty() ? "" : ", ") + folder.string();
-  return fail("no .shader in the shader folders declares Shader \"" + name + "\" (searched " +
-              (list.empty() ? std::string("no folder") : list) + " and their subfolders)");
+  return fail(ErrorKind::UserInput, "no .shader in the shader folders declares Shader \"" + name + "\" (searched " +
+                                        (list.empty() ? std::string("no folder") : list) + " and their subfolders)");
 }
 
 std::pair<std::string, std::string> split_used_pass(const std::string& used) {

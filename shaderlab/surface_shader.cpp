@@ -513,10 +513,10 @@ std::string SurfaceDirective::value(std::string_view option) const {
 Result<SurfaceDirective> read_surface_directive(const ProgramBlock& program) {
   const std::vector<std::string_view> found = pragma_arguments(program.text, "surface");
   if (found.empty())
-    return fail(
-        "a program outside any Pass is a surface shader's, and this one has no `#pragma surface surfFunc "
-        "lightModel`; put a vertex and fragment program inside a Pass { }",
-        program.start);
+    return fail(ErrorKind::UserInput,
+                "a program outside any Pass is a surface shader's, and this one has no `#pragma surface surfFunc "
+                "lightModel`; put a vertex and fragment program inside a Pass { }",
+                program.start);
   SurfaceDirective directive;
   std::string_view rest = found.front();
   const auto line = std::count(program.text.data(), rest.data(), '\n');
@@ -530,7 +530,8 @@ Result<SurfaceDirective> read_surface_directive(const ProgramBlock& program) {
     at = stop;
   }
   if (words.size() < 2)
-    return fail("`#pragma surface` needs a surface function and a lighting model: `#pragma surface surf Lambert`",
+    return fail(ErrorKind::UserInput,
+                "`#pragma surface` needs a surface function and a lighting model: `#pragma surface surf Lambert`",
                 directive.where);
   directive.function = words[0];
   directive.lighting_model = words[1];
@@ -541,14 +542,17 @@ Result<SurfaceDirective> read_surface_directive(const ProgramBlock& program) {
     const auto known = std::find_if(std::begin(kOptions), std::end(kOptions),
                                     [&](const KnownOption& candidate) { return name == candidate.name; });
     if (known == std::end(kOptions))
-      return fail("`#pragma surface` has no option '" + name +
+      return fail(ErrorKind::UserInput,
+                  "`#pragma surface` has no option '" + name +
                       "' (Unity's manual lists alpha, alphatest:, vertex:, "
                       "finalcolor:, addshadow, fullforwardshadows, noforwardadd, nofog, ...)",
                   directive.where);
     if (known->takes_value && value.empty())
-      return fail("the surface option '" + name + "' takes a value: `" + name + ":...`", directive.where);
+      return fail(ErrorKind::UserInput, "the surface option '" + name + "' takes a value: `" + name + ":...`",
+                  directive.where);
     if (name == "tessellate" || name == "tessphong")
       return fail(
+          ErrorKind::UserInput,
           "`" + name + ":` asks for a tessellation stage, and xshade compiles vertex and fragment programs only",
           directive.where);
     directive.options.emplace_back(std::move(name), std::move(value));

@@ -136,7 +136,8 @@ Result<DofImages> run_depth_of_field(const CaseContext& context, harness::Progra
   if (settings.keep_coc) {
     auto coc = std::find_if(rendered->pass_images.begin(), rendered->pass_images.end(),
                             [](const auto& pass) { return pass.first == "depth_of_field.coc"; });
-    if (coc == rendered->pass_images.end()) return fail("the depth of field ran no pass named 'coc'");
+    if (coc == rendered->pass_images.end())
+      return fail(ErrorKind::UserInput, "the depth of field ran no pass named 'coc'");
     images.coc = std::move(coc->second);
   }
   return images;

@@ -26,7 +26,8 @@ Result<const harness::FullscreenProgram*> ProbePrograms::get(const CaseContext& 
   if (context.precision == Precision::Half) options.defines.push_back({harness::kHalfEmulationMacro, "1"});
   const auto path = context.probes_dir / file;
   auto module = hlsl::compile_file(path, options);
-  if (!module->ok()) return fail(path.string() + " does not compile:\n" + module->diagnostics.render_all());
+  if (!module->ok())
+    return fail(ErrorKind::UserInput, path.string() + " does not compile:\n" + module->diagnostics.render_all());
   auto program = harness::FullscreenProgram::create(
       *module, context.lane, context.backend,
       {.half_emulation = context.precision == Precision::Half, .trace_nonfinite = traced});
@@ -40,10 +41,11 @@ Result<harness::FloatImage> run_probe(const CaseContext& context, const std::str
   auto program = context.probes.get(context, file);
   if (!program) return fail(program.error());
   const std::optional<uint32_t> size = (*program)->constant_buffer_size("ProbeInputs");
-  if (!size) return fail(file + " has no constant buffer ProbeInputs");
+  if (!size) return fail(ErrorKind::UserInput, file + " has no constant buffer ProbeInputs");
   std::vector<std::byte> bytes(*size);
   if (inputs.size() * sizeof(glm::vec4) > bytes.size())
-    return fail(fmt::format("{} inputs do not fit {}'s ProbeInputs", inputs.size() / vectors_per_input, file));
+    return fail(ErrorKind::UserInput,
+                fmt::format("{} inputs do not fit {}'s ProbeInputs", inputs.size() / vectors_per_input, file));
   std::memcpy(bytes.data(), inputs.data(), inputs.size() * sizeof(glm::vec4));
   const auto columns = uint32_t(inputs.size() / vectors_per_input);
   auto image = (*program)->run(context.backend, columns, rows, {.constant_buffers = {{"ProbeInputs", bytes}}});

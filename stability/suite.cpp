@@ -84,7 +84,8 @@ Result<SuiteRun> run_suite(const std::vector<Case>& cases, const SuiteOptions& o
   harness::VariantCompiler compiler(options.shaders_dir, nullptr);
   for (harness::Lane lane : lanes) {
     auto backend = harness::create_backend(lane, options.backend);
-    if (!backend) return fail(std::string(harness::lane_name(lane)) + ": " + backend.error().to_string());
+    if (!backend)
+      return fail(backend.error().kind, std::string(harness::lane_name(lane)) + ": " + backend.error().to_string());
     run.drivers.emplace_back(lane, (*backend)->driver_info());
     ProbePrograms probes;
     harness::ProgramCache programs;

@@ -51,10 +51,11 @@ Result<TextureData> cube_from_faces(const std::array<FloatImage, kCubeFaces>& fa
   const uint32_t size = faces[0].width;
   for (uint32_t f = 0; f < kCubeFaces; ++f) {
     if (faces[f].width != faces[f].height)
-      return fail(
-          fmt::format("cube face {} is {}x{}: a face must be square", kNames[f], faces[f].width, faces[f].height));
+      return fail(ErrorKind::UserInput, fmt::format("cube face {} is {}x{}: a face must be square", kNames[f],
+                                                    faces[f].width, faces[f].height));
     if (faces[f].width != size)
-      return fail(fmt::format("cube face {} is {}x{}, face +x {}x{}: every face must be the same size", kNames[f],
+      return fail(ErrorKind::UserInput,
+                  fmt::format("cube face {} is {}x{}, face +x {}x{}: every face must be the same size", kNames[f],
                               faces[f].width, faces[f].height, size, size));
   }
   TextureData cube = empty_cube(size);

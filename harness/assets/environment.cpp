@@ -38,7 +38,7 @@ Result<Environment> build_environment(const EnvironmentSpec& desc) {
   Environment environment;
   if (desc.kind == EnvironmentKind::Equirect) {
     Result<FloatImage> file = read_image(desc.file);
-    if (!file) return fail("environment " + desc.file.string() + ": " + file.error().message);
+    if (!file) return fail(file.error().kind, "environment " + desc.file.string() + ": " + file.error().message);
     environment.radiance = file->width == kPrefilteredWidth && file->height == kPrefilteredHeight
                                ? std::move(*file)
                                : resample_equirect(*file, kPrefilteredWidth, kPrefilteredHeight);

@@ -48,7 +48,8 @@ std::optional<float> number(std::string_view word) {
 Result<TextureData> lut_from_strip(const FloatImage& strip) {
   const uint32_t n = strip.height;
   if (n < 2 || strip.width != n * n)
-    return fail(fmt::format("a LUT strip is N * N x N texels (Unity's is 1024 x 32), this image is {}x{}", strip.width,
+    return fail(ErrorKind::UserInput,
+                fmt::format("a LUT strip is N * N x N texels (Unity's is 1024 x 32), this image is {}x{}", strip.width,
                             strip.height));
   std::vector<glm::vec4> texels;
   texels.reserve(size_t(n) * n * n);
@@ -74,11 +75,13 @@ Result<TextureData> read_cube_lut(const std::filesystem::path& file) {
     const std::string_view key = words[0].first;
     if (key == "TITLE") continue;
     if (key == "LUT_1D_SIZE")
-      return fail("a 1D LUT cannot be a 3D texture; give a file with LUT_3D_SIZE", at(words[0].second));
+      return fail(ErrorKind::UserInput, "a 1D LUT cannot be a 3D texture; give a file with LUT_3D_SIZE",
+                  at(words[0].second));
     if (key == "LUT_3D_SIZE") {
       const float value = words.size() == 2 ? number(words[1].first).value_or(0.0f) : 0.0f;
       if (size || !(value >= 2.0f && value <= 256.0f) || value != float(uint32_t(value)))
-        return fail(size ? "LUT_3D_SIZE is given twice" : "LUT_3D_SIZE: expected an integer in 2..256",
+        return fail(ErrorKind::UserInput,
+                    size ? "LUT_3D_SIZE is given twice" : "LUT_3D_SIZE: expected an integer in 2..256",
                     at(words.size() > 1 ? words[1].second : words[0].second));
       size = uint32_t(value);
       texels.reserve(size_t(size) * size * size);
@@ -88,31 +91,36 @@ Result<TextureData> read_cube_lut(const std::filesystem::path& file) {
       const float expected = key == "DOMAIN_MIN" ? 0.0f : 1.0f;
       for (size_t i = 1; i < 4; ++i)
         if (words.size() != 4 || number(words[i].first) != expected)
-          return fail(fmt::format("{}: expected {} {} {}: xshade reads LUTs over the domain [0, 1]", key, expected,
+          return fail(ErrorKind::UserInput,
+                      fmt::format("{}: expected {} {} {}: xshade reads LUTs over the domain [0, 1]", key, expected,
                                   expected, expected),
                       at(words[std::min(i, words.size() - 1)].second));
       continue;
     }
-    if (!size) return fail("expected LUT_3D_SIZE before the table's values", at(words[0].second));
+    if (!size) return fail(ErrorKind::UserInput, "expected LUT_3D_SIZE before the table's values", at(words[0].second));
     if (words.size() != 3)
-      return fail(fmt::format("expected three numbers (red green blue), got {} words", words.size()),
+      return fail(ErrorKind::UserInput,
+                  fmt::format("expected three numbers (red green blue), got {} words", words.size()),
                   at(words[0].second));
     glm::vec4 texel{0.0f, 0.0f, 0.0f, 1.0f};
     for (int c = 0; c < 3; ++c) {
       const auto value = number(words[size_t(c)].first);
       if (!value)
-        return fail(fmt::format("expected a number, got '{}'", words[size_t(c)].first), at(words[size_t(c)].second));
+        return fail(ErrorKind::UserInput, fmt::format("expected a number, got '{}'", words[size_t(c)].first),
+                    at(words[size_t(c)].second));
       texel[c] = *value;
     }
     if (texels.size() == size_t(size) * size * size)
-      return fail(fmt::format("more than the {}^3 = {} values LUT_3D_SIZE asks for", size, texels.size()),
+      return fail(ErrorKind::UserInput,
+                  fmt::format("more than the {}^3 = {} values LUT_3D_SIZE asks for", size, texels.size()),
                   at(words[0].second));
     texels.push_back(texel);
   }
-  if (stream.bad()) return fail("cannot read the LUT file", SourceLocation{name, 0, 0});
-  if (!size) return fail("no LUT_3D_SIZE line: not a 3D .cube LUT", SourceLocation{name, 0, 0});
+  if (stream.bad()) return fail(ErrorKind::UserInput, "cannot read the LUT file", SourceLocation{name, 0, 0});
+  if (!size) return fail(ErrorKind::UserInput, "no LUT_3D_SIZE line: not a 3D .cube LUT", SourceLocation{name, 0, 0});
   if (texels.size() != size_t(size) * size * size)
-    return fail(fmt::format("{} values, LUT_3D_SIZE {} asks for {}", texels.size(), size, size_t(size) * size * size),
+    return fail(ErrorKind::UserInput,
+                fmt::format("{} values, LUT_3D_SIZE {} asks for {}", texels.size(), size, size_t(size) * size * size),
                 SourceLocation{name, 0, 0});
   return lut_texture(size, texels);
 }

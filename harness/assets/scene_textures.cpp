@@ -72,11 +72,13 @@ Result<FloatImage> texture_image(const TextureRef& texture) {
     case TextureOrigin::Checker: return checker();
     case TextureOrigin::File: return read_image(texture.file, texture.srgb);
     case TextureOrigin::Faces:
-      return fail("six faces make a cube map, not an image: the shader must declare a TextureCube");
+      return fail(ErrorKind::UserInput,
+                  "six faces make a cube map, not an image: the shader must declare a TextureCube");
     case TextureOrigin::Environment:
-      return fail("the environment is a cube map, not an image: the shader must declare a TextureCube");
+      return fail(ErrorKind::UserInput,
+                  "the environment is a cube map, not an image: the shader must declare a TextureCube");
   }
-  return fail("unknown texture source");
+  return fail(ErrorKind::Internal, "unknown texture source");
 }
 
 namespace {
@@ -93,12 +95,12 @@ Result<TextureData> texture_data(const TextureRef& texture, TextureShape shape) 
                         texture.source != TextureOrigin::Environment;
   if (shape.multisampled || (shape.dimension != TextureDimension::Tex2D && shape.dimension != TextureDimension::Cube &&
                              shape.dimension != TextureDimension::Tex3D))
-    return fail("the shader declares a " + shape_name(shape) +
-                ", and a scene gives 2D textures, cube maps and 3D textures only");
+    return fail(ErrorKind::UserInput, "the shader declares a " + shape_name(shape) +
+                                          ", and a scene gives 2D textures, cube maps and 3D textures only");
   if (texture.source == TextureOrigin::Environment)
-    return fail("the environment is given by the renderer, not made here");  // scene_renderer.cpp
+    return fail(ErrorKind::Internal, "the environment is given by the renderer, not made here");  // scene_renderer.cpp
   if (shape.dimension == TextureDimension::Tex2D) {
-    if (lut_file) return fail("a .cube file is a 3D LUT: the shader must declare a Texture3D");
+    if (lut_file) return fail(ErrorKind::UserInput, "a .cube file is a 3D LUT: the shader must declare a Texture3D");
     auto image = texture_image(texture);
     if (!image) return fail(image.error());
     return texture_with_mips(*image);
@@ -116,7 +118,9 @@ Result<TextureData> texture_data(const TextureRef& texture, TextureShape shape) 
     return data;
   }
   if (shape.dimension == TextureDimension::Cube) {
-    if (lut_file) return fail("a .cube file is a 3D LUT, not a cube map: the shader must declare a Texture3D");
+    if (lut_file)
+      return fail(ErrorKind::UserInput,
+                  "a .cube file is a 3D LUT, not a cube map: the shader must declare a Texture3D");
     if (texture.source == TextureOrigin::Faces) {
       std::array<FloatImage, kCubeFaces> faces;
       for (uint32_t f = 0; f < kCubeFaces; ++f) {
@@ -129,13 +133,15 @@ Result<TextureData> texture_data(const TextureRef& texture, TextureShape shape) 
     auto equirect = read_image(texture.file, texture.srgb);
     if (!equirect) return fail(equirect.error());
     if (equirect->width != 2 * equirect->height || equirect->width < 4)
-      return fail("a cube map from one image takes an equirect image, twice as wide as high; this one is " +
-                  std::to_string(equirect->width) + "x" + std::to_string(equirect->height) +
-                  " (or give faces = [6 images])");
+      return fail(ErrorKind::UserInput,
+                  "a cube map from one image takes an equirect image, twice as wide as high; this one is " +
+                      std::to_string(equirect->width) + "x" + std::to_string(equirect->height) +
+                      " (or give faces = [6 images])");
     return cube_from_equirect(*equirect, equirect->width / 4);
   }
   // Texture3D.
-  if (texture.source == TextureOrigin::Faces) return fail("six faces make a cube map: the shader declares a Texture3D");
+  if (texture.source == TextureOrigin::Faces)
+    return fail(ErrorKind::UserInput, "six faces make a cube map: the shader declares a Texture3D");
   if (lut_file) return read_cube_lut(texture.file);
   auto strip = read_image(texture.file, texture.srgb);
   if (!strip) return fail(strip.error());

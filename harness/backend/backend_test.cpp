@@ -2,6 +2,8 @@
 // driver: what both backends refuse, they refuse with the same words.
 #include "harness/backend/backend.h"
 
+#include <optional>
+
 #include <gtest/gtest.h>
 
 namespace xshade::harness {
@@ -91,6 +93,29 @@ TEST(Textures, ABindingMustBeWhatTheSlotDeclares) {
   EXPECT_EQ(check({{}, TextureFormat::R32Float, "texture 2"}, point),
             "draw 0: texture 'environment' is read with a comparison sampler, which needs a depth texture "
             "(Depth32Float or a target's depth), but texture 2 is R32Float");
+}
+
+namespace backend_refusal_kinds {
+// The kind of a refusal; none for what is accepted.
+std::optional<ErrorKind> refusal_kind(const Result<void>& result) {
+  return result ? std::nullopt : std::optional<ErrorKind>(result.error().kind);
+}
+}  // namespace backend_refusal_kinds
+
+// Whose fault a refusal is: what the caller gave against the contract is xshade's own bug
+// (Internal), a size the device cannot hold is the device's (Backend). Both exit 3, and neither
+// is ever the user's (exit 2): the renderer checks the scene before a backend sees it.
+TEST(Textures, AContractRefusalIsInternalAndADeviceLimitIsTheBackends) {
+  using backend_refusal_kinds::refusal_kind;
+  EXPECT_EQ(refusal_kind(validate_texture(texture(TextureDimension::Tex2D, 0, 4, 1), 4096)), ErrorKind::Internal);
+  EXPECT_EQ(refusal_kind(validate_texture(texture(TextureDimension::Cube, 4, 4, 5), 4096)), ErrorKind::Internal);
+  EXPECT_EQ(refusal_kind(validate_texture(texture(TextureDimension::Tex2D, 8, 8, 1), 4)), ErrorKind::Backend);
+  EXPECT_EQ(refusal_kind(validate_mesh({})), ErrorKind::Internal);
+  TextureSlot slot{"environment", 16, std::nullopt};
+  slot.shape = {TextureDimension::Cube, false};
+  EXPECT_EQ(refusal_kind(check_bound_texture(slot, {{TextureDimension::Tex2D, false}, TextureFormat::Rgba8Unorm, "t"},
+                                             {Filter::Nearest, AddressMode::ClampToEdge}, "draw 0")),
+            ErrorKind::Internal);
 }
 
 }  // namespace

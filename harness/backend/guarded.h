@@ -19,9 +19,9 @@ Result<T> guarded(const std::string& what, F&& body, DescribeException describe 
   try {
     return body();
   } catch (const std::exception& e) {
-    return fail(what + ": " + describe(e));
+    return fail(ErrorKind::Backend, what + ": " + describe(e));
   } catch (...) {
-    return fail(what + ": unknown exception");
+    return fail(ErrorKind::Backend, what + ": unknown exception");
   }
 }
 

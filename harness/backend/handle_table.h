@@ -40,14 +40,14 @@ class HandleTable {
   // The object, or an error "<where>: no such <kind> (handle <id>)".
   Result<Object*> find(HandleType handle, const std::string& where) const {
     if (Object* object = get(handle)) return object;
-    return fail(unknown(handle, where));
+    return fail(ErrorKind::Internal, unknown(handle, where));
   }
 
   // Destroys the object now. An empty, unknown or already destroyed handle is an error, so that a
   // caller who frees a resource twice hears of it.
   Result<void> erase(HandleType handle, const std::string& where) {
     auto found = objects_.find(handle.id);
-    if (found == objects_.end()) return fail(unknown(handle, where));
+    if (found == objects_.end()) return fail(ErrorKind::Internal, unknown(handle, where));
     objects_.erase(found);
     return {};
   }

@@ -24,6 +24,7 @@ TEST(HandleTable, AnUnknownHandleIsALocatedError) {
   auto found = table.find(TargetHandle{4}, "read_color");
   ASSERT_FALSE(found);
   EXPECT_EQ(found.error().message, "read_color: no such target (handle 4)");
+  EXPECT_EQ(found.error().kind, ErrorKind::Internal);  // the caller's bug, never a scene's
   EXPECT_EQ(table.get(TargetHandle{}), nullptr);
 }
 

@@ -59,7 +59,7 @@ Result<ResolvedPass<Target, Program, Mesh, Texture>> resolve_pass(
     Facts&& facts, Check&& check = {}) {
   ResolvedPass<Target, Program, Mesh, Texture> resolved;
   resolved.target = objects.targets.get(pass.target);
-  if (!resolved.target) return fail(what + ": no such target");
+  if (!resolved.target) return fail(ErrorKind::Internal, what + ": no such target");
   for (size_t i = 0; i < pass.draws.size(); ++i) {
     const DrawItem& item = pass.draws[i];
     ResolvedDraw<Program, Mesh, Texture> draw;
@@ -87,15 +87,15 @@ Result<ResolvedPass<Target, Program, Mesh, Texture>> resolve_pass(
       Texture* texture = nullptr;
       if (source.kind == TextureSource::Kind::Texture) {
         texture = objects.textures.get(TextureHandle{source.id});
-        if (!texture) return fail(bound_to + " is bound to a missing texture" + handle);
+        if (!texture) return fail(ErrorKind::Internal, bound_to + " is bound to a missing texture" + handle);
       } else {
         Target* sampled = objects.targets.get(TargetHandle{source.id});
-        if (!sampled) return fail(bound_to + " is bound to a missing target" + handle);
+        if (!sampled) return fail(ErrorKind::Internal, bound_to + " is bound to a missing target" + handle);
         if (sampled == resolved.target)
-          return fail(bound_to + " samples " + target_id +
-                      ", which the pass renders into: a pass cannot sample its own target");
+          return fail(ErrorKind::Internal, bound_to + " samples " + target_id +
+                                               ", which the pass renders into: a pass cannot sample its own target");
         if (source.kind == TextureSource::Kind::TargetDepth && !sampled->depth)
-          return fail(bound_to + " samples the depth of " + target_id + ", which has no depth");
+          return fail(ErrorKind::Internal, bound_to + " samples the depth of " + target_id + ", which has no depth");
         texture = source.kind == TextureSource::Kind::TargetColor ? &sampled->color : &*sampled->depth;
       }
       const auto [shape, format] = facts(*texture);

@@ -72,20 +72,23 @@ Result<GoldenEntry> read_entry(const toml::table& table, const std::string& file
                          : name == "float_hash" ? &entry.float_hash
                                                 : nullptr;
     if (!field)
-      return fail(fmt::format("unknown key '{}' in a [[golden]] entry (known: scene, lane, reason, blessed_by, "
+      return fail(ErrorKind::UserInput,
+                  fmt::format("unknown key '{}' in a [[golden]] entry (known: scene, lane, reason, blessed_by, "
                               "date, hash, float_hash)",
                               name),
                   where(file, node.source()));
     const auto* text = node.as_string();
-    if (!text) return fail(fmt::format("'{}' must be a string", name), where(file, node.source()));
+    if (!text)
+      return fail(ErrorKind::UserInput, fmt::format("'{}' must be a string", name), where(file, node.source()));
     *field = text->get();
   }
-  if (entry.scene.empty()) return fail("a [[golden]] entry needs a scene", entry.where);
+  if (entry.scene.empty()) return fail(ErrorKind::UserInput, "a [[golden]] entry needs a scene", entry.where);
   if (!entry.lane.empty() && !parse_lane(entry.lane))
-    return fail(fmt::format("unknown lane '{}' (lanes: gl, vk, vk-hlsl)", entry.lane),
+    return fail(ErrorKind::UserInput, fmt::format("unknown lane '{}' (lanes: gl, vk, vk-hlsl)", entry.lane),
                 where(file, table.get("lane")->source()));
   if (entry.reason.find_first_not_of(" \t\r\n") == std::string::npos)
-    return fail(fmt::format("the golden of {} has no reason",
+    return fail(ErrorKind::UserInput,
+                fmt::format("the golden of {} has no reason",
                             entry.lane.empty() ? entry.scene : entry.lane + "/" + entry.scene),
                 entry.where);
   // An entry without its hash reads, so that bless can repair it; GoldenStore::find refuses to
@@ -119,7 +122,8 @@ Result<GoldenManifest> parse_golden_manifest(std::string_view text, const std::s
   try {
     root = toml::parse(text, std::string_view(file_name));
   } catch (const toml::parse_error& error) {
-    return fail(fmt::format("syntax error: {}", error.description()), where(file_name, error.source()));
+    return fail(ErrorKind::UserInput, fmt::format("syntax error: {}", error.description()),
+                where(file_name, error.source()));
   }
 
   // Read in file order, then sorted once: a find and an insert per entry would make a large
@@ -127,14 +131,17 @@ Result<GoldenManifest> parse_golden_manifest(std::string_view text, const std::s
   GoldenManifest manifest;
   for (const auto& [key, node] : root) {
     if (key.str() != "golden")
-      return fail(fmt::format("unknown key '{}' (the manifest holds only [[golden]] entries)", key.str()),
+      return fail(ErrorKind::UserInput,
+                  fmt::format("unknown key '{}' (the manifest holds only [[golden]] entries)", key.str()),
                   where(file_name, node.source()));
     const toml::array* array = node.as_array();
     if (!array || !array->is_array_of_tables())
-      return fail("'golden' must be an array of tables: [[golden]]", where(file_name, node.source()));
+      return fail(ErrorKind::UserInput, "'golden' must be an array of tables: [[golden]]",
+                  where(file_name, node.source()));
     for (const toml::node& element : *array) {
       if (manifest.entries.size() == kMaxManifestEntries)
-        return fail(fmt::format("more than {} [[golden]] entries: this is not a golden manifest xshade wrote",
+        return fail(ErrorKind::UserInput,
+                    fmt::format("more than {} [[golden]] entries: this is not a golden manifest xshade wrote",
                                 kMaxManifestEntries),
                     where(file_name, element.source()));
       Result<GoldenEntry> entry = read_entry(*element.as_table(), file_name);
@@ -151,6 +158,7 @@ Result<GoldenManifest> parse_golden_manifest(std::string_view text, const std::s
     const GoldenEntry& earlier = *second;
     const GoldenEntry& later = *std::next(second);
     return fail(
+        ErrorKind::UserInput,
         fmt::format("a second entry for the golden of {} (the first is at {})",
                     later.lane.empty() ? later.scene : later.lane + "/" + later.scene, earlier.where.to_string()),
         later.where);

@@ -33,12 +33,12 @@ std::string golden_name(const std::string& scene, const std::string& lane) {
 // A scene name becomes a file name: nothing that could reach outside the folder.
 Result<void> check_scene_name(const std::string& scene) {
   if (scene.empty() || scene.front() == '.' || scene.find_first_of("/\\") != std::string::npos)
-    return fail(fmt::format("'{}' is not a scene name", scene));
+    return fail(ErrorKind::UserInput, fmt::format("'{}' is not a scene name", scene));
   return {};
 }
 
 Result<void> check_lane_name(const std::string& lane) {
-  if (!parse_lane(lane)) return fail(fmt::format("unknown lane '{}' (lanes: gl, vk, vk-hlsl)", lane));
+  if (!parse_lane(lane)) return fail(ErrorKind::Usage, fmt::format("unknown lane '{}' (lanes: gl, vk, vk-hlsl)", lane));
   return {};
 }
 
@@ -56,13 +56,15 @@ std::string utc_now_iso8601() {
 Result<void> check_hash(const fs::path& path, const GoldenEntry& entry, const std::string& hash,
                         const std::string& command) {
   if (hash.empty())
-    return fail(fmt::format("the manifest records no hash for {}, so it cannot be checked: bless it again with {}",
+    return fail(ErrorKind::UserInput,
+                fmt::format("the manifest records no hash for {}, so it cannot be checked: bless it again with {}",
                             path.string(), command),
                 entry.where);
   std::optional<std::string> bytes = read_file(path);
-  if (!bytes) return fail("cannot read image " + path.string());
+  if (!bytes) return fail(ErrorKind::Backend, "cannot read image " + path.string());
   if (content_hash(*bytes) != hash)
-    return fail(fmt::format("{} is not the image blessed on {} (its hash differs from the manifest's): only "
+    return fail(ErrorKind::UserInput,
+                fmt::format("{} is not the image blessed on {} (its hash differs from the manifest's): only "
                             "`xshade bless` may change a golden",
                             path.string(), entry.date),
                 entry.where);
@@ -139,7 +141,8 @@ Result<std::optional<GoldenImage>> GoldenStore::find(const std::string& scene, c
     const bool present = fs::exists(path, error);
     const bool has_float = fs::exists(float_path, error);
     if (entry && !present)
-      return fail(fmt::format("the manifest records the golden {}, but {} does not exist",
+      return fail(ErrorKind::UserInput,
+                  fmt::format("the manifest records the golden {}, but {} does not exist",
                               golden_name(scene, candidate), path.string()),
                   entry->where);
     if (!present && !has_float) continue;
@@ -147,31 +150,32 @@ Result<std::optional<GoldenImage>> GoldenStore::find(const std::string& scene, c
     const fs::path& unlisted = present ? path : float_path;
     const std::optional<std::string> own = candidate.empty() ? std::nullopt : std::optional(candidate);
     if (!has_manifest)
-      return fail(
-          fmt::format("{} is a golden, but {} does not exist, so no golden here can be checked: restore it "
-                      "(it is committed with the goldens) or bless again with {}",
-                      unlisted.string(), manifest_path().string(), bless_command(scene, own)));
+      return fail(ErrorKind::UserInput,
+                  fmt::format("{} is a golden, but {} does not exist, so no golden here can be checked: restore it "
+                              "(it is committed with the goldens) or bless again with {}",
+                              unlisted.string(), manifest_path().string(), bless_command(scene, own)));
     if (!entry && !candidate.empty())
-      return fail(
-          fmt::format("{} has no entry in {}: a lane's own golden must say why the lane differs; bless it "
-                      "with {} or remove it",
-                      unlisted.string(), manifest_path().string(), bless_command(scene, candidate)));
+      return fail(ErrorKind::UserInput,
+                  fmt::format("{} has no entry in {}: a lane's own golden must say why the lane differs; bless it "
+                              "with {} or remove it",
+                              unlisted.string(), manifest_path().string(), bless_command(scene, candidate)));
     if (!entry)
-      return fail(
-          fmt::format("{} has no entry in {}: a golden is trusted only as bless wrote it; bless it with {} or "
-                      "remove it",
-                      unlisted.string(), manifest_path().string(), bless_command(scene, std::nullopt)));
+      return fail(ErrorKind::UserInput,
+                  fmt::format("{} has no entry in {}: a golden is trusted only as bless wrote it; bless it with {} or "
+                              "remove it",
+                              unlisted.string(), manifest_path().string(), bless_command(scene, std::nullopt)));
     if (Result<void> same = check_hash(path, *entry, entry->hash, bless_command(scene, own)); !same)
       return fail(same.error());
     // The float image where bless wrote one: the values above 1 that the PNG clamps.
     if (has_float && entry->float_hash.empty())
-      return fail(
-          fmt::format("{} has no float_hash in {}: a golden's float image is trusted only as bless wrote it; "
-                      "bless it with {} or remove it",
-                      float_path.string(), manifest_path().string(), bless_command(scene, candidate)));
+      return fail(ErrorKind::UserInput,
+                  fmt::format("{} has no float_hash in {}: a golden's float image is trusted only as bless wrote it; "
+                              "bless it with {} or remove it",
+                              float_path.string(), manifest_path().string(), bless_command(scene, candidate)));
     if (!entry->float_hash.empty()) {
       if (!has_float)
-        return fail(fmt::format("the manifest records a float image for {}, but {} does not exist",
+        return fail(ErrorKind::UserInput,
+                    fmt::format("the manifest records a float image for {}, but {} does not exist",
                                 golden_name(scene, candidate), float_path.string()),
                     entry->where);
       if (Result<void> same = check_hash(float_path, *entry, entry->float_hash, bless_command(scene, own)); !same)
@@ -187,13 +191,13 @@ Result<std::optional<GoldenImage>> GoldenStore::find(const std::string& scene, c
 Result<BlessOutcome> GoldenStore::bless(const std::string& scene, const std::optional<std::string>& lane,
                                         const FloatImage& image, const std::string& reason,
                                         const std::string& who) const {
-  if (blank(reason)) return fail("a golden is evidence: say why with --reason");
-  if (blank(who)) return fail("a golden records who blessed it: the name is empty");
+  if (blank(reason)) return fail(ErrorKind::Usage, "a golden is evidence: say why with --reason");
+  if (blank(who)) return fail(ErrorKind::Internal, "a golden records who blessed it: the name is empty");
   if (Result<void> valid = check_scene_name(scene); !valid) return fail(valid.error());
   if (lane)
     if (Result<void> valid = check_lane_name(*lane); !valid) return fail(valid.error());
   if (image.width == 0 || image.height == 0)
-    return fail(fmt::format("cannot bless an empty image as the golden of {}", scene));
+    return fail(ErrorKind::Internal, fmt::format("cannot bless an empty image as the golden of {}", scene));
 
   BlessOutcome outcome;
   outcome.path = image_path(scene, lane);

@@ -207,12 +207,15 @@ TEST_F(GoldenStoreTest, ABlankReasonIsRefusedAndNothingIsWritten) {
       auto blessed = GoldenStore(folder_).bless("material_grid", lane, solid(9, 9, 9), reason, "ada");
       ASSERT_FALSE(blessed);
       EXPECT_EQ(blessed.error().to_string(), "a golden is evidence: say why with --reason");
+      EXPECT_EQ(blessed.error().kind, ErrorKind::Usage);  // the command line's: bless exits 2
       EXPECT_EQ(snapshot(), before);
     }
   }
   auto nameless = GoldenStore(folder_).bless("material_grid", std::nullopt, solid(9, 9, 9), "why", " ");
   ASSERT_FALSE(nameless);
   EXPECT_EQ(nameless.error().to_string(), "a golden records who blessed it: the name is empty");
+  // bless always names someone ("unknown" at worst): an empty name is xshade's bug, exit 3.
+  EXPECT_EQ(nameless.error().kind, ErrorKind::Internal);
   EXPECT_EQ(snapshot(), before);
 }
 

@@ -333,7 +333,7 @@ Result<LaneResult> lane_from_json(const json& object) {
     return fail(ErrorKind::Internal, "a lane's result has no valid '" + read.missing() + "'");
   // A lane xshade does not have would be left out of every check between lanes without a word.
   if (!parse_lane(lane.lane))
-    return fail("a lane's result names the lane '" + lane.lane + "', which xshade does not have");
+    return fail(ErrorKind::UserInput, "a lane's result names the lane '" + lane.lane + "', which xshade does not have");
   return lane;
 }
 

@@ -105,8 +105,8 @@ class EglContext final : public GlContext {
     const std::string library = library_name(requested, "XSHADE_EGL_LIBRARY", "libEGL.so.1");
     auto opened = SharedLibrary::open(library);
     if (!opened)
-      return fail(fmt::format("cannot open EGL library '{}' ({}); install the Debian package {}", library,
-                              opened.error().message, kLoaderPackage));
+      return fail(ErrorKind::Backend, fmt::format("cannot open EGL library '{}' ({}); install the Debian package {}",
+                                                  library, opened.error().message, kLoaderPackage));
     library_ = std::move(*opened);
 
     std::vector<std::string> missing;
@@ -120,44 +120,46 @@ class EglContext final : public GlContext {
     library_.load(egl_.MakeCurrent, "eglMakeCurrent", missing);
     library_.load(egl_.GetCurrentContext, "eglGetCurrentContext", missing);
     if (!missing.empty())
-      return fail(fmt::format("'{}' lacks {}; install the Debian package {}", library, fmt::join(missing, ", "),
-                              kLoaderPackage));
+      return fail(ErrorKind::Backend, fmt::format("'{}' lacks {}; install the Debian package {}", library,
+                                                  fmt::join(missing, ", "), kLoaderPackage));
 
     // Client extensions: what the installed vendors offer before any display exists.
     const char* client = egl_.QueryString(EGL_NO_DISPLAY, EGL_EXTENSIONS);
     for (const char* needed : {"EGL_EXT_platform_base", "EGL_MESA_platform_surfaceless"})
       if (!has_extension(client, needed))
-        return fail(
-            fmt::format("EGL in '{}' does not offer {} (client extensions: {}); Mesa's EGL provides it: "
-                        "install the Debian package {}",
-                        library, needed, client ? client : "none", kVendorPackage));
+        return fail(ErrorKind::Backend,
+                    fmt::format("EGL in '{}' does not offer {} (client extensions: {}); Mesa's EGL provides it: "
+                                "install the Debian package {}",
+                                library, needed, client ? client : "none", kVendorPackage));
     egl_.GetPlatformDisplayEXT =
         reinterpret_cast<PFNEGLGETPLATFORMDISPLAYEXTPROC>(egl_.GetProcAddress("eglGetPlatformDisplayEXT"));
     if (egl_.GetPlatformDisplayEXT == nullptr)
-      return fail(fmt::format("EGL in '{}' lists EGL_EXT_platform_base but has no eglGetPlatformDisplayEXT", library));
+      return fail(ErrorKind::Backend,
+                  fmt::format("EGL in '{}' lists EGL_EXT_platform_base but has no eglGetPlatformDisplayEXT", library));
 
     display_ = egl_.GetPlatformDisplayEXT(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, nullptr);
     if (display_ == EGL_NO_DISPLAY)
-      return fail(
-          fmt::format("eglGetPlatformDisplayEXT(EGL_PLATFORM_SURFACELESS_MESA) in '{}' gives no display "
-                      "({}); install the Debian package {}",
-                      library, egl_error_name(egl_.GetError()), kVendorPackage));
+      return fail(ErrorKind::Backend,
+                  fmt::format("eglGetPlatformDisplayEXT(EGL_PLATFORM_SURFACELESS_MESA) in '{}' gives no display "
+                              "({}); install the Debian package {}",
+                              library, egl_error_name(egl_.GetError()), kVendorPackage));
     EGLint major = 0, minor = 0;
     if (egl_.Initialize(display_, &major, &minor) != EGL_TRUE)
-      return fail(
-          fmt::format("eglInitialize of the surfaceless display failed ({}): Mesa's software driver "
-                      "swrast_dri.so is needed; install the Debian package {}",
-                      egl_error_name(egl_.GetError()), kDriverPackage));
+      return fail(ErrorKind::Backend,
+                  fmt::format("eglInitialize of the surfaceless display failed ({}): Mesa's software driver "
+                              "swrast_dri.so is needed; install the Debian package {}",
+                              egl_error_name(egl_.GetError()), kDriverPackage));
 
     const char* extensions = egl_.QueryString(display_, EGL_EXTENSIONS);
     for (const char* needed : {"EGL_KHR_create_context", "EGL_KHR_no_config_context", "EGL_KHR_surfaceless_context"})
       if (!has_extension(extensions, needed))
-        return fail(
-            fmt::format("the EGL surfaceless display (EGL {}.{}, '{}') lacks {}; install a newer Debian "
-                        "package {}",
-                        major, minor, library, needed, kVendorPackage));
+        return fail(ErrorKind::Backend,
+                    fmt::format("the EGL surfaceless display (EGL {}.{}, '{}') lacks {}; install a newer Debian "
+                                "package {}",
+                                major, minor, library, needed, kVendorPackage));
     if (egl_.BindAPI(EGL_OPENGL_API) != EGL_TRUE)
-      return fail(fmt::format("eglBindAPI(EGL_OPENGL_API) failed ({}): this EGL offers no desktop OpenGL",
+      return fail(ErrorKind::Backend,
+                  fmt::format("eglBindAPI(EGL_OPENGL_API) failed ({}): this EGL offers no desktop OpenGL",
                               egl_error_name(egl_.GetError())));
 
     // As the OSMesa route: no debug flag (KHR_debug output is enabled on the context instead).
@@ -166,27 +168,27 @@ class EglContext final : public GlContext {
         EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT, EGL_NONE};
     context_ = egl_.CreateContext(display_, EGL_NO_CONFIG_KHR, EGL_NO_CONTEXT, attributes);
     if (context_ == EGL_NO_CONTEXT)
-      return fail(
-          fmt::format("eglCreateContext cannot make an OpenGL 4.5 core context on the surfaceless display "
-                      "({}); Mesa's llvmpipe is needed ({}, {}: xshade sets LIBGL_ALWAYS_SOFTWARE=1 and "
-                      "GALLIUM_DRIVER=llvmpipe when they are unset): install the Debian package {}",
-                      egl_error_name(egl_.GetError()), environment_value("LIBGL_ALWAYS_SOFTWARE"),
-                      environment_value("GALLIUM_DRIVER"), kDriverPackage));
+      return fail(ErrorKind::Backend,
+                  fmt::format("eglCreateContext cannot make an OpenGL 4.5 core context on the surfaceless display "
+                              "({}); Mesa's llvmpipe is needed ({}, {}: xshade sets LIBGL_ALWAYS_SOFTWARE=1 and "
+                              "GALLIUM_DRIVER=llvmpipe when they are unset): install the Debian package {}",
+                              egl_error_name(egl_.GetError()), environment_value("LIBGL_ALWAYS_SOFTWARE"),
+                              environment_value("GALLIUM_DRIVER"), kDriverPackage));
     if (!make_current())
-      return fail(
-          fmt::format("eglMakeCurrent failed for a new 4.5 core context ({})", egl_error_name(egl_.GetError())));
+      return fail(ErrorKind::Backend, fmt::format("eglMakeCurrent failed for a new 4.5 core context ({})",
+                                                  egl_error_name(egl_.GetError())));
 
     const auto get_string = reinterpret_cast<PFNGLGETSTRINGPROC>(proc_address("glGetString"));
     const GLubyte* text = get_string ? get_string(GL_RENDERER) : nullptr;
     const std::string renderer = text ? reinterpret_cast<const char*>(text) : "";
     // "llvmpipe (LLVM 15.0.6, 256 bits)"; zink on lavapipe says "zink (llvmpipe (...))".
     if (!renderer.starts_with("llvmpipe"))
-      return fail(
-          fmt::format("EGL surfaceless gives the renderer '{}', not llvmpipe, which the gl lane's goldens "
-                      "come from ({}, {}: xshade sets LIBGL_ALWAYS_SOFTWARE=1 and GALLIUM_DRIVER=llvmpipe "
-                      "when they are unset); install the Debian package {}",
-                      renderer.empty() ? "(none)" : renderer, environment_value("LIBGL_ALWAYS_SOFTWARE"),
-                      environment_value("GALLIUM_DRIVER"), kDriverPackage));
+      return fail(ErrorKind::Backend,
+                  fmt::format("EGL surfaceless gives the renderer '{}', not llvmpipe, which the gl lane's goldens "
+                              "come from ({}, {}: xshade sets LIBGL_ALWAYS_SOFTWARE=1 and GALLIUM_DRIVER=llvmpipe "
+                              "when they are unset); install the Debian package {}",
+                              renderer.empty() ? "(none)" : renderer, environment_value("LIBGL_ALWAYS_SOFTWARE"),
+                              environment_value("GALLIUM_DRIVER"), kDriverPackage));
     return {};
   }
 

@@ -221,14 +221,15 @@ Result<void> GlBackend::check_errors(const std::string& what) {
   std::lock_guard lock(log_->mutex);
   const std::vector<std::string>& messages = log_->held ? *log_->held : log_->messages;
   if (!messages.empty()) message += fmt::format(" (the driver's last message: {})", messages.back());
-  return fail(std::move(message));
+  return fail(ErrorKind::Backend, std::move(message));
 }
 
 template <class T, class F>
 Result<T> GlBackend::on_context(const std::string& what, F&& body) {
   return harness::guarded<T>(what, [&]() -> Result<T> {
     if (!make_current())
-      return fail(fmt::format("{}: {} could not make this backend's context current", what, context_->route()));
+      return fail(ErrorKind::Backend,
+                  fmt::format("{}: {} could not make this backend's context current", what, context_->route()));
     Result<T> result = body();
     Result<void> checked = check_errors(what);
     if (!result) return result;
@@ -240,7 +241,8 @@ Result<T> GlBackend::on_context(const std::string& what, F&& body) {
 Result<void> GlBackend::init(std::unique_ptr<GlContext> context, std::filesystem::path compile_messages) {
   context_ = std::move(context);
   compile_messages_ = CompileMessages(std::move(compile_messages));
-  if (!make_current()) return fail(fmt::format("{} could not make a new 4.5 core context current", context_->route()));
+  if (!make_current())
+    return fail(ErrorKind::Backend, fmt::format("{} could not make a new 4.5 core context current", context_->route()));
 
   std::vector<std::string> missing;
   {
@@ -250,7 +252,8 @@ Result<void> GlBackend::init(std::unique_ptr<GlContext> context, std::filesystem
     loading_context = nullptr;
   }
   if (!missing.empty())
-    return fail(fmt::format("the {} context lacks OpenGL functions: {}; install the Debian package {}",
+    return fail(ErrorKind::Backend,
+                fmt::format("the {} context lacks OpenGL functions: {}; install the Debian package {}",
                             context_->route(), fmt::join(missing, ", "), context_->packages()));
 
   info_.api = fmt::format("OpenGL 4.5 core ({})", context_->route());
@@ -264,10 +267,9 @@ Result<void> GlBackend::init(std::unique_ptr<GlContext> context, std::filesystem
   const GLint major = get_integer(GL_MAJOR_VERSION);
   const GLint minor = get_integer(GL_MINOR_VERSION);
   if (major < 4 || (major == 4 && minor < 5))
-    return fail(
-        fmt::format("'{}' gives OpenGL {}.{} ({}), but 4.5 core is required; install a "
-                    "newer Debian package {}",
-                    info_.renderer, major, minor, info_.api_version, context_->packages()));
+    return fail(ErrorKind::Backend, fmt::format("'{}' gives OpenGL {}.{} ({}), but 4.5 core is required; install a "
+                                                "newer Debian package {}",
+                                                info_.renderer, major, minor, info_.api_version, context_->packages()));
 
   gl_.Enable(GL_DEBUG_OUTPUT);
   gl_.Enable(GL_DEBUG_OUTPUT_SYNCHRONOUS);
@@ -342,10 +344,10 @@ void GlBackend::clear_depth_stencil(const Target& target, float depth, uint8_t s
 Result<TargetHandle> GlBackend::create_target(const TargetDesc& desc) {
   return on_context<TargetHandle>("create_target", [&]() -> Result<TargetHandle> {
     if (desc.width == 0 || desc.height == 0)
-      return fail(fmt::format("create_target: size {}x{} is empty", desc.width, desc.height));
+      return fail(ErrorKind::Internal, fmt::format("create_target: size {}x{} is empty", desc.width, desc.height));
     if (std::max(desc.width, desc.height) > static_cast<uint32_t>(max_texture_size_))
-      return fail(fmt::format("create_target: size {}x{} exceeds the driver limit of {}", desc.width, desc.height,
-                              max_texture_size_));
+      return fail(ErrorKind::Backend, fmt::format("create_target: size {}x{} exceeds the driver limit of {}",
+                                                  desc.width, desc.height, max_texture_size_));
     const uint32_t id = objects_.targets.next_handle().id;
     const GLsizei width = static_cast<GLsizei>(desc.width);
     const GLsizei height = static_cast<GLsizei>(desc.height);
@@ -362,7 +364,8 @@ Result<TargetHandle> GlBackend::create_target(const TargetDesc& desc) {
     };
     target->color = make_texture(TextureFormat::Rgba32Float);
     if (desc.second_color) target->second_color = make_texture(TextureFormat::Rgba32Float);
-    if (desc.stencil && !desc.depth) return fail("create_target: a stencil buffer needs a depth buffer");
+    if (desc.stencil && !desc.depth)
+      return fail(ErrorKind::Internal, "create_target: a stencil buffer needs a depth buffer");
     if (desc.depth) {
       target->depth = make_texture(TextureFormat::Depth32Float, desc.stencil);
       gl_.TextureParameteri(target->depth->texture.get(), GL_TEXTURE_COMPARE_MODE, GL_NONE);
@@ -385,10 +388,10 @@ Result<TargetHandle> GlBackend::create_target(const TargetDesc& desc) {
     gl_.NamedFramebufferReadBuffer(framebuffer, GL_COLOR_ATTACHMENT0);
     const GLenum status = gl_.CheckNamedFramebufferStatus(framebuffer, GL_FRAMEBUFFER);
     if (status != GL_FRAMEBUFFER_COMPLETE)
-      return fail(fmt::format(
-          "create_target: the framebuffer of target {} ({}x{}, RGBA32F{}) is "
-          "incomplete (status 0x{:04X})",
-          id, desc.width, desc.height, desc.depth ? (desc.stencil ? " + D32F S8" : " + D32F") : "", status));
+      return fail(ErrorKind::Backend, fmt::format("create_target: the framebuffer of target {} ({}x{}, RGBA32F{}) is "
+                                                  "incomplete (status 0x{:04X})",
+                                                  id, desc.width, desc.height,
+                                                  desc.depth ? (desc.stencil ? " + D32F S8" : " + D32F") : "", status));
     // Start from defined contents (zero colour, far depth) so that reads before a render are
     // stable.
     const std::array<float, 4> zero = {0.0f, 0.0f, 0.0f, 0.0f};
@@ -444,14 +447,15 @@ Result<TextureHandle> GlBackend::upload_texture(const TextureData& data) {
     const std::string what = "upload_texture: " + shape_name(shape);
     if (data.dimension == TextureDimension::Tex3D &&
         std::max({data.width, data.height, data.layers}) > static_cast<uint32_t>(max_3d_texture_size_))
-      return fail(fmt::format("{}: size {}x{}x{} exceeds the driver limit of {}", what, data.width, data.height,
-                              data.layers, max_3d_texture_size_));
+      return fail(ErrorKind::Backend, fmt::format("{}: size {}x{}x{} exceeds the driver limit of {}", what, data.width,
+                                                  data.height, data.layers, max_3d_texture_size_));
     if (is_array(data.dimension) && data.layers > static_cast<uint32_t>(max_array_layers_))
-      return fail(fmt::format("{}: {} layers exceed the driver limit of {}", what, data.layers, max_array_layers_));
+      return fail(ErrorKind::Backend,
+                  fmt::format("{}: {} layers exceed the driver limit of {}", what, data.layers, max_array_layers_));
     const GLint max_samples = texel_kind(data.format) == TexelKind::Float ? max_color_samples_ : max_integer_samples_;
     if (shape.multisampled && (data.samples > static_cast<uint32_t>(max_samples) || !std::has_single_bit(data.samples)))
-      return fail(fmt::format("{}: {} samples of {}; the driver has powers of two up to {}", what, data.samples,
-                              format_name(data.format), max_samples));
+      return fail(ErrorKind::Backend, fmt::format("{}: {} samples of {}; the driver has powers of two up to {}", what,
+                                                  data.samples, format_name(data.format), max_samples));
     const GlFormat format = gl_format(data.format);
     const uint32_t levels = static_cast<uint32_t>(data.levels.size());
     GLuint id = 0;
@@ -529,7 +533,7 @@ Result<GLuint> GlBackend::fill_program(TexelKind kind, const std::string& what) 
   gl_.DetachShader(program.get(), fragment->get());
   GLint linked = GL_FALSE;
   gl_.GetProgramiv(program.get(), GL_LINK_STATUS, &linked);
-  if (linked != GL_TRUE) return fail(what + ": the multisample fill program does not link");
+  if (linked != GL_TRUE) return fail(ErrorKind::Backend, what + ": the multisample fill program does not link");
   return fill_programs_.emplace(kind, std::move(program)).first->second.get();
 }
 
@@ -570,10 +574,10 @@ Result<void> GlBackend::fill_multisampled(const Texture& texture, const TextureD
       gl_.NamedFramebufferTextureLayer(framebuffer_id, GL_COLOR_ATTACHMENT0, texture.texture.get(), 0, layer);
     const GLenum status = gl_.CheckNamedFramebufferStatus(framebuffer_id, GL_FRAMEBUFFER);
     if (status != GL_FRAMEBUFFER_COMPLETE) {
-      result =
-          fail(fmt::format("{}: the framebuffer that fills layer {} ({} samples of {}) is incomplete "
-                           "(status 0x{:04X})",
-                           what, layer, data.samples, format_name(data.format), status));
+      result = fail(ErrorKind::Backend,
+                    fmt::format("{}: the framebuffer that fills layer {} ({} samples of {}) is incomplete "
+                                "(status 0x{:04X})",
+                                what, layer, data.samples, format_name(data.format), status));
       break;
     }
     gl_.BindFramebuffer(GL_FRAMEBUFFER, framebuffer_id);
@@ -591,11 +595,12 @@ Result<void> GlBackend::fill_multisampled(const Texture& texture, const TextureD
 Result<GlShader> GlBackend::compile(const ShaderStageSource& source, GLenum stage, const char* stage_name,
                                     const std::string& what) {
   const std::string shader = fmt::format("{}: the {} shader '{}'", what, stage_name, source.name);
-  if (source.glsl.empty()) return fail(shader + " has no GLSL");
+  if (source.glsl.empty()) return fail(ErrorKind::Internal, shader + " has no GLSL");
   if (source.entry_point != "main")
-    return fail(fmt::format("{} has entry point '{}', but OpenGL calls 'main' only", shader, source.entry_point));
+    return fail(ErrorKind::Internal,
+                fmt::format("{} has entry point '{}', but OpenGL calls 'main' only", shader, source.entry_point));
   GlShader object(&gl_, gl_.CreateShader(stage));
-  if (!object) return fail(shader + ": glCreateShader failed");
+  if (!object) return fail(ErrorKind::Backend, shader + ": glCreateShader failed");
   const GLchar* text = source.glsl.c_str();
   const GLint length = static_cast<GLint>(source.glsl.size());
   gl_.ShaderSource(object.get(), 1, &text, &length);
@@ -639,42 +644,42 @@ Result<ProgramHandle> GlBackend::create_program(const ProgramDesc& desc) {
     std::set<std::string> names;
     std::map<uint32_t, std::string> block_bindings, texture_units;
     for (const UniformBlockSlot& slot : desc.layout.uniform_blocks) {
-      if (!names.insert(slot.name).second) return fail(fmt::format("{}: the layout names '{}' twice", what, slot.name));
+      if (!names.insert(slot.name).second)
+        return fail(ErrorKind::Internal, fmt::format("{}: the layout names '{}' twice", what, slot.name));
       if (slot.size == 0 || slot.size > static_cast<uint32_t>(max_uniform_block_size_))
-        return fail(fmt::format("{}: uniform block '{}' has size {}; the driver allows 1..{} bytes", what, slot.name,
-                                slot.size, max_uniform_block_size_));
+        return fail(ErrorKind::Backend, fmt::format("{}: uniform block '{}' has size {}; the driver allows 1..{} bytes",
+                                                    what, slot.name, slot.size, max_uniform_block_size_));
       if (slot.binding >= static_cast<uint32_t>(max_uniform_buffer_bindings_))
-        return fail(
-            fmt::format("{}: uniform block '{}' has binding {}, but OpenGL allows "
-                        "0..{} (GL_MAX_UNIFORM_BUFFER_BINDINGS)",
-                        what, slot.name, slot.binding, max_uniform_buffer_bindings_ - 1));
+        return fail(ErrorKind::Backend, fmt::format("{}: uniform block '{}' has binding {}, but OpenGL allows "
+                                                    "0..{} (GL_MAX_UNIFORM_BUFFER_BINDINGS)",
+                                                    what, slot.name, slot.binding, max_uniform_buffer_bindings_ - 1));
       if (auto [it, fresh] = block_bindings.emplace(slot.binding, slot.name); !fresh)
-        return fail(
-            fmt::format("{}: binding {} is used by both uniform block '{}' and uniform "
-                        "block '{}'",
-                        what, slot.binding, it->second, slot.name));
+        return fail(ErrorKind::Internal, fmt::format("{}: binding {} is used by both uniform block '{}' and uniform "
+                                                     "block '{}'",
+                                                     what, slot.binding, it->second, slot.name));
     }
     for (const TextureSlot& slot : desc.layout.textures) {
-      if (!names.insert(slot.name).second) return fail(fmt::format("{}: the layout names '{}' twice", what, slot.name));
+      if (!names.insert(slot.name).second)
+        return fail(ErrorKind::Internal, fmt::format("{}: the layout names '{}' twice", what, slot.name));
       if (slot.binding >= static_cast<uint32_t>(max_texture_units_))
-        return fail(
-            fmt::format("{}: texture '{}' has binding {}, but OpenGL allows 0..{} "
-                        "(GL_MAX_COMBINED_TEXTURE_IMAGE_UNITS)",
-                        what, slot.name, slot.binding, max_texture_units_ - 1));
+        return fail(ErrorKind::Backend, fmt::format("{}: texture '{}' has binding {}, but OpenGL allows 0..{} "
+                                                    "(GL_MAX_COMBINED_TEXTURE_IMAGE_UNITS)",
+                                                    what, slot.name, slot.binding, max_texture_units_ - 1));
       if (auto [it, fresh] = texture_units.emplace(slot.binding, slot.name); !fresh)
-        return fail(fmt::format("{}: binding {} is used by both texture '{}' and texture '{}'", what, slot.binding,
-                                it->second, slot.name));
+        return fail(ErrorKind::Internal, fmt::format("{}: binding {} is used by both texture '{}' and texture '{}'",
+                                                     what, slot.binding, it->second, slot.name));
     }
     std::map<uint32_t, std::string> storage_bindings;
     for (const StorageBufferSlot& slot : desc.layout.storage_buffers) {
-      if (!names.insert(slot.name).second) return fail(fmt::format("{}: the layout names '{}' twice", what, slot.name));
+      if (!names.insert(slot.name).second)
+        return fail(ErrorKind::Internal, fmt::format("{}: the layout names '{}' twice", what, slot.name));
       if (slot.binding >= static_cast<uint32_t>(max_storage_buffer_bindings_))
-        return fail(
-            fmt::format("{}: storage buffer '{}' has binding {}, but OpenGL allows 0..{} "
-                        "(GL_MAX_SHADER_STORAGE_BUFFER_BINDINGS)",
-                        what, slot.name, slot.binding, max_storage_buffer_bindings_ - 1));
+        return fail(ErrorKind::Backend, fmt::format("{}: storage buffer '{}' has binding {}, but OpenGL allows 0..{} "
+                                                    "(GL_MAX_SHADER_STORAGE_BUFFER_BINDINGS)",
+                                                    what, slot.name, slot.binding, max_storage_buffer_bindings_ - 1));
       if (auto [it, fresh] = storage_bindings.emplace(slot.binding, slot.name); !fresh)
-        return fail(fmt::format("{}: binding {} is used by both storage buffer '{}' and storage buffer '{}'", what,
+        return fail(ErrorKind::Internal,
+                    fmt::format("{}: binding {} is used by both storage buffer '{}' and storage buffer '{}'", what,
                                 slot.binding, it->second, slot.name));
     }
 
@@ -873,7 +878,8 @@ Result<FloatImage> GlBackend::read_texture(TargetHandle handle, bool second) {
     auto found = objects_.targets.find(handle, what);
     if (!found) return fail(found.error());
     const Target* target = *found;
-    if (second && !target->second_color) return fail(what + ": the target has no second colour attachment");
+    if (second && !target->second_color)
+      return fail(ErrorKind::Internal, what + ": the target has no second colour attachment");
     const Texture& texture = second ? *target->second_color : target->color;
     FloatImage result(texture.width, texture.height);
     // Texture row 0 is window row 0, which the clip control made the top: no flip.
@@ -887,16 +893,16 @@ Result<FloatImage> GlBackend::read_texture(TargetHandle handle, bool second) {
 
 Result<std::unique_ptr<Backend>> create_gl_backend(std::unique_ptr<GlContext> context,
                                                    const std::filesystem::path& compile_messages) {
-  if (context == nullptr) return fail("creating the OpenGL backend: no context");
+  if (context == nullptr) return fail(ErrorKind::Internal, "creating the OpenGL backend: no context");
   const std::string route(context->route());
   try {
     auto backend = std::make_unique<GlBackend>();
     if (auto ok = backend->init(std::move(context), compile_messages); !ok) return fail(ok.error());
     return std::unique_ptr<Backend>(std::move(backend));
   } catch (const std::exception& e) {
-    return fail(fmt::format("creating the OpenGL {} backend: {}", route, e.what()));
+    return fail(ErrorKind::Backend, fmt::format("creating the OpenGL {} backend: {}", route, e.what()));
   } catch (...) {
-    return fail(fmt::format("creating the OpenGL {} backend: unknown exception", route));
+    return fail(ErrorKind::Backend, fmt::format("creating the OpenGL {} backend: unknown exception", route));
   }
 }
 

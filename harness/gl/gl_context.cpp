@@ -69,6 +69,7 @@ Result<std::unique_ptr<GlContext>> create_gl_context(const GlContextOptions& opt
   auto egl = create_egl_context(options.egl_library);
   if (egl) return egl;
   return fail(
+      ErrorKind::Backend,
       fmt::format("no OpenGL 4.5 core context: tried OSMesa: {}; then tried EGL surfaceless: {}. Install the Debian "
                   "package libosmesa6 (Mesa before 25.1), or libegl1, libegl-mesa0 and libgl1-mesa-dri (any Mesa), "
                   "or choose a route with --gl-platform",

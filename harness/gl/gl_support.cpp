@@ -355,15 +355,13 @@ Result<void> check_interface(const gl::Functions& gl, GLuint id, const ProgramLa
     auto slot = std::find_if(layout.uniform_blocks.begin(), layout.uniform_blocks.end(),
                              [&](const UniformBlockSlot& s) { return s.glsl_block_name() == name; });
     if (slot == layout.uniform_blocks.end())
-      return fail(
-          fmt::format("{}: the program uses uniform block '{}', which the layout does not "
-                      "list",
-                      what, name));
+      return fail(ErrorKind::Internal, fmt::format("{}: the program uses uniform block '{}', which the layout does not "
+                                                   "list",
+                                                   what, name));
     if (static_cast<uint32_t>(size) > round_up_16(slot->size))
-      return fail(
-          fmt::format("{}: uniform block '{}' is {} bytes in the GLSL, but the layout "
-                      "gives it {}",
-                      what, name, size, slot->size));
+      return fail(ErrorKind::Internal, fmt::format("{}: uniform block '{}' is {} bytes in the GLSL, but the layout "
+                                                   "gives it {}",
+                                                   what, name, size, slot->size));
   }
 
   // Storage blocks: each one a listed buffer's.
@@ -372,7 +370,8 @@ Result<void> check_interface(const gl::Functions& gl, GLuint id, const ProgramLa
     const std::string name = resource_name(GL_SHADER_STORAGE_BLOCK, index);
     if (std::none_of(layout.storage_buffers.begin(), layout.storage_buffers.end(),
                      [&](const StorageBufferSlot& s) { return s.glsl_block == name; }))
-      return fail(fmt::format("{}: the program uses storage block '{}', which the layout does not list", what, name));
+      return fail(ErrorKind::Internal,
+                  fmt::format("{}: the program uses storage block '{}', which the layout does not list", what, name));
   }
 
   // Uniforms outside blocks: only samplers, each listed as a texture.
@@ -388,9 +387,11 @@ Result<void> check_interface(const gl::Functions& gl, GLuint id, const ProgramLa
     auto slot = std::find_if(layout.textures.begin(), layout.textures.end(),
                              [&](const TextureSlot& s) { return s.uniform_name() == name; });
     if (slot == layout.textures.end())
-      return fail(fmt::format("{}: the program uses uniform '{}', which the layout does not list", what, name));
+      return fail(ErrorKind::Internal,
+                  fmt::format("{}: the program uses uniform '{}', which the layout does not list", what, name));
     if (!is_sampler_type(values[1]))
-      return fail(fmt::format("{}: the layout lists '{}' as a texture, but it is not a sampler", what, name));
+      return fail(ErrorKind::Internal,
+                  fmt::format("{}: the layout lists '{}' as a texture, but it is not a sampler", what, name));
   }
 
   // Vertex inputs: none for a full-screen program; for a mesh program the mesh's locations 0..3,
@@ -406,17 +407,16 @@ Result<void> check_interface(const gl::Functions& gl, GLuint id, const ProgramLa
     const GLint location = values[0];
     if (location < 0) continue;  // a built-in such as gl_VertexID
     if (fullscreen)
-      return fail(
-          fmt::format("{}: a full-screen program's vertex shader must read no vertex "
-                      "input, but it reads location {}",
-                      what, location));
+      return fail(ErrorKind::Internal, fmt::format("{}: a full-screen program's vertex shader must read no vertex "
+                                                   "input, but it reads location {}",
+                                                   what, location));
     if (location <= 3) continue;
     const std::optional<TexelKind> kind = attribute_kind(values[1]);
     if (!kind)
-      return fail(
-          fmt::format("{}: the vertex shader reads input '{}' at location {} of GL type 0x{:04X}, which "
-                      "no mesh supplies and which is not a float, int or uint scalar or vector",
-                      what, resource_name(GL_PROGRAM_INPUT, index), location, values[1]));
+      return fail(ErrorKind::UserInput,
+                  fmt::format("{}: the vertex shader reads input '{}' at location {} of GL type 0x{:04X}, which "
+                              "no mesh supplies and which is not a float, int or uint scalar or vector",
+                              what, resource_name(GL_PROGRAM_INPUT, index), location, values[1]));
     unsupplied_inputs.emplace_back(static_cast<GLuint>(location), *kind);
   }
   return {};

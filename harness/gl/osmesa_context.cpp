@@ -35,8 +35,8 @@ class OsmesaContext final : public GlContext {
     const std::string library = library_name(requested, "XSHADE_OSMESA_LIBRARY", "libOSMesa.so.8");
     auto opened = SharedLibrary::open(library);
     if (!opened)
-      return fail(fmt::format("cannot open OSMesa library '{}' ({}); install the Debian package {}", library,
-                              opened.error().message, kDebianPackage));
+      return fail(ErrorKind::Backend, fmt::format("cannot open OSMesa library '{}' ({}); install the Debian package {}",
+                                                  library, opened.error().message, kDebianPackage));
     library_ = std::move(*opened);
 
     std::vector<std::string> missing;
@@ -45,8 +45,8 @@ class OsmesaContext final : public GlContext {
     library_.load(osmesa_.DestroyContext, "OSMesaDestroyContext", missing);
     library_.load(osmesa_.GetProcAddress, "OSMesaGetProcAddress", missing);
     if (!missing.empty())
-      return fail(fmt::format("'{}' lacks {}; install the Debian package {}", library, fmt::join(missing, ", "),
-                              kDebianPackage));
+      return fail(ErrorKind::Backend, fmt::format("'{}' lacks {}; install the Debian package {}", library,
+                                                  fmt::join(missing, ", "), kDebianPackage));
 
     const std::array<int, 15> attributes = {OSMESA_FORMAT,
                                             OSMESA_RGBA,
@@ -66,11 +66,13 @@ class OsmesaContext final : public GlContext {
     context_ = osmesa_.CreateContextAttribs(attributes.data(), nullptr);
     if (context_ == nullptr)
       return fail(
+          ErrorKind::Backend,
           fmt::format("OSMesaCreateContextAttribs in '{}' cannot make an OpenGL 4.5 core context (Mesa's llvmpipe is "
                       "needed; install the Debian package {})",
                       library, kDebianPackage));
     if (!make_current())
-      return fail(fmt::format("OSMesaMakeCurrent in '{}' failed for a new 4.5 core context", library));
+      return fail(ErrorKind::Backend,
+                  fmt::format("OSMesaMakeCurrent in '{}' failed for a new 4.5 core context", library));
     return {};
   }
 

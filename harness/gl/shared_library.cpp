@@ -11,7 +11,7 @@ Result<SharedLibrary> SharedLibrary::open(const std::string& path) {
   void* handle = dlopen(path.c_str(), RTLD_NOW | RTLD_LOCAL | RTLD_NODELETE);
   if (handle == nullptr) {
     const char* reason = dlerror();
-    return fail(reason ? reason : "unknown reason");
+    return fail(ErrorKind::Backend, reason ? reason : "unknown reason");
   }
   return SharedLibrary(handle);
 }

@@ -66,9 +66,10 @@ Result<std::optional<ExrDataWindow>> exr_data_window(const std::filesystem::path
       const std::optional<int32_t> bytes = header.int32();
       if (!type || !bytes) return window;
       if (*bytes < 0 || uint64_t(*bytes) > header.remaining())
-        return fail("cannot read image " + path.string() + ": its header's attribute '" + *name + "' claims " +
-                    std::to_string(*bytes) + " bytes, more than the file holds (" + std::to_string(size) +
-                    " bytes in all)");
+        return fail(ErrorKind::UserInput, "cannot read image " + path.string() + ": its header's attribute '" + *name +
+                                              "' claims " + std::to_string(*bytes) +
+                                              " bytes, more than the file holds (" + std::to_string(size) +
+                                              " bytes in all)");
       if (*name == "dataWindow" && *type == "box2i" && *bytes == 16 && !window) {
         const std::optional<int32_t> x_min = header.int32(), y_min = header.int32(), x_max = header.int32(),
                                      y_max = header.int32();

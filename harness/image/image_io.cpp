@@ -41,23 +41,26 @@ Result<void> check_header(const ImageFileHeader& spec, const std::filesystem::pa
   std::string size = std::to_string(spec.width) + " x " + std::to_string(spec.height);
   if (spec.depth > 1) size += " x " + std::to_string(spec.depth);
   if (const std::string refused = size_refusal(spec.width, spec.height, size); !refused.empty())
-    return fail(file_error("cannot read image", path, refused));
+    return fail(ErrorKind::UserInput, file_error("cannot read image", path, refused));
   if (spec.depth > 1)
-    return fail(file_error("cannot read image", path,
+    return fail(ErrorKind::UserInput,
+                file_error("cannot read image", path,
                            "it is a volume of " + size + " pixels; xshade reads flat images (depth 1)"));
   if (spec.channels > kMaxImageFileChannels)
-    return fail(file_error("cannot read image", path,
+    return fail(ErrorKind::UserInput,
+                file_error("cannot read image", path,
                            "it has " + std::to_string(spec.channels) + " channels; xshade reads images of at most " +
                                std::to_string(kMaxImageFileChannels)));
   const uint64_t tile_pixels =
       uint64_t(std::max<int64_t>(spec.tile_width, 0)) * uint64_t(std::max<int64_t>(spec.tile_height, 0));
   if (spec.tile_width > int64_t(kMaxImageFileSide) || spec.tile_height > int64_t(kMaxImageFileSide) ||
       tile_pixels > kMaxImageFilePixels || spec.tile_depth > 1)
-    return fail(file_error("cannot read image", path,
-                           "its tiles are " + std::to_string(spec.tile_width) + " x " +
-                               std::to_string(spec.tile_height) + " pixels; xshade reads tiles of at most " +
-                               std::to_string(kMaxImageFileSide) + " pixels a side and " +
-                               std::to_string(kMaxImageFilePixels) + " pixels in all"));
+    return fail(
+        ErrorKind::UserInput,
+        file_error("cannot read image", path,
+                   "its tiles are " + std::to_string(spec.tile_width) + " x " + std::to_string(spec.tile_height) +
+                       " pixels; xshade reads tiles of at most " + std::to_string(kMaxImageFileSide) +
+                       " pixels a side and " + std::to_string(kMaxImageFilePixels) + " pixels in all"));
   return {};
 }
 
@@ -113,23 +116,23 @@ Result<FloatImage> read_image(const std::filesystem::path& path, bool srgb) {
   // The image libraries open by name and read on to the end: a FIFO would be waited on, and a
   // device (/dev/zero) read forever.
   if (const std::string kind = not_a_file(path); !kind.empty())
-    return fail(file_error("cannot read image", path, "it is " + kind + ", not a file"));
+    return fail(ErrorKind::UserInput, file_error("cannot read image", path, "it is " + kind + ", not a file"));
   // OpenEXR allocates what its header claims as it opens the file: that is checked first.
   auto window = exr_data_window(path);
   if (!window) return fail(window.error());
   if (*window) {
     const std::string size = std::to_string((*window)->width) + " x " + std::to_string((*window)->height);
     if (const std::string refused = size_refusal((*window)->width, (*window)->height, size); !refused.empty())
-      return fail(file_error("cannot read image", path, refused));
+      return fail(ErrorKind::UserInput, file_error("cannot read image", path, refused));
   }
   auto codec = image_codec();
   if (!codec) return fail(codec.error());
   std::string error;
   std::unique_ptr<ImageFileReader> input = (*codec)->open(path.string(), error);
-  if (!input) return fail(file_error("cannot read image", path, error));
+  if (!input) return fail(ErrorKind::UserInput, file_error("cannot read image", path, error));
   const ImageFileHeader& spec = input->header();
   if (spec.width <= 0 || spec.height <= 0 || spec.channels <= 0)
-    return fail(file_error("cannot read image", path, "it has no pixels"));
+    return fail(ErrorKind::UserInput, file_error("cannot read image", path, "it has no pixels"));
   // The header is all that has been read: its sizes are checked before they size any buffer.
   if (Result<void> fits = check_header(spec, path); !fits) return fail(fits.error());
   const int channels = spec.channels;
@@ -144,14 +147,14 @@ Result<FloatImage> read_image(const std::filesystem::path& path, bool srgb) {
   const int file_alpha = spec.alpha_channel >= 0 ? spec.alpha_channel : (channels == 4 ? 3 : -1);
   if (!integer && channels == 4 && file_alpha == 3) {
     if (std::string failed = input->read(4, PixelType::Float, image.rgba.data()); !failed.empty())
-      return fail(file_error("cannot read image", path, failed));
+      return fail(ErrorKind::UserInput, file_error("cannot read image", path, failed));
     return image;
   }
   std::vector<float> pixels(size_t(spec.width) * spec.height * channels);
   std::vector<uint8_t> bytes(encoded ? pixels.size() : 0);
   const std::string failed = encoded ? input->read(channels, PixelType::UInt8, bytes.data())
                                      : input->read(channels, PixelType::Float, pixels.data());
-  if (!failed.empty()) return fail(file_error("cannot read image", path, failed));
+  if (!failed.empty()) return fail(ErrorKind::UserInput, file_error("cannot read image", path, failed));
 
   // Grey and grey+alpha files spread their first channel over RGB; missing alpha is 1.
   const int alpha_channel = spec.alpha_channel >= 0 ? spec.alpha_channel : (channels == 2 ? 1 : channels == 4 ? 3 : -1);

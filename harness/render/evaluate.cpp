@@ -24,7 +24,8 @@ Result<FullscreenProgram> FullscreenProgram::create(const hlsl::Module& module, 
   glsl::NonfiniteTrace trace;
   auto desc = program_for_lane(module, lane, options, &trace);
   if (!desc) return fail(desc.error());
-  if (!desc->fullscreen) return fail("the shader must be a fragment shader without a vertex stage");
+  if (!desc->fullscreen)
+    return fail(ErrorKind::UserInput, "the shader must be a fragment shader without a vertex stage");
   auto program = backend.create_program(*desc);
   if (!program) return fail(program.error());
   FullscreenProgram made;
@@ -96,26 +97,27 @@ Result<FloatImage> FullscreenProgram::run(Backend& backend, uint32_t width, uint
     auto given = constant_buffers.find(buffer.name);
     const std::vector<std::byte>& bytes = given != constant_buffers.end() ? given->second : buffer.defaults;
     if (bytes.size() != buffer.defaults.size())
-      return fail("constant buffer '" + buffer.name + "' needs " + std::to_string(buffer.defaults.size()) +
-                  " bytes, not " + std::to_string(bytes.size()));
+      return fail(ErrorKind::Internal, "constant buffer '" + buffer.name + "' needs " +
+                                           std::to_string(buffer.defaults.size()) + " bytes, not " +
+                                           std::to_string(bytes.size()));
     draw.uniforms.push_back({buffer.name, bytes});
   }
   for (const auto& given : inputs.storage_buffers)
     if (std::none_of(storage_buffers_.begin(), storage_buffers_.end(),
                      [&](const StorageBufferInput& buffer) { return buffer.name == given.first; }))
-      return fail("the program reads no buffer named '" + given.first + "'");
+      return fail(ErrorKind::Internal, "the program reads no buffer named '" + given.first + "'");
   for (const StorageBufferInput& buffer : storage_buffers_) {
     auto given = inputs.storage_buffers.find(buffer.name);
     if (given == inputs.storage_buffers.end())
-      return fail("the shader reads the buffer '" + buffer.name +
-                  "', which has no default: give its bytes (xshade eval: --seed N)");
+      return fail(ErrorKind::UserInput, "the shader reads the buffer '" + buffer.name +
+                                            "', which has no default: give its bytes (xshade eval: --seed N)");
     draw.storage_buffers.push_back({buffer.name, given->second});
   }
   // A named entry, not a structured binding: clang before 16 lets no lambda capture one.
   for (const auto& given : textures)
     if (std::none_of(texture_slots_.begin(), texture_slots_.end(),
                      [&](const TextureSlot& slot) { return slot.name == given.first; }))
-      return fail("the program reads no texture named '" + given.first + "'");
+      return fail(ErrorKind::Internal, "the program reads no texture named '" + given.first + "'");
   // One default per distinct declaration, uploaded once per run.
   std::map<std::string, TextureHandle> defaults;
   for (const TextureSlot& slot : texture_slots_) {

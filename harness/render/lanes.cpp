@@ -34,7 +34,7 @@ Result<std::unique_ptr<Backend>> create_backend(Lane lane, const BackendOptions&
     case Lane::Vk:
     case Lane::VkHlsl: return create_vulkan_backend({.validation = options.validation});
   }
-  return fail("unknown lane");
+  return fail(ErrorKind::Internal, "unknown lane");
 }
 
 Result<ShaderStageSource> stage_for_lane(Lane lane, spirv::Stage stage, const GlslStagePair& source) {
@@ -44,7 +44,8 @@ Result<ShaderStageSource> stage_for_lane(Lane lane, spirv::Stage stage, const Gl
     result.glsl = source.gl;
     return result;
   }
-  if (lane == Lane::VkHlsl) return fail("hand-written GLSL cannot run on the vk-hlsl lane", {source.name});
+  if (lane == Lane::VkHlsl)
+    return fail(ErrorKind::Internal, "hand-written GLSL cannot run on the vk-hlsl lane", {source.name});
   auto module = spirv::compile_vulkan_glsl(source.vk, stage, source.name);
   if (!module) return fail(module.error());
   result.spirv = std::move(module->words);

@@ -253,11 +253,13 @@ Result<SourceModule> compile_source(const fs::path& path, hlsl::CompileOptions o
   const shaderlab::SubShader* sub = nullptr;
   for (int hops = 0; !(sub = shaderlab::drawn_subshader(*shader, platform)); ++hops) {
     if (!shader->fallback || shader->fallback->empty())
-      return fail("'" + shader->name + "' " + shaderlab::without_subshader(*shader, platform) +
+      return fail(ErrorKind::UserInput,
+                  "'" + shader->name + "' " + shaderlab::without_subshader(*shader, platform) +
                       (shader->fallback ? " (Fallback Off)" : ""),
                   {file.string(), 1, 1});
     if (hops == kLongestFallbackChain)
-      return fail("'" + shader->name + "' falls back after " + std::to_string(kLongestFallbackChain) +
+      return fail(ErrorKind::UserInput,
+                  "'" + shader->name + "' falls back after " + std::to_string(kLongestFallbackChain) +
                       " shaders without a SubShader (a chain that goes round?)",
                   {file.string(), 1, 1});
     auto fallback = named.read(*shader->fallback, {file.string(), 1, 1});
@@ -323,13 +325,15 @@ Result<SourceModule> compile_source(const fs::path& path, hlsl::CompileOptions o
   if (source.drawn_passes.empty()) {
     if (std::all_of(sub->passes.begin(), sub->passes.end(),
                     [](const shaderlab::Pass& pass) { return pass.kind == shaderlab::PassKind::FixedFunction; }))
-      return fail("'" + shader->name +
+      return fail(ErrorKind::UserInput,
+                  "'" + shader->name +
                       "' is a fixed-function shader (SetTexture, Lighting, Material): Unity generates its " +
                       "programs, xshade compiles only the programs a shader writes (CGPROGRAM or HLSLPROGRAM)",
                   sub->where);
     std::string why;
     for (const std::string& note : source.notes) why += (why.empty() ? "" : "; ") + note;
-    return fail("'" + shader->name +
+    return fail(ErrorKind::UserInput,
+                "'" + shader->name +
                     "' has no pass the forward renderer draws (a program pass without LightMode, or "
                     "with Always or ForwardBase): " +
                     why,
@@ -340,7 +344,8 @@ Result<SourceModule> compile_source(const fs::path& path, hlsl::CompileOptions o
     return fail(ErrorKind::Internal, "'" + shader->name + "' has no pass " + std::to_string(source.pass), sub->where);
   // A pass asked for by index (a post step's, compile --pass) that has no program to compile.
   if (passes[source.pass].pass->kind != shaderlab::PassKind::Program)
-    return fail(pass_label(*passes[source.pass].pass, source.pass) + " of '" + shader->name +
+    return fail(ErrorKind::UserInput,
+                pass_label(*passes[source.pass].pass, source.pass) + " of '" + shader->name +
                     "' has no program: a GrabPass, a fixed-function pass or a UsePass not found draws none",
                 passes[source.pass].pass->where);
   const SourcePass& drawn = passes[source.pass];
@@ -352,7 +357,8 @@ Result<SourceModule> compile_source(const fs::path& path, hlsl::CompileOptions o
   for (const hlsl::TextureResource& texture : source.module->reflection.textures)
     for (const auto& [grabbed, where] : grabs)
       if (texture.used && texture.name == grabbed)
-        return fail("'" + shader->name +
+        return fail(ErrorKind::UserInput,
+                    "'" + shader->name +
                         "': GrabPass is not drawn yet: xshade's renderer does not copy the target "
                         "between an object's passes, and " +
                         pass_label(*drawn.pass, source.pass) + " reads '" + grabbed + "'",

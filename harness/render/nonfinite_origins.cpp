@@ -43,8 +43,8 @@ Result<NonfiniteOrigins> find_nonfinite_origins(const FloatImage& output, const 
                                                 const std::vector<CompiledVariant>& variants, bool count_negative) {
   const FloatImage& trace = record.record;
   if (trace.width != output.width || trace.height != output.height)
-    return fail(fmt::format("the record of pass {} is {}x{}, its image {}x{}", record.pass, trace.width, trace.height,
-                            output.width, output.height));
+    return fail(ErrorKind::Internal, fmt::format("the record of pass {} is {}x{}, its image {}x{}", record.pass,
+                                                 trace.width, trace.height, output.width, output.height));
   using Key = std::tuple<uint32_t, uint32_t, uint32_t, uint32_t>;  // site number, calls innermost first
   std::map<Key, size_t> index_of;
   NonfiniteOrigins found;
@@ -66,10 +66,10 @@ Result<NonfiniteOrigins> find_nonfinite_origins(const FloatImage& output, const 
       uint32_t number = 0, call[3] = {0, 0, 0};
       if (!whole(channels.r, number) || !whole(channels.g, call[0]) || !whole(channels.b, call[1]) ||
           !whole(channels.a, call[2]))
-        return fail(
-            fmt::format("the record of pass {} holds ({:g}, {:g}, {:g}, {:g}) at ({}, {}), which no traced "
-                        "program writes",
-                        record.pass, channels.r, channels.g, channels.b, channels.a, x, y));
+        return fail(ErrorKind::Internal,
+                    fmt::format("the record of pass {} holds ({:g}, {:g}, {:g}, {:g}) at ({}, {}), which no traced "
+                                "program writes",
+                                record.pass, channels.r, channels.g, channels.b, channels.a, x, y));
       if (number == 0) {
         if (bad) ++found.unattributed_pixels;
         continue;
@@ -84,10 +84,10 @@ Result<NonfiniteOrigins> find_nonfinite_origins(const FloatImage& output, const 
         const uint32_t program = glsl::NonfiniteTrace::program_in(number);
         const glsl::TraceSite* site = program < variants.size() ? variants[program].trace.site_in(number) : nullptr;
         if (!site)
-          return fail(
-              fmt::format("the record of pass {} names site {} of program {}, which the traced variants do "
-                          "not have",
-                          record.pass, number & 0xFFFFu, program));
+          return fail(ErrorKind::Internal,
+                      fmt::format("the record of pass {} names site {} of program {}, which the traced variants do "
+                                  "not have",
+                                  record.pass, number & 0xFFFFu, program));
         const glsl::NonfiniteTrace& table = variants[program].trace;
         NonfiniteOrigin origin;
         origin.pass = record.pass;
@@ -96,7 +96,8 @@ Result<NonfiniteOrigins> find_nonfinite_origins(const FloatImage& output, const 
         for (uint32_t c : call) {
           if (c == 0) break;
           if (c > table.calls.size())
-            return fail(fmt::format("the record of pass {} names call {} of program {}, which has {}", record.pass, c,
+            return fail(ErrorKind::Internal,
+                        fmt::format("the record of pass {} names call {} of program {}, which has {}", record.pass, c,
                                     program, table.calls.size()));
           origin.calls.push_back(table.calls[c - 1]);
         }

@@ -91,7 +91,8 @@ class SourceReader {
                         module->diagnostics.errors_with_excerpts()});
     }
     if (post && facts.passes.empty())
-      return fail("post effect '" + library_path + "' declares no passes (#pragma pass)", {path->string(), 0, 0});
+      return fail(ErrorKind::UserInput, "post effect '" + library_path + "' declares no passes (#pragma pass)",
+                  {path->string(), 0, 0});
     facts.keyword_sets = module->reflection.keyword_sets;
     facts.names = shader_names(library_path, module->reflection);
     for (const shaderlab::Property& property : facts.properties)
@@ -341,10 +342,11 @@ Result<Plan> plan_scene(const Scene& scene, const ShaderSearchPath& shaders) {
                                    ? std::string("no pass drawn for it receives them (none declares ") + keyword + ")"
                                    : std::string("no object casts (no ShadowCaster pass, nor its Fallback's)")));
     else if (scene.unity_platform != shaderlab::UnityPlatform::GLCore)
-      return fail("light " + std::to_string(light + 1) + "'s shadows: a scene of the Unity platform " +
-                  std::string(shaderlab::renderer_name(scene.unity_platform)) +
-                  " draws no shadow map yet (its reversed depth and flipped targets are not in the shadow pass); "
-                  "use [unity] platform = \"glcore\" or shadows = \"none\"");
+      return fail(ErrorKind::UserInput,
+                  "light " + std::to_string(light + 1) + "'s shadows: a scene of the Unity platform " +
+                      std::string(shaderlab::renderer_name(scene.unity_platform)) +
+                      " draws no shadow map yet (its reversed depth and flipped targets are not in the shadow pass); "
+                      "use [unity] platform = \"glcore\" or shadows = \"none\"");
     else
       plan.shadow_lights.push_back(light);
   }

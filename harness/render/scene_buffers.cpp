@@ -19,13 +19,16 @@ Result<uint32_t> word_of(double number, char type) {
   };
   switch (type) {
     case 'i':
-      if (!whole_in(double(INT32_MIN), double(INT32_MAX))) return fail(fmt::format("{} is not an int", number));
+      if (!whole_in(double(INT32_MIN), double(INT32_MAX)))
+        return fail(ErrorKind::UserInput, fmt::format("{} is not an int", number));
       return uint32_t(int32_t(number));
     case 'u':
-      if (!whole_in(0.0, double(UINT32_MAX))) return fail(fmt::format("{} is not a uint", number));
+      if (!whole_in(0.0, double(UINT32_MAX)))
+        return fail(ErrorKind::UserInput, fmt::format("{} is not a uint", number));
       return uint32_t(number);
     case 'b':
-      if (number != 0.0 && number != 1.0) return fail(fmt::format("{} is not a bool (0 or 1)", number));
+      if (number != 0.0 && number != 1.0)
+        return fail(ErrorKind::UserInput, fmt::format("{} is not a bool (0 or 1)", number));
       return uint32_t(number);
     default: {
       const float value = float(number);
@@ -48,7 +51,8 @@ Result<std::vector<std::byte>> scene_buffer_bytes(const BufferRef& given, const 
       return fail(std::move(error));
     }
     if (text->empty() || text->size() % buffer.stride != 0)
-      return fail(fmt::format("{}: {} is {} bytes, which is not a whole number of its {}-byte elements (at least one)",
+      return fail(ErrorKind::UserInput,
+                  fmt::format("{}: {} is {} bytes, which is not a whole number of its {}-byte elements (at least one)",
                               what, given.file.string(), text->size(), buffer.stride),
                   given.where);
     std::vector<std::byte> bytes(text->size());
@@ -56,14 +60,16 @@ Result<std::vector<std::byte>> scene_buffer_bytes(const BufferRef& given, const 
     return bytes;
   }
   if (buffer.words.empty() || given.numbers.empty() || given.numbers.size() % buffer.words.size() != 0)
-    return fail(fmt::format("{}: an element is {} 32-bit words; give a multiple of {} numbers, not {}", what,
+    return fail(ErrorKind::UserInput,
+                fmt::format("{}: an element is {} 32-bit words; give a multiple of {} numbers, not {}", what,
                             buffer.words.size(), buffer.words.size(), given.numbers.size()),
                 given.where);
   std::vector<std::byte> bytes(given.numbers.size() * 4);
   for (size_t i = 0; i < given.numbers.size(); ++i) {
     auto word = word_of(given.numbers[i], buffer.words[i % buffer.words.size()]);
     if (!word)
-      return fail(fmt::format("{}: number {} (word {} of element {}): {}", what, i, i % buffer.words.size(),
+      return fail(ErrorKind::UserInput,
+                  fmt::format("{}: number {} (word {} of element {}): {}", what, i, i % buffer.words.size(),
                               i / buffer.words.size(), word.error().message),
                   given.where);
     std::memcpy(bytes.data() + i * 4, &*word, 4);

@@ -30,7 +30,7 @@ far = 100
 Result<Plan> plan(const std::string& body, const ShaderSearchPath& shaders = kShaderLibrary) {
   auto scene = parse_scene(std::string(kHeader) + body, "/tmp/contract_test.toml");
   EXPECT_TRUE(scene) << scene.error().to_string();
-  if (!scene) return fail("scene does not parse");
+  if (!scene) return fail(ErrorKind::UserInput, "scene does not parse");
   return plan_scene(*scene, shaders);
 }
 

@@ -83,7 +83,7 @@ Result<std::vector<UniformBinding>> uniform_bindings(const CompiledVariant& vari
   std::vector<UniformBinding> bindings;
   for (const UniformBlock& block : variant.interface.uniform_blocks) {
     auto bytes = build_uniform_block(block, [&values](const std::string& name) { return values(name); });
-    if (!bytes) return fail(where + ": " + bytes.error().message);
+    if (!bytes) return fail(bytes.error().kind, where + ": " + bytes.error().message);
     bindings.push_back({block.name, std::move(*bytes)});
   }
   return bindings;
@@ -97,7 +97,7 @@ Result<MeshData> mesh_data(const MeshRef& mesh) {
     case MeshKind::Cube: return cube_mesh();
     case MeshKind::ObjFile: return load_obj(mesh.file);
   }
-  return fail("unknown mesh kind");
+  return fail(ErrorKind::Internal, "unknown mesh kind");
 }
 
 // Post passes sample colour bilinear and depth exactly, both clamped at the edges
@@ -156,20 +156,20 @@ class SceneRenderer {
   // The post passes alone, on the given colour and depth.
   Result<RenderedScene> render_post(const FloatImage& color, const FloatImage& depth) {
     if (rows_bottom_first_)
-      return fail(
-          "post passes on given images draw only in scenes of xshade's own shaders: the images are upright, "
-          "their depth 0 at the near plane");
+      return fail(ErrorKind::UserInput,
+                  "post passes on given images draw only in scenes of xshade's own shaders: the images are upright, "
+                  "their depth 0 at the near plane");
     for (const auto& [name, image] : {std::pair{"colour", &color}, std::pair{"depth", &depth}}) {
       const bool fits = image->width == scene_.width && image->height == scene_.height &&
                         image->rgba.size() == size_t(image->width) * image->height * 4;
       if (!fits)
-        return fail(std::string("the ") + name + " image is " + std::to_string(image->width) + "x" +
-                    std::to_string(image->height) + ", the scene " + std::to_string(scene_.width) + "x" +
-                    std::to_string(scene_.height));
+        return fail(ErrorKind::UserInput, std::string("the ") + name + " image is " + std::to_string(image->width) +
+                                              "x" + std::to_string(image->height) + ", the scene " +
+                                              std::to_string(scene_.width) + "x" + std::to_string(scene_.height));
     }
     if (std::none_of(plan_.passes.begin(), plan_.passes.end(),
                      [](const PlannedPass& pass) { return pass.kind == PlannedPass::Kind::Post; }))
-      return fail("scene '" + scene_.name + "' has no post pass to run on the given images");
+      return fail(ErrorKind::UserInput, "scene '" + scene_.name + "' has no post pass to run on the given images");
     auto color_texture = resources_.upload_texture(float_texture(color));
     if (!color_texture) return fail(from_backend(color_texture.error()));
     auto depth_texture = resources_.upload_texture(float_texture(depth));
@@ -218,7 +218,8 @@ class SceneRenderer {
   // The image so far is always a target's colour once a pass has run: the scene pass's or a
   // post pass's.
   Result<FloatImage> read_current() {
-    if (current_.binding.kind != TextureSource::Kind::TargetColor) return fail("no pass has rendered an image to read");
+    if (current_.binding.kind != TextureSource::Kind::TargetColor)
+      return fail(ErrorKind::Internal, "no pass has rendered an image to read");
     auto image = backend_.read_color(TargetHandle{current_.binding.id});
     if (!image) return fail(from_backend(image.error()));
     return upright(std::move(*image));
@@ -282,7 +283,8 @@ class SceneRenderer {
       if (known.ref == ref && known.shape == shape) return known;
     if (ref.source == TextureOrigin::Environment) {
       if (shape != TextureShape{TextureDimension::Cube, false})
-        return fail("the environment is a cube map; the shader declares a " + shape_name(shape), ref.where);
+        return fail(ErrorKind::UserInput, "the environment is a cube map; the shader declares a " + shape_name(shape),
+                    ref.where);
       auto cube = environment_cube();
       if (!cube) return fail(cube.error());
       return textures_.emplace_back(
@@ -578,14 +580,16 @@ class SceneRenderer {
       // Unity's depth texture is the scene's depth where the pass names no other source.
       const bool camera_depth = input == declaration.inputs.end() && name == "_CameraDepthTexture";
       if (input == declaration.inputs.end() && !camera_depth)
-        return fail("pass '" + planned.name + "' samples '" + name +
-                    "', which neither its #pragma pass nor the scene's [post.textures] gives a source");
+        return fail(ErrorKind::UserInput,
+                    "pass '" + planned.name + "' samples '" + name +
+                        "', which neither its #pragma pass nor the scene's [post.textures] gives a source");
       const PassSource& source = camera_depth || input->kind == hlsl::PassInput::Kind::SceneDepth ? scene_depth_
                                  : input->kind == hlsl::PassInput::Kind::Pass ? pass_outputs_.at(input->pass)
                                                                               : effect_input_;
       if (const TextureShape shape = declared_shape(variant, name); shape != TextureShape{})
-        return fail("pass '" + planned.name + "' samples '" + name + "' as a " + shape_name(shape) +
-                    ", and its source (the scene's image or depth, or an earlier pass's) is a Texture2D");
+        return fail(ErrorKind::UserInput,
+                    "pass '" + planned.name + "' samples '" + name + "' as a " + shape_name(shape) +
+                        ", and its source (the scene's image or depth, or an earlier pass's) is a Texture2D");
       values[name + "_TexelSize"] = texel_size(source.size);
       draw.textures.push_back({name, source.binding});
     }

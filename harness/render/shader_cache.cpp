@@ -211,13 +211,15 @@ Result<void> ShaderCache::store(const VariantRequest& request, Lane lane, const 
                                 const std::vector<fs::path>& dependencies) const {
   std::error_code error;
   fs::create_directories(directory_, error);
-  if (error) return fail("cannot create the shader cache " + directory_.string() + ": " + error.message());
+  if (error)
+    return fail(ErrorKind::Backend, "cannot create the shader cache " + directory_.string() + ": " + error.message());
   const std::string key = request_key(request, lane);
   json listed = json::array();
   std::string result_key = key;
   for (const fs::path& path : dependencies) {
     const std::optional<std::string> contents = read_file(path);
-    if (!contents) return fail("cannot read " + path.string() + " to record it in the shader cache");
+    if (!contents)
+      return fail(ErrorKind::Backend, "cannot read " + path.string() + " to record it in the shader cache");
     const std::string hash = content_hash(*contents);
     listed.push_back({{"path", fs::absolute(path).lexically_normal().string()}, {"hash", hash}});
     result_key += hash;

@@ -163,7 +163,7 @@ Result<ShaderInterface> parse_shader_interface_json(const std::string& text) {
       interface.properties.push_back({p.at("name"), p.at("value").get<std::vector<float>>()});
     return interface;
   } catch (const json::exception& error) {
-    return fail(std::string("a cached shader interface is malformed: ") + error.what());
+    return fail(ErrorKind::Internal, std::string("a cached shader interface is malformed: ") + error.what());
   }
 }
 
@@ -173,11 +173,14 @@ Result<std::vector<std::byte>> build_uniform_block(const UniformBlock& block, co
     const std::vector<float>* value = lookup(member.name);
     if (!value && !member.read) continue;  // zeros, which nothing reads
     if (!value)
-      return fail("uniform '" + member.name + "' in '" + block.name +
-                  "' has no value: the renderer does not supply it, the scene does not set it and it has no default");
+      return fail(
+          ErrorKind::UserInput,
+          "uniform '" + member.name + "' in '" + block.name +
+              "' has no value: the renderer does not supply it, the scene does not set it and it has no default");
     if (value->size() != member.components())
-      return fail("uniform '" + member.name + "' in '" + block.name + "' has " + std::to_string(member.components()) +
-                  " components; the value given has " + std::to_string(value->size()));
+      return fail(ErrorKind::UserInput, "uniform '" + member.name + "' in '" + block.name + "' has " +
+                                            std::to_string(member.components()) + " components; the value given has " +
+                                            std::to_string(value->size()));
     const uint32_t stride = element_stride(member);
     const uint32_t per_element = member.rows * member.cols;
     for (uint32_t element = 0; element < std::max(member.array_length, 1u); ++element) {
@@ -189,8 +192,8 @@ Result<std::vector<std::byte>> build_uniform_block(const UniformBlock& block, co
           else
             offset += col * 4;
           if (offset + 4 > bytes.size())
-            return fail("uniform '" + member.name + "' in '" + block.name + "' lies outside the block's " +
-                        std::to_string(block.size) + " bytes");
+            return fail(ErrorKind::Internal, "uniform '" + member.name + "' in '" + block.name +
+                                                 "' lies outside the block's " + std::to_string(block.size) + " bytes");
           const uint32_t bits =
               component_bits(member.scalar, (*value)[element * per_element + row * member.cols + col]);
           std::memcpy(bytes.data() + offset, &bits, 4);

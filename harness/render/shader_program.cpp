@@ -47,9 +47,9 @@ Result<std::map<uint32_t, double>> resolve_specialization(const std::vector<std:
         std::find_if(reflection.specialization_constants.begin(), reflection.specialization_constants.end(),
                      [&](const hlsl::SpecializationConstant& c) { return c.name == name; });
     if (equals == std::string::npos || constant == reflection.specialization_constants.end())
-      return fail("--specialize " + text +
-                  ": expected NAME=VALUE naming a [[vk::constant_id]] constant of the shader (" +
-                  (names.empty() ? "it has none" : "it has " + names) + ")");
+      return fail(ErrorKind::Usage, "--specialize " + text +
+                                        ": expected NAME=VALUE naming a [[vk::constant_id]] constant of the shader (" +
+                                        (names.empty() ? "it has none" : "it has " + names) + ")");
     const std::string number = text.substr(equals + 1);
     char* end = nullptr;
     const double value = std::strtod(number.c_str(), &end);
@@ -60,11 +60,11 @@ Result<std::map<uint32_t, double>> resolve_specialization(const std::vector<std:
                                                                    : true;
     if (number.empty() || end != number.c_str() + number.size() || !std::isfinite(value) ||
         (whole && std::floor(value) != value) || !fits)
-      return fail("--specialize " + text + ": '" + name + "' is of type " + hlsl::scalar_name(constant->scalar) +
-                  "; give it " +
-                  (constant->scalar == hlsl::ScalarType::Bool ? std::string("0 or 1")
-                   : whole                                    ? "a whole number in its range"
-                                                              : "a finite number"));
+      return fail(ErrorKind::Usage, "--specialize " + text + ": '" + name + "' is of type " +
+                                        hlsl::scalar_name(constant->scalar) + "; give it " +
+                                        (constant->scalar == hlsl::ScalarType::Bool ? std::string("0 or 1")
+                                         : whole                                    ? "a whole number in its range"
+                                                                                    : "a finite number"));
     values[constant->id] = value;
   }
   return values;
@@ -91,7 +91,8 @@ Result<void> drawable(const hlsl::Module& module, Lane lane) {
   const hlsl::Reflection& reflection = module.reflection;
   const SourceLocation where = module.sources.resolve({module.main_file, 0, 0});
   const auto refuse = [&](const std::string& what) {
-    return fail(what + "; `xshade compile` writes it as the source asks, but the harness cannot draw it", where);
+    return fail(ErrorKind::UserInput,
+                what + "; `xshade compile` writes it as the source asks, but the harness cannot draw it", where);
   };
   for (const hlsl::ConstantBuffer& buffer : reflection.constant_buffers) {
     if (buffer.set != 0) return refuse("'" + buffer.name + "' is in descriptor set " + std::to_string(buffer.set));
@@ -182,10 +183,12 @@ codegen::Target lane_target(Lane lane) {
 
 Result<ProgramDesc> program_for_lane(const hlsl::Module& module, Lane lane, const ProgramOptions& options,
                                      glsl::NonfiniteTrace* trace) {
-  if (!module.ok()) return fail("the shader did not compile", module.sources.resolve({module.main_file, 0, 0}));
+  if (!module.ok())
+    return fail(ErrorKind::UserInput, "the shader did not compile", module.sources.resolve({module.main_file, 0, 0}));
   if (Result<void> can = drawable(module, lane); !can) return fail(can.error());
   if (!module.entry_points.fragment)
-    return fail("the shader has no fragment entry point (#pragma fragment): a program needs one to draw",
+    return fail(ErrorKind::UserInput,
+                "the shader has no fragment entry point (#pragma fragment): a program needs one to draw",
                 module.sources.resolve({module.main_file, 0, 0}));
   const codegen::Target target = lane_target(lane);
   auto generated = codegen::generate(module, target, options);

@@ -18,17 +18,19 @@ Result<fs::path> ShaderSearchPath::find(const std::string& library_path) const {
   const fs::path relative(library_path);
   const fs::path normal = relative.lexically_normal();
   if (relative.is_absolute() || relative.has_root_name() || normal.empty() || *normal.begin() == "..")
-    return fail("'" + library_path + "' is not a path inside the shader folders (" + describe() + ")");
+    return fail(ErrorKind::UserInput,
+                "'" + library_path + "' is not a path inside the shader folders (" + describe() + ")");
   for (const fs::path& folder : folders_) {
     const fs::path candidate = (folder / normal).lexically_normal();
     std::error_code ignored;
     if (!fs::is_regular_file(candidate, ignored)) continue;
     if (!path_is_inside(candidate, folder))
-      return fail("'" + library_path + "' in " + folder.string() +
-                  " is a link that leads out of that folder; a shader must lie inside the folders it was given");
+      return fail(ErrorKind::UserInput,
+                  "'" + library_path + "' in " + folder.string() +
+                      " is a link that leads out of that folder; a shader must lie inside the folders it was given");
     return candidate;
   }
-  return fail("'" + library_path + "' is in none of the shader folders (" + describe() + ")");
+  return fail(ErrorKind::UserInput, "'" + library_path + "' is in none of the shader folders (" + describe() + ")");
 }
 
 std::vector<std::string> ShaderSearchPath::files(const std::string& kind) const {

@@ -149,7 +149,8 @@ Result<shaderlab::SurfaceProgramShape> read_surface_program(const fs::path& file
   shape.lighting = *form;
   if ((*form == shaderlab::LightingForm::Gi || *form == shaderlab::LightingForm::ViewGi) &&
       functions_named(unit, lighting + "_GI").empty())
-    return fail("the lighting function " + lighting + " takes a UnityGI, and Unity then calls " + lighting +
+    return fail(ErrorKind::UserInput,
+                "the lighting function " + lighting + " takes a UnityGI, and Unity then calls " + lighting +
                     "_GI(SurfaceOutput s, UnityGIInput data, inout UnityGI gi) first to fill it: define it",
                 directive.where);
 

@@ -57,7 +57,8 @@ glm::vec4 texel(uint32_t column, uint32_t row) {
 
 Result<FloatImage> render(Backend& backend, Lane lane, uint32_t size) {
   auto module = hlsl::compile_text("test_pattern.hlsl", kShader, {});
-  if (!module->ok()) return fail("the test pattern does not compile:\n" + module->diagnostics.render_all());
+  if (!module->ok())
+    return fail(ErrorKind::Internal, "the test pattern does not compile:\n" + module->diagnostics.render_all());
   auto desc = program_for_lane(*module, lane);
   if (!desc) return fail(desc.error());
   // Everything here is this render's own: freed when it returns, however it returns.

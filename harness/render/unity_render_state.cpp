@@ -22,19 +22,22 @@ Result<T> choose(const StateValue& value, const std::array<std::pair<const char*
   if (value.is_property) {
     const std::optional<float> number = property(value.text);
     if (!number)
-      return fail(std::string(command) + " [" + value.text + "] names a property the material does not have",
+      return fail(ErrorKind::UserInput,
+                  std::string(command) + " [" + value.text + "] names a property the material does not have",
                   value.where);
     const long index = std::lround(*number);
     if (index >= 0 && index < long(by_number.size()) && by_number[size_t(index)]) return *by_number[size_t(index)];
     char shown[32];
     std::snprintf(shown, sizeof shown, "%g", double(*number));
     return fail(
+        ErrorKind::UserInput,
         std::string(command) + " [" + value.text + "] is " + shown + ", which is no value of Unity's enum for it",
         value.where);
   }
   for (const auto& [word, meaning] : words)
     if (same_word(value.text, word)) return meaning;
-  return fail(std::string(command) + " " + value.text + " is not drawn by xshade yet", value.where);
+  return fail(ErrorKind::UserInput, std::string(command) + " " + value.text + " is not drawn by xshade yet",
+              value.where);
 }
 
 constexpr std::array<std::pair<const char*, CullMode>, 3> kCullWords{
@@ -113,12 +116,13 @@ constexpr std::array<std::optional<StencilOp>, 16> kStencilOpNumbers{
 Result<float> number(const StateValue& value, const StatePropertyLookup& property, const char* what) {
   if (value.is_property) {
     if (auto given = property(value.text)) return *given;
-    return fail(std::string(what) + " [" + value.text + "] names a property the material does not have", value.where);
+    return fail(ErrorKind::UserInput,
+                std::string(what) + " [" + value.text + "] names a property the material does not have", value.where);
   }
   float parsed = 0.0f;
   const auto [end, error] = std::from_chars(value.text.data(), value.text.data() + value.text.size(), parsed);
   if (error != std::errc() || end != value.text.data() + value.text.size())
-    return fail(std::string(what) + " takes a number, not " + value.text, value.where);
+    return fail(ErrorKind::UserInput, std::string(what) + " takes a number, not " + value.text, value.where);
   return parsed;
 }
 
@@ -128,12 +132,14 @@ Result<uint8_t> color_mask(const StateValue& value, const StatePropertyLookup& p
     if (!given) return fail(given.error());
     // UnityEngine.Rendering.ColorWriteMask: Alpha 1, Blue 2, Green 4, Red 8.
     const long bits = std::lround(*given);
-    if (bits < 0 || bits > 15) return fail("ColorMask [" + value.text + "] is no ColorWriteMask", value.where);
+    if (bits < 0 || bits > 15)
+      return fail(ErrorKind::UserInput, "ColorMask [" + value.text + "] is no ColorWriteMask", value.where);
     return uint8_t(((bits & 8) ? 1 : 0) | ((bits & 4) ? 2 : 0) | ((bits & 2) ? 4 : 0) | ((bits & 1) ? 8 : 0));
   }
   const std::string channels = value.text.substr(0, value.text.find(' '));  // "RGB 1": render target 1's
   if (value.text.find(' ') != std::string::npos && value.text.substr(value.text.find(' ') + 1) != "0")
-    return fail("ColorMask for render target " + value.text.substr(value.text.find(' ') + 1) +
+    return fail(ErrorKind::UserInput,
+                "ColorMask for render target " + value.text.substr(value.text.find(' ') + 1) +
                     ": xshade draws into one render target",
                 value.where);
   uint8_t mask = 0;
@@ -154,7 +160,8 @@ Result<StencilState> stencil_state(const shaderlab::StencilState& block, const S
       auto given = number(value, property, name.c_str());
       if (!given) return fail(given.error());
       if (*given < 0.0f || *given > 255.0f || *given != std::floor(*given))
-        return fail("Stencil " + name + " takes a whole number from 0 to 255, not " + value.text, value.where);
+        return fail(ErrorKind::UserInput, "Stencil " + name + " takes a whole number from 0 to 255, not " + value.text,
+                    value.where);
       const auto byte = uint8_t(*given);
       (name == "Ref" ? out.reference : name == "ReadMask" ? out.read_mask : out.write_mask) = byte;
     }
@@ -221,7 +228,8 @@ Result<DrawState> unity_draw_state(const shaderlab::RenderState& state, const St
   for (const shaderlab::BlendState& blend : state.blend) {
     if (blend.target > 0) {
       if (!blend.off)
-        return fail("Blend " + std::to_string(blend.target) + ": xshade draws into one render target",
+        return fail(ErrorKind::UserInput,
+                    "Blend " + std::to_string(blend.target) + ": xshade draws into one render target",
                     blend.source.where);
       continue;
     }
@@ -290,9 +298,10 @@ Result<int> render_queue(const std::string& tag) {
     int offset = 0;  // "+1" or "-1"; from_chars reads no plus sign
     if (whole_number(std::string_view(tag).substr(sign + (tag[sign] == '+' ? 1 : 0)), offset)) return base + offset;
   }
-  return fail("Queue \"" + tag +
-              "\" is none of Background, Geometry, AlphaTest, Transparent and Overlay (with an "
-              "offset such as \"Transparent+1\"), nor a number");
+  return fail(ErrorKind::UserInput,
+              "Queue \"" + tag +
+                  "\" is none of Background, Geometry, AlphaTest, Transparent and Overlay (with an "
+                  "offset such as \"Transparent+1\"), nor a number");
 }
 
 DrawState on_direct3d_render_target(DrawState state) {

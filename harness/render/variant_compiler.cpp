@@ -70,8 +70,9 @@ Result<CompiledVariant> VariantCompiler::compile(const VariantRequest& request, 
 Result<std::vector<CompiledVariant>> VariantCompiler::compile_plan(const Plan& plan, Lane lane, bool half_emulation,
                                                                    bool trace_nonfinite) {
   if (trace_nonfinite && plan.variants.size() > glsl::NonfiniteTrace::kMaxPrograms)
-    return fail("the tracing variant numbers at most " + std::to_string(glsl::NonfiniteTrace::kMaxPrograms) +
-                " programs in a scene; this one has " + std::to_string(plan.variants.size()));
+    return fail(ErrorKind::UserInput, "the tracing variant numbers at most " +
+                                          std::to_string(glsl::NonfiniteTrace::kMaxPrograms) +
+                                          " programs in a scene; this one has " + std::to_string(plan.variants.size()));
   std::vector<CompiledVariant> variants;
   for (VariantRequest request : plan.variants) {
     request.half_emulation = half_emulation;

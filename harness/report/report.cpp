@@ -64,7 +64,8 @@ Result<void> write_reports(const RunResults& results, const fs::path& report_dir
                            const std::vector<ViewerPage>* viewers) {
   std::error_code error;
   fs::create_directories(report_dir, error);
-  if (error) return fail("cannot create the report folder " + report_dir.string() + ": " + error.message());
+  if (error)
+    return fail(ErrorKind::Backend, "cannot create the report folder " + report_dir.string() + ": " + error.message());
 
   for (const auto& [file, text] :
        {std::pair{kViewerScriptFile, viewer_script()}, std::pair{kViewerStyleFile, viewer_style()}})

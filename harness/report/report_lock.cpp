@@ -28,9 +28,9 @@ Result<ReportLock> ReportLock::take(const fs::path& folder, const std::string& c
       return fail(ErrorKind::Backend, "cannot lock " + path.string() + ": " + std::strerror(errno));
     std::string holder = read_file(path).value_or("");
     while (!holder.empty() && holder.back() == '\n') holder.pop_back();
-    return fail("the report folder " + folder.string() + " is being written by another xshade (" +
-                (holder.empty() ? std::string("it has not said which") : holder) +
-                "); give this run another --report, or wait for that one to finish");
+    return fail(ErrorKind::Usage, "the report folder " + folder.string() + " is being written by another xshade (" +
+                                      (holder.empty() ? std::string("it has not said which") : holder) +
+                                      "); give this run another --report, or wait for that one to finish");
   }
   // Who holds it, for a run that is refused.
   const std::string holder = "process " + std::to_string(::getpid()) + ": " + command + "\n";

@@ -21,7 +21,7 @@ TEST(ReportLock, OneRunHoldsAReportFolderAndASecondIsToldWhich) {
     ASSERT_TRUE(first) << first.error().message;
     auto second = ReportLock::take(folder, "xshade run --shard 2/2");
     ASSERT_FALSE(second);
-    EXPECT_EQ(second.error().kind, ErrorKind::UserInput);
+    EXPECT_EQ(second.error().kind, ErrorKind::Usage);  // exit 2: the command line names a busy folder
     EXPECT_EQ(second.error().message, "the report folder " + folder.string() +
                                           " is being written by another xshade (process " + std::to_string(::getpid()) +
                                           ": xshade run --shard 1/2); give this run another --report, or wait for "

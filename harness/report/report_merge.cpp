@@ -90,14 +90,15 @@ Result<std::vector<FoundReport>> find_reports(const std::vector<fs::path>& folde
       continue;
     }
     if (!fs::is_directory(folder, error))
-      return fail(folder.string() + " is not a report folder (it has no results.json) nor a folder of them");
+      return fail(ErrorKind::Usage,
+                  folder.string() + " is not a report folder (it has no results.json) nor a folder of them");
     std::vector<fs::path> inner;
     for (const fs::directory_entry& entry : fs::directory_iterator(folder, error))
       if (entry.is_directory() && fs::exists(entry.path() / "results.json")) inner.push_back(entry.path());
     if (inner.empty())
-      return fail(folder.string() +
-                  " holds no results.json, and none of its folders does: it is not a report of "
-                  "xshade run nor a folder of them");
+      return fail(ErrorKind::Usage, folder.string() +
+                                        " holds no results.json, and none of its folders does: it is not a report of "
+                                        "xshade run nor a folder of them");
     std::sort(inner.begin(), inner.end());
     for (const fs::path& each : inner) {
       auto report = read_report(each);
@@ -170,8 +171,9 @@ std::vector<std::string> compare_lanes_across_reports(RunResults& results, const
       const std::optional<Lane> id = parse_lane(lane.lane);
       if (!id || (lane.verdict != Verdict::Pass && lane.verdict != Verdict::Fail)) continue;
       rendered.push_back(*id);
-      auto image = lane.image_exr.empty() ? Result<FloatImage>(fail("the report names no float image of it"))
-                                          : read_image(folder / lane.image_exr);
+      auto image = lane.image_exr.empty()
+                       ? Result<FloatImage>(fail(ErrorKind::UserInput, "the report names no float image of it"))
+                       : read_image(folder / lane.image_exr);
       if (image) {
         images.emplace(*id, std::move(*image));
         continue;

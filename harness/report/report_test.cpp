@@ -391,6 +391,7 @@ TEST(WriteReports, FailsAsAValueWhenTheFolderCannotBeMade) {
   auto written = write_reports(sample_results(), file / "report");
   ASSERT_FALSE(written);
   EXPECT_NE(written.error().message.find("cannot create the report folder"), std::string::npos);
+  EXPECT_EQ(written.error().kind, ErrorKind::Backend);  // the machine's, not the report's: exit 3
   fs::remove(file);
 }
 

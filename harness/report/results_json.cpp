@@ -102,11 +102,12 @@ Result<SceneResult> scene_from_json(const json& object) {
   scene.compare.reason = compare.at("reason").get<std::string>();
   const std::string verdict = object.at("verdict").get<std::string>();
   if (!verdict_from_name(verdict))
-    return fail("scene " + scene.scene + " has the verdict '" + verdict + "', which xshade does not give");
+    return fail(ErrorKind::UserInput,
+                "scene " + scene.scene + " has the verdict '" + verdict + "', which xshade does not give");
   scene.verdict = *verdict_from_name(verdict);
   for (const json& lane : object.at("lanes")) {
     auto read = lane_from_json(lane);
-    if (!read) return fail("scene " + scene.scene + ": " + read.error().message);
+    if (!read) return fail(ErrorKind::UserInput, "scene " + scene.scene + ": " + read.error().message);
     scene.lanes.push_back(std::move(*read));
   }
   for (const json& pair : object.at("cross_lane")) {
@@ -117,10 +118,10 @@ Result<SceneResult> scene_from_json(const json& object) {
     cross.identical = pair.at("identical").get<bool>();
     const std::string pair_verdict = pair.at("verdict").get<std::string>();
     if (!verdict_from_name(pair_verdict))
-      return fail("scene " + scene.scene + " has a pair with the verdict '" + pair_verdict + "'");
+      return fail(ErrorKind::UserInput, "scene " + scene.scene + " has a pair with the verdict '" + pair_verdict + "'");
     cross.verdict = *verdict_from_name(pair_verdict);
     auto metrics = metrics_from_json(pair.at("metrics"));
-    if (!metrics) return fail("scene " + scene.scene + ": " + metrics.error().message);
+    if (!metrics) return fail(ErrorKind::UserInput, "scene " + scene.scene + ": " + metrics.error().message);
     cross.metrics = *metrics;
     scene.cross_lane.push_back(std::move(cross));
   }
@@ -131,7 +132,7 @@ Result<SceneResult> scene_from_json(const json& object) {
 
 Result<RunResults> results_from_json(std::string_view text, const std::string& file) {
   const auto refuse = [&](const std::string& why) {
-    return fail(file + ": not a results.json xshade wrote (" + why + ")");
+    return fail(ErrorKind::UserInput, file + ": not a results.json xshade wrote (" + why + ")");
   };
   const json document = json::parse(text, nullptr, false);
   if (document.is_discarded()) return refuse("it is not JSON");

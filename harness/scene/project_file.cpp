@@ -93,7 +93,8 @@ Result<ProjectFile> load_project_file(const fs::path& file) {
   std::error_code error;
   if (fs::exists(file, error) && !path_is_inside(file, fs::absolute(file, error).parent_path())) {
     const fs::path target = fs::weakly_canonical(file, error);
-    return fail("the project file is a symbolic link that points outside its folder" +
+    return fail(ErrorKind::UserInput,
+                "the project file is a symbolic link that points outside its folder" +
                     (error ? std::string() : " (to " + target.string() + ")") +
                     "; a project file must be inside the folder it is for",
                 SourceLocation{file.string(), 0, 0});
@@ -112,8 +113,9 @@ Result<std::optional<fs::path>> find_project_file(const fs::path& start) {
     if (fs::is_regular_file(candidate, error)) return std::optional<fs::path>(candidate);
     // Passed over, it would leave xshade checking its own fixed scenes and calling that a pass.
     if (const std::string kind = not_a_file(candidate); !kind.empty())
-      return fail("the project file " + candidate.string() + " is " + kind +
-                  ", not a file: make it the project's xshade.toml or remove it (--no-project ignores it)");
+      return fail(ErrorKind::UserInput,
+                  "the project file " + candidate.string() + " is " + kind +
+                      ", not a file: make it the project's xshade.toml or remove it (--no-project ignores it)");
     if (fs::exists(folder / ".git", error) || folder == folder.parent_path() || !folder.has_relative_path())
       return std::optional<fs::path>();
     folder = folder.parent_path();

@@ -74,13 +74,15 @@ Result<void> check_scene_work(const Scene& scene) {
                   scene.objects.size(), scene.post.size());
   if (draws > kMaxSceneDraws) {
     const Step& step = passing(kMaxSceneDraws, 1);
-    return fail(fmt::format("{}: here the scene passes {} draws, the most a scene may make; it makes {} in all ({})",
+    return fail(ErrorKind::UserInput,
+                fmt::format("{}: here the scene passes {} draws, the most a scene may make; it makes {} in all ({})",
                             step.path, kMaxSceneDraws, draws, counted),
                 step.where);
   }
   if (draws * pixels > kMaxScenePixelDraws) {
     const Step& step = passing(kMaxScenePixelDraws, pixels);
     return fail(
+        ErrorKind::UserInput,
         fmt::format("{}: here the scene passes {} pixel-draws (draws times the {} x {} = {} pixels each may "
                     "cover), the most a scene may make; it makes {} in all ({} draws: {})",
                     step.path, kMaxScenePixelDraws, scene.width, scene.height, pixels, draws * pixels, draws, counted),

@@ -25,7 +25,8 @@ class NestingScanner {
         case '{':
           if (auto ended = end_key(); !ended) return ended;
           if (++depth_ > kMaxTomlNesting)
-            return fail(fmt::format("arrays, inline tables and table headers nest more than {} deep here; xshade "
+            return fail(ErrorKind::UserInput,
+                        fmt::format("arrays, inline tables and table headers nest more than {} deep here; xshade "
                                     "reads at most {} levels (a deeper file could overflow the TOML parser's stack)",
                                     kMaxTomlNesting, kMaxTomlNesting),
                         here());
@@ -90,7 +91,8 @@ class NestingScanner {
     const size_t parts = key_parts_;
     key_parts_ = 0;
     if (parts <= kMaxTomlNesting) return {};
-    return fail(fmt::format("a dotted key or table header of {} parts; xshade reads at most {} (a longer one could "
+    return fail(ErrorKind::UserInput,
+                fmt::format("a dotted key or table header of {} parts; xshade reads at most {} (a longer one could "
                             "overflow the TOML parser's stack)",
                             parts, kMaxTomlNesting),
                 key_start_);

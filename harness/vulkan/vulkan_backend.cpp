@@ -173,16 +173,16 @@ Result<void> VulkanBackend::init(const VulkanOptions& options) {
   try {
     context_ = std::make_unique<vk::raii::Context>();
   } catch (const std::exception& e) {
-    return fail(fmt::format("cannot load the Vulkan loader libvulkan.so.1 ({}); install the Debian package libvulkan1",
+    return fail(ErrorKind::Backend,
+                fmt::format("cannot load the Vulkan loader libvulkan.so.1 ({}); install the Debian package libvulkan1",
                             e.what()));
   }
   return guarded<void>("creating the Vulkan lavapipe backend", [&]() -> Result<void> {
     const uint32_t loader_version = context_->enumerateInstanceVersion();
     if (loader_version < VK_API_VERSION_1_3)
-      return fail(
-          fmt::format("the Vulkan loader supports Vulkan {} but 1.3 is required; install "
-                      "a newer Debian package libvulkan1",
-                      vk_support::version_string(loader_version)));
+      return fail(ErrorKind::Backend, fmt::format("the Vulkan loader supports Vulkan {} but 1.3 is required; install "
+                                                  "a newer Debian package libvulkan1",
+                                                  vk_support::version_string(loader_version)));
 
     const bool validation = options.validation && vulkan_validation_available();
     std::vector<const char*> layers;
@@ -198,11 +198,10 @@ Result<void> VulkanBackend::init(const VulkanOptions& options) {
     try {
       instance_ = vk::raii::Instance(*context_, instance_info);
     } catch (const vk::SystemError& e) {
-      return fail(
-          fmt::format("cannot create a Vulkan instance ({}): no usable Vulkan driver; "
-                      "install the Debian package mesa-vulkan-drivers (lavapipe) and "
-                      "check VK_DRIVER_FILES / VK_ICD_FILENAMES",
-                      e.what()));
+      return fail(ErrorKind::Backend, fmt::format("cannot create a Vulkan instance ({}): no usable Vulkan driver; "
+                                                  "install the Debian package mesa-vulkan-drivers (lavapipe) and "
+                                                  "check VK_DRIVER_FILES / VK_ICD_FILENAMES",
+                                                  e.what()));
     }
     if (validation) messenger_ = vk::raii::DebugUtilsMessengerEXT(instance_, debug_info);
 
@@ -211,11 +210,10 @@ Result<void> VulkanBackend::init(const VulkanOptions& options) {
     try {
       devices = instance_.enumeratePhysicalDevices();
     } catch (const vk::SystemError& e) {
-      return fail(
-          fmt::format("no Vulkan CPU device (lavapipe) found: cannot enumerate Vulkan "
-                      "devices ({}); install the Debian package mesa-vulkan-drivers and "
-                      "check VK_DRIVER_FILES / VK_ICD_FILENAMES",
-                      e.what()));
+      return fail(ErrorKind::Backend, fmt::format("no Vulkan CPU device (lavapipe) found: cannot enumerate Vulkan "
+                                                  "devices ({}); install the Debian package mesa-vulkan-drivers and "
+                                                  "check VK_DRIVER_FILES / VK_ICD_FILENAMES",
+                                                  e.what()));
     }
     std::string seen;
     for (auto& candidate : devices) {
@@ -224,21 +222,20 @@ Result<void> VulkanBackend::init(const VulkanOptions& options) {
       if (properties.deviceType == vk::PhysicalDeviceType::eCpu && !*physical_) physical_ = std::move(candidate);
     }
     if (!*physical_)
-      return fail(
-          fmt::format("no Vulkan CPU device (lavapipe) found (devices: {}); install the "
-                      "Debian package mesa-vulkan-drivers and check VK_DRIVER_FILES / "
-                      "VK_ICD_FILENAMES",
-                      seen.empty() ? "none" : seen));
+      return fail(ErrorKind::Backend, fmt::format("no Vulkan CPU device (lavapipe) found (devices: {}); install the "
+                                                  "Debian package mesa-vulkan-drivers and check VK_DRIVER_FILES / "
+                                                  "VK_ICD_FILENAMES",
+                                                  seen.empty() ? "none" : seen));
 
     const auto properties =
         physical_.getProperties2<vk::PhysicalDeviceProperties2, vk::PhysicalDeviceDriverProperties>();
     const vk::PhysicalDeviceProperties& props = properties.get<vk::PhysicalDeviceProperties2>().properties;
     const auto& driver = properties.get<vk::PhysicalDeviceDriverProperties>();
     if (props.apiVersion < VK_API_VERSION_1_3)
-      return fail(
-          fmt::format("the Vulkan CPU device '{}' supports Vulkan {} but 1.3 is required; "
-                      "install a newer Debian package mesa-vulkan-drivers",
-                      props.deviceName.data(), vk_support::version_string(props.apiVersion)));
+      return fail(ErrorKind::Backend,
+                  fmt::format("the Vulkan CPU device '{}' supports Vulkan {} but 1.3 is required; "
+                              "install a newer Debian package mesa-vulkan-drivers",
+                              props.deviceName.data(), vk_support::version_string(props.apiVersion)));
     info_.api = "Vulkan 1.3 (lavapipe)";
     info_.renderer = props.deviceName.data();
     info_.api_version = vk_support::version_string(props.apiVersion);
@@ -263,16 +260,17 @@ Result<void> VulkanBackend::init(const VulkanOptions& options) {
             (F::eDepthStencilAttachment | F::eSampledImage) ||
         (format_features(kDepthStencilFormat) & (F::eDepthStencilAttachment | F::eSampledImage)) !=
             (F::eDepthStencilAttachment | F::eSampledImage))
-      return fail(
-          fmt::format("'{}' cannot render to and sample R32G32B32A32_SFLOAT, D32_SFLOAT and "
-                      "D32_SFLOAT_S8_UINT",
-                      info_.renderer));
+      return fail(ErrorKind::Backend,
+                  fmt::format("'{}' cannot render to and sample R32G32B32A32_SFLOAT, D32_SFLOAT and "
+                              "D32_SFLOAT_S8_UINT",
+                              info_.renderer));
 
     const auto families = physical_.getQueueFamilyProperties();
     auto graphics = std::find_if(families.begin(), families.end(), [](const auto& family) {
       return bool(family.queueFlags & vk::QueueFlagBits::eGraphics);
     });
-    if (graphics == families.end()) return fail(fmt::format("'{}' has no graphics queue", info_.renderer));
+    if (graphics == families.end())
+      return fail(ErrorKind::Backend, fmt::format("'{}' has no graphics queue", info_.renderer));
     queue_family_ = static_cast<uint32_t>(graphics - families.begin());
 
     // Enable what the device supports, so that any valid shader runs, except robustness (which
@@ -283,7 +281,7 @@ Result<void> VulkanBackend::init(const VulkanOptions& options) {
     auto& features13 = features.get<vk::PhysicalDeviceVulkan13Features>();
     features13.robustImageAccess = VK_FALSE;
     if (!features13.dynamicRendering || !features13.synchronization2)
-      return fail(fmt::format("'{}' lacks dynamic rendering or synchronization2", info_.renderer));
+      return fail(ErrorKind::Backend, fmt::format("'{}' lacks dynamic rendering or synchronization2", info_.renderer));
     const float priority = 1.0f;
     vk::DeviceQueueCreateInfo queue_info({}, queue_family_, 1, &priority);
     vk::DeviceCreateInfo device_info({}, queue_info, {}, {}, nullptr);
@@ -327,10 +325,10 @@ void VulkanBackend::submit(const std::function<void(Recording&)>& record) {
 Result<TargetHandle> VulkanBackend::create_target(const TargetDesc& desc) {
   return guarded<TargetHandle>("create_target", [&]() -> Result<TargetHandle> {
     if (desc.width == 0 || desc.height == 0)
-      return fail(fmt::format("create_target: size {}x{} is empty", desc.width, desc.height));
+      return fail(ErrorKind::Internal, fmt::format("create_target: size {}x{} is empty", desc.width, desc.height));
     if (std::max(desc.width, desc.height) > max_image_size_)
-      return fail(fmt::format("create_target: size {}x{} exceeds the device limit of {}", desc.width, desc.height,
-                              max_image_size_));
+      return fail(ErrorKind::Backend, fmt::format("create_target: size {}x{} exceeds the device limit of {}",
+                                                  desc.width, desc.height, max_image_size_));
     const uint32_t id = objects_.targets.next_handle().id;
     using U = vk::ImageUsageFlagBits;
     auto target = std::make_unique<Target>();
@@ -343,7 +341,8 @@ Result<TargetHandle> VulkanBackend::create_target(const TargetDesc& desc) {
     };
     target->color = color_image("colour");
     if (desc.second_color) target->second_color = color_image("second colour");
-    if (desc.stencil && !desc.depth) return fail("create_target: a stencil buffer needs a depth buffer");
+    if (desc.stencil && !desc.depth)
+      return fail(ErrorKind::Internal, "create_target: a stencil buffer needs a depth buffer");
     const vk::ImageAspectFlags depth_aspect = desc.stencil
                                                   ? vk::ImageAspectFlagBits::eDepth | vk::ImageAspectFlagBits::eStencil
                                                   : vk::ImageAspectFlags(vk::ImageAspectFlagBits::eDepth);
@@ -408,7 +407,8 @@ Result<TextureHandle> VulkanBackend::upload_texture(const TextureData& data) {
                                data.layers,
                                data.samples};
     if (auto why = vk_support::unsupported_image(device_ref(), spec))
-      return fail(fmt::format("upload_texture: {} of {}: {}", shape_name(shape), format_name(data.format), *why));
+      return fail(ErrorKind::Backend,
+                  fmt::format("upload_texture: {} of {}: {}", shape_name(shape), format_name(data.format), *why));
     auto image = std::make_unique<Image>(vk_support::create_image(device_ref(), spec));
     if (shape.multisampled) {
       fill_multisampled(*image, data);
@@ -541,7 +541,7 @@ Result<ProgramHandle> VulkanBackend::create_program(const ProgramDesc& desc) {
     for (const StageIn& in : {StageIn{desc.vertex, "vertex", ExecutionModel::Vertex, program->vertex},
                               StageIn{desc.fragment, "fragment", ExecutionModel::Fragment, program->fragment}}) {
       const std::string shader = fmt::format("{}: {} shader '{}'", what, in.stage, in.source.name);
-      if (in.source.spirv.empty()) return fail(shader + " has no SPIR-V");
+      if (in.source.spirv.empty()) return fail(ErrorKind::Internal, shader + " has no SPIR-V");
       if (const std::vector<std::string> refusals = vk_support::spirv_validation_messages(in.source.spirv);
           !refusals.empty()) {
         Error error{fmt::format("{} is not valid SPIR-V", shader), {in.source.name, 0, 0}, {}};
@@ -552,36 +552,36 @@ Result<ProgramHandle> VulkanBackend::create_program(const ProgramDesc& desc) {
       const vk_support::EntryPointInfo entry =
           vk_support::reflect_entry_point(in.source.spirv, in.model, in.source.entry_point);
       if (!entry.found)
-        return fail(fmt::format("{} has no {} entry point named '{}'", shader, in.stage, in.source.entry_point));
+        return fail(ErrorKind::Internal,
+                    fmt::format("{} has no {} entry point named '{}'", shader, in.stage, in.source.entry_point));
       if (in.model == ExecutionModel::Vertex) {
         program->vertex_inputs = entry.input_locations;
         for (const auto& [location, kind] : entry.input_types) {
           if (location <= 3) continue;
           if (!kind)
-            return fail(
-                fmt::format("{} reads vertex input location {}, which no mesh supplies and whose type is "
-                            "not a 32-bit float, int or uint scalar or vector",
-                            shader, location));
+            return fail(ErrorKind::UserInput,
+                        fmt::format("{} reads vertex input location {}, which no mesh supplies and whose type is "
+                                    "not a 32-bit float, int or uint scalar or vector",
+                                    shader, location));
           program->unsupplied_inputs.emplace(location, *kind);
         }
       }
       // A resource the layout does not list would reach the driver without a descriptor.
       for (const auto& [set, binding] : entry.descriptor_bindings)
         if (set != 0 || !vk_support::layout_has_binding(desc.layout, binding))
-          return fail(
-              fmt::format("{} reads the resource at set {} binding {}, which the program's "
-                          "layout does not list",
-                          shader, set, binding));
+          return fail(ErrorKind::Internal,
+                      fmt::format("{} reads the resource at set {} binding {}, which the program's "
+                                  "layout does not list",
+                                  shader, set, binding));
       for (const auto& [place, type] : entry.descriptor_types)
         if (place.first == 0) needed_types.emplace(place.second, std::pair{type, shader});
       in.module = vk::raii::ShaderModule(
           device_, vk::ShaderModuleCreateInfo({}, in.source.spirv.size() * sizeof(uint32_t), in.source.spirv.data()));
     }
     if (desc.fullscreen && !program->vertex_inputs.empty())
-      return fail(
-          fmt::format("{}: a full-screen program's vertex shader must read no vertex "
-                      "input, but it reads location {}",
-                      what, *program->vertex_inputs.begin()));
+      return fail(ErrorKind::Internal, fmt::format("{}: a full-screen program's vertex shader must read no vertex "
+                                                   "input, but it reads location {}",
+                                                   what, *program->vertex_inputs.begin()));
 
     std::vector<vk::DescriptorSetLayoutBinding> bindings;
     std::map<uint32_t, std::string> used;  // binding -> what uses it
@@ -590,32 +590,37 @@ Result<ProgramHandle> VulkanBackend::create_program(const ProgramDesc& desc) {
     const auto stages = vk::ShaderStageFlagBits::eVertex | vk::ShaderStageFlagBits::eFragment;
     auto add = [&](uint32_t binding, vk::DescriptorType type, const std::string& user) -> Result<void> {
       if (auto [it, fresh] = used.emplace(binding, user); !fresh)
-        return fail(fmt::format("{}: binding {} is used by both {} and {}", what, binding, it->second, user));
+        return fail(ErrorKind::Internal,
+                    fmt::format("{}: binding {} is used by both {} and {}", what, binding, it->second, user));
       bindings.emplace_back(binding, type, 1, stages);
       return {};
     };
     for (size_t s = 0; s < desc.layout.uniform_blocks.size(); ++s) {
       const UniformBlockSlot& slot = desc.layout.uniform_blocks[s];
-      if (!names.insert(slot.name).second) return fail(fmt::format("{}: the layout names '{}' twice", what, slot.name));
+      if (!names.insert(slot.name).second)
+        return fail(ErrorKind::Internal, fmt::format("{}: the layout names '{}' twice", what, slot.name));
       if (slot.push_constant) {
         if (program->push_constant_slot)
-          return fail(fmt::format("{}: '{}' and '{}' are both push constants; a program has one block of them", what,
+          return fail(ErrorKind::Internal,
+                      fmt::format("{}: '{}' and '{}' are both push constants; a program has one block of them", what,
                                   desc.layout.uniform_blocks[*program->push_constant_slot].name, slot.name));
         if (slot.size == 0 || slot.size > max_push_constants_)
-          return fail(fmt::format("{}: push-constant block '{}' has size {}; the device allows 1..{} bytes", what,
+          return fail(ErrorKind::Backend,
+                      fmt::format("{}: push-constant block '{}' has size {}; the device allows 1..{} bytes", what,
                                   slot.name, slot.size, max_push_constants_));
         program->push_constant_slot = s;
         continue;
       }
       if (slot.size == 0 || slot.size > max_uniform_range_)
-        return fail(fmt::format("{}: uniform block '{}' has size {}; the device allows 1..{} bytes", what, slot.name,
-                                slot.size, max_uniform_range_));
+        return fail(ErrorKind::Backend, fmt::format("{}: uniform block '{}' has size {}; the device allows 1..{} bytes",
+                                                    what, slot.name, slot.size, max_uniform_range_));
       if (auto ok = add(slot.binding, vk::DescriptorType::eUniformBuffer, fmt::format("uniform block '{}'", slot.name));
           !ok)
         return fail(ok.error());
     }
     for (const TextureSlot& slot : desc.layout.textures) {
-      if (!names.insert(slot.name).second) return fail(fmt::format("{}: the layout names '{}' twice", what, slot.name));
+      if (!names.insert(slot.name).second)
+        return fail(ErrorKind::Internal, fmt::format("{}: the layout names '{}' twice", what, slot.name));
       const std::string user = fmt::format("texture '{}'", slot.name);
       Result<void> ok = slot.sampler_binding || slot.image_only
                             ? add(slot.binding, vk::DescriptorType::eSampledImage, user)
@@ -629,7 +634,8 @@ Result<ProgramHandle> VulkanBackend::create_program(const ProgramDesc& desc) {
       if (!ok) return fail(ok.error());
     }
     for (const StorageBufferSlot& slot : desc.layout.storage_buffers) {
-      if (!names.insert(slot.name).second) return fail(fmt::format("{}: the layout names '{}' twice", what, slot.name));
+      if (!names.insert(slot.name).second)
+        return fail(ErrorKind::Internal, fmt::format("{}: the layout names '{}' twice", what, slot.name));
       if (auto ok =
               add(slot.binding, vk::DescriptorType::eStorageBuffer, fmt::format("storage buffer '{}'", slot.name));
           !ok)
@@ -688,10 +694,9 @@ Result<void> VulkanBackend::render(const RenderPass& pass) {
                                   const BoundTexture<Image>& bound, const std::vector<BoundTexture<Image>>& earlier,
                                   const std::string& where) -> Result<void> {
       if (bound.sampler.filter == Filter::Linear && !bound.texture->linear_filter)
-        return fail(
-            fmt::format("{}: texture '{}': {} cannot be filtered linearly on this device; "
-                        "use a nearest sampler",
-                        where, binding.name, bound.texture->label));
+        return fail(ErrorKind::Backend, fmt::format("{}: texture '{}': {} cannot be filtered linearly on this device; "
+                                                    "use a nearest sampler",
+                                                    where, binding.name, bound.texture->label));
       const auto& slots = layout.textures;
       const auto& sampler_binding = slots[index].sampler_binding;
       if (!sampler_binding) return {};
@@ -703,10 +708,10 @@ Result<void> VulkanBackend::render(const RenderPass& pass) {
         if (first.filter == bound.sampler.filter && first.address == bound.sampler.address &&
             slots[other].comparison == compared && (!compared || first.compare == bound.sampler.compare))
           continue;
-        return fail(
-            fmt::format("{}: textures '{}' and '{}' are sampled through one sampler (binding {}) but are "
-                        "bound with different samplers",
-                        where, slots[other].name, slots[index].name, *sampler_binding));
+        return fail(ErrorKind::UserInput,
+                    fmt::format("{}: textures '{}' and '{}' are sampled through one sampler (binding {}) but are "
+                                "bound with different samplers",
+                                where, slots[other].name, slots[index].name, *sampler_binding));
       }
       return {};
     };
@@ -931,7 +936,8 @@ Result<FloatImage> VulkanBackend::read_image(TargetHandle handle, bool second) {
     auto found = objects_.targets.find(handle, what);
     if (!found) return fail(found.error());
     Target* target = *found;
-    if (second && !target->second_color) return fail(what + ": the target has no second colour attachment");
+    if (second && !target->second_color)
+      return fail(ErrorKind::Internal, what + ": the target has no second colour attachment");
     Image& color = second ? *target->second_color : target->color;
     FloatImage result(color.width, color.height);
     const vk::DeviceSize bytes = result.rgba.size() * sizeof(float);
@@ -960,9 +966,9 @@ Result<std::unique_ptr<Backend>> create_vulkan_backend(const VulkanOptions& opti
     if (auto ok = backend->init(options); !ok) return fail(ok.error());
     return std::unique_ptr<Backend>(std::move(backend));
   } catch (const std::exception& e) {
-    return fail(fmt::format("creating the Vulkan lavapipe backend: {}", e.what()));
+    return fail(ErrorKind::Backend, fmt::format("creating the Vulkan lavapipe backend: {}", e.what()));
   } catch (...) {
-    return fail("creating the Vulkan lavapipe backend: unknown exception");
+    return fail(ErrorKind::Backend, "creating the Vulkan lavapipe backend: unknown exception");
   }
 }
 

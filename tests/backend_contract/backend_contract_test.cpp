@@ -39,7 +39,7 @@ Result<std::unique_ptr<Backend>> create_backend(Api api) {
     case Api::GlEgl: return create_gl_backend({.platform = GlPlatform::Egl});
     case Api::Vulkan: return create_vulkan_backend();
   }
-  return fail("unknown API");
+  return fail(ErrorKind::Internal, "unknown API");
 }
 
 // The contract on every API, one backend each for the suite (SharedBackendTest).

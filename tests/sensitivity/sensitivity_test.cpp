@@ -218,19 +218,22 @@ struct RingDrop {
 Result<std::pair<std::string, RingDrop>> drop_outer_ring(const std::string& kernels, const std::string& keyword) {
   const std::regex block_start("#(el)?if defined\\(" + keyword + "\\)\\n");
   std::smatch start;
-  if (!std::regex_search(kernels, start, block_start)) return fail("no kernel block for " + keyword);
+  if (!std::regex_search(kernels, start, block_start))
+    return fail(ErrorKind::UserInput, "no kernel block for " + keyword);
   const size_t block_begin = size_t(start.position(0) + start.length(0));
   const size_t block_end = kernels.find("};", block_begin);
-  if (block_end == std::string::npos) return fail("the " + keyword + " kernel has no closing '};'");
+  if (block_end == std::string::npos)
+    return fail(ErrorKind::UserInput, "the " + keyword + " kernel has no closing '};'");
   const std::string block = kernels.substr(block_begin, block_end - block_begin);
 
   std::smatch count;
   if (!std::regex_search(block, count, std::regex("static const int kBokehSampleCount = (\\d+);\\n")))
-    return fail("the " + keyword + " kernel declares no kBokehSampleCount");
+    return fail(ErrorKind::UserInput, "the " + keyword + " kernel declares no kBokehSampleCount");
   const int samples = std::stoi(count[1]);
   const std::string array_head = "static const float2 kBokehKernel[" + std::to_string(samples) + "] = {\n";
   const size_t points_begin = block.find(array_head);
-  if (points_begin == std::string::npos) return fail("the " + keyword + " kernel's array is not " + array_head);
+  if (points_begin == std::string::npos)
+    return fail(ErrorKind::UserInput, "the " + keyword + " kernel's array is not " + array_head);
 
   struct Point {
     std::string text;
@@ -242,8 +245,8 @@ Result<std::pair<std::string, RingDrop>> drop_outer_ring(const std::string& kern
   for (auto it = std::sregex_iterator(body.begin(), body.end(), point); it != std::sregex_iterator(); ++it)
     points.push_back({it->str(0), std::hypot(std::stof((*it)[1]), std::stof((*it)[2]))});
   if (int(points.size()) != samples)
-    return fail("the " + keyword + " kernel lists " + std::to_string(points.size()) + " points, not " +
-                std::to_string(samples));
+    return fail(ErrorKind::UserInput, "the " + keyword + " kernel lists " + std::to_string(points.size()) +
+                                          " points, not " + std::to_string(samples));
 
   // A ring is the points at one radius; the kernel values carry 7 digits.
   float outer = 0.0f;
@@ -255,7 +258,8 @@ Result<std::pair<std::string, RingDrop>> drop_outer_ring(const std::string& kern
     kept += (remaining ? ",\n  " : "  ") + p.text;
     ++remaining;
   }
-  if (remaining == 0 || remaining == samples) return fail("the " + keyword + " kernel has no separate outer ring");
+  if (remaining == 0 || remaining == samples)
+    return fail(ErrorKind::UserInput, "the " + keyword + " kernel has no separate outer ring");
 
   std::string new_block = block.substr(0, size_t(count.position(0)));
   new_block += "static const int kBokehSampleCount = " + std::to_string(remaining) + ";\n";
@@ -295,8 +299,8 @@ Result<Comparison> render_against_golden(const Scene& scene, const fs::path& sha
   for (const VariantRequest& request : plan->variants)
     if (std::mismatch(shader_root.begin(), shader_root.end(), request.source.begin(), request.source.end()).first !=
         shader_root.end())
-      return fail(request.label() + " was planned from " + request.source.string() + ", outside " +
-                  shader_root.string());
+      return fail(ErrorKind::Internal, request.label() + " was planned from " + request.source.string() + ", outside " +
+                                           shader_root.string());
 
   VariantCompiler compiler(shader_root, nullptr);
   std::vector<CompiledVariant> variants;
@@ -313,7 +317,7 @@ Result<Comparison> render_against_golden(const Scene& scene, const fs::path& sha
   const GoldenStore goldens(kGoldenDir);
   auto golden = goldens.find(scene.name, kLaneName);
   if (!golden) return fail(golden.error());
-  if (!*golden) return fail(goldens.missing_message(scene.name, kLaneName));
+  if (!*golden) return fail(ErrorKind::UserInput, goldens.missing_message(scene.name, kLaneName));
   return compare_images(rendered->image, (*golden)->image, scene.compare);
 }
 
