@@ -213,7 +213,7 @@ Verb add_diff_command(CLI::App& app) {
       ->check(CLI::IsMember({"flip", "ssim", "deltae"}))
       ->excludes(mask);  // the mask is the per-pixel layer's; a metric writes its --heat-map
   diff->add_option("--threshold", options->threshold,
-                   "--metric's bound: flip the highest mean (default 0.01), ssim the lowest mean (0.99), deltae the "
+                   "--metric's bound: flip the highest mean (default 0.0005), ssim the lowest mean (0.999), deltae the "
                    "highest average CIEDE2000 above --pixel-threshold (0)")
       ->type_name("VALUE");
   diff->add_option("--pixel-threshold", options->pixel_threshold,
