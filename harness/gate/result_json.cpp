@@ -171,6 +171,16 @@ class Reader {
     metrics.max_y = get<uint32_t>(linear, "max_y");
     metrics.mean = get<double>(linear, "mean");
     metrics.rmse = get<double>(linear, "rmse");
+    // Only a scene that chose a metric has one (and results written before metrics have none).
+    if (object.contains("metric") && !object["metric"].is_null()) {
+      const json& metric = this->object(object, "metric");
+      MetricFigures figures{
+          get<std::string>(metric, "name"), get<double>(metric, "value"), get<double>(metric, "threshold"), {}};
+      const json& named = this->object(metric, "figures");
+      for (auto it = named.begin(); it != named.end(); ++it)
+        figures.figures.emplace_back(it.key(), get<double>(named, it.key().c_str()));
+      metrics.metric = std::move(figures);
+    }
     return metrics;
   }
 
@@ -236,6 +246,19 @@ class Reader {
 
 }  // namespace
 
+namespace {
+
+json metric_json(const MetricFigures& metric) {
+  json figures = json::object();
+  for (const auto& [name, value] : metric.figures) figures[name] = number(value);
+  return {{"name", metric.name},
+          {"value", number(metric.value)},
+          {"threshold", number(metric.threshold)},
+          {"figures", std::move(figures)}};
+}
+
+}  // namespace
+
 json metrics_to_json(const ImageMetrics& metrics) {
   return {{"steps",
            {{"worst", metrics.max_steps},
@@ -260,7 +283,8 @@ json metrics_to_json(const ImageMetrics& metrics) {
             {"max_x", metrics.max_x},
             {"max_y", metrics.max_y},
             {"mean", number(metrics.mean)},
-            {"rmse", number(metrics.rmse)}}}};
+            {"rmse", number(metrics.rmse)}}},
+          {"metric", metrics.metric ? metric_json(*metrics.metric) : json(nullptr)}};
 }
 
 json lane_to_json(const LaneResult& lane) {

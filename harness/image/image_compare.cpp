@@ -12,6 +12,7 @@
 
 #include "harness/image/image_codec.h"
 #include "harness/image/image_io.h"
+#include "harness/image/metric_layers.h"
 #include "harness/image/srgb8_encoder.h"
 
 namespace xshade::harness {
@@ -325,7 +326,9 @@ Comparison compare_images(const FloatImage& test, const FloatImage& reference, c
   // Not identical is no failure: the exact layer is the fast path, and the next layer decides.
   result.layers.push_back(
       identical ? LayerResult{"exact", Verdict::Pass, "bit-identical"}
-                : LayerResult{"exact", Verdict::Skipped, "not bit-identical; the per-pixel layer decides"});
+                : LayerResult{"exact", Verdict::Skipped,
+                              fmt::format("not bit-identical; the {} layer decides",
+                                          settings.metric ? metric_name(settings.metric->metric) : "per-pixel")});
 
   // 3. per_pixel, with the summary's sums and the heat map from the same pass
   // Without its palette (the image library could not be loaded) there is no heat map; whoever
@@ -383,9 +386,29 @@ Comparison compare_images(const FloatImage& test, const FloatImage& reference, c
                        hdr.max_pixel / test.width)});
   }
 
+  // 5. the scene's perceptual metric, which decides in place of layers 3 and 4 (identical images
+  // need no measuring: no metric finds a difference there).
+  std::optional<Verdict> metric_verdict;
+  if (settings.metric) {
+    const std::string name(metric_name(settings.metric->metric));
+    MetricFigures figures{name, settings.metric->metric == Metric::Ssim ? 1.0 : 0.0, settings.metric->threshold, {}};
+    if (identical) {
+      result.layers.push_back({name, Verdict::Skipped, "bit-identical"});
+    } else if (auto measured = run_metric(test, reference, *settings.metric)) {
+      figures.value = measured->value;
+      figures.figures = std::move(measured->figures);
+      metric_verdict = measured->layer.verdict;
+      result.layers.push_back(std::move(measured->layer));
+    } else {
+      metric_verdict = Verdict::Fail;  // what cannot be measured has not passed
+      result.layers.push_back({name, Verdict::Fail, measured.error().message});
+    }
+    result.metrics.metric = std::move(figures);
+  }
+
   // The first layer that settles the question decides: a non-finite value fails whatever the
-  // differences are, the position layer only matters when the per-pixel layer failed, and the
-  // float layer when the displayable range passed.
+  // differences are, a scene's metric decides what is left, the position layer only matters when
+  // the per-pixel layer failed, and the float layer when the displayable range passed.
   auto decide = [&](bool passed, std::string layer) {
     result.verdict = passed ? Verdict::Pass : Verdict::Fail;
     result.decided_by = std::move(layer);
@@ -395,6 +418,8 @@ Comparison compare_images(const FloatImage& test, const FloatImage& reference, c
     decide(false, "finite");
   else if (identical)
     decide(true, "exact");
+  else if (metric_verdict)
+    decide(*metric_verdict == Verdict::Pass, std::string(metric_name(settings.metric->metric)));
   else if (!displayable_passed)
     decide(false, settings.position_radius == 0 ? "per_pixel" : "position");
   else if (!float_passed)
@@ -402,7 +427,7 @@ Comparison compare_images(const FloatImage& test, const FloatImage& reference, c
   else
     decide(true, per_pixel_passed ? "per_pixel" : "position");
 
-  // 5. summary
+  // 6. summary
   ImageMetrics& metrics = result.metrics;
   const ImageDifference largest = max_difference(test, reference);
   metrics.max_difference = largest.max;

@@ -18,6 +18,7 @@
 
 #include "base/result.h"
 #include "harness/image/image.h"
+#include "harness/image/metric_settings.h"
 
 namespace xshade::harness {
 
@@ -42,6 +43,9 @@ struct CompareSettings {
   double float_tolerance = default_float_tolerance;            // relative, for values above 1; 0..1
   std::string reason;                                          // why; required whenever a tolerance is given
   bool tolerances_given = false;                               // any of the three numbers was written in the scene
+  // A perceptual metric that decides in place of the per-pixel, position and float layers
+  // (`[compare] metric`; metric_layers.h); those still run, for the report.
+  std::optional<MetricSettings> metric = std::nullopt;
 };
 
 enum class Verdict {
@@ -91,6 +95,8 @@ struct ImageMetrics {
   double float_max_relative = 0.0;  // the largest relative error among them
   uint32_t float_x = 0;             // where it is
   uint32_t float_y = 0;
+
+  std::optional<MetricFigures> metric = std::nullopt;  // the scene's perceptual metric, when it chose one
 };
 
 // "worst 3 sRGB steps at (3, 4), 12 failing pixels (0.29%)", and the float layer's failures.
@@ -107,12 +113,12 @@ struct NonFiniteCount {
 struct Comparison {
   Verdict verdict = Verdict::Pass;  // Pass or Fail
   // The layer whose verdict is the comparison's: "size", "finite", "exact", "per_pixel",
-  // "position" or "float".
+  // "position", "float", or the scene's metric ("flip", "ssim", "deltae").
   std::string decided_by;
   // "size" alone when the sizes differ; otherwise "finite", "exact", "per_pixel", "position",
-  // "float", "summary" in that order. Layers after a failed "finite" still run, for the report;
-  // after a passed "exact" the per-pixel, position and float layers are skipped. The float layer
-  // holds the values above 1 (which the 8-bit layers see as 255) to their relative tolerance.
+  // "float", the metric's when the scene chose one, "summary" in that order. Layers after a failed "finite" still run,
+  // for the report; after a passed "exact" the per-pixel, position and float layers are skipped. The float layer holds
+  // the values above 1 (which the 8-bit layers see as 255) to their relative tolerance.
   std::vector<LayerResult> layers;
   ImageMetrics metrics;  // all zero when the sizes differ
   // The pixels the per-pixel layer found beyond the channel tolerance, as row-major indices

@@ -73,6 +73,35 @@ TEST(CompareImages, IdenticalImagesPassOnTheExactLayer) {
     for (uint32_t x = 0; x < 4; ++x) EXPECT_EQ(comparison.heat_map.at(x, y), glm::vec4(0, 0, 0, 1)) << x << "," << y;
 }
 
+TEST(CompareImages, AScenesMetricDecidesInPlaceOfThePerPixelLayers) {
+  // A 16x16 image whose one pixel moved by 3 steps: the per-pixel layer fails it, and a CIEDE2000
+  // that ignores differences below 2 passes it.
+  FloatImage reference = filled(16, 16, {0.2f, 0.4f, 0.6f, 1.0f});
+  FloatImage test = reference;
+  test.set(3, 4, {0.21f, 0.4f, 0.6f, 1.0f});
+  CompareSettings with_metric = settings(1);
+  with_metric.metric = MetricSettings{Metric::DeltaE, 0.0, 2.0, 0.0, 0.0};
+  const Comparison comparison = compare_images(test, reference, with_metric);
+  EXPECT_EQ(layer(comparison, "per_pixel").verdict, Verdict::Fail);  // still run, for the report
+  EXPECT_EQ(comparison.decided_by, "deltae");
+  EXPECT_EQ(comparison.verdict, Verdict::Pass);
+  EXPECT_EQ(layer_names(comparison),
+            (std::vector<std::string>{"finite", "exact", "per_pixel", "position", "float", "deltae", "summary"}));
+  ASSERT_TRUE(comparison.metrics.metric);
+  EXPECT_EQ(comparison.metrics.metric->name, "deltae");
+  EXPECT_EQ(comparison.metrics.metric->value, 0.0);  // nothing above 2
+  // A per-pixel threshold below the difference fails it.
+  with_metric.metric->pixel_threshold = 0.1;
+  const Comparison strict = compare_images(test, reference, with_metric);
+  EXPECT_EQ(strict.verdict, Verdict::Fail);
+  EXPECT_EQ(strict.decided_by, "deltae");
+  EXPECT_GT(strict.metrics.metric->value, 0.0);
+  // Identical images need no measuring; a NaN still fails on the finite layer first.
+  EXPECT_EQ(compare_images(reference, reference, with_metric).decided_by, "exact");
+  test.set(0, 0, {NAN, 0.0f, 0.0f, 1.0f});
+  EXPECT_EQ(compare_images(test, reference, with_metric).decided_by, "finite");
+}
+
 TEST(CompareImages, OnePixelTwoStepsOffFailsWithoutBudgetAndPassesWithOnePixelOfBudget) {
   const FloatImage reference = filled(4, 4, code_colour(100, 100, 100));
   FloatImage test = reference;

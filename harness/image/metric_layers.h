@@ -13,28 +13,9 @@
 #include "base/result.h"
 #include "harness/image/image.h"
 #include "harness/image/image_compare.h"
+#include "harness/image/metric_settings.h"
 
 namespace xshade::harness {
-
-enum class Metric { Flip, Ssim, DeltaE };
-std::string_view metric_name(Metric metric);  // "flip", "ssim", "deltae"
-std::optional<Metric> metric_named(std::string_view name);
-
-struct MetricSettings {
-  Metric metric = Metric::Flip;
-  // flip: the highest mean FLIP; ssim: the lowest mean SSIM; deltae: the highest average of what
-  // each pixel's CIEDE2000 leaves above `pixel_threshold` (Unity's AverageCorrectnessThreshold).
-  double threshold = 0.0;
-  // deltae: a pixel's difference below this is ignored (PerPixelCorrectnessThreshold), and the
-  // fraction of pixels above it may be at most `incorrect_fraction` (IncorrectPixelsThreshold).
-  double pixel_threshold = 1.0;
-  double incorrect_fraction = 0.0;
-  // flip: the viewing distance, pixels per degree.
-  double pixels_per_degree = 0.0;  // 0: the reference implementation's 67.02
-};
-
-// The threshold a metric is held to when none is given, and why (docs/reports.md).
-double default_metric_threshold(Metric metric);
 
 struct MetricResult {
   LayerResult layer;   // "flip", "ssim" or "deltae", its verdict and one line

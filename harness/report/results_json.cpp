@@ -35,6 +35,14 @@ json pair_json(const CrossLaneResult& pair) {
           {"identical", pair.identical},           {"diff", pair.diff}};
 }
 
+json compare_metric_json(const MetricSettings& metric) {
+  return {{"name", std::string(metric_name(metric.metric))},
+          {"threshold", metric.threshold},
+          {"pixel_threshold", metric.pixel_threshold},
+          {"incorrect_fraction", metric.incorrect_fraction},
+          {"pixels_per_degree", metric.pixels_per_degree}};
+}
+
 json scene_json(const SceneResult& scene) {
   json lanes = json::array();
   for (const LaneResult& lane : scene.lanes) lanes.push_back(lane_json(lane));
@@ -53,6 +61,7 @@ json scene_json(const SceneResult& scene) {
             {"max_failing_fraction", scene.compare.max_failing_fraction},
             {"position_radius", scene.compare.position_radius},
             {"float_tolerance", scene.compare.float_tolerance},
+            {"metric", scene.compare.metric ? compare_metric_json(*scene.compare.metric) : json(nullptr)},
             {"reason", scene.compare.reason}}}};
 }
 
@@ -100,6 +109,17 @@ Result<SceneResult> scene_from_json(const json& object) {
   scene.compare.position_radius = compare.at("position_radius").get<uint32_t>();
   scene.compare.float_tolerance = compare.at("float_tolerance").get<double>();
   scene.compare.reason = compare.at("reason").get<std::string>();
+  // Results written before metrics, and scenes that chose none, have no metric.
+  if (compare.contains("metric") && !compare.at("metric").is_null()) {
+    const json& metric = compare.at("metric");
+    const std::optional<Metric> named = metric_named(metric.at("name").get<std::string>());
+    if (!named)
+      return fail(ErrorKind::UserInput, "scene " + scene.scene + " is compared by the metric '" +
+                                            metric.at("name").get<std::string>() + "', which xshade does not have");
+    scene.compare.metric =
+        MetricSettings{*named, metric.at("threshold").get<double>(), metric.at("pixel_threshold").get<double>(),
+                       metric.at("incorrect_fraction").get<double>(), metric.at("pixels_per_degree").get<double>()};
+  }
   const std::string verdict = object.at("verdict").get<std::string>();
   if (!verdict_from_name(verdict))
     return fail(ErrorKind::UserInput,

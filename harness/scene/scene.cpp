@@ -105,7 +105,7 @@ class SceneReader : SceneValueReader {
     std::vector<const toml::table*> effects = table_array(root, "post");
     for (size_t i = 0; i < effects.size(); ++i) read_post(*effects[i], index_path("post", i), scene);
 
-    if (const toml::table* compare = table(root, "", "compare", false)) read_compare(*compare, scene.compare);
+    if (const toml::table* compare = table(root, "", "compare", false)) read_compare(*compare, scene);
     if (unity) check_unity_platform(*unity, scene);
   }
 
@@ -919,10 +919,13 @@ class SceneReader : SceneValueReader {
     }
   }
 
-  void read_compare(const toml::table& table, CompareSettings& compare) {
+  void read_compare(const toml::table& table, Scene& scene) {
+    CompareSettings& compare = scene.compare;
     check_keys(table, "compare",
-               {"channel_tolerance", "max_failing_fraction", "position_radius", "float_tolerance", "reason"});
+               {"channel_tolerance", "max_failing_fraction", "position_radius", "float_tolerance", "metric",
+                "metric_threshold", "pixel_threshold", "incorrect_fraction", "pixels_per_degree", "reason"});
     std::vector<std::string_view> given;
+    read_compare_metric(table, scene, given);
     if (const toml::node* node = table.get("channel_tolerance")) {
       given.push_back("channel_tolerance");
       if (auto value = integer(*node, "compare.channel_tolerance", 0, 255))
@@ -960,6 +963,60 @@ class SceneReader : SceneValueReader {
       report(table.source(),
              fmt::format("compare.reason: missing; a tolerance ({}) needs a reason saying why these numbers", keys));
     }
+  }
+
+  // [compare] metric and its thresholds (metric_settings.h). A metric's own key without the
+  // metric, or one of another metric's, is a mistake; each given key needs the reason too.
+  void read_compare_metric(const toml::table& table, Scene& scene, std::vector<std::string_view>& given) {
+    std::optional<Metric> metric;
+    if (const toml::node* node = table.get("metric")) {
+      given.push_back("metric");
+      const auto* name = node->as_string();
+      metric = name ? metric_named(name->get()) : std::nullopt;
+      if (!metric) expected(*node, "compare.metric", "\"flip\", \"ssim\" or \"deltae\"");
+    }
+    MetricSettings settings;
+    if (metric) {
+      settings.metric = *metric;
+      settings.threshold = default_metric_threshold(*metric);
+    }
+    const auto option = [&](std::string_view key, std::optional<Metric> only, std::string_view expectation,
+                            auto valid) -> std::optional<double> {
+      const toml::node* node = table.get(key);
+      if (!node) return std::nullopt;
+      given.push_back(key);
+      const std::string path = "compare." + std::string(key);
+      if (!table.get("metric") || (metric && only && *metric != *only)) {
+        report(node->source(), fmt::format("{}: belongs to {}; set compare.metric = \"{}\" or leave it out", path,
+                                           only ? "metric " + std::string(metric_name(*only)) : "a metric",
+                                           only ? metric_name(*only) : "flip"));
+        return std::nullopt;
+      }
+      return number(*node, path, expectation, valid);
+    };
+    if (auto value =
+            option("metric_threshold", std::nullopt,
+                   "a number: flip's mean in [0, 1], ssim's in [-1, 1], deltae's average of 0 or more", [&](double v) {
+                     return metric == Metric::Ssim   ? v >= -1.0 && v <= 1.0
+                            : metric == Metric::Flip ? v >= 0.0 && v <= 1.0
+                                                     : v >= 0.0;
+                   }))
+      settings.threshold = *value;
+    if (auto value = option("pixel_threshold", Metric::DeltaE, "a CIEDE2000 difference of 0 or more",
+                            [](double v) { return v >= 0.0; }))
+      settings.pixel_threshold = *value;
+    if (auto value = option("incorrect_fraction", Metric::DeltaE, "a fraction of the pixels in [0, 1]",
+                            [](double v) { return v >= 0.0 && v <= 1.0; }))
+      settings.incorrect_fraction = *value;
+    if (auto value = option("pixels_per_degree", Metric::Flip, "a number of pixels per degree above 0",
+                            [](double v) { return v > 0.0; }))
+      settings.pixels_per_degree = *value;
+    if (metric == Metric::Ssim && (scene.width < 11 || scene.height < 11))
+      report(table.get("metric")->source(),
+             fmt::format("compare.metric: ssim measures in 11x11 windows and this scene is {}x{}; choose flip or "
+                         "deltae",
+                         scene.width, scene.height));
+    if (metric) scene.compare.metric = settings;
   }
 
   std::filesystem::path file_;

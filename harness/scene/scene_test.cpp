@@ -314,6 +314,49 @@ TEST(SceneParse, ACompareTableWithOnlyAReasonGivesNoTolerance) {
   EXPECT_EQ(scene.compare.channel_tolerance, CompareSettings::default_channel_tolerance);
 }
 
+TEST(SceneParse, ACompareMetricWithItsThresholds) {
+  Scene deltae = parse_ok(minimal_head +
+                          "[compare]\nmetric = \"deltae\"\nmetric_threshold = 0.5\npixel_threshold = 2\n"
+                          "incorrect_fraction = 0.01\nreason = \"colour is what this scene checks\"\n");
+  ASSERT_TRUE(deltae.compare.metric);
+  EXPECT_EQ(deltae.compare.metric->metric, Metric::DeltaE);
+  EXPECT_EQ(deltae.compare.metric->threshold, 0.5);
+  EXPECT_EQ(deltae.compare.metric->pixel_threshold, 2.0);
+  EXPECT_EQ(deltae.compare.metric->incorrect_fraction, 0.01);
+  // Without a threshold, the metric's default.
+  Scene flip = parse_ok(minimal_head + "[compare]\nmetric = \"flip\"\nreason = \"r\"\n");
+  ASSERT_TRUE(flip.compare.metric);
+  EXPECT_EQ(flip.compare.metric->threshold, default_metric_threshold(Metric::Flip));
+  EXPECT_FALSE(parse_ok(minimal_head).compare.metric);
+}
+
+TEST(SceneErrors, ACompareMetricsMistakes) {
+  EXPECT_EQ(
+      errors_of(minimal_head + "[compare]\nmetric = \"psnr\"\nreason = \"r\"\n"),
+      (std::vector<std::string>{
+          "scenes/bad.toml:10:10: error: compare.metric: expected \"flip\", \"ssim\" or \"deltae\", got \"psnr\""}));
+  // Another metric's key, and a metric's key without the metric.
+  EXPECT_EQ(errors_of(minimal_head + "[compare]\nmetric = \"flip\"\npixel_threshold = 2\nreason = \"r\"\n"),
+            (std::vector<std::string>{"scenes/bad.toml:11:19: error: compare.pixel_threshold: belongs to metric "
+                                      "deltae; set compare.metric = \"deltae\" or leave it out"}));
+  EXPECT_EQ(errors_of(minimal_head + "[compare]\nmetric_threshold = 0.1\nreason = \"r\"\n"),
+            (std::vector<std::string>{"scenes/bad.toml:10:20: error: compare.metric_threshold: belongs to a metric; "
+                                      "set compare.metric = \"flip\" or leave it out"}));
+  EXPECT_EQ(
+      errors_of(minimal_head + "[compare]\nmetric = \"ssim\"\nmetric_threshold = 2\nreason = \"r\"\n"),
+      (std::vector<std::string>{"scenes/bad.toml:11:20: error: compare.metric_threshold: expected a number: "
+                                "flip's mean in [0, 1], ssim's in [-1, 1], deltae's average of 0 or more, got 2"}));
+  // A metric is a choice of tolerance: it needs its reason.
+  EXPECT_EQ(errors_of(minimal_head + "[compare]\nmetric = \"ssim\"\n"),
+            (std::vector<std::string>{"scenes/bad.toml:9:1: error: compare.reason: missing; a tolerance (metric) "
+                                      "needs a reason saying why these numbers"}));
+  std::string tiny = minimal_head;
+  tiny.replace(tiny.find("size = [64, 32]"), 15, "size = [64, 8]");
+  EXPECT_EQ(errors_of(tiny + "[compare]\nmetric = \"ssim\"\nreason = \"r\"\n"),
+            (std::vector<std::string>{"scenes/bad.toml:10:10: error: compare.metric: ssim measures in 11x11 windows "
+                                      "and this scene is 64x8; choose flip or deltae"}));
+}
+
 TEST(SceneErrors, SyntaxErrorIsReportedWhereTomlStops) {
   EXPECT_EQ(errors_of("description = \"x\"\nsize = [64, 32\n"),
             (std::vector<std::string>{
