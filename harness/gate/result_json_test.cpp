@@ -29,6 +29,7 @@ LaneResult full_lane() {
   metrics.first_failing = std::pair{5u, 6u};
   metrics.hdr_values = 9;
   metrics.float_max_relative = 0.01;
+  metrics.metric = MetricFigures{"flip", 0.002, 0.0005, {{"mean", 0.002}, {"max", 0.4}}};
   lane.against_golden = metrics;
   lane.non_finite = {1, 2, 3, std::pair{7u, 8u}};
   lane.image = "scene/vk.png";
@@ -61,6 +62,11 @@ TEST(LaneResultJson, ReadsBackWhatItWrote) {
   EXPECT_EQ(read->against_golden->worst_test[0], 0.5f);
   EXPECT_TRUE(std::isnan(read->against_golden->worst_test[1])) << "a NaN value is written as null";
   EXPECT_EQ(read->against_golden->worst_reference, (std::array<float, 4>{0.25f, 0.0f, 1.0f, 1.0f}));
+  ASSERT_TRUE(read->against_golden->metric);
+  EXPECT_EQ(read->against_golden->metric->name, "flip");
+  EXPECT_EQ(read->against_golden->metric->value, 0.002);
+  EXPECT_EQ(read->against_golden->metric->threshold, 0.0005);
+  EXPECT_EQ(read->against_golden->metric->figures.size(), 2u);
   EXPECT_EQ(read->golden_exr, "scene/vk.golden.exr");
   EXPECT_EQ(read->non_finite.negative, 3u);
   EXPECT_EQ(read->non_finite.first, (std::pair{7u, 8u}));

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 
 #include "tests/scenes/gating_test_shared.h"
 #include "tests/support/scene_copy.h"
@@ -60,6 +61,38 @@ TEST_F(Gating, AVisiblyChangedShaderFailsWithItsDiffInTheReport) {
   EXPECT_TRUE(fs::exists(root_ / "report" / kCopiedScene / "gl.diff.png"));
   const std::string page = read_text(root_ / "report" / (std::string(kCopiedScene) + ".html"));
   EXPECT_NE(page.find("gl.diff.png"), std::string::npos);
+}
+
+// A scene that chose a perceptual metric is decided by it: a shader change the per-pixel layer
+// fails passes within the metric's threshold, and fails beyond it with the metric's line; the
+// metric's figures are in results.json.
+TEST_F(Gating, AScenesMetricDecidesItsGoldenComparison) {
+  const fs::path toon = root_ / "shaders/materials/toon.hlsl";
+  replace_in_file(toon, "return fixed4(diffuse + specular + rim, albedo.a);",
+                  "return fixed4((diffuse + specular + rim) * 0.97, albedo.a);");
+  const fs::path scene = root_ / "scenes" / (std::string(kCopiedScene) + ".toml");
+  const std::string text = read_text(scene);
+  std::ofstream(scene, std::ios::binary | std::ios::trunc)
+      << text << "\n[compare]\nmetric = \"flip\"\nmetric_threshold = 0.05\nreason = \"3% darker is within it\"\n";
+  Outcome loose = run();
+  EXPECT_EQ(loose.exit_code, 0) << loose.output;
+  const nlohmann::json results = nlohmann::json::parse(read_text(root_ / "report/results.json"));
+  const nlohmann::json& golden = results["scenes"][0]["lanes"][0]["against_golden"];
+  ASSERT_TRUE(golden["metric"].is_object()) << golden.dump();
+  EXPECT_EQ(golden["metric"]["name"], "flip");
+  EXPECT_GT(golden["metric"]["value"].get<double>(), 0.0);
+  EXPECT_LT(golden["metric"]["value"].get<double>(), 0.05);
+  EXPECT_EQ(results["scenes"][0]["compare"]["metric"]["name"], "flip");
+  std::map<std::string, std::string> verdicts;  // the golden comparison's layers, as the lane reports them
+  for (const nlohmann::json& layer : results["scenes"][0]["lanes"][0]["layers"])
+    verdicts[layer["layer"].get<std::string>()] = layer["verdict"].get<std::string>();
+  EXPECT_EQ(verdicts["per_pixel"], "fail");  // what decided without the metric
+  EXPECT_EQ(verdicts["flip"], "pass");
+
+  replace_in_file(scene, "metric_threshold = 0.05", "metric_threshold = 0.00001");
+  Outcome strict = run();
+  EXPECT_EQ(strict.exit_code, 1) << strict.output;
+  EXPECT_NE(strict.output.find("FLIP mean"), std::string::npos) << strict.output;
 }
 
 TEST_F(Gating, AMissingGoldenFailsWithTheBlessCommand) {
