@@ -253,6 +253,12 @@ void SceneChecker::add_reference_layers(const Scene& scene, const FloatImage& im
       const bool decides = layer.layer == comparison.decided_by;
       add_layer(result, std::move(layer), decides);
     }
+    // A failed comparison says how to accept the new image, as a missing golden does (not an
+    // image with NaN, Inf or negative values, which bless refuses).
+    if (comparison.verdict == Verdict::Fail && comparison.decided_by != "finite")
+      result.message +=
+          "\nif the new image is what the change means, accept it with " +
+          GoldenStore::bless_command(scene.name, reference.lane_specific ? std::optional(result.lane) : std::nullopt);
     result.against_golden = comparison.metrics;
     result.diff = write_image(comparison.heat_map, scene.name, result.lane + ".diff.png");
   }

@@ -95,7 +95,9 @@ table.index[data-show="fail"] tbody tr:not(.row-fail), table.index[data-show="er
 table.index[data-show="crash"] tbody tr:not(.row-crash), table.index[data-show="pass"] tbody tr:not(.row-pass),
 table.index[data-show="skipped"] tbody tr:not(.row-skipped) { display: none; }
 p.files { font-size: 12px; color: var(--muted); margin: 0 0 8px; }
-ul.runs { margin: 2px 0; padding-left: 18px; font-size: 12px; }
+details.runs { margin: 12px 0; font-size: 12px; }
+details.runs ul { margin: 4px 0; padding-left: 18px; }
+.decides { color: var(--muted); font-size: 12px; }
 )css";
 
 std::string verdict_class(Verdict verdict) { return "v-" + std::string(verdict_name(verdict)); }
@@ -165,6 +167,26 @@ std::vector<std::string> lane_columns(const RunResults& results) {
   return lanes;
 }
 
+// What decides the scene's comparisons, in a few words: its metric and threshold, or the
+// per-pixel layer's tolerance.
+std::string deciding_comparison(const CompareSettings& compare) {
+  if (compare.metric) {
+    const MetricSettings& metric = *compare.metric;
+    switch (metric.metric) {
+      case Metric::Flip: return fmt::format("FLIP mean ≤ {:g}", metric.threshold);
+      case Metric::Ssim: return fmt::format("SSIM mean ≥ {:g}", metric.threshold);
+      case Metric::DeltaE:
+        return fmt::format("ΔE00 above {:g}: average ≤ {:g}, pixels ≤ {:g}%", metric.pixel_threshold, metric.threshold,
+                           100.0 * metric.incorrect_fraction);
+    }
+  }
+  std::string text = fmt::format("per pixel ±{} sRGB {}", compare.channel_tolerance,
+                                 compare.channel_tolerance == 1 ? "step" : "steps");
+  if (compare.max_failing_fraction > 0.0) text += fmt::format(", {:g}% may fail", 100.0 * compare.max_failing_fraction);
+  if (compare.position_radius > 0) text += fmt::format(", within {} px", compare.position_radius);
+  return text;
+}
+
 void index_row(std::string& out, const SceneResult& scene, const std::string& page,
                const std::vector<std::string>& lanes) {
   auto to = std::back_inserter(out);
@@ -174,6 +196,8 @@ void index_row(std::string& out, const SceneResult& scene, const std::string& pa
   fmt::format_to(to, "<td class=\"scene\"><a href=\"{}\">{}</a>", href, escape_text(scene.scene));
   if (!scene.description.empty())
     fmt::format_to(to, "<span class=\"description detail\">{}</span>", escape_text(scene.description));
+  fmt::format_to(to, "<span class=\"decides detail\">compared by {}</span>",
+                 escape_text(deciding_comparison(scene.compare)));
   fmt::format_to(to, "</td>\n<td class=\"cell {0}\"><a href=\"{1}\">{2}</a></td>\n", verdict_class(scene.verdict), href,
                  verdict_span(scene.verdict));
   if (scene.lanes.empty() && !scene.message.empty()) {
@@ -461,13 +485,19 @@ std::string index_html(const RunResults& results) {
   fmt::format_to(to, "<dt>took</dt><dd>{}{}</dd>\n", escape_text(describe_duration(results.seconds)),
                  results.merged_from.empty() ? "" : " (the runs' times added)");
   fmt::format_to(to, "<dt>command</dt><dd><code>{}</code></dd>\n", escape_text(results.command));
-  if (!results.merged_from.empty()) {
-    fmt::format_to(to, "<dt>merged from</dt><dd>{} runs<ul class=\"runs\">\n", results.merged_from.size());
+  // A merged report's runs are listed, folded, below its results: a CTest run merges one per test.
+  if (!results.merged_from.empty())
+    fmt::format_to(to, "<dt>merged from</dt><dd>{} runs, <a href=\"#runs\">listed below the scenes</a></dd>\n",
+                   results.merged_from.size());
+  const auto merged_runs = [&] {
+    if (results.merged_from.empty()) return;
+    fmt::format_to(to, "<details id=\"runs\" class=\"runs\"><summary>The {} runs merged here</summary><ul>\n",
+                   results.merged_from.size());
     for (const MergedRun& run : results.merged_from)
       fmt::format_to(to, "<li><span class=\"mono\">{}</span>: <code>{}</code>, {}, {}</li>\n", escape_text(run.folder),
                      escape_text(run.command), escape_text(run.started), escape_text(describe_duration(run.seconds)));
-    out += "</ul></dd>\n";
-  }
+    out += "</ul></details>\n";
+  };
   fmt::format_to(to, "<dt>scenes</dt><dd class=\"counts\">{}</dd>\n", counts_html(count_scenes(results)));
   fmt::format_to(
       to,
@@ -479,6 +509,7 @@ std::string index_html(const RunResults& results) {
 
   if (results.scenes.empty()) {
     out += "<p>No scene ran.</p>\n";
+    merged_runs();
     return out + std::string(kPageEnd);
   }
   // The scenes that need a look first, the most urgent at the top; otherwise in run order.
@@ -527,6 +558,7 @@ std::string index_html(const RunResults& results) {
     index_row(out, results.scenes[i], pages[i], lanes);
   }
   out += "</tbody>\n</table>\n";
+  merged_runs();
   out += R"js(<script>
 // The verdict filter: one table attribute, read by the style sheet; the address keeps the choice.
 (function () {

@@ -183,6 +183,32 @@ TEST_F(ReportTest, IndexLinksEveryScenePageAndListsFailuresFirst) {
   EXPECT_NE(index.find(results_.command.substr(0, 20)), std::string::npos);
 }
 
+TEST_F(ReportTest, IndexSaysWhatDecidesEachScenesComparison) {
+  RunResults results = sample_results();
+  results.scenes[0].compare.metric = MetricSettings{Metric::Flip, 0.002, 1.0, 0.0, 0.0};
+  results.scenes[1].compare.channel_tolerance = 3;
+  results.scenes[1].compare.position_radius = 1;
+  const std::string index = index_html(results);
+  EXPECT_NE(index.find("compared by FLIP mean ≤ 0.002"), std::string::npos) << index;
+  EXPECT_NE(index.find("compared by per pixel ±3 sRGB steps, within 1 px"), std::string::npos) << index;
+  EXPECT_NE(index.find("compared by per pixel ±1 sRGB step<"), std::string::npos) << index;
+}
+
+TEST_F(ReportTest, AMergedReportListsItsRunsFoldedBelowTheScenes) {
+  RunResults results = sample_results();
+  for (int i = 1; i <= 31; ++i)
+    results.merged_from.push_back({"test-" + std::to_string(i), "2024-05-01T10:20:30Z", 1.0, "xshade run scene"});
+  const std::string index = index_html(results);
+  EXPECT_NE(index.find("merged from</dt><dd>31 runs"), std::string::npos);
+  const size_t table = index.find("<table class=\"index\"");
+  const size_t runs = index.find("<details id=\"runs\"");
+  ASSERT_NE(table, std::string::npos);
+  ASSERT_NE(runs, std::string::npos);
+  EXPECT_LT(table, runs);  // the results first
+  EXPECT_LT(runs, index.find("test-1:"));
+  EXPECT_EQ(index.find("<details id=\"runs\" open"), std::string::npos);  // folded
+}
+
 TEST_F(ReportTest, IndexShowsTheFailingLaneWithItsFirstFailingLayer) {
   const std::string index = read_text(dir_ / "index.html");
   const std::string vk_cell = "<td class=\"cell v-fail\"><a href=\"" + pages_[1] + "#lane-vk\">";
@@ -363,12 +389,17 @@ TEST_F(ReportTest, ResultsJsonReadsBackWhole) {
   results.scenes[1].compare.channel_tolerance = 3;
   results.scenes[1].compare.reason = "a soft edge";
   results.scenes[0].cross_lane[0].identical = true;
+  results.scenes[0].compare.metric = MetricSettings{Metric::DeltaE, 0.25, 2.0, 0.01, 0.0};
   results.merged_from = {{"shard-1", "2024-05-01T10:20:30Z", 2.5, "xshade run --shard 1/2"}};
   const std::string written = results_json(results);
   auto read = results_from_json(written, "r/results.json");
   ASSERT_TRUE(read) << read.error().to_string();
   EXPECT_EQ(results_json(*read), written);
   EXPECT_EQ(read->scenes[1].compare.channel_tolerance, 3u);
+  ASSERT_TRUE(read->scenes[0].compare.metric);
+  EXPECT_EQ(read->scenes[0].compare.metric->metric, Metric::DeltaE);
+  EXPECT_EQ(read->scenes[0].compare.metric->incorrect_fraction, 0.01);
+  EXPECT_FALSE(read->scenes[1].compare.metric);
   EXPECT_TRUE(read->scenes[0].cross_lane[0].identical);
   EXPECT_EQ(read->merged_from.at(0).command, "xshade run --shard 1/2");
   EXPECT_EQ(read->scenes[1].warnings, results.scenes[1].warnings);

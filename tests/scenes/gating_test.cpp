@@ -58,9 +58,13 @@ TEST_F(Gating, AVisiblyChangedShaderFailsWithItsDiffInTheReport) {
   Outcome outcome = run();
   EXPECT_EQ(outcome.exit_code, 1) << outcome.output;
   EXPECT_NE(outcome.output.find("per_pixel"), std::string::npos) << outcome.output;
+  // How to accept the new image, on the console and the page.
+  const std::string bless = "xshade bless " + std::string(kCopiedScene) + " --reason";
+  EXPECT_NE(outcome.output.find(bless), std::string::npos) << outcome.output;
   EXPECT_TRUE(fs::exists(root_ / "report" / kCopiedScene / "gl.diff.png"));
   const std::string page = read_text(root_ / "report" / (std::string(kCopiedScene) + ".html"));
   EXPECT_NE(page.find("gl.diff.png"), std::string::npos);
+  EXPECT_NE(page.find(bless), std::string::npos);
 }
 
 // A scene that chose a perceptual metric is decided by it: a shader change the per-pixel layer
