@@ -305,6 +305,7 @@ json lane_to_json(const LaneResult& lane) {
           {"golden", lane.golden},
           {"golden_exr", lane.golden_exr},
           {"diff", lane.diff},
+          {"metric_map", lane.metric_map},
           {"non_finite_mask", lane.non_finite_mask},
           {"timings", std::move(timings)},
           {"seconds", number(lane.seconds)},
@@ -342,6 +343,8 @@ Result<LaneResult> lane_from_json(const json& object) {
   lane.golden = read.get<std::string>(object, "golden");
   lane.golden_exr = read.get<std::string>(object, "golden_exr");
   lane.diff = read.get<std::string>(object, "diff");
+  // Results written before metrics have none.
+  if (object.contains("metric_map")) lane.metric_map = read.get<std::string>(object, "metric_map");
   lane.non_finite_mask = read.get<std::string>(object, "non_finite_mask");
   for (const json& time : read.array(object, "timings"))
     lane.timings.push_back({read.get<std::string>(time, "pass"), read.get<double>(time, "milliseconds")});

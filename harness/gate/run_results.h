@@ -53,6 +53,7 @@ struct LaneResult {
   std::string golden;           // the golden it was compared with (a copy in the report)
   std::string golden_exr;       // the golden's float image, where it has one (values above 1)
   std::string diff;             // heat map of the difference against the golden
+  std::string metric_map;       // heat map of the scene's metric against the golden, when it chose one
   std::string non_finite_mask;  // white where NaN/Inf/negative values are
   std::vector<PassTime> timings;
   double seconds = 0.0;  // compile + render + checks

@@ -261,6 +261,9 @@ void SceneChecker::add_reference_layers(const Scene& scene, const FloatImage& im
           GoldenStore::bless_command(scene.name, reference.lane_specific ? std::optional(result.lane) : std::nullopt);
     result.against_golden = comparison.metrics;
     result.diff = write_image(comparison.heat_map, scene.name, result.lane + ".diff.png");
+    if (comparison.metrics.metric && comparison.metric_heat_map.width > 0)
+      result.metric_map = write_image(comparison.metric_heat_map, scene.name,
+                                      result.lane + "." + comparison.metrics.metric->name + ".png");
   }
 }
 

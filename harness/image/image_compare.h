@@ -135,6 +135,9 @@ struct Comparison {
   //                    plain to see, even one step beyond) through orange to pale yellow at 255.
   // The map's colours are sRGB; they are stored linear, so that write_png shows them as they are.
   FloatImage heat_map;
+  // The scene's metric per pixel through inferno (metric_heat_map), when it chose one, the images
+  // differ and a heat map was asked for.
+  FloatImage metric_heat_map;
 };
 
 // The heat map's colour (linear RGB, alpha 1) for each largest channel difference of 0..255

@@ -139,18 +139,29 @@ Result<MetricResult> run_metric(const FloatImage& test, const FloatImage& refere
   return result;
 }
 
-Result<FloatImage> metric_heat_map(const MetricResult& result) {
+Result<std::array<glm::vec4, 256>> metric_palette() {
   auto codec = image_codec();
   if (!codec) return fail(codec.error());
+  std::vector<float> positions(256);
+  for (size_t i = 0; i < positions.size(); ++i) positions[i] = float(i) / 255.0f;
   std::vector<float> rgb;
-  if (std::string failed = (*codec)->color_map(result.heat, "inferno", rgb); !failed.empty())
+  if (std::string failed = (*codec)->color_map(positions, "inferno", rgb); !failed.empty())
     return fail(ErrorKind::Backend, "the heat map's colour map 'inferno': " + failed);
+  std::array<glm::vec4, 256> palette{};
+  for (size_t i = 1; i < palette.size(); ++i)
+    palette[i] = {srgb_to_linear(rgb[i * 3]), srgb_to_linear(rgb[i * 3 + 1]), srgb_to_linear(rgb[i * 3 + 2]), 1.0f};
+  palette[0] = {0.0f, 0.0f, 0.0f, 1.0f};  // inferno's first colour is nearly, not quite, black
+  return palette;
+}
+
+Result<FloatImage> metric_heat_map(const MetricResult& result) {
+  static const Result<std::array<glm::vec4, 256>> palette = metric_palette();
+  if (!palette) return fail(palette.error());
   FloatImage image(result.width, result.height);
-  for (size_t p = 0; p < result.heat.size(); ++p)
-    image.set(uint32_t(p % result.width), uint32_t(p / result.width),
-              result.heat[p] > 0.0f ? glm::vec4(srgb_to_linear(rgb[p * 3]), srgb_to_linear(rgb[p * 3 + 1]),
-                                                srgb_to_linear(rgb[p * 3 + 2]), 1.0f)
-                                    : glm::vec4(0.0f, 0.0f, 0.0f, 1.0f));
+  for (size_t p = 0; p < result.heat.size(); ++p) {
+    const float value = std::isfinite(result.heat[p]) ? std::clamp(result.heat[p], 0.0f, 1.0f) : 1.0f;
+    image.set(uint32_t(p % result.width), uint32_t(p / result.width), (*palette)[size_t(std::lround(value * 255.0f))]);
+  }
   return image;
 }
 

@@ -4,6 +4,7 @@
 // one on any two images. Which to choose is in docs/reports.md.
 #pragma once
 
+#include <array>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -34,7 +35,11 @@ struct MetricResult {
 // The images have the same size.
 Result<MetricResult> run_metric(const FloatImage& test, const FloatImage& reference, const MetricSettings& settings);
 
-// `result.heat` through the inferno colour map (0 black, 1 pale yellow), linear, alpha 1.
+// The metric heat map's 256 colours (linear RGB, alpha 1): inferno from 0 to 1 in even steps, 0
+// itself black. Fails when the image library (image_codec.h) cannot be loaded.
+Result<std::array<glm::vec4, 256>> metric_palette();
+
+// `result.heat` through metric_palette, each value to the nearest of its 256 steps.
 Result<FloatImage> metric_heat_map(const MetricResult& result);
 
 }  // namespace xshade::harness

@@ -11,6 +11,7 @@
 
 #include "harness/image/image_compare.h"
 #include "harness/image/image_io.h"
+#include "harness/image/metric_layers.h"
 #include "harness/image/srgb8_encoder.h"
 
 namespace xshade::harness {
@@ -56,11 +57,26 @@ std::string hex_colour(const glm::vec4& linear) {
 
 // Empty when the image library cannot be loaded: the report's images cannot be written then
 // either, and that error says why.
-json palette_json(uint32_t tolerance) {
+json palette_json(const Result<std::array<glm::vec4, 256>>& palette) {
   json colours = json::array();
-  if (auto palette = heat_palette(tolerance))
+  if (palette)
     for (const glm::vec4& colour : *palette) colours.push_back(hex_colour(colour));
   return colours;
+}
+
+json or_null(const std::string& text) { return text.empty() ? json(nullptr) : json(text); }
+
+// The scene's metric against the golden, with its heat map, or null.
+json metric_or_null(const LaneResult& lane) {
+  if (!lane.against_golden || !lane.against_golden->metric) return nullptr;
+  const MetricFigures& metric = *lane.against_golden->metric;
+  json figures = json::object();
+  for (const auto& [name, value] : metric.figures) figures[name] = value;
+  return {{"name", metric.name},
+          {"value", metric.value},
+          {"threshold", metric.threshold},
+          {"figures", std::move(figures)},
+          {"map", or_null(lane.metric_map)}};
 }
 
 json pixel_or_null(const std::optional<std::pair<uint32_t, uint32_t>>& pixel) {
@@ -71,8 +87,6 @@ json worst_or_null(const ImageMetrics& metrics) {
   if (metrics.max_steps == 0) return nullptr;
   return {{"x", metrics.worst_x}, {"y", metrics.worst_y}, {"steps", metrics.max_steps}};
 }
-
-json or_null(const std::string& text) { return text.empty() ? json(nullptr) : json(text); }
 
 // The float images of a page, each read once, named by its path in the report.
 class FloatImages {
@@ -166,7 +180,10 @@ ViewerPage viewer_page(const SceneResult& scene, const fs::path& report_dir,
     if (!joined) groups.push_back({&lane});
   }
 
-  json page = {{"scene", scene.scene}, {"channel_tolerance", tolerance}, {"heat_palette", palette_json(tolerance)}};
+  json page = {{"scene", scene.scene},
+               {"channel_tolerance", tolerance},
+               {"heat_palette", palette_json(heat_palette(tolerance))}};
+  if (scene.compare.metric) page["metric_palette"] = palette_json(metric_palette());
   uint32_t width = 0, height = 0;
   json group_list = json::array();
   for (const auto& group : groups) {
@@ -184,6 +201,7 @@ ViewerPage viewer_page(const SceneResult& scene, const fs::path& report_dir,
                                         : json{{"pixels", images.key(golden_floats(lane))}, {"png", lane.golden}}},
          {"heat_map", or_null(lane.diff)},
          {"heat_palette", page["heat_palette"]},
+         {"metric", metric_or_null(lane)},
          {"channel_tolerance", tolerance},
          {"worst", lane.against_golden ? worst_or_null(metrics) : json(nullptr)},
          {"first_failing", pixel_or_null(metrics.first_failing)},

@@ -44,7 +44,9 @@ def render(xshade, source, work):
     text = toon.read_text()
     colour = "_Color = [0.3, 0.6, 0.9, 1]"
     assert colour in text, "the toon scene's colour moved; update this test"
-    toon.write_text(text.replace(colour, "_Color = [0.3, 0.62, 0.9, 1]"))
+    # Decided by FLIP, whose heat map and legend the page then shows beside the per-pixel layer's.
+    toon.write_text(text.replace(colour, "_Color = [0.3, 0.62, 0.9, 1]") +
+                    '\n[compare]\nmetric = "flip"\nmetric_threshold = 0.0001\nreason = "the page shows a metric"\n')
     run = subprocess.run([str(xshade), "run", "toon_shadow_texture", "white_furnace", "--scenes", str(scenes),
                           "--golden", str(golden), "--no-project", "--report", str(report), "--no-cache"],
                          capture_output=True, text=True)
@@ -66,6 +68,9 @@ def check_index(browser, report, results):
     rows = browser.driver.find_elements(By.CSS_SELECTOR, "table.index tbody tr:not(.separator)")
     names = [row.find_element(By.CSS_SELECTOR, "td.scene a").text for row in rows]
     check(names == ["toon_shadow_texture", "white_furnace"], "index: failures first, got %s" % names)
+    decides = [row.find_element(By.CSS_SELECTOR, "td.scene .decides").text for row in rows]
+    check(decides == ["compared by FLIP mean ≤ 0.0001", "compared by per pixel ±1 sRGB step"],
+          "index: what decides each scene, got %s" % decides)
     thumbs = browser.driver.find_elements(By.CSS_SELECTOR, "img.thumb")
     lanes = sum(len(s["lanes"]) for s in results["scenes"])
     check(len(thumbs) >= lanes, "index: %d thumbnails for %d lanes" % (len(thumbs), lanes))
@@ -126,6 +131,18 @@ def check_failing_page(browser, report, results):
     step_values = [abs(int(v)) for v in shown.get("steps", "").split(", ") if v.strip().lstrip("-").isdigit()]
     check(step_values and max(step_values) == steps["worst"],
           "steps at the worst pixel: page shows %s, results.json has %d" % (shown.get("steps"), steps["worst"]))
+    # The scene's metric: its heat map loaded beside the others in the side mode, its legend, and
+    # how to accept the new image.
+    browser.button(0, 'button[data-xv-mode="side"]').click()
+    metric_images = browser.group(0).find_elements(By.CSS_SELECTOR, '[data-xv-view="metric"] img')
+    check(metric_images and all(browser.js("return arguments[0].complete && arguments[0].naturalWidth > 0;", i)
+                                for i in metric_images), "the FLIP heat map did not load")
+    check(lane["against_golden"]["metric"]["name"] == "flip", "results.json has no FLIP for the lane")
+    caption = browser.group(0).find_element(By.CSS_SELECTOR, '[data-xv-view="metric"] .xv-caption').text
+    check(caption.startswith("FLIP: ") and "(≤ 0.0001)" in caption, "the metric view's caption: %s" % caption)
+    legends = browser.group(0).find_elements(By.CSS_SELECTOR, '.xv-metric-legend[data-metric="flip"]')
+    check(len(legends) == 1, "the FLIP legend: %d found" % len(legends))
+    check("xshade bless toon_shadow_texture" in browser.driver.page_source, "the page does not name the bless command")
     # The mask counts what the per-pixel layer counted.
     browser.button(0, 'button[data-xv-action="mask"]').click()
     count = browser.field(0, "mask-count").replace(",", "")

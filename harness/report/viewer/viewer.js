@@ -188,6 +188,52 @@
         `Log scale. Black = identical${within}, red → yellow = beyond tolerance (${tolerance + 1}+ steps).`));
   }
 
+  // ---------------------------------------------------------------- the metric's legend
+
+  // Each metric's heat map (metric_heat_map in harness/image/metric_layers.cpp): what 0 and 1 mean,
+  // and where to put ticks on its even scale.
+  const METRIC_SCALES = {
+    flip: {name: "FLIP", title: "Heat map: FLIP per pixel",
+      text: "0 = cannot be told apart as the two images alternate, 1 = the largest difference (green against blue).",
+      ticks: [[0, "0"], [0.25, "0.25"], [0.5, "0.5"], [0.75, "0.75"], [1, "1"]]},
+    ssim: {name: "SSIM", title: "Heat map: 1 − SSIM of the 11×11 window centred on each pixel",
+      text: "0 = the same structure; the 5-pixel border no window is centred on is black.",
+      ticks: [[0, "0"], [0.5, "0.5"], [1, "1"]]},
+    deltae: {name: "ΔE00", title: "Heat map: CIEDE2000 per pixel",
+      text: "1 is the smallest difference noticed side by side; the scale ends at 10, a difference seen at a glance.",
+      ticks: [[0, "0"], [0.1, "1"], [0.5, "5"], [1, "10+"]]},
+  };
+
+  function buildMetricLegend(palette, metric) {
+    const scale = METRIC_SCALES[metric.name];
+    if (!scale) return null;
+    const width = 320;
+    const bar = h("canvas", {class: "xv-legend-bar", width, height: 1, "aria-hidden": "true"});
+    const context = bar.getContext("2d");
+    for (let i = 0; i < 256; ++i) {
+      context.fillStyle = palette[i];
+      context.fillRect(Math.floor((i / 256) * width), 0, Math.ceil(width / 256), 1);
+    }
+    const ticks = h("div", {class: "xv-ticks"});
+    for (const [at, label] of scale.ticks)
+      ticks.append(h("span", {class: `xv-tick xv-tick-${at === 0 ? "start" : at === 1 ? "end" : "mid"}`,
+        style: {left: `${at * 100}%`}}, label));
+    return h("div", {class: "xv-legend xv-metric-legend", "data-metric": metric.name},
+      h("div", {class: "xv-legend-title"}, scale.title),
+      h("div", {class: "xv-legend-scale"}, bar, ticks),
+      h("div", {class: "xv-legend-text"}, scale.text));
+  }
+
+  function metricCaption(metric) {
+    const scale = METRIC_SCALES[metric.name] || {name: metric.name};
+    const bound = metric.name === "ssim" ? "≥" : "≤";
+    return `${scale.name}: ${formatMetric(metric.value)} (${bound} ${metric.threshold})`;
+  }
+
+  function formatMetric(value) {
+    return typeof value === "number" ? value.toPrecision(4) : "–";
+  }
+
   // ---------------------------------------------------------------- one group's viewer
 
   class Group {
@@ -199,6 +245,8 @@
       this.hasGolden = !!spec.golden;
       this.tolerance = Number(spec.channel_tolerance) || 0;
       this.palette = validPalette(spec.heat_palette) || validPalette(scene.heat_palette);
+      this.metric = spec.metric && spec.metric.map ? spec.metric : null;
+      this.metricPalette = validPalette(scene.metric_palette);
       this.mode = this.hasGolden ? "side" : "output-only";
       // View state, shared by every view of the group so that they stay synchronised.
       this.zoom = 1; this.baseZoom = 1; this.tx = 0; this.ty = 0; this.vw = this.W; this.vh = this.H;
@@ -209,7 +257,7 @@
       this.showOutput = true; this.blink = 0; this.swipe = 0.5; this.onion = 0.5; this.maskOn = false;
       this.golden = null; this.output = null; this.steps = null;  // Float32Array, Float32Array, Uint8Array
       this.floatStatus = "decoding float values…";
-      this.layers = {golden: [], output: [], difference: [], mask: []};
+      this.layers = {golden: [], output: [], difference: [], metric: [], mask: []};
       this.views = [];
       this.fields = {};
       this.build();
@@ -239,6 +287,7 @@
         this.makeSideView("golden", "Golden", "golden");
         this.makeSideView("output", `Output (${lanes})`, "output");
         this.makeSideView("difference", "Difference: heat map", "difference");
+        if (this.metric) this.makeSideView("metric", metricCaption(this.metric), "metric");
         this.makeSingleView(lanes);
       } else {
         this.makeSideView("output", `Output (${lanes})`, "output");
@@ -246,6 +295,10 @@
       this.root.append(this.viewsEl);
       const bottom = h("div", {class: "xv-bottom"}, this.buildReadout());
       if (this.hasGolden && this.palette) bottom.append(buildLegend(this.palette, this.tolerance));
+      if (this.metric && this.metricPalette) {
+        const legend = buildMetricLegend(this.metricPalette, this.metric);
+        if (legend) bottom.append(legend);
+      }
       this.root.append(bottom);
       this.setSources();
       this.setMode(this.mode);
@@ -390,7 +443,7 @@
     setSources() {
       const spec = this.spec;
       const sources = {golden: spec.golden && spec.golden.png, output: spec.output && spec.output.png,
-        difference: spec.heat_map};
+        difference: spec.heat_map, metric: this.metric && this.metric.map};
       for (const [kind, url] of Object.entries(sources))
         for (const img of this.layers[kind]) if (url) img.src = url;
     }
