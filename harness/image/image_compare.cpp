@@ -50,17 +50,21 @@ float heat_position(uint32_t steps, uint32_t tolerance) {
 // The heat map's colour for each difference 0..255: the image library maps a 256-pixel ramp once,
 // so the image itself is a table look-up per pixel. Its maps are matplotlib's, in sRGB.
 Result<std::array<glm::vec4, 256>> heat_palette(uint32_t tolerance) {
+  std::array<float, 256> positions{};
+  for (uint32_t steps = 0; steps < 256; ++steps) positions[steps] = heat_position(steps, tolerance);
+  return inferno_palette(positions);
+}
+
+Result<std::array<glm::vec4, 256>> inferno_palette(const std::array<float, 256>& at) {
   auto codec = image_codec();
   if (!codec) return fail(codec.error());
-  std::vector<float> positions(256);
-  for (uint32_t steps = 0; steps < 256; ++steps) positions[steps] = heat_position(steps, tolerance);
+  const std::vector<float> positions(at.begin(), at.end());
   std::vector<float> rgb;
   if (std::string failed = (*codec)->color_map(positions, "inferno", rgb); !failed.empty())
     return fail(ErrorKind::Backend, "the heat map's colour map 'inferno': " + failed);
   std::array<glm::vec4, 256> palette{};
-  for (size_t steps = 1; steps < 256; ++steps)
-    palette[steps] = {srgb_to_linear(rgb[steps * 3]), srgb_to_linear(rgb[steps * 3 + 1]),
-                      srgb_to_linear(rgb[steps * 3 + 2]), 1.0f};
+  for (size_t i = 1; i < 256; ++i)
+    palette[i] = {srgb_to_linear(rgb[i * 3]), srgb_to_linear(rgb[i * 3 + 1]), srgb_to_linear(rgb[i * 3 + 2]), 1.0f};
   palette[0] = {0.0f, 0.0f, 0.0f, 1.0f};  // inferno's first colour is nearly, not quite, black
   return palette;
 }

@@ -144,6 +144,9 @@ struct Comparison {
 // 8-bit steps, for a channel tolerance: Comparison::heat_map's colours, and its legend's.
 // Fails when the image library (image_codec.h) cannot be loaded.
 Result<std::array<glm::vec4, 256>> heat_palette(uint32_t channel_tolerance);
+// Inferno's colours (linear RGB, alpha 1) at 256 positions in 0..1, the first black: the heat
+// maps' colour map, from the image library.
+Result<std::array<glm::vec4, 256>> inferno_palette(const std::array<float, 256>& positions);
 
 // Runs every layer on `test` against `reference` with the scene's tolerances. Without
 // `heat_map`, Comparison::heat_map stays empty (a caller that writes none saves its memory).

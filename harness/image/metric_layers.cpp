@@ -7,8 +7,6 @@
 
 #include "harness/image/delta_e.h"
 #include "harness/image/flip.h"
-#include "harness/image/image_codec.h"
-#include "harness/image/image_io.h"
 #include "harness/image/ssim.h"
 
 namespace xshade::harness {
@@ -140,18 +138,9 @@ Result<MetricResult> run_metric(const FloatImage& test, const FloatImage& refere
 }
 
 Result<std::array<glm::vec4, 256>> metric_palette() {
-  auto codec = image_codec();
-  if (!codec) return fail(codec.error());
-  std::vector<float> positions(256);
+  std::array<float, 256> positions{};
   for (size_t i = 0; i < positions.size(); ++i) positions[i] = float(i) / 255.0f;
-  std::vector<float> rgb;
-  if (std::string failed = (*codec)->color_map(positions, "inferno", rgb); !failed.empty())
-    return fail(ErrorKind::Backend, "the heat map's colour map 'inferno': " + failed);
-  std::array<glm::vec4, 256> palette{};
-  for (size_t i = 1; i < palette.size(); ++i)
-    palette[i] = {srgb_to_linear(rgb[i * 3]), srgb_to_linear(rgb[i * 3 + 1]), srgb_to_linear(rgb[i * 3 + 2]), 1.0f};
-  palette[0] = {0.0f, 0.0f, 0.0f, 1.0f};  // inferno's first colour is nearly, not quite, black
-  return palette;
+  return inferno_palette(positions);
 }
 
 Result<FloatImage> metric_heat_map(const MetricResult& result) {

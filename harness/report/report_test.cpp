@@ -240,7 +240,8 @@ TEST_F(ReportTest, ScenePageShowsImagesMetricsTimingsAndDriver) {
   // The viewer gets each lane's images; without float images (none in this folder) the two lanes
   // cannot be proven identical and are shown apart.
   EXPECT_NE(page.find("<div id=\"xshade-viewer\"></div>"), std::string::npos);
-  EXPECT_NE(page.find(R"("lanes":["gl"],"output":{"pixels":null,"png":"lit_sphere/gl.png"})"), std::string::npos);
+  EXPECT_NE(page.find(R"("lanes":["gl"],"metric":null,"output":{"pixels":null,"png":"lit_sphere/gl.png"})"),
+            std::string::npos);
   EXPECT_NE(page.find(R"("golden":{"pixels":null,"png":"lit_sphere/golden.png"})"), std::string::npos);
   EXPECT_NE(page.find(R"("heat_map":"lit_sphere/vk.diff.png")"), std::string::npos);
   EXPECT_NE(page.find("<a href=\"lit_sphere/gl.png\">image (PNG)</a>"), std::string::npos);
