@@ -78,25 +78,41 @@ struct Plane {
   uint32_t width = 0;
   uint32_t height = 0;
   std::vector<T> values;
-  T at(int64_t x, int64_t y) const {  // clamped to the edge, as FLIP.h reads past it
-    x = std::clamp<int64_t>(x, 0, int64_t(width) - 1);
-    y = std::clamp<int64_t>(y, 0, int64_t(height) - 1);
-    return values[size_t(y) * width + size_t(x)];
-  }
 };
 
-// One pass of a separable filter along x (`along_x`) or y, clamped at the edges.
+// One pass of a separable filter along x (`along_x`) or y, clamped at the edges, each output the
+// taps' sum in tap order. Along y whole rows are weighed and added, which reads memory in order.
 template <class T, class Weight>
 Plane<T> convolve(const Plane<T>& in, const std::vector<Weight>& kernel, bool along_x) {
   Plane<T> out{in.width, in.height, std::vector<T>(in.values.size())};
   const int64_t radius = int64_t(kernel.size() / 2);
-  for (uint32_t y = 0; y < in.height; ++y)
-    for (uint32_t x = 0; x < in.width; ++x) {
-      T sum{};
-      for (int64_t i = -radius; i <= radius; ++i)
-        sum += kernel[size_t(i + radius)] * (along_x ? in.at(int64_t(x) + i, y) : in.at(x, int64_t(y) + i));
-      out.values[size_t(y) * in.width + x] = sum;
+  const int64_t width = in.width, height = in.height;
+  if (along_x) {
+    for (int64_t y = 0; y < height; ++y) {
+      const T* row = &in.values[size_t(y * width)];
+      T* to = &out.values[size_t(y * width)];
+      for (int64_t x = 0; x < width; ++x) {
+        T sum{};
+        if (x >= radius && x + radius < width) {
+          const T* first = row + (x - radius);
+          for (size_t k = 0; k < kernel.size(); ++k) sum += kernel[k] * first[k];
+        } else {
+          for (int64_t k = -radius; k <= radius; ++k)
+            sum += kernel[size_t(k + radius)] * row[std::clamp<int64_t>(x + k, 0, width - 1)];
+        }
+        to[x] = sum;
+      }
     }
+    return out;
+  }
+  for (int64_t y = 0; y < height; ++y) {
+    T* to = &out.values[size_t(y * width)];
+    for (int64_t k = -radius; k <= radius; ++k) {
+      const T* row = &in.values[size_t(std::clamp<int64_t>(y + k, 0, height - 1) * width)];
+      const Weight weight = kernel[size_t(k + radius)];
+      for (int64_t x = 0; x < width; ++x) to[x] += weight * row[x];
+    }
+  }
   return out;
 }
 
