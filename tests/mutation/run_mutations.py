@@ -217,6 +217,15 @@ MUTATIONS = [
     ("a read of a struct parameter's resource names the whole parameter", 'glsl/lower/flatten_resources.cpp',
      'return flattened_name(static_cast<const ParamDecl&>(*origin.root), origin.fields, names);',
      'return flattened_name(static_cast<const ParamDecl&>(*origin.root), {}, names);', 'FlattenResources|Resource'),
+    # The perceptual metrics (harness/image/metric_layers.h).
+    ("a scene's metric is measured but does not decide", 'harness/image/image_compare.cpp',
+     '  else if (metric_verdict)\n', '  else if (false && metric_verdict)\n', 'CompareImages|Gating.AScenesMetric'),
+    ("FLIP's features do not raise the colour difference", 'harness/image/flip.cpp',
+     'values[p] = std::pow(colour, 1.0f - feature_difference);',
+     'values[p] = std::pow(colour, 1.0f - 0.0f * feature_difference);', 'Flip|DiffMetric'),
+    ("CIEDE2000 forgets the blue region's rotation", 'harness/image/delta_e.cpp',
+     'return std::sqrt(l * l + c * c + h * h + rt * c * h);',
+     'return std::sqrt(l * l + c * c + h * h + 0.0 * rt * c * h);', 'DeltaE'),
 ]
 
 
