@@ -12,13 +12,12 @@
 // through (an OR with a zero read from gl_FragCoord).
 //
 // In the traced copy every float-typed site (an initialisation, an assignment, a compound assignment, a return
-// value, a call's result) goes through xs_trace(value, site, path), which returns the value it
-// was given and, when it is the invocation's first non-finite value, keeps the site's number and
-// the call path in two globals. Each of the author's functions takes the path as one more
-// parameter, `uint xs_path`: a call passes its caller's path shifted by ten bits with its own
-// number in the low bits, so that the innermost three calls are known at any site without a
-// stack. main() tests the inputs as they arrive and the colour outputs as they leave, then writes
-// the record to location 1 (NonfiniteTrace says how it reads).
+// value, a call's result; lower/trace_sites.h decides which) goes through xs_trace(value, site, path), which returns
+// the value it was given and, when it is the invocation's first non-finite value, keeps the site's number and the call
+// path in two globals. Each of the author's functions takes the path as one more parameter, `uint xs_path`: a call
+// passes its caller's path shifted by ten bits with its own number in the low bits, so that the innermost three calls
+// are known at any site without a stack. main() tests the inputs as they arrive and the colour outputs as they leave,
+// then writes the record to location 1 (NonfiniteTrace says how it reads).
 //
 // The traced values are the untraced variant's: xs_trace only reads its argument, and the calls
 // and globals it adds feed nothing but the record.
