@@ -73,18 +73,13 @@ int run_metric_diff(const DiffOptions& options, const harness::FloatImage& a, co
   }
   const bool pass = result->layer.verdict == harness::Verdict::Pass;
   if (options.json) {
-    json figures = json::object();
-    for (const auto& [name, value] : result->figures) figures[name] = value;
+    json measured = harness::metric_to_json(result->figures);
+    measured["detail"] = result->layer.detail;
     const json document = {{"a", options.a.string()},
                            {"b", options.b.string()},
                            {"verdict", harness::verdict_name(result->layer.verdict)},
                            {"decided_by", result->layer.layer},
-                           {"metric",
-                            {{"name", options.metric},
-                             {"value", result->value},
-                             {"threshold", settings.threshold},
-                             {"figures", std::move(figures)},
-                             {"detail", result->layer.detail}}},
+                           {"metric", std::move(measured)},
                            {"width", b.width},
                            {"height", b.height}};
     fmt::print("{}\n", document.dump(2, ' ', false, json::error_handler_t::replace));

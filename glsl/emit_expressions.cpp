@@ -189,14 +189,9 @@ std::string StageEmitter::declarator(const Type& type, const std::string& name, 
 bool StageEmitter::same_glsl(const Type& a, const Type& b) {
   if (a.is_error() || b.is_error()) return true;
   if (a.kind() == TypeKind::Struct || b.kind() == TypeKind::Struct) return a == b;
-  // Scalars and vectors, most of what is asked, without spelling them: GLSL's name is the
-  // scalar (half is float) and, past one component, the count.
+  // Scalars and vectors, most of what is asked, without spelling them.
   const auto numeric = [](TypeKind kind) { return kind == TypeKind::Scalar || kind == TypeKind::Vector; };
-  if (numeric(a.kind()) && numeric(b.kind())) {
-    const auto glsl_scalar = [](ScalarType scalar) { return scalar == ScalarType::Half ? ScalarType::Float : scalar; };
-    const auto count = [](const Type& type) { return type.kind() == TypeKind::Vector ? type.cols() : 1u; };
-    return glsl_scalar(a.scalar_type()) == glsl_scalar(b.scalar_type()) && count(a) == count(b);
-  }
+  if (numeric(a.kind()) && numeric(b.kind())) return lower::same_glsl_scalar_or_vector(a, b);
   return glsl_type(a, flavour_, nullptr) == glsl_type(b, flavour_, nullptr);
 }
 

@@ -13,20 +13,17 @@ namespace {
 
 bool is_half(const hlsl::Type& type) { return type.is_floating() && type.scalar_type() == ScalarType::Half; }
 
-// Two scalar or vector types GLSL spells the same: half is float, float1 is float. (`half` is
-// what `rounds` admits, so the other side's kinds are all that is left to compare.)
-bool same_in_glsl(const hlsl::Type& from, const hlsl::Type& half_type) {
-  if (from.is_error()) return true;
-  const auto numeric = [](hlsl::TypeKind kind) {
-    return kind == hlsl::TypeKind::Scalar || kind == hlsl::TypeKind::Vector;
-  };
-  const auto count = [](const hlsl::Type& type) { return type.kind() == hlsl::TypeKind::Vector ? type.cols() : 1u; };
-  const auto glsl_scalar = [](ScalarType scalar) { return scalar == ScalarType::Half ? ScalarType::Float : scalar; };
-  return numeric(from.kind()) && numeric(half_type.kind()) &&
-         glsl_scalar(from.scalar_type()) == glsl_scalar(half_type.scalar_type()) && count(from) == count(half_type);
+bool numeric(const hlsl::Type& type) {
+  return type.kind() == hlsl::TypeKind::Scalar || type.kind() == hlsl::TypeKind::Vector;
 }
 
 }  // namespace
+
+bool same_glsl_scalar_or_vector(const hlsl::Type& a, const hlsl::Type& b) {
+  const auto count = [](const hlsl::Type& type) { return type.kind() == hlsl::TypeKind::Vector ? type.cols() : 1u; };
+  const auto glsl_scalar = [](ScalarType scalar) { return scalar == ScalarType::Half ? ScalarType::Float : scalar; };
+  return glsl_scalar(a.scalar_type()) == glsl_scalar(b.scalar_type()) && count(a) == count(b);
+}
 
 double nearest_half(double value) {
   if (!std::isfinite(value) || value == 0.0) return value;
@@ -60,7 +57,8 @@ bool HalfEmulation::rounds_result(const hlsl::Expr& e) const {
         // half3(v) of a float3 or half3 v: the argument itself, GLSL's type being the same (half
         // is float there).
         const hlsl::Expr* arg = call.args.size() == 1 ? call.args[0].get() : nullptr;
-        return !(arg && same_in_glsl(arg->type, e.type));
+        return !(arg && (arg->type.is_error() ||
+                         (numeric(arg->type) && numeric(e.type) && same_glsl_scalar_or_vector(arg->type, e.type))));
       }
       return call.call_kind == hlsl::CallKind::Function || call.call_kind == hlsl::CallKind::Intrinsic ||
              call.call_kind == hlsl::CallKind::Method;

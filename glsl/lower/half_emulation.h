@@ -15,6 +15,11 @@ namespace xshade::glsl::lower {
 // _Float16 gives, written out because not every compiler has that type (clang 14 on x86 lacks it).
 double nearest_half(double value);
 
+// Two scalar or vector types GLSL spells the same: half is float there, and float1 is float. Both
+// must be scalars or vectors (StageEmitter::same_glsl asks this of those, half emulation of a
+// constructor's argument).
+bool same_glsl_scalar_or_vector(const hlsl::Type& a, const hlsl::Type& b);
+
 class HalfEmulation {
  public:
   explicit HalfEmulation(bool enabled) : enabled_(enabled) {}

@@ -246,9 +246,7 @@ class Reader {
 
 }  // namespace
 
-namespace {
-
-json metric_json(const MetricFigures& metric) {
+json metric_to_json(const MetricFigures& metric) {
   json figures = json::object();
   for (const auto& [name, value] : metric.figures) figures[name] = number(value);
   return {{"name", metric.name},
@@ -256,8 +254,6 @@ json metric_json(const MetricFigures& metric) {
           {"threshold", number(metric.threshold)},
           {"figures", std::move(figures)}};
 }
-
-}  // namespace
 
 json metrics_to_json(const ImageMetrics& metrics) {
   return {{"steps",
@@ -284,7 +280,7 @@ json metrics_to_json(const ImageMetrics& metrics) {
             {"max_y", metrics.max_y},
             {"mean", number(metrics.mean)},
             {"rmse", number(metrics.rmse)}}},
-          {"metric", metrics.metric ? metric_json(*metrics.metric) : json(nullptr)}};
+          {"metric", metrics.metric ? metric_to_json(*metrics.metric) : json(nullptr)}};
 }
 
 json lane_to_json(const LaneResult& lane) {

@@ -12,6 +12,8 @@
 namespace xshade::harness {
 
 nlohmann::json metrics_to_json(const ImageMetrics& metrics);
+// A perceptual metric's name, value, threshold and figures (results.json's "metric").
+nlohmann::json metric_to_json(const MetricFigures& metric);
 // Metrics written by metrics_to_json; a missing or mistyped field is an Internal error naming it.
 Result<ImageMetrics> metrics_from_json(const nlohmann::json& json);
 nlohmann::json lane_to_json(const LaneResult& lane);

@@ -401,8 +401,7 @@ Comparison compare_images(const FloatImage& test, const FloatImage& reference, c
     } else if (auto measured = run_metric(test, reference, *settings.metric)) {
       if (heat_map)
         if (auto image = harness::metric_heat_map(*measured)) result.metric_heat_map = std::move(*image);
-      figures.value = measured->value;
-      figures.figures = std::move(measured->figures);
+      figures = std::move(measured->figures);
       metric_verdict = measured->layer.verdict;
       result.layers.push_back(std::move(measured->layer));
     } else {

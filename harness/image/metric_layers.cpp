@@ -26,7 +26,7 @@ MetricResult flip_result(const FloatImage& test, const FloatImage& reference, co
   const bool hdr = has_values_above_one(test) || has_values_above_one(reference);
   const FlipMeasure m = hdr ? measure_hdr_flip(test, reference, ppd) : measure_flip(test, reference, ppd);
   MetricResult result;
-  result.value = m.mean;
+  result.figures.value = m.mean;
   const bool pass = m.mean <= settings.threshold;
   result.layer = {
       "flip", pass ? Verdict::Pass : Verdict::Fail,
@@ -35,14 +35,14 @@ MetricResult flip_result(const FloatImage& test, const FloatImage& reference, co
           m.mean, settings.threshold, m.weighted_median, m.max, m.max_x, m.max_y,
           hdr ? fmt::format(", {} exposures from {:.4f} to {:.4f}", m.exposures, m.start_exposure, m.stop_exposure)
               : "")};
-  result.figures = {{"mean", m.mean},
-                    {"weighted_median", m.weighted_median},
-                    {"weighted_first_quartile", m.weighted_first_quartile},
-                    {"weighted_third_quartile", m.weighted_third_quartile},
-                    {"min", m.min},
-                    {"max", m.max},
-                    {"pixels_per_degree", ppd},
-                    {"hdr", hdr ? 1.0 : 0.0}};
+  result.figures.figures = {{"mean", m.mean},
+                            {"weighted_median", m.weighted_median},
+                            {"weighted_first_quartile", m.weighted_first_quartile},
+                            {"weighted_third_quartile", m.weighted_third_quartile},
+                            {"min", m.min},
+                            {"max", m.max},
+                            {"pixels_per_degree", ppd},
+                            {"hdr", hdr ? 1.0 : 0.0}};
   result.heat = m.per_pixel;
   return result;
 }
@@ -51,12 +51,12 @@ Result<MetricResult> ssim_result(const FloatImage& test, const FloatImage& refer
   auto m = measure_ssim(test, reference);
   if (!m) return fail(m.error());
   MetricResult result;
-  result.value = m->mean;
+  result.figures.value = m->mean;
   const bool pass = m->mean >= settings.threshold;
   result.layer = {"ssim", pass ? Verdict::Pass : Verdict::Fail,
                   fmt::format("SSIM mean {:.6f} (at least {:g}), least similar window {:.6f} at ({}, {})", m->mean,
                               settings.threshold, m->min, m->min_x, m->min_y)};
-  result.figures = {{"mean", m->mean}, {"min", m->min}};
+  result.figures.figures = {{"mean", m->mean}, {"min", m->min}};
   result.heat.assign(size_t(test.width) * test.height, 0.0f);
   for (uint32_t y = 0; y < m->map_height; ++y)
     for (uint32_t x = 0; x < m->map_width; ++x)
@@ -68,7 +68,7 @@ Result<MetricResult> ssim_result(const FloatImage& test, const FloatImage& refer
 MetricResult delta_e_result(const FloatImage& test, const FloatImage& reference, const MetricSettings& settings) {
   const DeltaEMeasure m = measure_delta_e(test, reference, settings.pixel_threshold);
   MetricResult result;
-  result.value = m.average_excess;
+  result.figures.value = m.average_excess;
   const bool pass = m.average_excess <= settings.threshold && m.incorrect_fraction <= settings.incorrect_fraction;
   result.layer = {
       "deltae", pass ? Verdict::Pass : Verdict::Fail,
@@ -76,11 +76,11 @@ MetricResult delta_e_result(const FloatImage& test, const FloatImage& reference,
                   "{:.4f}, max {:.4f} at ({}, {})",
                   settings.pixel_threshold, m.average_excess, settings.threshold, m.incorrect_pixels,
                   100.0 * m.incorrect_fraction, 100.0 * settings.incorrect_fraction, m.mean, m.max, m.max_x, m.max_y)};
-  result.figures = {{"average_excess", m.average_excess},
-                    {"incorrect_fraction", m.incorrect_fraction},
-                    {"mean", m.mean},
-                    {"max", m.max},
-                    {"pixel_threshold", settings.pixel_threshold}};
+  result.figures.figures = {{"average_excess", m.average_excess},
+                            {"incorrect_fraction", m.incorrect_fraction},
+                            {"mean", m.mean},
+                            {"max", m.max},
+                            {"pixel_threshold", settings.pixel_threshold}};
   // 10 is a difference anyone sees at a glance (1 is the smallest noticed side by side).
   result.heat.resize(m.per_pixel.size());
   for (size_t p = 0; p < m.per_pixel.size(); ++p) result.heat[p] = std::min(m.per_pixel[p] / 10.0f, 1.0f);
@@ -131,6 +131,8 @@ Result<MetricResult> run_metric(const FloatImage& test, const FloatImage& refere
     case Metric::DeltaE: result = delta_e_result(test, reference, settings); break;
   }
   if (result) {
+    result->figures.name = metric_name(settings.metric);
+    result->figures.threshold = settings.threshold;
     result->width = test.width;
     result->height = test.height;
   }

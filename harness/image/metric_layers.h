@@ -19,11 +19,10 @@
 namespace xshade::harness {
 
 struct MetricResult {
-  LayerResult layer;   // "flip", "ssim" or "deltae", its verdict and one line
-  double value = 0.0;  // the number held to the threshold: mean FLIP, mean SSIM, average excess ΔE
-  // The metric's own figures by name, in the order a report shows them ("mean", "weighted_median",
-  // ...), for results.json and the page.
-  std::vector<std::pair<std::string, double>> figures;
+  LayerResult layer;  // "flip", "ssim" or "deltae", its verdict and one line
+  // Its name, the number held to the threshold (mean FLIP, mean SSIM, average excess ΔE), the
+  // threshold, and its own figures by name, for results.json and the page.
+  MetricFigures figures;
   // Per pixel, in [0, 1] where 1 is the worst the metric can say: FLIP itself, 1 - SSIM (of the
   // window centred there; 0 at the edge the windows do not reach), CIEDE2000 / 10 clamped.
   std::vector<float> heat;

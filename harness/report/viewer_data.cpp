@@ -9,6 +9,7 @@
 #include <zlib.h>
 #include <nlohmann/json.hpp>
 
+#include "harness/gate/result_json.h"
 #include "harness/image/image_compare.h"
 #include "harness/image/image_io.h"
 #include "harness/image/metric_layers.h"
@@ -69,14 +70,9 @@ json or_null(const std::string& text) { return text.empty() ? json(nullptr) : js
 // The scene's metric against the golden, with its heat map, or null.
 json metric_or_null(const LaneResult& lane) {
   if (!lane.against_golden || !lane.against_golden->metric) return nullptr;
-  const MetricFigures& metric = *lane.against_golden->metric;
-  json figures = json::object();
-  for (const auto& [name, value] : metric.figures) figures[name] = value;
-  return {{"name", metric.name},
-          {"value", metric.value},
-          {"threshold", metric.threshold},
-          {"figures", std::move(figures)},
-          {"map", or_null(lane.metric_map)}};
+  json metric = metric_to_json(*lane.against_golden->metric);
+  metric["map"] = or_null(lane.metric_map);
+  return metric;
 }
 
 json pixel_or_null(const std::optional<std::pair<uint32_t, uint32_t>>& pixel) {
