@@ -34,6 +34,7 @@ Verb add_report_command(CLI::App& app);  // report merge
 Verb add_diff_command(CLI::App& app);
 Verb add_stability_command(CLI::App& app);
 Verb add_accuracy_command(CLI::App& app);
+Verb add_watch_command(CLI::App& app);
 
 // The exit codes every verb shares (docs/cli.md).
 enum ExitCode : int {
@@ -99,6 +100,19 @@ struct RunOptions {
   std::string command_line;  // for the reports
 };
 int run_run(const RunOptions& options);
+
+// `xshade watch`: run, then render again what each saved file reaches, serving the report.
+struct WatchOptions {
+  LaneSelection selection;
+  std::vector<std::string> scenes;  // as RunOptions::scenes
+  FolderOptions folders;
+  std::filesystem::path report_dir = "watch-report";
+  std::filesystem::path cache_dir;
+  uint16_t port = 8123;  // on 127.0.0.1; 0: any free port
+  WorkerLimits workers;
+  std::string command_line;
+};
+int run_watch(const WatchOptions& options);
 
 struct BlessOptions {
   std::string scene;

@@ -69,10 +69,10 @@ static int run_command_line(int argc, char** argv) {
   app.set_version_flag("--version", std::string("xshade ") + XSHADE_VERSION);
 
   // Each verb registers its own options (in its own file), in the order --help lists them.
-  const std::vector<Verb> verbs = {add_info_command(app),    add_run_command(app),  add_bless_command(app),
-                                   add_compile_command(app), add_eval_command(app), add_worker_command(app),
-                                   add_report_command(app),  add_diff_command(app), add_stability_command(app),
-                                   add_accuracy_command(app)};
+  const std::vector<Verb> verbs = {add_info_command(app),      add_run_command(app),     add_watch_command(app),
+                                   add_bless_command(app),     add_compile_command(app), add_eval_command(app),
+                                   add_worker_command(app),    add_report_command(app),  add_diff_command(app),
+                                   add_stability_command(app), add_accuracy_command(app)};
 
   try {
     app.parse(argc, argv);

@@ -16,6 +16,7 @@
 #include "cli/command_options.h"
 #include "cli/commands.h"
 #include "cli/lane_selection.h"
+#include "cli/scene_runs.h"
 #include "cli/workers.h"
 #include "harness/gate/scene_check.h"
 #include "harness/render/driver_cache.h"
@@ -27,13 +28,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-std::string utc_now() {
-  const std::time_t now = std::time(nullptr);
-  char text[32];
-  std::strftime(text, sizeof text, "%Y-%m-%dT%H:%M:%SZ", std::gmtime(&now));
-  return text;
-}
-
 // "i/N" with 1 <= i <= N.
 Result<std::pair<size_t, size_t>> parse_shard(const std::string& shard) {
   size_t index = 0, count = 0;
@@ -43,21 +37,6 @@ Result<std::pair<size_t, size_t>> parse_shard(const std::string& shard) {
       size_t(consumed) != shard.size() || count == 0 || index == 0 || index > count)
     return fail(ErrorKind::Usage, "--shard takes i/N with 1 <= i <= N, not '" + shard + "'");
   return std::pair{index, count};
-}
-
-// The progress line shows a lane's first line; a compile's diagnostics with their carets (or any
-// longer message) follow in full on stderr, where CI and ctest's output show them. Lanes that
-// failed alike say so instead of repeating it.
-void print_lane_details(const harness::SceneResult& scene) {
-  std::map<std::string, std::string> first_lane_with;
-  for (const harness::LaneResult& lane : scene.lanes) {
-    if (lane.message.find('\n') == std::string::npos) continue;
-    auto [seen, first] = first_lane_with.emplace(lane.message, lane.lane);
-    if (first)
-      fmt::print(stderr, "xshade run: {} on {}: {}\n", scene.scene, lane.lane, lane.message);
-    else
-      fmt::print(stderr, "xshade run: {} on {}: as on {}\n", scene.scene, lane.lane, seen->second);
-  }
 }
 
 }  // namespace
@@ -138,15 +117,9 @@ int run_run(const RunOptions& options) {
     if (options.plan_only && checked.result.message.empty()) fmt::print("{}", checked.result.plan);
     if (!checked.result.message.empty())
       fmt::print(stderr, "xshade run: {}: {}\n", checked.result.scene, checked.result.message);
-    print_lane_details(checked.result);
+    print_lane_details("run", checked.result);
     // The page's viewer data now, from the renders in hand, while the workers go on.
-    if (!options.plan_only) {
-      std::map<std::string, const harness::FloatImage*> renders;
-      for (const harness::LaneResult& lane : checked.result.lanes)
-        if (auto id = harness::parse_lane(lane.lane); id && checked.images.count(*id))
-          renders[lane.image_exr] = &checked.images.at(*id);
-      viewers.push_back(harness::viewer_page(checked.result, options.report_dir, renders));
-    }
+    if (!options.plan_only) viewers.push_back(viewer_page_of(checked, options.report_dir));
     results.scenes.push_back(std::move(checked.result));
     ++done;
   };

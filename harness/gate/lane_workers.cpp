@@ -161,22 +161,44 @@ struct WorkerSlot {
   ChildProcess::Clock::time_point job_started{};
 };
 
+}  // namespace
+
+// The workers and their folder, between rounds.
+struct LaneWorkerPool::State {
+  SceneWorkers workers;
+  Result<ScratchFolder> scratch;  // the workers' result folders, removed with the pool
+  std::vector<WorkerSlot> slots;
+};
+
+LaneWorkerPool::LaneWorkerPool(SceneWorkers workers) {
+  ScratchFolder::remove_dead_runs();
+  const size_t jobs = std::max(1u, workers.jobs);
+  state_ = std::make_unique<State>(State{std::move(workers), ScratchFolder::make(), std::vector<WorkerSlot>(jobs)});
+}
+
+// The workers first (each ChildProcess kills and reaps its own), then the folder they wrote into.
+LaneWorkerPool::~LaneWorkerPool() {
+  if (state_) state_->slots.clear();
+}
+
+namespace {
+
 // check_in_workers' state and its steps: scenes prepared as far as there is work to queue, jobs
 // (a scene's lane) given to free workers, ended renders collected, finished scenes reported in order.
 class LaneRenderPool {
  public:
-  LaneRenderPool(SceneChecker& checker, const SceneWorkers& workers, const std::vector<fs::path>& files,
+  LaneRenderPool(SceneChecker& checker, LaneWorkerPool::State& pool, const std::vector<fs::path>& files,
                  const std::vector<Lane>& lanes, const std::function<void(CheckedScene&&)>& done,
                  const std::function<void(const std::string&)>& output)
       : checker_(checker),
-        workers_(workers),
+        workers_(pool.workers),
         files_(files),
         lanes_(lanes),
         done_(done),
         output_(output),
         scenes_(files.size()),
-        scratch_(fresh_scratch()),
-        slots_(std::max(1u, workers.jobs)) {}
+        scratch_(pool.scratch),
+        slots_(pool.slots) {}
 
   WorkerTotals run() {
     // Asked to stop (interrupt.h): the workers are killed and the folder removed on the way out.
@@ -192,12 +214,6 @@ class LaneRenderPool {
   }
 
  private:
-  // The run's scratch folder, after those of runs that died are gone.
-  static Result<ScratchFolder> fresh_scratch() {
-    ScratchFolder::remove_dead_runs();
-    return ScratchFolder::make();
-  }
-
   // Prepare scenes only as far as there is work to queue: the first workers start at once.
   void prepare_scenes() {
     while (busy_ + queued_.size() < slots_.size() && next_to_prepare_ < files_.size()) {
@@ -286,6 +302,8 @@ class LaneRenderPool {
         totals_.cached += lane_file.value("cached", size_t(0));
         if (totals_.cache_write_error.empty()) totals_.cache_write_error = lane_file.value("cache_write_error", "");
         if (totals_.cache_damage.empty()) totals_.cache_damage = lane_file.value("cache_damage", "");
+        for (const nlohmann::json& file : lane_file.value("read", nlohmann::json::array()))
+          if (file.is_string()) scene.checked.files_read.insert(file.get<std::string>());
       }
       if (parsed) {
         result = std::move(*parsed);
@@ -331,9 +349,9 @@ class LaneRenderPool {
   const std::function<void(const std::string&)>& output_;
   WorkerTotals totals_;
   std::vector<SceneInWork> scenes_;
-  Result<ScratchFolder> scratch_;  // the workers' result folders, removed on the way out
+  const Result<ScratchFolder>& scratch_;
   std::deque<Job> queued_;
-  std::vector<WorkerSlot> slots_;
+  std::vector<WorkerSlot>& slots_;
   size_t busy_ = 0;
   size_t next_to_prepare_ = 0, next_to_report_ = 0;
 };
@@ -342,10 +360,17 @@ class LaneRenderPool {
 
 unsigned driver_threads_per_worker(unsigned cores, unsigned jobs) { return std::max(1u, cores / std::max(1u, jobs)); }
 
+WorkerTotals check_in_workers(SceneChecker& checker, LaneWorkerPool& pool, const std::vector<fs::path>& files,
+                              const std::vector<Lane>& lanes, const std::function<void(CheckedScene&&)>& done,
+                              const std::function<void(const std::string&)>& output) {
+  return LaneRenderPool(checker, *pool.state_, files, lanes, done, output).run();
+}
+
 WorkerTotals check_in_workers(SceneChecker& checker, const SceneWorkers& workers, const std::vector<fs::path>& files,
                               const std::vector<Lane>& lanes, const std::function<void(CheckedScene&&)>& done,
                               const std::function<void(const std::string&)>& output) {
-  return LaneRenderPool(checker, workers, files, lanes, done, output).run();
+  LaneWorkerPool pool(workers);
+  return check_in_workers(checker, pool, files, lanes, done, output);
 }
 
 void report_worker_status(const std::string& line) {
@@ -358,8 +383,9 @@ int run_lane_worker(SceneChecker& checker, const fs::path& scene_file, Lane lane
   const auto status = report_worker_status;
   status("while loading the scene");
   // A worker may serve many renders: what it compiled for this one is the counters' growth.
-  const VariantCompiler& compiler = checker.compiler();
+  VariantCompiler& compiler = checker.compiler();
   const size_t compiled_before = compiler.compiled(), cached_before = compiler.cached();
+  (void)compiler.take_files_read();  // an earlier render's
   CheckedScene checked = checker.prepare(scene_file, {lane});
   LaneResult result;
   if (checked.lanes.empty()) {
@@ -374,8 +400,11 @@ int run_lane_worker(SceneChecker& checker, const fs::path& scene_file, Lane lane
   }
   if (auto image = checked.images.find(lane); image != checked.images.end())
     if (!write_file_atomically(result_dir / "image.f32", float_image_bytes(image->second))) return 3;
+  nlohmann::json read = nlohmann::json::array();
+  for (const fs::path& file : compiler.take_files_read()) read.push_back(file.string());
   const nlohmann::json handover = {
       {"result", lane_to_json(result)},
+      {"read", std::move(read)},
       {"compiled", compiler.compiled() - compiled_before},
       {"cached", compiler.cached() - cached_before},
       {"cache_write_error", compiler.cache_write_error() ? compiler.cache_write_error()->to_string() : ""},

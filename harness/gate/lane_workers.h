@@ -17,6 +17,7 @@
 
 #include <filesystem>
 #include <functional>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -54,11 +55,36 @@ struct WorkerTotals {
   std::string cache_damage;       // the first damaged entry a worker found (and recompiled)
 };
 
-// Checks each scene of `files` on those of `lanes` it lists, each lane in a worker; `done` gets
-// each scene once it is concluded, in the order of `files`. Worker output (a driver's warnings)
-// goes to `output` with its scene. When the process is asked to stop (base/interrupt.h) it
-// returns early, its workers killed and their folder removed; the scenes not yet given to `done`
-// are not. It first removes the workers' folders that dead runs of this user left.
+// Workers and their results' folder, kept from one check_in_workers to the next: `xshade watch`
+// renders again with workers whose drivers and compilers are warm. Destroying it kills the workers
+// and removes the folder. Making it first removes the workers' folders that dead runs of this
+// user left.
+class LaneWorkerPool {
+ public:
+  explicit LaneWorkerPool(SceneWorkers workers);
+  ~LaneWorkerPool();
+  LaneWorkerPool(const LaneWorkerPool&) = delete;
+  LaneWorkerPool& operator=(const LaneWorkerPool&) = delete;
+
+  struct State;  // lane_workers.cpp's
+
+ private:
+  friend WorkerTotals check_in_workers(SceneChecker&, LaneWorkerPool&, const std::vector<std::filesystem::path>&,
+                                       const std::vector<Lane>&, const std::function<void(CheckedScene&&)>&,
+                                       const std::function<void(const std::string&)>&);
+  std::unique_ptr<State> state_;
+};
+
+// Checks each scene of `files` on those of `lanes` it lists, each lane in a worker of `pool`;
+// `done` gets each scene once it is concluded, in the order of `files`, with the files its lanes'
+// compiles read in CheckedScene::files_read. Worker output (a driver's warnings) goes to `output`
+// with its scene. When the process is asked to stop (base/interrupt.h) it returns early, its
+// workers killed; the scenes not yet given to `done` are not.
+WorkerTotals check_in_workers(SceneChecker& checker, LaneWorkerPool& pool,
+                              const std::vector<std::filesystem::path>& files, const std::vector<Lane>& lanes,
+                              const std::function<void(CheckedScene&&)>& done,
+                              const std::function<void(const std::string&)>& output);
+// The same with a pool of its own, whose workers and folder are gone when it returns.
 WorkerTotals check_in_workers(SceneChecker& checker, const SceneWorkers& workers,
                               const std::vector<std::filesystem::path>& files, const std::vector<Lane>& lanes,
                               const std::function<void(CheckedScene&&)>& done,

@@ -109,7 +109,7 @@ CheckedScene SceneChecker::prepare(const fs::path& scene_file, const std::vector
   checked.scene = *scene;
   result.description = scene->description;
   result.compare = scene->compare;
-  auto plan = plan_scene(*scene, compiler_.shaders());
+  auto plan = plan_scene(*scene, compiler_.shaders(), &checked.files_read);
   if (!plan) {
     result.verdict = Verdict::Error;
     result.message = plan.error().to_string();

@@ -10,6 +10,7 @@
 #include <map>
 #include <memory>
 #include <optional>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -53,6 +54,9 @@ struct CheckedScene {
   std::shared_ptr<const Plan> plan;
   std::vector<Lane> lanes;
   std::shared_ptr<const Environment> environment;  // made by the first lane rendered here
+  // The shader sources and includes read: by the plan (prepare), and by its lanes' compiles
+  // (VariantCompiler::take_files_read), as check_in_workers collects them from its workers.
+  std::set<std::filesystem::path> files_read;
 };
 
 // The gate's decisions, apart from rendering so that each can be fed what must fail it.
@@ -107,7 +111,7 @@ class SceneChecker {
   // lanes and theirs.
   void conclude(CheckedScene& checked);
 
-  const VariantCompiler& compiler() const { return compiler_; }
+  VariantCompiler& compiler() const { return compiler_; }
 
  private:
   // check_lane's steps, in its order.

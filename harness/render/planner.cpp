@@ -43,8 +43,8 @@ struct SourceFacts {
 
 class SourceReader {
  public:
-  SourceReader(const ShaderSearchPath& shaders, shaderlab::UnityPlatform platform)
-      : shaders_(shaders), platform_(platform) {}
+  SourceReader(const ShaderSearchPath& shaders, shaderlab::UnityPlatform platform, std::set<fs::path>* files_read)
+      : shaders_(shaders), platform_(platform), files_read_(files_read) {}
 
   // Reads `library_path` with `keywords` (pass declarations may depend on them); with
   // `pass_entry`, as that post pass's variant.
@@ -57,6 +57,11 @@ class SourceReader {
     options.keywords = keywords;
     options.pass_fragment_entry = pass_entry;
     auto source = compile_source(*path, options, shader_pass, platform_);
+    if (files_read_) {
+      files_read_->insert(*path);
+      if (source)
+        for (const fs::path& file : source->module->dependencies()) files_read_->insert(file);
+    }
     if (!source) return fail(source.error());
     const std::unique_ptr<hlsl::Module>& module = source->module;
     SourceFacts facts;
@@ -114,6 +119,7 @@ class SourceReader {
 
   const ShaderSearchPath& shaders_;
   shaderlab::UnityPlatform platform_;
+  std::set<fs::path>* files_read_;
   std::vector<std::string> warnings_;
 };
 
@@ -279,9 +285,9 @@ Result<void> plan_shader_effect(const Scene& scene, size_t e, const fs::path& pa
 
 }  // namespace
 
-Result<Plan> plan_scene(const Scene& scene, const ShaderSearchPath& shaders) {
+Result<Plan> plan_scene(const Scene& scene, const ShaderSearchPath& shaders, std::set<fs::path>* files_read) {
   Plan plan;
-  SourceReader reader(shaders, scene.unity_platform);
+  SourceReader reader(shaders, scene.unity_platform, files_read);
   // Distinct combinations a source is used with, for the "left out" account.
   std::map<std::string, std::set<std::vector<std::string>>> used_combinations;
   std::map<std::string, uint64_t> possible_combinations;

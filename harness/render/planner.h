@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <map>
 #include <optional>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -99,7 +100,9 @@ struct Plan {
 // end's diagnostics when one does not compile, or when a source is in none of the folders, and
 // with every breach of the scene-shader contract (scene_contract.h) at its scene line. An
 // instance's textures include those its material samples from their declared defaults.
-Result<Plan> plan_scene(const Scene& scene, const ShaderSearchPath& shaders);
+// `files_read`, when given, gets every source and include read, whether it compiled or not.
+Result<Plan> plan_scene(const Scene& scene, const ShaderSearchPath& shaders,
+                        std::set<std::filesystem::path>* files_read = nullptr);
 
 // The plan as `xshade run --plan` prints it; `cached` says per variant whether its compiled form
 // is already in the cache (empty: unknown).

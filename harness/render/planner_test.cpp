@@ -159,17 +159,23 @@ material = "materials/velvet.hlsl"
   const fs::path root = fs::temp_directory_path() / "xshade_planner_test";
   fs::create_directories(root / "materials");
   std::ofstream(root / "materials" / "broken.hlsl")
-      << "#pragma fragment frag\nfloat4 frag() : SV_Target { return x; }\n";
+      << "#pragma fragment frag\n#include \"lit.hlsl\"\nfloat4 frag() : SV_Target { return x; }\n";
+  std::ofstream(root / "materials" / "lit.hlsl") << "float lit;\n";
+  std::set<fs::path> files_read;
   auto broken = plan_scene(scene(R"(
 [[object]]
 mesh = "sphere"
 material = "materials/broken.hlsl"
 )"),
-                           root);
+                           root, &files_read);
   ASSERT_FALSE(broken);
+  // What a watch must see change to plan it again: the source and what it includes.
+  EXPECT_EQ(files_read.size(), 2u);
+  EXPECT_EQ(files_read.count(root / "materials" / "broken.hlsl"), 1u);
+  EXPECT_EQ(files_read.count(root / "materials" / "lit.hlsl"), 1u);
   EXPECT_EQ(broken.error().message, "'materials/broken.hlsl' does not compile");
   ASSERT_FALSE(broken.error().diagnostics.empty());
-  EXPECT_EQ(broken.error().diagnostics[0].where.line, 2u);
+  EXPECT_EQ(broken.error().diagnostics[0].where.line, 3u);
   fs::remove_all(root);
 }
 

@@ -185,11 +185,13 @@ CacheLookup ShaderCache::look_up(const VariantRequest& request, Lane lane) const
   const std::optional<std::string> manifest_text = unsealed(*manifest_entry);
   if (!manifest_text) return {std::nullopt, damaged(manifest_path, request)};
   fs::path variant_path;
+  std::vector<fs::path> dependencies;
   try {
     const json manifest = json::parse(*manifest_text);
     for (const json& dependency : manifest.at("dependencies")) {
       const std::optional<std::string> contents = read_file(dependency.at("path").get<std::string>());
       if (!contents || content_hash(*contents) != dependency.at("hash").get<std::string>()) return {};
+      dependencies.push_back(dependency.at("path").get<std::string>());
     }
     variant_path = directory_ / (manifest.at("result").get<std::string>() + ".variant");
   } catch (const json::exception&) {
@@ -200,7 +202,7 @@ CacheLookup ShaderCache::look_up(const VariantRequest& request, Lane lane) const
   const std::optional<std::string> variant_text = unsealed(*stored);
   std::optional<CompiledVariant> variant = variant_text ? variant_from_json(*variant_text) : std::nullopt;
   if (!variant) return {std::nullopt, damaged(variant_path, request)};
-  return {std::move(variant), std::nullopt};
+  return {std::move(variant), std::nullopt, std::move(dependencies)};
 }
 
 std::optional<CompiledVariant> ShaderCache::find(const VariantRequest& request, Lane lane) const {

@@ -38,6 +38,8 @@ struct CacheLookup {
   // Set when an entry was there but its contents did not match their hash (or did not parse):
   // the lookup is a miss, and the caller says so once.
   std::optional<Error> damage = std::nullopt;
+  // A hit's dependencies as its manifest lists them: every file the compile read.
+  std::vector<std::filesystem::path> dependencies = {};
 };
 
 class ShaderCache {

@@ -1,9 +1,21 @@
 #include "harness/render/variant_compiler.h"
 
+#include <algorithm>
+
+#include "base/file_io.h"
 #include "harness/render/material_source.h"
 #include "harness/render/shader_program.h"
 
 namespace xshade::harness {
+namespace {
+
+// The contents hash of `path`, or empty when it cannot be read (a file deleted since is changed).
+std::string hash_of_file(const std::filesystem::path& path) {
+  const std::optional<std::string> contents = read_file(path);
+  return contents ? content_hash(*contents) : std::string();
+}
+
+}  // namespace
 
 VariantCompiler::VariantCompiler(ShaderSearchPath shaders, const ShaderCache* cache)
     : shaders_(std::move(shaders)), cache_(cache) {}
@@ -15,6 +27,13 @@ bool VariantCompiler::in_cache(const VariantRequest& request, Lane lane) const {
 Result<const hlsl::Module*> VariantCompiler::front_end(const VariantRequest& request) {
   const std::string key = request.source.string() + "\n" + request.label();
   auto known = modules_.find(key);
+  files_read_.insert(request.source);
+  if (known != modules_.end() &&
+      std::any_of(known->second.read.begin(), known->second.read.end(),
+                  [](const auto& file) { return hash_of_file(file.first) != file.second; })) {
+    modules_.erase(known);
+    known = modules_.end();
+  }
   if (known == modules_.end()) {
     hlsl::CompileOptions options;
     options.include_dirs = shaders_.folders();
@@ -23,9 +42,13 @@ Result<const hlsl::Module*> VariantCompiler::front_end(const VariantRequest& req
     if (request.half_emulation) options.defines.push_back({kHalfEmulationMacro, "1"});
     auto source = compile_source(request.source, options, request.shader_pass, request.unity_platform);
     if (!source) return fail(source.error());
-    known = modules_.emplace(key, std::move(source->module)).first;
+    KeptModule kept{std::move(source->module), {}};
+    for (const std::filesystem::path& file : kept.module->dependencies())
+      kept.read.emplace_back(file, hash_of_file(file));
+    known = modules_.emplace(key, std::move(kept)).first;
   }
-  const hlsl::Module& module = *known->second;
+  for (const auto& file : known->second.read) files_read_.insert(file.first);
+  const hlsl::Module& module = *known->second.module;
   if (!module.ok()) {
     return fail(Error{request.label() + " does not compile",
                       {request.source.string(), 0, 0},
@@ -42,6 +65,8 @@ Result<CompiledVariant> VariantCompiler::compile(const VariantRequest& request, 
     CacheLookup found = cache_->look_up(request, lane);
     if (found.variant) {
       ++cached_;
+      files_read_.insert(request.source);
+      files_read_.insert(found.dependencies.begin(), found.dependencies.end());
       return std::move(*found.variant);
     }
     // Compiled and stored again below, which repairs the entry.

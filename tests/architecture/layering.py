@@ -37,11 +37,13 @@ LAYERS = {
     "harness/gate": ["base", "harness/image", "harness/scene", "harness/backend", "harness/assets", "harness/render"],
     # The reports are written from the gate's results alone: neither a backend nor a renderer.
     "harness/report": ["base", "harness/image", "harness/scene", "harness/backend", "harness/gate"],
+    # `xshade watch`'s parts: which files a checked scene read, inotify, the report served over HTTP.
+    "harness/live": ["base", "harness/image", "harness/scene", "harness/backend", "harness/gate"],
     "stability": ["harness/image", "harness/scene", "harness/backend", "harness/assets", "harness/render",
                   "harness/report"],
     "accuracy": ["base", "harness/image", "harness/scene", "harness/backend", "harness/assets", "harness/render",
                  "harness/gate", "harness/report"],
-    "cli": ["base", "hlsl_like", "shaderlab", "spirv", "codegen", "harness/image", "harness/scene", "harness/render", "harness/gate", "harness/report", "stability", "accuracy"],
+    "cli": ["base", "hlsl_like", "shaderlab", "spirv", "codegen", "harness/image", "harness/scene", "harness/render", "harness/gate", "harness/report", "harness/live", "stability", "accuracy"],
 }
 # What a room's tests (*_test.cpp) may use besides: a backend's tests make their shaders with the
 # compiler that the backend itself never calls.

@@ -14,6 +14,11 @@
 // Test hooks (kept stable for tests/report/viewer_driver.py): section.xv-group[data-lanes][data-mode],
 // button[data-xv-mode], button[data-xv-action], [data-xv-field], .xv-readout[data-pinned],
 // .xv-worst, window.xshadeViewer.{ready, pixelToClient}.
+//
+// Under `xshade watch` the page's live script (harness/live/live.js) puts a new state of the page
+// in place and calls window.xshadeViewer.rebuild(version): the viewer is built again from the new
+// data, each group keeping its zoom, pan, mode, mask and pinned pixel, and every image it shows is
+// asked for as IMAGE?v=VERSION, so that the browser shows the new file under the same name.
 (function () {
   "use strict";
 
@@ -29,6 +34,8 @@
   const LITTLE_ENDIAN = new Uint8Array(new Uint16Array([1]).buffer)[0] === 1;
   const MODES = [["side", "Side by side"], ["flip", "Flip"], ["swipe", "Swipe"], ["onion", "Onion skin"]];
   const UNAVAILABLE = "float values not available";
+  let version = "";  // the report's state under `xshade watch`: image addresses carry it
+  const versioned = (url) => (url && version ? `${url}?v=${version}` : url);
 
   // ---------------------------------------------------------------- small helpers
 
@@ -445,7 +452,7 @@
       const sources = {golden: spec.golden && spec.golden.png, output: spec.output && spec.output.png,
         difference: spec.heat_map, metric: this.metric && this.metric.map};
       for (const [kind, url] of Object.entries(sources))
-        for (const img of this.layers[kind]) if (url) img.src = url;
+        for (const img of this.layers[kind]) if (url) img.src = versioned(url);
     }
 
     imageFailed(kind, img) {
@@ -859,6 +866,29 @@
       return true;
     }
 
+    // What the user chose to look at, to be kept when the viewer is built again with new images.
+    viewState() {
+      const {mode, zoom, tx, ty, userZoomed, pin, maskOn, swipe, onion, showOutput} = this;
+      return {mode, zoom, tx, ty, userZoomed, pin, maskOn, swipe, onion, showOutput};
+    }
+
+    restoreView(state) {
+      if (!state) return;
+      if (this.hasGolden && state.mode !== "output-only") {
+        this.swipe = state.swipe; this.onion = state.onion; this.showOutput = state.showOutput;
+        this.swipeInput.value = String(Math.round(state.swipe * 1000));
+        this.onionInput.value = String(Math.round(state.onion * 100));
+        this.onionText.textContent = `${Math.round(state.onion * 100)}%`;
+        this.setMode(state.mode);
+        if (state.maskOn) this.setMask(true);
+      }
+      if (state.userZoomed) {
+        Object.assign(this, {zoom: state.zoom, tx: state.tx, ty: state.ty, userZoomed: true});
+        this.applyTransform();
+      }
+      if (state.pin && state.pin.x < this.W && state.pin.y < this.H) this.setPin(state.pin);
+    }
+
     viewNamed(name) {
       if (!this.hasGolden && (name === "single" || name === "output")) return this.views[0];
       return this.views.find((v) => v.name === name) || null;
@@ -876,7 +906,7 @@
     for (const pair of pairs) {
       const verdict = String(pair.verdict || "");
       const img = pair.heat_map
-        ? h("img", {class: `xv-thumb${scale >= 1 ? " xv-crisp" : ""}`, src: pair.heat_map, alt: `heat map of ${pair.first} against ${pair.second}`,
+        ? h("img", {class: `xv-thumb${scale >= 1 ? " xv-crisp" : ""}`, src: versioned(pair.heat_map), alt: `heat map of ${pair.first} against ${pair.second}`,
           style: {width: `${Math.round(scene.width * scale)}px`, height: `${Math.round(scene.height * scale)}px`}})
         : h("div", {class: "xv-nothumb"}, "no heat map");
       const worst = pair.worst ? `worst ${plural(pair.worst.steps, "step", "steps")} at (${pair.worst.x}, ${pair.worst.y})` : "";
@@ -896,6 +926,7 @@
 
   const groups = [];
   let active = null;
+  let listening = false;  // the page's keyboard and resize handlers, added once
   let resolveReady;
   const ready = new Promise((resolve) => { resolveReady = resolve; });
 
@@ -919,7 +950,7 @@
   function init() {
     const mount = document.getElementById("xshade-viewer");
     const dataEl = document.getElementById("xshade-viewer-data");
-    if (!mount || !dataEl) { resolveReady(); return; }
+    if (!mount || !dataEl) { resolveReady(); return Promise.resolve(); }
     let scene;
     try {
       scene = JSON.parse(dataEl.textContent);
@@ -927,7 +958,7 @@
       console.error("xshade viewer: the scene data is not JSON:", err);
       mount.textContent = "The image viewer could not read its data.";
       resolveReady();
-      return;
+      return Promise.resolve();
     }
     const encode = makeEncoder(scene.srgb_code_starts);
     if (!encode) console.warn("xshade viewer: srgb_code_starts is not 256 numbers; no 8-bit codes");
@@ -945,16 +976,42 @@
     const tolerance = Number(scene.channel_tolerance ?? (scene.groups && scene.groups[0] && scene.groups[0].channel_tolerance)) || 0;
     const cross = buildCrossLane(scene, tolerance);
     if (cross) root.append(cross);
-    document.addEventListener("keydown", onKey);
-    let pending = 0;
-    window.addEventListener("resize", () => {
-      cancelAnimationFrame(pending);
-      pending = requestAnimationFrame(() => groups.forEach((g) => g.layout()));
-    });
-    Promise.all(groups.map((g) => g.load())).then(() => resolveReady(), (err) => {
+    if (!listening) {
+      listening = true;
+      document.addEventListener("keydown", onKey);
+      let pending = 0;
+      window.addEventListener("resize", () => {
+        cancelAnimationFrame(pending);
+        pending = requestAnimationFrame(() => groups.forEach((g) => g.layout()));
+      });
+    }
+    return Promise.all(groups.map((g) => g.load())).then(() => resolveReady(), (err) => {
       console.warn("xshade viewer:", err);
       resolveReady();
     });
+  }
+
+  // The view state of each group, by its lanes ("gl,vk"): what rebuild keeps.
+  function viewStates() {
+    return Object.fromEntries(groups.map((g) => [(g.spec.lanes || []).join(","), g.viewState()]));
+  }
+
+  // The viewer built again from the page's data as it is now (live.js has put a new state of the
+  // page in place), its images asked for at `newVersion`. Each group takes the view state of the
+  // group with its lanes in `states` (default: the groups' own, before), else of the first group
+  // (lanes that agreed may part after an edit). Resolves once the float data is decoded.
+  function rebuild(newVersion, states) {
+    const kept = states || viewStates();
+    version = String(newVersion);
+    groups.length = 0;
+    active = null;
+    decoded.clear();
+    const mount = document.getElementById("xshade-viewer");
+    if (mount) mount.replaceChildren();
+    const loaded = init();
+    const fallback = Object.values(kept)[0];
+    for (const g of groups) g.restoreView(kept[(g.spec.lanes || []).join(",")] || fallback);
+    return loaded;
   }
 
   // For tests: where pixel (x, y) of a view is on screen, to move the real mouse there.
@@ -969,7 +1026,7 @@
     return {clientX: left + z / 2, clientY: top + z / 2, left, top, size: z, visible};
   }
 
-  window.xshadeViewer = {ready, pixelToClient, groups};
+  window.xshadeViewer = {ready, pixelToClient, groups, viewStates, rebuild};
   if (document.readyState === "loading") document.addEventListener("DOMContentLoaded", init);
   else init();
 })();
