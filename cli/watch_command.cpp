@@ -196,6 +196,15 @@ int run_watch(const WatchOptions& options) {
     const auto started = std::chrono::steady_clock::now();
     const auto pages = watch.check(to_check);
     if (!pages) break;
+    // What to watch, before the round is announced: every file a scene read, and the scene files
+    // themselves (one that did not load read nothing else). A save while the round ran is seen
+    // too: its folder was watched already, and its event waits in the kernel's queue.
+    std::set<fs::path> watched = watch.reads().all_files();
+    for (const fs::path& file : watch.files()) watched.insert(harness::normal_file_path(file));
+    if (!folders->project_file.empty()) watched.insert(harness::normal_file_path(folders->project_file));
+    if (auto watching = watcher->watch_only(watched); !watching)
+      fmt::print(stderr, "xshade watch: {}; changes to it are not seen\n", watching.error().to_string());
+
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
     const std::string line = fmt::format("round {} ({}): {} scene{} in {:.2f} s; {}; {}", round, cause, to_check.size(),
                                          to_check.size() == 1 ? "" : "s", seconds, watch.summary(), address);
@@ -203,14 +212,6 @@ int run_watch(const WatchOptions& options) {
     std::fflush(stdout);
     (*server)->announce(nlohmann::json{{"round", round}, {"pages", *pages}, {"console", line}});
     if (!cache_dir.empty()) harness::record_driver_cache(harness::driver_cache_folder(cache_dir));
-
-    // What to watch: every file a scene read, and the scene files themselves (one that did not
-    // load read nothing else).
-    std::set<fs::path> watched = watch.reads().all_files();
-    for (const fs::path& file : watch.files()) watched.insert(harness::normal_file_path(file));
-    if (!folders->project_file.empty()) watched.insert(harness::normal_file_path(folders->project_file));
-    if (auto watching = watcher->watch_only(watched); !watching)
-      fmt::print(stderr, "xshade watch: {}; changes to it are not seen\n", watching.error().to_string());
 
     to_check.clear();
     while (to_check.empty() && !interrupt_signal()) {

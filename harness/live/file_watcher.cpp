@@ -6,6 +6,7 @@
 
 #include <cerrno>
 #include <cstring>
+#include <optional>
 #include <utility>
 
 namespace xshade::harness {
@@ -47,20 +48,28 @@ FileWatcher::~FileWatcher() {
 }
 
 Result<void> FileWatcher::watch(const std::set<fs::path>& files) {
+  std::optional<Error> first_failure;
   for (const fs::path& given : files) {
     const fs::path file = normal_file_path(given);
     const fs::path folder = file.parent_path();
     const int watch = inotify_add_watch(fd_, folder.c_str(), kChanges | IN_ONLYDIR);
-    if (watch < 0)
-      return fail(ErrorKind::UserInput,
-                  "cannot watch " + folder.string() + " for changes to " + file.filename().string() + ": " +
-                      std::strerror(errno) +
-                      (errno == ENOSPC ? " (/proc/sys/fs/inotify/max_user_watches limits how many folders a user may "
-                                         "watch)"
-                                       : ""));
+    if (watch < 0) {
+      // The others are still watched: one folder gone is no reason to go blind to the rest.
+      if (!first_failure)
+        first_failure = Error{"cannot watch " + folder.string() + " for changes to " + file.filename().string() + ": " +
+                                  std::strerror(errno) +
+                                  (errno == ENOSPC ? " (/proc/sys/fs/inotify/max_user_watches limits how many "
+                                                     "folders a user may watch)"
+                                                   : ""),
+                              {},
+                              {},
+                              ErrorKind::UserInput};
+      continue;
+    }
     folders_[watch] = folder;  // the same descriptor again for a folder watched already
     files_.insert(file);
   }
+  if (first_failure) return fail(*first_failure);
   return {};
 }
 

@@ -20,7 +20,8 @@ class FileWatcher {
   ~FileWatcher();
 
   // Watches `files` too, from now on. Each is made absolute and normal; a file that does not
-  // exist yet is watched for its creation, so its folder must exist.
+  // exist yet is watched for its creation, so its folder must exist. A file whose folder cannot
+  // be watched is the error (the first such); the others are watched all the same.
   Result<void> watch(const std::set<std::filesystem::path>& files);
   // Watches only `files` from now on.
   Result<void> watch_only(const std::set<std::filesystem::path>& files);

@@ -91,5 +91,14 @@ TEST_F(FileWatcherTest, AFolderThatIsNotThereIsTheUsersMistake) {
   EXPECT_NE(watched.error().message.find("missing"), std::string::npos) << watched.error().message;
 }
 
+TEST_F(FileWatcherTest, OneFolderMissingLeavesTheOthersWatched) {
+  const fs::path shader = write("toon.hlsl", "float4 a;");
+  auto watcher = FileWatcher::make();
+  ASSERT_TRUE(watcher);
+  EXPECT_FALSE(watcher->watch({folder_ / "missing" / "a.hlsl", shader}));
+  write("toon.hlsl", "float4 b;");
+  EXPECT_EQ(watcher->wait(2s, 20ms), std::set<fs::path>{shader});
+}
+
 }  // namespace
 }  // namespace xshade::harness

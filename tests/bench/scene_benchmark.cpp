@@ -3,7 +3,10 @@
 // the first frame (which creates programs, meshes and textures, and in which the drivers compile
 // their pipelines), and the frames after it (median, fastest and slowest). Prints a Markdown table.
 //
-//   build/tests/bench/scene_benchmark [FRAMES]     (default 5 frames)
+//   build/tests/bench/scene_benchmark [FRAMES] [--shaders DIR]... [SCENE.toml...]
+//
+// Default: 5 frames, every fixed scene; --shaders folders are searched before the library (a
+// user project's scenes name their own materials).
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
@@ -45,11 +48,24 @@ double compile_all(VariantCompiler& compiler, const Plan& plan, Lane lane, std::
 
 int main(int argc, char** argv) {
   xshade::keep_freed_heap();  // as xshade's own main: the floor measured in the process a run has
-  const int frames = argc > 1 ? std::max(1, std::atoi(argv[1])) : 5;
-  std::vector<fs::path> scenes;
-  for (const auto& entry : fs::directory_iterator(kSource / "scenes"))
-    if (entry.path().extension() == ".toml") scenes.push_back(entry.path());
-  std::sort(scenes.begin(), scenes.end());
+  int frames = 5;
+  std::vector<fs::path> scenes, folders;
+  for (int i = 1; i < argc; ++i) {
+    const std::string argument = argv[i];
+    if (argument == "--shaders" && i + 1 < argc)
+      folders.push_back(argv[++i]);
+    else if (argument.ends_with(".toml"))
+      scenes.push_back(argument);
+    else
+      frames = std::max(1, std::atoi(argument.c_str()));
+  }
+  folders.push_back(kLibrary);
+  const ShaderSearchPath shaders(folders);
+  if (scenes.empty()) {
+    for (const auto& entry : fs::directory_iterator(kSource / "scenes"))
+      if (entry.path().extension() == ".toml") scenes.push_back(entry.path());
+    std::sort(scenes.begin(), scenes.end());
+  }
   const fs::path cache_dir = fs::temp_directory_path() / "xshade_scene_benchmark_cache";
   fs::remove_all(cache_dir);
   const ShaderCache cache(cache_dir, compiler_identity());
@@ -61,17 +77,17 @@ int main(int argc, char** argv) {
   for (const fs::path& file : scenes) {
     auto scene = load_scene(file);
     if (!scene) return std::fprintf(stderr, "%s\n", scene.error().to_string().c_str()), 2;
-    auto plan = plan_scene(*scene, kLibrary);
+    auto plan = plan_scene(*scene, shaders);
     if (!plan) return std::fprintf(stderr, "%s\n", plan.error().to_string().c_str()), 2;
     auto environment = build_environment(scene->environment);
     if (!environment) return std::fprintf(stderr, "%s\n", environment.error().to_string().c_str()), 2;
     for (Lane lane : all_lanes()) {
-      VariantCompiler cold(kLibrary, nullptr);
+      VariantCompiler cold(shaders, nullptr);
       std::vector<CompiledVariant> variants;
       const double cold_ms = compile_all(cold, *plan, lane, &variants);
-      VariantCompiler filler(kLibrary, &cache);
+      VariantCompiler filler(shaders, &cache);
       compile_all(filler, *plan, lane, nullptr);
-      VariantCompiler warm(kLibrary, &cache);
+      VariantCompiler warm(shaders, &cache);
       const double warm_ms = compile_all(warm, *plan, lane, nullptr);
 
       auto backend = create_backend(lane);
