@@ -226,6 +226,15 @@ MUTATIONS = [
     ("CIEDE2000 forgets the blue region's rotation", 'harness/image/delta_e.cpp',
      'return std::sqrt(l * l + c * c + h * h + rt * c * h);',
      'return std::sqrt(l * l + c * c + h * h + 0.0 * rt * c * h);', 'DeltaE'),
+    # `xshade watch` (harness/live): a warm worker, and which scenes a save reaches.
+    ("a warm worker keeps a module whose include changed", 'harness/render/variant_compiler.cpp',
+     '  if (known != modules_.end() &&\n', '  if (false && known != modules_.end() &&\n', 'VariantCompiler'),
+    ("a file reaches no scene that read it", 'harness/live/scene_reads.cpp',
+     '[&](const fs::path& file) { return known->second.count(file) > 0; }',
+     '[&](const fs::path& file) { return known->second.count(file) > 1; }', 'SceneReadIndex'),
+    ("the plan's reads are lost when a source does not compile", 'harness/render/planner.cpp',
+     '      files_read_->insert(*path);\n      if (source)\n',
+     '      files_read_->insert(*path);\n      if (source && source->module->ok())\n', 'Planner'),
 ]
 
 
