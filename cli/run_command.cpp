@@ -43,22 +43,15 @@ Result<std::pair<size_t, size_t>> parse_shard(const std::string& shard) {
 
 int run_run(const RunOptions& options) {
   const auto start = std::chrono::steady_clock::now();
-  auto lanes = resolve_lanes(options.selection);
-  if (!lanes) {
-    fmt::print(stderr, "xshade run: {}\n", lanes.error().to_string());
+  auto inputs = resolve_scene_run(options.selection, options.folders, options.scenes,
+                                  options.plan_only ? GoldenUse::None : GoldenUse::Read);
+  if (!inputs) {
+    fmt::print(stderr, "xshade run: {}\n", inputs.error().to_string());
     return kBadInput;
   }
-  auto folders =
-      resolve_folders(options.folders, fs::current_path(), options.plan_only ? GoldenUse::None : GoldenUse::Read);
-  if (!folders) {
-    fmt::print(stderr, "xshade run: {}\n", folders.error().to_string());
-    return kBadInput;
-  }
-  auto files = scene_files(options.scenes, *folders);
-  if (!files) {
-    fmt::print(stderr, "xshade run: {}\n", files.error().to_string());
-    return kBadInput;
-  }
+  const std::vector<harness::Lane>& lanes = inputs->lanes;
+  const SceneFolders& folders = inputs->folders;
+  std::vector<fs::path>& files = inputs->files;
   if (!options.shard.empty()) {
     auto shard = parse_shard(options.shard);
     if (!shard) {
@@ -67,14 +60,14 @@ int run_run(const RunOptions& options) {
     }
     // Every N-th scene in name order: a scene always lands in the same shard.
     std::vector<fs::path> mine;
-    for (size_t i = 0; i < files->size(); ++i)
-      if (i % shard->second == shard->first - 1) mine.push_back((*files)[i]);
+    for (size_t i = 0; i < files.size(); ++i)
+      if (i % shard->second == shard->first - 1) mine.push_back(files[i]);
     if (mine.empty()) {
       fmt::print(stderr, "xshade run: shard {} holds no scene: there are {} scenes, so N must be at most {}\n",
-                 options.shard, files->size(), files->size());
+                 options.shard, files.size(), files.size());
       return kBadInput;
     }
-    *files = std::move(mine);
+    files = std::move(mine);
   }
 
   // Two runs into one report folder would leave one run's report saying it is both. A plan
@@ -92,8 +85,8 @@ int run_run(const RunOptions& options) {
       options.no_cache ? std::filesystem::path() : private_cache_dir(shader_cache_dir(options.cache_dir), "run");
   std::optional<harness::ShaderCache> cache;
   if (!cache_dir.empty()) cache.emplace(cache_dir, harness::compiler_identity());
-  harness::VariantCompiler compiler(folders->shaders, cache ? &*cache : nullptr);
-  const harness::GoldenStore goldens(folders->golden);
+  harness::VariantCompiler compiler(folders.shaders, cache ? &*cache : nullptr);
+  const harness::GoldenStore goldens(folders.golden);
   const bool half = options.precision == "half";
 
   harness::RunResults results;
@@ -109,7 +102,7 @@ int run_run(const RunOptions& options) {
                                  .half_emulation = half,
                                  .trace_nonfinite = options.trace_nonfinite},
                                 [&](const std::string& line) {
-                                  fmt::print("[{}/{}] {}\n", done + 1, files->size(), line);
+                                  fmt::print("[{}/{}] {}\n", done + 1, files.size(), line);
                                   std::fflush(stdout);
                                 });
   std::vector<harness::ViewerPage> viewers;
@@ -125,10 +118,10 @@ int run_run(const RunOptions& options) {
   };
   harness::WorkerTotals totals;
   if (options.plan_only) {
-    for (const fs::path& file : *files) record(checker.prepare(file, *lanes));
+    for (const fs::path& file : files) record(checker.prepare(file, lanes));
   } else {
-    const WorkerOptions shared{.shader_folders = folders->shaders.folders(),
-                               .golden = folders->golden,
+    const WorkerOptions shared{.shader_folders = folders.shaders.folders(),
+                               .golden = folders.golden,
                                .report_dir = options.report_dir,
                                .cache_dir = cache_dir,
                                .gl_platform = options.selection.gl_platform,
@@ -137,14 +130,14 @@ int run_run(const RunOptions& options) {
                                .half_emulation = half,
                                .trace_nonfinite = options.trace_nonfinite};
     catch_interrupts();
-    totals = harness::check_in_workers(checker, scene_workers(shared, options.workers), *files, *lanes, record,
+    totals = harness::check_in_workers(checker, scene_workers(shared, options.workers), files, lanes, record,
                                        [](const std::string& text) { fmt::print(stderr, "{}", text); });
     if (!cache_dir.empty()) harness::record_driver_cache(harness::driver_cache_folder(cache_dir));
     if (const int signal = interrupt_signal()) {
       fmt::print(stderr,
                  "xshade run: stopped by {} after {} of {} scenes; its workers and their files are gone, "
                  "and no report was written\n",
-                 describe_signal(signal), results.scenes.size(), files->size());
+                 describe_signal(signal), results.scenes.size(), files.size());
       return kInterrupted + signal;
     }
   }

@@ -5,7 +5,20 @@
 #include <ctime>
 #include <map>
 
+#include "cli/lane_selection.h"
+
 namespace xshade::cli {
+
+Result<SceneRunInputs> resolve_scene_run(const LaneSelection& selection, const FolderOptions& folders,
+                                         const std::vector<std::string>& scenes, GoldenUse golden) {
+  auto lanes = resolve_lanes(selection);
+  if (!lanes) return fail(lanes.error());
+  auto resolved = resolve_folders(folders, std::filesystem::current_path(), golden);
+  if (!resolved) return fail(resolved.error());
+  auto files = scene_files(scenes, *resolved);
+  if (!files) return fail(files.error());
+  return SceneRunInputs{std::move(*lanes), std::move(*resolved), std::move(*files)};
+}
 
 std::string utc_now() {
   const std::time_t now = std::time(nullptr);

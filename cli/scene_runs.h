@@ -3,11 +3,26 @@
 
 #include <filesystem>
 #include <string>
+#include <vector>
+
+#include "cli/commands.h"
+#include "cli/folders.h"
 
 #include "harness/gate/scene_check.h"
 #include "harness/report/viewer_data.h"
 
 namespace xshade::cli {
+
+// What a verb that checks scenes works on: the lanes asked for, the folders and the scene files.
+struct SceneRunInputs {
+  std::vector<harness::Lane> lanes;
+  SceneFolders folders;
+  std::vector<std::filesystem::path> files;
+};
+// The lanes, folders and scene files named on the command line, resolved; an error is the
+// command line's or its files' (exit 2).
+Result<SceneRunInputs> resolve_scene_run(const LaneSelection& selection, const FolderOptions& folders,
+                                         const std::vector<std::string>& scenes, GoldenUse golden);
 
 // The time now as ISO 8601 UTC, "2026-12-07T04:28:24Z", for a run's record.
 std::string utc_now();

@@ -131,21 +131,14 @@ std::string file_names(const std::set<fs::path>& files) {
 }  // namespace
 
 int run_watch(const WatchOptions& options) {
-  auto lanes = resolve_lanes(options.selection);
-  if (!lanes) {
-    fmt::print(stderr, "xshade watch: {}\n", lanes.error().to_string());
+  auto inputs = resolve_scene_run(options.selection, options.folders, options.scenes, GoldenUse::Read);
+  if (!inputs) {
+    fmt::print(stderr, "xshade watch: {}\n", inputs.error().to_string());
     return kBadInput;
   }
-  auto folders = resolve_folders(options.folders, fs::current_path(), GoldenUse::Read);
-  if (!folders) {
-    fmt::print(stderr, "xshade watch: {}\n", folders.error().to_string());
-    return kBadInput;
-  }
-  auto files = scene_files(options.scenes, *folders);
-  if (!files) {
-    fmt::print(stderr, "xshade watch: {}\n", files.error().to_string());
-    return kBadInput;
-  }
+  const std::vector<harness::Lane>& lanes = inputs->lanes;
+  const SceneFolders& folders = inputs->folders;
+  const std::vector<fs::path>& files = inputs->files;
   auto report_lock = harness::ReportLock::take(options.report_dir, options.command_line);
   if (!report_lock) {
     fmt::print(stderr, "xshade watch: {}\n", report_lock.error().to_string());
@@ -160,8 +153,8 @@ int run_watch(const WatchOptions& options) {
   const fs::path cache_dir = private_cache_dir(shader_cache_dir(options.cache_dir), "watch");
   std::optional<harness::ShaderCache> cache;
   if (!cache_dir.empty()) cache.emplace(cache_dir, harness::compiler_identity());
-  harness::VariantCompiler compiler(folders->shaders, cache ? &*cache : nullptr);
-  const harness::GoldenStore goldens(folders->golden);
+  harness::VariantCompiler compiler(folders.shaders, cache ? &*cache : nullptr);
+  const harness::GoldenStore goldens(folders.golden);
   harness::SceneChecker checker(
       compiler, {.report_dir = options.report_dir, .goldens = &goldens, .backend = backend_options(options.selection)},
       [](const std::string& line) {
@@ -170,8 +163,8 @@ int run_watch(const WatchOptions& options) {
       });
   // The workers' command before the server's threads start: a worker is then started as a
   // program, never forked from a process with threads (base/subprocess.h).
-  const WorkerOptions shared{.shader_folders = folders->shaders.folders(),
-                             .golden = folders->golden,
+  const WorkerOptions shared{.shader_folders = folders.shaders.folders(),
+                             .golden = folders.golden,
                              .report_dir = options.report_dir,
                              .cache_dir = cache_dir,
                              .gl_platform = options.selection.gl_platform,
@@ -185,12 +178,12 @@ int run_watch(const WatchOptions& options) {
   }
   catch_interrupts();
   const std::string address = fmt::format("http://127.0.0.1:{}/", (*server)->port());
-  fmt::print("xshade watch: {} scene{} on {}; the report is at {}\n", files->size(), files->size() == 1 ? "" : "s",
+  fmt::print("xshade watch: {} scene{} on {}; the report is at {}\n", files.size(), files.size() == 1 ? "" : "s",
              address, options.report_dir.string());
   std::fflush(stdout);
 
-  SceneWatch watch(options, *folders, *files, *lanes, checker, pool);
-  std::vector<fs::path> to_check = *files;
+  SceneWatch watch(options, folders, files, lanes, checker, pool);
+  std::vector<fs::path> to_check = files;
   std::string cause = "start";
   for (unsigned round = 1;; ++round) {
     const auto started = std::chrono::steady_clock::now();
@@ -201,7 +194,7 @@ int run_watch(const WatchOptions& options) {
     // too: its folder was watched already, and its event waits in the kernel's queue.
     std::set<fs::path> watched = watch.reads().all_files();
     for (const fs::path& file : watch.files()) watched.insert(harness::normal_file_path(file));
-    if (!folders->project_file.empty()) watched.insert(harness::normal_file_path(folders->project_file));
+    if (!folders.project_file.empty()) watched.insert(harness::normal_file_path(folders.project_file));
     if (auto watching = watcher->watch_only(watched); !watching)
       fmt::print(stderr, "xshade watch: {}; changes to it are not seen\n", watching.error().to_string());
 
@@ -219,7 +212,7 @@ int run_watch(const WatchOptions& options) {
       if (changed.empty()) continue;
       to_check = watch.reads().reached(changed, watch.files());
       cause = file_names(changed) + " changed";
-      if (!folders->project_file.empty() && changed.count(harness::normal_file_path(folders->project_file)))
+      if (!folders.project_file.empty() && changed.count(harness::normal_file_path(folders.project_file)))
         fmt::print(stderr,
                    "xshade watch: the project file changed; its folders are read once, at the start: restart "
                    "xshade watch to use new ones\n");

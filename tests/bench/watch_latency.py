@@ -12,7 +12,7 @@ program neither xshade's cache nor Mesa's has seen. The time is from the rename 
 to the server-sent event on /events; the median of --edits saves is printed.
 
 The floor is what scene_benchmark measures for the scene on gl: compiling its variants with no
-cache plus the first frame (in which llvmpipe compiles the new program). The goal is the floor
+cache plus the first frame (in which llvmpipe compiles the new program), the median of five runs. The goal is the floor
 times 1.5 plus 100 ms. A second column runs every lane (-j 2) for information: three lanes share
 two cores there, so it has no goal of its own.
 """
@@ -113,14 +113,18 @@ def measure(xshade, case, lanes, jobs, edits, work):
     return statistics.median(times)
 
 
-def floor_ms(scene_benchmark, case):
-    command = [str(scene_benchmark), "1"] + case["floor_arguments"]
-    table = subprocess.run(command, capture_output=True, text=True, check=True).stdout
-    for row in table.splitlines():
-        cells = [c.strip() for c in row.strip("|").split("|")]
-        if len(cells) > 5 and cells[1] == "gl":
-            return float(cells[3]) + float(cells[5])
-    raise SystemExit("scene_benchmark gave no gl row for %s:\n%s" % (case["scene"], table))
+def floor_ms(scene_benchmark, case, runs=5):
+    """The median of `runs` measurements: a first frame's time varies by a third from run to run."""
+    floors = []
+    for _ in range(runs):
+        command = [str(scene_benchmark), "1"] + case["floor_arguments"]
+        table = subprocess.run(command, capture_output=True, text=True, check=True).stdout
+        row = next((cells for cells in ([c.strip() for c in line.strip("|").split("|")] for line in table.splitlines())
+                    if len(cells) > 5 and cells[1] == "gl"), None)
+        if row is None:
+            raise SystemExit("scene_benchmark gave no gl row for %s:\n%s" % (case["scene"], table))
+        floors.append(float(row[3]) + float(row[5]))
+    return statistics.median(floors)
 
 
 def main():
