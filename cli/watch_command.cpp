@@ -32,9 +32,9 @@ namespace {
 namespace fs = std::filesystem;
 using namespace std::chrono_literals;
 
-// An editor's save is a burst of events (write, rename, attributes); the burst is over once the
-// folder has been quiet this long. 30 ms holds every editor's burst we tried (vim's, VS Code's,
-// sed -i's) and is small against a render.
+// A save can be a burst of events (a write, a rename, a change of attributes) that come within
+// milliseconds of each other; it is over once the folder has been quiet this long. 30 ms is small
+// against a render, and a save spread wider costs only a second round, never a lost change.
 constexpr auto kSaveSettles = 30ms;
 // How often the loop looks up from waiting, to see a Ctrl-C.
 constexpr auto kWakeUp = 500ms;

@@ -201,7 +201,8 @@ class LaneRenderPool {
         slots_(pool.slots) {}
 
   WorkerTotals run() {
-    // Asked to stop (interrupt.h): the workers are killed and the folder removed on the way out.
+    // Asked to stop (interrupt.h): it returns at once; the workers are killed and their folder
+    // removed with the pool.
     while (next_to_report_ < files_.size() && !interrupt_signal()) {
       prepare_scenes();
       start_queued();

@@ -78,8 +78,8 @@ class LaneWorkerPool {
 // Checks each scene of `files` on those of `lanes` it lists, each lane in a worker of `pool`;
 // `done` gets each scene once it is concluded, in the order of `files`, with the files its lanes'
 // compiles read in CheckedScene::files_read. Worker output (a driver's warnings) goes to `output`
-// with its scene. When the process is asked to stop (base/interrupt.h) it returns early, its
-// workers killed; the scenes not yet given to `done` are not.
+// with its scene. When the process is asked to stop (base/interrupt.h) it returns early (the
+// workers are killed with the pool); the scenes not yet given to `done` are not.
 WorkerTotals check_in_workers(SceneChecker& checker, LaneWorkerPool& pool,
                               const std::vector<std::filesystem::path>& files, const std::vector<Lane>& lanes,
                               const std::function<void(CheckedScene&&)>& done,
