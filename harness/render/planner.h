@@ -100,7 +100,9 @@ struct Plan {
 // end's diagnostics when one does not compile, or when a source is in none of the folders, and
 // with every breach of the scene-shader contract (scene_contract.h) at its scene line. An
 // instance's textures include those its material samples from their declared defaults.
-// `files_read`, when given, gets every source and include read, whether it compiled or not.
+// `files_read`, when given, gets every source and include read, whether it compiled or not, and
+// where each source was looked for before the folder that has it (or in every folder, when none
+// has it).
 Result<Plan> plan_scene(const Scene& scene, const ShaderSearchPath& shaders,
                         std::set<std::filesystem::path>* files_read = nullptr);
 

@@ -173,6 +173,12 @@ material = "materials/broken.hlsl"
   EXPECT_EQ(files_read.size(), 2u);
   EXPECT_EQ(files_read.count(root / "materials" / "broken.hlsl"), 1u);
   EXPECT_EQ(files_read.count(root / "materials" / "lit.hlsl"), 1u);
+  // A source in none of the folders: where it would be, in each folder that could hold it.
+  files_read.clear();
+  EXPECT_FALSE(plan_scene(scene("[[object]]\nmesh = \"sphere\"\nmaterial = \"materials/velvet.hlsl\"\n"),
+                          ShaderSearchPath(std::vector<fs::path>{root, kLibrary}), &files_read));
+  EXPECT_EQ(files_read,
+            (std::set<fs::path>{root / "materials" / "velvet.hlsl", kLibrary / "materials" / "velvet.hlsl"}));
   EXPECT_EQ(broken.error().message, "'materials/broken.hlsl' does not compile");
   ASSERT_FALSE(broken.error().diagnostics.empty());
   EXPECT_EQ(broken.error().diagnostics[0].where.line, 3u);

@@ -6,13 +6,13 @@
 Starts `xshade watch` on a copy of the example project (examples/user_project) and opens its scene
 page from the server, as an author would. Then, as the author edits the material:
 
-1. The page is zoomed in, put in flip mode and a pixel pinned; the material's base colour is
+1. The page is zoomed in, panned, put in flip mode and a pixel pinned; the material's base colour is
    changed. The page shows the new image without a reload (the same document: a mark set on
-   window survives), with the zoom, the mode and the pinned pixel as they were, and the readout
+   window survives), with the zoom, the pan, the mode and the pinned pixel as they were, and the readout
    under the pinned pixel reads the new float values.
 2. A syntax error is saved. The page shows the compiler's message with the source line and the
    caret under the error, and the console of `xshade watch` shows it too; watch goes on.
-3. The error is fixed. The page shows the image again, still zoomed, in flip mode, pinned.
+3. The error is fixed. The page shows the image again, still zoomed and panned, in flip mode, pinned.
 
 Ctrl-C (SIGINT) then ends watch with 130 and leaves no worker behind. Fails on any console error or
 warning in the page. Exits 77 (CTest's skip) when Chromium, chromedriver or selenium is missing.
@@ -102,7 +102,8 @@ def wait_for_update(browser, updates):
 def view_of(browser):
     group = browser.group(0)
     readout = browser.readout(0)
-    return {"mode": group.get_attribute("data-mode"), "zoom": browser.field(0, "zoom"),
+    pan = browser.js("const g = window.xshadeViewer.groups[0]; return [g.tx, g.ty];")
+    return {"mode": group.get_attribute("data-mode"), "zoom": browser.field(0, "zoom"), "pan": pan,
             "pinned": readout["pinned"], "x": readout["x"], "y": readout["y"]}
 
 
@@ -138,10 +139,11 @@ def main():
             browser.driver.get(address + SCENE + ".html")
             browser.driver.execute_async_script("const done = arguments[0]; window.xshadeViewer.ready.then(() => done(true));")
             browser.collect_log()
-            # The author's view: zoomed in twice, flip mode, a pixel pinned.
+            # The author's view: zoomed in twice, panned, flip mode, a pixel pinned.
             browser.button(0, 'button[data-xv-action="zoom-in"]').click()
             browser.button(0, 'button[data-xv-action="zoom-in"]').click()
             browser.button(0, 'button[data-xv-mode="flip"]').click()
+            browser.drag(browser.viewport_centre(0, "single"), (-12, -8))
             browser.click_pixel(0, "single", 144, 56)  # the middle, which the zoom keeps in sight
             before = view_of(browser)
             check(before["pinned"] and before["mode"] == "flip", "the view before the edit: %s" % before)
