@@ -42,10 +42,12 @@ constexpr auto kWakeUp = 500ms;
 // The watch's state between rounds: each scene's last result and page data, and what it read.
 class SceneWatch {
  public:
-  SceneWatch(const WatchOptions& options, const SceneFolders& folders, std::vector<fs::path> files,
-             std::vector<harness::Lane> lanes, harness::SceneChecker& checker, harness::LaneWorkerPool& pool)
+  SceneWatch(const WatchOptions& options, const SceneFolders& folders, const harness::GoldenStore& goldens,
+             std::vector<fs::path> files, std::vector<harness::Lane> lanes, harness::SceneChecker& checker,
+             harness::LaneWorkerPool& pool)
       : options_(options),
         folders_(folders),
+        goldens_(goldens),
         files_(std::move(files)),
         lanes_(std::move(lanes)),
         checker_(checker),
@@ -62,7 +64,7 @@ class SceneWatch {
             fmt::print(stderr, "xshade watch: {}: {}\n", checked.result.scene, checked.result.message);
           print_lane_details("watch", checked.result);
           const fs::path& file = scenes[done_in_round_++];
-          reads_.set(file, harness::scene_reads(file, checked, folders_.project_file));
+          reads_.set(file, harness::scene_reads(file, checked, folders_.project_file, &goldens_));
           viewers_[file] = viewer_page_of(checked, options_.report_dir);
           results_[file] = std::move(checked.result);
           changed.push_back(file.string());
@@ -111,6 +113,7 @@ class SceneWatch {
 
   const WatchOptions& options_;
   const SceneFolders& folders_;
+  const harness::GoldenStore& goldens_;
   std::vector<fs::path> files_;
   std::vector<harness::Lane> lanes_;
   harness::SceneChecker& checker_;
@@ -182,7 +185,7 @@ int run_watch(const WatchOptions& options) {
              address, options.report_dir.string());
   std::fflush(stdout);
 
-  SceneWatch watch(options, folders, files, lanes, checker, pool);
+  SceneWatch watch(options, folders, goldens, files, lanes, checker, pool);
   std::vector<fs::path> to_check = files;
   std::string cause = "start";
   for (unsigned round = 1;; ++round) {

@@ -112,6 +112,15 @@ std::filesystem::path GoldenStore::image_path(const std::string& scene, const st
   return lane && !lane->empty() ? folder_ / *lane / (scene + ".png") : folder_ / (scene + ".png");
 }
 
+std::vector<fs::path> GoldenStore::files_for(const std::string& scene, const std::string& lane) const {
+  std::vector<fs::path> files;
+  for (const fs::path& png : {image_path(scene, lane), image_path(scene, std::nullopt)}) {
+    files.push_back(png);
+    files.push_back(float_image_path(png));
+  }
+  return files;
+}
+
 Result<std::optional<GoldenImage>> GoldenStore::find(const std::string& scene, const std::string& lane) const {
   if (Result<void> valid = check_scene_name(scene); !valid) return fail(valid.error());
   if (!lane.empty())

@@ -15,6 +15,7 @@
 #include <filesystem>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "base/result.h"
 #include "harness/gate/golden_lock.h"
@@ -61,6 +62,10 @@ class GoldenStore {
 
   // The command that creates the golden, e.g. `xshade bless material_grid --lane vk --reason "..."`.
   static std::string bless_command(const std::string& scene, const std::optional<std::string>& lane);
+
+  // Every image file find() may read for `scene` on `lane`: the lane's own and the common one,
+  // PNG and EXR, whether or not they are there (a watcher waits for them to be made).
+  std::vector<std::filesystem::path> files_for(const std::string& scene, const std::string& lane) const;
 
   // The failure to report when find() returns nullopt: where it looked and how to create one.
   std::string missing_message(const std::string& scene, const std::string& lane) const;

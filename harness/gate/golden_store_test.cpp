@@ -425,5 +425,13 @@ TEST_F(GoldenStoreTest, BlessingLeavesNothingPendingWithOrWithoutAFloatImage) {
   EXPECT_FALSE(fs::exists(folder_ / "material_grid.exr"));
 }
 
+// What a watcher waits on for a scene's lane: every file find() could read, there or not.
+TEST_F(GoldenStoreTest, TheFilesForALaneAreItsOwnAndTheCommonImages) {
+  GoldenStore store(folder_);
+  EXPECT_EQ(store.files_for("toon", "vk"),
+            (std::vector<fs::path>{folder_ / "vk" / "toon.png", folder_ / "vk" / "toon.exr", folder_ / "toon.png",
+                                   folder_ / "toon.exr"}));
+}
+
 }  // namespace
 }  // namespace xshade::harness

@@ -17,10 +17,17 @@ void add_texture(std::set<fs::path>& reads, const TextureRef& texture) {
 
 }  // namespace
 
-std::set<fs::path> scene_reads(const fs::path& scene_file, const CheckedScene& checked, const fs::path& project_file) {
+std::set<fs::path> scene_reads(const fs::path& scene_file, const CheckedScene& checked, const fs::path& project_file,
+                               const GoldenStore* goldens) {
   std::set<fs::path> reads = {normal_file_path(scene_file)};
   if (!project_file.empty()) reads.insert(normal_file_path(project_file));
   for (const fs::path& file : checked.files_read) reads.insert(normal_file_path(file));
+  if (goldens)
+    for (const LaneResult& lane : checked.result.lanes)
+      for (const fs::path& file : goldens->files_for(checked.result.scene, lane.lane)) {
+        std::error_code error;
+        if (fs::is_directory(file.parent_path(), error)) reads.insert(normal_file_path(file));
+      }
   if (!checked.scene) return reads;
   const Scene& scene = *checked.scene;
   if (!scene.environment.file.empty()) reads.insert(normal_file_path(scene.environment.file));

@@ -13,12 +13,14 @@
 namespace xshade::harness {
 
 // Every file a checked scene read: the scene file, the project file (when one is used), the
-// meshes, textures, buffers and environment image it names, and the shader sources and includes
-// its lanes' compiles read (CheckedScene::files_read). A scene that did not load read its file
-// alone (and the project file): it is rendered again when that changes. Each path absolute and
-// normal (file_watcher.h's normal_file_path).
+// meshes, textures, buffers and environment image it names, the shader sources and includes its
+// plan and its lanes' compiles read (CheckedScene::files_read), and with `goldens` each lane's
+// golden images (GoldenStore::files_for, those in a folder that exists: a bless makes them). A
+// scene that did not load read its file alone (and the project file): it is rendered again when
+// that changes. Each path absolute and normal (file_watcher.h's normal_file_path).
 std::set<std::filesystem::path> scene_reads(const std::filesystem::path& scene_file, const CheckedScene& checked,
-                                            const std::filesystem::path& project_file);
+                                            const std::filesystem::path& project_file,
+                                            const GoldenStore* goldens = nullptr);
 
 // The files of each scene, by scene file, as the last render of each found them.
 class SceneReadIndex {

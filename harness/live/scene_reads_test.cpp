@@ -31,6 +31,20 @@ TEST(SceneReads, TheSceneItsProjectItsAssetsAndWhatItsCompilesRead) {
                           "/scenes/nx.png", "/scenes/weights.bin", "/scenes/lut.png", "/scenes/sky.exr"}));
 }
 
+// A bless in another terminal is seen: the lane's golden images are watched, where their folder is.
+TEST(SceneReads, EachLanesGoldenImagesInAFolderThatExists) {
+  const fs::path golden = fs::temp_directory_path() / "xshade_scene_reads_golden";
+  fs::create_directories(golden);
+  CheckedScene checked;
+  checked.result.scene = "toon";
+  checked.result.lanes.push_back(LaneResult{});
+  checked.result.lanes.back().lane = "vk";
+  const GoldenStore goldens(golden);
+  const std::set<fs::path> reads = scene_reads("/s/toon.toml", checked, {}, &goldens);
+  EXPECT_EQ(reads, (std::set<fs::path>{"/s/toon.toml", golden / "toon.png", golden / "toon.exr"}));
+  fs::remove_all(golden);
+}
+
 TEST(SceneReads, ASceneThatDidNotLoadReadItsFileAlone) {
   EXPECT_EQ(scene_reads("scenes/broken.toml", CheckedScene{}, {}),
             std::set<fs::path>{normal_file_path("scenes/broken.toml")});
