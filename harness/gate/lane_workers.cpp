@@ -22,9 +22,11 @@
 #include "harness/gate/result_json.h"
 
 namespace xshade::harness {
-namespace {
-
 namespace fs = std::filesystem;
+
+// The pool's parts, named rather than anonymous: LaneWorkerPool::State, a type of the header's,
+// holds them.
+namespace lane_workers_internal {
 using namespace std::chrono_literals;
 
 constexpr std::string_view kScratchPrefix = "xshade-workers-";
@@ -161,19 +163,21 @@ struct WorkerSlot {
   ChildProcess::Clock::time_point job_started{};
 };
 
-}  // namespace
+}  // namespace lane_workers_internal
 
 // The workers and their folder, between rounds.
 struct LaneWorkerPool::State {
   SceneWorkers workers;
-  Result<ScratchFolder> scratch;  // the workers' result folders, removed with the pool
-  std::vector<WorkerSlot> slots;
+  Result<lane_workers_internal::ScratchFolder> scratch;  // the workers' result folders, removed with the pool
+  std::vector<lane_workers_internal::WorkerSlot> slots;
 };
 
 LaneWorkerPool::LaneWorkerPool(SceneWorkers workers) {
+  using lane_workers_internal::ScratchFolder;
   ScratchFolder::remove_dead_runs();
   const size_t jobs = std::max(1u, workers.jobs);
-  state_ = std::make_unique<State>(State{std::move(workers), ScratchFolder::make(), std::vector<WorkerSlot>(jobs)});
+  state_ = std::make_unique<State>(
+      State{std::move(workers), ScratchFolder::make(), std::vector<lane_workers_internal::WorkerSlot>(jobs)});
 }
 
 // The workers first (each ChildProcess kills and reaps its own), then the folder they wrote into.
@@ -181,7 +185,7 @@ LaneWorkerPool::~LaneWorkerPool() {
   if (state_) state_->slots.clear();
 }
 
-namespace {
+namespace lane_workers_internal {
 
 // check_in_workers' state and its steps: scenes prepared as far as there is work to queue, jobs
 // (a scene's lane) given to free workers, ended renders collected, finished scenes reported in order.
@@ -357,14 +361,14 @@ class LaneRenderPool {
   size_t next_to_prepare_ = 0, next_to_report_ = 0;
 };
 
-}  // namespace
+}  // namespace lane_workers_internal
 
 unsigned driver_threads_per_worker(unsigned cores, unsigned jobs) { return std::max(1u, cores / std::max(1u, jobs)); }
 
 WorkerTotals check_in_workers(SceneChecker& checker, LaneWorkerPool& pool, const std::vector<fs::path>& files,
                               const std::vector<Lane>& lanes, const std::function<void(CheckedScene&&)>& done,
                               const std::function<void(const std::string&)>& output) {
-  return LaneRenderPool(checker, *pool.state_, files, lanes, done, output).run();
+  return lane_workers_internal::LaneRenderPool(checker, *pool.state_, files, lanes, done, output).run();
 }
 
 WorkerTotals check_in_workers(SceneChecker& checker, const SceneWorkers& workers, const std::vector<fs::path>& files,
