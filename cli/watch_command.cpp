@@ -77,6 +77,16 @@ class SceneWatch {
 
   const harness::SceneReadIndex& reads() const { return reads_; }
   const std::vector<fs::path>& files() const { return files_; }
+  // The scenes watched from now on: a scene no longer among them leaves the report at the next
+  // round, a new one is checked by it (its own file reaches it).
+  void set_files(std::vector<fs::path> files) {
+    for (const fs::path& file : files_)
+      if (std::find(files.begin(), files.end(), file) == files.end()) {
+        results_.erase(file);
+        viewers_.erase(file);
+      }
+    files_ = std::move(files);
+  }
 
   // "3 of 4 scenes pass" over every watched scene.
   std::string summary() const {
@@ -186,6 +196,9 @@ int run_watch(const WatchOptions& options) {
   std::fflush(stdout);
 
   SceneWatch watch(options, folders, goldens, files, lanes, checker, pool);
+  if (options.scenes.empty())
+    if (auto watching = watcher->watch_new_files(folders.scenes, ".toml"); !watching)
+      fmt::print(stderr, "xshade watch: {}; a scene added is not seen\n", watching.error().to_string());
   std::vector<fs::path> to_check = files;
   std::string cause = "start";
   for (unsigned round = 1;; ++round) {
@@ -210,9 +223,16 @@ int run_watch(const WatchOptions& options) {
     if (!cache_dir.empty()) harness::record_driver_cache(harness::driver_cache_folder(cache_dir));
 
     to_check.clear();
-    while (to_check.empty() && !interrupt_signal()) {
+    bool scenes_changed = false;
+    while (to_check.empty() && !scenes_changed && !interrupt_signal()) {
       const std::set<fs::path> changed = watcher->wait(kWakeUp, kSaveSettles);
       if (changed.empty()) continue;
+      // Every scene of the folder is watched: one added or removed changes the list.
+      if (options.scenes.empty())
+        if (auto now = scene_files(options.scenes, folders); now && *now != watch.files()) {
+          watch.set_files(std::move(*now));
+          scenes_changed = true;
+        }
       to_check = watch.reads().reached(changed, watch.files());
       cause = file_names(changed) + " changed";
       if (!folders.project_file.empty() && changed.count(harness::normal_file_path(folders.project_file)))
@@ -221,8 +241,12 @@ int run_watch(const WatchOptions& options) {
                    "xshade watch to use new ones\n");
     }
     if (interrupt_signal()) break;
-    fmt::print("{}: checking {}\n", cause,
-               to_check.size() == 1 ? to_check.front().stem().string() : fmt::format("{} scenes", to_check.size()));
+    fmt::print("{}: {}\n", cause,
+               to_check.empty()       ? std::string("writing the report again")
+               : to_check.size() == 1 ? "checking " + to_check.front().stem().string()
+                                      : fmt::format("checking {} scenes", to_check.size()));
+    if (scenes_changed)
+      fmt::print("now watching {} scene{}\n", watch.files().size(), watch.files().size() == 1 ? "" : "s");
     std::fflush(stdout);
   }
   const int signal = interrupt_signal();

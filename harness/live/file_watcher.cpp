@@ -79,6 +79,17 @@ Result<void> FileWatcher::watch_only(const std::set<fs::path>& files) {
   return watch(files);
 }
 
+Result<void> FileWatcher::watch_new_files(const fs::path& folder, const std::string& extension) {
+  const fs::path normal = normal_file_path(folder);
+  const int watch = inotify_add_watch(fd_, normal.c_str(), kChanges | IN_ONLYDIR);
+  if (watch < 0)
+    return fail(ErrorKind::UserInput,
+                "cannot watch " + normal.string() + " for new " + extension + " files: " + std::strerror(errno));
+  folders_[watch] = normal;
+  new_files_[normal] = extension;
+  return {};
+}
+
 void FileWatcher::read_events(std::set<fs::path>& changed) {
   alignas(inotify_event) char buffer[16384];
   for (;;) {
@@ -90,7 +101,8 @@ void FileWatcher::read_events(std::set<fs::path>& changed) {
       const auto folder = folders_.find(event->wd);
       if (folder == folders_.end() || event->len == 0) continue;
       const fs::path file = folder->second / event->name;
-      if (files_.count(file)) changed.insert(file);
+      const auto kind = new_files_.find(folder->second);
+      if (files_.count(file) || (kind != new_files_.end() && file.extension() == kind->second)) changed.insert(file);
     }
   }
 }

@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <map>
 #include <set>
+#include <string>
 
 #include "base/result.h"
 
@@ -23,8 +24,11 @@ class FileWatcher {
   // exist yet is watched for its creation, so its folder must exist. A file whose folder cannot
   // be watched is the error (the first such); the others are watched all the same.
   Result<void> watch(const std::set<std::filesystem::path>& files);
-  // Watches only `files` from now on.
+  // Watches only `files` from now on (the folders of watch_new_files stay).
   Result<void> watch_only(const std::set<std::filesystem::path>& files);
+  // Reports every file whose name ends in `extension` (".toml") made, changed or removed in
+  // `folder` too, from now on: the scenes of a folder, when a scene is added.
+  Result<void> watch_new_files(const std::filesystem::path& folder, const std::string& extension);
   const std::set<std::filesystem::path>& files() const { return files_; }
 
   // Waits up to `timeout` for a watched file to be written, created, renamed into place or
@@ -41,6 +45,7 @@ class FileWatcher {
   int fd_ = -1;
   std::map<int, std::filesystem::path> folders_;  // by watch descriptor
   std::set<std::filesystem::path> files_;
+  std::map<std::filesystem::path, std::string> new_files_;  // folder -> extension
 };
 
 // `path` absolute and without "." and ".." (symbolic links are left as they are: a file is known

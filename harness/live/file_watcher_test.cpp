@@ -78,6 +78,17 @@ TEST_F(FileWatcherTest, WatchOnlyForgetsTheOthers) {
   EXPECT_EQ(watcher->wait(2s, 20ms), std::set<fs::path>{b});
 }
 
+TEST_F(FileWatcherTest, NewFilesOfAKindInAFolderAreReported) {
+  auto watcher = FileWatcher::make();
+  ASSERT_TRUE(watcher);
+  ASSERT_TRUE(watcher->watch_new_files(folder_, ".toml"));
+  write("notes.txt", "not a scene");
+  const fs::path scene = write("new_scene.toml", "width = 8");
+  EXPECT_EQ(watcher->wait(2s, 20ms), std::set<fs::path>{scene});
+  fs::remove(scene);
+  EXPECT_EQ(watcher->wait(2s, 20ms), std::set<fs::path>{scene});
+}
+
 TEST_F(FileWatcherTest, RelativeNamesAreMadeAbsolute) {
   EXPECT_EQ(normal_file_path("a/../b/./c.hlsl"), fs::current_path() / "b/c.hlsl");
 }
