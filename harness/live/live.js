@@ -42,17 +42,26 @@
     // The new page's scripts are not run as they move in: the viewer is already loaded, and its
     // data is read from the JSON element; the pixel scripts are loaded again, at this version.
     const pixelScripts = [];
+    let viewerScript = null;
     for (const script of fresh.body.querySelectorAll("script")) {
       if (script.id === "xshade-viewer-data") continue;
       const src = script.getAttribute("src");
       if (src && src.startsWith("pixels/")) pixelScripts.push(src);
+      else if (src && src.endsWith("viewer.js")) viewerScript = src;
       script.remove();
     }
     const liveScript = me;
     document.body.replaceChildren(...fresh.body.childNodes);
     if (liveScript) document.body.append(liveScript);
     await Promise.all(pixelScripts.map((src) => loadScript(`${src}?v=${event.event}`)));
-    if (viewer) await viewer.rebuild(event.event, kept || undefined);
+    if (viewer) {
+      await viewer.rebuild(event.event, kept || undefined);
+    } else if (viewerScript) {
+      // The page had no images when it was opened (a shader that did not compile): the viewer
+      // is loaded now, and builds itself from the page as it is.
+      await loadScript(viewerScript);
+      if (window.xshadeViewer) await window.xshadeViewer.ready;
+    }
   }
 
   async function handle(event) {

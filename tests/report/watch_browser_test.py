@@ -13,6 +13,8 @@ page from the server, as an author would. Then, as the author edits the material
 2. A syntax error is saved. The page shows the compiler's message with the source line and the
    caret under the error, and the console of `xshade watch` shows it too; watch goes on.
 3. The error is fixed. The page shows the image again, still zoomed and panned, in flip mode, pinned.
+4. A page opened while the shader does not compile (so without the viewer) shows the images, in
+   place, once the error is fixed.
 
 Ctrl-C (SIGINT) then ends watch with 130 and leaves no worker behind. Fails on any console error or
 warning in the page. Exits 77 (CTest's skip) when Chromium, chromedriver or selenium is missing.
@@ -184,6 +186,17 @@ def main():
             check(wait_for_update(browser, 3), "the page did not update after the fix:\n" + watch.text())
             fixed = view_of(browser)
             check(fixed == before, "the view after the fix: %s, before the error %s" % (fixed, before))
+
+            # 4. A page opened while the shader does not compile has no viewer; once fixed, it has.
+            edit(project, "float NoV = saturate(dot(n, v));", "float NoV = saturate(dot(n, v)) +;")
+            check(wait_for_update(browser, 4), "the page did not update after the second error:\n" + watch.text())
+            browser.driver.get(address + SCENE + ".html")
+            check(not browser.groups(), "the page of a shader that does not compile shows images")
+            browser.js("window.sameDocument = true;")
+            edit(project, "float NoV = saturate(dot(n, v)) +;", "float NoV = saturate(dot(n, v));")
+            check(wait_for_update(browser, 1), "the page opened on the error did not update after the fix:\n" + watch.text())
+            check(browser.js("return window.sameDocument === true;") and len(browser.groups()) > 0,
+                  "the page opened on the error shows no images after the fix")
             problems = browser.console_problems()
             check(not problems, "console errors or warnings: %s" % [p["message"] for p in problems])
     finally:
