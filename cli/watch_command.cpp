@@ -56,21 +56,21 @@ class SceneWatch {
   // Checks `scenes` (a subset of the watched ones) and writes the whole report; the pages that
   // changed, or nothing when a Ctrl-C stopped it.
   std::optional<std::vector<std::string>> check(const std::vector<fs::path>& scenes) {
-    std::vector<std::string> changed;
+    std::set<fs::path> changed;
+    size_t done = 0;  // `scenes` are concluded in their order
     harness::check_in_workers(
         checker_, pool_, scenes, lanes_,
         [&](harness::CheckedScene&& checked) {
           if (!checked.result.message.empty())
             fmt::print(stderr, "xshade watch: {}: {}\n", checked.result.scene, checked.result.message);
           print_lane_details("watch", checked.result);
-          const fs::path& file = scenes[done_in_round_++];
+          const fs::path& file = scenes[done++];
           reads_.set(file, harness::scene_reads(file, checked, folders_.project_file, &goldens_));
           viewers_[file] = viewer_page_of(checked, options_.report_dir);
           results_[file] = std::move(checked.result);
-          changed.push_back(file.string());
+          changed.insert(file);
         },
         [](const std::string& text) { fmt::print(stderr, "{}", text); });
-    done_in_round_ = 0;
     if (interrupt_signal()) return std::nullopt;
     return write_report(changed);
   }
@@ -98,7 +98,7 @@ class SceneWatch {
  private:
   // The report of every scene as last checked; the page names of `changed` (scene files), with
   // the index, which shows them all.
-  std::vector<std::string> write_report(const std::vector<std::string>& changed) {
+  std::vector<std::string> write_report(const std::set<fs::path>& changed) {
     harness::RunResults results;
     results.started = utc_now();
     results.command = options_.command_line;
@@ -113,7 +113,7 @@ class SceneWatch {
     size_t page = 0;
     for (const fs::path& file : files_) {
       if (!results_.count(file)) continue;
-      if (std::find(changed.begin(), changed.end(), file.string()) != changed.end()) pages.push_back(names[page]);
+      if (changed.count(file)) pages.push_back(names[page]);
       ++page;
     }
     if (auto written = harness::write_reports(results, options_.report_dir, &viewers); !written)
@@ -131,7 +131,6 @@ class SceneWatch {
   harness::SceneReadIndex reads_;
   std::map<fs::path, harness::SceneResult> results_;
   std::map<fs::path, harness::ViewerPage> viewers_;
-  size_t done_in_round_ = 0;
 };
 
 // "toon.hlsl, brdf.hlsl" for the console.
