@@ -97,6 +97,14 @@ struct LiveServer::State {
       response.set_content(std::string(kLiveScript), "text/javascript; charset=utf-8");
       return;
     }
+    // The event the page is as of, taken before the file is read: a round writes its files before
+    // it announces them, so a page read after this is at least as new (and one that is newer is
+    // only updated again).
+    uint64_t as_of = 0;
+    {
+      std::lock_guard lock(mutex);
+      as_of = last_event;
+    }
     std::string relative = request.path.substr(1);
     if (relative.empty() || relative.ends_with('/')) relative += "index.html";
     const fs::path file = report_dir / fs::path(relative).lexically_normal();
@@ -107,10 +115,7 @@ struct LiveServer::State {
       response.set_content("not in the report: " + request.path + "\n", "text/plain; charset=utf-8");
       return;
     }
-    if (file.extension() == ".html") {
-      std::lock_guard lock(mutex);
-      *contents = with_live_script(std::move(*contents), last_event);
-    }
+    if (file.extension() == ".html") *contents = with_live_script(std::move(*contents), as_of);
     response.set_content(std::move(*contents), std::string(content_type(file)));
   }
 };
