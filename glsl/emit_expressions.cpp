@@ -226,6 +226,34 @@ Code StageEmitter::half_value(Code value, const Type& type) {
   return {"xs_half(" + value.text + ")", kPostfix};
 }
 
+Code StageEmitter::increment(const UnaryExpr& e, const Code& target) {
+  const bool up = e.op == UnaryOp::PreIncrement || e.op == UnaryOp::PostIncrement;
+  const bool after = (e.op == UnaryOp::PostIncrement || e.op == UnaryOp::PostDecrement) && &e != value_discarded_;
+  if (!half_.rounds_increment(e)) {
+    if (e.op == UnaryOp::PostIncrement || e.op == UnaryOp::PostDecrement)
+      return {operand(target, kPostfix) + (up ? "++" : "--"), kPostfix};
+    return {(up ? "++" : "--") + operand(target, kUnary), kUnary};
+  }
+  // t = xs_half(t + 1.0): the target is read and written, so it is written out twice.
+  if (has_side_effects(e.operand.get())) {
+    fail(e.loc, std::string("'") + (up ? "++" : "--") +
+                    "' on a half value inside an expression with side effects is not supported with half "
+                    "emulation; compute the target once into a variable");
+    return target;
+  }
+  const std::string step = up ? " + 1.0" : " - 1.0";
+  const Code rounded = half_value({operand(target, kAdditive) + step, kAdditive}, e.operand->type);
+  if (!after) return {operand(target, kUnary) + " = " + rounded.text, kAssign};
+  // The old value is the expression's: a helper that writes the rounded new value and returns the
+  // old one (GLSL has no statement expressions); half_value above has declared its xs_half.
+  const std::string type =
+      e.operand->type.component_count() == 1 ? "float" : "vec" + std::to_string(e.operand->type.component_count());
+  const std::string name = std::string("xs_half_") + (up ? "increment" : "decrement") + "_after";
+  helpers_.add(name + "(" + type + ")", type + " " + name + "(inout " + type + " v) {\n  " + type +
+                                            " old = v;\n  v = xs_half(v" + step + ");\n  return old;\n}\n");
+  return {name + "(" + target.text + ")", kPostfix};
+}
+
 // ---------------------------------------------------------------------------------------------
 // Conversions
 
@@ -703,10 +731,10 @@ Code StageEmitter::expr_unrounded(const Expr* e) {
             return {"not(" + value.text + ")", kPostfix};
           }
           return prefix("!");
-        case UnaryOp::PreIncrement: return {"++" + operand(value, kUnary), kUnary};
-        case UnaryOp::PreDecrement: return {"--" + operand(value, kUnary), kUnary};
-        case UnaryOp::PostIncrement: return {operand(value, kPostfix) + "++", kPostfix};
-        case UnaryOp::PostDecrement: return {operand(value, kPostfix) + "--", kPostfix};
+        case UnaryOp::PreIncrement:
+        case UnaryOp::PreDecrement:
+        case UnaryOp::PostIncrement:
+        case UnaryOp::PostDecrement: return increment(*unary, value);
       }
       return value;
     }
@@ -786,7 +814,7 @@ Code StageEmitter::expr_unrounded(const Expr* e) {
       const Type& target_type = target->type;
       const Expr* scalar = splatted_scalar(assign->value.get());
       // With half emulation a half result is rounded, so `h += x` is written out as h = xs_half(h + x).
-      if (same_glsl(operation, target_type) && !half_.rounds(operation) &&
+      if (same_glsl(operation, target_type) && !half_.rounds(operation) && !half_.rounds_compound_target(target_type) &&
           (!needs_lowering(*op, operation) || (scalar && scalar_operand_allowed(*op, operation)))) {
         const BinaryInfo info = binary_info(*op);
         const Code v = scalar ? convert_expr(scalar, Type::scalar(operation.scalar_type())) : expr(assign->value.get());

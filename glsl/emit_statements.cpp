@@ -154,7 +154,9 @@ void StageEmitter::statement(const Stmt* stmt) {
         out_.line({prefix, "// printf: OpenGL has no debug printf"});
         break;
       }
+      value_discarded_ = e;
       out_.line({prefix, expr(e).text, ";"});
+      value_discarded_ = nullptr;
       break;
     }
     case StmtKind::Decl:
@@ -233,7 +235,9 @@ void StageEmitter::statement(const Stmt* stmt) {
         if (const Expr* e = static_cast<const ExprStmt&>(*loop->init).expr.get()) init = expr(e).text;
       }
       const std::string condition = loop->condition ? expr(loop->condition.get()).text : "";
+      value_discarded_ = loop->step.get();
       const std::string step = loop->step ? expr(loop->step.get()).text : "";
+      value_discarded_ = nullptr;
       out_.line((hoisted ? "" : prefix) + "for (" + init + "; " + condition + "; " + step + ") {");
       body(loop->body.get());
       out_.line("}");

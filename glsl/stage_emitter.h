@@ -154,6 +154,12 @@ class StageEmitter {
   // `value` of `type` rounded to fp16 when half_ says a value of that type is (xs_half, or a
   // literal rounded here); expr_untraced rounds each result half_ says is made there.
   Code half_value(Code value, const Type& type);
+  // ++ or -- on `target` (e's operand, printed): GLSL's own, or with half emulation the rounded
+  // new value written back (lower::HalfEmulation::rounds_increment).
+  Code increment(const hlsl::UnaryExpr& e, const Code& target);
+  // The expression whose value a statement discards (an expression statement, a for loop's step):
+  // its h++ is written as ++h would be, without a helper to keep the old value.
+  const Expr* value_discarded_ = nullptr;
   // The value of a static const or other constant initializer could be a GLSL constant expression.
   bool is_constant(const Expr* e);
   // A name, literal, field, swizzle or constant index of those: cheap and free of side effects,

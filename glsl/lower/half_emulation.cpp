@@ -67,6 +67,12 @@ bool HalfEmulation::rounds_result(const hlsl::Expr& e) const {
   }
 }
 
+bool HalfEmulation::rounds_increment(const hlsl::UnaryExpr& e) const {
+  const bool increments = e.op == hlsl::UnaryOp::PreIncrement || e.op == hlsl::UnaryOp::PreDecrement ||
+                          e.op == hlsl::UnaryOp::PostIncrement || e.op == hlsl::UnaryOp::PostDecrement;
+  return increments && e.operand && rounds(e.operand->type);
+}
+
 bool HalfEmulation::rounds_conversion(const hlsl::Type& from, const hlsl::Type& to) const {
   return rounds(to) && !is_half(from);
 }

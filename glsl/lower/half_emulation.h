@@ -29,11 +29,17 @@ class HalfEmulation {
   // built from rounded vectors).
   bool rounds(const hlsl::Type& type) const;
   // The value `e` computes is a new half value, rounded where it is made: a float literal, an
-  // arithmetic operator's result (not `,`, which passes its right side on, nor ++ and --, which
-  // write the variable in place), a call's result (not a constructor of one argument of its own
-  // type, which passes it on), a cast or an implicit conversion. Names, members, indices and
-  // assignments pass on a value rounded already.
+  // arithmetic operator's result (not `,`, which passes its right side on, nor ++ and --, whose
+  // new value is rounded as it is written: rounds_increment), a call's result (not a constructor
+  // of one argument of its own type, which passes it on), a cast or an implicit conversion.
+  // Names, members, indices and assignments pass on a value rounded already.
   bool rounds_result(const hlsl::Expr& e) const;
+  // ++ or -- on a half value: the value written back is t ± 1 rounded to fp16 (2048 + 1 stays
+  // 2048), so the printer writes `t = xs_half(t + 1.0)` rather than GLSL's own ++.
+  bool rounds_increment(const hlsl::UnaryExpr& e) const;
+  // A compound assignment to a half target: the result is stored as half, rounded, whatever the
+  // type of the operation (`h += f` with a float f adds in float and rounds as it stores).
+  bool rounds_compound_target(const hlsl::Type& target) const { return rounds(target); }
   // A conversion from `from` to `to` makes a half value: float -> half is where a value first
   // becomes half, the rounding the conversion means.
   bool rounds_conversion(const hlsl::Type& from, const hlsl::Type& to) const;

@@ -58,6 +58,19 @@ TEST(HalfEmulation, RoundsEachHalfValueWhereItIsMade) {
   EXPECT_FALSE(off.rounds_result(returned(*module, "sum")));
 }
 
+// ++ and -- on a half write a new half value: rounded as it is stored, not passed on.
+TEST(HalfEmulation, AnIncrementOfAHalfIsRoundedAsItIsStored) {
+  auto module = hlsl::compile_text("half.hlsl", kShader, {});
+  ASSERT_TRUE(module->ok()) << module->diagnostics.render_all();
+  const auto& increment = static_cast<const hlsl::UnaryExpr&>(returned(*module, "increment"));
+  EXPECT_TRUE(HalfEmulation(true).rounds_increment(increment));
+  EXPECT_FALSE(HalfEmulation(false).rounds_increment(increment));
+  const auto& negated = static_cast<const hlsl::UnaryExpr&>(returned(*module, "negated"));
+  EXPECT_FALSE(HalfEmulation(true).rounds_increment(negated));
+  EXPECT_TRUE(HalfEmulation(true).rounds_compound_target(hlsl::Type::scalar(hlsl::ScalarType::Half)));
+  EXPECT_FALSE(HalfEmulation(true).rounds_compound_target(hlsl::Type::scalar(hlsl::ScalarType::Float)));
+}
+
 TEST(HalfEmulation, RoundsHalfScalarsAndVectorsWhenEmulating) {
   const HalfEmulation half(true);
   EXPECT_TRUE(half.rounds(hlsl::Type::scalar(hlsl::ScalarType::Half)));

@@ -65,6 +65,41 @@ TEST_P(HalfEmulation, WithoutItHalfIsFp32) {
   EXPECT_EQ(p.a, 2049.0f);
 }
 
+// ++ and -- write a new half value, and so does a float added in place to a half: each is
+// rounded as it is stored. At 2048 fp16's numbers are 2 apart, so 2048 + 1 is a tie that rounds
+// to even, 2048; post-increment's value is the old one.
+constexpr const char* kInPlaceShader = R"(
+#pragma fragment frag
+float _One = 1.0;
+float4 frag(float2 uv : TEXCOORD0) : SV_Target {
+  half pre = 2048.0 * (half)_One;
+  ++pre;
+  half post = 2048.0 * (half)_One;
+  half old = post++;
+  half added = 2048.0 * (half)_One;
+  added += _One;
+  half down = -2048.0 * (half)_One;
+  for (int i = 0; i < 1; i++) down--;
+  return float4(pre, old + post - 2048.0, added, down);
+}
+)";
+
+glm::vec4 in_place_on(harness::Lane lane, bool half_emulation) {
+  auto module = hlsl::compile_text("in_place.hlsl", kInPlaceShader, {});
+  EXPECT_TRUE(module->ok()) << module->diagnostics.render_all();
+  auto backend = harness::create_backend(lane);
+  EXPECT_TRUE(backend) << backend.error().to_string();
+  if (!backend) return {};
+  auto image = harness::evaluate(*module, lane, **backend, 1, 1, {}, {.half_emulation = half_emulation});
+  EXPECT_TRUE(image) << image.error().to_string();
+  return image ? image->at(0, 0) : glm::vec4(0.0f);
+}
+
+TEST_P(HalfEmulation, IncrementsAndAFloatAddedInPlaceAreRoundedAsTheyAreStored) {
+  EXPECT_EQ(in_place_on(GetParam(), true), glm::vec4(2048.0f, 2048.0f, 2048.0f, -2048.0f));
+  EXPECT_EQ(in_place_on(GetParam(), false), glm::vec4(2049.0f, 2049.0f, 2049.0f, -2049.0f));
+}
+
 INSTANTIATE_TEST_SUITE_P(GlslLanes, HalfEmulation, ::testing::Values(harness::Lane::Gl, harness::Lane::Vk),
                          [](const ::testing::TestParamInfo<harness::Lane>& lane) {
                            return lane.param == harness::Lane::Gl ? std::string("gl") : std::string("vk");

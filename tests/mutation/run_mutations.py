@@ -226,6 +226,9 @@ MUTATIONS = [
     ("CIEDE2000 forgets the blue region's rotation", 'harness/image/delta_e.cpp',
      'return std::sqrt(l * l + c * c + h * h + rt * c * h);',
      'return std::sqrt(l * l + c * c + h * h + 0.0 * rt * c * h);', 'DeltaE'),
+    ("half emulation leaves an increment unrounded", 'glsl/lower/half_emulation.cpp',
+     '  return increments && e.operand && rounds(e.operand->type);', '  return false && increments;',
+     'HalfEmulation'),
     # `xshade watch` (harness/live): a warm worker, and which scenes a save reaches.
     ("a warm worker keeps a module whose include changed", 'harness/render/variant_compiler.cpp',
      '  if (known != modules_.end() &&\n', '  if (false && known != modules_.end() &&\n', 'VariantCompiler'),
