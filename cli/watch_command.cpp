@@ -84,6 +84,7 @@ class SceneWatch {
       if (std::find(files.begin(), files.end(), file) == files.end()) {
         results_.erase(file);
         viewers_.erase(file);
+        reads_.forget(file);
       }
     files_ = std::move(files);
   }

@@ -46,6 +46,8 @@ void SceneReadIndex::set(const fs::path& scene_file, std::set<fs::path> reads) {
   reads_[normal_file_path(scene_file)] = std::move(reads);
 }
 
+void SceneReadIndex::forget(const fs::path& scene_file) { reads_.erase(normal_file_path(scene_file)); }
+
 std::vector<fs::path> SceneReadIndex::reached(const std::set<fs::path>& changed,
                                               const std::vector<fs::path>& scene_files) const {
   std::vector<fs::path> scenes;

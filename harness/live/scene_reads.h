@@ -26,6 +26,8 @@ std::set<std::filesystem::path> scene_reads(const std::filesystem::path& scene_f
 class SceneReadIndex {
  public:
   void set(const std::filesystem::path& scene_file, std::set<std::filesystem::path> reads);
+  // A scene no longer watched: its files reach nothing and are not watched for it.
+  void forget(const std::filesystem::path& scene_file);
   // The scenes that read any of `changed`, in the order of `scene_files`.
   std::vector<std::filesystem::path> reached(const std::set<std::filesystem::path>& changed,
                                              const std::vector<std::filesystem::path>& scene_files) const;

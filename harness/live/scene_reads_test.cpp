@@ -69,6 +69,8 @@ TEST(SceneReadIndex, ANewRenderReplacesWhatTheSceneRead) {
   index.set("/s/a.toml", {"/s/a.toml", "/shaders/new.hlsl"});
   EXPECT_TRUE(index.reached({"/shaders/old.hlsl"}, {"/s/a.toml"}).empty());
   EXPECT_EQ(index.reached({"/shaders/new.hlsl"}, {"/s/a.toml"}).size(), 1u);
+  index.forget("/s/a.toml");
+  EXPECT_TRUE(index.all_files().empty());
 }
 
 }  // namespace
