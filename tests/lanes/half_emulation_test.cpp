@@ -33,8 +33,9 @@ float4 frag(float2 uv : TEXCOORD0) : SV_Target {
 // fp16's nearest value to 1/3: 0x3555 = 1365/4096.
 constexpr float kThirdInHalf = 1365.0f / 4096.0f;
 
-harness::FloatImage evaluate_on(harness::Lane lane, bool half_emulation) {
-  auto module = hlsl::compile_text("half.hlsl", kShader, {});
+// `shader` evaluated for one pixel on `lane`.
+harness::FloatImage evaluate_on(harness::Lane lane, bool half_emulation, const char* shader = kShader) {
+  auto module = hlsl::compile_text("half.hlsl", shader, {});
   EXPECT_TRUE(module->ok()) << module->diagnostics.render_all();
   auto backend = harness::create_backend(lane);
   EXPECT_TRUE(backend) << backend.error().to_string();
@@ -85,14 +86,8 @@ float4 frag(float2 uv : TEXCOORD0) : SV_Target {
 )";
 
 glm::vec4 in_place_on(harness::Lane lane, bool half_emulation) {
-  auto module = hlsl::compile_text("in_place.hlsl", kInPlaceShader, {});
-  EXPECT_TRUE(module->ok()) << module->diagnostics.render_all();
-  auto backend = harness::create_backend(lane);
-  EXPECT_TRUE(backend) << backend.error().to_string();
-  if (!backend) return {};
-  auto image = harness::evaluate(*module, lane, **backend, 1, 1, {}, {.half_emulation = half_emulation});
-  EXPECT_TRUE(image) << image.error().to_string();
-  return image ? image->at(0, 0) : glm::vec4(0.0f);
+  const harness::FloatImage image = evaluate_on(lane, half_emulation, kInPlaceShader);
+  return image.width == 1 ? image.at(0, 0) : glm::vec4(0.0f);
 }
 
 TEST_P(HalfEmulation, IncrementsAndAFloatAddedInPlaceAreRoundedAsTheyAreStored) {
