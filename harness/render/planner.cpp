@@ -50,8 +50,16 @@ class SourceReader {
   // `pass_entry`, as that post pass's variant.
   Result<SourceFacts> read(const std::string& library_path, const std::vector<std::string>& keywords, bool post,
                            const std::string& pass_entry = {}, std::optional<size_t> shader_pass = std::nullopt) {
-    auto path = shaders_.find(library_path);
-    record_candidates(library_path);
+    std::vector<fs::path> looked_in;
+    auto path = shaders_.find(library_path, &looked_in);
+    // Where it was looked for before: a file made there later (a source that was missing, or a
+    // user's file that takes the library's place) changes the plan. A folder that does not exist
+    // cannot be watched, and would be created first.
+    if (files_read_)
+      for (const fs::path& place : looked_in) {
+        std::error_code error;
+        if (fs::is_directory(place.parent_path(), error)) files_read_->insert(place);
+      }
     if (!path) return fail(path.error());
     hlsl::CompileOptions options;
     options.include_dirs = shaders_.folders();
@@ -116,21 +124,6 @@ class SourceReader {
  private:
   void add_warning(const std::string& warning) {
     if (std::find(warnings_.begin(), warnings_.end(), warning) == warnings_.end()) warnings_.push_back(warning);
-  }
-
-  // Where `library_path` is looked for, up to the folder that has it: a file made there later (a
-  // source that was missing, or a user's file that takes the library's place) changes the plan.
-  // Only in folders that exist, and never for a path that would lead out of its folder.
-  void record_candidates(const std::string& library_path) {
-    if (!files_read_) return;
-    const fs::path relative = fs::path(library_path).lexically_normal();
-    if (relative.empty() || relative.is_absolute() || *relative.begin() == "..") return;
-    for (const fs::path& folder : shaders_.folders()) {
-      const fs::path candidate = folder / relative;
-      std::error_code error;
-      if (fs::is_directory(candidate.parent_path(), error)) files_read_->insert(candidate);
-      if (fs::exists(candidate, error)) return;
-    }
   }
 
   const ShaderSearchPath& shaders_;

@@ -14,7 +14,7 @@ ShaderSearchPath::ShaderSearchPath(fs::path library) : folders_{std::move(librar
 
 ShaderSearchPath::ShaderSearchPath(std::vector<fs::path> folders) : folders_(std::move(folders)) {}
 
-Result<fs::path> ShaderSearchPath::find(const std::string& library_path) const {
+Result<fs::path> ShaderSearchPath::find(const std::string& library_path, std::vector<fs::path>* looked_in) const {
   const fs::path relative(library_path);
   const fs::path normal = relative.lexically_normal();
   if (relative.is_absolute() || relative.has_root_name() || normal.empty() || *normal.begin() == "..")
@@ -22,6 +22,7 @@ Result<fs::path> ShaderSearchPath::find(const std::string& library_path) const {
                 "'" + library_path + "' is not a path inside the shader folders (" + describe() + ")");
   for (const fs::path& folder : folders_) {
     const fs::path candidate = (folder / normal).lexically_normal();
+    if (looked_in) looked_in->push_back(candidate);
     std::error_code ignored;
     if (!fs::is_regular_file(candidate, ignored)) continue;
     if (!path_is_inside(candidate, folder))

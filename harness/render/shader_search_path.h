@@ -23,8 +23,11 @@ class ShaderSearchPath {
 
   // The file `library_path` names, from the first folder that has it. Fails when no folder has
   // it, and when it leads out of its folder (`..`, or a symbolic link pointing elsewhere): such a
-  // path is refused before anything reads it.
-  Result<std::filesystem::path> find(const std::string& library_path) const;
+  // path is refused before anything reads it. `looked_in`, when given, gets each place it looked,
+  // in order, up to the one that has it (every folder's, when none has it; none for a path
+  // refused): where a file made later would be found.
+  Result<std::filesystem::path> find(const std::string& library_path,
+                                     std::vector<std::filesystem::path>* looked_in = nullptr) const;
 
   // The library paths of every .hlsl file in the subfolder `kind` ("materials", "post") of any
   // folder, sorted, each once.

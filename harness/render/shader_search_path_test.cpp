@@ -43,6 +43,20 @@ TEST_F(ShaderSearchPathTest, TheFirstFolderThatHasTheFileSuppliesIt) {
   EXPECT_EQ(*pbr, root_ / "library/materials/standard_pbr.hlsl");
 }
 
+// Where a file made later would be found instead: each place looked, up to the one that has it.
+TEST_F(ShaderSearchPathTest, ItSaysWhereItLooked) {
+  std::vector<fs::path> looked_in;
+  ASSERT_TRUE(path().find("materials/standard_pbr.hlsl", &looked_in));
+  EXPECT_EQ(looked_in, (std::vector<fs::path>{root_ / "user/materials/standard_pbr.hlsl",
+                                              root_ / "library/materials/standard_pbr.hlsl"}));
+  looked_in.clear();
+  ASSERT_TRUE(path().find("materials/toon.hlsl", &looked_in));
+  EXPECT_EQ(looked_in, std::vector<fs::path>{root_ / "user/materials/toon.hlsl"});
+  looked_in.clear();
+  ASSERT_FALSE(path().find("../secret/key.hlsl", &looked_in));
+  EXPECT_TRUE(looked_in.empty());
+}
+
 TEST_F(ShaderSearchPathTest, AFileInNoFolderNamesEveryFolder) {
   auto missing = path().find("materials/silk.hlsl");
   ASSERT_FALSE(missing);
