@@ -87,6 +87,7 @@ class SceneWatch {
         reads_.forget(file);
       }
     files_ = std::move(files);
+    rewrite_all_ = true;  // a page's name depends on the others' (report_html.h's scene_page_names)
   }
 
   // "3 of 4 scenes pass" over every watched scene.
@@ -104,20 +105,19 @@ class SceneWatch {
     results.started = utc_now();
     results.command = options_.command_line;
     std::vector<harness::ViewerPage> viewers;
+    std::vector<bool> written_already;  // the pages of the scenes this round did not check
     for (const fs::path& file : files_) {
       if (!results_.count(file)) continue;
       results.scenes.push_back(results_.at(file));
       viewers.push_back(viewers_.at(file));
+      written_already.push_back(!rewrite_all_ && !changed.count(file));
     }
     const std::vector<std::string> names = harness::scene_page_names(results);
     std::vector<std::string> pages = {"index.html"};
-    size_t page = 0;
-    for (const fs::path& file : files_) {
-      if (!results_.count(file)) continue;
-      if (changed.count(file)) pages.push_back(names[page]);
-      ++page;
-    }
-    if (auto written = harness::write_reports(results, options_.report_dir, &viewers); !written)
+    for (size_t i = 0; i < names.size(); ++i)
+      if (!written_already[i]) pages.push_back(names[i]);
+    rewrite_all_ = false;
+    if (auto written = harness::write_reports(results, options_.report_dir, &viewers, &written_already); !written)
       fmt::print(stderr, "xshade watch: the report is not whole: {}\n", written.error().to_string());
     return pages;
   }
@@ -132,6 +132,7 @@ class SceneWatch {
   harness::SceneReadIndex reads_;
   std::map<fs::path, harness::SceneResult> results_;
   std::map<fs::path, harness::ViewerPage> viewers_;
+  bool rewrite_all_ = false;  // the scenes changed: every page is written again
 };
 
 // "toon.hlsl, brdf.hlsl" for the console.

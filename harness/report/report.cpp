@@ -29,8 +29,8 @@ std::vector<std::string> files_of(const RunResults& results, const std::vector<s
     files.push_back(file);
   for (const SceneResult& scene : results.scenes) {
     for (const LaneResult& lane : scene.lanes)
-      for (const std::string* path :
-           {&lane.image, &lane.image_exr, &lane.golden, &lane.golden_exr, &lane.diff, &lane.non_finite_mask})
+      for (const std::string* path : {&lane.image, &lane.image_exr, &lane.golden, &lane.golden_exr, &lane.diff,
+                                      &lane.metric_map, &lane.non_finite_mask})
         if (!path->empty()) files.push_back(*path);
     for (const CrossLaneResult& pair : scene.cross_lane)
       if (!pair.diff.empty()) files.push_back(pair.diff);
@@ -61,7 +61,7 @@ void remove_stale(const fs::path& report_dir, const std::vector<std::string>& no
 }  // namespace
 
 Result<void> write_reports(const RunResults& results, const fs::path& report_dir,
-                           const std::vector<ViewerPage>* viewers) {
+                           const std::vector<ViewerPage>* viewers, const std::vector<bool>* written_already) {
   std::error_code error;
   fs::create_directories(report_dir, error);
   if (error)
@@ -76,13 +76,19 @@ Result<void> write_reports(const RunResults& results, const fs::path& report_dir
   for (size_t i = 0; i < results.scenes.size(); ++i) {
     const ViewerPage viewer =
         viewers && i < viewers->size() ? (*viewers)[i] : viewer_page(results.scenes[i], report_dir, {}, &scripted);
+    const bool in_place = viewers && written_already && i < written_already->size() && (*written_already)[i];
     for (const ViewerPage::PixelScript& pixels : viewer.pixels) {
       if (pixels.script.empty()) continue;
       const std::string script = pixel_script_path(pixels.image);
+      if (in_place) {
+        pixel_scripts.push_back(script);
+        continue;
+      }
       fs::create_directories((report_dir / script).parent_path(), error);
       if (auto written = write_file_atomically(report_dir / script, pixels.script); !written) return written;
       pixel_scripts.push_back(script);
     }
+    if (in_place) continue;
     if (auto written = write_file_atomically(report_dir / pages[i], scene_html(results.scenes[i], viewer)); !written)
       return written;
   }

@@ -19,8 +19,12 @@ namespace xshade::harness {
 // are removed (the folder's .xshade-report-files lists what each run wrote; nothing else is).
 //
 // `viewers`, when given, holds each scene's viewer data (viewer_data.h) in the order of
-// results.scenes, made as the run went; otherwise it is made here from the report folder.
+// results.scenes, made as the run went; otherwise it is made here from the report folder. With
+// `viewers`, `written_already` marks the scenes whose page and pixel scripts the folder holds as
+// they are from an earlier write (xshade watch writes again only the scenes a save reached); the
+// index, junit.xml and results.json are always written whole.
 Result<void> write_reports(const RunResults& results, const std::filesystem::path& report_dir,
-                           const std::vector<ViewerPage>* viewers = nullptr);
+                           const std::vector<ViewerPage>* viewers = nullptr,
+                           const std::vector<bool>* written_already = nullptr);
 
 }  // namespace xshade::harness

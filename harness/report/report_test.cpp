@@ -486,5 +486,44 @@ TEST(WriteReports, WritesTheFloatValuesOfAnImageOnceHoweverManyPagesShowIt) {
   fs::remove_all(dir);
 }
 
+// xshade watch writes again only the scenes a save reached: the others' pages and pixel scripts
+// stay as they are, listed as the report's (so never removed as stale), and the index is new.
+TEST(WriteReports, ScenesWrittenAlreadyAreLeftAsTheyAre) {
+  const fs::path dir = fs::temp_directory_path() / "xshade_report_test_written_already";
+  fs::remove_all(dir);
+  FloatImage image(2, 1);
+  image.rgba = {0.25f, 0.5f, 0.75f, 1.0f, 0.0f, 0.0f, 0.0f, 1.0f};
+  RunResults results;
+  for (const char* name : {"kept", "changed"}) {
+    fs::create_directories(dir / name);
+    ASSERT_TRUE(write_exr(image, dir / name / "gl.exr"));
+    SceneResult scene;
+    scene.scene = name;
+    scene.verdict = Verdict::Pass;
+    LaneResult lane;
+    lane.lane = "gl";
+    lane.verdict = Verdict::Pass;
+    lane.image = std::string(name) + "/gl.png";
+    lane.image_exr = std::string(name) + "/gl.exr";
+    scene.lanes.push_back(lane);
+    results.scenes.push_back(scene);
+  }
+  std::vector<ViewerPage> viewers;
+  for (const SceneResult& scene : results.scenes) viewers.push_back(viewer_page(scene, dir));
+  ASSERT_TRUE(write_reports(results, dir, &viewers));
+  for (const char* file : {"kept.html", "changed.html", "pixels/kept/gl.exr.js", "pixels/changed/gl.exr.js"})
+    std::ofstream(dir / file) << "as before";
+  results.scenes[1].verdict = Verdict::Fail;
+  const std::vector<bool> written_already = {true, false};
+  ASSERT_TRUE(write_reports(results, dir, &viewers, &written_already));
+  EXPECT_EQ(read_text(dir / "kept.html"), "as before");
+  EXPECT_EQ(read_text(dir / "pixels/kept/gl.exr.js"), "as before");
+  EXPECT_NE(read_text(dir / "changed.html"), "as before");
+  EXPECT_NE(read_text(dir / "pixels/changed/gl.exr.js"), "as before");
+  EXPECT_NE(read_text(dir / ".xshade-report-files").find("pixels/kept/gl.exr.js"), std::string::npos);
+  EXPECT_NE(read_text(dir / "index.html").find("v-fail"), std::string::npos);
+  fs::remove_all(dir);
+}
+
 }  // namespace
 }  // namespace xshade::harness
