@@ -43,8 +43,11 @@ Result<const hlsl::Module*> VariantCompiler::front_end(const VariantRequest& req
     auto source = compile_source(request.source, options, request.shader_pass, request.unity_platform);
     if (!source) return fail(source.error());
     KeptModule kept{std::move(source->module), {}};
-    for (const std::filesystem::path& file : kept.module->dependencies())
-      kept.read.emplace_back(file, hash_of_file(file));
+    // The hash of each file as the front end read it (its text is in the module): exactly what
+    // this module was made from, with no second read.
+    const hlsl::SourceManager& sources = kept.module->sources;
+    for (uint32_t file = 1; file < sources.file_count(); ++file)
+      if (!sources.path(file).empty()) kept.read.emplace_back(sources.path(file), content_hash(sources.text(file)));
     known = modules_.emplace(key, std::move(kept)).first;
   }
   for (const auto& file : known->second.read) files_read_.insert(file.first);
