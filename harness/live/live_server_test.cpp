@@ -90,25 +90,29 @@ TEST_F(LiveServerTest, AnnouncedEventsReachAnOpenStream) {
   auto server = LiveServer::start(report_, 0);
   ASSERT_TRUE(server);
   (*server)->announce({{"round", 1}});
+  std::promise<void> first_arrived;
   std::promise<std::string> received;
   std::thread reader([&, port = (*server)->port()] {
     httplib::Client client("127.0.0.1", port);
     client.set_read_timeout(20, 0);
     std::string text;
-    bool told = false;
+    bool first = false, told = false;
     client.Get("/events", [&](const char* data, size_t length) {
       text.append(data, length);
+      if (!first && text.find(R"({"event":1,"round":1})") != std::string::npos) {
+        first = true;
+        first_arrived.set_value();
+      }
       if (text.find(R"({"event":2,"round":2})") == std::string::npos) return true;
       received.set_value(text);
       told = true;
       return false;
     });
+    if (!first) first_arrived.set_value();
     if (!told) received.set_value(text);
   });
-  auto first_seen = std::chrono::steady_clock::now() + std::chrono::seconds(5);
-  // The second event once the stream is open (its first chunk is the first event).
-  std::this_thread::sleep_until(
-      std::min(first_seen, std::chrono::steady_clock::now() + std::chrono::milliseconds(300)));
+  // The second event once the stream has the first: then it is open, whatever the machine's load.
+  ASSERT_EQ(first_arrived.get_future().wait_for(std::chrono::seconds(15)), std::future_status::ready);
   (*server)->announce({{"round", 2}});
   auto future = received.get_future();
   ASSERT_EQ(future.wait_for(std::chrono::seconds(15)), std::future_status::ready);
